@@ -1,0 +1,35 @@
+# frictal — the two commands of the README.
+#   make test       installs missing Debian packages, builds (release) and runs every test
+#   make reproduce  installs, builds and runs the paper reproduction, writing under out/
+JOBS ?= $(shell nproc)
+BUILD ?= build/release
+
+.PHONY: all deps configure build test reproduce bench sanitize clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps
+
+configure: deps
+	cmake --preset release
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+test: build
+	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+reproduce: build
+	bash scripts/reproduce $(BUILD)/frictal out
+
+bench: deps
+	cmake --preset bench && cmake --build build/bench -j $(JOBS)
+	bash bench/run-benchmarks build/bench
+
+sanitize: deps
+	cmake --preset sanitize && cmake --build build/sanitize -j $(JOBS)
+	ctest --test-dir build/sanitize --output-on-failure -j $(JOBS)
+
+clean:
+	rm -rf build out

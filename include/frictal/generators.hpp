@@ -1,0 +1,84 @@
+// frictal — surface generators. Every length in metres, every angle in radians.
+#pragma once
+
+#include <cstdint>
+
+#include "frictal/geometry.hpp"
+
+namespace frictal {
+
+/// Triadic Koch surface K_n (paper Sec. III, Fig. 3). The generator K_0 is a row of isosceles
+/// triangles of base `wavelength` and base angle `alpha`, pointing outward (+z, away from the
+/// material). Each iteration splits every segment in three equal parts and replaces the middle
+/// one by the two sides of an outward isosceles triangle of base angle alpha, so the steepest
+/// edge of K_n is (n+1) alpha. For alpha above 45 (K1), 30 (K2), 22.5 (K3) degrees the curve
+/// folds over, hence the result is a Curve; take upper_envelope() to get a profile.
+struct KochParams {
+  int iterations = 0;            ///< n >= 0 (unitless); n <= 10 to bound memory
+  double alpha = 0.0872664626;   ///< base angle of the triangles, in (0, pi/3] (unit: rad)
+  double wavelength = 0.01;      ///< base of the K_0 triangles, lambda (unit: m)
+  double length = 0.2;           ///< block length L_b, a whole number of wavelengths (unit: m)
+};
+KochParams default_koch_params();
+Result<Curve> koch_curve(const KochParams& p);
+/// The upper envelope of koch_curve(p), marked periodic with period `wavelength`.
+Result<Profile> koch_profile(const KochParams& p);
+
+/// Which exponent Eq. 14 uses: the paper's printed gamma^{2(D-2)n} or the common profile form
+/// gamma^{(D-2)n} (e.g. Yan & Komvopoulos 1998 for profiles).
+enum class WmExponent { Printed, Common };
+
+/// Ausloos-Berman Weierstrass-Mandelbrot profile (Eq. 14-17):
+///   z(x) = G sum_{n=0}^{n_max} gamma^{k(D-2)n} [cos phi_n - cos(2 pi gamma^n x / L + phi_n)]
+/// with k = 2 (Printed) or 1 (Common), phi_n uniform in [0, 2 pi) from `seed` (stochastic) or
+/// phi_n = 0 (deterministic, Eq. 17). Sampled with dx = L_s / 10, L_s = L / gamma^{n_max}
+/// (Eq. 16), n_max = 0 using the n_max = 1 spacing. G is chosen so that the rms height about
+/// the mean of the piecewise-linear profile equals `rms_height`.
+struct WmParams {
+  double dimension = 1.5;          ///< D in [1, 2] (unitless)
+  double gamma = 1.5;              ///< wavelength density gamma > 1 (unitless)
+  int n_max = 10;                  ///< highest wavelength index, 0..60 (unitless)
+  double longest_wavelength = 1e-6;///< L (unit: m)
+  double length = 20e-6;           ///< profile length L_b (unit: m)
+  double rms_height = 1e-9;        ///< target rms height about the mean; <= 0 keeps G = 1 m (unit: m)
+  bool stochastic = true;          ///< random phases (Eq. 14) or zero phases (Eq. 17)
+  std::uint64_t seed = 1;          ///< seed of the phases (unitless)
+  WmExponent exponent = WmExponent::Printed;
+  double spacing = 0.0;            ///< override dx if > 0 (unit: m)
+};
+WmParams default_wm_params();
+Result<Profile> wm_profile(const WmParams& p);
+/// Number of points wm_profile(p) would produce (for checking sizes before allocating).
+Result<std::size_t> wm_point_count(const WmParams& p);
+
+/// Asymmetric sawtooth: each period rises at angle `rise_angle` over `rise_fraction` of the
+/// wavelength, then falls back over the rest. Periodic.
+struct SawtoothParams {
+  double rise_angle = 0.349065850;  ///< slope angle of the rising flank, in (0, pi/2) (unit: rad)
+  double rise_fraction = 0.5;       ///< fraction of the wavelength that rises, in (0, 1) (unitless)
+  double wavelength = 0.01;         ///< (unit: m)
+  double length = 0.2;              ///< a whole number of wavelengths (unit: m)
+};
+Result<Profile> sawtooth_profile(const SawtoothParams& p);
+
+/// Sinusoid z = A sin(2 pi x / lambda), sampled with `points_per_wavelength` points. Periodic.
+struct SineParams {
+  double amplitude = 1e-3;        ///< A (unit: m)
+  double wavelength = 0.01;       ///< lambda (unit: m)
+  double length = 0.2;            ///< a whole number of wavelengths (unit: m)
+  int points_per_wavelength = 64; ///< >= 4 (unitless)
+};
+Result<Profile> sine_profile(const SineParams& p);
+
+/// Random self-affine profile by spectral synthesis (power spectrum ~ q^{-(1+2H)}), n uniform
+/// points over `length`, rms height `rms_height`. Used for large benchmarks and tests.
+struct SelfAffineParams {
+  std::size_t points = 1024;  ///< number of points >= 16 (unitless)
+  double length = 1e-3;       ///< (unit: m)
+  double hurst = 0.8;         ///< Hurst exponent H in (0, 1] (unitless)
+  double rms_height = 1e-6;   ///< (unit: m)
+  std::uint64_t seed = 1;
+};
+Result<Profile> self_affine_profile(const SelfAffineParams& p);
+
+}  // namespace frictal

@@ -1,0 +1,110 @@
+// frictal — the signature function theta(x_ofs) (paper Sec. II A, Eq. 1-3) and the friction
+// prediction (Eq. 6 and 18).
+//
+// Geometry: `lower` is the lower block's face f(x) as measured (material below). `upper` is the
+// upper block's face g(y) already rotated into place (material above, same frame direction), i.e.
+// rotate180() of a measured surface. At offset s the upper block's reference is lifted by
+//   h(s) = max_{x in overlap} [ f(x) - g(x - s) ]
+// so that the two touch; contacts are the maximisers. h is piecewise linear and its maximum is
+// attained at a vertex of f or of g, so evaluation needs only vertices; it changes its linear
+// piece only at "events" (offsets where a vertex of f is aligned with a vertex of g), between
+// which h is convex. Hence the exact extreme slopes are the one-sided slopes at events.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "frictal/geometry.hpp"
+#include "frictal/stats.hpp"
+
+namespace frictal {
+
+enum class SlopeMethod {
+  Exact,   ///< polyline slopes with the paper's contact rules (edge-edge, vertex-edge, vertex-vertex)
+  Spline,  ///< natural cubic-spline slopes of both surfaces at the contact, averaged (Sec. V B)
+};
+
+enum class ContactType : std::uint8_t {
+  VertexEdge,    ///< a vertex of the lower surface on an edge of the upper: the upper edge's slope
+  EdgeVertex,    ///< a vertex of the upper surface on an edge of the lower: the lower edge's slope
+  VertexVertex,  ///< vertices of both: mean of the two vertex slopes (vertex = mean of its edges)
+};
+
+struct Contact {
+  double x = 0;      ///< contact abscissa in the lower block's frame (unit: m)
+  double z = 0;      ///< contact height on the lower surface (unit: m)
+  double slope = 0;  ///< contact slope angle by the type's rule (unit: rad)
+  ContactType type = ContactType::VertexEdge;
+};
+
+struct SignatureOptions {
+  SlopeMethod slopes = SlopeMethod::Exact;
+  /// 0: exact — every event offset in the range (error if there are more than max_events).
+  /// N > 0: N equally spaced offsets over [offset_min, offset_max] (end included), each still
+  /// evaluated exactly, with exact one-sided slopes at each.
+  std::size_t offsets = 0;
+  std::size_t max_events = 20'000'000;
+  /// Offset range (unit: m). If offset_max <= offset_min: one period of the lower profile if it
+  /// is periodic, else [0, half the shorter block length].
+  double offset_min = 0;
+  double offset_max = 0;
+  /// Worker threads (0 = hardware concurrency). The result does not depend on this.
+  unsigned threads = 0;
+  /// Keep every contact of every offset (memory: a few per offset).
+  bool keep_contacts = true;
+  /// Contacts are candidates within tolerance * (height range of both surfaces) of the maximum.
+  double tolerance = 1e-9;
+  /// Bins of the contact-slope PDF.
+  int bins = 90;
+};
+
+struct SignatureResult {
+  std::vector<double> offset;       ///< evaluated offsets s (unit: m)
+  std::vector<double> lift;         ///< h(s), the upper block reference height (unit: m)
+  std::vector<double> theta;        ///< Eq. 3: max contact slope at s (unit: rad)
+  std::vector<double> theta_min;    ///< min contact slope at s (unit: rad)
+  std::vector<double> theta_left;   ///< slope of h just before s, atan(h'(s-)) (unit: rad)
+  std::vector<double> theta_right;  ///< slope of h just after s, atan(h'(s+)) (unit: rad)
+  std::vector<std::uint32_t> contact_begin;  ///< offsets' contacts: [begin[i], begin[i+1])
+  std::vector<Contact> contacts;
+
+  double theta_max_forward = 0;   ///< max theta: resists sliding towards +x (unit: rad)
+  double theta_max_backward = 0;  ///< max of -theta: resists sliding towards -x (unit: rad)
+  double offset_at_forward = 0;   ///< where theta_max_forward is reached (unit: m)
+  double offset_at_backward = 0;  ///< (unit: m)
+  /// Contact-slope distribution, one value per offset (weighted by the offset length it
+  /// represents when offsets are not equally spaced).
+  std::vector<double> slope_samples;  ///< (unit: rad)
+  std::vector<double> slope_weights;  ///< (unit: m)
+  double contact_slope_mean = 0;  ///< (unit: rad)
+  double contact_slope_std = 0;   ///< sigma of Eq. 18 (unit: rad)
+  Histogram contact_slope_pdf;    ///< (unit: 1/rad over rad)
+  bool exact = true;              ///< true if every event offset was evaluated
+  std::size_t events = 0;         ///< number of distinct event offsets in the range
+};
+
+/// Computes the signature of `lower` against `upper` (already rotated, see above).
+Result<SignatureResult> signature(const Profile& lower, const Profile& upper,
+                                  const SignatureOptions& options = {});
+
+/// Signature of a surface against itself turned over: upper = rotate180(surface).
+Result<SignatureResult> self_signature(const Profile& surface, const SignatureOptions& options = {});
+
+/// Plain reference evaluation of h(s) at one offset: scans every vertex of both profiles.
+/// O(N + M); used by tests and benchmarks as the second method.
+double lift_direct(const Profile& lower, const Profile& upper, double offset);
+
+/// Friction prediction (Eq. 6, 18).
+struct FrictionPrediction {
+  double atomic_friction = 0;     ///< mu_a (unitless)
+  double atomic_angle = 0;        ///< theta_a = atan(mu_a) (unit: rad)
+  double theta_max = 0;           ///< (unit: rad)
+  double friction_angle = 0;      ///< phi = theta_a + theta_max, capped at pi/2 (unit: rad)
+  double friction_coefficient = 0;///< mu = tan(phi); +inf when phi reaches pi/2 (unitless)
+  double friction_angle_low = 0;  ///< Eq. 18 lower end: theta_a + theta_max - sigma (unit: rad)
+  double friction_coefficient_low = 0;  ///< tan of the above (unitless)
+};
+/// mu_a >= 0; theta_max and sigma in radians.
+Result<FrictionPrediction> predict_friction(double atomic_friction, double theta_max, double sigma);
+
+}  // namespace frictal
