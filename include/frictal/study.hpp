@@ -71,8 +71,12 @@ struct TaskKind {
 class TaskRegistry {
  public:
   void add(TaskKind kind);
-  /// Declares a kind known to the project whose engine is not part of this build.
-  void add_unavailable(std::string name, std::string reason);
+  /// Declares a kind known to the project whose engine is not part of this build, with the
+  /// version its engine will have, so that a store begun without the engine can be resumed by
+  /// a build that has it.
+  void add_unavailable(std::string name, std::string reason, int version = 1);
+  /// Version of an available or declared kind (0 if unknown).
+  int version(const std::string& name) const;
   const TaskKind* find(const std::string& name) const;
   /// Empty if available; else "task kind 'tilt' is not available in this build (...)".
   std::string unavailable_reason(const std::string& name) const;
@@ -81,6 +85,7 @@ class TaskRegistry {
  private:
   std::map<std::string, TaskKind> kinds_;
   std::map<std::string, std::string> unavailable_;
+  std::map<std::string, int> unavailable_version_;
 };
 /// The kinds of this build: koch-signature, wm-pair-statistics; tilt and divider declared
 /// unavailable until their engines are merged.

@@ -112,10 +112,9 @@ std::string definition_text(const Study& s, const TaskRegistry& reg) {
                               json_string(s.name), s.seed, s.quick ? "quick" : "full");
   for (std::size_t i = 0; i < s.parts.size(); ++i) {
     const Part& p = s.parts[i];
-    const TaskKind* k = reg.find(p.kind);
     if (i) d += ',';
     d += fmt::format("{{\"name\":{},\"kind\":{},\"kind_version\":{},\"seed_from\":[", json_string(p.name),
-                     json_string(p.kind), k ? k->version : 0);
+                     json_string(p.kind), reg.version(p.kind));
     for (std::size_t j = 0; j < p.seed_from.size(); ++j) {
       if (j) d += ',';
       d += json_string(p.seed_from[j]);

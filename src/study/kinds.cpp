@@ -17,8 +17,15 @@ void TaskRegistry::add(TaskKind kind) {
   unavailable_.erase(kind.name);
   kinds_[kind.name] = std::move(kind);
 }
-void TaskRegistry::add_unavailable(std::string name, std::string reason) {
-  if (!kinds_.count(name)) unavailable_[std::move(name)] = std::move(reason);
+void TaskRegistry::add_unavailable(std::string name, std::string reason, int version) {
+  if (kinds_.count(name)) return;
+  unavailable_version_[name] = version;
+  unavailable_[std::move(name)] = std::move(reason);
+}
+int TaskRegistry::version(const std::string& name) const {
+  if (const TaskKind* k = find(name)) return k->version;
+  auto it = unavailable_version_.find(name);
+  return it == unavailable_version_.end() ? 0 : it->second;
 }
 const TaskKind* TaskRegistry::find(const std::string& name) const {
   auto it = kinds_.find(name);

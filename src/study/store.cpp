@@ -387,7 +387,8 @@ Result<std::vector<Store::Row>> Store::rows(const std::string& part, bool with_a
       r.params_json = q.text(3);
       r.status = q.text(4);
       try {
-        for (const auto& [k, v] : nlohmann::json::parse(r.params_json).items()) r.params[k] = from_json(v);
+        const nlohmann::json j = nlohmann::json::parse(r.params_json);
+        for (const auto& [k, v] : j.items()) r.params[k] = from_json(v);
       } catch (const std::exception& e) {
         return make_error(fmt::format("{}: task {}: malformed params text: {}", impl_->path, r.id, e.what()));
       }
@@ -413,7 +414,8 @@ Result<std::vector<Store::Row>> Store::rows(const std::string& part, bool with_a
       if (it == at.end()) continue;
       std::vector<double> v;
       try {
-        for (const auto& e : nlohmann::json::parse(q.text(2))) v.push_back(e.is_number() ? e.get<double>() : std::nan(""));
+        const nlohmann::json j = nlohmann::json::parse(q.text(2));
+        for (const auto& e : j) v.push_back(e.is_number() ? e.get<double>() : std::nan(""));
       } catch (const std::exception& e) {
         return make_error(fmt::format("{}: task {}: malformed array text: {}", impl_->path, q.i64(0), e.what()));
       }
