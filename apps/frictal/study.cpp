@@ -66,6 +66,7 @@ struct ProgressPrinter {
 struct RunArgs {
   std::string study, store, progress = "auto";
   unsigned threads = 0;
+  int inject_failure_rank = -1;
   bool quick = false, skip_unavailable = false, threads_set = false;
   std::vector<std::string> parts;
 };
@@ -89,6 +90,7 @@ int run(const RunArgs& a) {
   o.skip_unavailable = a.skip_unavailable;
   o.parts = a.parts;
   o.stop = &g_stop;
+  o.inject_failure_rank = a.inject_failure_rank;
   ProgressPrinter pp;
   pp.bar = a.progress == "bar" || (a.progress == "auto" && ::isatty(2));
   pp.quiet = a.progress == "none" || rank != 0;
@@ -250,6 +252,9 @@ std::function<int()> setup(CLI::App& app) {
   run_cmd->add_option("--part", ra->parts, "Run only this part (repeatable)");
   run_cmd->add_flag("--skip-unavailable", ra->skip_unavailable,
                     "Run the parts whose task kind this build has; leave the others pending");
+  run_cmd->add_option("--inject-failure-rank", ra->inject_failure_rank,
+                      "Testing under MPI: this rank fails every task it gets (its tasks must be reassigned)")
+      ->group("");  // hidden
   run_cmd->add_option("--progress", ra->progress, "auto (bar on a terminal, lines otherwise), bar, lines, none")
       ->check(CLI::IsMember({"auto", "bar", "lines", "none"}))->capture_default_str();
 

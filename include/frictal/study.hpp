@@ -144,6 +144,7 @@ struct TaskRecord {
   std::string error;
   double wall_s = 0;
   std::string worker;  ///< e.g. "thread 1", "rank 2"
+  int attempts = 1;    ///< executions this record stands for (failed ones reassigned under MPI + 1)
   TaskOutput output;
 };
 
@@ -210,6 +211,9 @@ struct RunOptions {
   std::vector<std::string> parts;     ///< run only these parts (empty: all)
   std::function<void(const Progress&)> progress;  ///< called after each finished task
   const std::atomic<bool>* stop = nullptr;       ///< set to stop dispatching; in-flight tasks finish
+  /// Testing (MPI only): this rank reports every task it gets as failed, to exercise the
+  /// reassignment of failed tasks to other ranks. -1: off.
+  int inject_failure_rank = -1;
 };
 
 struct RunSummary {

@@ -3,7 +3,8 @@
 // `threads` local compute threads. Only rank 0's main thread calls MPI (MPI_THREAD_FUNNELED).
 //
 // Failures: a task that fails on a rank (error or exception, e.g. out of memory there) goes back
-// into the queue and is retried, up to kMaxAttempts, before it is recorded as failed. A rank
+// into the queue and is reassigned to a rank it has not failed on, up to kMaxAttempts attempts
+// (or until every rank has failed it), before it is recorded as failed. A rank
 // that dies outright makes mpirun abort the job (standard MPI has no recovery from process
 // loss); the store keeps every finished task and rerunning the command resumes the rest.
 #ifdef FRICTAL_MPI
@@ -16,6 +17,7 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include <algorithm>
 #include <thread>
 
 #include <fmt/core.h>
@@ -86,6 +88,8 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
         r.id = id;
         r.status = TaskStatus::Failed;
         r.error = fmt::format("{}: task id {} is not in this rank's study (different study file?)", me, id);
+      } else if (options.inject_failure_rank == rank) {
+        r = TaskRecord{id, TaskStatus::Failed, fmt::format("fault injected on {}", me), 0, me, {}};
       } else {
         r = execute(study.tasks[static_cast<std::size_t>(id)], registry, me);
       }
@@ -126,6 +130,24 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
   std::deque<std::int64_t> queue(todo->begin(), todo->end());
   std::deque<TaskRecord> local_done;
   std::map<std::int64_t, int> attempts;
+  std::map<std::int64_t, std::set<int>> failed_on;  // task -> ranks it failed on
+  // Takes the first queued task that has not failed on `who` (caller holds mu); -1 if none.
+  auto take_for = [&](int who) -> std::int64_t {
+    for (auto it = queue.begin(); it != queue.end(); ++it) {
+      auto f = failed_on.find(*it);
+      if (f != failed_on.end() && f->second.count(who)) continue;
+      const std::int64_t id = *it;
+      queue.erase(it);
+      return id;
+    }
+    return -1;
+  };
+  auto has_for = [&](int who) {
+    return std::any_of(queue.begin(), queue.end(), [&](std::int64_t id) {
+      auto f = failed_on.find(id);
+      return f == failed_on.end() || !f->second.count(who);
+    });
+  };
   bool closing = false;  // no more dispatch (interrupted or store error)
   int local_busy = 0;
   const unsigned T = options.threads ? options.threads : 1;
@@ -137,13 +159,14 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
         std::int64_t id;
         {
           std::unique_lock lk(mu);
-          cv.wait(lk, [&] { return closing || !queue.empty(); });
+          cv.wait(lk, [&] { return closing || has_for(0); });
           if (closing) return;
-          id = queue.front();
-          queue.pop_front();
+          id = take_for(0);
           ++local_busy;
         }
-        TaskRecord r = execute(study.tasks[static_cast<std::size_t>(id)], registry, me);
+        TaskRecord r = options.inject_failure_rank == 0
+                           ? TaskRecord{id, TaskStatus::Failed, "fault injected on rank 0", 0, me, {}}
+                           : execute(study.tasks[static_cast<std::size_t>(id)], registry, me);
         std::lock_guard lk(mu);
         local_done.push_back(std::move(r));
         --local_busy;
@@ -161,17 +184,26 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
   Error store_error;
   bool failed_store = false;
 
-  // Returns true if the record was final (recorded), false if requeued.
-  auto handle = [&](TaskRecord r) {
-    if (r.status == TaskStatus::Failed && ++attempts[r.id] < kMaxAttempts && !failed_store) {
+  // Records a final outcome, or puts a failed task back for another rank.
+  auto handle = [&](TaskRecord r, int on_rank) {
+    if (r.status == TaskStatus::Failed && !failed_store) {
       std::lock_guard lk(mu);
-      if (!closing) {
+      auto& ranks = failed_on[r.id];
+      ranks.insert(on_rank);
+      if (!closing && ++attempts[r.id] < kMaxAttempts && static_cast<int>(ranks.size()) < size) {
         queue.push_back(r.id);
         cv.notify_all();
         return;
       }
     }
     if (failed_store) return;
+    {
+      std::lock_guard lk(mu);
+      auto f = failed_on.find(r.id);
+      r.attempts = 1 + (f == failed_on.end() ? 0 : static_cast<int>(f->second.size()) - (r.status == TaskStatus::Failed));
+      if (r.status == TaskStatus::Failed && f != failed_on.end())
+        r.error += fmt::format(" (failed on {} rank(s))", f->second.size());
+    }
     if (auto s = store->record(r); !s) {
       store_error = s.error();
       failed_store = true;
@@ -206,7 +238,7 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
     }
     for (auto& r : mine) {
       busy = true;
-      handle(std::move(r));
+      handle(std::move(r), 0);
     }
     // Remote messages.
     int flag = 0;
@@ -219,21 +251,24 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
       if (st.MPI_TAG == kTagResult) {
         inflight.erase(src);
         auto r = deserialize(bytes);
-        if (r) handle(std::move(*r));
+        if (r) handle(std::move(*r), src);
       }
       idle.insert(src);
     }
-    // Dispatch to idle workers.
-    while (!idle.empty()) {
+    // Dispatch to idle workers (a worker stays idle if every queued task failed on it).
+    for (auto it = idle.begin(); it != idle.end();) {
+      const int w = *it;
       std::int64_t id;
       {
         std::lock_guard lk(mu);
-        if (closing || queue.empty()) break;
-        id = queue.front();
-        queue.pop_front();
+        if (closing) break;
+        id = take_for(w);
       }
-      const int w = *idle.begin();
-      idle.erase(idle.begin());
+      if (id < 0) {
+        ++it;
+        continue;
+      }
+      it = idle.erase(it);
       long long v = id;
       MPI_Send(&v, 1, MPI_LONG_LONG, w, kTagTask, MPI_COMM_WORLD);
       inflight[w] = id;
@@ -255,7 +290,7 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
   {  // results that raced with the end (none expected, but never drop one)
     std::deque<TaskRecord> mine;
     mine.swap(local_done);
-    for (auto& r : mine) handle(std::move(r));
+    for (auto& r : mine) handle(std::move(r), 0);
   }
   // Stop every worker: idle ones now, the others after their next message.
   for (int w : idle) {

@@ -309,16 +309,17 @@ Status Store::record(const TaskRecord& r) {
       return std::string(buf);
     };
     Stmt u(db.db,
-           "UPDATE tasks SET status = ?, attempts = attempts + 1, error = ?, worker = ?, started_at = ?, "
+           "UPDATE tasks SET status = ?, attempts = attempts + ?, error = ?, worker = ?, started_at = ?, "
            "finished_at = ?, wall_s = ? WHERE task_id = ?");
     u.bind(1, std::string(status_text(r.status)));
-    if (r.error.empty()) u.bind_null(2);
-    else u.bind(2, r.error);
-    u.bind(3, r.worker);
-    u.bind(4, iso(t0));
-    u.bind(5, iso(t));
-    u.bind(6, r.wall_s);
-    u.bind(7, r.id);
+    u.bind(2, static_cast<std::int64_t>(std::max(1, r.attempts)));
+    if (r.error.empty()) u.bind_null(3);
+    else u.bind(3, r.error);
+    u.bind(4, r.worker);
+    u.bind(5, iso(t0));
+    u.bind(6, iso(t));
+    u.bind(7, r.wall_s);
+    u.bind(8, r.id);
     if (u.step() != SQLITE_DONE) return fail("recording a task");
     if (sqlite3_changes(db.db) != 1) {
       (void)db.exec("ROLLBACK");

@@ -142,6 +142,18 @@ TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
   auto st = Store::open_existing(b);
   const std::string workers = *(*st)->query_csv("SELECT DISTINCT substr(worker, 1, 6) FROM tasks ORDER BY 1");
   EXPECT_NE(workers.find("rank 1"), std::string::npos) << workers;
+
+  // Fault injection: rank 0's compute thread fails every task it takes (it surely takes the
+  // first one); each is reassigned to rank 1 and the
+  // store is still exactly the threads run, with the extra attempts recorded.
+  const std::string c = fresh("mpi-fault.sqlite");
+  const std::string cmd2 = "mpirun -n 2 --oversubscribe" + root + " " + FRICTAL_CLI_PATH + " study run " + study +
+                           " --store " + c + " --progress none --inject-failure-rank 0 >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd2.c_str()), 0) << cmd2;
+  EXPECT_EQ(dump(a), dump(c));
+  auto sc = Store::open_existing(c);
+  EXPECT_EQ(*(*sc)->query_csv("SELECT count(*) AS n FROM tasks WHERE worker LIKE 'rank 0%'"), "n\n0\n");
+  EXPECT_NE(*(*sc)->query_csv("SELECT max(attempts) AS m FROM tasks"), "m\n1\n");
 }
 
 TEST(StudyCli, UserErrorsAndExport) {
