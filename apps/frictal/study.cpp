@@ -213,16 +213,17 @@ int export_csv(const std::string& path, const std::string& dir) {
       for (const auto& [k, v] : r.output.scalars) sn.insert(k);
     }
     std::string wide = "task_id";
-    for (const auto& k : pn) wide += "," + csv_field(k);
-    for (const auto& k : sn) wide += "," + csv_field(k);
+    for (const auto& k : pn) wide.append(",").append(csv_field(k));
+    for (const auto& k : sn) wide.append(",").append(csv_field(k));
     wide += "\n";
     std::string longf = "task_id,name,index,value\n";
     for (const auto& r : rows) {
       wide += std::to_string(r.id);
-      for (const auto& k : pn) wide += "," + (r.params.count(k) ? value_text(r.params.at(k)) : "");
+      for (const auto& k : pn) wide.append(",").append(r.params.count(k) ? value_text(r.params.at(k)) : std::string{});
       for (const auto& k : sn) {
         auto it = r.output.scalars.find(k);
-        wide += "," + (it != r.output.scalars.end() && std::isfinite(it->second) ? fmt::format("{}", it->second) : "");
+        wide.append(",").append(it != r.output.scalars.end() && std::isfinite(it->second) ? fmt::format("{}", it->second)
+                                                                                           : std::string{});
       }
       wide += "\n";
       for (const auto& [name, v] : r.output.arrays)

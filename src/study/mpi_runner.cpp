@@ -40,6 +40,15 @@ std::string recv_bytes(int source, int tag, MPI_Status* st) {
 }
 }  // namespace
 
+static TaskRecord injected_failure(std::int64_t id, const std::string& worker) {
+  TaskRecord r;
+  r.id = id;
+  r.status = TaskStatus::Failed;
+  r.error = fmt::format("fault injected on {}", worker);
+  r.worker = worker;
+  return r;
+}
+
 bool mpi_available() { return true; }
 
 bool launched_by_mpi() {
@@ -89,7 +98,7 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
         r.status = TaskStatus::Failed;
         r.error = fmt::format("{}: task id {} is not in this rank's study (different study file?)", me, id);
       } else if (options.inject_failure_rank == rank) {
-        r = TaskRecord{id, TaskStatus::Failed, fmt::format("fault injected on {}", me), 0, me, {}};
+        r = injected_failure(id, me);
       } else {
         r = execute(study.tasks[static_cast<std::size_t>(id)], registry, me);
       }
@@ -165,7 +174,7 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
           ++local_busy;
         }
         TaskRecord r = options.inject_failure_rank == 0
-                           ? TaskRecord{id, TaskStatus::Failed, "fault injected on rank 0", 0, me, {}}
+                           ? injected_failure(id, me)
                            : execute(study.tasks[static_cast<std::size_t>(id)], registry, me);
         std::lock_guard lk(mu);
         local_done.push_back(std::move(r));
