@@ -213,9 +213,10 @@ Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   const SignatureResult& r = *sig;
   const ProfileStats sl = profile_stats(*lower), su = profile_stats(*upper);
   // Both faces are graphs without vertical edges, so h(s) is continuous and a one-sided slope
-  // of +-90 deg cannot be real: the signature reports one when it finds no continuation at a
-  // (near-)degenerate event. Recompute the extremes as signature() does, but skip such values,
-  // and count them so that the store shows how often it happened.
+  // of +-90 deg cannot be real: signature() reports one when the contact is at the end vertex of
+  // a block (one edge, no continuation found), though the corner just slides along the other
+  // face. Recompute the extremes as signature() does, but skip such values, and count them so
+  // that the store shows how often it happened.
   double fwd = r.theta_max_forward, bwd = r.theta_max_backward;
   std::size_t artifacts = 0;
   if (std::max(sl.max_slope, su.max_slope) < 0.5 * std::numbers::pi - 1e-9) {
