@@ -54,8 +54,9 @@ n_max = [6, 8, 9]
 pair = { count = 5 }
 )";
 
-std::string study_file() {
-  const std::string p = temp_path("kill-test.toml");
+// One file per test: ctest runs tests in parallel processes that share the temp directory.
+std::string study_file(const std::string& tag) {
+  const std::string p = temp_path("kill-test-" + tag + ".toml");
   write_file(p, kStudy);
   return p;
 }
@@ -76,7 +77,7 @@ pid_t spawn_run(const std::string& study, const std::string& store, const std::s
 }  // namespace
 
 TEST(StudyCli, KilledWithSigkillAtRandomPointsAndResumedGivesTheUninterruptedRows) {
-  const std::string study = study_file();
+  const std::string study = study_file("kill");
   const std::string ref = fresh("kill-ref.sqlite");
   auto r = run_cli("study run " + study + " --store " + ref + " --threads 1 --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -112,7 +113,7 @@ TEST(StudyCli, KilledWithSigkillAtRandomPointsAndResumedGivesTheUninterruptedRow
 }
 
 TEST(StudyCli, CtrlCStopsCleanlyAndResumes) {
-  const std::string study = study_file();
+  const std::string study = study_file("sigint");
   const std::string store = fresh("sigint.sqlite");
   const pid_t pid = spawn_run(study, store, "1");
   std::this_thread::sleep_for(std::chrono::milliseconds(150));
@@ -129,7 +130,7 @@ TEST(StudyCli, CtrlCStopsCleanlyAndResumes) {
 TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
   if (!mpi_available()) GTEST_SKIP() << "built without FRICTAL_MPI";
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
-  const std::string study = study_file();
+  const std::string study = study_file("mpi");
   const std::string a = fresh("mpi-threads.sqlite"), b = fresh("mpi-ranks.sqlite");
   auto r = run_cli("study run " + study + " --store " + a + " --threads 2 --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -157,7 +158,7 @@ TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
 }
 
 TEST(StudyCli, UserErrorsAndExport) {
-  const std::string study = study_file();
+  const std::string study = study_file("cli");
   const std::string store = fresh("cli.sqlite");
   auto r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
