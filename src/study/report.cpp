@@ -98,7 +98,8 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F1: contact below surface.
   {
     Finding f;
-    f.claim = "The maximum contact slope is smaller than the maximum surface slope (Sec. V.C, Fig. 15).";
+    f.claim = fmt::format("Part '{}': the maximum contact slope is smaller than the maximum surface slope (Sec. V.C, "
+                          "Fig. 15).", part);
     f.supported = above == 0 && below > 0;
     f.evidence.push_back(fmt::format("criterion: tan(theta_max,contact) <= tan(theta_max,surface) for every pair; "
                                      "{} of {} pairs strictly below, {} equal (within 1e-9), {} above{}",
@@ -116,7 +117,8 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F2: rise with D at the largest n_max.
   {
     Finding f;
-    f.claim = fmt::format("Maximum contact and surface slopes increase with D (n_max = {}; Fig. 15).", nmax);
+    f.claim = fmt::format("Part '{}': maximum contact and surface slopes increase with D (n_max = {}; Fig. 15).", part,
+                          nmax);
     int up_c = 0, up_s = 0, steps = 0;
     double prev_c = NAN, prev_s = NAN;
     std::string vals;
@@ -139,9 +141,10 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
     rep.findings.push_back(f);
   }
   // F3: rise with n_max for every D.
-  {
+  if (ns.size() >= 2) {
     Finding f;
-    f.claim = "Maximum contact and surface slopes increase with n_max (finer wavelengths; Fig. 14).";
+    f.claim = fmt::format("Part '{}': maximum contact and surface slopes increase with n_max (finer wavelengths; "
+                          "Fig. 14).", part);
     int ok = 0, rows_n = 0, dips = 0, steps = 0;
     double worst_dip = 0, dip_dmax = -1;
     std::string vals;
@@ -177,8 +180,8 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F4: finite for D < 1.5, growing for D > 1.5.
   if (ns.size() >= 3) {
     Finding f;
-    f.claim = "As n_max grows the contact slope tends to a finite value for D < 1.5 and keeps growing for D > 1.5 "
-              "(Sec. V.C, VI).";
+    f.claim = fmt::format("Part '{}': as n_max grows the contact slope tends to a finite value for D < 1.5 and keeps "
+                          "growing for D > 1.5 (Sec. V.C, VI).", part);
     // Two equal windows of n_max ending at nmax: [a, b] and [b, nmax].
     std::vector<int> nv(ns.begin(), ns.end());
     const int b = nv[nv.size() / 2];
@@ -219,8 +222,8 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F5: standard deviations grow with D, fastest above 1.5.
   {
     Finding f;
-    f.claim = fmt::format("The standard deviations of contact and surface slopes grow with D, increasingly fast above "
-                          "D ~ 1.5 (n_max = {}; Fig. 17-18).", nmax);
+    f.claim = fmt::format("Part '{}': the standard deviations of contact and surface slopes grow with D, increasingly "
+                          "fast above D ~ 1.5 (n_max = {}; Fig. 17-18).", part, nmax);
     int up = 0, steps = 0;
     double prev = NAN, lo_gain = 0, hi_gain = 0;
     std::string vals;
@@ -343,7 +346,38 @@ Result<Report> report(Store& store) {
     }
     auto rows = store.rows(p.part, false);
     if (!rows) return rows.error();
-    if (p.kind == "wm-pair-statistics") wm_part(p.part, *rows, r);
+    if (p.kind == "wm-pair-statistics") {
+      // Pairs are pooled over `pair` only: other axes (e.g. slopes = ["exact", "spline"]) are
+      // analysed as separate variants.
+      std::map<std::string, std::vector<Store::Row>> variants;
+      std::map<std::string, Params> rests;
+      for (auto& row : *rows) {
+        Params rest = row.params;
+        for (const char* k : {"dimension", "n_max", "pair"}) rest.erase(k);
+        const std::string key = canonical(rest);
+        rests[key] = rest;
+        variants[key].push_back(std::move(row));
+      }
+      // Label a variant by the parameters that differ between variants, e.g. "wm [slopes=spline]".
+      std::set<std::string> differing;
+      for (const auto& [key, rest] : rests)
+        for (const auto& [name, v] : rest)
+          for (const auto& [key2, rest2] : rests)
+            if (!rest2.count(name) || canonical(rest2.at(name)) != canonical(v)) differing.insert(name);
+      for (const auto& [key, vrows] : variants) {
+        std::string label = p.part;
+        if (variants.size() > 1) {
+          std::string d;
+          for (const auto& name : differing) {
+            if (!d.empty()) d += ", ";
+            const Value& v = rests[key].at(name);
+            d += name + "=" + (std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : canonical(v));
+          }
+          label += " [" + d + "]";
+        }
+        wm_part(label, vrows, r);
+      }
+    }
     else koch_part(p.part, *rows, r);
   }
   return r;

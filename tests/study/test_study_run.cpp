@@ -234,6 +234,38 @@ alpha_deg = 10.0
   EXPECT_EQ((*reopened)->counts()->done, 4);
 }
 
+TEST(StudyReport, VariantsAreAnalysedSeparately) {
+  // Pairs are pooled over `pair` only; another axis (slopes) makes separate variants.
+  Study s = parse(R"(
+[study]
+name = "variants"
+seed = 5
+[[part]]
+name = "wm"
+kind = "wm-pair-statistics"
+seed_from = ["pair"]
+[part.parameters]
+dimension = [1.3, 1.7]
+n_max = [2, 4, 6]
+pair = { count = 1 }
+slopes = ["exact", "spline"]
+)");
+  auto st = Store::open(tmp("variants.sqlite"), s);
+  ASSERT_TRUE(st.ok());
+  RunOptions o;
+  o.threads = 2;
+  ASSERT_TRUE(run_threads(s, **st, reg(), o).ok());
+  auto rep = report(**st);
+  ASSERT_TRUE(rep.ok());
+  int exact = 0, spline = 0;
+  for (const auto& f : rep->findings) {
+    exact += f.claim.find("Part 'wm [slopes=exact]'") != std::string::npos;
+    spline += f.claim.find("Part 'wm [slopes=spline]'") != std::string::npos;
+  }
+  EXPECT_EQ(exact, 5);
+  EXPECT_EQ(spline, 5);
+}
+
 TEST(StudyStore, SerializeRoundTrip) {
   TaskRecord r;
   r.id = 42;
