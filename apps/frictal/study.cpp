@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -73,6 +74,13 @@ struct RunArgs {
 
 int run(const RunArgs& a) {
   TaskRegistry reg = default_registry();
+  if (!mpi_available()) {
+    // Several copies of a build without MPI would each run the whole study on the same store.
+    for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+      if (const char* n = std::getenv(v); n && std::atoi(n) > 1)
+        throw UsageError("this frictal was built without MPI (FRICTAL_MPI=OFF) but runs under mpirun with several "
+                         "ranks; run it without mpirun (use --threads) or rebuild with MPI");
+  }
   const bool mpi = mpi_available() && launched_by_mpi();
   int rank = 0, size = 1;
   if (mpi) unwrap(mpi_init(&rank, &size));
