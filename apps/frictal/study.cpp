@@ -68,7 +68,7 @@ struct RunArgs {
   std::string study, store, progress = "auto";
   unsigned threads = 0;
   int inject_failure_rank = -1;
-  bool quick = false, skip_unavailable = false, threads_set = false;
+  bool quick = false, skip_unavailable = false, threads_set = false, pin = false;
   std::vector<std::string> parts;
 };
 
@@ -99,6 +99,7 @@ int run(const RunArgs& a) {
   o.parts = a.parts;
   o.stop = &g_stop;
   o.inject_failure_rank = a.inject_failure_rank;
+  o.pin_threads = a.pin;
   ProgressPrinter pp;
   pp.bar = a.progress == "bar" || (a.progress == "auto" && ::isatty(2));
   pp.quiet = a.progress == "none" || rank != 0;
@@ -257,6 +258,7 @@ std::function<int()> setup(CLI::App& app) {
   run_cmd->add_option("--store", ra->store, "SQLite store file (created if missing, resumed if it exists)")->required();
   run_cmd->add_option("--threads", ra->threads, "Compute threads (0 = all cores; under MPI: threads on rank 0, default 1)")
       ->each([ra](const std::string&) { ra->threads_set = true; });
+  run_cmd->add_flag("--pin", ra->pin, "Pin compute thread i to CPU i (as mpirun binds ranks); results do not change");
   run_cmd->add_flag("--quick", ra->quick, "Use the study's quick (CI) scale instead of the paper's full scale");
   run_cmd->add_option("--part", ra->parts, "Run only this part (repeatable)");
   run_cmd->add_flag("--skip-unavailable", ra->skip_unavailable,

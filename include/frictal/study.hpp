@@ -208,6 +208,9 @@ struct Progress {
 struct RunOptions {
   unsigned threads = 1;               ///< compute threads (0 = hardware concurrency)
   bool skip_unavailable = false;      ///< leave tasks of unavailable kinds pending
+  /// Pin compute thread i to CPU i mod (CPUs allowed), as mpirun binds ranks to cores. Results do
+  /// not change; on a busy machine it can help the scheduler (see bench/results/studies.md).
+  bool pin_threads = false;
   std::vector<std::string> parts;     ///< run only these parts (empty: all)
   std::function<void(const Progress&)> progress;  ///< called after each finished task
   const std::atomic<bool>* stop = nullptr;       ///< set to stop dispatching; in-flight tasks finish

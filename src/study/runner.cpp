@@ -9,6 +9,11 @@
 #include <set>
 #include <thread>
 
+#ifdef __linux__
+#include <pthread.h>
+#include <sched.h>
+#endif
+
 #include <fmt/core.h>
 
 #include "frictal/study.hpp"
@@ -82,6 +87,32 @@ TaskRecord execute(const Task& task, const TaskRegistry& registry, const std::st
   return r;
 }
 
+namespace {
+/// Pins the calling thread to the k-th CPU it may run on (Linux; a no-op elsewhere or on error).
+void pin_to_cpu(unsigned k) {
+#ifdef __linux__
+  cpu_set_t allowed;
+  CPU_ZERO(&allowed);
+  if (sched_getaffinity(0, sizeof allowed, &allowed) != 0) return;
+  const int n = CPU_COUNT(&allowed);
+  if (n <= 1) return;
+  int want = static_cast<int>(k % static_cast<unsigned>(n));
+  for (int c = 0; c < CPU_SETSIZE; ++c) {
+    if (!CPU_ISSET(c, &allowed)) continue;
+    if (want-- == 0) {
+      cpu_set_t one;
+      CPU_ZERO(&one);
+      CPU_SET(c, &one);
+      pthread_setaffinity_np(pthread_self(), sizeof one, &one);
+      return;
+    }
+  }
+#else
+  (void)k;
+#endif
+}
+}  // namespace
+
 Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegistry& registry, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   RunSummary sum;
@@ -101,6 +132,7 @@ Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegis
   for (unsigned w = 0; w < T; ++w) {
     pool.emplace_back([&, w] {
       const std::string name = fmt::format("thread {}", w);
+      if (options.pin_threads) pin_to_cpu(w);
       for (;;) {
         if (abort || (options.stop && options.stop->load())) break;
         const std::size_t i = next++;
