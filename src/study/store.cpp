@@ -30,6 +30,7 @@ CREATE TABLE tasks(
   status      TEXT NOT NULL DEFAULT 'pending' CHECK (status IN ('pending', 'done', 'failed')),
   attempts    INTEGER NOT NULL DEFAULT 0,
   error       TEXT,
+  scalars     TEXT,
   worker      TEXT,
   started_at  TEXT,
   finished_at TEXT,
@@ -310,7 +311,7 @@ Status Store::record(const TaskRecord& r) {
     };
     Stmt u(db.db,
            "UPDATE tasks SET status = ?, attempts = attempts + ?, error = ?, worker = ?, started_at = ?, "
-           "finished_at = ?, wall_s = ? WHERE task_id = ?");
+           "finished_at = ?, wall_s = ?, scalars = ? WHERE task_id = ?");
     u.bind(1, std::string(status_text(r.status)));
     u.bind(2, static_cast<std::int64_t>(std::max(1, r.attempts)));
     if (r.error.empty()) u.bind_null(3);
@@ -319,7 +320,19 @@ Status Store::record(const TaskRecord& r) {
     u.bind(5, iso(t0));
     u.bind(6, iso(t));
     u.bind(7, r.wall_s);
-    u.bind(8, r.id);
+    if (r.status == TaskStatus::Done) {
+      std::string js = "{";
+      for (const auto& [k, v] : r.output.scalars) {
+        if (js.size() > 1) js += ',';
+        js += json_string(k);
+        js += ':';
+        js += json_real(v);
+      }
+      u.bind(8, js + "}");
+    } else {
+      u.bind_null(8);
+    }
+    u.bind(9, r.id);
     if (u.step() != SQLITE_DONE) return fail("recording a task");
     if (sqlite3_changes(db.db) != 1) {
       (void)db.exec("ROLLBACK");

@@ -31,7 +31,7 @@ std::string dump(const std::string& path) {
   if (!st.ok()) return {};
   std::string d;
   for (const char* q : {"SELECT key, value FROM meta WHERE key NOT IN ('created_at') ORDER BY key",
-                        "SELECT task_id, part, kind, params, task_key, seed, status, error FROM tasks ORDER BY task_id",
+                        "SELECT task_id, part, kind, params, task_key, seed, status, error, scalars FROM tasks ORDER BY task_id",
                         "SELECT task_id, name, value FROM params ORDER BY task_id, name",
                         "SELECT task_id, name, value FROM scalars ORDER BY task_id, name",
                         "SELECT task_id, name, length, json FROM arrays ORDER BY task_id, name"})

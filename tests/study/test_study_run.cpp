@@ -27,7 +27,7 @@ Study parse(const std::string& text, bool quick = false) {
 /// Every stored column that does not depend on the run (no timings, worker or attempts).
 std::string dump(Store& s) {
   std::string d;
-  for (const char* q : {"SELECT task_id, part, kind, params, task_key, seed, status, error FROM tasks ORDER BY task_id",
+  for (const char* q : {"SELECT task_id, part, kind, params, task_key, seed, status, error, scalars FROM tasks ORDER BY task_id",
                         "SELECT task_id, name, value FROM params ORDER BY task_id, name",
                         "SELECT task_id, name, value FROM scalars ORDER BY task_id, name",
                         "SELECT task_id, name, length, json FROM arrays ORDER BY task_id, name"}) {
