@@ -243,6 +243,24 @@ int export_csv(const std::string& path, const std::string& dir) {
     write_text(fs::path(dir) / (pc.part + "-arrays.csv"), longf);
     files.push_back(pc.part + ".csv");
     files.push_back(pc.part + "-arrays.csv");
+    // PDFs pooled over replicates (pair), e.g. Fig. 16.
+    auto pooled = unwrap(pooled_pdfs(*store, pc.part));
+    if (!pooled.empty()) {
+      std::string csv = "group";
+      for (const auto& k : pn)
+        if (k != "pair") csv.append(",").append(csv_field(k));
+      csv += ",pdf,members,lo,hi,density\n";
+      for (std::size_t g = 0; g < pooled.size(); ++g) {
+        const PooledPdf& pp = pooled[g];
+        std::string prefix = std::to_string(g);
+        for (const auto& k : pn)
+          if (k != "pair") prefix.append(",").append(pp.params.count(k) ? value_text(pp.params.at(k)) : std::string{});
+        for (std::size_t i = 0; i < pp.density.size(); ++i)
+          csv += fmt::format("{},{},{},{},{},{}\n", prefix, pp.name, pp.members, pp.edges[i], pp.edges[i + 1], pp.density[i]);
+      }
+      write_text(fs::path(dir) / (pc.part + "-pooled-pdfs.csv"), csv);
+      files.push_back(pc.part + "-pooled-pdfs.csv");
+    }
   }
   write_text(fs::path(dir) / "report.md", render(unwrap(report(*store))));
   files.push_back("report.md");

@@ -269,6 +269,20 @@ struct Report {
   std::vector<std::string> lines;  ///< summary tables
   std::vector<Finding> findings;
 };
+/// A probability density pooled over replicates: every done task of `part` whose parameters
+/// equal `params` except `pair`, rebinned onto common edges (assuming uniform density inside
+/// each source bin) and averaged with equal weights (paper Fig. 16 pools the 20 pairs).
+struct PooledPdf {
+  std::string part;
+  Params params;             ///< the group's parameters (without pair)
+  std::string name;          ///< array prefix, e.g. "contact_slope_pdf"
+  int members = 0;           ///< tasks pooled
+  std::vector<double> edges;    ///< common bin edges (unit of the source edges)
+  std::vector<double> density;  ///< pooled density (integrates to 1)
+};
+/// Pools every array pair "<prefix>_edges_<unit>" / "<prefix>_density_per_<unit>" of a part.
+Result<std::vector<PooledPdf>> pooled_pdfs(Store& store, const std::string& part);
+
 /// Summarises a store: per-part tables, and for wm-pair-statistics / koch-signature the paper's
 /// findings (Sec. III, V.C-D) with supporting numbers.
 Result<Report> report(Store& store);

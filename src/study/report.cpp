@@ -328,6 +328,89 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
 
 }  // namespace
 
+Result<std::vector<PooledPdf>> pooled_pdfs(Store& store, const std::string& part) {
+  auto rows = store.rows(part, true);
+  if (!rows) return rows.error();
+  // Group key: part + canonical params without pair; then array prefix.
+  struct Acc {
+    Params params;
+    std::vector<const Store::Row*> rows;
+  };
+  std::map<std::string, Acc> groups;
+  for (const auto& r : *rows) {
+    Params p = r.params;
+    p.erase("pair");
+    auto& g = groups[canonical(p)];
+    g.params = p;
+    g.rows.push_back(&r);
+  }
+  std::vector<PooledPdf> out;
+  for (const auto& [key, g] : groups) {
+    // Prefixes present in the first member.
+    std::vector<std::pair<std::string, std::string>> pdfs;  // prefix, unit
+    for (const auto& [name, v] : g.rows.front()->output.arrays) {
+      const auto at = name.find("_edges_");
+      if (at == std::string::npos) continue;
+      const std::string prefix = name.substr(0, at), unit = name.substr(at + 7);
+      if (g.rows.front()->output.arrays.count(prefix + "_density_per_" + unit)) pdfs.emplace_back(prefix, unit);
+    }
+    for (const auto& [prefix, unit] : pdfs) {
+      const std::string en = prefix + "_edges_" + unit, dn = prefix + "_density_per_" + unit;
+      double lo = INFINITY, hi = -INFINITY;
+      std::size_t bins = 0;
+      for (const auto* r : g.rows) {
+        auto e = r->output.arrays.find(en);
+        auto d = r->output.arrays.find(dn);
+        if (e == r->output.arrays.end() || d == r->output.arrays.end() || e->second.size() != d->second.size() + 1 ||
+            e->second.size() < 2)
+          continue;
+        lo = std::min(lo, e->second.front());
+        hi = std::max(hi, e->second.back());
+        bins = std::max(bins, d->second.size());
+      }
+      if (!(hi > lo) || bins == 0) continue;
+      PooledPdf pp;
+      pp.part = part;
+      pp.params = g.params;
+      pp.name = prefix;
+      pp.edges.resize(bins + 1);
+      for (std::size_t i = 0; i <= bins; ++i) pp.edges[i] = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(bins);
+      std::vector<double> mass(bins, 0.0);
+      const double w = (hi - lo) / static_cast<double>(bins);
+      for (const auto* r : g.rows) {
+        auto e = r->output.arrays.find(en);
+        auto d = r->output.arrays.find(dn);
+        if (e == r->output.arrays.end() || d == r->output.arrays.end() || e->second.size() != d->second.size() + 1) continue;
+        const auto& E = e->second;
+        const auto& Dn = d->second;
+        double total = 0;
+        for (std::size_t k = 0; k < Dn.size(); ++k) total += Dn[k] * (E[k + 1] - E[k]);
+        if (!(total > 0)) continue;
+        ++pp.members;
+        for (std::size_t k = 0; k < Dn.size(); ++k) {
+          const double a = E[k], b = E[k + 1], m = Dn[k] * (b - a) / total;
+          if (m <= 0) continue;
+          if (!(b > a)) {  // degenerate bin: all its mass at a point
+            const auto j = std::min(bins - 1, static_cast<std::size_t>(std::max(0.0, std::floor((a - lo) / w))));
+            mass[j] += m;
+            continue;
+          }
+          const auto j0 = static_cast<std::size_t>(std::max(0.0, std::floor((a - lo) / w)));
+          for (std::size_t j = std::min(j0, bins - 1); j < bins && pp.edges[j] < b; ++j) {
+            const double ov = std::min(b, pp.edges[j + 1]) - std::max(a, pp.edges[j]);
+            if (ov > 0) mass[j] += m * ov / (b - a);
+          }
+        }
+      }
+      if (pp.members == 0) continue;
+      pp.density.resize(bins);
+      for (std::size_t j = 0; j < bins; ++j) pp.density[j] = mass[j] / (pp.members * w);
+      out.push_back(std::move(pp));
+    }
+  }
+  return out;
+}
+
 Result<Report> report(Store& store) {
   auto m = store.meta();
   if (!m) return m.error();

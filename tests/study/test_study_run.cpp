@@ -266,6 +266,37 @@ slopes = ["exact", "spline"]
   EXPECT_EQ(spline, 5);
 }
 
+TEST(StudyReport, PooledPdfsRebinOntoCommonEdges) {
+  // Two replicates with all their mass in [0, 1] and in [2, 3]: the common range is [0, 3] with
+  // two bins of 1.5, so each bin holds half the pooled mass: density 0.5 / 1.5 = 1/3.
+  TaskRegistry r = default_registry();
+  r.add({"fake-pdf", "test", 1, [](const Params& p, std::uint64_t) -> frictal::Result<TaskOutput> {
+           TaskOutput t;
+           const bool first = std::get<std::int64_t>(p.at("pair")) == 0;
+           t.arrays["x_pdf_edges_deg"] = first ? std::vector<double>{0, 1, 2} : std::vector<double>{1, 2, 3};
+           t.arrays["x_pdf_density_per_deg"] = first ? std::vector<double>{1, 0} : std::vector<double>{0, 1};
+           return t;
+         }});
+  auto s = parse_study("[study]\nname='p'\nseed=1\n[[part]]\nname='f'\nkind='fake-pdf'\n[part.parameters]\n"
+                       "pair={count=2}\nD=[1.5]\n", "t", false, r);
+  ASSERT_TRUE(s.ok());
+  auto st = Store::open(tmp("pooled.sqlite"), *s);
+  ASSERT_TRUE(st.ok());
+  RunOptions o;
+  ASSERT_TRUE(run_threads(*s, **st, r, o).ok());
+  auto pooled = pooled_pdfs(**st, "f");
+  ASSERT_TRUE(pooled.ok());
+  ASSERT_EQ(pooled->size(), 1u);
+  const PooledPdf& pp = pooled->front();
+  EXPECT_EQ(pp.name, "x_pdf");
+  EXPECT_EQ(pp.members, 2);
+  EXPECT_EQ(canonical(pp.params), R"({"D":1.5})");
+  ASSERT_EQ(pp.edges.size(), 3u);
+  EXPECT_DOUBLE_EQ(pp.edges[1], 1.5);
+  EXPECT_NEAR(pp.density[0], 1.0 / 3.0, 1e-15);
+  EXPECT_NEAR(pp.density[1], 1.0 / 3.0, 1e-15);
+}
+
 TEST(StudyStore, SerializeRoundTrip) {
   TaskRecord r;
   r.id = 42;
