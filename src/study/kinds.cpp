@@ -212,36 +212,9 @@ Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   if (!sig) return sig.error();
   const SignatureResult& r = *sig;
   const ProfileStats sl = profile_stats(*lower), su = profile_stats(*upper);
-  // Both faces are graphs without vertical edges, so h(s) is continuous and a one-sided slope
-  // of +-90 deg cannot be real: signature() reports one when the contact is at the end vertex of
-  // a block (one edge, no continuation found), though the corner just slides along the other
-  // face. Recompute the extremes as signature() does, but skip such values, and count them so
-  // that the store shows how often it happened.
-  double fwd = r.theta_max_forward, bwd = r.theta_max_backward;
-  std::size_t artifacts = 0;
-  if (std::max(sl.max_slope, su.max_slope) < 0.5 * std::numbers::pi - 1e-9) {
-    const double wall = 0.5 * std::numbers::pi - 1e-12;
-    fwd = bwd = -std::numbers::pi;
-    const std::size_t n = r.offset.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      double hi = r.theta[i], lo = r.theta_min[i];
-      auto use = [&](double v) {
-        if (std::abs(v) >= wall) {
-          ++artifacts;
-          return;
-        }
-        hi = std::max(hi, v);
-        lo = std::min(lo, v);
-      };
-      if (i > 0) use(r.theta_left[i]);
-      if (i + 1 < n) use(r.theta_right[i]);
-      fwd = std::max(fwd, hi);
-      bwd = std::max(bwd, -lo);
-    }
-  }
+  const double fwd = r.theta_max_forward, bwd = r.theta_max_backward;
   TaskOutput out;
   auto& s = out.scalars;
-  s["vertical_slope_artifacts"] = static_cast<double>(artifacts);
   const double cmax = std::max(fwd, bwd);
   const double smax = std::max(sl.max_slope, su.max_slope);
   s["theta_max_forward_deg"] = fwd / kDeg;
@@ -271,7 +244,7 @@ TaskRegistry default_registry() {
          "Self-signature of a Koch surface K_n (Sec. III): theta_max/alpha, friction angle, Eq. 13 dimension", 1,
          run_koch_signature});
   r.add({"wm-pair-statistics",
-         "A pair of stochastic WM profiles (Sec. V): max/std of contact and surface slopes, slope PDFs", 1,
+         "A pair of stochastic WM profiles (Sec. V): max/std of contact and surface slopes, slope PDFs", 2,
          run_wm_pair_statistics});
   r.add_unavailable("tilt", "the spheropolygon tilt simulation of Sec. IV is not merged yet");
   r.add_unavailable("divider", "the divider-method fractal dimension is not merged yet");

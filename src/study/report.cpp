@@ -56,9 +56,9 @@ std::string table(const std::string& title, const Grid& g, const std::set<int>& 
 }
 
 void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
-  Grid tc, ts, sc, ss, art;  // tan contact max, tan surface max, std contact, std surface (deg)
+  Grid tc, ts, sc, ss;  // tan contact max, tan surface max, std contact, std surface (deg)
   std::set<int> ns;
-  std::size_t tasks = 0, below = 0, equal = 0, above = 0, with_artifacts = 0;
+  std::size_t tasks = 0, below = 0, equal = 0, above = 0;
   double worst_excess = 0;
   for (const auto& r : rows) {
     if (!r.params.count("dimension") || !r.params.count("n_max")) continue;
@@ -72,7 +72,6 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
     ts[D][n].add(f);
     sc[D][n].add(s.at("contact_slope_std_deg"));
     ss[D][n].add(s.at("surface_slope_std_deg"));
-    if (s.count("vertical_slope_artifacts") && s.at("vertical_slope_artifacts") > 0) ++with_artifacts;
     ++tasks;
     const double tol = 1e-9 * std::max(1.0, f);
     if (c < f - tol) ++below;
@@ -90,10 +89,6 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   rep.lines.push_back(table("Mean over pairs of tan(theta_max,surface) (Fig. 14a-b, 15):", ts, ns, 4));
   rep.lines.push_back(table("Mean over pairs of sigma_contact slope, deg (Fig. 17c-d, 18):", sc, ns, 3));
   rep.lines.push_back(table("Mean over pairs of sigma_surface slope, deg (Fig. 17a-b, 18):", ss, ns, 3));
-  if (with_artifacts)
-    rep.lines.push_back(fmt::format(
-        "\nNote: {} of {} pairs had one-sided signature slopes of +-90 deg, impossible for these continuous profiles; "
-        "they were left out of the maxima (column vertical_slope_artifacts).", with_artifacts, tasks));
 
   // F1: contact below surface.
   {
