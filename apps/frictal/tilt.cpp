@@ -33,7 +33,7 @@ struct TiltOptions {
   bool reverse = false;
   double tilt_rate = 0.05;
   double dt = 1e-5;
-  double skin = 1e-4;
+  double skin = 5e-5;
   double settle = 0.1;
   double max_tilt_deg = 89;
   double kn = 6e5, kt = 6e4, gn = 929.5, gt = 4, radius = 5e-5, density = 50, height = 0.01;

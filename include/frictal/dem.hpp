@@ -82,7 +82,7 @@ ContactParams default_contact_params();
 struct WorldDef {
   Vec2 gravity{0, -9.81};     ///< (unit: m/s^2)
   double time_step = 1e-5;    ///< fixed dt > 0 (unit: s)
-  double skin = 1e-4;         ///< Verlet skin added to r1 + r2 for the neighbour list (unit: m)
+  double skin = 5e-5;         ///< Verlet skin added to r1 + r2 for the neighbour list (unit: m)
   ContactParams contact;
   /// Stability guard: stop with an error when an overlap exceeds this fraction of r1 + r2
   /// (cores about to interpenetrate) (unitless).
@@ -104,6 +104,7 @@ struct Model {
   std::vector<double> local_y;              ///< (unit: m)
   std::vector<std::uint32_t> vertex_body;   ///< owning body of each global vertex
   std::vector<std::uint32_t> next_vertex;   ///< edge of vertex i runs from i to next_vertex[i]
+  std::vector<double> edge_inv_length2;     ///< 1 / |edge i|^2, invariant under rigid motion (unit: 1/m^2)
   std::vector<double> radius;               ///< spheroradius per body (unit: m)
   std::vector<double> mass;                 ///< (unit: kg)
   std::vector<double> inertia;              ///< about the centroid (unit: kg m^2)
@@ -127,6 +128,9 @@ struct NeighborPair {
   std::uint32_t edge1 = 0;
   std::uint32_t vbody = 0;
   std::uint32_t ebody = 0;
+  std::uint32_t slot_vertex = 0;  ///< index of `vertex` in State::active_vertex
+  std::uint32_t slot_edge0 = 0;   ///< index of `edge0` in State::active_vertex
+  std::uint32_t slot_edge1 = 0;   ///< index of `edge1` in State::active_vertex
   double elongation = 0;      ///< xi (unit: m)
   double overlap = 0;         ///< last overlap, <= 0 when apart (unit: m)
 };
@@ -151,6 +155,10 @@ struct State {
   std::vector<Vec2> force;          ///< contact force on each body at `time`, gravity excluded (unit: N)
   std::vector<double> torque;       ///< contact torque about the centroid (unit: N m)
   std::vector<NeighborPair> pairs;  ///< neighbour list
+  /// Vertices referenced by the list (global ids, ascending); their world positions are computed
+  /// once per step into active_x/active_y, so a vertex shared by several pairs costs one transform.
+  std::vector<std::uint32_t> active_vertex;
+  std::vector<double> active_x, active_y;
   std::vector<Vec2> list_position;  ///< poses at the last list build
   std::vector<double> list_angle;
   int contact_count = 0;            ///< pairs with positive overlap at `time`
@@ -161,6 +169,7 @@ struct State {
   std::vector<std::uint32_t> scratch_cells;
   std::vector<std::uint32_t> scratch_items;
   std::vector<NeighborPair> scratch_pairs;
+  std::vector<std::uint32_t> scratch_slot;
 };
 
 /// Validates the definitions and computes mass properties. Errors name the body and field.

@@ -45,7 +45,7 @@ struct TiltConfig {
   double tilt_rate = 0.05;             ///< |angular velocity| of the lower block (unit: rad/s)
   bool reverse = false;                ///< tilt so that the upper block slides towards -x
   double time_step = 1e-5;             ///< (unit: s)
-  double skin = 1e-4;                  ///< neighbour-list skin (unit: m)
+  double skin = 5e-5;                  ///< neighbour-list skin (unit: m)
   double settle_time = 0.1;            ///< free settling before the tilt starts (unit: s)
   double max_tilt = 1.553343;          ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
   double runaway_distance = 0.01;      ///< sliding "for good": growth past this, one lambda (unit: m)

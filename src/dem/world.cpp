@@ -223,6 +223,27 @@ void build_neighbor_list(const Model& m, State& st) {
     }
   }
   st.pairs.swap(out);
+  // Compact the referenced vertices into slots.
+  std::vector<std::uint32_t>& slot = st.scratch_slot;
+  slot.assign(nv, std::numeric_limits<std::uint32_t>::max());
+  st.active_vertex.clear();
+  for (const NeighborPair& p : st.pairs) {
+    slot[p.vertex] = 0;
+    slot[p.edge0] = 0;
+    slot[p.edge1] = 0;
+  }
+  for (std::uint32_t v = 0; v < nv; ++v)
+    if (slot[v] == 0) {
+      slot[v] = static_cast<std::uint32_t>(st.active_vertex.size());
+      st.active_vertex.push_back(v);
+    }
+  for (NeighborPair& p : st.pairs) {
+    p.slot_vertex = slot[p.vertex];
+    p.slot_edge0 = slot[p.edge0];
+    p.slot_edge1 = slot[p.edge1];
+  }
+  st.active_x.resize(st.active_vertex.size());
+  st.active_y.resize(st.active_vertex.size());
   for (std::size_t b = 0; b < nb; ++b) {
     st.list_position[b] = st.position[b];
     st.list_angle[b] = st.angle[b];
@@ -253,34 +274,55 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   double max_ov = 0, max_ratio = 0, energy = 0;
   const double* lx = m.local_x.data();
   const double* ly = m.local_y.data();
+  // World positions of the vertices the list refers to, one transform each.
+  const std::size_t na = st.active_vertex.size();
+  double* wx = st.active_x.data();
+  double* wy = st.active_y.data();
+  for (std::size_t k = 0; k < na; ++k) {
+    const std::uint32_t v = st.active_vertex[k];
+    const Pose& P = ps[m.vertex_body[v]];
+    wx[k] = P.px + (P.c * lx[v] - P.s * ly[v]);
+    wy[k] = P.py + (P.s * lx[v] + P.c * ly[v]);
+  }
+  // Local copies of everything the loop reads, so that the force stores cannot alias them.
+  const double* const __restrict radius = m.radius.data();
+  const double* const __restrict inv_len2 = m.edge_inv_length2.data();
+  double inv_mass_buf[64];
+  std::vector<double> inv_mass_heap;
+  double* inv_mass = inv_mass_buf;
+  if (nb > 64) {
+    inv_mass_heap.resize(nb);
+    inv_mass = inv_mass_heap.data();
+  }
+  for (std::size_t b = 0; b < nb; ++b) inv_mass[b] = m.type[b] == BodyType::Dynamic ? 1.0 / m.mass[b] : 0.0;
+  const double kn = cp.normal_stiffness, kt = cp.tangential_stiffness, mu = cp.atomic_friction;
+  const double gn = cp.normal_damping, gt = cp.tangential_damping;
   for (NeighborPair& p : st.pairs) {
     const std::uint32_t a = p.vbody, b = p.ebody;
-    const Pose& A = ps[a];
-    const Pose& B = ps[b];
-    const double vx = A.px + (A.c * lx[p.vertex] - A.s * ly[p.vertex]);
-    const double vy = A.py + (A.s * lx[p.vertex] + A.c * ly[p.vertex]);
-    const double e0x = B.px + (B.c * lx[p.edge0] - B.s * ly[p.edge0]);
-    const double e0y = B.py + (B.s * lx[p.edge0] + B.c * ly[p.edge0]);
-    const double e1x = B.px + (B.c * lx[p.edge1] - B.s * ly[p.edge1]);
-    const double e1y = B.py + (B.s * lx[p.edge1] + B.c * ly[p.edge1]);
+    const double vx = wx[p.slot_vertex], vy = wy[p.slot_vertex];
+    const double e0x = wx[p.slot_edge0], e0y = wy[p.slot_edge0];
+    const double e1x = wx[p.slot_edge1], e1y = wy[p.slot_edge1];
     const double dx = e1x - e0x, dy = e1y - e0y;
-    const double len2 = dx * dx + dy * dy;
-    double t = len2 > 0 ? ((vx - e0x) * dx + (vy - e0y) * dy) / len2 : 0.0;
+    double t = ((vx - e0x) * dx + (vy - e0y) * dy) * inv_len2[p.edge0];
     t = std::clamp(t, 0.0, 1.0);
     const double sx = vx - (e0x + t * dx), sy = vy - (e0y + t * dy);
     const double dist2 = sx * sx + sy * sy;
-    const double rsum = m.radius[a] + m.radius[b];
+    const double rsum = radius[a] + radius[b];
     if (dist2 >= rsum * rsum) {
-      p.elongation = 0;
-      p.overlap = -1;
+      if (p.overlap > -1) {  // write only on the transition (most pairs stay apart)
+        p.elongation = 0;
+        p.overlap = -1;
+      }
       continue;
     }
+    const Pose& A = ps[a];
+    const Pose& B = ps[b];
     const double dist = std::sqrt(dist2);
     double nx, ny;
     if (dist > 0) {
       nx = sx / dist, ny = sy / dist;
     } else {  // vertex exactly on the edge: outward normal of the (counter-clockwise) edge
-      const double l = std::sqrt(len2);
+      const double l = std::sqrt(dx * dx + dy * dy);
       nx = dy / l, ny = -dx / l;
     }
     const double overlap = rsum - dist;
@@ -288,8 +330,8 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     max_ov = std::max(max_ov, overlap);
     max_ratio = std::max(max_ratio, overlap / rsum);
     // Contact point: middle of the overlap along the normal.
-    const double cxp = vx - nx * (m.radius[a] - 0.5 * overlap);
-    const double cyp = vy - ny * (m.radius[a] - 0.5 * overlap);
+    const double cxp = vx - nx * (radius[a] - 0.5 * overlap);
+    const double cyp = vy - ny * (radius[a] - 0.5 * overlap);
     const double rax = cxp - A.px, ray = cyp - A.py, rbx = cxp - B.px, rby = cyp - B.py;
     const double wa = st.angular_velocity[a], wb = st.angular_velocity[b];
     const double relx = (st.velocity[a].x - wa * ray) - (st.velocity[b].x - wb * rby);
@@ -297,22 +339,20 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     const double tx = -ny, ty = nx;
     const double vn = relx * nx + rely * ny;
     const double vt = relx * tx + rely * ty;
-    const double inv_a = m.type[a] == BodyType::Dynamic ? 1.0 / m.mass[a] : 0.0;
-    const double inv_b = m.type[b] == BodyType::Dynamic ? 1.0 / m.mass[b] : 0.0;
-    const double mred = 1.0 / (inv_a + inv_b);
-    const double fn_el = cp.normal_stiffness * overlap;
+    const double mred = 1.0 / (inv_mass[a] + inv_mass[b]);
+    const double fn_el = kn * overlap;
     double xi = p.elongation + vt * dt_spring;
-    double ft_el = -cp.tangential_stiffness * xi;
-    const double limit = cp.atomic_friction * fn_el;
+    double ft_el = -kt * xi;
+    const double limit = mu * fn_el;
     if (std::fabs(ft_el) > limit) {
       ft_el = ft_el > 0 ? limit : -limit;
-      xi = cp.tangential_stiffness > 0 ? -ft_el / cp.tangential_stiffness : 0.0;
+      xi = kt > 0 ? -ft_el / kt : 0.0;
     }
     p.elongation = xi;
     p.overlap = overlap;
-    energy += 0.5 * fn_el * overlap + 0.5 * cp.tangential_stiffness * xi * xi;
-    const double fn = fn_el - mred * cp.normal_damping * vn;
-    const double ft = ft_el - mred * cp.tangential_damping * vt;
+    energy += 0.5 * fn_el * overlap + 0.5 * kt * xi * xi;
+    const double fn = fn_el - mred * gn * vn;
+    const double ft = ft_el - mred * gt * vt;
     const double fx = fn * nx + ft * tx, fy = fn * ny + ft * ty;
     st.force[a].x += fx;
     st.force[a].y += fy;
@@ -412,6 +452,11 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
       m.vertex_body.push_back(static_cast<std::uint32_t>(b));
       m.next_vertex.push_back(base + static_cast<std::uint32_t>((k + 1) % n));
       ext = std::max(ext, std::hypot(lx, ly));
+    }
+    for (std::size_t k = base; k < m.local_x.size(); ++k) {
+      const std::size_t j = m.next_vertex[k];
+      const double ex = m.local_x[j] - m.local_x[k], ey = m.local_y[j] - m.local_y[k];
+      m.edge_inv_length2.push_back(1.0 / (ex * ex + ey * ey));
     }
     m.vertex_begin.push_back(static_cast<std::uint32_t>(m.local_x.size()));
     m.radius.push_back(d.radius);
