@@ -38,7 +38,7 @@ struct TiltOptions {
   double max_tilt_deg = 89;
   double kn = 6e5, kt = 6e4, gn = 929.5, gt = 4, radius = 5e-5, density = 50, height = 0.01;
   double series_interval = 1e-3, frame_interval = 0.01;
-  double stick_speed = 1e-4;
+  double stick_speed = 1e-5;
   double runaway = 0;
   std::string output, frames;
   bool json = false;

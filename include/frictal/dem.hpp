@@ -131,6 +131,7 @@ struct NeighborPair {
   std::uint32_t slot_vertex = 0;  ///< index of `vertex` in State::active_vertex
   std::uint32_t slot_edge0 = 0;   ///< index of `edge0` in State::active_vertex
   std::uint32_t slot_edge1 = 0;   ///< index of `edge1` in State::active_vertex
+  double reduced_mass = 0;    ///< m1 m2 / (m1 + m2), or the dynamic body's mass (unit: kg)
   double elongation = 0;      ///< xi (unit: m)
   double overlap = 0;         ///< last overlap, <= 0 when apart (unit: m)
 };

@@ -13,10 +13,10 @@
 //
 // Detection (docs/dem.md): the relative displacement d is the upper centroid's motion along the
 // lower block's x axis in the lower block's frame, signed in the sliding direction, and v its
-// rate. The run stops once d has grown by `runaway_distance` (default: one wavelength) since the
-// last moment v was at or below `stick_speed`; the friction angle is the tilt at that last
-// moment. For a block that starts sliding at tilt phi under a constant friction coefficient the
-// lag is sqrt(2 v_s w cos(phi) / g) (w the tilt rate): 0.06 degrees for the defaults.
+// rate. A stick is an interval of at least `stick_duration` with v <= `stick_speed`. The run
+// stops once d has grown by `runaway_distance` (default: one wavelength) since the end of the
+// last stick; the friction angle is the tilt at that moment. The lag is the tilt gained while v
+// grows from 0 to stick_speed: below 0.1 degree for the defaults (docs/dem.md).
 #pragma once
 
 #include <cstdint>
@@ -49,7 +49,8 @@ struct TiltConfig {
   double settle_time = 0.1;            ///< free settling before the tilt starts (unit: s)
   double max_tilt = 1.553343;          ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
   double runaway_distance = 0.01;      ///< sliding "for good": growth past this, one lambda (unit: m)
-  double stick_speed = 1e-4;           ///< relative speed counted as stuck (unit: m/s)
+  double stick_speed = 1e-5;           ///< relative speed counted as stuck (unit: m/s)
+  double stick_duration = 0.02;        ///< a stick lasts at least this long (unit: s)
   TiltFace face = TiltFace::Curve;
   /// Shift of the upper block along x before placement (unit: m). NaN: the offset of least lift
   /// h(s) over [0, period) from the signature (or 0 if `predict` is false).

@@ -130,6 +130,7 @@ Status check_config(const TiltConfig& c) {
   if (!(c.max_tilt > 0 && c.max_tilt < 1.5707963267948966)) return make_error("tilt max_tilt: expected in (0, 90) degrees");
   if (!pos(c.runaway_distance)) return make_error(fmt::format("tilt runaway_distance = {} m: expected > 0", c.runaway_distance));
   if (!pos(c.stick_speed)) return make_error(fmt::format("tilt stick_speed = {} m/s: expected > 0", c.stick_speed));
+  if (!(std::isfinite(c.stick_duration) && c.stick_duration >= 0)) return make_error("tilt stick_duration: expected >= 0 s");
   if (!(std::isfinite(c.placement_gap) && c.placement_gap >= 0)) return make_error("tilt placement_gap: expected >= 0 m");
   if (!std::isnan(c.initial_offset) && !std::isfinite(c.initial_offset)) return make_error("tilt initial_offset: expected a finite value or NaN (auto)");
   return Ok{};
@@ -323,7 +324,11 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     measure(d, v, fn, ft, tilt);
     d_ref = d;
   }
+  // A stick is an interval of at least stick_duration with v <= stick_speed; the slide starts at
+  // the end of the last stick (short dips of v during a slide, e.g. bounces, do not count).
   double stick_time = st.time, stick_tilt = 0, stick_d = 0;
+  double low_since = st.time;  // start of the current interval with v <= stick_speed (NaN: none)
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   while (st.steps < max_steps) {
     if (Status s = dem::step(model, st); !s.ok()) return make_error("tilt: " + s.error().message);
     const bool rec = series_every && st.steps % series_every == 0;
@@ -332,10 +337,16 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     double d, v, fn, ft, tilt;
     measure(d, v, fn, ft, tilt);
     if (v <= cfg.stick_speed) {
-      stick_time = st.time;
-      stick_tilt = tilt;
-      stick_d = d;
-    } else if (d - stick_d >= cfg.runaway_distance) {
+      if (std::isnan(low_since)) low_since = st.time;
+      if (st.time - low_since >= cfg.stick_duration - 0.5 * dt) {
+        stick_time = st.time;
+        stick_tilt = tilt;
+        stick_d = d;
+      }
+    } else {
+      low_since = nan;
+    }
+    if (d - stick_d >= cfg.runaway_distance) {
       res.slid = true;
       res.friction_angle = stick_tilt;
       res.slide_time = stick_time;

@@ -126,6 +126,9 @@ void build_neighbor_list(const Model& m, State& st) {
       if (a == b) continue;
       if (m.type[a] == BodyType::Kinematic && m.type[b] == BodyType::Kinematic) continue;
       const double cut = m.radius[a] + m.radius[b] + m.def.skin;
+      const double inv_a = m.type[a] == BodyType::Dynamic ? 1.0 / m.mass[a] : 0.0;
+      const double inv_b = m.type[b] == BodyType::Dynamic ? 1.0 / m.mass[b] : 0.0;
+      const double mred = 1.0 / (inv_a + inv_b);
       const double rx0 = std::max(bx0[a], bx0[b]) - cut, rx1 = std::min(bx1[a], bx1[b]) + cut;
       const double ry0 = std::max(by0[a], by0[b]) - cut, ry1 = std::min(by1[a], by1[b]) + cut;
       if (rx0 > rx1 || ry0 > ry1) continue;
@@ -205,6 +208,7 @@ void build_neighbor_list(const Model& m, State& st) {
           p.edge1 = j;
           p.vbody = static_cast<std::uint32_t>(a);
           p.ebody = static_cast<std::uint32_t>(b);
+          p.reduced_mass = mred;
           p.overlap = -1;
           out.push_back(p);
         }
@@ -287,14 +291,6 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   // Local copies of everything the loop reads, so that the force stores cannot alias them.
   const double* const __restrict radius = m.radius.data();
   const double* const __restrict inv_len2 = m.edge_inv_length2.data();
-  double inv_mass_buf[64];
-  std::vector<double> inv_mass_heap;
-  double* inv_mass = inv_mass_buf;
-  if (nb > 64) {
-    inv_mass_heap.resize(nb);
-    inv_mass = inv_mass_heap.data();
-  }
-  for (std::size_t b = 0; b < nb; ++b) inv_mass[b] = m.type[b] == BodyType::Dynamic ? 1.0 / m.mass[b] : 0.0;
   const double kn = cp.normal_stiffness, kt = cp.tangential_stiffness, mu = cp.atomic_friction;
   const double gn = cp.normal_damping, gt = cp.tangential_damping;
   for (NeighborPair& p : st.pairs) {
@@ -339,7 +335,7 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     const double tx = -ny, ty = nx;
     const double vn = relx * nx + rely * ny;
     const double vt = relx * tx + rely * ty;
-    const double mred = 1.0 / (inv_mass[a] + inv_mass[b]);
+    const double mred = p.reduced_mass;
     const double fn_el = kn * overlap;
     double xi = p.elongation + vt * dt_spring;
     double ft_el = -kt * xi;
