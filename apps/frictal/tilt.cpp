@@ -221,7 +221,7 @@ std::function<int()> setup(CLI::App& app) {
   };
 }
 
-FRICTAL_COMMAND("tilt", "tilting-block friction test on the spheropolygon engine (paper Sec. IV)", setup, 60);
+FRICTAL_COMMAND({"tilt", "tilting-block friction test on the spheropolygon engine (paper Sec. IV)", setup, 60});
 
 }  // namespace
 }  // namespace frictal::cli
