@@ -257,7 +257,7 @@ void build_neighbor_list(const Model& m, State& st) {
 
 // Contact forces at the current poses and velocities. `dt_spring` is the time over which the
 // tangential springs are stretched (dt in a step, 0 for the initial evaluation).
-// Returns the largest overlap / (r1 + r2).
+// Returns the largest overlap / (r1 + r2) among pairs above the guard ratio, else 0.
 double compute_forces(const Model& m, State& st, double dt_spring) {
   const std::size_t nb = m.body_count();
   const ContactParams& cp = m.def.contact;
@@ -293,6 +293,7 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   const double* const __restrict inv_len2 = m.edge_inv_length2.data();
   const double kn = cp.normal_stiffness, kt = cp.tangential_stiffness, mu = cp.atomic_friction;
   const double gn = cp.normal_damping, gt = cp.tangential_damping;
+  const double guard = m.def.max_overlap_ratio;
   for (NeighborPair& p : st.pairs) {
     const std::uint32_t a = p.vbody, b = p.ebody;
     const double vx = wx[p.slot_vertex], vy = wy[p.slot_vertex];
@@ -316,7 +317,8 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     const double dist = std::sqrt(dist2);
     double nx, ny;
     if (dist > 0) {
-      nx = sx / dist, ny = sy / dist;
+      const double inv = 1.0 / dist;
+      nx = sx * inv, ny = sy * inv;
     } else {  // vertex exactly on the edge: outward normal of the (counter-clockwise) edge
       const double l = std::sqrt(dx * dx + dy * dy);
       nx = dy / l, ny = -dx / l;
@@ -324,7 +326,7 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     const double overlap = rsum - dist;
     ++contacts;
     max_ov = std::max(max_ov, overlap);
-    max_ratio = std::max(max_ratio, overlap / rsum);
+    if (overlap > guard * rsum) max_ratio = std::max(max_ratio, overlap / rsum);  // rare
     // Contact point: middle of the overlap along the normal.
     const double cxp = vx - nx * (radius[a] - 0.5 * overlap);
     const double cyp = vy - ny * (radius[a] - 0.5 * overlap);
