@@ -36,17 +36,19 @@ frictal::Curve koch(int n, double alpha_deg, double length) {
 }  // namespace
 
 TEST(DemTilt, FlatBlocksSlideAtAtomicFrictionAngle) {
-  // A flat block on a flat block slides when tan(tilt) = mu_a (Eq. 6 with theta = 0).
+  // A flat block on a flat block slides when tan(tilt) = mu_a (Eq. 6 with theta = 0). The upper
+  // block is shifted by 1 cm so that no corner sits on a corner (coincident corners make
+  // vertex-vertex pairs with ill-defined normals, which slip early: docs/dem.md).
   for (double mu : {0.3, 0.6}) {
     frictal::TiltConfig cfg;
     cfg.contact.atomic_friction = mu;
     cfg.predict = false;
-    cfg.initial_offset = 0;
+    cfg.initial_offset = 0.01;
     cfg.series_interval = 0;
     auto r = frictal::run_tilt(flat(0.2), flat(0.2), cfg);
     ASSERT_TRUE(r.ok()) << r.error().message;
     ASSERT_TRUE(r->slid);
-    EXPECT_NEAR(r->friction_angle / kDeg, std::atan(mu) / kDeg, 0.3) << "mu_a = " << mu;
+    EXPECT_NEAR(r->friction_angle / kDeg, std::atan(mu) / kDeg, 0.1) << "mu_a = " << mu;
   }
 }
 
@@ -56,14 +58,14 @@ TEST(DemTilt, FlatFrictionAngleConvergesAsDtHalves) {
     frictal::TiltConfig cfg;
     cfg.contact.atomic_friction = 0.4;
     cfg.predict = false;
-    cfg.initial_offset = 0;
+    cfg.initial_offset = 0.01;
     cfg.series_interval = 0;
     cfg.time_step = dt;
     auto r = frictal::run_tilt(flat(0.1), flat(0.1), cfg);
     ASSERT_TRUE(r.ok()) << r.error().message;
     ASSERT_TRUE(r->slid);
     const double phi = r->friction_angle / kDeg;
-    EXPECT_NEAR(phi, std::atan(0.4) / kDeg, 0.3) << "dt = " << dt;
+    EXPECT_NEAR(phi, std::atan(0.4) / kDeg, 0.1) << "dt = " << dt;
     if (prev != 0) {
       EXPECT_NEAR(phi, prev, 0.05) << "dt = " << dt;
     }
