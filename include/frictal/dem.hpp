@@ -163,6 +163,7 @@ struct State {
   std::vector<Vec2> list_position;  ///< poses at the last list build
   std::vector<double> list_angle;
   int contact_count = 0;            ///< pairs with positive overlap at `time`
+  std::vector<int> body_contacts;   ///< pairs with positive overlap per body at `time`
   double max_overlap = 0;           ///< largest overlap at `time` (unit: m)
   double elastic_energy = 0;        ///< sum of k_n overlap^2/2 + k_t xi^2/2 at `time` (unit: J)
   StepTimings timings;
@@ -187,7 +188,12 @@ Status advance(const Model& model, State& state, std::uint64_t steps);
 Vec2 world_vertex(const Model& model, const State& state, std::uint32_t v);
 /// Translational + rotational kinetic energy of body b (unit: J).
 double kinetic_energy(const Model& model, const State& state, std::size_t b);
-/// Largest stable-ish time step estimate 0.1 * sqrt(m_min / (k_n * contacts)) (unit: s).
+/// Explicit stability limit of body b's time step with `contacts` contacts acting together
+/// (unit: s): min(2 / (contacts gamma_n), 2 / omega) with omega^2 = contacts k_n
+/// max(1/m, extent^2/I) (translation and rotation). The dashpot term is what binds for many
+/// contacts: 150 contacts with gamma_n = 929.5 1/s need dt < 1.4e-5 s. Infinite for 0 contacts.
+double stability_limit(const Model& model, std::size_t b, int contacts);
+/// Half the smallest stability_limit over the dynamic bodies (unit: s).
 double suggested_time_step(const Model& model, int contacts);
 
 /// Eq. 12 solved for gamma_n: damping that gives restitution `eps` in (0, 1] for one contact of

@@ -269,7 +269,15 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     pose_heap.resize(nb);
     ps = pose_heap.data();
   }
+  int body_contacts_buf[64];
+  std::vector<int> body_contacts_heap;
+  int* body_contacts = body_contacts_buf;
+  if (nb > 64) {
+    body_contacts_heap.resize(nb);
+    body_contacts = body_contacts_heap.data();
+  }
   for (std::size_t b = 0; b < nb; ++b) {
+    body_contacts[b] = 0;
     ps[b] = {st.position[b].x, st.position[b].y, std::cos(st.angle[b]), std::sin(st.angle[b])};
     st.force[b] = {0, 0};
     st.torque[b] = 0;
@@ -325,6 +333,8 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     }
     const double overlap = rsum - dist;
     ++contacts;
+    ++body_contacts[a];
+    ++body_contacts[b];
     max_ov = std::max(max_ov, overlap);
     if (overlap > guard * rsum) max_ratio = std::max(max_ratio, overlap / rsum);  // rare
     // Contact point: middle of the overlap along the normal.
@@ -360,6 +370,7 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     st.torque[b] -= cross(rbx, rby, fx, fy);
   }
   st.contact_count = contacts;
+  for (std::size_t b = 0; b < nb; ++b) st.body_contacts[b] = body_contacts[b];
   st.max_overlap = max_ov;
   st.elastic_energy = energy;
   st.timings.pairs_visited += st.pairs.size();
@@ -492,6 +503,7 @@ State make_state(const Model& m) {
   st.angular_velocity = m.initial_angular_velocity;
   st.force.assign(nb, {0, 0});
   st.torque.assign(nb, 0.0);
+  st.body_contacts.assign(nb, 0);
   st.list_position = st.position;
   st.list_angle = st.angle;
   for (std::size_t b = 0; b < nb; ++b)
@@ -501,12 +513,22 @@ State make_state(const Model& m) {
   return st;
 }
 
+double stability_limit(const Model& m, std::size_t b, int contacts) {
+  if (contacts <= 0) return std::numeric_limits<double>::infinity();
+  const double n = contacts;
+  const double e = m.extent[b];
+  const double w2 = n * m.def.contact.normal_stiffness * std::max(1.0 / m.mass[b], e * e / m.inertia[b]);
+  double limit = 2.0 / std::sqrt(w2);
+  // The reduced mass is at most the body's mass, so each dashpot adds at most gamma_n to the rate.
+  if (m.def.contact.normal_damping > 0) limit = std::min(limit, 2.0 / (n * m.def.contact.normal_damping));
+  return limit;
+}
+
 double suggested_time_step(const Model& m, int contacts) {
-  double mmin = std::numeric_limits<double>::infinity();
+  double dt = std::numeric_limits<double>::infinity();
   for (std::size_t b = 0; b < m.body_count(); ++b)
-    if (m.type[b] == BodyType::Dynamic) mmin = std::min(mmin, m.mass[b]);
-  const double k = m.def.contact.normal_stiffness * std::max(1, contacts);
-  return 0.1 * std::sqrt(mmin / k);
+    if (m.type[b] == BodyType::Dynamic) dt = std::min(dt, 0.5 * stability_limit(m, b, std::max(1, contacts)));
+  return dt;
 }
 
 Status step(const Model& m, State& st) {
@@ -573,6 +595,13 @@ Status step(const Model& m, State& st) {
       status = make_error(fmt::format(
           "dem: body {} has a non-finite position or velocity at t = {:.6g} s (step {}); the integration "
           "blew up: try a time step <= {:.3g} s (now {:.3g} s)", b, st.time, st.steps, dt_hint, dt));
+      break;
+    }
+    if (const double lim = stability_limit(m, b, st.body_contacts[b]); dt > lim) {
+      status = make_error(fmt::format(
+          "dem: at t = {:.6g} s body {} has {} contacts; the explicit integration is unstable beyond "
+          "dt = {:.3g} s (2 / (contacts gamma_n) or 2 / omega of the contact springs): use a time step <= {:.3g} s "
+          "(now {:.3g} s)", st.time, b, st.body_contacts[b], lim, 0.5 * lim, dt));
       break;
     }
     const double speed = std::hypot(st.velocity[b].x, st.velocity[b].y) +

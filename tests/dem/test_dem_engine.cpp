@@ -257,3 +257,19 @@ TEST(DemGuard, TooLargeTimeStepStopsWithSuggestion) {
   ASSERT_FALSE(st.ok());
   EXPECT_NE(st.error().message.find("time step <="), std::string::npos) << st.error().message;
 }
+
+TEST(DemGuard, ManyDashpotsBeyondTheExplicitLimitStop) {
+  // Two corner contacts with gamma_n = 2e5 1/s: 2 * gamma_n * dt = 4 > 2 at dt = 1e-5 s, the
+  // explicit update of the dashpots is unstable; the guard stops at the first contact.
+  dem::WorldDef w;
+  w.contact.normal_damping = 2e5;
+  dem::BodyDef b = rect(-0.05, 2 * 5e-5 + 1e-6, 0.1, 0.01);
+  auto m = dem::make_model(w, {ground(), b});
+  ASSERT_TRUE(m.ok());
+  EXPECT_NEAR(dem::stability_limit(*m, 1, 2), 2.0 / (2 * 2e5), 1e-15);
+  dem::State s = dem::make_state(*m);
+  frictal::Status st = dem::advance(*m, s, 20000);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().message.find("unstable"), std::string::npos) << st.error().message;
+  EXPECT_NE(st.error().message.find("2.5e-06"), std::string::npos) << st.error().message;
+}
