@@ -147,6 +147,7 @@ int run(const TiltOptions& o) {
     j["us_per_step"] = us_per_step;
     j["time_step_s"] = o.dt;
     j["list_builds"] = r->timings.list_builds;
+    j["steps_beyond_stability_limit"] = r->steps_beyond_limit;
     j["mean_pairs_in_list"] = r->steps ? static_cast<double>(r->timings.pairs_visited) / static_cast<double>(r->steps) : 0.0;
     j["stage_time_s"] = {{"neighbor_list", r->timings.neighbor_list}, {"contacts", r->timings.contacts},
                          {"integration", r->timings.integration}};

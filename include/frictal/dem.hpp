@@ -90,6 +90,11 @@ struct WorldDef {
   /// Stability guard: stop when a dynamic body's speed (centroid speed + |omega| * its size)
   /// exceeds this (unit: m/s).
   double max_speed = 100;
+  /// Stability guard: stop when dt exceeds a body's explicit stability limit (stability_limit())
+  /// for more than this many consecutive steps. The limit is a worst case (all dashpots aligned,
+  /// reduced mass = body mass), and a brief excess while the contact count peaks does not grow;
+  /// every step beyond it is counted in State::steps_beyond_limit (unitless).
+  int max_steps_beyond_limit = 20;
   bool timings = true;        ///< time each stage into State::timings (costs ~4 clock reads/step)
 };
 WorldDef default_world_def();
@@ -164,6 +169,8 @@ struct State {
   std::vector<double> list_angle;
   int contact_count = 0;            ///< pairs with positive overlap at `time`
   std::vector<int> body_contacts;   ///< pairs with positive overlap per body at `time`
+  std::uint64_t steps_beyond_limit = 0;  ///< steps with dt above some body's stability limit (warnings)
+  int consecutive_beyond_limit = 0;      ///< current run of such steps
   double max_overlap = 0;           ///< largest overlap at `time` (unit: m)
   double elastic_energy = 0;        ///< sum of k_n overlap^2/2 + k_t xi^2/2 at `time` (unit: J)
   StepTimings timings;

@@ -96,6 +96,7 @@ struct TiltResult {
   double wall_time = 0;              ///< wall time of the time stepping only (unit: s)
   double setup_time = 0;             ///< wall time of building blocks, placement, prediction (unit: s)
   dem::StepTimings timings;
+  std::uint64_t steps_beyond_limit = 0;  ///< steps above the explicit stability limit (warnings)
   double lower_mass = 0, upper_mass = 0;  ///< (unit: kg)
   std::size_t lower_vertices = 0, upper_vertices = 0;
   double settled_overlap = 0;        ///< largest overlap at the end of settling (unit: m)

@@ -307,6 +307,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     res.simulated_time = st.time;
     res.steps = st.steps;
     res.timings = st.timings;
+    res.steps_beyond_limit = st.steps_beyond_limit;
     res.wall_time = std::chrono::duration<double>(Clock::now() - run_start).count();
   };
 

@@ -409,6 +409,7 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
   if (!finite_nonneg(c.atomic_friction)) return bad(fmt::format("contact atomic_friction mu_a = {}: expected >= 0", c.atomic_friction));
   if (!finite_pos(world.max_overlap_ratio)) return bad("world max_overlap_ratio: expected > 0");
   if (!finite_pos(world.max_speed)) return bad("world max_speed: expected > 0 m/s");
+  if (world.max_steps_beyond_limit < 0) return bad("world max_steps_beyond_limit: expected >= 0");
   if (bodies.empty()) return bad("no bodies: expected at least one body definition");
   Model m;
   m.def = world;
@@ -586,6 +587,7 @@ Status step(const Model& m, State& st) {
   // Stability guards.
   Status status = Ok{};
   const double dt_hint = suggested_time_step(m, st.contact_count);
+  bool beyond = false;
   for (std::size_t b = 0; b < nb && status.ok(); ++b) {
     if (m.type[b] != BodyType::Dynamic) continue;
     const bool finite = std::isfinite(st.position[b].x) && std::isfinite(st.position[b].y) &&
@@ -598,11 +600,15 @@ Status step(const Model& m, State& st) {
       break;
     }
     if (const double lim = stability_limit(m, b, st.body_contacts[b]); dt > lim) {
-      status = make_error(fmt::format(
-          "dem: at t = {:.6g} s body {} has {} contacts; the explicit integration is unstable beyond "
-          "dt = {:.3g} s (2 / (contacts gamma_n) or 2 / omega of the contact springs): use a time step <= {:.3g} s "
-          "(now {:.3g} s)", st.time, b, st.body_contacts[b], lim, 0.5 * lim, dt));
-      break;
+      beyond = true;
+      if (st.consecutive_beyond_limit + 1 > m.def.max_steps_beyond_limit) {
+        status = make_error(fmt::format(
+            "dem: at t = {:.6g} s body {} has {} contacts and the time step has exceeded the explicit stability "
+            "limit dt = {:.3g} s (2 / (contacts gamma_n) or 2 / omega of the contact springs) for {} steps in a row: "
+            "use a time step <= {:.3g} s (now {:.3g} s)",
+            st.time, b, st.body_contacts[b], lim, st.consecutive_beyond_limit + 1, 0.5 * lim, dt));
+        break;
+      }
     }
     const double speed = std::hypot(st.velocity[b].x, st.velocity[b].y) +
                          std::fabs(st.angular_velocity[b]) * m.extent[b];
@@ -610,6 +616,12 @@ Status step(const Model& m, State& st) {
       status = make_error(fmt::format(
           "dem: body {} reached speed {:.3g} m/s > max_speed {:.3g} m/s at t = {:.6g} s (energy blow-up); "
           "try a time step <= {:.3g} s (now {:.3g} s)", b, speed, m.def.max_speed, st.time, dt_hint, dt));
+  }
+  if (beyond) {
+    ++st.steps_beyond_limit;
+    ++st.consecutive_beyond_limit;
+  } else {
+    st.consecutive_beyond_limit = 0;
   }
   if (status.ok() && ratio > m.def.max_overlap_ratio)
     status = make_error(fmt::format(

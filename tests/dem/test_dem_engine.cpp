@@ -260,9 +260,10 @@ TEST(DemGuard, TooLargeTimeStepStopsWithSuggestion) {
 
 TEST(DemGuard, ManyDashpotsBeyondTheExplicitLimitStop) {
   // Two corner contacts with gamma_n = 2e5 1/s: 2 * gamma_n * dt = 4 > 2 at dt = 1e-5 s, the
-  // explicit update of the dashpots is unstable; the guard stops at the first contact.
+  // explicit update of the dashpots is unstable; the strict guard stops at the first contact.
   dem::WorldDef w;
   w.contact.normal_damping = 2e5;
+  w.max_steps_beyond_limit = 0;  // strict: stop at the first step beyond the limit
   dem::BodyDef b = rect(-0.05, 2 * 5e-5 + 1e-6, 0.1, 0.01);
   auto m = dem::make_model(w, {ground(), b});
   ASSERT_TRUE(m.ok());
@@ -270,6 +271,7 @@ TEST(DemGuard, ManyDashpotsBeyondTheExplicitLimitStop) {
   dem::State s = dem::make_state(*m);
   frictal::Status st = dem::advance(*m, s, 20000);
   ASSERT_FALSE(st.ok());
-  EXPECT_NE(st.error().message.find("unstable"), std::string::npos) << st.error().message;
+  EXPECT_NE(st.error().message.find("stability limit"), std::string::npos) << st.error().message;
   EXPECT_NE(st.error().message.find("2.5e-06"), std::string::npos) << st.error().message;
+  EXPECT_EQ(s.steps_beyond_limit, static_cast<std::uint64_t>(w.max_steps_beyond_limit) + 1);
 }
