@@ -39,6 +39,7 @@ struct TiltOptions {
   double kn = 6e5, kt = 6e4, gn = 929.5, gt = 4, radius = 5e-5, density = 50, height = 0.01;
   double series_interval = 1e-3, frame_interval = 0.01;
   double stick_speed = 1e-5;
+  int max_steps_beyond_limit = 20;
   double runaway = 0;
   std::string output, frames;
   bool json = false;
@@ -109,6 +110,7 @@ int run(const TiltOptions& o) {
   cfg.max_tilt = o.max_tilt_deg * kDeg;
   cfg.runaway_distance = o.runaway > 0 ? o.runaway : o.wavelength;
   cfg.stick_speed = o.stick_speed;
+  cfg.max_steps_beyond_limit = o.max_steps_beyond_limit;
   cfg.face = o.face == "envelope" ? TiltFace::Envelope : TiltFace::Curve;
   if (o.face != "envelope" && o.face != "curve") throw UsageError("--face: expected curve or envelope, got '" + o.face + "'");
   cfg.initial_offset = o.offset;
@@ -202,6 +204,8 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--height", o->height, "block height h below the surface (m)")->capture_default_str();
   app.add_option("--stick-speed", o->stick_speed, "relative speed counted as stuck (m/s)")->capture_default_str();
   app.add_option("--runaway", o->runaway, "run-away distance (m); default: the wavelength");
+  app.add_option("--max-steps-beyond-limit", o->max_steps_beyond_limit,
+                 "stop after this many consecutive steps beyond the explicit stability limit")->capture_default_str();
   app.add_option("-o,--output", o->output, "write the time series CSV here");
   app.add_option("--series-interval", o->series_interval, "time between series rows (s)")->capture_default_str();
   app.add_option("--frames", o->frames, "write frames (frictal-dem-frames 1, see docs/dem.md) here");

@@ -90,10 +90,9 @@ struct WorldDef {
   /// Stability guard: stop when a dynamic body's speed (centroid speed + |omega| * its size)
   /// exceeds this (unit: m/s).
   double max_speed = 100;
-  /// Stability guard: stop when dt exceeds a body's explicit stability limit (stability_limit())
-  /// for more than this many consecutive steps. The limit is a worst case (all dashpots aligned,
-  /// reduced mass = body mass), and a brief excess while the contact count peaks does not grow;
-  /// every step beyond it is counted in State::steps_beyond_limit (unitless).
+  /// Stability guard: stop when dt exceeds a body's explicit stability limit (State::step_limit)
+  /// for more than this many consecutive steps; a brief excess while contacts come and go does
+  /// not grow. Every step beyond it is counted in State::steps_beyond_limit (unitless).
   int max_steps_beyond_limit = 20;
   bool timings = true;        ///< time each stage into State::timings (costs ~4 clock reads/step)
 };
@@ -169,6 +168,12 @@ struct State {
   std::vector<double> list_angle;
   int contact_count = 0;            ///< pairs with positive overlap at `time`
   std::vector<int> body_contacts;   ///< pairs with positive overlap per body at `time`
+  /// Explicit stability limit of each dynamic body at `time` from its contact modes: with
+  /// G = sum over its contacts of J J^T, J = (n_x, n_y, r x n), and M = diag(m, m, I),
+  /// min(2 / sqrt(lambda_max(k_n M^-1/2 G M^-1/2)), 2 / lambda_max(gamma_n M^-1/2 G_m M^-1/2))
+  /// (G_m weighted by the reduced masses); tangential terms (k_t = k_n/10, gamma_t << gamma_n)
+  /// are neglected. Infinite without contacts (unit: s).
+  std::vector<double> step_limit;
   std::uint64_t steps_beyond_limit = 0;  ///< steps with dt above some body's stability limit (warnings)
   int consecutive_beyond_limit = 0;      ///< current run of such steps
   double max_overlap = 0;           ///< largest overlap at `time` (unit: m)
@@ -195,9 +200,9 @@ Status advance(const Model& model, State& state, std::uint64_t steps);
 Vec2 world_vertex(const Model& model, const State& state, std::uint32_t v);
 /// Translational + rotational kinetic energy of body b (unit: J).
 double kinetic_energy(const Model& model, const State& state, std::size_t b);
-/// Explicit stability limit of body b's time step with `contacts` contacts acting together
-/// (unit: s): min(2 / (contacts gamma_n), 2 / omega) with omega^2 = contacts k_n
-/// max(1/m, extent^2/I) (translation and rotation). The dashpot term is what binds for many
+/// Worst-case explicit stability limit of body b's time step with `contacts` contacts all acting
+/// in the same direction (unit: s): min(2 / (contacts gamma_n), 2 / omega) with
+/// omega^2 = contacts k_n max(1/m, extent^2/I). The guard uses the sharper State::step_limit. The dashpot term is what binds for many
 /// contacts: 150 contacts with gamma_n = 929.5 1/s need dt < 1.4e-5 s. Infinite for 0 contacts.
 double stability_limit(const Model& model, std::size_t b, int contacts);
 /// Half the smallest stability_limit over the dynamic bodies (unit: s).

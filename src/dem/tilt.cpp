@@ -232,6 +232,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   wd.gravity = {0, -cfg.gravity};
   wd.time_step = cfg.time_step;
   wd.skin = cfg.skin;
+  wd.max_steps_beyond_limit = cfg.max_steps_beyond_limit;
   wd.contact = cfg.contact;
   auto model_r = dem::make_model(wd, {lb, ub});
   if (!model_r.ok()) {

@@ -255,6 +255,55 @@ void build_neighbor_list(const Model& m, State& st) {
   ++st.timings.list_builds;
 }
 
+// Sums over a body's contacts of J J^T with J = (n_x, n_y, r x n): unweighted (g) and weighted
+// by the reduced mass (gm). Symmetric 3x3, stored xx, xy, xt, yy, yt, tt.
+struct ModeSums {
+  double g[6] = {0, 0, 0, 0, 0, 0};
+  double gm[6] = {0, 0, 0, 0, 0, 0};
+};
+
+void add_outer(ModeSums& s, double jx, double jy, double jt, double w) {
+  const double v[6] = {jx * jx, jx * jy, jx * jt, jy * jy, jy * jt, jt * jt};
+  for (int i = 0; i < 6; ++i) {
+    s.g[i] += v[i];
+    s.gm[i] += w * v[i];
+  }
+}
+
+// Largest eigenvalue of a symmetric 3x3 matrix (closed form, Smith 1961).
+double max_eigenvalue(const double a[6]) {
+  const double xx = a[0], xy = a[1], xt = a[2], yy = a[3], yt = a[4], tt = a[5];
+  const double q = (xx + yy + tt) / 3.0;
+  const double p1 = xy * xy + xt * xt + yt * yt;
+  const double p2 = (xx - q) * (xx - q) + (yy - q) * (yy - q) + (tt - q) * (tt - q) + 2.0 * p1;
+  if (p2 <= 0) return q;
+  const double p = std::sqrt(p2 / 6.0);
+  const double bxx = (xx - q) / p, byy = (yy - q) / p, btt = (tt - q) / p, bxy = xy / p, bxt = xt / p,
+               byt = yt / p;
+  const double det = bxx * (byy * btt - byt * byt) - bxy * (bxy * btt - byt * bxt) + bxt * (bxy * byt - byy * bxt);
+  const double r = std::clamp(det / 2.0, -1.0, 1.0);
+  const double phi = std::acos(r) / 3.0;
+  return q + 2.0 * p * std::cos(phi);
+}
+
+// Explicit stability limit of one body from its contact modes: the stiffest mode
+// omega^2 = lambda_max(M^-1/2 k_n G M^-1/2) and the fastest damping rate
+// lambda_max(M^-1/2 gamma_n G_m M^-1/2); dt < min(2 / omega, 2 / rate).
+double mode_limit(const ModeSums& s, double mass, double inertia, double kn, double gn) {
+  const double sm = 1.0 / mass, si = 1.0 / std::sqrt(mass * inertia), sii = 1.0 / inertia;
+  const double scale[6] = {sm, sm, si, sm, si, sii};
+  double k[6], c[6];
+  for (int i = 0; i < 6; ++i) {
+    k[i] = kn * s.g[i] * scale[i];
+    c[i] = gn * s.gm[i] * scale[i];
+  }
+  const double w2 = max_eigenvalue(k);
+  double limit = w2 > 0 ? 2.0 / std::sqrt(w2) : std::numeric_limits<double>::infinity();
+  const double rate = max_eigenvalue(c);
+  if (rate > 0) limit = std::min(limit, 2.0 / rate);
+  return limit;
+}
+
 // Contact forces at the current poses and velocities. `dt_spring` is the time over which the
 // tangential springs are stretched (dt in a step, 0 for the initial evaluation).
 // Returns the largest overlap / (r1 + r2) among pairs above the guard ratio, else 0.
@@ -272,12 +321,24 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   int body_contacts_buf[64];
   std::vector<int> body_contacts_heap;
   int* body_contacts = body_contacts_buf;
+  ModeSums jac_buf[64];
+  std::vector<ModeSums> jac_heap;
+  ModeSums* jac = jac_buf;
+  double inv_mass_buf[64];
+  std::vector<double> inv_mass_heap;
+  double* inv_mass_of = inv_mass_buf;
   if (nb > 64) {
     body_contacts_heap.resize(nb);
     body_contacts = body_contacts_heap.data();
+    jac_heap.resize(nb);
+    jac = jac_heap.data();
+    inv_mass_heap.resize(nb);
+    inv_mass_of = inv_mass_heap.data();
   }
   for (std::size_t b = 0; b < nb; ++b) {
     body_contacts[b] = 0;
+    jac[b] = ModeSums{};
+    inv_mass_of[b] = m.type[b] == BodyType::Dynamic ? 1.0 / m.mass[b] : 0.0;
     ps[b] = {st.position[b].x, st.position[b].y, std::cos(st.angle[b]), std::sin(st.angle[b])};
     st.force[b] = {0, 0};
     st.torque[b] = 0;
@@ -368,9 +429,17 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     st.force[b].x -= fx;
     st.force[b].y -= fy;
     st.torque[b] -= cross(rbx, rby, fx, fy);
+    // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
+    if (inv_mass_of[a] > 0) add_outer(jac[a], nx, ny, cross(rax, ray, nx, ny), mred);
+    if (inv_mass_of[b] > 0) add_outer(jac[b], nx, ny, cross(rbx, rby, nx, ny), mred);
   }
   st.contact_count = contacts;
-  for (std::size_t b = 0; b < nb; ++b) st.body_contacts[b] = body_contacts[b];
+  for (std::size_t b = 0; b < nb; ++b) {
+    st.body_contacts[b] = body_contacts[b];
+    st.step_limit[b] = inv_mass_of[b] > 0 && body_contacts[b] > 0
+                           ? mode_limit(jac[b], m.mass[b], m.inertia[b], kn, gn)
+                           : std::numeric_limits<double>::infinity();
+  }
   st.max_overlap = max_ov;
   st.elastic_energy = energy;
   st.timings.pairs_visited += st.pairs.size();
@@ -505,6 +574,7 @@ State make_state(const Model& m) {
   st.force.assign(nb, {0, 0});
   st.torque.assign(nb, 0.0);
   st.body_contacts.assign(nb, 0);
+  st.step_limit.assign(nb, std::numeric_limits<double>::infinity());
   st.list_position = st.position;
   st.list_angle = st.angle;
   for (std::size_t b = 0; b < nb; ++b)
@@ -599,12 +669,12 @@ Status step(const Model& m, State& st) {
           "blew up: try a time step <= {:.3g} s (now {:.3g} s)", b, st.time, st.steps, dt_hint, dt));
       break;
     }
-    if (const double lim = stability_limit(m, b, st.body_contacts[b]); dt > lim) {
+    if (const double lim = st.step_limit[b]; dt > lim) {
       beyond = true;
       if (st.consecutive_beyond_limit + 1 > m.def.max_steps_beyond_limit) {
         status = make_error(fmt::format(
             "dem: at t = {:.6g} s body {} has {} contacts and the time step has exceeded the explicit stability "
-            "limit dt = {:.3g} s (2 / (contacts gamma_n) or 2 / omega of the contact springs) for {} steps in a row: "
+            "limit dt = {:.3g} s (2 / damping rate or 2 / omega of its contact modes) for {} steps in a row: "
             "use a time step <= {:.3g} s (now {:.3g} s)",
             st.time, b, st.body_contacts[b], lim, st.consecutive_beyond_limit + 1, 0.5 * lim, dt));
         break;
