@@ -39,7 +39,7 @@ struct TiltOptions {
   double kn = 6e5, kt = 6e4, gn = 929.5, gt = 4, radius = 5e-5, density = 50, height = 0.01;
   double series_interval = 1e-3, frame_interval = 0.01;
   double stick_speed = 1e-5;
-  int max_steps_beyond_limit = 20;
+  int max_steps_beyond_limit = 1000;
   double runaway = 0;
   std::string output, frames;
   bool json = false;
@@ -205,7 +205,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--stick-speed", o->stick_speed, "relative speed counted as stuck (m/s)")->capture_default_str();
   app.add_option("--runaway", o->runaway, "run-away distance (m); default: the wavelength");
   app.add_option("--max-steps-beyond-limit", o->max_steps_beyond_limit,
-                 "stop after this many consecutive steps beyond the explicit stability limit")->capture_default_str();
+                 "stop after this many steps (in total) beyond the explicit stability limit")->capture_default_str();
   app.add_option("-o,--output", o->output, "write the time series CSV here");
   app.add_option("--series-interval", o->series_interval, "time between series rows (s)")->capture_default_str();
   app.add_option("--frames", o->frames, "write frames (frictal-dem-frames 1, see docs/dem.md) here");

@@ -46,7 +46,7 @@ struct TiltConfig {
   bool reverse = false;                ///< tilt so that the upper block slides towards -x
   double time_step = 1e-5;             ///< (unit: s)
   double skin = 5e-5;                  ///< neighbour-list skin (unit: m)
-  int max_steps_beyond_limit = 20;     ///< see dem::WorldDef::max_steps_beyond_limit (unitless)
+  int max_steps_beyond_limit = 1000;     ///< see dem::WorldDef::max_steps_beyond_limit (unitless)
   double settle_time = 0.1;            ///< free settling before the tilt starts (unit: s)
   double max_tilt = 1.553343;          ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
   double runaway_distance = 0.01;      ///< sliding "for good": growth past this, one lambda (unit: m)

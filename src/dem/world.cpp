@@ -671,12 +671,12 @@ Status step(const Model& m, State& st) {
     }
     if (const double lim = st.step_limit[b]; dt > lim) {
       beyond = true;
-      if (st.consecutive_beyond_limit + 1 > m.def.max_steps_beyond_limit) {
+      if (st.steps_beyond_limit + 1 > static_cast<std::uint64_t>(m.def.max_steps_beyond_limit)) {
         status = make_error(fmt::format(
-            "dem: at t = {:.6g} s body {} has {} contacts and the time step has exceeded the explicit stability "
-            "limit dt = {:.3g} s (2 / damping rate or 2 / omega of its contact modes) for {} steps in a row: "
+            "dem: at t = {:.6g} s body {} has {} contacts and the time step is above the explicit stability "
+            "limit dt = {:.3g} s (2 / damping rate or 2 / omega of its contact modes), for the {}th step: "
             "use a time step <= {:.3g} s (now {:.3g} s)",
-            st.time, b, st.body_contacts[b], lim, st.consecutive_beyond_limit + 1, 0.5 * lim, dt));
+            st.time, b, st.body_contacts[b], lim, st.steps_beyond_limit + 1, 0.5 * lim, dt));
         break;
       }
     }
