@@ -39,6 +39,7 @@ struct TiltOptions {
   double kn = 6e5, kt = 6e4, gn = 929.5, gt = 4, radius = 5e-5, density = 50, height = 0.01;
   double series_interval = 1e-3, frame_interval = 0.01;
   double stick_speed = 1e-5;
+  double restitution = 0;
   int max_steps_beyond_limit = 1000;
   double runaway = 0;
   std::string output, frames;
@@ -110,6 +111,7 @@ int run(const TiltOptions& o) {
   cfg.max_tilt = o.max_tilt_deg * kDeg;
   cfg.runaway_distance = o.runaway > 0 ? o.runaway : o.wavelength;
   cfg.stick_speed = o.stick_speed;
+  cfg.restitution = o.restitution;
   cfg.max_steps_beyond_limit = o.max_steps_beyond_limit;
   cfg.face = o.face == "envelope" ? TiltFace::Envelope : TiltFace::Curve;
   if (o.face != "envelope" && o.face != "curve") throw UsageError("--face: expected curve or envelope, got '" + o.face + "'");
@@ -156,6 +158,7 @@ int run(const TiltOptions& o) {
     j["lower_vertices"] = r->lower_vertices;
     j["upper_vertices"] = r->upper_vertices;
     j["upper_mass_kg"] = r->upper_mass;
+    j["normal_damping_per_s"] = r->normal_damping;
     j["settled_contacts"] = r->settled_contacts;
     j["settled_overlap_m"] = r->settled_overlap;
     fmt::print("{}\n", j.dump());
@@ -199,6 +202,8 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--kt", o->kt, "tangential stiffness k_t (N/m)")->capture_default_str();
   app.add_option("--gamma-n", o->gn, "normal damping gamma_n (1/s)")->capture_default_str();
   app.add_option("--gamma-t", o->gt, "tangential damping gamma_t (1/s)")->capture_default_str();
+  app.add_option("--restitution", o->restitution,
+                 "restitution eps of Eq. 12 on the upper block's mass; replaces --gamma-n when set");
   app.add_option("--radius", o->radius, "spheroradius r (m)")->capture_default_str();
   app.add_option("--density", o->density, "areal density rho (kg/m^2)")->capture_default_str();
   app.add_option("--height", o->height, "block height h below the surface (m)")->capture_default_str();

@@ -41,6 +41,9 @@ struct TiltConfig {
   double radius = 5e-5;                ///< spheroradius r of both blocks, Table II (unit: m)
   double density = 50;                 ///< areal density rho, Table II (unit: kg/m^2)
   dem::ContactParams contact;          ///< k_n, k_t, gamma_n, gamma_t, mu_a (Table II, mu_a = 0)
+  /// If > 0: restitution eps of Eq. 12, replacing contact.normal_damping by the gamma_n that gives
+  /// eps for one contact on the upper block's mass (unitless, in (0, 1]).
+  double restitution = 0;
   double gravity = 9.81;               ///< (unit: m/s^2)
   double tilt_rate = 0.05;             ///< |angular velocity| of the lower block (unit: rad/s)
   bool reverse = false;                ///< tilt so that the upper block slides towards -x
@@ -99,6 +102,7 @@ struct TiltResult {
   dem::StepTimings timings;
   std::uint64_t steps_beyond_limit = 0;  ///< steps above the explicit stability limit (warnings)
   double lower_mass = 0, upper_mass = 0;  ///< (unit: kg)
+  double normal_damping = 0;         ///< gamma_n used (from `restitution` if set) (unit: 1/s)
   std::size_t lower_vertices = 0, upper_vertices = 0;
   double settled_overlap = 0;        ///< largest overlap at the end of settling (unit: m)
   int settled_contacts = 0;

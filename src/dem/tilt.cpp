@@ -129,6 +129,7 @@ Status check_config(const TiltConfig& c) {
   if (!(std::isfinite(c.settle_time) && c.settle_time >= 0)) return make_error("tilt settle_time: expected >= 0 s");
   if (!(c.max_tilt > 0 && c.max_tilt < 1.5707963267948966)) return make_error("tilt max_tilt: expected in (0, 90) degrees");
   if (!pos(c.runaway_distance)) return make_error(fmt::format("tilt runaway_distance = {} m: expected > 0", c.runaway_distance));
+  if (!(std::isfinite(c.restitution) && c.restitution <= 1)) return make_error(fmt::format("tilt restitution = {}: expected <= 1 (0 or less: use gamma_n)", c.restitution));
   if (!pos(c.stick_speed)) return make_error(fmt::format("tilt stick_speed = {} m/s: expected > 0", c.stick_speed));
   if (!(std::isfinite(c.stick_duration) && c.stick_duration >= 0)) return make_error("tilt stick_duration: expected >= 0 s");
   if (!(std::isfinite(c.placement_gap) && c.placement_gap >= 0)) return make_error("tilt placement_gap: expected >= 0 m");
@@ -244,6 +245,12 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   }
   dem::Model model = std::move(*model_r);
   model.motion[0].pivot = model.initial_position[0];  // turn about the lower block's centroid
+  if (cfg.restitution > 0) {
+    auto g = dem::damping_from_restitution(cfg.restitution, cfg.contact.normal_stiffness, model.mass[1]);
+    if (!g.ok()) return make_error("tilt restitution: " + g.error().message);
+    model.def.contact.normal_damping = *g;
+  }
+  res.normal_damping = model.def.contact.normal_damping;
   res.lower_mass = model.mass[0];
   res.upper_mass = model.mass[1];
   res.lower_vertices = model.vertex_count(0);

@@ -144,3 +144,18 @@ TEST(DemTiltCli, UsageErrorsExitWithTwo) {
   EXPECT_EQ(std::system((cli + " tilt --dt -1 > /dev/null 2>&1").c_str()), 2 << 8);
 }
 #endif
+
+TEST(DemTilt, RestitutionSetsNormalDampingFromEq12) {
+  frictal::TiltConfig cfg;
+  cfg.restitution = 0.5;
+  cfg.predict = false;
+  cfg.initial_offset = 0.01;
+  cfg.max_tilt = 1 * kDeg;
+  cfg.series_interval = 0;
+  auto r = frictal::run_tilt(flat(0.2), flat(0.2), cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  // Eq. 12 inverted by hand: gamma = 2 L sqrt(k/m) / sqrt(pi^2 + L^2), L = ln 2.
+  const double L = std::log(2.0), pi = 3.14159265358979323846;
+  EXPECT_NEAR(r->normal_damping, 2 * L * std::sqrt(6e5 / r->upper_mass) / std::sqrt(pi * pi + L * L), 1e-9);
+  EXPECT_NEAR(r->upper_mass, 50 * 0.2 * 0.01, 1e-12);
+}
