@@ -75,7 +75,7 @@ struct TiltSeries {
   std::vector<double> normal_force;  ///< F_n: contact force on the upper block normal to the lower block (unit: N)
   std::vector<double> tangential_force;  ///< F_t: along the lower block, positive resisting the slide (unit: N)
   std::vector<double> force_angle;   ///< atan2(F_t, F_n) (unit: rad)
-  std::vector<double> displacement;  ///< relative displacement d since the end of settling (unit: m)
+  std::vector<double> displacement;  ///< relative displacement d since the end of settling (during settling: since placement) (unit: m)
   std::vector<double> velocity;      ///< relative velocity v (unit: m/s)
   std::vector<int> contacts;         ///< vertex-edge pairs in contact
 };

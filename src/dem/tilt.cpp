@@ -319,6 +319,11 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     res.wall_time = std::chrono::duration<double>(Clock::now() - run_start).count();
   };
 
+  {  // displacements during settling are relative to the initial placement
+    double d, v, fn, ft, tilt;
+    measure(d, v, fn, ft, tilt);
+    d_ref = d;
+  }
   if (frame_every) frame();
   for (std::uint64_t i = 0; i < settle_steps; ++i) {
     if (Status s = dem::step(model, st); !s.ok()) return make_error("tilt (settling): " + s.error().message);
@@ -327,11 +332,10 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   }
   res.settled_overlap = st.max_overlap;
   res.settled_contacts = st.contact_count;
-  {
+  {  // from here on, relative to the settled position
     double d, v, fn, ft, tilt;
-    d_ref = 0;
     measure(d, v, fn, ft, tilt);
-    d_ref = d;
+    d_ref += d;
   }
   // A stick is an interval of at least stick_duration with v <= stick_speed; the slide starts at
   // the end of the last stick (short dips of v during a slide, e.g. bounces, do not count).
