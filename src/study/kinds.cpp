@@ -246,7 +246,8 @@ TaskRegistry default_registry() {
   r.add({"wm-pair-statistics",
          "A pair of stochastic WM profiles (Sec. V): max/std of contact and surface slopes, slope PDFs", 2,
          run_wm_pair_statistics});
-  r.add_unavailable("tilt", "the spheropolygon tilt simulation of Sec. IV is not merged yet");
+  r.add({"tilt", "Spheropolygon tilting-block test of a Koch pair (Sec. IV): friction angle, Fig. 7 series", 1,
+         run_tilt_task});
   r.add_unavailable("divider", "the divider-method fractal dimension is not merged yet");
   return r;
 }

@@ -15,8 +15,13 @@ std::string tmp(const std::string& name) {
   for (const char* suffix : {"", "-wal", "-shm"}) std::remove((p + suffix).c_str());
   return p;
 }
+// The default kinds plus a declared-but-unavailable one, as a kind whose engine is not built.
 const TaskRegistry& reg() {
-  static const TaskRegistry r = default_registry();
+  static const TaskRegistry r = [] {
+    TaskRegistry t = default_registry();
+    t.add_unavailable("future-engine", "test placeholder");
+    return t;
+  }();
   return r;
 }
 Study parse(const std::string& text, bool quick = false) {
@@ -180,7 +185,7 @@ alpha_deg = 10.0
 length = 0.01
 [[part]]
 name = "simulation"
-kind = "tilt"
+kind = "future-engine"
 [part.parameters]
 iterations = [0, 1]
 alpha_deg = 10.0
@@ -191,7 +196,7 @@ alpha_deg = 10.0
   RunOptions o;
   auto r = run_threads(s, **st, reg(), o);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.error().message.find("task kind 'tilt' is not available in this build"), std::string::npos);
+  EXPECT_NE(r.error().message.find("task kind 'future-engine' is not available in this build"), std::string::npos);
   o.skip_unavailable = true;
   r = run_threads(s, **st, reg(), o);
   ASSERT_TRUE(r.ok());
@@ -200,7 +205,7 @@ alpha_deg = 10.0
   EXPECT_EQ((*st)->counts()->pending, 2);
   // A later build that has the engine resumes the same store and runs only those tasks.
   TaskRegistry more = default_registry();
-  more.add({"tilt", "stand-in", 1, [](const Params&, std::uint64_t) -> frictal::Result<TaskOutput> {
+  more.add({"future-engine", "stand-in", 1, [](const Params&, std::uint64_t) -> frictal::Result<TaskOutput> {
               TaskOutput t;
               t.scalars["phi_deg"] = 1;
               return t;
@@ -218,7 +223,7 @@ alpha_deg = 10.0
 length = 0.01
 [[part]]
 name = "simulation"
-kind = "tilt"
+kind = "future-engine"
 [part.parameters]
 iterations = [0, 1]
 alpha_deg = 10.0
