@@ -1,6 +1,7 @@
 # frictal — the two commands of the README.
 #   make test       installs missing Debian packages, builds (release) and runs every test
 #   make reproduce  installs, builds and runs the paper reproduction, writing under out/
+#                   (QUICK=1 make reproduce: the CI-sized grids, about a minute)
 JOBS ?= $(shell nproc)
 BUILD ?= build/release
 
