@@ -345,6 +345,12 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
           if (!trim(f).empty()) {
             if (!parse_double(f, v))
               return make_error(fmt::format("{}: main.xml: Datum {}: '{}' is not a number", name, k + 1, std::string(f.substr(0, 40))));
+            const char type = axis_of(stored[field])->type;
+            if (type == 'F') v = double(float(v));  // the value is a float32
+            if ((type == 'I' || type == 'L') &&
+                (v != std::floor(v) || std::abs(v) > (type == 'I' ? 32768.0 : 2147483648.0)))
+              return make_error(fmt::format("{}: main.xml: Datum {}: '{}' is not a {} integer", name, k + 1,
+                                            std::string(f.substr(0, 40)), type == 'I' ? "16-bit" : "32-bit"));
             column(stored[field])[k] = v;
           }
           ++field;
@@ -590,10 +596,12 @@ Status write_x3p_grid(const std::string& path, const Map& m, bool profile, const
   auto add = [&](const char* member, const std::string& content) -> bool {
     zip_source_t* s = zip_source_buffer(z, content.data(), content.size(), 0);
     if (!s) return false;
-    if (zip_file_add(z, member, s, ZIP_FL_OVERWRITE | ZIP_FL_ENC_UTF_8) < 0) {
+    zip_int64_t idx = zip_file_add(z, member, s, ZIP_FL_OVERWRITE | ZIP_FL_ENC_UTF_8);
+    if (idx < 0) {
       zip_source_free(s);
       return false;
     }
+    zip_set_file_compression(z, zip_uint64_t(idx), ZIP_CM_DEFLATE, 1);  // fast; height data compresses poorly
     return true;
   };
   bool ok = add("main.xml", xml) && add("md5checksum.hex", md5);
