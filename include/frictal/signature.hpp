@@ -28,6 +28,7 @@ enum class ContactType : std::uint8_t {
   VertexEdge,    ///< a vertex of the lower surface on an edge of the upper: the upper edge's slope
   EdgeVertex,    ///< a vertex of the upper surface on an edge of the lower: the lower edge's slope
   VertexVertex,  ///< vertices of both: mean of the two vertex slopes (vertex = mean of its edges)
+  EdgeEdge,      ///< collinear overlapping edges: their common slope (x is the segment's middle)
 };
 
 struct Contact {

@@ -1,0 +1,112 @@
+#include "signature/face.hpp"
+
+#include <limits>
+
+namespace frictal::detail {
+
+Face::Face(std::vector<double> x, const std::vector<double>& z, double sign) : x_(std::move(x)), sign_(sign) {
+  const std::size_t n = x_.size();
+  v_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) v_[i] = sign * z[i];
+  vmax_ = *std::max_element(v_.begin(), v_.end());
+  vmin_ = *std::min_element(v_.begin(), v_.end());
+  // Uniform grids get O(1) index lookups.
+  if (n >= 2) {
+    dx_ = (x_.back() - x_.front()) / static_cast<double>(n - 1);
+    uniform_ = dx_ > 0;
+    for (std::size_t i = 1; i < n && uniform_; ++i)
+      if (std::abs(x_[i] - (x_.front() + dx_ * static_cast<double>(i))) > 1e-9 * dx_) uniform_ = false;
+    inv_dx_ = uniform_ ? 1.0 / dx_ : 0.0;
+  }
+  const std::size_t nb = (n + kBlock - 1) / kBlock;
+  std::vector<double> level(nb, -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < n; ++i) level[i / kBlock] = std::max(level[i / kBlock], v_[i]);
+  st_.push_back(std::move(level));
+  for (std::size_t w = 1; 2 * w <= nb; w *= 2) {
+    const auto& prev = st_.back();
+    std::vector<double> next(nb - 2 * w + 1);
+    for (std::size_t b = 0; b < next.size(); ++b) next[b] = std::max(prev[b], prev[b + w]);
+    st_.push_back(std::move(next));
+  }
+}
+
+std::size_t Face::floor_index(double u) const {
+  if (u <= x_.front()) return 0;
+  if (u >= x_.back()) return x_.size() - 1;
+  if (uniform_) {
+    auto i = static_cast<std::size_t>((u - x_.front()) * inv_dx_);
+    if (i >= x_.size()) i = x_.size() - 1;
+    while (i + 1 < x_.size() && x_[i + 1] <= u) ++i;
+    while (i > 0 && x_[i] > u) --i;
+    return i;
+  }
+  auto it = std::upper_bound(x_.begin(), x_.end(), u);
+  return static_cast<std::size_t>(it - x_.begin()) - 1;
+}
+
+std::size_t Face::ceil_index(double u) const {
+  if (u <= x_.front()) return 0;
+  if (u >= x_.back()) return x_.size() - 1;
+  if (uniform_) {
+    auto i = static_cast<std::size_t>((u - x_.front()) * inv_dx_);
+    if (i >= x_.size()) i = x_.size() - 1;
+    while (i + 1 < x_.size() && x_[i] < u) ++i;
+    while (i > 0 && x_[i - 1] >= u) --i;
+    return i;
+  }
+  auto it = std::lower_bound(x_.begin(), x_.end(), u);
+  return static_cast<std::size_t>(it - x_.begin());
+}
+
+double Face::value(double u) const {
+  std::size_t k = ceil_index(u);
+  if (x_[k] == u) {
+    double m = v_[k];
+    for (std::size_t j = k + 1; j < x_.size() && x_[j] == u; ++j) m = std::max(m, v_[j]);
+    return m;
+  }
+  if (k == 0) return v_[0];
+  const double t = (u - x_[k - 1]) / (x_[k] - x_[k - 1]);
+  return v_[k - 1] + t * (v_[k] - v_[k - 1]);
+}
+
+double Face::range_max(std::size_t i0, std::size_t i1) const {
+  std::size_t b0 = i0 / kBlock, b1 = i1 / kBlock;
+  if (b0 == b1) {
+    // Small ranges inside one block: exact.
+    double m = v_[i0];
+    for (std::size_t i = i0 + 1; i <= i1; ++i) m = std::max(m, v_[i]);
+    return m;
+  }
+  std::size_t len = b1 - b0 + 1;
+  std::size_t k = 0;
+  while ((std::size_t{2} << k) <= len) ++k;
+  return std::max(st_[k][b0], st_[k][b1 + 1 - (std::size_t{1} << k)]);
+}
+
+Position Face::locate(double u, double xtol) const {
+  Position p;
+  std::size_t k = ceil_index(u);
+  std::size_t j = k;
+  // Nearest point within tolerance on either side.
+  if (k > 0 && std::abs(x_[k - 1] - u) <= xtol && std::abs(x_[k - 1] - u) < std::abs(x_[k] - u)) j = k - 1;
+  if (std::abs(x_[j] - u) <= xtol) {
+    std::size_t a = j, b = j;
+    while (a > 0 && x_[a - 1] == x_[j]) --a;
+    while (b + 1 < x_.size() && x_[b + 1] == x_[j]) ++b;
+    p.vertex = true;
+    p.first = a;
+    p.last = b;
+    return p;
+  }
+  p.edge = (k == 0) ? 0 : k - 1;
+  return p;
+}
+
+double Face::edge_angle(std::ptrdiff_t e) const {
+  if (e < 0 || static_cast<std::size_t>(e) + 1 >= x_.size()) return std::numeric_limits<double>::quiet_NaN();
+  const auto i = static_cast<std::size_t>(e);
+  return std::atan2(sign_ * (v_[i + 1] - v_[i]), x_[i + 1] - x_[i]);
+}
+
+}  // namespace frictal::detail

@@ -1,0 +1,74 @@
+// Private: a profile prepared for fast signature evaluation.
+//
+// A Face stores the values to maximise, v = z for the lower surface and v = -z for the upper
+// one, so that h(s) = max_x [vF(x) + vG(x - s)]. Evaluation takes the supremum of v at a
+// vertical jump. Block maxima with a sparse table give O(1) upper bounds of v over any index
+// range, which drive the branch-and-bound search of the maximum.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace frictal::detail {
+
+inline constexpr std::size_t kBlock = 32;
+
+/// Where an abscissa falls on a face: on a vertex group [first, last] or inside edge `edge`.
+struct Position {
+  bool vertex = false;
+  std::size_t first = 0, last = 0;  // vertex group (if vertex)
+  std::size_t edge = 0;             // edge index e: between points e and e+1 (if !vertex)
+};
+
+class Face {
+ public:
+  Face() = default;
+  /// x non-decreasing (groups of equal x are jumps), z heights, sign +1 (lower) or -1 (upper).
+  Face(std::vector<double> x, const std::vector<double>& z, double sign);
+
+  std::size_t size() const { return x_.size(); }
+  const std::vector<double>& x() const { return x_; }
+  const std::vector<double>& v() const { return v_; }
+  double sign() const { return sign_; }
+  double x_front() const { return x_.front(); }
+  double x_back() const { return x_.back(); }
+  double vmax() const { return vmax_; }
+  double vmin() const { return vmin_; }
+
+  /// Index of the last point with x <= u (0 if u < x_front).
+  std::size_t floor_index(double u) const;
+  /// Index of the first point with x >= u (size-1 if u > x_back).
+  std::size_t ceil_index(double u) const;
+  /// sup of v at u (u within [x_front, x_back]).
+  double value(double u) const;
+  /// Upper bound of v over the points with index in [i0, i1].
+  double range_max(std::size_t i0, std::size_t i1) const;
+  /// Upper bound of v over abscissae [u0, u1] (u0 <= u1), including the bracketing points.
+  double range_max_x(double u0, double u1) const { return range_max(floor_index(u0), ceil_index(u1)); }
+  /// Position of u; `xtol` is the distance under which u counts as on a vertex.
+  Position locate(double u, double xtol) const;
+  /// Slope angle of edge e in the lower frame (z, not v), radians; NaN if e is out of range.
+  double edge_angle(std::ptrdiff_t e) const;
+  /// Lower-frame height of point i.
+  double z(std::size_t i) const { return sign_ * v_[i]; }
+  /// Max of v over a vertex group.
+  double group_max(std::size_t first, std::size_t last) const {
+    double m = v_[first];
+    for (std::size_t k = first + 1; k <= last; ++k) m = std::max(m, v_[k]);
+    return m;
+  }
+  bool uniform() const { return uniform_; }
+
+ private:
+  std::vector<double> x_, v_;
+  double sign_ = 1;
+  double vmax_ = 0, vmin_ = 0;
+  bool uniform_ = false;
+  double dx_ = 0, inv_dx_ = 0;
+  std::vector<std::vector<double>> st_;  // sparse table over block maxima
+};
+
+}  // namespace frictal::detail

@@ -1,0 +1,587 @@
+// The signature function: exact evaluation of h(s), its contacts and one-sided slopes.
+#include "frictal/signature.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fmt/core.h>
+#include <limits>
+#include <numbers>
+#include <thread>
+
+#include "signature/face.hpp"
+#include "signature/spline.hpp"
+
+namespace frictal {
+namespace {
+
+using detail::Face;
+using detail::kBlock;
+using detail::Position;
+
+constexpr double kHalfPi = std::numbers::pi / 2;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A candidate maximiser: a vertex of one face at a position of the other.
+struct Cand {
+  double value;
+  std::size_t index;  // vertex index on its own face
+  bool family_f;      // true: vertex of the lower face F; false: vertex of the upper face G
+};
+
+// The prepared problem: faces, candidate index ranges and frames.
+struct Problem {
+  Face F, G;
+  bool periodic = false;
+  double period = 0;
+  // Periodic: candidate vertices are one period of each face (fixed index ranges).
+  std::size_t f_lo = 0, f_hi = 0, g_lo = 0, g_hi = 0;
+  // Non-periodic: the overlap of both blocks is [max(F0, G0 + s), min(F1, G1 + s)].
+  double xtol = 0;  // abscissa tolerance (m)
+  double vtol = 0;  // value tolerance (m)
+  bool aligned_lattice = false;  // both uniform with the same spacing, events on a lattice
+  double lattice_origin = 0, lattice_step = 0;
+  std::vector<double> spline_f, spline_g;  // spline slopes at points (SlopeMethod::Spline)
+};
+
+// Searches max over vertices i of A in [i0, i1] of vA[i] + vB(xA[i] + shift) by branch and
+// bound over block ranges; appends candidates within vtol of the running best.
+void search(const Face& A, const Face& B, double shift, std::size_t i0, std::size_t i1, bool family_f,
+            double vtol, double& best, std::vector<Cand>& out) {
+  if (i0 > i1) return;
+  const auto& xa = A.x();
+  const auto& va = A.v();
+  struct Node {
+    std::size_t lo, hi;
+  };
+  auto bound = [&](std::size_t lo, std::size_t hi) {
+    return A.range_max(lo, hi) + B.range_max_x(xa[lo] + shift, xa[hi] + shift);
+  };
+  // Depth-first, most promising half first; explicit stack.
+  std::vector<std::pair<Node, double>> stack;
+  stack.reserve(64);
+  stack.push_back({{i0, i1}, bound(i0, i1)});
+  while (!stack.empty()) {
+    auto [node, ub] = stack.back();
+    stack.pop_back();
+    if (ub < best - vtol) continue;
+    if (node.hi - node.lo < kBlock) {
+      for (std::size_t i = node.lo; i <= node.hi; ++i) {
+        const double val = va[i] + B.value(xa[i] + shift);
+        if (val >= best - vtol) {
+          out.push_back({val, i, family_f});
+          if (val > best) best = val;
+        }
+      }
+      continue;
+    }
+    // Split at a block boundary so that child bounds use whole blocks.
+    std::size_t mid = node.lo + (node.hi - node.lo + 1) / 2;
+    mid = std::max(node.lo + 1, (mid / kBlock) * kBlock);
+    Node a{node.lo, mid - 1}, b{mid, node.hi};
+    const double ua = bound(a.lo, a.hi), ub2 = bound(b.lo, b.hi);
+    if (ua >= ub2) {
+      if (ub2 >= best - vtol) stack.push_back({b, ub2});
+      if (ua >= best - vtol) stack.push_back({a, ua});
+    } else {
+      if (ua >= best - vtol) stack.push_back({a, ua});
+      if (ub2 >= best - vtol) stack.push_back({b, ub2});
+    }
+  }
+}
+
+struct OffsetResult {
+  double lift = kNaN, theta = kNaN, theta_min = kNaN, theta_left = kNaN, theta_right = kNaN;
+  double contact_x = kNaN;  // for the warm start
+};
+
+// Mean of the available angles (NaN ignored).
+double mean_angle(double a, double b) {
+  if (std::isnan(a)) return b;
+  if (std::isnan(b)) return a;
+  return 0.5 * (a + b);
+}
+
+double vertex_slope(const Face& face, const Position& p) {
+  return mean_angle(face.edge_angle(static_cast<std::ptrdiff_t>(p.first) - 1),
+                    face.edge_angle(static_cast<std::ptrdiff_t>(p.last)));
+}
+
+// Evaluates one offset: lift, contacts and slopes. `warm_x` is a lower-frame abscissa that was
+// a contact nearby (NaN if none); it only speeds up the search.
+OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMethod method,
+                             std::vector<Contact>* contacts, std::vector<Cand>& cands) {
+  const Face& F = P.F;
+  const Face& G = P.G;
+  cands.clear();
+  std::size_t f0, f1, g0, g1;
+  double a, b;  // overlap in the lower frame
+  if (P.periodic) {
+    f0 = P.f_lo;
+    f1 = P.f_hi;
+    g0 = P.g_lo;
+    g1 = P.g_hi;
+    a = F.x()[f0];
+    b = a + P.period;
+  } else {
+    a = std::max(F.x_front(), G.x_front() + s);
+    b = std::min(F.x_back(), G.x_back() + s);
+    OffsetResult none;
+    if (!(b >= a)) return none;
+    f0 = F.ceil_index(a - P.xtol);
+    f1 = F.floor_index(b + P.xtol);
+    g0 = G.ceil_index(a - s - P.xtol);
+    g1 = G.floor_index(b - s + P.xtol);
+  }
+  double best = -kInf;
+  if (std::isfinite(warm_x) && warm_x >= a && warm_x <= b) best = F.value(warm_x) + G.value(warm_x - s);
+  search(F, G, -s, f0, f1, true, P.vtol, best, cands);
+  bool skip_g = false;
+  if (P.aligned_lattice) {
+    const double k = (s - P.lattice_origin) / P.lattice_step;
+    skip_g = std::abs(k - std::round(k)) < 1e-9;  // every G vertex sits on an F vertex
+  }
+  if (!skip_g) search(G, F, s, g0, g1, false, P.vtol, best, cands);
+
+  OffsetResult r;
+  r.lift = best;
+  // Contacts: candidates within tolerance of the maximum, classified by the paper's rules.
+  struct Act {
+    double x;              // lower-frame abscissa
+    Position pf, pg;       // positions on F and on G
+    double slope;          // by the contact rule
+    double left, right;    // one-sided slopes of this candidate's continuation (NaN: drops)
+    ContactType type;
+  };
+  std::vector<Act> act;
+  for (const Cand& c : cands) {
+    if (c.value < best - P.vtol) continue;
+    Act t{};
+    if (c.family_f) {
+      t.x = F.x()[c.index];
+      t.pf = F.locate(t.x, 0.0);
+      t.pg = G.locate(t.x - s, P.xtol);
+    } else {
+      const double u = G.x()[c.index];
+      t.x = u + s;
+      t.pg = G.locate(u, 0.0);
+      t.pf = F.locate(t.x, P.xtol);
+    }
+    if (t.pf.vertex && t.pg.vertex) {
+      t.type = ContactType::VertexVertex;
+      t.slope = mean_angle(vertex_slope(F, t.pf), vertex_slope(G, t.pg));
+    } else if (t.pf.vertex) {
+      t.type = ContactType::VertexEdge;
+      t.slope = G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.edge));
+    } else {
+      t.type = ContactType::EdgeVertex;
+      t.slope = F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.edge));
+    }
+    // One-sided continuations: h's slope just after s (right) and just before (left).
+    // Lower-vertex candidate: its value is vF - g(x - s); moving s up reads g to the left.
+    // Upper-vertex candidate: value f(u + s) - g_u; moving s up reads f to the right.
+    // A continuation is invalid (NaN) if the other face jumps away there or ends.
+    if (c.family_f) {
+      if (t.pg.vertex) {
+        const double gm = G.group_max(t.pg.first, t.pg.last);
+        t.right = (G.v()[t.pg.first] >= gm - P.vtol) ? G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.first) - 1) : kNaN;
+        t.left = (G.v()[t.pg.last] >= gm - P.vtol) ? G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.last)) : kNaN;
+      } else {
+        t.left = t.right = G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.edge));
+      }
+    } else {
+      if (t.pf.vertex) {
+        const double fm = F.group_max(t.pf.first, t.pf.last);
+        t.right = (F.v()[t.pf.last] >= fm - P.vtol) ? F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.last)) : kNaN;
+        t.left = (F.v()[t.pf.first] >= fm - P.vtol) ? F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.first) - 1) : kNaN;
+      } else {
+        t.left = t.right = F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.edge));
+      }
+    }
+    if (method == SlopeMethod::Spline) {
+      // Paper Sec. V B: spline slopes of both surfaces at the contact, averaged.
+      const double sf = detail::spline_slope(F.x(), P.spline_f, F.sign(), F.v(), t.x);
+      const double sg = detail::spline_slope(G.x(), P.spline_g, G.sign(), G.v(), t.x - s);
+      t.slope = 0.5 * (std::atan(sf) + std::atan(sg));
+      t.left = t.right = t.slope;
+    }
+    act.push_back(t);
+  }
+  std::sort(act.begin(), act.end(), [](const Act& p, const Act& q) { return p.x < q.x; });
+  // Merge duplicates (a vertex-vertex contact is found from both faces).
+  std::vector<Act> uniq;
+  for (const Act& t : act) {
+    if (!uniq.empty() && std::abs(uniq.back().x - t.x) <= P.xtol) {
+      Act& u = uniq.back();
+      // Keep the widest continuation set: a VV seen from both sides carries both options.
+      auto mx = [](double p, double q) { return std::isnan(p) ? q : (std::isnan(q) ? p : std::max(p, q)); };
+      auto mn = [](double p, double q) { return std::isnan(p) ? q : (std::isnan(q) ? p : std::min(p, q)); };
+      u.right = mx(u.right, t.right);
+      u.left = mn(u.left, t.left);
+      continue;
+    }
+    uniq.push_back(t);
+  }
+  double th = -kInf, thmin = kInf, left = kInf, right = -kInf;
+  auto add_contact = [&](double x, double slope, ContactType type) {
+    th = std::max(th, slope);
+    thmin = std::min(thmin, slope);
+    if (contacts) contacts->push_back({x, F.value(x), slope, type});
+  };
+  for (std::size_t k = 0; k < uniq.size(); ++k) {
+    const Act& t = uniq[k];
+    add_contact(t.x, t.slope, t.type);
+    if (!std::isnan(t.left)) left = std::min(left, t.left);
+    if (!std::isnan(t.right)) right = std::max(right, t.right);
+    // Edge-edge: two consecutive contacts on one edge of F and one edge of G touch all along.
+    if (k + 1 < uniq.size() && method == SlopeMethod::Exact) {
+      const Act& w = uniq[k + 1];
+      auto same_edge = [](const Position& p, const Position& q, std::size_t& e) {
+        std::size_t e1 = p.vertex ? p.last : p.edge;
+        bool ok_q = q.vertex ? (q.first == e1 + 1) : (q.edge == e1);
+        e = e1;
+        return ok_q && !(p.vertex && q.vertex && q.first != p.last + 1);
+      };
+      std::size_t ef, eg;
+      if (w.x > t.x + P.xtol && same_edge(t.pf, w.pf, ef) && same_edge(t.pg, w.pg, eg))
+        add_contact(0.5 * (t.x + w.x), F.edge_angle(static_cast<std::ptrdiff_t>(ef)), ContactType::EdgeEdge);
+    }
+  }
+  r.theta = th;
+  r.theta_min = thmin;
+  // No valid continuation: h jumps there, a vertical wall blocks motion from that side.
+  r.theta_left = std::isfinite(left) ? left : kHalfPi;
+  r.theta_right = std::isfinite(right) ? right : -kHalfPi;
+  r.contact_x = uniq.empty() ? kNaN : uniq.front().x;
+  return r;
+}
+
+// One period of a periodic profile tiled three times (the middle one is the candidate range),
+// so that every candidate vertex has both neighbours and evaluation never wraps.
+Profile tile3(const Profile& p, double P, std::size_t& lo, std::size_t& hi, double xtol) {
+  const double x0 = p.x.front();
+  std::vector<double> px, pz;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    if (p.x[i] >= x0 + P - xtol) break;
+    px.push_back(p.x[i]);
+    pz.push_back(p.z[i]);
+  }
+  Profile t;
+  for (int k = -1; k <= 1; ++k) {
+    for (std::size_t i = 0; i < px.size(); ++i) {
+      t.x.push_back(px[i] + k * P);
+      t.z.push_back(pz[i]);
+    }
+  }
+  t.x.push_back(x0 + 2 * P);
+  t.z.push_back(pz.front());
+  lo = px.size();
+  hi = 2 * px.size() - 1;
+  return t;
+}
+
+}  // namespace
+
+double lift_direct(const Profile& lower, const Profile& upper, double s) {
+  double best = -kInf;
+  const bool per = lower.period && upper.period;
+  if (per) {
+    const double P = *lower.period, x0 = lower.x.front(), y0 = upper.x.front();
+    for (std::size_t i = 0; i < lower.size() && lower.x[i] < x0 + P; ++i)
+      best = std::max(best, lower.z[i] - evaluate(upper, lower.x[i] - s, JumpValue::Lower));
+    for (std::size_t j = 0; j < upper.size() && upper.x[j] < y0 + P; ++j)
+      best = std::max(best, evaluate(lower, upper.x[j] + s, JumpValue::Upper) - upper.z[j]);
+    return best;
+  }
+  const double a = std::max(lower.x.front(), upper.x.front() + s);
+  const double b = std::min(lower.x.back(), upper.x.back() + s);
+  for (std::size_t i = 0; i < lower.size(); ++i)
+    if (lower.x[i] >= a && lower.x[i] <= b)
+      best = std::max(best, lower.z[i] - evaluate(upper, lower.x[i] - s, JumpValue::Lower));
+  for (std::size_t j = 0; j < upper.size(); ++j) {
+    const double x = upper.x[j] + s;
+    if (x >= a && x <= b) best = std::max(best, evaluate(lower, x, JumpValue::Upper) - upper.z[j]);
+  }
+  return best;
+}
+
+Result<FrictionPrediction> predict_friction(double mu_a, double theta_max, double sigma) {
+  if (!std::isfinite(mu_a) || mu_a < 0)
+    return make_error(fmt::format("atomic friction coefficient must be a finite number >= 0, got {}", mu_a));
+  if (std::isnan(theta_max) || std::isnan(sigma) || sigma < 0)
+    return make_error("friction prediction: theta_max and sigma must be numbers (sigma >= 0)");
+  FrictionPrediction f;
+  f.atomic_friction = mu_a;
+  f.atomic_angle = std::atan(mu_a);
+  f.theta_max = theta_max;
+  // Eq. 6: phi = theta_a + theta; beyond 90 degrees the interface cannot slide at all.
+  f.friction_angle = std::min(kHalfPi, f.atomic_angle + theta_max);
+  f.friction_coefficient = (f.friction_angle >= kHalfPi) ? kInf : std::tan(f.friction_angle);
+  // Eq. 18: theta_max - sigma <= theta <= theta_max.
+  f.friction_angle_low = std::min(kHalfPi, f.atomic_angle + theta_max - sigma);
+  f.friction_coefficient_low = (f.friction_angle_low >= kHalfPi) ? kInf : std::tan(f.friction_angle_low);
+  return f;
+}
+
+Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o) {
+  if (auto st = validate(lower_in, "lower surface"); !st) return st.error();
+  if (auto st = validate(upper_in, "upper surface"); !st) return st.error();
+  if (!(o.tolerance > 0 && o.tolerance < 1e-3))
+    return make_error(fmt::format("signature: tolerance must be in (0, 1e-3), got {}", o.tolerance));
+  if (o.bins < 1 || o.bins > 100000) return make_error(fmt::format("signature: bins must be in 1..100000, got {}", o.bins));
+  if (o.offsets > 100'000'000) return make_error(fmt::format("signature: offsets must be <= 1e8, got {}", o.offsets));
+
+  // Frame: offset 0 puts the upper block's left end over the lower block's left end.
+  Profile lower = lower_in;
+  Profile upper = upper_in;
+  const double shift = lower.x.front() - upper.x.front();
+  for (auto& v : upper.x) v += shift;
+
+  Problem P;
+  const double Lmax = std::max(lower.length(), upper.length());
+  double zr = 0;
+  {
+    auto [a1, b1] = std::minmax_element(lower.z.begin(), lower.z.end());
+    auto [a2, b2] = std::minmax_element(upper.z.begin(), upper.z.end());
+    zr = (*b1 - *a1) + (*b2 - *a2);
+  }
+  const double xscale = std::max({Lmax, std::abs(lower.x.front()), std::abs(lower.x.back())});
+  P.xtol = 1e-12 * xscale;
+  P.vtol = o.tolerance * std::max(zr, 1e-9 * Lmax);
+  P.periodic = lower.period && upper.period && std::abs(*lower.period - *upper.period) <= 1e-9 * *lower.period;
+  if (P.periodic) {
+    P.period = *lower.period;
+    Profile tf = tile3(lower, P.period, P.f_lo, P.f_hi, P.xtol);
+    Profile tg = tile3(upper, P.period, P.g_lo, P.g_hi, P.xtol);
+    P.F = Face(std::move(tf.x), tf.z, +1.0);
+    P.G = Face(std::move(tg.x), tg.z, -1.0);
+  } else {
+    P.F = Face(lower.x, lower.z, +1.0);
+    P.G = Face(upper.x, upper.z, -1.0);
+  }
+  if (o.slopes == SlopeMethod::Spline) {
+    auto sf = detail::spline_second_derivatives(P.F.x(), P.F.v());
+    auto sg = detail::spline_second_derivatives(P.G.x(), P.G.v());
+    if (!sf) return make_error("signature: spline slopes need strictly increasing x on the lower surface (it has a "
+                               "vertical jump or repeated x); use exact slopes");
+    if (!sg) return make_error("signature: spline slopes need strictly increasing x on the upper surface (it has a "
+                               "vertical jump or repeated x); use exact slopes");
+    P.spline_f = std::move(*sf);
+    P.spline_g = std::move(*sg);
+  }
+
+  // Offset range.
+  double smin = o.offset_min, smax = o.offset_max;
+  if (!(smax > smin)) {
+    smin = 0;
+    smax = P.periodic ? P.period : 0.5 * std::min(lower.length(), upper.length());
+  }
+  if (!std::isfinite(smin) || !std::isfinite(smax))
+    return make_error("signature: offset range must be finite");
+  if (!P.periodic) {
+    if (!(smin > -upper.length()) || !(smax < lower.length()))
+      return make_error(fmt::format("signature: offsets [{}, {}] m leave no overlap between the blocks (allowed: "
+                                    "inside ({}, {}) m)", smin, smax, -upper.length(), lower.length()));
+  }
+
+  // Offsets: events (exact) or N equally spaced.
+  std::vector<double> offs;
+  std::size_t events = 0;
+  const auto& fx = P.F.x();
+  const auto& gx = P.G.x();
+  const bool both_uniform = P.F.uniform() && P.G.uniform();
+  const double dxf = (fx.back() - fx.front()) / static_cast<double>(fx.size() - 1);
+  const double dxg = (gx.back() - gx.front()) / static_cast<double>(gx.size() - 1);
+  if (!P.periodic && both_uniform && std::abs(dxf - dxg) <= 1e-9 * dxf) {
+    const double k = (fx.front() - gx.front()) / dxf;
+    if (std::abs(k - std::round(k)) < 1e-9) {
+      P.aligned_lattice = true;
+      P.lattice_origin = fx.front() - gx.front();
+      P.lattice_step = dxf;
+    }
+  }
+  if (o.offsets == 0) {
+    if (P.aligned_lattice) {
+      const double k0 = std::ceil((smin - P.lattice_origin) / P.lattice_step - 1e-9);
+      const double k1 = std::floor((smax - P.lattice_origin) / P.lattice_step + 1e-9);
+      const double n = k1 - k0 + 1;
+      if (n > static_cast<double>(o.max_events))
+        return make_error(fmt::format("signature: the exact signature needs {:.0f} offsets (more than the limit {}); "
+                                      "sample fewer offsets (--offsets N) or shorten the range", n, o.max_events));
+      for (double k = k0; k <= k1; k += 1) offs.push_back(P.lattice_origin + k * P.lattice_step);
+    } else if (P.periodic) {
+      const double n = double(P.f_hi - P.f_lo + 1) * double(P.g_hi - P.g_lo + 1);
+      if (n * std::ceil((smax - smin) / P.period + 1) > static_cast<double>(o.max_events))
+        return make_error(fmt::format("signature: the exact signature needs about {:.3g} event offsets (limit {}); "
+                                      "use sampled offsets (--offsets N)", n, o.max_events));
+      std::vector<double> base;
+      base.reserve(static_cast<std::size_t>(n));
+      for (std::size_t i = P.f_lo; i <= P.f_hi; ++i)
+        for (std::size_t j = P.g_lo; j <= P.g_hi; ++j) {
+          double e = std::fmod(fx[i] - gx[j], P.period);
+          if (e < 0) e += P.period;
+          base.push_back(e);
+        }
+      const double k0 = std::floor(smin / P.period) - 1, k1 = std::ceil(smax / P.period) + 1;
+      for (double k = k0; k <= k1; k += 1)
+        for (double e : base) {
+          const double v = e + k * P.period;
+          if (v >= smin - P.xtol && v <= smax + P.xtol) offs.push_back(std::clamp(v, smin, smax));
+        }
+    } else {
+      double n = 0;
+      for (std::size_t i = 0; i < fx.size(); ++i) {
+        auto lo = std::lower_bound(gx.begin(), gx.end(), fx[i] - smax - P.xtol);
+        auto hi = std::upper_bound(gx.begin(), gx.end(), fx[i] - smin + P.xtol);
+        n += static_cast<double>(hi - lo);
+      }
+      if (n > static_cast<double>(o.max_events))
+        return make_error(fmt::format("signature: the exact signature needs {:.3g} event offsets (limit {}) because "
+                                      "the two grids do not align; use sampled offsets (--offsets N)", n, o.max_events));
+      offs.reserve(static_cast<std::size_t>(n) + 2);
+      for (std::size_t i = 0; i < fx.size(); ++i) {
+        auto lo = std::lower_bound(gx.begin(), gx.end(), fx[i] - smax - P.xtol);
+        auto hi = std::upper_bound(gx.begin(), gx.end(), fx[i] - smin + P.xtol);
+        for (auto it = lo; it != hi; ++it) offs.push_back(std::clamp(fx[i] - *it, smin, smax));
+      }
+    }
+    offs.push_back(smin);
+    offs.push_back(smax);
+    std::sort(offs.begin(), offs.end());
+    std::vector<double> u;
+    u.reserve(offs.size());
+    for (double v : offs)
+      if (u.empty() || v > u.back() + P.xtol) u.push_back(v);
+    if (u.back() < smax) u.back() = smax;
+    offs.swap(u);
+    events = offs.size();
+  } else {
+    const std::size_t n = std::max<std::size_t>(o.offsets, 2);
+    offs.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      offs[i] = (i + 1 == n) ? smax : smin + (smax - smin) * static_cast<double>(i) / static_cast<double>(n - 1);
+  }
+
+  // Evaluate, split into contiguous chunks over threads; each chunk warm-starts from its own
+  // previous offset, so the result does not depend on the number of threads.
+  const std::size_t n = offs.size();
+  std::vector<OffsetResult> res(n);
+  unsigned T = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
+  T = static_cast<unsigned>(std::min<std::size_t>(T, std::max<std::size_t>(1, n / 64)));
+  std::vector<std::vector<Contact>> chunk_contacts(T);
+  std::vector<std::vector<std::uint32_t>> chunk_counts(T);
+  auto work = [&](unsigned t) {
+    const std::size_t i0 = n * t / T, i1 = n * (t + 1) / T;
+    std::vector<Cand> cands;
+    double warm = kNaN;
+    for (std::size_t i = i0; i < i1; ++i) {
+      const std::size_t before = chunk_contacts[t].size();
+      res[i] = evaluate_offset(P, offs[i], warm, o.slopes, o.keep_contacts ? &chunk_contacts[t] : nullptr, cands);
+      chunk_counts[t].push_back(static_cast<std::uint32_t>(chunk_contacts[t].size() - before));
+      warm = res[i].contact_x;
+    }
+  };
+  if (T == 1) {
+    work(0);
+  } else {
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < T; ++t) pool.emplace_back(work, t);
+    for (auto& th : pool) th.join();
+  }
+
+  SignatureResult R;
+  R.exact = (o.offsets == 0);
+  R.events = events;
+  R.offset = offs;
+  R.lift.resize(n);
+  R.theta.resize(n);
+  R.theta_min.resize(n);
+  R.theta_left.resize(n);
+  R.theta_right.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    R.lift[i] = res[i].lift;
+    R.theta[i] = res[i].theta;
+    R.theta_min[i] = res[i].theta_min;
+    R.theta_left[i] = res[i].theta_left;
+    R.theta_right[i] = res[i].theta_right;
+    if (!std::isfinite(res[i].lift))
+      return make_error(fmt::format("signature: no overlap between the blocks at offset {} m", offs[i]));
+  }
+  if (o.keep_contacts) {
+    R.contact_begin.reserve(n + 1);
+    R.contact_begin.push_back(0);
+    for (unsigned t = 0; t < T; ++t) {
+      for (auto c : chunk_counts[t]) R.contact_begin.push_back(R.contact_begin.back() + c);
+      R.contacts.insert(R.contacts.end(), chunk_contacts[t].begin(), chunk_contacts[t].end());
+    }
+  }
+
+  // Extremes: theta at each offset plus the one-sided slopes next to it (inside the range).
+  R.theta_max_forward = -kInf;
+  R.theta_max_backward = -kInf;
+  for (std::size_t i = 0; i < n; ++i) {
+    double hi = R.theta[i], lo = R.theta_min[i];
+    if (i > 0) {
+      hi = std::max(hi, R.theta_left[i]);
+      lo = std::min(lo, R.theta_left[i]);
+    }
+    if (i + 1 < n) {
+      hi = std::max(hi, R.theta_right[i]);
+      lo = std::min(lo, R.theta_right[i]);
+    }
+    if (hi > R.theta_max_forward) {
+      R.theta_max_forward = hi;
+      R.offset_at_forward = offs[i];
+    }
+    if (-lo > R.theta_max_backward) {
+      R.theta_max_backward = -lo;
+      R.offset_at_backward = offs[i];
+    }
+  }
+
+  // Contact-slope distribution, one value per offset. Exact mode: each interval between
+  // events is represented by the slopes of h at its two ends, split at the crossing of the two
+  // lines (exact when the interval holds at most two linear pieces). Sampled mode: theta(s).
+  if (R.exact && o.slopes == SlopeMethod::Exact) {
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      const double s0 = offs[i], s1 = offs[i + 1], L = s1 - s0;
+      const double a0 = R.theta_right[i], a1 = R.theta_left[i + 1];
+      const bool w0 = std::abs(a0) < kHalfPi, w1 = std::abs(a1) < kHalfPi;
+      if (!w0 && !w1) continue;
+      if (!w1 || (w0 && std::abs(a0 - a1) < 1e-12)) {
+        R.slope_samples.push_back(a0);
+        R.slope_weights.push_back(L);
+        continue;
+      }
+      if (!w0) {
+        R.slope_samples.push_back(a1);
+        R.slope_weights.push_back(L);
+        continue;
+      }
+      const double t0 = std::tan(a0), t1 = std::tan(a1);
+      double sc = (t0 == t1) ? s1 : (R.lift[i + 1] - R.lift[i] + t0 * s0 - t1 * s1) / (t0 - t1);
+      sc = std::clamp(sc, s0, s1);
+      R.slope_samples.push_back(a0);
+      R.slope_weights.push_back(sc - s0);
+      R.slope_samples.push_back(a1);
+      R.slope_weights.push_back(s1 - sc);
+    }
+  } else {
+    for (std::size_t i = 0; i < n; ++i) {
+      R.slope_samples.push_back(R.theta[i]);
+      R.slope_weights.push_back(1.0);
+    }
+  }
+  const MeanStd ms = weighted_mean_std(R.slope_samples, R.slope_weights);
+  R.contact_slope_mean = ms.mean;
+  R.contact_slope_std = ms.std;
+  R.contact_slope_pdf = histogram(R.slope_samples, R.slope_weights, o.bins);
+  return R;
+}
+
+Result<SignatureResult> self_signature(const Profile& surface, const SignatureOptions& options) {
+  if (auto st = validate(surface, "surface"); !st) return st.error();
+  return signature(surface, rotate180(surface), options);
+}
+
+}  // namespace frictal
