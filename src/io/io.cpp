@@ -129,10 +129,7 @@ Result<Profile> read_profile(const std::string& path, const ReadOptions& options
     if (c->x[k] < c->x[k - 1])
       return make_error(fmt::format("{}: x decreases at point {} ({} after {}); a profile needs non-decreasing x", path,
                                     k + 1, c->x[k], c->x[k - 1]));
-  Profile p;
-  p.x = std::move(c->x);
-  p.z = std::move(c->z);
-  return p;
+  return as_profile(*c, path);
 }
 
 Result<Map> read_map(const std::string& path, const ReadOptions& options) {
