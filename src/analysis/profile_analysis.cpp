@@ -354,12 +354,9 @@ std::vector<Profile> map_line(const Map& m, double x, double y, double angle, do
   };
   slab(x, c, xa, xb);
   slab(y, s, ya, yb);
-  if (!(t1 - t0 >= step)) return out;
-  // Shrink by a hair so rounding never puts the end samples outside the grid.
-  const double eps = 1e-9 * step;
-  t0 += eps;
-  t1 -= eps;
-  const std::size_t count = std::size_t(std::floor((t1 - t0) / step)) + 1;
+  if (!(t1 - t0 >= step * (1 - 1e-9))) return out;
+  // Samples that rounding puts a hair outside the grid are clamped back onto its edge.
+  const std::size_t count = std::size_t(std::floor((t1 - t0) / step + 1e-9)) + 1;
   Profile cur;
   auto flush = [&] {
     if (cur.size() >= std::max<std::size_t>(min_points, 2)) out.push_back(std::move(cur));
