@@ -1,0 +1,156 @@
+// frictal signature LOWER [UPPER] — the signature function and the friction prediction.
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include "common.hpp"
+#include "frictal/signature.hpp"
+#include "frictal/stats.hpp"
+
+namespace frictal::cli {
+namespace {
+
+struct Args {
+  std::string lower, upper, out, contacts_out, pdf_out;
+  double mu_a = 0;
+  std::string slopes = "exact";
+  std::size_t offsets = 0;
+  std::vector<double> range;
+  double period = 0;
+  unsigned threads = 0;
+  int bins = 90;
+  bool json = false;
+};
+
+const char* type_name(ContactType t) {
+  switch (t) {
+    case ContactType::VertexEdge: return "vertex-edge";
+    case ContactType::EdgeVertex: return "edge-vertex";
+    case ContactType::VertexVertex: return "vertex-vertex";
+    case ContactType::EdgeEdge: return "edge-edge";
+  }
+  return "?";
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw UsageError(fmt::format("{}: cannot open for writing", path));
+  f << text;
+  if (!f) throw UsageError(fmt::format("{}: write failed", path));
+}
+
+std::function<int()> setup(CLI::App& app) {
+  auto a = std::make_shared<Args>();
+  app.add_option("lower", a->lower, "Lower surface file (as measured: material below)")->required();
+  app.add_option("upper", a->upper,
+                 "Upper surface file, as measured (material below); it is rotated by 180 degrees to face LOWER. "
+                 "Default: LOWER itself");
+  app.add_option("--atomic-friction,--mu-a", a->mu_a, "Atomic friction coefficient mu_a >= 0")->capture_default_str();
+  app.add_option("--slopes", a->slopes, "exact: polyline contact rules; spline: cubic-spline slopes averaged")
+      ->check(CLI::IsMember({"exact", "spline"}))->capture_default_str();
+  app.add_option("--offsets", a->offsets, "0: every event offset (exact); N: N equally spaced offsets")->capture_default_str();
+  app.add_option("--offset-range", a->range, "MIN MAX offsets (m); default one period or half the block")->expected(2);
+  app.add_option("--period", a->period, "Treat both surfaces as periodic with this period (m)");
+  app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
+  app.add_option("--bins", a->bins, "Bins of the contact-slope PDF")->capture_default_str();
+  app.add_option("-o,--output", a->out, "Write the signature function as CSV");
+  app.add_option("--contacts", a->contacts_out, "Write every contact (offset, x, z, slope, type) as CSV");
+  app.add_option("--pdf", a->pdf_out, "Write the contact-slope PDF as CSV");
+  app.add_flag("--json", a->json, "Print one JSON object with the results");
+  return [a]() {
+    require(std::isfinite(a->mu_a) && a->mu_a >= 0,
+            fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
+    Profile lower = load_profile(a->lower);
+    Profile upper_measured = a->upper.empty() ? lower : load_profile(a->upper);
+    if (a->period != 0) {
+      require(a->period > 0 && std::isfinite(a->period), fmt::format("--period: expected a positive length in m, got {}", a->period));
+      lower.period = a->period;
+      upper_measured.period = a->period;
+      unwrap(validate(lower, a->lower));
+      unwrap(validate(upper_measured, a->upper.empty() ? a->lower : a->upper));
+    }
+    SignatureOptions o;
+    o.slopes = (a->slopes == "spline") ? SlopeMethod::Spline : SlopeMethod::Exact;
+    o.offsets = a->offsets;
+    o.threads = a->threads;
+    o.bins = a->bins;
+    o.keep_contacts = !a->contacts_out.empty();
+    if (!a->range.empty()) {
+      require(a->range[1] > a->range[0], "--offset-range: expected MIN < MAX (m)");
+      o.offset_min = a->range[0];
+      o.offset_max = a->range[1];
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    SignatureResult r = unwrap(signature(lower, rotate180(upper_measured), o));
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    FrictionPrediction fwd = unwrap(predict_friction(a->mu_a, r.theta_max_forward, r.contact_slope_std));
+    FrictionPrediction bwd = unwrap(predict_friction(a->mu_a, r.theta_max_backward, r.contact_slope_std));
+    const double smax = std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope);
+
+    if (!a->out.empty()) {
+      std::string s = "offset_m,lift_m,theta_deg,theta_min_deg,theta_left_deg,theta_right_deg\n";
+      for (std::size_t i = 0; i < r.offset.size(); ++i)
+        s += fmt::format("{:.17g},{:.17g},{:.12g},{:.12g},{:.12g},{:.12g}\n", r.offset[i], r.lift[i], to_deg(r.theta[i]),
+                         to_deg(r.theta_min[i]), to_deg(r.theta_left[i]), to_deg(r.theta_right[i]));
+      write_text(a->out, s);
+    }
+    if (!a->contacts_out.empty()) {
+      std::string s = "offset_m,x_m,z_m,slope_deg,type\n";
+      for (std::size_t i = 0; i < r.offset.size(); ++i)
+        for (auto k = r.contact_begin[i]; k < r.contact_begin[i + 1]; ++k) {
+          const Contact& c = r.contacts[k];
+          s += fmt::format("{:.17g},{:.17g},{:.17g},{:.12g},{}\n", r.offset[i], c.x, c.z, to_deg(c.slope), type_name(c.type));
+        }
+      write_text(a->contacts_out, s);
+    }
+    if (!a->pdf_out.empty()) {
+      std::string s = "slope_lo_deg,slope_hi_deg,density_per_deg\n";
+      const auto& h = r.contact_slope_pdf;
+      for (std::size_t i = 0; i < h.density.size(); ++i)
+        s += fmt::format("{:.12g},{:.12g},{:.12g}\n", to_deg(h.edges[i]), to_deg(h.edges[i + 1]), h.density[i] * kDeg);
+      write_text(a->pdf_out, s);
+    }
+    if (a->json) {
+      nlohmann::json j;
+      j["lower"] = a->lower;
+      j["upper"] = a->upper.empty() ? a->lower : a->upper;
+      j["slopes"] = a->slopes;
+      j["exact"] = r.exact;
+      j["offsets"] = r.offset.size();
+      j["offset_range_m"] = {r.offset.front(), r.offset.back()};
+      j["theta_max_forward_deg"] = to_deg(r.theta_max_forward);
+      j["theta_max_backward_deg"] = to_deg(r.theta_max_backward);
+      j["offset_at_forward_m"] = r.offset_at_forward;
+      j["offset_at_backward_m"] = r.offset_at_backward;
+      j["contact_slope_mean_deg"] = to_deg(r.contact_slope_mean);
+      j["contact_slope_std_deg"] = to_deg(r.contact_slope_std);
+      j["surface_slope_max_deg"] = to_deg(smax);
+      j["atomic_friction"] = a->mu_a;
+      j["atomic_friction_angle_deg"] = to_deg(fwd.atomic_angle);
+      j["friction_angle_deg"] = to_deg(fwd.friction_angle);
+      j["friction_coefficient"] = fwd.friction_coefficient;
+      j["friction_angle_low_deg"] = to_deg(fwd.friction_angle_low);
+      j["friction_coefficient_low"] = fwd.friction_coefficient_low;
+      j["friction_angle_backward_deg"] = to_deg(bwd.friction_angle);
+      j["friction_coefficient_backward"] = bwd.friction_coefficient;
+      j["wall_time_s"] = wall;
+      print_json(j);
+    } else {
+      fmt::print("signature: {} offsets ({}) from {:.6g} to {:.6g} m in {:.3f} s\n", r.offset.size(),
+                 r.exact ? "every event, exact" : "sampled", r.offset.front(), r.offset.back(), wall);
+      fmt::print("  theta_max forward  (+x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_forward), r.offset_at_forward);
+      fmt::print("  theta_max backward (-x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_backward), r.offset_at_backward);
+      fmt::print("  contact slope mean {:.4f} deg, std (sigma) {:.4f} deg; max surface slope {:.4f} deg\n",
+                 to_deg(r.contact_slope_mean), to_deg(r.contact_slope_std), to_deg(smax));
+      fmt::print("friction (mu_a = {}): phi = {:.4f} deg, mu = {:.6g}; Eq. 18 range phi in [{:.4f}, {:.4f}] deg; backward phi = {:.4f} deg\n",
+                 a->mu_a, to_deg(fwd.friction_angle), fwd.friction_coefficient, to_deg(fwd.friction_angle_low),
+                 to_deg(fwd.friction_angle), to_deg(bwd.friction_angle));
+    }
+    return 0;
+  };
+}
+
+FRICTAL_COMMAND({"signature", "Signature function theta(x_ofs) of two surfaces and the friction prediction", setup, 20});
+
+}  // namespace
+}  // namespace frictal::cli

@@ -1,0 +1,47 @@
+// Runs the frictal executable for CLI tests.
+#pragma once
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+inline std::string temp_path(const std::string& name) { return ::testing::TempDir() + "frictal_" + name; }
+
+inline void write_file(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+}
+
+inline std::string read_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+/// Runs `frictal ARGS`, capturing stdout and stderr.
+inline CliRun run_cli(const std::string& args) {
+  static int counter = 0;
+  const std::string err_path = temp_path("stderr_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  const std::string cmd = std::string(FRICTAL_CLI_PATH) + " " + args + " 2>" + err_path;
+  CliRun r;
+  FILE* p = ::popen(cmd.c_str(), "r");
+  if (!p) return r;
+  char buf[4096];
+  std::size_t n;
+  while ((n = std::fread(buf, 1, sizeof buf, p)) > 0) r.out.append(buf, n);
+  const int status = ::pclose(p);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.err = read_file(err_path);
+  std::remove(err_path.c_str());
+  return r;
+}

@@ -1,0 +1,90 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_runner.hpp"
+
+using nlohmann::json;
+
+TEST(Cli, KochSignatureJson) {
+  const std::string f = temp_path("k2.csv");
+  auto g = run_cli("surface koch --iterations 2 --alpha 20 -o " + f);
+  ASSERT_EQ(g.code, 0) << g.err;
+  // Periodicity is not stored in CSV; the non-periodic signature over half the block agrees.
+  auto r = run_cli("signature " + f + " --atomic-friction 0.2 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = json::parse(r.out);
+  for (const char* key : {"theta_max_forward_deg", "theta_max_backward_deg", "contact_slope_mean_deg",
+                          "contact_slope_std_deg", "surface_slope_max_deg", "atomic_friction", "friction_angle_deg",
+                          "friction_coefficient", "offsets"})
+    EXPECT_TRUE(j.contains(key)) << key;
+  EXPECT_NEAR(j["theta_max_forward_deg"].get<double>(), 40, 1e-6);
+  EXPECT_NEAR(j["surface_slope_max_deg"].get<double>(), 60, 1e-6);
+  const double phi = 40 + std::atan(0.2) * 180 / M_PI;
+  EXPECT_NEAR(j["friction_angle_deg"].get<double>(), phi, 1e-6);
+  EXPECT_NEAR(j["friction_coefficient"].get<double>(), std::tan(phi * M_PI / 180), 1e-6);
+  // With --period the periodic signature gives the same maximum.
+  auto rp = run_cli("signature " + f + " --period 0.01 --json -o " + temp_path("sig.csv"));
+  ASSERT_EQ(rp.code, 0) << rp.err;
+  EXPECT_NEAR(json::parse(rp.out)["theta_max_forward_deg"].get<double>(), 40, 1e-6);
+  EXPECT_NE(read_file(temp_path("sig.csv")).find("offset_m,lift_m,theta_deg"), std::string::npos);
+}
+
+TEST(Cli, StatsJsonOnHandMadeProfile) {
+  const std::string f = temp_path("tri.csv");
+  write_file(f, "x_m,z_m\n0,0\n1,1\n2,0\n");
+  auto r = run_cli("stats " + f + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = json::parse(r.out);
+  EXPECT_EQ(j["points"].get<int>(), 3);
+  EXPECT_NEAR(j["length_m"].get<double>(), 2, 1e-15);
+  EXPECT_NEAR(j["rms_height_m"].get<double>(), std::sqrt(1.0 / 12), 1e-12);
+  EXPECT_NEAR(j["rms_slope"].get<double>(), 1, 1e-12);
+  EXPECT_NEAR(j["max_slope_deg"].get<double>(), 45, 1e-9);
+}
+
+TEST(Cli, BadInputGivesClearErrorAndExit2) {
+  struct Case {
+    std::string content, expect;
+  };
+  const std::vector<Case> cases = {
+      {"", "empty"},
+      {"x,z\n0,0\n", "at least 2"},
+      {"0,0\n1,nan\n", "finite"},
+      {"0,0\n1,abc\n", ":2:"},
+      {"0,0\n2,1\n1,0\n", "non-decreasing"},
+      {"0;0\n1\n", ":2:"},
+  };
+  int k = 0;
+  for (const auto& c : cases) {
+    const std::string f = temp_path("bad" + std::to_string(k++) + ".csv");
+    write_file(f, c.content);
+    auto r = run_cli("signature " + f);
+    EXPECT_EQ(r.code, 2) << c.content;
+    EXPECT_NE(r.err.find("frictal:"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(f), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+  }
+  auto missing = run_cli("stats /nonexistent/file.csv");
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_NE(missing.err.find("cannot open"), std::string::npos);
+}
+
+TEST(Cli, AbsurdParametersAreRejected) {
+  const std::string o = " -o " + temp_path("x.csv");
+  for (const std::string& args :
+       {"surface koch --iterations 50" + o, "surface koch --alpha 70" + o, "surface koch --length 0.015" + o,
+        "surface wm --dimension 3" + o, "surface wm --n-max 10 --spacing 1e-30" + o, "surface sine --wavelength -1" + o,
+        "surface sawtooth --rise-fraction 1.5" + o, std::string("surface koch --iterations abc") + o,
+        std::string("surface koch"), std::string("nonsense")}) {
+    auto r = run_cli(args);
+    EXPECT_EQ(r.code, 2) << args << "\n" << r.err;
+    EXPECT_FALSE(r.err.empty()) << args;
+  }
+  const std::string f = temp_path("ok.csv");
+  ASSERT_EQ(run_cli("surface sine -o " + f).code, 0);
+  EXPECT_EQ(run_cli("signature " + f + " --atomic-friction -1").code, 2);
+  EXPECT_EQ(run_cli("signature " + f + " --offset-range 1 0").code, 2);
+  EXPECT_EQ(run_cli("signature " + f + " --period -3").code, 2);
+}

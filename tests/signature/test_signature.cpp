@@ -1,0 +1,229 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "frictal/generators.hpp"
+#include "frictal/signature.hpp"
+
+using namespace frictal;
+
+namespace {
+double deg(double d) { return d * M_PI / 180; }
+double todeg(double r) { return r * 180 / M_PI; }
+
+Profile koch(int n, double a_deg, double length = 0.2) {
+  KochParams p;
+  p.iterations = n;
+  p.alpha = deg(a_deg);
+  p.wavelength = 0.01;
+  p.length = length;
+  return *koch_profile(p);
+}
+}  // namespace
+
+TEST(Signature, FlatOnFlatIsZero) {
+  Profile f{{0, 0.5, 1}, {0, 0, 0}, std::nullopt};
+  auto r = self_signature(f);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_EQ(r->theta_max_forward, 0);
+  EXPECT_EQ(r->theta_max_backward, 0);
+  for (double t : r->theta) EXPECT_EQ(t, 0);
+  EXPECT_EQ(r->contact_slope_std, 0);
+}
+
+// Paper Sec. III: K0 and K1 give alpha, K2 gives 2 alpha, K3 gives 3 alpha (Fig. 4), both ways.
+class KochSignature : public ::testing::TestWithParam<std::tuple<int, double>> {};
+TEST_P(KochSignature, MaximumIsNAlpha) {
+  const auto [n, a] = GetParam();
+  const int mult[] = {1, 1, 2, 3};
+  auto r = self_signature(koch(n, a));
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_NEAR(todeg(r->theta_max_forward), mult[n] * a, 1e-9);
+  EXPECT_NEAR(todeg(r->theta_max_backward), mult[n] * a, 1e-9);
+  EXPECT_TRUE(r->exact);
+}
+INSTANTIATE_TEST_SUITE_P(Paper, KochSignature,
+                         ::testing::Combine(::testing::Values(0, 1, 2, 3), ::testing::Values(5.0, 10.0, 20.0)));
+
+TEST(Signature, FoldedKochSurfaces) {
+  // K1 folds above 45 degrees and K2 above 30; the paper's geometric argument still holds.
+  auto k1 = self_signature(koch(1, 50));
+  ASSERT_TRUE(k1.ok());
+  EXPECT_NEAR(todeg(k1->theta_max_forward), 50, 1e-9);
+  auto k2 = self_signature(koch(2, 40));
+  ASSERT_TRUE(k2.ok());
+  EXPECT_NEAR(todeg(k2->theta_max_forward), 80, 1e-9);
+}
+
+TEST(Signature, K0TipOnTipAtZeroAndMatingAtHalfWavelength) {
+  auto r = self_signature(koch(0, 20, 0.05));
+  ASSERT_TRUE(r.ok());
+  // The turned-over copy has its teeth over the lower teeth at offset 0 (tip on tip) and nests
+  // at offset lambda/2, where both flanks touch along their length (edge-edge, slopes +-alpha).
+  std::size_t mid = 0;
+  for (std::size_t i = 0; i < r->offset.size(); ++i)
+    if (std::abs(r->offset[i] - 0.005) < 1e-12) mid = i;
+  ASSERT_GT(mid, 0u);
+  EXPECT_NEAR(todeg(r->theta[mid]), 20, 1e-9);
+  EXPECT_NEAR(todeg(r->theta_min[mid]), -20, 1e-9);
+  bool has_ee = false;
+  for (auto k = r->contact_begin[mid]; k < r->contact_begin[mid + 1]; ++k)
+    has_ee |= r->contacts[k].type == ContactType::EdgeEdge;
+  EXPECT_TRUE(has_ee);
+  bool vv0 = false;
+  for (auto k = r->contact_begin[0]; k < r->contact_begin[1]; ++k) vv0 |= r->contacts[k].type == ContactType::VertexVertex;
+  EXPECT_TRUE(vv0);
+  // Lift: h(s) = h(lambda/2) + |s - lambda/2| tan(alpha); tip on tip is one tooth height above.
+  const double P = 0.005 * std::tan(deg(20));
+  EXPECT_NEAR(r->lift[0] - r->lift[mid], P, 1e-15);
+  for (std::size_t i = 0; i < r->offset.size(); ++i)
+    EXPECT_NEAR(r->lift[i], r->lift[mid] + std::abs(r->offset[i] - 0.005) * std::tan(deg(20)), 1e-15);
+  // theta just after 0 is -alpha (sliding down the flank), just before lambda/2 too.
+  EXPECT_NEAR(todeg(r->theta_right[0]), -20, 1e-9);
+  EXPECT_NEAR(todeg(r->theta_left[mid]), -20, 1e-9);
+  EXPECT_NEAR(todeg(r->theta_right[mid]), 20, 1e-9);
+}
+
+TEST(Signature, AsymmetricSawtoothGivesRiseForwardAndFallBackward) {
+  SawtoothParams s;
+  s.rise_angle = deg(25);
+  s.rise_fraction = 0.7;
+  auto p = sawtooth_profile(s);
+  auto r = self_signature(*p);
+  ASSERT_TRUE(r.ok());
+  EXPECT_NEAR(todeg(r->theta_max_forward), 25, 1e-9);
+  EXPECT_NEAR(r->theta_max_backward, std::atan(0.7 / 0.3 * std::tan(deg(25))), 1e-12);
+}
+
+TEST(Signature, SineMatchesClosedForm) {
+  // f = A sin(kx); rotated copy is the same function, h(s) = 2A sin(ks/2), contact at x = s/2,
+  // theta(s) = atan(A k cos(k s / 2)).
+  SineParams sp;
+  sp.amplitude = 1e-3;
+  sp.points_per_wavelength = 4096;
+  sp.length = 0.02;
+  auto p = sine_profile(sp);
+  SignatureOptions o;
+  o.offsets = 101;
+  o.offset_min = 0.0005;
+  o.offset_max = 0.0095;
+  const double k = 2 * M_PI / 0.01;
+  for (auto m : {SlopeMethod::Exact, SlopeMethod::Spline}) {
+    o.slopes = m;
+    auto r = self_signature(*p, o);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    for (std::size_t i = 0; i < r->offset.size(); ++i) {
+      const double s = r->offset[i];
+      EXPECT_NEAR(r->lift[i] - r->lift[0], 2e-3 * (std::sin(k * s / 2) - std::sin(k * o.offset_min / 2)), 1e-8);
+      EXPECT_NEAR(r->theta[i], std::atan(1e-3 * k * std::cos(k * s / 2)), m == SlopeMethod::Spline ? 1e-5 : 2e-3);
+    }
+  }
+}
+
+TEST(Signature, LiftAgreesWithDirectScanOnWmPair) {
+  WmParams w;
+  w.n_max = 6;
+  auto f = wm_profile(w);
+  w.seed = 99;
+  auto g = wm_profile(w);
+  auto up = rotate180(*g);
+  auto r = signature(*f, up);
+  ASSERT_TRUE(r.ok());
+  EXPECT_TRUE(r->exact);
+  for (std::size_t i = 0; i < r->offset.size(); i += 7)
+    EXPECT_NEAR(r->lift[i], lift_direct(*f, up, r->offset[i]), 1e-21) << "offset " << r->offset[i];
+  // The maximum contact slope never exceeds the maximum surface slope (Sec. V C).
+  double smax = 0;
+  for (std::size_t i = 0; i + 1 < f->size(); ++i)
+    smax = std::max({smax, std::abs(std::atan((f->z[i + 1] - f->z[i]) / (f->x[i + 1] - f->x[i]))),
+                     std::abs(std::atan((g->z[i + 1] - g->z[i]) / (g->x[i + 1] - g->x[i])))});
+  EXPECT_LE(r->theta_max_forward, smax + 1e-12);
+  EXPECT_LE(r->theta_max_backward, smax + 1e-12);
+}
+
+TEST(Signature, NonAlignedGridsAgreeWithDirectScan) {
+  SineParams a;
+  a.points_per_wavelength = 37;
+  a.length = 0.05;
+  SineParams b = a;
+  b.points_per_wavelength = 53;
+  b.amplitude = 7e-4;
+  auto f = sine_profile(a);
+  auto g = sine_profile(b);
+  f->period.reset();
+  g->period.reset();
+  auto up = rotate180(*g);
+  auto r = signature(*f, up);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  for (std::size_t i = 0; i < r->offset.size(); i += 11)
+    EXPECT_NEAR(r->lift[i], lift_direct(*f, up, r->offset[i]), 1e-15);
+  // The exact maxima bound every sampled evaluation from above.
+  SignatureOptions o;
+  o.offsets = 3001;
+  auto q = signature(*f, up, o);
+  ASSERT_TRUE(q.ok());
+  for (double t : q->theta) EXPECT_LE(t, r->theta_max_forward + 1e-12);
+}
+
+TEST(Signature, SameResultForOneAndManyThreads) {
+  SelfAffineParams sp;
+  sp.points = 20000;
+  auto f = self_affine_profile(sp);
+  sp.seed = 5;
+  auto g = self_affine_profile(sp);
+  SignatureOptions o;
+  o.threads = 1;
+  auto a = signature(*f, rotate180(*g), o);
+  o.threads = 4;
+  auto b = signature(*f, rotate180(*g), o);
+  ASSERT_TRUE(a.ok() && b.ok());
+  EXPECT_EQ(a->lift, b->lift);
+  EXPECT_EQ(a->theta, b->theta);
+  EXPECT_EQ(a->theta_max_forward, b->theta_max_forward);
+  EXPECT_EQ(a->contact_slope_std, b->contact_slope_std);
+  ASSERT_EQ(a->contacts.size(), b->contacts.size());
+}
+
+TEST(Signature, SampledOffsetsNeverExceedExactMaximum) {
+  auto p = koch(2, 20);
+  SignatureOptions o;
+  o.offsets = 777;
+  auto s = self_signature(p, o);
+  auto e = self_signature(p);
+  ASSERT_TRUE(s.ok() && e.ok());
+  EXPECT_LE(s->theta_max_forward, e->theta_max_forward + 1e-12);
+  EXPECT_FALSE(s->exact);
+}
+
+TEST(Signature, ErrorsForBadOptions) {
+  auto p = koch(1, 20);
+  SignatureOptions o;
+  o.tolerance = 0;
+  EXPECT_FALSE(self_signature(p, o).ok());
+  o = {};
+  o.max_events = 10;
+  auto r = self_signature(koch(3, 20), o);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("--offsets"), std::string::npos);
+  o = {};
+  o.slopes = SlopeMethod::Spline;
+  EXPECT_FALSE(self_signature(koch(2, 40), o).ok());  // envelope has vertical jumps
+  Profile flat{{0, 1}, {0, 0}, std::nullopt};
+  o = {};
+  o.offset_min = 0;
+  o.offset_max = 5;  // beyond the block
+  EXPECT_FALSE(self_signature(flat, o).ok());
+}
+
+TEST(Friction, Eq6AndEq18) {
+  auto f = predict_friction(std::tan(deg(10)), deg(20), deg(3));
+  ASSERT_TRUE(f.ok());
+  EXPECT_NEAR(todeg(f->friction_angle), 30, 1e-12);
+  EXPECT_NEAR(f->friction_coefficient, std::tan(deg(30)), 1e-12);
+  EXPECT_NEAR(todeg(f->friction_angle_low), 27, 1e-12);
+  EXPECT_NEAR(f->friction_coefficient_low, std::tan(deg(27)), 1e-12);
+  auto g = predict_friction(1.0, deg(60), 0);  // 45 + 60 > 90: cannot slide
+  EXPECT_TRUE(std::isinf(g->friction_coefficient));
+  EXPECT_FALSE(predict_friction(-0.1, 0, 0).ok());
+  EXPECT_FALSE(predict_friction(NAN, 0, 0).ok());
+}
