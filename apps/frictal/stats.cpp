@@ -1,6 +1,8 @@
-// frictal stats FILE — statistics of a profile.
+// frictal stats FILE — statistics of a profile or an areal map (any readable format).
 #include "common.hpp"
+#include "frictal/analysis.hpp"
 #include "frictal/stats.hpp"
+#include "surface_io.hpp"
 
 namespace frictal::cli {
 namespace {
@@ -8,18 +10,62 @@ namespace {
 struct Args {
   std::string file;
   bool json = false;
+  std::string detrend = "none";
+  InputOptions input;
 };
 
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
-  app.add_option("file", a->file, "Profile file")->required();
+  app.add_option("file", a->file, "Profile or map file (CSV/TSV/text, Dektak, Gwyddion text, X3P)")->required();
   app.add_flag("--json", a->json, "Print one JSON object");
+  app.add_option("--detrend", a->detrend, "Remove none, mean, line (plane for maps) or poly:N before the statistics");
+  add_input_options(app, a->input);
   return [a]() {
-    const Profile p = load_profile(a->file);
+    const Detrend d = unwrap(parse_detrend(a->detrend));
+    const SurfaceData data = load_surface(a->file, a->input);
+    if (data.is_map) {
+      const Map m = unwrap(detrend(data.map, d));
+      const MapStats s = map_stats(m);
+      if (a->json) {
+        nlohmann::json j;
+        j["file"] = a->file;
+        j["format"] = format_name(data.format);
+        j["kind"] = "map";
+        j["points"] = s.points;
+        j["valid_points"] = s.valid;
+        j["nx"] = m.nx;
+        j["ny"] = m.ny;
+        j["dx_m"] = m.dx;
+        j["dy_m"] = m.dy;
+        j["width_m"] = s.width;
+        j["height_m"] = s.height;
+        j["mean_height_m"] = s.mean;
+        j["Sa_m"] = s.Sa;
+        j["Sq_m"] = s.Sq;
+        j["rms_height_m"] = s.Sq;
+        j["Sp_m"] = s.Sp;
+        j["Sv_m"] = s.Sv;
+        j["Sz_m"] = s.Sz;
+        j["Ssk"] = s.Ssk;
+        j["Sku"] = s.Sku;
+        j["Sdq"] = s.Sdq;
+        j["max_slope_deg"] = to_deg(s.max_slope);
+        print_json(j);
+      } else {
+        fmt::print("{}: {} x {} map ({} valid of {} points), {:.6g} x {:.6g} m\n"
+                   "  Sq {:.6g} m  Sa {:.6g} m  Sz {:.6g} m  Ssk {:.4g}  Sku {:.4g}\n  Sdq {:.6g}  max slope {:.4f} deg\n",
+                   a->file, m.nx, m.ny, s.valid, s.points, s.width, s.height, s.Sq, s.Sa, s.Sz, s.Ssk, s.Sku, s.Sdq,
+                   to_deg(s.max_slope));
+      }
+      return 0;
+    }
+    const Profile p = unwrap(detrend(surface_profile(data, a->file), d));
     const ProfileStats s = profile_stats(p);
     if (a->json) {
       nlohmann::json j;
       j["file"] = a->file;
+      j["format"] = format_name(data.format);
+      j["kind"] = "profile";
       j["points"] = s.points;
       j["length_m"] = s.length;
       j["mean_height_m"] = s.mean_height;
@@ -37,7 +83,7 @@ std::function<int()> setup(CLI::App& app) {
   };
 }
 
-FRICTAL_COMMAND({"stats", "Statistics of a profile: rms height, rms slope, max slope", setup, 30});
+FRICTAL_COMMAND({"stats", "Statistics of a profile or map: rms height, rms slope, max slope (Sq, Sdq, ... for maps)", setup, 30});
 
 }  // namespace
 }  // namespace frictal::cli

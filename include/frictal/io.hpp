@@ -93,7 +93,7 @@ struct X3pWriteOptions {
 /// valid-point mask (bindata/valid.bin) when any point is invalid; the mask alone for I/L.
 Status write_x3p(const std::string& path, const Map& m, const X3pWriteOptions& options = {});
 /// Writes a uniformly spaced profile as X3P (FeatureType PRF, SizeY = 1). Error if x is not
-/// uniform (relative tolerance 1e-6).
+/// uniform (every x within 1% of the spacing of x0 + k dx; written as x0 + k dx).
 Status write_x3p(const std::string& path, const Profile& p, const X3pWriteOptions& options = {});
 
 }  // namespace frictal

@@ -67,7 +67,7 @@ namespace {
 Result<std::string> read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    return make_error(fmt::format("{}: no such file (or not a regular file)", path));
+    return make_error(fmt::format("{}: cannot open: no such file (or not a regular file)", path));
   auto size = std::filesystem::file_size(path, ec);
   if (ec) return make_error(fmt::format("{}: cannot read its size: {}", path, ec.message()));
   if (size > max_bytes) return make_error(fmt::format("{}: {} bytes, above the limit of {} bytes", path, size, max_bytes));

@@ -184,7 +184,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     auto f = split_fields(t, delim.c);
     if (numeric_fields(f, delim.decimal_comma, &vals)) {
       if (trailer_line)
-        return make_error(fmt::format("{}: line {}: expected numbers, found text '{}' inside the data",
+        return make_error(fmt::format("{}:{}: expected numbers, found text '{}' inside the data",
                                       name, trailer_line, std::string(trim(lines[trailer_line - 1].text)).substr(0, 60)));
       if (rows.empty() && vals.size() == 1) {  // a count line ("23") before two-column data
         long long n;
@@ -193,12 +193,12 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
           count_line_number = ln.number;
           continue;
         }
-        return make_error(fmt::format("{}: line {}: expected at least two columns (x and z), found one", name, ln.number));
+        return make_error(fmt::format("{}:{}: expected at least two columns (x and z), found one", name, ln.number));
       }
       if (rows.empty()) {
         ncols = vals.size();
       } else if (vals.size() != ncols) {
-        return make_error(fmt::format("{}: line {}: expected {} columns like line {}, found {}", name, ln.number, ncols,
+        return make_error(fmt::format("{}:{}: expected {} columns like line {}, found {}", name, ln.number, ncols,
                                       row_line.front(), vals.size()));
       }
       if (rows.size() >= options.max_points)
@@ -213,8 +213,15 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       trailer_line = ln.number;
     }
   }
-  if (rows.empty()) return make_error(fmt::format("{}: no numeric data rows found (expected lines of x and z values)", name));
-  if (rows.size() < 2) return make_error(fmt::format("{}: only one data row (line {}); a profile needs at least two points", name, row_line[0]));
+  if (trailer_line && rows.size() < 2)
+    return make_error(fmt::format("{}:{}: expected numbers, found '{}'", name, trailer_line,
+                                  std::string(trim(lines[trailer_line - 1].text)).substr(0, 60)));
+  if (rows.empty()) {
+    if (trim(text).empty()) return make_error(fmt::format("{}: file is empty", name));
+    return make_error(fmt::format("{}: no numeric data rows found (expected lines of x and z values)", name));
+  }
+  if (rows.size() < 2)
+    return make_error(fmt::format("{}:{}: only one data row; a profile needs at least 2 points", name, row_line[0]));
 
   SurfaceData out;
   out.format = ProfileFormat::Csv;
@@ -276,13 +283,13 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   for (std::size_t k = 0; k < rows.size(); ++k) {
     double x = rows[k][xc], z = rows[k][zc];
     if (std::isnan(x))
-      return make_error(fmt::format("{}: line {}: x is not a number", name, row_line[k]));
+      return make_error(fmt::format("{}:{}: x is not a number", name, row_line[k]));
     if (std::isnan(z)) { ++dropped; continue; }
     out.curve.x.push_back(x * xs);
     out.curve.z.push_back(z * zs);
   }
   if (dropped) out.warnings.push_back(fmt::format("{}: {} points with NaN heights were dropped", name, dropped));
-  if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than two valid points", name));
+  if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than 2 points with finite values", name));
   return out;
 }
 
@@ -305,7 +312,7 @@ Result<SurfaceData> parse_dektak(std::string_view text, const std::string& name,
   // The section runs from the column header to the first blank line after the data.
   std::size_t first = k + 1;
   while (first < lines.size() && trim(lines[first].text).empty()) ++first;
-  if (first >= lines.size()) return make_error(fmt::format("{}: line {}: 'Scan Data' section is empty", name, lines[k].number));
+  if (first >= lines.size()) return make_error(fmt::format("{}:{}: 'Scan Data' section is empty", name, lines[k].number));
   std::size_t last = first + 1;
   bool data_seen = false;
   for (; last < lines.size(); ++last) {
@@ -388,7 +395,7 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
       if (k.find("value unit") != std::string::npos || k.find("z unit") != std::string::npos || k == "einheit" ||
           k.find("werteinheit") != std::string::npos) {
         auto s = unit_scale(v);
-        if (!s) return make_error(fmt::format("{}: line {}: value unit '{}' is not a length unit (expected m, mm, um, nm)", name, ln.number, v));
+        if (!s) return make_error(fmt::format("{}:{}: value unit '{}' is not a length unit (expected m, mm, um, nm)", name, ln.number, v));
         zscale = s;
       }
       continue;
@@ -397,14 +404,14 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
     if (!numeric_fields(f, false, &row)) {
       bool comma = numeric_fields(f, true, &row);
       if (!comma)
-        return make_error(fmt::format("{}: line {}: expected a row of numbers, found '{}'", name, ln.number,
+        return make_error(fmt::format("{}:{}: expected a row of numbers, found '{}'", name, ln.number,
                                       std::string(t.substr(0, 60))));
     }
     if (ny == 0) {
       nx = row.size();
       first_line = ln.number;
     } else if (row.size() != nx) {
-      return make_error(fmt::format("{}: line {}: expected {} values like line {}, found {}", name, ln.number, nx,
+      return make_error(fmt::format("{}:{}: expected {} values like line {}, found {}", name, ln.number, nx,
                                     first_line, row.size()));
     }
     if (values.size() + row.size() > options.max_points)

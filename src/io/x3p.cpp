@@ -630,7 +630,7 @@ Status write_x3p(const std::string& path, const Profile& p, const X3pWriteOption
   if (p.size() < 2) return make_error(fmt::format("{}: a profile needs at least two points", path));
   double dx = (p.x.back() - p.x.front()) / double(p.size() - 1);
   for (std::size_t k = 0; k < p.size(); ++k)
-    if (!(dx > 0) || std::abs(p.x[k] - (p.x.front() + dx * double(k))) > 1e-6 * dx)
+    if (!(dx > 0) || std::abs(p.x[k] - (p.x.front() + dx * double(k))) > 0.01 * dx)
       return make_error(fmt::format("{}: X3P profiles need uniformly spaced x (point {} is off the grid); resample first",
                                     path, k + 1));
   Map m;

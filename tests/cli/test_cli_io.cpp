@@ -1,0 +1,84 @@
+// CLI: stats on every format, convert round trips, dimension. Expected values follow from the
+// files' numbers (see tests/io) or from Eq. 13.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+#include "cli/cli_runner.hpp"
+
+namespace {
+const std::string kData = FRICTAL_SHARED_DATA;
+}
+
+TEST(CliIo, StatsMapJsonHasArealKeys) {
+  auto r = run_cli("stats " + kData + "/x3p/x3p-2.x3p --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["kind"], "map");
+  EXPECT_EQ(j["points"], 422500);
+  // python3: population rms about the mean of data.bin.
+  EXPECT_NEAR(j["Sq_m"].get<double>(), 7.7280332735977479e-08, 1e-20);
+  for (const char* k : {"Sa_m", "Sz_m", "Sdq", "Ssk", "Sku", "max_slope_deg", "rms_height_m"}) EXPECT_TRUE(j.contains(k)) << k;
+}
+
+TEST(CliIo, StatsEveryProfileFormatAndDetrend) {
+  for (const char* f : {"/profiles/csv-1.csv", "/profiles/csv-2.csv", "/profiles/dektak-1.csv", "/profiles/xy-1.txt",
+                        "/profiles/xy-2.txt", "/profiles/nonuniform.asc"}) {
+    auto r = run_cli("stats " + kData + f + " --json --detrend line");
+    ASSERT_EQ(r.code, 0) << f << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    EXPECT_EQ(j["kind"], "profile");
+    EXPECT_NEAR(j["mean_height_m"].get<double>(), 0, 1e-9 * j["rms_height_m"].get<double>() + 1e-18) << f;
+  }
+  // Dektak: 9600 points over 0 .. 1499.8 um.
+  auto r = run_cli("stats " + kData + "/profiles/dektak-1.csv --json");
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["points"], 9600);
+  EXPECT_NEAR(j["length_m"].get<double>(), 1499.8e-6, 1e-12);
+  EXPECT_EQ(run_cli("stats " + kData + "/profiles/xy-1.txt --detrend cubic").code, 2);
+  EXPECT_EQ(run_cli("stats " + kData + "/profiles/xy-1.txt --format x3p").code, 2);
+}
+
+TEST(CliIo, ConvertRoundTrips) {
+  const std::string x3p = temp_path("conv.x3p"), txt = temp_path("conv.txt"), back = temp_path("back.x3p");
+  auto a = run_cli("convert " + kData + "/maps/gwyddion-export-english.txt " + x3p);
+  ASSERT_EQ(a.code, 0) << a.err;
+  auto b = run_cli("convert " + x3p + " " + txt);
+  ASSERT_EQ(b.code, 0) << b.err;
+  auto s1 = nlohmann::json::parse(run_cli("stats " + kData + "/maps/gwyddion-export-english.txt --json").out);
+  auto s2 = nlohmann::json::parse(run_cli("stats " + txt + " --json").out);
+  EXPECT_EQ(s1["Sq_m"], s2["Sq_m"]);
+  EXPECT_EQ(s1["dx_m"], s2["dx_m"]);
+  // Profile to X3P (int16) and back (csv-1's x is uniform to 0.3 % of its spacing).
+  auto c = run_cli("convert " + kData + "/profiles/csv-1.csv " + back + " --x3p-type I --unit um");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_EQ(run_cli("convert " + kData + "/profiles/xy-2.txt " + back).code, 2);  // non-uniform x
+  auto p1 = nlohmann::json::parse(run_cli("stats " + kData + "/profiles/csv-1.csv --json --unit um").out);
+  auto p2 = nlohmann::json::parse(run_cli("stats " + back + " --json").out);
+  EXPECT_EQ(p1["points"], p2["points"]);
+  // int16 quantisation (0.16 um over 65532 steps) and x snapped to x0 + k dx (x moves by up to
+  // 0.3 % of dx, which re-weights the polyline) change the rms by well under 0.1 %.
+  EXPECT_NEAR(p1["rms_height_m"].get<double>(), p2["rms_height_m"].get<double>(), 1e-3 * p1["rms_height_m"].get<double>());
+  EXPECT_EQ(run_cli("convert " + kData + "/x3p/pyramid.x3p " + temp_path("p.csv")).code, 2);
+  EXPECT_EQ(run_cli("convert " + kData + "/x3p/pyramid.x3p " + temp_path("p.xyz")).code, 2);
+}
+
+TEST(CliIo, DimensionKochAndProfiles) {
+  auto k = run_cli("dimension --koch-alpha 60 --json");
+  ASSERT_EQ(k.code, 0) << k.err;
+  EXPECT_NEAR(nlohmann::json::parse(k.out)["dimension"].get<double>(), std::log(4.0) / std::log(3.0), 1e-12);
+  for (const char* m : {"divider", "box", "psd"}) {
+    auto r = run_cli("dimension " + kData + "/profiles/dektak-1.csv --detrend line --json --method " + m);
+    ASSERT_EQ(r.code, 0) << m << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    double D = j["dimension"].get<double>();
+    EXPECT_GE(D, 0.9) << m;
+    EXPECT_LE(D, 2.1) << m;
+    EXPECT_TRUE(j.contains("r_squared"));
+    EXPECT_EQ(j["fit_range_m"].size(), 2u);
+  }
+  EXPECT_EQ(run_cli("dimension " + kData + "/x3p/x3p-2.x3p").code, 2);
+  EXPECT_EQ(run_cli("dimension").code, 2);
+  EXPECT_EQ(run_cli("dimension --koch-alpha 75").code, 2);
+}
