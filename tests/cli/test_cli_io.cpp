@@ -82,3 +82,24 @@ TEST(CliIo, DimensionKochAndProfiles) {
   EXPECT_EQ(run_cli("dimension").code, 2);
   EXPECT_EQ(run_cli("dimension --koch-alpha 75").code, 2);
 }
+
+TEST(CliIo, AnisotropyTable) {
+  auto r = run_cli("anisotropy " + kData + "/x3p/ISO5436-sample1.x3p --directions 4 --lines 4 --json");
+  // 4 x 4 nodes: lines are shorter than the 32-point minimum -> a clear error, exit 2.
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("no line"), std::string::npos) << r.err;
+  auto a = run_cli("anisotropy " + kData + "/x3p/x3p-2.x3p --directions 4 --lines 8 --json --mu-a 0.1");
+  ASSERT_EQ(a.code, 0) << a.err;
+  auto j = nlohmann::json::parse(a.out);
+  ASSERT_EQ(j["directions"].size(), 4u);
+  for (const auto& row : j["directions"]) {
+    // Eq. 6: phi = atan(mu_a) + theta_forward.
+    EXPECT_NEAR(row["friction_angle_deg"].get<double>(),
+                std::atan(0.1) * 180 / 3.141592653589793 + row["theta_forward_deg"].get<double>(), 1e-9);
+  }
+  auto b = run_cli("anisotropy " + kData + "/x3p/x3p-2.x3p --directions 2 --areal --json");
+  ASSERT_EQ(b.code, 0) << b.err;
+  EXPECT_EQ(nlohmann::json::parse(b.out)["method"], "areal");
+  EXPECT_EQ(run_cli("anisotropy " + kData + "/profiles/xy-1.txt").code, 2);
+  EXPECT_EQ(run_cli("anisotropy " + kData + "/x3p/x3p-2.x3p --directions 0").code, 2);
+}
