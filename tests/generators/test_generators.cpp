@@ -179,3 +179,33 @@ TEST(SelfAffine, RmsAndSeed) {
   EXPECT_NEAR(rms_dense(*a, 3), 1e-6, 1e-12);
   EXPECT_EQ(a->size(), 5000u);
 }
+
+TEST(WeierstrassMandelbrot, SpectrumFollowsTheExponent) {
+  // gamma = 2 and L_b = L make every mode an exact harmonic of the record: the Fourier
+  // coefficient at harmonic 2^n has magnitude amp_n / 2 with amp_n = gamma^{k (D - 2) n}.
+  for (auto ex : {WmExponent::Printed, WmExponent::Common}) {
+    WmParams w;
+    w.dimension = 1.3;
+    w.gamma = 2;
+    w.n_max = 4;
+    w.longest_wavelength = 1e-6;
+    w.length = 1e-6;
+    w.rms_height = 0;
+    w.seed = 11;
+    w.exponent = ex;
+    auto p = wm_profile(w);
+    ASSERT_TRUE(p.ok());
+    const std::size_t N = p->size() - 1;  // drop the closing point: one exact period
+    auto coef = [&](int h) {
+      double re = 0, im = 0;
+      for (std::size_t i = 0; i < N; ++i) {
+        re += p->z[i] * std::cos(2 * M_PI * h * static_cast<double>(i) / N);
+        im += p->z[i] * std::sin(2 * M_PI * h * static_cast<double>(i) / N);
+      }
+      return std::hypot(re, im) / N;
+    };
+    const double k = ex == WmExponent::Printed ? 2 : 1;
+    for (int n = 0; n <= 4; ++n) EXPECT_NEAR(coef(1 << n), 0.5 * std::pow(2.0, k * (1.3 - 2) * n), 1e-9) << n;
+    EXPECT_NEAR(coef(3), 0, 1e-9);  // nothing between the modes
+  }
+}
