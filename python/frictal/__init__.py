@@ -1,0 +1,33 @@
+"""frictal — static friction between rigid rough surfaces from their topography.
+
+Thin Python layer over the C++ library (``frictal._core``). SI units everywhere: metres and
+radians (use ``numpy.degrees`` for display). Errors from the library raise ``ValueError`` with a
+message naming the parameter or file.
+
+>>> import frictal, numpy as np
+>>> k2 = frictal.koch_profile(iterations=2, alpha=np.radians(20))
+>>> sig = frictal.signature(k2)
+>>> round(np.degrees(sig["theta_max_forward"]), 6)
+40.0
+"""
+from ._core import (  # noqa: F401
+    Profile,
+    koch_curve,
+    koch_profile,
+    lift_direct,
+    lower_envelope,
+    predict_friction,
+    profile_stats,
+    read_profile,
+    rotate180,
+    sawtooth_profile,
+    self_affine_profile,
+    signature,
+    sine_profile,
+    upper_envelope,
+    wm_profile,
+    write_profile_csv,
+)
+
+__all__ = [name for name in dir() if not name.startswith("_")]
+__version__ = "0.1.0"

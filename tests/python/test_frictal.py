@@ -1,0 +1,92 @@
+"""Python package tests: expectations from the paper and closed forms, not from frictal's output."""
+import math
+import os
+
+import numpy as np
+import pytest
+
+import frictal
+
+
+@pytest.mark.parametrize("n,mult", [(0, 1), (1, 1), (2, 2), (3, 3)])
+def test_koch_signature_is_n_alpha(n, mult):
+    alpha = np.radians(10)
+    sig = frictal.signature(frictal.koch_profile(iterations=n, alpha=alpha))
+    assert sig["theta_max_forward"] == pytest.approx(mult * alpha, abs=1e-12)
+    assert sig["theta_max_backward"] == pytest.approx(mult * alpha, abs=1e-12)
+    assert sig["exact"]
+
+
+def test_lift_matches_reference_and_numpy_scan():
+    f = frictal.wm_profile(n_max=5, seed=3)
+    g = frictal.wm_profile(n_max=5, seed=4)
+    up = frictal.rotate180(g)
+    sig = frictal.signature(f, g)
+    fz, gz = np.asarray(f.z), np.asarray(up.z)
+    dx = f.x[1] - f.x[0]
+    for i in range(0, len(sig["offset"]), 50):
+        s = sig["offset"][i]
+        k = int(round(s / dx))
+        # aligned grids: h(s) = max_i f[i] - g[i - k] (independent numpy scan)
+        assert sig["lift"][i] == pytest.approx(np.max(fz[k:] - gz[: len(gz) - k]), abs=1e-22)
+        assert sig["lift"][i] == pytest.approx(frictal.lift_direct(f, up, s), abs=1e-22)
+
+
+def test_wm_rms_and_points():
+    p = frictal.wm_profile()
+    assert len(p) == 11534
+    x, z = np.asarray(p.x), np.asarray(p.z)
+    # rms about the mean of the piecewise-linear profile, by numpy: exact segment integrals
+    dx = np.diff(x)
+    mean = np.sum(dx * (z[1:] + z[:-1]) / 2) / (x[-1] - x[0])
+    a, b = z[:-1] - mean, z[1:] - mean
+    rms = math.sqrt(np.sum(dx * (a * a + a * b + b * b) / 3) / (x[-1] - x[0]))
+    assert rms == pytest.approx(1e-9, rel=1e-9)
+    assert frictal.profile_stats(p)["rms_height_m"] == pytest.approx(rms, rel=1e-12)
+
+
+def test_friction_eq6_eq18():
+    f = frictal.predict_friction(math.tan(np.radians(10)), np.radians(20), np.radians(3))
+    assert np.degrees(f["friction_angle"]) == pytest.approx(30)
+    assert f["friction_coefficient"] == pytest.approx(math.tan(np.radians(30)))
+    assert np.degrees(f["friction_angle_low"]) == pytest.approx(27)
+
+
+def test_errors_are_value_errors():
+    with pytest.raises(ValueError, match="alpha"):
+        frictal.koch_profile(alpha=np.radians(70))
+    with pytest.raises(ValueError, match="at least 2"):
+        frictal.Profile([0.0], [0.0])
+    with pytest.raises(ValueError, match="non-decreasing"):
+        frictal.Profile([0.0, 2.0, 1.0], [0.0, 0.0, 0.0])
+    with pytest.raises(ValueError, match="exponent"):
+        frictal.wm_profile(exponent="bogus")
+
+
+def test_folded_koch_envelope_and_roundtrip(tmp_path):
+    x, z = frictal.koch_curve(iterations=1, alpha=np.radians(50), length=0.02)
+    assert np.any(np.diff(x) < 0)  # folds over
+    env = frictal.upper_envelope(x, z)
+    assert np.all(np.diff(env.x) >= 0)
+    path = os.path.join(tmp_path, "env.csv")
+    frictal.write_profile_csv(path, env)
+    back = frictal.read_profile(path)
+    assert np.array_equal(np.asarray(back.x), np.asarray(env.x))
+    assert np.array_equal(np.asarray(back.z), np.asarray(env.z))
+
+
+def test_plots_render(tmp_path):
+    matplotlib = pytest.importorskip("matplotlib")
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from frictal import plots
+
+    sig = frictal.signature(frictal.koch_profile(iterations=2, alpha=np.radians(5)))
+    fig, axes = plt.subplots(3)
+    plots.plot_signature(sig, ax=axes[0], normalise=np.radians(5))
+    plots.plot_slope_pdf(sig, ax=axes[1])
+    plots.plot_profile(frictal.koch_profile(iterations=2), ax=axes[2])
+    out = os.path.join(tmp_path, "p.png")
+    fig.savefig(out)
+    assert os.path.getsize(out) > 1000
