@@ -103,3 +103,33 @@ TEST(CliIo, AnisotropyTable) {
   EXPECT_EQ(run_cli("anisotropy " + kData + "/profiles/xy-1.txt").code, 2);
   EXPECT_EQ(run_cli("anisotropy " + kData + "/x3p/x3p-2.x3p --directions 0").code, 2);
 }
+
+TEST(CliIo, StatsReadsEverySharedFile) {
+  const char* files[] = {"profiles/csv-1.csv", "profiles/csv-2.csv", "profiles/dektak-1.csv", "profiles/xy-1.txt",
+                         "profiles/xy-2.txt", "profiles/nonuniform.asc", "maps/gwyddion-export-english.txt",
+                         "maps/gwyddion-export-german.txt", "maps/matrix-6.txt", "x3p/ISO5436-sample1.x3p",
+                         "x3p/ISO5436-sample1_bin.x3p", "x3p/ISO5436-sample2.x3p", "x3p/ISO5436-sample3.x3p",
+                         "x3p/ISO5436-sample4.x3p", "x3p/ISO5436-sample4_bin.x3p", "x3p/pyramid.x3p",
+                         "x3p/sample-land.x3p", "x3p/x3p-2.x3p"};
+  for (const char* f : files) {
+    auto r = run_cli("stats " + kData + "/" + f + " --json");
+    ASSERT_EQ(r.code, 0) << f << ": " << r.err;
+    auto j = nlohmann::json::parse(r.out);
+    EXPECT_GT(j["rms_height_m"].get<double>(), -1) << f;
+  }
+  // pyramid.x3p: 16 nodes of 2, 8 of 6, 1 of 10 (python3 struct) -> mean 3.6.
+  auto p = nlohmann::json::parse(run_cli("stats " + kData + "/x3p/pyramid.x3p --json").out);
+  EXPECT_NEAR(p["mean_height_m"].get<double>(), (16 * 2 + 8 * 6 + 10) / 25.0, 1e-12);
+}
+
+TEST(CliIo, StatsSpectrumAutocorrelationHistograms) {
+  const std::string psd = temp_path("psd.csv"), acf = temp_path("acf.csv");
+  auto r = run_cli("stats " + kData + "/profiles/dektak-1.csv --detrend line --json --histograms 20 --psd " + psd + " --acf " + acf);
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["height_distribution"]["density"].size(), 20u);
+  EXPECT_EQ(j["slope_distribution_rad"]["edges"].size(), 21u);
+  EXPECT_GT(j["correlation_length_m"].get<double>(), 0);
+  EXPECT_NE(read_file(psd).find("q_rad_per_m,C_m3\n"), std::string::npos);
+  EXPECT_NE(read_file(acf).find("lag_m,acf\n0,1\n"), std::string::npos);
+}
