@@ -4,8 +4,8 @@
 //  (2) the anisotropy table of that map over 36 directions (128 lines per direction, exact
 //      self-signature per line) vs the direct method: h(s) by lift_direct() at every sample
 //      offset of every line and its one-sided slopes there (O(N^2) per line);
-//  (3) the areal signature of two such maps along one direction, block max bounds vs the
-//      direct scan of every node at every offset (identical results).
+//  (3) the areal signature of two such maps (x3p-2 and x3p-2 mirrored in y) along 0 and 40 deg,
+//      block max bounds vs the direct scan of every node at every offset (identical results).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -31,6 +31,17 @@ const std::string kX3p = std::string(FRICTAL_SHARED_DATA) + "/x3p/x3p-2.x3p";
 const Map& big_map() {
   static const Map m = *read_map(kX3p);
   return m;
+}
+
+// A second, different 650 x 650 surface for the upper block: the same map mirrored in y.
+const Map& big_map_mirrored() {
+  static const Map u = [] {
+    Map m = big_map();
+    for (std::size_t j = 0; j < m.ny; ++j)
+      for (std::size_t i = 0; i < m.nx; ++i) m.at(i, j) = big_map().at(i, m.ny - 1 - j);
+    return m;
+  }();
+  return u;
 }
 
 void BM_ReadX3p650(benchmark::State& st) {
@@ -118,15 +129,16 @@ void BM_Anisotropy36_Direct(benchmark::State& st) {
 }
 BENCHMARK(BM_Anisotropy36_Direct)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
-void areal(benchmark::State& st, bool prune) {
+void areal(benchmark::State& st, bool prune, double angle) {
   const Map& m = big_map();
+  const Map& u = big_map_mirrored();
   ArealSignatureOptions o;
   o.prune = prune;
   o.threads = 1;
   std::size_t nodes = 0;
   double theta = 0;
   for (auto _ : st) {
-    auto r = areal_signature(m, m, 0.0, o);
+    auto r = areal_signature(m, u, angle, o);
     if (!r) st.SkipWithError(r.error().message.c_str());
     nodes = r->evaluated_nodes;
     theta = r->theta_max_forward;
@@ -135,10 +147,14 @@ void areal(benchmark::State& st, bool prune) {
   st.counters["evaluated_nodes"] = double(nodes);
   st.counters["theta_max_forward_deg"] = theta * 180 / std::numbers::pi;
 }
-void BM_ArealSignature650(benchmark::State& st) { areal(st, true); }
-void BM_ArealSignature650_Direct(benchmark::State& st) { areal(st, false); }
+void BM_ArealSignature650(benchmark::State& st) { areal(st, true, 0.0); }
+void BM_ArealSignature650_Direct(benchmark::State& st) { areal(st, false, 0.0); }
+void BM_ArealSignature650_40deg(benchmark::State& st) { areal(st, true, 40 * std::numbers::pi / 180); }
+void BM_ArealSignature650_40deg_Direct(benchmark::State& st) { areal(st, false, 40 * std::numbers::pi / 180); }
 BENCHMARK(BM_ArealSignature650)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_ArealSignature650_Direct)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+BENCHMARK(BM_ArealSignature650_40deg)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ArealSignature650_40deg_Direct)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 
 }  // namespace
 
