@@ -16,6 +16,7 @@ struct Args {
   double atomic_friction = 0;
   std::string detrend = "plane";
   bool areal = false;
+  std::string upper;
   bool json = false;
   unsigned threads = 0;
   InputOptions input;
@@ -29,7 +30,8 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--mu-a", a->atomic_friction, "Atomic friction coefficient mu_a of Eq. 6 (default 0)");
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from the map first (default plane)");
   app.add_flag("--areal", a->areal, "Use the areal signature of the two rigid blocks instead of line profiles");
-  app.add_option("--threads", a->threads, "Worker threads for --areal (0 = all cores)");
+  app.add_option("--threads", a->threads, "Worker threads (0 = all cores; default all)");
+  app.add_option("--upper", a->upper, "With --areal: the upper block's map (default: the same map turned over)");
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
   return [a]() {
@@ -38,7 +40,15 @@ std::function<int()> setup(CLI::App& app) {
     require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0, "--mu-a must be a finite number >= 0");
     const SurfaceData s = load_surface(a->file, a->input);
     if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; anisotropy needs an areal map", a->file));
-    const Map m = unwrap(detrend(s.map, unwrap(parse_detrend(a->detrend))));
+    const Detrend dt = unwrap(parse_detrend(a->detrend));
+    const Map m = unwrap(detrend(s.map, dt));
+    if (!a->upper.empty() && !a->areal) throw UsageError("--upper needs --areal");
+    Map u = m;
+    if (!a->upper.empty()) {
+      const SurfaceData us = load_surface(a->upper, a->input);
+      if (!us.is_map) throw UsageError(fmt::format("{}: a line profile; --upper needs an areal map", a->upper));
+      u = unwrap(detrend(us.map, dt));
+    }
     nlohmann::json rows = nlohmann::json::array();
     if (!a->json)
       fmt::print("{}: {} x {} map, {} directions ({})\n  dir_deg  theta+_deg  theta-_deg  sigma_deg  phi_deg    mu\n",
@@ -50,13 +60,14 @@ std::function<int()> setup(CLI::App& app) {
       if (a->areal) {
         ArealSignatureOptions o;
         o.threads = a->threads;
-        const ArealSignature r = unwrap(areal_signature(m, m, angle, o));
+        const ArealSignature r = unwrap(areal_signature(m, u, angle, o));
         fwd = r.theta_max_forward;
         bwd = r.theta_max_backward;
         sigma = r.contact_slope_std;
       } else {
         DirectionalOptions o;
         o.max_lines = a->max_lines;
+        o.threads = a->threads;
         const DirectionalFriction r = unwrap(friction_along(m, angle, o));
         fwd = r.theta_forward;
         bwd = r.theta_backward;

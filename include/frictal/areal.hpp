@@ -24,6 +24,8 @@ struct DirectionalOptions {
   SignatureOptions signature = {};
   /// mu_a of Eq. 6 for the prediction (unitless).
   double atomic_friction = 0;
+  /// Worker threads over lines (0 = hardware); the result does not depend on it.
+  unsigned threads = 1;
 };
 
 /// Prediction for sliding along one direction, from all parallel lines: each line is compared

@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <thread>
 
 #include "frictal/analysis.hpp"
@@ -28,17 +29,36 @@ Result<DirectionalFriction> friction_along(const Map& m, double angle, const Dir
   r.angle = angle;
   SignatureOptions so = o.signature;
   so.keep_contacts = false;
-  for (const auto& l : lines) {
-    auto sig = self_signature(l, so);
-    if (!sig) return sig.error();
-    const double w = l.length();
+  std::vector<SignatureResult> results(lines.size());
+  std::vector<std::string> errors(lines.size());
+  auto work = [&](std::size_t first, std::size_t stride) {
+    for (std::size_t k = first; k < lines.size(); k += stride) {
+      auto sig = self_signature(lines[k], so);
+      if (sig) results[k] = std::move(*sig);
+      else errors[k] = sig.error().message;
+    }
+  };
+  unsigned threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
+  threads = unsigned(std::min<std::size_t>(threads, lines.size()));
+  if (threads > 1) so.threads = 1;  // parallel over lines, not inside each line
+  if (threads <= 1) {
+    work(0, 1);
+  } else {
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work, t, threads);
+    for (auto& th : pool) th.join();
+  }
+  for (std::size_t k = 0; k < lines.size(); ++k) {  // reduce in line order: deterministic
+    if (!errors[k].empty()) return make_error(errors[k]);
+    const SignatureResult& sig = results[k];
+    const double w = lines[k].length();
     r.lines++;
     r.total_length += w;
-    r.theta_forward += w * sig->theta_max_forward;
-    r.theta_backward += w * sig->theta_max_backward;
-    r.sigma += w * sig->contact_slope_std;
-    r.theta_forward_max = std::max(r.theta_forward_max, sig->theta_max_forward);
-    r.theta_backward_max = std::max(r.theta_backward_max, sig->theta_max_backward);
+    r.theta_forward += w * sig.theta_max_forward;
+    r.theta_backward += w * sig.theta_max_backward;
+    r.sigma += w * sig.contact_slope_std;
+    r.theta_forward_max = std::max(r.theta_forward_max, sig.theta_max_forward);
+    r.theta_backward_max = std::max(r.theta_backward_max, sig.theta_max_backward);
   }
   r.theta_forward /= r.total_length;
   r.theta_backward /= r.total_length;

@@ -135,3 +135,17 @@ TEST(Anisotropy, RidgesResistAcrossNotAlong) {
   EXPECT_GT((*table)[0].theta_forward, 0.05);
   EXPECT_NEAR((*table)[0].prediction.friction_angle, s->theta_max_forward, 1e-9);  // mu_a = 0
 }
+
+TEST(Anisotropy, ThreadsDoNotChangeTheResult) {
+  auto m = rough(120);
+  frictal::DirectionalOptions o;
+  o.max_lines = 24;
+  o.min_points = 16;
+  auto one = frictal::friction_along(m, 0.6, o);
+  o.threads = 3;
+  auto three = frictal::friction_along(m, 0.6, o);
+  ASSERT_TRUE(one.ok() && three.ok()) << (one.ok() ? three.error().message : one.error().message);
+  EXPECT_EQ(one->lines, three->lines);
+  EXPECT_EQ(one->theta_forward, three->theta_forward);
+  EXPECT_EQ(one->sigma, three->sigma);
+}
