@@ -1,6 +1,9 @@
 // frictal convert IN OUT — converts between surface formats. The output format follows OUT's
 // extension: .x3p (ISO 25178-71), .csv (profiles: x_m,z_m), .txt (maps: Gwyddion-style text).
+#include <limits>
+
 #include "common.hpp"
+#include "frictal/analysis.hpp"
 #include "surface_io.hpp"
 
 namespace frictal::cli {
@@ -10,6 +13,8 @@ struct Args {
   std::string in, out;
   std::string type = "D";
   bool xml = false;
+  double line_angle = std::numeric_limits<double>::quiet_NaN();
+  double line_offset = 0;
   InputOptions input;
 };
 
@@ -23,6 +28,9 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("output", a->out, "Output file: .x3p, .csv (profiles) or .txt (maps)")->required();
   app.add_option("--x3p-type", a->type, "X3P height type: I (int16), L (int32), F (float32), D (float64)");
   app.add_flag("--x3p-xml", a->xml, "Store X3P heights as an XML data list instead of bindata/data.bin");
+  app.add_option("--line-angle", a->line_angle,
+                 "Extract the line profile of a map along this direction (deg from +x towards +y), bilinear");
+  app.add_option("--line-offset", a->line_offset, "Perpendicular distance of that line from the map centre (m)");
   add_input_options(app, a->input);
   return [a]() {
     X3pWriteOptions o;
@@ -32,7 +40,27 @@ std::function<int()> setup(CLI::App& app) {
     else if (a->type == "D") o.type = X3pDataType::D;
     else throw UsageError(fmt::format("--x3p-type '{}' not understood (expected I, L, F or D)", a->type));
     o.binary = !a->xml;
-    const SurfaceData s = load_surface(a->in, a->input);
+    SurfaceData s = load_surface(a->in, a->input);
+    if (!std::isnan(a->line_angle)) {
+      if (!s.is_map) throw UsageError(fmt::format("{}: --line-angle needs an areal map", a->in));
+      require(std::isfinite(a->line_angle) && std::isfinite(a->line_offset), "--line-angle/--line-offset must be finite");
+      const Map& m = s.map;
+      const double ang = a->line_angle * kDeg;
+      const double cx = m.x0 + 0.5 * m.width() - a->line_offset * std::sin(ang);
+      const double cy = m.y0 + 0.5 * m.height() + a->line_offset * std::cos(ang);
+      auto runs = map_line(m, cx, cy, ang, 0, 2);
+      if (runs.empty())
+        throw UsageError(fmt::format("{}: no valid line at {} deg, offset {} m (off the map or all invalid)", a->in,
+                                     a->line_angle, a->line_offset));
+      std::size_t best = 0;
+      for (std::size_t k = 1; k < runs.size(); ++k)
+        if (runs[k].size() > runs[best].size()) best = k;
+      if (runs.size() > 1)
+        fmt::print(stderr, "frictal: warning: the line crosses invalid points; kept the longest of {} runs ({} points)\n",
+                   runs.size(), runs[best].size());
+      s.is_map = false;
+      s.curve = as_curve(runs[best]);
+    }
     if (ends_with(a->out, ".x3p")) {
       if (s.is_map) unwrap(write_x3p(a->out, s.map, o));
       else unwrap(write_x3p(a->out, surface_profile(s, a->in), o));

@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <sstream>
+#include <vector>
 
 #include "cli/cli_runner.hpp"
 
@@ -132,4 +134,28 @@ TEST(CliIo, StatsSpectrumAutocorrelationHistograms) {
   EXPECT_GT(j["correlation_length_m"].get<double>(), 0);
   EXPECT_NE(read_file(psd).find("q_rad_per_m,C_m3\n"), std::string::npos);
   EXPECT_NE(read_file(acf).find("lag_m,acf\n0,1\n"), std::string::npos);
+}
+
+TEST(CliIo, ConvertExtractsALineOfAMap) {
+  // matrix-6.txt: 4 x 3 nodes, dx = 2.5 um, dy = 10/3 um, z = 1..12 m row by row. The line at
+  // 0 deg through the centre (y = 10/3 um: row 1) samples every 2.5 um: 5, 6, 7, 8.
+  const std::string out = temp_path("row.csv");
+  auto r = run_cli("convert " + kData + "/maps/matrix-6.txt " + out + " --line-angle 0");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream in(read_file(out));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "x_m,z_m");
+  std::vector<std::pair<double, double>> pts;
+  while (std::getline(in, line)) {
+    auto c = line.find(',');
+    pts.emplace_back(std::stod(line.substr(0, c)), std::stod(line.substr(c + 1)));
+  }
+  ASSERT_EQ(pts.size(), 4u);
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_NEAR(pts[k].first, 2.5e-6 * k, 1e-18);
+    EXPECT_NEAR(pts[k].second, 5.0 + k, 1e-12);
+  }
+  EXPECT_EQ(run_cli("convert " + kData + "/profiles/xy-1.txt " + out + " --line-angle 0").code, 2);
+  EXPECT_EQ(run_cli("convert " + kData + "/maps/matrix-6.txt " + out + " --line-angle 0 --line-offset 1").code, 2);
 }
