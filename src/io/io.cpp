@@ -89,9 +89,6 @@ Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::stri
     return io_detail::read_x3p_bytes(bytes, name, options);
   }
   if (zip) return make_error(fmt::format("{}: a ZIP archive cannot be read as {}", name, format_name(f)));
-  if (bytes.find('\0') != std::string::npos && bytes.size() >= 2 && !((unsigned char)bytes[0] == 0xFF || (unsigned char)bytes[0] == 0xFE)) {
-    // NULs without a BOM: only UTF-16 text is acceptable (decode_text detects it).
-  }
   std::string text = decode_text(bytes);
   if (text.find('\0') != std::string::npos)
     return make_error(fmt::format("{}: binary data, not a text profile (formats: {})", name, "csv, dektak, gwyddion, x3p"));

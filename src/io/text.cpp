@@ -366,13 +366,18 @@ bool looks_like_gwyddion(std::string_view text) {
   auto lines = split_lines(text.substr(0, std::min<std::size_t>(text.size(), 1 << 14)));
   int lengths = 0;
   bool width = false;
+  std::size_t first_row_fields = 0;
   std::string k, v;
   for (const auto& l : lines) {
+    auto t = trim(l.text);
+    if (!t.empty() && t.front() != '#' && first_row_fields == 0) first_row_fields = split_fields(t, ' ').size();
     if (!header_key(l.text, k, v)) continue;
     if (is_width_key(k) || is_height_key(k)) width = true;
     if (length_value(v)) ++lengths;
   }
-  return width || lengths >= 2;
+  // Width/Height keys, or (other languages) two length-valued keys above a matrix of >= 3
+  // columns; a commented two-column profile ("# Length: 10 um") stays a profile.
+  return width || (lengths >= 2 && first_row_fields >= 3);
 }
 
 Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& name, const ReadOptions& options) {

@@ -391,3 +391,17 @@ TEST(ReadText, BadInputsAreErrors) {
   EXPECT_DOUBLE_EQ(b->curve.z[1], 3e-3);
   EXPECT_TRUE(b->warnings.empty());
 }
+
+TEST(ReadText, CommentedProfileIsNotAMapAndFrenchGwyddionIs) {
+  auto p = frictal::read_surface_bytes("# Length: 10 um\n# Resolution: 1 um\n0 1\n1 2\n2 3\n", "p.txt");
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  EXPECT_FALSE(p->is_map);
+  // Gwyddion in French: Largeur/Hauteur; 2 x 2 nodes -> dx = 4 um / 2, dy = 6 nm / 2.
+  auto m = frictal::read_surface_bytes("# Canal: a\n# Largeur: 4 \xc2\xb5m\n# Hauteur: 6 nm\n# Value units: nm\n1 2\n3 NaN\n", "fr.txt");
+  ASSERT_TRUE(m.ok()) << m.error().message;
+  ASSERT_TRUE(m->is_map);
+  EXPECT_DOUBLE_EQ(m->map.dx, 2e-6);
+  EXPECT_DOUBLE_EQ(m->map.dy, 3e-9);
+  EXPECT_DOUBLE_EQ(m->map.heights[2], 3e-9);
+  EXPECT_TRUE(std::isnan(m->map.heights[3]));
+}
