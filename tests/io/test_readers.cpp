@@ -405,3 +405,72 @@ TEST(ReadText, CommentedProfileIsNotAMapAndFrenchGwyddionIs) {
   EXPECT_DOUBLE_EQ(m->map.heights[2], 3e-9);
   EXPECT_TRUE(std::isnan(m->map.heights[3]));
 }
+
+TEST(ReadText, Utf16BigEndianAndBomlessLittleEndian) {
+  const std::string ascii = "x (nm),z (nm)\n1,2\n3,4\n";
+  std::string be = "\xFE\xFF", le;
+  for (char c : ascii) {
+    be += '\0';
+    be += c;
+    le += c;
+    le += '\0';
+  }
+  for (const auto& bytes : {be, le}) {
+    auto s = frictal::read_surface_bytes(bytes, "u16.csv");
+    ASSERT_TRUE(s.ok()) << s.error().message;
+    EXPECT_DOUBLE_EQ(s->curve.x[1], 3e-9);
+    EXPECT_DOUBLE_EQ(s->curve.z[1], 4e-9);
+  }
+}
+
+TEST(ReadText, LimitsAndForcedFormats) {
+  frictal::ReadOptions o;
+  o.max_points = 2;
+  auto s = frictal::read_surface_bytes("0 0\n1 1\n2 2\n", "big.txt", o);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().message.find("max_points"), std::string::npos);
+  o = {};
+  o.max_bytes = 100;
+  auto f = frictal::read_surface(std::string(FRICTAL_SHARED_DATA) + "/profiles/xy-1.txt", o);
+  ASSERT_FALSE(f.ok());
+  EXPECT_NE(f.error().message.find("limit"), std::string::npos);
+  // Forcing Gwyddion on a two-column profile reads it as a 2-column map; forcing Dektak on a
+  // file without "Scan Data" is an error naming the section.
+  o = {};
+  o.format = frictal::ProfileFormat::Gwyddion;
+  auto g = frictal::read_surface_bytes("0 1\n2 3\n", "m.txt", o);
+  ASSERT_TRUE(g.ok());
+  EXPECT_TRUE(g->is_map);
+  o.format = frictal::ProfileFormat::Dektak;
+  auto d = frictal::read_surface_bytes("0 1\n2 3\n", "d.csv", o);
+  ASSERT_FALSE(d.ok());
+  EXPECT_NE(d.error().message.find("Scan Data"), std::string::npos);
+  EXPECT_FALSE(frictal::parse_format("bmp").ok());
+  EXPECT_EQ(*frictal::parse_format("X3P"), frictal::ProfileFormat::X3p);
+}
+
+TEST(ReadX3p, ProfileWithMaskDropsInvalidPoints) {
+  // PRF, 5 points, int32 z = 1e-9 * raw, valid.bin 0b11011 (point 2 invalid).
+  std::string xml =
+      "<?xml version=\"1.0\"?><p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\"><Record1>"
+      "<FeatureType>PRF</FeatureType><Axes>"
+      "<CX><AxisType>I</AxisType><DataType>D</DataType><Increment>0.5e-6</Increment><Offset>1e-6</Offset></CX>"
+      "<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>1</Increment><Offset>0</Offset></CY>"
+      "<CZ><AxisType>A</AxisType><DataType>L</DataType><Increment>1e-9</Increment><Offset>0</Offset></CZ>"
+      "</Axes></Record1><Record3><MatrixDimension><SizeX>5</SizeX><SizeY>1</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
+      "<DataLink><PointDataLink>bindata/data.bin</PointDataLink><ValidPointsLink>bindata/valid.bin</ValidPointsLink>"
+      "</DataLink></Record3></p:ISO5436_2>";
+  std::string data;
+  for (std::int32_t v : {10, -20, 30, -40, 50})
+    for (int b = 0; b < 4; ++b) data += char((std::uint32_t(v) >> (8 * b)) & 0xFF);
+  auto s = frictal::read_surface_bytes(
+      frictal::test::zip_stored({{"main.xml", xml}, {"bindata/data.bin", data}, {"bindata/valid.bin", "\x1b"}}), "prf.x3p");
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  ASSERT_FALSE(s->is_map);
+  ASSERT_EQ(s->curve.size(), 4u);
+  const double ex[] = {1e-6, 1.5e-6, 2.5e-6, 3e-6}, ez[] = {10e-9, -20e-9, -40e-9, 50e-9};
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_DOUBLE_EQ(s->curve.x[k], ex[k]);
+    EXPECT_DOUBLE_EQ(s->curve.z[k], ez[k]);
+  }
+}
