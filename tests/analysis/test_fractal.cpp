@@ -63,7 +63,9 @@ TEST(Divider, KochCurvesMatchEq13) {
     EXPECT_NEAR(f->dimension, D, 0.015) << "alpha " << a;
     RecordProperty("divider_D_alpha_" + std::to_string(int(a)), std::to_string(f->dimension));
     // r^2 only means something when L(eps) varies: D close to 1 leaves mostly ripple.
-    if (a == 60.0) EXPECT_GT(f->r_squared, 0.94);
+    if (a == 60.0) {
+      EXPECT_GT(f->r_squared, 0.94);
+    }
     EXPECT_DOUBLE_EQ(f->scale_min, 3e-3);
     EXPECT_DOUBLE_EQ(f->scale_max, 0.3);
   }
