@@ -17,6 +17,7 @@ struct Args {
   std::string detrend = "plane";
   bool areal = false;
   std::string upper;
+  std::string contact_slope = "lower";
   bool json = false;
   unsigned threads = 0;
   InputOptions input;
@@ -31,6 +32,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from the map first (default plane)");
   app.add_flag("--areal", a->areal, "Use the areal signature of the two rigid blocks instead of line profiles");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores; default all)");
+  app.add_option("--contact-slope", a->contact_slope, "With --areal: lower (Eq. 3, default) or mean (of both faces)");
   app.add_option("--upper", a->upper, "With --areal: the upper block's map (default: the same map turned over)");
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
@@ -60,6 +62,9 @@ std::function<int()> setup(CLI::App& app) {
       if (a->areal) {
         ArealSignatureOptions o;
         o.threads = a->threads;
+        if (a->contact_slope == "mean") o.contact_slope = ArealContactSlope::Mean;
+        else if (a->contact_slope != "lower")
+          throw UsageError(fmt::format("--contact-slope '{}' not understood (expected lower or mean)", a->contact_slope));
         const ArealSignature r = unwrap(areal_signature(m, u, angle, o));
         fwd = r.theta_max_forward;
         bwd = r.theta_max_backward;

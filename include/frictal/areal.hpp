@@ -47,16 +47,23 @@ Result<DirectionalFriction> friction_along(const Map& m, double angle, const Dir
 Result<std::vector<DirectionalFriction>> anisotropy(const Map& m, int directions = 36, const DirectionalOptions& o = {});
 
 /// The areal signature of two rigid blocks sliding along direction d = (cos angle, sin angle).
-/// The lower block's face is `lower` as measured. The upper block is `upper` as measured, turned
-/// over onto it about the in-plane axis perpendicular to d (the 3D form of rotate180: the
-/// d-component and z change sign), centred on the lower map at s = 0, then moved by s d:
-///   h(s) = max over nodes p of `lower` [ f(p) + g(c_g + R (p - s d - c_f)) ],  R v = v - 2 (v.d) d,
-/// with g interpolated bilinearly (NaN-aware; nodes whose image leaves g's grid do not touch).
-/// This is exact on the lower grid. The contact is the maximising node; its slope is the mean
-/// of both faces' directional slopes along d there (central differences over +-step/2).
+/// The lower block's face is `lower` as measured. By default the upper block is `upper` as
+/// measured, turned over onto the lower one about the in-plane axis perpendicular to d (the 3D
+/// form of rotate180: the d-component and z change sign), centred on the lower map at s = 0, then
+/// moved by s d:
+///   h(s) = max over nodes p of `lower` [ f(p) + g(c_g + R (p - s d - c_f)) ],  R v = v - 2 (v.d) d.
+/// With turn_over_upper = false, `upper` is the upper face already in place, in the lower map's
+/// coordinates (like signature()'s `upper`): h(s) = max_p [ f(p) - g(p - s d) ].
+/// g is interpolated bilinearly (NaN-aware; nodes whose image leaves g's grid do not touch), so
+/// h is exact on the lower grid. The contact is the maximising node (ties: lowest index); its
+/// slope is the lower face's directional slope along d there (Eq. 3), or the mean of both
+/// faces' slopes (as the paper's spline method does), by central differences over +-step/2.
+enum class ArealContactSlope { Lower, Mean };
 struct ArealSignatureOptions {
   double step = 0;        ///< offset step (0: min(dx, dy) of lower) (unit: m)
   double offset_max = 0;  ///< offsets 0, step, ... up to this (0: half the lower map's extent along d) (unit: m)
+  bool turn_over_upper = true;  ///< false: `upper` is already in place (see above)
+  ArealContactSlope contact_slope = ArealContactSlope::Lower;
   std::size_t block = 16; ///< block edge for the max bounds (nodes, >= 2)
   bool prune = true;      ///< false: evaluate every node at every offset (the direct method)
   unsigned threads = 1;   ///< worker threads over offsets (0 = hardware); results do not depend on it

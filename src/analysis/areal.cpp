@@ -130,9 +130,17 @@ struct Block {
 
 }  // namespace
 
-Result<ArealSignature> areal_signature(const Map& f, const Map& g, double angle, const ArealSignatureOptions& o) {
+Result<ArealSignature> areal_signature(const Map& f, const Map& g_in, double angle, const ArealSignatureOptions& o) {
   if (auto s = validate(f, "lower map"); !s) return s.error();
-  if (auto s = validate(g, "upper map"); !s) return s.error();
+  if (auto s = validate(g_in, "upper map"); !s) return s.error();
+  // Everything below maximises f(p) + g(q): for an upper face given in place (not turned over)
+  // the gap is f(p) - g_in(q), so work with -g_in.
+  Map negated;
+  if (!o.turn_over_upper) {
+    negated = g_in;
+    for (double& v : negated.heights) v = -v;
+  }
+  const Map& g = o.turn_over_upper ? g_in : negated;
   if (f.nx < 2 || f.ny < 2 || g.nx < 2 || g.ny < 2) return make_error("areal_signature: maps need at least 2 x 2 nodes");
   if (!std::isfinite(angle)) return make_error("areal_signature: the direction must be a finite angle");
   if (o.block < 2 || o.block > 4096) return make_error("areal_signature: block must be in 2..4096");
@@ -142,11 +150,13 @@ Result<ArealSignature> areal_signature(const Map& f, const Map& g, double angle,
   const double smax = o.offset_max > 0 ? o.offset_max : 0.5 * extent;
   const std::size_t count = std::size_t(std::floor(smax / step + 1e-9)) + 1;
   if (count > 10'000'000) return make_error("areal_signature: more than 1e7 offsets; increase step");
-  const double cfx = f.x0 + 0.5 * f.width(), cfy = f.y0 + 0.5 * f.height();
-  const double cgx = g.x0 + 0.5 * g.width(), cgy = g.y0 + 0.5 * g.height();
   // q = c_g + R (p - s d - c_f) in g's continuous index space (u, v): affine in (x, y, s).
-  // R = I - 2 d d^T.
-  const double r11 = 1 - 2 * dxv * dxv, r12 = -2 * dxv * dyv, r22 = 1 - 2 * dyv * dyv;
+  // Turned over: R = I - 2 d d^T about the centres; in place: R = I, no centring (q = p - s d).
+  const bool turn = o.turn_over_upper;
+  const double cfx = turn ? f.x0 + 0.5 * f.width() : 0, cfy = turn ? f.y0 + 0.5 * f.height() : 0;
+  const double cgx = turn ? g.x0 + 0.5 * g.width() : 0, cgy = turn ? g.y0 + 0.5 * g.height() : 0;
+  const double r11 = turn ? 1 - 2 * dxv * dxv : 1, r12 = turn ? -2 * dxv * dyv : 0, r22 = turn ? 1 - 2 * dyv * dyv : 1;
+  const double rdx = r11 * dxv + r12 * dyv, rdy = r12 * dxv + r22 * dyv;  // R d: how q moves along d
   auto q_of = [&](double px, double py, double s, double& u, double& v) {
     const double ax = px - s * dxv - cfx, ay = py - s * dyv - cfy;
     u = (cgx + r11 * ax + r12 * ay - g.x0) / g.dx;
@@ -267,8 +277,9 @@ Result<ArealSignature> areal_signature(const Map& f, const Map& g, double angle,
     const double px = f.x0 + double(bi) * f.dx, py = f.y0 + double(bj) * f.dy;
     out.contact_x[k] = px;
     out.contact_y[k] = py;
-    // Directional slopes along d of both faces at the contact, central over +-step/2; the upper
-    // face's slope along d at p is +grad g . d at q (turning over flips both z and d).
+    // Directional slopes along d at the contact, central differences over +-step/2 on the
+    // bilinear surfaces (one-sided next to holes and edges). The upper face's height at p is
+    // -g(q(p)) and q moves by R d per unit of p along d.
     const double e = 0.5 * step;
     auto slope_f = [&]() {
       double a = interpolate(f, px + e * dxv, py + e * dyv), b = interpolate(f, px - e * dxv, py - e * dyv);
@@ -281,15 +292,14 @@ Result<ArealSignature> areal_signature(const Map& f, const Map& g, double angle,
     q_of(px, py, s, u, v);
     const double gq = g_at(u, v);
     auto slope_g = [&]() {
-      // q moves by R d = -d per unit of p along d, so sample g at q -+ e d.
-      double ua = u + e * dxv / g.dx, va = v + e * dyv / g.dy, ub = u - e * dxv / g.dx, vb = v - e * dyv / g.dy;
+      double ua = u + e * rdx / g.dx, va = v + e * rdy / g.dy, ub = u - e * rdx / g.dx, vb = v - e * rdy / g.dy;
       double a = g_at(ua, va), b = g_at(ub, vb);
-      if (!std::isnan(a) && !std::isnan(b)) return (a - b) / (2 * e);
-      if (!std::isnan(a)) return (a - gq) / e;
-      if (!std::isnan(b)) return (gq - b) / e;
+      if (!std::isnan(a) && !std::isnan(b)) return -(a - b) / (2 * e);
+      if (!std::isnan(a)) return -(a - gq) / e;
+      if (!std::isnan(b)) return -(gq - b) / e;
       return 0.0;
     };
-    out.theta[k] = std::atan(0.5 * (slope_f() + slope_g()));
+    out.theta[k] = std::atan(o.contact_slope == ArealContactSlope::Lower ? slope_f() : 0.5 * (slope_f() + slope_g()));
   };
 
   unsigned threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());

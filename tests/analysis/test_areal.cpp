@@ -149,3 +149,37 @@ TEST(Anisotropy, ThreadsDoNotChangeTheResult) {
   EXPECT_EQ(one->theta_forward, three->theta_forward);
   EXPECT_EQ(one->sigma, three->sigma);
 }
+
+TEST(ArealSignature, UpperInPlaceAndContactSlopeRules) {
+  // In place (not turned over): a translated copy g = f slides on f; with f = t x along x,
+  // h(s) = max f(p) - f(p - s d) = t s, so theta = atan(t) by either slope rule.
+  const double t = 0.15;
+  frictal::Map m;
+  m.nx = 25;
+  m.ny = 12;
+  m.dx = m.dy = 2e-6;
+  for (std::size_t j = 0; j < m.ny; ++j)
+    for (std::size_t i = 0; i < m.nx; ++i) m.heights.push_back(t * double(i) * m.dx);
+  for (auto rule : {frictal::ArealContactSlope::Lower, frictal::ArealContactSlope::Mean}) {
+    frictal::ArealSignatureOptions o;
+    o.turn_over_upper = false;
+    o.contact_slope = rule;
+    auto a = frictal::areal_signature(m, m, 0.0, o);
+    ASSERT_TRUE(a.ok()) << a.error().message;
+    for (std::size_t k = 0; k < a->lift.size(); ++k) EXPECT_NEAR(a->lift[k], t * a->offset[k], 1e-18);
+    EXPECT_NEAR(a->theta_max_forward, std::atan(t), 1e-12);
+    o.prune = false;
+    auto d = frictal::areal_signature(m, m, 0.0, o);
+    ASSERT_TRUE(d.ok());
+    EXPECT_EQ(d->lift, a->lift);
+  }
+  // Turned over, the Mean rule on the rough map still matches the direct scan exactly.
+  auto f = rough(60);
+  frictal::ArealSignatureOptions o;
+  o.contact_slope = frictal::ArealContactSlope::Mean;
+  auto fast = frictal::areal_signature(f, f, 1.0, o);
+  o.prune = false;
+  auto direct = frictal::areal_signature(f, f, 1.0, o);
+  ASSERT_TRUE(fast.ok() && direct.ok());
+  EXPECT_EQ(fast->theta, direct->theta);
+}
