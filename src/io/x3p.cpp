@@ -72,6 +72,16 @@ class Archive {
     }
     return n;
   }
+  /// Uncompressed size of a member as the archive declares it.
+  Result<std::uint64_t> size(const std::string& member) const {
+    zip_int64_t idx = zip_name_locate(zip_.get(), member.c_str(), 0);
+    if (idx < 0) return make_error(fmt::format("{}: archive member '{}' not found", name_, member));
+    zip_stat_t st;
+    zip_stat_init(&st);
+    if (zip_stat_index(zip_.get(), zip_uint64_t(idx), 0, &st) != 0 || !(st.valid & ZIP_STAT_SIZE))
+      return make_error(fmt::format("{}: member '{}': cannot read its size", name_, member));
+    return std::uint64_t(st.size);
+  }
   /// Reads one member into memory, at most max_bytes (checked before allocating).
   Result<std::string> read(const std::string& member, std::uint64_t max_bytes) const {
     zip_int64_t idx = zip_name_locate(zip_.get(), member.c_str(), 0);
@@ -206,7 +216,9 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
   if (main_name.empty()) return make_error(fmt::format("{}: X3P archive without main.xml", name));
   base = main_name.substr(0, main_name.size() - 8);
   if (!base.empty()) warn.push_back(fmt::format("{}: main.xml is in the sub-folder '{}'", name, base));
-  auto xml = ar.read(main_name, std::min<std::uint64_t>(options.max_bytes, 256u << 20));
+  // main.xml holds metadata (and at most an XML data list): 1 KiB per point of max_points is
+  // plenty, capped at 256 MiB.
+  auto xml = ar.read(main_name, std::min<std::uint64_t>({options.max_bytes, 256u << 20, 4096 + options.max_points * 1024}));
   if (!xml) return xml.error();
 
   pugi::xml_document doc;
@@ -298,7 +310,13 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
     std::size_t rec = 0;
     for (char c : stored) rec += type_size(axis_of(c)->type);
     std::uint64_t expect = count * rec;
-    auto data = ar.read(base + dname, options.max_bytes);
+    // The declared size must match before anything is allocated (no trust in a huge header).
+    auto declared = ar.size(base + dname);
+    if (!declared) return declared.error();
+    if (*declared != expect)
+      return make_error(fmt::format("{}: {}: {} bytes, but {} points of {} bytes need {}", name, dname, *declared,
+                                    count, rec, expect));
+    auto data = ar.read(base + dname, std::min<std::uint64_t>(options.max_bytes, expect));
     if (!data) return data.error();
     if (data->size() != expect)
       return make_error(fmt::format("{}: {}: {} bytes, but {} points of {} bytes need {}", name, dname, data->size(),
@@ -315,6 +333,11 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
       }
     std::string vname = text_of(child(link, "ValidPointsLink"));
     if (!vname.empty()) {
+      auto vdeclared = ar.size(base + vname);
+      if (!vdeclared) return vdeclared.error();
+      if (*vdeclared > (count + 7) / 8 + 4096)
+        return make_error(fmt::format("{}: {}: {} bytes, far more than the {} bytes of mask {} points need", name, vname,
+                                      *vdeclared, (count + 7) / 8, count));
       auto valid = ar.read(base + vname, options.max_bytes);
       if (!valid) return valid.error();
       if (valid->size() < (count + 7) / 8)

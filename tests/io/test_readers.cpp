@@ -474,3 +474,21 @@ TEST(ReadX3p, ProfileWithMaskDropsInvalidPoints) {
     EXPECT_DOUBLE_EQ(s->curve.z[k], ez[k]);
   }
 }
+
+TEST(ReadX3p, HugeDeclaredMemberSizeIsRefusedWithoutAllocating) {
+  std::string link = "<MatrixDimension><SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
+                     "<DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink>";
+  std::string zip = frictal::test::zip_stored({{"main.xml", tiny_xml(kNsOpen, kNsClose, link)}, {"bindata/data.bin", std::string(32, '\0')}});
+  // Patch the uncompressed size of data.bin (local header +22, central directory +24) to 1 GiB.
+  auto patch = [&](std::size_t at) { zip[at] = 0; zip[at + 1] = 0; zip[at + 2] = 0; zip[at + 3] = 0x40; };
+  std::size_t local = zip.find("PK\x03\x04", 1), central = zip.find("PK\x01\x02");
+  central = zip.find("PK\x01\x02", central + 4);
+  ASSERT_NE(local, std::string::npos);
+  ASSERT_NE(central, std::string::npos);
+  patch(local + 22);
+  patch(central + 24);
+  auto s = frictal::read_surface_bytes(zip, "bomb.x3p");
+  ASSERT_FALSE(s.ok());
+  // Refused from the declared size, before reading: "1073741824 bytes, but 4 points of 8 bytes need 32".
+  EXPECT_NE(s.error().message.find("1073741824 bytes"), std::string::npos) << s.error().message;
+}
