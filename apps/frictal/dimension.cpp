@@ -13,7 +13,7 @@ struct Args {
   std::string method = "divider";
   double koch_alpha = -1;
   double scale_min = 0, scale_max = 0;
-  int scales = 16;
+  int scales = 0;  // 0: 16 rulers, 12 boxes, 10 PSD bins per decade
   bool json = false;
   std::string detrend = "none";
   InputOptions input;
@@ -26,7 +26,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--koch-alpha", a->koch_alpha, "Print the Koch dimension of Eq. 13 for this base angle (deg) instead");
   app.add_option("--min", a->scale_min, "Smallest ruler/box (m) or wavelength (m) of the fit (default: automatic)");
   app.add_option("--max", a->scale_max, "Largest ruler/box (m) or wavelength (m) of the fit (default: automatic)");
-  app.add_option("--scales", a->scales, "Number of rulers/boxes (divider, box), or bins per decade (psd)");
+  app.add_option("--scales", a->scales, "Number of rulers (default 16) or boxes (12), or PSD bins per decade (10)");
   app.add_option("--detrend", a->detrend, "Remove none, mean, line or poly:N first");
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
@@ -57,8 +57,8 @@ std::function<int()> setup(CLI::App& app) {
         Profile p = unwrap(detrend(unwrap(as_profile(c, a->file)), d));
         c = as_curve(p);
       }
-      if (a->method == "divider") f = unwrap(divider_dimension(c, {a->scale_min, a->scale_max, a->scales}));
-      else f = unwrap(box_dimension(c, {a->scale_min, a->scale_max, a->scales}));
+      if (a->method == "divider") f = unwrap(divider_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 16}));
+      else f = unwrap(box_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 12}));
     } else if (a->method == "psd") {
       Profile p = unwrap(detrend(surface_profile(s, a->file), d));
       PsdFitOptions o;
