@@ -36,7 +36,9 @@ struct Spectrum {
   std::vector<double> q;    ///< angular wavenumbers (unit: rad/m)
   std::vector<double> psd;  ///< C(q) (unit: m^3)
 };
-/// max_k: largest k (0 = half the number of points, the Nyquist wavenumber of the mean spacing).
+/// max_k: largest k (0 = half the number of points, the Nyquist wavenumber of the mean spacing;
+/// for non-uniform profiles at most 4096 and at most 5e8 / points). Non-uniform profiles with
+/// max_k * points above 2e9 are refused (resample first).
 Result<Spectrum> power_spectrum(const Profile& p, std::size_t max_k = 0);
 
 /// Normalised autocorrelation R(tau)/R(0) of the mean-removed profile at lags tau_k = k h,

@@ -193,7 +193,10 @@ Result<Spectrum> power_spectrum(const Profile& p, std::size_t max_k) {
   const double L = p.length(), mean = pl_mean(p);
   const bool uniform = is_uniform(p, 1e-9);
   std::size_t K = max_k ? max_k : std::max<std::size_t>(1, n / 2);
-  if (!uniform && !max_k) K = std::min<std::size_t>(K, 4096);
+  if (!uniform && !max_k) K = std::min<std::size_t>({K, 4096, std::max<std::size_t>(16, std::size_t(5e8 / double(n)))});
+  if (!uniform && double(K) * double(n) > 2e9)
+    return make_error(fmt::format("power_spectrum: {} wavenumbers x {} points of a non-uniform profile is too much "
+                                  "work (direct sums); resample it uniformly first", K, n));
   if (K > (std::size_t(1) << 26)) return make_error("power_spectrum: too many wavenumbers requested");
   Spectrum out;
   out.q.resize(K);
