@@ -159,3 +159,22 @@ TEST(CliIo, ConvertExtractsALineOfAMap) {
   EXPECT_EQ(run_cli("convert " + kData + "/profiles/xy-1.txt " + out + " --line-angle 0").code, 2);
   EXPECT_EQ(run_cli("convert " + kData + "/maps/matrix-6.txt " + out + " --line-angle 0 --line-offset 1").code, 2);
 }
+
+TEST(CliIo, ArealSignatureCommand) {
+  const std::string csv = temp_path("areal.csv");
+  auto r = run_cli("areal " + kData + "/x3p/x3p-2.x3p --angle 90 --json --mu-a 0.2 -o " + csv);
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["direction_deg"], 90.0);
+  // Eq. 6: phi = atan(mu_a) + theta_max_forward.
+  EXPECT_NEAR(j["friction_angle_deg"].get<double>(),
+              std::atan(0.2) * 180 / 3.141592653589793 + j["theta_max_forward_deg"].get<double>(), 1e-9);
+  const std::string text = read_file(csv);
+  EXPECT_EQ(text.rfind("offset_m,lift_m,theta_rad,contact_x_m,contact_y_m\n0,", 0), 0u);
+  // Offsets: 0 .. half of the 650 rows' extent along y in steps of min(dx, dy) = dx.
+  std::size_t lines = 0;
+  for (char c : text) lines += c == '\n';
+  EXPECT_EQ(lines - 1, j["offsets"].get<std::size_t>());
+  EXPECT_EQ(run_cli("areal " + kData + "/profiles/xy-1.txt").code, 2);
+  EXPECT_EQ(run_cli("areal " + kData + "/x3p/x3p-2.x3p --contact-slope max").code, 2);
+}
