@@ -178,25 +178,39 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
       t.slope = F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.edge));
     }
     // One-sided continuations: h's slope just after s (right) and just before (left).
-    // Lower-vertex candidate: its value is vF - g(x - s); moving s up reads g to the left.
-    // Upper-vertex candidate: value f(u + s) - g_u; moving s up reads f to the right.
-    // A continuation is invalid (NaN) if the other face jumps away there or ends.
-    if (c.family_f) {
-      if (t.pg.vertex) {
-        const double gm = G.group_max(t.pg.first, t.pg.last);
-        t.right = (G.v()[t.pg.first] >= gm - P.vtol) ? G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.first) - 1) : kNaN;
-        t.left = (G.v()[t.pg.last] >= gm - P.vtol) ? G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.last)) : kNaN;
-      } else {
-        t.left = t.right = G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.edge));
+    // A vertex of F stays on the F side and slides along G: its value vF - g(x - s) reads g to
+    // the left of x - s when s grows. A vertex of G slides along F: f(u + s) - g_u reads f to
+    // the right. At a vertex-vertex contact both happen, whichever face found it, and h
+    // continues with the larger (right) or smaller (left) slope. An option is invalid if the
+    // face it slides on jumps away there or ends (the contact leaves the overlap).
+    {
+      double right = -kInf, left = kInf;
+      auto take = [&](double r, double l) {
+        if (!std::isnan(r)) right = std::max(right, r);
+        if (!std::isnan(l)) left = std::min(left, l);
+      };
+      if (t.pf.vertex) {  // F vertex sliding along G
+        if (t.pg.vertex) {
+          const double gm = G.group_max(t.pg.first, t.pg.last);
+          take((G.v()[t.pg.first] >= gm - P.vtol) ? G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.first) - 1) : kNaN,
+               (G.v()[t.pg.last] >= gm - P.vtol) ? G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.last)) : kNaN);
+        } else {
+          const double e = G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.edge));
+          take(e, e);
+        }
       }
-    } else {
-      if (t.pf.vertex) {
-        const double fm = F.group_max(t.pf.first, t.pf.last);
-        t.right = (F.v()[t.pf.last] >= fm - P.vtol) ? F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.last)) : kNaN;
-        t.left = (F.v()[t.pf.first] >= fm - P.vtol) ? F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.first) - 1) : kNaN;
-      } else {
-        t.left = t.right = F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.edge));
+      if (t.pg.vertex) {  // G vertex sliding along F
+        if (t.pf.vertex) {
+          const double fm = F.group_max(t.pf.first, t.pf.last);
+          take((F.v()[t.pf.last] >= fm - P.vtol) ? F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.last)) : kNaN,
+               (F.v()[t.pf.first] >= fm - P.vtol) ? F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.first) - 1) : kNaN);
+        } else {
+          const double e = F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.edge));
+          take(e, e);
+        }
       }
+      t.right = std::isfinite(right) ? right : kNaN;
+      t.left = std::isfinite(left) ? left : kNaN;
     }
     if (method == SlopeMethod::Spline) {
       // Paper Sec. V B: spline slopes of both surfaces at the contact, averaged.

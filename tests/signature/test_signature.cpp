@@ -227,3 +227,38 @@ TEST(Friction, Eq6AndEq18) {
   EXPECT_FALSE(predict_friction(-0.1, 0, 0).ok());
   EXPECT_FALSE(predict_friction(NAN, 0, 0).ok());
 }
+
+// Between two consecutive events h is convex, so the secant slope over the interval lies between
+// the slope just after its left end and the slope just before its right end. Checked on pairs
+// whose contacts often sit on a block's end corner (regression: a vertex-vertex contact at the
+// upper block's corner was reported as a +-90 degree wall).
+TEST(Signature, OneSidedSlopesBracketTheSecantOfEveryInterval) {
+  struct Case {
+    double D;
+    int n_max;
+    std::uint64_t s1, s2;
+  };
+  for (const Case& c : {Case{1.8, 8, 6868312974978945722ull, 3248097931408723624ull}, Case{1.3, 6, 1, 2},
+                        Case{1.6, 10, 7, 8}}) {
+    WmParams w;
+    w.dimension = c.D;
+    w.n_max = c.n_max;
+    w.seed = c.s1;
+    auto f = wm_profile(w);
+    w.seed = c.s2;
+    auto g = wm_profile(w);
+    auto r = signature(*f, rotate180(*g));
+    ASSERT_TRUE(r.ok());
+    for (std::size_t i = 0; i + 1 < r->offset.size(); ++i) {
+      // Continuous profiles: h is continuous, no walls anywhere.
+      ASSERT_LT(std::abs(r->theta_right[i]), M_PI / 2) << "offset " << r->offset[i];
+      ASSERT_LT(std::abs(r->theta_left[i + 1]), M_PI / 2) << "offset " << r->offset[i + 1];
+      const double secant = (r->lift[i + 1] - r->lift[i]) / (r->offset[i + 1] - r->offset[i]);
+      const double scale = 1e-9 * (1 + std::abs(secant));
+      EXPECT_LE(std::tan(r->theta_right[i]), secant + scale) << c.D << " " << i;
+      EXPECT_GE(std::tan(r->theta_left[i + 1]), secant - scale) << c.D << " " << i;
+    }
+    EXPECT_LT(r->theta_max_forward, M_PI / 2);
+    EXPECT_LT(r->theta_max_backward, M_PI / 2);
+  }
+}

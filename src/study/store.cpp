@@ -1,0 +1,475 @@
+// The SQLite store of a study. Layout (schema version 1) is documented in docs/studies.md.
+//
+// Durability: WAL journal with synchronous=NORMAL. Every finished task is one transaction
+// (its scalars, arrays and status together), so after SIGKILL or power loss a task is either
+// fully recorded or still pending; a transaction cut short rolls back on the next open.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+#include <sqlite3.h>
+
+#include "frictal/study.hpp"
+#include "study/json_text.hpp"
+
+namespace frictal::study {
+namespace {
+
+const char* kSchema = R"sql(
+CREATE TABLE meta(key TEXT PRIMARY KEY, value TEXT NOT NULL);
+CREATE TABLE tasks(
+  task_id     INTEGER PRIMARY KEY,
+  part        TEXT NOT NULL,
+  kind        TEXT NOT NULL,
+  params      TEXT NOT NULL,
+  task_key    TEXT NOT NULL UNIQUE,
+  seed        TEXT NOT NULL,
+  status      TEXT NOT NULL DEFAULT 'pending' CHECK (status IN ('pending', 'done', 'failed')),
+  attempts    INTEGER NOT NULL DEFAULT 0,
+  error       TEXT,
+  scalars     TEXT,
+  worker      TEXT,
+  started_at  TEXT,
+  finished_at TEXT,
+  wall_s      REAL
+);
+CREATE TABLE params(task_id INTEGER NOT NULL REFERENCES tasks(task_id), name TEXT NOT NULL, value,
+                    PRIMARY KEY (task_id, name)) WITHOUT ROWID;
+CREATE TABLE scalars(task_id INTEGER NOT NULL REFERENCES tasks(task_id), name TEXT NOT NULL, value REAL,
+                     PRIMARY KEY (task_id, name)) WITHOUT ROWID;
+CREATE TABLE arrays(task_id INTEGER NOT NULL REFERENCES tasks(task_id), name TEXT NOT NULL,
+                    length INTEGER NOT NULL, json TEXT NOT NULL, PRIMARY KEY (task_id, name)) WITHOUT ROWID;
+CREATE INDEX tasks_status ON tasks(status);
+CREATE VIEW results AS
+  SELECT t.task_id, t.part, t.kind, t.params, s.name, s.value FROM tasks t JOIN scalars s USING (task_id)
+  WHERE t.status = 'done';
+)sql";
+
+std::string now_utc() {
+  const auto t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+/// A prepared statement with RAII.
+class Stmt {
+ public:
+  Stmt(sqlite3* db, const char* sql) : db_(db) { rc_ = sqlite3_prepare_v2(db, sql, -1, &s_, nullptr); }
+  ~Stmt() { sqlite3_finalize(s_); }
+  Stmt(const Stmt&) = delete;
+  Stmt& operator=(const Stmt&) = delete;
+  bool ok() const { return rc_ == SQLITE_OK; }
+  sqlite3_stmt* get() { return s_; }
+  void bind(int i, const std::string& v) { sqlite3_bind_text(s_, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
+  void bind(int i, std::int64_t v) { sqlite3_bind_int64(s_, i, v); }
+  void bind(int i, double v) {
+    if (std::isfinite(v)) sqlite3_bind_double(s_, i, v);
+    else sqlite3_bind_null(s_, i);
+  }
+  void bind_null(int i) { sqlite3_bind_null(s_, i); }
+  int step() { return sqlite3_step(s_); }
+  void reset() {
+    sqlite3_reset(s_);
+    sqlite3_clear_bindings(s_);
+  }
+  std::string text(int c) {
+    auto* p = sqlite3_column_text(s_, c);
+    return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(s_, c))) : std::string{};
+  }
+  std::int64_t i64(int c) { return sqlite3_column_int64(s_, c); }
+  double real(int c) { return sqlite3_column_type(s_, c) == SQLITE_NULL ? std::nan("") : sqlite3_column_double(s_, c); }
+
+ private:
+  sqlite3* db_;
+  sqlite3_stmt* s_ = nullptr;
+  int rc_;
+};
+
+const char* status_text(TaskStatus s) {
+  switch (s) {
+    case TaskStatus::Pending: return "pending";
+    case TaskStatus::Done: return "done";
+    case TaskStatus::Failed: return "failed";
+  }
+  return "pending";
+}
+
+Value from_json(const nlohmann::json& j) {
+  if (j.is_boolean()) return Value{j.get<bool>()};
+  if (j.is_number_integer()) return Value{j.get<std::int64_t>()};
+  if (j.is_number()) return Value{j.get<double>()};
+  if (j.is_string()) return Value{j.get<std::string>()};
+  return Value{std::string(j.dump())};
+}
+
+}  // namespace
+
+struct Store::Impl {
+  sqlite3* db = nullptr;
+  std::string path;
+  ~Impl() {
+    if (db) sqlite3_close_v2(db);
+  }
+  Error err(const std::string& what) const { return make_error(fmt::format("{}: {}: {}", path, what, sqlite3_errmsg(db))); }
+  Status exec(const char* sql) {
+    char* msg = nullptr;
+    if (sqlite3_exec(db, sql, nullptr, nullptr, &msg) != SQLITE_OK) {
+      std::string m = msg ? msg : "?";
+      sqlite3_free(msg);
+      return make_error(fmt::format("{}: {}", path, m));
+    }
+    return Ok{};
+  }
+};
+
+namespace {
+Result<std::unique_ptr<Store::Impl>> open_db(const std::string& path, bool create) {
+  auto impl = std::make_unique<Store::Impl>();
+  impl->path = path;
+  const int flags = SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0) | SQLITE_OPEN_FULLMUTEX;
+  if (sqlite3_open_v2(path.c_str(), &impl->db, flags, nullptr) != SQLITE_OK) {
+    std::string m = impl->db ? sqlite3_errmsg(impl->db) : "out of memory";
+    return make_error(fmt::format("{}: cannot open the store: {}", path, m));
+  }
+  sqlite3_busy_timeout(impl->db, 10000);
+  for (const char* p : {"PRAGMA journal_mode=WAL;", "PRAGMA synchronous=NORMAL;", "PRAGMA foreign_keys=ON;"})
+    if (auto s = impl->exec(p); !s) return make_error(fmt::format("{} (is it an SQLite file?)", s.error().message));
+  return impl;
+}
+
+bool has_meta(Store::Impl& im) {
+  Stmt q(im.db, "SELECT count(*) FROM sqlite_master WHERE type='table' AND name='meta'");
+  return q.ok() && q.step() == SQLITE_ROW && q.i64(0) > 0;
+}
+}  // namespace
+
+Store::~Store() = default;
+
+Result<std::unique_ptr<Store>> Store::open(const std::string& path, const Study& study) {
+  auto im = open_db(path, true);
+  if (!im) return im.error();
+  Impl& db = **im;
+  if (auto s = db.exec("BEGIN IMMEDIATE"); !s) return s.error();
+  if (!has_meta(db)) {
+    // New store: schema, meta and every task in one transaction.
+    if (auto s = db.exec(kSchema); !s) {
+      (void)db.exec("ROLLBACK");
+      return make_error(fmt::format("{}: not an empty or frictal study store ({})", path, s.error().message));
+    }
+    Stmt m(db.db, "INSERT INTO meta(key, value) VALUES (?, ?)");
+    const std::pair<std::string, std::string> meta[] = {
+        {"schema_version", std::to_string(kSchemaVersion)},
+        {"study_name", study.name},
+        {"study_description", study.description},
+        {"study_hash", study.hash},
+        {"study_definition", study.definition},
+        {"scale", study.quick ? "quick" : "full"},
+        {"study_seed", std::to_string(study.seed)},
+        {"created_at", now_utc()},
+        {"frictal_version", "0.1.0"},
+    };
+    for (const auto& [k, v] : meta) {
+      m.reset();
+      m.bind(1, k);
+      m.bind(2, v);
+      if (m.step() != SQLITE_DONE) {
+        (void)db.exec("ROLLBACK");
+        return db.err("writing meta");
+      }
+    }
+    Stmt t(db.db, "INSERT INTO tasks(task_id, part, kind, params, task_key, seed) VALUES (?, ?, ?, ?, ?, ?)");
+    Stmt pa(db.db, "INSERT INTO params(task_id, name, value) VALUES (?, ?, ?)");
+    for (const Task& task : study.tasks) {
+      t.reset();
+      t.bind(1, task.id);
+      t.bind(2, task.part);
+      t.bind(3, task.kind);
+      t.bind(4, canonical(task.params));
+      t.bind(5, task.key);
+      t.bind(6, std::to_string(task.seed));
+      if (t.step() != SQLITE_DONE) {
+        (void)db.exec("ROLLBACK");
+        return db.err("writing tasks");
+      }
+      for (const auto& [name, v] : task.params) {
+        pa.reset();
+        pa.bind(1, task.id);
+        pa.bind(2, name);
+        if (auto* i = std::get_if<std::int64_t>(&v)) pa.bind(3, *i);
+        else if (auto* d = std::get_if<double>(&v)) pa.bind(3, *d);
+        else if (auto* s = std::get_if<std::string>(&v)) pa.bind(3, *s);
+        else pa.bind(3, static_cast<std::int64_t>(std::get<bool>(v)));
+        if (pa.step() != SQLITE_DONE) {
+          (void)db.exec("ROLLBACK");
+          return db.err("writing params");
+        }
+      }
+    }
+  } else {
+    Stmt q(db.db, "SELECT key, value FROM meta");
+    std::map<std::string, std::string> meta;
+    while (q.step() == SQLITE_ROW) meta[q.text(0)] = q.text(1);
+    (void)db.exec("ROLLBACK");
+    if (meta["schema_version"] != std::to_string(kSchemaVersion))
+      return make_error(fmt::format("{}: store schema version {} is not supported by this build (version {})", path,
+                                    meta["schema_version"], kSchemaVersion));
+    if (meta["study_hash"] != study.hash)
+      return make_error(fmt::format(
+          "{}: this store belongs to another study definition: it holds '{}' ({} scale, definition hash {}), "
+          "but the study file defines '{}' ({} scale, hash {}); use another --store file, or delete this one to start over",
+          path, meta["study_name"], meta["scale"], meta["study_hash"], study.name, study.quick ? "quick" : "full",
+          study.hash));
+    std::unique_ptr<Store> st(new Store());
+    st->impl_ = std::move(*im);
+    return st;
+  }
+  if (auto s = db.exec("COMMIT"); !s) return s.error();
+  std::unique_ptr<Store> st(new Store());
+  st->impl_ = std::move(*im);
+  return st;
+}
+
+Result<std::unique_ptr<Store>> Store::open_existing(const std::string& path) {
+  {
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) return make_error(fmt::format("{}: no such store file", path));
+    std::fclose(f);
+  }
+  auto im = open_db(path, false);
+  if (!im) return im.error();
+  if (!has_meta(**im)) return make_error(fmt::format("{}: not a frictal study store (no meta table)", path));
+  std::unique_ptr<Store> st(new Store());
+  st->impl_ = std::move(*im);
+  auto m = st->meta();
+  if (!m) return m.error();
+  if ((*m)["schema_version"] != std::to_string(kSchemaVersion))
+    return make_error(fmt::format("{}: store schema version {} is not supported by this build (version {})", path,
+                                  (*m)["schema_version"], kSchemaVersion));
+  return st;
+}
+
+Result<std::vector<std::int64_t>> Store::unfinished() {
+  Stmt q(impl_->db, "SELECT task_id FROM tasks WHERE status != 'done' ORDER BY task_id");
+  if (!q.ok()) return impl_->err("reading tasks");
+  std::vector<std::int64_t> ids;
+  int rc;
+  while ((rc = q.step()) == SQLITE_ROW) ids.push_back(q.i64(0));
+  if (rc != SQLITE_DONE) return impl_->err("reading tasks");
+  return ids;
+}
+
+Status Store::record(const TaskRecord& r) {
+  Impl& db = *impl_;
+  if (auto s = db.exec("BEGIN IMMEDIATE"); !s) return s.error();
+  auto fail = [&](const char* what) -> Status {
+    Error e = db.err(what);
+    (void)db.exec("ROLLBACK");
+    return e;
+  };
+  {
+    Stmt d1(db.db, "DELETE FROM scalars WHERE task_id = ?");
+    d1.bind(1, r.id);
+    if (d1.step() != SQLITE_DONE) return fail("recording a task");
+    Stmt d2(db.db, "DELETE FROM arrays WHERE task_id = ?");
+    d2.bind(1, r.id);
+    if (d2.step() != SQLITE_DONE) return fail("recording a task");
+    if (r.status == TaskStatus::Done) {
+      Stmt s(db.db, "INSERT INTO scalars(task_id, name, value) VALUES (?, ?, ?)");
+      for (const auto& [k, v] : r.output.scalars) {
+        s.reset();
+        s.bind(1, r.id);
+        s.bind(2, k);
+        s.bind(3, v);
+        if (s.step() != SQLITE_DONE) return fail("recording scalars");
+      }
+      Stmt a(db.db, "INSERT INTO arrays(task_id, name, length, json) VALUES (?, ?, ?, ?)");
+      for (const auto& [k, v] : r.output.arrays) {
+        a.reset();
+        a.bind(1, r.id);
+        a.bind(2, k);
+        a.bind(3, static_cast<std::int64_t>(v.size()));
+        a.bind(4, json_array(v));
+        if (a.step() != SQLITE_DONE) return fail("recording arrays");
+      }
+    }
+    const auto fin = std::chrono::system_clock::now();
+    const auto t = std::chrono::system_clock::to_time_t(fin);
+    const auto t0 = std::chrono::system_clock::to_time_t(
+        fin - std::chrono::duration_cast<std::chrono::system_clock::duration>(std::chrono::duration<double>(r.wall_s)));
+    auto iso = [](std::time_t x) {
+      std::tm tm{};
+      gmtime_r(&x, &tm);
+      char buf[32];
+      std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+      return std::string(buf);
+    };
+    Stmt u(db.db,
+           "UPDATE tasks SET status = ?, attempts = attempts + ?, error = ?, worker = ?, started_at = ?, "
+           "finished_at = ?, wall_s = ?, scalars = ? WHERE task_id = ?");
+    u.bind(1, std::string(status_text(r.status)));
+    u.bind(2, static_cast<std::int64_t>(std::max(1, r.attempts)));
+    if (r.error.empty()) u.bind_null(3);
+    else u.bind(3, r.error);
+    u.bind(4, r.worker);
+    u.bind(5, iso(t0));
+    u.bind(6, iso(t));
+    u.bind(7, r.wall_s);
+    if (r.status == TaskStatus::Done) {
+      std::string js = "{";
+      for (const auto& [k, v] : r.output.scalars) {
+        if (js.size() > 1) js += ',';
+        js += json_string(k);
+        js += ':';
+        js += json_real(v);
+      }
+      u.bind(8, js + "}");
+    } else {
+      u.bind_null(8);
+    }
+    u.bind(9, r.id);
+    if (u.step() != SQLITE_DONE) return fail("recording a task");
+    if (sqlite3_changes(db.db) != 1) {
+      (void)db.exec("ROLLBACK");
+      return make_error(fmt::format("{}: task {} is not in the store", db.path, r.id));
+    }
+  }
+  if (auto s = db.exec("COMMIT"); !s) {
+    (void)db.exec("ROLLBACK");
+    return s.error();
+  }
+  return Ok{};
+}
+
+Result<StoreCounts> Store::counts() {
+  Stmt q(impl_->db, "SELECT status, count(*) FROM tasks GROUP BY status");
+  if (!q.ok()) return impl_->err("counting tasks");
+  StoreCounts c;
+  while (q.step() == SQLITE_ROW) {
+    const std::string s = q.text(0);
+    const auto n = q.i64(1);
+    c.total += n;
+    if (s == "done") c.done = n;
+    else if (s == "failed") c.failed = n;
+    else c.pending = n;
+  }
+  return c;
+}
+
+Result<std::map<std::string, std::string>> Store::meta() {
+  Stmt q(impl_->db, "SELECT key, value FROM meta");
+  if (!q.ok()) return impl_->err("reading meta");
+  std::map<std::string, std::string> m;
+  while (q.step() == SQLITE_ROW) m[q.text(0)] = q.text(1);
+  return m;
+}
+
+Result<std::vector<Store::PartCount>> Store::part_counts() {
+  Stmt q(impl_->db, "SELECT part, kind, status, count(*) FROM tasks GROUP BY part, kind, status ORDER BY min(task_id)");
+  if (!q.ok()) return impl_->err("counting tasks");
+  std::vector<PartCount> out;
+  while (q.step() == SQLITE_ROW) {
+    const std::string part = q.text(0), kind = q.text(1), st = q.text(2);
+    auto it = std::find_if(out.begin(), out.end(), [&](const PartCount& p) { return p.part == part; });
+    if (it == out.end()) {
+      out.push_back({part, kind});
+      it = out.end() - 1;
+    }
+    (st == "done" ? it->done : st == "failed" ? it->failed : it->pending) += q.i64(3);
+  }
+  return out;
+}
+
+Result<std::vector<Store::Row>> Store::rows(const std::string& part, bool with_arrays) {
+  std::vector<Row> out;
+  std::map<std::int64_t, std::size_t> at;
+  {
+    Stmt q(impl_->db,
+           "SELECT task_id, part, kind, params, status FROM tasks WHERE status = 'done' AND (?1 = '' OR part = ?1) "
+           "ORDER BY task_id");
+    q.bind(1, part);
+    while (q.step() == SQLITE_ROW) {
+      Row r;
+      r.id = q.i64(0);
+      r.part = q.text(1);
+      r.kind = q.text(2);
+      r.params_json = q.text(3);
+      r.status = q.text(4);
+      try {
+        const nlohmann::json j = nlohmann::json::parse(r.params_json);
+        for (const auto& [k, v] : j.items()) r.params[k] = from_json(v);
+      } catch (const std::exception& e) {
+        return make_error(fmt::format("{}: task {}: malformed params text: {}", impl_->path, r.id, e.what()));
+      }
+      at[r.id] = out.size();
+      out.push_back(std::move(r));
+    }
+  }
+  {
+    Stmt q(impl_->db,
+           "SELECT s.task_id, s.name, s.value FROM scalars s JOIN tasks t USING (task_id) "
+           "WHERE t.status = 'done' AND (?1 = '' OR t.part = ?1)");
+    q.bind(1, part);
+    while (q.step() == SQLITE_ROW)
+      if (auto it = at.find(q.i64(0)); it != at.end()) out[it->second].output.scalars[q.text(1)] = q.real(2);
+  }
+  if (with_arrays) {
+    Stmt q(impl_->db,
+           "SELECT a.task_id, a.name, a.json FROM arrays a JOIN tasks t USING (task_id) "
+           "WHERE t.status = 'done' AND (?1 = '' OR t.part = ?1)");
+    q.bind(1, part);
+    while (q.step() == SQLITE_ROW) {
+      auto it = at.find(q.i64(0));
+      if (it == at.end()) continue;
+      std::vector<double> v;
+      try {
+        const nlohmann::json j = nlohmann::json::parse(q.text(2));
+        for (const auto& e : j) v.push_back(e.is_number() ? e.get<double>() : std::nan(""));
+      } catch (const std::exception& e) {
+        return make_error(fmt::format("{}: task {}: malformed array text: {}", impl_->path, q.i64(0), e.what()));
+      }
+      out[it->second].output.arrays[q.text(1)] = std::move(v);
+    }
+  }
+  return out;
+}
+
+Result<std::string> Store::query_csv(const std::string& sql) {
+  Stmt q(impl_->db, sql.c_str());
+  if (!q.ok()) return impl_->err("query");
+  const int n = sqlite3_column_count(q.get());
+  std::string csv;
+  auto quote = [](const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string o = "\"";
+    for (char c : s) o += (c == '"') ? std::string("\"\"") : std::string(1, c);
+    return o + "\"";
+  };
+  for (int c = 0; c < n; ++c) {
+    if (c) csv += ',';
+    csv += quote(sqlite3_column_name(q.get(), c));
+  }
+  csv += '\n';
+  int rc;
+  while ((rc = q.step()) == SQLITE_ROW) {
+    for (int c = 0; c < n; ++c) {
+      if (c) csv += ',';
+      switch (sqlite3_column_type(q.get(), c)) {
+        case SQLITE_NULL: break;
+        case SQLITE_INTEGER: csv += std::to_string(q.i64(c)); break;
+        case SQLITE_FLOAT: csv += json_real(q.real(c)); break;
+        default: csv += quote(q.text(c));
+      }
+    }
+    csv += '\n';
+  }
+  if (rc != SQLITE_DONE) return impl_->err("query");
+  return csv;
+}
+
+}  // namespace frictal::study

@@ -1,0 +1,195 @@
+// frictal study run/status/export/report through the CLI: SIGKILL at random points and resume,
+// MPI ranks against threads, user errors.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <thread>
+
+#include "cli/cli_runner.hpp"
+#include "frictal/study.hpp"
+
+using namespace frictal::study;
+
+namespace {
+
+std::string fresh(const std::string& name) {
+  const std::string p = temp_path(name);
+  for (const char* suffix : {"", "-wal", "-shm"}) std::remove((p + suffix).c_str());
+  return p;
+}
+
+/// Stored content that does not depend on the run: no timings, worker or attempt counts.
+std::string dump(const std::string& path) {
+  auto st = Store::open_existing(path);
+  EXPECT_TRUE(st.ok()) << (st.ok() ? "" : st.error().message);
+  if (!st.ok()) return {};
+  std::string d;
+  for (const char* q : {"SELECT key, value FROM meta WHERE key NOT IN ('created_at') ORDER BY key",
+                        "SELECT task_id, part, kind, params, task_key, seed, status, error, scalars FROM tasks ORDER BY task_id",
+                        "SELECT task_id, name, value FROM params ORDER BY task_id, name",
+                        "SELECT task_id, name, value FROM scalars ORDER BY task_id, name",
+                        "SELECT task_id, name, length, json FROM arrays ORDER BY task_id, name"})
+    d += *(*st)->query_csv(q);
+  return d;
+}
+
+// About 30 tasks of a few to some tens of milliseconds: long enough to be killed mid-run.
+const char* kStudy = R"(
+[study]
+name = "kill-test"
+seed = 99
+[[part]]
+name = "wm"
+kind = "wm-pair-statistics"
+seed_from = ["pair"]
+[part.parameters]
+dimension = [1.3, 1.7]
+n_max = [6, 8, 9]
+pair = { count = 5 }
+)";
+
+// One file per test: ctest runs tests in parallel processes that share the temp directory.
+std::string study_file(const std::string& tag) {
+  const std::string p = temp_path("kill-test-" + tag + ".toml");
+  write_file(p, kStudy);
+  return p;
+}
+
+/// Starts `frictal study run` as a child (stdout/stderr to /dev/null) and returns its pid.
+pid_t spawn_run(const std::string& study, const std::string& store, const std::string& threads) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen("/dev/null", "w", stderr);
+    ::execl(FRICTAL_CLI_PATH, FRICTAL_CLI_PATH, "study", "run", study.c_str(), "--store", store.c_str(), "--threads",
+            threads.c_str(), "--progress", "none", static_cast<char*>(nullptr));
+    std::_Exit(127);
+  }
+  return pid;
+}
+
+}  // namespace
+
+TEST(StudyCli, KilledWithSigkillAtRandomPointsAndResumedGivesTheUninterruptedRows) {
+  const std::string study = study_file("kill");
+  const std::string ref = fresh("kill-ref.sqlite");
+  auto r = run_cli("study run " + study + " --store " + ref + " --threads 1 --progress none");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string expected = dump(ref);
+
+  std::mt19937 rng(std::random_device{}());
+  std::uniform_int_distribution<int> delay_ms(0, 250);
+  for (int trial = 0; trial < 2; ++trial) {
+    const std::string store = fresh("kill-" + std::to_string(trial) + ".sqlite");
+    int kills = 0;
+    std::string delays;
+    for (int attempt = 0; attempt < 6; ++attempt) {
+      const int d = delay_ms(rng);
+      delays += std::to_string(d) + " ";
+      const pid_t pid = spawn_run(study, store, attempt % 2 ? "2" : "1");
+      ASSERT_GT(pid, 0);
+      std::this_thread::sleep_for(std::chrono::milliseconds(d));
+      int status = 0;
+      if (::waitpid(pid, &status, WNOHANG) == 0) {
+        ::kill(pid, SIGKILL);
+        ::waitpid(pid, &status, 0);
+        if (WIFSIGNALED(status)) ++kills;
+      }
+    }
+    // Resume to completion and compare every row with the uninterrupted run.
+    r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress none");
+    ASSERT_EQ(r.code, 0) << r.err << " (kill delays ms: " << delays << ")";
+    EXPECT_EQ(dump(store), expected) << "kill delays ms: " << delays;
+    EXPECT_GT(kills, 0) << "no run was killed (delays ms: " << delays << ")";
+    r = run_cli("study status " + store + " --json");
+    EXPECT_NE(r.out.find("\"done\": 30"), std::string::npos) << r.out;
+  }
+}
+
+TEST(StudyCli, CtrlCStopsCleanlyAndResumes) {
+  const std::string study = study_file("sigint");
+  const std::string store = fresh("sigint.sqlite");
+  const pid_t pid = spawn_run(study, store, "1");
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_TRUE(WEXITSTATUS(status) == 130 || WEXITSTATUS(status) == 0) << WEXITSTATUS(status);
+  auto r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress lines");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("30/30 done"), std::string::npos) << r.err;  // plain progress lines off a terminal
+}
+
+TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
+  if (!mpi_available()) GTEST_SKIP() << "built without FRICTAL_MPI";
+  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
+  const std::string study = study_file("mpi");
+  const std::string a = fresh("mpi-threads.sqlite"), b = fresh("mpi-ranks.sqlite");
+  auto r = run_cli("study run " + study + " --store " + a + " --threads 2 --progress none");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
+  // Open MPI leaks at exit by design; under the sanitizer preset keep ASan's memory checks but
+  // not LeakSanitizer (the leaks are all inside libmpi and its plugins).
+  const std::string mpirun = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 2 --oversubscribe";
+  const std::string cmd = mpirun + root + " " + FRICTAL_CLI_PATH + " study run " + study +
+                          " --store " + b + " --progress none >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  EXPECT_EQ(dump(a), dump(b));
+  // Both ranks computed (rank 1 took at least one task from rank 0's queue).
+  auto st = Store::open_existing(b);
+  const std::string workers = *(*st)->query_csv("SELECT DISTINCT substr(worker, 1, 6) FROM tasks ORDER BY 1");
+  EXPECT_NE(workers.find("rank 1"), std::string::npos) << workers;
+
+  // Fault injection: rank 0's compute thread fails every task it takes (it surely takes the
+  // first one); each is reassigned to rank 1 and the
+  // store is still exactly the threads run, with the extra attempts recorded.
+  const std::string c = fresh("mpi-fault.sqlite");
+  const std::string cmd2 = mpirun + root + " " + FRICTAL_CLI_PATH + " study run " + study +
+                           " --store " + c + " --progress none --inject-failure-rank 0 >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd2.c_str()), 0) << cmd2;
+  EXPECT_EQ(dump(a), dump(c));
+  auto sc = Store::open_existing(c);
+  EXPECT_EQ(*(*sc)->query_csv("SELECT count(*) AS n FROM tasks WHERE worker LIKE 'rank 0%'"), "n\n0\n");
+  EXPECT_NE(*(*sc)->query_csv("SELECT max(attempts) AS m FROM tasks"), "m\n1\n");
+}
+
+TEST(StudyCli, UserErrorsAndExport) {
+  const std::string study = study_file("cli");
+  const std::string store = fresh("cli.sqlite");
+  auto r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress none");
+  ASSERT_EQ(r.code, 0) << r.err;
+  // Same store, other definition (quick scale has other tasks here? no quick table: same grid,
+  // but the scale is part of the definition).
+  r = run_cli("study run " + study + " --store " + store + " --quick --progress none");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("another study definition"), std::string::npos) << r.err;
+  r = run_cli("study run /nonexistent.toml --store " + fresh("x.sqlite"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("/nonexistent.toml"), std::string::npos);
+  r = run_cli("study status " + fresh("none.sqlite"));
+  EXPECT_EQ(r.code, 2);
+  const std::string tilt = temp_path("tilt.toml");
+  write_file(tilt, "[study]\nname='t'\nseed=1\n[[part]]\nname='sim'\nkind='tilt'\n[part.parameters]\nalpha_deg=[5.0]\n");
+  r = run_cli("study run " + tilt + " --store " + fresh("tilt.sqlite"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("task kind 'tilt' is not available in this build"), std::string::npos) << r.err;
+
+  const std::string dir = temp_path("export");
+  r = run_cli("study export " + store + " --csv " + dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string wide = read_file(dir + "/wm.csv");
+  EXPECT_EQ(wide.rfind("task_id,dimension,n_max,pair,", 0), 0u) << wide.substr(0, 200);
+  EXPECT_NE(wide.find("contact_slope_max_deg"), std::string::npos);
+  std::size_t lines = 0;
+  for (char c : wide) lines += c == '\n';
+  EXPECT_EQ(lines, 31u);
+  EXPECT_NE(read_file(dir + "/wm-arrays.csv").find("contact_slope_pdf_density_per_deg"), std::string::npos);
+  EXPECT_FALSE(read_file(dir + "/report.md").empty());
+}
