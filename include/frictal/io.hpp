@@ -87,6 +87,11 @@ struct X3pWriteOptions {
   /// the finest increment that fits the data's range in the type.
   double z_increment = 0;
   double z_offset = 0;
+  /// Record2 Date and CalibrationDate (ISO 8601); empty = the current UTC time. Set it for
+  /// byte-identical output.
+  std::string date;
+  std::string creator = "frictal";  ///< Record2 Creator
+  std::string comment = "written by frictal";  ///< Record2 Comment
 };
 
 /// Writes an areal map as X3P (FeatureType SUR). Invalid points: NaN for F/D data plus a

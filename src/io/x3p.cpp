@@ -571,7 +571,17 @@ Status write_x3p_grid(const std::string& path, const Map& m, bool profile, const
     else list += ok ? fmt::format("      <Datum>{}</Datum>\n", txt) : "      <Datum/>\n";
   }
 
-  std::string date = utc_now();
+  auto esc = [](const std::string& t) {
+    std::string r;
+    for (char c : t) {
+      if (c == '<') r += "&lt;";
+      else if (c == '>') r += "&gt;";
+      else if (c == '&') r += "&amp;";
+      else r += c;
+    }
+    return r;
+  };
+  const std::string date = o.date.empty() ? utc_now() : esc(o.date);
   std::string xml;
   xml += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   xml += "<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\" "
@@ -586,12 +596,12 @@ Status write_x3p_grid(const std::string& path, const Map& m, bool profile, const
   xml += fmt::format("      <CZ>\n        <AxisType>A</AxisType>\n        <DataType>{}</DataType>\n", type_letter(o.type));
   if (integer) xml += fmt::format("        <Increment>{:.17g}</Increment>\n        <Offset>{:.17g}</Offset>\n", inc, off);
   xml += "      </CZ>\n    </Axes>\n  </Record1>\n";
-  xml += fmt::format("  <Record2>\n    <Date>{}</Date>\n    <Creator>frictal</Creator>\n    <Instrument>\n"
+  xml += fmt::format("  <Record2>\n    <Date>{}</Date>\n    <Creator>{}</Creator>\n    <Instrument>\n"
                      "      <Manufacturer>frictal</Manufacturer>\n      <Model>frictal</Model>\n"
                      "      <Serial>not available</Serial>\n      <Version>0.1.0</Version>\n    </Instrument>\n"
                      "    <CalibrationDate>{}</CalibrationDate>\n    <ProbingSystem>\n      <Type>Software</Type>\n"
                      "      <Identification>frictal</Identification>\n    </ProbingSystem>\n"
-                     "    <Comment>written by frictal</Comment>\n  </Record2>\n", date, date);
+                     "    <Comment>{}</Comment>\n  </Record2>\n", date, esc(o.creator), date, esc(o.comment));
   xml += fmt::format("  <Record3>\n    <MatrixDimension>\n      <SizeX>{}</SizeX>\n      <SizeY>{}</SizeY>\n"
                      "      <SizeZ>1</SizeZ>\n    </MatrixDimension>\n", m.nx, m.ny);
   if (o.binary) {
@@ -625,10 +635,16 @@ Status write_x3p_grid(const std::string& path, const Map& m, bool profile, const
       return false;
     }
     zip_set_file_compression(z, zip_uint64_t(idx), ZIP_CM_DEFLATE, 1);  // fast; height data compresses poorly
+    if (!o.date.empty()) zip_file_set_mtime(z, zip_uint64_t(idx), 315532800, 0);  // 1980-01-01: reproducible bytes
     return true;
   };
   bool ok = add("main.xml", xml) && add("md5checksum.hex", md5);
-  if (ok && o.binary) ok = zip_dir_add(z, "bindata", ZIP_FL_ENC_UTF_8) >= 0 && add("bindata/data.bin", data);
+  if (ok && o.binary) {
+    zip_int64_t dir = zip_dir_add(z, "bindata", ZIP_FL_ENC_UTF_8);
+    ok = dir >= 0;
+    if (ok && !o.date.empty()) zip_file_set_mtime(z, zip_uint64_t(dir), 315532800, 0);
+    ok = ok && add("bindata/data.bin", data);
+  }
   if (ok && o.binary && any_invalid) ok = add("bindata/valid.bin", valid);
   if (!ok) {
     std::string why = zip_strerror(z);
