@@ -1,0 +1,22 @@
+#!/usr/bin/env python3
+"""Paper Fig. 7 data: atan(F_t/F_n)/alpha against relative displacement / L_b for K0..K3 at
+alpha = 20 deg (mu_a = 0, Table I/II), from `frictal tilt -o`. Writes bench/results/dem-fig7.csv
+(one row per 10 ms of simulated time). Usage: bench/dem_fig7.py [path/to/frictal]"""
+import csv, os, subprocess, sys, tempfile
+
+cli = sys.argv[1] if len(sys.argv) > 1 else "build/release/frictal"
+alpha, Lb = 20.0, 0.2
+out = "bench/results/dem-fig7.csv"
+with open(out, "w", newline="") as f:
+    w = csv.writer(f)
+    w.writerow(["surface", "time_s", "tilt_deg", "displacement_over_Lb", "force_angle_over_alpha", "contacts"])
+    for n in range(4):
+        with tempfile.NamedTemporaryFile(suffix=".csv", delete=False) as tmp:
+            path = tmp.name
+        subprocess.run([cli, "tilt", "--iterations", str(n), "--alpha", str(alpha), "-o", path,
+                        "--series-interval", "0.01"], check=True, stdout=subprocess.DEVNULL)
+        for r in csv.DictReader(open(path)):
+            w.writerow([f"K{n}", r["time_s"], r["tilt_deg"], f"{float(r['displacement_m']) / Lb:.6g}",
+                        f"{float(r['force_angle_deg']) / alpha:.6g}", r["contacts"]])
+        os.unlink(path)
+print("wrote", out)

@@ -1,0 +1,219 @@
+// frictal — spheropolygon rigid-body dynamics (paper Sec. IV A, Eq. 7-12).
+//
+// A body is a simple polygon (convex or not) swept by a disk of radius r, its spheroradius
+// (Pournin & Liebling; Alonso-Marroquin). Two bodies interact through vertex-edge pairs: a vertex
+// of one body closer than r1 + r2 to an edge of the other carries a contact with overlap
+// r1 + r2 - distance and normal along the shortest segment. The force of each pair is Eq. 7-11:
+//   normal:     f_n = k_n * overlap - m * gamma_n * v_n                       (Eq. 8, 10)
+//   tangential: f_t = -k_t * xi - m * gamma_t * v_t, |k_t xi| <= mu_a k_n overlap  (Eq. 9, 11)
+// with xi the tangential spring elongation kept per pair (keyed by vertex and edge ids) across
+// steps and cut back to the Coulomb limit, and m the reduced mass m1 m2 / (m1 + m2) (the dynamic
+// body's mass when the other body is kinematic). The normal force is not clipped at zero, so a
+// single contact behaves as the linear damped oscillator behind Eq. 12.
+//
+// Layout (MuJoCo-like): make_model() validates definitions into a constant Model (shapes, mass
+// properties, parameters, flat arrays); make_state() creates the mutable State (poses,
+// velocities, neighbour list, per-pair springs, counters, timings); step(model, state) advances
+// one fixed time step. A sweep copies only State. Nothing here allocates in the contact loop,
+// prints, throws on numerical trouble, or keeps global state; the result is bitwise
+// deterministic for a given build (-ffp-contract=off, fixed evaluation order).
+//
+// Integration: velocity Verlet in kick-drift-kick form (second order for position-dependent
+// forces, exact for constant forces such as free fall). The dashpots use the half-step velocity
+// v(t + dt/2), the usual DEM choice (e.g. LAMMPS granular), which makes the damping terms first
+// order in dt.
+//
+// Candidate pairs come from a Verlet neighbour list: every vertex-edge pair within
+// r1 + r2 + skin, found through a uniform grid over the region where the two bodies' bounding
+// boxes overlap, and rebuilt only when some vertex may have moved more than skin / 2 since the
+// last build. Only the rebuild touches every vertex; a step costs O(pairs in the list).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "frictal/result.hpp"
+
+namespace frictal::dem {
+
+struct Vec2 {
+  double x = 0;
+  double y = 0;
+};
+
+enum class BodyType : std::uint8_t {
+  Dynamic,    ///< moved by forces and gravity
+  Kinematic,  ///< prescribed motion (KinematicMotion); infinite mass for contacts
+};
+
+/// Prescribed motion of a kinematic body: at rest until `start_time`, then a rotation about the
+/// fixed `pivot` at constant `angular_velocity` (e.g. the tilting lower block).
+struct KinematicMotion {
+  Vec2 pivot;                   ///< fixed point of the rotation, world frame (unit: m)
+  double angular_velocity = 0;  ///< counter-clockwise positive (unit: rad/s)
+  double start_time = 0;        ///< the body is at rest before this time (unit: s)
+};
+
+struct BodyDef {
+  /// Polygon vertices in world coordinates at t = 0 (unit: m). A simple polygon, convex or not,
+  /// either orientation, without a repeated closing point; at least 3 vertices.
+  std::vector<double> x;
+  std::vector<double> y;
+  double radius = 5e-5;         ///< spheroradius r > 0 (unit: m)
+  double density = 50;          ///< areal density of the core polygon (unit: kg/m^2)
+  BodyType type = BodyType::Dynamic;
+  Vec2 velocity;                ///< initial centroid velocity, dynamic bodies (unit: m/s)
+  double angular_velocity = 0;  ///< initial angular velocity, dynamic bodies (unit: rad/s)
+  KinematicMotion motion;       ///< used by kinematic bodies only
+};
+BodyDef default_body_def();
+
+/// Contact law of Eq. 7-11, shared by every pair. Defaults: paper Table II.
+struct ContactParams {
+  double normal_stiffness = 6e5;      ///< k_n > 0 (unit: N/m)
+  double tangential_stiffness = 6e4;  ///< k_t >= 0 (unit: N/m)
+  double normal_damping = 929.5;      ///< gamma_n >= 0 (unit: 1/s)
+  double tangential_damping = 4;      ///< gamma_t >= 0 (unit: 1/s)
+  double atomic_friction = 0;         ///< mu_a >= 0, Coulomb limit of the tangential spring (unitless)
+};
+ContactParams default_contact_params();
+
+struct WorldDef {
+  Vec2 gravity{0, -9.81};     ///< (unit: m/s^2)
+  double time_step = 1e-5;    ///< fixed dt > 0 (unit: s)
+  double skin = 5e-5;         ///< Verlet skin added to r1 + r2 for the neighbour list (unit: m)
+  ContactParams contact;
+  /// Stability guard: stop with an error when an overlap exceeds this fraction of r1 + r2
+  /// (cores about to interpenetrate) (unitless).
+  double max_overlap_ratio = 1.0;
+  /// Stability guard: stop when a dynamic body's speed (centroid speed + |omega| * its size)
+  /// exceeds this (unit: m/s).
+  double max_speed = 100;
+  /// Stability guard: stop when dt has exceeded a body's explicit stability limit
+  /// (State::step_limit) in more than this many steps in total. Isolated steps beyond it while the
+  /// contact count peaks are harmless (K3 at dt = 1e-5 s: 316 such steps out of 2.1 M, same
+  /// friction angle as at dt/2 to 1e-4 degree); a run that lives beyond it is not (K3 at 2e-5 s:
+  /// 31 370 steps, wrong answer). Counted in State::steps_beyond_limit (unitless).
+  int max_steps_beyond_limit = 1000;
+  bool timings = true;        ///< time each stage into State::timings (costs ~4 clock reads/step)
+};
+WorldDef default_world_def();
+
+/// Constant part of a simulation: shapes, mass properties, parameters. Flat arrays indexed by
+/// body and global vertex ids; vertices are stored counter-clockwise relative to the centroid
+/// at the initial orientation.
+struct Model {
+  WorldDef def;
+  std::vector<std::uint32_t> vertex_begin;  ///< body b owns vertices [begin[b], begin[b+1])
+  std::vector<double> local_x;              ///< vertex x relative to the centroid (unit: m)
+  std::vector<double> local_y;              ///< (unit: m)
+  std::vector<std::uint32_t> vertex_body;   ///< owning body of each global vertex
+  std::vector<std::uint32_t> next_vertex;   ///< edge of vertex i runs from i to next_vertex[i]
+  std::vector<double> edge_inv_length2;     ///< 1 / |edge i|^2, invariant under rigid motion (unit: 1/m^2)
+  std::vector<double> radius;               ///< spheroradius per body (unit: m)
+  std::vector<double> mass;                 ///< (unit: kg)
+  std::vector<double> inertia;              ///< about the centroid (unit: kg m^2)
+  std::vector<double> area;                 ///< core polygon area (unit: m^2)
+  std::vector<double> extent;               ///< max vertex distance from the centroid (unit: m)
+  std::vector<BodyType> type;
+  std::vector<KinematicMotion> motion;
+  std::vector<Vec2> initial_position;       ///< centroid at t = 0 (unit: m)
+  std::vector<Vec2> initial_velocity;       ///< (unit: m/s)
+  std::vector<double> initial_angular_velocity;  ///< (unit: rad/s)
+  std::size_t body_count() const { return mass.size(); }
+  std::size_t vertex_count(std::size_t b) const { return vertex_begin[b + 1] - vertex_begin[b]; }
+};
+
+/// One candidate pair of the neighbour list: vertex `vertex` of body `vbody` against the edge
+/// (edge0, edge1) of body `ebody`. Global vertex ids. `elongation` is the tangential spring xi.
+struct NeighborPair {
+  std::uint64_t key = 0;      ///< (vertex << 32) | edge0, sorted ascending
+  std::uint32_t vertex = 0;
+  std::uint32_t edge0 = 0;
+  std::uint32_t edge1 = 0;
+  std::uint32_t vbody = 0;
+  std::uint32_t ebody = 0;
+  std::uint32_t slot_vertex = 0;  ///< index of `vertex` in State::active_vertex
+  std::uint32_t slot_edge0 = 0;   ///< index of `edge0` in State::active_vertex
+  std::uint32_t slot_edge1 = 0;   ///< index of `edge1` in State::active_vertex
+  double reduced_mass = 0;    ///< m1 m2 / (m1 + m2), or the dynamic body's mass (unit: kg)
+  double elongation = 0;      ///< xi (unit: m)
+  double overlap = 0;         ///< last overlap, <= 0 when apart (unit: m)
+};
+
+/// Cumulative wall time per stage of step() (unit: s) and counters.
+struct StepTimings {
+  double neighbor_list = 0;   ///< rebuild test + rebuilds
+  double contacts = 0;        ///< pair forces
+  double integration = 0;     ///< kicks, drift, kinematic motion, guards
+  std::uint64_t list_builds = 0;
+  std::uint64_t pairs_visited = 0;  ///< sum over steps of the list length
+};
+
+/// Mutable part of a simulation.
+struct State {
+  double time = 0;                  ///< (unit: s)
+  std::uint64_t steps = 0;
+  std::vector<Vec2> position;       ///< centroid (unit: m)
+  std::vector<double> angle;        ///< rotation from the initial orientation (unit: rad)
+  std::vector<Vec2> velocity;       ///< centroid velocity (unit: m/s)
+  std::vector<double> angular_velocity;  ///< (unit: rad/s)
+  std::vector<Vec2> force;          ///< contact force on each body at `time`, gravity excluded (unit: N)
+  std::vector<double> torque;       ///< contact torque about the centroid (unit: N m)
+  std::vector<NeighborPair> pairs;  ///< neighbour list
+  /// Vertices referenced by the list (global ids, ascending); their world positions are computed
+  /// once per step into active_x/active_y, so a vertex shared by several pairs costs one transform.
+  std::vector<std::uint32_t> active_vertex;
+  std::vector<double> active_x, active_y;
+  std::vector<Vec2> list_position;  ///< poses at the last list build
+  std::vector<double> list_angle;
+  int contact_count = 0;            ///< pairs with positive overlap at `time`
+  std::vector<int> body_contacts;   ///< pairs with positive overlap per body at `time`
+  /// Explicit stability limit of each dynamic body at `time` from its contact modes: with
+  /// G = sum over its contacts of J J^T, J = (n_x, n_y, r x n), and M = diag(m, m, I),
+  /// min(2 / sqrt(lambda_max(k_n M^-1/2 G M^-1/2)), 2 / lambda_max(gamma_n M^-1/2 G_m M^-1/2))
+  /// (G_m weighted by the reduced masses); tangential terms (k_t = k_n/10, gamma_t << gamma_n)
+  /// are neglected. Infinite without contacts (unit: s).
+  std::vector<double> step_limit;
+  std::uint64_t steps_beyond_limit = 0;  ///< steps with dt above some body's stability limit (warnings)
+  int consecutive_beyond_limit = 0;      ///< current run of such steps
+  double max_overlap = 0;           ///< largest overlap at `time` (unit: m)
+  double elastic_energy = 0;        ///< sum of k_n overlap^2/2 + k_t xi^2/2 at `time` (unit: J)
+  StepTimings timings;
+  // scratch for the list builder (kept to avoid reallocating)
+  std::vector<std::uint32_t> scratch_cells;
+  std::vector<std::uint32_t> scratch_items;
+  std::vector<NeighborPair> scratch_pairs;
+  std::vector<std::uint32_t> scratch_slot;
+};
+
+/// Validates the definitions and computes mass properties. Errors name the body and field.
+Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodies);
+/// Initial state at t = 0 with the neighbour list built and the contact forces evaluated.
+State make_state(const Model& model);
+/// Advances one time step. On a stability-guard failure the state is left at the failing step
+/// and the error gives the time, the cause and a suggested time step.
+Status step(const Model& model, State& state);
+/// Advances `steps` steps (stops at the first error).
+Status advance(const Model& model, State& state, std::uint64_t steps);
+
+/// World position of global vertex `v` (unit: m).
+Vec2 world_vertex(const Model& model, const State& state, std::uint32_t v);
+/// Translational + rotational kinetic energy of body b (unit: J).
+double kinetic_energy(const Model& model, const State& state, std::size_t b);
+/// Worst-case explicit stability limit of body b's time step with `contacts` contacts all acting
+/// in the same direction (unit: s): min(2 / (contacts gamma_n), 2 / omega) with
+/// omega^2 = contacts k_n max(1/m, extent^2/I). The guard uses the sharper State::step_limit. The dashpot term is what binds for many
+/// contacts: 150 contacts with gamma_n = 929.5 1/s need dt < 1.4e-5 s. Infinite for 0 contacts.
+double stability_limit(const Model& model, std::size_t b, int contacts);
+/// Half the smallest stability_limit over the dynamic bodies (unit: s).
+double suggested_time_step(const Model& model, int contacts);
+
+/// Eq. 12 solved for gamma_n: damping that gives restitution `eps` in (0, 1] for one contact of
+/// stiffness k_n (N/m) on mass m (kg). Result in 1/s.
+Result<double> damping_from_restitution(double eps, double k_n, double m);
+/// Eq. 12: restitution of one contact (gamma_n in 1/s, k_n in N/m, m in kg); 0 if overdamped.
+double restitution_from_damping(double gamma_n, double k_n, double m);
+
+}  // namespace frictal::dem

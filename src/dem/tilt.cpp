@@ -1,0 +1,407 @@
+// frictal — tilting-block friction test (paper Sec. IV) on the spheropolygon engine.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <memory>
+#include <string>
+
+#include <fmt/core.h>
+
+#include "frictal/signature.hpp"
+#include "frictal/tilt.hpp"
+
+namespace frictal {
+
+namespace {
+
+using dem::Vec2;
+
+struct Poly {
+  std::vector<double> x, z;
+};
+
+// Copy without consecutive duplicate points; oriented left to right (first x < last x).
+Result<Poly> clean_face(const Curve& c, const std::string& what) {
+  if (c.x.size() != c.z.size() || c.x.size() < 2)
+    return make_error(fmt::format("{}: expected at least two points with as many x as z", what));
+  Poly p;
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (!std::isfinite(c.x[i]) || !std::isfinite(c.z[i]))
+      return make_error(fmt::format("{}: point {} is not finite", what, i));
+    if (!p.x.empty() && p.x.back() == c.x[i] && p.z.back() == c.z[i]) continue;
+    p.x.push_back(c.x[i]);
+    p.z.push_back(c.z[i]);
+  }
+  if (p.x.size() < 2 || p.x.front() == p.x.back())
+    return make_error(fmt::format("{}: the surface must span a positive length in x", what));
+  if (p.x.front() > p.x.back()) {
+    std::reverse(p.x.begin(), p.x.end());
+    std::reverse(p.z.begin(), p.z.end());
+  }
+  return p;
+}
+
+// Edges of a polyline sorted by their smallest x, for range queries along x.
+struct EdgeIndex {
+  std::vector<std::size_t> order;  // edge i runs from point i to i+1
+  std::vector<double> xmin;        // sorted
+  double max_width = 0;
+  explicit EdgeIndex(const Poly& p) {
+    const std::size_t n = p.x.size() - 1;
+    order.resize(n);
+    for (std::size_t i = 0; i < n; ++i) order[i] = i;
+    auto lo = [&](std::size_t i) { return std::min(p.x[i], p.x[i + 1]); };
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return lo(a) < lo(b) || (lo(a) == lo(b) && a < b);
+    });
+    xmin.resize(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      xmin[k] = lo(order[k]);
+      max_width = std::max(max_width, std::fabs(p.x[order[k] + 1] - p.x[order[k]]));
+    }
+  }
+  // Calls f(edge) for every edge whose x-range may meet [x0, x1].
+  template <class F>
+  void query(double x0, double x1, F&& f) const {
+    auto it = std::lower_bound(xmin.begin(), xmin.end(), x0 - max_width);
+    for (std::size_t k = static_cast<std::size_t>(it - xmin.begin()); k < xmin.size() && xmin[k] <= x1; ++k)
+      f(order[k]);
+  }
+};
+
+// Smallest lift of `upper` (added to its z) so that along every vertical line each point of the
+// upper face is at or above each point of the lower face: the first contact under a vertical
+// drop. The extreme is reached at a vertex of one face over an edge of the other.
+double vertical_contact_lift(const Poly& lower, const EdgeIndex& li, const Poly& upper, const EdgeIndex& ui) {
+  double lift = -std::numeric_limits<double>::infinity();
+  auto scan = [&](const Poly& pts, const Poly& other, const EdgeIndex& oi, double sign) {
+    for (std::size_t v = 0; v < pts.x.size(); ++v) {
+      const double x = pts.x[v];
+      oi.query(x, x, [&](std::size_t e) {
+        const double x0 = other.x[e], x1 = other.x[e + 1];
+        if (x0 == x1 || x < std::min(x0, x1) || x > std::max(x0, x1)) return;
+        const double z = other.z[e] + (other.z[e + 1] - other.z[e]) * ((x - x0) / (x1 - x0));
+        // sign +1: pts are lower vertices, z on an upper edge; -1: the reverse.
+        lift = std::max(lift, sign > 0 ? pts.z[v] - z : z - pts.z[v]);
+      });
+    }
+  };
+  scan(lower, upper, ui, +1);
+  scan(upper, lower, li, -1);
+  return lift;
+}
+
+// True if every vertex-edge distance between the faces (upper lifted by `lift`) is >= `clear`.
+// Valid when the faces do not cross (lift >= the vertical contact lift).
+bool faces_clear(const Poly& lower, const EdgeIndex& li, const Poly& upper, const EdgeIndex& ui,
+                 double lift, double clear) {
+  const double c2 = clear * clear;
+  bool ok = true;
+  auto scan = [&](const Poly& pts, double pz, const Poly& other, const EdgeIndex& oi, double oz) {
+    for (std::size_t v = 0; v < pts.x.size() && ok; ++v) {
+      const double px = pts.x[v], py = pts.z[v] + pz;
+      oi.query(px - clear, px + clear, [&](std::size_t e) {
+        const double ax = other.x[e], ay = other.z[e] + oz;
+        const double dx = other.x[e + 1] - ax, dy = other.z[e + 1] + oz - ay;
+        const double l2 = dx * dx + dy * dy;
+        double t = l2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / l2 : 0.0;
+        t = std::clamp(t, 0.0, 1.0);
+        const double qx = px - ax - t * dx, qy = py - ay - t * dy;
+        if (qx * qx + qy * qy < c2) ok = false;
+      });
+    }
+  };
+  scan(lower, 0.0, upper, ui, lift);
+  scan(upper, lift, lower, li, 0.0);
+  return ok;
+}
+
+Status check_config(const TiltConfig& c) {
+  auto pos = [](double v) { return std::isfinite(v) && v > 0; };
+  if (!pos(c.block_height)) return make_error(fmt::format("tilt block_height = {} m: expected > 0", c.block_height));
+  if (!pos(c.radius)) return make_error(fmt::format("tilt radius = {} m: expected > 0", c.radius));
+  if (!pos(c.density)) return make_error(fmt::format("tilt density = {} kg/m^2: expected > 0", c.density));
+  if (!(std::isfinite(c.gravity) && c.gravity >= 0)) return make_error("tilt gravity: expected >= 0 m/s^2");
+  if (!pos(c.tilt_rate)) return make_error(fmt::format("tilt tilt_rate = {} rad/s: expected > 0", c.tilt_rate));
+  if (!pos(c.time_step)) return make_error(fmt::format("tilt time_step = {} s: expected > 0", c.time_step));
+  if (!(std::isfinite(c.settle_time) && c.settle_time >= 0)) return make_error("tilt settle_time: expected >= 0 s");
+  if (!(c.max_tilt > 0 && c.max_tilt < 1.5707963267948966)) return make_error("tilt max_tilt: expected in (0, 90) degrees");
+  if (!pos(c.runaway_distance)) return make_error(fmt::format("tilt runaway_distance = {} m: expected > 0", c.runaway_distance));
+  if (!(std::isfinite(c.restitution) && c.restitution <= 1)) return make_error(fmt::format("tilt restitution = {}: expected <= 1 (0 or less: use gamma_n)", c.restitution));
+  if (!pos(c.stick_speed)) return make_error(fmt::format("tilt stick_speed = {} m/s: expected > 0", c.stick_speed));
+  if (!(std::isfinite(c.stick_duration) && c.stick_duration >= 0)) return make_error("tilt stick_duration: expected >= 0 s");
+  if (!(std::isfinite(c.placement_gap) && c.placement_gap >= 0)) return make_error("tilt placement_gap: expected >= 0 m");
+  if (!std::isnan(c.initial_offset) && !std::isfinite(c.initial_offset)) return make_error("tilt initial_offset: expected a finite value or NaN (auto)");
+  return Ok{};
+}
+
+}  // namespace
+
+TiltConfig default_tilt_config() { return TiltConfig{}; }
+
+Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surface, const TiltConfig& cfg) {
+  using Clock = std::chrono::steady_clock;
+  const auto setup_start = Clock::now();
+  if (Status s = check_config(cfg); !s.ok()) return s.error();
+  TiltResult res;
+
+  // Faces: the full curves, or their upper envelopes.
+  Curve lower_c = lower_surface, upper_c = upper_surface;
+  Profile lower_env, upper_env;
+  const bool need_env = cfg.face == TiltFace::Envelope || cfg.predict;
+  if (need_env) {
+    auto le = upper_envelope(lower_surface);
+    if (!le.ok()) return make_error("lower surface: " + le.error().message);
+    auto ue = upper_envelope(upper_surface);
+    if (!ue.ok()) return make_error("upper surface: " + ue.error().message);
+    lower_env = std::move(*le);
+    upper_env = std::move(*ue);
+    if (cfg.face == TiltFace::Envelope) {
+      lower_c = as_curve(lower_env);
+      upper_c = as_curve(upper_env);
+    }
+  }
+  auto lower_r = clean_face(lower_c, "lower surface");
+  if (!lower_r.ok()) return lower_r.error();
+  auto upper_r = clean_face(rotate180(upper_c), "upper surface");
+  if (!upper_r.ok()) return upper_r.error();
+  Poly lower = std::move(*lower_r), upper = std::move(*upper_r);
+
+  // Prediction and the resting offset from the signature of the envelopes.
+  double offset = std::isnan(cfg.initial_offset) ? 0.0 : cfg.initial_offset;
+  if (cfg.predict) {
+    SignatureOptions opt;
+    opt.keep_contacts = false;
+    opt.threads = 1;
+    if (cfg.period > 0) {
+      opt.offset_min = 0;
+      opt.offset_max = cfg.period;
+      lower_env.period.reset();
+    }
+    auto sig = signature(lower_env, rotate180(upper_env), opt);
+    if (!sig.ok()) return make_error("signature for the prediction: " + sig.error().message);
+    res.predicted_theta_max = cfg.reverse ? sig->theta_max_backward : sig->theta_max_forward;
+    res.predicted_friction_angle =
+        std::min(res.predicted_theta_max + std::atan(cfg.contact.atomic_friction), 1.5707963267948966);
+    if (std::isnan(cfg.initial_offset) && !sig->lift.empty()) {
+      const auto it = std::min_element(sig->lift.begin(), sig->lift.end());
+      offset = sig->offset[static_cast<std::size_t>(it - sig->lift.begin())];
+    }
+  }
+  res.initial_offset = offset;
+  for (double& x : upper.x) x += offset;
+
+  // Vertical placement: first contact under a vertical drop, then raised (bisection) until the
+  // two spheropolygons are `placement_gap` apart.
+  const EdgeIndex li(lower), ui(upper);
+  const double lift0 = vertical_contact_lift(lower, li, upper, ui);
+  const double clear = 2 * cfg.radius + cfg.placement_gap;
+  double lo = lift0, hi = lift0 + clear;
+  while (!faces_clear(lower, li, upper, ui, hi, clear)) hi = lo + 2 * (hi - lo);
+  for (int i = 0; i < 60 && hi - lo > 1e-3 * clear; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (faces_clear(lower, li, upper, ui, mid, clear) ? hi : lo) = mid;
+  }
+  for (double& z : upper.z) z += hi;
+
+  // Block polygons.
+  const double lmin = *std::min_element(lower.z.begin(), lower.z.end());
+  const double umax = *std::max_element(upper.z.begin(), upper.z.end());
+  dem::BodyDef lb, ub;
+  lb.x = lower.x;
+  lb.y = lower.z;
+  lb.x.push_back(lower.x.back());
+  lb.y.push_back(lmin - cfg.block_height);
+  lb.x.push_back(lower.x.front());
+  lb.y.push_back(lmin - cfg.block_height);
+  ub.x = upper.x;
+  ub.y = upper.z;
+  ub.x.push_back(upper.x.back());
+  ub.y.push_back(umax + cfg.block_height);
+  ub.x.push_back(upper.x.front());
+  ub.y.push_back(umax + cfg.block_height);
+  for (dem::BodyDef* b : {&lb, &ub}) {
+    b->radius = cfg.radius;
+    b->density = cfg.density;
+  }
+  lb.type = dem::BodyType::Kinematic;
+  lb.motion.angular_velocity = cfg.reverse ? cfg.tilt_rate : -cfg.tilt_rate;
+  lb.motion.start_time = cfg.settle_time;
+  dem::WorldDef wd;
+  wd.gravity = {0, -cfg.gravity};
+  wd.time_step = cfg.time_step;
+  wd.skin = cfg.skin;
+  wd.max_steps_beyond_limit = cfg.max_steps_beyond_limit;
+  wd.contact = cfg.contact;
+  auto model_r = dem::make_model(wd, {lb, ub});
+  if (!model_r.ok()) {
+    std::string msg = model_r.error().message;
+    if (msg.rfind("body 0", 0) == 0) msg = "lower block " + msg.substr(7);
+    else if (msg.rfind("body 1", 0) == 0) msg = "upper block " + msg.substr(7);
+    return make_error("tilt: " + msg +
+                      (cfg.face == TiltFace::Curve ? " (a folded surface may need face = envelope)" : ""));
+  }
+  dem::Model model = std::move(*model_r);
+  model.motion[0].pivot = model.initial_position[0];  // turn about the lower block's centroid
+  if (cfg.restitution > 0) {
+    auto g = dem::damping_from_restitution(cfg.restitution, cfg.contact.normal_stiffness, model.mass[1]);
+    if (!g.ok()) return make_error("tilt restitution: " + g.error().message);
+    model.def.contact.normal_damping = *g;
+  }
+  res.normal_damping = model.def.contact.normal_damping;
+  res.lower_mass = model.mass[0];
+  res.upper_mass = model.mass[1];
+  res.lower_vertices = model.vertex_count(0);
+  res.upper_vertices = model.vertex_count(1);
+  res.lower_polygon_x.assign(model.local_x.begin(), model.local_x.begin() + model.vertex_begin[1]);
+  res.lower_polygon_y.assign(model.local_y.begin(), model.local_y.begin() + model.vertex_begin[1]);
+  res.upper_polygon_x.assign(model.local_x.begin() + model.vertex_begin[1], model.local_x.end());
+  res.upper_polygon_y.assign(model.local_y.begin() + model.vertex_begin[1], model.local_y.end());
+  res.setup_time = std::chrono::duration<double>(Clock::now() - setup_start).count();
+
+  // Time stepping.
+  const auto run_start = Clock::now();
+  dem::State st = dem::make_state(model);
+  const double dt = cfg.time_step;
+  const double sgn = cfg.reverse ? -1.0 : 1.0;
+  const std::uint64_t settle_steps = static_cast<std::uint64_t>(std::ceil(cfg.settle_time / dt - 1e-9));
+  const std::uint64_t series_every =
+      cfg.series_interval > 0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.series_interval / dt))) : 0;
+  const std::uint64_t frame_every =
+      cfg.frame_interval > 0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.frame_interval / dt))) : 0;
+  const std::uint64_t max_steps =
+      settle_steps + static_cast<std::uint64_t>(std::ceil(cfg.max_tilt / cfg.tilt_rate / dt)) + 1;
+
+  double d_ref = 0;
+  auto measure = [&](double& d, double& v, double& fn, double& ft, double& tilt) {
+    const double a = st.angle[0];
+    const double ex = std::cos(a), ey = std::sin(a);  // lower block's x axis
+    const double rx = st.position[1].x - st.position[0].x, ry = st.position[1].y - st.position[0].y;
+    const double w = st.angular_velocity[0];
+    const double vx = st.velocity[1].x - st.velocity[0].x, vy = st.velocity[1].y - st.velocity[0].y;
+    d = sgn * (rx * ex + ry * ey) - d_ref;
+    v = sgn * ((vx * ex + vy * ey) + w * (-rx * ey + ry * ex));
+    const dem::Vec2 f = st.force[1];
+    ft = -sgn * (f.x * ex + f.y * ey);
+    fn = -f.x * ey + f.y * ex;
+    tilt = std::fabs(a);
+  };
+  auto record = [&]() {
+    double d, v, fn, ft, tilt;
+    measure(d, v, fn, ft, tilt);
+    TiltSeries& s = res.series;
+    s.time.push_back(st.time);
+    s.tilt.push_back(tilt);
+    s.normal_force.push_back(fn);
+    s.tangential_force.push_back(ft);
+    s.force_angle.push_back(std::atan2(ft, fn));
+    s.displacement.push_back(d);
+    s.velocity.push_back(v);
+    s.contacts.push_back(st.contact_count);
+  };
+  auto frame = [&]() {
+    TiltFrame f;
+    f.time = st.time;
+    f.tilt = std::fabs(st.angle[0]);
+    for (int b = 0; b < 2; ++b) {
+      f.position[b] = st.position[b];
+      f.angle[b] = st.angle[b];
+    }
+    res.frames.push_back(f);
+  };
+  auto finish = [&]() {
+    res.simulated_time = st.time;
+    res.steps = st.steps;
+    res.timings = st.timings;
+    res.steps_beyond_limit = st.steps_beyond_limit;
+    res.wall_time = std::chrono::duration<double>(Clock::now() - run_start).count();
+  };
+
+  {  // displacements during settling are relative to the initial placement
+    double d, v, fn, ft, tilt;
+    measure(d, v, fn, ft, tilt);
+    d_ref = d;
+  }
+  if (frame_every) frame();
+  for (std::uint64_t i = 0; i < settle_steps; ++i) {
+    if (Status s = dem::step(model, st); !s.ok()) return make_error("tilt (settling): " + s.error().message);
+    if (series_every && st.steps % series_every == 0) record();
+    if (frame_every && st.steps % frame_every == 0) frame();
+  }
+  res.settled_overlap = st.max_overlap;
+  res.settled_contacts = st.contact_count;
+  {  // from here on, relative to the settled position
+    double d, v, fn, ft, tilt;
+    measure(d, v, fn, ft, tilt);
+    d_ref += d;
+  }
+  // A stick is an interval of at least stick_duration with v <= stick_speed; the slide starts at
+  // the end of the last stick (short dips of v during a slide, e.g. bounces, do not count).
+  double stick_time = st.time, stick_tilt = 0, stick_d = 0;
+  double low_since = st.time;  // start of the current interval with v <= stick_speed (NaN: none)
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  while (st.steps < max_steps) {
+    if (Status s = dem::step(model, st); !s.ok()) return make_error("tilt: " + s.error().message);
+    const bool rec = series_every && st.steps % series_every == 0;
+    if (rec) record();
+    if (frame_every && st.steps % frame_every == 0) frame();
+    double d, v, fn, ft, tilt;
+    measure(d, v, fn, ft, tilt);
+    if (v <= cfg.stick_speed) {
+      if (std::isnan(low_since)) low_since = st.time;
+      if (st.time - low_since >= cfg.stick_duration - 0.5 * dt) {
+        stick_time = st.time;
+        stick_tilt = tilt;
+        stick_d = d;
+      }
+    } else {
+      low_since = nan;
+    }
+    if (d - stick_d >= cfg.runaway_distance) {
+      res.slid = true;
+      res.friction_angle = stick_tilt;
+      res.slide_time = stick_time;
+      if (!rec && series_every) record();
+      break;
+    }
+  }
+  if (frame_every && (res.frames.empty() || res.frames.back().time != st.time)) frame();
+  finish();
+  return res;
+}
+
+Status write_tilt_series_csv(const std::string& path, const TiltSeries& s) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
+  if (!f) return make_error(fmt::format("{}: cannot open for writing", path));
+  const double deg = 180.0 / 3.14159265358979323846;
+  fmt::print(f.get(), "time_s,tilt_deg,fn_N,ft_N,force_angle_deg,displacement_m,velocity_m_s,contacts\n");
+  for (std::size_t i = 0; i < s.time.size(); ++i)
+    fmt::print(f.get(), "{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{}\n", s.time[i], s.tilt[i] * deg,
+               s.normal_force[i], s.tangential_force[i], s.force_angle[i] * deg, s.displacement[i],
+               s.velocity[i], s.contacts[i]);
+  if (std::ferror(f.get())) return make_error(fmt::format("{}: write failed", path));
+  return Ok{};
+}
+
+Status write_tilt_frames(const std::string& path, const TiltResult& r) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
+  if (!f) return make_error(fmt::format("{}: cannot open for writing", path));
+  fmt::print(f.get(), "frictal-dem-frames 1\n");
+  const std::vector<double>* px[2] = {&r.lower_polygon_x, &r.upper_polygon_x};
+  const std::vector<double>* py[2] = {&r.lower_polygon_y, &r.upper_polygon_y};
+  for (int b = 0; b < 2; ++b) {
+    fmt::print(f.get(), "body {} {} {}\n", b, b == 0 ? "lower" : "upper", px[b]->size());
+    for (std::size_t i = 0; i < px[b]->size(); ++i) fmt::print(f.get(), "{:.17g} {:.17g}\n", (*px[b])[i], (*py[b])[i]);
+  }
+  for (const TiltFrame& fr : r.frames) {
+    fmt::print(f.get(), "frame {:.9g} {:.9g}\n", fr.time, fr.tilt);
+    for (int b = 0; b < 2; ++b)
+      fmt::print(f.get(), "{} {:.17g} {:.17g} {:.17g}\n", b, fr.position[b].x, fr.position[b].y, fr.angle[b]);
+  }
+  if (std::ferror(f.get())) return make_error(fmt::format("{}: write failed", path));
+  return Ok{};
+}
+
+}  // namespace frictal

@@ -1,0 +1,279 @@
+// Spheropolygon engine: hand-derived physics (free fall, resting overlap, restitution of Eq. 12,
+// convergence in dt), neighbour list against brute force, determinism, input validation.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <string>
+#include <cmath>
+#include <set>
+#include <tuple>
+
+#include "frictal/dem.hpp"
+
+namespace dem = frictal::dem;
+
+namespace {
+
+dem::BodyDef rect(double x0, double y0, double w, double h) {
+  dem::BodyDef b;
+  b.x = {x0, x0 + w, x0 + w, x0};
+  b.y = {y0, y0, y0 + h, y0 + h};
+  return b;
+}
+
+dem::BodyDef ground(double half_width = 1.0) {
+  dem::BodyDef g = rect(-half_width, -0.01, 2 * half_width, 0.01);  // top surface at y = 0
+  g.type = dem::BodyType::Kinematic;
+  return g;
+}
+
+// A diamond standing on its bottom vertex at (0, y0): one vertex-edge contact with the ground,
+// centroid straight above it, so a vertical impact has no torque.
+dem::BodyDef diamond(double y0, double half_w, double half_h) {
+  dem::BodyDef b;
+  b.x = {0, half_w, 0, -half_w};
+  b.y = {y0, y0 + half_h, y0 + 2 * half_h, y0 + half_h};
+  return b;
+}
+
+}  // namespace
+
+TEST(DemModel, RectangleMassProperties) {
+  dem::WorldDef w;
+  dem::BodyDef b = rect(1.0, 2.0, 0.2, 0.01);
+  b.density = 50;
+  std::reverse(b.x.begin(), b.x.end());  // clockwise input is accepted
+  std::reverse(b.y.begin(), b.y.end());
+  auto m = dem::make_model(w, {b});
+  ASSERT_TRUE(m.ok()) << m.error().message;
+  const double mass = 50 * 0.2 * 0.01;
+  EXPECT_NEAR(m->mass[0], mass, 1e-12 * mass);
+  EXPECT_NEAR(m->initial_position[0].x, 1.1, 1e-12);
+  EXPECT_NEAR(m->initial_position[0].y, 2.005, 1e-12);
+  EXPECT_NEAR(m->inertia[0], mass * (0.2 * 0.2 + 0.01 * 0.01) / 12, 1e-12 * mass);
+}
+
+TEST(DemModel, RejectsBadInput) {
+  dem::WorldDef w;
+  dem::BodyDef bow;  // self-crossing "bow tie"
+  bow.x = {0, 2, 2, 0};
+  bow.y = {0, 1, 0, 3};
+  auto r = dem::make_model(w, {bow});
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("not simple"), std::string::npos) << r.error().message;
+
+  dem::BodyDef tiny = rect(0, 0, 1, 1);
+  tiny.radius = 0;
+  r = dem::make_model(w, {tiny});
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("radius"), std::string::npos);
+
+  w.time_step = -1;
+  r = dem::make_model(w, {rect(0, 0, 1, 1)});
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("time_step"), std::string::npos);
+}
+
+TEST(DemPhysics, FreeFallIsExact) {
+  // Velocity Verlet integrates a constant force exactly: y = y0 + v0 t - g t^2 / 2.
+  dem::WorldDef w;
+  w.time_step = 1e-3;
+  w.skin = 0.1;  // a lone fast body: the list check would otherwise ask for a smaller step
+  dem::BodyDef b = rect(0, 1, 0.1, 0.05);
+  b.velocity = {0.3, 2.0};
+  b.angular_velocity = 1.5;
+  auto m = dem::make_model(w, {b});
+  ASSERT_TRUE(m.ok());
+  dem::State s = dem::make_state(*m);
+  const dem::Vec2 p0 = s.position[0];
+  ASSERT_TRUE(dem::advance(*m, s, 1000).ok());
+  const double t = 1.0;
+  EXPECT_DOUBLE_EQ(s.time, t);
+  EXPECT_NEAR(s.position[0].x, p0.x + 0.3 * t, 1e-12);
+  EXPECT_NEAR(s.position[0].y, p0.y + 2.0 * t - 0.5 * 9.81 * t * t, 1e-12);
+  EXPECT_NEAR(s.velocity[0].y, 2.0 - 9.81 * t, 1e-12);
+  EXPECT_NEAR(s.angle[0], 1.5 * t, 1e-12);
+}
+
+TEST(DemPhysics, RestingBlockOverlapIsWeightOverStiffness) {
+  // A flat block on flat ground rests on its two bottom corners (two vertex-edge contacts):
+  // k_n (overlap_1 + overlap_2) = m g, and by symmetry each overlap is m g / (2 k_n).
+  dem::WorldDef w;
+  w.time_step = 2e-5;
+  const double r = 5e-5;
+  dem::BodyDef b = rect(-0.05, 2 * r + 1e-6, 0.1, 0.01);
+  auto m = dem::make_model(w, {ground(), b});
+  ASSERT_TRUE(m.ok()) << m.error().message;
+  dem::State s = dem::make_state(*m);
+  ASSERT_TRUE(dem::advance(*m, s, 25000).ok());  // 0.5 s, many damping times (2/gamma_n = 2 ms)
+  const double weight = m->mass[1] * 9.81;
+  double sum = 0;
+  int n = 0;
+  for (const auto& p : s.pairs)
+    if (p.overlap > 0) sum += p.overlap, ++n;
+  EXPECT_EQ(n, 2);
+  EXPECT_NEAR(sum, weight / 6e5, 1e-4 * weight / 6e5);
+  EXPECT_NEAR(s.max_overlap, weight / (2 * 6e5), 1e-3 * weight / 6e5);
+  EXPECT_NEAR(s.force[1].y, weight, 1e-4 * weight);
+  // Centroid height: ground top (0) + 2r - overlap + half the block height.
+  EXPECT_NEAR(s.position[1].y, 2 * r - weight / (2 * 6e5) + 0.005, 1e-9);
+}
+
+namespace {
+
+// Drops a diamond at speed v0 on the ground without gravity and returns rebound / impact speed.
+double bounce_restitution(double dt, double gamma_n, double* mass_out = nullptr) {
+  dem::WorldDef w;
+  w.gravity = {0, 0};
+  w.time_step = dt;
+  w.contact.normal_damping = gamma_n;
+  dem::BodyDef b = diamond(2 * 5e-5 + 1e-5, 0.02, 0.03);
+  b.velocity = {0, -0.05};
+  auto m = dem::make_model(w, {ground(), b});
+  if (!m.ok()) return -1;
+  if (mass_out) *mass_out = m->mass[1];
+  dem::State s = dem::make_state(*m);
+  bool touched = false;
+  for (int i = 0; i < 200000; ++i) {
+    if (!dem::step(*m, s).ok()) return -1;
+    if (s.contact_count > 0) touched = true;
+    if (touched && s.contact_count == 0) return s.velocity[1].y / 0.05;
+  }
+  return -1;
+}
+
+}  // namespace
+
+TEST(DemPhysics, BounceMatchesRestitutionOfEq12) {
+  // Eq. 12 with the body's mass (the ground is kinematic): choose gamma_n for eps = 0.5.
+  double mass = 0;
+  bounce_restitution(1e-5, 0, &mass);
+  auto g = dem::damping_from_restitution(0.5, 6e5, mass);
+  ASSERT_TRUE(g.ok());
+  EXPECT_NEAR(dem::restitution_from_damping(*g, 6e5, mass), 0.5, 1e-12);
+  const double e1 = bounce_restitution(1e-5, *g);
+  const double e2 = bounce_restitution(5e-6, *g);
+  const double e4 = bounce_restitution(2.5e-6, *g);
+  RecordProperty("restitution_dt_1e-5", std::to_string(e1));
+  std::printf("restitution at dt = 1e-5, 5e-6, 2.5e-6: %.6f %.6f %.6f\n", e1, e2, e4);
+  EXPECT_NEAR(e1, 0.5, 0.01);
+  EXPECT_NEAR(e4, 0.5, 0.003);
+  // Converges as dt halves (errors shrink).
+  EXPECT_LT(std::fabs(e2 - 0.5), std::fabs(e1 - 0.5) + 1e-12);
+  EXPECT_LT(std::fabs(e4 - 0.5), std::fabs(e2 - 0.5) + 1e-12);
+  // Undamped contact is elastic.
+  EXPECT_NEAR(bounce_restitution(1e-5, 0.0), 1.0, 1e-3);
+}
+
+TEST(DemPhysics, TableIIDampingIsEq12WithEpsHalf) {
+  // gamma_n = 929.5 1/s (Table II) is Eq. 12 with eps = 0.5 for k_n = 6e5 N/m and
+  // m1 = k_n / ((gamma/2)^2 + ((gamma/2) pi / ln 2)^2) = 0.1289 kg.
+  const double gh = 929.5 / 2;
+  const double pi = 3.14159265358979323846;
+  const double m1 = 6e5 / (gh * gh + std::pow(gh * pi / std::log(2.0), 2));
+  EXPECT_NEAR(m1, 0.1289, 1e-4);
+  EXPECT_NEAR(dem::restitution_from_damping(929.5, 6e5, m1), 0.5, 1e-9);
+  auto g = dem::damping_from_restitution(0.5, 6e5, m1);
+  ASSERT_TRUE(g.ok());
+  EXPECT_NEAR(*g, 929.5, 1e-6);
+}
+
+TEST(DemNeighborList, MatchesBruteForce) {
+  // Two interleaved saw-tooth combs (non-convex): the grid-built list must hold exactly the
+  // vertex-edge pairs within r1 + r2 + skin.
+  dem::WorldDef w;
+  w.gravity = {0, 0};
+  w.skin = 3e-4;
+  auto comb = [](double y0, double dir, double phase) {
+    dem::BodyDef b;
+    const int teeth = 40;
+    const double pitch = 0.01;
+    for (int i = 0; i <= 2 * teeth; ++i) {
+      b.x.push_back(i * pitch / 2 + phase);
+      b.y.push_back(y0 + dir * ((i % 2) ? 0.004 : 0.0) + dir * 0.00013 * std::sin(i * 1.7));
+    }
+    b.x.push_back(teeth * pitch + phase);
+    b.y.push_back(y0 - dir * 0.02);
+    b.x.push_back(phase);
+    b.y.push_back(y0 - dir * 0.02);
+    return b;
+  };
+  dem::BodyDef lo = comb(0.0, 1.0, 0.0);
+  dem::BodyDef up = comb(0.0045, -1.0, 0.0051);
+  lo.type = dem::BodyType::Kinematic;
+  auto m = dem::make_model(w, {lo, up});
+  ASSERT_TRUE(m.ok()) << m.error().message;
+  dem::State s = dem::make_state(*m);
+  std::set<std::pair<std::uint32_t, std::uint32_t>> grid, brute;
+  for (const auto& p : s.pairs) grid.insert({p.vertex, p.edge0});
+  const double cut = 2 * 5e-5 + w.skin;
+  for (std::uint32_t v = 0; v < m->local_x.size(); ++v)
+    for (std::uint32_t e = 0; e < m->local_x.size(); ++e) {
+      if (m->vertex_body[v] == m->vertex_body[e]) continue;
+      const dem::Vec2 p = dem::world_vertex(*m, s, v), a = dem::world_vertex(*m, s, e),
+                      b = dem::world_vertex(*m, s, m->next_vertex[e]);
+      const double dx = b.x - a.x, dy = b.y - a.y;
+      double t = ((p.x - a.x) * dx + (p.y - a.y) * dy) / (dx * dx + dy * dy);
+      t = std::clamp(t, 0.0, 1.0);
+      if (std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy) < cut) brute.insert({v, e});
+    }
+  EXPECT_GT(brute.size(), 10u);
+  EXPECT_EQ(grid, brute);
+}
+
+TEST(DemDeterminism, TwoWorldsSideBySideAreBitwiseEqual) {
+  dem::WorldDef w;
+  w.time_step = 2e-5;
+  w.contact.atomic_friction = 0.3;
+  dem::BodyDef g = ground();
+  g.motion.angular_velocity = -0.5;
+  dem::BodyDef b = diamond(2 * 5e-5 + 1e-5, 0.02, 0.01);
+  b.velocity = {0.01, -0.02};
+  auto m = dem::make_model(w, {g, b});
+  ASSERT_TRUE(m.ok());
+  dem::State s1 = dem::make_state(*m), s2 = dem::make_state(*m);
+  for (int i = 0; i < 5000; ++i) {
+    ASSERT_TRUE(dem::step(*m, s1).ok());
+    ASSERT_TRUE(dem::step(*m, s2).ok());
+  }
+  EXPECT_EQ(s1.position[1].x, s2.position[1].x);
+  EXPECT_EQ(s1.position[1].y, s2.position[1].y);
+  EXPECT_EQ(s1.angle[1], s2.angle[1]);
+  EXPECT_EQ(s1.velocity[1].x, s2.velocity[1].x);
+  EXPECT_GT(s1.timings.list_builds, 1u);
+}
+
+TEST(DemGuard, TooLargeTimeStepStopsWithSuggestion) {
+  dem::WorldDef w;
+  w.time_step = 2e-3;  // far beyond sqrt(m / k_n) ~ 4e-4 s for this block
+  w.skin = 1.0;        // so that the skin check does not fire first
+  dem::BodyDef b = rect(-0.05, 2 * 5e-5 + 1e-6, 0.1, 0.01);
+  b.velocity = {0, -0.01};
+  auto m = dem::make_model(w, {ground(), b});
+  ASSERT_TRUE(m.ok());
+  dem::State s = dem::make_state(*m);
+  frictal::Status st = dem::advance(*m, s, 10000);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().message.find("time step <="), std::string::npos) << st.error().message;
+}
+
+TEST(DemGuard, ManyDashpotsBeyondTheExplicitLimitStop) {
+  // Two corner contacts (x = +-0.05 m) with gamma_n = 2e5 1/s. Bounce mode: rate 2 gamma_n;
+  // rocking mode: rate gamma_n * 2 * 0.05^2 * m / I with I = m (0.1^2 + 0.01^2) / 12, i.e.
+  // 5.9406 gamma_n, the faster one: limit 2 / (5.9406 * 2e5) = 1.683e-6 s < dt = 1e-5 s, so the
+  // strict guard stops at the first contact.
+  dem::WorldDef w;
+  w.contact.normal_damping = 2e5;
+  w.max_steps_beyond_limit = 0;  // strict: stop at the first step beyond the limit
+  dem::BodyDef b = rect(-0.05, 2 * 5e-5 + 1e-6, 0.1, 0.01);
+  auto m = dem::make_model(w, {ground(), b});
+  ASSERT_TRUE(m.ok());
+  EXPECT_NEAR(dem::stability_limit(*m, 1, 2), 2.0 / (2 * 2e5), 1e-15);
+  dem::State s = dem::make_state(*m);
+  frictal::Status st = dem::advance(*m, s, 20000);
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().message.find("stability limit"), std::string::npos) << st.error().message;
+  EXPECT_NE(st.error().message.find("1.68e-06"), std::string::npos) << st.error().message;
+  EXPECT_EQ(s.steps_beyond_limit, static_cast<std::uint64_t>(w.max_steps_beyond_limit) + 1);
+}
