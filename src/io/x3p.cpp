@@ -145,7 +145,7 @@ Result<Axis> parse_axis(pugi::xml_node axes, const char* which, const std::strin
   else if (at == "I" || at.empty()) a.incremental = true;
   else return make_error(fmt::format("{}: main.xml: {}/AxisType is '{}' (expected I or A)", name, which, at));
   std::string dt = text_of(child(n, "DataType"));
-  if (dt.empty()) dt = "D";
+  if (dt.empty()) dt.push_back('D');  // (not dt = "D": GCC 12 -Wrestrict false positive, PR 105329)
   if (dt != "I" && dt != "L" && dt != "F" && dt != "D")
     return make_error(fmt::format("{}: main.xml: {}/DataType is '{}' (expected I, L, F or D)", name, which, dt));
   a.type = dt[0];
