@@ -168,7 +168,15 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   auto lines = split_lines(text);
   Delim delim = detect_delimiter(lines);
   std::vector<std::vector<std::string_view>> headers;  // non-numeric lines before the data
-  std::vector<std::vector<double>> rows;
+  // Data rows stored flat (ncols values per row): no per-row allocation for large files.
+  struct Rows {
+    std::vector<double> v;
+    std::size_t ncols = 0;
+    bool empty() const { return v.empty(); }
+    std::size_t size() const { return ncols ? v.size() / ncols : 0; }
+    const double* operator[](std::size_t k) const { return v.data() + k * ncols; }
+    void push_back(const std::vector<double>& r) { v.insert(v.end(), r.begin(), r.end()); }
+  } rows;
   std::vector<std::size_t> row_line;
   std::vector<double> vals;
   std::size_t ncols = 0, trailer_line = 0;
@@ -196,7 +204,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
         return make_error(fmt::format("{}:{}: expected at least two columns (x and z), found one", name, ln.number));
       }
       if (rows.empty()) {
-        ncols = vals.size();
+        ncols = rows.ncols = vals.size();
       } else if (vals.size() != ncols) {
         return make_error(fmt::format("{}:{}: expected {} columns like line {}, found {}", name, ln.number, ncols,
                                       row_line.front(), vals.size()));
