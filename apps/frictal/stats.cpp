@@ -1,6 +1,8 @@
-// frictal stats FILE — statistics of a profile.
+// frictal stats FILE — statistics of a profile or an areal map (any readable format).
 #include "common.hpp"
+#include "frictal/analysis.hpp"
 #include "frictal/stats.hpp"
+#include "surface_io.hpp"
 
 namespace frictal::cli {
 namespace {
@@ -8,18 +10,94 @@ namespace {
 struct Args {
   std::string file;
   bool json = false;
+  std::string detrend = "none";
+  std::string psd_out, acf_out;
+  int bins = 0;
+  InputOptions input;
 };
+
+void write_columns(const std::string& path, const char* header, const std::vector<double>& a, const std::vector<double>& b) {
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) throw UsageError(fmt::format("{}: cannot open for writing", path));
+  std::string buf = std::string(header) + "\n";
+  for (std::size_t k = 0; k < a.size(); ++k) buf += fmt::format("{:.17g},{:.17g}\n", a[k], b[k]);
+  const bool ok = std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
+  if (std::fclose(f) != 0 || !ok) throw UsageError(fmt::format("{}: write failed", path));
+}
+
+nlohmann::json histogram_json(const Histogram& h) {
+  nlohmann::json j;
+  j["edges"] = h.edges;
+  j["density"] = h.density;
+  return j;
+}
 
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
-  app.add_option("file", a->file, "Profile file")->required();
+  app.add_option("file", a->file, "Profile or map file (CSV/TSV/text, Dektak, Gwyddion text, X3P)")->required();
   app.add_flag("--json", a->json, "Print one JSON object");
+  app.add_option("--detrend", a->detrend, "Remove none, mean, line (plane for maps) or poly:N before the statistics");
+  app.add_option("--psd", a->psd_out, "Write the power spectrum (q_rad_per_m,C_m3) of the profile to this CSV");
+  app.add_option("--acf", a->acf_out, "Write the autocorrelation (lag_m,acf) of the profile to this CSV");
+  app.add_option("--histograms", a->bins, "Add height and slope distributions with this many bins to --json");
+  add_input_options(app, a->input);
   return [a]() {
-    const Profile p = load_profile(a->file);
+    require(a->bins >= 0 && a->bins <= 100000, "--histograms must be in 0..100000");
+    const Detrend d = unwrap(parse_detrend(a->detrend));
+    const SurfaceData data = load_surface(a->file, a->input);
+    if (data.is_map) {
+      const Map m = unwrap(detrend(data.map, d));
+      const MapStats s = map_stats(m);
+      if (a->json) {
+        nlohmann::json j;
+        j["file"] = a->file;
+        j["format"] = format_name(data.format);
+        j["kind"] = "map";
+        j["points"] = s.points;
+        j["valid_points"] = s.valid;
+        j["nx"] = m.nx;
+        j["ny"] = m.ny;
+        j["dx_m"] = m.dx;
+        j["dy_m"] = m.dy;
+        j["width_m"] = s.width;
+        j["height_m"] = s.height;
+        j["mean_height_m"] = s.mean;
+        j["Sa_m"] = s.Sa;
+        j["Sq_m"] = s.Sq;
+        j["rms_height_m"] = s.Sq;
+        j["Sp_m"] = s.Sp;
+        j["Sv_m"] = s.Sv;
+        j["Sz_m"] = s.Sz;
+        j["Ssk"] = s.Ssk;
+        j["Sku"] = s.Sku;
+        j["Sdq"] = s.Sdq;
+        j["max_slope_deg"] = to_deg(s.max_slope);
+        print_json(j);
+      } else {
+        fmt::print("{}: {} x {} map ({} valid of {} points), {:.6g} x {:.6g} m\n"
+                   "  Sq {:.6g} m  Sa {:.6g} m  Sz {:.6g} m  Ssk {:.4g}  Sku {:.4g}\n  Sdq {:.6g}  max slope {:.4f} deg\n",
+                   a->file, m.nx, m.ny, s.valid, s.points, s.width, s.height, s.Sq, s.Sa, s.Sz, s.Ssk, s.Sku, s.Sdq,
+                   to_deg(s.max_slope));
+      }
+      return 0;
+    }
+    const Profile p = unwrap(detrend(surface_profile(data, a->file), d));
     const ProfileStats s = profile_stats(p);
+    if (!a->psd_out.empty()) {
+      const Spectrum sp = unwrap(power_spectrum(p));
+      write_columns(a->psd_out, "q_rad_per_m,C_m3", sp.q, sp.psd);
+    }
+    double corr_length = 0;
+    if (!a->acf_out.empty()) {
+      const Autocorrelation ac = unwrap(autocorrelation(p));
+      write_columns(a->acf_out, "lag_m,acf", ac.lag, ac.acf);
+      corr_length = ac.correlation_length;
+    }
     if (a->json) {
       nlohmann::json j;
       j["file"] = a->file;
+      j["format"] = format_name(data.format);
+      j["kind"] = "profile";
       j["points"] = s.points;
       j["length_m"] = s.length;
       j["mean_height_m"] = s.mean_height;
@@ -27,6 +105,11 @@ std::function<int()> setup(CLI::App& app) {
       j["rms_slope"] = s.rms_slope;
       j["max_slope_deg"] = to_deg(s.max_slope);
       j["mean_slope_deg"] = to_deg(s.mean_slope);
+      if (!a->acf_out.empty()) j["correlation_length_m"] = corr_length;
+      if (a->bins > 0) {
+        j["height_distribution"] = histogram_json(height_distribution(p, a->bins));
+        j["slope_distribution_rad"] = histogram_json(slope_distribution(p, a->bins));
+      }
       print_json(j);
     } else {
       fmt::print("{}: {} points over {:.6g} m\n  rms height {:.6g} m (about the mean {:.6g} m)\n  rms slope {:.6g}\n"
@@ -37,7 +120,7 @@ std::function<int()> setup(CLI::App& app) {
   };
 }
 
-FRICTAL_COMMAND({"stats", "Statistics of a profile: rms height, rms slope, max slope", setup, 30});
+FRICTAL_COMMAND({"stats", "Statistics of a profile or map: rms height, rms slope, max slope (Sq, Sdq, ... for maps)", setup, 30});
 
 }  // namespace
 }  // namespace frictal::cli

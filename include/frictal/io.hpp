@@ -1,31 +1,104 @@
 // frictal — reading and writing surfaces. Readers never trust the file: every problem is an
-// Error naming the file, the line (or archive member) and what was expected.
+// Error naming the file, the line (or archive member) and what was expected. Sizes are checked
+// against limits before anything is allocated. Formats and quirks: docs/io.md.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "frictal/geometry.hpp"
+#include "frictal/map.hpp"
 
 namespace frictal {
 
 enum class ProfileFormat {
-  Auto,  ///< detect from content
-  Csv,   ///< delimited text: CSV/TSV/whitespace, optional header and unit line
+  Auto,      ///< detect from content
+  Csv,       ///< delimited text: CSV/TSV/whitespace, optional header and unit line
+  Dektak,    ///< Bruker Dektak CSV export (metadata block, "Scan Data" section)
+  Gwyddion,  ///< Gwyddion "export as text" matrix (# Width/Height/Value units header) or plain matrix
+  X3p,       ///< ISO 25178-71 X3P (ZIP with main.xml), profiles (PRF) and areal maps (SUR)
 };
+
+/// Name of a format ("auto", "csv", "dektak", "gwyddion", "x3p").
+const char* format_name(ProfileFormat f);
+/// Parses a format name (case-insensitive); error naming the accepted names.
+Result<ProfileFormat> parse_format(const std::string& name);
 
 struct ReadOptions {
   ProfileFormat format = ProfileFormat::Auto;
+  /// Unit assumed for text columns that carry no unit ("m", "mm", "um", "nm"; empty = metres).
+  std::string default_unit;
+  /// Columns (0-based) used for x and z in delimited text; -1 = automatic (an index column
+  /// 0, 1, 2, ... before two more columns is skipped).
+  int x_column = -1;
+  int z_column = -1;
+  /// Largest input accepted: file size, and the uncompressed size of an X3P member (unit: bytes).
+  std::uint64_t max_bytes = std::uint64_t(1) << 30;
+  /// Largest number of points of a map or profile (unitless).
+  std::uint64_t max_points = std::uint64_t(1) << 27;
 };
+
+/// Everything a surface file gave: a line profile or an areal map, plus warnings (e.g. an X3P
+/// checksum mismatch, a count line that does not match) that did not stop the reading.
+struct SurfaceData {
+  bool is_map = false;  ///< true: `map` holds the data; false: `curve` does
+  Curve curve;          ///< line profile in metres (x may decrease only in curve formats)
+  Map map;              ///< areal map in metres
+  ProfileFormat format = ProfileFormat::Auto;  ///< the format actually read
+  std::vector<std::string> warnings;
+};
+
+/// Reads any supported file (format from content unless options.format says otherwise).
+Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options = {});
+/// Same, from bytes already in memory; `name` is used in messages.
+Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name,
+                                       const ReadOptions& options = {});
 
 /// Reads a line profile as a Curve in metres (x may be non-monotonic only for curve formats).
 Result<Curve> read_curve(const std::string& path, const ReadOptions& options = {});
 /// Reads a line profile and checks that it is single-valued (x non-decreasing).
 Result<Profile> read_profile(const std::string& path, const ReadOptions& options = {});
+/// Reads an areal map (X3P SUR, Gwyddion text); a line-profile file is an error.
+Result<Map> read_map(const std::string& path, const ReadOptions& options = {});
 /// Parses delimited text already in memory; `name` is used in messages.
 Result<Curve> parse_curve_text(const std::string& text, const std::string& name);
+
+/// Decodes text bytes to UTF-8: UTF-8 (with or without BOM), UTF-16 LE/BE (BOM, or detected
+/// from NUL bytes), otherwise Latin-1. Never fails; invalid UTF-8 is read as Latin-1.
+std::string decode_text(const std::string& bytes);
 
 /// Writes "x_m,z_m" CSV with full double precision (17 significant digits).
 Status write_profile_csv(const std::string& path, const Curve& c);
 Status write_profile_csv(const std::string& path, const Profile& p);
+/// Writes a map as text: "# Width: W m", "# Height: H m", "# Value units: m" then ny rows of
+/// nx values ("NaN" for invalid points); read back by the Gwyddion reader.
+Status write_map_text(const std::string& path, const Map& m);
+
+/// X3P data types: signed int16, signed int32, float32, float64 (ISO 25178-71 I, L, F, D).
+enum class X3pDataType { I, L, F, D };
+
+struct X3pWriteOptions {
+  X3pDataType type = X3pDataType::D;
+  /// Binary bindata/data.bin (true) or an XML <DataList> (false).
+  bool binary = true;
+  /// z = offset + increment * raw for the integer types (unit: m). increment <= 0 chooses
+  /// the finest increment that fits the data's range in the type.
+  double z_increment = 0;
+  double z_offset = 0;
+  /// Record2 Date and CalibrationDate (ISO 8601); empty = the current UTC time. Set it for
+  /// byte-identical output.
+  std::string date;
+  std::string creator = "frictal";  ///< Record2 Creator
+  std::string comment = "written by frictal";  ///< Record2 Comment
+};
+
+/// Writes an areal map as X3P (FeatureType SUR). Invalid points: NaN for F/D data plus a
+/// valid-point mask (bindata/valid.bin) when any point is invalid; the mask alone for I/L.
+Status write_x3p(const std::string& path, const Map& m, const X3pWriteOptions& options = {});
+/// Writes a uniformly spaced profile as X3P (FeatureType PRF, SizeY = 1). Error if x is not
+/// uniform (every x within 1% of the spacing of x0 + k dx; written as x0 + k dx).
+Status write_x3p(const std::string& path, const Profile& p, const X3pWriteOptions& options = {});
 
 }  // namespace frictal

@@ -29,5 +29,21 @@ from ._core import (  # noqa: F401
     write_profile_csv,
 )
 
+from ._core import (  # noqa: F401  measured surfaces (io_bindings.cpp)
+    anisotropy,
+    areal_signature,
+    autocorrelation,
+    box_dimension,
+    detrend,
+    divider_dimension,
+    koch_dimension,
+    map_stats,
+    power_spectrum,
+    psd_dimension,
+    read_map,
+    read_surface,
+    write_x3p,
+)
+
 __all__ = [name for name in dir() if not name.startswith("_")]
 __version__ = "0.1.0"

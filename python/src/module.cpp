@@ -15,6 +15,8 @@
 namespace py = pybind11;
 using namespace frictal;
 
+void frictal_bind_io(py::module_& m);  // python/src/io_bindings.cpp
+
 namespace {
 
 template <class T>
@@ -238,4 +240,5 @@ PYBIND11_MODULE(_core, m) {
           if (!st) throw py::value_error(st.error().message);
         },
         py::arg("path"), py::arg("profile"));
+  frictal_bind_io(m);
 }

@@ -1,0 +1,114 @@
+// frictal anisotropy MAP — polar table of the predicted friction angle over sliding directions,
+// from the parallel line profiles of an areal map (each against itself turned over); with
+// --areal, the true areal signature of the map against itself turned over instead.
+#include "common.hpp"
+#include "frictal/analysis.hpp"
+#include "frictal/areal.hpp"
+#include "surface_io.hpp"
+
+namespace frictal::cli {
+namespace {
+
+struct Args {
+  std::string file;
+  int directions = 36;
+  std::size_t max_lines = 128;
+  double atomic_friction = 0;
+  std::string detrend = "plane";
+  bool areal = false;
+  std::string upper;
+  std::string contact_slope = "lower";
+  bool json = false;
+  unsigned threads = 0;
+  InputOptions input;
+};
+
+std::function<int()> setup(CLI::App& app) {
+  auto a = std::make_shared<Args>();
+  app.add_option("map", a->file, "Areal map (X3P, Gwyddion text)")->required();
+  app.add_option("--directions", a->directions, "Sliding directions over 360 deg (default 36)");
+  app.add_option("--lines", a->max_lines, "At most this many parallel lines per direction (default 128)");
+  app.add_option("--mu-a", a->atomic_friction, "Atomic friction coefficient mu_a of Eq. 6 (default 0)");
+  app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from the map first (default plane)");
+  app.add_flag("--areal", a->areal, "Use the areal signature of the two rigid blocks instead of line profiles");
+  app.add_option("--threads", a->threads, "Worker threads (0 = all cores; default all)");
+  app.add_option("--contact-slope", a->contact_slope, "With --areal: lower (Eq. 3, default) or mean (of both faces)");
+  app.add_option("--upper", a->upper, "With --areal: the upper block's map (default: the same map turned over)");
+  app.add_flag("--json", a->json, "Print one JSON object");
+  add_input_options(app, a->input);
+  return [a]() {
+    require(a->directions >= 1 && a->directions <= 3600, "--directions must be in 1..3600");
+    require(a->max_lines >= 1 && a->max_lines <= 100000, "--lines must be in 1..100000");
+    require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0, "--mu-a must be a finite number >= 0");
+    const SurfaceData s = load_surface(a->file, a->input);
+    if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; anisotropy needs an areal map", a->file));
+    const Detrend dt = unwrap(parse_detrend(a->detrend));
+    const Map m = unwrap(detrend(s.map, dt));
+    if (!a->upper.empty() && !a->areal) throw UsageError("--upper needs --areal");
+    Map u = m;
+    if (!a->upper.empty()) {
+      const SurfaceData us = load_surface(a->upper, a->input);
+      if (!us.is_map) throw UsageError(fmt::format("{}: a line profile; --upper needs an areal map", a->upper));
+      u = unwrap(detrend(us.map, dt));
+    }
+    nlohmann::json rows = nlohmann::json::array();
+    if (!a->json)
+      fmt::print("{}: {} x {} map, {} directions ({})\n  dir_deg  theta+_deg  theta-_deg  sigma_deg  phi_deg    mu\n",
+                 a->file, m.nx, m.ny, a->directions, a->areal ? "areal signature" : "line profiles");
+    for (int k = 0; k < a->directions; ++k) {
+      const double angle = 2 * std::numbers::pi * k / a->directions;
+      double fwd, bwd, sigma;
+      std::size_t lines = 0;
+      if (a->areal) {
+        ArealSignatureOptions o;
+        o.threads = a->threads;
+        if (a->contact_slope == "mean") o.contact_slope = ArealContactSlope::Mean;
+        else if (a->contact_slope != "lower")
+          throw UsageError(fmt::format("--contact-slope '{}' not understood (expected lower or mean)", a->contact_slope));
+        const ArealSignature r = unwrap(areal_signature(m, u, angle, o));
+        fwd = r.theta_max_forward;
+        bwd = r.theta_max_backward;
+        sigma = r.contact_slope_std;
+      } else {
+        DirectionalOptions o;
+        o.max_lines = a->max_lines;
+        o.threads = a->threads;
+        const DirectionalFriction r = unwrap(friction_along(m, angle, o));
+        fwd = r.theta_forward;
+        bwd = r.theta_backward;
+        sigma = r.sigma;
+        lines = r.lines;
+      }
+      const FrictionPrediction p = unwrap(predict_friction(a->atomic_friction, fwd, sigma));
+      if (a->json) {
+        nlohmann::json row;
+        row["direction_deg"] = to_deg(angle);
+        row["theta_forward_deg"] = to_deg(fwd);
+        row["theta_backward_deg"] = to_deg(bwd);
+        row["sigma_deg"] = to_deg(sigma);
+        row["friction_angle_deg"] = to_deg(p.friction_angle);
+        row["friction_coefficient"] = p.friction_coefficient;
+        row["friction_coefficient_low"] = p.friction_coefficient_low;
+        if (!a->areal) row["lines"] = lines;
+        rows.push_back(row);
+      } else {
+        fmt::print("  {:7.1f}  {:10.4f}  {:10.4f}  {:9.4f}  {:7.4f}  {:.5f}\n", to_deg(angle), to_deg(fwd), to_deg(bwd),
+                   to_deg(sigma), to_deg(p.friction_angle), p.friction_coefficient);
+      }
+    }
+    if (a->json) {
+      nlohmann::json j;
+      j["file"] = a->file;
+      j["method"] = a->areal ? "areal" : "lines";
+      j["atomic_friction"] = a->atomic_friction;
+      j["directions"] = rows;
+      print_json(j);
+    }
+    return 0;
+  };
+}
+
+FRICTAL_COMMAND({"anisotropy", "Predicted friction of an areal map over sliding directions (polar table)", setup, 70});
+
+}  // namespace
+}  // namespace frictal::cli

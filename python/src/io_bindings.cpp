@@ -1,0 +1,240 @@
+// frictal._core — bindings of the measured-surface modules: reading/writing (io.hpp), maps,
+// analysis, fractal dimension and areal friction. Maps cross as 2-D numpy arrays of shape
+// (ny, nx) (x fastest, NaN = invalid) plus spacings in metres.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <limits>
+
+#include "frictal/analysis.hpp"
+#include "frictal/areal.hpp"
+#include "frictal/fractal.hpp"
+#include "frictal/io.hpp"
+
+namespace py = pybind11;
+using namespace frictal;
+
+namespace {
+
+template <class T>
+T ok(Result<T> r) {
+  if (!r) throw py::value_error(r.error().message);
+  return std::move(r).value();
+}
+void ok(const Status& s) {
+  if (!s) throw py::value_error(s.error().message);
+}
+
+py::array_t<double> arr(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
+
+py::array_t<double> heights2d(const Map& m) {
+  py::array_t<double> a({m.ny, m.nx});
+  std::copy(m.heights.begin(), m.heights.end(), a.mutable_data());
+  return a;
+}
+
+py::dict map_dict(const Map& m) {
+  py::dict d;
+  d["heights"] = heights2d(m);
+  d["dx"] = m.dx;
+  d["dy"] = m.dy;
+  d["x0"] = m.x0;
+  d["y0"] = m.y0;
+  return d;
+}
+
+Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>& h, double dx, double dy, double x0,
+           double y0) {
+  if (h.ndim() != 2) throw py::value_error("heights: expected a 2-D array of shape (ny, nx)");
+  Map m;
+  m.ny = std::size_t(h.shape(0));
+  m.nx = std::size_t(h.shape(1));
+  m.dx = dx;
+  m.dy = dy;
+  m.x0 = x0;
+  m.y0 = y0;
+  m.heights.assign(h.data(), h.data() + h.size());
+  ok(validate(m, "heights"));
+  return m;
+}
+
+ReadOptions read_options(const std::string& format, const std::string& unit) {
+  ReadOptions o;
+  o.format = ok(parse_format(format));
+  o.default_unit = unit;
+  return o;
+}
+
+py::dict fit_dict(const FractalFit& f) {
+  py::dict d;
+  d["dimension"] = f.dimension;
+  d["slope"] = f.slope;
+  d["r_squared"] = f.r_squared;
+  d["fit_range"] = py::make_tuple(f.scale_min, f.scale_max);
+  d["scales"] = arr(f.scales);
+  d["values"] = arr(f.values);
+  return d;
+}
+
+}  // namespace
+
+void frictal_bind_io(py::module_& m) {
+  m.def(
+      "read_surface",
+      [](const std::string& path, const std::string& format, const std::string& unit) {
+        SurfaceData s = ok(read_surface(path, read_options(format, unit)));
+        py::dict d = s.is_map ? map_dict(s.map) : py::dict();
+        d["kind"] = s.is_map ? "map" : "profile";
+        if (!s.is_map) {
+          d["x"] = arr(s.curve.x);
+          d["z"] = arr(s.curve.z);
+        }
+        d["format"] = format_name(s.format);
+        d["warnings"] = s.warnings;
+        return d;
+      },
+      py::arg("path"), py::kw_only(), py::arg("format") = "auto", py::arg("unit") = "",
+      "Reads any supported file (CSV/TSV/text, Dektak, Gwyddion text, X3P). Returns a dict: kind "
+      "'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings. Metres.");
+  m.def(
+      "read_map",
+      [](const std::string& path, const std::string& format) { return map_dict(ok(read_map(path, read_options(format, "")))); },
+      py::arg("path"), py::kw_only(), py::arg("format") = "auto", "Reads an areal map: dict heights (ny, nx), dx, dy, x0, y0");
+  m.def(
+      "write_x3p",
+      [](const std::string& path, py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx,
+         double dy, double x0, double y0, const std::string& type, bool binary) {
+        X3pWriteOptions o;
+        if (type == "I") o.type = X3pDataType::I;
+        else if (type == "L") o.type = X3pDataType::L;
+        else if (type == "F") o.type = X3pDataType::F;
+        else if (type == "D") o.type = X3pDataType::D;
+        else throw py::value_error("type: expected I, L, F or D");
+        o.binary = binary;
+        ok(write_x3p(path, to_map(heights, dx, dy, x0, y0), o));
+      },
+      py::arg("path"), py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("x0") = 0.0,
+      py::arg("y0") = 0.0, py::arg("type") = "D", py::arg("binary") = true, "Writes a map (ny, nx) as ISO 25178-71 X3P");
+  m.def(
+      "map_stats",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy) {
+        MapStats s = map_stats(to_map(heights, dx, dy, 0, 0));
+        py::dict d;
+        d["points"] = s.points;
+        d["valid"] = s.valid;
+        d["mean"] = s.mean;
+        d["Sa"] = s.Sa;
+        d["Sq"] = s.Sq;
+        d["Sp"] = s.Sp;
+        d["Sv"] = s.Sv;
+        d["Sz"] = s.Sz;
+        d["Ssk"] = s.Ssk;
+        d["Sku"] = s.Sku;
+        d["Sdq"] = s.Sdq;
+        d["max_slope"] = s.max_slope;
+        return d;
+      },
+      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), "Areal statistics over the valid points (NaN = invalid)");
+  m.def(
+      "detrend",
+      [](const Profile& p, const std::string& kind) { return ok(detrend(p, ok(parse_detrend(kind)))); }, py::arg("profile"),
+      py::arg("kind") = "line", "Removes none, mean, line or poly:N (trapezoid-weighted least squares)");
+  m.def(
+      "power_spectrum",
+      [](const Profile& p, std::size_t max_k) {
+        Spectrum s = ok(power_spectrum(p, max_k));
+        return py::make_tuple(arr(s.q), arr(s.psd));
+      },
+      py::arg("profile"), py::arg("max_k") = 0, "(q rad/m, C m^3) of the piecewise-linear profile, 2 sum C / L = rms^2");
+  m.def(
+      "autocorrelation",
+      [](const Profile& p, std::size_t max_lag) {
+        Autocorrelation a = ok(autocorrelation(p, max_lag));
+        py::dict d;
+        d["lag"] = arr(a.lag);
+        d["acf"] = arr(a.acf);
+        d["correlation_length"] = a.correlation_length;
+        return d;
+      },
+      py::arg("profile"), py::arg("max_lag") = 0);
+  m.def("koch_dimension", [](double alpha) { return ok(koch_dimension(alpha)); }, py::arg("alpha"),
+        "Eq. 13: 2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1, alpha in radians");
+  m.def(
+      "divider_dimension",
+      [](py::array_t<double> x, py::array_t<double> z, double ruler_min, double ruler_max, int rulers) {
+        Curve c{std::vector<double>(x.data(), x.data() + x.size()), std::vector<double>(z.data(), z.data() + z.size())};
+        return fit_dict(ok(divider_dimension(c, {ruler_min, ruler_max, rulers})));
+      },
+      py::arg("x"), py::arg("z"), py::kw_only(), py::arg("ruler_min") = 0.0, py::arg("ruler_max") = 0.0,
+      py::arg("rulers") = 16, "Divider (ruler) dimension walking along the curve (x, z)");
+  m.def(
+      "box_dimension",
+      [](py::array_t<double> x, py::array_t<double> z, double box_min, double box_max, int sizes) {
+        Curve c{std::vector<double>(x.data(), x.data() + x.size()), std::vector<double>(z.data(), z.data() + z.size())};
+        return fit_dict(ok(box_dimension(c, {box_min, box_max, sizes})));
+      },
+      py::arg("x"), py::arg("z"), py::kw_only(), py::arg("box_min") = 0.0, py::arg("box_max") = 0.0, py::arg("sizes") = 12);
+  m.def(
+      "psd_dimension",
+      [](const Profile& p, double q_min, double q_max) {
+        PsdFitOptions o;
+        o.q_min = q_min;
+        o.q_max = q_max;
+        return fit_dict(ok(psd_dimension(p, o)));
+      },
+      py::arg("profile"), py::kw_only(), py::arg("q_min") = 0.0, py::arg("q_max") = 0.0);
+  m.def(
+      "anisotropy",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy, int directions,
+         std::size_t max_lines, double atomic_friction, unsigned threads) {
+        DirectionalOptions o;
+        o.max_lines = max_lines;
+        o.atomic_friction = atomic_friction;
+        o.threads = threads;
+        auto t = ok(anisotropy(to_map(heights, dx, dy, 0, 0), directions, o));
+        std::vector<double> dir, fwd, bwd, sig, phi;
+        for (const auto& r : t) {
+          dir.push_back(r.angle);
+          fwd.push_back(r.theta_forward);
+          bwd.push_back(r.theta_backward);
+          sig.push_back(r.sigma);
+          phi.push_back(r.prediction.friction_angle);
+        }
+        py::dict d;
+        d["direction"] = arr(dir);
+        d["theta_forward"] = arr(fwd);
+        d["theta_backward"] = arr(bwd);
+        d["sigma"] = arr(sig);
+        d["friction_angle"] = arr(phi);
+        return d;
+      },
+      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("directions") = 36,
+      py::arg("max_lines") = 128, py::arg("atomic_friction") = 0.0, py::arg("threads") = 0,
+      "Predicted friction over sliding directions from the map's parallel lines (radians)");
+  m.def(
+      "areal_signature",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, double angle,
+         py::object upper, bool turn_over_upper, bool prune, unsigned threads) {
+        Map f = to_map(lower, dx, dy, 0, 0);
+        Map g = upper.is_none() ? f : to_map(upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), dx, dy, 0, 0);
+        ArealSignatureOptions o;
+        o.turn_over_upper = turn_over_upper;
+        o.prune = prune;
+        o.threads = threads;
+        ArealSignature r = ok(areal_signature(f, g, angle, o));
+        py::dict d;
+        d["offset"] = arr(r.offset);
+        d["lift"] = arr(r.lift);
+        d["theta"] = arr(r.theta);
+        d["theta_max_forward"] = r.theta_max_forward;
+        d["theta_max_backward"] = r.theta_max_backward;
+        d["contact_slope_std"] = r.contact_slope_std;
+        d["evaluated_nodes"] = r.evaluated_nodes;
+        return d;
+      },
+      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0, py::arg("upper") = py::none(),
+      py::arg("turn_over_upper") = true, py::arg("prune") = true, py::arg("threads") = 1,
+      "Areal signature of two rigid blocks sliding along `angle` (radians); upper as measured (turned over) by default");
+}

@@ -1,0 +1,183 @@
+// Entry points: file access with size limits, format detection, simple writers.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fmt/core.h>
+#include <fstream>
+#include <limits>
+
+#include "frictal/io.hpp"
+#include "io/readers.hpp"
+#include "io/text_util.hpp"
+
+namespace frictal {
+
+const char* format_name(ProfileFormat f) {
+  switch (f) {
+    case ProfileFormat::Auto: return "auto";
+    case ProfileFormat::Csv: return "csv";
+    case ProfileFormat::Dektak: return "dektak";
+    case ProfileFormat::Gwyddion: return "gwyddion";
+    case ProfileFormat::X3p: return "x3p";
+  }
+  return "?";
+}
+
+Result<ProfileFormat> parse_format(const std::string& name) {
+  std::string n = io_detail::lower_ascii(name);
+  for (auto f : {ProfileFormat::Auto, ProfileFormat::Csv, ProfileFormat::Dektak, ProfileFormat::Gwyddion, ProfileFormat::X3p})
+    if (n == format_name(f)) return f;
+  if (n == "txt" || n == "tsv" || n == "text") return ProfileFormat::Csv;
+  return make_error(fmt::format("unknown format '{}' (expected auto, csv, dektak, gwyddion or x3p)", name));
+}
+
+Status validate(const Map& m, const std::string& what) {
+  if (m.nx < 1 || m.ny < 1) return make_error(fmt::format("{}: empty map ({} x {})", what, m.nx, m.ny));
+  if (m.heights.size() != m.nx * m.ny)
+    return make_error(fmt::format("{}: {} heights for a {} x {} grid", what, m.heights.size(), m.nx, m.ny));
+  if (!(m.dx > 0) || !(m.dy > 0) || !std::isfinite(m.dx) || !std::isfinite(m.dy))
+    return make_error(fmt::format("{}: grid spacings must be positive and finite (dx = {}, dy = {})", what, m.dx, m.dy));
+  std::size_t valid = 0;
+  for (double v : m.heights) {
+    if (std::isinf(v)) return make_error(fmt::format("{}: infinite height", what));
+    valid += std::isnan(v) ? 0 : 1;
+  }
+  if (valid == 0) return make_error(fmt::format("{}: no valid point", what));
+  return Ok{};
+}
+
+double interpolate(const Map& m, double x, double y) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  double u = (x - m.x0) / m.dx, v = (y - m.y0) / m.dy;
+  if (!(u >= 0) || !(v >= 0) || u > double(m.nx - 1) || v > double(m.ny - 1)) return nan;
+  std::size_t i = std::size_t(u), j = std::size_t(v);
+  if (i >= m.nx - 1) i = m.nx >= 2 ? m.nx - 2 : 0;
+  if (j >= m.ny - 1) j = m.ny >= 2 ? m.ny - 2 : 0;
+  double fu = u - double(i), fv = v - double(j);
+  std::size_t i1 = m.nx >= 2 ? i + 1 : i, j1 = m.ny >= 2 ? j + 1 : j;
+  double a = m.at(i, j), b = m.at(i1, j), c = m.at(i, j1), d = m.at(i1, j1);
+  // A node with zero weight does not spoil the value (points exactly on a grid line).
+  auto w = [](double val, double weight) { return weight == 0 ? 0.0 : val * weight; };
+  double r = w(a, (1 - fu) * (1 - fv)) + w(b, fu * (1 - fv)) + w(c, (1 - fu) * fv) + w(d, fu * fv);
+  return r;
+}
+
+namespace {
+
+Result<std::string> read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    return make_error(fmt::format("{}: cannot open: no such file (or not a regular file)", path));
+  auto size = std::filesystem::file_size(path, ec);
+  if (ec) return make_error(fmt::format("{}: cannot read its size: {}", path, ec.message()));
+  if (size > max_bytes) return make_error(fmt::format("{}: {} bytes, above the limit of {} bytes", path, size, max_bytes));
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return make_error(fmt::format("{}: cannot open for reading", path));
+  std::string bytes(std::size_t(size), '\0');
+  in.read(bytes.data(), std::streamsize(size));
+  if (std::uint64_t(in.gcount()) != size) return make_error(fmt::format("{}: read error", path));
+  return bytes;
+}
+
+}  // namespace
+
+Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+  ProfileFormat f = options.format;
+  bool zip = bytes.size() >= 4 && bytes.compare(0, 4, "PK\x03\x04") == 0;
+  if (f == ProfileFormat::X3p || (f == ProfileFormat::Auto && zip)) {
+    if (!zip) return make_error(fmt::format("{}: not an X3P file (no ZIP signature)", name));
+    return io_detail::read_x3p_bytes(bytes, name, options);
+  }
+  if (zip) return make_error(fmt::format("{}: a ZIP archive cannot be read as {}", name, format_name(f)));
+  std::string text = decode_text(bytes);
+  if (text.find('\0') != std::string::npos)
+    return make_error(fmt::format("{}: binary data, not a text profile (formats: {})", name, "csv, dektak, gwyddion, x3p"));
+  if (f == ProfileFormat::Auto) {
+    if (io_detail::looks_like_dektak(text)) f = ProfileFormat::Dektak;
+    else if (io_detail::looks_like_gwyddion(text)) f = ProfileFormat::Gwyddion;
+    else f = ProfileFormat::Csv;
+  }
+  switch (f) {
+    case ProfileFormat::Dektak: return io_detail::parse_dektak(text, name, options);
+    case ProfileFormat::Gwyddion: return io_detail::parse_gwyddion(text, name, options);
+    default: return io_detail::parse_delimited(text, name, options);
+  }
+}
+
+Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {
+  auto bytes = read_file_bytes(path, options.max_bytes);
+  if (!bytes) return bytes.error();
+  return read_surface_bytes(*bytes, path, options);
+}
+
+Result<Curve> read_curve(const std::string& path, const ReadOptions& options) {
+  auto s = read_surface(path, options);
+  if (!s) return s.error();
+  if (s->is_map)
+    return make_error(fmt::format("{}: an areal map ({} x {}), not a line profile; extract a line first", path,
+                                  s->map.nx, s->map.ny));
+  return std::move(s->curve);
+}
+
+Result<Profile> read_profile(const std::string& path, const ReadOptions& options) {
+  auto c = read_curve(path, options);
+  if (!c) return c.error();
+  for (std::size_t k = 1; k < c->x.size(); ++k)
+    if (c->x[k] < c->x[k - 1])
+      return make_error(fmt::format("{}: x decreases at point {} ({} after {}); a profile needs non-decreasing x", path,
+                                    k + 1, c->x[k], c->x[k - 1]));
+  return as_profile(*c, path);
+}
+
+Result<Map> read_map(const std::string& path, const ReadOptions& options) {
+  auto s = read_surface(path, options);
+  if (!s) return s.error();
+  if (!s->is_map) return make_error(fmt::format("{}: a line profile, not an areal map", path));
+  return std::move(s->map);
+}
+
+Result<Curve> parse_curve_text(const std::string& text, const std::string& name) {
+  auto s = io_detail::parse_delimited(decode_text(text), name, ReadOptions{});
+  if (!s) return s.error();
+  return std::move(s->curve);
+}
+
+Status write_profile_csv(const std::string& path, const Curve& c) {
+  if (c.x.size() != c.z.size()) return make_error(fmt::format("{}: x and z sizes differ", path));
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) return make_error(fmt::format("{}: cannot open for writing", path));
+  std::string buf = "x_m,z_m\n";
+  for (std::size_t k = 0; k < c.x.size(); ++k) buf += fmt::format("{:.17g},{:.17g}\n", c.x[k], c.z[k]);
+  bool ok = std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
+  ok = std::fclose(f) == 0 && ok;
+  if (!ok) return make_error(fmt::format("{}: write error", path));
+  return Ok{};
+}
+
+Status write_profile_csv(const std::string& path, const Profile& p) {
+  Curve c;
+  c.x = p.x;
+  c.z = p.z;
+  return write_profile_csv(path, c);
+}
+
+Status write_map_text(const std::string& path, const Map& m) {
+  if (auto s = validate(m, path); !s) return s;
+  std::string buf = fmt::format("# Channel: frictal\n# Width: {:.17g} m\n# Height: {:.17g} m\n# Value units: m\n",
+                                m.dx * double(m.nx), m.dy * double(m.ny));
+  for (std::size_t j = 0; j < m.ny; ++j) {
+    for (std::size_t i = 0; i < m.nx; ++i) {
+      double v = m.at(i, j);
+      buf += std::isnan(v) ? std::string("NaN") : fmt::format("{:.17g}", v);
+      buf += i + 1 < m.nx ? ' ' : '\n';
+    }
+  }
+  std::FILE* f = std::fopen(path.c_str(), "wb");
+  if (!f) return make_error(fmt::format("{}: cannot open for writing", path));
+  bool ok = std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
+  ok = std::fclose(f) == 0 && ok;
+  if (!ok) return make_error(fmt::format("{}: write error", path));
+  return Ok{};
+}
+
+}  // namespace frictal

@@ -1,0 +1,21 @@
+// Private: the individual readers behind read_surface().
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "frictal/io.hpp"
+
+namespace frictal::io_detail {
+
+/// `text` is UTF-8 (already decoded).
+bool looks_like_dektak(std::string_view text);
+bool looks_like_gwyddion(std::string_view text);
+Result<SurfaceData> parse_delimited(std::string_view text, const std::string& name, const ReadOptions& options);
+Result<SurfaceData> parse_dektak(std::string_view text, const std::string& name, const ReadOptions& options);
+Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& name, const ReadOptions& options);
+
+/// `bytes` is the whole ZIP archive.
+Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options);
+
+}  // namespace frictal::io_detail

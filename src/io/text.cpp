@@ -1,0 +1,467 @@
+// Text formats: delimited two-column profiles, the Bruker Dektak CSV export, Gwyddion text
+// matrices. Text arrives here decoded to UTF-8 (decode_text).
+#include <algorithm>
+#include <cmath>
+#include <fmt/core.h>
+#include <limits>
+
+#include "io/readers.hpp"
+#include "io/text_util.hpp"
+
+namespace frictal {
+
+namespace {
+
+void append_utf8(std::string& out, unsigned cp) {
+  if (cp < 0x80) {
+    out.push_back(char(cp));
+  } else if (cp < 0x800) {
+    out.push_back(char(0xC0 | (cp >> 6)));
+    out.push_back(char(0x80 | (cp & 0x3F)));
+  } else if (cp < 0x10000) {
+    out.push_back(char(0xE0 | (cp >> 12)));
+    out.push_back(char(0x80 | ((cp >> 6) & 0x3F)));
+    out.push_back(char(0x80 | (cp & 0x3F)));
+  } else {
+    out.push_back(char(0xF0 | (cp >> 18)));
+    out.push_back(char(0x80 | ((cp >> 12) & 0x3F)));
+    out.push_back(char(0x80 | ((cp >> 6) & 0x3F)));
+    out.push_back(char(0x80 | (cp & 0x3F)));
+  }
+}
+
+std::string decode_utf16(const std::string& b, std::size_t start, bool little) {
+  std::string out;
+  out.reserve(b.size() / 2);
+  for (std::size_t i = start; i + 1 < b.size(); i += 2) {
+    unsigned u = little ? (unsigned char)b[i] | ((unsigned char)b[i + 1] << 8)
+                        : ((unsigned char)b[i] << 8) | (unsigned char)b[i + 1];
+    if (u >= 0xD800 && u < 0xDC00 && i + 3 < b.size()) {
+      unsigned v = little ? (unsigned char)b[i + 2] | ((unsigned char)b[i + 3] << 8)
+                          : ((unsigned char)b[i + 2] << 8) | (unsigned char)b[i + 3];
+      if (v >= 0xDC00 && v < 0xE000) {
+        append_utf8(out, 0x10000 + ((u - 0xD800) << 10) + (v - 0xDC00));
+        i += 2;
+        continue;
+      }
+    }
+    if (u >= 0xD800 && u < 0xE000) u = 0xFFFD;
+    append_utf8(out, u);
+  }
+  return out;
+}
+
+bool valid_utf8(const std::string& s) {
+  std::size_t i = 0, n = s.size();
+  while (i < n) {
+    unsigned char c = s[i];
+    std::size_t len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 0;
+    if (len == 0 || i + len > n) return false;
+    for (std::size_t k = 1; k < len; ++k)
+      if (((unsigned char)s[i + k] >> 6) != 2) return false;
+    i += len;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::string decode_text(const std::string& b) {
+  auto u = [&](std::size_t i) { return (unsigned char)b[i]; };
+  if (b.size() >= 3 && u(0) == 0xEF && u(1) == 0xBB && u(2) == 0xBF) return b.substr(3);
+  if (b.size() >= 2 && u(0) == 0xFF && u(1) == 0xFE) return decode_utf16(b, 2, true);
+  if (b.size() >= 2 && u(0) == 0xFE && u(1) == 0xFF) return decode_utf16(b, 2, false);
+  // BOM-less UTF-16: ASCII text has a NUL in every other byte.
+  if (b.size() >= 4) {
+    std::size_t n = std::min<std::size_t>(b.size() & ~std::size_t(1), 512), even0 = 0, odd0 = 0;
+    for (std::size_t i = 0; i < n; ++i) (i % 2 ? odd0 : even0) += b[i] == 0;
+    if (odd0 > n / 4 && even0 == 0) return decode_utf16(b, 0, true);
+    if (even0 > n / 4 && odd0 == 0) return decode_utf16(b, 0, false);
+  }
+  if (valid_utf8(b)) return b;
+  std::string out;  // Latin-1: every byte is its code point
+  out.reserve(b.size() + b.size() / 8);
+  for (char c : b) append_utf8(out, (unsigned char)c);
+  return out;
+}
+
+namespace io_detail {
+
+namespace {
+
+bool is_comment(std::string_view t) {
+  return !t.empty() && (t.front() == '#' || t.front() == '%' || t.substr(0, 2) == "//");
+}
+
+std::vector<std::string_view> split_fields(std::string_view line, char delim) {
+  std::vector<std::string_view> f;
+  if (delim == ' ') {
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      if (i >= line.size()) break;
+      std::size_t j = i;
+      while (j < line.size() && line[j] != ' ' && line[j] != '\t') ++j;
+      f.push_back(line.substr(i, j - i));
+      i = j;
+    }
+  } else {
+    std::size_t i = 0;
+    while (true) {
+      std::size_t j = line.find(delim, i);
+      f.push_back(trim(line.substr(i, j == std::string_view::npos ? std::string_view::npos : j - i)));
+      if (j == std::string_view::npos) break;
+      i = j + 1;
+    }
+    while (!f.empty() && f.back().empty()) f.pop_back();  // "0.0,-0.00933,," (Dektak)
+  }
+  return f;
+}
+
+bool numeric_fields(const std::vector<std::string_view>& f, bool decimal_comma, std::vector<double>* out) {
+  if (f.empty()) return false;
+  if (out) out->clear();
+  for (auto s : f) {
+    double v;
+    if (!parse_double(s, v, decimal_comma)) return false;
+    if (out) out->push_back(v);
+  }
+  return true;
+}
+
+struct Delim {
+  char c = ' ';
+  bool decimal_comma = false;
+};
+
+Delim detect_delimiter(const std::vector<Line>& lines) {
+  const Delim cands[] = {{'\t', false}, {';', false}, {';', true}, {',', false}, {' ', false}, {' ', true}};
+  Delim best{' ', false};
+  std::size_t best_count = 0;
+  for (const Delim& d : cands) {
+    std::size_t count = 0, seen = 0;
+    // Sample up to 200 lines from the end (data is at the end of every format we read).
+    for (std::size_t k = lines.size(); k-- > 0 && seen < 200;) {
+      auto t = trim(lines[k].text);
+      if (t.empty() || is_comment(t)) continue;
+      ++seen;
+      auto f = split_fields(t, d.c);
+      if (f.size() >= 2 && numeric_fields(f, d.decimal_comma, nullptr)) ++count;
+    }
+    if (count > best_count) {
+      best_count = count;
+      best = d;
+    }
+  }
+  return best;
+}
+
+bool is_index_name(std::string_view s) {
+  std::string l = lower_ascii(trim(s));
+  return l == "index" || l == "#" || l == "n" || l == "i" || l == "no" || l == "no." || l == "idx" || l == "point" ||
+         l == "nr" || l == "nr.";
+}
+
+}  // namespace
+
+Result<SurfaceData> parse_delimited(std::string_view text, const std::string& name, const ReadOptions& options) {
+  auto lines = split_lines(text);
+  Delim delim = detect_delimiter(lines);
+  std::vector<std::vector<std::string_view>> headers;  // non-numeric lines before the data
+  // Data rows stored flat (ncols values per row): no per-row allocation for large files.
+  struct Rows {
+    std::vector<double> v;
+    std::size_t ncols = 0;
+    bool empty() const { return v.empty(); }
+    std::size_t size() const { return ncols ? v.size() / ncols : 0; }
+    const double* operator[](std::size_t k) const { return v.data() + k * ncols; }
+    void push_back(const std::vector<double>& r) { v.insert(v.end(), r.begin(), r.end()); }
+  } rows;
+  std::vector<std::size_t> row_line;
+  std::vector<double> vals;
+  std::size_t ncols = 0, trailer_line = 0;
+  long long count_line_value = -1;
+  std::size_t count_line_number = 0;
+  for (const Line& ln : lines) {
+    auto t = trim(ln.text);
+    if (t.empty()) continue;
+    if (is_comment(t)) {
+      if (rows.empty()) headers.push_back(split_fields(t.substr(1), delim.c));
+      continue;
+    }
+    auto f = split_fields(t, delim.c);
+    if (numeric_fields(f, delim.decimal_comma, &vals)) {
+      if (trailer_line)
+        return make_error(fmt::format("{}:{}: expected numbers, found text '{}' inside the data",
+                                      name, trailer_line, std::string(trim(lines[trailer_line - 1].text)).substr(0, 60)));
+      if (rows.empty() && vals.size() == 1) {  // a count line ("23") before two-column data
+        long long n;
+        if (count_line_number == 0 && parse_int64(f[0], n)) {
+          count_line_value = n;
+          count_line_number = ln.number;
+          continue;
+        }
+        return make_error(fmt::format("{}:{}: expected at least two columns (x and z), found one", name, ln.number));
+      }
+      if (rows.empty()) {
+        ncols = rows.ncols = vals.size();
+      } else if (vals.size() != ncols) {
+        return make_error(fmt::format("{}:{}: expected {} columns like line {}, found {}", name, ln.number, ncols,
+                                      row_line.front(), vals.size()));
+      }
+      if (rows.size() >= options.max_points)
+        return make_error(fmt::format("{}: more than {} points (limit max_points)", name, options.max_points));
+      rows.push_back(vals);
+      row_line.push_back(ln.number);
+    } else if (rows.empty()) {
+      headers.push_back(f);
+      // A unit line written with spaces in a comma file ("µm µm").
+      if (f.size() == 1 && delim.c != ' ') headers.push_back(split_fields(t, ' '));
+    } else if (!trailer_line) {
+      trailer_line = ln.number;
+    }
+  }
+  if (trailer_line && rows.size() < 2)
+    return make_error(fmt::format("{}:{}: expected numbers, found '{}'", name, trailer_line,
+                                  std::string(trim(lines[trailer_line - 1].text)).substr(0, 60)));
+  if (rows.empty()) {
+    if (trim(text).empty()) return make_error(fmt::format("{}: file is empty", name));
+    return make_error(fmt::format("{}: no numeric data rows found (expected lines of x and z values)", name));
+  }
+  if (rows.size() < 2)
+    return make_error(fmt::format("{}:{}: only one data row; a profile needs at least 2 points", name, row_line[0]));
+
+  SurfaceData out;
+  out.format = ProfileFormat::Csv;
+  if (count_line_value >= 0 && std::size_t(count_line_value) != rows.size())
+    out.warnings.push_back(fmt::format("{}: line {} gives a count of {} but {} data rows follow; all rows were read",
+                                       name, count_line_number, count_line_value, rows.size()));
+
+  // Columns.
+  int xc = options.x_column, zc = options.z_column;
+  const std::vector<std::string_view>* named = nullptr;
+  for (auto it = headers.rbegin(); it != headers.rend(); ++it)
+    if (it->size() == ncols) { named = &*it; break; }
+  if (xc < 0 || zc < 0) {
+    bool index_col = false;
+    if (ncols >= 3) {
+      if (named && is_index_name((*named)[0])) index_col = true;
+      bool consecutive = true;
+      for (std::size_t k = 0; k < rows.size() && consecutive; ++k)
+        consecutive = rows[k][0] == rows[0][0] + double(k) && (rows[0][0] == 0 || rows[0][0] == 1);
+      index_col = index_col || consecutive;
+    }
+    if (xc < 0) xc = index_col ? 1 : 0;
+    if (zc < 0) zc = xc + 1;
+    if (ncols > std::size_t(std::max(xc, zc)) + 1 || (index_col && ncols > 3))
+      out.warnings.push_back(fmt::format("{}: {} columns; using column {} as x and column {} as z (0-based)", name,
+                                         ncols, xc, zc));
+  }
+  if (std::size_t(std::max(xc, zc)) >= ncols || xc == zc)
+    return make_error(fmt::format("{}: columns x={} and z={} requested but the data has {} columns", name, xc, zc, ncols));
+
+  // Units: the last header line (or comment) naming a unit for the column.
+  auto find_unit = [&](int col) -> std::optional<double> {
+    for (auto it = headers.rbegin(); it != headers.rend(); ++it) {
+      const auto& h = *it;
+      std::size_t idx = col;
+      if (h.size() != ncols) {
+        if (h.size() == 2 && ncols == 3 && (col == xc || col == zc)) idx = col == xc ? 0 : 1;  // unit line for x, z
+        else continue;
+      }
+      if (auto s = unit_in_header(h[idx])) return s;
+    }
+    return std::nullopt;
+  };
+  double fallback = 1.0;
+  if (!options.default_unit.empty()) {
+    auto s = unit_scale(options.default_unit);
+    if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
+    fallback = *s;
+  }
+  auto xu = find_unit(xc), zu = find_unit(zc);
+  if ((!xu || !zu) && options.default_unit.empty())
+    out.warnings.push_back(fmt::format("{}: no length unit found for the {} column; values read as metres (give a unit to override)",
+                                       name, !xu && !zu ? "x and z" : !xu ? "x" : "z"));
+  double xs = xu.value_or(fallback), zs = zu.value_or(fallback);
+
+  std::size_t dropped = 0;
+  out.curve.x.reserve(rows.size());
+  out.curve.z.reserve(rows.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    double x = rows[k][xc], z = rows[k][zc];
+    if (std::isnan(x))
+      return make_error(fmt::format("{}:{}: x is not a number", name, row_line[k]));
+    if (std::isnan(z)) { ++dropped; continue; }
+    out.curve.x.push_back(x * xs);
+    out.curve.z.push_back(z * zs);
+  }
+  if (dropped) out.warnings.push_back(fmt::format("{}: {} points with NaN heights were dropped", name, dropped));
+  if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than 2 points with finite values", name));
+  return out;
+}
+
+bool looks_like_dektak(std::string_view text) {
+  auto lines = split_lines(text.substr(0, std::min<std::size_t>(text.size(), 1 << 16)));
+  bool scan_data = false, lateral = false;
+  for (const auto& l : lines) {
+    auto t = lower_ascii(trim(l.text));
+    if (t == "scan data" || t == "scan data,") scan_data = true;
+    if (t.rfind("lateral", 0) == 0) lateral = true;
+  }
+  return scan_data && lateral;
+}
+
+Result<SurfaceData> parse_dektak(std::string_view text, const std::string& name, const ReadOptions& options) {
+  auto lines = split_lines(text);
+  std::size_t k = 0;
+  while (k < lines.size() && lower_ascii(trim(lines[k].text)).rfind("scan data", 0) != 0) ++k;
+  if (k == lines.size()) return make_error(fmt::format("{}: Dektak export without a 'Scan Data' section", name));
+  // The section runs from the column header to the first blank line after the data.
+  std::size_t first = k + 1;
+  while (first < lines.size() && trim(lines[first].text).empty()) ++first;
+  if (first >= lines.size()) return make_error(fmt::format("{}:{}: 'Scan Data' section is empty", name, lines[k].number));
+  std::size_t last = first + 1;
+  bool data_seen = false;
+  for (; last < lines.size(); ++last) {
+    auto t = trim(lines[last].text);
+    if (t.empty()) {
+      if (data_seen) break;
+      continue;
+    }
+    data_seen = true;
+  }
+  const char* b = lines[first].text.data();
+  const char* e = last < lines.size() ? lines[last].text.data() : text.data() + text.size();
+  // Keep the file's line numbers in messages: prefix as many newlines as lines skipped.
+  std::string section(lines[first].number - 1, '\n');
+  section.append(b, e);
+  auto r = parse_delimited(section, name, options);
+  if (!r) return r;
+  r->format = ProfileFormat::Dektak;
+  return r;
+}
+
+namespace {
+
+bool header_key(std::string_view line, std::string& key, std::string& value) {
+  auto t = trim(line);
+  if (t.empty() || t.front() != '#') return false;
+  t.remove_prefix(1);
+  auto c = t.find(':');
+  if (c == std::string_view::npos) return false;
+  key = lower_ascii(trim(t.substr(0, c)));
+  value = std::string(trim(t.substr(c + 1)));
+  return true;
+}
+
+bool is_width_key(const std::string& k) {
+  for (const char* w : {"width", "breite", "largeur", "ancho", "anchura", "larghezza", "largura", "szeroko\xc5\x9b\xc4\x87",
+                        "\xc5\xa1\xc3\xad\xc5\x99ka", "x size", "x-size", "x range"})
+    if (k == w) return true;
+  return false;
+}
+bool is_height_key(const std::string& k) {
+  for (const char* w : {"height", "h\xc3\xb6he", "hoehe", "hauteur", "alto", "altura", "altezza", "wysoko\xc5\x9b\xc4\x87",
+                        "v\xc3\xbd\xc5\xa1ka", "y size", "y-size", "y range"})
+    if (k == w) return true;
+  return false;
+}
+
+}  // namespace
+
+bool looks_like_gwyddion(std::string_view text) {
+  auto lines = split_lines(text.substr(0, std::min<std::size_t>(text.size(), 1 << 14)));
+  int lengths = 0;
+  bool width = false;
+  std::size_t first_row_fields = 0;
+  std::string k, v;
+  for (const auto& l : lines) {
+    auto t = trim(l.text);
+    if (!t.empty() && t.front() != '#' && first_row_fields == 0) first_row_fields = split_fields(t, ' ').size();
+    if (!header_key(l.text, k, v)) continue;
+    if (is_width_key(k) || is_height_key(k)) width = true;
+    if (length_value(v)) ++lengths;
+  }
+  // Width/Height keys, or (other languages) two length-valued keys above a matrix of >= 3
+  // columns; a commented two-column profile ("# Length: 10 um") stays a profile.
+  return width || (lengths >= 2 && first_row_fields >= 3);
+}
+
+Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& name, const ReadOptions& options) {
+  auto lines = split_lines(text);
+  std::optional<double> width, height, zscale;
+  std::vector<double> positional;  // length-valued header entries in order (fallback for unknown languages)
+  std::vector<double> values;
+  std::size_t nx = 0, ny = 0, first_line = 0;
+  std::string k, v;
+  std::vector<double> row;
+  for (const Line& ln : lines) {
+    auto t = trim(ln.text);
+    if (t.empty()) continue;
+    if (t.front() == '#') {
+      if (!header_key(t, k, v)) continue;
+      auto len = length_value(v);
+      if (is_width_key(k) && len) width = len;
+      else if (is_height_key(k) && len) height = len;
+      else if (len) positional.push_back(*len);
+      if (k.find("value unit") != std::string::npos || k.find("z unit") != std::string::npos || k == "einheit" ||
+          k.find("werteinheit") != std::string::npos) {
+        auto s = unit_scale(v);
+        if (!s) return make_error(fmt::format("{}:{}: value unit '{}' is not a length unit (expected m, mm, um, nm)", name, ln.number, v));
+        zscale = s;
+      }
+      continue;
+    }
+    auto f = split_fields(t, ' ');
+    if (!numeric_fields(f, false, &row)) {
+      bool comma = numeric_fields(f, true, &row);
+      if (!comma)
+        return make_error(fmt::format("{}:{}: expected a row of numbers, found '{}'", name, ln.number,
+                                      std::string(t.substr(0, 60))));
+    }
+    if (ny == 0) {
+      nx = row.size();
+      first_line = ln.number;
+    } else if (row.size() != nx) {
+      return make_error(fmt::format("{}:{}: expected {} values like line {}, found {}", name, ln.number, nx,
+                                    first_line, row.size()));
+    }
+    if (values.size() + row.size() > options.max_points)
+      return make_error(fmt::format("{}: more than {} points (limit max_points)", name, options.max_points));
+    values.insert(values.end(), row.begin(), row.end());
+    ++ny;
+  }
+  if (ny == 0 || nx == 0) return make_error(fmt::format("{}: no rows of numbers found", name));
+  SurfaceData out;
+  out.format = ProfileFormat::Gwyddion;
+  out.is_map = true;
+  if (!width && !positional.empty()) width = positional[0];
+  if (!height && positional.size() >= 2) height = positional[1];
+  double fallback = 1.0;
+  if (!options.default_unit.empty()) {
+    auto s = unit_scale(options.default_unit);
+    if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
+    fallback = *s;
+  }
+  if (!width || !height)
+    out.warnings.push_back(fmt::format("{}: no Width/Height header; grid spacing set to 1 {}", name,
+                                       options.default_unit.empty() ? "m" : options.default_unit));
+  if (!zscale && options.default_unit.empty())
+    out.warnings.push_back(fmt::format("{}: no 'Value units' header; heights read as metres", name));
+  Map& m = out.map;
+  m.nx = nx;
+  m.ny = ny;
+  // Gwyddion: the real width is nx pixels of size dx (pixel-centred samples).
+  m.dx = width ? *width / double(nx) : fallback;
+  m.dy = height ? *height / double(ny) : fallback;
+  if (!(m.dx > 0) || !(m.dy > 0) || !std::isfinite(m.dx) || !std::isfinite(m.dy))
+    return make_error(fmt::format("{}: Width and Height must be positive", name));
+  double zs = zscale.value_or(fallback);
+  m.heights = std::move(values);
+  for (double& h : m.heights) h *= zs;
+  return out;
+}
+
+}  // namespace io_detail
+}  // namespace frictal

@@ -1,0 +1,148 @@
+#include "io/text_util.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+namespace frictal::io_detail {
+
+namespace {
+bool is_space(unsigned char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v' || c == 0; }
+}  // namespace
+
+std::string_view trim(std::string_view s) {
+  if (s.size() >= 3 && (unsigned char)s[0] == 0xEF && (unsigned char)s[1] == 0xBB && (unsigned char)s[2] == 0xBF)
+    s.remove_prefix(3);
+  while (!s.empty() && is_space((unsigned char)s.front())) s.remove_prefix(1);
+  while (!s.empty() && is_space((unsigned char)s.back())) s.remove_suffix(1);
+  return s;
+}
+
+std::string lower_ascii(std::string_view s) {
+  std::string r(s);
+  for (char& c : r)
+    if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
+  return r;
+}
+
+bool parse_double(std::string_view s, double& out, bool decimal_comma) {
+  s = trim(s);
+  if (s.empty()) return false;
+  if (s.front() == '+') s.remove_prefix(1);
+  if (s.empty()) return false;
+  std::string low = lower_ascii(s);
+  if (low == "nan" || low == "-nan" || low == "+nan") {
+    out = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
+  std::string tmp;
+  if (decimal_comma && s.find(',') != std::string_view::npos) {
+    tmp.assign(s);
+    for (char& c : tmp)
+      if (c == ',') c = '.';
+    s = tmp;
+  }
+  double v = 0;
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || p != s.data() + s.size()) {
+    // from_chars rejects values that over/underflow; treat underflow as 0 and overflow as failure.
+    if (ec == std::errc::result_out_of_range && p == s.data() + s.size()) {
+      std::string t(s);
+      double w = std::strtod(t.c_str(), nullptr);
+      if (std::isfinite(w)) { out = w; return true; }
+    }
+    return false;
+  }
+  if (std::isinf(v)) return false;
+  out = v;
+  return true;
+}
+
+bool parse_int64(std::string_view s, long long& out) {
+  s = trim(s);
+  if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+  if (s.empty()) return false;
+  auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && p == s.data() + s.size();
+}
+
+std::optional<double> unit_scale(std::string_view word) {
+  std::string w = lower_ascii(trim(word));
+  // Strip surrounding punctuation.
+  while (!w.empty() && (w.front() == '(' || w.front() == '[' || w.front() == '_' || w.front() == '"')) w.erase(0, 1);
+  while (!w.empty() && (w.back() == ')' || w.back() == ']' || w.back() == '_' || w.back() == '"' || w.back() == ':' || w.back() == '.'))
+    w.pop_back();
+  if (w == "m" || w == "meter" || w == "meters" || w == "metre" || w == "metres") return 1.0;
+  if (w == "mm" || w == "millimeter" || w == "millimeters" || w == "millimetre" || w == "millimetres") return 1e-3;
+  // micro sign U+00B5 = C2 B5, greek mu U+03BC = CE BC
+  if (w == "um" || w == "\xC2\xB5m" || w == "\xCE\xBCm" || w == "micron" || w == "microns" || w == "micrometer" ||
+      w == "micrometers" || w == "micrometre" || w == "micrometres")
+    return 1e-6;
+  if (w == "nm" || w == "nanometer" || w == "nanometers" || w == "nanometre" || w == "nanometres") return 1e-9;
+  if (w == "a" || w == "\xC3\x85" || w == "\xC3\xA5" || w == "angstrom" || w == "angstroms" || w == "\xC3\xA5ngstr\xC3\xB6m")
+    return 1e-10;
+  if (w == "pm" || w == "picometer" || w == "picometers") return 1e-12;
+  return std::nullopt;
+}
+
+std::optional<double> unit_in_header(std::string_view header) {
+  std::string h(trim(header));
+  // Units in brackets or parentheses first: "X_(microns)", "height [nm]".
+  for (auto [open, close] : {std::pair{'(', ')'}, std::pair{'[', ']'}}) {
+    auto a = h.rfind(open);
+    if (a != std::string::npos) {
+      auto b = h.find(close, a);
+      if (b != std::string::npos)
+        if (auto s = unit_scale(std::string_view(h).substr(a + 1, b - a - 1))) return s;
+    }
+  }
+  // Otherwise the last word that is a unit ("x in µm", "Lateral um", "Raw Micrometer").
+  std::vector<std::string> words;
+  std::string cur;
+  for (char c : h) {
+    if (c == ' ' || c == '_' || c == '/' || c == '\t' || c == '(' || c == ')' || c == '[' || c == ']') {
+      if (!cur.empty()) words.push_back(cur);
+      cur.clear();
+    } else {
+      cur.push_back(c);
+    }
+  }
+  if (!cur.empty()) words.push_back(cur);
+  // A single word that is only a unit is a unit column ("µm"); for longer headers skip the
+  // first word so that a column named "m" or "a" is not a unit.
+  for (std::size_t k = words.size(); k-- > 0;) {
+    if (words.size() > 1 && k == 0) break;
+    if (auto s = unit_scale(words[k])) return s;
+  }
+  return std::nullopt;
+}
+
+std::optional<double> length_value(std::string_view s) {
+  s = trim(s);
+  std::size_t k = 0;
+  while (k < s.size() && s[k] != ' ' && s[k] != '\t') ++k;
+  double v = 0;
+  if (!parse_double(s.substr(0, k), v) || !std::isfinite(v)) return std::nullopt;
+  auto unit = trim(s.substr(k));
+  if (unit.empty()) return std::nullopt;
+  auto scale = unit_scale(unit);
+  if (!scale) return std::nullopt;
+  return v * *scale;
+}
+
+std::vector<Line> split_lines(std::string_view text) {
+  std::vector<Line> lines;
+  std::size_t start = 0, number = 1;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    char c = text[i];
+    if (c == '\n' || c == '\r') {
+      lines.push_back({text.substr(start, i - start), number++});
+      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+      start = i + 1;
+    }
+  }
+  if (start < text.size()) lines.push_back({text.substr(start), number});
+  return lines;
+}
+
+}  // namespace frictal::io_detail

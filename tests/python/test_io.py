@@ -1,0 +1,62 @@
+"""Measured surfaces from Python: expectations from the shared files' own numbers (python
+zipfile/struct here), Eq. 13 and closed forms."""
+import math
+import os
+import struct
+import zipfile
+
+import numpy as np
+import pytest
+
+import frictal
+
+DATA = os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "data")
+
+
+def test_read_x3p_map_matches_zip_contents():
+    path = os.path.join(DATA, "x3p", "x3p-2.x3p")
+    raw = zipfile.ZipFile(path).read("bindata/data.bin")
+    values = np.array(struct.unpack("<%dd" % (len(raw) // 8), raw)).reshape(650, 650)
+    m = frictal.read_map(path)
+    assert m["heights"].shape == (650, 650)
+    assert np.array_equal(m["heights"], values)
+    s = frictal.map_stats(m["heights"], dx=m["dx"], dy=m["dy"])
+    assert s["Sq"] == pytest.approx(values.std(), rel=1e-12)
+
+
+def test_read_surface_profile_and_warnings():
+    s = frictal.read_surface(os.path.join(DATA, "profiles", "xy-2.txt"))
+    assert s["kind"] == "profile"
+    assert len(s["x"]) == 24
+    assert any("23" in w for w in s["warnings"])
+
+
+def test_x3p_round_trip(tmp_path):
+    h = np.arange(12, dtype=float).reshape(3, 4) * 1e-9
+    h[1, 2] = np.nan
+    p = str(tmp_path / "m.x3p")
+    frictal.write_x3p(p, h, dx=1e-6, dy=2e-6, type="F")
+    m = frictal.read_map(p)
+    assert np.array_equal(np.isnan(m["heights"]), np.isnan(h))
+    ok = ~np.isnan(h)
+    assert np.array_equal(m["heights"][ok], h.astype(np.float32).astype(float)[ok])
+
+
+def test_koch_dimension_and_divider():
+    assert frictal.koch_dimension(math.radians(60)) == pytest.approx(math.log(4) / math.log(3), abs=1e-14)
+    c = frictal.koch_curve(iterations=5, alpha=math.radians(60), wavelength=1.0, length=2.0)
+    x, z = c
+    fit = frictal.divider_dimension(x, z, ruler_min=3e-3, ruler_max=0.3)
+    assert fit["dimension"] == pytest.approx(math.log(4) / math.log(3), abs=0.015)
+    assert fit["fit_range"] == (3e-3, 0.3)
+
+
+def test_areal_signature_of_tilted_plane_and_anisotropy_of_ridges():
+    x = np.arange(40) * 1e-6
+    plane = np.tile(0.2 * x, (20, 1))
+    r = frictal.areal_signature(plane, dx=1e-6, dy=1e-6, angle=0.0)
+    assert r["theta_max_forward"] == pytest.approx(math.atan(0.2), abs=1e-12)
+    ridges = np.tile(1e-7 * np.sin(x * 3e5) + 3e-8 * np.sin(x * 1.1e6), (60, 1))
+    t = frictal.anisotropy(ridges, dx=1e-6, dy=1e-6, directions=4, max_lines=8)
+    assert t["theta_forward"][1] == pytest.approx(0, abs=1e-12)  # along the ridges
+    assert t["theta_forward"][0] > 0.01
