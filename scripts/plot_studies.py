@@ -2,7 +2,7 @@
 """Plots the paper's figures from frictal study stores (SQLite, schema of docs/studies.md).
 
     scripts/plot_studies.py OUTDIR [--fig06 S.sqlite] [--fig07 S.sqlite] [--fig08 S.sqlite]
-                                   [--fig14-18 S.sqlite]
+                                   [--fig09 S.sqlite] [--fig10 S.sqlite] [--fig14-18 S.sqlite]
 
 Only the standard library, numpy and matplotlib: it reads the stores directly, so it works on a
 store copied from a cluster without a frictal build.
@@ -112,6 +112,50 @@ def fig08(store, out):
     fig.savefig(f"{out}/fig08.png", dpi=120)
 
 
+def fig09(store, out):
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    best = None
+    for part, p, s, tid in sorted(tasks(store), key=lambda t: t[1]["iterations"]):
+        a = arrays(store, tid)
+        lam = p.get("wavelength", 0.01)
+        ax.loglog(a["ruler_m"] / lam, a["measured_length_m"] / lam, "o-", ms=3, lw=0.8,
+                  label=f"K{p['iterations']}: D = {s['dimension']:.4f}")
+        best = (a, s, lam)
+    if best:
+        a, s, lam = best
+        eps = a["ruler_m"] / lam
+        k = int(np.argmax(eps))  # anchor at the largest ruler, where every iteration agrees
+        ref = a["measured_length_m"][k] / lam * (eps / eps[k]) ** (1 - s["dimension_eq13"])
+        ax.loglog(eps, ref, "k--", lw=1, label=f"Eq. 13: D = {s['dimension_eq13']:.4f}")
+    ax.set_xlabel("ruler ε / λ")
+    ax.set_ylabel("measured length L / λ")
+    ax.set_title("Fig. 9: divider method on Koch curves")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(f"{out}/fig09.png", dpi=120)
+
+
+def fig10(store, out):
+    fig, ax = plt.subplots(figsize=(6, 4.5))
+    d13 = {}
+    theory = collections.defaultdict(list)
+    for part, p, s, _ in tasks(store, "theory"):
+        d13[p["alpha_deg"]] = s["dimension_eq13"]
+        theory[p["iterations"]].append((s["dimension_eq13"], s["friction_coefficient"]))
+    for n, pts in sorted(theory.items()):
+        pts.sort()
+        ax.plot(*zip(*pts), "-", color=f"C{n}", label=f"K{n} theory")
+    for part, p, s, _ in tasks(store, "simulation"):
+        if p["alpha_deg"] in d13:
+            ax.plot(d13[p["alpha_deg"]], s["friction_coefficient"], "o", mfc="none", color=f"C{p['iterations']}")
+    ax.set_xlabel("fractal dimension D (Eq. 13)")
+    ax.set_ylabel("μ")
+    ax.set_title("Fig. 10: μ against D (lines: theory, o: simulation)")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(f"{out}/fig10.png", dpi=120)
+
+
 def fig14_18(store, out):
     acc = collections.defaultdict(lambda: collections.defaultdict(list))
     for part, p, s, _ in tasks(store):
@@ -167,10 +211,13 @@ def main(argv):
     ap.add_argument("--fig06")
     ap.add_argument("--fig07")
     ap.add_argument("--fig08")
+    ap.add_argument("--fig09")
+    ap.add_argument("--fig10")
     ap.add_argument("--fig14-18", dest="fig14_18")
     a = ap.parse_args(argv)
     done = []
-    for name, fn in (("fig06", fig06), ("fig07", fig07), ("fig08", fig08), ("fig14_18", fig14_18)):
+    for name, fn in (("fig06", fig06), ("fig07", fig07), ("fig08", fig08), ("fig09", fig09), ("fig10", fig10),
+                     ("fig14_18", fig14_18)):
         store = getattr(a, name)
         if store:
             try:

@@ -95,6 +95,7 @@ TaskRegistry default_registry();
 Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t seed);
 Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed);
 Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t seed);
+Result<TaskOutput> run_divider_task(const Params& p, std::uint64_t seed);
 
 // ---------------------------------------------------------------- study definition and grid
 

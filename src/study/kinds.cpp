@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
+#include "frictal/fractal.hpp"
 #include "frictal/generators.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
@@ -75,20 +76,6 @@ void put_pdf(TaskOutput& out, const std::string& prefix, const Histogram& h) {
   out.arrays[prefix + "_density_per_deg"] = std::move(dens);
 }
 
-/// Eq. 13: 2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1, solved for D by bisection on [1, 2].
-double koch_dimension(double alpha) {
-  const double b = 1.0 / (6.0 * std::cos(alpha));
-  auto f = [&](double D) { return 2 * std::pow(1.0 / 3.0, D) + 2 * std::pow(b, D) - 1; };
-  double lo = 1.0, hi = 2.0;
-  if (f(lo) <= 0) return 1.0;
-  if (f(hi) >= 0) return 2.0;
-  for (int i = 0; i < 200 && hi - lo > 1e-15; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (f(mid) > 0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
 SlopeMethod slope_method(const std::string& s, Status* st) {
   if (s == "exact") return SlopeMethod::Exact;
   if (s == "spline") return SlopeMethod::Spline;
@@ -152,7 +139,9 @@ Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: det
   s["atomic_friction_angle_deg"] = fr->atomic_angle / kDeg;
   s["friction_angle_deg"] = fr->friction_angle / kDeg;
   s["friction_coefficient"] = fr->friction_coefficient;
-  s["dimension_eq13"] = koch_dimension(kp.alpha);
+  auto d13 = koch_dimension(kp.alpha);
+  if (!d13) return d13.error();
+  s["dimension_eq13"] = *d13;
   s["points"] = static_cast<double>(prof->size());
   s["offsets"] = static_cast<double>(r.offset.size());
   s["events"] = static_cast<double>(r.events);
@@ -248,7 +237,8 @@ TaskRegistry default_registry() {
          run_wm_pair_statistics});
   r.add({"tilt", "Spheropolygon tilting-block test of a Koch pair (Sec. IV): friction angle, Fig. 7 series", 1,
          run_tilt_task});
-  r.add_unavailable("divider", "the divider-method fractal dimension is not merged yet");
+  r.add({"divider", "Divider (ruler) method on a Koch curve K_n (Sec. IV C 3): L(eps), D = 1 - slope, Eq. 13", 1,
+         run_divider_task});
   return r;
 }
 

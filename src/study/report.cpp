@@ -364,6 +364,44 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   }
 }
 
+void divider_part(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
+  std::map<double, std::map<int, std::pair<double, double>>> by;  // alpha -> n -> (D, D13)
+  std::string t = "\n| K_n | alpha (deg) | D divider | D Eq. 13 | difference | r^2 | rulers (m) |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows) {
+    const auto& s = r.output.scalars;
+    if (!s.count("dimension") || !s.count("dimension_eq13")) continue;
+    const int n = static_cast<int>(num(r.params.at("iterations")));
+    const double a = num(r.params.at("alpha_deg"));
+    by[a][n] = {s.at("dimension"), s.at("dimension_eq13")};
+    t += fmt::format("| K{} | {:g} | {:.4f} | {:.4f} | {:+.4f} | {:.5f} | {:.3g} - {:.3g} |\n", n, a, s.at("dimension"),
+                     s.at("dimension_eq13"), s.at("dimension_minus_eq13"), s.at("r_squared"), s.at("ruler_min_m"),
+                     s.at("ruler_max_m"));
+  }
+  if (by.empty()) return;
+  rep.lines.push_back(fmt::format("\n## Part '{}' (divider): {} curves", part, rows.size()));
+  rep.lines.push_back(t);
+  Finding f;
+  f.claim = fmt::format("Part '{}': the divider dimension of the most iterated Koch curve agrees with Eq. 13, and "
+                        "fewer iterations show the same scaling over a narrower range (Sec. IV C 3, Fig. 9).", part);
+  bool ok = true;
+  std::string ev;
+  for (const auto& [a, m] : by) {
+    const auto& [D, D13] = m.rbegin()->second;
+    ok = ok && std::abs(D - D13) <= 0.02;
+    double prev = INFINITY;
+    for (const auto& [n, v] : m) {
+      const double d = std::abs(v.first - v.second);
+      if (d > prev + 1e-9) ok = false;
+      prev = d;
+    }
+    ev += fmt::format(" alpha={:g}: K{} D={:.4f} vs Eq. 13 {:.4f};", a, m.rbegin()->first, D, D13);
+  }
+  f.supported = ok;
+  f.evidence.push_back("criterion: |D_divider - D_Eq13| <= 0.02 for the most iterated curve, and |D - D_Eq13| does not grow "
+                       "with the number of iterations;" + ev);
+  rep.findings.push_back(f);
+}
+
 }  // namespace
 
 Result<std::vector<PooledPdf>> pooled_pdfs(Store& store, const std::string& part) {
@@ -461,7 +499,7 @@ Result<Report> report(Store& store) {
   auto parts = store.part_counts();
   if (!parts) return parts.error();
   for (const auto& p : *parts) {
-    if (p.kind != "wm-pair-statistics" && p.kind != "koch-signature" && p.kind != "tilt") {
+    if (p.kind != "wm-pair-statistics" && p.kind != "koch-signature" && p.kind != "tilt" && p.kind != "divider") {
       r.lines.push_back(fmt::format("\n## Part '{}' ({}): {} done, {} pending", p.part, p.kind, p.done, p.pending));
       continue;
     }
@@ -500,6 +538,7 @@ Result<Report> report(Store& store) {
       }
     }
     else if (p.kind == "tilt") tilt_part(p.part, *rows, r);
+    else if (p.kind == "divider") divider_part(p.part, *rows, r);
     else koch_part(p.part, *rows, r);
   }
   return r;
