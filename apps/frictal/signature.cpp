@@ -22,16 +22,6 @@ struct Args {
   bool json = false;
 };
 
-const char* type_name(ContactType t) {
-  switch (t) {
-    case ContactType::VertexEdge: return "vertex-edge";
-    case ContactType::EdgeVertex: return "edge-vertex";
-    case ContactType::VertexVertex: return "vertex-vertex";
-    case ContactType::EdgeEdge: return "edge-edge";
-  }
-  return "?";
-}
-
 void write_text(const std::string& path, const std::string& text) {
   std::ofstream f(path, std::ios::binary);
   if (!f) throw UsageError(fmt::format("{}: cannot open for writing", path));
@@ -99,7 +89,7 @@ std::function<int()> setup(CLI::App& app) {
       for (std::size_t i = 0; i < r.offset.size(); ++i)
         for (auto k = r.contact_begin[i]; k < r.contact_begin[i + 1]; ++k) {
           const Contact& c = r.contacts[k];
-          s += fmt::format("{:.17g},{:.17g},{:.17g},{:.12g},{}\n", r.offset[i], c.x, c.z, to_deg(c.slope), type_name(c.type));
+          s += fmt::format("{:.17g},{:.17g},{:.17g},{:.12g},{}\n", r.offset[i], c.x, c.z, to_deg(c.slope), contact_type_name(c.type));
         }
       write_text(a->contacts_out, s);
     }

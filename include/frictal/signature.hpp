@@ -31,6 +31,9 @@ enum class ContactType : std::uint8_t {
   EdgeEdge,      ///< collinear overlapping edges: their common slope (x is the segment's middle)
 };
 
+/// "vertex-edge", "edge-vertex", "vertex-vertex" or "edge-edge" (CSV/JSON/Python output).
+const char* contact_type_name(ContactType t);
+
 struct Contact {
   double x = 0;      ///< contact abscissa in the lower block's frame (unit: m)
   double z = 0;      ///< contact height on the lower surface (unit: m)

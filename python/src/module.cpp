@@ -39,16 +39,6 @@ py::dict hist_dict(const Histogram& h) {
   return d;
 }
 
-const char* type_name(ContactType t) {
-  switch (t) {
-    case ContactType::VertexEdge: return "vertex-edge";
-    case ContactType::EdgeVertex: return "edge-vertex";
-    case ContactType::VertexVertex: return "vertex-vertex";
-    case ContactType::EdgeEdge: return "edge-edge";
-  }
-  return "?";
-}
-
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -200,7 +190,7 @@ PYBIND11_MODULE(_core, m) {
                 x.push_back(r.contacts[k].x);
                 z.push_back(r.contacts[k].z);
                 s.push_back(r.contacts[k].slope);
-                types.append(type_name(r.contacts[k].type));
+                types.append(contact_type_name(r.contacts[k].type));
               }
             py::dict c;
             c["offset"] = arr(off);

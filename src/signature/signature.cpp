@@ -296,6 +296,16 @@ Profile tile3(const Profile& p, double P, std::size_t& lo, std::size_t& hi, doub
 
 }  // namespace
 
+const char* contact_type_name(ContactType t) {
+  switch (t) {
+    case ContactType::VertexEdge: return "vertex-edge";
+    case ContactType::EdgeVertex: return "edge-vertex";
+    case ContactType::VertexVertex: return "vertex-vertex";
+    case ContactType::EdgeEdge: return "edge-edge";
+  }
+  return "?";
+}
+
 double lift_direct(const Profile& lower, const Profile& upper, double s) {
   double best = -kInf;
   const bool per = lower.period && upper.period;
