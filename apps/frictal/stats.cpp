@@ -59,8 +59,9 @@ std::function<int()> setup(CLI::App& app) {
         j["ny"] = m.ny;
         j["dx_m"] = m.dx;
         j["dy_m"] = m.dy;
-        j["width_m"] = s.width;
-        j["height_m"] = s.height;
+        j["length_m"] = s.width;  // extent along x, as for profiles
+        j["size_x_m"] = s.width;
+        j["size_y_m"] = s.height;
         j["mean_height_m"] = s.mean;
         j["Sa_m"] = s.Sa;
         j["Sq_m"] = s.Sq;
@@ -71,6 +72,7 @@ std::function<int()> setup(CLI::App& app) {
         j["Ssk"] = s.Ssk;
         j["Sku"] = s.Sku;
         j["Sdq"] = s.Sdq;
+        j["rms_slope"] = s.Sdq;  // the areal rms gradient, the profiles' rms slope
         j["max_slope_deg"] = to_deg(s.max_slope);
         print_json(j);
       } else {

@@ -21,7 +21,8 @@ TEST(CliIo, StatsMapJsonHasArealKeys) {
   EXPECT_EQ(j["points"], 422500);
   // python3: population rms about the mean of data.bin.
   EXPECT_NEAR(j["Sq_m"].get<double>(), 7.7280332735977479e-08, 1e-20);
-  for (const char* k : {"Sa_m", "Sz_m", "Sdq", "Ssk", "Sku", "max_slope_deg", "rms_height_m"}) EXPECT_TRUE(j.contains(k)) << k;
+  for (const char* k : {"Sa_m", "Sz_m", "Sdq", "Ssk", "Sku", "max_slope_deg", "rms_height_m", "points", "length_m",
+                        "rms_slope", "size_x_m", "size_y_m"}) EXPECT_TRUE(j.contains(k)) << k;
 }
 
 TEST(CliIo, StatsEveryProfileFormatAndDetrend) {
