@@ -45,5 +45,7 @@ from ._core import (  # noqa: F401  measured surfaces (io_bindings.cpp)
     write_x3p,
 )
 
+from ._core import tilt  # noqa: F401  spheropolygon tilting-block test (dem_bindings.cpp)
+
 __all__ = [name for name in dir() if not name.startswith("_")]
 __version__ = "0.1.0"

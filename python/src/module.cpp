@@ -15,7 +15,8 @@
 namespace py = pybind11;
 using namespace frictal;
 
-void frictal_bind_io(py::module_& m);  // python/src/io_bindings.cpp
+void frictal_bind_io(py::module_& m);   // python/src/io_bindings.cpp
+void frictal_bind_dem(py::module_& m);  // python/src/dem_bindings.cpp
 
 namespace {
 
@@ -231,4 +232,5 @@ PYBIND11_MODULE(_core, m) {
         },
         py::arg("path"), py::arg("profile"));
   frictal_bind_io(m);
+  frictal_bind_dem(m);
 }

@@ -90,3 +90,20 @@ def test_plots_render(tmp_path):
     out = os.path.join(tmp_path, "p.png")
     fig.savefig(out)
     assert os.path.getsize(out) > 1000
+
+
+def test_tilt_flat_blocks_slide_at_atomic_friction_angle():
+    # Paper Eq. 6 with theta = 0: flat blocks slide at atan(mu_a). The upper block is shifted by
+    # 1 cm so that no corner sits on a corner (docs/dem.md).
+    x = np.array([0.0, 0.1])
+    z = np.array([0.0, 0.0])
+    lower = frictal.Profile(x, z)
+    r = frictal.tilt(lower, atomic_friction=0.3, period=0.01, initial_offset=0.01)
+    assert r["slid"]
+    assert np.degrees(r["friction_angle"]) == pytest.approx(np.degrees(np.arctan(0.3)), abs=0.1)
+    s = r["series"]
+    assert len(s["time"]) == len(s["tilt"]) > 10
+    with pytest.raises(ValueError, match="face"):
+        frictal.tilt(lower, face="bogus", initial_offset=0.01)
+    with pytest.raises(TypeError):
+        frictal.tilt("not a surface")
