@@ -4,6 +4,7 @@
 #include <thread>
 
 #include "common.hpp"
+#include "frictal/analysis.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 
@@ -20,6 +21,8 @@ struct Args {
   unsigned threads = 0;
   int bins = 90;
   bool json = false;
+  bool exact = false;
+  std::string detrend = "none";
 };
 
 void write_text(const std::string& path, const std::string& text) {
@@ -38,7 +41,13 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--atomic-friction,--mu-a", a->mu_a, "Atomic friction coefficient mu_a >= 0")->capture_default_str();
   app.add_option("--slopes", a->slopes, "exact: polyline contact rules; spline: cubic-spline slopes averaged")
       ->check(CLI::IsMember({"exact", "spline"}))->capture_default_str();
-  app.add_option("--offsets", a->offsets, "0: every event offset (exact); N: N equally spaced offsets")->capture_default_str();
+  app.add_option("--offsets", a->offsets,
+                 "0: every event offset (exact; if there are too many, offsets sampled at the finer point spacing); "
+                 "N: N equally spaced offsets")->capture_default_str();
+  app.add_option("--detrend", a->detrend,
+                 "Remove none, mean, line or poly:N from each measured surface first (form and tilt of the scan)")
+      ->capture_default_str();
+  app.add_flag("--exact", a->exact, "Refuse to sample offsets when the exact signature has too many events");
   app.add_option("--offset-range", a->range, "MIN MAX offsets (m); default one period or half the block")->expected(2);
   app.add_option("--period", a->period, "Treat both surfaces as periodic with this period (m)");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
@@ -50,8 +59,9 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     require(std::isfinite(a->mu_a) && a->mu_a >= 0,
             fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
-    Profile lower = load_profile(a->lower);
-    Profile upper_measured = a->upper.empty() ? lower : load_profile(a->upper);
+    const Detrend dt = unwrap(parse_detrend(a->detrend));
+    Profile lower = unwrap(detrend(load_profile(a->lower), dt));
+    Profile upper_measured = a->upper.empty() ? lower : unwrap(detrend(load_profile(a->upper), dt));
     if (a->period != 0) {
       require(a->period > 0 && std::isfinite(a->period), fmt::format("--period: expected a positive length in m, got {}", a->period));
       lower.period = a->period;
@@ -62,6 +72,7 @@ std::function<int()> setup(CLI::App& app) {
     SignatureOptions o;
     o.slopes = (a->slopes == "spline") ? SlopeMethod::Spline : SlopeMethod::Exact;
     o.offsets = a->offsets;
+    o.require_exact = a->exact;
     o.threads = a->threads;
     o.bins = a->bins;
     o.keep_contacts = !a->contacts_out.empty();
@@ -73,6 +84,10 @@ std::function<int()> setup(CLI::App& app) {
     const auto t0 = std::chrono::steady_clock::now();
     SignatureResult r = unwrap(signature(lower, rotate180(upper_measured), o));
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (a->offsets == 0 && !r.exact)
+      fmt::print(stderr, "frictal: note: the two point grids do not align and the exact signature would need more "
+                         "event offsets than the limit; sampled {} offsets at the finer point spacing instead, each "
+                         "evaluated exactly (--exact refuses instead)\n", r.offset.size());
     FrictionPrediction fwd = unwrap(predict_friction(a->mu_a, r.theta_max_forward, r.contact_slope_std));
     FrictionPrediction bwd = unwrap(predict_friction(a->mu_a, r.theta_max_backward, r.contact_slope_std));
     const double smax = std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope);

@@ -43,11 +43,14 @@ struct Contact {
 
 struct SignatureOptions {
   SlopeMethod slopes = SlopeMethod::Exact;
-  /// 0: exact — every event offset in the range (error if there are more than max_events).
+  /// 0: exact — every event offset in the range. If there are more than max_events (grids
+  /// that do not align, as measured data often have), offsets are sampled at the finer vertex
+  /// spacing instead (SignatureResult::exact = false), or an error if require_exact is set.
   /// N > 0: N equally spaced offsets over [offset_min, offset_max] (end included), each still
   /// evaluated exactly, with exact one-sided slopes at each.
   std::size_t offsets = 0;
   std::size_t max_events = 20'000'000;
+  bool require_exact = false;
   /// Offset range (unit: m). If offset_max <= offset_min: one period of the lower profile if it
   /// is periodic, else [0, half the shorter block length].
   double offset_min = 0;

@@ -424,22 +424,42 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
       P.lattice_step = dxf;
     }
   }
+  // Exact mode needs every event offset. Count them first: when there are more than
+  // max_events (non-aligned grids of measured data give up to N*M), either refuse
+  // (require_exact) or sample offsets at the finer vertex spacing, each still evaluated exactly.
+  std::size_t sampled = o.offsets;
   if (o.offsets == 0) {
+    double n_events = 0;
+    if (P.aligned_lattice) {
+      n_events = std::floor((smax - smin) / P.lattice_step) + 2;
+    } else if (P.periodic) {
+      n_events = double(P.f_hi - P.f_lo + 1) * double(P.g_hi - P.g_lo + 1) * std::ceil((smax - smin) / P.period + 1);
+    } else {
+      for (std::size_t i = 0; i < fx.size(); ++i) {
+        auto lo = std::lower_bound(gx.begin(), gx.end(), fx[i] - smax - P.xtol);
+        auto hi = std::upper_bound(gx.begin(), gx.end(), fx[i] - smin + P.xtol);
+        n_events += static_cast<double>(hi - lo);
+      }
+    }
+    if (n_events > static_cast<double>(o.max_events)) {
+      if (o.require_exact)
+        return make_error(fmt::format("signature: the exact signature needs about {:.3g} event offsets (limit {}){}; "
+                                      "sample offsets instead (--offsets N) or shorten the range", n_events,
+                                      o.max_events, P.aligned_lattice || P.periodic ? "" : " because the two grids do not align"));
+      const double spacing = std::min(dxf, dxg);
+      sampled = static_cast<std::size_t>(
+          std::min(static_cast<double>(o.max_events), std::ceil((smax - smin) / spacing) + 1));
+      sampled = std::max<std::size_t>(sampled, 2);
+    }
+  }
+  if (sampled == 0) {
     if (P.aligned_lattice) {
       const double k0 = std::ceil((smin - P.lattice_origin) / P.lattice_step - 1e-9);
       const double k1 = std::floor((smax - P.lattice_origin) / P.lattice_step + 1e-9);
-      const double n = k1 - k0 + 1;
-      if (n > static_cast<double>(o.max_events))
-        return make_error(fmt::format("signature: the exact signature needs {:.0f} offsets (more than the limit {}); "
-                                      "sample fewer offsets (--offsets N) or shorten the range", n, o.max_events));
       for (double k = k0; k <= k1; k += 1) offs.push_back(P.lattice_origin + k * P.lattice_step);
     } else if (P.periodic) {
-      const double n = double(P.f_hi - P.f_lo + 1) * double(P.g_hi - P.g_lo + 1);
-      if (n * std::ceil((smax - smin) / P.period + 1) > static_cast<double>(o.max_events))
-        return make_error(fmt::format("signature: the exact signature needs about {:.3g} event offsets (limit {}); "
-                                      "use sampled offsets (--offsets N)", n, o.max_events));
       std::vector<double> base;
-      base.reserve(static_cast<std::size_t>(n));
+      base.reserve((P.f_hi - P.f_lo + 1) * (P.g_hi - P.g_lo + 1));
       for (std::size_t i = P.f_lo; i <= P.f_hi; ++i)
         for (std::size_t j = P.g_lo; j <= P.g_hi; ++j) {
           double e = std::fmod(fx[i] - gx[j], P.period);
@@ -453,16 +473,6 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
           if (v >= smin - P.xtol && v <= smax + P.xtol) offs.push_back(std::clamp(v, smin, smax));
         }
     } else {
-      double n = 0;
-      for (std::size_t i = 0; i < fx.size(); ++i) {
-        auto lo = std::lower_bound(gx.begin(), gx.end(), fx[i] - smax - P.xtol);
-        auto hi = std::upper_bound(gx.begin(), gx.end(), fx[i] - smin + P.xtol);
-        n += static_cast<double>(hi - lo);
-      }
-      if (n > static_cast<double>(o.max_events))
-        return make_error(fmt::format("signature: the exact signature needs {:.3g} event offsets (limit {}) because "
-                                      "the two grids do not align; use sampled offsets (--offsets N)", n, o.max_events));
-      offs.reserve(static_cast<std::size_t>(n) + 2);
       for (std::size_t i = 0; i < fx.size(); ++i) {
         auto lo = std::lower_bound(gx.begin(), gx.end(), fx[i] - smax - P.xtol);
         auto hi = std::upper_bound(gx.begin(), gx.end(), fx[i] - smin + P.xtol);
@@ -480,7 +490,7 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
     offs.swap(u);
     events = offs.size();
   } else {
-    const std::size_t n = std::max<std::size_t>(o.offsets, 2);
+    const std::size_t n = std::max<std::size_t>(sampled, 2);
     offs.resize(n);
     for (std::size_t i = 0; i < n; ++i)
       offs[i] = (i + 1 == n) ? smax : smin + (smax - smin) * static_cast<double>(i) / static_cast<double>(n - 1);
@@ -514,7 +524,7 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   }
 
   SignatureResult R;
-  R.exact = (o.offsets == 0);
+  R.exact = (sampled == 0);
   R.events = events;
   R.offset = offs;
   R.lift.resize(n);

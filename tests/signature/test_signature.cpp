@@ -202,9 +202,17 @@ TEST(Signature, ErrorsForBadOptions) {
   EXPECT_FALSE(self_signature(p, o).ok());
   o = {};
   o.max_events = 10;
+  o.require_exact = true;
   auto r = self_signature(koch(3, 20), o);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("--offsets"), std::string::npos);
+  // Without require_exact: offsets sampled instead (at most max_events), never above the maximum.
+  o.require_exact = false;
+  auto fb = self_signature(koch(3, 20), o);
+  ASSERT_TRUE(fb.ok()) << fb.error().message;
+  EXPECT_FALSE(fb->exact);
+  EXPECT_LE(fb->offset.size(), 10u);
+  EXPECT_LE(fb->theta_max_forward, deg(60) + 1e-12);
   o = {};
   o.slopes = SlopeMethod::Spline;
   EXPECT_FALSE(self_signature(koch(2, 40), o).ok());  // envelope has vertical jumps
