@@ -83,6 +83,10 @@ struct WorldDef {
   Vec2 gravity{0, -9.81};     ///< (unit: m/s^2)
   double time_step = 1e-5;    ///< fixed dt > 0 (unit: s)
   double skin = 5e-5;         ///< Verlet skin added to r1 + r2 for the neighbour list (unit: m)
+  /// Skin of the hot list inside the neighbour list: only pairs within r1 + r2 + hot_skin at the
+  /// last full pass are evaluated until the bodies have moved by hot_skin / 2 (speed only; the
+  /// results do not depend on it) (unit: m).
+  double hot_skin = 5e-6;
   ContactParams contact;
   /// Stability guard: stop with an error when an overlap exceeds this fraction of r1 + r2
   /// (cores about to interpenetrate) (unitless).
@@ -149,6 +153,8 @@ struct StepTimings {
   double integration = 0;     ///< kicks, drift, kinematic motion, guards
   std::uint64_t list_builds = 0;
   std::uint64_t pairs_visited = 0;  ///< sum over steps of the list length
+  std::uint64_t pairs_evaluated = 0;  ///< sum over steps of the pairs actually evaluated (hot list or full list)
+  std::uint64_t hot_refreshes = 0;    ///< full passes over the list that rebuilt the hot list
 };
 
 /// Mutable part of a simulation.
@@ -166,6 +172,15 @@ struct State {
   /// once per step into active_x/active_y, so a vertex shared by several pairs costs one transform.
   std::vector<std::uint32_t> active_vertex;
   std::vector<double> active_x, active_y;
+  /// Hot list: indices (ascending) of the list pairs closer than r1 + r2 + hot skin at the last
+  /// full pass over the list (poses hot_position / hot_angle). Until the bodies have moved by more
+  /// than half the hot skin since then, the other pairs cannot touch and only these are evaluated
+  /// (docs/dem.md sec. 2). Invalidated by every list rebuild.
+  std::vector<std::uint32_t> hot_pairs;
+  std::vector<Vec2> hot_position;
+  std::vector<double> hot_angle;
+  std::vector<std::uint32_t> hot_slots;  ///< active-vertex slots the hot pairs refer to (ascending)
+  bool hot_valid = false;
   std::vector<Vec2> list_position;  ///< poses at the last list build
   std::vector<double> list_angle;
   int contact_count = 0;            ///< pairs with positive overlap at `time`

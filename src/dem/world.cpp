@@ -98,6 +98,42 @@ double motion_bound(const Model& m, std::size_t b, Vec2 p0, double a0, Vec2 p1, 
   return std::hypot(p1.x - p0.x, p1.y - p0.y) + std::fabs(a1 - a0) * m.extent[b];
 }
 
+// Largest change, between poses 0 and 1, of the distance between a vertex of one body and an
+// edge of another. Distances are invariant under rigid motion, so it is measured in the edge
+// body's frame, where the edge is fixed and the vertex moves with the relative motion of its body:
+// by at most |change of the relative centroid position| + |change of the relative angle| x extent.
+// Two bodies that move together (a block stuck on a tilting block) give ~0, however fast they
+// move. Small body counts only (O(bodies^2)); else the sum of the two largest absolute bounds.
+double relative_motion_bound(const Model& m, const std::vector<Vec2>& p0, const std::vector<double>& a0,
+                             const std::vector<Vec2>& p1, const std::vector<double>& a1) {
+  const std::size_t nb = m.body_count();
+  double worst = 0;
+  if (nb <= 8) {
+    for (std::size_t b = 0; b < nb; ++b) {  // edge body
+      const double c0 = std::cos(a0[b]), s0 = std::sin(a0[b]);
+      const double c1 = std::cos(a1[b]), s1 = std::sin(a1[b]);
+      for (std::size_t a = 0; a < nb; ++a) {  // vertex body
+        if (a == b || (m.type[a] == BodyType::Kinematic && m.type[b] == BodyType::Kinematic)) continue;
+        // Centroid of a in b's frame: R(-angle_b) (p_a - p_b).
+        const double dx0 = p0[a].x - p0[b].x, dy0 = p0[a].y - p0[b].y;
+        const double dx1 = p1[a].x - p1[b].x, dy1 = p1[a].y - p1[b].y;
+        const double qx0 = c0 * dx0 + s0 * dy0, qy0 = -s0 * dx0 + c0 * dy0;
+        const double qx1 = c1 * dx1 + s1 * dy1, qy1 = -s1 * dx1 + c1 * dy1;
+        const double turn = std::fabs((a1[a] - a1[b]) - (a0[a] - a0[b]));
+        worst = std::max(worst, std::hypot(qx1 - qx0, qy1 - qy0) + turn * m.extent[a]);
+      }
+    }
+    return worst;
+  }
+  double b1 = 0, b2 = 0;
+  for (std::size_t b = 0; b < nb; ++b) {
+    const double d = motion_bound(m, b, p0[b], a0[b], p1[b], a1[b]);
+    if (d > b1) b2 = b1, b1 = d;
+    else if (d > b2) b2 = d;
+  }
+  return b1 + b2;
+}
+
 void build_neighbor_list(const Model& m, State& st) {
   const std::size_t nb = m.body_count();
   const std::size_t nv = m.local_x.size();
@@ -252,6 +288,7 @@ void build_neighbor_list(const Model& m, State& st) {
     st.list_position[b] = st.position[b];
     st.list_angle[b] = st.angle[b];
   }
+  st.hot_valid = false;
   ++st.timings.list_builds;
 }
 
@@ -343,19 +380,31 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     st.force[b] = {0, 0};
     st.torque[b] = 0;
   }
+  // Hot list (docs/dem.md sec. 2): a full pass over the list records which pairs are within
+  // r1 + r2 + hot_skin; until the bodies have moved by more than hot_skin / 2 since that pass, the
+  // others are at least hot_skin / 2 apart and are skipped. A skipped pair is apart, and its
+  // spring was reset in the full pass, so the forces, their summation order and every per-pair
+  // state are exactly those of a pass over the whole list.
+  const double hot_skin = m.def.hot_skin;
+  bool full = !st.hot_valid;
+  if (!full) full = 2.0 * relative_motion_bound(m, st.hot_position, st.hot_angle, st.position, st.angle) > hot_skin;
   int contacts = 0;
   double max_ov = 0, max_ratio = 0, energy = 0;
   const double* lx = m.local_x.data();
   const double* ly = m.local_y.data();
-  // World positions of the vertices the list refers to, one transform each.
-  const std::size_t na = st.active_vertex.size();
+  // World positions of the vertices the (hot) list refers to, one transform each.
   double* wx = st.active_x.data();
   double* wy = st.active_y.data();
-  for (std::size_t k = 0; k < na; ++k) {
+  auto transform = [&](std::size_t k) {
     const std::uint32_t v = st.active_vertex[k];
     const Pose& P = ps[m.vertex_body[v]];
     wx[k] = P.px + (P.c * lx[v] - P.s * ly[v]);
     wy[k] = P.py + (P.s * lx[v] + P.c * ly[v]);
+  };
+  if (full) {
+    for (std::size_t k = 0; k < st.active_vertex.size(); ++k) transform(k);
+  } else {
+    for (std::uint32_t k : st.hot_slots) transform(k);
   }
   // Local copies of everything the loop reads, so that the force stores cannot alias them.
   const double* const __restrict radius = m.radius.data();
@@ -363,7 +412,32 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   const double kn = cp.normal_stiffness, kt = cp.tangential_stiffness, mu = cp.atomic_friction;
   const double gn = cp.normal_damping, gt = cp.tangential_damping;
   const double guard = m.def.max_overlap_ratio;
-  for (NeighborPair& p : st.pairs) {
+  // Force and torque sums and mode matrices of the two bodies of the current run of pairs with
+  // the same (vertex body, edge body), kept in locals rather than summed into memory pair by
+  // pair: same additions in the same order, without the store-to-load chain through memory.
+  struct BodySums {
+    double fx = 0, fy = 0, torque = 0;
+    ModeSums modes;
+  };
+  BodySums sa, sb;
+  std::uint32_t cur_a = 0, cur_b = 0;
+  bool have_run = false;
+  auto flush = [&]() {
+    if (!have_run) return;
+    st.force[cur_a] = {sa.fx, sa.fy};
+    st.torque[cur_a] = sa.torque;
+    jac[cur_a] = sa.modes;
+    st.force[cur_b] = {sb.fx, sb.fy};
+    st.torque[cur_b] = sb.torque;
+    jac[cur_b] = sb.modes;
+  };
+  if (full) st.hot_pairs.clear();
+  NeighborPair* const pairs = st.pairs.data();
+  const std::uint32_t* const hot = st.hot_pairs.data();
+  const std::size_t count = full ? st.pairs.size() : st.hot_pairs.size();
+  for (std::size_t k = 0; k < count; ++k) {
+    const std::uint32_t index = full ? static_cast<std::uint32_t>(k) : hot[k];
+    NeighborPair& p = pairs[index];
     const std::uint32_t a = p.vbody, b = p.ebody;
     const double vx = wx[p.slot_vertex], vy = wy[p.slot_vertex];
     const double e0x = wx[p.slot_edge0], e0y = wy[p.slot_edge0];
@@ -379,7 +453,15 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
         p.elongation = 0;
         p.overlap = -1;
       }
+      if (full && dist2 < (rsum + hot_skin) * (rsum + hot_skin)) st.hot_pairs.push_back(index);
       continue;
+    }
+    if (full) st.hot_pairs.push_back(index);
+    if (!have_run || a != cur_a || b != cur_b) {
+      flush();
+      cur_a = a, cur_b = b, have_run = true;
+      sa = {st.force[a].x, st.force[a].y, st.torque[a], jac[a]};
+      sb = {st.force[b].x, st.force[b].y, st.torque[b], jac[b]};
     }
     const Pose& A = ps[a];
     const Pose& B = ps[b];
@@ -423,15 +505,35 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     const double fn = fn_el - mred * gn * vn;
     const double ft = ft_el - mred * gt * vt;
     const double fx = fn * nx + ft * tx, fy = fn * ny + ft * ty;
-    st.force[a].x += fx;
-    st.force[a].y += fy;
-    st.torque[a] += cross(rax, ray, fx, fy);
-    st.force[b].x -= fx;
-    st.force[b].y -= fy;
-    st.torque[b] -= cross(rbx, rby, fx, fy);
+    sa.fx += fx;
+    sa.fy += fy;
+    sa.torque += cross(rax, ray, fx, fy);
+    sb.fx -= fx;
+    sb.fy -= fy;
+    sb.torque -= cross(rbx, rby, fx, fy);
     // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
-    if (inv_mass_of[a] > 0) add_outer(jac[a], nx, ny, cross(rax, ray, nx, ny), mred);
-    if (inv_mass_of[b] > 0) add_outer(jac[b], nx, ny, cross(rbx, rby, nx, ny), mred);
+    if (inv_mass_of[a] > 0) add_outer(sa.modes, nx, ny, cross(rax, ray, nx, ny), mred);
+    if (inv_mass_of[b] > 0) add_outer(sb.modes, nx, ny, cross(rbx, rby, nx, ny), mred);
+  }
+  flush();
+  if (full) {
+    // Vertex slots the hot pairs refer to (ascending, each once).
+    std::vector<std::uint32_t>& mark = st.scratch_slot;
+    mark.assign(st.active_vertex.size(), 0);
+    for (std::uint32_t i : st.hot_pairs) {
+      const NeighborPair& p = st.pairs[i];
+      mark[p.slot_vertex] = mark[p.slot_edge0] = mark[p.slot_edge1] = 1;
+    }
+    st.hot_slots.clear();
+    for (std::uint32_t k = 0; k < mark.size(); ++k)
+      if (mark[k]) st.hot_slots.push_back(k);
+    st.hot_position = st.position;
+    st.hot_angle = st.angle;
+    st.hot_valid = true;
+    ++st.timings.hot_refreshes;
+    st.timings.pairs_evaluated += st.pairs.size();
+  } else {
+    st.timings.pairs_evaluated += st.hot_pairs.size();
   }
   st.contact_count = contacts;
   for (std::size_t b = 0; b < nb; ++b) {
@@ -469,6 +571,7 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
   auto finite_nonneg = [](double v) { return std::isfinite(v) && v >= 0; };
   if (!finite_pos(world.time_step)) return bad(fmt::format("world time_step = {} s: expected a finite value > 0", world.time_step));
   if (!finite_nonneg(world.skin)) return bad(fmt::format("world skin = {} m: expected a finite value >= 0", world.skin));
+  if (!finite_nonneg(world.hot_skin)) return bad(fmt::format("world hot_skin = {} m: expected a finite value >= 0", world.hot_skin));
   if (!std::isfinite(world.gravity.x) || !std::isfinite(world.gravity.y)) return bad("world gravity: expected finite components");
   const ContactParams& c = world.contact;
   if (!finite_pos(c.normal_stiffness)) return bad(fmt::format("contact normal_stiffness k_n = {} N/m: expected > 0", c.normal_stiffness));
