@@ -146,6 +146,20 @@ struct NeighborPair {
   double overlap = 0;         ///< last overlap, <= 0 when apart (unit: m)
 };
 
+/// cos and sin of a body's angle.
+struct Rotation {
+  double c = 1;
+  double s = 0;
+};
+
+/// One touching pair in the contact loop (scratch): its geometry from the distance pass, then
+/// its force, torques and mode-matrix terms from the force pass.
+struct ContactScratch {
+  std::uint32_t pair = 0;  ///< index in State::pairs
+  double sx = 0, sy = 0, dist2 = 0, dx = 0, dy = 0, vx = 0, vy = 0;
+  double fx = 0, fy = 0, torque_a = 0, torque_b = 0, nx = 0, ny = 0, jt_a = 0, jt_b = 0, mred = 0;
+};
+
 /// Cumulative wall time per stage of step() (unit: s) and counters.
 struct StepTimings {
   double neighbor_list = 0;   ///< rebuild test + rebuilds
@@ -179,10 +193,15 @@ struct State {
   std::vector<std::uint32_t> hot_pairs;
   std::vector<Vec2> hot_position;
   std::vector<double> hot_angle;
+  std::vector<Rotation> hot_rotation;
   std::vector<std::uint32_t> hot_slots;  ///< active-vertex slots the hot pairs refer to (ascending)
   bool hot_valid = false;
   std::vector<Vec2> list_position;  ///< poses at the last list build
   std::vector<double> list_angle;
+  std::vector<Rotation> list_rotation;
+  /// cos and sin of `angle`, refreshed by step() after each drift (a cache: code that changes
+  /// `angle` between steps needs nothing else).
+  std::vector<Rotation> rotation;
   int contact_count = 0;            ///< pairs with positive overlap at `time`
   std::vector<int> body_contacts;   ///< pairs with positive overlap per body at `time`
   /// Explicit stability limit of each dynamic body at `time` from its contact modes: with
@@ -201,6 +220,7 @@ struct State {
   std::vector<std::uint32_t> scratch_items;
   std::vector<NeighborPair> scratch_pairs;
   std::vector<std::uint32_t> scratch_slot;
+  std::vector<ContactScratch> scratch_contacts;
 };
 
 /// Validates the definitions and computes mass properties. Errors name the body and field.

@@ -93,6 +93,13 @@ void kinematic_pose(const Model& m, std::size_t b, double t, State& st) {
   st.velocity[b] = {-w * ry, w * rx};
 }
 
+// cos and sin of every body's angle, once per step for the list test, the hot-list test, the
+// list builder and the contact loop.
+void update_rotation(State& st) {
+  st.rotation.resize(st.angle.size());
+  for (std::size_t b = 0; b < st.angle.size(); ++b) st.rotation[b] = {std::cos(st.angle[b]), std::sin(st.angle[b])};
+}
+
 // Largest possible displacement of any vertex of body b between poses.
 double motion_bound(const Model& m, std::size_t b, Vec2 p0, double a0, Vec2 p1, double a1) {
   return std::hypot(p1.x - p0.x, p1.y - p0.y) + std::fabs(a1 - a0) * m.extent[b];
@@ -104,14 +111,16 @@ double motion_bound(const Model& m, std::size_t b, Vec2 p0, double a0, Vec2 p1, 
 // by at most |change of the relative centroid position| + |change of the relative angle| x extent.
 // Two bodies that move together (a block stuck on a tilting block) give ~0, however fast they
 // move. Small body counts only (O(bodies^2)); else the sum of the two largest absolute bounds.
+// r0, r1: cos and sin of the angles a0, a1 (cached, see State::rotation).
 double relative_motion_bound(const Model& m, const std::vector<Vec2>& p0, const std::vector<double>& a0,
-                             const std::vector<Vec2>& p1, const std::vector<double>& a1) {
+                             const std::vector<Rotation>& r0, const std::vector<Vec2>& p1,
+                             const std::vector<double>& a1, const std::vector<Rotation>& r1) {
   const std::size_t nb = m.body_count();
   double worst = 0;
   if (nb <= 8) {
     for (std::size_t b = 0; b < nb; ++b) {  // edge body
-      const double c0 = std::cos(a0[b]), s0 = std::sin(a0[b]);
-      const double c1 = std::cos(a1[b]), s1 = std::sin(a1[b]);
+      const double c0 = r0[b].c, s0 = r0[b].s;
+      const double c1 = r1[b].c, s1 = r1[b].s;
       for (std::size_t a = 0; a < nb; ++a) {  // vertex body
         if (a == b || (m.type[a] == BodyType::Kinematic && m.type[b] == BodyType::Kinematic)) continue;
         // Centroid of a in b's frame: R(-angle_b) (p_a - p_b).
@@ -141,7 +150,7 @@ void build_neighbor_list(const Model& m, State& st) {
   std::vector<double> wx(nv), wy(nv);
   std::vector<double> bx0(nb), bx1(nb), by0(nb), by1(nb);
   for (std::size_t b = 0; b < nb; ++b) {
-    const double c = std::cos(st.angle[b]), s = std::sin(st.angle[b]);
+    const double c = st.rotation[b].c, s = st.rotation[b].s;
     const Vec2 p = st.position[b];
     double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
     for (std::uint32_t v = m.vertex_begin[b]; v < m.vertex_begin[b + 1]; ++v) {
@@ -287,6 +296,7 @@ void build_neighbor_list(const Model& m, State& st) {
   for (std::size_t b = 0; b < nb; ++b) {
     st.list_position[b] = st.position[b];
     st.list_angle[b] = st.angle[b];
+    st.list_rotation[b] = st.rotation[b];
   }
   st.hot_valid = false;
   ++st.timings.list_builds;
@@ -376,7 +386,7 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     body_contacts[b] = 0;
     jac[b] = ModeSums{};
     inv_mass_of[b] = m.type[b] == BodyType::Dynamic ? 1.0 / m.mass[b] : 0.0;
-    ps[b] = {st.position[b].x, st.position[b].y, std::cos(st.angle[b]), std::sin(st.angle[b])};
+    ps[b] = {st.position[b].x, st.position[b].y, st.rotation[b].c, st.rotation[b].s};
     st.force[b] = {0, 0};
     st.torque[b] = 0;
   }
@@ -387,7 +397,7 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   // state are exactly those of a pass over the whole list.
   const double hot_skin = m.def.hot_skin;
   bool full = !st.hot_valid;
-  if (!full) full = 2.0 * relative_motion_bound(m, st.hot_position, st.hot_angle, st.position, st.angle) > hot_skin;
+  if (!full) full = 2.0 * relative_motion_bound(m, st.hot_position, st.hot_angle, st.hot_rotation, st.position, st.angle, st.rotation) > hot_skin;
   int contacts = 0;
   double max_ov = 0, max_ratio = 0, energy = 0;
   const double* lx = m.local_x.data();
@@ -412,33 +422,23 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   const double kn = cp.normal_stiffness, kt = cp.tangential_stiffness, mu = cp.atomic_friction;
   const double gn = cp.normal_damping, gt = cp.tangential_damping;
   const double guard = m.def.max_overlap_ratio;
-  // Force and torque sums and mode matrices of the two bodies of the current run of pairs with
-  // the same (vertex body, edge body), kept in locals rather than summed into memory pair by
-  // pair: same additions in the same order, without the store-to-load chain through memory.
-  struct BodySums {
-    double fx = 0, fy = 0, torque = 0;
-    ModeSums modes;
-  };
-  BodySums sa, sb;
-  std::uint32_t cur_a = 0, cur_b = 0;
-  bool have_run = false;
-  auto flush = [&]() {
-    if (!have_run) return;
-    st.force[cur_a] = {sa.fx, sa.fy};
-    st.torque[cur_a] = sa.torque;
-    jac[cur_a] = sa.modes;
-    st.force[cur_b] = {sb.fx, sb.fy};
-    st.torque[cur_b] = sb.torque;
-    jac[cur_b] = sb.modes;
-  };
+  // Three passes, each in list order (docs/dem.md sec. 7). (1) Distances: the touching pairs and
+  // their geometry go to a scratch list; the other pairs only reset their springs. (2) Forces of
+  // the touching pairs, each independent of the others: without the unpredictable touch / apart
+  // branch in the middle, the CPU overlaps the long sqrt / division chains of successive
+  // contacts. (3) The sums per body, in the same order as a single pass, so the results are
+  // bitwise those of one loop over the pairs.
   if (full) st.hot_pairs.clear();
   NeighborPair* const pairs = st.pairs.data();
   const std::uint32_t* const hot = st.hot_pairs.data();
   const std::size_t count = full ? st.pairs.size() : st.hot_pairs.size();
+  // Grown, never shrunk; filled field by field (no temporary to copy).
+  if (st.scratch_contacts.size() < count) st.scratch_contacts.resize(count);
+  ContactScratch* const touching = st.scratch_contacts.data();
+  std::size_t n_touching = 0;
   for (std::size_t k = 0; k < count; ++k) {
     const std::uint32_t index = full ? static_cast<std::uint32_t>(k) : hot[k];
     NeighborPair& p = pairs[index];
-    const std::uint32_t a = p.vbody, b = p.ebody;
     const double vx = wx[p.slot_vertex], vy = wy[p.slot_vertex];
     const double e0x = wx[p.slot_edge0], e0y = wy[p.slot_edge0];
     const double e1x = wx[p.slot_edge1], e1y = wy[p.slot_edge1];
@@ -447,37 +447,38 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     t = std::clamp(t, 0.0, 1.0);
     const double sx = vx - (e0x + t * dx), sy = vy - (e0y + t * dy);
     const double dist2 = sx * sx + sy * sy;
+    const double rsum = radius[p.vbody] + radius[p.ebody];
+    // Written for every pair and kept only if it touches: no branch on touch / apart, which
+    // the hot list makes a coin toss (n_touching <= k, so the slot exists).
+    ContactScratch& c = touching[n_touching];
+    c.pair = index;
+    c.sx = sx, c.sy = sy, c.dist2 = dist2, c.dx = dx, c.dy = dy, c.vx = vx, c.vy = vy;
+    const bool touch = dist2 < rsum * rsum;
+    n_touching += touch ? 1 : 0;
+    if (!touch && p.overlap > -1) {  // write only on the transition (most pairs stay apart)
+      p.elongation = 0;
+      p.overlap = -1;
+    }
+    if (full && dist2 < (rsum + hot_skin) * (rsum + hot_skin)) st.hot_pairs.push_back(index);
+  }
+  for (std::size_t k = 0; k < n_touching; ++k) {
+    ContactScratch& c = touching[k];
+    NeighborPair& p = pairs[c.pair];
+    const std::uint32_t a = p.vbody, b = p.ebody;
     const double rsum = radius[a] + radius[b];
-    if (dist2 >= rsum * rsum) {
-      if (p.overlap > -1) {  // write only on the transition (most pairs stay apart)
-        p.elongation = 0;
-        p.overlap = -1;
-      }
-      if (full && dist2 < (rsum + hot_skin) * (rsum + hot_skin)) st.hot_pairs.push_back(index);
-      continue;
-    }
-    if (full) st.hot_pairs.push_back(index);
-    if (!have_run || a != cur_a || b != cur_b) {
-      flush();
-      cur_a = a, cur_b = b, have_run = true;
-      sa = {st.force[a].x, st.force[a].y, st.torque[a], jac[a]};
-      sb = {st.force[b].x, st.force[b].y, st.torque[b], jac[b]};
-    }
+    const double vx = c.vx, vy = c.vy, dx = c.dx, dy = c.dy;
     const Pose& A = ps[a];
     const Pose& B = ps[b];
-    const double dist = std::sqrt(dist2);
+    const double dist = std::sqrt(c.dist2);
     double nx, ny;
     if (dist > 0) {
       const double inv = 1.0 / dist;
-      nx = sx * inv, ny = sy * inv;
+      nx = c.sx * inv, ny = c.sy * inv;
     } else {  // vertex exactly on the edge: outward normal of the (counter-clockwise) edge
       const double l = std::sqrt(dx * dx + dy * dy);
       nx = dy / l, ny = -dx / l;
     }
     const double overlap = rsum - dist;
-    ++contacts;
-    ++body_contacts[a];
-    ++body_contacts[b];
     max_ov = std::max(max_ov, overlap);
     if (overlap > guard * rsum) max_ratio = std::max(max_ratio, overlap / rsum);  // rare
     // Contact point: middle of the overlap along the normal.
@@ -505,17 +506,57 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     const double fn = fn_el - mred * gn * vn;
     const double ft = ft_el - mred * gt * vt;
     const double fx = fn * nx + ft * tx, fy = fn * ny + ft * ty;
-    sa.fx += fx;
-    sa.fy += fy;
-    sa.torque += cross(rax, ray, fx, fy);
-    sb.fx -= fx;
-    sb.fy -= fy;
-    sb.torque -= cross(rbx, rby, fx, fy);
+    c.fx = fx, c.fy = fy;
+    c.torque_a = cross(rax, ray, fx, fy);
+    c.torque_b = cross(rbx, rby, fx, fy);
+    c.nx = nx, c.ny = ny;
+    c.jt_a = cross(rax, ray, nx, ny);
+    c.jt_b = cross(rbx, rby, nx, ny);
+    c.mred = mred;
+  }
+  // Sums per body. The force and torque sums and mode matrices of the two bodies of the current
+  // run of pairs with the same (vertex body, edge body) are kept in locals rather than summed
+  // into memory contact by contact: same additions in the same order.
+  struct BodySums {
+    double fx = 0, fy = 0, torque = 0;
+    ModeSums modes;
+  };
+  BodySums sa, sb;
+  std::uint32_t cur_a = 0, cur_b = 0;
+  bool have_run = false;
+  auto flush = [&]() {
+    if (!have_run) return;
+    st.force[cur_a] = {sa.fx, sa.fy};
+    st.torque[cur_a] = sa.torque;
+    jac[cur_a] = sa.modes;
+    st.force[cur_b] = {sb.fx, sb.fy};
+    st.torque[cur_b] = sb.torque;
+    jac[cur_b] = sb.modes;
+  };
+  for (std::size_t k = 0; k < n_touching; ++k) {
+    const ContactScratch& c = touching[k];
+    const NeighborPair& p = pairs[c.pair];
+    const std::uint32_t a = p.vbody, b = p.ebody;
+    ++body_contacts[a];
+    ++body_contacts[b];
+    if (!have_run || a != cur_a || b != cur_b) {
+      flush();
+      cur_a = a, cur_b = b, have_run = true;
+      sa = {st.force[a].x, st.force[a].y, st.torque[a], jac[a]};
+      sb = {st.force[b].x, st.force[b].y, st.torque[b], jac[b]};
+    }
+    sa.fx += c.fx;
+    sa.fy += c.fy;
+    sa.torque += c.torque_a;
+    sb.fx -= c.fx;
+    sb.fy -= c.fy;
+    sb.torque -= c.torque_b;
     // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
-    if (inv_mass_of[a] > 0) add_outer(sa.modes, nx, ny, cross(rax, ray, nx, ny), mred);
-    if (inv_mass_of[b] > 0) add_outer(sb.modes, nx, ny, cross(rbx, rby, nx, ny), mred);
+    if (inv_mass_of[a] > 0) add_outer(sa.modes, c.nx, c.ny, c.jt_a, c.mred);
+    if (inv_mass_of[b] > 0) add_outer(sb.modes, c.nx, c.ny, c.jt_b, c.mred);
   }
   flush();
+  contacts = static_cast<int>(n_touching);
   if (full) {
     // Vertex slots the hot pairs refer to (ascending, each once).
     std::vector<std::uint32_t>& mark = st.scratch_slot;
@@ -529,6 +570,7 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
       if (mark[k]) st.hot_slots.push_back(k);
     st.hot_position = st.position;
     st.hot_angle = st.angle;
+    st.hot_rotation = st.rotation;
     st.hot_valid = true;
     ++st.timings.hot_refreshes;
     st.timings.pairs_evaluated += st.pairs.size();
@@ -682,6 +724,8 @@ State make_state(const Model& m) {
   st.list_angle = st.angle;
   for (std::size_t b = 0; b < nb; ++b)
     if (m.type[b] == BodyType::Kinematic) kinematic_pose(m, b, 0.0, st);
+  update_rotation(st);
+  st.list_rotation = st.rotation;
   build_neighbor_list(m, st);
   compute_forces(m, st, 0.0);
   return st;
@@ -723,16 +767,16 @@ Status step(const Model& m, State& st) {
   for (std::size_t b = 0; b < nb; ++b)
     if (m.type[b] == BodyType::Kinematic) kinematic_pose(m, b, t_new, st);
   st.time = t_new;
+  update_rotation(st);
   if (timed) {
     const auto t1 = Clock::now();
     st.timings.integration += std::chrono::duration<double>(t1 - t0).count();
     t0 = t1;
   }
-  // Neighbour list: rebuild when some vertex may have moved more than skin / 2.
-  double worst = 0;
-  for (std::size_t b = 0; b < nb; ++b)
-    worst = std::max(worst, motion_bound(m, b, st.list_position[b], st.list_angle[b], st.position[b], st.angle[b]));
-  if (2.0 * worst > m.def.skin) {
+  // Neighbour list: rebuild when some vertex-edge distance may have shrunk by more than the skin
+  // since the last build (pairs left out were at least r1 + r2 + skin apart). The bound is on
+  // the relative motion of the bodies: a block resting on a tilting block keeps its list.
+  if (relative_motion_bound(m, st.list_position, st.list_angle, st.list_rotation, st.position, st.angle, st.rotation) > m.def.skin) {
     // A single step must not move anything by more than half the skin, or contacts are missed.
     for (std::size_t b = 0; b < nb; ++b) {
       const double per_step = (std::hypot(st.velocity[b].x, st.velocity[b].y) +
@@ -759,7 +803,8 @@ Status step(const Model& m, State& st) {
   ++st.steps;
   // Stability guards.
   Status status = Ok{};
-  const double dt_hint = suggested_time_step(m, st.contact_count);
+  // Suggested step for the messages, computed only when there is one to write.
+  auto dt_hint = [&]() { return suggested_time_step(m, st.contact_count); };
   bool beyond = false;
   for (std::size_t b = 0; b < nb && status.ok(); ++b) {
     if (m.type[b] != BodyType::Dynamic) continue;
@@ -769,7 +814,7 @@ Status step(const Model& m, State& st) {
     if (!finite) {
       status = make_error(fmt::format(
           "dem: body {} has a non-finite position or velocity at t = {:.6g} s (step {}); the integration "
-          "blew up: try a time step <= {:.3g} s (now {:.3g} s)", b, st.time, st.steps, dt_hint, dt));
+          "blew up: try a time step <= {:.3g} s (now {:.3g} s)", b, st.time, st.steps, dt_hint(), dt));
       break;
     }
     if (const double lim = st.step_limit[b]; dt > lim) {
@@ -788,7 +833,7 @@ Status step(const Model& m, State& st) {
     if (speed > m.def.max_speed)
       status = make_error(fmt::format(
           "dem: body {} reached speed {:.3g} m/s > max_speed {:.3g} m/s at t = {:.6g} s (energy blow-up); "
-          "try a time step <= {:.3g} s (now {:.3g} s)", b, speed, m.def.max_speed, st.time, dt_hint, dt));
+          "try a time step <= {:.3g} s (now {:.3g} s)", b, speed, m.def.max_speed, st.time, dt_hint(), dt));
   }
   if (beyond) {
     ++st.steps_beyond_limit;
@@ -800,7 +845,7 @@ Status step(const Model& m, State& st) {
     status = make_error(fmt::format(
         "dem: an overlap reached {:.3g} of r1 + r2 (limit {:.3g}) at t = {:.6g} s with {} contacts; the "
         "stiffness is too low for the load or the time step too large: try dt <= {:.3g} s (now {:.3g} s)",
-        ratio, m.def.max_overlap_ratio, st.time, st.contact_count, dt_hint, dt));
+        ratio, m.def.max_overlap_ratio, st.time, st.contact_count, dt_hint(), dt));
   if (timed) st.timings.integration += seconds_since(t0);
   return status;
 }
