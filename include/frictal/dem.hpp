@@ -160,6 +160,27 @@ struct ContactScratch {
   double fx = 0, fy = 0, torque_a = 0, torque_b = 0, nx = 0, ny = 0, jt_a = 0, jt_b = 0, mred = 0;
 };
 
+/// Hot list inside the neighbour list: the list pairs closer than r1 + r2 + hot_skin at the last
+/// full pass over the list (poses `position` / `angle`). Until the relative motion of the bodies
+/// since then exceeds hot_skin / 2, the other pairs cannot touch and only these are evaluated.
+/// Per hot pair: the vertex in its body's frame and the edge in the edge body's frame (constants
+/// of the rigid bodies), for a filter pass that needs no world coordinates. Invalidated by every
+/// list rebuild.
+struct HotList {
+  std::vector<std::uint32_t> pair;  ///< indices into State::pairs, ascending
+  std::vector<double> vx, vy;       ///< vertex, its body's frame (unit: m)
+  std::vector<double> e0x, e0y, dx, dy;  ///< edge start and edge vector, the edge body's frame (unit: m)
+  std::vector<double> inv_len2;     ///< 1 / |edge|^2 (unit: 1/m^2)
+  std::vector<double> cut2;         ///< filter radius squared, ((r1 + r2)(1 + 1e-3))^2 (unit: m^2)
+  std::vector<std::uint32_t> run_begin;  ///< runs of equal (vertex body, edge body): [run_begin[r], run_begin[r+1])
+  std::vector<std::uint32_t> run_vbody, run_ebody;
+  std::vector<unsigned char> keep;  ///< scratch: filter result per hot pair
+  std::vector<Vec2> position;       ///< poses at the last full pass
+  std::vector<double> angle;
+  std::vector<Rotation> rotation;
+  bool valid = false;
+};
+
 /// Cumulative wall time per stage of step() (unit: s) and counters.
 struct StepTimings {
   double neighbor_list = 0;   ///< rebuild test + rebuilds
@@ -186,16 +207,7 @@ struct State {
   /// once per step into active_x/active_y, so a vertex shared by several pairs costs one transform.
   std::vector<std::uint32_t> active_vertex;
   std::vector<double> active_x, active_y;
-  /// Hot list: indices (ascending) of the list pairs closer than r1 + r2 + hot skin at the last
-  /// full pass over the list (poses hot_position / hot_angle). Until the bodies have moved by more
-  /// than half the hot skin since then, the other pairs cannot touch and only these are evaluated
-  /// (docs/dem.md sec. 2). Invalidated by every list rebuild.
-  std::vector<std::uint32_t> hot_pairs;
-  std::vector<Vec2> hot_position;
-  std::vector<double> hot_angle;
-  std::vector<Rotation> hot_rotation;
-  std::vector<std::uint32_t> hot_slots;  ///< active-vertex slots the hot pairs refer to (ascending)
-  bool hot_valid = false;
+  HotList hot;  ///< pairs that can touch before the next full pass (docs/dem.md sec. 2)
   std::vector<Vec2> list_position;  ///< poses at the last list build
   std::vector<double> list_angle;
   std::vector<Rotation> list_rotation;

@@ -298,7 +298,7 @@ void build_neighbor_list(const Model& m, State& st) {
     st.list_angle[b] = st.angle[b];
     st.list_rotation[b] = st.rotation[b];
   }
-  st.hot_valid = false;
+  st.hot.valid = false;
   ++st.timings.list_builds;
 }
 
@@ -351,6 +351,42 @@ double mode_limit(const ModeSums& s, double mass, double inertia, double kn, dou
   return limit;
 }
 
+// Fills the hot list's arrays for the pairs in st.hot.pair (found by a full pass at the current
+// poses): vertex in its body's frame, edge in the edge body's frame (both constant), the filter
+// radius, and the runs of equal (vertex body, edge body).
+void refresh_hot_list(const Model& m, State& st) {
+  HotList& h = st.hot;
+  const std::size_t n = h.pair.size();
+  for (auto* v : {&h.vx, &h.vy, &h.e0x, &h.e0y, &h.dx, &h.dy, &h.inv_len2, &h.cut2}) v->resize(n);
+  h.keep.resize(n);
+  h.run_begin.clear();
+  h.run_vbody.clear();
+  h.run_ebody.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    const NeighborPair& p = st.pairs[h.pair[k]];
+    h.vx[k] = m.local_x[p.vertex];
+    h.vy[k] = m.local_y[p.vertex];
+    h.e0x[k] = m.local_x[p.edge0];
+    h.e0y[k] = m.local_y[p.edge0];
+    h.dx[k] = m.local_x[p.edge1] - m.local_x[p.edge0];
+    h.dy[k] = m.local_y[p.edge1] - m.local_y[p.edge0];
+    h.inv_len2[k] = m.edge_inv_length2[p.edge0];
+    const double cut = (m.radius[p.vbody] + m.radius[p.ebody]) * (1.0 + 1e-3);
+    h.cut2[k] = cut * cut;
+    if (k == 0 || p.vbody != h.run_vbody.back() || p.ebody != h.run_ebody.back()) {
+      h.run_begin.push_back(static_cast<std::uint32_t>(k));
+      h.run_vbody.push_back(p.vbody);
+      h.run_ebody.push_back(p.ebody);
+    }
+  }
+  h.run_begin.push_back(static_cast<std::uint32_t>(n));
+  h.position = st.position;
+  h.angle = st.angle;
+  h.rotation = st.rotation;
+  h.valid = true;
+  ++st.timings.hot_refreshes;
+}
+
 // Contact forces at the current poses and velocities. `dt_spring` is the time over which the
 // tangential springs are stretched (dt in a step, 0 for the initial evaluation).
 // Returns the largest overlap / (r1 + r2) among pairs above the guard ratio, else 0.
@@ -396,26 +432,12 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   // spring was reset in the full pass, so the forces, their summation order and every per-pair
   // state are exactly those of a pass over the whole list.
   const double hot_skin = m.def.hot_skin;
-  bool full = !st.hot_valid;
-  if (!full) full = 2.0 * relative_motion_bound(m, st.hot_position, st.hot_angle, st.hot_rotation, st.position, st.angle, st.rotation) > hot_skin;
+  bool full = !st.hot.valid;
+  if (!full) full = 2.0 * relative_motion_bound(m, st.hot.position, st.hot.angle, st.hot.rotation, st.position, st.angle, st.rotation) > hot_skin;
   int contacts = 0;
   double max_ov = 0, max_ratio = 0, energy = 0;
   const double* lx = m.local_x.data();
   const double* ly = m.local_y.data();
-  // World positions of the vertices the (hot) list refers to, one transform each.
-  double* wx = st.active_x.data();
-  double* wy = st.active_y.data();
-  auto transform = [&](std::size_t k) {
-    const std::uint32_t v = st.active_vertex[k];
-    const Pose& P = ps[m.vertex_body[v]];
-    wx[k] = P.px + (P.c * lx[v] - P.s * ly[v]);
-    wy[k] = P.py + (P.s * lx[v] + P.c * ly[v]);
-  };
-  if (full) {
-    for (std::size_t k = 0; k < st.active_vertex.size(); ++k) transform(k);
-  } else {
-    for (std::uint32_t k : st.hot_slots) transform(k);
-  }
   // Local copies of everything the loop reads, so that the force stores cannot alias them.
   const double* const __restrict radius = m.radius.data();
   const double* const __restrict inv_len2 = m.edge_inv_length2.data();
@@ -428,28 +450,26 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   // branch in the middle, the CPU overlaps the long sqrt / division chains of successive
   // contacts. (3) The sums per body, in the same order as a single pass, so the results are
   // bitwise those of one loop over the pairs.
-  if (full) st.hot_pairs.clear();
   NeighborPair* const pairs = st.pairs.data();
-  const std::uint32_t* const hot = st.hot_pairs.data();
-  const std::size_t count = full ? st.pairs.size() : st.hot_pairs.size();
+  HotList& hot = st.hot;
+  const std::size_t count = full ? st.pairs.size() : hot.pair.size();
   // Grown, never shrunk; filled field by field (no temporary to copy).
   if (st.scratch_contacts.size() < count) st.scratch_contacts.resize(count);
   ContactScratch* const touching = st.scratch_contacts.data();
   std::size_t n_touching = 0;
-  for (std::size_t k = 0; k < count; ++k) {
-    const std::uint32_t index = full ? static_cast<std::uint32_t>(k) : hot[k];
+  // The exact test of one pair from the world positions of its vertex and edge: every decision
+  // (touching, spring reset) is taken here, in the world frame, as in a plain loop over the list.
+  auto classify = [&](std::uint32_t index, double vx, double vy, double e0x, double e0y, double e1x,
+                      double e1y) -> double {
     NeighborPair& p = pairs[index];
-    const double vx = wx[p.slot_vertex], vy = wy[p.slot_vertex];
-    const double e0x = wx[p.slot_edge0], e0y = wy[p.slot_edge0];
-    const double e1x = wx[p.slot_edge1], e1y = wy[p.slot_edge1];
     const double dx = e1x - e0x, dy = e1y - e0y;
     double t = ((vx - e0x) * dx + (vy - e0y) * dy) * inv_len2[p.edge0];
     t = std::clamp(t, 0.0, 1.0);
     const double sx = vx - (e0x + t * dx), sy = vy - (e0y + t * dy);
     const double dist2 = sx * sx + sy * sy;
     const double rsum = radius[p.vbody] + radius[p.ebody];
-    // Written for every pair and kept only if it touches: no branch on touch / apart, which
-    // the hot list makes a coin toss (n_touching <= k, so the slot exists).
+    // Written for every pair and kept only if it touches (n_touching <= pairs seen, so the slot
+    // exists): no branch on touch / apart, which is a coin toss in the hot list.
     ContactScratch& c = touching[n_touching];
     c.pair = index;
     c.sx = sx, c.sy = sy, c.dist2 = dist2, c.dx = dx, c.dy = dy, c.vx = vx, c.vy = vy;
@@ -459,7 +479,83 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
       p.elongation = 0;
       p.overlap = -1;
     }
-    if (full && dist2 < (rsum + hot_skin) * (rsum + hot_skin)) st.hot_pairs.push_back(index);
+    return dist2;
+  };
+  if (full) {
+    // World positions of the vertices the list refers to, one transform each.
+    double* wx = st.active_x.data();
+    double* wy = st.active_y.data();
+    for (std::size_t k = 0; k < st.active_vertex.size(); ++k) {
+      const std::uint32_t v = st.active_vertex[k];
+      const Pose& P = ps[m.vertex_body[v]];
+      wx[k] = P.px + (P.c * lx[v] - P.s * ly[v]);
+      wy[k] = P.py + (P.s * lx[v] + P.c * ly[v]);
+    }
+    hot.pair.clear();
+    for (std::size_t i = 0; i < count; ++i) {
+      const NeighborPair& p = pairs[i];
+      const double dist2 = classify(static_cast<std::uint32_t>(i), wx[p.slot_vertex], wy[p.slot_vertex], wx[p.slot_edge0],
+                                    wy[p.slot_edge0], wx[p.slot_edge1], wy[p.slot_edge1]);
+      const double near = radius[p.vbody] + radius[p.ebody] + hot_skin;
+      if (dist2 < near * near) hot.pair.push_back(static_cast<std::uint32_t>(i));
+    }
+    refresh_hot_list(m, st);
+    st.timings.pairs_evaluated += count;
+  } else {
+    // Filter in the edge body's frame, where the edge is constant: the vertex is moved by the
+    // relative pose of the run's two bodies, and no world positions are needed (a flat loop over
+    // the hot arrays). It keeps every pair within (r1 + r2)(1 + 1e-3); this margin dwarfs the
+    // rounding difference between the two frames (~1e-16 of the coordinates), so every pair that
+    // the exact test finds touching is kept, and the decisions stay those of the exact test.
+    unsigned char* const __restrict keep = hot.keep.data();
+    for (std::size_t r = 0; r + 1 < hot.run_begin.size(); ++r) {
+      const std::uint32_t a = hot.run_vbody[r], b = hot.run_ebody[r];
+      const Pose& A = ps[a];
+      const Pose& B = ps[b];
+      const double cr = A.c * B.c + A.s * B.s, sr = A.s * B.c - A.c * B.s;  // rotation a -> b
+      const double ox = A.px - B.px, oy = A.py - B.py;
+      const double qx = B.c * ox + B.s * oy, qy = -B.s * ox + B.c * oy;   // centroid of a in b
+      const double* const __restrict hvx = hot.vx.data();
+      const double* const __restrict hvy = hot.vy.data();
+      const double* const __restrict he0x = hot.e0x.data();
+      const double* const __restrict he0y = hot.e0y.data();
+      const double* const __restrict hdx = hot.dx.data();
+      const double* const __restrict hdy = hot.dy.data();
+      const double* const __restrict hil = hot.inv_len2.data();
+      const double* const __restrict hcut = hot.cut2.data();
+      const std::size_t k0 = hot.run_begin[r], k1 = hot.run_begin[r + 1];
+      // Flat arrays, no gathers. (GCC 12 does not vectorise it: the clamp's comparisons count as
+      // control flow under the default -ftrapping-math.)
+      for (std::size_t k = k0; k < k1; ++k) {
+        const double px = qx + (cr * hvx[k] - sr * hvy[k]) - he0x[k];
+        const double py = qy + (sr * hvx[k] + cr * hvy[k]) - he0y[k];
+        const double t = std::clamp((px * hdx[k] + py * hdy[k]) * hil[k], 0.0, 1.0);
+        const double sx = px - t * hdx[k], sy = py - t * hdy[k];
+        keep[k] = sx * sx + sy * sy < hcut[k];
+      }
+    }
+    auto world = [&](std::uint32_t v, double& x, double& y) {  // the same arithmetic as above
+      const Pose& P = ps[m.vertex_body[v]];
+      x = P.px + (P.c * lx[v] - P.s * ly[v]);
+      y = P.py + (P.s * lx[v] + P.c * ly[v]);
+    };
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t index = hot.pair[k];
+      NeighborPair& p = pairs[index];
+      if (!keep[k]) {  // apart
+        if (p.overlap > -1) {
+          p.elongation = 0;
+          p.overlap = -1;
+        }
+        continue;
+      }
+      double vx, vy, e0x, e0y, e1x, e1y;
+      world(p.vertex, vx, vy);
+      world(p.edge0, e0x, e0y);
+      world(p.edge1, e1x, e1y);
+      classify(index, vx, vy, e0x, e0y, e1x, e1y);
+    }
+    st.timings.pairs_evaluated += count;
   }
   for (std::size_t k = 0; k < n_touching; ++k) {
     ContactScratch& c = touching[k];
@@ -557,26 +653,6 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   }
   flush();
   contacts = static_cast<int>(n_touching);
-  if (full) {
-    // Vertex slots the hot pairs refer to (ascending, each once).
-    std::vector<std::uint32_t>& mark = st.scratch_slot;
-    mark.assign(st.active_vertex.size(), 0);
-    for (std::uint32_t i : st.hot_pairs) {
-      const NeighborPair& p = st.pairs[i];
-      mark[p.slot_vertex] = mark[p.slot_edge0] = mark[p.slot_edge1] = 1;
-    }
-    st.hot_slots.clear();
-    for (std::uint32_t k = 0; k < mark.size(); ++k)
-      if (mark[k]) st.hot_slots.push_back(k);
-    st.hot_position = st.position;
-    st.hot_angle = st.angle;
-    st.hot_rotation = st.rotation;
-    st.hot_valid = true;
-    ++st.timings.hot_refreshes;
-    st.timings.pairs_evaluated += st.pairs.size();
-  } else {
-    st.timings.pairs_evaluated += st.hot_pairs.size();
-  }
   st.contact_count = contacts;
   for (std::size_t b = 0; b < nb; ++b) {
     st.body_contacts[b] = body_contacts[b];
