@@ -153,6 +153,8 @@ int run(const TiltOptions& o) {
     j["list_builds"] = r->timings.list_builds;
     j["steps_beyond_stability_limit"] = r->steps_beyond_limit;
     j["mean_pairs_in_list"] = r->steps ? static_cast<double>(r->timings.pairs_visited) / static_cast<double>(r->steps) : 0.0;
+    j["mean_pairs_evaluated"] = r->steps ? static_cast<double>(r->timings.pairs_evaluated) / static_cast<double>(r->steps) : 0.0;
+    j["hot_list_refreshes"] = r->timings.hot_refreshes;
     j["stage_time_s"] = {{"neighbor_list", r->timings.neighbor_list}, {"contacts", r->timings.contacts},
                          {"integration", r->timings.integration}};
     j["lower_vertices"] = r->lower_vertices;

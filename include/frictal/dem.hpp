@@ -83,6 +83,10 @@ struct WorldDef {
   Vec2 gravity{0, -9.81};     ///< (unit: m/s^2)
   double time_step = 1e-5;    ///< fixed dt > 0 (unit: s)
   double skin = 5e-5;         ///< Verlet skin added to r1 + r2 for the neighbour list (unit: m)
+  /// Skin of the hot list inside the neighbour list: only pairs within r1 + r2 + hot_skin at the
+  /// last full pass are evaluated until the bodies have moved by hot_skin / 2 (speed only; the
+  /// results do not depend on it) (unit: m).
+  double hot_skin = 5e-6;
   ContactParams contact;
   /// Stability guard: stop with an error when an overlap exceeds this fraction of r1 + r2
   /// (cores about to interpenetrate) (unitless).
@@ -142,6 +146,41 @@ struct NeighborPair {
   double overlap = 0;         ///< last overlap, <= 0 when apart (unit: m)
 };
 
+/// cos and sin of a body's angle.
+struct Rotation {
+  double c = 1;
+  double s = 0;
+};
+
+/// One touching pair in the contact loop (scratch): its geometry from the distance pass, then
+/// its force, torques and mode-matrix terms from the force pass.
+struct ContactScratch {
+  std::uint32_t pair = 0;  ///< index in State::pairs
+  double sx = 0, sy = 0, dist2 = 0, dx = 0, dy = 0, vx = 0, vy = 0;
+  double fx = 0, fy = 0, torque_a = 0, torque_b = 0, nx = 0, ny = 0, jt_a = 0, jt_b = 0, mred = 0;
+};
+
+/// Hot list inside the neighbour list: the list pairs closer than r1 + r2 + hot_skin at the last
+/// full pass over the list (poses `position` / `angle`). Until the relative motion of the bodies
+/// since then exceeds hot_skin / 2, the other pairs cannot touch and only these are evaluated.
+/// Per hot pair: the vertex in its body's frame and the edge in the edge body's frame (constants
+/// of the rigid bodies), for a filter pass that needs no world coordinates. Invalidated by every
+/// list rebuild.
+struct HotList {
+  std::vector<std::uint32_t> pair;  ///< indices into State::pairs, ascending
+  std::vector<double> vx, vy;       ///< vertex, its body's frame (unit: m)
+  std::vector<double> e0x, e0y, dx, dy;  ///< edge start and edge vector, the edge body's frame (unit: m)
+  std::vector<double> inv_len2;     ///< 1 / |edge|^2 (unit: 1/m^2)
+  std::vector<double> cut2;         ///< filter radius squared, ((r1 + r2)(1 + 1e-3))^2 (unit: m^2)
+  std::vector<std::uint32_t> run_begin;  ///< runs of equal (vertex body, edge body): [run_begin[r], run_begin[r+1])
+  std::vector<std::uint32_t> run_vbody, run_ebody;
+  std::vector<unsigned char> keep;  ///< scratch: filter result per hot pair
+  std::vector<Vec2> position;       ///< poses at the last full pass
+  std::vector<double> angle;
+  std::vector<Rotation> rotation;
+  bool valid = false;
+};
+
 /// Cumulative wall time per stage of step() (unit: s) and counters.
 struct StepTimings {
   double neighbor_list = 0;   ///< rebuild test + rebuilds
@@ -149,6 +188,8 @@ struct StepTimings {
   double integration = 0;     ///< kicks, drift, kinematic motion, guards
   std::uint64_t list_builds = 0;
   std::uint64_t pairs_visited = 0;  ///< sum over steps of the list length
+  std::uint64_t pairs_evaluated = 0;  ///< sum over steps of the pairs actually evaluated (hot list or full list)
+  std::uint64_t hot_refreshes = 0;    ///< full passes over the list that rebuilt the hot list
 };
 
 /// Mutable part of a simulation.
@@ -166,8 +207,13 @@ struct State {
   /// once per step into active_x/active_y, so a vertex shared by several pairs costs one transform.
   std::vector<std::uint32_t> active_vertex;
   std::vector<double> active_x, active_y;
+  HotList hot;  ///< pairs that can touch before the next full pass (docs/dem.md sec. 2)
   std::vector<Vec2> list_position;  ///< poses at the last list build
   std::vector<double> list_angle;
+  std::vector<Rotation> list_rotation;
+  /// cos and sin of `angle`, refreshed by step() after each drift (a cache: code that changes
+  /// `angle` between steps needs nothing else).
+  std::vector<Rotation> rotation;
   int contact_count = 0;            ///< pairs with positive overlap at `time`
   std::vector<int> body_contacts;   ///< pairs with positive overlap per body at `time`
   /// Explicit stability limit of each dynamic body at `time` from its contact modes: with
@@ -186,6 +232,7 @@ struct State {
   std::vector<std::uint32_t> scratch_items;
   std::vector<NeighborPair> scratch_pairs;
   std::vector<std::uint32_t> scratch_slot;
+  std::vector<ContactScratch> scratch_contacts;
 };
 
 /// Validates the definitions and computes mass properties. Errors name the body and field.

@@ -93,9 +93,54 @@ void kinematic_pose(const Model& m, std::size_t b, double t, State& st) {
   st.velocity[b] = {-w * ry, w * rx};
 }
 
+// cos and sin of every body's angle, once per step for the list test, the hot-list test, the
+// list builder and the contact loop.
+void update_rotation(State& st) {
+  st.rotation.resize(st.angle.size());
+  for (std::size_t b = 0; b < st.angle.size(); ++b) st.rotation[b] = {std::cos(st.angle[b]), std::sin(st.angle[b])};
+}
+
 // Largest possible displacement of any vertex of body b between poses.
 double motion_bound(const Model& m, std::size_t b, Vec2 p0, double a0, Vec2 p1, double a1) {
   return std::hypot(p1.x - p0.x, p1.y - p0.y) + std::fabs(a1 - a0) * m.extent[b];
+}
+
+// Largest change, between poses 0 and 1, of the distance between a vertex of one body and an
+// edge of another. Distances are invariant under rigid motion, so it is measured in the edge
+// body's frame, where the edge is fixed and the vertex moves with the relative motion of its body:
+// by at most |change of the relative centroid position| + |change of the relative angle| x extent.
+// Two bodies that move together (a block stuck on a tilting block) give ~0, however fast they
+// move. Small body counts only (O(bodies^2)); else the sum of the two largest absolute bounds.
+// r0, r1: cos and sin of the angles a0, a1 (cached, see State::rotation).
+double relative_motion_bound(const Model& m, const std::vector<Vec2>& p0, const std::vector<double>& a0,
+                             const std::vector<Rotation>& r0, const std::vector<Vec2>& p1,
+                             const std::vector<double>& a1, const std::vector<Rotation>& r1) {
+  const std::size_t nb = m.body_count();
+  double worst = 0;
+  if (nb <= 8) {
+    for (std::size_t b = 0; b < nb; ++b) {  // edge body
+      const double c0 = r0[b].c, s0 = r0[b].s;
+      const double c1 = r1[b].c, s1 = r1[b].s;
+      for (std::size_t a = 0; a < nb; ++a) {  // vertex body
+        if (a == b || (m.type[a] == BodyType::Kinematic && m.type[b] == BodyType::Kinematic)) continue;
+        // Centroid of a in b's frame: R(-angle_b) (p_a - p_b).
+        const double dx0 = p0[a].x - p0[b].x, dy0 = p0[a].y - p0[b].y;
+        const double dx1 = p1[a].x - p1[b].x, dy1 = p1[a].y - p1[b].y;
+        const double qx0 = c0 * dx0 + s0 * dy0, qy0 = -s0 * dx0 + c0 * dy0;
+        const double qx1 = c1 * dx1 + s1 * dy1, qy1 = -s1 * dx1 + c1 * dy1;
+        const double turn = std::fabs((a1[a] - a1[b]) - (a0[a] - a0[b]));
+        worst = std::max(worst, std::hypot(qx1 - qx0, qy1 - qy0) + turn * m.extent[a]);
+      }
+    }
+    return worst;
+  }
+  double b1 = 0, b2 = 0;
+  for (std::size_t b = 0; b < nb; ++b) {
+    const double d = motion_bound(m, b, p0[b], a0[b], p1[b], a1[b]);
+    if (d > b1) b2 = b1, b1 = d;
+    else if (d > b2) b2 = d;
+  }
+  return b1 + b2;
 }
 
 void build_neighbor_list(const Model& m, State& st) {
@@ -105,7 +150,7 @@ void build_neighbor_list(const Model& m, State& st) {
   std::vector<double> wx(nv), wy(nv);
   std::vector<double> bx0(nb), bx1(nb), by0(nb), by1(nb);
   for (std::size_t b = 0; b < nb; ++b) {
-    const double c = std::cos(st.angle[b]), s = std::sin(st.angle[b]);
+    const double c = st.rotation[b].c, s = st.rotation[b].s;
     const Vec2 p = st.position[b];
     double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
     for (std::uint32_t v = m.vertex_begin[b]; v < m.vertex_begin[b + 1]; ++v) {
@@ -251,7 +296,9 @@ void build_neighbor_list(const Model& m, State& st) {
   for (std::size_t b = 0; b < nb; ++b) {
     st.list_position[b] = st.position[b];
     st.list_angle[b] = st.angle[b];
+    st.list_rotation[b] = st.rotation[b];
   }
+  st.hot.valid = false;
   ++st.timings.list_builds;
 }
 
@@ -304,6 +351,42 @@ double mode_limit(const ModeSums& s, double mass, double inertia, double kn, dou
   return limit;
 }
 
+// Fills the hot list's arrays for the pairs in st.hot.pair (found by a full pass at the current
+// poses): vertex in its body's frame, edge in the edge body's frame (both constant), the filter
+// radius, and the runs of equal (vertex body, edge body).
+void refresh_hot_list(const Model& m, State& st) {
+  HotList& h = st.hot;
+  const std::size_t n = h.pair.size();
+  for (auto* v : {&h.vx, &h.vy, &h.e0x, &h.e0y, &h.dx, &h.dy, &h.inv_len2, &h.cut2}) v->resize(n);
+  h.keep.resize(n);
+  h.run_begin.clear();
+  h.run_vbody.clear();
+  h.run_ebody.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    const NeighborPair& p = st.pairs[h.pair[k]];
+    h.vx[k] = m.local_x[p.vertex];
+    h.vy[k] = m.local_y[p.vertex];
+    h.e0x[k] = m.local_x[p.edge0];
+    h.e0y[k] = m.local_y[p.edge0];
+    h.dx[k] = m.local_x[p.edge1] - m.local_x[p.edge0];
+    h.dy[k] = m.local_y[p.edge1] - m.local_y[p.edge0];
+    h.inv_len2[k] = m.edge_inv_length2[p.edge0];
+    const double cut = (m.radius[p.vbody] + m.radius[p.ebody]) * (1.0 + 1e-3);
+    h.cut2[k] = cut * cut;
+    if (k == 0 || p.vbody != h.run_vbody.back() || p.ebody != h.run_ebody.back()) {
+      h.run_begin.push_back(static_cast<std::uint32_t>(k));
+      h.run_vbody.push_back(p.vbody);
+      h.run_ebody.push_back(p.ebody);
+    }
+  }
+  h.run_begin.push_back(static_cast<std::uint32_t>(n));
+  h.position = st.position;
+  h.angle = st.angle;
+  h.rotation = st.rotation;
+  h.valid = true;
+  ++st.timings.hot_refreshes;
+}
+
 // Contact forces at the current poses and velocities. `dt_spring` is the time over which the
 // tangential springs are stretched (dt in a step, 0 for the initial evaluation).
 // Returns the largest overlap / (r1 + r2) among pairs above the guard ratio, else 0.
@@ -339,63 +422,159 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     body_contacts[b] = 0;
     jac[b] = ModeSums{};
     inv_mass_of[b] = m.type[b] == BodyType::Dynamic ? 1.0 / m.mass[b] : 0.0;
-    ps[b] = {st.position[b].x, st.position[b].y, std::cos(st.angle[b]), std::sin(st.angle[b])};
+    ps[b] = {st.position[b].x, st.position[b].y, st.rotation[b].c, st.rotation[b].s};
     st.force[b] = {0, 0};
     st.torque[b] = 0;
   }
+  // Hot list (docs/dem.md sec. 2): a full pass over the list records which pairs are within
+  // r1 + r2 + hot_skin; until the bodies have moved by more than hot_skin / 2 since that pass, the
+  // others are at least hot_skin / 2 apart and are skipped. A skipped pair is apart, and its
+  // spring was reset in the full pass, so the forces, their summation order and every per-pair
+  // state are exactly those of a pass over the whole list.
+  const double hot_skin = m.def.hot_skin;
+  bool full = !st.hot.valid;
+  if (!full) full = 2.0 * relative_motion_bound(m, st.hot.position, st.hot.angle, st.hot.rotation, st.position, st.angle, st.rotation) > hot_skin;
   int contacts = 0;
   double max_ov = 0, max_ratio = 0, energy = 0;
   const double* lx = m.local_x.data();
   const double* ly = m.local_y.data();
-  // World positions of the vertices the list refers to, one transform each.
-  const std::size_t na = st.active_vertex.size();
-  double* wx = st.active_x.data();
-  double* wy = st.active_y.data();
-  for (std::size_t k = 0; k < na; ++k) {
-    const std::uint32_t v = st.active_vertex[k];
-    const Pose& P = ps[m.vertex_body[v]];
-    wx[k] = P.px + (P.c * lx[v] - P.s * ly[v]);
-    wy[k] = P.py + (P.s * lx[v] + P.c * ly[v]);
-  }
   // Local copies of everything the loop reads, so that the force stores cannot alias them.
   const double* const __restrict radius = m.radius.data();
   const double* const __restrict inv_len2 = m.edge_inv_length2.data();
   const double kn = cp.normal_stiffness, kt = cp.tangential_stiffness, mu = cp.atomic_friction;
   const double gn = cp.normal_damping, gt = cp.tangential_damping;
   const double guard = m.def.max_overlap_ratio;
-  for (NeighborPair& p : st.pairs) {
-    const std::uint32_t a = p.vbody, b = p.ebody;
-    const double vx = wx[p.slot_vertex], vy = wy[p.slot_vertex];
-    const double e0x = wx[p.slot_edge0], e0y = wy[p.slot_edge0];
-    const double e1x = wx[p.slot_edge1], e1y = wy[p.slot_edge1];
+  // Three passes, each in list order (docs/dem.md sec. 7). (1) Distances: the touching pairs and
+  // their geometry go to a scratch list; the other pairs only reset their springs. (2) Forces of
+  // the touching pairs, each independent of the others: without the unpredictable touch / apart
+  // branch in the middle, the CPU overlaps the long sqrt / division chains of successive
+  // contacts. (3) The sums per body, in the same order as a single pass, so the results are
+  // bitwise those of one loop over the pairs.
+  NeighborPair* const pairs = st.pairs.data();
+  HotList& hot = st.hot;
+  const std::size_t count = full ? st.pairs.size() : hot.pair.size();
+  // Grown, never shrunk; filled field by field (no temporary to copy).
+  if (st.scratch_contacts.size() < count) st.scratch_contacts.resize(count);
+  ContactScratch* const touching = st.scratch_contacts.data();
+  std::size_t n_touching = 0;
+  // The exact test of one pair from the world positions of its vertex and edge: every decision
+  // (touching, spring reset) is taken here, in the world frame, as in a plain loop over the list.
+  auto classify = [&](std::uint32_t index, double vx, double vy, double e0x, double e0y, double e1x,
+                      double e1y) -> double {
+    NeighborPair& p = pairs[index];
     const double dx = e1x - e0x, dy = e1y - e0y;
     double t = ((vx - e0x) * dx + (vy - e0y) * dy) * inv_len2[p.edge0];
     t = std::clamp(t, 0.0, 1.0);
     const double sx = vx - (e0x + t * dx), sy = vy - (e0y + t * dy);
     const double dist2 = sx * sx + sy * sy;
-    const double rsum = radius[a] + radius[b];
-    if (dist2 >= rsum * rsum) {
-      if (p.overlap > -1) {  // write only on the transition (most pairs stay apart)
-        p.elongation = 0;
-        p.overlap = -1;
-      }
-      continue;
+    const double rsum = radius[p.vbody] + radius[p.ebody];
+    // Written for every pair and kept only if it touches (n_touching <= pairs seen, so the slot
+    // exists): no branch on touch / apart, which is a coin toss in the hot list.
+    ContactScratch& c = touching[n_touching];
+    c.pair = index;
+    c.sx = sx, c.sy = sy, c.dist2 = dist2, c.dx = dx, c.dy = dy, c.vx = vx, c.vy = vy;
+    const bool touch = dist2 < rsum * rsum;
+    n_touching += touch ? 1 : 0;
+    if (!touch && p.overlap > -1) {  // write only on the transition (most pairs stay apart)
+      p.elongation = 0;
+      p.overlap = -1;
     }
+    return dist2;
+  };
+  if (full) {
+    // World positions of the vertices the list refers to, one transform each.
+    double* wx = st.active_x.data();
+    double* wy = st.active_y.data();
+    for (std::size_t k = 0; k < st.active_vertex.size(); ++k) {
+      const std::uint32_t v = st.active_vertex[k];
+      const Pose& P = ps[m.vertex_body[v]];
+      wx[k] = P.px + (P.c * lx[v] - P.s * ly[v]);
+      wy[k] = P.py + (P.s * lx[v] + P.c * ly[v]);
+    }
+    hot.pair.clear();
+    for (std::size_t i = 0; i < count; ++i) {
+      const NeighborPair& p = pairs[i];
+      const double dist2 = classify(static_cast<std::uint32_t>(i), wx[p.slot_vertex], wy[p.slot_vertex], wx[p.slot_edge0],
+                                    wy[p.slot_edge0], wx[p.slot_edge1], wy[p.slot_edge1]);
+      const double near = radius[p.vbody] + radius[p.ebody] + hot_skin;
+      if (dist2 < near * near) hot.pair.push_back(static_cast<std::uint32_t>(i));
+    }
+    refresh_hot_list(m, st);
+    st.timings.pairs_evaluated += count;
+  } else {
+    // Filter in the edge body's frame, where the edge is constant: the vertex is moved by the
+    // relative pose of the run's two bodies, and no world positions are needed (a flat loop over
+    // the hot arrays). It keeps every pair within (r1 + r2)(1 + 1e-3); this margin dwarfs the
+    // rounding difference between the two frames (~1e-16 of the coordinates), so every pair that
+    // the exact test finds touching is kept, and the decisions stay those of the exact test.
+    unsigned char* const __restrict keep = hot.keep.data();
+    for (std::size_t r = 0; r + 1 < hot.run_begin.size(); ++r) {
+      const std::uint32_t a = hot.run_vbody[r], b = hot.run_ebody[r];
+      const Pose& A = ps[a];
+      const Pose& B = ps[b];
+      const double cr = A.c * B.c + A.s * B.s, sr = A.s * B.c - A.c * B.s;  // rotation a -> b
+      const double ox = A.px - B.px, oy = A.py - B.py;
+      const double qx = B.c * ox + B.s * oy, qy = -B.s * ox + B.c * oy;   // centroid of a in b
+      const double* const __restrict hvx = hot.vx.data();
+      const double* const __restrict hvy = hot.vy.data();
+      const double* const __restrict he0x = hot.e0x.data();
+      const double* const __restrict he0y = hot.e0y.data();
+      const double* const __restrict hdx = hot.dx.data();
+      const double* const __restrict hdy = hot.dy.data();
+      const double* const __restrict hil = hot.inv_len2.data();
+      const double* const __restrict hcut = hot.cut2.data();
+      const std::size_t k0 = hot.run_begin[r], k1 = hot.run_begin[r + 1];
+      // Flat arrays, no gathers. (GCC 12 does not vectorise it: the clamp's comparisons count as
+      // control flow under the default -ftrapping-math.)
+      for (std::size_t k = k0; k < k1; ++k) {
+        const double px = qx + (cr * hvx[k] - sr * hvy[k]) - he0x[k];
+        const double py = qy + (sr * hvx[k] + cr * hvy[k]) - he0y[k];
+        const double t = std::clamp((px * hdx[k] + py * hdy[k]) * hil[k], 0.0, 1.0);
+        const double sx = px - t * hdx[k], sy = py - t * hdy[k];
+        keep[k] = sx * sx + sy * sy < hcut[k];
+      }
+    }
+    auto world = [&](std::uint32_t v, double& x, double& y) {  // the same arithmetic as above
+      const Pose& P = ps[m.vertex_body[v]];
+      x = P.px + (P.c * lx[v] - P.s * ly[v]);
+      y = P.py + (P.s * lx[v] + P.c * ly[v]);
+    };
+    for (std::size_t k = 0; k < count; ++k) {
+      const std::uint32_t index = hot.pair[k];
+      NeighborPair& p = pairs[index];
+      if (!keep[k]) {  // apart
+        if (p.overlap > -1) {
+          p.elongation = 0;
+          p.overlap = -1;
+        }
+        continue;
+      }
+      double vx, vy, e0x, e0y, e1x, e1y;
+      world(p.vertex, vx, vy);
+      world(p.edge0, e0x, e0y);
+      world(p.edge1, e1x, e1y);
+      classify(index, vx, vy, e0x, e0y, e1x, e1y);
+    }
+    st.timings.pairs_evaluated += count;
+  }
+  for (std::size_t k = 0; k < n_touching; ++k) {
+    ContactScratch& c = touching[k];
+    NeighborPair& p = pairs[c.pair];
+    const std::uint32_t a = p.vbody, b = p.ebody;
+    const double rsum = radius[a] + radius[b];
+    const double vx = c.vx, vy = c.vy, dx = c.dx, dy = c.dy;
     const Pose& A = ps[a];
     const Pose& B = ps[b];
-    const double dist = std::sqrt(dist2);
+    const double dist = std::sqrt(c.dist2);
     double nx, ny;
     if (dist > 0) {
       const double inv = 1.0 / dist;
-      nx = sx * inv, ny = sy * inv;
+      nx = c.sx * inv, ny = c.sy * inv;
     } else {  // vertex exactly on the edge: outward normal of the (counter-clockwise) edge
       const double l = std::sqrt(dx * dx + dy * dy);
       nx = dy / l, ny = -dx / l;
     }
     const double overlap = rsum - dist;
-    ++contacts;
-    ++body_contacts[a];
-    ++body_contacts[b];
     max_ov = std::max(max_ov, overlap);
     if (overlap > guard * rsum) max_ratio = std::max(max_ratio, overlap / rsum);  // rare
     // Contact point: middle of the overlap along the normal.
@@ -423,16 +602,57 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     const double fn = fn_el - mred * gn * vn;
     const double ft = ft_el - mred * gt * vt;
     const double fx = fn * nx + ft * tx, fy = fn * ny + ft * ty;
-    st.force[a].x += fx;
-    st.force[a].y += fy;
-    st.torque[a] += cross(rax, ray, fx, fy);
-    st.force[b].x -= fx;
-    st.force[b].y -= fy;
-    st.torque[b] -= cross(rbx, rby, fx, fy);
-    // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
-    if (inv_mass_of[a] > 0) add_outer(jac[a], nx, ny, cross(rax, ray, nx, ny), mred);
-    if (inv_mass_of[b] > 0) add_outer(jac[b], nx, ny, cross(rbx, rby, nx, ny), mred);
+    c.fx = fx, c.fy = fy;
+    c.torque_a = cross(rax, ray, fx, fy);
+    c.torque_b = cross(rbx, rby, fx, fy);
+    c.nx = nx, c.ny = ny;
+    c.jt_a = cross(rax, ray, nx, ny);
+    c.jt_b = cross(rbx, rby, nx, ny);
+    c.mred = mred;
   }
+  // Sums per body. The force and torque sums and mode matrices of the two bodies of the current
+  // run of pairs with the same (vertex body, edge body) are kept in locals rather than summed
+  // into memory contact by contact: same additions in the same order.
+  struct BodySums {
+    double fx = 0, fy = 0, torque = 0;
+    ModeSums modes;
+  };
+  BodySums sa, sb;
+  std::uint32_t cur_a = 0, cur_b = 0;
+  bool have_run = false;
+  auto flush = [&]() {
+    if (!have_run) return;
+    st.force[cur_a] = {sa.fx, sa.fy};
+    st.torque[cur_a] = sa.torque;
+    jac[cur_a] = sa.modes;
+    st.force[cur_b] = {sb.fx, sb.fy};
+    st.torque[cur_b] = sb.torque;
+    jac[cur_b] = sb.modes;
+  };
+  for (std::size_t k = 0; k < n_touching; ++k) {
+    const ContactScratch& c = touching[k];
+    const NeighborPair& p = pairs[c.pair];
+    const std::uint32_t a = p.vbody, b = p.ebody;
+    ++body_contacts[a];
+    ++body_contacts[b];
+    if (!have_run || a != cur_a || b != cur_b) {
+      flush();
+      cur_a = a, cur_b = b, have_run = true;
+      sa = {st.force[a].x, st.force[a].y, st.torque[a], jac[a]};
+      sb = {st.force[b].x, st.force[b].y, st.torque[b], jac[b]};
+    }
+    sa.fx += c.fx;
+    sa.fy += c.fy;
+    sa.torque += c.torque_a;
+    sb.fx -= c.fx;
+    sb.fy -= c.fy;
+    sb.torque -= c.torque_b;
+    // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
+    if (inv_mass_of[a] > 0) add_outer(sa.modes, c.nx, c.ny, c.jt_a, c.mred);
+    if (inv_mass_of[b] > 0) add_outer(sb.modes, c.nx, c.ny, c.jt_b, c.mred);
+  }
+  flush();
+  contacts = static_cast<int>(n_touching);
   st.contact_count = contacts;
   for (std::size_t b = 0; b < nb; ++b) {
     st.body_contacts[b] = body_contacts[b];
@@ -469,6 +689,7 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
   auto finite_nonneg = [](double v) { return std::isfinite(v) && v >= 0; };
   if (!finite_pos(world.time_step)) return bad(fmt::format("world time_step = {} s: expected a finite value > 0", world.time_step));
   if (!finite_nonneg(world.skin)) return bad(fmt::format("world skin = {} m: expected a finite value >= 0", world.skin));
+  if (!finite_nonneg(world.hot_skin)) return bad(fmt::format("world hot_skin = {} m: expected a finite value >= 0", world.hot_skin));
   if (!std::isfinite(world.gravity.x) || !std::isfinite(world.gravity.y)) return bad("world gravity: expected finite components");
   const ContactParams& c = world.contact;
   if (!finite_pos(c.normal_stiffness)) return bad(fmt::format("contact normal_stiffness k_n = {} N/m: expected > 0", c.normal_stiffness));
@@ -579,6 +800,8 @@ State make_state(const Model& m) {
   st.list_angle = st.angle;
   for (std::size_t b = 0; b < nb; ++b)
     if (m.type[b] == BodyType::Kinematic) kinematic_pose(m, b, 0.0, st);
+  update_rotation(st);
+  st.list_rotation = st.rotation;
   build_neighbor_list(m, st);
   compute_forces(m, st, 0.0);
   return st;
@@ -620,16 +843,16 @@ Status step(const Model& m, State& st) {
   for (std::size_t b = 0; b < nb; ++b)
     if (m.type[b] == BodyType::Kinematic) kinematic_pose(m, b, t_new, st);
   st.time = t_new;
+  update_rotation(st);
   if (timed) {
     const auto t1 = Clock::now();
     st.timings.integration += std::chrono::duration<double>(t1 - t0).count();
     t0 = t1;
   }
-  // Neighbour list: rebuild when some vertex may have moved more than skin / 2.
-  double worst = 0;
-  for (std::size_t b = 0; b < nb; ++b)
-    worst = std::max(worst, motion_bound(m, b, st.list_position[b], st.list_angle[b], st.position[b], st.angle[b]));
-  if (2.0 * worst > m.def.skin) {
+  // Neighbour list: rebuild when some vertex-edge distance may have shrunk by more than the skin
+  // since the last build (pairs left out were at least r1 + r2 + skin apart). The bound is on
+  // the relative motion of the bodies: a block resting on a tilting block keeps its list.
+  if (relative_motion_bound(m, st.list_position, st.list_angle, st.list_rotation, st.position, st.angle, st.rotation) > m.def.skin) {
     // A single step must not move anything by more than half the skin, or contacts are missed.
     for (std::size_t b = 0; b < nb; ++b) {
       const double per_step = (std::hypot(st.velocity[b].x, st.velocity[b].y) +
@@ -656,7 +879,8 @@ Status step(const Model& m, State& st) {
   ++st.steps;
   // Stability guards.
   Status status = Ok{};
-  const double dt_hint = suggested_time_step(m, st.contact_count);
+  // Suggested step for the messages, computed only when there is one to write.
+  auto dt_hint = [&]() { return suggested_time_step(m, st.contact_count); };
   bool beyond = false;
   for (std::size_t b = 0; b < nb && status.ok(); ++b) {
     if (m.type[b] != BodyType::Dynamic) continue;
@@ -666,7 +890,7 @@ Status step(const Model& m, State& st) {
     if (!finite) {
       status = make_error(fmt::format(
           "dem: body {} has a non-finite position or velocity at t = {:.6g} s (step {}); the integration "
-          "blew up: try a time step <= {:.3g} s (now {:.3g} s)", b, st.time, st.steps, dt_hint, dt));
+          "blew up: try a time step <= {:.3g} s (now {:.3g} s)", b, st.time, st.steps, dt_hint(), dt));
       break;
     }
     if (const double lim = st.step_limit[b]; dt > lim) {
@@ -685,7 +909,7 @@ Status step(const Model& m, State& st) {
     if (speed > m.def.max_speed)
       status = make_error(fmt::format(
           "dem: body {} reached speed {:.3g} m/s > max_speed {:.3g} m/s at t = {:.6g} s (energy blow-up); "
-          "try a time step <= {:.3g} s (now {:.3g} s)", b, speed, m.def.max_speed, st.time, dt_hint, dt));
+          "try a time step <= {:.3g} s (now {:.3g} s)", b, speed, m.def.max_speed, st.time, dt_hint(), dt));
   }
   if (beyond) {
     ++st.steps_beyond_limit;
@@ -697,7 +921,7 @@ Status step(const Model& m, State& st) {
     status = make_error(fmt::format(
         "dem: an overlap reached {:.3g} of r1 + r2 (limit {:.3g}) at t = {:.6g} s with {} contacts; the "
         "stiffness is too low for the load or the time step too large: try dt <= {:.3g} s (now {:.3g} s)",
-        ratio, m.def.max_overlap_ratio, st.time, st.contact_count, dt_hint, dt));
+        ratio, m.def.max_overlap_ratio, st.time, st.contact_count, dt_hint(), dt));
   if (timed) st.timings.integration += seconds_since(t0);
   return status;
 }
