@@ -171,7 +171,7 @@ struct ContactScratch {
 struct HotList {
   std::vector<std::uint32_t> pair;  ///< indices into State::pairs, ascending
   std::vector<double> vx, vy;       ///< vertex, its body's frame (unit: m)
-  std::vector<double> e0x, e0y, dx, dy;  ///< edge start and edge vector, the edge body's frame (unit: m)
+  std::vector<double> e0x, e0y, e1x, e1y, dx, dy;  ///< edge ends and edge vector, the edge body's frame (unit: m)
   std::vector<double> inv_len2;     ///< 1 / |edge|^2 (unit: 1/m^2)
   std::vector<double> cut2;         ///< filter radius squared, ((r1 + r2)(1 + 1e-3))^2 (unit: m^2)
   std::vector<std::uint32_t> run_begin;  ///< runs of equal (vertex body, edge body): [run_begin[r], run_begin[r+1])

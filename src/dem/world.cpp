@@ -357,7 +357,7 @@ double mode_limit(const ModeSums& s, double mass, double inertia, double kn, dou
 void refresh_hot_list(const Model& m, State& st) {
   HotList& h = st.hot;
   const std::size_t n = h.pair.size();
-  for (auto* v : {&h.vx, &h.vy, &h.e0x, &h.e0y, &h.dx, &h.dy, &h.inv_len2, &h.cut2}) v->resize(n);
+  for (auto* v : {&h.vx, &h.vy, &h.e0x, &h.e0y, &h.e1x, &h.e1y, &h.dx, &h.dy, &h.inv_len2, &h.cut2}) v->resize(n);
   h.keep.resize(n);
   h.run_begin.clear();
   h.run_vbody.clear();
@@ -368,6 +368,8 @@ void refresh_hot_list(const Model& m, State& st) {
     h.vy[k] = m.local_y[p.vertex];
     h.e0x[k] = m.local_x[p.edge0];
     h.e0y[k] = m.local_y[p.edge0];
+    h.e1x[k] = m.local_x[p.edge1];
+    h.e1y[k] = m.local_y[p.edge1];
     h.dx[k] = m.local_x[p.edge1] - m.local_x[p.edge0];
     h.dy[k] = m.local_y[p.edge1] - m.local_y[p.edge0];
     h.inv_len2[k] = m.edge_inv_length2[p.edge0];
@@ -534,26 +536,29 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
         keep[k] = sx * sx + sy * sy < hcut[k];
       }
     }
-    auto world = [&](std::uint32_t v, double& x, double& y) {  // the same arithmetic as above
-      const Pose& P = ps[m.vertex_body[v]];
-      x = P.px + (P.c * lx[v] - P.s * ly[v]);
-      y = P.py + (P.s * lx[v] + P.c * ly[v]);
-    };
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::uint32_t index = hot.pair[k];
-      NeighborPair& p = pairs[index];
-      if (!keep[k]) {  // apart
-        if (p.overlap > -1) {
-          p.elongation = 0;
-          p.overlap = -1;
+    // World positions of the kept pairs' vertex and edge ends: the same arithmetic (pose of
+    // the owning body, local coordinates) as the full pass, hence the same values.
+    for (std::size_t r = 0; r + 1 < hot.run_begin.size(); ++r) {
+      const Pose& A = ps[hot.run_vbody[r]];
+      const Pose& B = ps[hot.run_ebody[r]];
+      for (std::size_t k = hot.run_begin[r]; k < hot.run_begin[r + 1]; ++k) {
+        const std::uint32_t index = hot.pair[k];
+        if (!keep[k]) {  // apart
+          NeighborPair& p = pairs[index];
+          if (p.overlap > -1) {
+            p.elongation = 0;
+            p.overlap = -1;
+          }
+          continue;
         }
-        continue;
+        const double vx = A.px + (A.c * hot.vx[k] - A.s * hot.vy[k]);
+        const double vy = A.py + (A.s * hot.vx[k] + A.c * hot.vy[k]);
+        const double e0x = B.px + (B.c * hot.e0x[k] - B.s * hot.e0y[k]);
+        const double e0y = B.py + (B.s * hot.e0x[k] + B.c * hot.e0y[k]);
+        const double e1x = B.px + (B.c * hot.e1x[k] - B.s * hot.e1y[k]);
+        const double e1y = B.py + (B.s * hot.e1x[k] + B.c * hot.e1y[k]);
+        classify(index, vx, vy, e0x, e0y, e1x, e1y);
       }
-      double vx, vy, e0x, e0y, e1x, e1y;
-      world(p.vertex, vx, vy);
-      world(p.edge0, e0x, e0y);
-      world(p.edge1, e1x, e1y);
-      classify(index, vx, vy, e0x, e0y, e1x, e1y);
     }
     st.timings.pairs_evaluated += count;
   }
