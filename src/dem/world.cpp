@@ -448,10 +448,9 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   const double guard = m.def.max_overlap_ratio;
   // Three passes, each in list order (docs/dem.md sec. 7). (1) Distances: the touching pairs and
   // their geometry go to a scratch list; the other pairs only reset their springs. (2) Forces of
-  // the touching pairs, each independent of the others: without the unpredictable touch / apart
-  // branch in the middle, the CPU overlaps the long sqrt / division chains of successive
-  // contacts. (3) The sums per body, in the same order as a single pass, so the results are
-  // bitwise those of one loop over the pairs.
+  // the touching pairs, each independent of the others, so that the long sqrt / division chains
+  // of successive contacts can overlap. (3) The sums per body, in the same order as a single
+  // pass, so the results are bitwise those of one loop over the pairs.
   NeighborPair* const pairs = st.pairs.data();
   HotList& hot = st.hot;
   const std::size_t count = full ? st.pairs.size() : hot.pair.size();
@@ -471,7 +470,7 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     const double dist2 = sx * sx + sy * sy;
     const double rsum = radius[p.vbody] + radius[p.ebody];
     // Written for every pair and kept only if it touches (n_touching <= pairs seen, so the slot
-    // exists): no branch on touch / apart, which is a coin toss in the hot list.
+    // exists): no branch on touch / apart, close to a coin toss in the hot list.
     ContactScratch& c = touching[n_touching];
     c.pair = index;
     c.sx = sx, c.sy = sy, c.dist2 = dist2, c.dx = dx, c.dy = dy, c.vx = vx, c.vy = vy;
@@ -506,9 +505,12 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   } else {
     // Filter in the edge body's frame, where the edge is constant: the vertex is moved by the
     // relative pose of the run's two bodies, and no world positions are needed (a flat loop over
-    // the hot arrays). It keeps every pair within (r1 + r2)(1 + 1e-3); this margin dwarfs the
-    // rounding difference between the two frames (~1e-16 of the coordinates), so every pair that
-    // the exact test finds touching is kept, and the decisions stay those of the exact test.
+    // the hot arrays). It keeps every pair within (r1 + r2)(1 + 1e-3); this margin (1e-7 m for
+    // r1 = r2 = 5e-5 m) dwarfs the rounding difference between the two frames (a few 1e-16 of the
+    // coordinates, i.e. ~1e-17 m for 0.1 m blocks; at coordinates of 1e5 m it is still 1000
+    // times larger), so every pair that the exact test finds touching is kept, every pair
+    // dropped is one that the exact test finds apart, and the decisions stay those of the exact
+    // test.
     unsigned char* const __restrict keep = hot.keep.data();
     for (std::size_t r = 0; r + 1 < hot.run_begin.size(); ++r) {
       const std::uint32_t a = hot.run_vbody[r], b = hot.run_ebody[r];
