@@ -25,8 +25,10 @@
 //
 // Candidate pairs come from a Verlet neighbour list: every vertex-edge pair within
 // r1 + r2 + skin, found through a uniform grid over the region where the two bodies' bounding
-// boxes overlap, and rebuilt only when some vertex may have moved more than skin / 2 since the
-// last build. Only the rebuild touches every vertex; a step costs O(pairs in the list).
+// boxes overlap, and rebuilt only when the relative motion of two bodies may have closed the skin
+// since the last build. Only the rebuild touches every vertex. Within the list, a hot list of the
+// pairs within r1 + r2 + hot_skin is evaluated until the bodies have moved by hot_skin / 2; a step
+// costs O(hot pairs), with a full pass over the list when the hot list is refreshed.
 #pragma once
 
 #include <cstddef>
@@ -169,7 +171,7 @@ struct ContactScratch {
 struct HotList {
   std::vector<std::uint32_t> pair;  ///< indices into State::pairs, ascending
   std::vector<double> vx, vy;       ///< vertex, its body's frame (unit: m)
-  std::vector<double> e0x, e0y, dx, dy;  ///< edge start and edge vector, the edge body's frame (unit: m)
+  std::vector<double> e0x, e0y, e1x, e1y, dx, dy;  ///< edge ends and edge vector, the edge body's frame (unit: m)
   std::vector<double> inv_len2;     ///< 1 / |edge|^2 (unit: 1/m^2)
   std::vector<double> cut2;         ///< filter radius squared, ((r1 + r2)(1 + 1e-3))^2 (unit: m^2)
   std::vector<std::uint32_t> run_begin;  ///< runs of equal (vertex body, edge body): [run_begin[r], run_begin[r+1])

@@ -357,7 +357,7 @@ double mode_limit(const ModeSums& s, double mass, double inertia, double kn, dou
 void refresh_hot_list(const Model& m, State& st) {
   HotList& h = st.hot;
   const std::size_t n = h.pair.size();
-  for (auto* v : {&h.vx, &h.vy, &h.e0x, &h.e0y, &h.dx, &h.dy, &h.inv_len2, &h.cut2}) v->resize(n);
+  for (auto* v : {&h.vx, &h.vy, &h.e0x, &h.e0y, &h.e1x, &h.e1y, &h.dx, &h.dy, &h.inv_len2, &h.cut2}) v->resize(n);
   h.keep.resize(n);
   h.run_begin.clear();
   h.run_vbody.clear();
@@ -368,6 +368,8 @@ void refresh_hot_list(const Model& m, State& st) {
     h.vy[k] = m.local_y[p.vertex];
     h.e0x[k] = m.local_x[p.edge0];
     h.e0y[k] = m.local_y[p.edge0];
+    h.e1x[k] = m.local_x[p.edge1];
+    h.e1y[k] = m.local_y[p.edge1];
     h.dx[k] = m.local_x[p.edge1] - m.local_x[p.edge0];
     h.dy[k] = m.local_y[p.edge1] - m.local_y[p.edge0];
     h.inv_len2[k] = m.edge_inv_length2[p.edge0];
@@ -446,10 +448,9 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   const double guard = m.def.max_overlap_ratio;
   // Three passes, each in list order (docs/dem.md sec. 7). (1) Distances: the touching pairs and
   // their geometry go to a scratch list; the other pairs only reset their springs. (2) Forces of
-  // the touching pairs, each independent of the others: without the unpredictable touch / apart
-  // branch in the middle, the CPU overlaps the long sqrt / division chains of successive
-  // contacts. (3) The sums per body, in the same order as a single pass, so the results are
-  // bitwise those of one loop over the pairs.
+  // the touching pairs, each independent of the others, so that the long sqrt / division chains
+  // of successive contacts can overlap. (3) The sums per body, in the same order as a single
+  // pass, so the results are bitwise those of one loop over the pairs.
   NeighborPair* const pairs = st.pairs.data();
   HotList& hot = st.hot;
   const std::size_t count = full ? st.pairs.size() : hot.pair.size();
@@ -469,7 +470,7 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
     const double dist2 = sx * sx + sy * sy;
     const double rsum = radius[p.vbody] + radius[p.ebody];
     // Written for every pair and kept only if it touches (n_touching <= pairs seen, so the slot
-    // exists): no branch on touch / apart, which is a coin toss in the hot list.
+    // exists): no branch on touch / apart, close to a coin toss in the hot list.
     ContactScratch& c = touching[n_touching];
     c.pair = index;
     c.sx = sx, c.sy = sy, c.dist2 = dist2, c.dx = dx, c.dy = dy, c.vx = vx, c.vy = vy;
@@ -504,9 +505,12 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
   } else {
     // Filter in the edge body's frame, where the edge is constant: the vertex is moved by the
     // relative pose of the run's two bodies, and no world positions are needed (a flat loop over
-    // the hot arrays). It keeps every pair within (r1 + r2)(1 + 1e-3); this margin dwarfs the
-    // rounding difference between the two frames (~1e-16 of the coordinates), so every pair that
-    // the exact test finds touching is kept, and the decisions stay those of the exact test.
+    // the hot arrays). It keeps every pair within (r1 + r2)(1 + 1e-3); this margin (1e-7 m for
+    // r1 = r2 = 5e-5 m) dwarfs the rounding difference between the two frames (a few 1e-16 of the
+    // coordinates, i.e. ~1e-17 m for 0.1 m blocks; at coordinates of 1e5 m it is still 1000
+    // times larger), so every pair that the exact test finds touching is kept, every pair
+    // dropped is one that the exact test finds apart, and the decisions stay those of the exact
+    // test.
     unsigned char* const __restrict keep = hot.keep.data();
     for (std::size_t r = 0; r + 1 < hot.run_begin.size(); ++r) {
       const std::uint32_t a = hot.run_vbody[r], b = hot.run_ebody[r];
@@ -534,26 +538,29 @@ double compute_forces(const Model& m, State& st, double dt_spring) {
         keep[k] = sx * sx + sy * sy < hcut[k];
       }
     }
-    auto world = [&](std::uint32_t v, double& x, double& y) {  // the same arithmetic as above
-      const Pose& P = ps[m.vertex_body[v]];
-      x = P.px + (P.c * lx[v] - P.s * ly[v]);
-      y = P.py + (P.s * lx[v] + P.c * ly[v]);
-    };
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::uint32_t index = hot.pair[k];
-      NeighborPair& p = pairs[index];
-      if (!keep[k]) {  // apart
-        if (p.overlap > -1) {
-          p.elongation = 0;
-          p.overlap = -1;
+    // World positions of the kept pairs' vertex and edge ends: the same arithmetic (pose of
+    // the owning body, local coordinates) as the full pass, hence the same values.
+    for (std::size_t r = 0; r + 1 < hot.run_begin.size(); ++r) {
+      const Pose& A = ps[hot.run_vbody[r]];
+      const Pose& B = ps[hot.run_ebody[r]];
+      for (std::size_t k = hot.run_begin[r]; k < hot.run_begin[r + 1]; ++k) {
+        const std::uint32_t index = hot.pair[k];
+        if (!keep[k]) {  // apart
+          NeighborPair& p = pairs[index];
+          if (p.overlap > -1) {
+            p.elongation = 0;
+            p.overlap = -1;
+          }
+          continue;
         }
-        continue;
+        const double vx = A.px + (A.c * hot.vx[k] - A.s * hot.vy[k]);
+        const double vy = A.py + (A.s * hot.vx[k] + A.c * hot.vy[k]);
+        const double e0x = B.px + (B.c * hot.e0x[k] - B.s * hot.e0y[k]);
+        const double e0y = B.py + (B.s * hot.e0x[k] + B.c * hot.e0y[k]);
+        const double e1x = B.px + (B.c * hot.e1x[k] - B.s * hot.e1y[k]);
+        const double e1y = B.py + (B.s * hot.e1x[k] + B.c * hot.e1y[k]);
+        classify(index, vx, vy, e0x, e0y, e1x, e1y);
       }
-      double vx, vy, e0x, e0y, e1x, e1y;
-      world(p.vertex, vx, vy);
-      world(p.edge0, e0x, e0y);
-      world(p.edge1, e1x, e1y);
-      classify(index, vx, vy, e0x, e0y, e1x, e1y);
     }
     st.timings.pairs_evaluated += count;
   }
