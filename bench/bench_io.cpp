@@ -23,10 +23,10 @@ using namespace frictal;
 
 namespace {
 
-#ifndef FRICTAL_SHARED_DATA
-#define FRICTAL_SHARED_DATA "../shared/data"
+#ifndef FRICTAL_TEST_DATA
+#define FRICTAL_TEST_DATA "tests/data"
 #endif
-const std::string kX3p = std::string(FRICTAL_SHARED_DATA) + "/x3p/x3p-2.x3p";
+const std::string kX3p = std::string(FRICTAL_TEST_DATA) + "/x3p/x3p-2.x3p";
 
 const Map& big_map() {
   static const Map m = *read_map(kX3p);

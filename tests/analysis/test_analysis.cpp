@@ -103,7 +103,7 @@ TEST(Spectrum, SinePeakAndParseval) {
 }
 
 TEST(Spectrum, NonUniformParsevalOnSharedFile) {
-  auto p = frictal::read_profile(std::string(FRICTAL_SHARED_DATA) + "/profiles/xy-1.txt");
+  auto p = frictal::read_profile(std::string(FRICTAL_TEST_DATA) + "/profiles/xy-1.txt");
   ASSERT_TRUE(p.ok());
   auto s = frictal::power_spectrum(*p, 20000);
   ASSERT_TRUE(s.ok());
@@ -150,7 +150,7 @@ TEST(MapStats, HandWorkedExampleWithHole) {
 
 TEST(MapStats, SharedX3pMatchesPython) {
   // python3: population rms about the mean of all 422,500 values of data.bin.
-  auto m = frictal::read_map(std::string(FRICTAL_SHARED_DATA) + "/x3p/x3p-2.x3p");
+  auto m = frictal::read_map(std::string(FRICTAL_TEST_DATA) + "/x3p/x3p-2.x3p");
   ASSERT_TRUE(m.ok());
   auto s = frictal::map_stats(*m);
   EXPECT_NEAR(s.Sq, 7.7280332735977479e-08, 1e-20);

@@ -10,7 +10,7 @@
 #include "cli/cli_runner.hpp"
 
 namespace {
-const std::string kData = FRICTAL_SHARED_DATA;
+const std::string kData = FRICTAL_TEST_DATA;
 }
 
 TEST(CliIo, StatsMapJsonHasArealKeys) {

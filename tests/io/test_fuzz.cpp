@@ -1,5 +1,5 @@
 // Readers never crash on damaged input: random byte flips, truncations and insertions into the
-// shared files and into crafted X3P archives (mutated before zipping, so that the XML and binary
+// measured test files and into crafted X3P archives (mutated before zipping, so that the XML and binary
 // parsers see the damage rather than the CRC check). Each read must return a value or an error.
 // Run under the sanitize preset to catch memory errors.
 #include <gtest/gtest.h>
@@ -64,7 +64,7 @@ const char* kXmlList =
 
 TEST(Fuzz, SharedFilesSurviveMutation) {
   std::mt19937 rng(12345);
-  const std::string base = FRICTAL_SHARED_DATA;
+  const std::string base = FRICTAL_TEST_DATA;
   for (const char* f : {"/profiles/csv-1.csv", "/profiles/csv-2.csv", "/profiles/xy-2.txt", "/profiles/nonuniform.asc",
                         "/maps/gwyddion-export-german.txt", "/maps/matrix-6.txt", "/x3p/ISO5436-sample1.x3p",
                         "/x3p/ISO5436-sample4_bin.x3p", "/x3p/pyramid.x3p"}) {

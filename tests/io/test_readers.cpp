@@ -1,4 +1,4 @@
-// Reading every file in the shared data set. Expected values come from the files' own numbers,
+// Reading every measured file in tests/data (provenance in tests/data/README.md). Expected values come from the files' own numbers,
 // parsed here with a deliberately trivial method (replace separators by spaces, istringstream),
 // times the unit the file states (µm = 1e-6 m, nm = 1e-9 m), or from the values written in the
 // X3P XML / computed with python3 struct from the binary members (stated where used).
@@ -15,7 +15,7 @@
 
 namespace {
 
-const std::string kData = FRICTAL_SHARED_DATA;
+const std::string kData = FRICTAL_TEST_DATA;
 
 std::string slurp(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -431,7 +431,7 @@ TEST(ReadText, LimitsAndForcedFormats) {
   EXPECT_NE(s.error().message.find("max_points"), std::string::npos);
   o = {};
   o.max_bytes = 100;
-  auto f = frictal::read_surface(std::string(FRICTAL_SHARED_DATA) + "/profiles/xy-1.txt", o);
+  auto f = frictal::read_surface(std::string(FRICTAL_TEST_DATA) + "/profiles/xy-1.txt", o);
   ASSERT_FALSE(f.ok());
   EXPECT_NE(f.error().message.find("limit"), std::string::npos);
   // Forcing Gwyddion on a two-column profile reads it as a 2-column map; forcing Dektak on a

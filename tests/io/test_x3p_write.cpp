@@ -159,7 +159,7 @@ TEST(X3pWrite, RefusesNonUniformProfileAndOverflow) {
 }
 
 TEST(X3pWrite, RewriteOfSharedMapKeepsValues) {
-  auto m = frictal::read_map(std::string(FRICTAL_SHARED_DATA) + "/x3p/sample-land.x3p");
+  auto m = frictal::read_map(std::string(FRICTAL_TEST_DATA) + "/x3p/sample-land.x3p");
   ASSERT_TRUE(m.ok());
   std::string path = tmp_path("land.x3p");
   ASSERT_TRUE(frictal::write_x3p(path, *m).ok());

@@ -1,4 +1,4 @@
-"""Measured surfaces from Python: expectations from the shared files' own numbers (python
+"""Measured surfaces from Python: expectations from the test files' own numbers (python
 zipfile/struct here), Eq. 13 and closed forms."""
 import math
 import os
@@ -10,7 +10,7 @@ import pytest
 
 import frictal
 
-DATA = os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "data")
+DATA = os.path.join(os.path.dirname(__file__), "..", "data")
 
 
 def test_read_x3p_map_matches_zip_contents():
