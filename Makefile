@@ -2,10 +2,13 @@
 #   make test       installs missing Debian packages, builds (release) and runs every test
 #   make reproduce  installs, builds and runs the paper reproduction, writing under out/
 #                   (QUICK=1 make reproduce: the CI-sized grids, about a minute)
+#   make package    builds the Debian package (CLI, library, headers, CMake package, Python module)
 JOBS ?= $(shell nproc)
+# ccache (when installed) shares objects between build trees of this checkout (e.g. the pip build)
+export CCACHE_BASEDIR := $(CURDIR)
 BUILD ?= build/release
 
-.PHONY: all deps configure build test reproduce bench sanitize clean
+.PHONY: all deps configure build test reproduce package bench sanitize clean
 
 all: build
 
@@ -20,6 +23,10 @@ build: configure
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
+
+package: build
+	cd $(BUILD) && cpack -G DEB -B packages
+	@ls -l $(BUILD)/packages/*.deb
 
 reproduce: build
 	bash scripts/reproduce $(BUILD)/frictal out

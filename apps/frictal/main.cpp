@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 
 #include "command.hpp"
+#include "frictal/version.hpp"
 
 namespace frictal::cli {
 
@@ -26,7 +27,7 @@ int main(int argc, char** argv) {
   using namespace frictal::cli;
   CLI::App app{"frictal — static friction between rigid rough surfaces from their topography.\n"
                "Angles are in degrees and lengths in metres at this interface unless an option says otherwise."};
-  app.set_version_flag("--version", "frictal 0.1.0");
+  app.set_version_flag("--version", frictal::version_line());
   app.require_subcommand(1);
   auto& reg = command_registry();
   std::stable_sort(reg.begin(), reg.end(),

@@ -46,6 +46,6 @@ from ._core import (  # noqa: F401  measured surfaces (io_bindings.cpp)
 )
 
 from ._core import tilt  # noqa: F401  spheropolygon tilting-block test (dem_bindings.cpp)
+from ._core import __version__, build_info  # noqa: F401  version defined once, in CMakeLists.txt
 
 __all__ = [name for name in dir() if not name.startswith("_")]
-__version__ = "0.1.0"

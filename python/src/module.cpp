@@ -11,6 +11,7 @@
 #include "frictal/io.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
+#include "frictal/version.hpp"
 
 namespace py = pybind11;
 using namespace frictal;
@@ -44,6 +45,14 @@ py::dict hist_dict(const Histogram& h) {
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "frictal: static friction between rigid rough surfaces (C++ core). SI units: m, rad.";
+  m.attr("__version__") = frictal::version();
+  m.def("build_info", [] {
+    py::dict d;
+    d["version"] = frictal::version();
+    d["git_commit"] = frictal::git_commit();
+    d["build_type"] = frictal::build_type();
+    return d;
+  }, "Version, git commit and CMake build type of the compiled core (dict of str).");
 
   py::class_<Profile>(m, "Profile", "Single-valued piecewise-linear profile z(x) in metres")
       .def(py::init([](py::array_t<double, py::array::c_style | py::array::forcecast> x,

@@ -1,0 +1,27 @@
+# Writes ${OUT}: a C++ file with the git commit of ${SOURCE_DIR}, rewritten only when it changed
+# (so an unchanged commit does not relink). Run at build time by the frictal_git_commit target.
+set(commit "unknown")
+find_package(Git QUIET)
+if(GIT_FOUND AND EXISTS "${SOURCE_DIR}/.git")
+  execute_process(COMMAND "${GIT_EXECUTABLE}" -C "${SOURCE_DIR}" rev-parse --short=12 HEAD
+                  OUTPUT_VARIABLE head RESULT_VARIABLE rc OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET)
+  if(rc EQUAL 0 AND head)
+    set(commit "${head}")
+    execute_process(COMMAND "${GIT_EXECUTABLE}" -C "${SOURCE_DIR}" status --porcelain --untracked-files=no
+                    OUTPUT_VARIABLE dirty RESULT_VARIABLE rc2 ERROR_QUIET)
+    if(rc2 EQUAL 0 AND NOT dirty STREQUAL "")
+      string(APPEND commit "-dirty")
+    endif()
+  endif()
+elseif(DEFINED ENV{FRICTAL_GIT_COMMIT})
+  set(commit "$ENV{FRICTAL_GIT_COMMIT}")
+endif()
+set(text "// Generated at build time by cmake/git-commit.cmake.\nextern \"C\" const char* frictal_git_commit_string() { return \"${commit}\"; }\n")
+if(EXISTS "${OUT}")
+  file(READ "${OUT}" old)
+else()
+  set(old "")
+endif()
+if(NOT old STREQUAL text)
+  file(WRITE "${OUT}" "${text}")
+endif()
