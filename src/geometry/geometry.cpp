@@ -177,6 +177,9 @@ Status validate(const Profile& p, const std::string& what) {
                                     what, p.x[i], i + 1));
   }
   if (!(p.x.back() > p.x.front())) return make_error(fmt::format("{}: has zero length (all x equal)", what));
+  if (!std::isfinite(p.x.back() - p.x.front()))
+    return make_error(fmt::format("{}: x spans {} to {}, a length beyond the range of double; rescale x (e.g. to "
+                                  "another unit)", what, p.x.front(), p.x.back()));
   if (p.period) {
     double P = *p.period;
     if (!(P > 0) || !std::isfinite(P)) return make_error(fmt::format("{}: period must be positive, got {}", what, P));

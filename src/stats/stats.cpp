@@ -7,39 +7,66 @@
 
 namespace frictal {
 
-ProfileStats profile_stats(const Profile& p) {
+namespace {
+
+// The exact integrals in arithmetic type T. Called with double first; extended precision (long
+// double: range to about 1e4932 on x86-64) only where double overflows or underflows, so that
+// ordinary profiles keep their double results bit for bit.
+template <class T>
+ProfileStats profile_stats_in(const Profile& p) {
   ProfileStats s;
   s.points = p.size();
   if (p.size() < 2) return s;
-  s.length = p.length();
-  if (!(s.length > 0)) return s;
+  const T length = static_cast<T>(p.x.back()) - static_cast<T>(p.x.front());
+  s.length = static_cast<double>(length);
+  if (!(length > 0)) return s;
   // Integrals over each edge of the linear interpolant: int z = dx (z0+z1)/2,
   // int z^2 = dx (z0^2 + z0 z1 + z1^2)/3; vertical edges (dx = 0) contribute nothing.
-  double iz = 0, slope2 = 0, slope_angle = 0, max_slope = 0;
+  T iz = 0, slope2 = 0, slope_angle = 0, max_slope = 0;
   for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-    const double dx = p.x[i + 1] - p.x[i], dz = p.z[i + 1] - p.z[i];
+    const T dx = static_cast<T>(p.x[i + 1]) - static_cast<T>(p.x[i]);
+    const T dz = static_cast<T>(p.z[i + 1]) - static_cast<T>(p.z[i]);
     if (dx == 0) {
-      if (dz != 0) max_slope = std::numbers::pi / 2;
+      if (dz != 0) max_slope = std::numbers::pi_v<T> / 2;
       continue;
     }
-    iz += dx * (p.z[i] + p.z[i + 1]) / 2;
-    const double m = dz / dx;
+    iz += dx * (static_cast<T>(p.z[i]) + static_cast<T>(p.z[i + 1])) / 2;
+    const T m = dz / dx;
     slope2 += dx * m * m;
     slope_angle += dx * std::atan(m);
     max_slope = std::max(max_slope, std::abs(std::atan(m)));
   }
-  s.mean_height = iz / s.length;
-  double var = 0;
+  const T mean = iz / length;
+  T var = 0;
   for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-    const double dx = p.x[i + 1] - p.x[i];
+    const T dx = static_cast<T>(p.x[i + 1]) - static_cast<T>(p.x[i]);
     if (dx == 0) continue;
-    const double a = p.z[i] - s.mean_height, b = p.z[i + 1] - s.mean_height;
+    const T a = static_cast<T>(p.z[i]) - mean, b = static_cast<T>(p.z[i + 1]) - mean;
     var += dx * (a * a + a * b + b * b) / 3;
   }
-  s.rms_height = std::sqrt(std::max(0.0, var / s.length));
-  s.rms_slope = std::sqrt(slope2 / s.length);
-  s.max_slope = max_slope;
-  s.mean_slope = slope_angle / s.length;
+  s.mean_height = static_cast<double>(mean);
+  s.rms_height = static_cast<double>(std::sqrt(std::max(T(0), var / length)));
+  s.rms_slope = static_cast<double>(std::sqrt(slope2 / length));
+  s.max_slope = static_cast<double>(max_slope);
+  s.mean_slope = static_cast<double>(slope_angle / length);
+  return s;
+}
+
+}  // namespace
+
+ProfileStats profile_stats(const Profile& p) {
+  ProfileStats s = profile_stats_in<double>(p);
+  if (p.size() < 2) return s;
+  // Double loses the answer when a square or a difference overflows (heights near 1e308 give inf
+  // or NaN, which max(0, NaN) would turn into a silent 0) or when squares underflow (heights near
+  // 1e-300 give rms 0 for a rough profile). Then redo the sums with a wider exponent range; a
+  // result that is still beyond double's range comes back as +inf, never as a wrong finite number.
+  const auto [lo, hi] = std::minmax_element(p.z.begin(), p.z.end());
+  const bool rough = *hi > *lo;
+  const bool lost = !std::isfinite(s.length) || !std::isfinite(s.mean_height) || !std::isfinite(s.rms_height) ||
+                    !std::isfinite(s.rms_slope) || !std::isfinite(s.mean_slope) || (rough && !(s.rms_height > 0)) ||
+                    (rough && !(s.rms_slope > 0));
+  if (lost) s = profile_stats_in<long double>(p);
   return s;
 }
 
