@@ -58,13 +58,17 @@ std::size_t Face::ceil_index(double u) const {
   return static_cast<std::size_t>(it - x_.begin());
 }
 
-double Face::value(double u) const {
-  std::size_t k = ceil_index(u);
-  if (x_[k] == u) {
+double Face::value(double u, double xtol) const {
+  std::size_t k = ceil_index(u - xtol);
+  if (x_[k] >= u - xtol && x_[k] <= u + xtol) {
+    // On a vertex group (within xtol: an event offset computed as x_f - x_g rounds, so x_f - s
+    // can miss x_g by an ulp, and a jump's extreme value must not be lost to that).
+    const double xv = x_[k];
     double m = v_[k];
-    for (std::size_t j = k + 1; j < x_.size() && x_[j] == u; ++j) m = std::max(m, v_[j]);
+    for (std::size_t j = k + 1; j < x_.size() && x_[j] == xv; ++j) m = std::max(m, v_[j]);
     return m;
   }
+  k = ceil_index(u);
   if (k == 0) return v_[0];
   const double t = (u - x_[k - 1]) / (x_[k] - x_[k - 1]);
   return v_[k - 1] + t * (v_[k] - v_[k - 1]);

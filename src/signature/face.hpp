@@ -42,8 +42,9 @@ class Face {
   std::size_t floor_index(double u) const;
   /// Index of the first point with x >= u (size-1 if u > x_back).
   std::size_t ceil_index(double u) const;
-  /// sup of v at u (u within [x_front, x_back]).
-  double value(double u) const;
+  /// sup of v at u (u within [x_front, x_back]); u within `xtol` of a vertex group counts as on
+  /// it (the group's sup), else v is interpolated along the edge.
+  double value(double u, double xtol = 0) const;
   /// Upper bound of v over the points with index in [i0, i1].
   double range_max(std::size_t i0, std::size_t i1) const;
   /// Upper bound of v over abscissae [u0, u1] (u0 <= u1), including the bracketing points.

@@ -47,7 +47,7 @@ struct Problem {
 // Searches max over vertices i of A in [i0, i1] of vA[i] + vB(xA[i] + shift) by branch and
 // bound over block ranges; appends candidates within vtol of the running best.
 void search(const Face& A, const Face& B, double shift, std::size_t i0, std::size_t i1, bool family_f,
-            double vtol, double& best, std::vector<Cand>& out) {
+            double xtol, double vtol, double& best, std::vector<Cand>& out) {
   if (i0 > i1) return;
   const auto& xa = A.x();
   const auto& va = A.v();
@@ -67,7 +67,7 @@ void search(const Face& A, const Face& B, double shift, std::size_t i0, std::siz
     if (ub < best - vtol) continue;
     if (node.hi - node.lo < kBlock) {
       for (std::size_t i = node.lo; i <= node.hi; ++i) {
-        const double val = va[i] + B.value(xa[i] + shift);
+        const double val = va[i] + B.value(xa[i] + shift, xtol);
         if (val >= best - vtol) {
           out.push_back({val, i, family_f});
           if (val > best) best = val;
@@ -134,14 +134,14 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
     g1 = G.floor_index(b - s + P.xtol);
   }
   double best = -kInf;
-  if (std::isfinite(warm_x) && warm_x >= a && warm_x <= b) best = F.value(warm_x) + G.value(warm_x - s);
-  search(F, G, -s, f0, f1, true, P.vtol, best, cands);
+  if (std::isfinite(warm_x) && warm_x >= a && warm_x <= b) best = F.value(warm_x, P.xtol) + G.value(warm_x - s, P.xtol);
+  search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
   bool skip_g = false;
   if (P.aligned_lattice) {
     const double k = (s - P.lattice_origin) / P.lattice_step;
     skip_g = std::abs(k - std::round(k)) < 1e-9;  // every G vertex sits on an F vertex
   }
-  if (!skip_g) search(G, F, s, g0, g1, false, P.vtol, best, cands);
+  if (!skip_g) search(G, F, s, g0, g1, false, P.xtol, P.vtol, best, cands);
 
   OffsetResult r;
   r.lift = best;

@@ -270,3 +270,27 @@ TEST(Signature, OneSidedSlopesBracketTheSecantOfEveryInterval) {
     EXPECT_LT(r->theta_max_backward, M_PI / 2);
   }
 }
+
+// Regression (found by tests/properties): a jump of the lower face aligned with a jump of the
+// upper face at an event offset s = x_f - x_g that does not round-trip (x_f - s != x_g in double).
+// The lower face steps up at x = 0.9 (left 0, extreme 1, right 0.5); the upper face has a needle
+// down to z = 0.2 at x = 0.2. At s = 0.9 - 0.2 the needle sits on the step's top: h = 1 - 0.2 =
+// 0.8, while just before h = 0 - 0.2 and just after h = 0.5 - 0.2: a wall for motion towards +x.
+TEST(SignatureJumps, JumpOnJumpAtARoundedEventKeepsBothExtremes) {
+  frictal::Profile f{{0, 0.9, 0.9, 0.9, 2}, {0, 0, 1, 0.5, 0.5}, std::nullopt};
+  frictal::Profile g{{0, 0.2, 0.2, 0.2, 2}, {2, 2, 0.2, 2, 2}, std::nullopt};
+  const double s_event = 0.9 - 0.2;
+  ASSERT_NE(0.9 - s_event, 0.2);  // the premise: the event does not round-trip
+  frictal::SignatureOptions o;
+  o.threads = 1;
+  o.offset_min = 0;
+  o.offset_max = 1;
+  auto sig = frictal::signature(f, g, o);
+  ASSERT_TRUE(sig.ok()) << sig.error().message;
+  std::size_t at = sig->offset.size();
+  for (std::size_t i = 0; i < sig->offset.size(); ++i)
+    if (std::abs(sig->offset[i] - s_event) < 1e-12) at = i;
+  ASSERT_LT(at, sig->offset.size()) << "the event offset was not evaluated";
+  EXPECT_NEAR(sig->lift[at], 0.8, 1e-12);
+  EXPECT_NEAR(sig->theta_left[at], M_PI / 2, 1e-12);  // h jumps up from -0.2: a wall towards +x
+}
