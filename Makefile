@@ -3,12 +3,13 @@
 #   make reproduce  installs, builds and runs the paper reproduction, writing under out/
 #                   (QUICK=1 make reproduce: the CI-sized grids, about a minute)
 #   make package    builds the Debian package (CLI, library, headers, CMake package, Python module)
+#   make fuzz       libFuzzer harnesses, 10^6 executions each (RUNS=N); make fuzz-smoke: 10^4 (CI)
 JOBS ?= $(shell nproc)
 # ccache (when installed) shares objects between build trees of this checkout (e.g. the pip build)
 export CCACHE_BASEDIR := $(CURDIR)
 BUILD ?= build/release
 
-.PHONY: all deps configure build test reproduce package bench sanitize clean
+.PHONY: all deps configure build test reproduce package bench sanitize fuzz fuzz-smoke format clean
 
 all: build
 
@@ -34,6 +35,15 @@ reproduce: build
 bench: deps
 	cmake --preset bench && cmake --build build/bench -j $(JOBS)
 	bash bench/run-benchmarks build/bench
+
+fuzz: deps
+	FUZZ_RECORD=$(FUZZ_RECORD) bash scripts/fuzz $(or $(RUNS),1000000)
+
+fuzz-smoke: deps
+	bash scripts/fuzz 10000
+
+format:
+	bash scripts/check-format --fix
 
 sanitize: deps
 	cmake --preset sanitize && cmake --build build/sanitize -j $(JOBS)
