@@ -11,6 +11,8 @@
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 #include "frictal/study.hpp"
+#include "frictal/surface_spec.hpp"
+#include "study/table_params.hpp"
 
 namespace frictal::study {
 
@@ -97,21 +99,24 @@ bool take(Result<T> r, T& into, Error& err) {
 
 Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: deterministic surfaces*/) {
   Error err;
-  std::int64_t iterations = 0, offsets = 0;
-  double alpha_deg = 0, wavelength = 0, length = 0, mu_a = 0;
+  std::int64_t offsets = 0;
+  double mu_a = 0;
   std::string slopes;
-  if (!take(get_int(p, "iterations"), iterations, err) || !take(get_real(p, "alpha_deg"), alpha_deg, err) ||
-      !take(get_real(p, "wavelength", 0.01), wavelength, err) || !take(get_real(p, "length", 0.2), length, err) ||
-      !take(get_real(p, "atomic_friction", 0.0), mu_a, err) || !take(get_int(p, "offsets", 0), offsets, err) ||
+  if (!take(get_real(p, "atomic_friction", 0.0), mu_a, err) || !take(get_int(p, "offsets", 0), offsets, err) ||
       !take(get_string(p, "slopes", "exact"), slopes, err))
     return err;
-  if (iterations < 0 || iterations > 8) return make_error(fmt::format("parameter 'iterations': expected 0..8, got {}", iterations));
   if (offsets < 0) return make_error("parameter 'offsets': expected >= 0");
-  KochParams kp;
-  kp.iterations = static_cast<int>(iterations);
-  kp.alpha = alpha_deg * kDeg;
-  kp.wavelength = wavelength;
-  kp.length = length;
+  // iterations, alpha (deg), wavelength, length: the koch generator's table.
+  auto koch_values = table_values(find_generator("koch")->fields, p);
+  if (!koch_values) return koch_values.error();
+  if (auto it = koch_values->find("iterations"); it != koch_values->end() && std::get<std::int64_t>(it->second) > 8)
+    return make_error(fmt::format("parameter 'iterations': expected 0..8, got {}", std::get<std::int64_t>(it->second)));
+  auto spec = make_surface_spec("koch", *koch_values);
+  if (!spec) return spec.error();
+  auto kpr = koch_params(*spec);
+  if (!kpr) return kpr.error();
+  const KochParams kp = *kpr;
+  const double wavelength = kp.wavelength;
   auto prof = koch_profile(kp);
   if (!prof) return prof.error();
   SignatureOptions o;
