@@ -79,8 +79,8 @@ std::string diagnose(CLI::App& app, int argc, char** argv) {
         return msg + fmt::format("\nRun '{} --help' for its options.", path_of(chain));
       }
       const bool short_with_value = name.size() > 2 && name[1] != '-';
-      if (a.find('=') == std::string::npos && !short_with_value && found->get_type_size_max() > 0)
-        i += std::max(1, found->get_expected_max() > 1 && found->get_expected_max() < 100 ? found->get_expected_max() : 1);
+      const int items = found->get_items_expected_max();  // 0 for flags
+      if (a.find('=') == std::string::npos && !short_with_value && items > 0) i += items < 100 ? items : 1;
       continue;
     }
     if (CLI::App* sub = find_sub(cur, a)) {

@@ -33,6 +33,13 @@ void add_field_options(CLI::App& app, const std::vector<Field>& fields, FieldWor
   }
 }
 
+std::vector<std::string> all_but(const std::vector<Field>& fields, const std::string& keep) {
+  std::vector<std::string> n;
+  for (const Field& f : fields)
+    if (f.name != keep) n.push_back(f.name);
+  return n;
+}
+
 ValueSet si_values(const std::vector<Field>& fields, const FieldWords& words) {
   ValueSet v;
   for (const auto& [name, word] : words.words) {

@@ -29,6 +29,9 @@ struct FieldWords {
 void add_field_options(CLI::App& app, const std::vector<Field>& fields, FieldWords& words,
                        const std::vector<std::string>& skip = {});
 
+/// The names of every field but `keep` (for offering one field of a table).
+std::vector<std::string> all_but(const std::vector<Field>& fields, const std::string& keep);
+
 /// The typed values, converted to SI (degrees -> radians through the table's unit) and checked;
 /// a bad value is a UsageError naming the option.
 ValueSet si_values(const std::vector<Field>& fields, const FieldWords& words);

@@ -8,6 +8,7 @@
 #include "frictal/analysis.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
+#include "frictal/tilt.hpp"
 #include "options.hpp"
 
 namespace frictal::cli {
@@ -26,6 +27,7 @@ struct Args {
   bool exact = false;
   std::string detrend = "none";
   GeneratorOptions gen;
+  FieldWords period_words;  ///< --period, the tilt table's field
 };
 
 std::function<int()> setup(CLI::App& app) {
@@ -46,7 +48,7 @@ std::function<int()> setup(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--exact", a->exact, "Refuse to sample offsets when the exact signature has too many events");
   app.add_option("--offset-range", a->range, "MIN MAX offsets (m); default one period or half the block")->expected(2);
-  app.add_option("--period", a->period, "Treat both surfaces as periodic with this period (m)");
+  add_field_options(app, tilt_settings(), a->period_words, all_but(tilt_settings(), "period"));
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the contact-slope PDF")->capture_default_str();
   app.add_option("-o,--output", a->out, "Write the signature function as CSV (- for standard output)");
@@ -69,6 +71,7 @@ std::function<int()> setup(CLI::App& app) {
     }
     Profile lower = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : load_profile(a->lower), dt));
     Profile upper_measured = a->upper.empty() ? lower : unwrap(detrend(load_profile(a->upper), dt));
+    if (const ValueSet pv = si_values(tilt_settings(), a->period_words); pv.count("period")) a->period = as_real(pv.at("period"));
     if (a->period != 0) {
       require(a->period > 0 && std::isfinite(a->period), fmt::format("--period: expected a positive length in m, got {}", a->period));
       lower.period = a->period;

@@ -43,6 +43,9 @@ struct Field {
   std::vector<std::string> choices;  ///< words of a Choice
   std::string help;       ///< one line, without the unit (derived from `unit`)
   char short_name = 0;    ///< optional one-letter CLI form (-n), the same option
+  /// The default at the text interfaces (CLI, TOML) when it comes from the surface rather than
+  /// from `default_value` (e.g. "the surface's period"); "" when `default_value` applies.
+  std::string text_default;
 };
 
 /// A value as given: in SI in a ValueSet, in text units (degrees) at the text interfaces.
@@ -59,7 +62,7 @@ double to_text_unit(const Field& f, double si);
 /// The one angle conversion: text unit -> SI value (deg -> rad); other units unchanged.
 double from_text_unit(const Field& f, double text);
 
-/// The default as text in text units ("5", "printed", "true", "auto").
+/// The default as text in text units ("5", "printed", "true", "auto"; `text_default` if set).
 std::string default_text(const Field& f);
 /// The valid range as text in text units ("(0, 60] deg", "0..10", "printed or common").
 std::string range_text(const Field& f);

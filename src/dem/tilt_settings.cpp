@@ -16,7 +16,8 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 
 enum class Lo { Closed, Open };
 
-Field F(std::string name, std::string unit, double min, Lo lo, double max, std::string help, bool max_open = false) {
+Field F(std::string name, std::string unit, double min, Lo lo, double max, std::string help, bool max_open = false,
+        std::string text_default = "") {
   Field f;
   f.name = std::move(name);
   f.unit = std::move(unit);
@@ -25,6 +26,7 @@ Field F(std::string name, std::string unit, double min, Lo lo, double max, std::
   f.max = max;
   f.max_open = max_open;
   f.help = std::move(help);
+  f.text_default = std::move(text_default);
   return f;
 }
 
@@ -65,8 +67,8 @@ const std::vector<B>& table() {
           bind<TiltConfig>(F("placement_gap", "m", 0, Lo::Closed, kInf, "Clearance between the blocks when placed"),
                            FRICTAL_MEMBER(placement_gap)),
           bind<TiltConfig>(F("period", "m", -kInf, Lo::Closed, kInf,
-                             "Period of the surfaces for the prediction's offsets (<= 0: half the length); "
-                             "a generated surface sets its own"),
+                             "Period of both surfaces (<= 0: not periodic; the offsets then span half the length)",
+                             false, "the surface's (generated), none (files)"),
                            FRICTAL_MEMBER(period)),
           bind<TiltConfig>(F("predict", "", 0, Lo::Closed, 1, "Compute the signature prediction theta_max + atan(mu_a)"),
                            FRICTAL_MEMBER(predict)),
@@ -80,8 +82,8 @@ const std::vector<B>& table() {
           bind<TiltConfig>(F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no slide) beyond this tilt", true),
                            FRICTAL_MEMBER(max_tilt)),
           bind<TiltConfig>(F("runaway_distance", "m", 0, Lo::Open, kInf,
-                             "Sliding for good: growth of the displacement since the last stick; "
-                             "a generated surface sets its wavelength"),
+                             "Sliding for good: growth of the displacement since the last stick", false,
+                             "the surface's wavelength (generated), 0.01 (files)"),
                            FRICTAL_MEMBER(runaway_distance)),
           bind<TiltConfig>(F("stick_speed", "m/s", 0, Lo::Open, kInf, "Relative speed counted as stuck"),
                            FRICTAL_MEMBER(stick_speed)),

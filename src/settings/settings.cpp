@@ -38,6 +38,7 @@ double to_text_unit(const Field& f, double si) { return is_angle(f) ? si / kDeg 
 double from_text_unit(const Field& f, double text) { return is_angle(f) ? text * kDeg : text; }
 
 std::string default_text(const Field& f) {
+  if (!f.text_default.empty()) return f.text_default;
   switch (f.type) {
     case FieldType::Boolean: return f.default_value != 0 ? "true" : "false";
     case FieldType::Choice: {
@@ -78,7 +79,7 @@ std::string range_in(const Field& f, bool text) {
       if (lo && hi) return with_unit(fmt::format("{}{}, {}{}", f.min_open ? "(" : "[", a, b, f.max_open ? ")" : "]"), u);
       if (lo) return with_unit(fmt::format("{} {}", f.min_open ? ">" : ">=", a), u);
       if (hi) return with_unit(fmt::format("{} {}", f.max_open ? "<" : "<=", b), u);
-      return with_unit("any finite number", u);
+      return u.empty() ? "any" : "any, in " + u;
     }
   }
   return "";
