@@ -164,29 +164,25 @@ Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: det
 
 Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   Error err;
-  std::int64_t n_max = 0, bins = 0, offsets = 0;
-  double D = 0, gamma = 0, L = 0, Lb = 0, rms = 0;
-  std::string exponent, slopes;
-  if (!take(get_real(p, "dimension"), D, err) || !take(get_int(p, "n_max"), n_max, err) ||
-      !take(get_real(p, "gamma", 1.5), gamma, err) || !take(get_real(p, "longest_wavelength", 1e-6), L, err) ||
-      !take(get_real(p, "length", 20e-6), Lb, err) || !take(get_real(p, "rms_height", 1e-9), rms, err) ||
-      !take(get_string(p, "exponent", "printed"), exponent, err) || !take(get_string(p, "slopes", "exact"), slopes, err) ||
-      !take(get_int(p, "bins", 90), bins, err) || !take(get_int(p, "offsets", 0), offsets, err))
+  std::int64_t bins = 0, offsets = 0;
+  std::string slopes;
+  if (!take(get_string(p, "slopes", "exact"), slopes, err) || !take(get_int(p, "bins", 90), bins, err) ||
+      !take(get_int(p, "offsets", 0), offsets, err))
     return err;
-  if (exponent != "printed" && exponent != "common")
-    return make_error(fmt::format("parameter 'exponent': expected \"printed\" or \"common\", got \"{}\"", exponent));
   if (bins < 1 || bins > 100000) return make_error("parameter 'bins': expected 1..100000");
   if (offsets < 0) return make_error("parameter 'offsets': expected >= 0");
-  if (n_max < 0 || n_max > 60) return make_error(fmt::format("parameter 'n_max': expected 0..60, got {}", n_max));
-  WmParams w;
-  w.dimension = D;
-  w.gamma = gamma;
-  w.n_max = static_cast<int>(n_max);
-  w.longest_wavelength = L;
-  w.length = Lb;
-  w.rms_height = rms;
+  // dimension, gamma, n_max, longest_wavelength, length, rms_height, exponent, spacing: the wm
+  // generator's table; the phases are always random, from the task seed.
+  auto wm_values = table_values(find_generator("wm")->fields, p);
+  if (!wm_values) return wm_values.error();
+  wm_values->erase("seed");
+  wm_values->erase("stochastic");
+  auto spec = make_surface_spec("wm", *wm_values);
+  if (!spec) return spec.error();
+  auto wp = wm_params(*spec);
+  if (!wp) return wp.error();
+  WmParams w = *wp;
   w.stochastic = true;
-  w.exponent = exponent == "common" ? WmExponent::Common : WmExponent::Printed;
   // The pair shares every parameter but the phases: two streams of the task seed.
   w.seed = derive_seed(seed, 1);
   auto lower = wm_profile(w);

@@ -58,6 +58,17 @@ def test_tilt_keywords_are_the_table_names():
     doc = frictal.tilt.__doc__
     for n in names:
         assert f"    {n}" in doc, n
+    # Every keyword is read: a value outside the field's range is refused naming it.
+    flat = frictal.Profile([0.0, 0.2], [0.0, 0.0])
+    for f in table:
+        if f["type"] in ("real", "integer") and math.isfinite(f["min"]):
+            bad = f["min"] - 1
+        elif f["type"] == "choice":
+            bad = "bogus"
+        else:
+            continue
+        with pytest.raises(ValueError, match=f["name"]):
+            frictal.tilt(flat, **{f["name"]: bad})
     with pytest.raises(TypeError, match="did you mean 'time_step'"):
         frictal.tilt(frictal.koch_profile(), time_stp=1e-5)
     with pytest.raises(ValueError, match="face"):
