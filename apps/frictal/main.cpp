@@ -105,6 +105,16 @@ std::string diagnose(CLI::App& app, int argc, char** argv) {
     for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
     return msg + fmt::format("\n{}: {}", top ? "Commands" : "Expected one of", list);
   }
+  // A command that needs a subcommand (a generator, a study action) and got none.
+  CLI::App* last = chain.back();
+  bool help = false;
+  for (int i = 1; i < argc; ++i) help = help || std::string(argv[i]).rfind("--help", 0) == 0 || std::string(argv[i]) == "-h" ||
+                                      std::string(argv[i]) == "--version";
+  if (!help && last->get_require_subcommand_min() > 0) {
+    std::string list;
+    for (CLI::App* s : last->get_subcommands([](CLI::App*) { return true; })) list += (list.empty() ? "" : ", ") + s->get_name();
+    return fmt::format("'{}' needs a {}: {}", path_of(chain), chain.size() == 1 ? "command" : "subcommand", list);
+  }
   return "";
 }
 

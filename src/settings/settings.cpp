@@ -2,6 +2,7 @@
 #include "frictal/settings.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <numbers>
@@ -118,6 +119,8 @@ Result<FieldValue> check(const Field& f, const FieldValue& v, const std::string&
     return make_error(fmt::format("{}: expected {}, got {}", prefix, what, got));
   };
   const std::string range = range_in(f, text);
+  // "a number in (0, 60] deg", "a number > 0 s"
+  const std::string in = (!range.empty() && (range[0] == '(' || range[0] == '[' || std::isdigit(static_cast<unsigned char>(range[0])))) ? "in " : "";
   switch (f.type) {
     case FieldType::Boolean:
       if (const bool* b = std::get_if<bool>(&v)) return FieldValue{*b};
@@ -135,19 +138,19 @@ Result<FieldValue> check(const Field& f, const FieldValue& v, const std::string&
       if (const std::int64_t* p = std::get_if<std::int64_t>(&v)) i = *p;
       else if (const double* d = std::get_if<double>(&v); d && std::isfinite(*d) && std::floor(*d) == *d && std::abs(*d) < 9e15)
         i = static_cast<std::int64_t>(*d);
-      else return expected("a whole number in " + range);
+      else return expected("a whole number " + in + range);
       const double x = static_cast<double>(i);
-      if (x < f.min || x > f.max) return expected("a whole number in " + range);
+      if (x < f.min || x > f.max) return expected("a whole number " + in + range);
       return FieldValue{i};
     }
     case FieldType::Real: {
       double x = 0;
       if (const double* d = std::get_if<double>(&v)) x = *d;
       else if (const std::int64_t* p = std::get_if<std::int64_t>(&v)) x = static_cast<double>(*p);
-      else return expected("a number in " + range);
+      else return expected("a number " + in + range);
       if (std::isnan(x) && std::isnan(f.default_value)) return FieldValue{x};  // "automatic"
       if (!std::isfinite(x) || x < f.min || x > f.max || (f.min_open && x == f.min) || (f.max_open && x == f.max))
-        return expected("a number in " + range);
+        return expected("a number " + in + range);
       return FieldValue{x};
     }
   }
