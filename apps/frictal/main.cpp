@@ -72,7 +72,6 @@ std::string diagnose(CLI::App& app, int argc, char** argv) {
         }
         if (!chain[k]->get_fallthrough()) break;
       }
-      if (!found && (name == "--no-" || name.rfind("--no-", 0) == 0)) continue;  // CLI11 negated flags
       if (!found) {
         std::string msg = fmt::format("unknown option '{}' for '{}'", name, path_of(chain));
         if (std::string n = frictal::nearest_word(name, known); !n.empty()) msg += fmt::format("; did you mean '{}'?", n);

@@ -223,8 +223,10 @@ std::string nearest_word(std::string_view word, const std::vector<std::string>& 
   std::size_t best_d = std::max<std::size_t>(2, word.size() / 3) + 1;
   for (const std::string& c : candidates) {
     std::size_t d = edit_distance(word, c);
-    // A prefix of a candidate (e.g. "stat" for "stats") counts as close.
+    // A prefix of a candidate ("stat" for "stats") or a candidate with a suffix ("alpha_deg" for
+    // "alpha") counts as close.
     if (c.size() > word.size() && word.size() >= 3 && c.compare(0, word.size(), word) == 0) d = std::min<std::size_t>(d, 1);
+    if (word.size() > c.size() && c.size() >= 3 && word.compare(0, c.size(), c) == 0) d = std::min<std::size_t>(d, 2);
     if (d < best_d) {
       best_d = d;
       best = c;

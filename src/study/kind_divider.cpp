@@ -23,6 +23,10 @@ Result<TaskOutput> run_divider_task(const Params& p, std::uint64_t /*seed: deter
   if (!rmax) return rmax.error();
   if (!rulers) return rulers.error();
   if (*rulers < 3 || *rulers > 10000) return make_error(fmt::format("parameter 'rulers': expected 3..10000, got {}", *rulers));
+  if (Status st = only_known_parameters(p, {&find_generator("koch")->fields},
+                                        {"ruler_min_over_wavelength", "ruler_max_over_wavelength", "rulers"}, "divider");
+      !st)
+    return st.error();
   auto koch_values = table_values(find_generator("koch")->fields, p);
   if (!koch_values) return koch_values.error();
   if (auto it = koch_values->find("iterations"); it != koch_values->end() && std::get<std::int64_t>(it->second) > 8)

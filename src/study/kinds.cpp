@@ -107,6 +107,10 @@ Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: det
     return err;
   if (offsets < 0) return make_error("parameter 'offsets': expected >= 0");
   // iterations, alpha (deg), wavelength, length: the koch generator's table.
+  if (Status st = only_known_parameters(p, {&find_generator("koch")->fields}, {"atomic_friction", "offsets", "slopes"},
+                                        "koch-signature");
+      !st)
+    return st.error();
   auto koch_values = table_values(find_generator("koch")->fields, p);
   if (!koch_values) return koch_values.error();
   if (auto it = koch_values->find("iterations"); it != koch_values->end() && std::get<std::int64_t>(it->second) > 8)
@@ -173,6 +177,10 @@ Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   if (offsets < 0) return make_error("parameter 'offsets': expected >= 0");
   // dimension, gamma, n_max, longest_wavelength, length, rms_height, exponent, spacing: the wm
   // generator's table; the phases are always random, from the task seed.
+  if (Status st = only_known_parameters(p, {&find_generator("wm")->fields}, {"pair", "slopes", "bins", "offsets"},
+                                        "wm-pair-statistics");
+      !st)
+    return st.error();
   auto wm_values = table_values(find_generator("wm")->fields, p);
   if (!wm_values) return wm_values.error();
   wm_values->erase("seed");

@@ -2,6 +2,7 @@
 // the TOML keys are the table's names, angles in degrees, converted and checked by the table.
 #pragma once
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,23 @@ inline Result<ValueSet> table_values(const std::vector<Field>& fields, const Par
     out[f.name] = *si;
   }
   return out;
+}
+
+/// Refuses a parameter that is neither a field of `tables` nor one of `extra`, naming the nearest
+/// known name (a renamed or mistyped key would otherwise be silently ignored).
+inline Status only_known_parameters(const Params& p, const std::vector<const std::vector<Field>*>& tables,
+                                    const std::vector<std::string>& extra, const std::string& kind) {
+  std::vector<std::string> known = extra;
+  for (const auto* t : tables)
+    for (const Field& f : *t) known.push_back(f.name);
+  for (const auto& [name, value] : p) {
+    if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+    std::string hint;
+    if (std::string n = nearest_word(name, known); !n.empty()) hint = "; did you mean '" + n + "'?";
+    return make_error("parameter '" + name + "' is not a parameter of task kind '" + kind + "'" + hint +
+                      " (names: docs/settings.md, docs/studies.md)");
+  }
+  return Ok{};
 }
 
 }  // namespace frictal::study

@@ -3,6 +3,7 @@
 // values reach the computation.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -82,4 +83,44 @@ TEST(StudyTables, SignatureAndWmKindsReadTheirGeneratorTables) {
     ASSERT_FALSE(r.ok()) << f.name;
     EXPECT_NE(r.error().message.find("parameter '" + f.name + "'"), std::string::npos) << r.error().message;
   }
+}
+
+TEST(StudyTables, RetiredOrMistypedKeysAreRefusedNotIgnored) {
+  Params p{{"iterations", std::int64_t{0}}, {"alpha_deg", 5.0}, {"length", 0.02}};
+  auto r = run_tilt_task(p, 0);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("parameter 'alpha_deg' is not a parameter of task kind 'tilt'; did you mean 'alpha'?"),
+            std::string::npos)
+      << r.error().message;
+  p = {{"iterations", std::int64_t{0}}, {"alpha", 5.0}, {"spheroradius", 5e-5}};
+  EXPECT_FALSE(run_tilt_task(p, 0).ok());
+  p = {{"iterations", std::int64_t{0}}, {"alpha", 5.0}, {"lenght", 0.01}};
+  r = run_koch_signature(p, 0);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("did you mean 'length'?"), std::string::npos) << r.error().message;
+  EXPECT_FALSE(run_divider_task(p, 0).ok());
+  EXPECT_FALSE(run_wm_pair_statistics({{"dimension", 1.5}, {"rms", 1e-9}}, 1).ok());
+}
+
+TEST(StudyTables, ShippedStudiesUseOnlyTheKindsNames) {
+  // Every task of every shipped study names only parameters its kind reads: the tables' names
+  // plus each kind's own (record_series, offsets, slopes, bins, pair, rulers, ...).
+  std::vector<std::string> names;
+  for (const Field& f : tilt_settings()) names.push_back(f.name);
+  for (const auto& g : surface_generators())
+    for (const Field& f : g.fields) names.push_back(f.name);
+  for (const char* extra : {"generator", "record_series", "atomic_friction", "offsets", "slopes", "bins", "pair",
+                            "ruler_min_over_wavelength", "ruler_max_over_wavelength", "rulers"})
+    names.push_back(extra);
+  const TaskRegistry reg = default_registry();
+  const std::string dir = std::string(FRICTAL_TEST_DATA) + "/../../studies/";
+  for (const char* n : {"fig04-koch-signature", "fig06-koch-friction", "fig07-time-evolution", "fig08-atomic-friction",
+                        "fig09-divider", "fig10-mu-vs-dimension", "fig14-18-wm-statistics"})
+    for (bool quick : {false, true}) {
+      auto s = load_study(dir + n + ".toml", quick, reg);
+      ASSERT_TRUE(s.ok()) << s.error().message;
+      for (const auto& t : s->tasks)
+        for (const auto& [k, v] : t.params)
+          EXPECT_NE(std::find(names.begin(), names.end(), k), names.end()) << n << ": " << k;
+    }
 }
