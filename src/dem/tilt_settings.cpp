@@ -98,7 +98,8 @@ const std::vector<B>& table() {
           // Output.
           bind<TiltConfig>(F("series_interval", "s", 0, Lo::Closed, kInf, "Time between rows of the time series; 0: none"),
                            FRICTAL_MEMBER(series_interval)),
-          bind<TiltConfig>(F("frame_interval", "s", 0, Lo::Closed, kInf, "Time between frames; 0: none"),
+          bind<TiltConfig>(F("frame_interval", "s", 0, Lo::Closed, kInf, "Time between frames; 0: none", false,
+                             "0.01 when frames are written (CLI --frames), else 0"),
                            FRICTAL_MEMBER(frame_interval)),
       },
       TiltConfig{});
