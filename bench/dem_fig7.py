@@ -13,7 +13,7 @@ with open(out, "w", newline="") as f:
     for n in range(4):
         with tempfile.NamedTemporaryFile(suffix=".csv", delete=False) as tmp:
             path = tmp.name
-        subprocess.run([cli, "tilt", "--iterations", str(n), "--alpha", str(alpha), "-o", path,
+        subprocess.run([cli, "tilt", "koch", "--iterations", str(n), "--alpha", str(alpha), "-o", path,
                         "--series-interval", "0.01"], check=True, stdout=subprocess.DEVNULL)
         for r in csv.DictReader(open(path)):
             w.writerow([f"K{n}", r["time_s"], r["tilt_deg"], f"{float(r['displacement_m']) / Lb:.6g}",

@@ -28,8 +28,8 @@ QUICK = [(0, 20, 0.0, "curve", False), (2, 20, 0.0, "curve", False), (0, 20, 0.5
 
 
 def run(cli, n, alpha, mu, face, reverse, dt=1e-5):
-    cmd = [cli, "tilt", "--iterations", str(n), "--alpha", str(alpha), "--atomic-friction", str(mu),
-           "--face", face, "--dt", repr(dt), "--json"] + (["--reverse"] if reverse else [])
+    cmd = [cli, "tilt", "koch", "--iterations", str(n), "--alpha", str(alpha), "--atomic-friction", str(mu),
+           "--face", face, "--time-step", repr(dt), "--json"] + (["--reverse"] if reverse else [])
     t0 = time.time()
     p = subprocess.run(cmd, capture_output=True, text=True)
     if p.returncode != 0:

@@ -46,13 +46,13 @@ def fig06(store, out):
     colors = {0: "C0", 1: "C1", 2: "C2", 3: "C3"}
     theory = collections.defaultdict(dict)
     for part, p, s, _ in tasks(store, "theory"):
-        theory[p["iterations"]][p["alpha_deg"]] = s["friction_angle_deg"]
+        theory[p["iterations"]][p["alpha"]] = s["friction_angle_deg"]
     for n, m in sorted(theory.items()):
         a = sorted(m)
         ax.plot(a, [m[x] for x in a], "-", color=colors.get(n), label=f"K{n} theory (signature)")
     sim = collections.defaultdict(dict)
     for part, p, s, _ in tasks(store, "simulation"):
-        sim[p["iterations"]][p["alpha_deg"]] = s["friction_angle_deg"]
+        sim[p["iterations"]][p["alpha"]] = s["friction_angle_deg"]
     for n, m in sorted(sim.items()):
         a = sorted(m)
         ax.plot(a, [m[x] for x in a], "o", mfc="none", color=colors.get(n), label=f"K{n} simulation")
@@ -86,7 +86,7 @@ def fig08(store, out):
     th = collections.defaultdict(list)
     for part, p, s, _ in tasks(store, "theory"):
         if p["iterations"] == 1:
-            th[p["alpha_deg"]].append((np.degrees(np.arctan(p["atomic_friction"])), s["friction_angle_deg"]))
+            th[p["alpha"]].append((np.degrees(np.arctan(p["atomic_friction"])), s["friction_angle_deg"]))
     for alpha, pts in sorted(th.items()):
         pts.sort()
         a1.plot(*zip(*pts), "-", lw=1, label=f"theory α = {alpha:g}°")
@@ -96,7 +96,7 @@ def fig08(store, out):
         if p["iterations"] == 1:
             a1.plot(ta, s["friction_angle_deg"], "o", mfc="none", color="k")
         xs.append(ta)
-        ys.append(s["friction_angle_deg"] - mult[p["iterations"]] * p["alpha_deg"])
+        ys.append(s["friction_angle_deg"] - mult[p["iterations"]] * p["alpha"])
     a1.set_xlabel("θ_a (deg)")
     a1.set_ylabel("φ (deg)")
     a1.set_title("Fig. 8a: K1, simulation (o) and φ = θ_a + α")
@@ -140,14 +140,14 @@ def fig10(store, out):
     d13 = {}
     theory = collections.defaultdict(list)
     for part, p, s, _ in tasks(store, "theory"):
-        d13[p["alpha_deg"]] = s["dimension_eq13"]
+        d13[p["alpha"]] = s["dimension_eq13"]
         theory[p["iterations"]].append((s["dimension_eq13"], s["friction_coefficient"]))
     for n, pts in sorted(theory.items()):
         pts.sort()
         ax.plot(*zip(*pts), "-", color=f"C{n}", label=f"K{n} theory")
     for part, p, s, _ in tasks(store, "simulation"):
-        if p["alpha_deg"] in d13:
-            ax.plot(d13[p["alpha_deg"]], s["friction_coefficient"], "o", mfc="none", color=f"C{p['iterations']}")
+        if p["alpha"] in d13:
+            ax.plot(d13[p["alpha"]], s["friction_coefficient"], "o", mfc="none", color=f"C{p['iterations']}")
     ax.set_xlabel("fractal dimension D (Eq. 13)")
     ax.set_ylabel("μ")
     ax.set_title("Fig. 10: μ against D (lines: theory, o: simulation)")

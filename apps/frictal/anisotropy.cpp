@@ -4,6 +4,7 @@
 #include "common.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
+#include "options.hpp"
 #include "surface_io.hpp"
 
 namespace frictal::cli {
@@ -28,7 +29,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("map", a->file, "Areal map (X3P, Gwyddion text)")->required();
   app.add_option("--directions", a->directions, "Sliding directions over 360 deg (default 36)");
   app.add_option("--lines", a->max_lines, "At most this many parallel lines per direction (default 128)");
-  app.add_option("--mu-a", a->atomic_friction, "Atomic friction coefficient mu_a of Eq. 6 (default 0)");
+  add_atomic_friction_option(app, a->atomic_friction);
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from the map first (default plane)");
   app.add_flag("--areal", a->areal, "Use the areal signature of the two rigid blocks instead of line profiles");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores; default all)");
@@ -39,7 +40,7 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     require(a->directions >= 1 && a->directions <= 3600, "--directions must be in 1..3600");
     require(a->max_lines >= 1 && a->max_lines <= 100000, "--lines must be in 1..100000");
-    require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0, "--mu-a must be a finite number >= 0");
+    require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0, "--atomic-friction must be a finite number >= 0");
     const SurfaceData s = load_surface(a->file, a->input);
     if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; anisotropy needs an areal map", a->file));
     const Detrend dt = unwrap(parse_detrend(a->detrend));

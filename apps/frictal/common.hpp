@@ -1,9 +1,11 @@
 // frictal CLI — helpers shared by subcommands: unit conversion at the interface, loading
-// surfaces with user-facing errors, JSON printing.
+// surfaces with user-facing errors, JSON printing, and "-" as a file name (standard input for
+// an input, standard output for -o).
 #pragma once
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <numbers>
 #include <string>
 
@@ -29,8 +31,22 @@ inline void unwrap(const Status& s) {
   if (!s) throw UsageError(s.error().message);
 }
 
-/// Loads a single-valued profile from any readable format.
-inline Profile load_profile(const std::string& path) { return unwrap(read_profile(path)); }
+/// "-" as an input: standard input, read once and kept in a temporary file (the readers detect
+/// the format from the content and may read twice); any other path is returned unchanged.
+/// Messages that name the temporary file name "-" instead (see stdin_name()).
+std::string input_path(const std::string& path);
+/// Replaces the temporary file holding standard input by "-" in a message.
+std::string stdin_name(std::string message);
+
+/// Writes an output through `write(path)`; "-" writes to standard output (through a temporary
+/// file, so that any writer works). `option` names the option in errors (e.g. "-o").
+void write_output(const std::string& path, const std::function<Status(const std::string&)>& write,
+                  const std::string& option = "-o");
+/// Writes text to `path` or to standard output for "-".
+void write_text_output(const std::string& path, const std::string& text, const std::string& option = "-o");
+
+/// Loads a single-valued profile from any readable format ("-": standard input).
+inline Profile load_profile(const std::string& path) { return unwrap(read_profile(input_path(path))); }
 
 /// Prints a JSON object on stdout (NaN/inf become null, as JSON has no such numbers).
 inline void print_json(const nlohmann::json& j) { fmt::print("{}\n", j.dump(2)); }

@@ -1,8 +1,10 @@
-// frictal dimension FILE — fractal dimension of a measured profile (divider, box counting or
-// PSD slope), or of the Koch construction with --koch-alpha (Eq. 13).
+// frictal dimension FILE | dimension <generator> — fractal dimension of a measured or generated
+// profile (divider, box counting or PSD slope), or of the Koch construction (koch --method eq13,
+// Eq. 13).
 #include "common.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/fractal.hpp"
+#include "options.hpp"
 #include "surface_io.hpp"
 
 namespace frictal::cli {
@@ -11,19 +13,20 @@ namespace {
 struct Args {
   std::string file;
   std::string method = "divider";
-  double koch_alpha = -1;
   double scale_min = 0, scale_max = 0;
   int scales = 0;  // 0: 16 rulers, 12 boxes, 10 PSD bins per decade
   bool json = false;
   std::string detrend = "none";
   InputOptions input;
+  GeneratorOptions gen;
 };
 
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
-  app.add_option("file", a->file, "Profile file (any readable format)");
-  app.add_option("--method", a->method, "divider (ruler), box (box counting) or psd (spectrum slope)");
-  app.add_option("--koch-alpha", a->koch_alpha, "Print the Koch dimension of Eq. 13 for this base angle (deg) instead");
+  app.add_option("file", a->file, "Profile file (any readable format); - reads standard input");
+  add_generator_subcommands(app, a->gen, true, " (measured on the generated surface; koch: the full curve)");
+  app.add_option("--method", a->method,
+                 "divider (ruler), box (box counting), psd (spectrum slope), or eq13 (koch only: Eq. 13 from alpha)");
   app.add_option("--min", a->scale_min, "Smallest ruler/box (m) or wavelength (m) of the fit (default: automatic)");
   app.add_option("--max", a->scale_max, "Largest ruler/box (m) or wavelength (m) of the fit (default: automatic)");
   app.add_option("--scales", a->scales, "Number of rulers (default 16) or boxes (12), or PSD bins per decade (10)");
@@ -31,23 +34,34 @@ std::function<int()> setup(CLI::App& app) {
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
   return [a]() {
-    if (a->koch_alpha >= 0) {
-      const double D = unwrap(koch_dimension(a->koch_alpha * kDeg));
+    const std::optional<SurfaceSpec> spec = a->gen.spec();
+    if (a->method == "eq13") {
+      require(spec && spec->generator == "koch", "--method eq13: the Koch dimension of Eq. 13 needs the koch generator");
+      const KochParams kp = unwrap(koch_params(*spec));
+      const double D = unwrap(koch_dimension(kp.alpha));
       if (a->json) {
         nlohmann::json j;
-        j["koch_alpha_deg"] = a->koch_alpha;
+        j["alpha"] = to_deg(kp.alpha);
+        j["method"] = "eq13";
         j["dimension"] = D;
         j["equation"] = "2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1";
         print_json(j);
       } else {
-        fmt::print("Koch dimension for alpha = {} deg: D = {:.12f}\n", a->koch_alpha, D);
+        fmt::print("Koch dimension for alpha = {} deg (Eq. 13): D = {:.12f}\n", to_deg(kp.alpha), D);
       }
       return 0;
     }
-    if (a->file.empty()) throw UsageError("dimension: give a FILE, or --koch-alpha DEG");
+    if (spec) {
+      require(a->file.empty(), fmt::format("dimension {}: a generated surface takes no FILE", spec->generator));
+      a->file = spec->generator;
+    } else if (a->file.empty()) {
+      throw UsageError("dimension: give a FILE, or a generator (koch, wm, sawtooth, sine, self-affine)");
+    }
     require(a->scale_min >= 0 && a->scale_max >= 0, "--min and --max must be positive lengths in metres");
     const Detrend d = unwrap(parse_detrend(a->detrend));
-    const SurfaceData s = load_surface(a->file, a->input);
+    SurfaceData s;
+    if (spec) s.curve = unwrap(generate_curve(*spec));
+    else s = load_surface(a->file, a->input);
     if (s.is_map)
       throw UsageError(fmt::format("{}: an areal map; the dimension needs a line profile (extract one first)", a->file));
     FractalFit f;
@@ -60,7 +74,7 @@ std::function<int()> setup(CLI::App& app) {
       if (a->method == "divider") f = unwrap(divider_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 16}));
       else f = unwrap(box_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 12}));
     } else if (a->method == "psd") {
-      Profile p = unwrap(detrend(surface_profile(s, a->file), d));
+      Profile p = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : surface_profile(s, a->file), d));
       PsdFitOptions o;
       // Wavelength bounds -> wavenumber bounds.
       if (a->scale_max > 0) o.q_min = 2 * std::numbers::pi / a->scale_max;
@@ -68,7 +82,7 @@ std::function<int()> setup(CLI::App& app) {
       o.bins_per_decade = a->scales > 0 ? a->scales : 10;
       f = unwrap(psd_dimension(p, o));
     } else {
-      throw UsageError(fmt::format("--method '{}' not understood (expected divider, box or psd)", a->method));
+      throw UsageError(fmt::format("--method '{}' not understood (expected divider, box, psd or eq13)", a->method));
     }
     if (a->json) {
       nlohmann::json j;

@@ -1,4 +1,5 @@
-// frictal signature LOWER [UPPER] — the signature function and the friction prediction.
+// frictal signature LOWER [UPPER] | signature <generator> [options] — the signature function and
+// the friction prediction, of two measured surfaces or of a generated surface with itself.
 #include <chrono>
 #include <fstream>
 #include <thread>
@@ -7,6 +8,8 @@
 #include "frictal/analysis.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
+#include "frictal/tilt.hpp"
+#include "options.hpp"
 
 namespace frictal::cli {
 namespace {
@@ -23,22 +26,18 @@ struct Args {
   bool json = false;
   bool exact = false;
   std::string detrend = "none";
+  GeneratorOptions gen;
+  FieldWords period_words;  ///< --period, the tilt table's field
 };
-
-void write_text(const std::string& path, const std::string& text) {
-  std::ofstream f(path, std::ios::binary);
-  if (!f) throw UsageError(fmt::format("{}: cannot open for writing", path));
-  f << text;
-  if (!f) throw UsageError(fmt::format("{}: write failed", path));
-}
 
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
-  app.add_option("lower", a->lower, "Lower surface file (as measured: material below)")->required();
+  app.add_option("lower", a->lower, "Lower surface file (as measured: material below); - reads standard input");
   app.add_option("upper", a->upper,
                  "Upper surface file, as measured (material below); it is rotated by 180 degrees to face LOWER. "
                  "Default: LOWER itself");
-  app.add_option("--atomic-friction,--mu-a", a->mu_a, "Atomic friction coefficient mu_a >= 0")->capture_default_str();
+  add_generator_subcommands(app, a->gen, true, " (its self-signature: the surface against itself turned over)");
+  add_atomic_friction_option(app, a->mu_a);
   app.add_option("--slopes", a->slopes, "exact: polyline contact rules; spline: cubic-spline slopes averaged")
       ->check(CLI::IsMember({"exact", "spline"}))->capture_default_str();
   app.add_option("--offsets", a->offsets,
@@ -49,19 +48,30 @@ std::function<int()> setup(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--exact", a->exact, "Refuse to sample offsets when the exact signature has too many events");
   app.add_option("--offset-range", a->range, "MIN MAX offsets (m); default one period or half the block")->expected(2);
-  app.add_option("--period", a->period, "Treat both surfaces as periodic with this period (m)");
+  add_field_options(app, tilt_settings(), a->period_words, all_but(tilt_settings(), "period"));
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the contact-slope PDF")->capture_default_str();
-  app.add_option("-o,--output", a->out, "Write the signature function as CSV");
-  app.add_option("--contacts", a->contacts_out, "Write every contact (offset, x, z, slope, type) as CSV");
-  app.add_option("--pdf", a->pdf_out, "Write the contact-slope PDF as CSV");
+  app.add_option("-o,--output", a->out, "Write the signature function as CSV (- for standard output)");
+  app.add_option("--contacts", a->contacts_out, "Write every contact (offset, x, z, slope, type) as CSV (- for standard output)");
+  app.add_option("--pdf", a->pdf_out, "Write the contact-slope PDF as CSV (- for standard output)");
   app.add_flag("--json", a->json, "Print one JSON object with the results");
   return [a]() {
     require(std::isfinite(a->mu_a) && a->mu_a >= 0,
             fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
     const Detrend dt = unwrap(parse_detrend(a->detrend));
-    Profile lower = unwrap(detrend(load_profile(a->lower), dt));
+    const int to_stdout = (a->out == "-") + (a->contacts_out == "-") + (a->pdf_out == "-") + (a->json ? 1 : 0);
+    require(to_stdout <= 1, "only one of -o -, --contacts -, --pdf - and --json can write to standard output");
+    const std::optional<SurfaceSpec> spec = a->gen.spec();
+    if (spec) {
+      require(a->lower.empty() && a->upper.empty(),
+              fmt::format("signature {}: a generated surface is signed against itself; give no files", spec->generator));
+      a->lower = spec->generator;
+    } else if (a->lower.empty()) {
+      throw UsageError("signature: give LOWER [UPPER] files, or a generator (koch, wm, sawtooth, sine, self-affine)");
+    }
+    Profile lower = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : load_profile(a->lower), dt));
     Profile upper_measured = a->upper.empty() ? lower : unwrap(detrend(load_profile(a->upper), dt));
+    if (const ValueSet pv = si_values(tilt_settings(), a->period_words); pv.count("period")) a->period = as_real(pv.at("period"));
     if (a->period != 0) {
       require(a->period > 0 && std::isfinite(a->period), fmt::format("--period: expected a positive length in m, got {}", a->period));
       lower.period = a->period;
@@ -97,7 +107,7 @@ std::function<int()> setup(CLI::App& app) {
       for (std::size_t i = 0; i < r.offset.size(); ++i)
         s += fmt::format("{:.17g},{:.17g},{:.12g},{:.12g},{:.12g},{:.12g}\n", r.offset[i], r.lift[i], to_deg(r.theta[i]),
                          to_deg(r.theta_min[i]), to_deg(r.theta_left[i]), to_deg(r.theta_right[i]));
-      write_text(a->out, s);
+      write_text_output(a->out, s);
     }
     if (!a->contacts_out.empty()) {
       std::string s = "offset_m,x_m,z_m,slope_deg,type\n";
@@ -106,14 +116,14 @@ std::function<int()> setup(CLI::App& app) {
           const Contact& c = r.contacts[k];
           s += fmt::format("{:.17g},{:.17g},{:.17g},{:.12g},{}\n", r.offset[i], c.x, c.z, to_deg(c.slope), contact_type_name(c.type));
         }
-      write_text(a->contacts_out, s);
+      write_text_output(a->contacts_out, s, "--contacts");
     }
     if (!a->pdf_out.empty()) {
       std::string s = "slope_lo_deg,slope_hi_deg,density_per_deg\n";
       const auto& h = r.contact_slope_pdf;
       for (std::size_t i = 0; i < h.density.size(); ++i)
         s += fmt::format("{:.12g},{:.12g},{:.12g}\n", to_deg(h.edges[i]), to_deg(h.edges[i + 1]), h.density[i] * kDeg);
-      write_text(a->pdf_out, s);
+      write_text_output(a->pdf_out, s, "--pdf");
     }
     if (a->json) {
       nlohmann::json j;
@@ -141,13 +151,15 @@ std::function<int()> setup(CLI::App& app) {
       j["wall_time_s"] = wall;
       print_json(j);
     } else {
-      fmt::print("signature: {} offsets ({}) from {:.6g} to {:.6g} m in {:.3f} s\n", r.offset.size(),
+      // With a CSV on standard output, the summary goes to standard error.
+      std::FILE* text = to_stdout ? stderr : stdout;
+      fmt::print(text, "signature: {} offsets ({}) from {:.6g} to {:.6g} m in {:.3f} s\n", r.offset.size(),
                  r.exact ? "every event, exact" : "sampled", r.offset.front(), r.offset.back(), wall);
-      fmt::print("  theta_max forward  (+x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_forward), r.offset_at_forward);
-      fmt::print("  theta_max backward (-x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_backward), r.offset_at_backward);
-      fmt::print("  contact slope mean {:.4f} deg, std (sigma) {:.4f} deg; max surface slope {:.4f} deg\n",
+      fmt::print(text, "  theta_max forward  (+x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_forward), r.offset_at_forward);
+      fmt::print(text, "  theta_max backward (-x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_backward), r.offset_at_backward);
+      fmt::print(text, "  contact slope mean {:.4f} deg, std (sigma) {:.4f} deg; max surface slope {:.4f} deg\n",
                  to_deg(r.contact_slope_mean), to_deg(r.contact_slope_std), to_deg(smax));
-      fmt::print("friction (mu_a = {}): phi = {:.4f} deg, mu = {:.6g}; Eq. 18 range phi in [{:.4f}, {:.4f}] deg; backward phi = {:.4f} deg\n",
+      fmt::print(text, "friction (mu_a = {}): phi = {:.4f} deg, mu = {:.6g}; Eq. 18 range phi in [{:.4f}, {:.4f}] deg; backward phi = {:.4f} deg\n",
                  a->mu_a, to_deg(fwd.friction_angle), fwd.friction_coefficient, to_deg(fwd.friction_angle_low),
                  to_deg(fwd.friction_angle), to_deg(bwd.friction_angle));
     }

@@ -29,7 +29,7 @@ inline SurfaceData load_surface(const std::string& path, const InputOptions& o) 
   r.default_unit = o.unit;
   r.x_column = o.x_column;
   r.z_column = o.z_column;
-  SurfaceData s = unwrap(read_surface(path, r));
+  SurfaceData s = unwrap(read_surface(input_path(path), r));
   for (const auto& w : s.warnings) fmt::print(stderr, "frictal: warning: {}\n", w);
   return s;
 }

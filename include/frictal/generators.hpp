@@ -1,7 +1,9 @@
-// frictal — surface generators. Every length in metres, every angle in radians.
+// frictal — surface generators. Every length in metres, every angle in radians. The tables of
+// their parameters (names, units, ranges, help) are in frictal/surface_spec.hpp.
 #pragma once
 
 #include <cstdint>
+#include <numbers>
 
 #include "frictal/geometry.hpp"
 
@@ -15,7 +17,7 @@ namespace frictal {
 /// folds over, hence the result is a Curve; take upper_envelope() to get a profile.
 struct KochParams {
   int iterations = 0;            ///< n >= 0 (unitless); n <= 10 to bound memory
-  double alpha = 0.0872664626;   ///< base angle of the triangles, in (0, pi/3] (unit: rad)
+  double alpha = 5 * std::numbers::pi / 180;  ///< base angle of the triangles, in (0, pi/3], 5 deg (unit: rad)
   double wavelength = 0.01;      ///< base of the K_0 triangles, lambda (unit: m)
   double length = 0.2;           ///< block length L_b, a whole number of wavelengths (unit: m)
 };
@@ -43,7 +45,7 @@ struct WmParams {
   double rms_height = 1e-9;        ///< target rms height about the mean; <= 0 keeps G = 1 m (unit: m)
   bool stochastic = true;          ///< random phases (Eq. 14) or zero phases (Eq. 17)
   std::uint64_t seed = 1;          ///< seed of the phases (unitless)
-  WmExponent exponent = WmExponent::Printed;
+  WmExponent exponent = WmExponent::Printed;  ///< form of the exponent of Eq. 14
   double spacing = 0.0;            ///< override dx if > 0 (unit: m)
 };
 WmParams default_wm_params();
@@ -54,7 +56,7 @@ Result<std::size_t> wm_point_count(const WmParams& p);
 /// Asymmetric sawtooth: each period rises at angle `rise_angle` over `rise_fraction` of the
 /// wavelength, then falls back over the rest. Periodic.
 struct SawtoothParams {
-  double rise_angle = 0.349065850;  ///< slope angle of the rising flank, in (0, pi/2) (unit: rad)
+  double rise_angle = 20 * std::numbers::pi / 180;  ///< slope angle of the rising flank, in (0, pi/2), 20 deg (unit: rad)
   double rise_fraction = 0.5;       ///< fraction of the wavelength that rises, in (0, 1) (unitless)
   double wavelength = 0.01;         ///< (unit: m)
   double length = 0.2;              ///< a whole number of wavelengths (unit: m)
@@ -70,14 +72,15 @@ struct SineParams {
 };
 Result<Profile> sine_profile(const SineParams& p);
 
-/// Random self-affine profile by spectral synthesis (power spectrum ~ q^{-(1+2H)}), n uniform
-/// points over `length`, rms height `rms_height`. Used for large benchmarks and tests.
+/// Random self-affine profile by random midpoint displacement (Fournier, Fussell & Carpenter
+/// 1982; power spectrum ~ q^{-(1+2H)}), resampled onto `points` uniform points over `length`,
+/// rms height `rms_height` (<= 0: unscaled). Used for large benchmarks and tests.
 struct SelfAffineParams {
   std::size_t points = 1024;  ///< number of points >= 16 (unitless)
   double length = 1e-3;       ///< (unit: m)
   double hurst = 0.8;         ///< Hurst exponent H in (0, 1] (unitless)
-  double rms_height = 1e-6;   ///< (unit: m)
-  std::uint64_t seed = 1;
+  double rms_height = 1e-6;   ///< rms height about the mean; <= 0: unscaled (unit: m)
+  std::uint64_t seed = 1;      ///< seed of the random heights (unitless)
 };
 Result<Profile> self_affine_profile(const SelfAffineParams& p);
 

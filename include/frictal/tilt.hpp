@@ -21,12 +21,14 @@
 
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include "frictal/dem.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/result.hpp"
+#include "frictal/settings.hpp"
 
 namespace frictal {
 
@@ -51,7 +53,7 @@ struct TiltConfig {
   double skin = 5e-5;                  ///< neighbour-list skin (unit: m)
   int max_steps_beyond_limit = 1000;     ///< see dem::WorldDef::max_steps_beyond_limit (unitless)
   double settle_time = 0.1;            ///< free settling before the tilt starts (unit: s)
-  double max_tilt = 1.553343;          ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
+  double max_tilt = 89 * std::numbers::pi / 180;  ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
   double runaway_distance = 0.01;      ///< sliding "for good": growth past this, one lambda (unit: m)
   double stick_speed = 1e-5;           ///< relative speed counted as stuck (unit: m/s)
   double stick_duration = 0.02;        ///< a stick lasts at least this long (unit: s)
@@ -67,6 +69,20 @@ struct TiltConfig {
   double frame_interval = 0;           ///< time between frames; <= 0: none (unit: s)
 };
 TiltConfig default_tilt_config();
+
+/// The settings table of the tilt test (settings.hpp): one field per TiltConfig member that a
+/// user sets (contact law included: normal_stiffness, ..., atomic_friction). Its names are the
+/// `frictal tilt` options, the 'tilt' study kind's TOML keys, the keywords of Python's
+/// frictal.tilt and the keys of the "settings" object in `frictal tilt --json`.
+const std::vector<Field>& tilt_settings();
+/// A default configuration for a surface of period `period` (m; <= 0: none) whose run-away
+/// distance defaults to `scale` (m; <= 0: keep the default one wavelength of 0.01 m).
+TiltConfig tilt_config_for_surface(double period, double scale);
+/// `base` with the given values (SI; names from tilt_settings(), else an error naming the
+/// nearest) checked and applied.
+Result<TiltConfig> make_tilt_config(const ValueSet& si_values, const TiltConfig& base = default_tilt_config());
+/// Every setting of the table as it is in `config` (SI).
+ValueSet tilt_values(const TiltConfig& config);
 
 /// Time series of Fig. 7, one row per `series_interval`.
 struct TiltSeries {

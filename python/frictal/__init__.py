@@ -12,6 +12,7 @@ message naming the parameter or file.
 """
 from ._core import (  # noqa: F401
     Profile,
+    generators,
     koch_curve,
     koch_profile,
     lift_direct,
@@ -24,6 +25,8 @@ from ._core import (  # noqa: F401
     self_affine_profile,
     signature,
     sine_profile,
+    surface,
+    surface_curve,
     upper_envelope,
     wm_profile,
     write_profile_csv,
@@ -45,7 +48,7 @@ from ._core import (  # noqa: F401  measured surfaces (io_bindings.cpp)
     write_x3p,
 )
 
-from ._core import tilt  # noqa: F401  spheropolygon tilting-block test (dem_bindings.cpp)
+from ._core import tilt, tilt_settings  # noqa: F401  spheropolygon tilting-block test (dem_bindings.cpp)
 from ._core import __version__, build_info  # noqa: F401  version defined once, in CMakeLists.txt
 
 __all__ = [name for name in dir() if not name.startswith("_")]

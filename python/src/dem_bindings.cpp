@@ -1,12 +1,15 @@
 // frictal._core — bindings of the tilting-block test (tilt.hpp) on the spheropolygon engine.
 // Surfaces are given as measured: a Profile, or an (x, z) pair of arrays for a curve that may
-// fold over (e.g. koch_curve(...)). SI units: m, rad, s, kg.
+// fold over (e.g. koch_curve(...)). SI units: m, rad, s, kg. The keywords of tilt() are the
+// library's tilt settings table (tilt_settings(), frictal/tilt.hpp): the same names as the
+// `frictal tilt` options and the 'tilt' study kind's TOML keys.
 #include <optional>
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "bindings.hpp"
 #include "frictal/tilt.hpp"
 
 namespace py = pybind11;
@@ -14,7 +17,7 @@ using namespace frictal;
 
 namespace {
 
-py::array_t<double> arr(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
+using frictal::py_detail::arr;
 
 Curve to_curve(const py::object& o, const char* name) {
   if (py::isinstance<Profile>(o)) return as_curve(o.cast<Profile>());
@@ -35,44 +38,14 @@ Curve to_curve(const py::object& o, const char* name) {
 void frictal_bind_dem(py::module_& m) {
   m.def(
       "tilt",
-      [](const py::object& lower, const py::object& upper, double atomic_friction, bool reverse, double tilt_rate,
-         double time_step, double radius, double block_height, double density, double normal_stiffness,
-         double tangential_stiffness, double normal_damping, double tangential_damping, double restitution,
-         const std::string& face, double period, double series_interval, double max_tilt,
-         std::optional<double> initial_offset) {
-        TiltConfig c = default_tilt_config();
-        c.contact.atomic_friction = atomic_friction;
-        c.reverse = reverse;
-        c.tilt_rate = tilt_rate;
-        c.time_step = time_step;
-        c.radius = radius;
-        c.block_height = block_height;
-        c.density = density;
-        c.contact.normal_stiffness = normal_stiffness;
-        c.contact.tangential_stiffness = tangential_stiffness;
-        c.contact.normal_damping = normal_damping;
-        c.contact.tangential_damping = tangential_damping;
-        c.restitution = restitution;
-        if (face != "curve" && face != "envelope")
-          throw py::value_error("tilt: face must be 'curve' or 'envelope', got '" + face + "'");
-        c.face = face == "envelope" ? TiltFace::Envelope : TiltFace::Curve;
-        c.period = period;
-        c.runaway_distance = period > 0 ? period : c.runaway_distance;
-        c.series_interval = series_interval;
-        c.max_tilt = max_tilt;
-        if (initial_offset) c.initial_offset = *initial_offset;
+      [](const py::object& lower, const py::object& upper, const py::kwargs& kw) {
+        const ValueSet given = py_detail::keyword_values(tilt_settings(), kw, "tilt");
+        // The period (default 0.01 m) also sets the run-away distance unless that is given.
+        const double period = given.count("period") ? as_real(given.at("period")) : default_tilt_config().period;
+        const TiltConfig c = py_detail::ok(make_tilt_config(given, tilt_config_for_surface(period, period)));
         const Curve lo = to_curve(lower, "lower");
         const Curve up = upper.is_none() ? lo : to_curve(upper, "upper");
-        TiltResult r;
-        {
-          py::gil_scoped_release release;
-          auto res = run_tilt(lo, up, c);
-          if (!res) {
-            py::gil_scoped_acquire acquire;
-            throw py::value_error(res.error().message);
-          }
-          r = std::move(res).value();
-        }
+        TiltResult r = py_detail::ok(py_detail::nogil([&] { return run_tilt(lo, up, c); }));
         py::dict d;
         d["slid"] = r.slid;
         d["friction_angle"] = r.friction_angle;
@@ -96,14 +69,18 @@ void frictal_bind_dem(py::module_& m) {
         d["series"] = s;
         return d;
       },
-      py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("atomic_friction") = 0.0,
-      py::arg("reverse") = false, py::arg("tilt_rate") = 0.05, py::arg("time_step") = 1e-5, py::arg("radius") = 5e-5,
-      py::arg("block_height") = 0.01, py::arg("density") = 50.0, py::arg("normal_stiffness") = 6e5,
-      py::arg("tangential_stiffness") = 6e4, py::arg("normal_damping") = 929.5, py::arg("tangential_damping") = 4.0,
-      py::arg("restitution") = 0.0, py::arg("face") = "curve", py::arg("period") = 0.01,
-      py::arg("series_interval") = 1e-3, py::arg("max_tilt") = 1.553343, py::arg("initial_offset") = py::none(),
-      "Tilting-block test (paper Sec. IV, Table I/II defaults). Surfaces as measured; upper defaults to "
-      "lower. period: surfaces' period for the prediction and the run-away distance (m; <= 0: none); "
-      "initial_offset: shift of the upper block (m; default: the deepest nesting from the signature). "
-      "Returns friction_angle (rad), predicted_friction_angle, and the Fig. 7 series.");
+      py::arg("lower"), py::arg("upper") = py::none(),
+      ("tilt(lower, upper=None, **settings) -> dict\n\nTilting-block test on the spheropolygon engine (paper Sec. "
+       "IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as "
+       "measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, "
+       "predicted_theta_max (rad), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), "
+       "steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle "
+       "rad, displacement m, velocity m/s, contacts). Settings (SI units; `period` also sets the run-away distance "
+       "unless runaway_distance is given):\n" +
+       py_detail::keyword_doc(tilt_settings()))
+          .c_str());
+  m.def("tilt_settings", [] { return py_detail::field_list(tilt_settings()); },
+        "tilt_settings() -> list\n\nThe tilt test's settings table: one dict per keyword of tilt() (name, type, unit "
+        "(SI), default, min, max, choices, help). The same names are the `frictal tilt` options (--kebab-case, "
+        "degrees) and the 'tilt' study kind's TOML keys.");
 }

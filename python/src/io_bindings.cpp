@@ -1,6 +1,7 @@
 // frictal._core — bindings of the measured-surface modules: reading/writing (io.hpp), maps,
 // analysis, fractal dimension and areal friction. Maps cross as 2-D numpy arrays of shape
-// (ny, nx) (x fastest, NaN = invalid) plus spacings in metres.
+// (ny, nx) (x fastest, NaN = invalid) plus spacings in metres. Readers and the long analyses
+// run with the GIL released.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -12,22 +13,16 @@
 #include "frictal/areal.hpp"
 #include "frictal/fractal.hpp"
 #include "frictal/io.hpp"
+#include "bindings.hpp"
 
 namespace py = pybind11;
 using namespace frictal;
 
 namespace {
 
-template <class T>
-T ok(Result<T> r) {
-  if (!r) throw py::value_error(r.error().message);
-  return std::move(r).value();
-}
-void ok(const Status& s) {
-  if (!s) throw py::value_error(s.error().message);
-}
-
-py::array_t<double> arr(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
+using frictal::py_detail::arr;
+using frictal::py_detail::nogil;
+using frictal::py_detail::ok;
 
 py::array_t<double> heights2d(const Map& m) {
   py::array_t<double> a({m.ny, m.nx});
@@ -84,7 +79,8 @@ void frictal_bind_io(py::module_& m) {
   m.def(
       "read_surface",
       [](const std::string& path, const std::string& format, const std::string& unit) {
-        SurfaceData s = ok(read_surface(path, read_options(format, unit)));
+        const ReadOptions o = read_options(format, unit);
+        SurfaceData s = ok(nogil([&] { return read_surface(path, o); }));
         py::dict d = s.is_map ? map_dict(s.map) : py::dict();
         d["kind"] = s.is_map ? "map" : "profile";
         if (!s.is_map) {
@@ -96,12 +92,17 @@ void frictal_bind_io(py::module_& m) {
         return d;
       },
       py::arg("path"), py::kw_only(), py::arg("format") = "auto", py::arg("unit") = "",
-      "Reads any supported file (CSV/TSV/text, Dektak, Gwyddion text, X3P). Returns a dict: kind "
+      "Reads any supported file (CSV/TSV/text, Dektak, Gwyddion text, X3P; runs without the GIL). format: auto, "
+      "csv, dektak, gwyddion or x3p; unit: m, mm, um or nm for text columns that name none. Returns a dict: kind "
       "'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings. Metres.");
   m.def(
       "read_map",
-      [](const std::string& path, const std::string& format) { return map_dict(ok(read_map(path, read_options(format, "")))); },
-      py::arg("path"), py::kw_only(), py::arg("format") = "auto", "Reads an areal map: dict heights (ny, nx), dx, dy, x0, y0");
+      [](const std::string& path, const std::string& format) {
+        const ReadOptions o = read_options(format, "");
+        return map_dict(ok(nogil([&] { return read_map(path, o); })));
+      },
+      py::arg("path"), py::kw_only(), py::arg("format") = "auto",
+      "Reads an areal map (runs without the GIL): dict heights (ny, nx) in m, dx, dy, x0, y0 in m");
   m.def(
       "write_x3p",
       [](const std::string& path, py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx,
@@ -116,7 +117,8 @@ void frictal_bind_io(py::module_& m) {
         ok(write_x3p(path, to_map(heights, dx, dy, x0, y0), o));
       },
       py::arg("path"), py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("x0") = 0.0,
-      py::arg("y0") = 0.0, py::arg("type") = "D", py::arg("binary") = true, "Writes a map (ny, nx) as ISO 25178-71 X3P");
+      py::arg("y0") = 0.0, py::arg("type") = "D", py::arg("binary") = true, "Writes a map of heights (ny, nx) in m on spacings dx, dy (m), origin x0, y0 (m) as ISO 25178-71 X3P; "
+      "type: feature type D (areal) or S; binary: binary point data");
   m.def(
       "map_stats",
       [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy) {
@@ -136,55 +138,64 @@ void frictal_bind_io(py::module_& m) {
         d["max_slope"] = s.max_slope;
         return d;
       },
-      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), "Areal statistics over the valid points (NaN = invalid)");
+      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"),
+      "Areal statistics over the valid points (NaN = invalid) of heights (m) on spacings dx, dy (m): mean, Sa, Sq, "
+      "Sp, Sv, Sz (m), Ssk, Sku, Sdq (unitless), max_slope (rad)");
   m.def(
       "detrend",
       [](const Profile& p, const std::string& kind) { return ok(detrend(p, ok(parse_detrend(kind)))); }, py::arg("profile"),
-      py::arg("kind") = "line", "Removes none, mean, line or poly:N (trapezoid-weighted least squares)");
+      py::arg("kind") = "line", "Removes none, mean, line or poly:N (trapezoid-weighted least squares) from a profile (m)");
   m.def(
       "power_spectrum",
       [](const Profile& p, std::size_t max_k) {
-        Spectrum s = ok(power_spectrum(p, max_k));
+        Spectrum s = ok(nogil([&] { return power_spectrum(p, max_k); }));
         return py::make_tuple(arr(s.q), arr(s.psd));
       },
-      py::arg("profile"), py::arg("max_k") = 0, "(q rad/m, C m^3) of the piecewise-linear profile, 2 sum C / L = rms^2");
+      py::arg("profile"), py::arg("max_k") = 0,
+      "Power spectrum of a profile (m, runs without the GIL): returns (q in rad/m, C in m^3) of the piecewise-linear "
+      "profile, with 2 sum C / L = rms^2; max_k: 0 = automatic");
   m.def(
       "autocorrelation",
       [](const Profile& p, std::size_t max_lag) {
-        Autocorrelation a = ok(autocorrelation(p, max_lag));
+        Autocorrelation a = ok(nogil([&] { return autocorrelation(p, max_lag); }));
         py::dict d;
         d["lag"] = arr(a.lag);
         d["acf"] = arr(a.acf);
         d["correlation_length"] = a.correlation_length;
         return d;
       },
-      py::arg("profile"), py::arg("max_lag") = 0);
+      py::arg("profile"), py::arg("max_lag") = 0,
+      "Autocorrelation of a profile: lag (m), acf (unitless), correlation_length (m); max_lag: 0 = automatic");
   m.def("koch_dimension", [](double alpha) { return ok(koch_dimension(alpha)); }, py::arg("alpha"),
         "Eq. 13: 2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1, alpha in radians");
   m.def(
       "divider_dimension",
       [](py::array_t<double> x, py::array_t<double> z, double ruler_min, double ruler_max, int rulers) {
         Curve c{std::vector<double>(x.data(), x.data() + x.size()), std::vector<double>(z.data(), z.data() + z.size())};
-        return fit_dict(ok(divider_dimension(c, {ruler_min, ruler_max, rulers})));
+        return fit_dict(ok(nogil([&] { return divider_dimension(c, {ruler_min, ruler_max, rulers}); })));
       },
       py::arg("x"), py::arg("z"), py::kw_only(), py::arg("ruler_min") = 0.0, py::arg("ruler_max") = 0.0,
-      py::arg("rulers") = 16, "Divider (ruler) dimension walking along the curve (x, z)");
+      py::arg("rulers") = 16, "Divider (ruler) dimension walking along the curve (x, z in m); ruler_min/max in m (0: automatic). Returns "
+      "dimension, slope, r_squared, fit_range (m), scales (m), values (m)");
   m.def(
       "box_dimension",
       [](py::array_t<double> x, py::array_t<double> z, double box_min, double box_max, int sizes) {
         Curve c{std::vector<double>(x.data(), x.data() + x.size()), std::vector<double>(z.data(), z.data() + z.size())};
-        return fit_dict(ok(box_dimension(c, {box_min, box_max, sizes})));
+        return fit_dict(ok(nogil([&] { return box_dimension(c, {box_min, box_max, sizes}); })));
       },
-      py::arg("x"), py::arg("z"), py::kw_only(), py::arg("box_min") = 0.0, py::arg("box_max") = 0.0, py::arg("sizes") = 12);
+      py::arg("x"), py::arg("z"), py::kw_only(), py::arg("box_min") = 0.0, py::arg("box_max") = 0.0, py::arg("sizes") = 12,
+      "Box-counting dimension of the curve (x, z in m); box_min/max in m (0: automatic)");
   m.def(
       "psd_dimension",
       [](const Profile& p, double q_min, double q_max) {
         PsdFitOptions o;
         o.q_min = q_min;
         o.q_max = q_max;
-        return fit_dict(ok(psd_dimension(p, o)));
+        return fit_dict(ok(nogil([&] { return psd_dimension(p, o); })));
       },
-      py::arg("profile"), py::kw_only(), py::arg("q_min") = 0.0, py::arg("q_max") = 0.0);
+      py::arg("profile"), py::kw_only(), py::arg("q_min") = 0.0, py::arg("q_max") = 0.0,
+      "Fractal dimension of a profile (m) from its power-spectrum slope (runs without the GIL); q_min, q_max in "
+      "rad/m (0: automatic). Returns dimension, slope, r_squared, fit_range (rad/m), scales, values");
   m.def(
       "anisotropy",
       [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy, int directions,
@@ -193,7 +204,8 @@ void frictal_bind_io(py::module_& m) {
         o.max_lines = max_lines;
         o.atomic_friction = atomic_friction;
         o.threads = threads;
-        auto t = ok(anisotropy(to_map(heights, dx, dy, 0, 0), directions, o));
+        const Map map = to_map(heights, dx, dy, 0, 0);
+        auto t = ok(nogil([&] { return anisotropy(map, directions, o); }));
         std::vector<double> dir, fwd, bwd, sig, phi;
         for (const auto& r : t) {
           dir.push_back(r.angle);
@@ -212,7 +224,9 @@ void frictal_bind_io(py::module_& m) {
       },
       py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("directions") = 36,
       py::arg("max_lines") = 128, py::arg("atomic_friction") = 0.0, py::arg("threads") = 0,
-      "Predicted friction over sliding directions from the map's parallel lines (radians)");
+      "Predicted friction over sliding directions from the map's parallel lines (runs without the GIL); heights "
+      "(m), dx, dy (m), atomic_friction mu_a (unitless). Returns direction, theta_forward/backward, sigma, "
+      "friction_angle (rad)");
   m.def(
       "areal_signature",
       [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, double angle,
@@ -223,7 +237,7 @@ void frictal_bind_io(py::module_& m) {
         o.turn_over_upper = turn_over_upper;
         o.prune = prune;
         o.threads = threads;
-        ArealSignature r = ok(areal_signature(f, g, angle, o));
+        ArealSignature r = ok(nogil([&] { return areal_signature(f, g, angle, o); }));
         py::dict d;
         d["offset"] = arr(r.offset);
         d["lift"] = arr(r.lift);
@@ -236,5 +250,7 @@ void frictal_bind_io(py::module_& m) {
       },
       py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0, py::arg("upper") = py::none(),
       py::arg("turn_over_upper") = true, py::arg("prune") = true, py::arg("threads") = 1,
-      "Areal signature of two rigid blocks sliding along `angle` (radians); upper as measured (turned over) by default");
+      "Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `angle` (rad; runs without the "
+      "GIL); upper as measured (turned over) by default. Returns offset, lift (m), theta (rad), theta_max_forward/"
+      "backward (rad), contact_slope_std (rad), evaluated_nodes");
 }

@@ -1,20 +1,26 @@
 // frictal._core — thin pybind11 bindings. SI units (metres, radians) as in the C++ library;
-// library errors become ValueError with the library's message.
+// library errors become ValueError with the library's message. Generator keywords come from the
+// library's surface specification tables (frictal/surface_spec.hpp); long computations run with
+// the GIL released.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
 
+#include "bindings.hpp"
 #include "frictal/generators.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/io.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
+#include "frictal/surface_spec.hpp"
 #include "frictal/version.hpp"
 
 namespace py = pybind11;
 using namespace frictal;
+using frictal::py_detail::arr;
+using frictal::py_detail::nogil;
 
 void frictal_bind_io(py::module_& m);   // python/src/io_bindings.cpp
 void frictal_bind_dem(py::module_& m);  // python/src/dem_bindings.cpp
@@ -23,11 +29,8 @@ namespace {
 
 template <class T>
 T unwrap(Result<T> r) {
-  if (!r) throw py::value_error(r.error().message);
-  return std::move(r).value();
+  return py_detail::ok(std::move(r));
 }
-
-py::array_t<double> arr(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
 
 std::vector<double> vec(const py::array_t<double, py::array::c_style | py::array::forcecast>& a, const char* name) {
   if (a.ndim() != 1) throw py::value_error(std::string(name) + ": expected a 1-D array");
@@ -39,6 +42,24 @@ py::dict hist_dict(const Histogram& h) {
   d["edges"] = arr(h.edges);
   d["density"] = arr(h.density);
   return d;
+}
+
+SurfaceSpec spec_of(const std::string& generator, const py::kwargs& kw, const std::string& function) {
+  const GeneratorInfo* g = find_generator(generator);
+  if (!g) {
+    std::string hint;
+    if (std::string n = nearest_word(generator, generator_names()); !n.empty()) hint = " (did you mean '" + n + "'?)";
+    throw py::value_error(function + ": unknown surface generator '" + generator + "'" + hint +
+                          "; expected koch, wm, sawtooth, sine or self-affine");
+  }
+  return unwrap(make_surface_spec(generator, py_detail::keyword_values(g->fields, kw, function)));
+}
+
+Profile profile_of(const SurfaceSpec& spec) { return unwrap(nogil([&] { return generate_profile(spec); })); }
+
+py::tuple curve_of(const SurfaceSpec& spec) {
+  Curve c = unwrap(nogil([&] { return generate_curve(spec); }));
+  return py::make_tuple(arr(c.x), arr(c.z));
 }
 
 }  // namespace
@@ -71,63 +92,60 @@ PYBIND11_MODULE(_core, m) {
         return "<frictal.Profile " + std::to_string(p.size()) + " points over " + std::to_string(p.length()) + " m>";
       });
 
-  m.def("koch_curve",
-        [](int iterations, double alpha, double wavelength, double length) {
-          Curve c = unwrap(koch_curve(KochParams{iterations, alpha, wavelength, length}));
-          return py::make_tuple(arr(c.x), arr(c.z));
-        },
-        py::arg("iterations") = 0, py::arg("alpha") = 5 * M_PI / 180, py::arg("wavelength") = 0.01,
-        py::arg("length") = 0.2, "Koch curve K_n (may fold over) as (x, z) arrays; alpha in radians");
-  m.def("koch_profile",
-        [](int iterations, double alpha, double wavelength, double length) {
-          return unwrap(koch_profile(KochParams{iterations, alpha, wavelength, length}));
-        },
-        py::arg("iterations") = 0, py::arg("alpha") = 5 * M_PI / 180, py::arg("wavelength") = 0.01,
-        py::arg("length") = 0.2, "Upper envelope of the Koch curve, periodic");
-  m.def("wm_profile",
-        [](double dimension, double gamma, int n_max, double longest_wavelength, double length, double rms_height,
-           bool stochastic, std::uint64_t seed, const std::string& exponent, double spacing) {
-          if (exponent != "printed" && exponent != "common")
-            throw py::value_error("wm_profile: exponent must be 'printed' or 'common', got '" + exponent + "'");
-          WmParams w{dimension, gamma, n_max, longest_wavelength, length, rms_height, stochastic, seed,
-                     exponent == "common" ? WmExponent::Common : WmExponent::Printed, spacing};
-          return unwrap(wm_profile(w));
-        },
-        py::arg("dimension") = 1.5, py::arg("gamma") = 1.5, py::arg("n_max") = 10, py::arg("longest_wavelength") = 1e-6,
-        py::arg("length") = 20e-6, py::arg("rms_height") = 1e-9, py::arg("stochastic") = true, py::arg("seed") = 1,
-        py::arg("exponent") = "printed", py::arg("spacing") = 0.0, "Weierstrass-Mandelbrot profile (Eq. 14-17)");
-  m.def("sawtooth_profile",
-        [](double rise_angle, double rise_fraction, double wavelength, double length) {
-          return unwrap(sawtooth_profile(SawtoothParams{rise_angle, rise_fraction, wavelength, length}));
-        },
-        py::arg("rise_angle") = 20 * M_PI / 180, py::arg("rise_fraction") = 0.5, py::arg("wavelength") = 0.01,
-        py::arg("length") = 0.2);
-  m.def("sine_profile",
-        [](double amplitude, double wavelength, double length, int ppw) {
-          return unwrap(sine_profile(SineParams{amplitude, wavelength, length, ppw}));
-        },
-        py::arg("amplitude") = 1e-3, py::arg("wavelength") = 0.01, py::arg("length") = 0.2,
-        py::arg("points_per_wavelength") = 64);
-  m.def("self_affine_profile",
-        [](std::size_t points, double length, double hurst, double rms_height, std::uint64_t seed) {
-          return unwrap(self_affine_profile(SelfAffineParams{points, length, hurst, rms_height, seed}));
-        },
-        py::arg("points") = 1024, py::arg("length") = 1e-3, py::arg("hurst") = 0.8, py::arg("rms_height") = 1e-6,
-        py::arg("seed") = 1);
+  // Generators: one function per generator, keywords from its table (surface_spec.hpp).
+  for (const GeneratorInfo& g : surface_generators()) {
+    std::string fn = g.name;
+    for (char& c : fn)
+      if (c == '-') c = '_';
+    fn += "_profile";
+    const std::string name = g.name;
+    const std::string doc = fn + "(**params) -> Profile\n\n" + g.description +
+                            (name == "koch" ? ": the upper envelope of the curve" : "") +
+                            ", generated with the keywords below (SI units; unknown keywords are a TypeError, "
+                            "bad values a ValueError):\n" + py_detail::keyword_doc(g.fields);
+    m.def(fn.c_str(), [name, fn](const py::kwargs& kw) { return profile_of(spec_of(name, kw, fn)); }, doc.c_str());
+  }
+  m.def("koch_curve", [](const py::kwargs& kw) { return curve_of(spec_of("koch", kw, "koch_curve")); },
+        ("koch_curve(**params) -> (x, z)\n\nThe Koch curve K_n, which may fold over, as two arrays of metres. "
+         "Keywords as koch_profile (SI units):\n" + py_detail::keyword_doc(find_generator("koch")->fields))
+            .c_str());
+  m.def("surface",
+        [](const std::string& generator, const py::kwargs& kw) { return profile_of(spec_of(generator, kw, "surface")); },
+        py::arg("generator"),
+        "surface(generator, **params) -> Profile\n\nA generated profile: generator is 'koch', 'wm', 'sawtooth', "
+        "'sine' or 'self-affine'; params are that generator's keywords (see generators() and each "
+        "<name>_profile function; SI units: metres, radians). Koch: the upper envelope.");
+  m.def("surface_curve",
+        [](const std::string& generator, const py::kwargs& kw) { return curve_of(spec_of(generator, kw, "surface_curve")); },
+        py::arg("generator"),
+        "surface_curve(generator, **params) -> (x, z)\n\nThe generated surface as a curve (Koch: the full, possibly "
+        "folded curve), two arrays of metres. params: the generator's keywords in SI units (m, rad).");
+  m.def(
+      "generators",
+      [] {
+        py::dict d;
+        for (const GeneratorInfo& g : surface_generators()) d[py::str(g.name)] = py_detail::field_list(g.fields);
+        return d;
+      },
+      "generators() -> dict\n\nEvery surface generator's parameter table: name -> list of fields (name, type, unit "
+      "(SI), default, min, max, choices, help). The same names are the CLI options (--kebab-case, degrees) and study "
+      "TOML keys.");
 
   m.def("upper_envelope",
         [](py::array_t<double, py::array::c_style | py::array::forcecast> x,
            py::array_t<double, py::array::c_style | py::array::forcecast> z) {
           return unwrap(upper_envelope(Curve{vec(x, "x"), vec(z, "z")}));
         },
-        py::arg("x"), py::arg("z"), "Exact upper envelope of a polyline curve");
+        py::arg("x"), py::arg("z"), "Exact upper envelope of a polyline curve (x, z in metres) as a Profile");
   m.def("lower_envelope",
         [](py::array_t<double, py::array::c_style | py::array::forcecast> x,
            py::array_t<double, py::array::c_style | py::array::forcecast> z) {
           return unwrap(lower_envelope(Curve{vec(x, "x"), vec(z, "z")}));
         },
-        py::arg("x"), py::arg("z"));
-  m.def("rotate180", [](const Profile& p) { return rotate180(p); }, py::arg("profile"));
+        py::arg("x"), py::arg("z"), "Exact lower envelope of a polyline curve (x, z in metres) as a Profile");
+  m.def("rotate180", [](const Profile& p) { return rotate180(p); }, py::arg("profile"),
+        "The profile (m) turned over by 180 degrees (x -> -x, z -> -z, re-sorted): how an upper block's face, "
+        "measured with its material below, faces the lower one");
 
   m.def("profile_stats",
         [](const Profile& p) {
@@ -143,7 +161,9 @@ PYBIND11_MODULE(_core, m) {
           d["slope_pdf"] = hist_dict(slope_distribution(p));
           return d;
         },
-        py::arg("profile"));
+        py::arg("profile"),
+        "Statistics of a profile: points, length_m, mean/rms height (m), rms slope (unitless), max/mean slope "
+        "(rad) and the slope PDF (edges in rad, density per rad)");
 
   m.def("signature",
         [](const Profile& lower, std::optional<Profile> upper, bool rotate_upper, const std::string& slopes,
@@ -163,16 +183,7 @@ PYBIND11_MODULE(_core, m) {
           }
           Profile up = upper ? *upper : lower;
           if (!upper || rotate_upper) up = rotate180(up);
-          SignatureResult r;
-          {
-            py::gil_scoped_release release;
-            auto res = signature(lower, up, o);
-            if (!res) {
-              py::gil_scoped_acquire acquire;
-              throw py::value_error(res.error().message);
-            }
-            r = std::move(res).value();
-          }
+          SignatureResult r = unwrap(nogil([&] { return signature(lower, up, o); }));
           py::dict d;
           d["offset"] = arr(r.offset);
           d["lift"] = arr(r.lift);
@@ -215,10 +226,13 @@ PYBIND11_MODULE(_core, m) {
         py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("rotate_upper") = true,
         py::arg("slopes") = "exact", py::arg("offsets") = 0, py::arg("offset_range") = py::none(),
         py::arg("threads") = 0, py::arg("keep_contacts") = false, py::arg("bins") = 90,
-        "Signature function. `upper` is a surface as measured (rotated by 180 degrees to face `lower`) "
-        "unless rotate_upper=False; default: lower turned over. Angles in radians.");
+        "Signature function theta(x_ofs) of two profiles (runs without the GIL). `upper` is a surface as measured "
+        "(rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = "
+        "every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores. Returns "
+        "offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), "
+        "offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events.");
   m.def("lift_direct", &lift_direct, py::arg("lower"), py::arg("upper_rotated"), py::arg("offset"),
-        "Plain O(N+M) evaluation of h(s) (reference method)");
+        "Lift h(s) (m) of the turned-over upper profile at offset s (m): plain O(N+M) evaluation (reference method)");
   m.def("predict_friction",
         [](double mu_a, double theta_max, double sigma) {
           FrictionPrediction f = unwrap(predict_friction(mu_a, theta_max, sigma));
@@ -232,14 +246,18 @@ PYBIND11_MODULE(_core, m) {
           d["friction_coefficient_low"] = f.friction_coefficient_low;
           return d;
         },
-        py::arg("atomic_friction"), py::arg("theta_max"), py::arg("sigma") = 0.0, "Eq. 6 and Eq. 18 (radians)");
-  m.def("read_profile", [](const std::string& path) { return unwrap(read_profile(path)); }, py::arg("path"));
+        py::arg("atomic_friction"), py::arg("theta_max"), py::arg("sigma") = 0.0,
+        "Friction prediction of Eq. 6 and the Eq. 18 range: atomic_friction mu_a (unitless), theta_max and sigma "
+        "(rad). Returns angles in rad and coefficients (unitless)");
+  m.def("read_profile", [](const std::string& path) { return unwrap(nogil([&] { return read_profile(path); })); },
+        py::arg("path"), "Reads a single-valued profile (any readable format) in metres (runs without the GIL)");
   m.def("write_profile_csv",
         [](const std::string& path, const Profile& p) {
           auto st = write_profile_csv(path, p);
           if (!st) throw py::value_error(st.error().message);
         },
-        py::arg("path"), py::arg("profile"));
+        py::arg("path"), py::arg("profile"),
+        "Writes a profile as CSV with columns x_m,z_m (metres, 17 significant digits); errors name the path");
   frictal_bind_io(m);
   frictal_bind_dem(m);
 }

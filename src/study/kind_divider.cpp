@@ -1,5 +1,6 @@
 // Task kind 'divider': the divider (ruler) method on a Koch curve (Sec. IV C 3, Fig. 9, 10).
-// Parameters: iterations, alpha_deg, wavelength, length, ruler_min_over_wavelength,
+// Parameters: the koch generator's (iterations, alpha in degrees, wavelength, length; here the
+// length defaults to 0.01 m), ruler_min_over_wavelength,
 // ruler_max_over_wavelength, rulers. Returns D = 1 - slope of log L against log eps with its
 // fit quality, the Eq. 13 dimension, and the arrays ruler_m / measured_length_m (Fig. 9).
 #include <numbers>
@@ -9,33 +10,33 @@
 #include "frictal/fractal.hpp"
 #include "frictal/generators.hpp"
 #include "frictal/study.hpp"
+#include "frictal/surface_spec.hpp"
+#include "study/table_params.hpp"
 
 namespace frictal::study {
 
 Result<TaskOutput> run_divider_task(const Params& p, std::uint64_t /*seed: deterministic curve*/) {
-  constexpr double kDeg = std::numbers::pi / 180.0;
-  auto iterations = get_int(p, "iterations");
-  auto alpha_deg = get_real(p, "alpha_deg");
-  auto wavelength = get_real(p, "wavelength", 0.01);
-  auto length = get_real(p, "length", 0.01);
   auto rmin = get_real(p, "ruler_min_over_wavelength", 3e-4);
   auto rmax = get_real(p, "ruler_max_over_wavelength", 0.25);
   auto rulers = get_int(p, "rulers", 40);
-  if (!iterations) return iterations.error();
-  if (!alpha_deg) return alpha_deg.error();
-  if (!wavelength) return wavelength.error();
-  if (!length) return length.error();
   if (!rmin) return rmin.error();
   if (!rmax) return rmax.error();
   if (!rulers) return rulers.error();
-  if (*iterations < 0 || *iterations > 8)
-    return make_error(fmt::format("parameter 'iterations': expected 0..8, got {}", *iterations));
   if (*rulers < 3 || *rulers > 10000) return make_error(fmt::format("parameter 'rulers': expected 3..10000, got {}", *rulers));
-  KochParams kp;
-  kp.iterations = static_cast<int>(*iterations);
-  kp.alpha = *alpha_deg * kDeg;
-  kp.wavelength = *wavelength;
-  kp.length = *length;
+  if (Status st = only_known_parameters(p, {&find_generator("koch")->fields},
+                                        {"ruler_min_over_wavelength", "ruler_max_over_wavelength", "rulers"}, "divider");
+      !st)
+    return st.error();
+  auto koch_values = table_values(find_generator("koch")->fields, p);
+  if (!koch_values) return koch_values.error();
+  if (auto it = koch_values->find("iterations"); it != koch_values->end() && std::get<std::int64_t>(it->second) > 8)
+    return make_error(fmt::format("parameter 'iterations': expected 0..8, got {}", std::get<std::int64_t>(it->second)));
+  if (!koch_values->count("length")) (*koch_values)["length"] = 0.01;  // one wavelength: the divider needs no more
+  auto spec = make_surface_spec("koch", *koch_values);
+  if (!spec) return spec.error();
+  auto kpr = koch_params(*spec);
+  if (!kpr) return kpr.error();
+  const KochParams kp = *kpr;
   auto curve = koch_curve(kp);
   if (!curve) return curve.error();
   DividerOptions o;

@@ -1,17 +1,19 @@
-// Task kind 'tilt': the spheropolygon tilting-block test (Sec. IV) on a Koch pair, for the
-// studies of Fig. 6, 7 and 8. Parameters (SI units, angles in degrees as in the study files):
-// iterations, alpha_deg, atomic_friction, wavelength, length, height, normal_stiffness,
-// tangential_stiffness, normal_damping, tangential_damping, spheroradius, density, tilt_rate,
-// time_step, reverse (bool), record_series (bool: return the Fig. 7 series as arrays). A run stopped
-// by the stability guard is retried with a 2.5x smaller step (twice at most); time_step_s records it.
+// Task kind 'tilt': the spheropolygon tilting-block test (Sec. IV) on a pair of generated
+// surfaces (a Koch pair by default), for the studies of Fig. 6, 7 and 8. Parameters: `generator`
+// (koch, wm, sawtooth, sine or self-affine; default koch), that generator's parameters and the
+// tilt settings, all named and checked by the library's tables (surface_spec.hpp, tilt.hpp;
+// SI units, angles in degrees as in the study files), and record_series (bool: return the
+// Fig. 7 series as arrays). A run stopped by the stability guard is retried with a 2.5x smaller
+// step (twice at most); time_step_s records it.
 #include <cmath>
 #include <numbers>
 
 #include <fmt/core.h>
 
-#include "frictal/generators.hpp"
+#include "frictal/surface_spec.hpp"
 #include "frictal/study.hpp"
 #include "frictal/tilt.hpp"
+#include "study/table_params.hpp"
 
 namespace frictal::study {
 namespace {
@@ -28,40 +30,36 @@ Result<bool> get_bool(const Params& p, const std::string& name, bool fallback) {
 }  // namespace
 
 Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: deterministic simulation*/) {
-  auto iterations = get_int(p, "iterations");
-  auto alpha_deg = get_real(p, "alpha_deg");
-  if (!iterations) return iterations.error();
-  if (!alpha_deg) return alpha_deg.error();
-  if (*iterations < 0 || *iterations > 5)
-    return make_error(fmt::format("parameter 'iterations': expected 0..5, got {}", *iterations));
-  TiltConfig c = default_tilt_config();
-  KochParams kp;
-  kp.iterations = static_cast<int>(*iterations);
-  kp.alpha = *alpha_deg * kDeg;
-  struct Real {
-    const char* name;
-    double* into;
-  };
-  for (const Real& r : {Real{"wavelength", &kp.wavelength}, Real{"length", &kp.length}, Real{"height", &c.block_height},
-                        Real{"atomic_friction", &c.contact.atomic_friction},
-                        Real{"normal_stiffness", &c.contact.normal_stiffness},
-                        Real{"tangential_stiffness", &c.contact.tangential_stiffness},
-                        Real{"normal_damping", &c.contact.normal_damping},
-                        Real{"tangential_damping", &c.contact.tangential_damping}, Real{"spheroradius", &c.radius},
-                        Real{"density", &c.density}, Real{"tilt_rate", &c.tilt_rate}, Real{"time_step", &c.time_step}}) {
-    auto v = get_real(p, r.name, *r.into);
-    if (!v) return v.error();
-    *r.into = *v;
-  }
-  auto reverse = get_bool(p, "reverse", false);
+  auto generator = get_string(p, "generator", "koch");
+  if (!generator) return generator.error();
+  const GeneratorInfo* gen = find_generator(*generator);
+  if (!gen) return make_error(fmt::format("parameter 'generator': unknown surface generator \"{}\"", *generator));
+  if (Status st = only_known_parameters(p, {&gen->fields, &tilt_settings()}, {"generator", "record_series"}, "tilt"); !st)
+    return st.error();
+  auto gen_values = table_values(gen->fields, p);
+  if (!gen_values) return gen_values.error();
+  if (auto it = gen_values->find("iterations"); it != gen_values->end() && std::get<std::int64_t>(it->second) > 5)
+    return make_error(fmt::format("parameter 'iterations': expected 0..5, got {}", std::get<std::int64_t>(it->second)));
+  auto spec = make_surface_spec(*generator, *gen_values);
+  if (!spec) return spec.error();
+  auto period = surface_period(*spec);
+  auto scale = surface_scale(*spec);
+  if (!period) return period.error();
+  if (!scale) return scale.error();
+  auto settings = table_values(tilt_settings(), p);
+  if (!settings) return settings.error();
+  auto config = make_tilt_config(*settings, tilt_config_for_surface(*period, *scale));
+  if (!config) return config.error();
+  TiltConfig c = *config;
   auto series = get_bool(p, "record_series", false);
-  if (!reverse) return reverse.error();
   if (!series) return series.error();
-  c.reverse = *reverse;
-  c.period = kp.wavelength;
-  c.runaway_distance = kp.wavelength;
-  c.series_interval = *series ? 1e-3 : 0;
-  auto curve = koch_curve(kp);
+  if (!*series) c.series_interval = 0;
+  auto all = surface_values(*spec);
+  if (!all) return all.error();
+  // Fig. 7 normalises by the Koch base angle and the block length.
+  const double alpha = all->count("alpha") ? as_real(all->at("alpha")) : std::nan("");
+  const double length = as_real(all->at("length"));
+  auto curve = generate_curve(*spec);
   if (!curve) return curve.error();
   // The engine's stability guard stops a run whose step is too large for the number of contacts
   // (K3 carries hundreds); retry twice with a step 2.5 times smaller rather than lose the task.
@@ -91,8 +89,8 @@ Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: determin
     const auto& ts = r->series;
     std::vector<double> d, a, t, tilt;
     for (std::size_t i = 0; i < ts.time.size(); ++i) {
-      d.push_back(ts.displacement[i] / kp.length);
-      a.push_back(ts.force_angle[i] / kp.alpha);
+      d.push_back(ts.displacement[i] / length);
+      a.push_back(ts.force_angle[i] / alpha);
       t.push_back(ts.time[i]);
       tilt.push_back(ts.tilt[i] / kDeg);
     }

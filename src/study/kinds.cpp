@@ -11,6 +11,8 @@
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 #include "frictal/study.hpp"
+#include "frictal/surface_spec.hpp"
+#include "study/table_params.hpp"
 
 namespace frictal::study {
 
@@ -97,21 +99,28 @@ bool take(Result<T> r, T& into, Error& err) {
 
 Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: deterministic surfaces*/) {
   Error err;
-  std::int64_t iterations = 0, offsets = 0;
-  double alpha_deg = 0, wavelength = 0, length = 0, mu_a = 0;
+  std::int64_t offsets = 0;
+  double mu_a = 0;
   std::string slopes;
-  if (!take(get_int(p, "iterations"), iterations, err) || !take(get_real(p, "alpha_deg"), alpha_deg, err) ||
-      !take(get_real(p, "wavelength", 0.01), wavelength, err) || !take(get_real(p, "length", 0.2), length, err) ||
-      !take(get_real(p, "atomic_friction", 0.0), mu_a, err) || !take(get_int(p, "offsets", 0), offsets, err) ||
+  if (!take(get_real(p, "atomic_friction", 0.0), mu_a, err) || !take(get_int(p, "offsets", 0), offsets, err) ||
       !take(get_string(p, "slopes", "exact"), slopes, err))
     return err;
-  if (iterations < 0 || iterations > 8) return make_error(fmt::format("parameter 'iterations': expected 0..8, got {}", iterations));
   if (offsets < 0) return make_error("parameter 'offsets': expected >= 0");
-  KochParams kp;
-  kp.iterations = static_cast<int>(iterations);
-  kp.alpha = alpha_deg * kDeg;
-  kp.wavelength = wavelength;
-  kp.length = length;
+  // iterations, alpha (deg), wavelength, length: the koch generator's table.
+  if (Status st = only_known_parameters(p, {&find_generator("koch")->fields}, {"atomic_friction", "offsets", "slopes"},
+                                        "koch-signature");
+      !st)
+    return st.error();
+  auto koch_values = table_values(find_generator("koch")->fields, p);
+  if (!koch_values) return koch_values.error();
+  if (auto it = koch_values->find("iterations"); it != koch_values->end() && std::get<std::int64_t>(it->second) > 8)
+    return make_error(fmt::format("parameter 'iterations': expected 0..8, got {}", std::get<std::int64_t>(it->second)));
+  auto spec = make_surface_spec("koch", *koch_values);
+  if (!spec) return spec.error();
+  auto kpr = koch_params(*spec);
+  if (!kpr) return kpr.error();
+  const KochParams kp = *kpr;
+  const double wavelength = kp.wavelength;
   auto prof = koch_profile(kp);
   if (!prof) return prof.error();
   SignatureOptions o;
@@ -159,29 +168,29 @@ Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: det
 
 Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   Error err;
-  std::int64_t n_max = 0, bins = 0, offsets = 0;
-  double D = 0, gamma = 0, L = 0, Lb = 0, rms = 0;
-  std::string exponent, slopes;
-  if (!take(get_real(p, "dimension"), D, err) || !take(get_int(p, "n_max"), n_max, err) ||
-      !take(get_real(p, "gamma", 1.5), gamma, err) || !take(get_real(p, "longest_wavelength", 1e-6), L, err) ||
-      !take(get_real(p, "length", 20e-6), Lb, err) || !take(get_real(p, "rms_height", 1e-9), rms, err) ||
-      !take(get_string(p, "exponent", "printed"), exponent, err) || !take(get_string(p, "slopes", "exact"), slopes, err) ||
-      !take(get_int(p, "bins", 90), bins, err) || !take(get_int(p, "offsets", 0), offsets, err))
+  std::int64_t bins = 0, offsets = 0;
+  std::string slopes;
+  if (!take(get_string(p, "slopes", "exact"), slopes, err) || !take(get_int(p, "bins", 90), bins, err) ||
+      !take(get_int(p, "offsets", 0), offsets, err))
     return err;
-  if (exponent != "printed" && exponent != "common")
-    return make_error(fmt::format("parameter 'exponent': expected \"printed\" or \"common\", got \"{}\"", exponent));
   if (bins < 1 || bins > 100000) return make_error("parameter 'bins': expected 1..100000");
   if (offsets < 0) return make_error("parameter 'offsets': expected >= 0");
-  if (n_max < 0 || n_max > 60) return make_error(fmt::format("parameter 'n_max': expected 0..60, got {}", n_max));
-  WmParams w;
-  w.dimension = D;
-  w.gamma = gamma;
-  w.n_max = static_cast<int>(n_max);
-  w.longest_wavelength = L;
-  w.length = Lb;
-  w.rms_height = rms;
+  // dimension, gamma, n_max, longest_wavelength, length, rms_height, exponent, spacing: the wm
+  // generator's table; the phases are always random, from the task seed.
+  if (Status st = only_known_parameters(p, {&find_generator("wm")->fields}, {"pair", "slopes", "bins", "offsets"},
+                                        "wm-pair-statistics");
+      !st)
+    return st.error();
+  auto wm_values = table_values(find_generator("wm")->fields, p);
+  if (!wm_values) return wm_values.error();
+  wm_values->erase("seed");
+  wm_values->erase("stochastic");
+  auto spec = make_surface_spec("wm", *wm_values);
+  if (!spec) return spec.error();
+  auto wp = wm_params(*spec);
+  if (!wp) return wp.error();
+  WmParams w = *wp;
   w.stochastic = true;
-  w.exponent = exponent == "common" ? WmExponent::Common : WmExponent::Printed;
   // The pair shares every parameter but the phases: two streams of the task seed.
   w.seed = derive_seed(seed, 1);
   auto lower = wm_profile(w);

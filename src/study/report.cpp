@@ -245,9 +245,9 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   std::map<int, std::map<double, double>> ratio, phi, mu, dim, phi0;  // iterations -> alpha -> value
   std::set<double> mus;
   for (const auto& r : rows) {
-    if (!r.params.count("iterations") || !r.params.count("alpha_deg")) continue;
+    if (!r.params.count("iterations") || !r.params.count("alpha")) continue;
     const int n = static_cast<int>(num(r.params.at("iterations")));
-    const double a = num(r.params.at("alpha_deg"));
+    const double a = num(r.params.at("alpha"));
     const double ma = r.params.count("atomic_friction") ? num(r.params.at("atomic_friction")) : 0.0;
     mus.insert(ma);
     if (ma == 0) {
@@ -308,7 +308,7 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
     for (const auto& r : rows) {
       const int n = static_cast<int>(num(r.params.at("iterations")));
       if (n > 3) continue;
-      const double a = num(r.params.at("alpha_deg"));
+      const double a = num(r.params.at("alpha"));
       const double ma = r.params.count("atomic_friction") ? num(r.params.at("atomic_friction")) : 0.0;
       const double expect_phi = std::min(90.0, a * expect[n] + std::atan(ma) * 180 / std::numbers::pi);
       worst_h = std::max(worst_h, std::abs(r.output.scalars.at("friction_angle_deg") - expect_phi));
@@ -341,7 +341,7 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
     worst = std::max(worst, std::abs(d));
     worst_a = std::max(worst_a, std::abs(da));
     t += fmt::format("| K{} | {:g} | {:g} | {:.3f} | {:.3f} | {:+.3f} | {:.3f} | {:.3f} |\n",
-                     static_cast<int>(num(r.params.at("iterations"))), num(r.params.at("alpha_deg")), ma,
+                     static_cast<int>(num(r.params.at("iterations"))), num(r.params.at("alpha")), ma,
                      s.at("friction_angle_deg"), s.at("predicted_friction_angle_deg"), d, s.at("phi_minus_theta_max_deg"),
                      s.at("atomic_friction_angle_deg"));
   }
@@ -371,7 +371,7 @@ void divider_part(const std::string& part, const std::vector<Store::Row>& rows, 
     const auto& s = r.output.scalars;
     if (!s.count("dimension") || !s.count("dimension_eq13")) continue;
     const int n = static_cast<int>(num(r.params.at("iterations")));
-    const double a = num(r.params.at("alpha_deg"));
+    const double a = num(r.params.at("alpha"));
     by[a][n] = {s.at("dimension"), s.at("dimension_eq13")};
     t += fmt::format("| K{} | {:g} | {:.4f} | {:.4f} | {:+.4f} | {:.5f} | {:.3g} - {:.3g} |\n", n, a, s.at("dimension"),
                      s.at("dimension_eq13"), s.at("dimension_minus_eq13"), s.at("r_squared"), s.at("ruler_min_m"),

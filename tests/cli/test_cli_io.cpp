@@ -68,7 +68,7 @@ TEST(CliIo, ConvertRoundTrips) {
 }
 
 TEST(CliIo, DimensionKochAndProfiles) {
-  auto k = run_cli("dimension --koch-alpha 60 --json");
+  auto k = run_cli("dimension koch --alpha 60 --method eq13 --json");
   ASSERT_EQ(k.code, 0) << k.err;
   EXPECT_NEAR(nlohmann::json::parse(k.out)["dimension"].get<double>(), std::log(4.0) / std::log(3.0), 1e-12);
   for (const char* m : {"divider", "box", "psd"}) {
@@ -83,7 +83,7 @@ TEST(CliIo, DimensionKochAndProfiles) {
   }
   EXPECT_EQ(run_cli("dimension " + kData + "/x3p/x3p-2.x3p").code, 2);
   EXPECT_EQ(run_cli("dimension").code, 2);
-  EXPECT_EQ(run_cli("dimension --koch-alpha 75").code, 2);
+  EXPECT_EQ(run_cli("dimension koch --alpha 75 --method eq13").code, 2);
 }
 
 TEST(CliIo, AnisotropyTable) {
@@ -91,7 +91,7 @@ TEST(CliIo, AnisotropyTable) {
   // 4 x 4 nodes: lines are shorter than the 32-point minimum -> a clear error, exit 2.
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("no line"), std::string::npos) << r.err;
-  auto a = run_cli("anisotropy " + kData + "/x3p/x3p-2.x3p --directions 4 --lines 8 --json --mu-a 0.1");
+  auto a = run_cli("anisotropy " + kData + "/x3p/x3p-2.x3p --directions 4 --lines 8 --json --atomic-friction 0.1");
   ASSERT_EQ(a.code, 0) << a.err;
   auto j = nlohmann::json::parse(a.out);
   ASSERT_EQ(j["directions"].size(), 4u);
@@ -163,7 +163,7 @@ TEST(CliIo, ConvertExtractsALineOfAMap) {
 
 TEST(CliIo, ArealSignatureCommand) {
   const std::string csv = temp_path("areal.csv");
-  auto r = run_cli("areal " + kData + "/x3p/x3p-2.x3p --angle 90 --json --mu-a 0.2 -o " + csv);
+  auto r = run_cli("areal " + kData + "/x3p/x3p-2.x3p --angle 90 --json --atomic-friction 0.2 -o " + csv);
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["direction_deg"], 90.0);

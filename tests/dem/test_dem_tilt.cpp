@@ -140,8 +140,8 @@ TEST(DemTilt, RejectsBadConfig) {
 #ifdef FRICTAL_CLI_PATH
 TEST(DemTiltCli, UsageErrorsExitWithTwo) {
   const std::string cli = FRICTAL_CLI_PATH;
-  EXPECT_EQ(std::system((cli + " tilt --surface nope > /dev/null 2>&1").c_str()), 2 << 8);
-  EXPECT_EQ(std::system((cli + " tilt --dt -1 > /dev/null 2>&1").c_str()), 2 << 8);
+  EXPECT_EQ(std::system((cli + " tilt nope > /dev/null 2>&1").c_str()), 2 << 8);
+  EXPECT_EQ(std::system((cli + " tilt koch --time-step -1 > /dev/null 2>&1").c_str()), 2 << 8);
 }
 #endif
 

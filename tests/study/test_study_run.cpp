@@ -60,7 +60,7 @@ TEST(StudyKinds, KochSignatureMaximaAreOneOneTwoThreeAlpha) {
   // Paper Sec. III / Fig. 4: theta_max = 1, 1, 2, 3 alpha for K0..K3 (alpha = 5 deg).
   const double expect[] = {1, 1, 2, 3};
   for (int n = 0; n <= 3; ++n) {
-    Params p{{"iterations", std::int64_t{n}}, {"alpha_deg", 5.0}, {"length", 0.01}};
+    Params p{{"iterations", std::int64_t{n}}, {"alpha", 5.0}, {"length", 0.01}};
     auto r = run_koch_signature(p, 0);
     ASSERT_TRUE(r.ok()) << r.error().message;
     EXPECT_NEAR(r->scalars.at("theta_max_over_alpha"), expect[n], 1e-9) << "K" << n;
@@ -73,14 +73,14 @@ TEST(StudyKinds, KochSignatureMaximaAreOneOneTwoThreeAlpha) {
 TEST(StudyKinds, KochDimensionEq13) {
   // alpha = 60 deg: 6 cos(alpha) = 3, so Eq. 13 reads 4 (1/3)^D = 1: the classic Koch curve,
   // D = ln 4 / ln 3. alpha -> 0: the flat line, D = 1.
-  Params p{{"iterations", std::int64_t{0}}, {"alpha_deg", 60.0}, {"length", 0.01}};
+  Params p{{"iterations", std::int64_t{0}}, {"alpha", 60.0}, {"length", 0.01}};
   auto r = run_koch_signature(p, 0);
   ASSERT_TRUE(r.ok());
   EXPECT_NEAR(r->scalars.at("dimension_eq13"), std::log(4.0) / std::log(3.0), 1e-12);
-  p["alpha_deg"] = 1e-3;
+  p["alpha"] = 1e-3;
   EXPECT_NEAR(run_koch_signature(p, 0)->scalars.at("dimension_eq13"), 1.0, 1e-6);
   // Friction (Eq. 6): phi = atan(mu_a) + theta_max; K1 at 20 deg with mu_a = 1: 45 + 20 deg.
-  Params q{{"iterations", std::int64_t{1}}, {"alpha_deg", 20.0}, {"length", 0.01}, {"atomic_friction", 1.0}};
+  Params q{{"iterations", std::int64_t{1}}, {"alpha", 20.0}, {"length", 0.01}, {"atomic_friction", 1.0}};
   EXPECT_NEAR(run_koch_signature(q, 0)->scalars.at("friction_angle_deg"), 65.0, 1e-9);
 }
 
@@ -181,14 +181,14 @@ name = "theory"
 kind = "koch-signature"
 [part.parameters]
 iterations = [0, 1]
-alpha_deg = 10.0
+alpha = 10.0
 length = 0.01
 [[part]]
 name = "simulation"
 kind = "future-engine"
 [part.parameters]
 iterations = [0, 1]
-alpha_deg = 10.0
+alpha = 10.0
 )");
   const std::string path = tmp("mixed.sqlite");
   auto st = Store::open(path, s);
@@ -219,14 +219,14 @@ name = "theory"
 kind = "koch-signature"
 [part.parameters]
 iterations = [0, 1]
-alpha_deg = 10.0
+alpha = 10.0
 length = 0.01
 [[part]]
 name = "simulation"
 kind = "future-engine"
 [part.parameters]
 iterations = [0, 1]
-alpha_deg = 10.0
+alpha = 10.0
 )", "t", false, more);
   // The placeholder declared version 1, as the engine will: same definition, same store.
   EXPECT_EQ(s2.hash, s.hash);

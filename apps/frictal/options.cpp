@@ -1,0 +1,80 @@
+// frictal CLI — options derived from the settings tables (options.hpp).
+#include "options.hpp"
+
+#include <algorithm>
+
+#include "frictal/tilt.hpp"
+
+namespace frictal::cli {
+
+std::string field_help(const Field& f) {
+  std::string s = f.help;
+  const std::string u = text_unit(f);
+  if (!u.empty()) s += " [" + u + "]";
+  return s + " (default " + default_text(f) + "; valid " + range_text(f) + ")";
+}
+
+void add_field_options(CLI::App& app, const std::vector<Field>& fields, FieldWords& words,
+                       const std::vector<std::string>& skip) {
+  for (const Field& f : fields) {
+    if (std::find(skip.begin(), skip.end(), f.name) != skip.end()) continue;
+    const std::string name = cli_option_name(f);
+    std::string flags = f.short_name ? fmt::format("-{},{}", f.short_name, name) : name;
+    const std::string key = f.name;
+    if (f.type == FieldType::Boolean) {
+      const std::string no = "--no-" + name.substr(2);
+      app.add_flag_callback(flags, [&words, key] { words.words[key] = "true"; }, field_help(f));
+      app.add_flag_callback(no, [&words, key] { words.words[key] = "false"; }, "Opposite of " + name);
+    } else {
+      app.add_option_function<std::string>(flags, [&words, key](const std::string& w) { words.words[key] = w; },
+                                            field_help(f))
+          ->type_name(f.type == FieldType::Choice ? "WORD" : (f.type == FieldType::Integer ? "INT" : "NUMBER"));
+    }
+  }
+}
+
+std::vector<std::string> all_but(const std::vector<Field>& fields, const std::string& keep) {
+  std::vector<std::string> n;
+  for (const Field& f : fields)
+    if (f.name != keep) n.push_back(f.name);
+  return n;
+}
+
+ValueSet si_values(const std::vector<Field>& fields, const FieldWords& words) {
+  ValueSet v;
+  for (const auto& [name, word] : words.words) {
+    const Field* f = find_field(fields, name);
+    if (!f) continue;
+    const std::string option = cli_option_name(*f);
+    FieldValue text = unwrap(parse_text_word(*f, word, option));
+    v[name] = unwrap(si_from_text(*f, text, option));
+  }
+  return v;
+}
+
+std::optional<SurfaceSpec> GeneratorOptions::spec() const {
+  for (const auto& [name, sub] : subcommands) {
+    if (!sub->parsed()) continue;
+    const GeneratorInfo* g = find_generator(name);
+    return unwrap(make_surface_spec(name, si_values(g->fields, *words.at(name))));
+  }
+  return std::nullopt;
+}
+
+void add_generator_subcommands(CLI::App& app, GeneratorOptions& g, bool fallthrough, const std::string& what) {
+  for (const GeneratorInfo& info : surface_generators()) {
+    CLI::App* sub = app.add_subcommand(info.name, info.description + what);
+    auto w = std::make_shared<FieldWords>();
+    add_field_options(*sub, info.fields, *w);
+    if (fallthrough) sub->fallthrough();
+    g.subcommands[info.name] = sub;
+    g.words[info.name] = w;
+  }
+}
+
+void add_atomic_friction_option(CLI::App& app, double& mu_a) {
+  const Field* f = find_field(tilt_settings(), "atomic_friction");
+  app.add_option(cli_option_name(*f), mu_a, field_help(*f));
+}
+
+}  // namespace frictal::cli

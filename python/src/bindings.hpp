@@ -1,0 +1,130 @@
+// frictal._core — helpers shared by the binding files: errors, arrays, releasing the GIL around
+// library calls, and keywords derived from the library's settings tables (frictal/settings.hpp):
+// a table's field names are the Python keywords, in SI units (metres, radians).
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <cstdio>
+
+#include "frictal/result.hpp"
+#include "frictal/settings.hpp"
+
+namespace frictal::py_detail {
+
+namespace py = pybind11;
+
+/// The value of a Result, or ValueError with the library's message.
+template <class T>
+T ok(Result<T> r) {
+  if (!r) throw py::value_error(r.error().message);
+  return std::move(r).value();
+}
+inline void ok(const Status& s) {
+  if (!s) throw py::value_error(s.error().message);
+}
+
+/// Runs `f` (a pure C++ computation returning a Result) with the GIL released, so that other
+/// Python threads run meanwhile; the Result is unwrapped after the GIL is taken back.
+template <class F>
+auto nogil(F&& f) {
+  py::gil_scoped_release release;
+  return f();
+}
+
+/// A number with 10 significant digits.
+inline std::string num(double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.10g", v);
+  return b;
+}
+
+inline py::array_t<double> arr(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
+
+/// Python keyword arguments -> SI values of the table's fields. An unknown keyword is a
+/// TypeError naming the nearest field; a bad value a ValueError naming the field.
+inline ValueSet keyword_values(const std::vector<Field>& fields, const py::kwargs& kw, const std::string& function) {
+  ValueSet out;
+  for (const auto& item : kw) {
+    const std::string name = py::str(item.first);
+    const Field* f = find_field(fields, name);
+    if (!f) {
+      std::vector<std::string> names;
+      for (const Field& g : fields) names.push_back(g.name);
+      std::string hint;
+      if (std::string n = nearest_word(name, names); !n.empty()) hint = "; did you mean '" + n + "'?";
+      throw py::type_error(function + "() got an unexpected keyword argument '" + name + "'" + hint);
+    }
+    const py::handle v = item.second;
+    FieldValue value;
+    if (v.is_none() && f->type == FieldType::Real && std::isnan(f->default_value)) value = std::nan("");
+    else if (py::isinstance<py::bool_>(v)) value = v.cast<bool>();
+    else if (py::isinstance<py::int_>(v)) value = v.cast<std::int64_t>();
+    else if (py::isinstance<py::float_>(v) || py::hasattr(v, "__float__")) value = v.cast<double>();
+    else if (py::isinstance<py::str>(v)) value = v.cast<std::string>();
+    else throw py::type_error(function + "(): keyword '" + name + "' has an unsupported type");
+    auto checked = check_si_value(*f, value);
+    if (!checked) throw py::value_error(function + ": " + checked.error().message);
+    out[name] = *checked;
+  }
+  return out;
+}
+
+/// The fields of a table as a list of dicts (name, type, unit, default, min, max, choices, help),
+/// SI units as Python takes them.
+inline py::list field_list(const std::vector<Field>& fields) {
+  py::list l;
+  for (const Field& f : fields) {
+    py::dict d;
+    d["name"] = f.name;
+    static const char* types[] = {"real", "integer", "boolean", "choice"};
+    d["type"] = types[static_cast<int>(f.type)];
+    d["unit"] = f.unit;
+    if (f.type == FieldType::Boolean) d["default"] = f.default_value != 0;
+    else if (f.type == FieldType::Choice) d["default"] = f.choices.at(static_cast<std::size_t>(f.default_value));
+    else if (f.type == FieldType::Integer) d["default"] = static_cast<std::int64_t>(f.default_value);
+    else d["default"] = std::isnan(f.default_value) ? py::object(py::none()) : py::object(py::float_(f.default_value));
+    d["min"] = f.min;
+    d["max"] = f.max;
+    d["choices"] = f.choices;
+    d["help"] = f.help;
+    l.append(d);
+  }
+  return l;
+}
+
+/// One docstring line per keyword: "name [unit]: help (default D; valid R)", SI units.
+inline std::string keyword_doc(const std::vector<Field>& fields) {
+  std::string s;
+  for (const Field& f : fields) {
+    std::string def;
+    if (f.type == FieldType::Real && std::isnan(f.default_value)) def = "None (auto)";
+    else if (f.type == FieldType::Boolean) def = f.default_value != 0 ? "True" : "False";
+    else if (f.type == FieldType::Choice) def = "'" + default_text(f) + "'";
+    else def = num(f.default_value);
+    std::string range;
+    if (f.type == FieldType::Real || f.type == FieldType::Integer) {
+      const bool lo = std::isfinite(f.min), hi = std::isfinite(f.max);
+      auto n = [](double v) { return num(v); };
+      if (f.type == FieldType::Integer) range = lo && hi ? n(f.min) + ".." + n(f.max) : (lo ? ">= " + n(f.min) : "any");
+      else if (lo && hi) range = std::string(f.min_open ? "(" : "[") + n(f.min) + ", " + n(f.max) + (f.max_open ? ")" : "]");
+      else if (lo) range = (f.min_open ? "> " : ">= ") + n(f.min);
+      else if (hi) range = (f.max_open ? "< " : "<= ") + n(f.max);
+      else range = "any finite number";
+    } else {
+      range = range_text(f);
+    }
+    s += "    " + f.name + (f.unit.empty() ? "" : " [" + f.unit + "]") + ": " + f.help + " (default " + def + "; valid " +
+         range + ")\n";
+  }
+  return s;
+}
+
+}  // namespace frictal::py_detail

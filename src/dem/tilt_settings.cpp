@@ -1,0 +1,131 @@
+// The tilt test's settings table (tilt.hpp, settings.hpp): each user-facing TiltConfig member
+// once, with its unit, range and help; defaults are TiltConfig's own initialisers.
+#include <numbers>
+
+#include "frictal/tilt.hpp"
+#include "settings/binding.hpp"
+
+namespace frictal {
+namespace {
+
+using settings_detail::Binding;
+using settings_detail::bind;
+using settings_detail::bind_choice;
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+enum class Lo { Closed, Open };
+
+Field F(std::string name, std::string unit, double min, Lo lo, double max, std::string help, bool max_open = false,
+        std::string text_default = "") {
+  Field f;
+  f.name = std::move(name);
+  f.unit = std::move(unit);
+  f.min = min;
+  f.min_open = lo == Lo::Open;
+  f.max = max;
+  f.max_open = max_open;
+  f.help = std::move(help);
+  f.text_default = std::move(text_default);
+  return f;
+}
+
+using B = Binding<TiltConfig>;
+#define FRICTAL_MEMBER(expr) [](TiltConfig& c) -> auto& { return c.expr; }
+
+const std::vector<B>& table() {
+  static const auto t = settings_detail::with_defaults<TiltConfig>(
+      {
+          // Contact law (Table II).
+          bind<TiltConfig>(F("normal_stiffness", "N/m", 0, Lo::Open, kInf, "Normal contact stiffness k_n"),
+                           FRICTAL_MEMBER(contact.normal_stiffness)),
+          bind<TiltConfig>(F("tangential_stiffness", "N/m", 0, Lo::Closed, kInf, "Tangential contact stiffness k_t"),
+                           FRICTAL_MEMBER(contact.tangential_stiffness)),
+          bind<TiltConfig>(F("normal_damping", "1/s", 0, Lo::Closed, kInf, "Normal damping gamma_n"),
+                           FRICTAL_MEMBER(contact.normal_damping)),
+          bind<TiltConfig>(F("tangential_damping", "1/s", 0, Lo::Closed, kInf, "Tangential damping gamma_t"),
+                           FRICTAL_MEMBER(contact.tangential_damping)),
+          bind<TiltConfig>(F("atomic_friction", "", 0, Lo::Closed, kInf, "Atomic (Coulomb) friction coefficient mu_a"),
+                           FRICTAL_MEMBER(contact.atomic_friction)),
+          bind<TiltConfig>(F("restitution", "", 0, Lo::Closed, 1,
+                             "Restitution eps of Eq. 12 on the upper block's mass; > 0 replaces normal_damping"),
+                           FRICTAL_MEMBER(restitution)),
+          // Blocks (Table I, II).
+          bind<TiltConfig>(F("block_height", "m", 0, Lo::Open, kInf, "Block height h below the surface minimum"),
+                           FRICTAL_MEMBER(block_height)),
+          bind<TiltConfig>(F("radius", "m", 0, Lo::Open, kInf, "Spheroradius r of both blocks"), FRICTAL_MEMBER(radius)),
+          bind<TiltConfig>(F("density", "kg/m^2", 0, Lo::Open, kInf, "Areal density rho of both blocks"),
+                           FRICTAL_MEMBER(density)),
+          bind<TiltConfig>(F("gravity", "m/s^2", 0, Lo::Closed, kInf, "Gravitational acceleration g"), FRICTAL_MEMBER(gravity)),
+          bind_choice<TiltConfig>(F("face", "", 0, Lo::Closed, 0, "Block face of a folded surface: the full curve or its upper envelope"),
+                                  FRICTAL_MEMBER(face),
+                                  std::vector<std::pair<std::string, TiltFace>>{{"curve", TiltFace::Curve},
+                                                                                {"envelope", TiltFace::Envelope}}),
+          bind<TiltConfig>(F("initial_offset", "m", -kInf, Lo::Closed, kInf,
+                             "Shift of the upper block along x; auto: the offset of least lift from the signature"),
+                           FRICTAL_MEMBER(initial_offset)),
+          bind<TiltConfig>(F("placement_gap", "m", 0, Lo::Closed, kInf, "Clearance between the blocks when placed"),
+                           FRICTAL_MEMBER(placement_gap)),
+          bind<TiltConfig>(F("period", "m", -kInf, Lo::Closed, kInf,
+                             "Period of both surfaces (<= 0: not periodic; the offsets then span half the length)",
+                             false, "the surface's (generated), none (files)"),
+                           FRICTAL_MEMBER(period)),
+          bind<TiltConfig>(F("predict", "", 0, Lo::Closed, 1, "Compute the signature prediction theta_max + atan(mu_a)"),
+                           FRICTAL_MEMBER(predict)),
+          // Protocol and detection (docs/dem.md).
+          bind<TiltConfig>(F("tilt_rate", "rad/s", 0, Lo::Open, kInf, "Angular velocity of the lower block"),
+                           FRICTAL_MEMBER(tilt_rate)),
+          bind<TiltConfig>(F("reverse", "", 0, Lo::Closed, 1, "Tilt the other way: the upper block slides towards -x"),
+                           FRICTAL_MEMBER(reverse)),
+          bind<TiltConfig>(F("settle_time", "s", 0, Lo::Closed, kInf, "Free settling before the tilt starts"),
+                           FRICTAL_MEMBER(settle_time)),
+          bind<TiltConfig>(F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no slide) beyond this tilt", true),
+                           FRICTAL_MEMBER(max_tilt)),
+          bind<TiltConfig>(F("runaway_distance", "m", 0, Lo::Open, kInf,
+                             "Sliding for good: growth of the displacement since the last stick", false,
+                             "the surface's wavelength (generated), 0.01 (files)"),
+                           FRICTAL_MEMBER(runaway_distance)),
+          bind<TiltConfig>(F("stick_speed", "m/s", 0, Lo::Open, kInf, "Relative speed counted as stuck"),
+                           FRICTAL_MEMBER(stick_speed)),
+          bind<TiltConfig>(F("stick_duration", "s", 0, Lo::Closed, kInf, "Shortest stick"), FRICTAL_MEMBER(stick_duration)),
+          // Numerics.
+          bind<TiltConfig>(F("time_step", "s", 0, Lo::Open, kInf, "Time step of the explicit integrator"),
+                           FRICTAL_MEMBER(time_step)),
+          bind<TiltConfig>(F("skin", "m", 0, Lo::Closed, kInf, "Neighbour-list skin"), FRICTAL_MEMBER(skin)),
+          bind<TiltConfig>(F("max_steps_beyond_limit", "", 0, Lo::Closed, 2147483647,
+                             "Stop after this many steps (in total) beyond the explicit stability limit"),
+                           FRICTAL_MEMBER(max_steps_beyond_limit)),
+          // Output.
+          bind<TiltConfig>(F("series_interval", "s", 0, Lo::Closed, kInf, "Time between rows of the time series; 0: none"),
+                           FRICTAL_MEMBER(series_interval)),
+          bind<TiltConfig>(F("frame_interval", "s", 0, Lo::Closed, kInf, "Time between frames; 0: none", false,
+                             "0.01 when frames are written (CLI --frames), else 0"),
+                           FRICTAL_MEMBER(frame_interval)),
+      },
+      TiltConfig{});
+  return t;
+}
+
+#undef FRICTAL_MEMBER
+
+}  // namespace
+
+const std::vector<Field>& tilt_settings() {
+  static const std::vector<Field> f = settings_detail::fields_of(table());
+  return f;
+}
+
+TiltConfig tilt_config_for_surface(double period, double scale) {
+  TiltConfig c = default_tilt_config();
+  c.period = period;
+  if (scale > 0) c.runaway_distance = scale;
+  return c;
+}
+
+Result<TiltConfig> make_tilt_config(const ValueSet& si_values, const TiltConfig& base) {
+  return settings_detail::apply(table(), base, si_values, "tilt");
+}
+
+ValueSet tilt_values(const TiltConfig& config) { return settings_detail::values_of(table(), config); }
+
+}  // namespace frictal
