@@ -54,7 +54,7 @@ int main(int argc, char** argv) {
     }
   } catch (const UsageError& e) {
     fmt::print(stderr, "frictal: {}\n", e.what());
-    return 2;
+    return exit_code(e.code);
   } catch (const std::bad_alloc&) {
     fmt::print(stderr, "frictal: out of memory (input or parameters too large)\n");
     return 2;

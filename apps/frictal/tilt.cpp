@@ -122,10 +122,7 @@ int run(const TiltOptions& o) {
   cfg.frame_interval = o.frames.empty() ? 0 : o.frame_interval;
 
   auto r = run_tilt(lower, upper, cfg);
-  if (!r.ok()) {
-    fmt::print(stderr, "frictal: {}\n", r.error().message);
-    return 1;
-  }
+  if (!r.ok()) fail(r.error());
   if (!o.output.empty()) {
     if (Status s = write_tilt_series_csv(o.output, r->series); !s.ok()) throw UsageError("-o: " + s.error().message);
   }

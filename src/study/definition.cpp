@@ -264,7 +264,7 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
 
 Result<Study> load_study(const std::string& path, bool quick, const TaskRegistry& reg) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) return make_error(fmt::format("{}: cannot open the study file", path));
+  if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open the study file", path));
   std::stringstream ss;
   ss << f.rdbuf();
   return parse_study(ss.str(), path, quick, reg);
