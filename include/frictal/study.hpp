@@ -73,6 +73,9 @@ struct Report;
 
 /// An output a kind writes: a named scalar or array, its unit and meaning.
 struct OutputColumn {
+  OutputColumn() = default;
+  OutputColumn(std::string name_, std::string unit_, std::string description_, bool array_ = false)
+      : name(std::move(name_)), unit(std::move(unit_)), description(std::move(description_)), array(array_) {}
   std::string name;
   std::string unit;  ///< e.g. "deg", "m", "s", "1" (unitless)
   std::string description;
@@ -82,6 +85,9 @@ struct OutputColumn {
 /// One axis of a plot view. `column` names a parameter, a scalar or (for both axes of a view
 /// together) an array of the task.
 struct PlotAxis {
+  PlotAxis() = default;
+  PlotAxis(std::string column_, std::string label_, std::string divide_by_ = {}, bool log_ = false)
+      : column(std::move(column_)), label(std::move(label_)), divide_by(std::move(divide_by_)), log(log_) {}
   std::string column;
   std::string label;      ///< axis label, with its unit
   std::string divide_by;  ///< optional parameter the values are divided by (e.g. "wavelength")
@@ -98,6 +104,8 @@ struct PlotView {
   std::string series;  ///< parameter whose values make one series each; "task": one per task
   std::string label;   ///< legend, "{name}" or "{name:.4f}" replaced by a parameter or scalar
   std::string marker;  ///< matplotlib marker ("o", "s") or empty for none
+  double marker_size = 0;  ///< points; 0: matplotlib's default
+  double line_width = 0;   ///< points; 0: matplotlib's default
   bool line = true;    ///< join the points
   bool open = false;   ///< hollow markers
   std::string color;   ///< fixed colour; empty: "C<series value>" for integer series, else cycle
@@ -122,10 +130,14 @@ using ReportSection = std::function<void(const std::string& part, const std::vec
 /// `run` must be thread-safe and deterministic (same inputs, bit-identical output); it runs
 /// single-threaded.
 struct TaskKind {
+  using Run = std::function<Result<TaskOutput>(const Params&, std::uint64_t seed)>;
+  TaskKind() = default;
+  TaskKind(std::string name_, std::string description_, int version_, Run run_)
+      : name(std::move(name_)), description(std::move(description_)), version(version_), run(std::move(run_)) {}
   std::string name;
   std::string description;
   int version = 1;  ///< bump when results change; part of the study hash
-  std::function<Result<TaskOutput>(const Params&, std::uint64_t seed)> run;
+  Run run;
   std::vector<OutputColumn> outputs;  ///< every scalar and array `run` may return
   ReportSection report;               ///< empty: the report lists the part's counts
   std::vector<PlotView> plots;

@@ -47,5 +47,14 @@ from ._core import (  # noqa: F401  measured surfaces (io_bindings.cpp)
 
 from ._core import tilt  # noqa: F401  spheropolygon tilting-block test (dem_bindings.cpp)
 
+from ._core import (  # noqa: F401  studies: run a study file, read its store (study_bindings.cpp)
+    study_export,
+    study_kinds,
+    study_report,
+    study_rows,
+    study_run,
+    study_status,
+)
+
 __all__ = [name for name in dir() if not name.startswith("_")]
 __version__ = "0.1.0"

@@ -17,6 +17,7 @@ using namespace frictal;
 
 void frictal_bind_io(py::module_& m);   // python/src/io_bindings.cpp
 void frictal_bind_dem(py::module_& m);  // python/src/dem_bindings.cpp
+void frictal_bind_study(py::module_& m);  // python/src/study_bindings.cpp
 
 namespace {
 
@@ -233,4 +234,5 @@ PYBIND11_MODULE(_core, m) {
         py::arg("path"), py::arg("profile"));
   frictal_bind_io(m);
   frictal_bind_dem(m);
+  frictal_bind_study(m);
 }

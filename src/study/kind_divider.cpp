@@ -134,6 +134,8 @@ TaskKind divider_kind() {
   v.series = "task";
   v.label = "K{iterations}: D = {dimension:.4f}";
   v.marker = "o";
+  v.marker_size = 3;
+  v.line_width = 0.8;
   v.reference = "power:dimension_eq13";
   v.reference_label = "Eq. 13: D = {dimension_eq13:.4f}";
   k.plots.push_back(v);

@@ -231,6 +231,7 @@ TaskKind tilt_kind() {
   v.y.max = 4;
   v.series = "task";
   v.label = "K{iterations}";
+  v.line_width = 0.8;
   k.plots.push_back(v);
   return k;
 }

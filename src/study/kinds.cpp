@@ -644,6 +644,8 @@ TaskKind wm_pair_statistics_kind() {
     v.series = "dimension";
     v.label = "D = {dimension}";
     v.marker = "o";
+    v.marker_size = 3;
+    v.line_width = 1;
     v.average_over = "pair";
     k.plots.push_back(v);
     v = {};

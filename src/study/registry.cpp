@@ -87,6 +87,8 @@ std::string kinds_json(const TaskRegistry& registry) {
                             {"series", v.series},
                             {"label", v.label},
                             {"marker", v.marker},
+                            {"marker_size", v.marker_size},
+                            {"line_width", v.line_width},
                             {"line", v.line},
                             {"open", v.open},
                             {"color", v.color},
