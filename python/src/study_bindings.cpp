@@ -50,7 +50,11 @@ std::unique_ptr<Store> open_existing(const std::string& path) { return ok(Store:
 
 void frictal_bind_study(py::module_& m) {
   m.def(
-      "study_kinds", [] { return py::module_::import("json").attr("loads")(kinds_json(default_registry()))["kinds"]; },
+      "study_kinds",
+      []() -> py::object {
+        py::object all = py::module_::import("json").attr("loads")(kinds_json(default_registry()));
+        return all["kinds"];
+      },
       "The task kinds of this build: a list of dicts (name, description, version, available, reason, outputs with "
       "name/unit/description/array, plots: the plot views scripts/plot_studies.py draws)");
   m.def(

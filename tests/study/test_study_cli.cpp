@@ -199,3 +199,47 @@ TEST(StudyCli, UserErrorsAndExport) {
   EXPECT_NE(read_file(dir + "/wm-arrays.csv").find("contact_slope_pdf_density_per_deg"), std::string::npos);
   EXPECT_FALSE(read_file(dir + "/report.md").empty());
 }
+
+TEST(StudyCli, ATaskRetriedOnceGivesTheSameStoreOnThreadsAndMpiRanks) {
+  // The coordinator's fault-injection hook (--inject-failure-task): the first attempt of tasks 3
+  // and 17 is reported failed, whichever worker computed it; both are retried and the store
+  // holds exactly what an undisturbed run holds, with two attempts recorded for those tasks.
+  const std::string study = study_file("retry");
+  const std::string ref = fresh("retry-ref.sqlite"), thr = fresh("retry-threads.sqlite");
+  auto r = run_cli("study run " + study + " --store " + ref + " --threads 2 --progress none");
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = run_cli("study run " + study + " --store " + thr +
+              " --threads 2 --progress none --inject-failure-task 3 --inject-failure-task 17");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string expected = dump(ref);
+  EXPECT_EQ(dump(thr), expected);
+  auto attempts = [](const std::string& path) {
+    std::map<std::int64_t, int> a;
+    auto st = Store::open_existing(path);
+    EXPECT_TRUE(st.ok());
+    if (!st.ok()) return a;
+    const auto tasks = (*st)->tasks();
+    EXPECT_TRUE(tasks.ok());
+    if (tasks.ok())
+      for (const auto& t : *tasks) a[t.id] = t.attempts;
+    return a;
+  };
+  auto a = attempts(thr);
+  EXPECT_EQ(a[3], 2);
+  EXPECT_EQ(a[17], 2);
+  EXPECT_EQ(a[4], 1);
+
+  if (!mpi_available()) GTEST_SKIP() << "built without FRICTAL_MPI";
+  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
+  const std::string mpi = fresh("retry-mpi.sqlite");
+  const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
+  const std::string cmd = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 2 --oversubscribe" + root + " " +
+                          FRICTAL_CLI_PATH + " study run " + study + " --store " + mpi +
+                          " --progress none --inject-failure-task 3 --inject-failure-task 17 >/dev/null 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+  EXPECT_EQ(dump(mpi), expected);
+  a = attempts(mpi);
+  EXPECT_EQ(a[3], 2);
+  EXPECT_EQ(a[17], 2);
+  EXPECT_EQ(a[4], 1);
+}
