@@ -155,7 +155,7 @@ class TaskRegistry {
   const TaskKind* find(const std::string& name) const;
   /// Empty if available; else "task kind 'NAME' is not available in this build (...)".
   std::string unavailable_reason(const std::string& name) const;
-  /// Available kinds, then declared unavailable ones, each by name.
+  /// Names of the available kinds, and of the declared unavailable ones.
   std::vector<std::string> names() const;
   std::vector<std::string> unavailable_names() const;
 
