@@ -8,12 +8,33 @@
 #include <string>
 #include <vector>
 
+#include "frictal/result.hpp"
+
 namespace frictal::cli {
 
-/// A user-facing error: printed as "frictal: <message>" and exit code 2.
+/// An error for the user: printed as "frictal: <message>"; main() turns its code into the exit
+/// status through exit_code() (errors of the command line itself are invalid input: exit 2).
 struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit UsageError(const std::string& message, ErrorCode error_code = ErrorCode::InvalidInput)
+      : std::runtime_error(message), code(error_code) {}
+  ErrorCode code;
 };
+
+/// Throws a library error as a UsageError with its message and code (exit status from exit_code).
+[[noreturn]] inline void fail(const Error& e) { throw UsageError(e.message, e.code); }
+
+/// The CLI's one table from error codes to exit statuses (docs/ARCHITECTURE.md, "Errors"):
+/// invalid input, I/O and not-available errors exit 2, an unstable simulation 1, internal 3.
+inline int exit_code(ErrorCode code) {
+  switch (code) {
+    case ErrorCode::InvalidInput: return 2;
+    case ErrorCode::Io: return 2;
+    case ErrorCode::NotAvailable: return 2;
+    case ErrorCode::Unstable: return 1;
+    case ErrorCode::Internal: return 3;
+  }
+  return 3;
+}
 
 /// Sets up a subcommand on the app; the returned callback runs it and returns the exit code.
 using CommandSetup = std::function<std::function<int()>(CLI::App&)>;

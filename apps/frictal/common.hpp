@@ -21,14 +21,14 @@ namespace frictal::cli {
 inline constexpr double kDeg = std::numbers::pi / 180.0;
 inline double to_deg(double rad) { return rad / kDeg; }
 
-/// Unwraps a library Result or throws a UsageError carrying its message.
+/// Unwraps a library Result or throws its error (message and code).
 template <class T>
 T unwrap(Result<T> r) {
-  if (!r) throw UsageError(r.error().message);
+  if (!r) fail(r.error());
   return std::move(r).value();
 }
 inline void unwrap(const Status& s) {
-  if (!s) throw UsageError(s.error().message);
+  if (!s) fail(s.error());
 }
 
 /// "-" as an input: standard input, read once and kept in a temporary file (the readers detect

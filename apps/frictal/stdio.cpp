@@ -56,11 +56,11 @@ std::string stdin_name(std::string message) {
 
 void write_output(const std::string& path, const std::function<Status(const std::string&)>& write, const std::string& option) {
   if (path != "-") {
-    if (Status s = write(path); !s) throw UsageError(option + ": " + s.error().message);
+    if (Status s = write(path); !s) throw UsageError(option + ": " + s.error().message, s.error().code);
     return;
   }
   TempFile file;
-  if (Status s = write(file.path); !s) throw UsageError(option + " -: " + s.error().message);
+  if (Status s = write(file.path); !s) throw UsageError(option + " -: " + s.error().message, s.error().code);
   std::ifstream in(file.path, std::ios::binary);
   std::fflush(stdout);
   std::cout << in.rdbuf();

@@ -1,15 +1,14 @@
 // frictal study run|status|export|report|kinds — the paper's parameter sweeps as resumable,
-// parallel runs with results in one SQLite store (docs/studies.md).
+// parallel runs with results in one SQLite store (docs/studies.md). A shell over the library
+// (frictal/study.hpp): options, signals, MPI start-up, progress and printing; nothing here
+// names a task kind or holds SQL.
 #include <unistd.h>
 
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
-#include <filesystem>
 #include <fstream>
-#include <set>
-#include <thread>
 
 #include <fmt/ranges.h>
 
@@ -19,7 +18,6 @@
 namespace frictal::cli {
 namespace {
 
-namespace fs = std::filesystem;
 using namespace frictal::study;
 
 std::atomic<bool> g_stop{false};
@@ -68,6 +66,7 @@ struct RunArgs {
   std::string study, store, progress = "auto";
   unsigned threads = 0;
   int inject_failure_rank = -1;
+  std::vector<std::int64_t> fail_first_attempt;
   bool quick = false, skip_unavailable = false, threads_set = false, pin = false;
   std::vector<std::string> parts;
 };
@@ -99,6 +98,7 @@ int run(const RunArgs& a) {
   o.parts = a.parts;
   o.stop = &g_stop;
   o.inject_failure_rank = a.inject_failure_rank;
+  o.fail_first_attempt = a.fail_first_attempt;
   o.pin_threads = a.pin;
   ProgressPrinter pp;
   pp.bar = a.progress == "bar" || (a.progress == "auto" && ::isatty(2));
@@ -111,7 +111,7 @@ int run(const RunArgs& a) {
     if (!st) {
       // Release the workers before failing: run_mpi with no store stops them.
       (void)run_mpi(study, nullptr, reg, o);
-      throw UsageError(st.error().message);
+      fail(st.error());
     }
     store = std::move(*st);
     sum = unwrap(run_mpi(study, store.get(), reg, o));
@@ -123,7 +123,7 @@ int run(const RunArgs& a) {
   const StoreCounts c = unwrap(store->counts());
   fmt::print("study '{}' ({} scale, {} tasks): {} done, {} failed, {} pending; this run: {} tasks in {:.2f} s on {}\n",
              study.name, study.quick ? "quick" : "full", c.total, c.done, c.failed, c.pending, sum.ran, sum.wall_s,
-             mpi ? fmt::format("{} ranks", size) : fmt::format("{} threads", o.threads ? o.threads : std::thread::hardware_concurrency()));
+             mpi ? fmt::format("{} ranks", size) : fmt::format("{} threads", sum.threads));
   if (sum.skipped_unavailable)
     fmt::print("  {} tasks left pending: their task kind is not available in this build\n", sum.skipped_unavailable);
   if (sum.interrupted || g_stop) {
@@ -139,133 +139,38 @@ int run(const RunArgs& a) {
 
 int status(const std::string& path, bool json, bool failed) {
   auto store = unwrap(Store::open_existing(path));
-  auto meta = unwrap(store->meta());
-  auto c = unwrap(store->counts());
-  auto parts = unwrap(store->part_counts());
-  TaskRegistry reg = default_registry();
+  const StoreStatus st = unwrap(store_status(*store, default_registry()));
   if (json) {
     nlohmann::json j;
     j["store"] = path;
-    j["study"] = meta["study_name"];
-    j["scale"] = meta["scale"];
-    j["study_hash"] = meta["study_hash"];
-    j["schema_version"] = std::stoi(meta["schema_version"]);
-    j["tasks"] = {{"total", c.total}, {"done", c.done}, {"failed", c.failed}, {"pending", c.pending}};
-    for (const auto& p : parts)
+    j["study"] = st.study;
+    j["scale"] = st.scale;
+    j["study_hash"] = st.study_hash;
+    j["schema_version"] = st.schema_version;
+    j["tasks"] = {{"total", st.tasks.total}, {"done", st.tasks.done}, {"failed", st.tasks.failed}, {"pending", st.tasks.pending}};
+    for (const auto& p : st.parts)
       j["parts"].push_back({{"part", p.part}, {"kind", p.kind}, {"done", p.done}, {"failed", p.failed}, {"pending", p.pending},
-                            {"available", reg.find(p.kind) != nullptr}});
+                            {"available", p.available}});
     print_json(j);
     return 0;
   }
-  fmt::print("{}: study '{}' ({} scale), schema {}, definition {}\n", path, meta["study_name"], meta["scale"],
-             meta["schema_version"], meta["study_hash"]);
+  fmt::print("{}: study '{}' ({} scale), schema {}, definition {}\n", path, st.study, st.scale, st.schema_version,
+             st.study_hash);
+  const StoreCounts& c = st.tasks;
   fmt::print("  {} tasks: {} done, {} failed, {} pending ({:.1f}% complete)\n", c.total, c.done, c.failed, c.pending,
              c.total ? 100.0 * c.done / c.total : 100.0);
-  for (const auto& p : parts) {
-    const std::string why = reg.unavailable_reason(p.kind);
+  for (const auto& p : st.parts)
     fmt::print("  part {:<14} kind {:<20} done {:>6} failed {:>4} pending {:>6}{}\n", p.part, p.kind, p.done, p.failed,
-               p.pending, why.empty() ? "" : "  (" + why + ")");
-  }
-  if (failed) {
-    std::string csv = unwrap(store->query_csv("SELECT task_id, part, params, error FROM tasks WHERE status = 'failed' ORDER BY task_id"));
-    fmt::print("{}", csv);
-  }
+               p.pending, p.unavailable_reason.empty() ? "" : "  (" + p.unavailable_reason + ")");
+  if (failed) fmt::print("{}", unwrap(store->failures_csv()));
   return 0;
 }
 
-std::string render(const Report& r) {
-  std::string s = fmt::format("# {}\n\n", r.title);
-  for (const auto& l : r.lines) s += l + "\n";
-  if (!r.findings.empty()) {
-    s += "\n## Findings of the paper checked against this store\n\n";
-    for (const auto& f : r.findings) {
-      s += fmt::format("- [{}] {}\n", f.supported ? "SUPPORTED" : "NOT SUPPORTED", f.claim);
-      for (const auto& e : f.evidence) s += "    " + e + "\n";
-    }
-  }
-  return s;
-}
-
-void write_text(const fs::path& p, const std::string& text) {
-  std::ofstream f(p, std::ios::binary);
-  if (!f) throw UsageError(fmt::format("{}: cannot open for writing", p.string()));
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  if (!f) throw UsageError(fmt::format("{}: cannot open for writing", path), ErrorCode::Io);
   f << text;
-  if (!f) throw UsageError(fmt::format("{}: write failed", p.string()));
-}
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string o = "\"";
-  for (char c : s) o += (c == '"') ? std::string("\"\"") : std::string(1, c);
-  return o + "\"";
-}
-
-std::string value_text(const Value& v) {
-  if (auto* s = std::get_if<std::string>(&v)) return csv_field(*s);
-  return canonical(v);
-}
-
-int export_csv(const std::string& path, const std::string& dir) {
-  auto store = unwrap(Store::open_existing(path));
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw UsageError(fmt::format("--csv {}: cannot create the directory: {}", dir, ec.message()));
-  write_text(fs::path(dir) / "tasks.csv",
-             unwrap(store->query_csv("SELECT task_id, part, kind, params, seed, status, attempts, error, worker, started_at, "
-                                     "finished_at, wall_s FROM tasks ORDER BY task_id")));
-  std::vector<std::string> files = {"tasks.csv"};
-  for (const auto& pc : unwrap(store->part_counts())) {
-    auto rows = unwrap(store->rows(pc.part, true));
-    std::set<std::string> pn, sn;
-    for (const auto& r : rows) {
-      for (const auto& [k, v] : r.params) pn.insert(k);
-      for (const auto& [k, v] : r.output.scalars) sn.insert(k);
-    }
-    std::string wide = "task_id";
-    for (const auto& k : pn) wide.append(",").append(csv_field(k));
-    for (const auto& k : sn) wide.append(",").append(csv_field(k));
-    wide += "\n";
-    std::string longf = "task_id,name,index,value\n";
-    for (const auto& r : rows) {
-      wide += std::to_string(r.id);
-      for (const auto& k : pn) wide.append(",").append(r.params.count(k) ? value_text(r.params.at(k)) : std::string{});
-      for (const auto& k : sn) {
-        auto it = r.output.scalars.find(k);
-        wide.append(",").append(it != r.output.scalars.end() && std::isfinite(it->second) ? fmt::format("{}", it->second)
-                                                                                           : std::string{});
-      }
-      wide += "\n";
-      for (const auto& [name, v] : r.output.arrays)
-        for (std::size_t i = 0; i < v.size(); ++i)
-          longf += fmt::format("{},{},{},{}\n", r.id, csv_field(name), i, std::isfinite(v[i]) ? fmt::format("{}", v[i]) : "");
-    }
-    write_text(fs::path(dir) / (pc.part + ".csv"), wide);
-    write_text(fs::path(dir) / (pc.part + "-arrays.csv"), longf);
-    files.push_back(pc.part + ".csv");
-    files.push_back(pc.part + "-arrays.csv");
-    // PDFs pooled over replicates (pair), e.g. Fig. 16.
-    auto pooled = unwrap(pooled_pdfs(*store, pc.part));
-    if (!pooled.empty()) {
-      std::string csv = "group";
-      for (const auto& k : pn)
-        if (k != "pair") csv.append(",").append(csv_field(k));
-      csv += ",pdf,members,lo,hi,density\n";
-      for (std::size_t g = 0; g < pooled.size(); ++g) {
-        const PooledPdf& pp = pooled[g];
-        std::string prefix = std::to_string(g);
-        for (const auto& k : pn)
-          if (k != "pair") prefix.append(",").append(pp.params.count(k) ? value_text(pp.params.at(k)) : std::string{});
-        for (std::size_t i = 0; i < pp.density.size(); ++i)
-          csv += fmt::format("{},{},{},{},{},{}\n", prefix, pp.name, pp.members, pp.edges[i], pp.edges[i + 1], pp.density[i]);
-      }
-      write_text(fs::path(dir) / (pc.part + "-pooled-pdfs.csv"), csv);
-      files.push_back(pc.part + "-pooled-pdfs.csv");
-    }
-  }
-  write_text(fs::path(dir) / "report.md", render(unwrap(report(*store))));
-  files.push_back("report.md");
-  fmt::print("exported {} to {}: {}\n", path, dir, fmt::format("{}", fmt::join(files, ", ")));
-  return 0;
+  if (!f) throw UsageError(fmt::format("{}: write failed", path), ErrorCode::Io);
 }
 
 std::function<int()> setup(CLI::App& app) {
@@ -282,7 +187,10 @@ std::function<int()> setup(CLI::App& app) {
   run_cmd->add_flag("--skip-unavailable", ra->skip_unavailable,
                     "Run the parts whose task kind this build has; leave the others pending");
   run_cmd->add_option("--inject-failure-rank", ra->inject_failure_rank,
-                      "Testing under MPI: this rank fails every task it gets (its tasks must be reassigned)")
+                      "Testing: every attempt computed on this rank (0 without MPI) is reported failed")
+      ->group("");  // hidden
+  run_cmd->add_option("--inject-failure-task", ra->fail_first_attempt,
+                      "Testing: the first attempt of this task id is reported failed, so it is retried (repeatable)")
       ->group("");  // hidden
   run_cmd->add_option("--progress", ra->progress, "auto (bar on a terminal, lines otherwise), bar, lines, none")
       ->check(CLI::IsMember({"auto", "bar", "lines", "none"}))->capture_default_str();
@@ -307,25 +215,35 @@ std::function<int()> setup(CLI::App& app) {
   report_cmd->add_option("store", *report_store, "SQLite store file")->required();
   report_cmd->add_option("-o,--output", *report_out, "Also write the report (Markdown) to this file");
 
+  auto kinds_json_flag = std::make_shared<bool>(false);
   auto* kinds_cmd = app.add_subcommand("kinds", "List the task kinds of this build");
+  kinds_cmd->add_flag("--json", *kinds_json_flag,
+                      "Print every kind with its outputs (name, unit) and plot views, as JSON (scripts/plot_studies.py)");
 
   return [=]() -> int {
     if (run_cmd->parsed()) return run(*ra);
     if (status_cmd->parsed()) return status(*store_path, *json, *failed);
-    if (export_cmd->parsed()) return export_csv(*export_store, *export_dir);
+    if (export_cmd->parsed()) {
+      auto store = unwrap(Store::open_existing(*export_store));
+      const auto files = unwrap(export_csv(*store, *export_dir));
+      fmt::print("exported {} to {}: {}\n", *export_store, *export_dir, fmt::format("{}", fmt::join(files, ", ")));
+      return 0;
+    }
     if (report_cmd->parsed()) {
       auto store = unwrap(Store::open_existing(*report_store));
-      const Report r = unwrap(report(*store));
-      const std::string text = render(r);
+      const std::string text = render_markdown(unwrap(report(*store)));
       fmt::print("{}", text);
       if (!report_out->empty()) write_text(*report_out, text);
       return 0;
     }
     if (kinds_cmd->parsed()) {
-      TaskRegistry reg = default_registry();
+      const TaskRegistry reg = default_registry();
+      if (*kinds_json_flag) {
+        fmt::print("{}\n", kinds_json(reg));
+        return 0;
+      }
       for (const auto& n : reg.names()) fmt::print("{:<20} {}\n", n, reg.find(n)->description);
-      for (const char* n : {"tilt", "divider"})
-        if (!reg.find(n)) fmt::print("{:<20} {}\n", n, reg.unavailable_reason(n));
+      for (const auto& n : reg.unavailable_names()) fmt::print("{:<20} {}\n", n, reg.unavailable_reason(n));
       return 0;
     }
     return 2;

@@ -65,10 +65,7 @@ int run(TiltOptions& o) {
     throw UsageError("--json and -o -/--frames - would both write to standard output; choose one");
 
   auto r = run_tilt(lower, upper, cfg);
-  if (!r.ok()) {
-    fmt::print(stderr, "frictal: {}\n", r.error().message);
-    return 1;
-  }
+  if (!r.ok()) fail(r.error());
   if (!o.output.empty()) write_output(o.output, [&](const std::string& p) { return write_tilt_series_csv(p, r->series); });
   if (!o.frames.empty()) write_output(o.frames, [&](const std::string& p) { return write_tilt_frames(p, *r); }, "--frames");
   const double us_per_step = r->steps ? 1e6 * r->wall_time / static_cast<double>(r->steps) : 0.0;

@@ -11,8 +11,32 @@
 
 namespace frictal {
 
+/// What kind of failure an Error is. Callers decide on the code, never on the message text
+/// (e.g. a study task retries an Unstable run with a smaller step; the CLI maps codes to exit
+/// codes in one table, docs/ARCHITECTURE.md).
+enum class ErrorCode {
+  InvalidInput,  ///< bad parameter, file content or option: the caller must change the input
+  Io,            ///< a file could not be opened, read or written (operating system)
+  Unstable,      ///< a simulation stopped by its stability guard (a smaller time step may pass)
+  NotAvailable,  ///< a feature (task kind, engine, MPI) that this build does not have
+  Internal,      ///< a failure that is no fault of the input (out of memory, a lost worker, a bug)
+};
+
+/// Lower-case name of a code ("invalid input", "io", "unstable", "not available", "internal").
+inline const char* to_string(ErrorCode c) {
+  switch (c) {
+    case ErrorCode::InvalidInput: return "invalid input";
+    case ErrorCode::Io: return "io";
+    case ErrorCode::Unstable: return "unstable";
+    case ErrorCode::NotAvailable: return "not available";
+    case ErrorCode::Internal: return "internal";
+  }
+  return "internal";
+}
+
 struct Error {
   std::string message;
+  ErrorCode code = ErrorCode::InvalidInput;
 };
 
 template <class T>
@@ -42,6 +66,13 @@ class [[nodiscard]] Result {
 struct Ok {};
 using Status = Result<Ok>;
 
-inline Error make_error(std::string message) { return Error{std::move(message)}; }
+/// An error with a message naming what was wrong and what was expected; the code defaults to
+/// invalid input.
+inline Error make_error(std::string message, ErrorCode code = ErrorCode::InvalidInput) {
+  return Error{std::move(message), code};
+}
+inline Error make_error(ErrorCode code, std::string message) { return Error{std::move(message), code}; }
+/// The same error with context in front of its message (the code is kept).
+inline Error with_prefix(const std::string& prefix, const Error& e) { return Error{prefix + e.message, e.code}; }
 
 }  // namespace frictal

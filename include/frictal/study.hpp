@@ -12,6 +12,7 @@
 #pragma once
 
 #include <atomic>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -52,6 +53,8 @@ Result<double> get_real(const Params& p, const std::string& name, double fallbac
 Result<std::int64_t> get_int(const Params& p, const std::string& name);
 Result<std::int64_t> get_int(const Params& p, const std::string& name, std::int64_t fallback);
 Result<std::string> get_string(const Params& p, const std::string& name, const std::string& fallback);
+/// A parameter as a number (integers converted); NaN for text and booleans.
+double as_number(const Value& v);
 
 /// What a task returns: named scalars and named arrays (flat vectors of reals).
 struct TaskOutput {
@@ -59,13 +62,85 @@ struct TaskOutput {
   std::map<std::string, std::vector<double>> arrays;
 };
 
-/// A task kind: a function of the parameters and the task seed. Must be thread-safe and
-/// deterministic (same inputs, bit-identical output); it runs single-threaded.
+/// One done task as read back from a store: its parameters and outputs.
+struct TaskRow {
+  std::int64_t id = 0;
+  std::string part, kind, params_json, status;
+  Params params;
+  TaskOutput output;
+};
+struct Report;
+
+/// An output a kind writes: a named scalar or array, its unit and meaning.
+struct OutputColumn {
+  OutputColumn() = default;
+  OutputColumn(std::string name_, std::string unit_, std::string description_, bool array_ = false)
+      : name(std::move(name_)), unit(std::move(unit_)), description(std::move(description_)), array(array_) {}
+  std::string name;
+  std::string unit;  ///< e.g. "deg", "m", "s", "1" (unitless)
+  std::string description;
+  bool array = false;  ///< an array (one value per index) rather than a scalar
+};
+
+/// One axis of a plot view. `column` names a parameter, a scalar or (for both axes of a view
+/// together) an array of the task.
+struct PlotAxis {
+  PlotAxis() = default;
+  PlotAxis(std::string column_, std::string label_, std::string divide_by_ = {}, bool log_ = false)
+      : column(std::move(column_)), label(std::move(label_)), divide_by(std::move(divide_by_)), log(log_) {}
+  std::string column;
+  std::string label;      ///< axis label, with its unit
+  std::string divide_by;  ///< optional parameter the values are divided by (e.g. "wavelength")
+  bool log = false;       ///< logarithmic axis
+  double min = NAN, max = NAN;  ///< axis limits (NaN: automatic)
+};
+
+/// What the tasks of a part of this kind contribute to a figure: data, rendered by
+/// scripts/plot_studies.py (a study file's [[figure]] entries name views by id; parts of other
+/// kinds with a view of the same id are drawn in the same panel).
+struct PlotView {
+  std::string id;    ///< e.g. "friction-vs-alpha"
+  PlotAxis x, y;
+  std::string series;  ///< parameter whose values make one series each; "task": one per task
+  std::string label;   ///< legend, "{name}" or "{name:.4f}" replaced by a parameter or scalar
+  std::string marker;  ///< matplotlib marker ("o", "s") or empty for none
+  double marker_size = 0;  ///< points; 0: matplotlib's default
+  double line_width = 0;   ///< points; 0: matplotlib's default
+  bool line = true;    ///< join the points
+  bool open = false;   ///< hollow markers
+  std::string color;   ///< fixed colour; empty: "C<series value>" for integer series, else cycle
+  std::string average_over;  ///< parameter averaged over (mean of y per series and x)
+  /// A column missing from a task is taken from a task of another part with the same values of
+  /// these parameters (e.g. the Eq. 13 dimension of the same alpha).
+  std::vector<std::string> match;
+  /// Optional reference line: "identity" (y = x, labelled `reference_label`), or
+  /// "power:<column>" (through the last series' point at the largest x, with exponent
+  /// 1 - <column> of that task: the divider law L ~ eps^(1-D)).
+  std::string reference;
+  std::string reference_label;
+};
+
+/// A kind's section of a study report: summary lines and the paper's findings, from the done
+/// tasks of one part.
+using ReportSection = std::function<void(const std::string& part, const std::vector<TaskRow>& rows, Report& report)>;
+
+/// A task kind: everything about one analysis or experiment in one unit (one source file):
+/// the compute function, its outputs, its report section and its plots. Registered in one list
+/// (default_registry, src/study/registry.cpp); docs/studies.md says how to add one.
+/// `run` must be thread-safe and deterministic (same inputs, bit-identical output); it runs
+/// single-threaded.
 struct TaskKind {
+  using Run = std::function<Result<TaskOutput>(const Params&, std::uint64_t seed)>;
+  TaskKind() = default;
+  TaskKind(std::string name_, std::string description_, int version_, Run run_)
+      : name(std::move(name_)), description(std::move(description_)), version(version_), run(std::move(run_)) {}
   std::string name;
   std::string description;
   int version = 1;  ///< bump when results change; part of the study hash
-  std::function<Result<TaskOutput>(const Params&, std::uint64_t seed)> run;
+  Run run;
+  std::vector<OutputColumn> outputs;  ///< every scalar and array `run` may return
+  ReportSection report;               ///< empty: the report lists the part's counts
+  std::vector<PlotView> plots;
 };
 
 class TaskRegistry {
@@ -78,24 +153,23 @@ class TaskRegistry {
   /// Version of an available or declared kind (0 if unknown).
   int version(const std::string& name) const;
   const TaskKind* find(const std::string& name) const;
-  /// Empty if available; else "task kind 'tilt' is not available in this build (...)".
+  /// Empty if available; else "task kind 'NAME' is not available in this build (...)".
   std::string unavailable_reason(const std::string& name) const;
+  /// Names of the available kinds, and of the declared unavailable ones.
   std::vector<std::string> names() const;
+  std::vector<std::string> unavailable_names() const;
 
  private:
   std::map<std::string, TaskKind> kinds_;
   std::map<std::string, std::string> unavailable_;
   std::map<std::string, int> unavailable_version_;
 };
-/// The kinds of this build: koch-signature, wm-pair-statistics; tilt and divider declared
-/// unavailable until their engines are merged.
+/// The kinds of this build: the one list in src/study/registry.cpp.
 TaskRegistry default_registry();
-
-/// Built-in kinds (exposed for tests and benchmarks).
-Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t seed);
-Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed);
-Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t seed);
-Result<TaskOutput> run_divider_task(const Params& p, std::uint64_t seed);
+/// The registry as JSON (`frictal study kinds --json`): per kind its name, description,
+/// version, availability, outputs (name, unit, description, array) and plot views (the fields
+/// of PlotView). scripts/plot_studies.py renders the views from it.
+std::string kinds_json(const TaskRegistry& registry);
 
 // ---------------------------------------------------------------- study definition and grid
 
@@ -144,9 +218,10 @@ struct TaskRecord {
   std::int64_t id = 0;
   TaskStatus status = TaskStatus::Pending;
   std::string error;
+  ErrorCode code = ErrorCode::InvalidInput;  ///< of a failure: decides whether it is retried
   double wall_s = 0;
   std::string worker;  ///< e.g. "thread 1", "rank 2"
-  int attempts = 1;    ///< executions this record stands for (failed ones reassigned under MPI + 1)
+  int attempts = 1;    ///< attempts this record stands for (retried failures + 1)
   TaskOutput output;
 };
 
@@ -179,15 +254,27 @@ class Store {
   };
   Result<std::vector<PartCount>> part_counts();
   /// Every done task of a part: params (canonical JSON), scalars and arrays.
-  struct Row {
-    std::int64_t id = 0;
-    std::string part, kind, params_json, status;
-    Params params;
-    TaskOutput output;
-  };
+  using Row = TaskRow;
   Result<std::vector<Row>> rows(const std::string& part = "", bool with_arrays = true);
-  /// Runs a read-only query and returns a CSV text (header + rows); used by export.
-  Result<std::string> query_csv(const std::string& sql);
+  /// Bookkeeping of every task (any status), in id order.
+  struct TaskInfo {
+    std::int64_t id = 0;
+    std::string part, kind;
+    TaskStatus status = TaskStatus::Pending;
+    int attempts = 0;
+    std::string error, worker;  ///< empty when none
+    double wall_s = 0;          ///< NaN while pending
+  };
+  Result<std::vector<TaskInfo>> tasks();
+  /// The `tasks` table as CSV (task_id, part, kind, params, seed, status, attempts, error,
+  /// worker, started_at, finished_at, wall_s): the tasks.csv of export_csv.
+  Result<std::string> tasks_csv();
+  /// The failed tasks as CSV (task_id, part, params, error).
+  Result<std::string> failures_csv();
+  /// Every stored value that does not depend on the run (no timings, worker, attempts or
+  /// creation time) as text: two stores of one definition with the same results give the same
+  /// text whatever threads or ranks computed them (used to compare runs).
+  Result<std::string> content();
 
   struct Impl;  // opaque (SQLite handle)
 
@@ -216,18 +303,26 @@ struct RunOptions {
   std::vector<std::string> parts;     ///< run only these parts (empty: all)
   std::function<void(const Progress&)> progress;  ///< called after each finished task
   const std::atomic<bool>* stop = nullptr;       ///< set to stop dispatching; in-flight tasks finish
-  /// Testing (MPI only): this rank reports every task it gets as failed, to exercise the
-  /// reassignment of failed tasks to other ranks. -1: off.
+  /// Testing: every attempt computed on this site (rank under MPI; 0 = this process on threads)
+  /// is reported failed (a transient, retryable failure), to exercise the retry policy. -1: off.
   int inject_failure_rank = -1;
+  /// Testing: the first attempt of each of these task ids is reported failed (transient), so
+  /// the task is retried; the same under threads and MPI (decided by the coordinator).
+  std::vector<std::int64_t> fail_first_attempt;
 };
 
 struct RunSummary {
   std::int64_t ran = 0, failed = 0, skipped_unavailable = 0;
+  std::int64_t retries = 0;  ///< failed attempts that were queued again
+  unsigned threads = 0;      ///< compute threads (on rank 0 under MPI)
   bool interrupted = false;
   double wall_s = 0;
 };
 
-/// Runs every unfinished task of `study` on threads and records it in `store`.
+/// Runs every unfinished task of `study` on threads and records it in `store`. One coordinator
+/// (claim -> compute -> record, retry policy, progress) serves this and run_mpi: a failure with a
+/// transient code (ErrorCode::Io, Internal) is retried up to 3 attempts, on another rank under
+/// MPI when one has not failed it; other failures are recorded at once.
 Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegistry& registry,
                                const RunOptions& options);
 
@@ -247,9 +342,8 @@ Result<TaskRecord> deserialize(const std::string& bytes);
 bool mpi_available();
 bool launched_by_mpi();
 /// Under MPI: rank 0 owns the store and runs `options.threads` compute threads besides the
-/// message loop; other ranks compute one task at a time. Tasks are handed out dynamically; a
-/// task that fails on a rank is retried on another rank (up to 3 attempts) before it is
-/// recorded as failed. `store` is only used (and must be non-null) on rank 0. The caller owns
+/// message loop; other ranks compute one task at a time. Tasks are handed out dynamically; the
+/// retry policy is run_threads' (a transient failure on a rank is retried on another rank). `store` is only used (and must be non-null) on rank 0. The caller owns
 /// MPI_Init/Finalize (see mpi_init / mpi_finalize).
 Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry& registry,
                            const RunOptions& options);
@@ -285,8 +379,34 @@ struct PooledPdf {
 /// Pools every array pair "<prefix>_edges_<unit>" / "<prefix>_density_per_<unit>" of a part.
 Result<std::vector<PooledPdf>> pooled_pdfs(Store& store, const std::string& part);
 
-/// Summarises a store: per-part tables, and for wm-pair-statistics / koch-signature the paper's
-/// findings (Sec. III, V.C-D) with supporting numbers.
-Result<Report> report(Store& store);
+/// Summarises a store: per part, the report section of its kind (tables and the paper's
+/// findings with supporting numbers); parts of kinds without a section, their counts.
+Result<Report> report(Store& store, const TaskRegistry& registry);
+inline Result<Report> report(Store& store) { return report(store, default_registry()); }
+/// The report as Markdown (what `frictal study report` prints).
+std::string render_markdown(const Report& report);
+
+/// How far a store is: what `frictal study status` shows.
+struct StoreStatus {
+  std::string study, description, scale, study_hash;
+  int schema_version = 0;
+  StoreCounts tasks;
+  struct PartStatus {
+    std::string part, kind;
+    std::int64_t done = 0, failed = 0, pending = 0;
+    bool available = false;          ///< this build has the part's kind
+    std::string unavailable_reason;  ///< empty if available
+  };
+  std::vector<PartStatus> parts;
+};
+Result<StoreStatus> store_status(Store& store, const TaskRegistry& registry);
+
+/// Writes the store as CSV files under `dir` (created if missing): tasks.csv, per part
+/// PART.csv (wide: parameters then scalars), PART-arrays.csv (long), PART-pooled-pdfs.csv (when
+/// the part has PDFs) and report.md. Returns the file names written.
+Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir, const TaskRegistry& registry);
+inline Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir) {
+  return export_csv(store, dir, default_registry());
+}
 
 }  // namespace frictal::study

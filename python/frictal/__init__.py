@@ -51,4 +51,13 @@ from ._core import (  # noqa: F401  measured surfaces (io_bindings.cpp)
 from ._core import tilt, tilt_settings  # noqa: F401  spheropolygon tilting-block test (dem_bindings.cpp)
 from ._core import __version__, build_info  # noqa: F401  version defined once, in CMakeLists.txt
 
+from ._core import (  # noqa: F401  studies: run a study file, read its store (study_bindings.cpp)
+    study_export,
+    study_kinds,
+    study_report,
+    study_rows,
+    study_run,
+    study_status,
+)
+
 __all__ = [name for name in dir() if not name.startswith("_")]

@@ -24,6 +24,7 @@ using frictal::py_detail::nogil;
 
 void frictal_bind_io(py::module_& m);   // python/src/io_bindings.cpp
 void frictal_bind_dem(py::module_& m);  // python/src/dem_bindings.cpp
+void frictal_bind_study(py::module_& m);  // python/src/study_bindings.cpp
 
 namespace {
 
@@ -260,4 +261,5 @@ PYBIND11_MODULE(_core, m) {
         "Writes a profile as CSV with columns x_m,z_m (metres, 17 significant digits); errors name the path");
   frictal_bind_io(m);
   frictal_bind_dem(m);
+  frictal_bind_study(m);
 }

@@ -6,10 +6,10 @@
 #include <limits>
 #include <numbers>
 #include <string>
-#include <thread>
 
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
+#include "util/parallel.hpp"
 
 namespace frictal {
 
@@ -30,26 +30,18 @@ Result<DirectionalFriction> friction_along(const Map& m, double angle, const Dir
   SignatureOptions so = o.signature;
   so.keep_contacts = false;
   std::vector<SignatureResult> results(lines.size());
-  std::vector<std::string> errors(lines.size());
-  auto work = [&](std::size_t first, std::size_t stride) {
-    for (std::size_t k = first; k < lines.size(); k += stride) {
+  std::vector<Error> errors(lines.size());
+  const unsigned threads = util::thread_count(o.threads, lines.size());
+  if (threads > 1) so.threads = 1;  // parallel over lines, not inside each line
+  util::parallel_chunks(lines.size(), threads, [&](unsigned, std::size_t k0, std::size_t k1) {
+    for (std::size_t k = k0; k < k1; ++k) {
       auto sig = self_signature(lines[k], so);
       if (sig) results[k] = std::move(*sig);
-      else errors[k] = sig.error().message;
+      else errors[k] = sig.error();
     }
-  };
-  unsigned threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
-  threads = unsigned(std::min<std::size_t>(threads, lines.size()));
-  if (threads > 1) so.threads = 1;  // parallel over lines, not inside each line
-  if (threads <= 1) {
-    work(0, 1);
-  } else {
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t) pool.emplace_back(work, t, threads);
-    for (auto& th : pool) th.join();
-  }
+  });
   for (std::size_t k = 0; k < lines.size(); ++k) {  // reduce in line order: deterministic
-    if (!errors[k].empty()) return make_error(errors[k]);
+    if (!errors[k].message.empty()) return errors[k];
     const SignatureResult& sig = results[k];
     const double w = lines[k].length();
     r.lines++;
@@ -302,20 +294,11 @@ Result<ArealSignature> areal_signature(const Map& f, const Map& g_in, double ang
     out.theta[k] = std::atan(o.contact_slope == ArealContactSlope::Lower ? slope_f() : 0.5 * (slope_f() + slope_g()));
   };
 
-  unsigned threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
-  threads = unsigned(std::min<std::size_t>(threads, count));
-  if (threads <= 1) {
+  // Offsets are independent: contiguous chunks over threads, results written per offset.
+  util::parallel_chunks(count, util::thread_count(o.threads, count), [&](unsigned, std::size_t k0, std::size_t k1) {
     std::vector<std::pair<double, std::size_t>> order;
-    for (std::size_t k = 0; k < count; ++k) run_offset(k, order);
-  } else {
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < threads; ++t)
-      pool.emplace_back([&, t] {
-        std::vector<std::pair<double, std::size_t>> order;
-        for (std::size_t k = t; k < count; k += threads) run_offset(k, order);
-      });
-    for (auto& th : pool) th.join();
-  }
+    for (std::size_t k = k0; k < k1; ++k) run_offset(k, order);
+  });
 
   double sum = 0;
   std::size_t n = 0;

@@ -326,7 +326,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   }
   if (frame_every) frame();
   for (std::uint64_t i = 0; i < settle_steps; ++i) {
-    if (Status s = dem::step(model, st); !s.ok()) return make_error("tilt (settling): " + s.error().message);
+    if (Status s = dem::step(model, st); !s.ok()) return with_prefix("tilt (settling): ", s.error());
     if (series_every && st.steps % series_every == 0) record();
     if (frame_every && st.steps % frame_every == 0) frame();
   }
@@ -343,7 +343,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   double low_since = st.time;  // start of the current interval with v <= stick_speed (NaN: none)
   const double nan = std::numeric_limits<double>::quiet_NaN();
   while (st.steps < max_steps) {
-    if (Status s = dem::step(model, st); !s.ok()) return make_error("tilt: " + s.error().message);
+    if (Status s = dem::step(model, st); !s.ok()) return with_prefix("tilt: ", s.error());
     const bool rec = series_every && st.steps % series_every == 0;
     if (rec) record();
     if (frame_every && st.steps % frame_every == 0) frame();
@@ -374,20 +374,20 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
 
 Status write_tilt_series_csv(const std::string& path, const TiltSeries& s) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
-  if (!f) return make_error(fmt::format("{}: cannot open for writing", path));
+  if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for writing", path));
   const double deg = 180.0 / 3.14159265358979323846;
   fmt::print(f.get(), "time_s,tilt_deg,fn_N,ft_N,force_angle_deg,displacement_m,velocity_m_s,contacts\n");
   for (std::size_t i = 0; i < s.time.size(); ++i)
     fmt::print(f.get(), "{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{}\n", s.time[i], s.tilt[i] * deg,
                s.normal_force[i], s.tangential_force[i], s.force_angle[i] * deg, s.displacement[i],
                s.velocity[i], s.contacts[i]);
-  if (std::ferror(f.get())) return make_error(fmt::format("{}: write failed", path));
+  if (std::ferror(f.get())) return make_error(ErrorCode::Io, fmt::format("{}: write failed", path));
   return Ok{};
 }
 
 Status write_tilt_frames(const std::string& path, const TiltResult& r) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
-  if (!f) return make_error(fmt::format("{}: cannot open for writing", path));
+  if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for writing", path));
   fmt::print(f.get(), "frictal-dem-frames 1\n");
   const std::vector<double>* px[2] = {&r.lower_polygon_x, &r.upper_polygon_x};
   const std::vector<double>* py[2] = {&r.lower_polygon_y, &r.upper_polygon_y};
@@ -400,7 +400,7 @@ Status write_tilt_frames(const std::string& path, const TiltResult& r) {
     for (int b = 0; b < 2; ++b)
       fmt::print(f.get(), "{} {:.17g} {:.17g} {:.17g}\n", b, fr.position[b].x, fr.position[b].y, fr.angle[b]);
   }
-  if (std::ferror(f.get())) return make_error(fmt::format("{}: write failed", path));
+  if (std::ferror(f.get())) return make_error(ErrorCode::Io, fmt::format("{}: write failed", path));
   return Ok{};
 }
 

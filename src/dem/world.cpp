@@ -903,7 +903,7 @@ Status step(const Model& m, State& st) {
     if (const double lim = st.step_limit[b]; dt > lim) {
       beyond = true;
       if (st.steps_beyond_limit + 1 > static_cast<std::uint64_t>(m.def.max_steps_beyond_limit)) {
-        status = make_error(fmt::format(
+        status = make_error(ErrorCode::Unstable, fmt::format(
             "dem: at t = {:.6g} s body {} has {} contacts and the time step is above the explicit stability "
             "limit dt = {:.3g} s (2 / damping rate or 2 / omega of its contact modes), for the {}th step: "
             "use a time step <= {:.3g} s (now {:.3g} s)",

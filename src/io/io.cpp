@@ -67,12 +67,12 @@ namespace {
 Result<std::string> read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    return make_error(fmt::format("{}: cannot open: no such file (or not a regular file)", path));
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot open: no such file (or not a regular file)", path));
   auto size = std::filesystem::file_size(path, ec);
-  if (ec) return make_error(fmt::format("{}: cannot read its size: {}", path, ec.message()));
+  if (ec) return make_error(ErrorCode::Io, fmt::format("{}: cannot read its size: {}", path, ec.message()));
   if (size > max_bytes) return make_error(fmt::format("{}: {} bytes, above the limit of {} bytes", path, size, max_bytes));
   std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error(fmt::format("{}: cannot open for reading", path));
+  if (!in) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for reading", path));
   std::string bytes(std::size_t(size), '\0');
   in.read(bytes.data(), std::streamsize(size));
   if (std::uint64_t(in.gcount()) != size) return make_error(fmt::format("{}: read error", path));
@@ -145,12 +145,12 @@ Result<Curve> parse_curve_text(const std::string& text, const std::string& name)
 Status write_profile_csv(const std::string& path, const Curve& c) {
   if (c.x.size() != c.z.size()) return make_error(fmt::format("{}: x and z sizes differ", path));
   std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) return make_error(fmt::format("{}: cannot open for writing", path));
+  if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for writing", path));
   std::string buf = "x_m,z_m\n";
   for (std::size_t k = 0; k < c.x.size(); ++k) buf += fmt::format("{:.17g},{:.17g}\n", c.x[k], c.z[k]);
   bool ok = std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
   ok = std::fclose(f) == 0 && ok;
-  if (!ok) return make_error(fmt::format("{}: write error", path));
+  if (!ok) return make_error(ErrorCode::Io, fmt::format("{}: write error", path));
   return Ok{};
 }
 
@@ -173,10 +173,10 @@ Status write_map_text(const std::string& path, const Map& m) {
     }
   }
   std::FILE* f = std::fopen(path.c_str(), "wb");
-  if (!f) return make_error(fmt::format("{}: cannot open for writing", path));
+  if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for writing", path));
   bool ok = std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
   ok = std::fclose(f) == 0 && ok;
-  if (!ok) return make_error(fmt::format("{}: write error", path));
+  if (!ok) return make_error(ErrorCode::Io, fmt::format("{}: write error", path));
   return Ok{};
 }
 

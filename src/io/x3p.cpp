@@ -624,7 +624,7 @@ Status write_x3p_grid(const std::string& path, const Map& m, bool profile, const
     zip_error_init_with_code(&ze, err);
     std::string why = zip_error_strerror(&ze);
     zip_error_fini(&ze);
-    return make_error(fmt::format("{}: cannot create: {}", path, why));
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot create: {}", path, why));
   }
   auto add = [&](const char* member, const std::string& content) -> bool {
     zip_source_t* s = zip_source_buffer(z, content.data(), content.size(), 0);
@@ -649,12 +649,12 @@ Status write_x3p_grid(const std::string& path, const Map& m, bool profile, const
   if (!ok) {
     std::string why = zip_strerror(z);
     zip_discard(z);
-    return make_error(fmt::format("{}: cannot write the archive: {}", path, why));
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot write the archive: {}", path, why));
   }
   if (zip_close(z) != 0) {
     std::string why = zip_strerror(z);
     zip_discard(z);
-    return make_error(fmt::format("{}: cannot write the archive: {}", path, why));
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot write the archive: {}", path, why));
   }
   return Ok{};
 }

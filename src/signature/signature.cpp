@@ -6,10 +6,10 @@
 #include <fmt/core.h>
 #include <limits>
 #include <numbers>
-#include <thread>
 
 #include "signature/face.hpp"
 #include "signature/spline.hpp"
+#include "util/parallel.hpp"
 
 namespace frictal {
 namespace {
@@ -500,12 +500,10 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   // previous offset, so the result does not depend on the number of threads.
   const std::size_t n = offs.size();
   std::vector<OffsetResult> res(n);
-  unsigned T = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
-  T = static_cast<unsigned>(std::min<std::size_t>(T, std::max<std::size_t>(1, n / 64)));
+  const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, n / 64));
   std::vector<std::vector<Contact>> chunk_contacts(T);
   std::vector<std::vector<std::uint32_t>> chunk_counts(T);
-  auto work = [&](unsigned t) {
-    const std::size_t i0 = n * t / T, i1 = n * (t + 1) / T;
+  util::parallel_chunks(n, T, [&](unsigned t, std::size_t i0, std::size_t i1) {
     std::vector<Cand> cands;
     double warm = kNaN;
     for (std::size_t i = i0; i < i1; ++i) {
@@ -514,14 +512,7 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
       chunk_counts[t].push_back(static_cast<std::uint32_t>(chunk_contacts[t].size() - before));
       warm = res[i].contact_x;
     }
-  };
-  if (T == 1) {
-    work(0);
-  } else {
-    std::vector<std::thread> pool;
-    for (unsigned t = 0; t < T; ++t) pool.emplace_back(work, t);
-    for (auto& th : pool) th.join();
-  }
+  });
 
   SignatureResult R;
   R.exact = (sampled == 0);

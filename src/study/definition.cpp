@@ -164,8 +164,23 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
   s.seed = static_cast<std::uint64_t>(*seed);
   for (auto&& [k, v] : doc) {
     const std::string key(k.str());
-    if (key != "study" && key != "part")
-      return make_error(fmt::format("{}: unknown top-level entry '{}' (expected [study] and [[part]])", where(origin, v), key));
+    if (key != "study" && key != "part" && key != "figure")
+      return make_error(fmt::format("{}: unknown top-level entry '{}' (expected [study], [[part]] and [[figure]])",
+                                    where(origin, v), key));
+  }
+  // [[figure]]: what scripts/plot_studies.py draws from the store (docs/studies.md). Not part of
+  // the definition (a figure changes no result); only its shape is checked here.
+  if (const toml::node* figs = doc.get("figure")) {
+    const toml::array* a = figs->as_array();
+    if (!a) return make_error(fmt::format("{}: 'figure' must be an array of tables ([[figure]])", where(origin, *figs)));
+    for (const auto& f : *a) {
+      const toml::table* t = f.as_table();
+      if (!t || !(*t)["file"].value<std::string>())
+        return make_error(fmt::format("{}: every [[figure]] needs a file name (file = \"fig06\")", where(origin, f)));
+      if (!t->contains("views") && !t->contains("panel"))
+        return make_error(fmt::format("{}: [[figure]] '{}' needs views = [...] or [[figure.panel]] entries",
+                                      where(origin, f), *(*t)["file"].value<std::string>()));
+    }
   }
   const toml::array* parts = doc["part"].as_array();
   if (!parts || parts->empty()) return make_error(fmt::format("{}: expected at least one [[part]]", origin));
@@ -264,7 +279,7 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
 
 Result<Study> load_study(const std::string& path, bool quick, const TaskRegistry& reg) {
   std::ifstream f(path, std::ios::binary);
-  if (!f) return make_error(fmt::format("{}: cannot open the study file", path));
+  if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open the study file", path));
   std::stringstream ss;
   ss << f.rdbuf();
   return parse_study(ss.str(), path, quick, reg);

@@ -3,6 +3,9 @@
 // length defaults to 0.01 m), ruler_min_over_wavelength,
 // ruler_max_over_wavelength, rulers. Returns D = 1 - slope of log L against log eps with its
 // fit quality, the Eq. 13 dimension, and the arrays ruler_m / measured_length_m (Fig. 9).
+#include <algorithm>
+#include <cmath>
+#include <map>
 #include <numbers>
 
 #include <fmt/core.h>
@@ -60,6 +63,84 @@ Result<TaskOutput> run_divider_task(const Params& p, std::uint64_t /*seed: deter
   out.arrays["ruler_m"] = fit->scales;
   out.arrays["measured_length_m"] = fit->values;
   return out;
+}
+
+// ---------------------------------------------------------------- report section and the kind
+
+namespace {
+
+void divider_part(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
+  std::map<double, std::map<int, std::pair<double, double>>> by;  // alpha -> n -> (D, D13)
+  std::string t = "\n| K_n | alpha (deg) | D divider | D Eq. 13 | difference | r^2 | rulers (m) |\n|---|---|---|---|---|---|---|\n";
+  for (const auto& r : rows) {
+    const auto& s = r.output.scalars;
+    if (!s.count("dimension") || !s.count("dimension_eq13")) continue;
+    const int n = static_cast<int>(as_number(r.params.at("iterations")));
+    const double a = as_number(r.params.at("alpha"));
+    by[a][n] = {s.at("dimension"), s.at("dimension_eq13")};
+    t += fmt::format("| K{} | {:g} | {:.4f} | {:.4f} | {:+.4f} | {:.5f} | {:.3g} - {:.3g} |\n", n, a, s.at("dimension"),
+                     s.at("dimension_eq13"), s.at("dimension_minus_eq13"), s.at("r_squared"), s.at("ruler_min_m"),
+                     s.at("ruler_max_m"));
+  }
+  if (by.empty()) return;
+  rep.lines.push_back(fmt::format("\n## Part '{}' (divider): {} curves", part, rows.size()));
+  rep.lines.push_back(t);
+  Finding f;
+  f.claim = fmt::format("Part '{}': the divider dimension of the most iterated Koch curve agrees with Eq. 13, and "
+                        "fewer iterations show the same scaling over a narrower range (Sec. IV C 3, Fig. 9).", part);
+  bool ok = true;
+  std::string ev;
+  for (const auto& [a, m] : by) {
+    const auto& [D, D13] = m.rbegin()->second;
+    ok = ok && std::abs(D - D13) <= 0.02;
+    double prev = INFINITY;
+    for (const auto& [n, v] : m) {
+      const double d = std::abs(v.first - v.second);
+      if (d > prev + 1e-9) ok = false;
+      prev = d;
+    }
+    ev += fmt::format(" alpha={:g}: K{} D={:.4f} vs Eq. 13 {:.4f};", a, m.rbegin()->first, D, D13);
+  }
+  f.supported = ok;
+  f.evidence.push_back("criterion: |D_divider - D_Eq13| <= 0.02 for the most iterated curve, and |D - D_Eq13| does not grow "
+                       "with the number of iterations;" + ev);
+  rep.findings.push_back(f);
+}
+
+}  // namespace
+
+TaskKind divider_kind() {
+  TaskKind k;
+  k.name = "divider";
+  k.description = "Divider (ruler) method on a Koch curve K_n (Sec. IV C 3): L(eps), D = 1 - slope, Eq. 13";
+  k.version = 1;
+  k.run = run_divider_task;
+  k.outputs = {
+      {"dimension", "1", "divider dimension D = 1 - slope of log L against log eps"},
+      {"dimension_eq13", "1", "fractal dimension of Eq. 13"},
+      {"dimension_minus_eq13", "1", "D - D(Eq. 13)"},
+      {"r_squared", "1", "fit quality"},
+      {"slope", "1", "slope of log L against log eps"},
+      {"ruler_min_m", "m", "smallest ruler"},
+      {"ruler_max_m", "m", "largest ruler"},
+      {"points", "1", "curve points"},
+      {"ruler_m", "m", "rulers eps (Fig. 9)", true},
+      {"measured_length_m", "m", "measured length L(eps) (Fig. 9)", true},
+  };
+  k.report = divider_part;
+  PlotView v;
+  v.id = "divider";
+  v.x = {"ruler_m", "ruler ε / λ", "wavelength", true};
+  v.y = {"measured_length_m", "measured length L / λ", "wavelength", true};
+  v.series = "task";
+  v.label = "K{iterations}: D = {dimension:.4f}";
+  v.marker = "o";
+  v.marker_size = 3;
+  v.line_width = 0.8;
+  v.reference = "power:dimension_eq13";
+  v.reference_label = "Eq. 13: D = {dimension_eq13:.4f}";
+  k.plots.push_back(v);
+  return k;
 }
 
 }  // namespace frictal::study

@@ -1,33 +1,30 @@
-// Running a study over MPI ranks (compiled only with FRICTAL_MPI). Rank 0 owns the store and
-// hands out task ids one at a time as ranks ask for work (dynamic load balancing); it also runs
-// `threads` local compute threads. Only rank 0's main thread calls MPI (MPI_THREAD_FUNNELED).
+// Running a study over MPI ranks (compiled only with FRICTAL_MPI): the MPI transport of the
+// coordinator (coordinator.hpp), whose site r is rank r. Rank 0 owns the store and hands out task
+// ids one at a time as ranks ask for work (dynamic load balancing); it also runs `threads` local
+// compute threads. Only rank 0's main thread calls MPI (MPI_THREAD_FUNNELED).
 //
-// Failures: a task that fails on a rank (error or exception, e.g. out of memory there) goes back
-// into the queue and is reassigned to a rank it has not failed on, up to kMaxAttempts attempts
-// (or until every rank has failed it), before it is recorded as failed. A rank
-// that dies outright makes mpirun abort the job (standard MPI has no recovery from process
-// loss); the store keeps every finished task and rerunning the command resumes the rest.
+// Failures: the coordinator's retry policy (a transient failure on a rank is retried on a rank it
+// has not failed on, up to kMaxAttempts attempts). A rank that dies outright makes mpirun abort
+// the job (standard MPI has no recovery from process loss); the store keeps every finished task
+// and rerunning the command resumes the rest.
 #ifdef FRICTAL_MPI
 #include <mpi.h>
 
 #include <chrono>
-#include <condition_variable>
 #include <cstdlib>
-#include <deque>
 #include <map>
-#include <mutex>
 #include <set>
-#include <algorithm>
 #include <thread>
 
 #include <fmt/core.h>
 
 #include "frictal/study.hpp"
+#include "study/coordinator.hpp"
+#include "util/parallel.hpp"
 
 namespace frictal::study {
 namespace {
 constexpr int kTagReady = 1, kTagResult = 2, kTagTask = 3, kTagStop = 4;
-constexpr int kMaxAttempts = 3;
 
 std::string recv_bytes(int source, int tag, MPI_Status* st) {
   MPI_Status probe;
@@ -39,15 +36,6 @@ std::string recv_bytes(int source, int tag, MPI_Status* st) {
   return buf;
 }
 }  // namespace
-
-static TaskRecord injected_failure(std::int64_t id, const std::string& worker) {
-  TaskRecord r;
-  r.id = id;
-  r.status = TaskStatus::Failed;
-  r.error = fmt::format("fault injected on {}", worker);
-  r.worker = worker;
-  return r;
-}
 
 bool mpi_available() { return true; }
 
@@ -96,9 +84,8 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
       if (id < 0 || id >= static_cast<long long>(study.tasks.size())) {
         r.id = id;
         r.status = TaskStatus::Failed;
+        r.code = ErrorCode::Internal;  // another rank may have the right file: retried there
         r.error = fmt::format("{}: task id {} is not in this rank's study (different study file?)", me, id);
-      } else if (options.inject_failure_rank == rank) {
-        r = injected_failure(id, me);
       } else {
         r = execute(study.tasks[static_cast<std::size_t>(id)], registry, me);
       }
@@ -125,192 +112,83 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
   std::set<int> stopped;
   if (!store) {
     release_all(stopped);
-    return make_error("run_mpi: rank 0 needs the store");
+    return make_error("run_mpi: rank 0 needs the store", ErrorCode::Internal);
   }
   auto todo = plan(study, *store, registry, options, &sum.skipped_unavailable);
-  auto c0 = todo ? store->counts() : Result<StoreCounts>(make_error(""));
-  if (!todo || !c0) {
+  if (!todo) {
     release_all(stopped);
-    return todo ? c0.error() : todo.error();
+    return todo.error();
   }
-
-  std::mutex mu;
-  std::condition_variable cv;
-  std::deque<std::int64_t> queue(todo->begin(), todo->end());
-  std::deque<TaskRecord> local_done;
-  std::map<std::int64_t, int> attempts;
-  std::map<std::int64_t, std::set<int>> failed_on;  // task -> ranks it failed on
-  // Takes the first queued task that has not failed on `who` (caller holds mu); -1 if none.
-  auto take_for = [&](int who) -> std::int64_t {
-    for (auto it = queue.begin(); it != queue.end(); ++it) {
-      auto f = failed_on.find(*it);
-      if (f != failed_on.end() && f->second.count(who)) continue;
-      const std::int64_t id = *it;
-      queue.erase(it);
-      return id;
-    }
-    return -1;
-  };
-  auto has_for = [&](int who) {
-    return std::any_of(queue.begin(), queue.end(), [&](std::int64_t id) {
-      auto f = failed_on.find(id);
-      return f == failed_on.end() || !f->second.count(who);
-    });
-  };
-  bool closing = false;  // no more dispatch (interrupted or store error)
-  int local_busy = 0;
+  // Site r of the coordinator is rank r; rank 0 computes with T local threads while this (main)
+  // thread owns the store and serves the other ranks (MPI_THREAD_FUNNELED: only it calls MPI).
+  Coordinator co(study, *store, options, std::move(*todo), size);
+  if (auto s = co.start(); !s) {
+    release_all(stopped);
+    return s.error();
+  }
   const unsigned T = options.threads ? options.threads : 1;
-  std::vector<std::thread> pool;
-  for (unsigned w = 0; w < T; ++w) {
-    pool.emplace_back([&, w] {
-      const std::string me = fmt::format("rank 0 thread {}", w);
-      for (;;) {
-        std::int64_t id;
-        {
-          std::unique_lock lk(mu);
-          cv.wait(lk, [&] { return closing || has_for(0); });
-          if (closing) return;
-          id = take_for(0);
-          ++local_busy;
+  sum.threads = T;
+  std::set<int> idle;                    // ranks waiting for a task
+  std::map<int, std::int64_t> inflight;  // rank -> the task it computes
+  util::run_workers(
+      T,
+      [&](unsigned w) {
+        const std::string me = fmt::format("rank 0 thread {}", w);
+        for (std::int64_t id; (id = co.claim(0, true)) >= 0;)
+          co.finish(execute(study.tasks[static_cast<std::size_t>(id)], registry, me), 0);
+      },
+      [&] {
+        for (;;) {
+          bool busy = co.record_finished(false) > 0;
+          int flag = 0;
+          MPI_Status st;
+          MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
+          if (flag) {
+            busy = true;
+            const int src = st.MPI_SOURCE;
+            std::string bytes = recv_bytes(src, st.MPI_TAG, &st);
+            if (st.MPI_TAG == kTagResult) {
+              auto r = deserialize(bytes);
+              if (r) r->id = inflight[src];  // the id this rank was given
+              if (!r) {  // cannot happen between ranks of one build; never lose the claim
+                TaskRecord lost;
+                lost.id = inflight[src];
+                lost.worker = fmt::format("rank {}", src);
+                lost.status = TaskStatus::Failed;
+                lost.code = ErrorCode::Internal;
+                lost.error = fmt::format("rank {}: {}", src, r.error().message);
+                r = std::move(lost);
+              }
+              inflight.erase(src);
+              co.finish(std::move(*r), src);
+            }
+            idle.insert(src);
+          }
+          // Dispatch to idle ranks (a rank stays idle if every queued task failed on it).
+          for (auto it = idle.begin(); it != idle.end();) {
+            const std::int64_t id = co.claim(*it, false);
+            if (id < 0) {
+              ++it;
+              continue;
+            }
+            long long v = id;
+            MPI_Send(&v, 1, MPI_LONG_LONG, *it, kTagTask, MPI_COMM_WORLD);
+            inflight[*it] = id;
+            it = idle.erase(it);
+            busy = true;
+          }
+          if (co.over()) break;
+          if (!busy) std::this_thread::sleep_for(std::chrono::microseconds(500));
         }
-        TaskRecord r = options.inject_failure_rank == 0
-                           ? injected_failure(id, me)
-                           : execute(study.tasks[static_cast<std::size_t>(id)], registry, me);
-        std::lock_guard lk(mu);
-        local_done.push_back(std::move(r));
-        --local_busy;
-      }
-    });
-  }
-
-  Progress pr;
-  pr.total = c0->total;
-  pr.done = c0->done;
-  pr.to_run = static_cast<std::int64_t>(todo->size());
-  if (options.progress) options.progress(pr);
-  std::set<int> idle;             // workers waiting for a task
-  std::map<int, std::int64_t> inflight;  // worker -> task
-  Error store_error;
-  bool failed_store = false;
-
-  // Records a final outcome, or puts a failed task back for another rank.
-  auto handle = [&](TaskRecord r, int on_rank) {
-    if (r.status == TaskStatus::Failed && !failed_store) {
-      std::lock_guard lk(mu);
-      auto& ranks = failed_on[r.id];
-      ranks.insert(on_rank);
-      if (!closing && ++attempts[r.id] < kMaxAttempts && static_cast<int>(ranks.size()) < size) {
-        queue.push_back(r.id);
-        cv.notify_all();
-        return;
-      }
-    }
-    if (failed_store) return;
-    {
-      std::lock_guard lk(mu);
-      auto f = failed_on.find(r.id);
-      r.attempts = 1 + (f == failed_on.end() ? 0 : static_cast<int>(f->second.size()) - (r.status == TaskStatus::Failed));
-      if (r.status == TaskStatus::Failed && f != failed_on.end())
-        r.error += fmt::format(" (failed on {} rank(s))", f->second.size());
-    }
-    if (auto s = store->record(r); !s) {
-      store_error = s.error();
-      failed_store = true;
-      std::lock_guard lk(mu);
-      closing = true;
-      cv.notify_all();
-      return;
-    }
-    ++sum.ran;
-    ++pr.this_run;
-    if (r.status == TaskStatus::Done) ++pr.done;
-    else ++sum.failed, ++pr.failed;
-    pr.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (options.progress) options.progress(pr);
-  };
-
-  for (;;) {
-    bool busy = false;
-    if (options.stop && options.stop->load()) {
-      std::lock_guard lk(mu);
-      if (!closing) {
-        closing = true;
-        queue.clear();
-        cv.notify_all();
-      }
-    }
-    // Local results.
-    std::deque<TaskRecord> mine;
-    {
-      std::lock_guard lk(mu);
-      mine.swap(local_done);
-    }
-    for (auto& r : mine) {
-      busy = true;
-      handle(std::move(r), 0);
-    }
-    // Remote messages.
-    int flag = 0;
-    MPI_Status st;
-    MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
-    if (flag) {
-      busy = true;
-      const int src = st.MPI_SOURCE;
-      std::string bytes = recv_bytes(src, st.MPI_TAG, &st);
-      if (st.MPI_TAG == kTagResult) {
-        inflight.erase(src);
-        auto r = deserialize(bytes);
-        if (r) handle(std::move(*r), src);
-      }
-      idle.insert(src);
-    }
-    // Dispatch to idle workers (a worker stays idle if every queued task failed on it).
-    for (auto it = idle.begin(); it != idle.end();) {
-      const int w = *it;
-      std::int64_t id;
-      {
-        std::lock_guard lk(mu);
-        if (closing) break;
-        id = take_for(w);
-      }
-      if (id < 0) {
-        ++it;
-        continue;
-      }
-      it = idle.erase(it);
-      long long v = id;
-      MPI_Send(&v, 1, MPI_LONG_LONG, w, kTagTask, MPI_COMM_WORLD);
-      inflight[w] = id;
-      busy = true;
-    }
-    bool finished;
-    {
-      std::lock_guard lk(mu);
-      finished = (closing || queue.empty()) && local_busy == 0 && local_done.empty() && inflight.empty();
-      if (finished) {
-        closing = true;  // lets local threads exit
-        cv.notify_all();
-      }
-    }
-    if (finished) break;
-    if (!busy) std::this_thread::sleep_for(std::chrono::microseconds(500));
-  }
-  for (auto& t : pool) t.join();
-  {  // results that raced with the end (none expected, but never drop one)
-    std::deque<TaskRecord> mine;
-    mine.swap(local_done);
-    for (auto& r : mine) handle(std::move(r), 0);
-  }
+      });
+  co.record_finished(false);
   // Stop every worker: idle ones now, the others after their next message.
   for (int w : idle) {
     MPI_Send(nullptr, 0, MPI_BYTE, w, kTagStop, MPI_COMM_WORLD);
     stopped.insert(w);
   }
   release_all(stopped);
-  if (failed_store) return store_error;
-  sum.interrupted = pr.this_run < static_cast<std::int64_t>(todo->size());
-  sum.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return sum;
+  return co.summary(sum);
 }
 
 }  // namespace frictal::study

@@ -1,13 +1,8 @@
-// Running a study on threads: plan, execute, record. One writer (the calling thread) owns the
-// store; compute threads hand finished records over through a queue.
+// Running a study on threads: the threads transport of the coordinator (coordinator.hpp). The
+// calling thread owns the store and records; compute threads claim, compute and hand back.
+// Also the binary record format that the MPI transport sends between ranks.
 #include <algorithm>
-#include <chrono>
-#include <condition_variable>
 #include <cstring>
-#include <deque>
-#include <mutex>
-#include <set>
-#include <thread>
 
 #ifdef __linux__
 #include <pthread.h>
@@ -17,75 +12,10 @@
 #include <fmt/core.h>
 
 #include "frictal/study.hpp"
+#include "study/coordinator.hpp"
+#include "util/parallel.hpp"
 
 namespace frictal::study {
-
-Result<std::vector<std::int64_t>> plan(const Study& study, Store& store, const TaskRegistry& registry,
-                                       const RunOptions& options, std::int64_t* skipped_unavailable) {
-  std::set<std::string> wanted(options.parts.begin(), options.parts.end());
-  for (const auto& w : wanted) {
-    if (std::none_of(study.parts.begin(), study.parts.end(), [&](const Part& p) { return p.name == w; })) {
-      std::vector<std::string> names;
-      for (const auto& p : study.parts) names.push_back(p.name);
-      std::string list;
-      for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-      return make_error(fmt::format("--part {}: study '{}' has no such part (parts: {})", w, study.name, list));
-    }
-  }
-  for (const Part& p : study.parts) {
-    if (!wanted.empty() && !wanted.count(p.name)) continue;
-    const std::string why = registry.unavailable_reason(p.kind);
-    if (!why.empty() && !options.skip_unavailable)
-      return make_error(fmt::format("part '{}' of study '{}': {}; run the other parts with --skip-unavailable{}", p.name,
-                                    study.name, why, study.parts.size() > 1 ? " or choose parts with --part" : ""));
-  }
-  auto ids = store.unfinished();
-  if (!ids) return ids.error();
-  std::vector<std::int64_t> todo;
-  std::int64_t skipped = 0;
-  for (auto id : *ids) {
-    if (id < 0 || id >= static_cast<std::int64_t>(study.tasks.size()))
-      return make_error(fmt::format("store has task {} which the study does not define", id));
-    const Task& t = study.tasks[static_cast<std::size_t>(id)];
-    if (!wanted.empty() && !wanted.count(t.part)) continue;
-    if (!registry.find(t.kind)) {
-      ++skipped;
-      continue;
-    }
-    todo.push_back(id);
-  }
-  if (skipped_unavailable) *skipped_unavailable = skipped;
-  return todo;
-}
-
-TaskRecord execute(const Task& task, const TaskRegistry& registry, const std::string& worker) {
-  TaskRecord r;
-  r.id = task.id;
-  r.worker = worker;
-  const auto t0 = std::chrono::steady_clock::now();
-  const TaskKind* k = registry.find(task.kind);
-  if (!k) {
-    r.status = TaskStatus::Failed;
-    r.error = registry.unavailable_reason(task.kind);
-    if (r.error.empty()) r.error = fmt::format("unknown task kind '{}'", task.kind);
-  } else {
-    try {
-      auto out = k->run(task.params, task.seed);
-      if (out) {
-        r.status = TaskStatus::Done;
-        r.output = std::move(*out);
-      } else {
-        r.status = TaskStatus::Failed;
-        r.error = out.error().message;
-      }
-    } catch (const std::exception& e) {  // e.g. std::bad_alloc: a failure of this task only
-      r.status = TaskStatus::Failed;
-      r.error = fmt::format("exception: {}", e.what());
-    }
-  }
-  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
-}
 
 namespace {
 /// Pins the calling thread to the k-th CPU it may run on (Linux; a no-op elsewhere or on error).
@@ -114,78 +44,33 @@ void pin_to_cpu(unsigned k) {
 }  // namespace
 
 Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegistry& registry, const RunOptions& options) {
-  const auto start = std::chrono::steady_clock::now();
   RunSummary sum;
   auto todo = plan(study, store, registry, options, &sum.skipped_unavailable);
   if (!todo) return todo.error();
-  auto c0 = store.counts();
-  if (!c0) return c0.error();
-  const unsigned T = std::max(1u, std::min<unsigned>(options.threads ? options.threads : std::thread::hardware_concurrency(),
-                                                     static_cast<unsigned>(std::max<std::size_t>(1, todo->size()))));
-  std::mutex mu;
-  std::condition_variable cv;
-  std::deque<TaskRecord> finished;
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> abort{false};
-  unsigned running = T;
-  std::vector<std::thread> pool;
-  for (unsigned w = 0; w < T; ++w) {
-    pool.emplace_back([&, w] {
-      const std::string name = fmt::format("thread {}", w);
-      if (options.pin_threads) pin_to_cpu(w);
-      for (;;) {
-        if (abort || (options.stop && options.stop->load())) break;
-        const std::size_t i = next++;
-        if (i >= todo->size()) break;
-        TaskRecord r = execute(study.tasks[static_cast<std::size_t>((*todo)[i])], registry, name);
-        std::lock_guard lk(mu);
-        finished.push_back(std::move(r));
-        cv.notify_one();
-      }
-      std::lock_guard lk(mu);
-      --running;
-      cv.notify_one();
-    });
-  }
-  Progress pr;
-  pr.total = c0->total;
-  pr.done = c0->done;
-  pr.to_run = static_cast<std::int64_t>(todo->size());
-  if (options.progress) options.progress(pr);
-  Error store_error;
-  bool failed_store = false;
-  for (;;) {
-    std::unique_lock lk(mu);
-    cv.wait(lk, [&] { return !finished.empty() || running == 0; });
-    if (finished.empty() && running == 0) break;
-    TaskRecord r = std::move(finished.front());
-    finished.pop_front();
-    lk.unlock();
-    if (failed_store) continue;
-    if (auto s = store.record(r); !s) {
-      store_error = s.error();
-      failed_store = true;
-      abort = true;
-      continue;
-    }
-    ++sum.ran;
-    ++pr.this_run;
-    if (r.status == TaskStatus::Done) ++pr.done;
-    else ++sum.failed, ++pr.failed;
-    pr.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (options.progress) options.progress(pr);
-  }
-  for (auto& t : pool) t.join();
-  if (failed_store) return store_error;
-  sum.interrupted = sum.ran < static_cast<std::int64_t>(todo->size());
-  sum.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return sum;
+  const unsigned T = util::thread_count(options.threads, std::max<std::size_t>(1, todo->size()));
+  sum.threads = util::thread_count(options.threads);
+  Coordinator co(study, store, options, std::move(*todo), 1);
+  if (auto s = co.start(); !s) return s.error();
+  // T compute threads claim, compute and hand back; this thread owns the store and records.
+  util::run_workers(
+      T,
+      [&](unsigned w) {
+        const std::string name = fmt::format("thread {}", w);
+        if (options.pin_threads) pin_to_cpu(w);
+        for (std::int64_t id; (id = co.claim(0, true)) >= 0;)
+          co.finish(execute(study.tasks[static_cast<std::size_t>(id)], registry, name), 0);
+      },
+      [&] {
+        while (!co.over()) co.record_finished(true);
+      });
+  co.record_finished(false);
+  return co.summary(sum);
 }
 
 // ---------------------------------------------------------------- serialisation (for MPI)
 
 namespace {
-constexpr std::uint32_t kMagic = 0x46545231;  // "FTR1"
+constexpr std::uint32_t kMagic = 0x46545232;  // "FTR2"
 void put_u64(std::string& s, std::uint64_t v) { s.append(reinterpret_cast<const char*>(&v), 8); }
 void put_f64(std::string& s, double v) { s.append(reinterpret_cast<const char*>(&v), 8); }
 void put_str(std::string& s, const std::string& v) {
@@ -226,6 +111,7 @@ std::string serialize(const TaskRecord& r) {
   put_u64(s, static_cast<std::uint64_t>(r.id));
   put_u64(s, static_cast<std::uint64_t>(r.status));
   put_str(s, r.error);
+  put_u64(s, static_cast<std::uint64_t>(r.code));
   put_f64(s, r.wall_s);
   put_str(s, r.worker);
   put_u64(s, r.output.scalars.size());
@@ -251,6 +137,9 @@ Result<TaskRecord> deserialize(const std::string& bytes) {
   if (st > 2) return make_error("task record: bad status");
   r.status = static_cast<TaskStatus>(st);
   r.error = in.str();
+  const auto code = in.u64();
+  if (code > static_cast<std::uint64_t>(ErrorCode::Internal)) return make_error("task record: bad error code");
+  r.code = static_cast<ErrorCode>(code);
   r.wall_s = in.f64();
   r.worker = in.str();
   const auto ns = in.u64();

@@ -116,7 +116,9 @@ struct Store::Impl {
   ~Impl() {
     if (db) sqlite3_close_v2(db);
   }
-  Error err(const std::string& what) const { return make_error(fmt::format("{}: {}: {}", path, what, sqlite3_errmsg(db))); }
+  Error err(const std::string& what) const {
+    return make_error(ErrorCode::Io, fmt::format("{}: {}: {}", path, what, sqlite3_errmsg(db)));
+  }
   Status exec(const char* sql) {
     char* msg = nullptr;
     if (sqlite3_exec(db, sql, nullptr, nullptr, &msg) != SQLITE_OK) {
@@ -135,7 +137,7 @@ Result<std::unique_ptr<Store::Impl>> open_db(const std::string& path, bool creat
   const int flags = SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0) | SQLITE_OPEN_FULLMUTEX;
   if (sqlite3_open_v2(path.c_str(), &impl->db, flags, nullptr) != SQLITE_OK) {
     std::string m = impl->db ? sqlite3_errmsg(impl->db) : "out of memory";
-    return make_error(fmt::format("{}: cannot open the store: {}", path, m));
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot open the store: {}", path, m));
   }
   sqlite3_busy_timeout(impl->db, 10000);
   for (const char* p : {"PRAGMA journal_mode=WAL;", "PRAGMA synchronous=NORMAL;", "PRAGMA foreign_keys=ON;"})
@@ -238,7 +240,7 @@ Result<std::unique_ptr<Store>> Store::open(const std::string& path, const Study&
 Result<std::unique_ptr<Store>> Store::open_existing(const std::string& path) {
   {
     FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) return make_error(fmt::format("{}: no such store file", path));
+    if (!f) return make_error(ErrorCode::Io, fmt::format("{}: no such store file", path));
     std::fclose(f);
   }
   auto im = open_db(path, false);
@@ -439,9 +441,12 @@ Result<std::vector<Store::Row>> Store::rows(const std::string& part, bool with_a
   return out;
 }
 
-Result<std::string> Store::query_csv(const std::string& sql) {
-  Stmt q(impl_->db, sql.c_str());
-  if (!q.ok()) return impl_->err("query");
+namespace {
+/// A read-only query as CSV text (header + rows; NULL empty, reals shortest round-trip). The
+/// SQL stays here: the public API offers what the front ends need (tasks, rows, content).
+Result<std::string> query_csv(Store::Impl& im, const char* sql) {
+  Stmt q(im.db, sql);
+  if (!q.ok()) return im.err("query");
   const int n = sqlite3_column_count(q.get());
   std::string csv;
   auto quote = [](const std::string& s) {
@@ -468,8 +473,54 @@ Result<std::string> Store::query_csv(const std::string& sql) {
     }
     csv += '\n';
   }
-  if (rc != SQLITE_DONE) return impl_->err("query");
+  if (rc != SQLITE_DONE) return im.err("query");
   return csv;
+}
+}  // namespace
+
+Result<std::string> Store::tasks_csv() {
+  return query_csv(*impl_, "SELECT task_id, part, kind, params, seed, status, attempts, error, worker, started_at, "
+                           "finished_at, wall_s FROM tasks ORDER BY task_id");
+}
+
+Result<std::string> Store::failures_csv() {
+  return query_csv(*impl_, "SELECT task_id, part, params, error FROM tasks WHERE status = 'failed' ORDER BY task_id");
+}
+
+Result<std::vector<Store::TaskInfo>> Store::tasks() {
+  Stmt q(impl_->db, "SELECT task_id, part, kind, status, attempts, error, worker, wall_s FROM tasks ORDER BY task_id");
+  if (!q.ok()) return impl_->err("reading tasks");
+  std::vector<TaskInfo> out;
+  int rc;
+  while ((rc = q.step()) == SQLITE_ROW) {
+    TaskInfo t;
+    t.id = q.i64(0);
+    t.part = q.text(1);
+    t.kind = q.text(2);
+    const std::string st = q.text(3);
+    t.status = st == "done" ? TaskStatus::Done : st == "failed" ? TaskStatus::Failed : TaskStatus::Pending;
+    t.attempts = static_cast<int>(q.i64(4));
+    t.error = q.text(5);
+    t.worker = q.text(6);
+    t.wall_s = q.real(7);
+    out.push_back(std::move(t));
+  }
+  if (rc != SQLITE_DONE) return impl_->err("reading tasks");
+  return out;
+}
+
+Result<std::string> Store::content() {
+  std::string d;
+  for (const char* q : {"SELECT key, value FROM meta WHERE key NOT IN ('created_at') ORDER BY key",
+                        "SELECT task_id, part, kind, params, task_key, seed, status, error, scalars FROM tasks ORDER BY task_id",
+                        "SELECT task_id, name, value FROM params ORDER BY task_id, name",
+                        "SELECT task_id, name, value FROM scalars ORDER BY task_id, name",
+                        "SELECT task_id, name, length, json FROM arrays ORDER BY task_id, name"}) {
+    auto r = query_csv(*impl_, q);
+    if (!r) return r.error();
+    d += *r;
+  }
+  return d;
 }
 
 }  // namespace frictal::study

@@ -31,16 +31,13 @@ Study parse(const std::string& text, bool quick = false) {
 }
 /// Every stored column that does not depend on the run (no timings, worker or attempts).
 std::string dump(Store& s) {
-  std::string d;
-  for (const char* q : {"SELECT task_id, part, kind, params, task_key, seed, status, error, scalars FROM tasks ORDER BY task_id",
-                        "SELECT task_id, name, value FROM params ORDER BY task_id, name",
-                        "SELECT task_id, name, value FROM scalars ORDER BY task_id, name",
-                        "SELECT task_id, name, length, json FROM arrays ORDER BY task_id, name"}) {
-    auto r = s.query_csv(q);
-    EXPECT_TRUE(r.ok());
-    d += *r;
-  }
-  return d;
+  auto r = s.content();
+  EXPECT_TRUE(r.ok());
+  return r.ok() ? *r : std::string{};
+}
+/// Runs a task kind of the default registry.
+frictal::Result<TaskOutput> run_kind(const std::string& name, const Params& p, std::uint64_t seed) {
+  return default_registry().find(name)->run(p, seed);
 }
 const char* kWmSmall = R"(
 [study]
@@ -61,7 +58,7 @@ TEST(StudyKinds, KochSignatureMaximaAreOneOneTwoThreeAlpha) {
   const double expect[] = {1, 1, 2, 3};
   for (int n = 0; n <= 3; ++n) {
     Params p{{"iterations", std::int64_t{n}}, {"alpha", 5.0}, {"length", 0.01}};
-    auto r = run_koch_signature(p, 0);
+    auto r = run_kind("koch-signature", p, 0);
     ASSERT_TRUE(r.ok()) << r.error().message;
     EXPECT_NEAR(r->scalars.at("theta_max_over_alpha"), expect[n], 1e-9) << "K" << n;
     // The steepest edge of K_n is (n+1) alpha (Sec. III).
@@ -74,19 +71,19 @@ TEST(StudyKinds, KochDimensionEq13) {
   // alpha = 60 deg: 6 cos(alpha) = 3, so Eq. 13 reads 4 (1/3)^D = 1: the classic Koch curve,
   // D = ln 4 / ln 3. alpha -> 0: the flat line, D = 1.
   Params p{{"iterations", std::int64_t{0}}, {"alpha", 60.0}, {"length", 0.01}};
-  auto r = run_koch_signature(p, 0);
+  auto r = run_kind("koch-signature", p, 0);
   ASSERT_TRUE(r.ok());
   EXPECT_NEAR(r->scalars.at("dimension_eq13"), std::log(4.0) / std::log(3.0), 1e-12);
   p["alpha"] = 1e-3;
-  EXPECT_NEAR(run_koch_signature(p, 0)->scalars.at("dimension_eq13"), 1.0, 1e-6);
+  EXPECT_NEAR(run_kind("koch-signature", p, 0)->scalars.at("dimension_eq13"), 1.0, 1e-6);
   // Friction (Eq. 6): phi = atan(mu_a) + theta_max; K1 at 20 deg with mu_a = 1: 45 + 20 deg.
   Params q{{"iterations", std::int64_t{1}}, {"alpha", 20.0}, {"length", 0.01}, {"atomic_friction", 1.0}};
-  EXPECT_NEAR(run_koch_signature(q, 0)->scalars.at("friction_angle_deg"), 65.0, 1e-9);
+  EXPECT_NEAR(run_kind("koch-signature", q, 0)->scalars.at("friction_angle_deg"), 65.0, 1e-9);
 }
 
 TEST(StudyKinds, WmPairIsDeterministicAndContactBelowSurface) {
   Params p{{"dimension", 1.6}, {"n_max", std::int64_t{5}}, {"pair", std::int64_t{0}}};
-  auto a = run_wm_pair_statistics(p, 11), b = run_wm_pair_statistics(p, 11), c = run_wm_pair_statistics(p, 12);
+  auto a = run_kind("wm-pair-statistics", p, 11), b = run_kind("wm-pair-statistics", p, 11), c = run_kind("wm-pair-statistics", p, 12);
   ASSERT_TRUE(a.ok() && b.ok() && c.ok());
   EXPECT_EQ(a->scalars, b->scalars);
   EXPECT_EQ(a->arrays, b->arrays);
@@ -103,7 +100,7 @@ TEST(StudyKinds, WmPairIsDeterministicAndContactBelowSurface) {
   EXPECT_NEAR(sum, 1.0, 1e-9);
   Params bad = p;
   bad["slopes"] = std::string("cubic");
-  auto r = run_wm_pair_statistics(bad, 1);
+  auto r = run_kind("wm-pair-statistics", bad, 1);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("slopes"), std::string::npos);
 }

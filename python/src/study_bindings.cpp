@@ -1,0 +1,147 @@
+// frictal._core — bindings of studies (study.hpp): run a study file into a store, and read a
+// store back (status, report, export, rows, the registry of task kinds). The same library
+// functions as `frictal study ...`; library errors raise ValueError (OSError for I/O).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "frictal/study.hpp"
+
+namespace py = pybind11;
+using namespace frictal;
+using namespace frictal::study;
+
+namespace {
+
+template <class T>
+T ok(Result<T> r) {
+  if (!r) {
+    if (r.error().code == ErrorCode::Io) {
+      PyErr_SetString(PyExc_OSError, r.error().message.c_str());
+      throw py::error_already_set();
+    }
+    throw py::value_error(r.error().message);
+  }
+  return std::move(r).value();
+}
+
+py::object value(const Value& v) {
+  struct V {
+    py::object operator()(std::int64_t i) const { return py::int_(i); }
+    py::object operator()(double d) const { return py::float_(d); }
+    py::object operator()(const std::string& s) const { return py::str(s); }
+    py::object operator()(bool b) const { return py::bool_(b); }
+  };
+  return std::visit(V{}, v);
+}
+
+py::dict counts(const StoreCounts& c) {
+  py::dict d;
+  d["total"] = c.total;
+  d["done"] = c.done;
+  d["failed"] = c.failed;
+  d["pending"] = c.pending;
+  return d;
+}
+
+std::unique_ptr<Store> open_existing(const std::string& path) { return ok(Store::open_existing(path)); }
+
+}  // namespace
+
+void frictal_bind_study(py::module_& m) {
+  m.def(
+      "study_kinds",
+      []() -> py::object {
+        py::object all = py::module_::import("json").attr("loads")(kinds_json(default_registry()));
+        return all["kinds"];
+      },
+      "The task kinds of this build: a list of dicts (name, description, version, available, reason, outputs with "
+      "name/unit/description/array, plots: the plot views scripts/plot_studies.py draws)");
+  m.def(
+      "study_run",
+      [](const std::string& study_file, const std::string& store_path, unsigned threads, bool quick,
+         std::vector<std::string> parts, bool skip_unavailable) {
+        const TaskRegistry reg = default_registry();
+        Study s = ok(load_study(study_file, quick, reg));
+        auto store = ok(Store::open(store_path, s));
+        RunOptions o;
+        o.threads = threads;
+        o.parts = std::move(parts);
+        o.skip_unavailable = skip_unavailable;
+        RunSummary sum;
+        {
+          py::gil_scoped_release release;
+          sum = ok(run_threads(s, *store, reg, o));
+        }
+        py::dict d;
+        d["ran"] = sum.ran;
+        d["failed"] = sum.failed;
+        d["retries"] = sum.retries;
+        d["skipped_unavailable"] = sum.skipped_unavailable;
+        d["threads"] = sum.threads;
+        d["wall_s"] = sum.wall_s;
+        d["tasks"] = counts(ok(store->counts()));
+        return d;
+      },
+      py::arg("study"), py::arg("store"), py::arg("threads") = 0, py::arg("quick") = false,
+      py::arg("parts") = std::vector<std::string>{}, py::arg("skip_unavailable") = false,
+      "Runs (or resumes) a study file into an SQLite store on threads (0 = every core); returns a summary dict");
+  m.def(
+      "study_status",
+      [](const std::string& path) {
+        auto store = open_existing(path);
+        const StoreStatus st = ok(store_status(*store, default_registry()));
+        py::dict d;
+        d["store"] = path;
+        d["study"] = st.study;
+        d["scale"] = st.scale;
+        d["study_hash"] = st.study_hash;
+        d["schema_version"] = st.schema_version;
+        d["tasks"] = counts(st.tasks);
+        py::list parts;
+        for (const auto& p : st.parts) {
+          py::dict q;
+          q["part"] = p.part;
+          q["kind"] = p.kind;
+          q["done"] = p.done;
+          q["failed"] = p.failed;
+          q["pending"] = p.pending;
+          q["available"] = p.available;
+          parts.append(q);
+        }
+        d["parts"] = parts;
+        return d;
+      },
+      py::arg("store"), "How far a store is (as `frictal study status --json`)");
+  m.def(
+      "study_report", [](const std::string& path) { return render_markdown(ok(report(*open_existing(path)))); },
+      py::arg("store"), "The report of a store (Markdown): per-part tables and the paper's findings checked");
+  m.def(
+      "study_export", [](const std::string& path, const std::string& dir) { return ok(export_csv(*open_existing(path), dir)); },
+      py::arg("store"), py::arg("directory"),
+      "Writes the store as CSV files under directory (tasks.csv, PART.csv, PART-arrays.csv, PART-pooled-pdfs.csv, "
+      "report.md); returns the file names");
+  m.def(
+      "study_rows",
+      [](const std::string& path, const std::string& part, bool arrays) {
+        auto rows = ok(open_existing(path)->rows(part, arrays));
+        py::list out;
+        for (const auto& r : rows) {
+          py::dict d, params, scalars, arrs;
+          d["task_id"] = r.id;
+          d["part"] = r.part;
+          d["kind"] = r.kind;
+          for (const auto& [k, v] : r.params) params[py::str(k)] = value(v);
+          for (const auto& [k, v] : r.output.scalars) scalars[py::str(k)] = v;
+          for (const auto& [k, v] : r.output.arrays) arrs[py::str(k)] = py::array_t<double>(v.size(), v.data());
+          d["params"] = params;
+          d["scalars"] = scalars;
+          d["arrays"] = arrs;
+          out.append(d);
+        }
+        return out;
+      },
+      py::arg("store"), py::arg("part") = "", py::arg("arrays") = true,
+      "The done tasks of a store (or of one part): dicts with task_id, part, kind, params, scalars and arrays "
+      "(numpy); SI units and degrees as the column names say");
+}

@@ -1,0 +1,222 @@
+// The coordinator of a study run (see coordinator.hpp): planning, executing one task, and the
+// claim -> compute -> record cycle with its retry policy and progress, for both transports.
+#include "study/coordinator.hpp"
+
+#include <algorithm>
+
+#include <fmt/core.h>
+
+namespace frictal::study {
+
+Result<std::vector<std::int64_t>> plan(const Study& study, Store& store, const TaskRegistry& registry,
+                                       const RunOptions& options, std::int64_t* skipped_unavailable) {
+  std::set<std::string> wanted(options.parts.begin(), options.parts.end());
+  for (const auto& w : wanted) {
+    if (std::none_of(study.parts.begin(), study.parts.end(), [&](const Part& p) { return p.name == w; })) {
+      std::string list;
+      for (const auto& p : study.parts) list += (list.empty() ? "" : ", ") + p.name;
+      return make_error(fmt::format("--part {}: study '{}' has no such part (parts: {})", w, study.name, list));
+    }
+  }
+  for (const Part& p : study.parts) {
+    if (!wanted.empty() && !wanted.count(p.name)) continue;
+    const std::string why = registry.unavailable_reason(p.kind);
+    if (!why.empty() && !options.skip_unavailable)
+      return make_error(ErrorCode::NotAvailable,
+                        fmt::format("part '{}' of study '{}': {}; run the other parts with --skip-unavailable{}", p.name,
+                                    study.name, why, study.parts.size() > 1 ? " or choose parts with --part" : ""));
+  }
+  auto ids = store.unfinished();
+  if (!ids) return ids.error();
+  std::vector<std::int64_t> todo;
+  std::int64_t skipped = 0;
+  for (auto id : *ids) {
+    if (id < 0 || id >= static_cast<std::int64_t>(study.tasks.size()))
+      return make_error(fmt::format("store has task {} which the study does not define", id));
+    const Task& t = study.tasks[static_cast<std::size_t>(id)];
+    if (!wanted.empty() && !wanted.count(t.part)) continue;
+    if (!registry.find(t.kind)) {
+      ++skipped;
+      continue;
+    }
+    todo.push_back(id);
+  }
+  if (skipped_unavailable) *skipped_unavailable = skipped;
+  return todo;
+}
+
+TaskRecord execute(const Task& task, const TaskRegistry& registry, const std::string& worker) {
+  TaskRecord r;
+  r.id = task.id;
+  r.worker = worker;
+  const auto t0 = std::chrono::steady_clock::now();
+  const TaskKind* k = registry.find(task.kind);
+  if (!k) {
+    r.status = TaskStatus::Failed;
+    r.code = ErrorCode::NotAvailable;
+    r.error = registry.unavailable_reason(task.kind);
+    if (r.error.empty()) r.error = fmt::format("unknown task kind '{}'", task.kind);
+  } else {
+    try {
+      auto out = k->run(task.params, task.seed);
+      if (out) {
+        r.status = TaskStatus::Done;
+        r.output = std::move(*out);
+      } else {
+        r.status = TaskStatus::Failed;
+        r.error = out.error().message;
+        r.code = out.error().code;
+      }
+    } catch (const std::exception& e) {  // e.g. std::bad_alloc: a failure of this task only
+      r.status = TaskStatus::Failed;
+      r.error = fmt::format("exception: {}", e.what());
+      r.code = ErrorCode::Internal;
+    }
+  }
+  r.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+bool retryable(ErrorCode code) { return code == ErrorCode::Io || code == ErrorCode::Internal; }
+
+Coordinator::Coordinator(const Study& study, Store& store, const RunOptions& options, std::vector<std::int64_t> todo,
+                         int sites)
+    : study_(study),
+      store_(store),
+      options_(options),
+      sites_(std::max(1, sites)),
+      start_(std::chrono::steady_clock::now()),
+      to_run_(todo.size()),
+      fail_first_(options.fail_first_attempt.begin(), options.fail_first_attempt.end()),
+      queue_(todo.begin(), todo.end()) {}
+
+Status Coordinator::start() {
+  auto c0 = store_.counts();
+  if (!c0) return c0.error();
+  progress_.total = c0->total;
+  progress_.done = c0->done;
+  progress_.to_run = static_cast<std::int64_t>(to_run_);
+  if (options_.progress) options_.progress(progress_);
+  return Ok{};
+}
+
+void Coordinator::poll_stop_locked() {
+  if (!closing_ && options_.stop && options_.stop->load()) {
+    closing_ = true;
+    queue_.clear();
+    cv_.notify_all();
+  }
+}
+
+std::int64_t Coordinator::take_locked(int site) {
+  for (auto it = queue_.begin(); it != queue_.end(); ++it) {
+    auto f = failed_on_.find(*it);
+    // Not again on a site it failed on while another site has not failed it.
+    if (f != failed_on_.end() && f->second.count(site) && static_cast<int>(f->second.size()) < sites_) continue;
+    const std::int64_t id = *it;
+    queue_.erase(it);
+    ++in_flight_;
+    return id;
+  }
+  return -1;
+}
+
+bool Coordinator::over_locked() const { return (closing_ || queue_.empty()) && in_flight_ == 0 && finished_.empty(); }
+
+std::int64_t Coordinator::claim(int site, bool wait) {
+  std::unique_lock lk(mu_);
+  for (;;) {
+    poll_stop_locked();
+    if (closing_) return -1;
+    if (const std::int64_t id = take_locked(site); id >= 0) return id;
+    if (!wait || (queue_.empty() && in_flight_ == 0)) return -1;
+    // Woken by finish() (a retry may be queued) or after a while to look at the stop flag.
+    cv_.wait_for(lk, std::chrono::milliseconds(50));
+  }
+}
+
+void Coordinator::finish(TaskRecord r, int site) {
+  std::lock_guard lk(mu_);
+  --in_flight_;
+  const int attempt = ++attempts_[r.id];
+  // Testing hooks (RunOptions): fault injection decided here, whichever worker computed.
+  const bool inject = site == options_.inject_failure_rank || (attempt == 1 && fail_first_.count(r.id));
+  if (inject) {
+    r.status = TaskStatus::Failed;
+    r.code = ErrorCode::Internal;
+    r.error = fmt::format("fault injected on {} (attempt {})", r.worker, attempt);
+    r.output = {};
+  }
+  if (r.status == TaskStatus::Failed) {
+    failed_on_[r.id].insert(site);
+    if (!closing_ && retryable(r.code) && attempt < kMaxAttempts) {
+      queue_.push_back(r.id);
+      ++retries_;
+      cv_.notify_all();
+      return;
+    }
+    if (attempt > 1) r.error += fmt::format(" (after {} attempts)", attempt);
+  }
+  r.attempts = attempt;
+  finished_.push_back(std::move(r));
+  cv_.notify_all();
+}
+
+std::size_t Coordinator::record_finished(bool wait) {
+  std::deque<TaskRecord> batch;
+  {
+    std::unique_lock lk(mu_);
+    poll_stop_locked();
+    if (wait && finished_.empty() && !over_locked())
+      cv_.wait_for(lk, std::chrono::milliseconds(50), [&] { return !finished_.empty() || over_locked(); });
+    batch.swap(finished_);
+  }
+  std::size_t n = 0;
+  for (TaskRecord& r : batch) {
+    if (store_failed_) break;
+    if (auto s = store_.record(r); !s) {
+      store_failed_ = true;
+      store_error_ = s.error();
+      std::lock_guard lk(mu_);
+      closing_ = true;
+      queue_.clear();
+      cv_.notify_all();
+      break;
+    }
+    ++n;
+    ++ran_;
+    ++progress_.this_run;
+    if (r.status == TaskStatus::Done) ++progress_.done;
+    else ++failed_, ++progress_.failed;
+    progress_.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (options_.progress) options_.progress(progress_);
+  }
+  if (n) {
+    std::lock_guard lk(mu_);
+    poll_stop_locked();  // the progress callback may have asked to stop
+  }
+  return n;
+}
+
+bool Coordinator::over() {
+  std::lock_guard lk(mu_);
+  poll_stop_locked();
+  return over_locked();
+}
+
+bool Coordinator::closing() {
+  std::lock_guard lk(mu_);
+  return closing_;
+}
+
+Result<RunSummary> Coordinator::summary(RunSummary base) {
+  if (store_failed_) return store_error_;
+  base.ran = ran_;
+  base.failed = failed_;
+  base.retries = retries_;
+  base.interrupted = ran_ < static_cast<std::int64_t>(to_run_);
+  base.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  return base;
+}
+
+}  // namespace frictal::study

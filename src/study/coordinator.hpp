@@ -1,0 +1,89 @@
+// The study runner's coordinator: one place for claim -> compute -> record, the retry policy and
+// progress, shared by both transports (threads: runner.cpp; MPI ranks: mpi_runner.cpp).
+//
+// Workers are grouped in *sites* (site 0: this process; under MPI site r is rank r). Any thread
+// may claim a task for a site and hand back its outcome; the thread that owns the store (the
+// caller of run_threads / rank 0's main thread) records final outcomes and reports progress.
+//
+// Retry policy: an attempt that fails with a transient error (ErrorCode::Io or Internal: out of
+// memory, a lost file system, an injected fault) goes back into the queue, up to kMaxAttempts
+// attempts; a retry is not given to a site the task already failed on while another site has not
+// failed it. Deterministic failures (invalid input, unstable, not available) are recorded at once:
+// the same task would fail the same way again.
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <mutex>
+#include <set>
+#include <vector>
+
+#include "frictal/study.hpp"
+
+namespace frictal::study {
+
+inline constexpr int kMaxAttempts = 3;
+
+/// True if a failure with this code may pass on another attempt.
+bool retryable(ErrorCode code);
+
+class Coordinator {
+ public:
+  /// `todo`: the tasks to run, from plan(); `sites`: 1 for threads, the number of ranks under MPI.
+  Coordinator(const Study& study, Store& store, const RunOptions& options, std::vector<std::int64_t> todo, int sites);
+
+  /// Owner: reads the store's counts and reports the initial progress.
+  Status start();
+
+  /// Any thread: a task for `site`, or -1. With `wait`, blocks until one is available and returns
+  /// -1 only when the run is over (or stopping); without, returns -1 when none is available now.
+  std::int64_t claim(int site, bool wait);
+  /// Any thread: the outcome of an attempt at a claimed task, computed on `site`. A retryable
+  /// failure is queued again; anything else waits for the owner to record it.
+  void finish(TaskRecord r, int site);
+
+  /// Owner: records the outcomes handed back so far (waiting briefly for one if `wait`) and
+  /// reports progress; returns how many were recorded.
+  std::size_t record_finished(bool wait);
+  /// True when nothing is queued (or the run is stopping), nothing is computing and every
+  /// outcome is recorded.
+  bool over();
+  /// True once the run stops dispatching (interrupted or a store error).
+  bool closing();
+
+  /// The summary of the run, or the store's error if recording failed.
+  Result<RunSummary> summary(RunSummary base);
+
+ private:
+  std::int64_t take_locked(int site);
+  bool over_locked() const;
+  void poll_stop_locked();
+
+  const Study& study_;
+  Store& store_;
+  const RunOptions& options_;
+  const int sites_;
+  const std::chrono::steady_clock::time_point start_;
+  const std::size_t to_run_;
+  std::set<std::int64_t> fail_first_;
+
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<std::int64_t> queue_;
+  std::deque<TaskRecord> finished_;
+  std::map<std::int64_t, int> attempts_;
+  std::map<std::int64_t, std::set<int>> failed_on_;
+  std::int64_t in_flight_ = 0;
+  bool closing_ = false;
+
+  // Owner only.
+  Progress progress_;
+  std::int64_t ran_ = 0, failed_ = 0, retries_ = 0;
+  bool store_failed_ = false;
+  Error store_error_;
+};
+
+}  // namespace frictal::study

@@ -1,0 +1,150 @@
+// What front ends show of a store: its status, the report as Markdown, and the CSV export
+// (docs/studies.md). The CLI and the Python package call these; the SQL stays in store.cpp.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include <fmt/core.h>
+
+#include "frictal/study.hpp"
+
+namespace frictal::study {
+namespace {
+
+namespace fs = std::filesystem;
+
+Status write_text(const fs::path& p, const std::string& text) {
+  std::ofstream f(p, std::ios::binary);
+  if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for writing", p.string()));
+  f << text;
+  if (!f) return make_error(ErrorCode::Io, fmt::format("{}: write failed", p.string()));
+  return Ok{};
+}
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string o = "\"";
+  for (char c : s) o += (c == '"') ? std::string("\"\"") : std::string(1, c);
+  return o + "\"";
+}
+
+std::string value_text(const Value& v) {
+  if (auto* s = std::get_if<std::string>(&v)) return csv_field(*s);
+  return canonical(v);
+}
+
+}  // namespace
+
+Result<StoreStatus> store_status(Store& store, const TaskRegistry& registry) {
+  auto meta = store.meta();
+  if (!meta) return meta.error();
+  auto c = store.counts();
+  if (!c) return c.error();
+  auto parts = store.part_counts();
+  if (!parts) return parts.error();
+  StoreStatus s;
+  auto& m = *meta;
+  s.study = m["study_name"];
+  s.description = m["study_description"];
+  s.scale = m["scale"];
+  s.study_hash = m["study_hash"];
+  s.schema_version = std::atoi(m["schema_version"].c_str());
+  s.tasks = *c;
+  for (const auto& p : *parts) {
+    StoreStatus::PartStatus ps;
+    ps.part = p.part;
+    ps.kind = p.kind;
+    ps.done = p.done;
+    ps.failed = p.failed;
+    ps.pending = p.pending;
+    ps.available = registry.find(p.kind) != nullptr;
+    ps.unavailable_reason = registry.unavailable_reason(p.kind);
+    s.parts.push_back(std::move(ps));
+  }
+  return s;
+}
+
+std::string render_markdown(const Report& r) {
+  std::string s = fmt::format("# {}\n\n", r.title);
+  for (const auto& l : r.lines) s += l + "\n";
+  if (!r.findings.empty()) {
+    s += "\n## Findings of the paper checked against this store\n\n";
+    for (const auto& f : r.findings) {
+      s += fmt::format("- [{}] {}\n", f.supported ? "SUPPORTED" : "NOT SUPPORTED", f.claim);
+      for (const auto& e : f.evidence) s += "    " + e + "\n";
+    }
+  }
+  return s;
+}
+
+Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir, const TaskRegistry& registry) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) return make_error(ErrorCode::Io, fmt::format("{}: cannot create the directory: {}", dir, ec.message()));
+  std::vector<std::string> files;
+  auto put = [&](const std::string& name, const std::string& text) -> Status {
+    if (auto s = write_text(fs::path(dir) / name, text); !s) return s;
+    files.push_back(name);
+    return Ok{};
+  };
+  auto tasks = store.tasks_csv();
+  if (!tasks) return tasks.error();
+  if (auto s = put("tasks.csv", *tasks); !s) return s.error();
+  auto parts = store.part_counts();
+  if (!parts) return parts.error();
+  for (const auto& pc : *parts) {
+    auto rows_r = store.rows(pc.part, true);
+    if (!rows_r) return rows_r.error();
+    const auto& rows = *rows_r;
+    std::set<std::string> pn, sn;
+    for (const auto& r : rows) {
+      for (const auto& [k, v] : r.params) pn.insert(k);
+      for (const auto& [k, v] : r.output.scalars) sn.insert(k);
+    }
+    std::string wide = "task_id";
+    for (const auto& k : pn) wide.append(",").append(csv_field(k));
+    for (const auto& k : sn) wide.append(",").append(csv_field(k));
+    wide += "\n";
+    std::string longf = "task_id,name,index,value\n";
+    for (const auto& r : rows) {
+      wide += std::to_string(r.id);
+      for (const auto& k : pn) wide.append(",").append(r.params.count(k) ? value_text(r.params.at(k)) : std::string{});
+      for (const auto& k : sn) {
+        auto it = r.output.scalars.find(k);
+        wide.append(",").append(it != r.output.scalars.end() && std::isfinite(it->second) ? fmt::format("{}", it->second)
+                                                                                           : std::string{});
+      }
+      wide += "\n";
+      for (const auto& [name, v] : r.output.arrays)
+        for (std::size_t i = 0; i < v.size(); ++i)
+          longf += fmt::format("{},{},{},{}\n", r.id, csv_field(name), i, std::isfinite(v[i]) ? fmt::format("{}", v[i]) : "");
+    }
+    if (auto s = put(pc.part + ".csv", wide); !s) return s.error();
+    if (auto s = put(pc.part + "-arrays.csv", longf); !s) return s.error();
+    // PDFs pooled over replicates (pair), e.g. Fig. 16.
+    auto pooled = pooled_pdfs(store, pc.part);
+    if (!pooled) return pooled.error();
+    if (!pooled->empty()) {
+      std::string csv = "group";
+      for (const auto& k : pn)
+        if (k != "pair") csv.append(",").append(csv_field(k));
+      csv += ",pdf,members,lo,hi,density\n";
+      for (std::size_t g = 0; g < pooled->size(); ++g) {
+        const PooledPdf& pp = (*pooled)[g];
+        std::string prefix = std::to_string(g);
+        for (const auto& k : pn)
+          if (k != "pair") prefix.append(",").append(pp.params.count(k) ? value_text(pp.params.at(k)) : std::string{});
+        for (std::size_t i = 0; i < pp.density.size(); ++i)
+          csv += fmt::format("{},{},{},{},{},{}\n", prefix, pp.name, pp.members, pp.edges[i], pp.edges[i + 1], pp.density[i]);
+      }
+      if (auto s = put(pc.part + "-pooled-pdfs.csv", csv); !s) return s.error();
+    }
+  }
+  auto rep = report(store, registry);
+  if (!rep) return rep.error();
+  if (auto s = put("report.md", render_markdown(*rep)); !s) return s.error();
+  return files;
+}
+
+}  // namespace frictal::study
