@@ -53,6 +53,10 @@ def convert_signature(name: str, sig: str, is_method: bool) -> str:
         if p in ("*", "/"):
             params.append(p)
             continue
+        if p.startswith("*"):  # *args / **kwargs (keywords from the settings tables)
+            star = re.match(r"^(\*\*?\w+)", p).group(1)
+            params.append(star + ": Any")
+            continue
         pm = re.match(r"^(\w+)(?:\s*:\s*(.+?))?(?:\s*=\s*(.+))?$", p)
         if not pm:
             raise ValueError(f"cannot parse parameter {p!r} of {name}")
@@ -130,7 +134,8 @@ def main() -> int:
         elif callable(obj):
             out.extend(emit_function(n, obj))
             out.append("")
-    sys.stdout.write("\n".join(out).rstrip("\n") + "\n")
+    text = "\n".join(line.rstrip() for line in "\n".join(out).splitlines())
+    sys.stdout.write(text.rstrip("\n") + "\n")
     return 0
 
 

@@ -157,8 +157,7 @@ int main(int argc, char** argv) {
       if (sub->parsed()) return run();
     }
   } catch (const UsageError& e) {
-    fmt::print(stderr, "frictal: {}
-", stdin_name(e.what()));
+    fmt::print(stderr, "frictal: {}\n", stdin_name(e.what()));
     return exit_code(e.code);
   } catch (const std::bad_alloc&) {
     fmt::print(stderr, "frictal: out of memory (input or parameters too large)\n");

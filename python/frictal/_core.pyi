@@ -24,80 +24,215 @@ class Profile:
         """heights (m)"""
 
 def anisotropy(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, directions: int = ..., max_lines: int = ..., atomic_friction: float = ..., threads: int = ...) -> dict:
-    """Predicted friction over sliding directions from the map's parallel lines (radians)"""
+    """Predicted friction over sliding directions from the map's parallel lines (runs without the GIL); heights (m), dx, dy (m), atomic_friction mu_a (unitless). Returns direction, theta_forward/backward, sigma, friction_angle (rad)"""
 
 def areal_signature(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, angle: float = ..., upper: Any = ..., turn_over_upper: bool = ..., prune: bool = ..., threads: int = ...) -> dict:
-    """Areal signature of two rigid blocks sliding along `angle` (radians); upper as measured (turned over) by default"""
+    """Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `angle` (rad; runs without the GIL); upper as measured (turned over) by default. Returns offset, lift (m), theta (rad), theta_max_forward/backward (rad), contact_slope_std (rad), evaluated_nodes"""
 
-def autocorrelation(profile: Profile, max_lag: int = ...) -> dict: ...
+def autocorrelation(profile: Profile, max_lag: int = ...) -> dict:
+    """Autocorrelation of a profile: lag (m), acf (unitless), correlation_length (m); max_lag: 0 = automatic"""
 
-def box_dimension(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArray[numpy.float64], *, box_min: float = ..., box_max: float = ..., sizes: int = ...) -> dict: ...
+def box_dimension(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArray[numpy.float64], *, box_min: float = ..., box_max: float = ..., sizes: int = ...) -> dict:
+    """Box-counting dimension of the curve (x, z in m); box_min/max in m (0: automatic)"""
 
 def build_info() -> dict:
-    """Version, git commit and CMake build type of the compiled core (dict of str)."""
+    """Version, git commit and CMake build type of the compiled core.
+
+    Returns a dict of str (unitless): version (from CMakeLists.txt), git_commit, build_type."""
 
 def detrend(profile: Profile, kind: str = ...) -> Profile:
-    """Removes none, mean, line or poly:N (trapezoid-weighted least squares)"""
+    """Removes none, mean, line or poly:N (trapezoid-weighted least squares) from a profile (m)"""
 
 def divider_dimension(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArray[numpy.float64], *, ruler_min: float = ..., ruler_max: float = ..., rulers: int = ...) -> dict:
-    """Divider (ruler) dimension walking along the curve (x, z)"""
+    """Divider (ruler) dimension walking along the curve (x, z in m); ruler_min/max in m (0: automatic). Returns dimension, slope, r_squared, fit_range (m), scales (m), values (m)"""
 
-def koch_curve(iterations: int = ..., alpha: float = ..., wavelength: float = ..., length: float = ...) -> tuple:
-    """Koch curve K_n (may fold over) as (x, z) arrays; alpha in radians"""
+def generators() -> dict:
+    """generators() -> dict
+
+    Every surface generator's parameter table: name -> list of fields (name, type, unit (SI), default, min, max, choices, help). The same names are the CLI options (--kebab-case, degrees) and study TOML keys."""
+
+def koch_curve(**kwargs: Any) -> tuple:
+    """koch_curve(**params) -> (x, z)
+
+    The Koch curve K_n, which may fold over, as two arrays of metres. Keywords as koch_profile (SI units):
+        iterations: Number of Koch iterations n (K_n) (default 0; valid 0..10)
+        alpha [rad]: Base angle of the Koch triangles alpha (default 0.0872664626; valid (0, 1.047197551])
+        wavelength [m]: Wavelength lambda: base of the K_0 triangles (default 0.01; valid > 0)
+        length [m]: Length L_b of the surface, a whole number of wavelengths (default 0.2; valid > 0)"""
 
 def koch_dimension(alpha: float) -> float:
     """Eq. 13: 2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1, alpha in radians"""
 
-def koch_profile(iterations: int = ..., alpha: float = ..., wavelength: float = ..., length: float = ...) -> Profile:
-    """Upper envelope of the Koch curve, periodic"""
+def koch_profile(**kwargs: Any) -> Profile:
+    """koch_profile(**params) -> Profile
+
+    Triadic Koch surface K_n (paper Sec. III), bumps outward: the upper envelope of the curve, generated with the keywords below (SI units; unknown keywords are a TypeError, bad values a ValueError):
+        iterations: Number of Koch iterations n (K_n) (default 0; valid 0..10)
+        alpha [rad]: Base angle of the Koch triangles alpha (default 0.0872664626; valid (0, 1.047197551])
+        wavelength [m]: Wavelength lambda: base of the K_0 triangles (default 0.01; valid > 0)
+        length [m]: Length L_b of the surface, a whole number of wavelengths (default 0.2; valid > 0)"""
 
 def lift_direct(lower: Profile, upper_rotated: Profile, offset: float) -> float:
-    """Plain O(N+M) evaluation of h(s) (reference method)"""
+    """Lift h(s) (m) of the turned-over upper profile at offset s (m): plain O(N+M) evaluation (reference method)"""
 
-def lower_envelope(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArray[numpy.float64]) -> Profile: ...
+def lower_envelope(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArray[numpy.float64]) -> Profile:
+    """Exact lower envelope of a polyline curve (x, z in metres) as a Profile"""
 
 def map_stats(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float) -> dict:
-    """Areal statistics over the valid points (NaN = invalid)"""
+    """Areal statistics over the valid points (NaN = invalid) of heights (m) on spacings dx, dy (m): mean, Sa, Sq, Sp, Sv, Sz (m), Ssk, Sku, Sdq (unitless), max_slope (rad)"""
 
 def power_spectrum(profile: Profile, max_k: int = ...) -> tuple:
-    """(q rad/m, C m^3) of the piecewise-linear profile, 2 sum C / L = rms^2"""
+    """Power spectrum of a profile (m, runs without the GIL): returns (q in rad/m, C in m^3) of the piecewise-linear profile, with 2 sum C / L = rms^2; max_k: 0 = automatic"""
 
 def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ...) -> dict:
-    """Eq. 6 and Eq. 18 (radians)"""
+    """Friction prediction of Eq. 6 and the Eq. 18 range: atomic_friction mu_a (unitless), theta_max and sigma (rad). Returns angles in rad and coefficients (unitless)"""
 
-def profile_stats(profile: Profile) -> dict: ...
+def profile_stats(profile: Profile) -> dict:
+    """Statistics of a profile: points, length_m, mean/rms height (m), rms slope (unitless), max/mean slope (rad) and the slope PDF (edges in rad, density per rad)"""
 
-def psd_dimension(profile: Profile, *, q_min: float = ..., q_max: float = ...) -> dict: ...
+def psd_dimension(profile: Profile, *, q_min: float = ..., q_max: float = ...) -> dict:
+    """Fractal dimension of a profile (m) from its power-spectrum slope (runs without the GIL); q_min, q_max in rad/m (0: automatic). Returns dimension, slope, r_squared, fit_range (rad/m), scales, values"""
 
 def read_map(path: str, *, format: str = ...) -> dict:
-    """Reads an areal map: dict heights (ny, nx), dx, dy, x0, y0"""
+    """Reads an areal map (runs without the GIL): dict heights (ny, nx) in m, dx, dy, x0, y0 in m"""
 
-def read_profile(path: str) -> Profile: ...
+def read_profile(path: str) -> Profile:
+    """Reads a single-valued profile (any readable format) in metres (runs without the GIL)"""
 
 def read_surface(path: str, *, format: str = ..., unit: str = ...) -> dict:
-    """Reads any supported file (CSV/TSV/text, Dektak, Gwyddion text, X3P). Returns a dict: kind 'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings. Metres."""
+    """Reads any supported file (CSV/TSV/text, Dektak, Gwyddion text, X3P; runs without the GIL). format: auto, csv, dektak, gwyddion or x3p; unit: m, mm, um or nm for text columns that name none. Returns a dict: kind 'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings. Metres."""
 
-def rotate180(profile: Profile) -> Profile: ...
+def rotate180(profile: Profile) -> Profile:
+    """The profile (m) turned over by 180 degrees (x -> -x, z -> -z, re-sorted): how an upper block's face, measured with its material below, faces the lower one"""
 
-def sawtooth_profile(rise_angle: float = ..., rise_fraction: float = ..., wavelength: float = ..., length: float = ...) -> Profile: ...
+def sawtooth_profile(**kwargs: Any) -> Profile:
+    """sawtooth_profile(**params) -> Profile
 
-def self_affine_profile(points: int = ..., length: float = ..., hurst: float = ..., rms_height: float = ..., seed: int = ...) -> Profile: ...
+    Asymmetric sawtooth, generated with the keywords below (SI units; unknown keywords are a TypeError, bad values a ValueError):
+        rise_angle [rad]: Slope angle of the rising flank (default 0.3490658504; valid (0, 1.570796327))
+        rise_fraction: Fraction of the wavelength that rises (default 0.5; valid (0, 1))
+        wavelength [m]: Wavelength lambda (default 0.01; valid > 0)
+        length [m]: Length L_b of the surface, a whole number of wavelengths (default 0.2; valid > 0)"""
+
+def self_affine_profile(**kwargs: Any) -> Profile:
+    """self_affine_profile(**params) -> Profile
+
+    Random self-affine profile (midpoint displacement), generated with the keywords below (SI units; unknown keywords are a TypeError, bad values a ValueError):
+        points: Number of points (default 1024; valid 16..500000000)
+        length [m]: Length L_b of the surface (default 0.001; valid > 0)
+        hurst: Hurst exponent H (default 0.8; valid (0, 1])
+        rms_height [m]: RMS height about the mean; <= 0 keeps the raw heights (default 1e-06; valid any finite number)
+        seed: Seed of the random phases or heights (default 1; valid 0..9.2e+18)"""
 
 def signature(lower: Profile, upper: Optional[Profile] = ..., *, rotate_upper: bool = ..., slopes: str = ..., offsets: int = ..., offset_range: Optional[Tuple[float, float]] = ..., threads: int = ..., keep_contacts: bool = ..., bins: int = ...) -> dict:
-    """Signature function. `upper` is a surface as measured (rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. Angles in radians."""
+    """Signature function theta(x_ofs) of two profiles (runs without the GIL). `upper` is a surface as measured (rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores. Returns offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events."""
 
-def sine_profile(amplitude: float = ..., wavelength: float = ..., length: float = ..., points_per_wavelength: int = ...) -> Profile: ...
+def sine_profile(**kwargs: Any) -> Profile:
+    """sine_profile(**params) -> Profile
 
-def tilt(lower: Any, upper: Any = ..., *, atomic_friction: float = ..., reverse: bool = ..., tilt_rate: float = ..., time_step: float = ..., radius: float = ..., block_height: float = ..., density: float = ..., normal_stiffness: float = ..., tangential_stiffness: float = ..., normal_damping: float = ..., tangential_damping: float = ..., restitution: float = ..., face: str = ..., period: float = ..., series_interval: float = ..., max_tilt: float = ..., initial_offset: Optional[float] = ...) -> dict:
-    """Tilting-block test (paper Sec. IV, Table I/II defaults). Surfaces as measured; upper defaults to lower. period: surfaces' period for the prediction and the run-away distance (m; <= 0: none); initial_offset: shift of the upper block (m; default: the deepest nesting from the signature). Returns friction_angle (rad), predicted_friction_angle, and the Fig. 7 series."""
+    Sinusoid z = A sin(2 pi x / lambda), generated with the keywords below (SI units; unknown keywords are a TypeError, bad values a ValueError):
+        amplitude [m]: Amplitude A of z = A sin(2 pi x / lambda) (default 0.001; valid >= 0)
+        wavelength [m]: Wavelength lambda (default 0.01; valid > 0)
+        length [m]: Length L_b of the surface, a whole number of wavelengths (default 0.2; valid > 0)
+        points_per_wavelength: Samples per wavelength (default 64; valid 4..10000000)"""
+
+def study_export(store: str, directory: str) -> List[str]:
+    """Writes the store as CSV files under directory (tasks.csv, PART.csv, PART-arrays.csv, PART-pooled-pdfs.csv, report.md); returns the file names.
+
+    Columns are named with their units (_m, _deg, _s; unitless otherwise)."""
+
+def study_kinds() -> Any:
+    """The task kinds of this build: a list of dicts (name, description, version, available, reason, outputs with name/unit/description/array, plots: the plot views scripts/plot_studies.py draws).
+
+    Each output names its unit (SI: m, rad, s; angles in study outputs are in deg as their names say)."""
+
+def study_report(store: str) -> str:
+    """The report of a store (Markdown): per-part tables and the paper's findings checked.
+
+    Numbers carry their units in the text (deg, m, unitless ratios)."""
+
+def study_rows(store: str, part: str = ..., arrays: bool = ...) -> list:
+    """The done tasks of a store (or of one part): dicts with task_id, part, kind, params, scalars and arrays (numpy).
+
+    Units: SI (m, rad, s) and deg, as the column names say (_m, _deg, _s)."""
+
+def study_run(study: str, store: str, threads: int = ..., quick: bool = ..., parts: List[str] = ..., skip_unavailable: bool = ...) -> dict:
+    """Runs (or resumes) a study file into an SQLite store on threads (0 = every core); returns a summary dict.
+
+    study, store: file paths; parameters in the study file use SI units (m, s), angles in deg."""
+
+def study_status(store: str) -> dict:
+    """How far a store is (as `frictal study status --json`).
+
+    Returns counts of tasks (unitless) and times in s."""
+
+def surface(generator: str, **kwargs: Any) -> Profile:
+    """surface(generator, **params) -> Profile
+
+    A generated profile: generator is 'koch', 'wm', 'sawtooth', 'sine' or 'self-affine'; params are that generator's keywords (see generators() and each <name>_profile function; SI units: metres, radians). Koch: the upper envelope."""
+
+def surface_curve(generator: str, **kwargs: Any) -> tuple:
+    """surface_curve(generator, **params) -> (x, z)
+
+    The generated surface as a curve (Koch: the full, possibly folded curve), two arrays of metres. params: the generator's keywords in SI units (m, rad)."""
+
+def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
+    """tilt(lower, upper=None, **settings) -> dict
+
+    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, predicted_theta_max (rad), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
+        normal_stiffness [N/m]: Normal contact stiffness k_n (default 600000; valid > 0)
+        tangential_stiffness [N/m]: Tangential contact stiffness k_t (default 60000; valid >= 0)
+        normal_damping [1/s]: Normal damping gamma_n (default 929.5; valid >= 0)
+        tangential_damping [1/s]: Tangential damping gamma_t (default 4; valid >= 0)
+        atomic_friction: Atomic (Coulomb) friction coefficient mu_a (default 0; valid >= 0)
+        restitution: Restitution eps of Eq. 12 on the upper block's mass; > 0 replaces normal_damping (default 0; valid [0, 1])
+        block_height [m]: Block height h below the surface minimum (default 0.01; valid > 0)
+        radius [m]: Spheroradius r of both blocks (default 5e-05; valid > 0)
+        density [kg/m^2]: Areal density rho of both blocks (default 50; valid > 0)
+        gravity [m/s^2]: Gravitational acceleration g (default 9.81; valid >= 0)
+        face: Block face of a folded surface: the full curve or its upper envelope (default 'curve'; valid curve or envelope)
+        initial_offset [m]: Shift of the upper block along x; auto: the offset of least lift from the signature (default None (auto); valid any finite number)
+        placement_gap [m]: Clearance between the blocks when placed (default 2e-05; valid >= 0)
+        period [m]: Period of both surfaces (<= 0: not periodic; the offsets then span half the length) (default 0.01; valid any finite number)
+        predict: Compute the signature prediction theta_max + atan(mu_a) (default True; valid true or false)
+        tilt_rate [rad/s]: Angular velocity of the lower block (default 0.05; valid > 0)
+        reverse: Tilt the other way: the upper block slides towards -x (default False; valid true or false)
+        settle_time [s]: Free settling before the tilt starts (default 0.1; valid >= 0)
+        max_tilt [rad]: Give up (no slide) beyond this tilt (default 1.553343034; valid (0, 1.570796327))
+        runaway_distance [m]: Sliding for good: growth of the displacement since the last stick (default 0.01; valid > 0)
+        stick_speed [m/s]: Relative speed counted as stuck (default 1e-05; valid > 0)
+        stick_duration [s]: Shortest stick (default 0.02; valid >= 0)
+        time_step [s]: Time step of the explicit integrator (default 1e-05; valid > 0)
+        skin [m]: Neighbour-list skin (default 5e-05; valid >= 0)
+        max_steps_beyond_limit: Stop after this many steps (in total) beyond the explicit stability limit (default 1000; valid 0..2147483647)
+        series_interval [s]: Time between rows of the time series; 0: none (default 0.001; valid >= 0)
+        frame_interval [s]: Time between frames; 0: none (default 0; valid >= 0)"""
+
+def tilt_settings() -> list:
+    """tilt_settings() -> list
+
+    The tilt test's settings table: one dict per keyword of tilt() (name, type, unit (SI), default, min, max, choices, help). The same names are the `frictal tilt` options (--kebab-case, degrees) and the 'tilt' study kind's TOML keys."""
 
 def upper_envelope(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArray[numpy.float64]) -> Profile:
-    """Exact upper envelope of a polyline curve"""
+    """Exact upper envelope of a polyline curve (x, z in metres) as a Profile"""
 
-def wm_profile(dimension: float = ..., gamma: float = ..., n_max: int = ..., longest_wavelength: float = ..., length: float = ..., rms_height: float = ..., stochastic: bool = ..., seed: int = ..., exponent: str = ..., spacing: float = ...) -> Profile:
-    """Weierstrass-Mandelbrot profile (Eq. 14-17)"""
+def wm_profile(**kwargs: Any) -> Profile:
+    """wm_profile(**params) -> Profile
 
-def write_profile_csv(path: str, profile: Profile) -> None: ...
+    Weierstrass-Mandelbrot profile (Eq. 14-17), generated with the keywords below (SI units; unknown keywords are a TypeError, bad values a ValueError):
+        dimension: Fractal dimension D (default 1.5; valid [1, 2])
+        gamma: Wavelength density gamma (default 1.5; valid > 1)
+        n_max: Highest wavelength index n_max (default 10; valid 0..60)
+        longest_wavelength [m]: Longest wavelength L (default 1e-06; valid > 0)
+        length [m]: Length L_b of the surface (default 2e-05; valid > 0)
+        rms_height [m]: RMS height about the mean; <= 0 keeps G = 1 m (default 1e-09; valid any finite number)
+        stochastic: Random phases (Eq. 14); false: zero phases (Eq. 17) (default True; valid true or false)
+        seed: Seed of the random phases or heights (default 1; valid 0..9.2e+18)
+        exponent: Exponent of Eq. 14: printed gamma^{2(D-2)n} or common gamma^{(D-2)n} (default 'printed'; valid printed or common)
+        spacing [m]: Point spacing dx; 0: L_s / 10 (Eq. 16) (default 0; valid >= 0)"""
+
+def write_profile_csv(path: str, profile: Profile) -> None:
+    """Writes a profile as CSV with columns x_m,z_m (metres, 17 significant digits); errors name the path"""
 
 def write_x3p(path: str, heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, x0: float = ..., y0: float = ..., type: str = ..., binary: bool = ...) -> None:
-    """Writes a map (ny, nx) as ISO 25178-71 X3P"""
+    """Writes a map of heights (ny, nx) in m on spacings dx, dy (m), origin x0, y0 (m) as ISO 25178-71 X3P; type: feature type D (areal) or S; binary: binary point data"""

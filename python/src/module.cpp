@@ -74,7 +74,8 @@ PYBIND11_MODULE(_core, m) {
     d["git_commit"] = frictal::git_commit();
     d["build_type"] = frictal::build_type();
     return d;
-  }, "Version, git commit and CMake build type of the compiled core (dict of str).");
+  }, "Version, git commit and CMake build type of the compiled core.\n\n"
+     "Returns a dict of str (unitless): version (from CMakeLists.txt), git_commit, build_type.");
 
   py::class_<Profile>(m, "Profile", "Single-valued piecewise-linear profile z(x) in metres")
       .def(py::init([](py::array_t<double, py::array::c_style | py::array::forcecast> x,

@@ -56,7 +56,8 @@ void frictal_bind_study(py::module_& m) {
         return all["kinds"];
       },
       "The task kinds of this build: a list of dicts (name, description, version, available, reason, outputs with "
-      "name/unit/description/array, plots: the plot views scripts/plot_studies.py draws)");
+      "name/unit/description/array, plots: the plot views scripts/plot_studies.py draws).\n\n"
+      "Each output names its unit (SI: m, rad, s; angles in study outputs are in deg as their names say).");
   m.def(
       "study_run",
       [](const std::string& study_file, const std::string& store_path, unsigned threads, bool quick,
@@ -85,7 +86,8 @@ void frictal_bind_study(py::module_& m) {
       },
       py::arg("study"), py::arg("store"), py::arg("threads") = 0, py::arg("quick") = false,
       py::arg("parts") = std::vector<std::string>{}, py::arg("skip_unavailable") = false,
-      "Runs (or resumes) a study file into an SQLite store on threads (0 = every core); returns a summary dict");
+      "Runs (or resumes) a study file into an SQLite store on threads (0 = every core); returns a summary dict.\n\n"
+      "study, store: file paths; parameters in the study file use SI units (m, s), angles in deg.");
   m.def(
       "study_status",
       [](const std::string& path) {
@@ -112,15 +114,18 @@ void frictal_bind_study(py::module_& m) {
         d["parts"] = parts;
         return d;
       },
-      py::arg("store"), "How far a store is (as `frictal study status --json`)");
+      py::arg("store"), "How far a store is (as `frictal study status --json`).\n\n"
+      "Returns counts of tasks (unitless) and times in s.");
   m.def(
       "study_report", [](const std::string& path) { return render_markdown(ok(report(*open_existing(path)))); },
-      py::arg("store"), "The report of a store (Markdown): per-part tables and the paper's findings checked");
+      py::arg("store"), "The report of a store (Markdown): per-part tables and the paper's findings checked.\n\n"
+      "Numbers carry their units in the text (deg, m, unitless ratios).");
   m.def(
       "study_export", [](const std::string& path, const std::string& dir) { return ok(export_csv(*open_existing(path), dir)); },
       py::arg("store"), py::arg("directory"),
       "Writes the store as CSV files under directory (tasks.csv, PART.csv, PART-arrays.csv, PART-pooled-pdfs.csv, "
-      "report.md); returns the file names");
+      "report.md); returns the file names.\n\n"
+      "Columns are named with their units (_m, _deg, _s; unitless otherwise).");
   m.def(
       "study_rows",
       [](const std::string& path, const std::string& part, bool arrays) {
@@ -143,5 +148,6 @@ void frictal_bind_study(py::module_& m) {
       },
       py::arg("store"), py::arg("part") = "", py::arg("arrays") = true,
       "The done tasks of a store (or of one part): dicts with task_id, part, kind, params, scalars and arrays "
-      "(numpy); SI units and degrees as the column names say");
+      "(numpy).\n\n"
+      "Units: SI (m, rad, s) and deg, as the column names say (_m, _deg, _s).");
 }

@@ -18,7 +18,7 @@ name = "theory"
 kind = "koch-signature"
 [part.parameters]
 iterations = [0, 1, 2]
-alpha_deg = 10.0
+alpha = 10.0
 length = 0.01
 """
 
@@ -66,7 +66,7 @@ def test_run_status_rows_report_export(tmp_path):
     files = frictal.study_export(store, str(tmp_path / "csv"))
     assert files[0] == "tasks.csv" and "theory.csv" in files and files[-1] == "report.md"
     wide = (tmp_path / "csv" / "theory.csv").read_text().splitlines()
-    assert wide[0].startswith("task_id,alpha_deg,iterations,length,")
+    assert wide[0].startswith("task_id,alpha,iterations,length,")
     assert len(wide) == 4
     phi = float(wide[3].split(",")[wide[0].split(",").index("friction_angle_deg")])
     assert math.isclose(phi, 20.0, abs_tol=1e-9)  # K2 at alpha = 10 deg: phi = 2 alpha

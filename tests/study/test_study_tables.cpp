@@ -30,6 +30,11 @@ Value bad_value(const Field& f) {
   return std::string("?");
 }
 
+/// Runs a task kind of the default registry.
+frictal::Result<TaskOutput> run_kind(const std::string& name, const Params& p, std::uint64_t seed) {
+  return default_registry().find(name)->run(p, seed);
+}
+
 }  // namespace
 
 TEST(StudyTables, TiltKindReadsEveryTiltSettingAndKochParameter) {
@@ -38,7 +43,7 @@ TEST(StudyTables, TiltKindReadsEveryTiltSettingAndKochParameter) {
   for (const Field& f : fields) {
     Params p{{"iterations", std::int64_t{0}}, {"alpha", 5.0}, {"length", 0.02}, {"max_tilt", 1.0}};
     p[f.name] = bad_value(f);
-    auto r = run_tilt_task(p, 0);
+    auto r = run_kind("tilt", p, 0);
     ASSERT_FALSE(r.ok()) << f.name;
     EXPECT_NE(r.error().message.find("parameter '" + f.name + "'"), std::string::npos) << r.error().message;
   }
@@ -49,28 +54,28 @@ TEST(StudyTables, TiltKindTakesDegreesAndTheGeneratorsPeriod) {
   // prediction is alpha + atan(mu_a) (Sec. III, Eq. 6) whatever the run does.
   Params p{{"iterations", std::int64_t{0}}, {"alpha", 10.0}, {"length", 0.02}, {"max_tilt", 2.0},
            {"atomic_friction", 0.25}, {"time_step", 2e-5}};
-  auto r = run_tilt_task(p, 0);
+  auto r = run_kind("tilt", p, 0);
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_NEAR(r->scalars.at("predicted_friction_angle_deg"), 10 + std::atan(0.25) * 180 / std::numbers::pi, 1e-9);
   EXPECT_EQ(r->scalars.at("slid"), 0);  // 2 deg of tilt is below 10 deg + atan(0.25)
   EXPECT_DOUBLE_EQ(r->scalars.at("time_step_s"), 2e-5);
   // A sawtooth by name: the prediction is its rise angle.
   Params s{{"generator", std::string("sawtooth")}, {"rise_angle", 12.0}, {"length", 0.02}, {"max_tilt", 1.0}};
-  auto q = run_tilt_task(s, 0);
+  auto q = run_kind("tilt", s, 0);
   ASSERT_TRUE(q.ok()) << q.error().message;
   EXPECT_NEAR(q->scalars.at("predicted_theta_max_deg"), 12.0, 1e-9);
   s["generator"] = std::string("sawtoth");
-  EXPECT_FALSE(run_tilt_task(s, 0).ok());
+  EXPECT_FALSE(run_kind("tilt", s, 0).ok());
 }
 
 TEST(StudyTables, SignatureAndWmKindsReadTheirGeneratorTables) {
   for (const Field& f : find_generator("koch")->fields) {
     Params p{{"iterations", std::int64_t{0}}, {"alpha", 5.0}, {"length", 0.01}};
     p[f.name] = bad_value(f);
-    auto r = run_koch_signature(p, 0);
+    auto r = run_kind("koch-signature", p, 0);
     ASSERT_FALSE(r.ok()) << f.name;
     EXPECT_NE(r.error().message.find("parameter '" + f.name + "'"), std::string::npos) << r.error().message;
-    auto d = run_divider_task(p, 0);
+    auto d = run_kind("divider", p, 0);
     ASSERT_FALSE(d.ok()) << f.name;
     EXPECT_NE(d.error().message.find("parameter '" + f.name + "'"), std::string::npos) << d.error().message;
   }
@@ -79,7 +84,7 @@ TEST(StudyTables, SignatureAndWmKindsReadTheirGeneratorTables) {
     if (f.name == "rms_height") continue;                      // any value is valid (<= 0 keeps G = 1)
     Params p{{"dimension", 1.5}, {"n_max", std::int64_t{3}}};
     p[f.name] = bad_value(f);
-    auto r = run_wm_pair_statistics(p, 1);
+    auto r = run_kind("wm-pair-statistics", p, 1);
     ASSERT_FALSE(r.ok()) << f.name;
     EXPECT_NE(r.error().message.find("parameter '" + f.name + "'"), std::string::npos) << r.error().message;
   }
@@ -87,19 +92,19 @@ TEST(StudyTables, SignatureAndWmKindsReadTheirGeneratorTables) {
 
 TEST(StudyTables, RetiredOrMistypedKeysAreRefusedNotIgnored) {
   Params p{{"iterations", std::int64_t{0}}, {"alpha_deg", 5.0}, {"length", 0.02}};
-  auto r = run_tilt_task(p, 0);
+  auto r = run_kind("tilt", p, 0);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("parameter 'alpha_deg' is not a parameter of task kind 'tilt'; did you mean 'alpha'?"),
             std::string::npos)
       << r.error().message;
   p = {{"iterations", std::int64_t{0}}, {"alpha", 5.0}, {"spheroradius", 5e-5}};
-  EXPECT_FALSE(run_tilt_task(p, 0).ok());
+  EXPECT_FALSE(run_kind("tilt", p, 0).ok());
   p = {{"iterations", std::int64_t{0}}, {"alpha", 5.0}, {"lenght", 0.01}};
-  r = run_koch_signature(p, 0);
+  r = run_kind("koch-signature", p, 0);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("did you mean 'length'?"), std::string::npos) << r.error().message;
-  EXPECT_FALSE(run_divider_task(p, 0).ok());
-  EXPECT_FALSE(run_wm_pair_statistics({{"dimension", 1.5}, {"rms", 1e-9}}, 1).ok());
+  EXPECT_FALSE(run_kind("divider", p, 0).ok());
+  EXPECT_FALSE(run_kind("wm-pair-statistics", {{"dimension", 1.5}, {"rms", 1e-9}}, 1).ok());
 }
 
 TEST(StudyTables, ShippedStudiesUseOnlyTheKindsNames) {
