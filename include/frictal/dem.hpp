@@ -13,10 +13,14 @@
 //
 // Layout (MuJoCo-like): make_model() validates definitions into a constant Model (shapes, mass
 // properties, parameters, flat arrays); make_state() creates the mutable State (poses,
-// velocities, neighbour list, per-pair springs, counters, timings); step(model, state) advances
-// one fixed time step. A sweep copies only State. Nothing here allocates in the contact loop,
-// prints, throws on numerical trouble, or keeps global state; the result is bitwise
-// deterministic for a given build (-ffp-contract=off, fixed evaluation order).
+// velocities, neighbour list with the per-pair springs, counters, timings, and an opaque private
+// workspace); step(model, state) advances one fixed time step. A sweep copies only State.
+// Nothing here allocates in the contact loop, prints, throws on numerical trouble, or keeps
+// global state; the result is bitwise deterministic for a given build (-ffp-contract=off, fixed
+// evaluation order). Sources, one subsystem each (src/dem/): model.cpp (definitions, mass
+// properties), neighbor_list.cpp, contact_geometry.cpp (hot list, distance passes),
+// force_law.cpp (Eq. 7-11, sums per body), stability.cpp (explicit limit), integrator.cpp
+// (step, guards).
 //
 // Integration: velocity Verlet in kick-drift-kick form (second order for position-dependent
 // forces, exact for constant forces such as free fall). The dashpots use the half-step velocity
@@ -33,6 +37,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "frictal/result.hpp"
@@ -132,7 +137,8 @@ struct Model {
 };
 
 /// One candidate pair of the neighbour list: vertex `vertex` of body `vbody` against the edge
-/// (edge0, edge1) of body `ebody`. Global vertex ids. `elongation` is the tangential spring xi.
+/// (edge0, edge1) of body `ebody`. Global vertex ids. `elongation` is the tangential spring xi,
+/// the one piece of contact history (carried across list rebuilds by `key`).
 struct NeighborPair {
   std::uint64_t key = 0;      ///< (vertex << 32) | edge0, sorted ascending
   std::uint32_t vertex = 0;
@@ -140,47 +146,9 @@ struct NeighborPair {
   std::uint32_t edge1 = 0;
   std::uint32_t vbody = 0;
   std::uint32_t ebody = 0;
-  std::uint32_t slot_vertex = 0;  ///< index of `vertex` in State::active_vertex
-  std::uint32_t slot_edge0 = 0;   ///< index of `edge0` in State::active_vertex
-  std::uint32_t slot_edge1 = 0;   ///< index of `edge1` in State::active_vertex
   double reduced_mass = 0;    ///< m1 m2 / (m1 + m2), or the dynamic body's mass (unit: kg)
   double elongation = 0;      ///< xi (unit: m)
   double overlap = 0;         ///< last overlap, <= 0 when apart (unit: m)
-};
-
-/// cos and sin of a body's angle.
-struct Rotation {
-  double c = 1;
-  double s = 0;
-};
-
-/// One touching pair in the contact loop (scratch): its geometry from the distance pass, then
-/// its force, torques and mode-matrix terms from the force pass.
-struct ContactScratch {
-  std::uint32_t pair = 0;  ///< index in State::pairs
-  double sx = 0, sy = 0, dist2 = 0, dx = 0, dy = 0, vx = 0, vy = 0;
-  double fx = 0, fy = 0, torque_a = 0, torque_b = 0, nx = 0, ny = 0, jt_a = 0, jt_b = 0, mred = 0;
-};
-
-/// Hot list inside the neighbour list: the list pairs closer than r1 + r2 + hot_skin at the last
-/// full pass over the list (poses `position` / `angle`). Until the relative motion of the bodies
-/// since then exceeds hot_skin / 2, the other pairs cannot touch and only these are evaluated.
-/// Per hot pair: the vertex in its body's frame and the edge in the edge body's frame (constants
-/// of the rigid bodies), for a filter pass that needs no world coordinates. Invalidated by every
-/// list rebuild.
-struct HotList {
-  std::vector<std::uint32_t> pair;  ///< indices into State::pairs, ascending
-  std::vector<double> vx, vy;       ///< vertex, its body's frame (unit: m)
-  std::vector<double> e0x, e0y, e1x, e1y, dx, dy;  ///< edge ends and edge vector, the edge body's frame (unit: m)
-  std::vector<double> inv_len2;     ///< 1 / |edge|^2 (unit: 1/m^2)
-  std::vector<double> cut2;         ///< filter radius squared, ((r1 + r2)(1 + 1e-3))^2 (unit: m^2)
-  std::vector<std::uint32_t> run_begin;  ///< runs of equal (vertex body, edge body): [run_begin[r], run_begin[r+1])
-  std::vector<std::uint32_t> run_vbody, run_ebody;
-  std::vector<unsigned char> keep;  ///< scratch: filter result per hot pair
-  std::vector<Vec2> position;       ///< poses at the last full pass
-  std::vector<double> angle;
-  std::vector<Rotation> rotation;
-  bool valid = false;
 };
 
 /// Cumulative wall time per stage of step() (unit: s) and counters.
@@ -194,6 +162,29 @@ struct StepTimings {
   std::uint64_t hot_refreshes = 0;    ///< full passes over the list that rebuilt the hot list
 };
 
+namespace detail {
+struct Workspace;  // src/dem/workspace.hpp
+}
+
+/// Private working memory of step(): cached rotations, the poses of the last list build and of
+/// the last full contact pass, the hot list, and the scratch buffers of the list builder and the
+/// contact passes (src/dem/workspace.hpp). Opaque; owned by its State and copied with it (a copy
+/// continues bitwise like the original).
+class StateWorkspace {
+ public:
+  StateWorkspace();
+  ~StateWorkspace();
+  StateWorkspace(const StateWorkspace& other);
+  StateWorkspace& operator=(const StateWorkspace& other);
+  StateWorkspace(StateWorkspace&& other) noexcept;
+  StateWorkspace& operator=(StateWorkspace&& other) noexcept;
+  detail::Workspace& get() { return *p_; }
+  const detail::Workspace& get() const { return *p_; }
+
+ private:
+  std::unique_ptr<detail::Workspace> p_;
+};
+
 /// Mutable part of a simulation.
 struct State {
   double time = 0;                  ///< (unit: s)
@@ -204,18 +195,7 @@ struct State {
   std::vector<double> angular_velocity;  ///< (unit: rad/s)
   std::vector<Vec2> force;          ///< contact force on each body at `time`, gravity excluded (unit: N)
   std::vector<double> torque;       ///< contact torque about the centroid (unit: N m)
-  std::vector<NeighborPair> pairs;  ///< neighbour list
-  /// Vertices referenced by the list (global ids, ascending); their world positions are computed
-  /// once per step into active_x/active_y, so a vertex shared by several pairs costs one transform.
-  std::vector<std::uint32_t> active_vertex;
-  std::vector<double> active_x, active_y;
-  HotList hot;  ///< pairs that can touch before the next full pass (docs/dem.md sec. 2)
-  std::vector<Vec2> list_position;  ///< poses at the last list build
-  std::vector<double> list_angle;
-  std::vector<Rotation> list_rotation;
-  /// cos and sin of `angle`, refreshed by step() after each drift (a cache: code that changes
-  /// `angle` between steps needs nothing else).
-  std::vector<Rotation> rotation;
+  std::vector<NeighborPair> pairs;  ///< neighbour list with the per-pair springs
   int contact_count = 0;            ///< pairs with positive overlap at `time`
   std::vector<int> body_contacts;   ///< pairs with positive overlap per body at `time`
   /// Explicit stability limit of each dynamic body at `time` from its contact modes: with
@@ -229,12 +209,7 @@ struct State {
   double max_overlap = 0;           ///< largest overlap at `time` (unit: m)
   double elastic_energy = 0;        ///< sum of k_n overlap^2/2 + k_t xi^2/2 at `time` (unit: J)
   StepTimings timings;
-  // scratch for the list builder (kept to avoid reallocating)
-  std::vector<std::uint32_t> scratch_cells;
-  std::vector<std::uint32_t> scratch_items;
-  std::vector<NeighborPair> scratch_pairs;
-  std::vector<std::uint32_t> scratch_slot;
-  std::vector<ContactScratch> scratch_contacts;
+  StateWorkspace workspace;         ///< private (src/dem/workspace.hpp)
 };
 
 /// Validates the definitions and computes mass properties. Errors name the body and field.
