@@ -32,7 +32,9 @@ struct TiltOptions {
   double atomic_friction = 0;
   bool reverse = false;
   double tilt_rate = 0.05;
-  double dt = 1e-5;
+  double dt = TiltConfig{}.time_step;
+  bool fixed_dt = false;
+  double dt_safety = TiltConfig{}.time_step_safety;
   double skin = 5e-5;
   double settle = 0.1;
   double max_tilt_deg = 89;
@@ -106,6 +108,9 @@ int run(const TiltOptions& o) {
   cfg.tilt_rate = o.tilt_rate;
   cfg.reverse = o.reverse;
   cfg.time_step = o.dt;
+  cfg.adaptive_time_step = !o.fixed_dt;
+  cfg.time_step_safety = o.dt_safety;
+  cfg.implicit_damping = !o.fixed_dt;
   cfg.skin = o.skin;
   cfg.settle_time = o.settle;
   cfg.max_tilt = o.max_tilt_deg * kDeg;
@@ -150,6 +155,9 @@ int run(const TiltOptions& o) {
     j["setup_time_s"] = r->setup_time;
     j["us_per_step"] = us_per_step;
     j["time_step_s"] = o.dt;
+    j["adaptive_time_step"] = !o.fixed_dt;
+    j["min_time_step_s"] = r->min_time_step;
+    j["max_time_step_s"] = r->max_time_step;
     j["list_builds"] = r->timings.list_builds;
     j["steps_beyond_stability_limit"] = r->steps_beyond_limit;
     j["mean_pairs_in_list"] = r->steps ? static_cast<double>(r->timings.pairs_visited) / static_cast<double>(r->steps) : 0.0;
@@ -173,8 +181,8 @@ int run(const TiltOptions& o) {
     if (!o.no_predict)
       fmt::print("predicted (signature theta_max {:.3f} + atan(mu_a) {:.3f}): {:.3f} deg\n",
                  r->predicted_theta_max / kDeg, std::atan(o.atomic_friction) / kDeg, r->predicted_friction_angle / kDeg);
-    fmt::print("{} steps of {:.3g} s ({:.4f} s simulated) in {:.2f} s wall, {:.2f} us/step; blocks {} + {} vertices\n",
-               r->steps, o.dt, r->simulated_time, r->wall_time, us_per_step, r->lower_vertices, r->upper_vertices);
+    fmt::print("{} steps of {:.3g} to {:.3g} s ({:.4f} s simulated) in {:.2f} s wall, {:.2f} us/step; blocks {} + {} vertices\n",
+               r->steps, r->min_time_step, r->max_time_step, r->simulated_time, r->wall_time, us_per_step, r->lower_vertices, r->upper_vertices);
   }
   return 0;
 }
@@ -196,7 +204,9 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--atomic-friction", o->atomic_friction, "mu_a")->capture_default_str();
   app.add_flag("--reverse", o->reverse, "tilt the other way: the upper block slides towards -x");
   app.add_option("--tilt-rate", o->tilt_rate, "tilt rate (rad/s)")->capture_default_str();
-  app.add_option("--dt", o->dt, "time step (s)")->capture_default_str();
+  app.add_option("--dt", o->dt, "largest time step (s); with --fixed-dt the fixed step")->capture_default_str();
+  app.add_option("--dt-safety", o->dt_safety, "adaptive step: fraction of the explicit stability limit, in (0, 1]")->capture_default_str();
+  app.add_flag("--fixed-dt", o->fixed_dt, "fixed step --dt with explicit dashpots (default: adaptive step from the stability limit, implicit normal dashpots)");
   app.add_option("--skin", o->skin, "neighbour-list skin (m)")->capture_default_str();
   app.add_option("--settle", o->settle, "settling time before tilting (s)")->capture_default_str();
   app.add_option("--max-tilt", o->max_tilt_deg, "give up beyond this tilt (deg)")->capture_default_str();
@@ -224,6 +234,7 @@ std::function<int()> setup(CLI::App& app) {
       if (!(std::isfinite(v) && v > 0)) throw UsageError(fmt::format("{}: expected a positive number, got {}", name, v));
     };
     pos(o->dt, "--dt");
+    if (!(o->dt_safety > 0 && o->dt_safety <= 1)) throw UsageError(fmt::format("--dt-safety: expected a value in (0, 1], got {}", o->dt_safety));
     pos(o->tilt_rate, "--tilt-rate");
     pos(o->wavelength, "--wavelength");
     pos(o->length, "--length");

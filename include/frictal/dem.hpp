@@ -88,7 +88,25 @@ ContactParams default_contact_params();
 
 struct WorldDef {
   Vec2 gravity{0, -9.81};     ///< (unit: m/s^2)
-  double time_step = 1e-5;    ///< fixed dt > 0 (unit: s)
+  /// The fixed time step dt > 0, or with `adaptive_time_step` the largest step (unit: s).
+  double time_step = 1e-5;
+  /// Adaptive time step: after each step the next one is the smallest of `time_step`,
+  /// `time_step_safety` x the stability limit of each dynamic body (the smaller of
+  /// State::step_limit, from the contacts present now, and the limit of one new contact, which
+  /// the step must also resolve: 2 / sqrt(k_n max(1/m, extent^2 / I)), or 2 / gamma_n with
+  /// explicit dashpots), and the step in which a body moves skin / 4.
+  /// It follows the run: it shrinks when contacts pile up and grows again when they go.
+  /// Default off: a fixed step (State::time == steps x time_step exactly).
+  bool adaptive_time_step = false;
+  /// Fraction of the stability limit taken by the adaptive step, in (0, 1] (unitless).
+  double time_step_safety = 0.5;
+  /// Integrate the normal dashpots (gamma_n) implicitly: each kick of length h solves, per dynamic
+  /// body, (M + 2 h gamma_n G_m) dv = h (F + m g) with G_m = sum over its contacts of
+  /// m_red J J^T, J = (n_x, n_y, r x n), instead of dv = h M^-1 (F + m g). The damping of many
+  /// contacts acting together (rate ~ contacts x gamma_n) then no longer limits the step; it widens
+  /// the limit instead (State::step_limit). First order in dt like the
+  /// explicit dashpots; the tangential dashpots stay explicit (gamma_t << gamma_n). Default off.
+  bool implicit_damping = false;
   double skin = 5e-5;         ///< Verlet skin added to r1 + r2 for the neighbour list (unit: m)
   /// Skin of the hot list inside the neighbour list: only pairs within r1 + r2 + hot_skin at the
   /// last full pass are evaluated until the bodies have moved by hot_skin / 2 (speed only; the
@@ -105,7 +123,8 @@ struct WorldDef {
   /// (State::step_limit) in more than this many steps in total. Isolated steps beyond it while the
   /// contact count peaks are harmless (K3 at dt = 1e-5 s: 316 such steps out of 2.1 M, same
   /// friction angle as at dt/2 to 1e-4 degree); a run that lives beyond it is not (K3 at 2e-5 s:
-  /// 31 370 steps, wrong answer). Counted in State::steps_beyond_limit (unitless).
+  /// 31 370 steps, wrong answer). Counted in State::steps_beyond_limit; with
+  /// `adaptive_time_step` only counted (the next step is below the limit again) (unitless).
   int max_steps_beyond_limit = 1000;
   bool timings = true;        ///< time each stage into State::timings (costs ~4 clock reads/step)
 };
@@ -189,6 +208,9 @@ class StateWorkspace {
 struct State {
   double time = 0;                  ///< (unit: s)
   std::uint64_t steps = 0;
+  /// Step that the next call of step() takes: WorldDef::time_step when fixed, else chosen after
+  /// each step (WorldDef::adaptive_time_step) (unit: s).
+  double time_step = 0;
   std::vector<Vec2> position;       ///< centroid (unit: m)
   std::vector<double> angle;        ///< rotation from the initial orientation (unit: rad)
   std::vector<Vec2> velocity;       ///< centroid velocity (unit: m/s)
@@ -202,7 +224,9 @@ struct State {
   /// G = sum over its contacts of J J^T, J = (n_x, n_y, r x n), and M = diag(m, m, I),
   /// min(2 / sqrt(lambda_max(k_n M^-1/2 G M^-1/2)), 2 / lambda_max(gamma_n M^-1/2 G_m M^-1/2))
   /// (G_m weighted by the reduced masses); tangential terms (k_t = k_n/10, gamma_t << gamma_n)
-  /// are neglected. Infinite without contacts (unit: s).
+  /// are neglected. With WorldDef::implicit_damping: (c + sqrt(c^2 + 4 omega^2)) / omega^2, the
+  /// limit of the implicit-dashpot scheme, with c = gamma_n m_red,min omega^2 / k_n (>= 2 / omega;
+  /// damping now widens the limit). Infinite without contacts (unit: s).
   std::vector<double> step_limit;
   std::uint64_t steps_beyond_limit = 0;  ///< steps with dt above some body's stability limit (warnings)
   int consecutive_beyond_limit = 0;      ///< current run of such steps

@@ -34,6 +34,9 @@ double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_sprin
   const double kn = cp.normal_stiffness, kt = cp.tangential_stiffness, mu = cp.atomic_friction;
   const double gn = cp.normal_damping, gt = cp.tangential_damping;
   const double guard = m.def.max_overlap_ratio;
+  // The tangential springs enter the stability limit of the implicit-damping scheme only; they
+  // act only with mu_a > 0 (else they are cut back to zero).
+  const bool tangential_modes = m.def.implicit_damping && kt > 0 && mu > 0;
   NeighborPair* const pairs = st.pairs.data();
   ContactScratch* const touching = ws.touching.data();
   const std::size_t n_touching = ws.touching_count;
@@ -88,6 +91,8 @@ double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_sprin
     c.nx = nx, c.ny = ny;
     c.jt_a = cross(rax, ray, nx, ny);
     c.jt_b = cross(rbx, rby, nx, ny);
+    c.jtt_a = cross(rax, ray, tx, ty);
+    c.jtt_b = cross(rbx, rby, tx, ty);
     c.mred = mred;
   }
   // Sums per body. The force and torque sums and mode matrices of the two bodies of the current
@@ -130,6 +135,10 @@ double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_sprin
     // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
     if (inv_mass_of[a] > 0) add_outer(sa.modes, c.nx, c.ny, c.jt_a, c.mred);
     if (inv_mass_of[b] > 0) add_outer(sb.modes, c.nx, c.ny, c.jt_b, c.mred);
+    if (tangential_modes) {  // J_t = (t_x, t_y, r x t), t = (-n_y, n_x)
+      if (inv_mass_of[a] > 0) add_outer_tangential(sa.modes, -c.ny, c.nx, c.jtt_a);
+      if (inv_mass_of[b] > 0) add_outer_tangential(sb.modes, -c.ny, c.nx, c.jtt_b);
+    }
   }
   flush();
   st.contact_count = static_cast<int>(n_touching);

@@ -73,10 +73,33 @@ double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-void kick(const Model& m, State& st, double h) {
+// Kick of length h: v += h M^-1 (F + m g). With implicit damping, (M + 2 h gamma_n G_m) dv =
+// h (F + m g) per body, G_m from the last force evaluation (ws.modes): two half kicks of the same
+// forces then make v(t + dt/2) = v(t - dt/2) + dt (M + dt C)^-1 F, i.e. backward Euler in the
+// normal dashpots C = gamma_n G_m (docs/dem.md sec. 3).
+void kick(const Model& m, State& st, const Workspace& ws, double h) {
   const Vec2 g = m.def.gravity;
+  const bool implicit = m.def.implicit_damping;
+  const double c = 2.0 * h * m.def.contact.normal_damping;
   for (std::size_t b = 0; b < m.body_count(); ++b) {
     if (m.type[b] != BodyType::Dynamic) continue;
+    if (implicit && ws.body_contacts[b] > 0 && c > 0) {
+      const double* gm = ws.modes[b].gm;  // xx, xy, xt, yy, yt, tt
+      const double mass = m.mass[b];
+      const double a11 = mass + c * gm[0], a12 = c * gm[1], a13 = c * gm[2];
+      const double a22 = mass + c * gm[3], a23 = c * gm[4], a33 = m.inertia[b] + c * gm[5];
+      const double r1 = h * (st.force[b].x + mass * g.x);
+      const double r2 = h * (st.force[b].y + mass * g.y);
+      const double r3 = h * st.torque[b];
+      // Symmetric positive definite 3 x 3: Cramer's rule with the cofactors.
+      const double c11 = a22 * a33 - a23 * a23, c12 = a13 * a23 - a12 * a33, c13 = a12 * a23 - a13 * a22;
+      const double c22 = a11 * a33 - a13 * a13, c23 = a12 * a13 - a11 * a23, c33 = a11 * a22 - a12 * a12;
+      const double inv_det = 1.0 / (a11 * c11 + a12 * c12 + a13 * c13);
+      st.velocity[b].x += (c11 * r1 + c12 * r2 + c13 * r3) * inv_det;
+      st.velocity[b].y += (c12 * r1 + c22 * r2 + c23 * r3) * inv_det;
+      st.angular_velocity[b] += (c13 * r1 + c23 * r2 + c33 * r3) * inv_det;
+      continue;
+    }
     const double im = 1.0 / m.mass[b];
     st.velocity[b].x += h * (st.force[b].x * im + g.x);
     st.velocity[b].y += h * (st.force[b].y * im + g.y);
@@ -93,19 +116,20 @@ Status step(const Model& m, State& st) {
   using namespace detail;
   Workspace& ws = st.workspace.get();
   const std::size_t nb = m.body_count();
-  const double dt = m.def.time_step;
+  const double dt = m.def.adaptive_time_step ? st.time_step : m.def.time_step;
   const bool timed = m.def.timings;
   Clock::time_point t0;
   if (timed) t0 = Clock::now();
   // Kick (half step) and drift.
-  kick(m, st, 0.5 * dt);
+  kick(m, st, ws, 0.5 * dt);
   for (std::size_t b = 0; b < nb; ++b) {
     if (m.type[b] != BodyType::Dynamic) continue;
     st.position[b].x += dt * st.velocity[b].x;
     st.position[b].y += dt * st.velocity[b].y;
     st.angle[b] += dt * st.angular_velocity[b];
   }
-  const double t_new = static_cast<double>(st.steps + 1) * dt;
+  // Fixed step: time = steps x dt, without accumulated rounding.
+  const double t_new = m.def.adaptive_time_step ? st.time + dt : static_cast<double>(st.steps + 1) * dt;
   for (std::size_t b = 0; b < nb; ++b)
     if (m.type[b] == BodyType::Kinematic) kinematic_pose(m, b, t_new, st);
   st.time = t_new;
@@ -141,7 +165,7 @@ Status step(const Model& m, State& st) {
     st.timings.contacts += std::chrono::duration<double>(t1 - t0).count();
     t0 = t1;
   }
-  kick(m, st, 0.5 * dt);
+  kick(m, st, ws, 0.5 * dt);
   ++st.steps;
   // Stability guards.
   Status status = Ok{};
@@ -161,7 +185,9 @@ Status step(const Model& m, State& st) {
     }
     if (const double lim = st.step_limit[b]; dt > lim) {
       beyond = true;
-      if (st.steps_beyond_limit + 1 > static_cast<std::uint64_t>(m.def.max_steps_beyond_limit)) {
+      // The adaptive step is already below the limit again at the next step: counted only.
+      if (!m.def.adaptive_time_step &&
+          st.steps_beyond_limit + 1 > static_cast<std::uint64_t>(m.def.max_steps_beyond_limit)) {
         status = make_error(fmt::format(
             "dem: at t = {:.6g} s body {} has {} contacts and the time step is above the explicit stability "
             "limit dt = {:.3g} s (2 / damping rate or 2 / omega of its contact modes), for the {}th step: "
@@ -188,6 +214,7 @@ Status step(const Model& m, State& st) {
         "dem: an overlap reached {:.3g} of r1 + r2 (limit {:.3g}) at t = {:.6g} s with {} contacts; the "
         "stiffness is too low for the load or the time step too large: try dt <= {:.3g} s (now {:.3g} s)",
         ratio, m.def.max_overlap_ratio, st.time, st.contact_count, dt_hint(), dt));
+  if (m.def.adaptive_time_step) choose_time_step(m, st);
   if (timed) st.timings.integration += seconds_since(t0);
   return status;
 }

@@ -12,6 +12,7 @@
 #include "frictal/dem.hpp"
 #include "integrator.hpp"
 #include "neighbor_list.hpp"
+#include "stability.hpp"
 #include "workspace.hpp"
 
 namespace frictal::dem {
@@ -99,6 +100,8 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
   if (!finite_pos(world.time_step)) return bad(fmt::format("world time_step = {} s: expected a finite value > 0", world.time_step));
   if (!finite_nonneg(world.skin)) return bad(fmt::format("world skin = {} m: expected a finite value >= 0", world.skin));
   if (!finite_nonneg(world.hot_skin)) return bad(fmt::format("world hot_skin = {} m: expected a finite value >= 0", world.hot_skin));
+  if (!(std::isfinite(world.time_step_safety) && world.time_step_safety > 0 && world.time_step_safety <= 1))
+    return bad(fmt::format("world time_step_safety = {}: expected a value in (0, 1]", world.time_step_safety));
   if (!std::isfinite(world.gravity.x) || !std::isfinite(world.gravity.y)) return bad("world gravity: expected finite components");
   const ContactParams& c = world.contact;
   if (!finite_pos(c.normal_stiffness)) return bad(fmt::format("contact normal_stiffness k_n = {} N/m: expected > 0", c.normal_stiffness));
@@ -207,11 +210,13 @@ State make_state(const Model& m) {
   st.torque.assign(nb, 0.0);
   st.body_contacts.assign(nb, 0);
   st.step_limit.assign(nb, std::numeric_limits<double>::infinity());
+  st.time_step = m.def.time_step;
   for (std::size_t b = 0; b < nb; ++b)
     if (m.type[b] == BodyType::Kinematic) kinematic_pose(m, b, 0.0, st);
   update_rotation(st, ws);
   build_neighbor_list(m, st, ws);
   compute_forces(m, st, ws, 0.0);
+  if (m.def.adaptive_time_step) choose_time_step(m, st);
   return st;
 }
 

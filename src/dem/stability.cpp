@@ -36,7 +36,7 @@ double max_eigenvalue(const double a[6]) {
 // Explicit stability limit of one body from its contact modes: the stiffest mode
 // omega^2 = lambda_max(M^-1/2 k_n G M^-1/2) and the fastest damping rate
 // lambda_max(M^-1/2 gamma_n G_m M^-1/2); dt < min(2 / omega, 2 / rate).
-double mode_limit(const ModeSums& s, double mass, double inertia, double kn, double gn) {
+double mode_limit(const ModeSums& s, double mass, double inertia, double kn, double gn, bool implicit, double kt) {
   const double sm = 1.0 / mass, si = 1.0 / std::sqrt(mass * inertia), sii = 1.0 / inertia;
   const double scale[6] = {sm, sm, si, sm, si, sii};
   double k[6], c[6];
@@ -45,6 +45,20 @@ double mode_limit(const ModeSums& s, double mass, double inertia, double kn, dou
     c[i] = gn * s.gm[i] * scale[i];
   }
   const double w2 = max_eigenvalue(k);
+  if (implicit) {
+    // Scalar mode x'' = -omega^2 x - c x' under the kicks of integrator.cpp:
+    // v' = v + dt (-omega^2 x - c v) / (1 + c dt), x' = x + dt v'; stable iff
+    // omega^2 dt^2 < 2 (2 + c dt).
+    const double c_low = gn * s.mred_min * w2 / kn;
+    double limit = w2 > 0 ? (c_low + std::sqrt(c_low * c_low + 4.0 * w2)) / w2 : std::numeric_limits<double>::infinity();
+    if (kt > 0) {
+      double t[6];
+      for (int i = 0; i < 6; ++i) t[i] = kt * s.gt[i] * scale[i];
+      const double wt2 = max_eigenvalue(t);
+      if (wt2 > 0) limit = std::min(limit, 2.0 / std::sqrt(wt2));
+    }
+    return limit;
+  }
   double limit = w2 > 0 ? 2.0 / std::sqrt(w2) : std::numeric_limits<double>::infinity();
   const double rate = max_eigenvalue(c);
   if (rate > 0) limit = std::min(limit, 2.0 / rate);
@@ -53,10 +67,33 @@ double mode_limit(const ModeSums& s, double mass, double inertia, double kn, dou
 
 void update_step_limits(const Model& m, State& st, const Workspace& ws) {
   const double kn = m.def.contact.normal_stiffness, gn = m.def.contact.normal_damping;
+  const bool implicit = m.def.implicit_damping;
+  const ContactParams& cp = m.def.contact;
+  const double kt = implicit && cp.atomic_friction > 0 ? cp.tangential_stiffness : 0.0;
   for (std::size_t b = 0; b < m.body_count(); ++b)
     st.step_limit[b] = ws.inv_mass[b] > 0 && ws.body_contacts[b] > 0
-                           ? mode_limit(ws.modes[b], m.mass[b], m.inertia[b], kn, gn)
+                           ? mode_limit(ws.modes[b], m.mass[b], m.inertia[b], kn, gn, implicit, kt)
                            : std::numeric_limits<double>::infinity();
+}
+
+void choose_time_step(const Model& m, State& st) {
+  double dt = m.def.time_step;
+  const double skin = m.def.skin;
+  const double kn = m.def.contact.normal_stiffness, gn = m.def.contact.normal_damping;
+  for (std::size_t b = 0; b < m.body_count(); ++b) {
+    if (m.type[b] != BodyType::Dynamic) continue;
+    // The contacts present, and one more: the first step of a new contact is taken with the step
+    // chosen before it (its stiffest mode: one contact at the body's extent, kinematic partner).
+    const double e = m.extent[b];
+    double one_more = 2.0 / std::sqrt(kn * std::max(1.0 / m.mass[b], e * e / m.inertia[b]));
+    if (!m.def.implicit_damping && gn > 0) one_more = std::min(one_more, 2.0 / gn);
+    dt = std::min(dt, m.def.time_step_safety * std::min(st.step_limit[b], one_more));
+    // Keep the motion per step well inside the skin (the list check wants <= skin / 2).
+    const double speed = std::hypot(st.velocity[b].x, st.velocity[b].y) +
+                         std::fabs(st.angular_velocity[b]) * m.extent[b];
+    if (skin > 0 && speed * dt > 0.25 * skin) dt = 0.25 * skin / speed;
+  }
+  st.time_step = dt;
 }
 
 }  // namespace detail

@@ -9,6 +9,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "frictal/dem.hpp"
@@ -40,13 +41,17 @@ struct ContactScratch {
   std::uint32_t pair = 0;  ///< index in State::pairs
   double sx = 0, sy = 0, dist2 = 0, dx = 0, dy = 0, vx = 0, vy = 0;
   double fx = 0, fy = 0, torque_a = 0, torque_b = 0, nx = 0, ny = 0, jt_a = 0, jt_b = 0, mred = 0;
+  double jtt_a = 0, jtt_b = 0;  ///< r x t of each body (unit: m)
 };
 
 /// Sums over a body's contacts of J J^T with J = (n_x, n_y, r x n): unweighted (g) and weighted
-/// by the reduced mass (gm). Symmetric 3x3, stored xx, xy, xt, yy, yt, tt.
+/// by the reduced mass (gm); and of J_t J_t^T with J_t = (t_x, t_y, r x t) (gt, implicit damping
+/// with tangential springs only). Symmetric 3x3, stored xx, xy, xt, yy, yt, tt.
 struct ModeSums {
   double g[6] = {0, 0, 0, 0, 0, 0};
   double gm[6] = {0, 0, 0, 0, 0, 0};
+  double gt[6] = {0, 0, 0, 0, 0, 0};
+  double mred_min = std::numeric_limits<double>::infinity();  ///< smallest reduced mass (unit: kg)
 };
 
 /// Hot list inside the neighbour list: the list pairs closer than r1 + r2 + hot_skin at the last
