@@ -14,7 +14,8 @@
 // Layout (MuJoCo-like): make_model() validates definitions into a constant Model (shapes, mass
 // properties, parameters, flat arrays); make_state() creates the mutable State (poses,
 // velocities, neighbour list with the per-pair springs, counters, timings, and an opaque private
-// workspace); step(model, state) advances one fixed time step. A sweep copies only State.
+// workspace); step(model, state) advances one time step (fixed, or adaptive from the stability
+// limit of the current contacts). A sweep copies only State.
 // Nothing here allocates in the contact loop, prints, throws on numerical trouble, or keeps
 // global state; the result is bitwise deterministic for a given build (-ffp-contract=off, fixed
 // evaluation order). Sources, one subsystem each (src/dem/): model.cpp (definitions, mass

@@ -62,7 +62,7 @@ struct TiltConfig {
   /// contacts no longer limits the step. false: explicit, as before 2026-11-23.
   bool implicit_damping = true;
   double skin = 5e-5;                  ///< neighbour-list skin (unit: m)
-  int max_steps_beyond_limit = 1000;     ///< see dem::WorldDef::max_steps_beyond_limit (unitless)
+  int max_steps_beyond_limit = 1000;     ///< see dem::WorldDef::max_steps_beyond_limit; fixed step only (unitless)
   double settle_time = 0.1;            ///< free settling before the tilt starts (unit: s)
   double max_tilt = 1.553343;          ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
   double runaway_distance = 0.01;      ///< sliding "for good": growth past this, one lambda (unit: m)

@@ -1,8 +1,9 @@
-// frictal — spheropolygon engine: explicit stability limit of the time step (docs/dem.md sec. 3).
-// Per dynamic body, from its contact modes: with G = sum over its contacts of J J^T,
-// J = (n_x, n_y, r x n), and M = diag(m, m, I), the stiffest mode
+// frictal — spheropolygon engine: stability limit of the time step and the adaptive step
+// (docs/dem.md sec. 3). Per dynamic body, from its contact modes: with G = sum over its contacts
+// of J J^T, J = (n_x, n_y, r x n), and M = diag(m, m, I), the stiffest mode
 // omega^2 = lambda_max(k_n M^-1/2 G M^-1/2) and the fastest damping rate
-// c = lambda_max(gamma_n M^-1/2 G_m M^-1/2); explicit integration needs dt < min(2/omega, 2/c).
+// c = lambda_max(gamma_n M^-1/2 G_m M^-1/2); explicit dashpots need dt < min(2/omega, 2/c),
+// implicit ones dt < (c + sqrt(c^2 + 4 omega^2)) / omega^2.
 #include "stability.hpp"
 
 #include <algorithm>
@@ -33,9 +34,10 @@ double max_eigenvalue(const double a[6]) {
 
 }  // namespace
 
-// Explicit stability limit of one body from its contact modes: the stiffest mode
+// Stability limit of one body from its contact modes: the stiffest mode
 // omega^2 = lambda_max(M^-1/2 k_n G M^-1/2) and the fastest damping rate
-// lambda_max(M^-1/2 gamma_n G_m M^-1/2); dt < min(2 / omega, 2 / rate).
+// lambda_max(M^-1/2 gamma_n G_m M^-1/2); explicit dashpots: dt < min(2 / omega, 2 / rate);
+// implicit dashpots: see stability.hpp.
 double mode_limit(const ModeSums& s, double mass, double inertia, double kn, double gn, bool implicit, double kt) {
   const double sm = 1.0 / mass, si = 1.0 / std::sqrt(mass * inertia), sii = 1.0 / inertia;
   const double scale[6] = {sm, sm, si, sm, si, sii};

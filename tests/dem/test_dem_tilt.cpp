@@ -161,6 +161,11 @@ TEST(DemTilt, RejectsBadConfig) {
   auto r = frictal::run_tilt(flat(0.05), flat(0.05), cfg);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("time_step"), std::string::npos);
+  cfg.time_step = 1e-4;
+  cfg.time_step_safety = 0;
+  r = frictal::run_tilt(flat(0.05), flat(0.05), cfg);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("time_step_safety"), std::string::npos);
 }
 
 #ifdef FRICTAL_CLI_PATH
@@ -168,6 +173,7 @@ TEST(DemTiltCli, UsageErrorsExitWithTwo) {
   const std::string cli = FRICTAL_CLI_PATH;
   EXPECT_EQ(std::system((cli + " tilt --surface nope > /dev/null 2>&1").c_str()), 2 << 8);
   EXPECT_EQ(std::system((cli + " tilt --dt -1 > /dev/null 2>&1").c_str()), 2 << 8);
+  EXPECT_EQ(std::system((cli + " tilt --dt-safety 1.5 > /dev/null 2>&1").c_str()), 2 << 8);
 }
 #endif
 
