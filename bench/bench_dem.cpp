@@ -28,6 +28,11 @@ void BM_TiltSteps(benchmark::State& state) {
   cfg.series_interval = 0;
   cfg.predict = false;
   cfg.initial_offset = 0.005;  // nested (least lift for every K_n here)
+  // Cost per step on the fixed explicit 1e-5 s step, comparable with the recorded results (the
+  // tilt test's default adaptive step takes ~10x fewer, slightly dearer steps: docs/dem.md sec. 7).
+  cfg.adaptive_time_step = false;
+  cfg.implicit_damping = false;
+  cfg.time_step = 1e-5;
   double steps = 0, wall = 0, pairs = 0, evaluated = 0, builds = 0, contacts = 0;
   for (auto _ : state) {
     auto r = frictal::run_tilt(c, c, cfg);
@@ -62,6 +67,9 @@ void BM_ListRebuildK3(benchmark::State& state) {
   cfg.series_interval = 0;
   cfg.predict = false;
   cfg.initial_offset = 0.005;
+  cfg.adaptive_time_step = false;
+  cfg.implicit_damping = false;
+  cfg.time_step = 1e-5;
   double builds = 0, t = 0;
   for (auto _ : state) {
     auto r = frictal::run_tilt(c, c, cfg);

@@ -84,6 +84,8 @@ int run(TiltOptions& o) {
     j["wall_time_s"] = r->wall_time;
     j["setup_time_s"] = r->setup_time;
     j["us_per_step"] = us_per_step;
+    j["min_time_step_s"] = r->min_time_step;
+    j["max_time_step_s"] = r->max_time_step;
     j["list_builds"] = r->timings.list_builds;
     j["steps_beyond_stability_limit"] = r->steps_beyond_limit;
     j["mean_pairs_in_list"] = r->steps ? static_cast<double>(r->timings.pairs_visited) / static_cast<double>(r->steps) : 0.0;
@@ -109,8 +111,8 @@ int run(TiltOptions& o) {
     if (cfg.predict)
       fmt::print(text, "predicted (signature theta_max {:.3f} + atan(mu_a) {:.3f}): {:.3f} deg\n",
                  r->predicted_theta_max / kDeg, std::atan(cfg.contact.atomic_friction) / kDeg, r->predicted_friction_angle / kDeg);
-    fmt::print(text, "{} steps of {:.3g} s ({:.4f} s simulated) in {:.2f} s wall, {:.2f} us/step; blocks {} + {} vertices\n",
-               r->steps, cfg.time_step, r->simulated_time, r->wall_time, us_per_step, r->lower_vertices, r->upper_vertices);
+    fmt::print(text, "{} steps of {:.3g} to {:.3g} s ({:.4f} s simulated) in {:.2f} s wall, {:.2f} us/step; blocks {} + {} vertices\n",
+               r->steps, r->min_time_step, r->max_time_step, r->simulated_time, r->wall_time, us_per_step, r->lower_vertices, r->upper_vertices);
   }
   return 0;
 }

@@ -13,10 +13,15 @@
 //
 // Layout (MuJoCo-like): make_model() validates definitions into a constant Model (shapes, mass
 // properties, parameters, flat arrays); make_state() creates the mutable State (poses,
-// velocities, neighbour list, per-pair springs, counters, timings); step(model, state) advances
-// one fixed time step. A sweep copies only State. Nothing here allocates in the contact loop,
-// prints, throws on numerical trouble, or keeps global state; the result is bitwise
-// deterministic for a given build (-ffp-contract=off, fixed evaluation order).
+// velocities, neighbour list with the per-pair springs, counters, timings, and an opaque private
+// workspace); step(model, state) advances one time step (fixed, or adaptive from the stability
+// limit of the current contacts). A sweep copies only State.
+// Nothing here allocates in the contact loop, prints, throws on numerical trouble, or keeps
+// global state; the result is bitwise deterministic for a given build (-ffp-contract=off, fixed
+// evaluation order). Sources, one subsystem each (src/dem/): model.cpp (definitions, mass
+// properties), neighbor_list.cpp, contact_geometry.cpp (hot list, distance passes),
+// force_law.cpp (Eq. 7-11, sums per body), stability.cpp (explicit limit), integrator.cpp
+// (step, guards).
 //
 // Integration: velocity Verlet in kick-drift-kick form (second order for position-dependent
 // forces, exact for constant forces such as free fall). The dashpots use the half-step velocity
@@ -33,6 +38,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "frictal/result.hpp"
@@ -83,7 +89,25 @@ ContactParams default_contact_params();
 
 struct WorldDef {
   Vec2 gravity{0, -9.81};     ///< (unit: m/s^2)
-  double time_step = 1e-5;    ///< fixed dt > 0 (unit: s)
+  /// The fixed time step dt > 0, or with `adaptive_time_step` the largest step (unit: s).
+  double time_step = 1e-5;
+  /// Adaptive time step: after each step the next one is the smallest of `time_step`,
+  /// `time_step_safety` x the stability limit of each dynamic body (the smaller of
+  /// State::step_limit, from the contacts present now, and the limit of one new contact, which
+  /// the step must also resolve: 2 / sqrt(k_n max(1/m, extent^2 / I)), or 2 / gamma_n with
+  /// explicit dashpots), and the step in which a body moves skin / 4.
+  /// It follows the run: it shrinks when contacts pile up and grows again when they go.
+  /// Default off: a fixed step (State::time == steps x time_step exactly).
+  bool adaptive_time_step = false;
+  /// Fraction of the stability limit taken by the adaptive step, in (0, 1] (unitless).
+  double time_step_safety = 0.5;
+  /// Integrate the normal dashpots (gamma_n) implicitly: each kick of length h solves, per dynamic
+  /// body, (M + 2 h gamma_n G_m) dv = h (F + m g) with G_m = sum over its contacts of
+  /// m_red J J^T, J = (n_x, n_y, r x n), instead of dv = h M^-1 (F + m g). The damping of many
+  /// contacts acting together (rate ~ contacts x gamma_n) then no longer limits the step; it widens
+  /// the limit instead (State::step_limit). First order in dt like the
+  /// explicit dashpots; the tangential dashpots stay explicit (gamma_t << gamma_n). Default off.
+  bool implicit_damping = false;
   double skin = 5e-5;         ///< Verlet skin added to r1 + r2 for the neighbour list (unit: m)
   /// Skin of the hot list inside the neighbour list: only pairs within r1 + r2 + hot_skin at the
   /// last full pass are evaluated until the bodies have moved by hot_skin / 2 (speed only; the
@@ -100,7 +124,8 @@ struct WorldDef {
   /// (State::step_limit) in more than this many steps in total. Isolated steps beyond it while the
   /// contact count peaks are harmless (K3 at dt = 1e-5 s: 316 such steps out of 2.1 M, same
   /// friction angle as at dt/2 to 1e-4 degree); a run that lives beyond it is not (K3 at 2e-5 s:
-  /// 31 370 steps, wrong answer). Counted in State::steps_beyond_limit (unitless).
+  /// 31 370 steps, wrong answer). Counted in State::steps_beyond_limit; with
+  /// `adaptive_time_step` only counted (the next step is below the limit again) (unitless).
   int max_steps_beyond_limit = 1000;
   bool timings = true;        ///< time each stage into State::timings (costs ~4 clock reads/step)
 };
@@ -132,7 +157,8 @@ struct Model {
 };
 
 /// One candidate pair of the neighbour list: vertex `vertex` of body `vbody` against the edge
-/// (edge0, edge1) of body `ebody`. Global vertex ids. `elongation` is the tangential spring xi.
+/// (edge0, edge1) of body `ebody`. Global vertex ids. `elongation` is the tangential spring xi,
+/// the one piece of contact history (carried across list rebuilds by `key`).
 struct NeighborPair {
   std::uint64_t key = 0;      ///< (vertex << 32) | edge0, sorted ascending
   std::uint32_t vertex = 0;
@@ -140,47 +166,9 @@ struct NeighborPair {
   std::uint32_t edge1 = 0;
   std::uint32_t vbody = 0;
   std::uint32_t ebody = 0;
-  std::uint32_t slot_vertex = 0;  ///< index of `vertex` in State::active_vertex
-  std::uint32_t slot_edge0 = 0;   ///< index of `edge0` in State::active_vertex
-  std::uint32_t slot_edge1 = 0;   ///< index of `edge1` in State::active_vertex
   double reduced_mass = 0;    ///< m1 m2 / (m1 + m2), or the dynamic body's mass (unit: kg)
   double elongation = 0;      ///< xi (unit: m)
   double overlap = 0;         ///< last overlap, <= 0 when apart (unit: m)
-};
-
-/// cos and sin of a body's angle.
-struct Rotation {
-  double c = 1;
-  double s = 0;
-};
-
-/// One touching pair in the contact loop (scratch): its geometry from the distance pass, then
-/// its force, torques and mode-matrix terms from the force pass.
-struct ContactScratch {
-  std::uint32_t pair = 0;  ///< index in State::pairs
-  double sx = 0, sy = 0, dist2 = 0, dx = 0, dy = 0, vx = 0, vy = 0;
-  double fx = 0, fy = 0, torque_a = 0, torque_b = 0, nx = 0, ny = 0, jt_a = 0, jt_b = 0, mred = 0;
-};
-
-/// Hot list inside the neighbour list: the list pairs closer than r1 + r2 + hot_skin at the last
-/// full pass over the list (poses `position` / `angle`). Until the relative motion of the bodies
-/// since then exceeds hot_skin / 2, the other pairs cannot touch and only these are evaluated.
-/// Per hot pair: the vertex in its body's frame and the edge in the edge body's frame (constants
-/// of the rigid bodies), for a filter pass that needs no world coordinates. Invalidated by every
-/// list rebuild.
-struct HotList {
-  std::vector<std::uint32_t> pair;  ///< indices into State::pairs, ascending
-  std::vector<double> vx, vy;       ///< vertex, its body's frame (unit: m)
-  std::vector<double> e0x, e0y, e1x, e1y, dx, dy;  ///< edge ends and edge vector, the edge body's frame (unit: m)
-  std::vector<double> inv_len2;     ///< 1 / |edge|^2 (unit: 1/m^2)
-  std::vector<double> cut2;         ///< filter radius squared, ((r1 + r2)(1 + 1e-3))^2 (unit: m^2)
-  std::vector<std::uint32_t> run_begin;  ///< runs of equal (vertex body, edge body): [run_begin[r], run_begin[r+1])
-  std::vector<std::uint32_t> run_vbody, run_ebody;
-  std::vector<unsigned char> keep;  ///< scratch: filter result per hot pair
-  std::vector<Vec2> position;       ///< poses at the last full pass
-  std::vector<double> angle;
-  std::vector<Rotation> rotation;
-  bool valid = false;
 };
 
 /// Cumulative wall time per stage of step() (unit: s) and counters.
@@ -194,47 +182,59 @@ struct StepTimings {
   std::uint64_t hot_refreshes = 0;    ///< full passes over the list that rebuilt the hot list
 };
 
+namespace detail {
+struct Workspace;  // src/dem/workspace.hpp
+}
+
+/// Private working memory of step(): cached rotations, the poses of the last list build and of
+/// the last full contact pass, the hot list, and the scratch buffers of the list builder and the
+/// contact passes (src/dem/workspace.hpp). Opaque; owned by its State and copied with it (a copy
+/// continues bitwise like the original).
+class StateWorkspace {
+ public:
+  StateWorkspace();
+  ~StateWorkspace();
+  StateWorkspace(const StateWorkspace& other);
+  StateWorkspace& operator=(const StateWorkspace& other);
+  StateWorkspace(StateWorkspace&& other) noexcept;
+  StateWorkspace& operator=(StateWorkspace&& other) noexcept;
+  detail::Workspace& get() { return *p_; }
+  const detail::Workspace& get() const { return *p_; }
+
+ private:
+  std::unique_ptr<detail::Workspace> p_;
+};
+
 /// Mutable part of a simulation.
 struct State {
   double time = 0;                  ///< (unit: s)
   std::uint64_t steps = 0;
+  /// Step that the next call of step() takes: WorldDef::time_step when fixed, else chosen after
+  /// each step (WorldDef::adaptive_time_step) (unit: s).
+  double time_step = 0;
   std::vector<Vec2> position;       ///< centroid (unit: m)
   std::vector<double> angle;        ///< rotation from the initial orientation (unit: rad)
   std::vector<Vec2> velocity;       ///< centroid velocity (unit: m/s)
   std::vector<double> angular_velocity;  ///< (unit: rad/s)
   std::vector<Vec2> force;          ///< contact force on each body at `time`, gravity excluded (unit: N)
   std::vector<double> torque;       ///< contact torque about the centroid (unit: N m)
-  std::vector<NeighborPair> pairs;  ///< neighbour list
-  /// Vertices referenced by the list (global ids, ascending); their world positions are computed
-  /// once per step into active_x/active_y, so a vertex shared by several pairs costs one transform.
-  std::vector<std::uint32_t> active_vertex;
-  std::vector<double> active_x, active_y;
-  HotList hot;  ///< pairs that can touch before the next full pass (docs/dem.md sec. 2)
-  std::vector<Vec2> list_position;  ///< poses at the last list build
-  std::vector<double> list_angle;
-  std::vector<Rotation> list_rotation;
-  /// cos and sin of `angle`, refreshed by step() after each drift (a cache: code that changes
-  /// `angle` between steps needs nothing else).
-  std::vector<Rotation> rotation;
+  std::vector<NeighborPair> pairs;  ///< neighbour list with the per-pair springs
   int contact_count = 0;            ///< pairs with positive overlap at `time`
   std::vector<int> body_contacts;   ///< pairs with positive overlap per body at `time`
   /// Explicit stability limit of each dynamic body at `time` from its contact modes: with
   /// G = sum over its contacts of J J^T, J = (n_x, n_y, r x n), and M = diag(m, m, I),
   /// min(2 / sqrt(lambda_max(k_n M^-1/2 G M^-1/2)), 2 / lambda_max(gamma_n M^-1/2 G_m M^-1/2))
   /// (G_m weighted by the reduced masses); tangential terms (k_t = k_n/10, gamma_t << gamma_n)
-  /// are neglected. Infinite without contacts (unit: s).
+  /// are neglected. With WorldDef::implicit_damping: (c + sqrt(c^2 + 4 omega^2)) / omega^2, the
+  /// limit of the implicit-dashpot scheme, with c = gamma_n m_red,min omega^2 / k_n (>= 2 / omega;
+  /// damping now widens the limit). Infinite without contacts (unit: s).
   std::vector<double> step_limit;
   std::uint64_t steps_beyond_limit = 0;  ///< steps with dt above some body's stability limit (warnings)
   int consecutive_beyond_limit = 0;      ///< current run of such steps
   double max_overlap = 0;           ///< largest overlap at `time` (unit: m)
   double elastic_energy = 0;        ///< sum of k_n overlap^2/2 + k_t xi^2/2 at `time` (unit: J)
   StepTimings timings;
-  // scratch for the list builder (kept to avoid reallocating)
-  std::vector<std::uint32_t> scratch_cells;
-  std::vector<std::uint32_t> scratch_items;
-  std::vector<NeighborPair> scratch_pairs;
-  std::vector<std::uint32_t> scratch_slot;
-  std::vector<ContactScratch> scratch_contacts;
+  StateWorkspace workspace;         ///< private (src/dem/workspace.hpp)
 };
 
 /// Validates the definitions and computes mass properties. Errors name the body and field.

@@ -126,6 +126,8 @@ Status check_config(const TiltConfig& c) {
   if (!(std::isfinite(c.gravity) && c.gravity >= 0)) return make_error("tilt gravity: expected >= 0 m/s^2");
   if (!pos(c.tilt_rate)) return make_error(fmt::format("tilt tilt_rate = {} rad/s: expected > 0", c.tilt_rate));
   if (!pos(c.time_step)) return make_error(fmt::format("tilt time_step = {} s: expected > 0", c.time_step));
+  if (!(c.time_step_safety > 0 && c.time_step_safety <= 1))
+    return make_error(fmt::format("tilt time_step_safety = {}: expected a value in (0, 1]", c.time_step_safety));
   if (!(std::isfinite(c.settle_time) && c.settle_time >= 0)) return make_error("tilt settle_time: expected >= 0 s");
   if (!(c.max_tilt > 0 && c.max_tilt < 1.5707963267948966)) return make_error("tilt max_tilt: expected in (0, 90) degrees");
   if (!pos(c.runaway_distance)) return make_error(fmt::format("tilt runaway_distance = {} m: expected > 0", c.runaway_distance));
@@ -232,6 +234,9 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   dem::WorldDef wd;
   wd.gravity = {0, -cfg.gravity};
   wd.time_step = cfg.time_step;
+  wd.adaptive_time_step = cfg.adaptive_time_step;
+  wd.time_step_safety = cfg.time_step_safety;
+  wd.implicit_damping = cfg.implicit_damping;
   wd.skin = cfg.skin;
   wd.max_steps_beyond_limit = cfg.max_steps_beyond_limit;
   wd.contact = cfg.contact;
@@ -264,8 +269,10 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   // Time stepping.
   const auto run_start = Clock::now();
   dem::State st = dem::make_state(model);
-  const double dt = cfg.time_step;
+  const double dt = cfg.time_step;  // fixed step, or the largest adaptive step
+  const bool adaptive = cfg.adaptive_time_step;
   const double sgn = cfg.reverse ? -1.0 : 1.0;
+  // Fixed step: the schedule in steps. Adaptive step: in time (the same instants up to one step).
   const std::uint64_t settle_steps = static_cast<std::uint64_t>(std::ceil(cfg.settle_time / dt - 1e-9));
   const std::uint64_t series_every =
       cfg.series_interval > 0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.series_interval / dt))) : 0;
@@ -273,6 +280,26 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
       cfg.frame_interval > 0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.frame_interval / dt))) : 0;
   const std::uint64_t max_steps =
       settle_steps + static_cast<std::uint64_t>(std::ceil(cfg.max_tilt / cfg.tilt_rate / dt)) + 1;
+  double min_dt = std::numeric_limits<double>::infinity(), max_dt = 0, last_dt = dt;  // steps taken
+  const double eps_t = 1e-9 * dt;  // time comparisons of the adaptive schedule
+  const double max_time = cfg.settle_time + cfg.max_tilt / cfg.tilt_rate + dt;
+  double next_series = cfg.series_interval, next_frame = cfg.frame_interval;
+  auto series_due = [&]() {
+    if (!series_every) return false;
+    if (!adaptive) return st.steps % series_every == 0;
+    if (st.time + eps_t < next_series) return false;
+    while (next_series <= st.time + eps_t) next_series += cfg.series_interval;
+    return true;
+  };
+  auto frame_due = [&]() {
+    if (!frame_every) return false;
+    if (!adaptive) return st.steps % frame_every == 0;
+    if (st.time + eps_t < next_frame) return false;
+    while (next_frame <= st.time + eps_t) next_frame += cfg.frame_interval;
+    return true;
+  };
+  auto settling = [&](std::uint64_t i) { return adaptive ? st.time + eps_t < cfg.settle_time : i < settle_steps; };
+  auto running = [&]() { return adaptive ? st.time < max_time : st.steps < max_steps; };
 
   double d_ref = 0;
   auto measure = [&](double& d, double& v, double& fn, double& ft, double& tilt) {
@@ -316,6 +343,8 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     res.steps = st.steps;
     res.timings = st.timings;
     res.steps_beyond_limit = st.steps_beyond_limit;
+    res.min_time_step = min_dt;
+    res.max_time_step = max_dt;
     res.wall_time = std::chrono::duration<double>(Clock::now() - run_start).count();
   };
 
@@ -325,10 +354,17 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     d_ref = d;
   }
   if (frame_every) frame();
-  for (std::uint64_t i = 0; i < settle_steps; ++i) {
-    if (Status s = dem::step(model, st); !s.ok()) return with_prefix("tilt (settling): ", s.error());
-    if (series_every && st.steps % series_every == 0) record();
-    if (frame_every && st.steps % frame_every == 0) frame();
+  auto advance_one = [&]() -> Status {
+    last_dt = adaptive ? st.time_step : dt;  // the step that dem::step takes
+    Status s = dem::step(model, st);
+    min_dt = std::min(min_dt, last_dt);
+    max_dt = std::max(max_dt, last_dt);
+    return s;
+  };
+  for (std::uint64_t i = 0; settling(i); ++i) {
+    if (Status s = advance_one(); !s.ok()) return with_prefix("tilt (settling): ", s.error());
+    if (series_due()) record();
+    if (frame_due()) frame();
   }
   res.settled_overlap = st.max_overlap;
   res.settled_contacts = st.contact_count;
@@ -342,16 +378,16 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   double stick_time = st.time, stick_tilt = 0, stick_d = 0;
   double low_since = st.time;  // start of the current interval with v <= stick_speed (NaN: none)
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  while (st.steps < max_steps) {
-    if (Status s = dem::step(model, st); !s.ok()) return with_prefix("tilt: ", s.error());
-    const bool rec = series_every && st.steps % series_every == 0;
+  while (running()) {
+    if (Status s = advance_one(); !s.ok()) return with_prefix("tilt: ", s.error());
+    const bool rec = series_due();
     if (rec) record();
-    if (frame_every && st.steps % frame_every == 0) frame();
+    if (frame_due()) frame();
     double d, v, fn, ft, tilt;
     measure(d, v, fn, ft, tilt);
     if (v <= cfg.stick_speed) {
       if (std::isnan(low_since)) low_since = st.time;
-      if (st.time - low_since >= cfg.stick_duration - 0.5 * dt) {
+      if (st.time - low_since >= cfg.stick_duration - 0.5 * last_dt) {
         stick_time = st.time;
         stick_tilt = tilt;
         stick_d = d;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <set>
 #include <tuple>
+#include <utility>
 
 #include "frictal/dem.hpp"
 
@@ -276,4 +277,130 @@ TEST(DemGuard, ManyDashpotsBeyondTheExplicitLimitStop) {
   EXPECT_NE(st.error().message.find("stability limit"), std::string::npos) << st.error().message;
   EXPECT_NE(st.error().message.find("1.68e-06"), std::string::npos) << st.error().message;
   EXPECT_EQ(s.steps_beyond_limit, static_cast<std::uint64_t>(w.max_steps_beyond_limit) + 1);
+}
+
+namespace {
+
+// Diamond falling on the ground without gravity (one vertex-edge contact, normal straight up
+// through the centroid, so J = (0, 1, 0)): returns the state at the first step in contact.
+struct OneContact {
+  dem::Model model;
+  dem::State state;
+};
+
+OneContact one_contact(dem::WorldDef w) {
+  w.gravity = {0, 0};
+  dem::BodyDef b = diamond(2 * 5e-5 + 1e-6, 0.02, 0.03);
+  b.velocity = {0, -0.01};
+  auto m = dem::make_model(w, {ground(), b});
+  EXPECT_TRUE(m.ok());
+  dem::State s = dem::make_state(*m);
+  for (int i = 0; i < 100000 && s.contact_count == 0; ++i) EXPECT_TRUE(dem::step(*m, s).ok());
+  EXPECT_EQ(s.contact_count, 1);
+  return {std::move(*m), std::move(s)};
+}
+
+}  // namespace
+
+TEST(DemStability, OneContactLimitsAreThoseOfTheScalarOscillator) {
+  // One contact on mass m (kinematic partner, reduced mass m): omega^2 = k_n / m, damping rate
+  // c = gamma_n. Explicit dashpots: min(2 / omega, 2 / c). Implicit dashpots: the scheme
+  // v' = v + dt (-omega^2 x - c v) / (1 + c dt), x' = x + dt v' is stable iff
+  // omega^2 dt^2 < 2 (2 + c dt), i.e. dt < (c + sqrt(c^2 + 4 omega^2)) / omega^2.
+  dem::WorldDef w;
+  w.time_step = 1e-5;
+  w.contact.normal_damping = 5000;  // 2 / c = 4e-4 s binds before 2 / omega ~ 6.3e-4 s
+  OneContact ex = one_contact(w);
+  const double m = ex.model.mass[1], k = 6e5, c = 5000;
+  const double w2 = k / m;
+  EXPECT_NEAR(ex.state.step_limit[1], std::min(2 / std::sqrt(w2), 2 / c), 1e-9 * (2 / c));
+  w.implicit_damping = true;
+  OneContact im = one_contact(w);
+  const double implicit_limit = (c + std::sqrt(c * c + 4 * w2)) / w2;
+  EXPECT_GT(implicit_limit, 2 / std::sqrt(w2));
+  EXPECT_NEAR(im.state.step_limit[1], implicit_limit, 1e-9 * implicit_limit);
+}
+
+TEST(DemStability, ImplicitDampingHoldsBeyondTheExplicitLimit) {
+  // A flat block on flat ground (two contacts) with gamma_n = 2e5 1/s: the damping rate of the
+  // bounce mode is 2 gamma_n = 4e5 1/s, so an explicit step must stay below 5e-6 s. At 5e-5 s the
+  // explicit run stops on the stability guard; with implicit dashpots it comes to rest with the
+  // static overlap k_n (overlap_1 + overlap_2) = m g, as in RestingBlockOverlapIsWeightOverStiffness.
+  dem::WorldDef w;
+  w.time_step = 5e-5;
+  w.contact.normal_damping = 2e5;
+  w.max_steps_beyond_limit = 0;
+  const double r = 5e-5;
+  dem::BodyDef b = rect(-0.05, 2 * r + 1e-6, 0.1, 0.01);
+  auto m = dem::make_model(w, {ground(), b});
+  ASSERT_TRUE(m.ok());
+  dem::State s = dem::make_state(*m);
+  EXPECT_FALSE(dem::advance(*m, s, 10000).ok());
+  w.implicit_damping = true;
+  m = dem::make_model(w, {ground(), b});
+  ASSERT_TRUE(m.ok());
+  s = dem::make_state(*m);
+  ASSERT_TRUE(dem::advance(*m, s, 10000).ok());  // 0.5 s
+  const double weight = m->mass[1] * 9.81;
+  double sum = 0;
+  for (const auto& p : s.pairs)
+    if (p.overlap > 0) sum += p.overlap;
+  EXPECT_NEAR(sum, weight / 6e5, 1e-4 * weight / 6e5);
+  EXPECT_NEAR(s.force[1].y, weight, 1e-4 * weight);
+  EXPECT_EQ(s.steps_beyond_limit, 0u);
+}
+
+TEST(DemStability, AdaptiveStepIsSafetyTimesTheLimit) {
+  // A flat block (0.1 m x 0.01 m, m = 0.05 kg) settling on flat ground with an adaptive step of at
+  // most 1e-3 s and explicit dashpots. At rest it has two contacts, at its bottom corners
+  // x = +-0.05 m, normals straight up: G = diag(0, 2, 2 x 0.05^2) in (x, y, angle), so
+  // lambda_max(M^-1/2 G M^-1/2) = max(2 / m, 0.005 / I) and the limit is
+  // min(2 / sqrt(k_n lambda), 2 / (gamma_n lambda m)) (reduced mass m). The step is half that,
+  // unless one more contact (2 / sqrt(k_n max(1/m, extent^2/I)), 2 / gamma_n) binds first.
+  dem::WorldDef w;
+  w.time_step = 1e-3;
+  w.adaptive_time_step = true;
+  const double r = 5e-5;
+  dem::BodyDef b = rect(-0.05, 2 * r + 1e-6, 0.1, 0.01);
+  auto m = dem::make_model(w, {ground(), b});
+  ASSERT_TRUE(m.ok());
+  dem::State s = dem::make_state(*m);
+  while (s.time < 0.5) ASSERT_TRUE(dem::step(*m, s).ok());
+  const double mass = m->mass[1], inertia = m->inertia[1], kn = 6e5, gn = 929.5;
+  ASSERT_EQ(s.contact_count, 2);
+  const double lambda = std::max(2 / mass, 2 * 0.05 * 0.05 / inertia);
+  const double limit = std::min(2 / std::sqrt(kn * lambda), 2 / (gn * lambda * mass));
+  const double e = m->extent[1];
+  const double one_more = std::min(2 / std::sqrt(kn * std::max(1 / mass, e * e / inertia)), 2 / gn);
+  ASSERT_LT(limit, one_more);  // the two contacts bind
+  EXPECT_NEAR(s.step_limit[1], limit, 1e-9 * limit);
+  EXPECT_NEAR(s.time_step, 0.5 * limit, 1e-9 * limit);
+  // At rest as with the fixed step: k_n (overlap_1 + overlap_2) = m g.
+  const double weight = mass * 9.81;
+  double sum = 0;
+  for (const auto& p : s.pairs)
+    if (p.overlap > 0) sum += p.overlap;
+  EXPECT_NEAR(sum, weight / kn, 1e-4 * weight / kn);
+  EXPECT_EQ(s.steps_beyond_limit, 0u);
+}
+
+TEST(DemState, CopyContinuesBitwiseLikeTheOriginal) {
+  // The private workspace (hot list, list poses, scratch) is copied with the State.
+  dem::WorldDef w;
+  w.time_step = 2e-5;
+  w.contact.atomic_friction = 0.3;
+  dem::BodyDef g = ground();
+  g.motion.angular_velocity = -0.5;
+  dem::BodyDef b = diamond(2 * 5e-5 + 1e-5, 0.02, 0.01);
+  b.velocity = {0.01, -0.02};
+  auto m = dem::make_model(w, {g, b});
+  ASSERT_TRUE(m.ok());
+  dem::State s1 = dem::make_state(*m);
+  ASSERT_TRUE(dem::advance(*m, s1, 2000).ok());
+  dem::State s2 = s1;
+  ASSERT_TRUE(dem::advance(*m, s1, 3000).ok());
+  ASSERT_TRUE(dem::advance(*m, s2, 3000).ok());
+  EXPECT_EQ(s1.position[1].x, s2.position[1].x);
+  EXPECT_EQ(s1.angle[1], s2.angle[1]);
+  EXPECT_EQ(s1.velocity[1].y, s2.velocity[1].y);
 }

@@ -89,6 +89,32 @@ TEST(DemTilt, KochK0SlidesAtAlphaBothWays) {
   }
 }
 
+TEST(DemTilt, AdaptiveStepGivesTheFixedStepAngles) {
+  // The default (adaptive step up to 1e-4 s, implicit normal dashpots) against the fixed explicit
+  // 1e-5 s step, on K_0 at 20 deg with mu_a = 0 and 0.3: the same friction angle within 0.01 deg
+  // (docs/dem.md sec. 3 reports the Fig. 6 grid), in several times fewer steps.
+  const frictal::Curve k0 = koch(0, 20, 0.05);
+  for (double mu : {0.0, 0.3}) {
+    frictal::TiltConfig cfg;
+    cfg.contact.atomic_friction = mu;
+    cfg.series_interval = 0;
+    auto adaptive = frictal::run_tilt(k0, k0, cfg);
+    cfg.adaptive_time_step = false;
+    cfg.implicit_damping = false;
+    cfg.time_step = 1e-5;
+    auto fixed = frictal::run_tilt(k0, k0, cfg);
+    ASSERT_TRUE(adaptive.ok()) << adaptive.error().message;
+    ASSERT_TRUE(fixed.ok()) << fixed.error().message;
+    ASSERT_TRUE(adaptive->slid && fixed->slid);
+    EXPECT_NEAR(adaptive->friction_angle / kDeg, fixed->friction_angle / kDeg, 0.01) << "mu_a = " << mu;
+    EXPECT_NEAR(fixed->friction_angle / kDeg, 20.0 + std::atan(mu) / kDeg, 0.1);
+    EXPECT_LT(adaptive->steps * 3, fixed->steps);
+    EXPECT_EQ(fixed->min_time_step, 1e-5);
+    EXPECT_EQ(fixed->max_time_step, 1e-5);
+    EXPECT_LE(adaptive->max_time_step, 1e-4);
+  }
+}
+
 TEST(DemTilt, KochK0WithAtomicFrictionAddsThetaA) {
   // Eq. 6: phi = alpha + atan(mu_a).
   const frictal::Curve k0 = koch(0, 15, 0.05);
@@ -135,6 +161,11 @@ TEST(DemTilt, RejectsBadConfig) {
   auto r = frictal::run_tilt(flat(0.05), flat(0.05), cfg);
   ASSERT_FALSE(r.ok());
   EXPECT_NE(r.error().message.find("time_step"), std::string::npos);
+  cfg.time_step = 1e-4;
+  cfg.time_step_safety = 0;
+  r = frictal::run_tilt(flat(0.05), flat(0.05), cfg);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("time_step_safety"), std::string::npos);
 }
 
 #ifdef FRICTAL_CLI_PATH
@@ -142,6 +173,7 @@ TEST(DemTiltCli, UsageErrorsExitWithTwo) {
   const std::string cli = FRICTAL_CLI_PATH;
   EXPECT_EQ(std::system((cli + " tilt nope > /dev/null 2>&1").c_str()), 2 << 8);
   EXPECT_EQ(std::system((cli + " tilt koch --time-step -1 > /dev/null 2>&1").c_str()), 2 << 8);
+  EXPECT_EQ(std::system((cli + " tilt koch --time-step-safety 1.5 > /dev/null 2>&1").c_str()), 2 << 8);
 }
 #endif
 

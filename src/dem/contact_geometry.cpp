@@ -1,0 +1,189 @@
+// frictal — spheropolygon engine: contact geometry (docs/dem.md sec. 2 and 7). Finds the touching
+// vertex-edge pairs of the neighbour list: a full pass over the list when the hot list is stale
+// (it records the pairs within r1 + r2 + hot_skin), else a filter over the hot list in the edge
+// body's frame followed by the exact world-frame test of the kept pairs.
+#include "contact_geometry.hpp"
+
+#include <algorithm>
+#include <cstdint>
+
+#include "neighbor_list.hpp"
+
+namespace frictal::dem::detail {
+
+namespace {
+
+// Fills the hot list's arrays for the pairs in ws.hot.pair (found by a full pass at the current
+// poses): vertex in its body's frame, edge in the edge body's frame (both constant), the filter
+// radius, and the runs of equal (vertex body, edge body).
+void refresh_hot_list(const Model& m, State& st, Workspace& ws) {
+  HotList& h = ws.hot;
+  const std::size_t n = h.pair.size();
+  for (auto* v : {&h.vx, &h.vy, &h.e0x, &h.e0y, &h.e1x, &h.e1y, &h.dx, &h.dy, &h.inv_len2, &h.cut2}) v->resize(n);
+  h.keep.resize(n);
+  h.run_begin.clear();
+  h.run_vbody.clear();
+  h.run_ebody.clear();
+  for (std::size_t k = 0; k < n; ++k) {
+    const NeighborPair& p = st.pairs[h.pair[k]];
+    h.vx[k] = m.local_x[p.vertex];
+    h.vy[k] = m.local_y[p.vertex];
+    h.e0x[k] = m.local_x[p.edge0];
+    h.e0y[k] = m.local_y[p.edge0];
+    h.e1x[k] = m.local_x[p.edge1];
+    h.e1y[k] = m.local_y[p.edge1];
+    h.dx[k] = m.local_x[p.edge1] - m.local_x[p.edge0];
+    h.dy[k] = m.local_y[p.edge1] - m.local_y[p.edge0];
+    h.inv_len2[k] = m.edge_inv_length2[p.edge0];
+    const double cut = (m.radius[p.vbody] + m.radius[p.ebody]) * (1.0 + 1e-3);
+    h.cut2[k] = cut * cut;
+    if (k == 0 || p.vbody != h.run_vbody.back() || p.ebody != h.run_ebody.back()) {
+      h.run_begin.push_back(static_cast<std::uint32_t>(k));
+      h.run_vbody.push_back(p.vbody);
+      h.run_ebody.push_back(p.ebody);
+    }
+  }
+  h.run_begin.push_back(static_cast<std::uint32_t>(n));
+  h.position = st.position;
+  h.angle = st.angle;
+  h.rotation = ws.rotation;
+  h.valid = true;
+  ++st.timings.hot_refreshes;
+}
+
+}  // namespace
+
+void find_touching(const Model& m, State& st, Workspace& ws) {
+  const Pose* const ps = ws.pose.data();
+  // Hot list (docs/dem.md sec. 2): a full pass over the list records which pairs are within
+  // r1 + r2 + hot_skin; until the bodies have moved by more than hot_skin / 2 since that pass, the
+  // others are at least hot_skin / 2 apart and are skipped. A skipped pair is apart, and its
+  // spring was reset in the full pass, so the forces, their summation order and every per-pair
+  // state are exactly those of a pass over the whole list.
+  const double hot_skin = m.def.hot_skin;
+  bool full = !ws.hot.valid;
+  if (!full) full = 2.0 * relative_motion_bound(m, ws.hot.position, ws.hot.angle, ws.hot.rotation, st.position, st.angle, ws.rotation) > hot_skin;
+  const double* lx = m.local_x.data();
+  const double* ly = m.local_y.data();
+  // Local copies of everything the loop reads, so that the stores cannot alias them.
+  const double* const __restrict radius = m.radius.data();
+  const double* const __restrict inv_len2 = m.edge_inv_length2.data();
+  NeighborPair* const pairs = st.pairs.data();
+  const PairSlots* const slots = ws.slots.data();
+  HotList& hot = ws.hot;
+  const std::size_t count = full ? st.pairs.size() : hot.pair.size();
+  // Grown, never shrunk; filled field by field (no temporary to copy).
+  if (ws.touching.size() < count) ws.touching.resize(count);
+  ContactScratch* const touching = ws.touching.data();
+  std::size_t n_touching = 0;
+  // The exact test of one pair from the world positions of its vertex and edge: every decision
+  // (touching, spring reset) is taken here, in the world frame, as in a plain loop over the list.
+  auto classify = [&](std::uint32_t index, double vx, double vy, double e0x, double e0y, double e1x,
+                      double e1y) -> double {
+    NeighborPair& p = pairs[index];
+    const double dx = e1x - e0x, dy = e1y - e0y;
+    double t = ((vx - e0x) * dx + (vy - e0y) * dy) * inv_len2[p.edge0];
+    t = std::clamp(t, 0.0, 1.0);
+    const double sx = vx - (e0x + t * dx), sy = vy - (e0y + t * dy);
+    const double dist2 = sx * sx + sy * sy;
+    const double rsum = radius[p.vbody] + radius[p.ebody];
+    // Written for every pair and kept only if it touches (n_touching <= pairs seen, so the slot
+    // exists): no branch on touch / apart, close to a coin toss in the hot list.
+    ContactScratch& c = touching[n_touching];
+    c.pair = index;
+    c.sx = sx, c.sy = sy, c.dist2 = dist2, c.dx = dx, c.dy = dy, c.vx = vx, c.vy = vy;
+    const bool touch = dist2 < rsum * rsum;
+    n_touching += touch ? 1 : 0;
+    if (!touch && p.overlap > -1) {  // write only on the transition (most pairs stay apart)
+      p.elongation = 0;
+      p.overlap = -1;
+    }
+    return dist2;
+  };
+  if (full) {
+    // World positions of the vertices the list refers to, one transform each.
+    double* wx = ws.active_x.data();
+    double* wy = ws.active_y.data();
+    for (std::size_t k = 0; k < ws.active_vertex.size(); ++k) {
+      const std::uint32_t v = ws.active_vertex[k];
+      const Pose& P = ps[m.vertex_body[v]];
+      wx[k] = P.px + (P.c * lx[v] - P.s * ly[v]);
+      wy[k] = P.py + (P.s * lx[v] + P.c * ly[v]);
+    }
+    hot.pair.clear();
+    for (std::size_t i = 0; i < count; ++i) {
+      const NeighborPair& p = pairs[i];
+      const PairSlots& q = slots[i];
+      const double dist2 = classify(static_cast<std::uint32_t>(i), wx[q.vertex], wy[q.vertex], wx[q.edge0],
+                                    wy[q.edge0], wx[q.edge1], wy[q.edge1]);
+      const double near = radius[p.vbody] + radius[p.ebody] + hot_skin;
+      if (dist2 < near * near) hot.pair.push_back(static_cast<std::uint32_t>(i));
+    }
+    refresh_hot_list(m, st, ws);
+    st.timings.pairs_evaluated += count;
+  } else {
+    // Filter in the edge body's frame, where the edge is constant: the vertex is moved by the
+    // relative pose of the run's two bodies, and no world positions are needed (a flat loop over
+    // the hot arrays). It keeps every pair within (r1 + r2)(1 + 1e-3); this margin (1e-7 m for
+    // r1 = r2 = 5e-5 m) dwarfs the rounding difference between the two frames (a few 1e-16 of the
+    // coordinates, i.e. ~1e-17 m for 0.1 m blocks; at coordinates of 1e5 m it is still 1000
+    // times larger), so every pair that the exact test finds touching is kept, every pair
+    // dropped is one that the exact test finds apart, and the decisions stay those of the exact
+    // test.
+    unsigned char* const __restrict keep = hot.keep.data();
+    for (std::size_t r = 0; r + 1 < hot.run_begin.size(); ++r) {
+      const std::uint32_t a = hot.run_vbody[r], b = hot.run_ebody[r];
+      const Pose& A = ps[a];
+      const Pose& B = ps[b];
+      const double cr = A.c * B.c + A.s * B.s, sr = A.s * B.c - A.c * B.s;  // rotation a -> b
+      const double ox = A.px - B.px, oy = A.py - B.py;
+      const double qx = B.c * ox + B.s * oy, qy = -B.s * ox + B.c * oy;   // centroid of a in b
+      const double* const __restrict hvx = hot.vx.data();
+      const double* const __restrict hvy = hot.vy.data();
+      const double* const __restrict he0x = hot.e0x.data();
+      const double* const __restrict he0y = hot.e0y.data();
+      const double* const __restrict hdx = hot.dx.data();
+      const double* const __restrict hdy = hot.dy.data();
+      const double* const __restrict hil = hot.inv_len2.data();
+      const double* const __restrict hcut = hot.cut2.data();
+      const std::size_t k0 = hot.run_begin[r], k1 = hot.run_begin[r + 1];
+      // Flat arrays, no gathers. (GCC 12 does not vectorise it: the clamp's comparisons count as
+      // control flow under the default -ftrapping-math.)
+      for (std::size_t k = k0; k < k1; ++k) {
+        const double px = qx + (cr * hvx[k] - sr * hvy[k]) - he0x[k];
+        const double py = qy + (sr * hvx[k] + cr * hvy[k]) - he0y[k];
+        const double t = std::clamp((px * hdx[k] + py * hdy[k]) * hil[k], 0.0, 1.0);
+        const double sx = px - t * hdx[k], sy = py - t * hdy[k];
+        keep[k] = sx * sx + sy * sy < hcut[k];
+      }
+    }
+    // World positions of the kept pairs' vertex and edge ends: the same arithmetic (pose of
+    // the owning body, local coordinates) as the full pass, hence the same values.
+    for (std::size_t r = 0; r + 1 < hot.run_begin.size(); ++r) {
+      const Pose& A = ps[hot.run_vbody[r]];
+      const Pose& B = ps[hot.run_ebody[r]];
+      for (std::size_t k = hot.run_begin[r]; k < hot.run_begin[r + 1]; ++k) {
+        const std::uint32_t index = hot.pair[k];
+        if (!keep[k]) {  // apart
+          NeighborPair& p = pairs[index];
+          if (p.overlap > -1) {
+            p.elongation = 0;
+            p.overlap = -1;
+          }
+          continue;
+        }
+        const double vx = A.px + (A.c * hot.vx[k] - A.s * hot.vy[k]);
+        const double vy = A.py + (A.s * hot.vx[k] + A.c * hot.vy[k]);
+        const double e0x = B.px + (B.c * hot.e0x[k] - B.s * hot.e0y[k]);
+        const double e0y = B.py + (B.s * hot.e0x[k] + B.c * hot.e0y[k]);
+        const double e1x = B.px + (B.c * hot.e1x[k] - B.s * hot.e1y[k]);
+        const double e1y = B.py + (B.s * hot.e1x[k] + B.c * hot.e1y[k]);
+        classify(index, vx, vy, e0x, e0y, e1x, e1y);
+      }
+    }
+    st.timings.pairs_evaluated += count;
+  }
+  ws.touching_count = n_touching;
+}
+
+}  // namespace frictal::dem::detail

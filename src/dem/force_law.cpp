@@ -1,0 +1,150 @@
+// frictal — spheropolygon engine: the contact force law (paper Eq. 7-11, docs/dem.md sec. 1) for
+// the touching vertex-edge pairs, and the sums per body.
+//   normal:     f_n = k_n overlap - m gamma_n v_n
+//   tangential: f_t = -k_t xi - m gamma_t v_t, xi <- xi + v_t dt cut back to |k_t xi| <= mu_a k_n overlap
+// Two passes in list order (docs/dem.md sec. 7): the forces of the touching pairs, each
+// independent of the others so that the long sqrt / division chains of successive contacts can
+// overlap; then the sums per body in the same order as a single loop, so the results are
+// bitwise those of one loop over the pairs.
+#include "force_law.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "stability.hpp"
+
+namespace frictal::dem::detail {
+
+namespace {
+
+double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
+
+}  // namespace
+
+double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_spring) {
+  const ContactParams& cp = m.def.contact;
+  const Pose* const ps = ws.pose.data();
+  const double* const inv_mass_of = ws.inv_mass.data();
+  int* const body_contacts = ws.body_contacts.data();
+  ModeSums* const jac = ws.modes.data();
+  double max_ov = 0, max_ratio = 0, energy = 0;
+  // Local copies of everything the loop reads, so that the force stores cannot alias them.
+  const double* const __restrict radius = m.radius.data();
+  const double kn = cp.normal_stiffness, kt = cp.tangential_stiffness, mu = cp.atomic_friction;
+  const double gn = cp.normal_damping, gt = cp.tangential_damping;
+  const double guard = m.def.max_overlap_ratio;
+  // The tangential springs enter the stability limit of the implicit-damping scheme only; they
+  // act only with mu_a > 0 (else they are cut back to zero).
+  const bool tangential_modes = m.def.implicit_damping && kt > 0 && mu > 0;
+  NeighborPair* const pairs = st.pairs.data();
+  ContactScratch* const touching = ws.touching.data();
+  const std::size_t n_touching = ws.touching_count;
+  for (std::size_t k = 0; k < n_touching; ++k) {
+    ContactScratch& c = touching[k];
+    NeighborPair& p = pairs[c.pair];
+    const std::uint32_t a = p.vbody, b = p.ebody;
+    const double rsum = radius[a] + radius[b];
+    const double vx = c.vx, vy = c.vy, dx = c.dx, dy = c.dy;
+    const Pose& A = ps[a];
+    const Pose& B = ps[b];
+    const double dist = std::sqrt(c.dist2);
+    double nx, ny;
+    if (dist > 0) {
+      const double inv = 1.0 / dist;
+      nx = c.sx * inv, ny = c.sy * inv;
+    } else {  // vertex exactly on the edge: outward normal of the (counter-clockwise) edge
+      const double l = std::sqrt(dx * dx + dy * dy);
+      nx = dy / l, ny = -dx / l;
+    }
+    const double overlap = rsum - dist;
+    max_ov = std::max(max_ov, overlap);
+    if (overlap > guard * rsum) max_ratio = std::max(max_ratio, overlap / rsum);  // rare
+    // Contact point: middle of the overlap along the normal.
+    const double cxp = vx - nx * (radius[a] - 0.5 * overlap);
+    const double cyp = vy - ny * (radius[a] - 0.5 * overlap);
+    const double rax = cxp - A.px, ray = cyp - A.py, rbx = cxp - B.px, rby = cyp - B.py;
+    const double wa = st.angular_velocity[a], wb = st.angular_velocity[b];
+    const double relx = (st.velocity[a].x - wa * ray) - (st.velocity[b].x - wb * rby);
+    const double rely = (st.velocity[a].y + wa * rax) - (st.velocity[b].y + wb * rbx);
+    const double tx = -ny, ty = nx;
+    const double vn = relx * nx + rely * ny;
+    const double vt = relx * tx + rely * ty;
+    const double mred = p.reduced_mass;
+    const double fn_el = kn * overlap;
+    double xi = p.elongation + vt * dt_spring;
+    double ft_el = -kt * xi;
+    const double limit = mu * fn_el;
+    if (std::fabs(ft_el) > limit) {
+      ft_el = ft_el > 0 ? limit : -limit;
+      xi = kt > 0 ? -ft_el / kt : 0.0;
+    }
+    p.elongation = xi;
+    p.overlap = overlap;
+    energy += 0.5 * fn_el * overlap + 0.5 * kt * xi * xi;
+    const double fn = fn_el - mred * gn * vn;
+    const double ft = ft_el - mred * gt * vt;
+    const double fx = fn * nx + ft * tx, fy = fn * ny + ft * ty;
+    c.fx = fx, c.fy = fy;
+    c.torque_a = cross(rax, ray, fx, fy);
+    c.torque_b = cross(rbx, rby, fx, fy);
+    c.nx = nx, c.ny = ny;
+    c.jt_a = cross(rax, ray, nx, ny);
+    c.jt_b = cross(rbx, rby, nx, ny);
+    c.jtt_a = cross(rax, ray, tx, ty);
+    c.jtt_b = cross(rbx, rby, tx, ty);
+    c.mred = mred;
+  }
+  // Sums per body. The force and torque sums and mode matrices of the two bodies of the current
+  // run of pairs with the same (vertex body, edge body) are kept in locals rather than summed
+  // into memory contact by contact: same additions in the same order.
+  struct BodySums {
+    double fx = 0, fy = 0, torque = 0;
+    ModeSums modes;
+  };
+  BodySums sa, sb;
+  std::uint32_t cur_a = 0, cur_b = 0;
+  bool have_run = false;
+  auto flush = [&]() {
+    if (!have_run) return;
+    st.force[cur_a] = {sa.fx, sa.fy};
+    st.torque[cur_a] = sa.torque;
+    jac[cur_a] = sa.modes;
+    st.force[cur_b] = {sb.fx, sb.fy};
+    st.torque[cur_b] = sb.torque;
+    jac[cur_b] = sb.modes;
+  };
+  for (std::size_t k = 0; k < n_touching; ++k) {
+    const ContactScratch& c = touching[k];
+    const NeighborPair& p = pairs[c.pair];
+    const std::uint32_t a = p.vbody, b = p.ebody;
+    ++body_contacts[a];
+    ++body_contacts[b];
+    if (!have_run || a != cur_a || b != cur_b) {
+      flush();
+      cur_a = a, cur_b = b, have_run = true;
+      sa = {st.force[a].x, st.force[a].y, st.torque[a], jac[a]};
+      sb = {st.force[b].x, st.force[b].y, st.torque[b], jac[b]};
+    }
+    sa.fx += c.fx;
+    sa.fy += c.fy;
+    sa.torque += c.torque_a;
+    sb.fx -= c.fx;
+    sb.fy -= c.fy;
+    sb.torque -= c.torque_b;
+    // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
+    if (inv_mass_of[a] > 0) add_outer(sa.modes, c.nx, c.ny, c.jt_a, c.mred);
+    if (inv_mass_of[b] > 0) add_outer(sb.modes, c.nx, c.ny, c.jt_b, c.mred);
+    if (tangential_modes) {  // J_t = (t_x, t_y, r x t), t = (-n_y, n_x)
+      if (inv_mass_of[a] > 0) add_outer_tangential(sa.modes, -c.ny, c.nx, c.jtt_a);
+      if (inv_mass_of[b] > 0) add_outer_tangential(sb.modes, -c.ny, c.nx, c.jtt_b);
+    }
+  }
+  flush();
+  st.contact_count = static_cast<int>(n_touching);
+  st.max_overlap = max_ov;
+  st.elastic_energy = energy;
+  return max_ratio;
+}
+
+}  // namespace frictal::dem::detail
