@@ -9,7 +9,7 @@ JOBS ?= $(shell nproc)
 export CCACHE_BASEDIR := $(CURDIR)
 BUILD ?= build/release
 
-.PHONY: all deps configure build test reproduce package bench sanitize fuzz fuzz-smoke format clean
+.PHONY: all deps configure build test reproduce package bench sanitize fuzz fuzz-smoke format stubs clean
 
 all: build
 
@@ -44,6 +44,9 @@ fuzz-smoke: deps
 
 format:
 	bash scripts/check-format --fix
+
+stubs: build
+	PYTHONPATH=$(BUILD)/python /usr/bin/python3 scripts/gen_stubs.py > python/frictal/_core.pyi
 
 sanitize: deps
 	cmake --preset sanitize && cmake --build build/sanitize -j $(JOBS)
