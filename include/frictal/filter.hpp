@@ -1,7 +1,7 @@
 // frictal — low-pass filtering of profiles: the Gaussian profile filter of ISO 16610-21, used to
 // ask how the signature depends on the resolution of a measured surface (the measured analogue
 // of the paper's Fig. 14: theta_max against the shortest wavelength kept). Definitions:
-// docs/analysis.md ("Low-pass filter").
+// docs/report.md ("Resolution").
 #pragma once
 
 #include "frictal/geometry.hpp"

@@ -77,6 +77,11 @@ struct MapImage {
   double width = 900;            ///< figure width (unit: px)
   /// Colour range as quantiles of the valid heights (outliers saturate); 0 and 1 = min and max.
   double low_quantile = 0.005, high_quantile = 0.995;
+  /// Optional: mark the line y = line_y (unit: m, map coordinates) from line_x0 to line_x1 (unit: m)
+  /// with a dashed line and `line_label` (e.g. the profile that the rest of a report uses).
+  std::optional<double> line_y;
+  double line_x0 = 0, line_x1 = 0;
+  std::string line_label;
 };
 /// An SVG figure of a height map: the map as an embedded PNG (viridis colour map, invalid points
 /// grey), lateral axes with ticks, a colour bar labelled in a length unit and a scale bar.

@@ -126,6 +126,10 @@ Result<std::string> surface_report(const ReportInput& in) {
       const MapStats st = map_stats(in.map);
       MapImage mi;
       mi.title = "Height map";
+      mi.line_y = lower.x.empty() ? std::nullopt : std::optional<double>(in.map.y0 + in.map.height() / 2);
+      mi.line_x0 = in.map.x0 + lower.x.front();  // the central line's abscissa starts at the map's x0
+      mi.line_x1 = in.map.x0 + lower.x.back();
+      mi.line_label = "line used for the signature";
       auto svg = map_svg(in.map, mi);
       if (!svg) return svg.error();
       const std::size_t f = std::max<std::size_t>(1, (std::max(in.map.nx, in.map.ny) + mi.max_pixels - 1) / mi.max_pixels);
@@ -229,14 +233,6 @@ Result<std::string> surface_report(const ReportInput& in) {
   }
   // --- slope distributions (Fig. 16 style) -------------------------------------------------------
   {
-    double lim = std::max({r.theta_max_forward, r.theta_max_backward, profile_stats(lower).max_slope,
-                           profile_stats(upper_measured).max_slope});
-    lim = std::min(std::numbers::pi / 2, lim * 1.02 + 1e-12);
-    Histogram surf;
-    // re-bin the three distributions on one common range for comparison
-    auto rebin = [&](const std::vector<double>& samples, const std::vector<double>& weights) {
-      return histogram(samples, weights, in.bins, -lim, lim);
-    };
     auto edge_samples = [](const Profile& pr, std::vector<double>& s, std::vector<double>& w) {
       for (std::size_t i = 0; i + 1 < pr.size(); ++i) {
         const double dx = pr.x[i + 1] - pr.x[i];
@@ -245,27 +241,72 @@ Result<std::string> surface_report(const ReportInput& in) {
         w.push_back(dx);
       }
     };
-    std::vector<double> ls, lw;
+    // |slope| below which a fraction q of the weight lies
+    auto quantile_abs = [](const std::vector<double>& s, const std::vector<double>& w, double q) {
+      std::vector<std::pair<double, double>> v;
+      double total = 0;
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        v.emplace_back(std::abs(s[i]), w[i]);
+        total += w[i];
+      }
+      std::sort(v.begin(), v.end());
+      double acc = 0;
+      for (const auto& [a, wt] : v) {
+        acc += wt;
+        if (acc >= q * total) return a;
+      }
+      return v.empty() ? 0.0 : v.back().first;
+    };
+    std::vector<double> ls, lw, us, uw;
     edge_samples(lower, ls, lw);
-    surf = rebin(ls, lw);
-    Histogram contact = rebin(r.slope_samples, r.slope_weights);
+    if (pair) edge_samples(upper_measured, us, uw);
+    double lim = std::max({r.theta_max_forward, r.theta_max_backward, quantile_abs(ls, lw, 0.995),
+                           pair ? quantile_abs(us, uw, 0.995) : 0.0});
+    lim = std::min(std::numbers::pi / 2, lim * 1.1 + 1e-12);
+    // Densities relative to all the weight: samples outside +-lim are counted, not drawn.
+    double outside_len = 0, total_len = 0;
+    auto rebin = [&](const std::vector<double>& samples, const std::vector<double>& weights, bool count_outside) {
+      Histogram h;
+      const int nb = in.bins;
+      for (int i = 0; i <= nb; ++i) h.edges.push_back(-lim + 2 * lim * i / nb);
+      h.density.assign(std::size_t(nb), 0.0);
+      double total = 0;
+      for (std::size_t i = 0; i < samples.size(); ++i) {
+        const double w = weights.empty() ? 1.0 : weights[i];
+        if (!std::isfinite(samples[i]) || !(w > 0)) continue;
+        total += w;
+        const double v = samples[i];
+        if (v < -lim || v > lim) {
+          if (count_outside) outside_len += w;
+          continue;
+        }
+        h.density[std::size_t(std::min(nb - 1, int((v + lim) / (2 * lim) * nb)))] += w;
+      }
+      if (count_outside) total_len += total;
+      const double width = 2 * lim / nb;
+      for (auto& d : h.density) d = total > 0 ? d / (total * width) : 0.0;
+      return h;
+    };
+    Histogram surf = rebin(ls, lw, true);
+    Histogram contact = rebin(r.slope_samples, r.slope_weights, false);
     Plot p;
     p.title = "Slope distributions (paper Fig. 16)";
     p.x_label = "slope angle (deg)";
     p.y_label = "probability density (1/deg)";
     p.series.push_back(histogram_series(surf, pair ? "surface slopes: lower" : "surface slopes", "#1f77b4"));
-    if (pair) {
-      std::vector<double> us, uw;
-      edge_samples(upper_measured, us, uw);
-      p.series.push_back(histogram_series(rebin(us, uw), "surface slopes: upper", "#9467bd", true));
-    }
+    if (pair) p.series.push_back(histogram_series(rebin(us, uw, true), "surface slopes: upper", "#9467bd", true));
     p.series.push_back(histogram_series(contact, "contact slopes θ(x_ofs)", "#d62728"));
     auto svg = plot_svg(p);
     if (!svg) return svg.error();
     std::string html = figure(*svg, fmt::format(
         "Surface slopes: every edge of the profile weighted by its length. Contact slopes: θ at each offset weighted "
-        "by the offset length it stands for; mean {}, standard deviation σ = {} (Eq. 18). {} bins over ±{:.2f}°.",
-        fmt_deg(r.contact_slope_mean), fmt_deg(r.contact_slope_std), in.bins, deg(lim)));
+        "by the offset length it stands for; mean {}, standard deviation σ = {} (Eq. 18). {} bins over ±{:.2f}°{}.",
+        fmt_deg(r.contact_slope_mean), fmt_deg(r.contact_slope_std), in.bins, deg(lim),
+        outside_len > 0 ? fmt::format("; {:.2f} % of the surface length is steeper (counted in the densities, beyond "
+                                      "the axis; steepest edge {})",
+                                      100 * outside_len / total_len,
+                                      fmt_deg(std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope)))
+                        : std::string()));
     sections.push_back({"slopes", "Slope distributions", html});
   }
   // --- friction ---------------------------------------------------------------------------------

@@ -674,6 +674,18 @@ Result<std::string> map_svg(const Map& m, const MapImage& o) {
                    ml, mt, iw, ih, base64(*png));
   s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"#333\"/>", ml,
                    mt, iw, ih);
+  if (o.line_y) {
+    const double y = mt + ih - (*o.line_y - m.y0) / H * ih;
+    const double xa = ml + (o.line_x0 - m.x0) / W * iw, xb = ml + (o.line_x1 - m.x0) / W * iw;
+    s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"white\" "
+                     "stroke-width=\"3\"/><line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" "
+                     "stroke=\"#d62728\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/>",
+                     xa, y, xb, y);
+    if (!o.line_label.empty())
+      s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"white\" stroke=\"black\" "
+                       "stroke-width=\"2.5\" paint-order=\"stroke\">{}</text>",
+                       xa + 4, y - 5, escape_html(o.line_label));
+  }
   // lateral axes (from the map's first node)
   auto xtl = nice_ticks(0, W / lu.scale, std::max(3, int(iw / 90)));
   const double xstep = xtl.size() > 1 ? xtl[1] - xtl[0] : 1;
