@@ -236,6 +236,7 @@ def fig05(bin_, work):
     a2.set_aspect("equal")
     a2.set_title(f"contact, magnified: spheroradius r = {r * 1e6:g} µm", fontsize=10)
     a2.set_xlabel("x (mm)")
+    a2.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
     a2.set_ylabel("y (mm)")
     a2.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v * 1e3:.2f}"))
     a2.yaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v * 1e3:.2f}"))
@@ -454,18 +455,19 @@ def cited_figures(text):
 
 
 def study_findings(out):
-    """(figure -> list of (supported, text, criterion, study)) from every report."""
+    """(figure -> list of (supported, text, criterion, study)) from every report. A finding goes to the
+    figures it cites; a study named after figures ("fig07-...", "fig14-18-...") also speaks to those:
+    when none of its findings cites them, all its findings go to them, and a finding citing no figure
+    goes to the first of them."""
     found = {}
     for path in sorted(glob.glob(f"{out}/studies/*-report.md")):
         study = os.path.basename(path)[: -len("-report.md")]
         lines = open(path, encoding="utf-8").read().split("\n")
-        seen = set()
-        # a study named after figures ("fig07-...", "fig14-18-...") speaks to those figures too, when its
-        # finding cites none of them
         named = set()
         m = re.match(r"fig(\d+)(?:-(\d+))?", study)
         if m:
             named = set(range(int(m.group(1)), int(m.group(2) or m.group(1)) + 1))
+        items, seen = [], set()
         for i, line in enumerate(lines):
             m = re.match(r"^- \[(SUPPORTED|NOT SUPPORTED)\] (.*)$", line)
             if not m:
@@ -474,14 +476,18 @@ def study_findings(out):
             if i + 1 < len(lines) and lines[i + 1].strip().startswith("criterion:"):
                 crit = lines[i + 1].strip()[len("criterion:"):].strip()
             key = (m.group(1), m.group(2), crit)
-            if key in seen:
-                continue
-            seen.add(key)
-            cited = cited_figures(m.group(2))
-            if named and not cited & named:  # e.g. fig07's run checks Eq. 6 (cites Fig. 6, 8); uncited: the first
-                cited |= named if len(named) == 1 or cited else {min(named)}
-            for n in cited:
-                found.setdefault(n, []).append((m.group(1) == "SUPPORTED", m.group(2), crit, study))
+            if key not in seen:
+                seen.add(key)
+                items.append((m.group(1) == "SUPPORTED", m.group(2), crit, cited_figures(m.group(2))))
+        any_named = any(c & named for *_, c in items)
+        for sup, text, crit, cited in items:
+            figs = set(cited)
+            if named and not any_named:
+                figs |= named
+            elif named and not cited:
+                figs.add(min(named))
+            for n in figs:
+                found.setdefault(n, []).append((sup, text, crit, study))
     return found
 
 
