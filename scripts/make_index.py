@@ -505,6 +505,17 @@ def fig04_from(out):
             j = json.load(open(jp))
             f.numbers.append((f"K{n}, α = 5°: θ_max forward / backward",
                               f"{j['theta_max_forward_deg']:.9f}° / {j['theta_max_backward_deg']:.9f}°"))
+    if not os.path.exists(summary):  # the per-surface JSONs alone: theta_max = n alpha at alpha = 5 deg
+        ok, have = True, 0
+        for n, mult in enumerate([1, 1, 2, 3]):
+            jp = f"{out}/fig04/k{n}.json"
+            if os.path.exists(jp):
+                j = json.load(open(jp))
+                have += 1
+                ok &= all(abs(j[k] - 5.0 * mult) < 1e-6 for k in ("theta_max_forward_deg", "theta_max_backward_deg"))
+        if have:
+            f.verdicts.append((ok and have == 4, "θ_max = nα (n = 1, 1, 2, 3) at α = 5°",
+                               f"|θ_max − nα| < 1e-6° in both directions for {have} of 4 surfaces"))
     if os.path.exists(summary):
         rows = list(csv.DictReader(open(summary)))
         agree = sum(r["agrees"] == "yes" for r in rows)

@@ -77,6 +77,12 @@ Result<Profile> central_line(const Map& m) {
   return lines[best];
 }
 
+/// The file name without its folders (titles and legends; the full paths are stated in the assumptions).
+std::string base(const std::string& path) {
+  const auto k = path.find_last_of('/');
+  return k == std::string::npos ? path : path.substr(k + 1);
+}
+
 struct Section {
   std::string id, title, html;
 };
@@ -171,8 +177,8 @@ Result<std::string> surface_report(const ReportInput& in) {
         }
         p.series.push_back(std::move(s));
       };
-      add(lower, pair ? "lower: " + lower_name : lower_name, "#1f77b4");
-      if (pair) add(upper_measured, "upper: " + upper_name, "#d62728");
+      add(lower, pair ? "lower: " + base(lower_name) : base(lower_name), "#1f77b4");
+      if (pair) add(upper_measured, "upper: " + base(upper_name), "#d62728");
       p.height = 300;
       auto svg = plot_svg(p);
       if (!svg) return svg.error();
@@ -193,8 +199,8 @@ Result<std::string> surface_report(const ReportInput& in) {
       t += row("mean slope angle", fmt_deg(st.mean_slope), "⟨atan z′⟩");
       return t + "</table>\n";
     };
-    html += stats_table(lower, in.is_map ? "the central line along x (used below)" : lower_name);
-    if (pair) html += stats_table(upper_measured, upper_name);
+    html += stats_table(lower, in.is_map ? "the central line along x (used below)" : base(lower_name));
+    if (pair) html += stats_table(upper_measured, base(upper_name));
     sections.push_back({"surface", "The surface", html});
   }
 
@@ -484,8 +490,8 @@ Result<std::string> surface_report(const ReportInput& in) {
   for (const auto& n : in.notes) assumptions.push_back(escape_html(n));
 
   // --- the page ---------------------------------------------------------------------------------
-  std::string title = pair ? fmt::format("frictal report: {} on {}", lower_name, upper_name)
-                           : fmt::format("frictal report: {}", lower_name);
+  std::string title = pair ? fmt::format("frictal report: {} on {}", base(lower_name), base(upper_name))
+                           : fmt::format("frictal report: {}", base(lower_name));
   std::string page;
   page += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
   page += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
