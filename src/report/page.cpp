@@ -69,8 +69,11 @@ Series histogram_series(const Histogram& h, const std::string& label, const std:
 /// The longest valid run of the line of a map through its centre along x.
 Result<Profile> central_line(const Map& m) {
   const double yc = m.y0 + m.height() / 2;
-  auto lines = map_line(m, m.x0, yc, 0.0, m.dx, 8);
-  if (lines.empty()) return make_error("report: the map's central line along x has no run of 8 valid points");
+  auto lines = map_line(m, m.x0, yc, 0.0, m.dx, 3);
+  if (lines.empty())
+    return make_error(fmt::format("report: the map ({} x {} points) has no run of 3 valid points on its central "
+                                  "line along x",
+                                  m.nx, m.ny));
   std::size_t best = 0;
   for (std::size_t i = 1; i < lines.size(); ++i)
     if (lines[i].length() > lines[best].length()) best = i;
@@ -346,39 +349,46 @@ Result<std::string> surface_report(const ReportInput& in) {
     o.threads = in.threads;
     o.atomic_friction = in.atomic_friction;
     o.signature.keep_contacts = false;
+    // small maps: shorter lines are accepted (at least 4 points, the directional minimum)
+    o.min_points = std::clamp<std::size_t>(std::min(in.map.nx, in.map.ny) / 2, 4, 32);
     auto table = anisotropy(in.map, in.directions, o);
-    if (!table) return table.error();
-    Series phi, low;
-    phi.label = "φ (Eq. 6), mean over parallel lines";
-    phi.color = "#d62728";
-    low.label = "φ − σ (Eq. 18 lower end)";
-    low.color = "#1f77b4";
-    low.dashed = true;
-    double best = -1, worst = 1e9, best_dir = 0, worst_dir = 0;
-    for (const auto& d : *table) {
-      phi.x.push_back(d.angle);
-      phi.y.push_back(deg(d.prediction.friction_angle));
-      low.x.push_back(d.angle);
-      low.y.push_back(std::max(0.0, deg(d.prediction.friction_angle_low)));
-      if (d.prediction.friction_angle > best) best = d.prediction.friction_angle, best_dir = d.angle;
-      if (d.prediction.friction_angle < worst) worst = d.prediction.friction_angle, worst_dir = d.angle;
-    }
-    PolarPlot pp;
-    pp.title = "Friction over sliding directions";
-    pp.radius_label = "friction angle (deg)";
-    pp.series = {phi, low};
-    auto svg = polar_svg(pp);
-    if (!svg) return svg.error();
-    std::string html = figure(
-        *svg, fmt::format("{} directions (0° = +x, 90° = +y). For each, up to {} parallel lines of the map, each against "
-                          "itself turned over; θ_max and σ are length-weighted means over the lines. μ_a = {:g}.",
-                          in.directions, in.max_lines, in.atomic_friction));
-    html += fmt::format(
-        "<p class=\"verdict\">Highest friction sliding towards {:.0f}°: φ = {} (μ = {}); lowest towards {:.0f}°: φ = {} "
-        "(μ = {}). Anisotropy ratio μ_max/μ_min = {}.</p>\n",
-        deg(best_dir), fmt_deg(best), fmt_mu(std::tan(best)), deg(worst_dir), fmt_deg(worst), fmt_mu(std::tan(worst)),
-        std::tan(worst) > 1e-6 ? fmt::format("{:.3f}", std::tan(best) / std::tan(worst))
+    std::string html;
+    if (!table) {
+      html = fmt::format("<p>Not computed for this map: {}.</p>\n", escape_html(table.error().message));
+    } else {
+      Series phi, low;
+      phi.label = "φ (Eq. 6), mean over parallel lines";
+      phi.color = "#d62728";
+      low.label = "φ − σ (Eq. 18 lower end)";
+      low.color = "#1f77b4";
+      low.dashed = true;
+      double best = -1, worst = 1e9, best_dir = 0, worst_dir = 0;
+      for (const auto& d : *table) {
+        phi.x.push_back(d.angle);
+        phi.y.push_back(deg(d.prediction.friction_angle));
+        low.x.push_back(d.angle);
+        low.y.push_back(std::max(0.0, deg(d.prediction.friction_angle_low)));
+        if (d.prediction.friction_angle > best) best = d.prediction.friction_angle, best_dir = d.angle;
+        if (d.prediction.friction_angle < worst) worst = d.prediction.friction_angle, worst_dir = d.angle;
+      }
+      PolarPlot pp;
+      pp.title = "Friction over sliding directions";
+      pp.radius_label = "friction angle (deg)";
+      pp.series = {phi, low};
+      auto svg = polar_svg(pp);
+      if (!svg) return svg.error();
+      html = figure(
+          *svg, fmt::format("{} directions (0° = +x, 90° = +y). For each, up to {} parallel lines of the map (of at "
+                            "least {} points), each against itself turned over; θ_max and σ are length-weighted means "
+                            "over the lines. μ_a = {:g}.",
+                            in.directions, in.max_lines, o.min_points, in.atomic_friction));
+      html += fmt::format(
+          "<p class=\"verdict\">Highest friction sliding towards {:.0f}°: φ = {} (μ = {}); lowest towards {:.0f}°: φ = {} "
+          "(μ = {}). Anisotropy ratio μ_max/μ_min = {}.</p>\n",
+          deg(best_dir), fmt_deg(best), fmt_mu(std::tan(best)), deg(worst_dir), fmt_deg(worst), fmt_mu(std::tan(worst)),
+          std::tan(worst) > 1e-6 ? fmt::format("{:.3f}", std::tan(best) / std::tan(worst))
                                 : std::string("unbounded (μ_min ≈ 0)"));
+    }
     sections.push_back({"directions", "Friction over sliding directions", html});
   }
   // --- resolution -------------------------------------------------------------------------------
