@@ -386,6 +386,17 @@ Result<std::string> plot_svg(const Plot& input) {
         xt.push_back(v);
         xlabels.push_back(fmt::format("{:g}", m * std::pow(10.0, k)));
       }
+    if (xt.size() < 2) {  // less than a decade without a 1-2-5 mark inside: linear ticks of x itself
+      xt.clear();
+      xlabels.clear();
+      const auto lin = nice_ticks(std::pow(10.0, x0), std::pow(10.0, x1), 3);
+      const double step = lin.size() > 1 ? lin[1] - lin[0] : std::pow(10.0, x0);
+      for (double v : lin)
+        if (v > 0) {
+          xt.push_back(std::log10(v));
+          xlabels.push_back(tick_label(v, step));
+        }
+    }
   } else {
     xt = nice_ticks(x0, x1, std::max(3, int(plot.width / 110)));
   }

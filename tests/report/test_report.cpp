@@ -129,6 +129,23 @@ TEST(Report, PlotDrawsEverySeriesWithLabelsAndRefusesEmptyPlots) {
   EXPECT_FALSE(rp::plot_svg(bad));
 }
 
+TEST(Report, LogAxisTicksAreLabelledWithTheValues) {
+  rp::Plot p;
+  p.x_log = true;
+  p.series.push_back({{1e-3, 1e-2, 1e-1}, {1, 2, 3}, "", "", rp::SeriesStyle::Line});
+  auto svg = rp::plot_svg(p);
+  ASSERT_TRUE(svg);
+  for (const char* t : {">0.001<", ">0.01<", ">0.1<"}) EXPECT_NE(svg->find(t), std::string::npos) << t;
+  // less than a decade: ticks of x itself (3, 3.5, 4, 4.5)
+  p.series[0].x = {3, 4, 4.5};
+  auto narrow = rp::plot_svg(p);
+  ASSERT_TRUE(narrow);
+  EXPECT_NE(narrow->find(">3.5<"), std::string::npos);
+  EXPECT_NE(narrow->find(">4.5<"), std::string::npos);
+  p.series[0].x = {-1, 0, -2};  // nothing positive on a log axis
+  EXPECT_FALSE(rp::plot_svg(p));
+}
+
 TEST(Report, PolarPlotClosesAFullCircle) {
   rp::PolarPlot p;
   p.title = "polar";
