@@ -31,10 +31,13 @@ for n in 0 1 2 3; do
   "$BIN" signature "$I/fig04/k$n.csv" --period 0.01 -o "$I/fig04/k$n-signature.csv" --json > "$I/fig04/k$n.json"
 done
 $PY "$SRC/scripts/plot_fig04.py" "$I/fig04"
-"$BIN" study run "$SRC/studies/fig09-divider.toml" --store "$I/studies/fig09-divider.sqlite" --quick >/dev/null 2>&1
-"$BIN" study report "$I/studies/fig09-divider.sqlite" -o "$I/studies/fig09-divider-report.md" >/dev/null
-# (plot_studies.py's options may change with the study registry: a missing plot shows as "not produced")
-$PY "$SRC/scripts/plot_studies.py" "$I" --fig09 "$I/studies/fig09-divider.sqlite" >/dev/null 2>&1 || true
+# (the study files and plot_studies.py's options may change with the study registry: a missing plot
+# shows as "not produced", which the page check accepts; the six figures computed here are required)
+if [[ -f "$SRC/studies/fig09-divider.toml" ]]; then
+  "$BIN" study run "$SRC/studies/fig09-divider.toml" --store "$I/studies/fig09-divider.sqlite" --quick >/dev/null 2>&1 || true
+  "$BIN" study report "$I/studies/fig09-divider.sqlite" -o "$I/studies/fig09-divider-report.md" >/dev/null 2>&1 || true
+  $PY "$SRC/scripts/plot_studies.py" "$I" --fig09 "$I/studies/fig09-divider.sqlite" >/dev/null 2>&1 || true
+fi
 (cd "$SRC" && $PY scripts/make_index.py "$BIN" "$I" --quick --only 3,4,9,11,12,13,16)
 grep -q "SUPPORTED" "$I/index.html" || { echo "test-pages: index.html has no verdict" >&2; fail=1; }
 if grep -q "NOT SUPPORTED" "$I/index.html"; then echo "test-pages: a computed figure's verdict is NOT SUPPORTED" >&2; fail=1; fi
