@@ -59,7 +59,7 @@ std::function<int()> setup(CLI::App& app) {
     in.is_map = s.is_map;
     const std::string dt_text = a->detrend.empty() ? (s.is_map ? "plane" : "line") : a->detrend;
     const Detrend dt = unwrap(parse_detrend(dt_text));
-    for (const auto& w : s.warnings) in.notes.push_back(fmt::format("Reading {}: {}", a->lower, w));
+    for (const auto& w : s.warnings) in.notes.push_back("Reader warning: " + w);
     if (s.is_map) {
       if (!a->upper.empty())
         throw UsageError(fmt::format("{}: an areal map; a second surface (UPPER) is supported for profiles only", a->lower));
@@ -69,7 +69,7 @@ std::function<int()> setup(CLI::App& app) {
     }
     if (!a->upper.empty()) {
       const SurfaceData u = load_surface(a->upper, a->input);
-      for (const auto& w : u.warnings) in.notes.push_back(fmt::format("Reading {}: {}", a->upper, w));
+      for (const auto& w : u.warnings) in.notes.push_back("Reader warning: " + w);
       in.upper = unwrap(detrend(surface_profile(u, a->upper), dt));
       in.upper_name = a->upper;
     }

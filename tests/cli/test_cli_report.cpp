@@ -18,7 +18,7 @@ TEST(CliReport, MeasuredMapAndProfilePairPages) {
   EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(page.find("sample-land.x3p"), std::string::npos);
   EXPECT_NE(page.find("<b>plane</b>"), std::string::npos);  // the default detrending for maps, stated
-  EXPECT_NE(page.find("Reading "), std::string::npos);       // the reader's warnings are on the page
+  EXPECT_NE(page.find("Reader warning: "), std::string::npos);  // the reader's warnings are on the page
   EXPECT_NE(page.find("Friction over sliding directions"), std::string::npos);
 
   const std::string wm1 = temp_path("rep_wm1.csv"), wm2 = temp_path("rep_wm2.csv");
