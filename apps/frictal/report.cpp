@@ -1,0 +1,105 @@
+// frictal report SURFACE [UPPER] -o report.html — one self-contained HTML page a person reads:
+// the surface, its statistics, the signature function, the slope distributions, the predicted
+// friction with its Eq. 18 range, for maps the friction over sliding directions, and theta_max
+// against resolution. The page is built by the library (frictal/report.hpp); this file reads
+// the inputs and writes the page.
+#include <fstream>
+#include <iostream>
+
+#include "common.hpp"
+#include "frictal/analysis.hpp"
+#include "frictal/report.hpp"
+#include "frictal/version.hpp"
+#include "surface_io.hpp"
+
+namespace frictal::cli {
+namespace {
+
+struct Args {
+  std::string lower, upper, out;
+  double mu_a = 0;
+  std::string detrend;
+  int directions = 36;
+  std::size_t lines = 32;
+  int resolution = 10;
+  int bins = 90;
+  unsigned threads = 0;
+  InputOptions input;
+};
+
+std::function<int()> setup(CLI::App& app) {
+  auto a = std::make_shared<Args>();
+  app.add_option("surface", a->lower, "Surface file: a line profile or an areal map (any readable format)")->required();
+  app.add_option("upper", a->upper,
+                 "Upper surface, as measured (material below); it is turned over to face SURFACE. "
+                 "Default: SURFACE itself. Profiles only");
+  app.add_option("-o,--output", a->out, "HTML file to write ('-' = standard output)")->required();
+  app.add_option("--atomic-friction,--mu-a", a->mu_a, "Atomic friction coefficient mu_a >= 0 of Eq. 6")
+      ->capture_default_str();
+  app.add_option("--detrend", a->detrend,
+                 "Remove none, mean, line (plane) or poly:N from each surface first (default: line for profiles, "
+                 "plane for maps)");
+  app.add_option("--directions", a->directions, "Maps: sliding directions of the polar plot")->capture_default_str();
+  app.add_option("--lines", a->lines, "Maps: at most this many parallel lines per direction")->capture_default_str();
+  app.add_option("--resolution-steps", a->resolution, "Cutoff wavelengths of the resolution study (0 = none)")
+      ->capture_default_str();
+  app.add_option("--bins", a->bins, "Bins of the slope distributions")->capture_default_str();
+  app.add_option("--threads", a->threads, "Worker threads (0 = all cores); the page does not depend on it")
+      ->capture_default_str();
+  add_input_options(app, a->input);
+  return [a]() {
+    require(std::isfinite(a->mu_a) && a->mu_a >= 0,
+            fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
+    require(a->directions >= 1 && a->directions <= 720, "--directions must be in 1..720");
+    require(a->lines >= 1 && a->lines <= 100000, "--lines must be in 1..100000");
+    require(a->resolution == 0 || (a->resolution >= 2 && a->resolution <= 100), "--resolution-steps must be 0 or 2..100");
+    require(a->bins >= 2 && a->bins <= 10000, "--bins must be in 2..10000");
+    report::ReportInput in;
+    const SurfaceData s = load_surface(a->lower, a->input);
+    in.is_map = s.is_map;
+    const std::string dt_text = a->detrend.empty() ? (s.is_map ? "plane" : "line") : a->detrend;
+    const Detrend dt = unwrap(parse_detrend(dt_text));
+    for (const auto& w : s.warnings) in.notes.push_back("Reader warning: " + w);
+    if (s.is_map) {
+      if (!a->upper.empty())
+        throw UsageError(fmt::format("{}: an areal map; a second surface (UPPER) is supported for profiles only", a->lower));
+      in.map = unwrap(detrend(s.map, dt));
+    } else {
+      in.lower = unwrap(detrend(surface_profile(s, a->lower), dt));
+    }
+    if (!a->upper.empty()) {
+      const SurfaceData u = load_surface(a->upper, a->input);
+      for (const auto& w : u.warnings) in.notes.push_back("Reader warning: " + w);
+      in.upper = unwrap(detrend(surface_profile(u, a->upper), dt));
+      in.upper_name = a->upper;
+    }
+    in.lower_name = a->lower;
+    in.detrend = dt_text;
+    in.atomic_friction = a->mu_a;
+    in.directions = a->directions;
+    in.max_lines = a->lines;
+    in.resolution_steps = a->resolution;
+    in.bins = a->bins;
+    in.threads = a->threads;
+    in.generated_by = version_line();
+    const std::string page = unwrap(report::surface_report(in));
+    if (a->out == "-") {
+      std::cout << page;
+      std::cout.flush();
+      if (!std::cout) throw UsageError("standard output: write failed");
+    } else {
+      std::ofstream f(a->out, std::ios::binary);
+      if (!f) throw UsageError(fmt::format("{}: cannot open for writing", a->out));
+      f << page;
+      if (!f) throw UsageError(fmt::format("{}: write failed", a->out));
+      fmt::print(stderr, "frictal: wrote {} ({} bytes)\n", a->out, page.size());
+    }
+    return 0;
+  };
+}
+
+FRICTAL_COMMAND({"report", "One self-contained HTML page on a surface or a pair: signature, slopes, friction, resolution",
+                 setup, 75});
+
+}  // namespace
+}  // namespace frictal::cli

@@ -1,0 +1,142 @@
+// frictal — a report that a person reads: a small SVG plotting module (axes with ticks and
+// labelled units, lines, step histograms, points, polar plots, height maps as embedded PNG
+// images with a colour bar and a scale bar) and the self-contained HTML page of `frictal report`
+// (a profile, a pair of profiles or an areal map: the surface, its statistics, the signature
+// function, the slope distributions, the predicted friction with its Eq. 18 range, the friction
+// over sliding directions and theta_max against resolution).
+//
+// Everything returns strings; the library never writes files. Pages need nothing outside
+// themselves: figures are inline SVG, images are base64 data URIs. Definitions: docs/report.md.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frictal/geometry.hpp"
+#include "frictal/map.hpp"
+
+namespace frictal::report {
+
+// ---------------------------------------------------------------------------------------------
+// Plotting
+
+enum class SeriesStyle {
+  Line,    ///< polyline through (x[i], y[i]); non-finite points break the line
+  Step,    ///< histogram: x holds y.size() + 1 bin edges, y the bin values
+  Points,  ///< markers at (x[i], y[i])
+};
+
+struct Series {
+  std::vector<double> x, y;  ///< data in the plot's display units (the caller scales)
+  std::string label;         ///< legend entry; empty: not in the legend
+  std::string color;         ///< CSS colour; empty: the next colour of the palette
+  SeriesStyle style = SeriesStyle::Line;
+  double line_width = 1.5;   ///< (unit: px)
+  bool dashed = false;
+};
+
+/// A horizontal or vertical reference line with an optional label.
+struct RefLine {
+  bool horizontal = true;
+  double value = 0;  ///< in display units
+  std::string label;
+  std::string color = "#888";
+};
+
+struct Plot {
+  std::string title;
+  std::string x_label;  ///< including the unit, e.g. "x (µm)"
+  std::string y_label;
+  std::vector<Series> series;
+  std::vector<RefLine> lines;
+  double width = 760, height = 380;  ///< (unit: px)
+  bool x_log = false;  ///< logarithmic x axis (non-positive x are not drawn)
+  /// Axis limits; unset: from the data (with a small margin), extended to include ref lines.
+  std::optional<double> x_min, x_max, y_min, y_max;
+};
+
+/// An SVG element (no XML prolog) of a Cartesian plot. Errors: no finite data point at all
+/// (an empty plot is a bug to report, not a picture to show), or mismatched array sizes.
+Result<std::string> plot_svg(const Plot& plot);
+
+struct PolarPlot {
+  std::string title;
+  std::string radius_label;  ///< e.g. "friction angle φ (deg)"
+  std::vector<Series> series;  ///< x = direction (unit: rad, from +x towards +y), y = radius >= 0
+  double size = 420;         ///< width = height (unit: px)
+  std::optional<double> r_max;  ///< outer ring; unset: from the data
+};
+/// An SVG polar plot; Line series are closed when they span the full circle.
+Result<std::string> polar_svg(const PolarPlot& plot);
+
+struct MapImage {
+  std::string title;
+  std::size_t max_pixels = 320;  ///< longer side of the displayed image; larger maps are block-averaged (unitless)
+  double width = 900;            ///< figure width (unit: px)
+  /// Colour range as quantiles of the valid heights (outliers saturate); 0 and 1 = min and max.
+  double low_quantile = 0.005, high_quantile = 0.995;
+  /// Optional: mark the line y = line_y (unit: m, map coordinates) from line_x0 to line_x1 (unit: m)
+  /// with a dashed line and `line_label` (e.g. the profile that the rest of a report uses).
+  std::optional<double> line_y;
+  double line_x0 = 0, line_x1 = 0;
+  std::string line_label;
+};
+/// An SVG figure of a height map: the map as an embedded PNG (viridis colour map, invalid points
+/// grey), lateral axes with ticks, a colour bar labelled in a length unit and a scale bar.
+/// Errors: an invalid map.
+Result<std::string> map_svg(const Map& m, const MapImage& options = {});
+
+// ---------------------------------------------------------------------------------------------
+// Building blocks (exposed for tests and for other front ends)
+
+/// "Nice" tick positions covering [lo, hi] (about `target` of them; steps 1, 2, 2.5 or 5 x 10^k).
+std::vector<double> nice_ticks(double lo, double hi, int target = 6);
+
+/// A length unit for display: values are divided by `scale` (m per unit) and shown with `name`.
+struct LengthUnit {
+  double scale = 1;  ///< (unit: m)
+  std::string name;  ///< "m", "mm", "µm", "nm" or "pm"
+};
+/// The unit in which `magnitude` (unit: m) reads between 1 and 1000.
+LengthUnit length_unit(double magnitude);
+
+/// The PNG file (8-bit RGB, zlib stored blocks) of an image of width x height pixels, rgb holding
+/// 3 bytes per pixel row by row from the top. Errors: sizes that do not match.
+Result<std::string> encode_png(std::size_t width, std::size_t height, const std::vector<std::uint8_t>& rgb);
+/// Base64 (RFC 4648, with padding) of arbitrary bytes.
+std::string base64(const std::string& bytes);
+/// Text escaped for HTML and XML content and attribute values (& < > " ').
+std::string escape_html(const std::string& text);
+/// The viridis colour map at t in [0, 1] (clamped) as r, g, b bytes.
+void viridis(double t, std::uint8_t rgb[3]);
+
+// ---------------------------------------------------------------------------------------------
+// The page of `frictal report`
+
+struct ReportInput {
+  /// The lower surface: a single-valued profile, or an areal map (is_map).
+  bool is_map = false;
+  Profile lower;
+  Map map;
+  std::string lower_name;
+  /// The upper block's surface as measured (material below): it is turned over (rotate180) to
+  /// face the lower one. Unset: the lower surface itself turned over. Profiles only.
+  std::optional<Profile> upper;
+  std::string upper_name;
+  std::string detrend;       ///< detrending already applied, as the user wrote it ("none", "line", ...)
+  double atomic_friction = 0;///< mu_a of Eq. 6 (unitless)
+  int directions = 36;       ///< sliding directions of the polar plot (maps) (unitless)
+  std::size_t max_lines = 32;///< parallel lines per direction (maps) (unitless)
+  int resolution_steps = 10; ///< cutoff wavelengths of the resolution study (unitless, >= 2; 0: none)
+  int bins = 90;             ///< bins of the slope PDFs (unitless)
+  unsigned threads = 0;      ///< worker threads (0 = hardware); the page does not depend on it
+  std::string generated_by;  ///< e.g. the version line; shown in the footer
+  std::vector<std::string> notes;  ///< extra lines for "what was assumed" (e.g. reader warnings)
+};
+
+/// The complete HTML page (UTF-8). Errors: inputs the analysis refuses (named).
+Result<std::string> surface_report(const ReportInput& input);
+
+}  // namespace frictal::report

@@ -1,0 +1,650 @@
+#!/usr/bin/python3
+"""Writes OUTDIR/index.html: every figure of the paper that frictal computes, each beside the
+paper's claim, the numbers and the computed verdict. One self-contained page (images embedded).
+
+    scripts/make_index.py BIN OUTDIR [--quick]
+
+BIN is the frictal executable. The figures that the studies draw (scripts/plot_studies.py:
+OUTDIR/fig06.png ...) and Fig. 4 (OUTDIR/fig04/) are taken as scripts/reproduce left them, with
+the findings of OUTDIR/studies/*-report.md that cite each figure. Figures 3, 5, 11, 12, 13 and 16
+are computed here with BIN (under OUTDIR/index/). A figure whose inputs are missing is listed as
+not produced (never a broken image). Only the standard library, numpy and matplotlib.
+"""
+import argparse
+import base64
+import csv
+import glob
+import html
+import io
+import json
+import math
+import os
+import re
+import subprocess
+import sys
+
+import matplotlib
+import matplotlib.ticker
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.patches import Circle, Polygon  # noqa: E402
+
+DPI = 110
+
+
+class Figure:
+    def __init__(self, number, title, claim):
+        self.number, self.title, self.claim = number, title, claim
+        self.png = None          # bytes
+        self.numbers = []        # (name, value) rows
+        self.verdicts = []       # (supported: bool, text, criterion)
+        self.missing = None      # why the figure is not on the page
+        self.source = ""         # how it was computed
+
+
+def run(bin_, *args, check=True):
+    r = subprocess.run([bin_, *map(str, args)], capture_output=True, text=True)
+    if check and r.returncode != 0:
+        raise RuntimeError(f"{bin_} {' '.join(map(str, args))}: exit {r.returncode}: {r.stderr.strip()}")
+    return r.stdout
+
+
+def run_json(bin_, *args):
+    return json.loads(run(bin_, *args))
+
+
+def read_xz(path):
+    d = np.genfromtxt(path, delimiter=",", names=True)
+    return d["x_m"], d["z_m"]
+
+
+def png_bytes(fig):
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=DPI)
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def slopes_deg(x, z):
+    dx = np.diff(x)
+    ok = dx > 0
+    return np.degrees(np.arctan(np.diff(z)[ok] / dx[ok])), dx[ok]
+
+
+def natural_spline(x, z):
+    """Second derivatives of the natural cubic spline through (x, z) (tridiagonal solve)."""
+    n = len(x)
+    h = np.diff(x)
+    a = np.zeros(n)
+    b = np.ones(n)
+    c = np.zeros(n)
+    r = np.zeros(n)
+    a[1:-1] = h[:-1]
+    b[1:-1] = 2 * (h[:-1] + h[1:])
+    c[1:-1] = h[1:]
+    r[1:-1] = 6 * ((z[2:] - z[1:-1]) / h[1:] - (z[1:-1] - z[:-2]) / h[:-1])
+    for i in range(1, n):  # Thomas algorithm
+        w = a[i] / b[i - 1]
+        b[i] -= w * c[i - 1]
+        r[i] -= w * r[i - 1]
+    m = np.zeros(n)
+    m[-1] = r[-1] / b[-1]
+    for i in range(n - 2, -1, -1):
+        m[i] = (r[i] - c[i] * m[i + 1]) / b[i]
+    return m
+
+
+def spline_eval(x, z, m, xs):
+    i = np.clip(np.searchsorted(x, xs) - 1, 0, len(x) - 2)
+    h = x[i + 1] - x[i]
+    t0, t1 = x[i + 1] - xs, xs - x[i]
+    return (m[i] * t0 ** 3 + m[i + 1] * t1 ** 3) / (6 * h) + (z[i] / h - m[i] * h / 6) * t0 + (z[i + 1] / h - m[i + 1] * h / 6) * t1
+
+
+# ---------------------------------------------------------------------------------------------
+# Figures computed here
+
+def fig03(bin_, work):
+    f = Figure(3, "Koch surfaces K0–K3",
+               "The triadic Koch surface K_n replaces the middle third of every segment of K_(n-1) by an outward "
+               "isosceles triangle of base angle α, starting from a row of triangles K_0 (Sec. III). Its steepest "
+               "edge is (n+1)α, and each iteration multiplies the curve's length by (2 + 1/cos α)/3 (two thirds "
+               "kept, the middle third replaced by two sides of length 1/(6 cos α)).")
+    alpha = 20.0
+    fig, axes = plt.subplots(4, 1, figsize=(7.5, 6.2), sharex=True)
+    ok_slope, ok_len, lengths = True, True, []
+    for n, ax in enumerate(axes):
+        path = f"{work}/k{n}-curve.csv"
+        run(bin_, "surface", "koch", "--iterations", n, "--alpha", alpha, "--wavelength", 0.01, "--length", 0.03,
+            "--curve", "-o", path)
+        x, z = read_xz(path)
+        ax.fill_between(x * 1e3, z * 1e3, z.min() * 1e3 - 1, color="#c8d7e8")
+        ax.plot(x * 1e3, z * 1e3, color="#1f4e79", lw=1)
+        ax.set_ylabel(f"K{n}\nz (mm)")
+        ax.set_aspect("equal")
+        ax.set_ylim(z.min() * 1e3 - 0.5, z.max() * 1e3 + 0.6)
+        st = run_json(bin_, "stats", path, "--json")
+        smax = st["max_slope_deg"]
+        length = float(np.sum(np.hypot(np.diff(x), np.diff(z))))
+        lengths.append(length)
+        ok_slope &= abs(smax - (n + 1) * alpha) < 1e-6
+        f.numbers.append((f"K{n}: points, steepest edge, curve length",
+                          f"{len(x)}, {smax:.6f}° (expected {(n + 1) * alpha:g}°), {length * 1e3:.6f} mm"))
+    ratio = (2 + 1 / math.cos(math.radians(alpha))) / 3
+    for n in range(1, 4):
+        ok_len &= abs(lengths[n] / lengths[n - 1] - ratio) < 1e-9
+    f.numbers.append(("length ratio K_n / K_(n-1) (expected (2 + 1/cos α)/3 = %.9f)" % ratio,
+                      ", ".join(f"{lengths[n] / lengths[n - 1]:.9f}" for n in range(1, 4))))
+    axes[-1].set_xlabel("x (mm)")
+    fig.suptitle(f"Koch surfaces K0–K3, α = {alpha:g}°, λ = 10 mm (paper Fig. 3)")
+    fig.tight_layout()
+    f.png = png_bytes(fig)
+    f.verdicts.append((ok_slope, "the steepest edge of K_n is (n+1)α", "|max slope − (n+1)α| < 1e-6° for n = 0..3"))
+    f.verdicts.append((ok_len, "each iteration multiplies the length by (2 + 1/cos α)/3", "relative error < 1e-9"))
+    f.source = f"`frictal surface koch --curve --alpha {alpha:g}` and `frictal stats`"
+    return f
+
+
+def read_frames(path):
+    bodies, frames = {}, []
+    with open(path) as fh:
+        lines = fh.read().split("\n")
+    i = 0
+    assert lines[0].startswith("frictal-dem-frames 1"), path
+    i = 1
+    while i < len(lines):
+        t = lines[i].split()
+        if not t:
+            i += 1
+            continue
+        if t[0] == "body":
+            k, n = int(t[1]), int(t[3])
+            bodies[k] = np.array([[float(v) for v in lines[i + 1 + j].split()] for j in range(n)])
+            i += 1 + n
+        elif t[0] == "frame":
+            poses = {}
+            for j in range(2):
+                b = lines[i + 1 + j].split()
+                poses[int(b[0])] = tuple(float(v) for v in b[1:4])
+            frames.append((float(t[1]), float(t[2]), poses))
+            i += 3
+        else:
+            raise ValueError(f"{path}: line {i + 1}: unexpected '{t[0]}'")
+    return bodies, frames
+
+
+def world(poly, pose):
+    cx, cy, a = pose
+    c, s = math.cos(a), math.sin(a)
+    return np.column_stack([cx + c * poly[:, 0] - s * poly[:, 1], cy + s * poly[:, 0] + c * poly[:, 1]])
+
+
+def draw_sphero(ax, pts, r, color):
+    """The spheropolygon: the core polygon dilated by r (a band along each edge, a disc at each vertex)."""
+    n = len(pts)
+    for k in range(n):
+        p, q = pts[k], pts[(k + 1) % n]
+        d = q - p
+        L = math.hypot(*d)
+        if L == 0:
+            continue
+        nrm = np.array([-d[1], d[0]]) / L * r
+        ax.add_patch(Polygon([p + nrm, q + nrm, q - nrm, p - nrm], closed=True, color=color, alpha=0.35, lw=0))
+        ax.add_patch(Circle(p, r, color=color, alpha=0.35, lw=0))
+    ax.add_patch(Polygon(pts, closed=True, fill=False, ec=color, lw=1.2))
+
+
+def fig05(bin_, work):
+    f = Figure(5, "Snapshot of the tilt simulation (spheropolygons)",
+               "The blocks are spheropolygons: a polygon core dilated by a small spheroradius r; the lower block is "
+               "tilted slowly until the upper one slides, and the tilt angle at the slide is the friction angle "
+               "φ = atan μ_a + θ_max (Sec. IV, Fig. 5).")
+    frames = f"{work}/k1-frames.txt"
+    j = run_json(bin_, "tilt", "--surface", "koch", "--iterations", 1, "--alpha", 20, "--frames", frames,
+                 "--frame-interval", 0.05, "--json")
+    bodies, fr = read_frames(frames)
+    slide = j["slide_time_s"] if j.get("slid") else fr[-1][0]
+    t, tilt, poses = max((x for x in fr if x[0] <= slide), key=lambda x: x[0])
+    low, up = world(bodies[0], poses[0]), world(bodies[1], poses[1])
+    r = 5e-5
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7.5, 8.5), gridspec_kw={"height_ratios": [1, 1.3]})
+    for pts, col, name in ((low, "#1f77b4", "lower block"), (up, "#d62728", "upper block")):
+        a1.add_patch(Polygon(pts, closed=True, color=col, alpha=0.5, label=name))
+    allp = np.vstack([low, up])
+    a1.set_xlim(allp[:, 0].min() - 0.01, allp[:, 0].max() + 0.01)
+    a1.set_ylim(allp[:, 1].min() - 0.01, allp[:, 1].max() + 0.01)
+    a1.set_aspect("equal")
+    a1.set_xlabel("x (m), world frame")
+    a1.set_ylabel("y (m)")
+    a1.set_title(f"K1, α = 20°: t = {t:.2f} s, tilt = {math.degrees(tilt):.2f}°")
+    a1.legend(loc="upper left", fontsize=8)
+    # Zoom on the closest pair of vertices (a contact), with the spheroradius drawn to scale.
+    # (away from the blocks' ends: the middle 60 % of the lower block's extent along its length)
+    xs = bodies[0][:, 0]
+    mid = np.abs(xs - 0.5 * (xs.min() + xs.max())) < 0.3 * (xs.max() - xs.min())
+    d2 = ((low[:, None, :] - up[None, :, :]) ** 2).sum(-1)
+    d2[~mid, :] = np.inf
+    i, k = np.unravel_index(np.argmin(d2), d2.shape)
+    c = (low[i] + up[k]) / 2
+    w = 8 * r
+    draw_sphero(a2, low, r, "#1f77b4")
+    draw_sphero(a2, up, r, "#d62728")
+    a2.set_xlim(c[0] - w, c[0] + w)
+    a2.set_ylim(c[1] - w, c[1] + w)
+    a2.set_aspect("equal")
+    a2.set_title(f"contact, magnified: spheroradius r = {r * 1e6:g} µm", fontsize=10)
+    a2.set_xlabel("x (mm)")
+    a2.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
+    a2.set_ylabel("y (mm)")
+    a2.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v * 1e3:.2f}"))
+    a2.yaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v * 1e3:.2f}"))
+    a1.add_patch(plt.Rectangle((c[0] - w, c[1] - w), 2 * w, 2 * w, fill=False, ec="k", lw=1))
+    fig.tight_layout()
+    f.png = png_bytes(fig)
+    sim, pred = j["friction_angle_deg"], j["predicted_friction_angle_deg"]
+    f.numbers += [("snapshot", f"t = {t:.3f} s, tilt {math.degrees(tilt):.3f}° (last frame before the slide at "
+                               f"{slide:.3f} s)"),
+                  ("friction angle: simulated / predicted (Eq. 6)", f"{sim:.4f}° / {pred:.4f}°"),
+                  ("steps, wall time", f"{j['steps']}, {j['wall_time_s']:.1f} s")]
+    f.verdicts.append((bool(j.get("slid")) and abs(sim - pred) < 0.1,
+                       "the block slides at the predicted friction angle", "|φ_sim − φ_pred| < 0.1°"))
+    f.source = "`frictal tilt --surface koch --iterations 1 --alpha 20 --frames` (format: docs/dem.md)"
+    return f
+
+
+def fig11(bin_, work):
+    f = Figure(11, "Deterministic and random Weierstrass–Mandelbrot profiles",
+               "The deterministic WM function (Eq. 17, all phases zero) and the randomised one (Eq. 14, random "
+               "phases) share every mode's amplitude, hence the same spectrum, while the random phases remove the "
+               "regular pattern (Sec. V A, Fig. 11).")
+    det, rnd = f"{work}/wm-det.csv", f"{work}/wm-rnd.csv"
+    run(bin_, "surface", "wm", "--dimension", 1.5, "--deterministic", "-o", det)
+    run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 1, "-o", rnd)
+    sd, sr = run_json(bin_, "stats", det, "--json"), run_json(bin_, "stats", rnd, "--json")
+    fig, axes = plt.subplots(2, 1, figsize=(7.5, 4.8), sharex=True)
+    for ax, p, name in ((axes[0], det, "deterministic (Eq. 17)"), (axes[1], rnd, "random phases (Eq. 14), seed 1")):
+        x, z = read_xz(p)
+        ax.plot(x * 1e6, z * 1e9, lw=0.7)
+        ax.set_ylabel("z (nm)")
+        ax.set_title(name, fontsize=10)
+    axes[-1].set_xlabel("x (µm)")
+    fig.suptitle("WM profiles, D = 1.5, γ = 1.5, n_max = 10 (paper Fig. 11)")
+    fig.tight_layout()
+    f.png = png_bytes(fig)
+    rel = abs(sd["rms_slope"] - sr["rms_slope"]) / sd["rms_slope"]
+    f.numbers += [("rms height: deterministic / random", f"{sd['rms_height_m'] * 1e9:.4f} nm / {sr['rms_height_m'] * 1e9:.4f} nm"),
+                  ("rms slope: deterministic / random", f"{sd['rms_slope']:.5f} / {sr['rms_slope']:.5f} (differ by {100 * rel:.2f} %)"),
+                  ("steepest edge: deterministic / random", f"{sd['max_slope_deg']:.3f}° / {sr['max_slope_deg']:.3f}°")]
+    f.verdicts.append((rel < 0.02, "same mode amplitudes: the same rms slope (a spectral moment)",
+                       "rms slopes within 2 %"))
+    f.source = "`frictal surface wm --dimension 1.5 [--deterministic | --seed 1]`, `frictal stats`"
+    return f
+
+
+def fig12(bin_, work):
+    f = Figure(12, "WM profiles for D = 1.0 – 2.0",
+               "At fixed rms height, the WM profile gets rougher as the fractal dimension D grows from 1 (smooth, "
+               "dominated by the longest wavelength) to 2 (every wavelength with comparable weight) (Fig. 12).")
+    ds = [1.0, 1.2, 1.4, 1.6, 1.8, 2.0]
+    fig, ax = plt.subplots(figsize=(7.5, 5.5))
+    rms_slopes = []
+    for k, d in enumerate(ds):
+        p = f"{work}/wm-d{d:.1f}.csv"
+        run(bin_, "surface", "wm", "--dimension", d, "--seed", 1, "-o", p)
+        x, z = read_xz(p)
+        off = -6 * k
+        ax.plot(x * 1e6, z * 1e9 + off, lw=0.7)
+        ax.text(20.3, off, f"D = {d:.1f}", va="center", fontsize=9)
+        st = run_json(bin_, "stats", p, "--json")
+        rms_slopes.append(st["rms_slope"])
+        f.numbers.append((f"D = {d:.1f}: rms height, rms slope, steepest edge",
+                          f"{st['rms_height_m'] * 1e9:.3f} nm, {st['rms_slope']:.5f}, {st['max_slope_deg']:.3f}°"))
+    ax.set_xlim(0, 23)
+    ax.set_yticks([])
+    ax.set_xlabel("x (µm)")
+    ax.set_ylabel("z (profiles offset by 6 nm)")
+    ax.set_title("WM profiles, rms height 1 nm, seed 1 (paper Fig. 12)")
+    fig.tight_layout()
+    f.png = png_bytes(fig)
+    mono = all(b > a for a, b in zip(rms_slopes, rms_slopes[1:]))
+    f.verdicts.append((mono, "rougher with D: the rms slope grows with D at equal rms height",
+                       "rms slope strictly increasing over D = " + ", ".join(f"{d:.1f}" for d in ds)))
+    f.source = "`frictal surface wm --dimension D --seed 1`, `frictal stats`"
+    return f
+
+
+def fig13(bin_, work):
+    f = Figure(13, "Linear and cubic-spline interpolation",
+               "Between the sample points a profile can be interpolated linearly (slopes jump at every point) or by a "
+               "cubic spline (continuous slopes); the paper takes contact slopes from the spline (Sec. V B, Fig. 13). "
+               "With the sampling of Eq. 16 (L_s/10) both give the same contact-slope statistics.")
+    a, b = f"{work}/wm-pair-1.csv", f"{work}/wm-pair-2.csv"
+    run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 1, "-o", a)
+    run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 2, "-o", b)
+    ex = run_json(bin_, "signature", a, b, "--json")
+    sp = run_json(bin_, "signature", a, b, "--slopes", "spline", "--json")
+    x, z = read_xz(a)
+    sel = slice(0, 40)
+    xs, zs = x[sel], z[sel]
+    m = natural_spline(x[:400], z[:400])
+    xf = np.linspace(xs[0], xs[-1], 2000)
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(7.5, 5.2), sharex=True)
+    a1.plot(xs * 1e9, zs * 1e12, "o", ms=3, color="k", label="samples")
+    a1.plot(xs * 1e9, zs * 1e12, "-", lw=1, label="linear")
+    a1.plot(xf * 1e9, spline_eval(x[:400], z[:400], m, xf) * 1e12, "-", lw=1, label="cubic spline")
+    a1.set_ylabel("z (pm)")
+    a1.legend(fontsize=8)
+    a1.set_title("first 40 points of a WM profile (D = 1.5)", fontsize=10)
+    # slopes: linear = piecewise constant; spline = derivative of the cubic
+    sl = np.degrees(np.arctan(np.diff(zs) / np.diff(xs)))
+    a2.step(xs * 1e9, np.append(sl, sl[-1]), where="post", lw=1, label="linear")
+    h = 1e-3 * (xs[1] - xs[0])
+    ds = (spline_eval(x[:400], z[:400], m, xf + h) - spline_eval(x[:400], z[:400], m, xf - h)) / (2 * h)
+    a2.plot(xf * 1e9, np.degrees(np.arctan(ds)), lw=1, label="cubic spline", color="C2")
+    a2.set_xlabel("x (nm)")
+    a2.set_ylabel("slope (deg)")
+    a2.legend(fontsize=8)
+    fig.tight_layout()
+    f.png = png_bytes(fig)
+    ds_ = abs(ex["contact_slope_std_deg"] - sp["contact_slope_std_deg"]) / ex["contact_slope_std_deg"]
+    dt = abs(ex["theta_max_forward_deg"] - sp["theta_max_forward_deg"]) / ex["theta_max_forward_deg"]
+    f.numbers += [("θ_max forward: exact polyline / spline", f"{ex['theta_max_forward_deg']:.4f}° / {sp['theta_max_forward_deg']:.4f}°"),
+                  ("θ_max backward: exact polyline / spline", f"{ex['theta_max_backward_deg']:.4f}° / {sp['theta_max_backward_deg']:.4f}°"),
+                  ("σ of contact slopes: exact / spline", f"{ex['contact_slope_std_deg']:.4f}° / {sp['contact_slope_std_deg']:.4f}°")]
+    f.verdicts.append((ds_ < 0.02 and dt < 0.1, "linear and spline contact slopes agree at this sampling",
+                       f"σ within 2 % ({100 * ds_:.2f} %), θ_max forward within 10 % ({100 * dt:.2f} %)"))
+    f.source = "`frictal signature A B [--slopes spline] --json` on two WM profiles (seeds 1, 2)"
+    return f
+
+
+def fig16(bin_, work, pairs):
+    f = Figure(16, "Contact-slope and surface-slope distributions",
+               "The distribution of contact slopes θ(x_ofs) is narrower than that of the surface slopes: only a few "
+               "of the steepest surface slopes are ever in contact, so θ_max stays below the steepest surface "
+               "slope (Sec. V C, Fig. 16).")
+    edges = np.linspace(-12, 12, 97)
+    surf = np.zeros(len(edges) - 1)
+    cont = np.zeros(len(edges) - 1)
+    ok_std, ok_max = True, True
+    rows = []
+    for k in range(pairs):
+        a, b = f"{work}/pdf-{k}-a.csv", f"{work}/pdf-{k}-b.csv"
+        run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 2 * k + 1, "-o", a)
+        run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 2 * k + 2, "-o", b)
+        pdf = f"{work}/pdf-{k}.csv"
+        j = run_json(bin_, "signature", a, b, "--pdf", pdf, "--json")
+        s, w = slopes_deg(*read_xz(a))
+        s_std = float(np.sqrt(np.average((s - np.average(s, weights=w)) ** 2, weights=w)))
+        h, _ = np.histogram(s, bins=edges, weights=w, density=True)
+        surf += h / pairs
+        with open(pdf) as fh:
+            r = list(csv.DictReader(fh))
+        lo = np.array([float(x["slope_lo_deg"]) for x in r])
+        hi = np.array([float(x["slope_hi_deg"]) for x in r])
+        dn = np.array([float(x["density_per_deg"]) for x in r])
+        # re-bin the contact PDF onto the common edges (mass per overlap)
+        for i in range(len(edges) - 1):
+            ov = np.clip(np.minimum(hi, edges[i + 1]) - np.maximum(lo, edges[i]), 0, None)
+            cont[i] += float(np.sum(dn * ov)) / (edges[i + 1] - edges[i]) / pairs
+        ok_std &= j["contact_slope_std_deg"] < s_std
+        tmax = max(j["theta_max_forward_deg"], j["theta_max_backward_deg"])
+        ok_max &= tmax < j["surface_slope_max_deg"]
+        rows.append((k, j["contact_slope_std_deg"], s_std, tmax, j["surface_slope_max_deg"]))
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    ax.stairs(surf, edges, label="surface slopes", lw=1.5)
+    ax.stairs(cont, edges, label="contact slopes θ(x_ofs)", lw=1.5, color="C3")
+    ax.set_xlabel("slope (deg)")
+    ax.set_ylabel("probability density (1/deg)")
+    ax.set_xlim(-6, 6)
+    ax.set_title(f"WM pairs, D = 1.5, n_max = 10: mean of {pairs} pairs (paper Fig. 16)")
+    ax.legend(fontsize=9)
+    fig.tight_layout()
+    f.png = png_bytes(fig)
+    for k, cs, ss, tm, sm in rows:
+        f.numbers.append((f"pair {k + 1}: σ contact / σ surface; max θ / steepest surface edge",
+                          f"{cs:.3f}° / {ss:.3f}°; {tm:.3f}° / {sm:.3f}°"))
+    f.verdicts.append((ok_std, "the contact-slope distribution is narrower than the surface-slope one",
+                       f"σ_contact < σ_surface in every one of {pairs} pairs"))
+    f.verdicts.append((ok_max, "θ_max is below the steepest surface slope", f"in every one of {pairs} pairs"))
+    f.source = "`frictal signature A B --pdf` on WM pairs (seeds 2k+1, 2k+2)"
+    return f
+
+
+# ---------------------------------------------------------------------------------------------
+# Figures from scripts/reproduce's outputs
+
+CLAIMS = {
+    4: ("Signature functions of Koch surfaces",
+        "The signature function θ(x_ofs) of K_n reaches θ_max = α for K0 and K1, 2α for K2 and 3α for K3 (Sec. III, Fig. 4)."),
+    6: ("Friction angle against α", "The friction angle of the spheropolygon simulation follows the signature "
+        "prediction φ = θ_max = nα for K0–K3 (Fig. 6)."),
+    7: ("Force angle during the tilt", "During the tilt the force angle atan(F_t/F_n) rises to the contact slope "
+        "and the block slides when it reaches it (Fig. 7)."),
+    8: ("Atomic friction", "The atomic friction angle adds to the signature maximum: φ = atan μ_a + θ_max, the same "
+        "for every surface (Eq. 6, Fig. 8)."),
+    9: ("Divider dimension of Koch curves", "The divider method recovers the Koch curve's dimension of Eq. 13 "
+        "(Sec. IV C 3, Fig. 9)."),
+    10: ("Friction coefficient against fractal dimension", "The friction coefficient grows with the fractal "
+         "dimension D of the Koch surface (Fig. 10)."),
+    14: ("Maximum slopes against resolution", "Maximum contact and surface slopes of WM pairs grow with n_max "
+         "(finer wavelengths); the contact slope tends to a finite value for D < 1.5 and keeps growing above (Fig. 14)."),
+    15: ("Maximum slopes against D", "The maximum contact slope is smaller than the maximum surface slope; both grow "
+         "with D (Sec. V C, Fig. 15)."),
+    17: ("Slope standard deviations against resolution", "The standard deviations of contact and surface slopes grow "
+         "with D, increasingly fast above D ≈ 1.5 (Fig. 17)."),
+    18: ("Slope standard deviations against D", "The standard deviations of contact and surface slopes grow with D "
+         "(Fig. 18)."),
+}
+
+
+def cited_figures(text):
+    """Figure numbers a finding cites: 'Fig. 4, 6', 'Fig. 17-18', 'Fig. 8b'."""
+    out = set()
+    for m in re.finditer(r"Figs?\.\s*([0-9][0-9a-z,\s\-–]*)", text):
+        for part in re.split(r",\s*", m.group(1)):
+            r = re.match(r"(\d+)[a-z]?\s*[-–]\s*(\d+)", part.strip())
+            if r:
+                out.update(range(int(r.group(1)), int(r.group(2)) + 1))
+                continue
+            r = re.match(r"(\d+)", part.strip())
+            if r:
+                out.add(int(r.group(1)))
+    return out
+
+
+def study_findings(out):
+    """(figure -> list of (supported, text, criterion, study)) from every report. A finding goes to the
+    figures it cites; a study named after figures ("fig07-...", "fig14-18-...") also speaks to those:
+    when none of its findings cites them, all its findings go to them, and a finding citing no figure
+    goes to the first of them."""
+    found = {}
+    for path in sorted(glob.glob(f"{out}/studies/*-report.md")):
+        study = os.path.basename(path)[: -len("-report.md")]
+        lines = open(path, encoding="utf-8").read().split("\n")
+        named = set()
+        m = re.match(r"fig(\d+)(?:-(\d+))?", study)
+        if m:
+            named = set(range(int(m.group(1)), int(m.group(2) or m.group(1)) + 1))
+        items, seen = [], set()
+        for i, line in enumerate(lines):
+            m = re.match(r"^- \[(SUPPORTED|NOT SUPPORTED)\] (.*)$", line)
+            if not m:
+                continue
+            crit = ""
+            if i + 1 < len(lines) and lines[i + 1].strip().startswith("criterion:"):
+                crit = lines[i + 1].strip()[len("criterion:"):].strip()
+            key = (m.group(1), m.group(2), crit)
+            if key not in seen:
+                seen.add(key)
+                items.append((m.group(1) == "SUPPORTED", m.group(2), crit, cited_figures(m.group(2))))
+        any_named = any(c & named for *_, c in items)
+        for sup, text, crit, cited in items:
+            figs = set(cited)
+            if named and not any_named:
+                figs |= named
+            elif named and not cited:
+                figs.add(min(named))
+            for n in figs:
+                found.setdefault(n, []).append((sup, text, crit, study))
+    return found
+
+
+def fig04_from(out):
+    f = Figure(4, *CLAIMS[4])
+    png = f"{out}/fig04/fig04.png"
+    summary = f"{out}/fig04/maxima.csv"
+    if not os.path.exists(png):
+        f.missing = f"{png} not found (scripts/reproduce draws it)"
+        return f
+    f.png = open(png, "rb").read()
+    for n in range(4):
+        jp = f"{out}/fig04/k{n}.json"
+        if os.path.exists(jp):
+            j = json.load(open(jp))
+            f.numbers.append((f"K{n}, α = 5°: θ_max forward / backward",
+                              f"{j['theta_max_forward_deg']:.9f}° / {j['theta_max_backward_deg']:.9f}°"))
+    if not os.path.exists(summary):  # the per-surface JSONs alone: theta_max = n alpha at alpha = 5 deg
+        ok, have = True, 0
+        for n, mult in enumerate([1, 1, 2, 3]):
+            jp = f"{out}/fig04/k{n}.json"
+            if os.path.exists(jp):
+                j = json.load(open(jp))
+                have += 1
+                ok &= all(abs(j[k] - 5.0 * mult) < 1e-6 for k in ("theta_max_forward_deg", "theta_max_backward_deg"))
+        if have:
+            f.verdicts.append((ok and have == 4, "θ_max = nα (n = 1, 1, 2, 3) at α = 5°",
+                               f"|θ_max − nα| < 1e-6° in both directions for {have} of 4 surfaces"))
+    if os.path.exists(summary):
+        rows = list(csv.DictReader(open(summary)))
+        agree = sum(r["agrees"] == "yes" for r in rows)
+        f.numbers.append(("Koch surfaces of Table I whose θ_max = nα (both directions)", f"{agree} of {len(rows)}"))
+        f.verdicts.append((agree == len(rows) and len(rows) > 0, "θ_max = nα (n = 1, 1, 2, 3) for every α of Table I",
+                           "|θ_max − nα| < 1e-6° in both directions"))
+    f.source = "scripts/reproduce: `frictal signature --period 0.01` on K0–K3"
+    return f
+
+
+def study_figure(out, n, findings):
+    title, claim = CLAIMS[n]
+    f = Figure(n, title, claim)
+    png = f"{out}/fig{n:02d}.png"
+    if os.path.exists(png):
+        f.png = open(png, "rb").read()
+    else:
+        f.missing = f"{png} not found (scripts/plot_studies.py draws it from the study stores)"
+    for sup, text, crit, study in findings.get(n, []):
+        f.verdicts.append((sup, f"{text} [{study}]", crit))
+    f.source = "the study stores under studies/ (frictal study run/report), plotted by scripts/plot_studies.py"
+    return f
+
+
+# ---------------------------------------------------------------------------------------------
+# The page
+
+STYLE = """
+body { font-family: "DejaVu Sans", Arial, sans-serif; max-width: 1200px; margin: 1.5em auto; padding: 0 1em; color: #222; line-height: 1.4; }
+h1 { font-size: 1.5em; } h2 { font-size: 1.15em; margin: 0 0 .4em 0; }
+.fig { display: flex; gap: 1.5em; border-top: 1px solid #ccc; padding: 1.2em 0; align-items: flex-start; }
+.fig .img { flex: 0 0 560px; } .fig img { width: 560px; height: auto; border: 1px solid #eee; }
+.fig .text { flex: 1; min-width: 0; }
+.claim { font-style: italic; color: #333; }
+table { border-collapse: collapse; font-size: .88em; margin: .5em 0; } th, td { border: 1px solid #ddd; padding: .2em .5em; text-align: left; vertical-align: top; }
+.ok { color: #1e7b1e; font-weight: bold; } .no { color: #b00020; font-weight: bold; }
+.missing { color: #8a6d00; background: #fff8e1; padding: .6em; }
+.summary { background: #f3f7ee; border-left: 4px solid #5a9a2a; padding: .5em .8em; }
+.crit { color: #555; font-size: .88em; } .src { color: #666; font-size: .85em; }
+"""
+
+
+def render(figs, title, note):
+    total = sum(len(f.verdicts) for f in figs)
+    good = sum(v[0] for f in figs for v in f.verdicts)
+    drawn = sum(f.png is not None for f in figs)
+    parts = ["<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n",
+             f"<title>{html.escape(title)}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n",
+             f"<h1>{html.escape(title)}</h1>\n",
+             "<p>F. Alonso-Marroquín, P. Huang, D. A. H. Hanaor, E. A. Flores-Johnson, G. Proust, Y. Gan and L. Shen, "
+             "“Static friction between rigid fractal surfaces”, Phys. Rev. E 92, 032405 (2015). Each figure that "
+             "frictal computes, beside the paper's claim, the numbers computed here and the verdict of a stated "
+             f"criterion. {html.escape(note)}</p>\n",
+             f"<p class=\"summary\">{drawn} of {len(figs)} figures drawn; <b>{good} of {total}</b> checked findings "
+             "supported" + ("" if good == total else f", <b>{total - good} not supported</b> (see below)") + ".</p>\n<nav>"]
+    parts += [f"<a href=\"#fig{f.number}\">Fig. {f.number}</a> " for f in figs]
+    parts.append("</nav>\n")
+    for f in figs:
+        parts.append(f"<section class=\"fig\" id=\"fig{f.number}\">\n<div class=\"img\">")
+        if f.png is not None:
+            b64 = base64.b64encode(f.png).decode()
+            parts.append(f"<img alt=\"Fig. {f.number}: {html.escape(f.title)}\" src=\"data:image/png;base64,{b64}\">")
+        else:
+            parts.append(f"<p class=\"missing\">Not produced in this run: {html.escape(f.missing or 'no figure')}</p>")
+        parts.append("</div>\n<div class=\"text\">")
+        parts.append(f"<h2>Fig. {f.number}: {html.escape(f.title)}</h2>")
+        parts.append(f"<p class=\"claim\">Paper: {html.escape(f.claim)}</p>")
+        if f.numbers:
+            parts.append("<table>" + "".join(f"<tr><th>{html.escape(a)}</th><td>{html.escape(b)}</td></tr>"
+                                             for a, b in f.numbers) + "</table>")
+        if f.verdicts:
+            parts.append("<ul>")
+            for ok, text, crit in f.verdicts:
+                cls, word = ("ok", "SUPPORTED") if ok else ("no", "NOT SUPPORTED")
+                parts.append(f"<li><span class=\"{cls}\">{word}</span> {html.escape(text)}"
+                             + (f"<br><span class=\"crit\">criterion: {html.escape(crit)}</span>" if crit else "") + "</li>")
+            parts.append("</ul>")
+        elif f.png is not None:
+            parts.append("<p class=\"crit\">No finding of this run cites this figure.</p>")
+        if f.source:
+            parts.append(f"<p class=\"src\">Computed by {html.escape(f.source)}.</p>")
+        parts.append("</div>\n</section>\n")
+    parts.append("</body>\n</html>\n")
+    return "".join(parts)
+
+
+def main(argv):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("bin", help="the frictal executable")
+    ap.add_argument("out", help="the output folder of scripts/reproduce")
+    ap.add_argument("--quick", action="store_true", help="fewer WM pairs for Fig. 16")
+    ap.add_argument("--only", default="", help="comma-separated figure numbers to compute (default: all)")
+    a = ap.parse_args(argv)
+    work = f"{a.out}/index"
+    os.makedirs(work, exist_ok=True)
+    only = {int(x) for x in a.only.split(",") if x.strip()}
+    want = lambda n: not only or n in only  # noqa: E731
+    findings = study_findings(a.out)
+    computed = {3: lambda: fig03(a.bin, work), 5: lambda: fig05(a.bin, work), 11: lambda: fig11(a.bin, work),
+                12: lambda: fig12(a.bin, work), 13: lambda: fig13(a.bin, work),
+                16: lambda: fig16(a.bin, work, 3 if a.quick else 10)}
+    figs = []
+    for n in [3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18]:
+        if not want(n):
+            continue
+        if n in computed:
+            try:
+                f = computed[n]()
+            except Exception as e:  # reported on the page and on stderr, never silently
+                print(f"make_index: Fig. {n}: {e}", file=sys.stderr)
+                f = Figure(n, f"Fig. {n}", "")
+                f.missing = f"computing it failed: {e}"
+            if f.png is not None:
+                with open(f"{work}/fig{n:02d}.png", "wb") as fh:
+                    fh.write(f.png)
+        elif n == 4:
+            f = fig04_from(a.out)
+        else:
+            f = study_figure(a.out, n, findings)
+        figs.append(f)
+    note = "Quick scale (QUICK=1): small grids." if a.quick else "Full scale."
+    page = render(figs, "frictal: the paper's figures, reproduced", note)
+    with open(f"{a.out}/index.html", "w", encoding="utf-8") as fh:
+        fh.write(page)
+    bad = [f.number for f in figs if f.missing]
+    print(f"make_index: wrote {a.out}/index.html ({len(figs)} figures"
+          + (f"; not produced: {', '.join(f'Fig. {n}' for n in bad)}" if bad else "") + ")")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

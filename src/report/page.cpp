@@ -1,0 +1,546 @@
+// The self-contained HTML page of `frictal report`: every number on it is computed here.
+#include <algorithm>
+#include <cmath>
+#include <fmt/core.h>
+#include <limits>
+#include <numbers>
+
+#include "frictal/analysis.hpp"
+#include "frictal/areal.hpp"
+#include "frictal/filter.hpp"
+#include "frictal/report.hpp"
+#include "frictal/signature.hpp"
+#include "frictal/stats.hpp"
+
+namespace frictal::report {
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180;
+double deg(double rad) { return rad / kDeg; }
+
+std::string fmt_len(double v, const LengthUnit& u, int digits = 4) {
+  return fmt::format("{:.{}g} {}", v / u.scale, digits, u.name);
+}
+std::string fmt_deg(double rad) {
+  const double d = deg(rad);
+  return fmt::format("{:.3f}\u00b0", std::abs(d) < 5e-4 ? 0.0 : d);  // no "-0.000"
+}
+std::string fmt_mu(double mu) { return std::isfinite(mu) ? fmt::format("{:.4f}", mu) : std::string("\u221e (interlocked)"); }
+
+std::string row(const std::string& name, const std::string& value, const std::string& note = "") {
+  return fmt::format("<tr><th>{}</th><td>{}</td><td class=\"note\">{}</td></tr>\n", name, value, note);
+}
+
+/// The signature's theta as a drawable line: piecewise between events, each interval from its two
+/// one-sided values (theta_right at its start, theta_left at its end).
+Series signature_series(const SignatureResult& r, const LengthUnit& u, const std::string& label,
+                        const std::string& color) {
+  Series s;
+  s.label = label;
+  s.color = color;
+  s.line_width = 1.2;
+  const std::size_t n = r.offset.size();
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    s.x.push_back(r.offset[i] / u.scale);
+    s.y.push_back(deg(r.theta_right[i]));
+    s.x.push_back(r.offset[i + 1] / u.scale);
+    s.y.push_back(deg(r.theta_left[i + 1]));
+  }
+  if (n == 1) {
+    s.x.push_back(r.offset[0] / u.scale);
+    s.y.push_back(deg(r.theta[0]));
+    s.style = SeriesStyle::Points;
+  }
+  return s;
+}
+
+Series histogram_series(const Histogram& h, const std::string& label, const std::string& color, bool dashed = false) {
+  Series s;
+  s.style = SeriesStyle::Step;
+  s.label = label;
+  s.color = color;
+  s.dashed = dashed;
+  for (double e : h.edges) s.x.push_back(deg(e));
+  for (double d : h.density) s.y.push_back(d * kDeg);  // per degree
+  return s;
+}
+
+/// The longest valid run of the line of a map through its centre along x.
+Result<Profile> central_line(const Map& m) {
+  const double yc = m.y0 + m.height() / 2;
+  auto lines = map_line(m, m.x0, yc, 0.0, m.dx, 3);
+  if (lines.empty())
+    return make_error(fmt::format("report: the map ({} x {} points) has no run of 3 valid points on its central "
+                                  "line along x",
+                                  m.nx, m.ny));
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < lines.size(); ++i)
+    if (lines[i].length() > lines[best].length()) best = i;
+  return lines[best];
+}
+
+/// The file name without its folders (titles and legends; the full paths are stated in the assumptions).
+std::string base(const std::string& path) {
+  const auto k = path.find_last_of('/');
+  return k == std::string::npos ? path : path.substr(k + 1);
+}
+
+struct Section {
+  std::string id, title, html;
+};
+
+std::string figure(const std::string& svg, const std::string& caption) {
+  return fmt::format("<figure>{}<figcaption>{}</figcaption></figure>\n", svg, caption);
+}
+
+}  // namespace
+
+Result<std::string> surface_report(const ReportInput& in) {
+  if (!(std::isfinite(in.atomic_friction) && in.atomic_friction >= 0))
+    return make_error(fmt::format("report: atomic friction must be a finite number >= 0, got {}", in.atomic_friction));
+  if (in.resolution_steps == 1 || in.resolution_steps < 0 || in.resolution_steps > 100)
+    return make_error(fmt::format("report: resolution steps must be 0 or 2..100, got {}", in.resolution_steps));
+  if (in.is_map && in.upper) return make_error("report: an upper surface is supported for profiles only");
+  if (in.is_map && (in.directions < 1 || in.directions > 720))
+    return make_error(fmt::format("report: directions must be in 1..720, got {}", in.directions));
+  if (in.bins < 2 || in.bins > 10000) return make_error(fmt::format("report: bins must be in 2..10000, got {}", in.bins));
+
+  std::vector<Section> sections;
+  std::vector<std::string> assumptions;
+  const std::string lower_name = in.lower_name.empty() ? std::string("surface") : in.lower_name;
+
+  // The profile(s) the signature works on.
+  Profile lower;
+  if (in.is_map) {
+    if (auto v = validate(in.map, lower_name); !v) return v.error();
+    auto c = central_line(in.map);
+    if (!c) return c.error();
+    lower = std::move(*c);
+  } else {
+    if (auto v = validate(in.lower, lower_name); !v) return v.error();
+    lower = in.lower;
+  }
+  const bool pair = in.upper.has_value();
+  const Profile upper_measured = pair ? *in.upper : lower;
+  if (pair)
+    if (auto v = validate(upper_measured, in.upper_name); !v) return v.error();
+  const std::string upper_name = pair ? in.upper_name : lower_name;
+
+  // --- the surface -----------------------------------------------------------------------------
+  const LengthUnit xu = length_unit(std::max(lower.length(), upper_measured.length()));
+  {
+    std::string html;
+    if (in.is_map) {
+      const MapStats st = map_stats(in.map);
+      MapImage mi;
+      mi.title = "Height map";
+      mi.line_y = lower.x.empty() ? std::nullopt : std::optional<double>(in.map.y0 + in.map.height() / 2);
+      mi.line_x0 = in.map.x0 + lower.x.front();  // the central line's abscissa starts at the map's x0
+      mi.line_x1 = in.map.x0 + lower.x.back();
+      mi.line_label = "line used for the signature";
+      auto svg = map_svg(in.map, mi);
+      if (!svg) return svg.error();
+      const std::size_t f = std::max<std::size_t>(1, (std::max(in.map.nx, in.map.ny) + mi.max_pixels - 1) / mi.max_pixels);
+      const LengthUnit lu = length_unit(std::max(st.width, st.height));
+      html += figure(*svg, fmt::format("{} × {} points, {} × {}; spacing {} × {}. {}Colours span the {:g} to {:g} % "
+                                       "quantiles of the heights (outliers saturate); grey: no data.",
+                                       in.map.nx, in.map.ny, fmt_len(st.width, lu), fmt_len(st.height, lu),
+                                       fmt_len(in.map.dx, length_unit(in.map.dx)), fmt_len(in.map.dy, length_unit(in.map.dy)),
+                                       f > 1 ? fmt::format("Shown block-averaged {} × {} to {} × {} pixels. ", f, f,
+                                                           (in.map.nx + f - 1) / f, (in.map.ny + f - 1) / f)
+                                             : std::string(),
+                                       100 * mi.low_quantile, 100 * mi.high_quantile));
+      const LengthUnit zu = length_unit(st.Sq > 0 ? st.Sq : 1e-9);
+      html += "<table class=\"stats\"><caption>Areal statistics (ISO 25178-2 style, about the mean)</caption>\n";
+      html += row("points (valid)", fmt::format("{} ({})", st.points, st.valid), st.valid < st.points ? "holes excluded" : "");
+      html += row("Sq", fmt_len(st.Sq, zu), "rms height");
+      html += row("Sa", fmt_len(st.Sa, zu), "mean absolute height");
+      html += row("Sp / Sv / Sz", fmt::format("{} / {} / {}", fmt_len(st.Sp, zu), fmt_len(st.Sv, zu), fmt_len(st.Sz, zu)),
+                  "highest peak, deepest valley, their sum");
+      html += row("Ssk / Sku", fmt::format("{:.4f} / {:.4f}", st.Ssk, st.Sku), "skewness, kurtosis");
+      html += row("Sdq", fmt::format("{:.4f}", st.Sdq), "rms gradient (forward differences)");
+      html += row("steepest neighbour slope", fmt_deg(st.max_slope), "");
+      html += "</table>\n";
+    } else {
+      Plot p;
+      p.title = pair ? "The two surfaces, as measured (material below)" : "The surface profile";
+      const double zmag = std::max(profile_stats(lower).rms_height, profile_stats(upper_measured).rms_height);
+      const LengthUnit zu = length_unit(zmag > 0 ? 3 * zmag : 1e-9);
+      p.x_label = fmt::format("x ({})", xu.name);
+      p.y_label = fmt::format("height z ({})", zu.name);
+      auto add = [&](const Profile& pr, const std::string& label, const std::string& color) {
+        Series s;
+        s.label = label;
+        s.color = color;
+        s.line_width = 1.0;
+        for (std::size_t i = 0; i < pr.size(); ++i) {
+          s.x.push_back(pr.x[i] / xu.scale);
+          s.y.push_back(pr.z[i] / zu.scale);
+        }
+        p.series.push_back(std::move(s));
+      };
+      add(lower, pair ? "lower: " + base(lower_name) : base(lower_name), "#1f77b4");
+      if (pair) add(upper_measured, "upper: " + base(upper_name), "#d62728");
+      p.height = 300;
+      auto svg = plot_svg(p);
+      if (!svg) return svg.error();
+      const double ex = xu.scale / zu.scale;
+      html += figure(*svg, ex > 1.5 ? fmt::format("Heights (in {}) are drawn magnified relative to x (in {}); slopes "
+                                                  "below are true slopes.", zu.name, xu.name)
+                                    : std::string("Heights and x on their own scales; slopes below are true slopes."));
+    }
+    auto stats_table = [&](const Profile& pr, const std::string& name) {
+      const ProfileStats st = profile_stats(pr);
+      const LengthUnit zu = length_unit(st.rms_height > 0 ? 3 * st.rms_height : 1e-9);
+      std::string t = fmt::format("<table class=\"stats\"><caption>Profile statistics: {}</caption>\n", escape_html(name));
+      t += row("points", fmt::format("{}", st.points), is_uniform(pr, 1e-6) ? "uniform spacing" : "non-uniform spacing");
+      t += row("length L", fmt_len(st.length, length_unit(st.length)), "x_max − x_min");
+      t += row("rms height", fmt_len(st.rms_height, zu), "exact for the polyline");
+      t += row("rms slope", fmt::format("{:.4f}", st.rms_slope), "√⟨z′²⟩");
+      t += row("steepest edge", fmt_deg(st.max_slope), "max |atan z′|");
+      t += row("mean slope angle", fmt_deg(st.mean_slope), "⟨atan z′⟩");
+      return t + "</table>\n";
+    };
+    html += stats_table(lower, in.is_map ? "the central line along x (used below)" : base(lower_name));
+    if (pair) html += stats_table(upper_measured, base(upper_name));
+    sections.push_back({"surface", "The surface", html});
+  }
+
+  // --- the signature ---------------------------------------------------------------------------
+  SignatureOptions so;
+  so.threads = in.threads;
+  so.keep_contacts = false;
+  so.bins = in.bins;
+  auto sig = signature(lower, rotate180(upper_measured), so);
+  if (!sig) return sig.error();
+  const SignatureResult& r = *sig;
+  auto fwd = predict_friction(in.atomic_friction, r.theta_max_forward, r.contact_slope_std);
+  if (!fwd) return fwd.error();
+  auto bwd = predict_friction(in.atomic_friction, r.theta_max_backward, r.contact_slope_std);
+  if (!bwd) return bwd.error();
+  {
+    Plot p;
+    p.title = "Signature function θ(x_ofs) (Eq. 1–3)";
+    p.x_label = fmt::format("offset x_ofs of the upper block ({})", xu.name);
+    p.y_label = "contact slope θ (deg)";
+    p.series.push_back(signature_series(r, xu, "", "#1f77b4"));
+    p.lines.push_back({true, deg(r.theta_max_forward), fmt::format("θ_max forward = {:.3f}°", deg(r.theta_max_forward)),
+                       "#d62728"});
+    p.lines.push_back({true, -deg(r.theta_max_backward),
+                       fmt::format("−θ_max backward = −{:.3f}°", deg(r.theta_max_backward)), "#2ca02c"});
+    auto svg = plot_svg(p);
+    if (!svg) return svg.error();
+    std::string html = figure(
+        *svg, fmt::format("{} offsets{}; θ is the slope of the steepest contact at each offset; between offsets the "
+                          "line joins the exact one-sided slopes of the lift h(x_ofs).",
+                          r.offset.size(),
+                          r.exact ? fmt::format(" (every one of the {} event offsets: exact)", r.events)
+                                  : " (the point grids do not align: offsets sampled at the finer point spacing, each "
+                                    "evaluated exactly)"));
+    sections.push_back({"signature", "Signature function", html});
+  }
+  // --- slope distributions (Fig. 16 style) -------------------------------------------------------
+  {
+    auto edge_samples = [](const Profile& pr, std::vector<double>& s, std::vector<double>& w) {
+      for (std::size_t i = 0; i + 1 < pr.size(); ++i) {
+        const double dx = pr.x[i + 1] - pr.x[i];
+        if (dx <= 0) continue;  // vertical jumps have no length
+        s.push_back(std::atan((pr.z[i + 1] - pr.z[i]) / dx));
+        w.push_back(dx);
+      }
+    };
+    // |slope| below which a fraction q of the weight lies
+    auto quantile_abs = [](const std::vector<double>& s, const std::vector<double>& w, double q) {
+      std::vector<std::pair<double, double>> v;
+      double total = 0;
+      for (std::size_t i = 0; i < s.size(); ++i) {
+        v.emplace_back(std::abs(s[i]), w[i]);
+        total += w[i];
+      }
+      std::sort(v.begin(), v.end());
+      double acc = 0;
+      for (const auto& [a, wt] : v) {
+        acc += wt;
+        if (acc >= q * total) return a;
+      }
+      return v.empty() ? 0.0 : v.back().first;
+    };
+    std::vector<double> ls, lw, us, uw;
+    edge_samples(lower, ls, lw);
+    if (pair) edge_samples(upper_measured, us, uw);
+    double lim = std::max({r.theta_max_forward, r.theta_max_backward, quantile_abs(ls, lw, 0.995),
+                           pair ? quantile_abs(us, uw, 0.995) : 0.0});
+    lim = std::min(std::numbers::pi / 2, lim * 1.1 + 1e-12);
+    // Densities relative to all the weight: samples outside +-lim are counted, not drawn.
+    double outside_len = 0, total_len = 0;
+    auto rebin = [&](const std::vector<double>& samples, const std::vector<double>& weights, bool count_outside) {
+      Histogram h;
+      const int nb = in.bins;
+      for (int i = 0; i <= nb; ++i) h.edges.push_back(-lim + 2 * lim * i / nb);
+      h.density.assign(std::size_t(nb), 0.0);
+      double total = 0;
+      for (std::size_t i = 0; i < samples.size(); ++i) {
+        const double w = weights.empty() ? 1.0 : weights[i];
+        if (!std::isfinite(samples[i]) || !(w > 0)) continue;
+        total += w;
+        const double v = samples[i];
+        if (v < -lim || v > lim) {
+          if (count_outside) outside_len += w;
+          continue;
+        }
+        h.density[std::size_t(std::min(nb - 1, int((v + lim) / (2 * lim) * nb)))] += w;
+      }
+      if (count_outside) total_len += total;
+      const double width = 2 * lim / nb;
+      for (auto& d : h.density) d = total > 0 ? d / (total * width) : 0.0;
+      return h;
+    };
+    Histogram surf = rebin(ls, lw, true);
+    Histogram contact = rebin(r.slope_samples, r.slope_weights, false);
+    Plot p;
+    p.title = "Slope distributions (paper Fig. 16)";
+    p.x_label = "slope angle (deg)";
+    p.y_label = "probability density (1/deg)";
+    p.series.push_back(histogram_series(surf, pair ? "surface slopes: lower" : "surface slopes", "#1f77b4"));
+    if (pair) p.series.push_back(histogram_series(rebin(us, uw, true), "surface slopes: upper", "#9467bd", true));
+    p.series.push_back(histogram_series(contact, "contact slopes θ(x_ofs)", "#d62728"));
+    auto svg = plot_svg(p);
+    if (!svg) return svg.error();
+    std::string html = figure(*svg, fmt::format(
+        "Surface slopes: every edge of the profile weighted by its length. Contact slopes: θ at each offset weighted "
+        "by the offset length it stands for; mean {}, standard deviation σ = {} (Eq. 18). {} bins over ±{:.2f}°{}.",
+        fmt_deg(r.contact_slope_mean), fmt_deg(r.contact_slope_std), in.bins, deg(lim),
+        outside_len > 0 ? fmt::format("; {:.2f} % of the surface length is steeper (counted in the densities, beyond "
+                                      "the axis; steepest edge {})",
+                                      100 * outside_len / total_len,
+                                      fmt_deg(std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope)))
+                        : std::string()));
+    sections.push_back({"slopes", "Slope distributions", html});
+  }
+  // --- friction ---------------------------------------------------------------------------------
+  {
+    std::string t = "<table class=\"friction\"><tr><th></th><th>towards +x (forward)</th><th>towards −x (backward)</th></tr>\n";
+    auto two = [&](const std::string& name, const std::string& a, const std::string& b) {
+      t += fmt::format("<tr><th>{}</th><td>{}</td><td>{}</td></tr>\n", name, a, b);
+    };
+    two("θ_max (steepest reachable contact)", fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward));
+    two("σ (std of the contact slopes)", fmt_deg(r.contact_slope_std), fmt_deg(r.contact_slope_std));
+    two("atomic friction μ_a, θ_a = atan μ_a", fmt::format("{:g}, {}", in.atomic_friction, fmt_deg(fwd->atomic_angle)),
+        fmt::format("{:g}, {}", in.atomic_friction, fmt_deg(bwd->atomic_angle)));
+    two("friction angle φ = θ_a + θ_max (Eq. 6)", fmt_deg(fwd->friction_angle), fmt_deg(bwd->friction_angle));
+    two("friction coefficient μ = tan φ", fmt_mu(fwd->friction_coefficient), fmt_mu(bwd->friction_coefficient));
+    two("Eq. 18 range of φ", fmt::format("{} … {}", fmt_deg(fwd->friction_angle_low), fmt_deg(fwd->friction_angle)),
+        fmt::format("{} … {}", fmt_deg(bwd->friction_angle_low), fmt_deg(bwd->friction_angle)));
+    two("Eq. 18 range of μ", fmt::format("{} … {}", fmt_mu(fwd->friction_coefficient_low), fmt_mu(fwd->friction_coefficient)),
+        fmt::format("{} … {}", fmt_mu(bwd->friction_coefficient_low), fmt_mu(bwd->friction_coefficient)));
+    t += "</table>\n";
+    t += fmt::format(
+        "<p class=\"verdict\">Predicted static friction coefficient <b>μ = {}</b> for sliding towards +x "
+        "(statistical range {} … {}, Eq. 18) and <b>{}</b> towards −x, with μ_a = {:g}.</p>\n",
+        fmt_mu(fwd->friction_coefficient), fmt_mu(fwd->friction_coefficient_low), fmt_mu(fwd->friction_coefficient),
+        fmt_mu(bwd->friction_coefficient), in.atomic_friction);
+    sections.push_back({"friction", "Predicted friction (Eq. 6 and 18)", t});
+  }
+  // --- friction over sliding directions (maps) ---------------------------------------------------
+  if (in.is_map) {
+    DirectionalOptions o;
+    o.max_lines = in.max_lines;
+    o.threads = in.threads;
+    o.atomic_friction = in.atomic_friction;
+    o.signature.keep_contacts = false;
+    // small maps: shorter lines are accepted (at least 4 points, the directional minimum)
+    o.min_points = std::clamp<std::size_t>(std::min(in.map.nx, in.map.ny) / 2, 4, 32);
+    auto table = anisotropy(in.map, in.directions, o);
+    std::string html;
+    if (!table) {
+      html = fmt::format("<p>Not computed for this map: {}.</p>\n", escape_html(table.error().message));
+    } else {
+      Series phi, low;
+      phi.label = "φ (Eq. 6), mean over parallel lines";
+      phi.color = "#d62728";
+      low.label = "φ − σ (Eq. 18 lower end)";
+      low.color = "#1f77b4";
+      low.dashed = true;
+      double best = -1, worst = 1e9, best_dir = 0, worst_dir = 0;
+      for (const auto& d : *table) {
+        phi.x.push_back(d.angle);
+        phi.y.push_back(deg(d.prediction.friction_angle));
+        low.x.push_back(d.angle);
+        low.y.push_back(std::max(0.0, deg(d.prediction.friction_angle_low)));
+        if (d.prediction.friction_angle > best) best = d.prediction.friction_angle, best_dir = d.angle;
+        if (d.prediction.friction_angle < worst) worst = d.prediction.friction_angle, worst_dir = d.angle;
+      }
+      PolarPlot pp;
+      pp.title = "Friction over sliding directions";
+      pp.radius_label = "friction angle (deg)";
+      pp.series = {phi, low};
+      auto svg = polar_svg(pp);
+      if (!svg) return svg.error();
+      html = figure(
+          *svg, fmt::format("{} directions (0° = +x, 90° = +y). For each, up to {} parallel lines of the map (of at "
+                            "least {} points), each against itself turned over; θ_max and σ are length-weighted means "
+                            "over the lines. μ_a = {:g}.",
+                            in.directions, in.max_lines, o.min_points, in.atomic_friction));
+      html += fmt::format(
+          "<p class=\"verdict\">Highest friction sliding towards {:.0f}°: φ = {} (μ = {}); lowest towards {:.0f}°: φ = {} "
+          "(μ = {}). Anisotropy ratio μ_max/μ_min = {}.</p>\n",
+          deg(best_dir), fmt_deg(best), fmt_mu(std::tan(best)), deg(worst_dir), fmt_deg(worst), fmt_mu(std::tan(worst)),
+          std::tan(worst) > 1e-6 ? fmt::format("{:.3f}", std::tan(best) / std::tan(worst))
+                                : std::string("unbounded (μ_min ≈ 0)"));
+    }
+    sections.push_back({"directions", "Friction over sliding directions", html});
+  }
+  // --- resolution -------------------------------------------------------------------------------
+  if (in.resolution_steps >= 2) {
+    const double L = std::min(lower.length(), upper_measured.length());
+    const double h = std::max(lower.length() / double(lower.size() - 1),
+                              upper_measured.length() / double(upper_measured.size() - 1));
+    const double cmax = L / 2, cmin = 4 * h;
+    std::string html;
+    if (!(cmax > cmin * 1.5)) {
+      html = fmt::format("<p>Too few points for a resolution study (needs a cutoff range from 4 spacings, {}, to half "
+                         "the length, {}).</p>",
+                         fmt_len(cmin, xu), fmt_len(cmax, xu));
+    } else {
+      Series fw, bw, sg;
+      fw.label = "θ_max forward";
+      fw.color = "#d62728";
+      bw.label = "θ_max backward";
+      bw.color = "#2ca02c";
+      sg.label = "σ";
+      sg.color = "#1f77b4";
+      sg.dashed = true;
+      std::string t = "<table class=\"resolution\"><tr><th>cutoff λ_c</th><th>θ_max forward</th><th>θ_max "
+                      "backward</th><th>σ</th><th>μ forward (μ_a = " +
+                      fmt::format("{:g}", in.atomic_friction) + ")</th></tr>\n";
+      for (int k = 0; k < in.resolution_steps; ++k) {
+        const double c = cmax * std::pow(cmin / cmax, double(k) / double(in.resolution_steps - 1));
+        auto lf = gaussian_lowpass(lower, c);
+        if (!lf) return lf.error();
+        Profile uf;
+        if (pair) {
+          auto u = gaussian_lowpass(upper_measured, c);
+          if (!u) return u.error();
+          uf = std::move(*u);
+        } else {
+          uf = *lf;
+        }
+        auto rs = signature(*lf, rotate180(uf), so);
+        if (!rs) return rs.error();
+        auto pr = predict_friction(in.atomic_friction, rs->theta_max_forward, rs->contact_slope_std);
+        if (!pr) return pr.error();
+        fw.x.push_back(c / xu.scale);
+        fw.y.push_back(deg(rs->theta_max_forward));
+        bw.x.push_back(c / xu.scale);
+        bw.y.push_back(deg(rs->theta_max_backward));
+        sg.x.push_back(c / xu.scale);
+        sg.y.push_back(deg(rs->contact_slope_std));
+        t += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", fmt_len(c, xu),
+                         fmt_deg(rs->theta_max_forward), fmt_deg(rs->theta_max_backward),
+                         fmt_deg(rs->contact_slope_std), fmt_mu(pr->friction_coefficient));
+      }
+      t += fmt::format("<tr class=\"unfiltered\"><td>unfiltered</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                       fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward), fmt_deg(r.contact_slope_std),
+                       fmt_mu(fwd->friction_coefficient));
+      t += "</table>\n";
+      Plot p;
+      p.title = "θ_max against resolution (measured analogue of Fig. 14)";
+      p.x_label = fmt::format("Gaussian low-pass cutoff wavelength λ_c ({})", xu.name);
+      p.y_label = "angle (deg)";
+      p.x_log = true;
+      fw.style = bw.style = SeriesStyle::Line;
+      p.series = {fw, bw, sg};
+      for (const Series* se : {&fw, &bw, &sg}) {  // markers at the computed cutoffs
+        Series m = *se;
+        m.style = SeriesStyle::Points;
+        m.label.clear();
+        p.series.push_back(std::move(m));
+      }
+      p.lines.push_back({true, deg(r.theta_max_forward), "unfiltered θ_max forward", "#d62728"});
+      auto svg = plot_svg(p);
+      if (!svg) return svg.error();
+      html = figure(*svg, fmt::format(
+          "The surface{} low-pass filtered (Gaussian, ISO 16610-21: 50 % transmission at λ_c) at {} cutoffs from half "
+          "the length down to 4 point spacings, then the signature recomputed. From the coarsest to the finest cutoff "
+          "θ_max forward goes from {} to {} (unfiltered: {}); the paper's Fig. 14 shows θ_max growing with the "
+          "resolution of Weierstrass–Mandelbrot profiles.",
+          pair ? "s" : "", in.resolution_steps, fmt::format("{:.3f}°", fw.y.front()), fmt::format("{:.3f}°", fw.y.back()),
+          fmt_deg(r.theta_max_forward)));
+      html += t;
+    }
+    sections.push_back({"resolution", "Dependence on resolution", html});
+  }
+
+  // --- what was assumed --------------------------------------------------------------------------
+  assumptions.push_back(pair ? fmt::format("The lower block's face is {}; the upper block's face is {} as measured "
+                                           "(material below), turned over by 180° to face it.",
+                                           escape_html(lower_name), escape_html(upper_name))
+                             : fmt::format("The upper block is the surface itself turned over (rotated 180°): {} "
+                                           "slides on a copy of itself.",
+                                           escape_html(lower_name)));
+  assumptions.push_back(fmt::format("Detrending applied to each measured surface before anything else: <b>{}</b>.",
+                                    escape_html(in.detrend.empty() ? std::string("none") : in.detrend)));
+  if (in.is_map)
+    assumptions.push_back(fmt::format(
+        "The signature, slope distributions and resolution study use the map's central line along x (y = {}), "
+        "the longest valid run: {} points over {}. The polar plot uses parallel lines in every direction.",
+        fmt_len(in.map.y0 + in.map.height() / 2, length_unit(in.map.height())), lower.size(),
+        fmt_len(lower.length(), xu)));
+  assumptions.push_back(
+      "Rigid blocks: the upper block only translates (no rotation, no deformation). Contact slopes follow the "
+      "paper's exact polyline rules (edge–edge, vertex–edge, vertex–vertex).");
+  assumptions.push_back(fmt::format("Offsets x_ofs from {} to {} ({}).", fmt_len(r.offset.front(), xu),
+                                    fmt_len(r.offset.back(), xu),
+                                    lower.period ? "one period" : "up to half the shorter block"));
+  assumptions.push_back(fmt::format("Atomic friction μ_a = {:g} (Eq. 6).", in.atomic_friction));
+  assumptions.push_back(
+      "Units: lengths as read from the file(s), converted to metres and shown in the unit printed on each axis; "
+      "angles in degrees.");
+  for (const auto& n : in.notes) assumptions.push_back(escape_html(n));
+
+  // --- the page ---------------------------------------------------------------------------------
+  std::string title = pair ? fmt::format("frictal report: {} on {}", base(lower_name), base(upper_name))
+                           : fmt::format("frictal report: {}", base(lower_name));
+  std::string page;
+  page += "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
+  page += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
+  page += fmt::format("<title>{}</title>\n", escape_html(title));
+  page += R"(<style>
+body { font-family: "DejaVu Sans", Arial, sans-serif; max-width: 1100px; margin: 1.5em auto; padding: 0 1em; color: #222; line-height: 1.4; }
+h1 { font-size: 1.5em; } h2 { font-size: 1.2em; border-bottom: 1px solid #ccc; padding-bottom: .2em; margin-top: 1.6em; }
+figure { margin: 1em 0; } figcaption { font-size: .9em; color: #444; max-width: 700px; }
+svg.plot { max-width: 100%; height: auto; }
+table { border-collapse: collapse; margin: .8em 0; font-size: .92em; } caption { text-align: left; font-weight: bold; padding: .3em 0; }
+th, td { border: 1px solid #ddd; padding: .25em .6em; text-align: left; } td.note { color: #666; font-size: .9em; }
+table.resolution td, table.friction td { font-variant-numeric: tabular-nums; }
+tr.unfiltered td { font-weight: bold; }
+.verdict { background: #f3f7ee; border-left: 4px solid #5a9a2a; padding: .5em .8em; }
+.assumptions { background: #f7f7f7; padding: .6em 1.4em; border-radius: 4px; }
+nav a { margin-right: 1em; } footer { margin-top: 2em; font-size: .85em; color: #666; }
+</style>
+</head>
+<body>
+)";
+  page += fmt::format("<h1>{}</h1>\n", escape_html(title));
+  page += fmt::format("<p class=\"verdict\">Predicted static friction μ = <b>{}</b> towards +x (Eq. 18 range {} … {}) "
+                      "and <b>{}</b> towards −x; θ_max = {} / {}, μ_a = {:g}.</p>\n",
+                      fmt_mu(fwd->friction_coefficient), fmt_mu(fwd->friction_coefficient_low),
+                      fmt_mu(fwd->friction_coefficient), fmt_mu(bwd->friction_coefficient),
+                      fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward), in.atomic_friction);
+  page += "<nav>";
+  for (const auto& s : sections) page += fmt::format("<a href=\"#{}\">{}</a>", s.id, s.title);
+  page += "<a href=\"#assumptions\">What was assumed</a></nav>\n";
+  for (const auto& s : sections) page += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n{}</section>\n", s.id, s.title, s.html);
+  page += "<section id=\"assumptions\">\n<h2>What was assumed</h2>\n<ul class=\"assumptions\">\n";
+  for (const auto& a : assumptions) page += fmt::format("<li>{}</li>\n", a);
+  page += "</ul>\n</section>\n";
+  page += fmt::format(
+      "<footer>Method: F. Alonso-Marroquín et al., “Static friction between rigid fractal surfaces”, Phys. Rev. E 92, "
+      "032405 (2015). Every number on this page was computed by frictal from the input file(s). {}</footer>\n",
+      escape_html(in.generated_by));
+  page += "</body>\n</html>\n";
+  return page;
+}
+
+}  // namespace frictal::report

@@ -1,0 +1,249 @@
+// The SVG/PNG building blocks of frictal report and the report page itself. Expected values come
+// from RFC/PNG specifications (base64 vectors, the IEND CRC), from the data drawn, or from the
+// sawtooth's analytic signature (theta_max = the rise angle, phi = theta_max + atan(mu_a)).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <regex>
+#include <string>
+
+#include "frictal/generators.hpp"
+#include "frictal/report.hpp"
+
+namespace {
+
+namespace rp = frictal::report;
+constexpr double kDeg = std::numbers::pi / 180;
+
+std::size_t count(const std::string& s, const std::string& what) {
+  std::size_t n = 0;
+  for (auto p = s.find(what); p != std::string::npos; p = s.find(what, p + 1)) ++n;
+  return n;
+}
+
+std::uint32_t be32(const std::string& s, std::size_t at) {
+  return (std::uint32_t(std::uint8_t(s[at])) << 24) | (std::uint32_t(std::uint8_t(s[at + 1])) << 16) |
+         (std::uint32_t(std::uint8_t(s[at + 2])) << 8) | std::uint8_t(s[at + 3]);
+}
+
+std::string fmt_like(double deg) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3f\u00b0", deg);
+  return b;
+}
+
+/// No network: nothing on the page may point at http(s) (the SVG namespace URI is an identifier).
+void expect_self_contained(const std::string& page) {
+  std::string s = page;
+  const std::string ns = "xmlns=\"http://www.w3.org/2000/svg\"";
+  for (auto p = s.find(ns); p != std::string::npos; p = s.find(ns)) s.erase(p, ns.size());
+  EXPECT_EQ(s.find("http:"), std::string::npos);
+  EXPECT_EQ(s.find("https:"), std::string::npos);
+  EXPECT_EQ(count(s, "src=\""), count(s, "src=\"data:"));
+  EXPECT_EQ(count(s, "href=\""), count(s, "href=\"data:") + count(s, "href=\"#"));
+}
+
+}  // namespace
+
+TEST(Report, Base64MatchesRfc4648Vectors) {
+  EXPECT_EQ(rp::base64(""), "");
+  EXPECT_EQ(rp::base64("f"), "Zg==");
+  EXPECT_EQ(rp::base64("fo"), "Zm8=");
+  EXPECT_EQ(rp::base64("foo"), "Zm9v");
+  EXPECT_EQ(rp::base64("foob"), "Zm9vYg==");
+  EXPECT_EQ(rp::base64("fooba"), "Zm9vYmE=");
+  EXPECT_EQ(rp::base64("foobar"), "Zm9vYmFy");
+  EXPECT_EQ(rp::base64(std::string("\xff\xfe", 2)), "//4=");
+}
+
+TEST(Report, PngHasSignatureHeaderStoredDataAndTheStandardIendCrc) {
+  // 3 x 2 pixels: red, green, blue / white, black, grey.
+  const std::vector<std::uint8_t> rgb = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255, 0, 0, 0, 128, 128, 128};
+  auto png = rp::encode_png(3, 2, rgb);
+  ASSERT_TRUE(png);
+  const std::string& s = *png;
+  EXPECT_EQ(s.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(be32(s, 8), 13u);
+  EXPECT_EQ(s.substr(12, 4), "IHDR");
+  EXPECT_EQ(be32(s, 16), 3u);
+  EXPECT_EQ(be32(s, 20), 2u);
+  EXPECT_EQ(int(std::uint8_t(s[24])), 8);  // bit depth
+  EXPECT_EQ(int(std::uint8_t(s[25])), 2);  // RGB
+  // IEND is always 00000000 "IEND" AE426082 (PNG specification).
+  EXPECT_EQ(s.substr(s.size() - 12), std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12));
+  // IDAT: zlib header, one final stored block holding the two filtered scanlines, Adler-32.
+  const std::size_t idat = 8 + 25;
+  ASSERT_EQ(s.substr(idat + 4, 4), "IDAT");
+  const std::string z = s.substr(idat + 8, be32(s, idat));
+  EXPECT_EQ(int(std::uint8_t(z[0])), 0x78);
+  EXPECT_EQ((std::uint8_t(z[0]) * 256 + std::uint8_t(z[1])) % 31, 0);  // RFC 1950 FCHECK
+  EXPECT_EQ(int(std::uint8_t(z[2])), 1);                               // BFINAL, stored
+  const std::size_t len = std::uint8_t(z[3]) | (std::uint8_t(z[4]) << 8);
+  ASSERT_EQ(len, 2u * (1 + 9));
+  std::string raw = z.substr(7, len);
+  EXPECT_EQ(raw[0], '\0');
+  EXPECT_EQ(std::vector<std::uint8_t>(raw.begin() + 1, raw.begin() + 10), std::vector<std::uint8_t>(rgb.begin(), rgb.begin() + 9));
+  EXPECT_FALSE(rp::encode_png(3, 3, rgb));
+}
+
+TEST(Report, NiceTicksAndUnits) {
+  EXPECT_EQ(rp::nice_ticks(0, 1, 5), (std::vector<double>{0, 0.2, 0.4, 0.6000000000000001, 0.8, 1}));
+  const auto t = rp::nice_ticks(-3.7, 12.2, 6);
+  ASSERT_FALSE(t.empty());
+  EXPECT_GE(t.front(), -3.7);
+  EXPECT_LE(t.back(), 12.2);
+  EXPECT_DOUBLE_EQ(t[1] - t[0], 5);  // span 15.9 / 6 = 2.65 per tick: the next nice step is 5
+  EXPECT_DOUBLE_EQ(rp::nice_ticks(0, 10, 4)[1], 2.5);  // 2.5 per tick exactly
+  EXPECT_EQ(rp::length_unit(2.4e-3).name, "mm");
+  EXPECT_EQ(rp::length_unit(650e-6).name, "\u00b5m");
+  EXPECT_EQ(rp::length_unit(3e-9).name, "nm");
+  EXPECT_DOUBLE_EQ(rp::length_unit(3e-9).scale, 1e-9);
+}
+
+TEST(Report, PlotDrawsEverySeriesWithLabelsAndRefusesEmptyPlots) {
+  rp::Plot p;
+  p.title = "t & <x>";
+  p.x_label = "x (\u00b5m)";
+  p.y_label = "z (nm)";
+  p.series.push_back({{0, 1, 2, 3}, {0, 1, 0, 1}, "line", "", rp::SeriesStyle::Line});
+  p.series.push_back({{0, 1, 2}, {0.5, 0.25}, "hist", "", rp::SeriesStyle::Step});
+  p.series.push_back({{0.5, 1.5}, {0.2, 0.8}, "", "", rp::SeriesStyle::Points});
+  auto svg = rp::plot_svg(p);
+  ASSERT_TRUE(svg) << svg.error().message;
+  EXPECT_EQ(count(*svg, "<polyline"), 2u);
+  EXPECT_EQ(count(*svg, "<circle"), 2u);
+  EXPECT_NE(svg->find("t &amp; &lt;x&gt;"), std::string::npos);
+  EXPECT_NE(svg->find("x (\u00b5m)"), std::string::npos);
+  EXPECT_NE(svg->find("z (nm)"), std::string::npos);
+  EXPECT_FALSE(std::regex_search(*svg, std::regex("[^a-z]nan[^a-z]|inf")));
+  rp::Plot empty;
+  empty.title = "nothing";
+  EXPECT_FALSE(rp::plot_svg(empty));
+  empty.series.push_back({{0, 1}, {NAN, NAN}, "", "", rp::SeriesStyle::Line});
+  auto e = rp::plot_svg(empty);
+  ASSERT_FALSE(e);
+  EXPECT_NE(e.error().message.find("nothing"), std::string::npos);
+  rp::Plot bad;
+  bad.series.push_back({{0, 1, 2}, {0, 1}, "bad", "", rp::SeriesStyle::Line});
+  EXPECT_FALSE(rp::plot_svg(bad));
+}
+
+TEST(Report, LogAxisTicksAreLabelledWithTheValues) {
+  rp::Plot p;
+  p.x_log = true;
+  p.series.push_back({{1e-3, 1e-2, 1e-1}, {1, 2, 3}, "", "", rp::SeriesStyle::Line});
+  auto svg = rp::plot_svg(p);
+  ASSERT_TRUE(svg);
+  for (const char* t : {">0.001<", ">0.01<", ">0.1<"}) EXPECT_NE(svg->find(t), std::string::npos) << t;
+  // less than a decade: ticks of x itself (3, 3.5, 4, 4.5)
+  p.series[0].x = {3, 4, 4.5};
+  auto narrow = rp::plot_svg(p);
+  ASSERT_TRUE(narrow);
+  EXPECT_NE(narrow->find(">3.5<"), std::string::npos);
+  EXPECT_NE(narrow->find(">4.5<"), std::string::npos);
+  p.series[0].x = {-1, 0, -2};  // nothing positive on a log axis
+  EXPECT_FALSE(rp::plot_svg(p));
+}
+
+TEST(Report, PolarPlotClosesAFullCircle) {
+  rp::PolarPlot p;
+  p.title = "polar";
+  rp::Series s;
+  for (int k = 0; k < 36; ++k) {
+    s.x.push_back(k * 10 * kDeg);
+    s.y.push_back(20 + 5 * std::cos(2 * k * 10 * kDeg));
+  }
+  p.series.push_back(s);
+  auto svg = rp::polar_svg(p);
+  ASSERT_TRUE(svg) << svg.error().message;
+  EXPECT_EQ(count(*svg, "<polygon"), 1u);
+  EXPECT_NE(svg->find("90\u00b0"), std::string::npos);
+}
+
+TEST(Report, MapImageEmbedsAPngOfTheDownsampledMap) {
+  frictal::Map m;
+  m.nx = 700;
+  m.ny = 100;
+  m.dx = m.dy = 1e-6;
+  for (std::size_t j = 0; j < m.ny; ++j)
+    for (std::size_t i = 0; i < m.nx; ++i) m.heights.push_back(1e-8 * double(i) + (i == 5 ? NAN : 0.0));
+  rp::MapImage o;
+  o.max_pixels = 100;
+  auto svg = rp::map_svg(m, o);
+  ASSERT_TRUE(svg) << svg.error().message;
+  // two images (map, colour bar); the map's PNG is ceil(700/7) x ceil(100/7) = 100 x 15 pixels
+  EXPECT_EQ(count(*svg, "href=\"data:image/png;base64,"), 2u);
+  const auto p = svg->find("base64,") + 7;
+  const std::string b64 = svg->substr(p, 32);
+  EXPECT_EQ(b64.substr(0, 8), rp::base64("\x89PNG\r\n").substr(0, 8));
+  EXPECT_NE(svg->find("x (\u00b5m)"), std::string::npos);
+  EXPECT_NE(svg->find("height z (\u00b5m)"), std::string::npos);  // 7 um of relief
+}
+
+TEST(Report, SawtoothPageStatesTheAnalyticPrediction) {
+  frictal::SawtoothParams sp;
+  sp.rise_angle = 20 * kDeg;
+  sp.rise_fraction = 0.7;
+  auto saw = frictal::sawtooth_profile(sp);
+  ASSERT_TRUE(saw);
+  rp::ReportInput in;
+  in.lower = *saw;
+  in.lower_name = "saw.csv";
+  in.detrend = "none";
+  in.atomic_friction = 0.2;
+  in.resolution_steps = 4;
+  in.threads = 2;
+  auto page = rp::surface_report(in);
+  ASSERT_TRUE(page) << page.error().message;
+  // Sawtooth against itself turned over: theta_max forward = the rising flank (20 deg), backward the
+  // falling one, atan(tan 20 * 0.7 / 0.3); phi = 20 deg + atan 0.2, mu = tan phi.
+  const double back = std::atan(std::tan(20 * kDeg) * 0.7 / 0.3) / kDeg;
+  const double phi = 20 + std::atan(0.2) / kDeg;
+  EXPECT_NE(page->find("20.000\u00b0"), std::string::npos);
+  EXPECT_NE(page->find(fmt_like(back)), std::string::npos);
+  EXPECT_NE(page->find(fmt_like(phi)), std::string::npos);
+  char mu[32];
+  std::snprintf(mu, sizeof mu, "%.4f", std::tan(phi * kDeg));
+  EXPECT_NE(page->find(std::string("<b>") + mu + "</b>"), std::string::npos);
+  EXPECT_NE(page->find("turned over"), std::string::npos);
+  EXPECT_NE(page->find("Detrending applied"), std::string::npos);
+  EXPECT_GE(count(*page, "<svg"), 4u);  // surface, signature, slopes, resolution
+  expect_self_contained(*page);
+}
+
+TEST(Report, MapPageHasImagePolarPlotAndCentralLine) {
+  // Ridges along y: a symmetric 20-degree sawtooth in x, flat in y.
+  frictal::Map m;
+  m.nx = 96;
+  m.ny = 40;
+  m.dx = m.dy = 1e-6;
+  const double period = 16e-6;
+  for (std::size_t j = 0; j < m.ny; ++j)
+    for (std::size_t i = 0; i < m.nx; ++i) {
+      const double u = std::fmod(double(i) * m.dx, period) / period;
+      m.heights.push_back(std::tan(20 * kDeg) * period * (u < 0.5 ? u : 1 - u));
+    }
+  rp::ReportInput in;
+  in.is_map = true;
+  in.map = m;
+  in.lower_name = "ridges.x3p";
+  in.detrend = "none";
+  in.directions = 8;
+  in.max_lines = 8;
+  in.resolution_steps = 3;
+  in.threads = 2;
+  auto page = rp::surface_report(in);
+  ASSERT_TRUE(page) << page.error().message;
+  EXPECT_NE(page->find("Friction over sliding directions"), std::string::npos);
+  EXPECT_EQ(count(*page, "<polygon"), 2u);  // phi and its Eq. 18 lower end
+  EXPECT_NE(page->find("central line along x"), std::string::npos);
+  // symmetric ridges: 0 and 180 degrees tie at the flank angle; along the ridges (90 degrees) no slope
+  const std::string verdict = page->substr(page->find("Highest friction sliding towards"), 200);
+  EXPECT_NE(verdict.find("\u03c6 = 20.000\u00b0"), std::string::npos) << verdict;
+  EXPECT_NE(verdict.find("lowest towards 90\u00b0: \u03c6 = 0.000\u00b0"), std::string::npos) << verdict;
+  EXPECT_GE(count(*page, "data:image/png;base64,"), 2u);
+  expect_self_contained(*page);
+  in.upper = frictal::Profile{};
+  EXPECT_FALSE(rp::surface_report(in));
+}
