@@ -202,7 +202,7 @@ def fig05(bin_, work):
                "tilted slowly until the upper one slides, and the tilt angle at the slide is the friction angle "
                "φ = atan μ_a + θ_max (Sec. IV, Fig. 5).")
     frames = f"{work}/k1-frames.txt"
-    j = run_json(bin_, "tilt", "--surface", "koch", "--iterations", 1, "--alpha", 20, "--frames", frames,
+    j = run_json(bin_, "tilt", "koch", "--iterations", 1, "--alpha", 20, "--frames", frames,
                  "--frame-interval", 0.05, "--json")
     bodies, fr = read_frames(frames)
     slide = j["slide_time_s"] if j.get("slid") else fr[-1][0]
@@ -250,7 +250,7 @@ def fig05(bin_, work):
                   ("steps, wall time", f"{j['steps']}, {j['wall_time_s']:.1f} s")]
     f.verdicts.append((bool(j.get("slid")) and abs(sim - pred) < 0.1,
                        "the block slides at the predicted friction angle", "|φ_sim − φ_pred| < 0.1°"))
-    f.source = "`frictal tilt --surface koch --iterations 1 --alpha 20 --frames` (format: docs/dem.md)"
+    f.source = "`frictal tilt koch --iterations 1 --alpha 20 --frames` (format: docs/dem.md)"
     return f
 
 
@@ -260,7 +260,7 @@ def fig11(bin_, work):
                "phases) share every mode's amplitude, hence the same spectrum, while the random phases remove the "
                "regular pattern (Sec. V A, Fig. 11).")
     det, rnd = f"{work}/wm-det.csv", f"{work}/wm-rnd.csv"
-    run(bin_, "surface", "wm", "--dimension", 1.5, "--deterministic", "-o", det)
+    run(bin_, "surface", "wm", "--dimension", 1.5, "--no-stochastic", "-o", det)
     run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 1, "-o", rnd)
     sd, sr = run_json(bin_, "stats", det, "--json"), run_json(bin_, "stats", rnd, "--json")
     fig, axes = plt.subplots(2, 1, figsize=(7.5, 4.8), sharex=True)
@@ -279,7 +279,7 @@ def fig11(bin_, work):
                   ("steepest edge: deterministic / random", f"{sd['max_slope_deg']:.3f}° / {sr['max_slope_deg']:.3f}°")]
     f.verdicts.append((rel < 0.02, "same mode amplitudes: the same rms slope (a spectral moment)",
                        "rms slopes within 2 %"))
-    f.source = "`frictal surface wm --dimension 1.5 [--deterministic | --seed 1]`, `frictal stats`"
+    f.source = "`frictal surface wm --dimension 1.5 [--no-stochastic | --seed 1]`, `frictal stats`"
     return f
 
 

@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "common.hpp"
+#include "options.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/report.hpp"
 #include "frictal/version.hpp"
@@ -34,8 +35,7 @@ std::function<int()> setup(CLI::App& app) {
                  "Upper surface, as measured (material below); it is turned over to face SURFACE. "
                  "Default: SURFACE itself. Profiles only");
   app.add_option("-o,--output", a->out, "HTML file to write ('-' = standard output)")->required();
-  app.add_option("--atomic-friction,--mu-a", a->mu_a, "Atomic friction coefficient mu_a >= 0 of Eq. 6")
-      ->capture_default_str();
+  add_atomic_friction_option(app, a->mu_a);
   app.add_option("--detrend", a->detrend,
                  "Remove none, mean, line (plane) or poly:N from each surface first (default: line for profiles, "
                  "plane for maps)");

@@ -36,7 +36,7 @@ $PY "$SRC/scripts/plot_fig04.py" "$I/fig04"
 if [[ -f "$SRC/studies/fig09-divider.toml" ]]; then
   "$BIN" study run "$SRC/studies/fig09-divider.toml" --store "$I/studies/fig09-divider.sqlite" --quick >/dev/null 2>&1 || true
   "$BIN" study report "$I/studies/fig09-divider.sqlite" -o "$I/studies/fig09-divider-report.md" >/dev/null 2>&1 || true
-  $PY "$SRC/scripts/plot_studies.py" "$I" --fig09 "$I/studies/fig09-divider.sqlite" >/dev/null 2>&1 || true
+  $PY "$SRC/scripts/plot_studies.py" "$I" --frictal "$BIN" --study "$SRC/studies/fig09-divider.toml" "$I/studies/fig09-divider.sqlite" >/dev/null 2>&1 || true
 fi
 (cd "$SRC" && $PY scripts/make_index.py "$BIN" "$I" --quick --only 3,4,9,11,12,13,16)
 grep -q "SUPPORTED" "$I/index.html" || { echo "test-pages: index.html has no verdict" >&2; fail=1; }
