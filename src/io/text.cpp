@@ -285,18 +285,19 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
                                        name, !xu && !zu ? "x and z" : !xu ? "x" : "z"));
   double xs = xu.value_or(fallback), zs = zu.value_or(fallback);
 
-  std::size_t dropped = 0;
+  InvalidCount invalid;
   out.curve.x.reserve(rows.size());
   out.curve.z.reserve(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) {
     double x = rows[k][xc], z = rows[k][zc];
-    if (std::isnan(x))
-      return make_error(fmt::format("{}:{}: x is not a number", name, row_line[k]));
-    if (std::isnan(z)) { ++dropped; continue; }
+    if (!std::isfinite(x))
+      return make_error(fmt::format("{}:{}: x is {} (expected a finite number; only heights may be invalid)", name,
+                                    row_line[k], x));
+    if (!std::isfinite(z)) { invalid.add(z); continue; }
     out.curve.x.push_back(x * xs);
     out.curve.z.push_back(z * zs);
   }
-  if (dropped) out.warnings.push_back(fmt::format("{}: {} points with NaN heights were dropped", name, dropped));
+  if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, false));
   if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than 2 points with finite values", name));
   return out;
 }
@@ -459,7 +460,11 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
     return make_error(fmt::format("{}: Width and Height must be positive", name));
   double zs = zscale.value_or(fallback);
   m.heights = std::move(values);
+  InvalidCount invalid;
+  mask_invalid(m.heights, invalid);
   for (double& h : m.heights) h *= zs;
+  if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
+  if (invalid.total() == m.heights.size()) return make_error(fmt::format("{}: no valid point (every height is NaN or infinite)", name));
   return out;
 }
 
