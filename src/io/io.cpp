@@ -19,16 +19,24 @@ const char* format_name(ProfileFormat f) {
     case ProfileFormat::Dektak: return "dektak";
     case ProfileFormat::Gwyddion: return "gwyddion";
     case ProfileFormat::X3p: return "x3p";
+    case ProfileFormat::Matrix: return "matrix";
+    case ProfileFormat::Xyz: return "xyz";
+    case ProfileFormat::Sdf: return "sdf";
+    case ProfileFormat::Npy: return "npy";
+    case ProfileFormat::GwyddionLib: return "gwyddion-lib";
   }
   return "?";
 }
 
 Result<ProfileFormat> parse_format(const std::string& name) {
   std::string n = io_detail::lower_ascii(name);
-  for (auto f : {ProfileFormat::Auto, ProfileFormat::Csv, ProfileFormat::Dektak, ProfileFormat::Gwyddion, ProfileFormat::X3p})
+  for (auto f : {ProfileFormat::Auto, ProfileFormat::Csv, ProfileFormat::Dektak, ProfileFormat::Gwyddion, ProfileFormat::X3p,
+                 ProfileFormat::Matrix, ProfileFormat::Xyz, ProfileFormat::Sdf, ProfileFormat::Npy, ProfileFormat::GwyddionLib})
     if (n == format_name(f)) return f;
   if (n == "txt" || n == "tsv" || n == "text") return ProfileFormat::Csv;
-  return make_error(fmt::format("unknown format '{}' (expected auto, csv, dektak, gwyddion or x3p)", name));
+  if (n == "gwy" || n == "gwyddionlib" || n == "libgwyddion") return ProfileFormat::GwyddionLib;
+  return make_error(fmt::format(
+      "unknown format '{}' (expected auto, csv, dektak, gwyddion, x3p, matrix, xyz, sdf, npy or gwyddion-lib)", name));
 }
 
 Status validate(const Map& m, const std::string& what) {
@@ -81,27 +89,76 @@ Result<std::string> read_file_bytes(const std::string& path, std::uint64_t max_b
 
 }  // namespace
 
-Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+namespace {
+
+Result<SurfaceData> read_native_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options,
+                                      int depth) {
   ProfileFormat f = options.format;
+  if (f == ProfileFormat::GwyddionLib)
+    return make_error(fmt::format("{}: the Gwyddion backend reads files, not bytes in memory", name));
+  if (io_detail::looks_like_gzip(bytes)) {
+    if (depth > 0) return make_error(fmt::format("{}: gzip inside gzip is not read", name));
+    auto inner = io_detail::gunzip(bytes, name, options.max_bytes);
+    if (!inner) return inner.error();
+    auto r = read_native_bytes(*inner, name, options, depth + 1);
+    if (r) r->reader = fmt::format("{} (gzip)", r->reader);
+    return r;
+  }
   bool zip = bytes.size() >= 4 && bytes.compare(0, 4, "PK\x03\x04") == 0;
   if (f == ProfileFormat::X3p || (f == ProfileFormat::Auto && zip)) {
     if (!zip) return make_error(fmt::format("{}: not an X3P file (no ZIP signature)", name));
     return io_detail::read_x3p_bytes(bytes, name, options);
   }
   if (zip) return make_error(fmt::format("{}: a ZIP archive cannot be read as {}", name, format_name(f)));
+  if (f == ProfileFormat::Npy || (f == ProfileFormat::Auto && io_detail::looks_like_npy(bytes))) {
+    if (!io_detail::looks_like_npy(bytes)) return make_error(fmt::format("{}: not a .npy file (no \\x93NUMPY signature)", name));
+    return io_detail::read_npy_bytes(bytes, name, options);
+  }
   std::string text = decode_text(bytes);
   if (text.find('\0') != std::string::npos)
-    return make_error(fmt::format("{}: binary data, not a text profile (formats: {})", name, "csv, dektak, gwyddion, x3p"));
+    return make_error(fmt::format("{}: binary data of no format frictal reads natively (text, X3P, .npy, gzip)", name));
   if (f == ProfileFormat::Auto) {
-    if (io_detail::looks_like_dektak(text)) f = ProfileFormat::Dektak;
+    if (io_detail::looks_like_sdf_text(text)) f = ProfileFormat::Sdf;
+    else if (io_detail::looks_like_dektak(text)) f = ProfileFormat::Dektak;
     else if (io_detail::looks_like_gwyddion(text)) f = ProfileFormat::Gwyddion;
     else f = ProfileFormat::Csv;
   }
   switch (f) {
+    case ProfileFormat::Sdf: return io_detail::parse_sdf_text(text, name, options);
     case ProfileFormat::Dektak: return io_detail::parse_dektak(text, name, options);
     case ProfileFormat::Gwyddion: return io_detail::parse_gwyddion(text, name, options);
     default: return io_detail::parse_delimited(text, name, options);
   }
+}
+
+/// The one channel a native file holds, for `frictal info`.
+void describe_native(SurfaceData& s) {
+  s.reader = fmt::format("native{}", s.reader);
+  ChannelInfo c;
+  c.name = format_name(s.format);
+  c.is_map = s.is_map;
+  if (s.is_map) {
+    c.nx = s.map.nx;
+    c.ny = s.map.ny;
+    c.size_x = double(s.map.nx) * s.map.dx;
+    c.size_y = double(s.map.ny) * s.map.dy;
+  } else {
+    c.nx = s.curve.size();
+    c.ny = 1;
+    c.size_x = s.curve.size() ? s.curve.x.back() - s.curve.x.front() : 0;
+  }
+  c.xy_unit.push_back('m');  // (not = "m": GCC 12 -Wrestrict false positive, PR 105329)
+  c.z_unit = c.xy_unit;
+  s.channels = {c};
+  s.channel = 0;
+}
+
+}  // namespace
+
+Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+  auto r = read_native_bytes(bytes, name, options, 0);
+  if (r) describe_native(*r);
+  return r;
 }
 
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {

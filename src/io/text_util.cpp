@@ -1,6 +1,7 @@
 #include "io/text_util.hpp"
 
 #include <charconv>
+#include <fmt/core.h>
 #include <cmath>
 #include <limits>
 
@@ -171,14 +172,13 @@ std::string invalid_warning(const std::string& name, const InvalidCount& c, bool
   std::string parts;
   auto part = [&](std::size_t n, const char* what) {
     if (!n) return;
-    if (!parts.empty()) parts += ", ";
-    parts += std::to_string(n) + " " + what;
+    parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", n, what);
   };
   part(c.nan, "NaN");
   part(c.pos_inf, "+inf");
   part(c.neg_inf, "-inf");
-  return name + ": " + std::to_string(c.total()) + " invalid point" + (c.total() == 1 ? "" : "s") + " (" + parts +
-         (map ? ") masked" : ") dropped from the profile");
+  return fmt::format("{}: {} invalid point{} ({}) {}", name, c.total(), c.total() == 1 ? "" : "s", parts,
+                     map ? "masked" : "dropped from the profile");
 }
 
 }  // namespace frictal::io_detail

@@ -72,7 +72,7 @@ TEST(InvalidPoints, TextProfileEverySpellingIsDroppedWithOneWarning) {
   EXPECT_NE(w.find("2 -inf"), std::string::npos) << w;
   // Whitespace and semicolon files, too.
   for (const char* t : {"0 1\n1 inf\n2 2\n", "0;1\n1;-Inf\n2;2\n", "0\t1\n1\tNaN\n2\t2\n"}) {
-    auto r = frictal::read_surface_bytes(t, "t.txt", {.default_unit = "m"});
+    auto r = frictal::read_surface_bytes(t, "t.txt", [] { frictal::ReadOptions o; o.default_unit = "m"; return o; }());
     ASSERT_TRUE(r.ok()) << t << r.error().message;
     EXPECT_EQ(r->curve.size(), 2u) << t;
     EXPECT_EQ(count_containing(r->warnings, "1 invalid point"), 1u) << t;
