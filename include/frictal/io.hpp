@@ -82,7 +82,28 @@ struct SurfaceData {
 };
 
 
-/// Reads any supported file (format from content unless options.format says otherwise).
+/// A readable format, for `frictal formats`.
+struct FormatInfo {
+  std::string name;         ///< "csv", "x3p", ... or the Gwyddion module name ("surffile")
+  std::string description;  ///< what it is, with the usual extensions
+  std::string reader;       ///< "native" or "gwyddion"
+  bool can_write = false;   ///< frictal can write it (native) / Gwyddion's module saves it
+};
+/// The native formats, then (when available) every format a Gwyddion file module loads.
+std::vector<FormatInfo> readable_formats(const std::string& gwyddion_module_dir = "");
+/// The formats Gwyddion's file modules load (empty when the backend is not available).
+std::vector<FormatInfo> gwyddion_formats(const std::string& gwyddion_module_dir = "");
+/// Whether the Gwyddion backend can be used: its libraries load (at run time) and
+/// `module_dir` (empty = the directory found at build time) holds file modules. `why` gets the
+/// reason and the packages to install when not. The first call initialises Gwyddion for the
+/// whole process (type system and file modules; never GTK).
+bool gwyddion_available(const std::string& module_dir = "", std::string* why = nullptr);
+/// Writes a map through Gwyddion's file modules, the format from the extension: .gwy, .gsf,
+/// .sdf (text), .sur, .asc (SPIP), .ibw, .nrrd (the ones tested). Invalid points go to a mask.
+Status write_gwyddion(const std::string& path, const Map& m, const std::string& module_dir = "");
+
+/// Reads any supported file (format from content unless options.format says otherwise). Files
+/// no native reader recognises go to the Gwyddion backend when it is available.
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options = {});
 /// Same, from bytes already in memory; `name` is used in messages.
 Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name,

@@ -26,8 +26,8 @@ bool looks_like_npy(const std::string& bytes) { return bytes.size() >= 10 && byt
 namespace {
 
 std::optional<std::string> dict_value(std::string_view header, std::string_view key) {
-  auto k = header.find("'" + std::string(key) + "'");
-  if (k == std::string_view::npos) k = header.find("\"" + std::string(key) + "\"");
+  auto k = header.find(fmt::format("'{}'", key));
+  if (k == std::string_view::npos) k = header.find(fmt::format("\"{}\"", key));
   if (k == std::string_view::npos) return std::nullopt;
   auto colon = header.find(':', k);
   if (colon == std::string_view::npos) return std::nullopt;

@@ -131,6 +131,8 @@ Result<SurfaceData> read_native_bytes(const std::string& bytes, const std::strin
   }
 }
 
+std::string lower_ascii_copy(const std::string& s) { return io_detail::lower_ascii(s); }
+
 /// The one channel a native file holds, for `frictal info`.
 void describe_native(SurfaceData& s) {
   s.reader = fmt::format("native{}", s.reader);
@@ -161,10 +163,57 @@ Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::stri
   return r;
 }
 
+static Status check_native_channel(const SurfaceData& s, const std::string& path, const ReadOptions& options) {
+  if (options.channel.empty() || options.channel == "0" || lower_ascii_copy(options.channel) == s.channels[0].name) return Ok{};
+  return make_error(fmt::format("{}: channel '{}' requested but this {} file has one channel (0)", path, options.channel,
+                                format_name(s.format)));
+}
+
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {
+  if (options.format == ProfileFormat::GwyddionLib) return io_detail::read_gwyddion(path, options);
   auto bytes = read_file_bytes(path, options.max_bytes);
   if (!bytes) return bytes.error();
-  return read_surface_bytes(*bytes, path, options);
+  auto r = read_native_bytes(*bytes, path, options, 0);
+  if (r) {
+    describe_native(*r);
+    if (auto st = check_native_channel(*r, path, options); !st) return st.error();
+    return r;
+  }
+  if (options.format != ProfileFormat::Auto) return r;
+  // No native reader took it (and it is no X3P, .npy or gzip file): Gwyddion's file modules may.
+  const std::string& b = *bytes;
+  if ((b.size() >= 4 && b.compare(0, 4, "PK\x03\x04") == 0) || io_detail::looks_like_npy(b) || io_detail::looks_like_gzip(b))
+    return r;
+  const bool binary = decode_text(b).find('\0') != std::string::npos;
+  std::string why;
+  if (gwyddion_available(options.gwyddion_module_dir, &why)) {
+    if (io_detail::gwyddion_detects(path, options.gwyddion_module_dir)) return io_detail::read_gwyddion(path, options);
+    if (binary)
+      return make_error(fmt::format("{}: binary data that neither frictal's readers nor Gwyddion's file modules recognise "
+                                    "(see `frictal formats`)", path));
+    return r;
+  }
+  if (binary)
+    return make_error(fmt::format("{}: binary data of no format frictal reads natively (text, X3P, .npy, gzip); Gwyddion's "
+                                  "file modules may read it, but {}", path, why));
+  return r;
+}
+
+std::vector<FormatInfo> readable_formats(const std::string& gwyddion_module_dir) {
+  std::vector<FormatInfo> f = {
+      {"csv", "delimited text profiles: CSV, TSV, whitespace, ';' with decimal commas (.csv, .txt, .dat, .asc, ...)", "native", true},
+      {"dektak", "Bruker Dektak CSV export (.csv)", "native", false},
+      {"gwyddion", "Gwyddion text export of a map, '# Width:' headers (.txt)", "native", true},
+      {"matrix", "text matrix of heights, optionally with a 'w= h=' / 'nx= ny=' / SPIP 'x-pixels =' header (.txt, .asc)",
+       "native", false},
+      {"xyz", "text x, y, z point list on a regular grid (.xyz, .txt, .csv)", "native", false},
+      {"sdf", "ISO 25178-71 / BCR surface data file, ASCII (.sdf)", "native", false},
+      {"x3p", "ISO 25178-72 XML 3D surface profile, X3P (.x3p): SUR, PRF, PCL on a grid", "native", true},
+      {"npy", "NumPy array (.npy): 1-D profile, 2-D map; f4, f8, i1-i8, u1-u4", "native", false},
+      {"gzip", "any of the above compressed with gzip (.txt.gz, .csv.gz, ...)", "native", false},
+  };
+  for (auto& g : gwyddion_formats(gwyddion_module_dir)) f.push_back(std::move(g));
+  return f;
 }
 
 Result<Curve> read_curve(const std::string& path, const ReadOptions& options) {

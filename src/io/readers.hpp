@@ -23,6 +23,10 @@ Result<SurfaceData> read_npy_bytes(const std::string& bytes, const std::string& 
 Result<std::string> gunzip(const std::string& bytes, const std::string& name, std::uint64_t max_bytes);
 Result<SurfaceData> parse_sdf_text(std::string_view text, const std::string& name, const ReadOptions& options);
 
+/// Gwyddion backend (gwyddion.cpp): whether a module recognises the file; read it.
+bool gwyddion_detects(const std::string& path, const std::string& module_dir);
+Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& options);
+
 /// `bytes` is the whole ZIP archive.
 Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options);
 
