@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <dlfcn.h>
 #include <string>
 
 #include "frictal/io.hpp"
@@ -47,7 +48,9 @@ void expect_same_grid(const frictal::Map& a, const frictal::Map& b, double rel, 
     }
   for (std::size_t k = 0; k < a.size(); ++k) {
     ASSERT_EQ(std::isnan(a.heights[k]), std::isnan(b.heights[k])) << what << " point " << k;
-    if (!std::isnan(a.heights[k])) EXPECT_NEAR(a.heights[k], b.heights[k], rel * (hi - lo)) << what << " point " << k;
+    if (!std::isnan(a.heights[k])) {
+      EXPECT_NEAR(a.heights[k], b.heights[k], rel * (hi - lo)) << what << " point " << k;
+    }
   }
 }
 
@@ -184,4 +187,58 @@ TEST(Gwyddion, MissingModulesNameThePackages) {
   auto s = frictal::read_surface(kData + "/x3p/pyramid.x3p", o);
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.error().message.find("libgwyddion2-0"), std::string::npos) << s.error().message;
+}
+
+TEST(Gwyddion, GraphCurvesAreProfiles) {
+  REQUIRE_GWYDDION();
+  // Build a .gwy holding a graph (two curves, x in m, y in m) and an image, through Gwyddion's
+  // own functions (already loaded process-wide by the backend), then read it with frictal.
+  auto sym = [](const char* n) {
+    void* p = dlsym(RTLD_DEFAULT, n);
+    EXPECT_NE(p, nullptr) << n;
+    return p;
+  };
+  using Obj = void*;
+  auto graph_new = reinterpret_cast<Obj (*)()>(sym("gwy_graph_model_new"));
+  auto curve_new = reinterpret_cast<Obj (*)()>(sym("gwy_graph_curve_model_new"));
+  auto set_data = reinterpret_cast<void (*)(Obj, const double*, const double*, int)>(sym("gwy_graph_curve_model_set_data"));
+  auto add_curve = reinterpret_cast<int (*)(Obj, Obj)>(sym("gwy_graph_model_add_curve"));
+  auto obj_set = reinterpret_cast<void (*)(Obj, const char*, ...)>(sym("g_object_set"));
+  auto unit_new = reinterpret_cast<Obj (*)(const char*)>(sym("gwy_si_unit_new"));
+  auto cont_new = reinterpret_cast<Obj (*)()>(sym("gwy_container_new"));
+  auto quark = reinterpret_cast<std::uint32_t (*)(const char*)>(sym("g_quark_from_string"));
+  auto set_obj = reinterpret_cast<void (*)(Obj, std::uint32_t, Obj)>(sym("gwy_container_set_object"));
+  auto save = reinterpret_cast<int (*)(Obj, const char*, int, const char**, void**)>(sym("gwy_file_save_with_func"));
+  ASSERT_FALSE(::testing::Test::HasFailure());
+  Obj g = graph_new();
+  obj_set(g, "si-unit-x", unit_new("m"), "si-unit-y", unit_new("m"), "title", "Profile", nullptr);
+  const double x[] = {0, 1e-6, 2e-6, 3e-6}, y1[] = {5e-9, 6e-9, NAN, 8e-9}, y2[] = {1, 2, 3, 4};
+  Obj c1 = curve_new(), c2 = curve_new();
+  obj_set(c1, "description", "height", nullptr);
+  obj_set(c2, "description", "other", nullptr);
+  set_data(c1, x, y1, 4);
+  set_data(c2, x, y2, 4);
+  add_curve(g, c1);
+  add_curve(g, c2);
+  Obj c = cont_new();
+  set_obj(c, quark("/0/graph/graph/1"), g);
+  const std::string path = ::testing::TempDir() + "frictal_gwy_graph.gwy";
+  void* err = nullptr;
+  const char* module = nullptr;
+  ASSERT_NE(save(c, path.c_str(), 1, &module, &err), 0);
+  auto s = frictal::read_surface(path);
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  ASSERT_FALSE(s->is_map);
+  ASSERT_EQ(s->channels.size(), 2u);
+  EXPECT_EQ(s->channels[0].name, "Profile: height");
+  ASSERT_EQ(s->curve.size(), 3u);  // the NaN point is dropped, with a warning
+  EXPECT_DOUBLE_EQ(s->curve.x[2], 3e-6);
+  EXPECT_DOUBLE_EQ(s->curve.z[2], 8e-9);
+  EXPECT_EQ(s->warnings.size(), 1u);
+  frictal::ReadOptions o;
+  o.channel = "1";
+  auto t = frictal::read_surface(path, o);
+  ASSERT_TRUE(t.ok()) << t.error().message;
+  ASSERT_EQ(t->curve.size(), 4u);
+  EXPECT_DOUBLE_EQ(t->curve.z[3], 4);
 }

@@ -1,0 +1,63 @@
+// CLI: info, formats, detection without hints, invalid points, --spacing/--channel.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+
+#include "cli/cli_runner.hpp"
+
+namespace {
+const std::string kData = FRICTAL_TEST_DATA;
+}
+
+TEST(CliFormats, InfoListsTheChannelAndSizes) {
+  auto r = run_cli("info " + kData + "/x3p/x3p-2.x3p --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["format"], "x3p");
+  EXPECT_EQ(j["reader"], "native");
+  ASSERT_EQ(j["channels"].size(), 1u);
+  EXPECT_EQ(j["nx"], 650);
+  // Physical size n dx: 650 x 1.27656509837346e-7 m (the file's CX increment).
+  EXPECT_NEAR(j["channels"][0]["size_x"].get<double>(), 650 * 1.27656509837346e-007, 1e-18);
+  auto t = run_cli("info " + kData + "/profiles/xy-1.txt");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("read by native"), std::string::npos) << t.out;
+}
+
+TEST(CliFormats, FormatsListsTheNativeReaders) {
+  auto r = run_cli("formats --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  std::size_t native = 0;
+  for (const auto& f : j["formats"]) native += f["reader"] == "native";
+  EXPECT_EQ(native, 9u);
+  if (j["gwyddion"].get<bool>()) EXPECT_GT(j["formats"].size(), 100u);
+  else EXPECT_NE(j["gwyddion_missing"].get<std::string>().find("gwyddion"), std::string::npos);
+}
+
+TEST(CliFormats, SingleColumnNeedsSpacingAndInfIsAWarning) {
+  const std::string path = temp_path("col.txt");
+  write_file(path, "# unit: nm\n1\ninf\n3\n-inf\n5\n");
+  auto bad = run_cli("stats " + path);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--spacing"), std::string::npos) << bad.err;
+  auto r = run_cli("stats " + path + " --spacing 0.5um --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["points"], 3);
+  EXPECT_NEAR(j["length_m"].get<double>(), 2e-6, 1e-18);  // x = 0, 1, 2 um (kept points 0, 2, 4)
+  // One warning line for the two infinities.
+  std::size_t lines = 0;
+  for (std::size_t p = r.err.find("invalid point"); p != std::string::npos; p = r.err.find("invalid point", p + 1)) ++lines;
+  EXPECT_EQ(lines, 1u) << r.err;
+  auto u = run_cli("stats " + path + " --spacing 0.5furlong");
+  EXPECT_EQ(u.code, 2);
+  EXPECT_NE(u.err.find("--spacing"), std::string::npos);
+}
+
+TEST(CliFormats, NativeFileHasOneChannel) {
+  auto r = run_cli("stats " + kData + "/x3p/pyramid.x3p --channel 2");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("one channel"), std::string::npos) << r.err;
+}
