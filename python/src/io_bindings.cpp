@@ -12,6 +12,7 @@
 #include "frictal/areal.hpp"
 #include "frictal/fractal.hpp"
 #include "frictal/io.hpp"
+#include "frictal/scan_stats.hpp"
 
 namespace py = pybind11;
 using namespace frictal;
@@ -119,8 +120,9 @@ void frictal_bind_io(py::module_& m) {
       py::arg("y0") = 0.0, py::arg("type") = "D", py::arg("binary") = true, "Writes a map (ny, nx) as ISO 25178-71 X3P");
   m.def(
       "map_stats",
-      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy) {
-        MapStats s = map_stats(to_map(heights, dx, dy, 0, 0));
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy, double tip_radius) {
+        const Map map = to_map(heights, dx, dy, 0, 0);
+        MapStats s = map_stats(map);
         py::dict d;
         d["points"] = s.points;
         d["valid"] = s.valid;
@@ -134,9 +136,21 @@ void frictal_bind_io(py::module_& m) {
         d["Sku"] = s.Sku;
         d["Sdq"] = s.Sdq;
         d["max_slope"] = s.max_slope;
+        // Scan quantities (scan_stats.hpp): n dx sizes, bandwidth, per-profile Rq/Rdq, fd gradient.
+        const MapScanStats sc = map_scan_stats(map);
+        d["physical_size_x"] = sc.physical_size_x;
+        d["physical_size_y"] = sc.physical_size_y;
+        d["bandwidth"] = py::make_tuple(sc.bandwidth_short, sc.bandwidth_long);
+        d["Rq_x"] = sc.Rq_x;
+        d["Rdq_x"] = sc.Rdq_x;
+        d["Rq_y"] = sc.Rq_y;
+        d["Rdq_y"] = sc.Rdq_y;
+        d["rms_gradient_fd"] = sc.rms_gradient_fd;
+        if (tip_radius > 0) d["short_reliability_cutoff"] = ok(short_reliability_cutoff(map, tip_radius));
         return d;
       },
-      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), "Areal statistics over the valid points (NaN = invalid)");
+      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("tip_radius") = 0.0,
+      "Areal statistics over the valid points (NaN = invalid); tip_radius (m) adds short_reliability_cutoff");
   m.def(
       "detrend",
       [](const Profile& p, const std::string& kind) { return ok(detrend(p, ok(parse_detrend(kind)))); }, py::arg("profile"),

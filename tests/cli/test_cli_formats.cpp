@@ -61,3 +61,25 @@ TEST(CliFormats, NativeFileHasOneChannel) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("one channel"), std::string::npos) << r.err;
 }
+
+TEST(CliFormats, StatsPrintsPhysicalSizesAndPerProfileValues) {
+  // 4 x 3 map in nm with w = 4 um, h = 3 um: dx = dy = 1 um. Rows 0 1 2 3 (+ 10 per row).
+  const std::string path = temp_path("stats-matrix.txt");
+  write_file(path, "# w=4um h=3um unit=nm\n0 1 2 3\n10 11 12 13\n20 21 22 23\n");
+  auto r = run_cli("stats " + path + " --json --tip-radius 1mm");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["physical_size_x_m"].get<double>(), 4e-6, 1e-18);
+  EXPECT_NEAR(j["physical_size_y_m"].get<double>(), 3e-6, 1e-18);
+  EXPECT_NEAR(j["size_x_m"].get<double>(), 3e-6, 1e-18);  // the (n-1) dx extent is kept
+  // Each row 0..3 nm about its mean: Rq = sqrt(5/4) nm; slopes 1 nm / 1 um = 1e-3.
+  EXPECT_NEAR(j["Rq_x_m"].get<double>(), std::sqrt(1.25) * 1e-9, 1e-21);
+  EXPECT_NEAR(j["Rdq_x"].get<double>(), 1e-3, 1e-15);
+  // Columns 0, 10, 20 nm: Rq = sqrt(200/3) nm; slopes 10 nm / 1 um = 1e-2.
+  EXPECT_NEAR(j["Rq_y_m"].get<double>(), std::sqrt(200.0 / 3) * 1e-9, 1e-20);
+  EXPECT_NEAR(j["Rdq_y"].get<double>(), 1e-2, 1e-15);
+  EXPECT_NEAR(j["rms_gradient_fd"].get<double>(), std::sqrt(1e-6 + 1e-4), 1e-15);
+  EXPECT_NEAR(j["bandwidth_short_m"].get<double>(), 1e-6, 1e-18);
+  EXPECT_NEAR(j["bandwidth_long_m"].get<double>(), 3.5e-6, 1e-18);
+  EXPECT_EQ(j["short_reliability_cutoff_m"].get<double>(), 0.0);  // a plane: no curvature
+}
