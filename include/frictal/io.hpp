@@ -99,7 +99,8 @@ std::vector<FormatInfo> gwyddion_formats(const std::string& gwyddion_module_dir 
 /// whole process (type system and file modules; never GTK).
 bool gwyddion_available(const std::string& module_dir = "", std::string* why = nullptr);
 /// Writes a map through Gwyddion's file modules, the format from the extension: .gwy, .gsf,
-/// .sdf (text), .sur, .asc (SPIP), .ibw, .nrrd (the ones tested). Invalid points go to a mask.
+/// .sdf (text), .sur, .asc (SPIP), .ibw, .nrrd, .tom (WSxM), .afm (Assing), .spm (ISO 28600)
+/// -- the ones tested. Invalid points go to a mask (kept by .gwy only).
 Status write_gwyddion(const std::string& path, const Map& m, const std::string& module_dir = "");
 
 /// Reads any supported file (format from content unless options.format says otherwise). Files

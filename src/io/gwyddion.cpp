@@ -464,12 +464,12 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
 
 Status write_gwyddion(const std::string& path, const Map& m, const std::string& module_dir) {
   if (auto s = validate(m, path); !s) return s;
-  static const char* const kTested[] = {".gwy", ".gsf", ".sdf", ".sur", ".asc", ".ibw", ".nrrd"};
+  static const char* const kTested[] = {".gwy", ".gsf", ".sdf", ".sur", ".asc", ".ibw", ".nrrd", ".tom", ".afm", ".spm"};
   std::string ext = path.substr(std::min(path.size(), path.rfind('.') == std::string::npos ? path.size() : path.rfind('.')));
   ext = io_detail::lower_ascii(ext);
   if (std::find_if(std::begin(kTested), std::end(kTested), [&](const char* e) { return ext == e; }) == std::end(kTested))
     return make_error(fmt::format("{}: writing '{}' through Gwyddion is not supported (tested: .gwy, .gsf, .sdf, .sur, .asc, "
-                                  ".ibw, .nrrd)", path, ext));
+                                  ".ibw, .nrrd, .tom, .afm, .spm)", path, ext));
   Backend& b = backend();
   std::lock_guard lock(b.mutex);
   if (std::string e = ensure_modules(b, module_root(module_dir)); !e.empty())
