@@ -61,10 +61,13 @@ Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>&
   return m;
 }
 
-ReadOptions read_options(const std::string& format, const std::string& unit) {
+ReadOptions read_options(const std::string& format, const std::string& unit, double spacing = 0,
+                         const std::string& channel = "") {
   ReadOptions o;
   o.format = ok(parse_format(format));
   o.default_unit = unit;
+  o.spacing = spacing;
+  o.channel = channel;
   return o;
 }
 
@@ -84,8 +87,9 @@ py::dict fit_dict(const FractalFit& f) {
 void frictal_bind_io(py::module_& m) {
   m.def(
       "read_surface",
-      [](const std::string& path, const std::string& format, const std::string& unit) {
-        SurfaceData s = ok(read_surface(path, read_options(format, unit)));
+      [](const std::string& path, const std::string& format, const std::string& unit, double spacing,
+         const std::string& channel) {
+        SurfaceData s = ok(read_surface(path, read_options(format, unit, spacing, channel)));
         py::dict d = s.is_map ? map_dict(s.map) : py::dict();
         d["kind"] = s.is_map ? "map" : "profile";
         if (!s.is_map) {
@@ -94,9 +98,11 @@ void frictal_bind_io(py::module_& m) {
         }
         d["format"] = format_name(s.format);
         d["warnings"] = s.warnings;
+        d["reader"] = s.reader;  // "native", "native (gzip)" or "gwyddion:<module>"
         return d;
       },
-      py::arg("path"), py::kw_only(), py::arg("format") = "auto", py::arg("unit") = "",
+      py::arg("path"), py::kw_only(), py::arg("format") = "auto", py::arg("unit") = "", py::arg("spacing") = 0.0,
+      py::arg("channel") = "",
       "Reads any supported file (CSV/TSV/text, Dektak, Gwyddion text, X3P). Returns a dict: kind "
       "'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings. Metres.");
   m.def(

@@ -398,9 +398,12 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   }
 
   const bool forced = options.x_column >= 0 || options.z_column >= 0;
-  const bool matrix_header = hp.get({"w", "h", "width", "height", "nx", "ny", "xpixels", "ypixels", "xres", "yres",
-                                     "xlength", "ylength", "xreal", "yreal", "xsize", "ysize", "cols", "rows", "ncols",
-                                     "nrows", "dx", "dy", "bit2nm"}) != nullptr;
+  // Header keys that make a matrix: sizes and counts. A two-column file needs a count key (a
+  // profile with a "# dx = 0.1 um" comment stays a profile).
+  const bool count_key = hp.get({"nx", "ny", "xpixels", "ypixels", "xres", "yres", "ncols", "nrows", "cols", "rows"}) != nullptr;
+  const bool size_key = hp.get({"w", "h", "width", "height", "xlength", "ylength", "xreal", "yreal", "xsize", "ysize", "dx", "dy",
+                                "bit2nm"}) != nullptr;
+  const bool matrix_header = count_key || (ncols >= 3 && size_key);
   const std::vector<std::string_view>* named_row = nullptr;
   for (auto it = headers.rbegin(); it != headers.rend(); ++it)
     if (it->size() == ncols) { named_row = &*it; break; }

@@ -151,6 +151,10 @@ TEST(DetectText, MatrixWithSmallHeaders) {
   EXPECT_DOUBLE_EQ(b->map.dx, 0.5e-6);
   EXPECT_DOUBLE_EQ(b->map.dy, 0.5e-6);
   EXPECT_DOUBLE_EQ(b->map.at(1, 1), 4e-6);
+  // A two-column profile with a spacing comment stays a profile.
+  auto p = frictal::read_surface_bytes("# dx = 0.1 um\n0 1\n1 2\n2 3\n", "prof.txt");
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  EXPECT_FALSE(p->is_map);
   auto c = frictal::read_surface_bytes("nx = 3\n1 2\n3 4\n", "bad.txt");
   ASSERT_FALSE(c.ok());
   EXPECT_NE(c.error().message.find("nx"), std::string::npos) << c.error().message;

@@ -91,6 +91,12 @@ def test_npy_and_single_column_are_detected(tmp_path):
     s = frictal.read_surface(str(p), unit="nm")
     assert s["kind"] == "map"
     assert s["format"] == "npy"
+    assert s["reader"] == "native"
+    one = tmp_path / "one.npy"
+    np.save(one, np.array([1.0, 2.0, 4.0]))
+    p1 = frictal.read_surface(str(one), spacing=0.5)
+    assert p1["kind"] == "profile"
+    assert np.allclose(p1["x"], [0, 0.5, 1.0])
     assert np.array_equal(s["heights"], a.astype(float) * 1e-9)
     t = tmp_path / "col.txt"
     t.write_text("# spacing: 2 um\n# unit: nm\n1\n2\n3\n")
