@@ -310,7 +310,7 @@ bool gwyddion_available(const std::string& module_dir, std::string* why) {
   Backend& b = backend();
   std::lock_guard lock(b.mutex);
   std::string e = ensure_modules(b, module_root(module_dir));
-  if (why) *why = e.empty() ? "" : fmt::format("{}; install the {}", e, kPackages);
+  if (why) *why = e.empty() || !FRICTAL_GWYDDION_ENABLED ? e : fmt::format("{}; install the {}", e, kPackages);
   return e.empty();
 }
 
@@ -352,7 +352,8 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
   Backend& b = backend();
   std::lock_guard lock(b.mutex);
   if (std::string e = ensure_modules(b, module_root(options.gwyddion_module_dir)); !e.empty())
-    return make_error(fmt::format("{}: not a format frictal reads natively, and {}; install the {}", path, e, kPackages));
+    return make_error(fmt::format("{}: not a format frictal reads natively, and {}{}{}", path, e,
+                                  FRICTAL_GWYDDION_ENABLED ? "; install the " : "", FRICTAL_GWYDDION_ENABLED ? kPackages : ""));
   const Api& a = b.api;
   const char* detected = a.gwy_file_detect(path.c_str(), 0, kOpLoad);
   if (!detected)
@@ -473,7 +474,8 @@ Status write_gwyddion(const std::string& path, const Map& m, const std::string& 
   Backend& b = backend();
   std::lock_guard lock(b.mutex);
   if (std::string e = ensure_modules(b, module_root(module_dir)); !e.empty())
-    return make_error(fmt::format("{}: cannot write through Gwyddion: {}; install the {}", path, e, kPackages));
+    return make_error(fmt::format("{}: cannot write through Gwyddion: {}{}{}", path, e, FRICTAL_GWYDDION_ENABLED ? "; install the " : "",
+                                  FRICTAL_GWYDDION_ENABLED ? kPackages : ""));
   const Api& a = b.api;
   void* c = a.gwy_container_new();
   void* f = a.gwy_data_field_new(int(m.nx), int(m.ny), m.dx * double(m.nx), m.dy * double(m.ny), 1);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "cli/cli_runner.hpp"
+#include "frictal/io.hpp"
 
 namespace {
 const std::string kData = FRICTAL_TEST_DATA;
@@ -82,4 +83,29 @@ TEST(CliFormats, StatsPrintsPhysicalSizesAndPerProfileValues) {
   EXPECT_NEAR(j["bandwidth_short_m"].get<double>(), 1e-6, 1e-18);
   EXPECT_NEAR(j["bandwidth_long_m"].get<double>(), 3.5e-6, 1e-18);
   EXPECT_EQ(j["short_reliability_cutoff_m"].get<double>(), 0.0);  // a plane: no curvature
+}
+
+TEST(CliFormats, InfoAndStatsOfAGwyddionFile) {
+  std::string why;
+  if (!frictal::gwyddion_available("", &why)) GTEST_SKIP() << why;
+  // 4 x 3 map, dx = dy = 1 um, z = i nm, written through Gwyddion's .sur module.
+  frictal::Map m;
+  m.nx = 4;
+  m.ny = 3;
+  m.dx = m.dy = 1e-6;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 4; ++i) m.heights.push_back(i * 1e-9);
+  const std::string path = temp_path("cli.sur");
+  ASSERT_TRUE(frictal::write_gwyddion(path, m).ok());
+  auto r = run_cli("info " + path + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["reader"], "gwyddion:surffile");
+  EXPECT_EQ(j["nx"], 4);
+  EXPECT_NEAR(j["channels"][0]["size_x"].get<double>(), 4e-6, 1e-15);
+  auto s = run_cli("stats " + path + " --json");
+  ASSERT_EQ(s.code, 0) << s.err;
+  auto k = nlohmann::json::parse(s.out);
+  EXPECT_NEAR(k["physical_size_x_m"].get<double>(), 4e-6, 1e-15);
+  EXPECT_NEAR(k["Rdq_x"].get<double>(), 1e-3, 1e-9);  // 1 nm per 1 um, stored as float/scaled int
 }
