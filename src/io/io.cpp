@@ -187,7 +187,13 @@ Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& opt
   const bool binary = decode_text(b).find('\0') != std::string::npos;
   std::string why;
   if (gwyddion_available(options.gwyddion_module_dir, &why)) {
-    if (io_detail::gwyddion_detects(path, options.gwyddion_module_dir)) return io_detail::read_gwyddion(path, options);
+    if (io_detail::gwyddion_detects(path, options.gwyddion_module_dir)) {
+      auto g = io_detail::read_gwyddion(path, options);
+      // Text that a Gwyddion module claims but cannot load: the native message (with its line
+      // number) says more.
+      if (g || binary) return g;
+      return r;
+    }
     if (binary)
       return make_error(fmt::format("{}: binary data that neither frictal's readers nor Gwyddion's file modules recognise "
                                     "(see `frictal formats`)", path));

@@ -259,3 +259,17 @@ TEST(Gwyddion, GraphCurvesAreProfiles) {
   ASSERT_EQ(t->curve.size(), 4u);
   EXPECT_DOUBLE_EQ(t->curve.z[3], 4);
 }
+
+TEST(Gwyddion, BadTextKeepsTheNativeMessage) {
+  REQUIRE_GWYDDION();
+  const std::string path = ::testing::TempDir() + "frictal_bad.csv";
+  {
+    std::FILE* fp = std::fopen(path.c_str(), "wb");
+    const std::string t = "x (um),z (um)\n0,1\n1,2\nnot a number here\n3,4\n";
+    std::fwrite(t.data(), 1, t.size(), fp);
+    std::fclose(fp);
+  }
+  auto s = frictal::read_surface(path);
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.error().message.find(path + ":4:"), std::string::npos) << s.error().message;
+}
