@@ -1,5 +1,7 @@
 // frictal convert IN OUT — converts between surface formats. The output format follows OUT's
-// extension: .x3p (ISO 25178-71), .csv (profiles: x_m,z_m), .txt (maps: Gwyddion-style text).
+// extension: .x3p (ISO 25178-71), .csv (profiles: x_m,z_m), .txt (maps: Gwyddion-style text),
+// and, through Gwyddion's file modules when installed, .gwy .gsf .sdf .sur .asc .ibw .nrrd .tom
+// .afm .spm.
 #include <limits>
 
 #include "common.hpp"
@@ -25,7 +27,7 @@ bool ends_with(const std::string& s, const std::string& e) {
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
   app.add_option("input", a->in, "Input surface (any readable format)")->required();
-  app.add_option("output", a->out, "Output file: .x3p, .csv (profiles) or .txt (maps)")->required();
+  app.add_option("output", a->out, "Output file: .x3p, .csv (profiles) or .txt (maps); with Gwyddion: .gwy .gsf .sdf .sur .asc .ibw .nrrd .tom .afm .spm")->required();
   app.add_option("--x3p-type", a->type, "X3P height type: I (int16), L (int32), F (float32), D (float64)");
   app.add_flag("--x3p-xml", a->xml, "Store X3P heights as an XML data list instead of bindata/data.bin");
   app.add_option("--line-angle", a->line_angle,
@@ -70,14 +72,21 @@ std::function<int()> setup(CLI::App& app) {
     } else if (ends_with(a->out, ".txt")) {
       if (!s.is_map) unwrap(write_profile_csv(a->out, s.curve));
       else unwrap(write_map_text(a->out, s.map));
+    } else if (ends_with(a->out, ".gwy") || ends_with(a->out, ".gsf") || ends_with(a->out, ".sdf") ||
+               ends_with(a->out, ".sur") || ends_with(a->out, ".asc") || ends_with(a->out, ".ibw") || ends_with(a->out, ".nrrd") ||
+               ends_with(a->out, ".tom") || ends_with(a->out, ".afm") || ends_with(a->out, ".spm")) {
+      if (!s.is_map) throw UsageError(fmt::format("{}: only maps are written through Gwyddion", a->in));
+      unwrap(write_gwyddion(a->out, s.map));
     } else {
-      throw UsageError(fmt::format("{}: unknown output extension (expected .x3p, .csv or .txt)", a->out));
+      throw UsageError(fmt::format(
+          "{}: unknown output extension (expected .x3p, .csv, .txt; through Gwyddion: .gwy, .gsf, .sdf, .sur, .asc, .ibw, .nrrd)",
+          a->out));
     }
     return 0;
   };
 }
 
-FRICTAL_COMMAND({"convert", "Convert a surface between formats (CSV, Gwyddion text, X3P)", setup, 60});
+FRICTAL_COMMAND({"convert", "Convert a surface between formats (CSV, Gwyddion text, X3P; Gwyddion-written formats)", setup, 60});
 
 }  // namespace
 }  // namespace frictal::cli

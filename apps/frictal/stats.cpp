@@ -1,6 +1,7 @@
 // frictal stats FILE — statistics of a profile or an areal map (any readable format).
 #include "common.hpp"
 #include "frictal/analysis.hpp"
+#include "frictal/scan_stats.hpp"
 #include "frictal/stats.hpp"
 #include "surface_io.hpp"
 
@@ -13,6 +14,7 @@ struct Args {
   std::string detrend = "none";
   std::string psd_out, acf_out;
   int bins = 0;
+  std::string tip_radius;
   InputOptions input;
 };
 
@@ -34,20 +36,25 @@ nlohmann::json histogram_json(const Histogram& h) {
 
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
-  app.add_option("file", a->file, "Profile or map file (CSV/TSV/text, Dektak, Gwyddion text, X3P)")->required();
+  app.add_option("file", a->file, "Profile or map file (any readable format; see 'frictal formats')")->required();
   app.add_flag("--json", a->json, "Print one JSON object");
   app.add_option("--detrend", a->detrend, "Remove none, mean, line (plane for maps) or poly:N before the statistics");
   app.add_option("--psd", a->psd_out, "Write the power spectrum (q_rad_per_m,C_m3) of the profile to this CSV");
   app.add_option("--acf", a->acf_out, "Write the autocorrelation (lag_m,acf) of the profile to this CSV");
   app.add_option("--histograms", a->bins, "Add height and slope distributions with this many bins to --json");
+  app.add_option("--tip-radius", a->tip_radius,
+                 "Tip radius for the short reliability cutoff, a length such as 20nm (no unit: metres); see docs/analysis.md");
   add_input_options(app, a->input);
   return [a]() {
     require(a->bins >= 0 && a->bins <= 100000, "--histograms must be in 0..100000");
+    const double tip = a->tip_radius.empty() ? 0.0 : parse_length_option(a->tip_radius, "--tip-radius");
     const Detrend d = unwrap(parse_detrend(a->detrend));
     const SurfaceData data = load_surface(a->file, a->input);
     if (data.is_map) {
       const Map m = unwrap(detrend(data.map, d));
       const MapStats s = map_stats(m);
+      const MapScanStats sc = map_scan_stats(m);
+      const double cutoff = tip > 0 ? unwrap(short_reliability_cutoff(m, tip)) : 0.0;
       if (a->json) {
         nlohmann::json j;
         j["file"] = a->file;
@@ -74,17 +81,39 @@ std::function<int()> setup(CLI::App& app) {
         j["Sdq"] = s.Sdq;
         j["rms_slope"] = s.Sdq;  // the areal rms gradient, the profiles' rms slope
         j["max_slope_deg"] = to_deg(s.max_slope);
+        j["physical_size_x_m"] = sc.physical_size_x;  // nx dx (pixel convention)
+        j["physical_size_y_m"] = sc.physical_size_y;
+        j["physical_length_m"] = sc.physical_size_x;
+        j["bandwidth_short_m"] = sc.bandwidth_short;
+        j["bandwidth_long_m"] = sc.bandwidth_long;
+        j["nyquist_wavelength_m"] = sc.nyquist_wavelength;
+        j["Rq_x_m"] = sc.Rq_x;
+        j["Rdq_x"] = sc.Rdq_x;
+        j["Rq_y_m"] = sc.Rq_y;
+        j["Rdq_y"] = sc.Rdq_y;
+        j["rms_gradient_fd"] = sc.rms_gradient_fd;
+        if (tip > 0) {
+          j["tip_radius_m"] = tip;
+          j["short_reliability_cutoff_m"] = cutoff;  // NaN (unreliable at every scale) prints as null
+        }
         print_json(j);
       } else {
         fmt::print("{}: {} x {} map ({} valid of {} points), {:.6g} x {:.6g} m\n"
                    "  Sq {:.6g} m  Sa {:.6g} m  Sz {:.6g} m  Ssk {:.4g}  Sku {:.4g}\n  Sdq {:.6g}  max slope {:.4f} deg\n",
                    a->file, m.nx, m.ny, s.valid, s.points, s.width, s.height, s.Sq, s.Sa, s.Sz, s.Ssk, s.Sku, s.Sdq,
                    to_deg(s.max_slope));
+        fmt::print("  physical size (n dx) {:.6g} x {:.6g} m, bandwidth {:.6g} .. {:.6g} m\n"
+                   "  along x: Rq {:.6g} m  Rdq {:.6g}   along y: Rq {:.6g} m  Rdq {:.6g}   rms gradient (fd) {:.6g}\n",
+                   sc.physical_size_x, sc.physical_size_y, sc.bandwidth_short, sc.bandwidth_long, sc.Rq_x, sc.Rdq_x, sc.Rq_y,
+                   sc.Rdq_y, sc.rms_gradient_fd);
+        if (tip > 0) fmt::print("  short reliability cutoff for a {:.6g} m tip: {:.6g} m\n", tip, cutoff);
       }
       return 0;
     }
     const Profile p = unwrap(detrend(surface_profile(data, a->file), d));
     const ProfileStats s = profile_stats(p);
+    const ProfileScanStats sc = profile_scan_stats(p);
+    const double cutoff = tip > 0 ? unwrap(short_reliability_cutoff(p, tip)) : 0.0;
     if (!a->psd_out.empty()) {
       const Spectrum sp = unwrap(power_spectrum(p));
       write_columns(a->psd_out, "q_rad_per_m,C_m3", sp.q, sp.psd);
@@ -107,6 +136,15 @@ std::function<int()> setup(CLI::App& app) {
       j["rms_slope"] = s.rms_slope;
       j["max_slope_deg"] = to_deg(s.max_slope);
       j["mean_slope_deg"] = to_deg(s.mean_slope);
+      j["physical_length_m"] = sc.physical_length;  // n dx with dx = length / (n - 1)
+      j["sampling_interval_m"] = sc.sampling_interval;
+      j["bandwidth_short_m"] = sc.bandwidth_short;
+      j["bandwidth_long_m"] = sc.bandwidth_long;
+      j["nyquist_wavelength_m"] = sc.nyquist_wavelength;
+      if (tip > 0) {
+        j["tip_radius_m"] = tip;
+        j["short_reliability_cutoff_m"] = cutoff;
+      }
       if (!a->acf_out.empty()) j["correlation_length_m"] = corr_length;
       if (a->bins > 0) {
         j["height_distribution"] = histogram_json(height_distribution(p, a->bins));
@@ -117,6 +155,9 @@ std::function<int()> setup(CLI::App& app) {
       fmt::print("{}: {} points over {:.6g} m\n  rms height {:.6g} m (about the mean {:.6g} m)\n  rms slope {:.6g}\n"
                  "  max slope {:.4f} deg\n",
                  a->file, s.points, s.length, s.rms_height, s.mean_height, s.rms_slope, to_deg(s.max_slope));
+      fmt::print("  physical length (n dx) {:.6g} m, bandwidth {:.6g} .. {:.6g} m\n", sc.physical_length, sc.bandwidth_short,
+                 sc.bandwidth_long);
+      if (tip > 0) fmt::print("  short reliability cutoff for a {:.6g} m tip: {:.6g} m\n", tip, cutoff);
     }
     return 0;
   };

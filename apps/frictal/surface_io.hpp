@@ -2,7 +2,9 @@
 // --format, --unit, --x-column/--z-column; warnings go to stderr.
 #pragma once
 
+#include <cctype>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "common.hpp"
@@ -14,22 +16,64 @@ struct InputOptions {
   std::string format = "auto";
   std::string unit;
   int x_column = -1, z_column = -1;
+  std::string spacing;  ///< "0.5um", "2e-6" (m)
+  std::string channel;
 };
 
 inline void add_input_options(CLI::App& app, InputOptions& o) {
-  app.add_option("--format", o.format, "Input format: auto, csv, dektak, gwyddion, x3p (default: detect from content)");
+  app.add_option("--format", o.format,
+                 "Input format: auto, csv, dektak, gwyddion, x3p, matrix, xyz, sdf, npy, gwyddion-lib (default: detect from content)");
   app.add_option("--unit", o.unit, "Unit of text columns that name none: m, mm, um, nm (default m, with a warning)");
   app.add_option("--x-column", o.x_column, "0-based column of x in delimited text (default: automatic)");
   app.add_option("--z-column", o.z_column, "0-based column of z in delimited text (default: the one after x)");
+  app.add_option("--spacing", o.spacing,
+                 "Sampling interval for data without one (a column of heights, .npy, a bare matrix): a length such as 0.5um "
+                 "(no unit: metres)");
+  app.add_option("--channel", o.channel, "Channel of a multi-channel file: index or name (see 'frictal info FILE')");
 }
 
-inline SurfaceData load_surface(const std::string& path, const InputOptions& o) {
+/// "0.5um", "0.5 um", "2e-6" (metres) -> metres; UsageError naming the option otherwise.
+inline double parse_length_option(const std::string& text, const char* option) {
+  std::size_t k = 0;
+  while (k < text.size() && (std::isdigit((unsigned char)text[k]) || text[k] == '.' || text[k] == '-' || text[k] == '+' ||
+                             ((text[k] == 'e' || text[k] == 'E') && k + 1 < text.size() &&
+                              (std::isdigit((unsigned char)text[k + 1]) || text[k + 1] == '-' || text[k + 1] == '+'))))
+    ++k;
+  double v = 0;
+  std::string unit = text.substr(k);
+  while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
+  double scale = 1;
+  if (!unit.empty()) {
+    if (unit == "m") scale = 1;
+    else if (unit == "mm") scale = 1e-3;
+    else if (unit == "um" || unit == "\xC2\xB5m" || unit == "\xCE\xBCm") scale = 1e-6;
+    else if (unit == "nm") scale = 1e-9;
+    else throw UsageError(fmt::format("{} '{}': unit '{}' not understood (expected m, mm, um, nm)", option, text, unit));
+  }
+  try {
+    std::size_t used = 0;
+    v = std::stod(text.substr(0, k), &used);
+    if (used != k) throw std::invalid_argument("");
+  } catch (const std::exception&) {
+    throw UsageError(fmt::format("{} '{}' is not a length (expected e.g. 0.5um or 5e-7)", option, text));
+  }
+  if (!(v > 0) || !std::isfinite(v)) throw UsageError(fmt::format("{} must be positive (got '{}')", option, text));
+  return v * scale;
+}
+
+inline ReadOptions read_options(const InputOptions& o) {
   ReadOptions r;
   r.format = unwrap(parse_format(o.format));
   r.default_unit = o.unit;
   r.x_column = o.x_column;
   r.z_column = o.z_column;
-  SurfaceData s = unwrap(read_surface(input_path(path), r));
+  if (!o.spacing.empty()) r.spacing = parse_length_option(o.spacing, "--spacing");
+  r.channel = o.channel;
+  return r;
+}
+
+inline SurfaceData load_surface(const std::string& path, const InputOptions& o) {
+  SurfaceData s = unwrap(read_surface(input_path(path), read_options(o)));
   for (const auto& w : s.warnings) fmt::print(stderr, "frictal: warning: {}\n", w);
   return s;
 }

@@ -19,9 +19,15 @@ enum class ProfileFormat {
   Dektak,    ///< Bruker Dektak CSV export (metadata block, "Scan Data" section)
   Gwyddion,  ///< Gwyddion "export as text" matrix (# Width/Height/Value units header) or plain matrix
   X3p,       ///< ISO 25178-71 X3P (ZIP with main.xml), profiles (PRF) and areal maps (SUR)
+  Matrix,    ///< text matrix of heights, with or without a small "w= h=" / "x-pixels =" header
+  Xyz,       ///< text x, y, z point list lying on a regular grid
+  Sdf,       ///< ISO 25178-71 SDF / BCR surface data file, ASCII (aISO-1.0, aBCR-1.0)
+  Npy,       ///< NumPy .npy array (1-D: profile at ReadOptions::spacing, 2-D: map)
+  GwyddionLib,  ///< any file a Gwyddion file module loads, through Gwyddion's libraries
 };
 
-/// Name of a format ("auto", "csv", "dektak", "gwyddion", "x3p").
+/// Name of a format ("auto", "csv", "dektak", "gwyddion", "x3p", "matrix", "xyz", "sdf", "npy",
+/// "gwyddion-lib").
 const char* format_name(ProfileFormat f);
 /// Parses a format name (case-insensitive); error naming the accepted names.
 Result<ProfileFormat> parse_format(const std::string& name);
@@ -34,10 +40,29 @@ struct ReadOptions {
   /// 0, 1, 2, ... before two more columns is skipped).
   int x_column = -1;
   int z_column = -1;
+  /// Sampling interval for data that carry none: a single column of heights, a 1-D .npy, a
+  /// matrix without sizes (unit: m; 0 = none: a single column is then an error).
+  double spacing = 0;
+  /// Channel of a multi-channel file (Gwyddion-backed formats): its 0-based index or its name;
+  /// empty = the first channel with heights in metres.
+  std::string channel;
+  /// Directory of Gwyddion's file modules (holds file/*.so); empty = the directory found when
+  /// frictal was built (see `gwyddion_available`).
+  std::string gwyddion_module_dir;
   /// Largest input accepted: file size, and the uncompressed size of an X3P member (unit: bytes).
   std::uint64_t max_bytes = std::uint64_t(1) << 30;
   /// Largest number of points of a map or profile (unitless).
   std::uint64_t max_points = std::uint64_t(1) << 27;
+};
+
+/// One data channel of a file: an image (map) or a graph curve (profile).
+struct ChannelInfo {
+  std::string name;          ///< title in the file ("Height", "Z", ...), or the format's name
+  bool is_map = true;        ///< image channel (true) or graph curve (false)
+  std::size_t nx = 0, ny = 0;  ///< points (ny = 1 for curves)
+  double size_x = 0, size_y = 0;  ///< physical size nx dx, ny dy in the file's lateral unit
+  std::string xy_unit, z_unit;    ///< units as the file gives them ("m", "V", "deg", ...)
+  bool readable = true;      ///< lateral and height units are lengths (frictal reads it)
 };
 
 /// Everything a surface file gave: a line profile or an areal map, plus warnings (e.g. an X3P
@@ -48,9 +73,38 @@ struct SurfaceData {
   Map map;              ///< areal map in metres
   ProfileFormat format = ProfileFormat::Auto;  ///< the format actually read
   std::vector<std::string> warnings;
+  /// Which reader read it: "native" or "gwyddion:<module>" (e.g. "gwyddion:surffile"), with
+  /// " (gzip)" when the file was gzip-compressed.
+  std::string reader;
+  /// Every channel the file holds (one for the native formats); `channel` is the one read.
+  std::vector<ChannelInfo> channels;
+  std::size_t channel = 0;
 };
 
-/// Reads any supported file (format from content unless options.format says otherwise).
+
+/// A readable format, for `frictal formats`.
+struct FormatInfo {
+  std::string name;         ///< "csv", "x3p", ... or the Gwyddion module name ("surffile")
+  std::string description;  ///< what it is, with the usual extensions
+  std::string reader;       ///< "native" or "gwyddion"
+  bool can_write = false;   ///< frictal can write it (native) / Gwyddion's module saves it
+};
+/// The native formats, then (when available) every format a Gwyddion file module loads.
+std::vector<FormatInfo> readable_formats(const std::string& gwyddion_module_dir = "");
+/// The formats Gwyddion's file modules load (empty when the backend is not available).
+std::vector<FormatInfo> gwyddion_formats(const std::string& gwyddion_module_dir = "");
+/// Whether the Gwyddion backend can be used: its libraries load (at run time) and
+/// `module_dir` (empty = the directory found at build time) holds file modules. `why` gets the
+/// reason and the packages to install when not. The first call initialises Gwyddion for the
+/// whole process (type system and file modules; never GTK).
+bool gwyddion_available(const std::string& module_dir = "", std::string* why = nullptr);
+/// Writes a map through Gwyddion's file modules, the format from the extension: .gwy, .gsf,
+/// .sdf (text), .sur, .asc (SPIP), .ibw, .nrrd, .tom (WSxM), .afm (Assing), .spm (ISO 28600)
+/// -- the ones tested. Invalid points go to a mask (kept by .gwy only).
+Status write_gwyddion(const std::string& path, const Map& m, const std::string& module_dir = "");
+
+/// Reads any supported file (format from content unless options.format says otherwise). Files
+/// no native reader recognises go to the Gwyddion backend when it is available.
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options = {});
 /// Same, from bytes already in memory; `name` is used in messages.
 Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name,

@@ -14,6 +14,7 @@
 #include "frictal/fractal.hpp"
 #include "frictal/io.hpp"
 #include "bindings.hpp"
+#include "frictal/scan_stats.hpp"
 
 namespace py = pybind11;
 using namespace frictal;
@@ -55,10 +56,13 @@ Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>&
   return m;
 }
 
-ReadOptions read_options(const std::string& format, const std::string& unit) {
+ReadOptions read_options(const std::string& format, const std::string& unit, double spacing = 0,
+                         const std::string& channel = "") {
   ReadOptions o;
   o.format = ok(parse_format(format));
   o.default_unit = unit;
+  o.spacing = spacing;
+  o.channel = channel;
   return o;
 }
 
@@ -78,8 +82,9 @@ py::dict fit_dict(const FractalFit& f) {
 void frictal_bind_io(py::module_& m) {
   m.def(
       "read_surface",
-      [](const std::string& path, const std::string& format, const std::string& unit) {
-        const ReadOptions o = read_options(format, unit);
+      [](const std::string& path, const std::string& format, const std::string& unit, double spacing,
+         const std::string& channel) {
+        const ReadOptions o = read_options(format, unit, spacing, channel);
         SurfaceData s = ok(nogil([&] { return read_surface(path, o); }));
         py::dict d = s.is_map ? map_dict(s.map) : py::dict();
         d["kind"] = s.is_map ? "map" : "profile";
@@ -89,11 +94,15 @@ void frictal_bind_io(py::module_& m) {
         }
         d["format"] = format_name(s.format);
         d["warnings"] = s.warnings;
+        d["reader"] = s.reader;  // "native", "native (gzip)" or "gwyddion:<module>"
         return d;
       },
-      py::arg("path"), py::kw_only(), py::arg("format") = "auto", py::arg("unit") = "",
-      "Reads any supported file (CSV/TSV/text, Dektak, Gwyddion text, X3P; runs without the GIL). format: auto, "
-      "csv, dektak, gwyddion or x3p; unit: m, mm, um or nm for text columns that name none. Returns a dict: kind "
+      py::arg("path"), py::kw_only(), py::arg("format") = "auto", py::arg("unit") = "", py::arg("spacing") = 0.0,
+      py::arg("channel") = "",
+      "Reads any supported file (CSV/TSV/text, .npy, gzip, Dektak, Gwyddion text, X3P, SDF, and every format "
+      "Gwyddion's modules load when installed; runs without the GIL). format: auto or a name of `frictal formats`; "
+      "unit: m, mm, um or nm for text columns that name none; spacing: point spacing (m) for a single column of "
+      "heights; channel: index or name of a multi-channel file's channel. Returns a dict: kind "
       "'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings. Metres.");
   m.def(
       "read_map",
@@ -121,8 +130,9 @@ void frictal_bind_io(py::module_& m) {
       "type: feature type D (areal) or S; binary: binary point data");
   m.def(
       "map_stats",
-      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy) {
-        MapStats s = map_stats(to_map(heights, dx, dy, 0, 0));
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy, double tip_radius) {
+        const Map map = to_map(heights, dx, dy, 0, 0);
+        MapStats s = map_stats(map);
         py::dict d;
         d["points"] = s.points;
         d["valid"] = s.valid;
@@ -136,11 +146,24 @@ void frictal_bind_io(py::module_& m) {
         d["Sku"] = s.Sku;
         d["Sdq"] = s.Sdq;
         d["max_slope"] = s.max_slope;
+        // Scan quantities (scan_stats.hpp): n dx sizes, bandwidth, per-profile Rq/Rdq, fd gradient.
+        const MapScanStats sc = map_scan_stats(map);
+        d["physical_size_x"] = sc.physical_size_x;
+        d["physical_size_y"] = sc.physical_size_y;
+        d["bandwidth"] = py::make_tuple(sc.bandwidth_short, sc.bandwidth_long);
+        d["Rq_x"] = sc.Rq_x;
+        d["Rdq_x"] = sc.Rdq_x;
+        d["Rq_y"] = sc.Rq_y;
+        d["Rdq_y"] = sc.Rdq_y;
+        d["rms_gradient_fd"] = sc.rms_gradient_fd;
+        if (tip_radius > 0) d["short_reliability_cutoff"] = ok(short_reliability_cutoff(map, tip_radius));
         return d;
       },
-      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"),
+      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("tip_radius") = 0.0,
       "Areal statistics over the valid points (NaN = invalid) of heights (m) on spacings dx, dy (m): mean, Sa, Sq, "
-      "Sp, Sv, Sz (m), Ssk, Sku, Sdq (unitless), max_slope (rad)");
+      "Sp, Sv, Sz (m), Ssk, Sku, Sdq (unitless), max_slope (rad), the scan quantities of `frictal stats` "
+      "(physical sizes, bandwidth (m), per-direction Rq (m) and Rdq (unitless)); tip_radius (m) > 0 adds "
+      "short_reliability_cutoff (m)");
   m.def(
       "detrend",
       [](const Profile& p, const std::string& kind) { return ok(detrend(p, ok(parse_detrend(kind)))); }, py::arg("profile"),

@@ -19,16 +19,24 @@ const char* format_name(ProfileFormat f) {
     case ProfileFormat::Dektak: return "dektak";
     case ProfileFormat::Gwyddion: return "gwyddion";
     case ProfileFormat::X3p: return "x3p";
+    case ProfileFormat::Matrix: return "matrix";
+    case ProfileFormat::Xyz: return "xyz";
+    case ProfileFormat::Sdf: return "sdf";
+    case ProfileFormat::Npy: return "npy";
+    case ProfileFormat::GwyddionLib: return "gwyddion-lib";
   }
   return "?";
 }
 
 Result<ProfileFormat> parse_format(const std::string& name) {
   std::string n = io_detail::lower_ascii(name);
-  for (auto f : {ProfileFormat::Auto, ProfileFormat::Csv, ProfileFormat::Dektak, ProfileFormat::Gwyddion, ProfileFormat::X3p})
+  for (auto f : {ProfileFormat::Auto, ProfileFormat::Csv, ProfileFormat::Dektak, ProfileFormat::Gwyddion, ProfileFormat::X3p,
+                 ProfileFormat::Matrix, ProfileFormat::Xyz, ProfileFormat::Sdf, ProfileFormat::Npy, ProfileFormat::GwyddionLib})
     if (n == format_name(f)) return f;
   if (n == "txt" || n == "tsv" || n == "text") return ProfileFormat::Csv;
-  return make_error(fmt::format("unknown format '{}' (expected auto, csv, dektak, gwyddion or x3p)", name));
+  if (n == "gwy" || n == "gwyddionlib" || n == "libgwyddion") return ProfileFormat::GwyddionLib;
+  return make_error(fmt::format(
+      "unknown format '{}' (expected auto, csv, dektak, gwyddion, x3p, matrix, xyz, sdf, npy or gwyddion-lib)", name));
 }
 
 Status validate(const Map& m, const std::string& what) {
@@ -81,33 +89,137 @@ Result<std::string> read_file_bytes(const std::string& path, std::uint64_t max_b
 
 }  // namespace
 
-Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+namespace {
+
+Result<SurfaceData> read_native_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options,
+                                      int depth) {
   ProfileFormat f = options.format;
+  if (f == ProfileFormat::GwyddionLib)
+    return make_error(fmt::format("{}: the Gwyddion backend reads files, not bytes in memory", name));
+  if (io_detail::looks_like_gzip(bytes)) {
+    if (depth > 0) return make_error(fmt::format("{}: gzip inside gzip is not read", name));
+    auto inner = io_detail::gunzip(bytes, name, options.max_bytes);
+    if (!inner) return inner.error();
+    auto r = read_native_bytes(*inner, name, options, depth + 1);
+    if (r) r->reader = fmt::format("{} (gzip)", r->reader);
+    return r;
+  }
   bool zip = bytes.size() >= 4 && bytes.compare(0, 4, "PK\x03\x04") == 0;
   if (f == ProfileFormat::X3p || (f == ProfileFormat::Auto && zip)) {
     if (!zip) return make_error(fmt::format("{}: not an X3P file (no ZIP signature)", name));
     return io_detail::read_x3p_bytes(bytes, name, options);
   }
   if (zip) return make_error(fmt::format("{}: a ZIP archive cannot be read as {}", name, format_name(f)));
+  if (f == ProfileFormat::Npy || (f == ProfileFormat::Auto && io_detail::looks_like_npy(bytes))) {
+    if (!io_detail::looks_like_npy(bytes)) return make_error(fmt::format("{}: not a .npy file (no \\x93NUMPY signature)", name));
+    return io_detail::read_npy_bytes(bytes, name, options);
+  }
   std::string text = decode_text(bytes);
   if (text.find('\0') != std::string::npos)
-    return make_error(fmt::format("{}: binary data, not a text profile (formats: {})", name, "csv, dektak, gwyddion, x3p"));
+    return make_error(fmt::format("{}: binary data of no format frictal reads natively (text, X3P, .npy, gzip)", name));
   if (f == ProfileFormat::Auto) {
-    if (io_detail::looks_like_dektak(text)) f = ProfileFormat::Dektak;
+    if (io_detail::looks_like_sdf_text(text)) f = ProfileFormat::Sdf;
+    else if (io_detail::looks_like_dektak(text)) f = ProfileFormat::Dektak;
     else if (io_detail::looks_like_gwyddion(text)) f = ProfileFormat::Gwyddion;
     else f = ProfileFormat::Csv;
   }
   switch (f) {
+    case ProfileFormat::Sdf: return io_detail::parse_sdf_text(text, name, options);
     case ProfileFormat::Dektak: return io_detail::parse_dektak(text, name, options);
     case ProfileFormat::Gwyddion: return io_detail::parse_gwyddion(text, name, options);
     default: return io_detail::parse_delimited(text, name, options);
   }
 }
 
+std::string lower_ascii_copy(const std::string& s) { return io_detail::lower_ascii(s); }
+
+/// The one channel a native file holds, for `frictal info`.
+void describe_native(SurfaceData& s) {
+  s.reader = fmt::format("native{}", s.reader);
+  ChannelInfo c;
+  c.name = format_name(s.format);
+  c.is_map = s.is_map;
+  if (s.is_map) {
+    c.nx = s.map.nx;
+    c.ny = s.map.ny;
+    c.size_x = double(s.map.nx) * s.map.dx;
+    c.size_y = double(s.map.ny) * s.map.dy;
+  } else {
+    c.nx = s.curve.size();
+    c.ny = 1;
+    c.size_x = s.curve.size() ? s.curve.x.back() - s.curve.x.front() : 0;
+  }
+  c.xy_unit.push_back('m');  // (not = "m": GCC 12 -Wrestrict false positive, PR 105329)
+  c.z_unit = c.xy_unit;
+  s.channels = {c};
+  s.channel = 0;
+}
+
+}  // namespace
+
+Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+  auto r = read_native_bytes(bytes, name, options, 0);
+  if (r) describe_native(*r);
+  return r;
+}
+
+static Status check_native_channel(const SurfaceData& s, const std::string& path, const ReadOptions& options) {
+  if (options.channel.empty() || options.channel == "0" || lower_ascii_copy(options.channel) == s.channels[0].name) return Ok{};
+  return make_error(fmt::format("{}: channel '{}' requested but this {} file has one channel (0)", path, options.channel,
+                                format_name(s.format)));
+}
+
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {
+  if (options.format == ProfileFormat::GwyddionLib) return io_detail::read_gwyddion(path, options);
   auto bytes = read_file_bytes(path, options.max_bytes);
   if (!bytes) return bytes.error();
-  return read_surface_bytes(*bytes, path, options);
+  auto r = read_native_bytes(*bytes, path, options, 0);
+  if (r) {
+    describe_native(*r);
+    if (auto st = check_native_channel(*r, path, options); !st) return st.error();
+    return r;
+  }
+  if (options.format != ProfileFormat::Auto) return r;
+  // No native reader took it (and it is no X3P, .npy or gzip file): Gwyddion's file modules may.
+  const std::string& b = *bytes;
+  if ((b.size() >= 4 && b.compare(0, 4, "PK\x03\x04") == 0) || io_detail::looks_like_npy(b) || io_detail::looks_like_gzip(b))
+    return r;
+  const bool binary = decode_text(b).find('\0') != std::string::npos;
+  std::string why;
+  if (gwyddion_available(options.gwyddion_module_dir, &why)) {
+    if (io_detail::gwyddion_detects(path, options.gwyddion_module_dir)) {
+      auto g = io_detail::read_gwyddion(path, options);
+      // Text that a Gwyddion module claims but cannot load: the native message (with its line
+      // number) says more.
+      if (g || binary) return g;
+      return r;
+    }
+    if (binary)
+      return make_error(fmt::format("{}: binary data that neither frictal's readers nor Gwyddion's file modules recognise "
+                                    "(see `frictal formats`)", path));
+    return r;
+  }
+  if (binary)
+    return make_error(fmt::format("{}: binary data of no format frictal reads natively (text, X3P, .npy, gzip); Gwyddion's "
+                                  "file modules may read it, but {}", path, why));
+  return r;
+}
+
+std::vector<FormatInfo> readable_formats(const std::string& gwyddion_module_dir) {
+  std::vector<FormatInfo> f = {
+      {"csv", "delimited text profiles: CSV, TSV, whitespace, ';' with decimal commas (.csv, .txt, .dat, .asc, ...)", "native", true},
+      {"dektak", "Bruker Dektak CSV export (.csv)", "native", false},
+      {"gwyddion", "Gwyddion text export of a map, '# Width:' headers (.txt)", "native", true},
+      {"matrix", "text matrix of heights, optionally with a 'w= h=' / 'nx= ny=' / SPIP 'x-pixels =' header (.txt, .asc)",
+       "native", false},
+      {"xyz", "text x, y, z point list on a regular grid (.xyz, .txt, .csv)", "native", false},
+      {"sdf", "ISO 25178-71 / BCR surface data file, ASCII (.sdf)", "native", false},
+      {"x3p", "ISO 25178-72 XML 3D surface profile, X3P (.x3p): SUR, PRF, PCL on a grid", "native", true},
+      {"npy", "NumPy array (.npy): 1-D profile, 2-D map; f4, f8, i1-i8, u1-u4", "native", false},
+      {"gzip", "any of the above compressed with gzip (.txt.gz, .csv.gz, ...)", "native", false},
+  };
+  for (auto& g : gwyddion_formats(gwyddion_module_dir)) f.push_back(std::move(g));
+  return f;
 }
 
 Result<Curve> read_curve(const std::string& path, const ReadOptions& options) {

@@ -15,6 +15,18 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
 Result<SurfaceData> parse_dektak(std::string_view text, const std::string& name, const ReadOptions& options);
 Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& name, const ReadOptions& options);
 
+/// Content-detected native formats (formats.cpp).
+bool looks_like_npy(const std::string& bytes);
+bool looks_like_gzip(const std::string& bytes);
+bool looks_like_sdf_text(std::string_view text);
+Result<SurfaceData> read_npy_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options);
+Result<std::string> gunzip(const std::string& bytes, const std::string& name, std::uint64_t max_bytes);
+Result<SurfaceData> parse_sdf_text(std::string_view text, const std::string& name, const ReadOptions& options);
+
+/// Gwyddion backend (gwyddion.cpp): whether a module recognises the file; read it.
+bool gwyddion_detects(const std::string& path, const std::string& module_dir);
+Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& options);
+
 /// `bytes` is the whole ZIP archive.
 Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options);
 

@@ -1,7 +1,9 @@
 // Text formats: delimited two-column profiles, the Bruker Dektak CSV export, Gwyddion text
 // matrices. Text arrives here decoded to UTF-8 (decode_text).
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <optional>
 #include <fmt/core.h>
 #include <limits>
 
@@ -162,12 +164,104 @@ bool is_index_name(std::string_view s) {
          l == "nr" || l == "nr.";
 }
 
+/// "key = value" / "key: value" pairs of the header lines ("# w = 10 um", "x-pixels = 256",
+/// "Width: 12 µm"). Keys are lower-cased with spaces, '-' and '_' removed.
+struct HeaderPairs {
+  std::vector<std::pair<std::string, std::string>> kv;
+  const std::string* get(std::initializer_list<const char*> keys) const {
+    for (const char* k : keys)
+      for (auto it = kv.rbegin(); it != kv.rend(); ++it)
+        if (it->first == k) return &it->second;
+    return nullptr;
+  }
+};
+
+HeaderPairs header_pairs(const std::vector<std::string_view>& lines) {
+  HeaderPairs h;
+  auto norm = [](std::string_view k) {
+    std::string r;
+    for (char c : lower_ascii(trim(k)))
+      if (c != ' ' && c != '-' && c != '_' && c != '\t' && c != '.') r += c;
+    return r;
+  };
+  for (auto l : lines) {
+    l = trim(l);
+    while (!l.empty() && (l.front() == '#' || l.front() == '%' || l.front() == '/')) l.remove_prefix(1);
+    const char sep = l.find('=') != std::string_view::npos ? '=' : ':';
+    std::vector<std::string_view> segs;
+    std::size_t start = 0;
+    for (std::size_t i = 0; i <= l.size(); ++i)
+      if (i == l.size() || l[i] == sep) {
+        segs.push_back(l.substr(start, i - start));
+        start = i + 1;
+      }
+    if (segs.size() < 2) continue;
+    std::string_view key = segs[0];
+    for (std::size_t i = 1; i < segs.size(); ++i) {
+      std::string_view value = segs[i], next;
+      if (i + 1 < segs.size()) {  // "w=10um h=5um": the next key is the last word
+        auto v = trim(value);
+        auto cut = v.find_last_of(" \t,;");
+        if (cut == std::string_view::npos) break;
+        next = v.substr(cut + 1);
+        value = v.substr(0, cut);
+      }
+      value = trim(value);
+      while (!value.empty() && (value.back() == ',' || value.back() == ';')) value.remove_suffix(1);
+      h.kv.emplace_back(norm(key), std::string(trim(value)));
+      key = next;
+    }
+  }
+  return h;
+}
+
+/// "10 um", "10um", "1e-6" (no unit: nullopt scale).
+bool number_with_unit(std::string_view s, double& v, std::optional<double>& scale) {
+  s = trim(s);
+  std::size_t k = 0;
+  while (k < s.size() && (std::isdigit((unsigned char)s[k]) || s[k] == '.' || s[k] == '-' || s[k] == '+' ||
+                          ((s[k] == 'e' || s[k] == 'E') && k > 0 && k + 1 < s.size() &&
+                           (std::isdigit((unsigned char)s[k + 1]) || s[k + 1] == '-' || s[k + 1] == '+'))))
+    ++k;
+  if (!parse_double(s.substr(0, k), v) || !std::isfinite(v)) return false;
+  auto unit = trim(s.substr(k));
+  scale.reset();
+  if (unit.empty()) return true;
+  scale = unit_scale(unit);
+  return scale.has_value();
+}
+
+bool monotonic(const double* col, std::size_t stride, std::size_t n) {
+  bool up = true, down = true;
+  for (std::size_t k = 1; k < n; ++k) {
+    up = up && col[k * stride] >= col[(k - 1) * stride];
+    down = down && col[k * stride] <= col[(k - 1) * stride];
+  }
+  return up || down;
+}
+
+/// Sorted distinct values of v, with the spacing a + b k if they are regular (within 1e-3 b).
+std::optional<std::pair<double, double>> regular_axis(std::vector<double> v, std::size_t& n) {
+  std::sort(v.begin(), v.end());
+  std::vector<double> u;
+  const double span = v.back() - v.front();
+  for (double a : v)
+    if (u.empty() || a - u.back() > 1e-9 * std::max(span, std::abs(a))) u.push_back(a);
+  n = u.size();
+  if (u.size() < 2) return std::nullopt;
+  double a = u.front(), b = (u.back() - u.front()) / double(u.size() - 1);
+  for (std::size_t k = 0; k < u.size(); ++k)
+    if (std::abs(u[k] - (a + b * double(k))) > 1e-3 * b) return std::nullopt;
+  return std::pair{a, b};
+}
+
 }  // namespace
 
 Result<SurfaceData> parse_delimited(std::string_view text, const std::string& name, const ReadOptions& options) {
   auto lines = split_lines(text);
   Delim delim = detect_delimiter(lines);
   std::vector<std::vector<std::string_view>> headers;  // non-numeric lines before the data
+  std::vector<std::string_view> raw_headers;            // the same lines, whole
   // Data rows stored flat (ncols values per row): no per-row allocation for large files.
   struct Rows {
     std::vector<double> v;
@@ -186,7 +280,10 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     auto t = trim(ln.text);
     if (t.empty()) continue;
     if (is_comment(t)) {
-      if (rows.empty()) headers.push_back(split_fields(t.substr(1), delim.c));
+      if (rows.empty()) {
+        headers.push_back(split_fields(t.substr(1), delim.c));
+        raw_headers.push_back(t);
+      }
       continue;
     }
     auto f = split_fields(t, delim.c);
@@ -194,14 +291,15 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       if (trailer_line)
         return make_error(fmt::format("{}:{}: expected numbers, found text '{}' inside the data",
                                       name, trailer_line, std::string(trim(lines[trailer_line - 1].text)).substr(0, 60)));
-      if (rows.empty() && vals.size() == 1) {  // a count line ("23") before two-column data
+      if (rows.empty() && vals.size() == 1 && count_line_number == 0) {
+        // A count line ("23") before the data, or the first of a single column of heights
+        // (decided below).
         long long n;
-        if (count_line_number == 0 && parse_int64(f[0], n)) {
+        if (parse_int64(f[0], n)) {
           count_line_value = n;
           count_line_number = ln.number;
           continue;
         }
-        return make_error(fmt::format("{}:{}: expected at least two columns (x and z), found one", name, ln.number));
       }
       if (rows.empty()) {
         ncols = rows.ncols = vals.size();
@@ -215,6 +313,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       row_line.push_back(ln.number);
     } else if (rows.empty()) {
       headers.push_back(f);
+      raw_headers.push_back(t);
       // A unit line written with spaces in a comma file ("µm µm").
       if (f.size() == 1 && delim.c != ' ') headers.push_back(split_fields(t, ' '));
     } else if (!trailer_line) {
@@ -224,8 +323,17 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   if (trailer_line && rows.size() < 2)
     return make_error(fmt::format("{}:{}: expected numbers, found '{}'", name, trailer_line,
                                   std::string(trim(lines[trailer_line - 1].text)).substr(0, 60)));
+  // A single column whose first line is not its count: that line is the first height.
+  if (ncols == 1 && count_line_number && (std::size_t(count_line_value) != rows.size() || rows.size() < 2)) {
+    rows.v.insert(rows.v.begin(), double(count_line_value));
+    row_line.insert(row_line.begin(), count_line_number);
+    count_line_value = -1;
+  }
   if (rows.empty()) {
     if (trim(text).empty()) return make_error(fmt::format("{}: file is empty", name));
+    if (count_line_number)
+      return make_error(fmt::format("{}:{}: only one number; expected two columns (x and z), a column of heights or a matrix",
+                                    name, count_line_number));
     return make_error(fmt::format("{}: no numeric data rows found (expected lines of x and z values)", name));
   }
   if (rows.size() < 2)
@@ -233,6 +341,183 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
 
   SurfaceData out;
   out.format = ProfileFormat::Csv;
+  const HeaderPairs hp = header_pairs(raw_headers);
+  double fallback_unit = 1.0;
+  if (!options.default_unit.empty()) {
+    auto s = unit_scale(options.default_unit);
+    if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
+    fallback_unit = *s;
+  }
+  // A length from the header ("w = 10 um"; a bare number is in `bare_scale`).
+  auto header_length = [&](std::initializer_list<const char*> keys, double bare_scale) -> Result<std::optional<double>> {
+    const std::string* v = hp.get(keys);
+    if (!v) return std::optional<double>{};
+    double x;
+    std::optional<double> sc;
+    if (!number_with_unit(*v, x, sc) || !(x > 0))
+      return make_error(fmt::format("{}: header value '{}' for '{}' is not a positive length (number and unit)", name, *v,
+                                    *keys.begin()));
+    return std::optional<double>{x * sc.value_or(bare_scale)};
+  };
+  // Height unit named in the header ("# unit: nm", "Value units: um", "z unit = nm").
+  std::optional<double> z_unit_header;
+  if (const std::string* u = hp.get({"zunit", "zunits", "valueunits", "valueunit", "heightunit", "heightunits", "unit", "units"})) {
+    z_unit_header = unit_scale(*u);
+    if (!z_unit_header)
+      return make_error(fmt::format("{}: height unit '{}' in the header is not a length unit (expected m, mm, um, nm)", name, *u));
+  }
+  const bool spip = hp.get({"bit2nm"}) != nullptr;  // SPIP ASCII: lengths in nm, z = value * Bit2nm nm
+  const double lateral_bare = spip ? 1e-9 : fallback_unit;
+
+  // One column of heights: a profile at a constant spacing (option, or header "spacing", "dx").
+  if (ncols == 1) {
+    auto dx_h = header_length({"spacing", "dx", "xspacing", "step", "xstep", "sampling", "samplinginterval", "interval",
+                               "increment", "xincrement", "resolution", "xresolution"}, fallback_unit);
+    if (!dx_h) return dx_h.error();
+    double dx = options.spacing > 0 ? options.spacing : dx_h->value_or(0.0);
+    if (!(dx > 0))
+      return make_error(fmt::format(
+          "{}: one column of {} heights and no spacing: expected two columns (x and z), or give the sampling interval "
+          "(--spacing, ReadOptions::spacing, or a '# spacing: 0.5 um' header)", name, rows.size()));
+    std::optional<double> zu = z_unit_header;
+    for (auto it = raw_headers.rbegin(); it != raw_headers.rend() && !zu; ++it)
+      if (!is_comment(*it) && it->find_first_of("=:") == std::string_view::npos) zu = unit_in_header(*it);  // "height [nm]"
+    if (!zu && options.default_unit.empty())
+      out.warnings.push_back(fmt::format("{}: no length unit found for the heights; read as metres (give a unit to override)", name));
+    const double zs = zu.value_or(fallback_unit);
+    InvalidCount invalid;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      double z = rows[k][0];
+      if (!std::isfinite(z)) { invalid.add(z); continue; }
+      out.curve.x.push_back(double(k) * dx);
+      out.curve.z.push_back(z * zs);
+    }
+    if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, false));
+    if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than 2 points with finite values", name));
+    return out;
+  }
+
+  const bool forced = options.x_column >= 0 || options.z_column >= 0;
+  // Header keys that make a matrix: sizes and counts. A two-column file needs a count key (a
+  // profile with a "# dx = 0.1 um" comment stays a profile).
+  const bool count_key = hp.get({"nx", "ny", "xpixels", "ypixels", "xres", "yres", "ncols", "nrows", "cols", "rows"}) != nullptr;
+  const bool size_key = hp.get({"w", "h", "width", "height", "xlength", "ylength", "xreal", "yreal", "xsize", "ysize", "dx", "dy",
+                                "bit2nm"}) != nullptr;
+  const bool matrix_header = count_key || (ncols >= 3 && size_key);
+  const std::vector<std::string_view>* named_row = nullptr;
+  for (auto it = headers.rbegin(); it != headers.rend(); ++it)
+    if (it->size() == ncols) { named_row = &*it; break; }
+
+  // x, y, z point lists that lie on a regular grid: a map.
+  if (!forced && ncols == 3 && !matrix_header && rows.size() >= 4) {
+    std::vector<double> xs(rows.size()), ys(rows.size());
+    bool finite = true;
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      xs[k] = rows[k][0];
+      ys[k] = rows[k][1];
+      finite = finite && std::isfinite(xs[k]) && std::isfinite(ys[k]);
+    }
+    std::size_t nx = 0, ny = 0;
+    auto gx = finite ? regular_axis(xs, nx) : std::nullopt;
+    auto gy = finite && gx ? regular_axis(ys, ny) : std::nullopt;
+    if (gx && gy && nx * ny <= 2 * rows.size() && nx * ny >= rows.size()) {
+      auto unit_of = [&](std::size_t col) -> std::optional<double> {
+        for (auto it = headers.rbegin(); it != headers.rend(); ++it)
+          if (it->size() == 3)
+            if (auto u = unit_in_header((*it)[col])) return u;
+        return std::nullopt;
+      };
+      auto xu = unit_of(0), yu = unit_of(1), zu = unit_of(2);
+      if (!zu) zu = z_unit_header;
+      if ((!xu || !yu || !zu) && options.default_unit.empty())
+        out.warnings.push_back(fmt::format("{}: no length unit found for some of the x, y, z columns; read as metres", name));
+      Map& m = out.map;
+      m.nx = nx;
+      m.ny = ny;
+      m.x0 = gx->first * xu.value_or(fallback_unit);
+      m.dx = gx->second * xu.value_or(fallback_unit);
+      m.y0 = gy->first * yu.value_or(fallback_unit);
+      m.dy = gy->second * yu.value_or(fallback_unit);
+      m.heights.assign(nx * ny, std::numeric_limits<double>::quiet_NaN());
+      std::vector<char> seen(nx * ny, 0);
+      InvalidCount invalid;
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        auto i = std::size_t(std::llround((xs[k] - gx->first) / gx->second));
+        auto j = std::size_t(std::llround((ys[k] - gy->first) / gy->second));
+        std::size_t at = j * nx + i;
+        if (seen[at])
+          return make_error(fmt::format("{}:{}: grid node ({}, {}) appears twice in the x, y, z list", name, row_line[k],
+                                        xs[k], ys[k]));
+        seen[at] = 1;
+        double z = rows[k][2];
+        if (!std::isfinite(z)) { invalid.add(z); continue; }
+        m.heights[at] = z * zu.value_or(fallback_unit);
+      }
+      if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
+      if (nx * ny > rows.size())
+        out.warnings.push_back(fmt::format("{}: {} of the {} x {} grid nodes are missing from the list (invalid points)",
+                                           name, nx * ny - rows.size(), nx, ny));
+      if (m.valid_count() == 0) return make_error(fmt::format("{}: no valid point", name));
+      out.is_map = true;
+      out.format = ProfileFormat::Xyz;
+      return out;
+    }
+  }
+
+  // A matrix of heights: a header with sizes ("w= h=", "x-pixels", "nx"), or three or more
+  // unnamed columns whose first is no abscissa (not monotonic).
+  if (!forced && (matrix_header || (ncols >= 3 && !named_row && !monotonic(rows[0], ncols, rows.size())))) {
+    Map& m = out.map;
+    m.nx = ncols;
+    m.ny = rows.size();
+    auto check_count = [&](const std::string* v, const char* key, std::size_t want, const char* what) -> Status {
+      long long n;
+      if (v && (!parse_int64(*v, n) || n != (long long)want))
+        return make_error(fmt::format("{}: header says {} = {} but the matrix has {} {}", name, key, *v, want, what));
+      return Ok{};
+    };
+    if (auto st = check_count(hp.get({"nx", "xpixels", "xres", "cols", "ncols"}), "nx", m.nx, "columns"); !st) return st.error();
+    if (auto st = check_count(hp.get({"ny", "ypixels", "yres", "rows", "nrows"}), "ny", m.ny, "rows"); !st) return st.error();
+    auto w = header_length({"w", "width", "xlength", "xreal", "xsize"}, lateral_bare);
+    if (!w) return w.error();
+    auto h = header_length({"h", "height", "ylength", "yreal", "ysize"}, lateral_bare);
+    if (!h) return h.error();
+    auto dxh = header_length({"dx", "xspacing", "spacing", "xstep", "step"}, lateral_bare);
+    if (!dxh) return dxh.error();
+    auto dyh = header_length({"dy", "yspacing", "ystep"}, lateral_bare);
+    if (!dyh) return dyh.error();
+    // Gwyddion's pixel convention: the real width is nx pixels of size dx.
+    std::optional<double> dx = *w ? std::optional<double>(**w / double(m.nx)) : *dxh;
+    std::optional<double> dy = *h ? std::optional<double>(**h / double(m.ny)) : *dyh ? *dyh : dx;
+    if (!dx && options.spacing > 0) dx = options.spacing;
+    if (!dy && options.spacing > 0) dy = options.spacing;
+    if (!dx || !dy)
+      out.warnings.push_back(fmt::format("{}: a {} x {} matrix of heights without sizes; grid spacing set to 1 {} (give --spacing)",
+                                         name, m.nx, m.ny, options.default_unit.empty() ? "m" : options.default_unit));
+    m.dx = dx.value_or(fallback_unit);
+    m.dy = dy.value_or(fallback_unit);
+    std::optional<double> zu = z_unit_header;
+    if (spip) {
+      double b2n = 1;
+      std::optional<double> sc;
+      if (!number_with_unit(*hp.get({"bit2nm"}), b2n, sc))
+        return make_error(fmt::format("{}: Bit2nm '{}' is not a number", name, *hp.get({"bit2nm"})));
+      zu = b2n * 1e-9;
+    }
+    if (!zu && options.default_unit.empty())
+      out.warnings.push_back(fmt::format("{}: no unit for the heights; read as metres (give a unit to override)", name));
+    m.heights = std::move(rows.v);
+    InvalidCount invalid;
+    mask_invalid(m.heights, invalid);
+    const double zs = zu.value_or(fallback_unit);
+    for (double& v : m.heights) v *= zs;
+    if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
+    if (m.valid_count() == 0) return make_error(fmt::format("{}: no valid point", name));
+    out.is_map = true;
+    out.format = ProfileFormat::Matrix;
+    return out;
+  }
+
   if (count_line_value >= 0 && std::size_t(count_line_value) != rows.size())
     out.warnings.push_back(fmt::format("{}: line {} gives a count of {} but {} data rows follow; all rows were read",
                                        name, count_line_number, count_line_value, rows.size()));
@@ -285,18 +570,19 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
                                        name, !xu && !zu ? "x and z" : !xu ? "x" : "z"));
   double xs = xu.value_or(fallback), zs = zu.value_or(fallback);
 
-  std::size_t dropped = 0;
+  InvalidCount invalid;
   out.curve.x.reserve(rows.size());
   out.curve.z.reserve(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) {
     double x = rows[k][xc], z = rows[k][zc];
-    if (std::isnan(x))
-      return make_error(fmt::format("{}:{}: x is not a number", name, row_line[k]));
-    if (std::isnan(z)) { ++dropped; continue; }
+    if (!std::isfinite(x))
+      return make_error(fmt::format("{}:{}: x is {} (expected a finite number; only heights may be invalid)", name,
+                                    row_line[k], x));
+    if (!std::isfinite(z)) { invalid.add(z); continue; }
     out.curve.x.push_back(x * xs);
     out.curve.z.push_back(z * zs);
   }
-  if (dropped) out.warnings.push_back(fmt::format("{}: {} points with NaN heights were dropped", name, dropped));
+  if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, false));
   if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than 2 points with finite values", name));
   return out;
 }
@@ -459,7 +745,11 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
     return make_error(fmt::format("{}: Width and Height must be positive", name));
   double zs = zscale.value_or(fallback);
   m.heights = std::move(values);
+  InvalidCount invalid;
+  mask_invalid(m.heights, invalid);
   for (double& h : m.heights) h *= zs;
+  if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
+  if (invalid.total() == m.heights.size()) return make_error(fmt::format("{}: no valid point (every height is NaN or infinite)", name));
   return out;
 }
 

@@ -1,6 +1,7 @@
 #include "io/text_util.hpp"
 
 #include <charconv>
+#include <fmt/core.h>
 #include <cmath>
 #include <limits>
 
@@ -31,8 +32,12 @@ bool parse_double(std::string_view s, double& out, bool decimal_comma) {
   if (s.front() == '+') s.remove_prefix(1);
   if (s.empty()) return false;
   std::string low = lower_ascii(s);
-  if (low == "nan" || low == "-nan" || low == "+nan") {
+  if (low == "nan" || low == "-nan" || low == "+nan" || low == "1.#qnan" || low == "-1.#ind" || low == "1.#ind") {
     out = std::numeric_limits<double>::quiet_NaN();
+    return true;
+  }
+  if (low == "inf" || low == "infinity" || low == "1.#inf" || low == "-inf" || low == "-infinity" || low == "-1.#inf") {
+    out = low.front() == '-' ? -std::numeric_limits<double>::infinity() : std::numeric_limits<double>::infinity();
     return true;
   }
   std::string tmp;
@@ -53,7 +58,6 @@ bool parse_double(std::string_view s, double& out, bool decimal_comma) {
     }
     return false;
   }
-  if (std::isinf(v)) return false;
   out = v;
   return true;
 }
@@ -143,6 +147,38 @@ std::vector<Line> split_lines(std::string_view text) {
   }
   if (start < text.size()) lines.push_back({text.substr(start), number});
   return lines;
+}
+
+std::size_t InvalidCount::total() const { return nan + pos_inf + neg_inf; }
+
+void InvalidCount::add(double v) {
+  if (std::isnan(v)) ++nan;
+  else if (v > 0) ++pos_inf;
+  else ++neg_inf;
+}
+
+std::size_t mask_invalid(std::vector<double>& z, InvalidCount& count) {
+  std::size_t n = 0;
+  for (double& v : z)
+    if (!std::isfinite(v)) {
+      count.add(v);
+      v = std::numeric_limits<double>::quiet_NaN();
+      ++n;
+    }
+  return n;
+}
+
+std::string invalid_warning(const std::string& name, const InvalidCount& c, bool map) {
+  std::string parts;
+  auto part = [&](std::size_t n, const char* what) {
+    if (!n) return;
+    parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", n, what);
+  };
+  part(c.nan, "NaN");
+  part(c.pos_inf, "+inf");
+  part(c.neg_inf, "-inf");
+  return fmt::format("{}: {} invalid point{} ({}) {}", name, c.total(), c.total() == 1 ? "" : "s", parts,
+                     map ? "masked" : "dropped from the profile");
 }
 
 }  // namespace frictal::io_detail

@@ -12,8 +12,10 @@ namespace frictal::io_detail {
 std::string_view trim(std::string_view s);
 std::string lower_ascii(std::string_view s);
 
-/// Parses a whole field as a double (leading '+', "nan"/"NaN" accepted; ',' as decimal
-/// separator if decimal_comma). Empty or partly numeric fields fail.
+/// Parses a whole field as a double (leading '+'; ',' as decimal separator if decimal_comma).
+/// "nan", "inf", "-inf", "infinity" (any case, also MSVC's "1.#INF"/"1.#QNAN") give NaN or
+/// +-infinity: callers decide (heights: invalid points; coordinates and headers: errors).
+/// Empty or partly numeric fields fail; numbers beyond the double range fail.
 bool parse_double(std::string_view s, double& out, bool decimal_comma = false);
 bool parse_int64(std::string_view s, long long& out);
 
@@ -25,6 +27,18 @@ std::optional<double> unit_scale(std::string_view word);
 std::optional<double> unit_in_header(std::string_view header);
 /// Parses "12.34 µm" (number then unit); nullopt on failure.
 std::optional<double> length_value(std::string_view s);
+
+/// Invalid heights met by a reader (NaN, +inf, -inf): one rule for every format -- dropped
+/// from a profile, masked (NaN) in a map, reported in one warning.
+struct InvalidCount {
+  std::size_t nan = 0, pos_inf = 0, neg_inf = 0;
+  std::size_t total() const;
+  void add(double v);  ///< counts one non-finite value
+};
+/// Sets every non-finite value of z to NaN, counting them; returns how many.
+std::size_t mask_invalid(std::vector<double>& z, InvalidCount& count);
+/// "name: 3 invalid points (2 NaN, 1 +inf) masked" (map) or "... dropped from the profile".
+std::string invalid_warning(const std::string& name, const InvalidCount& c, bool map);
 
 struct Line {
   std::string_view text;

@@ -204,6 +204,7 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
   SurfaceData out;
   out.format = ProfileFormat::X3p;
   auto& warn = out.warnings;
+  InvalidCount invalid;  // NaN / +-inf heights stored as values (not flagged by valid.bin or <Datum/>)
 
   // main.xml at the root, or in one sub-folder (archives zipped from a folder); skip macOS forks.
   std::string base, main_name;
@@ -331,6 +332,7 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
         column(c)[k] = decode_raw(p, t);
         p += type_size(t);
       }
+    std::string valid_bits;  // empty: every point valid
     std::string vname = text_of(child(link, "ValidPointsLink"));
     if (!vname.empty()) {
       auto vdeclared = ar.size(base + vname);
@@ -346,8 +348,14 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
       std::string vs = text_of(child(link, "MD5ChecksumValidPoints"));
       if (!vs.empty() && !same_hex(vs, md5_hex(*valid)))
         warn.push_back(fmt::format("{}: MD5 checksum of {} does not match main.xml", name, vname));
-      for (std::uint64_t k = 0; k < count; ++k)
-        if (!(((unsigned char)(*valid)[k / 8] >> (k % 8)) & 1u)) pz[k] = std::numeric_limits<double>::quiet_NaN();
+      valid_bits = std::move(*valid);
+    }
+    // Heights stored as NaN or +-inf on points the mask calls valid: invalid points (one rule
+    // for every format); points the mask flags are the format's own "not measured".
+    for (std::uint64_t k = 0; k < count; ++k) {
+      const bool flagged = !valid_bits.empty() && !(((unsigned char)valid_bits[k / 8] >> (k % 8)) & 1u);
+      if (flagged) pz[k] = std::numeric_limits<double>::quiet_NaN();
+      else if (!std::isfinite(pz[k])) invalid.add(pz[k]);
     }
   } else if (pugi::xml_node list = child(r3, "DataList")) {
     std::uint64_t k = 0;
@@ -374,6 +382,7 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
                 (v != std::floor(v) || std::abs(v) > (type == 'I' ? 32768.0 : 2147483648.0)))
               return make_error(fmt::format("{}: main.xml: Datum {}: '{}' is not a {} integer", name, k + 1,
                                             std::string(f.substr(0, 40)), type == 'I' ? "16-bit" : "32-bit"));
+            if (stored[field] == 'z' && !std::isfinite(v)) invalid.add(v);
             column(stored[field])[k] = v;
           }
           ++field;
@@ -398,8 +407,12 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
     for (double& v : column(c))
       if (!std::isnan(v)) v = a->offset + a->increment * v;
   }
-  for (double v : pz)
-    if (std::isinf(v)) return make_error(fmt::format("{}: infinite height in the data", name));
+  for (double& v : pz)
+    if (std::isinf(v)) v = std::numeric_limits<double>::quiet_NaN();  // counted above
+  for (const auto* col : {&px, &py})
+    for (std::uint64_t k = 0; k < col->size(); ++k)
+      if (std::isinf((*col)[k]))
+        return make_error(fmt::format("{}: point {} has an infinite {} coordinate", name, k + 1, col == &px ? 'x' : 'y'));
 
   Map m;
   if (matrix) {
@@ -470,12 +483,15 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
       out.curve.x.push_back(along_y ? m.y0 + double(k) * m.dy : m.x0 + double(k) * m.dx);
       out.curve.z.push_back(z);
     }
-    if (dropped) warn.push_back(fmt::format("{}: {} invalid profile points were dropped", name, dropped));
+    if (invalid.total()) warn.push_back(invalid_warning(name, invalid, false));
+    if (dropped > invalid.total())
+      warn.push_back(fmt::format("{}: {} points flagged invalid were dropped", name, dropped - invalid.total()));
     if (out.curve.x.size() < 2) return make_error(fmt::format("{}: profile with fewer than two valid points", name));
     out.is_map = false;
   } else {
     out.is_map = true;
     out.map = std::move(m);
+    if (invalid.total()) warn.push_back(invalid_warning(name, invalid, true));
     if (out.map.valid_count() == 0) return make_error(fmt::format("{}: no valid points", name));
   }
   return out;

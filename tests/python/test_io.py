@@ -60,3 +60,47 @@ def test_areal_signature_of_tilted_plane_and_anisotropy_of_ridges():
     t = frictal.anisotropy(ridges, dx=1e-6, dy=1e-6, directions=4, max_lines=8)
     assert t["theta_forward"][1] == pytest.approx(0, abs=1e-12)  # along the ridges
     assert t["theta_forward"][0] > 0.01
+
+
+def test_map_stats_scan_quantities_numpy_reference():
+    """n dx sizes, per-profile Rq/Rdq and the forward-difference gradient, against numpy."""
+    rng = np.random.default_rng(7)
+    h = rng.normal(size=(6, 9)) * 1e-8
+    dx, dy = 0.5e-6, 0.25e-6
+    s = frictal.map_stats(h, dx=dx, dy=dy, tip_radius=1e-3)
+    assert s["physical_size_x"] == pytest.approx(9 * dx)
+    assert s["physical_size_y"] == pytest.approx(6 * dy)
+    assert s["bandwidth"] == pytest.approx(((dx + dy) / 2, (9 * dx + 6 * dy) / 2))
+    rows = h - h.mean(axis=1, keepdims=True)
+    cols = h - h.mean(axis=0, keepdims=True)
+    assert s["Rq_x"] == pytest.approx(np.sqrt((rows ** 2).mean()), rel=1e-12)
+    assert s["Rq_y"] == pytest.approx(np.sqrt((cols ** 2).mean()), rel=1e-12)
+    gx = np.diff(h, axis=1) / dx
+    gy = np.diff(h, axis=0) / dy
+    assert s["Rdq_x"] == pytest.approx(np.sqrt((gx ** 2).mean()), rel=1e-12)
+    assert s["Rdq_y"] == pytest.approx(np.sqrt((gy ** 2).mean()), rel=1e-12)
+    common = gx[:-1, :] ** 2 + gy[:, :-1] ** 2
+    assert s["rms_gradient_fd"] == pytest.approx(np.sqrt(common.mean()), rel=1e-12)
+    assert "short_reliability_cutoff" in s
+
+
+def test_npy_and_single_column_are_detected(tmp_path):
+    a = np.arange(12, dtype="<f4").reshape(3, 4)
+    p = tmp_path / "a.npy"
+    np.save(p, a)
+    s = frictal.read_surface(str(p), unit="nm")
+    assert s["kind"] == "map"
+    assert s["format"] == "npy"
+    assert s["reader"] == "native"
+    one = tmp_path / "one.npy"
+    np.save(one, np.array([1.0, 2.0, 4.0]))
+    p1 = frictal.read_surface(str(one), spacing=0.5)
+    assert p1["kind"] == "profile"
+    assert np.allclose(p1["x"], [0, 0.5, 1.0])
+    assert np.array_equal(s["heights"], a.astype(float) * 1e-9)
+    t = tmp_path / "col.txt"
+    t.write_text("# spacing: 2 um\n# unit: nm\n1\n2\n3\n")
+    c = frictal.read_surface(str(t))
+    assert c["kind"] == "profile"
+    assert np.allclose(c["x"], [0, 2e-6, 4e-6])
+    assert np.allclose(c["z"], [1e-9, 2e-9, 3e-9])

@@ -1,0 +1,79 @@
+// frictal info FILE — what a surface file holds: its format, the reader that took it, every
+// channel (name, kind, points, physical size, units) and which one frictal reads.
+#include "common.hpp"
+#include "surface_io.hpp"
+
+namespace frictal::cli {
+namespace {
+
+struct Args {
+  std::string file;
+  bool json = false;
+  InputOptions input;
+};
+
+std::function<int()> setup(CLI::App& app) {
+  auto a = std::make_shared<Args>();
+  app.add_option("file", a->file, "Surface file (any readable format; see 'frictal formats')")->required();
+  app.add_flag("--json", a->json, "Print one JSON object");
+  add_input_options(app, a->input);
+  return [a]() {
+    const SurfaceData s = load_surface(a->file, a->input);
+    if (a->json) {
+      nlohmann::json j;
+      j["file"] = a->file;
+      j["format"] = format_name(s.format);
+      j["reader"] = s.reader;
+      j["kind"] = s.is_map ? "map" : "profile";
+      j["channel"] = s.channel;
+      nlohmann::json chans = nlohmann::json::array();
+      for (const auto& c : s.channels) {
+        nlohmann::json cj;
+        cj["name"] = c.name;
+        cj["kind"] = c.is_map ? "map" : "profile";
+        cj["nx"] = c.nx;
+        cj["ny"] = c.ny;
+        cj["size_x"] = c.size_x;
+        cj["size_y"] = c.size_y;
+        cj["xy_unit"] = c.xy_unit;
+        cj["z_unit"] = c.z_unit;
+        cj["readable"] = c.readable;
+        chans.push_back(cj);
+      }
+      j["channels"] = chans;
+      if (s.is_map) {
+        j["nx"] = s.map.nx;
+        j["ny"] = s.map.ny;
+        j["dx_m"] = s.map.dx;
+        j["dy_m"] = s.map.dy;
+        j["x0_m"] = s.map.x0;
+        j["y0_m"] = s.map.y0;
+        j["valid_points"] = s.map.valid_count();
+      } else {
+        j["points"] = s.curve.size();
+      }
+      j["warnings"] = s.warnings;
+      print_json(j);
+      return 0;
+    }
+    fmt::print("{}\n  format {}, read by {}\n  {} channel{}:\n", a->file, format_name(s.format), s.reader, s.channels.size(),
+               s.channels.size() == 1 ? "" : "s");
+    for (std::size_t k = 0; k < s.channels.size(); ++k) {
+      const auto& c = s.channels[k];
+      fmt::print("  {} {:>3}  {:<24} {:<7} {} x {} points, {:.6g} x {:.6g} {}, values in {}{}\n", k == s.channel ? '*' : ' ', k,
+                 c.name, c.is_map ? "map" : "profile", c.nx, c.ny, c.size_x, c.size_y, c.xy_unit, c.z_unit.empty() ? "(none)" : c.z_unit,
+                 c.readable ? "" : "  (not lengths: not readable)");
+    }
+    if (s.is_map)
+      fmt::print("  read: {} x {} map, dx {:.6g} m, dy {:.6g} m, origin ({:.6g}, {:.6g}) m, {} valid of {} points\n", s.map.nx,
+                 s.map.ny, s.map.dx, s.map.dy, s.map.x0, s.map.y0, s.map.valid_count(), s.map.size());
+    else
+      fmt::print("  read: profile of {} points\n", s.curve.size());
+    return 0;
+  };
+}
+
+FRICTAL_COMMAND({"info", "What a surface file holds: format, reader, channels, sizes and units", setup, 25});
+
+}  // namespace
+}  // namespace frictal::cli
