@@ -78,8 +78,8 @@ def lift_direct(lower: Profile, upper_rotated: Profile, offset: float) -> float:
 def lower_envelope(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArray[numpy.float64]) -> Profile:
     """Exact lower envelope of a polyline curve (x, z in metres) as a Profile"""
 
-def map_stats(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float) -> dict:
-    """Areal statistics over the valid points (NaN = invalid) of heights (m) on spacings dx, dy (m): mean, Sa, Sq, Sp, Sv, Sz (m), Ssk, Sku, Sdq (unitless), max_slope (rad)"""
+def map_stats(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, tip_radius: float = ...) -> dict:
+    """Areal statistics over the valid points (NaN = invalid) of heights (m) on spacings dx, dy (m): mean, Sa, Sq, Sp, Sv, Sz (m), Ssk, Sku, Sdq (unitless), max_slope (rad), the scan quantities of `frictal stats` (physical sizes, bandwidth (m), per-direction Rq (m) and Rdq (unitless)); tip_radius (m) > 0 adds short_reliability_cutoff (m)"""
 
 def power_spectrum(profile: Profile, max_k: int = ...) -> tuple:
     """Power spectrum of a profile (m, runs without the GIL): returns (q in rad/m, C in m^3) of the piecewise-linear profile, with 2 sum C / L = rms^2; max_k: 0 = automatic"""
@@ -99,8 +99,8 @@ def read_map(path: str, *, format: str = ...) -> dict:
 def read_profile(path: str) -> Profile:
     """Reads a single-valued profile (any readable format) in metres (runs without the GIL)"""
 
-def read_surface(path: str, *, format: str = ..., unit: str = ...) -> dict:
-    """Reads any supported file (CSV/TSV/text, Dektak, Gwyddion text, X3P; runs without the GIL). format: auto, csv, dektak, gwyddion or x3p; unit: m, mm, um or nm for text columns that name none. Returns a dict: kind 'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings. Metres."""
+def read_surface(path: str, *, format: str = ..., unit: str = ..., spacing: float = ..., channel: str = ...) -> dict:
+    """Reads any supported file (CSV/TSV/text, .npy, gzip, Dektak, Gwyddion text, X3P, SDF, and every format Gwyddion's modules load when installed; runs without the GIL). format: auto or a name of `frictal formats`; unit: m, mm, um or nm for text columns that name none; spacing: point spacing (m) for a single column of heights; channel: index or name of a multi-channel file's channel. Returns a dict: kind 'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings. Metres."""
 
 def rotate180(profile: Profile) -> Profile:
     """The profile (m) turned over by 180 degrees (x -> -x, z -> -z, re-sorted): how an upper block's face, measured with its material below, faces the lower one"""
