@@ -23,6 +23,7 @@ struct Args {
   double period = 0;
   unsigned threads = 0;
   int bins = 90;
+  double spheroradius = 0;
   bool json = false;
   bool exact = false;
   std::string detrend = "none";
@@ -51,6 +52,10 @@ std::function<int()> setup(CLI::App& app) {
   add_field_options(app, tilt_settings(), a->period_words, all_but(tilt_settings(), "period"));
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the contact-slope PDF")->capture_default_str();
+  app.add_option("--spheroradius", a->spheroradius,
+                 "Spheroradius r of both blocks [m] (default 0: rigid polylines): the signature of the DEM's "
+                 "spheropolygons, one core against the other dilated by a disk of radius 2r")
+      ->capture_default_str();
   app.add_option("-o,--output", a->out, "Write the signature function as CSV (- for standard output)");
   app.add_option("--contacts", a->contacts_out, "Write every contact (offset, x, z, slope, type) as CSV (- for standard output)");
   app.add_option("--pdf", a->pdf_out, "Write the contact-slope PDF as CSV (- for standard output)");
@@ -85,6 +90,11 @@ std::function<int()> setup(CLI::App& app) {
     o.require_exact = a->exact;
     o.threads = a->threads;
     o.bins = a->bins;
+    require(std::isfinite(a->spheroradius) && a->spheroradius >= 0,
+            fmt::format("--spheroradius: expected a length >= 0 in m, got {}", a->spheroradius));
+    require(a->spheroradius == 0 || a->slopes == "exact",
+            "--spheroradius: the rounded faces have their own exact slopes; use --slopes exact");
+    o.spheroradius = a->spheroradius;
     o.keep_contacts = !a->contacts_out.empty();
     if (!a->range.empty()) {
       require(a->range[1] > a->range[0], "--offset-range: expected MIN < MAX (m)");
@@ -130,6 +140,7 @@ std::function<int()> setup(CLI::App& app) {
       j["lower"] = a->lower;
       j["upper"] = a->upper.empty() ? a->lower : a->upper;
       j["slopes"] = a->slopes;
+      j["spheroradius_m"] = r.spheroradius;
       j["exact"] = r.exact;
       j["offsets"] = r.offset.size();
       j["offset_range_m"] = {r.offset.front(), r.offset.back()};
@@ -155,6 +166,9 @@ std::function<int()> setup(CLI::App& app) {
       std::FILE* text = to_stdout ? stderr : stdout;
       fmt::print(text, "signature: {} offsets ({}) from {:.6g} to {:.6g} m in {:.3f} s\n", r.offset.size(),
                  r.exact ? "every event, exact" : "sampled", r.offset.front(), r.offset.back(), wall);
+      if (r.spheroradius > 0)
+        fmt::print(text, "  spheropolygons: spheroradius r = {:.6g} m (one core against the other dilated by 2r)\n",
+                   r.spheroradius);
       fmt::print(text, "  theta_max forward  (+x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_forward), r.offset_at_forward);
       fmt::print(text, "  theta_max backward (-x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_backward), r.offset_at_backward);
       fmt::print(text, "  contact slope mean {:.4f} deg, std (sigma) {:.4f} deg; max surface slope {:.4f} deg\n",
