@@ -1,5 +1,6 @@
 // frictal signature LOWER [UPPER] | signature <generator> [options] — the signature function and
 // the friction prediction, of two measured surfaces or of a generated surface with itself.
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <thread>
@@ -49,13 +50,14 @@ std::function<int()> setup(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--exact", a->exact, "Refuse to sample offsets when the exact signature has too many events");
   app.add_option("--offset-range", a->range, "MIN MAX offsets (m); default one period or half the block")->expected(2);
-  add_field_options(app, tilt_settings(), a->period_words, all_but(tilt_settings(), "period"));
+  // --period and --radius (the spheroradius: the signature of the DEM's rounded blocks, one core
+  // against the other dilated by a disk of radius 2r), the tilt table's fields.
+  std::vector<std::string> skip = all_but(tilt_settings(), "period");
+  skip.erase(std::remove(skip.begin(), skip.end(), "radius"), skip.end());
+  add_field_options(app, tilt_settings(), a->period_words, skip);
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the contact-slope PDF")->capture_default_str();
-  app.add_option("--spheroradius", a->spheroradius,
-                 "Spheroradius r of both blocks [m] (default 0: rigid polylines): the signature of the DEM's "
-                 "spheropolygons, one core against the other dilated by a disk of radius 2r")
-      ->capture_default_str();
+
   app.add_option("-o,--output", a->out, "Write the signature function as CSV (- for standard output)");
   app.add_option("--contacts", a->contacts_out, "Write every contact (offset, x, z, slope, type) as CSV (- for standard output)");
   app.add_option("--pdf", a->pdf_out, "Write the contact-slope PDF as CSV (- for standard output)");
@@ -76,7 +78,9 @@ std::function<int()> setup(CLI::App& app) {
     }
     Profile lower = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : load_profile(a->lower), dt));
     Profile upper_measured = a->upper.empty() ? lower : unwrap(detrend(load_profile(a->upper), dt));
-    if (const ValueSet pv = si_values(tilt_settings(), a->period_words); pv.count("period")) a->period = as_real(pv.at("period"));
+    const ValueSet pv = si_values(tilt_settings(), a->period_words);
+    if (pv.count("period")) a->period = as_real(pv.at("period"));
+    if (pv.count("radius")) a->spheroradius = as_real(pv.at("radius"));
     if (a->period != 0) {
       require(a->period > 0 && std::isfinite(a->period), fmt::format("--period: expected a positive length in m, got {}", a->period));
       lower.period = a->period;
@@ -90,10 +94,8 @@ std::function<int()> setup(CLI::App& app) {
     o.require_exact = a->exact;
     o.threads = a->threads;
     o.bins = a->bins;
-    require(std::isfinite(a->spheroradius) && a->spheroradius >= 0,
-            fmt::format("--spheroradius: expected a length >= 0 in m, got {}", a->spheroradius));
     require(a->spheroradius == 0 || a->slopes == "exact",
-            "--spheroradius: the rounded faces have their own exact slopes; use --slopes exact");
+            "--radius: the rounded faces have their own exact slopes; use --slopes exact");
     o.spheroradius = a->spheroradius;
     o.keep_contacts = !a->contacts_out.empty();
     if (!a->range.empty()) {

@@ -205,8 +205,11 @@ TEST(Sphero, KochK0RoundedTipsNearTipOnTip) {
   ASSERT_TRUE(r.ok());
   for (std::size_t i = 0; i < r->offset.size(); ++i) {
     const double s = r->offset[i];
-    if (std::abs(s) > R * std::sin(a) + 1e-9) EXPECT_NEAR(std::abs(r->theta[i]), a, 1e-9) << s;
-    if (std::abs(s) < R * std::sin(a) - 1e-9) EXPECT_LT(std::abs(r->theta[i]), a) << s;
+    if (std::abs(s) > R * std::sin(a) + 1e-9) {
+      EXPECT_NEAR(std::abs(r->theta[i]), a, 1e-9) << s;
+    } else if (std::abs(s) < R * std::sin(a) - 1e-9) {
+      EXPECT_LT(std::abs(r->theta[i]), a) << s;
+    }
   }
 }
 
@@ -296,13 +299,13 @@ TEST(Sphero, RejectsBadRadiusAndSplineSlopes) {
 }
 
 TEST(Sphero, CliOptionAndJson) {
-  auto r = run_cli("signature koch -n 0 --alpha 20 --spheroradius 0.01 --json");
+  auto r = run_cli("signature koch -n 0 --alpha 20 --radius 0.01 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["spheroradius_m"].get<double>(), 0.01);
   EXPECT_NEAR(j["theta_max_forward_deg"].get<double>(), todeg(std::asin(0.25)), 1e-9);
   auto z = run_cli("signature koch -n 0 --alpha 20 --json");
   EXPECT_EQ(nlohmann::json::parse(z.out)["spheroradius_m"].get<double>(), 0);
-  EXPECT_EQ(run_cli("signature koch --spheroradius -1").code, 2);
-  EXPECT_EQ(run_cli("signature koch --spheroradius 1e-5 --slopes spline").code, 2);
+  EXPECT_EQ(run_cli("signature koch --radius -1").code, 2);
+  EXPECT_EQ(run_cli("signature koch --radius 1e-5 --slopes spline").code, 2);
 }
