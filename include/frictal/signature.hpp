@@ -70,8 +70,9 @@ struct SignatureOptions {
   /// Offset lines of h0's pieces and arcs at its ridges form h; contacts on an arc have the
   /// arc's tangent slope, so theta varies continuously there. Breakpoints of h (changes of the
   /// active primitive) are exact and theta_max is exact (analytic on arcs); `offsets` = 0 lists
-  /// the breakpoints plus 8 points inside each arc. Contacts are the touching points of the two
-  /// rounded faces (on the lower face's rounded outline), typed by the rigid contact they round.
+  /// the breakpoints plus up to 8 points inside each arc (one per degree it turns). Contacts are
+  /// the touching points of the two rounded faces (on the lower face's rounded outline), typed by
+  /// the rigid contact they round.
   /// Spline slopes are not available with r > 0.
   double spheroradius = 0;
 };

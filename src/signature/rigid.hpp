@@ -11,10 +11,10 @@ namespace frictal::detail {
 class RigidLift {
  public:
   struct Point {
-    double lift = 0;    ///< h0(s), the upper reference height (unit: m)
-    double left = 0;    ///< atan(h0'(s-)); +pi/2 when h0 jumps down to the left (unit: rad)
-    double right = 0;   ///< atan(h0'(s+)); -pi/2 when h0 jumps down to the right (unit: rad)
-    double contact_x = 0;  ///< abscissa of the leftmost contact in the lower frame (unit: m)
+    double lift = 0;                             ///< h0(s), the upper reference height (unit: m)
+    double left = 0;                             ///< atan(h0'(s-)); +pi/2 when h0 jumps down to the left (unit: rad)
+    double right = 0;                            ///< atan(h0'(s+)); -pi/2 when h0 jumps down to the right (unit: rad)
+    double contact_x = 0;                        ///< abscissa of the leftmost contact in the lower frame (unit: m)
     ContactType type = ContactType::VertexEdge;  ///< the leftmost contact's type
   };
   /// Prepares `lower` against `upper` (already rotated; the frame puts offset 0 at the left ends

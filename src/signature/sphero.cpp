@@ -18,9 +18,9 @@
 // are domain ends and intersections of primitives (line-line, line-arc, arc-arc in closed form);
 // between breakpoints one primitive is active and its slope is monotone (constant on a line,
 // decreasing on an arc), so the extreme slopes are at breakpoints: theta_max is exact.
+#include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/core.h>
 #include <limits>
 #include <numbers>
 
@@ -156,12 +156,88 @@ class PieceBuilder {
   std::vector<Piece>& out_;
 };
 
+// The upper envelope as spans [a, b] of one primitive (p = -1: none) covering [smin, smax].
+struct Span {
+  double a, b;
+  int p;
+};
+using Env = std::vector<Span>;
+
+void push_span(Env& e, double a, double b, int p, double xtol) {
+  if (!(b > a)) return;
+  if (!e.empty() && e.back().p == p && std::abs(e.back().b - a) <= xtol) {
+    e.back().b = b;
+    return;
+  }
+  e.push_back({a, b, p});
+}
+
+Env merge(const Sphero& S, const std::vector<Prim>& prims, const Env& A, const Env& B, double xtol) {
+  Env out;
+  out.reserve(A.size() + B.size());
+  std::size_t i = 0, j = 0;
+  std::vector<double> cuts;
+  while (i < A.size() && j < B.size()) {
+    const double x = std::max(A[i].a, B[j].a), y = std::min(A[i].b, B[j].b);
+    const int p = A[i].p, q = B[j].p;
+    if (y > x) {
+      if (p < 0 || q < 0) {
+        push_span(out, x, y, p < 0 ? q : p, xtol);
+      } else {
+        const Prim& P = prims[static_cast<std::size_t>(p)];
+        const Prim& Q = prims[static_cast<std::size_t>(q)];
+        cuts.clear();
+        cuts.push_back(x);
+        intersect(S, P, Q, x + xtol, y - xtol, cuts);
+        std::sort(cuts.begin() + 1, cuts.end());
+        cuts.push_back(y);
+        for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+          const double m = 0.5 * (cuts[k] + cuts[k + 1]);
+          push_span(out, cuts[k], cuts[k + 1], S.value(Q, m) > S.value(P, m) ? q : p, xtol);
+        }
+      }
+    }
+    if (A[i].b < B[j].b)
+      ++i;
+    else if (B[j].b < A[i].b)
+      ++j;
+    else
+      ++i, ++j;
+  }
+  return out;
+}
+
+// Envelope of prims[i0, i1) over [smin, smax].
+Env envelope_range(const Sphero& S, const std::vector<Prim>& prims, std::size_t i0, std::size_t i1, double smin,
+                   double smax, double xtol) {
+  if (i1 - i0 == 1) {
+    const Prim& p = prims[i0];
+    Env e;
+    // Domains widened by xtol: consecutive offsets of almost collinear pieces (no arc between
+    // them) meet up to rounding.
+    const double lo = std::clamp(p.lo - xtol, smin, smax), hi = std::clamp(p.hi + xtol, smin, smax);
+    push_span(e, smin, lo, -1, xtol);
+    push_span(e, lo, hi, static_cast<int>(i0), xtol);
+    push_span(e, hi, smax, -1, xtol);
+    if (e.empty()) e.push_back({smin, smax, -1});
+    return e;
+  }
+  const std::size_t mid = i0 + (i1 - i0) / 2;
+  return merge(S, prims, envelope_range(S, prims, i0, mid, smin, smax, xtol),
+               envelope_range(S, prims, mid, i1, smin, smax, xtol), xtol);
+}
+
+Env envelope(const Sphero& S, const std::vector<Prim>& prims, double smin, double smax, double xtol) {
+  return envelope_range(S, prims, 0, prims.size(), smin, smax, xtol);
+}
+
 }  // namespace
 
 Result<SignatureResult> sphero_signature(const Profile& lower, const Profile& upper, const SignatureOptions& o) {
   if (o.slopes != SlopeMethod::Exact)
-    return make_error("signature: spline slopes are not available with a spheroradius > 0 (the rounded faces "
-                      "have their own exact slopes); use exact slopes");
+    return make_error(
+        "signature: spline slopes are not available with a spheroradius > 0 (the rounded faces "
+        "have their own exact slopes); use exact slopes");
   const double r = o.spheroradius;
   Sphero S;
   S.R = 2 * r;
@@ -175,8 +251,10 @@ Result<SignatureResult> sphero_signature(const Profile& lower, const Profile& up
   }
   if (!std::isfinite(smin) || !std::isfinite(smax)) return make_error("signature: offset range must be finite");
   if (!periodic && (!(smin > -upper.length()) || !(smax < lower.length())))
-    return make_error(fmt::format("signature: offsets [{}, {}] m leave no overlap between the blocks (allowed: "
-                                  "inside ({}, {}) m)", smin, smax, -upper.length(), lower.length()));
+    return make_error(
+        fmt::format("signature: offsets [{}, {}] m leave no overlap between the blocks (allowed: "
+                    "inside ({}, {}) m)",
+                    smin, smax, -upper.length(), lower.length()));
 
   // Rigid lift over [smin - R, smax + R] (inside the overlap for finite blocks).
   double rmin = smin - R, rmax = smax + R;
@@ -208,7 +286,8 @@ Result<SignatureResult> sphero_signature(const Profile& lower, const Profile& up
   // h0's knots (events) and pieces.
   const SignatureResult& rs = *rigid_sig;
   std::vector<Knot> knots(rs.offset.size());
-  for (std::size_t i = 0; i < knots.size(); ++i) knots[i] = {rs.offset[i], rs.lift[i], rs.theta_left[i], rs.theta_right[i]};
+  for (std::size_t i = 0; i < knots.size(); ++i)
+    knots[i] = {rs.offset[i], rs.lift[i], rs.theta_left[i], rs.theta_right[i]};
   std::vector<Piece> pieces;
   PieceBuilder builder(*rigid, vtol, pieces);
   for (std::size_t i = 0; i + 1 < knots.size(); ++i) builder.interval(knots[i], knots[i + 1]);
@@ -218,7 +297,8 @@ Result<SignatureResult> sphero_signature(const Profile& lower, const Profile& up
     if (!merged.empty()) {
       Piece& q = merged.back();
       const double mq = (q.hb - q.ha) / (q.b - q.a), mp = (p.hb - p.ha) / (p.b - p.a);
-      if (std::abs(q.b - p.a) <= xtol && std::abs(q.hb - p.ha) <= vtol && std::abs(mq - mp) <= 1e-12 * (1 + std::abs(mq))) {
+      if (std::abs(q.b - p.a) <= xtol && std::abs(q.hb - p.ha) <= vtol &&
+          std::abs(mq - mp) <= 1e-12 * (1 + std::abs(mq))) {
         q.b = p.b;
         q.hb = p.hb;
         continue;
@@ -252,96 +332,65 @@ Result<SignatureResult> sphero_signature(const Profile& lower, const Profile& up
     const bool jump = std::abs(k.left) >= kHalfPi || std::abs(k.right) >= kHalfPi;
     if (jump || k.left > k.right + 1e-12) add_arc(k.s, k.h);
   }
-  for (std::size_t i = 0; i + 1 < merged.size(); ++i) {  // bends found inside intervals
+  // An arc at every junction of two pieces that is not a clear valley (there the offsets
+  // overlap), so that the primitives cover every offset whatever the rounding of the slopes
+  // (each piece's offset with its two end arcs covers [a - R, b + R]).
+  for (std::size_t i = 0; i < merged.size(); ++i) {
     const Piece& p = merged[i];
-    const Piece& q = merged[i + 1];
-    const double mp = (p.hb - p.ha) / (p.b - p.a), mq = (q.hb - q.ha) / (q.b - q.a);
-    if (mp > mq + 1e-12 && std::abs(p.b - q.a) <= xtol) {
-      bool at_knot = std::binary_search(rs.offset.begin(), rs.offset.end(), p.b);
-      if (!at_knot) add_arc(p.b, std::max(p.hb, q.ha));
+    if (i == 0 || std::abs(merged[i - 1].b - p.a) > xtol) add_arc(p.a, p.ha);
+    const bool joined = i + 1 < merged.size() && std::abs(merged[i + 1].a - p.b) <= xtol;
+    if (joined) {  // a clear valley needs none: the offsets overlap there
+      const Piece& q = merged[i + 1];
+      const double mp = (p.hb - p.ha) / (p.b - p.a), mq = (q.hb - q.ha) / (q.b - q.a);
+      if (mq > mp + 1e-9 * (1 + std::abs(mp))) continue;
     }
+    add_arc(p.b, joined ? std::max(p.hb, merged[i + 1].ha) : p.hb);
   }
+  prims.erase(std::remove_if(prims.begin(), prims.end(), [&](const Prim& p) { return p.hi < smin || p.lo > smax; }),
+              prims.end());
   if (prims.empty()) return make_error("signature: the blocks do not overlap over the offset range");
-  std::sort(prims.begin(), prims.end(), [](const Prim& a, const Prim& b) { return a.lo < b.lo; });
-  double wmax = 0;
-  for (const Prim& p : prims) wmax = std::max(wmax, p.hi - p.lo);
+  std::sort(prims.begin(), prims.end(), [](const Prim& a, const Prim& b) {
+    return a.lo < b.lo ||
+           (a.lo == b.lo && (a.arc < b.arc || (a.arc == b.arc && (a.H < b.H || (a.H == b.H && a.c < b.c)))));
+  });
+  prims.erase(std::unique(prims.begin(), prims.end(),
+                          [](const Prim& a, const Prim& b) { return a.arc && b.arc && a.t == b.t && a.H == b.H; }),
+              prims.end());
 
-  // Primitives whose domain contains s (within xtol), by index.
-  auto for_active = [&](double s, double tol, auto&& fn) {
-    auto it = std::lower_bound(prims.begin(), prims.end(), s - wmax - tol, [](const Prim& p, double v) { return p.lo < v; });
-    for (; it != prims.end() && it->lo <= s + tol; ++it)
-      if (it->hi >= s - tol) fn(*it);
+  // Upper envelope over [smin, smax] by divide and conquer: merging two envelopes walks their
+  // common sub-intervals and splits each at the intersections of its two primitives.
+  const Env env = envelope(S, prims, smin, smax, xtol);
+  std::vector<double> brk;        // breakpoints: brk[k], brk[k + 1] bound span k
+  std::vector<const Prim*> bseg;  // the active primitive of span k
+  for (const Span& sp : env) {
+    if (sp.p < 0)
+      return make_error(fmt::format("signature: no overlap between the blocks at offset {} m", 0.5 * (sp.a + sp.b)));
+    if (brk.empty()) brk.push_back(sp.a);
+    bseg.push_back(&prims[static_cast<std::size_t>(sp.p)]);
+    brk.push_back(sp.b);
+  }
+  const std::size_t nseg = bseg.size();
+
+  // At offset s: the primitives in contact (the span's, both spans' at a breakpoint), and h's
+  // slopes just before and after s.
+  struct At {
+    const Prim* left = nullptr;   // primitive just before s
+    const Prim* right = nullptr;  // primitive just after s
   };
-
-  // Breakpoint candidates in [smin, smax].
-  std::vector<double> cand{smin, smax};
-  for (std::size_t i = 0; i < prims.size(); ++i) {
-    const Prim& p = prims[i];
-    if (p.hi < smin || p.lo > smax) continue;
-    if (p.lo >= smin) cand.push_back(p.lo);
-    if (p.hi <= smax) cand.push_back(p.hi);
-    for (std::size_t j = i + 1; j < prims.size() && prims[j].lo <= p.hi; ++j) {
-      const Prim& q = prims[j];
-      const double lo = std::max({p.lo, q.lo, smin}), hi = std::min({p.hi, q.hi, smax});
-      if (lo <= hi) intersect(S, p, q, lo, hi, cand);
+  auto locate = [&](double s) {
+    At r;
+    const auto it = std::lower_bound(brk.begin(), brk.end(), s);
+    std::size_t j = static_cast<std::size_t>(it - brk.begin());
+    if (j > 0 && (j == brk.size() || s - brk[j - 1] < brk[j] - s)) --j;  // nearest breakpoint
+    if (std::abs(brk[j] - s) <= xtol) {
+      r.left = j > 0 ? bseg[j - 1] : bseg[0];
+      r.right = j < nseg ? bseg[j] : bseg[nseg - 1];
+      return r;
     }
-  }
-  std::sort(cand.begin(), cand.end());
-  std::vector<double> bp;
-  for (double v : cand)
-    if (bp.empty() || v > bp.back() + xtol) bp.push_back(v);
-  bp.back() = smax;
-
-  // The active primitive of each interval between candidates (max at its middle).
-  const std::size_t nb = bp.size();
-  std::vector<const Prim*> seg(nb > 1 ? nb - 1 : 0, nullptr);
-  for (std::size_t k = 0; k + 1 < nb; ++k) {
-    const double m = 0.5 * (bp[k] + bp[k + 1]);
-    double best = -kInf;
-    for_active(m, 0.0, [&](const Prim& p) {
-      const double v = S.value(p, m);
-      if (v > best) {
-        best = v;
-        seg[k] = &p;
-      }
-    });
-    if (!seg[k]) return make_error(fmt::format("signature: no overlap between the blocks at offset {} m", m));
-  }
-  // Keep only real breakpoints (the active primitive changes) and the range ends.
-  std::vector<double> brk{bp.front()};
-  std::vector<const Prim*> bseg;
-  for (std::size_t k = 0; k + 1 < nb; ++k) {
-    if (!bseg.empty() && bseg.back() == seg[k]) {
-      brk.back() = bp[k + 1];
-      continue;
-    }
-    if (bseg.empty()) {
-      bseg.push_back(seg[k]);
-      brk.push_back(bp[k + 1]);
-    } else {
-      bseg.push_back(seg[k]);
-      brk.push_back(bp[k + 1]);
-    }
-  }
-  // brk[i], brk[i+1] bound interval i with primitive bseg[i].
-
-  struct Eval {
-    double lift, theta, theta_min;
-  };
-  auto evaluate_at = [&](double s, std::vector<const Prim*>* act) {
-    double best = -kInf;
-    for_active(s, xtol, [&](const Prim& p) { best = std::max(best, S.value(p, std::clamp(s, p.lo, p.hi))); });
-    Eval e{best, -kInf, kInf};
-    for_active(s, xtol, [&](const Prim& p) {
-      const double sc = std::clamp(s, p.lo, p.hi);
-      if (S.value(p, sc) >= best - vtol) {
-        const double a = S.slope(p, sc);
-        e.theta = std::max(e.theta, a);
-        e.theta_min = std::min(e.theta_min, a);
-        if (act) act->push_back(&p);
-      }
-    });
-    return e;
+    const std::size_t k = std::min<std::size_t>(
+        nseg - 1, static_cast<std::size_t>(std::upper_bound(brk.begin(), brk.end(), s) - brk.begin()) - 1);
+    r.left = r.right = bseg[k];
+    return r;
   };
 
   SignatureResult out;
@@ -349,22 +398,13 @@ Result<SignatureResult> sphero_signature(const Profile& lower, const Profile& up
   out.exact = rs.exact;
   out.events = brk.size();
 
-  // Exact extremes: theta at every breakpoint and the slopes at both ends of every interval.
+  // Exact extremes: at every breakpoint both spans' slopes (on a span the slope is constant or,
+  // on an arc, decreasing, so its extremes are at its ends).
   out.theta_max_forward = -kInf;
   out.theta_max_backward = -kInf;
   for (std::size_t i = 0; i < brk.size(); ++i) {
-    const Eval e = evaluate_at(brk[i], nullptr);
-    double hi = e.theta, lo = e.theta_min;
-    if (i > 0) {
-      const double a = S.slope(*bseg[i - 1], brk[i]);
-      hi = std::max(hi, a);
-      lo = std::min(lo, a);
-    }
-    if (i < bseg.size()) {
-      const double a = S.slope(*bseg[i], brk[i]);
-      hi = std::max(hi, a);
-      lo = std::min(lo, a);
-    }
+    const double a = S.slope(*bseg[i > 0 ? i - 1 : 0], brk[i]), b = S.slope(*bseg[std::min(i, nseg - 1)], brk[i]);
+    const double hi = std::max(a, b), lo = std::min(a, b);
     if (hi > out.theta_max_forward) {
       out.theta_max_forward = hi;
       out.offset_at_forward = brk[i];
@@ -375,13 +415,16 @@ Result<SignatureResult> sphero_signature(const Profile& lower, const Profile& up
     }
   }
 
-  // Listed offsets: the breakpoints and 8 points inside each arc interval, or N equally spaced.
+  // Listed offsets: the breakpoints and up to 8 points inside each arc span, or N equally spaced.
   std::vector<double> offs;
   if (o.offsets == 0) {
-    for (std::size_t i = 0; i < bseg.size(); ++i) {
+    for (std::size_t i = 0; i < nseg; ++i) {
       offs.push_back(brk[i]);
-      if (bseg[i]->arc)
-        for (int k = 1; k < 9; ++k) offs.push_back(brk[i] + (brk[i + 1] - brk[i]) * k / 9.0);
+      if (bseg[i]->arc) {  // up to 8 points inside, about one per degree the slope turns
+        const double turn = std::abs(S.slope(*bseg[i], brk[i]) - S.slope(*bseg[i], brk[i + 1]));
+        const int m = static_cast<int>(std::min(9.0, std::ceil(turn / (std::numbers::pi / 180))));
+        for (int k = 1; k < m; ++k) offs.push_back(brk[i] + (brk[i + 1] - brk[i]) * k / m);
+      }
     }
     offs.push_back(brk.back());
   } else {
@@ -399,33 +442,26 @@ Result<SignatureResult> sphero_signature(const Profile& lower, const Profile& up
   out.theta_left.resize(n);
   out.theta_right.resize(n);
   if (o.keep_contacts) out.contact_begin.push_back(0);
-  std::vector<const Prim*> act;
   for (std::size_t i = 0; i < n; ++i) {
     const double s = offs[i];
-    act.clear();
-    const Eval e = evaluate_at(s, o.keep_contacts ? &act : nullptr);
-    out.lift[i] = e.lift;
-    out.theta[i] = e.theta;
-    out.theta_min[i] = e.theta_min;
-    // Interval to the left and right of s.
-    const auto it = std::upper_bound(brk.begin(), brk.end(), s);
-    const std::size_t k = static_cast<std::size_t>(it - brk.begin());  // brk[k-1] <= s < brk[k]
-    const bool on_brk = k > 0 && std::abs(brk[k - 1] - s) <= xtol;
-    const std::size_t right_seg = std::min(k - 1, bseg.size() - 1);
-    const std::size_t left_seg = on_brk ? (k >= 2 ? k - 2 : 0) : right_seg;
-    out.theta_right[i] = S.slope(*bseg[right_seg], s);
-    out.theta_left[i] = S.slope(*bseg[left_seg], s);
+    const At at = locate(s);
+    auto clampd = [&](const Prim* p) { return std::clamp(s, p->lo, p->hi); };
+    const double a = S.slope(*at.left, clampd(at.left)), b = S.slope(*at.right, clampd(at.right));
+    out.lift[i] = std::max(S.value(*at.left, clampd(at.left)), S.value(*at.right, clampd(at.right)));
+    out.theta[i] = std::max(a, b);
+    out.theta_min[i] = std::min(a, b);
+    out.theta_left[i] = a;
+    out.theta_right[i] = b;
     if (o.keep_contacts) {
-      std::sort(act.begin(), act.end());
-      act.erase(std::unique(act.begin(), act.end()), act.end());
-      for (const Prim* p : act) {
-        const double a = S.slope(*p, std::clamp(s, p->lo, p->hi));
-        const auto rp = rigid->at(S.rigid_offset(*p, std::clamp(s, p->lo, p->hi)));
+      for (const Prim* p : {at.left, at.right}) {
+        if (p == at.right && at.right == at.left) break;
+        const double sl = S.slope(*p, clampd(p));
+        const auto rp = rigid->at(S.rigid_offset(*p, clampd(p)));
         if (!std::isfinite(rp.contact_x)) continue;
         Contact c;
-        c.x = rp.contact_x - r * std::sin(a);
-        c.z = rigid->lower_height(rp.contact_x) + r * std::cos(a);
-        c.slope = a;
+        c.x = rp.contact_x - r * std::sin(sl);
+        c.z = rigid->lower_height(rp.contact_x) + r * std::cos(sl);
+        c.slope = sl;
         c.type = rp.type;
         out.contacts.push_back(c);
       }
@@ -435,19 +471,21 @@ Result<SignatureResult> sphero_signature(const Profile& lower, const Profile& up
     }
   }
 
-  // Contact-slope distribution: each interval by its slope (arcs: 16 sub-intervals at their
-  // middles), weighted by length; sampled offsets: theta at each.
+  // Contact-slope distribution: each interval by its slope (arcs: up to 16 sub-intervals, one per 0.25 deg the slope
+  // turns, at their middles), weighted by length; sampled offsets: theta at each.
   if (o.offsets == 0) {
-    for (std::size_t i = 0; i < bseg.size(); ++i) {
+    for (std::size_t i = 0; i < nseg; ++i) {
       const double L = brk[i + 1] - brk[i];
       if (!(L > 0)) continue;
       if (!bseg[i]->arc) {
         out.slope_samples.push_back(bseg[i]->phi);
         out.slope_weights.push_back(L);
       } else {
-        for (int k = 0; k < 16; ++k) {
-          out.slope_samples.push_back(S.slope(*bseg[i], brk[i] + L * (k + 0.5) / 16));
-          out.slope_weights.push_back(L / 16);
+        const double turn = std::abs(S.slope(*bseg[i], brk[i]) - S.slope(*bseg[i], brk[i + 1]));
+        const int m = static_cast<int>(std::clamp(std::ceil(turn / (0.25 * std::numbers::pi / 180)), 1.0, 16.0));
+        for (int k = 0; k < m; ++k) {
+          out.slope_samples.push_back(S.slope(*bseg[i], brk[i] + L * (k + 0.5) / m));
+          out.slope_weights.push_back(L / m);
         }
       }
     }

@@ -262,6 +262,39 @@ TEST(Sphero, KochK2SmallRadiusKeepsTwoAlphaAndTinyRadiusIsRigid) {
   }
 }
 
+// Rounding cannot steepen a contact: on h the arcs join the offsets of h0's pieces tangentially,
+// so (without vertical walls in h0) every slope of h lies within h0's; and h0 + R <= h <= h0 + R /
+// cos(theta_max of h0). Random periodic pairs (no block ends, where h0 drops and a rounded
+// corner rolls off), several radii.
+TEST(Sphero, RandomPairsSlopesBoundedByTheRigidOnes) {
+  auto periodic = [](Profile p) {
+    p.z.back() = p.z.front();
+    p.period = p.length();
+    return p;
+  };
+  const Profile lo = periodic(random_polyline(21, 160, 0.01, 1e-4));
+  const Profile up = rotate180(periodic(random_polyline(22, 120, 0.01, 1e-4)));
+  auto rigid = signature(lo, up);
+  ASSERT_TRUE(rigid.ok());
+  const double tmax = std::max(rigid->theta_max_forward, rigid->theta_max_backward);
+  for (double rad : {1e-7, 1e-6, 1e-5, 1e-4}) {
+    SignatureOptions o;
+    o.spheroradius = rad;
+    auto r = signature(lo, up, o);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    // Where an arc meets a line tangentially the breakpoint is ill-conditioned: a rounding error
+    // eps of the values (~1e-20 m here) moves it by sqrt(2 R eps), the slope by sqrt(2 eps / R),
+    // about 1e-7 rad at R = 2e-6 m.
+    EXPECT_LE(r->theta_max_forward, rigid->theta_max_forward + 1e-7) << rad;
+    EXPECT_LE(r->theta_max_backward, rigid->theta_max_backward + 1e-7) << rad;
+    for (std::size_t i = 0; i < r->offset.size(); i += 97) {
+      const double h0 = lift_direct(lo, up, r->offset[i]), R = 2 * rad;
+      EXPECT_GE(r->lift[i], h0 + R - 1e-15) << rad;
+      EXPECT_LE(r->lift[i], h0 + R / std::cos(tmax) + 1e-15) << rad;
+    }
+  }
+}
+
 // (c) r = 0 takes the rigid path bit for bit.
 TEST(Sphero, ZeroRadiusIsTheRigidSignatureBitForBit) {
   auto same = [](const SignatureResult& a, const SignatureResult& b) {
@@ -269,7 +302,8 @@ TEST(Sphero, ZeroRadiusIsTheRigidSignatureBitForBit) {
       return u.size() == v.size() && std::memcmp(u.data(), v.data(), u.size() * sizeof(double)) == 0;
     };
     EXPECT_TRUE(eq(a.offset, b.offset) && eq(a.lift, b.lift) && eq(a.theta, b.theta) && eq(a.theta_min, b.theta_min) &&
-                eq(a.theta_left, b.theta_left) && eq(a.theta_right, b.theta_right) && eq(a.slope_samples, b.slope_samples));
+                eq(a.theta_left, b.theta_left) && eq(a.theta_right, b.theta_right) &&
+                eq(a.slope_samples, b.slope_samples));
     EXPECT_EQ(std::memcmp(&a.theta_max_forward, &b.theta_max_forward, sizeof(double)), 0);
     EXPECT_EQ(std::memcmp(&a.contact_slope_std, &b.contact_slope_std, sizeof(double)), 0);
     EXPECT_EQ(a.contacts.size(), b.contacts.size());
