@@ -1,5 +1,6 @@
 // frictal signature LOWER [UPPER] | signature <generator> [options] — the signature function and
 // the friction prediction, of two measured surfaces or of a generated surface with itself.
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <thread>
@@ -23,6 +24,7 @@ struct Args {
   double period = 0;
   unsigned threads = 0;
   int bins = 90;
+  double spheroradius = 0;
   bool json = false;
   bool exact = false;
   std::string detrend = "none";
@@ -48,9 +50,14 @@ std::function<int()> setup(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--exact", a->exact, "Refuse to sample offsets when the exact signature has too many events");
   app.add_option("--offset-range", a->range, "MIN MAX offsets (m); default one period or half the block")->expected(2);
-  add_field_options(app, tilt_settings(), a->period_words, all_but(tilt_settings(), "period"));
+  // --period and --radius (the spheroradius: the signature of the DEM's rounded blocks, one core
+  // against the other dilated by a disk of radius 2r), the tilt table's fields.
+  std::vector<std::string> skip = all_but(tilt_settings(), "period");
+  skip.erase(std::remove(skip.begin(), skip.end(), "radius"), skip.end());
+  add_field_options(app, tilt_settings(), a->period_words, skip);
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the contact-slope PDF")->capture_default_str();
+
   app.add_option("-o,--output", a->out, "Write the signature function as CSV (- for standard output)");
   app.add_option("--contacts", a->contacts_out, "Write every contact (offset, x, z, slope, type) as CSV (- for standard output)");
   app.add_option("--pdf", a->pdf_out, "Write the contact-slope PDF as CSV (- for standard output)");
@@ -71,7 +78,9 @@ std::function<int()> setup(CLI::App& app) {
     }
     Profile lower = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : load_profile(a->lower), dt));
     Profile upper_measured = a->upper.empty() ? lower : unwrap(detrend(load_profile(a->upper), dt));
-    if (const ValueSet pv = si_values(tilt_settings(), a->period_words); pv.count("period")) a->period = as_real(pv.at("period"));
+    const ValueSet pv = si_values(tilt_settings(), a->period_words);
+    if (pv.count("period")) a->period = as_real(pv.at("period"));
+    if (pv.count("radius")) a->spheroradius = as_real(pv.at("radius"));
     if (a->period != 0) {
       require(a->period > 0 && std::isfinite(a->period), fmt::format("--period: expected a positive length in m, got {}", a->period));
       lower.period = a->period;
@@ -85,6 +94,9 @@ std::function<int()> setup(CLI::App& app) {
     o.require_exact = a->exact;
     o.threads = a->threads;
     o.bins = a->bins;
+    require(a->spheroradius == 0 || a->slopes == "exact",
+            "--radius: the rounded faces have their own exact slopes; use --slopes exact");
+    o.spheroradius = a->spheroradius;
     o.keep_contacts = !a->contacts_out.empty();
     if (!a->range.empty()) {
       require(a->range[1] > a->range[0], "--offset-range: expected MIN < MAX (m)");
@@ -130,6 +142,7 @@ std::function<int()> setup(CLI::App& app) {
       j["lower"] = a->lower;
       j["upper"] = a->upper.empty() ? a->lower : a->upper;
       j["slopes"] = a->slopes;
+      j["spheroradius_m"] = r.spheroradius;
       j["exact"] = r.exact;
       j["offsets"] = r.offset.size();
       j["offset_range_m"] = {r.offset.front(), r.offset.back()};
@@ -155,6 +168,9 @@ std::function<int()> setup(CLI::App& app) {
       std::FILE* text = to_stdout ? stderr : stdout;
       fmt::print(text, "signature: {} offsets ({}) from {:.6g} to {:.6g} m in {:.3f} s\n", r.offset.size(),
                  r.exact ? "every event, exact" : "sampled", r.offset.front(), r.offset.back(), wall);
+      if (r.spheroradius > 0)
+        fmt::print(text, "  spheropolygons: spheroradius r = {:.6g} m (one core against the other dilated by 2r)\n",
+                   r.spheroradius);
       fmt::print(text, "  theta_max forward  (+x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_forward), r.offset_at_forward);
       fmt::print(text, "  theta_max backward (-x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_backward), r.offset_at_backward);
       fmt::print(text, "  contact slope mean {:.4f} deg, std (sigma) {:.4f} deg; max surface slope {:.4f} deg\n",

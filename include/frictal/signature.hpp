@@ -63,6 +63,18 @@ struct SignatureOptions {
   double tolerance = 1e-9;
   /// Bins of the contact-slope PDF.
   int bins = 90;
+  /// Spheroradius r of both blocks (unit: m), as in the DEM's spheropolygons: each face is a
+  /// polygon core swept by a disk of radius r. 0: rigid polylines (the paper's signature). r > 0:
+  /// the lift is that of the upper core against the lower core dilated by a disk of radius 2r,
+  /// i.e. the rigid lift h0 dilated: h(s) = max over s' of h0(s') + sqrt((2r)^2 - (s - s')^2).
+  /// Offset lines of h0's pieces and arcs at its ridges form h; contacts on an arc have the
+  /// arc's tangent slope, so theta varies continuously there. Breakpoints of h (changes of the
+  /// active primitive) are exact and theta_max is exact (analytic on arcs); `offsets` = 0 lists
+  /// the breakpoints plus up to 8 points inside each arc (one per degree it turns). Contacts are
+  /// the touching points of the two rounded faces (on the lower face's rounded outline), typed by
+  /// the rigid contact they round.
+  /// Spline slopes are not available with r > 0.
+  double spheroradius = 0;
 };
 
 struct SignatureResult {
@@ -87,7 +99,8 @@ struct SignatureResult {
   double contact_slope_std = 0;   ///< sigma of Eq. 18 (unit: rad)
   Histogram contact_slope_pdf;    ///< (unit: 1/rad over rad)
   bool exact = true;              ///< true if every event offset was evaluated
-  std::size_t events = 0;         ///< number of distinct event offsets in the range
+  std::size_t events = 0;         ///< number of distinct event offsets in the range (r > 0: breakpoints of h)
+  double spheroradius = 0;        ///< the spheroradius r used (unit: m)
 };
 
 /// Computes the signature of `lower` against `upper` (already rotated, see above).

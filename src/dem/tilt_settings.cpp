@@ -53,7 +53,10 @@ const std::vector<B>& table() {
           // Blocks (Table I, II).
           bind<TiltConfig>(F("block_height", "m", 0, Lo::Open, kInf, "Block height h below the surface minimum"),
                            FRICTAL_MEMBER(block_height)),
-          bind<TiltConfig>(F("radius", "m", 0, Lo::Open, kInf, "Spheroradius r of both blocks"), FRICTAL_MEMBER(radius)),
+          // `signature` takes this field too: absent there, the faces are rigid profiles (r = 0).
+          bind<TiltConfig>(F("radius", "m", 0, Lo::Open, kInf, "Spheroradius r of both blocks", false,
+                             "5e-05 (tilt); none: rigid profiles (signature)"),
+                           FRICTAL_MEMBER(radius)),
           bind<TiltConfig>(F("density", "kg/m^2", 0, Lo::Open, kInf, "Areal density rho of both blocks"),
                            FRICTAL_MEMBER(density)),
           bind<TiltConfig>(F("gravity", "m/s^2", 0, Lo::Closed, kInf, "Gravitational acceleration g"), FRICTAL_MEMBER(gravity)),

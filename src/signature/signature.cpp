@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "signature/face.hpp"
+#include "signature/rigid.hpp"
 #include "signature/spline.hpp"
 #include "util/parallel.hpp"
 
@@ -294,6 +295,44 @@ Profile tile3(const Profile& p, double P, std::size_t& lo, std::size_t& hi, doub
   return t;
 }
 
+// Prepares the faces and tolerances of `lower` against `upper` (upper already shifted into the
+// lower frame). Shared by signature() and the rigid evaluator of spheropolygon signatures.
+Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, const SignatureOptions& o) {
+  const double Lmax = std::max(lower.length(), upper.length());
+  double zr = 0;
+  {
+    auto [a1, b1] = std::minmax_element(lower.z.begin(), lower.z.end());
+    auto [a2, b2] = std::minmax_element(upper.z.begin(), upper.z.end());
+    zr = (*b1 - *a1) + (*b2 - *a2);
+  }
+  const double xscale = std::max({Lmax, std::abs(lower.x.front()), std::abs(lower.x.back())});
+  P.xtol = 1e-12 * xscale;
+  P.vtol = o.tolerance * std::max(zr, 1e-9 * Lmax);
+  P.periodic = lower.period && upper.period && std::abs(*lower.period - *upper.period) <= 1e-9 * *lower.period;
+  if (P.periodic) {
+    P.period = *lower.period;
+    Profile tf = tile3(lower, P.period, P.f_lo, P.f_hi, P.xtol);
+    Profile tg = tile3(upper, P.period, P.g_lo, P.g_hi, P.xtol);
+    P.F = Face(std::move(tf.x), tf.z, +1.0);
+    P.G = Face(std::move(tg.x), tg.z, -1.0);
+  } else {
+    P.F = Face(lower.x, lower.z, +1.0);
+    P.G = Face(upper.x, upper.z, -1.0);
+  }
+  if (o.slopes == SlopeMethod::Spline) {
+    auto sf = detail::spline_second_derivatives(P.F.x(), P.F.v());
+    auto sg = detail::spline_second_derivatives(P.G.x(), P.G.v());
+    if (!sf) return make_error("signature: spline slopes need strictly increasing x on the lower surface (it has a "
+                               "vertical jump or repeated x); use exact slopes");
+    if (!sg) return make_error("signature: spline slopes need strictly increasing x on the upper surface (it has a "
+                               "vertical jump or repeated x); use exact slopes");
+    P.spline_f = std::move(*sf);
+    P.spline_g = std::move(*sg);
+  }
+
+  return Ok{};
+}
+
 }  // namespace
 
 const char* contact_type_name(ContactType t) {
@@ -329,6 +368,43 @@ double lift_direct(const Profile& lower, const Profile& upper, double s) {
   return best;
 }
 
+// ---- Rigid lift at arbitrary offsets (for spheropolygons, signature/sphero.cpp) ----
+
+struct detail::RigidLift::Impl {
+  Problem P;
+  Profile lower;
+};
+
+Result<detail::RigidLift> detail::RigidLift::make(const Profile& lower_in, const Profile& upper_in,
+                                                  const SignatureOptions& o) {
+  auto impl = std::make_shared<Impl>();
+  impl->lower = lower_in;
+  Profile upper = upper_in;
+  const double shift = lower_in.x.front() - upper.x.front();
+  for (auto& v : upper.x) v += shift;
+  SignatureOptions exact = o;
+  exact.slopes = SlopeMethod::Exact;
+  if (auto st = prepare_problem(impl->P, impl->lower, upper, exact); !st) return st.error();
+  RigidLift r;
+  r.impl_ = std::move(impl);
+  return r;
+}
+
+detail::RigidLift::Point detail::RigidLift::at(double s) const {
+  std::vector<Cand> cands;
+  std::vector<Contact> contacts;
+  const OffsetResult e = evaluate_offset(impl_->P, s, kNaN, SlopeMethod::Exact, &contacts, cands);
+  Point p;
+  p.lift = e.lift;
+  p.left = e.theta_left;
+  p.right = e.theta_right;
+  p.contact_x = e.contact_x;
+  if (!contacts.empty()) p.type = contacts.front().type;
+  return p;
+}
+
+double detail::RigidLift::lower_height(double x) const { return evaluate(impl_->lower, x, JumpValue::Upper); }
+
 Result<FrictionPrediction> predict_friction(double mu_a, double theta_max, double sigma) {
   if (!std::isfinite(mu_a) || mu_a < 0)
     return make_error(fmt::format("atomic friction coefficient must be a finite number >= 0, got {}", mu_a));
@@ -354,6 +430,9 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
     return make_error(fmt::format("signature: tolerance must be in (0, 1e-3), got {}", o.tolerance));
   if (o.bins < 1 || o.bins > 100000) return make_error(fmt::format("signature: bins must be in 1..100000, got {}", o.bins));
   if (o.offsets > 100'000'000) return make_error(fmt::format("signature: offsets must be <= 1e8, got {}", o.offsets));
+  if (!(o.spheroradius >= 0) || !std::isfinite(o.spheroradius))
+    return make_error(fmt::format("signature: spheroradius must be a finite length >= 0 m, got {}", o.spheroradius));
+  if (o.spheroradius > 0) return detail::sphero_signature(lower_in, upper_in, o);
 
   // Frame: offset 0 puts the upper block's left end over the lower block's left end.
   Profile lower = lower_in;
@@ -362,37 +441,7 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   for (auto& v : upper.x) v += shift;
 
   Problem P;
-  const double Lmax = std::max(lower.length(), upper.length());
-  double zr = 0;
-  {
-    auto [a1, b1] = std::minmax_element(lower.z.begin(), lower.z.end());
-    auto [a2, b2] = std::minmax_element(upper.z.begin(), upper.z.end());
-    zr = (*b1 - *a1) + (*b2 - *a2);
-  }
-  const double xscale = std::max({Lmax, std::abs(lower.x.front()), std::abs(lower.x.back())});
-  P.xtol = 1e-12 * xscale;
-  P.vtol = o.tolerance * std::max(zr, 1e-9 * Lmax);
-  P.periodic = lower.period && upper.period && std::abs(*lower.period - *upper.period) <= 1e-9 * *lower.period;
-  if (P.periodic) {
-    P.period = *lower.period;
-    Profile tf = tile3(lower, P.period, P.f_lo, P.f_hi, P.xtol);
-    Profile tg = tile3(upper, P.period, P.g_lo, P.g_hi, P.xtol);
-    P.F = Face(std::move(tf.x), tf.z, +1.0);
-    P.G = Face(std::move(tg.x), tg.z, -1.0);
-  } else {
-    P.F = Face(lower.x, lower.z, +1.0);
-    P.G = Face(upper.x, upper.z, -1.0);
-  }
-  if (o.slopes == SlopeMethod::Spline) {
-    auto sf = detail::spline_second_derivatives(P.F.x(), P.F.v());
-    auto sg = detail::spline_second_derivatives(P.G.x(), P.G.v());
-    if (!sf) return make_error("signature: spline slopes need strictly increasing x on the lower surface (it has a "
-                               "vertical jump or repeated x); use exact slopes");
-    if (!sg) return make_error("signature: spline slopes need strictly increasing x on the upper surface (it has a "
-                               "vertical jump or repeated x); use exact slopes");
-    P.spline_f = std::move(*sf);
-    P.spline_g = std::move(*sg);
-  }
+  if (auto st = prepare_problem(P, lower, upper, o); !st) return st.error();
 
   // Offset range.
   double smin = o.offset_min, smax = o.offset_max;
