@@ -254,6 +254,7 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
       task.id = id++;
       task.part = part.name;
       task.kind = part.kind;
+      task.kind_version = reg.version(part.kind);
       for (std::size_t a = 0; a < part.axes.size(); ++a) task.params[part.axes[a].first] = part.axes[a].second[idx[a]];
       Params keyed = task.params;
       keyed["part"] = part.name;

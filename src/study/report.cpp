@@ -108,6 +108,23 @@ Result<Report> report(Store& store, const TaskRegistry& registry) {
   if (!c) return c.error();
   r.lines.push_back(fmt::format("{}\n\nTasks: {} total, {} done, {} failed, {} pending. Definition hash {}.",
                                 (*m)["study_description"], c->total, c->done, c->failed, c->pending, (*m)["study_hash"]));
+  // Which versions computed the results; a warning for results of another kind version.
+  auto st = store_status(store, registry);
+  if (!st) return st.error();
+  std::string versions;
+  for (const auto& p : st->parts) {
+    for (const auto& [kv, n] : p.done_by_kind_version)
+      versions += fmt::format("{}part '{}': {} tasks by {} {}", versions.empty() ? "" : "; ", p.part, n, p.kind,
+                              kv ? fmt::format("version {}", kv) : std::string("(version not recorded)"));
+  }
+  std::map<std::string, std::int64_t> by_frictal;
+  for (const auto& p : st->parts)
+    for (const auto& [fv, n] : p.done_by_frictal_version) by_frictal[fv.empty() ? "(not recorded)" : fv] += n;
+  std::string fvs;
+  for (const auto& [fv, n] : by_frictal) fvs += fmt::format("{}{} ({} tasks)", fvs.empty() ? "" : ", ", fv, n);
+  if (!versions.empty()) r.lines.push_back(fmt::format("Computed by frictal {}; {}.", fvs, versions));
+  for (const auto& p : st->parts)
+    if (!p.version_note.empty()) r.lines.push_back("\n**Warning:** " + p.version_note + ".");
   auto parts = store.part_counts();
   if (!parts) return parts.error();
   for (const auto& p : *parts) {
