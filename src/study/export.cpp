@@ -116,6 +116,13 @@ Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir
   auto parts = store.part_counts();
   if (!parts) return parts.error();
   for (const auto& pc : *parts) {
+    // The store may come from anywhere: a part name must not lead out of `dir`.
+    if (pc.part.empty() || pc.part.size() > 100 || pc.part.front() == '.' ||
+        pc.part.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") !=
+            std::string::npos)
+      return make_error(fmt::format("{}: part name '{}' cannot name a file (expected letters, digits, '-', '_', '.'); "
+                                    "the store was not written by frictal",
+                                    dir, pc.part));
     auto rows_r = store.rows(pc.part, true);
     if (!rows_r) return rows_r.error();
     const auto& rows = *rows_r;

@@ -409,3 +409,96 @@ TEST(StudyShared, EachResultKeepsTheFrictalAndKindVersion) {
   EXPECT_NE(r.out.find("12 by v" + std::to_string(v0)), std::string::npos) << r.out;
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // this build's version: no warning
 }
+
+namespace {
+/// Pid of the process whose command line contains `needle` and whose environment has
+/// `env_entry` (e.g. "OMPI_COMM_WORLD_RANK=2"), or -1.
+pid_t find_process(const std::string& needle, const std::string& env_entry) {
+  DIR* d = ::opendir("/proc");
+  if (!d) return -1;
+  pid_t found = -1;
+  while (dirent* e = ::readdir(d)) {
+    const std::string name = e->d_name;
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    const std::string cmd = read_file("/proc/" + name + "/cmdline");
+    if (cmd.find(needle) == std::string::npos) continue;
+    std::string env = read_file("/proc/" + name + "/environ");
+    for (char& c : env)
+      if (c == '\0') c = '\n';
+    if (("\n" + env).find("\n" + env_entry + "\n") == std::string::npos) continue;
+    found = static_cast<pid_t>(std::stol(name));
+    break;
+  }
+  ::closedir(d);
+  return found;
+}
+}  // namespace
+
+TEST(StudyShared, MpiRankKilledLeavesTheStoreConsistentAndARerunCompletes) {
+  if (!mpi_available()) GTEST_SKIP() << "built without FRICTAL_MPI";
+  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
+  const std::string study = study_file("mpi-kill");
+  const std::string ref = fresh("mpi-kill-ref.sqlite");
+  auto r = run_cli("study run " + study + " --store " + ref + " --threads 2 --progress none");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string expected = dump(ref);
+  const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
+  const std::string mpirun = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 3 --oversubscribe" + root + " ";
+  std::mt19937 rng(31337);
+  for (int trial = 0; trial < 2; ++trial) {
+    const std::string store = fresh("mpi-kill-" + std::to_string(trial) + ".sqlite");
+    const std::string log = temp_path("mpi-kill-" + std::to_string(trial) + ".log");
+    const std::string cmd = mpirun + FRICTAL_CLI_PATH + " study run " + study + " --store " + store +
+                            " --progress none >" + log + " 2>&1";
+    const pid_t launcher = ::fork();
+    if (launcher == 0) {
+      ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+      std::_Exit(127);
+    }
+    // Kill rank 1 or 2 (a worker) with SIGKILL a random moment after it started.
+    const std::string victim = "OMPI_COMM_WORLD_RANK=" + std::to_string(1 + trial % 2);
+    pid_t rank = -1;
+    for (int i = 0; i < 400 && rank < 0; ++i) {
+      rank = find_process(store, victim);
+      if (rank < 0) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_GT(rank, 0) << "rank process not found";
+    // Mid-run: once a few tasks are recorded, then a random moment later.
+    for (int i = 0; i < 1000; ++i) {
+      if (::access(store.c_str(), F_OK) == 0) {
+        auto st = Store::open_existing(store);
+        auto c = st.ok() ? (*st)->counts() : frictal::Result<StoreCounts>(frictal::make_error("no store"));
+        if (c.ok() && c->done >= 3) break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(rng() % 150));
+    const bool killed = ::kill(rank, SIGKILL) == 0;
+    int status = 0;
+    ::waitpid(launcher, &status, 0);
+    const std::string out = read_file(log);
+    if (killed && WIFEXITED(status) && WEXITSTATUS(status) != 0) {
+      // The job ends; rank 0 says what to do (unless mpirun killed it before it could).
+      EXPECT_TRUE(out.find("run the same command again") != std::string::npos || out.find("signal 9") != std::string::npos)
+          << out;
+    }
+    // The store is consistent: it opens, every done task has its results, nothing half-written.
+    {
+      auto st = Store::open_existing(store);
+      ASSERT_TRUE(st.ok()) << st.error().message;
+      auto rows = (*st)->rows("", true);
+      ASSERT_TRUE(rows.ok());
+      for (const auto& row : *rows) EXPECT_FALSE(row.output.scalars.empty()) << "task " << row.id;
+      std::printf("[ mpi-kill ] trial %d: rank killed %d, mpirun exit %d, %zu of %d tasks stored before the rerun\n",
+                  trial, killed ? 1 : 0, WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), rows->size(),
+                  kTasks);
+    }
+    // Running the same command again completes it, with exactly the undisturbed results.
+    ASSERT_EQ(std::system((mpirun + FRICTAL_CLI_PATH + " study run " + study + " --store " + store +
+                           " --progress none >/dev/null 2>&1")
+                              .c_str()),
+              0);
+    EXPECT_EQ(dump(store), expected) << out;
+    EXPECT_EQ(claimed(store), 0);
+  }
+}
