@@ -16,7 +16,9 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   namespace fs = std::filesystem;
   static const frictal::study::TaskRegistry registry = frictal::study::default_registry();
-  static const fs::path dir = fs::temp_directory_path() / ("frictal-fuzz-store-" + std::to_string(::getpid()));
+  // On a RAM file system when there is one (an SQLite file per execution).
+  static const fs::path dir = (fs::is_directory("/dev/shm") ? fs::path("/dev/shm") : fs::temp_directory_path()) /
+                              ("frictal-fuzz-store-" + std::to_string(::getpid()));
   static const std::string path = (dir / "store.sqlite").string();
   static const std::string out = (dir / "export").string();
   std::error_code ec;

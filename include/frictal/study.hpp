@@ -57,6 +57,9 @@ Result<std::int64_t> get_int(const Params& p, const std::string& name, std::int6
 Result<std::string> get_string(const Params& p, const std::string& name, const std::string& fallback);
 /// A parameter as a number (integers converted); NaN for text and booleans.
 double as_number(const Value& v);
+/// A parameter as an int (reals truncated); -1 for text, booleans and numbers outside int's
+/// range or not finite (a store may hold anything).
+int as_int(const Value& v);
 
 /// What a task returns: named scalars and named arrays (flat vectors of reals).
 struct TaskOutput {

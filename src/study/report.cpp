@@ -16,6 +16,12 @@ double as_number(const Value& v) {
   return std::nan("");
 }
 
+int as_int(const Value& v) {
+  const double x = as_number(v);
+  if (!std::isfinite(x) || x < -2147483648.0 || x > 2147483647.0) return -1;
+  return static_cast<int>(x);
+}
+
 Result<std::vector<PooledPdf>> pooled_pdfs(Store& store, const std::string& part) {
   auto rows = store.rows(part, true);
   if (!rows) return rows.error();
@@ -135,7 +141,25 @@ Result<Report> report(Store& store, const TaskRegistry& registry) {
     }
     auto rows = store.rows(p.part, false);
     if (!rows) return rows.error();
-    kind->report(p.part, *rows, r);
+    // A kind's section reads the scalars it declares: rows without them (a store that frictal
+    // did not write, or a damaged one) are left out and counted.
+    std::vector<TaskRow> complete;
+    std::int64_t incomplete = 0;
+    for (auto& row : *rows) {
+      bool ok = true;
+      for (const auto& o : kind->outputs)
+        if (!o.array && !row.output.scalars.count(o.name)) ok = false;
+      if (ok) complete.push_back(std::move(row));
+      else ++incomplete;
+    }
+    if (incomplete)
+      r.lines.push_back(fmt::format("\n**Warning:** part '{}': {} done tasks lack some of the scalars of kind '{}' "
+                                    "and are left out of its report.", p.part, incomplete, p.kind));
+    try {
+      kind->report(p.part, complete, r);
+    } catch (const std::exception& e) {
+      return make_error(fmt::format("part '{}': the stored results do not fit kind '{}' ({})", p.part, p.kind, e.what()));
+    }
   }
   return r;
 }

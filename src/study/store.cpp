@@ -641,14 +641,16 @@ Result<StoreCounts> Store::counts() {
   Stmt q(impl_->db, "SELECT status, count(*) FROM tasks GROUP BY status");
   if (!q.ok()) return impl_->err("counting tasks");
   StoreCounts c;
-  while (q.step() == SQLITE_ROW) {
+  int rc;
+  while ((rc = q.step()) == SQLITE_ROW) {
     const std::string s = q.text(0);
     const auto n = q.i64(1);
     c.total += n;
-    if (s == "done") c.done = n;
-    else if (s == "failed") c.failed = n;
-    else c.pending = n;
+    if (s == "done") c.done += n;
+    else if (s == "failed") c.failed += n;
+    else c.pending += n;  // 'pending' (or anything a damaged store holds: not done)
   }
+  if (rc != SQLITE_DONE) return impl_->err("counting tasks");
   return c;
 }
 
@@ -656,7 +658,9 @@ Result<std::map<std::string, std::string>> Store::meta() {
   Stmt q(impl_->db, "SELECT key, value FROM meta");
   if (!q.ok()) return impl_->err("reading meta");
   std::map<std::string, std::string> m;
-  while (q.step() == SQLITE_ROW) m[q.text(0)] = q.text(1);
+  int rc;
+  while ((rc = q.step()) == SQLITE_ROW) m[q.text(0)] = q.text(1);
+  if (rc != SQLITE_DONE) return impl_->err("reading meta");
   return m;
 }
 
@@ -664,7 +668,8 @@ Result<std::vector<Store::PartCount>> Store::part_counts() {
   Stmt q(impl_->db, "SELECT part, kind, status, count(*) FROM tasks GROUP BY part, kind, status ORDER BY min(task_id)");
   if (!q.ok()) return impl_->err("counting tasks");
   std::vector<PartCount> out;
-  while (q.step() == SQLITE_ROW) {
+  int rc;
+  while ((rc = q.step()) == SQLITE_ROW) {
     const std::string part = q.text(0), kind = q.text(1), st = q.text(2);
     auto it = std::find_if(out.begin(), out.end(), [&](const PartCount& p) { return p.part == part; });
     if (it == out.end()) {
@@ -673,6 +678,7 @@ Result<std::vector<Store::PartCount>> Store::part_counts() {
     }
     (st == "done" ? it->done : st == "failed" ? it->failed : it->pending) += q.i64(3);
   }
+  if (rc != SQLITE_DONE) return impl_->err("counting tasks");
   return out;
 }
 
@@ -684,7 +690,8 @@ Result<std::vector<Store::Row>> Store::rows(const std::string& part, bool with_a
            "SELECT task_id, part, kind, params, status FROM tasks WHERE status = 'done' AND (?1 = '' OR part = ?1) "
            "ORDER BY task_id");
     q.bind(1, part);
-    while (q.step() == SQLITE_ROW) {
+    int rc;
+    while ((rc = q.step()) == SQLITE_ROW) {
       Row r;
       r.id = q.i64(0);
       r.part = q.text(1);
@@ -700,21 +707,25 @@ Result<std::vector<Store::Row>> Store::rows(const std::string& part, bool with_a
       at[r.id] = out.size();
       out.push_back(std::move(r));
     }
+    if (rc != SQLITE_DONE) return impl_->err("reading results");
   }
   {
     Stmt q(impl_->db,
            "SELECT s.task_id, s.name, s.value FROM scalars s JOIN tasks t USING (task_id) "
            "WHERE t.status = 'done' AND (?1 = '' OR t.part = ?1)");
     q.bind(1, part);
-    while (q.step() == SQLITE_ROW)
+    int rc;
+    while ((rc = q.step()) == SQLITE_ROW)
       if (auto it = at.find(q.i64(0)); it != at.end()) out[it->second].output.scalars[q.text(1)] = q.real(2);
+    if (rc != SQLITE_DONE) return impl_->err("reading results");
   }
   if (with_arrays) {
     Stmt q(impl_->db,
            "SELECT a.task_id, a.name, a.json FROM arrays a JOIN tasks t USING (task_id) "
            "WHERE t.status = 'done' AND (?1 = '' OR t.part = ?1)");
     q.bind(1, part);
-    while (q.step() == SQLITE_ROW) {
+    int rc;
+    while ((rc = q.step()) == SQLITE_ROW) {
       auto it = at.find(q.i64(0));
       if (it == at.end()) continue;
       std::vector<double> v;
@@ -726,6 +737,7 @@ Result<std::vector<Store::Row>> Store::rows(const std::string& part, bool with_a
       }
       out[it->second].output.arrays[q.text(1)] = std::move(v);
     }
+    if (rc != SQLITE_DONE) return impl_->err("reading results");
   }
   return out;
 }

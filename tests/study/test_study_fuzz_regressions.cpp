@@ -55,7 +55,12 @@ TEST(StudyFuzzRegressions, StoreInputsOpenOrFailWithAMessageAndExportStaysInItsD
       EXPECT_FALSE(st.error().message.empty()) << p;
       continue;
     }
-    (void)store_status(**st, reg);
+    auto status = store_status(**st, reg);
+    if (status) {
+      EXPECT_EQ(status->tasks.total, status->tasks.done + status->tasks.failed + status->tasks.pending) << p;
+    } else {
+      EXPECT_FALSE(status.error().message.empty()) << p;
+    }
     const fs::path out = work / "a" / "b" / "export";
     auto files = export_csv(**st, out.string(), reg);
     if (!files) {
