@@ -8,6 +8,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 
 #include <fmt/ranges.h>
@@ -21,7 +22,12 @@ namespace {
 using namespace frictal::study;
 
 std::atomic<bool> g_stop{false};
+// Written (async-signal-safe) when a signal arrives under MPI, where mpirun may end rank 0 with
+// SIGKILL before it prints anything else (e.g. after another rank died).
+char g_signal_note[1024];
+std::size_t g_signal_note_len = 0;
 extern "C" void on_signal(int sig) {
+  if (g_signal_note_len && !g_stop) (void)!::write(2, g_signal_note, g_signal_note_len);
   g_stop = true;
   std::signal(sig, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
@@ -90,6 +96,13 @@ int run(const RunArgs& a) {
     }
   } fin{mpi};
   Study study = unwrap(load_study(a.study, a.quick, reg));
+  if (mpi && rank == 0) {
+    const std::string note = fmt::format(
+        "frictal: rank 0 was signalled (interrupted, or another rank died and mpirun ends the job); every finished "
+        "task is kept in {}; run the same command again to resume\n", a.store);
+    g_signal_note_len = std::min(note.size(), sizeof g_signal_note);
+    std::memcpy(g_signal_note, note.data(), g_signal_note_len);
+  }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   RunOptions o;
@@ -124,6 +137,9 @@ int run(const RunArgs& a) {
   fmt::print("study '{}' ({} scale, {} tasks): {} done, {} failed, {} pending; this run: {} tasks in {:.2f} s on {}\n",
              study.name, study.quick ? "quick" : "full", c.total, c.done, c.failed, c.pending, sum.ran, sum.wall_s,
              mpi ? fmt::format("{} ranks", size) : fmt::format("{} threads", sum.threads));
+  if (sum.done_elsewhere || sum.taken_over)
+    fmt::print("  shared store: {} tasks recorded by other runs, {} claims taken over from runs that died\n",
+               sum.done_elsewhere, sum.taken_over);
   if (sum.skipped_unavailable)
     fmt::print("  {} tasks left pending: their task kind is not available in this build\n", sum.skipped_unavailable);
   if (sum.interrupted || g_stop) {
@@ -147,21 +163,41 @@ int status(const std::string& path, bool json, bool failed) {
     j["scale"] = st.scale;
     j["study_hash"] = st.study_hash;
     j["schema_version"] = st.schema_version;
+    j["frictal_version"] = st.frictal_version;
+    j["claimed"] = st.claimed;
     j["tasks"] = {{"total", st.tasks.total}, {"done", st.tasks.done}, {"failed", st.tasks.failed}, {"pending", st.tasks.pending}};
-    for (const auto& p : st.parts)
+    for (const auto& p : st.parts) {
+      nlohmann::json kv = nlohmann::json::object(), fv = nlohmann::json::object();
+      for (const auto& [v, n] : p.done_by_kind_version) kv[std::to_string(v)] = n;
+      for (const auto& [v, n] : p.done_by_frictal_version) fv[v] = n;
       j["parts"].push_back({{"part", p.part}, {"kind", p.kind}, {"done", p.done}, {"failed", p.failed}, {"pending", p.pending},
-                            {"available", p.available}});
+                            {"available", p.available}, {"kind_version", p.kind_version},
+                            {"done_by_kind_version", kv}, {"done_by_frictal_version", fv},
+                            {"version_note", p.version_note}});
+    }
     print_json(j);
     return 0;
   }
-  fmt::print("{}: study '{}' ({} scale), schema {}, definition {}\n", path, st.study, st.scale, st.schema_version,
-             st.study_hash);
+  fmt::print("{}: study '{}' ({} scale), schema {}, definition {}, created by frictal {}\n", path, st.study, st.scale,
+             st.schema_version, st.study_hash, st.frictal_version.empty() ? "?" : st.frictal_version);
   const StoreCounts& c = st.tasks;
   fmt::print("  {} tasks: {} done, {} failed, {} pending ({:.1f}% complete)\n", c.total, c.done, c.failed, c.pending,
              c.total ? 100.0 * c.done / c.total : 100.0);
   for (const auto& p : st.parts)
     fmt::print("  part {:<14} kind {:<20} done {:>6} failed {:>4} pending {:>6}{}\n", p.part, p.kind, p.done, p.failed,
                p.pending, p.unavailable_reason.empty() ? "" : "  (" + p.unavailable_reason + ")");
+  if (st.claimed)
+    fmt::print("  {} tasks claimed by a run now (or by one that died: the next run takes them over)\n", st.claimed);
+  for (const auto& p : st.parts) {
+    std::string by;
+    for (const auto& [v, n] : p.done_by_kind_version)
+      by += fmt::format("{}{} by {}", by.empty() ? "" : ", ", n, v ? fmt::format("v{}", v) : std::string("unrecorded version"));
+    for (const auto& [v, n] : p.done_by_frictal_version)
+      by += fmt::format("{}{} by frictal {}", by.empty() ? "" : ", ", n, v.empty() ? std::string("?") : v);
+    if (!by.empty()) fmt::print("  part {:<14} done tasks: {}\n", p.part, by);
+  }
+  for (const auto& p : st.parts)
+    if (!p.version_note.empty()) fmt::print(stderr, "frictal: warning: {}\n", p.version_note);
   if (failed) fmt::print("{}", unwrap(store->failures_csv()));
   return 0;
 }

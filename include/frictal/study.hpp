@@ -26,7 +26,9 @@
 namespace frictal::study {
 
 /// Version of the store layout (meta key "schema_version"). Bump on incompatible change.
-inline constexpr int kSchemaVersion = 1;
+/// Version 2 adds per-task kind_version, frictal_version and study_hash and the `claims` table
+/// (concurrent runs); a version-1 store is upgraded in place when a run opens it.
+inline constexpr int kSchemaVersion = 2;
 
 /// One parameter value. Integers and reals are distinct (2 and 2.0 differ in canonical text).
 using Value = std::variant<std::int64_t, double, std::string, bool>;
@@ -55,6 +57,9 @@ Result<std::int64_t> get_int(const Params& p, const std::string& name, std::int6
 Result<std::string> get_string(const Params& p, const std::string& name, const std::string& fallback);
 /// A parameter as a number (integers converted); NaN for text and booleans.
 double as_number(const Value& v);
+/// A parameter as an int (reals truncated); -1 for text, booleans and numbers outside int's
+/// range or not finite (a store may hold anything).
+int as_int(const Value& v);
 
 /// What a task returns: named scalars and named arrays (flat vectors of reals).
 struct TaskOutput {
@@ -177,6 +182,7 @@ struct Task {
   std::int64_t id = 0;   ///< index in grid order, stable for a given definition
   std::string part;      ///< part name
   std::string kind;      ///< task kind
+  int kind_version = 0;  ///< the registry's version of the kind (stored with the task's result)
   Params params;         ///< every parameter of the task (constants included)
   std::string key;       ///< canonical(params) with "part" added: unique in the study
   std::uint64_t seed = 0;
@@ -271,6 +277,39 @@ class Store {
   Result<std::string> tasks_csv();
   /// The failed tasks as CSV (task_id, part, params, error).
   Result<std::string> failures_csv();
+  /// Claims (concurrent runs on one store): before computing a task a run claims it in the
+  /// store (table `claims`: owner, host, pid, heartbeat), in one transaction, so that two runs
+  /// never compute the same task while both are alive. A claim held by another run is taken
+  /// over when that run's process is gone (same host: its pid no longer exists) or when its
+  /// heartbeat is older than `lease_s` seconds (any host).
+  enum class Claim {
+    Claimed,    ///< this run holds the claim (new, or already its own)
+    TakenOver,  ///< claimed from a run that died or whose lease expired
+    Finished,   ///< another run recorded the task since this run listed it: skip it
+    Busy,       ///< another live run holds it: look again later
+  };
+  Result<Claim> claim(std::int64_t id, double lease_s);
+  /// Refreshes the heartbeat of every claim of this run.
+  Status heartbeat();
+  /// Drops every claim of this run (at the end of a run, interrupted or not).
+  Status release_claims();
+  /// This run's claim owner: "host:pid:n".
+  const std::string& owner() const;
+  /// Testing: caps the store file at `pages` pages (PRAGMA max_page_count), so that writing
+  /// beyond it fails as on a full disk (SQLITE_FULL).
+  Status limit_pages(std::int64_t pages);
+  /// Done tasks by (part, kind version, frictal version) as recorded with each result; kind
+  /// version 0 and an empty frictal version: not recorded (a schema-1 store).
+  struct VersionCount {
+    std::string part;
+    int kind_version = 0;
+    std::string frictal_version;
+    std::int64_t done = 0;
+  };
+  Result<std::vector<VersionCount>> version_counts();
+  /// Tasks claimed now (by live runs or by runs that died).
+  Result<std::int64_t> claimed();
+
   /// Every stored value that does not depend on the run (no timings, worker, attempts or
   /// creation time) as text: two stores of one definition with the same results give the same
   /// text whatever threads or ranks computed them (used to compare runs).
@@ -309,11 +348,18 @@ struct RunOptions {
   /// Testing: the first attempt of each of these task ids is reported failed (transient), so
   /// the task is retried; the same under threads and MPI (decided by the coordinator).
   std::vector<std::int64_t> fail_first_attempt;
+  /// Seconds after its last heartbeat that another run's claim on a task is taken over (claims
+  /// of a process gone from this host are taken over at once). Heartbeats every lease_s / 4.
+  double lease_s = 60;
+  /// Testing: caps the store at this many pages (0: no cap), to simulate a full disk.
+  std::int64_t max_page_count = 0;
 };
 
 struct RunSummary {
   std::int64_t ran = 0, failed = 0, skipped_unavailable = 0;
   std::int64_t retries = 0;  ///< failed attempts that were queued again
+  std::int64_t done_elsewhere = 0;  ///< planned tasks that another run (same store) recorded
+  std::int64_t taken_over = 0;      ///< claims taken over from a dead run or an expired lease
   unsigned threads = 0;      ///< compute threads (on rank 0 under MPI)
   bool interrupted = false;
   double wall_s = 0;
@@ -389,13 +435,23 @@ std::string render_markdown(const Report& report);
 /// How far a store is: what `frictal study status` shows.
 struct StoreStatus {
   std::string study, description, scale, study_hash;
+  std::string frictal_version;  ///< of the build that created the store
   int schema_version = 0;
+  std::int64_t claimed = 0;     ///< tasks claimed by a run now (or by one that died)
   StoreCounts tasks;
   struct PartStatus {
     std::string part, kind;
     std::int64_t done = 0, failed = 0, pending = 0;
     bool available = false;          ///< this build has the part's kind
     std::string unavailable_reason;  ///< empty if available
+    int kind_version = 0;            ///< this build's version of the kind (0: unknown kind)
+    /// Done tasks by the kind version and frictal version they were computed with (0 / "": not
+    /// recorded, a store of schema 1).
+    std::map<int, std::int64_t> done_by_kind_version;
+    std::map<std::string, std::int64_t> done_by_frictal_version;
+    /// A line when some done tasks were computed by another version of the kind than this
+    /// build's (their results may differ from what this build computes); empty otherwise.
+    std::string version_note;
   };
   std::vector<PartStatus> parts;
 };

@@ -91,6 +91,9 @@ Coordinator::Coordinator(const Study& study, Store& store, const RunOptions& opt
       queue_(todo.begin(), todo.end()) {}
 
 Status Coordinator::start() {
+  if (options_.max_page_count > 0)
+    if (auto s = store_.limit_pages(options_.max_page_count); !s) return s.error();
+  last_heartbeat_ = std::chrono::steady_clock::now();
   auto c0 = store_.counts();
   if (!c0) return c0.error();
   progress_.total = c0->total;
@@ -104,8 +107,20 @@ void Coordinator::poll_stop_locked() {
   if (!closing_ && options_.stop && options_.stop->load()) {
     closing_ = true;
     queue_.clear();
+    busy_.clear();
     cv_.notify_all();
   }
+}
+
+void Coordinator::fail_store_locked(Error e) {
+  if (!claim_failed_) {
+    claim_failed_ = true;
+    claim_error_ = std::move(e);
+  }
+  closing_ = true;
+  queue_.clear();
+  busy_.clear();
+  cv_.notify_all();
 }
 
 std::int64_t Coordinator::take_locked(int site) {
@@ -121,15 +136,43 @@ std::int64_t Coordinator::take_locked(int site) {
   return -1;
 }
 
-bool Coordinator::over_locked() const { return (closing_ || queue_.empty()) && in_flight_ == 0 && finished_.empty(); }
+bool Coordinator::over_locked() const {
+  return (closing_ || (queue_.empty() && busy_.empty())) && in_flight_ == 0 && finished_.empty();
+}
 
 std::int64_t Coordinator::claim(int site, bool wait) {
   std::unique_lock lk(mu_);
   for (;;) {
     poll_stop_locked();
     if (closing_) return -1;
-    if (const std::int64_t id = take_locked(site); id >= 0) return id;
-    if (!wait || (queue_.empty() && in_flight_ == 0)) return -1;
+    // Tasks held by other runs: look again once the queue is empty, every 250 ms.
+    if (queue_.empty() && !busy_.empty() && std::chrono::steady_clock::now() >= recheck_) {
+      queue_.insert(queue_.end(), busy_.begin(), busy_.end());
+      busy_.clear();
+      recheck_ = std::chrono::steady_clock::now() + std::chrono::milliseconds(250);
+    }
+    if (const std::int64_t id = take_locked(site); id >= 0) {
+      if (attempts_.count(id)) return id;  // a retry: this run holds the claim already
+      lk.unlock();
+      auto c = store_.claim(id, options_.lease_s);
+      lk.lock();
+      if (!c) {
+        --in_flight_;
+        fail_store_locked(c.error());
+        return -1;
+      }
+      if (*c == Store::Claim::Claimed) return id;
+      if (*c == Store::Claim::TakenOver) {
+        ++taken_over_;
+        return id;
+      }
+      --in_flight_;
+      if (*c == Store::Claim::Finished) ++done_elsewhere_;
+      else busy_.push_back(id);
+      cv_.notify_all();
+      continue;
+    }
+    if (!wait || (queue_.empty() && in_flight_ == 0 && busy_.empty())) return -1;
     // Woken by finish() (a retry may be queued) or after a while to look at the stop flag.
     cv_.wait_for(lk, std::chrono::milliseconds(50));
   }
@@ -171,7 +214,16 @@ std::size_t Coordinator::record_finished(bool wait) {
       cv_.wait_for(lk, std::chrono::milliseconds(50), [&] { return !finished_.empty() || over_locked(); });
     batch.swap(finished_);
   }
+  if (const auto now = std::chrono::steady_clock::now();
+      now - last_heartbeat_ > std::chrono::duration<double>(options_.lease_s / 4)) {
+    last_heartbeat_ = now;
+    (void)store_.heartbeat();  // a store that cannot be written fails the next record or claim
+  }
   std::size_t n = 0;
+  {
+    std::lock_guard lk(mu_);
+    progress_.to_run = static_cast<std::int64_t>(to_run_) - done_elsewhere_;
+  }
   for (TaskRecord& r : batch) {
     if (store_failed_) break;
     if (auto s = store_.record(r); !s) {
@@ -210,11 +262,16 @@ bool Coordinator::closing() {
 }
 
 Result<RunSummary> Coordinator::summary(RunSummary base) {
+  (void)store_.release_claims();  // tasks left unrecorded (interrupted) are free for others at once
   if (store_failed_) return store_error_;
+  std::lock_guard lk(mu_);
+  if (claim_failed_) return claim_error_;
   base.ran = ran_;
   base.failed = failed_;
   base.retries = retries_;
-  base.interrupted = ran_ < static_cast<std::int64_t>(to_run_);
+  base.done_elsewhere = done_elsewhere_;
+  base.taken_over = taken_over_;
+  base.interrupted = ran_ + done_elsewhere_ < static_cast<std::int64_t>(to_run_);
   base.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   return base;
 }

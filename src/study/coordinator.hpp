@@ -10,6 +10,12 @@
 // attempts; a retry is not given to a site the task already failed on while another site has not
 // failed it. Deterministic failures (invalid input, unstable, not available) are recorded at once:
 // the same task would fail the same way again.
+//
+// Shared stores: before a task is computed for the first time the coordinator claims it in the
+// store (Store::claim). A task another live run holds is set aside and looked at again every
+// 250 ms once the queue is empty, until that run records it (then it is skipped) or dies or its
+// lease expires (then this run takes it over); so concurrent runs on one store share the work
+// and each ends only when every task it set out to do is recorded by someone.
 #pragma once
 
 #include <chrono>
@@ -61,6 +67,7 @@ class Coordinator {
   std::int64_t take_locked(int site);
   bool over_locked() const;
   void poll_stop_locked();
+  void fail_store_locked(Error e);
 
   const Study& study_;
   Store& store_;
@@ -78,12 +85,20 @@ class Coordinator {
   std::map<std::int64_t, std::set<int>> failed_on_;
   std::int64_t in_flight_ = 0;
   bool closing_ = false;
+  // Shared stores (under mu_): tasks another live run holds, when to look at them again, and
+  // what the claims found.
+  std::vector<std::int64_t> busy_;
+  std::chrono::steady_clock::time_point recheck_{};
+  std::int64_t done_elsewhere_ = 0, taken_over_ = 0;
+  bool claim_failed_ = false;
+  Error claim_error_;
 
   // Owner only.
   Progress progress_;
   std::int64_t ran_ = 0, failed_ = 0, retries_ = 0;
   bool store_failed_ = false;
   Error store_error_;
+  std::chrono::steady_clock::time_point last_heartbeat_{};
 };
 
 }  // namespace frictal::study

@@ -201,6 +201,13 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
     part.description = (*pt)["description"].value_or(std::string{});
     if (part.name.empty() || part.kind.empty())
       return make_error(fmt::format("{}: every [[part]] needs a name and a kind", where(origin, pn)));
+    // Part names become file names (PART.csv of the export): letters, digits, '-', '_', '.'.
+    if (part.name.size() > 100 || part.name.front() == '.' ||
+        part.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") !=
+            std::string::npos)
+      return make_error(fmt::format("{}: part name '{}': expected at most 100 letters, digits, '-', '_' or '.' (not "
+                                    "first), as it names the part's files in an export",
+                                    where(origin, pn), part.name));
     if (!part_names.insert(part.name).second)
       return make_error(fmt::format("{}: part name '{}' is used twice", where(origin, pn), part.name));
     if (!reg.find(part.kind) && reg.unavailable_reason(part.kind).empty())
@@ -254,6 +261,7 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
       task.id = id++;
       task.part = part.name;
       task.kind = part.kind;
+      task.kind_version = reg.version(part.kind);
       for (std::size_t a = 0; a < part.axes.size(); ++a) task.params[part.axes[a].first] = part.axes[a].second[idx[a]];
       Params keyed = task.params;
       keyed["part"] = part.name;

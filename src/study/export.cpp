@@ -50,7 +50,13 @@ Result<StoreStatus> store_status(Store& store, const TaskRegistry& registry) {
   s.scale = m["scale"];
   s.study_hash = m["study_hash"];
   s.schema_version = std::atoi(m["schema_version"].c_str());
+  s.frictal_version = m["frictal_version"];
   s.tasks = *c;
+  auto claimed = store.claimed();
+  if (!claimed) return claimed.error();
+  s.claimed = *claimed;
+  auto versions = store.version_counts();
+  if (!versions) return versions.error();
   for (const auto& p : *parts) {
     StoreStatus::PartStatus ps;
     ps.part = p.part;
@@ -60,6 +66,22 @@ Result<StoreStatus> store_status(Store& store, const TaskRegistry& registry) {
     ps.pending = p.pending;
     ps.available = registry.find(p.kind) != nullptr;
     ps.unavailable_reason = registry.unavailable_reason(p.kind);
+    ps.kind_version = registry.version(p.kind);
+    for (const auto& v : *versions) {
+      if (v.part != p.part) continue;
+      ps.done_by_kind_version[v.kind_version] += v.done;
+      ps.done_by_frictal_version[v.frictal_version] += v.done;
+    }
+    std::string other;
+    for (const auto& [kv, n] : ps.done_by_kind_version) {
+      if (kv == ps.kind_version) continue;
+      other += fmt::format("{}{} tasks by {}", other.empty() ? "" : ", ", n,
+                           kv == 0 ? std::string("an unrecorded version (schema-1 store)") : fmt::format("version {}", kv));
+    }
+    if (!other.empty())
+      ps.version_note = fmt::format("part '{}': {} of kind '{}', but this build has version {}; their results may "
+                                    "differ from what this build computes (a new store recomputes them)",
+                                    p.part, other, p.kind, ps.kind_version);
     s.parts.push_back(std::move(ps));
   }
   return s;
@@ -94,6 +116,13 @@ Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir
   auto parts = store.part_counts();
   if (!parts) return parts.error();
   for (const auto& pc : *parts) {
+    // The store may come from anywhere: a part name must not lead out of `dir`.
+    if (pc.part.empty() || pc.part.size() > 100 || pc.part.front() == '.' ||
+        pc.part.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") !=
+            std::string::npos)
+      return make_error(fmt::format("{}: part name '{}' cannot name a file (expected letters, digits, '-', '_', '.'); "
+                                    "the store was not written by frictal",
+                                    dir, pc.part));
     auto rows_r = store.rows(pc.part, true);
     if (!rows_r) return rows_r.error();
     const auto& rows = *rows_r;

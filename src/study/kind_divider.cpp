@@ -75,7 +75,7 @@ void divider_part(const std::string& part, const std::vector<Store::Row>& rows, 
   for (const auto& r : rows) {
     const auto& s = r.output.scalars;
     if (!s.count("dimension") || !s.count("dimension_eq13")) continue;
-    const int n = static_cast<int>(as_number(r.params.at("iterations")));
+    const int n = as_int(r.params.at("iterations"));
     const double a = as_number(r.params.at("alpha"));
     by[a][n] = {s.at("dimension"), s.at("dimension_eq13")};
     t += fmt::format("| K{} | {:g} | {:.4f} | {:.4f} | {:+.4f} | {:.5f} | {:.3g} - {:.3g} |\n", n, a, s.at("dimension"),

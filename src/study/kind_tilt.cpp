@@ -128,7 +128,7 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
     worst = std::max(worst, std::abs(d));
     worst_a = std::max(worst_a, std::abs(da));
     t += fmt::format("| K{} | {:g} | {:g} | {:.3f} | {:.3f} | {:+.3f} | {:.3f} | {:.3f} |\n",
-                     static_cast<int>(as_number(r.params.at("iterations"))), as_number(r.params.at("alpha")), ma,
+                     as_int(r.params.at("iterations")), as_number(r.params.at("alpha")), ma,
                      s.at("friction_angle_deg"), s.at("predicted_friction_angle_deg"), d, s.at("phi_minus_theta_max_deg"),
                      s.at("atomic_friction_angle_deg"));
   }

@@ -257,7 +257,7 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
     const auto& s = r.output.scalars;
     if (!s.count("tan_contact_slope_max") || !s.count("tan_surface_slope_max")) continue;
     const double D = as_number(r.params.at("dimension"));
-    const int n = static_cast<int>(as_number(r.params.at("n_max")));
+    const int n = as_int(r.params.at("n_max"));
     ns.insert(n);
     const double c = s.at("tan_contact_slope_max"), f = s.at("tan_surface_slope_max");
     tc[D][n].add(c);
@@ -438,7 +438,7 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   std::set<double> mus;
   for (const auto& r : rows) {
     if (!r.params.count("iterations") || !r.params.count("alpha")) continue;
-    const int n = static_cast<int>(as_number(r.params.at("iterations")));
+    const int n = as_int(r.params.at("iterations"));
     const double a = as_number(r.params.at("alpha"));
     const double ma = r.params.count("atomic_friction") ? as_number(r.params.at("atomic_friction")) : 0.0;
     mus.insert(ma);
@@ -498,7 +498,7 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
     double worst_h = 0;
     int cnt = 0;
     for (const auto& r : rows) {
-      const int n = static_cast<int>(as_number(r.params.at("iterations")));
+      const int n = as_int(r.params.at("iterations"));
       if (n > 3) continue;
       const double a = as_number(r.params.at("alpha"));
       const double ma = r.params.count("atomic_friction") ? as_number(r.params.at("atomic_friction")) : 0.0;

@@ -16,6 +16,12 @@ double as_number(const Value& v) {
   return std::nan("");
 }
 
+int as_int(const Value& v) {
+  const double x = as_number(v);
+  if (!std::isfinite(x) || x < -2147483648.0 || x > 2147483647.0) return -1;
+  return static_cast<int>(x);
+}
+
 Result<std::vector<PooledPdf>> pooled_pdfs(Store& store, const std::string& part) {
   auto rows = store.rows(part, true);
   if (!rows) return rows.error();
@@ -108,6 +114,23 @@ Result<Report> report(Store& store, const TaskRegistry& registry) {
   if (!c) return c.error();
   r.lines.push_back(fmt::format("{}\n\nTasks: {} total, {} done, {} failed, {} pending. Definition hash {}.",
                                 (*m)["study_description"], c->total, c->done, c->failed, c->pending, (*m)["study_hash"]));
+  // Which versions computed the results; a warning for results of another kind version.
+  auto st = store_status(store, registry);
+  if (!st) return st.error();
+  std::string versions;
+  for (const auto& p : st->parts) {
+    for (const auto& [kv, n] : p.done_by_kind_version)
+      versions += fmt::format("{}part '{}': {} tasks by {} {}", versions.empty() ? "" : "; ", p.part, n, p.kind,
+                              kv ? fmt::format("version {}", kv) : std::string("(version not recorded)"));
+  }
+  std::map<std::string, std::int64_t> by_frictal;
+  for (const auto& p : st->parts)
+    for (const auto& [fv, n] : p.done_by_frictal_version) by_frictal[fv.empty() ? "(not recorded)" : fv] += n;
+  std::string fvs;
+  for (const auto& [fv, n] : by_frictal) fvs += fmt::format("{}{} ({} tasks)", fvs.empty() ? "" : ", ", fv, n);
+  if (!versions.empty()) r.lines.push_back(fmt::format("Computed by frictal {}; {}.", fvs, versions));
+  for (const auto& p : st->parts)
+    if (!p.version_note.empty()) r.lines.push_back("\n**Warning:** " + p.version_note + ".");
   auto parts = store.part_counts();
   if (!parts) return parts.error();
   for (const auto& p : *parts) {
@@ -118,7 +141,25 @@ Result<Report> report(Store& store, const TaskRegistry& registry) {
     }
     auto rows = store.rows(p.part, false);
     if (!rows) return rows.error();
-    kind->report(p.part, *rows, r);
+    // A kind's section reads the scalars it declares: rows without them (a store that frictal
+    // did not write, or a damaged one) are left out and counted.
+    std::vector<TaskRow> complete;
+    std::int64_t incomplete = 0;
+    for (auto& row : *rows) {
+      bool ok = true;
+      for (const auto& o : kind->outputs)
+        if (!o.array && !row.output.scalars.count(o.name)) ok = false;
+      if (ok) complete.push_back(std::move(row));
+      else ++incomplete;
+    }
+    if (incomplete)
+      r.lines.push_back(fmt::format("\n**Warning:** part '{}': {} done tasks lack some of the scalars of kind '{}' "
+                                    "and are left out of its report.", p.part, incomplete, p.kind));
+    try {
+      kind->report(p.part, complete, r);
+    } catch (const std::exception& e) {
+      return make_error(fmt::format("part '{}': the stored results do not fit kind '{}' ({})", p.part, p.kind, e.what()));
+    }
   }
   return r;
 }

@@ -3,16 +3,25 @@
 // Durability: WAL journal with synchronous=NORMAL. Every finished task is one transaction
 // (its scalars, arrays and status together), so after SIGKILL or power loss a task is either
 // fully recorded or still pending; a transaction cut short rolls back on the next open.
+#include <signal.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <fstream>
+#include <mutex>
+#include <sstream>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 #include <sqlite3.h>
 
 #include "frictal/study.hpp"
+#include "frictal/version.hpp"
 #include "study/json_text.hpp"
 
 namespace frictal::study {
@@ -34,7 +43,10 @@ CREATE TABLE tasks(
   worker      TEXT,
   started_at  TEXT,
   finished_at TEXT,
-  wall_s      REAL
+  wall_s      REAL,
+  kind_version    INTEGER,
+  frictal_version TEXT,
+  study_hash      TEXT
 );
 CREATE TABLE params(task_id INTEGER NOT NULL REFERENCES tasks(task_id), name TEXT NOT NULL, value,
                     PRIMARY KEY (task_id, name)) WITHOUT ROWID;
@@ -43,10 +55,61 @@ CREATE TABLE scalars(task_id INTEGER NOT NULL REFERENCES tasks(task_id), name TE
 CREATE TABLE arrays(task_id INTEGER NOT NULL REFERENCES tasks(task_id), name TEXT NOT NULL,
                     length INTEGER NOT NULL, json TEXT NOT NULL, PRIMARY KEY (task_id, name)) WITHOUT ROWID;
 CREATE INDEX tasks_status ON tasks(status);
+CREATE TABLE claims(task_id INTEGER PRIMARY KEY REFERENCES tasks(task_id), owner TEXT NOT NULL, host TEXT NOT NULL,
+                    pid INTEGER NOT NULL, pid_start INTEGER NOT NULL, heartbeat REAL NOT NULL);
 CREATE VIEW results AS
   SELECT t.task_id, t.part, t.kind, t.params, s.name, s.value FROM tasks t JOIN scalars s USING (task_id)
   WHERE t.status = 'done';
 )sql";
+
+// Schema 1 -> 2: per-task versions and the claims table (columns added; nothing rewritten).
+const char* kUpgrade1to2 = R"sql(
+ALTER TABLE tasks ADD COLUMN kind_version INTEGER;
+ALTER TABLE tasks ADD COLUMN frictal_version TEXT;
+ALTER TABLE tasks ADD COLUMN study_hash TEXT;
+CREATE TABLE IF NOT EXISTS claims(task_id INTEGER PRIMARY KEY REFERENCES tasks(task_id), owner TEXT NOT NULL,
+                    host TEXT NOT NULL, pid INTEGER NOT NULL, pid_start INTEGER NOT NULL, heartbeat REAL NOT NULL);
+UPDATE meta SET value = '2' WHERE key = 'schema_version';
+)sql";
+
+double now_s() { return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count(); }
+
+std::string host_name() {
+  char buf[256] = {0};
+  if (::gethostname(buf, sizeof buf - 1) != 0) return "localhost";
+  return buf;
+}
+
+/// Start time of a process (clock ticks since boot, /proc/PID/stat field 22), 0 if unknown: with
+/// the pid it tells a live process from a later one that reuses the pid. `state` gets field 3
+/// (R, S, D, Z for a zombie, ...), '?' if unknown.
+std::int64_t process_start(long pid, char* state = nullptr) {
+  if (state) *state = '?';
+  std::ifstream f("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!f || !std::getline(f, line)) return 0;
+  const auto close = line.rfind(')');
+  if (close == std::string::npos || close + 2 >= line.size()) return 0;
+  std::istringstream in(line.substr(close + 2));
+  std::string field;
+  for (int i = 3; i <= 22 && in >> field; ++i) {
+    if (i == 3 && state && !field.empty()) *state = field[0];
+    if (i == 22) return std::atoll(field.c_str());
+  }
+  return 0;
+}
+
+/// Whether the process (pid, start) of this host is alive (a zombie, killed but not yet reaped
+/// by its parent, is not).
+bool process_alive(long pid, std::int64_t start) {
+  if (pid <= 0) return false;
+  if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) return false;
+  char state = '?';
+  const std::int64_t now = process_start(pid, &state);
+  if (state == 'Z' || state == 'X') return false;
+  if (start != 0 && now != 0 && now != start) return false;  // the pid was reused
+  return true;
+}
 
 std::string now_utc() {
   const auto t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -113,18 +176,62 @@ Value from_json(const nlohmann::json& j) {
 struct Store::Impl {
   sqlite3* db = nullptr;
   std::string path;
+  // Claims: this run's identity.
+  std::string owner, host;
+  long pid = 0;
+  std::int64_t pid_start = 0;
+  // Attempts of each unfinished task when this run listed them (unfinished()): a task whose
+  // count grew since was recorded by another run.
+  std::map<std::int64_t, std::int64_t> seen_attempts;
+  // Versions written with each result.
+  std::vector<int> kind_versions;
+  std::string study_hash;
+  // One transaction at a time on the connection (compute threads claim, the owner records).
+  std::recursive_mutex mu;
   ~Impl() {
     if (db) sqlite3_close_v2(db);
   }
+  /// What went wrong, in words, for the conditions a user must act on.
+  std::string what_happened(int rc) const {
+    const int sys = db ? sqlite3_system_errno(db) : 0;
+    if ((rc & 0xff) == SQLITE_IOERR && (sys == ENOSPC || sys == EFBIG || sys == EDQUOT)) rc = SQLITE_FULL;
+    if ((rc & 0xff) == SQLITE_IOERR && (sys == EROFS || sys == EPERM || sys == EACCES)) rc = SQLITE_READONLY;
+    // SQLite keeps no reliable errno for a failed write (ENOSPC is reported as SQLITE_FULL,
+    // EFBIG and a failed device as SQLITE_IOERR_WRITE).
+    if (rc == SQLITE_IOERR_WRITE || rc == SQLITE_IOERR_FSYNC || rc == SQLITE_IOERR_TRUNCATE)
+      return "writing failed: the disk is full, the file size limit is reached or the device failed; tasks recorded "
+             "before are kept: free space and run the same command again to resume";
+    switch (rc & 0xff) {
+      case SQLITE_FULL:
+        return "the disk is full (or the file size limit is reached); tasks recorded before are kept: free space and "
+               "run the same command again to resume";
+      case SQLITE_READONLY:
+        return "the store is read-only (file, directory or file system not writable); tasks recorded before are kept: "
+               "make it writable or copy it elsewhere and run again";
+      case SQLITE_CANTOPEN:
+        return "cannot open the store or its journal (is the directory writable?)";
+      case SQLITE_IOERR:
+        return "an I/O error (disk, network file system); tasks recorded before are kept: run again to resume";
+      case SQLITE_CORRUPT:
+      case SQLITE_NOTADB:
+        return "the file is not a valid SQLite study store";
+      default:
+        return {};
+    }
+  }
   Error err(const std::string& what) const {
-    return make_error(ErrorCode::Io, fmt::format("{}: {}: {}", path, what, sqlite3_errmsg(db)));
+    const int rc = sqlite3_extended_errcode(db);
+    const std::string why = what_happened(rc);
+    return make_error(ErrorCode::Io, why.empty() ? fmt::format("{}: {}: {}", path, what, sqlite3_errmsg(db))
+                                                 : fmt::format("{}: {}: {} ({})", path, what, why, sqlite3_errmsg(db)));
   }
   Status exec(const char* sql) {
     char* msg = nullptr;
-    if (sqlite3_exec(db, sql, nullptr, nullptr, &msg) != SQLITE_OK) {
+    if (const int rc = sqlite3_exec(db, sql, nullptr, nullptr, &msg); rc != SQLITE_OK) {
       std::string m = msg ? msg : "?";
       sqlite3_free(msg);
-      return make_error(fmt::format("{}: {}", path, m));
+      const std::string why = what_happened(sqlite3_extended_errcode(db));
+      return make_error(ErrorCode::Io, why.empty() ? fmt::format("{}: {}", path, m) : fmt::format("{}: {} ({})", path, why, m));
     }
     return Ok{};
   }
@@ -132,16 +239,22 @@ struct Store::Impl {
 
 namespace {
 Result<std::unique_ptr<Store::Impl>> open_db(const std::string& path, bool create) {
+  static std::atomic<int> counter{0};
   auto impl = std::make_unique<Store::Impl>();
   impl->path = path;
+  impl->host = host_name();
+  impl->pid = static_cast<long>(::getpid());
+  impl->pid_start = process_start(impl->pid);
+  impl->owner = fmt::format("{}:{}:{}", impl->host, impl->pid, counter++);
   const int flags = SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0) | SQLITE_OPEN_FULLMUTEX;
   if (sqlite3_open_v2(path.c_str(), &impl->db, flags, nullptr) != SQLITE_OK) {
     std::string m = impl->db ? sqlite3_errmsg(impl->db) : "out of memory";
     return make_error(ErrorCode::Io, fmt::format("{}: cannot open the store: {}", path, m));
   }
-  sqlite3_busy_timeout(impl->db, 10000);
+  sqlite3_busy_timeout(impl->db, 30000);
+  sqlite3_extended_result_codes(impl->db, 1);
   for (const char* p : {"PRAGMA journal_mode=WAL;", "PRAGMA synchronous=NORMAL;", "PRAGMA foreign_keys=ON;"})
-    if (auto s = impl->exec(p); !s) return make_error(fmt::format("{} (is it an SQLite file?)", s.error().message));
+    if (auto s = impl->exec(p); !s) return make_error(ErrorCode::Io, fmt::format("{} (is it an SQLite file?)", s.error().message));
   return impl;
 }
 
@@ -157,7 +270,11 @@ Result<std::unique_ptr<Store>> Store::open(const std::string& path, const Study&
   auto im = open_db(path, true);
   if (!im) return im.error();
   Impl& db = **im;
-  if (auto s = db.exec("BEGIN IMMEDIATE"); !s) return s.error();
+  db.study_hash = study.hash;
+  for (const Task& t : study.tasks) db.kind_versions.push_back(t.kind_version);
+  if (sqlite3_db_readonly(db.db, "main") == 1)
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot run: {}", path, db.what_happened(SQLITE_READONLY)));
+  if (auto s = db.exec("BEGIN IMMEDIATE"); !s) return with_prefix("cannot start the run: ", s.error());
   if (!has_meta(db)) {
     // New store: schema, meta and every task in one transaction.
     if (auto s = db.exec(kSchema); !s) {
@@ -174,7 +291,7 @@ Result<std::unique_ptr<Store>> Store::open(const std::string& path, const Study&
         {"scale", study.quick ? "quick" : "full"},
         {"study_seed", std::to_string(study.seed)},
         {"created_at", now_utc()},
-        {"frictal_version", "0.1.0"},
+        {"frictal_version", frictal::version()},
     };
     for (const auto& [k, v] : meta) {
       m.reset();
@@ -214,10 +331,25 @@ Result<std::unique_ptr<Store>> Store::open(const std::string& path, const Study&
       }
     }
   } else {
-    Stmt q(db.db, "SELECT key, value FROM meta");
     std::map<std::string, std::string> meta;
-    while (q.step() == SQLITE_ROW) meta[q.text(0)] = q.text(1);
-    (void)db.exec("ROLLBACK");
+    {
+      Stmt q(db.db, "SELECT key, value FROM meta");
+      while (q.step() == SQLITE_ROW) meta[q.text(0)] = q.text(1);
+    }
+    if (meta["schema_version"] == "1" && meta["study_hash"] == study.hash) {
+      // Upgrade in place (columns added, nothing rewritten); results of schema 1 keep no versions.
+      if (auto s = db.exec(kUpgrade1to2); !s) {
+        (void)db.exec("ROLLBACK");
+        return with_prefix("upgrading the store from schema 1: ", s.error());
+      }
+      if (auto s = db.exec("COMMIT"); !s) {
+        (void)db.exec("ROLLBACK");
+        return s.error();
+      }
+      meta["schema_version"] = std::to_string(kSchemaVersion);
+    } else {
+      (void)db.exec("ROLLBACK");
+    }
     if (meta["schema_version"] != std::to_string(kSchemaVersion))
       return make_error(fmt::format("{}: store schema version {} is not supported by this build (version {})", path,
                                     meta["schema_version"], kSchemaVersion));
@@ -231,7 +363,10 @@ Result<std::unique_ptr<Store>> Store::open(const std::string& path, const Study&
     st->impl_ = std::move(*im);
     return st;
   }
-  if (auto s = db.exec("COMMIT"); !s) return s.error();
+  if (auto s = db.exec("COMMIT"); !s) {
+    (void)db.exec("ROLLBACK");
+    return s.error();
+  }
   std::unique_ptr<Store> st(new Store());
   st->impl_ = std::move(*im);
   return st;
@@ -250,30 +385,60 @@ Result<std::unique_ptr<Store>> Store::open_existing(const std::string& path) {
   st->impl_ = std::move(*im);
   auto m = st->meta();
   if (!m) return m.error();
-  if ((*m)["schema_version"] != std::to_string(kSchemaVersion))
+  if ((*m)["schema_version"] != std::to_string(kSchemaVersion) && (*m)["schema_version"] != "1")
     return make_error(fmt::format("{}: store schema version {} is not supported by this build (version {})", path,
                                   (*m)["schema_version"], kSchemaVersion));
   return st;
 }
 
 Result<std::vector<std::int64_t>> Store::unfinished() {
-  Stmt q(impl_->db, "SELECT task_id FROM tasks WHERE status != 'done' ORDER BY task_id");
+  std::lock_guard lk(impl_->mu);
+  Stmt q(impl_->db, "SELECT task_id, attempts FROM tasks WHERE status != 'done' ORDER BY task_id");
   if (!q.ok()) return impl_->err("reading tasks");
   std::vector<std::int64_t> ids;
   int rc;
-  while ((rc = q.step()) == SQLITE_ROW) ids.push_back(q.i64(0));
+  impl_->seen_attempts.clear();
+  while ((rc = q.step()) == SQLITE_ROW) {
+    ids.push_back(q.i64(0));
+    impl_->seen_attempts[q.i64(0)] = q.i64(1);
+  }
   if (rc != SQLITE_DONE) return impl_->err("reading tasks");
   return ids;
 }
 
 Status Store::record(const TaskRecord& r) {
   Impl& db = *impl_;
-  if (auto s = db.exec("BEGIN IMMEDIATE"); !s) return s.error();
+  std::lock_guard lk(db.mu);
+  if (auto s = db.exec("BEGIN IMMEDIATE"); !s) return with_prefix(fmt::format("recording task {}: ", r.id), s.error());
   auto fail = [&](const char* what) -> Status {
     Error e = db.err(what);
     (void)db.exec("ROLLBACK");
     return e;
   };
+  {
+    // This run's claim is done with, whatever happens below.
+    Stmt dc(db.db, "DELETE FROM claims WHERE task_id = ? AND owner = ?");
+    dc.bind(1, r.id);
+    dc.bind(2, db.owner);
+    if (dc.step() != SQLITE_DONE) return fail("recording a task");
+    // Another run (same store) may have recorded it meanwhile (e.g. after taking over an
+    // expired claim): a done result is never replaced, nor a newer outcome by a failure.
+    Stmt cur(db.db, "SELECT status, attempts FROM tasks WHERE task_id = ?");
+    cur.bind(1, r.id);
+    if (cur.step() == SQLITE_ROW) {
+      const std::string st = cur.text(0);
+      const auto seen = db.seen_attempts.find(r.id);
+      const bool newer = seen != db.seen_attempts.end() && cur.i64(1) > seen->second;
+      if (st == "done" || (newer && r.status != TaskStatus::Done)) {
+        cur.reset();
+        if (auto s = db.exec("COMMIT"); !s) {
+          (void)db.exec("ROLLBACK");
+          return s.error();
+        }
+        return Ok{};
+      }
+    }
+  }
   {
     Stmt d1(db.db, "DELETE FROM scalars WHERE task_id = ?");
     d1.bind(1, r.id);
@@ -313,7 +478,8 @@ Status Store::record(const TaskRecord& r) {
     };
     Stmt u(db.db,
            "UPDATE tasks SET status = ?, attempts = attempts + ?, error = ?, worker = ?, started_at = ?, "
-           "finished_at = ?, wall_s = ?, scalars = ? WHERE task_id = ?");
+           "finished_at = ?, wall_s = ?, scalars = ?, kind_version = ?, frictal_version = ?, study_hash = ? "
+           "WHERE task_id = ?");
     u.bind(1, std::string(status_text(r.status)));
     u.bind(2, static_cast<std::int64_t>(std::max(1, r.attempts)));
     if (r.error.empty()) u.bind_null(3);
@@ -334,7 +500,13 @@ Status Store::record(const TaskRecord& r) {
     } else {
       u.bind_null(8);
     }
-    u.bind(9, r.id);
+    if (r.id >= 0 && static_cast<std::size_t>(r.id) < db.kind_versions.size())
+      u.bind(9, static_cast<std::int64_t>(db.kind_versions[static_cast<std::size_t>(r.id)]));
+    else
+      u.bind_null(9);
+    u.bind(10, std::string(frictal::version()));
+    u.bind(11, db.study_hash);
+    u.bind(12, r.id);
     if (u.step() != SQLITE_DONE) return fail("recording a task");
     if (sqlite3_changes(db.db) != 1) {
       (void)db.exec("ROLLBACK");
@@ -345,21 +517,140 @@ Status Store::record(const TaskRecord& r) {
     (void)db.exec("ROLLBACK");
     return s.error();
   }
+  if (r.status == TaskStatus::Done) db.seen_attempts.erase(r.id);
+  else db.seen_attempts[r.id] += std::max(1, r.attempts);
   return Ok{};
+}
+
+Result<Store::Claim> Store::claim(std::int64_t id, double lease_s) {
+  Impl& db = *impl_;
+  std::lock_guard lk(db.mu);
+  if (auto s = db.exec("BEGIN IMMEDIATE"); !s) return with_prefix(fmt::format("claiming task {}: ", id), s.error());
+  auto fail = [&](const char* what) -> Error {
+    Error e = db.err(what);
+    (void)db.exec("ROLLBACK");
+    return e;
+  };
+  auto commit = [&](Claim c) -> Result<Claim> {
+    if (auto s = db.exec("COMMIT"); !s) {
+      (void)db.exec("ROLLBACK");
+      return with_prefix(fmt::format("claiming task {}: ", id), s.error());
+    }
+    return c;
+  };
+  {
+    Stmt t(db.db, "SELECT status, attempts FROM tasks WHERE task_id = ?");
+    t.bind(1, id);
+    const int rc = t.step();
+    if (rc != SQLITE_ROW) {
+      if (rc == SQLITE_DONE) {
+        (void)db.exec("ROLLBACK");
+        return make_error(fmt::format("{}: task {} is not in the store", db.path, id));
+      }
+      return fail("claiming a task");
+    }
+    const auto seen = db.seen_attempts.find(id);
+    if (t.text(0) == "done" || (seen != db.seen_attempts.end() && t.i64(1) > seen->second)) {
+      t.reset();
+      return commit(Claim::Finished);
+    }
+  }
+  Claim result = Claim::Claimed;
+  {
+    Stmt c(db.db, "SELECT owner, host, pid, pid_start, heartbeat FROM claims WHERE task_id = ?");
+    c.bind(1, id);
+    const int rc = c.step();
+    if (rc == SQLITE_ROW) {
+      const std::string owner = c.text(0), host = c.text(1);
+      if (owner != db.owner) {
+        const bool gone = host == db.host && !process_alive(static_cast<long>(c.i64(2)), c.i64(3));
+        const bool expired = now_s() - c.real(4) > lease_s;
+        if (!gone && !expired) {
+          c.reset();
+          return commit(Claim::Busy);
+        }
+        result = Claim::TakenOver;
+      }
+    } else if (rc != SQLITE_DONE) {
+      return fail("claiming a task");
+    }
+  }
+  Stmt w(db.db,
+         "INSERT OR REPLACE INTO claims(task_id, owner, host, pid, pid_start, heartbeat) VALUES (?, ?, ?, ?, ?, ?)");
+  w.bind(1, id);
+  w.bind(2, db.owner);
+  w.bind(3, db.host);
+  w.bind(4, static_cast<std::int64_t>(db.pid));
+  w.bind(5, db.pid_start);
+  w.bind(6, now_s());
+  if (w.step() != SQLITE_DONE) return fail("claiming a task");
+  return commit(result);
+}
+
+Status Store::heartbeat() {
+  std::lock_guard lk(impl_->mu);
+  Stmt u(impl_->db, "UPDATE claims SET heartbeat = ? WHERE owner = ?");
+  u.bind(1, now_s());
+  u.bind(2, impl_->owner);
+  if (u.step() != SQLITE_DONE) return impl_->err("refreshing claims");
+  return Ok{};
+}
+
+Status Store::release_claims() {
+  std::lock_guard lk(impl_->mu);
+  Stmt d(impl_->db, "DELETE FROM claims WHERE owner = ?");
+  d.bind(1, impl_->owner);
+  if (d.step() != SQLITE_DONE) return impl_->err("releasing claims");
+  return Ok{};
+}
+
+const std::string& Store::owner() const { return impl_->owner; }
+
+Status Store::limit_pages(std::int64_t pages) {
+  std::lock_guard lk(impl_->mu);
+  const std::string sql = fmt::format("PRAGMA max_page_count = {};", pages);
+  return impl_->exec(sql.c_str());
+}
+
+Result<std::vector<Store::VersionCount>> Store::version_counts() {
+  std::lock_guard lk(impl_->mu);
+  std::vector<VersionCount> out;
+  Stmt probe(impl_->db, "SELECT kind_version, frictal_version FROM tasks LIMIT 0");
+  if (!probe.ok()) return out;  // schema 1: no versions recorded
+  Stmt q(impl_->db,
+         "SELECT part, coalesce(kind_version, 0), coalesce(frictal_version, ''), count(*) FROM tasks WHERE status = 'done' "
+         "GROUP BY part, kind_version, frictal_version ORDER BY min(task_id)");
+  if (!q.ok()) return impl_->err("reading task versions");
+  int rc;
+  while ((rc = q.step()) == SQLITE_ROW)
+    out.push_back({q.text(0), static_cast<int>(q.i64(1)), q.text(2), q.i64(3)});
+  if (rc != SQLITE_DONE) return impl_->err("reading task versions");
+  return out;
+}
+
+Result<std::int64_t> Store::claimed() {
+  std::lock_guard lk(impl_->mu);
+  Stmt probe(impl_->db, "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = 'claims'");
+  if (!probe.ok() || probe.step() != SQLITE_ROW || probe.i64(0) == 0) return std::int64_t{0};
+  Stmt q(impl_->db, "SELECT count(*) FROM claims");
+  if (!q.ok() || q.step() != SQLITE_ROW) return impl_->err("counting claims");
+  return q.i64(0);
 }
 
 Result<StoreCounts> Store::counts() {
   Stmt q(impl_->db, "SELECT status, count(*) FROM tasks GROUP BY status");
   if (!q.ok()) return impl_->err("counting tasks");
   StoreCounts c;
-  while (q.step() == SQLITE_ROW) {
+  int rc;
+  while ((rc = q.step()) == SQLITE_ROW) {
     const std::string s = q.text(0);
     const auto n = q.i64(1);
     c.total += n;
-    if (s == "done") c.done = n;
-    else if (s == "failed") c.failed = n;
-    else c.pending = n;
+    if (s == "done") c.done += n;
+    else if (s == "failed") c.failed += n;
+    else c.pending += n;  // 'pending' (or anything a damaged store holds: not done)
   }
+  if (rc != SQLITE_DONE) return impl_->err("counting tasks");
   return c;
 }
 
@@ -367,7 +658,9 @@ Result<std::map<std::string, std::string>> Store::meta() {
   Stmt q(impl_->db, "SELECT key, value FROM meta");
   if (!q.ok()) return impl_->err("reading meta");
   std::map<std::string, std::string> m;
-  while (q.step() == SQLITE_ROW) m[q.text(0)] = q.text(1);
+  int rc;
+  while ((rc = q.step()) == SQLITE_ROW) m[q.text(0)] = q.text(1);
+  if (rc != SQLITE_DONE) return impl_->err("reading meta");
   return m;
 }
 
@@ -375,7 +668,8 @@ Result<std::vector<Store::PartCount>> Store::part_counts() {
   Stmt q(impl_->db, "SELECT part, kind, status, count(*) FROM tasks GROUP BY part, kind, status ORDER BY min(task_id)");
   if (!q.ok()) return impl_->err("counting tasks");
   std::vector<PartCount> out;
-  while (q.step() == SQLITE_ROW) {
+  int rc;
+  while ((rc = q.step()) == SQLITE_ROW) {
     const std::string part = q.text(0), kind = q.text(1), st = q.text(2);
     auto it = std::find_if(out.begin(), out.end(), [&](const PartCount& p) { return p.part == part; });
     if (it == out.end()) {
@@ -384,6 +678,7 @@ Result<std::vector<Store::PartCount>> Store::part_counts() {
     }
     (st == "done" ? it->done : st == "failed" ? it->failed : it->pending) += q.i64(3);
   }
+  if (rc != SQLITE_DONE) return impl_->err("counting tasks");
   return out;
 }
 
@@ -395,7 +690,8 @@ Result<std::vector<Store::Row>> Store::rows(const std::string& part, bool with_a
            "SELECT task_id, part, kind, params, status FROM tasks WHERE status = 'done' AND (?1 = '' OR part = ?1) "
            "ORDER BY task_id");
     q.bind(1, part);
-    while (q.step() == SQLITE_ROW) {
+    int rc;
+    while ((rc = q.step()) == SQLITE_ROW) {
       Row r;
       r.id = q.i64(0);
       r.part = q.text(1);
@@ -411,21 +707,25 @@ Result<std::vector<Store::Row>> Store::rows(const std::string& part, bool with_a
       at[r.id] = out.size();
       out.push_back(std::move(r));
     }
+    if (rc != SQLITE_DONE) return impl_->err("reading results");
   }
   {
     Stmt q(impl_->db,
            "SELECT s.task_id, s.name, s.value FROM scalars s JOIN tasks t USING (task_id) "
            "WHERE t.status = 'done' AND (?1 = '' OR t.part = ?1)");
     q.bind(1, part);
-    while (q.step() == SQLITE_ROW)
+    int rc;
+    while ((rc = q.step()) == SQLITE_ROW)
       if (auto it = at.find(q.i64(0)); it != at.end()) out[it->second].output.scalars[q.text(1)] = q.real(2);
+    if (rc != SQLITE_DONE) return impl_->err("reading results");
   }
   if (with_arrays) {
     Stmt q(impl_->db,
            "SELECT a.task_id, a.name, a.json FROM arrays a JOIN tasks t USING (task_id) "
            "WHERE t.status = 'done' AND (?1 = '' OR t.part = ?1)");
     q.bind(1, part);
-    while (q.step() == SQLITE_ROW) {
+    int rc;
+    while ((rc = q.step()) == SQLITE_ROW) {
       auto it = at.find(q.i64(0));
       if (it == at.end()) continue;
       std::vector<double> v;
@@ -437,6 +737,7 @@ Result<std::vector<Store::Row>> Store::rows(const std::string& part, bool with_a
       }
       out[it->second].output.arrays[q.text(1)] = std::move(v);
     }
+    if (rc != SQLITE_DONE) return impl_->err("reading results");
   }
   return out;
 }
