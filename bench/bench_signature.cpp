@@ -95,8 +95,8 @@ void BM_PlainScan1MPerOffset(benchmark::State& st) {
     }
     benchmark::DoNotOptimize(acc);
   }
-  st.counters["seconds_per_offset"] =
-      benchmark::Counter(static_cast<double>(K), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+  st.counters["seconds_per_offset"] = benchmark::Counter(
+      static_cast<double>(K), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_PlainScan1MPerOffset)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 

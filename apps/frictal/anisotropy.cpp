@@ -40,7 +40,8 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     require(a->directions >= 1 && a->directions <= 3600, "--directions must be in 1..3600");
     require(a->max_lines >= 1 && a->max_lines <= 100000, "--lines must be in 1..100000");
-    require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0, "--atomic-friction must be a finite number >= 0");
+    require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,
+            "--atomic-friction must be a finite number >= 0");
     const SurfaceData s = load_surface(a->file, a->input);
     if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; anisotropy needs an areal map", a->file));
     const Detrend dt = unwrap(parse_detrend(a->detrend));
@@ -63,9 +64,11 @@ std::function<int()> setup(CLI::App& app) {
       if (a->areal) {
         ArealSignatureOptions o;
         o.threads = a->threads;
-        if (a->contact_slope == "mean") o.contact_slope = ArealContactSlope::Mean;
+        if (a->contact_slope == "mean")
+          o.contact_slope = ArealContactSlope::Mean;
         else if (a->contact_slope != "lower")
-          throw UsageError(fmt::format("--contact-slope '{}' not understood (expected lower or mean)", a->contact_slope));
+          throw UsageError(
+              fmt::format("--contact-slope '{}' not understood (expected lower or mean)", a->contact_slope));
         const ArealSignature r = unwrap(areal_signature(m, u, angle, o));
         fwd = r.theta_max_forward;
         bwd = r.theta_max_backward;

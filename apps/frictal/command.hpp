@@ -53,6 +53,6 @@ bool register_command(CommandInfo info);
 
 #define FRICTAL_CONCAT2(a, b) a##b
 #define FRICTAL_CONCAT(a, b) FRICTAL_CONCAT2(a, b)
-#define FRICTAL_COMMAND(...) \
+#define FRICTAL_COMMAND(...)                                        \
   static const bool FRICTAL_CONCAT(frictal_registered_, __LINE__) = \
       ::frictal::cli::register_command(::frictal::cli::CommandInfo __VA_ARGS__)

@@ -36,7 +36,8 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     const std::optional<SurfaceSpec> spec = a->gen.spec();
     if (a->method == "eq13") {
-      require(spec && spec->generator == "koch", "--method eq13: the Koch dimension of Eq. 13 needs the koch generator");
+      require(spec && spec->generator == "koch",
+              "--method eq13: the Koch dimension of Eq. 13 needs the koch generator");
       const KochParams kp = unwrap(koch_params(*spec));
       const double D = unwrap(koch_dimension(kp.alpha));
       if (a->json) {
@@ -60,10 +61,13 @@ std::function<int()> setup(CLI::App& app) {
     require(a->scale_min >= 0 && a->scale_max >= 0, "--min and --max must be positive lengths in metres");
     const Detrend d = unwrap(parse_detrend(a->detrend));
     SurfaceData s;
-    if (spec) s.curve = unwrap(generate_curve(*spec));
-    else s = load_surface(a->file, a->input);
+    if (spec)
+      s.curve = unwrap(generate_curve(*spec));
+    else
+      s = load_surface(a->file, a->input);
     if (s.is_map)
-      throw UsageError(fmt::format("{}: an areal map; the dimension needs a line profile (extract one first)", a->file));
+      throw UsageError(
+          fmt::format("{}: an areal map; the dimension needs a line profile (extract one first)", a->file));
     FractalFit f;
     if (a->method == "divider" || a->method == "box") {
       Curve c = s.curve;
@@ -71,8 +75,10 @@ std::function<int()> setup(CLI::App& app) {
         Profile p = unwrap(detrend(unwrap(as_profile(c, a->file)), d));
         c = as_curve(p);
       }
-      if (a->method == "divider") f = unwrap(divider_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 16}));
-      else f = unwrap(box_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 12}));
+      if (a->method == "divider")
+        f = unwrap(divider_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 16}));
+      else
+        f = unwrap(box_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 12}));
     } else if (a->method == "psd") {
       Profile p = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : surface_profile(s, a->file), d));
       PsdFitOptions o;
@@ -103,7 +109,8 @@ std::function<int()> setup(CLI::App& app) {
   };
 }
 
-FRICTAL_COMMAND({"dimension", "Fractal dimension of a profile (divider, box, psd) or of a Koch curve (Eq. 13)", setup, 50});
+FRICTAL_COMMAND({"dimension", "Fractal dimension of a profile (divider, box, psd) or of a Koch curve (Eq. 13)", setup,
+                 50});
 
 }  // namespace
 }  // namespace frictal::cli

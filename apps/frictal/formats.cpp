@@ -21,7 +21,8 @@ std::function<int()> setup(CLI::App& app) {
       nlohmann::json j;
       nlohmann::json list = nlohmann::json::array();
       for (const auto& f : formats)
-        list.push_back({{"name", f.name}, {"description", f.description}, {"reader", f.reader}, {"can_write", f.can_write}});
+        list.push_back(
+            {{"name", f.name}, {"description", f.description}, {"reader", f.reader}, {"can_write", f.can_write}});
       j["formats"] = list;
       j["gwyddion"] = gwy;
       if (!gwy) j["gwyddion_missing"] = why;
@@ -32,7 +33,8 @@ std::function<int()> setup(CLI::App& app) {
     for (const auto& f : formats) native += f.reader == "native";
     fmt::print("Native readers ({}), detected by content:\n", native);
     for (const auto& f : formats)
-      if (f.reader == "native") fmt::print("  {:<10} {}{}\n", f.name, f.description, f.can_write ? " [write: convert]" : "");
+      if (f.reader == "native")
+        fmt::print("  {:<10} {}{}\n", f.name, f.description, f.can_write ? " [write: convert]" : "");
     if (gwy) {
       fmt::print("Through Gwyddion's file modules ({}):\n", formats.size() - native);
       for (const auto& f : formats)

@@ -56,17 +56,17 @@ std::function<int()> setup(CLI::App& app) {
       print_json(j);
       return 0;
     }
-    fmt::print("{}\n  format {}, read by {}\n  {} channel{}:\n", a->file, format_name(s.format), s.reader, s.channels.size(),
-               s.channels.size() == 1 ? "" : "s");
+    fmt::print("{}\n  format {}, read by {}\n  {} channel{}:\n", a->file, format_name(s.format), s.reader,
+               s.channels.size(), s.channels.size() == 1 ? "" : "s");
     for (std::size_t k = 0; k < s.channels.size(); ++k) {
       const auto& c = s.channels[k];
-      fmt::print("  {} {:>3}  {:<24} {:<7} {} x {} points, {:.6g} x {:.6g} {}, values in {}{}\n", k == s.channel ? '*' : ' ', k,
-                 c.name, c.is_map ? "map" : "profile", c.nx, c.ny, c.size_x, c.size_y, c.xy_unit, c.z_unit.empty() ? "(none)" : c.z_unit,
-                 c.readable ? "" : "  (not lengths: not readable)");
+      fmt::print("  {} {:>3}  {:<24} {:<7} {} x {} points, {:.6g} x {:.6g} {}, values in {}{}\n",
+                 k == s.channel ? '*' : ' ', k, c.name, c.is_map ? "map" : "profile", c.nx, c.ny, c.size_x, c.size_y,
+                 c.xy_unit, c.z_unit.empty() ? "(none)" : c.z_unit, c.readable ? "" : "  (not lengths: not readable)");
     }
     if (s.is_map)
-      fmt::print("  read: {} x {} map, dx {:.6g} m, dy {:.6g} m, origin ({:.6g}, {:.6g}) m, {} valid of {} points\n", s.map.nx,
-                 s.map.ny, s.map.dx, s.map.dy, s.map.x0, s.map.y0, s.map.valid_count(), s.map.size());
+      fmt::print("  read: {} x {} map, dx {:.6g} m, dy {:.6g} m, origin ({:.6g}, {:.6g}) m, {} valid of {} points\n",
+                 s.map.nx, s.map.ny, s.map.dx, s.map.dy, s.map.x0, s.map.y0, s.map.valid_count(), s.map.size());
     else
       fmt::print("  read: profile of {} points\n", s.curve.size());
     return 0;

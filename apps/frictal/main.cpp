@@ -75,7 +75,8 @@ std::string diagnose(CLI::App& app, int argc, char** argv) {
       }
       if (!found) {
         std::string msg = fmt::format("unknown option '{}' for '{}'", name, path_of(chain));
-        if (std::string n = frictal::nearest_word(name, known); !n.empty()) msg += fmt::format("; did you mean '{}'?", n);
+        if (std::string n = frictal::nearest_word(name, known); !n.empty())
+          msg += fmt::format("; did you mean '{}'?", n);
         return msg + fmt::format("\nRun '{} --help' for its options.", path_of(chain));
       }
       const bool short_with_value = name.size() > 2 && name[1] != '-';
@@ -99,7 +100,8 @@ std::string diagnose(CLI::App& app, int argc, char** argv) {
     for (CLI::App* s : cur->get_subcommands([](CLI::App*) { return true; })) names.push_back(s->get_name());
     if (names.empty()) return "";  // CLI11 reports the extra argument
     const bool top = chain.size() == 1;
-    std::string msg = fmt::format("unknown {} '{}'{}", top ? "command" : "subcommand", a, top ? "" : " for '" + path_of(chain) + "'");
+    std::string msg =
+        fmt::format("unknown {} '{}'{}", top ? "command" : "subcommand", a, top ? "" : " for '" + path_of(chain) + "'");
     if (std::string n = frictal::nearest_word(a, names); !n.empty()) msg += fmt::format("; did you mean '{}'?", n);
     std::string list;
     for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -108,11 +110,13 @@ std::string diagnose(CLI::App& app, int argc, char** argv) {
   // A command that needs a subcommand (a generator, a study action) and got none.
   CLI::App* last = chain.back();
   bool help = false;
-  for (int i = 1; i < argc; ++i) help = help || std::string(argv[i]).rfind("--help", 0) == 0 || std::string(argv[i]) == "-h" ||
-                                      std::string(argv[i]) == "--version";
+  for (int i = 1; i < argc; ++i)
+    help = help || std::string(argv[i]).rfind("--help", 0) == 0 || std::string(argv[i]) == "-h" ||
+           std::string(argv[i]) == "--version";
   if (!help && last->get_require_subcommand_min() > 0) {
     std::string list;
-    for (CLI::App* s : last->get_subcommands([](CLI::App*) { return true; })) list += (list.empty() ? "" : ", ") + s->get_name();
+    for (CLI::App* s : last->get_subcommands([](CLI::App*) { return true; }))
+      list += (list.empty() ? "" : ", ") + s->get_name();
     return fmt::format("'{}' needs a {}: {}", path_of(chain), chain.size() == 1 ? "command" : "subcommand", list);
   }
   return "";
@@ -124,8 +128,9 @@ std::string diagnose(CLI::App& app, int argc, char** argv) {
 
 int main(int argc, char** argv) {
   using namespace frictal::cli;
-  CLI::App app{"frictal — static friction between rigid rough surfaces from their topography.\n"
-               "Angles are in degrees and lengths in metres at this interface unless an option says otherwise."};
+  CLI::App app{
+      "frictal — static friction between rigid rough surfaces from their topography.\n"
+      "Angles are in degrees and lengths in metres at this interface unless an option says otherwise."};
   app.set_version_flag("--version", frictal::version_line());
   app.require_subcommand(1);
   auto& reg = command_registry();

@@ -23,11 +23,13 @@ void add_field_options(CLI::App& app, const std::vector<Field>& fields, FieldWor
     const std::string key = f.name;
     if (f.type == FieldType::Boolean) {
       const std::string no = "--no-" + name.substr(2);
-      app.add_flag_callback(flags, [&words, key] { words.words[key] = "true"; }, field_help(f));
-      app.add_flag_callback(no, [&words, key] { words.words[key] = "false"; }, "Opposite of " + name);
+      app.add_flag_callback(
+          flags, [&words, key] { words.words[key] = "true"; }, field_help(f));
+      app.add_flag_callback(
+          no, [&words, key] { words.words[key] = "false"; }, "Opposite of " + name);
     } else {
-      app.add_option_function<std::string>(flags, [&words, key](const std::string& w) { words.words[key] = w; },
-                                            field_help(f))
+      app.add_option_function<std::string>(
+             flags, [&words, key](const std::string& w) { words.words[key] = w; }, field_help(f))
           ->type_name(f.type == FieldType::Choice ? "WORD" : (f.type == FieldType::Integer ? "INT" : "NUMBER"));
     }
   }

@@ -38,7 +38,7 @@ ValueSet si_values(const std::vector<Field>& fields, const FieldWords& words);
 
 /// The generator subcommands of a command.
 struct GeneratorOptions {
-  std::map<std::string, CLI::App*> subcommands;            ///< by generator name
+  std::map<std::string, CLI::App*> subcommands;              ///< by generator name
   std::map<std::string, std::shared_ptr<FieldWords>> words;  ///< by generator name
   /// The specification of the generator subcommand given, if any (UsageError on bad values).
   std::optional<SurfaceSpec> spec() const;

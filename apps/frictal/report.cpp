@@ -7,10 +7,10 @@
 #include <iostream>
 
 #include "common.hpp"
-#include "options.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/report.hpp"
 #include "frictal/version.hpp"
+#include "options.hpp"
 #include "surface_io.hpp"
 
 namespace frictal::cli {
@@ -52,7 +52,8 @@ std::function<int()> setup(CLI::App& app) {
             fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
     require(a->directions >= 1 && a->directions <= 720, "--directions must be in 1..720");
     require(a->lines >= 1 && a->lines <= 100000, "--lines must be in 1..100000");
-    require(a->resolution == 0 || (a->resolution >= 2 && a->resolution <= 100), "--resolution-steps must be 0 or 2..100");
+    require(a->resolution == 0 || (a->resolution >= 2 && a->resolution <= 100),
+            "--resolution-steps must be 0 or 2..100");
     require(a->bins >= 2 && a->bins <= 10000, "--bins must be in 2..10000");
     report::ReportInput in;
     const SurfaceData s = load_surface(a->lower, a->input);
@@ -62,7 +63,8 @@ std::function<int()> setup(CLI::App& app) {
     for (const auto& w : s.warnings) in.notes.push_back("Reader warning: " + w);
     if (s.is_map) {
       if (!a->upper.empty())
-        throw UsageError(fmt::format("{}: an areal map; a second surface (UPPER) is supported for profiles only", a->lower));
+        throw UsageError(
+            fmt::format("{}: an areal map; a second surface (UPPER) is supported for profiles only", a->lower));
       in.map = unwrap(detrend(s.map, dt));
     } else {
       in.lower = unwrap(detrend(surface_profile(s, a->lower), dt));
@@ -98,8 +100,9 @@ std::function<int()> setup(CLI::App& app) {
   };
 }
 
-FRICTAL_COMMAND({"report", "One self-contained HTML page on a surface or a pair: signature, slopes, friction, resolution",
-                 setup, 75});
+FRICTAL_COMMAND({"report",
+                 "One self-contained HTML page on a surface or a pair: signature, slopes, friction, resolution", setup,
+                 75});
 
 }  // namespace
 }  // namespace frictal::cli

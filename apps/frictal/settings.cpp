@@ -17,17 +17,19 @@ const char* type_name(FieldType t) {
 }
 
 nlohmann::json field_json(const Field& f) {
-  return {{"name", f.name},       {"option", cli_option_name(f)}, {"type", type_name(f.type)},
-          {"unit", text_unit(f)}, {"si_unit", f.unit},            {"default", default_text(f)},
-          {"range", range_text(f)}, {"help", f.help}};
+  return {{"name", f.name},    {"option", cli_option_name(f)}, {"type", type_name(f.type)}, {"unit", text_unit(f)},
+          {"si_unit", f.unit}, {"default", default_text(f)},   {"range", range_text(f)},    {"help", f.help}};
 }
 
 std::string md_escape(std::string s) {
   std::string out;
   for (char c : s) {
-    if (c == '|') out += "\\|";
-    else if (c == '*' || c == '_') out += std::string("\\") + c;
-    else out += c;
+    if (c == '|')
+      out += "\\|";
+    else if (c == '*' || c == '_')
+      out += std::string("\\") + c;
+    else
+      out += c;
   }
   return out;
 }
@@ -72,8 +74,10 @@ std::string markdown() {
 
 std::function<int()> setup(CLI::App& app) {
   auto format = std::make_shared<std::string>("text");
-  app.add_flag_callback("--markdown", [format] { *format = "markdown"; }, "Print the reference tables as Markdown (docs/settings.md)");
-  app.add_flag_callback("--json", [format] { *format = "json"; }, "Print the tables as one JSON object");
+  app.add_flag_callback(
+      "--markdown", [format] { *format = "markdown"; }, "Print the reference tables as Markdown (docs/settings.md)");
+  app.add_flag_callback(
+      "--json", [format] { *format = "json"; }, "Print the tables as one JSON object");
   return [format]() {
     if (*format == "markdown") {
       fmt::print("{}", markdown());
@@ -102,7 +106,9 @@ std::function<int()> setup(CLI::App& app) {
   };
 }
 
-FRICTAL_COMMAND({"settings", "The settings tables: every generator parameter and tilt setting with unit, default, range", setup, 90});
+FRICTAL_COMMAND({"settings",
+                 "The settings tables: every generator parameter and tilt setting with unit, default, range", setup,
+                 90});
 
 }  // namespace
 }  // namespace frictal::cli

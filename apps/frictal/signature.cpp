@@ -41,10 +41,12 @@ std::function<int()> setup(CLI::App& app) {
   add_generator_subcommands(app, a->gen, true, " (its self-signature: the surface against itself turned over)");
   add_atomic_friction_option(app, a->mu_a);
   app.add_option("--slopes", a->slopes, "exact: polyline contact rules; spline: cubic-spline slopes averaged")
-      ->check(CLI::IsMember({"exact", "spline"}))->capture_default_str();
+      ->check(CLI::IsMember({"exact", "spline"}))
+      ->capture_default_str();
   app.add_option("--offsets", a->offsets,
                  "0: every event offset (exact; if there are too many, offsets sampled at the finer point spacing); "
-                 "N: N equally spaced offsets")->capture_default_str();
+                 "N: N equally spaced offsets")
+      ->capture_default_str();
   app.add_option("--detrend", a->detrend,
                  "Remove none, mean, line or poly:N from each measured surface first (form and tilt of the scan)")
       ->capture_default_str();
@@ -55,11 +57,13 @@ std::function<int()> setup(CLI::App& app) {
   std::vector<std::string> skip = all_but(tilt_settings(), "period");
   skip.erase(std::remove(skip.begin(), skip.end(), "radius"), skip.end());
   add_field_options(app, tilt_settings(), a->period_words, skip);
-  app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
+  app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the contact-slope PDF")->capture_default_str();
 
   app.add_option("-o,--output", a->out, "Write the signature function as CSV (- for standard output)");
-  app.add_option("--contacts", a->contacts_out, "Write every contact (offset, x, z, slope, type) as CSV (- for standard output)");
+  app.add_option("--contacts", a->contacts_out,
+                 "Write every contact (offset, x, z, slope, type) as CSV (- for standard output)");
   app.add_option("--pdf", a->pdf_out, "Write the contact-slope PDF as CSV (- for standard output)");
   app.add_flag("--json", a->json, "Print one JSON object with the results");
   return [a]() {
@@ -70,8 +74,9 @@ std::function<int()> setup(CLI::App& app) {
     require(to_stdout <= 1, "only one of -o -, --contacts -, --pdf - and --json can write to standard output");
     const std::optional<SurfaceSpec> spec = a->gen.spec();
     if (spec) {
-      require(a->lower.empty() && a->upper.empty(),
-              fmt::format("signature {}: a generated surface is signed against itself; give no files", spec->generator));
+      require(
+          a->lower.empty() && a->upper.empty(),
+          fmt::format("signature {}: a generated surface is signed against itself; give no files", spec->generator));
       a->lower = spec->generator;
     } else if (a->lower.empty()) {
       throw UsageError("signature: give LOWER [UPPER] files, or a generator (koch, wm, sawtooth, sine, self-affine)");
@@ -82,7 +87,8 @@ std::function<int()> setup(CLI::App& app) {
     if (pv.count("period")) a->period = as_real(pv.at("period"));
     if (pv.count("radius")) a->spheroradius = as_real(pv.at("radius"));
     if (a->period != 0) {
-      require(a->period > 0 && std::isfinite(a->period), fmt::format("--period: expected a positive length in m, got {}", a->period));
+      require(a->period > 0 && std::isfinite(a->period),
+              fmt::format("--period: expected a positive length in m, got {}", a->period));
       lower.period = a->period;
       upper_measured.period = a->period;
       unwrap(validate(lower, a->lower));
@@ -107,9 +113,11 @@ std::function<int()> setup(CLI::App& app) {
     SignatureResult r = unwrap(signature(lower, rotate180(upper_measured), o));
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (a->offsets == 0 && !r.exact)
-      fmt::print(stderr, "frictal: note: the two point grids do not align and the exact signature would need more "
-                         "event offsets than the limit; sampled {} offsets at the finer point spacing instead, each "
-                         "evaluated exactly (--exact refuses instead)\n", r.offset.size());
+      fmt::print(stderr,
+                 "frictal: note: the two point grids do not align and the exact signature would need more "
+                 "event offsets than the limit; sampled {} offsets at the finer point spacing instead, each "
+                 "evaluated exactly (--exact refuses instead)\n",
+                 r.offset.size());
     FrictionPrediction fwd = unwrap(predict_friction(a->mu_a, r.theta_max_forward, r.contact_slope_std));
     FrictionPrediction bwd = unwrap(predict_friction(a->mu_a, r.theta_max_backward, r.contact_slope_std));
     const double smax = std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope);
@@ -117,8 +125,8 @@ std::function<int()> setup(CLI::App& app) {
     if (!a->out.empty()) {
       std::string s = "offset_m,lift_m,theta_deg,theta_min_deg,theta_left_deg,theta_right_deg\n";
       for (std::size_t i = 0; i < r.offset.size(); ++i)
-        s += fmt::format("{:.17g},{:.17g},{:.12g},{:.12g},{:.12g},{:.12g}\n", r.offset[i], r.lift[i], to_deg(r.theta[i]),
-                         to_deg(r.theta_min[i]), to_deg(r.theta_left[i]), to_deg(r.theta_right[i]));
+        s += fmt::format("{:.17g},{:.17g},{:.12g},{:.12g},{:.12g},{:.12g}\n", r.offset[i], r.lift[i],
+                         to_deg(r.theta[i]), to_deg(r.theta_min[i]), to_deg(r.theta_left[i]), to_deg(r.theta_right[i]));
       write_text_output(a->out, s);
     }
     if (!a->contacts_out.empty()) {
@@ -126,7 +134,8 @@ std::function<int()> setup(CLI::App& app) {
       for (std::size_t i = 0; i < r.offset.size(); ++i)
         for (auto k = r.contact_begin[i]; k < r.contact_begin[i + 1]; ++k) {
           const Contact& c = r.contacts[k];
-          s += fmt::format("{:.17g},{:.17g},{:.17g},{:.12g},{}\n", r.offset[i], c.x, c.z, to_deg(c.slope), contact_type_name(c.type));
+          s += fmt::format("{:.17g},{:.17g},{:.17g},{:.12g},{}\n", r.offset[i], c.x, c.z, to_deg(c.slope),
+                           contact_type_name(c.type));
         }
       write_text_output(a->contacts_out, s, "--contacts");
     }
@@ -171,11 +180,15 @@ std::function<int()> setup(CLI::App& app) {
       if (r.spheroradius > 0)
         fmt::print(text, "  spheropolygons: spheroradius r = {:.6g} m (one core against the other dilated by 2r)\n",
                    r.spheroradius);
-      fmt::print(text, "  theta_max forward  (+x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_forward), r.offset_at_forward);
-      fmt::print(text, "  theta_max backward (-x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_backward), r.offset_at_backward);
+      fmt::print(text, "  theta_max forward  (+x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_forward),
+                 r.offset_at_forward);
+      fmt::print(text, "  theta_max backward (-x) {:10.4f} deg at offset {:.6g} m\n", to_deg(r.theta_max_backward),
+                 r.offset_at_backward);
       fmt::print(text, "  contact slope mean {:.4f} deg, std (sigma) {:.4f} deg; max surface slope {:.4f} deg\n",
                  to_deg(r.contact_slope_mean), to_deg(r.contact_slope_std), to_deg(smax));
-      fmt::print(text, "friction (mu_a = {}): phi = {:.4f} deg, mu = {:.6g}; Eq. 18 range phi in [{:.4f}, {:.4f}] deg; backward phi = {:.4f} deg\n",
+      fmt::print(text,
+                 "friction (mu_a = {}): phi = {:.4f} deg, mu = {:.6g}; Eq. 18 range phi in [{:.4f}, {:.4f}] deg; "
+                 "backward phi = {:.4f} deg\n",
                  a->mu_a, to_deg(fwd.friction_angle), fwd.friction_coefficient, to_deg(fwd.friction_angle_low),
                  to_deg(fwd.friction_angle), to_deg(bwd.friction_angle));
     }
@@ -183,7 +196,8 @@ std::function<int()> setup(CLI::App& app) {
   };
 }
 
-FRICTAL_COMMAND({"signature", "Signature function theta(x_ofs) of two surfaces and the friction prediction", setup, 20});
+FRICTAL_COMMAND({"signature", "Signature function theta(x_ofs) of two surfaces and the friction prediction", setup,
+                 20});
 
 }  // namespace
 }  // namespace frictal::cli

@@ -1,8 +1,8 @@
 // frictal stats FILE — statistics of a profile or an areal map (any readable format).
+#include "frictal/stats.hpp"
 #include "common.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/scan_stats.hpp"
-#include "frictal/stats.hpp"
 #include "surface_io.hpp"
 
 namespace frictal::cli {
@@ -18,7 +18,8 @@ struct Args {
   InputOptions input;
 };
 
-void write_columns(const std::string& path, const char* header, const std::vector<double>& a, const std::vector<double>& b) {
+void write_columns(const std::string& path, const char* header, const std::vector<double>& a,
+                   const std::vector<double>& b) {
   std::FILE* f = std::fopen(path.c_str(), "wb");
   if (!f) throw UsageError(fmt::format("{}: cannot open for writing", path));
   std::string buf = std::string(header) + "\n";
@@ -42,8 +43,9 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--psd", a->psd_out, "Write the power spectrum (q_rad_per_m,C_m3) of the profile to this CSV");
   app.add_option("--acf", a->acf_out, "Write the autocorrelation (lag_m,acf) of the profile to this CSV");
   app.add_option("--histograms", a->bins, "Add height and slope distributions with this many bins to --json");
-  app.add_option("--tip-radius", a->tip_radius,
-                 "Tip radius for the short reliability cutoff, a length such as 20nm (no unit: metres); see docs/analysis.md");
+  app.add_option(
+      "--tip-radius", a->tip_radius,
+      "Tip radius for the short reliability cutoff, a length such as 20nm (no unit: metres); see docs/analysis.md");
   add_input_options(app, a->input);
   return [a]() {
     require(a->bins >= 0 && a->bins <= 100000, "--histograms must be in 0..100000");
@@ -98,14 +100,16 @@ std::function<int()> setup(CLI::App& app) {
         }
         print_json(j);
       } else {
-        fmt::print("{}: {} x {} map ({} valid of {} points), {:.6g} x {:.6g} m\n"
-                   "  Sq {:.6g} m  Sa {:.6g} m  Sz {:.6g} m  Ssk {:.4g}  Sku {:.4g}\n  Sdq {:.6g}  max slope {:.4f} deg\n",
-                   a->file, m.nx, m.ny, s.valid, s.points, s.width, s.height, s.Sq, s.Sa, s.Sz, s.Ssk, s.Sku, s.Sdq,
-                   to_deg(s.max_slope));
-        fmt::print("  physical size (n dx) {:.6g} x {:.6g} m, bandwidth {:.6g} .. {:.6g} m\n"
-                   "  along x: Rq {:.6g} m  Rdq {:.6g}   along y: Rq {:.6g} m  Rdq {:.6g}   rms gradient (fd) {:.6g}\n",
-                   sc.physical_size_x, sc.physical_size_y, sc.bandwidth_short, sc.bandwidth_long, sc.Rq_x, sc.Rdq_x, sc.Rq_y,
-                   sc.Rdq_y, sc.rms_gradient_fd);
+        fmt::print(
+            "{}: {} x {} map ({} valid of {} points), {:.6g} x {:.6g} m\n"
+            "  Sq {:.6g} m  Sa {:.6g} m  Sz {:.6g} m  Ssk {:.4g}  Sku {:.4g}\n  Sdq {:.6g}  max slope {:.4f} deg\n",
+            a->file, m.nx, m.ny, s.valid, s.points, s.width, s.height, s.Sq, s.Sa, s.Sz, s.Ssk, s.Sku, s.Sdq,
+            to_deg(s.max_slope));
+        fmt::print(
+            "  physical size (n dx) {:.6g} x {:.6g} m, bandwidth {:.6g} .. {:.6g} m\n"
+            "  along x: Rq {:.6g} m  Rdq {:.6g}   along y: Rq {:.6g} m  Rdq {:.6g}   rms gradient (fd) {:.6g}\n",
+            sc.physical_size_x, sc.physical_size_y, sc.bandwidth_short, sc.bandwidth_long, sc.Rq_x, sc.Rdq_x, sc.Rq_y,
+            sc.Rdq_y, sc.rms_gradient_fd);
         if (tip > 0) fmt::print("  short reliability cutoff for a {:.6g} m tip: {:.6g} m\n", tip, cutoff);
       }
       return 0;
@@ -152,18 +156,20 @@ std::function<int()> setup(CLI::App& app) {
       }
       print_json(j);
     } else {
-      fmt::print("{}: {} points over {:.6g} m\n  rms height {:.6g} m (about the mean {:.6g} m)\n  rms slope {:.6g}\n"
-                 "  max slope {:.4f} deg\n",
-                 a->file, s.points, s.length, s.rms_height, s.mean_height, s.rms_slope, to_deg(s.max_slope));
-      fmt::print("  physical length (n dx) {:.6g} m, bandwidth {:.6g} .. {:.6g} m\n", sc.physical_length, sc.bandwidth_short,
-                 sc.bandwidth_long);
+      fmt::print(
+          "{}: {} points over {:.6g} m\n  rms height {:.6g} m (about the mean {:.6g} m)\n  rms slope {:.6g}\n"
+          "  max slope {:.4f} deg\n",
+          a->file, s.points, s.length, s.rms_height, s.mean_height, s.rms_slope, to_deg(s.max_slope));
+      fmt::print("  physical length (n dx) {:.6g} m, bandwidth {:.6g} .. {:.6g} m\n", sc.physical_length,
+                 sc.bandwidth_short, sc.bandwidth_long);
       if (tip > 0) fmt::print("  short reliability cutoff for a {:.6g} m tip: {:.6g} m\n", tip, cutoff);
     }
     return 0;
   };
 }
 
-FRICTAL_COMMAND({"stats", "Statistics of a profile or map: rms height, rms slope, max slope (Sq, Sdq, ... for maps)", setup, 30});
+FRICTAL_COMMAND({"stats", "Statistics of a profile or map: rms height, rms slope, max slope (Sq, Sdq, ... for maps)",
+                 setup, 30});
 
 }  // namespace
 }  // namespace frictal::cli

@@ -50,11 +50,13 @@ std::string input_path(const std::string& path) {
 std::string stdin_name(std::string message) {
   if (!stdin_copy()) return message;
   const std::string& p = stdin_copy()->path;
-  for (std::size_t at = message.find(p); at != std::string::npos; at = message.find(p, at + 1)) message.replace(at, p.size(), "-");
+  for (std::size_t at = message.find(p); at != std::string::npos; at = message.find(p, at + 1))
+    message.replace(at, p.size(), "-");
   return message;
 }
 
-void write_output(const std::string& path, const std::function<Status(const std::string&)>& write, const std::string& option) {
+void write_output(const std::string& path, const std::function<Status(const std::string&)>& write,
+                  const std::string& option) {
   if (path != "-") {
     if (Status s = write(path); !s) throw UsageError(option + ": " + s.error().message, s.error().code);
     return;

@@ -35,7 +35,8 @@ extern "C" void on_signal(int sig) {
 std::string hms(double s) {
   if (!std::isfinite(s) || s < 0) return "--:--";
   const long t = static_cast<long>(s + 0.5);
-  return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60) : fmt::format("{}:{:02}", t / 60, t % 60);
+  return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60)
+                   : fmt::format("{}:{:02}", t / 60, t % 60);
 }
 
 /// Progress: a bar redrawn in place on a terminal, else a plain line every `every` seconds.
@@ -55,14 +56,16 @@ struct ProgressPrinter {
       const int W = 30;
       const double f = p.total ? static_cast<double>(p.done) / static_cast<double>(p.total) : 1.0;
       const int k = static_cast<int>(f * W);
-      fmt::print(stderr, "\r[{}{}] {}/{} {:5.1f}% {:.1f} tasks/s ETA {}{}   ", std::string(k, '#'), std::string(W - k, '-'),
-                 p.done, p.total, 100 * f, rate, hms(eta), p.failed ? fmt::format(" failed {}", p.failed) : "");
+      fmt::print(stderr, "\r[{}{}] {}/{} {:5.1f}% {:.1f} tasks/s ETA {}{}   ", std::string(k, '#'),
+                 std::string(W - k, '-'), p.done, p.total, 100 * f, rate, hms(eta),
+                 p.failed ? fmt::format(" failed {}", p.failed) : "");
       if (end) fmt::print(stderr, "\n");
     } else {
       if (!end && p.this_run != 0 && p.elapsed_s - last < every) return;
       last = p.elapsed_s;
-      fmt::print(stderr, "study: {}/{} done, {} of {} this run, {:.1f} tasks/s, elapsed {}, ETA {}{}\n", p.done, p.total,
-                 p.this_run, p.to_run, rate, hms(p.elapsed_s), hms(eta), p.failed ? fmt::format(", failed {}", p.failed) : "");
+      fmt::print(stderr, "study: {}/{} done, {} of {} this run, {:.1f} tasks/s, elapsed {}, ETA {}{}\n", p.done,
+                 p.total, p.this_run, p.to_run, rate, hms(p.elapsed_s), hms(eta),
+                 p.failed ? fmt::format(", failed {}", p.failed) : "");
     }
     std::fflush(stderr);
   }
@@ -83,8 +86,9 @@ int run(const RunArgs& a) {
     // Several copies of a build without MPI would each run the whole study on the same store.
     for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
       if (const char* n = std::getenv(v); n && std::atoi(n) > 1)
-        throw UsageError("this frictal was built without MPI (FRICTAL_MPI=OFF) but runs under mpirun with several "
-                         "ranks; run it without mpirun (use --threads) or rebuild with MPI");
+        throw UsageError(
+            "this frictal was built without MPI (FRICTAL_MPI=OFF) but runs under mpirun with several "
+            "ranks; run it without mpirun (use --threads) or rebuild with MPI");
   }
   const bool mpi = mpi_available() && launched_by_mpi();
   int rank = 0, size = 1;
@@ -99,7 +103,8 @@ int run(const RunArgs& a) {
   if (mpi && rank == 0) {
     const std::string note = fmt::format(
         "frictal: rank 0 was signalled (interrupted, or another rank died and mpirun ends the job); every finished "
-        "task is kept in {}; run the same command again to resume\n", a.store);
+        "task is kept in {}; run the same command again to resume\n",
+        a.store);
     g_signal_note_len = std::min(note.size(), sizeof g_signal_note);
     std::memcpy(g_signal_note, note.data(), g_signal_note_len);
   }
@@ -120,7 +125,8 @@ int run(const RunArgs& a) {
   std::unique_ptr<Store> store;
   RunSummary sum;
   if (mpi) {
-    Result<std::unique_ptr<Store>> st = rank == 0 ? Store::open(a.store, study) : Result<std::unique_ptr<Store>>(nullptr);
+    Result<std::unique_ptr<Store>> st =
+        rank == 0 ? Store::open(a.store, study) : Result<std::unique_ptr<Store>>(nullptr);
     if (!st) {
       // Release the workers before failing: run_mpi with no store stops them.
       (void)run_mpi(study, nullptr, reg, o);
@@ -143,7 +149,8 @@ int run(const RunArgs& a) {
   if (sum.skipped_unavailable)
     fmt::print("  {} tasks left pending: their task kind is not available in this build\n", sum.skipped_unavailable);
   if (sum.interrupted || g_stop) {
-    fmt::print(stderr, "frictal: interrupted; finished tasks are kept in {}; run the same command again to resume\n", a.store);
+    fmt::print(stderr, "frictal: interrupted; finished tasks are kept in {}; run the same command again to resume\n",
+               a.store);
     return 130;
   }
   if (c.failed) {
@@ -165,14 +172,21 @@ int status(const std::string& path, bool json, bool failed) {
     j["schema_version"] = st.schema_version;
     j["frictal_version"] = st.frictal_version;
     j["claimed"] = st.claimed;
-    j["tasks"] = {{"total", st.tasks.total}, {"done", st.tasks.done}, {"failed", st.tasks.failed}, {"pending", st.tasks.pending}};
+    j["tasks"] = {
+        {"total", st.tasks.total}, {"done", st.tasks.done}, {"failed", st.tasks.failed}, {"pending", st.tasks.pending}};
     for (const auto& p : st.parts) {
       nlohmann::json kv = nlohmann::json::object(), fv = nlohmann::json::object();
       for (const auto& [v, n] : p.done_by_kind_version) kv[std::to_string(v)] = n;
       for (const auto& [v, n] : p.done_by_frictal_version) fv[v] = n;
-      j["parts"].push_back({{"part", p.part}, {"kind", p.kind}, {"done", p.done}, {"failed", p.failed}, {"pending", p.pending},
-                            {"available", p.available}, {"kind_version", p.kind_version},
-                            {"done_by_kind_version", kv}, {"done_by_frictal_version", fv},
+      j["parts"].push_back({{"part", p.part},
+                            {"kind", p.kind},
+                            {"done", p.done},
+                            {"failed", p.failed},
+                            {"pending", p.pending},
+                            {"available", p.available},
+                            {"kind_version", p.kind_version},
+                            {"done_by_kind_version", kv},
+                            {"done_by_frictal_version", fv},
                             {"version_note", p.version_note}});
     }
     print_json(j);
@@ -191,7 +205,8 @@ int status(const std::string& path, bool json, bool failed) {
   for (const auto& p : st.parts) {
     std::string by;
     for (const auto& [v, n] : p.done_by_kind_version)
-      by += fmt::format("{}{} by {}", by.empty() ? "" : ", ", n, v ? fmt::format("v{}", v) : std::string("unrecorded version"));
+      by += fmt::format("{}{} by {}", by.empty() ? "" : ", ", n,
+                        v ? fmt::format("v{}", v) : std::string("unrecorded version"));
     for (const auto& [v, n] : p.done_by_frictal_version)
       by += fmt::format("{}{} by frictal {}", by.empty() ? "" : ", ", n, v.empty() ? std::string("?") : v);
     if (!by.empty()) fmt::print("  part {:<14} done tasks: {}\n", p.part, by);
@@ -213,23 +228,28 @@ std::function<int()> setup(CLI::App& app) {
   app.require_subcommand(1);
   auto ra = std::make_shared<RunArgs>();
   auto* run_cmd = app.add_subcommand("run", "Run (or resume) a study; results go into an SQLite store");
-  run_cmd->add_option("study", ra->study, "Study definition (TOML), e.g. studies/fig14-18-wm-statistics.toml")->required();
+  run_cmd->add_option("study", ra->study, "Study definition (TOML), e.g. studies/fig14-18-wm-statistics.toml")
+      ->required();
   run_cmd->add_option("--store", ra->store, "SQLite store file (created if missing, resumed if it exists)")->required();
-  run_cmd->add_option("--threads", ra->threads, "Compute threads (0 = all cores; under MPI: threads on rank 0, default 1)")
+  run_cmd
+      ->add_option("--threads", ra->threads, "Compute threads (0 = all cores; under MPI: threads on rank 0, default 1)")
       ->each([ra](const std::string&) { ra->threads_set = true; });
   run_cmd->add_flag("--pin", ra->pin, "Pin compute thread i to CPU i (as mpirun binds ranks); results do not change");
   run_cmd->add_flag("--quick", ra->quick, "Use the study's quick (CI) scale instead of the paper's full scale");
   run_cmd->add_option("--part", ra->parts, "Run only this part (repeatable)");
   run_cmd->add_flag("--skip-unavailable", ra->skip_unavailable,
                     "Run the parts whose task kind this build has; leave the others pending");
-  run_cmd->add_option("--inject-failure-rank", ra->inject_failure_rank,
-                      "Testing: every attempt computed on this rank (0 without MPI) is reported failed")
+  run_cmd
+      ->add_option("--inject-failure-rank", ra->inject_failure_rank,
+                   "Testing: every attempt computed on this rank (0 without MPI) is reported failed")
       ->group("");  // hidden
-  run_cmd->add_option("--inject-failure-task", ra->fail_first_attempt,
-                      "Testing: the first attempt of this task id is reported failed, so it is retried (repeatable)")
+  run_cmd
+      ->add_option("--inject-failure-task", ra->fail_first_attempt,
+                   "Testing: the first attempt of this task id is reported failed, so it is retried (repeatable)")
       ->group("");  // hidden
   run_cmd->add_option("--progress", ra->progress, "auto (bar on a terminal, lines otherwise), bar, lines, none")
-      ->check(CLI::IsMember({"auto", "bar", "lines", "none"}))->capture_default_str();
+      ->check(CLI::IsMember({"auto", "bar", "lines", "none"}))
+      ->capture_default_str();
 
   auto store_path = std::make_shared<std::string>();
   auto json = std::make_shared<bool>(false);
@@ -241,7 +261,8 @@ std::function<int()> setup(CLI::App& app) {
 
   auto export_store = std::make_shared<std::string>();
   auto export_dir = std::make_shared<std::string>();
-  auto* export_cmd = app.add_subcommand("export", "Write a store as CSV files (one wide table and one arrays table per part)");
+  auto* export_cmd =
+      app.add_subcommand("export", "Write a store as CSV files (one wide table and one arrays table per part)");
   export_cmd->add_option("store", *export_store, "SQLite store file")->required();
   export_cmd->add_option("--csv", *export_dir, "Output directory")->required();
 
@@ -253,8 +274,9 @@ std::function<int()> setup(CLI::App& app) {
 
   auto kinds_json_flag = std::make_shared<bool>(false);
   auto* kinds_cmd = app.add_subcommand("kinds", "List the task kinds of this build");
-  kinds_cmd->add_flag("--json", *kinds_json_flag,
-                      "Print every kind with its outputs (name, unit) and plot views, as JSON (scripts/plot_studies.py)");
+  kinds_cmd->add_flag(
+      "--json", *kinds_json_flag,
+      "Print every kind with its outputs (name, unit) and plot views, as JSON (scripts/plot_studies.py)");
 
   return [=]() -> int {
     if (run_cmd->parsed()) return run(*ra);
@@ -288,6 +310,7 @@ std::function<int()> setup(CLI::App& app) {
 
 }  // namespace
 
-FRICTAL_COMMAND({"study", "Run the paper's parameter sweeps (resumable, threads or MPI) and inspect their stores", setup, 50});
+FRICTAL_COMMAND({"study", "Run the paper's parameter sweeps (resumable, threads or MPI) and inspect their stores",
+                 setup, 50});
 
 }  // namespace frictal::cli

@@ -32,13 +32,15 @@ std::function<int()> setup(CLI::App& app) {
     const Profile p = unwrap(generate_profile(spec));
     write_output(a->out, [&](const std::string& path) { return write_profile_csv(path, p); });
     const auto s = profile_stats(p);
-    fmt::print(stderr, "frictal: wrote {} profile, {} points over {:.6g} m, rms height {:.6g} m, max slope {:.4g} deg -> {}\n",
+    fmt::print(stderr,
+               "frictal: wrote {} profile, {} points over {:.6g} m, rms height {:.6g} m, max slope {:.4g} deg -> {}\n",
                spec.generator, p.size(), s.length, s.rms_height, to_deg(s.max_slope), a->out);
     return 0;
   };
 }
 
-FRICTAL_COMMAND({"surface", "Generate a surface profile (Koch, Weierstrass-Mandelbrot, sawtooth, sine, self-affine)", setup, 10});
+FRICTAL_COMMAND({"surface", "Generate a surface profile (Koch, Weierstrass-Mandelbrot, sawtooth, sine, self-affine)",
+                 setup, 10});
 
 }  // namespace
 }  // namespace frictal::cli

@@ -22,33 +22,41 @@ struct InputOptions {
 
 inline void add_input_options(CLI::App& app, InputOptions& o) {
   app.add_option("--format", o.format,
-                 "Input format: auto, csv, dektak, gwyddion, x3p, matrix, xyz, sdf, npy, gwyddion-lib (default: detect from content)");
+                 "Input format: auto, csv, dektak, gwyddion, x3p, matrix, xyz, sdf, npy, gwyddion-lib (default: detect "
+                 "from content)");
   app.add_option("--unit", o.unit, "Unit of text columns that name none: m, mm, um, nm (default m, with a warning)");
   app.add_option("--x-column", o.x_column, "0-based column of x in delimited text (default: automatic)");
   app.add_option("--z-column", o.z_column, "0-based column of z in delimited text (default: the one after x)");
-  app.add_option("--spacing", o.spacing,
-                 "Sampling interval for data without one (a column of heights, .npy, a bare matrix): a length such as 0.5um "
-                 "(no unit: metres)");
+  app.add_option(
+      "--spacing", o.spacing,
+      "Sampling interval for data without one (a column of heights, .npy, a bare matrix): a length such as 0.5um "
+      "(no unit: metres)");
   app.add_option("--channel", o.channel, "Channel of a multi-channel file: index or name (see 'frictal info FILE')");
 }
 
 /// "0.5um", "0.5 um", "2e-6" (metres) -> metres; UsageError naming the option otherwise.
 inline double parse_length_option(const std::string& text, const char* option) {
   std::size_t k = 0;
-  while (k < text.size() && (std::isdigit((unsigned char)text[k]) || text[k] == '.' || text[k] == '-' || text[k] == '+' ||
-                             ((text[k] == 'e' || text[k] == 'E') && k + 1 < text.size() &&
-                              (std::isdigit((unsigned char)text[k + 1]) || text[k + 1] == '-' || text[k + 1] == '+'))))
+  while (k < text.size() &&
+         (std::isdigit((unsigned char)text[k]) || text[k] == '.' || text[k] == '-' || text[k] == '+' ||
+          ((text[k] == 'e' || text[k] == 'E') && k + 1 < text.size() &&
+           (std::isdigit((unsigned char)text[k + 1]) || text[k + 1] == '-' || text[k + 1] == '+'))))
     ++k;
   double v = 0;
   std::string unit = text.substr(k);
   while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
   double scale = 1;
   if (!unit.empty()) {
-    if (unit == "m") scale = 1;
-    else if (unit == "mm") scale = 1e-3;
-    else if (unit == "um" || unit == "\xC2\xB5m" || unit == "\xCE\xBCm") scale = 1e-6;
-    else if (unit == "nm") scale = 1e-9;
-    else throw UsageError(fmt::format("{} '{}': unit '{}' not understood (expected m, mm, um, nm)", option, text, unit));
+    if (unit == "m")
+      scale = 1;
+    else if (unit == "mm")
+      scale = 1e-3;
+    else if (unit == "um" || unit == "\xC2\xB5m" || unit == "\xCE\xBCm")
+      scale = 1e-6;
+    else if (unit == "nm")
+      scale = 1e-9;
+    else
+      throw UsageError(fmt::format("{} '{}': unit '{}' not understood (expected m, mm, um, nm)", option, text, unit));
   }
   try {
     std::size_t used = 0;
@@ -81,7 +89,8 @@ inline SurfaceData load_surface(const std::string& path, const InputOptions& o) 
 /// The surface as a single-valued profile (error naming the file for maps or folded curves).
 inline Profile surface_profile(const SurfaceData& s, const std::string& path) {
   if (s.is_map)
-    throw UsageError(fmt::format("{}: an areal map ({} x {}); this command needs a line profile", path, s.map.nx, s.map.ny));
+    throw UsageError(
+        fmt::format("{}: an areal map ({} x {}); this command needs a line profile", path, s.map.nx, s.map.ny));
   return unwrap(as_profile(s.curve, path));
 }
 

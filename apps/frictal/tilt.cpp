@@ -59,22 +59,29 @@ int run(TiltOptions& o) {
   const ValueSet given = si_values(tilt_settings(), o.settings);
   TiltConfig cfg = unwrap(make_tilt_config(given, base));
   if (o.output.empty()) cfg.series_interval = 0;
-  if (o.frames.empty()) cfg.frame_interval = 0;
-  else if (!given.count("frame_interval")) cfg.frame_interval = 0.01;
+  if (o.frames.empty())
+    cfg.frame_interval = 0;
+  else if (!given.count("frame_interval"))
+    cfg.frame_interval = 0.01;
   if (o.json && (o.output == "-" || o.frames == "-"))
     throw UsageError("--json and -o -/--frames - would both write to standard output; choose one");
 
   auto r = run_tilt(lower, upper, cfg);
   if (!r.ok()) fail(r.error());
-  if (!o.output.empty()) write_output(o.output, [&](const std::string& p) { return write_tilt_series_csv(p, r->series); });
-  if (!o.frames.empty()) write_output(o.frames, [&](const std::string& p) { return write_tilt_frames(p, *r); }, "--frames");
+  if (!o.output.empty())
+    write_output(o.output, [&](const std::string& p) { return write_tilt_series_csv(p, r->series); });
+  if (!o.frames.empty())
+    write_output(
+        o.frames, [&](const std::string& p) { return write_tilt_frames(p, *r); }, "--frames");
   const double us_per_step = r->steps ? 1e6 * r->wall_time / static_cast<double>(r->steps) : 0.0;
   if (o.json) {
     nlohmann::json j;
     j["slid"] = r->slid;
     j["friction_angle_deg"] = r->slid ? nlohmann::json(r->friction_angle / kDeg) : nlohmann::json(nullptr);
-    j["predicted_friction_angle_deg"] = cfg.predict ? nlohmann::json(r->predicted_friction_angle / kDeg) : nlohmann::json(nullptr);
-    j["predicted_theta_max_deg"] = cfg.predict ? nlohmann::json(r->predicted_theta_max / kDeg) : nlohmann::json(nullptr);
+    j["predicted_friction_angle_deg"] =
+        cfg.predict ? nlohmann::json(r->predicted_friction_angle / kDeg) : nlohmann::json(nullptr);
+    j["predicted_theta_max_deg"] =
+        cfg.predict ? nlohmann::json(r->predicted_theta_max / kDeg) : nlohmann::json(nullptr);
     j["surface"] = surface;
     j["settings"] = text_json(tilt_settings(), tilt_values(cfg));
     j["initial_offset_m"] = r->initial_offset;
@@ -88,10 +95,13 @@ int run(TiltOptions& o) {
     j["max_time_step_s"] = r->max_time_step;
     j["list_builds"] = r->timings.list_builds;
     j["steps_beyond_stability_limit"] = r->steps_beyond_limit;
-    j["mean_pairs_in_list"] = r->steps ? static_cast<double>(r->timings.pairs_visited) / static_cast<double>(r->steps) : 0.0;
-    j["mean_pairs_evaluated"] = r->steps ? static_cast<double>(r->timings.pairs_evaluated) / static_cast<double>(r->steps) : 0.0;
+    j["mean_pairs_in_list"] =
+        r->steps ? static_cast<double>(r->timings.pairs_visited) / static_cast<double>(r->steps) : 0.0;
+    j["mean_pairs_evaluated"] =
+        r->steps ? static_cast<double>(r->timings.pairs_evaluated) / static_cast<double>(r->steps) : 0.0;
     j["hot_list_refreshes"] = r->timings.hot_refreshes;
-    j["stage_time_s"] = {{"neighbor_list", r->timings.neighbor_list}, {"contacts", r->timings.contacts},
+    j["stage_time_s"] = {{"neighbor_list", r->timings.neighbor_list},
+                         {"contacts", r->timings.contacts},
                          {"integration", r->timings.integration}};
     j["lower_vertices"] = r->lower_vertices;
     j["upper_vertices"] = r->upper_vertices;
@@ -110,9 +120,13 @@ int run(TiltOptions& o) {
       fmt::print(text, "no run-away before the maximal tilt of {:.2f} deg\n", cfg.max_tilt / kDeg);
     if (cfg.predict)
       fmt::print(text, "predicted (signature theta_max {:.3f} + atan(mu_a) {:.3f}): {:.3f} deg\n",
-                 r->predicted_theta_max / kDeg, std::atan(cfg.contact.atomic_friction) / kDeg, r->predicted_friction_angle / kDeg);
-    fmt::print(text, "{} steps of {:.3g} to {:.3g} s ({:.4f} s simulated) in {:.2f} s wall, {:.2f} us/step; blocks {} + {} vertices\n",
-               r->steps, r->min_time_step, r->max_time_step, r->simulated_time, r->wall_time, us_per_step, r->lower_vertices, r->upper_vertices);
+                 r->predicted_theta_max / kDeg, std::atan(cfg.contact.atomic_friction) / kDeg,
+                 r->predicted_friction_angle / kDeg);
+    fmt::print(text,
+               "{} steps of {:.3g} to {:.3g} s ({:.4f} s simulated) in {:.2f} s wall, {:.2f} us/step; blocks {} + {} "
+               "vertices\n",
+               r->steps, r->min_time_step, r->max_time_step, r->simulated_time, r->wall_time, us_per_step,
+               r->lower_vertices, r->upper_vertices);
   }
   return 0;
 }
@@ -124,8 +138,9 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--upper", o->upper_file, "Upper surface file, as measured (default: the lower one)");
   add_field_options(app, tilt_settings(), o->settings);
   app.add_option("-o,--output", o->output, "Write the time series CSV here (- for standard output)");
-  app.add_option("--frames", o->frames,
-                 "Write frames (frictal-dem-frames 1, see docs/dem.md) here, every --frame-interval (0.01 s if not set)");
+  app.add_option(
+      "--frames", o->frames,
+      "Write frames (frictal-dem-frames 1, see docs/dem.md) here, every --frame-interval (0.01 s if not set)");
   app.add_flag("--json", o->json, "Print one JSON object");
   return [o]() { return run(*o); };
 }

@@ -21,7 +21,7 @@ int main(int argc, char** argv) {
   const bool k0 = kind == "k0";
   const double alpha = k0 ? std::atof(argv[2]) * M_PI / 180 : 0.0;
   const double mu = std::atof(argv[k0 ? 3 : 2]);
-  const double S = 100;                      // scale
+  const double S = 100;  // scale
   const double L = 0.2 * S, lam = 0.01 * S, h = 0.01 * S;
   const int teeth = static_cast<int>(std::lround(L / lam));
   const double th = 0.5 * lam * std::tan(alpha);  // tooth height
@@ -109,9 +109,10 @@ int main(int argc, char** argv) {
     }
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("{\"peer\":\"box2d-2.4.1\",\"case\":\"%s\",\"alpha_deg\":%g,\"mu\":%g,\"friction_angle_deg\":%.4f,"
-              "\"expected_deg\":%.4f,\"steps\":%ld,\"dt_s\":%g,\"wall_time_s\":%.3f,\"us_per_step\":%.3f}\n",
-              kind.c_str(), alpha * 180 / M_PI, mu, phi, (alpha + std::atan(mu)) * 180 / M_PI, steps, dt, wall,
-              1e6 * wall / steps);
+  std::printf(
+      "{\"peer\":\"box2d-2.4.1\",\"case\":\"%s\",\"alpha_deg\":%g,\"mu\":%g,\"friction_angle_deg\":%.4f,"
+      "\"expected_deg\":%.4f,\"steps\":%ld,\"dt_s\":%g,\"wall_time_s\":%.3f,\"us_per_step\":%.3f}\n",
+      kind.c_str(), alpha * 180 / M_PI, mu, phi, (alpha + std::atan(mu)) * 180 / M_PI, steps, dt, wall,
+      1e6 * wall / steps);
   return 0;
 }

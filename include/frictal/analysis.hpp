@@ -45,8 +45,8 @@ Result<Spectrum> power_spectrum(const Profile& p, std::size_t max_k = 0);
 /// k = 0..max_lag, R(tau) = mean over overlapping samples of z(x) z(x + tau). Uniform profiles
 /// are used as sampled; non-uniform ones are first resampled linearly with the mean spacing h.
 struct Autocorrelation {
-  std::vector<double> lag;  ///< (unit: m)
-  std::vector<double> acf;  ///< (unitless, acf[0] = 1)
+  std::vector<double> lag;        ///< (unit: m)
+  std::vector<double> acf;        ///< (unitless, acf[0] = 1)
   double correlation_length = 0;  ///< first lag where acf drops below 1/e; 0 if never (unit: m)
 };
 Result<Autocorrelation> autocorrelation(const Profile& p, std::size_t max_lag = 0);
@@ -60,14 +60,14 @@ Histogram height_distribution(const Profile& p, int bins = 64);
 ///   Sdq = sqrt(<(dz/dx)^2> + <(dz/dy)^2>) with forward differences between valid neighbours,
 ///   max_slope = max over valid neighbour pairs of |difference| / spacing (as an angle).
 struct MapStats {
-  std::size_t points = 0;  ///< nx * ny
-  std::size_t valid = 0;   ///< non-NaN points
-  double width = 0;        ///< (nx - 1) dx (unit: m)
-  double height = 0;       ///< (ny - 1) dy (unit: m)
+  std::size_t points = 0;                                   ///< nx * ny
+  std::size_t valid = 0;                                    ///< non-NaN points
+  double width = 0;                                         ///< (nx - 1) dx (unit: m)
+  double height = 0;                                        ///< (ny - 1) dy (unit: m)
   double mean = 0, Sa = 0, Sq = 0, Sp = 0, Sv = 0, Sz = 0;  ///< (unit: m)
-  double Ssk = 0, Sku = 0;  ///< (unitless)
-  double Sdq = 0;           ///< (unitless)
-  double max_slope = 0;     ///< (unit: rad)
+  double Ssk = 0, Sku = 0;                                  ///< (unitless)
+  double Sdq = 0;                                           ///< (unitless)
+  double max_slope = 0;                                     ///< (unit: rad)
 };
 MapStats map_stats(const Map& m);
 

@@ -31,20 +31,21 @@ struct DirectionalOptions {
 /// Prediction for sliding along one direction, from all parallel lines: each line is compared
 /// with itself turned over (self_signature); results are length-weighted over lines.
 struct DirectionalFriction {
-  double angle = 0;              ///< sliding direction, from +x towards +y (unit: rad)
-  std::size_t lines = 0;         ///< lines used (unitless)
-  double total_length = 0;       ///< summed line length (unit: m)
-  double theta_forward = 0;      ///< length-weighted mean of theta_max_forward (unit: rad)
-  double theta_forward_max = 0;  ///< max over lines (unit: rad)
-  double theta_backward = 0;     ///< length-weighted mean of theta_max_backward (unit: rad)
-  double theta_backward_max = 0; ///< (unit: rad)
-  double sigma = 0;              ///< length-weighted mean contact-slope std (Eq. 18 sigma) (unit: rad)
-  FrictionPrediction prediction; ///< Eq. 6/18 from theta_forward and sigma
+  double angle = 0;               ///< sliding direction, from +x towards +y (unit: rad)
+  std::size_t lines = 0;          ///< lines used (unitless)
+  double total_length = 0;        ///< summed line length (unit: m)
+  double theta_forward = 0;       ///< length-weighted mean of theta_max_forward (unit: rad)
+  double theta_forward_max = 0;   ///< max over lines (unit: rad)
+  double theta_backward = 0;      ///< length-weighted mean of theta_max_backward (unit: rad)
+  double theta_backward_max = 0;  ///< (unit: rad)
+  double sigma = 0;               ///< length-weighted mean contact-slope std (Eq. 18 sigma) (unit: rad)
+  FrictionPrediction prediction;  ///< Eq. 6/18 from theta_forward and sigma
 };
 Result<DirectionalFriction> friction_along(const Map& m, double angle, const DirectionalOptions& o = {});
 
 /// Polar table: `directions` sliding directions equally spaced over [0, 2 pi).
-Result<std::vector<DirectionalFriction>> anisotropy(const Map& m, int directions = 36, const DirectionalOptions& o = {});
+Result<std::vector<DirectionalFriction>> anisotropy(const Map& m, int directions = 36,
+                                                    const DirectionalOptions& o = {});
 
 /// The areal signature of two rigid blocks sliding along direction d = (cos angle, sin angle).
 /// The lower block's face is `lower` as measured. By default the upper block is `upper` as
@@ -60,26 +61,26 @@ Result<std::vector<DirectionalFriction>> anisotropy(const Map& m, int directions
 /// faces' slopes (as the paper's spline method does), by central differences over +-step/2.
 enum class ArealContactSlope { Lower, Mean };
 struct ArealSignatureOptions {
-  double step = 0;        ///< offset step (0: min(dx, dy) of lower) (unit: m)
-  double offset_max = 0;  ///< offsets 0, step, ... up to this (0: half the lower map's extent along d) (unit: m)
+  double step = 0;              ///< offset step (0: min(dx, dy) of lower) (unit: m)
+  double offset_max = 0;        ///< offsets 0, step, ... up to this (0: half the lower map's extent along d) (unit: m)
   bool turn_over_upper = true;  ///< false: `upper` is already in place (see above)
   ArealContactSlope contact_slope = ArealContactSlope::Lower;
-  std::size_t block = 16; ///< block edge for the max bounds (nodes, >= 2)
-  bool prune = true;      ///< false: evaluate every node at every offset (the direct method)
-  unsigned threads = 1;   ///< worker threads over offsets (0 = hardware); results do not depend on it
+  std::size_t block = 16;  ///< block edge for the max bounds (nodes, >= 2)
+  bool prune = true;       ///< false: evaluate every node at every offset (the direct method)
+  unsigned threads = 1;    ///< worker threads over offsets (0 = hardware); results do not depend on it
 };
 struct ArealSignature {
-  std::vector<double> offset;     ///< s (unit: m)
-  std::vector<double> lift;       ///< h(s), up to a constant (unit: m)
-  std::vector<double> theta;      ///< contact slope at s (unit: rad)
-  std::vector<double> contact_x;  ///< contact node of the lower map (unit: m)
-  std::vector<double> contact_y;  ///< (unit: m)
-  double theta_max_forward = 0;   ///< max theta (unit: rad)
-  double theta_max_backward = 0;  ///< max of -theta (unit: rad)
-  double theta_max_lift = 0;      ///< max of atan((h(s+step) - h(s)) / step) (unit: rad)
-  double contact_slope_mean = 0;  ///< (unit: rad)
-  double contact_slope_std = 0;   ///< (unit: rad)
-  std::size_t evaluated_nodes = 0;///< nodes evaluated exactly, summed over offsets (work measure)
+  std::vector<double> offset;       ///< s (unit: m)
+  std::vector<double> lift;         ///< h(s), up to a constant (unit: m)
+  std::vector<double> theta;        ///< contact slope at s (unit: rad)
+  std::vector<double> contact_x;    ///< contact node of the lower map (unit: m)
+  std::vector<double> contact_y;    ///< (unit: m)
+  double theta_max_forward = 0;     ///< max theta (unit: rad)
+  double theta_max_backward = 0;    ///< max of -theta (unit: rad)
+  double theta_max_lift = 0;        ///< max of atan((h(s+step) - h(s)) / step) (unit: rad)
+  double contact_slope_mean = 0;    ///< (unit: rad)
+  double contact_slope_std = 0;     ///< (unit: rad)
+  std::size_t evaluated_nodes = 0;  ///< nodes evaluated exactly, summed over offsets (work measure)
 };
 Result<ArealSignature> areal_signature(const Map& lower, const Map& upper, double angle,
                                        const ArealSignatureOptions& o = {});

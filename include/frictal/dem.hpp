@@ -68,8 +68,8 @@ struct BodyDef {
   /// either orientation, without a repeated closing point; at least 3 vertices.
   std::vector<double> x;
   std::vector<double> y;
-  double radius = 5e-5;         ///< spheroradius r > 0 (unit: m)
-  double density = 50;          ///< areal density of the core polygon (unit: kg/m^2)
+  double radius = 5e-5;  ///< spheroradius r > 0 (unit: m)
+  double density = 50;   ///< areal density of the core polygon (unit: kg/m^2)
   BodyType type = BodyType::Dynamic;
   Vec2 velocity;                ///< initial centroid velocity, dynamic bodies (unit: m/s)
   double angular_velocity = 0;  ///< initial angular velocity, dynamic bodies (unit: rad/s)
@@ -88,7 +88,7 @@ struct ContactParams {
 ContactParams default_contact_params();
 
 struct WorldDef {
-  Vec2 gravity{0, -9.81};     ///< (unit: m/s^2)
+  Vec2 gravity{0, -9.81};  ///< (unit: m/s^2)
   /// The fixed time step dt > 0, or with `adaptive_time_step` the largest step (unit: s).
   double time_step = 1e-5;
   /// Adaptive time step: after each step the next one is the smallest of `time_step`,
@@ -108,7 +108,7 @@ struct WorldDef {
   /// the limit instead (State::step_limit). First order in dt like the
   /// explicit dashpots; the tangential dashpots stay explicit (gamma_t << gamma_n). Default off.
   bool implicit_damping = false;
-  double skin = 5e-5;         ///< Verlet skin added to r1 + r2 for the neighbour list (unit: m)
+  double skin = 5e-5;  ///< Verlet skin added to r1 + r2 for the neighbour list (unit: m)
   /// Skin of the hot list inside the neighbour list: only pairs within r1 + r2 + hot_skin at the
   /// last full pass are evaluated until the bodies have moved by hot_skin / 2 (speed only; the
   /// results do not depend on it) (unit: m).
@@ -127,7 +127,7 @@ struct WorldDef {
   /// 31 370 steps, wrong answer). Counted in State::steps_beyond_limit; with
   /// `adaptive_time_step` only counted (the next step is below the limit again) (unitless).
   int max_steps_beyond_limit = 1000;
-  bool timings = true;        ///< time each stage into State::timings (costs ~4 clock reads/step)
+  bool timings = true;  ///< time each stage into State::timings (costs ~4 clock reads/step)
 };
 WorldDef default_world_def();
 
@@ -149,8 +149,8 @@ struct Model {
   std::vector<double> extent;               ///< max vertex distance from the centroid (unit: m)
   std::vector<BodyType> type;
   std::vector<KinematicMotion> motion;
-  std::vector<Vec2> initial_position;       ///< centroid at t = 0 (unit: m)
-  std::vector<Vec2> initial_velocity;       ///< (unit: m/s)
+  std::vector<Vec2> initial_position;            ///< centroid at t = 0 (unit: m)
+  std::vector<Vec2> initial_velocity;            ///< (unit: m/s)
   std::vector<double> initial_angular_velocity;  ///< (unit: rad/s)
   std::size_t body_count() const { return mass.size(); }
   std::size_t vertex_count(std::size_t b) const { return vertex_begin[b + 1] - vertex_begin[b]; }
@@ -160,24 +160,24 @@ struct Model {
 /// (edge0, edge1) of body `ebody`. Global vertex ids. `elongation` is the tangential spring xi,
 /// the one piece of contact history (carried across list rebuilds by `key`).
 struct NeighborPair {
-  std::uint64_t key = 0;      ///< (vertex << 32) | edge0, sorted ascending
+  std::uint64_t key = 0;  ///< (vertex << 32) | edge0, sorted ascending
   std::uint32_t vertex = 0;
   std::uint32_t edge0 = 0;
   std::uint32_t edge1 = 0;
   std::uint32_t vbody = 0;
   std::uint32_t ebody = 0;
-  double reduced_mass = 0;    ///< m1 m2 / (m1 + m2), or the dynamic body's mass (unit: kg)
-  double elongation = 0;      ///< xi (unit: m)
-  double overlap = 0;         ///< last overlap, <= 0 when apart (unit: m)
+  double reduced_mass = 0;  ///< m1 m2 / (m1 + m2), or the dynamic body's mass (unit: kg)
+  double elongation = 0;    ///< xi (unit: m)
+  double overlap = 0;       ///< last overlap, <= 0 when apart (unit: m)
 };
 
 /// Cumulative wall time per stage of step() (unit: s) and counters.
 struct StepTimings {
-  double neighbor_list = 0;   ///< rebuild test + rebuilds
-  double contacts = 0;        ///< pair forces
-  double integration = 0;     ///< kicks, drift, kinematic motion, guards
+  double neighbor_list = 0;  ///< rebuild test + rebuilds
+  double contacts = 0;       ///< pair forces
+  double integration = 0;    ///< kicks, drift, kinematic motion, guards
   std::uint64_t list_builds = 0;
-  std::uint64_t pairs_visited = 0;  ///< sum over steps of the list length
+  std::uint64_t pairs_visited = 0;    ///< sum over steps of the list length
   std::uint64_t pairs_evaluated = 0;  ///< sum over steps of the pairs actually evaluated (hot list or full list)
   std::uint64_t hot_refreshes = 0;    ///< full passes over the list that rebuilt the hot list
 };
@@ -207,20 +207,20 @@ class StateWorkspace {
 
 /// Mutable part of a simulation.
 struct State {
-  double time = 0;                  ///< (unit: s)
+  double time = 0;  ///< (unit: s)
   std::uint64_t steps = 0;
   /// Step that the next call of step() takes: WorldDef::time_step when fixed, else chosen after
   /// each step (WorldDef::adaptive_time_step) (unit: s).
   double time_step = 0;
-  std::vector<Vec2> position;       ///< centroid (unit: m)
-  std::vector<double> angle;        ///< rotation from the initial orientation (unit: rad)
-  std::vector<Vec2> velocity;       ///< centroid velocity (unit: m/s)
+  std::vector<Vec2> position;            ///< centroid (unit: m)
+  std::vector<double> angle;             ///< rotation from the initial orientation (unit: rad)
+  std::vector<Vec2> velocity;            ///< centroid velocity (unit: m/s)
   std::vector<double> angular_velocity;  ///< (unit: rad/s)
-  std::vector<Vec2> force;          ///< contact force on each body at `time`, gravity excluded (unit: N)
-  std::vector<double> torque;       ///< contact torque about the centroid (unit: N m)
-  std::vector<NeighborPair> pairs;  ///< neighbour list with the per-pair springs
-  int contact_count = 0;            ///< pairs with positive overlap at `time`
-  std::vector<int> body_contacts;   ///< pairs with positive overlap per body at `time`
+  std::vector<Vec2> force;               ///< contact force on each body at `time`, gravity excluded (unit: N)
+  std::vector<double> torque;            ///< contact torque about the centroid (unit: N m)
+  std::vector<NeighborPair> pairs;       ///< neighbour list with the per-pair springs
+  int contact_count = 0;                 ///< pairs with positive overlap at `time`
+  std::vector<int> body_contacts;        ///< pairs with positive overlap per body at `time`
   /// Explicit stability limit of each dynamic body at `time` from its contact modes: with
   /// G = sum over its contacts of J J^T, J = (n_x, n_y, r x n), and M = diag(m, m, I),
   /// min(2 / sqrt(lambda_max(k_n M^-1/2 G M^-1/2)), 2 / lambda_max(gamma_n M^-1/2 G_m M^-1/2))
@@ -231,10 +231,10 @@ struct State {
   std::vector<double> step_limit;
   std::uint64_t steps_beyond_limit = 0;  ///< steps with dt above some body's stability limit (warnings)
   int consecutive_beyond_limit = 0;      ///< current run of such steps
-  double max_overlap = 0;           ///< largest overlap at `time` (unit: m)
-  double elastic_energy = 0;        ///< sum of k_n overlap^2/2 + k_t xi^2/2 at `time` (unit: J)
+  double max_overlap = 0;                ///< largest overlap at `time` (unit: m)
+  double elastic_energy = 0;             ///< sum of k_n overlap^2/2 + k_t xi^2/2 at `time` (unit: J)
   StepTimings timings;
-  StateWorkspace workspace;         ///< private (src/dem/workspace.hpp)
+  StateWorkspace workspace;  ///< private (src/dem/workspace.hpp)
 };
 
 /// Validates the definitions and computes mass properties. Errors name the body and field.
@@ -253,8 +253,8 @@ Vec2 world_vertex(const Model& model, const State& state, std::uint32_t v);
 double kinetic_energy(const Model& model, const State& state, std::size_t b);
 /// Worst-case explicit stability limit of body b's time step with `contacts` contacts all acting
 /// in the same direction (unit: s): min(2 / (contacts gamma_n), 2 / omega) with
-/// omega^2 = contacts k_n max(1/m, extent^2/I). The guard uses the sharper State::step_limit. The dashpot term is what binds for many
-/// contacts: 150 contacts with gamma_n = 929.5 1/s need dt < 1.4e-5 s. Infinite for 0 contacts.
+/// omega^2 = contacts k_n max(1/m, extent^2/I). The guard uses the sharper State::step_limit. The dashpot term is what
+/// binds for many contacts: 150 contacts with gamma_n = 929.5 1/s need dt < 1.4e-5 s. Infinite for 0 contacts.
 double stability_limit(const Model& model, std::size_t b, int contacts);
 /// Half the smallest stability_limit over the dynamic bodies (unit: s).
 double suggested_time_step(const Model& model, int contacts);

@@ -10,12 +10,12 @@ namespace frictal {
 
 /// A straight-line fit in log-log coordinates and the dimension derived from it.
 struct FractalFit {
-  double dimension = 0;   ///< (unitless)
-  double slope = 0;       ///< fitted log-log slope (unitless)
-  double intercept = 0;   ///< (natural log units)
-  double r_squared = 0;   ///< coefficient of determination of the fit (unitless)
-  double scale_min = 0;   ///< smallest scale in the fit: ruler, box or wavelength (unit: m)
-  double scale_max = 0;   ///< largest scale in the fit (unit: m)
+  double dimension = 0;        ///< (unitless)
+  double slope = 0;            ///< fitted log-log slope (unitless)
+  double intercept = 0;        ///< (natural log units)
+  double r_squared = 0;        ///< coefficient of determination of the fit (unitless)
+  double scale_min = 0;        ///< smallest scale in the fit: ruler, box or wavelength (unit: m)
+  double scale_max = 0;        ///< largest scale in the fit (unit: m)
   std::vector<double> scales;  ///< every scale used (unit: m)
   std::vector<double> values;  ///< L(eps) (m), N(eps) (unitless) or binned C(q) (m^3)
 };

@@ -16,10 +16,10 @@ namespace frictal {
 /// edge of K_n is (n+1) alpha. For alpha above 45 (K1), 30 (K2), 22.5 (K3) degrees the curve
 /// folds over, hence the result is a Curve; take upper_envelope() to get a profile.
 struct KochParams {
-  int iterations = 0;            ///< n >= 0 (unitless); n <= 10 to bound memory
+  int iterations = 0;                         ///< n >= 0 (unitless); n <= 10 to bound memory
   double alpha = 5 * std::numbers::pi / 180;  ///< base angle of the triangles, in (0, pi/3], 5 deg (unit: rad)
-  double wavelength = 0.01;      ///< base of the K_0 triangles, lambda (unit: m)
-  double length = 0.2;           ///< block length L_b, a whole number of wavelengths (unit: m)
+  double wavelength = 0.01;                   ///< base of the K_0 triangles, lambda (unit: m)
+  double length = 0.2;                        ///< block length L_b, a whole number of wavelengths (unit: m)
 };
 KochParams default_koch_params();
 Result<Curve> koch_curve(const KochParams& p);
@@ -37,16 +37,16 @@ enum class WmExponent { Printed, Common };
 /// (Eq. 16), n_max = 0 using the n_max = 1 spacing. G is chosen so that the rms height about
 /// the mean of the piecewise-linear profile equals `rms_height`.
 struct WmParams {
-  double dimension = 1.5;          ///< D in [1, 2] (unitless)
-  double gamma = 1.5;              ///< wavelength density gamma > 1 (unitless)
-  int n_max = 10;                  ///< highest wavelength index, 0..60 (unitless)
-  double longest_wavelength = 1e-6;///< L (unit: m)
-  double length = 20e-6;           ///< profile length L_b (unit: m)
-  double rms_height = 1e-9;        ///< target rms height about the mean; <= 0 keeps G = 1 m (unit: m)
-  bool stochastic = true;          ///< random phases (Eq. 14) or zero phases (Eq. 17)
-  std::uint64_t seed = 1;          ///< seed of the phases (unitless)
+  double dimension = 1.5;                     ///< D in [1, 2] (unitless)
+  double gamma = 1.5;                         ///< wavelength density gamma > 1 (unitless)
+  int n_max = 10;                             ///< highest wavelength index, 0..60 (unitless)
+  double longest_wavelength = 1e-6;           ///< L (unit: m)
+  double length = 20e-6;                      ///< profile length L_b (unit: m)
+  double rms_height = 1e-9;                   ///< target rms height about the mean; <= 0 keeps G = 1 m (unit: m)
+  bool stochastic = true;                     ///< random phases (Eq. 14) or zero phases (Eq. 17)
+  std::uint64_t seed = 1;                     ///< seed of the phases (unitless)
   WmExponent exponent = WmExponent::Printed;  ///< form of the exponent of Eq. 14
-  double spacing = 0.0;            ///< override dx if > 0 (unit: m)
+  double spacing = 0.0;                       ///< override dx if > 0 (unit: m)
 };
 WmParams default_wm_params();
 Result<Profile> wm_profile(const WmParams& p);
@@ -56,7 +56,8 @@ Result<std::size_t> wm_point_count(const WmParams& p);
 /// Asymmetric sawtooth: each period rises at angle `rise_angle` over `rise_fraction` of the
 /// wavelength, then falls back over the rest. Periodic.
 struct SawtoothParams {
-  double rise_angle = 20 * std::numbers::pi / 180;  ///< slope angle of the rising flank, in (0, pi/2), 20 deg (unit: rad)
+  double rise_angle =
+      20 * std::numbers::pi / 180;  ///< slope angle of the rising flank, in (0, pi/2), 20 deg (unit: rad)
   double rise_fraction = 0.5;       ///< fraction of the wavelength that rises, in (0, 1) (unitless)
   double wavelength = 0.01;         ///< (unit: m)
   double length = 0.2;              ///< a whole number of wavelengths (unit: m)
@@ -65,10 +66,10 @@ Result<Profile> sawtooth_profile(const SawtoothParams& p);
 
 /// Sinusoid z = A sin(2 pi x / lambda), sampled with `points_per_wavelength` points. Periodic.
 struct SineParams {
-  double amplitude = 1e-3;        ///< A (unit: m)
-  double wavelength = 0.01;       ///< lambda (unit: m)
-  double length = 0.2;            ///< a whole number of wavelengths (unit: m)
-  int points_per_wavelength = 64; ///< >= 4 (unitless)
+  double amplitude = 1e-3;         ///< A (unit: m)
+  double wavelength = 0.01;        ///< lambda (unit: m)
+  double length = 0.2;             ///< a whole number of wavelengths (unit: m)
+  int points_per_wavelength = 64;  ///< >= 4 (unitless)
 };
 Result<Profile> sine_profile(const SineParams& p);
 
@@ -80,7 +81,7 @@ struct SelfAffineParams {
   double length = 1e-3;       ///< (unit: m)
   double hurst = 0.8;         ///< Hurst exponent H in (0, 1] (unitless)
   double rms_height = 1e-6;   ///< rms height about the mean; <= 0: unscaled (unit: m)
-  std::uint64_t seed = 1;      ///< seed of the random heights (unitless)
+  std::uint64_t seed = 1;     ///< seed of the random heights (unitless)
 };
 Result<Profile> self_affine_profile(const SelfAffineParams& p);
 

@@ -14,15 +14,15 @@
 namespace frictal {
 
 enum class ProfileFormat {
-  Auto,      ///< detect from content
-  Csv,       ///< delimited text: CSV/TSV/whitespace, optional header and unit line
-  Dektak,    ///< Bruker Dektak CSV export (metadata block, "Scan Data" section)
-  Gwyddion,  ///< Gwyddion "export as text" matrix (# Width/Height/Value units header) or plain matrix
-  X3p,       ///< ISO 25178-71 X3P (ZIP with main.xml), profiles (PRF) and areal maps (SUR)
-  Matrix,    ///< text matrix of heights, with or without a small "w= h=" / "x-pixels =" header
-  Xyz,       ///< text x, y, z point list lying on a regular grid
-  Sdf,       ///< ISO 25178-71 SDF / BCR surface data file, ASCII (aISO-1.0, aBCR-1.0)
-  Npy,       ///< NumPy .npy array (1-D: profile at ReadOptions::spacing, 2-D: map)
+  Auto,         ///< detect from content
+  Csv,          ///< delimited text: CSV/TSV/whitespace, optional header and unit line
+  Dektak,       ///< Bruker Dektak CSV export (metadata block, "Scan Data" section)
+  Gwyddion,     ///< Gwyddion "export as text" matrix (# Width/Height/Value units header) or plain matrix
+  X3p,          ///< ISO 25178-71 X3P (ZIP with main.xml), profiles (PRF) and areal maps (SUR)
+  Matrix,       ///< text matrix of heights, with or without a small "w= h=" / "x-pixels =" header
+  Xyz,          ///< text x, y, z point list lying on a regular grid
+  Sdf,          ///< ISO 25178-71 SDF / BCR surface data file, ASCII (aISO-1.0, aBCR-1.0)
+  Npy,          ///< NumPy .npy array (1-D: profile at ReadOptions::spacing, 2-D: map)
   GwyddionLib,  ///< any file a Gwyddion file module loads, through Gwyddion's libraries
 };
 
@@ -57,20 +57,20 @@ struct ReadOptions {
 
 /// One data channel of a file: an image (map) or a graph curve (profile).
 struct ChannelInfo {
-  std::string name;          ///< title in the file ("Height", "Z", ...), or the format's name
-  bool is_map = true;        ///< image channel (true) or graph curve (false)
-  std::size_t nx = 0, ny = 0;  ///< points (ny = 1 for curves)
+  std::string name;               ///< title in the file ("Height", "Z", ...), or the format's name
+  bool is_map = true;             ///< image channel (true) or graph curve (false)
+  std::size_t nx = 0, ny = 0;     ///< points (ny = 1 for curves)
   double size_x = 0, size_y = 0;  ///< physical size nx dx, ny dy in the file's lateral unit
   std::string xy_unit, z_unit;    ///< units as the file gives them ("m", "V", "deg", ...)
-  bool readable = true;      ///< lateral and height units are lengths (frictal reads it)
+  bool readable = true;           ///< lateral and height units are lengths (frictal reads it)
 };
 
 /// Everything a surface file gave: a line profile or an areal map, plus warnings (e.g. an X3P
 /// checksum mismatch, a count line that does not match) that did not stop the reading.
 struct SurfaceData {
-  bool is_map = false;  ///< true: `map` holds the data; false: `curve` does
-  Curve curve;          ///< line profile in metres (x may decrease only in curve formats)
-  Map map;              ///< areal map in metres
+  bool is_map = false;                         ///< true: `map` holds the data; false: `curve` does
+  Curve curve;                                 ///< line profile in metres (x may decrease only in curve formats)
+  Map map;                                     ///< areal map in metres
   ProfileFormat format = ProfileFormat::Auto;  ///< the format actually read
   std::vector<std::string> warnings;
   /// Which reader read it: "native" or "gwyddion:<module>" (e.g. "gwyddion:surffile"), with
@@ -80,7 +80,6 @@ struct SurfaceData {
   std::vector<ChannelInfo> channels;
   std::size_t channel = 0;
 };
-
 
 /// A readable format, for `frictal formats`.
 struct FormatInfo {
@@ -144,7 +143,7 @@ struct X3pWriteOptions {
   /// Record2 Date and CalibrationDate (ISO 8601); empty = the current UTC time. Set it for
   /// byte-identical output.
   std::string date;
-  std::string creator = "frictal";  ///< Record2 Creator
+  std::string creator = "frictal";             ///< Record2 Creator
   std::string comment = "written by frictal";  ///< Record2 Comment
 };
 

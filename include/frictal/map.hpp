@@ -14,12 +14,12 @@
 namespace frictal {
 
 struct Map {
-  std::size_t nx = 0;  ///< points along x (unitless)
-  std::size_t ny = 0;  ///< points along y (unitless)
-  double dx = 1;       ///< grid spacing along x, > 0 (unit: m)
-  double dy = 1;       ///< grid spacing along y, > 0 (unit: m)
-  double x0 = 0;       ///< x of column 0 (unit: m)
-  double y0 = 0;       ///< y of row 0 (unit: m)
+  std::size_t nx = 0;           ///< points along x (unitless)
+  std::size_t ny = 0;           ///< points along y (unitless)
+  double dx = 1;                ///< grid spacing along x, > 0 (unit: m)
+  double dy = 1;                ///< grid spacing along y, > 0 (unit: m)
+  double x0 = 0;                ///< x of column 0 (unit: m)
+  double y0 = 0;                ///< y of row 0 (unit: m)
   std::vector<double> heights;  ///< nx * ny values, x fastest; NaN = invalid point (unit: m)
 
   std::size_t size() const { return heights.size(); }

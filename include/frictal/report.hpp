@@ -33,7 +33,7 @@ struct Series {
   std::string label;         ///< legend entry; empty: not in the legend
   std::string color;         ///< CSS colour; empty: the next colour of the palette
   SeriesStyle style = SeriesStyle::Line;
-  double line_width = 1.5;   ///< (unit: px)
+  double line_width = 1.5;  ///< (unit: px)
   bool dashed = false;
 };
 
@@ -52,7 +52,7 @@ struct Plot {
   std::vector<Series> series;
   std::vector<RefLine> lines;
   double width = 760, height = 380;  ///< (unit: px)
-  bool x_log = false;  ///< logarithmic x axis (non-positive x are not drawn)
+  bool x_log = false;                ///< logarithmic x axis (non-positive x are not drawn)
   /// Axis limits; unset: from the data (with a small margin), extended to include ref lines.
   std::optional<double> x_min, x_max, y_min, y_max;
 };
@@ -63,9 +63,9 @@ Result<std::string> plot_svg(const Plot& plot);
 
 struct PolarPlot {
   std::string title;
-  std::string radius_label;  ///< e.g. "friction angle φ (deg)"
-  std::vector<Series> series;  ///< x = direction (unit: rad, from +x towards +y), y = radius >= 0
-  double size = 420;         ///< width = height (unit: px)
+  std::string radius_label;     ///< e.g. "friction angle φ (deg)"
+  std::vector<Series> series;   ///< x = direction (unit: rad, from +x towards +y), y = radius >= 0
+  double size = 420;            ///< width = height (unit: px)
   std::optional<double> r_max;  ///< outer ring; unset: from the data
 };
 /// An SVG polar plot; Line series are closed when they span the full circle.
@@ -125,14 +125,14 @@ struct ReportInput {
   /// face the lower one. Unset: the lower surface itself turned over. Profiles only.
   std::optional<Profile> upper;
   std::string upper_name;
-  std::string detrend;       ///< detrending already applied, as the user wrote it ("none", "line", ...)
-  double atomic_friction = 0;///< mu_a of Eq. 6 (unitless)
-  int directions = 36;       ///< sliding directions of the polar plot (maps) (unitless)
-  std::size_t max_lines = 32;///< parallel lines per direction (maps) (unitless)
-  int resolution_steps = 10; ///< cutoff wavelengths of the resolution study (unitless, >= 2; 0: none)
-  int bins = 90;             ///< bins of the slope PDFs (unitless)
-  unsigned threads = 0;      ///< worker threads (0 = hardware); the page does not depend on it
-  std::string generated_by;  ///< e.g. the version line; shown in the footer
+  std::string detrend;             ///< detrending already applied, as the user wrote it ("none", "line", ...)
+  double atomic_friction = 0;      ///< mu_a of Eq. 6 (unitless)
+  int directions = 36;             ///< sliding directions of the polar plot (maps) (unitless)
+  std::size_t max_lines = 32;      ///< parallel lines per direction (maps) (unitless)
+  int resolution_steps = 10;       ///< cutoff wavelengths of the resolution study (unitless, >= 2; 0: none)
+  int bins = 90;                   ///< bins of the slope PDFs (unitless)
+  unsigned threads = 0;            ///< worker threads (0 = hardware); the page does not depend on it
+  std::string generated_by;        ///< e.g. the version line; shown in the footer
   std::vector<std::string> notes;  ///< extra lines for "what was assumed" (e.g. reader warnings)
 };
 

@@ -11,10 +11,10 @@
 namespace frictal {
 
 struct MapScanStats {
-  double physical_size_x = 0;  ///< nx dx (unit: m)
-  double physical_size_y = 0;  ///< ny dy (unit: m)
-  double bandwidth_short = 0;  ///< (dx + dy) / 2, the sampling interval (unit: m)
-  double bandwidth_long = 0;   ///< (nx dx + ny dy) / 2, the physical size (unit: m)
+  double physical_size_x = 0;     ///< nx dx (unit: m)
+  double physical_size_y = 0;     ///< ny dy (unit: m)
+  double bandwidth_short = 0;     ///< (dx + dy) / 2, the sampling interval (unit: m)
+  double bandwidth_long = 0;      ///< (nx dx + ny dy) / 2, the physical size (unit: m)
   double nyquist_wavelength = 0;  ///< 2 max(dx, dy): the shortest wavelength both axes resolve (unit: m)
   /// Per-profile statistics, pooled over every row (x) or column (y): Rq about each profile's
   /// own mean, Rdq from forward differences between valid neighbours.
@@ -28,11 +28,11 @@ struct MapScanStats {
 MapScanStats map_scan_stats(const Map& m);
 
 struct ProfileScanStats {
-  double sampling_interval = 0;  ///< mean spacing (x_max - x_min) / (n - 1) (unit: m)
-  double physical_length = 0;    ///< n x sampling interval (unit: m)
-  double bandwidth_short = 0;    ///< the sampling interval (unit: m)
-  double bandwidth_long = 0;     ///< the physical length (unit: m)
-  double nyquist_wavelength = 0; ///< 2 x sampling interval (unit: m)
+  double sampling_interval = 0;   ///< mean spacing (x_max - x_min) / (n - 1) (unit: m)
+  double physical_length = 0;     ///< n x sampling interval (unit: m)
+  double bandwidth_short = 0;     ///< the sampling interval (unit: m)
+  double bandwidth_long = 0;      ///< the physical length (unit: m)
+  double nyquist_wavelength = 0;  ///< 2 x sampling interval (unit: m)
 };
 ProfileScanStats profile_scan_stats(const Profile& p);
 

@@ -31,18 +31,18 @@ enum class FieldType {
 
 /// One setting.
 struct Field {
-  std::string name;   ///< the one name: TOML/Python/JSON key; CLI option "--" + kebab-case
+  std::string name;  ///< the one name: TOML/Python/JSON key; CLI option "--" + kebab-case
   FieldType type = FieldType::Real;
-  std::string unit;   ///< SI unit of the library value: "m", "rad", "s", "N/m", "1/s", ... ("" unitless)
+  std::string unit;  ///< SI unit of the library value: "m", "rad", "s", "N/m", "1/s", ... ("" unitless)
   /// Default in SI (Boolean: 0/1; Choice: index into `choices`). NaN: "automatic", see `help`.
   double default_value = 0;
   double min = -std::numeric_limits<double>::infinity();  ///< smallest valid value (SI)
   double max = std::numeric_limits<double>::infinity();   ///< largest valid value (SI)
-  bool min_open = false;  ///< min itself is invalid
-  bool max_open = false;  ///< max itself is invalid
-  std::vector<std::string> choices;  ///< words of a Choice
-  std::string help;       ///< one line, without the unit (derived from `unit`)
-  char short_name = 0;    ///< optional one-letter CLI form (-n), the same option
+  bool min_open = false;                                  ///< min itself is invalid
+  bool max_open = false;                                  ///< max itself is invalid
+  std::vector<std::string> choices;                       ///< words of a Choice
+  std::string help;                                       ///< one line, without the unit (derived from `unit`)
+  char short_name = 0;                                    ///< optional one-letter CLI form (-n), the same option
   /// The default at the text interfaces (CLI, TOML) when it comes from the surface rather than
   /// from `default_value` (e.g. "the surface's period"); "" when `default_value` applies.
   std::string text_default;

@@ -78,12 +78,12 @@ struct SignatureOptions {
 };
 
 struct SignatureResult {
-  std::vector<double> offset;       ///< evaluated offsets s (unit: m)
-  std::vector<double> lift;         ///< h(s), the upper block reference height (unit: m)
-  std::vector<double> theta;        ///< Eq. 3: max contact slope at s (unit: rad)
-  std::vector<double> theta_min;    ///< min contact slope at s (unit: rad)
-  std::vector<double> theta_left;   ///< slope of h just before s, atan(h'(s-)) (unit: rad)
-  std::vector<double> theta_right;  ///< slope of h just after s, atan(h'(s+)) (unit: rad)
+  std::vector<double> offset;                ///< evaluated offsets s (unit: m)
+  std::vector<double> lift;                  ///< h(s), the upper block reference height (unit: m)
+  std::vector<double> theta;                 ///< Eq. 3: max contact slope at s (unit: rad)
+  std::vector<double> theta_min;             ///< min contact slope at s (unit: rad)
+  std::vector<double> theta_left;            ///< slope of h just before s, atan(h'(s-)) (unit: rad)
+  std::vector<double> theta_right;           ///< slope of h just after s, atan(h'(s+)) (unit: rad)
   std::vector<std::uint32_t> contact_begin;  ///< offsets' contacts: [begin[i], begin[i+1])
   std::vector<Contact> contacts;
 
@@ -95,17 +95,16 @@ struct SignatureResult {
   /// represents when offsets are not equally spaced).
   std::vector<double> slope_samples;  ///< (unit: rad)
   std::vector<double> slope_weights;  ///< (unit: m)
-  double contact_slope_mean = 0;  ///< (unit: rad)
-  double contact_slope_std = 0;   ///< sigma of Eq. 18 (unit: rad)
-  Histogram contact_slope_pdf;    ///< (unit: 1/rad over rad)
-  bool exact = true;              ///< true if every event offset was evaluated
-  std::size_t events = 0;         ///< number of distinct event offsets in the range (r > 0: breakpoints of h)
-  double spheroradius = 0;        ///< the spheroradius r used (unit: m)
+  double contact_slope_mean = 0;      ///< (unit: rad)
+  double contact_slope_std = 0;       ///< sigma of Eq. 18 (unit: rad)
+  Histogram contact_slope_pdf;        ///< (unit: 1/rad over rad)
+  bool exact = true;                  ///< true if every event offset was evaluated
+  std::size_t events = 0;             ///< number of distinct event offsets in the range (r > 0: breakpoints of h)
+  double spheroradius = 0;            ///< the spheroradius r used (unit: m)
 };
 
 /// Computes the signature of `lower` against `upper` (already rotated, see above).
-Result<SignatureResult> signature(const Profile& lower, const Profile& upper,
-                                  const SignatureOptions& options = {});
+Result<SignatureResult> signature(const Profile& lower, const Profile& upper, const SignatureOptions& options = {});
 
 /// Signature of a surface against itself turned over: upper = rotate180(surface).
 Result<SignatureResult> self_signature(const Profile& surface, const SignatureOptions& options = {});
@@ -116,12 +115,12 @@ double lift_direct(const Profile& lower, const Profile& upper, double offset);
 
 /// Friction prediction (Eq. 6, 18).
 struct FrictionPrediction {
-  double atomic_friction = 0;     ///< mu_a (unitless)
-  double atomic_angle = 0;        ///< theta_a = atan(mu_a) (unit: rad)
-  double theta_max = 0;           ///< (unit: rad)
-  double friction_angle = 0;      ///< phi = theta_a + theta_max, capped at pi/2 (unit: rad)
-  double friction_coefficient = 0;///< mu = tan(phi); +inf when phi reaches pi/2 (unitless)
-  double friction_angle_low = 0;  ///< Eq. 18 lower end: theta_a + theta_max - sigma (unit: rad)
+  double atomic_friction = 0;           ///< mu_a (unitless)
+  double atomic_angle = 0;              ///< theta_a = atan(mu_a) (unit: rad)
+  double theta_max = 0;                 ///< (unit: rad)
+  double friction_angle = 0;            ///< phi = theta_a + theta_max, capped at pi/2 (unit: rad)
+  double friction_coefficient = 0;      ///< mu = tan(phi); +inf when phi reaches pi/2 (unitless)
+  double friction_angle_low = 0;        ///< Eq. 18 lower end: theta_a + theta_max - sigma (unit: rad)
   double friction_coefficient_low = 0;  ///< tan of the above (unitless)
 };
 /// mu_a >= 0; theta_max and sigma in radians.

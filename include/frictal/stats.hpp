@@ -24,8 +24,8 @@ struct Histogram {
   std::vector<double> density;  ///< bins values; sum(density * width) = 1 (unit: 1/sample unit)
 };
 /// Weighted histogram of samples over [lo, hi] (auto range if lo >= hi); weights may be empty.
-Histogram histogram(const std::vector<double>& samples, const std::vector<double>& weights,
-                    int bins, double lo = 0, double hi = 0);
+Histogram histogram(const std::vector<double>& samples, const std::vector<double>& weights, int bins, double lo = 0,
+                    double hi = 0);
 
 /// Length-weighted distribution of edge slope angles (unit: rad).
 Histogram slope_distribution(const Profile& p, int bins = 90);

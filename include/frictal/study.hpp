@@ -94,9 +94,9 @@ struct PlotAxis {
   PlotAxis(std::string column_, std::string label_, std::string divide_by_ = {}, bool log_ = false)
       : column(std::move(column_)), label(std::move(label_)), divide_by(std::move(divide_by_)), log(log_) {}
   std::string column;
-  std::string label;      ///< axis label, with its unit
-  std::string divide_by;  ///< optional parameter the values are divided by (e.g. "wavelength")
-  bool log = false;       ///< logarithmic axis
+  std::string label;            ///< axis label, with its unit
+  std::string divide_by;        ///< optional parameter the values are divided by (e.g. "wavelength")
+  bool log = false;             ///< logarithmic axis
   double min = NAN, max = NAN;  ///< axis limits (NaN: automatic)
 };
 
@@ -104,16 +104,16 @@ struct PlotAxis {
 /// scripts/plot_studies.py (a study file's [[figure]] entries name views by id; parts of other
 /// kinds with a view of the same id are drawn in the same panel).
 struct PlotView {
-  std::string id;    ///< e.g. "friction-vs-alpha"
+  std::string id;  ///< e.g. "friction-vs-alpha"
   PlotAxis x, y;
-  std::string series;  ///< parameter whose values make one series each; "task": one per task
-  std::string label;   ///< legend, "{name}" or "{name:.4f}" replaced by a parameter or scalar
-  std::string marker;  ///< matplotlib marker ("o", "s") or empty for none
-  double marker_size = 0;  ///< points; 0: matplotlib's default
-  double line_width = 0;   ///< points; 0: matplotlib's default
-  bool line = true;    ///< join the points
-  bool open = false;   ///< hollow markers
-  std::string color;   ///< fixed colour; empty: "C<series value>" for integer series, else cycle
+  std::string series;        ///< parameter whose values make one series each; "task": one per task
+  std::string label;         ///< legend, "{name}" or "{name:.4f}" replaced by a parameter or scalar
+  std::string marker;        ///< matplotlib marker ("o", "s") or empty for none
+  double marker_size = 0;    ///< points; 0: matplotlib's default
+  double line_width = 0;     ///< points; 0: matplotlib's default
+  bool line = true;          ///< join the points
+  bool open = false;         ///< hollow markers
+  std::string color;         ///< fixed colour; empty: "C<series value>" for integer series, else cycle
   std::string average_over;  ///< parameter averaged over (mean of y per series and x)
   /// A column missing from a task is taken from a task of another part with the same values of
   /// these parameters (e.g. the Eq. 13 dimension of the same alpha).
@@ -325,23 +325,23 @@ class Store {
 // ---------------------------------------------------------------- running
 
 struct Progress {
-  std::int64_t total = 0;      ///< tasks in the study
-  std::int64_t done = 0;       ///< done (including earlier runs)
-  std::int64_t failed = 0;     ///< failed in this run
-  std::int64_t this_run = 0;   ///< finished in this run
-  std::int64_t to_run = 0;     ///< tasks this run set out to do
-  double elapsed_s = 0;        ///< since this run started
+  std::int64_t total = 0;     ///< tasks in the study
+  std::int64_t done = 0;      ///< done (including earlier runs)
+  std::int64_t failed = 0;    ///< failed in this run
+  std::int64_t this_run = 0;  ///< finished in this run
+  std::int64_t to_run = 0;    ///< tasks this run set out to do
+  double elapsed_s = 0;       ///< since this run started
 };
 
 struct RunOptions {
-  unsigned threads = 1;               ///< compute threads (0 = hardware concurrency)
-  bool skip_unavailable = false;      ///< leave tasks of unavailable kinds pending
+  unsigned threads = 1;           ///< compute threads (0 = hardware concurrency)
+  bool skip_unavailable = false;  ///< leave tasks of unavailable kinds pending
   /// Pin compute thread i to CPU i mod (CPUs allowed), as mpirun binds ranks to cores. Results do
   /// not change; on a busy machine it can help the scheduler (see bench/results/studies.md).
   bool pin_threads = false;
-  std::vector<std::string> parts;     ///< run only these parts (empty: all)
+  std::vector<std::string> parts;                 ///< run only these parts (empty: all)
   std::function<void(const Progress&)> progress;  ///< called after each finished task
-  const std::atomic<bool>* stop = nullptr;       ///< set to stop dispatching; in-flight tasks finish
+  const std::atomic<bool>* stop = nullptr;        ///< set to stop dispatching; in-flight tasks finish
   /// Testing: every attempt computed on this site (rank under MPI; 0 = this process on threads)
   /// is reported failed (a transient, retryable failure), to exercise the retry policy. -1: off.
   int inject_failure_rank = -1;
@@ -357,10 +357,10 @@ struct RunOptions {
 
 struct RunSummary {
   std::int64_t ran = 0, failed = 0, skipped_unavailable = 0;
-  std::int64_t retries = 0;  ///< failed attempts that were queued again
+  std::int64_t retries = 0;         ///< failed attempts that were queued again
   std::int64_t done_elsewhere = 0;  ///< planned tasks that another run (same store) recorded
   std::int64_t taken_over = 0;      ///< claims taken over from a dead run or an expired lease
-  unsigned threads = 0;      ///< compute threads (on rank 0 under MPI)
+  unsigned threads = 0;             ///< compute threads (on rank 0 under MPI)
   bool interrupted = false;
   double wall_s = 0;
 };
@@ -389,10 +389,9 @@ bool mpi_available();
 bool launched_by_mpi();
 /// Under MPI: rank 0 owns the store and runs `options.threads` compute threads besides the
 /// message loop; other ranks compute one task at a time. Tasks are handed out dynamically; the
-/// retry policy is run_threads' (a transient failure on a rank is retried on another rank). `store` is only used (and must be non-null) on rank 0. The caller owns
-/// MPI_Init/Finalize (see mpi_init / mpi_finalize).
-Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry& registry,
-                           const RunOptions& options);
+/// retry policy is run_threads' (a transient failure on a rank is retried on another rank). `store` is only used (and
+/// must be non-null) on rank 0. The caller owns MPI_Init/Finalize (see mpi_init / mpi_finalize).
+Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry& registry, const RunOptions& options);
 /// Initialises MPI (thread level funneled); returns rank and size.
 Status mpi_init(int* rank, int* size);
 void mpi_finalize();
@@ -416,9 +415,9 @@ struct Report {
 /// each source bin) and averaged with equal weights (paper Fig. 16 pools the 20 pairs).
 struct PooledPdf {
   std::string part;
-  Params params;             ///< the group's parameters (without pair)
-  std::string name;          ///< array prefix, e.g. "contact_slope_pdf"
-  int members = 0;           ///< tasks pooled
+  Params params;                ///< the group's parameters (without pair)
+  std::string name;             ///< array prefix, e.g. "contact_slope_pdf"
+  int members = 0;              ///< tasks pooled
   std::vector<double> edges;    ///< common bin edges (unit of the source edges)
   std::vector<double> density;  ///< pooled density (integrates to 1)
 };
@@ -437,7 +436,7 @@ struct StoreStatus {
   std::string study, description, scale, study_hash;
   std::string frictal_version;  ///< of the build that created the store
   int schema_version = 0;
-  std::int64_t claimed = 0;     ///< tasks claimed by a run now (or by one that died)
+  std::int64_t claimed = 0;  ///< tasks claimed by a run now (or by one that died)
   StoreCounts tasks;
   struct PartStatus {
     std::string part, kind;

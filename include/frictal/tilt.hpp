@@ -39,16 +39,16 @@ enum class TiltFace {
 };
 
 struct TiltConfig {
-  double block_height = 0.01;          ///< h below the surface minimum, Table I (unit: m)
-  double radius = 5e-5;                ///< spheroradius r of both blocks, Table II (unit: m)
-  double density = 50;                 ///< areal density rho, Table II (unit: kg/m^2)
-  dem::ContactParams contact;          ///< k_n, k_t, gamma_n, gamma_t, mu_a (Table II, mu_a = 0)
+  double block_height = 0.01;  ///< h below the surface minimum, Table I (unit: m)
+  double radius = 5e-5;        ///< spheroradius r of both blocks, Table II (unit: m)
+  double density = 50;         ///< areal density rho, Table II (unit: kg/m^2)
+  dem::ContactParams contact;  ///< k_n, k_t, gamma_n, gamma_t, mu_a (Table II, mu_a = 0)
   /// If > 0: restitution eps of Eq. 12, replacing contact.normal_damping by the gamma_n that gives
   /// eps for one contact on the upper block's mass (unitless, in (0, 1]).
   double restitution = 0;
-  double gravity = 9.81;               ///< (unit: m/s^2)
-  double tilt_rate = 0.05;             ///< |angular velocity| of the lower block (unit: rad/s)
-  bool reverse = false;                ///< tilt so that the upper block slides towards -x
+  double gravity = 9.81;    ///< (unit: m/s^2)
+  double tilt_rate = 0.05;  ///< |angular velocity| of the lower block (unit: rad/s)
+  bool reverse = false;     ///< tilt so that the upper block slides towards -x
   /// With `adaptive_time_step` (default): the largest step; else the fixed step (unit: s).
   /// 1e-4 s: with implicit normal dashpots the stability limit of Table II contacts on a Table I
   /// block (0.11 kg) stays above ~3e-4 s however many contacts there are, and 1e-4 s gives the
@@ -59,27 +59,27 @@ struct TiltConfig {
   /// stability limit of the contacts present (times `time_step_safety`), at most `time_step`.
   /// false: the fixed step `time_step` of the engine before 2026-11-23.
   bool adaptive_time_step = true;
-  double time_step_safety = 0.5;       ///< fraction of the stability limit taken (unitless, (0, 1])
+  double time_step_safety = 0.5;  ///< fraction of the stability limit taken (unitless, (0, 1])
   /// Normal dashpots integrated implicitly (dem::WorldDef::implicit_damping): the damping of many
   /// contacts no longer limits the step. false: explicit, as before 2026-11-23.
   bool implicit_damping = true;
-  double skin = 5e-5;                  ///< neighbour-list skin (unit: m)
-  int max_steps_beyond_limit = 1000;     ///< see dem::WorldDef::max_steps_beyond_limit; fixed step only (unitless)
-  double settle_time = 0.1;            ///< free settling before the tilt starts (unit: s)
+  double skin = 5e-5;                 ///< neighbour-list skin (unit: m)
+  int max_steps_beyond_limit = 1000;  ///< see dem::WorldDef::max_steps_beyond_limit; fixed step only (unitless)
+  double settle_time = 0.1;           ///< free settling before the tilt starts (unit: s)
   double max_tilt = 89 * std::numbers::pi / 180;  ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
-  double runaway_distance = 0.01;      ///< sliding "for good": growth past this, one lambda (unit: m)
-  double stick_speed = 1e-5;           ///< relative speed counted as stuck (unit: m/s)
-  double stick_duration = 0.02;        ///< a stick lasts at least this long (unit: s)
+  double runaway_distance = 0.01;                 ///< sliding "for good": growth past this, one lambda (unit: m)
+  double stick_speed = 1e-5;                      ///< relative speed counted as stuck (unit: m/s)
+  double stick_duration = 0.02;                   ///< a stick lasts at least this long (unit: s)
   TiltFace face = TiltFace::Curve;
   /// Shift of the upper block along x before placement (unit: m). NaN: the offset of least lift
   /// h(s) over [0, period) from the signature (or 0 if `predict` is false).
   double initial_offset = std::numeric_limits<double>::quiet_NaN();
-  double placement_gap = 2e-5;         ///< initial clearance between the two spheropolygons (unit: m)
+  double placement_gap = 2e-5;  ///< initial clearance between the two spheropolygons (unit: m)
   /// Period of the surfaces for the signature's offset range (unit: m); <= 0: half the length.
   double period = 0.01;
-  bool predict = true;                 ///< compute the signature prediction (needs envelopes)
-  double series_interval = 1e-3;       ///< time between rows of the series; <= 0: none (unit: s)
-  double frame_interval = 0;           ///< time between frames; <= 0: none (unit: s)
+  bool predict = true;            ///< compute the signature prediction (needs envelopes)
+  double series_interval = 1e-3;  ///< time between rows of the series; <= 0: none (unit: s)
+  double frame_interval = 0;      ///< time between frames; <= 0: none (unit: s)
 };
 TiltConfig default_tilt_config();
 
@@ -99,43 +99,44 @@ ValueSet tilt_values(const TiltConfig& config);
 
 /// Time series of Fig. 7, one row per `series_interval`.
 struct TiltSeries {
-  std::vector<double> time;          ///< (unit: s)
-  std::vector<double> tilt;          ///< tilt of the lower block, >= 0 (unit: rad)
-  std::vector<double> normal_force;  ///< F_n: contact force on the upper block normal to the lower block (unit: N)
+  std::vector<double> time;              ///< (unit: s)
+  std::vector<double> tilt;              ///< tilt of the lower block, >= 0 (unit: rad)
+  std::vector<double> normal_force;      ///< F_n: contact force on the upper block normal to the lower block (unit: N)
   std::vector<double> tangential_force;  ///< F_t: along the lower block, positive resisting the slide (unit: N)
-  std::vector<double> force_angle;   ///< atan2(F_t, F_n) (unit: rad)
-  std::vector<double> displacement;  ///< relative displacement d since the end of settling (during settling: since placement) (unit: m)
-  std::vector<double> velocity;      ///< relative velocity v (unit: m/s)
-  std::vector<int> contacts;         ///< vertex-edge pairs in contact
+  std::vector<double> force_angle;       ///< atan2(F_t, F_n) (unit: rad)
+  std::vector<double>
+      displacement;  ///< relative displacement d since the end of settling (during settling: since placement) (unit: m)
+  std::vector<double> velocity;  ///< relative velocity v (unit: m/s)
+  std::vector<int> contacts;     ///< vertex-edge pairs in contact
 };
 
 /// Poses of both blocks at one time (shapes are in TiltResult::lower_polygon/upper_polygon).
 struct TiltFrame {
-  double time = 0;                   ///< (unit: s)
-  double tilt = 0;                   ///< (unit: rad)
-  dem::Vec2 position[2];             ///< centroids of lower, upper (unit: m)
-  double angle[2] = {0, 0};          ///< rotations from the initial orientation (unit: rad)
+  double time = 0;           ///< (unit: s)
+  double tilt = 0;           ///< (unit: rad)
+  dem::Vec2 position[2];     ///< centroids of lower, upper (unit: m)
+  double angle[2] = {0, 0};  ///< rotations from the initial orientation (unit: rad)
 };
 
 struct TiltResult {
-  bool slid = false;                 ///< a run-away was detected before max_tilt
-  double friction_angle = 0;         ///< phi: tilt at the start of the run-away (unit: rad)
-  double slide_time = 0;             ///< time of that moment (unit: s)
-  double predicted_theta_max = 0;    ///< signature theta_max in the sliding direction (unit: rad)
+  bool slid = false;                    ///< a run-away was detected before max_tilt
+  double friction_angle = 0;            ///< phi: tilt at the start of the run-away (unit: rad)
+  double slide_time = 0;                ///< time of that moment (unit: s)
+  double predicted_theta_max = 0;       ///< signature theta_max in the sliding direction (unit: rad)
   double predicted_friction_angle = 0;  ///< theta_max + atan(mu_a) (unit: rad); 0 if !predict
-  double initial_offset = 0;         ///< offset used (unit: m)
-  double simulated_time = 0;         ///< (unit: s)
+  double initial_offset = 0;            ///< offset used (unit: m)
+  double simulated_time = 0;            ///< (unit: s)
   std::uint64_t steps = 0;
-  double wall_time = 0;              ///< wall time of the time stepping only (unit: s)
-  double setup_time = 0;             ///< wall time of building blocks, placement, prediction (unit: s)
+  double wall_time = 0;   ///< wall time of the time stepping only (unit: s)
+  double setup_time = 0;  ///< wall time of building blocks, placement, prediction (unit: s)
   dem::StepTimings timings;
-  std::uint64_t steps_beyond_limit = 0;  ///< steps above the explicit stability limit (warnings)
-  double min_time_step = 0;          ///< smallest step taken (unit: s)
-  double max_time_step = 0;          ///< largest step taken (unit: s)
+  std::uint64_t steps_beyond_limit = 0;   ///< steps above the explicit stability limit (warnings)
+  double min_time_step = 0;               ///< smallest step taken (unit: s)
+  double max_time_step = 0;               ///< largest step taken (unit: s)
   double lower_mass = 0, upper_mass = 0;  ///< (unit: kg)
-  double normal_damping = 0;         ///< gamma_n used (from `restitution` if set) (unit: 1/s)
+  double normal_damping = 0;              ///< gamma_n used (from `restitution` if set) (unit: 1/s)
   std::size_t lower_vertices = 0, upper_vertices = 0;
-  double settled_overlap = 0;        ///< largest overlap at the end of settling (unit: m)
+  double settled_overlap = 0;  ///< largest overlap at the end of settling (unit: m)
   int settled_contacts = 0;
   /// Core polygons in the bodies' local frames (relative to the centroid, counter-clockwise).
   std::vector<double> lower_polygon_x, lower_polygon_y, upper_polygon_x, upper_polygon_y;  ///< (unit: m)
@@ -146,8 +147,7 @@ struct TiltResult {
 /// Runs the tilting test. `lower_surface` and `upper_surface` are both given as measured; for a
 /// block on a copy of itself pass the same curve twice. Errors: invalid config or surfaces,
 /// non-simple block polygons, stability guard failures (with a suggested time step).
-Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surface,
-                            const TiltConfig& config = {});
+Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surface, const TiltConfig& config = {});
 
 /// Writes the series as CSV (time_s, tilt_deg, fn_N, ft_N, force_angle_deg, displacement_m,
 /// velocity_m_s, contacts).

@@ -64,12 +64,18 @@ inline ValueSet keyword_values(const std::vector<Field>& fields, const py::kwarg
     }
     const py::handle v = item.second;
     FieldValue value;
-    if (v.is_none() && f->type == FieldType::Real && std::isnan(f->default_value)) value = std::nan("");
-    else if (py::isinstance<py::bool_>(v)) value = v.cast<bool>();
-    else if (py::isinstance<py::int_>(v)) value = v.cast<std::int64_t>();
-    else if (py::isinstance<py::float_>(v) || py::hasattr(v, "__float__")) value = v.cast<double>();
-    else if (py::isinstance<py::str>(v)) value = v.cast<std::string>();
-    else throw py::type_error(function + "(): keyword '" + name + "' has an unsupported type");
+    if (v.is_none() && f->type == FieldType::Real && std::isnan(f->default_value))
+      value = std::nan("");
+    else if (py::isinstance<py::bool_>(v))
+      value = v.cast<bool>();
+    else if (py::isinstance<py::int_>(v))
+      value = v.cast<std::int64_t>();
+    else if (py::isinstance<py::float_>(v) || py::hasattr(v, "__float__"))
+      value = v.cast<double>();
+    else if (py::isinstance<py::str>(v))
+      value = v.cast<std::string>();
+    else
+      throw py::type_error(function + "(): keyword '" + name + "' has an unsupported type");
     auto checked = check_si_value(*f, value);
     if (!checked) throw py::value_error(function + ": " + checked.error().message);
     out[name] = *checked;
@@ -87,10 +93,14 @@ inline py::list field_list(const std::vector<Field>& fields) {
     static const char* types[] = {"real", "integer", "boolean", "choice"};
     d["type"] = types[static_cast<int>(f.type)];
     d["unit"] = f.unit;
-    if (f.type == FieldType::Boolean) d["default"] = f.default_value != 0;
-    else if (f.type == FieldType::Choice) d["default"] = f.choices.at(static_cast<std::size_t>(f.default_value));
-    else if (f.type == FieldType::Integer) d["default"] = static_cast<std::int64_t>(f.default_value);
-    else d["default"] = std::isnan(f.default_value) ? py::object(py::none()) : py::object(py::float_(f.default_value));
+    if (f.type == FieldType::Boolean)
+      d["default"] = f.default_value != 0;
+    else if (f.type == FieldType::Choice)
+      d["default"] = f.choices.at(static_cast<std::size_t>(f.default_value));
+    else if (f.type == FieldType::Integer)
+      d["default"] = static_cast<std::int64_t>(f.default_value);
+    else
+      d["default"] = std::isnan(f.default_value) ? py::object(py::none()) : py::object(py::float_(f.default_value));
     d["min"] = f.min;
     d["max"] = f.max;
     d["choices"] = f.choices;
@@ -105,24 +115,33 @@ inline std::string keyword_doc(const std::vector<Field>& fields) {
   std::string s;
   for (const Field& f : fields) {
     std::string def;
-    if (f.type == FieldType::Real && std::isnan(f.default_value)) def = "None (auto)";
-    else if (f.type == FieldType::Boolean) def = f.default_value != 0 ? "True" : "False";
-    else if (f.type == FieldType::Choice) def = "'" + default_text(f) + "'";
-    else def = num(f.default_value);
+    if (f.type == FieldType::Real && std::isnan(f.default_value))
+      def = "None (auto)";
+    else if (f.type == FieldType::Boolean)
+      def = f.default_value != 0 ? "True" : "False";
+    else if (f.type == FieldType::Choice)
+      def = "'" + default_text(f) + "'";
+    else
+      def = num(f.default_value);
     std::string range;
     if (f.type == FieldType::Real || f.type == FieldType::Integer) {
       const bool lo = std::isfinite(f.min), hi = std::isfinite(f.max);
       auto n = [](double v) { return num(v); };
-      if (f.type == FieldType::Integer) range = lo && hi ? n(f.min) + ".." + n(f.max) : (lo ? ">= " + n(f.min) : "any");
-      else if (lo && hi) range = std::string(f.min_open ? "(" : "[") + n(f.min) + ", " + n(f.max) + (f.max_open ? ")" : "]");
-      else if (lo) range = (f.min_open ? "> " : ">= ") + n(f.min);
-      else if (hi) range = (f.max_open ? "< " : "<= ") + n(f.max);
-      else range = "any finite number";
+      if (f.type == FieldType::Integer)
+        range = lo && hi ? n(f.min) + ".." + n(f.max) : (lo ? ">= " + n(f.min) : "any");
+      else if (lo && hi)
+        range = std::string(f.min_open ? "(" : "[") + n(f.min) + ", " + n(f.max) + (f.max_open ? ")" : "]");
+      else if (lo)
+        range = (f.min_open ? "> " : ">= ") + n(f.min);
+      else if (hi)
+        range = (f.max_open ? "< " : "<= ") + n(f.max);
+      else
+        range = "any finite number";
     } else {
       range = range_text(f);
     }
-    s += "    " + f.name + (f.unit.empty() ? "" : " [" + f.unit + "]") + ": " + f.help + " (default " + def + "; valid " +
-         range + ")\n";
+    s += "    " + f.name + (f.unit.empty() ? "" : " [" + f.unit + "]") + ": " + f.help + " (default " + def +
+         "; valid " + range + ")\n";
   }
   return s;
 }

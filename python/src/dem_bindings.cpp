@@ -27,7 +27,8 @@ Curve to_curve(const py::object& o, const char* name) {
       auto x = seq[0].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
       auto z = seq[1].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
       if (x.ndim() == 1 && z.ndim() == 1)
-        return Curve{std::vector<double>(x.data(), x.data() + x.size()), std::vector<double>(z.data(), z.data() + z.size())};
+        return Curve{std::vector<double>(x.data(), x.data() + x.size()),
+                     std::vector<double>(z.data(), z.data() + z.size())};
     }
   }
   throw py::type_error(std::string(name) + ": expected a frictal.Profile or an (x, z) pair of 1-D arrays");
@@ -79,8 +80,9 @@ void frictal_bind_dem(py::module_& m) {
        "unless runaway_distance is given):\n" +
        py_detail::keyword_doc(tilt_settings()))
           .c_str());
-  m.def("tilt_settings", [] { return py_detail::field_list(tilt_settings()); },
-        "tilt_settings() -> list\n\nThe tilt test's settings table: one dict per keyword of tilt() (name, type, unit "
-        "(SI), default, min, max, choices, help). The same names are the `frictal tilt` options (--kebab-case, "
-        "degrees) and the 'tilt' study kind's TOML keys.");
+  m.def(
+      "tilt_settings", [] { return py_detail::field_list(tilt_settings()); },
+      "tilt_settings() -> list\n\nThe tilt test's settings table: one dict per keyword of tilt() (name, type, unit "
+      "(SI), default, min, max, choices, help). The same names are the `frictal tilt` options (--kebab-case, "
+      "degrees) and the 'tilt' study kind's TOML keys.");
 }

@@ -9,11 +9,11 @@
 #include <cmath>
 #include <limits>
 
+#include "bindings.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
 #include "frictal/fractal.hpp"
 #include "frictal/io.hpp"
-#include "bindings.hpp"
 #include "frictal/scan_stats.hpp"
 
 namespace py = pybind11;
@@ -117,20 +117,27 @@ void frictal_bind_io(py::module_& m) {
       [](const std::string& path, py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx,
          double dy, double x0, double y0, const std::string& type, bool binary) {
         X3pWriteOptions o;
-        if (type == "I") o.type = X3pDataType::I;
-        else if (type == "L") o.type = X3pDataType::L;
-        else if (type == "F") o.type = X3pDataType::F;
-        else if (type == "D") o.type = X3pDataType::D;
-        else throw py::value_error("type: expected I, L, F or D");
+        if (type == "I")
+          o.type = X3pDataType::I;
+        else if (type == "L")
+          o.type = X3pDataType::L;
+        else if (type == "F")
+          o.type = X3pDataType::F;
+        else if (type == "D")
+          o.type = X3pDataType::D;
+        else
+          throw py::value_error("type: expected I, L, F or D");
         o.binary = binary;
         ok(write_x3p(path, to_map(heights, dx, dy, x0, y0), o));
       },
       py::arg("path"), py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("x0") = 0.0,
-      py::arg("y0") = 0.0, py::arg("type") = "D", py::arg("binary") = true, "Writes a map of heights (ny, nx) in m on spacings dx, dy (m), origin x0, y0 (m) as ISO 25178-71 X3P; "
+      py::arg("y0") = 0.0, py::arg("type") = "D", py::arg("binary") = true,
+      "Writes a map of heights (ny, nx) in m on spacings dx, dy (m), origin x0, y0 (m) as ISO 25178-71 X3P; "
       "type: feature type D (areal) or S; binary: binary point data");
   m.def(
       "map_stats",
-      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy, double tip_radius) {
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy,
+         double tip_radius) {
         const Map map = to_map(heights, dx, dy, 0, 0);
         MapStats s = map_stats(map);
         py::dict d;
@@ -165,9 +172,9 @@ void frictal_bind_io(py::module_& m) {
       "(physical sizes, bandwidth (m), per-direction Rq (m) and Rdq (unitless)); tip_radius (m) > 0 adds "
       "short_reliability_cutoff (m)");
   m.def(
-      "detrend",
-      [](const Profile& p, const std::string& kind) { return ok(detrend(p, ok(parse_detrend(kind)))); }, py::arg("profile"),
-      py::arg("kind") = "line", "Removes none, mean, line or poly:N (trapezoid-weighted least squares) from a profile (m)");
+      "detrend", [](const Profile& p, const std::string& kind) { return ok(detrend(p, ok(parse_detrend(kind)))); },
+      py::arg("profile"), py::arg("kind") = "line",
+      "Removes none, mean, line or poly:N (trapezoid-weighted least squares) from a profile (m)");
   m.def(
       "power_spectrum",
       [](const Profile& p, std::size_t max_k) {
@@ -189,8 +196,9 @@ void frictal_bind_io(py::module_& m) {
       },
       py::arg("profile"), py::arg("max_lag") = 0,
       "Autocorrelation of a profile: lag (m), acf (unitless), correlation_length (m); max_lag: 0 = automatic");
-  m.def("koch_dimension", [](double alpha) { return ok(koch_dimension(alpha)); }, py::arg("alpha"),
-        "Eq. 13: 2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1, alpha in radians");
+  m.def(
+      "koch_dimension", [](double alpha) { return ok(koch_dimension(alpha)); }, py::arg("alpha"),
+      "Eq. 13: 2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1, alpha in radians");
   m.def(
       "divider_dimension",
       [](py::array_t<double> x, py::array_t<double> z, double ruler_min, double ruler_max, int rulers) {
@@ -198,7 +206,8 @@ void frictal_bind_io(py::module_& m) {
         return fit_dict(ok(nogil([&] { return divider_dimension(c, {ruler_min, ruler_max, rulers}); })));
       },
       py::arg("x"), py::arg("z"), py::kw_only(), py::arg("ruler_min") = 0.0, py::arg("ruler_max") = 0.0,
-      py::arg("rulers") = 16, "Divider (ruler) dimension walking along the curve (x, z in m); ruler_min/max in m (0: automatic). Returns "
+      py::arg("rulers") = 16,
+      "Divider (ruler) dimension walking along the curve (x, z in m); ruler_min/max in m (0: automatic). Returns "
       "dimension, slope, r_squared, fit_range (m), scales (m), values (m)");
   m.def(
       "box_dimension",
@@ -206,8 +215,8 @@ void frictal_bind_io(py::module_& m) {
         Curve c{std::vector<double>(x.data(), x.data() + x.size()), std::vector<double>(z.data(), z.data() + z.size())};
         return fit_dict(ok(nogil([&] { return box_dimension(c, {box_min, box_max, sizes}); })));
       },
-      py::arg("x"), py::arg("z"), py::kw_only(), py::arg("box_min") = 0.0, py::arg("box_max") = 0.0, py::arg("sizes") = 12,
-      "Box-counting dimension of the curve (x, z in m); box_min/max in m (0: automatic)");
+      py::arg("x"), py::arg("z"), py::kw_only(), py::arg("box_min") = 0.0, py::arg("box_max") = 0.0,
+      py::arg("sizes") = 12, "Box-counting dimension of the curve (x, z in m); box_min/max in m (0: automatic)");
   m.def(
       "psd_dimension",
       [](const Profile& p, double q_min, double q_max) {
@@ -255,7 +264,9 @@ void frictal_bind_io(py::module_& m) {
       [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, double angle,
          py::object upper, bool turn_over_upper, bool prune, unsigned threads) {
         Map f = to_map(lower, dx, dy, 0, 0);
-        Map g = upper.is_none() ? f : to_map(upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), dx, dy, 0, 0);
+        Map g = upper.is_none() ? f
+                                : to_map(upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(),
+                                         dx, dy, 0, 0);
         ArealSignatureOptions o;
         o.turn_over_upper = turn_over_upper;
         o.prune = prune;
@@ -271,8 +282,8 @@ void frictal_bind_io(py::module_& m) {
         d["evaluated_nodes"] = r.evaluated_nodes;
         return d;
       },
-      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0, py::arg("upper") = py::none(),
-      py::arg("turn_over_upper") = true, py::arg("prune") = true, py::arg("threads") = 1,
+      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,
+      py::arg("upper") = py::none(), py::arg("turn_over_upper") = true, py::arg("prune") = true, py::arg("threads") = 1,
       "Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `angle` (rad; runs without the "
       "GIL); upper as measured (turned over) by default. Returns offset, lift (m), theta (rad), theta_max_forward/"
       "backward (rad), contact_slope_std (rad), evaluated_nodes");

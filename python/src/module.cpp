@@ -22,8 +22,8 @@ using namespace frictal;
 using frictal::py_detail::arr;
 using frictal::py_detail::nogil;
 
-void frictal_bind_io(py::module_& m);   // python/src/io_bindings.cpp
-void frictal_bind_dem(py::module_& m);  // python/src/dem_bindings.cpp
+void frictal_bind_io(py::module_& m);     // python/src/io_bindings.cpp
+void frictal_bind_dem(py::module_& m);    // python/src/dem_bindings.cpp
 void frictal_bind_study(py::module_& m);  // python/src/study_bindings.cpp
 
 namespace {
@@ -56,7 +56,9 @@ SurfaceSpec spec_of(const std::string& generator, const py::kwargs& kw, const st
   return unwrap(make_surface_spec(generator, py_detail::keyword_values(g->fields, kw, function)));
 }
 
-Profile profile_of(const SurfaceSpec& spec) { return unwrap(nogil([&] { return generate_profile(spec); })); }
+Profile profile_of(const SurfaceSpec& spec) {
+  return unwrap(nogil([&] { return generate_profile(spec); }));
+}
 
 py::tuple curve_of(const SurfaceSpec& spec) {
   Curve c = unwrap(nogil([&] { return generate_curve(spec); }));
@@ -68,14 +70,17 @@ py::tuple curve_of(const SurfaceSpec& spec) {
 PYBIND11_MODULE(_core, m) {
   m.doc() = "frictal: static friction between rigid rough surfaces (C++ core). SI units: m, rad.";
   m.attr("__version__") = frictal::version();
-  m.def("build_info", [] {
-    py::dict d;
-    d["version"] = frictal::version();
-    d["git_commit"] = frictal::git_commit();
-    d["build_type"] = frictal::build_type();
-    return d;
-  }, "Version, git commit and CMake build type of the compiled core.\n\n"
-     "Returns a dict of str (unitless): version (from CMakeLists.txt), git_commit, build_type.");
+  m.def(
+      "build_info",
+      [] {
+        py::dict d;
+        d["version"] = frictal::version();
+        d["git_commit"] = frictal::git_commit();
+        d["build_type"] = frictal::build_type();
+        return d;
+      },
+      "Version, git commit and CMake build type of the compiled core.\n\n"
+      "Returns a dict of str (unitless): version (from CMakeLists.txt), git_commit, build_type.");
 
   py::class_<Profile>(m, "Profile", "Single-valued piecewise-linear profile z(x) in metres")
       .def(py::init([](py::array_t<double, py::array::c_style | py::array::forcecast> x,
@@ -86,8 +91,10 @@ PYBIND11_MODULE(_core, m) {
              return p;
            }),
            py::arg("x"), py::arg("z"), py::arg("period") = py::none())
-      .def_property_readonly("x", [](const Profile& p) { return arr(p.x); }, "abscissae (m)")
-      .def_property_readonly("z", [](const Profile& p) { return arr(p.z); }, "heights (m)")
+      .def_property_readonly(
+          "x", [](const Profile& p) { return arr(p.x); }, "abscissae (m)")
+      .def_property_readonly(
+          "z", [](const Profile& p) { return arr(p.z); }, "heights (m)")
       .def_readwrite("period", &Profile::period, "period (m) or None")
       .def("__len__", &Profile::size)
       .def("__repr__", [](const Profile& p) {
@@ -104,24 +111,32 @@ PYBIND11_MODULE(_core, m) {
     const std::string doc = fn + "(**params) -> Profile\n\n" + g.description +
                             (name == "koch" ? ": the upper envelope of the curve" : "") +
                             ", generated with the keywords below (SI units; unknown keywords are a TypeError, "
-                            "bad values a ValueError):\n" + py_detail::keyword_doc(g.fields);
-    m.def(fn.c_str(), [name, fn](const py::kwargs& kw) { return profile_of(spec_of(name, kw, fn)); }, doc.c_str());
+                            "bad values a ValueError):\n" +
+                            py_detail::keyword_doc(g.fields);
+    m.def(
+        fn.c_str(), [name, fn](const py::kwargs& kw) { return profile_of(spec_of(name, kw, fn)); }, doc.c_str());
   }
-  m.def("koch_curve", [](const py::kwargs& kw) { return curve_of(spec_of("koch", kw, "koch_curve")); },
-        ("koch_curve(**params) -> (x, z)\n\nThe Koch curve K_n, which may fold over, as two arrays of metres. "
-         "Keywords as koch_profile (SI units):\n" + py_detail::keyword_doc(find_generator("koch")->fields))
-            .c_str());
-  m.def("surface",
-        [](const std::string& generator, const py::kwargs& kw) { return profile_of(spec_of(generator, kw, "surface")); },
-        py::arg("generator"),
-        "surface(generator, **params) -> Profile\n\nA generated profile: generator is 'koch', 'wm', 'sawtooth', "
-        "'sine' or 'self-affine'; params are that generator's keywords (see generators() and each "
-        "<name>_profile function; SI units: metres, radians). Koch: the upper envelope.");
-  m.def("surface_curve",
-        [](const std::string& generator, const py::kwargs& kw) { return curve_of(spec_of(generator, kw, "surface_curve")); },
-        py::arg("generator"),
-        "surface_curve(generator, **params) -> (x, z)\n\nThe generated surface as a curve (Koch: the full, possibly "
-        "folded curve), two arrays of metres. params: the generator's keywords in SI units (m, rad).");
+  m.def(
+      "koch_curve", [](const py::kwargs& kw) { return curve_of(spec_of("koch", kw, "koch_curve")); },
+      ("koch_curve(**params) -> (x, z)\n\nThe Koch curve K_n, which may fold over, as two arrays of metres. "
+       "Keywords as koch_profile (SI units):\n" +
+       py_detail::keyword_doc(find_generator("koch")->fields))
+          .c_str());
+  m.def(
+      "surface",
+      [](const std::string& generator, const py::kwargs& kw) { return profile_of(spec_of(generator, kw, "surface")); },
+      py::arg("generator"),
+      "surface(generator, **params) -> Profile\n\nA generated profile: generator is 'koch', 'wm', 'sawtooth', "
+      "'sine' or 'self-affine'; params are that generator's keywords (see generators() and each "
+      "<name>_profile function; SI units: metres, radians). Koch: the upper envelope.");
+  m.def(
+      "surface_curve",
+      [](const std::string& generator, const py::kwargs& kw) {
+        return curve_of(spec_of(generator, kw, "surface_curve"));
+      },
+      py::arg("generator"),
+      "surface_curve(generator, **params) -> (x, z)\n\nThe generated surface as a curve (Koch: the full, possibly "
+      "folded curve), two arrays of metres. params: the generator's keywords in SI units (m, rad).");
   m.def(
       "generators",
       [] {
@@ -133,133 +148,141 @@ PYBIND11_MODULE(_core, m) {
       "(SI), default, min, max, choices, help). The same names are the CLI options (--kebab-case, degrees) and study "
       "TOML keys.");
 
-  m.def("upper_envelope",
-        [](py::array_t<double, py::array::c_style | py::array::forcecast> x,
-           py::array_t<double, py::array::c_style | py::array::forcecast> z) {
-          return unwrap(upper_envelope(Curve{vec(x, "x"), vec(z, "z")}));
-        },
-        py::arg("x"), py::arg("z"), "Exact upper envelope of a polyline curve (x, z in metres) as a Profile");
-  m.def("lower_envelope",
-        [](py::array_t<double, py::array::c_style | py::array::forcecast> x,
-           py::array_t<double, py::array::c_style | py::array::forcecast> z) {
-          return unwrap(lower_envelope(Curve{vec(x, "x"), vec(z, "z")}));
-        },
-        py::arg("x"), py::arg("z"), "Exact lower envelope of a polyline curve (x, z in metres) as a Profile");
-  m.def("rotate180", [](const Profile& p) { return rotate180(p); }, py::arg("profile"),
-        "The profile (m) turned over by 180 degrees (x -> -x, z -> -z, re-sorted): how an upper block's face, "
-        "measured with its material below, faces the lower one");
+  m.def(
+      "upper_envelope",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> x,
+         py::array_t<double, py::array::c_style | py::array::forcecast> z) {
+        return unwrap(upper_envelope(Curve{vec(x, "x"), vec(z, "z")}));
+      },
+      py::arg("x"), py::arg("z"), "Exact upper envelope of a polyline curve (x, z in metres) as a Profile");
+  m.def(
+      "lower_envelope",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> x,
+         py::array_t<double, py::array::c_style | py::array::forcecast> z) {
+        return unwrap(lower_envelope(Curve{vec(x, "x"), vec(z, "z")}));
+      },
+      py::arg("x"), py::arg("z"), "Exact lower envelope of a polyline curve (x, z in metres) as a Profile");
+  m.def(
+      "rotate180", [](const Profile& p) { return rotate180(p); }, py::arg("profile"),
+      "The profile (m) turned over by 180 degrees (x -> -x, z -> -z, re-sorted): how an upper block's face, "
+      "measured with its material below, faces the lower one");
 
-  m.def("profile_stats",
-        [](const Profile& p) {
-          const ProfileStats s = profile_stats(p);
-          py::dict d;
-          d["points"] = s.points;
-          d["length_m"] = s.length;
-          d["mean_height_m"] = s.mean_height;
-          d["rms_height_m"] = s.rms_height;
-          d["rms_slope"] = s.rms_slope;
-          d["max_slope_rad"] = s.max_slope;
-          d["mean_slope_rad"] = s.mean_slope;
-          d["slope_pdf"] = hist_dict(slope_distribution(p));
-          return d;
-        },
-        py::arg("profile"),
-        "Statistics of a profile: points, length_m, mean/rms height (m), rms slope (unitless), max/mean slope "
-        "(rad) and the slope PDF (edges in rad, density per rad)");
+  m.def(
+      "profile_stats",
+      [](const Profile& p) {
+        const ProfileStats s = profile_stats(p);
+        py::dict d;
+        d["points"] = s.points;
+        d["length_m"] = s.length;
+        d["mean_height_m"] = s.mean_height;
+        d["rms_height_m"] = s.rms_height;
+        d["rms_slope"] = s.rms_slope;
+        d["max_slope_rad"] = s.max_slope;
+        d["mean_slope_rad"] = s.mean_slope;
+        d["slope_pdf"] = hist_dict(slope_distribution(p));
+        return d;
+      },
+      py::arg("profile"),
+      "Statistics of a profile: points, length_m, mean/rms height (m), rms slope (unitless), max/mean slope "
+      "(rad) and the slope PDF (edges in rad, density per rad)");
 
-  m.def("signature",
-        [](const Profile& lower, std::optional<Profile> upper, bool rotate_upper, const std::string& slopes,
-           std::size_t offsets, std::optional<std::pair<double, double>> offset_range, unsigned threads,
-           bool keep_contacts, int bins) {
-          SignatureOptions o;
-          if (slopes != "exact" && slopes != "spline")
-            throw py::value_error("signature: slopes must be 'exact' or 'spline', got '" + slopes + "'");
-          o.slopes = slopes == "spline" ? SlopeMethod::Spline : SlopeMethod::Exact;
-          o.offsets = offsets;
-          o.threads = threads;
-          o.keep_contacts = keep_contacts;
-          o.bins = bins;
-          if (offset_range) {
-            o.offset_min = offset_range->first;
-            o.offset_max = offset_range->second;
-          }
-          Profile up = upper ? *upper : lower;
-          if (!upper || rotate_upper) up = rotate180(up);
-          SignatureResult r = unwrap(nogil([&] { return signature(lower, up, o); }));
-          py::dict d;
-          d["offset"] = arr(r.offset);
-          d["lift"] = arr(r.lift);
-          d["theta"] = arr(r.theta);
-          d["theta_min"] = arr(r.theta_min);
-          d["theta_left"] = arr(r.theta_left);
-          d["theta_right"] = arr(r.theta_right);
-          d["theta_max_forward"] = r.theta_max_forward;
-          d["theta_max_backward"] = r.theta_max_backward;
-          d["offset_at_forward"] = r.offset_at_forward;
-          d["offset_at_backward"] = r.offset_at_backward;
-          d["contact_slope_mean"] = r.contact_slope_mean;
-          d["contact_slope_std"] = r.contact_slope_std;
-          d["contact_slope_pdf"] = hist_dict(r.contact_slope_pdf);
-          d["slope_samples"] = arr(r.slope_samples);
-          d["slope_weights"] = arr(r.slope_weights);
-          d["exact"] = r.exact;
-          d["events"] = r.events;
-          if (keep_contacts) {
-            std::vector<double> off, x, z, s;
-            py::list types;
-            for (std::size_t i = 0; i < r.offset.size(); ++i)
-              for (auto k = r.contact_begin[i]; k < r.contact_begin[i + 1]; ++k) {
-                off.push_back(r.offset[i]);
-                x.push_back(r.contacts[k].x);
-                z.push_back(r.contacts[k].z);
-                s.push_back(r.contacts[k].slope);
-                types.append(contact_type_name(r.contacts[k].type));
-              }
-            py::dict c;
-            c["offset"] = arr(off);
-            c["x"] = arr(x);
-            c["z"] = arr(z);
-            c["slope"] = arr(s);
-            c["type"] = types;
-            d["contacts"] = c;
-          }
-          return d;
-        },
-        py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("rotate_upper") = true,
-        py::arg("slopes") = "exact", py::arg("offsets") = 0, py::arg("offset_range") = py::none(),
-        py::arg("threads") = 0, py::arg("keep_contacts") = false, py::arg("bins") = 90,
-        "Signature function theta(x_ofs) of two profiles (runs without the GIL). `upper` is a surface as measured "
-        "(rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = "
-        "every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores. Returns "
-        "offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), "
-        "offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events.");
+  m.def(
+      "signature",
+      [](const Profile& lower, std::optional<Profile> upper, bool rotate_upper, const std::string& slopes,
+         std::size_t offsets, std::optional<std::pair<double, double>> offset_range, unsigned threads,
+         bool keep_contacts, int bins) {
+        SignatureOptions o;
+        if (slopes != "exact" && slopes != "spline")
+          throw py::value_error("signature: slopes must be 'exact' or 'spline', got '" + slopes + "'");
+        o.slopes = slopes == "spline" ? SlopeMethod::Spline : SlopeMethod::Exact;
+        o.offsets = offsets;
+        o.threads = threads;
+        o.keep_contacts = keep_contacts;
+        o.bins = bins;
+        if (offset_range) {
+          o.offset_min = offset_range->first;
+          o.offset_max = offset_range->second;
+        }
+        Profile up = upper ? *upper : lower;
+        if (!upper || rotate_upper) up = rotate180(up);
+        SignatureResult r = unwrap(nogil([&] { return signature(lower, up, o); }));
+        py::dict d;
+        d["offset"] = arr(r.offset);
+        d["lift"] = arr(r.lift);
+        d["theta"] = arr(r.theta);
+        d["theta_min"] = arr(r.theta_min);
+        d["theta_left"] = arr(r.theta_left);
+        d["theta_right"] = arr(r.theta_right);
+        d["theta_max_forward"] = r.theta_max_forward;
+        d["theta_max_backward"] = r.theta_max_backward;
+        d["offset_at_forward"] = r.offset_at_forward;
+        d["offset_at_backward"] = r.offset_at_backward;
+        d["contact_slope_mean"] = r.contact_slope_mean;
+        d["contact_slope_std"] = r.contact_slope_std;
+        d["contact_slope_pdf"] = hist_dict(r.contact_slope_pdf);
+        d["slope_samples"] = arr(r.slope_samples);
+        d["slope_weights"] = arr(r.slope_weights);
+        d["exact"] = r.exact;
+        d["events"] = r.events;
+        if (keep_contacts) {
+          std::vector<double> off, x, z, s;
+          py::list types;
+          for (std::size_t i = 0; i < r.offset.size(); ++i)
+            for (auto k = r.contact_begin[i]; k < r.contact_begin[i + 1]; ++k) {
+              off.push_back(r.offset[i]);
+              x.push_back(r.contacts[k].x);
+              z.push_back(r.contacts[k].z);
+              s.push_back(r.contacts[k].slope);
+              types.append(contact_type_name(r.contacts[k].type));
+            }
+          py::dict c;
+          c["offset"] = arr(off);
+          c["x"] = arr(x);
+          c["z"] = arr(z);
+          c["slope"] = arr(s);
+          c["type"] = types;
+          d["contacts"] = c;
+        }
+        return d;
+      },
+      py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("rotate_upper") = true,
+      py::arg("slopes") = "exact", py::arg("offsets") = 0, py::arg("offset_range") = py::none(), py::arg("threads") = 0,
+      py::arg("keep_contacts") = false, py::arg("bins") = 90,
+      "Signature function theta(x_ofs) of two profiles (runs without the GIL). `upper` is a surface as measured "
+      "(rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = "
+      "every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores. Returns "
+      "offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), "
+      "offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events.");
   m.def("lift_direct", &lift_direct, py::arg("lower"), py::arg("upper_rotated"), py::arg("offset"),
         "Lift h(s) (m) of the turned-over upper profile at offset s (m): plain O(N+M) evaluation (reference method)");
-  m.def("predict_friction",
-        [](double mu_a, double theta_max, double sigma) {
-          FrictionPrediction f = unwrap(predict_friction(mu_a, theta_max, sigma));
-          py::dict d;
-          d["atomic_friction"] = f.atomic_friction;
-          d["atomic_angle"] = f.atomic_angle;
-          d["theta_max"] = f.theta_max;
-          d["friction_angle"] = f.friction_angle;
-          d["friction_coefficient"] = f.friction_coefficient;
-          d["friction_angle_low"] = f.friction_angle_low;
-          d["friction_coefficient_low"] = f.friction_coefficient_low;
-          return d;
-        },
-        py::arg("atomic_friction"), py::arg("theta_max"), py::arg("sigma") = 0.0,
-        "Friction prediction of Eq. 6 and the Eq. 18 range: atomic_friction mu_a (unitless), theta_max and sigma "
-        "(rad). Returns angles in rad and coefficients (unitless)");
-  m.def("read_profile", [](const std::string& path) { return unwrap(nogil([&] { return read_profile(path); })); },
-        py::arg("path"), "Reads a single-valued profile (any readable format) in metres (runs without the GIL)");
-  m.def("write_profile_csv",
-        [](const std::string& path, const Profile& p) {
-          auto st = write_profile_csv(path, p);
-          if (!st) throw py::value_error(st.error().message);
-        },
-        py::arg("path"), py::arg("profile"),
-        "Writes a profile as CSV with columns x_m,z_m (metres, 17 significant digits); errors name the path");
+  m.def(
+      "predict_friction",
+      [](double mu_a, double theta_max, double sigma) {
+        FrictionPrediction f = unwrap(predict_friction(mu_a, theta_max, sigma));
+        py::dict d;
+        d["atomic_friction"] = f.atomic_friction;
+        d["atomic_angle"] = f.atomic_angle;
+        d["theta_max"] = f.theta_max;
+        d["friction_angle"] = f.friction_angle;
+        d["friction_coefficient"] = f.friction_coefficient;
+        d["friction_angle_low"] = f.friction_angle_low;
+        d["friction_coefficient_low"] = f.friction_coefficient_low;
+        return d;
+      },
+      py::arg("atomic_friction"), py::arg("theta_max"), py::arg("sigma") = 0.0,
+      "Friction prediction of Eq. 6 and the Eq. 18 range: atomic_friction mu_a (unitless), theta_max and sigma "
+      "(rad). Returns angles in rad and coefficients (unitless)");
+  m.def(
+      "read_profile", [](const std::string& path) { return unwrap(nogil([&] { return read_profile(path); })); },
+      py::arg("path"), "Reads a single-valued profile (any readable format) in metres (runs without the GIL)");
+  m.def(
+      "write_profile_csv",
+      [](const std::string& path, const Profile& p) {
+        auto st = write_profile_csv(path, p);
+        if (!st) throw py::value_error(st.error().message);
+      },
+      py::arg("path"), py::arg("profile"),
+      "Writes a profile as CSV with columns x_m,z_m (metres, 17 significant digits); errors name the path");
   frictal_bind_io(m);
   frictal_bind_dem(m);
   frictal_bind_study(m);

@@ -114,14 +114,17 @@ void frictal_bind_study(py::module_& m) {
         d["parts"] = parts;
         return d;
       },
-      py::arg("store"), "How far a store is (as `frictal study status --json`).\n\n"
+      py::arg("store"),
+      "How far a store is (as `frictal study status --json`).\n\n"
       "Returns counts of tasks (unitless) and times in s.");
   m.def(
       "study_report", [](const std::string& path) { return render_markdown(ok(report(*open_existing(path)))); },
-      py::arg("store"), "The report of a store (Markdown): per-part tables and the paper's findings checked.\n\n"
+      py::arg("store"),
+      "The report of a store (Markdown): per-part tables and the paper's findings checked.\n\n"
       "Numbers carry their units in the text (deg, m, unitless ratios).");
   m.def(
-      "study_export", [](const std::string& path, const std::string& dir) { return ok(export_csv(*open_existing(path), dir)); },
+      "study_export",
+      [](const std::string& path, const std::string& dir) { return ok(export_csv(*open_existing(path), dir)); },
       py::arg("store"), py::arg("directory"),
       "Writes the store as CSV files under directory (tasks.csv, PART.csv, PART-arrays.csv, PART-pooled-pdfs.csv, "
       "report.md); returns the file names.\n\n"

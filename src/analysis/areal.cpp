@@ -1,8 +1,8 @@
 // Friction of areal maps: directional predictions from line profiles, the anisotropy table,
 // and the areal signature of two rigid blocks with block-wise max bounds.
+#include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/core.h>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -36,8 +36,10 @@ Result<DirectionalFriction> friction_along(const Map& m, double angle, const Dir
   util::parallel_chunks(lines.size(), threads, [&](unsigned, std::size_t k0, std::size_t k1) {
     for (std::size_t k = k0; k < k1; ++k) {
       auto sig = self_signature(lines[k], so);
-      if (sig) results[k] = std::move(*sig);
-      else errors[k] = sig.error();
+      if (sig)
+        results[k] = std::move(*sig);
+      else
+        errors[k] = sig.error();
     }
   });
   for (std::size_t k = 0; k < lines.size(); ++k) {  // reduce in line order: deterministic
@@ -90,8 +92,10 @@ class RangeMax2D {
         if (a == 0 && b == 0) continue;
         for (std::size_t j = 0; j + (std::size_t(1) << b) <= h; ++j)
           for (std::size_t i = 0; i + (std::size_t(1) << a) <= w; ++i) {
-            if (a > 0) at(a, b, i, j) = std::max(at(a - 1, b, i, j), at(a - 1, b, i + (std::size_t(1) << (a - 1)), j));
-            else at(a, b, i, j) = std::max(at(a, b - 1, i, j), at(a, b - 1, i, j + (std::size_t(1) << (b - 1))));
+            if (a > 0)
+              at(a, b, i, j) = std::max(at(a - 1, b, i, j), at(a - 1, b, i + (std::size_t(1) << (a - 1)), j));
+            else
+              at(a, b, i, j) = std::max(at(a, b - 1, i, j), at(a, b - 1, i, j + (std::size_t(1) << (b - 1))));
           }
       }
   }
@@ -109,7 +113,9 @@ class RangeMax2D {
     return k;
   }
   double& at(int a, int b, std::size_t i, std::size_t j) { return t_[((std::size_t(a) * lh_ + b) * h_ + j) * w_ + i]; }
-  double cat(int a, int b, std::size_t i, std::size_t j) const { return t_[((std::size_t(a) * lh_ + b) * h_ + j) * w_ + i]; }
+  double cat(int a, int b, std::size_t i, std::size_t j) const {
+    return t_[((std::size_t(a) * lh_ + b) * h_ + j) * w_ + i];
+  }
   std::size_t w_, h_;
   int lw_, lh_;
   std::vector<double> t_;
@@ -133,7 +139,8 @@ Result<ArealSignature> areal_signature(const Map& f, const Map& g_in, double ang
     for (double& v : negated.heights) v = -v;
   }
   const Map& g = o.turn_over_upper ? g_in : negated;
-  if (f.nx < 2 || f.ny < 2 || g.nx < 2 || g.ny < 2) return make_error("areal_signature: maps need at least 2 x 2 nodes");
+  if (f.nx < 2 || f.ny < 2 || g.nx < 2 || g.ny < 2)
+    return make_error("areal_signature: maps need at least 2 x 2 nodes");
   if (!std::isfinite(angle)) return make_error("areal_signature: the direction must be a finite angle");
   if (o.block < 2 || o.block > 4096) return make_error("areal_signature: block must be in 2..4096");
   const double dxv = std::cos(angle), dyv = std::sin(angle);
@@ -241,13 +248,17 @@ Result<ArealSignature> areal_signature(const Map& f, const Map& g_in, double ang
           for (std::size_t cj : {b.j0, b.j1}) {
             double u, v;
             q_of(f.x0 + double(ci) * f.dx, f.y0 + double(cj) * f.dy, s, u, v);
-            umin = std::min(umin, u); umax = std::max(umax, u);
-            vmin = std::min(vmin, v); vmax = std::max(vmax, v);
+            umin = std::min(umin, u);
+            umax = std::max(umax, u);
+            vmin = std::min(vmin, v);
+            vmax = std::max(vmax, v);
           }
         if (umax < 0 || vmax < 0 || umin > double(g.nx - 1) || vmin > double(g.ny - 1)) continue;
         // Bilinear values lie within the max of the nodes of the cells touched.
-        const std::size_t gi0 = std::size_t(std::max(0.0, std::floor(umin))), gj0 = std::size_t(std::max(0.0, std::floor(vmin)));
-        const std::size_t gi1 = std::min(g.nx - 1, std::size_t(std::ceil(umax))), gj1 = std::min(g.ny - 1, std::size_t(std::ceil(vmax)));
+        const std::size_t gi0 = std::size_t(std::max(0.0, std::floor(umin))),
+                          gj0 = std::size_t(std::max(0.0, std::floor(vmin)));
+        const std::size_t gi1 = std::min(g.nx - 1, std::size_t(std::ceil(umax))),
+                          gj1 = std::min(g.ny - 1, std::size_t(std::ceil(vmax)));
         const double gb = gtable.query(gi0 / B, gi1 / B, gj0 / B, gj1 / B);
         if (!std::isfinite(gb)) continue;
         order.emplace_back(b.fmax + gb, bi);

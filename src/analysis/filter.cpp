@@ -1,8 +1,8 @@
 // Gaussian low-pass profile filter (ISO 16610-21) with renormalised weights at the ends.
+#include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <fmt/core.h>
 #include <numbers>
 
 #include "analysis/fft.hpp"

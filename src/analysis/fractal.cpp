@@ -1,8 +1,8 @@
 // Fractal dimension: divider (ruler) method along curves, box counting, PSD slope, and the
 // Koch similarity dimension of Eq. 13.
+#include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/core.h>
 #include <numbers>
 #include <unordered_set>
 
@@ -20,7 +20,10 @@ struct Line {
 Line fit_line(const std::vector<double>& x, const std::vector<double>& y) {
   const double n = double(x.size());
   double mx = 0, my = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) { mx += x[i]; my += y[i]; }
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    mx += x[i];
+    my += y[i];
+  }
   mx /= n;
   my /= n;
   double sxx = 0, sxy = 0, syy = 0;
@@ -66,7 +69,7 @@ double divider_length(const Curve& c, double eps) {
   const std::size_t n = c.size();
   if (n < 2 || !(eps > 0)) return 0;
   double px = c.x[0], pz = c.z[0];
-  std::size_t seg = 0;  // the walker is on edge [seg, seg + 1], at (px, pz)
+  std::size_t seg = 0;      // the walker is on edge [seg, seg + 1], at (px, pz)
   double ax = px, az = pz;  // start of the remaining part of that edge
   std::size_t steps = 0;
   const double e2 = eps * eps;
@@ -181,7 +184,8 @@ Result<FractalFit> psd_dimension(const Profile& p, const PsdFitOptions& o) {
   double qlo = o.q_min > 0 ? o.q_min : sp->q[1];
   double qhi = o.q_max > 0 ? o.q_max : 0.25 * sp->q.back();
   if (!(qhi > qlo)) return make_error(fmt::format("PSD fit: wavenumber range [{}, {}] rad/m is empty", qlo, qhi));
-  if (o.bins_per_decade < 1 || o.bins_per_decade > 1000) return make_error("PSD fit: bins_per_decade must be in 1..1000");
+  if (o.bins_per_decade < 1 || o.bins_per_decade > 1000)
+    return make_error("PSD fit: bins_per_decade must be in 1..1000");
   // Average C in log-spaced bins so that the many high-q values do not dominate the fit.
   const double w = std::log(10.0) / o.bins_per_decade;
   std::vector<double> lq, lc;

@@ -1,8 +1,8 @@
 // Detrending, spectra, autocorrelation, distributions, areal statistics and map lines.
+#include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <fmt/core.h>
 #include <limits>
 #include <numbers>
 
@@ -76,7 +76,10 @@ void hat_integrals(double q, double h, cd& A, cd& B) {
     cd term = 1.0, s0 = 0.0, s1 = 0.0;
     double fact = 1;  // m!
     for (int m = 0; m <= 12; ++m) {
-      if (m > 0) { term *= cd(0, -u); fact *= m; }
+      if (m > 0) {
+        term *= cd(0, -u);
+        fact *= m;
+      }
       s0 += term / (double(m + 1) * fact);
       s1 += term / (double(m + 2) * fact);
     }
@@ -96,8 +99,15 @@ void hat_integrals(double q, double h, cd& A, cd& B) {
 Result<Detrend> parse_detrend(const std::string& text) {
   Detrend d;
   if (text == "none" || text.empty()) return d;
-  if (text == "mean") { d.kind = DetrendKind::Mean; return d; }
-  if (text == "line" || text == "plane") { d.kind = DetrendKind::Line; d.degree = 1; return d; }
+  if (text == "mean") {
+    d.kind = DetrendKind::Mean;
+    return d;
+  }
+  if (text == "line" || text == "plane") {
+    d.kind = DetrendKind::Line;
+    d.degree = 1;
+    return d;
+  }
   if (text.rfind("poly:", 0) == 0) {
     std::string n = text.substr(5);
     char* end = nullptr;
@@ -108,7 +118,8 @@ Result<Detrend> parse_detrend(const std::string& text) {
       return d;
     }
   }
-  return make_error(fmt::format("detrend '{}' not understood (expected none, mean, line or poly:N with N in 0..10)", text));
+  return make_error(
+      fmt::format("detrend '{}' not understood (expected none, mean, line or poly:N with N in 0..10)", text));
 }
 
 static int degree_of(const Detrend& d) {
@@ -121,7 +132,8 @@ Result<Profile> detrend(const Profile& p, const Detrend& d) {
   const int deg = degree_of(d);
   if (deg < 0 || deg > 10) return make_error(fmt::format("detrend degree {} out of range 0..10", deg));
   if (std::size_t(deg) + 1 > p.size())
-    return make_error(fmt::format("detrend degree {} needs at least {} points, the profile has {}", deg, deg + 1, p.size()));
+    return make_error(
+        fmt::format("detrend degree {} needs at least {} points, the profile has {}", deg, deg + 1, p.size()));
   const std::size_t n = std::size_t(deg) + 1;
   auto w = trapezoid_weights(p);
   const double mid = 0.5 * (p.x_min() + p.x_max()), half = 0.5 * p.length();
@@ -195,8 +207,10 @@ Result<Spectrum> power_spectrum(const Profile& p, std::size_t max_k) {
   std::size_t K = max_k ? max_k : std::max<std::size_t>(1, n / 2);
   if (!uniform && !max_k) K = std::min<std::size_t>({K, 4096, std::max<std::size_t>(16, std::size_t(5e8 / double(n)))});
   if (!uniform && double(K) * double(n) > 2e9)
-    return make_error(fmt::format("power_spectrum: {} wavenumbers x {} points of a non-uniform profile is too much "
-                                  "work (direct sums); resample it uniformly first", K, n));
+    return make_error(
+        fmt::format("power_spectrum: {} wavenumbers x {} points of a non-uniform profile is too much "
+                    "work (direct sums); resample it uniformly first",
+                    K, n));
   if (K > (std::size_t(1) << 26)) return make_error("power_spectrum: too many wavenumbers requested");
   Spectrum out;
   out.q.resize(K);
@@ -276,9 +290,7 @@ Result<Autocorrelation> autocorrelation(const Profile& p, std::size_t max_lag) {
   return out;
 }
 
-Histogram height_distribution(const Profile& p, int bins) {
-  return histogram(p.z, trapezoid_weights(p), bins);
-}
+Histogram height_distribution(const Profile& p, int bins) { return histogram(p.z, trapezoid_weights(p), bins); }
 
 MapStats map_stats(const Map& m) {
   MapStats s;

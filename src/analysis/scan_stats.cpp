@@ -1,9 +1,9 @@
 // Scan quantities (scan_stats.hpp). Invalid (NaN) points never enter a sum.
 #include "frictal/scan_stats.hpp"
 
+#include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/core.h>
 #include <limits>
 #include <vector>
 
@@ -86,8 +86,10 @@ MapScanStats map_scan_stats(const Map& m) {
   s.bandwidth_short = 0.5 * (m.dx + m.dy);
   s.bandwidth_long = 0.5 * (s.physical_size_x + s.physical_size_y);
   s.nyquist_wavelength = 2 * std::max(m.dx, m.dy);
-  pooled_line_stats(m.ny, m.nx, m.dx, [&](std::size_t j, std::size_t i) { return m.at(i, j); }, s.Rq_x, s.Rdq_x);
-  pooled_line_stats(m.nx, m.ny, m.dy, [&](std::size_t i, std::size_t j) { return m.at(i, j); }, s.Rq_y, s.Rdq_y);
+  pooled_line_stats(
+      m.ny, m.nx, m.dx, [&](std::size_t j, std::size_t i) { return m.at(i, j); }, s.Rq_x, s.Rdq_x);
+  pooled_line_stats(
+      m.nx, m.ny, m.dy, [&](std::size_t i, std::size_t j) { return m.at(i, j); }, s.Rq_y, s.Rdq_y);
   double g2 = 0;
   std::size_t cnt = 0;
   for (std::size_t j = 0; j + 1 < m.ny; ++j)
@@ -120,8 +122,8 @@ Result<double> short_reliability_cutoff(const Profile& p, double tip_radius) {
   const std::size_t n = p.size();
   if (n < 4) return make_error(fmt::format("profile of {} points: the reliability cutoff needs at least 4", n));
   const double dx = p.length() / double(n - 1);
-  return cutoff_along(1, n, dx, tip_radius, [&](std::size_t, std::size_t k) { return p.z[k]; },
-                      [&](std::size_t k) { return p.x[k]; });
+  return cutoff_along(
+      1, n, dx, tip_radius, [&](std::size_t, std::size_t k) { return p.z[k]; }, [&](std::size_t k) { return p.x[k]; });
 }
 
 Result<double> short_reliability_cutoff(const Map& m, double tip_radius) {
@@ -130,8 +132,14 @@ Result<double> short_reliability_cutoff(const Map& m, double tip_radius) {
   if (auto st = validate(m, "map"); !st) return st.error();
   auto xs = [&](std::size_t i) { return double(i) * m.dx; };
   auto ys = [&](std::size_t j) { return double(j) * m.dy; };
-  const double cx = m.nx >= 4 ? cutoff_along(m.ny, m.nx, m.dx, tip_radius, [&](std::size_t j, std::size_t i) { return m.at(i, j); }, xs) : 0.0;
-  const double cy = m.ny >= 4 ? cutoff_along(m.nx, m.ny, m.dy, tip_radius, [&](std::size_t i, std::size_t j) { return m.at(i, j); }, ys) : 0.0;
+  const double cx =
+      m.nx >= 4 ? cutoff_along(
+                      m.ny, m.nx, m.dx, tip_radius, [&](std::size_t j, std::size_t i) { return m.at(i, j); }, xs)
+                : 0.0;
+  const double cy =
+      m.ny >= 4 ? cutoff_along(
+                      m.nx, m.ny, m.dy, tip_radius, [&](std::size_t i, std::size_t j) { return m.at(i, j); }, ys)
+                : 0.0;
   if (std::isnan(cx) || std::isnan(cy)) return std::numeric_limits<double>::quiet_NaN();
   return std::max(cx, cy);
 }

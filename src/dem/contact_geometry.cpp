@@ -62,7 +62,10 @@ void find_touching(const Model& m, State& st, Workspace& ws) {
   // state are exactly those of a pass over the whole list.
   const double hot_skin = m.def.hot_skin;
   bool full = !ws.hot.valid;
-  if (!full) full = 2.0 * relative_motion_bound(m, ws.hot.position, ws.hot.angle, ws.hot.rotation, st.position, st.angle, ws.rotation) > hot_skin;
+  if (!full)
+    full = 2.0 * relative_motion_bound(m, ws.hot.position, ws.hot.angle, ws.hot.rotation, st.position, st.angle,
+                                       ws.rotation) >
+           hot_skin;
   const double* lx = m.local_x.data();
   const double* ly = m.local_y.data();
   // Local copies of everything the loop reads, so that the stores cannot alias them.
@@ -114,8 +117,8 @@ void find_touching(const Model& m, State& st, Workspace& ws) {
     for (std::size_t i = 0; i < count; ++i) {
       const NeighborPair& p = pairs[i];
       const PairSlots& q = slots[i];
-      const double dist2 = classify(static_cast<std::uint32_t>(i), wx[q.vertex], wy[q.vertex], wx[q.edge0],
-                                    wy[q.edge0], wx[q.edge1], wy[q.edge1]);
+      const double dist2 = classify(static_cast<std::uint32_t>(i), wx[q.vertex], wy[q.vertex], wx[q.edge0], wy[q.edge0],
+                                    wx[q.edge1], wy[q.edge1]);
       const double near = radius[p.vbody] + radius[p.ebody] + hot_skin;
       if (dist2 < near * near) hot.pair.push_back(static_cast<std::uint32_t>(i));
     }
@@ -137,7 +140,7 @@ void find_touching(const Model& m, State& st, Workspace& ws) {
       const Pose& B = ps[b];
       const double cr = A.c * B.c + A.s * B.s, sr = A.s * B.c - A.c * B.s;  // rotation a -> b
       const double ox = A.px - B.px, oy = A.py - B.py;
-      const double qx = B.c * ox + B.s * oy, qy = -B.s * ox + B.c * oy;   // centroid of a in b
+      const double qx = B.c * ox + B.s * oy, qy = -B.s * ox + B.c * oy;  // centroid of a in b
       const double* const __restrict hvx = hot.vx.data();
       const double* const __restrict hvy = hot.vy.data();
       const double* const __restrict he0x = hot.e0x.data();

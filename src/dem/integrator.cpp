@@ -69,9 +69,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
 // Kick of length h: v += h M^-1 (F + m g). With implicit damping, (M + 2 h gamma_n G_m) dv =
 // h (F + m g) per body, G_m from the last force evaluation (ws.modes): two half kicks of the same
@@ -107,7 +105,6 @@ void kick(const Model& m, State& st, const Workspace& ws, double h) {
   }
 }
 
-
 }  // namespace
 
 }  // namespace detail
@@ -142,15 +139,18 @@ Status step(const Model& m, State& st) {
   // Neighbour list: rebuild when some vertex-edge distance may have shrunk by more than the skin
   // since the last build (pairs left out were at least r1 + r2 + skin apart). The bound is on
   // the relative motion of the bodies: a block resting on a tilting block keeps its list.
-  if (relative_motion_bound(m, ws.list_position, ws.list_angle, ws.list_rotation, st.position, st.angle, ws.rotation) > m.def.skin) {
+  if (relative_motion_bound(m, ws.list_position, ws.list_angle, ws.list_rotation, st.position, st.angle, ws.rotation) >
+      m.def.skin) {
     // A single step must not move anything by more than half the skin, or contacts are missed.
     for (std::size_t b = 0; b < nb; ++b) {
-      const double per_step = (std::hypot(st.velocity[b].x, st.velocity[b].y) +
-                               std::fabs(st.angular_velocity[b]) * m.extent[b]) * dt;
+      const double per_step =
+          (std::hypot(st.velocity[b].x, st.velocity[b].y) + std::fabs(st.angular_velocity[b]) * m.extent[b]) * dt;
       if (2.0 * per_step > m.def.skin)
-        return make_error(ErrorCode::Unstable, fmt::format(
-            "dem: at t = {:.6g} s body {} moves {:.3g} m in one step, more than half the skin {:.3g} m; "
-            "reduce the time step (now {:.3g} s) or enlarge the skin", st.time, b, per_step, m.def.skin, dt));
+        return make_error(
+            ErrorCode::Unstable,
+            fmt::format("dem: at t = {:.6g} s body {} moves {:.3g} m in one step, more than half the skin {:.3g} m; "
+                        "reduce the time step (now {:.3g} s) or enlarge the skin",
+                        st.time, b, per_step, m.def.skin, dt));
     }
     build_neighbor_list(m, st, ws);
   }
@@ -178,9 +178,11 @@ Status step(const Model& m, State& st) {
                         std::isfinite(st.angle[b]) && std::isfinite(st.velocity[b].x) &&
                         std::isfinite(st.velocity[b].y) && std::isfinite(st.angular_velocity[b]);
     if (!finite) {
-      status = make_error(ErrorCode::Unstable, fmt::format(
-          "dem: body {} has a non-finite position or velocity at t = {:.6g} s (step {}); the integration "
-          "blew up: try a time step <= {:.3g} s (now {:.3g} s)", b, st.time, st.steps, dt_hint(), dt));
+      status = make_error(
+          ErrorCode::Unstable,
+          fmt::format("dem: body {} has a non-finite position or velocity at t = {:.6g} s (step {}); the integration "
+                      "blew up: try a time step <= {:.3g} s (now {:.3g} s)",
+                      b, st.time, st.steps, dt_hint(), dt));
       break;
     }
     if (const double lim = st.step_limit[b]; dt > lim) {
@@ -188,20 +190,24 @@ Status step(const Model& m, State& st) {
       // The adaptive step is already below the limit again at the next step: counted only.
       if (!m.def.adaptive_time_step &&
           st.steps_beyond_limit + 1 > static_cast<std::uint64_t>(m.def.max_steps_beyond_limit)) {
-        status = make_error(ErrorCode::Unstable, fmt::format(
-            "dem: at t = {:.6g} s body {} has {} contacts and the time step is above the explicit stability "
-            "limit dt = {:.3g} s (2 / damping rate or 2 / omega of its contact modes), for the {}th step: "
-            "use a time step <= {:.3g} s (now {:.3g} s)",
-            st.time, b, st.body_contacts[b], lim, st.steps_beyond_limit + 1, 0.5 * lim, dt));
+        status = make_error(
+            ErrorCode::Unstable,
+            fmt::format(
+                "dem: at t = {:.6g} s body {} has {} contacts and the time step is above the explicit stability "
+                "limit dt = {:.3g} s (2 / damping rate or 2 / omega of its contact modes), for the {}th step: "
+                "use a time step <= {:.3g} s (now {:.3g} s)",
+                st.time, b, st.body_contacts[b], lim, st.steps_beyond_limit + 1, 0.5 * lim, dt));
         break;
       }
     }
-    const double speed = std::hypot(st.velocity[b].x, st.velocity[b].y) +
-                         std::fabs(st.angular_velocity[b]) * m.extent[b];
+    const double speed =
+        std::hypot(st.velocity[b].x, st.velocity[b].y) + std::fabs(st.angular_velocity[b]) * m.extent[b];
     if (speed > m.def.max_speed)
-      status = make_error(ErrorCode::Unstable, fmt::format(
-          "dem: body {} reached speed {:.3g} m/s > max_speed {:.3g} m/s at t = {:.6g} s (energy blow-up); "
-          "try a time step <= {:.3g} s (now {:.3g} s)", b, speed, m.def.max_speed, st.time, dt_hint(), dt));
+      status = make_error(
+          ErrorCode::Unstable,
+          fmt::format("dem: body {} reached speed {:.3g} m/s > max_speed {:.3g} m/s at t = {:.6g} s (energy blow-up); "
+                      "try a time step <= {:.3g} s (now {:.3g} s)",
+                      b, speed, m.def.max_speed, st.time, dt_hint(), dt));
   }
   if (beyond) {
     ++st.steps_beyond_limit;
@@ -210,10 +216,11 @@ Status step(const Model& m, State& st) {
     st.consecutive_beyond_limit = 0;
   }
   if (status.ok() && ratio > m.def.max_overlap_ratio)
-    status = make_error(ErrorCode::Unstable, fmt::format(
-        "dem: an overlap reached {:.3g} of r1 + r2 (limit {:.3g}) at t = {:.6g} s with {} contacts; the "
-        "stiffness is too low for the load or the time step too large: try dt <= {:.3g} s (now {:.3g} s)",
-        ratio, m.def.max_overlap_ratio, st.time, st.contact_count, dt_hint(), dt));
+    status = make_error(
+        ErrorCode::Unstable,
+        fmt::format("dem: an overlap reached {:.3g} of r1 + r2 (limit {:.3g}) at t = {:.6g} s with {} contacts; the "
+                    "stiffness is too low for the load or the time step too large: try dt <= {:.3g} s (now {:.3g} s)",
+                    ratio, m.def.max_overlap_ratio, st.time, st.contact_count, dt_hint(), dt));
   if (m.def.adaptive_time_step) choose_time_step(m, st);
   if (timed) st.timings.integration += seconds_since(t0);
   return status;

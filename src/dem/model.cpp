@@ -28,12 +28,10 @@ int orient(double ax, double ay, double bx, double by, double cx, double cy) {
 }
 
 bool on_segment(double ax, double ay, double bx, double by, double px, double py) {
-  return std::min(ax, bx) <= px && px <= std::max(ax, bx) && std::min(ay, by) <= py &&
-         py <= std::max(ay, by);
+  return std::min(ax, bx) <= px && px <= std::max(ax, bx) && std::min(ay, by) <= py && py <= std::max(ay, by);
 }
 
-bool segments_intersect(double ax, double ay, double bx, double by, double cx, double cy,
-                        double dx, double dy) {
+bool segments_intersect(double ax, double ay, double bx, double by, double cx, double cy, double dx, double dy) {
   const int o1 = orient(ax, ay, bx, by, cx, cy);
   const int o2 = orient(ax, ay, bx, by, dx, dy);
   const int o3 = orient(cx, cy, dx, dy, ax, ay);
@@ -54,9 +52,8 @@ long first_self_intersection(const std::vector<double>& x, const std::vector<dou
   std::iota(order.begin(), order.end(), 0);
   auto xmin = [&](std::size_t i) { return std::min(x[i], x[(i + 1) % n]); };
   auto xmax = [&](std::size_t i) { return std::max(x[i], x[(i + 1) % n]); };
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-    return xmin(a) < xmin(b) || (xmin(a) == xmin(b) && a < b);
-  });
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return xmin(a) < xmin(b) || (xmin(a) == xmin(b) && a < b); });
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t i = order[k];
     const std::size_t i1 = (i + 1) % n;
@@ -64,8 +61,7 @@ long first_self_intersection(const std::vector<double>& x, const std::vector<dou
       const std::size_t j = order[m];
       const std::size_t j1 = (j + 1) % n;
       if (j == i1 || i == j1) continue;  // adjacent edges share a vertex
-      if (segments_intersect(x[i], y[i], x[i1], y[i1], x[j], y[j], x[j1], y[j1]))
-        return static_cast<long>(i);
+      if (segments_intersect(x[i], y[i], x[i1], y[i1], x[j], y[j], x[j1], y[j1])) return static_cast<long>(i);
     }
   }
   return -1;
@@ -75,8 +71,7 @@ long first_self_intersection(const std::vector<double>& x, const std::vector<dou
 
 StateWorkspace::StateWorkspace() : p_(std::make_unique<detail::Workspace>()) {}
 StateWorkspace::~StateWorkspace() = default;
-StateWorkspace::StateWorkspace(const StateWorkspace& other)
-    : p_(std::make_unique<detail::Workspace>(*other.p_)) {}
+StateWorkspace::StateWorkspace(const StateWorkspace& other) : p_(std::make_unique<detail::Workspace>(*other.p_)) {}
 StateWorkspace& StateWorkspace::operator=(const StateWorkspace& other) {
   if (this != &other) *p_ = *other.p_;
   return *this;
@@ -97,18 +92,27 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
   auto bad = [](const std::string& s) { return Result<Model>(make_error(s)); };
   auto finite_pos = [](double v) { return std::isfinite(v) && v > 0; };
   auto finite_nonneg = [](double v) { return std::isfinite(v) && v >= 0; };
-  if (!finite_pos(world.time_step)) return bad(fmt::format("world time_step = {} s: expected a finite value > 0", world.time_step));
-  if (!finite_nonneg(world.skin)) return bad(fmt::format("world skin = {} m: expected a finite value >= 0", world.skin));
-  if (!finite_nonneg(world.hot_skin)) return bad(fmt::format("world hot_skin = {} m: expected a finite value >= 0", world.hot_skin));
+  if (!finite_pos(world.time_step))
+    return bad(fmt::format("world time_step = {} s: expected a finite value > 0", world.time_step));
+  if (!finite_nonneg(world.skin))
+    return bad(fmt::format("world skin = {} m: expected a finite value >= 0", world.skin));
+  if (!finite_nonneg(world.hot_skin))
+    return bad(fmt::format("world hot_skin = {} m: expected a finite value >= 0", world.hot_skin));
   if (!(std::isfinite(world.time_step_safety) && world.time_step_safety > 0 && world.time_step_safety <= 1))
     return bad(fmt::format("world time_step_safety = {}: expected a value in (0, 1]", world.time_step_safety));
-  if (!std::isfinite(world.gravity.x) || !std::isfinite(world.gravity.y)) return bad("world gravity: expected finite components");
+  if (!std::isfinite(world.gravity.x) || !std::isfinite(world.gravity.y))
+    return bad("world gravity: expected finite components");
   const ContactParams& c = world.contact;
-  if (!finite_pos(c.normal_stiffness)) return bad(fmt::format("contact normal_stiffness k_n = {} N/m: expected > 0", c.normal_stiffness));
-  if (!finite_nonneg(c.tangential_stiffness)) return bad(fmt::format("contact tangential_stiffness k_t = {} N/m: expected >= 0", c.tangential_stiffness));
-  if (!finite_nonneg(c.normal_damping)) return bad(fmt::format("contact normal_damping gamma_n = {} 1/s: expected >= 0", c.normal_damping));
-  if (!finite_nonneg(c.tangential_damping)) return bad(fmt::format("contact tangential_damping gamma_t = {} 1/s: expected >= 0", c.tangential_damping));
-  if (!finite_nonneg(c.atomic_friction)) return bad(fmt::format("contact atomic_friction mu_a = {}: expected >= 0", c.atomic_friction));
+  if (!finite_pos(c.normal_stiffness))
+    return bad(fmt::format("contact normal_stiffness k_n = {} N/m: expected > 0", c.normal_stiffness));
+  if (!finite_nonneg(c.tangential_stiffness))
+    return bad(fmt::format("contact tangential_stiffness k_t = {} N/m: expected >= 0", c.tangential_stiffness));
+  if (!finite_nonneg(c.normal_damping))
+    return bad(fmt::format("contact normal_damping gamma_n = {} 1/s: expected >= 0", c.normal_damping));
+  if (!finite_nonneg(c.tangential_damping))
+    return bad(fmt::format("contact tangential_damping gamma_t = {} 1/s: expected >= 0", c.tangential_damping));
+  if (!finite_nonneg(c.atomic_friction))
+    return bad(fmt::format("contact atomic_friction mu_a = {}: expected >= 0", c.atomic_friction));
   if (!finite_pos(world.max_overlap_ratio)) return bad("world max_overlap_ratio: expected > 0");
   if (!finite_pos(world.max_speed)) return bad("world max_speed: expected > 0 m/s");
   if (world.max_steps_beyond_limit < 0) return bad("world max_steps_beyond_limit: expected >= 0");
@@ -120,16 +124,20 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     const BodyDef& d = bodies[b];
     const std::string who = fmt::format("body {}", b);
-    if (d.x.size() != d.y.size()) return bad(fmt::format("{}: x has {} vertices but y has {}", who, d.x.size(), d.y.size()));
+    if (d.x.size() != d.y.size())
+      return bad(fmt::format("{}: x has {} vertices but y has {}", who, d.x.size(), d.y.size()));
     const std::size_t n = d.x.size();
     if (n < 3) return bad(fmt::format("{}: {} vertices, expected at least 3", who, n));
     if (m.local_x.size() + n >= (std::size_t{1} << 31)) return bad(fmt::format("{}: too many vertices in total", who));
     for (std::size_t i = 0; i < n; ++i)
-      if (!std::isfinite(d.x[i]) || !std::isfinite(d.y[i])) return bad(fmt::format("{}: vertex {} is not finite", who, i));
+      if (!std::isfinite(d.x[i]) || !std::isfinite(d.y[i]))
+        return bad(fmt::format("{}: vertex {} is not finite", who, i));
     for (std::size_t i = 0; i < n; ++i)
       if (d.x[i] == d.x[(i + 1) % n] && d.y[i] == d.y[(i + 1) % n])
-        return bad(fmt::format("{}: vertices {} and {} coincide (zero-length edge; do not repeat the closing point)", who, i, (i + 1) % n));
-    if (!finite_pos(d.radius)) return bad(fmt::format("{}: radius = {} m, expected a finite spheroradius > 0", who, d.radius));
+        return bad(fmt::format("{}: vertices {} and {} coincide (zero-length edge; do not repeat the closing point)",
+                               who, i, (i + 1) % n));
+    if (!finite_pos(d.radius))
+      return bad(fmt::format("{}: radius = {} m, expected a finite spheroradius > 0", who, d.radius));
     if (!finite_pos(d.density)) return bad(fmt::format("{}: density = {} kg/m^2, expected > 0", who, d.density));
     // Mass properties about the first vertex (better conditioned), then shifted.
     double a2 = 0, sx = 0, sy = 0, ixx = 0;

@@ -51,8 +51,10 @@ double relative_motion_bound(const Model& m, const std::vector<Vec2>& p0, const 
   double b1 = 0, b2 = 0;
   for (std::size_t b = 0; b < nb; ++b) {
     const double d = motion_bound(m, b, p0[b], a0[b], p1[b], a1[b]);
-    if (d > b1) b2 = b1, b1 = d;
-    else if (d > b2) b2 = d;
+    if (d > b1)
+      b2 = b1, b1 = d;
+    else if (d > b2)
+      b2 = d;
   }
   return b1 + b2;
 }
@@ -147,8 +149,10 @@ void build_neighbor_list(const Model& m, State& st, Workspace& ws) {
           for (std::size_t iy = iy0; iy <= iy1; ++iy)
             for (std::size_t ix = ix0; ix <= ix1; ++ix) {
               const std::size_t k = iy * nx + ix;
-              if (pass == 0) ++start[k + 1];
-              else items[start[k]++] = i;
+              if (pass == 0)
+                ++start[k + 1];
+              else
+                items[start[k]++] = i;
             }
         }
         if (pass == 0) {
@@ -185,8 +189,7 @@ void build_neighbor_list(const Model& m, State& st, Workspace& ws) {
       }
     }
   }
-  std::sort(out.begin(), out.end(),
-            [](const NeighborPair& l, const NeighborPair& r) { return l.key < r.key; });
+  std::sort(out.begin(), out.end(), [](const NeighborPair& l, const NeighborPair& r) { return l.key < r.key; });
   // Carry the tangential springs of pairs that stay in the list.
   std::size_t o = 0;
   for (NeighborPair& p : out) {

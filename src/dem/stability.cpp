@@ -24,8 +24,7 @@ double max_eigenvalue(const double a[6]) {
   const double p2 = (xx - q) * (xx - q) + (yy - q) * (yy - q) + (tt - q) * (tt - q) + 2.0 * p1;
   if (p2 <= 0) return q;
   const double p = std::sqrt(p2 / 6.0);
-  const double bxx = (xx - q) / p, byy = (yy - q) / p, btt = (tt - q) / p, bxy = xy / p, bxt = xt / p,
-               byt = yt / p;
+  const double bxx = (xx - q) / p, byy = (yy - q) / p, btt = (tt - q) / p, bxy = xy / p, bxt = xt / p, byt = yt / p;
   const double det = bxx * (byy * btt - byt * byt) - bxy * (bxy * btt - byt * bxt) + bxt * (bxy * byt - byy * bxt);
   const double r = std::clamp(det / 2.0, -1.0, 1.0);
   const double phi = std::acos(r) / 3.0;
@@ -52,7 +51,8 @@ double mode_limit(const ModeSums& s, double mass, double inertia, double kn, dou
     // v' = v + dt (-omega^2 x - c v) / (1 + c dt), x' = x + dt v'; stable iff
     // omega^2 dt^2 < 2 (2 + c dt).
     const double c_low = gn * s.mred_min * w2 / kn;
-    double limit = w2 > 0 ? (c_low + std::sqrt(c_low * c_low + 4.0 * w2)) / w2 : std::numeric_limits<double>::infinity();
+    double limit =
+        w2 > 0 ? (c_low + std::sqrt(c_low * c_low + 4.0 * w2)) / w2 : std::numeric_limits<double>::infinity();
     if (kt > 0) {
       double t[6];
       for (int i = 0; i < 6; ++i) t[i] = kt * s.gt[i] * scale[i];
@@ -91,8 +91,8 @@ void choose_time_step(const Model& m, State& st) {
     if (!m.def.implicit_damping && gn > 0) one_more = std::min(one_more, 2.0 / gn);
     dt = std::min(dt, m.def.time_step_safety * std::min(st.step_limit[b], one_more));
     // Keep the motion per step well inside the skin (the list check wants <= skin / 2).
-    const double speed = std::hypot(st.velocity[b].x, st.velocity[b].y) +
-                         std::fabs(st.angular_velocity[b]) * m.extent[b];
+    const double speed =
+        std::hypot(st.velocity[b].x, st.velocity[b].y) + std::fabs(st.angular_velocity[b]) * m.extent[b];
     if (skin > 0 && speed * dt > 0.25 * skin) dt = 0.25 * skin / speed;
   }
   st.time_step = dt;

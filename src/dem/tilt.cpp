@@ -53,9 +53,8 @@ struct EdgeIndex {
     order.resize(n);
     for (std::size_t i = 0; i < n; ++i) order[i] = i;
     auto lo = [&](std::size_t i) { return std::min(p.x[i], p.x[i + 1]); };
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-      return lo(a) < lo(b) || (lo(a) == lo(b) && a < b);
-    });
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return lo(a) < lo(b) || (lo(a) == lo(b) && a < b); });
     xmin.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
       xmin[k] = lo(order[k]);
@@ -95,8 +94,8 @@ double vertical_contact_lift(const Poly& lower, const EdgeIndex& li, const Poly&
 
 // True if every vertex-edge distance between the faces (upper lifted by `lift`) is >= `clear`.
 // Valid when the faces do not cross (lift >= the vertical contact lift).
-bool faces_clear(const Poly& lower, const EdgeIndex& li, const Poly& upper, const EdgeIndex& ui,
-                 double lift, double clear) {
+bool faces_clear(const Poly& lower, const EdgeIndex& li, const Poly& upper, const EdgeIndex& ui, double lift,
+                 double clear) {
   const double c2 = clear * clear;
   bool ok = true;
   auto scan = [&](const Poly& pts, double pz, const Poly& other, const EdgeIndex& oi, double oz) {
@@ -129,13 +128,19 @@ Status check_config(const TiltConfig& c) {
   if (!(c.time_step_safety > 0 && c.time_step_safety <= 1))
     return make_error(fmt::format("tilt time_step_safety = {}: expected a value in (0, 1]", c.time_step_safety));
   if (!(std::isfinite(c.settle_time) && c.settle_time >= 0)) return make_error("tilt settle_time: expected >= 0 s");
-  if (!(c.max_tilt > 0 && c.max_tilt < 1.5707963267948966)) return make_error("tilt max_tilt: expected in (0, 90) degrees");
-  if (!pos(c.runaway_distance)) return make_error(fmt::format("tilt runaway_distance = {} m: expected > 0", c.runaway_distance));
-  if (!(std::isfinite(c.restitution) && c.restitution <= 1)) return make_error(fmt::format("tilt restitution = {}: expected <= 1 (0 or less: use gamma_n)", c.restitution));
+  if (!(c.max_tilt > 0 && c.max_tilt < 1.5707963267948966))
+    return make_error("tilt max_tilt: expected in (0, 90) degrees");
+  if (!pos(c.runaway_distance))
+    return make_error(fmt::format("tilt runaway_distance = {} m: expected > 0", c.runaway_distance));
+  if (!(std::isfinite(c.restitution) && c.restitution <= 1))
+    return make_error(fmt::format("tilt restitution = {}: expected <= 1 (0 or less: use gamma_n)", c.restitution));
   if (!pos(c.stick_speed)) return make_error(fmt::format("tilt stick_speed = {} m/s: expected > 0", c.stick_speed));
-  if (!(std::isfinite(c.stick_duration) && c.stick_duration >= 0)) return make_error("tilt stick_duration: expected >= 0 s");
-  if (!(std::isfinite(c.placement_gap) && c.placement_gap >= 0)) return make_error("tilt placement_gap: expected >= 0 m");
-  if (!std::isnan(c.initial_offset) && !std::isfinite(c.initial_offset)) return make_error("tilt initial_offset: expected a finite value or NaN (auto)");
+  if (!(std::isfinite(c.stick_duration) && c.stick_duration >= 0))
+    return make_error("tilt stick_duration: expected >= 0 s");
+  if (!(std::isfinite(c.placement_gap) && c.placement_gap >= 0))
+    return make_error("tilt placement_gap: expected >= 0 m");
+  if (!std::isnan(c.initial_offset) && !std::isfinite(c.initial_offset))
+    return make_error("tilt initial_offset: expected a finite value or NaN (auto)");
   return Ok{};
 }
 
@@ -243,8 +248,10 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   auto model_r = dem::make_model(wd, {lb, ub});
   if (!model_r.ok()) {
     std::string msg = model_r.error().message;
-    if (msg.rfind("body 0", 0) == 0) msg = "lower block " + msg.substr(7);
-    else if (msg.rfind("body 1", 0) == 0) msg = "upper block " + msg.substr(7);
+    if (msg.rfind("body 0", 0) == 0)
+      msg = "lower block " + msg.substr(7);
+    else if (msg.rfind("body 1", 0) == 0)
+      msg = "upper block " + msg.substr(7);
     return make_error("tilt: " + msg +
                       (cfg.face == TiltFace::Curve ? " (a folded surface may need face = envelope)" : ""));
   }
@@ -275,9 +282,13 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   // Fixed step: the schedule in steps. Adaptive step: in time (the same instants up to one step).
   const std::uint64_t settle_steps = static_cast<std::uint64_t>(std::ceil(cfg.settle_time / dt - 1e-9));
   const std::uint64_t series_every =
-      cfg.series_interval > 0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.series_interval / dt))) : 0;
+      cfg.series_interval > 0
+          ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.series_interval / dt)))
+          : 0;
   const std::uint64_t frame_every =
-      cfg.frame_interval > 0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.frame_interval / dt))) : 0;
+      cfg.frame_interval > 0
+          ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.frame_interval / dt)))
+          : 0;
   const std::uint64_t max_steps =
       settle_steps + static_cast<std::uint64_t>(std::ceil(cfg.max_tilt / cfg.tilt_rate / dt)) + 1;
   double min_dt = std::numeric_limits<double>::infinity(), max_dt = 0, last_dt = dt;  // steps taken
@@ -415,8 +426,8 @@ Status write_tilt_series_csv(const std::string& path, const TiltSeries& s) {
   fmt::print(f.get(), "time_s,tilt_deg,fn_N,ft_N,force_angle_deg,displacement_m,velocity_m_s,contacts\n");
   for (std::size_t i = 0; i < s.time.size(); ++i)
     fmt::print(f.get(), "{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{}\n", s.time[i], s.tilt[i] * deg,
-               s.normal_force[i], s.tangential_force[i], s.force_angle[i] * deg, s.displacement[i],
-               s.velocity[i], s.contacts[i]);
+               s.normal_force[i], s.tangential_force[i], s.force_angle[i] * deg, s.displacement[i], s.velocity[i],
+               s.contacts[i]);
   if (std::ferror(f.get())) return make_error(ErrorCode::Io, fmt::format("{}: write failed", path));
   return Ok{};
 }

@@ -8,9 +8,9 @@
 namespace frictal {
 namespace {
 
-using settings_detail::Binding;
 using settings_detail::bind;
 using settings_detail::bind_choice;
+using settings_detail::Binding;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -31,7 +31,8 @@ Field F(std::string name, std::string unit, double min, Lo lo, double max, std::
 }
 
 using B = Binding<TiltConfig>;
-#define FRICTAL_MEMBER(expr) [](TiltConfig& c) -> auto& { return c.expr; }
+#define FRICTAL_MEMBER(expr) \
+  [](TiltConfig & c) -> auto& { return c.expr; }
 
 const std::vector<B>& table() {
   static const auto t = settings_detail::with_defaults<TiltConfig>(
@@ -59,11 +60,13 @@ const std::vector<B>& table() {
                            FRICTAL_MEMBER(radius)),
           bind<TiltConfig>(F("density", "kg/m^2", 0, Lo::Open, kInf, "Areal density rho of both blocks"),
                            FRICTAL_MEMBER(density)),
-          bind<TiltConfig>(F("gravity", "m/s^2", 0, Lo::Closed, kInf, "Gravitational acceleration g"), FRICTAL_MEMBER(gravity)),
-          bind_choice<TiltConfig>(F("face", "", 0, Lo::Closed, 0, "Block face of a folded surface: the full curve or its upper envelope"),
-                                  FRICTAL_MEMBER(face),
-                                  std::vector<std::pair<std::string, TiltFace>>{{"curve", TiltFace::Curve},
-                                                                                {"envelope", TiltFace::Envelope}}),
+          bind<TiltConfig>(F("gravity", "m/s^2", 0, Lo::Closed, kInf, "Gravitational acceleration g"),
+                           FRICTAL_MEMBER(gravity)),
+          bind_choice<TiltConfig>(
+              F("face", "", 0, Lo::Closed, 0, "Block face of a folded surface: the full curve or its upper envelope"),
+              FRICTAL_MEMBER(face),
+              std::vector<std::pair<std::string, TiltFace>>{{"curve", TiltFace::Curve},
+                                                            {"envelope", TiltFace::Envelope}}),
           bind<TiltConfig>(F("initial_offset", "m", -kInf, Lo::Closed, kInf,
                              "Shift of the upper block along x; auto: the offset of least lift from the signature"),
                            FRICTAL_MEMBER(initial_offset)),
@@ -73,8 +76,9 @@ const std::vector<B>& table() {
                              "Period of both surfaces (<= 0: not periodic; the offsets then span half the length)",
                              false, "the surface's (generated), none (files)"),
                            FRICTAL_MEMBER(period)),
-          bind<TiltConfig>(F("predict", "", 0, Lo::Closed, 1, "Compute the signature prediction theta_max + atan(mu_a)"),
-                           FRICTAL_MEMBER(predict)),
+          bind<TiltConfig>(
+              F("predict", "", 0, Lo::Closed, 1, "Compute the signature prediction theta_max + atan(mu_a)"),
+              FRICTAL_MEMBER(predict)),
           // Protocol and detection (docs/dem.md).
           bind<TiltConfig>(F("tilt_rate", "rad/s", 0, Lo::Open, kInf, "Angular velocity of the lower block"),
                            FRICTAL_MEMBER(tilt_rate)),
@@ -82,25 +86,28 @@ const std::vector<B>& table() {
                            FRICTAL_MEMBER(reverse)),
           bind<TiltConfig>(F("settle_time", "s", 0, Lo::Closed, kInf, "Free settling before the tilt starts"),
                            FRICTAL_MEMBER(settle_time)),
-          bind<TiltConfig>(F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no slide) beyond this tilt", true),
-                           FRICTAL_MEMBER(max_tilt)),
+          bind<TiltConfig>(
+              F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no slide) beyond this tilt", true),
+              FRICTAL_MEMBER(max_tilt)),
           bind<TiltConfig>(F("runaway_distance", "m", 0, Lo::Open, kInf,
                              "Sliding for good: growth of the displacement since the last stick", false,
                              "the surface's wavelength (generated), 0.01 (files)"),
                            FRICTAL_MEMBER(runaway_distance)),
           bind<TiltConfig>(F("stick_speed", "m/s", 0, Lo::Open, kInf, "Relative speed counted as stuck"),
                            FRICTAL_MEMBER(stick_speed)),
-          bind<TiltConfig>(F("stick_duration", "s", 0, Lo::Closed, kInf, "Shortest stick"), FRICTAL_MEMBER(stick_duration)),
+          bind<TiltConfig>(F("stick_duration", "s", 0, Lo::Closed, kInf, "Shortest stick"),
+                           FRICTAL_MEMBER(stick_duration)),
           // Numerics.
           bind<TiltConfig>(F("time_step", "s", 0, Lo::Open, kInf,
                              "Largest time step with the adaptive step, else the fixed step (docs/dem.md)"),
                            FRICTAL_MEMBER(time_step)),
-          bind<TiltConfig>(F("adaptive_time_step", "", 0, Lo::Closed, 1,
-                             "Choose each step from the stability limit of the contacts present; false: fixed time_step"),
-                           FRICTAL_MEMBER(adaptive_time_step)),
-          bind<TiltConfig>(F("time_step_safety", "", 0, Lo::Open, 1,
-                             "Adaptive step: the fraction of the stability limit taken"),
-                           FRICTAL_MEMBER(time_step_safety)),
+          bind<TiltConfig>(
+              F("adaptive_time_step", "", 0, Lo::Closed, 1,
+                "Choose each step from the stability limit of the contacts present; false: fixed time_step"),
+              FRICTAL_MEMBER(adaptive_time_step)),
+          bind<TiltConfig>(
+              F("time_step_safety", "", 0, Lo::Open, 1, "Adaptive step: the fraction of the stability limit taken"),
+              FRICTAL_MEMBER(time_step_safety)),
           bind<TiltConfig>(F("implicit_damping", "", 0, Lo::Closed, 1,
                              "Integrate the normal dashpots implicitly (backward Euler); false: explicit"),
                            FRICTAL_MEMBER(implicit_damping)),
@@ -109,8 +116,9 @@ const std::vector<B>& table() {
                              "Stop after this many steps (in total) beyond the explicit stability limit"),
                            FRICTAL_MEMBER(max_steps_beyond_limit)),
           // Output.
-          bind<TiltConfig>(F("series_interval", "s", 0, Lo::Closed, kInf, "Time between rows of the time series; 0: none"),
-                           FRICTAL_MEMBER(series_interval)),
+          bind<TiltConfig>(
+              F("series_interval", "s", 0, Lo::Closed, kInf, "Time between rows of the time series; 0: none"),
+              FRICTAL_MEMBER(series_interval)),
           bind<TiltConfig>(F("frame_interval", "s", 0, Lo::Closed, kInf, "Time between frames; 0: none", false,
                              "0.01 when frames are written (CLI --frames), else 0"),
                            FRICTAL_MEMBER(frame_interval)),

@@ -61,11 +61,11 @@ struct ModeSums {
 /// of the rigid bodies), for a filter pass that needs no world coordinates. Invalidated by every
 /// list rebuild.
 struct HotList {
-  std::vector<std::uint32_t> pair;  ///< indices into State::pairs, ascending
-  std::vector<double> vx, vy;       ///< vertex, its body's frame (unit: m)
+  std::vector<std::uint32_t> pair;                 ///< indices into State::pairs, ascending
+  std::vector<double> vx, vy;                      ///< vertex, its body's frame (unit: m)
   std::vector<double> e0x, e0y, e1x, e1y, dx, dy;  ///< edge ends and edge vector, the edge body's frame (unit: m)
-  std::vector<double> inv_len2;     ///< 1 / |edge|^2 (unit: 1/m^2)
-  std::vector<double> cut2;         ///< filter radius squared, ((r1 + r2)(1 + 1e-3))^2 (unit: m^2)
+  std::vector<double> inv_len2;                    ///< 1 / |edge|^2 (unit: 1/m^2)
+  std::vector<double> cut2;                        ///< filter radius squared, ((r1 + r2)(1 + 1e-3))^2 (unit: m^2)
   std::vector<std::uint32_t> run_begin;  ///< runs of equal (vertex body, edge body): [run_begin[r], run_begin[r+1])
   std::vector<std::uint32_t> run_vbody, run_ebody;
   std::vector<unsigned char> keep;  ///< filter result per hot pair
@@ -90,22 +90,22 @@ struct Workspace {
   std::vector<double> active_x, active_y;  ///< (unit: m)
   std::vector<PairSlots> slots;            ///< per list pair
   // List builder scratch (kept to avoid reallocating).
-  std::vector<double> world_x, world_y;    ///< every vertex's world position (unit: m)
+  std::vector<double> world_x, world_y;                ///< every vertex's world position (unit: m)
   std::vector<double> box_x0, box_x1, box_y0, box_y1;  ///< per body (unit: m)
-  std::vector<std::uint32_t> edges, verts;  ///< candidates of one body pair
+  std::vector<std::uint32_t> edges, verts;             ///< candidates of one body pair
   std::vector<std::uint32_t> cells;
   std::vector<std::uint32_t> items;
   std::vector<NeighborPair> new_pairs;
   std::vector<std::uint32_t> slot_of_vertex;
 
   // Contact passes (contact_geometry.cpp, force_law.cpp, stability.cpp).
-  HotList hot;  ///< pairs that can touch before the next full pass (docs/dem.md sec. 2)
-  std::vector<Pose> pose;           ///< per body, at the current step
-  std::vector<double> inv_mass;     ///< per body, 0 for kinematic bodies (unit: 1/kg)
-  std::vector<int> body_contacts;   ///< per body, touching pairs
-  std::vector<ModeSums> modes;      ///< per body, for the stability limit
+  HotList hot;                           ///< pairs that can touch before the next full pass (docs/dem.md sec. 2)
+  std::vector<Pose> pose;                ///< per body, at the current step
+  std::vector<double> inv_mass;          ///< per body, 0 for kinematic bodies (unit: 1/kg)
+  std::vector<int> body_contacts;        ///< per body, touching pairs
+  std::vector<ModeSums> modes;           ///< per body, for the stability limit
   std::vector<ContactScratch> touching;  ///< grown, never shrunk
-  std::size_t touching_count = 0;   ///< touching pairs in `touching`
+  std::size_t touching_count = 0;        ///< touching pairs in `touching`
 };
 
 }  // namespace frictal::dem::detail

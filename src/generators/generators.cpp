@@ -2,8 +2,8 @@
 // random self-affine (midpoint displacement).
 #include "frictal/generators.hpp"
 
-#include <cmath>
 #include <fmt/core.h>
+#include <cmath>
 #include <numbers>
 
 #include "frictal/stats.hpp"
@@ -23,8 +23,8 @@ Result<long> whole_periods(double length, double wavelength, const char* what) {
   double n = length / wavelength;
   double r = std::round(n);
   if (r < 1 || std::abs(n - r) > 1e-9 * std::max(1.0, r))
-    return make_error(fmt::format("{}: length ({} m) must be a whole number of wavelengths ({} m); ratio is {}",
-                                  what, length, wavelength, n));
+    return make_error(fmt::format("{}: length ({} m) must be a whole number of wavelengths ({} m); ratio is {}", what,
+                                  length, wavelength, n));
   if (r > 1e7) return make_error(fmt::format("{}: {} periods is too many (limit 1e7)", what, r));
   return static_cast<long>(r);
 }
@@ -113,7 +113,8 @@ Result<std::size_t> wm_point_count(const WmParams& p) {
   }
   const double count = std::floor(p.length / dx * (1 + 1e-12)) + 1;
   if (!(count >= 2) || count > 2e8)
-    return make_error(fmt::format("wm: {:.4g} points (length {} m, spacing {} m) is outside 2..2e8", count, p.length, dx));
+    return make_error(
+        fmt::format("wm: {:.4g} points (length {} m, spacing {} m) is outside 2..2e8", count, p.length, dx));
   return static_cast<std::size_t>(count);
 }
 
@@ -214,7 +215,8 @@ Result<Profile> self_affine_profile(const SelfAffineParams& p) {
   // Displacement of the midpoint of an interval of relative length r: sd ~ r^H.
   for (std::size_t step = N; step > 1; step /= 2) {
     const double sd = std::pow(static_cast<double>(step) / static_cast<double>(N), p.hurst);
-    for (std::size_t i = step / 2; i < N; i += step) h[i] = 0.5 * (h[i - step / 2] + h[i + step / 2]) + sd * rng.normal();
+    for (std::size_t i = step / 2; i < N; i += step)
+      h[i] = 0.5 * (h[i - step / 2] + h[i + step / 2]) + sd * rng.normal();
   }
   Profile out;
   out.x.resize(p.points);

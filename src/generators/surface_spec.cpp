@@ -11,9 +11,9 @@
 namespace frictal {
 namespace {
 
-using settings_detail::Binding;
 using settings_detail::bind;
 using settings_detail::bind_choice;
+using settings_detail::Binding;
 using settings_detail::with_defaults;
 
 constexpr double kPi = std::numbers::pi;
@@ -42,8 +42,9 @@ const std::vector<Binding<KochParams>>& koch_table() {
                         [](KochParams& p) -> double& { return p.alpha; }),
        bind<KochParams>(F("wavelength", "m", 0, kInf, true, false, "Wavelength lambda: base of the K_0 triangles"),
                         [](KochParams& p) -> double& { return p.wavelength; }),
-       bind<KochParams>(F("length", "m", 0, kInf, true, false, "Length L_b of the surface, a whole number of wavelengths"),
-                        [](KochParams& p) -> double& { return p.length; })},
+       bind<KochParams>(
+           F("length", "m", 0, kInf, true, false, "Length L_b of the surface, a whole number of wavelengths"),
+           [](KochParams& p) -> double& { return p.length; })},
       KochParams{});
   return t;
 }
@@ -66,11 +67,12 @@ const std::vector<Binding<WmParams>>& wm_table() {
                       [](WmParams& p) -> bool& { return p.stochastic; }),
        bind<WmParams>(F("seed", "", 0, 9.2e18, false, false, "Seed of the random phases or heights"),
                       [](WmParams& p) -> std::uint64_t& { return p.seed; }),
-       bind_choice<WmParams>(F("exponent", "", 0, 0, false, false,
-                               "Exponent of Eq. 14: printed gamma^{2(D-2)n} or common gamma^{(D-2)n}"),
-                             [](WmParams& p) -> WmExponent& { return p.exponent; },
-                             std::vector<std::pair<std::string, WmExponent>>{{"printed", WmExponent::Printed},
-                                                                             {"common", WmExponent::Common}}),
+       bind_choice<WmParams>(
+           F("exponent", "", 0, 0, false, false,
+             "Exponent of Eq. 14: printed gamma^{2(D-2)n} or common gamma^{(D-2)n}"),
+           [](WmParams& p) -> WmExponent& { return p.exponent; },
+           std::vector<std::pair<std::string, WmExponent>>{{"printed", WmExponent::Printed},
+                                                           {"common", WmExponent::Common}}),
        bind<WmParams>(F("spacing", "m", 0, kInf, false, false, "Point spacing dx; 0: L_s / 10 (Eq. 16)"),
                       [](WmParams& p) -> double& { return p.spacing; })},
       WmParams{});
@@ -85,8 +87,9 @@ const std::vector<Binding<SawtoothParams>>& sawtooth_table() {
                             [](SawtoothParams& p) -> double& { return p.rise_fraction; }),
        bind<SawtoothParams>(F("wavelength", "m", 0, kInf, true, false, "Wavelength lambda"),
                             [](SawtoothParams& p) -> double& { return p.wavelength; }),
-       bind<SawtoothParams>(F("length", "m", 0, kInf, true, false, "Length L_b of the surface, a whole number of wavelengths"),
-                            [](SawtoothParams& p) -> double& { return p.length; })},
+       bind<SawtoothParams>(
+           F("length", "m", 0, kInf, true, false, "Length L_b of the surface, a whole number of wavelengths"),
+           [](SawtoothParams& p) -> double& { return p.length; })},
       SawtoothParams{});
   return t;
 }
@@ -97,8 +100,9 @@ const std::vector<Binding<SineParams>>& sine_table() {
                         [](SineParams& p) -> double& { return p.amplitude; }),
        bind<SineParams>(F("wavelength", "m", 0, kInf, true, false, "Wavelength lambda"),
                         [](SineParams& p) -> double& { return p.wavelength; }),
-       bind<SineParams>(F("length", "m", 0, kInf, true, false, "Length L_b of the surface, a whole number of wavelengths"),
-                        [](SineParams& p) -> double& { return p.length; }),
+       bind<SineParams>(
+           F("length", "m", 0, kInf, true, false, "Length L_b of the surface, a whole number of wavelengths"),
+           [](SineParams& p) -> double& { return p.length; }),
        bind<SineParams>(F("points_per_wavelength", "", 4, 1e7, false, false, "Samples per wavelength"),
                         [](SineParams& p) -> int& { return p.points_per_wavelength; })},
       SineParams{});
@@ -113,8 +117,9 @@ const std::vector<Binding<SelfAffineParams>>& self_affine_table() {
                               [](SelfAffineParams& p) -> double& { return p.length; }),
        bind<SelfAffineParams>(F("hurst", "", 0, 1, true, false, "Hurst exponent H"),
                               [](SelfAffineParams& p) -> double& { return p.hurst; }),
-       bind<SelfAffineParams>(F("rms_height", "m", -kInf, kInf, false, false, "RMS height about the mean; <= 0 keeps the raw heights"),
-                              [](SelfAffineParams& p) -> double& { return p.rms_height; }),
+       bind<SelfAffineParams>(
+           F("rms_height", "m", -kInf, kInf, false, false, "RMS height about the mean; <= 0 keeps the raw heights"),
+           [](SelfAffineParams& p) -> double& { return p.rms_height; }),
        bind<SelfAffineParams>(F("seed", "", 0, 9.2e18, false, false, "Seed of the random phases or heights"),
                               [](SelfAffineParams& p) -> std::uint64_t& { return p.seed; })},
       SelfAffineParams{});
@@ -143,7 +148,8 @@ const std::vector<GeneratorInfo>& surface_generators() {
       {"wm", "Weierstrass-Mandelbrot profile (Eq. 14-17)", settings_detail::fields_of(wm_table())},
       {"sawtooth", "Asymmetric sawtooth", settings_detail::fields_of(sawtooth_table())},
       {"sine", "Sinusoid z = A sin(2 pi x / lambda)", settings_detail::fields_of(sine_table())},
-      {"self-affine", "Random self-affine profile (midpoint displacement)", settings_detail::fields_of(self_affine_table())},
+      {"self-affine", "Random self-affine profile (midpoint displacement)",
+       settings_detail::fields_of(self_affine_table())},
   };
   return g;
 }
@@ -164,7 +170,9 @@ Result<KochParams> koch_params(const SurfaceSpec& s) { return typed(s, "koch", k
 Result<WmParams> wm_params(const SurfaceSpec& s) { return typed(s, "wm", wm_table()); }
 Result<SawtoothParams> sawtooth_params(const SurfaceSpec& s) { return typed(s, "sawtooth", sawtooth_table()); }
 Result<SineParams> sine_params(const SurfaceSpec& s) { return typed(s, "sine", sine_table()); }
-Result<SelfAffineParams> self_affine_params(const SurfaceSpec& s) { return typed(s, "self-affine", self_affine_table()); }
+Result<SelfAffineParams> self_affine_params(const SurfaceSpec& s) {
+  return typed(s, "self-affine", self_affine_table());
+}
 
 Status validate(const SurfaceSpec& spec) {
   auto v = surface_values(spec);

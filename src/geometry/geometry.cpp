@@ -1,9 +1,9 @@
 // Curves, profiles, exact envelopes, rotation, evaluation.
 #include "frictal/geometry.hpp"
 
+#include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/core.h>
 #include <limits>
 
 namespace frictal {
@@ -14,8 +14,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 Status check_arrays(const std::vector<double>& x, const std::vector<double>& z, const std::string& what) {
   if (x.size() != z.size())
     return make_error(fmt::format("{}: x has {} values but z has {}", what, x.size(), z.size()));
-  if (x.size() < 2)
-    return make_error(fmt::format("{}: needs at least 2 points, got {}", what, x.size()));
+  if (x.size() < 2) return make_error(fmt::format("{}: needs at least 2 points, got {}", what, x.size()));
   for (std::size_t i = 0; i < x.size(); ++i) {
     if (!std::isfinite(x[i]) || !std::isfinite(z[i]))
       return make_error(fmt::format("{}: point {} is not finite (x = {}, z = {})", what, i + 1, x[i], z[i]));
@@ -169,8 +168,8 @@ Status validate(const Profile& p, const std::string& what) {
   int run = 1;
   for (std::size_t i = 1; i < p.x.size(); ++i) {
     if (p.x[i] < p.x[i - 1])
-      return make_error(fmt::format("{}: x must be non-decreasing, but point {} (x = {}) comes after x = {}",
-                                    what, i + 1, p.x[i], p.x[i - 1]));
+      return make_error(fmt::format("{}: x must be non-decreasing, but point {} (x = {}) comes after x = {}", what,
+                                    i + 1, p.x[i], p.x[i - 1]));
     run = (p.x[i] == p.x[i - 1]) ? run + 1 : 1;
     if (run > 3)
       return make_error(fmt::format("{}: more than 3 points share x = {} (point {}); a vertical jump needs at most 3",
@@ -178,8 +177,10 @@ Status validate(const Profile& p, const std::string& what) {
   }
   if (!(p.x.back() > p.x.front())) return make_error(fmt::format("{}: has zero length (all x equal)", what));
   if (!std::isfinite(p.x.back() - p.x.front()))
-    return make_error(fmt::format("{}: x spans {} to {}, a length beyond the range of double; rescale x (e.g. to "
-                                  "another unit)", what, p.x.front(), p.x.back()));
+    return make_error(
+        fmt::format("{}: x spans {} to {}, a length beyond the range of double; rescale x (e.g. to "
+                    "another unit)",
+                    what, p.x.front(), p.x.back()));
   if (p.period) {
     double P = *p.period;
     if (!(P > 0) || !std::isfinite(P)) return make_error(fmt::format("{}: period must be positive, got {}", what, P));

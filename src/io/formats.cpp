@@ -1,11 +1,11 @@
 // Native readers added for what users have and Gwyddion lacks or reads only with dialogs:
 // NumPy .npy arrays, gzip-compressed files (any readable format inside), and the ASCII form of
 // the ISO 25178-71 / BCR surface data file (SDF). All work on bytes in memory.
+#include <fmt/core.h>
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
-#include <fmt/core.h>
 #include <limits>
 #include <optional>
 
@@ -34,9 +34,12 @@ std::optional<std::string> dict_value(std::string_view header, std::string_view 
   auto v = trim(header.substr(colon + 1));
   if (v.empty()) return std::nullopt;
   std::size_t end;
-  if (v.front() == '(') end = v.find(')') + 1;
-  else if (v.front() == '\'' || v.front() == '"') end = v.find(v.front(), 1) + 1;
-  else end = v.find_first_of(",}");
+  if (v.front() == '(')
+    end = v.find(')') + 1;
+  else if (v.front() == '\'' || v.front() == '"')
+    end = v.find(v.front(), 1) + 1;
+  else
+    end = v.find_first_of(",}");
   if (end == 0 || end == std::string_view::npos + 1 || end > v.size()) return std::nullopt;
   return std::string(v.substr(0, end));
 }
@@ -61,7 +64,8 @@ Result<SurfaceData> read_npy_bytes(const std::string& bytes, const std::string& 
     return make_error(fmt::format("{}: .npy header of {} bytes but the file has {} after the preamble", name, hlen,
                                   bytes.size() - start));
   const std::string_view header(bytes.data() + start, hlen);
-  auto descr = dict_value(header, "descr"), order = dict_value(header, "fortran_order"), shape = dict_value(header, "shape");
+  auto descr = dict_value(header, "descr"), order = dict_value(header, "fortran_order"),
+       shape = dict_value(header, "shape");
   if (!descr || !order || !shape)
     return make_error(fmt::format("{}: .npy header '{}' lacks descr, fortran_order or shape", name,
                                   std::string(trim(header)).substr(0, 120)));
@@ -71,13 +75,18 @@ Result<SurfaceData> read_npy_bytes(const std::string& bytes, const std::string& 
   const char endian = d[0], kind = d[1];
   int size = 0;
   for (char c : d.substr(2)) {
-    if (c < '0' || c > '9') { size = -1; break; }
+    if (c < '0' || c > '9') {
+      size = -1;
+      break;
+    }
     size = size * 10 + (c - '0');
   }
-  const bool ok_kind = (kind == 'f' && (size == 4 || size == 8)) || (kind == 'i' && (size == 1 || size == 2 || size == 4 || size == 8)) ||
+  const bool ok_kind = (kind == 'f' && (size == 4 || size == 8)) ||
+                       (kind == 'i' && (size == 1 || size == 2 || size == 4 || size == 8)) ||
                        (kind == 'u' && (size == 1 || size == 2 || size == 4));
   if (!ok_kind || (endian != '<' && endian != '>' && endian != '|' && endian != '='))
-    return make_error(fmt::format("{}: .npy dtype {} is not supported (expected float32/64 or int8..int64, uint8..uint32)", name, *descr));
+    return make_error(fmt::format(
+        "{}: .npy dtype {} is not supported (expected float32/64 or int8..int64, uint8..uint32)", name, *descr));
   const bool big = endian == '>' || (endian == '=' && std::endian::native == std::endian::big);
   const bool fortran = trim(*order) == "True";
   if (!fortran && trim(*order) != "False")
@@ -94,7 +103,8 @@ Result<SurfaceData> read_npy_bytes(const std::string& bytes, const std::string& 
       if (!f.empty()) {
         if (!f.empty() && (f.back() == 'L')) f.remove_suffix(1);
         long long v;
-        if (!parse_int64(f, v) || v < 0) return make_error(fmt::format("{}: .npy shape {} not understood", name, *shape));
+        if (!parse_int64(f, v) || v < 0)
+          return make_error(fmt::format("{}: .npy shape {} not understood", name, *shape));
         dims.push_back(std::uint64_t(v));
       }
       if (j == std::string_view::npos) break;
@@ -102,18 +112,20 @@ Result<SurfaceData> read_npy_bytes(const std::string& bytes, const std::string& 
     }
   }
   if (dims.empty() || dims.size() > 2)
-    return make_error(fmt::format("{}: .npy array of shape {} (expected 1-D heights or a 2-D (ny, nx) map)", name, *shape));
+    return make_error(
+        fmt::format("{}: .npy array of shape {} (expected 1-D heights or a 2-D (ny, nx) map)", name, *shape));
   std::uint64_t count = 1;
   for (auto v : dims) {
     if (v == 0) return make_error(fmt::format("{}: .npy array of shape {} is empty", name, *shape));
     if (v > options.max_points || count > options.max_points / v)
-      return make_error(fmt::format("{}: .npy shape {} exceeds the limit of {} points", name, *shape, options.max_points));
+      return make_error(
+          fmt::format("{}: .npy shape {} exceeds the limit of {} points", name, *shape, options.max_points));
     count *= v;
   }
   const std::uint64_t data_start = start + hlen, need = count * std::uint64_t(size);
   if (bytes.size() - data_start != need)
-    return make_error(fmt::format("{}: .npy data is {} bytes, but shape {} of {} needs {}", name, bytes.size() - data_start,
-                                  *shape, *descr, need));
+    return make_error(fmt::format("{}: .npy data is {} bytes, but shape {} of {} needs {}", name,
+                                  bytes.size() - data_start, *shape, *descr, need));
   std::vector<double> v(count);
   const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + data_start);
   for (std::uint64_t k = 0; k < count; ++k, p += size) {
@@ -122,17 +134,42 @@ Result<SurfaceData> read_npy_bytes(const std::string& bytes, const std::string& 
     if (big != (std::endian::native == std::endian::big)) std::reverse(b, b + size);
     double x;
     if (kind == 'f') {
-      if (size == 4) { float f; std::memcpy(&f, b, 4); x = f; }
-      else std::memcpy(&x, b, 8);
+      if (size == 4) {
+        float f;
+        std::memcpy(&f, b, 4);
+        x = f;
+      } else
+        std::memcpy(&x, b, 8);
     } else if (kind == 'i') {
-      if (size == 1) { std::int8_t i; std::memcpy(&i, b, 1); x = i; }
-      else if (size == 2) { std::int16_t i; std::memcpy(&i, b, 2); x = i; }
-      else if (size == 4) { std::int32_t i; std::memcpy(&i, b, 4); x = i; }
-      else { std::int64_t i; std::memcpy(&i, b, 8); x = double(i); }
+      if (size == 1) {
+        std::int8_t i;
+        std::memcpy(&i, b, 1);
+        x = i;
+      } else if (size == 2) {
+        std::int16_t i;
+        std::memcpy(&i, b, 2);
+        x = i;
+      } else if (size == 4) {
+        std::int32_t i;
+        std::memcpy(&i, b, 4);
+        x = i;
+      } else {
+        std::int64_t i;
+        std::memcpy(&i, b, 8);
+        x = double(i);
+      }
     } else {
-      if (size == 1) x = b[0];
-      else if (size == 2) { std::uint16_t i; std::memcpy(&i, b, 2); x = i; }
-      else { std::uint32_t i; std::memcpy(&i, b, 4); x = i; }
+      if (size == 1)
+        x = b[0];
+      else if (size == 2) {
+        std::uint16_t i;
+        std::memcpy(&i, b, 2);
+        x = i;
+      } else {
+        std::uint32_t i;
+        std::memcpy(&i, b, 4);
+        x = i;
+      }
     }
     v[k] = x;
   }
@@ -144,16 +181,22 @@ Result<SurfaceData> read_npy_bytes(const std::string& bytes, const std::string& 
     if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
     zs = *s;
   } else {
-    out.warnings.push_back(fmt::format("{}: .npy arrays carry no unit; heights read as metres (give a unit to override)", name));
+    out.warnings.push_back(
+        fmt::format("{}: .npy arrays carry no unit; heights read as metres (give a unit to override)", name));
   }
   InvalidCount invalid;
   const bool profile = dims.size() == 1 || dims[0] == 1 || dims[1] == 1;
   if (profile) {
     if (!(options.spacing > 0))
-      return make_error(fmt::format("{}: a 1-D .npy array of {} heights needs the sampling interval (--spacing, "
-                                    "ReadOptions::spacing)", name, count));
+      return make_error(
+          fmt::format("{}: a 1-D .npy array of {} heights needs the sampling interval (--spacing, "
+                      "ReadOptions::spacing)",
+                      name, count));
     for (std::uint64_t k = 0; k < count; ++k) {
-      if (!std::isfinite(v[k])) { invalid.add(v[k]); continue; }
+      if (!std::isfinite(v[k])) {
+        invalid.add(v[k]);
+        continue;
+      }
       out.curve.x.push_back(double(k) * options.spacing);
       out.curve.z.push_back(v[k] * zs);
     }
@@ -190,7 +233,8 @@ bool looks_like_gzip(const std::string& bytes) {
 
 Result<std::string> gunzip(const std::string& bytes, const std::string& name, std::uint64_t max_bytes) {
   z_stream zs{};
-  if (inflateInit2(&zs, 16 + MAX_WBITS) != Z_OK) return make_error(fmt::format("{}: cannot start gzip decompression", name));
+  if (inflateInit2(&zs, 16 + MAX_WBITS) != Z_OK)
+    return make_error(fmt::format("{}: cannot start gzip decompression", name));
   zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
   zs.avail_in = uInt(std::min<std::size_t>(bytes.size(), std::numeric_limits<uInt>::max()));
   std::string out;
@@ -240,10 +284,12 @@ Result<SurfaceData> parse_sdf_text(std::string_view text, const std::string& nam
     auto number = [&](auto& dst) -> Status {
       double v;
       if (!parse_double(value, v) || !std::isfinite(v))
-        return make_error(fmt::format("{}:{}: {} = '{}' is not a number", name, lines[k].number, key, std::string(value)));
+        return make_error(
+            fmt::format("{}:{}: {} = '{}' is not a number", name, lines[k].number, key, std::string(value)));
       if constexpr (std::is_same_v<std::decay_t<decltype(dst)>, std::optional<long long>>) {
         if (v != std::floor(v) || v < 1)
-          return make_error(fmt::format("{}:{}: {} = '{}' is not a positive integer", name, lines[k].number, key, std::string(value)));
+          return make_error(fmt::format("{}:{}: {} = '{}' is not a positive integer", name, lines[k].number, key,
+                                        std::string(value)));
         dst = (long long)v;
       } else {
         dst = v;
@@ -251,13 +297,19 @@ Result<SurfaceData> parse_sdf_text(std::string_view text, const std::string& nam
       return Ok{};
     };
     Status st = Ok{};
-    if (key == "numpoints") st = number(nx);
-    else if (key == "numprofiles") st = number(ny);
-    else if (key == "xscale") st = number(xs);
-    else if (key == "yscale") st = number(ys);
-    else if (key == "zscale") st = number(zs);
+    if (key == "numpoints")
+      st = number(nx);
+    else if (key == "numprofiles")
+      st = number(ny);
+    else if (key == "xscale")
+      st = number(xs);
+    else if (key == "yscale")
+      st = number(ys);
+    else if (key == "zscale")
+      st = number(zs);
     else if (key == "compression" && value != "0")
-      return make_error(fmt::format("{}:{}: SDF Compression = {} (only 0 is defined)", name, lines[k].number, std::string(value)));
+      return make_error(
+          fmt::format("{}:{}: SDF Compression = {} (only 0 is defined)", name, lines[k].number, std::string(value)));
     if (!st) return st.error();
   }
   if (k >= lines.size()) return make_error(fmt::format("{}: SDF header without the '*' line that ends it", name));
@@ -281,17 +333,19 @@ Result<SurfaceData> parse_sdf_text(std::string_view text, const std::string& nam
       if (j > i) {
         auto f = t.substr(i, j - i);
         double z;
-        if (lower_ascii(f) == "bad") z = std::numeric_limits<double>::quiet_NaN();
+        if (lower_ascii(f) == "bad")
+          z = std::numeric_limits<double>::quiet_NaN();
         else if (!parse_double(f, z))
-          return make_error(fmt::format("{}:{}: '{}' is not a height", name, lines[k].number, std::string(f.substr(0, 40))));
+          return make_error(
+              fmt::format("{}:{}: '{}' is not a height", name, lines[k].number, std::string(f.substr(0, 40))));
         v.push_back(z);
       }
       i = j;
     }
   }
   if (v.size() != count)
-    return make_error(fmt::format("{}: SDF data has {} values but NumPoints x NumProfiles = {} x {} = {}", name, v.size(), *nx,
-                                  *ny, count));
+    return make_error(fmt::format("{}: SDF data has {} values but NumPoints x NumProfiles = {} x {} = {}", name,
+                                  v.size(), *nx, *ny, count));
   SurfaceData out;
   out.format = ProfileFormat::Sdf;
   InvalidCount invalid;

@@ -7,12 +7,12 @@
 // with libgwyapp2 loaded RTLD_GLOBAL first (the file modules take gwy_app_* symbols from the
 // process without linking libgwyapp2 themselves). Checked on Debian 12's Gwyddion 2.62
 // (docs/io.md). Gwyddion is not thread-safe: one process-wide mutex serialises every call.
+#include <dlfcn.h>
+#include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <dlfcn.h>
 #include <filesystem>
-#include <fmt/core.h>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -46,11 +46,11 @@ struct GError {
   char* message;
 };
 using GFunc = void (*)(void*, void*);
-constexpr int kRunNonInteractive = 1;    // GWY_RUN_NONINTERACTIVE
-constexpr int kOpLoad = 1 << 1;          // GWY_FILE_OPERATION_LOAD
-constexpr int kOpSave = 1 << 2;          // GWY_FILE_OPERATION_SAVE
-constexpr int kOpExport = 1 << 3;        // GWY_FILE_OPERATION_EXPORT
-constexpr int kUnitFormatPlain = 1;      // GWY_SI_UNIT_FORMAT_PLAIN
+constexpr int kRunNonInteractive = 1;  // GWY_RUN_NONINTERACTIVE
+constexpr int kOpLoad = 1 << 1;        // GWY_FILE_OPERATION_LOAD
+constexpr int kOpSave = 1 << 2;        // GWY_FILE_OPERATION_SAVE
+constexpr int kOpExport = 1 << 3;      // GWY_FILE_OPERATION_EXPORT
+constexpr int kUnitFormatPlain = 1;    // GWY_SI_UNIT_FORMAT_PLAIN
 
 struct ModuleFailure {
   const char* filename;
@@ -59,61 +59,61 @@ struct ModuleFailure {
   int err_domain, err_code;
 };
 
-#define FRICTAL_GWY_FUNCS(X)                                                               \
-  X(void, gwy_type_init, (void))                                                           \
-  X(void, gwy_draw_type_init, (void))                                                      \
-  X(void, gwy_process_type_init, (void))                                                   \
-  X(GType, gwy_gradient_get_type, (void))                                                  \
-  X(void*, g_type_class_ref, (GType))                                                      \
-  X(void, gwy_resource_class_load, (void*))                                                \
-  X(void, gwy_module_register_modules, (const char**))                                     \
-  X(void, gwy_module_failure_foreach, (GFunc, void*))                                      \
-  X(void, gwy_file_func_foreach, (GFunc, void*))                                           \
-  X(int, gwy_file_func_get_operations, (const char*))                                      \
-  X(const char*, gwy_file_func_get_description, (const char*))                             \
-  X(const char*, gwy_file_detect, (const char*, gboolean, int))                            \
-  X(void*, gwy_file_load_with_func, (const char*, int, const char**, GError**))            \
-  X(int, gwy_file_save_with_func, (void*, const char*, int, const char**, GError**))       \
-  X(const char**, gwy_container_keys_by_name, (void*))                                     \
-  X(unsigned, gwy_container_get_n_items, (void*))                                          \
-  X(gboolean, gwy_container_gis_object, (void*, GQuark, void*))                            \
-  X(gboolean, gwy_container_gis_string, (void*, GQuark, const unsigned char**))            \
-  X(void*, gwy_container_new, (void))                                                      \
-  X(void, gwy_container_set_object, (void*, GQuark, void*))                                \
-  X(void, gwy_container_set_const_string, (void*, GQuark, const unsigned char*))           \
-  X(GQuark, g_quark_from_string, (const char*))                                            \
-  X(gboolean, g_type_check_instance_is_a, (void*, GType))                                  \
-  X(void, g_object_unref, (void*))                                                         \
-  X(void, g_object_get, (void*, const char*, ...))                                         \
-  X(void, g_free, (void*))                                                                 \
-  X(void, g_error_free, (GError*))                                                         \
-  X(GType, gwy_data_field_get_type, (void))                                                \
-  X(void*, gwy_data_field_new, (int, int, double, double, gboolean))                       \
-  X(int, gwy_data_field_get_xres, (void*))                                                 \
-  X(int, gwy_data_field_get_yres, (void*))                                                 \
-  X(double, gwy_data_field_get_xreal, (void*))                                             \
-  X(double, gwy_data_field_get_yreal, (void*))                                             \
-  X(double, gwy_data_field_get_xoffset, (void*))                                           \
-  X(double, gwy_data_field_get_yoffset, (void*))                                           \
-  X(void, gwy_data_field_set_xoffset, (void*, double))                                     \
-  X(void, gwy_data_field_set_yoffset, (void*, double))                                     \
-  X(const double*, gwy_data_field_get_data_const, (void*))                                 \
-  X(double*, gwy_data_field_get_data, (void*))                                             \
-  X(void*, gwy_data_field_get_si_unit_xy, (void*))                                         \
-  X(void*, gwy_data_field_get_si_unit_z, (void*))                                          \
-  X(void, gwy_data_field_set_si_unit_xy, (void*, void*))                                   \
-  X(void, gwy_data_field_set_si_unit_z, (void*, void*))                                    \
-  X(void*, gwy_si_unit_new, (const char*))                                                 \
-  X(char*, gwy_si_unit_get_string, (void*, int))                                           \
-  X(GType, gwy_graph_model_get_type, (void))                                               \
-  X(int, gwy_graph_model_get_n_curves, (void*))                                            \
-  X(void*, gwy_graph_model_get_curve, (void*, int))                                        \
-  X(int, gwy_graph_curve_model_get_ndata, (void*))                                         \
-  X(const double*, gwy_graph_curve_model_get_xdata, (void*))                               \
-  X(const double*, gwy_graph_curve_model_get_ydata, (void*))                               \
-  X(void, gwy_app_data_browser_set_gui_enabled, (gboolean))                                \
-  X(void, gwy_app_data_browser_add, (void*))                                               \
-  X(void, gwy_app_data_browser_remove, (void*))                                            \
+#define FRICTAL_GWY_FUNCS(X)                                                         \
+  X(void, gwy_type_init, (void))                                                     \
+  X(void, gwy_draw_type_init, (void))                                                \
+  X(void, gwy_process_type_init, (void))                                             \
+  X(GType, gwy_gradient_get_type, (void))                                            \
+  X(void*, g_type_class_ref, (GType))                                                \
+  X(void, gwy_resource_class_load, (void*))                                          \
+  X(void, gwy_module_register_modules, (const char**))                               \
+  X(void, gwy_module_failure_foreach, (GFunc, void*))                                \
+  X(void, gwy_file_func_foreach, (GFunc, void*))                                     \
+  X(int, gwy_file_func_get_operations, (const char*))                                \
+  X(const char*, gwy_file_func_get_description, (const char*))                       \
+  X(const char*, gwy_file_detect, (const char*, gboolean, int))                      \
+  X(void*, gwy_file_load_with_func, (const char*, int, const char**, GError**))      \
+  X(int, gwy_file_save_with_func, (void*, const char*, int, const char**, GError**)) \
+  X(const char**, gwy_container_keys_by_name, (void*))                               \
+  X(unsigned, gwy_container_get_n_items, (void*))                                    \
+  X(gboolean, gwy_container_gis_object, (void*, GQuark, void*))                      \
+  X(gboolean, gwy_container_gis_string, (void*, GQuark, const unsigned char**))      \
+  X(void*, gwy_container_new, (void))                                                \
+  X(void, gwy_container_set_object, (void*, GQuark, void*))                          \
+  X(void, gwy_container_set_const_string, (void*, GQuark, const unsigned char*))     \
+  X(GQuark, g_quark_from_string, (const char*))                                      \
+  X(gboolean, g_type_check_instance_is_a, (void*, GType))                            \
+  X(void, g_object_unref, (void*))                                                   \
+  X(void, g_object_get, (void*, const char*, ...))                                   \
+  X(void, g_free, (void*))                                                           \
+  X(void, g_error_free, (GError*))                                                   \
+  X(GType, gwy_data_field_get_type, (void))                                          \
+  X(void*, gwy_data_field_new, (int, int, double, double, gboolean))                 \
+  X(int, gwy_data_field_get_xres, (void*))                                           \
+  X(int, gwy_data_field_get_yres, (void*))                                           \
+  X(double, gwy_data_field_get_xreal, (void*))                                       \
+  X(double, gwy_data_field_get_yreal, (void*))                                       \
+  X(double, gwy_data_field_get_xoffset, (void*))                                     \
+  X(double, gwy_data_field_get_yoffset, (void*))                                     \
+  X(void, gwy_data_field_set_xoffset, (void*, double))                               \
+  X(void, gwy_data_field_set_yoffset, (void*, double))                               \
+  X(const double*, gwy_data_field_get_data_const, (void*))                           \
+  X(double*, gwy_data_field_get_data, (void*))                                       \
+  X(void*, gwy_data_field_get_si_unit_xy, (void*))                                   \
+  X(void*, gwy_data_field_get_si_unit_z, (void*))                                    \
+  X(void, gwy_data_field_set_si_unit_xy, (void*, void*))                             \
+  X(void, gwy_data_field_set_si_unit_z, (void*, void*))                              \
+  X(void*, gwy_si_unit_new, (const char*))                                           \
+  X(char*, gwy_si_unit_get_string, (void*, int))                                     \
+  X(GType, gwy_graph_model_get_type, (void))                                         \
+  X(int, gwy_graph_model_get_n_curves, (void*))                                      \
+  X(void*, gwy_graph_model_get_curve, (void*, int))                                  \
+  X(int, gwy_graph_curve_model_get_ndata, (void*))                                   \
+  X(const double*, gwy_graph_curve_model_get_xdata, (void*))                         \
+  X(const double*, gwy_graph_curve_model_get_ydata, (void*))                         \
+  X(void, gwy_app_data_browser_set_gui_enabled, (gboolean))                          \
+  X(void, gwy_app_data_browser_add, (void*))                                         \
+  X(void, gwy_app_data_browser_remove, (void*))                                      \
   X(void, gwy_app_data_browser_select_data_field, (void*, int))
 
 struct Api {
@@ -127,7 +127,7 @@ struct Backend {
   bool tried = false;
   std::string load_error;  // why the libraries did not load (empty: loaded)
   Api api;
-  std::set<std::string> registered;       // module directories registered
+  std::set<std::string> registered;              // module directories registered
   std::map<std::string, std::string> dir_error;  // per directory: why it has no file modules
 };
 
@@ -158,11 +158,11 @@ bool load_libraries(Backend& b) {
     }
   }
   h = RTLD_DEFAULT;
-#define FRICTAL_GWY_LOAD(ret, name, args)                                                        \
-  b.api.name = reinterpret_cast<ret(*) args>(dlsym(h, #name));                                   \
-  if (!b.api.name) {                                                                              \
-    b.load_error = fmt::format("Gwyddion's libraries lack {} (version 2.x expected)", #name);    \
-    return false;                                                                                 \
+#define FRICTAL_GWY_LOAD(ret, name, args)                                                     \
+  b.api.name = reinterpret_cast<ret(*) args>(dlsym(h, #name));                                \
+  if (!b.api.name) {                                                                          \
+    b.load_error = fmt::format("Gwyddion's libraries lack {} (version 2.x expected)", #name); \
+    return false;                                                                             \
   }
   FRICTAL_GWY_FUNCS(FRICTAL_GWY_LOAD)
 #undef FRICTAL_GWY_LOAD
@@ -220,9 +220,9 @@ std::optional<double> length_scale(const std::string& u) { return io_detail::uni
 
 struct Channel {
   ChannelInfo info;
-  int id = -1;             // image: the N of /N/data
-  void* graph = nullptr;   // curve: its graph model
-  int curve = -1;          // curve: index in the graph
+  int id = -1;            // image: the N of /N/data
+  void* graph = nullptr;  // curve: its graph model
+  int curve = -1;         // curve: index in the graph
 };
 
 std::vector<Channel> list_channels(const Api& a, void* c) {
@@ -251,9 +251,10 @@ std::vector<Channel> list_channels(const Api& a, void* c) {
     Channel ch;
     ch.id = id;
     const unsigned char* title = nullptr;
-    ch.info.name = a.gwy_container_gis_string(c, a.g_quark_from_string(fmt::format("/{}/data/title", id).c_str()), &title) && title
-                       ? reinterpret_cast<const char*>(title)
-                       : fmt::format("channel {}", id);
+    ch.info.name =
+        a.gwy_container_gis_string(c, a.g_quark_from_string(fmt::format("/{}/data/title", id).c_str()), &title) && title
+            ? reinterpret_cast<const char*>(title)
+            : fmt::format("channel {}", id);
     ch.info.is_map = true;
     ch.info.nx = std::size_t(a.gwy_data_field_get_xres(f));
     ch.info.ny = std::size_t(a.gwy_data_field_get_yres(f));
@@ -353,12 +354,15 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
   std::lock_guard lock(b.mutex);
   if (std::string e = ensure_modules(b, module_root(options.gwyddion_module_dir)); !e.empty())
     return make_error(fmt::format("{}: not a format frictal reads natively, and {}{}{}", path, e,
-                                  FRICTAL_GWYDDION_ENABLED ? "; install the " : "", FRICTAL_GWYDDION_ENABLED ? kPackages : ""));
+                                  FRICTAL_GWYDDION_ENABLED ? "; install the " : "",
+                                  FRICTAL_GWYDDION_ENABLED ? kPackages : ""));
   const Api& a = b.api;
   const char* detected = a.gwy_file_detect(path.c_str(), 0, kOpLoad);
   if (!detected)
-    return make_error(fmt::format("{}: neither frictal's readers nor any of Gwyddion's file modules recognise this file "
-                                  "(see `frictal formats`)", path));
+    return make_error(
+        fmt::format("{}: neither frictal's readers nor any of Gwyddion's file modules recognise this file "
+                    "(see `frictal formats`)",
+                    path));
   GError* err = nullptr;
   const char* module = nullptr;
   void* c = a.gwy_file_load_with_func(path.c_str(), kRunNonInteractive, &module, &err);
@@ -379,7 +383,8 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
   out.reader = fmt::format("gwyddion:{}", module ? module : detected);
   std::vector<Channel> chans = list_channels(a, c);
   for (const auto& ch : chans) out.channels.push_back(ch.info);
-  if (chans.empty()) return make_error(fmt::format("{}: Gwyddion's {} module found no image or graph in it", path, out.reader));
+  if (chans.empty())
+    return make_error(fmt::format("{}: Gwyddion's {} module found no image or graph in it", path, out.reader));
   // Which channel: --channel N (index in this list) or NAME (case-insensitive), else the first
   // image with lengths, else the first curve with lengths.
   std::size_t pick = chans.size();
@@ -387,14 +392,15 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
     long long n;
     if (parse_int64(options.channel, n)) {
       if (n < 0 || std::size_t(n) >= chans.size())
-        return make_error(fmt::format("{}: channel {} requested but the file has {} (0..{}; see `frictal info`)", path, n,
-                                      chans.size(), chans.size() - 1));
+        return make_error(fmt::format("{}: channel {} requested but the file has {} (0..{}; see `frictal info`)", path,
+                                      n, chans.size(), chans.size() - 1));
       pick = std::size_t(n);
     } else {
       for (std::size_t k = 0; k < chans.size() && pick == chans.size(); ++k)
         if (lower_ascii(chans[k].info.name) == lower_ascii(options.channel)) pick = k;
       if (pick == chans.size())
-        return make_error(fmt::format("{}: no channel named '{}' (see `frictal info` for the list)", path, options.channel));
+        return make_error(
+            fmt::format("{}: no channel named '{}' (see `frictal info` for the list)", path, options.channel));
     }
   } else {
     for (std::size_t k = 0; k < chans.size() && pick == chans.size(); ++k)
@@ -402,15 +408,17 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
     for (std::size_t k = 0; k < chans.size() && pick == chans.size(); ++k)
       if (chans[k].info.readable) pick = k;
     if (pick == chans.size())
-      return make_error(fmt::format("{}: no channel has heights and lateral sizes in a length unit (first: '{}' in {}, {}); "
-                                    "see `frictal info`", path, chans[0].info.name, chans[0].info.xy_unit, chans[0].info.z_unit));
+      return make_error(
+          fmt::format("{}: no channel has heights and lateral sizes in a length unit (first: '{}' in {}, {}); "
+                      "see `frictal info`",
+                      path, chans[0].info.name, chans[0].info.xy_unit, chans[0].info.z_unit));
   }
   const Channel& ch = chans[pick];
   out.channel = pick;
   auto sxy = length_scale(ch.info.xy_unit), sz = length_scale(ch.info.z_unit);
   if (!sxy || !sz)
-    return make_error(fmt::format("{}: channel {} '{}' has lateral unit '{}' and value unit '{}', not lengths", path, pick,
-                                  ch.info.name, ch.info.xy_unit, ch.info.z_unit));
+    return make_error(fmt::format("{}: channel {} '{}' has lateral unit '{}' and value unit '{}', not lengths", path,
+                                  pick, ch.info.name, ch.info.xy_unit, ch.info.z_unit));
   io_detail::InvalidCount invalid;
   if (ch.info.is_map) {
     void* f = nullptr;
@@ -433,30 +441,37 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
     // The mask: Gwyddion's file modules mark invalid (unmeasured) points in /N/mask (> 0.5).
     void* mask = nullptr;
     if (a.gwy_container_gis_object(c, a.g_quark_from_string(fmt::format("/{}/mask", ch.id).c_str()), &mask) && mask &&
-        a.g_type_check_instance_is_a(mask, a.gwy_data_field_get_type()) && std::size_t(a.gwy_data_field_get_xres(mask)) == nx &&
-        std::size_t(a.gwy_data_field_get_yres(mask)) == ny) {
+        a.g_type_check_instance_is_a(mask, a.gwy_data_field_get_type()) &&
+        std::size_t(a.gwy_data_field_get_xres(mask)) == nx && std::size_t(a.gwy_data_field_get_yres(mask)) == ny) {
       const double* md = a.gwy_data_field_get_data_const(mask);
       for (std::size_t k = 0; k < nx * ny; ++k)
         if (md[k] > 0.5) m.heights[k] = std::numeric_limits<double>::quiet_NaN();
     }
     if (invalid.total()) out.warnings.push_back(io_detail::invalid_warning(path, invalid, true));
     if (m.valid_count() == 0) return make_error(fmt::format("{}: channel '{}' has no valid point", path, ch.info.name));
-    if (!(m.dx > 0) || !(m.dy > 0)) return make_error(fmt::format("{}: channel '{}' has a zero or negative size", path, ch.info.name));
+    if (!(m.dx > 0) || !(m.dy > 0))
+      return make_error(fmt::format("{}: channel '{}' has a zero or negative size", path, ch.info.name));
     out.is_map = true;
   } else {
     void* cm = a.gwy_graph_model_get_curve(ch.graph, ch.curve);
     const std::size_t n = std::size_t(a.gwy_graph_curve_model_get_ndata(cm));
-    if (n > options.max_points) return make_error(fmt::format("{}: {} points exceed the limit of {}", path, n, options.max_points));
+    if (n > options.max_points)
+      return make_error(fmt::format("{}: {} points exceed the limit of {}", path, n, options.max_points));
     const double* x = a.gwy_graph_curve_model_get_xdata(cm);
     const double* y = a.gwy_graph_curve_model_get_ydata(cm);
     for (std::size_t k = 0; k < n; ++k) {
-      if (!std::isfinite(x[k])) return make_error(fmt::format("{}: curve '{}' point {} has x = {}", path, ch.info.name, k + 1, x[k]));
-      if (!std::isfinite(y[k])) { invalid.add(y[k]); continue; }
+      if (!std::isfinite(x[k]))
+        return make_error(fmt::format("{}: curve '{}' point {} has x = {}", path, ch.info.name, k + 1, x[k]));
+      if (!std::isfinite(y[k])) {
+        invalid.add(y[k]);
+        continue;
+      }
       out.curve.x.push_back(x[k] * *sxy);
       out.curve.z.push_back(y[k] * *sz);
     }
     if (invalid.total()) out.warnings.push_back(io_detail::invalid_warning(path, invalid, false));
-    if (out.curve.size() < 2) return make_error(fmt::format("{}: curve '{}' has fewer than 2 valid points", path, ch.info.name));
+    if (out.curve.size() < 2)
+      return make_error(fmt::format("{}: curve '{}' has fewer than 2 valid points", path, ch.info.name));
   }
   return out;
 }
@@ -465,16 +480,22 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
 
 Status write_gwyddion(const std::string& path, const Map& m, const std::string& module_dir) {
   if (auto s = validate(m, path); !s) return s;
-  static const char* const kTested[] = {".gwy", ".gsf", ".sdf", ".sur", ".asc", ".ibw", ".nrrd", ".tom", ".afm", ".spm"};
-  std::string ext = path.substr(std::min(path.size(), path.rfind('.') == std::string::npos ? path.size() : path.rfind('.')));
+  static const char* const kTested[] = {".gwy", ".gsf",  ".sdf", ".sur", ".asc",
+                                        ".ibw", ".nrrd", ".tom", ".afm", ".spm"};
+  std::string ext =
+      path.substr(std::min(path.size(), path.rfind('.') == std::string::npos ? path.size() : path.rfind('.')));
   ext = io_detail::lower_ascii(ext);
-  if (std::find_if(std::begin(kTested), std::end(kTested), [&](const char* e) { return ext == e; }) == std::end(kTested))
-    return make_error(fmt::format("{}: writing '{}' through Gwyddion is not supported (tested: .gwy, .gsf, .sdf, .sur, .asc, "
-                                  ".ibw, .nrrd, .tom, .afm, .spm)", path, ext));
+  if (std::find_if(std::begin(kTested), std::end(kTested), [&](const char* e) { return ext == e; }) ==
+      std::end(kTested))
+    return make_error(
+        fmt::format("{}: writing '{}' through Gwyddion is not supported (tested: .gwy, .gsf, .sdf, .sur, .asc, "
+                    ".ibw, .nrrd, .tom, .afm, .spm)",
+                    path, ext));
   Backend& b = backend();
   std::lock_guard lock(b.mutex);
   if (std::string e = ensure_modules(b, module_root(module_dir)); !e.empty())
-    return make_error(fmt::format("{}: cannot write through Gwyddion: {}{}{}", path, e, FRICTAL_GWYDDION_ENABLED ? "; install the " : "",
+    return make_error(fmt::format("{}: cannot write through Gwyddion: {}{}{}", path, e,
+                                  FRICTAL_GWYDDION_ENABLED ? "; install the " : "",
                                   FRICTAL_GWYDDION_ENABLED ? kPackages : ""));
   const Api& a = b.api;
   void* c = a.gwy_container_new();
@@ -502,7 +523,8 @@ Status write_gwyddion(const std::string& path, const Map& m, const std::string& 
     }
   }
   a.gwy_container_set_object(c, a.g_quark_from_string("/0/data"), f);
-  a.gwy_container_set_const_string(c, a.g_quark_from_string("/0/data/title"), reinterpret_cast<const unsigned char*>("Height"));
+  a.gwy_container_set_const_string(c, a.g_quark_from_string("/0/data/title"),
+                                   reinterpret_cast<const unsigned char*>("Height"));
   a.g_object_unref(f);
   if (mask) {
     a.gwy_container_set_object(c, a.g_quark_from_string("/0/mask"), mask);
@@ -518,7 +540,9 @@ Status write_gwyddion(const std::string& path, const Map& m, const std::string& 
   if (err) a.g_error_free(err);
   a.gwy_app_data_browser_remove(c);
   a.g_object_unref(c);
-  if (!ops) return make_error(fmt::format("{}: Gwyddion could not write it: {}", path, why.empty() ? "no module saves this type" : why));
+  if (!ops)
+    return make_error(
+        fmt::format("{}: Gwyddion could not write it: {}", path, why.empty() ? "no module saves this type" : why));
   return Ok{};
 }
 

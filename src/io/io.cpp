@@ -1,8 +1,8 @@
 // Entry points: file access with size limits, format detection, simple writers.
+#include <fmt/core.h>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fmt/core.h>
 #include <fstream>
 #include <limits>
 
@@ -30,8 +30,9 @@ const char* format_name(ProfileFormat f) {
 
 Result<ProfileFormat> parse_format(const std::string& name) {
   std::string n = io_detail::lower_ascii(name);
-  for (auto f : {ProfileFormat::Auto, ProfileFormat::Csv, ProfileFormat::Dektak, ProfileFormat::Gwyddion, ProfileFormat::X3p,
-                 ProfileFormat::Matrix, ProfileFormat::Xyz, ProfileFormat::Sdf, ProfileFormat::Npy, ProfileFormat::GwyddionLib})
+  for (auto f :
+       {ProfileFormat::Auto, ProfileFormat::Csv, ProfileFormat::Dektak, ProfileFormat::Gwyddion, ProfileFormat::X3p,
+        ProfileFormat::Matrix, ProfileFormat::Xyz, ProfileFormat::Sdf, ProfileFormat::Npy, ProfileFormat::GwyddionLib})
     if (n == format_name(f)) return f;
   if (n == "txt" || n == "tsv" || n == "text") return ProfileFormat::Csv;
   if (n == "gwy" || n == "gwyddionlib" || n == "libgwyddion") return ProfileFormat::GwyddionLib;
@@ -44,7 +45,8 @@ Status validate(const Map& m, const std::string& what) {
   if (m.heights.size() != m.nx * m.ny)
     return make_error(fmt::format("{}: {} heights for a {} x {} grid", what, m.heights.size(), m.nx, m.ny));
   if (!(m.dx > 0) || !(m.dy > 0) || !std::isfinite(m.dx) || !std::isfinite(m.dy))
-    return make_error(fmt::format("{}: grid spacings must be positive and finite (dx = {}, dy = {})", what, m.dx, m.dy));
+    return make_error(
+        fmt::format("{}: grid spacings must be positive and finite (dx = {}, dy = {})", what, m.dx, m.dy));
   std::size_t valid = 0;
   for (double v : m.heights) {
     if (std::isinf(v)) return make_error(fmt::format("{}: infinite height", what));
@@ -78,7 +80,8 @@ Result<std::string> read_file_bytes(const std::string& path, std::uint64_t max_b
     return make_error(ErrorCode::Io, fmt::format("{}: cannot open: no such file (or not a regular file)", path));
   auto size = std::filesystem::file_size(path, ec);
   if (ec) return make_error(ErrorCode::Io, fmt::format("{}: cannot read its size: {}", path, ec.message()));
-  if (size > max_bytes) return make_error(fmt::format("{}: {} bytes, above the limit of {} bytes", path, size, max_bytes));
+  if (size > max_bytes)
+    return make_error(fmt::format("{}: {} bytes, above the limit of {} bytes", path, size, max_bytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for reading", path));
   std::string bytes(std::size_t(size), '\0');
@@ -111,17 +114,22 @@ Result<SurfaceData> read_native_bytes(const std::string& bytes, const std::strin
   }
   if (zip) return make_error(fmt::format("{}: a ZIP archive cannot be read as {}", name, format_name(f)));
   if (f == ProfileFormat::Npy || (f == ProfileFormat::Auto && io_detail::looks_like_npy(bytes))) {
-    if (!io_detail::looks_like_npy(bytes)) return make_error(fmt::format("{}: not a .npy file (no \\x93NUMPY signature)", name));
+    if (!io_detail::looks_like_npy(bytes))
+      return make_error(fmt::format("{}: not a .npy file (no \\x93NUMPY signature)", name));
     return io_detail::read_npy_bytes(bytes, name, options);
   }
   std::string text = decode_text(bytes);
   if (text.find('\0') != std::string::npos)
     return make_error(fmt::format("{}: binary data of no format frictal reads natively (text, X3P, .npy, gzip)", name));
   if (f == ProfileFormat::Auto) {
-    if (io_detail::looks_like_sdf_text(text)) f = ProfileFormat::Sdf;
-    else if (io_detail::looks_like_dektak(text)) f = ProfileFormat::Dektak;
-    else if (io_detail::looks_like_gwyddion(text)) f = ProfileFormat::Gwyddion;
-    else f = ProfileFormat::Csv;
+    if (io_detail::looks_like_sdf_text(text))
+      f = ProfileFormat::Sdf;
+    else if (io_detail::looks_like_dektak(text))
+      f = ProfileFormat::Dektak;
+    else if (io_detail::looks_like_gwyddion(text))
+      f = ProfileFormat::Gwyddion;
+    else
+      f = ProfileFormat::Csv;
   }
   switch (f) {
     case ProfileFormat::Sdf: return io_detail::parse_sdf_text(text, name, options);
@@ -164,9 +172,10 @@ Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::stri
 }
 
 static Status check_native_channel(const SurfaceData& s, const std::string& path, const ReadOptions& options) {
-  if (options.channel.empty() || options.channel == "0" || lower_ascii_copy(options.channel) == s.channels[0].name) return Ok{};
-  return make_error(fmt::format("{}: channel '{}' requested but this {} file has one channel (0)", path, options.channel,
-                                format_name(s.format)));
+  if (options.channel.empty() || options.channel == "0" || lower_ascii_copy(options.channel) == s.channels[0].name)
+    return Ok{};
+  return make_error(fmt::format("{}: channel '{}' requested but this {} file has one channel (0)", path,
+                                options.channel, format_name(s.format)));
 }
 
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {
@@ -182,7 +191,8 @@ Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& opt
   if (options.format != ProfileFormat::Auto) return r;
   // No native reader took it (and it is no X3P, .npy or gzip file): Gwyddion's file modules may.
   const std::string& b = *bytes;
-  if ((b.size() >= 4 && b.compare(0, 4, "PK\x03\x04") == 0) || io_detail::looks_like_npy(b) || io_detail::looks_like_gzip(b))
+  if ((b.size() >= 4 && b.compare(0, 4, "PK\x03\x04") == 0) || io_detail::looks_like_npy(b) ||
+      io_detail::looks_like_gzip(b))
     return r;
   const bool binary = decode_text(b).find('\0') != std::string::npos;
   std::string why;
@@ -195,22 +205,28 @@ Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& opt
       return r;
     }
     if (binary)
-      return make_error(fmt::format("{}: binary data that neither frictal's readers nor Gwyddion's file modules recognise "
-                                    "(see `frictal formats`)", path));
+      return make_error(
+          fmt::format("{}: binary data that neither frictal's readers nor Gwyddion's file modules recognise "
+                      "(see `frictal formats`)",
+                      path));
     return r;
   }
   if (binary)
-    return make_error(fmt::format("{}: binary data of no format frictal reads natively (text, X3P, .npy, gzip); Gwyddion's "
-                                  "file modules may read it, but {}", path, why));
+    return make_error(
+        fmt::format("{}: binary data of no format frictal reads natively (text, X3P, .npy, gzip); Gwyddion's "
+                    "file modules may read it, but {}",
+                    path, why));
   return r;
 }
 
 std::vector<FormatInfo> readable_formats(const std::string& gwyddion_module_dir) {
   std::vector<FormatInfo> f = {
-      {"csv", "delimited text profiles: CSV, TSV, whitespace, ';' with decimal commas (.csv, .txt, .dat, .asc, ...)", "native", true},
+      {"csv", "delimited text profiles: CSV, TSV, whitespace, ';' with decimal commas (.csv, .txt, .dat, .asc, ...)",
+       "native", true},
       {"dektak", "Bruker Dektak CSV export (.csv)", "native", false},
       {"gwyddion", "Gwyddion text export of a map, '# Width:' headers (.txt)", "native", true},
-      {"matrix", "text matrix of heights, optionally with a 'w= h=' / 'nx= ny=' / SPIP 'x-pixels =' header (.txt, .asc)",
+      {"matrix",
+       "text matrix of heights, optionally with a 'w= h=' / 'nx= ny=' / SPIP 'x-pixels =' header (.txt, .asc)",
        "native", false},
       {"xyz", "text x, y, z point list on a regular grid (.xyz, .txt, .csv)", "native", false},
       {"sdf", "ISO 25178-71 / BCR surface data file, ASCII (.sdf)", "native", false},

@@ -1,11 +1,11 @@
 // Text formats: delimited two-column profiles, the Bruker Dektak CSV export, Gwyddion text
 // matrices. Text arrives here decoded to UTF-8 (decode_text).
+#include <fmt/core.h>
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <optional>
-#include <fmt/core.h>
 #include <limits>
+#include <optional>
 
 #include "io/readers.hpp"
 #include "io/text_util.hpp"
@@ -261,7 +261,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   auto lines = split_lines(text);
   Delim delim = detect_delimiter(lines);
   std::vector<std::vector<std::string_view>> headers;  // non-numeric lines before the data
-  std::vector<std::string_view> raw_headers;            // the same lines, whole
+  std::vector<std::string_view> raw_headers;           // the same lines, whole
   // Data rows stored flat (ncols values per row): no per-row allocation for large files.
   struct Rows {
     std::vector<double> v;
@@ -289,8 +289,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     auto f = split_fields(t, delim.c);
     if (numeric_fields(f, delim.decimal_comma, &vals)) {
       if (trailer_line)
-        return make_error(fmt::format("{}:{}: expected numbers, found text '{}' inside the data",
-                                      name, trailer_line, std::string(trim(lines[trailer_line - 1].text)).substr(0, 60)));
+        return make_error(fmt::format("{}:{}: expected numbers, found text '{}' inside the data", name, trailer_line,
+                                      std::string(trim(lines[trailer_line - 1].text)).substr(0, 60)));
       if (rows.empty() && vals.size() == 1 && count_line_number == 0) {
         // A count line ("23") before the data, or the first of a single column of heights
         // (decided below).
@@ -332,8 +332,9 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   if (rows.empty()) {
     if (trim(text).empty()) return make_error(fmt::format("{}: file is empty", name));
     if (count_line_number)
-      return make_error(fmt::format("{}:{}: only one number; expected two columns (x and z), a column of heights or a matrix",
-                                    name, count_line_number));
+      return make_error(
+          fmt::format("{}:{}: only one number; expected two columns (x and z), a column of heights or a matrix", name,
+                      count_line_number));
     return make_error(fmt::format("{}: no numeric data rows found (expected lines of x and z values)", name));
   }
   if (rows.size() < 2)
@@ -349,22 +350,25 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     fallback_unit = *s;
   }
   // A length from the header ("w = 10 um"; a bare number is in `bare_scale`).
-  auto header_length = [&](std::initializer_list<const char*> keys, double bare_scale) -> Result<std::optional<double>> {
+  auto header_length = [&](std::initializer_list<const char*> keys,
+                           double bare_scale) -> Result<std::optional<double>> {
     const std::string* v = hp.get(keys);
     if (!v) return std::optional<double>{};
     double x;
     std::optional<double> sc;
     if (!number_with_unit(*v, x, sc) || !(x > 0))
-      return make_error(fmt::format("{}: header value '{}' for '{}' is not a positive length (number and unit)", name, *v,
-                                    *keys.begin()));
+      return make_error(fmt::format("{}: header value '{}' for '{}' is not a positive length (number and unit)", name,
+                                    *v, *keys.begin()));
     return std::optional<double>{x * sc.value_or(bare_scale)};
   };
   // Height unit named in the header ("# unit: nm", "Value units: um", "z unit = nm").
   std::optional<double> z_unit_header;
-  if (const std::string* u = hp.get({"zunit", "zunits", "valueunits", "valueunit", "heightunit", "heightunits", "unit", "units"})) {
+  if (const std::string* u =
+          hp.get({"zunit", "zunits", "valueunits", "valueunit", "heightunit", "heightunits", "unit", "units"})) {
     z_unit_header = unit_scale(*u);
     if (!z_unit_header)
-      return make_error(fmt::format("{}: height unit '{}' in the header is not a length unit (expected m, mm, um, nm)", name, *u));
+      return make_error(
+          fmt::format("{}: height unit '{}' in the header is not a length unit (expected m, mm, um, nm)", name, *u));
   }
   const bool spip = hp.get({"bit2nm"}) != nullptr;  // SPIP ASCII: lengths in nm, z = value * Bit2nm nm
   const double lateral_bare = spip ? 1e-9 : fallback_unit;
@@ -372,23 +376,30 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   // One column of heights: a profile at a constant spacing (option, or header "spacing", "dx").
   if (ncols == 1) {
     auto dx_h = header_length({"spacing", "dx", "xspacing", "step", "xstep", "sampling", "samplinginterval", "interval",
-                               "increment", "xincrement", "resolution", "xresolution"}, fallback_unit);
+                               "increment", "xincrement", "resolution", "xresolution"},
+                              fallback_unit);
     if (!dx_h) return dx_h.error();
     double dx = options.spacing > 0 ? options.spacing : dx_h->value_or(0.0);
     if (!(dx > 0))
       return make_error(fmt::format(
           "{}: one column of {} heights and no spacing: expected two columns (x and z), or give the sampling interval "
-          "(--spacing, ReadOptions::spacing, or a '# spacing: 0.5 um' header)", name, rows.size()));
+          "(--spacing, ReadOptions::spacing, or a '# spacing: 0.5 um' header)",
+          name, rows.size()));
     std::optional<double> zu = z_unit_header;
     for (auto it = raw_headers.rbegin(); it != raw_headers.rend() && !zu; ++it)
-      if (!is_comment(*it) && it->find_first_of("=:") == std::string_view::npos) zu = unit_in_header(*it);  // "height [nm]"
+      if (!is_comment(*it) && it->find_first_of("=:") == std::string_view::npos)
+        zu = unit_in_header(*it);  // "height [nm]"
     if (!zu && options.default_unit.empty())
-      out.warnings.push_back(fmt::format("{}: no length unit found for the heights; read as metres (give a unit to override)", name));
+      out.warnings.push_back(
+          fmt::format("{}: no length unit found for the heights; read as metres (give a unit to override)", name));
     const double zs = zu.value_or(fallback_unit);
     InvalidCount invalid;
     for (std::size_t k = 0; k < rows.size(); ++k) {
       double z = rows[k][0];
-      if (!std::isfinite(z)) { invalid.add(z); continue; }
+      if (!std::isfinite(z)) {
+        invalid.add(z);
+        continue;
+      }
       out.curve.x.push_back(double(k) * dx);
       out.curve.z.push_back(z * zs);
     }
@@ -400,13 +411,17 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   const bool forced = options.x_column >= 0 || options.z_column >= 0;
   // Header keys that make a matrix: sizes and counts. A two-column file needs a count key (a
   // profile with a "# dx = 0.1 um" comment stays a profile).
-  const bool count_key = hp.get({"nx", "ny", "xpixels", "ypixels", "xres", "yres", "ncols", "nrows", "cols", "rows"}) != nullptr;
-  const bool size_key = hp.get({"w", "h", "width", "height", "xlength", "ylength", "xreal", "yreal", "xsize", "ysize", "dx", "dy",
-                                "bit2nm"}) != nullptr;
+  const bool count_key =
+      hp.get({"nx", "ny", "xpixels", "ypixels", "xres", "yres", "ncols", "nrows", "cols", "rows"}) != nullptr;
+  const bool size_key = hp.get({"w", "h", "width", "height", "xlength", "ylength", "xreal", "yreal", "xsize", "ysize",
+                                "dx", "dy", "bit2nm"}) != nullptr;
   const bool matrix_header = count_key || (ncols >= 3 && size_key);
   const std::vector<std::string_view>* named_row = nullptr;
   for (auto it = headers.rbegin(); it != headers.rend(); ++it)
-    if (it->size() == ncols) { named_row = &*it; break; }
+    if (it->size() == ncols) {
+      named_row = &*it;
+      break;
+    }
 
   // x, y, z point lists that lie on a regular grid: a map.
   if (!forced && ncols == 3 && !matrix_header && rows.size() >= 4) {
@@ -430,7 +445,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       auto xu = unit_of(0), yu = unit_of(1), zu = unit_of(2);
       if (!zu) zu = z_unit_header;
       if ((!xu || !yu || !zu) && options.default_unit.empty())
-        out.warnings.push_back(fmt::format("{}: no length unit found for some of the x, y, z columns; read as metres", name));
+        out.warnings.push_back(
+            fmt::format("{}: no length unit found for some of the x, y, z columns; read as metres", name));
       Map& m = out.map;
       m.nx = nx;
       m.ny = ny;
@@ -446,17 +462,21 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
         auto j = std::size_t(std::llround((ys[k] - gy->first) / gy->second));
         std::size_t at = j * nx + i;
         if (seen[at])
-          return make_error(fmt::format("{}:{}: grid node ({}, {}) appears twice in the x, y, z list", name, row_line[k],
-                                        xs[k], ys[k]));
+          return make_error(fmt::format("{}:{}: grid node ({}, {}) appears twice in the x, y, z list", name,
+                                        row_line[k], xs[k], ys[k]));
         seen[at] = 1;
         double z = rows[k][2];
-        if (!std::isfinite(z)) { invalid.add(z); continue; }
+        if (!std::isfinite(z)) {
+          invalid.add(z);
+          continue;
+        }
         m.heights[at] = z * zu.value_or(fallback_unit);
       }
       if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
       if (nx * ny > rows.size())
-        out.warnings.push_back(fmt::format("{}: {} of the {} x {} grid nodes are missing from the list (invalid points)",
-                                           name, nx * ny - rows.size(), nx, ny));
+        out.warnings.push_back(
+            fmt::format("{}: {} of the {} x {} grid nodes are missing from the list (invalid points)", name,
+                        nx * ny - rows.size(), nx, ny));
       if (m.valid_count() == 0) return make_error(fmt::format("{}: no valid point", name));
       out.is_map = true;
       out.format = ProfileFormat::Xyz;
@@ -476,8 +496,10 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
         return make_error(fmt::format("{}: header says {} = {} but the matrix has {} {}", name, key, *v, want, what));
       return Ok{};
     };
-    if (auto st = check_count(hp.get({"nx", "xpixels", "xres", "cols", "ncols"}), "nx", m.nx, "columns"); !st) return st.error();
-    if (auto st = check_count(hp.get({"ny", "ypixels", "yres", "rows", "nrows"}), "ny", m.ny, "rows"); !st) return st.error();
+    if (auto st = check_count(hp.get({"nx", "xpixels", "xres", "cols", "ncols"}), "nx", m.nx, "columns"); !st)
+      return st.error();
+    if (auto st = check_count(hp.get({"ny", "ypixels", "yres", "rows", "nrows"}), "ny", m.ny, "rows"); !st)
+      return st.error();
     auto w = header_length({"w", "width", "xlength", "xreal", "xsize"}, lateral_bare);
     if (!w) return w.error();
     auto h = header_length({"h", "height", "ylength", "yreal", "ysize"}, lateral_bare);
@@ -492,8 +514,9 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     if (!dx && options.spacing > 0) dx = options.spacing;
     if (!dy && options.spacing > 0) dy = options.spacing;
     if (!dx || !dy)
-      out.warnings.push_back(fmt::format("{}: a {} x {} matrix of heights without sizes; grid spacing set to 1 {} (give --spacing)",
-                                         name, m.nx, m.ny, options.default_unit.empty() ? "m" : options.default_unit));
+      out.warnings.push_back(
+          fmt::format("{}: a {} x {} matrix of heights without sizes; grid spacing set to 1 {} (give --spacing)", name,
+                      m.nx, m.ny, options.default_unit.empty() ? "m" : options.default_unit));
     m.dx = dx.value_or(fallback_unit);
     m.dy = dy.value_or(fallback_unit);
     std::optional<double> zu = z_unit_header;
@@ -505,7 +528,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       zu = b2n * 1e-9;
     }
     if (!zu && options.default_unit.empty())
-      out.warnings.push_back(fmt::format("{}: no unit for the heights; read as metres (give a unit to override)", name));
+      out.warnings.push_back(
+          fmt::format("{}: no unit for the heights; read as metres (give a unit to override)", name));
     m.heights = std::move(rows.v);
     InvalidCount invalid;
     mask_invalid(m.heights, invalid);
@@ -526,7 +550,10 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   int xc = options.x_column, zc = options.z_column;
   const std::vector<std::string_view>* named = nullptr;
   for (auto it = headers.rbegin(); it != headers.rend(); ++it)
-    if (it->size() == ncols) { named = &*it; break; }
+    if (it->size() == ncols) {
+      named = &*it;
+      break;
+    }
   if (xc < 0 || zc < 0) {
     bool index_col = false;
     if (ncols >= 3) {
@@ -539,11 +566,12 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     if (xc < 0) xc = index_col ? 1 : 0;
     if (zc < 0) zc = xc + 1;
     if (ncols > std::size_t(std::max(xc, zc)) + 1 || (index_col && ncols > 3))
-      out.warnings.push_back(fmt::format("{}: {} columns; using column {} as x and column {} as z (0-based)", name,
-                                         ncols, xc, zc));
+      out.warnings.push_back(
+          fmt::format("{}: {} columns; using column {} as x and column {} as z (0-based)", name, ncols, xc, zc));
   }
   if (std::size_t(std::max(xc, zc)) >= ncols || xc == zc)
-    return make_error(fmt::format("{}: columns x={} and z={} requested but the data has {} columns", name, xc, zc, ncols));
+    return make_error(
+        fmt::format("{}: columns x={} and z={} requested but the data has {} columns", name, xc, zc, ncols));
 
   // Units: the last header line (or comment) naming a unit for the column.
   auto find_unit = [&](int col) -> std::optional<double> {
@@ -551,8 +579,10 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       const auto& h = *it;
       std::size_t idx = col;
       if (h.size() != ncols) {
-        if (h.size() == 2 && ncols == 3 && (col == xc || col == zc)) idx = col == xc ? 0 : 1;  // unit line for x, z
-        else continue;
+        if (h.size() == 2 && ncols == 3 && (col == xc || col == zc))
+          idx = col == xc ? 0 : 1;  // unit line for x, z
+        else
+          continue;
       }
       if (auto s = unit_in_header(h[idx])) return s;
     }
@@ -566,8 +596,11 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   }
   auto xu = find_unit(xc), zu = find_unit(zc);
   if ((!xu || !zu) && options.default_unit.empty())
-    out.warnings.push_back(fmt::format("{}: no length unit found for the {} column; values read as metres (give a unit to override)",
-                                       name, !xu && !zu ? "x and z" : !xu ? "x" : "z"));
+    out.warnings.push_back(
+        fmt::format("{}: no length unit found for the {} column; values read as metres (give a unit to override)", name,
+                    !xu && !zu ? "x and z"
+                    : !xu      ? "x"
+                               : "z"));
   double xs = xu.value_or(fallback), zs = zu.value_or(fallback);
 
   InvalidCount invalid;
@@ -576,9 +609,12 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   for (std::size_t k = 0; k < rows.size(); ++k) {
     double x = rows[k][xc], z = rows[k][zc];
     if (!std::isfinite(x))
-      return make_error(fmt::format("{}:{}: x is {} (expected a finite number; only heights may be invalid)", name,
-                                    row_line[k], x));
-    if (!std::isfinite(z)) { invalid.add(z); continue; }
+      return make_error(
+          fmt::format("{}:{}: x is {} (expected a finite number; only heights may be invalid)", name, row_line[k], x));
+    if (!std::isfinite(z)) {
+      invalid.add(z);
+      continue;
+    }
     out.curve.x.push_back(x * xs);
     out.curve.z.push_back(z * zs);
   }
@@ -606,7 +642,8 @@ Result<SurfaceData> parse_dektak(std::string_view text, const std::string& name,
   // The section runs from the column header to the first blank line after the data.
   std::size_t first = k + 1;
   while (first < lines.size() && trim(lines[first].text).empty()) ++first;
-  if (first >= lines.size()) return make_error(fmt::format("{}:{}: 'Scan Data' section is empty", name, lines[k].number));
+  if (first >= lines.size())
+    return make_error(fmt::format("{}:{}: 'Scan Data' section is empty", name, lines[k].number));
   std::size_t last = first + 1;
   bool data_seen = false;
   for (; last < lines.size(); ++last) {
@@ -642,14 +679,14 @@ bool header_key(std::string_view line, std::string& key, std::string& value) {
 }
 
 bool is_width_key(const std::string& k) {
-  for (const char* w : {"width", "breite", "largeur", "ancho", "anchura", "larghezza", "largura", "szeroko\xc5\x9b\xc4\x87",
-                        "\xc5\xa1\xc3\xad\xc5\x99ka", "x size", "x-size", "x range"})
+  for (const char* w : {"width", "breite", "largeur", "ancho", "anchura", "larghezza", "largura",
+                        "szeroko\xc5\x9b\xc4\x87", "\xc5\xa1\xc3\xad\xc5\x99ka", "x size", "x-size", "x range"})
     if (k == w) return true;
   return false;
 }
 bool is_height_key(const std::string& k) {
-  for (const char* w : {"height", "h\xc3\xb6he", "hoehe", "hauteur", "alto", "altura", "altezza", "wysoko\xc5\x9b\xc4\x87",
-                        "v\xc3\xbd\xc5\xa1ka", "y size", "y-size", "y range"})
+  for (const char* w : {"height", "h\xc3\xb6he", "hoehe", "hauteur", "alto", "altura", "altezza",
+                        "wysoko\xc5\x9b\xc4\x87", "v\xc3\xbd\xc5\xa1ka", "y size", "y-size", "y range"})
     if (k == w) return true;
   return false;
 }
@@ -688,13 +725,18 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
     if (t.front() == '#') {
       if (!header_key(t, k, v)) continue;
       auto len = length_value(v);
-      if (is_width_key(k) && len) width = len;
-      else if (is_height_key(k) && len) height = len;
-      else if (len) positional.push_back(*len);
+      if (is_width_key(k) && len)
+        width = len;
+      else if (is_height_key(k) && len)
+        height = len;
+      else if (len)
+        positional.push_back(*len);
       if (k.find("value unit") != std::string::npos || k.find("z unit") != std::string::npos || k == "einheit" ||
           k.find("werteinheit") != std::string::npos) {
         auto s = unit_scale(v);
-        if (!s) return make_error(fmt::format("{}:{}: value unit '{}' is not a length unit (expected m, mm, um, nm)", name, ln.number, v));
+        if (!s)
+          return make_error(
+              fmt::format("{}:{}: value unit '{}' is not a length unit (expected m, mm, um, nm)", name, ln.number, v));
         zscale = s;
       }
       continue;
@@ -703,15 +745,15 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
     if (!numeric_fields(f, false, &row)) {
       bool comma = numeric_fields(f, true, &row);
       if (!comma)
-        return make_error(fmt::format("{}:{}: expected a row of numbers, found '{}'", name, ln.number,
-                                      std::string(t.substr(0, 60))));
+        return make_error(
+            fmt::format("{}:{}: expected a row of numbers, found '{}'", name, ln.number, std::string(t.substr(0, 60))));
     }
     if (ny == 0) {
       nx = row.size();
       first_line = ln.number;
     } else if (row.size() != nx) {
-      return make_error(fmt::format("{}:{}: expected {} values like line {}, found {}", name, ln.number, nx,
-                                    first_line, row.size()));
+      return make_error(
+          fmt::format("{}:{}: expected {} values like line {}, found {}", name, ln.number, nx, first_line, row.size()));
     }
     if (values.size() + row.size() > options.max_points)
       return make_error(fmt::format("{}: more than {} points (limit max_points)", name, options.max_points));
@@ -749,7 +791,8 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
   mask_invalid(m.heights, invalid);
   for (double& h : m.heights) h *= zs;
   if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
-  if (invalid.total() == m.heights.size()) return make_error(fmt::format("{}: no valid point (every height is NaN or infinite)", name));
+  if (invalid.total() == m.heights.size())
+    return make_error(fmt::format("{}: no valid point (every height is NaN or infinite)", name));
   return out;
 }
 

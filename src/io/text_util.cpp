@@ -1,14 +1,16 @@
 #include "io/text_util.hpp"
 
-#include <charconv>
 #include <fmt/core.h>
+#include <charconv>
 #include <cmath>
 #include <limits>
 
 namespace frictal::io_detail {
 
 namespace {
-bool is_space(unsigned char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v' || c == 0; }
+bool is_space(unsigned char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v' || c == 0;
+}
 }  // namespace
 
 std::string_view trim(std::string_view s) {
@@ -54,7 +56,10 @@ bool parse_double(std::string_view s, double& out, bool decimal_comma) {
     if (ec == std::errc::result_out_of_range && p == s.data() + s.size()) {
       std::string t(s);
       double w = std::strtod(t.c_str(), nullptr);
-      if (std::isfinite(w)) { out = w; return true; }
+      if (std::isfinite(w)) {
+        out = w;
+        return true;
+      }
     }
     return false;
   }
@@ -74,7 +79,8 @@ std::optional<double> unit_scale(std::string_view word) {
   std::string w = lower_ascii(trim(word));
   // Strip surrounding punctuation.
   while (!w.empty() && (w.front() == '(' || w.front() == '[' || w.front() == '_' || w.front() == '"')) w.erase(0, 1);
-  while (!w.empty() && (w.back() == ')' || w.back() == ']' || w.back() == '_' || w.back() == '"' || w.back() == ':' || w.back() == '.'))
+  while (!w.empty() && (w.back() == ')' || w.back() == ']' || w.back() == '_' || w.back() == '"' || w.back() == ':' ||
+                        w.back() == '.'))
     w.pop_back();
   if (w == "m" || w == "meter" || w == "meters" || w == "metre" || w == "metres") return 1.0;
   if (w == "mm" || w == "millimeter" || w == "millimeters" || w == "millimetre" || w == "millimetres") return 1e-3;
@@ -83,7 +89,8 @@ std::optional<double> unit_scale(std::string_view word) {
       w == "micrometers" || w == "micrometre" || w == "micrometres")
     return 1e-6;
   if (w == "nm" || w == "nanometer" || w == "nanometers" || w == "nanometre" || w == "nanometres") return 1e-9;
-  if (w == "a" || w == "\xC3\x85" || w == "\xC3\xA5" || w == "angstrom" || w == "angstroms" || w == "\xC3\xA5ngstr\xC3\xB6m")
+  if (w == "a" || w == "\xC3\x85" || w == "\xC3\xA5" || w == "angstrom" || w == "angstroms" ||
+      w == "\xC3\xA5ngstr\xC3\xB6m")
     return 1e-10;
   if (w == "pm" || w == "picometer" || w == "picometers") return 1e-12;
   return std::nullopt;
@@ -152,9 +159,12 @@ std::vector<Line> split_lines(std::string_view text) {
 std::size_t InvalidCount::total() const { return nan + pos_inf + neg_inf; }
 
 void InvalidCount::add(double v) {
-  if (std::isnan(v)) ++nan;
-  else if (v > 0) ++pos_inf;
-  else ++neg_inf;
+  if (std::isnan(v))
+    ++nan;
+  else if (v > 0)
+    ++pos_inf;
+  else
+    ++neg_inf;
 }
 
 std::size_t mask_invalid(std::vector<double>& z, InvalidCount& count) {

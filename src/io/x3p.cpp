@@ -1,20 +1,20 @@
 // ISO 25178-71 X3P: a ZIP archive with main.xml (ISO5436_2), md5checksum.hex, and optionally
 // bindata/data.bin (little-endian, x fastest) and bindata/valid.bin (bit mask, LSB first).
 // Members are read into memory with size limits, never extracted to disk.
+#include <fmt/core.h>
 #include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
 #include <ctime>
-#include <fmt/core.h>
 #include <limits>
 #include <map>
 #include <memory>
 
 #include <openssl/evp.h>
-#include <pugixml.hpp>
 #include <zip.h>
+#include <pugixml.hpp>
 
 #include "io/readers.hpp"
 #include "io/text_util.hpp"
@@ -141,9 +141,12 @@ Result<Axis> parse_axis(pugi::xml_node axes, const char* which, const std::strin
   pugi::xml_node n = child(axes, which);
   if (!n) return make_error(fmt::format("{}: main.xml: Record1/Axes/{} is missing", name, which));
   std::string at = text_of(child(n, "AxisType"));
-  if (at == "A") a.incremental = false;
-  else if (at == "I" || at.empty()) a.incremental = true;
-  else return make_error(fmt::format("{}: main.xml: {}/AxisType is '{}' (expected I or A)", name, which, at));
+  if (at == "A")
+    a.incremental = false;
+  else if (at == "I" || at.empty())
+    a.incremental = true;
+  else
+    return make_error(fmt::format("{}: main.xml: {}/AxisType is '{}' (expected I or A)", name, which, at));
   std::string dt = text_of(child(n, "DataType"));
   if (dt.empty()) dt.push_back('D');  // (not dt = "D": GCC 12 -Wrestrict false positive, PR 105329)
   if (dt != "I" && dt != "L" && dt != "F" && dt != "D")
@@ -173,10 +176,26 @@ double decode_raw(const unsigned char* p, char t) {
   std::memcpy(b, p, n);
   if constexpr (std::endian::native == std::endian::big) std::reverse(b, b + n);
   switch (t) {
-    case 'I': { std::int16_t v; std::memcpy(&v, b, 2); return v; }
-    case 'L': { std::int32_t v; std::memcpy(&v, b, 4); return v; }
-    case 'F': { float v; std::memcpy(&v, b, 4); return v; }
-    default: { double v; std::memcpy(&v, b, 8); return v; }
+    case 'I': {
+      std::int16_t v;
+      std::memcpy(&v, b, 2);
+      return v;
+    }
+    case 'L': {
+      std::int32_t v;
+      std::memcpy(&v, b, 4);
+      return v;
+    }
+    case 'F': {
+      float v;
+      std::memcpy(&v, b, 4);
+      return v;
+    }
+    default: {
+      double v;
+      std::memcpy(&v, b, 8);
+      return v;
+    }
   }
 }
 
@@ -219,7 +238,8 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
   if (!base.empty()) warn.push_back(fmt::format("{}: main.xml is in the sub-folder '{}'", name, base));
   // main.xml holds metadata (and at most an XML data list): 1 KiB per point of max_points is
   // plenty, capped at 256 MiB.
-  auto xml = ar.read(main_name, std::min<std::uint64_t>({options.max_bytes, 256u << 20, 4096 + options.max_points * 1024}));
+  auto xml =
+      ar.read(main_name, std::min<std::uint64_t>({options.max_bytes, 256u << 20, 4096 + options.max_points * 1024}));
   if (!xml) return xml.error();
 
   pugi::xml_document doc;
@@ -228,10 +248,13 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
     return make_error(fmt::format("{}: {}: XML error at byte {}: {}", name, main_name, pr.offset, pr.description()));
   pugi::xml_node root;
   for (pugi::xml_node c = doc.first_child(); c; c = c.next_sibling())
-    if (c.type() == pugi::node_element) { root = c; break; }
+    if (c.type() == pugi::node_element) {
+      root = c;
+      break;
+    }
   if (!root || (local_name(root.name()) != "ISO5436_2" && local_name(root.name()) != "ISO5436"))
-    return make_error(fmt::format("{}: {}: root element is '{}' (expected ISO5436_2)", name, main_name,
-                                  root ? root.name() : ""));
+    return make_error(
+        fmt::format("{}: {}: root element is '{}' (expected ISO5436_2)", name, main_name, root ? root.name() : ""));
   if (std::string_view(root.name()).find(':') == std::string_view::npos && !root.attribute("xmlns"))
     warn.push_back(fmt::format("{}: root element '{}' has no namespace", name, root.name()));
 
@@ -245,8 +268,8 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
     } else {
       std::string expect = std::string(trim(*sum)).substr(0, 32);
       if (!same_hex(expect, md5_hex(*xml)))
-        warn.push_back(fmt::format("{}: MD5 checksum of main.xml does not match {} (file says {}, content is {})",
-                                   name, cname, expect, md5_hex(*xml)));
+        warn.push_back(fmt::format("{}: MD5 checksum of main.xml does not match {} (file says {}, content is {})", name,
+                                   cname, expect, md5_hex(*xml)));
     }
   }
 
@@ -278,7 +301,8 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
     nx = *sx;
     ny = *sy;
     if (nx > options.max_points / ny)
-      return make_error(fmt::format("{}: main.xml: {} x {} points exceed the limit of {}", name, nx, ny, options.max_points));
+      return make_error(
+          fmt::format("{}: main.xml: {} x {} points exceed the limit of {}", name, nx, ny, options.max_points));
     count = nx * ny;
     matrix = true;
   } else if (pugi::xml_node ld = child(r3, "ListDimension")) {
@@ -338,8 +362,8 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
       auto vdeclared = ar.size(base + vname);
       if (!vdeclared) return vdeclared.error();
       if (*vdeclared > (count + 7) / 8 + 4096)
-        return make_error(fmt::format("{}: {}: {} bytes, far more than the {} bytes of mask {} points need", name, vname,
-                                      *vdeclared, (count + 7) / 8, count));
+        return make_error(fmt::format("{}: {}: {} bytes, far more than the {} bytes of mask {} points need", name,
+                                      vname, *vdeclared, (count + 7) / 8, count));
       auto valid = ar.read(base + vname, options.max_bytes);
       if (!valid) return valid.error();
       if (valid->size() < (count + 7) / 8)
@@ -354,8 +378,10 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
     // for every format); points the mask flags are the format's own "not measured".
     for (std::uint64_t k = 0; k < count; ++k) {
       const bool flagged = !valid_bits.empty() && !(((unsigned char)valid_bits[k / 8] >> (k % 8)) & 1u);
-      if (flagged) pz[k] = std::numeric_limits<double>::quiet_NaN();
-      else if (!std::isfinite(pz[k])) invalid.add(pz[k]);
+      if (flagged)
+        pz[k] = std::numeric_limits<double>::quiet_NaN();
+      else if (!std::isfinite(pz[k]))
+        invalid.add(pz[k]);
     }
   } else if (pugi::xml_node list = child(r3, "DataList")) {
     std::uint64_t k = 0;
@@ -375,7 +401,8 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
           double v;
           if (!trim(f).empty()) {
             if (!parse_double(f, v))
-              return make_error(fmt::format("{}: main.xml: Datum {}: '{}' is not a number", name, k + 1, std::string(f.substr(0, 40))));
+              return make_error(fmt::format("{}: main.xml: Datum {}: '{}' is not a number", name, k + 1,
+                                            std::string(f.substr(0, 40))));
             const char type = axis_of(stored[field])->type;
             if (type == 'F') v = double(float(v));  // the value is a float32
             if ((type == 'I' || type == 'L') &&
@@ -412,36 +439,45 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
   for (const auto* col : {&px, &py})
     for (std::uint64_t k = 0; k < col->size(); ++k)
       if (std::isinf((*col)[k]))
-        return make_error(fmt::format("{}: point {} has an infinite {} coordinate", name, k + 1, col == &px ? 'x' : 'y'));
+        return make_error(
+            fmt::format("{}: point {} has an infinite {} coordinate", name, k + 1, col == &px ? 'x' : 'y'));
 
   Map m;
   if (matrix) {
     m.nx = nx;
     m.ny = ny;
-    if (cx->incremental) { m.dx = cx->increment; m.x0 = cx->offset; }
-    if (cy->incremental) { m.dy = cy->increment; m.y0 = cy->offset; }
+    if (cx->incremental) {
+      m.dx = cx->increment;
+      m.x0 = cx->offset;
+    }
+    if (cy->incremental) {
+      m.dy = cy->increment;
+      m.y0 = cy->offset;
+    }
     // Absolute x or y in a matrix: accept if they lie on a regular grid.
     if (!cx->incremental) {
       std::vector<double> xs(px.begin(), px.begin() + nx);
       auto g = regular(xs);
       if (!g || nx < 2) return make_error(fmt::format("{}: absolute x axis is not a regular grid", name));
-      m.x0 = g->first; m.dx = g->second;
+      m.x0 = g->first;
+      m.dx = g->second;
     }
     if (!cy->incremental) {
       std::vector<double> ys(ny);
       for (std::uint64_t j = 0; j < ny; ++j) ys[j] = py[j * nx];
       auto g = regular(ys);
       if (!g || ny < 2) return make_error(fmt::format("{}: absolute y axis is not a regular grid", name));
-      m.y0 = g->first; m.dy = g->second;
+      m.y0 = g->first;
+      m.dy = g->second;
     }
     m.heights = std::move(pz);
   } else {
     // A point list: accepted when its points fill a regular grid.
-    if (px.empty() || py.empty())
-      return make_error(fmt::format("{}: list data needs absolute x and y axes", name));
+    if (px.empty() || py.empty()) return make_error(fmt::format("{}: list data needs absolute x and y axes", name));
     std::vector<double> ux, uy;
     for (std::uint64_t k = 0; k < count; ++k) {
-      if (std::isnan(px[k]) || std::isnan(py[k])) return make_error(fmt::format("{}: point {} has no x or y", name, k + 1));
+      if (std::isnan(px[k]) || std::isnan(py[k]))
+        return make_error(fmt::format("{}: point {} has no x or y", name, k + 1));
       ux.push_back(px[k]);
       uy.push_back(py[k]);
     }
@@ -456,11 +492,14 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
     uniq(uy);
     auto gx = regular(ux), gy = regular(uy);
     if (!gx || !gy || ux.size() * uy.size() != count || ux.size() < 2)
-      return make_error(fmt::format("{}: point list ({} points) does not fill a regular x-y grid (not supported)", name, count));
+      return make_error(
+          fmt::format("{}: point list ({} points) does not fill a regular x-y grid (not supported)", name, count));
     m.nx = ux.size();
     m.ny = uy.size();
-    m.x0 = gx->first; m.dx = gx->second;
-    m.y0 = gy->first; m.dy = gy->second > 0 ? gy->second : gx->second;
+    m.x0 = gx->first;
+    m.dx = gx->second;
+    m.y0 = gy->first;
+    m.dy = gy->second > 0 ? gy->second : gx->second;
     m.heights.assign(count, std::numeric_limits<double>::quiet_NaN());
     for (std::uint64_t k = 0; k < count; ++k) {
       auto i = std::size_t(std::llround((px[k] - m.x0) / m.dx)), j = std::size_t(std::llround((py[k] - m.y0) / m.dy));
@@ -479,7 +518,10 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
     std::size_t dropped = 0;
     for (std::size_t k = 0; k < n; ++k) {
       double z = m.heights[k];
-      if (std::isnan(z)) { ++dropped; continue; }
+      if (std::isnan(z)) {
+        ++dropped;
+        continue;
+      }
       out.curve.x.push_back(along_y ? m.y0 + double(k) * m.dy : m.x0 + double(k) * m.dx);
       out.curve.z.push_back(z);
     }
@@ -525,7 +567,10 @@ Status write_x3p_grid(const std::string& path, const Map& m, bool profile, const
   bool any_invalid = false;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (double v : m.heights) {
-    if (std::isnan(v)) { any_invalid = true; continue; }
+    if (std::isnan(v)) {
+      any_invalid = true;
+      continue;
+    }
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }
@@ -583,49 +628,69 @@ Status write_x3p_grid(const std::string& path, const Map& m, bool profile, const
       }
     }
     if constexpr (std::endian::native == std::endian::big) std::reverse(b, b + tsize);
-    if (o.binary) std::memcpy(data.data() + k * tsize, b, tsize);
-    else list += ok ? fmt::format("      <Datum>{}</Datum>\n", txt) : "      <Datum/>\n";
+    if (o.binary)
+      std::memcpy(data.data() + k * tsize, b, tsize);
+    else
+      list += ok ? fmt::format("      <Datum>{}</Datum>\n", txt) : "      <Datum/>\n";
   }
 
   auto esc = [](const std::string& t) {
     std::string r;
     for (char c : t) {
-      if (c == '<') r += "&lt;";
-      else if (c == '>') r += "&gt;";
-      else if (c == '&') r += "&amp;";
-      else r += c;
+      if (c == '<')
+        r += "&lt;";
+      else if (c == '>')
+        r += "&gt;";
+      else if (c == '&')
+        r += "&amp;";
+      else
+        r += c;
     }
     return r;
   };
   const std::string date = o.date.empty() ? utc_now() : esc(o.date);
   std::string xml;
   xml += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-  xml += "<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\" "
-         "xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
-         "xsi:schemaLocation=\"http://www.opengps.eu/2008/ISO5436_2 http://www.opengps.eu/2008/ISO5436_2/ISO5436_2.xsd\">\n";
+  xml +=
+      "<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\" "
+      "xmlns:xsi=\"http://www.w3.org/2001/XMLSchema-instance\" "
+      "xsi:schemaLocation=\"http://www.opengps.eu/2008/ISO5436_2 "
+      "http://www.opengps.eu/2008/ISO5436_2/ISO5436_2.xsd\">\n";
   xml += "  <Record1>\n    <Revision>ISO5436 - 2000</Revision>\n";
   xml += fmt::format("    <FeatureType>{}</FeatureType>\n    <Axes>\n", profile ? "PRF" : "SUR");
-  xml += fmt::format("      <CX>\n        <AxisType>I</AxisType>\n        <DataType>D</DataType>\n"
-                     "        <Increment>{:.17g}</Increment>\n        <Offset>{:.17g}</Offset>\n      </CX>\n", m.dx, m.x0);
-  xml += fmt::format("      <CY>\n        <AxisType>I</AxisType>\n        <DataType>D</DataType>\n"
-                     "        <Increment>{:.17g}</Increment>\n        <Offset>{:.17g}</Offset>\n      </CY>\n", m.dy, m.y0);
-  xml += fmt::format("      <CZ>\n        <AxisType>A</AxisType>\n        <DataType>{}</DataType>\n", type_letter(o.type));
-  if (integer) xml += fmt::format("        <Increment>{:.17g}</Increment>\n        <Offset>{:.17g}</Offset>\n", inc, off);
+  xml += fmt::format(
+      "      <CX>\n        <AxisType>I</AxisType>\n        <DataType>D</DataType>\n"
+      "        <Increment>{:.17g}</Increment>\n        <Offset>{:.17g}</Offset>\n      </CX>\n",
+      m.dx, m.x0);
+  xml += fmt::format(
+      "      <CY>\n        <AxisType>I</AxisType>\n        <DataType>D</DataType>\n"
+      "        <Increment>{:.17g}</Increment>\n        <Offset>{:.17g}</Offset>\n      </CY>\n",
+      m.dy, m.y0);
+  xml +=
+      fmt::format("      <CZ>\n        <AxisType>A</AxisType>\n        <DataType>{}</DataType>\n", type_letter(o.type));
+  if (integer)
+    xml += fmt::format("        <Increment>{:.17g}</Increment>\n        <Offset>{:.17g}</Offset>\n", inc, off);
   xml += "      </CZ>\n    </Axes>\n  </Record1>\n";
-  xml += fmt::format("  <Record2>\n    <Date>{}</Date>\n    <Creator>{}</Creator>\n    <Instrument>\n"
-                     "      <Manufacturer>frictal</Manufacturer>\n      <Model>frictal</Model>\n"
-                     "      <Serial>not available</Serial>\n      <Version>0.1.0</Version>\n    </Instrument>\n"
-                     "    <CalibrationDate>{}</CalibrationDate>\n    <ProbingSystem>\n      <Type>Software</Type>\n"
-                     "      <Identification>frictal</Identification>\n    </ProbingSystem>\n"
-                     "    <Comment>{}</Comment>\n  </Record2>\n", date, esc(o.creator), date, esc(o.comment));
-  xml += fmt::format("  <Record3>\n    <MatrixDimension>\n      <SizeX>{}</SizeX>\n      <SizeY>{}</SizeY>\n"
-                     "      <SizeZ>1</SizeZ>\n    </MatrixDimension>\n", m.nx, m.ny);
+  xml += fmt::format(
+      "  <Record2>\n    <Date>{}</Date>\n    <Creator>{}</Creator>\n    <Instrument>\n"
+      "      <Manufacturer>frictal</Manufacturer>\n      <Model>frictal</Model>\n"
+      "      <Serial>not available</Serial>\n      <Version>0.1.0</Version>\n    </Instrument>\n"
+      "    <CalibrationDate>{}</CalibrationDate>\n    <ProbingSystem>\n      <Type>Software</Type>\n"
+      "      <Identification>frictal</Identification>\n    </ProbingSystem>\n"
+      "    <Comment>{}</Comment>\n  </Record2>\n",
+      date, esc(o.creator), date, esc(o.comment));
+  xml += fmt::format(
+      "  <Record3>\n    <MatrixDimension>\n      <SizeX>{}</SizeX>\n      <SizeY>{}</SizeY>\n"
+      "      <SizeZ>1</SizeZ>\n    </MatrixDimension>\n",
+      m.nx, m.ny);
   if (o.binary) {
     xml += "    <DataLink>\n      <PointDataLink>bindata/data.bin</PointDataLink>\n";
     xml += fmt::format("      <MD5ChecksumPointData>{}</MD5ChecksumPointData>\n", io_detail::md5_hex(data));
     if (any_invalid)
-      xml += fmt::format("      <ValidPointsLink>bindata/valid.bin</ValidPointsLink>\n"
-                         "      <MD5ChecksumValidPoints>{}</MD5ChecksumValidPoints>\n", io_detail::md5_hex(valid));
+      xml += fmt::format(
+          "      <ValidPointsLink>bindata/valid.bin</ValidPointsLink>\n"
+          "      <MD5ChecksumValidPoints>{}</MD5ChecksumValidPoints>\n",
+          io_detail::md5_hex(valid));
     xml += "    </DataLink>\n";
   } else {
     xml += "    <DataList>\n" + list + "    </DataList>\n";
@@ -650,7 +715,7 @@ Status write_x3p_grid(const std::string& path, const Map& m, bool profile, const
       zip_source_free(s);
       return false;
     }
-    zip_set_file_compression(z, zip_uint64_t(idx), ZIP_CM_DEFLATE, 1);  // fast; height data compresses poorly
+    zip_set_file_compression(z, zip_uint64_t(idx), ZIP_CM_DEFLATE, 1);            // fast; height data compresses poorly
     if (!o.date.empty()) zip_file_set_mtime(z, zip_uint64_t(idx), 315532800, 0);  // 1980-01-01: reproducible bytes
     return true;
   };
@@ -686,8 +751,8 @@ Status write_x3p(const std::string& path, const Profile& p, const X3pWriteOption
   double dx = (p.x.back() - p.x.front()) / double(p.size() - 1);
   for (std::size_t k = 0; k < p.size(); ++k)
     if (!(dx > 0) || std::abs(p.x[k] - (p.x.front() + dx * double(k))) > 0.01 * dx)
-      return make_error(fmt::format("{}: X3P profiles need uniformly spaced x (point {} is off the grid); resample first",
-                                    path, k + 1));
+      return make_error(fmt::format(
+          "{}: X3P profiles need uniformly spaced x (point {} is off the grid); resample first", path, k + 1));
   Map m;
   m.nx = p.size();
   m.ny = 1;

@@ -1,7 +1,7 @@
 // The self-contained HTML page of `frictal report`: every number on it is computed here.
+#include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/core.h>
 #include <limits>
 #include <numbers>
 
@@ -26,7 +26,9 @@ std::string fmt_deg(double rad) {
   const double d = deg(rad);
   return fmt::format("{:.3f}\u00b0", std::abs(d) < 5e-4 ? 0.0 : d);  // no "-0.000"
 }
-std::string fmt_mu(double mu) { return std::isfinite(mu) ? fmt::format("{:.4f}", mu) : std::string("\u221e (interlocked)"); }
+std::string fmt_mu(double mu) {
+  return std::isfinite(mu) ? fmt::format("{:.4f}", mu) : std::string("\u221e (interlocked)");
+}
 
 std::string row(const std::string& name, const std::string& value, const std::string& note = "") {
   return fmt::format("<tr><th>{}</th><td>{}</td><td class=\"note\">{}</td></tr>\n", name, value, note);
@@ -71,9 +73,10 @@ Result<Profile> central_line(const Map& m) {
   const double yc = m.y0 + m.height() / 2;
   auto lines = map_line(m, m.x0, yc, 0.0, m.dx, 3);
   if (lines.empty())
-    return make_error(fmt::format("report: the map ({} x {} points) has no run of 3 valid points on its central "
-                                  "line along x",
-                                  m.nx, m.ny));
+    return make_error(
+        fmt::format("report: the map ({} x {} points) has no run of 3 valid points on its central "
+                    "line along x",
+                    m.nx, m.ny));
   std::size_t best = 0;
   for (std::size_t i = 1; i < lines.size(); ++i)
     if (lines[i].length() > lines[best].length()) best = i;
@@ -104,7 +107,8 @@ Result<std::string> surface_report(const ReportInput& in) {
   if (in.is_map && in.upper) return make_error("report: an upper surface is supported for profiles only");
   if (in.is_map && (in.directions < 1 || in.directions > 720))
     return make_error(fmt::format("report: directions must be in 1..720, got {}", in.directions));
-  if (in.bins < 2 || in.bins > 10000) return make_error(fmt::format("report: bins must be in 2..10000, got {}", in.bins));
+  if (in.bins < 2 || in.bins > 10000)
+    return make_error(fmt::format("report: bins must be in 2..10000, got {}", in.bins));
 
   std::vector<Section> sections;
   std::vector<std::string> assumptions;
@@ -141,23 +145,27 @@ Result<std::string> surface_report(const ReportInput& in) {
       mi.line_label = "line used for the signature";
       auto svg = map_svg(in.map, mi);
       if (!svg) return svg.error();
-      const std::size_t f = std::max<std::size_t>(1, (std::max(in.map.nx, in.map.ny) + mi.max_pixels - 1) / mi.max_pixels);
+      const std::size_t f =
+          std::max<std::size_t>(1, (std::max(in.map.nx, in.map.ny) + mi.max_pixels - 1) / mi.max_pixels);
       const LengthUnit lu = length_unit(std::max(st.width, st.height));
-      html += figure(*svg, fmt::format("{} × {} points, {} × {}; spacing {} × {}. {}Colours span the {:g} to {:g} % "
-                                       "quantiles of the heights (outliers saturate); grey: no data.",
-                                       in.map.nx, in.map.ny, fmt_len(st.width, lu), fmt_len(st.height, lu),
-                                       fmt_len(in.map.dx, length_unit(in.map.dx)), fmt_len(in.map.dy, length_unit(in.map.dy)),
-                                       f > 1 ? fmt::format("Shown block-averaged {} × {} to {} × {} pixels. ", f, f,
-                                                           (in.map.nx + f - 1) / f, (in.map.ny + f - 1) / f)
-                                             : std::string(),
-                                       100 * mi.low_quantile, 100 * mi.high_quantile));
+      html += figure(*svg,
+                     fmt::format("{} × {} points, {} × {}; spacing {} × {}. {}Colours span the {:g} to {:g} % "
+                                 "quantiles of the heights (outliers saturate); grey: no data.",
+                                 in.map.nx, in.map.ny, fmt_len(st.width, lu), fmt_len(st.height, lu),
+                                 fmt_len(in.map.dx, length_unit(in.map.dx)), fmt_len(in.map.dy, length_unit(in.map.dy)),
+                                 f > 1 ? fmt::format("Shown block-averaged {} × {} to {} × {} pixels. ", f, f,
+                                                     (in.map.nx + f - 1) / f, (in.map.ny + f - 1) / f)
+                                       : std::string(),
+                                 100 * mi.low_quantile, 100 * mi.high_quantile));
       const LengthUnit zu = length_unit(st.Sq > 0 ? st.Sq : 1e-9);
       html += "<table class=\"stats\"><caption>Areal statistics (ISO 25178-2 style, about the mean)</caption>\n";
-      html += row("points (valid)", fmt::format("{} ({})", st.points, st.valid), st.valid < st.points ? "holes excluded" : "");
+      html += row("points (valid)", fmt::format("{} ({})", st.points, st.valid),
+                  st.valid < st.points ? "holes excluded" : "");
       html += row("Sq", fmt_len(st.Sq, zu), "rms height");
       html += row("Sa", fmt_len(st.Sa, zu), "mean absolute height");
-      html += row("Sp / Sv / Sz", fmt::format("{} / {} / {}", fmt_len(st.Sp, zu), fmt_len(st.Sv, zu), fmt_len(st.Sz, zu)),
-                  "highest peak, deepest valley, their sum");
+      html +=
+          row("Sp / Sv / Sz", fmt::format("{} / {} / {}", fmt_len(st.Sp, zu), fmt_len(st.Sv, zu), fmt_len(st.Sz, zu)),
+              "highest peak, deepest valley, their sum");
       html += row("Ssk / Sku", fmt::format("{:.4f} / {:.4f}", st.Ssk, st.Sku), "skewness, kurtosis");
       html += row("Sdq", fmt::format("{:.4f}", st.Sdq), "rms gradient (forward differences)");
       html += row("steepest neighbour slope", fmt_deg(st.max_slope), "");
@@ -187,14 +195,17 @@ Result<std::string> surface_report(const ReportInput& in) {
       if (!svg) return svg.error();
       const double ex = xu.scale / zu.scale;
       html += figure(*svg, ex > 1.5 ? fmt::format("Heights (in {}) are drawn magnified relative to x (in {}); slopes "
-                                                  "below are true slopes.", zu.name, xu.name)
+                                                  "below are true slopes.",
+                                                  zu.name, xu.name)
                                     : std::string("Heights and x on their own scales; slopes below are true slopes."));
     }
     auto stats_table = [&](const Profile& pr, const std::string& name) {
       const ProfileStats st = profile_stats(pr);
       const LengthUnit zu = length_unit(st.rms_height > 0 ? 3 * st.rms_height : 1e-9);
-      std::string t = fmt::format("<table class=\"stats\"><caption>Profile statistics: {}</caption>\n", escape_html(name));
-      t += row("points", fmt::format("{}", st.points), is_uniform(pr, 1e-6) ? "uniform spacing" : "non-uniform spacing");
+      std::string t =
+          fmt::format("<table class=\"stats\"><caption>Profile statistics: {}</caption>\n", escape_html(name));
+      t +=
+          row("points", fmt::format("{}", st.points), is_uniform(pr, 1e-6) ? "uniform spacing" : "non-uniform spacing");
       t += row("length L", fmt_len(st.length, length_unit(st.length)), "x_max − x_min");
       t += row("rms height", fmt_len(st.rms_height, zu), "exact for the polyline");
       t += row("rms slope", fmt::format("{:.4f}", st.rms_slope), "√⟨z′²⟩");
@@ -225,8 +236,8 @@ Result<std::string> surface_report(const ReportInput& in) {
     p.x_label = fmt::format("offset x_ofs of the upper block ({})", xu.name);
     p.y_label = "contact slope θ (deg)";
     p.series.push_back(signature_series(r, xu, "", "#1f77b4"));
-    p.lines.push_back({true, deg(r.theta_max_forward), fmt::format("θ_max forward = {:.3f}°", deg(r.theta_max_forward)),
-                       "#d62728"});
+    p.lines.push_back(
+        {true, deg(r.theta_max_forward), fmt::format("θ_max forward = {:.3f}°", deg(r.theta_max_forward)), "#d62728"});
     p.lines.push_back({true, -deg(r.theta_max_backward),
                        fmt::format("−θ_max backward = −{:.3f}°", deg(r.theta_max_backward)), "#2ca02c"});
     auto svg = plot_svg(p);
@@ -307,20 +318,26 @@ Result<std::string> surface_report(const ReportInput& in) {
     p.series.push_back(histogram_series(contact, "contact slopes θ(x_ofs)", "#d62728"));
     auto svg = plot_svg(p);
     if (!svg) return svg.error();
-    std::string html = figure(*svg, fmt::format(
-        "Surface slopes: every edge of the profile weighted by its length. Contact slopes: θ at each offset weighted "
-        "by the offset length it stands for; mean {}, standard deviation σ = {} (Eq. 18). {} bins over ±{:.2f}°{}.",
-        fmt_deg(r.contact_slope_mean), fmt_deg(r.contact_slope_std), in.bins, deg(lim),
-        outside_len > 0 ? fmt::format("; {:.2f} % of the surface length is steeper (counted in the densities, beyond "
-                                      "the axis; steepest edge {})",
-                                      100 * outside_len / total_len,
-                                      fmt_deg(std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope)))
-                        : std::string()));
+    std::string html = figure(
+        *svg,
+        fmt::format(
+            "Surface slopes: every edge of the profile weighted by its length. Contact slopes: θ at each offset "
+            "weighted "
+            "by the offset length it stands for; mean {}, standard deviation σ = {} (Eq. 18). {} bins over ±{:.2f}°{}.",
+            fmt_deg(r.contact_slope_mean), fmt_deg(r.contact_slope_std), in.bins, deg(lim),
+            outside_len > 0
+                ? fmt::format(
+                      "; {:.2f} % of the surface length is steeper (counted in the densities, beyond "
+                      "the axis; steepest edge {})",
+                      100 * outside_len / total_len,
+                      fmt_deg(std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope)))
+                : std::string()));
     sections.push_back({"slopes", "Slope distributions", html});
   }
   // --- friction ---------------------------------------------------------------------------------
   {
-    std::string t = "<table class=\"friction\"><tr><th></th><th>towards +x (forward)</th><th>towards −x (backward)</th></tr>\n";
+    std::string t =
+        "<table class=\"friction\"><tr><th></th><th>towards +x (forward)</th><th>towards −x (backward)</th></tr>\n";
     auto two = [&](const std::string& name, const std::string& a, const std::string& b) {
       t += fmt::format("<tr><th>{}</th><td>{}</td><td>{}</td></tr>\n", name, a, b);
     };
@@ -332,7 +349,8 @@ Result<std::string> surface_report(const ReportInput& in) {
     two("friction coefficient μ = tan φ", fmt_mu(fwd->friction_coefficient), fmt_mu(bwd->friction_coefficient));
     two("Eq. 18 range of φ", fmt::format("{} … {}", fmt_deg(fwd->friction_angle_low), fmt_deg(fwd->friction_angle)),
         fmt::format("{} … {}", fmt_deg(bwd->friction_angle_low), fmt_deg(bwd->friction_angle)));
-    two("Eq. 18 range of μ", fmt::format("{} … {}", fmt_mu(fwd->friction_coefficient_low), fmt_mu(fwd->friction_coefficient)),
+    two("Eq. 18 range of μ",
+        fmt::format("{} … {}", fmt_mu(fwd->friction_coefficient_low), fmt_mu(fwd->friction_coefficient)),
         fmt::format("{} … {}", fmt_mu(bwd->friction_coefficient_low), fmt_mu(bwd->friction_coefficient)));
     t += "</table>\n";
     t += fmt::format(
@@ -383,11 +401,12 @@ Result<std::string> surface_report(const ReportInput& in) {
                             "over the lines. μ_a = {:g}.",
                             in.directions, in.max_lines, o.min_points, in.atomic_friction));
       html += fmt::format(
-          "<p class=\"verdict\">Highest friction sliding towards {:.0f}°: φ = {} (μ = {}); lowest towards {:.0f}°: φ = {} "
+          "<p class=\"verdict\">Highest friction sliding towards {:.0f}°: φ = {} (μ = {}); lowest towards {:.0f}°: φ = "
+          "{} "
           "(μ = {}). Anisotropy ratio μ_max/μ_min = {}.</p>\n",
           deg(best_dir), fmt_deg(best), fmt_mu(std::tan(best)), deg(worst_dir), fmt_deg(worst), fmt_mu(std::tan(worst)),
           std::tan(worst) > 1e-6 ? fmt::format("{:.3f}", std::tan(best) / std::tan(worst))
-                                : std::string("unbounded (μ_min ≈ 0)"));
+                                 : std::string("unbounded (μ_min ≈ 0)"));
     }
     sections.push_back({"directions", "Friction over sliding directions", html});
   }
@@ -399,9 +418,10 @@ Result<std::string> surface_report(const ReportInput& in) {
     const double cmax = L / 2, cmin = 4 * h;
     std::string html;
     if (!(cmax > cmin * 1.5)) {
-      html = fmt::format("<p>Too few points for a resolution study (needs a cutoff range from 4 spacings, {}, to half "
-                         "the length, {}).</p>",
-                         fmt_len(cmin, xu), fmt_len(cmax, xu));
+      html = fmt::format(
+          "<p>Too few points for a resolution study (needs a cutoff range from 4 spacings, {}, to half "
+          "the length, {}).</p>",
+          fmt_len(cmin, xu), fmt_len(cmax, xu));
     } else {
       Series fw, bw, sg;
       fw.label = "θ_max forward";
@@ -411,9 +431,10 @@ Result<std::string> surface_report(const ReportInput& in) {
       sg.label = "σ";
       sg.color = "#1f77b4";
       sg.dashed = true;
-      std::string t = "<table class=\"resolution\"><tr><th>cutoff λ_c</th><th>θ_max forward</th><th>θ_max "
-                      "backward</th><th>σ</th><th>μ forward (μ_a = " +
-                      fmt::format("{:g}", in.atomic_friction) + ")</th></tr>\n";
+      std::string t =
+          "<table class=\"resolution\"><tr><th>cutoff λ_c</th><th>θ_max forward</th><th>θ_max "
+          "backward</th><th>σ</th><th>μ forward (μ_a = " +
+          fmt::format("{:g}", in.atomic_friction) + ")</th></tr>\n";
       for (int k = 0; k < in.resolution_steps; ++k) {
         const double c = cmax * std::pow(cmin / cmax, double(k) / double(in.resolution_steps - 1));
         auto lf = gaussian_lowpass(lower, c);
@@ -440,9 +461,10 @@ Result<std::string> surface_report(const ReportInput& in) {
                          fmt_deg(rs->theta_max_forward), fmt_deg(rs->theta_max_backward),
                          fmt_deg(rs->contact_slope_std), fmt_mu(pr->friction_coefficient));
       }
-      t += fmt::format("<tr class=\"unfiltered\"><td>unfiltered</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
-                       fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward), fmt_deg(r.contact_slope_std),
-                       fmt_mu(fwd->friction_coefficient));
+      t +=
+          fmt::format("<tr class=\"unfiltered\"><td>unfiltered</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                      fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward), fmt_deg(r.contact_slope_std),
+                      fmt_mu(fwd->friction_coefficient));
       t += "</table>\n";
       Plot p;
       p.title = "θ_max against resolution (measured analogue of Fig. 14)";
@@ -460,13 +482,17 @@ Result<std::string> surface_report(const ReportInput& in) {
       p.lines.push_back({true, deg(r.theta_max_forward), "unfiltered θ_max forward", "#d62728"});
       auto svg = plot_svg(p);
       if (!svg) return svg.error();
-      html = figure(*svg, fmt::format(
-          "The surface{} low-pass filtered (Gaussian, ISO 16610-21: 50 % transmission at λ_c) at {} cutoffs from half "
-          "the length down to 4 point spacings, then the signature recomputed. From the coarsest to the finest cutoff "
-          "θ_max forward goes from {} to {} (unfiltered: {}); the paper's Fig. 14 shows θ_max growing with the "
-          "resolution of Weierstrass–Mandelbrot profiles.",
-          pair ? "s" : "", in.resolution_steps, fmt::format("{:.3f}°", fw.y.front()), fmt::format("{:.3f}°", fw.y.back()),
-          fmt_deg(r.theta_max_forward)));
+      html = figure(
+          *svg,
+          fmt::format(
+              "The surface{} low-pass filtered (Gaussian, ISO 16610-21: 50 % transmission at λ_c) at {} cutoffs from "
+              "half "
+              "the length down to 4 point spacings, then the signature recomputed. From the coarsest to the finest "
+              "cutoff "
+              "θ_max forward goes from {} to {} (unfiltered: {}); the paper's Fig. 14 shows θ_max growing with the "
+              "resolution of Weierstrass–Mandelbrot profiles.",
+              pair ? "s" : "", in.resolution_steps, fmt::format("{:.3f}°", fw.y.front()),
+              fmt::format("{:.3f}°", fw.y.back()), fmt_deg(r.theta_max_forward)));
       html += t;
     }
     sections.push_back({"resolution", "Dependence on resolution", html});
@@ -523,15 +549,17 @@ nav a { margin-right: 1em; } footer { margin-top: 2em; font-size: .85em; color: 
 <body>
 )";
   page += fmt::format("<h1>{}</h1>\n", escape_html(title));
-  page += fmt::format("<p class=\"verdict\">Predicted static friction μ = <b>{}</b> towards +x (Eq. 18 range {} … {}) "
-                      "and <b>{}</b> towards −x; θ_max = {} / {}, μ_a = {:g}.</p>\n",
-                      fmt_mu(fwd->friction_coefficient), fmt_mu(fwd->friction_coefficient_low),
-                      fmt_mu(fwd->friction_coefficient), fmt_mu(bwd->friction_coefficient),
-                      fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward), in.atomic_friction);
+  page += fmt::format(
+      "<p class=\"verdict\">Predicted static friction μ = <b>{}</b> towards +x (Eq. 18 range {} … {}) "
+      "and <b>{}</b> towards −x; θ_max = {} / {}, μ_a = {:g}.</p>\n",
+      fmt_mu(fwd->friction_coefficient), fmt_mu(fwd->friction_coefficient_low), fmt_mu(fwd->friction_coefficient),
+      fmt_mu(bwd->friction_coefficient), fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward),
+      in.atomic_friction);
   page += "<nav>";
   for (const auto& s : sections) page += fmt::format("<a href=\"#{}\">{}</a>", s.id, s.title);
   page += "<a href=\"#assumptions\">What was assumed</a></nav>\n";
-  for (const auto& s : sections) page += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n{}</section>\n", s.id, s.title, s.html);
+  for (const auto& s : sections)
+    page += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n{}</section>\n", s.id, s.title, s.html);
   page += "<section id=\"assumptions\">\n<h2>What was assumed</h2>\n<ul class=\"assumptions\">\n";
   for (const auto& a : assumptions) page += fmt::format("<li>{}</li>\n", a);
   page += "</ul>\n</section>\n";

@@ -1,9 +1,9 @@
 // SVG plots (Cartesian, polar, height-map images), PNG encoding and base64 for self-contained pages.
+#include <fmt/core.h>
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <fmt/core.h>
 #include <limits>
 #include <numbers>
 
@@ -15,8 +15,8 @@ namespace {
 
 constexpr std::array<const char*, 8> kPalette = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
                                                  "#9467bd", "#8c564b", "#e377c2", "#17becf"};
-constexpr double kFont = 12;       // tick and legend font size (px)
-constexpr double kCharWidth = 6.8; // estimated advance of a 12 px sans-serif digit (px)
+constexpr double kFont = 12;        // tick and legend font size (px)
+constexpr double kCharWidth = 6.8;  // estimated advance of a 12 px sans-serif digit (px)
 
 bool finite(double v) { return std::isfinite(v); }
 
@@ -153,8 +153,8 @@ std::string legend_svg(const std::vector<Series>& series, const std::vector<std:
     else
       s += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" {}/>", x + 6, yy, x + 24, yy,
                        stroke_attrs(se, colors[shown[k]]));
-    s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" dominant-baseline=\"middle\">{}</text>",
-                     x + 30, yy + 0.5, kFont, escape_html(se.label));
+    s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" dominant-baseline=\"middle\">{}</text>", x + 30,
+                     yy + 0.5, kFont, escape_html(se.label));
   }
   return s + "</g>";
 }
@@ -313,8 +313,8 @@ Result<std::string> encode_png(std::size_t width, std::size_t height, const std:
   std::string ihdr;
   put32(ihdr, std::uint32_t(width));
   put32(ihdr, std::uint32_t(height));
-  ihdr += char(8);  // bit depth
-  ihdr += char(2);  // colour type: RGB
+  ihdr += char(8);               // bit depth
+  ihdr += char(2);               // colour type: RGB
   ihdr += std::string(3, '\0');  // compression, filter, interlace
   chunk(png, "IHDR", ihdr);
   chunk(png, "IDAT", z);
@@ -349,8 +349,8 @@ Result<std::string> plot_svg(const Plot& input) {
   for (const auto& s : plot.series) {
     const bool step = s.style == SeriesStyle::Step;
     if (step ? s.x.size() != s.y.size() + 1 : s.x.size() != s.y.size())
-      return make_error(fmt::format("plot '{}': series '{}' has {} x and {} y values", plot.title, s.label,
-                                    s.x.size(), s.y.size()));
+      return make_error(
+          fmt::format("plot '{}': series '{}' has {} x and {} y values", plot.title, s.label, s.x.size(), s.y.size()));
     for (std::size_t i = 0; i < s.y.size(); ++i) {
       const double x0 = s.x[i], x1 = step ? s.x[i + 1] : s.x[i];
       if (finite(x0) && finite(x1) && finite(s.y[i])) {
@@ -415,8 +415,8 @@ Result<std::string> plot_svg(const Plot& input) {
   // grid and ticks
   for (std::size_t ti = 0; ti < xt.size(); ++ti) {
     const double v = xt[ti];
-    body += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"#e6e6e6\"/>", X(v), mt,
-                        mt + ph);
+    body += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"#e6e6e6\"/>", X(v),
+                        mt, mt + ph);
     body += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"#333\"/>", X(v),
                         mt + ph, mt + ph + 5);
     body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" text-anchor=\"middle\">{}</text>", X(v),
@@ -437,13 +437,15 @@ Result<std::string> plot_svg(const Plot& input) {
   const auto colors = series_colors(plot.series);
   for (const auto& l : plot.lines) {
     if (l.horizontal)
-      body += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.2f}\" x2=\"{:.1f}\" y2=\"{:.2f}\" stroke=\"{}\" "
-                          "stroke-dasharray=\"3 3\"/>",
-                          ml, Y(l.value), ml + pw, Y(l.value), l.color);
+      body += fmt::format(
+          "<line x1=\"{:.1f}\" y1=\"{:.2f}\" x2=\"{:.1f}\" y2=\"{:.2f}\" stroke=\"{}\" "
+          "stroke-dasharray=\"3 3\"/>",
+          ml, Y(l.value), ml + pw, Y(l.value), l.color);
     else
-      body += fmt::format("<line x1=\"{:.2f}\" y1=\"{:.1f}\" x2=\"{:.2f}\" y2=\"{:.1f}\" stroke=\"{}\" "
-                          "stroke-dasharray=\"3 3\"/>",
-                          X(l.value), mt, X(l.value), mt + ph, l.color);
+      body += fmt::format(
+          "<line x1=\"{:.2f}\" y1=\"{:.1f}\" x2=\"{:.2f}\" y2=\"{:.1f}\" stroke=\"{}\" "
+          "stroke-dasharray=\"3 3\"/>",
+          X(l.value), mt, X(l.value), mt + ph, l.color);
   }
   for (std::size_t k = 0; k < plot.series.size(); ++k) {
     const Series& s = plot.series[k];
@@ -490,25 +492,29 @@ Result<std::string> plot_svg(const Plot& input) {
         body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"{}\">{}</text>", X(l.value) + 4,
                             mt + 12, l.color, escape_html(l.label));
     }
-  body += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" "
-                      "stroke=\"#333\"/>",
-                      ml, mt, pw, ph);
+  body += fmt::format(
+      "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" "
+      "stroke=\"#333\"/>",
+      ml, mt, pw, ph);
   body += legend_svg(plot.series, colors, ml + pw, mt);
   body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"13\" text-anchor=\"middle\">{}</text>", ml + pw / 2,
                       plot.height - 12, escape_html(plot.x_label));
-  body += fmt::format("<text transform=\"translate(16 {:.1f}) rotate(-90)\" font-size=\"13\" "
-                      "text-anchor=\"middle\">{}</text>",
-                      mt + ph / 2, escape_html(plot.y_label));
+  body += fmt::format(
+      "<text transform=\"translate(16 {:.1f}) rotate(-90)\" font-size=\"13\" "
+      "text-anchor=\"middle\">{}</text>",
+      mt + ph / 2, escape_html(plot.y_label));
   if (!plot.title.empty())
-    body += fmt::format("<text x=\"{:.1f}\" y=\"21\" font-size=\"14\" font-weight=\"bold\" "
-                        "text-anchor=\"middle\">{}</text>",
-                        plot.width / 2, escape_html(plot.title));
+    body += fmt::format(
+        "<text x=\"{:.1f}\" y=\"21\" font-size=\"14\" font-weight=\"bold\" "
+        "text-anchor=\"middle\">{}</text>",
+        plot.width / 2, escape_html(plot.title));
   const std::string id = fmt::format("clip{:016x}", fnv1a(body));
   body.replace(body.find(clip_placeholder), clip_placeholder.size(), id);
   return svg_open(plot.width, plot.height, plot.title) +
-         fmt::format("<defs><clipPath id=\"{}\"><rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\"/>"
-                     "</clipPath></defs>",
-                     id, ml, mt, pw, ph) +
+         fmt::format(
+             "<defs><clipPath id=\"{}\"><rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\"/>"
+             "</clipPath></defs>",
+             id, ml, mt, pw, ph) +
          body + "</svg>";
 }
 
@@ -525,7 +531,8 @@ Result<std::string> polar_svg(const PolarPlot& plot) {
   double rmax = plot.r_max ? *plot.r_max : rr.hi;
   if (!(rmax > 0)) rmax = 1;
   auto rings = nice_ticks(0, rmax, 4);
-  if (!plot.r_max && !rings.empty() && rings.back() < rmax) rings.push_back(rings.back() + (rings.size() > 1 ? rings[1] - rings[0] : rmax));
+  if (!plot.r_max && !rings.empty() && rings.back() < rmax)
+    rings.push_back(rings.back() + (rings.size() > 1 ? rings[1] - rings[0] : rmax));
   if (!plot.r_max && !rings.empty()) rmax = rings.back();
   const double rstep = rings.size() > 1 ? rings[1] - rings[0] : rmax;
   const double w = plot.size, top = plot.title.empty() ? 10 : 36;
@@ -550,9 +557,10 @@ Result<std::string> polar_svg(const PolarPlot& plot) {
     auto [x, y] = P(a, rmax);
     s += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"#ddd\"/>", cx, cy, x, y);
     const double lx = cx + (R + 18) * std::cos(a), ly = cy - (R + 18) * std::sin(a);
-    s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" text-anchor=\"middle\" "
-                     "dominant-baseline=\"middle\">{}\u00b0</text>",
-                     lx, ly, kFont, d);
+    s += fmt::format(
+        "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" text-anchor=\"middle\" "
+        "dominant-baseline=\"middle\">{}\u00b0</text>",
+        lx, ly, kFont, d);
   }
   for (double r : rings) {
     if (r <= 0) continue;
@@ -594,11 +602,13 @@ Result<std::string> polar_svg(const PolarPlot& plot) {
                      kFont, escape_html(plot.series[k].label));
     ly += 16;
   }
-  s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\" text-anchor=\"end\" fill=\"#555\">radius: {}</text>",
-                   w - 8, ly + 6, escape_html(plot.radius_label));
+  s += fmt::format(
+      "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"12\" text-anchor=\"end\" fill=\"#555\">radius: {}</text>", w - 8,
+      ly + 6, escape_html(plot.radius_label));
   if (!plot.title.empty())
-    s += fmt::format("<text x=\"{:.1f}\" y=\"21\" font-size=\"14\" font-weight=\"bold\" text-anchor=\"middle\">{}</text>",
-                     w / 2, escape_html(plot.title));
+    s += fmt::format(
+        "<text x=\"{:.1f}\" y=\"21\" font-size=\"14\" font-weight=\"bold\" text-anchor=\"middle\">{}</text>", w / 2,
+        escape_html(plot.title));
   return s + "</svg>";
 }
 
@@ -625,7 +635,9 @@ Result<std::string> map_svg(const Map& m, const MapImage& o) {
   for (double v : m.heights)
     if (finite(v)) valid.push_back(v);
   std::sort(valid.begin(), valid.end());
-  auto quantile = [&](double q) { return valid[std::size_t(std::lround(std::clamp(q, 0.0, 1.0) * double(valid.size() - 1)))]; };
+  auto quantile = [&](double q) {
+    return valid[std::size_t(std::lround(std::clamp(q, 0.0, 1.0) * double(valid.size() - 1)))];
+  };
   double zlo = quantile(o.low_quantile), zhi = quantile(o.high_quantile);
   if (!(zhi > zlo)) {
     zlo = valid.front();
@@ -680,22 +692,25 @@ Result<std::string> map_svg(const Map& m, const MapImage& o) {
   if (ih < 60) ih = 60;  // very elongated maps: stretch a little rather than vanish
   const double total_w = ml + iw + bar_gap + bar_w + bar_labels + 10, total_h = mt + ih + mb;
   std::string s = svg_open(total_w, total_h, o.title);
-  s += fmt::format("<image x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" preserveAspectRatio=\"none\" "
-                   "style=\"image-rendering:pixelated\" href=\"data:image/png;base64,{}\"/>",
-                   ml, mt, iw, ih, base64(*png));
-  s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"#333\"/>", ml,
-                   mt, iw, ih);
+  s += fmt::format(
+      "<image x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" preserveAspectRatio=\"none\" "
+      "style=\"image-rendering:pixelated\" href=\"data:image/png;base64,{}\"/>",
+      ml, mt, iw, ih, base64(*png));
+  s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"#333\"/>",
+                   ml, mt, iw, ih);
   if (o.line_y) {
     const double y = mt + ih - (*o.line_y - m.y0) / H * ih;
     const double xa = ml + (o.line_x0 - m.x0) / W * iw, xb = ml + (o.line_x1 - m.x0) / W * iw;
-    s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"white\" "
-                     "stroke-width=\"3\"/><line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" "
-                     "stroke=\"#d62728\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/>",
-                     xa, y, xb, y);
+    s += fmt::format(
+        "<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"white\" "
+        "stroke-width=\"3\"/><line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" "
+        "stroke=\"#d62728\" stroke-width=\"1.5\" stroke-dasharray=\"6 4\"/>",
+        xa, y, xb, y);
     if (!o.line_label.empty())
-      s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"white\" stroke=\"black\" "
-                       "stroke-width=\"2.5\" paint-order=\"stroke\">{}</text>",
-                       xa + 4, y - 5, escape_html(o.line_label));
+      s += fmt::format(
+          "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"white\" stroke=\"black\" "
+          "stroke-width=\"2.5\" paint-order=\"stroke\">{}</text>",
+          xa + 4, y - 5, escape_html(o.line_label));
   }
   // lateral axes (from the map's first node)
   auto xtl = nice_ticks(0, W / lu.scale, std::max(3, int(iw / 90)));
@@ -704,21 +719,24 @@ Result<std::string> map_svg(const Map& m, const MapImage& o) {
     const double x = ml + v * lu.scale / W * iw;
     s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"#333\"/>", x, mt + ih,
                      mt + ih + 5);
-    s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" text-anchor=\"middle\">{}</text>", x, mt + ih + 18,
-                     kFont, tick_label(v, xstep));
+    s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" text-anchor=\"middle\">{}</text>", x,
+                     mt + ih + 18, kFont, tick_label(v, xstep));
   }
   for (double v : ytl) {
     const double y = mt + ih - v * lu.scale / H * ih;
-    s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"#333\"/>", ml - 5, y, ml);
-    s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" text-anchor=\"end\" "
-                     "dominant-baseline=\"middle\">{}</text>",
-                     ml - 8, y, kFont, tick_label(v, ystep));
+    s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"#333\"/>", ml - 5, y,
+                     ml);
+    s += fmt::format(
+        "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" text-anchor=\"end\" "
+        "dominant-baseline=\"middle\">{}</text>",
+        ml - 8, y, kFont, tick_label(v, ystep));
   }
   s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"13\" text-anchor=\"middle\">x ({})</text>", ml + iw / 2,
                    total_h - 12, lu.name);
-  s += fmt::format("<text transform=\"translate(16 {:.1f}) rotate(-90)\" font-size=\"13\" "
-                   "text-anchor=\"middle\">y ({})</text>",
-                   mt + ih / 2, lu.name);
+  s += fmt::format(
+      "<text transform=\"translate(16 {:.1f}) rotate(-90)\" font-size=\"13\" "
+      "text-anchor=\"middle\">y ({})</text>",
+      mt + ih / 2, lu.name);
   // scale bar: a round length near a fifth of the width, bottom left inside the image
   {
     const double target = W / 5;
@@ -728,36 +746,42 @@ Result<std::string> map_svg(const Map& m, const MapImage& o) {
       if (k * p <= target) len = k * p;
     const LengthUnit bu = length_unit(len);
     const double px_len = len / W * iw, x = ml + 10, y = mt + ih - 12;
-    s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"22\" fill=\"white\" "
-                     "fill-opacity=\"0.8\"/>",
-                     x - 5, y - 16, std::max(px_len, 50.0) + 10);
-    s += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"black\" "
-                     "stroke-width=\"3\"/>",
-                     x, y, x + px_len, y);
-    s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{:g} {}</text>", x, y - 5, len / bu.scale, bu.name);
+    s += fmt::format(
+        "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"22\" fill=\"white\" "
+        "fill-opacity=\"0.8\"/>",
+        x - 5, y - 16, std::max(px_len, 50.0) + 10);
+    s += fmt::format(
+        "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" stroke=\"black\" "
+        "stroke-width=\"3\"/>",
+        x, y, x + px_len, y);
+    s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\">{:g} {}</text>", x, y - 5, len / bu.scale,
+                     bu.name);
   }
   // colour bar
   const double bx = ml + iw + bar_gap;
-  s += fmt::format("<image x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" preserveAspectRatio=\"none\" "
-                   "href=\"data:image/png;base64,{}\"/>",
-                   bx, mt, bar_w, ih, base64(*bar_png));
-  s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"#333\"/>", bx,
-                   mt, bar_w, ih);
+  s += fmt::format(
+      "<image x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" preserveAspectRatio=\"none\" "
+      "href=\"data:image/png;base64,{}\"/>",
+      bx, mt, bar_w, ih, base64(*bar_png));
+  s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"#333\"/>",
+                   bx, mt, bar_w, ih);
   auto ztl = nice_ticks(zlo / zu.scale, zhi / zu.scale, 5);
   const double zstep = ztl.size() > 1 ? ztl[1] - ztl[0] : 1;
   for (double v : ztl) {
     const double y = mt + ih - (v * zu.scale - zlo) / (zhi - zlo) * ih;
-    s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"#333\"/>", bx + bar_w, y,
-                     bx + bar_w + 4);
+    s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"#333\"/>", bx + bar_w,
+                     y, bx + bar_w + 4);
     s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" dominant-baseline=\"middle\">{}</text>",
                      bx + bar_w + 7, y, kFont, tick_label(v, zstep));
   }
-  s += fmt::format("<text transform=\"translate({:.1f} {:.1f}) rotate(90)\" font-size=\"13\" "
-                   "text-anchor=\"middle\">height z ({})</text>",
-                   std::min(total_w - 6, bx + bar_w + bar_labels - 4), mt + ih / 2, zu.name);
+  s += fmt::format(
+      "<text transform=\"translate({:.1f} {:.1f}) rotate(90)\" font-size=\"13\" "
+      "text-anchor=\"middle\">height z ({})</text>",
+      std::min(total_w - 6, bx + bar_w + bar_labels - 4), mt + ih / 2, zu.name);
   if (!o.title.empty())
-    s += fmt::format("<text x=\"{:.1f}\" y=\"21\" font-size=\"14\" font-weight=\"bold\" text-anchor=\"middle\">{}</text>",
-                     total_w / 2, escape_html(o.title));
+    s += fmt::format(
+        "<text x=\"{:.1f}\" y=\"21\" font-size=\"14\" font-weight=\"bold\" text-anchor=\"middle\">{}</text>",
+        total_w / 2, escape_html(o.title));
   return s + "</svg>";
 }
 

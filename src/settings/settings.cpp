@@ -77,7 +77,8 @@ std::string range_in(const Field& f, bool text) {
       const bool lo = std::isfinite(f.min), hi = std::isfinite(f.max);
       const std::string u = text ? text_unit(f) : f.unit;
       const std::string a = num(text ? to_text_unit(f, f.min) : f.min), b = num(text ? to_text_unit(f, f.max) : f.max);
-      if (lo && hi) return with_unit(fmt::format("{}{}, {}{}", f.min_open ? "(" : "[", a, b, f.max_open ? ")" : "]"), u);
+      if (lo && hi)
+        return with_unit(fmt::format("{}{}, {}{}", f.min_open ? "(" : "[", a, b, f.max_open ? ")" : "]"), u);
       if (lo) return with_unit(fmt::format("{} {}", f.min_open ? ">" : ">=", a), u);
       if (hi) return with_unit(fmt::format("{} {}", f.max_open ? "<" : "<=", b), u);
       return u.empty() ? "any" : "any, in " + u;
@@ -120,7 +121,10 @@ Result<FieldValue> check(const Field& f, const FieldValue& v, const std::string&
   };
   const std::string range = range_in(f, text);
   // "a number in (0, 60] deg", "a number > 0 s"
-  const std::string in = (!range.empty() && (range[0] == '(' || range[0] == '[' || std::isdigit(static_cast<unsigned char>(range[0])))) ? "in " : "";
+  const std::string in =
+      (!range.empty() && (range[0] == '(' || range[0] == '[' || std::isdigit(static_cast<unsigned char>(range[0]))))
+          ? "in "
+          : "";
   switch (f.type) {
     case FieldType::Boolean:
       if (const bool* b = std::get_if<bool>(&v)) return FieldValue{*b};
@@ -135,19 +139,25 @@ Result<FieldValue> check(const Field& f, const FieldValue& v, const std::string&
       return expected(range);
     case FieldType::Integer: {
       std::int64_t i = 0;
-      if (const std::int64_t* p = std::get_if<std::int64_t>(&v)) i = *p;
-      else if (const double* d = std::get_if<double>(&v); d && std::isfinite(*d) && std::floor(*d) == *d && std::abs(*d) < 9e15)
+      if (const std::int64_t* p = std::get_if<std::int64_t>(&v))
+        i = *p;
+      else if (const double* d = std::get_if<double>(&v);
+               d && std::isfinite(*d) && std::floor(*d) == *d && std::abs(*d) < 9e15)
         i = static_cast<std::int64_t>(*d);
-      else return expected("a whole number " + in + range);
+      else
+        return expected("a whole number " + in + range);
       const double x = static_cast<double>(i);
       if (x < f.min || x > f.max) return expected("a whole number " + in + range);
       return FieldValue{i};
     }
     case FieldType::Real: {
       double x = 0;
-      if (const double* d = std::get_if<double>(&v)) x = *d;
-      else if (const std::int64_t* p = std::get_if<std::int64_t>(&v)) x = static_cast<double>(*p);
-      else return expected("a number " + in + range);
+      if (const double* d = std::get_if<double>(&v))
+        x = *d;
+      else if (const std::int64_t* p = std::get_if<std::int64_t>(&v))
+        x = static_cast<double>(*p);
+      else
+        return expected("a number " + in + range);
       if (std::isnan(x) && std::isnan(f.default_value)) return FieldValue{x};  // "automatic"
       if (!std::isfinite(x) || x < f.min || x > f.max || (f.min_open && x == f.min) || (f.max_open && x == f.max))
         return expected("a number " + in + range);
@@ -164,8 +174,10 @@ Result<FieldValue> check_si_value(const Field& f, const FieldValue& v) { return 
 Result<FieldValue> si_from_text(const Field& f, const FieldValue& text_value, const std::string& prefix) {
   FieldValue v = text_value;
   if (is_angle(f)) {
-    if (const double* d = std::get_if<double>(&v)) v = from_text_unit(f, *d);
-    else if (const std::int64_t* i = std::get_if<std::int64_t>(&v)) v = from_text_unit(f, static_cast<double>(*i));
+    if (const double* d = std::get_if<double>(&v))
+      v = from_text_unit(f, *d);
+    else if (const std::int64_t* i = std::get_if<std::int64_t>(&v))
+      v = from_text_unit(f, static_cast<double>(*i));
   }
   return check(f, v, prefix, true);
 }
@@ -225,7 +237,8 @@ std::string nearest_word(std::string_view word, const std::vector<std::string>& 
     std::size_t d = edit_distance(word, c);
     // A prefix of a candidate ("stat" for "stats") or a candidate with a suffix ("alpha_deg" for
     // "alpha") counts as close.
-    if (c.size() > word.size() && word.size() >= 3 && c.compare(0, word.size(), word) == 0) d = std::min<std::size_t>(d, 1);
+    if (c.size() > word.size() && word.size() >= 3 && c.compare(0, word.size(), word) == 0)
+      d = std::min<std::size_t>(d, 1);
     if (word.size() > c.size() && c.size() >= 3 && word.compare(0, c.size(), c) == 0) d = std::min<std::size_t>(d, 2);
     if (d < best_d) {
       best_d = d;

@@ -1,9 +1,9 @@
 // The signature function: exact evaluation of h(s), its contacts and one-sided slopes.
 #include "frictal/signature.hpp"
 
+#include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
-#include <fmt/core.h>
 #include <limits>
 #include <numbers>
 
@@ -38,8 +38,8 @@ struct Problem {
   // Periodic: candidate vertices are one period of each face (fixed index ranges).
   std::size_t f_lo = 0, f_hi = 0, g_lo = 0, g_hi = 0;
   // Non-periodic: the overlap of both blocks is [max(F0, G0 + s), min(F1, G1 + s)].
-  double xtol = 0;  // abscissa tolerance (m)
-  double vtol = 0;  // value tolerance (m)
+  double xtol = 0;               // abscissa tolerance (m)
+  double vtol = 0;               // value tolerance (m)
   bool aligned_lattice = false;  // both uniform with the same spacing, events on a lattice
   double lattice_origin = 0, lattice_step = 0;
   std::vector<double> spline_f, spline_g;  // spline slopes at points (SlopeMethod::Spline)
@@ -47,8 +47,8 @@ struct Problem {
 
 // Searches max over vertices i of A in [i0, i1] of vA[i] + vB(xA[i] + shift) by branch and
 // bound over block ranges; appends candidates within vtol of the running best.
-void search(const Face& A, const Face& B, double shift, std::size_t i0, std::size_t i1, bool family_f,
-            double xtol, double vtol, double& best, std::vector<Cand>& out) {
+void search(const Face& A, const Face& B, double shift, std::size_t i0, std::size_t i1, bool family_f, double xtol,
+            double vtol, double& best, std::vector<Cand>& out) {
   if (i0 > i1) return;
   const auto& xa = A.x();
   const auto& va = A.v();
@@ -148,10 +148,10 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
   r.lift = best;
   // Contacts: candidates within tolerance of the maximum, classified by the paper's rules.
   struct Act {
-    double x;              // lower-frame abscissa
-    Position pf, pg;       // positions on F and on G
-    double slope;          // by the contact rule
-    double left, right;    // one-sided slopes of this candidate's continuation (NaN: drops)
+    double x;            // lower-frame abscissa
+    Position pf, pg;     // positions on F and on G
+    double slope;        // by the contact rule
+    double left, right;  // one-sided slopes of this candidate's continuation (NaN: drops)
     ContactType type;
   };
   std::vector<Act> act;
@@ -322,10 +322,14 @@ Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, c
   if (o.slopes == SlopeMethod::Spline) {
     auto sf = detail::spline_second_derivatives(P.F.x(), P.F.v());
     auto sg = detail::spline_second_derivatives(P.G.x(), P.G.v());
-    if (!sf) return make_error("signature: spline slopes need strictly increasing x on the lower surface (it has a "
-                               "vertical jump or repeated x); use exact slopes");
-    if (!sg) return make_error("signature: spline slopes need strictly increasing x on the upper surface (it has a "
-                               "vertical jump or repeated x); use exact slopes");
+    if (!sf)
+      return make_error(
+          "signature: spline slopes need strictly increasing x on the lower surface (it has a "
+          "vertical jump or repeated x); use exact slopes");
+    if (!sg)
+      return make_error(
+          "signature: spline slopes need strictly increasing x on the upper surface (it has a "
+          "vertical jump or repeated x); use exact slopes");
     P.spline_f = std::move(*sf);
     P.spline_g = std::move(*sg);
   }
@@ -428,7 +432,8 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   if (auto st = validate(upper_in, "upper surface"); !st) return st.error();
   if (!(o.tolerance > 0 && o.tolerance < 1e-3))
     return make_error(fmt::format("signature: tolerance must be in (0, 1e-3), got {}", o.tolerance));
-  if (o.bins < 1 || o.bins > 100000) return make_error(fmt::format("signature: bins must be in 1..100000, got {}", o.bins));
+  if (o.bins < 1 || o.bins > 100000)
+    return make_error(fmt::format("signature: bins must be in 1..100000, got {}", o.bins));
   if (o.offsets > 100'000'000) return make_error(fmt::format("signature: offsets must be <= 1e8, got {}", o.offsets));
   if (!(o.spheroradius >= 0) || !std::isfinite(o.spheroradius))
     return make_error(fmt::format("signature: spheroradius must be a finite length >= 0 m, got {}", o.spheroradius));
@@ -449,12 +454,13 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
     smin = 0;
     smax = P.periodic ? P.period : 0.5 * std::min(lower.length(), upper.length());
   }
-  if (!std::isfinite(smin) || !std::isfinite(smax))
-    return make_error("signature: offset range must be finite");
+  if (!std::isfinite(smin) || !std::isfinite(smax)) return make_error("signature: offset range must be finite");
   if (!P.periodic) {
     if (!(smin > -upper.length()) || !(smax < lower.length()))
-      return make_error(fmt::format("signature: offsets [{}, {}] m leave no overlap between the blocks (allowed: "
-                                    "inside ({}, {}) m)", smin, smax, -upper.length(), lower.length()));
+      return make_error(
+          fmt::format("signature: offsets [{}, {}] m leave no overlap between the blocks (allowed: "
+                      "inside ({}, {}) m)",
+                      smin, smax, -upper.length(), lower.length()));
   }
 
   // Offsets: events (exact) or N equally spaced.
@@ -492,12 +498,13 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
     }
     if (n_events > static_cast<double>(o.max_events)) {
       if (o.require_exact)
-        return make_error(fmt::format("signature: the exact signature needs about {:.3g} event offsets (limit {}){}; "
-                                      "sample offsets instead (--offsets N) or shorten the range", n_events,
-                                      o.max_events, P.aligned_lattice || P.periodic ? "" : " because the two grids do not align"));
+        return make_error(fmt::format(
+            "signature: the exact signature needs about {:.3g} event offsets (limit {}){}; "
+            "sample offsets instead (--offsets N) or shorten the range",
+            n_events, o.max_events, P.aligned_lattice || P.periodic ? "" : " because the two grids do not align"));
       const double spacing = std::min(dxf, dxg);
-      sampled = static_cast<std::size_t>(
-          std::min(static_cast<double>(o.max_events), std::ceil((smax - smin) / spacing) + 1));
+      sampled =
+          static_cast<std::size_t>(std::min(static_cast<double>(o.max_events), std::ceil((smax - smin) / spacing) + 1));
       sampled = std::max<std::size_t>(sampled, 2);
     }
   }

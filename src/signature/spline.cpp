@@ -35,8 +35,8 @@ double spline_slope(const std::vector<double>& x, const std::vector<double>& M, 
   if (i + 1 >= x.size()) i = x.size() - 2;
   const double h = x[i + 1] - x[i];
   const double a = x[i + 1] - u, b = u - x[i];
-  const double d = -M[i] * a * a / (2 * h) + M[i + 1] * b * b / (2 * h) + (v[i + 1] - v[i]) / h -
-                   (M[i + 1] - M[i]) * h / 6;
+  const double d =
+      -M[i] * a * a / (2 * h) + M[i + 1] * b * b / (2 * h) + (v[i + 1] - v[i]) / h - (M[i + 1] - M[i]) * h / 6;
   return sign * d;
 }
 

@@ -70,8 +70,8 @@ ProfileStats profile_stats(const Profile& p) {
   return s;
 }
 
-Histogram histogram(const std::vector<double>& samples, const std::vector<double>& weights, int bins,
-                    double lo, double hi) {
+Histogram histogram(const std::vector<double>& samples, const std::vector<double>& weights, int bins, double lo,
+                    double hi) {
   Histogram h;
   if (bins < 1) bins = 1;
   if (!(lo < hi)) {

@@ -22,9 +22,10 @@ Result<std::vector<std::int64_t>> plan(const Study& study, Store& store, const T
     if (!wanted.empty() && !wanted.count(p.name)) continue;
     const std::string why = registry.unavailable_reason(p.kind);
     if (!why.empty() && !options.skip_unavailable)
-      return make_error(ErrorCode::NotAvailable,
-                        fmt::format("part '{}' of study '{}': {}; run the other parts with --skip-unavailable{}", p.name,
-                                    study.name, why, study.parts.size() > 1 ? " or choose parts with --part" : ""));
+      return make_error(
+          ErrorCode::NotAvailable,
+          fmt::format("part '{}' of study '{}': {}; run the other parts with --skip-unavailable{}", p.name, study.name,
+                      why, study.parts.size() > 1 ? " or choose parts with --part" : ""));
   }
   auto ids = store.unfinished();
   if (!ids) return ids.error();
@@ -167,8 +168,10 @@ std::int64_t Coordinator::claim(int site, bool wait) {
         return id;
       }
       --in_flight_;
-      if (*c == Store::Claim::Finished) ++done_elsewhere_;
-      else busy_.push_back(id);
+      if (*c == Store::Claim::Finished)
+        ++done_elsewhere_;
+      else
+        busy_.push_back(id);
       cv_.notify_all();
       continue;
     }
@@ -238,8 +241,10 @@ std::size_t Coordinator::record_finished(bool wait) {
     ++n;
     ++ran_;
     ++progress_.this_run;
-    if (r.status == TaskStatus::Done) ++progress_.done;
-    else ++failed_, ++progress_.failed;
+    if (r.status == TaskStatus::Done)
+      ++progress_.done;
+    else
+      ++failed_, ++progress_.failed;
     progress_.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
     if (options_.progress) options_.progress(progress_);
   }

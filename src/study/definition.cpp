@@ -89,7 +89,8 @@ Result<std::vector<Value>> axis_values(const toml::node& n, const std::string& c
     std::int64_t count = 0;
     double step = 0;
     if (has_count) {
-      if (!is_int("count") || num("count") < 1) return make_error(fmt::format("{}: count must be an integer >= 1", ctx));
+      if (!is_int("count") || num("count") < 1)
+        return make_error(fmt::format("{}: count must be an integer >= 1", ctx));
       count = (*t)["count"].value<std::int64_t>().value();
       step = count > 1 ? (to - from) / static_cast<double>(count - 1) : 0.0;
     } else {
@@ -153,7 +154,8 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
   for (auto&& [k, v] : *head) {
     const std::string key(k.str());
     if (key != "name" && key != "description" && key != "seed")
-      return make_error(fmt::format("{}: [study] has unknown key '{}' (expected name, description, seed)", where(origin, v), key));
+      return make_error(
+          fmt::format("{}: [study] has unknown key '{}' (expected name, description, seed)", where(origin, v), key));
   }
   auto name = (*head)["name"].value<std::string>();
   if (!name || name->empty()) return make_error(fmt::format("{}: [study] needs a non-empty name", origin));
@@ -172,7 +174,8 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
   // the definition (a figure changes no result); only its shape is checked here.
   if (const toml::node* figs = doc.get("figure")) {
     const toml::array* a = figs->as_array();
-    if (!a) return make_error(fmt::format("{}: 'figure' must be an array of tables ([[figure]])", where(origin, *figs)));
+    if (!a)
+      return make_error(fmt::format("{}: 'figure' must be an array of tables ([[figure]])", where(origin, *figs)));
     for (const auto& f : *a) {
       const toml::table* t = f.as_table();
       if (!t || !(*t)["file"].value<std::string>())
@@ -193,8 +196,10 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
       const std::string key(k.str());
       if (key != "name" && key != "kind" && key != "description" && key != "seed_from" && key != "parameters" &&
           key != "quick")
-        return make_error(fmt::format("{}: [[part]] has unknown key '{}' (expected name, kind, description, seed_from, "
-                                      "parameters, quick)", where(origin, v), key));
+        return make_error(
+            fmt::format("{}: [[part]] has unknown key '{}' (expected name, kind, description, seed_from, "
+                        "parameters, quick)",
+                        where(origin, v), key));
     }
     part.name = (*pt)["name"].value_or(std::string{});
     part.kind = (*pt)["kind"].value_or(std::string{});
@@ -205,9 +210,10 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
     if (part.name.size() > 100 || part.name.front() == '.' ||
         part.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") !=
             std::string::npos)
-      return make_error(fmt::format("{}: part name '{}': expected at most 100 letters, digits, '-', '_' or '.' (not "
-                                    "first), as it names the part's files in an export",
-                                    where(origin, pn), part.name));
+      return make_error(
+          fmt::format("{}: part name '{}': expected at most 100 letters, digits, '-', '_' or '.' (not "
+                      "first), as it names the part's files in an export",
+                      where(origin, pn), part.name));
     if (!part_names.insert(part.name).second)
       return make_error(fmt::format("{}: part name '{}' is used twice", where(origin, pn), part.name));
     if (!reg.find(part.kind) && reg.unavailable_reason(part.kind).empty())
@@ -230,7 +236,8 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
       }
     }
     for (const auto& [key, node] : chosen) {
-      if (key == "part") return make_error(fmt::format("{}: 'part' is a reserved parameter name", where(origin, *node)));
+      if (key == "part")
+        return make_error(fmt::format("{}: 'part' is a reserved parameter name", where(origin, *node)));
       auto vals = axis_values(*node, fmt::format("{}: part '{}' parameter '{}'", where(origin, *node), part.name, key));
       if (!vals) return vals.error();
       part.axes.emplace_back(key, std::move(*vals));
@@ -252,7 +259,8 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
     std::int64_t n = 1;
     for (const auto& ax : part.axes) {
       n *= static_cast<std::int64_t>(ax.second.size());
-      if (n > kMaxTasks) return make_error(fmt::format("{}: part '{}' has more than {} tasks", origin, part.name, kMaxTasks));
+      if (n > kMaxTasks)
+        return make_error(fmt::format("{}: part '{}' has more than {} tasks", origin, part.name, kMaxTasks));
     }
     if (id + n > kMaxTasks) return make_error(fmt::format("{}: more than {} tasks", origin, kMaxTasks));
     std::vector<std::size_t> idx(part.axes.size(), 0);

@@ -75,13 +75,15 @@ Result<StoreStatus> store_status(Store& store, const TaskRegistry& registry) {
     std::string other;
     for (const auto& [kv, n] : ps.done_by_kind_version) {
       if (kv == ps.kind_version) continue;
-      other += fmt::format("{}{} tasks by {}", other.empty() ? "" : ", ", n,
-                           kv == 0 ? std::string("an unrecorded version (schema-1 store)") : fmt::format("version {}", kv));
+      other +=
+          fmt::format("{}{} tasks by {}", other.empty() ? "" : ", ", n,
+                      kv == 0 ? std::string("an unrecorded version (schema-1 store)") : fmt::format("version {}", kv));
     }
     if (!other.empty())
-      ps.version_note = fmt::format("part '{}': {} of kind '{}', but this build has version {}; their results may "
-                                    "differ from what this build computes (a new store recomputes them)",
-                                    p.part, other, p.kind, ps.kind_version);
+      ps.version_note = fmt::format(
+          "part '{}': {} of kind '{}', but this build has version {}; their results may "
+          "differ from what this build computes (a new store recomputes them)",
+          p.part, other, p.kind, ps.kind_version);
     s.parts.push_back(std::move(ps));
   }
   return s;
@@ -120,9 +122,10 @@ Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir
     if (pc.part.empty() || pc.part.size() > 100 || pc.part.front() == '.' ||
         pc.part.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") !=
             std::string::npos)
-      return make_error(fmt::format("{}: part name '{}' cannot name a file (expected letters, digits, '-', '_', '.'); "
-                                    "the store was not written by frictal",
-                                    dir, pc.part));
+      return make_error(
+          fmt::format("{}: part name '{}' cannot name a file (expected letters, digits, '-', '_', '.'); "
+                      "the store was not written by frictal",
+                      dir, pc.part));
     auto rows_r = store.rows(pc.part, true);
     if (!rows_r) return rows_r.error();
     const auto& rows = *rows_r;
@@ -141,13 +144,14 @@ Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir
       for (const auto& k : pn) wide.append(",").append(r.params.count(k) ? value_text(r.params.at(k)) : std::string{});
       for (const auto& k : sn) {
         auto it = r.output.scalars.find(k);
-        wide.append(",").append(it != r.output.scalars.end() && std::isfinite(it->second) ? fmt::format("{}", it->second)
-                                                                                           : std::string{});
+        wide.append(",").append(
+            it != r.output.scalars.end() && std::isfinite(it->second) ? fmt::format("{}", it->second) : std::string{});
       }
       wide += "\n";
       for (const auto& [name, v] : r.output.arrays)
         for (std::size_t i = 0; i < v.size(); ++i)
-          longf += fmt::format("{},{},{},{}\n", r.id, csv_field(name), i, std::isfinite(v[i]) ? fmt::format("{}", v[i]) : "");
+          longf += fmt::format("{},{},{},{}\n", r.id, csv_field(name), i,
+                               std::isfinite(v[i]) ? fmt::format("{}", v[i]) : "");
     }
     if (auto s = put(pc.part + ".csv", wide); !s) return s.error();
     if (auto s = put(pc.part + "-arrays.csv", longf); !s) return s.error();
@@ -165,7 +169,8 @@ Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir
         for (const auto& k : pn)
           if (k != "pair") prefix.append(",").append(pp.params.count(k) ? value_text(pp.params.at(k)) : std::string{});
         for (std::size_t i = 0; i < pp.density.size(); ++i)
-          csv += fmt::format("{},{},{},{},{},{}\n", prefix, pp.name, pp.members, pp.edges[i], pp.edges[i + 1], pp.density[i]);
+          csv += fmt::format("{},{},{},{},{},{}\n", prefix, pp.name, pp.members, pp.edges[i], pp.edges[i + 1],
+                             pp.density[i]);
       }
       if (auto s = put(pc.part + "-pooled-pdfs.csv", csv); !s) return s.error();
     }

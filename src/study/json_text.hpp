@@ -31,8 +31,10 @@ inline std::string json_string(const std::string& s) {
       case '\t': o += "\\t"; break;
       case '\r': o += "\\r"; break;
       default:
-        if (static_cast<unsigned char>(c) < 0x20) o += fmt::format("\\u{:04x}", c);
-        else o += c;
+        if (static_cast<unsigned char>(c) < 0x20)
+          o += fmt::format("\\u{:04x}", c);
+        else
+          o += c;
     }
   }
   return o + "\"";

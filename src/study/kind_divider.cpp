@@ -25,9 +25,11 @@ Result<TaskOutput> run_divider_task(const Params& p, std::uint64_t /*seed: deter
   if (!rmin) return rmin.error();
   if (!rmax) return rmax.error();
   if (!rulers) return rulers.error();
-  if (*rulers < 3 || *rulers > 10000) return make_error(fmt::format("parameter 'rulers': expected 3..10000, got {}", *rulers));
-  if (Status st = only_known_parameters(p, {&find_generator("koch")->fields},
-                                        {"ruler_min_over_wavelength", "ruler_max_over_wavelength", "rulers"}, "divider");
+  if (*rulers < 3 || *rulers > 10000)
+    return make_error(fmt::format("parameter 'rulers': expected 3..10000, got {}", *rulers));
+  if (Status st =
+          only_known_parameters(p, {&find_generator("koch")->fields},
+                                {"ruler_min_over_wavelength", "ruler_max_over_wavelength", "rulers"}, "divider");
       !st)
     return st.error();
   auto koch_values = table_values(find_generator("koch")->fields, p);
@@ -71,7 +73,8 @@ namespace {
 
 void divider_part(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
   std::map<double, std::map<int, std::pair<double, double>>> by;  // alpha -> n -> (D, D13)
-  std::string t = "\n| K_n | alpha (deg) | D divider | D Eq. 13 | difference | r^2 | rulers (m) |\n|---|---|---|---|---|---|---|\n";
+  std::string t =
+      "\n| K_n | alpha (deg) | D divider | D Eq. 13 | difference | r^2 | rulers (m) |\n|---|---|---|---|---|---|---|\n";
   for (const auto& r : rows) {
     const auto& s = r.output.scalars;
     if (!s.count("dimension") || !s.count("dimension_eq13")) continue;
@@ -86,8 +89,10 @@ void divider_part(const std::string& part, const std::vector<Store::Row>& rows, 
   rep.lines.push_back(fmt::format("\n## Part '{}' (divider): {} curves", part, rows.size()));
   rep.lines.push_back(t);
   Finding f;
-  f.claim = fmt::format("Part '{}': the divider dimension of the most iterated Koch curve agrees with Eq. 13, and "
-                        "fewer iterations show the same scaling over a narrower range (Sec. IV C 3, Fig. 9).", part);
+  f.claim = fmt::format(
+      "Part '{}': the divider dimension of the most iterated Koch curve agrees with Eq. 13, and "
+      "fewer iterations show the same scaling over a narrower range (Sec. IV C 3, Fig. 9).",
+      part);
   bool ok = true;
   std::string ev;
   for (const auto& [a, m] : by) {
@@ -102,8 +107,10 @@ void divider_part(const std::string& part, const std::vector<Store::Row>& rows, 
     ev += fmt::format(" alpha={:g}: K{} D={:.4f} vs Eq. 13 {:.4f};", a, m.rbegin()->first, D, D13);
   }
   f.supported = ok;
-  f.evidence.push_back("criterion: |D_divider - D_Eq13| <= 0.02 for the most iterated curve, and |D - D_Eq13| does not grow "
-                       "with the number of iterations;" + ev);
+  f.evidence.push_back(
+      "criterion: |D_divider - D_Eq13| <= 0.02 for the most iterated curve, and |D - D_Eq13| does not grow "
+      "with the number of iterations;" +
+      ev);
   rep.findings.push_back(f);
 }
 

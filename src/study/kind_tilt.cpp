@@ -7,13 +7,13 @@
 // step (twice at most); time_step_s records it.
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <numbers>
+#include <set>
 
 #include <fmt/core.h>
 
-#include "frictal/surface_spec.hpp"
 #include "frictal/study.hpp"
+#include "frictal/surface_spec.hpp"
 #include "frictal/tilt.hpp"
 #include "study/table_params.hpp"
 
@@ -36,7 +36,8 @@ Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: determin
   if (!generator) return generator.error();
   const GeneratorInfo* gen = find_generator(*generator);
   if (!gen) return make_error(fmt::format("parameter 'generator': unknown surface generator \"{}\"", *generator));
-  if (Status st = only_known_parameters(p, {&gen->fields, &tilt_settings()}, {"generator", "record_series"}, "tilt"); !st)
+  if (Status st = only_known_parameters(p, {&gen->fields, &tilt_settings()}, {"generator", "record_series"}, "tilt");
+      !st)
     return st.error();
   auto gen_values = table_values(gen->fields, p);
   if (!gen_values) return gen_values.error();
@@ -111,8 +112,9 @@ namespace {
 void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
   if (rows.empty()) return;
   rep.lines.push_back(fmt::format("\n## Part '{}' (tilt): {} simulations", part, rows.size()));
-  std::string t = "\n| K_n | alpha (deg) | mu_a | phi simulated (deg) | phi theory (deg) | sim - theory (deg) | "
-                  "phi - theta_max (deg) | theta_a (deg) |\n|---|---|---|---|---|---|---|---|\n";
+  std::string t =
+      "\n| K_n | alpha (deg) | mu_a | phi simulated (deg) | phi theory (deg) | sim - theory (deg) | "
+      "phi - theta_max (deg) | theta_a (deg) |\n|---|---|---|---|---|---|---|---|\n";
   double worst = 0, worst_a = 0;
   int slid = 0, n = 0;
   std::set<double> mus;
@@ -128,25 +130,29 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
     worst = std::max(worst, std::abs(d));
     worst_a = std::max(worst_a, std::abs(da));
     t += fmt::format("| K{} | {:g} | {:g} | {:.3f} | {:.3f} | {:+.3f} | {:.3f} | {:.3f} |\n",
-                     as_int(r.params.at("iterations")), as_number(r.params.at("alpha")), ma,
-                     s.at("friction_angle_deg"), s.at("predicted_friction_angle_deg"), d, s.at("phi_minus_theta_max_deg"),
+                     as_int(r.params.at("iterations")), as_number(r.params.at("alpha")), ma, s.at("friction_angle_deg"),
+                     s.at("predicted_friction_angle_deg"), d, s.at("phi_minus_theta_max_deg"),
                      s.at("atomic_friction_angle_deg"));
   }
   rep.lines.push_back(t);
   if (!n) return;
   Finding f;
-  f.claim = fmt::format("Part '{}': the simulated friction angle equals the signature prediction theta_max + atan(mu_a) "
-                        "(Fig. 6, 8).", part);
+  f.claim = fmt::format(
+      "Part '{}': the simulated friction angle equals the signature prediction theta_max + atan(mu_a) "
+      "(Fig. 6, 8).",
+      part);
   f.supported = slid == n && worst <= 1.0;
-  f.evidence.push_back(fmt::format("criterion: every block slid ({} of {}) and |phi_sim - phi_theory| <= 1 deg; largest {:.3f} deg",
-                                   slid, n, worst));
+  f.evidence.push_back(
+      fmt::format("criterion: every block slid ({} of {}) and |phi_sim - phi_theory| <= 1 deg; largest {:.3f} deg",
+                  slid, n, worst));
   rep.findings.push_back(f);
   if (mus.size() > 1) {
     Finding g;
-    g.claim = fmt::format("Part '{}': phi - theta_max = theta_a in simulation, the same for every surface (Fig. 8b).", part);
+    g.claim =
+        fmt::format("Part '{}': phi - theta_max = theta_a in simulation, the same for every surface (Fig. 8b).", part);
     g.supported = slid == n && worst_a <= 1.0;
-    g.evidence.push_back(fmt::format("criterion: |phi_sim - theta_max - atan(mu_a)| <= 1 deg over {} runs; largest {:.3f} deg",
-                                     n, worst_a));
+    g.evidence.push_back(fmt::format(
+        "criterion: |phi_sim - theta_max - atan(mu_a)| <= 1 deg over {} runs; largest {:.3f} deg", n, worst_a));
     rep.findings.push_back(g);
   }
 }

@@ -266,8 +266,10 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
     ss[D][n].add(s.at("surface_slope_std_deg"));
     ++tasks;
     const double tol = 1e-9 * std::max(1.0, f);
-    if (c < f - tol) ++below;
-    else if (c <= f + tol) ++equal;
+    if (c < f - tol)
+      ++below;
+    else if (c <= f + tol)
+      ++equal;
     else {
       ++above;
       worst_excess = std::max(worst_excess, c / f - 1);
@@ -275,8 +277,8 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   }
   if (!tasks) return;
   const int nmin = *ns.begin(), nmax = *ns.rbegin();
-  rep.lines.push_back(fmt::format("\n## Part '{}' (wm-pair-statistics): {} pairs, {} values of D, n_max {}..{}", part, tasks,
-                                  tc.size(), nmin, nmax));
+  rep.lines.push_back(fmt::format("\n## Part '{}' (wm-pair-statistics): {} pairs, {} values of D, n_max {}..{}", part,
+                                  tasks, tc.size(), nmin, nmax));
   rep.lines.push_back(table("Mean over pairs of tan(theta_max,contact) (Fig. 14c-d, 15):", tc, ns, 4));
   rep.lines.push_back(table("Mean over pairs of tan(theta_max,surface) (Fig. 14a-b, 15):", ts, ns, 4));
   rep.lines.push_back(table("Mean over pairs of sigma_contact slope, deg (Fig. 17c-d, 18):", sc, ns, 3));
@@ -285,27 +287,31 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F1: contact below surface.
   {
     Finding f;
-    f.claim = fmt::format("Part '{}': the maximum contact slope is smaller than the maximum surface slope (Sec. V.C, "
-                          "Fig. 15).", part);
+    f.claim = fmt::format(
+        "Part '{}': the maximum contact slope is smaller than the maximum surface slope (Sec. V.C, "
+        "Fig. 15).",
+        part);
     f.supported = above == 0 && below > 0;
-    f.evidence.push_back(fmt::format("criterion: tan(theta_max,contact) <= tan(theta_max,surface) for every pair; "
-                                     "{} of {} pairs strictly below, {} equal (within 1e-9), {} above{}",
-                                     below, tasks, equal, above,
-                                     above ? fmt::format(" (worst by {:.3g}%)", 100 * worst_excess) : ""));
+    f.evidence.push_back(
+        fmt::format("criterion: tan(theta_max,contact) <= tan(theta_max,surface) for every pair; "
+                    "{} of {} pairs strictly below, {} equal (within 1e-9), {} above{}",
+                    below, tasks, equal, above, above ? fmt::format(" (worst by {:.3g}%)", 100 * worst_excess) : ""));
     if (ns.count(0))
-      f.evidence.push_back("n_max = 0: both faces are single cosines of one wavelength, which mate exactly, so the contact "
-                           "slope equals the surface slope there");
+      f.evidence.push_back(
+          "n_max = 0: both faces are single cosines of one wavelength, which mate exactly, so the contact "
+          "slope equals the surface slope there");
     std::string ratios = "mean contact/surface at n_max = " + std::to_string(nmax) + ":";
     for (const auto& [D, row] : tc)
-      if (row.count(nmax)) ratios += fmt::format(" D={:.1f}: {:.3f}", D, row.at(nmax).mean() / ts.at(D).at(nmax).mean());
+      if (row.count(nmax))
+        ratios += fmt::format(" D={:.1f}: {:.3f}", D, row.at(nmax).mean() / ts.at(D).at(nmax).mean());
     f.evidence.push_back(ratios);
     rep.findings.push_back(f);
   }
   // F2: rise with D at the largest n_max.
   {
     Finding f;
-    f.claim = fmt::format("Part '{}': maximum contact and surface slopes increase with D (n_max = {}; Fig. 15).", part,
-                          nmax);
+    f.claim =
+        fmt::format("Part '{}': maximum contact and surface slopes increase with D (n_max = {}; Fig. 15).", part, nmax);
     int up_c = 0, up_s = 0, steps = 0;
     double prev_c = NAN, prev_s = NAN;
     std::string vals;
@@ -322,23 +328,28 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
       vals += fmt::format(" D={:.1f}: {:.4f}/{:.4f}", D, c, s);
     }
     f.supported = steps > 0 && up_c == steps && up_s == steps;
-    f.evidence.push_back(fmt::format("criterion: every step in D raises the pair-mean; contact rises in {} of {} steps, "
-                                     "surface in {} of {}", up_c, steps, up_s, steps));
+    f.evidence.push_back(
+        fmt::format("criterion: every step in D raises the pair-mean; contact rises in {} of {} steps, "
+                    "surface in {} of {}",
+                    up_c, steps, up_s, steps));
     f.evidence.push_back("tan contact / tan surface:" + vals);
     rep.findings.push_back(f);
   }
   // F3: rise with n_max for every D.
   if (ns.size() >= 2) {
     Finding f;
-    f.claim = fmt::format("Part '{}': maximum contact and surface slopes increase with n_max (finer wavelengths; "
-                          "Fig. 14).", part);
+    f.claim = fmt::format(
+        "Part '{}': maximum contact and surface slopes increase with n_max (finer wavelengths; "
+        "Fig. 14).",
+        part);
     int ok = 0, rows_n = 0, dips = 0, steps = 0;
     double worst_dip = 0, dip_dmax = -1;
     std::string vals;
     for (const auto& [D, row] : tc) {
       if (!row.count(nmin) || !row.count(nmax) || nmin == nmax) continue;
       ++rows_n;
-      const bool rc = row.at(nmax).mean() > row.at(nmin).mean(), rs = ts.at(D).at(nmax).mean() > ts.at(D).at(nmin).mean();
+      const bool rc = row.at(nmax).mean() > row.at(nmin).mean(),
+                 rs = ts.at(D).at(nmax).mean() > ts.at(D).at(nmin).mean();
       ok += rc && rs;
       double prev = NAN;
       for (const auto& [n, cell] : row) {
@@ -355,20 +366,26 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
       vals += fmt::format(" D={:.1f}: {:.4f}->{:.4f}", D, row.at(nmin).mean(), row.at(nmax).mean());
     }
     f.supported = rows_n > 0 && ok == rows_n;
-    f.evidence.push_back(fmt::format("criterion: for every D the pair-mean at n_max = {} exceeds that at n_max = {}, for "
-                                     "contact and surface; holds for {} of {} values of D", nmax, nmin, ok, rows_n));
-    f.evidence.push_back(fmt::format("contact slope step by step: {} of {} steps in n_max go down{}", dips, steps,
-                                     dips ? fmt::format(" (largest dip {:.2f}%, all at D <= {:.1f}, where the values level "
-                                                        "off: see the next finding)", 100 * worst_dip, dip_dmax)
-                                          : ""));
+    f.evidence.push_back(
+        fmt::format("criterion: for every D the pair-mean at n_max = {} exceeds that at n_max = {}, for "
+                    "contact and surface; holds for {} of {} values of D",
+                    nmax, nmin, ok, rows_n));
+    f.evidence.push_back(
+        fmt::format("contact slope step by step: {} of {} steps in n_max go down{}", dips, steps,
+                    dips ? fmt::format(" (largest dip {:.2f}%, all at D <= {:.1f}, where the values level "
+                                       "off: see the next finding)",
+                                       100 * worst_dip, dip_dmax)
+                         : ""));
     f.evidence.push_back("tan contact, n_max min -> max:" + vals);
     rep.findings.push_back(f);
   }
   // F4: finite for D < 1.5, growing for D > 1.5.
   if (ns.size() >= 3) {
     Finding f;
-    f.claim = fmt::format("Part '{}': as n_max grows the contact slope tends to a finite value for D < 1.5 and keeps "
-                          "growing for D > 1.5 (Sec. V.C, VI).", part);
+    f.claim = fmt::format(
+        "Part '{}': as n_max grows the contact slope tends to a finite value for D < 1.5 and keeps "
+        "growing for D > 1.5 (Sec. V.C, VI).",
+        part);
     // Two equal windows of n_max ending at nmax: [a, b] and [b, nmax].
     std::vector<int> nv(ns.begin(), ns.end());
     const int b = nv[nv.size() / 2];
@@ -409,8 +426,10 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F5: standard deviations grow with D, fastest above 1.5.
   {
     Finding f;
-    f.claim = fmt::format("Part '{}': the standard deviations of contact and surface slopes grow with D, increasingly "
-                          "fast above D ~ 1.5 (n_max = {}; Fig. 17-18).", part, nmax);
+    f.claim = fmt::format(
+        "Part '{}': the standard deviations of contact and surface slopes grow with D, increasingly "
+        "fast above D ~ 1.5 (n_max = {}; Fig. 17-18).",
+        part, nmax);
     int up = 0, steps = 0;
     double prev = NAN, lo_gain = 0, hi_gain = 0;
     std::string vals;
@@ -426,8 +445,10 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
       vals += fmt::format(" D={:.1f}: {:.3f}/{:.3f}", D, v, w);
     }
     f.supported = steps > 0 && up == steps && hi_gain > lo_gain;
-    f.evidence.push_back(fmt::format("criterion: sigma_contact rises at every step in D ({} of {}) and gains more above "
-                                     "D = 1.5 ({:.3f} deg) than up to 1.5 ({:.3f} deg)", up, steps, hi_gain, lo_gain));
+    f.evidence.push_back(
+        fmt::format("criterion: sigma_contact rises at every step in D ({} of {}) and gains more above "
+                    "D = 1.5 ({:.3f} deg) than up to 1.5 ({:.3f} deg)",
+                    up, steps, hi_gain, lo_gain));
     f.evidence.push_back("sigma contact / sigma surface (deg):" + vals);
     rep.findings.push_back(f);
   }
@@ -454,12 +475,15 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   rep.lines.push_back(fmt::format("\n## Part '{}' (koch-signature): {} tasks", part, rows.size()));
   std::string t = "\n| K_n | alpha (deg) | theta_max/alpha | mu (mu_a = 0) | D (Eq. 13) |\n|---|---|---|---|---|\n";
   for (const auto& [n, m] : ratio)
-    for (const auto& [a, v] : m) t += fmt::format("| K{} | {:g} | {:.6f} | {:.4f} | {:.4f} |\n", n, a, v, mu[n][a], dim[n][a]);
+    for (const auto& [a, v] : m)
+      t += fmt::format("| K{} | {:g} | {:.6f} | {:.4f} | {:.4f} |\n", n, a, v, mu[n][a], dim[n][a]);
   rep.lines.push_back(t);
   const int expect[] = {1, 1, 2, 3};
   Finding f;
-  f.claim = fmt::format("Part '{}': the signature maxima of Koch surfaces K0, K1, K2, K3 are 1, 1, 2, 3 times alpha "
-                        "(Sec. III, Fig. 4, 6).", part);
+  f.claim = fmt::format(
+      "Part '{}': the signature maxima of Koch surfaces K0, K1, K2, K3 are 1, 1, 2, 3 times alpha "
+      "(Sec. III, Fig. 4, 6).",
+      part);
   bool ok = true;
   int checked = 0;
   double worst = 0;
@@ -472,13 +496,15 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
     }
   }
   f.supported = ok && checked > 0;
-  f.evidence.push_back(fmt::format("criterion: |theta_max/alpha - n| < 1e-6 for {} (K_n, alpha) tasks; largest deviation {:.2e}",
-                                   checked, worst));
+  f.evidence.push_back(fmt::format(
+      "criterion: |theta_max/alpha - n| < 1e-6 for {} (K_n, alpha) tasks; largest deviation {:.2e}", checked, worst));
   rep.findings.push_back(f);
   // mu grows with D (Fig. 10) at each iteration count, over alpha (D from Eq. 13 grows with alpha).
   Finding g;
-  g.claim = fmt::format("Part '{}': the friction coefficient grows with the fractal dimension of the Koch surface "
-                        "(Fig. 10).", part);
+  g.claim = fmt::format(
+      "Part '{}': the friction coefficient grows with the fractal dimension of the Koch surface "
+      "(Fig. 10).",
+      part);
   int up = 0, steps = 0;
   for (const auto& [n, m] : phi0) {  // mu = tan(phi) is monotone in phi; phi stays finite at 90 deg
     double prev = NAN;
@@ -488,13 +514,17 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
     }
   }
   g.supported = steps > 0 && up == steps;
-  g.evidence.push_back(fmt::format("criterion: at fixed K_n, phi = theta_max (mu = tan phi) rises with alpha, hence with D "
-                                   "from Eq. 13; rises in {} of {} steps", up, steps));
+  g.evidence.push_back(
+      fmt::format("criterion: at fixed K_n, phi = theta_max (mu = tan phi) rises with alpha, hence with D "
+                  "from Eq. 13; rises in {} of {} steps",
+                  up, steps));
   if (steps > 0) rep.findings.push_back(g);
   if (mus.size() > 1) {
     Finding h;
-    h.claim = fmt::format("Part '{}': phi - n alpha = theta_a, the atomic friction angle adds to the signature maximum "
-                          "(Eq. 6, Fig. 8).", part);
+    h.claim = fmt::format(
+        "Part '{}': phi - n alpha = theta_a, the atomic friction angle adds to the signature maximum "
+        "(Eq. 6, Fig. 8).",
+        part);
     double worst_h = 0;
     int cnt = 0;
     for (const auto& r : rows) {
@@ -507,8 +537,8 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
       ++cnt;
     }
     h.supported = worst_h < 1e-6;
-    h.evidence.push_back(fmt::format("criterion: |phi - (n alpha + atan mu_a)| < 1e-6 deg over {} tasks; largest {:.2e} deg",
-                                     cnt, worst_h));
+    h.evidence.push_back(fmt::format(
+        "criterion: |phi - (n alpha + atan mu_a)| < 1e-6 deg over {} tasks; largest {:.2e} deg", cnt, worst_h));
     rep.findings.push_back(h);
   }
 }

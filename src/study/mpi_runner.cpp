@@ -150,7 +150,7 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
             if (st.MPI_TAG == kTagResult) {
               auto r = deserialize(bytes);
               if (r) r->id = inflight[src];  // the id this rank was given
-              if (!r) {  // cannot happen between ranks of one build; never lose the claim
+              if (!r) {                      // cannot happen between ranks of one build; never lose the claim
                 TaskRecord lost;
                 lost.id = inflight[src];
                 lost.worker = fmt::format("rank {}", src);

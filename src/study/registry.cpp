@@ -74,8 +74,9 @@ std::string kinds_json(const TaskRegistry& registry) {
   nlohmann::json kinds = nlohmann::json::array();
   for (const auto& name : registry.names()) {
     const TaskKind& k = *registry.find(name);
-    nlohmann::json j = {{"name", k.name},         {"description", k.description}, {"version", k.version},
-                        {"available", true},      {"reason", ""},                  {"report_section", bool(k.report)}};
+    nlohmann::json j = {{"name", k.name},       {"description", k.description},
+                        {"version", k.version}, {"available", true},
+                        {"reason", ""},         {"report_section", bool(k.report)}};
     j["outputs"] = nlohmann::json::array();
     for (const auto& c : k.outputs)
       j["outputs"].push_back({{"name", c.name}, {"unit", c.unit}, {"description", c.description}, {"array", c.array}});

@@ -68,13 +68,15 @@ Result<std::vector<PooledPdf>> pooled_pdfs(Store& store, const std::string& part
       pp.params = g.params;
       pp.name = prefix;
       pp.edges.resize(bins + 1);
-      for (std::size_t i = 0; i <= bins; ++i) pp.edges[i] = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(bins);
+      for (std::size_t i = 0; i <= bins; ++i)
+        pp.edges[i] = lo + (hi - lo) * static_cast<double>(i) / static_cast<double>(bins);
       std::vector<double> mass(bins, 0.0);
       const double w = (hi - lo) / static_cast<double>(bins);
       for (const auto* r : g.rows) {
         auto e = r->output.arrays.find(en);
         auto d = r->output.arrays.find(dn);
-        if (e == r->output.arrays.end() || d == r->output.arrays.end() || e->second.size() != d->second.size() + 1) continue;
+        if (e == r->output.arrays.end() || d == r->output.arrays.end() || e->second.size() != d->second.size() + 1)
+          continue;
         const auto& E = e->second;
         const auto& Dn = d->second;
         double total = 0;
@@ -113,7 +115,8 @@ Result<Report> report(Store& store, const TaskRegistry& registry) {
   auto c = store.counts();
   if (!c) return c.error();
   r.lines.push_back(fmt::format("{}\n\nTasks: {} total, {} done, {} failed, {} pending. Definition hash {}.",
-                                (*m)["study_description"], c->total, c->done, c->failed, c->pending, (*m)["study_hash"]));
+                                (*m)["study_description"], c->total, c->done, c->failed, c->pending,
+                                (*m)["study_hash"]));
   // Which versions computed the results; a warning for results of another kind version.
   auto st = store_status(store, registry);
   if (!st) return st.error();
@@ -149,16 +152,21 @@ Result<Report> report(Store& store, const TaskRegistry& registry) {
       bool ok = true;
       for (const auto& o : kind->outputs)
         if (!o.array && !row.output.scalars.count(o.name)) ok = false;
-      if (ok) complete.push_back(std::move(row));
-      else ++incomplete;
+      if (ok)
+        complete.push_back(std::move(row));
+      else
+        ++incomplete;
     }
     if (incomplete)
-      r.lines.push_back(fmt::format("\n**Warning:** part '{}': {} done tasks lack some of the scalars of kind '{}' "
-                                    "and are left out of its report.", p.part, incomplete, p.kind));
+      r.lines.push_back(
+          fmt::format("\n**Warning:** part '{}': {} done tasks lack some of the scalars of kind '{}' "
+                      "and are left out of its report.",
+                      p.part, incomplete, p.kind));
     try {
       kind->report(p.part, complete, r);
     } catch (const std::exception& e) {
-      return make_error(fmt::format("part '{}': the stored results do not fit kind '{}' ({})", p.part, p.kind, e.what()));
+      return make_error(
+          fmt::format("part '{}': the stored results do not fit kind '{}' ({})", p.part, p.kind, e.what()));
     }
   }
   return r;

@@ -43,7 +43,8 @@ void pin_to_cpu(unsigned k) {
 }
 }  // namespace
 
-Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegistry& registry, const RunOptions& options) {
+Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegistry& registry,
+                               const RunOptions& options) {
   RunSummary sum;
   auto todo = plan(study, store, registry, options, &sum.skipped_unavailable);
   if (!todo) return todo.error();

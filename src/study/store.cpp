@@ -17,8 +17,8 @@
 #include <sstream>
 
 #include <fmt/core.h>
-#include <nlohmann/json.hpp>
 #include <sqlite3.h>
+#include <nlohmann/json.hpp>
 
 #include "frictal/study.hpp"
 #include "frictal/version.hpp"
@@ -129,11 +129,15 @@ class Stmt {
   Stmt& operator=(const Stmt&) = delete;
   bool ok() const { return rc_ == SQLITE_OK; }
   sqlite3_stmt* get() { return s_; }
-  void bind(int i, const std::string& v) { sqlite3_bind_text(s_, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT); }
+  void bind(int i, const std::string& v) {
+    sqlite3_bind_text(s_, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT);
+  }
   void bind(int i, std::int64_t v) { sqlite3_bind_int64(s_, i, v); }
   void bind(int i, double v) {
-    if (std::isfinite(v)) sqlite3_bind_double(s_, i, v);
-    else sqlite3_bind_null(s_, i);
+    if (std::isfinite(v))
+      sqlite3_bind_double(s_, i, v);
+    else
+      sqlite3_bind_null(s_, i);
   }
   void bind_null(int i) { sqlite3_bind_null(s_, i); }
   int step() { return sqlite3_step(s_); }
@@ -143,7 +147,8 @@ class Stmt {
   }
   std::string text(int c) {
     auto* p = sqlite3_column_text(s_, c);
-    return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(s_, c))) : std::string{};
+    return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(sqlite3_column_bytes(s_, c)))
+             : std::string{};
   }
   std::int64_t i64(int c) { return sqlite3_column_int64(s_, c); }
   double real(int c) { return sqlite3_column_type(s_, c) == SQLITE_NULL ? std::nan("") : sqlite3_column_double(s_, c); }
@@ -208,15 +213,12 @@ struct Store::Impl {
       case SQLITE_READONLY:
         return "the store is read-only (file, directory or file system not writable); tasks recorded before are kept: "
                "make it writable or copy it elsewhere and run again";
-      case SQLITE_CANTOPEN:
-        return "cannot open the store or its journal (is the directory writable?)";
+      case SQLITE_CANTOPEN: return "cannot open the store or its journal (is the directory writable?)";
       case SQLITE_IOERR:
         return "an I/O error (disk, network file system); tasks recorded before are kept: run again to resume";
       case SQLITE_CORRUPT:
-      case SQLITE_NOTADB:
-        return "the file is not a valid SQLite study store";
-      default:
-        return {};
+      case SQLITE_NOTADB: return "the file is not a valid SQLite study store";
+      default: return {};
     }
   }
   Error err(const std::string& what) const {
@@ -231,7 +233,8 @@ struct Store::Impl {
       std::string m = msg ? msg : "?";
       sqlite3_free(msg);
       const std::string why = what_happened(sqlite3_extended_errcode(db));
-      return make_error(ErrorCode::Io, why.empty() ? fmt::format("{}: {}", path, m) : fmt::format("{}: {} ({})", path, why, m));
+      return make_error(ErrorCode::Io,
+                        why.empty() ? fmt::format("{}: {}", path, m) : fmt::format("{}: {} ({})", path, why, m));
     }
     return Ok{};
   }
@@ -254,7 +257,8 @@ Result<std::unique_ptr<Store::Impl>> open_db(const std::string& path, bool creat
   sqlite3_busy_timeout(impl->db, 30000);
   sqlite3_extended_result_codes(impl->db, 1);
   for (const char* p : {"PRAGMA journal_mode=WAL;", "PRAGMA synchronous=NORMAL;", "PRAGMA foreign_keys=ON;"})
-    if (auto s = impl->exec(p); !s) return make_error(ErrorCode::Io, fmt::format("{} (is it an SQLite file?)", s.error().message));
+    if (auto s = impl->exec(p); !s)
+      return make_error(ErrorCode::Io, fmt::format("{} (is it an SQLite file?)", s.error().message));
   return impl;
 }
 
@@ -320,10 +324,14 @@ Result<std::unique_ptr<Store>> Store::open(const std::string& path, const Study&
         pa.reset();
         pa.bind(1, task.id);
         pa.bind(2, name);
-        if (auto* i = std::get_if<std::int64_t>(&v)) pa.bind(3, *i);
-        else if (auto* d = std::get_if<double>(&v)) pa.bind(3, *d);
-        else if (auto* s = std::get_if<std::string>(&v)) pa.bind(3, *s);
-        else pa.bind(3, static_cast<std::int64_t>(std::get<bool>(v)));
+        if (auto* i = std::get_if<std::int64_t>(&v))
+          pa.bind(3, *i);
+        else if (auto* d = std::get_if<double>(&v))
+          pa.bind(3, *d);
+        else if (auto* s = std::get_if<std::string>(&v))
+          pa.bind(3, *s);
+        else
+          pa.bind(3, static_cast<std::int64_t>(std::get<bool>(v)));
         if (pa.step() != SQLITE_DONE) {
           (void)db.exec("ROLLBACK");
           return db.err("writing params");
@@ -356,7 +364,8 @@ Result<std::unique_ptr<Store>> Store::open(const std::string& path, const Study&
     if (meta["study_hash"] != study.hash)
       return make_error(fmt::format(
           "{}: this store belongs to another study definition: it holds '{}' ({} scale, definition hash {}), "
-          "but the study file defines '{}' ({} scale, hash {}); use another --store file, or delete this one to start over",
+          "but the study file defines '{}' ({} scale, hash {}); use another --store file, or delete this one to start "
+          "over",
           path, meta["study_name"], meta["scale"], meta["study_hash"], study.name, study.quick ? "quick" : "full",
           study.hash));
     std::unique_ptr<Store> st(new Store());
@@ -482,8 +491,10 @@ Status Store::record(const TaskRecord& r) {
            "WHERE task_id = ?");
     u.bind(1, std::string(status_text(r.status)));
     u.bind(2, static_cast<std::int64_t>(std::max(1, r.attempts)));
-    if (r.error.empty()) u.bind_null(3);
-    else u.bind(3, r.error);
+    if (r.error.empty())
+      u.bind_null(3);
+    else
+      u.bind(3, r.error);
     u.bind(4, r.worker);
     u.bind(5, iso(t0));
     u.bind(6, iso(t));
@@ -517,8 +528,10 @@ Status Store::record(const TaskRecord& r) {
     (void)db.exec("ROLLBACK");
     return s.error();
   }
-  if (r.status == TaskStatus::Done) db.seen_attempts.erase(r.id);
-  else db.seen_attempts[r.id] += std::max(1, r.attempts);
+  if (r.status == TaskStatus::Done)
+    db.seen_attempts.erase(r.id);
+  else
+    db.seen_attempts[r.id] += std::max(1, r.attempts);
   return Ok{};
 }
 
@@ -618,12 +631,12 @@ Result<std::vector<Store::VersionCount>> Store::version_counts() {
   Stmt probe(impl_->db, "SELECT kind_version, frictal_version FROM tasks LIMIT 0");
   if (!probe.ok()) return out;  // schema 1: no versions recorded
   Stmt q(impl_->db,
-         "SELECT part, coalesce(kind_version, 0), coalesce(frictal_version, ''), count(*) FROM tasks WHERE status = 'done' "
+         "SELECT part, coalesce(kind_version, 0), coalesce(frictal_version, ''), count(*) FROM tasks WHERE status = "
+         "'done' "
          "GROUP BY part, kind_version, frictal_version ORDER BY min(task_id)");
   if (!q.ok()) return impl_->err("reading task versions");
   int rc;
-  while ((rc = q.step()) == SQLITE_ROW)
-    out.push_back({q.text(0), static_cast<int>(q.i64(1)), q.text(2), q.i64(3)});
+  while ((rc = q.step()) == SQLITE_ROW) out.push_back({q.text(0), static_cast<int>(q.i64(1)), q.text(2), q.i64(3)});
   if (rc != SQLITE_DONE) return impl_->err("reading task versions");
   return out;
 }
@@ -646,9 +659,12 @@ Result<StoreCounts> Store::counts() {
     const std::string s = q.text(0);
     const auto n = q.i64(1);
     c.total += n;
-    if (s == "done") c.done += n;
-    else if (s == "failed") c.failed += n;
-    else c.pending += n;  // 'pending' (or anything a damaged store holds: not done)
+    if (s == "done")
+      c.done += n;
+    else if (s == "failed")
+      c.failed += n;
+    else
+      c.pending += n;  // 'pending' (or anything a damaged store holds: not done)
   }
   if (rc != SQLITE_DONE) return impl_->err("counting tasks");
   return c;
@@ -780,8 +796,9 @@ Result<std::string> query_csv(Store::Impl& im, const char* sql) {
 }  // namespace
 
 Result<std::string> Store::tasks_csv() {
-  return query_csv(*impl_, "SELECT task_id, part, kind, params, seed, status, attempts, error, worker, started_at, "
-                           "finished_at, wall_s FROM tasks ORDER BY task_id");
+  return query_csv(*impl_,
+                   "SELECT task_id, part, kind, params, seed, status, attempts, error, worker, started_at, "
+                   "finished_at, wall_s FROM tasks ORDER BY task_id");
 }
 
 Result<std::string> Store::failures_csv() {
@@ -812,11 +829,12 @@ Result<std::vector<Store::TaskInfo>> Store::tasks() {
 
 Result<std::string> Store::content() {
   std::string d;
-  for (const char* q : {"SELECT key, value FROM meta WHERE key NOT IN ('created_at') ORDER BY key",
-                        "SELECT task_id, part, kind, params, task_key, seed, status, error, scalars FROM tasks ORDER BY task_id",
-                        "SELECT task_id, name, value FROM params ORDER BY task_id, name",
-                        "SELECT task_id, name, value FROM scalars ORDER BY task_id, name",
-                        "SELECT task_id, name, length, json FROM arrays ORDER BY task_id, name"}) {
+  for (const char* q :
+       {"SELECT key, value FROM meta WHERE key NOT IN ('created_at') ORDER BY key",
+        "SELECT task_id, part, kind, params, task_key, seed, status, error, scalars FROM tasks ORDER BY task_id",
+        "SELECT task_id, name, value FROM params ORDER BY task_id, name",
+        "SELECT task_id, name, value FROM scalars ORDER BY task_id, name",
+        "SELECT task_id, name, length, json FROM arrays ORDER BY task_id, name"}) {
     auto r = query_csv(*impl_, q);
     if (!r) return r.error();
     d += *r;

@@ -44,7 +44,8 @@ void parallel_chunks(std::size_t n, unsigned chunks,
     range(0);
     return;
   }
-  run_workers(C - 1, [&](unsigned w) { range(w + 1); }, [&] { range(0); });
+  run_workers(
+      C - 1, [&](unsigned w) { range(w + 1); }, [&] { range(0); });
 }
 
 }  // namespace frictal::util

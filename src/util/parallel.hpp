@@ -16,8 +16,7 @@ unsigned thread_count(unsigned requested, std::size_t items = 0);
 /// Runs `worker(w)` for w = 0..workers-1, each on its own thread, while the calling thread runs
 /// `main` (if given); returns when all have returned. An exception thrown by any of them is
 /// rethrown here (the first one) after every thread has finished.
-void run_workers(unsigned workers, const std::function<void(unsigned)>& worker,
-                 const std::function<void()>& main = {});
+void run_workers(unsigned workers, const std::function<void(unsigned)>& worker, const std::function<void()>& main = {});
 
 /// Splits [0, n) into `chunks` contiguous chunks (chunk c is [n*c/chunks, n*(c+1)/chunks)) and
 /// runs `body(c, begin, end)` for each, one chunk per thread (chunk 0 on the calling thread).

@@ -46,12 +46,14 @@ TEST(Detrend, Parse) {
 
 TEST(Detrend, RemovesPolynomialsExactlyAndIsOrthogonal) {
   // A cubic is removed exactly by poly:3 (to rounding).
-  auto cubic = sampled(101, 2e-3, [](double x) { return 1e-6 + 3e-3 * x - 2 * x * x + 500 * x * x * x; }, true);
+  auto cubic = sampled(
+      101, 2e-3, [](double x) { return 1e-6 + 3e-3 * x - 2 * x * x + 500 * x * x * x; }, true);
   auto r = frictal::detrend(cubic, {frictal::DetrendKind::Polynomial, 3});
   ASSERT_TRUE(r.ok());
   for (double z : r->z) EXPECT_NEAR(z, 0, 1e-15);
   // Line removal: residual is orthogonal to 1 and x under the trapezoid weights (normal equations).
-  auto p = sampled(64, 1e-3, [](double x) { return 5e-3 * x + 1e-7 * std::sin(x * 2e4); }, true);
+  auto p = sampled(
+      64, 1e-3, [](double x) { return 5e-3 * x + 1e-7 * std::sin(x * 2e4); }, true);
   auto l = frictal::detrend(p, {frictal::DetrendKind::Line, 1});
   ASSERT_TRUE(l.ok());
   double s0 = 0, s1 = 0, scale = 0;
@@ -77,8 +79,10 @@ TEST(Detrend, MapPlane) {
   auto r = frictal::detrend(m, {frictal::DetrendKind::Line, 1});
   ASSERT_TRUE(r.ok());
   for (std::size_t k = 0; k < m.size(); ++k) {
-    if (k == 6) EXPECT_TRUE(std::isnan(r->heights[k]));
-    else EXPECT_NEAR(r->heights[k], 0, 1e-20);
+    if (k == 6)
+      EXPECT_TRUE(std::isnan(r->heights[k]));
+    else
+      EXPECT_NEAR(r->heights[k], 0, 1e-20);
   }
 }
 
@@ -138,8 +142,8 @@ TEST(MapStats, HandWorkedExampleWithHole) {
   auto s = frictal::map_stats(m);
   EXPECT_EQ(s.valid, 5u);
   EXPECT_DOUBLE_EQ(s.mean, 3.2);
-  EXPECT_NEAR(s.Sa, 7.2 / 5, 1e-15);               // |d| = 2.2, 1.2, 0.2, 0.8, 2.8
-  EXPECT_NEAR(s.Sq, std::sqrt(14.8 / 5), 1e-15);   // d^2 = 4.84, 1.44, 0.04, 0.64, 7.84
+  EXPECT_NEAR(s.Sa, 7.2 / 5, 1e-15);              // |d| = 2.2, 1.2, 0.2, 0.8, 2.8
+  EXPECT_NEAR(s.Sq, std::sqrt(14.8 / 5), 1e-15);  // d^2 = 4.84, 1.44, 0.04, 0.64, 7.84
   EXPECT_DOUBLE_EQ(s.Sz, 5);
   EXPECT_NEAR(s.Sp, 2.8, 1e-15);
   EXPECT_NEAR(s.Sv, 2.2, 1e-15);

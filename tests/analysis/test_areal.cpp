@@ -25,7 +25,9 @@ frictal::Map ridges(std::size_t nx, std::size_t ny, double dx, double (*p)(doubl
   return m;
 }
 
-double bumpy(double x) { return 1e-7 * (std::sin(x * 3e5) + 0.4 * std::sin(x * 1.1e6 + 1) + 0.2 * std::cos(x * 2.9e6)); }
+double bumpy(double x) {
+  return 1e-7 * (std::sin(x * 3e5) + 0.4 * std::sin(x * 1.1e6 + 1) + 0.2 * std::cos(x * 2.9e6));
+}
 
 frictal::Map rough(std::size_t n) {
   frictal::Map m;
@@ -35,7 +37,8 @@ frictal::Map rough(std::size_t n) {
   m.dy = 1.3e-7;
   for (std::size_t j = 0; j < m.ny; ++j)
     for (std::size_t i = 0; i < m.nx; ++i)
-      m.heights.push_back(1e-8 * (std::sin(i * 0.37 + j * 0.11) + std::cos(i * 0.05 - j * 0.23) + 0.3 * std::sin(i * j * 0.013)));
+      m.heights.push_back(
+          1e-8 * (std::sin(i * 0.37 + j * 0.11) + std::cos(i * 0.05 - j * 0.23) + 0.3 * std::sin(i * j * 0.013)));
   m.heights[5 * n + 9] = NAN;  // holes must be skipped by both methods
   m.heights[40 * n + 33] = NAN;
   return m;
@@ -54,7 +57,10 @@ TEST(ArealSignature, PrunedEqualsDirect) {
     ASSERT_TRUE(fast.ok() && direct.ok());
     ASSERT_EQ(fast->lift.size(), direct->lift.size());
     for (std::size_t k = 0; k < fast->lift.size(); ++k) {
-      if (std::isnan(direct->lift[k])) { EXPECT_TRUE(std::isnan(fast->lift[k])); continue; }
+      if (std::isnan(direct->lift[k])) {
+        EXPECT_TRUE(std::isnan(fast->lift[k]));
+        continue;
+      }
       EXPECT_EQ(fast->lift[k], direct->lift[k]) << a << " " << k;
       EXPECT_EQ(fast->theta[k], direct->theta[k]) << a << " " << k;
       EXPECT_EQ(fast->contact_x[k], direct->contact_x[k]);

@@ -17,7 +17,8 @@ frictal::Map sine_plane(std::size_t nx, std::size_t ny, double dx, double dy, do
   m.dx = dx;
   m.dy = dy;
   for (std::size_t j = 0; j < ny; ++j)
-    for (std::size_t i = 0; i < nx; ++i) m.heights.push_back(A * std::sin(2 * kPi * double(i) / double(nx)) + C * double(j) * dy);
+    for (std::size_t i = 0; i < nx; ++i)
+      m.heights.push_back(A * std::sin(2 * kPi * double(i) / double(nx)) + C * double(j) * dy);
   return m;
 }
 }  // namespace

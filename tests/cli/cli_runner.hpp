@@ -1,11 +1,11 @@
 // Runs the frictal executable for CLI tests.
 #pragma once
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
 
 #include <gtest/gtest.h>
 

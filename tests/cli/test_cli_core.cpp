@@ -15,9 +15,9 @@ TEST(Cli, KochSignatureJson) {
   auto r = run_cli("signature " + f + " --atomic-friction 0.2 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = json::parse(r.out);
-  for (const char* key : {"theta_max_forward_deg", "theta_max_backward_deg", "contact_slope_mean_deg",
-                          "contact_slope_std_deg", "surface_slope_max_deg", "atomic_friction", "friction_angle_deg",
-                          "friction_coefficient", "offsets"})
+  for (const char* key :
+       {"theta_max_forward_deg", "theta_max_backward_deg", "contact_slope_mean_deg", "contact_slope_std_deg",
+        "surface_slope_max_deg", "atomic_friction", "friction_angle_deg", "friction_coefficient", "offsets"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_NEAR(j["theta_max_forward_deg"].get<double>(), 40, 1e-6);
   EXPECT_NEAR(j["surface_slope_max_deg"].get<double>(), 60, 1e-6);
@@ -49,12 +49,8 @@ TEST(Cli, BadInputGivesClearErrorAndExit2) {
     std::string content, expect;
   };
   const std::vector<Case> cases = {
-      {"", "empty"},
-      {"x,z\n0,0\n", "at least 2"},
-      {"0,0\n1,nan\n", "finite"},
-      {"0,0\n1,abc\n", ":2:"},
-      {"0,0\n2,1\n1,0\n", "non-decreasing"},
-      {"0;0\n1\n", ":2:"},
+      {"", "empty"},           {"x,z\n0,0\n", "at least 2"},          {"0,0\n1,nan\n", "finite"},
+      {"0,0\n1,abc\n", ":2:"}, {"0,0\n2,1\n1,0\n", "non-decreasing"}, {"0;0\n1\n", ":2:"},
   };
   int k = 0;
   for (const auto& c : cases) {

@@ -33,8 +33,10 @@ TEST(CliFormats, FormatsListsTheNativeReaders) {
   std::size_t native = 0;
   for (const auto& f : j["formats"]) native += f["reader"] == "native";
   EXPECT_EQ(native, 9u);
-  if (j["gwyddion"].get<bool>()) EXPECT_GT(j["formats"].size(), 100u);
-  else EXPECT_NE(j["gwyddion_missing"].get<std::string>().find("gwyddion"), std::string::npos);
+  if (j["gwyddion"].get<bool>())
+    EXPECT_GT(j["formats"].size(), 100u);
+  else
+    EXPECT_NE(j["gwyddion_missing"].get<std::string>().find("gwyddion"), std::string::npos);
 }
 
 TEST(CliFormats, SingleColumnNeedsSpacingAndInfIsAWarning) {
@@ -50,7 +52,8 @@ TEST(CliFormats, SingleColumnNeedsSpacingAndInfIsAWarning) {
   EXPECT_NEAR(j["length_m"].get<double>(), 2e-6, 1e-18);  // x = 0, 1, 2 um (kept points 0, 2, 4)
   // One warning line for the two infinities.
   std::size_t lines = 0;
-  for (std::size_t p = r.err.find("invalid point"); p != std::string::npos; p = r.err.find("invalid point", p + 1)) ++lines;
+  for (std::size_t p = r.err.find("invalid point"); p != std::string::npos; p = r.err.find("invalid point", p + 1))
+    ++lines;
   EXPECT_EQ(lines, 1u) << r.err;
   auto u = run_cli("stats " + path + " --spacing 0.5furlong");
   EXPECT_EQ(u.code, 2);

@@ -22,7 +22,8 @@ TEST(CliIo, StatsMapJsonHasArealKeys) {
   // python3: population rms about the mean of data.bin.
   EXPECT_NEAR(j["Sq_m"].get<double>(), 7.7280332735977479e-08, 1e-20);
   for (const char* k : {"Sa_m", "Sz_m", "Sdq", "Ssk", "Sku", "max_slope_deg", "rms_height_m", "points", "length_m",
-                        "rms_slope", "size_x_m", "size_y_m"}) EXPECT_TRUE(j.contains(k)) << k;
+                        "rms_slope", "size_x_m", "size_y_m"})
+    EXPECT_TRUE(j.contains(k)) << k;
 }
 
 TEST(CliIo, StatsEveryProfileFormatAndDetrend) {
@@ -62,7 +63,8 @@ TEST(CliIo, ConvertRoundTrips) {
   EXPECT_EQ(p1["points"], p2["points"]);
   // int16 quantisation (0.16 um over 65532 steps) and x snapped to x0 + k dx (x moves by up to
   // 0.3 % of dx, which re-weights the polyline) change the rms by well under 0.1 %.
-  EXPECT_NEAR(p1["rms_height_m"].get<double>(), p2["rms_height_m"].get<double>(), 1e-3 * p1["rms_height_m"].get<double>());
+  EXPECT_NEAR(p1["rms_height_m"].get<double>(), p2["rms_height_m"].get<double>(),
+              1e-3 * p1["rms_height_m"].get<double>());
   EXPECT_EQ(run_cli("convert " + kData + "/x3p/pyramid.x3p " + temp_path("p.csv")).code, 2);
   EXPECT_EQ(run_cli("convert " + kData + "/x3p/pyramid.x3p " + temp_path("p.xyz")).code, 2);
 }
@@ -108,12 +110,24 @@ TEST(CliIo, AnisotropyTable) {
 }
 
 TEST(CliIo, StatsReadsEverySharedFile) {
-  const char* files[] = {"profiles/csv-1.csv", "profiles/csv-2.csv", "profiles/dektak-1.csv", "profiles/xy-1.txt",
-                         "profiles/xy-2.txt", "profiles/nonuniform.asc", "maps/gwyddion-export-english.txt",
-                         "maps/gwyddion-export-german.txt", "maps/matrix-6.txt", "x3p/ISO5436-sample1.x3p",
-                         "x3p/ISO5436-sample1_bin.x3p", "x3p/ISO5436-sample2.x3p", "x3p/ISO5436-sample3.x3p",
-                         "x3p/ISO5436-sample4.x3p", "x3p/ISO5436-sample4_bin.x3p", "x3p/pyramid.x3p",
-                         "x3p/sample-land.x3p", "x3p/x3p-2.x3p"};
+  const char* files[] = {"profiles/csv-1.csv",
+                         "profiles/csv-2.csv",
+                         "profiles/dektak-1.csv",
+                         "profiles/xy-1.txt",
+                         "profiles/xy-2.txt",
+                         "profiles/nonuniform.asc",
+                         "maps/gwyddion-export-english.txt",
+                         "maps/gwyddion-export-german.txt",
+                         "maps/matrix-6.txt",
+                         "x3p/ISO5436-sample1.x3p",
+                         "x3p/ISO5436-sample1_bin.x3p",
+                         "x3p/ISO5436-sample2.x3p",
+                         "x3p/ISO5436-sample3.x3p",
+                         "x3p/ISO5436-sample4.x3p",
+                         "x3p/ISO5436-sample4_bin.x3p",
+                         "x3p/pyramid.x3p",
+                         "x3p/sample-land.x3p",
+                         "x3p/x3p-2.x3p"};
   for (const char* f : files) {
     auto r = run_cli("stats " + kData + "/" + f + " --json");
     ASSERT_EQ(r.code, 0) << f << ": " << r.err;
@@ -127,7 +141,8 @@ TEST(CliIo, StatsReadsEverySharedFile) {
 
 TEST(CliIo, StatsSpectrumAutocorrelationHistograms) {
   const std::string psd = temp_path("psd.csv"), acf = temp_path("acf.csv");
-  auto r = run_cli("stats " + kData + "/profiles/dektak-1.csv --detrend line --json --histograms 20 --psd " + psd + " --acf " + acf);
+  auto r = run_cli("stats " + kData + "/profiles/dektak-1.csv --detrend line --json --histograms 20 --psd " + psd +
+                   " --acf " + acf);
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["height_distribution"]["density"].size(), 20u);

@@ -17,7 +17,7 @@ TEST(CliReport, MeasuredMapAndProfilePairPages) {
   const std::string page = read_file(map_html);
   EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(page.find("sample-land.x3p"), std::string::npos);
-  EXPECT_NE(page.find("<b>plane</b>"), std::string::npos);  // the default detrending for maps, stated
+  EXPECT_NE(page.find("<b>plane</b>"), std::string::npos);      // the default detrending for maps, stated
   EXPECT_NE(page.find("Reader warning: "), std::string::npos);  // the reader's warnings are on the page
   EXPECT_NE(page.find("Friction over sliding directions"), std::string::npos);
 
@@ -35,7 +35,8 @@ TEST(CliReport, UsageErrorsExitTwoAndNameTheProblem) {
   auto a = run_cli("report " + kData + "/profiles/missing.csv -o " + temp_path("x.html"));
   EXPECT_EQ(a.code, 2);
   EXPECT_NE(a.err.find("missing.csv"), std::string::npos);
-  auto b = run_cli("report " + kData + "/x3p/sample-land.x3p " + kData + "/profiles/xy-1.txt -o " + temp_path("x.html"));
+  auto b =
+      run_cli("report " + kData + "/x3p/sample-land.x3p " + kData + "/profiles/xy-1.txt -o " + temp_path("x.html"));
   EXPECT_EQ(b.code, 2);
   EXPECT_NE(b.err.find("profiles only"), std::string::npos);
   auto c = run_cli("report " + kData + "/profiles/xy-1.txt -o " + temp_path("x.html") + " --atomic-friction -1");

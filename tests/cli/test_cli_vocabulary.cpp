@@ -93,17 +93,27 @@ TEST(CliVocabulary, NoQuantityHasTwoNames) {
   const auto pages = all_help_pages();
   ASSERT_GT(pages.size(), 20u);
   // Second names retired for one quantity (old -> the one name); none may come back.
-  const std::map<std::string, std::string> retired = {
-      {"--mu-a", "--atomic-friction"},   {"--koch-alpha", "--alpha"},        {"--kn", "--normal-stiffness"},
-      {"--kt", "--tangential-stiffness"}, {"--gamma-n", "--normal-damping"}, {"--gamma-t", "--tangential-damping"},
-      {"--dt", "--time-step"},           {"--settle", "--settle-time"},     {"--height", "--block-height"},
-      {"--runaway", "--runaway-distance"}, {"--offset", "--initial-offset"}, {"--rms", "--rms-height"},
-      {"--deterministic", "--no-stochastic"}, {"--surface", "(generator subcommand)"},
-      {"--spheroradius", "--radius"},    {"--alpha-deg", "--alpha"}};
+  const std::map<std::string, std::string> retired = {{"--mu-a", "--atomic-friction"},
+                                                      {"--koch-alpha", "--alpha"},
+                                                      {"--kn", "--normal-stiffness"},
+                                                      {"--kt", "--tangential-stiffness"},
+                                                      {"--gamma-n", "--normal-damping"},
+                                                      {"--gamma-t", "--tangential-damping"},
+                                                      {"--dt", "--time-step"},
+                                                      {"--settle", "--settle-time"},
+                                                      {"--height", "--block-height"},
+                                                      {"--runaway", "--runaway-distance"},
+                                                      {"--offset", "--initial-offset"},
+                                                      {"--rms", "--rms-height"},
+                                                      {"--deterministic", "--no-stochastic"},
+                                                      {"--surface", "(generator subcommand)"},
+                                                      {"--spheroradius", "--radius"},
+                                                      {"--alpha-deg", "--alpha"}};
   for (const HelpPage& p : pages)
     for (const auto& [name, desc] : p.options) {
       auto it = retired.find(name);
-      EXPECT_TRUE(it == retired.end()) << "frictal " << p.path << " offers " << name << ", a second name of " << it->second;
+      EXPECT_TRUE(it == retired.end()) << "frictal " << p.path << " offers " << name << ", a second name of "
+                                       << it->second;
     }
   // A table field's description belongs to its one option: the same description under another
   // option name would be a second name for the quantity; and the option reads the same
@@ -127,8 +137,7 @@ TEST(CliVocabulary, NoQuantityHasTwoNames) {
           EXPECT_TRUE(n == option || n == "--no-" + option.substr(2)) << f["name"] << " is also offered as " << n;
   }
   // Options named like a table field read the same in every command.
-  for (const auto& f : t["tilt"])
-    EXPECT_LE(descs_by_name[f["option"].get<std::string>()].size(), 1u) << f["option"];
+  for (const auto& f : t["tilt"]) EXPECT_LE(descs_by_name[f["option"].get<std::string>()].size(), 1u) << f["option"];
   // The sawtooth's angle is --rise-angle everywhere, Koch's is --alpha.
   for (const HelpPage& p : pages) {
     if (p.path.size() >= 9 && p.path.substr(p.path.size() - 9) == " sawtooth") {
@@ -150,7 +159,8 @@ TEST(CliVocabulary, GeneratorCommandsOfferExactlyTheTablesOptions) {
   for (const char* cmd : kCommandsWithGenerators) {
     const HelpPage top = parse_help(cmd, run_cli(std::string(cmd) + " --help").out);
     for (const auto& [gen, g] : t["generators"].items()) {
-      EXPECT_NE(std::find(top.subcommands.begin(), top.subcommands.end(), gen), top.subcommands.end()) << cmd << " " << gen;
+      EXPECT_NE(std::find(top.subcommands.begin(), top.subcommands.end(), gen), top.subcommands.end())
+          << cmd << " " << gen;
       const HelpPage p = parse_help(gen, run_cli(std::string(cmd) + " " + gen + " --help").out);
       std::set<std::string> expected{"--help"}, offered;
       for (const auto& f : g["fields"]) {
@@ -225,10 +235,12 @@ TEST(CliVocabulary, MistypedWordsAreNamedWithTheNearest) {
   EXPECT_NE(r.err.find("Commands: surface, signature"), std::string::npos) << r.err;
   r = run_cli("surface kohc -o x.csv");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("unknown subcommand 'kohc' for 'frictal surface'; did you mean 'koch'?"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("unknown subcommand 'kohc' for 'frictal surface'; did you mean 'koch'?"), std::string::npos)
+      << r.err;
   r = run_cli("surface koch --alph 20 -o x.csv");
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("unknown option '--alph' for 'frictal surface koch'; did you mean '--alpha'?"), std::string::npos)
+  EXPECT_NE(r.err.find("unknown option '--alph' for 'frictal surface koch'; did you mean '--alpha'?"),
+            std::string::npos)
       << r.err;
   r = run_cli("tilt koch --time-stpe 1e-5");
   EXPECT_EQ(r.code, 2);

@@ -3,8 +3,8 @@
 // defaults against the paper's Table I/II.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numbers>
 #include <set>
@@ -114,7 +114,9 @@ TEST(TiltSettings, DefaultsAreThePapersTablesAndValuesApply) {
   // Names are unique.
   std::set<std::string> names;
   for (const Field& f : tilt_settings()) EXPECT_TRUE(names.insert(f.name).second) << f.name;
-  auto c = make_tilt_config({{"time_step", 2e-5}, {"face", std::string("envelope")}, {"reverse", true},
+  auto c = make_tilt_config({{"time_step", 2e-5},
+                             {"face", std::string("envelope")},
+                             {"reverse", true},
                              {"normal_stiffness", std::int64_t{1000}}});
   ASSERT_TRUE(c.ok()) << c.error().message;
   EXPECT_EQ(c->time_step, 2e-5);

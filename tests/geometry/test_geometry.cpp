@@ -18,8 +18,10 @@ double brute(const Curve& c, double x, bool upper) {
     if (x0 > x1) std::swap(x0, x1), std::swap(z0, z1);
     if (x < x0 || x > x1) continue;
     double v;
-    if (x0 == x1) v = upper ? std::max(z0, z1) : std::min(z0, z1);
-    else v = z0 + (z1 - z0) * (x - x0) / (x1 - x0);
+    if (x0 == x1)
+      v = upper ? std::max(z0, z1) : std::min(z0, z1);
+    else
+      v = z0 + (z1 - z0) * (x - x0) / (x1 - x0);
     best = upper ? std::max(best, v) : std::min(best, v);
   }
   return best;

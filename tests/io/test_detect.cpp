@@ -30,7 +30,8 @@ bool has_warning(const frictal::SurfaceData& s, const std::string& what) {
 
 // .npy v1.0 file: header dict padded with spaces to a multiple of 64 bytes, ending in '\n'.
 std::string npy(const std::string& descr, bool fortran, const std::string& shape, const std::string& data) {
-  std::string dict = "{'descr': '" + descr + "', 'fortran_order': " + (fortran ? "True" : "False") + ", 'shape': " + shape + ", }";
+  std::string dict =
+      "{'descr': '" + descr + "', 'fortran_order': " + (fortran ? "True" : "False") + ", 'shape': " + shape + ", }";
   std::size_t total = 10 + dict.size() + 1;
   dict += std::string((64 - total % 64) % 64, ' ') + "\n";
   std::string out = "\x93NUMPY";
@@ -64,7 +65,9 @@ std::string gzip_stored(const std::string& data) {
   g += char(nlen & 0xFF);
   g += char(nlen >> 8);
   g += data;
-  auto u32 = [&](std::uint32_t v) { for (int k = 0; k < 4; ++k) g += char((v >> (8 * k)) & 0xFF); };
+  auto u32 = [&](std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) g += char((v >> (8 * k)) & 0xFF);
+  };
   u32(frictal::test::crc32(data));
   u32(std::uint32_t(data.size()));
   return g;
@@ -136,8 +139,8 @@ TEST(DetectText, MatrixWithSmallHeaders) {
   ASSERT_TRUE(a->is_map);
   EXPECT_EQ(a->map.nx, 4u);
   EXPECT_EQ(a->map.ny, 3u);
-  EXPECT_DOUBLE_EQ(a->map.dx, 1e-6);   // 4 um / 4 columns
-  EXPECT_DOUBLE_EQ(a->map.dy, 1e-6);   // 3 um / 3 rows
+  EXPECT_DOUBLE_EQ(a->map.dx, 1e-6);  // 4 um / 4 columns
+  EXPECT_DOUBLE_EQ(a->map.dy, 1e-6);  // 3 um / 3 rows
   EXPECT_DOUBLE_EQ(a->map.at(1, 2), 10e-9);
   EXPECT_TRUE(a->warnings.empty()) << a->warnings[0];
   // Two columns are a matrix when the header gives sizes; nx/ny are checked.
@@ -161,7 +164,8 @@ TEST(DetectText, MatrixWithSmallHeaders) {
   // SPIP ASCII (as Gwyddion exports it): lengths in nm, z = value * Bit2nm nm.
   auto d = frictal::read_surface_bytes(
       "# File Format = ASCII\n# x-pixels = 3\n# y-pixels = 2\n# x-length = 3000\n# y-length = 2000\n"
-      "# x-offset = 0\n# y-offset = 0\n# Bit2nm = 2.0\n# Start of Data:\n0\t1\t2\n3\t4\t5\n", "spip.asc");
+      "# x-offset = 0\n# y-offset = 0\n# Bit2nm = 2.0\n# Start of Data:\n0\t1\t2\n3\t4\t5\n",
+      "spip.asc");
   ASSERT_TRUE(d.ok()) << d.error().message;
   ASSERT_TRUE(d->is_map);
   EXPECT_DOUBLE_EQ(d->map.dx, 1e-6);
@@ -212,8 +216,8 @@ TEST(DetectText, IsoSdfAscii) {
   EXPECT_DOUBLE_EQ(s->map.dy, 2e-6);
   EXPECT_DOUBLE_EQ(s->map.at(2, 1), 6e-9);
   EXPECT_DOUBLE_EQ(s->map.at(0, 1), 4e-9);
-  auto bad = frictal::read_surface_bytes("aBCR-1.0\nNumPoints = 3\nNumProfiles = 2\nXscale = 1\nYscale = 1\nZscale = 1\n*\n1 2 3\n",
-                                         "short.sdf");
+  auto bad = frictal::read_surface_bytes(
+      "aBCR-1.0\nNumPoints = 3\nNumProfiles = 2\nXscale = 1\nYscale = 1\nZscale = 1\n*\n1 2 3\n", "short.sdf");
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("3 values"), std::string::npos) << bad.error().message;
 }
@@ -263,7 +267,8 @@ TEST(DetectNpy, OneDimensionalIsAProfileAndSizesAreChecked) {
   ASSERT_FALSE(nospacing.ok());
   EXPECT_NE(nospacing.error().message.find("spacing"), std::string::npos);
   // One value short: the size check names both sizes.
-  auto shortf = frictal::read_surface_bytes(npy("<f8", false, "(2, 3)", raw(std::vector<double>(5, 1.0), false)), "s.npy");
+  auto shortf =
+      frictal::read_surface_bytes(npy("<f8", false, "(2, 3)", raw(std::vector<double>(5, 1.0), false)), "s.npy");
   ASSERT_FALSE(shortf.ok());
   EXPECT_NE(shortf.error().message.find("40 bytes"), std::string::npos) << shortf.error().message;
   EXPECT_NE(shortf.error().message.find("48"), std::string::npos) << shortf.error().message;
@@ -290,7 +295,8 @@ TEST(DetectGzip, CompressedTextReadsAsItsContent) {
   EXPECT_DOUBLE_EQ(s->curve.z[2], -3e-9);
   EXPECT_EQ(s->reader, "native (gzip)");
   // A gzip-compressed Gwyddion text matrix.
-  auto m = frictal::read_surface_bytes(gzip_stored("# Width: 2 um\n# Height: 1 um\n# Value units: nm\n1 2\n"), "m.txt.gz");
+  auto m =
+      frictal::read_surface_bytes(gzip_stored("# Width: 2 um\n# Height: 1 um\n# Value units: nm\n1 2\n"), "m.txt.gz");
   ASSERT_TRUE(m.ok()) << m.error().message;
   ASSERT_TRUE(m->is_map);
   EXPECT_DOUBLE_EQ(m->map.at(1, 0), 2e-9);

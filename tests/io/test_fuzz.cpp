@@ -87,7 +87,8 @@ TEST(Fuzz, CraftedX3pSurviveMutation) {
   for (int k = 0; k < 2000; ++k) {
     std::string xml = mutate(k % 2 ? kXml : kXmlList, rng);
     std::string bin = k % 3 ? data : mutate(data, rng);
-    std::string zip = frictal::test::zip_stored({{"main.xml", xml}, {"bindata/data.bin", bin}, {"bindata/valid.bin", valid}});
+    std::string zip =
+        frictal::test::zip_stored({{"main.xml", xml}, {"bindata/data.bin", bin}, {"bindata/valid.bin", valid}});
     auto r = frictal::read_surface_bytes(zip, "fuzz.x3p");
     if (r) {
       ++ok;
@@ -100,6 +101,10 @@ TEST(Fuzz, CraftedX3pSurviveMutation) {
   }
   EXPECT_GT(ok, 0);
   // The unmutated archives read.
-  EXPECT_TRUE(frictal::read_surface_bytes(frictal::test::zip_stored({{"main.xml", kXml}, {"bindata/data.bin", data}, {"bindata/valid.bin", valid}}), "a.x3p").ok());
+  EXPECT_TRUE(
+      frictal::read_surface_bytes(
+          frictal::test::zip_stored({{"main.xml", kXml}, {"bindata/data.bin", data}, {"bindata/valid.bin", valid}}),
+          "a.x3p")
+          .ok());
   EXPECT_TRUE(frictal::read_surface_bytes(frictal::test::zip_stored({{"main.xml", kXmlList}}), "b.x3p").ok());
 }

@@ -39,7 +39,8 @@ TEST(ReadersOnEveryFile, EveryFormatEitherReadsConsistentlyOrNamesTheInput) {
       auto r = frictal::read_surface_bytes(bytes, name, o);
       if (!r) {
         ++errors;
-        EXPECT_NE(r.error().message.find(name), std::string::npos) << "error does not name the input: " << r.error().message;
+        EXPECT_NE(r.error().message.find(name), std::string::npos)
+            << "error does not name the input: " << r.error().message;
         continue;
       }
       ++reads;

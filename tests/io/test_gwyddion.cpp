@@ -5,8 +5,8 @@
 // reason, where Gwyddion's libraries or file modules are not installed.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <dlfcn.h>
+#include <cmath>
 #include <string>
 
 #include "frictal/io.hpp"
@@ -15,10 +15,10 @@ namespace {
 
 const std::string kData = FRICTAL_TEST_DATA;
 
-#define REQUIRE_GWYDDION()                                                  \
-  do {                                                                      \
-    std::string why;                                                        \
-    if (!frictal::gwyddion_available("", &why)) GTEST_SKIP() << why;        \
+#define REQUIRE_GWYDDION()                                           \
+  do {                                                               \
+    std::string why;                                                 \
+    if (!frictal::gwyddion_available("", &why)) GTEST_SKIP() << why; \
   } while (0)
 
 // z(i, j) = 1e-9 (3 i - 2 j + 0.5 i j), 7 x 5 points, dx = 0.5 um, dy = 0.25 um.
@@ -79,10 +79,10 @@ TEST(Gwyddion, WrittenByGwyddionReadBackByFrictal) {
     const char* reader;
   };
   const Case cases[] = {
-      {".gwy", 1e-15, "gwyddion:gwyfile"},   {".gsf", 1e-6, "gwyddion:gsffile"}, {".sur", 1e-6, "gwyddion:surffile"},
-      {".ibw", 1e-6, "gwyddion:igorfile"},   {".nrrd", 1e-6, "gwyddion:nrrdfile"},
-      {".sdf", 1e-5, "native"},              {".asc", 1e-12, "native"},
-      {".tom", 1e-6, "gwyddion:wsxmfile"},   {".afm", 1e-4, "gwyddion:assing-afm"}, {".spm", 1e-6, "gwyddion:iso28600"},
+      {".gwy", 1e-15, "gwyddion:gwyfile"}, {".gsf", 1e-6, "gwyddion:gsffile"},   {".sur", 1e-6, "gwyddion:surffile"},
+      {".ibw", 1e-6, "gwyddion:igorfile"}, {".nrrd", 1e-6, "gwyddion:nrrdfile"}, {".sdf", 1e-5, "native"},
+      {".asc", 1e-12, "native"},           {".tom", 1e-6, "gwyddion:wsxmfile"},  {".afm", 1e-4, "gwyddion:assing-afm"},
+      {".spm", 1e-6, "gwyddion:iso28600"},
   };
   for (const auto& c : cases) {
     const std::string path = ::testing::TempDir() + "frictal_gwy" + c.ext;
@@ -142,7 +142,8 @@ TEST(Gwyddion, MaskIsInvalidPoints) {
 
 TEST(Gwyddion, NativeAndGwyddionReadTheSameX3p) {
   REQUIRE_GWYDDION();
-  for (const char* f : {"/x3p/pyramid.x3p", "/x3p/x3p-2.x3p", "/x3p/ISO5436-sample1_bin.x3p", "/x3p/ISO5436-sample4_bin.x3p"}) {
+  for (const char* f :
+       {"/x3p/pyramid.x3p", "/x3p/x3p-2.x3p", "/x3p/ISO5436-sample1_bin.x3p", "/x3p/ISO5436-sample4_bin.x3p"}) {
     auto n = frictal::read_surface(kData + f);
     ASSERT_TRUE(n.ok()) << f << n.error().message;
     frictal::ReadOptions o;
@@ -218,7 +219,8 @@ TEST(Gwyddion, GraphCurvesAreProfiles) {
   using Obj = void*;
   auto graph_new = reinterpret_cast<Obj (*)()>(sym("gwy_graph_model_new"));
   auto curve_new = reinterpret_cast<Obj (*)()>(sym("gwy_graph_curve_model_new"));
-  auto set_data = reinterpret_cast<void (*)(Obj, const double*, const double*, int)>(sym("gwy_graph_curve_model_set_data"));
+  auto set_data =
+      reinterpret_cast<void (*)(Obj, const double*, const double*, int)>(sym("gwy_graph_curve_model_set_data"));
   auto add_curve = reinterpret_cast<int (*)(Obj, Obj)>(sym("gwy_graph_model_add_curve"));
   auto obj_set = reinterpret_cast<void (*)(Obj, const char*, ...)>(sym("g_object_set"));
   auto unit_new = reinterpret_cast<Obj (*)(const char*)>(sym("gwy_si_unit_new"));

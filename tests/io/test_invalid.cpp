@@ -32,13 +32,17 @@ std::string x3p_sur(char type, const std::vector<double>& z, const std::string& 
       std::string(1, type) +
       "</DataType></CZ></Axes></Record1><Record3><MatrixDimension><SizeX>3</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ>"
       "</MatrixDimension><DataLink><PointDataLink>bindata/data.bin</PointDataLink>" +
-      (valid.empty() ? "" : "<ValidPointsLink>bindata/valid.bin</ValidPointsLink>") + "</DataLink></Record3></p:ISO5436_2>";
+      (valid.empty() ? "" : "<ValidPointsLink>bindata/valid.bin</ValidPointsLink>") +
+      "</DataLink></Record3></p:ISO5436_2>";
   std::string data;
   for (double v : z) {
     unsigned char b[8];
     std::size_t n = type == 'F' ? 4 : 8;
-    if (type == 'F') { float f = float(v); std::memcpy(b, &f, 4); }
-    else std::memcpy(b, &v, 8);
+    if (type == 'F') {
+      float f = float(v);
+      std::memcpy(b, &f, 4);
+    } else
+      std::memcpy(b, &v, 8);
     for (std::size_t k = 0; k < n; ++k) data += char(b[k]);  // the test machine is little-endian (x86-64)
   }
   std::vector<std::pair<std::string, std::string>> members = {{"main.xml", xml}, {"bindata/data.bin", data}};
@@ -53,8 +57,7 @@ const double kNan = std::numeric_limits<double>::quiet_NaN();
 
 TEST(InvalidPoints, TextProfileEverySpellingIsDroppedWithOneWarning) {
   // z column: 1, inf, 2, -inf, NaN, nan, +Inf, Infinity, -INF, 3 (um); 7 invalid.
-  const std::string text =
-      "x (um),z (um)\n0,1\n1,inf\n2,2\n3,-inf\n4,NaN\n5,nan\n6,+Inf\n7,Infinity\n8,-INF\n9,3\n";
+  const std::string text = "x (um),z (um)\n0,1\n1,inf\n2,2\n3,-inf\n4,NaN\n5,nan\n6,+Inf\n7,Infinity\n8,-INF\n9,3\n";
   auto s = frictal::read_surface_bytes(text, "inf.csv");
   ASSERT_TRUE(s.ok()) << s.error().message;
   ASSERT_FALSE(s->is_map);
@@ -72,7 +75,11 @@ TEST(InvalidPoints, TextProfileEverySpellingIsDroppedWithOneWarning) {
   EXPECT_NE(w.find("2 -inf"), std::string::npos) << w;
   // Whitespace and semicolon files, too.
   for (const char* t : {"0 1\n1 inf\n2 2\n", "0;1\n1;-Inf\n2;2\n", "0\t1\n1\tNaN\n2\t2\n"}) {
-    auto r = frictal::read_surface_bytes(t, "t.txt", [] { frictal::ReadOptions o; o.default_unit = "m"; return o; }());
+    auto r = frictal::read_surface_bytes(t, "t.txt", [] {
+      frictal::ReadOptions o;
+      o.default_unit = "m";
+      return o;
+    }());
     ASSERT_TRUE(r.ok()) << t << r.error().message;
     EXPECT_EQ(r->curve.size(), 2u) << t;
     EXPECT_EQ(count_containing(r->warnings, "1 invalid point"), 1u) << t;
@@ -87,7 +94,8 @@ TEST(InvalidPoints, InfiniteXIsAnErrorNamingTheLine) {
 
 TEST(InvalidPoints, GwyddionTextMapMasksAndStatisticsIgnoreThem) {
   // 3 x 2 matrix in nm: 1 inf 3 / -inf 5 NaN -> valid 1, 3, 5 nm.
-  auto s = frictal::read_surface_bytes("# Width: 3 um\n# Height: 2 um\n# Value units: nm\n1 inf 3\n-inf 5 NaN\n", "m.txt");
+  auto s =
+      frictal::read_surface_bytes("# Width: 3 um\n# Height: 2 um\n# Value units: nm\n1 inf 3\n-inf 5 NaN\n", "m.txt");
   ASSERT_TRUE(s.ok()) << s.error().message;
   ASSERT_TRUE(s->is_map);
   const auto& m = s->map;

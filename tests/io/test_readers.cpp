@@ -1,7 +1,7 @@
-// Reading every measured file in tests/data (provenance in tests/data/README.md). Expected values come from the files' own numbers,
-// parsed here with a deliberately trivial method (replace separators by spaces, istringstream),
-// times the unit the file states (µm = 1e-6 m, nm = 1e-9 m), or from the values written in the
-// X3P XML / computed with python3 struct from the binary members (stated where used).
+// Reading every measured file in tests/data (provenance in tests/data/README.md). Expected values come from the files'
+// own numbers, parsed here with a deliberately trivial method (replace separators by spaces, istringstream), times the
+// unit the file states (µm = 1e-6 m, nm = 1e-9 m), or from the values written in the X3P XML / computed with python3
+// struct from the binary members (stated where used).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -114,7 +114,10 @@ TEST(ReadText, DektakLatin1ScanData) {
   expect_points(s->curve, rows, 0, 1, 1e-6, 1e-6);
   EXPECT_NEAR(s->curve.x.back() - s->curve.x.front(), 1499.8e-6, 1e-12);
   std::vector<double> x, z;
-  for (auto& r : rows) { x.push_back(r[0] * 1e-6); z.push_back(r[1] * 1e-6); }
+  for (auto& r : rows) {
+    x.push_back(r[0] * 1e-6);
+    z.push_back(r[1] * 1e-6);
+  }
   auto [m, rms] = pl_mean_rms(x, z);
   EXPECT_GT(rms, 1e-6);  // strong tilt/form: several micrometres
   (void)m;
@@ -139,7 +142,7 @@ TEST(ReadText, Xy2UnitLineAndCountLine) {
   auto s = frictal::read_surface(path);
   ASSERT_TRUE(s.ok()) << s.error().message;
   expect_points(s->curve, rows, 0, 1, 1e-6, 1e-6);  // unit line "µm µm"
-  ASSERT_FALSE(s->warnings.empty());                 // count line says 23, 24 rows follow
+  ASSERT_FALSE(s->warnings.empty());                // count line says 23, 24 rows follow
   EXPECT_NE(s->warnings[0].find("23"), std::string::npos);
 }
 
@@ -171,11 +174,11 @@ TEST(ReadText, Matrix6) {
 
 namespace {
 // The 16 values written in ISO5436-sample1.x3p's DataList (x fastest); index 7 is <Datum/>.
-const double kSample1[16] = {4.86219120804151E-0001, 3.46341436648013E-0003, -8.08368571682830E-0001,
-                             -5.79793099037002E-0001, 8.57622027393310E-0001, 1.04759602566142E+0000,
-                             1.01879225277798E+0000, NAN, 8.23683772970184E-0001, 7.97872489327661E-0001,
-                             -5.57459388341694E-0001, -2.33247858849220E-0001, 6.75397146760858E-0001,
-                             4.20737549074718E-0001, 6.42069248110950E-0001, -2.15696638464903E-0001};
+const double kSample1[16] = {
+    4.86219120804151E-0001, 3.46341436648013E-0003, -8.08368571682830E-0001, -5.79793099037002E-0001,
+    8.57622027393310E-0001, 1.04759602566142E+0000, 1.01879225277798E+0000,  NAN,
+    8.23683772970184E-0001, 7.97872489327661E-0001, -5.57459388341694E-0001, -2.33247858849220E-0001,
+    6.75397146760858E-0001, 4.20737549074718E-0001, 6.42069248110950E-0001,  -2.15696638464903E-0001};
 }  // namespace
 
 TEST(ReadX3p, Sample1XmlAndBinary) {
@@ -190,8 +193,10 @@ TEST(ReadX3p, Sample1XmlAndBinary) {
     EXPECT_DOUBLE_EQ(m.dx, 1.6016e-2);
     EXPECT_DOUBLE_EQ(m.dy, 1.6016e-2);
     for (int k = 0; k < 16; ++k) {
-      if (std::isnan(kSample1[k])) EXPECT_TRUE(std::isnan(m.heights[k])) << f;  // empty Datum / valid.bin bit 7 = 0
-      else EXPECT_DOUBLE_EQ(m.heights[k], kSample1[k]) << f << " " << k;
+      if (std::isnan(kSample1[k]))
+        EXPECT_TRUE(std::isnan(m.heights[k])) << f;  // empty Datum / valid.bin bit 7 = 0
+      else
+        EXPECT_DOUBLE_EQ(m.heights[k], kSample1[k]) << f << " " << k;
     }
   }
 }
@@ -221,8 +226,10 @@ TEST(ReadX3p, Sample3AbsoluteY) {
   EXPECT_DOUBLE_EQ(m->x0, 0.1);
   EXPECT_DOUBLE_EQ(m->dx, 1.6016e-2);
   for (int k = 0; k < 16; ++k) {
-    if (std::isnan(kSample1[k])) EXPECT_TRUE(std::isnan(m->heights[k]));
-    else EXPECT_DOUBLE_EQ(m->heights[k], 2 + kSample1[k]);
+    if (std::isnan(kSample1[k]))
+      EXPECT_TRUE(std::isnan(m->heights[k]));
+    else
+      EXPECT_DOUBLE_EQ(m->heights[k], 2 + kSample1[k]);
   }
 }
 
@@ -233,8 +240,10 @@ TEST(ReadX3p, Sample4Int16IncrementOffset) {
     auto m = frictal::read_map(kData + f);
     ASSERT_TRUE(m.ok()) << m.error().message;
     for (int k = 0; k < 16; ++k) {
-      if (k == 7) EXPECT_TRUE(std::isnan(m->heights[k])) << f;
-      else EXPECT_DOUBLE_EQ(m->heights[k], -0.5 + 0.001 * raw[k]) << f << " " << k;
+      if (k == 7)
+        EXPECT_TRUE(std::isnan(m->heights[k])) << f;
+      else
+        EXPECT_DOUBLE_EQ(m->heights[k], -0.5 + 0.001 * raw[k]) << f << " " << k;
     }
   }
 }
@@ -259,9 +268,14 @@ TEST(ReadX3p, SampleLandSubfolderNoNamespaceNaN) {
   EXPECT_DOUBLE_EQ(m.dx, 2.58e-6);
   EXPECT_EQ(m.valid_count(), 209716u);
   double sum = 0, n = 0;
-  for (double v : m.heights) if (!std::isnan(v)) { sum += v; ++n; }
+  for (double v : m.heights)
+    if (!std::isnan(v)) {
+      sum += v;
+      ++n;
+    }
   double mean = sum / n, ss = 0;
-  for (double v : m.heights) if (!std::isnan(v)) ss += (v - mean) * (v - mean);
+  for (double v : m.heights)
+    if (!std::isnan(v)) ss += (v - mean) * (v - mean);
   EXPECT_NEAR(mean, -5.3520683475475706e-07, 1e-18);
   EXPECT_NEAR(std::sqrt(ss / n), 3.4334274890691285e-05, 1e-15);
   EXPECT_DOUBLE_EQ(m.heights[0], -5.421108289738186e-05);
@@ -300,7 +314,8 @@ std::string tiny_xml(const std::string& root_open, const std::string& root_close
          "<Record1><Revision>ISO5436 - 2000</Revision><FeatureType>SUR</FeatureType><Axes>"
          "<CX><AxisType>I</AxisType><DataType>D</DataType><Increment>1e-6</Increment><Offset></Offset></CX>"
          "<CY><AxisType>I</AxisType><DataType>D</DataType><Increment>2e-6</Increment><Offset/></CY>"
-         "<CZ>" + cz + "</CZ></Axes></Record1><Record3>" + record3 +
+         "<CZ>" +
+         cz + "</CZ></Axes></Record1><Record3>" + record3 +
          "</Record3><Record4><ChecksumFile>md5checksum.hex</ChecksumFile></Record4>" + root_close;
 }
 const std::string kNsOpen = "<p:ISO5436_2 xmlns:p=\"http://www.opengps.eu/2008/ISO5436_2\">";
@@ -319,7 +334,8 @@ bool has_warning(const frictal::SurfaceData& s, const char* what) {
 
 TEST(ReadX3p, StaleChecksumIsAWarning) {
   std::string xml = tiny_xml(kNsOpen, kNsClose, kList2x2);
-  std::string zip = frictal::test::zip_stored({{"main.xml", xml}, {"md5checksum.hex", "0123456789abcdef0123456789abcdef *main.xml\n"}});
+  std::string zip = frictal::test::zip_stored(
+      {{"main.xml", xml}, {"md5checksum.hex", "0123456789abcdef0123456789abcdef *main.xml\n"}});
   auto s = frictal::read_surface_bytes(zip, "stale.x3p");
   ASSERT_TRUE(s.ok()) << s.error().message;
   EXPECT_TRUE(has_warning(*s, "MD5"));
@@ -346,22 +362,29 @@ TEST(ReadX3p, DamagedInputsAreErrors) {
   // Truncated archive.
   EXPECT_NE(err(good.substr(0, good.size() / 2)).find("bad.x3p"), std::string::npos);
   // Binary data with the wrong size.
-  std::string link = "<MatrixDimension><SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
-                     "<DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink>";
-  auto m = err(frictal::test::zip_stored({{"main.xml", tiny_xml(kNsOpen, kNsClose, link)}, {"bindata/data.bin", std::string(31, '\0')}}));
+  std::string link =
+      "<MatrixDimension><SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
+      "<DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink>";
+  auto m = err(frictal::test::zip_stored(
+      {{"main.xml", tiny_xml(kNsOpen, kNsClose, link)}, {"bindata/data.bin", std::string(31, '\0')}}));
   EXPECT_NE(m.find("32"), std::string::npos) << m;
   // Absurd dimensions: refused before allocating.
-  std::string huge = "<MatrixDimension><SizeX>100000000</SizeX><SizeY>100000000</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
-                     "<DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink>";
+  std::string huge =
+      "<MatrixDimension><SizeX>100000000</SizeX><SizeY>100000000</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
+      "<DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink>";
   m = err(frictal::test::zip_stored({{"main.xml", tiny_xml(kNsOpen, kNsClose, huge)}}));
   EXPECT_NE(m.find("limit"), std::string::npos) << m;
   // Bad number, too few points, missing main.xml, not a zip, bad XML.
-  std::string bad = "<MatrixDimension><SizeX>2</SizeX><SizeY>1</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
-                    "<DataList><Datum>1.5x</Datum><Datum>2</Datum></DataList>";
-  EXPECT_NE(err(frictal::test::zip_stored({{"main.xml", tiny_xml(kNsOpen, kNsClose, bad)}})).find("1.5x"), std::string::npos);
-  std::string few = "<MatrixDimension><SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
-                    "<DataList><Datum>1</Datum></DataList>";
-  EXPECT_NE(err(frictal::test::zip_stored({{"main.xml", tiny_xml(kNsOpen, kNsClose, few)}})).find("declared"), std::string::npos);
+  std::string bad =
+      "<MatrixDimension><SizeX>2</SizeX><SizeY>1</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
+      "<DataList><Datum>1.5x</Datum><Datum>2</Datum></DataList>";
+  EXPECT_NE(err(frictal::test::zip_stored({{"main.xml", tiny_xml(kNsOpen, kNsClose, bad)}})).find("1.5x"),
+            std::string::npos);
+  std::string few =
+      "<MatrixDimension><SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
+      "<DataList><Datum>1</Datum></DataList>";
+  EXPECT_NE(err(frictal::test::zip_stored({{"main.xml", tiny_xml(kNsOpen, kNsClose, few)}})).find("declared"),
+            std::string::npos);
   EXPECT_NE(err(frictal::test::zip_stored({{"other.xml", "x"}})).find("main.xml"), std::string::npos);
   EXPECT_NE(err(frictal::test::zip_stored({{"main.xml", "<a><b></a>"}})).find("XML"), std::string::npos);
   frictal::ReadOptions o;
@@ -397,7 +420,8 @@ TEST(ReadText, CommentedProfileIsNotAMapAndFrenchGwyddionIs) {
   ASSERT_TRUE(p.ok()) << p.error().message;
   EXPECT_FALSE(p->is_map);
   // Gwyddion in French: Largeur/Hauteur; 2 x 2 nodes -> dx = 4 um / 2, dy = 6 nm / 2.
-  auto m = frictal::read_surface_bytes("# Canal: a\n# Largeur: 4 \xc2\xb5m\n# Hauteur: 6 nm\n# Value units: nm\n1 2\n3 NaN\n", "fr.txt");
+  auto m = frictal::read_surface_bytes(
+      "# Canal: a\n# Largeur: 4 \xc2\xb5m\n# Hauteur: 6 nm\n# Value units: nm\n1 2\n3 NaN\n", "fr.txt");
   ASSERT_TRUE(m.ok()) << m.error().message;
   ASSERT_TRUE(m->is_map);
   EXPECT_DOUBLE_EQ(m->map.dx, 2e-6);
@@ -464,7 +488,8 @@ TEST(ReadX3p, ProfileWithMaskDropsInvalidPoints) {
   for (std::int32_t v : {10, -20, 30, -40, 50})
     for (int b = 0; b < 4; ++b) data += char((std::uint32_t(v) >> (8 * b)) & 0xFF);
   auto s = frictal::read_surface_bytes(
-      frictal::test::zip_stored({{"main.xml", xml}, {"bindata/data.bin", data}, {"bindata/valid.bin", "\x1b"}}), "prf.x3p");
+      frictal::test::zip_stored({{"main.xml", xml}, {"bindata/data.bin", data}, {"bindata/valid.bin", "\x1b"}}),
+      "prf.x3p");
   ASSERT_TRUE(s.ok()) << s.error().message;
   ASSERT_FALSE(s->is_map);
   ASSERT_EQ(s->curve.size(), 4u);
@@ -476,11 +501,18 @@ TEST(ReadX3p, ProfileWithMaskDropsInvalidPoints) {
 }
 
 TEST(ReadX3p, HugeDeclaredMemberSizeIsRefusedWithoutAllocating) {
-  std::string link = "<MatrixDimension><SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
-                     "<DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink>";
-  std::string zip = frictal::test::zip_stored({{"main.xml", tiny_xml(kNsOpen, kNsClose, link)}, {"bindata/data.bin", std::string(32, '\0')}});
+  std::string link =
+      "<MatrixDimension><SizeX>2</SizeX><SizeY>2</SizeY><SizeZ>1</SizeZ></MatrixDimension>"
+      "<DataLink><PointDataLink>bindata/data.bin</PointDataLink></DataLink>";
+  std::string zip = frictal::test::zip_stored(
+      {{"main.xml", tiny_xml(kNsOpen, kNsClose, link)}, {"bindata/data.bin", std::string(32, '\0')}});
   // Patch the uncompressed size of data.bin (local header +22, central directory +24) to 1 GiB.
-  auto patch = [&](std::size_t at) { zip[at] = 0; zip[at + 1] = 0; zip[at + 2] = 0; zip[at + 3] = 0x40; };
+  auto patch = [&](std::size_t at) {
+    zip[at] = 0;
+    zip[at + 1] = 0;
+    zip[at + 2] = 0;
+    zip[at + 3] = 0x40;
+  };
   std::size_t local = zip.find("PK\x03\x04", 1), central = zip.find("PK\x01\x02");
   central = zip.find("PK\x01\x02", central + 4);
   ASSERT_NE(local, std::string::npos);

@@ -62,7 +62,8 @@ TEST(X3pWrite, MapRoundTripEveryTypeBinaryAndXml) {
         o.binary = binary;
         o.z_increment = std::ldexp(1.0, -20);
         o.z_offset = std::ldexp(1.0, -10);
-        std::string path = tmp_path(std::string("map-") + tname(t) + (binary ? "-bin" : "-xml") + (holes ? "-holes" : "") + ".x3p");
+        std::string path =
+            tmp_path(std::string("map-") + tname(t) + (binary ? "-bin" : "-xml") + (holes ? "-holes" : "") + ".x3p");
         auto w = frictal::write_x3p(path, m, o);
         ASSERT_TRUE(w.ok()) << w.error().message;
         auto s = frictal::read_surface(path);
@@ -77,8 +78,10 @@ TEST(X3pWrite, MapRoundTripEveryTypeBinaryAndXml) {
         EXPECT_EQ(r.x0, m.x0);
         EXPECT_EQ(r.y0, m.y0);
         for (std::size_t k = 0; k < m.size(); ++k) {
-          if (std::isnan(m.heights[k])) EXPECT_TRUE(std::isnan(r.heights[k])) << path << " " << k;
-          else EXPECT_EQ(r.heights[k], m.heights[k]) << path << " " << k;
+          if (std::isnan(m.heights[k]))
+            EXPECT_TRUE(std::isnan(r.heights[k])) << path << " " << k;
+          else
+            EXPECT_EQ(r.heights[k], m.heights[k]) << path << " " << k;
         }
       }
 }
@@ -167,8 +170,10 @@ TEST(X3pWrite, RewriteOfSharedMapKeepsValues) {
   ASSERT_TRUE(r.ok());
   ASSERT_EQ(r->size(), m->size());
   for (std::size_t k = 0; k < m->size(); ++k) {
-    if (std::isnan(m->heights[k])) ASSERT_TRUE(std::isnan(r->heights[k]));
-    else ASSERT_EQ(r->heights[k], m->heights[k]);
+    if (std::isnan(m->heights[k]))
+      ASSERT_TRUE(std::isnan(r->heights[k]));
+    else
+      ASSERT_EQ(r->heights[k], m->heights[k]);
   }
 }
 

@@ -83,7 +83,8 @@ TEST(Report, PngHasSignatureHeaderStoredDataAndTheStandardIendCrc) {
   ASSERT_EQ(len, 2u * (1 + 9));
   std::string raw = z.substr(7, len);
   EXPECT_EQ(raw[0], '\0');
-  EXPECT_EQ(std::vector<std::uint8_t>(raw.begin() + 1, raw.begin() + 10), std::vector<std::uint8_t>(rgb.begin(), rgb.begin() + 9));
+  EXPECT_EQ(std::vector<std::uint8_t>(raw.begin() + 1, raw.begin() + 10),
+            std::vector<std::uint8_t>(rgb.begin(), rgb.begin() + 9));
   EXPECT_FALSE(rp::encode_png(3, 3, rgb));
 }
 
@@ -93,7 +94,7 @@ TEST(Report, NiceTicksAndUnits) {
   ASSERT_FALSE(t.empty());
   EXPECT_GE(t.front(), -3.7);
   EXPECT_LE(t.back(), 12.2);
-  EXPECT_DOUBLE_EQ(t[1] - t[0], 5);  // span 15.9 / 6 = 2.65 per tick: the next nice step is 5
+  EXPECT_DOUBLE_EQ(t[1] - t[0], 5);                    // span 15.9 / 6 = 2.65 per tick: the next nice step is 5
   EXPECT_DOUBLE_EQ(rp::nice_ticks(0, 10, 4)[1], 2.5);  // 2.5 per tick exactly
   EXPECT_EQ(rp::length_unit(2.4e-3).name, "mm");
   EXPECT_EQ(rp::length_unit(650e-6).name, "\u00b5m");

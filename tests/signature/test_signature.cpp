@@ -71,7 +71,8 @@ TEST(Signature, K0TipOnTipAtZeroAndMatingAtHalfWavelength) {
     has_ee |= r->contacts[k].type == ContactType::EdgeEdge;
   EXPECT_TRUE(has_ee);
   bool vv0 = false;
-  for (auto k = r->contact_begin[0]; k < r->contact_begin[1]; ++k) vv0 |= r->contacts[k].type == ContactType::VertexVertex;
+  for (auto k = r->contact_begin[0]; k < r->contact_begin[1]; ++k)
+    vv0 |= r->contacts[k].type == ContactType::VertexVertex;
   EXPECT_TRUE(vv0);
   // Lift: h(s) = h(lambda/2) + |s - lambda/2| tan(alpha); tip on tip is one tooth height above.
   const double P = 0.005 * std::tan(deg(20));
@@ -246,8 +247,8 @@ TEST(Signature, OneSidedSlopesBracketTheSecantOfEveryInterval) {
     int n_max;
     std::uint64_t s1, s2;
   };
-  for (const Case& c : {Case{1.8, 8, 6868312974978945722ull, 3248097931408723624ull}, Case{1.3, 6, 1, 2},
-                        Case{1.6, 10, 7, 8}}) {
+  for (const Case& c :
+       {Case{1.8, 8, 6868312974978945722ull, 3248097931408723624ull}, Case{1.3, 6, 1, 2}, Case{1.6, 10, 7, 8}}) {
     WmParams w;
     w.dimension = c.D;
     w.n_max = c.n_max;

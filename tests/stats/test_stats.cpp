@@ -54,7 +54,7 @@ TEST(StatsEdges, HeightsNearTheTopOfDoubleGiveTheExactRmsNotZero) {
   auto s = profile_stats(p);
   EXPECT_NEAR(s.rms_height / (A / std::sqrt(3.0)), 1.0, 1e-12);
   EXPECT_NEAR(s.rms_slope / (A / 5), 1.0, 1e-12);  // 2A/10 = 2e307, representable
-  EXPECT_NEAR(s.mean_height / A, 0.0, 1e-12);  // int z = (A - A)/2 h + (-A + A)/2 h = 0
+  EXPECT_NEAR(s.mean_height / A, 0.0, 1e-12);      // int z = (A - A)/2 h + (-A + A)/2 h = 0
   // Slopes of 2e308 are beyond double: +inf, never a wrong finite number or 0.
   Profile steep{{0, 1, 2}, {A, -A, A}, std::nullopt};
   auto t = profile_stats(steep);

@@ -134,8 +134,8 @@ TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
   // Open MPI leaks at exit by design; under the sanitizer preset keep ASan's memory checks but
   // not LeakSanitizer (the leaks are all inside libmpi and its plugins).
   const std::string mpirun = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 2 --oversubscribe";
-  const std::string cmd = mpirun + root + " " + FRICTAL_CLI_PATH + " study run " + study +
-                          " --store " + b + " --progress none >/dev/null 2>&1";
+  const std::string cmd = mpirun + root + " " + FRICTAL_CLI_PATH + " study run " + study + " --store " + b +
+                          " --progress none >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   EXPECT_EQ(dump(a), dump(b));
   // Both ranks computed (rank 1 took at least one task from rank 0's queue).
@@ -150,8 +150,8 @@ TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
   // first one); each is reassigned to rank 1 and the
   // store is still exactly the threads run, with the extra attempts recorded.
   const std::string c = fresh("mpi-fault.sqlite");
-  const std::string cmd2 = mpirun + root + " " + FRICTAL_CLI_PATH + " study run " + study +
-                           " --store " + c + " --progress none --inject-failure-rank 0 >/dev/null 2>&1";
+  const std::string cmd2 = mpirun + root + " " + FRICTAL_CLI_PATH + " study run " + study + " --store " + c +
+                           " --progress none --inject-failure-rank 0 >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd2.c_str()), 0) << cmd2;
   EXPECT_EQ(dump(a), dump(c));
   auto sc = Store::open_existing(c);
@@ -182,7 +182,9 @@ TEST(StudyCli, UserErrorsAndExport) {
   r = run_cli("study status " + fresh("none.sqlite"));
   EXPECT_EQ(r.code, 2);
   const std::string bogus = temp_path("bogus.toml");
-  write_file(bogus, "[study]\nname='t'\nseed=1\n[[part]]\nname='sim'\nkind='no-such-kind'\n[part.parameters]\nalpha_deg=[5.0]\n");
+  write_file(
+      bogus,
+      "[study]\nname='t'\nseed=1\n[[part]]\nname='sim'\nkind='no-such-kind'\n[part.parameters]\nalpha_deg=[5.0]\n");
   r = run_cli("study run " + bogus + " --store " + fresh("bogus.sqlite"));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("unknown task kind 'no-such-kind'"), std::string::npos) << r.err;

@@ -133,22 +133,27 @@ alpha_deg = { from = 5.0, to = 6.0, count = 3 }
 
 TEST(StudyGrid, ErrorsNameTheProblem) {
   EXPECT_NE(parse_error("[study]\nname='a'\nseed=1\n").find("[[part]]"), std::string::npos);
-  EXPECT_NE(parse_error("[study]\nname='a'\nseed=1\n[[part]]\nname='p'\nkind='nope'\n[part.parameters]\nx=1\n").find(
-                "unknown task kind 'nope'"),
+  EXPECT_NE(parse_error("[study]\nname='a'\nseed=1\n[[part]]\nname='p'\nkind='nope'\n[part.parameters]\nx=1\n")
+                .find("unknown task kind 'nope'"),
             std::string::npos);
-  EXPECT_NE(parse_error("[study]\nname='a'\nseed=1\n[[part]]\nname='p'\nkind='koch-signature'\n[part.parameters]\nx=[]\n")
-                .find("parameter 'x'"),
-            std::string::npos);
+  EXPECT_NE(
+      parse_error("[study]\nname='a'\nseed=1\n[[part]]\nname='p'\nkind='koch-signature'\n[part.parameters]\nx=[]\n")
+          .find("parameter 'x'"),
+      std::string::npos);
   EXPECT_NE(parse_error("[study]\nname='a'\nseed=1\n[[part]]\nname='p'\nkind='koch-signature'\n[part.parameters]\n"
-                        "x={from=1,to=2,stride=1}\n").find("unknown range key 'stride'"),
+                        "x={from=1,to=2,stride=1}\n")
+                .find("unknown range key 'stride'"),
             std::string::npos);
   EXPECT_NE(parse_error("[study]\nname='a'\nseed=1\n[[part]]\nname='p'\nkind='koch-signature'\n[part.parameters]\nx=1\n"
-                        "[part.quick]\ny=2\n", true).find("quick overrides 'y'"),
+                        "[part.quick]\ny=2\n",
+                        true)
+                .find("quick overrides 'y'"),
             std::string::npos);
   EXPECT_NE(parse_error("[study]\nname='a'\nseed=1\nbogus=2\n").find("unknown key 'bogus'"), std::string::npos);
   EXPECT_NE(parse_error("[study\n").find("test.toml:1"), std::string::npos);
   // An unavailable kind parses (the store keeps its tasks pending until the engine exists).
-  auto ok = parse_study("[study]\nname='a'\nseed=1\n[[part]]\nname='sim'\nkind='tilt'\n[part.parameters]\nalpha_deg=[5.0]\n",
-                        "t.toml", false, reg());
+  auto ok =
+      parse_study("[study]\nname='a'\nseed=1\n[[part]]\nname='sim'\nkind='tilt'\n[part.parameters]\nalpha_deg=[5.0]\n",
+                  "t.toml", false, reg());
   EXPECT_TRUE(ok.ok());
 }

@@ -21,8 +21,9 @@ std::string fresh(const std::string& name) {
 
 TEST(StudyFiles, EveryPaperFigureHasAStudyThatParsesAtBothScales) {
   const TaskRegistry reg = default_registry();
-  const char* names[] = {"fig04-koch-signature", "fig06-koch-friction", "fig07-time-evolution", "fig08-atomic-friction",
-                         "fig09-divider", "fig10-mu-vs-dimension", "fig14-18-wm-statistics"};
+  const char* names[] = {"fig04-koch-signature",  "fig06-koch-friction", "fig07-time-evolution",
+                         "fig08-atomic-friction", "fig09-divider",       "fig10-mu-vs-dimension",
+                         "fig14-18-wm-statistics"};
   for (const char* n : names) {
     const fs::path p = studies_dir() / (std::string(n) + ".toml");
     for (bool quick : {false, true}) {

@@ -54,7 +54,8 @@ struct Calc {
   }
 };
 
-const char* kCalcStudy = "[study]\nname='retry'\nseed=1\n[[part]]\nname='p'\nkind='calc'\n[part.parameters]\nx={from=0,to=5}\n";
+const char* kCalcStudy =
+    "[study]\nname='retry'\nseed=1\n[[part]]\nname='p'\nkind='calc'\n[part.parameters]\nx={from=0,to=5}\n";
 
 Result<TaskOutput> pass() { return TaskOutput{}; }
 
@@ -186,8 +187,7 @@ TEST(StudyKindsUnit, EveryKindDeclaresWhatItReturnsAndItsViews) {
       {"koch-signature", {{"iterations", std::int64_t{1}}, {"alpha", 10.0}, {"length", 0.01}}},
       {"wm-pair-statistics", {{"dimension", 1.5}, {"n_max", std::int64_t{2}}, {"pair", std::int64_t{0}}}},
       {"divider", {{"iterations", std::int64_t{1}}, {"alpha", 30.0}, {"rulers", std::int64_t{5}}}},
-      {"tilt",
-       {{"iterations", std::int64_t{0}}, {"alpha", 20.0}, {"length", 0.02}, {"record_series", true}}},
+      {"tilt", {{"iterations", std::int64_t{0}}, {"alpha", 20.0}, {"length", 0.02}, {"record_series", true}}},
   };
   ASSERT_EQ(reg.names().size(), sample.size());
   const auto kinds = nlohmann::json::parse(kinds_json(reg))["kinds"];
@@ -200,15 +200,16 @@ TEST(StudyKindsUnit, EveryKindDeclaresWhatItReturnsAndItsViews) {
     for (const auto& c : k.outputs) (c.array ? arrays : scalars).insert(c.name);
     for (const auto& [s, v] : out->scalars) EXPECT_TRUE(scalars.count(s)) << name << " returns undeclared scalar " << s;
     for (const auto& [a, v] : out->arrays) EXPECT_TRUE(arrays.count(a)) << name << " returns undeclared array " << a;
-    for (const auto& s : scalars) EXPECT_TRUE(out->scalars.count(s)) << name << " declares scalar " << s << " it never returns";
-    for (const auto& a : arrays) EXPECT_TRUE(out->arrays.count(a)) << name << " declares array " << a << " it never returns";
+    for (const auto& s : scalars)
+      EXPECT_TRUE(out->scalars.count(s)) << name << " declares scalar " << s << " it never returns";
+    for (const auto& a : arrays)
+      EXPECT_TRUE(out->arrays.count(a)) << name << " declares array " << a << " it never returns";
     EXPECT_TRUE(bool(k.report)) << name;
     // Every plot view's y column is a declared output; x is an output or a parameter.
     for (const auto& v : k.plots) {
       EXPECT_TRUE(scalars.count(v.y.column) || arrays.count(v.y.column)) << name << " view " << v.id;
       EXPECT_TRUE(scalars.count(v.x.column) || arrays.count(v.x.column) || sample.at(name).count(v.x.column) ||
-                  v.x.column == "alpha" || v.x.column == "n_max" || v.x.column == "dimension" ||
-                  !v.match.empty())
+                  v.x.column == "alpha" || v.x.column == "n_max" || v.x.column == "dimension" || !v.match.empty())
           << name << " view " << v.id << " x " << v.x.column;
     }
     // kinds_json carries the same.

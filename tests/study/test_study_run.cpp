@@ -63,7 +63,8 @@ TEST(StudyKinds, KochSignatureMaximaAreOneOneTwoThreeAlpha) {
     EXPECT_NEAR(r->scalars.at("theta_max_over_alpha"), expect[n], 1e-9) << "K" << n;
     // The steepest edge of K_n is (n+1) alpha (Sec. III).
     EXPECT_NEAR(r->scalars.at("surface_slope_max_over_alpha"), n + 1, 1e-9);
-    EXPECT_EQ(r->arrays.at("signature_offset_over_wavelength").size(), r->arrays.at("signature_theta_over_alpha").size());
+    EXPECT_EQ(r->arrays.at("signature_offset_over_wavelength").size(),
+              r->arrays.at("signature_theta_over_alpha").size());
   }
 }
 
@@ -83,7 +84,8 @@ TEST(StudyKinds, KochDimensionEq13) {
 
 TEST(StudyKinds, WmPairIsDeterministicAndContactBelowSurface) {
   Params p{{"dimension", 1.6}, {"n_max", std::int64_t{5}}, {"pair", std::int64_t{0}}};
-  auto a = run_kind("wm-pair-statistics", p, 11), b = run_kind("wm-pair-statistics", p, 11), c = run_kind("wm-pair-statistics", p, 12);
+  auto a = run_kind("wm-pair-statistics", p, 11), b = run_kind("wm-pair-statistics", p, 11),
+       c = run_kind("wm-pair-statistics", p, 12);
   ASSERT_TRUE(a.ok() && b.ok() && c.ok());
   EXPECT_EQ(a->scalars, b->scalars);
   EXPECT_EQ(a->arrays, b->arrays);
@@ -224,7 +226,8 @@ kind = "future-engine"
 [part.parameters]
 iterations = [0, 1]
 alpha = 10.0
-)", "t", false, more);
+)",
+                          "t", false, more);
   // The placeholder declared version 1, as the engine will: same definition, same store.
   EXPECT_EQ(s2.hash, s.hash);
   auto reopened = Store::open(path, s2);
@@ -279,8 +282,10 @@ TEST(StudyReport, PooledPdfsRebinOntoCommonEdges) {
            t.arrays["x_pdf_density_per_deg"] = first ? std::vector<double>{1, 0} : std::vector<double>{0, 1};
            return t;
          }});
-  auto s = parse_study("[study]\nname='p'\nseed=1\n[[part]]\nname='f'\nkind='fake-pdf'\n[part.parameters]\n"
-                       "pair={count=2}\nD=[1.5]\n", "t", false, r);
+  auto s = parse_study(
+      "[study]\nname='p'\nseed=1\n[[part]]\nname='f'\nkind='fake-pdf'\n[part.parameters]\n"
+      "pair={count=2}\nD=[1.5]\n",
+      "t", false, r);
   ASSERT_TRUE(s.ok());
   auto st = Store::open(tmp("pooled.sqlite"), *s);
   ASSERT_TRUE(st.ok());

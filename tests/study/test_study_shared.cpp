@@ -11,10 +11,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <dirent.h>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <dirent.h>
 #include <random>
 #include <regex>
 #include <thread>
@@ -332,7 +332,7 @@ TEST(StudyShared, FileSizeLimitAsAFullDiskThroughTheCli) {
   const std::string store = fresh("fsize.sqlite");
   auto r = run_cli("study run " + study + " --store " + store + " --part b --threads 2 --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
-  struct stat sb{};
+  struct stat sb {};
   ::stat(store.c_str(), &sb);
   const std::string log = temp_path("fsize.log");
   const pid_t pid = ::fork();
@@ -340,7 +340,9 @@ TEST(StudyShared, FileSizeLimitAsAFullDiskThroughTheCli) {
     std::freopen(log.c_str(), "w", stdout);
     std::freopen(log.c_str(), "a", stderr);
     ::signal(SIGXFSZ, SIG_IGN);  // the write fails with EFBIG instead of killing the process
-    struct rlimit lim{static_cast<rlim_t>(sb.st_size), static_cast<rlim_t>(sb.st_size)};
+    struct rlimit lim {
+      static_cast<rlim_t>(sb.st_size), static_cast<rlim_t>(sb.st_size)
+    };
     ::setrlimit(RLIMIT_FSIZE, &lim);
     ::execl(FRICTAL_CLI_PATH, FRICTAL_CLI_PATH, "study", "run", study.c_str(), "--store", store.c_str(), "--threads",
             "2", "--progress", "none", static_cast<char*>(nullptr));
@@ -448,8 +450,8 @@ TEST(StudyShared, MpiRankKilledLeavesTheStoreConsistentAndARerunCompletes) {
   for (int trial = 0; trial < 2; ++trial) {
     const std::string store = fresh("mpi-kill-" + std::to_string(trial) + ".sqlite");
     const std::string log = temp_path("mpi-kill-" + std::to_string(trial) + ".log");
-    const std::string cmd = mpirun + FRICTAL_CLI_PATH + " study run " + study + " --store " + store +
-                            " --progress none >" + log + " 2>&1";
+    const std::string cmd =
+        mpirun + FRICTAL_CLI_PATH + " study run " + study + " --store " + store + " --progress none >" + log + " 2>&1";
     const pid_t launcher = ::fork();
     if (launcher == 0) {
       ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
@@ -479,7 +481,8 @@ TEST(StudyShared, MpiRankKilledLeavesTheStoreConsistentAndARerunCompletes) {
     const std::string out = read_file(log);
     if (killed && WIFEXITED(status) && WEXITSTATUS(status) != 0) {
       // The job ends; rank 0 says what to do (unless mpirun killed it before it could).
-      EXPECT_TRUE(out.find("run the same command again") != std::string::npos || out.find("signal 9") != std::string::npos)
+      EXPECT_TRUE(out.find("run the same command again") != std::string::npos ||
+                  out.find("signal 9") != std::string::npos)
           << out;
     }
     // The store is consistent: it opens, every done task has its results, nothing half-written.

@@ -52,8 +52,8 @@ TEST(StudyTables, TiltKindReadsEveryTiltSettingAndKochParameter) {
 TEST(StudyTables, TiltKindTakesDegreesAndTheGeneratorsPeriod) {
   // K0 at alpha = 10 deg on two wavelengths, mu_a = 0.25, stopped at 2 deg of tilt: the
   // prediction is alpha + atan(mu_a) (Sec. III, Eq. 6) whatever the run does.
-  Params p{{"iterations", std::int64_t{0}}, {"alpha", 10.0}, {"length", 0.02}, {"max_tilt", 2.0},
-           {"atomic_friction", 0.25}, {"time_step", 2e-5}};
+  Params p{{"iterations", std::int64_t{0}}, {"alpha", 10.0},    {"length", 0.02}, {"max_tilt", 2.0},
+           {"atomic_friction", 0.25},       {"time_step", 2e-5}};
   auto r = run_kind("tilt", p, 0);
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_NEAR(r->scalars.at("predicted_friction_angle_deg"), 10 + std::atan(0.25) * 180 / std::numbers::pi, 1e-9);
@@ -94,8 +94,9 @@ TEST(StudyTables, RetiredOrMistypedKeysAreRefusedNotIgnored) {
   Params p{{"iterations", std::int64_t{0}}, {"alpha_deg", 5.0}, {"length", 0.02}};
   auto r = run_kind("tilt", p, 0);
   ASSERT_FALSE(r.ok());
-  EXPECT_NE(r.error().message.find("parameter 'alpha_deg' is not a parameter of task kind 'tilt'; did you mean 'alpha'?"),
-            std::string::npos)
+  EXPECT_NE(
+      r.error().message.find("parameter 'alpha_deg' is not a parameter of task kind 'tilt'; did you mean 'alpha'?"),
+      std::string::npos)
       << r.error().message;
   p = {{"iterations", std::int64_t{0}}, {"alpha", 5.0}, {"spheroradius", 5e-5}};
   EXPECT_FALSE(run_kind("tilt", p, 0).ok());

@@ -54,7 +54,8 @@ TEST(Parallel, ResultsCombinedInOrderDoNotDependOnThreads) {
 TEST(Parallel, WorkersRunBesideTheCallerAndExceptionsPropagate) {
   std::atomic<int> ran{0};
   bool main_ran = false;
-  run_workers(3, [&](unsigned) { ++ran; }, [&] { main_ran = true; });
+  run_workers(
+      3, [&](unsigned) { ++ran; }, [&] { main_ran = true; });
   EXPECT_EQ(ran.load(), 3);
   EXPECT_TRUE(main_ran);
   EXPECT_THROW(parallel_chunks(100, 4,
