@@ -15,11 +15,12 @@
 #include "command.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/io.hpp"
+#include "frictal/units.hpp"
 
 namespace frictal::cli {
 
-inline constexpr double kDeg = std::numbers::pi / 180.0;
-inline double to_deg(double rad) { return rad / kDeg; }
+inline constexpr double kDeg = units::kRadPerDeg;
+using units::to_deg;
 
 /// Unwraps a library Result or throws its error (message and code).
 template <class T>

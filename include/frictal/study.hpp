@@ -123,6 +123,46 @@ struct PlotView {
   /// 1 - <column> of that task: the divider law L ~ eps^(1-D)).
   std::string reference;
   std::string reference_label;
+
+  // Builders for the common cases; they only fill the fields above.
+  /// A view with its id and axes.
+  static PlotView of(std::string id_, PlotAxis x_, PlotAxis y_) {
+    PlotView v;
+    v.id = std::move(id_);
+    v.x = std::move(x_);
+    v.y = std::move(y_);
+    return v;
+  }
+  /// One series per value of `series_` ("task": one per task), legend `label_`.
+  PlotView& by(std::string series_, std::string label_) {
+    series = std::move(series_);
+    label = std::move(label_);
+    return *this;
+  }
+  /// The legend of a single series.
+  PlotView& named(std::string label_) {
+    label = std::move(label_);
+    return *this;
+  }
+  /// Markers (`size_` and `width_` in points, 0: matplotlib's default).
+  PlotView& markers(std::string marker_, double size_ = 0, double width_ = 0) {
+    marker = std::move(marker_);
+    marker_size = size_;
+    line_width = width_;
+    return *this;
+  }
+  /// Simulation results: hollow circles, not joined.
+  PlotView& simulated() {
+    marker = "o";
+    open = true;
+    line = false;
+    return *this;
+  }
+  /// The mean of y over the values of `parameter` (per series and x).
+  PlotView& averaged_over(std::string parameter) {
+    average_over = std::move(parameter);
+    return *this;
+  }
 };
 
 /// A kind's section of a study report: summary lines and the paper's findings, from the done

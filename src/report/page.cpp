@@ -11,13 +11,14 @@
 #include "frictal/report.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
+#include "frictal/units.hpp"
 
 namespace frictal::report {
 
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180;
-double deg(double rad) { return rad / kDeg; }
+constexpr double kDeg = units::kRadPerDeg;
+constexpr double deg(double rad) { return units::to_deg(rad); }
 
 std::string fmt_len(double v, const LengthUnit& u, int digits = 4) {
   return fmt::format("{:.{}g} {}", v / u.scale, digits, u.name);

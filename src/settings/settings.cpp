@@ -9,10 +9,12 @@
 
 #include <fmt/core.h>
 
+#include "frictal/units.hpp"
+
 namespace frictal {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kDeg = units::kRadPerDeg;
 
 bool is_angle(const Field& f) { return f.unit == "rad"; }
 

@@ -135,15 +135,10 @@ TaskKind divider_kind() {
       {"measured_length_m", "m", "measured length L(eps) (Fig. 9)", true},
   };
   k.report = divider_part;
-  PlotView v;
-  v.id = "divider";
-  v.x = {"ruler_m", "ruler ε / λ", "wavelength", true};
-  v.y = {"measured_length_m", "measured length L / λ", "wavelength", true};
-  v.series = "task";
-  v.label = "K{iterations}: D = {dimension:.4f}";
-  v.marker = "o";
-  v.marker_size = 3;
-  v.line_width = 0.8;
+  PlotView v = PlotView::of("divider", {"ruler_m", "ruler ε / λ", "wavelength", true},
+                            {"measured_length_m", "measured length L / λ", "wavelength", true})
+                   .by("task", "K{iterations}: D = {dimension:.4f}")
+                   .markers("o", 3, 0.8);
   v.reference = "power:dimension_eq13";
   v.reference_label = "Eq. 13: D = {dimension_eq13:.4f}";
   k.plots.push_back(v);

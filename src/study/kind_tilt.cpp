@@ -15,12 +15,13 @@
 #include "frictal/study.hpp"
 #include "frictal/surface_spec.hpp"
 #include "frictal/tilt.hpp"
+#include "frictal/units.hpp"
 #include "study/table_params.hpp"
 
 namespace frictal::study {
 namespace {
 
-constexpr double kDeg = std::numbers::pi / 180.0;
+constexpr double kDeg = units::kRadPerDeg;
 
 Result<bool> get_bool(const Params& p, const std::string& name, bool fallback) {
   auto it = p.find(name);

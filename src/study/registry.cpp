@@ -14,8 +14,8 @@ namespace frictal::study {
 
 // ---------------------------------------------------------------- the list
 
-TaskKind koch_signature_kind();      // kinds.cpp
-TaskKind wm_pair_statistics_kind();  // kinds.cpp
+TaskKind koch_signature_kind();      // kind_koch_signature.cpp
+TaskKind wm_pair_statistics_kind();  // kind_wm_pair_statistics.cpp
 TaskKind tilt_kind();                // kind_tilt.cpp
 TaskKind divider_kind();             // kind_divider.cpp
 

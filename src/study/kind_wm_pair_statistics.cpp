@@ -1,6 +1,6 @@
-// Two task kinds on the signature function, each one unit (compute function, outputs, report
-// section with the paper's findings, plot views): koch-signature (Sec. III, Fig. 4, 6, 8, 10) and
-// wm-pair-statistics (Sec. V, Fig. 14-18). Registered in registry.cpp.
+// Task kind wm-pair-statistics, one unit: a pair of stochastic Weierstrass-Mandelbrot profiles
+// (Sec. V, Fig. 14-18): compute function, outputs, report section with the paper's findings, plot
+// views. Registered in registry.cpp.
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -16,130 +16,13 @@
 #include "frictal/stats.hpp"
 #include "frictal/study.hpp"
 #include "frictal/surface_spec.hpp"
+#include "study/kind_common.hpp"
 #include "study/table_params.hpp"
+
 
 namespace frictal::study {
 
-namespace {
-
-constexpr double kDeg = std::numbers::pi / 180.0;
-
-/// Length-weighted standard deviation of edge slope angles of a profile (unit: rad).
-double slope_angle_std(const Profile& p) {
-  double w = 0, m = 0;
-  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-    const double dx = p.x[i + 1] - p.x[i];
-    if (dx <= 0) continue;
-    w += dx;
-    m += dx * std::atan((p.z[i + 1] - p.z[i]) / dx);
-  }
-  if (w <= 0) return 0;
-  m /= w;
-  double v = 0;
-  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
-    const double dx = p.x[i + 1] - p.x[i];
-    if (dx <= 0) continue;
-    const double d = std::atan((p.z[i + 1] - p.z[i]) / dx) - m;
-    v += dx * d * d;
-  }
-  return std::sqrt(v / w);
-}
-
-void put_pdf(TaskOutput& out, const std::string& prefix, const Histogram& h) {
-  std::vector<double> edges, dens;
-  for (double e : h.edges) edges.push_back(e / kDeg);
-  for (double d : h.density) dens.push_back(d * kDeg);
-  out.arrays[prefix + "_edges_deg"] = std::move(edges);
-  out.arrays[prefix + "_density_per_deg"] = std::move(dens);
-}
-
-SlopeMethod slope_method(const std::string& s, Status* st) {
-  if (s == "exact") return SlopeMethod::Exact;
-  if (s == "spline") return SlopeMethod::Spline;
-  *st = make_error(fmt::format("parameter 'slopes': expected \"exact\" or \"spline\", got \"{}\"", s));
-  return SlopeMethod::Exact;
-}
-
-template <class T>
-bool take(Result<T> r, T& into, Error& err) {
-  if (!r) {
-    err = r.error();
-    return false;
-  }
-  into = *r;
-  return true;
-}
-
-}  // namespace
-
-Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: deterministic surfaces*/) {
-  Error err;
-  std::int64_t offsets = 0;
-  double mu_a = 0;
-  std::string slopes;
-  if (!take(get_real(p, "atomic_friction", 0.0), mu_a, err) || !take(get_int(p, "offsets", 0), offsets, err) ||
-      !take(get_string(p, "slopes", "exact"), slopes, err))
-    return err;
-  if (offsets < 0) return make_error("parameter 'offsets': expected >= 0");
-  // iterations, alpha (deg), wavelength, length: the koch generator's table.
-  if (Status st = only_known_parameters(p, {&find_generator("koch")->fields}, {"atomic_friction", "offsets", "slopes"},
-                                        "koch-signature");
-      !st)
-    return st.error();
-  auto koch_values = table_values(find_generator("koch")->fields, p);
-  if (!koch_values) return koch_values.error();
-  if (auto it = koch_values->find("iterations"); it != koch_values->end() && std::get<std::int64_t>(it->second) > 8)
-    return make_error(fmt::format("parameter 'iterations': expected 0..8, got {}", std::get<std::int64_t>(it->second)));
-  auto spec = make_surface_spec("koch", *koch_values);
-  if (!spec) return spec.error();
-  auto kpr = koch_params(*spec);
-  if (!kpr) return kpr.error();
-  const KochParams kp = *kpr;
-  const double wavelength = kp.wavelength;
-  auto prof = koch_profile(kp);
-  if (!prof) return prof.error();
-  SignatureOptions o;
-  Status st = Ok{};
-  o.slopes = slope_method(slopes, &st);
-  if (!st) return st.error();
-  o.threads = 1;
-  o.keep_contacts = false;
-  o.offsets = static_cast<std::size_t>(offsets);
-  auto sig = self_signature(*prof, o);
-  if (!sig) return sig.error();
-  const SignatureResult& r = *sig;
-  auto fr = predict_friction(mu_a, r.theta_max_forward, r.contact_slope_std);
-  if (!fr) return fr.error();
-  const ProfileStats ps = profile_stats(*prof);
-  TaskOutput out;
-  auto& s = out.scalars;
-  s["theta_max_forward_deg"] = r.theta_max_forward / kDeg;
-  s["theta_max_backward_deg"] = r.theta_max_backward / kDeg;
-  s["theta_max_over_alpha"] = r.theta_max_forward / kp.alpha;
-  s["surface_slope_max_deg"] = ps.max_slope / kDeg;
-  s["surface_slope_max_over_alpha"] = ps.max_slope / kp.alpha;
-  s["contact_slope_mean_deg"] = r.contact_slope_mean / kDeg;
-  s["contact_slope_std_deg"] = r.contact_slope_std / kDeg;
-  s["atomic_friction_angle_deg"] = fr->atomic_angle / kDeg;
-  s["friction_angle_deg"] = fr->friction_angle / kDeg;
-  s["friction_coefficient"] = fr->friction_coefficient;
-  auto d13 = koch_dimension(kp.alpha);
-  if (!d13) return d13.error();
-  s["dimension_eq13"] = *d13;
-  s["points"] = static_cast<double>(prof->size());
-  s["offsets"] = static_cast<double>(r.offset.size());
-  s["events"] = static_cast<double>(r.events);
-  std::vector<double> xo, th;
-  xo.reserve(r.offset.size());
-  th.reserve(r.offset.size());
-  for (std::size_t i = 0; i < r.offset.size(); ++i) {
-    xo.push_back((r.offset[i] - r.offset.front()) / wavelength);
-    th.push_back(r.theta[i] / kp.alpha);
-  }
-  out.arrays["signature_offset_over_wavelength"] = std::move(xo);
-  out.arrays["signature_theta_over_alpha"] = std::move(th);
-  return out;
-}
+using namespace kind_detail;
 
 Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   Error err;
@@ -211,7 +94,7 @@ Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   return out;
 }
 
-// ---------------------------------------------------------------- report sections
+// ---------------------------------------------------------------- report section
 
 namespace {
 
@@ -454,95 +337,6 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   }
 }
 
-void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
-  std::map<int, std::map<double, double>> ratio, phi, mu, dim, phi0;  // iterations -> alpha -> value
-  std::set<double> mus;
-  for (const auto& r : rows) {
-    if (!r.params.count("iterations") || !r.params.count("alpha")) continue;
-    const int n = as_int(r.params.at("iterations"));
-    const double a = as_number(r.params.at("alpha"));
-    const double ma = r.params.count("atomic_friction") ? as_number(r.params.at("atomic_friction")) : 0.0;
-    mus.insert(ma);
-    if (ma == 0) {
-      ratio[n][a] = r.output.scalars.at("theta_max_over_alpha");
-      mu[n][a] = r.output.scalars.at("friction_coefficient");
-      dim[n][a] = r.output.scalars.at("dimension_eq13");
-      phi0[n][a] = r.output.scalars.at("friction_angle_deg");
-    }
-    phi[n][a] = r.output.scalars.at("friction_angle_deg");
-  }
-  if (ratio.empty()) return;
-  rep.lines.push_back(fmt::format("\n## Part '{}' (koch-signature): {} tasks", part, rows.size()));
-  std::string t = "\n| K_n | alpha (deg) | theta_max/alpha | mu (mu_a = 0) | D (Eq. 13) |\n|---|---|---|---|---|\n";
-  for (const auto& [n, m] : ratio)
-    for (const auto& [a, v] : m)
-      t += fmt::format("| K{} | {:g} | {:.6f} | {:.4f} | {:.4f} |\n", n, a, v, mu[n][a], dim[n][a]);
-  rep.lines.push_back(t);
-  const int expect[] = {1, 1, 2, 3};
-  Finding f;
-  f.claim = fmt::format(
-      "Part '{}': the signature maxima of Koch surfaces K0, K1, K2, K3 are 1, 1, 2, 3 times alpha "
-      "(Sec. III, Fig. 4, 6).",
-      part);
-  bool ok = true;
-  int checked = 0;
-  double worst = 0;
-  for (const auto& [n, m] : ratio) {
-    if (n > 3) continue;
-    for (const auto& [a, v] : m) {
-      ++checked;
-      worst = std::max(worst, std::abs(v - expect[n]));
-      ok = ok && std::abs(v - expect[n]) < 1e-6;
-    }
-  }
-  f.supported = ok && checked > 0;
-  f.evidence.push_back(fmt::format(
-      "criterion: |theta_max/alpha - n| < 1e-6 for {} (K_n, alpha) tasks; largest deviation {:.2e}", checked, worst));
-  rep.findings.push_back(f);
-  // mu grows with D (Fig. 10) at each iteration count, over alpha (D from Eq. 13 grows with alpha).
-  Finding g;
-  g.claim = fmt::format(
-      "Part '{}': the friction coefficient grows with the fractal dimension of the Koch surface "
-      "(Fig. 10).",
-      part);
-  int up = 0, steps = 0;
-  for (const auto& [n, m] : phi0) {  // mu = tan(phi) is monotone in phi; phi stays finite at 90 deg
-    double prev = NAN;
-    for (const auto& [a, v] : m) {
-      if (std::isfinite(prev)) ++steps, up += v > prev;
-      prev = v;
-    }
-  }
-  g.supported = steps > 0 && up == steps;
-  g.evidence.push_back(
-      fmt::format("criterion: at fixed K_n, phi = theta_max (mu = tan phi) rises with alpha, hence with D "
-                  "from Eq. 13; rises in {} of {} steps",
-                  up, steps));
-  if (steps > 0) rep.findings.push_back(g);
-  if (mus.size() > 1) {
-    Finding h;
-    h.claim = fmt::format(
-        "Part '{}': phi - n alpha = theta_a, the atomic friction angle adds to the signature maximum "
-        "(Eq. 6, Fig. 8).",
-        part);
-    double worst_h = 0;
-    int cnt = 0;
-    for (const auto& r : rows) {
-      const int n = as_int(r.params.at("iterations"));
-      if (n > 3) continue;
-      const double a = as_number(r.params.at("alpha"));
-      const double ma = r.params.count("atomic_friction") ? as_number(r.params.at("atomic_friction")) : 0.0;
-      const double expect_phi = std::min(90.0, a * expect[n] + std::atan(ma) * 180 / std::numbers::pi);
-      worst_h = std::max(worst_h, std::abs(r.output.scalars.at("friction_angle_deg") - expect_phi));
-      ++cnt;
-    }
-    h.supported = worst_h < 1e-6;
-    h.evidence.push_back(fmt::format(
-        "criterion: |phi - (n alpha + atan mu_a)| < 1e-6 deg over {} tasks; largest {:.2e} deg", cnt, worst_h));
-    rep.findings.push_back(h);
-  }
-}
-
 /// wm-pair-statistics: pairs are pooled over `pair` only; other axes make variants.
 void wm_section(const std::string& part, const std::vector<TaskRow>& rows, Report& rep) {
   // Pairs are pooled over `pair` only: other axes (e.g. slopes = ["exact", "spline"]) are
@@ -579,63 +373,7 @@ void wm_section(const std::string& part, const std::vector<TaskRow>& rows, Repor
 
 }  // namespace
 
-// ---------------------------------------------------------------- the two kinds
-
-TaskKind koch_signature_kind() {
-  TaskKind k;
-  k.name = "koch-signature";
-  k.description = "Self-signature of a Koch surface K_n (Sec. III): theta_max/alpha, friction angle, Eq. 13 dimension";
-  k.version = 1;
-  k.run = run_koch_signature;
-  k.outputs = {
-      {"theta_max_forward_deg", "deg", "maximum contact slope resisting sliding towards +x"},
-      {"theta_max_backward_deg", "deg", "maximum contact slope resisting sliding towards -x"},
-      {"theta_max_over_alpha", "1", "theta_max / alpha (1, 1, 2, 3 for K0..K3)"},
-      {"surface_slope_max_deg", "deg", "steepest edge of the profile"},
-      {"surface_slope_max_over_alpha", "1", "steepest edge / alpha (n + 1 for K_n)"},
-      {"contact_slope_mean_deg", "deg", "mean contact slope"},
-      {"contact_slope_std_deg", "deg", "standard deviation of contact slopes (sigma of Eq. 18)"},
-      {"atomic_friction_angle_deg", "deg", "atan(mu_a)"},
-      {"friction_angle_deg", "deg", "phi = atan(mu_a) + theta_max (Eq. 6), capped at 90"},
-      {"friction_coefficient", "1", "tan(phi); NaN when phi = 90 deg"},
-      {"dimension_eq13", "1", "fractal dimension of Eq. 13"},
-      {"points", "1", "profile points"},
-      {"offsets", "1", "offsets evaluated"},
-      {"events", "1", "event offsets"},
-      {"signature_offset_over_wavelength", "1", "offset / lambda (Fig. 4)", true},
-      {"signature_theta_over_alpha", "1", "theta / alpha at each offset (Fig. 4)", true},
-  };
-  k.report = koch_part;
-  PlotView v;
-  v.id = "friction-vs-alpha";
-  v.x = {"alpha", "α (deg)"};
-  v.y = {"friction_angle_deg", "friction angle φ (deg)"};
-  v.series = "iterations";
-  v.label = "K{iterations} theory (signature)";
-  k.plots.push_back(v);
-  v = {};
-  v.id = "friction-vs-atomic-friction";
-  v.x = {"atomic_friction_angle_deg", "θ_a (deg)"};
-  v.y = {"friction_angle_deg", "φ (deg)"};
-  v.series = "alpha";
-  v.label = "theory α = {alpha}°";
-  k.plots.push_back(v);
-  v = {};
-  v.id = "mu-vs-dimension";
-  v.x = {"dimension_eq13", "fractal dimension D (Eq. 13)"};
-  v.y = {"friction_coefficient", "μ"};
-  v.series = "iterations";
-  v.label = "K{iterations} theory";
-  k.plots.push_back(v);
-  v = {};
-  v.id = "signature";
-  v.x = {"signature_offset_over_wavelength", "x_ofs / λ"};
-  v.y = {"signature_theta_over_alpha", "θ / α"};
-  v.series = "task";
-  v.label = "K{iterations}";
-  k.plots.push_back(v);
-  return k;
-}
+// ---------------------------------------------------------------- the kind
 
 TaskKind wm_pair_statistics_kind() {
   TaskKind k;
@@ -676,25 +414,15 @@ TaskKind wm_pair_statistics_kind() {
                      Y{"contact-slope-max", "tan_contact_slope_max", "tan θ_max"},
                      Y{"surface-slope-std", "surface_slope_std_deg", "σ (deg)"},
                      Y{"contact-slope-std", "contact_slope_std_deg", "σ (deg)"}}) {
-    PlotView v;
-    v.id = std::string(y.id) + "-vs-n_max";
-    v.x = {"n_max", "n_max"};
-    v.y = {y.column, y.label};
-    v.series = "dimension";
-    v.label = "D = {dimension}";
-    v.marker = "o";
-    v.marker_size = 3;
-    v.line_width = 1;
-    v.average_over = "pair";
-    k.plots.push_back(v);
-    v = {};
-    v.id = std::string(y.id) + "-vs-dimension";
-    v.x = {"dimension", "D"};
-    v.y = {y.column, y.label};
-    v.label = std::string(y.id).rfind("surface", 0) == 0 ? "surface slope" : "contact slope";
-    v.marker = std::string(y.id).rfind("surface", 0) == 0 ? "s" : "o";
-    v.average_over = "pair";
-    k.plots.push_back(v);
+    const bool surface = std::string(y.id).rfind("surface", 0) == 0;
+    k.plots.push_back(PlotView::of(std::string(y.id) + "-vs-n_max", {"n_max", "n_max"}, {y.column, y.label})
+                          .by("dimension", "D = {dimension}")
+                          .markers("o", 3, 1)
+                          .averaged_over("pair"));
+    k.plots.push_back(PlotView::of(std::string(y.id) + "-vs-dimension", {"dimension", "D"}, {y.column, y.label})
+                          .named(surface ? "surface slope" : "contact slope")
+                          .markers(surface ? "s" : "o")
+                          .averaged_over("pair"));
   }
   return k;
 }
