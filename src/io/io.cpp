@@ -118,8 +118,9 @@ Result<SurfaceData> read_native_bytes(const std::string& bytes, const std::strin
       return make_error(fmt::format("{}: not a .npy file (no \\x93NUMPY signature)", name));
     return io_detail::read_npy_bytes(bytes, name, options);
   }
-  std::string text = decode_text(bytes);
-  if (text.find('\0') != std::string::npos)
+  std::string decoded;
+  const std::string_view text = io_detail::decode_text_view(bytes, decoded);
+  if (text.find('\0') != std::string_view::npos)
     return make_error(fmt::format("{}: binary data of no format frictal reads natively (text, X3P, .npy, gzip)", name));
   if (f == ProfileFormat::Auto) {
     if (io_detail::looks_like_sdf_text(text))
@@ -254,7 +255,9 @@ Result<Profile> read_profile(const std::string& path, const ReadOptions& options
     if (c->x[k] < c->x[k - 1])
       return make_error(fmt::format("{}: x decreases at point {} ({} after {}); a profile needs non-decreasing x", path,
                                     k + 1, c->x[k], c->x[k - 1]));
-  return as_profile(*c, path);
+  Profile p{std::move(c->x), std::move(c->z), std::nullopt};  // as_profile without a copy
+  if (auto st = validate(p, path); !st) return st.error();
+  return p;
 }
 
 Result<Map> read_map(const std::string& path, const ReadOptions& options) {

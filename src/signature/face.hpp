@@ -15,6 +15,21 @@
 namespace frictal::detail {
 
 inline constexpr std::size_t kBlock = 32;
+inline constexpr unsigned kBlockShift = 5;  // kBlock = 1 << kBlockShift
+
+/// Maxima of v over aligned nodes: level l holds the max over points [q << (5 + l), (q + 1) << (5 + l))
+/// (a segment tree over blocks of 32 points). About N/16 values in all, so the levels that a
+/// search touches stay in cache even at 10^7 points.
+class AlignedMax {
+ public:
+  AlignedMax() = default;
+  explicit AlignedMax(const std::vector<double>& v);
+  const std::vector<double>& level(std::size_t l) const { return lv_[l]; }
+  std::size_t levels() const { return lv_.size(); }
+
+ private:
+  std::vector<std::vector<double>> lv_;
+};
 
 /// Where an abscissa falls on a face: on a vertex group [first, last] or inside edge `edge`.
 struct Position {

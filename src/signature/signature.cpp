@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -42,7 +43,12 @@ struct Problem {
   double vtol = 0;               // value tolerance (m)
   bool aligned_lattice = false;  // both uniform with the same spacing, events on a lattice
   double lattice_origin = 0, lattice_step = 0;
-  std::vector<double> spline_f, spline_g;  // spline slopes at points (SlopeMethod::Spline)
+  std::vector<double> spline_f, spline_g;     // spline slopes at points (SlopeMethod::Spline)
+  double lower_length = 0, upper_length = 0;  // block lengths (m)
+  // Aligned lattice whose points sit on x0 + i dx within a small fraction of xtol: at a lattice
+  // offset, vertex i of F faces vertex i - d of G exactly, and the search runs on indices.
+  bool index_search = false;
+  detail::AlignedMax fmax, gmax;  // aligned block maxima of F and G
 };
 
 // Searches max over vertices i of A in [i0, i1] of vA[i] + vB(xA[i] + shift) by branch and
@@ -87,6 +93,88 @@ void search(const Face& A, const Face& B, double shift, std::size_t i0, std::siz
     } else {
       if (ua >= best - vtol) stack.push_back({a, ua});
       if (ub2 >= best - vtol) stack.push_back({b, ub2});
+    }
+  }
+}
+
+// Aligned-lattice search: max over i in [i0, i1] of va[i] + vb[i - d] (all indices valid), the
+// same values as search() (Face::value at a lattice vertex is that vertex's v). Branch and bound
+// over aligned nodes of A (32 << l points); B's shifted range is covered by at most two aligned
+// nodes of the same level, so every bound is two or three reads from small arrays that stay in
+// cache. Candidates within vtol of the running best are appended, as in search().
+void search_aligned(const std::vector<double>& va, const std::vector<double>& vb, const detail::AlignedMax& ma,
+                    const detail::AlignedMax& mb, std::ptrdiff_t d, std::size_t i0, std::size_t i1, double vtol,
+                    double& best, std::vector<Cand>& out) {
+  if (i0 > i1) return;
+  using detail::kBlockShift;
+  struct Node {
+    std::uint32_t level;
+    std::size_t q;  // node index at its level: points [q << (5 + level), (q + 1) << (5 + level))
+    double ub;
+  };
+  auto bound = [&](std::uint32_t level, std::size_t q) {
+    const unsigned sh = kBlockShift + level;
+    const std::size_t lo = std::max(q << sh, i0), hi = std::min(((q + 1) << sh) - 1, i1);
+    const auto jlo = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(lo) - d);
+    const auto jhi = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(hi) - d);
+    const auto& lb = mb.level(level);
+    const double b = std::max(lb[jlo >> sh], lb[jhi >> sh]);
+    return ma.level(level)[q] + b;
+  };
+  // Start from the nodes of the level whose size covers [i0, i1] with at most two nodes.
+  std::uint32_t top = 0;
+  while (top + 1 < ma.levels() && ((i1 >> (kBlockShift + top)) - (i0 >> (kBlockShift + top))) > 1) ++top;
+  thread_local std::vector<Node> stack;
+  stack.clear();
+  {
+    const unsigned sh = kBlockShift + top;
+    const std::size_t q0 = i0 >> sh, q1 = i1 >> sh;
+    const double u0 = bound(top, q0);
+    if (q1 != q0) {
+      const double u1 = bound(top, q1);
+      if (u0 >= u1) {
+        stack.push_back({top, q1, u1});
+        stack.push_back({top, q0, u0});
+      } else {
+        stack.push_back({top, q0, u0});
+        stack.push_back({top, q1, u1});
+      }
+    } else {
+      stack.push_back({top, q0, u0});
+    }
+  }
+  while (!stack.empty()) {
+    const Node node = stack.back();
+    stack.pop_back();
+    if (node.ub < best - vtol) continue;
+    if (node.level == 0) {
+      const std::size_t lo = std::max(node.q << kBlockShift, i0);
+      const std::size_t hi = std::min(((node.q + 1) << kBlockShift) - 1, i1);
+      const double* a = va.data();
+      const double* b = vb.data() - d;
+      double m = -kInf;
+      for (std::size_t i = lo; i <= hi; ++i) m = std::max(m, a[i] + b[i]);
+      if (m < best - vtol) continue;
+      const double cut = std::max(best, m) - vtol;
+      for (std::size_t i = lo; i <= hi; ++i) {
+        const double val = a[i] + b[i];
+        if (val >= cut) out.push_back({val, i, true});
+      }
+      if (m > best) best = m;
+      continue;
+    }
+    const std::uint32_t l = node.level - 1;
+    const unsigned sh = kBlockShift + l;
+    const std::size_t qa = 2 * node.q, qb = 2 * node.q + 1;
+    const bool has_a = ((qa + 1) << sh) > i0 && (qa << sh) <= i1;
+    const bool has_b = ((qb + 1) << sh) > i0 && (qb << sh) <= i1;
+    const double ua = has_a ? bound(l, qa) : -kInf, ub2 = has_b ? bound(l, qb) : -kInf;
+    if (ua >= ub2) {
+      if (has_b && ub2 >= best - vtol) stack.push_back({l, qb, ub2});
+      if (has_a && ua >= best - vtol) stack.push_back({l, qa, ua});
+    } else {
+      if (has_a && ua >= best - vtol) stack.push_back({l, qa, ua});
+      if (has_b && ub2 >= best - vtol) stack.push_back({l, qb, ub2});
     }
   }
 }
@@ -136,11 +224,23 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
   }
   double best = -kInf;
   if (std::isfinite(warm_x) && warm_x >= a && warm_x <= b) best = F.value(warm_x, P.xtol) + G.value(warm_x - s, P.xtol);
-  search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
   bool skip_g = false;
+  double lattice_k = 0;
   if (P.aligned_lattice) {
     const double k = (s - P.lattice_origin) / P.lattice_step;
-    skip_g = std::abs(k - std::round(k)) < 1e-9;  // every G vertex sits on an F vertex
+    lattice_k = std::round(k);
+    skip_g = std::abs(k - lattice_k) < 1e-9;  // every G vertex sits on an F vertex
+  }
+  if (skip_g && P.index_search && f0 <= f1) {
+    // F vertex i faces G vertex i - d; [f0, f1] maps into G's index range.
+    const auto d = static_cast<std::ptrdiff_t>(lattice_k);
+    const auto jlo = static_cast<std::ptrdiff_t>(f0) - d, jhi = static_cast<std::ptrdiff_t>(f1) - d;
+    if (jlo >= 0 && jhi < static_cast<std::ptrdiff_t>(G.size()))
+      search_aligned(F.v(), G.v(), P.fmax, P.gmax, d, f0, f1, P.vtol, best, cands);
+    else
+      search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
+  } else {
+    search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
   }
   if (!skip_g) search(G, F, s, g0, g1, false, P.xtol, P.vtol, best, cands);
 
@@ -295,10 +395,14 @@ Profile tile3(const Profile& p, double P, std::size_t& lo, std::size_t& hi, doub
   return t;
 }
 
-// Prepares the faces and tolerances of `lower` against `upper` (upper already shifted into the
-// lower frame). Shared by signature() and the rigid evaluator of spheropolygon signatures.
-Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, const SignatureOptions& o) {
-  const double Lmax = std::max(lower.length(), upper.length());
+// Prepares the faces and tolerances of `lower` against `upper`, whose abscissae are moved by
+// `shift` into the lower frame (x + shift, rounded as such), without copying either profile.
+// Shared by signature() and the rigid evaluator of spheropolygon signatures.
+Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, double shift,
+                       const SignatureOptions& o) {
+  P.lower_length = lower.length();
+  P.upper_length = (upper.x.back() + shift) - (upper.x.front() + shift);
+  const double Lmax = std::max(P.lower_length, P.upper_length);
   double zr = 0;
   {
     auto [a1, b1] = std::minmax_element(lower.z.begin(), lower.z.end());
@@ -311,13 +415,17 @@ Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, c
   P.periodic = lower.period && upper.period && std::abs(*lower.period - *upper.period) <= 1e-9 * *lower.period;
   if (P.periodic) {
     P.period = *lower.period;
+    Profile shifted = upper;
+    for (auto& v : shifted.x) v += shift;
     Profile tf = tile3(lower, P.period, P.f_lo, P.f_hi, P.xtol);
-    Profile tg = tile3(upper, P.period, P.g_lo, P.g_hi, P.xtol);
+    Profile tg = tile3(shifted, P.period, P.g_lo, P.g_hi, P.xtol);
     P.F = Face(std::move(tf.x), tf.z, +1.0);
     P.G = Face(std::move(tg.x), tg.z, -1.0);
   } else {
+    std::vector<double> gx = upper.x;
+    for (auto& v : gx) v += shift;
     P.F = Face(lower.x, lower.z, +1.0);
-    P.G = Face(upper.x, upper.z, -1.0);
+    P.G = Face(std::move(gx), upper.z, -1.0);
   }
   if (o.slopes == SlopeMethod::Spline) {
     auto sf = detail::spline_second_derivatives(P.F.x(), P.F.v());
@@ -383,12 +491,10 @@ Result<detail::RigidLift> detail::RigidLift::make(const Profile& lower_in, const
                                                   const SignatureOptions& o) {
   auto impl = std::make_shared<Impl>();
   impl->lower = lower_in;
-  Profile upper = upper_in;
-  const double shift = lower_in.x.front() - upper.x.front();
-  for (auto& v : upper.x) v += shift;
+  const double shift = lower_in.x.front() - upper_in.x.front();
   SignatureOptions exact = o;
   exact.slopes = SlopeMethod::Exact;
-  if (auto st = prepare_problem(impl->P, impl->lower, upper, exact); !st) return st.error();
+  if (auto st = prepare_problem(impl->P, impl->lower, upper_in, shift, exact); !st) return st.error();
   RigidLift r;
   r.impl_ = std::move(impl);
   return r;
@@ -440,27 +546,24 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   if (o.spheroradius > 0) return detail::sphero_signature(lower_in, upper_in, o);
 
   // Frame: offset 0 puts the upper block's left end over the lower block's left end.
-  Profile lower = lower_in;
-  Profile upper = upper_in;
-  const double shift = lower.x.front() - upper.x.front();
-  for (auto& v : upper.x) v += shift;
+  const double shift = lower_in.x.front() - upper_in.x.front();
 
   Problem P;
-  if (auto st = prepare_problem(P, lower, upper, o); !st) return st.error();
+  if (auto st = prepare_problem(P, lower_in, upper_in, shift, o); !st) return st.error();
 
   // Offset range.
   double smin = o.offset_min, smax = o.offset_max;
   if (!(smax > smin)) {
     smin = 0;
-    smax = P.periodic ? P.period : 0.5 * std::min(lower.length(), upper.length());
+    smax = P.periodic ? P.period : 0.5 * std::min(P.lower_length, P.upper_length);
   }
   if (!std::isfinite(smin) || !std::isfinite(smax)) return make_error("signature: offset range must be finite");
   if (!P.periodic) {
-    if (!(smin > -upper.length()) || !(smax < lower.length()))
+    if (!(smin > -P.upper_length) || !(smax < P.lower_length))
       return make_error(
           fmt::format("signature: offsets [{}, {}] m leave no overlap between the blocks (allowed: "
                       "inside ({}, {}) m)",
-                      smin, smax, -upper.length(), lower.length()));
+                      smin, smax, -P.upper_length, P.lower_length));
   }
 
   // Offsets: events (exact) or N equally spaced.
@@ -477,6 +580,18 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
       P.aligned_lattice = true;
       P.lattice_origin = fx.front() - gx.front();
       P.lattice_step = dxf;
+      // Index search when every point sits on its lattice node far inside xtol, so that at a
+      // lattice offset Face::value(x_F[i] - s) is exactly v_G[i - d].
+      double dev = 0;
+      for (std::size_t i = 0; i < fx.size(); ++i)
+        dev = std::max(dev, std::abs(fx[i] - (fx.front() + dxf * static_cast<double>(i))));
+      for (std::size_t j = 0; j < gx.size(); ++j)
+        dev = std::max(dev, std::abs(gx[j] - (gx.front() + dxf * static_cast<double>(j))));
+      if (dev < 0.05 * P.xtol && P.xtol < 0.05 * dxf) {
+        P.index_search = true;
+        P.fmax = detail::AlignedMax(P.F.v());
+        P.gmax = detail::AlignedMax(P.G.v());
+      }
     }
   }
   // Exact mode needs every event offset. Count them first: when there are more than
@@ -553,41 +668,42 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   }
 
   // Evaluate, split into contiguous chunks over threads; each chunk warm-starts from its own
-  // previous offset, so the result does not depend on the number of threads.
+  // previous offset, so the result does not depend on the number of threads. Results go straight
+  // into R (no per-offset record kept beside it: memory at 10^7 offsets).
   const std::size_t n = offs.size();
-  std::vector<OffsetResult> res(n);
+  SignatureResult R;
+  R.exact = (sampled == 0);
+  R.events = events;
+  R.offset = std::move(offs);
+  R.lift.resize(n);
+  R.theta.resize(n);
+  R.theta_min.resize(n);
+  R.theta_left.resize(n);
+  R.theta_right.resize(n);
   const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, n / 64));
   std::vector<std::vector<Contact>> chunk_contacts(T);
   std::vector<std::vector<std::uint32_t>> chunk_counts(T);
   util::parallel_chunks(n, T, [&](unsigned t, std::size_t i0, std::size_t i1) {
     std::vector<Cand> cands;
     double warm = kNaN;
+    if (o.keep_contacts) chunk_counts[t].reserve(i1 - i0);
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t before = chunk_contacts[t].size();
-      res[i] = evaluate_offset(P, offs[i], warm, o.slopes, o.keep_contacts ? &chunk_contacts[t] : nullptr, cands);
-      chunk_counts[t].push_back(static_cast<std::uint32_t>(chunk_contacts[t].size() - before));
-      warm = res[i].contact_x;
+      const OffsetResult e =
+          evaluate_offset(P, R.offset[i], warm, o.slopes, o.keep_contacts ? &chunk_contacts[t] : nullptr, cands);
+      R.lift[i] = e.lift;
+      R.theta[i] = e.theta;
+      R.theta_min[i] = e.theta_min;
+      R.theta_left[i] = e.theta_left;
+      R.theta_right[i] = e.theta_right;
+      if (o.keep_contacts) chunk_counts[t].push_back(static_cast<std::uint32_t>(chunk_contacts[t].size() - before));
+      warm = e.contact_x;
     }
   });
-
-  SignatureResult R;
-  R.exact = (sampled == 0);
-  R.events = events;
-  R.offset = offs;
-  R.lift.resize(n);
-  R.theta.resize(n);
-  R.theta_min.resize(n);
-  R.theta_left.resize(n);
-  R.theta_right.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    R.lift[i] = res[i].lift;
-    R.theta[i] = res[i].theta;
-    R.theta_min[i] = res[i].theta_min;
-    R.theta_left[i] = res[i].theta_left;
-    R.theta_right[i] = res[i].theta_right;
-    if (!std::isfinite(res[i].lift))
-      return make_error(fmt::format("signature: no overlap between the blocks at offset {} m", offs[i]));
-  }
+  const std::vector<double>& offs_r = R.offset;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(R.lift[i]))
+      return make_error(fmt::format("signature: no overlap between the blocks at offset {} m", offs_r[i]));
   if (o.keep_contacts) {
     R.contact_begin.reserve(n + 1);
     R.contact_begin.push_back(0);
@@ -612,11 +728,11 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
     }
     if (hi > R.theta_max_forward) {
       R.theta_max_forward = hi;
-      R.offset_at_forward = offs[i];
+      R.offset_at_forward = offs_r[i];
     }
     if (-lo > R.theta_max_backward) {
       R.theta_max_backward = -lo;
-      R.offset_at_backward = offs[i];
+      R.offset_at_backward = offs_r[i];
     }
   }
 
@@ -625,7 +741,7 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   // lines (exact when the interval holds at most two linear pieces). Sampled mode: theta(s).
   if (R.exact && o.slopes == SlopeMethod::Exact) {
     for (std::size_t i = 0; i + 1 < n; ++i) {
-      const double s0 = offs[i], s1 = offs[i + 1], L = s1 - s0;
+      const double s0 = offs_r[i], s1 = offs_r[i + 1], L = s1 - s0;
       const double a0 = R.theta_right[i], a1 = R.theta_left[i + 1];
       const bool w0 = std::abs(a0) < kHalfPi, w1 = std::abs(a1) < kHalfPi;
       if (!w0 && !w1) continue;
