@@ -8,6 +8,17 @@ Face::Face(std::vector<double> x, const std::vector<double>& z, double sign) : x
   const std::size_t n = x_.size();
   v_.resize(n);
   for (std::size_t i = 0; i < n; ++i) v_[i] = sign * z[i];
+  build();
+}
+
+Face::Face(std::vector<double> x, std::vector<double>&& z, double sign)
+    : x_(std::move(x)), v_(std::move(z)), sign_(sign) {
+  for (double& v : v_) v = sign * v;
+  build();
+}
+
+void Face::build() {
+  const std::size_t n = x_.size();
   vmax_ = *std::max_element(v_.begin(), v_.end());
   vmin_ = *std::min_element(v_.begin(), v_.end());
   // Uniform grids get O(1) index lookups.
@@ -33,6 +44,7 @@ Face::Face(std::vector<double> x, const std::vector<double>& z, double sign) : x
     for (std::size_t b = 0; b < next.size(); ++b) next[b] = std::max(prev[b], prev[b + w]);
     st_.push_back(std::move(next));
   }
+  tree_ = AlignedMax(v_);
 }
 
 AlignedMax::AlignedMax(const std::vector<double>& v) {
@@ -99,6 +111,18 @@ double Face::range_max(std::size_t i0, std::size_t i1) const {
     // Small ranges inside one block: exact.
     double m = v_[i0];
     for (std::size_t i = i0 + 1; i <= i1; ++i) m = std::max(m, v_[i]);
+    return m;
+  }
+  if (st_.empty()) {
+    // Bottom-up over the aligned maxima: the max over blocks b0..b1, the same value as below.
+    double m = -std::numeric_limits<double>::infinity();
+    auto lo = static_cast<std::ptrdiff_t>(b0), hi = static_cast<std::ptrdiff_t>(b1);
+    for (std::size_t l = 0; lo <= hi; ++l, lo >>= 1, hi = (hi >> 1)) {
+      const auto& lv = tree_.level(l);
+      if (lo & 1) m = std::max(m, lv[static_cast<std::size_t>(lo++)]);
+      if (!(hi & 1)) m = std::max(m, lv[static_cast<std::size_t>(hi--)]);
+      if (hi < lo) break;
+    }
     return m;
   }
   std::size_t len = b1 - b0 + 1;

@@ -48,7 +48,6 @@ struct Problem {
   // Aligned lattice whose points sit on x0 + i dx within a small fraction of xtol: at a lattice
   // offset, vertex i of F faces vertex i - d of G exactly, and the search runs on indices.
   bool index_search = false;
-  detail::AlignedMax fmax, gmax;  // aligned block maxima of F and G
 };
 
 // Searches max over vertices i of A in [i0, i1] of vA[i] + vB(xA[i] + shift) by branch and
@@ -236,7 +235,7 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
     const auto d = static_cast<std::ptrdiff_t>(lattice_k);
     const auto jlo = static_cast<std::ptrdiff_t>(f0) - d, jhi = static_cast<std::ptrdiff_t>(f1) - d;
     if (jlo >= 0 && jhi < static_cast<std::ptrdiff_t>(G.size()))
-      search_aligned(F.v(), G.v(), P.fmax, P.gmax, d, f0, f1, P.vtol, best, cands);
+      search_aligned(F.v(), G.v(), F.aligned_max(), G.aligned_max(), d, f0, f1, P.vtol, best, cands);
     else
       search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
   } else {
@@ -398,8 +397,10 @@ Profile tile3(const Profile& p, double P, std::size_t& lo, std::size_t& hi, doub
 // Prepares the faces and tolerances of `lower` against `upper`, whose abscissae are moved by
 // `shift` into the lower frame (x + shift, rounded as such), without copying either profile.
 // Shared by signature() and the rigid evaluator of spheropolygon signatures.
-Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, double shift,
-                       const SignatureOptions& o) {
+// With `take_lower` / `take_upper` (the same objects as lower / upper), their x and z move into
+// the faces instead of being copied, and the profiles are left empty.
+Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, double shift, const SignatureOptions& o,
+                       Profile* take_lower = nullptr, Profile* take_upper = nullptr) {
   P.lower_length = lower.length();
   P.upper_length = (upper.x.back() + shift) - (upper.x.front() + shift);
   const double Lmax = std::max(P.lower_length, P.upper_length);
@@ -422,10 +423,16 @@ Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, d
     P.F = Face(std::move(tf.x), tf.z, +1.0);
     P.G = Face(std::move(tg.x), tg.z, -1.0);
   } else {
-    std::vector<double> gx = upper.x;
+    if (take_lower)
+      P.F = Face(std::move(take_lower->x), std::move(take_lower->z), +1.0);
+    else
+      P.F = Face(lower.x, lower.z, +1.0);
+    std::vector<double> gx = take_upper ? std::move(take_upper->x) : upper.x;
     for (auto& v : gx) v += shift;
-    P.F = Face(lower.x, lower.z, +1.0);
-    P.G = Face(std::move(gx), upper.z, -1.0);
+    if (take_upper)
+      P.G = Face(std::move(gx), std::move(take_upper->z), -1.0);
+    else
+      P.G = Face(std::move(gx), upper.z, -1.0);
   }
   if (o.slopes == SlopeMethod::Spline) {
     auto sf = detail::spline_second_derivatives(P.F.x(), P.F.v());
@@ -533,7 +540,10 @@ Result<FrictionPrediction> predict_friction(double mu_a, double theta_max, doubl
   return f;
 }
 
-Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o) {
+namespace {
+
+Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o,
+                                       Profile* take_lower, Profile* take_upper) {
   if (auto st = validate(lower_in, "lower surface"); !st) return st.error();
   if (auto st = validate(upper_in, "upper surface"); !st) return st.error();
   if (!(o.tolerance > 0 && o.tolerance < 1e-3))
@@ -549,7 +559,7 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   const double shift = lower_in.x.front() - upper_in.x.front();
 
   Problem P;
-  if (auto st = prepare_problem(P, lower_in, upper_in, shift, o); !st) return st.error();
+  if (auto st = prepare_problem(P, lower_in, upper_in, shift, o, take_lower, take_upper); !st) return st.error();
 
   // Offset range.
   double smin = o.offset_min, smax = o.offset_max;
@@ -589,8 +599,9 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
         dev = std::max(dev, std::abs(gx[j] - (gx.front() + dxf * static_cast<double>(j))));
       if (dev < 0.05 * P.xtol && P.xtol < 0.05 * dxf) {
         P.index_search = true;
-        P.fmax = detail::AlignedMax(P.F.v());
-        P.gmax = detail::AlignedMax(P.G.v());
+        // The few offsets off the lattice (the range ends) bound with the aligned maxima.
+        P.F.drop_sparse_table();
+        P.G.drop_sparse_table();
       }
     }
   }
@@ -627,6 +638,7 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
     if (P.aligned_lattice) {
       const double k0 = std::ceil((smin - P.lattice_origin) / P.lattice_step - 1e-9);
       const double k1 = std::floor((smax - P.lattice_origin) / P.lattice_step + 1e-9);
+      if (k1 >= k0) offs.reserve(static_cast<std::size_t>(k1 - k0) + 3);
       for (double k = k0; k <= k1; k += 1) offs.push_back(P.lattice_origin + k * P.lattice_step);
     } else if (P.periodic) {
       std::vector<double> base;
@@ -653,12 +665,11 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
     offs.push_back(smin);
     offs.push_back(smax);
     std::sort(offs.begin(), offs.end());
-    std::vector<double> u;
-    u.reserve(offs.size());
-    for (double v : offs)
-      if (u.empty() || v > u.back() + P.xtol) u.push_back(v);
-    if (u.back() < smax) u.back() = smax;
-    offs.swap(u);
+    std::size_t w = 0;  // drop near-duplicates in place (each kept value compared with the last kept)
+    for (std::size_t r = 0; r < offs.size(); ++r)
+      if (w == 0 || offs[r] > offs[w - 1] + P.xtol) offs[w++] = offs[r];
+    offs.resize(w);
+    if (offs.back() < smax) offs.back() = smax;
     events = offs.size();
   } else {
     const std::size_t n = std::max<std::size_t>(sampled, 2);
@@ -774,6 +785,18 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   R.contact_slope_std = ms.std;
   R.contact_slope_pdf = histogram(R.slope_samples, R.slope_weights, o.bins);
   return R;
+}
+
+}  // namespace
+
+Result<SignatureResult> signature(const Profile& lower, const Profile& upper, const SignatureOptions& options) {
+  return signature_impl(lower, upper, options, nullptr, nullptr);
+}
+
+Result<SignatureResult> signature(Profile&& lower, Profile&& upper, const SignatureOptions& options) {
+  // Periodic profiles are tiled from copies anyway; the others give their storage to the faces.
+  const bool periodic = lower.period && upper.period;
+  return signature_impl(lower, upper, options, periodic ? nullptr : &lower, periodic ? nullptr : &upper);
 }
 
 Result<SignatureResult> self_signature(const Profile& surface, const SignatureOptions& options) {
