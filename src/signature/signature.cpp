@@ -101,9 +101,18 @@ void search(const Face& A, const Face& B, double shift, std::size_t i0, std::siz
 // over aligned nodes of A (32 << l points); B's shifted range is covered by at most two aligned
 // nodes of the same level, so every bound is two or three reads from small arrays that stay in
 // cache. Candidates within vtol of the running best are appended, as in search().
+// Nodes of A at one level that may hold a maximiser for any offset of a batch [begin, end) of
+// consecutive lattice offsets (see build_frontier): the search of each of them starts there
+// instead of at the top, so the coarse levels are visited once per batch, not once per offset.
+struct Frontier {
+  std::size_t begin = 0, end = 0;  // offsets (indices into the offset list) it serves
+  std::uint32_t level = 0;
+  std::vector<std::size_t> nodes;  // node indices at `level`
+};
+
 void search_aligned(const std::vector<double>& va, const std::vector<double>& vb, const detail::AlignedMax& ma,
                     const detail::AlignedMax& mb, std::ptrdiff_t d, std::size_t i0, std::size_t i1, double vtol,
-                    double& best, std::vector<Cand>& out) {
+                    double& best, std::vector<Cand>& out, const Frontier* frontier) {
   if (i0 > i1) return;
   using detail::kBlockShift;
   struct Node {
@@ -120,12 +129,21 @@ void search_aligned(const std::vector<double>& va, const std::vector<double>& vb
     const double b = std::max(lb[jlo >> sh], lb[jhi >> sh]);
     return ma.level(level)[q] + b;
   };
-  // Start from the nodes of the level whose size covers [i0, i1] with at most two nodes.
-  std::uint32_t top = 0;
-  while (top + 1 < ma.levels() && ((i1 >> (kBlockShift + top)) - (i0 >> (kBlockShift + top))) > 1) ++top;
   thread_local std::vector<Node> stack;
   stack.clear();
-  {
+  if (frontier) {
+    // Every node that can hold a maximiser of this offset is below a frontier node.
+    const unsigned sh = kBlockShift + frontier->level;
+    for (std::size_t q : frontier->nodes) {
+      if (((q + 1) << sh) <= i0 || (q << sh) > i1) continue;
+      const double u = bound(frontier->level, q);
+      if (u >= best - vtol) stack.push_back({frontier->level, q, u});
+    }
+    std::sort(stack.begin(), stack.end(), [](const Node& x, const Node& y) { return x.ub < y.ub; });
+  } else {
+    // Start from the nodes of the level whose size covers [i0, i1] with at most two nodes.
+    std::uint32_t top = 0;
+    while (top + 1 < ma.levels() && ((i1 >> (kBlockShift + top)) - (i0 >> (kBlockShift + top))) > 1) ++top;
     const unsigned sh = kBlockShift + top;
     const std::size_t q0 = i0 >> sh, q1 = i1 >> sh;
     const double u0 = bound(top, q0);
@@ -178,6 +196,105 @@ void search_aligned(const std::vector<double>& va, const std::vector<double>& vb
   }
 }
 
+// The index search of a non-periodic offset s: F's candidate range [f0, f1] and the index shift
+// d (F vertex i faces G vertex i - d). False when s is off the lattice or the range leaves G's
+// indices; evaluate_offset() then takes the general search.
+bool index_range(const Problem& P, double s, std::size_t& f0, std::size_t& f1, std::ptrdiff_t& d) {
+  if (!P.index_search || P.periodic) return false;
+  const Face& F = P.F;
+  const Face& G = P.G;
+  const double a = std::max(F.x_front(), G.x_front() + s);
+  const double b = std::min(F.x_back(), G.x_back() + s);
+  if (!(b >= a)) return false;
+  f0 = F.ceil_index(a - P.xtol);
+  f1 = F.floor_index(b + P.xtol);
+  const double k = (s - P.lattice_origin) / P.lattice_step;
+  const double lk = std::round(k);
+  if (!(std::abs(k - lk) < 1e-9) || f0 > f1) return false;
+  d = static_cast<std::ptrdiff_t>(lk);
+  const auto jlo = static_cast<std::ptrdiff_t>(f0) - d, jhi = static_cast<std::ptrdiff_t>(f1) - d;
+  return jlo >= 0 && jhi < static_cast<std::ptrdiff_t>(G.size());
+}
+
+// Frontier for the lattice offsets offs[begin, end) (shortened to those that take the index
+// search with the warm contact inside their range). Each offset's maximum is at least the value
+// at the warm contact, so a node whose bound over the whole batch (B's range widened by the
+// spread of shifts) is below the least of those values, less vtol, holds no maximiser and no
+// candidate of any offset of the batch. Returns false if no offset qualifies.
+bool build_frontier(const Problem& P, const std::vector<double>& offs, std::size_t begin, std::size_t end,
+                    double warm_x, Frontier& fr) {
+  using detail::kBlockShift;
+  fr.nodes.clear();
+  fr.begin = fr.end = 0;
+  if (!std::isfinite(warm_x)) return false;
+  const Face& F = P.F;
+  const Face& G = P.G;
+  const Position pw = F.locate(warm_x, 0.0);
+  if (!pw.vertex) return false;
+  const std::size_t istar = pw.first;
+  const auto& va = F.v();
+  const auto& vb = G.v();
+  std::size_t u0 = std::numeric_limits<std::size_t>::max(), u1 = 0;
+  std::ptrdiff_t dmin = std::numeric_limits<std::ptrdiff_t>::max(), dmax = std::numeric_limits<std::ptrdiff_t>::min();
+  double T = kInf;
+  std::size_t e = begin;
+  for (; e < end; ++e) {
+    std::size_t f0, f1;
+    std::ptrdiff_t d;
+    if (!index_range(P, offs[e], f0, f1, d) || istar < f0 || istar > f1) break;
+    T = std::min(T, va[istar] + vb[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(istar) - d)]);
+    u0 = std::min(u0, f0);
+    u1 = std::max(u1, f1);
+    dmin = std::min(dmin, d);
+    dmax = std::max(dmax, d);
+  }
+  if (e == begin) return false;
+  T -= P.vtol;
+  const auto& ma = F.aligned_max();
+  const auto& mb = G.aligned_max();
+  const auto jmax = static_cast<std::ptrdiff_t>(G.size()) - 1;
+  auto bound = [&](std::uint32_t level, std::size_t q) {
+    const unsigned sh = kBlockShift + level;
+    const std::size_t lo = std::max(q << sh, u0), hi = std::min(((q + 1) << sh) - 1, u1);
+    const std::ptrdiff_t j0 = std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>(lo) - dmax);
+    const std::ptrdiff_t j1 = std::min(jmax, static_cast<std::ptrdiff_t>(hi) - dmin);
+    if (j0 > j1) return -kInf;
+    const auto& lb = mb.level(level);
+    double b = -kInf;
+    for (auto k = static_cast<std::size_t>(j0) >> sh; k <= (static_cast<std::size_t>(j1) >> sh); ++k)
+      b = std::max(b, lb[k]);
+    return ma.level(level)[q] + b;
+  };
+  // The frontier level: nodes at least four times as long as the batch of shifts is wide.
+  std::uint32_t lf = 0;
+  const auto spread = static_cast<std::size_t>(dmax - dmin) + 1;
+  while (lf + 1 < ma.levels() && (std::size_t{kBlock} << lf) < 4 * spread) ++lf;
+  std::uint32_t top = lf;
+  while (top + 1 < ma.levels() && ((u1 >> (kBlockShift + top)) - (u0 >> (kBlockShift + top))) > 1) ++top;
+  struct Node {
+    std::uint32_t level;
+    std::size_t q;
+  };
+  std::vector<Node> stack;
+  for (std::size_t q = u0 >> (kBlockShift + top); q <= (u1 >> (kBlockShift + top)); ++q) stack.push_back({top, q});
+  while (!stack.empty()) {
+    const Node nd = stack.back();
+    stack.pop_back();
+    if (bound(nd.level, nd.q) < T) continue;
+    if (nd.level == lf) {
+      fr.nodes.push_back(nd.q);
+      continue;
+    }
+    const unsigned sh = kBlockShift + nd.level - 1;
+    for (std::size_t c : {2 * nd.q + 1, 2 * nd.q})
+      if (((c + 1) << sh) > u0 && (c << sh) <= u1) stack.push_back({nd.level - 1, c});
+  }
+  fr.level = lf;
+  fr.begin = begin;
+  fr.end = e;
+  return true;
+}
+
 struct OffsetResult {
   double lift = kNaN, theta = kNaN, theta_min = kNaN, theta_left = kNaN, theta_right = kNaN;
   double contact_x = kNaN;  // for the warm start
@@ -198,7 +315,8 @@ double vertex_slope(const Face& face, const Position& p) {
 // Evaluates one offset: lift, contacts and slopes. `warm_x` is a lower-frame abscissa that was
 // a contact nearby (NaN if none); it only speeds up the search.
 OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMethod method,
-                             std::vector<Contact>* contacts, std::vector<Cand>& cands) {
+                             std::vector<Contact>* contacts, std::vector<Cand>& cands,
+                             const Frontier* frontier = nullptr) {
   const Face& F = P.F;
   const Face& G = P.G;
   cands.clear();
@@ -235,7 +353,7 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
     const auto d = static_cast<std::ptrdiff_t>(lattice_k);
     const auto jlo = static_cast<std::ptrdiff_t>(f0) - d, jhi = static_cast<std::ptrdiff_t>(f1) - d;
     if (jlo >= 0 && jhi < static_cast<std::ptrdiff_t>(G.size()))
-      search_aligned(F.v(), G.v(), F.aligned_max(), G.aligned_max(), d, f0, f1, P.vtol, best, cands);
+      search_aligned(F.v(), G.v(), F.aligned_max(), G.aligned_max(), d, f0, f1, P.vtol, best, cands, frontier);
     else
       search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
   } else {
@@ -698,10 +816,15 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
     std::vector<Cand> cands;
     double warm = kNaN;
     if (o.keep_contacts) chunk_counts[t].reserve(i1 - i0);
+    Frontier frontier;
+    constexpr std::size_t kBatch = 256;  // offsets per frontier
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t before = chunk_contacts[t].size();
+      if (P.index_search && !(i >= frontier.begin && i < frontier.end))
+        build_frontier(P, R.offset, i, std::min(i + kBatch, i1), warm, frontier);
+      const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
       const OffsetResult e =
-          evaluate_offset(P, R.offset[i], warm, o.slopes, o.keep_contacts ? &chunk_contacts[t] : nullptr, cands);
+          evaluate_offset(P, R.offset[i], warm, o.slopes, o.keep_contacts ? &chunk_contacts[t] : nullptr, cands, fr);
       R.lift[i] = e.lift;
       R.theta[i] = e.theta;
       R.theta_min[i] = e.theta_min;
