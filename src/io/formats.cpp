@@ -46,7 +46,7 @@ std::optional<std::string> dict_value(std::string_view header, std::string_view 
 
 }  // namespace
 
-Result<SurfaceData> read_npy_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+Result<SurfaceData> read_npy_bytes(std::string_view bytes, const std::string& name, const ReadOptions& options) {
   const auto u8 = [&](std::size_t i) { return (unsigned char)bytes[i]; };
   const int major = u8(6);
   if (major < 1 || major > 3)

@@ -53,7 +53,7 @@ std::string decode_utf16(const std::string& b, std::size_t start, bool little) {
   return out;
 }
 
-bool valid_utf8(const std::string& s) {
+bool valid_utf8(std::string_view s) {
   std::size_t i = 0, n = s.size();
   while (i < n) {
     unsigned char c = s[i];
@@ -69,6 +69,18 @@ bool valid_utf8(const std::string& s) {
 }  // namespace
 
 namespace io_detail {
+
+bool text_needs_decoding(std::string_view b) {
+  auto u = [&](std::size_t i) { return (unsigned char)b[i]; };
+  if (b.size() >= 3 && u(0) == 0xEF && u(1) == 0xBB && u(2) == 0xBF) return false;
+  if (b.size() >= 2 && ((u(0) == 0xFF && u(1) == 0xFE) || (u(0) == 0xFE && u(1) == 0xFF))) return true;
+  if (b.size() >= 4) {
+    std::size_t n = std::min<std::size_t>(b.size() & ~std::size_t(1), 512), even0 = 0, odd0 = 0;
+    for (std::size_t i = 0; i < n; ++i) (i % 2 ? odd0 : even0) += b[i] == 0;
+    if ((odd0 > n / 4 && even0 == 0) || (even0 > n / 4 && odd0 == 0)) return true;
+  }
+  return !valid_utf8(b);
+}
 
 std::string_view decode_text_view(const std::string& b, std::string& storage) {
   auto u = [&](std::size_t i) { return (unsigned char)b[i]; };

@@ -43,6 +43,8 @@ std::string invalid_warning(const std::string& name, const InvalidCount& c, bool
 /// decode_text(b) without a copy when b is already UTF-8 (the common case): a view of b, or
 /// of `storage` holding the decoded text.
 std::string_view decode_text_view(const std::string& b, std::string& storage);
+/// True if decode_text(b) would change b other than by dropping a UTF-8 BOM (UTF-16, Latin-1).
+bool text_needs_decoding(std::string_view b);
 
 struct Line {
   std::string_view text;
