@@ -817,7 +817,7 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
     double warm = kNaN;
     if (o.keep_contacts) chunk_counts[t].reserve(i1 - i0);
     Frontier frontier;
-    constexpr std::size_t kBatch = 256;  // offsets per frontier
+    constexpr std::size_t kBatch = 16;  // offsets per frontier
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t before = chunk_contacts[t].size();
       if (P.index_search && !(i >= frontier.begin && i < frontier.end))
