@@ -7,8 +7,13 @@
 //      extrapolates it to all offsets and prints the ratio).
 #include <benchmark/benchmark.h>
 
+#include <time.h>
 #include <algorithm>
+
+#include <cmath>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include "frictal/generators.hpp"
 #include "frictal/signature.hpp"
@@ -121,6 +126,87 @@ void BM_KochK5Envelope(benchmark::State& st) {
   st.counters["points"] = static_cast<double>(c.size());
 }
 BENCHMARK(BM_KochK5Envelope)->Unit(benchmark::kMillisecond);
+
+// Scaling (issue 11): cost per offset vs the number of points N for two surface kinds, both
+// profiles of N points on the same length (finer sampling of the same kind of surface):
+//   kind 0: random self-affine (H = 0.8), kind 1: Weierstrass-Mandelbrot with 12 scales
+//   (n_max = 11, D = 1.5, gamma = 1.5, L_b = 20 L).
+// One window of consecutive event offsets (aligned lattice: every sample shift) starting at a
+// quarter of the length, one thread. Thread CPU time, so that other load on the machine does
+// not count: cost per offset = (t(window) - t(set-up)) / offsets, where t(set-up) is the least
+// of three calls with 2 offsets (faces and bound tables, paid once per call).
+const Pair& scaling_pair(int kind, std::size_t n) {
+  static std::map<std::pair<int, std::size_t>, Pair> cache;
+  auto key = std::make_pair(kind, n);
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  cache.clear();  // one big pair in memory at a time
+  Pair p;
+  if (kind == 0) {
+    SelfAffineParams s;
+    s.points = n;
+    s.length = 1e-3;
+    s.hurst = 0.8;
+    s.rms_height = 1e-6;
+    p.lower = *self_affine_profile(s);
+    s.seed = 2;
+    p.upper = rotate180(*self_affine_profile(s));
+  } else {
+    WmParams w;
+    w.n_max = 11;
+    w.spacing = w.length / static_cast<double>(n - 1);
+    p.lower = *wm_profile(w);
+    w.seed = 2;
+    p.upper = rotate180(*wm_profile(w));
+  }
+  return cache.emplace(key, std::move(p)).first->second;
+}
+
+double thread_cpu_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+
+void BM_SignatureScaling(benchmark::State& st) {
+  const int kind = static_cast<int>(st.range(0));
+  const auto n = static_cast<std::size_t>(st.range(1));
+  const Pair& p = scaling_pair(kind, n);
+  const double L = p.lower.length();
+  const double dx = L / static_cast<double>(p.lower.size() - 1);
+  const std::size_t W = n >= 10'000'000 ? 200'000 : 50'000;
+  SignatureOptions o;
+  o.threads = 1;
+  o.keep_contacts = false;
+  o.offset_min = std::round(0.25 * L / dx) * dx;
+  auto timed = [&](std::size_t offsets, std::size_t& count) {
+    o.offset_max = o.offset_min + static_cast<double>(offsets - 1) * dx;
+    const double c0 = thread_cpu_seconds();
+    auto r = signature(p.lower, p.upper, o);
+    const double t = thread_cpu_seconds() - c0;
+    count = r->offset.size();
+    benchmark::DoNotOptimize(r->theta_max_forward);
+    return t;
+  };
+  double per_offset = 0, setup = 0;
+  for (auto _ : st) {
+    std::size_t c0 = 0, c1 = 0;
+    setup = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) setup = std::min(setup, timed(2, c0));
+    const double t = timed(W, c1);
+    per_offset = (t - setup) / static_cast<double>(c1 - c0);
+  }
+  st.counters["points"] = static_cast<double>(p.lower.size());
+  st.counters["offsets"] = static_cast<double>(W);
+  st.counters["cpu_seconds_per_offset"] = per_offset;
+  st.counters["cpu_seconds_setup"] = setup;
+}
+BENCHMARK(BM_SignatureScaling)
+    ->ArgNames({"kind", "points"})
+    ->ArgsProduct({{0, 1}, {100'000, 1'000'000, 10'000'000}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 }  // namespace
 

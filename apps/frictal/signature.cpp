@@ -109,8 +109,13 @@ std::function<int()> setup(CLI::App& app) {
       o.offset_min = a->range[0];
       o.offset_max = a->range[1];
     }
+    // The profiles are handed over to the evaluator (no copies: 160 MB each at 10^7 points);
+    // what the summary needs of them is taken first.
+    const double smax = std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope);
+    Profile upper = rotate180(upper_measured);
+    upper_measured = Profile{};
     const auto t0 = std::chrono::steady_clock::now();
-    SignatureResult r = unwrap(signature(lower, rotate180(upper_measured), o));
+    SignatureResult r = unwrap(signature(std::move(lower), std::move(upper), o));
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (a->offsets == 0 && !r.exact)
       fmt::print(stderr,
@@ -120,7 +125,6 @@ std::function<int()> setup(CLI::App& app) {
                  r.offset.size());
     FrictionPrediction fwd = unwrap(predict_friction(a->mu_a, r.theta_max_forward, r.contact_slope_std));
     FrictionPrediction bwd = unwrap(predict_friction(a->mu_a, r.theta_max_backward, r.contact_slope_std));
-    const double smax = std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope);
 
     if (!a->out.empty()) {
       std::string s = "offset_m,lift_m,theta_deg,theta_min_deg,theta_left_deg,theta_right_deg\n";

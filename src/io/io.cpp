@@ -5,6 +5,11 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include "frictal/io.hpp"
 #include "io/readers.hpp"
@@ -94,6 +99,8 @@ Result<std::string> read_file_bytes(const std::string& path, std::uint64_t max_b
 
 namespace {
 
+Result<SurfaceData> parse_text(std::string_view text, const std::string& name, const ReadOptions& options);
+
 Result<SurfaceData> read_native_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options,
                                       int depth) {
   ProfileFormat f = options.format;
@@ -118,9 +125,20 @@ Result<SurfaceData> read_native_bytes(const std::string& bytes, const std::strin
       return make_error(fmt::format("{}: not a .npy file (no \\x93NUMPY signature)", name));
     return io_detail::read_npy_bytes(bytes, name, options);
   }
-  std::string text = decode_text(bytes);
-  if (text.find('\0') != std::string::npos)
+  std::string decoded;
+  const std::string_view text = io_detail::decode_text_view(bytes, decoded);
+  if (text.find('\0') != std::string_view::npos)
     return make_error(fmt::format("{}: binary data of no format frictal reads natively (text, X3P, .npy, gzip)", name));
+  return parse_text(text, name, options);
+}
+
+}  // namespace
+
+namespace {
+
+// Text already decoded to UTF-8: the format from its content (or options) and its parser.
+Result<SurfaceData> parse_text(std::string_view text, const std::string& name, const ReadOptions& options) {
+  ProfileFormat f = options.format;
   if (f == ProfileFormat::Auto) {
     if (io_detail::looks_like_sdf_text(text))
       f = ProfileFormat::Sdf;
@@ -178,8 +196,58 @@ static Status check_native_channel(const SurfaceData& s, const std::string& path
                                 options.channel, format_name(s.format)));
 }
 
+namespace {
+
+// A text or .npy file parsed straight from a read-only mapping of the file: no copy of its bytes
+// (a 10^7-point CSV is about 460 MB). Only a successful parse of UTF-8 text or of a .npy array
+// is returned; anything else (other formats, decoding, errors, Gwyddion's fallback) goes the
+// usual way (nullopt), which reads the file again and gives the same result or message.
+std::optional<SurfaceData> read_text_mapped(const std::string& path, const ReadOptions& options) {
+  if (options.format == ProfileFormat::X3p) return std::nullopt;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return std::nullopt;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec || size < 4 || size > options.max_bytes) return std::nullopt;
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return std::nullopt;
+  void* map = ::mmap(nullptr, std::size_t(size), PROT_READ, MAP_PRIVATE, fd, 0);
+  ::close(fd);
+  if (map == MAP_FAILED) return std::nullopt;
+  ::madvise(map, std::size_t(size), MADV_SEQUENTIAL);
+  struct Unmap {
+    void* p;
+    std::size_t n;
+    ~Unmap() { ::munmap(p, n); }
+  } unmap{map, std::size_t(size)};
+  std::string_view bytes(static_cast<const char*>(map), std::size_t(size));
+  const bool zip = bytes.compare(0, 4, "PK\x03\x04") == 0;
+  const bool npy = bytes.compare(0, 6, "\x93NUMPY") == 0;
+  if (!npy && options.format == ProfileFormat::Npy) return std::nullopt;
+  const bool gz = (unsigned char)bytes[0] == 0x1f && (unsigned char)bytes[1] == 0x8b && bytes[2] == 8;
+  if (npy && bytes.size() >= 10 && (options.format == ProfileFormat::Auto || options.format == ProfileFormat::Npy)) {
+    // .npy: the array is converted straight from the mapping (read at the speed of the disk).
+    auto r = io_detail::read_npy_bytes(bytes, path, options);
+    if (!r) return std::nullopt;
+    describe_native(*r);
+    if (auto st = check_native_channel(*r, path, options); !st) return std::nullopt;
+    return std::move(*r);
+  }
+  if (zip || npy || gz || io_detail::text_needs_decoding(bytes)) return std::nullopt;
+  if ((unsigned char)bytes[0] == 0xEF && (unsigned char)bytes[1] == 0xBB && (unsigned char)bytes[2] == 0xBF)
+    bytes.remove_prefix(3);
+  if (bytes.find('\0') != std::string_view::npos) return std::nullopt;
+  auto r = parse_text(bytes, path, options);
+  if (!r) return std::nullopt;
+  describe_native(*r);
+  if (auto st = check_native_channel(*r, path, options); !st) return std::nullopt;
+  return std::move(*r);
+}
+
+}  // namespace
+
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {
   if (options.format == ProfileFormat::GwyddionLib) return io_detail::read_gwyddion(path, options);
+  if (auto m = read_text_mapped(path, options)) return std::move(*m);
   auto bytes = read_file_bytes(path, options.max_bytes);
   if (!bytes) return bytes.error();
   auto r = read_native_bytes(*bytes, path, options, 0);
@@ -254,7 +322,9 @@ Result<Profile> read_profile(const std::string& path, const ReadOptions& options
     if (c->x[k] < c->x[k - 1])
       return make_error(fmt::format("{}: x decreases at point {} ({} after {}); a profile needs non-decreasing x", path,
                                     k + 1, c->x[k], c->x[k - 1]));
-  return as_profile(*c, path);
+  Profile p{std::move(c->x), std::move(c->z), std::nullopt};  // as_profile without a copy
+  if (auto st = validate(p, path); !st) return st.error();
+  return p;
 }
 
 Result<Map> read_map(const std::string& path, const ReadOptions& options) {

@@ -19,7 +19,7 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
 bool looks_like_npy(const std::string& bytes);
 bool looks_like_gzip(const std::string& bytes);
 bool looks_like_sdf_text(std::string_view text);
-Result<SurfaceData> read_npy_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options);
+Result<SurfaceData> read_npy_bytes(std::string_view bytes, const std::string& name, const ReadOptions& options);
 Result<std::string> gunzip(const std::string& bytes, const std::string& name, std::uint64_t max_bytes);
 Result<SurfaceData> parse_sdf_text(std::string_view text, const std::string& name, const ReadOptions& options);
 

@@ -53,7 +53,7 @@ std::string decode_utf16(const std::string& b, std::size_t start, bool little) {
   return out;
 }
 
-bool valid_utf8(const std::string& s) {
+bool valid_utf8(std::string_view s) {
   std::size_t i = 0, n = s.size();
   while (i < n) {
     unsigned char c = s[i];
@@ -67,6 +67,39 @@ bool valid_utf8(const std::string& s) {
 }
 
 }  // namespace
+
+namespace io_detail {
+
+bool text_needs_decoding(std::string_view b) {
+  auto u = [&](std::size_t i) { return (unsigned char)b[i]; };
+  if (b.size() >= 3 && u(0) == 0xEF && u(1) == 0xBB && u(2) == 0xBF) return false;
+  if (b.size() >= 2 && ((u(0) == 0xFF && u(1) == 0xFE) || (u(0) == 0xFE && u(1) == 0xFF))) return true;
+  if (b.size() >= 4) {
+    std::size_t n = std::min<std::size_t>(b.size() & ~std::size_t(1), 512), even0 = 0, odd0 = 0;
+    for (std::size_t i = 0; i < n; ++i) (i % 2 ? odd0 : even0) += b[i] == 0;
+    if ((odd0 > n / 4 && even0 == 0) || (even0 > n / 4 && odd0 == 0)) return true;
+  }
+  return !valid_utf8(b);
+}
+
+std::string_view decode_text_view(const std::string& b, std::string& storage) {
+  auto u = [&](std::size_t i) { return (unsigned char)b[i]; };
+  const bool bom8 = b.size() >= 3 && u(0) == 0xEF && u(1) == 0xBB && u(2) == 0xBF;
+  const bool bom16 = b.size() >= 2 && ((u(0) == 0xFF && u(1) == 0xFE) || (u(0) == 0xFE && u(1) == 0xFF));
+  bool utf16 = false;
+  if (!bom8 && !bom16 && b.size() >= 4) {
+    std::size_t n = std::min<std::size_t>(b.size() & ~std::size_t(1), 512), even0 = 0, odd0 = 0;
+    for (std::size_t i = 0; i < n; ++i) (i % 2 ? odd0 : even0) += b[i] == 0;
+    utf16 = (odd0 > n / 4 && even0 == 0) || (even0 > n / 4 && odd0 == 0);
+  }
+  // The same cases as decode_text, which returns valid UTF-8 unchanged: no copy then.
+  if (bom8) return std::string_view(b).substr(3);
+  if (!bom16 && !utf16 && valid_utf8(b)) return b;
+  storage = decode_text(b);
+  return storage;
+}
+
+}  // namespace io_detail
 
 std::string decode_text(const std::string& b) {
   auto u = [&](std::size_t i) { return (unsigned char)b[i]; };
@@ -95,8 +128,8 @@ bool is_comment(std::string_view t) {
   return !t.empty() && (t.front() == '#' || t.front() == '%' || t.substr(0, 2) == "//");
 }
 
-std::vector<std::string_view> split_fields(std::string_view line, char delim) {
-  std::vector<std::string_view> f;
+void split_fields_into(std::string_view line, char delim, std::vector<std::string_view>& f) {
+  f.clear();
   if (delim == ' ') {
     std::size_t i = 0;
     while (i < line.size()) {
@@ -117,6 +150,11 @@ std::vector<std::string_view> split_fields(std::string_view line, char delim) {
     }
     while (!f.empty() && f.back().empty()) f.pop_back();  // "0.0,-0.00933,," (Dektak)
   }
+}
+
+std::vector<std::string_view> split_fields(std::string_view line, char delim) {
+  std::vector<std::string_view> f;
+  split_fields_into(line, delim, f);
   return f;
 }
 
@@ -257,9 +295,87 @@ std::optional<std::pair<double, double>> regular_axis(std::vector<double> v, std
 
 }  // namespace
 
+// Lines of a text one at a time, as split_lines() cuts them (no vector of every line: a 10^7
+// line file would need 240 MB for it).
+class LineCursor {
+ public:
+  explicit LineCursor(std::string_view text) : text_(text) {}
+  bool next(Line& out) {
+    if (pos_ >= text_.size()) return false;
+    const char* b = text_.data() + pos_;
+    const std::size_t rest = text_.size() - pos_;
+    std::size_t i = 0;
+    while (i < rest && b[i] != '\n' && b[i] != '\r') ++i;
+    out = {text_.substr(pos_, i), number_++};
+    std::size_t next = pos_ + i + 1;
+    if (i < rest && b[i] == '\r' && next < text_.size() && text_[next] == '\n') ++next;
+    pos_ = next;
+    return true;
+  }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_ = 0, number_ = 1;
+};
+
+// The delimiter from the last 200 data lines, as detect_delimiter(split_lines(text)) finds it,
+// splitting only a tail of the text that holds them.
+Delim detect_delimiter_tail(std::string_view text) {
+  std::size_t want = 2048;
+  while (true) {
+    // Start of the tail: just after the want-th line terminator from the end.
+    std::size_t start = 0, count = 0;
+    for (std::size_t i = text.size(); i-- > 0;) {
+      if (text[i] == '\n' || text[i] == '\r') {
+        if (++count >= want) {
+          start = i + 1;
+          if (text[i] == '\r' && start < text.size() && text[start] == '\n') ++start;  // "\r\n" ends one line
+          break;
+        }
+      }
+    }
+    auto lines = split_lines(text.substr(start));
+    std::size_t data = 0;
+    for (const Line& l : lines) {
+      auto t = trim(l.text);
+      if (!t.empty() && !is_comment(t)) ++data;
+    }
+    if (start == 0 || data >= 200) return detect_delimiter(lines);
+    want *= 4;
+  }
+}
+
+// Line numbers of the data rows: consecutive runs stored as (first row, first line).
+class RowLines {
+ public:
+  void push_back(std::size_t line) {
+    if (runs_.empty() || runs_.back().second + (n_ - runs_.back().first) != line) runs_.push_back({n_, line});
+    ++n_;
+  }
+  void push_front(std::size_t line) {
+    std::vector<std::size_t> all;
+    all.reserve(n_ + 1);
+    all.push_back(line);
+    for (std::size_t k = 0; k < n_; ++k) all.push_back((*this)[k]);
+    runs_.clear();
+    n_ = 0;
+    for (auto l : all) push_back(l);
+  }
+  std::size_t operator[](std::size_t k) const {
+    auto it = std::upper_bound(runs_.begin(), runs_.end(), k,
+                               [](std::size_t v, const std::pair<std::size_t, std::size_t>& r) { return v < r.first; });
+    --it;
+    return it->second + (k - it->first);
+  }
+  std::size_t front() const { return (*this)[0]; }
+
+ private:
+  std::vector<std::pair<std::size_t, std::size_t>> runs_;  // (row index, line number)
+  std::size_t n_ = 0;
+};
+
 Result<SurfaceData> parse_delimited(std::string_view text, const std::string& name, const ReadOptions& options) {
-  auto lines = split_lines(text);
-  Delim delim = detect_delimiter(lines);
+  Delim delim = detect_delimiter_tail(text);
   std::vector<std::vector<std::string_view>> headers;  // non-numeric lines before the data
   std::vector<std::string_view> raw_headers;           // the same lines, whole
   // Data rows stored flat (ncols values per row): no per-row allocation for large files.
@@ -271,12 +387,15 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     const double* operator[](std::size_t k) const { return v.data() + k * ncols; }
     void push_back(const std::vector<double>& r) { v.insert(v.end(), r.begin(), r.end()); }
   } rows;
-  std::vector<std::size_t> row_line;
+  RowLines row_line;
   std::vector<double> vals;
+  std::vector<std::string_view> f;
   std::size_t ncols = 0, trailer_line = 0;
+  std::string_view trailer_text;
   long long count_line_value = -1;
   std::size_t count_line_number = 0;
-  for (const Line& ln : lines) {
+  LineCursor cursor(text);
+  for (Line ln; cursor.next(ln);) {
     auto t = trim(ln.text);
     if (t.empty()) continue;
     if (is_comment(t)) {
@@ -286,11 +405,11 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       }
       continue;
     }
-    auto f = split_fields(t, delim.c);
+    split_fields_into(t, delim.c, f);
     if (numeric_fields(f, delim.decimal_comma, &vals)) {
       if (trailer_line)
         return make_error(fmt::format("{}:{}: expected numbers, found text '{}' inside the data", name, trailer_line,
-                                      std::string(trim(lines[trailer_line - 1].text)).substr(0, 60)));
+                                      std::string(trim(trailer_text)).substr(0, 60)));
       if (rows.empty() && vals.size() == 1 && count_line_number == 0) {
         // A count line ("23") before the data, or the first of a single column of heights
         // (decided below).
@@ -318,15 +437,16 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       if (f.size() == 1 && delim.c != ' ') headers.push_back(split_fields(t, ' '));
     } else if (!trailer_line) {
       trailer_line = ln.number;
+      trailer_text = ln.text;
     }
   }
   if (trailer_line && rows.size() < 2)
     return make_error(fmt::format("{}:{}: expected numbers, found '{}'", name, trailer_line,
-                                  std::string(trim(lines[trailer_line - 1].text)).substr(0, 60)));
+                                  std::string(trim(trailer_text)).substr(0, 60)));
   // A single column whose first line is not its count: that line is the first height.
   if (ncols == 1 && count_line_number && (std::size_t(count_line_value) != rows.size() || rows.size() < 2)) {
     rows.v.insert(rows.v.begin(), double(count_line_value));
-    row_line.insert(row_line.begin(), count_line_number);
+    row_line.push_front(count_line_number);
     count_line_value = -1;
   }
   if (rows.empty()) {

@@ -33,6 +33,20 @@ bool parse_double(std::string_view s, double& out, bool decimal_comma) {
   if (s.empty()) return false;
   if (s.front() == '+') s.remove_prefix(1);
   if (s.empty()) return false;
+  // Fast path for plain numbers (a digit or '.' after an optional '-'): none of the special
+  // spellings below starts so except "1.#inf" and the like, which from_chars does not take whole.
+  {
+    const std::size_t k = s.front() == '-' ? 1 : 0;
+    if (k < s.size() && ((s[k] >= '0' && s[k] <= '9') || s[k] == '.') &&
+        !(decimal_comma && s.find(',') != std::string_view::npos)) {
+      double v = 0;
+      auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+      if (ec == std::errc() && p == s.data() + s.size()) {
+        out = v;
+        return true;
+      }
+    }
+  }
   std::string low = lower_ascii(s);
   if (low == "nan" || low == "-nan" || low == "+nan" || low == "1.#qnan" || low == "-1.#ind" || low == "1.#ind") {
     out = std::numeric_limits<double>::quiet_NaN();

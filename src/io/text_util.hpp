@@ -40,6 +40,12 @@ std::size_t mask_invalid(std::vector<double>& z, InvalidCount& count);
 /// "name: 3 invalid points (2 NaN, 1 +inf) masked" (map) or "... dropped from the profile".
 std::string invalid_warning(const std::string& name, const InvalidCount& c, bool map);
 
+/// decode_text(b) without a copy when b is already UTF-8 (the common case): a view of b, or
+/// of `storage` holding the decoded text.
+std::string_view decode_text_view(const std::string& b, std::string& storage);
+/// True if decode_text(b) would change b other than by dropping a UTF-8 BOM (UTF-16, Latin-1).
+bool text_needs_decoding(std::string_view b);
+
 struct Line {
   std::string_view text;
   std::size_t number;  ///< 1-based line number

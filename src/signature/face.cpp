@@ -8,14 +8,30 @@ Face::Face(std::vector<double> x, const std::vector<double>& z, double sign) : x
   const std::size_t n = x_.size();
   v_.resize(n);
   for (std::size_t i = 0; i < n; ++i) v_[i] = sign * z[i];
+  build();
+}
+
+Face::Face(std::vector<double> x, std::vector<double>&& z, double sign)
+    : x_(std::move(x)), v_(std::move(z)), sign_(sign) {
+  for (double& v : v_) v = sign * v;
+  build();
+}
+
+void Face::build() {
+  const std::size_t n = x_.size();
   vmax_ = *std::max_element(v_.begin(), v_.end());
   vmin_ = *std::min_element(v_.begin(), v_.end());
   // Uniform grids get O(1) index lookups.
   if (n >= 2) {
     dx_ = (x_.back() - x_.front()) / static_cast<double>(n - 1);
     uniform_ = dx_ > 0;
+    // Uniform within 1e-9 dx, or within a few rounding units of the abscissae themselves: at
+    // 10^7 points 1e-9 dx is below the spacing of doubles near x, and a grid written as
+    // x0 + i dx (or turned over by rotate180) is off by an ulp or two.
+    const double xmag = std::max(std::abs(x_.front()), std::abs(x_.back()));
+    const double tol = std::max(1e-9 * dx_, 16 * std::numeric_limits<double>::epsilon() * xmag);
     for (std::size_t i = 1; i < n && uniform_; ++i)
-      if (std::abs(x_[i] - (x_.front() + dx_ * static_cast<double>(i))) > 1e-9 * dx_) uniform_ = false;
+      if (std::abs(x_[i] - (x_.front() + dx_ * static_cast<double>(i))) > tol) uniform_ = false;
     inv_dx_ = uniform_ ? 1.0 / dx_ : 0.0;
   }
   const std::size_t nb = (n + kBlock - 1) / kBlock;
@@ -27,6 +43,21 @@ Face::Face(std::vector<double> x, const std::vector<double>& z, double sign) : x
     std::vector<double> next(nb - 2 * w + 1);
     for (std::size_t b = 0; b < next.size(); ++b) next[b] = std::max(prev[b], prev[b + w]);
     st_.push_back(std::move(next));
+  }
+  tree_ = AlignedMax(v_);
+}
+
+AlignedMax::AlignedMax(const std::vector<double>& v) {
+  const std::size_t n = v.size();
+  std::vector<double> level((n + kBlock - 1) / kBlock, -std::numeric_limits<double>::infinity());
+  for (std::size_t i = 0; i < n; ++i) level[i >> kBlockShift] = std::max(level[i >> kBlockShift], v[i]);
+  lv_.push_back(std::move(level));
+  while (lv_.back().size() > 1) {
+    const auto& prev = lv_.back();
+    std::vector<double> next((prev.size() + 1) / 2);
+    for (std::size_t q = 0; q < next.size(); ++q)
+      next[q] = (2 * q + 1 < prev.size()) ? std::max(prev[2 * q], prev[2 * q + 1]) : prev[2 * q];
+    lv_.push_back(std::move(next));
   }
 }
 
@@ -80,6 +111,18 @@ double Face::range_max(std::size_t i0, std::size_t i1) const {
     // Small ranges inside one block: exact.
     double m = v_[i0];
     for (std::size_t i = i0 + 1; i <= i1; ++i) m = std::max(m, v_[i]);
+    return m;
+  }
+  if (st_.empty()) {
+    // Bottom-up over the aligned maxima: the max over blocks b0..b1, the same value as below.
+    double m = -std::numeric_limits<double>::infinity();
+    auto lo = static_cast<std::ptrdiff_t>(b0), hi = static_cast<std::ptrdiff_t>(b1);
+    for (std::size_t l = 0; lo <= hi; ++l, lo >>= 1, hi = (hi >> 1)) {
+      const auto& lv = tree_.level(l);
+      if (lo & 1) m = std::max(m, lv[static_cast<std::size_t>(lo++)]);
+      if (!(hi & 1)) m = std::max(m, lv[static_cast<std::size_t>(hi--)]);
+      if (hi < lo) break;
+    }
     return m;
   }
   std::size_t len = b1 - b0 + 1;

@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 
@@ -42,7 +43,11 @@ struct Problem {
   double vtol = 0;               // value tolerance (m)
   bool aligned_lattice = false;  // both uniform with the same spacing, events on a lattice
   double lattice_origin = 0, lattice_step = 0;
-  std::vector<double> spline_f, spline_g;  // spline slopes at points (SlopeMethod::Spline)
+  std::vector<double> spline_f, spline_g;     // spline slopes at points (SlopeMethod::Spline)
+  double lower_length = 0, upper_length = 0;  // block lengths (m)
+  // Aligned lattice whose points sit on x0 + i dx within a small fraction of xtol: at a lattice
+  // offset, vertex i of F faces vertex i - d of G exactly, and the search runs on indices.
+  bool index_search = false;
 };
 
 // Searches max over vertices i of A in [i0, i1] of vA[i] + vB(xA[i] + shift) by branch and
@@ -91,6 +96,205 @@ void search(const Face& A, const Face& B, double shift, std::size_t i0, std::siz
   }
 }
 
+// Aligned-lattice search: max over i in [i0, i1] of va[i] + vb[i - d] (all indices valid), the
+// same values as search() (Face::value at a lattice vertex is that vertex's v). Branch and bound
+// over aligned nodes of A (32 << l points); B's shifted range is covered by at most two aligned
+// nodes of the same level, so every bound is two or three reads from small arrays that stay in
+// cache. Candidates within vtol of the running best are appended, as in search().
+// Nodes of A at one level that may hold a maximiser for any offset of a batch [begin, end) of
+// consecutive lattice offsets (see build_frontier): the search of each of them starts there
+// instead of at the top, so the coarse levels are visited once per batch, not once per offset.
+struct Frontier {
+  std::size_t begin = 0, end = 0;  // offsets (indices into the offset list) it serves
+  std::uint32_t level = 0;
+  std::vector<std::size_t> nodes;  // node indices at `level`
+};
+
+void search_aligned(const std::vector<double>& va, const std::vector<double>& vb, const detail::AlignedMax& ma,
+                    const detail::AlignedMax& mb, std::ptrdiff_t d, std::size_t i0, std::size_t i1, double vtol,
+                    double& best, std::vector<Cand>& out, const Frontier* frontier) {
+  if (i0 > i1) return;
+  using detail::kBlockShift;
+  struct Node {
+    std::uint32_t level;
+    std::size_t q;  // node index at its level: points [q << (5 + level), (q + 1) << (5 + level))
+    double ub;
+  };
+  auto bound = [&](std::uint32_t level, std::size_t q) {
+    const unsigned sh = kBlockShift + level;
+    const std::size_t lo = std::max(q << sh, i0), hi = std::min(((q + 1) << sh) - 1, i1);
+    const auto jlo = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(lo) - d);
+    const auto jhi = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(hi) - d);
+    const auto& lb = mb.level(level);
+    const double b = std::max(lb[jlo >> sh], lb[jhi >> sh]);
+    return ma.level(level)[q] + b;
+  };
+  thread_local std::vector<Node> stack;
+  stack.clear();
+  if (frontier) {
+    // Every node that can hold a maximiser of this offset is below a frontier node.
+    const unsigned sh = kBlockShift + frontier->level;
+    for (std::size_t q : frontier->nodes) {
+      if (((q + 1) << sh) <= i0 || (q << sh) > i1) continue;
+      const double u = bound(frontier->level, q);
+      if (u >= best - vtol) stack.push_back({frontier->level, q, u});
+    }
+    std::sort(stack.begin(), stack.end(), [](const Node& x, const Node& y) { return x.ub < y.ub; });
+  } else {
+    // Start from the nodes of the level whose size covers [i0, i1] with at most two nodes.
+    std::uint32_t top = 0;
+    while (top + 1 < ma.levels() && ((i1 >> (kBlockShift + top)) - (i0 >> (kBlockShift + top))) > 1) ++top;
+    const unsigned sh = kBlockShift + top;
+    const std::size_t q0 = i0 >> sh, q1 = i1 >> sh;
+    const double u0 = bound(top, q0);
+    if (q1 != q0) {
+      const double u1 = bound(top, q1);
+      if (u0 >= u1) {
+        stack.push_back({top, q1, u1});
+        stack.push_back({top, q0, u0});
+      } else {
+        stack.push_back({top, q0, u0});
+        stack.push_back({top, q1, u1});
+      }
+    } else {
+      stack.push_back({top, q0, u0});
+    }
+  }
+  while (!stack.empty()) {
+    const Node node = stack.back();
+    stack.pop_back();
+    if (node.ub < best - vtol) continue;
+    if (node.level == 0) {
+      const std::size_t lo = std::max(node.q << kBlockShift, i0);
+      const std::size_t hi = std::min(((node.q + 1) << kBlockShift) - 1, i1);
+      const double* a = va.data();
+      const double* b = vb.data() - d;
+      double m = -kInf;
+      for (std::size_t i = lo; i <= hi; ++i) m = std::max(m, a[i] + b[i]);
+      if (m < best - vtol) continue;
+      const double cut = std::max(best, m) - vtol;
+      for (std::size_t i = lo; i <= hi; ++i) {
+        const double val = a[i] + b[i];
+        if (val >= cut) out.push_back({val, i, true});
+      }
+      if (m > best) best = m;
+      continue;
+    }
+    const std::uint32_t l = node.level - 1;
+    const unsigned sh = kBlockShift + l;
+    const std::size_t qa = 2 * node.q, qb = 2 * node.q + 1;
+    const bool has_a = ((qa + 1) << sh) > i0 && (qa << sh) <= i1;
+    const bool has_b = ((qb + 1) << sh) > i0 && (qb << sh) <= i1;
+    const double ua = has_a ? bound(l, qa) : -kInf, ub2 = has_b ? bound(l, qb) : -kInf;
+    if (ua >= ub2) {
+      if (has_b && ub2 >= best - vtol) stack.push_back({l, qb, ub2});
+      if (has_a && ua >= best - vtol) stack.push_back({l, qa, ua});
+    } else {
+      if (has_a && ua >= best - vtol) stack.push_back({l, qa, ua});
+      if (has_b && ub2 >= best - vtol) stack.push_back({l, qb, ub2});
+    }
+  }
+}
+
+// The index search of a non-periodic offset s: F's candidate range [f0, f1] and the index shift
+// d (F vertex i faces G vertex i - d). False when s is off the lattice or the range leaves G's
+// indices; evaluate_offset() then takes the general search.
+bool index_range(const Problem& P, double s, std::size_t& f0, std::size_t& f1, std::ptrdiff_t& d) {
+  if (!P.index_search || P.periodic) return false;
+  const Face& F = P.F;
+  const Face& G = P.G;
+  const double a = std::max(F.x_front(), G.x_front() + s);
+  const double b = std::min(F.x_back(), G.x_back() + s);
+  if (!(b >= a)) return false;
+  f0 = F.ceil_index(a - P.xtol);
+  f1 = F.floor_index(b + P.xtol);
+  const double k = (s - P.lattice_origin) / P.lattice_step;
+  const double lk = std::round(k);
+  if (!(std::abs(k - lk) < 1e-9) || f0 > f1) return false;
+  d = static_cast<std::ptrdiff_t>(lk);
+  const auto jlo = static_cast<std::ptrdiff_t>(f0) - d, jhi = static_cast<std::ptrdiff_t>(f1) - d;
+  return jlo >= 0 && jhi < static_cast<std::ptrdiff_t>(G.size());
+}
+
+// Frontier for the lattice offsets offs[begin, end) (shortened to those that take the index
+// search with the warm contact inside their range). Each offset's maximum is at least the value
+// at the warm contact, so a node whose bound over the whole batch (B's range widened by the
+// spread of shifts) is below the least of those values, less vtol, holds no maximiser and no
+// candidate of any offset of the batch. Returns false if no offset qualifies.
+bool build_frontier(const Problem& P, const std::vector<double>& offs, std::size_t begin, std::size_t end,
+                    double warm_x, Frontier& fr) {
+  using detail::kBlockShift;
+  fr.nodes.clear();
+  fr.begin = fr.end = 0;
+  if (!std::isfinite(warm_x)) return false;
+  const Face& F = P.F;
+  const Face& G = P.G;
+  const Position pw = F.locate(warm_x, 0.0);
+  if (!pw.vertex) return false;
+  const std::size_t istar = pw.first;
+  const auto& va = F.v();
+  const auto& vb = G.v();
+  std::size_t u0 = std::numeric_limits<std::size_t>::max(), u1 = 0;
+  std::ptrdiff_t dmin = std::numeric_limits<std::ptrdiff_t>::max(), dmax = std::numeric_limits<std::ptrdiff_t>::min();
+  double T = kInf;
+  std::size_t e = begin;
+  for (; e < end; ++e) {
+    std::size_t f0, f1;
+    std::ptrdiff_t d;
+    if (!index_range(P, offs[e], f0, f1, d) || istar < f0 || istar > f1) break;
+    T = std::min(T, va[istar] + vb[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(istar) - d)]);
+    u0 = std::min(u0, f0);
+    u1 = std::max(u1, f1);
+    dmin = std::min(dmin, d);
+    dmax = std::max(dmax, d);
+  }
+  if (e == begin) return false;
+  T -= P.vtol;
+  const auto& ma = F.aligned_max();
+  const auto& mb = G.aligned_max();
+  const auto jmax = static_cast<std::ptrdiff_t>(G.size()) - 1;
+  auto bound = [&](std::uint32_t level, std::size_t q) {
+    const unsigned sh = kBlockShift + level;
+    const std::size_t lo = std::max(q << sh, u0), hi = std::min(((q + 1) << sh) - 1, u1);
+    const std::ptrdiff_t j0 = std::max<std::ptrdiff_t>(0, static_cast<std::ptrdiff_t>(lo) - dmax);
+    const std::ptrdiff_t j1 = std::min(jmax, static_cast<std::ptrdiff_t>(hi) - dmin);
+    if (j0 > j1) return -kInf;
+    const auto& lb = mb.level(level);
+    double b = -kInf;
+    for (auto k = static_cast<std::size_t>(j0) >> sh; k <= (static_cast<std::size_t>(j1) >> sh); ++k)
+      b = std::max(b, lb[k]);
+    return ma.level(level)[q] + b;
+  };
+  // The frontier level: nodes at least four times as long as the batch of shifts is wide.
+  std::uint32_t lf = 0;
+  const auto spread = static_cast<std::size_t>(dmax - dmin) + 1;
+  while (lf + 1 < ma.levels() && (std::size_t{kBlock} << lf) < 4 * spread) ++lf;
+  std::uint32_t top = lf;
+  while (top + 1 < ma.levels() && ((u1 >> (kBlockShift + top)) - (u0 >> (kBlockShift + top))) > 1) ++top;
+  struct Node {
+    std::uint32_t level;
+    std::size_t q;
+  };
+  std::vector<Node> stack;
+  for (std::size_t q = u0 >> (kBlockShift + top); q <= (u1 >> (kBlockShift + top)); ++q) stack.push_back({top, q});
+  while (!stack.empty()) {
+    const Node nd = stack.back();
+    stack.pop_back();
+    if (bound(nd.level, nd.q) < T) continue;
+    if (nd.level == lf) {
+      fr.nodes.push_back(nd.q);
+      continue;
+    }
+    const unsigned sh = kBlockShift + nd.level - 1;
+    for (std::size_t c : {2 * nd.q + 1, 2 * nd.q})
+      if (((c + 1) << sh) > u0 && (c << sh) <= u1) stack.push_back({nd.level - 1, c});
+  }
+  fr.level = lf;
+  fr.begin = begin;
+  fr.end = e;
+  return true;
+}
+
 struct OffsetResult {
   double lift = kNaN, theta = kNaN, theta_min = kNaN, theta_left = kNaN, theta_right = kNaN;
   double contact_x = kNaN;  // for the warm start
@@ -111,7 +315,8 @@ double vertex_slope(const Face& face, const Position& p) {
 // Evaluates one offset: lift, contacts and slopes. `warm_x` is a lower-frame abscissa that was
 // a contact nearby (NaN if none); it only speeds up the search.
 OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMethod method,
-                             std::vector<Contact>* contacts, std::vector<Cand>& cands) {
+                             std::vector<Contact>* contacts, std::vector<Cand>& cands,
+                             const Frontier* frontier = nullptr) {
   const Face& F = P.F;
   const Face& G = P.G;
   cands.clear();
@@ -136,11 +341,23 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
   }
   double best = -kInf;
   if (std::isfinite(warm_x) && warm_x >= a && warm_x <= b) best = F.value(warm_x, P.xtol) + G.value(warm_x - s, P.xtol);
-  search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
   bool skip_g = false;
+  double lattice_k = 0;
   if (P.aligned_lattice) {
     const double k = (s - P.lattice_origin) / P.lattice_step;
-    skip_g = std::abs(k - std::round(k)) < 1e-9;  // every G vertex sits on an F vertex
+    lattice_k = std::round(k);
+    skip_g = std::abs(k - lattice_k) < 1e-9;  // every G vertex sits on an F vertex
+  }
+  if (skip_g && P.index_search && f0 <= f1) {
+    // F vertex i faces G vertex i - d; [f0, f1] maps into G's index range.
+    const auto d = static_cast<std::ptrdiff_t>(lattice_k);
+    const auto jlo = static_cast<std::ptrdiff_t>(f0) - d, jhi = static_cast<std::ptrdiff_t>(f1) - d;
+    if (jlo >= 0 && jhi < static_cast<std::ptrdiff_t>(G.size()))
+      search_aligned(F.v(), G.v(), F.aligned_max(), G.aligned_max(), d, f0, f1, P.vtol, best, cands, frontier);
+    else
+      search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
+  } else {
+    search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
   }
   if (!skip_g) search(G, F, s, g0, g1, false, P.xtol, P.vtol, best, cands);
 
@@ -295,10 +512,16 @@ Profile tile3(const Profile& p, double P, std::size_t& lo, std::size_t& hi, doub
   return t;
 }
 
-// Prepares the faces and tolerances of `lower` against `upper` (upper already shifted into the
-// lower frame). Shared by signature() and the rigid evaluator of spheropolygon signatures.
-Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, const SignatureOptions& o) {
-  const double Lmax = std::max(lower.length(), upper.length());
+// Prepares the faces and tolerances of `lower` against `upper`, whose abscissae are moved by
+// `shift` into the lower frame (x + shift, rounded as such), without copying either profile.
+// Shared by signature() and the rigid evaluator of spheropolygon signatures.
+// With `take_lower` / `take_upper` (the same objects as lower / upper), their x and z move into
+// the faces instead of being copied, and the profiles are left empty.
+Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, double shift, const SignatureOptions& o,
+                       Profile* take_lower = nullptr, Profile* take_upper = nullptr) {
+  P.lower_length = lower.length();
+  P.upper_length = (upper.x.back() + shift) - (upper.x.front() + shift);
+  const double Lmax = std::max(P.lower_length, P.upper_length);
   double zr = 0;
   {
     auto [a1, b1] = std::minmax_element(lower.z.begin(), lower.z.end());
@@ -311,13 +534,23 @@ Status prepare_problem(Problem& P, const Profile& lower, const Profile& upper, c
   P.periodic = lower.period && upper.period && std::abs(*lower.period - *upper.period) <= 1e-9 * *lower.period;
   if (P.periodic) {
     P.period = *lower.period;
+    Profile shifted = upper;
+    for (auto& v : shifted.x) v += shift;
     Profile tf = tile3(lower, P.period, P.f_lo, P.f_hi, P.xtol);
-    Profile tg = tile3(upper, P.period, P.g_lo, P.g_hi, P.xtol);
+    Profile tg = tile3(shifted, P.period, P.g_lo, P.g_hi, P.xtol);
     P.F = Face(std::move(tf.x), tf.z, +1.0);
     P.G = Face(std::move(tg.x), tg.z, -1.0);
   } else {
-    P.F = Face(lower.x, lower.z, +1.0);
-    P.G = Face(upper.x, upper.z, -1.0);
+    if (take_lower)
+      P.F = Face(std::move(take_lower->x), std::move(take_lower->z), +1.0);
+    else
+      P.F = Face(lower.x, lower.z, +1.0);
+    std::vector<double> gx = take_upper ? std::move(take_upper->x) : upper.x;
+    for (auto& v : gx) v += shift;
+    if (take_upper)
+      P.G = Face(std::move(gx), std::move(take_upper->z), -1.0);
+    else
+      P.G = Face(std::move(gx), upper.z, -1.0);
   }
   if (o.slopes == SlopeMethod::Spline) {
     auto sf = detail::spline_second_derivatives(P.F.x(), P.F.v());
@@ -383,12 +616,10 @@ Result<detail::RigidLift> detail::RigidLift::make(const Profile& lower_in, const
                                                   const SignatureOptions& o) {
   auto impl = std::make_shared<Impl>();
   impl->lower = lower_in;
-  Profile upper = upper_in;
-  const double shift = lower_in.x.front() - upper.x.front();
-  for (auto& v : upper.x) v += shift;
+  const double shift = lower_in.x.front() - upper_in.x.front();
   SignatureOptions exact = o;
   exact.slopes = SlopeMethod::Exact;
-  if (auto st = prepare_problem(impl->P, impl->lower, upper, exact); !st) return st.error();
+  if (auto st = prepare_problem(impl->P, impl->lower, upper_in, shift, exact); !st) return st.error();
   RigidLift r;
   r.impl_ = std::move(impl);
   return r;
@@ -427,7 +658,10 @@ Result<FrictionPrediction> predict_friction(double mu_a, double theta_max, doubl
   return f;
 }
 
-Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o) {
+namespace {
+
+Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o,
+                                       Profile* take_lower, Profile* take_upper) {
   if (auto st = validate(lower_in, "lower surface"); !st) return st.error();
   if (auto st = validate(upper_in, "upper surface"); !st) return st.error();
   if (!(o.tolerance > 0 && o.tolerance < 1e-3))
@@ -440,27 +674,24 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   if (o.spheroradius > 0) return detail::sphero_signature(lower_in, upper_in, o);
 
   // Frame: offset 0 puts the upper block's left end over the lower block's left end.
-  Profile lower = lower_in;
-  Profile upper = upper_in;
-  const double shift = lower.x.front() - upper.x.front();
-  for (auto& v : upper.x) v += shift;
+  const double shift = lower_in.x.front() - upper_in.x.front();
 
   Problem P;
-  if (auto st = prepare_problem(P, lower, upper, o); !st) return st.error();
+  if (auto st = prepare_problem(P, lower_in, upper_in, shift, o, take_lower, take_upper); !st) return st.error();
 
   // Offset range.
   double smin = o.offset_min, smax = o.offset_max;
   if (!(smax > smin)) {
     smin = 0;
-    smax = P.periodic ? P.period : 0.5 * std::min(lower.length(), upper.length());
+    smax = P.periodic ? P.period : 0.5 * std::min(P.lower_length, P.upper_length);
   }
   if (!std::isfinite(smin) || !std::isfinite(smax)) return make_error("signature: offset range must be finite");
   if (!P.periodic) {
-    if (!(smin > -upper.length()) || !(smax < lower.length()))
+    if (!(smin > -P.upper_length) || !(smax < P.lower_length))
       return make_error(
           fmt::format("signature: offsets [{}, {}] m leave no overlap between the blocks (allowed: "
                       "inside ({}, {}) m)",
-                      smin, smax, -upper.length(), lower.length()));
+                      smin, smax, -P.upper_length, P.lower_length));
   }
 
   // Offsets: events (exact) or N equally spaced.
@@ -477,6 +708,19 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
       P.aligned_lattice = true;
       P.lattice_origin = fx.front() - gx.front();
       P.lattice_step = dxf;
+      // Index search when every point sits on its lattice node far inside xtol, so that at a
+      // lattice offset Face::value(x_F[i] - s) is exactly v_G[i - d].
+      double dev = 0;
+      for (std::size_t i = 0; i < fx.size(); ++i)
+        dev = std::max(dev, std::abs(fx[i] - (fx.front() + dxf * static_cast<double>(i))));
+      for (std::size_t j = 0; j < gx.size(); ++j)
+        dev = std::max(dev, std::abs(gx[j] - (gx.front() + dxf * static_cast<double>(j))));
+      if (dev < 0.05 * P.xtol && P.xtol < 0.05 * dxf) {
+        P.index_search = true;
+        // The few offsets off the lattice (the range ends) bound with the aligned maxima.
+        P.F.drop_sparse_table();
+        P.G.drop_sparse_table();
+      }
     }
   }
   // Exact mode needs every event offset. Count them first: when there are more than
@@ -512,6 +756,7 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
     if (P.aligned_lattice) {
       const double k0 = std::ceil((smin - P.lattice_origin) / P.lattice_step - 1e-9);
       const double k1 = std::floor((smax - P.lattice_origin) / P.lattice_step + 1e-9);
+      if (k1 >= k0) offs.reserve(static_cast<std::size_t>(k1 - k0) + 3);
       for (double k = k0; k <= k1; k += 1) offs.push_back(P.lattice_origin + k * P.lattice_step);
     } else if (P.periodic) {
       std::vector<double> base;
@@ -538,12 +783,11 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
     offs.push_back(smin);
     offs.push_back(smax);
     std::sort(offs.begin(), offs.end());
-    std::vector<double> u;
-    u.reserve(offs.size());
-    for (double v : offs)
-      if (u.empty() || v > u.back() + P.xtol) u.push_back(v);
-    if (u.back() < smax) u.back() = smax;
-    offs.swap(u);
+    std::size_t w = 0;  // drop near-duplicates in place (each kept value compared with the last kept)
+    for (std::size_t r = 0; r < offs.size(); ++r)
+      if (w == 0 || offs[r] > offs[w - 1] + P.xtol) offs[w++] = offs[r];
+    offs.resize(w);
+    if (offs.back() < smax) offs.back() = smax;
     events = offs.size();
   } else {
     const std::size_t n = std::max<std::size_t>(sampled, 2);
@@ -553,41 +797,47 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   }
 
   // Evaluate, split into contiguous chunks over threads; each chunk warm-starts from its own
-  // previous offset, so the result does not depend on the number of threads.
+  // previous offset, so the result does not depend on the number of threads. Results go straight
+  // into R (no per-offset record kept beside it: memory at 10^7 offsets).
   const std::size_t n = offs.size();
-  std::vector<OffsetResult> res(n);
+  SignatureResult R;
+  R.exact = (sampled == 0);
+  R.events = events;
+  R.offset = std::move(offs);
+  R.lift.resize(n);
+  R.theta.resize(n);
+  R.theta_min.resize(n);
+  R.theta_left.resize(n);
+  R.theta_right.resize(n);
   const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, n / 64));
   std::vector<std::vector<Contact>> chunk_contacts(T);
   std::vector<std::vector<std::uint32_t>> chunk_counts(T);
   util::parallel_chunks(n, T, [&](unsigned t, std::size_t i0, std::size_t i1) {
     std::vector<Cand> cands;
     double warm = kNaN;
+    if (o.keep_contacts) chunk_counts[t].reserve(i1 - i0);
+    Frontier frontier;
+    constexpr std::size_t kBatch = 16;  // offsets per frontier
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t before = chunk_contacts[t].size();
-      res[i] = evaluate_offset(P, offs[i], warm, o.slopes, o.keep_contacts ? &chunk_contacts[t] : nullptr, cands);
-      chunk_counts[t].push_back(static_cast<std::uint32_t>(chunk_contacts[t].size() - before));
-      warm = res[i].contact_x;
+      if (P.index_search && !(i >= frontier.begin && i < frontier.end))
+        build_frontier(P, R.offset, i, std::min(i + kBatch, i1), warm, frontier);
+      const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
+      const OffsetResult e =
+          evaluate_offset(P, R.offset[i], warm, o.slopes, o.keep_contacts ? &chunk_contacts[t] : nullptr, cands, fr);
+      R.lift[i] = e.lift;
+      R.theta[i] = e.theta;
+      R.theta_min[i] = e.theta_min;
+      R.theta_left[i] = e.theta_left;
+      R.theta_right[i] = e.theta_right;
+      if (o.keep_contacts) chunk_counts[t].push_back(static_cast<std::uint32_t>(chunk_contacts[t].size() - before));
+      warm = e.contact_x;
     }
   });
-
-  SignatureResult R;
-  R.exact = (sampled == 0);
-  R.events = events;
-  R.offset = offs;
-  R.lift.resize(n);
-  R.theta.resize(n);
-  R.theta_min.resize(n);
-  R.theta_left.resize(n);
-  R.theta_right.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    R.lift[i] = res[i].lift;
-    R.theta[i] = res[i].theta;
-    R.theta_min[i] = res[i].theta_min;
-    R.theta_left[i] = res[i].theta_left;
-    R.theta_right[i] = res[i].theta_right;
-    if (!std::isfinite(res[i].lift))
-      return make_error(fmt::format("signature: no overlap between the blocks at offset {} m", offs[i]));
-  }
+  const std::vector<double>& offs_r = R.offset;
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(R.lift[i]))
+      return make_error(fmt::format("signature: no overlap between the blocks at offset {} m", offs_r[i]));
   if (o.keep_contacts) {
     R.contact_begin.reserve(n + 1);
     R.contact_begin.push_back(0);
@@ -612,11 +862,11 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
     }
     if (hi > R.theta_max_forward) {
       R.theta_max_forward = hi;
-      R.offset_at_forward = offs[i];
+      R.offset_at_forward = offs_r[i];
     }
     if (-lo > R.theta_max_backward) {
       R.theta_max_backward = -lo;
-      R.offset_at_backward = offs[i];
+      R.offset_at_backward = offs_r[i];
     }
   }
 
@@ -625,7 +875,7 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   // lines (exact when the interval holds at most two linear pieces). Sampled mode: theta(s).
   if (R.exact && o.slopes == SlopeMethod::Exact) {
     for (std::size_t i = 0; i + 1 < n; ++i) {
-      const double s0 = offs[i], s1 = offs[i + 1], L = s1 - s0;
+      const double s0 = offs_r[i], s1 = offs_r[i + 1], L = s1 - s0;
       const double a0 = R.theta_right[i], a1 = R.theta_left[i + 1];
       const bool w0 = std::abs(a0) < kHalfPi, w1 = std::abs(a1) < kHalfPi;
       if (!w0 && !w1) continue;
@@ -658,6 +908,18 @@ Result<SignatureResult> signature(const Profile& lower_in, const Profile& upper_
   R.contact_slope_std = ms.std;
   R.contact_slope_pdf = histogram(R.slope_samples, R.slope_weights, o.bins);
   return R;
+}
+
+}  // namespace
+
+Result<SignatureResult> signature(const Profile& lower, const Profile& upper, const SignatureOptions& options) {
+  return signature_impl(lower, upper, options, nullptr, nullptr);
+}
+
+Result<SignatureResult> signature(Profile&& lower, Profile&& upper, const SignatureOptions& options) {
+  // Periodic profiles are tiled from copies anyway; the others give their storage to the faces.
+  const bool periodic = lower.period && upper.period;
+  return signature_impl(lower, upper, options, periodic ? nullptr : &lower, periodic ? nullptr : &upper);
 }
 
 Result<SignatureResult> self_signature(const Profile& surface, const SignatureOptions& options) {

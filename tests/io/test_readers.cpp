@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -523,4 +524,35 @@ TEST(ReadX3p, HugeDeclaredMemberSizeIsRefusedWithoutAllocating) {
   ASSERT_FALSE(s.ok());
   // Refused from the declared size, before reading: "1073741824 bytes, but 4 points of 8 bytes need 32".
   EXPECT_NE(s.error().message.find("1073741824 bytes"), std::string::npos) << s.error().message;
+}
+
+// Issue 11: large text files are parsed from a memory mapping, lines one at a time, and the
+// delimiter is found from a tail of the file. A file of 6,000 rows separated by ';' with
+// decimal commas, whose last 3,000 lines are comments and blank lines (so the tail holding 200
+// data lines is longer than the first one looked at), CRLF line ends and a UTF-8 BOM: every
+// value must come back as written (x = k/1000 mm, z = (k mod 7) - 3.5 um, units in the header).
+TEST(ReadersLarge, MappedTextWithLongCommentTailReadsEveryRow) {
+  const std::string path = ::testing::TempDir() + "frictal_large_mapped.csv";
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << "\xEF\xBB\xBFx [mm];z [um]\r\n";
+    auto comma = [](double v, const char* fmt) {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, fmt, v);
+      std::string t(buf);
+      for (char& ch : t)
+        if (ch == '.') ch = ',';
+      return t;
+    };
+    for (int k = 0; k < 6000; ++k) out << comma(k / 1000.0, "%.3f") << ";" << comma(k % 7 - 3.5, "%.1f") << "\r\n";
+    for (int k = 0; k < 3000; ++k) out << (k % 2 ? "# note\r\n" : "\r\n");
+  }
+  auto c = frictal::read_curve(path);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  ASSERT_EQ(c->x.size(), 6000u);
+  for (int k = 0; k < 6000; k += 397) {
+    EXPECT_NEAR(c->x[k], k / 1000.0 * 1e-3, 1e-15) << k;
+    EXPECT_NEAR(c->z[k], (k % 7 - 3.5) * 1e-6, 1e-18) << k;
+  }
+  std::remove(path.c_str());
 }

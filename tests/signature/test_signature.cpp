@@ -1,9 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "frictal/generators.hpp"
 #include "frictal/signature.hpp"
+#include "signature/rigid.hpp"
 
 using namespace frictal;
 
@@ -294,4 +296,87 @@ TEST(SignatureJumps, JumpOnJumpAtARoundedEventKeepsBothExtremes) {
   ASSERT_LT(at, sig->offset.size()) << "the event offset was not evaluated";
   EXPECT_NEAR(sig->lift[at], 0.8, 1e-12);
   EXPECT_NEAR(sig->theta_left[at], M_PI / 2, 1e-12);  // h jumps up from -0.2: a wall towards +x
+}
+
+// Issue 11: on aligned lattices the lift is searched over indices with aligned block maxima.
+// Checked against the two other methods at every event offset of a window: the plain scan of
+// every vertex (lift_direct) and the general branch and bound over both faces (the rigid
+// evaluator of the spheropolygon signature, which never takes the index path); and the same
+// result on one and on two threads. WM with 12 scales and a self-affine profile.
+namespace {
+struct SigPair {
+  Profile lower, upper;
+};
+
+SigPair index_path_pair(int kind, std::size_t n) {
+  SigPair p;
+  if (kind == 0) {
+    SelfAffineParams s;
+    s.points = n;
+    p.lower = *self_affine_profile(s);
+    s.seed = 7;
+    p.upper = rotate180(*self_affine_profile(s));
+  } else {
+    WmParams w;
+    w.n_max = 11;
+    w.spacing = w.length / static_cast<double>(n - 1);
+    p.lower = *wm_profile(w);
+    w.seed = 7;
+    p.upper = rotate180(*wm_profile(w));
+  }
+  return p;
+}
+}  // namespace
+
+TEST(SignatureIndexSearch, MatchesPlainScanAndGeneralSearchOnWmAndSelfAffine) {
+  for (int kind : {0, 1}) {
+    const SigPair p = index_path_pair(kind, 20'001);
+    const double L = p.lower.length();
+    const double dx = L / static_cast<double>(p.lower.size() - 1);
+    SignatureOptions o;
+    o.offset_min = 4000 * dx;  // lattice offsets only, so that every one takes the index path
+    o.offset_max = 5500 * dx;
+    o.threads = 1;
+    auto r1 = signature(p.lower, p.upper, o);
+    ASSERT_TRUE(r1.ok()) << r1.error().message;
+    EXPECT_TRUE(r1->exact);
+    ASSERT_EQ(r1->offset.size(), 1501u);
+    o.threads = 2;
+    auto r2 = signature(p.lower, p.upper, o);
+    ASSERT_TRUE(r2.ok());
+    EXPECT_EQ(r1->lift, r2->lift);
+    EXPECT_EQ(r1->theta, r2->theta);
+    EXPECT_EQ(r1->theta_left, r2->theta_left);
+    EXPECT_EQ(r1->theta_right, r2->theta_right);
+    auto general = detail::RigidLift::make(p.lower, p.upper, o);
+    ASSERT_TRUE(general.ok()) << general.error().message;
+    double zr = 0;
+    for (double z : p.lower.z) zr = std::max(zr, std::abs(z));
+    for (std::size_t i = 0; i < r1->offset.size(); ++i) {
+      const double s = r1->offset[i];
+      if (i % 5 == 0)  // the plain scan costs O(N) per offset
+        EXPECT_NEAR(r1->lift[i], lift_direct(p.lower, p.upper, s), 1e-12 * zr) << "kind " << kind << " s " << s;
+      const auto g = general->at(s);
+      EXPECT_EQ(r1->lift[i], g.lift) << "kind " << kind << " s " << s;
+      EXPECT_NEAR(r1->theta_left[i], g.left, 1e-12) << "kind " << kind << " s " << s;
+      EXPECT_NEAR(r1->theta_right[i], g.right, 1e-12) << "kind " << kind << " s " << s;
+    }
+  }
+}
+
+// A grid far from x = 0 is uniform only to within rounding of x (1e-9 dx is below an ulp
+// there): it must still be recognised as an aligned lattice, so every event is evaluated.
+TEST(SignatureIndexSearch, UniformGridFarFromOriginIsExact) {
+  SelfAffineParams s;
+  s.points = 100'001;
+  s.length = 1.0;
+  Profile f = *self_affine_profile(s);
+  for (double& x : f.x) x += 1000.0;  // ulp(1000) = 1.1e-13 m > 1e-9 dx = 1e-14 m
+  SignatureOptions o;
+  o.offset_max = 0.01;
+  auto r = self_signature(f, o);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_TRUE(r->exact);
+  // Offsets 0, dx, ..., 0.01 m: 1001 lattice offsets (dx = 1e-5 m).
+  EXPECT_NEAR(static_cast<double>(r->offset.size()), 1001.0, 1.0);
 }
