@@ -1,9 +1,13 @@
 // Entry points: file access with size limits, format detection, simple writers.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <fmt/core.h>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <cstring>
 #include <limits>
 
 #include "frictal/io.hpp"
@@ -74,23 +78,67 @@ double interpolate(const Map& m, double x, double y) {
 
 namespace {
 
+/// What a file that is no regular file is, for messages ("a directory", ...).
+const char* file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+Error not_a_file(const std::string& path, mode_t mode, const std::string& expected) {
+  std::string kind = file_kind(mode);
+  if (S_ISCHR(mode) && path == "/dev/null") kind += " (/dev/null, which holds no data)";
+  return make_error(ErrorCode::InvalidInput, fmt::format("{}: is {}, expected {}", path, kind, expected));
+}
+
+/// Reads a whole regular file. Opened with O_NONBLOCK and checked with fstat before any read, so
+/// that a FIFO (even one put in place after a check) never blocks the caller.
 Result<std::string> read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    return make_error(ErrorCode::Io, fmt::format("{}: cannot open: no such file (or not a regular file)", path));
-  auto size = std::filesystem::file_size(path, ec);
-  if (ec) return make_error(ErrorCode::Io, fmt::format("{}: cannot read its size: {}", path, ec.message()));
+  if (auto st = check_input_file(path, "a surface file"); !st) return st.error();
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0)
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{fd};
+  struct stat sb {};
+  if (::fstat(fd, &sb) != 0)
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot read its size: {}", path, std::strerror(errno)));
+  if (!S_ISREG(sb.st_mode)) return not_a_file(path, sb.st_mode, "a surface file");
+  const auto size = static_cast<std::uint64_t>(sb.st_size);
   if (size > max_bytes)
     return make_error(fmt::format("{}: {} bytes, above the limit of {} bytes", path, size, max_bytes));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for reading", path));
   std::string bytes(std::size_t(size), '\0');
-  in.read(bytes.data(), std::streamsize(size));
-  if (std::uint64_t(in.gcount()) != size) return make_error(fmt::format("{}: read error", path));
+  std::size_t got = 0;
+  while (got < bytes.size()) {
+    const ssize_t n = ::read(fd, bytes.data() + got, bytes.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return make_error(ErrorCode::Io, fmt::format("{}: read error: {}", path, std::strerror(errno)));
+    if (n == 0) break;
+    got += std::size_t(n);
+  }
+  if (got != size)
+    return make_error(ErrorCode::Io, fmt::format("{}: read {} of its {} bytes (did it shrink?)", path, got, size));
   return bytes;
 }
 
 }  // namespace
+
+Status check_input_file(const std::string& path, const std::string& expected) {
+  if (path.empty()) return make_error(fmt::format("empty file name, expected {}", expected));
+  struct stat sb {};
+  if (::stat(path.c_str(), &sb) != 0) {
+    const int e = errno;
+    if (e == ENOENT) return make_error(ErrorCode::Io, fmt::format("{}: no such file, expected {}", path, expected));
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot open: {}", path, std::strerror(e)));
+  }
+  if (!S_ISREG(sb.st_mode)) return not_a_file(path, sb.st_mode, expected);
+  return Ok{};
+}
 
 namespace {
 
@@ -179,7 +227,10 @@ static Status check_native_channel(const SurfaceData& s, const std::string& path
 }
 
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {
-  if (options.format == ProfileFormat::GwyddionLib) return io_detail::read_gwyddion(path, options);
+  if (options.format == ProfileFormat::GwyddionLib) {
+    if (auto st = check_input_file(path, "a surface file"); !st) return st.error();
+    return io_detail::read_gwyddion(path, options);
+  }
   auto bytes = read_file_bytes(path, options.max_bytes);
   if (!bytes) return bytes.error();
   auto r = read_native_bytes(*bytes, path, options, 0);

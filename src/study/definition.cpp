@@ -10,6 +10,7 @@
 #include <fmt/ranges.h>
 #include <toml++/toml.h>
 
+#include "frictal/io.hpp"
 #include "frictal/study.hpp"
 #include "study/json_text.hpp"
 
@@ -294,6 +295,9 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
 }
 
 Result<Study> load_study(const std::string& path, bool quick, const TaskRegistry& reg) {
+  // A directory, FIFO or device is named as such (and a FIFO is never opened: it would block).
+  if (auto st = check_input_file(path, "a study file (TOML)"); !st && st.error().code != ErrorCode::Io)
+    return st.error();
   std::ifstream f(path, std::ios::binary);
   if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open the study file", path));
   std::stringstream ss;
