@@ -51,6 +51,12 @@ Status validate(const Map& m, const std::string& what) {
   if (!(m.dx > 0) || !(m.dy > 0) || !std::isfinite(m.dx) || !std::isfinite(m.dy))
     return make_error(
         fmt::format("{}: grid spacings must be positive and finite (dx = {}, dy = {})", what, m.dx, m.dy));
+  // Below the smallest normal double a spacing has lost precision (and nx dx with it).
+  if (m.dx < std::numeric_limits<double>::min() || m.dy < std::numeric_limits<double>::min())
+    return make_error(
+        fmt::format("{}: grid spacing dx = {} m, dy = {} m is below the smallest normal double ({} m) and has lost "
+                    "precision; give the lateral sizes in a larger unit",
+                    what, m.dx, m.dy, std::numeric_limits<double>::min()));
   std::size_t valid = 0;
   for (double v : m.heights) {
     if (std::isinf(v)) return make_error(fmt::format("{}: infinite height", what));
@@ -211,12 +217,24 @@ void describe_native(SurfaceData& s) {
   s.channel = 0;
 }
 
+/// A map's spacing below the smallest normal double (e.g. "# Width: 3e-320 m") has lost its
+/// precision, and every size and slope computed from it with it: an error, not a wrong number.
+Result<SurfaceData> checked_spacing(Result<SurfaceData> r, const std::string& name) {
+  if (r && r->is_map &&
+      (r->map.dx < std::numeric_limits<double>::min() || r->map.dy < std::numeric_limits<double>::min()))
+    return make_error(
+        fmt::format("{}: grid spacing dx = {} m, dy = {} m is below the smallest normal double ({} m) and has lost "
+                    "precision; give the lateral sizes in a larger unit",
+                    name, r->map.dx, r->map.dy, std::numeric_limits<double>::min()));
+  return r;
+}
+
 }  // namespace
 
 Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
   auto r = read_native_bytes(bytes, name, options, 0);
   if (r) describe_native(*r);
-  return r;
+  return checked_spacing(std::move(r), name);
 }
 
 static Status check_native_channel(const SurfaceData& s, const std::string& path, const ReadOptions& options) {
@@ -226,7 +244,13 @@ static Status check_native_channel(const SurfaceData& s, const std::string& path
                                 options.channel, format_name(s.format)));
 }
 
+static Result<SurfaceData> read_surface_unchecked(const std::string& path, const ReadOptions& options);
+
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {
+  return checked_spacing(read_surface_unchecked(path, options), path);
+}
+
+static Result<SurfaceData> read_surface_unchecked(const std::string& path, const ReadOptions& options) {
   if (options.format == ProfileFormat::GwyddionLib) {
     if (auto st = check_input_file(path, "a surface file"); !st) return st.error();
     return io_detail::read_gwyddion(path, options);

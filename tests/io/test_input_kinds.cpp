@@ -57,8 +57,9 @@ TEST(InputKinds, DevNullIsNamedAsACharacterDevice) {
     o.format = f;
     auto r = read_surface("/dev/null", o);
     ASSERT_FALSE(r);
-    EXPECT_EQ(r.error().message, "/dev/null: is a character device (/dev/null, which holds no data), expected a "
-                                 "surface file");
+    EXPECT_EQ(r.error().message,
+              "/dev/null: is a character device (/dev/null, which holds no data), expected a "
+              "surface file");
   }
   auto p = read_profile("/dev/null");
   ASSERT_FALSE(p);
