@@ -105,8 +105,8 @@ Status write_gwyddion(const std::string& path, const Map& m, const std::string& 
 /// Checks, without opening it, that `path` names a regular file (symbolic links followed), so
 /// that nothing blocks on a FIFO with no writer. Otherwise an error that says what the path is:
 /// "PATH: is a directory, expected EXPECTED", likewise a FIFO (named pipe), a character device
-/// (/dev/null), a block device or a socket; "PATH: no such file, expected EXPECTED" (ErrorCode::Io)
-/// when nothing is there. `expected` names what the caller reads, e.g. "a surface file". Every
+/// (/dev/null), a block device or a socket; "PATH: cannot open: no such file, expected EXPECTED"
+/// (ErrorCode::Io) when nothing is there. `expected` names what the caller reads, e.g. "a surface file". Every
 /// reader of an input file (read_surface, the study file, an existing study store) checks this.
 Status check_input_file(const std::string& path, const std::string& expected);
 

@@ -16,8 +16,8 @@ namespace frictal::analysis_detail {
 struct MapScale {
   int height_exp = 0;  ///< heights were multiplied by 2^-height_exp
   int length_exp = 0;  ///< x, y, dx, dy were multiplied by 2^-length_exp
-  double height(double v) const { return std::ldexp(v, height_exp); }         ///< back to metres
-  double length(double v) const { return std::ldexp(v, length_exp); }         ///< back to metres
+  double height(double v) const { return std::ldexp(v, height_exp); }              ///< back to metres
+  double length(double v) const { return std::ldexp(v, length_exp); }              ///< back to metres
   double slope(double v) const { return std::ldexp(v, height_exp - length_exp); }  ///< back to m/m
 };
 

@@ -139,7 +139,8 @@ Status check_input_file(const std::string& path, const std::string& expected) {
   struct stat sb {};
   if (::stat(path.c_str(), &sb) != 0) {
     const int e = errno;
-    if (e == ENOENT) return make_error(ErrorCode::Io, fmt::format("{}: no such file, expected {}", path, expected));
+    if (e == ENOENT)
+      return make_error(ErrorCode::Io, fmt::format("{}: cannot open: no such file, expected {}", path, expected));
     return make_error(ErrorCode::Io, fmt::format("{}: cannot open: {}", path, std::strerror(e)));
   }
   if (!S_ISREG(sb.st_mode)) return not_a_file(path, sb.st_mode, expected);

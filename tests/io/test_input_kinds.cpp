@@ -103,7 +103,7 @@ TEST(InputKinds, AMissingFileSaysSo) {
   auto r = read_surface("/nonexistent/frictal-input.csv");
   ASSERT_FALSE(r);
   EXPECT_EQ(r.error().code, ErrorCode::Io);
-  EXPECT_EQ(r.error().message, "/nonexistent/frictal-input.csv: no such file, expected a surface file");
+  EXPECT_EQ(r.error().message, "/nonexistent/frictal-input.csv: cannot open: no such file, expected a surface file");
 }
 
 TEST(InputKinds, StudyFileAndStoreSayWhatThePathIs) {
