@@ -97,7 +97,11 @@ Result<std::vector<Value>> axis_values(const toml::node& n, const std::string& c
     } else {
       step = has_step ? num("step") : 1.0;
       if (!(step > 0)) return make_error(fmt::format("{}: step must be > 0", ctx));
-      count = static_cast<std::int64_t>(std::floor((to - from) / step + 1e-9)) + 1;
+      // Compared as a double first: (to - from) / step can exceed any integer (e.g. 4e123), and
+      // its conversion would be undefined.
+      const double n = std::floor((to - from) / step + 1e-9) + 1;
+      if (!(n <= static_cast<double>(max_tasks))) return make_error(fmt::format("{}: too many values", ctx));
+      count = static_cast<std::int64_t>(n);
     }
     if (count > max_tasks) return make_error(fmt::format("{}: too many values", ctx));
     for (std::int64_t i = 0; i < count; ++i) out.push_back(Value{tidy(from + step * static_cast<double>(i))});

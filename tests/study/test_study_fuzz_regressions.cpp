@@ -104,3 +104,17 @@ TEST(StudyFuzzRegressions, AGridOfTensOfThousandsOfTasksHonoursTheTaskLimit) {
   EXPECT_NE(limited.error().message.find("grid.toml: part '"), std::string::npos) << limited.error().message;
   EXPECT_NE(limited.error().message.find("has more than 10000 tasks"), std::string::npos) << limited.error().message;
 }
+
+// Found by fuzz_study (UBSan): a range axis { from = 15, to = 2.1e124, step = 5.0 } has 4e123
+// values; converting that count to a 64-bit integer was undefined. Now "too many values".
+TEST(StudyFuzzRegressions, ARangeOfMoreValuesThanAnyIntegerIsTooMany) {
+  const TaskRegistry reg = default_registry();
+  const std::string text =
+      slurp(fs::path(FRICTAL_TEST_DATA) / "fuzz-regressions" / "study" / "range-of-4e123-values.toml");
+  ASSERT_FALSE(text.empty());
+  for (bool quick : {false, true}) {
+    auto s = parse_study(text, "range.toml", quick, reg);
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().message.find("too many values"), std::string::npos) << s.error().message;
+  }
+}
