@@ -3,7 +3,7 @@
 #   make reproduce  installs, builds and runs the paper reproduction, writing under out/
 #                   (QUICK=1 make reproduce: the CI-sized grids, about a minute)
 #   make package    builds the Debian package (CLI, library, headers, CMake package, Python module)
-#   make fuzz       libFuzzer harnesses, 10^6 executions each (RUNS=N); make fuzz-smoke: 10^4 (CI)
+#   make fuzz       libFuzzer harnesses (9), 10^6 executions each (RUNS=N); make fuzz-smoke: 10^4 (CI)
 JOBS ?= $(shell nproc)
 # ccache (when installed) shares objects between build trees of this checkout (e.g. the pip build)
 export CCACHE_BASEDIR := $(CURDIR)

@@ -22,6 +22,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // Limits a user would set for a 2 GB machine; within them nothing may crash or leak.
   o.max_bytes = std::uint64_t(1) << 24;
   o.max_points = std::uint64_t(1) << 20;
+  // A 1-D .npy array carries no spacing; without one it is an error and its profile is never
+  // used. Other formats keep spacing 0, so that a single column stays an error there.
+  if (o.format == frictal::ProfileFormat::Npy) o.spacing = 1e-6;
   const std::string bytes(reinterpret_cast<const char*>(data), size);
   auto r = frictal::read_surface_bytes(bytes, "fuzz-input", o);
   if (!r) {

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cctype>
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -62,10 +64,16 @@ inline double parse_length_option(const std::string& text, const char* option) {
     std::size_t used = 0;
     v = std::stod(text.substr(0, k), &used);
     if (used != k) throw std::invalid_argument("");
+  } catch (const std::out_of_range&) {
+    throw UsageError(fmt::format("{} '{}' is beyond the range of double (normal lengths are {} .. {} m)", option, text,
+                                 std::numeric_limits<double>::min(), std::numeric_limits<double>::max()));
   } catch (const std::exception&) {
     throw UsageError(fmt::format("{} '{}' is not a length (expected e.g. 0.5um or 5e-7)", option, text));
   }
   if (!(v > 0) || !std::isfinite(v)) throw UsageError(fmt::format("{} must be positive (got '{}')", option, text));
+  if (v * scale < std::numeric_limits<double>::min())  // in metres below the normal range: precision lost
+    throw UsageError(fmt::format("{} '{}' is beyond the range of double (normal lengths are {} .. {} m)", option, text,
+                                 std::numeric_limits<double>::min(), std::numeric_limits<double>::max()));
   return v * scale;
 }
 

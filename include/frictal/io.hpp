@@ -102,6 +102,14 @@ bool gwyddion_available(const std::string& module_dir = "", std::string* why = n
 /// -- the ones tested. Invalid points go to a mask (kept by .gwy only).
 Status write_gwyddion(const std::string& path, const Map& m, const std::string& module_dir = "");
 
+/// Checks, without opening it, that `path` names a regular file (symbolic links followed), so
+/// that nothing blocks on a FIFO with no writer. Otherwise an error that says what the path is:
+/// "PATH: is a directory, expected EXPECTED", likewise a FIFO (named pipe), a character device
+/// (/dev/null), a block device or a socket; "PATH: cannot open: no such file, expected EXPECTED"
+/// (ErrorCode::Io) when nothing is there. `expected` names what the caller reads, e.g. "a surface file". Every
+/// reader of an input file (read_surface, the study file, an existing study store) checks this.
+Status check_input_file(const std::string& path, const std::string& expected);
+
 /// Reads any supported file (format from content unless options.format says otherwise). Files
 /// no native reader recognises go to the Gwyddion backend when it is available.
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options = {});

@@ -254,6 +254,11 @@ struct Study {
 /// kind versions that enter the hash (unknown kinds are an error; unavailable ones are not).
 Result<Study> parse_study(const std::string& toml_text, const std::string& origin, bool quick,
                           const TaskRegistry& registry);
+/// Same, with a limit on the study's size: at most `max_tasks` tasks over all parts, and as many
+/// values per axis (unitless; the overload above allows 10^7). A larger grid is an error before
+/// any task is built (fuzz_study uses 10^4, so that no input spends its time building tasks).
+Result<Study> parse_study(const std::string& toml_text, const std::string& origin, bool quick,
+                          const TaskRegistry& registry, std::int64_t max_tasks);
 Result<Study> load_study(const std::string& path, bool quick, const TaskRegistry& registry);
 
 // ---------------------------------------------------------------- store

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "analysis/edge_scale.hpp"
 #include "analysis/fft.hpp"
 #include "frictal/analysis.hpp"
 
@@ -292,7 +293,9 @@ Result<Autocorrelation> autocorrelation(const Profile& p, std::size_t max_lag) {
 
 Histogram height_distribution(const Profile& p, int bins) { return histogram(p.z, trapezoid_weights(p), bins); }
 
-MapStats map_stats(const Map& m) {
+namespace {
+/// map_stats in the map's own units; `max_gradient` gets max |dz/dx| (before the arctangent).
+MapStats map_stats_unscaled(const Map& m, double& max_gradient) {
   MapStats s;
   s.points = m.size();
   s.width = m.width();
@@ -347,6 +350,22 @@ MapStats map_stats(const Map& m) {
     }
   s.Sdq = std::sqrt((nx ? gx / double(nx) : 0) + (ny ? gy / double(ny) : 0));
   s.max_slope = std::atan(mx);
+  max_gradient = mx;
+  return s;
+}
+}  // namespace
+
+MapStats map_stats(const Map& m) {
+  double mx = 0;
+  const auto sc = analysis_detail::edge_scale(m);
+  if (!sc) return map_stats_unscaled(m, mx);
+  // Heights or spacings near the limits of double: computed at a power-of-two scale.
+  MapStats s = map_stats_unscaled(analysis_detail::scaled(m, *sc), mx);
+  s.width = m.width();
+  s.height = m.height();
+  for (double* h : {&s.mean, &s.Sa, &s.Sq, &s.Sp, &s.Sv, &s.Sz}) *h = sc->height(*h);
+  s.Sdq = sc->slope(s.Sdq);
+  s.max_slope = std::atan(sc->slope(mx));
   return s;
 }
 

@@ -7,6 +7,8 @@
 #include <limits>
 #include <vector>
 
+#include "analysis/edge_scale.hpp"
+
 namespace frictal {
 
 namespace {
@@ -79,7 +81,8 @@ double cutoff_along(std::size_t lines, std::size_t n, double spacing, double rad
 
 }  // namespace
 
-MapScanStats map_scan_stats(const Map& m) {
+namespace {
+MapScanStats map_scan_stats_unscaled(const Map& m) {
   MapScanStats s;
   s.physical_size_x = double(m.nx) * m.dx;
   s.physical_size_y = double(m.ny) * m.dy;
@@ -101,6 +104,26 @@ MapScanStats map_scan_stats(const Map& m) {
       ++cnt;
     }
   s.rms_gradient_fd = cnt ? std::sqrt(g2 / double(cnt)) : 0.0;
+  return s;
+}
+}  // namespace
+
+MapScanStats map_scan_stats(const Map& m) {
+  const auto sc = analysis_detail::edge_scale(m);
+  if (!sc) return map_scan_stats_unscaled(m);
+  // Heights or spacings near the limits of double: computed at a power-of-two scale.
+  MapScanStats s = map_scan_stats_unscaled(analysis_detail::scaled(m, *sc));
+  // The sizes in metres as they are (n dx beyond double is +inf, as it must be).
+  s.physical_size_x = double(m.nx) * m.dx;
+  s.physical_size_y = double(m.ny) * m.dy;
+  s.bandwidth_short = 0.5 * m.dx + 0.5 * m.dy;  // = 0.5 (dx + dy) exactly, without overflow
+  s.bandwidth_long = 0.5 * s.physical_size_x + 0.5 * s.physical_size_y;
+  s.nyquist_wavelength = 2 * std::max(m.dx, m.dy);
+  s.Rq_x = sc->height(s.Rq_x);
+  s.Rq_y = sc->height(s.Rq_y);
+  s.Rdq_x = sc->slope(s.Rdq_x);
+  s.Rdq_y = sc->slope(s.Rdq_y);
+  s.rms_gradient_fd = sc->slope(s.rms_gradient_fd);
   return s;
 }
 

@@ -176,6 +176,11 @@ Status validate(const Profile& p, const std::string& what) {
                                     what, p.x[i], i + 1));
   }
   if (!(p.x.back() > p.x.front())) return make_error(fmt::format("{}: has zero length (all x equal)", what));
+  if (p.x.back() - p.x.front() < std::numeric_limits<double>::min())
+    return make_error(
+        fmt::format("{}: x spans {} to {}, a length of {} m below the smallest normal double ({} m) that has lost "
+                    "precision; rescale x (e.g. to another unit)",
+                    what, p.x.front(), p.x.back(), p.x.back() - p.x.front(), std::numeric_limits<double>::min()));
   if (!std::isfinite(p.x.back() - p.x.front()))
     return make_error(
         fmt::format("{}: x spans {} to {}, a length beyond the range of double; rescale x (e.g. to "

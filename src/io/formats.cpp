@@ -75,7 +75,7 @@ Result<SurfaceData> read_npy_bytes(std::string_view bytes, const std::string& na
   const char endian = d[0], kind = d[1];
   int size = 0;
   for (char c : d.substr(2)) {
-    if (c < '0' || c > '9') {
+    if (c < '0' || c > '9' || size > 1000) {  // no item size has 4 digits (and no overflow)
       size = -1;
       break;
     }
@@ -291,7 +291,8 @@ Result<SurfaceData> parse_sdf_text(std::string_view text, const std::string& nam
         return make_error(
             fmt::format("{}:{}: {} = '{}' is not a number", name, lines[k].number, key, std::string(value)));
       if constexpr (std::is_same_v<std::decay_t<decltype(dst)>, std::optional<long long>>) {
-        if (v != std::floor(v) || v < 1)
+        // 2^62: far above any limit on points, and a double below it converts to long long exactly.
+        if (v != std::floor(v) || v < 1 || v > 4.611686018427387904e18)
           return make_error(fmt::format("{}:{}: {} = '{}' is not a positive integer", name, lines[k].number, key,
                                         std::string(value)));
         dst = (long long)v;

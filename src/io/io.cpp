@@ -1,15 +1,18 @@
 // Entry points: file access with size limits, format detection, simple writers.
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <fmt/core.h>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <optional>
 
-#include <fcntl.h>
 #include <sys/mman.h>
-#include <unistd.h>
 
 #include "frictal/io.hpp"
 #include "io/readers.hpp"
@@ -52,6 +55,12 @@ Status validate(const Map& m, const std::string& what) {
   if (!(m.dx > 0) || !(m.dy > 0) || !std::isfinite(m.dx) || !std::isfinite(m.dy))
     return make_error(
         fmt::format("{}: grid spacings must be positive and finite (dx = {}, dy = {})", what, m.dx, m.dy));
+  // Below the smallest normal double a spacing has lost precision (and nx dx with it).
+  if (m.dx < std::numeric_limits<double>::min() || m.dy < std::numeric_limits<double>::min())
+    return make_error(
+        fmt::format("{}: grid spacing dx = {} m, dy = {} m is below the smallest normal double ({} m) and has lost "
+                    "precision; give the lateral sizes in a larger unit",
+                    what, m.dx, m.dy, std::numeric_limits<double>::min()));
   std::size_t valid = 0;
   for (double v : m.heights) {
     if (std::isinf(v)) return make_error(fmt::format("{}: infinite height", what));
@@ -79,23 +88,68 @@ double interpolate(const Map& m, double x, double y) {
 
 namespace {
 
+/// What a file that is no regular file is, for messages ("a directory", ...).
+const char* file_kind(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+Error not_a_file(const std::string& path, mode_t mode, const std::string& expected) {
+  std::string kind = file_kind(mode);
+  if (S_ISCHR(mode) && path == "/dev/null") kind += " (/dev/null, which holds no data)";
+  return make_error(ErrorCode::InvalidInput, fmt::format("{}: is {}, expected {}", path, kind, expected));
+}
+
+/// Reads a whole regular file. Opened with O_NONBLOCK and checked with fstat before any read, so
+/// that a FIFO (even one put in place after a check) never blocks the caller.
 Result<std::string> read_file_bytes(const std::string& path, std::uint64_t max_bytes) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    return make_error(ErrorCode::Io, fmt::format("{}: cannot open: no such file (or not a regular file)", path));
-  auto size = std::filesystem::file_size(path, ec);
-  if (ec) return make_error(ErrorCode::Io, fmt::format("{}: cannot read its size: {}", path, ec.message()));
+  if (auto st = check_input_file(path, "a surface file"); !st) return st.error();
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0)
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot open for reading: {}", path, std::strerror(errno)));
+  struct FdCloser {
+    int fd;
+    ~FdCloser() { ::close(fd); }
+  } closer{fd};
+  struct stat sb {};
+  if (::fstat(fd, &sb) != 0)
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot read its size: {}", path, std::strerror(errno)));
+  if (!S_ISREG(sb.st_mode)) return not_a_file(path, sb.st_mode, "a surface file");
+  const auto size = static_cast<std::uint64_t>(sb.st_size);
   if (size > max_bytes)
     return make_error(fmt::format("{}: {} bytes, above the limit of {} bytes", path, size, max_bytes));
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for reading", path));
   std::string bytes(std::size_t(size), '\0');
-  in.read(bytes.data(), std::streamsize(size));
-  if (std::uint64_t(in.gcount()) != size) return make_error(fmt::format("{}: read error", path));
+  std::size_t got = 0;
+  while (got < bytes.size()) {
+    const ssize_t n = ::read(fd, bytes.data() + got, bytes.size() - got);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) return make_error(ErrorCode::Io, fmt::format("{}: read error: {}", path, std::strerror(errno)));
+    if (n == 0) break;
+    got += std::size_t(n);
+  }
+  if (got != size)
+    return make_error(ErrorCode::Io, fmt::format("{}: read {} of its {} bytes (did it shrink?)", path, got, size));
   return bytes;
 }
 
 }  // namespace
+
+Status check_input_file(const std::string& path, const std::string& expected) {
+  if (path.empty()) return make_error(fmt::format("empty file name, expected {}", expected));
+  struct stat sb {};
+  if (::stat(path.c_str(), &sb) != 0) {
+    const int e = errno;
+    if (e == ENOENT)
+      return make_error(ErrorCode::Io, fmt::format("{}: cannot open: no such file, expected {}", path, expected));
+    return make_error(ErrorCode::Io, fmt::format("{}: cannot open: {}", path, std::strerror(e)));
+  }
+  if (!S_ISREG(sb.st_mode)) return not_a_file(path, sb.st_mode, expected);
+  return Ok{};
+}
 
 namespace {
 
@@ -181,12 +235,24 @@ void describe_native(SurfaceData& s) {
   s.channel = 0;
 }
 
+/// A map's spacing below the smallest normal double (e.g. "# Width: 3e-320 m") has lost its
+/// precision, and every size and slope computed from it with it: an error, not a wrong number.
+Result<SurfaceData> checked_spacing(Result<SurfaceData> r, const std::string& name) {
+  if (r && r->is_map &&
+      (r->map.dx < std::numeric_limits<double>::min() || r->map.dy < std::numeric_limits<double>::min()))
+    return make_error(
+        fmt::format("{}: grid spacing dx = {} m, dy = {} m is below the smallest normal double ({} m) and has lost "
+                    "precision; give the lateral sizes in a larger unit",
+                    name, r->map.dx, r->map.dy, std::numeric_limits<double>::min()));
+  return r;
+}
+
 }  // namespace
 
 Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
   auto r = read_native_bytes(bytes, name, options, 0);
   if (r) describe_native(*r);
-  return r;
+  return checked_spacing(std::move(r), name);
 }
 
 static Status check_native_channel(const SurfaceData& s, const std::string& path, const ReadOptions& options) {
@@ -245,8 +311,17 @@ std::optional<SurfaceData> read_text_mapped(const std::string& path, const ReadO
 
 }  // namespace
 
+static Result<SurfaceData> read_surface_unchecked(const std::string& path, const ReadOptions& options);
+
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {
-  if (options.format == ProfileFormat::GwyddionLib) return io_detail::read_gwyddion(path, options);
+  return checked_spacing(read_surface_unchecked(path, options), path);
+}
+
+static Result<SurfaceData> read_surface_unchecked(const std::string& path, const ReadOptions& options) {
+  if (options.format == ProfileFormat::GwyddionLib) {
+    if (auto st = check_input_file(path, "a surface file"); !st) return st.error();
+    return io_detail::read_gwyddion(path, options);
+  }
   if (auto m = read_text_mapped(path, options)) return std::move(*m);
   auto bytes = read_file_bytes(path, options.max_bytes);
   if (!bytes) return bytes.error();

@@ -10,6 +10,7 @@
 #include <fmt/ranges.h>
 #include <toml++/toml.h>
 
+#include "frictal/io.hpp"
 #include "frictal/study.hpp"
 #include "study/json_text.hpp"
 
@@ -46,7 +47,7 @@ Result<Value> scalar_value(const toml::node& n, const std::string& ctx) {
 }
 
 /// An axis: a scalar (one value), a list, or a range table {from, to, step|count} / {count}.
-Result<std::vector<Value>> axis_values(const toml::node& n, const std::string& ctx) {
+Result<std::vector<Value>> axis_values(const toml::node& n, const std::string& ctx, std::int64_t max_tasks) {
   std::vector<Value> out;
   if (const toml::array* a = n.as_array()) {
     if (a->empty()) return make_error(fmt::format("{}: the list is empty", ctx));
@@ -70,7 +71,7 @@ Result<std::vector<Value>> axis_values(const toml::node& n, const std::string& c
       if (!is_int("count") || num("count") < 1)
         return make_error(fmt::format("{}: count must be an integer >= 1", ctx));
       const auto c = (*t)["count"].value<std::int64_t>().value();
-      if (c > kMaxTasks) return make_error(fmt::format("{}: count {} is too large", ctx, c));
+      if (c > max_tasks) return make_error(fmt::format("{}: count {} is too large", ctx, c));
       for (std::int64_t i = 0; i < c; ++i) out.push_back(Value{i});
       return out;
     }
@@ -82,7 +83,7 @@ Result<std::vector<Value>> axis_values(const toml::node& n, const std::string& c
       const auto f = (*t)["from"].value<std::int64_t>().value(), e = (*t)["to"].value<std::int64_t>().value();
       const std::int64_t s = has_step ? (*t)["step"].value<std::int64_t>().value() : 1;
       if (s < 1) return make_error(fmt::format("{}: step must be >= 1", ctx));
-      if ((e - f) / s + 1 > kMaxTasks) return make_error(fmt::format("{}: too many values", ctx));
+      if ((e - f) / s + 1 > max_tasks) return make_error(fmt::format("{}: too many values", ctx));
       for (std::int64_t i = f; i <= e; i += s) out.push_back(Value{i});
       return out;
     }
@@ -96,9 +97,13 @@ Result<std::vector<Value>> axis_values(const toml::node& n, const std::string& c
     } else {
       step = has_step ? num("step") : 1.0;
       if (!(step > 0)) return make_error(fmt::format("{}: step must be > 0", ctx));
-      count = static_cast<std::int64_t>(std::floor((to - from) / step + 1e-9)) + 1;
+      // Compared as a double first: (to - from) / step can exceed any integer (e.g. 4e123), and
+      // its conversion would be undefined.
+      const double n = std::floor((to - from) / step + 1e-9) + 1;
+      if (!(n <= static_cast<double>(max_tasks))) return make_error(fmt::format("{}: too many values", ctx));
+      count = static_cast<std::int64_t>(n);
     }
-    if (count > kMaxTasks) return make_error(fmt::format("{}: too many values", ctx));
+    if (count > max_tasks) return make_error(fmt::format("{}: too many values", ctx));
     for (std::int64_t i = 0; i < count; ++i) out.push_back(Value{tidy(from + step * static_cast<double>(i))});
   } else {
     auto v = scalar_value(n, ctx);
@@ -140,6 +145,11 @@ std::string definition_text(const Study& s, const TaskRegistry& reg) {
 }  // namespace
 
 Result<Study> parse_study(const std::string& text, const std::string& origin, bool quick, const TaskRegistry& reg) {
+  return parse_study(text, origin, quick, reg, kMaxTasks);
+}
+
+Result<Study> parse_study(const std::string& text, const std::string& origin, bool quick, const TaskRegistry& reg,
+                          std::int64_t max_tasks) {
   toml::table doc;
   try {
     doc = toml::parse(text, origin);
@@ -238,7 +248,8 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
     for (const auto& [key, node] : chosen) {
       if (key == "part")
         return make_error(fmt::format("{}: 'part' is a reserved parameter name", where(origin, *node)));
-      auto vals = axis_values(*node, fmt::format("{}: part '{}' parameter '{}'", where(origin, *node), part.name, key));
+      auto vals = axis_values(*node, fmt::format("{}: part '{}' parameter '{}'", where(origin, *node), part.name, key),
+                              max_tasks);
       if (!vals) return vals.error();
       part.axes.emplace_back(key, std::move(*vals));
     }
@@ -259,10 +270,10 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
     std::int64_t n = 1;
     for (const auto& ax : part.axes) {
       n *= static_cast<std::int64_t>(ax.second.size());
-      if (n > kMaxTasks)
-        return make_error(fmt::format("{}: part '{}' has more than {} tasks", origin, part.name, kMaxTasks));
+      if (n > max_tasks)
+        return make_error(fmt::format("{}: part '{}' has more than {} tasks", origin, part.name, max_tasks));
     }
-    if (id + n > kMaxTasks) return make_error(fmt::format("{}: more than {} tasks", origin, kMaxTasks));
+    if (id + n > max_tasks) return make_error(fmt::format("{}: more than {} tasks", origin, max_tasks));
     std::vector<std::size_t> idx(part.axes.size(), 0);
     for (std::int64_t t = 0; t < n; ++t) {
       Task task;
@@ -294,6 +305,9 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
 }
 
 Result<Study> load_study(const std::string& path, bool quick, const TaskRegistry& reg) {
+  // A directory, FIFO or device is named as such (and a FIFO is never opened: it would block).
+  if (auto st = check_input_file(path, "a study file (TOML)"); !st && st.error().code != ErrorCode::Io)
+    return st.error();
   std::ifstream f(path, std::ios::binary);
   if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open the study file", path));
   std::stringstream ss;

@@ -4,6 +4,7 @@
 // (its scalars, arrays and status together), so after SIGKILL or power loss a task is either
 // fully recorded or still pending; a transaction cut short rolls back on the next open.
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +21,7 @@
 #include <sqlite3.h>
 #include <nlohmann/json.hpp>
 
+#include "frictal/io.hpp"
 #include "frictal/study.hpp"
 #include "frictal/version.hpp"
 #include "study/json_text.hpp"
@@ -243,6 +245,12 @@ struct Store::Impl {
 namespace {
 Result<std::unique_ptr<Store::Impl>> open_db(const std::string& path, bool create) {
   static std::atomic<int> counter{0};
+  // An existing path must be a regular file: SQLite would block forever on a FIFO with no writer
+  // and give a vague message for a directory or a device. A missing one is created (create) or
+  // reported by the caller.
+  if (struct stat sb{}; ::stat(path.c_str(), &sb) == 0 && !S_ISREG(sb.st_mode)) {
+    if (auto st = check_input_file(path, "a study store (SQLite file)"); !st) return st.error();
+  }
   auto impl = std::make_unique<Store::Impl>();
   impl->path = path;
   impl->host = host_name();
@@ -382,10 +390,10 @@ Result<std::unique_ptr<Store>> Store::open(const std::string& path, const Study&
 }
 
 Result<std::unique_ptr<Store>> Store::open_existing(const std::string& path) {
-  {
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) return make_error(ErrorCode::Io, fmt::format("{}: no such store file", path));
-    std::fclose(f);
+  if (auto st = check_input_file(path, "a study store (SQLite file)"); !st) {
+    // A directory, FIFO or device is named as such; a missing file keeps its usual message.
+    if (st.error().message.find("no such file") == std::string::npos) return st.error();
+    return make_error(ErrorCode::Io, fmt::format("{}: no such store file", path));
   }
   auto im = open_db(path, false);
   if (!im) return im.error();

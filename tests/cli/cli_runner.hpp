@@ -28,11 +28,13 @@ inline std::string read_file(const std::string& path) {
   return ss.str();
 }
 
-/// Runs `frictal ARGS`, capturing stdout and stderr.
-inline CliRun run_cli(const std::string& args) {
+/// Runs `frictal ARGS`, capturing stdout and stderr; with `timeout_s` > 0 under coreutils'
+/// `timeout` (exit 124 when the command ran past it, e.g. blocked on a FIFO).
+inline CliRun run_cli(const std::string& args, int timeout_s = 0) {
   static int counter = 0;
   const std::string err_path = temp_path("stderr_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  const std::string cmd = std::string(FRICTAL_CLI_PATH) + " " + args + " 2>" + err_path;
+  const std::string cmd = (timeout_s > 0 ? "timeout -k 5 " + std::to_string(timeout_s) + " " : std::string()) +
+                          std::string(FRICTAL_CLI_PATH) + " " + args + " 2>" + err_path;
   CliRun r;
   FILE* p = ::popen(cmd.c_str(), "r");
   if (!p) return r;

@@ -1,8 +1,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
+#include "frictal/analysis.hpp"
 #include "frictal/generators.hpp"
+#include "frictal/io.hpp"
+#include "frictal/scan_stats.hpp"
 #include "frictal/stats.hpp"
 
 using namespace frictal;
@@ -98,4 +102,98 @@ TEST(StatsEdges, ALengthBeyondDoubleIsAnErrorNamingTheProfile) {
   auto st2 = validate(one_x, "same-x.csv");
   ASSERT_FALSE(st2.ok());
   EXPECT_NE(st2.error().message.find("zero length"), std::string::npos);
+}
+
+// Areal statistics at the edges of double. The checkerboard z = +-A on a 3 x 2 grid of unit
+// spacing, rows (A, -A, A) and (-A, A, -A): mean 0, |z - m| = A everywhere so Sa = Sq = A,
+// Sz = 2A, Ssk = 0, Sku = 1; every neighbour difference is 2A, so <gx^2> = <gy^2> = 4A^2 and
+// Sdq = 2 sqrt(2) A. Along x each row has mean +-A/3 and deviations (2, -4, 2) A/3: Rq_x =
+// sqrt(24/27) A; each column (A, -A) has mean 0: Rq_y = A; Rdq_x = Rdq_y = 2A; at each node
+// gx^2 + gy^2 = 8A^2: rms gradient 2 sqrt(2) A.
+TEST(StatsEdges, MapHeightsNearBothEndsOfDoubleGiveExactArealStatistics) {
+  for (double A : {1e300, 1e-300, 1e-160, 1e160, 1.0}) {
+    Map m;
+    m.nx = 3;
+    m.ny = 2;
+    m.heights = {A, -A, A, -A, A, -A};
+    const MapStats s = map_stats(m);
+    EXPECT_NEAR(s.Sq / A, 1.0, 1e-12) << A;
+    EXPECT_NEAR(s.Sa / A, 1.0, 1e-12) << A;
+    EXPECT_NEAR(s.Sz / (2 * A), 1.0, 1e-12) << A;
+    EXPECT_NEAR(s.Ssk, 0.0, 1e-12) << A;
+    EXPECT_NEAR(s.Sku, 1.0, 1e-12) << A;
+    EXPECT_NEAR(s.Sdq / (2 * std::sqrt(2.0) * A), 1.0, 1e-12) << A;
+    EXPECT_NEAR(s.max_slope, std::atan(2 * A), 1e-12) << A;
+    const MapScanStats sc = map_scan_stats(m);
+    EXPECT_NEAR(sc.Rq_x / (std::sqrt(24.0 / 27.0) * A), 1.0, 1e-12) << A;
+    EXPECT_NEAR(sc.Rq_y / A, 1.0, 1e-12) << A;
+    EXPECT_NEAR(sc.Rdq_x / (2 * A), 1.0, 1e-12) << A;
+    EXPECT_NEAR(sc.Rdq_y / (2 * A), 1.0, 1e-12) << A;
+    EXPECT_NEAR(sc.rms_gradient_fd / (2 * std::sqrt(2.0) * A), 1.0, 1e-12) << A;
+    EXPECT_DOUBLE_EQ(sc.physical_size_x, 3.0);
+  }
+  // 1e308: Sq = 1e308 is representable, Sz = 2e308 is not (+inf), never a wrong finite number.
+  Map top;
+  top.nx = 3;
+  top.ny = 2;
+  top.heights = {1e308, -1e308, 1e308, -1e308, 1e308, -1e308};
+  const MapStats t = map_stats(top);
+  EXPECT_NEAR(t.Sq / 1e308, 1.0, 1e-12);
+  EXPECT_TRUE(std::isinf(t.Sz) && t.Sz > 0);
+  EXPECT_NEAR(t.Sku, 1.0, 1e-12);
+}
+
+// Spacings near the edges: the same checkerboard with A = 1 on spacings of 1e300 m has slopes
+// of 2e-300 (their squares, 4e-600, underflowed to 0 before); on spacings of 1e-300 m slopes
+// of 2e300 (squares overflowed). Physical sizes n dx = 3e300; bandwidth (dx + dy) / 2 = 1e300.
+TEST(StatsEdges, MapSpacingsNearBothEndsOfDoubleGiveExactSlopes) {
+  for (double h : {1e300, 1e-300}) {
+    Map m;
+    m.nx = 3;
+    m.ny = 2;
+    m.dx = m.dy = h;
+    m.heights = {1, -1, 1, -1, 1, -1};
+    const MapStats s = map_stats(m);
+    EXPECT_NEAR(s.Sq, 1.0, 1e-12) << h;
+    EXPECT_NEAR(s.Sdq / (2 * std::sqrt(2.0) / h), 1.0, 1e-12) << h;
+    EXPECT_NEAR(s.width / (2 * h), 1.0, 1e-12) << h;
+    const MapScanStats sc = map_scan_stats(m);
+    EXPECT_NEAR(sc.Rdq_x / (2 / h), 1.0, 1e-12) << h;
+    EXPECT_NEAR(sc.physical_size_x / (3 * h), 1.0, 1e-12) << h;
+    EXPECT_NEAR(sc.bandwidth_short / h, 1.0, 1e-12) << h;
+  }
+  // dx = 1.5e308: (dx + dy) / 2 is representable although dx + dy is not.
+  Map wide;
+  wide.nx = wide.ny = 2;
+  wide.dx = wide.dy = 1.5e308;
+  wide.heights = {0, 1, 2, 3};
+  EXPECT_NEAR(map_scan_stats(wide).bandwidth_short / 1.5e308, 1.0, 1e-15);
+}
+
+// Spacings and lengths below the smallest normal double have lost precision: an error that says
+// so, never a size such as 1.99998e-320 m for 2e-320 m.
+TEST(StatsEdges, SubnormalSpacingsAndLengthsAreErrors) {
+  auto r = read_surface_bytes("# Width: 3e-320 m\n# Height: 2e-320 m\n# Value units: m\n1 2 3\n4 5 6\n", "tiny.txt");
+  ASSERT_FALSE(r);
+  EXPECT_NE(r.error().message.find("tiny.txt: grid spacing"), std::string::npos) << r.error().message;
+  EXPECT_NE(r.error().message.find("below the smallest normal double"), std::string::npos) << r.error().message;
+  Map m;
+  m.nx = m.ny = 2;
+  m.dx = 1e-310;
+  m.heights = {0, 1, 2, 3};
+  EXPECT_FALSE(validate(m, "m").ok());
+  m.dx = std::numeric_limits<double>::min();  // the smallest normal spacing is fine
+  EXPECT_TRUE(validate(m, "m").ok());
+  Profile p{{0, 1e-310, 2e-310}, {0, 1, 0}, std::nullopt};
+  auto st = validate(p, "under.csv");
+  ASSERT_FALSE(st.ok());
+  EXPECT_NE(st.error().message.find("below the smallest normal double"), std::string::npos) << st.error().message;
+  // A profile over [0, 1.7e308]: length representable, slopes 1e-308 and -1/0.7e308: the
+  // length-weighted rms slope is sqrt((1e308 (1e-308)^2 + 0.7e308 (1/0.7e308)^2) / 1.7e308).
+  Profile wide{{0, 1e308, 1.7e308}, {0, 1, 0}, std::nullopt};
+  ASSERT_TRUE(validate(wide, "wide").ok());
+  auto w = profile_stats(wide);
+  const double expect = std::sqrt(1e-308 + 1 / 0.7e308) / std::sqrt(1.7e308);  // (no underflow on the way)
+  EXPECT_NEAR(w.rms_slope / expect, 1.0, 1e-6);  // slopes near 1e-308 are subnormal: ~1e-8 relative
+  EXPECT_NEAR(w.length / 1.7e308, 1.0, 1e-15);
 }

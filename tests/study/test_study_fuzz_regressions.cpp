@@ -86,3 +86,35 @@ TEST(StudyFuzzRegressions, PartNamesThatCannotNameAFileAreRefused) {
     EXPECT_NE(s.error().message.find("part name"), std::string::npos) << s.error().message;
   }
 }
+
+// Found by fuzz_study (a libFuzzer timeout): 2.5 kB of TOML define one part with the axes
+// iterations = 1 .. 0x7f5 (2037 values), ion (4), n_max (3) and pair (count 3), a grid of
+// 2037 * 4 * 3 * 3 = 73332 tasks, each legitimately built (11 s under ASan). Not a hang: the
+// default limit (10^7) lets it through; a caller's lower limit refuses it before any task is built.
+TEST(StudyFuzzRegressions, AGridOfTensOfThousandsOfTasksHonoursTheTaskLimit) {
+  const TaskRegistry reg = default_registry();
+  const std::string text =
+      slurp(fs::path(FRICTAL_TEST_DATA) / "fuzz-regressions" / "study" / "grid-of-73332-tasks.toml");
+  ASSERT_FALSE(text.empty());
+  auto full = parse_study(text, "grid.toml", false, reg);
+  ASSERT_TRUE(full.ok()) << full.error().message;
+  EXPECT_EQ(full->tasks.size(), 73332u);
+  auto limited = parse_study(text, "grid.toml", false, reg, 10000);
+  ASSERT_FALSE(limited.ok());
+  EXPECT_NE(limited.error().message.find("grid.toml: part '"), std::string::npos) << limited.error().message;
+  EXPECT_NE(limited.error().message.find("has more than 10000 tasks"), std::string::npos) << limited.error().message;
+}
+
+// Found by fuzz_study (UBSan): a range axis { from = 15, to = 2.1e124, step = 5.0 } has 4e123
+// values; converting that count to a 64-bit integer was undefined. Now "too many values".
+TEST(StudyFuzzRegressions, ARangeOfMoreValuesThanAnyIntegerIsTooMany) {
+  const TaskRegistry reg = default_registry();
+  const std::string text =
+      slurp(fs::path(FRICTAL_TEST_DATA) / "fuzz-regressions" / "study" / "range-of-4e123-values.toml");
+  ASSERT_FALSE(text.empty());
+  for (bool quick : {false, true}) {
+    auto s = parse_study(text, "range.toml", quick, reg);
+    ASSERT_FALSE(s.ok());
+    EXPECT_NE(s.error().message.find("too many values"), std::string::npos) << s.error().message;
+  }
+}
