@@ -500,16 +500,27 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       return st.error();
     if (auto st = check_count(hp.get({"ny", "ypixels", "yres", "rows", "nrows"}), "ny", m.ny, "rows"); !st)
       return st.error();
-    auto w = header_length({"w", "width", "xlength", "xreal", "xsize"}, lateral_bare);
+    // Wyko/Vision ASCII export ("h=305 w=75", "pixel size=3.69862e-007 m", "height conversion
+    // factor (-> m)=2.91818e-008"): w and h are the counts of columns and rows there, the
+    // spacing is the pixel size and every value times the factor is a height in that unit.
+    auto pixel = header_length({"pixelsize"}, lateral_bare);
+    if (!pixel) return pixel.error();
+    if (*pixel) {
+      if (auto st = check_count(hp.get({"w"}), "w", m.nx, "columns"); !st) return st.error();
+      if (auto st = check_count(hp.get({"h"}), "h", m.ny, "rows"); !st) return st.error();
+    }
+    auto w = *pixel ? Result<std::optional<double>>(std::optional<double>{})
+                    : header_length({"w", "width", "xlength", "xreal", "xsize"}, lateral_bare);
     if (!w) return w.error();
-    auto h = header_length({"h", "height", "ylength", "yreal", "ysize"}, lateral_bare);
+    auto h = *pixel ? Result<std::optional<double>>(std::optional<double>{})
+                    : header_length({"h", "height", "ylength", "yreal", "ysize"}, lateral_bare);
     if (!h) return h.error();
     auto dxh = header_length({"dx", "xspacing", "spacing", "xstep", "step"}, lateral_bare);
     if (!dxh) return dxh.error();
     auto dyh = header_length({"dy", "yspacing", "ystep"}, lateral_bare);
     if (!dyh) return dyh.error();
     // Gwyddion's pixel convention: the real width is nx pixels of size dx.
-    std::optional<double> dx = *w ? std::optional<double>(**w / double(m.nx)) : *dxh;
+    std::optional<double> dx = *pixel ? *pixel : *w ? std::optional<double>(**w / double(m.nx)) : *dxh;
     std::optional<double> dy = *h ? std::optional<double>(**h / double(m.ny)) : *dyh ? *dyh : dx;
     if (!dx && options.spacing > 0) dx = options.spacing;
     if (!dy && options.spacing > 0) dy = options.spacing;
@@ -527,6 +538,19 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
         return make_error(fmt::format("{}: Bit2nm '{}' is not a number", name, *hp.get({"bit2nm"})));
       zu = b2n * 1e-9;
     }
+    for (const auto& [key, value] : hp.kv)
+      if (key.rfind("heightconversionfactor", 0) == 0) {  // "height conversion factor (-> m)"
+        const auto open = key.find("(>"), close = key.rfind(')');
+        std::optional<double> unit = open != std::string::npos && close > open
+                                         ? unit_scale(key.substr(open + 2, close - open - 2))
+                                         : std::nullopt;
+        double factor = 0;
+        if (!unit || !parse_double(trim(value), factor) || !std::isfinite(factor))
+          return make_error(fmt::format(
+              "{}: height conversion factor '{}' (key '{}'): expected a number and a length unit in '(-> m)'", name,
+              value, key));
+        zu = factor * *unit;
+      }
     if (!zu && options.default_unit.empty())
       out.warnings.push_back(
           fmt::format("{}: no unit for the heights; read as metres (give a unit to override)", name));
