@@ -29,15 +29,16 @@ const std::string kDir = std::string(FRICTAL_TEST_DATA) + "/instruments/";
 
 bool native_format(const std::string& file) {
   for (const char* ext : {".txt", ".txt.gz", ".npy", ".sdf", ".hfm"})
-    if (file.size() >= std::string(ext).size() && file.compare(file.size() - std::string(ext).size(), std::string::npos, ext) == 0)
+    if (file.size() >= std::string(ext).size() &&
+        file.compare(file.size() - std::string(ext).size(), std::string::npos, ext) == 0)
       return true;
   return false;
 }
 
-#define SKIP_WITHOUT_GWYDDION(file)                                                             \
-  do {                                                                                          \
-    std::string why;                                                                            \
-    if (!native_format(file) && !frictal::gwyddion_available("", &why))                         \
+#define SKIP_WITHOUT_GWYDDION(file)                                                               \
+  do {                                                                                            \
+    std::string why;                                                                              \
+    if (!native_format(file) && !frictal::gwyddion_available("", &why))                           \
       GTEST_SKIP() << file << " is read through Gwyddion's file modules, not available: " << why; \
   } while (0)
 
@@ -331,8 +332,33 @@ TEST(Instruments, WykoAsciiHeader) {
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("w = 4"), std::string::npos) << bad.error().message;
   // A conversion factor without a length unit is refused.
-  auto unit = frictal::read_surface_bytes("h=2 w=3\npixel size=1e-6 m\nheight conversion factor (-> V)=2\n1 2 3\n4 5 6\n",
-                                          "wyko.txt");
+  auto unit = frictal::read_surface_bytes(
+      "h=2 w=3\npixel size=1e-6 m\nheight conversion factor (-> V)=2\n1 2 3\n4 5 6\n", "wyko.txt");
   ASSERT_FALSE(unit.ok());
   EXPECT_NE(unit.error().message.find("height conversion factor"), std::string::npos) << unit.error().message;
+}
+
+// JPK QI image (.jpk-qi-image, Gwyddion jpkscan), from AFMReader (AFM-SPM/AFMReader, LGPL-3.0,
+// commit 062b98453fb6abae9b7a9312f164ac82f771c6a4): tests/test_jpk.py::test_load_jpk states a
+// (100, 100) image of 4.999999999999986 nm pixels whose heights sum to 31593146.16051172 nm
+// (channel height_trace) and 32181137.138706185 nm (measuredHeight_trace), pytest.approx (rel
+// 1e-6). Gwyddion names them "Height" and "Height (measured)" (channel 2; channel 0 is the
+// retrace of the same name).
+TEST(Instruments, JpkQiImage) {
+  SKIP_WITHOUT_GWYDDION(std::string("sample_0.jpk-qi-image"));
+  for (const auto& [channel, sum_nm] : {std::pair<const char*, double>{"Height", 31593146.16051172},
+                                        std::pair<const char*, double>{"2", 32181137.138706185}}) {
+    SCOPED_TRACE(channel);
+    frictal::ReadOptions o;
+    o.channel = channel;
+    frictal::SurfaceData s = read_ok("sample_0.jpk-qi-image", o);
+    ASSERT_TRUE(s.is_map);
+    ASSERT_EQ(s.map.nx, 100u);
+    ASSERT_EQ(s.map.ny, 100u);
+    EXPECT_LE(rel(s.map.dx, 4.999999999999986e-9), 1e-9);
+    EXPECT_LE(rel(s.map.dy, 4.999999999999986e-9), 1e-9);
+    double sum = 0;
+    for (double v : s.map.heights) sum += v;
+    EXPECT_LE(rel(sum * 1e9, sum_nm), 1e-6);
+  }
 }
