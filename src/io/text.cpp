@@ -503,24 +503,31 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     // Wyko/Vision ASCII export ("h=305 w=75", "pixel size=3.69862e-007 m", "height conversion
     // factor (-> m)=2.91818e-008"): w and h are the counts of columns and rows there, the
     // spacing is the pixel size and every value times the factor is a height in that unit.
+    // (A pixel size beside a "w = 10 um" with a unit is only the fallback spacing.)
     auto pixel = header_length({"pixelsize"}, lateral_bare);
     if (!pixel) return pixel.error();
-    if (*pixel) {
+    auto bare_count = [&](const char* key) {
+      const std::string* v = hp.get({key});
+      long long n;
+      return !v || parse_int64(*v, n);
+    };
+    const bool wyko = *pixel && bare_count("w") && bare_count("h");
+    if (wyko) {
       if (auto st = check_count(hp.get({"w"}), "w", m.nx, "columns"); !st) return st.error();
       if (auto st = check_count(hp.get({"h"}), "h", m.ny, "rows"); !st) return st.error();
     }
-    auto w = *pixel ? Result<std::optional<double>>(std::optional<double>{})
-                    : header_length({"w", "width", "xlength", "xreal", "xsize"}, lateral_bare);
+    auto w = wyko ? Result<std::optional<double>>(std::optional<double>{})
+                  : header_length({"w", "width", "xlength", "xreal", "xsize"}, lateral_bare);
     if (!w) return w.error();
-    auto h = *pixel ? Result<std::optional<double>>(std::optional<double>{})
-                    : header_length({"h", "height", "ylength", "yreal", "ysize"}, lateral_bare);
+    auto h = wyko ? Result<std::optional<double>>(std::optional<double>{})
+                  : header_length({"h", "height", "ylength", "yreal", "ysize"}, lateral_bare);
     if (!h) return h.error();
     auto dxh = header_length({"dx", "xspacing", "spacing", "xstep", "step"}, lateral_bare);
     if (!dxh) return dxh.error();
     auto dyh = header_length({"dy", "yspacing", "ystep"}, lateral_bare);
     if (!dyh) return dyh.error();
     // Gwyddion's pixel convention: the real width is nx pixels of size dx.
-    std::optional<double> dx = *pixel ? *pixel : *w ? std::optional<double>(**w / double(m.nx)) : *dxh;
+    std::optional<double> dx = wyko ? *pixel : *w ? std::optional<double>(**w / double(m.nx)) : *dxh ? *dxh : *pixel;
     std::optional<double> dy = *h ? std::optional<double>(**h / double(m.ny)) : *dyh ? *dyh : dx;
     if (!dx && options.spacing > 0) dx = options.spacing;
     if (!dy && options.spacing > 0) dy = options.spacing;
