@@ -449,7 +449,7 @@ Result<std::string> surface_report(const ReportInput& in) {
             r);
       else
         tip_text = fmt::format(
-            " The grey vertical line is the short reliability cutoff for a tip of radius {}: {} (below it the "
+            " The dashed grey vertical line is the short reliability cutoff for a tip of radius {}: {} (below it the "
             "valleys are curved more than 1/R, the tip cannot reach their bottom, and θ_max from the finer scales "
             "is not to be trusted; rows below it are marked in the table).",
             r, fmt_len(*tip_cutoff, length_unit(*tip_cutoff)));
@@ -522,6 +522,8 @@ Result<std::string> surface_report(const ReportInput& in) {
         p.series.push_back(std::move(m));
       }
       p.lines.push_back({true, deg(r.theta_max_forward), "unfiltered θ_max forward", "#d62728"});
+      if (tip_cutoff && *tip_cutoff > 0 && std::isfinite(*tip_cutoff) && *tip_cutoff / xu.scale < fw.x.back())
+        p.x_min = *tip_cutoff / xu.scale / 1.3;  // the line inside the frame, left of the finest cutoff
       if (tip_cutoff && *tip_cutoff > 0 && std::isfinite(*tip_cutoff))
         p.lines.push_back(
             {false, *tip_cutoff / xu.scale,
