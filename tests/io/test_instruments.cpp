@@ -67,7 +67,12 @@ const Expect kMaps[] = {
     {"bcrf-1.bcrf", "", 960, 600, 1777404e-9, 1110878e-9, 1e-6, 24.560207201442292e-9, 24.009754961959388e-9,
      24.134045799796326e-9, 0, 1e-6, "test_bcr.py::test_bcr_metadata"},
     // Bruker Nanoscope .di (Gwyddion nanoscope), nm there, assertAlmostEqual (7 places in nm):
-    // test/test_topography.py::diSurfaceTest::test_read, channels 0 (ZSensor) and 3 (Height).
+    // test/test_topography.py::diSurfaceTest::test_read: di-1 channels 0 and 1 (both "Height"),
+    // di-3 channels 0 (ZSensor) and 3 (Height).
+    {"di-1.di", "", 512, 512, 500e-9, 500e-9, 1e-12, 9.9459868005603909e-9, 0, 0, 0, 1e-9,
+     "test_topography.py::diSurfaceTest::test_read"},
+    {"di-1.di", "1", 512, 512, 500e-9, 500e-9, 1e-12, 114.01328027385664e-9, 0, 0, 0, 1e-9,
+     "test_topography.py::diSurfaceTest::test_read"},
     {"di-3.di", "", 256, 256, 10000e-9, 10000e-9, 1e-12, 226.42539668457405e-9, 0, 0, 0, 1e-9,
      "test_topography.py::diSurfaceTest::test_read"},
     {"di-3.di", "Height", 256, 256, 10000e-9, 10000e-9, 1e-12, 264.00285276203158e-9, 0, 0, 0, 1e-9,
@@ -164,6 +169,21 @@ TEST(Instruments, GwyddionMapsMatchSurfaceTopography) {
                  << why;
   for (const Expect& e : kMaps)
     if (!native_format(e.file)) check_map(e);
+}
+
+// Orientation: test/test_topography.py::test_di_orientation states the corners of di-1.di's
+// heights() (first index x, second y) to 1e-3 nm: [0, 0] = 6.060, [0, -1] = 2.843, [-1, 0] =
+// -9.740, [-1, -1] = -30.306 nm. frictal's map.at(i, j) is x = i dx, y = j dy: the same corners.
+TEST(Instruments, NanoscopeOrientation) {
+  SKIP_WITHOUT_GWYDDION(std::string("di-1.di"));
+  frictal::SurfaceData s = read_ok("di-1.di");
+  ASSERT_TRUE(s.is_map);
+  const frictal::Map& m = s.map;
+  ASSERT_EQ(m.nx, 512u);
+  EXPECT_NEAR(m.at(0, 0), 6.060e-9, 1e-12);
+  EXPECT_NEAR(m.at(0, m.ny - 1), 2.843e-9, 1e-12);
+  EXPECT_NEAR(m.at(m.nx - 1, 0), -9.740e-9, 1e-12);
+  EXPECT_NEAR(m.at(m.nx - 1, m.ny - 1), -30.306e-9, 1e-12);
 }
 
 // Agilent .mi: SurfaceTopography's test_mi.py::test_topography states heights[0, 0] =
