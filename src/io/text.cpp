@@ -585,9 +585,16 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       named = &*it;
       break;
     }
+  // A column named "valid" (HFM-style `X;Y;valid` with a `[1/0]` unit line) flags the points: 0 =
+  // invalid (dropped), 1 = valid.
+  int vc = -1;
+  for (const auto& h : headers)
+    if (h.size() == ncols)
+      for (std::size_t c = 0; c < ncols; ++c)
+        if (lower_ascii(trim(h[c])) == "valid") vc = int(c);
   if (xc < 0 || zc < 0) {
     bool index_col = false;
-    if (ncols >= 3) {
+    if (ncols - (vc >= 0 ? 1 : 0) >= 3) {  // an index column before x and z (not counting "valid")
       if (named && is_index_name((*named)[0])) index_col = true;
       bool consecutive = true;
       for (std::size_t k = 0; k < rows.size() && consecutive; ++k)
@@ -596,7 +603,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     }
     if (xc < 0) xc = index_col ? 1 : 0;
     if (zc < 0) zc = xc + 1;
-    if (ncols > std::size_t(std::max(xc, zc)) + 1 || (index_col && ncols > 3))
+    const std::size_t used = std::size_t(std::max(xc, zc)) + 1 + (vc == std::max(xc, zc) + 1 ? 1 : 0);
+    if (ncols > used || (index_col && ncols > 3))
       out.warnings.push_back(
           fmt::format("{}: {} columns; using column {} as x and column {} as z (0-based)", name, ncols, xc, zc));
   }
@@ -634,11 +642,23 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
                                : "z"));
   double xs = xu.value_or(fallback), zs = zu.value_or(fallback);
 
+  if (vc == xc || vc == zc) vc = -1;
   InvalidCount invalid;
+  std::size_t flagged = 0;
   out.curve.x.reserve(rows.size());
   out.curve.z.reserve(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) {
     double x = rows[k][xc], z = rows[k][zc];
+    if (vc >= 0) {
+      const double v = rows[k][vc];
+      if (v != 0 && v != 1)
+        return make_error(
+            fmt::format("{}:{}: 'valid' column holds {} (expected 1 = valid or 0 = invalid)", name, row_line[k], v));
+      if (v == 0) {
+        ++flagged;
+        continue;
+      }
+    }
     if (!std::isfinite(x))
       return make_error(
           fmt::format("{}:{}: x is {} (expected a finite number; only heights may be invalid)", name, row_line[k], x));
@@ -650,6 +670,9 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     out.curve.z.push_back(z * zs);
   }
   if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, false));
+  if (flagged)
+    out.warnings.push_back(
+        fmt::format("{}: {} points flagged invalid (0) in the 'valid' column dropped", name, flagged));
   if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than 2 points with finite values", name));
   return out;
 }

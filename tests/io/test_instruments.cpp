@@ -401,3 +401,25 @@ TEST(Instruments, JpkQiImage) {
     EXPECT_LE(rel(sum * 1e9, sum_nm), 1e-6);
   }
 }
+
+// A "valid" column (hfm-1.hfm's `X;Y;valid` with the unit line `[mm];[mm];[1/0]`) flags points:
+// 0 drops the point (one warning), anything but 0 or 1 is an error naming the line.
+TEST(Instruments, ValidColumnFlagsPoints) {
+  // (x = 0, 1, 2, 3 would look like an index column were it not for the "valid" column)
+  const std::string text = "X;Y;valid\n[mm];[mm];[1/0]\n0;1;1\n1;2;0\n2;3;1\n3;4;1\n";
+  auto r = frictal::read_surface_bytes(text, "v.hfm");
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  ASSERT_FALSE(r->is_map);
+  ASSERT_EQ(r->curve.size(), 3u);
+  EXPECT_DOUBLE_EQ(r->curve.x[1], 2e-3);
+  EXPECT_DOUBLE_EQ(r->curve.z[1], 3e-3);
+  ASSERT_EQ(r->warnings.size(), 1u);
+  EXPECT_NE(r->warnings[0].find("1 points flagged invalid"), std::string::npos) << r->warnings[0];
+  auto bad = frictal::read_surface_bytes("X;Y;valid\n[mm];[mm];[1/0]\n0;1;1\n1;2;2\n2;3;1\n", "v.hfm");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("v.hfm:4:"), std::string::npos) << bad.error().message;
+  // The real file: 9,600 points, all flagged valid, no column warning.
+  auto hfm = frictal::read_surface(kDir + "hfm-1.hfm");
+  ASSERT_TRUE(hfm.ok());
+  EXPECT_TRUE(hfm->warnings.empty()) << hfm->warnings.front();
+}
