@@ -423,3 +423,24 @@ TEST(Instruments, ValidColumnFlagsPoints) {
   ASSERT_TRUE(hfm.ok());
   EXPECT_TRUE(hfm->warnings.empty()) << hfm->warnings.front();
 }
+
+// An Igor file whose one channel has no name and no units: test/IO/test_ibw.py::
+// test_ibw_file_with_one_channel_without_name states one channel, two-dimensional, 10 x 10
+// points. Without units it reads like a text column without one: metres with a warning, or the
+// unit given (ReadOptions::default_unit, --unit) for sizes and heights alike.
+TEST(Instruments, IgorChannelWithoutUnits) {
+  SKIP_WITHOUT_GWYDDION(std::string("10x10-one_channel_without_name.ibw"));
+  frictal::SurfaceData m = read_ok("10x10-one_channel_without_name.ibw");
+  ASSERT_TRUE(m.is_map);
+  EXPECT_EQ(m.channels.size(), 1u);
+  EXPECT_EQ(m.map.nx, 10u);
+  EXPECT_EQ(m.map.ny, 10u);
+  ASSERT_EQ(m.warnings.size(), 1u);
+  EXPECT_NE(m.warnings[0].find("carries no units"), std::string::npos) << m.warnings[0];
+  frictal::ReadOptions o;
+  o.default_unit = "nm";
+  frictal::SurfaceData n = read_ok("10x10-one_channel_without_name.ibw", o);
+  EXPECT_TRUE(n.warnings.empty());
+  EXPECT_DOUBLE_EQ(n.map.dx, 1e-9 * m.map.dx);
+  for (std::size_t k = 0; k < m.map.size(); ++k) EXPECT_DOUBLE_EQ(n.map.heights[k], 1e-9 * m.map.heights[k]) << k;
+}
