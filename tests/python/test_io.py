@@ -140,3 +140,22 @@ def test_instrument_matrix_in_python_matches_surfacetopography():
     assert st["Sq"] == pytest.approx(1.1745891510991089e-07, rel=1e-6)
     assert st["Rq_x"] == pytest.approx(7.198047e-08, rel=1e-6)
     assert st["rms_gradient_fd"] == pytest.approx(0.06776316911544318, rel=1e-6)
+
+
+def test_gwyddion_backed_instrument_file_with_a_channel():
+    """nid-1.nid (Nanosurf, read through Gwyddion's ezdfile module) from Python, by channel name:
+    SurfaceTopography's test/IO/test_ezd.py::test_ezd_metadata states 256 x 256 points, 2e-5 m and
+    rms height 3.026701737129839e-07 m for 'Scan forward (Z-AxisSensor)' (commit 119cb66, MIT)."""
+    path = os.path.join(DATA, "instruments", "nid-1.nid")
+    try:
+        s = frictal.read_surface(path, channel="Z-AxisSensor forward")
+    except Exception as e:  # built or installed without Gwyddion
+        if "gwyddion" in str(e).lower():
+            pytest.skip(str(e))
+        raise
+    assert s["reader"] == "gwyddion:ezdfile"
+    h = s["heights"]
+    assert h.shape == (256, 256)
+    assert 256 * s["dx"] == pytest.approx(2e-5, rel=1e-6)
+    assert frictal.map_stats(h, dx=s["dx"], dy=s["dy"])["Sq"] == pytest.approx(3.026701737129839e-07, rel=1e-6)
+    assert np.sqrt(((h - h.mean()) ** 2).mean()) == pytest.approx(3.026701737129839e-07, rel=1e-6)
