@@ -444,3 +444,19 @@ TEST(Instruments, IgorChannelWithoutUnits) {
   EXPECT_DOUBLE_EQ(n.map.dx, 1e-9 * m.map.dx);
   for (std::size_t k = 0; k < m.map.size(); ++k) EXPECT_DOUBLE_EQ(n.map.heights[k], 1e-9 * m.map.heights[k]) << k;
 }
+
+// Wyko .opd undefined points: test/test_derivatives.py::test_derivative_with_undefined_data and
+// test/test_scale_dependent_statistics.py::test_missing_data state that opd-1.opd has undefined
+// data (and that some but not all heights are finite): Gwyddion's mask becomes invalid points,
+// which never enter a statistic.
+TEST(Instruments, WykoOpdHasUndefinedPoints) {
+  SKIP_WITHOUT_GWYDDION(std::string("opd-1.opd"));
+  frictal::SurfaceData s = read_ok("opd-1.opd");
+  ASSERT_TRUE(s.is_map);
+  const std::size_t valid = s.map.valid_count();
+  EXPECT_LT(valid, s.map.size());
+  EXPECT_GT(valid, s.map.size() / 2);
+  const frictal::MapStats st = frictal::map_stats(s.map);
+  EXPECT_EQ(st.valid, valid);
+  EXPECT_TRUE(std::isfinite(st.Sq));
+}
