@@ -62,7 +62,10 @@ std::function<int()> setup(CLI::App& app) {
       const auto& c = s.channels[k];
       fmt::print("  {} {:>3}  {:<24} {:<7} {} x {} points, {:.6g} x {:.6g} {}, values in {}{}\n",
                  k == s.channel ? '*' : ' ', k, c.name, c.is_map ? "map" : "profile", c.nx, c.ny, c.size_x, c.size_y,
-                 c.xy_unit, c.z_unit.empty() ? "(none)" : c.z_unit, c.readable ? "" : "  (not lengths: not readable)");
+                 c.xy_unit, c.z_unit.empty() ? "(none)" : c.z_unit,
+                 !c.readable                             ? "  (not lengths: not readable)"
+                 : c.xy_unit.empty() && c.z_unit.empty() ? "  (no units: read as metres or --unit)"
+                                                         : "");
     }
     if (s.is_map)
       fmt::print("  read: {} x {} map, dx {:.6g} m, dy {:.6g} m, origin ({:.6g}, {:.6g}) m, {} valid of {} points\n",

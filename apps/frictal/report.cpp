@@ -25,6 +25,7 @@ struct Args {
   int resolution = 10;
   int bins = 90;
   unsigned threads = 0;
+  std::string tip_radius;
   InputOptions input;
 };
 
@@ -44,6 +45,9 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--resolution-steps", a->resolution, "Cutoff wavelengths of the resolution study (0 = none)")
       ->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the slope distributions")->capture_default_str();
+  app.add_option("--tip-radius", a->tip_radius,
+                 "Tip radius, a length such as 20nm (no unit: metres): draw its short reliability cutoff on the "
+                 "resolution plot (see docs/analysis.md)");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); the page does not depend on it")
       ->capture_default_str();
   add_input_options(app, a->input);
@@ -55,6 +59,7 @@ std::function<int()> setup(CLI::App& app) {
     require(a->resolution == 0 || (a->resolution >= 2 && a->resolution <= 100),
             "--resolution-steps must be 0 or 2..100");
     require(a->bins >= 2 && a->bins <= 10000, "--bins must be in 2..10000");
+    const double tip = a->tip_radius.empty() ? 0.0 : parse_length_option(a->tip_radius, "--tip-radius");
     report::ReportInput in;
     const SurfaceData s = load_surface(a->lower, a->input);
     in.is_map = s.is_map;
@@ -82,6 +87,7 @@ std::function<int()> setup(CLI::App& app) {
     in.max_lines = a->lines;
     in.resolution_steps = a->resolution;
     in.bins = a->bins;
+    in.tip_radius = tip;
     in.threads = a->threads;
     in.generated_by = version_line();
     const std::string page = unwrap(report::surface_report(in));

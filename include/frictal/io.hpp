@@ -62,7 +62,7 @@ struct ChannelInfo {
   std::size_t nx = 0, ny = 0;     ///< points (ny = 1 for curves)
   double size_x = 0, size_y = 0;  ///< physical size nx dx, ny dy in the file's lateral unit
   std::string xy_unit, z_unit;    ///< units as the file gives them ("m", "V", "deg", ...)
-  bool readable = true;           ///< lateral and height units are lengths (frictal reads it)
+  bool readable = true;           ///< units are lengths, or an image has none (read in ReadOptions::default_unit)
 };
 
 /// Everything a surface file gave: a line profile or an areal map, plus warnings (e.g. an X3P

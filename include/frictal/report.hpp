@@ -125,12 +125,16 @@ struct ReportInput {
   /// face the lower one. Unset: the lower surface itself turned over. Profiles only.
   std::optional<Profile> upper;
   std::string upper_name;
-  std::string detrend;             ///< detrending already applied, as the user wrote it ("none", "line", ...)
-  double atomic_friction = 0;      ///< mu_a of Eq. 6 (unitless)
-  int directions = 36;             ///< sliding directions of the polar plot (maps) (unitless)
-  std::size_t max_lines = 32;      ///< parallel lines per direction (maps) (unitless)
-  int resolution_steps = 10;       ///< cutoff wavelengths of the resolution study (unitless, >= 2; 0: none)
-  int bins = 90;                   ///< bins of the slope PDFs (unitless)
+  std::string detrend;         ///< detrending already applied, as the user wrote it ("none", "line", ...)
+  double atomic_friction = 0;  ///< mu_a of Eq. 6 (unitless)
+  int directions = 36;         ///< sliding directions of the polar plot (maps) (unitless)
+  std::size_t max_lines = 32;  ///< parallel lines per direction (maps) (unitless)
+  int resolution_steps = 10;   ///< cutoff wavelengths of the resolution study (unitless, >= 2; 0: none)
+  int bins = 90;               ///< bins of the slope PDFs (unitless)
+  /// Radius of the stylus or AFM tip (unit: m); > 0: the short reliability cutoff for it
+  /// (frictal/scan_stats.hpp) is drawn on the resolution plot and marks the finer cutoffs of
+  /// its table as not to be trusted. 0: none.
+  double tip_radius = 0;
   unsigned threads = 0;            ///< worker threads (0 = hardware); the page does not depend on it
   std::string generated_by;        ///< e.g. the version line; shown in the footer
   std::vector<std::string> notes;  ///< extra lines for "what was assumed" (e.g. reader warnings)

@@ -87,8 +87,8 @@ def power_spectrum(profile: Profile, max_k: int = ...) -> tuple:
 def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ...) -> dict:
     """Friction prediction of Eq. 6 and the Eq. 18 range: atomic_friction mu_a (unitless), theta_max and sigma (rad). Returns angles in rad and coefficients (unitless)"""
 
-def profile_stats(profile: Profile) -> dict:
-    """Statistics of a profile: points, length_m, mean/rms height (m), rms slope (unitless), max/mean slope (rad) and the slope PDF (edges in rad, density per rad)"""
+def profile_stats(profile: Profile, *, tip_radius: float = ...) -> dict:
+    """Statistics of a profile: points, length_m ((n-1) dx), mean/rms height (m), rms slope (unitless), max/mean slope (rad), the slope PDF (edges in rad, density per rad), and the scan quantities sampling_interval_m, physical_length_m (n dx), bandwidth_m (shortest, longest), nyquist_wavelength_m; tip_radius (m) > 0 adds short_reliability_cutoff_m"""
 
 def psd_dimension(profile: Profile, *, q_min: float = ..., q_max: float = ...) -> dict:
     """Fractal dimension of a profile (m) from its power-spectrum slope (runs without the GIL); q_min, q_max in rad/m (0: automatic). Returns dimension, slope, r_squared, fit_range (rad/m), scales, values"""

@@ -12,6 +12,7 @@
 #include "frictal/generators.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/io.hpp"
+#include "frictal/scan_stats.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 #include "frictal/surface_spec.hpp"
@@ -169,7 +170,7 @@ PYBIND11_MODULE(_core, m) {
 
   m.def(
       "profile_stats",
-      [](const Profile& p) {
+      [](const Profile& p, double tip_radius) {
         const ProfileStats s = profile_stats(p);
         py::dict d;
         d["points"] = s.points;
@@ -180,11 +181,20 @@ PYBIND11_MODULE(_core, m) {
         d["max_slope_rad"] = s.max_slope;
         d["mean_slope_rad"] = s.mean_slope;
         d["slope_pdf"] = hist_dict(slope_distribution(p));
+        // Scan quantities (scan_stats.hpp): n dx length, sampling interval, bandwidth.
+        const ProfileScanStats sc = profile_scan_stats(p);
+        d["sampling_interval_m"] = sc.sampling_interval;
+        d["physical_length_m"] = sc.physical_length;
+        d["bandwidth_m"] = py::make_tuple(sc.bandwidth_short, sc.bandwidth_long);
+        d["nyquist_wavelength_m"] = sc.nyquist_wavelength;
+        if (tip_radius > 0) d["short_reliability_cutoff_m"] = py_detail::ok(short_reliability_cutoff(p, tip_radius));
         return d;
       },
-      py::arg("profile"),
-      "Statistics of a profile: points, length_m, mean/rms height (m), rms slope (unitless), max/mean slope "
-      "(rad) and the slope PDF (edges in rad, density per rad)");
+      py::arg("profile"), py::kw_only(), py::arg("tip_radius") = 0.0,
+      "Statistics of a profile: points, length_m ((n-1) dx), mean/rms height (m), rms slope (unitless), max/mean "
+      "slope (rad), the slope PDF (edges in rad, density per rad), and the scan quantities sampling_interval_m, "
+      "physical_length_m (n dx), bandwidth_m (shortest, longest), nyquist_wavelength_m; tip_radius (m) > 0 adds "
+      "short_reliability_cutoff_m");
 
   m.def(
       "signature",

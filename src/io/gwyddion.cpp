@@ -262,7 +262,9 @@ std::vector<Channel> list_channels(const Api& a, void* c) {
     ch.info.size_y = a.gwy_data_field_get_yreal(f);
     ch.info.xy_unit = unit_string(a, a.gwy_data_field_get_si_unit_xy(f));
     ch.info.z_unit = unit_string(a, a.gwy_data_field_get_si_unit_z(f));
-    ch.info.readable = length_scale(ch.info.xy_unit) && length_scale(ch.info.z_unit);
+    // Lengths, or no units at all (read like a text column without a unit: metres or --unit).
+    ch.info.readable = (length_scale(ch.info.xy_unit) && length_scale(ch.info.z_unit)) ||
+                       (ch.info.xy_unit.empty() && ch.info.z_unit.empty());
     out.push_back(ch);
   }
   std::sort(graphs.begin(), graphs.end(), [](const std::string& x, const std::string& y) {
@@ -403,10 +405,13 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
             fmt::format("{}: no channel named '{}' (see `frictal info` for the list)", path, options.channel));
     }
   } else {
+    auto lengths = [&](const Channel& c) { return length_scale(c.info.xy_unit) && length_scale(c.info.z_unit); };
     for (std::size_t k = 0; k < chans.size() && pick == chans.size(); ++k)
-      if (chans[k].info.readable && chans[k].info.is_map) pick = k;
+      if (chans[k].info.readable && lengths(chans[k]) && chans[k].info.is_map) pick = k;
     for (std::size_t k = 0; k < chans.size() && pick == chans.size(); ++k)
-      if (chans[k].info.readable) pick = k;
+      if (chans[k].info.readable && lengths(chans[k])) pick = k;
+    for (std::size_t k = 0; k < chans.size() && pick == chans.size(); ++k)
+      if (chans[k].info.readable) pick = k;  // a channel without any unit
     if (pick == chans.size())
       return make_error(
           fmt::format("{}: no channel has heights and lateral sizes in a length unit (first: '{}' in {}, {}); "
@@ -416,6 +421,16 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
   const Channel& ch = chans[pick];
   out.channel = pick;
   auto sxy = length_scale(ch.info.xy_unit), sz = length_scale(ch.info.z_unit);
+  if (ch.info.is_map && ch.info.xy_unit.empty() && ch.info.z_unit.empty()) {
+    std::optional<double> fallback = 1.0;
+    if (!options.default_unit.empty()) fallback = length_scale(options.default_unit);
+    if (!fallback) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
+    sxy = sz = fallback;
+    if (options.default_unit.empty())
+      out.warnings.push_back(
+          fmt::format("{}: channel '{}' carries no units; sizes and heights read as metres (give a unit to override)",
+                      path, ch.info.name));
+  }
   if (!sxy || !sz)
     return make_error(fmt::format("{}: channel {} '{}' has lateral unit '{}' and value unit '{}', not lengths", path,
                                   pick, ch.info.name, ch.info.xy_unit, ch.info.z_unit));

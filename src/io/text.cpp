@@ -620,16 +620,34 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       return st.error();
     if (auto st = check_count(hp.get({"ny", "ypixels", "yres", "rows", "nrows"}), "ny", m.ny, "rows"); !st)
       return st.error();
-    auto w = header_length({"w", "width", "xlength", "xreal", "xsize"}, lateral_bare);
+    // Wyko/Vision ASCII export ("h=305 w=75", "pixel size=3.69862e-007 m", "height conversion
+    // factor (-> m)=2.91818e-008"): w and h are the counts of columns and rows there, the
+    // spacing is the pixel size and every value times the factor is a height in that unit.
+    // (A pixel size beside a "w = 10 um" with a unit is only the fallback spacing.)
+    auto pixel = header_length({"pixelsize"}, lateral_bare);
+    if (!pixel) return pixel.error();
+    auto bare_count = [&](const char* key) {
+      const std::string* v = hp.get({key});
+      long long n;
+      return !v || parse_int64(*v, n);
+    };
+    const bool wyko = *pixel && bare_count("w") && bare_count("h");
+    if (wyko) {
+      if (auto st = check_count(hp.get({"w"}), "w", m.nx, "columns"); !st) return st.error();
+      if (auto st = check_count(hp.get({"h"}), "h", m.ny, "rows"); !st) return st.error();
+    }
+    auto w = wyko ? Result<std::optional<double>>(std::optional<double>{})
+                  : header_length({"w", "width", "xlength", "xreal", "xsize"}, lateral_bare);
     if (!w) return w.error();
-    auto h = header_length({"h", "height", "ylength", "yreal", "ysize"}, lateral_bare);
+    auto h = wyko ? Result<std::optional<double>>(std::optional<double>{})
+                  : header_length({"h", "height", "ylength", "yreal", "ysize"}, lateral_bare);
     if (!h) return h.error();
     auto dxh = header_length({"dx", "xspacing", "spacing", "xstep", "step"}, lateral_bare);
     if (!dxh) return dxh.error();
     auto dyh = header_length({"dy", "yspacing", "ystep"}, lateral_bare);
     if (!dyh) return dyh.error();
     // Gwyddion's pixel convention: the real width is nx pixels of size dx.
-    std::optional<double> dx = *w ? std::optional<double>(**w / double(m.nx)) : *dxh;
+    std::optional<double> dx = wyko ? *pixel : *w ? std::optional<double>(**w / double(m.nx)) : *dxh ? *dxh : *pixel;
     std::optional<double> dy = *h ? std::optional<double>(**h / double(m.ny)) : *dyh ? *dyh : dx;
     if (!dx && options.spacing > 0) dx = options.spacing;
     if (!dy && options.spacing > 0) dy = options.spacing;
@@ -647,6 +665,19 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
         return make_error(fmt::format("{}: Bit2nm '{}' is not a number", name, *hp.get({"bit2nm"})));
       zu = b2n * 1e-9;
     }
+    for (const auto& [key, value] : hp.kv)
+      if (key.rfind("heightconversionfactor", 0) == 0) {  // "height conversion factor (-> m)"
+        const auto open = key.find("(>"), close = key.rfind(')');
+        std::optional<double> unit = open != std::string::npos && close > open
+                                         ? unit_scale(key.substr(open + 2, close - open - 2))
+                                         : std::nullopt;
+        double factor = 0;
+        if (!unit || !parse_double(trim(value), factor) || !std::isfinite(factor))
+          return make_error(fmt::format(
+              "{}: height conversion factor '{}' (key '{}'): expected a number and a length unit in '(-> m)'", name,
+              value, key));
+        zu = factor * *unit;
+      }
     if (!zu && options.default_unit.empty())
       out.warnings.push_back(
           fmt::format("{}: no unit for the heights; read as metres (give a unit to override)", name));
@@ -674,9 +705,16 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       named = &*it;
       break;
     }
+  // A column named "valid" (HFM-style `X;Y;valid` with a `[1/0]` unit line) flags the points: 0 =
+  // invalid (dropped), 1 = valid.
+  int vc = -1;
+  for (const auto& h : headers)
+    if (h.size() == ncols)
+      for (std::size_t c = 0; c < ncols; ++c)
+        if (lower_ascii(trim(h[c])) == "valid") vc = int(c);
   if (xc < 0 || zc < 0) {
     bool index_col = false;
-    if (ncols >= 3) {
+    if (ncols - (vc >= 0 ? 1 : 0) >= 3) {  // an index column before x and z (not counting "valid")
       if (named && is_index_name((*named)[0])) index_col = true;
       bool consecutive = true;
       for (std::size_t k = 0; k < rows.size() && consecutive; ++k)
@@ -685,7 +723,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     }
     if (xc < 0) xc = index_col ? 1 : 0;
     if (zc < 0) zc = xc + 1;
-    if (ncols > std::size_t(std::max(xc, zc)) + 1 || (index_col && ncols > 3))
+    const std::size_t used = std::size_t(std::max(xc, zc)) + 1 + (vc == std::max(xc, zc) + 1 ? 1 : 0);
+    if (ncols > used || (index_col && ncols > 3))
       out.warnings.push_back(
           fmt::format("{}: {} columns; using column {} as x and column {} as z (0-based)", name, ncols, xc, zc));
   }
@@ -723,11 +762,23 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
                                : "z"));
   double xs = xu.value_or(fallback), zs = zu.value_or(fallback);
 
+  if (vc == xc || vc == zc) vc = -1;
   InvalidCount invalid;
+  std::size_t flagged = 0;
   out.curve.x.reserve(rows.size());
   out.curve.z.reserve(rows.size());
   for (std::size_t k = 0; k < rows.size(); ++k) {
     double x = rows[k][xc], z = rows[k][zc];
+    if (vc >= 0) {
+      const double v = rows[k][vc];
+      if (v != 0 && v != 1)
+        return make_error(
+            fmt::format("{}:{}: 'valid' column holds {} (expected 1 = valid or 0 = invalid)", name, row_line[k], v));
+      if (v == 0) {
+        ++flagged;
+        continue;
+      }
+    }
     if (!std::isfinite(x))
       return make_error(
           fmt::format("{}:{}: x is {} (expected a finite number; only heights may be invalid)", name, row_line[k], x));
@@ -739,6 +790,9 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     out.curve.z.push_back(z * zs);
   }
   if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, false));
+  if (flagged)
+    out.warnings.push_back(
+        fmt::format("{}: {} points flagged invalid (0) in the 'valid' column dropped", name, flagged));
   if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than 2 points with finite values", name));
   return out;
 }

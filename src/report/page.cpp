@@ -9,6 +9,7 @@
 #include "frictal/areal.hpp"
 #include "frictal/filter.hpp"
 #include "frictal/report.hpp"
+#include "frictal/scan_stats.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 #include "frictal/units.hpp"
@@ -110,6 +111,8 @@ Result<std::string> surface_report(const ReportInput& in) {
     return make_error(fmt::format("report: directions must be in 1..720, got {}", in.directions));
   if (in.bins < 2 || in.bins > 10000)
     return make_error(fmt::format("report: bins must be in 2..10000, got {}", in.bins));
+  if (!(std::isfinite(in.tip_radius) && in.tip_radius >= 0))
+    return make_error(fmt::format("report: tip radius must be a finite length >= 0 (m), got {}", in.tip_radius));
 
   std::vector<Section> sections;
   std::vector<std::string> assumptions;
@@ -417,12 +420,48 @@ Result<std::string> surface_report(const ReportInput& in) {
     const double h = std::max(lower.length() / double(lower.size() - 1),
                               upper_measured.length() / double(upper_measured.size() - 1));
     const double cmax = L / 2, cmin = 4 * h;
+    // The short reliability cutoff of the tip: the larger of the surfaces' (the map's: rows and
+    // columns). NaN: the tip fails up to a quarter of the scan; 0: it follows every scale.
+    std::optional<double> tip_cutoff;
+    if (in.tip_radius > 0) {
+      auto c =
+          in.is_map ? short_reliability_cutoff(in.map, in.tip_radius) : short_reliability_cutoff(lower, in.tip_radius);
+      if (!c) return c.error();
+      double v = *c;
+      if (pair && !std::isnan(v)) {
+        auto cu = short_reliability_cutoff(upper_measured, in.tip_radius);
+        if (!cu) return cu.error();
+        v = std::isnan(*cu) ? *cu : std::max(v, *cu);
+      }
+      tip_cutoff = v;
+    }
+    std::string tip_text;
+    if (tip_cutoff) {
+      const std::string r = fmt_len(in.tip_radius, length_unit(in.tip_radius));
+      if (std::isnan(*tip_cutoff))
+        tip_text = fmt::format(
+            " A tip of radius {} cannot follow this surface at any scale up to a quarter of its length (the "
+            "curvature of its valleys exceeds 1/R there): no cutoff on this page is reliable.",
+            r);
+      else if (*tip_cutoff == 0)
+        tip_text = fmt::format(
+            " A tip of radius {} follows this surface down to the sampling interval: every cutoff here is within "
+            "its reach.",
+            r);
+      else
+        tip_text = fmt::format(
+            " The dashed grey vertical line is the short reliability cutoff for a tip of radius {}: {} (below it the "
+            "valleys are curved more than 1/R, the tip cannot reach their bottom, and θ_max from the finer scales "
+            "is not to be trusted; rows below it are marked in the table).",
+            r, fmt_len(*tip_cutoff, length_unit(*tip_cutoff)));
+    }
     std::string html;
     if (!(cmax > cmin * 1.5)) {
       html = fmt::format(
           "<p>Too few points for a resolution study (needs a cutoff range from 4 spacings, {}, to half "
           "the length, {}).</p>",
           fmt_len(cmin, xu), fmt_len(cmax, xu));
+      if (!tip_text.empty()) html += "<p>" + tip_text.substr(1) + "</p>";
     } else {
       Series fw, bw, sg;
       fw.label = "θ_max forward";
@@ -458,9 +497,12 @@ Result<std::string> surface_report(const ReportInput& in) {
         bw.y.push_back(deg(rs->theta_max_backward));
         sg.x.push_back(c / xu.scale);
         sg.y.push_back(deg(rs->contact_slope_std));
-        t += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n", fmt_len(c, xu),
-                         fmt_deg(rs->theta_max_forward), fmt_deg(rs->theta_max_backward),
-                         fmt_deg(rs->contact_slope_std), fmt_mu(pr->friction_coefficient));
+        const bool unreliable = tip_cutoff && (std::isnan(*tip_cutoff) || c < *tip_cutoff);
+        t += fmt::format("<tr{}><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                         unreliable ? " class=\"below-tip\"" : "", fmt_len(c, xu),
+                         unreliable ? " (below tip cutoff)" : "", fmt_deg(rs->theta_max_forward),
+                         fmt_deg(rs->theta_max_backward), fmt_deg(rs->contact_slope_std),
+                         fmt_mu(pr->friction_coefficient));
       }
       t +=
           fmt::format("<tr class=\"unfiltered\"><td>unfiltered</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
@@ -481,6 +523,12 @@ Result<std::string> surface_report(const ReportInput& in) {
         p.series.push_back(std::move(m));
       }
       p.lines.push_back({true, deg(r.theta_max_forward), "unfiltered θ_max forward", "#d62728"});
+      if (tip_cutoff && *tip_cutoff > 0 && std::isfinite(*tip_cutoff) && *tip_cutoff / xu.scale < fw.x.back())
+        p.x_min = *tip_cutoff / xu.scale / 1.3;  // the line inside the frame, left of the finest cutoff
+      if (tip_cutoff && *tip_cutoff > 0 && std::isfinite(*tip_cutoff))
+        p.lines.push_back(
+            {false, *tip_cutoff / xu.scale,
+             fmt::format("tip R = {}: reliable above", fmt_len(in.tip_radius, length_unit(in.tip_radius))), "#555"});
       auto svg = plot_svg(p);
       if (!svg) return svg.error();
       html = figure(
@@ -493,7 +541,8 @@ Result<std::string> surface_report(const ReportInput& in) {
               "θ_max forward goes from {} to {} (unfiltered: {}); the paper's Fig. 14 shows θ_max growing with the "
               "resolution of Weierstrass–Mandelbrot profiles.",
               pair ? "s" : "", in.resolution_steps, fmt::format("{:.3f}°", fw.y.front()),
-              fmt::format("{:.3f}°", fw.y.back()), fmt_deg(r.theta_max_forward)));
+              fmt::format("{:.3f}°", fw.y.back()), fmt_deg(r.theta_max_forward)) +
+              tip_text);
       html += t;
     }
     sections.push_back({"resolution", "Dependence on resolution", html});
@@ -541,6 +590,7 @@ svg.plot { max-width: 100%; height: auto; }
 table { border-collapse: collapse; margin: .8em 0; font-size: .92em; } caption { text-align: left; font-weight: bold; padding: .3em 0; }
 th, td { border: 1px solid #ddd; padding: .25em .6em; text-align: left; } td.note { color: #666; font-size: .9em; }
 table.resolution td, table.friction td { font-variant-numeric: tabular-nums; }
+tr.below-tip td { color: #999; }
 tr.unfiltered td { font-weight: bold; }
 .verdict { background: #f3f7ee; border-left: 4px solid #5a9a2a; padding: .5em .8em; }
 .assumptions { background: #f7f7f7; padding: .6em 1.4em; border-radius: 4px; }

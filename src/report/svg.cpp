@@ -489,8 +489,11 @@ Result<std::string> plot_svg(const Plot& input) {
         body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"{}\">{}</text>", ml + 4,
                             Y(l.value) - 4, l.color, escape_html(l.label));
       else
-        body += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"{}\">{}</text>", X(l.value) + 4,
-                            mt + 12, l.color, escape_html(l.label));
+        // Along the line, reading upwards from the bottom, with a white halo over the data.
+        body += fmt::format(
+            "<text x=\"{0:.1f}\" y=\"{1:.1f}\" transform=\"rotate(-90 {0:.1f} {1:.1f})\" font-size=\"11\" "
+            "fill=\"{2}\" stroke=\"#fff\" stroke-width=\"3\" paint-order=\"stroke\">{3}</text>",
+            X(l.value) + 12, mt + ph - 4, l.color, escape_html(l.label));
     }
   body += fmt::format(
       "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" "

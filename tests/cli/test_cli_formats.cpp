@@ -112,3 +112,26 @@ TEST(CliFormats, InfoAndStatsOfAGwyddionFile) {
   EXPECT_NEAR(k["physical_size_x_m"].get<double>(), 4e-6, 1e-15);
   EXPECT_NEAR(k["Rdq_x"].get<double>(), 1e-3, 1e-9);  // 1 nm per 1 um, stored as float/scaled int
 }
+
+// An instrument file end to end (tests/data/instruments, SurfaceTopography corpus): `stats --json`
+// gives the names users compare -- physical_size_x_m/_y_m (n dx), Sq_m, Rq_x_m, rms_gradient_fd,
+// bandwidth -- with the values SurfaceTopography's test/IO/test_asc.py::test_example4 states for
+// matrix-4.txt.gz (75 x 305 points, 2.773965e-05 x 0.00011280791 m, rms height 1.1745891510991089e-07
+// m, rms_height_from_profile 7.198047e-08 m, rms_gradient 0.06776316911544318), and the tip cutoff.
+TEST(CliFormats, InstrumentMatrixStatsJson) {
+  auto r = run_cli("stats " + kData + "/instruments/matrix-4.txt.gz --tip-radius 20nm --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");  // the header names the height unit: no warning
+  auto j = nlohmann::json::parse(r.out);
+  auto near = [](double a, double b) { return std::abs(a - b) <= 1e-6 * std::abs(b); };
+  EXPECT_TRUE(near(j["physical_size_x_m"].get<double>(), 2.773965e-05)) << j["physical_size_x_m"];
+  EXPECT_TRUE(near(j["physical_size_y_m"].get<double>(), 0.00011280791)) << j["physical_size_y_m"];
+  EXPECT_TRUE(near(j["Sq_m"].get<double>(), 1.1745891510991089e-07)) << j["Sq_m"];
+  EXPECT_TRUE(near(j["Rq_x_m"].get<double>(), 7.198047e-08)) << j["Rq_x_m"];
+  EXPECT_TRUE(near(j["rms_gradient_fd"].get<double>(), 0.06776316911544318)) << j["rms_gradient_fd"];
+  // Bandwidth: the pixel size 3.69862e-7 m (square pixels) up to (75 + 305) / 2 pixels.
+  EXPECT_TRUE(near(j["bandwidth_short_m"].get<double>(), 3.69862e-07)) << j["bandwidth_short_m"];
+  EXPECT_TRUE(near(j["bandwidth_long_m"].get<double>(), 190 * 3.69862e-07)) << j["bandwidth_long_m"];
+  EXPECT_TRUE(j.contains("short_reliability_cutoff_m"));
+  EXPECT_DOUBLE_EQ(j["tip_radius_m"].get<double>(), 20e-9);
+}

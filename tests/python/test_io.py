@@ -104,3 +104,58 @@ def test_npy_and_single_column_are_detected(tmp_path):
     assert c["kind"] == "profile"
     assert np.allclose(c["x"], [0, 2e-6, 4e-6])
     assert np.allclose(c["z"], [1e-9, 2e-9, 3e-9])
+
+
+def test_profile_stats_scan_quantities_and_tip_cutoff():
+    """n dx length and bandwidth of a profile; the tip cutoff of a sinusoid sampled through its
+    valleys: the stencil curvature there is a 2 (1 - cos(k0 h)) / h^2, so the tip of radius
+    R = h5^2 / (a 2 (1 - cos(k0 h5))) follows the surface from h5 = 5 dx on (docs/analysis.md)."""
+    dx, a = 1e-7, 5e-8
+    k0 = 2 * math.pi / (64 * dx)
+    h5 = 5 * dx
+    R = h5 * h5 / (a * 2 * (1 - math.cos(k0 * h5)))
+    x = np.arange(512) * dx
+    p = frictal.Profile(x, a * np.sin(k0 * x))
+    s = frictal.profile_stats(p, tip_radius=R)
+    assert s["sampling_interval_m"] == pytest.approx(dx, rel=1e-12)
+    assert s["physical_length_m"] == pytest.approx(512 * dx, rel=1e-12)
+    assert s["bandwidth_m"] == pytest.approx((dx, 512 * dx), rel=1e-12)
+    assert s["nyquist_wavelength_m"] == pytest.approx(2 * dx, rel=1e-12)
+    assert s["short_reliability_cutoff_m"] == pytest.approx(h5, rel=1e-6)
+    assert "short_reliability_cutoff_m" not in frictal.profile_stats(p)
+
+
+def test_instrument_matrix_in_python_matches_surfacetopography():
+    """matrix-4.txt.gz (gzip, Wyko ASCII header) read from Python: SurfaceTopography's
+    test/IO/test_asc.py::test_example4 states 75 x 305 points, 2.773965e-05 x 0.00011280791 m,
+    rms_height_from_area 1.1745891510991089e-07 m, rms_height_from_profile 7.198047e-08 m and
+    rms_gradient 0.06776316911544318 (commit 119cb66, MIT)."""
+    s = frictal.read_surface(os.path.join(DATA, "instruments", "matrix-4.txt.gz"))
+    assert s["kind"] == "map"
+    h = s["heights"]
+    assert h.shape == (305, 75)
+    assert 75 * s["dx"] == pytest.approx(2.773965e-05, rel=1e-6)
+    assert 305 * s["dy"] == pytest.approx(0.00011280791, rel=1e-6)
+    st = frictal.map_stats(h, dx=s["dx"], dy=s["dy"])
+    assert st["Sq"] == pytest.approx(1.1745891510991089e-07, rel=1e-6)
+    assert st["Rq_x"] == pytest.approx(7.198047e-08, rel=1e-6)
+    assert st["rms_gradient_fd"] == pytest.approx(0.06776316911544318, rel=1e-6)
+
+
+def test_gwyddion_backed_instrument_file_with_a_channel():
+    """nid-1.nid (Nanosurf, read through Gwyddion's ezdfile module) from Python, by channel name:
+    SurfaceTopography's test/IO/test_ezd.py::test_ezd_metadata states 256 x 256 points, 2e-5 m and
+    rms height 3.026701737129839e-07 m for 'Scan forward (Z-AxisSensor)' (commit 119cb66, MIT)."""
+    path = os.path.join(DATA, "instruments", "nid-1.nid")
+    try:
+        s = frictal.read_surface(path, channel="Z-AxisSensor forward")
+    except Exception as e:  # built or installed without Gwyddion
+        if "gwyddion" in str(e).lower():
+            pytest.skip(str(e))
+        raise
+    assert s["reader"] == "gwyddion:ezdfile"
+    h = s["heights"]
+    assert h.shape == (256, 256)
+    assert 256 * s["dx"] == pytest.approx(2e-5, rel=1e-6)
+    assert frictal.map_stats(h, dx=s["dx"], dy=s["dy"])["Sq"] == pytest.approx(3.026701737129839e-07, rel=1e-6)
+    assert np.sqrt(((h - h.mean()) ** 2).mean()) == pytest.approx(3.026701737129839e-07, rel=1e-6)

@@ -19,7 +19,9 @@ fail=0
 "$BIN" surface wm --dimension 1.5 --seed 1 -o "$OUT/wm-a.csv" 2>/dev/null
 "$BIN" surface wm --dimension 1.5 --seed 2 -o "$OUT/wm-b.csv" 2>/dev/null
 "$BIN" report "$OUT/wm-a.csv" "$OUT/wm-b.csv" --atomic-friction 0.3 --threads 2 -o "$OUT/pair-report.html" 2>/dev/null
-"$BIN" report "$SRC/tests/data/profiles/dektak-1.csv" --threads 2 -o "$OUT/dektak-report.html" 2>/dev/null
+# (a 12.5 um stylus tip: its short reliability cutoff is drawn on the resolution plot)
+"$BIN" report "$SRC/tests/data/profiles/dektak-1.csv" --tip-radius 12.5um --threads 2 -o "$OUT/dektak-report.html" 2>/dev/null
+grep -q "reliable above" "$OUT/dektak-report.html" || { echo "test-pages: no tip cutoff line on dektak-report.html" >&2; fail=1; }
 $PY "$SRC/tests/report/check_page.py" "$CHROME" "$OUT/x3p-report.html" "$OUT/x3p-report.png" --min-figures 5 || fail=1
 $PY "$SRC/tests/report/check_page.py" "$CHROME" "$OUT/pair-report.html" "$OUT/pair-report.png" --min-figures 4 || fail=1
 $PY "$SRC/tests/report/check_page.py" "$CHROME" "$OUT/dektak-report.html" "$OUT/dektak-report.png" --min-figures 4 || fail=1

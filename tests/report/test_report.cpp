@@ -248,3 +248,45 @@ TEST(Report, MapPageHasImagePolarPlotAndCentralLine) {
   in.upper = frictal::Profile{};
   EXPECT_FALSE(rp::surface_report(in));
 }
+
+TEST(Report, TipRadiusCutoffIsDrawnOnTheResolutionPlot) {
+  // z = a sin(k0 x), L0 = 64 dx: the stencil curvature at a valley is a 2 (1 - cos(k0 h)) / h^2
+  // (decreasing in h), so a tip of radius R = h5^2 / (a 2 (1 - cos(k0 h5))) follows the surface
+  // from h5 = 5 dx = 500 nm on (docs/analysis.md). The resolution study's 6 cutoffs run from
+  // L/2 = 25.6 um down to 4 dx = 0.4 um geometrically: only the last one lies below 0.5 um.
+  const double dx = 1e-7, L0 = 64 * dx, a = 5e-8, k0 = 2 * std::numbers::pi / L0, h5 = 5 * dx;
+  const double R = h5 * h5 / (a * 2 * (1 - std::cos(k0 * h5)));
+  rp::ReportInput in;
+  for (int i = 0; i < 512; ++i) {
+    in.lower.x.push_back(i * dx);
+    in.lower.z.push_back(a * std::sin(k0 * i * dx));
+  }
+  in.lower_name = "sine.csv";
+  in.detrend = "none";
+  in.resolution_steps = 6;
+  in.threads = 2;
+  in.tip_radius = R;
+  auto page = rp::surface_report(in);
+  ASSERT_TRUE(page) << page.error().message;
+  const auto at = page->find("short reliability cutoff for a tip of radius");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NE(page->substr(at, 120).find(": 500 nm (below it"), std::string::npos) << page->substr(at, 120);
+  EXPECT_NE(page->find("reliable above"), std::string::npos);  // the vertical line's label
+  EXPECT_EQ(count(*page, "(below tip cutoff)"), 1u);
+  EXPECT_EQ(count(*page, "class=\"below-tip\""), 1u);
+  // A tip 100 times sharper follows every scale: no line, no marked row.
+  in.tip_radius = R / 100;
+  auto sharp = rp::surface_report(in);
+  ASSERT_TRUE(sharp) << sharp.error().message;
+  EXPECT_NE(sharp->find("down to the sampling interval"), std::string::npos);
+  EXPECT_EQ(count(*sharp, "(below tip cutoff)"), 0u);
+  EXPECT_EQ(sharp->find("reliable above"), std::string::npos);
+  // Without a tip radius the page says nothing about it; a negative one is refused.
+  in.tip_radius = 0;
+  auto none = rp::surface_report(in);
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->find("tip of radius"), std::string::npos);
+  EXPECT_EQ(none->find("reliable above"), std::string::npos);
+  in.tip_radius = -1e-9;
+  EXPECT_FALSE(rp::surface_report(in));
+}
