@@ -124,8 +124,8 @@ def self_affine_profile(**kwargs: Any) -> Profile:
         rms_height [m]: RMS height about the mean; <= 0 keeps the raw heights (default 1e-06; valid any finite number)
         seed: Seed of the random phases or heights (default 1; valid 0..9.2e+18)"""
 
-def signature(lower: Profile, upper: Optional[Profile] = ..., *, rotate_upper: bool = ..., slopes: str = ..., offsets: int = ..., offset_range: Optional[Tuple[float, float]] = ..., threads: int = ..., keep_contacts: bool = ..., bins: int = ...) -> dict:
-    """Signature function theta(x_ofs) of two profiles (runs without the GIL). `upper` is a surface as measured (rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores. Returns offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events."""
+def signature(lower: Profile, upper: Optional[Profile] = ..., *, rotate_upper: bool = ..., slopes: str = ..., offsets: int = ..., offset_range: Optional[Tuple[float, float]] = ..., threads: int = ..., keep_contacts: bool = ..., bins: int = ..., spheroradius: float = ...) -> dict:
+    """Signature function theta(x_ofs) of two profiles (runs without the GIL). `upper` is a surface as measured (rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores; spheroradius (m) > 0: the DEM's rounded blocks (one core against the other dilated by a disk of radius 2r, exact slopes only), 0: rigid profiles. Returns offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events, spheroradius (m)."""
 
 def sine_profile(**kwargs: Any) -> Profile:
     """sine_profile(**params) -> Profile
@@ -187,7 +187,7 @@ def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
         atomic_friction: Atomic (Coulomb) friction coefficient mu_a (default 0; valid >= 0)
         restitution: Restitution eps of Eq. 12 on the upper block's mass; > 0 replaces normal_damping (default 0; valid [0, 1])
         block_height [m]: Block height h below the surface minimum (default 0.01; valid > 0)
-        radius [m]: Spheroradius r of both blocks (default 5e-05; valid > 0)
+        spheroradius [m]: Spheroradius r of both blocks (default 5e-05; valid > 0)
         density [kg/m^2]: Areal density rho of both blocks (default 50; valid > 0)
         gravity [m/s^2]: Gravitational acceleration g (default 9.81; valid >= 0)
         face: Block face of a folded surface: the full curve or its upper envelope (default 'curve'; valid curve or envelope)

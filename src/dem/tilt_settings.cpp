@@ -55,7 +55,8 @@ const std::vector<B>& table() {
           bind<TiltConfig>(F("block_height", "m", 0, Lo::Open, kInf, "Block height h below the surface minimum"),
                            FRICTAL_MEMBER(block_height)),
           // `signature` takes this field too: absent there, the faces are rigid profiles (r = 0).
-          bind<TiltConfig>(F("radius", "m", 0, Lo::Open, kInf, "Spheroradius r of both blocks", false,
+          // The CLI also reads the retired `--radius` (hidden, options.cpp).
+          bind<TiltConfig>(F("spheroradius", "m", 0, Lo::Open, kInf, "Spheroradius r of both blocks", false,
                              "5e-05 (tilt); none: rigid profiles (signature)"),
                            FRICTAL_MEMBER(radius)),
           bind<TiltConfig>(F("density", "kg/m^2", 0, Lo::Open, kInf, "Areal density rho of both blocks"),

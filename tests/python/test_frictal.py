@@ -17,6 +17,19 @@ def test_koch_signature_is_n_alpha(n, mult):
     assert sig["exact"]
 
 
+def test_signature_spheroradius_keyword():
+    # K0 at 20 deg (lambda = 0.01 m) with r = 0.01 m: the rounded tips make the lift an arc whose
+    # steepest contact is asin(lambda / (4 r)) = asin(0.25) (closed form, test_sphero.cpp); r = 0
+    # is the rigid signature itself.
+    k0 = frictal.koch_profile(iterations=0, alpha=np.radians(20))
+    rigid = frictal.signature(k0)
+    assert frictal.signature(k0, spheroradius=0.0)["theta_max_forward"] == rigid["theta_max_forward"]
+    sig = frictal.signature(k0, spheroradius=0.01)
+    assert sig["spheroradius"] == 0.01
+    assert sig["theta_max_forward"] == pytest.approx(math.asin(0.25), abs=1e-9)
+    with pytest.raises(ValueError, match="spheroradius"):
+        frictal.signature(k0, spheroradius=-1.0)
+
 def test_lift_matches_reference_and_numpy_scan():
     f = frictal.wm_profile(n_max=5, seed=3)
     g = frictal.wm_profile(n_max=5, seed=4)
