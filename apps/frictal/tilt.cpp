@@ -68,6 +68,7 @@ int run(TiltOptions& o) {
 
   auto r = run_tilt(lower, upper, cfg);
   if (!r.ok()) fail(r.error());
+  for (const TiltWarning& w : r->warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
   if (!o.output.empty())
     write_output(o.output, [&](const std::string& p) { return write_tilt_series_csv(p, r->series); });
   if (!o.frames.empty())
@@ -82,6 +83,20 @@ int run(TiltOptions& o) {
         cfg.predict ? nlohmann::json(r->predicted_friction_angle / kDeg) : nlohmann::json(nullptr);
     j["predicted_theta_max_deg"] =
         cfg.predict ? nlohmann::json(r->predicted_theta_max / kDeg) : nlohmann::json(nullptr);
+    j["predicted_sphero_friction_angle_deg"] =
+        cfg.predict ? nlohmann::json(r->predicted_sphero_friction_angle / kDeg) : nlohmann::json(nullptr);
+    j["predicted_sphero_theta_max_deg"] =
+        cfg.predict ? nlohmann::json(r->predicted_sphero_theta_max / kDeg) : nlohmann::json(nullptr);
+    j["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
+    const TiltScales& sc = r->scales;
+    j["scales"] = {{"resting_overlap_m", sc.resting_overlap},
+                   {"spheroradius_m", sc.spheroradius},
+                   {"shortest_edge_m", {sc.shortest_edge[0], sc.shortest_edge[1]}},
+                   {"smallest_feature_m", {sc.smallest_feature[0], sc.smallest_feature[1]}},
+                   {"time_step_s", sc.time_step},
+                   {"contact_period_s", sc.contact_period}};
+    j["warnings"] = nlohmann::json::array();
+    for (const TiltWarning& w : r->warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
     j["surface"] = surface;
     j["settings"] = text_json(tilt_settings(), tilt_values(cfg));
     j["initial_offset_m"] = r->initial_offset;
@@ -118,10 +133,15 @@ int run(TiltOptions& o) {
                  cfg.reverse ? "towards -x" : "towards +x", r->slide_time);
     else
       fmt::print(text, "no run-away before the maximal tilt of {:.2f} deg\n", cfg.max_tilt / kDeg);
-    if (cfg.predict)
+    if (cfg.predict) {
       fmt::print(text, "predicted (signature theta_max {:.3f} + atan(mu_a) {:.3f}): {:.3f} deg\n",
                  r->predicted_theta_max / kDeg, std::atan(cfg.contact.atomic_friction) / kDeg,
                  r->predicted_friction_angle / kDeg);
+      fmt::print(text, "predicted for spheropolygons (r = {:.3g} m, theta_max {:.3f} + atan(mu_a)): {:.3f} deg\n",
+                 cfg.radius, r->predicted_sphero_theta_max / kDeg, r->predicted_sphero_friction_angle / kDeg);
+    }
+    fmt::print(text, "rotation of the upper block against the lower one before the slide: {:.4g} deg{}\n",
+               r->rotation_before_slide / kDeg, cfg.hold_rotation ? " (held)" : "");
     fmt::print(text,
                "{} steps of {:.3g} to {:.3g} s ({:.4f} s simulated) in {:.2f} s wall, {:.2f} us/step; blocks {} + {} "
                "vertices\n",

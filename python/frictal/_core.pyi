@@ -179,7 +179,7 @@ def surface_curve(generator: str, **kwargs: Any) -> tuple:
 def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
     """tilt(lower, upper=None, **settings) -> dict
 
-    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, predicted_theta_max (rad), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
+    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rotation_before_slide (rad), warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
         normal_stiffness [N/m]: Normal contact stiffness k_n (default 600000; valid > 0)
         tangential_stiffness [N/m]: Tangential contact stiffness k_t (default 60000; valid >= 0)
         normal_damping [1/s]: Normal damping gamma_n (default 929.5; valid >= 0)
@@ -208,6 +208,11 @@ def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
         implicit_damping: Integrate the normal dashpots implicitly (backward Euler); false: explicit (default True; valid true or false)
         skin [m]: Neighbour-list skin (default 5e-05; valid >= 0)
         max_steps_beyond_limit: Stop after this many steps (in total) beyond the explicit stability limit (default 1000; valid 0..2147483647)
+        hold_rotation: Hold the upper block's rotation relative to the lower block (it still translates) (default False; valid true or false)
+        warn_overlap_fraction: Warn (core-overlap) when the resting overlap W/k_n exceeds this fraction of r (default 0.1; valid > 0)
+        warn_prediction_tolerance [rad]: Warn (rounding) when the spheropolygon and rigid predictions differ by more (default 0.001745329252; valid > 0)
+        warn_rotation [rad]: Warn (rotation) when the upper block turns against the lower one by more before the slide (default 0.0001745329252; valid > 0)
+        warn_time_step_fraction: Warn (time-step) when the (largest) time step exceeds this fraction of one contact's period (default 0.1; valid > 0)
         series_interval [s]: Time between rows of the time series; 0: none (default 0.001; valid >= 0)
         frame_interval [s]: Time between frames; 0: none (default 0; valid >= 0)"""
 
