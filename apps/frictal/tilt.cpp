@@ -12,6 +12,7 @@
 
 #include "frictal/io.hpp"
 #include "frictal/tilt.hpp"
+#include "movie.hpp"
 #include "options.hpp"
 
 namespace frictal::cli {
@@ -21,7 +22,7 @@ struct TiltOptions {
   GeneratorOptions gen;
   FieldWords settings;
   std::string lower_file, upper_file;
-  std::string output, frames;
+  std::string output, frames, vtk, movie;
   bool json = false;
 };
 
@@ -59,7 +60,7 @@ int run(TiltOptions& o) {
   const ValueSet given = si_values(tilt_settings(), o.settings);
   TiltConfig cfg = unwrap(make_tilt_config(given, base));
   if (o.output.empty()) cfg.series_interval = 0;
-  if (o.frames.empty())
+  if (o.frames.empty() && o.vtk.empty() && o.movie.empty())
     cfg.frame_interval = 0;
   else if (!given.count("frame_interval"))
     cfg.frame_interval = 0.01;
@@ -71,6 +72,15 @@ int run(TiltOptions& o) {
   for (const TiltWarning& w : r->warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
   if (!o.output.empty())
     write_output(o.output, [&](const std::string& p) { return write_tilt_series_csv(p, r->series); });
+  if (!o.vtk.empty()) {
+    auto w = write_tilt_vtk(o.vtk, *r, cfg.radius);
+    if (!w.ok()) fail(w.error());
+    fmt::print(stderr, "frictal: wrote {} VTK files, time index {}\n", w->size(), w->front());
+  }
+  if (!o.movie.empty()) {
+    write_tilt_movie(o.movie, *r, cfg.radius);
+    fmt::print(stderr, "frictal: wrote {} ({} frames)\n", o.movie, r->frames.size());
+  }
   if (!o.frames.empty())
     write_output(
         o.frames, [&](const std::string& p) { return write_tilt_frames(p, *r); }, "--frames");
@@ -161,6 +171,12 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option(
       "--frames", o->frames,
       "Write frames (frictal-dem-frames 1, see docs/dem.md) here, every --frame-interval (0.01 s if not set)");
+  app.add_option("--vtk", o->vtk,
+                 "Write the frames as VTK PolyData (.vtp, bodies and contacts) with a ParaView time index tilt.pvd "
+                 "into this directory, every --frame-interval (0.01 s if not set)");
+  app.add_option("--movie", o->movie,
+                 "Render the run to FILE.mp4 or FILE.gif with ffmpeg (tilt angle and atan(F_t/F_n) drawn in), one "
+                 "frame per --frame-interval (0.01 s if not set), 25 frames per second");
   app.add_flag("--json", o->json, "Print one JSON object");
   return [o]() { return run(*o); };
 }

@@ -89,7 +89,7 @@ struct TiltConfig {
   /// "rounding" when the spheropolygon prediction differs from the rigid one by more (unit: rad).
   double warn_prediction_tolerance = 0.1 * std::numbers::pi / 180;
   /// "rotation" when the upper block turns against the lower one by more before the slide (unit: rad).
-  double warn_rotation = 0.01 * std::numbers::pi / 180;
+  double warn_rotation = 0.002 * std::numbers::pi / 180;
   /// "time-step" when the largest step exceeds this fraction of the contact period (unitless).
   double warn_time_step_fraction = 0.1;
 };
@@ -200,6 +200,25 @@ Status write_tilt_series_csv(const std::string& path, const TiltSeries& series);
 /// (predicted_* of `result`; "rounding" only if config.predict).
 std::vector<TiltWarning> tilt_scale_warnings(const TiltScales& scales, const TiltResult& result,
                                              const TiltConfig& config);
+
+/// Writes the frames as VTK XML PolyData for ParaView into directory `dir` (created if missing):
+/// per frame i, bodies_<i>.vtp (the two core polygons as polygons and their rounded outlines,
+/// cores offset by the spheroradius `radius` with arcs at convex corners, as lines; cell data
+/// body = 0 lower / 1 upper, kind = 0 core / 1 outline; field data time, tilt in degrees, F_n, F_t
+/// and atan(F_t/F_n) in degrees) and contacts_<i>.vtp (one vertex per touching pair at the contact
+/// point, point data normal (unit), normal_force and tangential_force (vectors on the vertex
+/// body, N), overlap (m), vertex_body); and tilt.pvd, the time index of both parts. Coordinates
+/// in metres (z = 0). Returns the paths written (the .pvd first). Needs frames (frame_interval > 0).
+Result<std::vector<std::string>> write_tilt_vtk(const std::string& dir, const TiltResult& result, double radius);
+
+/// World coordinates of body b's core polygon (0 lower, 1 upper) in `frame` (unit: m).
+void tilt_frame_polygon(const TiltResult& result, const TiltFrame& frame, int b, std::vector<double>& x,
+                        std::vector<double>& y);
+/// The rounded outline of that polygon: each edge offset outwards by `radius`, joined by arcs
+/// (steps of at most `max_arc_step` rad) at convex corners and by the offsets' crossing-free
+/// joint at concave ones (unit: m).
+void rounded_outline(const std::vector<double>& x, const std::vector<double>& y, double radius, double max_arc_step,
+                     std::vector<double>& ox, std::vector<double>& oy);
 
 /// Writes the frames in the text format of docs/dem.md ("frictal-dem-frames 1").
 Status write_tilt_frames(const std::string& path, const TiltResult& result);
