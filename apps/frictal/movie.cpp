@@ -61,7 +61,8 @@ void line(Image& im, double x0, double y0, double x1, double y1, Rgb c, int thic
   const int steps = static_cast<int>(std::max(std::fabs(x1 - x0), std::fabs(y1 - y0))) + 1;
   for (int i = 0; i <= steps; ++i) {
     const double t = static_cast<double>(i) / steps;
-    const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0))), y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
+    const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0))),
+              y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
     for (int dx = -(thick / 2); dx <= thick / 2; ++dx)
       for (int dy = -(thick / 2); dy <= thick / 2; ++dy) im.set(x + dx, y + dy, c);
   }
@@ -70,22 +71,22 @@ void line(Image& im, double x0, double y0, double x1, double y1, Rgb c, int thic
 // 5 x 7 glyphs, one string of 7 rows of 5 characters per glyph ('#' = ink).
 const std::map<char, const char*>& font() {
   static const std::map<char, const char*> f = {
-      {'0', " ### #   ##  ### # ###  ##   # ### "}, {'1', "  #   ##    #    #    #    #   ### "},
-      {'2', " ### #   #    #  ##  #    #    #####"}, {'3', "#####   #   #    ##     ##   # ### "},
-      {'4', "   #   ##  # # #  # #####   #    # "}, {'5', "######    ####     #    ##   # ### "},
-      {'6', "  ## #    #    #### #   ##   # ### "}, {'7', "#####    #   #   #   #    #    #   "},
-      {'8', " ### #   ##   # ### #   ##   # ### "}, {'9', " ### #   ##   # ####    #   #  ##  "},
-      {'.', "                         ##   ##   "}, {'-', "               ###               "},
-      {'=', "          #####     #####          "}, {'(', "   #   #   #    #    #     #     # "},
-      {')', " #     #     #    #    #   #   #   "}, {'/', "    #    #   #   #   #   #    #    "},
-      {' ', "                                   "}, {'a', "           ###     # #####   # ####"},
-      {'c', "           ### #    #    #   # ### "}, {'d', "    #    # ## ##  ##   ##   # ####"},
-      {'e', "           ### #   #######     ### "}, {'F', "######    #    #### #    #    #    "},
-      {'g', "      #####   ##   # ####    # ### "}, {'i', "  #         ##    #    #    #   ###"},
-      {'l', " ##    #    #    #    #    #   ### "}, {'n', "          # ## ##  ##   ##   ##   #"},
-      {'o', "           ### #   ##   ##   # ### "}, {'r', "          # ## ##  ##    #    #    "},
-      {'s', "           #####     ###     ##### "}, {'t', "  #    #  #####  #    #    #  #  ## "},
-      {'u', "          #   ##   ##   ##  ## ## #"}, {'m', "          ## # # # ## # ##   ##   #"},
+      {'0', " ### #   ##  ### # ###  ##   # ### "},   {'1', "  #   ##    #    #    #    #   ### "},
+      {'2', " ### #   #    #  ##  #    #    #####"},  {'3', "#####   #   #    ##     ##   # ### "},
+      {'4', "   #   ##  # # #  # #####   #    # "},   {'5', "######    ####     #    ##   # ### "},
+      {'6', "  ## #    #    #### #   ##   # ### "},   {'7', "#####    #   #   #   #    #    #   "},
+      {'8', " ### #   ##   # ### #   ##   # ### "},   {'9', " ### #   ##   # ####    #   #  ##  "},
+      {'.', "                         ##   ##   "},   {'-', "               ###               "},
+      {'=', "          #####     #####          "},   {'(', "   #   #   #    #    #     #     # "},
+      {')', " #     #     #    #    #   #   #   "},   {'/', "    #    #   #   #   #   #    #    "},
+      {' ', "                                   "},   {'a', "           ###     # #####   # ####"},
+      {'c', "           ### #    #    #   # ### "},   {'d', "    #    # ## ##  ##   ##   # ####"},
+      {'e', "           ### #   #######     ### "},   {'F', "######    #    #### #    #    #    "},
+      {'g', "      #####   ##   # ####    # ### "},   {'i', "  #         ##    #    #    #   ###"},
+      {'l', " ##    #    #    #    #    #   ### "},   {'n', "          # ## ##  ##   ##   ##   #"},
+      {'o', "           ### #   ##   ##   # ### "},   {'r', "          # ## ##  ##    #    #    "},
+      {'s', "           #####     ###     ##### "},   {'t', "  #    #  #####  #    #    #  #  ## "},
+      {'u', "          #   ##   ##   ##  ## ## #"},   {'m', "          ## # # # ## # ##   ##   #"},
       {'p', "          #### #   ######  #    #    "}, {'h', "#    #    # ## ##  ##   ##   ##   #"},
   };
   return f;
@@ -143,9 +144,9 @@ void write_tilt_movie(const std::string& path, const TiltResult& r, double radiu
 
   const std::string filter =
       gif ? "-vf \"split[a][b];[a]palettegen[p];[b][p]paletteuse\"" : "-c:v libx264 -pix_fmt yuv420p -crf 20";
-  const std::string cmd = fmt::format(
-      "ffmpeg -hide_banner -loglevel error -y -f rawvideo -pix_fmt rgb24 -s {}x{} -r {} -i - {} \"{}\"", W, H, fps,
-      filter, path);
+  const std::string cmd =
+      fmt::format("ffmpeg -hide_banner -loglevel error -y -f rawvideo -pix_fmt rgb24 -s {}x{} -r {} -i - {} \"{}\"", W,
+                  H, fps, filter, path);
   std::FILE* pipe = popen(cmd.c_str(), "w");
   if (!pipe) throw UsageError(fmt::format("--movie: cannot start ffmpeg ({})", cmd), ErrorCode::Io);
   const Rgb lower_c{150, 150, 160}, upper_c{90, 140, 200}, rim_c{40, 40, 40}, contact_c{220, 30, 30},

@@ -131,7 +131,7 @@ const std::vector<B>& table() {
                              "slide"),
                            FRICTAL_MEMBER(warn_rotation)),
           bind<TiltConfig>(F("warn_time_step_fraction", "", 0, Lo::Open, kInf,
-                             "Warn (time-step) when the (largest) time step exceeds this fraction of one contact's "
+                             "Warn (time-step) when a fixed time step exceeds this fraction of one contact's "
                              "period"),
                            FRICTAL_MEMBER(warn_time_step_fraction)),
           // Output.

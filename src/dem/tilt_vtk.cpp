@@ -74,8 +74,7 @@ void field_data(std::FILE* f, const TiltFrame& fr) {
   const double deg = 180 / std::numbers::pi;
   fmt::print(f, "<FieldData>\n");
   auto one = [&](const char* name, double v) {
-    fmt::print(f,
-               "<DataArray type=\"Float64\" Name=\"{}\" NumberOfTuples=\"1\" format=\"ascii\">{:.17g}</DataArray>\n",
+    fmt::print(f, "<DataArray type=\"Float64\" Name=\"{}\" NumberOfTuples=\"1\" format=\"ascii\">{:.17g}</DataArray>\n",
                name, v);
   };
   one("time_s", fr.time);
@@ -111,8 +110,9 @@ Status write_bodies(const std::string& path, const TiltResult& r, const TiltFram
   fmt::print(o, "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
   fmt::print(o, "<PolyData>\n");
   field_data(o, fr);
-  fmt::print(o, "<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"2\" NumberOfStrips=\"0\" "
-                "NumberOfPolys=\"2\">\n",
+  fmt::print(o,
+             "<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"2\" NumberOfStrips=\"0\" "
+             "NumberOfPolys=\"2\">\n",
              px.size());
   fmt::print(o, "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
   for (std::size_t i = 0; i < px.size(); ++i) fmt::print(o, "{:.17g} {:.17g} 0\n", px[i], py[i]);
@@ -127,9 +127,10 @@ Status write_bodies(const std::string& path, const TiltResult& r, const TiltFram
   cells("Lines", poly_end.back(), line_end);
   cells("Polys", 0, poly_end);
   // Cell order in VTK PolyData: verts, lines, strips, polys.
-  fmt::print(o, "<CellData Scalars=\"body\">\n<DataArray type=\"Int32\" Name=\"body\" format=\"ascii\">0 1 0 1"
-                "</DataArray>\n<DataArray type=\"Int32\" Name=\"kind\" format=\"ascii\">1 1 0 0</DataArray>\n"
-                "</CellData>\n");
+  fmt::print(o,
+             "<CellData Scalars=\"body\">\n<DataArray type=\"Int32\" Name=\"body\" format=\"ascii\">0 1 0 1"
+             "</DataArray>\n<DataArray type=\"Int32\" Name=\"kind\" format=\"ascii\">1 1 0 0</DataArray>\n"
+             "</CellData>\n");
   fmt::print(o, "</Piece>\n</PolyData>\n</VTKFile>\n");
   if (std::ferror(o)) return make_error(ErrorCode::Io, fmt::format("{}: write failed", path));
   return Ok{};
@@ -143,12 +144,14 @@ Status write_contacts(const std::string& path, const TiltFrame& fr) {
   fmt::print(o, "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
   fmt::print(o, "<PolyData>\n");
   field_data(o, fr);
-  fmt::print(o, "<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
-                "NumberOfPolys=\"0\">\n",
+  fmt::print(o,
+             "<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+             "NumberOfPolys=\"0\">\n",
              n, n);
   fmt::print(o, "<Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n");
   for (const auto& c : fr.contacts) fmt::print(o, "{:.17g} {:.17g} 0\n", c.point.x, c.point.y);
-  fmt::print(o, "</DataArray>\n</Points>\n<Verts>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
+  fmt::print(o,
+             "</DataArray>\n</Points>\n<Verts>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n");
   for (std::size_t i = 0; i < n; ++i) fmt::print(o, "{} ", i);
   fmt::print(o, "\n</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n");
   for (std::size_t i = 0; i < n; ++i) fmt::print(o, "{} ", i + 1);
@@ -192,8 +195,9 @@ Result<std::vector<std::string>> write_tilt_vtk(const std::string& dir, const Ti
   File f(std::fopen(pvd.c_str(), "w"), &std::fclose);
   if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for writing", pvd));
   written.push_back(pvd);
-  fmt::print(f.get(), "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
-                      "byte_order=\"LittleEndian\">\n<Collection>\n");
+  fmt::print(f.get(),
+             "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\" "
+             "byte_order=\"LittleEndian\">\n<Collection>\n");
   for (std::size_t i = 0; i < r.frames.size(); ++i) {
     const TiltFrame& fr = r.frames[i];
     const std::string b = fmt::format("bodies_{:05d}.vtp", i), c = fmt::format("contacts_{:05d}.vtp", i);

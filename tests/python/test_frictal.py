@@ -120,3 +120,19 @@ def test_tilt_flat_blocks_slide_at_atomic_friction_angle():
         frictal.tilt(lower, face="bogus", initial_offset=0.01)
     with pytest.raises(TypeError):
         frictal.tilt("not a surface")
+
+
+def test_tilt_reports_both_predictions_and_holds_rotation():
+    # K0 at 10 deg: rigid and rounded blocks both predict alpha (the flanks survive a small r,
+    # docs/dem.md); with the rotation held the block slides at alpha and does not turn.
+    k0 = frictal.koch_profile(iterations=0, alpha=np.radians(10), length=0.05)
+    r = frictal.tilt(k0, hold_rotation=True, spheroradius=5e-5)
+    assert r["predicted_friction_angle"] == pytest.approx(np.radians(10), abs=1e-12)
+    assert r["predicted_sphero_friction_angle"] == pytest.approx(np.radians(10), abs=1e-9)
+    assert r["rotation_before_slide"] == 0
+    assert np.degrees(r["friction_angle"]) == pytest.approx(10, abs=0.1)
+    assert r["warnings"] == []
+    assert r["scales"]["spheroradius"] == 5e-5
+    # A tiny spheroradius: the resting overlap W/k_n is no longer small against r.
+    small = frictal.tilt(k0, spheroradius=1e-7, max_tilt=np.radians(1))
+    assert "core-overlap" in [w["code"] for w in small["warnings"]]
