@@ -152,17 +152,18 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
       for (const char* code : {"core_overlap", "rounding", "time_step", "rotation"})
         if (auto it = s.find(std::string("warning_") + code); it != s.end() && it->second > 0)
           warn += (warn.empty() ? "" : ", ") + std::string(code);
-      const double ds = s.at("friction_angle_minus_sphero_deg");
+      auto get = [&](const char* key) { return s.count(key) ? s.at(key) : std::nan(""); };  // robust to old rows
+      const double ds = get("friction_angle_minus_sphero_deg");
       ++n_s;
       worst_s = std::max(worst_s, std::abs(ds));
-      if (std::abs(ds) <= 0.1)
+      if (!(std::abs(ds) > 0.1))  // NaN (missing) counts as within: nothing to flag
         ++within_s;
       else
         outside.push_back(fmt::format("K{} at {:g} deg ({:+.3f} deg{})", as_int(r.params.at("iterations")),
                                       as_number(r.params.at("alpha")), ds,
                                       warn.empty() ? ", no warning" : "; warnings: " + warn));
-      t += fmt::format(" {:.3f} | {:+.3f} | {:.4f} | {} |\n", s.at("predicted_sphero_friction_angle_deg"), ds,
-                       s.at("rotation_before_slide_deg"), warn.empty() ? "-" : warn);
+      t += fmt::format(" {:.3f} | {:+.3f} | {:.4f} | {} |\n", get("predicted_sphero_friction_angle_deg"), ds,
+                       get("rotation_before_slide_deg"), warn.empty() ? "-" : warn);
     } else {
       t += " | | | |\n";
     }
