@@ -2,6 +2,7 @@
 #include "options.hpp"
 
 #include <algorithm>
+#include <map>
 
 #include "frictal/tilt.hpp"
 
@@ -32,6 +33,13 @@ void add_field_options(CLI::App& app, const std::vector<Field>& fields, FieldWor
              flags, [&words, key](const std::string& w) { words.words[key] = w; }, field_help(f))
           ->type_name(f.type == FieldType::Choice ? "WORD" : (f.type == FieldType::Integer ? "INT" : "NUMBER"));
     }
+    // Retired option names still read on the command line (scripts written before the rename),
+    // hidden from the help so that each quantity shows one name.
+    static const std::map<std::string, std::string> retired = {{"spheroradius", "--radius"}};
+    if (auto it = retired.find(f.name); it != retired.end())
+      app.add_option_function<std::string>(
+             it->second, [&words, key](const std::string& w) { words.words[key] = w; }, "Retired name of " + name)
+          ->group("");
   }
 }
 

@@ -52,10 +52,10 @@ std::function<int()> setup(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--exact", a->exact, "Refuse to sample offsets when the exact signature has too many events");
   app.add_option("--offset-range", a->range, "MIN MAX offsets (m); default one period or half the block")->expected(2);
-  // --period and --radius (the spheroradius: the signature of the DEM's rounded blocks, one core
+  // --period and --spheroradius (the spheroradius: the signature of the DEM's rounded blocks, one core
   // against the other dilated by a disk of radius 2r), the tilt table's fields.
   std::vector<std::string> skip = all_but(tilt_settings(), "period");
-  skip.erase(std::remove(skip.begin(), skip.end(), "radius"), skip.end());
+  skip.erase(std::remove(skip.begin(), skip.end(), "spheroradius"), skip.end());
   add_field_options(app, tilt_settings(), a->period_words, skip);
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
@@ -85,7 +85,7 @@ std::function<int()> setup(CLI::App& app) {
     Profile upper_measured = a->upper.empty() ? lower : unwrap(detrend(load_profile(a->upper), dt));
     const ValueSet pv = si_values(tilt_settings(), a->period_words);
     if (pv.count("period")) a->period = as_real(pv.at("period"));
-    if (pv.count("radius")) a->spheroradius = as_real(pv.at("radius"));
+    if (pv.count("spheroradius")) a->spheroradius = as_real(pv.at("spheroradius"));
     if (a->period != 0) {
       require(a->period > 0 && std::isfinite(a->period),
               fmt::format("--period: expected a positive length in m, got {}", a->period));
@@ -101,7 +101,7 @@ std::function<int()> setup(CLI::App& app) {
     o.threads = a->threads;
     o.bins = a->bins;
     require(a->spheroradius == 0 || a->slopes == "exact",
-            "--radius: the rounded faces have their own exact slopes; use --slopes exact");
+            "--spheroradius: the rounded faces have their own exact slopes; use --slopes exact");
     o.spheroradius = a->spheroradius;
     o.keep_contacts = !a->contacts_out.empty();
     if (!a->range.empty()) {

@@ -12,6 +12,7 @@
 
 #include "frictal/io.hpp"
 #include "frictal/tilt.hpp"
+#include "movie.hpp"
 #include "options.hpp"
 
 namespace frictal::cli {
@@ -21,7 +22,7 @@ struct TiltOptions {
   GeneratorOptions gen;
   FieldWords settings;
   std::string lower_file, upper_file;
-  std::string output, frames;
+  std::string output, frames, vtk, movie;
   bool json = false;
 };
 
@@ -59,7 +60,7 @@ int run(TiltOptions& o) {
   const ValueSet given = si_values(tilt_settings(), o.settings);
   TiltConfig cfg = unwrap(make_tilt_config(given, base));
   if (o.output.empty()) cfg.series_interval = 0;
-  if (o.frames.empty())
+  if (o.frames.empty() && o.vtk.empty() && o.movie.empty())
     cfg.frame_interval = 0;
   else if (!given.count("frame_interval"))
     cfg.frame_interval = 0.01;
@@ -68,8 +69,18 @@ int run(TiltOptions& o) {
 
   auto r = run_tilt(lower, upper, cfg);
   if (!r.ok()) fail(r.error());
+  for (const TiltWarning& w : r->warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
   if (!o.output.empty())
     write_output(o.output, [&](const std::string& p) { return write_tilt_series_csv(p, r->series); });
+  if (!o.vtk.empty()) {
+    auto w = write_tilt_vtk(o.vtk, *r, cfg.radius);
+    if (!w.ok()) fail(w.error());
+    fmt::print(stderr, "frictal: wrote {} VTK files, time index {}\n", w->size(), w->front());
+  }
+  if (!o.movie.empty()) {
+    write_tilt_movie(o.movie, *r, cfg.radius);
+    fmt::print(stderr, "frictal: wrote {} ({} frames)\n", o.movie, r->frames.size());
+  }
   if (!o.frames.empty())
     write_output(
         o.frames, [&](const std::string& p) { return write_tilt_frames(p, *r); }, "--frames");
@@ -82,6 +93,20 @@ int run(TiltOptions& o) {
         cfg.predict ? nlohmann::json(r->predicted_friction_angle / kDeg) : nlohmann::json(nullptr);
     j["predicted_theta_max_deg"] =
         cfg.predict ? nlohmann::json(r->predicted_theta_max / kDeg) : nlohmann::json(nullptr);
+    j["predicted_sphero_friction_angle_deg"] =
+        cfg.predict ? nlohmann::json(r->predicted_sphero_friction_angle / kDeg) : nlohmann::json(nullptr);
+    j["predicted_sphero_theta_max_deg"] =
+        cfg.predict ? nlohmann::json(r->predicted_sphero_theta_max / kDeg) : nlohmann::json(nullptr);
+    j["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
+    const TiltScales& sc = r->scales;
+    j["scales"] = {{"resting_overlap_m", sc.resting_overlap},
+                   {"spheroradius_m", sc.spheroradius},
+                   {"shortest_edge_m", {sc.shortest_edge[0], sc.shortest_edge[1]}},
+                   {"smallest_feature_m", {sc.smallest_feature[0], sc.smallest_feature[1]}},
+                   {"time_step_s", sc.time_step},
+                   {"contact_period_s", sc.contact_period}};
+    j["warnings"] = nlohmann::json::array();
+    for (const TiltWarning& w : r->warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
     j["surface"] = surface;
     j["settings"] = text_json(tilt_settings(), tilt_values(cfg));
     j["initial_offset_m"] = r->initial_offset;
@@ -118,10 +143,15 @@ int run(TiltOptions& o) {
                  cfg.reverse ? "towards -x" : "towards +x", r->slide_time);
     else
       fmt::print(text, "no run-away before the maximal tilt of {:.2f} deg\n", cfg.max_tilt / kDeg);
-    if (cfg.predict)
+    if (cfg.predict) {
       fmt::print(text, "predicted (signature theta_max {:.3f} + atan(mu_a) {:.3f}): {:.3f} deg\n",
                  r->predicted_theta_max / kDeg, std::atan(cfg.contact.atomic_friction) / kDeg,
                  r->predicted_friction_angle / kDeg);
+      fmt::print(text, "predicted for spheropolygons (r = {:.3g} m, theta_max {:.3f} + atan(mu_a)): {:.3f} deg\n",
+                 cfg.radius, r->predicted_sphero_theta_max / kDeg, r->predicted_sphero_friction_angle / kDeg);
+    }
+    fmt::print(text, "rotation of the upper block against the lower one before the slide: {:.4g} deg{}\n",
+               r->rotation_before_slide / kDeg, cfg.hold_rotation ? " (held)" : "");
     fmt::print(text,
                "{} steps of {:.3g} to {:.3g} s ({:.4f} s simulated) in {:.2f} s wall, {:.2f} us/step; blocks {} + {} "
                "vertices\n",
@@ -141,6 +171,12 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option(
       "--frames", o->frames,
       "Write frames (frictal-dem-frames 1, see docs/dem.md) here, every --frame-interval (0.01 s if not set)");
+  app.add_option("--vtk", o->vtk,
+                 "Write the frames as VTK PolyData (.vtp, bodies and contacts) with a ParaView time index tilt.pvd "
+                 "into this directory, every --frame-interval (0.01 s if not set)");
+  app.add_option("--movie", o->movie,
+                 "Render the run to FILE.mp4 or FILE.gif with ffmpeg (tilt angle and atan(F_t/F_n) drawn in), one "
+                 "frame per --frame-interval (0.01 s if not set), 25 frames per second");
   app.add_flag("--json", o->json, "Print one JSON object");
   return [o]() { return run(*o); };
 }

@@ -74,6 +74,10 @@ struct BodyDef {
   Vec2 velocity;                ///< initial centroid velocity, dynamic bodies (unit: m/s)
   double angular_velocity = 0;  ///< initial angular velocity, dynamic bodies (unit: rad/s)
   KinematicMotion motion;       ///< used by kinematic bodies only
+  /// Dynamic bodies: -1 (default) for a free rotation; else the index of a kinematic body whose
+  /// angle and angular velocity this body takes at every step (its rotation is held relative to
+  /// that body, torques are ignored; its translation stays free). Both start at angle 0.
+  int rotation_follows = -1;
 };
 BodyDef default_body_def();
 
@@ -149,6 +153,7 @@ struct Model {
   std::vector<double> extent;               ///< max vertex distance from the centroid (unit: m)
   std::vector<BodyType> type;
   std::vector<KinematicMotion> motion;
+  std::vector<int> rotation_follows;             ///< BodyDef::rotation_follows per body
   std::vector<Vec2> initial_position;            ///< centroid at t = 0 (unit: m)
   std::vector<Vec2> initial_velocity;            ///< (unit: m/s)
   std::vector<double> initial_angular_velocity;  ///< (unit: rad/s)
@@ -246,6 +251,19 @@ State make_state(const Model& model);
 Status step(const Model& model, State& state);
 /// Advances `steps` steps (stops at the first error).
 Status advance(const Model& model, State& state, std::uint64_t steps);
+
+/// One touching vertex-edge pair and its force (Eq. 7-11) at the state's time.
+struct ContactForce {
+  std::uint32_t vertex_body = 0, edge_body = 0;
+  Vec2 point;                   ///< contact point, the middle of the overlap (unit: m)
+  Vec2 normal;                  ///< unit normal, from the edge towards the vertex
+  double overlap = 0;           ///< (unit: m)
+  double normal_force = 0;      ///< f_n = k_n overlap - m gamma_n v_n, on the vertex body along `normal` (unit: N)
+  double tangential_force = 0;  ///< f_t on the vertex body along t = normal turned by +90 deg (unit: N)
+};
+/// The touching pairs of `state` with their forces, recomputed from the poses, velocities and
+/// springs (the same formulas as step(); sums equal State::force up to rounding). For output.
+std::vector<ContactForce> contact_forces(const Model& model, const State& state);
 
 /// World position of global vertex `v` (unit: m).
 Vec2 world_vertex(const Model& model, const State& state, std::uint32_t v);

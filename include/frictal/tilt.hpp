@@ -80,6 +80,20 @@ struct TiltConfig {
   bool predict = true;            ///< compute the signature prediction (needs envelopes)
   double series_interval = 1e-3;  ///< time between rows of the series; <= 0: none (unit: s)
   double frame_interval = 0;      ///< time between frames; <= 0: none (unit: s)
+  /// Hold the upper block's rotation relative to the lower block (dem::BodyDef::rotation_follows):
+  /// it translates freely but does not rotate against the lower block, as the signature assumes.
+  bool hold_rotation = false;
+  // Model warnings (TiltResult::warnings; thresholds measured in docs/dem.md sec. 6).
+  /// "core-overlap" when the resting overlap W / k_n exceeds this fraction of r (unitless).
+  double warn_overlap_fraction = 0.1;
+  /// "rounding" when the spheropolygon prediction differs from the rigid one by more (unit: rad).
+  double warn_prediction_tolerance = 0.1 * std::numbers::pi / 180;
+  /// "rotation" when the upper block turns against the lower one by more before the slide (unit: rad).
+  double warn_rotation = 0.002 * std::numbers::pi / 180;
+  /// "time-step" when a fixed step (adaptive_time_step = false) exceeds this fraction of one
+  /// contact's period 2 pi sqrt(m/k_n) (unitless): 0.005, i.e. ~1.4e-5 s for a Table I block; the
+  /// fixed explicit step is stable for the Koch grid at 1e-5 s, not at 2e-5 s for K3.
+  double warn_time_step_fraction = 0.005;
 };
 TiltConfig default_tilt_config();
 
@@ -112,10 +126,31 @@ struct TiltSeries {
 
 /// Poses of both blocks at one time (shapes are in TiltResult::lower_polygon/upper_polygon).
 struct TiltFrame {
-  double time = 0;           ///< (unit: s)
-  double tilt = 0;           ///< (unit: rad)
-  dem::Vec2 position[2];     ///< centroids of lower, upper (unit: m)
-  double angle[2] = {0, 0};  ///< rotations from the initial orientation (unit: rad)
+  double time = 0;              ///< (unit: s)
+  double tilt = 0;              ///< (unit: rad)
+  dem::Vec2 position[2];        ///< centroids of lower, upper (unit: m)
+  double angle[2] = {0, 0};     ///< rotations from the initial orientation (unit: rad)
+  double normal_force = 0;      ///< F_n on the upper block, as in TiltSeries (unit: N)
+  double tangential_force = 0;  ///< F_t on the upper block, as in TiltSeries (unit: N)
+  /// The touching vertex-edge pairs (dem::contact_forces; vertex body 0 = lower, 1 = upper).
+  std::vector<dem::ContactForce> contacts;
+};
+
+/// The scales `run_tilt` compares before it runs (TiltResult::scales, docs/dem.md sec. 6).
+struct TiltScales {
+  double resting_overlap = 0;           ///< W / k_n: overlap of one contact carrying the upper block (unit: m)
+  double spheroradius = 0;              ///< r (unit: m)
+  double shortest_edge[2] = {0, 0};     ///< shortest edge of the lower, upper face (unit: m)
+  double smallest_feature[2] = {0, 0};  ///< shortest run between neighbouring extrema of each face (unit: m)
+  double time_step = 0;                 ///< the fixed step, or the adaptive step's cap (unit: s)
+  double contact_period = 0;            ///< 2 pi sqrt(m_upper / k_n): one contact's period (unit: s)
+};
+
+/// A run outside the model the prediction assumes (code: "core-overlap", "rounding",
+/// "time-step", "rotation"; message: what was compared, with numbers and SI units).
+struct TiltWarning {
+  std::string code;
+  std::string message;
 };
 
 struct TiltResult {
@@ -124,8 +159,19 @@ struct TiltResult {
   double slide_time = 0;                ///< time of that moment (unit: s)
   double predicted_theta_max = 0;       ///< signature theta_max in the sliding direction (unit: rad)
   double predicted_friction_angle = 0;  ///< theta_max + atan(mu_a) (unit: rad); 0 if !predict
-  double initial_offset = 0;            ///< offset used (unit: m)
-  double simulated_time = 0;            ///< (unit: s)
+  /// The same for the simulated spheropolygon blocks: the signature of one core against the other
+  /// dilated by 2r (SignatureOptions::spheroradius = radius), theta_max in the sliding direction
+  /// and theta_max + atan(mu_a) (unit: rad); 0 if !predict.
+  double predicted_sphero_theta_max = 0;
+  double predicted_sphero_friction_angle = 0;
+  /// Largest |rotation of the upper block relative to the lower one| between the end of
+  /// settling and the slide (the end of the last stick; the end of the run if it did not slide)
+  /// (unit: rad). 0 with hold_rotation.
+  double rotation_before_slide = 0;
+  TiltScales scales;
+  std::vector<TiltWarning> warnings;  ///< before the run (scales), then "rotation" from the run
+  double initial_offset = 0;          ///< offset used (unit: m)
+  double simulated_time = 0;          ///< (unit: s)
   std::uint64_t steps = 0;
   double wall_time = 0;   ///< wall time of the time stepping only (unit: s)
   double setup_time = 0;  ///< wall time of building blocks, placement, prediction (unit: s)
@@ -152,6 +198,30 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
 /// Writes the series as CSV (time_s, tilt_deg, fn_N, ft_N, force_angle_deg, displacement_m,
 /// velocity_m_s, contacts).
 Status write_tilt_series_csv(const std::string& path, const TiltSeries& series);
+/// The warnings that `run_tilt` issues before it runs, from the scales and both predictions
+/// (predicted_* of `result`; "rounding" only if config.predict).
+std::vector<TiltWarning> tilt_scale_warnings(const TiltScales& scales, const TiltResult& result,
+                                             const TiltConfig& config);
+
+/// Writes the frames as VTK XML PolyData for ParaView into directory `dir` (created if missing):
+/// per frame i, bodies_<i>.vtp (the two core polygons as polygons and their rounded outlines,
+/// cores offset by the spheroradius `radius` with arcs at convex corners, as lines; cell data
+/// body = 0 lower / 1 upper, kind = 0 core / 1 outline; field data time, tilt in degrees, F_n, F_t
+/// and atan(F_t/F_n) in degrees) and contacts_<i>.vtp (one vertex per touching pair at the contact
+/// point, point data normal (unit), normal_force and tangential_force (vectors on the vertex
+/// body, N), overlap (m), vertex_body); and tilt.pvd, the time index of both parts. Coordinates
+/// in metres (z = 0). Returns the paths written (the .pvd first). Needs frames (frame_interval > 0).
+Result<std::vector<std::string>> write_tilt_vtk(const std::string& dir, const TiltResult& result, double radius);
+
+/// World coordinates of body b's core polygon (0 lower, 1 upper) in `frame` (unit: m).
+void tilt_frame_polygon(const TiltResult& result, const TiltFrame& frame, int b, std::vector<double>& x,
+                        std::vector<double>& y);
+/// The rounded outline of that polygon: each edge offset outwards by `radius`, joined by arcs
+/// (steps of at most `max_arc_step` rad) at convex corners and by the offsets' crossing-free
+/// joint at concave ones (unit: m).
+void rounded_outline(const std::vector<double>& x, const std::vector<double>& y, double radius, double max_arc_step,
+                     std::vector<double>& ox, std::vector<double>& oy);
+
 /// Writes the frames in the text format of docs/dem.md ("frictal-dem-frames 1").
 Status write_tilt_frames(const std::string& path, const TiltResult& result);
 

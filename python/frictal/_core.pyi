@@ -124,8 +124,8 @@ def self_affine_profile(**kwargs: Any) -> Profile:
         rms_height [m]: RMS height about the mean; <= 0 keeps the raw heights (default 1e-06; valid any finite number)
         seed: Seed of the random phases or heights (default 1; valid 0..9.2e+18)"""
 
-def signature(lower: Profile, upper: Optional[Profile] = ..., *, rotate_upper: bool = ..., slopes: str = ..., offsets: int = ..., offset_range: Optional[Tuple[float, float]] = ..., threads: int = ..., keep_contacts: bool = ..., bins: int = ...) -> dict:
-    """Signature function theta(x_ofs) of two profiles (runs without the GIL). `upper` is a surface as measured (rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores. Returns offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events."""
+def signature(lower: Profile, upper: Optional[Profile] = ..., *, rotate_upper: bool = ..., slopes: str = ..., offsets: int = ..., offset_range: Optional[Tuple[float, float]] = ..., threads: int = ..., keep_contacts: bool = ..., bins: int = ..., spheroradius: float = ...) -> dict:
+    """Signature function theta(x_ofs) of two profiles (runs without the GIL). `upper` is a surface as measured (rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores; spheroradius (m) > 0: the DEM's rounded blocks (one core against the other dilated by a disk of radius 2r, exact slopes only), 0: rigid profiles. Returns offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events, spheroradius (m)."""
 
 def sine_profile(**kwargs: Any) -> Profile:
     """sine_profile(**params) -> Profile
@@ -179,7 +179,7 @@ def surface_curve(generator: str, **kwargs: Any) -> tuple:
 def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
     """tilt(lower, upper=None, **settings) -> dict
 
-    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, predicted_theta_max (rad), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
+    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rotation_before_slide (rad), warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
         normal_stiffness [N/m]: Normal contact stiffness k_n (default 600000; valid > 0)
         tangential_stiffness [N/m]: Tangential contact stiffness k_t (default 60000; valid >= 0)
         normal_damping [1/s]: Normal damping gamma_n (default 929.5; valid >= 0)
@@ -187,7 +187,7 @@ def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
         atomic_friction: Atomic (Coulomb) friction coefficient mu_a (default 0; valid >= 0)
         restitution: Restitution eps of Eq. 12 on the upper block's mass; > 0 replaces normal_damping (default 0; valid [0, 1])
         block_height [m]: Block height h below the surface minimum (default 0.01; valid > 0)
-        radius [m]: Spheroradius r of both blocks (default 5e-05; valid > 0)
+        spheroradius [m]: Spheroradius r of both blocks (default 5e-05; valid > 0)
         density [kg/m^2]: Areal density rho of both blocks (default 50; valid > 0)
         gravity [m/s^2]: Gravitational acceleration g (default 9.81; valid >= 0)
         face: Block face of a folded surface: the full curve or its upper envelope (default 'curve'; valid curve or envelope)
@@ -208,6 +208,11 @@ def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
         implicit_damping: Integrate the normal dashpots implicitly (backward Euler); false: explicit (default True; valid true or false)
         skin [m]: Neighbour-list skin (default 5e-05; valid >= 0)
         max_steps_beyond_limit: Stop after this many steps (in total) beyond the explicit stability limit (default 1000; valid 0..2147483647)
+        hold_rotation: Hold the upper block's rotation relative to the lower block (it still translates) (default False; valid true or false)
+        warn_overlap_fraction: Warn (core-overlap) when the resting overlap W/k_n exceeds this fraction of r (default 0.1; valid > 0)
+        warn_prediction_tolerance [rad]: Warn (rounding) when the spheropolygon and rigid predictions differ by more (default 0.001745329252; valid > 0)
+        warn_rotation [rad]: Warn (rotation) when the upper block turns against the lower one by more before the slide (default 3.490658504e-05; valid > 0)
+        warn_time_step_fraction: Warn (time-step) when a fixed time step exceeds this fraction of one contact's period (default 0.005; valid > 0)
         series_interval [s]: Time between rows of the time series; 0: none (default 0.001; valid >= 0)
         frame_interval [s]: Time between frames; 0: none (default 0; valid >= 0)"""
 

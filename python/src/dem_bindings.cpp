@@ -52,6 +52,25 @@ void frictal_bind_dem(py::module_& m) {
         d["friction_angle"] = r.friction_angle;
         d["predicted_friction_angle"] = r.predicted_friction_angle;
         d["predicted_theta_max"] = r.predicted_theta_max;
+        d["predicted_sphero_friction_angle"] = r.predicted_sphero_friction_angle;
+        d["predicted_sphero_theta_max"] = r.predicted_sphero_theta_max;
+        d["rotation_before_slide"] = r.rotation_before_slide;
+        py::list warnings;
+        for (const TiltWarning& w : r.warnings) {
+          py::dict wd;
+          wd["code"] = w.code;
+          wd["message"] = w.message;
+          warnings.append(wd);
+        }
+        d["warnings"] = warnings;
+        py::dict scales;
+        scales["resting_overlap"] = r.scales.resting_overlap;
+        scales["spheroradius"] = r.scales.spheroradius;
+        scales["shortest_edge"] = py::make_tuple(r.scales.shortest_edge[0], r.scales.shortest_edge[1]);
+        scales["smallest_feature"] = py::make_tuple(r.scales.smallest_feature[0], r.scales.smallest_feature[1]);
+        scales["time_step"] = r.scales.time_step;
+        scales["contact_period"] = r.scales.contact_period;
+        d["scales"] = scales;
         d["slide_time"] = r.slide_time;
         d["simulated_time"] = r.simulated_time;
         d["steps"] = r.steps;
@@ -74,7 +93,11 @@ void frictal_bind_dem(py::module_& m) {
       ("tilt(lower, upper=None, **settings) -> dict\n\nTilting-block test on the spheropolygon engine (paper Sec. "
        "IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as "
        "measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, "
-       "predicted_theta_max (rad), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), "
+       "predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, "
+       "predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rotation_before_slide (rad), "
+       "warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, "
+       "smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time "
+       "(s), steps, upper_mass (kg), "
        "steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle "
        "rad, displacement m, velocity m/s, contacts). Settings (SI units; `period` also sets the run-away distance "
        "unless runaway_distance is given):\n" +

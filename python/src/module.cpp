@@ -200,8 +200,9 @@ PYBIND11_MODULE(_core, m) {
       "signature",
       [](const Profile& lower, std::optional<Profile> upper, bool rotate_upper, const std::string& slopes,
          std::size_t offsets, std::optional<std::pair<double, double>> offset_range, unsigned threads,
-         bool keep_contacts, int bins) {
+         bool keep_contacts, int bins, double spheroradius) {
         SignatureOptions o;
+        o.spheroradius = spheroradius;
         if (slopes != "exact" && slopes != "spline")
           throw py::value_error("signature: slopes must be 'exact' or 'spline', got '" + slopes + "'");
         o.slopes = slopes == "spline" ? SlopeMethod::Spline : SlopeMethod::Exact;
@@ -234,6 +235,7 @@ PYBIND11_MODULE(_core, m) {
         d["slope_weights"] = arr(r.slope_weights);
         d["exact"] = r.exact;
         d["events"] = r.events;
+        d["spheroradius"] = r.spheroradius;
         if (keep_contacts) {
           std::vector<double> off, x, z, s;
           py::list types;
@@ -257,12 +259,16 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("rotate_upper") = true,
       py::arg("slopes") = "exact", py::arg("offsets") = 0, py::arg("offset_range") = py::none(), py::arg("threads") = 0,
-      py::arg("keep_contacts") = false, py::arg("bins") = 90,
+      py::arg("keep_contacts") = false, py::arg("bins") = 90, py::arg("spheroradius") = 0.0,
       "Signature function theta(x_ofs) of two profiles (runs without the GIL). `upper` is a surface as measured "
       "(rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = "
-      "every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores. Returns "
+      "every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores; "
+      "spheroradius (m) > 0: the "
+      "DEM's rounded blocks (one core against the other dilated by a disk of radius 2r, exact slopes only), 0: "
+      "rigid profiles. Returns "
       "offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), "
-      "offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events.");
+      "offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events, spheroradius "
+      "(m).");
   m.def("lift_direct", &lift_direct, py::arg("lower"), py::arg("upper_rotated"), py::arg("offset"),
         "Lift h(s) (m) of the turned-over upper profile at offset s (m): plain O(N+M) evaluation (reference method)");
   m.def(

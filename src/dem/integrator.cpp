@@ -35,6 +35,14 @@ void kinematic_pose(const Model& m, std::size_t b, double t, State& st) {
   st.velocity[b] = {-w * ry, w * rx};
 }
 
+void follow_rotations(const Model& m, State& st) {
+  for (std::size_t b = 0; b < m.body_count(); ++b)
+    if (const int f = m.rotation_follows[b]; f >= 0) {
+      st.angle[b] = st.angle[static_cast<std::size_t>(f)];
+      st.angular_velocity[b] = st.angular_velocity[static_cast<std::size_t>(f)];
+    }
+}
+
 // cos and sin of every body's angle, once per step for the list test, the hot-list test, the
 // list builder and the contact loop.
 void update_rotation(const State& st, Workspace& ws) {
@@ -81,6 +89,22 @@ void kick(const Model& m, State& st, const Workspace& ws, double h) {
   const double c = 2.0 * h * m.def.contact.normal_damping;
   for (std::size_t b = 0; b < m.body_count(); ++b) {
     if (m.type[b] != BodyType::Dynamic) continue;
+    if (m.rotation_follows[b] >= 0) {  // rotation held: translation only (the angle follows its leader)
+      const double mass = m.mass[b];
+      const double r1 = h * (st.force[b].x + mass * g.x);
+      const double r2 = h * (st.force[b].y + mass * g.y);
+      if (implicit && ws.body_contacts[b] > 0 && c > 0) {
+        const double* gm = ws.modes[b].gm;
+        const double a11 = mass + c * gm[0], a12 = c * gm[1], a22 = mass + c * gm[3];
+        const double inv_det = 1.0 / (a11 * a22 - a12 * a12);
+        st.velocity[b].x += (a22 * r1 - a12 * r2) * inv_det;
+        st.velocity[b].y += (a11 * r2 - a12 * r1) * inv_det;
+      } else {
+        st.velocity[b].x += r1 / mass;
+        st.velocity[b].y += r2 / mass;
+      }
+      continue;
+    }
     if (implicit && ws.body_contacts[b] > 0 && c > 0) {
       const double* gm = ws.modes[b].gm;  // xx, xy, xt, yy, yt, tt
       const double mass = m.mass[b];
@@ -129,6 +153,7 @@ Status step(const Model& m, State& st) {
   const double t_new = m.def.adaptive_time_step ? st.time + dt : static_cast<double>(st.steps + 1) * dt;
   for (std::size_t b = 0; b < nb; ++b)
     if (m.type[b] == BodyType::Kinematic) kinematic_pose(m, b, t_new, st);
+  follow_rotations(m, st);
   st.time = t_new;
   update_rotation(st, ws);
   if (timed) {

@@ -12,6 +12,10 @@ namespace frictal::dem::detail {
 /// Sets the prescribed pose and velocity of kinematic body b at time t (unit: s).
 void kinematic_pose(const Model& m, std::size_t b, double t, State& st);
 
+/// Dynamic bodies with BodyDef::rotation_follows >= 0 take the angle and angular velocity of
+/// their (kinematic) leader, whose pose must be current.
+void follow_rotations(const Model& m, State& st);
+
 /// ws.rotation = cos and sin of every body's State::angle.
 void update_rotation(const State& st, Workspace& ws);
 

@@ -186,6 +186,7 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
     m.extent.push_back(ext + d.radius);
     m.type.push_back(d.type);
     m.motion.push_back(d.motion);
+    m.rotation_follows.push_back(d.rotation_follows);
     m.initial_position.push_back(centroid);
     if (d.type == BodyType::Dynamic) {
       any_dynamic = true;
@@ -202,6 +203,17 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
     }
   }
   if (!any_dynamic) return bad("no dynamic body: expected at least one body of type Dynamic");
+  for (std::size_t b = 0; b < bodies.size(); ++b) {
+    const int f = bodies[b].rotation_follows;
+    if (f == -1) continue;
+    if (bodies[b].type != BodyType::Dynamic || f < 0 || static_cast<std::size_t>(f) >= bodies.size() ||
+        bodies[static_cast<std::size_t>(f)].type != BodyType::Kinematic)
+      return bad(
+          fmt::format("body {}: rotation_follows = {}: expected -1 or the index of a kinematic body (and a "
+                      "dynamic body {})",
+                      b, f, b));
+    m.initial_angular_velocity[b] = 0;
+  }
   return m;
 }
 
@@ -221,6 +233,7 @@ State make_state(const Model& m) {
   st.time_step = m.def.time_step;
   for (std::size_t b = 0; b < nb; ++b)
     if (m.type[b] == BodyType::Kinematic) kinematic_pose(m, b, 0.0, st);
+  follow_rotations(m, st);
   update_rotation(st, ws);
   build_neighbor_list(m, st, ws);
   compute_forces(m, st, ws, 0.0);
@@ -233,6 +246,47 @@ Vec2 world_vertex(const Model& m, const State& st, std::uint32_t v) {
   const double c = std::cos(st.angle[b]), s = std::sin(st.angle[b]);
   return {st.position[b].x + (c * m.local_x[v] - s * m.local_y[v]),
           st.position[b].y + (s * m.local_x[v] + c * m.local_y[v])};
+}
+
+std::vector<ContactForce> contact_forces(const Model& m, const State& st) {
+  const ContactParams& cp = m.def.contact;
+  std::vector<ContactForce> out;
+  for (const NeighborPair& p : st.pairs) {
+    if (!(p.overlap > 0)) continue;  // apart (pairs are reset to <= 0 when they separate)
+    const std::uint32_t a = p.vbody, b = p.ebody;
+    const Vec2 v = world_vertex(m, st, p.vertex), e0 = world_vertex(m, st, p.edge0), e1 = world_vertex(m, st, p.edge1);
+    const double dx = e1.x - e0.x, dy = e1.y - e0.y, l2 = dx * dx + dy * dy;
+    double t = l2 > 0 ? ((v.x - e0.x) * dx + (v.y - e0.y) * dy) / l2 : 0.0;
+    t = std::clamp(t, 0.0, 1.0);
+    const double sx = v.x - (e0.x + t * dx), sy = v.y - (e0.y + t * dy);
+    const double dist = std::hypot(sx, sy);
+    const double overlap = m.radius[a] + m.radius[b] - dist;
+    if (!(overlap > 0)) continue;
+    double nx, ny;
+    if (dist > 0) {
+      nx = sx / dist, ny = sy / dist;
+    } else {
+      const double l = std::sqrt(l2);
+      nx = dy / l, ny = -dx / l;
+    }
+    const double cx = v.x - nx * (m.radius[a] - 0.5 * overlap), cy = v.y - ny * (m.radius[a] - 0.5 * overlap);
+    const double rax = cx - st.position[a].x, ray = cy - st.position[a].y;
+    const double rbx = cx - st.position[b].x, rby = cy - st.position[b].y;
+    const double wa = st.angular_velocity[a], wb = st.angular_velocity[b];
+    const double relx = (st.velocity[a].x - wa * ray) - (st.velocity[b].x - wb * rby);
+    const double rely = (st.velocity[a].y + wa * rax) - (st.velocity[b].y + wb * rbx);
+    const double vn = relx * nx + rely * ny, vt = -relx * ny + rely * nx;
+    ContactForce c;
+    c.vertex_body = a;
+    c.edge_body = b;
+    c.point = {cx, cy};
+    c.normal = {nx, ny};
+    c.overlap = overlap;
+    c.normal_force = cp.normal_stiffness * overlap - p.reduced_mass * cp.normal_damping * vn;
+    c.tangential_force = -cp.tangential_stiffness * p.elongation - p.reduced_mass * cp.tangential_damping * vt;
+    out.push_back(c);
+  }
+  return out;
 }
 
 double kinetic_energy(const Model& m, const State& st, std::size_t b) {

@@ -5,7 +5,10 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <numbers>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include <fmt/core.h>
 
@@ -117,6 +120,49 @@ bool faces_clear(const Poly& lower, const EdgeIndex& li, const Poly& upper, cons
   return ok;
 }
 
+// Shortest edge of a face (unit: m).
+double shortest_edge(const Poly& p) {
+  double s = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < p.x.size(); ++i)
+    s = std::min(s, std::hypot(p.x[i + 1] - p.x[i], p.z[i + 1] - p.z[i]));
+  return s;
+}
+
+// Shortest run of a face between neighbouring local extrema of z (path length, unit: m), the
+// flank of the smallest feature, and the smallest height difference of such a run (unit: m;
+// not reported: flat steps of generated faces make it unreliable).
+// Flat edges continue a run; the partial runs at the two ends count only if there is no
+// complete one.
+std::pair<double, double> smallest_feature(const Poly& p) {
+  const double inf = std::numeric_limits<double>::infinity();
+  double best = inf, best_h = inf, run = 0, first = -1, first_h = 0, z0 = p.z.front();
+  int dir = 0;  // sign of dz of the current run
+  const auto [zlo, zhi] = std::minmax_element(p.z.begin(), p.z.end());
+  const double flat = 1e-9 * (*zhi - *zlo);  // rounding of generated faces is flat
+  for (std::size_t i = 0; i + 1 < p.x.size(); ++i) {
+    const double dz = p.z[i + 1] - p.z[i];
+    const int d = dz > flat ? 1 : (dz < -flat ? -1 : 0);
+    if (d != 0 && dir != 0 && d != dir) {  // an extremum at vertex i
+      const double h = std::fabs(p.z[i] - z0);
+      if (first < 0) {
+        first = run;
+        first_h = h;
+      } else {
+        best = std::min(best, run);
+        best_h = std::min(best_h, h);
+      }
+      run = 0;
+      z0 = p.z[i];
+    }
+    if (d != 0) dir = d;
+    run += std::hypot(p.x[i + 1] - p.x[i], dz);
+  }
+  if (std::isfinite(best)) return {best, best_h};
+  const double last_h = std::fabs(p.z.back() - z0);
+  if (first < 0) return {run, last_h};
+  return {std::min(first, run), std::min(first_h, last_h)};
+}
+
 Status check_config(const TiltConfig& c) {
   auto pos = [](double v) { return std::isfinite(v) && v > 0; };
   if (!pos(c.block_height)) return make_error(fmt::format("tilt block_height = {} m: expected > 0", c.block_height));
@@ -192,6 +238,14 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     res.predicted_theta_max = cfg.reverse ? sig->theta_max_backward : sig->theta_max_forward;
     res.predicted_friction_angle =
         std::min(res.predicted_theta_max + std::atan(cfg.contact.atomic_friction), 1.5707963267948966);
+    // The simulated blocks: one core against the other dilated by 2r (docs/dem.md sec. 6).
+    SignatureOptions so = opt;
+    so.spheroradius = cfg.radius;
+    auto sph = signature(lower_env, rotate180(upper_env), so);
+    if (!sph.ok()) return make_error("spheropolygon signature for the prediction: " + sph.error().message);
+    res.predicted_sphero_theta_max = cfg.reverse ? sph->theta_max_backward : sph->theta_max_forward;
+    res.predicted_sphero_friction_angle =
+        std::min(res.predicted_sphero_theta_max + std::atan(cfg.contact.atomic_friction), 1.5707963267948966);
     if (std::isnan(cfg.initial_offset) && !sig->lift.empty()) {
       const auto it = std::min_element(sig->lift.begin(), sig->lift.end());
       offset = sig->offset[static_cast<std::size_t>(it - sig->lift.begin())];
@@ -234,6 +288,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     b->density = cfg.density;
   }
   lb.type = dem::BodyType::Kinematic;
+  if (cfg.hold_rotation) ub.rotation_follows = 0;
   lb.motion.angular_velocity = cfg.reverse ? cfg.tilt_rate : -cfg.tilt_rate;
   lb.motion.start_time = cfg.settle_time;
   dem::WorldDef wd;
@@ -271,6 +326,17 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   res.lower_polygon_y.assign(model.local_y.begin(), model.local_y.begin() + model.vertex_begin[1]);
   res.upper_polygon_x.assign(model.local_x.begin() + model.vertex_begin[1], model.local_x.end());
   res.upper_polygon_y.assign(model.local_y.begin() + model.vertex_begin[1], model.local_y.end());
+  // Scales and the warnings they give before the run.
+  TiltScales& sc = res.scales;
+  sc.resting_overlap = model.mass[1] * cfg.gravity / cfg.contact.normal_stiffness;
+  sc.spheroradius = cfg.radius;
+  sc.shortest_edge[0] = shortest_edge(lower);
+  sc.shortest_edge[1] = shortest_edge(upper);
+  sc.smallest_feature[0] = smallest_feature(lower).first;
+  sc.smallest_feature[1] = smallest_feature(upper).first;
+  sc.time_step = cfg.time_step;
+  sc.contact_period = 2 * std::numbers::pi * std::sqrt(model.mass[1] / cfg.contact.normal_stiffness);
+  res.warnings = tilt_scale_warnings(sc, res, cfg);
   res.setup_time = std::chrono::duration<double>(Clock::now() - setup_start).count();
 
   // Time stepping.
@@ -347,7 +413,10 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
       f.position[b] = st.position[b];
       f.angle[b] = st.angle[b];
     }
-    res.frames.push_back(f);
+    double d, v, tilt;
+    measure(d, v, f.normal_force, f.tangential_force, tilt);
+    f.contacts = dem::contact_forces(model, st);
+    res.frames.push_back(std::move(f));
   };
   auto finish = [&]() {
     res.simulated_time = st.time;
@@ -389,6 +458,9 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   double stick_time = st.time, stick_tilt = 0, stick_d = 0;
   double low_since = st.time;  // start of the current interval with v <= stick_speed (NaN: none)
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  // Rotation of the upper block against the lower one since the end of settling.
+  const double rot0 = st.angle[1] - st.angle[0];
+  double max_rot = 0, rot_at_stick = 0;
   while (running()) {
     if (Status s = advance_one(); !s.ok()) return with_prefix("tilt: ", s.error());
     const bool rec = series_due();
@@ -396,18 +468,21 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     if (frame_due()) frame();
     double d, v, fn, ft, tilt;
     measure(d, v, fn, ft, tilt);
+    max_rot = std::max(max_rot, std::fabs(st.angle[1] - st.angle[0] - rot0));
     if (v <= cfg.stick_speed) {
       if (std::isnan(low_since)) low_since = st.time;
       if (st.time - low_since >= cfg.stick_duration - 0.5 * last_dt) {
         stick_time = st.time;
         stick_tilt = tilt;
         stick_d = d;
+        rot_at_stick = max_rot;
       }
     } else {
       low_since = nan;
     }
     if (d - stick_d >= cfg.runaway_distance) {
       res.slid = true;
+      res.rotation_before_slide = rot_at_stick;
       res.friction_angle = stick_tilt;
       res.slide_time = stick_time;
       if (!rec && series_every) record();
@@ -415,8 +490,48 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     }
   }
   if (frame_every && (res.frames.empty() || res.frames.back().time != st.time)) frame();
+  if (!res.slid) res.rotation_before_slide = max_rot;
+  if (res.rotation_before_slide > cfg.warn_rotation)
+    res.warnings.push_back(
+        {"rotation",
+         fmt::format("the upper block turned by {:.4g} deg against the lower one before the slide (warning above "
+                     "{:.4g} deg): the signature assumes it does not rotate; hold_rotation (--hold-rotation) holds it",
+                     res.rotation_before_slide * 180 / std::numbers::pi, cfg.warn_rotation * 180 / std::numbers::pi)});
   finish();
   return res;
+}
+
+std::vector<TiltWarning> tilt_scale_warnings(const TiltScales& sc, const TiltResult& r, const TiltConfig& cfg) {
+  std::vector<TiltWarning> w;
+  const double deg = 180 / std::numbers::pi;
+  if (sc.resting_overlap > cfg.warn_overlap_fraction * sc.spheroradius)
+    w.push_back(
+        {"core-overlap",
+         fmt::format("the resting overlap W/k_n = {:.3g} m is {:.3g} r (warning above {:.3g} r, r = {:.3g} m): a "
+                     "contact carrying the block sinks far into the rounded rims and the cores can "
+                     "interpenetrate (2r = {:.3g} m); raise the spheroradius or normal_stiffness",
+                     sc.resting_overlap, sc.resting_overlap / sc.spheroradius, cfg.warn_overlap_fraction,
+                     sc.spheroradius, 2 * sc.spheroradius)});
+  if (cfg.predict &&
+      std::fabs(r.predicted_sphero_friction_angle - r.predicted_friction_angle) > cfg.warn_prediction_tolerance)
+    w.push_back(
+        {"rounding",
+         fmt::format("the spheroradius r = {:.3g} m rounds away features that carry the friction: predicted {:.4f} "
+                     "deg for the rounded blocks against {:.4f} deg for rigid profiles (tolerance {:.3g} deg); "
+                     "smallest feature {:.3g} / {:.3g} m, shortest edge {:.3g} / {:.3g} m (lower / upper face); the "
+                     "simulation follows the rounded blocks: lower r for the rigid profiles",
+                     sc.spheroradius, r.predicted_sphero_friction_angle * deg, r.predicted_friction_angle * deg,
+                     cfg.warn_prediction_tolerance * deg, sc.smallest_feature[0], sc.smallest_feature[1],
+                     sc.shortest_edge[0], sc.shortest_edge[1])});
+  // The adaptive step follows the stability limit of the contacts present (a larger cap changes
+  // nothing, docs/dem.md sec. 6): only a fixed step is compared with the contact period.
+  if (!cfg.adaptive_time_step && sc.time_step > cfg.warn_time_step_fraction * sc.contact_period)
+    w.push_back({"time-step", fmt::format("the fixed time step {:.3g} s is {:.3g} of one contact's period 2 pi "
+                                          "sqrt(m/k_n) = {:.3g} s (warning above {:.3g}); many contacts need "
+                                          "less: use the adaptive step",
+                                          sc.time_step, sc.time_step / sc.contact_period, sc.contact_period,
+                                          cfg.warn_time_step_fraction)});
+  return w;
 }
 
 Status write_tilt_series_csv(const std::string& path, const TiltSeries& s) {

@@ -55,7 +55,8 @@ const std::vector<B>& table() {
           bind<TiltConfig>(F("block_height", "m", 0, Lo::Open, kInf, "Block height h below the surface minimum"),
                            FRICTAL_MEMBER(block_height)),
           // `signature` takes this field too: absent there, the faces are rigid profiles (r = 0).
-          bind<TiltConfig>(F("radius", "m", 0, Lo::Open, kInf, "Spheroradius r of both blocks", false,
+          // The CLI also reads the retired `--radius` (hidden, options.cpp).
+          bind<TiltConfig>(F("spheroradius", "m", 0, Lo::Open, kInf, "Spheroradius r of both blocks", false,
                              "5e-05 (tilt); none: rigid profiles (signature)"),
                            FRICTAL_MEMBER(radius)),
           bind<TiltConfig>(F("density", "kg/m^2", 0, Lo::Open, kInf, "Areal density rho of both blocks"),
@@ -115,6 +116,24 @@ const std::vector<B>& table() {
           bind<TiltConfig>(F("max_steps_beyond_limit", "", 0, Lo::Closed, 2147483647,
                              "Stop after this many steps (in total) beyond the explicit stability limit"),
                            FRICTAL_MEMBER(max_steps_beyond_limit)),
+          bind<TiltConfig>(F("hold_rotation", "", 0, Lo::Closed, 1,
+                             "Hold the upper block's rotation relative to the lower block (it still translates)"),
+                           FRICTAL_MEMBER(hold_rotation)),
+          // Model warnings (docs/dem.md sec. 6).
+          bind<TiltConfig>(F("warn_overlap_fraction", "", 0, Lo::Open, kInf,
+                             "Warn (core-overlap) when the resting overlap W/k_n exceeds this fraction of r"),
+                           FRICTAL_MEMBER(warn_overlap_fraction)),
+          bind<TiltConfig>(F("warn_prediction_tolerance", "rad", 0, Lo::Open, kInf,
+                             "Warn (rounding) when the spheropolygon and rigid predictions differ by more"),
+                           FRICTAL_MEMBER(warn_prediction_tolerance)),
+          bind<TiltConfig>(F("warn_rotation", "rad", 0, Lo::Open, kInf,
+                             "Warn (rotation) when the upper block turns against the lower one by more before the "
+                             "slide"),
+                           FRICTAL_MEMBER(warn_rotation)),
+          bind<TiltConfig>(F("warn_time_step_fraction", "", 0, Lo::Open, kInf,
+                             "Warn (time-step) when a fixed time step exceeds this fraction of one contact's "
+                             "period"),
+                           FRICTAL_MEMBER(warn_time_step_fraction)),
           // Output.
           bind<TiltConfig>(
               F("series_interval", "s", 0, Lo::Closed, kInf, "Time between rows of the time series; 0: none"),

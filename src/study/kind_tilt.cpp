@@ -88,6 +88,18 @@ Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: determin
   s["steps_beyond_limit"] = static_cast<double>(r->steps_beyond_limit);
   s["time_step_s"] = c.time_step;
   s["upper_mass_kg"] = r->upper_mass;
+  s["predicted_sphero_friction_angle_deg"] = r->predicted_sphero_friction_angle / kDeg;
+  s["predicted_sphero_theta_max_deg"] = r->predicted_sphero_theta_max / kDeg;
+  s["friction_angle_minus_sphero_deg"] = (r->friction_angle - r->predicted_sphero_friction_angle) / kDeg;
+  s["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
+  s["resting_overlap_m"] = r->scales.resting_overlap;
+  for (const char* code : {"core-overlap", "rounding", "time-step", "rotation"}) {
+    std::string key = std::string("warning_") + code;
+    std::replace(key.begin(), key.end(), '-', '_');
+    s[key] = std::any_of(r->warnings.begin(), r->warnings.end(), [&](const TiltWarning& w) { return w.code == code; })
+                 ? 1
+                 : 0;
+  }
   if (*series) {
     // Fig. 7: atan(F_t/F_n)/alpha against the relative displacement / L_b.
     const auto& ts = r->series;
@@ -115,9 +127,11 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   rep.lines.push_back(fmt::format("\n## Part '{}' (tilt): {} simulations", part, rows.size()));
   std::string t =
       "\n| K_n | alpha (deg) | mu_a | phi simulated (deg) | phi theory (deg) | sim - theory (deg) | "
-      "phi - theta_max (deg) | theta_a (deg) |\n|---|---|---|---|---|---|---|---|\n";
-  double worst = 0, worst_a = 0;
-  int slid = 0, n = 0;
+      "phi - theta_max (deg) | theta_a (deg) | phi theory, spheropolygons (deg) | sim - sphero (deg) | "
+      "rotation before slide (deg) | warnings |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  double worst = 0, worst_a = 0, worst_s = 0;
+  int slid = 0, n = 0, n_s = 0, within_s = 0;
+  std::vector<std::string> outside;
   std::set<double> mus;
   for (const auto& r : rows) {
     const auto& s = r.output.scalars;
@@ -130,10 +144,30 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
     const double da = s.at("phi_minus_theta_max_deg") - s.at("atomic_friction_angle_deg");
     worst = std::max(worst, std::abs(d));
     worst_a = std::max(worst_a, std::abs(da));
-    t += fmt::format("| K{} | {:g} | {:g} | {:.3f} | {:.3f} | {:+.3f} | {:.3f} | {:.3f} |\n",
+    t += fmt::format("| K{} | {:g} | {:g} | {:.3f} | {:.3f} | {:+.3f} | {:.3f} | {:.3f} |",
                      as_int(r.params.at("iterations")), as_number(r.params.at("alpha")), ma, s.at("friction_angle_deg"),
                      s.at("predicted_friction_angle_deg"), d, s.at("phi_minus_theta_max_deg"),
                      s.at("atomic_friction_angle_deg"));
+    if (s.count("predicted_sphero_friction_angle_deg")) {  // kind version >= 2
+      std::string warn;
+      for (const char* code : {"core_overlap", "rounding", "time_step", "rotation"})
+        if (auto it = s.find(std::string("warning_") + code); it != s.end() && it->second > 0)
+          warn += (warn.empty() ? "" : ", ") + std::string(code);
+      auto get = [&](const char* key) { return s.count(key) ? s.at(key) : std::nan(""); };  // robust to old rows
+      const double ds = get("friction_angle_minus_sphero_deg");
+      ++n_s;
+      worst_s = std::max(worst_s, std::abs(ds));
+      if (!(std::abs(ds) > 0.1))  // NaN (missing) counts as within: nothing to flag
+        ++within_s;
+      else
+        outside.push_back(fmt::format("K{} at {:g} deg ({:+.3f} deg{})", as_int(r.params.at("iterations")),
+                                      as_number(r.params.at("alpha")), ds,
+                                      warn.empty() ? ", no warning" : "; warnings: " + warn));
+      t += fmt::format(" {:.3f} | {:+.3f} | {:.4f} | {} |\n", get("predicted_sphero_friction_angle_deg"), ds,
+                       get("rotation_before_slide_deg"), warn.empty() ? "-" : warn);
+    } else {
+      t += " | | | |\n";
+    }
   }
   rep.lines.push_back(t);
   if (!n) return;
@@ -147,6 +181,20 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
       fmt::format("criterion: every block slid ({} of {}) and |phi_sim - phi_theory| <= 1 deg; largest {:.3f} deg",
                   slid, n, worst));
   rep.findings.push_back(f);
+  if (n_s > 0) {
+    Finding h;
+    h.claim = fmt::format(
+        "Part '{}': the simulated friction angle equals the spheropolygon prediction (the signature of the rounded "
+        "blocks, spheroradius r) within 0.1 deg, or the run is flagged by a model warning.",
+        part);
+    std::size_t unflagged = 0;
+    for (const auto& o : outside) unflagged += o.find("no warning") != std::string::npos;
+    h.supported = slid == n && unflagged == 0;
+    h.evidence.push_back(fmt::format("{} of {} runs within 0.1 deg of the spheropolygon prediction; largest {:.3f} deg",
+                                     within_s, n_s, worst_s));
+    for (const auto& o : outside) h.evidence.push_back("outside: " + o);
+    rep.findings.push_back(h);
+  }
   if (mus.size() > 1) {
     Finding g;
     g.claim =
@@ -164,7 +212,7 @@ TaskKind tilt_kind() {
   TaskKind k;
   k.name = "tilt";
   k.description = "Spheropolygon tilting-block test of a Koch pair (Sec. IV): friction angle, Fig. 7 series";
-  k.version = 1;
+  k.version = 2;  // 2: spheropolygon prediction, rotation and model warnings
   k.run = run_tilt_task;
   k.outputs = {
       {"slid", "1", "1 if the upper block slid, else 0"},
@@ -180,6 +228,16 @@ TaskKind tilt_kind() {
       {"steps_beyond_limit", "1", "steps above the explicit stability limit"},
       {"time_step_s", "s", "time step used (after retries with smaller steps)"},
       {"upper_mass_kg", "kg/m", "mass of the upper block per unit depth"},
+      {"predicted_sphero_friction_angle_deg", "deg", "spheropolygon prediction (signature of the rounded blocks)"},
+      {"predicted_sphero_theta_max_deg", "deg", "theta_max of the rounded blocks' signature"},
+      {"friction_angle_minus_sphero_deg", "deg", "simulated minus spheropolygon prediction"},
+      {"rotation_before_slide_deg", "deg",
+       "largest rotation of the upper block against the lower one before the slide"},
+      {"resting_overlap_m", "m", "W / k_n"},
+      {"warning_core_overlap", "1", "1 if the resting overlap exceeds warn_overlap_fraction r"},
+      {"warning_rounding", "1", "1 if the spheropolygon and rigid predictions differ by more than the tolerance"},
+      {"warning_time_step", "1", "1 if the time step exceeds warn_time_step_fraction of the contact period"},
+      {"warning_rotation", "1", "1 if the upper block rotated by more than warn_rotation before the slide"},
       {"displacement_over_length", "1", "relative displacement / L_b (record_series, Fig. 7)", true},
       {"force_angle_over_alpha", "1", "atan(F_t/F_n) / alpha (record_series, Fig. 7)", true},
       {"time_s", "s", "time of each series sample", true},

@@ -107,7 +107,7 @@ TEST(CliVocabulary, NoQuantityHasTwoNames) {
                                                       {"--rms", "--rms-height"},
                                                       {"--deterministic", "--no-stochastic"},
                                                       {"--surface", "(generator subcommand)"},
-                                                      {"--spheroradius", "--radius"},
+                                                      {"--radius", "--spheroradius"},
                                                       {"--alpha-deg", "--alpha"}};
   for (const HelpPage& p : pages)
     for (const auto& [name, desc] : p.options) {

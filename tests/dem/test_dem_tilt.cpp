@@ -2,11 +2,15 @@
 // at alpha with mu_a = 0 slides at alpha, Eq. 6 with theta_max = alpha), output files, CLI.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "frictal/generators.hpp"
 #include "frictal/tilt.hpp"
@@ -190,4 +194,175 @@ TEST(DemTilt, RestitutionSetsNormalDampingFromEq12) {
   const double L = std::log(2.0), pi = 3.14159265358979323846;
   EXPECT_NEAR(r->normal_damping, 2 * L * std::sqrt(6e5 / r->upper_mass) / std::sqrt(pi * pi + L * L), 1e-9);
   EXPECT_NEAR(r->upper_mass, 50 * 0.2 * 0.01, 1e-12);
+}
+
+namespace {
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+// The numbers of the first DataArray named `name` (or, name empty, the first after `after`).
+std::vector<double> data_array(const std::string& xml, const std::string& name) {
+  const std::size_t at = xml.find("Name=\"" + name + "\"");
+  EXPECT_NE(at, std::string::npos) << name;
+  const std::size_t b = xml.find('>', at) + 1, e = xml.find("</DataArray>", b);
+  std::istringstream in(xml.substr(b, e - b));
+  std::vector<double> v;
+  for (double d; in >> d;) v.push_back(d);
+  return v;
+}
+
+std::vector<double> points(const std::string& xml) {
+  const std::size_t at = xml.find("<Points>");
+  const std::size_t b = xml.find('>', xml.find("<DataArray", at)) + 1, e = xml.find("</DataArray>", b);
+  std::istringstream in(xml.substr(b, e - b));
+  std::vector<double> v;
+  for (double d; in >> d;) v.push_back(d);
+  return v;
+}
+
+double segment_distance(double px, double py, double ax, double ay, double bx, double by) {
+  const double dx = bx - ax, dy = by - ay, l2 = dx * dx + dy * dy;
+  double t = l2 > 0 ? ((px - ax) * dx + (py - ay) * dy) / l2 : 0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(px - ax - t * dx, py - ay - t * dy);
+}
+
+}  // namespace
+
+// tilt --vtk: the files read back give the run's geometry (cores placed by the frame's pose,
+// rounded outlines at r from the cores), its tilt, and contact forces that carry the weight.
+TEST(DemTilt, VtkFilesReadBackToTheRunsState) {
+  frictal::TiltConfig cfg;
+  cfg.predict = false;
+  cfg.initial_offset = 0.0025;
+  cfg.series_interval = 0;
+  cfg.frame_interval = 0.25;
+  cfg.runaway_distance = 0.01;
+  cfg.max_tilt = 5 * kDeg;  // K0 at 10 deg: at rest throughout
+  auto r = frictal::run_tilt(koch(0, 10, 0.05), koch(0, 10, 0.05), cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  ASSERT_GE(r->frames.size(), 4u);
+  const std::string dir = ::testing::TempDir() + "dem_vtk";
+  auto w = frictal::write_tilt_vtk(dir, *r, cfg.radius);
+  ASSERT_TRUE(w.ok()) << w.error().message;
+  const std::string pvd = slurp(dir + "/tilt.pvd");
+  std::size_t datasets = 0;
+  for (std::size_t p = pvd.find("<DataSet"); p != std::string::npos; p = pvd.find("<DataSet", p + 1)) ++datasets;
+  EXPECT_EQ(datasets, 2 * r->frames.size());
+  const std::size_t k = r->frames.size() - 1;  // at rest, tilted by ~3.4 deg
+  const frictal::TiltFrame& fr = r->frames[k];
+  char name[64];
+  std::snprintf(name, sizeof name, "/bodies_%05zu.vtp", k);
+  const std::string bodies = slurp(dir + name);
+  EXPECT_NEAR(data_array(bodies, "tilt_deg").at(0), fr.tilt / kDeg, 1e-9);
+  EXPECT_GT(fr.tilt, 3 * kDeg);
+  const std::vector<double> p = points(bodies);
+  // Cores first: local polygon rotated by the frame's angle about the centroid, then shifted.
+  std::size_t at = 0;
+  std::vector<double> core_x[2], core_y[2];
+  for (int b = 0; b < 2; ++b) {
+    const auto& lx = b == 0 ? r->lower_polygon_x : r->upper_polygon_x;
+    const auto& ly = b == 0 ? r->lower_polygon_y : r->upper_polygon_y;
+    for (std::size_t i = 0; i < lx.size(); ++i, ++at) {
+      const double c = std::cos(fr.angle[b]), s = std::sin(fr.angle[b]);
+      const double x = fr.position[b].x + c * lx[i] - s * ly[i], y = fr.position[b].y + s * lx[i] + c * ly[i];
+      ASSERT_NEAR(p[3 * at], x, 1e-12);
+      ASSERT_NEAR(p[3 * at + 1], y, 1e-12);
+      core_x[b].push_back(x);
+      core_y[b].push_back(y);
+    }
+  }
+  // Then the outlines: every point within r of its core and most at exactly r (arcs, offsets).
+  const std::vector<double> offsets = data_array(bodies, "offsets");  // lines first: the 2 outlines
+  ASSERT_EQ(offsets.size(), 2u);
+  std::size_t on_r = 0, total = 0;
+  for (int b = 0; b < 2; ++b) {
+    const std::size_t n = static_cast<std::size_t>(offsets[b] - (b ? offsets[0] : 0));
+    for (std::size_t i = 0; i < n; ++i, ++at, ++total) {
+      double d = 1e9;
+      const auto& X = core_x[b];
+      const auto& Y = core_y[b];
+      for (std::size_t e = 0; e < X.size(); ++e)
+        d = std::min(
+            d, segment_distance(p[3 * at], p[3 * at + 1], X[e], Y[e], X[(e + 1) % X.size()], Y[(e + 1) % X.size()]));
+      EXPECT_LE(d, cfg.radius * (1 + 1e-9));
+      on_r += std::fabs(d - cfg.radius) < 1e-9 * cfg.radius + 1e-15;
+    }
+  }
+  EXPECT_EQ(at * 3, p.size());
+  EXPECT_GT(on_r, total * 8 / 10);
+  // Contacts: as many as in the frame, each within 2r of both cores; at rest their forces on the
+  // upper block carry its weight m g.
+  std::snprintf(name, sizeof name, "/contacts_%05zu.vtp", k);
+  const std::string contacts = slurp(dir + name);
+  const std::vector<double> cp = points(contacts);
+  ASSERT_EQ(cp.size(), 3 * fr.contacts.size());
+  ASSERT_GT(fr.contacts.size(), 0u);
+  const std::vector<double> fn = data_array(contacts, "normal_force"), ft = data_array(contacts, "tangential_force");
+  const std::vector<double> vb = data_array(contacts, "vertex_body");
+  double sx = 0, sy = 0;
+  for (std::size_t i = 0; i < fr.contacts.size(); ++i) {
+    for (int b = 0; b < 2; ++b) {
+      double d = 1e9;
+      const auto& X = core_x[b];
+      const auto& Y = core_y[b];
+      for (std::size_t e = 0; e < X.size(); ++e)
+        d = std::min(
+            d, segment_distance(cp[3 * i], cp[3 * i + 1], X[e], Y[e], X[(e + 1) % X.size()], Y[(e + 1) % X.size()]));
+      EXPECT_LE(d, 2 * cfg.radius);
+    }
+    const double sgn = vb[i] == 1 ? 1.0 : -1.0;  // forces act on the vertex body
+    sx += sgn * (fn[3 * i] + ft[3 * i]);
+    sy += sgn * (fn[3 * i + 1] + ft[3 * i + 1]);
+  }
+  EXPECT_NEAR(sx, 0, 1e-3 * r->upper_mass * 9.81);
+  EXPECT_NEAR(sy, r->upper_mass * 9.81, 1e-3 * r->upper_mass * 9.81);
+}
+
+// hold_rotation: the upper block keeps the lower block's angle (it only translates), and a K0
+// pair still slides at alpha (no rotation is the signature's assumption).
+TEST(DemTilt, HoldRotationKeepsTheUpperBlockAligned) {
+  frictal::TiltConfig cfg = frictal::tilt_config_for_surface(0.01, 0.01);
+  cfg.hold_rotation = true;
+  cfg.frame_interval = 0.5;
+  cfg.series_interval = 0;
+  auto r = frictal::run_tilt(koch(0, 10, 0.05), koch(0, 10, 0.05), cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  ASSERT_TRUE(r->slid);
+  EXPECT_NEAR(r->friction_angle, 10 * kDeg, 0.1 * kDeg);
+  EXPECT_EQ(r->rotation_before_slide, 0);
+  for (const auto& f : r->frames) EXPECT_EQ(f.angle[1], f.angle[0]);
+}
+
+// The model warnings before the run: core-overlap when W/k_n exceeds warn_overlap_fraction r
+// (W/k_n from the block's mass), rounding when r changes the prediction (K3 at 25 deg: the
+// 3 alpha = 75 deg features are rounded away at r = 5e-5 m, docs/dem.md sec. 6).
+TEST(DemTilt, ScaleWarnings) {
+  frictal::TiltConfig cfg = frictal::tilt_config_for_surface(0.01, 0.01);
+  cfg.max_tilt = 0.5 * kDeg;
+  cfg.series_interval = 0;
+  cfg.radius = 2e-6;
+  auto r = frictal::run_tilt(koch(0, 10, 0.05), koch(0, 10, 0.05), cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  const double w = r->upper_mass * cfg.gravity / cfg.contact.normal_stiffness;
+  EXPECT_DOUBLE_EQ(r->scales.resting_overlap, w);
+  auto has = [](const frictal::TiltResult& x, const std::string& code) {
+    for (const auto& w : x.warnings)
+      if (w.code == code) return true;
+    return false;
+  };
+  EXPECT_EQ(has(*r, "core-overlap"), w > 0.1 * cfg.radius);
+  EXPECT_TRUE(has(*r, "core-overlap"));  // W/k_n ~ 4e-7 m for this short block (0.025 kg)
+  EXPECT_FALSE(has(*r, "rounding"));
+  EXPECT_NEAR(r->scales.contact_period, 2 * 3.14159265358979323846 * std::sqrt(r->upper_mass / 6e5), 1e-15);
+  cfg.radius = 5e-5;
+  auto k3 = frictal::run_tilt(koch(3, 25, 0.05), koch(3, 25, 0.05), cfg);
+  ASSERT_TRUE(k3.ok()) << k3.error().message;
+  EXPECT_NEAR(k3->predicted_friction_angle, 75 * kDeg, 1e-9);
+  EXPECT_LT(k3->predicted_sphero_friction_angle, 74 * kDeg);
+  EXPECT_TRUE(has(*k3, "rounding"));
+  EXPECT_FALSE(has(*k3, "core-overlap"));
 }

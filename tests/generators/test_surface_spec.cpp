@@ -100,11 +100,10 @@ TEST(SurfaceSpec, UnknownNamesAreRefusedWithTheNearest) {
 
 TEST(TiltSettings, DefaultsAreThePapersTablesAndValuesApply) {
   // Table I/II of the paper and Sec. IV A.
-  const std::map<std::string, double> paper = {{"normal_stiffness", 6e5}, {"tangential_stiffness", 6e4},
-                                               {"normal_damping", 929.5}, {"tangential_damping", 4},
-                                               {"radius", 5e-5},          {"density", 50},
-                                               {"block_height", 0.01},    {"tilt_rate", 0.05},
-                                               {"atomic_friction", 0}};
+  const std::map<std::string, double> paper = {
+      {"normal_stiffness", 6e5}, {"tangential_stiffness", 6e4}, {"normal_damping", 929.5},
+      {"tangential_damping", 4}, {"spheroradius", 5e-5},        {"density", 50},
+      {"block_height", 0.01},    {"tilt_rate", 0.05},           {"atomic_friction", 0}};
   for (const auto& [name, value] : paper) {
     const Field* f = find_field(tilt_settings(), name);
     ASSERT_NE(f, nullptr) << name;

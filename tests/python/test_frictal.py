@@ -17,6 +17,19 @@ def test_koch_signature_is_n_alpha(n, mult):
     assert sig["exact"]
 
 
+def test_signature_spheroradius_keyword():
+    # K0 at 20 deg (lambda = 0.01 m) with r = 0.01 m: the rounded tips make the lift an arc whose
+    # steepest contact is asin(lambda / (4 r)) = asin(0.25) (closed form, test_sphero.cpp); r = 0
+    # is the rigid signature itself.
+    k0 = frictal.koch_profile(iterations=0, alpha=np.radians(20))
+    rigid = frictal.signature(k0)
+    assert frictal.signature(k0, spheroradius=0.0)["theta_max_forward"] == rigid["theta_max_forward"]
+    sig = frictal.signature(k0, spheroradius=0.01)
+    assert sig["spheroradius"] == 0.01
+    assert sig["theta_max_forward"] == pytest.approx(math.asin(0.25), abs=1e-9)
+    with pytest.raises(ValueError, match="spheroradius"):
+        frictal.signature(k0, spheroradius=-1.0)
+
 def test_lift_matches_reference_and_numpy_scan():
     f = frictal.wm_profile(n_max=5, seed=3)
     g = frictal.wm_profile(n_max=5, seed=4)
@@ -107,3 +120,19 @@ def test_tilt_flat_blocks_slide_at_atomic_friction_angle():
         frictal.tilt(lower, face="bogus", initial_offset=0.01)
     with pytest.raises(TypeError):
         frictal.tilt("not a surface")
+
+
+def test_tilt_reports_both_predictions_and_holds_rotation():
+    # K0 at 10 deg: rigid and rounded blocks both predict alpha (the flanks survive a small r,
+    # docs/dem.md); with the rotation held the block slides at alpha and does not turn.
+    k0 = frictal.koch_profile(iterations=0, alpha=np.radians(10), length=0.05)
+    r = frictal.tilt(k0, hold_rotation=True, spheroradius=5e-5)
+    assert r["predicted_friction_angle"] == pytest.approx(np.radians(10), abs=1e-12)
+    assert r["predicted_sphero_friction_angle"] == pytest.approx(np.radians(10), abs=1e-9)
+    assert r["rotation_before_slide"] == 0
+    assert np.degrees(r["friction_angle"]) == pytest.approx(10, abs=0.1)
+    assert r["warnings"] == []
+    assert r["scales"]["spheroradius"] == 5e-5
+    # A tiny spheroradius: the resting overlap W/k_n is no longer small against r.
+    small = frictal.tilt(k0, spheroradius=1e-7, max_tilt=np.radians(1))
+    assert "core-overlap" in [w["code"] for w in small["warnings"]]

@@ -48,7 +48,7 @@ def test_generated_surfaces_match_their_definitions():
 def test_tilt_keywords_are_the_table_names():
     table = frictal.tilt_settings()
     names = [f["name"] for f in table]
-    for expected in ("atomic_friction", "normal_stiffness", "radius", "block_height", "time_step", "max_tilt", "face"):
+    for expected in ("atomic_friction", "normal_stiffness", "spheroradius", "block_height", "time_step", "max_tilt", "face"):
         assert expected in names
     assert len(set(names)) == len(names)
     by = {f["name"]: f for f in table}

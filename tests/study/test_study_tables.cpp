@@ -98,7 +98,7 @@ TEST(StudyTables, RetiredOrMistypedKeysAreRefusedNotIgnored) {
       r.error().message.find("parameter 'alpha_deg' is not a parameter of task kind 'tilt'; did you mean 'alpha'?"),
       std::string::npos)
       << r.error().message;
-  p = {{"iterations", std::int64_t{0}}, {"alpha", 5.0}, {"spheroradius", 5e-5}};
+  p = {{"iterations", std::int64_t{0}}, {"alpha", 5.0}, {"radius", 5e-5}};
   EXPECT_FALSE(run_kind("tilt", p, 0).ok());
   p = {{"iterations", std::int64_t{0}}, {"alpha", 5.0}, {"lenght", 0.01}};
   r = run_kind("koch-signature", p, 0);

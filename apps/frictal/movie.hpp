@@ -1,0 +1,16 @@
+// frictal CLI — `tilt --movie FILE.mp4|FILE.gif`: renders the frames of a tilt run (both blocks,
+// contact points, tilt angle and atan(F_t/F_n)) and pipes raw RGB frames to Debian's ffmpeg.
+// The CLI owns this (the library never spawns processes).
+#pragma once
+
+#include <string>
+
+#include "frictal/tilt.hpp"
+
+namespace frictal::cli {
+
+/// Writes the movie of `r` (which needs frames) to `path` (.mp4 or .gif) at `fps` frames per
+/// second. `radius`: the spheroradius drawn as the blocks' rims (m). Throws CliError on failure.
+void write_tilt_movie(const std::string& path, const TiltResult& r, double radius, int fps = 25);
+
+}  // namespace frictal::cli
