@@ -19,7 +19,6 @@
 #include "study/kind_common.hpp"
 #include "study/table_params.hpp"
 
-
 namespace frictal::study {
 
 using namespace kind_detail;
@@ -221,8 +220,7 @@ TaskKind koch_signature_kind() {
       PlotView::of("friction-vs-atomic-friction", {"atomic_friction_angle_deg", "θ_a (deg)"},
                    {"friction_angle_deg", "φ (deg)"})
           .by("alpha", "theory α = {alpha}°"),
-      PlotView::of("mu-vs-dimension", {"dimension_eq13", "fractal dimension D (Eq. 13)"},
-                   {"friction_coefficient", "μ"})
+      PlotView::of("mu-vs-dimension", {"dimension_eq13", "fractal dimension D (Eq. 13)"}, {"friction_coefficient", "μ"})
           .by("iterations", "K{iterations} theory"),
       PlotView::of("signature", {"signature_offset_over_wavelength", "x_ofs / λ"},
                    {"signature_theta_over_alpha", "θ / α"})

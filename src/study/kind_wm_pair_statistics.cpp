@@ -19,7 +19,6 @@
 #include "study/kind_common.hpp"
 #include "study/table_params.hpp"
 
-
 namespace frictal::study {
 
 using namespace kind_detail;
