@@ -22,25 +22,14 @@
 #include "cli/cli_runner.hpp"
 #include "frictal/study.hpp"
 #include "frictal/version.hpp"
+#include "study/study_helpers.hpp"
 
 using namespace frictal::study;
 
 namespace {
 
-std::string fresh(const std::string& name) {
-  const std::string p = temp_path(name);
-  for (const char* suffix : {"", "-wal", "-shm"}) std::remove((p + suffix).c_str());
-  return p;
-}
-
-std::string dump(const std::string& path) {
-  auto st = Store::open_existing(path);
-  EXPECT_TRUE(st.ok()) << (st.ok() ? "" : st.error().message);
-  if (!st.ok()) return {};
-  auto d = (*st)->content();
-  EXPECT_TRUE(d.ok());
-  return d.ok() ? *d : std::string{};
-}
+using study_test::dump;
+using study_test::fresh;
 
 // 30 tasks of a few to some tens of milliseconds in two parts (the second part alone is the
 // "already stored" data of the read-only and full-disk tests).
