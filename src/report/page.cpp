@@ -29,7 +29,8 @@ std::string fmt_deg(double rad) {
   return fmt::format("{:.3f}\u00b0", std::abs(d) < 5e-4 ? 0.0 : d);  // no "-0.000"
 }
 std::string fmt_mu(double mu) {
-  return std::isfinite(mu) ? fmt::format("{:.4f}", mu) : std::string("\u221e (interlocked)");
+  if (!std::isfinite(mu)) return std::string("\u221e (interlocked)");
+  return fmt::format("{:.4f}", std::abs(mu) < 5e-5 ? 0.0 : mu);  // no "-0.0000"
 }
 
 std::string row(const std::string& name, const std::string& value, const std::string& note = "") {
@@ -523,6 +524,7 @@ Result<std::string> surface_report(const ReportInput& in) {
         p.series.push_back(std::move(m));
       }
       p.lines.push_back({true, deg(r.theta_max_forward), "unfiltered θ_max forward", "#d62728"});
+      p.lines.push_back({true, deg(r.theta_max_backward), "unfiltered θ_max backward", "#2ca02c"});
       if (tip_cutoff && *tip_cutoff > 0 && std::isfinite(*tip_cutoff) && *tip_cutoff / xu.scale < fw.x.back())
         p.x_min = *tip_cutoff / xu.scale / 1.3;  // the line inside the frame, left of the finest cutoff
       if (tip_cutoff && *tip_cutoff > 0 && std::isfinite(*tip_cutoff))
