@@ -440,8 +440,8 @@ Result<std::string> surface_report(const ReportInput& in) {
       const std::string r = fmt_len(in.tip_radius, length_unit(in.tip_radius));
       if (std::isnan(*tip_cutoff))
         tip_text = fmt::format(
-            " A tip of radius {} cannot follow this surface at any scale up to a quarter of its length (the "
-            "curvature of its valleys exceeds 1/R there): no cutoff on this page is reliable.",
+            " A tip of radius {} cannot follow this surface at any scale up to a quarter of its length (its peaks "
+            "are curved more than 1/(2R) there): no cutoff on this page is reliable.",
             r);
       else if (*tip_cutoff == 0)
         tip_text = fmt::format(

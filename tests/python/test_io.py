@@ -107,21 +107,20 @@ def test_npy_and_single_column_are_detected(tmp_path):
 
 
 def test_profile_stats_scan_quantities_and_tip_cutoff():
-    """n dx length and bandwidth of a profile; the tip cutoff of a sinusoid sampled through its
-    valleys: the stencil curvature there is a 2 (1 - cos(k0 h)) / h^2, so the tip of radius
-    R = h5^2 / (a 2 (1 - cos(k0 h5))) follows the surface from h5 = 5 dx on (docs/analysis.md)."""
-    dx, a = 1e-7, 5e-8
-    k0 = 2 * math.pi / (64 * dx)
-    h5 = 5 * dx
-    R = h5 * h5 / (a * 2 * (1 - math.cos(k0 * h5)))
-    x = np.arange(512) * dx
-    p = frictal.Profile(x, a * np.sin(k0 * x))
+    """n dx length and bandwidth of a profile; the tip cutoff of a triangle wave of slope s with
+    its kinks on the samples: at a peak the stencil curvature is -2 s / h, which reaches -1/(2R)
+    at h = 4 s R, a stencil length 2h = 8 s R (SurfaceTopography's definition, docs/analysis.md)."""
+    dx, slope = 1e-7, 0.1
+    R = 5.3 * dx / (4 * slope)
+    i = np.arange(512)
+    x = i * dx
+    p = frictal.Profile(x, slope * dx * (16 - np.abs(i % 64 - 32)))
     s = frictal.profile_stats(p, tip_radius=R)
     assert s["sampling_interval_m"] == pytest.approx(dx, rel=1e-12)
     assert s["physical_length_m"] == pytest.approx(512 * dx, rel=1e-12)
     assert s["bandwidth_m"] == pytest.approx((dx, 512 * dx), rel=1e-12)
     assert s["nyquist_wavelength_m"] == pytest.approx(2 * dx, rel=1e-12)
-    assert s["short_reliability_cutoff_m"] == pytest.approx(h5, rel=1e-6)
+    assert s["short_reliability_cutoff_m"] == pytest.approx(8 * slope * R, rel=1e-9)
     assert "short_reliability_cutoff_m" not in frictal.profile_stats(p)
 
 
