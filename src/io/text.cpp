@@ -269,13 +269,19 @@ bool number_with_unit(std::string_view s, double& v, std::optional<double>& scal
   return scale.has_value();
 }
 
+/// Whether a column can be an abscissa: monotonic, and changing at more than half of its steps
+/// (a column that stays put, like the first column "2 2 2 2 2 0 0 0 0 0" of a height matrix, is
+/// no x axis).
 bool monotonic(const double* col, std::size_t stride, std::size_t n) {
+  if (n < 2) return true;
   bool up = true, down = true;
+  std::size_t flat = 0;
   for (std::size_t k = 1; k < n; ++k) {
     up = up && col[k * stride] >= col[(k - 1) * stride];
     down = down && col[k * stride] <= col[(k - 1) * stride];
+    flat += col[k * stride] == col[(k - 1) * stride];
   }
-  return up || down;
+  return (up || down) && 2 * flat < n - 1;
 }
 
 /// Sorted distinct values of v, with the spacing a + b k if they are regular (within 1e-3 b).
