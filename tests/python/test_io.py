@@ -158,3 +158,43 @@ def test_gwyddion_backed_instrument_file_with_a_channel():
     assert 256 * s["dx"] == pytest.approx(2e-5, rel=1e-6)
     assert frictal.map_stats(h, dx=s["dx"], dy=s["dy"])["Sq"] == pytest.approx(3.026701737129839e-07, rel=1e-6)
     assert np.sqrt(((h - h.mean()) ** 2).mean()) == pytest.approx(3.026701737129839e-07, rel=1e-6)
+
+
+def _surfacetopography_cutoff(z, px, radius, safety=0.5):
+    """SurfaceTopography's scanning_probe_reliability_cutoff for a uniform line scan, written
+    here from its definition (Generic/ScanningProbe.py, Uniform/Derivative.py at commit 119cb66):
+    second derivative at stencil length `distance` = 2 s px from linearly interpolated heights at
+    x +- s px, kept where the stencil lies inside the scan; the distance where its minimum reaches
+    -safety/radius, bracketed by 2 px .. n px / 2 (here by bisection instead of Brent)."""
+    n = len(z)
+    x = np.arange(n, dtype=float)
+
+    def objective(distance):
+        s = distance / (2 * px)
+        d = (np.interp(x - s, x, z) - 2 * z + np.interp(x + s, x, z)) / (s * px) ** 2
+        d = d[int(np.ceil(s)):n - int(np.ceil(s))]
+        return safety / radius + (d.min() if len(d) else 0.0)
+
+    a, b = 2 * px, n * px / 2
+    if objective(a) > 0:
+        return 0.0
+    if objective(b) < 0:
+        return float("nan")
+    for _ in range(200):
+        m = 0.5 * (a + b)
+        a, b = (m, b) if objective(m) < 0 else (a, m)
+    return 0.5 * (a + b)
+
+
+def test_tip_cutoff_equals_surfacetopography_definition_on_a_random_profile():
+    """A second method for short_reliability_cutoff: the definition re-implemented in numpy on a
+    rough random profile (smoothed random walk), for tip radii from sharper than every peak to
+    blunt."""
+    rng = np.random.default_rng(1)
+    n, px = 2000, 1e-8
+    z = np.convolve(np.cumsum(rng.normal(size=n)) * 1e-9, np.ones(5) / 5, mode="same")
+    p = frictal.Profile(np.arange(n) * px, z)
+    for radius in (1e-8, 1e-7, 1e-6, 1e-5):
+        want = _surfacetopography_cutoff(z, px, radius)
+        got = frictal.profile_stats(p, tip_radius=radius)["short_reliability_cutoff_m"]
+        assert got == pytest.approx(want, rel=1e-9, abs=1e-20), radius
