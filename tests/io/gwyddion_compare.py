@@ -8,7 +8,8 @@ gwy_data_field_area_get_min_max_mask, gwy_data_field_get_xreal, ...). frictal's 
 CLI (`frictal info --json`, `frictal stats --json`), whichever reader frictal uses for the file
 (native or its Gwyddion backend). Compared per file: grid, physical size n dx (Gwyddion's
 xreal/yreal), number of valid points, mean, Sq, Sa, Ssk, Sku (Gwyddion's kurtosis is the excess
-kurtosis: Sku - 3) and Sz = max - min.
+kurtosis: Sku - 3), Sz = max - min, and Sdq (gwy_data_field_area_get_surface_slope_mask) where the
+two definitions coincide (square grids without masked points).
 
 Usage: gwyddion_compare.py FRICTAL DATA_DIR [--markdown OUT.md]
 Exit status 77 (CTest: skipped) where Gwyddion's libraries or file modules are not installed.
@@ -95,6 +96,7 @@ class Gwy:
         self.unit_z = self.f("gwy_data_field_get_si_unit_z", vp, vp)
         self.unit_equal = self.f("gwy_si_unit_equal_string", i, vp, cp)
         self.stats = self.f("gwy_data_field_area_get_stats_mask", None, vp, vp, i, i, i, i, i, pd, pd, pd, pd, pd)
+        self.slope = self.f("gwy_data_field_area_get_surface_slope_mask", d, vp, vp, i, i, i, i, i)
         self.minmax = self.f("gwy_data_field_area_get_min_max_mask", None, vp, vp, i, i, i, i, i, pd, pd)
         self.count = self.f("gwy_data_field_area_count_in_range", None, vp, vp, i, i, i, i, d, d,
                             ctypes.POINTER(i), ctypes.POINTER(i))
@@ -151,7 +153,8 @@ class Gwy:
         r = dict(module=module.decode() if module else "", id=want, title=title.value.decode("utf-8", "replace")
                  if title.value else "", nx=nx, ny=ny, sx=self.xreal(field), sy=self.yreal(field),
                  valid=nx * ny - masked, mean=v[0].value, Sa=v[1].value, Sq=v[2].value, Ssk=v[3].value,
-                 Sku_excess=v[4].value, Sz=v[6].value - v[5].value)
+                 Sku_excess=v[4].value, Sz=v[6].value - v[5].value,
+                 Sdq=self.slope(field, mask, mode, 0, 0, nx, ny))
         self.unref(c)
         return r
 
@@ -225,6 +228,16 @@ def main():
                   ("Sq", st["Sq_m"], g["Sq"], RTOL), ("Sa", st["Sa_m"], g["Sa"], RTOL),
                   ("Ssk", st["Ssk"], g["Ssk"], RTOL * 100), ("Sku-3", st["Sku"] - 3, g["Sku_excess"], RTOL * 100),
                   ("Sz", st["Sz_m"], g["Sz"], RTOL)]
+        # Sdq: Gwyddion pools the squared slopes of both directions over all (nx-1) ny + nx (ny-1)
+        # pairs, sqrt(2 (Sh/dx^2 + Sv/dy^2) / (nh + nv)); frictal averages each direction over its
+        # own pairs, sqrt(Sh/(nh dx^2) + Sv/(nv dy^2)) (docs/analysis.md). The two are the same
+        # number where nh = nv: square grids without masked points. Compared there; elsewhere the
+        # difference is reported (docs/io.md).
+        sdq_same_definition = g["nx"] == g["ny"] and g["valid"] == g["nx"] * g["ny"]
+        if sdq_same_definition:
+            checks.append(("Sdq", st["Sdq"], g["Sdq"], RTOL))
+        g["Sdq_rel"] = rel(st["Sdq"], g["Sdq"])
+        g["Sdq_compared"] = sdq_same_definition
         worst = 0.0
         for name, a, b, tol in checks:
             # Unitless channels: frictal reads them in metres, as Gwyddion's numbers are.
@@ -268,17 +281,19 @@ def main():
     if out_md:
         with open(out_md, "w") as f:
             f.write("| file | frictal reader | Gwyddion module, channel | grid | n dx x n dy (m) | valid | "
-                    "Sq frictal (m) | Sq Gwyddion (m) | largest rel. difference (mean, Sq, Sa, Ssk, Sku, Sz, sizes) |\n")
-            f.write("|---|---|---|---|---|---|---|---|---|\n")
+                    "Sq frictal (m) | Sq Gwyddion (m) | largest rel. difference (mean, Sq, Sa, Ssk, Sku, Sz, sizes) | "
+                    "Sdq rel. difference |\n")
+            f.write("|---|---|---|---|---|---|---|---|---|---|\n")
             for rel_path, g, st, info, worst in rows:
                 f.write(f"| {os.path.basename(rel_path)} | {info['reader']} | {g['module']} {g['id']} "
                         f"'{g['title']}' | {g['nx']} x {g['ny']} | {g['sx']:.6g} x {g['sy']:.6g} | {g['valid']} | "
-                        f"{st['Sq_m']:.10g} | {g['Sq']:.10g} | {worst:.1e} |\n")
+                        f"{st['Sq_m']:.10g} | {g['Sq']:.10g} | {worst:.1e} | {g['Sdq_rel']:.1e}"
+                        f"{'' if g['Sdq_compared'] else ' (definitions differ)'} |\n")
             for rel_path, g, st, info, n, length, rq, mean in crows:
                 worst = max(rel(st["length_m"], length), rel(st["rms_height_m"], rq), abs(st["mean_height_m"] - mean) / rq)
                 f.write(f"| {os.path.basename(rel_path)} | {info['reader']} | {g['module']} curve 0 | {n} points | "
                         f"length {length:.6g} | {n} | Rq {st['rms_height_m']:.10g} | Rq {rq:.10g} | {worst:.1e} "
-                        f"(length, mean, Rq) |\n")
+                        f"(length, mean, Rq) | |\n")
     for m in failures:
         print("FAIL:", m)
     print(f"{len(rows)} image channels and {len(crows)} curves compared, {len(failures)} disagreements")
