@@ -451,8 +451,9 @@ Result<std::string> surface_report(const ReportInput& in) {
       else
         tip_text = fmt::format(
             " The dashed grey vertical line is the short reliability cutoff for a tip of radius {}: {} (below it the "
-            "valleys are curved more than 1/R, the tip cannot reach their bottom, and θ_max from the finer scales "
-            "is not to be trusted; rows below it are marked in the table).",
+            "measured peaks are curved more than 1/(2R), half the tip's curvature: the scan shows the tip rather than "
+            "the surface, and θ_max from the finer scales is not to be trusted; rows below it are marked in the "
+            "table).",
             r, fmt_len(*tip_cutoff, length_unit(*tip_cutoff)));
     }
     std::string html;
