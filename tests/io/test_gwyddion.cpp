@@ -342,3 +342,18 @@ TEST(Gwyddion, BinarySdfWrittenFromTheLayoutOfIso25178_71) {
     }
   }
 }
+
+TEST(Gwyddion, ItsLogMessagesBecomeWarningsNotStderr) {
+  // gwyfile-test.gwy (tests/data/README.md) holds a GwySelectionPoint, a type Gwyddion 2.62 no
+  // longer knows: its gwyfile module says so with g_warning(). The library never prints: the
+  // message is one of the read's warnings, and nothing reaches stderr.
+  REQUIRE_GWYDDION();
+  ::testing::internal::CaptureStderr();
+  auto s = frictal::read_surface(kData + "/instruments/gwyfile-test.gwy");
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  EXPECT_EQ(err, "");
+  bool found = false;
+  for (const auto& w : s->warnings) found |= w.find("GwySelectionPoint") != std::string::npos;
+  EXPECT_TRUE(found);
+}
