@@ -36,17 +36,20 @@ struct ProfileScanStats {
 };
 ProfileScanStats profile_scan_stats(const Profile& p);
 
-/// Short reliability cutoff for a tip of radius `tip_radius` (unit: m): the smallest stencil
-/// distance h (unit: m) at which the scale-dependent curvature
+/// Short reliability cutoff for a tip of radius `tip_radius` (unit: m), SurfaceTopography's
+/// `scanning_probe_reliability_cutoff` (Sanner, Noehring, Thimons, Jacobs, Pastewka, Appl. Surf.
+/// Sci. Adv. 7, 100190 (2022)): with the scale-dependent curvature
 ///   kappa_h(x) = (z(x + h) - 2 z(x) + z(x - h)) / h^2
-/// stays at or below 1 / tip_radius everywhere (a sphere of radius R reaches the bottom of a
-/// valley only if the valley's curvature is at most 1/R). Below it the tip cannot follow the
-/// surface and finer-scale slopes (theta_max) are not to be trusted. Evaluated at h = k dx,
-/// k = 1 .. n/4, linearly interpolated in h between the last failing and the first passing k.
-/// 0: reliable down to the sampling interval; NaN: unreliable up to a quarter of the scan.
-/// Maps: along rows (dx) and columns (dy); the larger cutoff. Profiles: h = k x mean spacing,
-/// the curvature of each triple i - k, i, i + k from its actual abscissae
-/// (2 [(zc - zb)/(xc - xb) - (zb - za)/(xb - xa)] / (xc - xa), the same on a uniform grid).
+/// (z between samples linearly interpolated), the stencil length 2h (unit: m) at which the most
+/// negative kappa_h (the sharpest peak) equals -1 / (2 tip_radius), safety factor 1/2: a tip
+/// images every peak with at least its own radius, so where the measured peaks are about as
+/// curved as the tip the scan shows the tip, not the surface. Below it finer-scale slopes
+/// (theta_max) are not to be trusted. Found by bisection (relative 1e-13) for h between the
+/// sampling interval and a quarter of the physical length n dx. Returns 0 when the peaks are
+/// blunter than that already at h = dx (reliable down to the sampling interval; SurfaceTopography:
+/// None) and NaN when they are sharper even at h = n dx / 4 (unreliable at every scale;
+/// SurfaceTopography: the physical size). Maps: along rows (dx) and along columns (dy), the larger
+/// of the two (SurfaceTopography looks along x only).
 Result<double> short_reliability_cutoff(const Profile& p, double tip_radius);
 Result<double> short_reliability_cutoff(const Map& m, double tip_radius);
 

@@ -41,42 +41,59 @@ void pooled_line_stats(std::size_t lines, std::size_t n, double spacing, At at, 
   rdq = gcnt ? std::sqrt(gs / double(gcnt)) : 0.0;
 }
 
-/// Largest curvature over lines for the stencil of k points each side; -inf if no triple.
-/// kappa = 2 [(zc - zb) / (xc - xb) - (zb - za) / (xb - xa)] / (xc - xa), which is
-/// (za - 2 zb + zc) / h^2 on a uniform grid.
+/// Most negative scale-dependent curvature over the lines at stencil distance h:
+///   kappa_h(x_i) = (z(x_i + h) - 2 z(x_i) + z(x_i - h)) / h^2,
+/// z(x_i +- h) linearly interpolated between the samples (SurfaceTopography's `derivative(n=2,
+/// distance=2h)` with interpolation='linear'), at every sample with x_i - h and x_i + h inside
+/// the line; +inf if there is none. Samples that are NaN (or interpolate from one) are skipped.
 template <class At, class Xat>
-double max_curvature(std::size_t lines, std::size_t n, std::size_t k, At at, Xat xat) {
-  double best = -std::numeric_limits<double>::infinity();
-  for (std::size_t l = 0; l < lines; ++l)
-    for (std::size_t i = k; i + k < n; ++i) {
-      const double a = at(l, i - k), b = at(l, i), c = at(l, i + k);
-      if (std::isnan(a) || std::isnan(b) || std::isnan(c)) continue;
-      const double xa = xat(i - k), xb = xat(i), xc = xat(i + k);
-      if (!(xb > xa) || !(xc > xb)) continue;
-      best = std::max(best, 2 * ((c - b) / (xc - xb) - (b - a) / (xb - xa)) / (xc - xa));
+double min_curvature(std::size_t lines, std::size_t n, double h, At at, Xat xat) {
+  double best = std::numeric_limits<double>::infinity();
+  const double x_first = xat(0), x_last = xat(n - 1), tol = 1e-9 * h;
+  // z at position x of line l, interpolating from segment k (x_k <= x <= x_{k+1}).
+  auto interp = [&](std::size_t l, std::size_t k, double x) {
+    const double xa = xat(k), xb = xat(k + 1);
+    const double t = std::clamp((x - xa) / (xb - xa), 0.0, 1.0);
+    const double za = at(l, k), zb = at(l, k + 1);
+    if (t == 0) return za;
+    if (t == 1) return zb;
+    return za + t * (zb - za);
+  };
+  for (std::size_t l = 0; l < lines; ++l) {
+    std::size_t lo = 0, hi = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double xi = xat(i), xl = xi - h, xr = xi + h;
+      if (xl < x_first - tol) continue;
+      if (xr > x_last + tol) break;
+      while (lo + 2 < n && xat(lo + 1) <= xl) ++lo;
+      if (hi < lo) hi = lo;
+      while (hi + 2 < n && xat(hi + 1) <= xr) ++hi;
+      const double zi = at(l, i), zl = interp(l, lo, xl), zr = interp(l, hi, xr);
+      if (std::isnan(zi) || std::isnan(zl) || std::isnan(zr)) continue;
+      best = std::min(best, (zr - 2 * zi + zl) / (h * h));
     }
+  }
   return best;
 }
 
-/// The cutoff along one direction (see the header); stencil distance h = k x spacing.
+/// The cutoff along one direction (see the header): the stencil length 2h at which the most
+/// negative curvature reaches -1/(2R), found by bisection between h = spacing and h = n spacing / 4
+/// (SurfaceTopography's bracket: distance 2 x lower .. upper / 2 of the bandwidth).
 template <class At, class Xat>
 double cutoff_along(std::size_t lines, std::size_t n, double spacing, double radius, At at, Xat xat) {
-  const double limit = 1 / radius;
-  double prev_h = 0, prev_c = 0;
-  bool any = false;
-  for (std::size_t k = 1; 4 * k <= n; ++k) {
-    const double h = double(k) * spacing, c = max_curvature(lines, n, k, at, xat);
-    if (c == -std::numeric_limits<double>::infinity()) continue;
-    if (c <= limit) {
-      if (!any) return 0.0;  // reliable at the finest stencil already
-      // Linear interpolation in h between the last failing and this passing distance.
-      return prev_h + (h - prev_h) * (prev_c - limit) / (prev_c - c);
-    }
-    any = true;
-    prev_h = h;
-    prev_c = c;
+  const double target = 0.5 / radius;  // safety factor 1/2 (Sanner et al. 2022)
+  auto objective = [&](double h) {
+    const double c = min_curvature(lines, n, h, at, xat);
+    return std::isinf(c) && c > 0 ? target : target + c;
+  };
+  double a = spacing, b = double(n) * spacing / 4;
+  if (!(b > a) || objective(a) > 0) return 0.0;                           // reliable down to the sampling interval
+  if (objective(b) < 0) return std::numeric_limits<double>::quiet_NaN();  // unreliable at every scale
+  for (int it = 0; it < 200 && b - a > 1e-13 * b; ++it) {
+    const double mid = 0.5 * (a + b);
+    (objective(mid) < 0 ? a : b) = mid;
   }
-  return std::numeric_limits<double>::quiet_NaN();
+  return a + b;  // the stencil length 2h, h = (a + b) / 2
 }
 
 }  // namespace

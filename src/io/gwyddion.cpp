@@ -18,6 +18,8 @@
 #include <mutex>
 #include <optional>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "frictal/io.hpp"
 #include "io/readers.hpp"
@@ -46,6 +48,7 @@ struct GError {
   char* message;
 };
 using GFunc = void (*)(void*, void*);
+using GLogFunc = void (*)(const char* domain, int level, const char* message, void* data);
 constexpr int kRunNonInteractive = 1;  // GWY_RUN_NONINTERACTIVE
 constexpr int kOpLoad = 1 << 1;        // GWY_FILE_OPERATION_LOAD
 constexpr int kOpSave = 1 << 2;        // GWY_FILE_OPERATION_SAVE
@@ -87,6 +90,7 @@ struct ModuleFailure {
   X(void, g_object_get, (void*, const char*, ...))                                   \
   X(void, g_free, (void*))                                                           \
   X(void, g_error_free, (GError*))                                                   \
+  X(GLogFunc, g_log_set_default_handler, (GLogFunc, void*))                          \
   X(GType, gwy_data_field_get_type, (void))                                          \
   X(void*, gwy_data_field_new, (int, int, double, double, gboolean))                 \
   X(int, gwy_data_field_get_xres, (void*))                                           \
@@ -217,6 +221,37 @@ std::string unit_string(const Api& a, void* unit) {
 
 /// Metres per unit of a Gwyddion unit string ("m", "µm", ...); nullopt if not a length.
 std::optional<double> length_scale(const std::string& u) { return io_detail::unit_scale(u); }
+
+/// While alive, GLib messages (Gwyddion's g_warning()s, e.g. "Type `GwySelectionPoint' is
+/// unknown") go into `messages` instead of stderr: the library never prints. Caller holds the
+/// backend mutex (the handler is process-wide while set).
+class LogCapture {
+ public:
+  explicit LogCapture(const Api& a) : a_(a) { prev_ = a_.g_log_set_default_handler(&LogCapture::handle, this); }
+  ~LogCapture() { a_.g_log_set_default_handler(prev_, nullptr); }
+  LogCapture(const LogCapture&) = delete;
+  LogCapture& operator=(const LogCapture&) = delete;
+  /// The messages, each "Gwyddion: <message>" (debug and info messages are dropped).
+  std::vector<std::string> take() {
+    std::lock_guard lock(mutex_);
+    return std::move(messages_);
+  }
+
+ private:
+  static void handle(const char* domain, int level, const char* message, void* data) {
+    constexpr int kDebugOrInfo = (1 << 6) | (1 << 7);  // G_LOG_LEVEL_INFO, G_LOG_LEVEL_DEBUG
+    if (level & kDebugOrInfo) return;
+    auto* self = static_cast<LogCapture*>(data);
+    std::lock_guard lock(self->mutex_);  // modules may log from worker threads
+    if (self->messages_.size() < 20)
+      self->messages_.push_back(
+          fmt::format("{}: {}", domain && *domain ? domain : "GLib", message ? message : "(no message)"));
+  }
+  const Api& a_;
+  GLogFunc prev_ = nullptr;
+  std::mutex mutex_;
+  std::vector<std::string> messages_;
+};
 
 struct Channel {
   ChannelInfo info;
@@ -367,9 +402,12 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
                     path));
   GError* err = nullptr;
   const char* module = nullptr;
+  LogCapture log(a);
   void* c = a.gwy_file_load_with_func(path.c_str(), kRunNonInteractive, &module, &err);
+  std::vector<std::string> logged = log.take();
   if (!c) {
     std::string why = err && err->message ? err->message : "unknown error";
+    for (const auto& m : logged) why += fmt::format(" ({})", m);
     if (err) a.g_error_free(err);
     return make_error(fmt::format("{}: Gwyddion's {} module could not load it: {}", path, detected, why));
   }
@@ -383,6 +421,7 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
   SurfaceData out;
   out.format = ProfileFormat::GwyddionLib;
   out.reader = fmt::format("gwyddion:{}", module ? module : detected);
+  for (const auto& m : logged) out.warnings.push_back(fmt::format("{}: {}", path, m));
   std::vector<Channel> chans = list_channels(a, c);
   for (const auto& ch : chans) out.channels.push_back(ch.info);
   if (chans.empty())
@@ -550,8 +589,10 @@ Status write_gwyddion(const std::string& path, const Map& m, const std::string& 
   a.gwy_app_data_browser_select_data_field(c, 0);
   GError* err = nullptr;
   const char* module = nullptr;
+  LogCapture log(a);
   int ops = a.gwy_file_save_with_func(c, path.c_str(), kRunNonInteractive, &module, &err);
   std::string why = err && err->message ? err->message : "";
+  for (const auto& m : log.take()) why += fmt::format("{}({})", why.empty() ? "" : " ", m);
   if (err) a.g_error_free(err);
   a.gwy_app_data_browser_remove(c);
   a.g_object_unref(c);

@@ -269,13 +269,30 @@ bool number_with_unit(std::string_view s, double& v, std::optional<double>& scal
   return scale.has_value();
 }
 
+/// Whether a column can be an abscissa: monotonic, and changing at more than half of its steps
+/// (a column that stays put, like the first column "2 2 2 2 2 0 0 0 0 0" of a height matrix, is
+/// no x axis).
 bool monotonic(const double* col, std::size_t stride, std::size_t n) {
+  if (n < 2) return true;
   bool up = true, down = true;
+  std::size_t flat = 0;
   for (std::size_t k = 1; k < n; ++k) {
     up = up && col[k * stride] >= col[(k - 1) * stride];
     down = down && col[k * stride] <= col[(k - 1) * stride];
+    flat += col[k * stride] == col[(k - 1) * stride];
   }
-  return up || down;
+  return (up || down) && 2 * flat < n - 1;
+}
+
+/// Whether the steps of a column all lie within 1 % of their mean (an evenly sampled axis, as
+/// printed with a few significant digits).
+bool evenly_spaced(const double* col, std::size_t stride, std::size_t n) {
+  if (n < 3) return true;
+  const double mean = (col[(n - 1) * stride] - col[0]) / double(n - 1);
+  if (!(std::abs(mean) > 0)) return false;
+  for (std::size_t k = 1; k < n; ++k)
+    if (!(std::abs(col[k * stride] - col[(k - 1) * stride] - mean) <= 0.01 * std::abs(mean))) return false;
+  return true;
 }
 
 /// Sorted distinct values of v, with the spacing a + b k if they are regular (within 1e-3 b).
@@ -605,8 +622,12 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   }
 
   // A matrix of heights: a header with sizes ("w= h=", "x-pixels", "nx"), or three or more
-  // unnamed columns whose first is no abscissa (not monotonic).
-  if (!forced && (matrix_header || (ncols >= 3 && !named_row && !monotonic(rows[0], ncols, rows.size())))) {
+  // unnamed columns whose first is no abscissa (not monotonic). With ten or more unnamed
+  // columns a monotonic first column must also be evenly spaced (within 1 % of its mean step)
+  // to be an abscissa: the left edge of a tilted height matrix rises, but not in equal steps.
+  const bool abscissa =
+      monotonic(rows[0], ncols, rows.size()) && (ncols < 10 || evenly_spaced(rows[0], ncols, rows.size()));
+  if (!forced && (matrix_header || (ncols >= 3 && !named_row && !abscissa))) {
     Map& m = out.map;
     m.nx = ncols;
     m.ny = rows.size();

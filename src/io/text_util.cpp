@@ -48,7 +48,15 @@ bool parse_double(std::string_view s, double& out, bool decimal_comma) {
     }
   }
   std::string low = lower_ascii(s);
-  if (low == "nan" || low == "-nan" || low == "+nan" || low == "1.#qnan" || low == "-1.#ind" || low == "1.#ind") {
+  // Old MSVC printf pads its spellings with zeros ("1.#INF00", "-1.#IND00", "1.#QNAN0"); newer
+  // MSVC and C99 strtod's form carry a payload in parentheses ("-nan(ind)", "nan(0x8)").
+  if (low.find('#') != std::string::npos)
+    while (low.size() > 3 && low.back() == '0') low.pop_back();
+  if (const auto open = low.find('(');
+      open != std::string::npos && low.back() == ')' && (low.rfind("nan(", 0) == 0 || low.rfind("-nan(", 0) == 0))
+    low.resize(open);
+  if (low == "nan" || low == "-nan" || low == "+nan" || low == "1.#qnan" || low == "-1.#qnan" || low == "1.#snan" ||
+      low == "-1.#snan" || low == "-1.#ind" || low == "1.#ind") {
     out = std::numeric_limits<double>::quiet_NaN();
     return true;
   }

@@ -441,8 +441,8 @@ Result<std::string> surface_report(const ReportInput& in) {
       const std::string r = fmt_len(in.tip_radius, length_unit(in.tip_radius));
       if (std::isnan(*tip_cutoff))
         tip_text = fmt::format(
-            " A tip of radius {} cannot follow this surface at any scale up to a quarter of its length (the "
-            "curvature of its valleys exceeds 1/R there): no cutoff on this page is reliable.",
+            " A tip of radius {} cannot follow this surface at any scale up to a quarter of its length (its peaks "
+            "are curved more than 1/(2R) there): no cutoff on this page is reliable.",
             r);
       else if (*tip_cutoff == 0)
         tip_text = fmt::format(
@@ -452,8 +452,9 @@ Result<std::string> surface_report(const ReportInput& in) {
       else
         tip_text = fmt::format(
             " The dashed grey vertical line is the short reliability cutoff for a tip of radius {}: {} (below it the "
-            "valleys are curved more than 1/R, the tip cannot reach their bottom, and θ_max from the finer scales "
-            "is not to be trusted; rows below it are marked in the table).",
+            "measured peaks are curved more than 1/(2R), half the tip's curvature: the scan shows the tip rather than "
+            "the surface, and θ_max from the finer scales is not to be trusted; rows below it are marked in the "
+            "table).",
             r, fmt_len(*tip_cutoff, length_unit(*tip_cutoff)));
     }
     std::string html;

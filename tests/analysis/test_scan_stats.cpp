@@ -72,36 +72,60 @@ TEST(ScanStats, ProfileSizes) {
   EXPECT_DOUBLE_EQ(s.nyquist_wavelength, 1e-6);
 }
 
-TEST(ScanStats, TipRadiusCutoffOfASinusoid) {
-  // z = a sin(2 pi x / L0), L0 = 64 dx, sampled through its valleys. The stencil curvature at a
-  // valley is a 2 (1 - cos(k0 h)) / h^2, decreasing in h: a tip of radius R follows the
-  // surface from the h where it equals 1/R. Choose R so that this happens at h = 5 dx.
-  const double dx = 1e-7, L0 = 64 * dx, a = 5e-8, k0 = 2 * kPi / L0, h5 = 5 * dx;
-  const double R = h5 * h5 / (a * 2 * (1 - std::cos(k0 * h5)));
+TEST(ScanStats, TipRadiusCutoffOfATriangleWave) {
+  // SurfaceTopography's definition (docs/analysis.md): the stencil length 2h at which the most
+  // negative curvature (z(x+h) - 2 z(x) + z(x-h)) / h^2 reaches -1/(2R). A triangle wave of slope
+  // +-s with its kinks on the samples (period 64 dx, peaks at i = 32 mod 64) has -2 s / h at
+  // every peak for h up to half a period, and nothing more negative anywhere; linear
+  // interpolation between samples is exact on it. So 2 s / h = 1 / (2R) at h = 4 s R: the cutoff
+  // is 8 s R, also between samples.
+  const double dx = 1e-7, s = 0.1;
+  auto tri = [&](int i) { return s * dx * (16 - std::abs(i % 64 - 32)); };
   frictal::Profile p;
   for (int i = 0; i < 512; ++i) {
     p.x.push_back(i * dx);
-    p.z.push_back(a * std::sin(k0 * i * dx));
+    p.z.push_back(tri(i));
   }
+  const double R = 5.3 * dx / (4 * s);  // h = 5.3 dx: cutoff 10.6 dx
   auto c = frictal::short_reliability_cutoff(p, R);
   ASSERT_TRUE(c.ok()) << c.error().message;
-  EXPECT_NEAR(*c, h5, 1e-6 * h5);
-  // A much blunter tip fails at more scales; a sharp tip follows everything.
+  EXPECT_NEAR(*c, 8 * s * R, 1e-9 * 8 * s * R);
+  EXPECT_NEAR(*c, 10.6 * dx, 1e-9 * dx);
+  // A blunter tip: 4 R gives h = 21.2 dx, still inside half a period.
   auto blunt = frictal::short_reliability_cutoff(p, 4 * R);
   ASSERT_TRUE(blunt.ok());
-  EXPECT_GT(*blunt, h5);
-  auto sharp = frictal::short_reliability_cutoff(p, R / 100);
+  EXPECT_NEAR(*blunt, 32 * s * R, 1e-9 * 32 * s * R);
+  // A tip sharper than the peaks at h = dx (4 s R < dx) follows everything: 0.
+  auto sharp = frictal::short_reliability_cutoff(p, 0.2 * dx / (4 * s));
   ASSERT_TRUE(sharp.ok());
   EXPECT_EQ(*sharp, 0.0);
-  // The same along y in a map (the larger of the two directions).
+  // Only peaks count: V-shaped valleys (the upside-down wave shifted by half a period has them
+  // too, so use a single V) never make the scan unreliable, however sharp.
+  frictal::Profile v;
+  for (int i = 0; i < 512; ++i) {
+    v.x.push_back(i * dx);
+    v.z.push_back(s * dx * std::abs(i - 256));
+  }
+  auto cv = frictal::short_reliability_cutoff(v, 1.0);
+  ASSERT_TRUE(cv.ok());
+  EXPECT_EQ(*cv, 0.0);
+  // A single tent: its apex stays sharp up to a quarter of the length (h = 128 dx) for a tip
+  // with 2 s / (128 dx) > 1 / (2R): unreliable at every scale, NaN.
+  frictal::Profile tent = v;
+  for (double& z : tent.z) z = -z;
+  auto ct = frictal::short_reliability_cutoff(tent, 1.0);
+  ASSERT_TRUE(ct.ok());
+  EXPECT_TRUE(std::isnan(*ct));
+  EXPECT_NEAR(*frictal::short_reliability_cutoff(tent, R), 10.6 * dx, 1e-9 * dx);
+  // The same wave along y in a map (the larger of the two directions; along x it is flat).
   frictal::Map m;
   m.nx = 4;
   m.ny = 512;
   m.dx = m.dy = dx;
   for (int j = 0; j < 512; ++j)
-    for (int i = 0; i < 4; ++i) m.heights.push_back(a * std::sin(k0 * j * dx));
+    for (int i = 0; i < 4; ++i) m.heights.push_back(tri(j));
   auto cm = frictal::short_reliability_cutoff(m, R);
   ASSERT_TRUE(cm.ok()) << cm.error().message;
-  EXPECT_NEAR(*cm, h5, 1e-6 * h5);
+  EXPECT_NEAR(*cm, 10.6 * dx, 1e-9 * dx);
   EXPECT_FALSE(frictal::short_reliability_cutoff(p, -1).ok());
 }

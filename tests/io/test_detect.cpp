@@ -2,6 +2,7 @@
 // small size header, x,y,z lists on a grid, ISO 25178-71 SDF (ASCII), NumPy .npy and
 // gzip-compressed files. Every file is written here from known numbers; expected values are
 // those numbers times the units written.
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -130,6 +131,34 @@ TEST(DetectText, MatrixWithoutHeader) {
   ASSERT_TRUE(t.ok());
   EXPECT_DOUBLE_EQ(t->map.dx, 0.25e-6);
   EXPECT_DOUBLE_EQ(t->map.dy, 0.25e-6);
+}
+
+TEST(DetectText, TiltedMatrixWithoutHeaderIsAMatrix) {
+  // 12 x 6 heights z(i, j) = 10 j + e(i, j) with |e| < 3: the first column rises (a map tilted
+  // along y), but in unequal steps (10 + e differences), so it is no abscissa: a map. The same
+  // 12 columns whose first column rises in equal steps (0.25, 0.75, 1.25, ...) stay a table: a
+  // profile from columns 0 and 1 with a warning naming them.
+  auto e = [](int i, int j) { return double((i * 7 + j * 13) % 5) - 2.0; };  // -2 .. 2
+  std::string tilted, table;
+  for (int j = 0; j < 6; ++j) {
+    for (int i = 0; i < 12; ++i) {
+      tilted += fmt::format("{}{}", i ? " " : "", 10.0 * j + e(i, j));
+      table += fmt::format("{}{}", i ? " " : "", i == 0 ? 0.5 * j + 0.25 : e(i, j));
+    }
+    tilted += "\n";
+    table += "\n";
+  }
+  auto s = frictal::read_surface_bytes(tilted, "tilted.txt", with_spacing(1e-6));
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  ASSERT_TRUE(s->is_map);
+  EXPECT_EQ(s->format, frictal::ProfileFormat::Matrix);
+  EXPECT_EQ(s->map.nx, 12u);
+  EXPECT_EQ(s->map.ny, 6u);
+  EXPECT_DOUBLE_EQ(s->map.at(3, 4), 40.0 + e(3, 4));
+  auto t = frictal::read_surface_bytes(table, "table.txt", with_spacing(1e-6));
+  ASSERT_TRUE(t.ok()) << t.error().message;
+  EXPECT_FALSE(t->is_map);
+  EXPECT_TRUE(has_warning(*t, "using column 0 as x"));
 }
 
 TEST(DetectText, MatrixWithSmallHeaders) {

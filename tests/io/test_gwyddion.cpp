@@ -7,7 +7,10 @@
 
 #include <dlfcn.h>
 #include <cmath>
+#include <cstdint>
+#include <fstream>
 #include <string>
+#include <vector>
 
 #include "frictal/io.hpp"
 
@@ -274,4 +277,83 @@ TEST(Gwyddion, BadTextKeepsTheNativeMessage) {
   auto s = frictal::read_surface(path);
   ASSERT_FALSE(s.ok());
   EXPECT_NE(s.error().message.find(path + ":4:"), std::string::npos) << s.error().message;
+}
+
+TEST(Gwyddion, BinarySdfWrittenFromTheLayoutOfIso25178_71) {
+  // Gwyddion 2.62 reads binary SDF (sdfile-bin) but writes only the text form, and no public
+  // binary sample was found (docs/io.md). So the bytes are laid out here as ISO 25178-71 / the
+  // Surfstand SDF define them: "bISO-1.0", ManufacID[10], CreateDate[12], ModDate[12],
+  // NumPoints u16, NumProfiles u16, Xscale, Yscale, Zscale, Zresolution (float64), Compression,
+  // DataType, CheckType (u8), 81 bytes, then the points little-endian. DataType 5 = int16, whose
+  // invalid value is -32768; DataType 7 = float64, whose invalid value is NaN.
+  REQUIRE_GWYDDION();
+  auto put = [](std::string& s, const void* p, std::size_t n) { s.append(static_cast<const char*>(p), n); };
+  auto sdf = [&](int type, const std::vector<double>& z) {
+    std::string b = "bISO-1.0";
+    b += "frictal   ";
+    b += "231120261200";
+    b += "231120261200";
+    const std::uint16_t nx = 5, ny = 3;
+    const double xs = 1e-6, ys = 2e-6, zs = 1e-9, zr = 1e-9;
+    put(b, &nx, 2);
+    put(b, &ny, 2);
+    for (double v : {xs, ys, zs, zr}) put(b, &v, 8);
+    b += '\0';
+    b += char(type);
+    b += '\0';
+    EXPECT_EQ(b.size(), 81u);
+    for (double v : z) {
+      if (type == 5) {
+        const std::int16_t w = std::int16_t(v);
+        put(b, &w, 2);
+      } else {
+        put(b, &v, 8);
+      }
+    }
+    return b;
+  };
+  std::vector<double> z;  // z(i, j) = 10 (i + 1) + 100 j - 150 in units of Zscale
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 5; ++i) z.push_back(10.0 * (i + 1) + 100.0 * j - 150);
+  for (int type : {5, 7}) {
+    std::vector<double> zz = z;
+    zz[7] = type == 5 ? -32768.0 : std::nan("");  // (i, j) = (2, 1): invalid
+    const std::string path = ::testing::TempDir() + "frictal_bin" + std::to_string(type) + ".sdf";
+    {
+      std::ofstream f(path, std::ios::binary);
+      f << sdf(type, zz);
+    }
+    auto s = frictal::read_surface(path);
+    ASSERT_TRUE(s.ok()) << s.error().message;
+    EXPECT_EQ(s->reader, "gwyddion:sdfile-bin");
+    ASSERT_TRUE(s->is_map);
+    const frictal::Map& m = s->map;
+    ASSERT_EQ(m.nx, 5u);
+    ASSERT_EQ(m.ny, 3u);
+    EXPECT_NEAR(m.dx, 1e-6, 1e-21);
+    EXPECT_NEAR(m.dy, 2e-6, 1e-21);
+    EXPECT_EQ(m.valid_count(), 14u);
+    for (std::size_t k = 0; k < 15; ++k) {
+      if (k == 7) {
+        EXPECT_TRUE(std::isnan(m.heights[k])) << type;
+      } else {
+        EXPECT_NEAR(m.heights[k], z[k] * 1e-9, 1e-24) << type << " point " << k;
+      }
+    }
+  }
+}
+
+TEST(Gwyddion, ItsLogMessagesBecomeWarningsNotStderr) {
+  // gwyfile-test.gwy (tests/data/README.md) holds a GwySelectionPoint, a type Gwyddion 2.62 no
+  // longer knows: its gwyfile module says so with g_warning(). The library never prints: the
+  // message is one of the read's warnings, and nothing reaches stderr.
+  REQUIRE_GWYDDION();
+  ::testing::internal::CaptureStderr();
+  auto s = frictal::read_surface(kData + "/instruments/gwyfile-test.gwy");
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  EXPECT_EQ(err, "");
+  bool found = false;
+  for (const auto& w : s->warnings) found |= w.find("GwySelectionPoint") != std::string::npos;
+  EXPECT_TRUE(found);
 }

@@ -460,3 +460,19 @@ TEST(Instruments, WykoOpdHasUndefinedPoints) {
   EXPECT_EQ(st.valid, valid);
   EXPECT_TRUE(std::isfinite(st.Sq));
 }
+
+// A plain 10 x 10 matrix of heights without any header whose first column (2 2 2 2 2 0 0 0 0 0)
+// is monotonic but no abscissa: test/IO/test_asc.py::test_example5 states a 10 x 10 topography
+// with rms_height_from_area 1.0 (rows of 2 above rows of 0). Read as a 10-column CSV profile
+// before (column 0 taken as x).
+TEST(Instruments, PlainMatrixWhoseFirstColumnStaysPut) {
+  frictal::ReadOptions o;
+  o.spacing = 0.1;  // test_example5 gives physical sizes (1, 2); frictal's spacing is one value
+  frictal::SurfaceData s = read_ok("matrix-5.txt", o);
+  ASSERT_TRUE(s.is_map);
+  EXPECT_EQ(s.format, frictal::ProfileFormat::Matrix);
+  EXPECT_EQ(s.map.nx, 10u);
+  EXPECT_EQ(s.map.ny, 10u);
+  EXPECT_NEAR(frictal::map_stats(s.map).Sq, 1.0, 1e-15);
+  EXPECT_NEAR(double(s.map.nx) * s.map.dx, 1.0, 1e-15);
+}

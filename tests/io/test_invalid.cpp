@@ -73,6 +73,19 @@ TEST(InvalidPoints, TextProfileEverySpellingIsDroppedWithOneWarning) {
   EXPECT_NE(w.find("2 NaN"), std::string::npos) << w;
   EXPECT_NE(w.find("3 +inf"), std::string::npos) << w;
   EXPECT_NE(w.find("2 -inf"), std::string::npos) << w;
+  // The spellings other programs print: MSVC (old: padded with zeros; new: "-nan(ind)"), C99
+  // strtod's payload form, signs on NaN. Each one invalid point, none an error.
+  for (const char* v : {"1.#INF", "-1.#INF", "1.#INF00", "-1.#IND", "-1.#IND00", "1.#QNAN", "1.#QNAN0", "-1.#QNAN",
+                        "1.#SNAN", "-nan(ind)", "nan(ind)", "NaN(0x8)", "-nan", "+nan", "-Infinity", "+INFINITY"}) {
+    auto r = frictal::read_surface_bytes(std::string("x,z\n0,1\n1,") + v + "\n2,2\n3,4\n", "v.csv", [] {
+      frictal::ReadOptions o;
+      o.default_unit = "m";
+      return o;
+    }());
+    ASSERT_TRUE(r.ok()) << v << ": " << r.error().message;
+    EXPECT_EQ(r->curve.size(), 3u) << v;
+    EXPECT_EQ(count_containing(r->warnings, "1 invalid point"), 1u) << v;
+  }
   // Whitespace and semicolon files, too.
   for (const char* t : {"0 1\n1 inf\n2 2\n", "0;1\n1;-Inf\n2;2\n", "0\t1\n1\tNaN\n2\t2\n"}) {
     auto r = frictal::read_surface_bytes(t, "t.txt", [] {

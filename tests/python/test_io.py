@@ -107,21 +107,20 @@ def test_npy_and_single_column_are_detected(tmp_path):
 
 
 def test_profile_stats_scan_quantities_and_tip_cutoff():
-    """n dx length and bandwidth of a profile; the tip cutoff of a sinusoid sampled through its
-    valleys: the stencil curvature there is a 2 (1 - cos(k0 h)) / h^2, so the tip of radius
-    R = h5^2 / (a 2 (1 - cos(k0 h5))) follows the surface from h5 = 5 dx on (docs/analysis.md)."""
-    dx, a = 1e-7, 5e-8
-    k0 = 2 * math.pi / (64 * dx)
-    h5 = 5 * dx
-    R = h5 * h5 / (a * 2 * (1 - math.cos(k0 * h5)))
-    x = np.arange(512) * dx
-    p = frictal.Profile(x, a * np.sin(k0 * x))
+    """n dx length and bandwidth of a profile; the tip cutoff of a triangle wave of slope s with
+    its kinks on the samples: at a peak the stencil curvature is -2 s / h, which reaches -1/(2R)
+    at h = 4 s R, a stencil length 2h = 8 s R (SurfaceTopography's definition, docs/analysis.md)."""
+    dx, slope = 1e-7, 0.1
+    R = 5.3 * dx / (4 * slope)
+    i = np.arange(512)
+    x = i * dx
+    p = frictal.Profile(x, slope * dx * (16 - np.abs(i % 64 - 32)))
     s = frictal.profile_stats(p, tip_radius=R)
     assert s["sampling_interval_m"] == pytest.approx(dx, rel=1e-12)
     assert s["physical_length_m"] == pytest.approx(512 * dx, rel=1e-12)
     assert s["bandwidth_m"] == pytest.approx((dx, 512 * dx), rel=1e-12)
     assert s["nyquist_wavelength_m"] == pytest.approx(2 * dx, rel=1e-12)
-    assert s["short_reliability_cutoff_m"] == pytest.approx(h5, rel=1e-6)
+    assert s["short_reliability_cutoff_m"] == pytest.approx(8 * slope * R, rel=1e-9)
     assert "short_reliability_cutoff_m" not in frictal.profile_stats(p)
 
 
@@ -159,3 +158,43 @@ def test_gwyddion_backed_instrument_file_with_a_channel():
     assert 256 * s["dx"] == pytest.approx(2e-5, rel=1e-6)
     assert frictal.map_stats(h, dx=s["dx"], dy=s["dy"])["Sq"] == pytest.approx(3.026701737129839e-07, rel=1e-6)
     assert np.sqrt(((h - h.mean()) ** 2).mean()) == pytest.approx(3.026701737129839e-07, rel=1e-6)
+
+
+def _surfacetopography_cutoff(z, px, radius, safety=0.5):
+    """SurfaceTopography's scanning_probe_reliability_cutoff for a uniform line scan, written
+    here from its definition (Generic/ScanningProbe.py, Uniform/Derivative.py at commit 119cb66):
+    second derivative at stencil length `distance` = 2 s px from linearly interpolated heights at
+    x +- s px, kept where the stencil lies inside the scan; the distance where its minimum reaches
+    -safety/radius, bracketed by 2 px .. n px / 2 (here by bisection instead of Brent)."""
+    n = len(z)
+    x = np.arange(n, dtype=float)
+
+    def objective(distance):
+        s = distance / (2 * px)
+        d = (np.interp(x - s, x, z) - 2 * z + np.interp(x + s, x, z)) / (s * px) ** 2
+        d = d[int(np.ceil(s)):n - int(np.ceil(s))]
+        return safety / radius + (d.min() if len(d) else 0.0)
+
+    a, b = 2 * px, n * px / 2
+    if objective(a) > 0:
+        return 0.0
+    if objective(b) < 0:
+        return float("nan")
+    for _ in range(200):
+        m = 0.5 * (a + b)
+        a, b = (m, b) if objective(m) < 0 else (a, m)
+    return 0.5 * (a + b)
+
+
+def test_tip_cutoff_equals_surfacetopography_definition_on_a_random_profile():
+    """A second method for short_reliability_cutoff: the definition re-implemented in numpy on a
+    rough random profile (smoothed random walk), for tip radii from sharper than every peak to
+    blunt."""
+    rng = np.random.default_rng(1)
+    n, px = 2000, 1e-8
+    z = np.convolve(np.cumsum(rng.normal(size=n)) * 1e-9, np.ones(5) / 5, mode="same")
+    p = frictal.Profile(np.arange(n) * px, z)
+    for radius in (1e-8, 1e-7, 1e-6, 1e-5):
+        want = _surfacetopography_cutoff(z, px, radius)
+        got = frictal.profile_stats(p, tip_radius=radius)["short_reliability_cutoff_m"]
+        assert got == pytest.approx(want, rel=1e-9, abs=1e-20), radius

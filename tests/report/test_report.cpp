@@ -250,18 +250,18 @@ TEST(Report, MapPageHasImagePolarPlotAndCentralLine) {
 }
 
 TEST(Report, TipRadiusCutoffIsDrawnOnTheResolutionPlot) {
-  // z = a sin(k0 x), L0 = 64 dx: the stencil curvature at a valley is a 2 (1 - cos(k0 h)) / h^2
-  // (decreasing in h), so a tip of radius R = h5^2 / (a 2 (1 - cos(k0 h5))) follows the surface
-  // from h5 = 5 dx = 500 nm on (docs/analysis.md). The resolution study's 6 cutoffs run from
-  // L/2 = 25.6 um down to 4 dx = 0.4 um geometrically: only the last one lies below 0.5 um.
-  const double dx = 1e-7, L0 = 64 * dx, a = 5e-8, k0 = 2 * std::numbers::pi / L0, h5 = 5 * dx;
-  const double R = h5 * h5 / (a * 2 * (1 - std::cos(k0 * h5)));
+  // A triangle wave of slope +-s with its kinks on the samples (period 64 dx): at a peak the
+  // stencil curvature is -2 s / h for every h up to half a period (linear interpolation is exact
+  // there), so the cutoff -- the stencil length 2h where it reaches -1/(2R) -- is 8 s R
+  // (docs/analysis.md). R = 500 nm / (8 s) puts it at 500 nm. The resolution study's 6 cutoffs
+  // run from L/2 = 25.6 um down to 4 dx = 0.4 um geometrically: only the last one lies below.
+  const double dx = 1e-7, s = 0.1, R = 500e-9 / (8 * s);
   rp::ReportInput in;
   for (int i = 0; i < 512; ++i) {
     in.lower.x.push_back(i * dx);
-    in.lower.z.push_back(a * std::sin(k0 * i * dx));
+    in.lower.z.push_back(s * dx * (16 - std::abs(i % 64 - 32)));
   }
-  in.lower_name = "sine.csv";
+  in.lower_name = "triangle.csv";
   in.detrend = "none";
   in.resolution_steps = 6;
   in.threads = 2;
