@@ -51,7 +51,8 @@ int run(TiltOptions& o) {
     surface["generator"] = spec->generator;
   } else {
     if (o.lower_file.empty())
-      throw UsageError("tilt: give a generator (koch, wm, sawtooth, sine, self-affine) or --lower FILE [--upper FILE]");
+      throw UsageError(
+          "tilt: give a generator (koch, wm, sawtooth, sine, self-affine, fourier) or --lower FILE [--upper FILE]");
     lower = unwrap(read_curve(input_path(o.lower_file)));
     upper = o.upper_file.empty() ? lower : unwrap(read_curve(input_path(o.upper_file)));
     base = tilt_config_for_surface(0, 0);  // offsets over half the block; run-away 0.01 m
@@ -134,6 +135,7 @@ int run(TiltOptions& o) {
     j["normal_damping_per_s"] = r->normal_damping;
     j["settled_contacts"] = r->settled_contacts;
     j["settled_overlap_m"] = r->settled_overlap;
+    j["settled_speed_m_s"] = r->settled_speed;
     fmt::print("{}\n", j.dump());
   } else {
     // With a CSV on standard output, the summary goes to standard error.
