@@ -133,9 +133,10 @@ BENCHMARK(BM_KochK5Envelope)->Unit(benchmark::kMillisecond);
 //   kind 0: random self-affine (H = 0.8), kind 1: Weierstrass-Mandelbrot with 12 scales
 //   (n_max = 11, D = 1.5, gamma = 1.5, L_b = 20 L).
 // grid 0: both on the same grid (an aligned lattice: every sample shift is an event, exact);
-// grid 1: the upper grid moved by half a spacing; grid 2: the upper profile with 0.7 N points.
-// Grids 1 and 2 do not align: the exact signature would need ~N^2 events, so offsets are sampled
-// at the finer spacing (as beyond max_events) and each is evaluated by the general search.
+// grid 1: the same grids, offsets sampled halfway between lattice offsets (--offsets N whose
+// offsets miss the lattice); grid 2: the upper profile with 0.7 N points on the same length (the
+// grids do not align: the exact signature would need ~N^2 events, so offsets are sampled at the
+// finer spacing, as beyond max_events). Grids 1 and 2 take the general search over both faces.
 // One window of consecutive offsets one lower spacing apart, starting at a quarter of the
 // length, one thread. Thread CPU time, so that other load on the machine does not count: cost
 // per offset = (t(window) - t(set-up)) / offsets, where t(set-up) is the least of three calls
@@ -168,8 +169,6 @@ const Pair& scaling_pair(int kind, std::size_t n, int grid) {
     w.spacing = w.length / static_cast<double>(nu - 1);
     p.upper = rotate180(*wm_profile(w));
   }
-  if (grid == 1)
-    for (double& x : p.upper.x) x += 0.5 * p.lower.length() / static_cast<double>(n - 1);
   return cache.emplace(key, std::move(p)).first->second;
 }
 
@@ -187,7 +186,7 @@ void scaling(benchmark::State& st, int kind, std::size_t n, int grid, bool tilte
   o.threads = 1;
   o.keep_contacts = false;
   o.tilted_bounds = tilted;
-  o.offset_min = std::round(0.25 * L / dx) * dx;
+  o.offset_min = std::round(0.25 * L / dx) * dx + (grid == 1 ? 0.5 * dx : 0.0);
   auto timed = [&](std::size_t offsets, std::size_t& count) {
     o.offset_max = o.offset_min + static_cast<double>(offsets - 1) * dx;
     if (grid != 0) o.offsets = offsets;  // sampled one lower spacing apart
@@ -234,7 +233,8 @@ BENCHMARK(BM_SignatureScaling)
 
 void BM_SignatureScalingNonAligned(benchmark::State& st) {
   const auto n = static_cast<std::size_t>(st.range(1));
-  scaling(st, static_cast<int>(st.range(0)), n, static_cast<int>(st.range(2)), true, n >= 10'000'000 ? 20'000 : 10'000);
+  const std::size_t W = n >= 10'000'000 ? 200'000 : (n >= 1'000'000 ? 50'000 : 20'000);
+  scaling(st, static_cast<int>(st.range(0)), n, static_cast<int>(st.range(2)), true, W);
 }
 BENCHMARK(BM_SignatureScalingNonAligned)
     ->ArgNames({"kind", "points", "grid"})

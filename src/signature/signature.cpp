@@ -396,7 +396,8 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
     double left, right;  // one-sided slopes of this candidate's continuation (NaN: drops)
     ContactType type;
   };
-  std::vector<Act> act;
+  thread_local std::vector<Act> act;  // kept between offsets: no allocation per offset
+  act.clear();
   for (const Cand& c : cands) {
     if (c.value < best - P.vtol) continue;
     Act t{};
@@ -471,7 +472,8 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
   }
   std::sort(act.begin(), act.end(), [](const Act& p, const Act& q) { return p.x < q.x; });
   // Merge duplicates (a vertex-vertex contact is found from both faces).
-  std::vector<Act> uniq;
+  thread_local std::vector<Act> uniq;
+  uniq.clear();
   for (const Act& t : act) {
     if (!uniq.empty() && std::abs(uniq.back().x - t.x) <= P.xtol) {
       Act& u = uniq.back();
