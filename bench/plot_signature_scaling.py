@@ -40,7 +40,7 @@ def load(path):
 def main():
     before, _ = load(sys.argv[1])
     now, ctx = load(sys.argv[2])
-    fig, (ax, lin) = plt.subplots(1, 2, figsize=(11.5, 4.8))
+    fig, (ax, lin) = plt.subplots(1, 2, figsize=(11.5, 6.6))
     for kind, label in KINDS.items():
         c = COLORS[kind]
         series = [
@@ -48,7 +48,7 @@ def main():
             (now.get(("BM_SignatureScaling", kind, 0)), "--", "^", f"{label}: block maxima only"),
             (now.get(("BM_SignatureScaling", kind, 1)), "-", "s", f"{label}: now (tilted lines)"),
             (now.get(("BM_SignatureScalingNonAligned", kind, 1)), "-.", "x",
-             f"{label}: grids off by dx/2 (sampled)"),
+             f"{label}: offsets between lattice offsets (sampled)"),
             (now.get(("BM_SignatureScalingNonAligned", kind, 2)), "-.", "+",
              f"{label}: 0.7 N upper points (sampled)"),
         ]
@@ -63,26 +63,26 @@ def main():
                 lin.plot(n, t, ls=ls, marker=mk, color=c, label=f"{label}: {lab}")
                 for x, y in data:
                     if variant == 1:
-                        lin.annotate(f"{y:.2f}", (x, y), textcoords="offset points", xytext=(4, -12), fontsize=7,
-                                     color=c)
+                        lin.annotate(f"{y:.2f}", (x, y), textcoords="offset points",
+                                     xytext=(4, 6 if kind == 1 else -13), fontsize=8, color=c)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("points per profile N")
     ax.set_ylabel("CPU time per offset (µs, one thread)")
     ax.set_title("all runs (log scale)", fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=6.5, ncol=1)
     lin.set_xscale("log")
     lin.set_ylim(0, None)
     lin.set_xlabel("points per profile N")
     lin.set_ylabel("CPU time per offset (µs, one thread)")
     lin.set_title("aligned grids, exact (every event), linear scale", fontsize=10)
     lin.grid(True, which="both", alpha=0.3)
-    lin.legend(fontsize=7)
     fig.suptitle("Signature: cost per offset vs N (offsets one point spacing apart)")
     fig.text(0.01, 0.01, f"{ctx.get('host_name', '')}, {ctx.get('num_cpus', '?')} CPUs, {ctx['date'][:10]}",
              fontsize=7, color="gray")
-    fig.tight_layout()
+    handles, labels = ax.get_legend_handles_labels()  # the right panel's lines are among them
+    fig.legend(handles, labels, loc="lower center", ncol=2, fontsize=8)
+    fig.tight_layout(rect=(0, 0.2, 1, 1))
     fig.savefig(sys.argv[3], dpi=120)
 
 
