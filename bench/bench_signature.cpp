@@ -13,6 +13,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 #include <utility>
 
 #include "frictal/generators.hpp"
@@ -131,16 +132,23 @@ BENCHMARK(BM_KochK5Envelope)->Unit(benchmark::kMillisecond);
 // profiles of N points on the same length (finer sampling of the same kind of surface):
 //   kind 0: random self-affine (H = 0.8), kind 1: Weierstrass-Mandelbrot with 12 scales
 //   (n_max = 11, D = 1.5, gamma = 1.5, L_b = 20 L).
-// One window of consecutive event offsets (aligned lattice: every sample shift) starting at a
-// quarter of the length, one thread. Thread CPU time, so that other load on the machine does
-// not count: cost per offset = (t(window) - t(set-up)) / offsets, where t(set-up) is the least
-// of three calls with 2 offsets (faces and bound tables, paid once per call).
-const Pair& scaling_pair(int kind, std::size_t n) {
-  static std::map<std::pair<int, std::size_t>, Pair> cache;
-  auto key = std::make_pair(kind, n);
+// grid 0: both on the same grid (an aligned lattice: every sample shift is an event, exact);
+// grid 1: the same grids, offsets sampled halfway between lattice offsets (--offsets N whose
+// offsets miss the lattice); grid 2: the upper profile with 0.7 N points on the same length (the
+// grids do not align: the exact signature would need ~N^2 events, so offsets are sampled at the
+// finer spacing, as beyond max_events). Grids 1 and 2 take the general search over both faces.
+// One window of consecutive offsets one lower spacing apart, starting at a quarter of the
+// length, one thread. Thread CPU time, so that other load on the machine does not count: cost
+// per offset = (t(window) - t(set-up)) / offsets, where t(set-up) is the least of three calls
+// with 2 offsets (faces and bound tables, paid once per call) and t(window) the least of three.
+// tilted: SignatureOptions::tilted_bounds (1, the default; 0: block maxima only, as before).
+const Pair& scaling_pair(int kind, std::size_t n, int grid) {
+  static std::map<std::tuple<int, std::size_t, int>, Pair> cache;
+  auto key = std::make_tuple(kind, n, grid);
   auto it = cache.find(key);
   if (it != cache.end()) return it->second;
   cache.clear();  // one big pair in memory at a time
+  const std::size_t nu = grid == 2 ? static_cast<std::size_t>(0.7 * static_cast<double>(n)) : n;
   Pair p;
   if (kind == 0) {
     SelfAffineParams s;
@@ -150,6 +158,7 @@ const Pair& scaling_pair(int kind, std::size_t n) {
     s.rms_height = 1e-6;
     p.lower = *self_affine_profile(s);
     s.seed = 2;
+    s.points = nu;
     p.upper = rotate180(*self_affine_profile(s));
   } else {
     WmParams w;
@@ -157,6 +166,7 @@ const Pair& scaling_pair(int kind, std::size_t n) {
     w.spacing = w.length / static_cast<double>(n - 1);
     p.lower = *wm_profile(w);
     w.seed = 2;
+    w.spacing = w.length / static_cast<double>(nu - 1);
     p.upper = rotate180(*wm_profile(w));
   }
   return cache.emplace(key, std::move(p)).first->second;
@@ -168,42 +178,67 @@ double thread_cpu_seconds() {
   return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
-void BM_SignatureScaling(benchmark::State& st) {
-  const int kind = static_cast<int>(st.range(0));
-  const auto n = static_cast<std::size_t>(st.range(1));
-  const Pair& p = scaling_pair(kind, n);
+void scaling(benchmark::State& st, int kind, std::size_t n, int grid, bool tilted, std::size_t W) {
+  const Pair& p = scaling_pair(kind, n, grid);
   const double L = p.lower.length();
   const double dx = L / static_cast<double>(p.lower.size() - 1);
-  const std::size_t W = n >= 10'000'000 ? 200'000 : 50'000;
   SignatureOptions o;
   o.threads = 1;
   o.keep_contacts = false;
-  o.offset_min = std::round(0.25 * L / dx) * dx;
+  o.tilted_bounds = tilted;
+  o.offset_min = std::round(0.25 * L / dx) * dx + (grid == 1 ? 0.5 * dx : 0.0);
   auto timed = [&](std::size_t offsets, std::size_t& count) {
     o.offset_max = o.offset_min + static_cast<double>(offsets - 1) * dx;
+    if (grid != 0) o.offsets = offsets;  // sampled one lower spacing apart
     const double c0 = thread_cpu_seconds();
     auto r = signature(p.lower, p.upper, o);
     const double t = thread_cpu_seconds() - c0;
+    if (!r.ok()) {
+      st.SkipWithError(r.error().message.c_str());
+      return 0.0;
+    }
     count = r->offset.size();
     benchmark::DoNotOptimize(r->theta_max_forward);
     return t;
   };
-  double per_offset = 0, setup = 0;
+  double per_offset = 0, setup = 0, window = 0;
+  bool exact = false;
   for (auto _ : st) {
     std::size_t c0 = 0, c1 = 0;
-    setup = std::numeric_limits<double>::infinity();
+    setup = window = std::numeric_limits<double>::infinity();
     for (int k = 0; k < 3; ++k) setup = std::min(setup, timed(2, c0));
-    const double t = timed(W, c1);
-    per_offset = (t - setup) / static_cast<double>(c1 - c0);
+    for (int k = 0; k < 3; ++k) window = std::min(window, timed(W, c1));
+    per_offset = (window - setup) / static_cast<double>(c1 - c0);
+    exact = grid == 0;
   }
   st.counters["points"] = static_cast<double>(p.lower.size());
+  st.counters["upper_points"] = static_cast<double>(p.upper.size());
   st.counters["offsets"] = static_cast<double>(W);
+  st.counters["exact"] = exact ? 1 : 0;
   st.counters["cpu_seconds_per_offset"] = per_offset;
   st.counters["cpu_seconds_setup"] = setup;
 }
+
+void BM_SignatureScaling(benchmark::State& st) {
+  const auto n = static_cast<std::size_t>(st.range(1));
+  const std::size_t W = n >= 10'000'000 ? 1'000'000 : (n >= 1'000'000 ? 200'000 : 50'000);
+  scaling(st, static_cast<int>(st.range(0)), n, 0, st.range(2) != 0, W);
+}
 BENCHMARK(BM_SignatureScaling)
-    ->ArgNames({"kind", "points"})
-    ->ArgsProduct({{0, 1}, {100'000, 1'000'000, 10'000'000}})
+    ->ArgNames({"kind", "points", "tilted"})
+    ->ArgsProduct({{0, 1}, {100'000, 1'000'000, 10'000'000}, {1, 0}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
+
+void BM_SignatureScalingNonAligned(benchmark::State& st) {
+  const auto n = static_cast<std::size_t>(st.range(1));
+  const std::size_t W = n >= 10'000'000 ? 200'000 : (n >= 1'000'000 ? 50'000 : 20'000);
+  scaling(st, static_cast<int>(st.range(0)), n, static_cast<int>(st.range(2)), true, W);
+}
+BENCHMARK(BM_SignatureScalingNonAligned)
+    ->ArgNames({"kind", "points", "grid"})
+    ->ArgsProduct({{0, 1}, {100'000, 1'000'000, 10'000'000}, {1, 2}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime()
     ->Iterations(1);

@@ -46,8 +46,11 @@ void write_output(const std::string& path, const std::function<Status(const std:
 /// Writes text to `path` or to standard output for "-".
 void write_text_output(const std::string& path, const std::string& text, const std::string& option = "-o");
 
-/// Loads a single-valued profile from any readable format ("-": standard input).
-inline Profile load_profile(const std::string& path) { return unwrap(read_profile(input_path(path))); }
+/// Loads a single-valued profile from any readable format ("-": standard input); `options` as
+/// --format, --unit, --spacing etc. give them (see surface_io.hpp).
+inline Profile load_profile(const std::string& path, const ReadOptions& options = {}) {
+  return unwrap(read_profile(input_path(path), options));
+}
 
 /// Prints a JSON object on stdout (NaN/inf become null, as JSON has no such numbers).
 inline void print_json(const nlohmann::json& j) { fmt::print("{}\n", j.dump(2)); }

@@ -11,6 +11,7 @@
 #include "frictal/stats.hpp"
 #include "frictal/tilt.hpp"
 #include "options.hpp"
+#include "surface_io.hpp"
 
 namespace frictal::cli {
 namespace {
@@ -29,6 +30,7 @@ struct Args {
   bool exact = false;
   std::string detrend = "none";
   GeneratorOptions gen;
+  InputOptions input;       ///< --format, --unit, --spacing, ... of LOWER and UPPER
   FieldWords period_words;  ///< --period, the tilt table's field
 };
 
@@ -39,6 +41,7 @@ std::function<int()> setup(CLI::App& app) {
                  "Upper surface file, as measured (material below); it is rotated by 180 degrees to face LOWER. "
                  "Default: LOWER itself");
   add_generator_subcommands(app, a->gen, true, " (its self-signature: the surface against itself turned over)");
+  add_input_options(app, a->input);
   add_atomic_friction_option(app, a->mu_a);
   app.add_option("--slopes", a->slopes, "exact: polyline contact rules; spline: cubic-spline slopes averaged")
       ->check(CLI::IsMember({"exact", "spline"}))
@@ -82,8 +85,9 @@ std::function<int()> setup(CLI::App& app) {
       throw UsageError(
           "signature: give LOWER [UPPER] files, or a generator (koch, wm, sawtooth, sine, self-affine, fourier)");
     }
-    Profile lower = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : load_profile(a->lower), dt));
-    Profile upper_measured = a->upper.empty() ? lower : unwrap(detrend(load_profile(a->upper), dt));
+    const ReadOptions ro = read_options(a->input);
+    Profile lower = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : load_profile(a->lower, ro), dt));
+    Profile upper_measured = a->upper.empty() ? lower : unwrap(detrend(load_profile(a->upper, ro), dt));
     const ValueSet pv = si_values(tilt_settings(), a->period_words);
     if (pv.count("period")) a->period = as_real(pv.at("period"));
     if (pv.count("spheroradius")) a->spheroradius = as_real(pv.at("spheroradius"));

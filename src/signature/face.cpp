@@ -1,5 +1,6 @@
 #include "signature/face.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace frictal::detail {
@@ -59,6 +60,58 @@ AlignedMax::AlignedMax(const std::vector<double>& v) {
       next[q] = (2 * q + 1 < prev.size()) ? std::max(prev[2 * q], prev[2 * q + 1]) : prev[2 * q];
     lv_.push_back(std::move(next));
   }
+}
+
+TiltedMax::TiltedMax(const std::vector<double>& v) {
+  const std::size_t n = v.size();
+  if (n == 0) return;
+  // Rounding: a computed term t = a + b (or a - b, a * b) is within eps (|a| + |b|) of the exact
+  // one; each term below is rounded up by 4 eps times the sum of its operands' magnitudes, so c
+  // stays an upper bound of the exact maxima for the stored tau.
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  auto chord = [&](std::size_t start, std::size_t last) {
+    return last > start ? (v[last] - v[start]) / static_cast<double>(last - start) : 0.0;
+  };
+  double mag = 0;
+  auto keep = [&](const Line& ln, std::size_t len) {
+    mag = std::max(mag, std::abs(ln.c) + std::abs(ln.tau) * static_cast<double>(len));
+    return ln;
+  };
+  std::vector<Line> level((n + kBlock - 1) / kBlock);
+  for (std::size_t q = 0; q < level.size(); ++q) {
+    const std::size_t start = q << kBlockShift, last = std::min(start + kBlock, n) - 1;
+    const double tau = chord(start, last);
+    double c = -std::numeric_limits<double>::infinity(), err = 0;
+    for (std::size_t i = start; i <= last; ++i) {
+      const double tk = tau * static_cast<double>(i - start);
+      c = std::max(c, v[i] - tk);
+      err = std::max(err, std::abs(v[i]) + std::abs(tk));
+    }
+    level[q] = keep({tau, c + 4 * eps * err}, last - start);
+  }
+  lv_.push_back(std::move(level));
+  for (unsigned l = 1; lv_.back().size() > 1; ++l) {
+    const auto& prev = lv_.back();
+    const unsigned sh = kBlockShift + l;
+    std::vector<Line> next((prev.size() + 1) / 2);
+    for (std::size_t q = 0; q < next.size(); ++q) {
+      const std::size_t start = q << sh, last = std::min(start + (std::size_t{1} << sh), n) - 1;
+      const double tau = chord(start, last);
+      // The child's line minus the parent's is linear: its maximum over the child is at an end.
+      double c = -std::numeric_limits<double>::infinity(), err = 0;
+      for (std::size_t k = 2 * q; k < std::min(2 * q + 2, prev.size()); ++k) {
+        const std::size_t cs = k << (sh - 1), cl = std::min(cs + (std::size_t{1} << (sh - 1)), n) - 1;
+        for (std::size_t i : {cs, cl}) {
+          const double a = prev[k].tau * static_cast<double>(i - cs), b = tau * static_cast<double>(i - start);
+          c = std::max(c, (prev[k].c + a) - b);
+          err = std::max(err, std::abs(prev[k].c) + 2 * std::abs(a) + 2 * std::abs(b));
+        }
+      }
+      next[q] = keep({tau, c + 4 * eps * err}, last - start);
+    }
+    lv_.push_back(std::move(next));
+  }
+  mag_ = mag;
 }
 
 std::size_t Face::floor_index(double u) const {

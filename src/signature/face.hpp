@@ -31,6 +31,33 @@ class AlignedMax {
   std::vector<std::vector<double>> lv_;
 };
 
+/// Upper bounding lines of v over the same aligned nodes as AlignedMax: for every point i of node
+/// q at level l (start = q << (5 + l)), v[i] <= c + tau * (i - start) in exact arithmetic (the
+/// rounding of the construction is covered by a margin added to c). tau is the node's chord, so
+/// on a profile that is smooth at the node's scale the line follows the local trend and lies
+/// above v by about the curvature times the node length squared, where the node's plain maximum
+/// lies above v at the node's ends by the slope times its length. Levels above 0 are derived from
+/// their children's lines (O(1) per node), so the whole structure costs one pass over v.
+class TiltedMax {
+ public:
+  struct Line {
+    double tau = 0;  ///< slope per point index (unit: m)
+    double c = 0;    ///< value of the line at the node's first point (unit: m)
+  };
+  TiltedMax() = default;
+  explicit TiltedMax(const std::vector<double>& v);
+  const std::vector<Line>& level(std::size_t l) const { return lv_[l]; }
+  std::size_t levels() const { return lv_.size(); }
+  bool empty() const { return lv_.empty(); }
+  /// max over nodes of |c| + |tau| (node length): every term of an evaluation of a line on its
+  /// node is at most this (unit: m), the scale of the rounding margin of the bound.
+  double magnitude() const { return mag_; }
+
+ private:
+  std::vector<std::vector<Line>> lv_;
+  double mag_ = 0;
+};
+
 /// Where an abscissa falls on a face: on a vertex group [first, last] or inside edge `edge`.
 struct Position {
   bool vertex = false;
@@ -84,6 +111,9 @@ class Face {
   /// Frees the sparse table (about 19 N / 32 values at 10^7 points); range_max then reads the
   /// aligned maxima instead: the same values, O(log N) reads instead of 2.
   void drop_sparse_table() { std::vector<std::vector<double>>().swap(st_); }
+  /// Builds the tilted bounding lines (N/16 lines); only the aligned index search uses them.
+  void build_tilted() { tilted_ = TiltedMax(v_); }
+  const TiltedMax& tilted_max() const { return tilted_; }
 
  private:
   void build();
@@ -94,6 +124,7 @@ class Face {
   double dx_ = 0, inv_dx_ = 0;
   std::vector<std::vector<double>> st_;  // sparse table over block maxima
   AlignedMax tree_;
+  TiltedMax tilted_;
 };
 
 }  // namespace frictal::detail

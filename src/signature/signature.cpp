@@ -48,6 +48,8 @@ struct Problem {
   // Aligned lattice whose points sit on x0 + i dx within a small fraction of xtol: at a lattice
   // offset, vertex i of F faces vertex i - d of G exactly, and the search runs on indices.
   bool index_search = false;
+  // The index search also bounds with the faces' tilted lines (TiltedMax).
+  bool tilted = false;
 };
 
 // Searches max over vertices i of A in [i0, i1] of vA[i] + vB(xA[i] + shift) by branch and
@@ -111,8 +113,9 @@ struct Frontier {
 };
 
 void search_aligned(const std::vector<double>& va, const std::vector<double>& vb, const detail::AlignedMax& ma,
-                    const detail::AlignedMax& mb, std::ptrdiff_t d, std::size_t i0, std::size_t i1, double vtol,
-                    double& best, std::vector<Cand>& out, const Frontier* frontier) {
+                    const detail::AlignedMax& mb, const detail::TiltedMax* ta, const detail::TiltedMax* tb,
+                    std::ptrdiff_t d, std::size_t i0, std::size_t i1, double vtol, double& best, std::vector<Cand>& out,
+                    const Frontier* frontier) {
   if (i0 > i1) return;
   using detail::kBlockShift;
   struct Node {
@@ -120,14 +123,40 @@ void search_aligned(const std::vector<double>& va, const std::vector<double>& vb
     std::size_t q;  // node index at its level: points [q << (5 + level), (q + 1) << (5 + level))
     double ub;
   };
+  // Tilted bound: on [p, r] (inside A's node q and B's node k after the shift) the sum of both
+  // nodes' upper lines is linear in i, so its maximum is at p or r. Plus the rounding margin of
+  // the evaluation (a few units of the terms' magnitudes, see TiltedMax).
+  const bool tilt = ta != nullptr;
+  const double margin = tilt ? 8 * std::numeric_limits<double>::epsilon() * (ta->magnitude() + tb->magnitude()) : 0.0;
+  auto lines = [&](std::uint32_t level, std::size_t q, std::size_t k, std::size_t p, std::size_t r) {
+    const unsigned sh = kBlockShift + level;
+    const auto& a = ta->level(level)[q];
+    const auto& b = tb->level(level)[k];
+    const std::size_t sa = q << sh;
+    const std::ptrdiff_t sb = static_cast<std::ptrdiff_t>(k << sh) + d;  // B's node start, in A's indices
+    auto at = [&](std::size_t i) {
+      return (a.c + a.tau * static_cast<double>(i - sa)) +
+             (b.c + b.tau * static_cast<double>(static_cast<std::ptrdiff_t>(i) - sb));
+    };
+    return std::max(at(p), at(r));
+  };
   auto bound = [&](std::uint32_t level, std::size_t q) {
     const unsigned sh = kBlockShift + level;
     const std::size_t lo = std::max(q << sh, i0), hi = std::min(((q + 1) << sh) - 1, i1);
     const auto jlo = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(lo) - d);
     const auto jhi = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(hi) - d);
     const auto& lb = mb.level(level);
-    const double b = std::max(lb[jlo >> sh], lb[jhi >> sh]);
-    return ma.level(level)[q] + b;
+    const std::size_t k0 = jlo >> sh, k1 = jhi >> sh;
+    const double plain = ma.level(level)[q] + std::max(lb[k0], lb[k1]);
+    if (!tilt || plain < best - vtol) return plain;  // the lines only matter where the maxima do not prune
+    double t;
+    if (k0 == k1) {
+      t = lines(level, q, k0, lo, hi);
+    } else {  // B's range straddles two nodes: split A's range where B's second node starts
+      const auto split = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(k1 << sh) + d);
+      t = std::max(lines(level, q, k0, lo, split - 1), lines(level, q, k1, split, hi));
+    }
+    return std::min(plain, t + margin);
   };
   thread_local std::vector<Node> stack;
   stack.clear();
@@ -307,11 +336,6 @@ double mean_angle(double a, double b) {
   return 0.5 * (a + b);
 }
 
-double vertex_slope(const Face& face, const Position& p) {
-  return mean_angle(face.edge_angle(static_cast<std::ptrdiff_t>(p.first) - 1),
-                    face.edge_angle(static_cast<std::ptrdiff_t>(p.last)));
-}
-
 // Evaluates one offset: lift, contacts and slopes. `warm_x` is a lower-frame abscissa that was
 // a contact nearby (NaN if none); it only speeds up the search.
 OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMethod method,
@@ -353,7 +377,8 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
     const auto d = static_cast<std::ptrdiff_t>(lattice_k);
     const auto jlo = static_cast<std::ptrdiff_t>(f0) - d, jhi = static_cast<std::ptrdiff_t>(f1) - d;
     if (jlo >= 0 && jhi < static_cast<std::ptrdiff_t>(G.size()))
-      search_aligned(F.v(), G.v(), F.aligned_max(), G.aligned_max(), d, f0, f1, P.vtol, best, cands, frontier);
+      search_aligned(F.v(), G.v(), F.aligned_max(), G.aligned_max(), P.tilted ? &F.tilted_max() : nullptr,
+                     P.tilted ? &G.tilted_max() : nullptr, d, f0, f1, P.vtol, best, cands, frontier);
     else
       search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
   } else {
@@ -371,7 +396,8 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
     double left, right;  // one-sided slopes of this candidate's continuation (NaN: drops)
     ContactType type;
   };
-  std::vector<Act> act;
+  thread_local std::vector<Act> act;  // kept between offsets: no allocation per offset
+  act.clear();
   for (const Cand& c : cands) {
     if (c.value < best - P.vtol) continue;
     Act t{};
@@ -385,9 +411,16 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
       t.pg = G.locate(u, 0.0);
       t.pf = F.locate(t.x, P.xtol);
     }
-    if (t.pf.vertex && t.pg.vertex) {
+    // Vertex-vertex: the edge angles on both sides of both vertex groups, each computed once
+    // (atan2 is most of the work of a contact; the rule and the continuations below share them).
+    const bool vv = t.pf.vertex && t.pg.vertex;
+    const double f_before = vv ? F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.first) - 1) : kNaN;
+    const double f_after = vv ? F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.last)) : kNaN;
+    const double g_before = vv ? G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.first) - 1) : kNaN;
+    const double g_after = vv ? G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.last)) : kNaN;
+    if (vv) {
       t.type = ContactType::VertexVertex;
-      t.slope = mean_angle(vertex_slope(F, t.pf), vertex_slope(G, t.pg));
+      t.slope = mean_angle(mean_angle(f_before, f_after), mean_angle(g_before, g_after));
     } else if (t.pf.vertex) {
       t.type = ContactType::VertexEdge;
       t.slope = G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.edge));
@@ -410,21 +443,19 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
       if (t.pf.vertex) {  // F vertex sliding along G
         if (t.pg.vertex) {
           const double gm = G.group_max(t.pg.first, t.pg.last);
-          take((G.v()[t.pg.first] >= gm - P.vtol) ? G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.first) - 1) : kNaN,
-               (G.v()[t.pg.last] >= gm - P.vtol) ? G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.last)) : kNaN);
+          take((G.v()[t.pg.first] >= gm - P.vtol) ? g_before : kNaN,
+               (G.v()[t.pg.last] >= gm - P.vtol) ? g_after : kNaN);
         } else {
-          const double e = G.edge_angle(static_cast<std::ptrdiff_t>(t.pg.edge));
-          take(e, e);
+          take(t.slope, t.slope);  // vertex-edge: the slope of G's edge
         }
       }
       if (t.pg.vertex) {  // G vertex sliding along F
         if (t.pf.vertex) {
           const double fm = F.group_max(t.pf.first, t.pf.last);
-          take((F.v()[t.pf.last] >= fm - P.vtol) ? F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.last)) : kNaN,
-               (F.v()[t.pf.first] >= fm - P.vtol) ? F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.first) - 1) : kNaN);
+          take((F.v()[t.pf.last] >= fm - P.vtol) ? f_after : kNaN,
+               (F.v()[t.pf.first] >= fm - P.vtol) ? f_before : kNaN);
         } else {
-          const double e = F.edge_angle(static_cast<std::ptrdiff_t>(t.pf.edge));
-          take(e, e);
+          take(t.slope, t.slope);  // edge-vertex: the slope of F's edge
         }
       }
       t.right = std::isfinite(right) ? right : kNaN;
@@ -441,7 +472,8 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
   }
   std::sort(act.begin(), act.end(), [](const Act& p, const Act& q) { return p.x < q.x; });
   // Merge duplicates (a vertex-vertex contact is found from both faces).
-  std::vector<Act> uniq;
+  thread_local std::vector<Act> uniq;
+  uniq.clear();
   for (const Act& t : act) {
     if (!uniq.empty() && std::abs(uniq.back().x - t.x) <= P.xtol) {
       Act& u = uniq.back();
@@ -720,6 +752,11 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
         // The few offsets off the lattice (the range ends) bound with the aligned maxima.
         P.F.drop_sparse_table();
         P.G.drop_sparse_table();
+        if (o.tilted_bounds) {
+          P.F.build_tilted();
+          P.G.build_tilted();
+          P.tilted = true;
+        }
       }
     }
   }
@@ -817,7 +854,7 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
     double warm = kNaN;
     if (o.keep_contacts) chunk_counts[t].reserve(i1 - i0);
     Frontier frontier;
-    constexpr std::size_t kBatch = 16;  // offsets per frontier
+    constexpr std::size_t kBatch = 64;  // offsets per frontier
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t before = chunk_contacts[t].size();
       if (P.index_search && !(i >= frontier.begin && i < frontier.end))

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <vector>
 
@@ -193,4 +194,39 @@ TEST(CliIo, ArealSignatureCommand) {
   EXPECT_EQ(lines - 1, j["offsets"].get<std::size_t>());
   EXPECT_EQ(run_cli("areal " + kData + "/profiles/xy-1.txt").code, 2);
   EXPECT_EQ(run_cli("areal " + kData + "/x3p/x3p-2.x3p --contact-slope max").code, 2);
+}
+
+// Issue 11: `frictal signature` reads a 1-D .npy (heights only) with --spacing (and --unit), as
+// every other reading command does; without --spacing the reader's error names the option.
+// A triangle wave of slope angle 30 deg (heights 0, h, 0, h, ... with h = dx tan 30 deg) against
+// itself turned over: theta_max is the slope angle both ways (paper, Sec. III: K0 gives alpha).
+TEST(CliIo, SignatureReadsHeightsOnlyNpyWithSpacing) {
+  const double dx_um = 0.5, h_um = dx_um * std::tan(30 * M_PI / 180);
+  std::string data;
+  for (int i = 0; i < 41; ++i) {
+    const double z = (i % 2) ? h_um : 0.0;
+    char b[8];
+    std::memcpy(b, &z, 8);  // little-endian '<f8' (x86-64)
+    data.append(b, 8);
+  }
+  std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (41,), }";
+  dict += std::string((64 - (10 + dict.size() + 1) % 64) % 64, ' ') + "\n";
+  std::string npy = "\x93NUMPY";
+  npy += char(1);
+  npy += char(0);
+  npy += char(dict.size() & 0xFF);
+  npy += char(dict.size() >> 8);
+  const std::string path = temp_path("heights_only.npy");
+  write_file(path, npy + dict + data);
+
+  auto r = run_cli("signature " + path + " --spacing 0.5um --unit um --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["theta_max_forward_deg"].get<double>(), 30.0, 1e-9);
+  EXPECT_NEAR(j["theta_max_backward_deg"].get<double>(), 30.0, 1e-9);
+  EXPECT_TRUE(j["exact"].get<bool>());
+
+  auto bad = run_cli("signature " + path + " --json");
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.err.find("needs the sampling interval (--spacing"), std::string::npos) << bad.err;
 }

@@ -2,9 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "frictal/generators.hpp"
 #include "frictal/signature.hpp"
+#include "signature/face.hpp"
 #include "signature/rigid.hpp"
 
 using namespace frictal;
@@ -379,4 +384,114 @@ TEST(SignatureIndexSearch, UniformGridFarFromOriginIsExact) {
   EXPECT_TRUE(r->exact);
   // Offsets 0, dx, ..., 0.01 m: 1001 lattice offsets (dx = 1e-5 m).
   EXPECT_NEAR(static_cast<double>(r->offset.size()), 1001.0, 1.0);
+}
+
+// Issue 11: the index search also bounds each node by tilted upper lines (the chord of the node
+// raised over its points, TiltedMax). They only prune; a line that cut below a point would lose a
+// maximiser or a contact. Checked against the search with block maxima only (every field, every
+// contact, bit for bit) and against the plain scan of every vertex (lift_direct), on one and two
+// threads: WM with 12 scales (steep long-wavelength trends: where the lines prune most), smooth
+// curved profiles far from z = 0 (the rounding margins of the lines), and two parallel ramps
+// (f - g is the same at every vertex: every vertex is a contact at every offset).
+TEST(SignatureIndexSearch, TiltedBoundsChangeNothingButTheWork) {
+  std::vector<std::pair<std::string, SigPair>> cases;
+  cases.emplace_back("wm", index_path_pair(1, 20'001));
+  {
+    SigPair p;
+    const std::size_t n = 8'001;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = 1e-3 * static_cast<double>(i) / static_cast<double>(n - 1);
+      p.lower.x.push_back(x);
+      p.lower.z.push_back(1e3 + 2e-4 * std::sin(2 * M_PI * x / 7e-4) + 0.1 * x);
+      p.upper.x.push_back(x);
+      p.upper.z.push_back(-1e3 - 3e-4 * std::cos(2 * M_PI * x / 9e-4) - 0.05 * x);
+    }
+    cases.emplace_back("smooth far from zero", std::move(p));
+  }
+  {
+    SigPair p;
+    const std::size_t n = 2'001;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = static_cast<double>(i) / static_cast<double>(n - 1);  // the same grid for both
+      p.lower.x.push_back(x);
+      p.lower.z.push_back(0.25 * static_cast<double>(i));  // f - g = 0.25 d exactly at lattice offset d
+      p.upper.x.push_back(x);
+      p.upper.z.push_back(0.25 * static_cast<double>(i));
+    }
+    cases.emplace_back("parallel ramps", std::move(p));
+  }
+  for (const auto& [name, p] : cases) {
+    const double L = p.lower.length();
+    const double dx = L / static_cast<double>(p.lower.size() - 1);
+    SignatureOptions o;
+    o.offset_min = std::round(0.2 * L / dx) * dx;
+    o.offset_max = std::round(0.45 * L / dx) * dx;
+    o.threads = 1;
+    o.tilted_bounds = false;
+    auto plain = signature(p.lower, p.upper, o);
+    ASSERT_TRUE(plain.ok()) << name << ": " << plain.error().message;
+    EXPECT_TRUE(plain->exact) << name;
+    for (unsigned threads : {1u, 2u}) {
+      o.threads = threads;
+      o.tilted_bounds = true;
+      auto t = signature(p.lower, p.upper, o);
+      ASSERT_TRUE(t.ok()) << name;
+      EXPECT_EQ(t->offset, plain->offset) << name;
+      EXPECT_EQ(t->lift, plain->lift) << name;
+      EXPECT_EQ(t->theta, plain->theta) << name;
+      EXPECT_EQ(t->theta_min, plain->theta_min) << name;
+      EXPECT_EQ(t->theta_left, plain->theta_left) << name;
+      EXPECT_EQ(t->theta_right, plain->theta_right) << name;
+      EXPECT_EQ(t->contact_begin, plain->contact_begin) << name;
+      ASSERT_EQ(t->contacts.size(), plain->contacts.size()) << name;
+      for (std::size_t k = 0; k < t->contacts.size(); ++k) {
+        EXPECT_EQ(t->contacts[k].x, plain->contacts[k].x) << name << " contact " << k;
+        EXPECT_EQ(t->contacts[k].slope, plain->contacts[k].slope) << name << " contact " << k;
+      }
+    }
+    if (name == "parallel ramps") {  // every vertex of the overlap touches
+      for (std::size_t i = 0; i < plain->offset.size(); ++i)
+        EXPECT_GE(plain->contact_begin[i + 1] - plain->contact_begin[i], p.lower.size() / 2) << "offset " << i;
+    }
+    double zr = 0;
+    for (double z : p.lower.z) zr = std::max(zr, std::abs(z));
+    for (std::size_t i = 0; i < plain->offset.size(); i += 7)
+      EXPECT_NEAR(plain->lift[i], lift_direct(p.lower, p.upper, plain->offset[i]), 1e-12 * zr)
+          << name << " s " << plain->offset[i];
+  }
+}
+
+// The tilted lines are upper bounds of every point of their node, at every level, in exact
+// arithmetic (checked in long double): random walks with steps of mixed scales, heights far
+// from zero, a partial last node, and a constant profile.
+TEST(TiltedMax, EveryLineLiesAboveEveryPointOfItsNode) {
+  std::uint64_t state = 12345;
+  auto uniform = [&] {  // splitmix64 -> [0, 1)
+    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
+  };
+  for (int c = 0; c < 4; ++c) {
+    const std::size_t n = c == 3 ? 1000 : 70'001 + 37 * static_cast<std::size_t>(c);
+    std::vector<double> v(n);
+    double z = c == 1 ? 1e6 : 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (c != 3) z += (uniform() - 0.5) * (i % 97 == 0 ? 1e3 : 1.0) + 1e-3 * std::sin(1e-3 * static_cast<double>(i));
+      v[i] = z;
+    }
+    const detail::TiltedMax t(v);
+    ASSERT_GT(t.levels(), 0u);
+    for (std::size_t l = 0; l < t.levels(); ++l) {
+      const std::size_t len = std::size_t{detail::kBlock} << l;
+      const auto& lines = t.level(l);
+      ASSERT_EQ(lines.size(), (n + len - 1) / len) << "level " << l;
+      for (std::size_t q = 0; q < lines.size(); ++q)
+        for (std::size_t i = q * len; i < std::min(n, (q + 1) * len); ++i) {
+          const long double line = static_cast<long double>(lines[q].c) +
+                                   static_cast<long double>(lines[q].tau) * static_cast<long double>(i - q * len);
+          ASSERT_LE(static_cast<long double>(v[i]), line) << "case " << c << " level " << l << " node " << q;
+        }
+    }
+  }
 }
