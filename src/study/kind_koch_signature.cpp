@@ -185,6 +185,15 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   }
 }
 
+/// Estimated CPU time (unit: s; TaskKind::cost): the exact self-signature over one wavelength
+/// visits every event, about (vertices per wavelength)^2 times the wavelengths (measured
+/// 2026-11-23).
+double koch_signature_cost(const Params& p) {
+  const double n = std::clamp(number(p, "iterations", 0), 0.0, 10.0);
+  const double waves = std::clamp(number(p, "length", 0.2) / std::max(1e-12, number(p, "wavelength", 0.01)), 1.0, 1e6);
+  return 1e-3 + 2e-7 * waves * std::pow(16.0, n);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- the kind
@@ -195,6 +204,8 @@ TaskKind koch_signature_kind() {
   k.description = "Self-signature of a Koch surface K_n (Sec. III): theta_max/alpha, friction angle, Eq. 13 dimension";
   k.version = 1;
   k.run = run_koch_signature;
+  k.cost = koch_signature_cost;
+  k.uses_seed = false;  // deterministic surfaces
   k.outputs = {
       {"theta_max_forward_deg", "deg", "maximum contact slope resisting sliding towards +x"},
       {"theta_max_backward_deg", "deg", "maximum contact slope resisting sliding towards -x"},
