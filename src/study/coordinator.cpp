@@ -105,7 +105,8 @@ std::vector<PlannedTask> estimate_costs(const Study& study, Store& store, const 
                                         const std::vector<std::int64_t>& ids, ResultCache* cache) {
   const auto task = [&](std::int64_t id) -> const Task& { return study.tasks[static_cast<std::size_t>(id)]; };
   // Recorded times: the cache's (by kind and canonical parameters, any kind version) and this
-  // store's (done or failed tasks; a result taken from the cache has no time of its own).
+  // store's (done tasks; a result taken from the cache has no time of its own, and a failure may
+  // have stopped early).
   std::map<std::pair<std::string, std::string>, double> measured;
   if (cache)
     if (auto t = cache->timings(); t)
@@ -115,7 +116,7 @@ std::vector<PlannedTask> estimate_costs(const Study& study, Store& store, const 
   for (const Task& t : study.tasks) by_params[{t.kind, canonical(t.params)}] = t.id;
   if (auto infos = store.tasks(); infos) {
     for (const auto& i : *infos) {
-      if (i.status == TaskStatus::Pending || !(i.wall_s > 0) || i.worker == "cache") continue;
+      if (i.status != TaskStatus::Done || !(i.wall_s > 0) || i.worker == "cache") continue;
       if (i.id < 0 || i.id >= static_cast<std::int64_t>(study.tasks.size())) continue;
       const Task& t = task(i.id);
       ratios[t.kind].push_back(i.wall_s / model_cost(t, registry));

@@ -45,7 +45,7 @@ class ResultCache;
 /// Estimated cost (unit: s) of each of `ids`: a time recorded in `cache` for the same kind and
 /// parameters (any kind version) if there is one; else the kind's model (TaskKind::cost, 1 s
 /// without one) times the kind's calibration, the median ratio of recorded time to model over
-/// the tasks of that kind with a recorded time (done or failed in `store`, or in the cache with
+/// the tasks of that kind with a recorded time (done in `store`, or in the cache with
 /// the parameters of a task of this study); 1 without any.
 std::vector<PlannedTask> estimate_costs(const Study& study, Store& store, const TaskRegistry& registry,
                                         const std::vector<std::int64_t>& ids, ResultCache* cache);

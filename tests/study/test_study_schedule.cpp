@@ -16,21 +16,20 @@ using study_test::fresh;
 
 namespace {
 
-/// Order in which the recording kind below ran its tasks (value of parameter "w").
+/// Order in which the recording kinds below ran their tasks: parameter "w" plus `tag`.
 std::mutex g_mu;
 std::vector<std::int64_t> g_ran;
 
-frictal::Result<TaskOutput> record_run(const Params& p, std::uint64_t) {
-  std::lock_guard lk(g_mu);
-  g_ran.push_back(std::get<std::int64_t>(p.at("w")));
-  TaskOutput t;
-  t.scalars["w"] = static_cast<double>(g_ran.back());
-  return t;
-}
-
-/// A kind that records its order; its cost model is the parameter "w" times `per_w` (unit: s).
-TaskKind recording_kind(const std::string& name, double per_w) {
-  TaskKind k{name, "records the order of its runs", 1, record_run};
+/// A kind that records its order (w + tag); its cost model is w times `per_w` (unit: s).
+TaskKind recording_kind(const std::string& name, double per_w, std::int64_t tag) {
+  TaskKind k{name, "records the order of its runs", 1,
+             [tag](const Params& p, std::uint64_t) -> frictal::Result<TaskOutput> {
+               std::lock_guard lk(g_mu);
+               g_ran.push_back(std::get<std::int64_t>(p.at("w")) + tag);
+               TaskOutput t;
+               t.scalars["w"] = static_cast<double>(g_ran.back());
+               return t;
+             }};
   k.cost = [per_w](const Params& p) { return per_w * static_cast<double>(std::get<std::int64_t>(p.at("w"))); };
   return k;
 }
@@ -54,48 +53,48 @@ seed = 1
 name = "a"
 kind = "rec-a"
 [part.parameters]
-w = [3, 1, 4, 1, 5, 9, 2, 6]
+w = [3, 1, 4, 10, 5, 9, 2, 6]
 [[part]]
 name = "b"
 kind = "rec-b"
 [part.parameters]
-w = [7, 8]
+w = [6, 8]
 )";
 
 }  // namespace
 
 TEST(StudySchedule, StartsTheCostliestTasksFirstAndGridOrderOnRequest) {
   TaskRegistry reg;
-  reg.add(recording_kind("rec-a", 1.0));
-  reg.add(recording_kind("rec-b", 1.0));
+  reg.add(recording_kind("rec-a", 1.0, 0));
+  reg.add(recording_kind("rec-b", 1.0, 100));
   const Study s = parse(kTwoKinds, reg);
   for (const bool longest : {true, false}) {
     g_ran.clear();
     auto st = Store::open(fresh(longest ? "order-longest.sqlite" : "order-grid.sqlite"), s);
-    ASSERT_TRUE(st.ok());
+    ASSERT_TRUE(st.ok()) << st.error().message;
     RunOptions o;
     o.threads = 1;  // one compute thread takes the queue in order
     o.longest_first = longest;
     auto sum = run_threads(s, **st, reg, o);
     ASSERT_TRUE(sum.ok()) << sum.error().message;
     EXPECT_EQ(sum->ran, 10);
-    // Costs equal to w: decreasing w, ties (the two w = 1) in id order; else grid order.
-    const std::vector<std::int64_t> expect = longest ? std::vector<std::int64_t>{9, 8, 7, 6, 5, 4, 3, 2, 1, 1}
-                                                     : std::vector<std::int64_t>{3, 1, 4, 1, 5, 9, 2, 6, 7, 8};
+    // Costs equal to w: decreasing w, ties (w = 6 in both parts) in id order; else grid order.
+    const std::vector<std::int64_t> expect = longest ? std::vector<std::int64_t>{10, 9, 108, 6, 106, 5, 4, 3, 2, 1}
+                                                     : std::vector<std::int64_t>{3, 1, 4, 10, 5, 9, 2, 6, 106, 108};
     EXPECT_EQ(g_ran, expect);
   }
 }
 
 TEST(StudySchedule, RecordedTimesCalibrateEachKindsModel) {
   // rec-a's model says w * 1 s, rec-b's w * 1 s; but the store recorded that rec-a tasks take
-  // 10 s per unit of w: the remaining rec-a tasks (w = 1..6, i.e. 10-60 s) go before rec-b's
-  // (7-8 s), costliest first.
+  // 10 s per unit of w: the remaining rec-a tasks (w = 1..10, i.e. 10-100 s) go before rec-b's
+  // (6 and 8 s), costliest first.
   TaskRegistry reg;
-  reg.add(recording_kind("rec-a", 1.0));
-  reg.add(recording_kind("rec-b", 1.0));
+  reg.add(recording_kind("rec-a", 1.0, 0));
+  reg.add(recording_kind("rec-b", 1.0, 100));
   const Study s = parse(kTwoKinds, reg);
   auto st = Store::open(fresh("order-calibrated.sqlite"), s);
-  ASSERT_TRUE(st.ok());
+  ASSERT_TRUE(st.ok()) << st.error().message;
   for (std::int64_t id : {2, 5}) {  // w = 4 and 9, recorded as 40 s and 90 s
     TaskRecord r;
     r.id = id;
@@ -110,7 +109,7 @@ TEST(StudySchedule, RecordedTimesCalibrateEachKindsModel) {
   auto sum = run_threads(s, **st, reg, o);
   ASSERT_TRUE(sum.ok());
   EXPECT_EQ(sum->ran, 8);
-  EXPECT_EQ(g_ran, (std::vector<std::int64_t>{6, 5, 3, 2, 1, 1, 8, 7}));
+  EXPECT_EQ(g_ran, (std::vector<std::int64_t>{10, 6, 5, 3, 2, 1, 108, 106}));
 }
 
 namespace {
