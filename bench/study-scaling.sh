@@ -2,7 +2,8 @@
 # Times the full fig14-18-wm-statistics grid (11 D x 11 n_max x 20 pairs = 2420 tasks) on 1 and
 # 2 threads (also pinned to cores) and on 1 and 2 MPI ranks, and checks that the stores hold identical rows.
 # Usage: bench/study-scaling.sh [BUILD_DIR=build/release] [REPEATS=2]
-# Results are recorded by hand in bench/results/studies.md.
+# Results are recorded by hand in bench/results/studies.md. Every run computes every task (--cache none:
+# the result cache would otherwise give the second configuration the first one's results).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 F="${1:-build/release}/frictal"
@@ -17,11 +18,11 @@ for rep in $(seq "$R"); do
     rm -f "$OUT/$cfg.sqlite"*
     echo -n "$cfg rep $rep (load $(cut -d' ' -f1 /proc/loadavg)): "
     case $cfg in
-      t1) cmd=("$F" study run $S --store "$OUT/$cfg.sqlite" --threads 1 --progress none) ;;
-      t2) cmd=("$F" study run $S --store "$OUT/$cfg.sqlite" --threads 2 --progress none) ;;
-      t2pin) cmd=("$F" study run $S --store "$OUT/$cfg.sqlite" --threads 2 --pin --progress none) ;;
-      n1) cmd=(mpirun -n 1 $ROOT "$F" study run $S --store "$OUT/$cfg.sqlite" --progress none) ;;
-      n2) cmd=(mpirun -n 2 --oversubscribe $ROOT "$F" study run $S --store "$OUT/$cfg.sqlite" --progress none) ;;
+      t1) cmd=("$F" study run $S --store "$OUT/$cfg.sqlite" --threads 1 --cache none --progress none) ;;
+      t2) cmd=("$F" study run $S --store "$OUT/$cfg.sqlite" --threads 2 --cache none --progress none) ;;
+      t2pin) cmd=("$F" study run $S --store "$OUT/$cfg.sqlite" --threads 2 --pin --cache none --progress none) ;;
+      n1) cmd=(mpirun -n 1 $ROOT "$F" study run $S --store "$OUT/$cfg.sqlite" --cache none --progress none) ;;
+      n2) cmd=(mpirun -n 2 --oversubscribe $ROOT "$F" study run $S --store "$OUT/$cfg.sqlite" --cache none --progress none) ;;
     esac
     /usr/bin/time -f "wall %e s, user %U s" "${cmd[@]}" 2>&1 >/dev/null | tail -1
   done

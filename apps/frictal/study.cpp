@@ -47,7 +47,8 @@ struct ProgressPrinter {
   double last = -1e9;
   void operator()(const Progress& p) {
     if (quiet) return;
-    const double rate = p.elapsed_s > 0 ? p.this_run / p.elapsed_s : 0;
+    // Rate and ETA from the computed tasks (results taken from the cache cost nothing).
+    const double rate = p.elapsed_s > 0 ? (p.this_run - p.reused) / p.elapsed_s : 0;
     const double eta = rate > 0 ? (p.to_run - p.this_run) / rate : NAN;
     const bool end = p.this_run == p.to_run;
     if (bar) {
@@ -56,27 +57,28 @@ struct ProgressPrinter {
       const int W = 30;
       const double f = p.total ? static_cast<double>(p.done) / static_cast<double>(p.total) : 1.0;
       const int k = static_cast<int>(f * W);
-      fmt::print(stderr, "\r[{}{}] {}/{} {:5.1f}% {:.1f} tasks/s ETA {}{}   ", std::string(k, '#'),
+      fmt::print(stderr, "\r[{}{}] {}/{} {:5.1f}% {:.1f} tasks/s ETA {}{}{}   ", std::string(k, '#'),
                  std::string(W - k, '-'), p.done, p.total, 100 * f, rate, hms(eta),
+                 p.reused ? fmt::format(" reused {}", p.reused) : "",
                  p.failed ? fmt::format(" failed {}", p.failed) : "");
       if (end) fmt::print(stderr, "\n");
     } else {
       if (!end && p.this_run != 0 && p.elapsed_s - last < every) return;
       last = p.elapsed_s;
-      fmt::print(stderr, "study: {}/{} done, {} of {} this run, {:.1f} tasks/s, elapsed {}, ETA {}{}\n", p.done,
-                 p.total, p.this_run, p.to_run, rate, hms(p.elapsed_s), hms(eta),
-                 p.failed ? fmt::format(", failed {}", p.failed) : "");
+      fmt::print(stderr, "study: {}/{} done, {} of {} this run{}, {:.1f} tasks/s, elapsed {}, ETA {}{}\n", p.done,
+                 p.total, p.this_run, p.to_run, p.reused ? fmt::format(" ({} reused from the cache)", p.reused) : "",
+                 rate, hms(p.elapsed_s), hms(eta), p.failed ? fmt::format(", failed {}", p.failed) : "");
     }
     std::fflush(stderr);
   }
 };
 
 struct RunArgs {
-  std::string study, store, progress = "auto";
+  std::string study, store, progress = "auto", cache = "auto", schedule = "longest";
   unsigned threads = 0;
   int inject_failure_rank = -1;
   std::vector<std::int64_t> fail_first_attempt;
-  bool quick = false, skip_unavailable = false, threads_set = false, pin = false;
+  bool quick = false, skip_unavailable = false, threads_set = false, pin = false, dry_run = false;
   std::vector<std::string> parts;
 };
 
@@ -118,12 +120,27 @@ int run(const RunArgs& a) {
   o.inject_failure_rank = a.inject_failure_rank;
   o.fail_first_attempt = a.fail_first_attempt;
   o.pin_threads = a.pin;
+  o.cache = a.cache == "none" ? std::string() : a.cache == "auto" ? default_cache_path(a.store) : a.cache;
+  o.longest_first = a.schedule == "longest";
   ProgressPrinter pp;
   pp.bar = a.progress == "bar" || (a.progress == "auto" && ::isatty(2));
   pp.quiet = a.progress == "none" || rank != 0;
   o.progress = std::ref(pp);
   std::unique_ptr<Store> store;
   RunSummary sum;
+  if (a.dry_run) {  // the order a run would take, with the estimates; nothing computed
+    if (mpi) throw UsageError("--dry-run: run it without mpirun");
+    store = unwrap(Store::open(a.store, study));
+    const auto order = unwrap(schedule(study, *store, reg, o));
+    fmt::print("order,task_id,part,estimated_s,estimate\n");
+    int k = 0;
+    for (const PlannedTask& p : order)
+      fmt::print("{},{},{},{:.6g},{}\n", k++, p.id, study.tasks[static_cast<std::size_t>(p.id)].part, p.estimated_s,
+                 p.cached     ? "cached"
+                 : p.measured ? "recorded"
+                              : "model");
+    return 0;
+  }
   if (mpi) {
     Result<std::unique_ptr<Store>> st =
         rank == 0 ? Store::open(a.store, study) : Result<std::unique_ptr<Store>>(nullptr);
@@ -143,6 +160,10 @@ int run(const RunArgs& a) {
   fmt::print("study '{}' ({} scale, {} tasks): {} done, {} failed, {} pending; this run: {} tasks in {:.2f} s on {}\n",
              study.name, study.quick ? "quick" : "full", c.total, c.done, c.failed, c.pending, sum.ran, sum.wall_s,
              mpi ? fmt::format("{} ranks", size) : fmt::format("{} threads", sum.threads));
+  if (sum.reused)
+    fmt::print("  {} tasks reused from the result cache {} (computed before by this or another study)\n", sum.reused,
+               o.cache);
+  if (!sum.cache_note.empty()) fmt::print(stderr, "frictal: warning: {}\n", sum.cache_note);
   if (sum.done_elsewhere || sum.taken_over)
     fmt::print("  shared store: {} tasks recorded by other runs, {} claims taken over from runs that died\n",
                sum.done_elsewhere, sum.taken_over);
@@ -247,6 +268,19 @@ std::function<int()> setup(CLI::App& app) {
       ->add_option("--inject-failure-task", ra->fail_first_attempt,
                    "Testing: the first attempt of this task id is reported failed, so it is retried (repeatable)")
       ->group("");  // hidden
+  run_cmd
+      ->add_option("--cache", ra->cache,
+                   "Result cache shared by the studies of a folder: auto (results-cache.sqlite beside the store), "
+                   "none, or a file; a task already computed (same kind, kind version and parameters) is reused")
+      ->capture_default_str();
+  run_cmd
+      ->add_option("--schedule", ra->schedule,
+                   "Task order: longest (estimated costliest first) or grid (id order); results do not change")
+      ->check(CLI::IsMember({"longest", "grid"}))
+      ->capture_default_str();
+  run_cmd->add_flag("--dry-run", ra->dry_run,
+                    "Print the tasks this run would compute, in the order it would start them, with their estimated "
+                    "cost (CSV: order, task_id, part, estimated_s, estimate = cached|recorded|model); compute nothing");
   run_cmd->add_option("--progress", ra->progress, "auto (bar on a terminal, lines otherwise), bar, lines, none")
       ->check(CLI::IsMember({"auto", "bar", "lines", "none"}))
       ->capture_default_str();

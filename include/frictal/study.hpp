@@ -44,6 +44,11 @@ std::string canonical(const Params& p);
 std::uint64_t hash64(const std::string& text);
 /// Hex digest (32 hex digits) of text from two independent 64-bit hashes.
 std::string digest(const std::string& text);
+/// Content address of a task's result: digest of the kind, the kind version, canonical(params)
+/// and, for a kind that uses its seed, the seed (the part and the study are not in it). Two tasks
+/// with one address compute the same result; the result cache (RunOptions::cache) is keyed by it.
+std::string content_address(const std::string& kind, int kind_version, const Params& params, bool uses_seed,
+                            std::uint64_t seed);
 /// Seed of a task: hash of the study seed and the canonical text of `seed_params`.
 std::uint64_t task_seed(std::uint64_t study_seed, const Params& seed_params);
 /// A derived stream, e.g. stream 1 and 2 for the lower and upper surface of a pair.
@@ -183,6 +188,15 @@ struct TaskKind {
   std::string description;
   int version = 1;  ///< bump when results change; part of the study hash
   Run run;
+  /// Estimated cost of one task with these parameters (unit: s of one core; only ratios between
+  /// tasks matter, and the store's recorded times refine it): the runner starts the costliest
+  /// tasks first. Empty: every task costs 1 s.
+  using Cost = std::function<double(const Params&)>;
+  Cost cost;
+  /// Whether `run` reads its seed. A kind whose result depends on its parameters only (seed
+  /// ignored) shares results with every study that has the same parameters, whatever its study
+  /// seed (the seed is then left out of the task's content address).
+  bool uses_seed = true;
   std::vector<OutputColumn> outputs;  ///< every scalar and array `run` may return
   ReportSection report;               ///< empty: the report lists the part's counts
   std::vector<PlotView> plots;
@@ -375,8 +389,12 @@ struct Progress {
   std::int64_t failed = 0;    ///< failed in this run
   std::int64_t this_run = 0;  ///< finished in this run
   std::int64_t to_run = 0;    ///< tasks this run set out to do
+  std::int64_t reused = 0;    ///< of this_run: results taken from the result cache, not computed
   double elapsed_s = 0;       ///< since this run started
 };
+
+/// The result cache of the stores in the folder of `store_path`: `results-cache.sqlite` beside it.
+std::string default_cache_path(const std::string& store_path);
 
 struct RunOptions {
   unsigned threads = 1;           ///< compute threads (0 = hardware concurrency)
@@ -398,6 +416,14 @@ struct RunOptions {
   double lease_s = 60;
   /// Testing: caps the store at this many pages (0: no cap), to simulate a full disk.
   std::int64_t max_page_count = 0;
+  /// Start tasks in decreasing estimated cost (TaskKind::cost, refined by recorded task times:
+  /// docs/studies.md, "Scheduling"); false: in grid (id) order. Results never depend on it.
+  bool longest_first = true;
+  /// Result cache file shared by the stores of one folder (see default_cache_path; empty: none).
+  /// A task whose content address (content_address) the cache holds is recorded from it instead
+  /// of being computed (byte-identical: the cache keeps the exact output); every result this run
+  /// computes is added. Several runs and studies may share one cache at once.
+  std::string cache;
 };
 
 struct RunSummary {
@@ -405,7 +431,10 @@ struct RunSummary {
   std::int64_t retries = 0;         ///< failed attempts that were queued again
   std::int64_t done_elsewhere = 0;  ///< planned tasks that another run (same store) recorded
   std::int64_t taken_over = 0;      ///< claims taken over from a dead run or an expired lease
-  unsigned threads = 0;             ///< compute threads (on rank 0 under MPI)
+  std::int64_t reused = 0;          ///< tasks recorded from the result cache (not computed, not in `ran`)
+  /// Why the result cache was not used or not fully written (the run goes on without it); empty if fine.
+  std::string cache_note;
+  unsigned threads = 0;  ///< compute threads (on rank 0 under MPI)
   bool interrupted = false;
   double wall_s = 0;
 };
@@ -421,6 +450,18 @@ Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegis
 /// or an error naming an unavailable kind if skip_unavailable is false.
 Result<std::vector<std::int64_t>> plan(const Study& study, Store& store, const TaskRegistry& registry,
                                        const RunOptions& options, std::int64_t* skipped_unavailable);
+
+/// A task a run would compute, in the order it would start it (see RunOptions::longest_first).
+struct PlannedTask {
+  std::int64_t id = 0;
+  double estimated_s = 0;  ///< estimated cost (unit: s): a recorded time, or the kind's calibrated model
+  bool measured = false;   ///< the estimate is a time recorded for the same kind and parameters
+  bool cached = false;     ///< the result cache holds it: it would be reused, not computed
+};
+/// What run_threads / run_mpi would do with `options` (plan(), the cache lookups and the order),
+/// without computing or recording anything: `frictal study run --dry-run`.
+Result<std::vector<PlannedTask>> schedule(const Study& study, Store& store, const TaskRegistry& registry,
+                                          const RunOptions& options);
 
 /// Runs one task (timed, exceptions turned into failures). Used by every runner.
 TaskRecord execute(const Task& task, const TaskRegistry& registry, const std::string& worker);

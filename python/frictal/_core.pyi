@@ -169,10 +169,13 @@ def study_rows(store: str, part: str = ..., arrays: bool = ...) -> list:
 
     Units: SI (m, rad, s) and deg, as the column names say (_m, _deg, _s)."""
 
-def study_run(study: str, store: str, threads: int = ..., quick: bool = ..., parts: List[str] = ..., skip_unavailable: bool = ...) -> dict:
+def study_run(study: str, store: str, threads: int = ..., quick: bool = ..., parts: List[str] = ..., skip_unavailable: bool = ..., cache: str = ...) -> dict:
     """Runs (or resumes) a study file into an SQLite store on threads (0 = every core); returns a summary dict.
 
-    study, store: file paths; parameters in the study file use SI units (m, s), angles in deg."""
+    study, store: file paths; parameters in the study file use SI units (m, s), angles in deg.
+    cache: the result cache shared by the studies of a folder, as `frictal study run --cache`: "auto"
+    (results-cache.sqlite beside the store), "none", or a file; summary["reused"] counts the tasks taken
+    from it instead of being computed."""
 
 def study_status(store: str) -> dict:
     """How far a store is (as `frictal study status --json`).

@@ -61,7 +61,7 @@ void frictal_bind_study(py::module_& m) {
   m.def(
       "study_run",
       [](const std::string& study_file, const std::string& store_path, unsigned threads, bool quick,
-         std::vector<std::string> parts, bool skip_unavailable) {
+         std::vector<std::string> parts, bool skip_unavailable, const std::string& cache) {
         const TaskRegistry reg = default_registry();
         Study s = ok(load_study(study_file, quick, reg));
         auto store = ok(Store::open(store_path, s));
@@ -69,6 +69,7 @@ void frictal_bind_study(py::module_& m) {
         o.threads = threads;
         o.parts = std::move(parts);
         o.skip_unavailable = skip_unavailable;
+        o.cache = cache == "none" ? std::string() : cache == "auto" ? default_cache_path(store_path) : cache;
         RunSummary sum;
         {
           py::gil_scoped_release release;
@@ -78,6 +79,8 @@ void frictal_bind_study(py::module_& m) {
         d["ran"] = sum.ran;
         d["failed"] = sum.failed;
         d["retries"] = sum.retries;
+        d["reused"] = sum.reused;
+        d["cache_note"] = sum.cache_note;
         d["skipped_unavailable"] = sum.skipped_unavailable;
         d["threads"] = sum.threads;
         d["wall_s"] = sum.wall_s;
@@ -85,9 +88,12 @@ void frictal_bind_study(py::module_& m) {
         return d;
       },
       py::arg("study"), py::arg("store"), py::arg("threads") = 0, py::arg("quick") = false,
-      py::arg("parts") = std::vector<std::string>{}, py::arg("skip_unavailable") = false,
+      py::arg("parts") = std::vector<std::string>{}, py::arg("skip_unavailable") = false, py::arg("cache") = "auto",
       "Runs (or resumes) a study file into an SQLite store on threads (0 = every core); returns a summary dict.\n\n"
-      "study, store: file paths; parameters in the study file use SI units (m, s), angles in deg.");
+      "study, store: file paths; parameters in the study file use SI units (m, s), angles in deg.\n"
+      "cache: the result cache shared by the studies of a folder, as `frictal study run --cache`: \"auto\"\n"
+      "(results-cache.sqlite beside the store), \"none\", or a file; summary[\"reused\"] counts the tasks taken\n"
+      "from it instead of being computed.");
   m.def(
       "study_status",
       [](const std::string& path) {

@@ -3,8 +3,13 @@
 #include "study/coordinator.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <utility>
 
 #include <fmt/core.h>
+
+#include "study/cache.hpp"
 
 namespace frictal::study {
 
@@ -80,16 +85,116 @@ TaskRecord execute(const Task& task, const TaskRegistry& registry, const std::st
 
 bool retryable(ErrorCode code) { return code == ErrorCode::Io || code == ErrorCode::Internal; }
 
-Coordinator::Coordinator(const Study& study, Store& store, const RunOptions& options, std::vector<std::int64_t> todo,
-                         int sites)
+namespace {
+/// The kind's cost model of a task (unit: s); 1 without a model or for a model that gives no
+/// positive finite number (e.g. parameters the kind will refuse).
+double model_cost(const Task& t, const TaskRegistry& registry) {
+  const TaskKind* k = registry.find(t.kind);
+  if (!k || !k->cost) return 1.0;
+  double c = 1.0;
+  try {
+    c = k->cost(t.params);
+  } catch (const std::exception&) {
+    return 1.0;
+  }
+  return std::isfinite(c) && c > 0 ? c : 1.0;
+}
+}  // namespace
+
+std::vector<PlannedTask> estimate_costs(const Study& study, Store& store, const TaskRegistry& registry,
+                                        const std::vector<std::int64_t>& ids, ResultCache* cache) {
+  const auto task = [&](std::int64_t id) -> const Task& { return study.tasks[static_cast<std::size_t>(id)]; };
+  // Recorded times: the cache's (by kind and canonical parameters, any kind version) and this
+  // store's (done tasks; a result taken from the cache has no time of its own, and a failure may
+  // have stopped early).
+  std::map<std::pair<std::string, std::string>, double> measured;
+  if (cache)
+    if (auto t = cache->timings(); t)
+      for (const auto& e : *t) measured[{e.kind, e.params}] = e.wall_s;
+  std::map<std::string, std::vector<double>> ratios;  // kind -> recorded time / model
+  std::map<std::pair<std::string, std::string>, std::int64_t> by_params;
+  for (const Task& t : study.tasks) by_params[{t.kind, canonical(t.params)}] = t.id;
+  if (auto infos = store.tasks(); infos) {
+    for (const auto& i : *infos) {
+      if (i.status != TaskStatus::Done || !(i.wall_s > 0) || i.worker == "cache") continue;
+      if (i.id < 0 || i.id >= static_cast<std::int64_t>(study.tasks.size())) continue;
+      const Task& t = task(i.id);
+      ratios[t.kind].push_back(i.wall_s / model_cost(t, registry));
+    }
+  }
+  for (const auto& [key, wall] : measured)
+    if (auto it = by_params.find(key); it != by_params.end())
+      ratios[key.first].push_back(wall / model_cost(task(it->second), registry));
+  std::map<std::string, double> scale;
+  for (auto& [kind, r] : ratios) {
+    std::sort(r.begin(), r.end());
+    const std::size_t n = r.size();
+    scale[kind] = n % 2 ? r[n / 2] : 0.5 * (r[n / 2 - 1] + r[n / 2]);
+  }
+  std::vector<PlannedTask> cost;
+  cost.reserve(ids.size());
+  for (const std::int64_t id : ids) {
+    const Task& t = task(id);
+    PlannedTask p;
+    p.id = id;
+    if (auto it = measured.find({t.kind, canonical(t.params)}); it != measured.end()) {
+      p.estimated_s = it->second;
+      p.measured = true;
+    } else {
+      const auto s = scale.find(t.kind);
+      p.estimated_s = model_cost(t, registry) * (s == scale.end() ? 1.0 : s->second);
+    }
+    cost.push_back(p);
+  }
+  return cost;
+}
+
+void longest_first(std::vector<PlannedTask>& tasks) {
+  std::stable_sort(tasks.begin(), tasks.end(),
+                   [](const PlannedTask& a, const PlannedTask& b) { return a.estimated_s > b.estimated_s; });
+}
+
+Result<std::vector<PlannedTask>> schedule(const Study& study, Store& store, const TaskRegistry& registry,
+                                          const RunOptions& options) {
+  auto todo = plan(study, store, registry, options, nullptr);
+  if (!todo) return todo.error();
+  std::unique_ptr<ResultCache> cache;
+  if (!options.cache.empty())
+    if (auto c = ResultCache::open(options.cache); c) cache = std::move(*c);
+  std::vector<PlannedTask> cached;
+  std::vector<std::int64_t> left;
+  for (const std::int64_t id : *todo) {
+    const Task& t = study.tasks[static_cast<std::size_t>(id)];
+    auto f = cache ? cache->find(content_address(t, registry), t)
+                   : Result<std::optional<TaskOutput>>(std::optional<TaskOutput>{});
+    if (f && f->has_value()) {
+      PlannedTask p;
+      p.id = id;
+      p.cached = true;
+      cached.push_back(p);
+    } else {
+      left.push_back(id);
+    }
+  }
+  std::vector<PlannedTask> out = estimate_costs(study, store, registry, left, cache.get());
+  if (options.longest_first) longest_first(out);
+  cached.insert(cached.end(), out.begin(), out.end());
+  return cached;
+}
+
+Coordinator::Coordinator(const Study& study, Store& store, const TaskRegistry& registry, const RunOptions& options,
+                         std::vector<std::int64_t> todo, int sites)
     : study_(study),
       store_(store),
+      registry_(registry),
       options_(options),
       sites_(std::max(1, sites)),
       start_(std::chrono::steady_clock::now()),
       to_run_(todo.size()),
       fail_first_(options.fail_first_attempt.begin(), options.fail_first_attempt.end()),
       queue_(todo.begin(), todo.end()) {}
+
+Coordinator::~Coordinator() = default;
 
 Status Coordinator::start() {
   if (options_.max_page_count > 0)
@@ -100,6 +205,49 @@ Status Coordinator::start() {
   progress_.total = c0->total;
   progress_.done = c0->done;
   progress_.to_run = static_cast<std::int64_t>(to_run_);
+  if (!options_.cache.empty()) {
+    if (auto c = ResultCache::open(options_.cache); c)
+      cache_ = std::move(*c);
+    else
+      cache_note_ = fmt::format("result cache not used: {}", c.error().message);
+  }
+  // Tasks whose result the cache holds: recorded from it (worker "cache"), not computed.
+  std::deque<std::int64_t> left;
+  for (const std::int64_t id : queue_) {
+    const Task& t = study_.tasks[static_cast<std::size_t>(id)];
+    std::optional<TaskOutput> hit;
+    if (cache_) {
+      auto f = cache_->find(content_address(t, registry_), t);
+      if (!f) {
+        if (cache_note_.empty()) cache_note_ = fmt::format("result cache not read: {}", f.error().message);
+      } else {
+        hit = std::move(*f);
+      }
+    }
+    if (!hit) {
+      left.push_back(id);
+      continue;
+    }
+    TaskRecord r;
+    r.id = id;
+    r.status = TaskStatus::Done;
+    r.worker = "cache";
+    r.output = std::move(*hit);
+    if (auto s = store_.record(r); !s) return s.error();
+    ++reused_;
+    ++progress_.done;
+    ++progress_.this_run;
+    ++progress_.reused;
+  }
+  queue_ = std::move(left);
+  if (options_.longest_first && queue_.size() > 1) {
+    std::vector<PlannedTask> order = estimate_costs(
+        study_, store_, registry_, std::vector<std::int64_t>(queue_.begin(), queue_.end()), cache_.get());
+    longest_first(order);
+    queue_.clear();
+    for (const PlannedTask& p : order) queue_.push_back(p.id);
+  }
+  progress_.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   if (options_.progress) options_.progress(progress_);
   return Ok{};
 }
@@ -238,6 +386,13 @@ std::size_t Coordinator::record_finished(bool wait) {
       cv_.notify_all();
       break;
     }
+    if (cache_ && r.status == TaskStatus::Done) {
+      const Task& t = study_.tasks[static_cast<std::size_t>(r.id)];
+      const TaskKind* k = registry_.find(t.kind);
+      if (auto s = cache_->put(content_address(t, registry_), t, k ? k->uses_seed : true, r, study_.name);
+          !s && cache_note_.empty())
+        cache_note_ = fmt::format("result cache not written: {}", s.error().message);
+    }
     ++n;
     ++ran_;
     ++progress_.this_run;
@@ -276,7 +431,9 @@ Result<RunSummary> Coordinator::summary(RunSummary base) {
   base.retries = retries_;
   base.done_elsewhere = done_elsewhere_;
   base.taken_over = taken_over_;
-  base.interrupted = ran_ + done_elsewhere_ < static_cast<std::int64_t>(to_run_);
+  base.reused = reused_;
+  base.cache_note = cache_note_;
+  base.interrupted = ran_ + done_elsewhere_ + reused_ < static_cast<std::int64_t>(to_run_);
   base.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   return base;
 }

@@ -16,6 +16,12 @@
 // 250 ms once the queue is empty, until that run records it (then it is skipped) or dies or its
 // lease expires (then this run takes it over); so concurrent runs on one store share the work
 // and each ends only when every task it set out to do is recorded by someone.
+//
+// Order (start()): with RunOptions::longest_first the queue is sorted by decreasing estimated cost
+// (TaskKind::cost, refined by recorded times: see estimate_costs), so that the longest tasks do
+// not run last and alone. Result cache (RunOptions::cache): start() records every queued task
+// whose content address the cache holds from the cache, and the owner adds every result it
+// records. Neither changes any stored result: seeds come from the task, not the order.
 #pragma once
 
 #include <chrono>
@@ -23,6 +29,7 @@
 #include <cstdint>
 #include <deque>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <set>
 #include <vector>
@@ -33,15 +40,30 @@ namespace frictal::study {
 
 inline constexpr int kMaxAttempts = 3;
 
+class ResultCache;
+
+/// Estimated cost (unit: s) of each of `ids`: a time recorded in `cache` for the same kind and
+/// parameters (any kind version) if there is one; else the kind's model (TaskKind::cost, 1 s
+/// without one) times the kind's calibration, the median ratio of recorded time to model over
+/// the tasks of that kind with a recorded time (done in `store`, or in the cache with
+/// the parameters of a task of this study); 1 without any.
+std::vector<PlannedTask> estimate_costs(const Study& study, Store& store, const TaskRegistry& registry,
+                                        const std::vector<std::int64_t>& ids, ResultCache* cache);
+/// Sorts by decreasing estimate, ties in the given order (stable).
+void longest_first(std::vector<PlannedTask>& tasks);
+
 /// True if a failure with this code may pass on another attempt.
 bool retryable(ErrorCode code);
 
 class Coordinator {
  public:
   /// `todo`: the tasks to run, from plan(); `sites`: 1 for threads, the number of ranks under MPI.
-  Coordinator(const Study& study, Store& store, const RunOptions& options, std::vector<std::int64_t> todo, int sites);
+  Coordinator(const Study& study, Store& store, const TaskRegistry& registry, const RunOptions& options,
+              std::vector<std::int64_t> todo, int sites);
+  ~Coordinator();
 
-  /// Owner: reads the store's counts and reports the initial progress.
+  /// Owner: reads the store's counts, records the tasks the result cache holds, orders the queue
+  /// and reports the initial progress.
   Status start();
 
   /// Any thread: a task for `site`, or -1. With `wait`, blocks until one is available and returns
@@ -71,6 +93,7 @@ class Coordinator {
 
   const Study& study_;
   Store& store_;
+  const TaskRegistry& registry_;
   const RunOptions& options_;
   const int sites_;
   const std::chrono::steady_clock::time_point start_;
@@ -94,6 +117,9 @@ class Coordinator {
   Error claim_error_;
 
   // Owner only.
+  std::unique_ptr<ResultCache> cache_;
+  std::string cache_note_;
+  std::int64_t reused_ = 0;
   Progress progress_;
   std::int64_t ran_ = 0, failed_ = 0, retries_ = 0;
   bool store_failed_ = false;

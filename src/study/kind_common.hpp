@@ -1,5 +1,6 @@
 // Private: helpers shared by the task kinds on the signature function (kind_koch_signature.cpp,
-// kind_wm_pair_statistics.cpp): slope statistics of a profile, PDFs in degrees, parameter parsing.
+// kind_wm_pair_statistics.cpp; the others use number()): slope statistics of a profile, PDFs in
+// degrees, parameter parsing.
 #pragma once
 
 #include <cmath>
@@ -50,6 +51,13 @@ inline SlopeMethod slope_method(const std::string& s, Status* st) {
   if (s == "spline") return SlopeMethod::Spline;
   *st = make_error(fmt::format("parameter 'slopes': expected \"exact\" or \"spline\", got \"{}\"", s));
   return SlopeMethod::Exact;
+}
+
+/// A parameter as a number (for the kinds' cost models): `fallback` when absent or not a number.
+inline double number(const Params& p, const std::string& name, double fallback) {
+  auto it = p.find(name);
+  const double v = it == p.end() ? NAN : as_number(it->second);
+  return std::isfinite(v) ? v : fallback;
 }
 
 template <class T>

@@ -14,6 +14,7 @@
 #include "frictal/generators.hpp"
 #include "frictal/study.hpp"
 #include "frictal/surface_spec.hpp"
+#include "study/kind_common.hpp"
 #include "study/table_params.hpp"
 
 namespace frictal::study {
@@ -114,6 +115,15 @@ void divider_part(const std::string& part, const std::vector<Store::Row>& rows, 
   rep.findings.push_back(f);
 }
 
+/// Estimated CPU time (unit: s; TaskKind::cost): proportional to the curve's vertices times the
+/// rulers walked along it (measured 2026-11-23).
+double divider_cost(const Params& p) {
+  using kind_detail::number;
+  const double n = std::clamp(number(p, "iterations", 0), 0.0, 10.0);
+  const double waves = std::clamp(number(p, "length", 0.01) / std::max(1e-12, number(p, "wavelength", 0.01)), 1.0, 1e6);
+  return 1e-3 + 1e-8 * waves * std::pow(4.0, n) * std::max(1.0, number(p, "rulers", 40));
+}
+
 }  // namespace
 
 TaskKind divider_kind() {
@@ -122,6 +132,8 @@ TaskKind divider_kind() {
   k.description = "Divider (ruler) method on a Koch curve K_n (Sec. IV C 3): L(eps), D = 1 - slope, Eq. 13";
   k.version = 1;
   k.run = run_divider_task;
+  k.cost = divider_cost;
+  k.uses_seed = false;  // a deterministic curve
   k.outputs = {
       {"dimension", "1", "divider dimension D = 1 - slope of log L against log eps"},
       {"dimension_eq13", "1", "fractal dimension of Eq. 13"},

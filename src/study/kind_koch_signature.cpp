@@ -185,6 +185,14 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   }
 }
 
+/// Estimated CPU time (unit: s; TaskKind::cost): proportional to the vertices, (L_b / lambda)
+/// 4^n (measured 2026-11-23: K2 and K3 over 20 wavelengths about 7 and 25 ms).
+double koch_signature_cost(const Params& p) {
+  const double n = std::clamp(number(p, "iterations", 0), 0.0, 10.0);
+  const double waves = std::clamp(number(p, "length", 0.2) / std::max(1e-12, number(p, "wavelength", 0.01)), 1.0, 1e6);
+  return 1e-4 + 2e-5 * waves * std::pow(4.0, n);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- the kind
@@ -195,6 +203,8 @@ TaskKind koch_signature_kind() {
   k.description = "Self-signature of a Koch surface K_n (Sec. III): theta_max/alpha, friction angle, Eq. 13 dimension";
   k.version = 1;
   k.run = run_koch_signature;
+  k.cost = koch_signature_cost;
+  k.uses_seed = false;  // deterministic surfaces
   k.outputs = {
       {"theta_max_forward_deg", "deg", "maximum contact slope resisting sliding towards +x"},
       {"theta_max_backward_deg", "deg", "maximum contact slope resisting sliding towards -x"},

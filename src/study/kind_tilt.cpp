@@ -16,10 +16,13 @@
 #include "frictal/surface_spec.hpp"
 #include "frictal/tilt.hpp"
 #include "frictal/units.hpp"
+#include "study/kind_common.hpp"
 #include "study/table_params.hpp"
 
 namespace frictal::study {
 namespace {
+
+using kind_detail::number;
 
 constexpr double kDeg = units::kRadPerDeg;
 
@@ -28,6 +31,28 @@ Result<bool> get_bool(const Params& p, const std::string& name, bool fallback) {
   if (it == p.end()) return fallback;
   if (const bool* b = std::get_if<bool>(&it->second)) return *b;
   return make_error(fmt::format("parameter '{}': expected true or false, got {}", name, canonical(it->second)));
+}
+
+/// Estimated CPU time of a tilt task (unit: s; the scheduler's model, TaskKind::cost):
+/// c0(n) + c1(n) T, with T the time to tilt to the expected slide (theta_max + atan(mu_a), n alpha
+/// for a Koch pair, at tilt_rate), scaled with the number of wavelengths. Fitted to the 208 tilts
+/// of the Fig. 6 and Fig. 8 grids with the adaptive step (2026-11-23, bench/results/schedule.md):
+/// the steps grow as 2e4 + 9.6e3 T for every K_n, but the cost of a step grows steeply with n
+/// and the contacts, so that a K3 test costs about 2.2 s whatever alpha (flatter K3 blocks carry
+/// more contacts). Other surfaces count as K1 at phi = 30 deg + atan(mu_a).
+double tilt_cost(const Params& p) {
+  const auto generator = get_string(p, "generator", "koch");
+  const bool koch = generator && *generator == "koch";
+  const double n = koch ? std::clamp(number(p, "iterations", 0), 0.0, 5.0) : 1.0;
+  const double alpha = koch ? number(p, "alpha", 5) : 30.0;  // deg; other surfaces: a typical slope
+  const double mu_a = std::max(0.0, number(p, "atomic_friction", 0));
+  const double phi = std::min(90.0, std::max(1.0, n) * alpha + std::atan(mu_a) / kDeg) * kDeg;
+  const double rate = std::max(1e-6, number(p, "tilt_rate", 0.05));
+  const double waves = std::clamp(number(p, "length", 0.2) / std::max(1e-12, number(p, "wavelength", 0.01)), 1.0, 1e6);
+  const int k = static_cast<int>(std::lround(n));
+  constexpr double c0[] = {0.0, 0.08, 0.05, 2.2}, c1[] = {0.034, 0.021, 0.040, 0.0075};  // s, s per s of T
+  const double a = k <= 3 ? c0[k] : 2.2 * std::pow(8.0, k - 3), b = k <= 3 ? c1[k] : 0.0075;
+  return (0.01 + a + b * phi / rate) * waves / 20;
 }
 
 }  // namespace
@@ -214,6 +239,8 @@ TaskKind tilt_kind() {
   k.description = "Spheropolygon tilting-block test of a Koch pair (Sec. IV): friction angle, Fig. 7 series";
   k.version = 2;  // 2: spheropolygon prediction, rotation and model warnings
   k.run = run_tilt_task;
+  k.cost = tilt_cost;
+  k.uses_seed = false;  // a deterministic simulation: shared by every study with the same parameters
   k.outputs = {
       {"slid", "1", "1 if the upper block slid, else 0"},
       {"friction_angle_deg", "deg", "simulated friction angle (tilt at the slide)"},

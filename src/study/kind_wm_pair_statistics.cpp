@@ -370,6 +370,17 @@ void wm_section(const std::string& part, const std::vector<TaskRow>& rows, Repor
   }
 }
 
+/// Estimated CPU time (unit: s; TaskKind::cost): the profiles' points (about gamma^n_max per
+/// longest wavelength) set the cost (bench/results/studies.md: 46 ms per pair at n_max = 10,
+/// L_b / L = 20, gamma = 1.5).
+double wm_pair_cost(const Params& p) {
+  const double gamma = std::clamp(number(p, "gamma", 1.5), 1.0001, 100.0);
+  const double n_max = std::clamp(number(p, "n_max", 10), 0.0, 60.0);
+  const double waves =
+      std::clamp(number(p, "length", 20e-6) / std::max(1e-30, number(p, "longest_wavelength", 1e-6)), 1e-3, 1e9);
+  return 1e-3 + 4e-5 * waves * std::pow(gamma, n_max);
+}
+
 }  // namespace
 
 // ---------------------------------------------------------------- the kind
@@ -380,6 +391,7 @@ TaskKind wm_pair_statistics_kind() {
   k.description = "A pair of stochastic WM profiles (Sec. V): max/std of contact and surface slopes, slope PDFs";
   k.version = 2;
   k.run = run_wm_pair_statistics;
+  k.cost = wm_pair_cost;
   k.outputs = {
       {"theta_max_forward_deg", "deg", "maximum contact slope towards +x"},
       {"theta_max_backward_deg", "deg", "maximum contact slope towards -x"},

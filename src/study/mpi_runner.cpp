@@ -121,7 +121,7 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
   }
   // Site r of the coordinator is rank r; rank 0 computes with T local threads while this (main)
   // thread owns the store and serves the other ranks (MPI_THREAD_FUNNELED: only it calls MPI).
-  Coordinator co(study, *store, options, std::move(*todo), size);
+  Coordinator co(study, *store, registry, options, std::move(*todo), size);
   if (auto s = co.start(); !s) {
     release_all(stopped);
     return s.error();

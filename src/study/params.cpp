@@ -56,6 +56,13 @@ std::string digest(const std::string& text) {
   return fmt::format("{:016x}{:016x}", hash64(text), splitmix(fnv1a(text, 0x84222325cbf29ce4ULL) ^ 0x5bd1e995ULL));
 }
 
+std::string content_address(const std::string& kind, int kind_version, const Params& params, bool uses_seed,
+                            std::uint64_t seed) {
+  // {"kind":"tilt","kind_version":2,"params":{...},"seed":null}: canonical JSON, one line.
+  return digest(fmt::format(R"({{"kind":{},"kind_version":{},"params":{},"seed":{}}})", json_string(kind), kind_version,
+                            canonical(params), uses_seed ? json_string(std::to_string(seed)) : std::string("null")));
+}
+
 std::uint64_t task_seed(std::uint64_t study_seed, const Params& seed_params) {
   return hash64(std::to_string(study_seed) + ":" + canonical(seed_params));
 }

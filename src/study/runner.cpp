@@ -50,7 +50,7 @@ Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegis
   if (!todo) return todo.error();
   const unsigned T = util::thread_count(options.threads, std::max<std::size_t>(1, todo->size()));
   sum.threads = util::thread_count(options.threads);
-  Coordinator co(study, store, options, std::move(*todo), 1);
+  Coordinator co(study, store, registry, options, std::move(*todo), 1);
   if (auto s = co.start(); !s) return s.error();
   // T compute threads claim, compute and hand back; this thread owns the store and records.
   util::run_workers(

@@ -52,7 +52,7 @@ pid_t spawn_run(const std::string& study, const std::string& store, const std::s
     std::freopen("/dev/null", "w", stdout);
     std::freopen("/dev/null", "w", stderr);
     ::execl(FRICTAL_CLI_PATH, FRICTAL_CLI_PATH, "study", "run", study.c_str(), "--store", store.c_str(), "--threads",
-            threads.c_str(), "--progress", "none", static_cast<char*>(nullptr));
+            threads.c_str(), "--cache", "none", "--progress", "none", static_cast<char*>(nullptr));
     std::_Exit(127);
   }
   return pid;
@@ -63,7 +63,7 @@ pid_t spawn_run(const std::string& study, const std::string& store, const std::s
 TEST(StudyCli, KilledWithSigkillAtRandomPointsAndResumedGivesTheUninterruptedRows) {
   const std::string study = study_file("kill");
   const std::string ref = fresh("kill-ref.sqlite");
-  auto r = run_cli("study run " + study + " --store " + ref + " --threads 1 --progress none");
+  auto r = run_cli("study run " + study + " --store " + ref + " --threads 1 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string expected = dump(ref);
 
@@ -87,7 +87,7 @@ TEST(StudyCli, KilledWithSigkillAtRandomPointsAndResumedGivesTheUninterruptedRow
       }
     }
     // Resume to completion and compare every row with the uninterrupted run.
-    r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress none");
+    r = run_cli("study run " + study + " --store " + store + " --threads 2 --cache none --progress none");
     ASSERT_EQ(r.code, 0) << r.err << " (kill delays ms: " << delays << ")";
     EXPECT_EQ(dump(store), expected) << "kill delays ms: " << delays;
     EXPECT_GT(kills, 0) << "no run was killed (delays ms: " << delays << ")";
@@ -106,7 +106,7 @@ TEST(StudyCli, CtrlCStopsCleanlyAndResumes) {
   ::waitpid(pid, &status, 0);
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_TRUE(WEXITSTATUS(status) == 130 || WEXITSTATUS(status) == 0) << WEXITSTATUS(status);
-  auto r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress lines");
+  auto r = run_cli("study run " + study + " --store " + store + " --threads 2 --cache none --progress lines");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("30/30 done"), std::string::npos) << r.err;  // plain progress lines off a terminal
 }
@@ -116,14 +116,14 @@ TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
   const std::string study = study_file("mpi");
   const std::string a = fresh("mpi-threads.sqlite"), b = fresh("mpi-ranks.sqlite");
-  auto r = run_cli("study run " + study + " --store " + a + " --threads 2 --progress none");
+  auto r = run_cli("study run " + study + " --store " + a + " --threads 2 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
   // Open MPI leaks at exit by design; under the sanitizer preset keep ASan's memory checks but
   // not LeakSanitizer (the leaks are all inside libmpi and its plugins).
   const std::string mpirun = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 2 --oversubscribe";
   const std::string cmd = mpirun + root + " " + FRICTAL_CLI_PATH + " study run " + study + " --store " + b +
-                          " --progress none >/dev/null 2>&1";
+                          " --cache none --progress none >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   EXPECT_EQ(dump(a), dump(b));
   // Both ranks computed (rank 1 took at least one task from rank 0's queue).
@@ -139,7 +139,7 @@ TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
   // store is still exactly the threads run, with the extra attempts recorded.
   const std::string c = fresh("mpi-fault.sqlite");
   const std::string cmd2 = mpirun + root + " " + FRICTAL_CLI_PATH + " study run " + study + " --store " + c +
-                           " --progress none --inject-failure-rank 0 >/dev/null 2>&1";
+                           " --cache none --progress none --inject-failure-rank 0 >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd2.c_str()), 0) << cmd2;
   EXPECT_EQ(dump(a), dump(c));
   auto sc = Store::open_existing(c);
@@ -157,11 +157,11 @@ TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
 TEST(StudyCli, UserErrorsAndExport) {
   const std::string study = study_file("cli");
   const std::string store = fresh("cli.sqlite");
-  auto r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress none");
+  auto r = run_cli("study run " + study + " --store " + store + " --threads 2 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
   // Same store, other definition (quick scale has other tasks here? no quick table: same grid,
   // but the scale is part of the definition).
-  r = run_cli("study run " + study + " --store " + store + " --quick --progress none");
+  r = run_cli("study run " + study + " --store " + store + " --quick --cache none --progress none");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("another study definition"), std::string::npos) << r.err;
   r = run_cli("study run /nonexistent.toml --store " + fresh("x.sqlite"));
@@ -196,10 +196,10 @@ TEST(StudyCli, ATaskRetriedOnceGivesTheSameStoreOnThreadsAndMpiRanks) {
   // holds exactly what an undisturbed run holds, with two attempts recorded for those tasks.
   const std::string study = study_file("retry");
   const std::string ref = fresh("retry-ref.sqlite"), thr = fresh("retry-threads.sqlite");
-  auto r = run_cli("study run " + study + " --store " + ref + " --threads 2 --progress none");
+  auto r = run_cli("study run " + study + " --store " + ref + " --threads 2 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
   r = run_cli("study run " + study + " --store " + thr +
-              " --threads 2 --progress none --inject-failure-task 3 --inject-failure-task 17");
+              " --threads 2 --cache none --progress none --inject-failure-task 3 --inject-failure-task 17");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string expected = dump(ref);
   EXPECT_EQ(dump(thr), expected);
@@ -223,9 +223,10 @@ TEST(StudyCli, ATaskRetriedOnceGivesTheSameStoreOnThreadsAndMpiRanks) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
   const std::string mpi = fresh("retry-mpi.sqlite");
   const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
-  const std::string cmd = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 2 --oversubscribe" + root + " " +
-                          FRICTAL_CLI_PATH + " study run " + study + " --store " + mpi +
-                          " --progress none --inject-failure-task 3 --inject-failure-task 17 >/dev/null 2>&1";
+  const std::string cmd =
+      "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 2 --oversubscribe" + root + " " + FRICTAL_CLI_PATH +
+      " study run " + study + " --store " + mpi +
+      " --cache none --progress none --inject-failure-task 3 --inject-failure-task 17 >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   EXPECT_EQ(dump(mpi), expected);
   a = attempts(mpi);

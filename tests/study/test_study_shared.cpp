@@ -75,7 +75,7 @@ pid_t spawn_run(const std::string& study, const std::string& store, const std::s
     std::freopen(log.c_str(), "w", stdout);
     std::freopen(log.c_str(), "a", stderr);
     ::execl(FRICTAL_CLI_PATH, FRICTAL_CLI_PATH, "study", "run", study.c_str(), "--store", store.c_str(), "--threads",
-            "1", "--progress", "none", static_cast<char*>(nullptr));
+            "1", "--cache", "none", "--progress", "none", static_cast<char*>(nullptr));
     std::_Exit(127);
   }
   return pid;
@@ -171,7 +171,7 @@ TEST(StudyShared, ThreeConcurrentRunsShareTheWorkAndSurviveRandomKills) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string study = study_file("concurrent");
   const std::string ref = fresh("concurrent-ref.sqlite");
-  auto r = run_cli("study run " + study + " --store " + ref + " --threads 1 --progress none");
+  auto r = run_cli("study run " + study + " --store " + ref + " --threads 1 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string expected = dump(ref);
 
@@ -225,7 +225,7 @@ TEST(StudyShared, ThreeConcurrentRunsShareTheWorkAndSurviveRandomKills) {
         EXPECT_EQ(WEXITSTATUS(status), 0) << "trial " << trial;
       }
     }
-    r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress none");
+    r = run_cli("study run " + study + " --store " + store + " --threads 2 --cache none --progress none");
     ASSERT_EQ(r.code, 0) << r.err << " (kill delays " << delays << ")";
     EXPECT_EQ(dump(store), expected) << "kill delays " << delays;
     EXPECT_EQ(claimed(store), 0);
@@ -238,11 +238,11 @@ TEST(StudyShared, ThreeConcurrentRunsShareTheWorkAndSurviveRandomKills) {
 TEST(StudyShared, ReadOnlyStoreIsAClearErrorAndKeepsWhatIsStored) {
   const std::string study = study_file("ro");
   const std::string store = fresh("ro.sqlite");
-  auto r = run_cli("study run " + study + " --store " + store + " --part b --threads 2 --progress none");
+  auto r = run_cli("study run " + study + " --store " + store + " --part b --threads 2 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string before = dump(store);
   if (!make_read_only(store, true)) GTEST_SKIP() << "cannot make a file read-only here";
-  r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress none");
+  r = run_cli("study run " + study + " --store " + store + " --threads 2 --cache none --progress none");
   EXPECT_EQ(r.code, 2) << r.out << r.err;
   EXPECT_NE(r.err.find(store), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("read-only"), std::string::npos) << r.err;
@@ -252,7 +252,7 @@ TEST(StudyShared, ReadOnlyStoreIsAClearErrorAndKeepsWhatIsStored) {
   EXPECT_NE(st.out.find("12 done"), std::string::npos) << st.out;
   ASSERT_TRUE(make_read_only(store, false));
   EXPECT_EQ(dump(store), before);
-  r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress none");
+  r = run_cli("study run " + study + " --store " + store + " --threads 2 --cache none --progress none");
   EXPECT_EQ(r.code, 0) << r.err;
 }
 
@@ -319,7 +319,7 @@ TEST(StudyShared, FileSizeLimitAsAFullDiskThroughTheCli) {
   // message names the store, and the tasks stored before are kept.
   const std::string study = study_file("fsize");
   const std::string store = fresh("fsize.sqlite");
-  auto r = run_cli("study run " + study + " --store " + store + " --part b --threads 2 --progress none");
+  auto r = run_cli("study run " + study + " --store " + store + " --part b --threads 2 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
   struct stat sb {};
   ::stat(store.c_str(), &sb);
@@ -334,7 +334,7 @@ TEST(StudyShared, FileSizeLimitAsAFullDiskThroughTheCli) {
     };
     ::setrlimit(RLIMIT_FSIZE, &lim);
     ::execl(FRICTAL_CLI_PATH, FRICTAL_CLI_PATH, "study", "run", study.c_str(), "--store", store.c_str(), "--threads",
-            "2", "--progress", "none", static_cast<char*>(nullptr));
+            "2", "--cache", "none", "--progress", "none", static_cast<char*>(nullptr));
     std::_Exit(127);
   }
   int status = 0;
@@ -350,14 +350,14 @@ TEST(StudyShared, FileSizeLimitAsAFullDiskThroughTheCli) {
   auto rows = (*st)->rows("b", false);
   ASSERT_TRUE(rows.ok());
   EXPECT_EQ(rows->size(), 12u);
-  r = run_cli("study run " + study + " --store " + store + " --threads 2 --progress none");
+  r = run_cli("study run " + study + " --store " + store + " --threads 2 --cache none --progress none");
   EXPECT_EQ(r.code, 0) << r.err;
 }
 
 TEST(StudyShared, EachResultKeepsTheFrictalAndKindVersion) {
   const std::string study = study_file("versions");
   const std::string store = fresh("versions.sqlite");
-  auto r = run_cli("study run " + study + " --store " + store + " --part b --threads 2 --progress none");
+  auto r = run_cli("study run " + study + " --store " + store + " --part b --threads 2 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
   auto st = Store::open_existing(store);
   ASSERT_TRUE(st.ok());
@@ -430,7 +430,7 @@ TEST(StudyShared, MpiRankKilledLeavesTheStoreConsistentAndARerunCompletes) {
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
   const std::string study = study_file("mpi-kill");
   const std::string ref = fresh("mpi-kill-ref.sqlite");
-  auto r = run_cli("study run " + study + " --store " + ref + " --threads 2 --progress none");
+  auto r = run_cli("study run " + study + " --store " + ref + " --threads 2 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string expected = dump(ref);
   const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
@@ -439,8 +439,8 @@ TEST(StudyShared, MpiRankKilledLeavesTheStoreConsistentAndARerunCompletes) {
   for (int trial = 0; trial < 2; ++trial) {
     const std::string store = fresh("mpi-kill-" + std::to_string(trial) + ".sqlite");
     const std::string log = temp_path("mpi-kill-" + std::to_string(trial) + ".log");
-    const std::string cmd =
-        mpirun + FRICTAL_CLI_PATH + " study run " + study + " --store " + store + " --progress none >" + log + " 2>&1";
+    const std::string cmd = mpirun + FRICTAL_CLI_PATH + " study run " + study + " --store " + store +
+                            " --cache none --progress none >" + log + " 2>&1";
     const pid_t launcher = ::fork();
     if (launcher == 0) {
       ::execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
@@ -487,7 +487,7 @@ TEST(StudyShared, MpiRankKilledLeavesTheStoreConsistentAndARerunCompletes) {
     }
     // Running the same command again completes it, with exactly the undisturbed results.
     ASSERT_EQ(std::system((mpirun + FRICTAL_CLI_PATH + " study run " + study + " --store " + store +
-                           " --progress none >/dev/null 2>&1")
+                           " --cache none --progress none >/dev/null 2>&1")
                               .c_str()),
               0);
     EXPECT_EQ(dump(store), expected) << out;
