@@ -266,6 +266,7 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
   }
   // Expand: parts in file order, axes sorted by name, the last axis varying fastest.
   std::int64_t id = 0;
+  std::set<std::string> task_keys;  // a repeated list value would give two tasks with one key
   for (const Part& part : s.parts) {
     std::int64_t n = 1;
     for (const auto& ax : part.axes) {
@@ -285,6 +286,9 @@ Result<Study> parse_study(const std::string& text, const std::string& origin, bo
       Params keyed = task.params;
       keyed["part"] = part.name;
       task.key = canonical(keyed);
+      if (!task_keys.insert(task.key).second)
+        return make_error(fmt::format("{}: part '{}': the task {} appears twice (a parameter list repeats a value)",
+                                      origin, part.name, task.key));
       Params seed_params;
       if (part.seed_from.empty()) {
         seed_params = task.params;
