@@ -30,7 +30,7 @@ package: build
 	@ls -l $(BUILD)/packages/*.deb
 
 reproduce: build
-	bash scripts/reproduce $(BUILD)/frictal out
+	bash scripts/reproduce $(BUILD)/apps/frictal/frictal out
 
 bench: deps
 	cmake --preset bench && cmake --build build/bench -j $(JOBS)

@@ -4,7 +4,7 @@ alpha = 20 deg (mu_a = 0, Table I/II), from `frictal tilt -o`. Writes bench/resu
 (one row per 10 ms of simulated time). Usage: bench/dem_fig7.py [path/to/frictal]"""
 import csv, os, subprocess, sys, tempfile
 
-cli = sys.argv[1] if len(sys.argv) > 1 else "build/release/frictal"
+cli = sys.argv[1] if len(sys.argv) > 1 else "build/release/apps/frictal/frictal"
 alpha, Lb = 20.0, 0.2
 out = "bench/results/dem-fig7.csv"
 with open(out, "w", newline="") as f:

@@ -46,7 +46,7 @@ def run(cli, n, alpha, mu, face, reverse, dt=1e-5):
 
 def main():
     args = [a for a in sys.argv[1:]]
-    cli = next((a for a in args if not a.startswith("--") and os.path.exists(a)), "build/release/frictal")
+    cli = next((a for a in args if not a.startswith("--") and os.path.exists(a)), "build/release/apps/frictal/frictal")
     out = "bench/results/dem-koch.md"
     if "--out" in args:
         out = args[args.index("--out") + 1]
