@@ -213,6 +213,7 @@ double get(const std::map<std::string, double>& s, const std::string& k) {
 void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
   struct Cell {
     int n = 0, slid = 0, inside = 0, below = 0, above = 0, warned = 0;
+    int rot = 0, rot_inside = 0, rot_below = 0, rot_above = 0;  // runs with the rotation warning
     Acc phi[3], tmax, sigma, low, sphero, d_rigid, d_sphero, offset, before, slide;
   };
   std::map<double, Cell> by_d;  // surface dimension (rounded to 1e-9) -> cell
@@ -241,12 +242,18 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
       c->slide.add(get(s, "final_displacement_m"));
       const double phi = get(s, "friction_angle_deg");
       if (slid) {
-        if (get(s, "inside_eq18") > 0)
+        const bool turned = get(s, "warning_rotation") > 0;
+        c->rot += turned;
+        if (get(s, "inside_eq18") > 0) {
           ++c->inside;
-        else if (phi < get(s, "eq18_low_deg"))
+          c->rot_inside += turned;
+        } else if (phi < get(s, "eq18_low_deg")) {
           ++c->below;
-        else
+          c->rot_below += turned;
+        } else {
           ++c->above;
+          c->rot_above += turned;
+        }
       }
       c->warned += get(s, "warning_core_overlap") + get(s, "warning_rounding") + get(s, "warning_time_step") +
                        get(s, "warning_rotation") >
@@ -316,6 +323,32 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
     std::string per;
     for (const auto& [D, c] : by_d) per += fmt::format(" D={:.1f}: {}/{}", D, c.inside, c.slid);
     f.evidence.push_back("inside per D:" + per);
+    {  // where the angles fall relative to the rigid prediction, in degrees and in units of sigma
+      double m = 0, m2 = 0, z = 0;
+      int n = 0, within_sigma = 0;
+      for (const auto& row : rows) {
+        const auto& sc = row.output.scalars;
+        const double d = get(sc, "friction_minus_rigid_deg"), sg = get(sc, "sigma_deg");
+        if (!std::isfinite(d) || !std::isfinite(sg) || sg <= 0) continue;
+        ++n;
+        m += d;
+        m2 += d * d;
+        z += d / sg;
+        within_sigma += std::abs(d) <= sg;
+      }
+      if (n > 1) {
+        m /= n;
+        f.evidence.push_back(fmt::format(
+            "phi - (theta_max + theta_a): mean {:+.3f} deg, standard deviation {:.3f} deg, mean in units of sigma "
+            "{:+.2f}; |phi - theta_max - theta_a| <= sigma in {} of {} pairs",
+            m, std::sqrt(std::max(0.0, (m2 - n * m * m) / (n - 1))), z / n, within_sigma, n));
+      }
+    }
+    f.evidence.push_back(fmt::format(
+        "runs flagged 'rotation' (the upper block turned before the slide; the signature assumes it does not): {} -- "
+        "{} inside, {} below, {} above; unflagged: {} inside, {} below, {} above",
+        all.rot, all.rot_inside, all.rot_below, all.rot_above, all.inside - all.rot_inside, all.below - all.rot_below,
+        all.above - all.rot_above));
     rep.findings.push_back(f);
   }
   // F2: run-away distance.

@@ -59,10 +59,10 @@ void expect_slide_starts_monotone(const TaskOutput& out) {
 
 TEST(StudyWmTilt, SinePairSlidesAtItsSteepestSlopeAtEveryRunawayDistance) {
   // z = A sin(2 pi x / lambda) on itself: the nested blocks slide when the tilt reaches the
-  // steepest flank, atan(2 pi A / lambda) = 10 deg here, and nothing stops them afterwards. The
+  // steepest flank, atan(2 pi A / lambda) = 6 deg here, and nothing stops them afterwards. The
   // rounded faces have the same slopes (2r = 4e-5 m is far below the smallest radius of
-  // curvature lambda^2 / (4 pi^2 A) = 9e-3 m), so the spheropolygon prediction is 10 deg too.
-  const double lambda = 0.01, slope = 10.0;
+  // curvature lambda^2 / (4 pi^2 A) = 0.015 m), so the spheropolygon prediction is 6 deg too.
+  const double lambda = 0.01, slope = 6.0;
   const double A = std::tan(slope * kPi / 180) * lambda / (2 * kPi);
   Params p = table_ii({{"generator", std::string("sine")},
                        {"amplitude", A},
