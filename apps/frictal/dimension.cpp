@@ -56,7 +56,7 @@ std::function<int()> setup(CLI::App& app) {
       require(a->file.empty(), fmt::format("dimension {}: a generated surface takes no FILE", spec->generator));
       a->file = spec->generator;
     } else if (a->file.empty()) {
-      throw UsageError("dimension: give a FILE, or a generator (koch, wm, sawtooth, sine, self-affine)");
+      throw UsageError("dimension: give a FILE, or a generator (koch, wm, sawtooth, sine, self-affine, fourier)");
     }
     require(a->scale_min >= 0 && a->scale_max >= 0, "--min and --max must be positive lengths in metres");
     const Detrend d = unwrap(parse_detrend(a->detrend));

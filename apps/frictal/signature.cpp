@@ -79,7 +79,8 @@ std::function<int()> setup(CLI::App& app) {
           fmt::format("signature {}: a generated surface is signed against itself; give no files", spec->generator));
       a->lower = spec->generator;
     } else if (a->lower.empty()) {
-      throw UsageError("signature: give LOWER [UPPER] files, or a generator (koch, wm, sawtooth, sine, self-affine)");
+      throw UsageError(
+          "signature: give LOWER [UPPER] files, or a generator (koch, wm, sawtooth, sine, self-affine, fourier)");
     }
     Profile lower = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : load_profile(a->lower), dt));
     Profile upper_measured = a->upper.empty() ? lower : unwrap(detrend(load_profile(a->upper), dt));

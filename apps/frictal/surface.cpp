@@ -1,4 +1,4 @@
-// frictal surface koch|wm|sawtooth|sine|self-affine — generate a profile and write it as CSV.
+// frictal surface koch|wm|sawtooth|sine|self-affine|fourier — generate a profile and write it as CSV.
 // The generators and their options come from the library's surface specification
 // (frictal/surface_spec.hpp), shared with signature, tilt and dimension.
 #include "frictal/stats.hpp"
@@ -39,7 +39,8 @@ std::function<int()> setup(CLI::App& app) {
   };
 }
 
-FRICTAL_COMMAND({"surface", "Generate a surface profile (Koch, Weierstrass-Mandelbrot, sawtooth, sine, self-affine)",
+FRICTAL_COMMAND({"surface",
+                 "Generate a surface profile (Koch, Weierstrass-Mandelbrot, sawtooth, sine, self-affine, Fourier)",
                  setup, 10});
 
 }  // namespace

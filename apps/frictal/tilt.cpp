@@ -51,7 +51,8 @@ int run(TiltOptions& o) {
     surface["generator"] = spec->generator;
   } else {
     if (o.lower_file.empty())
-      throw UsageError("tilt: give a generator (koch, wm, sawtooth, sine, self-affine) or --lower FILE [--upper FILE]");
+      throw UsageError(
+          "tilt: give a generator (koch, wm, sawtooth, sine, self-affine, fourier) or --lower FILE [--upper FILE]");
     lower = unwrap(read_curve(input_path(o.lower_file)));
     upper = o.upper_file.empty() ? lower : unwrap(read_curve(input_path(o.upper_file)));
     base = tilt_config_for_surface(0, 0);  // offsets over half the block; run-away 0.01 m

@@ -2,6 +2,7 @@
 // their parameters (names, units, ranges, help) are in frictal/surface_spec.hpp.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <numbers>
 
@@ -74,8 +75,10 @@ struct SineParams {
 Result<Profile> sine_profile(const SineParams& p);
 
 /// Random self-affine profile by random midpoint displacement (Fournier, Fussell & Carpenter
-/// 1982; power spectrum ~ q^{-(1+2H)}), resampled onto `points` uniform points over `length`,
-/// rms height `rms_height` (<= 0: unscaled). Used for large benchmarks and tests.
+/// 1982), a real-space construction whose spectrum is only approximately ~ q^{-(1+2H)} (it is
+/// not periodic and not spectral synthesis; see fourier_self_affine_profile for that), resampled
+/// onto `points` uniform points over `length`, rms height `rms_height` (<= 0: unscaled). Used
+/// for large benchmarks and tests.
 struct SelfAffineParams {
   std::size_t points = 1024;  ///< number of points >= 16 (unitless)
   double length = 1e-3;       ///< (unit: m)
@@ -84,5 +87,51 @@ struct SelfAffineParams {
   std::uint64_t seed = 1;     ///< seed of the random heights (unitless)
 };
 Result<Profile> self_affine_profile(const SelfAffineParams& p);
+
+/// How fourier_self_affine_profile draws the Fourier amplitudes.
+enum class FourierAmplitudes {
+  Gaussian,  ///< complex Gaussian coefficients (filtered white noise): a Gaussian random process
+             ///< whose periodogram follows the target spectrum on average, exponentially distributed
+             ///< about it at each wavenumber
+  Fixed      ///< |coefficient| = sqrt of the target, only the phases random: the periodogram of
+             ///< every realisation is the target spectrum exactly
+};
+
+/// Periodic random self-affine profile by Fourier filtering, the way contact mechanics makes
+/// rough surfaces (Hu & Tonder 1992; e.g. SurfaceTopography's fourier_synthesis, Tamaas's
+/// SurfaceGeneratorFilter). With q_k = 2 pi k / L (k = 1 .. N/2 - 1), q_r = 2 pi / rolloff_wavelength
+/// and q_s = 2 pi / short_cutoff_wavelength, the target power spectrum is
+///   C(q) = C0                          for q < q_r   (rolloff: flat),
+///   C(q) = C0 (q / q_r)^{-(1 + 2H)}    for q_r <= q <= q_s,
+///   C(q) = 0                           for q > q_s   (and at q = 0: zero mean),
+/// in the convention of power_spectrum (analysis.hpp): C(q_k) = L |Z_k|^2 for the discrete Fourier
+/// coefficients Z_k of the N samples z_j = sum_k Z_k exp(i q_k x_j). The coefficients are drawn for
+/// k = 1, 2, ... in order from `seed` (Gaussian: real and imaginary parts normal with variance
+/// C/(2L); Fixed: modulus sqrt(C/L), phase uniform in [0, 2 pi)); the samples come from one inverse
+/// DFT, and C0 is fixed by scaling the profile so that the rms height about the mean of the
+/// piecewise-linear profile (profile_stats) is exactly `rms_height` — for Gaussian amplitudes this
+/// scale factor is random, common to all wavenumbers. The piecewise-linear interpolation between
+/// samples multiplies the continuous spectrum by sinc^4(q dx / 2) (>= 0.90 up to a quarter of the
+/// Nyquist wavenumber); keep short_cutoff_wavelength >= 8 dx for a clean power law.
+/// Output: points + 1 uniform samples x_j = j L / points, j = 0 .. points (the last repeats the
+/// first), period = length.
+struct FourierSelfAffineParams {
+  std::size_t points = 2048;  ///< samples per period N, 8 .. 2^26 (unitless)
+  double length = 0.2;        ///< period L of the profile (unit: m)
+  double hurst = 0.8;         ///< Hurst exponent H in (0, 1] (unitless)
+  /// 2 pi / q_r: C(q) is flat at longer wavelengths; >= length: no flat part (unit: m)
+  double rolloff_wavelength = 0.01;
+  /// 2 pi / q_s: C(q) = 0 at shorter wavelengths; > 2 L / points, <= rolloff_wavelength and
+  /// <= length (unit: m)
+  double short_cutoff_wavelength = 0.001;
+  double rms_height = 1e-5;  ///< rms height about the mean, > 0, exact (unit: m)
+  /// Gaussian (a random process) or Fixed (the exact spectrum, random phases)
+  FourierAmplitudes amplitudes = FourierAmplitudes::Gaussian;
+  std::uint64_t seed = 1;  ///< seed of the amplitudes and phases (unitless)
+};
+/// Checks the parameters (ranges and the order rolloff >= cutoff > Nyquist wavelength) without
+/// generating; the error names the parameter.
+Status validate(const FourierSelfAffineParams& p);
+Result<Profile> fourier_self_affine_profile(const FourierSelfAffineParams& p);
 
 }  // namespace frictal

@@ -12,6 +12,7 @@ message naming the parameter or file.
 """
 from ._core import (  # noqa: F401
     Profile,
+    fourier_profile,
     generators,
     koch_curve,
     koch_profile,

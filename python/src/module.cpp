@@ -52,7 +52,7 @@ SurfaceSpec spec_of(const std::string& generator, const py::kwargs& kw, const st
     std::string hint;
     if (std::string n = nearest_word(generator, generator_names()); !n.empty()) hint = " (did you mean '" + n + "'?)";
     throw py::value_error(function + ": unknown surface generator '" + generator + "'" + hint +
-                          "; expected koch, wm, sawtooth, sine or self-affine");
+                          "; expected koch, wm, sawtooth, sine, self-affine or fourier");
   }
   return unwrap(make_surface_spec(generator, py_detail::keyword_values(g->fields, kw, function)));
 }
@@ -128,7 +128,7 @@ PYBIND11_MODULE(_core, m) {
       [](const std::string& generator, const py::kwargs& kw) { return profile_of(spec_of(generator, kw, "surface")); },
       py::arg("generator"),
       "surface(generator, **params) -> Profile\n\nA generated profile: generator is 'koch', 'wm', 'sawtooth', "
-      "'sine' or 'self-affine'; params are that generator's keywords (see generators() and each "
+      "'sine', 'self-affine' or 'fourier'; params are that generator's keywords (see generators() and each "
       "<name>_profile function; SI units: metres, radians). Koch: the upper envelope.");
   m.def(
       "surface_curve",

@@ -5,9 +5,9 @@
 #include <complex>
 #include <numbers>
 
-#include "analysis/fft.hpp"
 #include "analysis/filter_detail.hpp"
 #include "frictal/filter.hpp"
+#include "util/fft.hpp"
 
 namespace frictal {
 
@@ -53,10 +53,10 @@ std::vector<double> gaussian_smooth(const std::vector<double>& z, double dx, dou
     kk[k] = w[k];
     if (k > 0) kk[m - k] = w[k];
   }
-  dft(zz);
-  dft(kk);
+  util::dft(zz);
+  util::dft(kk);
   for (std::size_t i = 0; i < m; ++i) zz[i] *= kk[i];  // the kernel is real and even: its DFT is real
-  dft(zz, true);
+  util::dft(zz, true);
   for (std::size_t i = 0; i < n; ++i) out[i] = scale * zz[i].real() / zz[i].imag();
   return out;
 }

@@ -7,8 +7,8 @@
 #include <numbers>
 
 #include "analysis/edge_scale.hpp"
-#include "analysis/fft.hpp"
 #include "frictal/analysis.hpp"
+#include "util/fft.hpp"
 
 namespace frictal {
 
@@ -224,8 +224,8 @@ Result<Spectrum> power_spectrum(const Profile& p, std::size_t max_k) {
       a[i] = p.z[i] - mean;
       b[i] = p.z[i + 1] - mean;
     }
-    analysis_detail::dft(a);
-    analysis_detail::dft(b);
+    util::dft(a);
+    util::dft(b);
     for (std::size_t k = 1; k <= K; ++k) {
       const double q = 2 * std::numbers::pi * double(k) / L;
       cd A, B;
@@ -271,9 +271,9 @@ Result<Autocorrelation> autocorrelation(const Profile& p, std::size_t max_lag) {
   while (m < 2 * n) m <<= 1;
   std::vector<cd> a(m, 0.0);
   for (std::size_t i = 0; i < n; ++i) a[i] = u.z[i] - mean;
-  analysis_detail::dft(a);
+  util::dft(a);
   for (auto& v : a) v = std::norm(v);
-  analysis_detail::dft(a, true);
+  util::dft(a, true);
   Autocorrelation out;
   const double r0 = a[0].real() / double(m) / double(n);
   for (std::size_t k = 0; k <= max_lag; ++k) {

@@ -1,12 +1,15 @@
 // Surface generators: Koch (Sec. III), Weierstrass-Mandelbrot (Eq. 14-17), sawtooth, sine,
-// random self-affine (midpoint displacement).
+// random self-affine (midpoint displacement), periodic self-affine by Fourier filtering.
 #include "frictal/generators.hpp"
 
 #include <fmt/core.h>
 #include <cmath>
+#include <complex>
 #include <numbers>
+#include <vector>
 
 #include "frictal/stats.hpp"
+#include "util/fft.hpp"
 #include "util/random.hpp"
 
 namespace frictal {
@@ -231,6 +234,84 @@ Result<Profile> self_affine_profile(const SelfAffineParams& p) {
   const double rms = profile_stats(out).rms_height;
   if (rms > 0 && p.rms_height > 0)
     for (auto& v : out.z) v *= p.rms_height / rms;
+  return out;
+}
+
+Status validate(const FourierSelfAffineParams& p) {
+  const char* what = "fourier";
+  if (p.points < 8 || p.points > (std::size_t{1} << 26))
+    return make_error(fmt::format("{}: points must be in 8..2^26 (67108864), got {}", what, p.points));
+  if (!(p.length > 0) || !std::isfinite(p.length))
+    return make_error(fmt::format("{}: length must be a positive length in metres, got {}", what, p.length));
+  if (!(p.hurst > 0 && p.hurst <= 1))
+    return make_error(fmt::format("{}: hurst (Hurst exponent H) must be in (0, 1], got {}", what, p.hurst));
+  if (!(p.rolloff_wavelength > 0) || !std::isfinite(p.rolloff_wavelength))
+    return make_error(
+        fmt::format("{}: rolloff_wavelength must be a positive length in metres, got {}", what, p.rolloff_wavelength));
+  if (!(p.short_cutoff_wavelength > 0) || !std::isfinite(p.short_cutoff_wavelength))
+    return make_error(fmt::format("{}: short_cutoff_wavelength must be a positive length in metres, got {}", what,
+                                  p.short_cutoff_wavelength));
+  if (!(p.rms_height > 0) || !std::isfinite(p.rms_height))
+    return make_error(fmt::format("{}: rms_height must be a positive length in metres, got {}", what, p.rms_height));
+  if (p.short_cutoff_wavelength > p.rolloff_wavelength)
+    return make_error(fmt::format("{}: short_cutoff_wavelength ({} m) must not exceed rolloff_wavelength ({} m)", what,
+                                  p.short_cutoff_wavelength, p.rolloff_wavelength));
+  if (p.short_cutoff_wavelength > p.length)
+    return make_error(fmt::format(
+        "{}: short_cutoff_wavelength ({} m) must not exceed length ({} m): no wavenumber would carry height", what,
+        p.short_cutoff_wavelength, p.length));
+  const double dx = p.length / static_cast<double>(p.points);
+  if (!(p.short_cutoff_wavelength > 2 * dx))
+    return make_error(
+        fmt::format("{}: short_cutoff_wavelength ({} m) must be longer than the Nyquist wavelength 2 length / points "
+                    "({} m); raise points or the cutoff (8 samples per cutoff wavelength keep the power law clean)",
+                    what, p.short_cutoff_wavelength, 2 * dx));
+  return Ok{};
+}
+
+Result<Profile> fourier_self_affine_profile(const FourierSelfAffineParams& p) {
+  const char* what = "fourier";
+  if (Status st = validate(p); !st) return st.error();
+  const std::size_t N = p.points;
+  // Wavenumber indices: q_k = 2 pi k / L. k_s is the last k with q_k <= q_s (k_s < N / 2 by the
+  // Nyquist check, with a relative margin for lengths that are a whole number of cutoffs).
+  const double ks_real = p.length / p.short_cutoff_wavelength;
+  std::size_t ks = static_cast<std::size_t>(std::floor(ks_real * (1 + 1e-12)));
+  ks = std::min(ks, (N - 1) / 2);
+  const double kr = p.length / p.rolloff_wavelength;
+  std::vector<std::complex<double>> a(N, 0.0);
+  util::Rng rng(p.seed);
+  for (std::size_t k = 1; k <= ks; ++k) {
+    const double kk = static_cast<double>(k);
+    const double c = kk < kr ? 1.0 : std::pow(kk / kr, -(1 + 2 * p.hurst));  // C(q_k) / C0
+    std::complex<double> z;
+    if (p.amplitudes == FourierAmplitudes::Gaussian) {
+      const double re = rng.normal(), im = rng.normal();
+      z = std::sqrt(c / 2) * std::complex<double>(re, im);
+    } else {
+      const double phase = 2 * kPi * rng.uniform();
+      z = std::sqrt(c) * std::complex<double>(std::cos(phase), std::sin(phase));
+    }
+    a[k] = z;
+    a[N - k] = std::conj(z);
+  }
+  util::dft(a, true);  // z_j = sum_k a_k exp(+2 pi i j k / N), real by the Hermitian symmetry
+  Profile out;
+  out.x.resize(N + 1);
+  out.z.resize(N + 1);
+  for (std::size_t j = 0; j <= N; ++j) {
+    out.x[j] = p.length * static_cast<double>(j) / static_cast<double>(N);
+    out.z[j] = a[j % N].real();
+  }
+  out.period = p.length;
+  const double rms = profile_stats(out).rms_height;
+  if (!(rms > 0))
+    return make_error(
+        fmt::format("{}: the generated heights are all equal (no wavenumber between 2 pi / length and "
+                    "2 pi / short_cutoff_wavelength carries height)",
+                    what));
+  const double scale = p.rms_height / rms;
+  for (auto& v : out.z) v *= scale;
   return out;
 }
 

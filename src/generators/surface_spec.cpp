@@ -2,6 +2,7 @@
 // generator's parameter struct (whose initialisers are the defaults).
 #include "frictal/surface_spec.hpp"
 
+#include <algorithm>
 #include <numbers>
 
 #include <fmt/core.h>
@@ -126,6 +127,34 @@ const std::vector<Binding<SelfAffineParams>>& self_affine_table() {
   return t;
 }
 
+const std::vector<Binding<FourierSelfAffineParams>>& fourier_table() {
+  using P = FourierSelfAffineParams;
+  static const auto t = with_defaults<P>(
+      {bind<P>(F("points", "", 8, 67108864, false, false, "Samples per period N (the profile has N + 1 points)"),
+               [](P& p) -> std::size_t& { return p.points; }),
+       bind<P>(F("length", "m", 0, kInf, true, false, "Length L_b of the surface, its period"),
+               [](P& p) -> double& { return p.length; }),
+       bind<P>(F("hurst", "", 0, 1, true, false, "Hurst exponent H"), [](P& p) -> double& { return p.hurst; }),
+       bind<P>(F("rolloff_wavelength", "m", 0, kInf, true, false,
+                 "Rolloff wavelength 2 pi / q_r: the power spectrum is flat at longer wavelengths"),
+               [](P& p) -> double& { return p.rolloff_wavelength; }),
+       bind<P>(F("short_cutoff_wavelength", "m", 0, kInf, true, false,
+                 "Short cutoff wavelength 2 pi / q_s: no power at shorter wavelengths"),
+               [](P& p) -> double& { return p.short_cutoff_wavelength; }),
+       bind<P>(F("rms_height", "m", 0, kInf, true, false, "RMS height about the mean (exact)"),
+               [](P& p) -> double& { return p.rms_height; }),
+       bind_choice<P>(
+           F("amplitudes", "", 0, 0, false, false,
+             "Fourier amplitudes: gaussian (random process) or fixed (exact spectrum, random phases)"),
+           [](P& p) -> FourierAmplitudes& { return p.amplitudes; },
+           std::vector<std::pair<std::string, FourierAmplitudes>>{{"gaussian", FourierAmplitudes::Gaussian},
+                                                                  {"fixed", FourierAmplitudes::Fixed}}),
+       bind<P>(F("seed", "", 0, 9.2e18, false, false, "Seed of the random phases or heights"),
+               [](P& p) -> std::uint64_t& { return p.seed; })},
+      P{});
+  return t;
+}
+
 template <class P>
 Result<P> typed(const SurfaceSpec& spec, const char* generator, const std::vector<Binding<P>>& table) {
   if (spec.generator != generator)
@@ -150,6 +179,9 @@ const std::vector<GeneratorInfo>& surface_generators() {
       {"sine", "Sinusoid z = A sin(2 pi x / lambda)", settings_detail::fields_of(sine_table())},
       {"self-affine", "Random self-affine profile (midpoint displacement)",
        settings_detail::fields_of(self_affine_table())},
+      {"fourier",
+       "Periodic random self-affine profile by Fourier filtering (flat below the rolloff, q^-(1+2H) to the cutoff)",
+       settings_detail::fields_of(fourier_table())},
   };
   return g;
 }
@@ -173,10 +205,16 @@ Result<SineParams> sine_params(const SurfaceSpec& s) { return typed(s, "sine", s
 Result<SelfAffineParams> self_affine_params(const SurfaceSpec& s) {
   return typed(s, "self-affine", self_affine_table());
 }
+Result<FourierSelfAffineParams> fourier_params(const SurfaceSpec& s) { return typed(s, "fourier", fourier_table()); }
 
 Status validate(const SurfaceSpec& spec) {
   auto v = surface_values(spec);
   if (!v) return v.error();
+  if (spec.generator == "fourier") {  // checks between parameters, before any generation
+    auto p = fourier_params(spec);
+    if (!p) return p.error();
+    return validate(*p);
+  }
   return Ok{};
 }
 
@@ -201,11 +239,13 @@ Result<ValueSet> surface_values(const SurfaceSpec& spec) {
   if (spec.generator == "sawtooth") return all_values(spec, sawtooth_table());
   if (spec.generator == "sine") return all_values(spec, sine_table());
   if (spec.generator == "self-affine") return all_values(spec, self_affine_table());
+  if (spec.generator == "fourier") return all_values(spec, fourier_table());
   std::string hint;
   if (std::string n = nearest_word(spec.generator, generator_names()); !n.empty())
     hint = fmt::format(" (did you mean '{}'?)", n);
-  return make_error(fmt::format("unknown surface generator '{}'{}; expected koch, wm, sawtooth, sine or self-affine",
-                                spec.generator, hint));
+  return make_error(
+      fmt::format("unknown surface generator '{}'{}; expected koch, wm, sawtooth, sine, self-affine or fourier",
+                  spec.generator, hint));
 }
 
 Result<Profile> generate_profile(const SurfaceSpec& spec) {
@@ -234,6 +274,11 @@ Result<Profile> generate_profile(const SurfaceSpec& spec) {
     if (!p) return p.error();
     return self_affine_profile(*p);
   }
+  if (spec.generator == "fourier") {
+    auto p = fourier_params(spec);
+    if (!p) return p.error();
+    return fourier_self_affine_profile(*p);
+  }
   auto v = surface_values(spec);  // the unknown-generator error
   return v.error();
 }
@@ -252,7 +297,8 @@ Result<Curve> generate_curve(const SurfaceSpec& spec) {
 Result<double> surface_period(const SurfaceSpec& spec) {
   auto v = surface_values(spec);
   if (!v) return v.error();
-  if (spec.generator == "wm" || spec.generator == "self-affine") return 0.0;
+  // A fourier profile repeats only after its whole length: no repeat within a block.
+  if (spec.generator == "wm" || spec.generator == "self-affine" || spec.generator == "fourier") return 0.0;
   return as_real(v->at("wavelength"));
 }
 
@@ -261,6 +307,7 @@ Result<double> surface_scale(const SurfaceSpec& spec) {
   if (!v) return v.error();
   if (spec.generator == "wm") return as_real(v->at("longest_wavelength"));
   if (spec.generator == "self-affine") return as_real(v->at("length")) / 10;
+  if (spec.generator == "fourier") return std::min(as_real(v->at("rolloff_wavelength")), as_real(v->at("length")));
   return as_real(v->at("wavelength"));
 }
 

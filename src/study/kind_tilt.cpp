@@ -1,6 +1,6 @@
 // Task kind 'tilt': the spheropolygon tilting-block test (Sec. IV) on a pair of generated
 // surfaces (a Koch pair by default), for the studies of Fig. 6, 7 and 8. Parameters: `generator`
-// (koch, wm, sawtooth, sine or self-affine; default koch), that generator's parameters and the
+// (koch, wm, sawtooth, sine, self-affine or fourier; default koch), that generator's parameters and the
 // tilt settings, all named and checked by the library's tables (surface_spec.hpp, tilt.hpp;
 // SI units, angles in degrees as in the study files), and record_series (bool: return the
 // Fig. 7 series as arrays). A run stopped by the stability guard is retried with a 2.5x smaller

@@ -155,7 +155,7 @@ TEST(CliVocabulary, GeneratorCommandsOfferExactlyTheTablesOptions) {
   const auto t = tables();
   std::vector<std::string> gens;
   for (const auto& [gen, g] : t["generators"].items()) gens.push_back(gen);
-  ASSERT_EQ(gens.size(), 5u);
+  ASSERT_EQ(gens.size(), 6u);
   for (const char* cmd : kCommandsWithGenerators) {
     const HelpPage top = parse_help(cmd, run_cli(std::string(cmd) + " --help").out);
     for (const auto& [gen, g] : t["generators"].items()) {
@@ -207,7 +207,9 @@ TEST(CliVocabulary, TiltJsonPrintsExactlyTheTablesNames) {
 TEST(CliVocabulary, TiltTakesEveryGeneratorWithoutFiles) {
   for (const std::string g : {"koch --length 0.02", "sawtooth --length 0.02", "sine --length 0.02",
                               "wm --length 0.02 --longest-wavelength 0.01 --rms-height 1e-3 --n-max 3",
-                              "self-affine --length 0.02 --rms-height 5e-4 --points 200"}) {
+                              "self-affine --length 0.02 --rms-height 5e-4 --points 200",
+                              "fourier --length 0.02 --rolloff-wavelength 0.005 --short-cutoff-wavelength 0.001 "
+                              "--rms-height 5e-4 --points 256"}) {
     const CliRun r = run_cli("tilt " + g + " --max-tilt 2 --json");
     ASSERT_EQ(r.code, 0) << g << ": " << r.err;
     EXPECT_EQ(nlohmann::json::parse(r.out)["surface"]["generator"], g.substr(0, g.find(' '))) << g;

@@ -13,7 +13,7 @@ import frictal
 
 def test_generator_keywords_are_the_table_names():
     tables = frictal.generators()
-    assert list(tables) == ["koch", "wm", "sawtooth", "sine", "self-affine"]
+    assert list(tables) == ["koch", "wm", "sawtooth", "sine", "self-affine", "fourier"]
     koch = {f["name"]: f for f in tables["koch"]}
     assert list(koch) == ["iterations", "alpha", "wavelength", "length"]
     assert koch["alpha"]["unit"] == "rad"
@@ -43,6 +43,24 @@ def test_generated_surfaces_match_their_definitions():
     assert np.any(np.diff(x) < 0)  # K1 folds over above 45 deg
     with pytest.raises(ValueError, match="alpha"):
         frictal.koch_profile(alpha=math.radians(70))
+
+
+def test_fourier_profile_has_its_rms_period_and_spectrum():
+    # Fixed amplitudes: every periodogram value is the target C0 (q / q_r)^-(1 + 2H) exactly; the
+    # ratio between two wavenumbers above the rolloff is (k2 / k1)^-(1 + 2H) (numpy's FFT).
+    p = frictal.fourier_profile(points=512, length=1e-3, hurst=0.6, rolloff_wavelength=1e-4,
+                                short_cutoff_wavelength=1e-5, rms_height=1e-6, amplitudes="fixed", seed=4)
+    assert len(p) == 513 and p.period == pytest.approx(1e-3)
+    assert p.z[0] == p.z[-1]
+    assert frictal.profile_stats(p)["rms_height"] == pytest.approx(1e-6, rel=1e-12)
+    P = np.abs(np.fft.rfft(p.z[:-1])) ** 2
+    assert P[40] / P[20] == pytest.approx(2.0 ** -2.2, rel=1e-9)
+    assert P[5] == pytest.approx(P[9], rel=1e-9)  # flat below the rolloff (k = 10)
+    assert P[101:].max() < 1e-20 * P[1]  # nothing above the cutoff (k = 100)
+    with pytest.raises(ValueError, match="Nyquist"):
+        frictal.fourier_profile(points=64, length=1e-3, short_cutoff_wavelength=2e-5, rolloff_wavelength=1e-4)
+    with pytest.raises(ValueError, match="amplitudes"):
+        frictal.fourier_profile(amplitudes="uniform")
 
 
 def test_tilt_keywords_are_the_table_names():

@@ -1,9 +1,9 @@
-#include "analysis/fft.hpp"
+#include "util/fft.hpp"
 
 #include <cmath>
 #include <numbers>
 
-namespace frictal::analysis_detail {
+namespace frictal::util {
 
 namespace {
 
@@ -62,4 +62,4 @@ void dft(std::vector<cd>& a, bool inverse) {
   for (std::size_t k = 0; k < n; ++k) a[k] = A[k] / double(m) * w[k];
 }
 
-}  // namespace frictal::analysis_detail
+}  // namespace frictal::util

@@ -4,9 +4,9 @@
 #include <complex>
 #include <vector>
 
-namespace frictal::analysis_detail {
+namespace frictal::util {
 
 /// In place: X_k = sum_n x_n exp(-2 pi i k n / N) (forward) or exp(+...) (inverse, unscaled).
 void dft(std::vector<std::complex<double>>& a, bool inverse = false);
 
-}  // namespace frictal::analysis_detail
+}  // namespace frictal::util
