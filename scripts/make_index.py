@@ -441,9 +441,9 @@ CLAIMS = {
 # Results beyond the paper, drawn from a study's store like the paper's figures: key -> (title,
 # claim, study name; the PNG is OUTDIR/<key>.png, every finding of that study's report is shown).
 BEYOND = {
-    "wm-tilt": ("Tilt test on random WM pairs",
+    "wm-tilt": ("Tilt test on random pairs",
                 "Not in the paper, which simulates Koch surfaces only: the spheropolygon tilt test on stochastic WM pairs "
-                "scaled to the Table I block, 20 pairs per D. Eq. 18 claims φ − θ_a lies in [θ_max − σ, θ_max]; the "
+                "and on Fourier-filtered self-affine pairs scaled to the Table I block, 20 pairs per D. Eq. 18 claims φ − θ_a lies in [θ_max − σ, θ_max]; the "
                 "report states how often it does, whether the angle depends on the run-away distance (0.5, 1, 2 λ), "
                 "and whether the rigid or the spheropolygon prediction is closer (issue 14).",
                 "wm-tilt"),

@@ -87,37 +87,32 @@ TEST(StudyWmTilt, SinePairSlidesAtItsSteepestSlopeAtEveryRunawayDistance) {
   expect_slide_starts_monotone(*r);
 }
 
-TEST(StudyWmTilt, ThetaMaxAndSigmaEqualFrictalSignatureOnTheSameFaces) {
-  // The kind's faces are `frictal surface wm` with seeds derive_seed(task seed, 1 / 2) >> 2
-  // (docs/studies.md); written to CSV and read by `frictal signature` they give the same
-  // theta_max and sigma (the signature's default offset range: half the block, as run_tilt
-  // uses for a non-periodic WM face).
+namespace {
+
+// The kind's faces are `frictal surface GENERATOR` with seeds derive_seed(task seed, 1 / 2) >> 2
+// (docs/studies.md); written to CSV and read by `frictal signature` they give the same theta_max
+// and sigma (the signature's default offset range: half the block, as run_tilt uses for a
+// non-periodic face).
+void expect_signature_of_same_faces(const std::string& generator, const std::string& cli_options, Params p) {
   const std::uint64_t task = 0x5eed0f7a11ULL;
-  const char* wm = "--dimension 1.6 --gamma 1.5 --n-max 4 --longest-wavelength 0.01 --length 0.05 --rms-height 1e-5";
-  Params p = table_ii({{"generator", std::string("wm")},
-                       {"dimension", 1.6},
-                       {"gamma", 1.5},
-                       {"n_max", std::int64_t{4}},
-                       {"longest_wavelength", 0.01},
-                       {"length", 0.05},
-                       {"rms_height", 1e-5},
-                       {"pair", std::int64_t{0}}});
-  auto r = wm_tilt().run(p, task);
+  p["generator"] = generator;
+  p["pair"] = std::int64_t{0};
+  auto r = wm_tilt().run(table_ii(p), task);
   ASSERT_TRUE(r.ok()) << r.error().message;
   std::string files[2];
   for (int k = 0; k < 2; ++k) {
-    files[k] = temp_path("wm_tilt_face" + std::to_string(k) + ".csv");
+    files[k] = temp_path("wm_tilt_" + generator + std::to_string(k) + ".csv");
     const auto seed = static_cast<std::int64_t>(derive_seed(task, static_cast<std::uint64_t>(k + 1)) >> 2);
     const CliRun g =
-        run_cli(std::string("surface wm ") + wm + " --stochastic --seed " + std::to_string(seed) + " -o " + files[k]);
+        run_cli("surface " + generator + " " + cli_options + " --seed " + std::to_string(seed) + " -o " + files[k]);
     ASSERT_EQ(g.code, 0) << g.err;
   }
   const CliRun c = run_cli("signature " + files[0] + " " + files[1] + " --json");
   ASSERT_EQ(c.code, 0) << c.err;
   const auto j = nlohmann::json::parse(c.out);
   const auto& s = r->scalars;
-  EXPECT_NEAR(s.at("theta_max_deg"), j.at("theta_max_forward_deg").get<double>(), 1e-9);
-  EXPECT_NEAR(s.at("sigma_deg"), j.at("contact_slope_std_deg").get<double>(), 1e-9);
+  EXPECT_NEAR(s.at("theta_max_deg"), j.at("theta_max_forward_deg").get<double>(), 1e-9) << generator;
+  EXPECT_NEAR(s.at("sigma_deg"), j.at("contact_slope_std_deg").get<double>(), 1e-9) << generator;
   EXPECT_GT(s.at("sigma_deg"), 0);
   // The Eq. 18 range and the verdict on it follow from those numbers.
   EXPECT_NEAR(s.at("eq18_low_deg"), s.at("theta_max_deg") - s.at("sigma_deg"), 1e-12);
@@ -125,6 +120,43 @@ TEST(StudyWmTilt, ThetaMaxAndSigmaEqualFrictalSignatureOnTheSameFaces) {
   EXPECT_EQ(s.at("inside_eq18"), phi >= s.at("eq18_low_deg") && phi <= s.at("eq18_high_deg") ? 1 : 0);
   expect_slide_starts_monotone(*r);
   for (const auto& f : files) std::remove(f.c_str());
+}
+
+}  // namespace
+
+TEST(StudyWmTilt, ThetaMaxAndSigmaEqualFrictalSignatureOnTheSameFaces) {
+  expect_signature_of_same_faces(
+      "wm",
+      "--dimension 1.6 --gamma 1.5 --n-max 4 --longest-wavelength 0.01 --length 0.05 --rms-height 1e-5 --stochastic",
+      {{"dimension", 1.6},
+       {"gamma", 1.5},
+       {"n_max", std::int64_t{4}},
+       {"longest_wavelength", 0.01},
+       {"length", 0.05},
+       {"rms_height", 1e-5}});
+}
+
+TEST(StudyWmTilt, FourierPairsTooAndTheirDimensionIsTwoMinusHurst) {
+  Params p = {{"hurst", 0.4},
+              {"points", std::int64_t{512}},
+              {"length", 0.05},
+              {"rolloff_wavelength", 0.01},
+              {"short_cutoff_wavelength", 1e-3},
+              {"rms_height", 1e-5}};
+  expect_signature_of_same_faces("fourier",
+                                 "--hurst 0.4 --points 512 --length 0.05 --rolloff-wavelength 0.01 "
+                                 "--short-cutoff-wavelength 1e-3 --rms-height 1e-5",
+                                 p);
+  p["generator"] = std::string("fourier");
+  p["pair"] = std::int64_t{0};
+  auto r = wm_tilt().run(table_ii(p), 9);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_NEAR(r->scalars.at("surface_dimension"), 1.6, 1e-12);
+  // A non-periodic face: the block starts inside the first half of the offset range [0, L_b / 2].
+  EXPECT_GE(r->scalars.at("start_rule"), 1);
+  EXPECT_GT(r->scalars.at("initial_offset_m"), 0);
+  EXPECT_LE(r->scalars.at("initial_offset_m"), 0.0125);
+  EXPECT_EQ(r->scalars.at("wavelength_m"), 0.01);  // the rolloff wavelength
 }
 
 TEST(StudyWmTilt, RefusesParametersTheKindSets) {
@@ -168,4 +200,16 @@ spheroradius = 2e-5
     EXPECT_NE(rep.out.find(claim), std::string::npos) << claim << "\n" << rep.out;
   EXPECT_NE(rep.out.find("Part 'wm' (wm-tilt): 4 pairs, 2 values of D"), std::string::npos) << rep.out;
   std::remove(toml.c_str());
+}
+
+TEST(StudyWmTilt, ShippedStudyFileParsesAtBothScales) {
+  // studies/wm-tilt.toml: 9 D x 20 pairs for WM and for Fourier-filtered pairs (issue 14), and
+  // the quick scale that `QUICK=1 make reproduce` runs: 2 D x 2 pairs of each.
+  const std::string path = std::string(FRICTAL_TEST_DATA) + "/../../studies/wm-tilt.toml";
+  const TaskRegistry reg = default_registry();
+  auto full = load_study(path, false, reg), quick = load_study(path, true, reg);
+  ASSERT_TRUE(full.ok()) << full.error().message;
+  ASSERT_TRUE(quick.ok()) << quick.error().message;
+  EXPECT_EQ(full->tasks.size(), 2u * 9u * 20u);
+  EXPECT_EQ(quick->tasks.size(), 2u * 2u * 2u);
 }
