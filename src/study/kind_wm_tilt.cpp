@@ -432,8 +432,9 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
     f.supported = judged > 0 && closer_sphero - closer_rigid > margin && err_sphero.mean() < err_rigid.mean();
     f.evidence.push_back(fmt::format(
         "criterion: among the pairs whose two predictions differ by more than {:g} deg, clearly more are closer to "
-        "the spheropolygon prediction (sign test: the excess above 2 sqrt(pairs) = {:.1f}), with a smaller mean "
-        "error; {} such pairs of {}: closer to sphero in {}, to rigid in {}; there mean |sim - rigid| = {:.3f} deg, "
+        "the spheropolygon prediction (a sign test: their excess must exceed 2 sqrt(pairs) = {:.1f}), with a smaller "
+        "mean error; {} such pairs of {}: closer to sphero in {}, to rigid in {}; there mean |sim - rigid| = {:.3f} "
+        "deg, "
         "mean |sim - sphero| = {:.3f} deg",
         kDistinct, margin, judged, judged + ties, closer_sphero, closer_rigid, err_rigid.mean(), err_sphero.mean()));
     f.evidence.push_back(fmt::format(
