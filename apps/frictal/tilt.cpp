@@ -135,6 +135,7 @@ int run(TiltOptions& o) {
     j["normal_damping_per_s"] = r->normal_damping;
     j["settled_contacts"] = r->settled_contacts;
     j["settled_overlap_m"] = r->settled_overlap;
+    j["settled_speed_m_s"] = r->settled_speed;
     fmt::print("{}\n", j.dump());
   } else {
     // With a CSV on standard output, the summary goes to standard error.

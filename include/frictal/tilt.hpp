@@ -153,7 +153,7 @@ struct TiltScales {
 };
 
 /// A run outside the model the prediction assumes (code: "core-overlap", "rounding",
-/// "time-step", "rotation"; message: what was compared, with numbers and SI units).
+/// "time-step", "unsettled", "rotation"; message: what was compared, with numbers and SI units).
 struct TiltWarning {
   std::string code;
   std::string message;
@@ -191,7 +191,7 @@ struct TiltResult {
   /// (unit: rad). 0 with hold_rotation.
   double rotation_before_slide = 0;
   TiltScales scales;
-  std::vector<TiltWarning> warnings;  ///< before the run (scales), then "rotation" from the run
+  std::vector<TiltWarning> warnings;  ///< before the run (scales), then "unsettled" and "rotation" from the run
   double initial_offset = 0;          ///< offset used (unit: m)
   double simulated_time = 0;          ///< (unit: s)
   std::uint64_t steps = 0;
@@ -206,6 +206,11 @@ struct TiltResult {
   std::size_t lower_vertices = 0, upper_vertices = 0;
   double settled_overlap = 0;  ///< largest overlap at the end of settling (unit: m)
   int settled_contacts = 0;
+  /// Sliding speed of the upper block against the lower one along the lower block's x axis at the
+  /// end of settling (the start of its last step, before the tilt reaches the block); above
+  /// stick_speed the "unsettled" warning fires: the block is not at rest where the prediction
+  /// starts (unit: m/s)
+  double settled_speed = 0;
   /// Core polygons in the bodies' local frames (relative to the centroid, counter-clockwise).
   std::vector<double> lower_polygon_x, lower_polygon_y, upper_polygon_x, upper_polygon_y;  ///< (unit: m)
   TiltSeries series;

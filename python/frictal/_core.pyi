@@ -46,6 +46,19 @@ def detrend(profile: Profile, kind: str = ...) -> Profile:
 def divider_dimension(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArray[numpy.float64], *, ruler_min: float = ..., ruler_max: float = ..., rulers: int = ...) -> dict:
     """Divider (ruler) dimension walking along the curve (x, z in m); ruler_min/max in m (0: automatic). Returns dimension, slope, r_squared, fit_range (m), scales (m), values (m)"""
 
+def fourier_profile(**kwargs: Any) -> Profile:
+    """fourier_profile(**params) -> Profile
+
+    Periodic random self-affine profile by Fourier filtering (flat below the rolloff, q^-(1+2H) to the cutoff), generated with the keywords below (SI units; unknown keywords are a TypeError, bad values a ValueError):
+        points: Samples per period N (the profile has N + 1 points) (default 2048; valid 8..67108864)
+        length [m]: Length L_b of the surface, its period (default 0.2; valid > 0)
+        hurst: Hurst exponent H (default 0.8; valid (0, 1])
+        rolloff_wavelength [m]: Rolloff wavelength 2 pi / q_r: the power spectrum is flat at longer wavelengths (default 0.01; valid > 0)
+        short_cutoff_wavelength [m]: Short cutoff wavelength 2 pi / q_s: no power at shorter wavelengths (default 0.001; valid > 0)
+        rms_height [m]: RMS height about the mean (exact) (default 1e-05; valid > 0)
+        amplitudes: Fourier amplitudes: gaussian (random process) or fixed (exact spectrum, random phases) (default 'gaussian'; valid gaussian or fixed)
+        seed: Seed of the random phases or heights (default 1; valid 0..9.2e+18)"""
+
 def generators() -> dict:
     """generators() -> dict
 
@@ -169,7 +182,7 @@ def study_status(store: str) -> dict:
 def surface(generator: str, **kwargs: Any) -> Profile:
     """surface(generator, **params) -> Profile
 
-    A generated profile: generator is 'koch', 'wm', 'sawtooth', 'sine' or 'self-affine'; params are that generator's keywords (see generators() and each <name>_profile function; SI units: metres, radians). Koch: the upper envelope."""
+    A generated profile: generator is 'koch', 'wm', 'sawtooth', 'sine', 'self-affine' or 'fourier'; params are that generator's keywords (see generators() and each <name>_profile function; SI units: metres, radians). Koch: the upper envelope."""
 
 def surface_curve(generator: str, **kwargs: Any) -> tuple:
     """surface_curve(generator, **params) -> (x, z)
@@ -179,7 +192,7 @@ def surface_curve(generator: str, **kwargs: Any) -> tuple:
 def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
     """tilt(lower, upper=None, **settings) -> dict
 
-    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rotation_before_slide (rad), warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
+    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rotation_before_slide (rad), settled_speed (m/s, the upper block's speed when the tilt starts), warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
         normal_stiffness [N/m]: Normal contact stiffness k_n (default 600000; valid > 0)
         tangential_stiffness [N/m]: Tangential contact stiffness k_t (default 60000; valid >= 0)
         normal_damping [1/s]: Normal damping gamma_n (default 929.5; valid >= 0)

@@ -55,6 +55,7 @@ void frictal_bind_dem(py::module_& m) {
         d["predicted_sphero_friction_angle"] = r.predicted_sphero_friction_angle;
         d["predicted_sphero_theta_max"] = r.predicted_sphero_theta_max;
         d["rotation_before_slide"] = r.rotation_before_slide;
+        d["settled_speed"] = r.settled_speed;
         py::list warnings;
         for (const TiltWarning& w : r.warnings) {
           py::dict wd;
@@ -95,6 +96,7 @@ void frictal_bind_dem(py::module_& m) {
        "measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, "
        "predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, "
        "predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rotation_before_slide (rad), "
+       "settled_speed (m/s, the upper block's speed when the tilt starts), "
        "warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, "
        "smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time "
        "(s), steps, upper_mass (kg), "

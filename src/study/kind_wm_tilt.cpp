@@ -220,7 +220,8 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
   s["time_step_s"] = c.time_step;
   s["settled_contacts"] = r->settled_contacts;
   s["points"] = static_cast<double>(lower->size());
-  for (const char* code : {"core-overlap", "rounding", "time-step", "rotation"}) {
+  s["settled_speed_m_s"] = r->settled_speed;
+  for (const char* code : {"core-overlap", "rounding", "time-step", "unsettled", "rotation"}) {
     std::string key = std::string("warning_") + code;
     std::replace(key.begin(), key.end(), '-', '_');
     s[key] = std::any_of(r->warnings.begin(), r->warnings.end(), [&](const TiltWarning& w) { return w.code == code; })
@@ -256,6 +257,7 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
   struct Cell {
     int n = 0, slid = 0, inside = 0, below = 0, above = 0, warned = 0;
     int rot = 0, rot_inside = 0, rot_below = 0, rot_above = 0;  // runs with the rotation warning
+    int unsettled = 0, uns_inside = 0;                          // runs with the unsettled warning
     Acc phi[3], tmax, sigma, low, sphero, d_rigid, d_sphero, offset, before, slide;
   };
   std::map<double, Cell> by_d;  // surface dimension (rounded to 1e-9) -> cell
@@ -300,6 +302,10 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
       c->warned += get(s, "warning_core_overlap") + get(s, "warning_rounding") + get(s, "warning_time_step") +
                        get(s, "warning_rotation") >
                    0;
+      if (get(s, "warning_unsettled") > 0) {
+        ++c->unsettled;
+        c->uns_inside += get(s, "inside_eq18") > 0;
+      }
     }
     // Rigid or spheropolygon: judged only where the two predictions differ by more than
     // kDistinct (else the simulation cannot tell them apart).
@@ -335,14 +341,15 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
   std::string t =
       "\n| D | pairs | slid | phi 0.5 lambda (deg) | phi 1 lambda (deg) | phi 2 lambda (deg) | theta_max (deg) | "
       "sigma (deg) | theta_max - sigma (deg) | sphero prediction (deg) | inside Eq. 18 | below | above | "
-      "mean abs(sim - rigid) (deg) | mean abs(sim - sphero) (deg) | crept before slide (m) | warned |\n"
-      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+      "mean abs(sim - rigid) (deg) | mean abs(sim - sphero) (deg) | crept before slide (m) | warned | unsettled |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& [D, c] : by_d)
     t += fmt::format(
         "| {:.2f} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {} | {} | {} | {:.3f} | "
-        "{:.3f} | {:.3g} | {} |\n",
+        "{:.3f} | {:.3g} | {} | {} |\n",
         D, c.n, c.slid, c.phi[0].mean(), c.phi[1].mean(), c.phi[2].mean(), c.tmax.mean(), c.sigma.mean(), c.low.mean(),
-        c.sphero.mean(), c.inside, c.below, c.above, c.d_rigid.mean(), c.d_sphero.mean(), c.before.mean(), c.warned);
+        c.sphero.mean(), c.inside, c.below, c.above, c.d_rigid.mean(), c.d_sphero.mean(), c.before.mean(), c.warned,
+        c.unsettled);
   rep.lines.push_back(t);
   rep.lines.push_back(
       "\nMeans over the pairs of each D; phi at run-away distance d is the tilt at the start of the first run-away "
@@ -386,6 +393,10 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
             m, std::sqrt(std::max(0.0, (m2 - n * m * m) / (n - 1))), z / n, within_sigma, n));
       }
     }
+    f.evidence.push_back(fmt::format(
+        "runs flagged 'unsettled' (the block still moved when the tilt started): {}, {} of them inside; not "
+        "flagged: {}, {} inside",
+        all.unsettled, all.uns_inside, all.n - all.unsettled, all.inside - all.uns_inside));
     f.evidence.push_back(fmt::format(
         "runs flagged 'rotation' (the upper block turned before the slide; the signature assumes it does not): {} -- "
         "{} inside, {} below, {} above; unflagged: {} inside, {} below, {} above",
@@ -536,7 +547,9 @@ TaskKind wm_tilt_kind() {
       {"warning_core_overlap", "1", "1 if the resting overlap exceeds warn_overlap_fraction r"},
       {"warning_rounding", "1", "1 if the spheropolygon and rigid predictions differ by more than the tolerance"},
       {"warning_time_step", "1", "1 if the time step exceeds warn_time_step_fraction of the contact period"},
+      {"warning_unsettled", "1", "1 if the block still moved faster than stick_speed when the tilt started"},
       {"warning_rotation", "1", "1 if the upper block rotated by more than warn_rotation before the slide"},
+      {"settled_speed_m_s", "m/s", "speed of the upper block against the lower one when the tilt started"},
   };
   k.report = wm_tilt_section;
   const PlotAxis x{"surface_dimension", "D"};

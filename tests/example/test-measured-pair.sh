@@ -1,0 +1,32 @@
+#!/bin/bash
+# example.measured_pair: runs the README's worked example (the block between
+# "<!-- example: measured-pair -->" and "<!-- end example -->") as a user would, from a copy of
+# the files it reads, then checks by a second path that the tilt's rigid prediction is the
+# signature's theta_max. Arguments: source dir, frictal executable, build tree's python dir.
+set -euo pipefail
+src=$1 cli=$2 pydir=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+mkdir -p "$work/bin" "$work/tests/data/profiles"
+cp "$src/tests/data/profiles/dektak-1.csv" "$work/tests/data/profiles/"
+ln -s "$cli" "$work/bin/frictal"
+ln -s /usr/bin/python3 "$work/bin/python3"  # Debian's python3 (numpy), as scripts/install-deps installs
+awk '/<!-- example: measured-pair -->/{on=1; next} /<!-- end example -->/{on=0} on && !/^```/' "$src/README.md" \
+  > "$work/example.sh"
+test -s "$work/example.sh" || { echo "README.md: no measured-pair example block" >&2; exit 1; }
+cd "$work"
+export PATH="$work/bin:$PATH" PYTHONPATH="$pydir"
+bash -euo pipefail example.sh > out.txt 2>&1 || { cat out.txt; echo "the README example failed" >&2; exit 1; }
+cat out.txt
+grep -q "theta_max forward" out.txt
+frictal signature dektak-a.csv dektak-b.csv --json > sig.json
+frictal tilt --lower dektak-a.csv --upper dektak-b.csv --max-tilt 0.05 --json > tilt.json 2> /dev/null
+python3 - <<'PY'
+import json
+sig = json.load(open("sig.json"))
+tilt = json.load(open("tilt.json"))
+a, b = sig["theta_max_forward_deg"], tilt["predicted_theta_max_deg"]
+print(f"signature theta_max {a:.10f} deg, tilt rigid prediction {b:.10f} deg")
+assert abs(a - b) <= 1e-9 * max(1.0, abs(a)), (a, b)
+assert 1.0 < a < 10.0, a  # slopes of a polished scan: a few degrees
+PY
