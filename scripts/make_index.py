@@ -438,6 +438,21 @@ CLAIMS = {
          "(Fig. 18)."),
 }
 
+# Results beyond the paper, drawn from a study's store like the paper's figures: key -> (title,
+# claim, study name; the PNG is OUTDIR/<key>.png, every finding of that study's report is shown).
+BEYOND = {
+    "wm-tilt": ("Tilt test on random pairs",
+                "Not in the paper, which simulates Koch surfaces only: the spheropolygon tilt test on stochastic WM pairs "
+                "and on Fourier-filtered self-affine pairs scaled to the Table I block, 20 pairs per D. Eq. 18 claims φ − θ_a lies in [θ_max − σ, θ_max]; the "
+                "report states how often it does, whether the angle depends on the run-away distance (0.5, 1, 2 λ), "
+                "and whether the rigid or the spheropolygon prediction is closer (issue 14).",
+                "wm-tilt"),
+}
+
+
+def label(f):
+    return f"Fig. {f.number}" if isinstance(f.number, int) else "Beyond the paper"
+
 
 def cited_figures(text):
     """Figure numbers a finding cites: 'Fig. 4, 6', 'Fig. 17-18', 'Fig. 8b'."""
@@ -479,6 +494,12 @@ def study_findings(out):
             if key not in seen:
                 seen.add(key)
                 items.append((m.group(1) == "SUPPORTED", m.group(2), crit, cited_figures(m.group(2))))
+        beyond = [k for k, (_, _, st) in BEYOND.items() if st == study]
+        if beyond:  # a study beyond the paper speaks to its own figure only
+            for sup, text, crit, _ in items:
+                for k in beyond:
+                    found.setdefault(k, []).append((sup, text, crit, study))
+            continue
         any_named = any(c & named for *_, c in items)
         for sup, text, crit, cited in items:
             figs = set(cited)
@@ -527,9 +548,9 @@ def fig04_from(out):
 
 
 def study_figure(out, n, findings):
-    title, claim = CLAIMS[n]
+    title, claim = CLAIMS[n] if isinstance(n, int) else BEYOND[n][:2]
     f = Figure(n, title, claim)
-    png = f"{out}/fig{n:02d}.png"
+    png = f"{out}/fig{n:02d}.png" if isinstance(n, int) else f"{out}/{n}.png"
     if os.path.exists(png):
         f.png = open(png, "rb").read()
     else:
@@ -571,18 +592,20 @@ def render(figs, title, note):
              f"criterion. {html.escape(note)}</p>\n",
              f"<p class=\"summary\">{drawn} of {len(figs)} figures drawn; <b>{good} of {total}</b> checked findings "
              "supported" + ("" if good == total else f", <b>{total - good} not supported</b> (see below)") + ".</p>\n<nav>"]
-    parts += [f"<a href=\"#fig{f.number}\">Fig. {f.number}</a> " for f in figs]
+    parts += [f"<a href=\"#fig{f.number}\">{html.escape(label(f) if isinstance(f.number, int) else f.number)}</a> "
+              for f in figs]
     parts.append("</nav>\n")
     for f in figs:
         parts.append(f"<section class=\"fig\" id=\"fig{f.number}\">\n<div class=\"img\">")
         if f.png is not None:
             b64 = base64.b64encode(f.png).decode()
-            parts.append(f"<img alt=\"Fig. {f.number}: {html.escape(f.title)}\" src=\"data:image/png;base64,{b64}\">")
+            parts.append(f"<img alt=\"{label(f)}: {html.escape(f.title)}\" src=\"data:image/png;base64,{b64}\">")
         else:
             parts.append(f"<p class=\"missing\">Not produced in this run: {html.escape(f.missing or 'no figure')}</p>")
         parts.append("</div>\n<div class=\"text\">")
-        parts.append(f"<h2>Fig. {f.number}: {html.escape(f.title)}</h2>")
-        parts.append(f"<p class=\"claim\">Paper: {html.escape(f.claim)}</p>")
+        parts.append(f"<h2>{label(f)}: {html.escape(f.title)}</h2>")
+        parts.append(f"<p class=\"claim\">{'Paper' if isinstance(f.number, int) else 'Question'}: "
+                     f"{html.escape(f.claim)}</p>")
         if f.numbers:
             parts.append("<table>" + "".join(f"<tr><th>{html.escape(a)}</th><td>{html.escape(b)}</td></tr>"
                                              for a, b in f.numbers) + "</table>")
@@ -607,11 +630,11 @@ def main(argv):
     ap.add_argument("bin", help="the frictal executable")
     ap.add_argument("out", help="the output folder of scripts/reproduce")
     ap.add_argument("--quick", action="store_true", help="fewer WM pairs for Fig. 16")
-    ap.add_argument("--only", default="", help="comma-separated figure numbers to compute (default: all)")
+    ap.add_argument("--only", default="", help="comma-separated figure numbers (or wm-tilt) to compute (default: all)")
     a = ap.parse_args(argv)
     work = f"{a.out}/index"
     os.makedirs(work, exist_ok=True)
-    only = {int(x) for x in a.only.split(",") if x.strip()}
+    only = {int(x) if x.strip().isdigit() else x.strip() for x in a.only.split(",") if x.strip()}
     want = lambda n: not only or n in only  # noqa: E731
     findings = study_findings(a.out)
     computed = {3: lambda: fig03(a.bin, work), 5: lambda: fig05(a.bin, work), 11: lambda: fig11(a.bin, work),
@@ -636,6 +659,9 @@ def main(argv):
         else:
             f = study_figure(a.out, n, findings)
         figs.append(f)
+    for key in BEYOND:
+        if want(key):
+            figs.append(study_figure(a.out, key, findings))
     note = "Quick scale (QUICK=1): small grids." if a.quick else "Full scale."
     page = render(figs, "frictal: the paper's figures, reproduced", note)
     with open(f"{a.out}/index.html", "w", encoding="utf-8") as fh:

@@ -70,6 +70,12 @@ struct TiltConfig {
   double runaway_distance = 0.01;                 ///< sliding "for good": growth past this, one lambda (unit: m)
   double stick_speed = 1e-5;                      ///< relative speed counted as stuck (unit: m/s)
   double stick_duration = 0.02;                   ///< a stick lasts at least this long (unit: s)
+  /// Shorter run-away distances observed in the same run (unit: m), each in (0, runaway_distance]:
+  /// for each, TiltResult::checkpoints records the tilt at the start of the first run-away that
+  /// reached it, i.e. the friction angle that a run with that runaway_distance reports (the
+  /// motion does not depend on the run-away distance; the run still stops at runaway_distance).
+  /// Library only (not a settings-table option): the wm-tilt study kind sets it.
+  std::vector<double> runaway_checkpoints;
   TiltFace face = TiltFace::Curve;
   /// Shift of the upper block along x before placement (unit: m). NaN: the offset of least lift
   /// h(s) over [0, period) from the signature (or 0 if `predict` is false).
@@ -153,12 +159,28 @@ struct TiltWarning {
   std::string message;
 };
 
+/// The run-away at one of TiltConfig::runaway_checkpoints.
+struct TiltCheckpoint {
+  double distance = 0;        ///< the run-away distance (unit: m)
+  bool reached = false;       ///< a run-away of this length happened before the run stopped
+  double friction_angle = 0;  ///< tilt at the start of that run-away (unit: rad); NaN if not reached
+  double slide_time = 0;      ///< time of that start (unit: s); NaN if not reached
+  /// Relative displacement at that start, since the end of settling: how far the block had
+  /// crept or slipped before the run-away (unit: m); NaN if not reached.
+  double slide_start_displacement = 0;
+};
+
 struct TiltResult {
-  bool slid = false;                    ///< a run-away was detected before max_tilt
-  double friction_angle = 0;            ///< phi: tilt at the start of the run-away (unit: rad)
-  double slide_time = 0;                ///< time of that moment (unit: s)
-  double predicted_theta_max = 0;       ///< signature theta_max in the sliding direction (unit: rad)
-  double predicted_friction_angle = 0;  ///< theta_max + atan(mu_a) (unit: rad); 0 if !predict
+  bool slid = false;          ///< a run-away was detected before max_tilt
+  double friction_angle = 0;  ///< phi: tilt at the start of the run-away (unit: rad)
+  double slide_time = 0;      ///< time of that moment (unit: s)
+  /// Relative displacement at the start of the run-away, since the end of settling (unit: m).
+  double slide_start_displacement = 0;
+  /// Relative displacement when the run stopped, since the end of settling (unit: m).
+  double final_displacement = 0;
+  std::vector<TiltCheckpoint> checkpoints;  ///< one per TiltConfig::runaway_checkpoints, same order
+  double predicted_theta_max = 0;           ///< signature theta_max in the sliding direction (unit: rad)
+  double predicted_friction_angle = 0;      ///< theta_max + atan(mu_a) (unit: rad); 0 if !predict
   /// The same for the simulated spheropolygon blocks: the signature of one core against the other
   /// dilated by 2r (SignatureOptions::spheroradius = radius), theta_max in the sliding direction
   /// and theta_max + atan(mu_a) (unit: rad); 0 if !predict.

@@ -178,6 +178,11 @@ Status check_config(const TiltConfig& c) {
     return make_error("tilt max_tilt: expected in (0, 90) degrees");
   if (!pos(c.runaway_distance))
     return make_error(fmt::format("tilt runaway_distance = {} m: expected > 0", c.runaway_distance));
+  for (double d : c.runaway_checkpoints)
+    if (!(std::isfinite(d) && d > 0 && d <= c.runaway_distance))
+      return make_error(
+          fmt::format("tilt runaway_checkpoints: {} m: expected a distance in (0, runaway_distance = {} m]", d,
+                      c.runaway_distance));
   if (!(std::isfinite(c.restitution) && c.restitution <= 1))
     return make_error(fmt::format("tilt restitution = {}: expected <= 1 (0 or less: use gamma_n)", c.restitution));
   if (!pos(c.stick_speed)) return make_error(fmt::format("tilt stick_speed = {} m/s: expected > 0", c.stick_speed));
@@ -480,6 +485,9 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   // Rotation of the upper block against the lower one since the end of settling.
   const double rot0 = st.angle[1] - st.angle[0];
   double max_rot = 0, rot_at_stick = 0;
+  for (double dist : cfg.runaway_checkpoints) res.checkpoints.push_back({dist, false, nan, nan, nan});
+  std::size_t checkpoints_left = res.checkpoints.size();
+  double d_now = 0;
   while (running()) {
     if (Status s = advance_one(); !s.ok()) return with_prefix("tilt: ", s.error());
     const bool rec = series_due();
@@ -499,17 +507,31 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     } else {
       low_since = nan;
     }
+    d_now = d;
+    // The same test as the stop below, for each shorter distance: the first run-away that reaches
+    // it (later sticks may reset the stick point before a longer distance is reached).
+    if (checkpoints_left)
+      for (TiltCheckpoint& k : res.checkpoints)
+        if (!k.reached && d - stick_d >= k.distance) {
+          k.reached = true;
+          k.friction_angle = stick_tilt;
+          k.slide_time = stick_time;
+          k.slide_start_displacement = stick_d;
+          --checkpoints_left;
+        }
     if (d - stick_d >= cfg.runaway_distance) {
       res.slid = true;
       res.rotation_before_slide = rot_at_stick;
       res.friction_angle = stick_tilt;
       res.slide_time = stick_time;
+      res.slide_start_displacement = stick_d;
       if (!rec && series_every) record();
       break;
     }
   }
   if (frame_every && (res.frames.empty() || res.frames.back().time != st.time)) frame();
   if (!res.slid) res.rotation_before_slide = max_rot;
+  res.final_displacement = d_now;
   if (res.rotation_before_slide > cfg.warn_rotation)
     res.warnings.push_back(
         {"rotation",

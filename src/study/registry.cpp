@@ -18,10 +18,12 @@ TaskKind koch_signature_kind();      // kind_koch_signature.cpp
 TaskKind wm_pair_statistics_kind();  // kind_wm_pair_statistics.cpp
 TaskKind tilt_kind();                // kind_tilt.cpp
 TaskKind divider_kind();             // kind_divider.cpp
+TaskKind wm_tilt_kind();             // kind_wm_tilt.cpp
 
 TaskRegistry default_registry() {
   TaskRegistry r;
-  for (TaskKind (*make)() : {koch_signature_kind, wm_pair_statistics_kind, tilt_kind, divider_kind}) r.add(make());
+  for (TaskKind (*make)() : {koch_signature_kind, wm_pair_statistics_kind, tilt_kind, divider_kind, wm_tilt_kind})
+    r.add(make());
   return r;
 }
 

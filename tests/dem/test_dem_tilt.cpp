@@ -367,6 +367,58 @@ TEST(DemTilt, ScaleWarnings) {
   EXPECT_FALSE(has(*k3, "core-overlap"));
 }
 
+// Run-away checkpoints (TiltConfig::runaway_checkpoints): the motion does not depend on the
+// run-away distance, so the friction angle recorded at a checkpoint d in a run stopped at 2
+// lambda is, bit for bit, the friction angle of a separate run whose runaway_distance is d. A WM
+// pair (random phases, several sticks and slips) on a short block.
+TEST(DemTilt, RunawayCheckpointsEqualSeparateRuns) {
+  frictal::WmParams w;
+  w.dimension = 1.7;
+  w.n_max = 4;
+  w.longest_wavelength = 0.01;
+  w.length = 0.04;
+  w.rms_height = 1e-5;
+  w.seed = 11;
+  auto lower = frictal::wm_profile(w);
+  w.seed = 12;
+  auto upper = frictal::wm_profile(w);
+  ASSERT_TRUE(lower.ok() && upper.ok());
+  const frictal::Curve lc = frictal::as_curve(*lower), uc = frictal::as_curve(*upper);
+  frictal::TiltConfig cfg = frictal::tilt_config_for_surface(0, 0.01);
+  cfg.radius = 2e-5;
+  cfg.series_interval = 0;
+  cfg.runaway_distance = 0.02;
+  cfg.runaway_checkpoints = {0.005, 0.01, 0.02};
+  auto all = frictal::run_tilt(lc, uc, cfg);
+  ASSERT_TRUE(all.ok()) << all.error().message;
+  ASSERT_TRUE(all->slid);
+  ASSERT_EQ(all->checkpoints.size(), 3u);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto& cp = all->checkpoints[k];
+    ASSERT_TRUE(cp.reached) << k;
+    EXPECT_EQ(cp.distance, cfg.runaway_checkpoints[k]);
+    frictal::TiltConfig one = cfg;
+    one.runaway_checkpoints.clear();
+    one.runaway_distance = cp.distance;
+    auto sep = frictal::run_tilt(lc, uc, one);
+    ASSERT_TRUE(sep.ok()) << sep.error().message;
+    ASSERT_TRUE(sep->slid);
+    EXPECT_EQ(cp.friction_angle, sep->friction_angle) << "run-away " << cp.distance << " m";
+    EXPECT_EQ(cp.slide_time, sep->slide_time);
+    EXPECT_EQ(cp.slide_start_displacement, sep->slide_start_displacement);
+    if (k > 0) {
+      EXPECT_GE(cp.slide_time, all->checkpoints[k - 1].slide_time);
+      EXPECT_GE(cp.friction_angle, all->checkpoints[k - 1].friction_angle);
+    }
+  }
+  EXPECT_EQ(all->checkpoints[2].friction_angle, all->friction_angle);
+  EXPECT_GE(all->final_displacement - all->slide_start_displacement, cfg.runaway_distance);
+  cfg.runaway_checkpoints = {0.03};  // beyond the stop
+  auto bad = frictal::run_tilt(lc, uc, cfg);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("runaway_checkpoints"), std::string::npos);
+}
+
 // "unsettled": the WM pair (D = 1.5, n_max = 6, seeds 1 and 2, L = 0.01 m, L_b = 0.2 m,
 // rms 1e-5 m) is still gliding at about 1 mm/s (100 x stick_speed) after the default 0.1 s of
 // settling: the drop onto its nearly flat pair (slopes below 2.3 deg) sets it moving, and it

@@ -25,7 +25,7 @@ length = 0.01
 
 def test_kinds_list_outputs_and_views():
     kinds = {k["name"]: k for k in frictal.study_kinds()}
-    assert {"koch-signature", "wm-pair-statistics", "tilt", "divider"} <= set(kinds)
+    assert {"koch-signature", "wm-pair-statistics", "tilt", "divider", "wm-tilt"} <= set(kinds)
     for k in kinds.values():
         assert k["available"]
         names = {o["name"] for o in k["outputs"]}

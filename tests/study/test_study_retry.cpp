@@ -188,6 +188,14 @@ TEST(StudyKindsUnit, EveryKindDeclaresWhatItReturnsAndItsViews) {
       {"wm-pair-statistics", {{"dimension", 1.5}, {"n_max", std::int64_t{2}}, {"pair", std::int64_t{0}}}},
       {"divider", {{"iterations", std::int64_t{1}}, {"alpha", 30.0}, {"rulers", std::int64_t{5}}}},
       {"tilt", {{"iterations", std::int64_t{0}}, {"alpha", 20.0}, {"length", 0.02}, {"record_series", true}}},
+      {"wm-tilt",
+       {{"dimension", 1.5},
+        {"n_max", std::int64_t{2}},
+        {"longest_wavelength", 0.01},
+        {"length", 0.02},
+        {"rms_height", 1e-5},
+        {"spheroradius", 2e-5},
+        {"pair", std::int64_t{0}}}},
   };
   ASSERT_EQ(reg.names().size(), sample.size());
   const auto kinds = nlohmann::json::parse(kinds_json(reg))["kinds"];

@@ -1,0 +1,598 @@
+// Task kind 'wm-tilt', one unit: the spheropolygon tilting-block test (Sec. IV) on a pair of random
+// surfaces (stochastic Weierstrass-Mandelbrot by default), beside the Eq. 18 range of the same
+// pair -- a result the paper does not have (issue 14, "Random and measured surfaces").
+//
+// Parameters: `generator` (default wm; any generator with a `seed` field -- wm, self-affine, the
+// Fourier-filtered one -- gives a pair of independent faces from two streams of the task seed;
+// a generator without one, e.g. sine, gives the same face twice: the deterministic limit used by
+// the tests), that generator's parameters except `seed` (wm: `stochastic` defaults to true), the
+// tilt settings of the 'tilt' kind except `runaway_distance` and `series_interval`, and `pair`
+// (the replicate index; use seed_from = ["pair"]).
+//
+// One run per task: run-away distance 2 lambda (lambda = the surface's scale: wm's longest
+// wavelength, a sine's wavelength), with checkpoints at 0.5 and 1 lambda
+// (TiltConfig::runaway_checkpoints), so the friction angle at each run-away distance is the one a
+// separate run with that distance reports. The Eq. 18 sigma comes from the rigid signature over
+// the same offsets as the prediction of run_tilt. Registered in registry.cpp.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include <fmt/core.h>
+
+#include "frictal/geometry.hpp"
+#include "frictal/signature.hpp"
+#include "frictal/study.hpp"
+#include "frictal/surface_spec.hpp"
+#include "frictal/tilt.hpp"
+#include "frictal/units.hpp"
+#include "study/kind_common.hpp"
+#include "study/table_params.hpp"
+
+namespace frictal::study {
+
+using namespace kind_detail;
+
+namespace {
+
+/// Run-away distances in units of lambda; the run stops at the last one.
+constexpr double kRunaway[3] = {0.5, 1.0, 2.0};
+constexpr const char* kRunawayName[3] = {"half_lambda", "lambda", "two_lambda"};
+
+Result<Profile> envelope_of(const Curve& c, const char* what) {
+  auto e = upper_envelope(c);
+  if (!e) return make_error(std::string(what) + ": " + e.error().message);
+  return e;
+}
+
+}  // namespace
+
+/// The seed of face `stream` (1 lower, 2 upper) of the pair of task seed `seed`: a derived stream
+/// of the task seed, shifted into the generators' seed range [0, 2^62) (their `seed` field is a
+/// signed 64-bit integer below 9.2e18), so `frictal surface GENERATOR --seed` makes the same face.
+static std::int64_t wm_tilt_face_seed(std::uint64_t seed, std::uint64_t stream) {
+  return static_cast<std::int64_t>(derive_seed(seed, stream) >> 2);
+}
+
+Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
+  auto generator = get_string(p, "generator", "wm");
+  if (!generator) return generator.error();
+  const GeneratorInfo* gen = find_generator(*generator);
+  if (!gen) return make_error(fmt::format("parameter 'generator': unknown surface generator \"{}\"", *generator));
+  if (Status st = only_known_parameters(p, {&gen->fields, &tilt_settings()}, {"generator", "pair"}, "wm-tilt"); !st)
+    return st.error();
+  for (const char* fixed : {"seed", "runaway_distance", "series_interval"})
+    if (p.count(fixed))
+      return make_error(fmt::format(
+          "parameter '{}': set by the wm-tilt kind (seeds: two streams of the task seed; run-away: 0.5, 1 and 2 "
+          "lambda in one run; no series)",
+          fixed));
+  auto gen_values = table_values(gen->fields, p);
+  if (!gen_values) return gen_values.error();
+  const bool seeded =
+      std::any_of(gen->fields.begin(), gen->fields.end(), [](const Field& f) { return f.name == "seed"; });
+  if (*generator == "wm" && !gen_values->count("stochastic")) (*gen_values)["stochastic"] = true;
+
+  // The pair: independent faces from two streams of the task seed, or one face twice.
+  auto make_face = [&](std::uint64_t stream) -> Result<Curve> {
+    ValueSet v = *gen_values;
+    if (seeded) v["seed"] = wm_tilt_face_seed(seed, stream);
+    auto spec = make_surface_spec(*generator, v);
+    if (!spec) return spec.error();
+    return generate_curve(*spec);
+  };
+  auto spec = make_surface_spec(*generator, *gen_values);
+  if (!spec) return spec.error();
+  auto period = surface_period(*spec);
+  if (!period) return period.error();
+  auto scale = surface_scale(*spec);
+  if (!scale) return scale.error();
+  auto all = surface_values(*spec);
+  if (!all) return all.error();
+  auto lower = make_face(1);
+  if (!lower) return lower.error();
+  auto upper = seeded ? make_face(2) : lower;
+  if (!upper) return upper.error();
+
+  auto settings = table_values(tilt_settings(), p);
+  if (!settings) return settings.error();
+  auto config = make_tilt_config(*settings, tilt_config_for_surface(*period, *scale));
+  if (!config) return config.error();
+  TiltConfig c = *config;
+  const double lambda = *scale;
+  c.series_interval = 0;
+  c.runaway_distance = kRunaway[2] * lambda;
+  c.runaway_checkpoints = {kRunaway[0] * lambda, kRunaway[1] * lambda, kRunaway[2] * lambda};
+
+  // Eq. 18's sigma: the rigid signature of the faces the prediction uses (run_tilt: the upper
+  // envelopes, offsets over one period, or the signature's default range without one).
+  auto le = envelope_of(*lower, "lower surface");
+  if (!le) return le.error();
+  auto ue = envelope_of(*upper, "upper surface");
+  if (!ue) return ue.error();
+  SignatureOptions so;
+  so.keep_contacts = false;
+  so.threads = 1;
+  if (c.period > 0) {
+    so.offset_min = 0;
+    so.offset_max = c.period;
+    le->period.reset();
+  }
+  auto sig = signature(*le, rotate180(*ue), so);
+  if (!sig) return make_error("signature for sigma (Eq. 18): " + sig.error().message);
+
+  // Where the block starts. run_tilt takes the least lift h(s) over the offset range; without a
+  // period that is often near the end of the range [0, L_b/2] (the overlap shrinks there and long
+  // waves tilt h), on a slope or in a dip shallower than the contacts' resting overlap, and the
+  // block slides at zero tilt (24 of 180 Fourier-filtered pairs did). Here, for non-periodic faces:
+  // the least lift among the local minima of h inside the first half of the range with a forward
+  // barrier -- h rises by at
+  // least W/k_n (rho L_b h_b g / k_n, the block's resting overlap) ahead of it, within the range,
+  // before falling below it; else the least interior local minimum; a given initial_offset, or a
+  // periodic face, keeps run_tilt's rule. (The signature evaluates h exactly at its breakpoints,
+  // where its minima lie.)
+  int start_rule = 0;  // 0: run_tilt's, 1: interior local minimum, 2: with a forward barrier
+  if (!p.count("initial_offset") && !(c.period > 0)) {
+    const auto& h = sig->lift;
+    const double length = le->x.back() - le->x.front();
+    const double barrier = c.density * length * c.block_height * c.gravity / c.contact.normal_stiffness;
+    double best[2] = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    double at[2] = {0, 0};
+    // The upper block's centroid over the middle half of the lower block (offset <= L_b/4 of the
+    // range [0, L_b/2]): further out the block rests on the lower block's end and tips or slides
+    // off (11 of 180 Fourier-filtered pairs started at 0.09-0.1 m slid at zero tilt).
+    const double s_max = sig->offset.front() + 0.5 * (sig->offset.back() - sig->offset.front());
+    for (std::size_t i = 1; i + 1 < h.size() && sig->offset[i] <= s_max; ++i) {
+      if (!(h[i] <= h[i - 1] && h[i] <= h[i + 1])) continue;
+      if (h[i] < best[0]) best[0] = h[i], at[0] = sig->offset[i];
+      if (h[i] >= best[1]) continue;
+      for (std::size_t j = i + 1; j < h.size() && h[j] >= h[i]; ++j)
+        if (h[j] - h[i] >= barrier) {
+          best[1] = h[i], at[1] = sig->offset[i];
+          break;
+        }
+    }
+    if (std::isfinite(best[1])) {
+      c.initial_offset = at[1];
+      start_rule = 2;
+    } else if (std::isfinite(best[0])) {
+      c.initial_offset = at[0];
+      start_rule = 1;
+    }
+  }
+
+  // The engine's stability guard: retry twice with a 2.5 times smaller step (as the 'tilt' kind).
+  auto r = run_tilt(*lower, *upper, c);
+  for (int retry = 0; retry < 2 && !r && r.error().code == ErrorCode::Unstable; ++retry) {
+    c.time_step /= 2.5;
+    r = run_tilt(*lower, *upper, c);
+  }
+  if (!r) return r.error();
+
+  TaskOutput out;
+  auto& s = out.scalars;
+  const double theta_a = std::atan(c.contact.atomic_friction);
+  const double theta_max = r->predicted_theta_max;
+  const double sigma = sig->contact_slope_std;  // one distribution for both directions
+  const double low = theta_a + theta_max - sigma, high = r->predicted_friction_angle;
+  double dim = std::nan("");
+  if (all->count("dimension"))
+    dim = as_real(all->at("dimension"));
+  else if (all->count("hurst"))
+    dim = 2 - as_real(all->at("hurst"));  // self-affine profile: D = 2 - H
+  s["surface_dimension"] = dim;
+  s["wavelength_m"] = lambda;
+  s["theta_max_deg"] = theta_max / kDeg;
+  s["theta_max_signature_deg"] = (c.reverse ? sig->theta_max_backward : sig->theta_max_forward) / kDeg;
+  s["sigma_deg"] = sigma / kDeg;
+  s["atomic_friction_angle_deg"] = theta_a / kDeg;
+  s["eq18_low_deg"] = low / kDeg;
+  s["eq18_high_deg"] = high / kDeg;
+  s["predicted_friction_angle_deg"] = high / kDeg;
+  s["predicted_sphero_theta_max_deg"] = r->predicted_sphero_theta_max / kDeg;
+  s["predicted_sphero_friction_angle_deg"] = r->predicted_sphero_friction_angle / kDeg;
+  s["initial_offset_m"] = r->initial_offset;
+  s["start_rule"] = start_rule;
+  s["final_displacement_m"] = r->final_displacement;
+  for (int k = 0; k < 3; ++k) {
+    const TiltCheckpoint& cp = r->checkpoints[static_cast<std::size_t>(k)];
+    const std::string n = kRunawayName[k];
+    s["slid_" + n] = cp.reached ? 1 : 0;
+    s["friction_angle_" + n + "_deg"] = cp.reached ? cp.friction_angle / kDeg : std::nan("");
+    s["slide_start_" + n + "_m"] = cp.reached ? cp.slide_start_displacement : std::nan("");
+  }
+  const TiltCheckpoint& one = r->checkpoints[1];
+  s["slid"] = one.reached ? 1 : 0;
+  const double phi = one.reached ? one.friction_angle : std::nan("");
+  s["friction_angle_deg"] = phi / kDeg;
+  s["displacement_before_slide_m"] = one.reached ? one.slide_start_displacement : std::nan("");
+  s["slide_distance_m"] = r->slid ? r->final_displacement - r->slide_start_displacement : std::nan("");
+  s["friction_minus_rigid_deg"] = (phi - high) / kDeg;
+  s["friction_minus_sphero_deg"] = (phi - r->predicted_sphero_friction_angle) / kDeg;
+  s["inside_eq18"] = one.reached && phi >= low && phi <= high ? 1 : 0;
+  s["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
+  s["resting_overlap_m"] = r->scales.resting_overlap;
+  s["smallest_feature_m"] = std::min(r->scales.smallest_feature[0], r->scales.smallest_feature[1]);
+  s["simulated_time_s"] = r->simulated_time;
+  s["steps"] = static_cast<double>(r->steps);
+  s["time_step_s"] = c.time_step;
+  s["settled_contacts"] = r->settled_contacts;
+  s["points"] = static_cast<double>(lower->size());
+  s["settled_speed_m_s"] = r->settled_speed;
+  for (const char* code : {"core-overlap", "rounding", "time-step", "unsettled", "rotation"}) {
+    std::string key = std::string("warning_") + code;
+    std::replace(key.begin(), key.end(), '-', '_');
+    s[key] = std::any_of(r->warnings.begin(), r->warnings.end(), [&](const TiltWarning& w) { return w.code == code; })
+                 ? 1
+                 : 0;
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- report section
+
+namespace {
+
+struct Acc {
+  std::vector<double> v;
+  void add(double x) {
+    if (std::isfinite(x)) v.push_back(x);
+  }
+  double mean() const {
+    if (v.empty()) return std::nan("");
+    double s = 0;
+    for (double x : v) s += x;
+    return s / static_cast<double>(v.size());
+  }
+};
+
+double get(const std::map<std::string, double>& s, const std::string& k) {
+  auto it = s.find(k);
+  return it == s.end() ? std::nan("") : it->second;
+}
+
+void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
+  struct Cell {
+    int n = 0, slid = 0, inside = 0, below = 0, above = 0, warned = 0;
+    int rot = 0, rot_inside = 0, rot_below = 0, rot_above = 0;  // runs with the rotation warning
+    int unsettled = 0, uns_inside = 0;                          // runs with the unsettled warning
+    Acc phi[3], tmax, sigma, low, sphero, d_rigid, d_sphero, offset, before, slide;
+  };
+  std::map<double, Cell> by_d;  // surface dimension (rounded to 1e-9) -> cell
+  Cell all;
+  int closer_sphero = 0, closer_rigid = 0, ties = 0, monotone_fail = 0, same_all = 0, with_three = 0;
+  double max_pred_gap = 0;
+  Acc spread, d_half, d_two, pred_gap, err_rigid, err_sphero;
+  constexpr double kDistinct = 0.01;  // deg: predictions closer than this are not told apart
+  for (const auto& row : rows) {
+    const auto& s = row.output.scalars;
+    if (!s.count("friction_angle_deg") || !s.count("theta_max_deg")) continue;
+    const double D = std::round(get(s, "surface_dimension") * 1e9) / 1e9;
+    for (Cell* c : {&by_d[D], &all}) {
+      ++c->n;
+      const bool slid = get(s, "slid") > 0;
+      c->slid += slid;
+      for (int k = 0; k < 3; ++k) c->phi[k].add(get(s, std::string("friction_angle_") + kRunawayName[k] + "_deg"));
+      c->tmax.add(get(s, "theta_max_deg"));
+      c->sigma.add(get(s, "sigma_deg"));
+      c->low.add(get(s, "eq18_low_deg"));
+      c->sphero.add(get(s, "predicted_sphero_friction_angle_deg"));
+      c->d_rigid.add(std::abs(get(s, "friction_minus_rigid_deg")));
+      c->d_sphero.add(std::abs(get(s, "friction_minus_sphero_deg")));
+      c->offset.add(get(s, "initial_offset_m"));
+      c->before.add(get(s, "displacement_before_slide_m"));
+      c->slide.add(get(s, "final_displacement_m"));
+      const double phi = get(s, "friction_angle_deg");
+      if (slid) {
+        const bool turned = get(s, "warning_rotation") > 0;
+        c->rot += turned;
+        if (get(s, "inside_eq18") > 0) {
+          ++c->inside;
+          c->rot_inside += turned;
+        } else if (phi < get(s, "eq18_low_deg")) {
+          ++c->below;
+          c->rot_below += turned;
+        } else {
+          ++c->above;
+          c->rot_above += turned;
+        }
+      }
+      c->warned += get(s, "warning_core_overlap") + get(s, "warning_rounding") + get(s, "warning_time_step") +
+                       get(s, "warning_rotation") >
+                   0;
+      if (get(s, "warning_unsettled") > 0) {
+        ++c->unsettled;
+        c->uns_inside += get(s, "inside_eq18") > 0;
+      }
+    }
+    // Rigid or spheropolygon: judged only where the two predictions differ by more than
+    // kDistinct (else the simulation cannot tell them apart).
+    const double dr = std::abs(get(s, "friction_minus_rigid_deg")), ds = std::abs(get(s, "friction_minus_sphero_deg"));
+    const double gap = std::abs(get(s, "predicted_friction_angle_deg") - get(s, "predicted_sphero_friction_angle_deg"));
+    if (std::isfinite(dr) && std::isfinite(ds) && std::isfinite(gap)) {
+      max_pred_gap = std::max(max_pred_gap, gap);
+      pred_gap.add(gap);
+      if (gap <= kDistinct) {
+        ++ties;
+      } else {
+        (ds < dr ? closer_sphero : closer_rigid)++;
+        err_rigid.add(dr);
+        err_sphero.add(ds);
+      }
+    }
+    const double a = get(s, "friction_angle_half_lambda_deg"), b = get(s, "friction_angle_lambda_deg"),
+                 c2 = get(s, "friction_angle_two_lambda_deg");
+    if (std::isfinite(a) && std::isfinite(b) && std::isfinite(c2)) {
+      ++with_three;
+      spread.add(c2 - a);
+      d_half.add(a - b);
+      d_two.add(c2 - b);
+      if (a == b && b == c2) ++same_all;
+    }
+    // Slide starts move forward with the run-away distance (a longer run-away starts no earlier).
+    const double s0 = get(s, "slide_start_half_lambda_m"), s1 = get(s, "slide_start_lambda_m"),
+                 s2 = get(s, "slide_start_two_lambda_m");
+    if (std::isfinite(s0) && std::isfinite(s1) && std::isfinite(s2) && !(s0 <= s1 && s1 <= s2)) ++monotone_fail;
+  }
+  if (!all.n) return;
+  rep.lines.push_back(fmt::format("\n## Part '{}' (wm-tilt): {} pairs, {} values of D", part, all.n, by_d.size()));
+  std::string t =
+      "\n| D | pairs | slid | phi 0.5 lambda (deg) | phi 1 lambda (deg) | phi 2 lambda (deg) | theta_max (deg) | "
+      "sigma (deg) | theta_max - sigma (deg) | sphero prediction (deg) | inside Eq. 18 | below | above | "
+      "mean abs(sim - rigid) (deg) | mean abs(sim - sphero) (deg) | crept before slide (m) | warned | unsettled |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [D, c] : by_d)
+    t += fmt::format(
+        "| {:.2f} | {} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {} | {} | {} | {:.3f} | "
+        "{:.3f} | {:.3g} | {} | {} |\n",
+        D, c.n, c.slid, c.phi[0].mean(), c.phi[1].mean(), c.phi[2].mean(), c.tmax.mean(), c.sigma.mean(), c.low.mean(),
+        c.sphero.mean(), c.inside, c.below, c.above, c.d_rigid.mean(), c.d_sphero.mean(), c.before.mean(), c.warned,
+        c.unsettled);
+  rep.lines.push_back(t);
+  rep.lines.push_back(
+      "\nMeans over the pairs of each D; phi at run-away distance d is the tilt at the start of the first run-away "
+      "of length d (one run per pair, stopped at 2 lambda); the Eq. 18 range is [theta_max - sigma, theta_max] + "
+      "theta_a, judged on phi at 1 lambda.");
+
+  // F1: Eq. 18 range.
+  {
+    Finding f;
+    f.claim = fmt::format(
+        "Part '{}': the simulated friction angle of random pairs lies in the Eq. 18 range "
+        "[theta_max - sigma, theta_max] + theta_a (run-away 1 lambda).",
+        part);
+    const double frac = all.slid ? double(all.inside) / all.slid : 0;
+    f.supported = all.slid > 0 && all.slid == all.n && frac >= 0.9;
+    f.evidence.push_back(fmt::format(
+        "criterion: every block slid and at least 90% of the angles lie in the range; {} of {} slid, {} of them "
+        "inside ({:.0f}%), {} below, {} above",
+        all.slid, all.n, all.inside, 100 * frac, all.below, all.above));
+    std::string per;
+    for (const auto& [D, c] : by_d) per += fmt::format(" D={:.1f}: {}/{}", D, c.inside, c.slid);
+    f.evidence.push_back("inside per D:" + per);
+    {  // where the angles fall relative to the rigid prediction, in degrees and in units of sigma
+      double m = 0, m2 = 0, z = 0;
+      int n = 0, within_sigma = 0;
+      for (const auto& row : rows) {
+        const auto& sc = row.output.scalars;
+        const double d = get(sc, "friction_minus_rigid_deg"), sg = get(sc, "sigma_deg");
+        if (!std::isfinite(d) || !std::isfinite(sg) || sg <= 0) continue;
+        ++n;
+        m += d;
+        m2 += d * d;
+        z += d / sg;
+        within_sigma += std::abs(d) <= sg;
+      }
+      if (n > 1) {
+        m /= n;
+        f.evidence.push_back(fmt::format(
+            "phi - (theta_max + theta_a): mean {:+.3f} deg, standard deviation {:.3f} deg, mean in units of sigma "
+            "{:+.2f}; |phi - theta_max - theta_a| <= sigma in {} of {} pairs",
+            m, std::sqrt(std::max(0.0, (m2 - n * m * m) / (n - 1))), z / n, within_sigma, n));
+      }
+    }
+    f.evidence.push_back(fmt::format(
+        "runs flagged 'unsettled' (the block still moved when the tilt started): {}, {} of them inside; not "
+        "flagged: {}, {} inside",
+        all.unsettled, all.uns_inside, all.n - all.unsettled, all.inside - all.uns_inside));
+    f.evidence.push_back(fmt::format(
+        "runs flagged 'rotation' (the upper block turned before the slide; the signature assumes it does not): {} -- "
+        "{} inside, {} below, {} above; unflagged: {} inside, {} below, {} above",
+        all.rot, all.rot_inside, all.rot_below, all.rot_above, all.inside - all.rot_inside, all.below - all.rot_below,
+        all.above - all.rot_above));
+    rep.findings.push_back(f);
+  }
+  // F2: run-away distance.
+  if (with_three > 0) {
+    Finding f;
+    f.claim = fmt::format(
+        "Part '{}': the simulated friction angle does not depend on the run-away distance (0.5, 1, 2 lambda).", part);
+    const double m = spread.mean();
+    double worst = 0;
+    for (double x : spread.v) worst = std::max(worst, std::abs(x));
+    f.supported = std::abs(m) <= 0.1 && worst <= 0.5;
+    f.evidence.push_back(fmt::format(
+        "criterion: mean |phi(2 lambda) - phi(0.5 lambda)| <= 0.1 deg and none above 0.5 deg; mean phi(2 lambda) - "
+        "phi(0.5 lambda) = {:+.3f} deg, largest {:.3f} deg; equal at all three distances in {} of {} pairs",
+        m, worst, same_all, with_three));
+    f.evidence.push_back(
+        fmt::format("mean phi(0.5 lambda) - phi(1 lambda) = {:+.3f} deg, phi(2 lambda) - phi(1 "
+                    "lambda) = {:+.3f} deg",
+                    d_half.mean(), d_two.mean()));
+    std::string per;
+    for (const auto& [D, c] : by_d)
+      per += fmt::format(" D={:.1f}: {:.3f}/{:.3f}/{:.3f}", D, c.phi[0].mean(), c.phi[1].mean(), c.phi[2].mean());
+    f.evidence.push_back("mean phi at 0.5/1/2 lambda (deg):" + per);
+    f.evidence.push_back(fmt::format("slide starts monotone in the run-away distance in {} of {} pairs",
+                                     with_three - monotone_fail, with_three));
+    rep.findings.push_back(f);
+  }
+  // F3: rigid or spheropolygon prediction.
+  {
+    Finding f;
+    f.claim = fmt::format(
+        "Part '{}': the spheropolygon prediction (signature with the spheroradius) is closer to the simulated angle "
+        "than the rigid one (Eq. 6).",
+        part);
+    const int judged = closer_sphero + closer_rigid;
+    // A sign test: with no preference the difference of the two counts has standard deviation
+    // sqrt(judged); a preference needs it above two of them.
+    const double margin = 2 * std::sqrt(static_cast<double>(judged));
+    f.supported = judged > 0 && closer_sphero - closer_rigid > margin && err_sphero.mean() < err_rigid.mean();
+    f.evidence.push_back(fmt::format(
+        "criterion: among the pairs whose two predictions differ by more than {:g} deg, clearly more are closer to "
+        "the spheropolygon prediction (a sign test: their excess must exceed 2 sqrt(pairs) = {:.1f}), with a smaller "
+        "mean error; {} such pairs of {}: closer to sphero in {}, to rigid in {}; there mean |sim - rigid| = {:.3f} "
+        "deg, "
+        "mean |sim - sphero| = {:.3f} deg",
+        kDistinct, margin, judged, judged + ties, closer_sphero, closer_rigid, err_rigid.mean(), err_sphero.mean()));
+    f.evidence.push_back(fmt::format(
+        "|rigid - sphero prediction|: mean {:.4f} deg, largest {:.4f} deg; over all pairs mean |sim - rigid| = {:.3f} "
+        "deg, mean |sim - sphero| = {:.3f} deg",
+        pred_gap.mean(), max_pred_gap, all.d_rigid.mean(), all.d_sphero.mean()));
+    if (judged == 0)
+      f.evidence.push_back("the rounding changes the prediction by too little anywhere to tell the two apart");
+    rep.findings.push_back(f);
+  }
+}
+
+/// Variants (other axes than D, hurst, pair) are reported separately, e.g. spheroradius.
+void wm_tilt_section(const std::string& part, const std::vector<TaskRow>& rows, Report& rep) {
+  std::map<std::string, std::vector<Store::Row>> variants;
+  std::map<std::string, Params> rests;
+  for (const auto& row : rows) {
+    Params rest = row.params;
+    for (const char* k : {"dimension", "hurst", "pair"}) rest.erase(k);
+    const std::string key = canonical(rest);
+    rests[key] = rest;
+    variants[key].push_back(row);
+  }
+  std::set<std::string> differing;
+  for (const auto& [key, rest] : rests)
+    for (const auto& [name, v] : rest)
+      for (const auto& [key2, rest2] : rests)
+        if (!rest2.count(name) || canonical(rest2.at(name)) != canonical(v)) differing.insert(name);
+  for (const auto& [key, vrows] : variants) {
+    std::string label = part;
+    if (variants.size() > 1) {
+      std::string d;
+      for (const auto& name : differing) {
+        if (!rests[key].count(name)) continue;
+        if (!d.empty()) d += ", ";
+        const Value& v = rests[key].at(name);
+        d += name + "=" + (std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : canonical(v));
+      }
+      label += " [" + d + "]";
+    }
+    wm_tilt_part(label, vrows, rep);
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- the kind
+
+TaskKind wm_tilt_kind() {
+  TaskKind k;
+  k.name = "wm-tilt";
+  k.description =
+      "Spheropolygon tilt test of a random pair (WM or any seeded generator) beside its Eq. 18 range; friction angle "
+      "at run-away 0.5, 1, 2 lambda";
+  k.version = 1;
+  k.run = run_wm_tilt_task;
+  k.outputs = {
+      {"surface_dimension", "1", "fractal dimension D of the faces (wm: dimension; self-affine, fourier: 2 - hurst)"},
+      {"wavelength_m", "m", "lambda: the surface's scale (wm: longest wavelength), unit of the run-away distances"},
+      {"slid", "1", "1 if the block ran away by 1 lambda before max_tilt"},
+      {"friction_angle_deg", "deg", "simulated friction angle, run-away 1 lambda"},
+      {"slid_half_lambda", "1", "1 if a run-away of 0.5 lambda happened"},
+      {"slid_lambda", "1", "1 if a run-away of 1 lambda happened"},
+      {"slid_two_lambda", "1", "1 if a run-away of 2 lambda happened"},
+      {"friction_angle_half_lambda_deg", "deg", "tilt at the start of the first run-away of 0.5 lambda"},
+      {"friction_angle_lambda_deg", "deg", "tilt at the start of the first run-away of 1 lambda"},
+      {"friction_angle_two_lambda_deg", "deg", "tilt at the start of the first run-away of 2 lambda"},
+      {"slide_start_half_lambda_m", "m", "displacement since settling where that run-away started"},
+      {"slide_start_lambda_m", "m", "displacement since settling where that run-away started"},
+      {"slide_start_two_lambda_m", "m", "displacement since settling where that run-away started"},
+      {"theta_max_deg", "deg", "theta_max of the rigid signature in the sliding direction (Eq. 6)"},
+      {"theta_max_signature_deg", "deg", "the same from the kind's own signature (the one giving sigma)"},
+      {"sigma_deg", "deg", "standard deviation of the contact slopes (sigma of Eq. 18)"},
+      {"atomic_friction_angle_deg", "deg", "theta_a = atan(mu_a)"},
+      {"eq18_low_deg", "deg", "theta_a + theta_max - sigma: lower end of the Eq. 18 range"},
+      {"eq18_high_deg", "deg", "theta_a + theta_max: upper end of the Eq. 18 range"},
+      {"predicted_friction_angle_deg", "deg", "rigid prediction theta_max + theta_a (Eq. 6)"},
+      {"predicted_sphero_theta_max_deg", "deg", "theta_max of the rounded blocks' signature (spheroradius r)"},
+      {"predicted_sphero_friction_angle_deg", "deg", "spheropolygon prediction: that theta_max + theta_a"},
+      {"friction_minus_rigid_deg", "deg", "simulated (1 lambda) minus rigid prediction"},
+      {"friction_minus_sphero_deg", "deg", "simulated (1 lambda) minus spheropolygon prediction"},
+      {"inside_eq18", "1", "1 if the simulated angle (1 lambda) lies in the Eq. 18 range"},
+      {"initial_offset_m", "m", "offset of the upper block at the start (start_rule)"},
+      {"start_rule", "1",
+       "how the start was chosen: 2 least lift among the local minima of h(s) in the first half of the offset range "
+       "with a forward barrier >= W/k_n, 1 the least such minimum (none had one), 0 run_tilt's least lift "
+       "(periodic faces or initial_offset given)"},
+      {"displacement_before_slide_m", "m", "how far the block moved between settling and the 1 lambda run-away"},
+      {"slide_distance_m", "m", "how far it slid from the start of the last run-away to the end of the run"},
+      {"final_displacement_m", "m", "displacement since settling when the run stopped"},
+      {"rotation_before_slide_deg", "deg", "largest rotation of the upper block before the slide"},
+      {"resting_overlap_m", "m", "W / k_n"},
+      {"smallest_feature_m", "m", "shortest run between neighbouring extrema of either face"},
+      {"simulated_time_s", "s", "simulated time"},
+      {"steps", "1", "time steps"},
+      {"time_step_s", "s", "largest time step (after retries)"},
+      {"settled_contacts", "1", "vertex-edge contacts after settling"},
+      {"points", "1", "points of each face"},
+      {"warning_core_overlap", "1", "1 if the resting overlap exceeds warn_overlap_fraction r"},
+      {"warning_rounding", "1", "1 if the spheropolygon and rigid predictions differ by more than the tolerance"},
+      {"warning_time_step", "1", "1 if the time step exceeds warn_time_step_fraction of the contact period"},
+      {"warning_unsettled", "1", "1 if the block still moved faster than stick_speed when the tilt started"},
+      {"warning_rotation", "1", "1 if the upper block rotated by more than warn_rotation before the slide"},
+      {"settled_speed_m_s", "m/s", "speed of the upper block against the lower one when the tilt started"},
+  };
+  k.report = wm_tilt_section;
+  const PlotAxis x{"surface_dimension", "D"};
+  k.plots.push_back(PlotView::of("wm-tilt-friction", x, {"friction_angle_deg", "friction angle φ (deg)"})
+                        .named("{generator}: simulation, each pair")
+                        .markers("o", 3, 0));
+  k.plots.back().open = true;
+  k.plots.back().line = false;
+  k.plots.back().color = "k";
+  k.plots.push_back(PlotView::of("wm-tilt-friction-mean", x, {"friction_angle_deg", "friction angle φ (deg)"})
+                        .named("{generator}: simulation, mean")
+                        .markers("o", 5, 1.5)
+                        .averaged_over("pair"));
+  k.plots.back().color = "k";
+  k.plots.push_back(PlotView::of("wm-tilt-theta-max", x, {"eq18_high_deg", "friction angle φ (deg)"})
+                        .named("θ_max + θ_a (Eq. 6, rigid), mean")
+                        .markers("^", 5, 1.5)
+                        .averaged_over("pair"));
+  k.plots.back().color = "C0";
+  k.plots.push_back(PlotView::of("wm-tilt-eq18-low", x, {"eq18_low_deg", "friction angle φ (deg)"})
+                        .named("θ_max − σ + θ_a (Eq. 18), mean")
+                        .markers("v", 5, 1.5)
+                        .averaged_over("pair"));
+  k.plots.back().color = "C0";
+  k.plots.push_back(PlotView::of("wm-tilt-sphero", x, {"predicted_sphero_friction_angle_deg", "friction angle φ (deg)"})
+                        .named("spheropolygon prediction (r), mean")
+                        .markers("s", 4, 1)
+                        .averaged_over("pair"));
+  k.plots.back().color = "C1";
+  k.plots.back().open = true;
+  for (int i = 0; i < 3; ++i) {
+    const std::string n = kRunawayName[i];
+    k.plots.push_back(PlotView::of("wm-tilt-friction-" + n, x, {"friction_angle_" + n + "_deg", "mean φ (deg)"})
+                          .named(fmt::format("run-away {:g} λ", kRunaway[i]))
+                          .markers(i == 0   ? "o"
+                                   : i == 1 ? "s"
+                                            : "^",
+                                   9 - 2.5 * i, 1.2)
+                          .averaged_over("pair"));
+    k.plots.back().color = fmt::format("C{}", i + 2);
+    k.plots.back().open = i == 0;  // equal values stay visible: large open, medium, small
+  }
+  return k;
+}
+
+}  // namespace frictal::study
