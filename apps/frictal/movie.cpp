@@ -2,10 +2,20 @@
 // lines, a 5 x 7 pixel font) writing raw RGB frames into ffmpeg's standard input.
 #include "movie.hpp"
 
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <map>
 #include <numbers>
 #include <string>
@@ -15,7 +25,39 @@
 
 #include "command.hpp"
 
+extern char** environ;
+
 namespace frictal::cli {
+
+std::string find_on_path(const std::string& program) {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "/usr/bin:/bin";
+  std::size_t start = 0;
+  while (start <= dirs.size()) {
+    std::size_t end = dirs.find(':', start);
+    if (end == std::string::npos) end = dirs.size();
+    std::string dir = dirs.substr(start, end - start);
+    if (dir.empty()) dir = ".";
+    const std::string candidate = dir + "/" + program;
+    struct stat st {};
+    if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) && ::access(candidate.c_str(), X_OK) == 0)
+      return candidate;
+    start = end + 1;
+  }
+  return {};
+}
+
+void check_movie_tool(const std::string& path) {
+  const bool gif = path.size() > 4 && path.compare(path.size() - 4, 4, ".gif") == 0;
+  const bool mp4 = path.size() > 4 && path.compare(path.size() - 4, 4, ".mp4") == 0;
+  if (!gif && !mp4) throw UsageError(fmt::format("--movie {}: expected a file name ending in .mp4 or .gif", path));
+  if (find_on_path("ffmpeg").empty())
+    throw UsageError(fmt::format("--movie {}: ffmpeg was not found on PATH; it renders the movie (Debian: "
+                                 "apt-get install ffmpeg; scripts/install-deps installs it)",
+                                 path),
+                     ErrorCode::NotAvailable);
+}
+
 namespace {
 
 struct Rgb {
@@ -142,17 +184,65 @@ void write_tilt_movie(const std::string& path, const TiltResult& r, double radiu
     for (const auto& c : f.contacts) fsum += std::hypot(c.normal_force, c.tangential_force), ++fn;
   const double fscale = fsum > 0 ? 0.04 * H / (fsum / static_cast<double>(fn)) : 0;  // mean force: 4 % of H
 
-  const std::string filter =
-      gif ? "-vf \"split[a][b];[a]palettegen[p];[b][p]paletteuse\"" : "-c:v libx264 -pix_fmt yuv420p -crf 20";
-  const std::string cmd =
-      fmt::format("ffmpeg -hide_banner -loglevel error -y -f rawvideo -pix_fmt rgb24 -s {}x{} -r {} -i - {} \"{}\"", W,
-                  H, fps, filter, path);
-  std::FILE* pipe = popen(cmd.c_str(), "w");
-  if (!pipe) throw UsageError(fmt::format("--movie: cannot start ffmpeg ({})", cmd), ErrorCode::Io);
+  // ffmpeg gets its arguments as a vector (no shell: any file name is safe) and the frames on a pipe.
+  std::vector<std::string> args = {"ffmpeg",
+                                   "-hide_banner",
+                                   "-loglevel",
+                                   "error",
+                                   "-y",
+                                   "-f",
+                                   "rawvideo",
+                                   "-pix_fmt",
+                                   "rgb24",
+                                   "-s",
+                                   fmt::format("{}x{}", W, H),
+                                   "-r",
+                                   std::to_string(fps),
+                                   "-i",
+                                   "-"};
+  if (gif) {
+    args.insert(args.end(), {"-vf", "split[a][b];[a]palettegen[p];[b][p]paletteuse"});
+  } else {
+    args.insert(args.end(), {"-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "20"});
+  }
+  args.push_back(path);
+  const std::string ffmpeg = find_on_path("ffmpeg");
+  if (ffmpeg.empty()) check_movie_tool(path);  // throws with the message that says what to install
+  int fds[2];
+  if (::pipe(fds) != 0) throw UsageError(fmt::format("--movie: pipe: {}", std::strerror(errno)), ErrorCode::Io);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_adddup2(&fa, fds[0], STDIN_FILENO);
+  posix_spawn_file_actions_addclose(&fa, fds[1]);
+  posix_spawn_file_actions_addclose(&fa, fds[0]);
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int sp = posix_spawn(&pid, ffmpeg.c_str(), &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  ::close(fds[0]);
+  if (sp != 0) {
+    ::close(fds[1]);
+    throw UsageError(fmt::format("--movie: cannot start {}: {}", ffmpeg, std::strerror(sp)), ErrorCode::Io);
+  }
+  // A dying ffmpeg must not kill frictal with SIGPIPE: the write fails with EPIPE and is reported.
+  struct sigaction ignore {
+  }, previous{};
+  ignore.sa_handler = SIG_IGN;
+  ::sigaction(SIGPIPE, &ignore, &previous);
+  std::FILE* pipe = ::fdopen(fds[1], "w");
+  if (!pipe) {
+    ::close(fds[1]);
+    ::waitpid(pid, nullptr, 0);
+    ::sigaction(SIGPIPE, &previous, nullptr);
+    throw UsageError(fmt::format("--movie: fdopen: {}", std::strerror(errno)), ErrorCode::Io);
+  }
   const Rgb lower_c{150, 150, 160}, upper_c{90, 140, 200}, rim_c{40, 40, 40}, contact_c{220, 30, 30},
       tang_c{30, 160, 60}, text_c{0, 0, 0};
   Image im(W, H);
   const double deg = 180 / std::numbers::pi;
+  bool write_failed = false;
   for (const TiltFrame& f : r.frames) {
     im.fill({255, 255, 255});
     for (int b = 0; b < 2; ++b) {
@@ -183,10 +273,24 @@ void write_tilt_movie(const std::string& path, const TiltResult& r, double radiu
          fmt::format("atan(Ft/Fn) = {:.3f} deg   contacts {}", std::atan2(f.tangential_force, f.normal_force) * deg,
                      f.contacts.size()),
          ts, text_c);
-    if (std::fwrite(im.px.data(), 1, im.px.size(), pipe) != im.px.size()) break;
+    if (std::fwrite(im.px.data(), 1, im.px.size(), pipe) != im.px.size()) {
+      write_failed = true;
+      break;
+    }
   }
-  const int rc = pclose(pipe);
-  if (rc != 0) throw UsageError(fmt::format("--movie: ffmpeg failed (exit status {}): {}", rc, cmd), ErrorCode::Io);
+  if (std::fclose(pipe) != 0) write_failed = true;
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  ::sigaction(SIGPIPE, &previous, nullptr);
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw UsageError(
+        fmt::format("--movie {}: ffmpeg failed ({} {}){}", path, WIFEXITED(status) ? "exit status" : "signal",
+                    WIFEXITED(status) ? WEXITSTATUS(status) : WTERMSIG(status),
+                    write_failed ? "; the frames could not all be written" : ""),
+        ErrorCode::Io);
+  if (write_failed)
+    throw UsageError(fmt::format("--movie {}: the frames could not all be written to ffmpeg", path), ErrorCode::Io);
 }
 
 }  // namespace frictal::cli

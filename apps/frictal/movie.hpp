@@ -11,6 +11,12 @@ namespace frictal::cli {
 
 /// Writes the movie of `r` (which needs frames) to `path` (.mp4 or .gif) at `fps` frames per
 /// second. `radius`: the spheroradius drawn as the blocks' rims (m). Throws CliError on failure.
+/// The full path of `program` on PATH, or "" when it is not there.
+std::string find_on_path(const std::string& program);
+
+/// Checks `--movie PATH` before a run: a .mp4 or .gif name and ffmpeg on PATH (throws UsageError).
+void check_movie_tool(const std::string& path);
+
 void write_tilt_movie(const std::string& path, const TiltResult& r, double radius, int fps = 25);
 
 }  // namespace frictal::cli

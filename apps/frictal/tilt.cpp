@@ -68,6 +68,7 @@ int run(TiltOptions& o) {
   if (o.json && (o.output == "-" || o.frames == "-"))
     throw UsageError("--json and -o -/--frames - would both write to standard output; choose one");
 
+  if (!o.movie.empty()) check_movie_tool(o.movie);  // before the run, not after it
   auto r = run_tilt(lower, upper, cfg);
   if (!r.ok()) fail(r.error());
   for (const TiltWarning& w : r->warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);

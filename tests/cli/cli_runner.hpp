@@ -30,10 +30,12 @@ inline std::string read_file(const std::string& path) {
 
 /// Runs `frictal ARGS`, capturing stdout and stderr; with `timeout_s` > 0 under coreutils'
 /// `timeout` (exit 124 when the command ran past it, e.g. blocked on a FIFO).
-inline CliRun run_cli(const std::string& args, int timeout_s = 0) {
+/// `env`: assignments put before the command (e.g. "PATH=/nonexistent").
+inline CliRun run_cli(const std::string& args, int timeout_s = 0, const std::string& env = "") {
   static int counter = 0;
   const std::string err_path = temp_path("stderr_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-  const std::string cmd = (timeout_s > 0 ? "timeout -k 5 " + std::to_string(timeout_s) + " " : std::string()) +
+  const std::string cmd = (env.empty() ? std::string() : "env " + env + " ") +
+                          (timeout_s > 0 ? "timeout -k 5 " + std::to_string(timeout_s) + " " : std::string()) +
                           std::string(FRICTAL_CLI_PATH) + " " + args + " 2>" + err_path;
   CliRun r;
   FILE* p = ::popen(cmd.c_str(), "r");

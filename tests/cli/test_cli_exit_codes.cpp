@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 
@@ -139,4 +140,37 @@ TEST(CliExitCodes, EdgeProfilesAndMapsGiveTheRightNumberOrExitTwo) {
               file("edge_tiny.txt", "# Width: 3e-320 m\n# Height: 2e-320 m\n# Value units: m\n1 2 3\n4 5 6\n"));
   EXPECT_EQ(r.code, 2) << r.out;
   EXPECT_NE(r.err.find("below the smallest normal double"), std::string::npos) << r.err;
+}
+
+// tilt --movie: the name and ffmpeg are checked before the run (a missing ffmpeg used to end the
+// process with SIGPIPE after the whole simulation); with ffmpeg the GIF holds every frame.
+TEST(CliExitCodes, TiltMovieNeedsAKnownExtensionAndFfmpegAndHoldsEveryFrame) {
+  const std::string gif = temp_path("movie_k0.gif");
+  std::remove(gif.c_str());
+  auto r = run_cli("tilt koch -n 0 --alpha 5 --movie " + temp_path("movie.avi"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find(".mp4 or .gif"), std::string::npos) << r.err;
+  r = run_cli("tilt koch -n 0 --alpha 5 --movie " + gif, 0, "PATH=/nonexistent");
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("ffmpeg was not found on PATH"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(gif));
+  if (::access("/usr/bin/ffmpeg", X_OK) != 0 || ::access("/usr/bin/ffprobe", X_OK) != 0)
+    GTEST_SKIP() << "ffmpeg/ffprobe not installed (scripts/install-deps installs them)";
+  r = run_cli("tilt koch -n 0 --alpha 5 --movie " + gif);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string head = read_file(gif).substr(0, 6);
+  EXPECT_EQ(head, "GIF89a");
+  // The frame count the CLI reports against the count ffprobe decodes from the file.
+  const auto at = r.err.find("frames)");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const auto open = r.err.rfind('(', at);
+  const long reported = std::stol(r.err.substr(open + 1, at - open - 1));
+  EXPECT_GT(reported, 10);
+  const std::string count_path = temp_path("movie_frames.txt");
+  const std::string probe =
+      "ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames "
+      "-of csv=p=0 " +
+      gif + " > " + count_path;
+  ASSERT_EQ(std::system(probe.c_str()), 0);
+  EXPECT_EQ(std::stol(read_file(count_path)), reported);
 }
