@@ -100,6 +100,12 @@ struct TiltConfig {
   /// contact's period 2 pi sqrt(m/k_n) (unitless): 0.005, i.e. ~1.4e-5 s for a Table I block; the
   /// fixed explicit step is stable for the Koch grid at 1e-5 s, not at 2e-5 s for K3.
   double warn_time_step_fraction = 0.005;
+  /// "creep": a slip of at least this length that ends in a new stick while shorter than a tenth
+  /// of the smallest feature of the faces (it reaches no other feature) is a creep event (unit: m).
+  double warn_creep_slip = 1e-7;
+  /// "creep" when the first creep event began more than this below the reported friction angle:
+  /// the stick rule reports the last stick, so sliding began earlier than phi says (unit: rad).
+  double warn_creep_angle = 0.1 * std::numbers::pi / 180;
 };
 TiltConfig default_tilt_config();
 
@@ -153,7 +159,7 @@ struct TiltScales {
 };
 
 /// A run outside the model the prediction assumes (code: "core-overlap", "rounding",
-/// "time-step", "unsettled", "rotation"; message: what was compared, with numbers and SI units).
+/// "time-step", "unsettled", "rotation", "creep"; message: what was compared, with numbers and SI units).
 struct TiltWarning {
   std::string code;
   std::string message;
@@ -190,6 +196,10 @@ struct TiltResult {
   /// settling and the slide (the end of the last stick; the end of the run if it did not slide)
   /// (unit: rad). 0 with hold_rotation.
   double rotation_before_slide = 0;
+  /// The first creep event (TiltConfig::warn_creep_slip): tilt at the end of the stick it left
+  /// (unit: rad) and the length of the slip (unit: m); NaN when there was none.
+  double first_creep_tilt = std::numeric_limits<double>::quiet_NaN();
+  double first_creep_slip = std::numeric_limits<double>::quiet_NaN();
   TiltScales scales;
   std::vector<TiltWarning> warnings;  ///< before the run (scales), then "unsettled" and "rotation" from the run
   double initial_offset = 0;          ///< offset used (unit: m)

@@ -229,6 +229,8 @@ def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
         warn_prediction_tolerance [rad]: Warn (rounding) when the spheropolygon and rigid predictions differ by more (default 0.001745329252; valid > 0)
         warn_rotation [rad]: Warn (rotation) when the upper block turns against the lower one by more before the slide (default 3.490658504e-05; valid > 0)
         warn_time_step_fraction: Warn (time-step) when a fixed time step exceeds this fraction of one contact's period (default 0.005; valid > 0)
+        warn_creep_slip [m]: Creep event: a slip at least this long that sticks again within a tenth of the smallest feature (default 1e-07; valid > 0)
+        warn_creep_angle [rad]: Warn (creep) when the first creep event began more than this below the friction angle (default 0.001745329252; valid > 0)
         series_interval [s]: Time between rows of the time series; 0: none (default 0.001; valid >= 0)
         frame_interval [s]: Time between frames; 0: none (default 0; valid >= 0)"""
 

@@ -485,6 +485,11 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   // Rotation of the upper block against the lower one since the end of settling.
   const double rot0 = st.angle[1] - st.angle[0];
   double max_rot = 0, rot_at_stick = 0;
+  // Creep: a slip between two sticks shorter than a tenth of the smallest feature of the faces
+  // (it reaches no other feature: K3 at 20 deg slips 1 um at 60.04 deg and holds until 60.32 deg).
+  const double creep_max = 0.1 * std::min(res.scales.smallest_feature[0], res.scales.smallest_feature[1]);
+  bool sticking = false;  // a slip counts between two sticks (not the settling before the first)
+  double leave_tilt = 0, leave_d = std::numeric_limits<double>::quiet_NaN();
   for (double dist : cfg.runaway_checkpoints) res.checkpoints.push_back({dist, false, nan, nan, nan});
   std::size_t checkpoints_left = res.checkpoints.size();
   double d_now = 0;
@@ -499,6 +504,14 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     if (v <= cfg.stick_speed) {
       if (std::isnan(low_since)) low_since = st.time;
       if (st.time - low_since >= cfg.stick_duration - 0.5 * last_dt) {
+        if (!sticking) {                               // a new stick after a slip
+          const double slip = std::fabs(d - leave_d);  // NaN before the first stick: no event
+          if (std::isnan(res.first_creep_tilt) && slip >= cfg.warn_creep_slip && slip < creep_max) {
+            res.first_creep_tilt = leave_tilt;
+            res.first_creep_slip = slip;
+          }
+          sticking = true;
+        }
         stick_time = st.time;
         stick_tilt = tilt;
         stick_d = d;
@@ -506,6 +519,11 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
       }
     } else {
       low_since = nan;
+      if (sticking) {  // leaving a stick: where and at which tilt
+        sticking = false;
+        leave_tilt = stick_tilt;
+        leave_d = stick_d;
+      }
     }
     d_now = d;
     // The same test as the stop below, for each shorter distance: the first run-away that reaches
@@ -538,6 +556,16 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
          fmt::format("the upper block turned by {:.4g} deg against the lower one before the slide (warning above "
                      "{:.4g} deg): the signature assumes it does not rotate; hold_rotation (--hold-rotation) holds it",
                      res.rotation_before_slide * 180 / std::numbers::pi, cfg.warn_rotation * 180 / std::numbers::pi)});
+  if (res.slid && !std::isnan(res.first_creep_tilt) && res.friction_angle - res.first_creep_tilt > cfg.warn_creep_angle)
+    res.warnings.push_back(
+        {"creep",
+         fmt::format("the upper block slipped {:.3g} m at a tilt of {:.4f} deg and was held again (a slip "
+                     "shorter than a tenth of the smallest feature, {:.3g} m): sliding began {:.3f} deg "
+                     "below the reported friction angle {:.4f} deg (the stick rule reports the last stick; "
+                     "warning above {:.3g} deg)",
+                     res.first_creep_slip, res.first_creep_tilt * 180 / std::numbers::pi, creep_max,
+                     (res.friction_angle - res.first_creep_tilt) * 180 / std::numbers::pi,
+                     res.friction_angle * 180 / std::numbers::pi, cfg.warn_creep_angle * 180 / std::numbers::pi)});
   finish();
   return res;
 }

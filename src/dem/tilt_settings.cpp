@@ -134,6 +134,14 @@ const std::vector<B>& table() {
                              "Warn (time-step) when a fixed time step exceeds this fraction of one contact's "
                              "period"),
                            FRICTAL_MEMBER(warn_time_step_fraction)),
+          bind<TiltConfig>(F("warn_creep_slip", "m", 0, Lo::Open, kInf,
+                             "Creep event: a slip at least this long that sticks again within a tenth of the "
+                             "smallest feature"),
+                           FRICTAL_MEMBER(warn_creep_slip)),
+          bind<TiltConfig>(F("warn_creep_angle", "rad", 0, Lo::Open, kInf,
+                             "Warn (creep) when the first creep event began more than this below the friction "
+                             "angle"),
+                           FRICTAL_MEMBER(warn_creep_angle)),
           // Output.
           bind<TiltConfig>(
               F("series_interval", "s", 0, Lo::Closed, kInf, "Time between rows of the time series; 0: none"),

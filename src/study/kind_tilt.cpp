@@ -118,7 +118,7 @@ Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: determin
   s["friction_angle_minus_sphero_deg"] = (r->friction_angle - r->predicted_sphero_friction_angle) / kDeg;
   s["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
   s["resting_overlap_m"] = r->scales.resting_overlap;
-  for (const char* code : {"core-overlap", "rounding", "time-step", "rotation"}) {
+  for (const char* code : {"core-overlap", "rounding", "time-step", "unsettled", "rotation", "creep"}) {
     std::string key = std::string("warning_") + code;
     std::replace(key.begin(), key.end(), '-', '_');
     s[key] = std::any_of(r->warnings.begin(), r->warnings.end(), [&](const TiltWarning& w) { return w.code == code; })
@@ -175,7 +175,7 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
                      s.at("atomic_friction_angle_deg"));
     if (s.count("predicted_sphero_friction_angle_deg")) {  // kind version >= 2
       std::string warn;
-      for (const char* code : {"core_overlap", "rounding", "time_step", "rotation"})
+      for (const char* code : {"core_overlap", "rounding", "time_step", "unsettled", "rotation", "creep"})
         if (auto it = s.find(std::string("warning_") + code); it != s.end() && it->second > 0)
           warn += (warn.empty() ? "" : ", ") + std::string(code);
       auto get = [&](const char* key) { return s.count(key) ? s.at(key) : std::nan(""); };  // robust to old rows
@@ -237,7 +237,7 @@ TaskKind tilt_kind() {
   TaskKind k;
   k.name = "tilt";
   k.description = "Spheropolygon tilting-block test of a Koch pair (Sec. IV): friction angle, Fig. 7 series";
-  k.version = 2;  // 2: spheropolygon prediction, rotation and model warnings
+  k.version = 3;  // 2: spheropolygon prediction, rotation and model warnings; 3: unsettled, creep
   k.run = run_tilt_task;
   k.cost = tilt_cost;
   k.uses_seed = false;  // a deterministic simulation: shared by every study with the same parameters
@@ -264,7 +264,11 @@ TaskKind tilt_kind() {
       {"warning_core_overlap", "1", "1 if the resting overlap exceeds warn_overlap_fraction r"},
       {"warning_rounding", "1", "1 if the spheropolygon and rigid predictions differ by more than the tolerance"},
       {"warning_time_step", "1", "1 if the time step exceeds warn_time_step_fraction of the contact period"},
+      {"warning_unsettled", "1", "1 if the block still moved faster than stick_speed when the tilt started"},
       {"warning_rotation", "1", "1 if the upper block rotated by more than warn_rotation before the slide"},
+      {"warning_creep", "1",
+       "1 if the block first slipped (a creep shorter than a tenth of the smallest feature) more than "
+       "warn_creep_angle below the friction angle"},
       {"displacement_over_length", "1", "relative displacement / L_b (record_series, Fig. 7)", true},
       {"force_angle_over_alpha", "1", "atan(F_t/F_n) / alpha (record_series, Fig. 7)", true},
       {"time_s", "s", "time of each series sample", true},

@@ -221,7 +221,7 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
   s["settled_contacts"] = r->settled_contacts;
   s["points"] = static_cast<double>(lower->size());
   s["settled_speed_m_s"] = r->settled_speed;
-  for (const char* code : {"core-overlap", "rounding", "time-step", "unsettled", "rotation"}) {
+  for (const char* code : {"core-overlap", "rounding", "time-step", "unsettled", "rotation", "creep"}) {
     std::string key = std::string("warning_") + code;
     std::replace(key.begin(), key.end(), '-', '_');
     s[key] = std::any_of(r->warnings.begin(), r->warnings.end(), [&](const TiltWarning& w) { return w.code == code; })
@@ -500,7 +500,7 @@ TaskKind wm_tilt_kind() {
   k.description =
       "Spheropolygon tilt test of a random pair (WM or any seeded generator) beside its Eq. 18 range; friction angle "
       "at run-away 0.5, 1, 2 lambda";
-  k.version = 1;
+  k.version = 2;  // 2: the creep warning
   k.run = run_wm_tilt_task;
   k.outputs = {
       {"surface_dimension", "1", "fractal dimension D of the faces (wm: dimension; self-affine, fourier: 2 - hurst)"},
@@ -549,6 +549,9 @@ TaskKind wm_tilt_kind() {
       {"warning_time_step", "1", "1 if the time step exceeds warn_time_step_fraction of the contact period"},
       {"warning_unsettled", "1", "1 if the block still moved faster than stick_speed when the tilt started"},
       {"warning_rotation", "1", "1 if the upper block rotated by more than warn_rotation before the slide"},
+      {"warning_creep", "1",
+       "1 if the block first slipped (a creep shorter than a tenth of the smallest feature) more than "
+       "warn_creep_angle below the friction angle"},
       {"settled_speed_m_s", "m/s", "speed of the upper block against the lower one when the tilt started"},
   };
   k.report = wm_tilt_section;

@@ -470,3 +470,32 @@ TEST(DemTilt, UnsettledWarningForTheIssuesWmPair) {
   EXPECT_LT(k0->settled_speed, k.stick_speed);
   EXPECT_TRUE(k0->warnings.empty()) << k0->warnings.front().code;
 }
+
+// The creep warning (docs/dem.md sec. 6): K3 at 20 deg on the Table I block first slips about
+// 1 um near the prediction (n alpha = 60 deg), is caught by the next fine contacts and runs away
+// 0.3 deg later; the warning names where sliding began. K2 at 20 deg slides ~1 mm at 20 deg onto
+// its 2 alpha features (a slide longer than a tenth of the smallest feature: not creep) and is not
+// flagged.
+TEST(DemTilt, CreepWarningMarksAnEarlierSlipThanTheRunAway) {
+  frictal::TiltConfig cfg = frictal::tilt_config_for_surface(0.01, 0.01);
+  cfg.series_interval = 0;
+  auto has = [](const frictal::TiltResult& x, const std::string& code) {
+    for (const auto& w : x.warnings)
+      if (w.code == code) return true;
+    return false;
+  };
+  auto k3 = frictal::run_tilt(koch(3, 20, 0.2), koch(3, 20, 0.2), cfg);
+  ASSERT_TRUE(k3.ok()) << k3.error().message;
+  ASSERT_TRUE(k3->slid);
+  EXPECT_TRUE(has(*k3, "creep"));
+  // Sliding began within 0.1 deg of the spheropolygon prediction (3 alpha), where the reported
+  // run-away angle is more than 0.1 deg above it.
+  EXPECT_NEAR(k3->first_creep_tilt, k3->predicted_sphero_friction_angle, 0.1 * kDeg);
+  EXPECT_GT(k3->friction_angle - k3->predicted_sphero_friction_angle, 0.1 * kDeg);
+  EXPECT_GE(k3->first_creep_slip, cfg.warn_creep_slip);
+  EXPECT_LT(k3->first_creep_slip, 0.1 * std::min(k3->scales.smallest_feature[0], k3->scales.smallest_feature[1]));
+  auto k2 = frictal::run_tilt(koch(2, 20, 0.2), koch(2, 20, 0.2), cfg);
+  ASSERT_TRUE(k2.ok()) << k2.error().message;
+  EXPECT_FALSE(has(*k2, "creep"));
+  EXPECT_NEAR(k2->friction_angle, 40 * kDeg, 0.1 * kDeg);
+}
