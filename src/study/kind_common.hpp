@@ -4,7 +4,13 @@
 #pragma once
 
 #include <cmath>
+#include <initializer_list>
+#include <map>
+#include <set>
 #include <string>
+#include <utility>
+#include <variant>
+#include <vector>
 
 #include <fmt/core.h>
 
@@ -68,6 +74,44 @@ inline bool take(Result<T> r, T& into, Error& err) {
   }
   into = *r;
   return true;
+}
+
+/// A part's report rows split into variants: rows whose parameters differ only in `pooled` form
+/// one variant (e.g. pairs pooled over pair, D and n_max), in canonical order of the other
+/// parameters. Each is labelled by the part name and, when there are several, by the parameters
+/// that differ between variants, e.g. "wm [slopes=spline]".
+inline std::vector<std::pair<std::string, std::vector<TaskRow>>> variants_of(
+    const std::string& part, const std::vector<TaskRow>& rows, std::initializer_list<const char*> pooled) {
+  std::map<std::string, std::vector<TaskRow>> variants;
+  std::map<std::string, Params> rests;
+  for (const auto& row : rows) {
+    Params rest = row.params;
+    for (const char* k : pooled) rest.erase(k);
+    const std::string key = canonical(rest);
+    rests[key] = rest;
+    variants[key].push_back(row);
+  }
+  std::set<std::string> differing;
+  for (const auto& [key, rest] : rests)
+    for (const auto& [name, v] : rest)
+      for (const auto& [key2, rest2] : rests)
+        if (!rest2.count(name) || canonical(rest2.at(name)) != canonical(v)) differing.insert(name);
+  std::vector<std::pair<std::string, std::vector<TaskRow>>> out;
+  for (auto& [key, vrows] : variants) {
+    std::string label = part;
+    if (variants.size() > 1) {
+      std::string d;
+      for (const auto& name : differing) {
+        if (!rests[key].count(name)) continue;
+        if (!d.empty()) d += ", ";
+        const Value& v = rests[key].at(name);
+        d += name + "=" + (std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : canonical(v));
+      }
+      label += " [" + d + "]";
+    }
+    out.emplace_back(std::move(label), std::move(vrows));
+  }
+  return out;
 }
 
 }  // namespace frictal::study::kind_detail

@@ -336,38 +336,10 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   }
 }
 
-/// wm-pair-statistics: pairs are pooled over `pair` only; other axes make variants.
+/// wm-pair-statistics: rows pooled over D, n_max and pair (wm_part reads those axes); any other
+/// axis (e.g. slopes = ["exact", "spline"]) makes a separate variant.
 void wm_section(const std::string& part, const std::vector<TaskRow>& rows, Report& rep) {
-  // Pairs are pooled over `pair` only: other axes (e.g. slopes = ["exact", "spline"]) are
-  // analysed as separate variants.
-  std::map<std::string, std::vector<Store::Row>> variants;
-  std::map<std::string, Params> rests;
-  for (const auto& row : rows) {
-    Params rest = row.params;
-    for (const char* k : {"dimension", "n_max", "pair"}) rest.erase(k);
-    const std::string key = canonical(rest);
-    rests[key] = rest;
-    variants[key].push_back(row);
-  }
-  // Label a variant by the parameters that differ between variants, e.g. "wm [slopes=spline]".
-  std::set<std::string> differing;
-  for (const auto& [key, rest] : rests)
-    for (const auto& [name, v] : rest)
-      for (const auto& [key2, rest2] : rests)
-        if (!rest2.count(name) || canonical(rest2.at(name)) != canonical(v)) differing.insert(name);
-  for (const auto& [key, vrows] : variants) {
-    std::string label = part;
-    if (variants.size() > 1) {
-      std::string d;
-      for (const auto& name : differing) {
-        if (!d.empty()) d += ", ";
-        const Value& v = rests[key].at(name);
-        d += name + "=" + (std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : canonical(v));
-      }
-      label += " [" + d + "]";
-    }
-    wm_part(label, vrows, rep);
-  }
+  for (const auto& [label, vrows] : variants_of(part, rows, {"dimension", "n_max", "pair"})) wm_part(label, vrows, rep);
 }
 
 /// Estimated CPU time (unit: s; TaskKind::cost): the profiles' points (about gamma^n_max per

@@ -460,34 +460,8 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
 
 /// Variants (other axes than D, hurst, pair) are reported separately, e.g. spheroradius.
 void wm_tilt_section(const std::string& part, const std::vector<TaskRow>& rows, Report& rep) {
-  std::map<std::string, std::vector<Store::Row>> variants;
-  std::map<std::string, Params> rests;
-  for (const auto& row : rows) {
-    Params rest = row.params;
-    for (const char* k : {"dimension", "hurst", "pair"}) rest.erase(k);
-    const std::string key = canonical(rest);
-    rests[key] = rest;
-    variants[key].push_back(row);
-  }
-  std::set<std::string> differing;
-  for (const auto& [key, rest] : rests)
-    for (const auto& [name, v] : rest)
-      for (const auto& [key2, rest2] : rests)
-        if (!rest2.count(name) || canonical(rest2.at(name)) != canonical(v)) differing.insert(name);
-  for (const auto& [key, vrows] : variants) {
-    std::string label = part;
-    if (variants.size() > 1) {
-      std::string d;
-      for (const auto& name : differing) {
-        if (!rests[key].count(name)) continue;
-        if (!d.empty()) d += ", ";
-        const Value& v = rests[key].at(name);
-        d += name + "=" + (std::holds_alternative<std::string>(v) ? std::get<std::string>(v) : canonical(v));
-      }
-      label += " [" + d + "]";
-    }
+  for (const auto& [label, vrows] : variants_of(part, rows, {"dimension", "hurst", "pair"}))
     wm_tilt_part(label, vrows, rep);
-  }
 }
 
 }  // namespace
