@@ -185,7 +185,9 @@ TEST(StudyCache, ASecondStudyReusesTheSharedTasksByteIdentically) {
   auto st = Store::open_existing(bstore);
   ASSERT_TRUE(st.ok());
   int from_cache = 0;
-  for (const auto& t : *(*st)->tasks()) from_cache += t.worker == "cache";
+  auto tasks = (*st)->tasks();  // kept alive: the loop must not iterate a destroyed temporary
+  ASSERT_TRUE(tasks.ok());
+  for (const auto& t : *tasks) from_cache += t.worker == "cache";
   EXPECT_EQ(from_cache, 2);
   // Everything is in the cache now: a third store of either study computes nothing.
   const RunSummary again = run(a, fresh("cache-a2.sqlite"), reg, cache, 1);
