@@ -3,9 +3,6 @@
 
 #include <sys/stat.h>
 
-#include <chrono>
-#include <ctime>
-
 #include <fmt/core.h>
 #include <sqlite3.h>
 
@@ -33,15 +30,6 @@ CREATE TABLE IF NOT EXISTS results(
 );
 CREATE INDEX IF NOT EXISTS results_kind_params ON results(kind, params);
 )sql";
-
-std::string now_utc() {
-  const auto t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
 
 }  // namespace
 

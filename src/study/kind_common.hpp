@@ -17,6 +17,7 @@
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 #include "frictal/study.hpp"
+#include "frictal/tilt.hpp"
 #include "frictal/units.hpp"
 
 namespace frictal::study::kind_detail {
@@ -112,6 +113,18 @@ inline std::vector<std::pair<std::string, std::vector<TaskRow>>> variants_of(
     out.emplace_back(std::move(label), std::move(vrows));
   }
   return out;
+}
+
+/// run_tilt with the retries both tilt kinds use: the engine's stability guard stops a run whose
+/// step is too large for its contacts (K3 carries hundreds); retry twice with a step 2.5 times
+/// smaller rather than lose the task. `c` keeps the step that was used.
+inline Result<TiltResult> run_tilt_retrying(const Curve& lower, const Curve& upper, TiltConfig& c) {
+  auto r = run_tilt(lower, upper, c);
+  for (int retry = 0; retry < 2 && !r && r.error().code == ErrorCode::Unstable; ++retry) {
+    c.time_step /= 2.5;
+    r = run_tilt(lower, upper, c);
+  }
+  return r;
 }
 
 }  // namespace frictal::study::kind_detail

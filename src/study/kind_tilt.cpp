@@ -23,6 +23,7 @@ namespace frictal::study {
 namespace {
 
 using kind_detail::number;
+using kind_detail::run_tilt_retrying;
 
 constexpr double kDeg = units::kRadPerDeg;
 
@@ -90,13 +91,7 @@ Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: determin
   const double length = as_real(all->at("length"));
   auto curve = generate_curve(*spec);
   if (!curve) return curve.error();
-  // The engine's stability guard stops a run whose step is too large for the number of contacts
-  // (K3 carries hundreds); retry twice with a step 2.5 times smaller rather than lose the task.
-  auto r = run_tilt(*curve, *curve, c);
-  for (int retry = 0; retry < 2 && !r && r.error().code == ErrorCode::Unstable; ++retry) {
-    c.time_step /= 2.5;
-    r = run_tilt(*curve, *curve, c);
-  }
+  auto r = run_tilt_retrying(*curve, *curve, c);
   if (!r) return r.error();
   TaskOutput out;
   auto& s = out.scalars;

@@ -163,12 +163,7 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
     }
   }
 
-  // The engine's stability guard: retry twice with a 2.5 times smaller step (as the 'tilt' kind).
-  auto r = run_tilt(*lower, *upper, c);
-  for (int retry = 0; retry < 2 && !r && r.error().code == ErrorCode::Unstable; ++retry) {
-    c.time_step /= 2.5;
-    r = run_tilt(*lower, *upper, c);
-  }
+  auto r = run_tilt_retrying(*lower, *upper, c);
   if (!r) return r.error();
 
   TaskOutput out;

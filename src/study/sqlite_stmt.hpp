@@ -1,9 +1,11 @@
-// Private: a prepared SQLite statement with RAII, shared by the study store (store.cpp) and the
-// result cache (cache.cpp).
+// Private: a prepared SQLite statement with RAII and the UTC time stamp of rows, shared by the
+// study store (store.cpp) and the result cache (cache.cpp).
 #pragma once
 
+#include <chrono>
 #include <cmath>
 #include <cstdint>
+#include <ctime>
 #include <string>
 
 #include <sqlite3.h>
@@ -56,5 +58,15 @@ class Stmt {
   sqlite3_stmt* s_ = nullptr;
   int rc_;
 };
+
+/// The current time as ISO 8601 UTC ("2026-11-23T18:58:16Z"), as both files store it.
+inline std::string now_utc() {
+  const auto t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
 
 }  // namespace frictal::study

@@ -114,15 +114,6 @@ bool process_alive(long pid, std::int64_t start) {
   return true;
 }
 
-std::string now_utc() {
-  const auto t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
-
 const char* status_text(TaskStatus s) {
   switch (s) {
     case TaskStatus::Pending: return "pending";
