@@ -158,6 +158,42 @@ double Face::value(double u, double xtol) const {
   return v_[k - 1] + t * (v_[k] - v_[k - 1]);
 }
 
+std::size_t Face::ceil_from(double u, std::size_t& k) const {
+  const std::size_t n = x_.size();
+  if (k == Cursor::kUnset) {
+    // Inside the grid ceil_index is lower_bound (O(1) on a uniform grid); at the ends search.
+    k = u > x_.front() && u < x_.back()
+            ? ceil_index(u)
+            : static_cast<std::size_t>(std::lower_bound(x_.begin(), x_.end(), u) - x_.begin());
+  }
+  // Walk a few points, then finish with a binary search over the rest: lower_bound either way.
+  for (int step = 0; k < n && x_[k] < u; ++k, ++step)
+    if (step == 8) {
+      k = static_cast<std::size_t>(std::lower_bound(x_.begin() + static_cast<std::ptrdiff_t>(k), x_.end(), u) -
+                                   x_.begin());
+      break;
+    }
+  // ceil_index's ends (a vertical jump at the right end still gives the last index).
+  if (u <= x_.front()) return 0;
+  if (u >= x_.back()) return n - 1;
+  return k;
+}
+
+double Face::value_walk(double u, double xtol, Cursor& c) const {
+  std::size_t k = ceil_from(u - xtol, c.tol);
+  if (x_[k] >= u - xtol && x_[k] <= u + xtol) {
+    const double xv = x_[k];
+    double m = v_[k];
+    for (std::size_t j = k + 1; j < x_.size() && x_[j] == xv; ++j) m = std::max(m, v_[j]);
+    return m;
+  }
+  c.at = c.at == Cursor::kUnset ? c.tol : std::max(c.at, c.tol);
+  k = ceil_from(u, c.at);
+  if (k == 0) return v_[0];
+  const double t = (u - x_[k - 1]) / (x_[k] - x_[k - 1]);
+  return v_[k - 1] + t * (v_[k] - v_[k - 1]);
+}
+
 double Face::range_max(std::size_t i0, std::size_t i1) const {
   std::size_t b0 = i0 / kBlock, b1 = i1 / kBlock;
   if (b0 == b1) {

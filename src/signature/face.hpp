@@ -89,6 +89,16 @@ class Face {
   /// sup of v at u (u within [x_front, x_back]); u within `xtol` of a vertex group counts as on
   /// it (the group's sup), else v is interpolated along the edge.
   double value(double u, double xtol = 0) const;
+  /// Where a run of value_walk() calls stands: lower bounds of lower_bound(x, u - xtol) and of
+  /// lower_bound(x, u) for every later, not smaller, u.
+  struct Cursor {
+    static constexpr std::size_t kUnset = static_cast<std::size_t>(-1);
+    std::size_t tol = kUnset, at = kUnset;
+  };
+  /// value(u, xtol) for non-decreasing u across calls with one cursor (a fresh cursor for each
+  /// run): the same indices as ceil_index(), found by walking forward from the last ones instead
+  /// of a binary search each, hence the same value as value(u, xtol).
+  double value_walk(double u, double xtol, Cursor& c) const;
   /// Upper bound of v over the points with index in [i0, i1].
   double range_max(std::size_t i0, std::size_t i1) const;
   /// Upper bound of v over abscissae [u0, u1] (u0 <= u1), including the bracketing points.
@@ -117,6 +127,9 @@ class Face {
 
  private:
   void build();
+  /// ceil_index(u) from a lower bound `k` of lower_bound(x, u) (advanced to lower_bound; kUnset:
+  /// found directly, O(1) on a uniform grid).
+  std::size_t ceil_from(double u, std::size_t& k) const;
   std::vector<double> x_, v_;
   double sign_ = 1;
   double vmax_ = 0, vmin_ = 0;

@@ -74,8 +74,10 @@ void search(const Face& A, const Face& B, double shift, std::size_t i0, std::siz
     stack.pop_back();
     if (ub < best - vtol) continue;
     if (node.hi - node.lo < kBlock) {
+      // xa[i] + shift does not decrease with i: B's indices by a walk (Face::value_walk).
+      Face::Cursor cur;
       for (std::size_t i = node.lo; i <= node.hi; ++i) {
-        const double val = va[i] + B.value(xa[i] + shift, xtol);
+        const double val = va[i] + B.value_walk(xa[i] + shift, xtol, cur);
         if (val >= best - vtol) {
           out.push_back({val, i, family_f});
           if (val > best) best = val;

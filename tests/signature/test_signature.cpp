@@ -495,3 +495,45 @@ TEST(TiltedMax, EveryLineLiesAboveEveryPointOfItsNode) {
     }
   }
 }
+
+// Face::value_walk (the search's leaves) against Face::value: the same value, bit for bit, for
+// every abscissa of a non-decreasing run, on faces with vertical jumps (groups of equal x), with
+// and without a vertex tolerance, including abscissae beyond both ends and exactly on vertices.
+TEST(FaceValueWalk, EqualsValueOnNonUniformFacesWithJumps) {
+  std::uint64_t state = 12345;
+  auto uniform01 = [&state]() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  for (int trial = 0; trial < 40; ++trial) {
+    const std::size_t n = 2 + static_cast<std::size_t>(uniform01() * 300);
+    std::vector<double> x(n), z(n);
+    double xc = -1.0 + uniform01();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (i > 0 && uniform01() > 0.15) xc += (uniform01() < 0.5 ? 1e-3 : 1e-1) * uniform01() + 1e-9;
+      x[i] = xc;  // about 15 % of the points repeat the previous abscissa: a jump
+      z[i] = uniform01() - 0.5;
+    }
+    const detail::Face face(x, z, trial % 2 == 0 ? 1.0 : -1.0);
+    // Query abscissae: vertices, vertices +- a fraction of the tolerance, random points, ends.
+    const double xtol = trial % 3 == 0 ? 0.0 : 1e-6;
+    std::vector<double> u;
+    for (std::size_t i = 0; i < n; ++i) {
+      u.push_back(x[i]);
+      u.push_back(x[i] + 0.5 * xtol);
+      u.push_back(x[i] - 0.5 * xtol);
+      u.push_back(x[i] + 3 * xtol);
+    }
+    for (int k = 0; k < 200; ++k) u.push_back(x.front() - 0.1 + (x.back() - x.front() + 0.2) * uniform01());
+    std::sort(u.begin(), u.end());
+    // One walk over everything, and walks restarted at random places (as the search's leaves are).
+    detail::Face::Cursor whole;
+    detail::Face::Cursor part;
+    for (std::size_t k = 0; k < u.size(); ++k) {
+      if (uniform01() < 0.05) part = {};
+      const double expected = face.value(u[k], xtol);
+      ASSERT_EQ(face.value_walk(u[k], xtol, whole), expected) << "trial " << trial << " u = " << u[k];
+      ASSERT_EQ(face.value_walk(u[k], xtol, part), expected) << "trial " << trial << " u = " << u[k];
+    }
+  }
+}
