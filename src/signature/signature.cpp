@@ -54,8 +54,11 @@ struct Problem {
 
 // Searches max over vertices i of A in [i0, i1] of vA[i] + vB(xA[i] + shift) by branch and
 // bound over block ranges; appends candidates within vtol of the running best.
+// With `start` (a GeneralFrontier's ranges of A), the search starts from those ranges clipped
+// to [i0, i1] instead of from [i0, i1] itself: they hold every candidate of this offset.
+using IndexRanges = std::vector<std::pair<std::size_t, std::size_t>>;
 void search(const Face& A, const Face& B, double shift, std::size_t i0, std::size_t i1, bool family_f, double xtol,
-            double vtol, double& best, std::vector<Cand>& out) {
+            double vtol, double& best, std::vector<Cand>& out, const IndexRanges* start = nullptr) {
   if (i0 > i1) return;
   const auto& xa = A.x();
   const auto& va = A.v();
@@ -65,10 +68,20 @@ void search(const Face& A, const Face& B, double shift, std::size_t i0, std::siz
   auto bound = [&](std::size_t lo, std::size_t hi) {
     return A.range_max(lo, hi) + B.range_max_x(xa[lo] + shift, xa[hi] + shift);
   };
-  // Depth-first, most promising half first; explicit stack.
-  std::vector<std::pair<Node, double>> stack;
-  stack.reserve(64);
-  stack.push_back({{i0, i1}, bound(i0, i1)});
+  // Depth-first, most promising half first; explicit stack (kept between calls: no allocation).
+  thread_local std::vector<std::pair<Node, double>> stack;
+  stack.clear();
+  if (start) {
+    for (const auto& [lo, hi] : *start) {
+      const std::size_t a = std::max(lo, i0), b = std::min(hi, i1);
+      if (a > b) continue;
+      const double u = bound(a, b);
+      if (u >= best - vtol) stack.push_back({{a, b}, u});
+    }
+    std::sort(stack.begin(), stack.end(), [](const auto& x, const auto& y) { return x.second < y.second; });
+  } else {
+    stack.push_back({{i0, i1}, bound(i0, i1)});
+  }
   while (!stack.empty()) {
     auto [node, ub] = stack.back();
     stack.pop_back();
@@ -326,6 +339,119 @@ bool build_frontier(const Problem& P, const std::vector<double>& offs, std::size
   return true;
 }
 
+// The general search's counterpart of Frontier, for a batch offs[begin, end) of consecutive
+// offsets (any offsets, any grids): the index ranges of F (aligned nodes of one level) that can
+// hold a candidate of the search over F's vertices for some offset of the batch, and the same
+// for G. Each offset's maximum is at least its value at the warm contact, so a range whose
+// bound over the whole batch (the other face's range widened by the spread of offsets) is below
+// the least of those values, less vtol, holds no candidate of any offset of the batch.
+struct GeneralFrontier {
+  std::size_t begin = 0, end = 0;
+  IndexRanges f, g;
+};
+
+// F's and G's candidate index ranges of offset s and the overlap [a, b] in the lower frame, as
+// evaluate_offset() takes them; false where the blocks do not overlap.
+bool offset_ranges(const Problem& P, double s, std::size_t& f0, std::size_t& f1, std::size_t& g0, std::size_t& g1,
+                   double& a, double& b) {
+  const Face& F = P.F;
+  const Face& G = P.G;
+  if (P.periodic) {
+    f0 = P.f_lo;
+    f1 = P.f_hi;
+    g0 = P.g_lo;
+    g1 = P.g_hi;
+    a = F.x()[f0];
+    b = a + P.period;
+    return true;
+  }
+  a = std::max(F.x_front(), G.x_front() + s);
+  b = std::min(F.x_back(), G.x_back() + s);
+  if (!(b >= a)) return false;
+  f0 = F.ceil_index(a - P.xtol);
+  f1 = F.floor_index(b + P.xtol);
+  g0 = G.ceil_index(a - s - P.xtol);
+  g1 = G.floor_index(b - s + P.xtol);
+  return true;
+}
+
+// Ranges of A's aligned nodes at one level, inside [u0, u1], whose bound for every shift in
+// [shift_lo, shift_hi] can reach T (A's vertices against B moved by the shift).
+void frontier_ranges(const Face& A, const Face& B, double shift_lo, double shift_hi, std::size_t u0, std::size_t u1,
+                     double T, IndexRanges& out) {
+  using detail::kBlockShift;
+  out.clear();
+  if (u0 > u1) return;
+  const auto& xa = A.x();
+  const std::size_t n = A.size();
+  // The level: nodes at least four times as long (in x) as the batch of shifts is wide.
+  const double dx = n > 1 ? (A.x_back() - A.x_front()) / static_cast<double>(n - 1) : 0.0;
+  const std::size_t levels = A.aligned_max().levels();
+  std::uint32_t lf = 0;
+  while (lf + 1 < levels && static_cast<double>(std::size_t{kBlock} << lf) * dx < 4 * (shift_hi - shift_lo)) ++lf;
+  std::uint32_t top = lf;
+  while (top + 1 < levels && ((u1 >> (kBlockShift + top)) - (u0 >> (kBlockShift + top))) > 1) ++top;
+  auto range = [&](std::uint32_t level, std::size_t q) {
+    const unsigned sh = kBlockShift + level;
+    return std::make_pair(std::max(q << sh, u0), std::min(((q + 1) << sh) - 1, u1));
+  };
+  struct Node {
+    std::uint32_t level;
+    std::size_t q;
+  };
+  thread_local std::vector<Node> stack;
+  stack.clear();
+  for (std::size_t q = u0 >> (kBlockShift + top); q <= (u1 >> (kBlockShift + top)); ++q) stack.push_back({top, q});
+  while (!stack.empty()) {
+    const Node nd = stack.back();
+    stack.pop_back();
+    const auto [lo, hi] = range(nd.level, nd.q);
+    if (lo > hi) continue;
+    if (A.range_max(lo, hi) + B.range_max_x(xa[lo] + shift_lo, xa[hi] + shift_hi) < T) continue;
+    if (nd.level == lf) {
+      out.push_back({lo, hi});
+      continue;
+    }
+    stack.push_back({nd.level - 1, 2 * nd.q + 1});
+    stack.push_back({nd.level - 1, 2 * nd.q});
+  }
+}
+
+// Builds `fr` for offs[begin, end) (shortened to the offsets whose overlap holds the warm
+// contact); false if no offset qualifies.
+bool build_general_frontier(const Problem& P, const std::vector<double>& offs, std::size_t begin, std::size_t end,
+                            double warm_x, GeneralFrontier& fr) {
+  fr.begin = fr.end = 0;
+  if (!std::isfinite(warm_x)) return false;
+  const Face& F = P.F;
+  const Face& G = P.G;
+  std::size_t uf0 = std::numeric_limits<std::size_t>::max(), uf1 = 0;
+  std::size_t ug0 = std::numeric_limits<std::size_t>::max(), ug1 = 0;
+  double smin = kInf, smax = -kInf, T = kInf;
+  const double fw = F.value(warm_x, P.xtol);
+  std::size_t e = begin;
+  for (; e < end; ++e) {
+    std::size_t f0, f1, g0, g1;
+    double a, b;
+    const double s = offs[e];
+    if (!offset_ranges(P, s, f0, f1, g0, g1, a, b) || !(warm_x >= a && warm_x <= b)) break;
+    T = std::min(T, fw + G.value(warm_x - s, P.xtol));
+    uf0 = std::min(uf0, f0);
+    uf1 = std::max(uf1, f1);
+    ug0 = std::min(ug0, g0);
+    ug1 = std::max(ug1, g1);
+    smin = std::min(smin, s);
+    smax = std::max(smax, s);
+  }
+  if (e == begin || !std::isfinite(T)) return false;
+  T -= P.vtol;
+  frontier_ranges(F, G, -smax, -smin, uf0, uf1, T, fr.f);
+  frontier_ranges(G, F, smin, smax, ug0, ug1, T, fr.g);
+  fr.begin = begin;
+  fr.end = e;
+  return true;
+}
+
 struct OffsetResult {
   double lift = kNaN, theta = kNaN, theta_min = kNaN, theta_left = kNaN, theta_right = kNaN;
   double contact_x = kNaN;  // for the warm start
@@ -342,29 +468,13 @@ double mean_angle(double a, double b) {
 // a contact nearby (NaN if none); it only speeds up the search.
 OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMethod method,
                              std::vector<Contact>* contacts, std::vector<Cand>& cands,
-                             const Frontier* frontier = nullptr) {
+                             const Frontier* frontier = nullptr, const GeneralFrontier* general = nullptr) {
   const Face& F = P.F;
   const Face& G = P.G;
   cands.clear();
   std::size_t f0, f1, g0, g1;
   double a, b;  // overlap in the lower frame
-  if (P.periodic) {
-    f0 = P.f_lo;
-    f1 = P.f_hi;
-    g0 = P.g_lo;
-    g1 = P.g_hi;
-    a = F.x()[f0];
-    b = a + P.period;
-  } else {
-    a = std::max(F.x_front(), G.x_front() + s);
-    b = std::min(F.x_back(), G.x_back() + s);
-    OffsetResult none;
-    if (!(b >= a)) return none;
-    f0 = F.ceil_index(a - P.xtol);
-    f1 = F.floor_index(b + P.xtol);
-    g0 = G.ceil_index(a - s - P.xtol);
-    g1 = G.floor_index(b - s + P.xtol);
-  }
+  if (!offset_ranges(P, s, f0, f1, g0, g1, a, b)) return OffsetResult{};
   double best = -kInf;
   if (std::isfinite(warm_x) && warm_x >= a && warm_x <= b) best = F.value(warm_x, P.xtol) + G.value(warm_x - s, P.xtol);
   bool skip_g = false;
@@ -382,11 +492,11 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
       search_aligned(F.v(), G.v(), F.aligned_max(), G.aligned_max(), P.tilted ? &F.tilted_max() : nullptr,
                      P.tilted ? &G.tilted_max() : nullptr, d, f0, f1, P.vtol, best, cands, frontier);
     else
-      search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
+      search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands, general ? &general->f : nullptr);
   } else {
-    search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands);
+    search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands, general ? &general->f : nullptr);
   }
-  if (!skip_g) search(G, F, s, g0, g1, false, P.xtol, P.vtol, best, cands);
+  if (!skip_g) search(G, F, s, g0, g1, false, P.xtol, P.vtol, best, cands, general ? &general->g : nullptr);
 
   OffsetResult r;
   r.lift = best;
@@ -856,14 +966,19 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
     double warm = kNaN;
     if (o.keep_contacts) chunk_counts[t].reserve(i1 - i0);
     Frontier frontier;
+    GeneralFrontier general;
     constexpr std::size_t kBatch = 64;  // offsets per frontier
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t before = chunk_contacts[t].size();
       if (P.index_search && !(i >= frontier.begin && i < frontier.end))
         build_frontier(P, R.offset, i, std::min(i + kBatch, i1), warm, frontier);
       const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
-      const OffsetResult e =
-          evaluate_offset(P, R.offset[i], warm, o.slopes, o.keep_contacts ? &chunk_contacts[t] : nullptr, cands, fr);
+      // Offsets that take the general search (off the lattice, or grids that do not align).
+      if (!fr && !(i >= general.begin && i < general.end))
+        build_general_frontier(P, R.offset, i, std::min(i + kBatch, i1), warm, general);
+      const GeneralFrontier* gf = (!fr && i >= general.begin && i < general.end) ? &general : nullptr;
+      const OffsetResult e = evaluate_offset(P, R.offset[i], warm, o.slopes,
+                                             o.keep_contacts ? &chunk_contacts[t] : nullptr, cands, fr, gf);
       R.lift[i] = e.lift;
       R.theta[i] = e.theta;
       R.theta_min[i] = e.theta_min;
