@@ -31,6 +31,7 @@ void Face::build() {
     // x0 + i dx (or turned over by rotate180) is off by an ulp or two.
     const double xmag = std::max(std::abs(x_.front()), std::abs(x_.back()));
     const double tol = std::max(1e-9 * dx_, 16 * std::numeric_limits<double>::epsilon() * xmag);
+    grid_tol_ = tol;
     for (std::size_t i = 1; i < n && uniform_; ++i)
       if (std::abs(x_[i] - (x_.front() + dx_ * static_cast<double>(i))) > tol) uniform_ = false;
     inv_dx_ = uniform_ ? 1.0 / dx_ : 0.0;

@@ -116,6 +116,10 @@ class Face {
     return m;
   }
   bool uniform() const { return uniform_; }
+  /// Uniform grids: the spacing (unit: m) and how far a point may lie from x_front + i spacing
+  /// and still count as uniform (unit: m).
+  double spacing() const { return dx_; }
+  double grid_tolerance() const { return grid_tol_; }
   /// Aligned block maxima (levels of 32 << l points).
   const AlignedMax& aligned_max() const { return tree_; }
   /// Frees the sparse table (about 19 N / 32 values at 10^7 points); range_max then reads the
@@ -134,7 +138,7 @@ class Face {
   double sign_ = 1;
   double vmax_ = 0, vmin_ = 0;
   bool uniform_ = false;
-  double dx_ = 0, inv_dx_ = 0;
+  double dx_ = 0, inv_dx_ = 0, grid_tol_ = 0;
   std::vector<std::vector<double>> st_;  // sparse table over block maxima
   AlignedMax tree_;
   TiltedMax tilted_;

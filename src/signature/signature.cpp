@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -31,6 +32,27 @@ struct Cand {
   bool family_f;      // true: vertex of the lower face F; false: vertex of the upper face G
 };
 
+// Tilted bounds of the general search, on uniform grids (both faces; TiltedMax in face.hpp).
+// A range [lo, hi] of A lies in one aligned node of A (the smallest that holds both ends), whose
+// line bounds vA there; the abscissae xa[i] + shift read B between its vertices jlo =
+// floor(ulo - xtol) and jhi = ceil(uhi + xtol), which lie in one aligned node of B, whose line
+// bounds vB at its vertices and so at every interpolated or snapped value between them. On
+// uniform grids the position in B's index of xa[i] + shift is linear in i, so the sum of both
+// lines is linear in i and at most its larger end value. Margins: B's line times how far the
+// computed fractional index may be from the true one (the grids' uniformity tolerances, xtol,
+// rounding), and the rounding of the sums (as in search_aligned).
+struct GeneralTilt {
+  double xb0 = 0, inv_dxb = 0;  // B's first abscissa (unit: m) and 1 / spacing (unit: 1/m)
+  double index_err = 0;         // bound on the error of B's fractional index (unit: points)
+  double margin = 0;            // rounding margin of the line sums (unit: m)
+};
+
+// Smallest level l of aligned nodes (32 << l points) with i and j in one node.
+inline unsigned common_level(std::size_t i, std::size_t j) {
+  const std::size_t d = (i ^ j) >> detail::kBlockShift;
+  return d == 0 ? 0u : static_cast<unsigned>(std::bit_width(d));
+}
+
 // The prepared problem: faces, candidate index ranges and frames.
 struct Problem {
   Face F, G;
@@ -50,7 +72,27 @@ struct Problem {
   bool index_search = false;
   // The index search also bounds with the faces' tilted lines (TiltedMax).
   bool tilted = false;
+  // The general search bounds with the tilted lines too (both faces on uniform grids).
+  bool general_tilted = false;
+  GeneralTilt tilt_fg, tilt_gf;  // F's vertices against G, G's against F
 };
+
+GeneralTilt general_tilt(const Face& A, const Face& B, double xtol) {
+  constexpr double eps = std::numeric_limits<double>::epsilon();
+  GeneralTilt t;
+  t.xb0 = B.x_front();
+  t.inv_dxb = 1.0 / B.spacing();
+  const double xmag =
+      std::max({std::abs(A.x_front()), std::abs(A.x_back()), std::abs(B.x_front()), std::abs(B.x_back())}) +
+      (A.x_back() - A.x_front()) + (B.x_back() - B.x_front());
+  // xtol (snapping), both grids' departures from uniform, the rounding of x + shift and of the
+  // fractional index; doubled for safety.
+  t.index_err = 2 * (xtol + A.grid_tolerance() + B.grid_tolerance() + 8 * eps * xmag) * t.inv_dxb + 1e-9;
+  t.margin = 16 * eps *
+             (A.tilted_max().magnitude() + B.tilted_max().magnitude() +
+              std::max(std::abs(A.vmax()), std::abs(A.vmin())) + std::max(std::abs(B.vmax()), std::abs(B.vmin())));
+  return t;
+}
 
 // Searches max over vertices i of A in [i0, i1] of vA[i] + vB(xA[i] + shift) by branch and
 // bound over block ranges; appends candidates within vtol of the running best.
@@ -58,7 +100,8 @@ struct Problem {
 // to [i0, i1] instead of from [i0, i1] itself: they hold every candidate of this offset.
 using IndexRanges = std::vector<std::pair<std::size_t, std::size_t>>;
 void search(const Face& A, const Face& B, double shift, std::size_t i0, std::size_t i1, bool family_f, double xtol,
-            double vtol, double& best, std::vector<Cand>& out, const IndexRanges* start = nullptr) {
+            double vtol, double& best, std::vector<Cand>& out, const IndexRanges* start = nullptr,
+            const GeneralTilt* tilt = nullptr) {
   if (i0 > i1) return;
   const auto& xa = A.x();
   const auto& va = A.v();
@@ -66,7 +109,24 @@ void search(const Face& A, const Face& B, double shift, std::size_t i0, std::siz
     std::size_t lo, hi;
   };
   auto bound = [&](std::size_t lo, std::size_t hi) {
-    return A.range_max(lo, hi) + B.range_max_x(xa[lo] + shift, xa[hi] + shift);
+    const double ulo = xa[lo] + shift, uhi = xa[hi] + shift;
+    const double plain = A.range_max(lo, hi) + B.range_max_x(ulo, uhi);
+    if (!tilt || plain < best - vtol) return plain;  // the lines only matter where the maxima do not prune
+    const unsigned la = common_level(lo, hi);
+    const std::size_t jlo = B.floor_index(ulo - xtol), jhi = B.ceil_index(uhi + xtol);
+    const unsigned lb = common_level(jlo, jhi);
+    const detail::TiltedMax& ta = A.tilted_max();
+    const detail::TiltedMax& tb = B.tilted_max();
+    if (la >= ta.levels() || lb >= tb.levels()) return plain;
+    const unsigned sha = detail::kBlockShift + la, shb = detail::kBlockShift + lb;
+    const auto& a = ta.level(la)[lo >> sha];
+    const auto& b = tb.level(lb)[jlo >> shb];
+    const double sa = static_cast<double>((lo >> sha) << sha), sb = static_cast<double>((jlo >> shb) << shb);
+    auto at = [&](std::size_t i, double u) {
+      return (a.c + a.tau * (static_cast<double>(i) - sa)) + (b.c + b.tau * ((u - tilt->xb0) * tilt->inv_dxb - sb));
+    };
+    const double t = std::max(at(lo, ulo), at(hi, uhi)) + std::abs(b.tau) * tilt->index_err + tilt->margin;
+    return std::min(plain, t);
   };
   // Depth-first, most promising half first; explicit stack (kept between calls: no allocation).
   thread_local std::vector<std::pair<Node, double>> stack;
@@ -492,11 +552,15 @@ OffsetResult evaluate_offset(const Problem& P, double s, double warm_x, SlopeMet
       search_aligned(F.v(), G.v(), F.aligned_max(), G.aligned_max(), P.tilted ? &F.tilted_max() : nullptr,
                      P.tilted ? &G.tilted_max() : nullptr, d, f0, f1, P.vtol, best, cands, frontier);
     else
-      search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands, general ? &general->f : nullptr);
+      search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands, general ? &general->f : nullptr,
+             P.general_tilted ? &P.tilt_fg : nullptr);
   } else {
-    search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands, general ? &general->f : nullptr);
+    search(F, G, -s, f0, f1, true, P.xtol, P.vtol, best, cands, general ? &general->f : nullptr,
+           P.general_tilted ? &P.tilt_fg : nullptr);
   }
-  if (!skip_g) search(G, F, s, g0, g1, false, P.xtol, P.vtol, best, cands, general ? &general->g : nullptr);
+  if (!skip_g)
+    search(G, F, s, g0, g1, false, P.xtol, P.vtol, best, cands, general ? &general->g : nullptr,
+           P.general_tilted ? &P.tilt_gf : nullptr);
 
   OffsetResult r;
   r.lift = best;
@@ -871,6 +935,15 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
         }
       }
     }
+  }
+  if (o.tilted_bounds && both_uniform) {  // offsets off the lattice too
+    if (!P.tilted) {
+      P.F.build_tilted();
+      P.G.build_tilted();
+    }
+    P.tilt_fg = general_tilt(P.F, P.G, P.xtol);
+    P.tilt_gf = general_tilt(P.G, P.F, P.xtol);
+    P.general_tilted = true;
   }
   // Exact mode needs every event offset. Count them first: when there are more than
   // max_events (non-aligned grids of measured data give up to N*M), either refuse

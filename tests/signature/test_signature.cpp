@@ -538,9 +538,10 @@ TEST(FaceValueWalk, EqualsValueOnNonUniformFacesWithJumps) {
   }
 }
 
-// The general search with its batch frontier (grids that do not align, offsets off the lattice)
-// against the evaluation of each offset on its own from the whole index range (RigidLift::at:
-// no frontier, no warm start): the same lift bit for bit and the same one-sided slopes, on WM
+// The general search with its batch frontier and tilted lines (grids that do not align, offsets
+// off the lattice) against the same search with block maxima only, and against the evaluation
+// of each offset on its own from the whole index range (RigidLift::at: no frontier, no warm
+// start, no lines): the same lift bit for bit and the same one-sided slopes, on WM
 // and self-affine pairs, for an upper grid of 0.7 N points and for offsets halfway between
 // lattice offsets of equal grids; and against the plain scan.
 TEST(SignatureGeneralSearch, BatchFrontierMatchesOffsetByOffsetSearch) {
@@ -561,6 +562,15 @@ TEST(SignatureGeneralSearch, BatchFrontierMatchesOffsetByOffsetSearch) {
       auto r = signature(p.lower, p.upper, o);
       ASSERT_TRUE(r.ok()) << r.error().message;
       ASSERT_EQ(r->offset.size(), 1501u);
+      // Block maxima only (no tilted lines): identical in every value.
+      o.tilted_bounds = false;
+      auto plain = signature(p.lower, p.upper, o);
+      ASSERT_TRUE(plain.ok()) << plain.error().message;
+      EXPECT_EQ(r->lift, plain->lift);
+      EXPECT_EQ(r->theta, plain->theta);
+      EXPECT_EQ(r->theta_min, plain->theta_min);
+      EXPECT_EQ(r->theta_left, plain->theta_left);
+      EXPECT_EQ(r->theta_right, plain->theta_right);
       auto general = detail::RigidLift::make(p.lower, p.upper, o);
       ASSERT_TRUE(general.ok()) << general.error().message;
       double zr = 0;
