@@ -153,7 +153,8 @@ Status check_input_file(const std::string& path, const std::string& expected) {
 
 namespace {
 
-Result<SurfaceData> parse_text(std::string_view text, const std::string& name, const ReadOptions& options);
+Result<SurfaceData> parse_text(std::string_view text, const std::string& name, const ReadOptions& options,
+                               const io_detail::ReleaseBehind* release = nullptr);
 
 Result<SurfaceData> read_native_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options,
                                       int depth) {
@@ -191,7 +192,8 @@ Result<SurfaceData> read_native_bytes(const std::string& bytes, const std::strin
 namespace {
 
 // Text already decoded to UTF-8: the format from its content (or options) and its parser.
-Result<SurfaceData> parse_text(std::string_view text, const std::string& name, const ReadOptions& options) {
+Result<SurfaceData> parse_text(std::string_view text, const std::string& name, const ReadOptions& options,
+                               const io_detail::ReleaseBehind* release) {
   ProfileFormat f = options.format;
   if (f == ProfileFormat::Auto) {
     if (io_detail::looks_like_sdf_text(text))
@@ -207,7 +209,7 @@ Result<SurfaceData> parse_text(std::string_view text, const std::string& name, c
     case ProfileFormat::Sdf: return io_detail::parse_sdf_text(text, name, options);
     case ProfileFormat::Dektak: return io_detail::parse_dektak(text, name, options);
     case ProfileFormat::Gwyddion: return io_detail::parse_gwyddion(text, name, options);
-    default: return io_detail::parse_delimited(text, name, options);
+    default: return io_detail::parse_delimited(text, name, options, release);
   }
 }
 
@@ -302,7 +304,15 @@ std::optional<SurfaceData> read_text_mapped(const std::string& path, const ReadO
   if ((unsigned char)bytes[0] == 0xEF && (unsigned char)bytes[1] == 0xBB && (unsigned char)bytes[2] == 0xBF)
     bytes.remove_prefix(3);
   if (bytes.find('\0') != std::string_view::npos) return std::nullopt;
-  auto r = parse_text(bytes, path, options);
+  // Pages already parsed are given back as the parse goes (MADV_DONTNEED on a read-only private
+  // mapping: a later read of them, e.g. a header line, faults them in again from the file).
+  const char* const base = static_cast<const char*>(map);
+  const io_detail::ReleaseBehind release = [base](const char* upto) {
+    const auto page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+    const std::size_t n = static_cast<std::size_t>(upto - base) / page * page;
+    if (n > 0) ::madvise(const_cast<char*>(base), n, MADV_DONTNEED);
+  };
+  auto r = parse_text(bytes, path, options, &release);
   if (!r) return std::nullopt;
   describe_native(*r);
   if (auto st = check_native_channel(*r, path, options); !st) return std::nullopt;

@@ -1,6 +1,7 @@
 // Private: the individual readers behind read_surface().
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 
@@ -11,7 +12,12 @@ namespace frictal::io_detail {
 /// `text` is UTF-8 (already decoded).
 bool looks_like_dektak(std::string_view text);
 bool looks_like_gwyddion(std::string_view text);
-Result<SurfaceData> parse_delimited(std::string_view text, const std::string& name, const ReadOptions& options);
+/// Called now and then while a large text is parsed, with how far the parse has gone: the bytes
+/// before that pointer are not needed again soon (a mapped file's pages can be given back; the
+/// text stays readable). Reading a 10^7-point CSV then holds a fraction of the file at a time.
+using ReleaseBehind = std::function<void(const char* upto)>;
+Result<SurfaceData> parse_delimited(std::string_view text, const std::string& name, const ReadOptions& options,
+                                    const ReleaseBehind* release = nullptr);
 Result<SurfaceData> parse_dektak(std::string_view text, const std::string& name, const ReadOptions& options);
 Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& name, const ReadOptions& options);
 

@@ -391,7 +391,8 @@ class RowLines {
   std::size_t n_ = 0;
 };
 
-Result<SurfaceData> parse_delimited(std::string_view text, const std::string& name, const ReadOptions& options) {
+Result<SurfaceData> parse_delimited(std::string_view text, const std::string& name, const ReadOptions& options,
+                                    const ReleaseBehind* release) {
   Delim delim = detect_delimiter_tail(text);
   std::vector<std::vector<std::string_view>> headers;  // non-numeric lines before the data
   std::vector<std::string_view> raw_headers;           // the same lines, whole
@@ -412,7 +413,14 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   long long count_line_value = -1;
   std::size_t count_line_number = 0;
   LineCursor cursor(text);
+  constexpr std::size_t kReleaseStep = std::size_t{32} << 20;  // bytes between release calls
+  const char* next_release = text.data() + kReleaseStep;
+  bool reserved = false;
   for (Line ln; cursor.next(ln);) {
+    if (release && ln.text.data() >= next_release) {
+      (*release)(ln.text.data());
+      next_release = ln.text.data() + kReleaseStep;
+    }
     auto t = trim(ln.text);
     if (t.empty()) continue;
     if (is_comment(t)) {
@@ -447,6 +455,15 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
         return make_error(fmt::format("{}: more than {} points (limit max_points)", name, options.max_points));
       rows.push_back(vals);
       row_line.push_back(ln.number);
+      if (!reserved && rows.size() == 4096) {
+        // Room for the rest at the bytes per row so far (+10 %), so that a large file's rows are
+        // not copied by repeated doubling (untouched capacity costs address space, not memory).
+        reserved = true;
+        const auto used = static_cast<double>(ln.text.data() + ln.text.size() - text.data());
+        const double estimate = 1.1 * static_cast<double>(rows.size()) * static_cast<double>(text.size()) / used;
+        const double cap = static_cast<double>(options.max_points) + 1;
+        rows.v.reserve(static_cast<std::size_t>(std::min(estimate, cap)) * ncols);
+      }
     } else if (rows.empty()) {
       headers.push_back(f);
       raw_headers.push_back(t);
