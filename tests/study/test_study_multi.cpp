@@ -21,9 +21,9 @@ using study_test::fresh;
 namespace {
 
 std::mutex g_mu;
-std::vector<std::int64_t> g_ran;            // order of the computations: w + tag
-std::map<std::int64_t, int> g_computed;     // how often each w + tag was computed
-std::atomic<bool>* g_stop = nullptr;        // set when w + tag == g_stop_at is computed
+std::vector<std::int64_t> g_ran;         // order of the computations: w + tag
+std::map<std::int64_t, int> g_computed;  // how often each w + tag was computed
+std::atomic<bool>* g_stop = nullptr;     // set when w + tag == g_stop_at is computed
 std::int64_t g_stop_at = -1;
 
 /// A deterministic kind (seed ignored: shared by every study with the same w) that records its
