@@ -3,12 +3,18 @@
 // first across studies, tasks with one content address computed once, stores identical to
 // separate runs.
 #include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <mutex>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "frictal/study.hpp"
@@ -319,4 +325,55 @@ TEST(StudyMultiCli, AmbiguousStoreOptionsAreRefused) {
     EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << ": " << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(dir));  // refused before anything was written
+}
+
+TEST(StudyMultiCli, CtrlCStopsEveryStudyAndTheSameCommandResumesEach) {
+  // Two studies of about 30 WM tasks each (tens of ms each): interrupted early, resumed.
+  const char* kWm = R"(
+[study]
+name = "NAME"
+seed = 99
+[[part]]
+name = "wm"
+kind = "wm-pair-statistics"
+seed_from = ["pair"]
+[part.parameters]
+dimension = [1.3, 1.7]
+n_max = [6, 8, 9]
+pair = { count = 5 }
+)";
+  std::vector<std::string> files;
+  for (const std::string n : {"sigint-a", "sigint-b"}) {
+    std::string text = kWm;
+    text.replace(text.find("NAME"), 4, "multi-" + n);
+    files.push_back(temp_path("multi-" + n + ".toml"));
+    write_file(files.back(), text);
+  }
+  const std::string dir = temp_path("multi-sigint");
+  std::filesystem::remove_all(dir);
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    std::freopen("/dev/null", "w", stdout);
+    std::freopen("/dev/null", "w", stderr);
+    ::execl(FRICTAL_CLI_PATH, FRICTAL_CLI_PATH, "study", "run", files[0].c_str(), files[1].c_str(), "--store-dir",
+            dir.c_str(), "--threads", "1", "--cache", "none", "--progress", "none", static_cast<char*>(nullptr));
+    std::_Exit(127);
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  ::kill(pid, SIGINT);
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_TRUE(WEXITSTATUS(status) == 130 || WEXITSTATUS(status) == 0) << WEXITSTATUS(status);
+  auto r = run_cli("study run " + files[0] + " " + files[1] + " --store-dir " + dir +
+                   " --threads 2 --cache none --progress lines");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("study multi-sigint-b: 30/30 done"), std::string::npos) << r.err;
+  // Each store equals its study run alone.
+  for (std::size_t i = 0; i < 2; ++i) {
+    const std::string ref = fresh("multi-sigint-ref" + std::to_string(i) + ".sqlite");
+    r = run_cli("study run " + files[i] + " --store " + ref + " --threads 2 --cache none --progress none");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(dump(dir + "/" + std::filesystem::path(files[i]).stem().string() + ".sqlite"), dump(ref));
+  }
 }
