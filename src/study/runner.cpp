@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
+#include <optional>
 #include <thread>
 
 #ifdef __linux__
@@ -154,12 +155,17 @@ Result<std::vector<RunSummary>> run_threads(const std::vector<StudyRun>& runs, c
         }
       });
   for (auto& co : cos) co->record_finished(false);
+  // Every study's summary (each releases its store's claims), then the first error if any.
+  std::optional<Error> first_error;
   for (std::size_t i = 0; i < n; ++i) {
     sums[i].threads = util::thread_count(options.threads);
     auto s = cos[i]->summary(sums[i]);
-    if (!s) return with_prefix(fmt::format("study '{}': ", runs[i].study->name), s.error());
-    sums[i] = *s;
+    if (s)
+      sums[i] = *s;
+    else if (!first_error)
+      first_error = with_prefix(fmt::format("study '{}': ", runs[i].study->name), s.error());
   }
+  if (first_error) return *first_error;
   return sums;
 }
 

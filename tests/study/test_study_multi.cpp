@@ -46,6 +46,8 @@ TaskKind counting_kind(const std::string& name, std::int64_t tag) {
                TaskOutput t;
                t.scalars["w_squared"] = static_cast<double>(w * w);
                t.arrays["w_and_tag"] = {static_cast<double>(w), static_cast<double>(tag)};
+               // Some kilobytes per task, so that a store capped at its size cannot take one more.
+               t.arrays["payload"].assign(static_cast<std::size_t>(200 * w), static_cast<double>(w) / 3.0);
                return t;
              }};
   k.cost = [](const Params& p) { return static_cast<double>(std::get<std::int64_t>(p.at("w"))); };
@@ -376,4 +378,31 @@ pair = { count = 5 }
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(dump(dir + "/" + std::filesystem::path(files[i]).stem().string() + ".sqlite"), dump(ref));
   }
+}
+
+TEST(StudyMulti, AStoreThatCannotBeWrittenStopsTheRunAndResumeCompletesEveryStore) {
+  const TaskRegistry reg = counting_registry();
+  const Study a = parse(kA, reg), b = parse(kB, reg);
+  const std::string aref = fresh("multi-full-aref.sqlite"), bref = fresh("multi-full-bref.sqlite");
+  run_one(a, aref, reg, "", 1);
+  run_one(b, bref, reg, "", 1);
+  const std::vector<std::string> paths = {fresh("multi-full-a.sqlite"), fresh("multi-full-b.sqlite")};
+  {
+    Multi m = open_multi({&a, &b}, paths, "");
+    RunOptions o;
+    o.threads = 2;
+    o.max_page_count = 1;  // every store capped at its current size: the first result fills it
+    auto sums = run_threads(m.runs, reg, o);
+    ASSERT_FALSE(sums.ok());
+    EXPECT_EQ(sums.error().code, frictal::ErrorCode::Io);
+    EXPECT_NE(sums.error().message.find("study 'multi-"), std::string::npos) << sums.error().message;
+    EXPECT_NE(sums.error().message.find("disk is full"), std::string::npos) << sums.error().message;
+  }
+  Multi m = open_multi({&a, &b}, paths, "");
+  RunOptions o;
+  o.threads = 2;
+  auto sums = run_threads(m.runs, reg, o);
+  ASSERT_TRUE(sums.ok()) << sums.error().message;
+  EXPECT_EQ(dump(paths[0]), dump(aref));
+  EXPECT_EQ(dump(paths[1]), dump(bref));
 }
