@@ -184,6 +184,14 @@ int run_many(const RunArgs& a) {
 }
 
 int run(const RunArgs& a) {
+  if (!mpi_available()) {
+    // Several copies of a build without MPI would each run the whole study on the same store.
+    for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+      if (const char* n = std::getenv(v); n && std::atoi(n) > 1)
+        throw UsageError(
+            "this frictal was built without MPI (FRICTAL_MPI=OFF) but runs under mpirun with several "
+            "ranks; run it without mpirun (use --threads) or rebuild with MPI");
+  }
   // --store FILE: one study, its store; --store-dir DIR: one or more studies, DIR/<stem>.sqlite each.
   if (!a.store.empty() && !a.store_dir.empty())
     throw UsageError(
@@ -204,18 +212,10 @@ int run(const RunArgs& a) {
     if (a.dry_run) throw UsageError("--dry-run: give one study and its --store");
     if (mpi_available() && launched_by_mpi())
       throw UsageError(
-          "--store-dir: several studies in one run are not supported under MPI; run each study with --store");
+          "--store-dir (several studies in one run) is not supported under MPI; run each study with --store");
     return run_many(a);
   }
   TaskRegistry reg = default_registry();
-  if (!mpi_available()) {
-    // Several copies of a build without MPI would each run the whole study on the same store.
-    for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
-      if (const char* n = std::getenv(v); n && std::atoi(n) > 1)
-        throw UsageError(
-            "this frictal was built without MPI (FRICTAL_MPI=OFF) but runs under mpirun with several "
-            "ranks; run it without mpirun (use --threads) or rebuild with MPI");
-  }
   const bool mpi = mpi_available() && launched_by_mpi();
   int rank = 0, size = 1;
   if (mpi) unwrap(mpi_init(&rank, &size));
