@@ -2,14 +2,17 @@
 // parallel runs with results in one SQLite store (docs/studies.md). A shell over the library
 // (frictal/study.hpp): options, signals, MPI start-up, progress and printing; nothing here
 // names a task kind or holds SQL.
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <set>
 
 #include <fmt/ranges.h>
 
@@ -41,6 +44,7 @@ std::string hms(double s) {
 
 /// Progress: a bar redrawn in place on a terminal, else a plain line every `every` seconds.
 struct ProgressPrinter {
+  std::string name;  ///< the study's name, printed when several studies run at once
   bool bar = false;
   bool quiet = false;
   double every = 10;
@@ -65,8 +69,11 @@ struct ProgressPrinter {
     } else {
       if (!end && p.this_run != 0 && p.elapsed_s - last < every) return;
       last = p.elapsed_s;
-      fmt::print(stderr, "study: {}/{} done, {} of {} this run{}, {:.1f} tasks/s, elapsed {}, ETA {}{}\n", p.done,
-                 p.total, p.this_run, p.to_run, p.reused ? fmt::format(" ({} reused from the cache)", p.reused) : "",
+      fmt::print(stderr, "study{}: {}/{} done, {} of {} this run{}, {:.1f} tasks/s, elapsed {}, ETA {}{}\n",
+                 name.empty() ? "" : " " + name, p.done, p.total, p.this_run, p.to_run,
+                 !p.reused      ? std::string()
+                 : name.empty() ? fmt::format(" ({} reused from the cache)", p.reused)
+                                : fmt::format(" ({} reused, not computed)", p.reused),
                  rate, hms(p.elapsed_s), hms(eta), p.failed ? fmt::format(", failed {}", p.failed) : "");
     }
     std::fflush(stderr);
@@ -74,7 +81,8 @@ struct ProgressPrinter {
 };
 
 struct RunArgs {
-  std::string study, store, progress = "auto", cache = "auto", schedule = "longest";
+  std::vector<std::string> studies;
+  std::string store, store_dir, progress = "auto", cache = "auto", schedule = "longest";
   unsigned threads = 0;
   int inject_failure_rank = -1;
   std::vector<std::int64_t> fail_first_attempt;
@@ -82,8 +90,100 @@ struct RunArgs {
   std::vector<std::string> parts;
 };
 
-int run(const RunArgs& a) {
+/// The file name of a study without folder and extension: its store's name under --store-dir.
+std::string stem(const std::string& path) {
+  std::string f = path.substr(path.rfind('/') == std::string::npos ? 0 : path.rfind('/') + 1);
+  if (const auto dot = f.rfind('.'); dot != std::string::npos && dot > 0) f.resize(dot);
+  return f;
+}
+
+/// Several studies in one run, one pool of threads (`--store-dir DIR`): DIR/<stem>.sqlite each.
+int run_many(const RunArgs& a) {
   TaskRegistry reg = default_registry();
+  std::vector<Study> studies;
+  std::vector<std::string> stores;
+  std::set<std::string> seen;
+  for (const auto& f : a.studies) {
+    const std::string s = stem(f);
+    if (!seen.insert(s).second)
+      throw UsageError(
+          fmt::format("--store-dir: two studies have the file name '{}' (their stores would both be "
+                      "{}/{}.sqlite); run them separately with --store",
+                      s, a.store_dir, s));
+    studies.push_back(unwrap(load_study(f, a.quick, reg)));
+    stores.push_back(a.store_dir + "/" + s + ".sqlite");
+  }
+  if (::mkdir(a.store_dir.c_str(), 0777) != 0 && errno != EEXIST)
+    throw UsageError(fmt::format("--store-dir {}: cannot create the folder: {}", a.store_dir, std::strerror(errno)),
+                     ErrorCode::Io);
+  std::signal(SIGINT, on_signal);
+  std::signal(SIGTERM, on_signal);
+  RunOptions o;
+  o.threads = a.threads_set ? a.threads : 0;
+  o.skip_unavailable = a.skip_unavailable;
+  o.stop = &g_stop;
+  o.inject_failure_rank = a.inject_failure_rank;
+  o.fail_first_attempt = a.fail_first_attempt;
+  o.pin_threads = a.pin;
+  o.longest_first = a.schedule == "longest";
+  const bool several = studies.size() > 1;
+  std::vector<std::unique_ptr<Store>> owned;
+  std::vector<ProgressPrinter> printers(studies.size());
+  std::vector<StudyRun> runs;
+  for (std::size_t i = 0; i < studies.size(); ++i) {
+    owned.push_back(unwrap(Store::open(stores[i], studies[i])));
+    ProgressPrinter& pp = printers[i];
+    pp.name = several ? studies[i].name : "";
+    // One bar cannot show several studies: lines unless asked for bars.
+    pp.bar = a.progress == "bar" || (a.progress == "auto" && !several && ::isatty(2));
+    pp.quiet = a.progress == "none";
+    StudyRun r;
+    r.study = &studies[i];
+    r.store = owned.back().get();
+    r.cache = a.cache == "none" ? std::string() : a.cache == "auto" ? default_cache_path(stores[i]) : a.cache;
+    r.progress = std::ref(pp);
+    runs.push_back(std::move(r));
+  }
+  const auto sums = unwrap(run_threads(runs, reg, o));
+  bool interrupted = g_stop.load();
+  std::int64_t failed = 0;
+  for (std::size_t i = 0; i < studies.size(); ++i) {
+    const Study& study = studies[i];
+    const RunSummary& sum = sums[i];
+    const StoreCounts c = unwrap(owned[i]->counts());
+    fmt::print(
+        "study '{}' ({} scale, {} tasks) in {}: {} done, {} failed, {} pending; this run: {} tasks in {:.2f} s on "
+        "{} threads\n",
+        study.name, study.quick ? "quick" : "full", c.total, stores[i], c.done, c.failed, c.pending, sum.ran,
+        sum.wall_s, sum.threads);
+    if (sum.reused)
+      fmt::print("  {} tasks reused: {}computed once for another study of this run\n", sum.reused,
+                 runs[i].cache.empty() ? "" : fmt::format("taken from the result cache {} or ", runs[i].cache));
+    if (!sum.cache_note.empty()) fmt::print(stderr, "frictal: warning: {}: {}\n", study.name, sum.cache_note);
+    if (sum.done_elsewhere || sum.taken_over)
+      fmt::print("  shared store: {} tasks recorded by other runs, {} claims taken over from runs that died\n",
+                 sum.done_elsewhere, sum.taken_over);
+    if (sum.skipped_unavailable)
+      fmt::print("  {} tasks left pending: their task kind is not available in this build\n", sum.skipped_unavailable);
+    interrupted = interrupted || sum.interrupted;
+    failed += c.failed;
+  }
+  if (interrupted) {
+    fmt::print(stderr,
+               "frictal: interrupted; finished tasks are kept in the stores under {}; run the same command again to "
+               "resume\n",
+               a.store_dir);
+    return 130;
+  }
+  if (failed) {
+    fmt::print(stderr, "frictal: {} tasks failed; see `frictal study status {}/<study>.sqlite --failed`\n", failed,
+               a.store_dir);
+    return 1;
+  }
+  return 0;
+}
+
+int run(const RunArgs& a) {
   if (!mpi_available()) {
     // Several copies of a build without MPI would each run the whole study on the same store.
     for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
@@ -92,6 +192,30 @@ int run(const RunArgs& a) {
             "this frictal was built without MPI (FRICTAL_MPI=OFF) but runs under mpirun with several "
             "ranks; run it without mpirun (use --threads) or rebuild with MPI");
   }
+  // --store FILE: one study, its store; --store-dir DIR: one or more studies, DIR/<stem>.sqlite each.
+  if (!a.store.empty() && !a.store_dir.empty())
+    throw UsageError(
+        "--store and --store-dir: give one (--store FILE for one study, --store-dir DIR for one store "
+        "per study file, DIR/<file name>.sqlite)");
+  if (a.store.empty() && a.store_dir.empty())
+    throw UsageError(
+        "give --store FILE (one study) or --store-dir DIR (one or more studies, DIR/<file name>.sqlite "
+        "each)");
+  if (!a.store.empty() && a.studies.size() > 1)
+    throw UsageError(
+        fmt::format("{} studies but one --store: give --store-dir DIR for several studies (their stores "
+                    "are DIR/<file name>.sqlite)",
+                    a.studies.size()));
+  if (!a.store_dir.empty()) {
+    if (a.studies.size() > 1 && !a.parts.empty())
+      throw UsageError("--part: not with several studies (part names belong to one study)");
+    if (a.dry_run) throw UsageError("--dry-run: give one study and its --store");
+    if (mpi_available() && launched_by_mpi())
+      throw UsageError(
+          "--store-dir (several studies in one run) is not supported under MPI; run each study with --store");
+    return run_many(a);
+  }
+  TaskRegistry reg = default_registry();
   const bool mpi = mpi_available() && launched_by_mpi();
   int rank = 0, size = 1;
   if (mpi) unwrap(mpi_init(&rank, &size));
@@ -101,7 +225,7 @@ int run(const RunArgs& a) {
       if (on) mpi_finalize();
     }
   } fin{mpi};
-  Study study = unwrap(load_study(a.study, a.quick, reg));
+  Study study = unwrap(load_study(a.studies.front(), a.quick, reg));
   if (mpi && rank == 0) {
     const std::string note = fmt::format(
         "frictal: rank 0 was signalled (interrupted, or another rank died and mpirun ends the job); every finished "
@@ -249,9 +373,15 @@ std::function<int()> setup(CLI::App& app) {
   app.require_subcommand(1);
   auto ra = std::make_shared<RunArgs>();
   auto* run_cmd = app.add_subcommand("run", "Run (or resume) a study; results go into an SQLite store");
-  run_cmd->add_option("study", ra->study, "Study definition (TOML), e.g. studies/fig14-18-wm-statistics.toml")
+  run_cmd
+      ->add_option("study", ra->studies,
+                   "Study definition (TOML), e.g. studies/fig14-18-wm-statistics.toml; several with --store-dir")
       ->required();
-  run_cmd->add_option("--store", ra->store, "SQLite store file (created if missing, resumed if it exists)")->required();
+  run_cmd->add_option("--store", ra->store,
+                      "SQLite store file of the one study (created if missing, resumed if it exists)");
+  run_cmd->add_option("--store-dir", ra->store_dir,
+                      "Run one or more studies in one pool of threads, costliest tasks first across studies, tasks "
+                      "they share computed once; the store of STUDY.toml is DIR/STUDY.sqlite (created or resumed)");
   run_cmd
       ->add_option("--threads", ra->threads, "Compute threads (0 = all cores; under MPI: threads on rank 0, default 1)")
       ->each([ra](const std::string&) { ra->threads_set = true; });

@@ -422,8 +422,13 @@ struct RunOptions {
   /// Result cache file shared by the stores of one folder (see default_cache_path; empty: none).
   /// A task whose content address (content_address) the cache holds is recorded from it instead
   /// of being computed (byte-identical: the cache keeps the exact output); every result this run
-  /// computes is added. Several runs and studies may share one cache at once.
+  /// computes is added. The cache is read for every queued task when the run starts and again
+  /// for each task just before it would be computed, so a result another run (another process,
+  /// or another study) added meanwhile is reused too. Several runs may share one cache at once.
   std::string cache;
+  /// Testing: called once on the calling thread after the run has started (the cache's bulk
+  /// lookup done, the queue ordered) and before the first task is claimed (threads only).
+  std::function<void()> started;
 };
 
 struct RunSummary {
@@ -445,6 +450,25 @@ struct RunSummary {
 /// MPI when one has not failed it; other failures are recorded at once.
 Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegistry& registry,
                                const RunOptions& options);
+
+/// One study of a multi-study run (run_threads below).
+struct StudyRun {
+  const Study* study = nullptr;
+  Store* store = nullptr;                         ///< this study's store
+  std::string cache;                              ///< this study's result cache (RunOptions::cache; empty: none)
+  std::function<void(const Progress&)> progress;  ///< this study's progress (RunOptions::progress)
+};
+/// Runs several studies on one pool of threads (`frictal study run A.toml B.toml --store-dir DIR`).
+/// Every unfinished task of every study is in one queue, costliest first across studies (with
+/// options.longest_first); each study has its own store, cache and progress (as if run alone), and
+/// tasks of different studies with one content address are computed once: the first computes it,
+/// the others are recorded from its result (counted as reused). Each store ends with the same
+/// content (Store::content) as a run of its study alone. `options` applies to every study except
+/// its cache and progress (taken from `runs`); options.parts must be empty with several studies.
+/// The summaries are in the order of `runs`; an error (a store that cannot be written) names the
+/// study and stops the whole run.
+Result<std::vector<RunSummary>> run_threads(const std::vector<StudyRun>& runs, const TaskRegistry& registry,
+                                            const RunOptions& options);
 
 /// Tasks of the study that this run will compute (unfinished, selected parts, available kinds),
 /// or an error naming an unavailable kind if skip_unavailable is false.

@@ -58,6 +58,7 @@ from ._core import (  # noqa: F401  studies: run a study file, read its store (s
     study_report,
     study_rows,
     study_run,
+    study_run_many,
     study_status,
 )
 

@@ -177,6 +177,15 @@ def study_run(study: str, store: str, threads: int = ..., quick: bool = ..., par
     (results-cache.sqlite beside the store), "none", or a file; summary["reused"] counts the tasks taken
     from it instead of being computed."""
 
+def study_run_many(studies: List[str], store_dir: str, threads: int = ..., quick: bool = ..., cache: str = ...) -> list:
+    """Runs (or resumes) several study files in one pool of threads, as `frictal study run A.toml B.toml
+    --store-dir DIR`: the store of A.toml is store_dir/A.sqlite (the folder must exist); the costliest
+    tasks of all studies start first, and a task two studies share is computed once (counted as reused
+    in the other). Returns one summary dict per study (as study_run's, with "study" and "store").
+
+    cache: "auto" (store_dir/results-cache.sqlite), "none", or a file. Parameters in the study files use SI
+    units (m, s), angles in deg."""
+
 def study_status(store: str) -> dict:
     """How far a store is (as `frictal study status --json`).
 

@@ -240,12 +240,15 @@ Status Coordinator::start() {
     ++progress_.reused;
   }
   queue_ = std::move(left);
-  if (options_.longest_first && queue_.size() > 1) {
+  if (options_.longest_first && !queue_.empty()) {
     std::vector<PlannedTask> order = estimate_costs(
         study_, store_, registry_, std::vector<std::int64_t>(queue_.begin(), queue_.end()), cache_.get());
     longest_first(order);
     queue_.clear();
-    for (const PlannedTask& p : order) queue_.push_back(p.id);
+    for (const PlannedTask& p : order) {
+      queue_.push_back(p.id);
+      cost_[p.id] = p.estimated_s;  // for next_cost (multi-study runs)
+    }
   }
   progress_.elapsed_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   if (options_.progress) options_.progress(progress_);
@@ -286,7 +289,7 @@ std::int64_t Coordinator::take_locked(int site) {
 }
 
 bool Coordinator::over_locked() const {
-  return (closing_ || (queue_.empty() && busy_.empty())) && in_flight_ == 0 && finished_.empty();
+  return (closing_ || (queue_.empty() && busy_.empty() && waiting_ == 0)) && in_flight_ == 0 && finished_.empty();
 }
 
 std::int64_t Coordinator::claim(int site, bool wait) {
@@ -310,10 +313,13 @@ std::int64_t Coordinator::claim(int site, bool wait) {
         fail_store_locked(c.error());
         return -1;
       }
-      if (*c == Store::Claim::Claimed) return id;
-      if (*c == Store::Claim::TakenOver) {
-        ++taken_over_;
-        return id;
+      if (*c == Store::Claim::Claimed || *c == Store::Claim::TakenOver) {
+        if (*c == Store::Claim::TakenOver) ++taken_over_;
+        if (resolve_claimed(id, lk)) return id;
+        // Reused or waiting for another study's result. In a multi-study run the caller chooses
+        // the next study again (the costliest head); else take the next task here.
+        if (shared_ && !wait) return kClaimAgain;
+        continue;
       }
       --in_flight_;
       if (*c == Store::Claim::Finished)
@@ -323,14 +329,14 @@ std::int64_t Coordinator::claim(int site, bool wait) {
       cv_.notify_all();
       continue;
     }
-    if (!wait || (queue_.empty() && in_flight_ == 0 && busy_.empty())) return -1;
+    if (!wait || (queue_.empty() && in_flight_ == 0 && busy_.empty() && waiting_ == 0)) return -1;
     // Woken by finish() (a retry may be queued) or after a while to look at the stop flag.
     cv_.wait_for(lk, std::chrono::milliseconds(50));
   }
 }
 
 void Coordinator::finish(TaskRecord r, int site) {
-  std::lock_guard lk(mu_);
+  std::unique_lock lk(mu_);
   --in_flight_;
   const int attempt = ++attempts_[r.id];
   // Testing hooks (RunOptions): fault injection decided here, whichever worker computed.
@@ -352,8 +358,130 @@ void Coordinator::finish(TaskRecord r, int site) {
     if (attempt > 1) r.error += fmt::format(" (after {} attempts)", attempt);
   }
   r.attempts = attempt;
+  // The final outcome of a task other studies may wait for: hand it to them (outside mu_).
+  std::string address;
+  TaskRecord copy;
+  if (auto p = producing_.find(r.id); p != producing_.end()) {
+    address = std::move(p->second);
+    producing_.erase(p);
+    copy = r;
+  }
   finished_.push_back(std::move(r));
   cv_.notify_all();
+  lk.unlock();
+  if (!address.empty()) shared_->complete(address, copy);
+}
+
+bool Coordinator::resolve_claimed(std::int64_t id, std::unique_lock<std::mutex>& lk) {
+  if (!cache_ && !shared_) return true;
+  const Task& t = study_.tasks[static_cast<std::size_t>(id)];
+  const std::string address = content_address(t, registry_);
+  lk.unlock();
+  // The cache again: another run or study may have added the result since start().
+  std::optional<TaskOutput> hit;
+  if (cache_) {
+    std::lock_guard ck(cache_mu_);
+    if (auto f = cache_->find(address, t); f)
+      hit = std::move(*f);
+    else if (cache_note_.empty())
+      cache_note_ = fmt::format("result cache not read: {}", f.error().message);
+  }
+  SharedResults::Take take = SharedResults::Take::Compute;
+  if (!hit && shared_) {
+    TaskOutput out;
+    take = shared_->take(address, this, id, &out);
+    if (take == SharedResults::Take::Reuse) hit = std::move(out);
+  }
+  lk.lock();
+  if (hit) {
+    --in_flight_;
+    TaskRecord r;
+    r.id = id;
+    r.status = TaskStatus::Done;
+    r.worker = "cache";
+    r.output = std::move(*hit);
+    finished_.push_back(std::move(r));
+    cv_.notify_all();
+    return false;
+  }
+  if (take == SharedResults::Take::Wait) {
+    --in_flight_;
+    ++waiting_;
+    cv_.notify_all();
+    return false;
+  }
+  if (shared_) producing_[id] = address;
+  return true;
+}
+
+double Coordinator::next_cost() {
+  std::lock_guard lk(mu_);
+  poll_stop_locked();
+  if (closing_) return -1;
+  if (queue_.empty()) return busy_.empty() ? -1.0 : 0.0;
+  if (!options_.longest_first) return 0;
+  const auto it = cost_.find(queue_.front());
+  return it == cost_.end() ? 0.0 : it->second;
+}
+
+bool Coordinator::exhausted() {
+  std::lock_guard lk(mu_);
+  poll_stop_locked();
+  return closing_ || (queue_.empty() && busy_.empty() && in_flight_ == 0 && waiting_ == 0);
+}
+
+void Coordinator::deliver(std::int64_t id, const TaskOutput& output) {
+  std::lock_guard lk(mu_);
+  --waiting_;
+  TaskRecord r;
+  r.id = id;
+  r.status = TaskStatus::Done;
+  r.worker = "cache";
+  r.output = output;
+  finished_.push_back(std::move(r));
+  cv_.notify_all();
+}
+
+void Coordinator::requeue(std::int64_t id) {
+  std::lock_guard lk(mu_);
+  --waiting_;
+  if (!closing_) queue_.push_front(id);
+  cv_.notify_all();
+}
+
+SharedResults::Take SharedResults::take(const std::string& address, Coordinator* co, std::int64_t id, TaskOutput* out) {
+  std::lock_guard lk(mu_);
+  auto [it, fresh] = entries_.try_emplace(address);
+  if (fresh) return Take::Compute;
+  if (it->second.done) {
+    *out = it->second.output;
+    return Take::Reuse;
+  }
+  it->second.waiters.emplace_back(co, id);
+  return Take::Wait;
+}
+
+void SharedResults::complete(const std::string& address, const TaskRecord& r) {
+  std::vector<std::pair<Coordinator*, std::int64_t>> waiters;
+  const bool done = r.status == TaskStatus::Done;
+  {
+    std::lock_guard lk(mu_);
+    auto it = entries_.find(address);
+    if (it == entries_.end()) return;
+    waiters.swap(it->second.waiters);
+    if (done) {
+      it->second.done = true;
+      it->second.output = r.output;
+    } else {
+      entries_.erase(it);  // the next take computes it again
+    }
+  }
+  for (const auto& [co, id] : waiters) {
+    if (done)
+      co->deliver(id, r.output);
+    else
+      co->requeue(id);
+  }
 }
 
 std::size_t Coordinator::record_finished(bool wait) {
@@ -386,15 +514,22 @@ std::size_t Coordinator::record_finished(bool wait) {
       cv_.notify_all();
       break;
     }
-    if (cache_ && r.status == TaskStatus::Done) {
+    const bool reused = r.worker == "cache";  // found in the cache or computed by another study of this run
+    if (reused) {
+      ++reused_;
+      ++progress_.reused;
+    } else {
+      ++ran_;
+    }
+    if (cache_ && !reused && r.status == TaskStatus::Done) {
       const Task& t = study_.tasks[static_cast<std::size_t>(r.id)];
       const TaskKind* k = registry_.find(t.kind);
+      std::lock_guard ck(cache_mu_);
       if (auto s = cache_->put(content_address(t, registry_), t, k ? k->uses_seed : true, r, study_.name);
           !s && cache_note_.empty())
         cache_note_ = fmt::format("result cache not written: {}", s.error().message);
     }
     ++n;
-    ++ran_;
     ++progress_.this_run;
     if (r.status == TaskStatus::Done)
       ++progress_.done;
@@ -432,7 +567,10 @@ Result<RunSummary> Coordinator::summary(RunSummary base) {
   base.done_elsewhere = done_elsewhere_;
   base.taken_over = taken_over_;
   base.reused = reused_;
-  base.cache_note = cache_note_;
+  {
+    std::lock_guard ck(cache_mu_);
+    base.cache_note = cache_note_;
+  }
   base.interrupted = ran_ + done_elsewhere_ + reused_ < static_cast<std::int64_t>(to_run_);
   base.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   return base;

@@ -2,7 +2,11 @@
 // calling thread owns the store and records; compute threads claim, compute and hand back.
 // Also the binary record format that the MPI transport sends between ranks.
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstring>
+#include <optional>
+#include <thread>
 
 #ifdef __linux__
 #include <pthread.h>
@@ -52,6 +56,7 @@ Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegis
   sum.threads = util::thread_count(options.threads);
   Coordinator co(study, store, registry, options, std::move(*todo), 1);
   if (auto s = co.start(); !s) return s.error();
+  if (options.started) options.started();
   // T compute threads claim, compute and hand back; this thread owns the store and records.
   util::run_workers(
       T,
@@ -66,6 +71,102 @@ Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegis
       });
   co.record_finished(false);
   return co.summary(sum);
+}
+
+Result<std::vector<RunSummary>> run_threads(const std::vector<StudyRun>& runs, const TaskRegistry& registry,
+                                            const RunOptions& options) {
+  if (runs.empty()) return std::vector<RunSummary>{};
+  if (runs.size() > 1 && !options.parts.empty())
+    return make_error(
+        fmt::format("part '{}': parts cannot be chosen when running several studies (part names "
+                    "belong to one study)",
+                    options.parts.front()));
+  for (const StudyRun& r : runs)
+    if (!r.study || !r.store)
+      return make_error(ErrorCode::InvalidInput, "run_threads: a StudyRun without study or store");
+  // One stop flag for every study: set by the caller's, or when one study's store fails.
+  std::atomic<bool> stop_all{options.stop && options.stop->load()};
+  const std::size_t n = runs.size();
+  std::vector<RunOptions> opts(n, options);
+  std::vector<RunSummary> sums(n);
+  std::vector<std::unique_ptr<Coordinator>> cos;
+  SharedResults shared;
+  std::size_t total = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    opts[i].cache = runs[i].cache;
+    opts[i].progress = runs[i].progress;
+    opts[i].stop = &stop_all;
+    opts[i].started = nullptr;
+    auto todo = plan(*runs[i].study, *runs[i].store, registry, opts[i], &sums[i].skipped_unavailable);
+    if (!todo) return with_prefix(fmt::format("study '{}': ", runs[i].study->name), todo.error());
+    total += todo->size();
+    cos.push_back(
+        std::make_unique<Coordinator>(*runs[i].study, *runs[i].store, registry, opts[i], std::move(*todo), 1));
+    cos.back()->set_shared(&shared);
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (auto s = cos[i]->start(); !s) return with_prefix(fmt::format("study '{}': ", runs[i].study->name), s.error());
+  if (options.started) options.started();
+  const unsigned T = util::thread_count(options.threads, std::max<std::size_t>(1, total));
+  util::run_workers(
+      T,
+      [&](unsigned w) {
+        const std::string name = fmt::format("thread {}", w);
+        if (options.pin_threads) pin_to_cpu(w);
+        std::vector<std::pair<double, std::size_t>> heads;
+        for (;;) {
+          if (options.stop && options.stop->load()) stop_all = true;  // dispatch nothing more
+          // The costliest queue head of all studies first (ties: the earlier study).
+          heads.clear();
+          for (std::size_t i = 0; i < n; ++i)
+            if (const double c = cos[i]->next_cost(); c >= 0) heads.emplace_back(c, i);
+          std::stable_sort(heads.begin(), heads.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+          bool took = false;
+          for (const auto& [c, i] : heads) {
+            const std::int64_t id = cos[i]->claim(0, false);
+            if (id == Coordinator::kClaimAgain) {  // reused or set aside: choose the study again
+              took = true;
+              break;
+            }
+            if (id < 0) continue;
+            cos[i]->finish(execute(runs[i].study->tasks[static_cast<std::size_t>(id)], registry, name), 0);
+            took = true;
+            break;
+          }
+          if (took) continue;
+          if (std::all_of(cos.begin(), cos.end(), [](const auto& co) { return co->exhausted(); })) break;
+          // Nothing to take now: tasks computing (a retry may come back), waiting for another
+          // study's result, or held by another run on a shared store.
+          std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        }
+      },
+      [&] {
+        for (;;) {
+          if (options.stop && options.stop->load()) stop_all = true;
+          bool all_over = true;
+          std::size_t recorded = 0;
+          for (auto& co : cos) {
+            recorded += co->record_finished(false);
+            if (co->closing()) stop_all = true;  // interrupted, or a store failed: stop every study
+            if (!co->over()) all_over = false;
+          }
+          if (all_over) break;
+          if (!recorded) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        }
+      });
+  for (auto& co : cos) co->record_finished(false);
+  // Every study's summary (each releases its store's claims), then the first error if any.
+  std::optional<Error> first_error;
+  for (std::size_t i = 0; i < n; ++i) {
+    sums[i].threads = util::thread_count(options.threads);
+    auto s = cos[i]->summary(sums[i]);
+    if (s)
+      sums[i] = *s;
+    else if (!first_error)
+      first_error = with_prefix(fmt::format("study '{}': ", runs[i].study->name), s.error());
+  }
+  if (first_error) return *first_error;
+  return sums;
 }
 
 // ---------------------------------------------------------------- serialisation (for MPI)

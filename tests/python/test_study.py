@@ -72,6 +72,27 @@ def test_run_status_rows_report_export(tmp_path):
     assert math.isclose(phi, 20.0, abs_tol=1e-9)  # K2 at alpha = 10 deg: phi = 2 alpha
 
 
+def test_run_many_gives_the_stores_of_separate_runs(tmp_path):
+    other = STUDY.replace('name = "py-koch"', 'name = "py-koch-b"').replace("[0, 1, 2]", "[1, 2, 3]")
+    (tmp_path / "a.toml").write_text(STUDY)
+    (tmp_path / "b.toml").write_text(other)
+    sep = tmp_path / "separate"
+    sep.mkdir()
+    for name in ("a", "b"):
+        frictal.study_run(str(tmp_path / f"{name}.toml"), str(sep / f"{name}.sqlite"), cache="none")
+    one = tmp_path / "one"
+    one.mkdir()
+    sums = frictal.study_run_many([str(tmp_path / "a.toml"), str(tmp_path / "b.toml")], str(one), threads=2)
+    assert [s["study"] for s in sums] == ["py-koch", "py-koch-b"]
+    # K1 and K2 at alpha = 10 deg are in both: computed once, reused in the other study.
+    assert sum(s["ran"] for s in sums) == 4
+    assert sum(s["reused"] for s in sums) == 2
+    for name in ("a", "b"):
+        got = frictal.study_rows(str(one / f"{name}.sqlite"), arrays=False)
+        want = frictal.study_rows(str(sep / f"{name}.sqlite"), arrays=False)
+        assert got == want
+
+
 def test_errors():
     with pytest.raises(OSError, match="no such store file"):
         frictal.study_status("/nonexistent/frictal.sqlite")
