@@ -127,6 +127,7 @@ int run(TiltOptions& o) {
     j["mean_pairs_evaluated"] =
         r->steps ? static_cast<double>(r->timings.pairs_evaluated) / static_cast<double>(r->steps) : 0.0;
     j["hot_list_refreshes"] = r->timings.hot_refreshes;
+    j["split_steps"] = r->timings.split_steps;
     j["stage_time_s"] = {{"neighbor_list", r->timings.neighbor_list},
                          {"contacts", r->timings.contacts},
                          {"integration", r->timings.integration}};

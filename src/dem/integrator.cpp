@@ -4,6 +4,7 @@
 // stability guards.
 #include "integrator.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -50,6 +51,70 @@ void update_rotation(const State& st, Workspace& ws) {
   for (std::size_t b = 0; b < st.angle.size(); ++b) ws.rotation[b] = {std::cos(st.angle[b]), std::sin(st.angle[b])};
 }
 
+namespace {
+
+// One team member's share of a parallel step: the hot pairs [H j / n, H (j + 1) / n), their
+// exact test (touching pairs to their own segment of ws.touching) and their forces.
+struct StepShare {
+  const Model* m;
+  State* st;
+  Workspace* ws;
+  double dt_spring;
+  std::size_t hot_pairs;
+  unsigned members;
+};
+
+void run_share(void* context, unsigned j) {
+  StepShare& s = *static_cast<StepShare*>(context);
+  const std::size_t k0 = s.hot_pairs * j / s.members, k1 = s.hot_pairs * (j + 1) / s.members;
+  const std::size_t n = find_touching_hot(*s.m, *s.st, *s.ws, k0, k1);
+  s.ws->segments[j] = {k0, n};
+  double max_ov = 0, max_ratio = 0;
+  pair_forces(*s.m, *s.st, *s.ws, s.dt_spring, k0, k0 + n, max_ov, max_ratio);
+  s.ws->part_max_overlap[j] = max_ov;
+  s.ws->part_max_ratio[j] = max_ratio;
+}
+
+// The contact passes split over the team (docs/dem.md sec. 7, threads): each member classifies
+// and computes the forces of a fixed contiguous share of the hot list; the sums then walk the
+// shares in order on this thread. Every decision and force is that of the serial passes, and
+// every floating-point sum is taken in the same order (the maxima do not depend on the order),
+// so the result is bitwise the serial one. Returns the largest overlap ratio (apply_force_law),
+// or a negative value when the step is not split (too few hot pairs, a full pass due, no team).
+double split_contact_passes(const Model& m, State& st, Workspace& ws, double dt_spring) {
+  const std::size_t per_member = std::max<std::size_t>(1, ws.min_hot_pairs_per_thread);
+  if (ws.threads <= 1 || ws.hot.pair.size() < 2 * per_member || hot_list_stale(m, st, ws)) return -1;
+  const std::size_t hot_pairs = ws.hot.pair.size();
+  const unsigned n = static_cast<unsigned>(std::min<std::size_t>(ws.threads, hot_pairs / per_member));
+  if (!ws.team.team || ws.team.team->members() < n) {
+    ws.team.team.reset();
+    ws.team.team = util::Team::make(ws.threads);
+    if (!ws.team.team) {  // no threads to be had: serial from now on
+      ws.threads = 1;
+      return -1;
+    }
+  }
+  if (ws.touching.size() < hot_pairs) ws.touching.resize(hot_pairs);
+  ws.segments.resize(n);
+  ws.part_max_overlap.resize(n);
+  ws.part_max_ratio.resize(n);
+  StepShare share{&m, &st, &ws, dt_spring, hot_pairs, n};
+  ws.team.team->run(n, &run_share, &share);
+  double max_ov = 0, max_ratio = 0;
+  std::size_t touching = 0;
+  for (unsigned j = 0; j < n; ++j) {
+    max_ov = std::max(max_ov, ws.part_max_overlap[j]);
+    max_ratio = std::max(max_ratio, ws.part_max_ratio[j]);
+    touching += ws.segments[j].count;
+  }
+  ws.touching_count = touching;
+  st.timings.pairs_evaluated += hot_pairs;
+  ++st.timings.split_steps;
+  return sum_contacts(m, st, ws, max_ov, max_ratio);
+}
+
+}  // namespace
+
 double compute_forces(const Model& m, State& st, Workspace& ws, double dt_spring) {
   const std::size_t nb = m.body_count();
   // Per-body pose cache, inverse masses (kinematic bodies: 0), counters and mode sums.
@@ -65,8 +130,11 @@ double compute_forces(const Model& m, State& st, Workspace& ws, double dt_spring
     st.force[b] = {0, 0};
     st.torque[b] = 0;
   }
-  find_touching(m, st, ws);
-  const double max_ratio = apply_force_law(m, st, ws, dt_spring);
+  double max_ratio = split_contact_passes(m, st, ws, dt_spring);
+  if (max_ratio < 0) {
+    find_touching(m, st, ws);
+    max_ratio = apply_force_law(m, st, ws, dt_spring);
+  }
   for (std::size_t b = 0; b < nb; ++b) st.body_contacts[b] = ws.body_contacts[b];
   update_step_limits(m, st, ws);
   st.timings.pairs_visited += st.pairs.size();
@@ -250,6 +318,15 @@ Status step(const Model& m, State& st) {
   if (timed) st.timings.integration += seconds_since(t0);
   return status;
 }
+
+void set_thread_count(State& st, unsigned threads, unsigned min_hot_pairs_per_thread) {
+  detail::Workspace& ws = st.workspace.get();
+  ws.threads = threads < 1 ? 1 : threads;
+  ws.min_hot_pairs_per_thread = min_hot_pairs_per_thread < 1 ? 1 : min_hot_pairs_per_thread;
+  if (ws.team.team && ws.team.team->members() > ws.threads) ws.team.team.reset();
+}
+
+unsigned thread_count(const State& st) { return st.workspace.get().threads; }
 
 Status advance(const Model& m, State& st, std::uint64_t steps) {
   for (std::uint64_t i = 0; i < steps; ++i) {

@@ -13,6 +13,7 @@
 
 #include "frictal/study.hpp"
 #include "study/coordinator.hpp"
+#include "study/idle_threads.hpp"
 #include "util/parallel.hpp"
 
 namespace frictal::study {
@@ -52,14 +53,28 @@ Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegis
   sum.threads = util::thread_count(options.threads);
   Coordinator co(study, store, registry, options, std::move(*todo), 1);
   if (auto s = co.start(); !s) return s.error();
+  // Cores without a compute thread (fewer tasks than threads), and later those of compute threads
+  // waiting for work, are lent to the running tasks (borrow_idle_threads).
+  detail::IdlePool idle;
+  idle.idle = static_cast<int>(sum.threads) - static_cast<int>(T);
   // T compute threads claim, compute and hand back; this thread owns the store and records.
   util::run_workers(
       T,
       [&](unsigned w) {
         const std::string name = fmt::format("thread {}", w);
         if (options.pin_threads) pin_to_cpu(w);
-        for (std::int64_t id; (id = co.claim(0, true)) >= 0;)
+        detail::set_idle_pool(&idle);
+        for (;;) {
+          std::int64_t id = co.claim(0, false);
+          if (id < 0) {  // nothing queued: this core is idle (lent to running tasks) while it waits
+            idle.lend();
+            id = co.claim(0, true);
+            idle.reclaim();
+          }
+          if (id < 0) break;
           co.finish(execute(study.tasks[static_cast<std::size_t>(id)], registry, name), 0);
+        }
+        detail::set_idle_pool(nullptr);
       },
       [&] {
         while (!co.over()) co.record_finished(true);
