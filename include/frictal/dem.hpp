@@ -254,11 +254,15 @@ Status step(const Model& model, State& state);
 /// default: none). A team of threads - 1 workers, owned by the state (not copied with it), starts
 /// at the first step that uses it and is joined with the state. A step is split only when its hot
 /// list holds at least `min_hot_pairs_per_thread` (default 64: a share must outweigh the team's
-/// start and join, ~1 us) pairs per thread used and no full pass over the list is due. Results
+/// start and join, ~1 us) pairs per thread used and no full pass over the list is due. With
+/// `tune` (default) the steps that can be split also time their contact passes now and then,
+/// serial and split (64 steps each, twice, every 16384 such steps, backing off to every ~10^6
+/// while it does not pay), and split only while that is clearly (5 %, both times) faster: on a
+/// loaded machine, where a split step waits for a descheduled worker, they stay serial. Results
 /// do not depend on `threads`, bit for bit: each thread takes a fixed contiguous share of the hot
 /// list (its exact tests and forces), and the sums run on the calling thread in list order
 /// (docs/dem.md sec. 7).
-void set_thread_count(State& state, unsigned threads, unsigned min_hot_pairs_per_thread = 64);
+void set_thread_count(State& state, unsigned threads, unsigned min_hot_pairs_per_thread = 64, bool tune = true);
 /// The thread count of set_thread_count (1 if never set; a copied State keeps it).
 unsigned thread_count(const State& state);
 /// Advances `steps` steps (stops at the first error).

@@ -75,15 +75,21 @@ void run_share(void* context, unsigned j) {
   s.ws->part_max_ratio[j] = max_ratio;
 }
 
+// Whether this step's contact passes can be split: threads, enough hot pairs for two shares of
+// ws.min_hot_pairs_per_thread, and no full pass over the list due.
+bool can_split(const Model& m, const State& st, const Workspace& ws) {
+  const std::size_t per_member = std::max<std::size_t>(1, ws.min_hot_pairs_per_thread);
+  return ws.threads > 1 && ws.hot.valid && ws.hot.pair.size() >= 2 * per_member && !hot_list_stale(m, st, ws);
+}
+
 // The contact passes split over the team (docs/dem.md sec. 7, threads): each member classifies
 // and computes the forces of a fixed contiguous share of the hot list; the sums then walk the
 // shares in order on this thread. Every decision and force is that of the serial passes, and
 // every floating-point sum is taken in the same order (the maxima do not depend on the order),
-// so the result is bitwise the serial one. Returns the largest overlap ratio (apply_force_law),
-// or a negative value when the step is not split (too few hot pairs, a full pass due, no team).
+// so the result is bitwise the serial one. Needs can_split(). Returns the largest overlap ratio
+// (apply_force_law), or a negative value when no team can be started.
 double split_contact_passes(const Model& m, State& st, Workspace& ws, double dt_spring) {
   const std::size_t per_member = std::max<std::size_t>(1, ws.min_hot_pairs_per_thread);
-  if (ws.threads <= 1 || ws.hot.pair.size() < 2 * per_member || hot_list_stale(m, st, ws)) return -1;
   const std::size_t hot_pairs = ws.hot.pair.size();
   const unsigned n = static_cast<unsigned>(std::min<std::size_t>(ws.threads, hot_pairs / per_member));
   if (!ws.team.team || ws.team.team->members() < n) {
@@ -130,10 +136,33 @@ double compute_forces(const Model& m, State& st, Workspace& ws, double dt_spring
     st.force[b] = {0, 0};
     st.torque[b] = 0;
   }
-  double max_ratio = split_contact_passes(m, st, ws, dt_spring);
+  // Split over the team when the step can be split and the tuner finds that it pays
+  // (Workspace::Tuner: only the steps that can be split are timed and counted).
+  Workspace::Tuner& tu = ws.tuner;
+  const bool splittable = ws.threads > 1 && can_split(m, st, ws);
+  const bool tuning = splittable && tu.enabled;
+  const bool split = splittable && (!tuning || (tu.phase == 4 ? tu.split : tu.phase % 2 == 1));
+  std::chrono::steady_clock::time_point t0;
+  if (tuning && tu.phase < 4) t0 = std::chrono::steady_clock::now();
+  double max_ratio = split ? split_contact_passes(m, st, ws, dt_spring) : -1.0;
   if (max_ratio < 0) {
     find_touching(m, st, ws);
     max_ratio = apply_force_law(m, st, ws, dt_spring);
+  }
+  if (tuning) {
+    if (tu.phase < 4)
+      tu.seconds[tu.phase] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (--tu.left == 0) {
+      if (tu.phase == 3) {  // split only for a clear gain, twice; back off while it does not pay
+        const bool had = tu.split;
+        tu.split = tu.seconds[1] < 0.95 * tu.seconds[0] && tu.seconds[3] < 0.95 * tu.seconds[2];
+        tu.run_steps =
+            tu.split || had ? Workspace::Tuner::kRunSteps : std::min(2 * tu.run_steps, Workspace::Tuner::kMaxRunSteps);
+      }
+      tu.phase = (tu.phase + 1) % 5;
+      tu.left = tu.phase == 4 ? tu.run_steps : Workspace::Tuner::kTrialSteps;
+      if (tu.phase == 0) tu.seconds[0] = tu.seconds[1] = tu.seconds[2] = tu.seconds[3] = 0;
+    }
   }
   for (std::size_t b = 0; b < nb; ++b) st.body_contacts[b] = ws.body_contacts[b];
   update_step_limits(m, st, ws);
@@ -319,10 +348,11 @@ Status step(const Model& m, State& st) {
   return status;
 }
 
-void set_thread_count(State& st, unsigned threads, unsigned min_hot_pairs_per_thread) {
+void set_thread_count(State& st, unsigned threads, unsigned min_hot_pairs_per_thread, bool tune) {
   detail::Workspace& ws = st.workspace.get();
   ws.threads = threads < 1 ? 1 : threads;
   ws.min_hot_pairs_per_thread = min_hot_pairs_per_thread < 1 ? 1 : min_hot_pairs_per_thread;
+  ws.tuner.enabled = tune;
   if (ws.team.team && ws.team.team->members() > ws.threads) ws.team.team.reset();
 }
 

@@ -138,6 +138,22 @@ struct Workspace {
   unsigned min_hot_pairs_per_thread = 64;
   TeamSlot team;
   std::vector<double> part_max_overlap, part_max_ratio;  ///< per team member
+  /// Whether splitting pays on this machine now (speed only; results do not depend on it): the
+  /// contact passes of the steps that can be split are timed over kTrialSteps serial steps, then
+  /// kTrialSteps split ones, twice, and the steps are split for the next kRunSteps only if both
+  /// split windows were at least 5 % faster than the serial window before them (a preemption in
+  /// one window does not decide it). A loaded machine, where a split step waits for a
+  /// descheduled worker, thus keeps the serial passes; each serial verdict in a row doubles the
+  /// next run (up to kMaxRunSteps), so that the trials cost little where splitting never pays.
+  struct Tuner {
+    static constexpr std::uint32_t kTrialSteps = 64, kRunSteps = 16384, kMaxRunSteps = 1u << 20;
+    bool enabled = true;
+    int phase = 0;  ///< 0, 2: timing serial steps; 1, 3: timing split steps; 4: running the choice
+    std::uint32_t left = kTrialSteps;
+    std::uint32_t run_steps = kRunSteps;  ///< length of the next run
+    double seconds[4] = {0, 0, 0, 0};
+    bool split = true;
+  } tuner;
 };
 
 }  // namespace frictal::dem::detail

@@ -12,10 +12,12 @@ namespace frictal::util {
 
 namespace {
 
-// How long a waiting thread spins before it blocks (unit: ns). A DEM step is ~5 us, so a team
-// member waiting for the next step usually finds it while spinning; a longer pause (output,
-// the end of the run, a descheduled caller on a loaded machine) puts it to sleep.
-constexpr std::int64_t kSpinNs = 20000;
+// How long a waiting thread spins before it blocks (unit: ns). A DEM step is ~5 us and an
+// occasional serial step (a full pass over the neighbour list) ~20-50 us, so a team member
+// waiting for the next split step usually finds it while spinning (waking a blocked thread costs
+// tens of us on a virtual machine); a longer pause (output, the end of the run, a descheduled
+// caller on a loaded machine) puts it to sleep.
+constexpr std::int64_t kSpinNs = 100000;
 
 inline void cpu_relax() {
 #if defined(__x86_64__) || defined(__i386__)

@@ -1,8 +1,8 @@
 // A persistent team of worker threads for short, frequent parallel sections (the contact passes
 // of one DEM step: a few microseconds each, millions of times per run), where starting threads
 // per section (parallel.hpp) would cost more than the work. The caller runs member 0 itself;
-// the workers wait for the next section spinning for a few microseconds, then blocked (futex via
-// std::atomic::wait), so an idle or oversubscribed team does not burn its cores.
+// the workers wait for the next section spinning for up to 100 microseconds, then blocked (futex
+// via std::atomic::wait), so an idle or oversubscribed team does not burn its cores for long.
 //
 // Determinism is the caller's business, as with parallel.hpp: give each member a fixed share of
 // the work and combine the shares in member order.
@@ -45,7 +45,7 @@ class Team {
   alignas(64) std::atomic<std::uint32_t> generation_{0};  ///< bumped to start a section
   alignas(64) std::atomic<std::uint32_t> pending_{0};     ///< workers yet to acknowledge this section
   alignas(64) std::atomic<std::uint32_t> sleepers_{0};    ///< workers blocked on generation_
-  std::atomic<bool> caller_blocked_{false};              ///< run() blocked on pending_
+  std::atomic<bool> caller_blocked_{false};               ///< run() blocked on pending_
   std::atomic<bool> stop_{false};
 };
 
