@@ -150,17 +150,33 @@ double compute_forces(const Model& m, State& st, Workspace& ws, double dt_spring
     max_ratio = apply_force_law(m, st, ws, dt_spring);
   }
   if (tuning) {
+    using Tuner = Workspace::Tuner;
+    auto run_serial = [&tu](bool had_split) {  // verdict: serial; back off while it does not pay
+      tu.split = false;
+      tu.run_steps = had_split ? Tuner::kRunSteps : std::min(2 * tu.run_steps, Tuner::kMaxRunSteps);
+      tu.phase = 4;
+      tu.left = tu.run_steps;
+    };
     if (tu.phase < 4)
       tu.seconds[tu.phase] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (--tu.left == 0) {
-      if (tu.phase == 3) {  // split only for a clear gain, twice; back off while it does not pay
-        const bool had = tu.split;
-        tu.split = tu.seconds[1] < 0.95 * tu.seconds[0] && tu.seconds[3] < 0.95 * tu.seconds[2];
-        tu.run_steps =
-            tu.split || had ? Workspace::Tuner::kRunSteps : std::min(2 * tu.run_steps, Workspace::Tuner::kMaxRunSteps);
+    if (tu.phase % 2 == 1 && tu.seconds[tu.phase] > 2 * tu.seconds[tu.phase - 1]) {
+      // A split window already twice as slow as the serial one (waiting for descheduled workers
+      // on a loaded machine): stop the trial now rather than pay for the rest of it.
+      run_serial(tu.split);
+    } else if (--tu.left == 0) {
+      if (tu.phase == 3) {  // split only for a clear gain, twice
+        if (tu.seconds[1] < 0.95 * tu.seconds[0] && tu.seconds[3] < 0.95 * tu.seconds[2]) {
+          tu.split = true;
+          tu.run_steps = Tuner::kRunSteps;
+          tu.phase = 4;
+          tu.left = tu.run_steps;
+        } else {
+          run_serial(tu.split);
+        }
+      } else {
+        tu.phase = (tu.phase + 1) % 5;
+        tu.left = tu.phase == 4 ? tu.run_steps : Tuner::kTrialSteps;
       }
-      tu.phase = (tu.phase + 1) % 5;
-      tu.left = tu.phase == 4 ? tu.run_steps : Workspace::Tuner::kTrialSteps;
       if (tu.phase == 0) tu.seconds[0] = tu.seconds[1] = tu.seconds[2] = tu.seconds[3] = 0;
     }
   }

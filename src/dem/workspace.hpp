@@ -143,7 +143,8 @@ struct Workspace {
   /// kTrialSteps split ones, twice, and the steps are split for the next kRunSteps only if both
   /// split windows were at least 5 % faster than the serial window before them (a preemption in
   /// one window does not decide it). A loaded machine, where a split step waits for a
-  /// descheduled worker, thus keeps the serial passes; each serial verdict in a row doubles the
+  /// descheduled worker, thus keeps the serial passes; a split window that is already twice as
+  /// slow as its serial one ends the trial at once, and each serial verdict in a row doubles the
   /// next run (up to kMaxRunSteps), so that the trials cost little where splitting never pays.
   struct Tuner {
     static constexpr std::uint32_t kTrialSteps = 64, kRunSteps = 16384, kMaxRunSteps = 1u << 20;

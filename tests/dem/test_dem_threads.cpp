@@ -173,7 +173,7 @@ TEST(DemThreads, EveryStepEqualsTheSerialStep) {
   for (const Run& r : runs) {
     SCOPED_TRACE(testing::Message() << r.threads << " threads, >= " << r.min_pairs << " pairs");
     if (r.tune) {
-      EXPECT_GE(r.st.timings.split_steps, 128u);  // at least the tuner's two trial windows of 64 split steps
+      EXPECT_GT(r.st.timings.split_steps, 0u);  // the tuner tried split steps
       continue;
     }
     if (r.min_pairs == 1) EXPECT_GT(r.st.timings.split_steps, 2000u);
@@ -209,8 +209,8 @@ TEST(DemThreads, K3TiltIsTheSameForOneToFourThreads) {
     auto r = frictal::run_tilt(c, c, ct);
     ASSERT_TRUE(r.ok()) << r.error().message;
     expect_same_result(*one, *r, static_cast<unsigned>(threads));
-    // Split in the tuner's trial windows at least (2 x 64 of every 16640 steps), in all if it pays.
-    EXPECT_GE(r->timings.split_steps, 128u);
+    // Split in the tuner's trial windows at least, in all if it pays.
+    EXPECT_GT(r->timings.split_steps, 0u);
   }
 }
 
