@@ -224,6 +224,7 @@ def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
         implicit_damping: Integrate the normal dashpots implicitly (backward Euler); false: explicit (default True; valid true or false)
         skin [m]: Neighbour-list skin (default 5e-05; valid >= 0)
         max_steps_beyond_limit: Stop after this many steps (in total) beyond the explicit stability limit (default 1000; valid 0..2147483647)
+        threads: Threads for the two predictions and the contact passes (0: all cores); results do not depend on it (default 1; valid 0..1024)
         hold_rotation: Hold the upper block's rotation relative to the lower block (it still translates) (default False; valid true or false)
         warn_overlap_fraction: Warn (core-overlap) when the resting overlap W/k_n exceeds this fraction of r (default 0.1; valid > 0)
         warn_prediction_tolerance [rad]: Warn (rounding) when the spheropolygon and rigid predictions differ by more (default 0.001745329252; valid > 0)
