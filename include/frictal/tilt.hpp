@@ -87,7 +87,9 @@ struct TiltConfig {
   bool predict = true;            ///< compute the signature prediction (needs envelopes)
   double series_interval = 1e-3;  ///< time between rows of the series; <= 0: none (unit: s)
   double frame_interval = 0;      ///< time between frames; <= 0: none (unit: s)
-  /// Threads of the run (unitless; 0: every hardware thread; 1, the default: one). The set-up's
+  /// Threads of the run (unitless; 0: every hardware thread; 1, the default: one). Not a
+  /// settings-table option (like SignatureOptions::threads: it changes no result): `frictal tilt
+  /// --threads`, Python tilt(..., threads=N); a study run lends idle cores instead. The set-up's
   /// two signature predictions (rigid and spheropolygon) run side by side, each on half of
   /// them, and the contact passes of each step are split over them (dem::set_thread_count; only
   /// steps with >= 64 hot pairs per thread, e.g. K3 blocks). The results do not depend on it,

@@ -116,10 +116,6 @@ const std::vector<B>& table() {
           bind<TiltConfig>(F("max_steps_beyond_limit", "", 0, Lo::Closed, 2147483647,
                              "Stop after this many steps (in total) beyond the explicit stability limit"),
                            FRICTAL_MEMBER(max_steps_beyond_limit)),
-          bind<TiltConfig>(F("threads", "", 0, Lo::Closed, 1024,
-                             "Threads for the two predictions and the contact passes (0: all cores); results do "
-                             "not depend on it"),
-                           FRICTAL_MEMBER(threads)),
           bind<TiltConfig>(F("hold_rotation", "", 0, Lo::Closed, 1,
                              "Hold the upper block's rotation relative to the lower block (it still translates)"),
                            FRICTAL_MEMBER(hold_rotation)),
