@@ -51,7 +51,7 @@ int main() {
   Model model = *m;
   model.motion[0].pivot = model.initial_position[0];
   State s1 = make_state(model), s3 = make_state(model);
-  set_thread_count(s3, 3, 1);
+  set_thread_count(s3, 3, 1, false);  // every step that can be split is split (no tuner)
   int maxc = 0;
   for (int i = 0; i < 2000; ++i) {
     if (!step(model, s1).ok() || !step(model, s3).ok()) {
