@@ -126,10 +126,13 @@ inline Result<TiltResult> run_tilt_retrying(const Curve& lower, const Curve& upp
   // Cores that the study's other compute threads leave idle (fewer tasks than threads remain):
   // asked for before the first step and every 4096 steps (TiltConfig::thread_budget), kept until
   // the task ends.
-  unsigned borrowed = 0;
+  struct Borrowed {  // given back however the task ends
+    unsigned n = 0;
+    ~Borrowed() { return_idle_threads(n); }
+  } borrowed;
   c.thread_budget = [&borrowed](unsigned) {
-    if (borrowed < kMaxBorrowedCores) borrowed += borrow_idle_threads(kMaxBorrowedCores - borrowed);
-    return 1 + borrowed;
+    if (borrowed.n < kMaxBorrowedCores) borrowed.n += borrow_idle_threads(kMaxBorrowedCores - borrowed.n);
+    return 1 + borrowed.n;
   };
   auto r = run_tilt(lower, upper, c);
   for (int retry = 0; retry < 2 && !r && r.error().code == ErrorCode::Unstable; ++retry) {
@@ -137,7 +140,6 @@ inline Result<TiltResult> run_tilt_retrying(const Curve& lower, const Curve& upp
     r = run_tilt(lower, upper, c);
   }
   c.thread_budget = nullptr;
-  return_idle_threads(borrowed);
   return r;
 }
 
