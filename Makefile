@@ -9,7 +9,7 @@ JOBS ?= $(shell nproc)
 export CCACHE_BASEDIR := $(CURDIR)
 BUILD ?= build/release
 
-.PHONY: all deps configure build test reproduce package bench sanitize fuzz fuzz-smoke format stubs clean
+.PHONY: all deps configure build test reproduce package bench sanitize tsan-dem fuzz fuzz-smoke format stubs clean
 
 all: build
 
@@ -51,6 +51,10 @@ stubs: build
 sanitize: deps
 	cmake --preset sanitize && cmake --build build/sanitize -j $(JOBS)
 	ctest --test-dir build/sanitize --output-on-failure -j $(JOBS)
+
+# ThreadSanitizer check of the DEM's worker team (engine sources only, ~30 s).
+tsan-dem:
+	scripts/tsan-dem
 
 clean:
 	rm -rf build out

@@ -3,8 +3,11 @@
 //   build/bench/bench/bench_dem --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
+#include "frictal/dem.hpp"
 #include "frictal/generators.hpp"
 #include "frictal/tilt.hpp"
 
@@ -86,5 +89,92 @@ void BM_ListRebuildK3(benchmark::State& state) {
 BENCHMARK(BM_ListRebuildK3)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 }  // namespace
+
+// Steps at a fixed state with 1, 2, ... threads (dem::set_thread_count): K3 blocks (alpha = 20
+// deg, Table I/II, nested at half a wavelength) settled for 1 s under the tilt test's adaptive
+// step and implicit dashpots (untimed), the lower block tilting at 0.05 rad/s; each iteration
+// copies that state and times 2000 steps. Arguments: threads, tune (1: the tuner may keep steps
+// serial; 0: every step that can be split is split). Counters: us per step, hot pairs per
+// step, fraction of steps split. Results are the same for every thread count (tests/dem).
+const frictal::dem::Model& k3_blocks() {
+  static const frictal::dem::Model model = [] {
+    const frictal::Curve c = koch(3, 20);
+    double zmin = 1e9, zmax = -1e9;
+    for (double z : c.z) zmin = std::min(zmin, z), zmax = std::max(zmax, z);
+    frictal::dem::BodyDef lower, upper;
+    lower.x = c.x;
+    lower.y = c.z;
+    lower.x.push_back(c.x.back());
+    lower.y.push_back(zmin - 0.01);
+    lower.x.push_back(c.x.front());
+    lower.y.push_back(zmin - 0.01);
+    lower.type = frictal::dem::BodyType::Kinematic;
+    lower.motion.angular_velocity = -0.05;
+    lower.motion.start_time = 1.0;
+    const double length = c.x.back();
+    for (std::size_t i = c.x.size(); i-- > 0;) {  // the face turned over, half a wavelength on
+      upper.x.push_back(length - c.x[i] + 0.005);
+      upper.y.push_back(-c.z[i] + 2 * zmax + 2e-5);
+    }
+    double top = -1e9;
+    for (double y : upper.y) top = std::max(top, y);
+    upper.x.push_back(upper.x.back());
+    upper.y.push_back(top + 0.01);
+    upper.x.push_back(upper.x.front());
+    upper.y.push_back(top + 0.01);
+    frictal::dem::WorldDef wd;
+    wd.adaptive_time_step = true;
+    wd.implicit_damping = true;
+    wd.time_step = 1e-4;
+    frictal::dem::Model m = *frictal::dem::make_model(wd, {lower, upper});
+    m.motion[0].pivot = m.initial_position[0];
+    return m;
+  }();
+  return model;
+}
+
+void BM_StepsAtFixedState(benchmark::State& state) {
+  const frictal::dem::Model& m = k3_blocks();
+  static const frictal::dem::State settled = [&] {
+    frictal::dem::State st = frictal::dem::make_state(m);
+    while (st.time < 1.05) (void)frictal::dem::step(m, st);
+    return st;
+  }();
+  const unsigned threads = static_cast<unsigned>(state.range(0));
+  const bool tune = state.range(1) != 0;
+  constexpr int kSteps = 2000;
+  double steps = 0, evaluated = 0, split = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    frictal::dem::State st = settled;
+    frictal::dem::set_thread_count(st, threads, 64, tune);
+    (void)frictal::dem::step(m, st);  // starts the team
+    const auto e0 = st.timings.pairs_evaluated, s0 = st.timings.split_steps;
+    state.ResumeTiming();
+    for (int i = 0; i < kSteps; ++i)
+      if (!frictal::dem::step(m, st).ok()) {
+        state.SkipWithError("step failed");
+        return;
+      }
+    steps += kSteps;
+    evaluated += static_cast<double>(st.timings.pairs_evaluated - e0);
+    split += static_cast<double>(st.timings.split_steps - s0);
+  }
+  state.counters["us_per_step"] =
+      benchmark::Counter(steps * 1e-6, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["hot_pairs_per_step"] = evaluated / steps;
+  state.counters["split_fraction"] = split / steps;
+  state.counters["contacts"] = settled.contact_count;
+  state.counters["speed_m_s"] = std::hypot(settled.velocity[1].x, settled.velocity[1].y);
+  state.counters["time_s"] = settled.time;
+}
+BENCHMARK(BM_StepsAtFixedState)
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({2, 1})
+    ->Args({3, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(0.5);
 
 BENCHMARK_MAIN();

@@ -185,6 +185,7 @@ struct StepTimings {
   std::uint64_t pairs_visited = 0;    ///< sum over steps of the list length
   std::uint64_t pairs_evaluated = 0;  ///< sum over steps of the pairs actually evaluated (hot list or full list)
   std::uint64_t hot_refreshes = 0;    ///< full passes over the list that rebuilt the hot list
+  std::uint64_t split_steps = 0;      ///< steps whose contact passes were split over threads (set_thread_count)
 };
 
 namespace detail {
@@ -249,6 +250,21 @@ State make_state(const Model& model);
 /// Advances one time step. On a stability-guard failure the state is left at the failing step
 /// and the error gives the time, the cause and a suggested time step.
 Status step(const Model& model, State& state);
+/// Splits the contact passes of each step() of `state` over `threads` threads (>= 1; 1, the
+/// default: none). A team of threads - 1 workers, owned by the state (not copied with it), starts
+/// at the first step that uses it and is joined with the state. A step is split only when its hot
+/// list holds at least `min_hot_pairs_per_thread` (default 64: a share must outweigh the team's
+/// start and join, ~1 us) pairs per thread used and no full pass over the list is due. With
+/// `tune` (default) the steps that can be split also time their contact passes now and then,
+/// serial and split (64 steps each, twice, every 16384 such steps, backing off to every ~10^6
+/// while it does not pay), and split only while that is clearly (5 %, both times) faster: on a
+/// loaded machine, where a split step waits for a descheduled worker, they stay serial. Results
+/// do not depend on `threads`, bit for bit: each thread takes a fixed contiguous share of the hot
+/// list (its exact tests and forces), and the sums run on the calling thread in list order
+/// (docs/dem.md sec. 7).
+void set_thread_count(State& state, unsigned threads, unsigned min_hot_pairs_per_thread = 64, bool tune = true);
+/// The thread count of set_thread_count (1 if never set; a copied State keeps it).
+unsigned thread_count(const State& state);
 /// Advances `steps` steps (stops at the first error).
 Status advance(const Model& model, State& state, std::uint64_t steps);
 

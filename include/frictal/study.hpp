@@ -487,6 +487,16 @@ struct PlannedTask {
 Result<std::vector<PlannedTask>> schedule(const Study& study, Store& store, const TaskRegistry& registry,
                                           const RunOptions& options);
 
+/// Cores a run on threads (run_threads) leaves idle, lent to its tasks: once fewer tasks than
+/// compute threads remain, a task may borrow the cores of the compute threads that wait for work
+/// (the tilt kinds split the contact passes of a long tilt over them). Called from TaskKind::run:
+/// borrows up to `want` idle cores and returns how many it got (0 outside run_threads, under MPI,
+/// or when none is idle); the task gives them back with return_idle_threads before it returns.
+/// Results must not depend on it (it is not a parameter: not in the seed, the store or the
+/// content address).
+unsigned borrow_idle_threads(unsigned want);
+void return_idle_threads(unsigned n);
+
 /// Runs one task (timed, exceptions turned into failures). Used by every runner.
 TaskRecord execute(const Task& task, const TaskRegistry& registry, const std::string& worker);
 

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <numbers>
 #include <string>
@@ -86,6 +87,19 @@ struct TiltConfig {
   bool predict = true;            ///< compute the signature prediction (needs envelopes)
   double series_interval = 1e-3;  ///< time between rows of the series; <= 0: none (unit: s)
   double frame_interval = 0;      ///< time between frames; <= 0: none (unit: s)
+  /// Threads of the run (unitless; 0: every hardware thread; 1, the default: one). Not a
+  /// settings-table option (like SignatureOptions::threads: it changes no result): `frictal tilt
+  /// --threads`, Python tilt(..., threads=N); a study run lends idle cores instead. The set-up's
+  /// two signature predictions (rigid and spheropolygon) run side by side, each on half of
+  /// them, and the contact passes of each step are split over them (dem::set_thread_count; only
+  /// steps with >= 64 hot pairs per thread, e.g. K3 blocks). The results do not depend on it,
+  /// bit for bit (docs/dem.md sec. 7).
+  int threads = 1;
+  /// Library only (not a settings-table option; the study runner's tilt kinds set it): if set,
+  /// called before the first step and then every 4096 steps with the thread count in use; the
+  /// contact passes then use the count it returns (at least 1), e.g. cores that other tasks of a
+  /// study have left idle. Results do not depend on it.
+  std::function<unsigned(unsigned)> thread_budget;
   /// Hold the upper block's rotation relative to the lower block (dem::BodyDef::rotation_follows):
   /// it translates freely but does not rotate against the lower block, as the signature assumes.
   bool hold_rotation = false;

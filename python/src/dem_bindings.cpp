@@ -39,11 +39,23 @@ Curve to_curve(const py::object& o, const char* name) {
 void frictal_bind_dem(py::module_& m) {
   m.def(
       "tilt",
-      [](const py::object& lower, const py::object& upper, const py::kwargs& kw) {
+      [](const py::object& lower, const py::object& upper, const py::kwargs& all) {
+        // `threads` is not a setting (results do not depend on it): taken out before the table.
+        py::kwargs kw;
+        int threads = 1;
+        for (const auto& item : all) {
+          if (py::str(item.first).cast<std::string>() == "threads") {
+            threads = item.second.cast<int>();
+            if (threads < 0) throw py::value_error("tilt: threads: expected >= 0 (0 = all cores)");
+          } else {
+            kw[item.first] = item.second;
+          }
+        }
         const ValueSet given = py_detail::keyword_values(tilt_settings(), kw, "tilt");
         // The period (default 0.01 m) also sets the run-away distance unless that is given.
         const double period = given.count("period") ? as_real(given.at("period")) : default_tilt_config().period;
-        const TiltConfig c = py_detail::ok(make_tilt_config(given, tilt_config_for_surface(period, period)));
+        TiltConfig c = py_detail::ok(make_tilt_config(given, tilt_config_for_surface(period, period)));
+        c.threads = threads;
         const Curve lo = to_curve(lower, "lower");
         const Curve up = upper.is_none() ? lo : to_curve(upper, "upper");
         TiltResult r = py_detail::ok(py_detail::nogil([&] { return run_tilt(lo, up, c); }));
@@ -101,8 +113,9 @@ void frictal_bind_dem(py::module_& m) {
        "smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time "
        "(s), steps, upper_mass (kg), "
        "steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle "
-       "rad, displacement m, velocity m/s, contacts). Settings (SI units; `period` also sets the run-away distance "
-       "unless runaway_distance is given):\n" +
+       "rad, displacement m, velocity m/s, contacts). threads (default 1; 0 = all cores): the two predictions side by "
+       "side and the contact passes split where it pays; results do not depend on it. Settings (SI units; `period` "
+       "also sets the run-away distance unless runaway_distance is given):\n" +
        py_detail::keyword_doc(tilt_settings()))
           .c_str());
   m.def(

@@ -53,36 +53,21 @@ void refresh_hot_list(const Model& m, State& st, Workspace& ws) {
 
 }  // namespace
 
-void find_touching(const Model& m, State& st, Workspace& ws) {
-  const Pose* const ps = ws.pose.data();
-  // Hot list (docs/dem.md sec. 2): a full pass over the list records which pairs are within
-  // r1 + r2 + hot_skin; until the bodies have moved by more than hot_skin / 2 since that pass, the
-  // others are at least hot_skin / 2 apart and are skipped. A skipped pair is apart, and its
-  // spring was reset in the full pass, so the forces, their summation order and every per-pair
-  // state are exactly those of a pass over the whole list.
-  const double hot_skin = m.def.hot_skin;
-  bool full = !ws.hot.valid;
-  if (!full)
-    full = 2.0 * relative_motion_bound(m, ws.hot.position, ws.hot.angle, ws.hot.rotation, st.position, st.angle,
-                                       ws.rotation) >
-           hot_skin;
-  const double* lx = m.local_x.data();
-  const double* ly = m.local_y.data();
-  // Local copies of everything the loop reads, so that the stores cannot alias them.
-  const double* const __restrict radius = m.radius.data();
-  const double* const __restrict inv_len2 = m.edge_inv_length2.data();
-  NeighborPair* const pairs = st.pairs.data();
-  const PairSlots* const slots = ws.slots.data();
-  HotList& hot = ws.hot;
-  const std::size_t count = full ? st.pairs.size() : hot.pair.size();
-  // Grown, never shrunk; filled field by field (no temporary to copy).
-  if (ws.touching.size() < count) ws.touching.resize(count);
-  ContactScratch* const touching = ws.touching.data();
-  std::size_t n_touching = 0;
-  // The exact test of one pair from the world positions of its vertex and edge: every decision
-  // (touching, spring reset) is taken here, in the world frame, as in a plain loop over the list.
-  auto classify = [&](std::uint32_t index, double vx, double vy, double e0x, double e0y, double e1x,
-                      double e1y) -> double {
+namespace {
+
+// The exact test of one pair from the world positions of its vertex and edge: every decision
+// (touching, spring reset) is taken here, in the world frame, as in a plain loop over the list.
+// The pair's geometry is written to touching[n] for every pair and kept (n advanced) only if it
+// touches (n <= pairs seen, so the slot exists): no branch on touch / apart, close to a coin toss
+// in the hot list. Returns the squared distance.
+struct Classifier {
+  const double* __restrict radius;
+  const double* __restrict inv_len2;
+  NeighborPair* pairs;
+  ContactScratch* touching;
+  std::size_t n;  // touching pairs written so far (absolute index into touching)
+
+  inline double operator()(std::uint32_t index, double vx, double vy, double e0x, double e0y, double e1x, double e1y) {
     NeighborPair& p = pairs[index];
     const double dx = e1x - e0x, dy = e1y - e0y;
     double t = ((vx - e0x) * dx + (vy - e0y) * dy) * inv_len2[p.edge0];
@@ -90,20 +75,126 @@ void find_touching(const Model& m, State& st, Workspace& ws) {
     const double sx = vx - (e0x + t * dx), sy = vy - (e0y + t * dy);
     const double dist2 = sx * sx + sy * sy;
     const double rsum = radius[p.vbody] + radius[p.ebody];
-    // Written for every pair and kept only if it touches (n_touching <= pairs seen, so the slot
-    // exists): no branch on touch / apart, close to a coin toss in the hot list.
-    ContactScratch& c = touching[n_touching];
+    ContactScratch& c = touching[n];
     c.pair = index;
     c.sx = sx, c.sy = sy, c.dist2 = dist2, c.dx = dx, c.dy = dy, c.vx = vx, c.vy = vy;
     const bool touch = dist2 < rsum * rsum;
-    n_touching += touch ? 1 : 0;
+    n += touch ? 1 : 0;
     if (!touch && p.overlap > -1) {  // write only on the transition (most pairs stay apart)
       p.elongation = 0;
       p.overlap = -1;
     }
     return dist2;
-  };
+  }
+};
+
+}  // namespace
+
+bool hot_list_stale(const Model& m, const State& st, const Workspace& ws) {
+  // Hot list (docs/dem.md sec. 2): a full pass over the list records which pairs are within
+  // r1 + r2 + hot_skin; until the bodies have moved by more than hot_skin / 2 since that pass, the
+  // others are at least hot_skin / 2 apart and are skipped. A skipped pair is apart, and its
+  // spring was reset in the full pass, so the forces, their summation order and every per-pair
+  // state are exactly those of a pass over the whole list.
+  if (!ws.hot.valid) return true;
+  return 2.0 * relative_motion_bound(m, ws.hot.position, ws.hot.angle, ws.hot.rotation, st.position, st.angle,
+                                     ws.rotation) >
+         m.def.hot_skin;
+}
+
+std::size_t find_touching_hot(const Model& m, State& st, Workspace& ws, std::size_t k0, std::size_t k1) {
+  const Pose* const ps = ws.pose.data();
+  HotList& hot = ws.hot;
+  Classifier classify{m.radius.data(), m.edge_inv_length2.data(), st.pairs.data(), ws.touching.data(), k0};
+  // Filter in the edge body's frame, where the edge is constant: the vertex is moved by the
+  // relative pose of the run's two bodies, and no world positions are needed (a flat loop over
+  // the hot arrays). It keeps every pair within (r1 + r2)(1 + 1e-3); this margin (1e-7 m for
+  // r1 = r2 = 5e-5 m) dwarfs the rounding difference between the two frames (a few 1e-16 of the
+  // coordinates, i.e. ~1e-17 m for 0.1 m blocks; at coordinates of 1e5 m it is still 1000
+  // times larger), so every pair that the exact test finds touching is kept, every pair
+  // dropped is one that the exact test finds apart, and the decisions stay those of the exact
+  // test.
+  unsigned char* const __restrict keep = hot.keep.data();
+  // The runs of equal (vertex body, edge body) that meet [k0, k1).
+  const std::size_t n_runs = hot.run_begin.size() - 1;
+  std::size_t r_first = static_cast<std::size_t>(
+      std::upper_bound(hot.run_begin.begin(), hot.run_begin.begin() + static_cast<std::ptrdiff_t>(n_runs),
+                       static_cast<std::uint32_t>(k0)) -
+      hot.run_begin.begin());
+  r_first = r_first > 0 ? r_first - 1 : 0;
+  for (std::size_t r = r_first; r < n_runs && hot.run_begin[r] < k1; ++r) {
+    const std::uint32_t a = hot.run_vbody[r], b = hot.run_ebody[r];
+    const Pose& A = ps[a];
+    const Pose& B = ps[b];
+    const double cr = A.c * B.c + A.s * B.s, sr = A.s * B.c - A.c * B.s;  // rotation a -> b
+    const double ox = A.px - B.px, oy = A.py - B.py;
+    const double qx = B.c * ox + B.s * oy, qy = -B.s * ox + B.c * oy;  // centroid of a in b
+    const double* const __restrict hvx = hot.vx.data();
+    const double* const __restrict hvy = hot.vy.data();
+    const double* const __restrict he0x = hot.e0x.data();
+    const double* const __restrict he0y = hot.e0y.data();
+    const double* const __restrict hdx = hot.dx.data();
+    const double* const __restrict hdy = hot.dy.data();
+    const double* const __restrict hil = hot.inv_len2.data();
+    const double* const __restrict hcut = hot.cut2.data();
+    const std::size_t kb = std::max<std::size_t>(hot.run_begin[r], k0);
+    const std::size_t ke = std::min<std::size_t>(hot.run_begin[r + 1], k1);
+    // Flat arrays, no gathers. (GCC 12 does not vectorise it: the clamp's comparisons count as
+    // control flow under the default -ftrapping-math.)
+    for (std::size_t k = kb; k < ke; ++k) {
+      const double px = qx + (cr * hvx[k] - sr * hvy[k]) - he0x[k];
+      const double py = qy + (sr * hvx[k] + cr * hvy[k]) - he0y[k];
+      const double t = std::clamp((px * hdx[k] + py * hdy[k]) * hil[k], 0.0, 1.0);
+      const double sx = px - t * hdx[k], sy = py - t * hdy[k];
+      keep[k] = sx * sx + sy * sy < hcut[k];
+    }
+  }
+  // World positions of the kept pairs' vertex and edge ends: the same arithmetic (pose of
+  // the owning body, local coordinates) as the full pass, hence the same values.
+  NeighborPair* const pairs = st.pairs.data();
+  for (std::size_t r = r_first; r < n_runs && hot.run_begin[r] < k1; ++r) {
+    const Pose& A = ps[hot.run_vbody[r]];
+    const Pose& B = ps[hot.run_ebody[r]];
+    const std::size_t kb = std::max<std::size_t>(hot.run_begin[r], k0);
+    const std::size_t ke = std::min<std::size_t>(hot.run_begin[r + 1], k1);
+    for (std::size_t k = kb; k < ke; ++k) {
+      const std::uint32_t index = hot.pair[k];
+      if (!keep[k]) {  // apart
+        NeighborPair& p = pairs[index];
+        if (p.overlap > -1) {
+          p.elongation = 0;
+          p.overlap = -1;
+        }
+        continue;
+      }
+      const double vx = A.px + (A.c * hot.vx[k] - A.s * hot.vy[k]);
+      const double vy = A.py + (A.s * hot.vx[k] + A.c * hot.vy[k]);
+      const double e0x = B.px + (B.c * hot.e0x[k] - B.s * hot.e0y[k]);
+      const double e0y = B.py + (B.s * hot.e0x[k] + B.c * hot.e0y[k]);
+      const double e1x = B.px + (B.c * hot.e1x[k] - B.s * hot.e1y[k]);
+      const double e1y = B.py + (B.s * hot.e1x[k] + B.c * hot.e1y[k]);
+      classify(index, vx, vy, e0x, e0y, e1x, e1y);
+    }
+  }
+  return classify.n - k0;
+}
+
+void find_touching(const Model& m, State& st, Workspace& ws) {
+  const bool full = hot_list_stale(m, st, ws);
+  HotList& hot = ws.hot;
+  const std::size_t count = full ? st.pairs.size() : hot.pair.size();
+  // Grown, never shrunk; filled field by field (no temporary to copy).
+  if (ws.touching.size() < count) ws.touching.resize(count);
+  std::size_t n_touching = 0;
   if (full) {
+    const Pose* const ps = ws.pose.data();
+    const double* lx = m.local_x.data();
+    const double* ly = m.local_y.data();
+    const double* const __restrict radius = m.radius.data();
+    const NeighborPair* const pairs = st.pairs.data();
+    const PairSlots* const slots = ws.slots.data();
+    const double hot_skin = m.def.hot_skin;
+    Classifier classify{radius, m.edge_inv_length2.data(), st.pairs.data(), ws.touching.data(), 0};
     // World positions of the vertices the list refers to, one transform each.
     double* wx = ws.active_x.data();
     double* wy = ws.active_y.data();
@@ -123,70 +214,14 @@ void find_touching(const Model& m, State& st, Workspace& ws) {
       if (dist2 < near * near) hot.pair.push_back(static_cast<std::uint32_t>(i));
     }
     refresh_hot_list(m, st, ws);
-    st.timings.pairs_evaluated += count;
+    n_touching = classify.n;
   } else {
-    // Filter in the edge body's frame, where the edge is constant: the vertex is moved by the
-    // relative pose of the run's two bodies, and no world positions are needed (a flat loop over
-    // the hot arrays). It keeps every pair within (r1 + r2)(1 + 1e-3); this margin (1e-7 m for
-    // r1 = r2 = 5e-5 m) dwarfs the rounding difference between the two frames (a few 1e-16 of the
-    // coordinates, i.e. ~1e-17 m for 0.1 m blocks; at coordinates of 1e5 m it is still 1000
-    // times larger), so every pair that the exact test finds touching is kept, every pair
-    // dropped is one that the exact test finds apart, and the decisions stay those of the exact
-    // test.
-    unsigned char* const __restrict keep = hot.keep.data();
-    for (std::size_t r = 0; r + 1 < hot.run_begin.size(); ++r) {
-      const std::uint32_t a = hot.run_vbody[r], b = hot.run_ebody[r];
-      const Pose& A = ps[a];
-      const Pose& B = ps[b];
-      const double cr = A.c * B.c + A.s * B.s, sr = A.s * B.c - A.c * B.s;  // rotation a -> b
-      const double ox = A.px - B.px, oy = A.py - B.py;
-      const double qx = B.c * ox + B.s * oy, qy = -B.s * ox + B.c * oy;  // centroid of a in b
-      const double* const __restrict hvx = hot.vx.data();
-      const double* const __restrict hvy = hot.vy.data();
-      const double* const __restrict he0x = hot.e0x.data();
-      const double* const __restrict he0y = hot.e0y.data();
-      const double* const __restrict hdx = hot.dx.data();
-      const double* const __restrict hdy = hot.dy.data();
-      const double* const __restrict hil = hot.inv_len2.data();
-      const double* const __restrict hcut = hot.cut2.data();
-      const std::size_t k0 = hot.run_begin[r], k1 = hot.run_begin[r + 1];
-      // Flat arrays, no gathers. (GCC 12 does not vectorise it: the clamp's comparisons count as
-      // control flow under the default -ftrapping-math.)
-      for (std::size_t k = k0; k < k1; ++k) {
-        const double px = qx + (cr * hvx[k] - sr * hvy[k]) - he0x[k];
-        const double py = qy + (sr * hvx[k] + cr * hvy[k]) - he0y[k];
-        const double t = std::clamp((px * hdx[k] + py * hdy[k]) * hil[k], 0.0, 1.0);
-        const double sx = px - t * hdx[k], sy = py - t * hdy[k];
-        keep[k] = sx * sx + sy * sy < hcut[k];
-      }
-    }
-    // World positions of the kept pairs' vertex and edge ends: the same arithmetic (pose of
-    // the owning body, local coordinates) as the full pass, hence the same values.
-    for (std::size_t r = 0; r + 1 < hot.run_begin.size(); ++r) {
-      const Pose& A = ps[hot.run_vbody[r]];
-      const Pose& B = ps[hot.run_ebody[r]];
-      for (std::size_t k = hot.run_begin[r]; k < hot.run_begin[r + 1]; ++k) {
-        const std::uint32_t index = hot.pair[k];
-        if (!keep[k]) {  // apart
-          NeighborPair& p = pairs[index];
-          if (p.overlap > -1) {
-            p.elongation = 0;
-            p.overlap = -1;
-          }
-          continue;
-        }
-        const double vx = A.px + (A.c * hot.vx[k] - A.s * hot.vy[k]);
-        const double vy = A.py + (A.s * hot.vx[k] + A.c * hot.vy[k]);
-        const double e0x = B.px + (B.c * hot.e0x[k] - B.s * hot.e0y[k]);
-        const double e0y = B.py + (B.s * hot.e0x[k] + B.c * hot.e0y[k]);
-        const double e1x = B.px + (B.c * hot.e1x[k] - B.s * hot.e1y[k]);
-        const double e1y = B.py + (B.s * hot.e1x[k] + B.c * hot.e1y[k]);
-        classify(index, vx, vy, e0x, e0y, e1x, e1y);
-      }
-    }
-    st.timings.pairs_evaluated += count;
+    n_touching = find_touching_hot(m, st, ws, 0, count);
   }
+  st.timings.pairs_evaluated += count;
   ws.touching_count = n_touching;
+  ws.segments.resize(1);
+  ws.segments[0] = {0, n_touching};
 }
 
 }  // namespace frictal::dem::detail

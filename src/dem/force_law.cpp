@@ -5,7 +5,9 @@
 // Two passes in list order (docs/dem.md sec. 7): the forces of the touching pairs, each
 // independent of the others so that the long sqrt / division chains of successive contacts can
 // overlap; then the sums per body in the same order as a single loop, so the results are
-// bitwise those of one loop over the pairs.
+// bitwise those of one loop over the pairs. With threads (dem::set_thread_count) the force pass
+// runs on contiguous shares of the touching pairs at once, and the sums stay one serial loop over
+// the shares in order (the elastic energy too: each pair's term is stored, then summed).
 #include "force_law.hpp"
 
 #include <algorithm>
@@ -22,25 +24,19 @@ double cross(double ax, double ay, double bx, double by) { return ax * by - ay *
 
 }  // namespace
 
-double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_spring) {
+void pair_forces(const Model& m, State& st, Workspace& ws, double dt_spring, std::size_t k0, std::size_t k1,
+                 double& max_overlap, double& max_ratio) {
   const ContactParams& cp = m.def.contact;
   const Pose* const ps = ws.pose.data();
-  const double* const inv_mass_of = ws.inv_mass.data();
-  int* const body_contacts = ws.body_contacts.data();
-  ModeSums* const jac = ws.modes.data();
-  double max_ov = 0, max_ratio = 0, energy = 0;
+  double max_ov = max_overlap, max_r = max_ratio;
   // Local copies of everything the loop reads, so that the force stores cannot alias them.
   const double* const __restrict radius = m.radius.data();
   const double kn = cp.normal_stiffness, kt = cp.tangential_stiffness, mu = cp.atomic_friction;
   const double gn = cp.normal_damping, gt = cp.tangential_damping;
   const double guard = m.def.max_overlap_ratio;
-  // The tangential springs enter the stability limit of the implicit-damping scheme only; they
-  // act only with mu_a > 0 (else they are cut back to zero).
-  const bool tangential_modes = m.def.implicit_damping && kt > 0 && mu > 0;
   NeighborPair* const pairs = st.pairs.data();
   ContactScratch* const touching = ws.touching.data();
-  const std::size_t n_touching = ws.touching_count;
-  for (std::size_t k = 0; k < n_touching; ++k) {
+  for (std::size_t k = k0; k < k1; ++k) {
     ContactScratch& c = touching[k];
     NeighborPair& p = pairs[c.pair];
     const std::uint32_t a = p.vbody, b = p.ebody;
@@ -59,7 +55,7 @@ double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_sprin
     }
     const double overlap = rsum - dist;
     max_ov = std::max(max_ov, overlap);
-    if (overlap > guard * rsum) max_ratio = std::max(max_ratio, overlap / rsum);  // rare
+    if (overlap > guard * rsum) max_r = std::max(max_r, overlap / rsum);  // rare
     // Contact point: middle of the overlap along the normal.
     const double cxp = vx - nx * (radius[a] - 0.5 * overlap);
     const double cyp = vy - ny * (radius[a] - 0.5 * overlap);
@@ -81,7 +77,7 @@ double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_sprin
     }
     p.elongation = xi;
     p.overlap = overlap;
-    energy += 0.5 * fn_el * overlap + 0.5 * kt * xi * xi;
+    c.energy = 0.5 * fn_el * overlap + 0.5 * kt * xi * xi;  // summed in list order below
     const double fn = fn_el - mred * gn * vn;
     const double ft = ft_el - mred * gt * vt;
     const double fx = fn * nx + ft * tx, fy = fn * ny + ft * ty;
@@ -95,6 +91,22 @@ double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_sprin
     c.jtt_b = cross(rbx, rby, tx, ty);
     c.mred = mred;
   }
+  max_overlap = max_ov;
+  max_ratio = max_r;
+}
+
+double sum_contacts(const Model& m, State& st, Workspace& ws, double max_ov, double max_ratio) {
+  const ContactParams& cp = m.def.contact;
+  const double* const inv_mass_of = ws.inv_mass.data();
+  int* const body_contacts = ws.body_contacts.data();
+  ModeSums* const jac = ws.modes.data();
+  const double kt = cp.tangential_stiffness, mu = cp.atomic_friction;
+  // The tangential springs enter the stability limit of the implicit-damping scheme only; they
+  // act only with mu_a > 0 (else they are cut back to zero).
+  const bool tangential_modes = m.def.implicit_damping && kt > 0 && mu > 0;
+  const NeighborPair* const pairs = st.pairs.data();
+  const ContactScratch* const touching = ws.touching.data();
+  double energy = 0;
   // Sums per body. The force and torque sums and mode matrices of the two bodies of the current
   // run of pairs with the same (vertex body, edge body) are kept in locals rather than summed
   // into memory contact by contact: same additions in the same order.
@@ -114,30 +126,35 @@ double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_sprin
     st.torque[cur_b] = sb.torque;
     jac[cur_b] = sb.modes;
   };
-  for (std::size_t k = 0; k < n_touching; ++k) {
-    const ContactScratch& c = touching[k];
-    const NeighborPair& p = pairs[c.pair];
-    const std::uint32_t a = p.vbody, b = p.ebody;
-    ++body_contacts[a];
-    ++body_contacts[b];
-    if (!have_run || a != cur_a || b != cur_b) {
-      flush();
-      cur_a = a, cur_b = b, have_run = true;
-      sa = {st.force[a].x, st.force[a].y, st.torque[a], jac[a]};
-      sb = {st.force[b].x, st.force[b].y, st.torque[b], jac[b]};
-    }
-    sa.fx += c.fx;
-    sa.fy += c.fy;
-    sa.torque += c.torque_a;
-    sb.fx -= c.fx;
-    sb.fy -= c.fy;
-    sb.torque -= c.torque_b;
-    // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
-    if (inv_mass_of[a] > 0) add_outer(sa.modes, c.nx, c.ny, c.jt_a, c.mred);
-    if (inv_mass_of[b] > 0) add_outer(sb.modes, c.nx, c.ny, c.jt_b, c.mred);
-    if (tangential_modes) {  // J_t = (t_x, t_y, r x t), t = (-n_y, n_x)
-      if (inv_mass_of[a] > 0) add_outer_tangential(sa.modes, -c.ny, c.nx, c.jtt_a);
-      if (inv_mass_of[b] > 0) add_outer_tangential(sb.modes, -c.ny, c.nx, c.jtt_b);
+  std::size_t n_touching = 0;
+  for (const Segment& seg : ws.segments) {
+    n_touching += seg.count;
+    for (std::size_t k = seg.begin; k < seg.begin + seg.count; ++k) {
+      const ContactScratch& c = touching[k];
+      energy += c.energy;
+      const NeighborPair& p = pairs[c.pair];
+      const std::uint32_t a = p.vbody, b = p.ebody;
+      ++body_contacts[a];
+      ++body_contacts[b];
+      if (!have_run || a != cur_a || b != cur_b) {
+        flush();
+        cur_a = a, cur_b = b, have_run = true;
+        sa = {st.force[a].x, st.force[a].y, st.torque[a], jac[a]};
+        sb = {st.force[b].x, st.force[b].y, st.torque[b], jac[b]};
+      }
+      sa.fx += c.fx;
+      sa.fy += c.fy;
+      sa.torque += c.torque_a;
+      sb.fx -= c.fx;
+      sb.fy -= c.fy;
+      sb.torque -= c.torque_b;
+      // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
+      if (inv_mass_of[a] > 0) add_outer(sa.modes, c.nx, c.ny, c.jt_a, c.mred);
+      if (inv_mass_of[b] > 0) add_outer(sb.modes, c.nx, c.ny, c.jt_b, c.mred);
+      if (tangential_modes) {  // J_t = (t_x, t_y, r x t), t = (-n_y, n_x)
+        if (inv_mass_of[a] > 0) add_outer_tangential(sa.modes, -c.ny, c.nx, c.jtt_a);
+        if (inv_mass_of[b] > 0) add_outer_tangential(sb.modes, -c.ny, c.nx, c.jtt_b);
+      }
     }
   }
   flush();
@@ -145,6 +162,12 @@ double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_sprin
   st.max_overlap = max_ov;
   st.elastic_energy = energy;
   return max_ratio;
+}
+
+double apply_force_law(const Model& m, State& st, Workspace& ws, double dt_spring) {
+  double max_ov = 0, max_ratio = 0;
+  pair_forces(m, st, ws, dt_spring, 0, ws.touching_count, max_ov, max_ratio);
+  return sum_contacts(m, st, ws, max_ov, max_ratio);
 }
 
 }  // namespace frictal::dem::detail

@@ -4,6 +4,7 @@
 // stability guards.
 #include "integrator.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -50,6 +51,76 @@ void update_rotation(const State& st, Workspace& ws) {
   for (std::size_t b = 0; b < st.angle.size(); ++b) ws.rotation[b] = {std::cos(st.angle[b]), std::sin(st.angle[b])};
 }
 
+namespace {
+
+// One team member's share of a parallel step: the hot pairs [H j / n, H (j + 1) / n), their
+// exact test (touching pairs to their own segment of ws.touching) and their forces.
+struct StepShare {
+  const Model* m;
+  State* st;
+  Workspace* ws;
+  double dt_spring;
+  std::size_t hot_pairs;
+  unsigned members;
+};
+
+void run_share(void* context, unsigned j) {
+  StepShare& s = *static_cast<StepShare*>(context);
+  const std::size_t k0 = s.hot_pairs * j / s.members, k1 = s.hot_pairs * (j + 1) / s.members;
+  const std::size_t n = find_touching_hot(*s.m, *s.st, *s.ws, k0, k1);
+  s.ws->segments[j] = {k0, n};
+  double max_ov = 0, max_ratio = 0;
+  pair_forces(*s.m, *s.st, *s.ws, s.dt_spring, k0, k0 + n, max_ov, max_ratio);
+  s.ws->part_max_overlap[j] = max_ov;
+  s.ws->part_max_ratio[j] = max_ratio;
+}
+
+// Whether this step's contact passes can be split: threads, enough hot pairs for two shares of
+// ws.min_hot_pairs_per_thread, and no full pass over the list due.
+bool can_split(const Model& m, const State& st, const Workspace& ws) {
+  const std::size_t per_member = std::max<std::size_t>(1, ws.min_hot_pairs_per_thread);
+  return ws.threads > 1 && ws.hot.valid && ws.hot.pair.size() >= 2 * per_member && !hot_list_stale(m, st, ws);
+}
+
+// The contact passes split over the team (docs/dem.md sec. 7, threads): each member classifies
+// and computes the forces of a fixed contiguous share of the hot list; the sums then walk the
+// shares in order on this thread. Every decision and force is that of the serial passes, and
+// every floating-point sum is taken in the same order (the maxima do not depend on the order),
+// so the result is bitwise the serial one. Needs can_split(). Returns the largest overlap ratio
+// (apply_force_law), or a negative value when no team can be started.
+double split_contact_passes(const Model& m, State& st, Workspace& ws, double dt_spring) {
+  const std::size_t per_member = std::max<std::size_t>(1, ws.min_hot_pairs_per_thread);
+  const std::size_t hot_pairs = ws.hot.pair.size();
+  const unsigned n = static_cast<unsigned>(std::min<std::size_t>(ws.threads, hot_pairs / per_member));
+  if (!ws.team.team || ws.team.team->members() < n) {
+    ws.team.team.reset();
+    ws.team.team = util::Team::make(ws.threads);
+    if (!ws.team.team) {  // no threads to be had: serial from now on
+      ws.threads = 1;
+      return -1;
+    }
+  }
+  if (ws.touching.size() < hot_pairs) ws.touching.resize(hot_pairs);
+  ws.segments.resize(n);
+  ws.part_max_overlap.resize(n);
+  ws.part_max_ratio.resize(n);
+  StepShare share{&m, &st, &ws, dt_spring, hot_pairs, n};
+  ws.team.team->run(n, &run_share, &share);
+  double max_ov = 0, max_ratio = 0;
+  std::size_t touching = 0;
+  for (unsigned j = 0; j < n; ++j) {
+    max_ov = std::max(max_ov, ws.part_max_overlap[j]);
+    max_ratio = std::max(max_ratio, ws.part_max_ratio[j]);
+    touching += ws.segments[j].count;
+  }
+  ws.touching_count = touching;
+  st.timings.pairs_evaluated += hot_pairs;
+  ++st.timings.split_steps;
+  return sum_contacts(m, st, ws, max_ov, max_ratio);
+}
+
+}  // namespace
+
 double compute_forces(const Model& m, State& st, Workspace& ws, double dt_spring) {
   const std::size_t nb = m.body_count();
   // Per-body pose cache, inverse masses (kinematic bodies: 0), counters and mode sums.
@@ -65,8 +136,50 @@ double compute_forces(const Model& m, State& st, Workspace& ws, double dt_spring
     st.force[b] = {0, 0};
     st.torque[b] = 0;
   }
-  find_touching(m, st, ws);
-  const double max_ratio = apply_force_law(m, st, ws, dt_spring);
+  // Split over the team when the step can be split and the tuner finds that it pays
+  // (Workspace::Tuner: only the steps that can be split are timed and counted).
+  Workspace::Tuner& tu = ws.tuner;
+  const bool splittable = ws.threads > 1 && can_split(m, st, ws);
+  const bool tuning = splittable && tu.enabled;
+  const bool split = splittable && (!tuning || (tu.phase == 4 ? tu.split : tu.phase % 2 == 1));
+  std::chrono::steady_clock::time_point t0;
+  if (tuning && tu.phase < 4) t0 = std::chrono::steady_clock::now();
+  double max_ratio = split ? split_contact_passes(m, st, ws, dt_spring) : -1.0;
+  if (max_ratio < 0) {
+    find_touching(m, st, ws);
+    max_ratio = apply_force_law(m, st, ws, dt_spring);
+  }
+  if (tuning) {
+    using Tuner = Workspace::Tuner;
+    auto run_serial = [&tu](bool had_split) {  // verdict: serial; back off while it does not pay
+      tu.split = false;
+      tu.run_steps = had_split ? Tuner::kRunSteps : std::min(2 * tu.run_steps, Tuner::kMaxRunSteps);
+      tu.phase = 4;
+      tu.left = tu.run_steps;
+    };
+    if (tu.phase < 4)
+      tu.seconds[tu.phase] += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (tu.phase % 2 == 1 && tu.seconds[tu.phase] > 2 * tu.seconds[tu.phase - 1]) {
+      // A split window already twice as slow as the serial one (waiting for descheduled workers
+      // on a loaded machine): stop the trial now rather than pay for the rest of it.
+      run_serial(tu.split);
+    } else if (--tu.left == 0) {
+      if (tu.phase == 3) {  // split only for a clear gain, twice
+        if (tu.seconds[1] < 0.95 * tu.seconds[0] && tu.seconds[3] < 0.95 * tu.seconds[2]) {
+          tu.split = true;
+          tu.run_steps = Tuner::kRunSteps;
+          tu.phase = 4;
+          tu.left = tu.run_steps;
+        } else {
+          run_serial(tu.split);
+        }
+      } else {
+        tu.phase = (tu.phase + 1) % 5;
+        tu.left = tu.phase == 4 ? tu.run_steps : Tuner::kTrialSteps;
+      }
+      if (tu.phase == 0) tu.seconds[0] = tu.seconds[1] = tu.seconds[2] = tu.seconds[3] = 0;
+    }
+  }
   for (std::size_t b = 0; b < nb; ++b) st.body_contacts[b] = ws.body_contacts[b];
   update_step_limits(m, st, ws);
   st.timings.pairs_visited += st.pairs.size();
@@ -250,6 +363,16 @@ Status step(const Model& m, State& st) {
   if (timed) st.timings.integration += seconds_since(t0);
   return status;
 }
+
+void set_thread_count(State& st, unsigned threads, unsigned min_hot_pairs_per_thread, bool tune) {
+  detail::Workspace& ws = st.workspace.get();
+  ws.threads = threads < 1 ? 1 : threads;
+  ws.min_hot_pairs_per_thread = min_hot_pairs_per_thread < 1 ? 1 : min_hot_pairs_per_thread;
+  ws.tuner.enabled = tune;
+  if (ws.team.team && ws.team.team->members() > ws.threads) ws.team.team.reset();
+}
+
+unsigned thread_count(const State& st) { return st.workspace.get().threads; }
 
 Status advance(const Model& m, State& st, std::uint64_t steps) {
   for (std::uint64_t i = 0; i < steps; ++i) {

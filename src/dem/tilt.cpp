@@ -6,6 +6,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -14,6 +15,7 @@
 
 #include "frictal/signature.hpp"
 #include "frictal/tilt.hpp"
+#include "util/parallel.hpp"
 
 namespace frictal {
 
@@ -229,6 +231,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
 
   // Prediction and the resting offset from the signature of the envelopes.
   double offset = std::isnan(cfg.initial_offset) ? 0.0 : cfg.initial_offset;
+  const unsigned threads = util::thread_count(static_cast<unsigned>(std::max(0, cfg.threads)));
   if (cfg.predict) {
     SignatureOptions opt;
     opt.keep_contacts = false;
@@ -238,15 +241,29 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
       opt.offset_max = cfg.period;
       lower_env.period.reset();
     }
-    auto sig = signature(lower_env, rotate180(upper_env), opt);
+    // The simulated blocks: one core against the other dilated by 2r (docs/dem.md sec. 6).
+    SignatureOptions so = opt;
+    so.spheroradius = cfg.radius;
+    // With several threads the two predictions run side by side, each on half of them (the
+    // signature does not depend on its thread count).
+    const Profile upper_face = rotate180(upper_env);
+    std::optional<Result<SignatureResult>> sig_r, sph_r;
+    if (threads >= 2) {
+      opt.threads = threads / 2;
+      so.threads = threads - threads / 2;
+      util::run_workers(
+          1, [&](unsigned) { sph_r.emplace(signature(lower_env, upper_face, so)); },
+          [&] { sig_r.emplace(signature(lower_env, upper_face, opt)); });
+    } else {
+      sig_r.emplace(signature(lower_env, upper_face, opt));
+      if (*sig_r) sph_r.emplace(signature(lower_env, upper_face, so));
+    }
+    const Result<SignatureResult>& sig = *sig_r;
     if (!sig.ok()) return make_error("signature for the prediction: " + sig.error().message);
     res.predicted_theta_max = cfg.reverse ? sig->theta_max_backward : sig->theta_max_forward;
     res.predicted_friction_angle =
         std::min(res.predicted_theta_max + std::atan(cfg.contact.atomic_friction), 1.5707963267948966);
-    // The simulated blocks: one core against the other dilated by 2r (docs/dem.md sec. 6).
-    SignatureOptions so = opt;
-    so.spheroradius = cfg.radius;
-    auto sph = signature(lower_env, rotate180(upper_env), so);
+    const Result<SignatureResult>& sph = *sph_r;
     if (!sph.ok()) return make_error("spheropolygon signature for the prediction: " + sph.error().message);
     res.predicted_sphero_theta_max = cfg.reverse ? sph->theta_max_backward : sph->theta_max_forward;
     res.predicted_sphero_friction_angle =
@@ -347,6 +364,16 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   // Time stepping.
   const auto run_start = Clock::now();
   dem::State st = dem::make_state(model);
+  // Threads of the contact passes (results do not depend on them): cfg.threads, or what the
+  // budget grants, asked again every 4096 steps.
+  unsigned step_threads = threads;
+  auto budget = [&]() {
+    if (!cfg.thread_budget) return;
+    step_threads = std::max(1u, cfg.thread_budget(step_threads));
+    dem::set_thread_count(st, step_threads);
+  };
+  dem::set_thread_count(st, step_threads);
+  budget();
   const double dt = cfg.time_step;  // fixed step, or the largest adaptive step
   const bool adaptive = cfg.adaptive_time_step;
   const double sgn = cfg.reverse ? -1.0 : 1.0;
@@ -440,6 +467,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   }
   if (frame_every) frame();
   auto advance_one = [&]() -> Status {
+    if (cfg.thread_budget && (st.steps & 4095u) == 4095u) budget();
     last_dt = adaptive ? st.time_step : dt;  // the step that dem::step takes
     Status s = dem::step(model, st);
     min_dt = std::min(min_dt, last_dt);

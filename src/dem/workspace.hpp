@@ -10,9 +10,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "frictal/dem.hpp"
+#include "util/team.hpp"
 
 namespace frictal::dem::detail {
 
@@ -42,6 +44,27 @@ struct ContactScratch {
   double sx = 0, sy = 0, dist2 = 0, dx = 0, dy = 0, vx = 0, vy = 0;
   double fx = 0, fy = 0, torque_a = 0, torque_b = 0, nx = 0, ny = 0, jt_a = 0, jt_b = 0, mred = 0;
   double jtt_a = 0, jtt_b = 0;  ///< r x t of each body (unit: m)
+  double energy = 0;            ///< k_n overlap^2 / 2 + k_t xi^2 / 2 (unit: J), summed in list order
+};
+
+/// A run of touching pairs in Workspace::touching: [begin, begin + count). One segment in a
+/// serial step; one per team member in a parallel one (member j's share of the hot list, in
+/// list order), walked in order by the sums.
+struct Segment {
+  std::size_t begin = 0;
+  std::size_t count = 0;
+};
+
+/// The worker team of a State (docs/dem.md sec. 7, threads): started at the first step that
+/// splits its contact passes, joined with the workspace. A copy starts without one (it starts its
+/// own when it needs it): a team serves one State.
+struct TeamSlot {
+  std::unique_ptr<util::Team> team;
+  TeamSlot() = default;
+  TeamSlot(const TeamSlot&) {}
+  TeamSlot& operator=(const TeamSlot&) { return *this; }
+  TeamSlot(TeamSlot&&) noexcept = default;
+  TeamSlot& operator=(TeamSlot&&) noexcept = default;
 };
 
 /// Sums over a body's contacts of J J^T with J = (n_x, n_y, r x n): unweighted (g) and weighted
@@ -106,6 +129,32 @@ struct Workspace {
   std::vector<ModeSums> modes;           ///< per body, for the stability limit
   std::vector<ContactScratch> touching;  ///< grown, never shrunk
   std::size_t touching_count = 0;        ///< touching pairs in `touching`
+  std::vector<Segment> segments;         ///< where they are in `touching`, in list order
+
+  // Threads (dem::set_thread_count).
+  unsigned threads = 1;  ///< threads the contact passes may use
+  /// Hot pairs per thread below which a step stays serial (a share must outweigh the team's
+  /// start and join, ~1 us; speed only).
+  unsigned min_hot_pairs_per_thread = 64;
+  TeamSlot team;
+  std::vector<double> part_max_overlap, part_max_ratio;  ///< per team member
+  /// Whether splitting pays on this machine now (speed only; results do not depend on it): the
+  /// contact passes of the steps that can be split are timed over kTrialSteps serial steps, then
+  /// kTrialSteps split ones, twice, and the steps are split for the next kRunSteps only if both
+  /// split windows were at least 5 % faster than the serial window before them (a preemption in
+  /// one window does not decide it). A loaded machine, where a split step waits for a
+  /// descheduled worker, thus keeps the serial passes; a split window that is already twice as
+  /// slow as its serial one ends the trial at once, and each serial verdict in a row doubles the
+  /// next run (up to kMaxRunSteps), so that the trials cost little where splitting never pays.
+  struct Tuner {
+    static constexpr std::uint32_t kTrialSteps = 64, kRunSteps = 16384, kMaxRunSteps = 1u << 20;
+    bool enabled = true;
+    int phase = 0;  ///< 0, 2: timing serial steps; 1, 3: timing split steps; 4: running the choice
+    std::uint32_t left = kTrialSteps;
+    std::uint32_t run_steps = kRunSteps;  ///< length of the next run
+    double seconds[4] = {0, 0, 0, 0};
+    bool split = true;
+  } tuner;
 };
 
 }  // namespace frictal::dem::detail

@@ -118,13 +118,40 @@ inline std::vector<std::pair<std::string, std::vector<TaskRow>>> variants_of(
 /// run_tilt with the retries both tilt kinds use: the engine's stability guard stops a run whose
 /// step is too large for its contacts (K3 carries hundreds); retry twice with a step 2.5 times
 /// smaller rather than lose the task. `c` keeps the step that was used.
+/// The contact passes take up to this many idle cores of the study run besides their own
+/// (borrow_idle_threads; results do not depend on it): a K3 block's ~250 hot pairs fill 3 shares
+/// of 64 (dem::set_thread_count).
+constexpr unsigned kMaxBorrowedCores = 3;
 inline Result<TiltResult> run_tilt_retrying(const Curve& lower, const Curve& upper, TiltConfig& c) {
+  // Cores that the study's other compute threads leave idle (fewer tasks than threads remain):
+  // asked for before the first step and every 4096 steps (TiltConfig::thread_budget), kept until
+  // the task ends.
+  struct Borrowed {  // given back however the task ends
+    unsigned n = 0;
+    ~Borrowed() { return_idle_threads(n); }
+  } borrowed;
+  c.thread_budget = [&borrowed](unsigned) {
+    if (borrowed.n < kMaxBorrowedCores) borrowed.n += borrow_idle_threads(kMaxBorrowedCores - borrowed.n);
+    return 1 + borrowed.n;
+  };
   auto r = run_tilt(lower, upper, c);
   for (int retry = 0; retry < 2 && !r && r.error().code == ErrorCode::Unstable; ++retry) {
     c.time_step /= 2.5;
     r = run_tilt(lower, upper, c);
   }
+  c.thread_budget = nullptr;
   return r;
+}
+
+/// The tilt kinds take every tilt setting as a parameter except `threads`: the thread count
+/// changes no result, so it is not a task parameter (not in the content address); a study run
+/// lends its idle cores instead (run_tilt_retrying).
+inline Status no_threads_parameter(const Params& p) {
+  if (p.count("threads"))
+    return make_error(
+        "parameter 'threads': not a task parameter (results do not depend on it; a tilt uses the cores that the "
+        "study run leaves idle)");
+  return Ok{};
 }
 
 }  // namespace frictal::study::kind_detail

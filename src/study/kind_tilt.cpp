@@ -63,6 +63,7 @@ Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: determin
   if (!generator) return generator.error();
   const GeneratorInfo* gen = find_generator(*generator);
   if (!gen) return make_error(fmt::format("parameter 'generator': unknown surface generator \"{}\"", *generator));
+  if (Status st = kind_detail::no_threads_parameter(p); !st) return st.error();
   if (Status st = only_known_parameters(p, {&gen->fields, &tilt_settings()}, {"generator", "record_series"}, "tilt");
       !st)
     return st.error();

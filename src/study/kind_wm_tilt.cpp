@@ -61,6 +61,7 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
   if (!generator) return generator.error();
   const GeneratorInfo* gen = find_generator(*generator);
   if (!gen) return make_error(fmt::format("parameter 'generator': unknown surface generator \"{}\"", *generator));
+  if (Status st = kind_detail::no_threads_parameter(p); !st) return st.error();
   if (Status st = only_known_parameters(p, {&gen->fields, &tilt_settings()}, {"generator", "pair"}, "wm-tilt"); !st)
     return st.error();
   for (const char* fixed : {"seed", "runaway_distance", "series_interval"})

@@ -17,6 +17,7 @@
 
 #include "frictal/study.hpp"
 #include "study/coordinator.hpp"
+#include "study/idle_threads.hpp"
 #include "util/parallel.hpp"
 
 namespace frictal::study {
@@ -57,14 +58,28 @@ Result<RunSummary> run_threads(const Study& study, Store& store, const TaskRegis
   Coordinator co(study, store, registry, options, std::move(*todo), 1);
   if (auto s = co.start(); !s) return s.error();
   if (options.started) options.started();
+  // Cores without a compute thread (fewer tasks than threads), and later those of compute threads
+  // waiting for work, are lent to the running tasks (borrow_idle_threads).
+  detail::IdlePool idle;
+  idle.idle = static_cast<int>(sum.threads) - static_cast<int>(T);
   // T compute threads claim, compute and hand back; this thread owns the store and records.
   util::run_workers(
       T,
       [&](unsigned w) {
         const std::string name = fmt::format("thread {}", w);
         if (options.pin_threads) pin_to_cpu(w);
-        for (std::int64_t id; (id = co.claim(0, true)) >= 0;)
+        detail::set_idle_pool(&idle);
+        for (;;) {
+          std::int64_t id = co.claim(0, false);
+          if (id < 0) {  // nothing queued: this core is idle (lent to running tasks) while it waits
+            idle.lend();
+            id = co.claim(0, true);
+            idle.reclaim();
+          }
+          if (id < 0) break;
           co.finish(execute(study.tasks[static_cast<std::size_t>(id)], registry, name), 0);
+        }
+        detail::set_idle_pool(nullptr);
       },
       [&] {
         while (!co.over()) co.record_finished(true);
@@ -108,11 +123,15 @@ Result<std::vector<RunSummary>> run_threads(const std::vector<StudyRun>& runs, c
     if (auto s = cos[i]->start(); !s) return with_prefix(fmt::format("study '{}': ", runs[i].study->name), s.error());
   if (options.started) options.started();
   const unsigned T = util::thread_count(options.threads, std::max<std::size_t>(1, total));
+  // Idle cores lent to running tasks, as in the single-study run.
+  detail::IdlePool idle;
+  idle.idle = static_cast<int>(util::thread_count(options.threads)) - static_cast<int>(T);
   util::run_workers(
       T,
       [&](unsigned w) {
         const std::string name = fmt::format("thread {}", w);
         if (options.pin_threads) pin_to_cpu(w);
+        detail::set_idle_pool(&idle);
         std::vector<std::pair<double, std::size_t>> heads;
         for (;;) {
           if (options.stop && options.stop->load()) stop_all = true;  // dispatch nothing more
@@ -136,9 +155,12 @@ Result<std::vector<RunSummary>> run_threads(const std::vector<StudyRun>& runs, c
           if (took) continue;
           if (std::all_of(cos.begin(), cos.end(), [](const auto& co) { return co->exhausted(); })) break;
           // Nothing to take now: tasks computing (a retry may come back), waiting for another
-          // study's result, or held by another run on a shared store.
+          // study's result, or held by another run on a shared store. The core is lent meanwhile.
+          idle.lend();
           std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          idle.reclaim();
         }
+        detail::set_idle_pool(nullptr);
       },
       [&] {
         for (;;) {

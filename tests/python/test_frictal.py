@@ -122,6 +122,19 @@ def test_tilt_flat_blocks_slide_at_atomic_friction_angle():
         frictal.tilt("not a surface")
 
 
+def test_tilt_threads_change_nothing():
+    # The thread count is a keyword outside the settings table; the result is the same bit for bit.
+    k2 = frictal.koch_profile(iterations=2, alpha=np.radians(20), length=0.05)
+    one = frictal.tilt(k2, max_tilt=np.radians(2))
+    two = frictal.tilt(k2, max_tilt=np.radians(2), threads=2)
+    assert one["friction_angle"] == two["friction_angle"] and one["steps"] == two["steps"]
+    for key in ("time", "normal_force", "tangential_force", "displacement", "velocity"):
+        assert np.array_equal(one["series"][key], two["series"][key])
+    assert "threads" not in [f["name"] for f in frictal.tilt_settings()]
+    with pytest.raises(ValueError, match="threads"):
+        frictal.tilt(k2, threads=-1)
+
+
 def test_tilt_reports_both_predictions_and_holds_rotation():
     # K0 at 10 deg: rigid and rounded blocks both predict alpha (the flanks survive a small r,
     # docs/dem.md); with the rotation held the block slides at alpha and does not turn.
