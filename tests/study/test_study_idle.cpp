@@ -57,3 +57,40 @@ TEST(StudyIdleCores, TiltKindsTakeNoThreadsParameter) {
     EXPECT_NE(res.error().message.find("parameter 'threads'"), std::string::npos) << res.error().message;
   }
 }
+
+// Several studies in one run lend their idle cores too: 4 threads for 2 tasks (one per study)
+// start 2 compute threads, so the task that borrows gets at least the 2 cores without a compute
+// thread (and at most one more: the other study's thread once its quick task is done).
+TEST(StudyIdleCores, SeveralStudiesInOneRunLendTheirIdleCores) {
+  TaskRegistry r = default_registry();
+  r.add({"borrow", "test", 1, [](const Params&, std::uint64_t) -> frictal::Result<TaskOutput> {
+           TaskOutput t;
+           const unsigned got = borrow_idle_threads(8);
+           t.scalars["borrowed"] = got;
+           return_idle_threads(got);
+           return t;
+         }});
+  r.add({"quick", "test", 1, [](const Params&, std::uint64_t) -> frictal::Result<TaskOutput> {
+           TaskOutput t;
+           t.scalars["x"] = 1;
+           return t;
+         }});
+  auto a = parse_study("[study]\nname='a'\nseed=1\n[[part]]\nname='one'\nkind='borrow'\n[part.parameters]\nx=[1]\n",
+                       "a", false, r);
+  auto b = parse_study("[study]\nname='b'\nseed=1\n[[part]]\nname='one'\nkind='quick'\n[part.parameters]\nx=[2]\n", "b",
+                       false, r);
+  ASSERT_TRUE(a.ok() && b.ok());
+  auto sa = Store::open(tmp("multi-a.sqlite"), *a);
+  auto sb = Store::open(tmp("multi-b.sqlite"), *b);
+  ASSERT_TRUE(sa.ok() && sb.ok());
+  RunOptions o;
+  o.threads = 4;
+  auto res = run_threads(std::vector<StudyRun>{{&*a, sa->get(), "", nullptr}, {&*b, sb->get(), "", nullptr}}, r, o);
+  ASSERT_TRUE(res.ok()) << res.error().message;
+  auto rows = (*sa)->rows("one");
+  ASSERT_TRUE(rows.ok()) << rows.error().message;
+  ASSERT_EQ(rows->size(), 1u);
+  const double got = rows->front().output.scalars.at("borrowed");
+  EXPECT_GE(got, 2);
+  EXPECT_LE(got, 3);
+}
