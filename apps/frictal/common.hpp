@@ -45,6 +45,10 @@ void write_output(const std::string& path, const std::function<Status(const std:
                   const std::string& option = "-o");
 /// Writes text to `path` or to standard output for "-".
 void write_text_output(const std::string& path, const std::string& text, const std::string& option = "-o");
+/// The same for a long table: `header`, then row(out, i) appends row i to `out` for i < rows; the
+/// text goes out in pieces of about 1 MB (a 5*10^6-row signature CSV is never held whole).
+void write_text_rows(const std::string& path, const std::string& header, std::size_t rows,
+                     const std::function<void(std::string& out, std::size_t i)>& row, const std::string& option = "-o");
 
 /// Loads a single-valued profile from any readable format ("-": standard input); `options` as
 /// --format, --unit, --spacing etc. give them (see surface_io.hpp).

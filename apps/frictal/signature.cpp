@@ -4,6 +4,7 @@
 #include <chrono>
 #include <fstream>
 #include <future>
+#include <iterator>
 #include <thread>
 
 #include "common.hpp"
@@ -140,23 +141,24 @@ std::function<int()> setup(CLI::App& app) {
     FrictionPrediction fwd = unwrap(predict_friction(a->mu_a, r.theta_max_forward, r.contact_slope_std));
     FrictionPrediction bwd = unwrap(predict_friction(a->mu_a, r.theta_max_backward, r.contact_slope_std));
 
-    if (!a->out.empty()) {
-      std::string s = "offset_m,lift_m,theta_deg,theta_min_deg,theta_left_deg,theta_right_deg\n";
-      for (std::size_t i = 0; i < r.offset.size(); ++i)
-        s += fmt::format("{:.17g},{:.17g},{:.12g},{:.12g},{:.12g},{:.12g}\n", r.offset[i], r.lift[i],
-                         to_deg(r.theta[i]), to_deg(r.theta_min[i]), to_deg(r.theta_left[i]), to_deg(r.theta_right[i]));
-      write_text_output(a->out, s);
-    }
-    if (!a->contacts_out.empty()) {
-      std::string s = "offset_m,x_m,z_m,slope_deg,type\n";
-      for (std::size_t i = 0; i < r.offset.size(); ++i)
-        for (auto k = r.contact_begin[i]; k < r.contact_begin[i + 1]; ++k) {
-          const Contact& c = r.contacts[k];
-          s += fmt::format("{:.17g},{:.17g},{:.17g},{:.12g},{}\n", r.offset[i], c.x, c.z, to_deg(c.slope),
-                           contact_type_name(c.type));
-        }
-      write_text_output(a->contacts_out, s, "--contacts");
-    }
+    if (!a->out.empty())
+      write_text_rows(a->out, "offset_m,lift_m,theta_deg,theta_min_deg,theta_left_deg,theta_right_deg\n",
+                      r.offset.size(), [&r](std::string& s, std::size_t i) {
+                        fmt::format_to(std::back_inserter(s), "{:.17g},{:.17g},{:.12g},{:.12g},{:.12g},{:.12g}\n",
+                                       r.offset[i], r.lift[i], to_deg(r.theta[i]), to_deg(r.theta_min[i]),
+                                       to_deg(r.theta_left[i]), to_deg(r.theta_right[i]));
+                      });
+    if (!a->contacts_out.empty())
+      write_text_rows(
+          a->contacts_out, "offset_m,x_m,z_m,slope_deg,type\n", r.offset.size(),
+          [&r](std::string& s, std::size_t i) {
+            for (auto k = r.contact_begin[i]; k < r.contact_begin[i + 1]; ++k) {
+              const Contact& c = r.contacts[k];
+              fmt::format_to(std::back_inserter(s), "{:.17g},{:.17g},{:.17g},{:.12g},{}\n", r.offset[i], c.x, c.z,
+                             to_deg(c.slope), contact_type_name(c.type));
+            }
+          },
+          "--contacts");
     if (!a->pdf_out.empty()) {
       std::string s = "slope_lo_deg,slope_hi_deg,density_per_deg\n";
       const auto& h = r.contact_slope_pdf;

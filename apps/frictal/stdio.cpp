@@ -84,4 +84,36 @@ void write_text_output(const std::string& path, const std::string& text, const s
   if (!f) throw UsageError(fmt::format("{} {}: write failed", option, path));
 }
 
+void write_text_rows(const std::string& path, const std::string& header, std::size_t rows,
+                     const std::function<void(std::string& out, std::size_t i)>& row, const std::string& option) {
+  const bool to_stdout = path == "-";
+  std::ofstream f;
+  if (!to_stdout) {
+    f.open(path, std::ios::binary);
+    if (!f) throw UsageError(fmt::format("{} {}: cannot open for writing", option, path));
+  } else {
+    std::fflush(stdout);
+  }
+  std::ostream& out = to_stdout ? std::cout : static_cast<std::ostream&>(f);
+  std::string buf = header;
+  constexpr std::size_t kPiece = std::size_t{1} << 20;
+  buf.reserve(kPiece + 4096);
+  auto flush = [&]() {
+    out.write(buf.data(), static_cast<std::streamsize>(buf.size()));
+    buf.clear();
+    if (!out)
+      throw UsageError(to_stdout ? option + " -: cannot write to standard output"
+                                 : fmt::format("{} {}: write failed", option, path));
+  };
+  for (std::size_t i = 0; i < rows; ++i) {
+    row(buf, i);
+    if (buf.size() >= kPiece) flush();
+  }
+  flush();
+  out.flush();
+  if (!out)
+    throw UsageError(to_stdout ? option + " -: cannot write to standard output"
+                               : fmt::format("{} {}: write failed", option, path));
+}
+
 }  // namespace frictal::cli
