@@ -3,6 +3,7 @@
 // degrees, parameter parsing.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <initializer_list>
 #include <map>
@@ -25,6 +26,31 @@ namespace frictal::study::kind_detail {
 constexpr double kDeg = units::kRadPerDeg;
 
 /// Length-weighted standard deviation of edge slope angles of a profile (unit: rad).
+// The tilt kinds' warning columns: warning_<code> (code with '-' as '_') is 1 if the run gave
+// that warning (TiltResult::warnings), else 0.
+inline void put_tilt_warnings(std::map<std::string, double>& s, const TiltResult& r) {
+  for (const char* code : {"core-overlap", "rounding", "time-step", "unsettled", "rotation", "creep"}) {
+    std::string key = std::string("warning_") + code;
+    std::replace(key.begin(), key.end(), '-', '_');
+    s[key] =
+        std::any_of(r.warnings.begin(), r.warnings.end(), [&](const TiltWarning& w) { return w.code == code; }) ? 1 : 0;
+  }
+}
+
+// Their descriptions, in the same order.
+inline std::vector<OutputColumn> tilt_warning_columns() {
+  return {
+      {"warning_core_overlap", "1", "1 if the resting overlap exceeds warn_overlap_fraction r"},
+      {"warning_rounding", "1", "1 if the spheropolygon and rigid predictions differ by more than the tolerance"},
+      {"warning_time_step", "1", "1 if the time step exceeds warn_time_step_fraction of the contact period"},
+      {"warning_unsettled", "1", "1 if the block still moved faster than stick_speed when the tilt started"},
+      {"warning_rotation", "1", "1 if the upper block rotated by more than warn_rotation before the slide"},
+      {"warning_creep", "1",
+       "1 if the block first slipped (a creep shorter than a tenth of the smallest feature) more than "
+       "warn_creep_angle below the friction angle"},
+  };
+}
+
 inline double slope_angle_std(const Profile& p) {
   double w = 0, m = 0;
   for (std::size_t i = 0; i + 1 < p.size(); ++i) {

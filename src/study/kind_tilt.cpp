@@ -114,13 +114,7 @@ Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: determin
   s["friction_angle_minus_sphero_deg"] = (r->friction_angle - r->predicted_sphero_friction_angle) / kDeg;
   s["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
   s["resting_overlap_m"] = r->scales.resting_overlap;
-  for (const char* code : {"core-overlap", "rounding", "time-step", "unsettled", "rotation", "creep"}) {
-    std::string key = std::string("warning_") + code;
-    std::replace(key.begin(), key.end(), '-', '_');
-    s[key] = std::any_of(r->warnings.begin(), r->warnings.end(), [&](const TiltWarning& w) { return w.code == code; })
-                 ? 1
-                 : 0;
-  }
+  kind_detail::put_tilt_warnings(s, *r);
   if (*series) {
     // Fig. 7: atan(F_t/F_n)/alpha against the relative displacement / L_b.
     const auto& ts = r->series;
@@ -257,19 +251,16 @@ TaskKind tilt_kind() {
       {"rotation_before_slide_deg", "deg",
        "largest rotation of the upper block against the lower one before the slide"},
       {"resting_overlap_m", "m", "W / k_n"},
-      {"warning_core_overlap", "1", "1 if the resting overlap exceeds warn_overlap_fraction r"},
-      {"warning_rounding", "1", "1 if the spheropolygon and rigid predictions differ by more than the tolerance"},
-      {"warning_time_step", "1", "1 if the time step exceeds warn_time_step_fraction of the contact period"},
-      {"warning_unsettled", "1", "1 if the block still moved faster than stick_speed when the tilt started"},
-      {"warning_rotation", "1", "1 if the upper block rotated by more than warn_rotation before the slide"},
-      {"warning_creep", "1",
-       "1 if the block first slipped (a creep shorter than a tenth of the smallest feature) more than "
-       "warn_creep_angle below the friction angle"},
-      {"displacement_over_length", "1", "relative displacement / L_b (record_series, Fig. 7)", true},
-      {"force_angle_over_alpha", "1", "atan(F_t/F_n) / alpha (record_series, Fig. 7)", true},
-      {"time_s", "s", "time of each series sample", true},
-      {"tilt_deg", "deg", "tilt of each series sample", true},
   };
+  const std::vector<OutputColumn> warning_columns = kind_detail::tilt_warning_columns();
+  k.outputs.insert(k.outputs.end(), warning_columns.begin(), warning_columns.end());
+  k.outputs.insert(k.outputs.end(),
+                   {
+                       {"displacement_over_length", "1", "relative displacement / L_b (record_series, Fig. 7)", true},
+                       {"force_angle_over_alpha", "1", "atan(F_t/F_n) / alpha (record_series, Fig. 7)", true},
+                       {"time_s", "s", "time of each series sample", true},
+                       {"tilt_deg", "deg", "tilt of each series sample", true},
+                   });
   k.report = tilt_part;
   PlotView v;
   v.id = "friction-vs-alpha";

@@ -217,13 +217,7 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
   s["settled_contacts"] = r->settled_contacts;
   s["points"] = static_cast<double>(lower->size());
   s["settled_speed_m_s"] = r->settled_speed;
-  for (const char* code : {"core-overlap", "rounding", "time-step", "unsettled", "rotation", "creep"}) {
-    std::string key = std::string("warning_") + code;
-    std::replace(key.begin(), key.end(), '-', '_');
-    s[key] = std::any_of(r->warnings.begin(), r->warnings.end(), [&](const TiltWarning& w) { return w.code == code; })
-                 ? 1
-                 : 0;
-  }
+  kind_detail::put_tilt_warnings(s, *r);
   return out;
 }
 
@@ -514,16 +508,13 @@ TaskKind wm_tilt_kind() {
       {"time_step_s", "s", "largest time step (after retries)"},
       {"settled_contacts", "1", "vertex-edge contacts after settling"},
       {"points", "1", "points of each face"},
-      {"warning_core_overlap", "1", "1 if the resting overlap exceeds warn_overlap_fraction r"},
-      {"warning_rounding", "1", "1 if the spheropolygon and rigid predictions differ by more than the tolerance"},
-      {"warning_time_step", "1", "1 if the time step exceeds warn_time_step_fraction of the contact period"},
-      {"warning_unsettled", "1", "1 if the block still moved faster than stick_speed when the tilt started"},
-      {"warning_rotation", "1", "1 if the upper block rotated by more than warn_rotation before the slide"},
-      {"warning_creep", "1",
-       "1 if the block first slipped (a creep shorter than a tenth of the smallest feature) more than "
-       "warn_creep_angle below the friction angle"},
-      {"settled_speed_m_s", "m/s", "speed of the upper block against the lower one when the tilt started"},
   };
+  const std::vector<OutputColumn> warning_columns = kind_detail::tilt_warning_columns();
+  k.outputs.insert(k.outputs.end(), warning_columns.begin(), warning_columns.end());
+  k.outputs.insert(k.outputs.end(), {
+                                        {"settled_speed_m_s", "m/s",
+                                         "speed of the upper block against the lower one when the tilt started"},
+                                    });
   k.report = wm_tilt_section;
   const PlotAxis x{"surface_dimension", "D"};
   k.plots.push_back(PlotView::of("wm-tilt-friction", x, {"friction_angle_deg", "friction angle φ (deg)"})
