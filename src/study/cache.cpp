@@ -42,9 +42,9 @@ struct ResultCache::Impl {
   Error err(const std::string& what) const {
     return make_error(ErrorCode::Io, fmt::format("{}: {}: {}", path, what, db ? sqlite3_errmsg(db) : "out of memory"));
   }
-  Status exec(const char* sql) {
+  Status exec(const char* sql, bool wait_if_busy = false) {
     char* msg = nullptr;
-    if (sqlite3_exec(db, sql, nullptr, nullptr, &msg) != SQLITE_OK) {
+    if ((wait_if_busy ? exec_waiting(db, sql, &msg) : sqlite3_exec(db, sql, nullptr, nullptr, &msg)) != SQLITE_OK) {
       std::string m = msg ? msg : "?";
       sqlite3_free(msg);
       return make_error(ErrorCode::Io, fmt::format("{}: {}", path, m));
@@ -66,7 +66,7 @@ Result<std::unique_ptr<ResultCache>> ResultCache::open(const std::string& path) 
     return im->err("cannot open the result cache");
   sqlite3_busy_timeout(im->db, 30000);
   for (const char* p : {"PRAGMA journal_mode=WAL;", "PRAGMA synchronous=NORMAL;"})
-    if (auto s = im->exec(p); !s) return with_prefix("result cache: ", s.error());
+    if (auto s = im->exec(p, true); !s) return with_prefix("result cache: ", s.error());
   if (auto s = im->exec("BEGIN IMMEDIATE"); !s) return with_prefix("result cache: ", s.error());
   if (auto s = im->exec(kCacheSchema); !s) {
     (void)im->exec("ROLLBACK");

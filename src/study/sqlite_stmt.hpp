@@ -2,15 +2,39 @@
 // study store (store.cpp) and the result cache (cache.cpp).
 #pragma once
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <ctime>
 #include <string>
+#include <thread>
 
 #include <sqlite3.h>
 
 namespace frictal::study {
+
+/// sqlite3_exec, retried while the database is busy or locked, for at most timeout_ms (ms).
+/// Some statements fail with SQLITE_BUSY at once, without calling the busy handler: switching a
+/// new file to WAL (`PRAGMA journal_mode=WAL`) while another process opens or converts it, or a
+/// WAL recovery after a killed writer. Several runs that open one store at the same moment would
+/// otherwise stop with "database is locked". Returns the last result code; *msg as sqlite3_exec.
+inline int exec_waiting(sqlite3* db, const char* sql, char** msg, int timeout_ms = 30000) {
+  using clock = std::chrono::steady_clock;
+  const auto deadline = clock::now() + std::chrono::milliseconds(timeout_ms);
+  auto pause = std::chrono::milliseconds(1);
+  for (;;) {
+    const int rc = sqlite3_exec(db, sql, nullptr, nullptr, msg);
+    const int primary = rc & 0xff;
+    if ((primary != SQLITE_BUSY && primary != SQLITE_LOCKED) || clock::now() + pause > deadline) return rc;
+    if (msg && *msg) {
+      sqlite3_free(*msg);
+      *msg = nullptr;
+    }
+    std::this_thread::sleep_for(pause);
+    pause = std::min(pause * 2, std::chrono::milliseconds(50));
+  }
+}
 
 /// A prepared statement with RAII.
 class Stmt {

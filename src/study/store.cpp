@@ -182,9 +182,10 @@ struct Store::Impl {
     return make_error(ErrorCode::Io, why.empty() ? fmt::format("{}: {}: {}", path, what, sqlite3_errmsg(db))
                                                  : fmt::format("{}: {}: {} ({})", path, what, why, sqlite3_errmsg(db)));
   }
-  Status exec(const char* sql) {
+  Status exec(const char* sql, bool wait_if_busy = false) {
     char* msg = nullptr;
-    if (const int rc = sqlite3_exec(db, sql, nullptr, nullptr, &msg); rc != SQLITE_OK) {
+    const int rc = wait_if_busy ? exec_waiting(db, sql, &msg) : sqlite3_exec(db, sql, nullptr, nullptr, &msg);
+    if (rc != SQLITE_OK) {
       std::string m = msg ? msg : "?";
       sqlite3_free(msg);
       const std::string why = what_happened(sqlite3_extended_errcode(db));
@@ -218,7 +219,7 @@ Result<std::unique_ptr<Store::Impl>> open_db(const std::string& path, bool creat
   sqlite3_busy_timeout(impl->db, 30000);
   sqlite3_extended_result_codes(impl->db, 1);
   for (const char* p : {"PRAGMA journal_mode=WAL;", "PRAGMA synchronous=NORMAL;", "PRAGMA foreign_keys=ON;"})
-    if (auto s = impl->exec(p); !s)
+    if (auto s = impl->exec(p, true); !s)
       return make_error(ErrorCode::Io, fmt::format("{} (is it an SQLite file?)", s.error().message));
   return impl;
 }

@@ -19,6 +19,8 @@
 #include <regex>
 #include <thread>
 
+#include <sqlite3.h>
+
 #include "cli/cli_runner.hpp"
 #include "frictal/study.hpp"
 #include "frictal/version.hpp"
@@ -167,6 +169,30 @@ TEST(StudyShared, ClaimsAreExclusiveWhileTheOwnerLivesAndTakenOverWhenItDies) {
   EXPECT_EQ(claimed(path), 0);
 }
 
+// Switching a new file to WAL needs an exclusive lock, and SQLite fails it at once (SQLITE_BUSY,
+// no busy handler) while another connection reads the file: three runs started together on one
+// new store used to stop with "database is locked". Store::open must wait for the reader instead.
+TEST(StudyShared, OpeningANewStoreWaitsForAnotherConnectionsLock) {
+  const Study study = load(study_file("busy"));
+  const std::string path = fresh("busy.sqlite");
+  sqlite3* other = nullptr;
+  ASSERT_EQ(sqlite3_open_v2(path.c_str(), &other, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE, nullptr), SQLITE_OK);
+  // A read transaction holds a SHARED lock on the (still rollback-journal) file.
+  ASSERT_EQ(sqlite3_exec(other, "BEGIN IMMEDIATE;", nullptr, nullptr, nullptr), SQLITE_OK);
+  std::thread release([other] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    sqlite3_exec(other, "COMMIT", nullptr, nullptr, nullptr);
+  });
+  const auto t0 = std::chrono::steady_clock::now();
+  auto st = Store::open(path, study);
+  const double waited = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  release.join();
+  sqlite3_close(other);
+  ASSERT_TRUE(st.ok()) << st.error().message;
+  EXPECT_GE(waited, 0.2);  // it waited for the reader, and then made the store
+  EXPECT_TRUE((*st)->unfinished().ok());
+}
+
 TEST(StudyShared, ThreeConcurrentRunsShareTheWorkAndSurviveRandomKills) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::string study = study_file("concurrent");
@@ -207,8 +233,11 @@ TEST(StudyShared, ThreeConcurrentRunsShareTheWorkAndSurviveRandomKills) {
   for (int trial = 0; trial < 3; ++trial) {
     const std::string store = fresh("concurrent-k" + std::to_string(trial) + ".sqlite");
     pid_t pids[3];
-    std::string delays;
-    for (int i = 0; i < 3; ++i) pids[i] = spawn_run(study, store, "/dev/null");
+    std::string delays, logs[3];
+    for (int i = 0; i < 3; ++i) {
+      logs[i] = temp_path("concurrent-k" + std::to_string(trial) + "-" + std::to_string(i) + ".log");
+      pids[i] = spawn_run(study, store, logs[i]);
+    }
     // Kill one or two of the three (which ones and when: from the seeded generator).
     const int victims = 1 + trial % 2;
     for (int v = 0; v < victims; ++v) {
@@ -218,11 +247,11 @@ TEST(StudyShared, ThreeConcurrentRunsShareTheWorkAndSurviveRandomKills) {
       const int who = static_cast<int>(rng() % 3);
       if (::kill(pids[who], SIGKILL) == 0) ++kills;
     }
-    for (pid_t p : pids) {
+    for (int i = 0; i < 3; ++i) {
       int status = 0;
-      ::waitpid(p, &status, 0);
+      ::waitpid(pids[i], &status, 0);
       if (WIFEXITED(status)) {
-        EXPECT_EQ(WEXITSTATUS(status), 0) << "trial " << trial;
+        EXPECT_EQ(WEXITSTATUS(status), 0) << "trial " << trial << ", run " << i << ":\n" << read_file(logs[i]);
       }
     }
     r = run_cli("study run " + study + " --store " + store + " --threads 2 --cache none --progress none");
