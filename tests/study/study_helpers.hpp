@@ -1,8 +1,12 @@
 // Helpers shared by the study tests: fresh store paths and a store's run-independent content.
 #pragma once
 
+#include <sys/stat.h>
+
+#include <chrono>
 #include <cstdio>
 #include <string>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -26,6 +30,19 @@ inline std::string dump(const std::string& path) {
   auto d = (*st)->content();
   EXPECT_TRUE(d.ok());
   return d.ok() ? *d : std::string{};
+}
+
+/// Waits (at most timeout_s, s) until `path` exists: a child `frictal study run` has set up its
+/// signal handlers before it creates its store, so a test that interrupts it at a fixed delay
+/// after this does not race the start-up of a loaded machine. False when it never appeared.
+inline bool wait_for_file(const std::string& path, double timeout_s = 30) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  struct stat sb {};
+  while (::stat(path.c_str(), &sb) != 0) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  return true;
 }
 
 }  // namespace study_test

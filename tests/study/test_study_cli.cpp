@@ -106,7 +106,8 @@ TEST(StudyCli, CtrlCStopsCleanlyAndResumes) {
   const std::string study = study_file("sigint");
   const std::string store = fresh("sigint.sqlite");
   const pid_t pid = spawn_run(study, store, "1");
-  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  EXPECT_TRUE(study_test::wait_for_file(store)) << "the run never created its store";
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
   ::kill(pid, SIGINT);
   int status = 0;
   ::waitpid(pid, &status, 0);

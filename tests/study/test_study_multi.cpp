@@ -361,7 +361,9 @@ pair = { count = 5 }
             dir.c_str(), "--threads", "1", "--cache", "none", "--progress", "none", static_cast<char*>(nullptr));
     std::_Exit(127);
   }
-  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  EXPECT_TRUE(study_test::wait_for_file(dir + "/" + std::filesystem::path(files[0]).stem().string() + ".sqlite"))
+      << "the run never created its stores";
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
   ::kill(pid, SIGINT);
   int status = 0;
   ::waitpid(pid, &status, 0);
