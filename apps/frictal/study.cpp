@@ -97,9 +97,44 @@ std::string stem(const std::string& path) {
   return f;
 }
 
-/// Several studies in one run, one pool of threads (`--store-dir DIR`): DIR/<stem>.sqlite each.
+/// MPI_Finalize at scope exit when MPI was initialised.
+struct MpiFinalizer {
+  bool on;
+  ~MpiFinalizer() {
+    if (on) mpi_finalize();
+  }
+};
+
+/// The summary of one study of a `--store-dir` run (threads or MPI ranks alike).
+void print_study_result(const Study& study, const std::string& store_path, Store& store, const RunSummary& sum,
+                        const std::string& cache, const std::string& on, bool one_pool) {
+  const StoreCounts c = unwrap(store.counts());
+  fmt::print(
+      "study '{}' ({} scale, {} tasks) in {}: {} done, {} failed, {} pending; this run: {} tasks in {:.2f} s on {}\n",
+      study.name, study.quick ? "quick" : "full", c.total, store_path, c.done, c.failed, c.pending, sum.ran, sum.wall_s,
+      on);
+  if (sum.reused) {
+    std::string from = cache.empty() ? "" : fmt::format("taken from the result cache {}", cache);
+    if (one_pool) from += (from.empty() ? "" : " or ") + std::string("computed once for another study of this run");
+    fmt::print("  {} tasks reused: {}\n", sum.reused, from);
+  }
+  if (!sum.cache_note.empty()) fmt::print(stderr, "frictal: warning: {}: {}\n", study.name, sum.cache_note);
+  if (sum.done_elsewhere || sum.taken_over)
+    fmt::print("  shared store: {} tasks recorded by other runs, {} claims taken over from runs that died\n",
+               sum.done_elsewhere, sum.taken_over);
+  if (sum.skipped_unavailable)
+    fmt::print("  {} tasks left pending: their task kind is not available in this build\n", sum.skipped_unavailable);
+}
+
+/// Several studies in one run (`--store-dir DIR`): DIR/<stem>.sqlite each. With threads, one pool
+/// and one queue for all studies; under MPI (mpirun), one study after another, each over every
+/// rank as `--store` would run it (later studies reuse earlier ones' results through the cache).
 int run_many(const RunArgs& a) {
   TaskRegistry reg = default_registry();
+  const bool mpi = mpi_available() && launched_by_mpi();
+  int rank = 0, size = 1;
+  if (mpi) unwrap(mpi_init(&rank, &size));
+  MpiFinalizer fin{mpi};
   std::vector<Study> studies;
   std::vector<std::string> stores;
   std::set<std::string> seen;
@@ -113,13 +148,24 @@ int run_many(const RunArgs& a) {
     studies.push_back(unwrap(load_study(f, a.quick, reg)));
     stores.push_back(a.store_dir + "/" + s + ".sqlite");
   }
-  if (::mkdir(a.store_dir.c_str(), 0777) != 0 && errno != EEXIST)
-    throw UsageError(fmt::format("--store-dir {}: cannot create the folder: {}", a.store_dir, std::strerror(errno)),
-                     ErrorCode::Io);
+  // The folder is rank 0's (the other ranks never open a store); every rank learns whether it is there.
+  std::string folder_error;
+  if (rank == 0 && ::mkdir(a.store_dir.c_str(), 0777) != 0 && errno != EEXIST)
+    folder_error = fmt::format("--store-dir {}: cannot create the folder: {}", a.store_dir, std::strerror(errno));
+  if (mpi && !mpi_broadcast(folder_error.empty()) && rank != 0) return 0;  // rank 0 says why
+  if (!folder_error.empty()) throw UsageError(folder_error, ErrorCode::Io);
+  if (mpi && rank == 0) {
+    const std::string note = fmt::format(
+        "frictal: rank 0 was signalled (interrupted, or another rank died and mpirun ends the job); every finished "
+        "task is kept in the stores under {}; run the same command again to resume\n",
+        a.store_dir);
+    g_signal_note_len = std::min(note.size(), sizeof g_signal_note);
+    std::memcpy(g_signal_note, note.data(), g_signal_note_len);
+  }
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   RunOptions o;
-  o.threads = a.threads_set ? a.threads : 0;
+  o.threads = a.threads_set ? a.threads : (mpi ? 1 : 0);
   o.skip_unavailable = a.skip_unavailable;
   o.stop = &g_stop;
   o.inject_failure_rank = a.inject_failure_rank;
@@ -127,46 +173,64 @@ int run_many(const RunArgs& a) {
   o.pin_threads = a.pin;
   o.longest_first = a.schedule == "longest";
   const bool several = studies.size() > 1;
-  std::vector<std::unique_ptr<Store>> owned;
   std::vector<ProgressPrinter> printers(studies.size());
-  std::vector<StudyRun> runs;
+  std::vector<std::string> caches;
   for (std::size_t i = 0; i < studies.size(); ++i) {
-    owned.push_back(unwrap(Store::open(stores[i], studies[i])));
     ProgressPrinter& pp = printers[i];
     pp.name = several ? studies[i].name : "";
     // One bar cannot show several studies: lines unless asked for bars.
     pp.bar = a.progress == "bar" || (a.progress == "auto" && !several && ::isatty(2));
-    pp.quiet = a.progress == "none";
-    StudyRun r;
-    r.study = &studies[i];
-    r.store = owned.back().get();
-    r.cache = a.cache == "none" ? std::string() : a.cache == "auto" ? default_cache_path(stores[i]) : a.cache;
-    r.progress = std::ref(pp);
-    runs.push_back(std::move(r));
+    pp.quiet = a.progress == "none" || rank != 0;
+    caches.push_back(a.cache == "none" ? std::string() : a.cache == "auto" ? default_cache_path(stores[i]) : a.cache);
   }
-  const auto sums = unwrap(run_threads(runs, reg, o));
+  std::vector<std::unique_ptr<Store>> owned;
+  std::vector<RunSummary> sums;
+  if (mpi) {
+    // Every rank runs study i, then learns from rank 0 whether to go on (not after Ctrl-C or an
+    // error on rank 0), so that the ranks stay in step.
+    for (std::size_t i = 0; i < studies.size(); ++i) {
+      if (rank != 0) {
+        (void)run_mpi(studies[i], nullptr, reg, o);  // a worker: computes what rank 0 hands out
+        if (!mpi_broadcast(false)) return 0;
+        continue;
+      }
+      auto st = Store::open(stores[i], studies[i]);
+      if (!st) {
+        (void)run_mpi(studies[i], nullptr, reg, o);  // releases the workers
+        mpi_broadcast(false);
+        fail(st.error());
+      }
+      RunOptions oi = o;
+      oi.cache = caches[i];
+      oi.progress = std::ref(printers[i]);
+      auto sum = run_mpi(studies[i], st->get(), reg, oi);
+      const bool go = sum.ok() && !sum->interrupted && !g_stop && i + 1 < studies.size();
+      mpi_broadcast(go);
+      if (!sum) fail(with_prefix(fmt::format("study {}: ", studies[i].name), sum.error()));
+      owned.push_back(std::move(*st));
+      sums.push_back(*sum);
+      if (!go) break;
+    }
+  } else {
+    std::vector<StudyRun> runs;
+    for (std::size_t i = 0; i < studies.size(); ++i) {
+      owned.push_back(unwrap(Store::open(stores[i], studies[i])));
+      StudyRun r;
+      r.study = &studies[i];
+      r.store = owned.back().get();
+      r.cache = caches[i];
+      r.progress = std::ref(printers[i]);
+      runs.push_back(std::move(r));
+    }
+    sums = unwrap(run_threads(runs, reg, o));
+  }
   bool interrupted = g_stop.load();
   std::int64_t failed = 0;
-  for (std::size_t i = 0; i < studies.size(); ++i) {
-    const Study& study = studies[i];
-    const RunSummary& sum = sums[i];
-    const StoreCounts c = unwrap(owned[i]->counts());
-    fmt::print(
-        "study '{}' ({} scale, {} tasks) in {}: {} done, {} failed, {} pending; this run: {} tasks in {:.2f} s on "
-        "{} threads\n",
-        study.name, study.quick ? "quick" : "full", c.total, stores[i], c.done, c.failed, c.pending, sum.ran,
-        sum.wall_s, sum.threads);
-    if (sum.reused)
-      fmt::print("  {} tasks reused: {}computed once for another study of this run\n", sum.reused,
-                 runs[i].cache.empty() ? "" : fmt::format("taken from the result cache {} or ", runs[i].cache));
-    if (!sum.cache_note.empty()) fmt::print(stderr, "frictal: warning: {}: {}\n", study.name, sum.cache_note);
-    if (sum.done_elsewhere || sum.taken_over)
-      fmt::print("  shared store: {} tasks recorded by other runs, {} claims taken over from runs that died\n",
-                 sum.done_elsewhere, sum.taken_over);
-    if (sum.skipped_unavailable)
-      fmt::print("  {} tasks left pending: their task kind is not available in this build\n", sum.skipped_unavailable);
-    interrupted = interrupted || sum.interrupted;
-    failed += c.failed;
+  for (std::size_t i = 0; i < sums.size(); ++i) {
+    print_study_result(studies[i], stores[i], *owned[i], sums[i], caches[i],
+                       mpi ? fmt::format("{} ranks", size) : fmt::format("{} threads", sums[i].threads), !mpi);
+    interrupted = interrupted || sums[i].interrupted;
+    failed += unwrap(owned[i]->counts()).failed;
   }
   if (interrupted) {
     fmt::print(stderr,
@@ -210,21 +274,13 @@ int run(const RunArgs& a) {
     if (a.studies.size() > 1 && !a.parts.empty())
       throw UsageError("--part: not with several studies (part names belong to one study)");
     if (a.dry_run) throw UsageError("--dry-run: give one study and its --store");
-    if (mpi_available() && launched_by_mpi())
-      throw UsageError(
-          "--store-dir (several studies in one run) is not supported under MPI; run each study with --store");
     return run_many(a);
   }
   TaskRegistry reg = default_registry();
   const bool mpi = mpi_available() && launched_by_mpi();
   int rank = 0, size = 1;
   if (mpi) unwrap(mpi_init(&rank, &size));
-  struct Fin {
-    bool on;
-    ~Fin() {
-      if (on) mpi_finalize();
-    }
-  } fin{mpi};
+  MpiFinalizer fin{mpi};
   Study study = unwrap(load_study(a.studies.front(), a.quick, reg));
   if (mpi && rank == 0) {
     const std::string note = fmt::format(

@@ -515,6 +515,9 @@ Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry&
 /// Initialises MPI (thread level funneled); returns rank and size.
 Status mpi_init(int* rank, int* size);
 void mpi_finalize();
+/// Under MPI: rank 0's `value`, on every rank (every rank must call it, in the same order); keeps
+/// the ranks in step between the studies of one run. Without MPI: `value`.
+bool mpi_broadcast(bool value);
 
 // ---------------------------------------------------------------- analysis of stored results
 

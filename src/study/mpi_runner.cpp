@@ -61,6 +61,12 @@ void mpi_finalize() {
   if (!fin) MPI_Finalize();
 }
 
+bool mpi_broadcast(bool value) {
+  int v = value ? 1 : 0;
+  MPI_Bcast(&v, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return v != 0;
+}
+
 Result<RunSummary> run_mpi(const Study& study, Store* store, const TaskRegistry& registry, const RunOptions& options) {
   int rank = 0, size = 1;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);

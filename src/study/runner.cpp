@@ -293,6 +293,7 @@ Result<RunSummary> run_mpi(const Study&, Store*, const TaskRegistry&, const RunO
 }
 Status mpi_init(int*, int*) { return make_error("this build has no MPI support"); }
 void mpi_finalize() {}
+bool mpi_broadcast(bool value) { return value; }
 #endif
 
 }  // namespace frictal::study

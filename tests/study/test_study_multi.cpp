@@ -308,6 +308,54 @@ TEST(StudyMultiCli, ShippedDemStudiesInOneRunGiveTheStoresOfSeparateRuns) {
   EXPECT_EQ(dump(one + "/" + names[0] + ".sqlite"), dump(sep + "/" + names[0] + ".sqlite"));
 }
 
+TEST(StudyMultiCli, UnderMpiEveryStudyRunsOverTheRanksAndGivesTheStoresOfSeparateRuns) {
+  if (!mpi_available()) GTEST_SKIP() << "built without FRICTAL_MPI";
+  if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
+  // Under mpirun, --store-dir runs the studies one after another, each over both ranks; the
+  // later ones reuse the shared tilt and theory tasks through the result cache in the folder.
+  const std::vector<std::string> names = {"fig06-koch-friction", "fig10-mu-vs-dimension"};
+  const std::string sep = temp_path("multi-mpi-separate"), one = temp_path("multi-mpi-one");
+  std::filesystem::remove_all(sep);
+  std::filesystem::remove_all(one);
+  std::filesystem::create_directories(sep);
+  std::string files;
+  for (const auto& n : names) {
+    auto r = run_cli("study run " + shipped(n) + " --store " + sep + "/" + n +
+                     ".sqlite --quick --threads 2 --cache none --progress none");
+    ASSERT_EQ(r.code, 0) << r.err;
+    files += " " + shipped(n);
+  }
+  const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
+  const std::string mpirun = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 2 --oversubscribe" + root + " ";
+  const std::string log = temp_path("multi-mpi.log");
+  const std::string cmd = mpirun + FRICTAL_CLI_PATH + std::string(" study run") + files + " --store-dir " + one +
+                          " --quick --progress none >" + log + " 2>&1";
+  ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd << "\n" << read_file(log);
+  const std::string out = read_file(log);
+  EXPECT_NE(out.find("on 2 ranks"), std::string::npos) << out;
+  EXPECT_NE(out.find("tasks reused: taken from the result cache"), std::string::npos) << out;
+  std::string workers;
+  for (const auto& n : names) {
+    SCOPED_TRACE(n);
+    EXPECT_EQ(dump(one + "/" + n + ".sqlite"), dump(sep + "/" + n + ".sqlite"));
+    auto st = Store::open_existing(one + "/" + n + ".sqlite");
+    ASSERT_TRUE(st.ok());
+    auto tasks = (*st)->tasks();
+    ASSERT_TRUE(tasks.ok());
+    for (const auto& t : *tasks) workers += t.worker.substr(0, 6) + "\n";
+  }
+  EXPECT_NE(workers.find("rank 1"), std::string::npos) << workers;  // the second rank took tasks
+  EXPECT_NE(workers.find("cache"), std::string::npos) << workers;   // fig10 reused fig06's tilts
+
+  // A folder that cannot be made: one message, exit 2, no rank left waiting.
+  const std::string bad = mpirun + FRICTAL_CLI_PATH + std::string(" study run") + files +
+                          " --store-dir /proc/frictal-no/dir --quick --progress none >" + log + " 2>&1";
+  const int rc = std::system(bad.c_str());
+  EXPECT_TRUE(WIFEXITED(rc) && WEXITSTATUS(rc) != 0) << read_file(log);
+  EXPECT_NE(read_file(log).find("--store-dir /proc/frictal-no/dir: cannot create the folder"), std::string::npos)
+      << read_file(log);
+}
+
 TEST(StudyMultiCli, AmbiguousStoreOptionsAreRefused) {
   const std::string a = shipped("fig06-koch-friction"), b = shipped("fig10-mu-vs-dimension");
   const std::string dir = temp_path("multi-cli-refused");
