@@ -3,6 +3,8 @@
 // an input, standard output for -o).
 #pragma once
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -21,6 +23,13 @@ namespace frictal::cli {
 
 inline constexpr double kDeg = units::kRadPerDeg;
 using units::to_deg;
+
+/// True if `path` ends with `ext` (lower case, with its dot), in any letter case.
+inline bool has_extension(const std::string& path, const std::string& ext) {
+  return path.size() >= ext.size() && std::equal(ext.rbegin(), ext.rend(), path.rbegin(), [](char a, char b) {
+           return std::tolower(static_cast<unsigned char>(b)) == a;
+         });
+}
 
 /// Unwraps a library Result or throws its error (message and code).
 template <class T>

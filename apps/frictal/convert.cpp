@@ -20,11 +20,6 @@ struct Args {
   InputOptions input;
 };
 
-bool ends_with(const std::string& s, const std::string& e) {
-  return s.size() >= e.size() &&
-         std::equal(e.rbegin(), e.rend(), s.rbegin(), [](char a, char b) { return std::tolower(a) == b; });
-}
-
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
   app.add_option("input", a->in, "Input surface (any readable format)")->required();
@@ -74,24 +69,24 @@ std::function<int()> setup(CLI::App& app) {
       s.is_map = false;
       s.curve = as_curve(runs[best]);
     }
-    if (ends_with(a->out, ".x3p")) {
+    if (has_extension(a->out, ".x3p")) {
       if (s.is_map)
         unwrap(write_x3p(a->out, s.map, o));
       else
         unwrap(write_x3p(a->out, surface_profile(s, a->in), o));
-    } else if (ends_with(a->out, ".csv")) {
+    } else if (has_extension(a->out, ".csv")) {
       if (s.is_map)
         throw UsageError(fmt::format("{}: a map cannot be written as a CSV profile; use .txt or .x3p", a->in));
       unwrap(write_profile_csv(a->out, s.curve));
-    } else if (ends_with(a->out, ".txt")) {
+    } else if (has_extension(a->out, ".txt")) {
       if (!s.is_map)
         unwrap(write_profile_csv(a->out, s.curve));
       else
         unwrap(write_map_text(a->out, s.map));
-    } else if (ends_with(a->out, ".gwy") || ends_with(a->out, ".gsf") || ends_with(a->out, ".sdf") ||
-               ends_with(a->out, ".sur") || ends_with(a->out, ".asc") || ends_with(a->out, ".ibw") ||
-               ends_with(a->out, ".nrrd") || ends_with(a->out, ".tom") || ends_with(a->out, ".afm") ||
-               ends_with(a->out, ".spm")) {
+    } else if (has_extension(a->out, ".gwy") || has_extension(a->out, ".gsf") || has_extension(a->out, ".sdf") ||
+               has_extension(a->out, ".sur") || has_extension(a->out, ".asc") || has_extension(a->out, ".ibw") ||
+               has_extension(a->out, ".nrrd") || has_extension(a->out, ".tom") || has_extension(a->out, ".afm") ||
+               has_extension(a->out, ".spm")) {
       if (!s.is_map) throw UsageError(fmt::format("{}: only maps are written through Gwyddion", a->in));
       unwrap(write_gwyddion(a->out, s.map));
     } else {

@@ -1,9 +1,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_runner.hpp"
+#include "frictal/io.hpp"
 
 using nlohmann::json;
 
@@ -102,4 +105,32 @@ TEST(Cli, SignatureDetrendRemovesTheTiltOfAScan) {
   EXPECT_NEAR(k["theta_max_forward_deg"].get<double>(), 0, 1e-9);
   EXPECT_NEAR(k["theta_max_backward_deg"].get<double>(), 0, 1e-9);
   EXPECT_EQ(run_cli("signature " + f + " --detrend bogus").code, 2);
+}
+
+// `surface -o NAME.x3p` writes an X3P profile with the same points as the CSV (read back by the
+// library: same spacing, heights equal to the CSV's 17 significant digits); a name of a format
+// frictal reads but does not write (.npy) is refused instead of getting CSV text under it.
+TEST(Cli, SurfaceWritesX3pByItsNameAndRefusesNpy) {
+  const std::string csv = temp_path("surf-x3p.csv"), x3p = temp_path("surf-x3p.X3P"), npy = temp_path("surf.npy");
+  const std::string gen = "surface wm --dimension 1.4 --n-max 8 --seed 3 -o ";
+  ASSERT_EQ(run_cli(gen + csv).code, 0);
+  auto r = run_cli(gen + x3p);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_file(x3p).substr(0, 2), "PK");  // a zip container, not text
+  auto a = frictal::read_profile(csv), b = frictal::read_profile(x3p);
+  ASSERT_TRUE(a.ok() && b.ok());
+  ASSERT_EQ(a->size(), b->size());
+  for (std::size_t i = 0; i < a->size(); ++i) {
+    EXPECT_NEAR(a->x[i], b->x[i], 1e-12 * a->length()) << i;
+    EXPECT_NEAR(a->z[i], b->z[i], 1e-15 * (std::abs(a->z[i]) + 1e-30)) << i;
+  }
+  std::remove(npy.c_str());
+  r = run_cli(gen + npy);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("-o " + npy), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("not .npy"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::ifstream(npy).good());  // nothing written
+  r = run_cli("surface koch --iterations 2 --alpha 20 --curve -o " + temp_path("curve.x3p"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("write it as CSV"), std::string::npos) << r.err;
 }
