@@ -37,7 +37,7 @@ extern "C" void on_signal(int sig) {
 
 std::string hms(double s) {
   if (!std::isfinite(s) || s < 0) return "--:--";
-  const long t = static_cast<long>(s + 0.5);
+  const long t = std::lround(s);
   return t >= 3600 ? fmt::format("{}:{:02}:{:02}", t / 3600, t / 60 % 60, t % 60)
                    : fmt::format("{}:{:02}", t / 60, t % 60);
 }
