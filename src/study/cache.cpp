@@ -8,6 +8,7 @@
 
 #include "frictal/io.hpp"
 #include "frictal/version.hpp"
+#include "study/liveness.hpp"
 #include "study/sqlite_stmt.hpp"
 
 namespace frictal::study {
@@ -29,6 +30,14 @@ CREATE TABLE IF NOT EXISTS results(
   created_at      TEXT
 );
 CREATE INDEX IF NOT EXISTS results_kind_params ON results(kind, params);
+CREATE TABLE IF NOT EXISTS claims(
+  address   TEXT PRIMARY KEY,
+  owner     TEXT NOT NULL,
+  host      TEXT NOT NULL,
+  pid       INTEGER NOT NULL,
+  pid_start INTEGER NOT NULL,
+  heartbeat REAL NOT NULL
+) WITHOUT ROWID;
 )sql";
 
 }  // namespace
@@ -36,6 +45,7 @@ CREATE INDEX IF NOT EXISTS results_kind_params ON results(kind, params);
 struct ResultCache::Impl {
   sqlite3* db = nullptr;
   std::string path;
+  liveness::Identity me;  // the holder of this connection's claims
   ~Impl() {
     if (db) sqlite3_close_v2(db);
   }
@@ -61,6 +71,7 @@ Result<std::unique_ptr<ResultCache>> ResultCache::open(const std::string& path) 
   }
   auto im = std::make_unique<Impl>();
   im->path = path;
+  im->me = liveness::Identity::make();
   if (sqlite3_open_v2(path.c_str(), &im->db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX,
                       nullptr) != SQLITE_OK)
     return im->err("cannot open the result cache");
@@ -129,6 +140,72 @@ Status ResultCache::put(const std::string& address, const Task& task, bool uses_
   w.bind(9, std::string(frictal::version()));
   w.bind(10, now_utc());
   if (w.step() != SQLITE_DONE) return impl_->err("writing the result cache");
+  return release(address);
+}
+
+Result<ResultCache::Claim> ResultCache::claim(const std::string& address, double lease_s) {
+  Impl& im = *impl_;
+  if (auto s = im.exec("BEGIN IMMEDIATE"); !s) return with_prefix("result cache: ", s.error());
+  auto done = [&](Claim c) -> Result<Claim> {
+    if (auto s = im.exec("COMMIT"); !s) {
+      (void)im.exec("ROLLBACK");
+      return with_prefix("result cache: ", s.error());
+    }
+    return c;
+  };
+  auto fail = [&](const char* what) -> Error {
+    Error e = im.err(what);
+    (void)im.exec("ROLLBACK");
+    return e;
+  };
+  {
+    Stmt r(im.db, "SELECT 1 FROM results WHERE address = ?");
+    r.bind(1, address);
+    const int rc = r.step();
+    if (rc == SQLITE_ROW) return done(Claim::Stored);
+    if (rc != SQLITE_DONE) return fail("claiming a result");
+  }
+  {
+    Stmt c(im.db, "SELECT owner, host, pid, pid_start, heartbeat FROM claims WHERE address = ?");
+    c.bind(1, address);
+    const int rc = c.step();
+    if (rc == SQLITE_ROW &&
+        im.me.held_by_other(c.text(0), c.text(1), static_cast<long>(c.i64(2)), c.i64(3), c.real(4), lease_s))
+      return done(Claim::Busy);
+    if (rc != SQLITE_ROW && rc != SQLITE_DONE) return fail("claiming a result");
+  }
+  Stmt w(im.db,
+         "INSERT OR REPLACE INTO claims(address, owner, host, pid, pid_start, heartbeat) VALUES (?, ?, ?, ?, ?, ?)");
+  w.bind(1, address);
+  w.bind(2, im.me.owner);
+  w.bind(3, im.me.host);
+  w.bind(4, static_cast<std::int64_t>(im.me.pid));
+  w.bind(5, im.me.pid_start);
+  w.bind(6, liveness::now_s());
+  if (w.step() != SQLITE_DONE) return fail("claiming a result");
+  return done(Claim::Claimed);
+}
+
+Status ResultCache::release(const std::string& address) {
+  Stmt d(impl_->db, "DELETE FROM claims WHERE address = ? AND owner = ?");
+  d.bind(1, address);
+  d.bind(2, impl_->me.owner);
+  if (d.step() != SQLITE_DONE) return impl_->err("releasing a claim in the result cache");
+  return Ok{};
+}
+
+Status ResultCache::heartbeat() {
+  Stmt u(impl_->db, "UPDATE claims SET heartbeat = ? WHERE owner = ?");
+  u.bind(1, liveness::now_s());
+  u.bind(2, impl_->me.owner);
+  if (u.step() != SQLITE_DONE) return impl_->err("refreshing claims in the result cache");
+  return Ok{};
+}
+
+Status ResultCache::release_claims() {
+  Stmt d(impl_->db, "DELETE FROM claims WHERE owner = ?");
+  d.bind(1, impl_->me.owner);
+  if (d.step() != SQLITE_DONE) return impl_->err("releasing claims in the result cache");
   return Ok{};
 }
 

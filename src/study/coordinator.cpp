@@ -392,7 +392,34 @@ bool Coordinator::resolve_claimed(std::int64_t id, std::unique_lock<std::mutex>&
     take = shared_->take(address, this, id, &out);
     if (take == SharedResults::Take::Reuse) hit = std::move(out);
   }
+  // Another process (a run of another study on this folder) may compute the address now: claim
+  // it in the cache; while its owner lives, set the task aside and look again later.
+  bool elsewhere = false;
+  if (!hit && take == SharedResults::Take::Compute && cache_) {
+    std::lock_guard ck(cache_mu_);
+    auto c = cache_->claim(address, options_.lease_s);
+    if (!c) {
+      if (cache_note_.empty()) cache_note_ = fmt::format("result cache not claimed: {}", c.error().message);
+    } else if (*c == ResultCache::Claim::Stored) {
+      if (auto f = cache_->find(address, t); f && *f) hit = std::move(*f);  // else: compute it here
+    } else if (*c == ResultCache::Claim::Busy) {
+      elsewhere = true;
+    }
+  }
+  if (elsewhere && shared_) {
+    // Not computed here now: the studies of this run waiting on it take it up again.
+    TaskRecord none;
+    none.id = id;
+    none.status = TaskStatus::Failed;
+    shared_->complete(address, none);
+  }
   lk.lock();
+  if (elsewhere) {
+    --in_flight_;
+    busy_.push_back(id);
+    cv_.notify_all();
+    return false;
+  }
   if (hit) {
     --in_flight_;
     TaskRecord r;
@@ -497,6 +524,10 @@ std::size_t Coordinator::record_finished(bool wait) {
       now - last_heartbeat_ > std::chrono::duration<double>(options_.lease_s / 4)) {
     last_heartbeat_ = now;
     (void)store_.heartbeat();  // a store that cannot be written fails the next record or claim
+    if (cache_) {
+      std::lock_guard ck(cache_mu_);
+      (void)cache_->heartbeat();
+    }
   }
   std::size_t n = 0;
   {
@@ -521,11 +552,14 @@ std::size_t Coordinator::record_finished(bool wait) {
     } else {
       ++ran_;
     }
-    if (cache_ && !reused && r.status == TaskStatus::Done) {
+    if (cache_ && !reused) {
+      // A result for the cache; a failure gives up the claim (another run may try it).
       const Task& t = study_.tasks[static_cast<std::size_t>(r.id)];
       const TaskKind* k = registry_.find(t.kind);
+      const std::string address = content_address(t, registry_);
       std::lock_guard ck(cache_mu_);
-      if (auto s = cache_->put(content_address(t, registry_), t, k ? k->uses_seed : true, r, study_.name);
+      if (auto s = r.status == TaskStatus::Done ? cache_->put(address, t, k ? k->uses_seed : true, r, study_.name)
+                                                : cache_->release(address);
           !s && cache_note_.empty())
         cache_note_ = fmt::format("result cache not written: {}", s.error().message);
     }
@@ -558,6 +592,10 @@ bool Coordinator::closing() {
 
 Result<RunSummary> Coordinator::summary(RunSummary base) {
   (void)store_.release_claims();  // tasks left unrecorded (interrupted) are free for others at once
+  if (cache_) {
+    std::lock_guard ck(cache_mu_);
+    (void)cache_->release_claims();
+  }
   if (store_failed_) return store_error_;
   std::lock_guard lk(mu_);
   if (claim_failed_) return claim_error_;

@@ -19,7 +19,9 @@
 //
 // Result cache, per task: besides start()'s bulk lookup, a task is looked up in the cache again
 // right after it is claimed (claim()), so that a result another run or study added since this run
-// started is reused rather than computed (recorded as reused, worker "cache").
+// started is reused rather than computed (recorded as reused, worker "cache"). Before computing,
+// its content address is claimed in the cache (ResultCache::claim): an address another live
+// process computes now is set aside like a task another run holds, and later found in the cache.
 //
 // Several studies, one pool (run_threads over StudyRun, SharedResults): one coordinator per study
 // and store; the workers take the task with the largest estimate among the coordinators' queue

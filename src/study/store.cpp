@@ -25,6 +25,7 @@
 #include "frictal/study.hpp"
 #include "frictal/version.hpp"
 #include "study/json_text.hpp"
+#include "study/liveness.hpp"
 #include "study/sqlite_stmt.hpp"
 
 namespace frictal::study {
@@ -75,45 +76,6 @@ CREATE TABLE IF NOT EXISTS claims(task_id INTEGER PRIMARY KEY REFERENCES tasks(t
 UPDATE meta SET value = '2' WHERE key = 'schema_version';
 )sql";
 
-double now_s() { return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count(); }
-
-std::string host_name() {
-  char buf[256] = {0};
-  if (::gethostname(buf, sizeof buf - 1) != 0) return "localhost";
-  return buf;
-}
-
-/// Start time of a process (clock ticks since boot, /proc/PID/stat field 22), 0 if unknown: with
-/// the pid it tells a live process from a later one that reuses the pid. `state` gets field 3
-/// (R, S, D, Z for a zombie, ...), '?' if unknown.
-std::int64_t process_start(long pid, char* state = nullptr) {
-  if (state) *state = '?';
-  std::ifstream f("/proc/" + std::to_string(pid) + "/stat");
-  std::string line;
-  if (!f || !std::getline(f, line)) return 0;
-  const auto close = line.rfind(')');
-  if (close == std::string::npos || close + 2 >= line.size()) return 0;
-  std::istringstream in(line.substr(close + 2));
-  std::string field;
-  for (int i = 3; i <= 22 && in >> field; ++i) {
-    if (i == 3 && state && !field.empty()) *state = field[0];
-    if (i == 22) return std::atoll(field.c_str());
-  }
-  return 0;
-}
-
-/// Whether the process (pid, start) of this host is alive (a zombie, killed but not yet reaped
-/// by its parent, is not).
-bool process_alive(long pid, std::int64_t start) {
-  if (pid <= 0) return false;
-  if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH) return false;
-  char state = '?';
-  const std::int64_t now = process_start(pid, &state);
-  if (state == 'Z' || state == 'X') return false;
-  if (start != 0 && now != 0 && now != start) return false;  // the pid was reused
-  return true;
-}
-
 const char* status_text(TaskStatus s) {
   switch (s) {
     case TaskStatus::Pending: return "pending";
@@ -137,9 +99,7 @@ struct Store::Impl {
   sqlite3* db = nullptr;
   std::string path;
   // Claims: this run's identity.
-  std::string owner, host;
-  long pid = 0;
-  std::int64_t pid_start = 0;
+  liveness::Identity me;
   // Attempts of each unfinished task when this run listed them (unfinished()): a task whose
   // count grew since was recorded by another run.
   std::map<std::int64_t, std::int64_t> seen_attempts;
@@ -198,7 +158,6 @@ struct Store::Impl {
 
 namespace {
 Result<std::unique_ptr<Store::Impl>> open_db(const std::string& path, bool create) {
-  static std::atomic<int> counter{0};
   // An existing path must be a regular file: SQLite would block forever on a FIFO with no writer
   // and give a vague message for a directory or a device. A missing one is created (create) or
   // reported by the caller.
@@ -207,10 +166,7 @@ Result<std::unique_ptr<Store::Impl>> open_db(const std::string& path, bool creat
   }
   auto impl = std::make_unique<Store::Impl>();
   impl->path = path;
-  impl->host = host_name();
-  impl->pid = static_cast<long>(::getpid());
-  impl->pid_start = process_start(impl->pid);
-  impl->owner = fmt::format("{}:{}:{}", impl->host, impl->pid, counter++);
+  impl->me = liveness::Identity::make();
   const int flags = SQLITE_OPEN_READWRITE | (create ? SQLITE_OPEN_CREATE : 0) | SQLITE_OPEN_FULLMUTEX;
   if (sqlite3_open_v2(path.c_str(), &impl->db, flags, nullptr) != SQLITE_OK) {
     std::string m = impl->db ? sqlite3_errmsg(impl->db) : "out of memory";
@@ -390,7 +346,7 @@ Status Store::record(const TaskRecord& r) {
     // This run's claim is done with, whatever happens below.
     Stmt dc(db.db, "DELETE FROM claims WHERE task_id = ? AND owner = ?");
     dc.bind(1, r.id);
-    dc.bind(2, db.owner);
+    dc.bind(2, db.me.owner);
     if (dc.step() != SQLITE_DONE) return fail("recording a task");
     // Another run (same store) may have recorded it meanwhile (e.g. after taking over an
     // expired claim): a done result is never replaced, nor a newer outcome by a failure.
@@ -536,11 +492,9 @@ Result<Store::Claim> Store::claim(std::int64_t id, double lease_s) {
     c.bind(1, id);
     const int rc = c.step();
     if (rc == SQLITE_ROW) {
-      const std::string owner = c.text(0), host = c.text(1);
-      if (owner != db.owner) {
-        const bool gone = host == db.host && !process_alive(static_cast<long>(c.i64(2)), c.i64(3));
-        const bool expired = now_s() - c.real(4) > lease_s;
-        if (!gone && !expired) {
+      const std::string owner = c.text(0);
+      if (owner != db.me.owner) {
+        if (db.me.held_by_other(owner, c.text(1), static_cast<long>(c.i64(2)), c.i64(3), c.real(4), lease_s)) {
           c.reset();
           return commit(Claim::Busy);
         }
@@ -553,11 +507,11 @@ Result<Store::Claim> Store::claim(std::int64_t id, double lease_s) {
   Stmt w(db.db,
          "INSERT OR REPLACE INTO claims(task_id, owner, host, pid, pid_start, heartbeat) VALUES (?, ?, ?, ?, ?, ?)");
   w.bind(1, id);
-  w.bind(2, db.owner);
-  w.bind(3, db.host);
-  w.bind(4, static_cast<std::int64_t>(db.pid));
-  w.bind(5, db.pid_start);
-  w.bind(6, now_s());
+  w.bind(2, db.me.owner);
+  w.bind(3, db.me.host);
+  w.bind(4, static_cast<std::int64_t>(db.me.pid));
+  w.bind(5, db.me.pid_start);
+  w.bind(6, liveness::now_s());
   if (w.step() != SQLITE_DONE) return fail("claiming a task");
   return commit(result);
 }
@@ -565,8 +519,8 @@ Result<Store::Claim> Store::claim(std::int64_t id, double lease_s) {
 Status Store::heartbeat() {
   std::lock_guard lk(impl_->mu);
   Stmt u(impl_->db, "UPDATE claims SET heartbeat = ? WHERE owner = ?");
-  u.bind(1, now_s());
-  u.bind(2, impl_->owner);
+  u.bind(1, liveness::now_s());
+  u.bind(2, impl_->me.owner);
   if (u.step() != SQLITE_DONE) return impl_->err("refreshing claims");
   return Ok{};
 }
@@ -574,12 +528,12 @@ Status Store::heartbeat() {
 Status Store::release_claims() {
   std::lock_guard lk(impl_->mu);
   Stmt d(impl_->db, "DELETE FROM claims WHERE owner = ?");
-  d.bind(1, impl_->owner);
+  d.bind(1, impl_->me.owner);
   if (d.step() != SQLITE_DONE) return impl_->err("releasing claims");
   return Ok{};
 }
 
-const std::string& Store::owner() const { return impl_->owner; }
+const std::string& Store::owner() const { return impl_->me.owner; }
 
 Status Store::limit_pages(std::int64_t pages) {
   std::lock_guard lk(impl_->mu);

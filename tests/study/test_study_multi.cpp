@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "frictal/study.hpp"
+#include "study/cache.hpp"
 #include "study_helpers.hpp"
 
 using namespace frictal::study;
@@ -31,6 +32,7 @@ std::vector<std::int64_t> g_ran;         // order of the computations: w + tag
 std::map<std::int64_t, int> g_computed;  // how often each w + tag was computed
 std::atomic<bool>* g_stop = nullptr;     // set when w + tag == g_stop_at is computed
 std::int64_t g_stop_at = -1;
+std::atomic<int> g_delay_ms{0};  // how long each computation takes (unit: ms)
 
 /// A deterministic kind (seed ignored: shared by every study with the same w) that records its
 /// computations; its cost model is w (unit: s); its output is w squared, an independent value.
@@ -43,6 +45,7 @@ TaskKind counting_kind(const std::string& name, std::int64_t tag) {
                  ++g_computed[w + tag];
                  if (g_stop && w + tag == g_stop_at) *g_stop = true;  // as if Ctrl-C came now
                }
+               if (g_delay_ms > 0) std::this_thread::sleep_for(std::chrono::milliseconds(g_delay_ms.load()));
                TaskOutput t;
                t.scalars["w_squared"] = static_cast<double>(w * w);
                t.arrays["w_and_tag"] = {static_cast<double>(w), static_cast<double>(tag)};
@@ -160,6 +163,97 @@ TEST(StudyCachePerTask, AResultAddedAfterTheRunStartedIsReusedByteIdentically) {
   EXPECT_EQ(run_one(b, ref, reg, "", 1).ran, 8);
   EXPECT_EQ(dump(bstore), dump(ref));
   EXPECT_NE(dump(bstore).find("w_and_tag"), std::string::npos);  // arrays compared too
+}
+
+// Claims on content addresses in the result cache, as two runs (two objects: two owners) and a
+// run that died see them.
+TEST(StudyCacheClaims, AnAddressIsComputedByOneRunAtATime) {
+  const std::string path = fresh("cache-claims.sqlite");
+  auto a = ResultCache::open(path), b = ResultCache::open(path);
+  ASSERT_TRUE(a.ok() && b.ok());
+  using C = ResultCache::Claim;
+  EXPECT_EQ(*(*a)->claim("x", 60), C::Claimed);
+  EXPECT_EQ(*(*a)->claim("x", 60), C::Claimed);  // its own claim
+  EXPECT_EQ(*(*b)->claim("x", 60), C::Busy);     // held by a live run
+  EXPECT_EQ(*(*b)->claim("x", -1), C::Claimed);  // unless its heartbeat is older than the lease
+  EXPECT_EQ(*(*a)->claim("x", 60), C::Busy);
+  // A stored result ends the claim; a released claim is free.
+  const TaskRegistry reg = counting_registry();
+  const Study st = parse(kA, reg);
+  const Task& t = st.tasks[0];
+  TaskRecord r = execute(t, reg, "test");
+  ASSERT_EQ(r.status, TaskStatus::Done);
+  ASSERT_TRUE((*b)->put("x", t, false, r, "multi-a").ok());
+  EXPECT_EQ(*(*a)->claim("x", 60), C::Stored);
+  EXPECT_EQ(*(*a)->claim("y", 60), C::Claimed);
+  ASSERT_TRUE((*a)->release("y").ok());
+  EXPECT_EQ(*(*b)->claim("y", 60), C::Claimed);
+  ASSERT_TRUE((*b)->release_claims().ok());
+  // A run killed while it holds a claim: taken over at once (same host, its process is gone).
+  const pid_t child = ::fork();
+  if (child == 0) {
+    auto c = ResultCache::open(path);
+    if (!c.ok() || !(*c)->claim("z", 3600).ok()) std::_Exit(1);
+    ::kill(::getpid(), SIGKILL);
+    std::_Exit(2);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  ASSERT_TRUE(WIFSIGNALED(status)) << "child exit " << WEXITSTATUS(status);
+  EXPECT_EQ(*(*a)->claim("z", 3600), C::Claimed);
+}
+
+TEST(StudyCacheClaims, TwoRunsOfStudiesThatShareTasksComputeEachOnceWhenStartedTogether) {
+  // Two studies (two stores, one cache) whose costliest tasks are the same three addresses, run
+  // at the same moment by two runs (each with its own cache connection, as two processes): each
+  // shared task is computed by one of them and taken from the cache by the other.
+  const TaskRegistry reg = counting_registry();
+  const char* kC = R"(
+[study]
+name = "claims-c"
+seed = 3
+[[part]]
+name = "p"
+kind = "count-a"
+[part.parameters]
+w = [4, 5, 6]
+)";
+  const char* kD = R"(
+[study]
+name = "claims-d"
+seed = 4
+[[part]]
+name = "q"
+kind = "count-a"
+[part.parameters]
+w = [1, 4, 5, 6]
+)";
+  const Study c = parse(kC, reg), d = parse(kD, reg);
+  const std::string cache = fresh("claims-cache.sqlite");
+  const std::string cs = fresh("claims-c.sqlite"), ds = fresh("claims-d.sqlite");
+  reset();
+  g_delay_ms = 60;
+  RunSummary rc, rd;
+  std::thread tc([&] { rc = run_one(c, cs, reg, cache, 1); });
+  std::thread td([&] { rd = run_one(d, ds, reg, cache, 1); });
+  tc.join();
+  td.join();
+  g_delay_ms = 0;
+  for (const std::int64_t w : {1, 4, 5, 6}) EXPECT_EQ(g_computed[w], 1) << "w = " << w;
+  EXPECT_EQ(rc.ran + rd.ran, 4);
+  EXPECT_EQ(rc.reused + rd.reused, 3);
+  EXPECT_FALSE(rc.interrupted || rd.interrupted);
+  EXPECT_TRUE(rc.cache_note.empty() && rd.cache_note.empty()) << rc.cache_note << rd.cache_note;
+  // Each store as its study run alone, without a cache.
+  const std::string cref = fresh("claims-cref.sqlite"), dref = fresh("claims-dref.sqlite");
+  run_one(c, cref, reg, "", 1);
+  run_one(d, dref, reg, "", 1);
+  EXPECT_EQ(dump(cs), dump(cref));
+  EXPECT_EQ(dump(ds), dump(dref));
+  // Every address is stored, none is left claimed.
+  auto again = ResultCache::open(cache);
+  ASSERT_TRUE(again.ok());
+  for (const Task& t : d.tasks) EXPECT_EQ(*(*again)->claim(content_address(t, reg), 3600), ResultCache::Claim::Stored);
 }
 
 TEST(StudyMulti, OnePoolComputesEverySharedTaskOnceAndGivesTheStoresOfSeparateRuns) {
