@@ -78,8 +78,8 @@ struct Identity {
   }
   /// Whether a claim by `owner` (host, pid, pid_start, heartbeat: s since the epoch) still holds
   /// against this one: not ours, its process alive (same host) and its heartbeat within lease_s.
-  bool held_by_other(const std::string& other, const std::string& other_host, long other_pid,
-                     std::int64_t other_start, double heartbeat, double lease_s) const {
+  bool held_by_other(const std::string& other, const std::string& other_host, long other_pid, std::int64_t other_start,
+                     double heartbeat, double lease_s) const {
     if (other == owner) return false;
     const bool gone = other_host == host && !process_alive(other_pid, other_start);
     const bool expired = now_s() - heartbeat > lease_s;
