@@ -35,6 +35,16 @@ extern "C" void on_signal(int sig) {
   std::signal(sig, SIG_DFL);  // a second Ctrl-C ends the process at once
 }
 
+/// Under MPI, what rank 0 writes when signalled: where the finished tasks are kept.
+void set_signal_note(const std::string& where) {
+  const std::string note = fmt::format(
+      "frictal: rank 0 was signalled (interrupted, or another rank died and mpirun ends the job); every finished "
+      "task is kept in {}; run the same command again to resume\n",
+      where);
+  g_signal_note_len = std::min(note.size(), sizeof g_signal_note);
+  std::memcpy(g_signal_note, note.data(), g_signal_note_len);
+}
+
 std::string hms(double s) {
   if (!std::isfinite(s) || s < 0) return "--:--";
   const long t = std::lround(s);
@@ -154,14 +164,7 @@ int run_many(const RunArgs& a) {
     folder_error = fmt::format("--store-dir {}: cannot create the folder: {}", a.store_dir, std::strerror(errno));
   if (mpi && !mpi_broadcast(folder_error.empty()) && rank != 0) return 0;  // rank 0 says why
   if (!folder_error.empty()) throw UsageError(folder_error, ErrorCode::Io);
-  if (mpi && rank == 0) {
-    const std::string note = fmt::format(
-        "frictal: rank 0 was signalled (interrupted, or another rank died and mpirun ends the job); every finished "
-        "task is kept in the stores under {}; run the same command again to resume\n",
-        a.store_dir);
-    g_signal_note_len = std::min(note.size(), sizeof g_signal_note);
-    std::memcpy(g_signal_note, note.data(), g_signal_note_len);
-  }
+  if (mpi && rank == 0) set_signal_note("the stores under " + a.store_dir);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   RunOptions o;
@@ -282,14 +285,7 @@ int run(const RunArgs& a) {
   if (mpi) unwrap(mpi_init(&rank, &size));
   MpiFinalizer fin{mpi};
   Study study = unwrap(load_study(a.studies.front(), a.quick, reg));
-  if (mpi && rank == 0) {
-    const std::string note = fmt::format(
-        "frictal: rank 0 was signalled (interrupted, or another rank died and mpirun ends the job); every finished "
-        "task is kept in {}; run the same command again to resume\n",
-        a.store);
-    g_signal_note_len = std::min(note.size(), sizeof g_signal_note);
-    std::memcpy(g_signal_note, note.data(), g_signal_note_len);
-  }
+  if (mpi && rank == 0) set_signal_note(a.store);
   std::signal(SIGINT, on_signal);
   std::signal(SIGTERM, on_signal);
   RunOptions o;

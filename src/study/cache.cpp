@@ -177,11 +177,7 @@ Result<ResultCache::Claim> ResultCache::claim(const std::string& address, double
   Stmt w(im.db,
          "INSERT OR REPLACE INTO claims(address, owner, host, pid, pid_start, heartbeat) VALUES (?, ?, ?, ?, ?, ?)");
   w.bind(1, address);
-  w.bind(2, im.me.owner);
-  w.bind(3, im.me.host);
-  w.bind(4, static_cast<std::int64_t>(im.me.pid));
-  w.bind(5, im.me.pid_start);
-  w.bind(6, liveness::now_s());
+  im.me.bind_claim(w, 2);
   if (w.step() != SQLITE_DONE) return fail("claiming a result");
   return done(Claim::Claimed);
 }

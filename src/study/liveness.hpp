@@ -76,6 +76,16 @@ struct Identity {
     id.owner = fmt::format("{}:{}:{}", id.host, id.pid, counter++);
     return id;
   }
+  /// Binds owner, host, pid, pid_start and a fresh heartbeat to the parameters first..first+4
+  /// of a claims INSERT (the column order of both claims tables).
+  template <class Statement>
+  void bind_claim(Statement& w, int first) const {
+    w.bind(first, owner);
+    w.bind(first + 1, host);
+    w.bind(first + 2, static_cast<std::int64_t>(pid));
+    w.bind(first + 3, pid_start);
+    w.bind(first + 4, now_s());
+  }
   /// Whether a claim by `owner` (host, pid, pid_start, heartbeat: s since the epoch) still holds
   /// against this one: not ours, its process alive (same host) and its heartbeat within lease_s.
   bool held_by_other(const std::string& other, const std::string& other_host, long other_pid, std::int64_t other_start,

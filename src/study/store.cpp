@@ -507,11 +507,7 @@ Result<Store::Claim> Store::claim(std::int64_t id, double lease_s) {
   Stmt w(db.db,
          "INSERT OR REPLACE INTO claims(task_id, owner, host, pid, pid_start, heartbeat) VALUES (?, ?, ?, ?, ?, ?)");
   w.bind(1, id);
-  w.bind(2, db.me.owner);
-  w.bind(3, db.me.host);
-  w.bind(4, static_cast<std::int64_t>(db.me.pid));
-  w.bind(5, db.me.pid_start);
-  w.bind(6, liveness::now_s());
+  db.me.bind_claim(w, 2);
   if (w.step() != SQLITE_DONE) return fail("claiming a task");
   return commit(result);
 }
