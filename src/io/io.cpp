@@ -300,11 +300,11 @@ std::optional<SurfaceData> read_text_mapped(const std::string& path, const ReadO
     if (auto st = check_native_channel(*r, path, options); !st) return std::nullopt;
     return std::move(*r);
   }
-  if (zip || npy || gz || io_detail::text_needs_decoding(bytes)) return std::nullopt;
-  if ((unsigned char)bytes[0] == 0xEF && (unsigned char)bytes[1] == 0xBB && (unsigned char)bytes[2] == 0xBF)
-    bytes.remove_prefix(3);
-  if (bytes.find('\0') != std::string_view::npos) return std::nullopt;
-  // Pages already parsed are given back as the parse goes (MADV_DONTNEED on a read-only private
+  if (zip || npy || gz || io_detail::utf16_text(bytes)) return std::nullopt;
+  const bool bom8 =
+      (unsigned char)bytes[0] == 0xEF && (unsigned char)bytes[1] == 0xBB && (unsigned char)bytes[2] == 0xBF;
+  if (bom8) bytes.remove_prefix(3);
+  // Pages already read are given back as the reading goes (MADV_DONTNEED on a read-only private
   // mapping: a later read of them, e.g. a header line, faults them in again from the file).
   const char* const base = static_cast<const char*>(map);
   const io_detail::ReleaseBehind release = [base](const char* upto) {
@@ -312,6 +312,18 @@ std::optional<SurfaceData> read_text_mapped(const std::string& path, const ReadO
     const std::size_t n = static_cast<std::size_t>(upto - base) / page * page;
     if (n > 0) ::madvise(const_cast<char*>(base), n, MADV_DONTNEED);
   };
+  // UTF-8 (unless the file says so by its BOM) without NUL bytes, else the usual way decodes it:
+  // checked 32 MB at a time, each piece's pages given back, so that the whole file is never
+  // resident at once. A piece ends before a byte that starts a character.
+  constexpr std::size_t kPiece = std::size_t{32} << 20;
+  for (std::size_t at = 0; at < bytes.size();) {
+    std::size_t end = std::min(bytes.size(), at + kPiece);
+    while (end < bytes.size() && ((unsigned char)bytes[end] & 0xC0) == 0x80) ++end;
+    const std::string_view piece = bytes.substr(at, end - at);
+    if ((!bom8 && !io_detail::valid_utf8(piece)) || piece.find('\0') != std::string_view::npos) return std::nullopt;
+    release(piece.data() + piece.size());
+    at = end;
+  }
   auto r = parse_text(bytes, path, options, &release);
   if (!r) return std::nullopt;
   describe_native(*r);

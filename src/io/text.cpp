@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
 #include <optional>
 
@@ -53,9 +55,40 @@ std::string decode_utf16(const std::string& b, std::size_t start, bool little) {
   return out;
 }
 
+bool has_utf8_bom(std::string_view b) {
+  return b.size() >= 3 && (unsigned char)b[0] == 0xEF && (unsigned char)b[1] == 0xBB && (unsigned char)b[2] == 0xBF;
+}
+
+/// UTF-16 text: by its BOM, or without one when the first 512 bytes have a NUL in every other
+/// byte and none in the others (ASCII characters as UTF-16). `No` for anything else.
+enum class Utf16 { No, BomLittle, BomBig, Little, Big };
+Utf16 utf16_kind(std::string_view b) {
+  auto u = [&](std::size_t i) { return (unsigned char)b[i]; };
+  if (has_utf8_bom(b)) return Utf16::No;
+  if (b.size() >= 2 && u(0) == 0xFF && u(1) == 0xFE) return Utf16::BomLittle;
+  if (b.size() >= 2 && u(0) == 0xFE && u(1) == 0xFF) return Utf16::BomBig;
+  if (b.size() >= 4) {
+    std::size_t n = std::min<std::size_t>(b.size() & ~std::size_t(1), 512), even0 = 0, odd0 = 0;
+    for (std::size_t i = 0; i < n; ++i) (i % 2 ? odd0 : even0) += b[i] == 0;
+    if (odd0 > n / 4 && even0 == 0) return Utf16::Little;
+    if (even0 > n / 4 && odd0 == 0) return Utf16::Big;
+  }
+  return Utf16::No;
+}
+
+}  // namespace
+
+namespace io_detail {
+
 bool valid_utf8(std::string_view s) {
   std::size_t i = 0, n = s.size();
   while (i < n) {
+    // Runs of ASCII (the whole of a CSV, typically) 8 bytes at a time.
+    for (std::uint64_t w; i + 8 <= n; i += 8) {
+      std::memcpy(&w, s.data() + i, 8);
+      if (w & 0x8080808080808080ULL) break;
+    }
+    if (i >= n) break;
     unsigned char c = s[i];
     std::size_t len = c < 0x80 ? 1 : (c >> 5) == 6 ? 2 : (c >> 4) == 14 ? 3 : (c >> 3) == 30 ? 4 : 0;
     if (len == 0 || i + len > n) return false;
@@ -66,35 +99,14 @@ bool valid_utf8(std::string_view s) {
   return true;
 }
 
-}  // namespace
+bool utf16_text(std::string_view b) { return utf16_kind(b) != Utf16::No; }
 
-namespace io_detail {
-
-bool text_needs_decoding(std::string_view b) {
-  auto u = [&](std::size_t i) { return (unsigned char)b[i]; };
-  if (b.size() >= 3 && u(0) == 0xEF && u(1) == 0xBB && u(2) == 0xBF) return false;
-  if (b.size() >= 2 && ((u(0) == 0xFF && u(1) == 0xFE) || (u(0) == 0xFE && u(1) == 0xFF))) return true;
-  if (b.size() >= 4) {
-    std::size_t n = std::min<std::size_t>(b.size() & ~std::size_t(1), 512), even0 = 0, odd0 = 0;
-    for (std::size_t i = 0; i < n; ++i) (i % 2 ? odd0 : even0) += b[i] == 0;
-    if ((odd0 > n / 4 && even0 == 0) || (even0 > n / 4 && odd0 == 0)) return true;
-  }
-  return !valid_utf8(b);
-}
+bool text_needs_decoding(std::string_view b) { return !has_utf8_bom(b) && (utf16_text(b) || !valid_utf8(b)); }
 
 std::string_view decode_text_view(const std::string& b, std::string& storage) {
-  auto u = [&](std::size_t i) { return (unsigned char)b[i]; };
-  const bool bom8 = b.size() >= 3 && u(0) == 0xEF && u(1) == 0xBB && u(2) == 0xBF;
-  const bool bom16 = b.size() >= 2 && ((u(0) == 0xFF && u(1) == 0xFE) || (u(0) == 0xFE && u(1) == 0xFF));
-  bool utf16 = false;
-  if (!bom8 && !bom16 && b.size() >= 4) {
-    std::size_t n = std::min<std::size_t>(b.size() & ~std::size_t(1), 512), even0 = 0, odd0 = 0;
-    for (std::size_t i = 0; i < n; ++i) (i % 2 ? odd0 : even0) += b[i] == 0;
-    utf16 = (odd0 > n / 4 && even0 == 0) || (even0 > n / 4 && odd0 == 0);
-  }
   // The same cases as decode_text, which returns valid UTF-8 unchanged: no copy then.
-  if (bom8) return std::string_view(b).substr(3);
-  if (!bom16 && !utf16 && valid_utf8(b)) return b;
+  if (has_utf8_bom(b)) return std::string_view(b).substr(3);
+  if (!utf16_text(b) && valid_utf8(b)) return b;
   storage = decode_text(b);
   return storage;
 }
@@ -102,18 +114,15 @@ std::string_view decode_text_view(const std::string& b, std::string& storage) {
 }  // namespace io_detail
 
 std::string decode_text(const std::string& b) {
-  auto u = [&](std::size_t i) { return (unsigned char)b[i]; };
-  if (b.size() >= 3 && u(0) == 0xEF && u(1) == 0xBB && u(2) == 0xBF) return b.substr(3);
-  if (b.size() >= 2 && u(0) == 0xFF && u(1) == 0xFE) return decode_utf16(b, 2, true);
-  if (b.size() >= 2 && u(0) == 0xFE && u(1) == 0xFF) return decode_utf16(b, 2, false);
-  // BOM-less UTF-16: ASCII text has a NUL in every other byte.
-  if (b.size() >= 4) {
-    std::size_t n = std::min<std::size_t>(b.size() & ~std::size_t(1), 512), even0 = 0, odd0 = 0;
-    for (std::size_t i = 0; i < n; ++i) (i % 2 ? odd0 : even0) += b[i] == 0;
-    if (odd0 > n / 4 && even0 == 0) return decode_utf16(b, 0, true);
-    if (even0 > n / 4 && odd0 == 0) return decode_utf16(b, 0, false);
+  if (has_utf8_bom(b)) return b.substr(3);
+  switch (utf16_kind(b)) {
+    case Utf16::BomLittle: return decode_utf16(b, 2, true);
+    case Utf16::BomBig: return decode_utf16(b, 2, false);
+    case Utf16::Little: return decode_utf16(b, 0, true);
+    case Utf16::Big: return decode_utf16(b, 0, false);
+    case Utf16::No: break;
   }
-  if (valid_utf8(b)) return b;
+  if (io_detail::valid_utf8(b)) return b;
   std::string out;  // Latin-1: every byte is its code point
   out.reserve(b.size() + b.size() / 8);
   for (char c : b) append_utf8(out, (unsigned char)c);

@@ -45,6 +45,10 @@ std::string invalid_warning(const std::string& name, const InvalidCount& c, bool
 std::string_view decode_text_view(const std::string& b, std::string& storage);
 /// True if decode_text(b) would change b other than by dropping a UTF-8 BOM (UTF-16, Latin-1).
 bool text_needs_decoding(std::string_view b);
+/// Whether b is valid UTF-8 (ASCII runs are checked 8 bytes at a time).
+bool valid_utf8(std::string_view b);
+/// Whether b is UTF-16 text: by its BOM, or BOM-less ASCII as UTF-16 (first 512 bytes).
+bool utf16_text(std::string_view b);
 
 struct Line {
   std::string_view text;

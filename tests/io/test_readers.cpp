@@ -556,3 +556,76 @@ TEST(ReadersLarge, MappedTextWithLongCommentTailReadsEveryRow) {
   }
   std::remove(path.c_str());
 }
+
+#include "io/text_util.hpp"
+
+namespace {
+// A second, plain check of UTF-8: one character at a time, by its lead byte.
+bool plain_utf8(const std::string& s) {
+  for (std::size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    int more = c < 0x80 ? 0 : (c & 0xE0) == 0xC0 ? 1 : (c & 0xF0) == 0xE0 ? 2 : (c & 0xF8) == 0xF0 ? 3 : -1;
+    if (more < 0) return false;                                                    // not a lead byte
+    if (more > 0 && i + static_cast<std::size_t>(more) >= s.size()) return false;  // cut short
+    for (int k = 1; k <= more; ++k)
+      if ((static_cast<unsigned char>(s[i + static_cast<std::size_t>(k)]) & 0xC0) != 0x80) return false;
+    i += static_cast<std::size_t>(more) + 1;
+  }
+  return true;
+}
+}  // namespace
+
+// The UTF-8 check reads runs of ASCII 8 bytes at a time: every position of a multi-byte
+// character, a stray continuation byte or a truncated sequence inside or after such runs must
+// give what a one-character-at-a-time check gives.
+TEST(TextDecoding, ValidUtf8AgreesWithAPlainCheckAtEveryPosition) {
+  const std::vector<std::string> inserts = {"\xC2\xB5",     "\xE2\x82\xAC", "\xF0\x9F\x98\x80",
+                                            "\xB5",         "\xC2",         "\xE2\x82",
+                                            "\xC2\xB5\xB5", "\xFF",         "\xF0\x9F\x98"};
+  int valid = 0, invalid = 0;
+  for (std::size_t len = 0; len <= 24; ++len)
+    for (std::size_t at = 0; at <= len; ++at)
+      for (const std::string& ins : inserts) {
+        std::string s(len, 'a');
+        s.insert(at, ins);
+        const bool want = plain_utf8(s);
+        EXPECT_EQ(frictal::io_detail::valid_utf8(s), want) << "length " << len << ", at " << at;
+        (want ? valid : invalid)++;
+      }
+  EXPECT_GT(valid, 0);
+  EXPECT_GT(invalid, 0);
+  EXPECT_TRUE(frictal::io_detail::valid_utf8(std::string(1000, 'x')));
+  EXPECT_FALSE(frictal::io_detail::valid_utf8(std::string(999, 'x') + "\x80"));
+}
+
+// A mapped CSV is checked for UTF-8 32 MiB at a time: a file of 34 MB whose one multi-byte
+// character (in a comment) straddles the 32 MiB mark reads every row, with the values written.
+TEST(ReadersLarge, MappedTextCheckedInPiecesReadsACharacterAcrossTheirBoundary) {
+  const std::string path = ::testing::TempDir() + "frictal_pieces.csv";
+  constexpr std::size_t kMark = std::size_t{32} << 20;
+  std::size_t rows = 0;
+  {
+    std::ofstream out(path, std::ios::binary);
+    std::string text = "x_m,z_m\n";
+    text.reserve(kMark + 4096);
+    char buf[64];
+    while (text.size() < kMark - 64) {
+      const int n = std::snprintf(buf, sizeof buf, "%zu,%zu\n", rows, rows % 1000);
+      text.append(buf, static_cast<std::size_t>(n));
+      ++rows;
+    }
+    text += "# ";
+    text.append(kMark - 1 - text.size(), 'c');  // "\xC2" ends at byte kMark - 1, "\xB5" starts the next piece
+    text += "\xC2\xB5m\n# end\n";
+    ASSERT_EQ(static_cast<unsigned char>(text[kMark]), 0xB5);
+    out << text;
+  }
+  auto c = frictal::read_curve(path);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  ASSERT_EQ(c->x.size(), rows);
+  for (std::size_t k = 0; k < rows; k += 99991) {
+    EXPECT_EQ(c->x[k], static_cast<double>(k)) << k;
+    EXPECT_EQ(c->z[k], static_cast<double>(k % 1000)) << k;
+  }
+  std::remove(path.c_str());
+}
