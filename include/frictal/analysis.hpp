@@ -24,6 +24,9 @@ Result<Detrend> parse_detrend(const std::string& text);
 /// (each point weighs half its two neighbouring intervals), i.e. the L2 fit of the
 /// piecewise-linear profile's samples. Mean = degree 0, Line = degree 1.
 Result<Profile> detrend(const Profile& p, const Detrend& d);
+/// The same, in the storage of `p` (no copy of a profile that is not needed afterwards: 160 MB
+/// at 10^7 points).
+Result<Profile> detrend(Profile&& p, const Detrend& d);
 /// Subtracts the least-squares polynomial in (x, y) of total degree <= N over the valid points
 /// (equal weights). Mean = 0, Line = plane (1).
 Result<Map> detrend(const Map& m, const Detrend& d);

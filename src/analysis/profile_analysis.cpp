@@ -127,9 +127,9 @@ static int degree_of(const Detrend& d) {
   return d.kind == DetrendKind::Mean ? 0 : d.kind == DetrendKind::Line ? 1 : d.degree;
 }
 
-Result<Profile> detrend(const Profile& p, const Detrend& d) {
+Result<Profile> detrend(Profile&& p, const Detrend& d) {
   if (auto s = validate(p, "profile"); !s) return s.error();
-  if (d.kind == DetrendKind::None) return p;
+  if (d.kind == DetrendKind::None) return std::move(p);
   const int deg = degree_of(d);
   if (deg < 0 || deg > 10) return make_error(fmt::format("detrend degree {} out of range 0..10", deg));
   if (std::size_t(deg) + 1 > p.size())
@@ -147,15 +147,16 @@ Result<Profile> detrend(const Profile& p, const Detrend& d) {
     }
   }
   if (!solve(G, b, a)) return make_error("detrend: the least-squares system is singular (too few distinct x)");
-  Profile out = p;
   for (std::size_t i = 0; i < p.size(); ++i) {
     legendre((p.x[i] - mid) / half, deg, P.data());
     double f = 0;
     for (std::size_t r = 0; r < n; ++r) f += a[r] * P[r];
-    out.z[i] -= f;
+    p.z[i] -= f;
   }
-  return out;
+  return std::move(p);
 }
+
+Result<Profile> detrend(const Profile& p, const Detrend& d) { return detrend(Profile(p), d); }
 
 Result<Map> detrend(const Map& m, const Detrend& d) {
   if (auto s = validate(m, "map"); !s) return s.error();
