@@ -2,6 +2,7 @@
 #pragma once
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
@@ -43,6 +44,14 @@ inline bool wait_for_file(const std::string& path, double timeout_s = 30) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   return true;
+}
+
+/// The start of a command line that runs the CLI on `ranks` MPI ranks (append the CLI's path and
+/// arguments). Open MPI leaks at exit by design: under the sanitizer preset ASan keeps its memory
+/// checks but not LeakSanitizer (the leaks are all inside libmpi and its plugins).
+inline std::string mpirun_prefix(int ranks) {
+  return "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n " + std::to_string(ranks) + " --oversubscribe" +
+         (::getuid() == 0 ? " --allow-run-as-root " : " ");
 }
 
 }  // namespace study_test

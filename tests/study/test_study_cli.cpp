@@ -125,11 +125,8 @@ TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
   const std::string a = fresh("mpi-threads.sqlite"), b = fresh("mpi-ranks.sqlite");
   auto r = run_cli("study run " + study + " --store " + a + " --threads 2 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
-  const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
-  // Open MPI leaks at exit by design; under the sanitizer preset keep ASan's memory checks but
-  // not LeakSanitizer (the leaks are all inside libmpi and its plugins).
-  const std::string mpirun = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 2 --oversubscribe";
-  const std::string cmd = mpirun + root + " " + FRICTAL_CLI_PATH + " study run " + study + " --store " + b +
+  const std::string mpirun = study_test::mpirun_prefix(2);
+  const std::string cmd = mpirun + FRICTAL_CLI_PATH + " study run " + study + " --store " + b +
                           " --cache none --progress none >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   EXPECT_EQ(dump(a), dump(b));
@@ -145,7 +142,7 @@ TEST(StudyCli, MpiRanksGiveTheSameRowsAsThreads) {
   // first one); each is reassigned to rank 1 and the
   // store is still exactly the threads run, with the extra attempts recorded.
   const std::string c = fresh("mpi-fault.sqlite");
-  const std::string cmd2 = mpirun + root + " " + FRICTAL_CLI_PATH + " study run " + study + " --store " + c +
+  const std::string cmd2 = mpirun + FRICTAL_CLI_PATH + " study run " + study + " --store " + c +
                            " --cache none --progress none --inject-failure-rank 0 >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd2.c_str()), 0) << cmd2;
   EXPECT_EQ(dump(a), dump(c));
@@ -229,10 +226,8 @@ TEST(StudyCli, ATaskRetriedOnceGivesTheSameStoreOnThreadsAndMpiRanks) {
   if (!mpi_available()) GTEST_SKIP() << "built without FRICTAL_MPI";
   if (std::system("command -v mpirun >/dev/null 2>&1") != 0) GTEST_SKIP() << "mpirun not found";
   const std::string mpi = fresh("retry-mpi.sqlite");
-  const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
   const std::string cmd =
-      "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 2 --oversubscribe" + root + " " + FRICTAL_CLI_PATH +
-      " study run " + study + " --store " + mpi +
+      study_test::mpirun_prefix(2) + FRICTAL_CLI_PATH + " study run " + study + " --store " + mpi +
       " --cache none --progress none --inject-failure-task 3 --inject-failure-task 17 >/dev/null 2>&1";
   ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
   EXPECT_EQ(dump(mpi), expected);

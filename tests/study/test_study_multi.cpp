@@ -362,6 +362,18 @@ std::string shipped(const std::string& name) {
   return (std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "studies" / (name + ".toml"))
       .string();
 }
+/// Runs each shipped study `names` alone at quick scale into sep/<name>.sqlite (no cache): the
+/// reference stores; `files` gets their study files, space-separated.
+void run_separately(const std::vector<std::string>& names, const std::string& sep, std::string& files) {
+  std::filesystem::remove_all(sep);
+  std::filesystem::create_directories(sep);
+  for (const auto& n : names) {
+    auto r = run_cli("study run " + shipped(n) + " --store " + sep + "/" + n +
+                     ".sqlite --quick --threads 2 --cache none --progress none");
+    ASSERT_EQ(r.code, 0) << r.err;
+    files += " " + shipped(n);
+  }
+}
 }  // namespace
 
 TEST(StudyMultiCli, ShippedDemStudiesInOneRunGiveTheStoresOfSeparateRuns) {
@@ -370,16 +382,9 @@ TEST(StudyMultiCli, ShippedDemStudiesInOneRunGiveTheStoresOfSeparateRuns) {
   // run-independent content, and the shared tasks are computed once (reused in the later study).
   const std::vector<std::string> names = {"fig06-koch-friction", "fig08-atomic-friction", "fig10-mu-vs-dimension"};
   const std::string sep = temp_path("multi-cli-separate"), one = temp_path("multi-cli-one");
-  std::filesystem::remove_all(sep);
   std::filesystem::remove_all(one);
-  std::filesystem::create_directories(sep);
   std::string files;
-  for (const auto& n : names) {
-    auto r = run_cli("study run " + shipped(n) + " --store " + sep + "/" + n +
-                     ".sqlite --quick --threads 2 --cache none --progress none");
-    ASSERT_EQ(r.code, 0) << r.err;
-    files += " " + shipped(n);
-  }
+  ASSERT_NO_FATAL_FAILURE(run_separately(names, sep, files));
   auto r = run_cli("study run" + files + " --store-dir " + one + " --quick --threads 2 --progress lines");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("tasks reused"), std::string::npos) << r.out;
@@ -409,18 +414,10 @@ TEST(StudyMultiCli, UnderMpiEveryStudyRunsOverTheRanksAndGivesTheStoresOfSeparat
   // later ones reuse the shared tilt and theory tasks through the result cache in the folder.
   const std::vector<std::string> names = {"fig06-koch-friction", "fig10-mu-vs-dimension"};
   const std::string sep = temp_path("multi-mpi-separate"), one = temp_path("multi-mpi-one");
-  std::filesystem::remove_all(sep);
   std::filesystem::remove_all(one);
-  std::filesystem::create_directories(sep);
   std::string files;
-  for (const auto& n : names) {
-    auto r = run_cli("study run " + shipped(n) + " --store " + sep + "/" + n +
-                     ".sqlite --quick --threads 2 --cache none --progress none");
-    ASSERT_EQ(r.code, 0) << r.err;
-    files += " " + shipped(n);
-  }
-  const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
-  const std::string mpirun = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 2 --oversubscribe" + root + " ";
+  ASSERT_NO_FATAL_FAILURE(run_separately(names, sep, files));
+  const std::string mpirun = study_test::mpirun_prefix(2);
   const std::string log = temp_path("multi-mpi.log");
   const std::string cmd = mpirun + FRICTAL_CLI_PATH + std::string(" study run") + files + " --store-dir " + one +
                           " --quick --progress none >" + log + " 2>&1";

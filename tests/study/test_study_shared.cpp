@@ -463,8 +463,7 @@ TEST(StudyShared, MpiRankKilledLeavesTheStoreConsistentAndARerunCompletes) {
   auto r = run_cli("study run " + study + " --store " + ref + " --threads 2 --cache none --progress none");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string expected = dump(ref);
-  const std::string root = ::getuid() == 0 ? " --allow-run-as-root" : "";
-  const std::string mpirun = "ASAN_OPTIONS=detect_leaks=0 mpirun -x ASAN_OPTIONS -n 3 --oversubscribe" + root + " ";
+  const std::string mpirun = study_test::mpirun_prefix(3);
   std::mt19937 rng(31337);
   for (int trial = 0; trial < 2; ++trial) {
     const std::string store = fresh("mpi-kill-" + std::to_string(trial) + ".sqlite");
