@@ -98,6 +98,31 @@ const std::vector<B>& table() {
                            FRICTAL_MEMBER(stick_speed)),
           bind<TiltConfig>(F("stick_duration", "s", 0, Lo::Closed, kInf, "Shortest stick"),
                            FRICTAL_MEMBER(stick_duration)),
+          bind_choice<TiltConfig>(
+              F("protocol", "", 0, Lo::Closed, 0,
+                "How the tilt grows: constant-rate (the paper's, tilt_rate) or quasi-static (tilt_increment, "
+                "each relaxed to rest by FIRE)"),
+              FRICTAL_MEMBER(protocol),
+              std::vector<std::pair<std::string, TiltProtocol>>{{"constant-rate", TiltProtocol::ConstantRate},
+                                                                {"quasi-static", TiltProtocol::QuasiStatic}}),
+          bind<TiltConfig>(F("tilt_increment", "rad", 0, Lo::Open, std::numbers::pi / 2,
+                             "Quasi-static: tilt added per increment (the angle reads at most one increment low)",
+                             true),
+                           FRICTAL_MEMBER(tilt_increment)),
+          bind<TiltConfig>(F("relax_time", "s", 0, Lo::Open, kInf,
+                             "Quasi-static: longest relaxation per increment (and of the settling); beyond it the "
+                             "run warns (unrelaxed)"),
+                           FRICTAL_MEMBER(relax_time)),
+          bind<TiltConfig>(F("relax_force", "", 0, Lo::Open, kInf,
+                             "Quasi-static: at rest below this unbalanced force on the upper block, as a fraction of "
+                             "its weight"),
+                           FRICTAL_MEMBER(relax_force)),
+          bind<TiltConfig>(F("relax_speed", "m/s", 0, Lo::Open, kInf, "Quasi-static: at rest below this speed"),
+                           FRICTAL_MEMBER(relax_speed)),
+          bind<TiltConfig>(F("check_stiffness", "", 0, Lo::Closed, 1,
+                             "Run again at 10 normal_stiffness and tangential_stiffness; warn (stiffness) when the "
+                             "angle moves by more than warn_stiffness_angle"),
+                           FRICTAL_MEMBER(check_stiffness)),
           // Numerics.
           bind<TiltConfig>(F("time_step", "s", 0, Lo::Open, kInf,
                              "Largest time step with the adaptive step, else the fixed step (docs/dem.md)"),
@@ -142,6 +167,9 @@ const std::vector<B>& table() {
                              "Warn (creep) when the first creep event began more than this below the friction "
                              "angle"),
                            FRICTAL_MEMBER(warn_creep_angle)),
+          bind<TiltConfig>(F("warn_stiffness_angle", "rad", 0, Lo::Open, kInf,
+                             "Warn (stiffness) when check_stiffness moves the friction angle by more"),
+                           FRICTAL_MEMBER(warn_stiffness_angle)),
           // Output.
           bind<TiltConfig>(
               F("series_interval", "s", 0, Lo::Closed, kInf, "Time between rows of the time series; 0: none"),
