@@ -77,8 +77,8 @@ struct HoldAngle {
   /// End of the run-away slip (the next stop, at least d ahead), or NaN when it runs off the
   /// end of the curve or never stops (a global maximum of the slope of a periodic lift) (unit: m).
   double runaway_end = 0;
-  int slips = 0;                  ///< short slips (< d) between the rest and the run-away
-  bool ran_off_end = false;       ///< the run-away ran off the end of the curve's range
+  int slips = 0;                   ///< short slips (< d) between the rest and the run-away
+  bool ran_off_end = false;        ///< the run-away ran off the end of the curve's range
   double inertial_hold_angle = 0;  ///< phi_in: atan(mu_a) + atan(steepest chord) (unit: rad)
   double inertial_slope = 0;       ///< the steepest chord's slope (unitless)
   double inertial_offset = 0;      ///< where the steepest chord ends (unit: m)
