@@ -101,7 +101,9 @@ int run(TiltOptions& o) {
         cfg.predict ? nlohmann::json(r->predicted_sphero_friction_angle / kDeg) : nlohmann::json(nullptr);
     j["predicted_sphero_theta_max_deg"] =
         cfg.predict ? nlohmann::json(r->predicted_sphero_theta_max / kDeg) : nlohmann::json(nullptr);
-    auto deg_or_null = [](double rad) { return std::isnan(rad) ? nlohmann::json(nullptr) : nlohmann::json(rad / kDeg); };
+    auto deg_or_null = [](double rad) {
+      return std::isnan(rad) ? nlohmann::json(nullptr) : nlohmann::json(rad / kDeg);
+    };
     j["protocol"] = cfg.protocol == TiltProtocol::QuasiStatic ? "quasi-static" : "constant-rate";
     j["rest_offset_m"] = r->rest_offset;
     j["predicted_hold_angle_deg"] = deg_or_null(r->predicted_hold_angle);

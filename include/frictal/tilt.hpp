@@ -77,10 +77,10 @@ struct TiltConfig {
   double skin = 5e-5;                 ///< neighbour-list skin (unit: m)
   int max_steps_beyond_limit = 1000;  ///< see dem::WorldDef::max_steps_beyond_limit; fixed step only (unitless)
   double settle_time = 0.1;           ///< free settling before the tilt starts (unit: s)
-  double max_tilt = 89 * std::numbers::pi / 180;  ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
-  double runaway_distance = 0.01;                 ///< sliding "for good": growth past this, one lambda (unit: m)
-  double stick_speed = 1e-5;                      ///< relative speed counted as stuck (unit: m/s)
-  double stick_duration = 0.02;                   ///< a stick lasts at least this long (unit: s)
+  double max_tilt = 89 * std::numbers::pi / 180;       ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
+  double runaway_distance = 0.01;                      ///< sliding "for good": growth past this, one lambda (unit: m)
+  double stick_speed = 1e-5;                           ///< relative speed counted as stuck (unit: m/s)
+  double stick_duration = 0.02;                        ///< a stick lasts at least this long (unit: s)
   TiltProtocol protocol = TiltProtocol::ConstantRate;  ///< how the tilt grows
   /// Quasi-static protocol: the tilt added per increment (unit: rad). The friction angle is the
   /// tilt of an increment, so it reads at most one increment below the angle that holds.
@@ -93,6 +93,9 @@ struct TiltConfig {
   /// weight (unitless) and its speed below `relax_speed`.
   double relax_force = 1e-5;
   double relax_speed = 1e-6;  ///< quasi-static: speed of the upper block counted as at rest (unit: m/s)
+  /// Quasi-static: the thresholds must hold this long without a break (a block passing an unstable
+  /// balance meets them for a moment) (unit: s).
+  double relax_duration = 0.005;
   /// Run the test again at 10 k_n and k_t (series and frames off) and warn ("stiffness") when the
   /// friction angle moves by more than `warn_stiffness_angle`: the run is not in the rigid limit.
   bool check_stiffness = false;
@@ -226,7 +229,7 @@ struct TiltResult {
   /// relaxed to rest (relax_force, relax_speed) before the increment whose relaxation carried it
   /// runaway_distance from that rest.
   double friction_angle = 0;
-  double slide_time = 0;      ///< time of that moment (unit: s)
+  double slide_time = 0;  ///< time of that moment (unit: s)
   /// Relative displacement at the start of the run-away, since the end of settling (unit: m).
   double slide_start_displacement = 0;
   /// Relative displacement when the run stopped, since the end of settling (unit: m).
@@ -269,7 +272,7 @@ struct TiltResult {
   double simulated_time = 0;          ///< (unit: s)
   std::uint64_t steps = 0;
   double wall_time = 0;   ///< wall time of the time stepping only (unit: s)
-  double setup_time = 0;  ///< wall time of building blocks, placement, prediction (unit: s)
+  double setup_time = 0;  ///< wall time of building blocks, placement, predictions (hold angles included) (unit: s)
   dem::StepTimings timings;
   std::uint64_t steps_beyond_limit = 0;   ///< steps above the explicit stability limit (warnings)
   double min_time_step = 0;               ///< smallest step taken (unit: s)

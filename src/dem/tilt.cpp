@@ -13,6 +13,7 @@
 
 #include <fmt/core.h>
 
+#include "frictal/hold.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/tilt.hpp"
 #include "util/parallel.hpp"
@@ -194,12 +195,14 @@ Status check_config(const TiltConfig& c) {
     return make_error("tilt placement_gap: expected >= 0 m");
   if (c.protocol == TiltProtocol::QuasiStatic) {
     if (!(pos(c.tilt_increment) && c.tilt_increment < c.max_tilt))
-      return make_error(
-          fmt::format("tilt tilt_increment = {} rad: expected > 0 and below max_tilt = {} rad", c.tilt_increment,
-                      c.max_tilt));
+      return make_error(fmt::format("tilt tilt_increment = {} rad: expected > 0 and below max_tilt = {} rad",
+                                    c.tilt_increment, c.max_tilt));
     if (!pos(c.relax_time)) return make_error(fmt::format("tilt relax_time = {} s: expected > 0", c.relax_time));
     if (!pos(c.relax_force)) return make_error(fmt::format("tilt relax_force = {}: expected > 0", c.relax_force));
     if (!pos(c.relax_speed)) return make_error(fmt::format("tilt relax_speed = {} m/s: expected > 0", c.relax_speed));
+    if (!(std::isfinite(c.relax_duration) && c.relax_duration >= 0 && c.relax_duration < c.relax_time))
+      return make_error(fmt::format("tilt relax_duration = {} s: expected >= 0 and below relax_time = {} s",
+                                    c.relax_duration, c.relax_time));
   }
   if (!std::isnan(c.initial_offset) && !std::isfinite(c.initial_offset))
     return make_error("tilt initial_offset: expected a finite value or NaN (auto)");
@@ -214,9 +217,9 @@ namespace {
 
 // ---- Phase 1: the faces (tilt.hpp header comment).
 struct Faces {
-  Poly lower;             // lower face as measured
-  Poly upper;             // upper face rotated by 180 degrees, before the offset
-  Profile lower_env;      // envelopes (for the signature and face = envelope)
+  Poly lower;         // lower face as measured
+  Poly upper;         // upper face rotated by 180 degrees, before the offset
+  Profile lower_env;  // envelopes (for the signature and face = envelope)
   Profile upper_env;
   bool has_env = false;
 };
@@ -294,11 +297,53 @@ Result<double> predict_theta_max(Faces& f, const TiltConfig& cfg, unsigned threa
   return offset;
 }
 
+// ---- Phase 6: the hold-angle predictions (hold.hpp) from where the block rests when the loading
+// starts: the exact lift of the finite blocks over rest +- d (hold_lift_range), rigid profiles
+// and the run's spheroradius, in the sliding direction. A failure leaves NaN and says why.
+void predict_hold_angles(const Faces& f, const TiltConfig& cfg, TiltResult& res) {
+  if (!cfg.predict || !f.has_env) return;
+  const double s = res.rest_offset, d = cfg.runaway_distance;
+  Profile lower = f.lower_env;
+  lower.period.reset();  // the simulated blocks are finite
+  const Profile upper_face = rotate180(f.upper_env);
+  const OffsetRange range = hold_lift_range(s, s, d, lower.length(), upper_face.length());
+  HoldOptions ho;
+  ho.runaway_distance = d;
+  ho.atomic_friction = cfg.contact.atomic_friction;
+  auto hold = [&](double radius) -> Result<HoldAngle> {
+    SignatureOptions so;
+    so.keep_contacts = false;
+    so.threads = 1;
+    so.offset_min = range.min;
+    so.offset_max = range.max;
+    so.spheroradius = radius;
+    auto sig = signature(lower, upper_face, so);
+    if (!sig.ok()) return with_prefix("signature: ", sig.error());
+    auto curve = lift_curve(*sig);
+    if (!curve.ok()) return with_prefix("lift curve: ", curve.error());
+    auto h = hold_angle(*curve, s, ho);
+    if (!h.ok()) return h.error();
+    return cfg.reverse ? h->backward : h->forward;
+  };
+  auto rigid = hold(0);
+  if (!rigid.ok()) {
+    res.hold_error = "rigid profiles: " + rigid.error().message;
+    return;
+  }
+  res.predicted_hold_angle = rigid->hold_angle;
+  res.predicted_inertial_hold_angle = rigid->inertial_hold_angle;
+  auto sphero = hold(cfg.radius);
+  if (!sphero.ok()) {
+    res.hold_error = "spheropolygons: " + sphero.error().message;
+    return;
+  }
+  res.predicted_sphero_hold_angle = sphero->hold_angle;
+}
+
 // ---- Phase 3: placement. Shifts the upper face by `offset`, lowers it to `placement_gap`
 // above contact, builds both blocks and the model, and fills the result's masses, polygons and
 // scales.
-Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, const TiltConfig& cfg,
-                                TiltResult& res) {
+Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, const TiltConfig& cfg, TiltResult& res) {
   res.initial_offset = offset;
   for (double& x : upper.x) x += offset;
 
@@ -338,7 +383,8 @@ Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, co
   lb.type = dem::BodyType::Kinematic;
   if (cfg.hold_rotation) ub.rotation_follows = 0;
   // The quasi-static protocol keeps the lower block still and turns gravity instead.
-  if (cfg.protocol == TiltProtocol::ConstantRate) lb.motion.angular_velocity = cfg.reverse ? cfg.tilt_rate : -cfg.tilt_rate;
+  if (cfg.protocol == TiltProtocol::ConstantRate)
+    lb.motion.angular_velocity = cfg.reverse ? cfg.tilt_rate : -cfg.tilt_rate;
   lb.motion.start_time = cfg.settle_time;
   dem::WorldDef wd;
   wd.gravity = {0, -cfg.gravity};
@@ -360,6 +406,10 @@ Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, co
                       (cfg.face == TiltFace::Curve ? " (a folded surface may need face = envelope)" : ""));
   }
   dem::Model model = std::move(*model_r);
+  // Quasi-static: FIRE dissipates; the tangential dashpot (-m gamma_t v_t per contact, not
+  // capped by mu_a) would turn every slip into a creep at a / (N_c gamma_t) ~ 1e-3 m/s and does
+  // not change where a block comes to rest (docs/dem.md sec. 4).
+  if (cfg.protocol == TiltProtocol::QuasiStatic) model.def.contact.tangential_damping = 0;
   model.motion[0].pivot = model.initial_position[0];  // turn about the lower block's centroid
   if (cfg.restitution > 0) {
     auto g = dem::damping_from_restitution(cfg.restitution, cfg.contact.normal_stiffness, model.mass[1]);
@@ -414,12 +464,13 @@ class TiltRun {
     budget();
     // Fixed step: the schedule in steps. Adaptive step: in time (the same instants up to one step).
     settle_steps_ = static_cast<std::uint64_t>(std::ceil(cfg.settle_time / dt_ - 1e-9));
-    series_every_ = cfg.series_interval > 0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(
-                                                                             std::llround(cfg.series_interval / dt_)))
-                                            : 0;
-    frame_every_ = cfg.frame_interval > 0 ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(
-                                                                           std::llround(cfg.frame_interval / dt_)))
-                                          : 0;
+    series_every_ =
+        cfg.series_interval > 0
+            ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.series_interval / dt_)))
+            : 0;
+    frame_every_ = cfg.frame_interval > 0
+                       ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.frame_interval / dt_)))
+                       : 0;
     max_steps_ = settle_steps_ + static_cast<std::uint64_t>(std::ceil(cfg.max_tilt / cfg.tilt_rate / dt_)) + 1;
     eps_t_ = 1e-9 * dt_;
     max_time_ = cfg.settle_time + cfg.max_tilt / cfg.tilt_rate + dt_;
@@ -512,7 +563,9 @@ class TiltRun {
       f.tilt = tilt_;
       const double a = -sgn_ * tilt_, c = std::cos(a), s = std::sin(a);
       const dem::Vec2 p = model_.motion[0].pivot;
-      auto turn = [&](dem::Vec2 q) { return dem::Vec2{p.x + c * (q.x - p.x) - s * (q.y - p.y), p.y + s * (q.x - p.x) + c * (q.y - p.y)}; };
+      auto turn = [&](dem::Vec2 q) {
+        return dem::Vec2{p.x + c * (q.x - p.x) - s * (q.y - p.y), p.y + s * (q.x - p.x) + c * (q.y - p.y)};
+      };
       for (int b = 0; b < 2; ++b) {
         f.position[b] = turn(f.position[b]);
         f.angle[b] += a;
@@ -715,7 +768,8 @@ void TiltRun::record_runaway(double d) {
 // tau / sqrt(I); rotation only when it is free), P = F . v; P > 0: v <- (1 - alpha) v + alpha
 // |v| F/|F| (alpha shrinks after kFireMinSteps such steps); P <= 0: v <- 0, alpha reset. At rest
 // when |F| < relax_force W, |v| < relax_speed (and, turning freely, |tau| < relax_force W R and
-// |omega| R < relax_speed, R the block's extent). The lower block is at rest.
+// |omega| R < relax_speed, R the block's extent) throughout relax_duration (a block passing an
+// unstable balance, e.g. tip on tip, meets the thresholds for a moment). The lower block is at rest.
 Result<TiltRun::Relax> TiltRun::relax(double budget, bool watch_runaway) {
   const double t_end = st_.time + budget;
   const double m = model_.mass[1], inertia = model_.inertia[1], weight = m * cfg_.gravity;
@@ -724,6 +778,7 @@ Result<TiltRun::Relax> TiltRun::relax(double budget, bool watch_runaway) {
   const double sm = std::sqrt(m), si = std::sqrt(inertia);
   double alpha = kFireAlphaStart;
   int positive = 0;
+  double rest_since = std::numeric_limits<double>::quiet_NaN();  // start of the current at-rest stretch
   while (st_.time < t_end) {
     if (Status s = advance_one(); !s.ok()) return s.error();
     if (series_due()) record();
@@ -739,21 +794,26 @@ Result<TiltRun::Relax> TiltRun::relax(double budget, bool watch_runaway) {
     double& w = st_.angular_velocity[1];
     const double wt = turns ? w : 0.0;
     if (std::hypot(fx, fy) < cfg_.relax_force * weight && std::hypot(v.x, v.y) < cfg_.relax_speed &&
-        std::fabs(tau) < cfg_.relax_force * weight * extent && std::fabs(wt) * extent < cfg_.relax_speed)
-      return Relax::Rest;
-    // FIRE in mass-weighted coordinates.
-    const double ux = sm * v.x, uy = sm * v.y, uw = si * wt;
-    const double gx = fx / sm, gy = fy / sm, gw = tau / si;
-    const double p = ux * gx + uy * gy + uw * gw;
+        std::fabs(tau) < cfg_.relax_force * weight * extent && std::fabs(wt) * extent < cfg_.relax_speed) {
+      if (std::isnan(rest_since)) rest_since = st_.time;
+      if (st_.time - rest_since >= cfg_.relax_duration - 0.5 * last_dt_) return Relax::Rest;
+    } else {
+      rest_since = std::numeric_limits<double>::quiet_NaN();
+    }
+    // FIRE in mass-weighted coordinates on the sliding coordinate x (the lower block's x axis:
+    // gravity turns, the lower block does not) and the rotation when it is free; the normal
+    // coordinate y is left to the contacts' normal dashpots (docs/dem.md sec. 4).
+    const double ux = sm * v.x, uw = si * wt;
+    const double gx = fx / sm, gw = tau / si;
+    const double p = ux * gx + uw * gw;
     if (p > 0) {
-      const double un = std::sqrt(ux * ux + uy * uy + uw * uw), gn = std::sqrt(gx * gx + gy * gy + gw * gw);
+      const double un = std::sqrt(ux * ux + uw * uw), gn = std::sqrt(gx * gx + gw * gw);
       const double k = gn > 0 ? alpha * un / gn : 0.0;
       v.x = ((1 - alpha) * ux + k * gx) / sm;
-      v.y = ((1 - alpha) * uy + k * gy) / sm;
       if (turns) w = ((1 - alpha) * uw + k * gw) / si;
       if (++positive > kFireMinSteps) alpha *= kFireAlphaShrink;
     } else {
-      v = {0, 0};
+      v.x = 0;
       if (turns) w = 0;
       alpha = kFireAlphaStart;
       positive = 0;
@@ -825,7 +885,8 @@ void run_warnings(const TiltConfig& cfg, TiltResult& res) {
          fmt::format("the upper block turned by {:.4g} deg against the lower one before the slide (warning above "
                      "{:.4g} deg): the signature assumes it does not rotate; hold_rotation (--hold-rotation) holds it",
                      res.rotation_before_slide * 180 / std::numbers::pi, cfg.warn_rotation * 180 / std::numbers::pi)});
-  if (res.slid && !std::isnan(res.first_creep_tilt) && res.friction_angle - res.first_creep_tilt > cfg.warn_creep_angle) {
+  if (res.slid && !std::isnan(res.first_creep_tilt) &&
+      res.friction_angle - res.first_creep_tilt > cfg.warn_creep_angle) {
     const double creep_max = 0.1 * std::min(res.scales.smallest_feature[0], res.scales.smallest_feature[1]);
     res.warnings.push_back(
         {"creep",
@@ -864,6 +925,9 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     return s.error();
   run_warnings(cfg, res);
   run.finish();
+  const auto hold_start = Clock::now();
+  predict_hold_angles(*faces, cfg, res);
+  res.setup_time += std::chrono::duration<double>(Clock::now() - hold_start).count();
   if (cfg.check_stiffness) {
     // The same test from the same offset at 10 k_n (and k_t): in the rigid limit the angle stays.
     TiltConfig stiff = cfg;
@@ -879,7 +943,8 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     if (!r.ok()) return with_prefix("tilt (stiffness check at 10 k_n): ", r.error());
     const double deg = 180 / std::numbers::pi;
     if (r->slid) res.stiff_friction_angle = r->friction_angle;
-    if (r->slid != res.slid || (res.slid && std::fabs(r->friction_angle - res.friction_angle) > cfg.warn_stiffness_angle))
+    if (r->slid != res.slid ||
+        (res.slid && std::fabs(r->friction_angle - res.friction_angle) > cfg.warn_stiffness_angle))
       res.warnings.push_back(
           {"stiffness",
            fmt::format("not in the rigid limit: at 10 k_n = {:.3g} N/m the friction angle is {} against {} at k_n = "

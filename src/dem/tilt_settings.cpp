@@ -105,10 +105,10 @@ const std::vector<B>& table() {
               FRICTAL_MEMBER(protocol),
               std::vector<std::pair<std::string, TiltProtocol>>{{"constant-rate", TiltProtocol::ConstantRate},
                                                                 {"quasi-static", TiltProtocol::QuasiStatic}}),
-          bind<TiltConfig>(F("tilt_increment", "rad", 0, Lo::Open, std::numbers::pi / 2,
-                             "Quasi-static: tilt added per increment (the angle reads at most one increment low)",
-                             true),
-                           FRICTAL_MEMBER(tilt_increment)),
+          bind<TiltConfig>(
+              F("tilt_increment", "rad", 0, Lo::Open, std::numbers::pi / 2,
+                "Quasi-static: tilt added per increment (the angle reads at most one increment low)", true),
+              FRICTAL_MEMBER(tilt_increment)),
           bind<TiltConfig>(F("relax_time", "s", 0, Lo::Open, kInf,
                              "Quasi-static: longest relaxation per increment (and of the settling); beyond it the "
                              "run warns (unrelaxed)"),
@@ -119,6 +119,9 @@ const std::vector<B>& table() {
                            FRICTAL_MEMBER(relax_force)),
           bind<TiltConfig>(F("relax_speed", "m/s", 0, Lo::Open, kInf, "Quasi-static: at rest below this speed"),
                            FRICTAL_MEMBER(relax_speed)),
+          bind<TiltConfig>(F("relax_duration", "s", 0, Lo::Closed, kInf,
+                             "Quasi-static: the rest thresholds must hold this long without a break"),
+                           FRICTAL_MEMBER(relax_duration)),
           bind<TiltConfig>(F("check_stiffness", "", 0, Lo::Closed, 1,
                              "Run again at 10 normal_stiffness and tangential_stiffness; warn (stiffness) when the "
                              "angle moves by more than warn_stiffness_angle"),

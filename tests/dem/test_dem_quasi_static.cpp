@@ -66,10 +66,10 @@ TEST(DemQuasiStatic, FlatBlockSlidesAtTheLastIncrementBelowAtanMuA) {
 }
 
 TEST(DemQuasiStatic, KochK0HoldsUpToAlphaBothWays) {
-  // K_0 at alpha = 20 deg, mu_a = 0, rotation held: the block rests on flanks of slope alpha and
+  // K_0 at alpha = 20 deg (Table I block, 0.2 m), mu_a = 0, rotation held: the block rests on flanks of slope alpha and
   // is held while tan(beta) <= tan(alpha); with increments of 0.3 deg the last held one is
   // 19.8 deg (20.1 deg passes alpha), in either direction by symmetry.
-  const frictal::Curve k0 = koch0(20, 0.05);
+  const frictal::Curve k0 = koch0(20, 0.2);
   for (bool reverse : {false, true}) {
     frictal::TiltConfig cfg = quasi_static(0.3);
     cfg.reverse = reverse;
@@ -102,6 +102,7 @@ TEST(DemQuasiStatic, UnrelaxedWarningWhenTheBudgetIsTooShort) {
   cfg.predict = false;
   cfg.initial_offset = 0.01;
   cfg.relax_time = 1e-4;
+  cfg.relax_duration = 0;
   cfg.max_tilt = 5 * kDeg;
   auto r = frictal::run_tilt(flat(0.05), flat(0.05), cfg);
   ASSERT_TRUE(r.ok()) << r.error().message;
