@@ -107,6 +107,11 @@ int run(TiltOptions& o) {
     j["protocol"] = cfg.protocol == TiltProtocol::QuasiStatic ? "quasi-static" : "constant-rate";
     j["rest_offset_m"] = r->rest_offset;
     j["predicted_hold_angle_deg"] = deg_or_null(r->predicted_hold_angle);
+    j["predicted_hold_offset_m"] =
+        std::isnan(r->predicted_hold_offset) ? nlohmann::json(nullptr) : nlohmann::json(r->predicted_hold_offset);
+    j["slide_start_offset_m"] =
+        r->slid ? nlohmann::json(r->rest_offset + (cfg.reverse ? -1 : 1) * r->slide_start_displacement)
+                : nlohmann::json(nullptr);
     j["predicted_inertial_hold_angle_deg"] = deg_or_null(r->predicted_inertial_hold_angle);
     j["predicted_sphero_hold_angle_deg"] = deg_or_null(r->predicted_sphero_hold_angle);
     if (!r->hold_error.empty()) j["hold_error"] = r->hold_error;

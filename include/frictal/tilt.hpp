@@ -252,6 +252,9 @@ struct TiltResult {
   double predicted_hold_angle = std::numeric_limits<double>::quiet_NaN();
   double predicted_inertial_hold_angle = std::numeric_limits<double>::quiet_NaN();
   double predicted_sphero_hold_angle = std::numeric_limits<double>::quiet_NaN();
+  /// The stop that holds in the rigid prediction (HoldAngle::hold_offset), in the signature's
+  /// offset convention like rest_offset (unit: m); NaN when not computed.
+  double predicted_hold_offset = std::numeric_limits<double>::quiet_NaN();
   std::string hold_error;  ///< why the hold angles are NaN ("" when computed)
   /// Quasi-static protocol: increments taken, and those whose relaxation ran out of relax_time.
   int increments = 0;

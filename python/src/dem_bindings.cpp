@@ -69,6 +69,7 @@ void frictal_bind_dem(py::module_& m) {
         d["rest_offset"] = r.rest_offset;
         d["predicted_hold_angle"] = r.predicted_hold_angle;
         d["predicted_inertial_hold_angle"] = r.predicted_inertial_hold_angle;
+        d["predicted_hold_offset"] = r.predicted_hold_offset;
         d["predicted_sphero_hold_angle"] = r.predicted_sphero_hold_angle;
         d["stiff_friction_angle"] = r.stiff_friction_angle;
         d["increments"] = r.increments;

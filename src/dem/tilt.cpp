@@ -331,6 +331,7 @@ void predict_hold_angles(const Faces& f, const TiltConfig& cfg, TiltResult& res)
     return;
   }
   res.predicted_hold_angle = rigid->hold_angle;
+  res.predicted_hold_offset = rigid->hold_offset;
   res.predicted_inertial_hold_angle = rigid->inertial_hold_angle;
   auto sphero = hold(cfg.radius);
   if (!sphero.ok()) {
