@@ -79,7 +79,29 @@ TEST(DemQuasiStatic, KochK0HoldsUpToAlphaBothWays) {
     ASSERT_TRUE(r->slid) << (reverse ? "reverse" : "forward");
     EXPECT_NEAR(r->friction_angle / kDeg, 19.8, 1e-6) << (reverse ? "reverse" : "forward");
     EXPECT_EQ(r->unrelaxed_increments, 0);
+    // The lift of K_0 on itself is a zigzag of slopes +-tan(alpha) with its minima half a
+    // wavelength from the start: the block rests at 5 mm, and from there both the quasi-static
+    // hold angle and the inertial bound (steepest chord within one wavelength ahead) are alpha;
+    // the rounded blocks' flanks have the same slope.
+    EXPECT_NEAR(r->rest_offset, 0.005, 1e-6);
+    EXPECT_NEAR(r->predicted_hold_angle / kDeg, 20.0, 1e-6);
+    EXPECT_NEAR(r->predicted_inertial_hold_angle / kDeg, 20.0, 1e-6);
+    // (the spheropolygon lift has arcs at the tips: its LiftCurve keeps the tangent slopes to ~1e-5 deg)
+    EXPECT_NEAR(r->predicted_sphero_hold_angle / kDeg, 20.0, 1e-4);
   }
+}
+
+TEST(DemQuasiStatic, StiffnessCheckKeepsTheAngleOfRigidFlanks) {
+  // K_0's flanks are straight: ten times the stiffness leaves the hold at alpha, so the check
+  // finds the same last increment (19.8 deg) and does not warn.
+  frictal::TiltConfig cfg = quasi_static(0.3);
+  cfg.hold_rotation = true;
+  cfg.check_stiffness = true;
+  auto r = frictal::run_tilt(koch0(20, 0.2), koch0(20, 0.2), cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  ASSERT_TRUE(r->slid);
+  EXPECT_NEAR(r->stiff_friction_angle / kDeg, 19.8, 1e-6);
+  for (const frictal::TiltWarning& w : r->warnings) EXPECT_NE(w.code, "stiffness") << w.message;
 }
 
 TEST(DemQuasiStatic, RejectsBadRelaxationSettings) {
@@ -117,6 +139,30 @@ TEST(DemQuasiStatic, UnrelaxedWarningWhenTheBudgetIsTooShort) {
 }
 
 #ifdef FRICTAL_CLI_PATH
+TEST(DemQuasiStaticCli, JsonGivesTheRestOffsetAndTheHoldAngles) {
+  const std::string cli = FRICTAL_CLI_PATH;
+  const std::string out = ::testing::TempDir() + "frictal_qs.json";
+  ASSERT_EQ(std::system((cli +
+                         " tilt koch --alpha 20 --protocol quasi-static --tilt-increment 0.3 --hold-rotation "
+                         "--json > " +
+                         out + " 2> /dev/null")
+                            .c_str()),
+            0);
+  std::FILE* f = std::fopen(out.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  std::string text;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, f)) text.append(buf, n);
+  std::fclose(f);
+  for (const char* key : {"\"rest_offset_m\"", "\"predicted_hold_angle_deg\"", "\"predicted_inertial_hold_angle_deg\"",
+                          "\"predicted_sphero_hold_angle_deg\"", "\"protocol\":\"quasi-static\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text.substr(0, 400);
+  const std::string key = "\"friction_angle_deg\":";
+  const std::size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NEAR(std::stod(text.substr(at + key.size())), 19.8, 1e-6);  // as in KochK0HoldsUpToAlphaBothWays
+}
+
 TEST(DemQuasiStaticCli, UnknownProtocolExitsWithTwoNamingTheChoices) {
   const std::string cli = FRICTAL_CLI_PATH;
   const std::string out = ::testing::TempDir() + "frictal_protocol_err.txt";
