@@ -506,7 +506,6 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
   }
   const auto chords = chords_batch(p, rest_vertices, fr.w);
   HoldDistribution out;
-  std::vector<double> hv, iv, wv;
   // Basins in increasing offset of the lift's frame.
   std::vector<double> b_rest(rest_vertices.size()), b_w(rest_vertices.size(), 0.0), b_h(rest_vertices.size()),
       b_i(rest_vertices.size());
@@ -528,9 +527,6 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
       out.basins.hold.push_back(hold);
       out.basins.inertial.push_back(inert);
     }
-    hv.push_back(hold);
-    iv.push_back(inert);
-    wv.push_back(q.weight);
   }
   for (std::size_t bi = 0; bi < rest_vertices.size(); ++bi) {
     out.basins.rest.push_back(mirrored ? -b_rest[bi] : b_rest[bi]);
@@ -552,8 +548,9 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
     }
     out.basins = std::move(s);
   }
-  out.hold = weighted_stats(hv, wv);
-  out.inertial = weighted_stats(iv, wv);
+  // Every drop of a basin gives its basin's angles: the statistics over basins weighted by width.
+  out.hold = weighted_stats(out.basins.hold, out.basins.weight);
+  out.inertial = weighted_stats(out.basins.inertial, out.basins.weight);
   out.drop_min = mirrored ? -b : a;
   out.drop_max = mirrored ? -a : b;
   return out;
