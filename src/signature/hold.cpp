@@ -506,7 +506,6 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
   }
   const auto chords = chords_batch(p, rest_vertices, fr.w);
   HoldDistribution out;
-  std::vector<double> hv, iv, wv;
   // Basins in increasing offset of the lift's frame.
   std::vector<double> b_rest(rest_vertices.size()), b_w(rest_vertices.size(), 0.0), b_h(rest_vertices.size()),
       b_i(rest_vertices.size());
@@ -528,9 +527,6 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
       out.basins.hold.push_back(hold);
       out.basins.inertial.push_back(inert);
     }
-    hv.push_back(hold);
-    iv.push_back(inert);
-    wv.push_back(q.weight);
   }
   for (std::size_t bi = 0; bi < rest_vertices.size(); ++bi) {
     out.basins.rest.push_back(mirrored ? -b_rest[bi] : b_rest[bi]);
@@ -552,8 +548,9 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
     }
     out.basins = std::move(s);
   }
-  out.hold = weighted_stats(hv, wv);
-  out.inertial = weighted_stats(iv, wv);
+  // Every drop of a basin gives its basin's angles: the statistics over basins weighted by width.
+  out.hold = weighted_stats(out.basins.hold, out.basins.weight);
+  out.inertial = weighted_stats(out.basins.inertial, out.basins.weight);
   out.drop_min = mirrored ? -b : a;
   out.drop_max = mirrored ? -a : b;
   return out;
@@ -699,6 +696,67 @@ OffsetRange hold_lift_range(double drop_min, double drop_max, double d, double l
 double default_runaway_distance(double offset_min, double offset_max, double period) {
   if (period > 0) return period;
   return 0.1 * (offset_max - offset_min);
+}
+
+Result<HoldAnalysis> analyse_hold(const Profile& lower, const Profile& upper, const SignatureOptions& so,
+                                  const HoldOptions& hold, double start) {
+  if (auto st = validate(lower, "lower surface"); !st) return st.error();
+  if (auto st = validate(upper, "upper surface"); !st) return st.error();
+  const double lower_len = lower.x.back() - lower.x.front(), upper_len = upper.x.back() - upper.x.front();
+  const double period = lower.period.value_or(0.0);
+  double a = so.offset_min, b = so.offset_max;
+  if (!(b > a)) {
+    a = 0;
+    b = period > 0 ? period : 0.5 * std::min(lower_len, upper_len);
+  }
+  if (period > 0 && std::abs((b - a) - period) > 1e-9 * period)
+    return make_error(
+        fmt::format("hold: a periodic pair is analysed over one period ({} m), not over [{}, {}] m", period, a, b));
+  HoldAnalysis out;
+  out.runaway_distance = hold.runaway_distance > 0 ? hold.runaway_distance : default_runaway_distance(a, b, period);
+  HoldOptions ho = hold;
+  ho.runaway_distance = out.runaway_distance;
+  if (!std::isnan(start) && !std::isfinite(start))
+    return make_error(fmt::format("start offset {} m: expected a finite offset", start));
+  if (std::isfinite(start) && (start < a || start > b))
+    return make_error(
+        fmt::format("start offset {} m: expected an offset in the signature's range [{}, {}] m", start, a, b));
+  const double overlap = std::min(lower_len, upper_len);
+  if (period == 0 && !(out.runaway_distance < overlap))
+    return make_error(
+        fmt::format("runaway_distance = {} m: expected a length > 0 and shorter than the blocks' "
+                    "overlap ({} m)",
+                    out.runaway_distance, overlap));
+  if (auto st = check_options(ho); !st) return st.error();
+  SignatureOptions o = so;
+  o.keep_contacts = false;
+  if (period > 0) {
+    o.offset_min = a;
+    o.offset_max = b;
+  } else {
+    const OffsetRange r = hold_lift_range(a, b, out.runaway_distance, lower_len, upper_len);
+    o.offset_min = r.min;
+    o.offset_max = r.max;
+  }
+  auto sig = signature(lower, upper, o);
+  if (!sig) return with_prefix("hold: ", sig.error());
+  out.events = sig->offset.size();
+  out.exact = sig->exact;
+  auto curve = lift_curve(*sig, period);
+  if (!curve) return curve.error();
+  out.curve = std::move(*curve);
+  ho.drop_min = a;
+  ho.drop_max = b;
+  auto dist = hold_distribution(out.curve, ho);
+  if (!dist) return dist.error();
+  out.distribution = std::move(*dist);
+  if (std::isfinite(start)) {
+    auto h = hold_angle(out.curve, start, ho);
+    if (!h) return h.error();
+    out.start = *h;
+    out.has_start = true;
+  }
+  return out;
 }
 
 }  // namespace frictal
