@@ -9,14 +9,18 @@
 // signature, i.e. the deepest nesting), lowered until its core is `placement_gap` above contact,
 // settles under gravity for `settle_time`, then the lower block (kinematic) turns about its
 // centroid at `tilt_rate`, clockwise so that the upper block slides towards +x (counter-clockwise
-// with `reverse`, sliding towards -x).
+// with `reverse`, sliding towards -x). With `protocol` = quasi-static the tilt instead grows by
+// `tilt_increment` and the upper block relaxes to rest (FIRE) after each increment and in place
+// of the settling; gravity turns in the lower block's frame (docs/dem.md sec. 4).
 //
 // Detection (docs/dem.md): the relative displacement d is the upper centroid's motion along the
 // lower block's x axis in the lower block's frame, signed in the sliding direction, and v its
 // rate. A stick is an interval of at least `stick_duration` with v <= `stick_speed`. The run
 // stops once d has grown by `runaway_distance` (default: one wavelength) since the end of the
 // last stick; the friction angle is the tilt at that moment. The lag is the tilt gained while v
-// grows from 0 to stick_speed: below 0.1 degree for the defaults (docs/dem.md).
+// grows from 0 to stick_speed: below 0.1 degree for the defaults (docs/dem.md). Quasi-static:
+// the stop after each increment that relaxed to rest replaces the stick, and the friction angle
+// is the tilt of the last such stop (TiltResult::friction_angle).
 #pragma once
 
 #include <cstdint>

@@ -82,12 +82,15 @@ const std::vector<B>& table() {
               F("predict", "", 0, Lo::Closed, 1, "Compute the signature prediction theta_max + atan(mu_a)"),
               FRICTAL_MEMBER(predict)),
           // Protocol and detection (docs/dem.md).
-          bind<TiltConfig>(F("tilt_rate", "rad/s", 0, Lo::Open, kInf, "Angular velocity of the lower block"),
+          bind<TiltConfig>(F("tilt_rate", "rad/s", 0, Lo::Open, kInf,
+                             "Angular velocity of the lower block (constant-rate protocol)"),
                            FRICTAL_MEMBER(tilt_rate)),
           bind<TiltConfig>(F("reverse", "", 0, Lo::Closed, 1, "Tilt the other way: the upper block slides towards -x"),
                            FRICTAL_MEMBER(reverse)),
-          bind<TiltConfig>(F("settle_time", "s", 0, Lo::Closed, kInf, "Free settling before the tilt starts"),
-                           FRICTAL_MEMBER(settle_time)),
+          bind<TiltConfig>(
+              F("settle_time", "s", 0, Lo::Closed, kInf,
+                "Free settling before the tilt starts (constant-rate protocol; quasi-static: a relaxation)"),
+              FRICTAL_MEMBER(settle_time)),
           bind<TiltConfig>(
               F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no slide) beyond this tilt", true),
               FRICTAL_MEMBER(max_tilt)),
@@ -95,9 +98,10 @@ const std::vector<B>& table() {
                              "Sliding for good: growth of the displacement since the last stick", false,
                              "the surface's wavelength (generated), 0.01 (files)"),
                            FRICTAL_MEMBER(runaway_distance)),
-          bind<TiltConfig>(F("stick_speed", "m/s", 0, Lo::Open, kInf, "Relative speed counted as stuck"),
-                           FRICTAL_MEMBER(stick_speed)),
-          bind<TiltConfig>(F("stick_duration", "s", 0, Lo::Closed, kInf, "Shortest stick"),
+          bind<TiltConfig>(
+              F("stick_speed", "m/s", 0, Lo::Open, kInf, "Relative speed counted as stuck (constant-rate protocol)"),
+              FRICTAL_MEMBER(stick_speed)),
+          bind<TiltConfig>(F("stick_duration", "s", 0, Lo::Closed, kInf, "Shortest stick (constant-rate protocol)"),
                            FRICTAL_MEMBER(stick_duration)),
           bind_choice<TiltConfig>(
               F("protocol", "", 0, Lo::Closed, 0,

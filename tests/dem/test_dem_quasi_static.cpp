@@ -91,6 +91,19 @@ TEST(DemQuasiStatic, KochK0HoldsUpToAlphaBothWays) {
   }
 }
 
+TEST(DemQuasiStatic, ConstantRateRunReportsTheHoldPredictionsToo) {
+  // The paper's protocol on K_0 at alpha = 20 deg: the block settles in the groove at half a
+  // wavelength (5 mm) and the hold angles from there are alpha (see above).
+  frictal::TiltConfig cfg;
+  cfg.series_interval = 0;
+  auto r = frictal::run_tilt(koch0(20, 0.05), koch0(20, 0.05), cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_NEAR(r->rest_offset, 0.005, 1e-5);
+  EXPECT_NEAR(r->predicted_hold_angle / kDeg, 20.0, 1e-6);
+  EXPECT_NEAR(r->predicted_inertial_hold_angle / kDeg, 20.0, 1e-6);
+  EXPECT_TRUE(r->hold_error.empty()) << r->hold_error;
+}
+
 TEST(DemQuasiStatic, StiffnessCheckKeepsTheAngleOfRigidFlanks) {
   // K_0's flanks are straight: ten times the stiffness leaves the hold at alpha, so the check
   // finds the same last increment (19.8 deg) and does not warn.
