@@ -8,6 +8,7 @@ JOBS ?= $(shell nproc)
 # ccache (when installed) shares objects between build trees of this checkout (e.g. the pip build)
 export CCACHE_BASEDIR := $(CURDIR)
 BUILD ?= build/release
+FRICTAL_BIN = $(shell scripts/frictal-path $(BUILD))
 
 .PHONY: all deps configure build test reproduce package bench sanitize tsan-dem fuzz fuzz-smoke format stubs clean
 
@@ -30,7 +31,7 @@ package: build
 	@ls -l $(BUILD)/packages/*.deb
 
 reproduce: build
-	bash scripts/reproduce $(BUILD)/apps/frictal/frictal out
+	bash scripts/reproduce $(FRICTAL_BIN) out
 
 bench: deps
 	cmake --preset bench && cmake --build build/bench -j $(JOBS)
