@@ -26,6 +26,7 @@ root_doc = "index"
 html_theme = "sphinx_rtd_theme"
 html_title = f"frictal {release}"
 html_static_path = ["_static"]
+html_css_files = ["frictal.css"]
 html_theme_options = {"navigation_depth": 3, "collapse_navigation": False}
 html_show_sourcelink = False
 

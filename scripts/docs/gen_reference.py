@@ -167,13 +167,16 @@ def cpp_page():
            "Headers\n-------\n",
            "What each header owns, from its opening comment:\n"]
     for h in sorted(glob.glob(os.path.join(ROOT, "include", "frictal", "*.hpp"))):
-        lines = []  # the header's opening comment: what the module owns
+        lines = []  # the header's opening comment up to its first blank line: what the module owns
         with open(h) as f:
             for line in f:
-                if not line.startswith("//"):
+                if not line.startswith("//") or not line.strip("/ \n"):
                     break
                 lines.append(line.lstrip("/").strip())
-        out.append(f"``frictal/{os.path.basename(h)}``\n   {rst_text(' '.join(lines)) or '(no description)'}\n")
+        text = " ".join(lines)
+        if len(text) > 420:  # the long ones (dem.hpp) go on about the design: their first sentences
+            text = text[:text.rfind(". ", 0, 420) + 1] + " (more in the header)"
+        out.append(f"``frictal/{os.path.basename(h)}``\n   {rst_text(text) or '(no description)'}\n")
     # One section per namespace (a namespace spans several headers, so per-file sections would
     # declare it once per header); detail namespaces are excluded in the Doxyfile.
     namespaces = set()
