@@ -45,8 +45,8 @@ nlohmann::json option_json(const CLI::Option& o, const std::vector<KnownField>& 
   for (const KnownField& k : fields) {
     if (k.help_line != o.get_description()) continue;
     const Field& f = *k.field;
-    j["field"] = {{"name", f.name},           {"unit", text_unit(f)}, {"si_unit", f.unit},
-                  {"default", default_text(f)}, {"range", range_text(f)}, {"help", f.help}};
+    j["field"] = {{"name", f.name},         {"unit", text_unit(f)}, {"si_unit", f.unit}, {"default", default_text(f)},
+                  {"range", range_text(f)}, {"help", f.help}};
     break;
   }
   return j;
