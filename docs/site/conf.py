@@ -22,6 +22,8 @@ extensions = [
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
 exclude_patterns = ["_build", "**.ipynb_checkpoints"]
 root_doc = "index"
+# Option names stay as typed: no "--" turned into an en dash, no curly quotes in CLI text.
+smartquotes = False
 
 html_theme = "sphinx_rtd_theme"
 html_title = f"frictal {release}"
