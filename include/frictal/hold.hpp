@@ -1,0 +1,174 @@
+// frictal — what a tilt test measures: the hold angle of a block resting at one offset, its
+// inertial bound, and their distribution over drops (the derived counterpart of Eq. 18).
+//
+// The signature's theta_max (Eq. 6) is the steepest contact slope over *all* offsets: an upper
+// bound for a rigid pair. A tilt test puts the upper block down at one offset and reads the tilt
+// at which it slides a run-away distance d. For rigid blocks that do not rotate the block moves on
+// the lift h(s) (signature.hpp) under the tilted potential h(s) cos(beta) - s sin(beta):
+//
+// - Rest offset. Put down at s0 at zero tilt, the block slides downhill on h to the local
+//   minimum whose basin holds s0 (on a flat piece it stays at s0).
+// - Quasi-static hold angle phi_qs(s0, d) (inertia dissipated at every stop). The block stays
+//   where the forward slope of h just ahead of it is at least tan(tilt). When the tilt passes the
+//   slope that holds it, it slips forward to the first offset whose forward slope is strictly
+//   larger (the next record of the forward slope). The run-away is the first slip of length
+//   >= d from the last stop; a slip that runs off the end of the lift's range counts as one.
+//   phi_qs = atan(mu_a) + atan(slope of the stop before the run-away).
+// - Inertial bound phi_in(s0, d) (no dissipation). A block at rest at s_r coasts a distance d at
+//   tilt beta if no point of h over (s_r, s_r + d] lies above the line of slope tan(beta) through
+//   (s_r, h(s_r)): phi_in = atan(mu_a) + atan(steepest chord of h ahead of the rest offset).
+// - Distribution over drops. Drops spread uniformly over an offset range rest in the basins of
+//   h; each basin's hold angle weighted by the length of the drop range it drains is the
+//   distribution that repeated tests of the pair would give.
+// Backward sliding (towards -x) is the same on the mirrored lift.
+//
+// h is piecewise linear for rigid polylines; between two events of the exact signature it is
+// convex, and the one-sided slopes at the events (SignatureResult::theta_left/right) are exact.
+// lift_curve() turns a signature into a piecewise-linear LiftCurve by placing, between two
+// events whose one-sided slopes differ, a vertex where the two tangent lines meet: exact where h
+// has one kink between the events (the hold angles, which are slopes at stops, are exact in any
+// case when d exceeds the event spacing; a stop inside such an interval is placed at the
+// tangents' meeting point). On the arcs of a spheroradius signature (concave pieces) the same
+// construction keeps the exact tangent slopes at the listed points.
+//
+// Everything here is exact on the LiftCurve and linear in its number of vertices (records and
+// basins: one pass with a stack each), apart from the steepest chords (n log n: monotone hulls
+// with rollback over windows of length d). The library neither prints nor keeps state.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "frictal/result.hpp"
+#include "frictal/signature.hpp"
+
+namespace frictal {
+
+/// The lift h(s) as a continuous piecewise-linear function of the offset.
+struct LiftCurve {
+  std::vector<double> offset;  ///< vertices s_k, strictly increasing (unit: m)
+  std::vector<double> lift;    ///< h(s_k) (unit: m)
+  /// > 0: h(s + period) = h(s), and the vertices span exactly one period from offset.front()
+  /// (offset.back() = offset.front() + period, lift.back() = lift.front()) (unit: m).
+  double period = 0;
+};
+
+/// The LiftCurve of a signature (see the header comment). `period` > 0 marks a periodic lift
+/// whose signature covers exactly one period (the signature's default range for a periodic
+/// lower surface). Errors: fewer than two offsets, offsets not increasing, or a period that
+/// does not match the signature's range.
+Result<LiftCurve> lift_curve(const SignatureResult& signature, double period = 0);
+
+struct HoldOptions {
+  double runaway_distance = 0;  ///< d > 0: the run-away length that a test reads (unit: m)
+  double atomic_friction = 0;   ///< mu_a >= 0, added as atan(mu_a) (Eq. 6) (unitless)
+  /// Range of the drops for the distribution (unit: m). drop_max <= drop_min: the whole curve
+  /// (one period for a periodic curve).
+  double drop_min = 0;
+  double drop_max = 0;
+};
+
+/// The test of one direction from one drop.
+struct HoldAngle {
+  double rest_offset = 0;  ///< where the block rests at zero tilt (unit: m)
+  double hold_angle = 0;   ///< phi_qs: atan(mu_a) + atan(slope of the stop that held) (unit: rad)
+  double hold_slope = 0;   ///< forward slope of h at that stop, tan of the contact slope (unitless)
+  double hold_offset = 0;  ///< the stop that held, from which the run-away slip starts (unit: m)
+  /// End of the run-away slip (the next stop, at least d ahead), or NaN when it runs off the
+  /// end of the curve or never stops (a global maximum of the slope of a periodic lift) (unit: m).
+  double runaway_end = 0;
+  int slips = 0;                   ///< short slips (< d) between the rest and the run-away
+  bool ran_off_end = false;        ///< the run-away ran off the end of the curve's range
+  double inertial_hold_angle = 0;  ///< phi_in: atan(mu_a) + atan(steepest chord) (unit: rad)
+  double inertial_slope = 0;       ///< the steepest chord's slope (unitless)
+  double inertial_offset = 0;      ///< where the steepest chord ends (unit: m)
+};
+
+/// Forward (towards +x) and backward (towards -x; offsets and slopes in the lift's frame, the
+/// angles positive).
+struct HoldAngles {
+  HoldAngle forward;
+  HoldAngle backward;
+};
+
+/// Weighted statistics of an angle over drops (unit: rad).
+struct HoldStatistics {
+  double mean = 0;
+  double std = 0;  ///< weighted population standard deviation
+  double q05 = 0;  ///< quantiles of the weighted distribution (the lower value at a jump)
+  double q50 = 0;
+  double q95 = 0;
+  double min = 0;
+  double max = 0;
+};
+
+/// The basins of h over the drop range and what each gives, one direction.
+struct HoldBasins {
+  std::vector<double> rest;      ///< rest offset of the basin (unit: m)
+  std::vector<double> weight;    ///< length of the drop range that drains into it (unit: m)
+  std::vector<double> hold;      ///< phi_qs of a block resting there (unit: rad)
+  std::vector<double> inertial;  ///< phi_in (unit: rad)
+};
+
+struct HoldDistribution {
+  HoldStatistics hold;      ///< phi_qs over drops
+  HoldStatistics inertial;  ///< phi_in over drops
+  HoldBasins basins;
+  double drop_min = 0, drop_max = 0;  ///< the drop range used (unit: m)
+};
+
+struct HoldDistributions {
+  HoldDistribution forward;
+  HoldDistribution backward;
+};
+
+/// The test from one drop offset `start` (within the curve's range; periodic curves wrap).
+/// Errors: d <= 0 or not finite, mu_a < 0, a start outside the range, a malformed curve.
+Result<HoldAngles> hold_angle(const LiftCurve& curve, double start, const HoldOptions& options);
+
+/// The distribution over drops spread uniformly over [drop_min, drop_max]. Errors as above,
+/// and a drop range outside the curve's.
+Result<HoldDistributions> hold_distribution(const LiftCurve& curve, const HoldOptions& options);
+
+/// Index of the basin (local minimum of h, numbered from 0 in increasing offset over the
+/// curve) that each offset drains into at zero tilt; -1 for offsets outside the curve.
+std::vector<std::int32_t> basin_index(const LiftCurve& curve, const std::vector<double>& offsets);
+
+/// Offset range of the lift that the hold analysis of drops over [drop_min, drop_max] needs
+/// for a non-periodic pair: the drop range widened by the run-away distance d on both sides
+/// (and clipped to where the blocks overlap, (-upper_length, lower_length) in the signature's
+/// frame). Lengths in m.
+struct OffsetRange {
+  double min = 0;
+  double max = 0;
+};
+OffsetRange hold_lift_range(double drop_min, double drop_max, double runaway_distance, double lower_length,
+                            double upper_length);
+
+/// Default run-away distance for a pair whose signature range is [offset_min, offset_max] of a
+/// period `period` (unit: m): one period for periodic surfaces (the tilt test's one wavelength),
+/// else a tenth of the offset range, so that it scales with the file.
+double default_runaway_distance(double offset_min, double offset_max, double period);
+
+/// The whole analysis of a pair, as `frictal signature` and the tilt test use it.
+struct HoldAnalysis {
+  LiftCurve curve;                 ///< h over the range the process needs (see hold_lift_range)
+  double runaway_distance = 0;     ///< d used (unit: m)
+  HoldDistributions distribution;  ///< drops over the signature's offset range
+  bool has_start = false;          ///< `start` was given
+  HoldAngles start;                ///< from the given start offset
+  std::size_t events = 0;          ///< offsets of the lift's signature (exact events, or samples)
+  bool exact = true;               ///< that signature evaluated every event
+};
+
+/// Computes the lift of `lower` against `upper` (already rotated, as signature() takes it) over
+/// the range the hold process needs and analyses it: drops over the signature's own offset range
+/// (`signature_options.offset_min/max`, else one period or half the shorter block), one start
+/// if `start` is finite. `hold.runaway_distance` <= 0: default_runaway_distance of that range;
+/// hold.drop_min/max are ignored. The signature options are used as given (spheroradius,
+/// offsets, threads), contacts are not kept. Periodic when `lower` has a period.
+Result<HoldAnalysis> analyse_hold(const Profile& lower, const Profile& upper, const SignatureOptions& signature_options,
+                                  const HoldOptions& hold, double start = std::numeric_limits<double>::quiet_NaN());
+
+}  // namespace frictal
