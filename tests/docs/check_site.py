@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Checks the built documentation site the way a reader meets it (CTest docs.check).
 
-    check_site.py HTML_DIR SOURCE_DIR [--chromium PATH]
+    check_site.py HTML_DIR SOURCE_DIR [--chromium PATH] [--module-dir BUILD/python]
 
 Fails (exit 1, naming each problem) on:
   - a broken internal link: an href or src that names a file the site does not have, or an
@@ -12,7 +12,9 @@ Fails (exit 1, naming each problem) on:
   - a notebook of SOURCE_DIR/docs/site/tutorials that is not on the site, or whose executed copy
     has a cell that raised or a code cell that did not run;
   - a page that Chromium (headless, no network) opens with a console error, an uncaught
-    exception, a failed resource, a broken image, or math that MathJax did not typeset.
+    exception, a failed resource, a broken image, or math that MathJax did not typeset;
+  - with --module-dir (the built Python package): a public name of `frictal` or `frictal.plots`
+    that the Python API page does not document.
 Each page is loaded as an instrumented copy beside it (so relative resources resolve), with a
 script that records errors and writes them into the DOM, read back with --dump-dom.
 """
@@ -173,6 +175,20 @@ def notebook_problems(site, source):
     return problems
 
 
+def python_api_problems(site, module_dir):
+    """Every public name of the package has its entry on the Python API page."""
+    sys.path.insert(0, module_dir)
+    import frictal
+    import frictal.plots
+    text = open(os.path.join(site, "reference", "python.html"), encoding="utf-8").read()
+    ids = set(re.findall(r'id="(frictal\.[\w.]+)"', text))
+    names = [f"frictal.{n}" for n in frictal.__all__]
+    names += [f"frictal.plots.{n}" for n in dir(frictal.plots)
+              if not n.startswith("_") and callable(getattr(frictal.plots, n))
+              and getattr(getattr(frictal.plots, n), "__module__", "") == "frictal.plots"]
+    return [f"reference/python.html: {n} is not documented" for n in names if n not in ids]
+
+
 def browser_problems(chrome, site, page):
     rel = os.path.relpath(page, site)
     text = open(page, encoding="utf-8").read()
@@ -200,6 +216,7 @@ def main():
     ap.add_argument("source")
     ap.add_argument("--chromium", default="chromium")
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--module-dir", help="the built Python package's folder: check the Python API's coverage")
     a = ap.parse_args()
     site = os.path.abspath(a.site)
     if not os.path.exists(os.path.join(site, "index.html")):
@@ -207,6 +224,8 @@ def main():
         return 1
     pages = pages_of(site)
     problems = static_problems(site, pages) + notebook_problems(site, a.source)
+    if a.module_dir:
+        problems += python_api_problems(site, a.module_dir)
     with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
         for found in pool.map(lambda p: browser_problems(a.chromium, site, p), pages):
             problems += found
