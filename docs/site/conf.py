@@ -88,12 +88,24 @@ autodoc_member_order = "bysource"
 
 def _plain_docstring(app, what, name, obj, options, lines):
     """The extension's docstrings are plain text (pybind11), not reStructuredText: escape the
-    characters that would start markup (``**params``, ``|x|``), except in doctest lines."""
+    characters that would start markup (``**params``, ``|x|``), except in doctest lines, and make
+    the indented keyword lines of the generators and tilt() a bullet list, one keyword per item."""
     if not name.startswith("frictal") or name == "frictal" or name.startswith("frictal.plots"):
         return
-    for i, line in enumerate(lines):
-        if not line.lstrip().startswith(">>>"):
-            lines[i] = line.replace("\\", "\\\\").replace("*", "\\*").replace("|", "\\|").replace("`", "\\`")
+    out, in_list = [], False
+    for line in lines:
+        if line.lstrip().startswith(">>>"):
+            out.append(line)
+            continue
+        text = line.strip().replace("\\", "\\\\").replace("*", "\\*").replace("|", "\\|").replace("`", "\\`")
+        item = line.startswith((" ", "\t")) and text != ""
+        if item and not in_list:
+            out.append("")
+        if not item and in_list and text:
+            out.append("")
+        out.append(f"- {text}" if item else text)
+        in_list = item
+    lines[:] = out
 
 
 def setup(app):
