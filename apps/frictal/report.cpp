@@ -9,8 +9,8 @@
 #include "common.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/report.hpp"
-#include "frictal/version.hpp"
 #include "frictal/tilt.hpp"
+#include "frictal/version.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
 

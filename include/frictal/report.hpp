@@ -60,7 +60,7 @@ struct Plot {
   std::string y_label;
   std::vector<Series> series;
   std::vector<RefLine> lines;
-  std::vector<Band> bands;  ///< drawn under the data
+  std::vector<Band> bands;           ///< drawn under the data
   double width = 760, height = 380;  ///< (unit: px)
   bool x_log = false;                ///< logarithmic x axis (non-positive x are not drawn)
   /// Axis limits; unset: from the data (with a small margin), extended to include ref lines.

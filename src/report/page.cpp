@@ -401,8 +401,8 @@ Result<std::string> surface_report(const ReportInput& in) {
     for (double x : f.basins.rest) {
       rs.x.push_back(x / xu.scale);
       const auto it = std::lower_bound(ha->curve.offset.begin(), ha->curve.offset.end(), x);
-      const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(it - ha->curve.offset.begin()),
-                                                  ha->curve.offset.size() - 1);
+      const std::size_t k =
+          std::min<std::size_t>(static_cast<std::size_t>(it - ha->curve.offset.begin()), ha->curve.offset.size() - 1);
       rs.y.push_back(ha->curve.lift[k] / hu.scale);
     }
     lp.series = {ls, rs};
@@ -436,8 +436,8 @@ Result<std::string> surface_report(const ReportInput& in) {
     hp.series.push_back(histogram_series(hist(f.basins.hold), "quasi-static hold angle φ_qs", "#1f77b4"));
     hp.series.push_back(histogram_series(hist(f.basins.inertial), "inertial bound φ_in", "#9467bd", true));
     hp.bands.push_back({false, deg(fwd->friction_angle_low), deg(fwd->friction_angle), "Eq. 18 range", "#f2c94c", 0.3});
-    hp.lines.push_back({false, deg(fwd->friction_angle), fmt::format("θ_a + θ_max = {:.3f}°", deg(fwd->friction_angle)),
-                        "#d62728"});
+    hp.lines.push_back(
+        {false, deg(fwd->friction_angle), fmt::format("θ_a + θ_max = {:.3f}°", deg(fwd->friction_angle)), "#d62728"});
     auto hsvg = plot_svg(hp);
     if (!hsvg) return hsvg.error();
     std::string html =

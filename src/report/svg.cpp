@@ -443,13 +443,15 @@ Result<std::string> plot_svg(const Plot& input) {
   const auto colors = series_colors(plot.series);
   for (const auto& b : plot.bands) {
     if (b.horizontal)
-      body += fmt::format("<rect x=\"{:.1f}\" y=\"{:.2f}\" width=\"{:.1f}\" height=\"{:.2f}\" fill=\"{}\" "
-                          "fill-opacity=\"{:.3g}\"/>",
-                          ml, Y(b.hi), pw, std::max(0.5, Y(b.lo) - Y(b.hi)), b.color, b.opacity);
+      body += fmt::format(
+          "<rect x=\"{:.1f}\" y=\"{:.2f}\" width=\"{:.1f}\" height=\"{:.2f}\" fill=\"{}\" "
+          "fill-opacity=\"{:.3g}\"/>",
+          ml, Y(b.hi), pw, std::max(0.5, Y(b.lo) - Y(b.hi)), b.color, b.opacity);
     else
-      body += fmt::format("<rect x=\"{:.2f}\" y=\"{:.1f}\" width=\"{:.2f}\" height=\"{:.1f}\" fill=\"{}\" "
-                          "fill-opacity=\"{:.3g}\"/>",
-                          X(b.lo), mt, std::max(0.5, X(b.hi) - X(b.lo)), ph, b.color, b.opacity);
+      body += fmt::format(
+          "<rect x=\"{:.2f}\" y=\"{:.1f}\" width=\"{:.2f}\" height=\"{:.1f}\" fill=\"{}\" "
+          "fill-opacity=\"{:.3g}\"/>",
+          X(b.lo), mt, std::max(0.5, X(b.hi) - X(b.lo)), ph, b.color, b.opacity);
   }
   for (const auto& l : plot.lines) {
     if (l.horizontal)
