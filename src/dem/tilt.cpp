@@ -308,15 +308,12 @@ void predict_hold_angles(const Faces& f, const TiltConfig& cfg, TiltResult& res)
   lower.period.reset();  // the simulated blocks are finite
   const Profile upper_face = rotate180(f.upper_env);
   // The chain of short slips may carry the block well past rest + d before the run-away (the
-  // measured Dektak pair: its holding stop lies 9.3 mm ahead of the rest with d = 1 cm), so the
-  // lift covers the whole overlap in the sliding direction and d behind the rest.
+  // measured Dektak pair: its holding stop lies 9.3 mm ahead of the rest with d = 1 cm): the lift
+  // runs from d behind the rest to 2d ahead, and twice as far again while the run-away leaves a
+  // stop less than d before the cut end (or the rest lies that close), up to the end of the
+  // blocks' overlap. (A K3 block's lift over the whole overlap cost 8 s; most runs need 3d.)
   const OffsetRange full =
       hold_lift_range(s, s, lower.length() + upper_face.length(), lower.length(), upper_face.length());
-  OffsetRange range = full;
-  if (cfg.reverse)
-    range.max = std::min(full.max, s + d);
-  else
-    range.min = std::max(full.min, s - d);
   HoldOptions ho;
   ho.runaway_distance = d;
   ho.atomic_friction = cfg.contact.atomic_friction;
@@ -324,16 +321,30 @@ void predict_hold_angles(const Faces& f, const TiltConfig& cfg, TiltResult& res)
     SignatureOptions so;
     so.keep_contacts = false;
     so.threads = 1;
-    so.offset_min = range.min;
-    so.offset_max = range.max;
     so.spheroradius = radius;
-    auto sig = signature(lower, upper_face, so);
-    if (!sig.ok()) return with_prefix("signature: ", sig.error());
-    auto curve = lift_curve(*sig);
-    if (!curve.ok()) return with_prefix("lift curve: ", curve.error());
-    auto h = hold_angle(*curve, s, ho);
-    if (!h.ok()) return h.error();
-    return cfg.reverse ? h->backward : h->forward;
+    for (double margin = 2 * d;; margin *= 2) {
+      OffsetRange range = full;
+      if (cfg.reverse) {
+        range.max = std::min(full.max, s + d);
+        range.min = std::max(full.min, s - margin);
+      } else {
+        range.min = std::max(full.min, s - d);
+        range.max = std::min(full.max, s + margin);
+      }
+      so.offset_min = range.min;
+      so.offset_max = range.max;
+      auto sig = signature(lower, upper_face, so);
+      if (!sig.ok()) return with_prefix("signature: ", sig.error());
+      auto curve = lift_curve(*sig);
+      if (!curve.ok()) return with_prefix("lift curve: ", curve.error());
+      auto h = hold_angle(*curve, s, ho);
+      if (!h.ok()) return h.error();
+      const HoldAngle a = cfg.reverse ? h->backward : h->forward;
+      const bool cut = cfg.reverse ? range.min > full.min : range.max < full.max;
+      const double room = cfg.reverse ? a.hold_offset - range.min : range.max - a.hold_offset;
+      const double rest_room = cfg.reverse ? a.rest_offset - range.min : range.max - a.rest_offset;
+      if (!cut || ((!a.ran_off_end || room >= d) && rest_room >= d)) return a;
+    }
   };
   auto rigid = hold(0);
   if (!rigid.ok()) {
