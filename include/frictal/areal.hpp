@@ -155,7 +155,8 @@ struct ArealHoldOptions {
   double atomic_friction = 0;   ///< mu_a >= 0: the half-angle atan(mu_a) of the contact's Coulomb cone (unitless)
   LateralMotion lateral = LateralMotion::Free;
   /// Drops for the distribution: every grid node with u in [drop_min, drop_max] (drop_max <=
-  /// drop_min: from the first column to D before the last) (unit: m).
+  /// drop_min: from the first column to D before the last) and |v| <= v_max - D (every row when
+  /// v_max < D), so that a block steering up to 45 deg off d meets no lateral edge (unit: m).
   double drop_min = 0;
   double drop_max = 0;
   unsigned threads = 1;  ///< worker threads over basins (0 = hardware); results do not depend on it
@@ -188,6 +189,7 @@ struct ArealHoldDistribution {
   std::vector<std::size_t> weight;    ///< drops that rest there (unitless)
   std::vector<double> angle;          ///< their hold angles (unit: rad)
   double drop_min = 0, drop_max = 0;  ///< the drop range used along d (unit: m)
+  double across_max = 0;              ///< drops across d: |v| <= this (unit: m)
 };
 /// The distribution over drops spread uniformly over the grid (see drop_min/drop_max). Errors as
 /// areal_hold_angle, and a drop range with no node.

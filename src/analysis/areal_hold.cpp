@@ -229,9 +229,15 @@ Result<ArealHoldDistribution> areal_hold_distribution(const ArealLift& lift, con
   const double tol = 1e-9 * lift.step;
   std::vector<std::size_t> chain;
   std::vector<std::size_t> count_at(N, 0);
+  // Across d: |v| <= v_max - D, so that a block steering up to 45 deg off d has room before the
+  // lateral edges (walls); every row when the grid is narrower than that.
+  const double vmax = lift.across(lift.n_across - 1);
+  out.across_max = vmax - o.runaway_distance >= 0 ? vmax - o.runaway_distance : vmax;
   for (std::size_t k = 0; k < N; ++k) {
-    const double u = lift.along(k % lift.n_along);
-    if (std::isnan(lift.lift[k]) || u < out.drop_min - tol || u > out.drop_max + tol) continue;
+    const double u = lift.along(k % lift.n_along), v = lift.across(k / lift.n_along);
+    if (std::isnan(lift.lift[k]) || u < out.drop_min - tol || u > out.drop_max + tol ||
+        std::abs(v) > out.across_max + 1e-9 * lift.across_step)
+      continue;
     ++out.drops;
     chain.clear();
     std::size_t c = k;

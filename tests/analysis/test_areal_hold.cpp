@@ -303,7 +303,8 @@ TEST(ArealHold, FlatFaceWithAPyramidBump) {
   auto dist = frictal::areal_hold_distribution(L, o);
   ASSERT_TRUE(dist.ok()) << dist.error().message;
   EXPECT_EQ(dist->hold.max, 0.0);
-  EXPECT_EQ(dist->drops, (L.n_along - 3) * L.n_across);  // the last D along d is not dropped on
+  // Not dropped on: the last D along d, and D from the lateral edges.
+  EXPECT_EQ(dist->drops, (L.n_along - 3) * (L.n_across - 6));
   o.lateral = frictal::LateralMotion::Locked;
   auto dist_locked = frictal::areal_hold_distribution(L, o);
   ASSERT_TRUE(dist_locked.ok());
@@ -413,7 +414,9 @@ TEST(ArealHold, DistributionIsTheDropsHoldAngles) {
   std::vector<double> all;
   for (std::size_t k = 0; k < lift->lift.size(); ++k) {
     const double u = lift->along(k % lift->n_along);
-    if (std::isnan(lift->lift[k]) || u > dist->drop_max + 1e-15) continue;
+    if (std::isnan(lift->lift[k]) || u > dist->drop_max + 1e-15 ||
+        std::abs(lift->across(k / lift->n_along)) > dist->across_max + 1e-15)
+      continue;
     auto h = frictal::areal_hold_angle(*lift, k, o);
     ASSERT_TRUE(h.ok());
     all.push_back(h->hold_angle);
