@@ -17,6 +17,7 @@
 #include <utility>
 
 #include "frictal/generators.hpp"
+#include "frictal/hold.hpp"
 #include "frictal/signature.hpp"
 
 using namespace frictal;
@@ -244,5 +245,41 @@ BENCHMARK(BM_SignatureScalingNonAligned)
     ->Iterations(1);
 
 }  // namespace
+
+// Issue 23: the hold-angle distribution over drops of the 10^6-point pair (target <= 2 s on 2
+// cores, the lift over the widened range included). Stages: the lift (a signature over
+// [0, L/2] widened by d = L/20 on both sides), the LiftCurve, the distribution of both directions.
+void BM_HoldDistribution1M(benchmark::State& st) {
+  const Pair& p = big_pair();
+  SignatureOptions o;
+  o.threads = static_cast<unsigned>(st.range(0));
+  std::size_t basins = 0;
+  for (auto _ : st) {
+    auto h = analyse_hold(p.lower, p.upper, o, HoldOptions{});
+    if (!h) st.SkipWithError(h.error().message.c_str());
+    basins = h->distribution.forward.basins.rest.size();
+  }
+  st.counters["basins"] = static_cast<double>(basins);
+}
+BENCHMARK(BM_HoldDistribution1M)->Arg(1)->Arg(2)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(2);
+
+// The distribution alone on a prepared LiftCurve (records, basins, steepest chords).
+void BM_HoldDistributionOnCurve1M(benchmark::State& st) {
+  const Pair& p = big_pair();
+  static const LiftCurve curve = [&] {
+    SignatureOptions o;
+    o.keep_contacts = false;
+    o.offset_min = -5e-5;
+    o.offset_max = 5.5e-4;
+    return *lift_curve(*signature(p.lower, p.upper, o));
+  }();
+  HoldOptions h;
+  h.runaway_distance = 5e-5;
+  h.drop_min = 0;
+  h.drop_max = 5e-4;
+  for (auto _ : st) benchmark::DoNotOptimize(hold_distribution(curve, h));
+  st.counters["vertices"] = static_cast<double>(curve.offset.size());
+}
+BENCHMARK(BM_HoldDistributionOnCurve1M)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(3);
 
 BENCHMARK_MAIN();

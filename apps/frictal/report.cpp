@@ -10,6 +10,7 @@
 #include "frictal/analysis.hpp"
 #include "frictal/report.hpp"
 #include "frictal/version.hpp"
+#include "frictal/tilt.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
 
@@ -27,6 +28,7 @@ struct Args {
   unsigned threads = 0;
   std::string tip_radius;
   InputOptions input;
+  FieldWords runaway_words;  ///< --runaway-distance, the tilt table's field (the hold-angle section)
 };
 
 std::function<int()> setup(CLI::App& app) {
@@ -51,6 +53,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); the page does not depend on it")
       ->capture_default_str();
   add_input_options(app, a->input);
+  add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
   return [a]() {
     require(std::isfinite(a->mu_a) && a->mu_a >= 0,
             fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
@@ -89,6 +92,8 @@ std::function<int()> setup(CLI::App& app) {
     in.bins = a->bins;
     in.tip_radius = tip;
     in.threads = a->threads;
+    if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
+      in.runaway_distance = as_real(rv.at("runaway_distance"));
     in.generated_by = version_line();
     const std::string page = unwrap(report::surface_report(in));
     if (a->out == "-") {

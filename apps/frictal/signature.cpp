@@ -9,6 +9,7 @@
 
 #include "common.hpp"
 #include "frictal/analysis.hpp"
+#include "frictal/hold.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 #include "frictal/tilt.hpp"
@@ -17,6 +18,72 @@
 
 namespace frictal::cli {
 namespace {
+
+// The hold analysis as JSON keys (degrees and metres at the interface).
+void add_hold_json(nlohmann::json& j, const HoldAnalysis& h) {
+  j["runaway_distance_m"] = h.runaway_distance;
+  j["hold_events"] = h.events;
+  j["hold_exact"] = h.exact;
+  auto stats = [&j](const std::string& prefix, const HoldStatistics& s) {
+    j[prefix + "_mean_deg"] = to_deg(s.mean);
+    j[prefix + "_std_deg"] = to_deg(s.std);
+    j[prefix + "_q05_deg"] = to_deg(s.q05);
+    j[prefix + "_q50_deg"] = to_deg(s.q50);
+    j[prefix + "_q95_deg"] = to_deg(s.q95);
+    j[prefix + "_min_deg"] = to_deg(s.min);
+    j[prefix + "_max_deg"] = to_deg(s.max);
+  };
+  const HoldDistribution& f = h.distribution.forward;
+  const HoldDistribution& b = h.distribution.backward;
+  j["drop_range_m"] = {f.drop_min, f.drop_max};
+  j["hold_basins"] = f.basins.rest.size();
+  stats("hold_angle", f.hold);
+  stats("inertial_hold_angle", f.inertial);
+  stats("hold_angle_backward", b.hold);
+  stats("inertial_hold_angle_backward", b.inertial);
+  if (h.has_start) {
+    auto one = [&j](const std::string& suffix, const HoldAngle& a) {
+      j["rest_offset" + suffix + "_m"] = a.rest_offset;
+      j["hold_angle" + suffix + "_deg"] = to_deg(a.hold_angle);
+      j["hold_offset" + suffix + "_m"] = a.hold_offset;
+      j["runaway_end" + suffix + "_m"] = a.runaway_end;  // NaN (null): off the end, or never caught
+      j["hold_slips" + suffix] = a.slips;
+      j["inertial_hold_angle" + suffix + "_deg"] = to_deg(a.inertial_hold_angle);
+      j["inertial_offset" + suffix + "_m"] = a.inertial_offset;
+    };
+    one("", h.start.forward);
+    one("_backward", h.start.backward);
+  }
+}
+
+void print_hold_text(std::FILE* text, const HoldAnalysis& h, const FrictionPrediction& eq18) {
+  const HoldDistribution& f = h.distribution.forward;
+  const HoldDistribution& b = h.distribution.backward;
+  fmt::print(text,
+             "hold angle (what a tilt test reads; run-away d = {:.6g} m, drops over [{:.6g}, {:.6g}] m, {} basins):\n",
+             h.runaway_distance, f.drop_min, f.drop_max, f.basins.rest.size());
+  auto line = [text](const char* what, const HoldStatistics& s) {
+    fmt::print(
+        text, "  {} mean {:.4f} deg, std {:.4f} deg, 5/50/95 % {:.4f} / {:.4f} / {:.4f} deg, range [{:.4f}, {:.4f}]\n",
+        what, to_deg(s.mean), to_deg(s.std), to_deg(s.q05), to_deg(s.q50), to_deg(s.q95), to_deg(s.min), to_deg(s.max));
+  };
+  line("forward  quasi-static", f.hold);
+  line("forward  inertial    ", f.inertial);
+  line("backward quasi-static", b.hold);
+  line("backward inertial    ", b.inertial);
+  fmt::print(text,
+             "  Eq. 18 range [theta_max - sigma, theta_max] + theta_a = [{:.4f}, {:.4f}] deg; drops' 5-95 % [{:.4f}, "
+             "{:.4f}] deg\n",
+             to_deg(eq18.friction_angle_low), to_deg(eq18.friction_angle), to_deg(f.hold.q05), to_deg(f.hold.q95));
+  if (h.has_start) {
+    for (const auto& [name, a] : {std::pair{"forward ", h.start.forward}, std::pair{"backward", h.start.backward}})
+      fmt::print(text,
+                 "  {} from the start: rests at {:.6g} m, held up to {:.4f} deg by the stop at {:.6g} m (after {} "
+                 "short slips{}); inertial bound {:.4f} deg\n",
+                 name, a.rest_offset, to_deg(a.hold_angle), a.hold_offset, a.slips,
+                 a.ran_off_end ? ", then off the end of the lift" : "", to_deg(a.inertial_hold_angle));
+  }
+}
 
 struct Args {
   std::string lower, upper, out, contacts_out, pdf_out;
@@ -30,6 +97,8 @@ struct Args {
   double spheroradius = 0;
   bool json = false;
   bool exact = false;
+  double start_offset = std::numeric_limits<double>::quiet_NaN();
+  bool no_hold = false;
   std::string detrend = "none";
   GeneratorOptions gen;
   InputOptions input;       ///< --format, --unit, --spacing, ... of LOWER and UPPER
@@ -59,12 +128,20 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--offset-range", a->range, "MIN MAX offsets (m); default one period or half the block")->expected(2);
   // --period and --spheroradius (the spheroradius: the signature of the DEM's rounded blocks, one core
   // against the other dilated by a disk of radius 2r), the tilt table's fields.
+  // --runaway-distance too: the hold angle's run-away, the tilt test's setting (the same default).
   std::vector<std::string> skip = all_but(tilt_settings(), "period");
-  skip.erase(std::remove(skip.begin(), skip.end(), "spheroradius"), skip.end());
+  for (const char* keep : {"spheroradius", "runaway_distance"})
+    skip.erase(std::remove(skip.begin(), skip.end(), keep), skip.end());
   add_field_options(app, tilt_settings(), a->period_words, skip);
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the contact-slope PDF")->capture_default_str();
+  app.add_option("--start-offset", a->start_offset,
+                 "Hold angle of a block put down at this offset (m, inside the offset range): where it rests, the "
+                 "tilt that holds it (quasi-static) and its inertial bound; without it, the distribution over drops");
+  app.add_flag("--no-hold", a->no_hold,
+               "Skip the hold-angle analysis (for a non-periodic pair a second lift over the offset range widened "
+               "by the run-away distance)");
 
   app.add_option("-o,--output", a->out, "Write the signature function as CSV (- for standard output)");
   app.add_option("--contacts", a->contacts_out,
@@ -101,6 +178,11 @@ std::function<int()> setup(CLI::App& app) {
     const ValueSet pv = si_values(tilt_settings(), a->period_words);
     if (pv.count("period")) a->period = as_real(pv.at("period"));
     if (pv.count("spheroradius")) a->spheroradius = as_real(pv.at("spheroradius"));
+    const double runaway = pv.count("runaway_distance") ? as_real(pv.at("runaway_distance")) : 0.0;
+    require(!a->no_hold || (std::isnan(a->start_offset) && runaway == 0),
+            "--no-hold: --start-offset and --runaway-distance ask for the hold analysis");
+    require(!std::isinf(a->start_offset),
+            fmt::format("--start-offset: expected a finite offset in m, got {}", a->start_offset));
     if (a->period != 0) {
       require(a->period > 0 && std::isfinite(a->period),
               fmt::format("--period: expected a positive length in m, got {}", a->period));
@@ -129,6 +211,17 @@ std::function<int()> setup(CLI::App& app) {
     const double smax = std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope);
     Profile upper = rotate180(upper_measured);
     upper_measured = Profile{};
+    // The hold angle (what a tilt test reads): its own lift over the range the run-away needs.
+    std::optional<HoldAnalysis> hold;
+    double hold_wall = 0;
+    if (!a->no_hold) {
+      const auto h0 = std::chrono::steady_clock::now();
+      HoldOptions ho;
+      ho.runaway_distance = runaway;
+      ho.atomic_friction = a->mu_a;
+      hold = unwrap(analyse_hold(lower, upper, o, ho, a->start_offset));
+      hold_wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - h0).count();
+    }
     const auto t0 = std::chrono::steady_clock::now();
     SignatureResult r = unwrap(signature(std::move(lower), std::move(upper), o));
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -141,13 +234,22 @@ std::function<int()> setup(CLI::App& app) {
     FrictionPrediction fwd = unwrap(predict_friction(a->mu_a, r.theta_max_forward, r.contact_slope_std));
     FrictionPrediction bwd = unwrap(predict_friction(a->mu_a, r.theta_max_backward, r.contact_slope_std));
 
-    if (!a->out.empty())
-      write_text_rows(a->out, "offset_m,lift_m,theta_deg,theta_min_deg,theta_left_deg,theta_right_deg\n",
-                      r.offset.size(), [&r](std::string& s, std::size_t i) {
-                        fmt::format_to(std::back_inserter(s), "{:.17g},{:.17g},{:.12g},{:.12g},{:.12g},{:.12g}\n",
+    if (!a->out.empty()) {
+      // The basin each offset drains into at zero tilt (numbered along the hold analysis' lift).
+      const std::vector<std::int32_t> basin = hold ? basin_index(hold->curve, r.offset) : std::vector<std::int32_t>{};
+      write_text_rows(a->out,
+                      std::string("offset_m,lift_m,theta_deg,theta_min_deg,theta_left_deg,theta_right_deg") +
+                          (hold ? ",basin\n" : "\n"),
+                      r.offset.size(), [&r, &basin](std::string& s, std::size_t i) {
+                        fmt::format_to(std::back_inserter(s), "{:.17g},{:.17g},{:.12g},{:.12g},{:.12g},{:.12g}",
                                        r.offset[i], r.lift[i], to_deg(r.theta[i]), to_deg(r.theta_min[i]),
                                        to_deg(r.theta_left[i]), to_deg(r.theta_right[i]));
+                        if (basin.empty())
+                          s += '\n';
+                        else
+                          fmt::format_to(std::back_inserter(s), ",{}\n", basin[i]);
                       });
+    }
     if (!a->contacts_out.empty())
       write_text_rows(
           a->contacts_out, "offset_m,x_m,z_m,slope_deg,type\n", r.offset.size(),
@@ -190,7 +292,9 @@ std::function<int()> setup(CLI::App& app) {
       j["friction_coefficient_low"] = fwd.friction_coefficient_low;
       j["friction_angle_backward_deg"] = to_deg(bwd.friction_angle);
       j["friction_coefficient_backward"] = bwd.friction_coefficient;
+      if (hold) add_hold_json(j, *hold);
       j["wall_time_s"] = wall;
+      j["hold_wall_time_s"] = hold_wall;
       print_json(j);
     } else {
       // With a CSV on standard output, the summary goes to standard error.
@@ -211,6 +315,7 @@ std::function<int()> setup(CLI::App& app) {
                  "backward phi = {:.4f} deg\n",
                  a->mu_a, to_deg(fwd.friction_angle), fwd.friction_coefficient, to_deg(fwd.friction_angle_low),
                  to_deg(fwd.friction_angle), to_deg(bwd.friction_angle));
+      if (hold) print_hold_text(text, *hold, fwd);
     }
     return 0;
   };

@@ -37,6 +37,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "frictal/result.hpp"
@@ -77,8 +78,8 @@ struct HoldAngle {
   /// End of the run-away slip (the next stop, at least d ahead), or NaN when it runs off the
   /// end of the curve or never stops (a global maximum of the slope of a periodic lift) (unit: m).
   double runaway_end = 0;
-  int slips = 0;                  ///< short slips (< d) between the rest and the run-away
-  bool ran_off_end = false;       ///< the run-away ran off the end of the curve's range
+  int slips = 0;                   ///< short slips (< d) between the rest and the run-away
+  bool ran_off_end = false;        ///< the run-away ran off the end of the curve's range
   double inertial_hold_angle = 0;  ///< phi_in: atan(mu_a) + atan(steepest chord) (unit: rad)
   double inertial_slope = 0;       ///< the steepest chord's slope (unitless)
   double inertial_offset = 0;      ///< where the steepest chord ends (unit: m)
@@ -149,5 +150,25 @@ OffsetRange hold_lift_range(double drop_min, double drop_max, double runaway_dis
 /// period `period` (unit: m): one period for periodic surfaces (the tilt test's one wavelength),
 /// else a tenth of the offset range, so that it scales with the file.
 double default_runaway_distance(double offset_min, double offset_max, double period);
+
+/// The whole analysis of a pair, as `frictal signature` and the tilt test use it.
+struct HoldAnalysis {
+  LiftCurve curve;                 ///< h over the range the process needs (see hold_lift_range)
+  double runaway_distance = 0;     ///< d used (unit: m)
+  HoldDistributions distribution;  ///< drops over the signature's offset range
+  bool has_start = false;          ///< `start` was given
+  HoldAngles start;                ///< from the given start offset
+  std::size_t events = 0;          ///< offsets of the lift's signature (exact events, or samples)
+  bool exact = true;               ///< that signature evaluated every event
+};
+
+/// Computes the lift of `lower` against `upper` (already rotated, as signature() takes it) over
+/// the range the hold process needs and analyses it: drops over the signature's own offset range
+/// (`signature_options.offset_min/max`, else one period or half the shorter block), one start
+/// if `start` is finite. `hold.runaway_distance` <= 0: default_runaway_distance of that range;
+/// hold.drop_min/max are ignored. The signature options are used as given (spheroradius,
+/// offsets, threads), contacts are not kept. Periodic when `lower` has a period.
+Result<HoldAnalysis> analyse_hold(const Profile& lower, const Profile& upper, const SignatureOptions& signature_options,
+                                  const HoldOptions& hold, double start = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace frictal

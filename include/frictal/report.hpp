@@ -45,12 +45,22 @@ struct RefLine {
   std::string color = "#888";
 };
 
+/// A shaded range of x (vertical band) or y (horizontal band), e.g. a predicted interval.
+struct Band {
+  bool horizontal = false;  ///< false: lo <= x <= hi over the whole height
+  double lo = 0, hi = 0;    ///< in display units
+  std::string label;        ///< written at the band's top left; empty: none
+  std::string color = "#f2c94c";
+  double opacity = 0.3;  ///< fill opacity in [0, 1] (unitless)
+};
+
 struct Plot {
   std::string title;
   std::string x_label;  ///< including the unit, e.g. "x (µm)"
   std::string y_label;
   std::vector<Series> series;
   std::vector<RefLine> lines;
+  std::vector<Band> bands;  ///< drawn under the data
   double width = 760, height = 380;  ///< (unit: px)
   bool x_log = false;                ///< logarithmic x axis (non-positive x are not drawn)
   /// Axis limits; unset: from the data (with a small margin), extended to include ref lines.
@@ -135,6 +145,9 @@ struct ReportInput {
   /// (frictal/scan_stats.hpp) is drawn on the resolution plot and marks the finer cutoffs of
   /// its table as not to be trusted. 0: none.
   double tip_radius = 0;
+  /// Run-away distance d of the hold-angle section (frictal/hold.hpp) (unit: m); 0: the default
+  /// (one period, else a tenth of the offset range).
+  double runaway_distance = 0;
   unsigned threads = 0;            ///< worker threads (0 = hardware); the page does not depend on it
   std::string generated_by;        ///< e.g. the version line; shown in the footer
   std::vector<std::string> notes;  ///< extra lines for "what was assumed" (e.g. reader warnings)

@@ -14,6 +14,7 @@ from ._core import (  # noqa: F401
     Profile,
     fourier_profile,
     generators,
+    hold_angle,
     koch_curve,
     koch_profile,
     lift_direct,

@@ -64,6 +64,9 @@ def generators() -> dict:
 
     Every surface generator's parameter table: name -> list of fields (name, type, unit (SI), default, min, max, choices, help). The same names are the CLI options (--kebab-case, degrees) and study TOML keys."""
 
+def hold_angle(lower: Profile, upper: Optional[Profile] = ..., *, rotate_upper: bool = ..., runaway_distance: float = ..., atomic_friction: float = ..., start_offset: Optional[float] = ..., offset_range: Optional[Tuple[float, float]] = ..., spheroradius: float = ..., offsets: int = ..., threads: int = ...) -> dict:
+    """Hold angle of a rigid upper block on `lower` (what a tilt test reads; runs without the GIL). `upper` is a surface as measured (rotated by 180 degrees) unless rotate_upper=False; default: lower turned over. runaway_distance d (m; 0: one period, else a tenth of the offset range), atomic_friction mu_a, start_offset (m) for one drop, offset_range (min, max) of the drops (m; default one period or half the block), spheroradius (m) for the DEM's rounded blocks, offsets and threads as in signature(). Returns runaway_distance (m); offset, lift (m): the piecewise-linear lift h(s) the process runs on; forward and backward: the distribution over drops (hold_angle and inertial_hold_angle statistics mean, std, q05, q50, q95, min, max in rad; basins with rest_offset (m), weight (m), hold_angle, inertial_hold_angle (rad)); with start_offset, start and start_backward: rest_offset, hold_angle (rad), hold_offset (m), runaway_end (m, NaN if off the end), slips, ran_off_end, inertial_hold_angle (rad), inertial_offset (m)"""
+
 def koch_curve(**kwargs: Any) -> tuple:
     """koch_curve(**params) -> (x, z)
 

@@ -26,6 +26,7 @@ using frictal::py_detail::nogil;
 void frictal_bind_io(py::module_& m);     // python/src/io_bindings.cpp
 void frictal_bind_dem(py::module_& m);    // python/src/dem_bindings.cpp
 void frictal_bind_study(py::module_& m);  // python/src/study_bindings.cpp
+void frictal_bind_hold(py::module_& m);   // python/src/hold_bindings.cpp
 
 namespace {
 
@@ -302,4 +303,5 @@ PYBIND11_MODULE(_core, m) {
   frictal_bind_io(m);
   frictal_bind_dem(m);
   frictal_bind_study(m);
+  frictal_bind_hold(m);
 }

@@ -8,6 +8,7 @@
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
 #include "frictal/filter.hpp"
+#include "frictal/hold.hpp"
 #include "frictal/report.hpp"
 #include "frictal/scan_stats.hpp"
 #include "frictal/signature.hpp"
@@ -364,6 +365,113 @@ Result<std::string> surface_report(const ReportInput& in) {
         fmt_mu(fwd->friction_coefficient), fmt_mu(fwd->friction_coefficient_low), fmt_mu(fwd->friction_coefficient),
         fmt_mu(bwd->friction_coefficient), in.atomic_friction);
     sections.push_back({"friction", "Predicted friction (Eq. 6 and 18)", t});
+  }
+  // --- what a tilt test reads: the hold angle (hold.hpp) -----------------------------------------
+  {
+    HoldOptions ho;
+    ho.runaway_distance = in.runaway_distance;
+    ho.atomic_friction = in.atomic_friction;
+    auto ha = analyse_hold(lower, rotate180(upper_measured), so, ho);
+    if (!ha) return ha.error();
+    const HoldDistribution& f = ha->distribution.forward;
+    const HoldDistribution& b = ha->distribution.backward;
+    // h(s) over the drop range with the basins' rest offsets.
+    Plot lp;
+    lp.title = "Lift h(x_ofs) of the upper block and the basins where dropped blocks rest";
+    lp.x_label = fmt::format("offset x_ofs of the upper block ({})", xu.name);
+    double hlo = std::numeric_limits<double>::infinity(), hhi = -hlo;
+    for (std::size_t i = 0; i < ha->curve.offset.size(); ++i)
+      if (ha->curve.offset[i] >= f.drop_min && ha->curve.offset[i] <= f.drop_max) {
+        hlo = std::min(hlo, ha->curve.lift[i]);
+        hhi = std::max(hhi, ha->curve.lift[i]);
+      }
+    const LengthUnit hu = length_unit(std::max(std::abs(hlo), std::abs(hhi)));
+    lp.y_label = fmt::format("lift h ({})", hu.name);
+    Series ls, rs;
+    ls.label = "h(x_ofs)";
+    ls.color = "#1f77b4";
+    ls.line_width = 1.2;
+    for (std::size_t i = 0; i < ha->curve.offset.size(); ++i) {
+      ls.x.push_back(ha->curve.offset[i] / xu.scale);
+      ls.y.push_back(ha->curve.lift[i] / hu.scale);
+    }
+    rs.label = fmt::format("rest offsets ({} basins)", f.basins.rest.size());
+    rs.color = "#d62728";
+    rs.style = SeriesStyle::Points;
+    for (double x : f.basins.rest) {
+      rs.x.push_back(x / xu.scale);
+      const auto it = std::lower_bound(ha->curve.offset.begin(), ha->curve.offset.end(), x);
+      const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(it - ha->curve.offset.begin()),
+                                                  ha->curve.offset.size() - 1);
+      rs.y.push_back(ha->curve.lift[k] / hu.scale);
+    }
+    lp.series = {ls, rs};
+    lp.x_min = f.drop_min / xu.scale;
+    lp.x_max = f.drop_max / xu.scale;
+    auto lsvg = plot_svg(lp);
+    if (!lsvg) return lsvg.error();
+    // The distribution over drops, each basin weighted by the width it drains.
+    const double lo_deg = deg(std::min({f.hold.min, f.inertial.min, fwd->friction_angle_low}));
+    const double hi_deg = deg(std::max({f.hold.max, f.inertial.max, fwd->friction_angle}));
+    const int nb = 40;
+    const double span = std::max(hi_deg - lo_deg, 1e-6);
+    auto hist = [&](const std::vector<double>& angles) {
+      Histogram h;
+      for (int i = 0; i <= nb; ++i) h.edges.push_back((lo_deg + span * (i - 0.5) / (nb - 1)) * kDeg);
+      h.density.assign(nb, 0.0);
+      double total = 0;
+      for (std::size_t i = 0; i < angles.size(); ++i) {
+        const int k = std::clamp(int(std::lround((deg(angles[i]) - lo_deg) / span * (nb - 1))), 0, nb - 1);
+        h.density[std::size_t(k)] += f.basins.weight[i];
+        total += f.basins.weight[i];
+      }
+      const double width = (h.edges[1] - h.edges[0]);
+      for (double& d : h.density) d = total > 0 ? d / (total * width) : 0.0;
+      return h;
+    };
+    Plot hp;
+    hp.title = "Hold angle over drops (towards +x): the distribution repeated tilt tests give";
+    hp.x_label = "friction angle φ (deg)";
+    hp.y_label = "probability density (1/deg)";
+    hp.series.push_back(histogram_series(hist(f.basins.hold), "quasi-static hold angle φ_qs", "#1f77b4"));
+    hp.series.push_back(histogram_series(hist(f.basins.inertial), "inertial bound φ_in", "#9467bd", true));
+    hp.bands.push_back({false, deg(fwd->friction_angle_low), deg(fwd->friction_angle), "Eq. 18 range", "#f2c94c", 0.3});
+    hp.lines.push_back({false, deg(fwd->friction_angle), fmt::format("θ_a + θ_max = {:.3f}°", deg(fwd->friction_angle)),
+                        "#d62728"});
+    auto hsvg = plot_svg(hp);
+    if (!hsvg) return hsvg.error();
+    std::string html =
+        "<p>θ_max bounds the friction of a rigid pair; a tilt test reads something else. A block put down at one "
+        "offset slides to the bottom of its basin of the lift h; tilted slowly, it stays where the slope of h ahead "
+        "of it is at least the tilt and otherwise slips to the next steeper slope; the test reads the tilt at the "
+        "first slip of at least the run-away distance d (the <i>quasi-static hold angle</i> φ_qs). Without "
+        "dissipation a block coasts d once no point of h within d rises above the chord from its rest: the "
+        "<i>inertial bound</i> φ_in. Definitions: docs/analysis.md.</p>\n";
+    html += figure(*lsvg, fmt::format("The lift h over the drops' range; red: the rest offsets of the {} basins "
+                                      "(local minima of h) into which drops spread uniformly over the range fall.",
+                                      f.basins.rest.size()));
+    html += figure(
+        *hsvg,
+        fmt::format("Each basin weighted by the width of the drop range it drains; run-away distance d = {:.4g} {}. "
+                    "Shaded: Eq. 18's heuristic range [θ_max − σ, θ_max] + θ_a over the offset range; a block that "
+                    "slips on before the run-away can reach steeper contacts beyond it.",
+                    ha->runaway_distance / xu.scale, xu.name));
+    std::string t =
+        "<table class=\"friction\"><tr><th></th><th>towards +x (forward)</th><th>towards −x (backward)</th></tr>\n";
+    auto two = [&](const std::string& name, const std::string& x, const std::string& y) {
+      t += fmt::format("<tr><th>{}</th><td>{}</td><td>{}</td></tr>\n", name, x, y);
+    };
+    auto range = [](const HoldStatistics& st) {
+      return fmt::format("{} ± {} (5–95 %: {} … {})", fmt_deg(st.mean), fmt_deg(st.std), fmt_deg(st.q05),
+                         fmt_deg(st.q95));
+    };
+    two("quasi-static hold angle φ_qs over drops", range(f.hold), range(b.hold));
+    two("inertial bound φ_in over drops", range(f.inertial), range(b.inertial));
+    two("Eq. 18 range of φ", fmt::format("{} … {}", fmt_deg(fwd->friction_angle_low), fmt_deg(fwd->friction_angle)),
+        fmt::format("{} … {}", fmt_deg(bwd->friction_angle_low), fmt_deg(bwd->friction_angle)));
+    t += "</table>\n";
+    html += t;
+    sections.push_back({"hold", "What a tilt test reads: the hold angle", html});
   }
   // --- friction over sliding directions (maps) ---------------------------------------------------
   if (in.is_map) {

@@ -363,6 +363,12 @@ Result<std::string> plot_svg(const Plot& input) {
   }
   if (xr.empty() || yr.empty()) return make_error(fmt::format("plot '{}': no finite data to draw", plot.title));
   for (const auto& l : plot.lines) (l.horizontal ? yr : xr).add(l.value);
+  for (const auto& b : plot.bands) {
+    if (!(finite(b.lo) && finite(b.hi) && b.hi >= b.lo))
+      return make_error(fmt::format("plot '{}': band '{}' needs finite lo <= hi", plot.title, b.label));
+    (b.horizontal ? yr : xr).add(b.lo);
+    (b.horizontal ? yr : xr).add(b.hi);
+  }
   double x0 = xr.lo, x1 = xr.hi, y0 = yr.lo, y1 = yr.hi;
   bool points_only = true;
   for (const auto& s : plot.series) points_only = points_only && s.style == SeriesStyle::Points;
@@ -435,6 +441,16 @@ Result<std::string> plot_svg(const Plot& input) {
   const std::string clip_placeholder = "@CLIP@";
   body += fmt::format("<g clip-path=\"url(#{})\">", clip_placeholder);
   const auto colors = series_colors(plot.series);
+  for (const auto& b : plot.bands) {
+    if (b.horizontal)
+      body += fmt::format("<rect x=\"{:.1f}\" y=\"{:.2f}\" width=\"{:.1f}\" height=\"{:.2f}\" fill=\"{}\" "
+                          "fill-opacity=\"{:.3g}\"/>",
+                          ml, Y(b.hi), pw, std::max(0.5, Y(b.lo) - Y(b.hi)), b.color, b.opacity);
+    else
+      body += fmt::format("<rect x=\"{:.2f}\" y=\"{:.1f}\" width=\"{:.2f}\" height=\"{:.1f}\" fill=\"{}\" "
+                          "fill-opacity=\"{:.3g}\"/>",
+                          X(b.lo), mt, std::max(0.5, X(b.hi) - X(b.lo)), ph, b.color, b.opacity);
+  }
   for (const auto& l : plot.lines) {
     if (l.horizontal)
       body += fmt::format(
@@ -483,6 +499,12 @@ Result<std::string> plot_svg(const Plot& input) {
     emit();
   }
   body += "</g>";
+  for (const auto& b : plot.bands)
+    if (!b.label.empty())
+      body += fmt::format(
+          "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"#555\" stroke=\"#fff\" stroke-width=\"3\" "
+          "paint-order=\"stroke\">{}</text>",
+          b.horizontal ? ml + 4 : X(b.lo) + 3, b.horizontal ? Y(b.hi) + 13 : mt + 0.5 * ph, escape_html(b.label));
   for (const auto& l : plot.lines)
     if (!l.label.empty()) {
       if (l.horizontal)

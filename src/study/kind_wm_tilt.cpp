@@ -23,6 +23,7 @@
 #include <fmt/core.h>
 
 #include "frictal/geometry.hpp"
+#include "frictal/hold.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/study.hpp"
 #include "frictal/surface_spec.hpp"
@@ -167,6 +168,24 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
   auto r = run_tilt_retrying(*lower, *upper, c);
   if (!r) return r.error();
 
+  // What the test reads (hold.hpp): from where the block rests (the least-lift offset the run
+  // starts from, a local minimum of h, so the block rests there), at the run-away distance of
+  // the 1 lambda reading; the rigid lift and the rounded blocks' (spheroradius r). The lift
+  // covers the drops' range [0, L_b/2] or one period widened by d on both sides (finite blocks).
+  const double d_hold = kRunaway[1] * lambda;
+  HoldOptions ho;
+  ho.runaway_distance = d_hold;
+  ho.atomic_friction = c.contact.atomic_friction;
+  SignatureOptions hso = so;
+  auto hold = analyse_hold(*le, rotate180(*ue), hso, ho, r->initial_offset);
+  if (!hold) return make_error("hold angle: " + hold.error().message);
+  hso.spheroradius = c.radius;
+  auto hold_r = analyse_hold(*le, rotate180(*ue), hso, ho, r->initial_offset);
+  if (!hold_r) return make_error("hold angle of the rounded blocks: " + hold_r.error().message);
+  const HoldAngle& hq = c.reverse ? hold->start.backward : hold->start.forward;
+  const HoldAngle& hr = c.reverse ? hold_r->start.backward : hold_r->start.forward;
+  const HoldDistribution& hd = c.reverse ? hold->distribution.backward : hold->distribution.forward;
+
   TaskOutput out;
   auto& s = out.scalars;
   const double theta_a = std::atan(c.contact.atomic_friction);
@@ -208,6 +227,30 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
   s["friction_minus_rigid_deg"] = (phi - high) / kDeg;
   s["friction_minus_sphero_deg"] = (phi - r->predicted_sphero_friction_angle) / kDeg;
   s["inside_eq18"] = one.reached && phi >= low && phi <= high ? 1 : 0;
+  s["rest_offset_m"] = hq.rest_offset;
+  s["hold_angle_deg"] = hq.hold_angle / kDeg;
+  s["inertial_hold_angle_deg"] = hq.inertial_hold_angle / kDeg;
+  s["sphero_hold_angle_deg"] = hr.hold_angle / kDeg;
+  s["sphero_inertial_hold_angle_deg"] = hr.inertial_hold_angle / kDeg;
+  s["friction_minus_hold_deg"] = (phi - hq.hold_angle) / kDeg;
+  s["friction_minus_sphero_hold_deg"] = (phi - hr.hold_angle) / kDeg;
+  // Between the inertial bound and the quasi-static angle of the rounded blocks (the simulated
+  // ones), with 0.1 deg of slack.
+  {
+    const double lo = std::min(hr.inertial_hold_angle, hr.hold_angle) / kDeg - 0.1, hi = hr.hold_angle / kDeg + 0.1;
+    s["inside_hold_bracket"] = one.reached && phi / kDeg >= lo && phi / kDeg <= hi ? 1 : 0;
+  }
+  s["hold_mean_deg"] = hd.hold.mean / kDeg;
+  s["hold_std_deg"] = hd.hold.std / kDeg;
+  s["hold_q05_deg"] = hd.hold.q05 / kDeg;
+  s["hold_q50_deg"] = hd.hold.q50 / kDeg;
+  s["hold_q95_deg"] = hd.hold.q95 / kDeg;
+  s["hold_min_deg"] = hd.hold.min / kDeg;
+  s["hold_max_deg"] = hd.hold.max / kDeg;
+  s["inertial_hold_mean_deg"] = hd.inertial.mean / kDeg;
+  s["inertial_hold_q05_deg"] = hd.inertial.q05 / kDeg;
+  s["inertial_hold_q95_deg"] = hd.inertial.q95 / kDeg;
+  s["hold_basins"] = static_cast<double>(hd.basins.rest.size());
   s["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
   s["resting_overlap_m"] = r->scales.resting_overlap;
   s["smallest_feature_m"] = std::min(r->scales.smallest_feature[0], r->scales.smallest_feature[1]);
@@ -394,6 +437,118 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
         all.above - all.rot_above));
     rep.findings.push_back(f);
   }
+  // F-hold: what a test reads (hold.hpp) against the simulation, and the distribution over drops
+  // against Eq. 18.
+  {
+    std::string protocol = "constant-rate";
+    if (!rows.empty())
+      if (auto pr = get_string(rows.front().params, "protocol", "constant-rate"); pr) protocol = *pr;
+    const bool qs = protocol == "quasi-static";
+    int n = 0, judged = 0, in_bracket = 0, within = 0, within_rigid = 0, flagged = 0, above_qs = 0, below_in = 0;
+    Acc err_qs;
+    struct HoldCell {
+      Acc low, high, mean, std, q05, q95, in_mean, sim;
+      int covered = 0, n = 0;
+    };
+    std::map<double, HoldCell> hold_by_d;
+    for (const auto& row : rows) {
+      const auto& sc = row.output.scalars;
+      if (!sc.count("hold_angle_deg") || !(get(sc, "slid") > 0)) continue;
+      ++n;
+      bool flag = false;  // warnings a kind version may not have are absent (NaN): not raised
+      for (const char* w : {"warning_rotation", "warning_unsettled", "warning_core_overlap", "warning_time_step",
+                            "warning_unrelaxed", "warning_stiffness"})
+        flag = flag || get(sc, w) > 0;
+      flagged += flag;
+      const double dq = get(sc, "friction_minus_sphero_hold_deg");
+      if (std::abs(dq) <= 0.1) ++within;
+      if (std::abs(get(sc, "friction_minus_hold_deg")) <= 0.1) ++within_rigid;
+      err_qs.add(std::abs(dq));
+      if (!flag) {
+        ++judged;
+        in_bracket += get(sc, "inside_hold_bracket") > 0;
+        above_qs += dq > 0.1;
+        below_in += get(sc, "friction_angle_deg") < get(sc, "sphero_inertial_hold_angle_deg") - 0.1;
+      }
+      const double D = std::round(get(sc, "surface_dimension") * 1e9) / 1e9;
+      HoldCell& hc = hold_by_d[D];
+      ++hc.n;
+      hc.low.add(get(sc, "eq18_low_deg"));
+      hc.high.add(get(sc, "eq18_high_deg"));
+      hc.mean.add(get(sc, "hold_mean_deg"));
+      hc.std.add(get(sc, "hold_std_deg"));
+      hc.q05.add(get(sc, "hold_q05_deg"));
+      hc.q95.add(get(sc, "hold_q95_deg"));
+      hc.in_mean.add(get(sc, "inertial_hold_mean_deg"));
+      hc.sim.add(get(sc, "friction_angle_deg"));
+      hc.covered += get(sc, "hold_q05_deg") >= get(sc, "eq18_low_deg") - 0.1 &&
+                    get(sc, "hold_q95_deg") <= get(sc, "eq18_high_deg") + 0.1;
+    }
+    if (n > 0) {
+      Finding f;
+      if (qs) {
+        f.claim = fmt::format(
+            "Part '{}': the quasi-static tilt reads the hold angle phi_qs of the rounded blocks from where the block "
+            "rests, within 0.1 deg, in at least 95 % of the pairs.",
+            part);
+        f.supported = within >= 0.95 * n;
+        f.evidence.push_back(fmt::format(
+            "criterion: |phi - phi_qs| <= 0.1 deg in >= 95 % of the pairs that slid; {} of {} ({:.0f} %); against "
+            "the rigid phi_qs: {} of {}; mean |phi - phi_qs| = {:.3f} deg",
+            within, n, 100.0 * within / n, within_rigid, n, err_qs.mean()));
+      } else {
+        f.claim = fmt::format(
+            "Part '{}': the constant-rate (dynamic) tilt reads an angle between the inertial bound phi_in and the "
+            "quasi-static hold angle phi_qs of the rounded blocks (0.1 deg of slack) in at least 90 % of the pairs "
+            "no warning flags.",
+            part);
+        f.supported = judged > 0 && in_bracket >= 0.9 * judged;
+        f.evidence.push_back(fmt::format(
+            "criterion: inside [phi_in - 0.1, phi_qs + 0.1] deg in >= 90 % of the unflagged pairs; {} of {} ({:.0f} "
+            "%); above phi_qs: {}, below phi_in: {}; flagged (rotation, unsettled, core-overlap, time-step, "
+            "unrelaxed, stiffness): {}",
+            in_bracket, judged, judged ? 100.0 * in_bracket / judged : 0.0, above_qs, below_in, flagged));
+        f.evidence.push_back(fmt::format(
+            "within 0.1 deg of phi_qs (rounded) in {} of {} pairs; of the rigid phi_qs in {}; mean |phi - phi_qs| "
+            "= {:.3f} deg",
+            within, n, within_rigid, err_qs.mean()));
+      }
+      rep.findings.push_back(f);
+      // The distribution over drops: Eq. 18 derived.
+      std::string t = fmt::format(
+          "\nPart '{}': Eq. 18 derived. The hold angle phi_qs over drops spread uniformly over the offset range "
+          "(each basin of h weighted by its width; run-away 1 lambda; means over the pairs of each D) beside Eq. "
+          "18's heuristic range.\n\n| D | pairs | Eq. 18 low (deg) | Eq. 18 high = theta_max + theta_a (deg) | "
+          "phi_qs mean (deg) | phi_qs std (deg) | phi_qs 5 % (deg) | phi_qs 95 % (deg) | phi_in mean (deg) | "
+          "simulated mean (deg) | pairs whose 5-95 % lie in Eq. 18 |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
+          part);
+      int covered = 0, total = 0;
+      for (const auto& [D, hc] : hold_by_d) {
+        t += fmt::format("| {:.2f} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {} |\n",
+                         D, hc.n, hc.low.mean(), hc.high.mean(), hc.mean.mean(), hc.std.mean(), hc.q05.mean(),
+                         hc.q95.mean(), hc.in_mean.mean(), hc.sim.mean(), hc.covered);
+        covered += hc.covered;
+        total += hc.n;
+      }
+      rep.lines.push_back(t);
+      Finding g;
+      g.claim = fmt::format(
+          "Part '{}': Eq. 18's range [theta_max - sigma, theta_max] + theta_a holds the central 90 % of the hold "
+          "angles that repeated drops give (0.1 deg of slack), in at least 90 % of the pairs.",
+          part);
+      g.supported = total > 0 && covered >= 0.9 * total;
+      g.evidence.push_back(fmt::format(
+          "criterion: per pair, the 5 % and 95 % quantiles of phi_qs over drops inside the Eq. 18 range +- 0.1 deg; "
+          "{} of {} pairs ({:.0f} %)",
+          covered, total, total ? 100.0 * covered / total : 0.0));
+      std::string per;
+      for (const auto& [D, hc] : hold_by_d)
+        per += fmt::format(" D={:.1f}: mean {:.3f} vs Eq. 18 mid {:.3f};", D, hc.mean.mean(),
+                           0.5 * (hc.low.mean() + hc.high.mean()));
+      g.evidence.push_back("phi_qs over drops against the Eq. 18 range (deg):" + per);
+      rep.findings.push_back(g);
+    }
+  }
   // F2: run-away distance.
   if (with_three > 0) {
     Finding f;
@@ -464,7 +619,7 @@ TaskKind wm_tilt_kind() {
   k.description =
       "Spheropolygon tilt test of a random pair (WM or any seeded generator) beside its Eq. 18 range; friction angle "
       "at run-away 0.5, 1, 2 lambda";
-  k.version = 2;  // 2: the creep warning
+  k.version = 3;  // 2: the creep warning; 3: the hold angle
   k.run = run_wm_tilt_task;
   k.outputs = {
       {"surface_dimension", "1", "fractal dimension D of the faces (wm: dimension; self-affine, fourier: 2 - hurst)"},
@@ -493,6 +648,26 @@ TaskKind wm_tilt_kind() {
       {"friction_minus_sphero_deg", "deg", "simulated (1 lambda) minus spheropolygon prediction"},
       {"inside_eq18", "1", "1 if the simulated angle (1 lambda) lies in the Eq. 18 range"},
       {"initial_offset_m", "m", "offset of the upper block at the start (start_rule)"},
+      {"rest_offset_m", "m", "where a block put down there rests (hold.hpp; the start is a local minimum of h)"},
+      {"hold_angle_deg", "deg", "quasi-static hold angle phi_qs of the rigid blocks from the rest, d = 1 lambda"},
+      {"inertial_hold_angle_deg", "deg", "inertial bound phi_in of the rigid blocks from the rest, d = 1 lambda"},
+      {"sphero_hold_angle_deg", "deg", "phi_qs of the rounded blocks (signature with the spheroradius)"},
+      {"sphero_inertial_hold_angle_deg", "deg", "phi_in of the rounded blocks"},
+      {"friction_minus_hold_deg", "deg", "simulated (1 lambda) minus phi_qs (rigid)"},
+      {"friction_minus_sphero_hold_deg", "deg", "simulated (1 lambda) minus phi_qs (rounded)"},
+      {"inside_hold_bracket", "1",
+       "1 if the simulated angle lies in [phi_in, phi_qs] of the rounded blocks, with 0.1 deg of slack"},
+      {"hold_mean_deg", "deg", "phi_qs over drops spread over the offset range: mean (the derived Eq. 18)"},
+      {"hold_std_deg", "deg", "phi_qs over drops: standard deviation"},
+      {"hold_q05_deg", "deg", "phi_qs over drops: 5 % quantile"},
+      {"hold_q50_deg", "deg", "phi_qs over drops: median"},
+      {"hold_q95_deg", "deg", "phi_qs over drops: 95 % quantile"},
+      {"hold_min_deg", "deg", "phi_qs over drops: minimum"},
+      {"hold_max_deg", "deg", "phi_qs over drops: maximum"},
+      {"inertial_hold_mean_deg", "deg", "phi_in over drops: mean"},
+      {"inertial_hold_q05_deg", "deg", "phi_in over drops: 5 % quantile"},
+      {"inertial_hold_q95_deg", "deg", "phi_in over drops: 95 % quantile"},
+      {"hold_basins", "1", "basins of h over the offset range"},
       {"start_rule", "1",
        "how the start was chosen: 2 least lift among the local minima of h(s) in the first half of the offset range "
        "with a forward barrier >= W/k_n, 1 the least such minimum (none had one), 0 run_tilt's least lift "

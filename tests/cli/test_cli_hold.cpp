@@ -1,0 +1,106 @@
+// `frictal signature` and the hold angle: the JSON keys of issue 23, the signature CSV's basin
+// column, and bad input (exit 2 naming the option).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "cli/cli_runner.hpp"
+
+using nlohmann::json;
+
+namespace {
+// The WM pair of issue 23 (rms 1e-5 m on the Table I block), written once.
+std::string wm_file(int seed) {
+  const std::string f = temp_path("hold-wm" + std::to_string(seed) + ".csv");
+  auto g = run_cli("surface wm -D 1.5 --n-max 6 --longest-wavelength 0.01 --length 0.2 --rms-height 1e-5 --seed " +
+                   std::to_string(seed) + " -o " + f);
+  EXPECT_EQ(g.code, 0) << g.err;
+  return f;
+}
+}  // namespace
+
+TEST(CliHold, SignaturePrintsTheHoldAngleFromAStartAndOverDrops) {
+  const std::string a = wm_file(1), b = wm_file(2);
+  auto r = run_cli("signature " + a + " " + b + " --start-offset 0.02379 --runaway-distance 0.01 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  // Issue 23's independent numpy computation of the exact rigid lift: 1.549 and 0.695 deg.
+  EXPECT_NEAR(j["hold_angle_deg"].get<double>(), 1.549, 0.0015);
+  EXPECT_NEAR(j["inertial_hold_angle_deg"].get<double>(), 0.695, 0.0015);
+  EXPECT_DOUBLE_EQ(j["runaway_distance_m"].get<double>(), 0.01);
+  for (const char* k : {"rest_offset_m", "hold_offset_m", "rest_offset_backward_m", "hold_angle_backward_deg",
+                        "hold_offset_backward_m", "inertial_hold_angle_backward_deg"})
+    EXPECT_TRUE(j.contains(k)) << k;
+  for (const char* p : {"hold_angle", "inertial_hold_angle"})
+    for (const char* s : {"_mean_deg", "_std_deg", "_q05_deg", "_q50_deg", "_q95_deg", "_min_deg", "_max_deg"})
+      EXPECT_TRUE(j.contains(std::string(p) + s)) << p << s;
+  // A hold angle never exceeds the steepest contact slope of the range it can reach, and the
+  // distribution's maximum is at most theta_max over the widened range: here over [0, L/2] the
+  // forward maximum is reached, so q95 <= max = theta_max.
+  EXPECT_LE(j["hold_angle_max_deg"].get<double>(), j["theta_max_forward_deg"].get<double>() + 1e-9);
+  EXPECT_LE(j["hold_angle_q05_deg"].get<double>(), j["hold_angle_q50_deg"].get<double>());
+  EXPECT_LE(j["hold_angle_q50_deg"].get<double>(), j["hold_angle_q95_deg"].get<double>());
+  // The text output says it in a line a person reads.
+  auto t = run_cli("signature " + a + " " + b + " --start-offset 0.03 --runaway-distance 5e-3");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("hold angle (what a tilt test reads"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("held up to 1.5095 deg"), std::string::npos) << t.out;  // issue 23: 1.510 deg
+}
+
+TEST(CliHold, DefaultRunawayDistanceScalesWithTheFile) {
+  // A tenth of the offset range (half the block): 0.01 m on the 0.2 m block; one period for a
+  // periodic pair.
+  const std::string a = wm_file(1);
+  auto r = run_cli("signature " + a + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_NEAR(j["runaway_distance_m"].get<double>(), 0.1 * j["offset_range_m"][1].get<double>(), 1e-15);
+  auto k = run_cli("signature koch -n 1 --alpha 20 --json");
+  ASSERT_EQ(k.code, 0) << k.err;
+  const json jk = json::parse(k.out);
+  EXPECT_NEAR(jk["runaway_distance_m"].get<double>(), 0.01, 1e-15);
+  // Koch K1: every drop holds at the signature maximum alpha (paper Sec. III).
+  EXPECT_NEAR(jk["hold_angle_min_deg"].get<double>(), 20, 1e-6);
+  EXPECT_NEAR(jk["hold_angle_max_deg"].get<double>(), 20, 1e-6);
+}
+
+TEST(CliHold, SignatureCsvGainsTheBasinColumn) {
+  const std::string a = wm_file(1), csv = temp_path("hold-sig.csv");
+  auto r = run_cli("signature " + a + " -o " + csv);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::istringstream in(read_file(csv));
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "offset_m,lift_m,theta_deg,theta_min_deg,theta_left_deg,theta_right_deg,basin");
+  // Basins are numbered along the offset: non-decreasing, from 0, every row has one.
+  int last = -1, rows = 0;
+  while (std::getline(in, line)) {
+    const int b = std::stoi(line.substr(line.rfind(',') + 1));
+    EXPECT_GE(b, last);
+    EXPECT_GE(b, 0);
+    last = b;
+    ++rows;
+  }
+  EXPECT_GT(rows, 100);
+  EXPECT_GT(last, 5);
+}
+
+TEST(CliHold, BadHoldOptionsExit2NamingTheOption) {
+  const std::string a = wm_file(1);
+  auto r = run_cli("signature " + a + " --start-offset 0.5");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("start offset 0.5"), std::string::npos) << r.err;
+  r = run_cli("signature " + a + " --runaway-distance 0");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("runaway"), std::string::npos) << r.err;
+  r = run_cli("signature " + a + " --runaway-distance 0.5");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("overlap"), std::string::npos) << r.err;
+  r = run_cli("signature " + a + " --start-offset inf");
+  EXPECT_EQ(r.code, 2);
+  r = run_cli("signature " + a + " --no-hold --start-offset 0.01");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--no-hold"), std::string::npos) << r.err;
+}
