@@ -96,9 +96,11 @@ int run_hold(const Args& a, const Map& f, const Map& g) {
                     lift.offset_xy(start)[0], lift.offset_xy(start)[1]));
   ho.lateral = LateralMotion::Free;
   const ArealHold free = unwrap(areal_hold_angle(lift, start, ho));
-  // Locked: the 1D rule on the line through the free block's rest offset.
+  // Locked: the 1D rule on the line through the free block's rest offset (hold.hpp's hold_angle;
+  // the grid's Locked process gives the same angle and the path).
   ho.lateral = LateralMotion::Locked;
-  const ArealHold locked = unwrap(areal_hold_angle(lift, free.rest, ho));
+  ArealHold locked = unwrap(areal_hold_angle(lift, free.rest, ho));
+  locked.hold_angle = unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
   ho.lateral = locked_mode ? LateralMotion::Locked : LateralMotion::Free;
   const ArealHold& chosen = locked_mode ? locked : free;
   std::optional<ArealHoldDistribution> dist;

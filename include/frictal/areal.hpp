@@ -147,7 +147,8 @@ Result<ArealLift> areal_lift(const Map& lower, const Map& upper, double angle, c
 ///   neighbour can be reached (the next stop);
 /// - the run-away is the first move whose displacement along d since the last stop reaches D,
 ///   or that reaches the last column of the grid along d (it runs off the known lift, as the 1D
-///   rule's run off the end); the hold angle is the tilt at which that slip began.
+///   rule's run off the end); the hold angle is the tilt at which that slip began. A drop that
+///   rests on the last column runs off at atan(mu_a), as onto a flat continuation.
 /// The grid's other edges and offsets where the blocks do not touch are walls.
 enum class LateralMotion { Free, Locked };
 struct ArealHoldOptions {
@@ -177,6 +178,12 @@ struct ArealHold {
 /// The test from one drop node. Errors: D <= 0 or not finite, mu_a < 0 or not finite, a start
 /// node outside the grid or where the blocks do not touch.
 Result<ArealHold> areal_hold_angle(const ArealLift& lift, std::size_t start, const ArealHoldOptions& o);
+/// The same block with its lateral motion locked, by the one-dimensional rule of hold.hpp
+/// (hold_angle(), forward) on the LiftCurve through the lift's nodes on the line along d through
+/// `rest` (the run of nodes where the blocks touch that holds it). Equals areal_hold_angle with
+/// LateralMotion::Locked from `rest` (two computations, compared in the tests). Errors as
+/// areal_hold_angle.
+Result<HoldAngle> areal_locked_hold_angle(const ArealLift& lift, std::size_t rest, const ArealHoldOptions& o);
 /// The grid node nearest to the offset (x, y) in the lower map's frame (unit: m). Errors: an offset
 /// that is not finite or lies more than half a step outside the grid (the message gives the
 /// grid's range in u and v).

@@ -143,8 +143,10 @@ class Process {
     const double D = o_.runaway_distance;
     for (;;) {
       r.hold_node = stop;
-      if (last_column(stop)) {  // nothing known ahead: it runs off at the tilt it stopped at
-        r.hold_angle = beta;
+      if (last_column(stop)) {
+        // Nothing known ahead (only a drop rests here: a slip that reaches the last column is a
+        // run-away): it runs off as onto a flat continuation, as the 1D rule's end of the curve.
+        r.hold_angle = std::max(beta, std::atan(o_.atomic_friction));
         r.ran_off_end = true;
         return;
       }
@@ -215,6 +217,31 @@ Result<ArealHold> areal_hold_angle(const ArealLift& lift, std::size_t start, con
   r.rest = p.rest_of(start, &r.path);
   p.tilt(r.rest, r, &r.path);
   return r;
+}
+
+Result<HoldAngle> areal_locked_hold_angle(const ArealLift& lift, std::size_t rest, const ArealHoldOptions& o) {
+  if (auto s = check(lift, o); !s) return s.error();
+  if (rest >= lift.lift.size() || std::isnan(lift.lift[rest]))
+    return make_error(fmt::format("rest node {}: expected a node of the {} x {} offset grid where the blocks touch",
+                                  rest, lift.n_along, lift.n_across));
+  const std::size_t row = rest / lift.n_along, i = rest % lift.n_along;
+  const double* h = &lift.lift[row * lift.n_along];
+  std::size_t i0 = i, i1 = i;
+  while (i0 > 0 && !std::isnan(h[i0 - 1])) --i0;
+  while (i1 + 1 < lift.n_along && !std::isnan(h[i1 + 1])) ++i1;
+  if (i1 == i0)
+    return make_error(fmt::format("rest node {}: the blocks touch at no neighbour along the sliding direction", rest));
+  LiftCurve curve;
+  for (std::size_t k = i0; k <= i1; ++k) {
+    curve.offset.push_back(lift.along(k));
+    curve.lift.push_back(h[k]);
+  }
+  HoldOptions ho;
+  ho.runaway_distance = o.runaway_distance;
+  ho.atomic_friction = o.atomic_friction;
+  auto r = hold_angle(curve, lift.along(i), ho);
+  if (!r) return r.error();
+  return r->forward;
 }
 
 Result<ArealHoldDistribution> areal_hold_distribution(const ArealLift& lift, const ArealHoldOptions& o) {

@@ -345,7 +345,10 @@ Brute brute_force(const frictal::ArealLift& L, std::size_t start, double D, doub
   std::size_t k = start;
   for (std::size_t n; (n = next(k, 0, 0)) != SIZE_MAX;) k = n;
   Brute b{0, k};
-  if (k % L.n_along == L.n_along - 1) return b;  // at rest on the last column: runs off at once
+  if (k % L.n_along == L.n_along - 1) {  // at rest on the last column: runs off as onto a flat
+    b.hold = std::atan(mu);
+    return b;
+  }
   std::size_t stop = k;
   for (double beta = dbeta; beta < kPi / 2; beta += dbeta) {
     for (std::size_t n; (n = next(k, beta, s0)) != SIZE_MAX;) {
@@ -455,4 +458,35 @@ TEST(ArealHold, BadInputNamesTheValue) {
   auto inside = frictal::areal_lift_node(*lift, lift->along(3), lift->across(1));
   ASSERT_TRUE(inside.ok());
   EXPECT_EQ(*inside, 1 * lift->n_along + 3);
+}
+
+TEST(ArealHold, LockedGridRuleEqualsTheOneDimensionalHoldAngle) {
+  // The grid's Locked process against hold_angle() of hold.hpp on the LiftCurve of the line
+  // (the 1D rule's own implementation: record chains on a piecewise-linear curve).
+  std::size_t compared = 0;
+  for (unsigned seed = 40; seed < 43; ++seed) {
+    auto f = random_map(30, 26, 1e-7, 1e-7, 2e-8, seed);
+    auto g = random_map(12, 12, 1e-7, 1e-7, 2e-8, seed + 50);
+    frictal::ArealLiftOptions lo;
+    lo.across_max = 3e-7;
+    auto lift = frictal::areal_lift(f, g, 0.2 * seed, lo);
+    ASSERT_TRUE(lift.ok());
+    for (double mu : {0.0, 0.2}) {
+      frictal::ArealHoldOptions o;
+      o.runaway_distance = 2.5e-7;
+      o.atomic_friction = mu;
+      o.lateral = frictal::LateralMotion::Locked;
+      for (std::size_t k = 0; k < lift->lift.size(); k += 3) {
+        if (std::isnan(lift->lift[k])) continue;
+        auto grid = frictal::areal_hold_angle(*lift, k, o);
+        ASSERT_TRUE(grid.ok());
+        auto line = frictal::areal_locked_hold_angle(*lift, grid->rest, o);
+        ASSERT_TRUE(line.ok()) << line.error().message;
+        EXPECT_NEAR(line->hold_angle, grid->hold_angle, 1e-12) << seed << " " << k << " " << mu;
+        EXPECT_NEAR(line->rest_offset, lift->along(grid->rest % lift->n_along), 1e-18);
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 100u);
 }
