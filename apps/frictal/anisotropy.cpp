@@ -6,6 +6,7 @@
 #include "common.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
+#include "frictal/tilt.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
 
@@ -24,6 +25,7 @@ struct Args {
   bool json = false;
   bool hold = false;
   double runaway_distance = 0;
+  FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   unsigned threads = 0;
   InputOptions input;
 };
@@ -42,10 +44,12 @@ std::function<int()> setup(CLI::App& app) {
   app.add_flag("--json", a->json, "Print one JSON object");
   app.add_flag("--hold", a->hold,
                "Also the hold angle over drops per direction, free to move sideways and locked (2D lift; slower)");
-  app.add_option("--runaway-distance", a->runaway_distance,
-                 "With --hold: run-away distance (m; default a tenth of the offset range along each direction)");
+  // --runaway-distance: the tilt table's field (one description everywhere), here the hold angle's run-away.
+  add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
   add_input_options(app, a->input);
   return [a]() {
+    if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
+      a->runaway_distance = as_real(rv.at("runaway_distance"));
     require(a->directions >= 1 && a->directions <= 3600, "--directions must be in 1..3600");
     require(a->max_lines >= 1 && a->max_lines <= 100000, "--lines must be in 1..100000");
     require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,

@@ -6,6 +6,7 @@
 #include "frictal/areal.hpp"
 #include "common.hpp"
 #include "frictal/analysis.hpp"
+#include "frictal/tilt.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
 
@@ -27,6 +28,7 @@ struct Args {
   // The hold angle over two dimensions of offset.
   std::string lateral;
   double runaway_distance = 0;
+  FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   std::string start_offset;
   double offset_min = 0, across_step = 0, across_max = 0;
   unsigned threads = 0;
@@ -179,8 +181,8 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores)");
   app.add_option("--lateral", a->lateral,
                  "Hold angle of a block that may move sideways (free) or not (locked) over the 2D lift");
-  app.add_option("--runaway-distance", a->runaway_distance,
-                 "Run-away distance D along the direction (m; default a tenth of the offset range along it)");
+  // --runaway-distance: the tilt table's field (one description everywhere), here the hold angle's run-away.
+  add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
   app.add_option("--start-offset", a->start_offset,
                  "Drop the block at offset X,Y (m, in the lower map's frame; default: the distribution over drops "
                  "and the test from 0,0)");
@@ -191,6 +193,8 @@ std::function<int()> setup(CLI::App& app) {
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
   return [a]() {
+    if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
+      a->runaway_distance = as_real(rv.at("runaway_distance"));
     require(std::isfinite(a->angle), fmt::format("--angle {}: expected a finite number of degrees", a->angle));
     require(a->step >= 0 && a->offset_max >= 0, "--step and --max-offset must be >= 0 (metres)");
     require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,
