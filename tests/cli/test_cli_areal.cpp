@@ -131,3 +131,10 @@ TEST(CliAreal, AnisotropyGainsTheHoldAngles) {
   }
   EXPECT_EQ(run_cli("anisotropy " + groove_file() + " --runaway-distance 1e-6").code, 2);
 }
+
+TEST(CliAreal, ArealTiltRefusesBadInputBeforeSimulating) {
+  auto a = run_cli("areal-tilt " + groove_file() + " --angle inf --json");
+  EXPECT_EQ(a.code, 2);
+  EXPECT_NE(a.err.find("--angle"), std::string::npos) << a.err;
+  EXPECT_EQ(run_cli("areal-tilt " + groove_file() + " --tilt-step 0").code, 2);
+}
