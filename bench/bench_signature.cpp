@@ -256,7 +256,10 @@ void BM_HoldDistribution1M(benchmark::State& st) {
   std::size_t basins = 0;
   for (auto _ : st) {
     auto h = analyse_hold(p.lower, p.upper, o, HoldOptions{});
-    if (!h) st.SkipWithError(h.error().message.c_str());
+    if (!h) {
+      st.SkipWithError(h.error().message.c_str());
+      break;
+    }
     basins = h->distribution.forward.basins.rest.size();
   }
   st.counters["basins"] = static_cast<double>(basins);
@@ -271,8 +274,13 @@ void BM_HoldDistributionOnCurve1M(benchmark::State& st) {
     o.keep_contacts = false;
     o.offset_min = -5e-5;
     o.offset_max = 5.5e-4;
-    return *lift_curve(*signature(p.lower, p.upper, o));
+    auto sig = signature(p.lower, p.upper, o);
+    return sig ? lift_curve(*sig).value() : LiftCurve{};
   }();
+  if (curve.offset.empty()) {
+    st.SkipWithError("signature of the widened range failed");
+    return;
+  }
   HoldOptions h;
   h.runaway_distance = 5e-5;
   h.drop_min = 0;

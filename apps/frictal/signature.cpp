@@ -97,6 +97,7 @@ struct Args {
   double spheroradius = 0;
   bool json = false;
   bool exact = false;
+  bool keep_grid = false;
   double start_offset = std::numeric_limits<double>::quiet_NaN();
   bool no_hold = false;
   std::string detrend = "none";
@@ -124,6 +125,8 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--detrend", a->detrend,
                  "Remove none, mean, line or poly:N from each measured surface first (form and tilt of the scan)")
       ->capture_default_str();
+  app.add_flag("--keep-grid", a->keep_grid,
+               "With --offsets N: evaluate that grid even where every event offset costs less (aligned grids)");
   app.add_flag("--exact", a->exact, "Refuse to sample offsets when the exact signature has too many events");
   app.add_option("--offset-range", a->range, "MIN MAX offsets (m); default one period or half the block")->expected(2);
   // --period and --spheroradius (the spheroradius: the signature of the DEM's rounded blocks, one core
@@ -195,6 +198,7 @@ std::function<int()> setup(CLI::App& app) {
     o.slopes = (a->slopes == "spline") ? SlopeMethod::Spline : SlopeMethod::Exact;
     o.offsets = a->offsets;
     o.require_exact = a->exact;
+    o.keep_grid = a->keep_grid;
     o.threads = a->threads;
     o.bins = a->bins;
     require(a->spheroradius == 0 || a->slopes == "exact",
@@ -225,6 +229,11 @@ std::function<int()> setup(CLI::App& app) {
     const auto t0 = std::chrono::steady_clock::now();
     SignatureResult r = unwrap(signature(std::move(lower), std::move(upper), o));
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (r.grid_replaced)
+      fmt::print(stderr,
+                 "frictal: note: --offsets {}: the two point grids align, and the exact signature's {} event offsets "
+                 "cost less than {} offsets off the grid; computed every event instead (exact)\n",
+                 a->offsets, r.offset.size(), a->offsets);
     if (a->offsets == 0 && !r.exact)
       fmt::print(stderr,
                  "frictal: note: the two point grids do not align and the exact signature would need more "
@@ -275,6 +284,7 @@ std::function<int()> setup(CLI::App& app) {
       j["slopes"] = a->slopes;
       j["spheroradius_m"] = r.spheroradius;
       j["exact"] = r.exact;
+      j["grid_replaced"] = r.grid_replaced;
       j["offsets"] = r.offset.size();
       j["offset_range_m"] = {r.offset.front(), r.offset.back()};
       j["theta_max_forward_deg"] = to_deg(r.theta_max_forward);

@@ -101,6 +101,25 @@ int run(TiltOptions& o) {
         cfg.predict ? nlohmann::json(r->predicted_sphero_friction_angle / kDeg) : nlohmann::json(nullptr);
     j["predicted_sphero_theta_max_deg"] =
         cfg.predict ? nlohmann::json(r->predicted_sphero_theta_max / kDeg) : nlohmann::json(nullptr);
+    auto deg_or_null = [](double rad) {
+      return std::isnan(rad) ? nlohmann::json(nullptr) : nlohmann::json(rad / kDeg);
+    };
+    j["protocol"] = cfg.protocol == TiltProtocol::QuasiStatic ? "quasi-static" : "constant-rate";
+    j["rest_offset_m"] = r->rest_offset;
+    j["predicted_hold_angle_deg"] = deg_or_null(r->predicted_hold_angle);
+    j["predicted_hold_offset_m"] =
+        std::isnan(r->predicted_hold_offset) ? nlohmann::json(nullptr) : nlohmann::json(r->predicted_hold_offset);
+    j["slide_start_offset_m"] =
+        r->slid ? nlohmann::json(r->rest_offset + (cfg.reverse ? -1 : 1) * r->slide_start_displacement)
+                : nlohmann::json(nullptr);
+    j["predicted_inertial_hold_angle_deg"] = deg_or_null(r->predicted_inertial_hold_angle);
+    j["predicted_sphero_hold_angle_deg"] = deg_or_null(r->predicted_sphero_hold_angle);
+    if (!r->hold_error.empty()) j["hold_error"] = r->hold_error;
+    if (cfg.check_stiffness) j["stiff_friction_angle_deg"] = deg_or_null(r->stiff_friction_angle);
+    if (cfg.protocol == TiltProtocol::QuasiStatic) {
+      j["increments"] = r->increments;
+      j["unrelaxed_increments"] = r->unrelaxed_increments;
+    }
     j["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
     const TiltScales& sc = r->scales;
     j["scales"] = {{"resting_overlap_m", sc.resting_overlap},
@@ -155,7 +174,22 @@ int run(TiltOptions& o) {
                  r->predicted_friction_angle / kDeg);
       fmt::print(text, "predicted for spheropolygons (r = {:.3g} m, theta_max {:.3f} + atan(mu_a)): {:.3f} deg\n",
                  cfg.radius, r->predicted_sphero_theta_max / kDeg, r->predicted_sphero_friction_angle / kDeg);
+      if (!std::isnan(r->predicted_hold_angle))
+        fmt::print(text,
+                   "hold angle from the rest offset {:.6g} m with run-away {:.3g} m: quasi-static {:.3f} deg "
+                   "(spheropolygons {:.3f} deg), inertial bound {:.3f} deg\n",
+                   r->rest_offset, cfg.runaway_distance, r->predicted_hold_angle / kDeg,
+                   r->predicted_sphero_hold_angle / kDeg, r->predicted_inertial_hold_angle / kDeg);
+      else if (!r->hold_error.empty())
+        fmt::print(text, "hold angle: not computed ({})\n", r->hold_error);
     }
+    if (cfg.check_stiffness)
+      fmt::print(text, "at 10 k_n: {}\n",
+                 std::isnan(r->stiff_friction_angle) ? std::string("no run-away")
+                                                     : fmt::format("{:.3f} deg", r->stiff_friction_angle / kDeg));
+    if (cfg.protocol == TiltProtocol::QuasiStatic)
+      fmt::print(text, "quasi-static: {} increments of {:.4g} deg, {} not relaxed within {:.3g} s\n", r->increments,
+                 cfg.tilt_increment / kDeg, r->unrelaxed_increments, cfg.relax_time);
     fmt::print(text, "rotation of the upper block against the lower one before the slide: {:.4g} deg{}\n",
                r->rotation_before_slide / kDeg, cfg.hold_rotation ? " (held)" : "");
     fmt::print(text,

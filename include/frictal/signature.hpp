@@ -47,8 +47,12 @@ struct SignatureOptions {
   /// that do not align, as measured data often have), offsets are sampled at the finer vertex
   /// spacing instead (SignatureResult::exact = false), or an error if require_exact is set.
   /// N > 0: N equally spaced offsets over [offset_min, offset_max] (end included), each still
-  /// evaluated exactly, with exact one-sided slopes at each.
+  /// evaluated exactly, with exact one-sided slopes at each; on aligned grids where N is at least
+  /// a quarter of the exact events, every event instead (SignatureResult::grid_replaced).
   std::size_t offsets = 0;
+  /// offsets = N: evaluate exactly that grid even where every event would cost less (a grid
+  /// shared with another tool; tests of the off-lattice search).
+  bool keep_grid = false;
   std::size_t max_events = 20'000'000;
   bool require_exact = false;
   /// Aligned grids: bound the search with each block's tilted upper line (its chord raised over
@@ -104,8 +108,12 @@ struct SignatureResult {
   double contact_slope_std = 0;       ///< sigma of Eq. 18 (unit: rad)
   Histogram contact_slope_pdf;        ///< (unit: 1/rad over rad)
   bool exact = true;                  ///< true if every event offset was evaluated
-  std::size_t events = 0;             ///< number of distinct event offsets in the range (r > 0: breakpoints of h)
-  double spheroradius = 0;            ///< the spheroradius r used (unit: m)
+  /// `offsets` = N asked for at least a quarter as many offsets as the exact path has events on
+  /// aligned grids, where an off-lattice offset costs about 3.3 lattice events: every event was
+  /// evaluated instead (exact, denser and cheaper than the grid).
+  bool grid_replaced = false;
+  std::size_t events = 0;   ///< number of distinct event offsets in the range (r > 0: breakpoints of h)
+  double spheroradius = 0;  ///< the spheroradius r used (unit: m)
 };
 
 /// Computes the signature of `lower` against `upper` (already rotated, see above).

@@ -9,14 +9,18 @@
 // signature, i.e. the deepest nesting), lowered until its core is `placement_gap` above contact,
 // settles under gravity for `settle_time`, then the lower block (kinematic) turns about its
 // centroid at `tilt_rate`, clockwise so that the upper block slides towards +x (counter-clockwise
-// with `reverse`, sliding towards -x).
+// with `reverse`, sliding towards -x). With `protocol` = quasi-static the tilt instead grows by
+// `tilt_increment` and the upper block relaxes to rest (FIRE) after each increment and in place
+// of the settling; gravity turns in the lower block's frame (docs/dem.md sec. 4).
 //
 // Detection (docs/dem.md): the relative displacement d is the upper centroid's motion along the
 // lower block's x axis in the lower block's frame, signed in the sliding direction, and v its
 // rate. A stick is an interval of at least `stick_duration` with v <= `stick_speed`. The run
 // stops once d has grown by `runaway_distance` (default: one wavelength) since the end of the
 // last stick; the friction angle is the tilt at that moment. The lag is the tilt gained while v
-// grows from 0 to stick_speed: below 0.1 degree for the defaults (docs/dem.md).
+// grows from 0 to stick_speed: below 0.1 degree for the defaults (docs/dem.md). Quasi-static:
+// the stop after each increment that relaxed to rest replaces the stick, and the friction angle
+// is the tilt of the last such stop (TiltResult::friction_angle).
 #pragma once
 
 #include <cstdint>
@@ -32,6 +36,16 @@
 #include "frictal/settings.hpp"
 
 namespace frictal {
+
+/// How the tilt grows (docs/dem.md sec. 4).
+enum class TiltProtocol {
+  /// The paper's: the lower block turns at `tilt_rate`; stick/run-away from the relative speed.
+  ConstantRate,
+  /// The tilt grows in steps of `tilt_increment`; after each the upper block relaxes to rest
+  /// (FIRE, Bitzek et al. 2006) before the next. Gravity turns in the lower block's frame (the
+  /// lower block stays still; frames and series report the tilt as if it turned).
+  QuasiStatic,
+};
 
 /// What the blocks' faces are when a surface folds over (Koch K1 above 45 degrees, ...).
 enum class TiltFace {
@@ -67,10 +81,28 @@ struct TiltConfig {
   double skin = 5e-5;                 ///< neighbour-list skin (unit: m)
   int max_steps_beyond_limit = 1000;  ///< see dem::WorldDef::max_steps_beyond_limit; fixed step only (unitless)
   double settle_time = 0.1;           ///< free settling before the tilt starts (unit: s)
-  double max_tilt = 89 * std::numbers::pi / 180;  ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
-  double runaway_distance = 0.01;                 ///< sliding "for good": growth past this, one lambda (unit: m)
-  double stick_speed = 1e-5;                      ///< relative speed counted as stuck (unit: m/s)
-  double stick_duration = 0.02;                   ///< a stick lasts at least this long (unit: s)
+  double max_tilt = 89 * std::numbers::pi / 180;       ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
+  double runaway_distance = 0.01;                      ///< sliding "for good": growth past this, one lambda (unit: m)
+  double stick_speed = 1e-5;                           ///< relative speed counted as stuck (unit: m/s)
+  double stick_duration = 0.02;                        ///< a stick lasts at least this long (unit: s)
+  TiltProtocol protocol = TiltProtocol::ConstantRate;  ///< how the tilt grows
+  /// Quasi-static protocol: the tilt added per increment (unit: rad). The friction angle is the
+  /// tilt of an increment, so it reads at most one increment below the angle that holds.
+  double tilt_increment = 0.01 * std::numbers::pi / 180;
+  /// Quasi-static protocol: the longest relaxation after one increment (and of the settling)
+  /// (unit: s); a relaxation that does not end in time warns ("unrelaxed").
+  double relax_time = 2.0;
+  /// Quasi-static protocol: at rest when the unbalanced force on the upper block (contacts plus
+  /// gravity, and the torque over its extent when it may turn) is below this fraction of its
+  /// weight (unitless) and its speed below `relax_speed`.
+  double relax_force = 1e-5;
+  double relax_speed = 1e-6;  ///< quasi-static: speed of the upper block counted as at rest (unit: m/s)
+  /// Quasi-static: the thresholds must hold this long without a break (a block passing an unstable
+  /// balance meets them for a moment) (unit: s).
+  double relax_duration = 0.005;
+  /// Run the test again at 10 k_n and k_t (series and frames off) and warn ("stiffness") when the
+  /// friction angle moves by more than `warn_stiffness_angle`: the run is not in the rigid limit.
+  bool check_stiffness = false;
   /// Shorter run-away distances observed in the same run (unit: m), each in (0, runaway_distance]:
   /// for each, TiltResult::checkpoints records the tilt at the start of the first run-away that
   /// reached it, i.e. the friction angle that a run with that runaway_distance reports (the
@@ -120,6 +152,8 @@ struct TiltConfig {
   /// "creep" when the first creep event began more than this below the reported friction angle:
   /// the stick rule reports the last stick, so sliding began earlier than phi says (unit: rad).
   double warn_creep_angle = 0.1 * std::numbers::pi / 180;
+  /// "stiffness" (with check_stiffness) when 10 k_n moves the friction angle by more (unit: rad).
+  double warn_stiffness_angle = 0.1 * std::numbers::pi / 180;
 };
 TiltConfig default_tilt_config();
 
@@ -173,7 +207,9 @@ struct TiltScales {
 };
 
 /// A run outside the model the prediction assumes (code: "core-overlap", "rounding",
-/// "time-step", "unsettled", "rotation", "creep"; message: what was compared, with numbers and SI units).
+/// "time-step", "unsettled", "rotation", "creep", "unrelaxed" (quasi-static: an increment, or the
+/// settling, did not relax to rest within relax_time), "stiffness" (check_stiffness: 10 k_n
+/// moves the angle by more than warn_stiffness_angle); message: what was compared, with numbers and SI units).
 struct TiltWarning {
   std::string code;
   std::string message;
@@ -191,9 +227,13 @@ struct TiltCheckpoint {
 };
 
 struct TiltResult {
-  bool slid = false;          ///< a run-away was detected before max_tilt
-  double friction_angle = 0;  ///< phi: tilt at the start of the run-away (unit: rad)
-  double slide_time = 0;      ///< time of that moment (unit: s)
+  bool slid = false;  ///< a run-away was detected before max_tilt
+  /// phi: tilt at the start of the run-away (unit: rad). Constant rate: the tilt at the end of
+  /// the last stick. Quasi-static: the tilt of the last increment after which the upper block
+  /// relaxed to rest (relax_force, relax_speed) before the increment whose relaxation carried it
+  /// runaway_distance from that rest.
+  double friction_angle = 0;
+  double slide_time = 0;  ///< time of that moment (unit: s)
   /// Relative displacement at the start of the run-away, since the end of settling (unit: m).
   double slide_start_displacement = 0;
   /// Relative displacement when the run stopped, since the end of settling (unit: m).
@@ -206,6 +246,25 @@ struct TiltResult {
   /// and theta_max + atan(mu_a) (unit: rad); 0 if !predict.
   double predicted_sphero_theta_max = 0;
   double predicted_sphero_friction_angle = 0;
+  /// Where the upper block rests when the loading starts, in the signature's offset convention:
+  /// initial_offset plus its displacement along the lower block's x axis during settling (unit: m).
+  double rest_offset = 0;
+  /// Hold angles (hold.hpp) of a block put down at rest_offset, for this run's runaway_distance
+  /// and mu_a, in the sliding direction (unit: rad); NaN if !predict or the hold analysis failed
+  /// (see `hold_error`):
+  /// phi_qs and phi_in of the rigid profiles, phi_qs of the spheropolygons (radius r).
+  double predicted_hold_angle = std::numeric_limits<double>::quiet_NaN();
+  double predicted_inertial_hold_angle = std::numeric_limits<double>::quiet_NaN();
+  double predicted_sphero_hold_angle = std::numeric_limits<double>::quiet_NaN();
+  /// The stop that holds in the rigid prediction (HoldAngle::hold_offset), in the signature's
+  /// offset convention like rest_offset (unit: m); NaN when not computed.
+  double predicted_hold_offset = std::numeric_limits<double>::quiet_NaN();
+  std::string hold_error;  ///< why the hold angles are NaN ("" when computed)
+  /// Quasi-static protocol: increments taken, and those whose relaxation ran out of relax_time.
+  int increments = 0;
+  int unrelaxed_increments = 0;
+  /// check_stiffness: the friction angle at 10 k_n (unit: rad; NaN when not checked or no slide).
+  double stiff_friction_angle = std::numeric_limits<double>::quiet_NaN();
   /// Largest |rotation of the upper block relative to the lower one| between the end of
   /// settling and the slide (the end of the last stick; the end of the run if it did not slide)
   /// (unit: rad). 0 with hold_rotation.
@@ -220,7 +279,7 @@ struct TiltResult {
   double simulated_time = 0;          ///< (unit: s)
   std::uint64_t steps = 0;
   double wall_time = 0;   ///< wall time of the time stepping only (unit: s)
-  double setup_time = 0;  ///< wall time of building blocks, placement, prediction (unit: s)
+  double setup_time = 0;  ///< wall time of building blocks, placement, predictions (hold angles included) (unit: s)
   dem::StepTimings timings;
   std::uint64_t steps_beyond_limit = 0;   ///< steps above the explicit stability limit (warnings)
   double min_time_step = 0;               ///< smallest step taken (unit: s)

@@ -210,11 +210,11 @@ def surface_curve(generator: str, **kwargs: Any) -> tuple:
 def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
     """tilt(lower, upper=None, **settings) -> dict
 
-    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rotation_before_slide (rad), settled_speed (m/s, the upper block's speed when the tilt starts), warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). threads (default 1; 0 = all cores): the two predictions side by side and the contact passes split where it pays; results do not depend on it. Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
+    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rest_offset (m, where the upper block rests when the loading starts, in the signature's offset convention), predicted_hold_angle, predicted_inertial_hold_angle, predicted_sphero_hold_angle (rad, hold angles from rest_offset with the run's runaway_distance; NaN if not computed), stiff_friction_angle (rad at 10 k_n with check_stiffness, else NaN), increments, unrelaxed_increments (protocol quasi-static), rotation_before_slide (rad), settled_speed (m/s, the upper block's speed when the tilt starts), warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). threads (default 1; 0 = all cores): the two predictions side by side and the contact passes split where it pays; results do not depend on it. Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
         normal_stiffness [N/m]: Normal contact stiffness k_n (default 600000; valid > 0)
         tangential_stiffness [N/m]: Tangential contact stiffness k_t (default 60000; valid >= 0)
         normal_damping [1/s]: Normal damping gamma_n (default 929.5; valid >= 0)
-        tangential_damping [1/s]: Tangential damping gamma_t (default 4; valid >= 0)
+        tangential_damping [1/s]: Tangential damping gamma_t (constant-rate protocol; off in quasi-static) (default 4; valid >= 0)
         atomic_friction: Atomic (Coulomb) friction coefficient mu_a (default 0; valid >= 0)
         restitution: Restitution eps of Eq. 12 on the upper block's mass; > 0 replaces normal_damping (default 0; valid [0, 1])
         block_height [m]: Block height h below the surface minimum (default 0.01; valid > 0)
@@ -226,13 +226,20 @@ def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
         placement_gap [m]: Clearance between the blocks when placed (default 2e-05; valid >= 0)
         period [m]: Period of both surfaces (<= 0: not periodic; the offsets then span half the length) (default 0.01; valid any finite number)
         predict: Compute the signature prediction theta_max + atan(mu_a) (default True; valid true or false)
-        tilt_rate [rad/s]: Angular velocity of the lower block (default 0.05; valid > 0)
+        tilt_rate [rad/s]: Angular velocity of the lower block (constant-rate protocol) (default 0.05; valid > 0)
         reverse: Tilt the other way: the upper block slides towards -x (default False; valid true or false)
-        settle_time [s]: Free settling before the tilt starts (default 0.1; valid >= 0)
+        settle_time [s]: Free settling before the tilt starts (constant-rate protocol; quasi-static: a relaxation) (default 0.1; valid >= 0)
         max_tilt [rad]: Give up (no slide) beyond this tilt (default 1.553343034; valid (0, 1.570796327))
         runaway_distance [m]: Sliding for good: growth of the displacement since the last stick (default 0.01; valid > 0)
-        stick_speed [m/s]: Relative speed counted as stuck (default 1e-05; valid > 0)
-        stick_duration [s]: Shortest stick (default 0.02; valid >= 0)
+        stick_speed [m/s]: Relative speed counted as stuck (constant-rate protocol) (default 1e-05; valid > 0)
+        stick_duration [s]: Shortest stick (constant-rate protocol) (default 0.02; valid >= 0)
+        protocol: How the tilt grows: constant-rate (the paper's, tilt_rate) or quasi-static (tilt_increment, each relaxed to rest by FIRE) (default 'constant-rate'; valid constant-rate or quasi-static)
+        tilt_increment [rad]: Quasi-static: tilt added per increment (the angle reads at most one increment low) (default 0.0001745329252; valid (0, 1.570796327))
+        relax_time [s]: Quasi-static: longest relaxation per increment (and of the settling); beyond it the run warns (unrelaxed) (default 2; valid > 0)
+        relax_force: Quasi-static: at rest below this unbalanced force on the upper block, as a fraction of its weight (default 1e-05; valid > 0)
+        relax_speed [m/s]: Quasi-static: at rest below this speed (default 1e-06; valid > 0)
+        relax_duration [s]: Quasi-static: the rest thresholds must hold this long without a break (default 0.005; valid >= 0)
+        check_stiffness: Run again at 10 normal_stiffness and tangential_stiffness; warn (stiffness) when the angle moves by more than warn_stiffness_angle (default False; valid true or false)
         time_step [s]: Largest time step with the adaptive step, else the fixed step (docs/dem.md) (default 0.0001; valid > 0)
         adaptive_time_step: Choose each step from the stability limit of the contacts present; false: fixed time_step (default True; valid true or false)
         time_step_safety: Adaptive step: the fraction of the stability limit taken (default 0.5; valid (0, 1])
@@ -246,6 +253,7 @@ def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
         warn_time_step_fraction: Warn (time-step) when a fixed time step exceeds this fraction of one contact's period (default 0.005; valid > 0)
         warn_creep_slip [m]: Creep event: a slip at least this long that sticks again within a tenth of the smallest feature (default 1e-07; valid > 0)
         warn_creep_angle [rad]: Warn (creep) when the first creep event began more than this below the friction angle (default 0.001745329252; valid > 0)
+        warn_stiffness_angle [rad]: Warn (stiffness) when check_stiffness moves the friction angle by more (default 0.001745329252; valid > 0)
         series_interval [s]: Time between rows of the time series; 0: none (default 0.001; valid >= 0)
         frame_interval [s]: Time between frames; 0: none (default 0; valid >= 0)"""
 

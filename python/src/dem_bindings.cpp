@@ -66,6 +66,14 @@ void frictal_bind_dem(py::module_& m) {
         d["predicted_theta_max"] = r.predicted_theta_max;
         d["predicted_sphero_friction_angle"] = r.predicted_sphero_friction_angle;
         d["predicted_sphero_theta_max"] = r.predicted_sphero_theta_max;
+        d["rest_offset"] = r.rest_offset;
+        d["predicted_hold_angle"] = r.predicted_hold_angle;
+        d["predicted_inertial_hold_angle"] = r.predicted_inertial_hold_angle;
+        d["predicted_hold_offset"] = r.predicted_hold_offset;
+        d["predicted_sphero_hold_angle"] = r.predicted_sphero_hold_angle;
+        d["stiff_friction_angle"] = r.stiff_friction_angle;
+        d["increments"] = r.increments;
+        d["unrelaxed_increments"] = r.unrelaxed_increments;
         d["rotation_before_slide"] = r.rotation_before_slide;
         d["settled_speed"] = r.settled_speed;
         py::list warnings;
@@ -107,7 +115,11 @@ void frictal_bind_dem(py::module_& m) {
        "IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as "
        "measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, "
        "predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, "
-       "predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rotation_before_slide (rad), "
+       "predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rest_offset (m, where the upper "
+       "block rests when the loading starts, in the signature's offset convention), predicted_hold_angle, "
+       "predicted_inertial_hold_angle, predicted_sphero_hold_angle (rad, hold angles from rest_offset with the run's "
+       "runaway_distance; NaN if not computed), stiff_friction_angle (rad at 10 k_n with check_stiffness, else NaN), "
+       "increments, unrelaxed_increments (protocol quasi-static), rotation_before_slide (rad), "
        "settled_speed (m/s, the upper block's speed when the tilt starts), "
        "warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, "
        "smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time "

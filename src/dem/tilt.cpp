@@ -13,6 +13,7 @@
 
 #include <fmt/core.h>
 
+#include "frictal/hold.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/tilt.hpp"
 #include "util/parallel.hpp"
@@ -192,6 +193,17 @@ Status check_config(const TiltConfig& c) {
     return make_error("tilt stick_duration: expected >= 0 s");
   if (!(std::isfinite(c.placement_gap) && c.placement_gap >= 0))
     return make_error("tilt placement_gap: expected >= 0 m");
+  if (c.protocol == TiltProtocol::QuasiStatic) {
+    if (!(pos(c.tilt_increment) && c.tilt_increment < c.max_tilt))
+      return make_error(fmt::format("tilt tilt_increment = {} rad: expected > 0 and below max_tilt = {} rad",
+                                    c.tilt_increment, c.max_tilt));
+    if (!pos(c.relax_time)) return make_error(fmt::format("tilt relax_time = {} s: expected > 0", c.relax_time));
+    if (!pos(c.relax_force)) return make_error(fmt::format("tilt relax_force = {}: expected > 0", c.relax_force));
+    if (!pos(c.relax_speed)) return make_error(fmt::format("tilt relax_speed = {} m/s: expected > 0", c.relax_speed));
+    if (!(std::isfinite(c.relax_duration) && c.relax_duration >= 0 && c.relax_duration < c.relax_time))
+      return make_error(fmt::format("tilt relax_duration = {} s: expected >= 0 and below relax_time = {} s",
+                                    c.relax_duration, c.relax_time));
+  }
   if (!std::isnan(c.initial_offset) && !std::isfinite(c.initial_offset))
     return make_error("tilt initial_offset: expected a finite value or NaN (auto)");
   return Ok{};
@@ -201,78 +213,138 @@ Status check_config(const TiltConfig& c) {
 
 TiltConfig default_tilt_config() { return TiltConfig{}; }
 
-Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surface, const TiltConfig& cfg) {
-  using Clock = std::chrono::steady_clock;
-  const auto setup_start = Clock::now();
-  if (Status s = check_config(cfg); !s.ok()) return s.error();
-  TiltResult res;
+namespace {
 
+// ---- Phase 1: the faces (tilt.hpp header comment).
+struct Faces {
+  Poly lower;         // lower face as measured
+  Poly upper;         // upper face rotated by 180 degrees, before the offset
+  Profile lower_env;  // envelopes (for the signature and face = envelope)
+  Profile upper_env;
+  bool has_env = false;
+};
+
+Result<Faces> build_faces(const Curve& lower_surface, const Curve& upper_surface, const TiltConfig& cfg) {
+  Faces f;
   // Faces: the full curves, or their upper envelopes.
   Curve lower_c = lower_surface, upper_c = upper_surface;
-  Profile lower_env, upper_env;
-  const bool need_env = cfg.face == TiltFace::Envelope || cfg.predict;
-  if (need_env) {
+  f.has_env = cfg.face == TiltFace::Envelope || cfg.predict;
+  if (f.has_env) {
     auto le = upper_envelope(lower_surface);
     if (!le.ok()) return make_error("lower surface: " + le.error().message);
     auto ue = upper_envelope(upper_surface);
     if (!ue.ok()) return make_error("upper surface: " + ue.error().message);
-    lower_env = std::move(*le);
-    upper_env = std::move(*ue);
+    f.lower_env = std::move(*le);
+    f.upper_env = std::move(*ue);
     if (cfg.face == TiltFace::Envelope) {
-      lower_c = as_curve(lower_env);
-      upper_c = as_curve(upper_env);
+      lower_c = as_curve(f.lower_env);
+      upper_c = as_curve(f.upper_env);
     }
   }
   auto lower_r = clean_face(lower_c, "lower surface");
   if (!lower_r.ok()) return lower_r.error();
   auto upper_r = clean_face(rotate180(upper_c), "upper surface");
   if (!upper_r.ok()) return upper_r.error();
-  Poly lower = std::move(*lower_r), upper = std::move(*upper_r);
+  f.lower = std::move(*lower_r);
+  f.upper = std::move(*upper_r);
+  return f;
+}
 
-  // Prediction and the resting offset from the signature of the envelopes.
+// ---- Phase 2: the predictions before the run (theta_max of the rigid and the rounded
+// blocks) and the initial offset (least lift unless given). Returns the offset.
+Result<double> predict_theta_max(Faces& f, const TiltConfig& cfg, unsigned threads, TiltResult& res) {
   double offset = std::isnan(cfg.initial_offset) ? 0.0 : cfg.initial_offset;
-  const unsigned threads = util::thread_count(static_cast<unsigned>(std::max(0, cfg.threads)));
-  if (cfg.predict) {
-    SignatureOptions opt;
-    opt.keep_contacts = false;
-    opt.threads = 1;
-    if (cfg.period > 0) {
-      opt.offset_min = 0;
-      opt.offset_max = cfg.period;
-      lower_env.period.reset();
-    }
-    // The simulated blocks: one core against the other dilated by 2r (docs/dem.md sec. 6).
-    SignatureOptions so = opt;
-    so.spheroradius = cfg.radius;
-    // With several threads the two predictions run side by side, each on half of them (the
-    // signature does not depend on its thread count).
-    const Profile upper_face = rotate180(upper_env);
-    std::optional<Result<SignatureResult>> sig_r, sph_r;
-    if (threads >= 2) {
-      opt.threads = threads / 2;
-      so.threads = threads - threads / 2;
-      util::run_workers(
-          1, [&](unsigned) { sph_r.emplace(signature(lower_env, upper_face, so)); },
-          [&] { sig_r.emplace(signature(lower_env, upper_face, opt)); });
-    } else {
-      sig_r.emplace(signature(lower_env, upper_face, opt));
-      if (*sig_r) sph_r.emplace(signature(lower_env, upper_face, so));
-    }
-    const Result<SignatureResult>& sig = *sig_r;
-    if (!sig.ok()) return make_error("signature for the prediction: " + sig.error().message);
-    res.predicted_theta_max = cfg.reverse ? sig->theta_max_backward : sig->theta_max_forward;
-    res.predicted_friction_angle =
-        std::min(res.predicted_theta_max + std::atan(cfg.contact.atomic_friction), 1.5707963267948966);
-    const Result<SignatureResult>& sph = *sph_r;
-    if (!sph.ok()) return make_error("spheropolygon signature for the prediction: " + sph.error().message);
-    res.predicted_sphero_theta_max = cfg.reverse ? sph->theta_max_backward : sph->theta_max_forward;
-    res.predicted_sphero_friction_angle =
-        std::min(res.predicted_sphero_theta_max + std::atan(cfg.contact.atomic_friction), 1.5707963267948966);
-    if (std::isnan(cfg.initial_offset) && !sig->lift.empty()) {
-      const auto it = std::min_element(sig->lift.begin(), sig->lift.end());
-      offset = sig->offset[static_cast<std::size_t>(it - sig->lift.begin())];
-    }
+  if (!cfg.predict) return offset;
+  SignatureOptions opt;
+  opt.keep_contacts = false;
+  opt.threads = 1;
+  if (cfg.period > 0) {
+    opt.offset_min = 0;
+    opt.offset_max = cfg.period;
+    f.lower_env.period.reset();
   }
+  // The simulated blocks: one core against the other dilated by 2r (docs/dem.md sec. 6).
+  SignatureOptions so = opt;
+  so.spheroradius = cfg.radius;
+  // With several threads the two predictions run side by side, each on half of them (the
+  // signature does not depend on its thread count).
+  const Profile upper_face = rotate180(f.upper_env);
+  std::optional<Result<SignatureResult>> sig_r, sph_r;
+  if (threads >= 2) {
+    opt.threads = threads / 2;
+    so.threads = threads - threads / 2;
+    util::run_workers(
+        1, [&](unsigned) { sph_r.emplace(signature(f.lower_env, upper_face, so)); },
+        [&] { sig_r.emplace(signature(f.lower_env, upper_face, opt)); });
+  } else {
+    sig_r.emplace(signature(f.lower_env, upper_face, opt));
+    if (*sig_r) sph_r.emplace(signature(f.lower_env, upper_face, so));
+  }
+  const Result<SignatureResult>& sig = *sig_r;
+  if (!sig.ok()) return make_error("signature for the prediction: " + sig.error().message);
+  res.predicted_theta_max = cfg.reverse ? sig->theta_max_backward : sig->theta_max_forward;
+  res.predicted_friction_angle =
+      std::min(res.predicted_theta_max + std::atan(cfg.contact.atomic_friction), 1.5707963267948966);
+  const Result<SignatureResult>& sph = *sph_r;
+  if (!sph.ok()) return make_error("spheropolygon signature for the prediction: " + sph.error().message);
+  res.predicted_sphero_theta_max = cfg.reverse ? sph->theta_max_backward : sph->theta_max_forward;
+  res.predicted_sphero_friction_angle =
+      std::min(res.predicted_sphero_theta_max + std::atan(cfg.contact.atomic_friction), 1.5707963267948966);
+  if (std::isnan(cfg.initial_offset) && !sig->lift.empty()) {
+    const auto it = std::min_element(sig->lift.begin(), sig->lift.end());
+    offset = sig->offset[static_cast<std::size_t>(it - sig->lift.begin())];
+  }
+  return offset;
+}
+
+// ---- Phase 6: the hold-angle predictions (hold.hpp) from where the block rests when the loading
+// starts: the exact lift of the finite blocks over rest +- d (hold_lift_range), rigid profiles
+// and the run's spheroradius, in the sliding direction. A failure leaves NaN and says why.
+void predict_hold_angles(const Faces& f, const TiltConfig& cfg, TiltResult& res) {
+  if (!cfg.predict || !f.has_env) return;
+  const double s = res.rest_offset, d = cfg.runaway_distance;
+  Profile lower = f.lower_env;
+  lower.period.reset();  // the simulated blocks are finite
+  const Profile upper_face = rotate180(f.upper_env);
+  const OffsetRange range = hold_lift_range(s, s, d, lower.length(), upper_face.length());
+  HoldOptions ho;
+  ho.runaway_distance = d;
+  ho.atomic_friction = cfg.contact.atomic_friction;
+  auto hold = [&](double radius) -> Result<HoldAngle> {
+    SignatureOptions so;
+    so.keep_contacts = false;
+    so.threads = 1;
+    so.offset_min = range.min;
+    so.offset_max = range.max;
+    so.spheroradius = radius;
+    auto sig = signature(lower, upper_face, so);
+    if (!sig.ok()) return with_prefix("signature: ", sig.error());
+    auto curve = lift_curve(*sig);
+    if (!curve.ok()) return with_prefix("lift curve: ", curve.error());
+    auto h = hold_angle(*curve, s, ho);
+    if (!h.ok()) return h.error();
+    return cfg.reverse ? h->backward : h->forward;
+  };
+  auto rigid = hold(0);
+  if (!rigid.ok()) {
+    res.hold_error = "rigid profiles: " + rigid.error().message;
+    return;
+  }
+  res.predicted_hold_angle = rigid->hold_angle;
+  res.predicted_hold_offset = rigid->hold_offset;
+  res.predicted_inertial_hold_angle = rigid->inertial_hold_angle;
+  auto sphero = hold(cfg.radius);
+  if (!sphero.ok()) {
+    res.hold_error = "spheropolygons: " + sphero.error().message;
+    return;
+  }
+  res.predicted_sphero_hold_angle = sphero->hold_angle;
+}
+
+// ---- Phase 3: placement. Shifts the upper face by `offset`, lowers it to `placement_gap`
+// above contact, builds both blocks and the model, and fills the result's masses, polygons and
+// scales.
+Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, const TiltConfig& cfg, TiltResult& res) {
   res.initial_offset = offset;
   for (double& x : upper.x) x += offset;
 
@@ -311,7 +383,9 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   }
   lb.type = dem::BodyType::Kinematic;
   if (cfg.hold_rotation) ub.rotation_follows = 0;
-  lb.motion.angular_velocity = cfg.reverse ? cfg.tilt_rate : -cfg.tilt_rate;
+  // The quasi-static protocol keeps the lower block still and turns gravity instead.
+  if (cfg.protocol == TiltProtocol::ConstantRate)
+    lb.motion.angular_velocity = cfg.reverse ? cfg.tilt_rate : -cfg.tilt_rate;
   lb.motion.start_time = cfg.settle_time;
   dem::WorldDef wd;
   wd.gravity = {0, -cfg.gravity};
@@ -333,6 +407,10 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
                       (cfg.face == TiltFace::Curve ? " (a folded surface may need face = envelope)" : ""));
   }
   dem::Model model = std::move(*model_r);
+  // Quasi-static: FIRE dissipates; the tangential dashpot (-m gamma_t v_t per contact, not
+  // capped by mu_a) would turn every slip into a creep at a / (N_c gamma_t) ~ 1e-3 m/s and does
+  // not change where a block comes to rest (docs/dem.md sec. 4).
+  if (cfg.protocol == TiltProtocol::QuasiStatic) model.def.contact.tangential_damping = 0;
   model.motion[0].pivot = model.initial_position[0];  // turn about the lower block's centroid
   if (cfg.restitution > 0) {
     auto g = dem::damping_from_restitution(cfg.restitution, cfg.contact.normal_stiffness, model.mass[1]);
@@ -348,7 +426,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   res.lower_polygon_y.assign(model.local_y.begin(), model.local_y.begin() + model.vertex_begin[1]);
   res.upper_polygon_x.assign(model.local_x.begin() + model.vertex_begin[1], model.local_x.end());
   res.upper_polygon_y.assign(model.local_y.begin() + model.vertex_begin[1], model.local_y.end());
-  // Scales and the warnings they give before the run.
+  // Scales (the warnings they give come from tilt_scale_warnings).
   TiltScales& sc = res.scales;
   sc.resting_overlap = model.mass[1] * cfg.gravity / cfg.contact.normal_stiffness;
   sc.spheroradius = cfg.radius;
@@ -358,160 +436,244 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   sc.smallest_feature[1] = smallest_feature(upper).first;
   sc.time_step = cfg.time_step;
   sc.contact_period = 2 * std::numbers::pi * std::sqrt(model.mass[1] / cfg.contact.normal_stiffness);
-  res.warnings = tilt_scale_warnings(sc, res, cfg);
-  res.setup_time = std::chrono::duration<double>(Clock::now() - setup_start).count();
+  return model;
+}
 
-  // Time stepping.
-  const auto run_start = Clock::now();
-  dem::State st = dem::make_state(model);
+// FIRE constants (Bitzek et al. 2006, Table I of the paper; LAMMPS min_style fire): the mixing
+// parameter starts at alpha_start and shrinks by f_alpha per step after N_min steps of P > 0.
+// The step is the engine's own (adaptive, at the stability limit): FIRE's step growth is not used.
+constexpr double kFireAlphaStart = 0.1;
+constexpr double kFireAlphaShrink = 0.99;
+constexpr int kFireMinSteps = 5;
+
+// ---- The run: the state and the measurements, output and bookkeeping that every phase
+// shares; one member function per phase (settling, each loading protocol with its detection).
+class TiltRun {
+ public:
+  TiltRun(const TiltConfig& cfg, dem::Model& model, TiltResult& res, unsigned threads)
+      : run_start_(std::chrono::steady_clock::now()),
+        cfg_(cfg),
+        model_(model),
+        res_(res),
+        st_(dem::make_state(model)),
+        step_threads_(threads),
+        dt_(cfg.time_step),
+        adaptive_(cfg.adaptive_time_step),
+        sgn_(cfg.reverse ? -1.0 : 1.0),
+        quasi_(cfg.protocol == TiltProtocol::QuasiStatic) {
+    dem::set_thread_count(st_, step_threads_);
+    budget();
+    // Fixed step: the schedule in steps. Adaptive step: in time (the same instants up to one step).
+    settle_steps_ = static_cast<std::uint64_t>(std::ceil(cfg.settle_time / dt_ - 1e-9));
+    series_every_ =
+        cfg.series_interval > 0
+            ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.series_interval / dt_)))
+            : 0;
+    frame_every_ = cfg.frame_interval > 0
+                       ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.frame_interval / dt_)))
+                       : 0;
+    max_steps_ = settle_steps_ + static_cast<std::uint64_t>(std::ceil(cfg.max_tilt / cfg.tilt_rate / dt_)) + 1;
+    eps_t_ = 1e-9 * dt_;
+    max_time_ = cfg.settle_time + cfg.max_tilt / cfg.tilt_rate + dt_;
+    next_series_ = cfg.series_interval;
+    next_frame_ = cfg.frame_interval;
+    // Displacements during settling are relative to the initial placement.
+    d_ref_ = measure().d;
+    if (frame_every_) frame();
+  }
+
+  Status settle();
+  Status load_constant_rate();
+  Status load_quasi_static();
+  /// Relative displacement along x during settling (unit: m), signed in the sliding direction.
+  double settle_displacement() const { return settle_d_; }
+  void finish();
+
+ private:
+  struct Measure {
+    double d, v, fn, ft, tilt;
+  };
+  enum class Relax { Rest, Runaway, OutOfTime };
+
   // Threads of the contact passes (results do not depend on them): cfg.threads, or what the
   // budget grants, asked again every 4096 steps.
-  unsigned step_threads = threads;
-  auto budget = [&]() {
-    if (!cfg.thread_budget) return;
-    step_threads = std::max(1u, cfg.thread_budget(step_threads));
-    dem::set_thread_count(st, step_threads);
-  };
-  dem::set_thread_count(st, step_threads);
-  budget();
-  const double dt = cfg.time_step;  // fixed step, or the largest adaptive step
-  const bool adaptive = cfg.adaptive_time_step;
-  const double sgn = cfg.reverse ? -1.0 : 1.0;
-  // Fixed step: the schedule in steps. Adaptive step: in time (the same instants up to one step).
-  const std::uint64_t settle_steps = static_cast<std::uint64_t>(std::ceil(cfg.settle_time / dt - 1e-9));
-  const std::uint64_t series_every =
-      cfg.series_interval > 0
-          ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.series_interval / dt)))
-          : 0;
-  const std::uint64_t frame_every =
-      cfg.frame_interval > 0
-          ? std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::llround(cfg.frame_interval / dt)))
-          : 0;
-  const std::uint64_t max_steps =
-      settle_steps + static_cast<std::uint64_t>(std::ceil(cfg.max_tilt / cfg.tilt_rate / dt)) + 1;
-  double min_dt = std::numeric_limits<double>::infinity(), max_dt = 0, last_dt = dt;  // steps taken
-  const double eps_t = 1e-9 * dt;  // time comparisons of the adaptive schedule
-  const double max_time = cfg.settle_time + cfg.max_tilt / cfg.tilt_rate + dt;
-  double next_series = cfg.series_interval, next_frame = cfg.frame_interval;
-  auto series_due = [&]() {
-    if (!series_every) return false;
-    if (!adaptive) return st.steps % series_every == 0;
-    if (st.time + eps_t < next_series) return false;
-    while (next_series <= st.time + eps_t) next_series += cfg.series_interval;
-    return true;
-  };
-  auto frame_due = [&]() {
-    if (!frame_every) return false;
-    if (!adaptive) return st.steps % frame_every == 0;
-    if (st.time + eps_t < next_frame) return false;
-    while (next_frame <= st.time + eps_t) next_frame += cfg.frame_interval;
-    return true;
-  };
-  auto settling = [&](std::uint64_t i) { return adaptive ? st.time + eps_t < cfg.settle_time : i < settle_steps; };
-  auto running = [&]() { return adaptive ? st.time < max_time : st.steps < max_steps; };
-
-  double d_ref = 0;
-  auto measure = [&](double& d, double& v, double& fn, double& ft, double& tilt) {
-    const double a = st.angle[0];
-    const double ex = std::cos(a), ey = std::sin(a);  // lower block's x axis
-    const double rx = st.position[1].x - st.position[0].x, ry = st.position[1].y - st.position[0].y;
-    const double w = st.angular_velocity[0];
-    const double vx = st.velocity[1].x - st.velocity[0].x, vy = st.velocity[1].y - st.velocity[0].y;
-    d = sgn * (rx * ex + ry * ey) - d_ref;
-    v = sgn * ((vx * ex + vy * ey) + w * (-rx * ey + ry * ex));
-    const dem::Vec2 f = st.force[1];
-    ft = -sgn * (f.x * ex + f.y * ey);
-    fn = -f.x * ey + f.y * ex;
-    tilt = std::fabs(a);
-  };
-  auto record = [&]() {
-    double d, v, fn, ft, tilt;
-    measure(d, v, fn, ft, tilt);
-    TiltSeries& s = res.series;
-    s.time.push_back(st.time);
-    s.tilt.push_back(tilt);
-    s.normal_force.push_back(fn);
-    s.tangential_force.push_back(ft);
-    s.force_angle.push_back(std::atan2(ft, fn));
-    s.displacement.push_back(d);
-    s.velocity.push_back(v);
-    s.contacts.push_back(st.contact_count);
-  };
-  auto frame = [&]() {
-    TiltFrame f;
-    f.time = st.time;
-    f.tilt = std::fabs(st.angle[0]);
-    for (int b = 0; b < 2; ++b) {
-      f.position[b] = st.position[b];
-      f.angle[b] = st.angle[b];
-    }
-    double d, v, tilt;
-    measure(d, v, f.normal_force, f.tangential_force, tilt);
-    f.contacts = dem::contact_forces(model, st);
-    res.frames.push_back(std::move(f));
-  };
-  auto finish = [&]() {
-    res.simulated_time = st.time;
-    res.steps = st.steps;
-    res.timings = st.timings;
-    res.steps_beyond_limit = st.steps_beyond_limit;
-    res.min_time_step = min_dt;
-    res.max_time_step = max_dt;
-    res.wall_time = std::chrono::duration<double>(Clock::now() - run_start).count();
-  };
-
-  {  // displacements during settling are relative to the initial placement
-    double d, v, fn, ft, tilt;
-    measure(d, v, fn, ft, tilt);
-    d_ref = d;
+  void budget() {
+    if (!cfg_.thread_budget) return;
+    step_threads_ = std::max(1u, cfg_.thread_budget(step_threads_));
+    dem::set_thread_count(st_, step_threads_);
   }
-  if (frame_every) frame();
-  auto advance_one = [&]() -> Status {
-    if (cfg.thread_budget && (st.steps & 4095u) == 4095u) budget();
-    last_dt = adaptive ? st.time_step : dt;  // the step that dem::step takes
-    Status s = dem::step(model, st);
-    min_dt = std::min(min_dt, last_dt);
-    max_dt = std::max(max_dt, last_dt);
+  bool series_due() {
+    if (!series_every_) return false;
+    if (!adaptive_) return st_.steps % series_every_ == 0;
+    if (st_.time + eps_t_ < next_series_) return false;
+    while (next_series_ <= st_.time + eps_t_) next_series_ += cfg_.series_interval;
+    return true;
+  }
+  bool frame_due() {
+    if (!frame_every_) return false;
+    if (!adaptive_) return st_.steps % frame_every_ == 0;
+    if (st_.time + eps_t_ < next_frame_) return false;
+    while (next_frame_ <= st_.time + eps_t_) next_frame_ += cfg_.frame_interval;
+    return true;
+  }
+  bool settling(std::uint64_t i) const { return adaptive_ ? st_.time + eps_t_ < cfg_.settle_time : i < settle_steps_; }
+  bool running() const { return adaptive_ ? st_.time < max_time_ : st_.steps < max_steps_; }
+
+  // d: relative displacement along the lower block's x axis in its frame, signed in the sliding
+  // direction; v its rate; F_n, F_t the contact force on the upper block in that frame; the tilt.
+  Measure measure() const {
+    Measure m;
+    const double a = st_.angle[0];
+    const double ex = std::cos(a), ey = std::sin(a);  // lower block's x axis
+    const double rx = st_.position[1].x - st_.position[0].x, ry = st_.position[1].y - st_.position[0].y;
+    const double w = st_.angular_velocity[0];
+    const double vx = st_.velocity[1].x - st_.velocity[0].x, vy = st_.velocity[1].y - st_.velocity[0].y;
+    m.d = sgn_ * (rx * ex + ry * ey) - d_ref_;
+    m.v = sgn_ * ((vx * ex + vy * ey) + w * (-rx * ey + ry * ex));
+    const dem::Vec2 f = st_.force[1];
+    m.ft = -sgn_ * (f.x * ex + f.y * ey);
+    m.fn = -f.x * ey + f.y * ex;
+    m.tilt = quasi_ ? tilt_ : std::fabs(a);
+    return m;
+  }
+  void record() {
+    const Measure m = measure();
+    TiltSeries& s = res_.series;
+    s.time.push_back(st_.time);
+    s.tilt.push_back(m.tilt);
+    s.normal_force.push_back(m.fn);
+    s.tangential_force.push_back(m.ft);
+    s.force_angle.push_back(std::atan2(m.ft, m.fn));
+    s.displacement.push_back(m.d);
+    s.velocity.push_back(m.v);
+    s.contacts.push_back(st_.contact_count);
+  }
+  void frame() {
+    TiltFrame f;
+    f.time = st_.time;
+    f.tilt = std::fabs(st_.angle[0]);
+    for (int b = 0; b < 2; ++b) {
+      f.position[b] = st_.position[b];
+      f.angle[b] = st_.angle[b];
+    }
+    const Measure m = measure();
+    f.normal_force = m.fn;
+    f.tangential_force = m.ft;
+    f.contacts = dem::contact_forces(model_, st_);
+    if (quasi_) {  // show the lower block turned by the tilt about its pivot (gravity turned instead)
+      f.tilt = tilt_;
+      const double a = -sgn_ * tilt_, c = std::cos(a), s = std::sin(a);
+      const dem::Vec2 p = model_.motion[0].pivot;
+      auto turn = [&](dem::Vec2 q) {
+        return dem::Vec2{p.x + c * (q.x - p.x) - s * (q.y - p.y), p.y + s * (q.x - p.x) + c * (q.y - p.y)};
+      };
+      for (int b = 0; b < 2; ++b) {
+        f.position[b] = turn(f.position[b]);
+        f.angle[b] += a;
+      }
+      for (dem::ContactForce& k : f.contacts) {
+        k.point = turn(k.point);
+        k.normal = {c * k.normal.x - s * k.normal.y, s * k.normal.x + c * k.normal.y};
+      }
+    }
+    res_.frames.push_back(std::move(f));
+  }
+  Status advance_one() {
+    if (cfg_.thread_budget && (st_.steps & 4095u) == 4095u) budget();
+    last_dt_ = adaptive_ ? st_.time_step : dt_;  // the step that dem::step takes
+    Status s = dem::step(model_, st_);
+    min_dt_ = std::min(min_dt_, last_dt_);
+    max_dt_ = std::max(max_dt_, last_dt_);
     return s;
-  };
+  }
   // Sliding speed of the upper block along the lower block's x axis, from the translational
   // velocities only; taken at the start of the last settling step, before the lower block's
   // rotation (which begins at settle_time) reaches the upper block through the contacts.
-  auto sliding_speed = [&]() {
-    const double a = st.angle[0];
-    return std::fabs((st.velocity[1].x - st.velocity[0].x) * std::cos(a) +
-                     (st.velocity[1].y - st.velocity[0].y) * std::sin(a));
-  };
-  for (std::uint64_t i = 0; settling(i); ++i) {
-    res.settled_speed = sliding_speed();
-    if (Status s = advance_one(); !s.ok()) return with_prefix("tilt (settling): ", s.error());
-    if (series_due()) record();
-    if (frame_due()) frame();
+  double sliding_speed() const {
+    const double a = st_.angle[0];
+    return std::fabs((st_.velocity[1].x - st_.velocity[0].x) * std::cos(a) +
+                     (st_.velocity[1].y - st_.velocity[0].y) * std::sin(a));
   }
-  res.settled_overlap = st.max_overlap;
-  res.settled_contacts = st.contact_count;
-  {  // from here on, relative to the settled position
-    double d, v, fn, ft, tilt;
-    measure(d, v, fn, ft, tilt);
-    d_ref += d;
+  void set_tilt(double tilt) {  // quasi-static: gravity turned by the tilt in the lower block's frame
+    tilt_ = tilt;
+    model_.def.gravity = {sgn_ * cfg_.gravity * std::sin(tilt), -cfg_.gravity * std::cos(tilt)};
   }
+  Result<Relax> relax(double budget, bool watch_runaway);
+  void record_runaway(double d);
+
+  const std::chrono::steady_clock::time_point run_start_;
+  const TiltConfig& cfg_;
+  dem::Model& model_;
+  TiltResult& res_;
+  dem::State st_;
+  unsigned step_threads_;
+  const double dt_;  // fixed step, or the largest adaptive step
+  const bool adaptive_;
+  const double sgn_;
+  const bool quasi_;
+  std::uint64_t settle_steps_ = 0, series_every_ = 0, frame_every_ = 0, max_steps_ = 0;
+  double min_dt_ = std::numeric_limits<double>::infinity(), max_dt_ = 0, last_dt_ = 0;  // steps taken
+  double eps_t_ = 0;  // time comparisons of the adaptive schedule
+  double max_time_ = 0, next_series_ = 0, next_frame_ = 0;
+  double d_ref_ = 0, settle_d_ = 0;
+  double tilt_ = 0;  // quasi-static: the tilt of the current increment
+  // Quasi-static: the last relaxed stop (displacement, tilt, time) and the rotation until then.
+  double stop_d_ = 0, stop_tilt_ = 0, stop_time_ = 0, max_rot_ = 0, rot0_ = 0, rot_at_stop_ = 0;
+  std::size_t checkpoints_left_ = 0;
+};
+
+// ---- Phase 4: settling. Constant rate: free settling for settle_time. Quasi-static: a
+// relaxation at zero tilt (at most relax_time).
+Status TiltRun::settle() {
+  if (quasi_) {
+    set_tilt(0);
+    auto r = relax(cfg_.relax_time, false);
+    if (!r.ok()) return with_prefix("tilt (settling): ", r.error());
+    res_.settled_speed = std::fabs(st_.velocity[1].x - st_.velocity[0].x);
+    if (*r != Relax::Rest)
+      res_.warnings.push_back(
+          {"unsettled",
+           fmt::format("the upper block did not relax to rest at zero tilt within relax_time = {:.3g} s (speed "
+                       "{:.3g} m/s, thresholds relax_force = {:.3g} of its weight, relax_speed = {:.3g} m/s): it is "
+                       "not at rest where the prediction starts; raise relax_time",
+                       cfg_.relax_time, res_.settled_speed, cfg_.relax_force, cfg_.relax_speed)});
+  } else {
+    for (std::uint64_t i = 0; settling(i); ++i) {
+      res_.settled_speed = sliding_speed();
+      if (Status s = advance_one(); !s.ok()) return with_prefix("tilt (settling): ", s.error());
+      if (series_due()) record();
+      if (frame_due()) frame();
+    }
+  }
+  res_.settled_overlap = st_.max_overlap;
+  res_.settled_contacts = st_.contact_count;
+  // From here on, relative to the settled position.
+  settle_d_ = measure().d;
+  d_ref_ += settle_d_;
   // The prediction starts from rest at the chosen offset; a block still moving when the tilt
   // starts (e.g. gliding after the drop on a nearly flat pair) starts elsewhere, with kinetic
   // energy, and its stick detection sees reversals (docs/dem.md sec. 6).
-  if (res.settled_speed > cfg.stick_speed)
-    res.warnings.push_back(
+  if (!quasi_ && res_.settled_speed > cfg_.stick_speed)
+    res_.warnings.push_back(
         {"unsettled",
          fmt::format("the upper block still moves at {:.3g} m/s against the lower one when the tilt starts "
                      "(warning above stick_speed = {:.3g} m/s, after settle_time = {:.3g} s): it is not at rest "
                      "where the prediction starts; raise settle_time",
-                     res.settled_speed, cfg.stick_speed, cfg.settle_time)});
-  // A stick is an interval of at least stick_duration with v <= stick_speed; the slide starts at
-  // the end of the last stick (short dips of v during a slide, e.g. bounces, do not count).
-  double stick_time = st.time, stick_tilt = 0, stick_d = 0;
-  double low_since = st.time;  // start of the current interval with v <= stick_speed (NaN: none)
+                     res_.settled_speed, cfg_.stick_speed, cfg_.settle_time)});
+  return Ok{};
+}
+
+// ---- Phase 5a: the constant-rate protocol and its detection. A stick is an interval of at
+// least stick_duration with v <= stick_speed; the slide starts at the end of the last stick
+// (short dips of v during a slide, e.g. bounces, do not count).
+Status TiltRun::load_constant_rate() {
+  TiltResult& res = res_;
+  const TiltConfig& cfg = cfg_;
+  double stick_time = st_.time, stick_tilt = 0, stick_d = 0;
+  double low_since = st_.time;  // start of the current interval with v <= stick_speed (NaN: none)
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // Rotation of the upper block against the lower one since the end of settling.
-  const double rot0 = st.angle[1] - st.angle[0];
+  const double rot0 = st_.angle[1] - st_.angle[0];
   double max_rot = 0, rot_at_stick = 0;
   // Creep: a slip between two sticks shorter than a tenth of the smallest feature of the faces
   // (it reaches no other feature: K3 at 20 deg slips 1 um at 60.04 deg and holds until 60.32 deg).
@@ -526,12 +688,12 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     const bool rec = series_due();
     if (rec) record();
     if (frame_due()) frame();
-    double d, v, fn, ft, tilt;
-    measure(d, v, fn, ft, tilt);
-    max_rot = std::max(max_rot, std::fabs(st.angle[1] - st.angle[0] - rot0));
+    const Measure m = measure();
+    const double d = m.d, v = m.v, tilt = m.tilt;
+    max_rot = std::max(max_rot, std::fabs(st_.angle[1] - st_.angle[0] - rot0));
     if (v <= cfg.stick_speed) {
-      if (std::isnan(low_since)) low_since = st.time;
-      if (st.time - low_since >= cfg.stick_duration - 0.5 * last_dt) {
+      if (std::isnan(low_since)) low_since = st_.time;
+      if (st_.time - low_since >= cfg.stick_duration - 0.5 * last_dt_) {
         if (!sticking) {                               // a new stick after a slip
           const double slip = std::fabs(d - leave_d);  // NaN before the first stick: no event
           if (std::isnan(res.first_creep_tilt) && slip >= cfg.warn_creep_slip && slip < creep_max) {
@@ -540,7 +702,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
           }
           sticking = true;
         }
-        stick_time = st.time;
+        stick_time = st_.time;
         stick_tilt = tilt;
         stick_d = d;
         rot_at_stick = max_rot;
@@ -571,20 +733,162 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
       res.friction_angle = stick_tilt;
       res.slide_time = stick_time;
       res.slide_start_displacement = stick_d;
-      if (!rec && series_every) record();
+      if (!rec && series_every_) record();
       break;
     }
   }
-  if (frame_every && (res.frames.empty() || res.frames.back().time != st.time)) frame();
+  if (frame_every_ && (res.frames.empty() || res.frames.back().time != st_.time)) frame();
   if (!res.slid) res.rotation_before_slide = max_rot;
   res.final_displacement = d_now;
+  return Ok{};
+}
+
+// Quasi-static: the run-away (and the checkpoints) from the displacement since the last stop.
+void TiltRun::record_runaway(double d) {
+  if (checkpoints_left_)
+    for (TiltCheckpoint& k : res_.checkpoints)
+      if (!k.reached && d - stop_d_ >= k.distance) {
+        k.reached = true;
+        k.friction_angle = stop_tilt_;
+        k.slide_time = stop_time_;
+        k.slide_start_displacement = stop_d_;
+        --checkpoints_left_;
+      }
+  if (d - stop_d_ >= cfg_.runaway_distance) {
+    res_.slid = true;
+    res_.rotation_before_slide = rot_at_stop_;
+    res_.friction_angle = stop_tilt_;
+    res_.slide_time = stop_time_;
+    res_.slide_start_displacement = stop_d_;
+  }
+}
+
+// One FIRE relaxation of the upper block (Bitzek et al. 2006) for at most `budget` seconds:
+// after each step of the engine, with F the unbalanced force (contacts and gravity) and torque
+// and v the velocity in mass-weighted coordinates (sqrt(m) v, sqrt(I) omega; F / sqrt(m),
+// tau / sqrt(I); rotation only when it is free), P = F . v; P > 0: v <- (1 - alpha) v + alpha
+// |v| F/|F| (alpha shrinks after kFireMinSteps such steps); P <= 0: v <- 0, alpha reset. At rest
+// when |F| < relax_force W, |v| < relax_speed (and, turning freely, |tau| < relax_force W R and
+// |omega| R < relax_speed, R the block's extent) throughout relax_duration (a block passing an
+// unstable balance, e.g. tip on tip, meets the thresholds for a moment). The lower block is at rest.
+Result<TiltRun::Relax> TiltRun::relax(double budget, bool watch_runaway) {
+  const double t_end = st_.time + budget;
+  const double m = model_.mass[1], inertia = model_.inertia[1], weight = m * cfg_.gravity;
+  const double extent = model_.extent[1];
+  const bool turns = !cfg_.hold_rotation;
+  const double sm = std::sqrt(m), si = std::sqrt(inertia);
+  double alpha = kFireAlphaStart;
+  int positive = 0;
+  double rest_since = std::numeric_limits<double>::quiet_NaN();  // start of the current at-rest stretch
+  while (st_.time < t_end) {
+    if (Status s = advance_one(); !s.ok()) return s.error();
+    if (series_due()) record();
+    if (frame_due()) frame();
+    max_rot_ = std::max(max_rot_, std::fabs(st_.angle[1] - st_.angle[0] - rot0_));
+    if (watch_runaway) {
+      record_runaway(measure().d);
+      if (res_.slid) return Relax::Runaway;
+    }
+    const dem::Vec2 g = model_.def.gravity;
+    const double fx = st_.force[1].x + m * g.x, fy = st_.force[1].y + m * g.y, tau = turns ? st_.torque[1] : 0.0;
+    dem::Vec2& v = st_.velocity[1];
+    double& w = st_.angular_velocity[1];
+    const double wt = turns ? w : 0.0;
+    if (std::hypot(fx, fy) < cfg_.relax_force * weight && std::hypot(v.x, v.y) < cfg_.relax_speed &&
+        std::fabs(tau) < cfg_.relax_force * weight * extent && std::fabs(wt) * extent < cfg_.relax_speed) {
+      if (std::isnan(rest_since)) rest_since = st_.time;
+      if (st_.time - rest_since >= cfg_.relax_duration - 0.5 * last_dt_) return Relax::Rest;
+    } else {
+      rest_since = std::numeric_limits<double>::quiet_NaN();
+    }
+    // FIRE in mass-weighted coordinates on the sliding coordinate x (the lower block's x axis:
+    // gravity turns, the lower block does not) and the rotation when it is free; the normal
+    // coordinate y is left to the contacts' normal dashpots (docs/dem.md sec. 4).
+    const double ux = sm * v.x, uw = si * wt;
+    const double gx = fx / sm, gw = tau / si;
+    const double p = ux * gx + uw * gw;
+    if (p > 0) {
+      const double un = std::sqrt(ux * ux + uw * uw), gn = std::sqrt(gx * gx + gw * gw);
+      const double k = gn > 0 ? alpha * un / gn : 0.0;
+      v.x = ((1 - alpha) * ux + k * gx) / sm;
+      if (turns) w = ((1 - alpha) * uw + k * gw) / si;
+      if (++positive > kFireMinSteps) alpha *= kFireAlphaShrink;
+    } else {
+      v.x = 0;
+      if (turns) w = 0;
+      alpha = kFireAlphaStart;
+      positive = 0;
+    }
+  }
+  return Relax::OutOfTime;
+}
+
+// ---- Phase 5b: the quasi-static protocol and its detection. Increment k sets the tilt to
+// k tilt_increment and relaxes; a relaxed increment is the new stop; the run-away is the first
+// increment during whose relaxation (or after which) the block has moved runaway_distance from
+// the last stop, and the friction angle is that stop's tilt.
+Status TiltRun::load_quasi_static() {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (double dist : cfg_.runaway_checkpoints) res_.checkpoints.push_back({dist, false, nan, nan, nan});
+  checkpoints_left_ = res_.checkpoints.size();
+  rot0_ = st_.angle[1] - st_.angle[0];
+  max_rot_ = 0;
+  stop_d_ = 0;
+  stop_tilt_ = 0;
+  stop_time_ = st_.time;
+  for (int k = 1;; ++k) {
+    const double tilt = k * cfg_.tilt_increment;
+    if (tilt > cfg_.max_tilt) break;
+    set_tilt(tilt);
+    ++res_.increments;
+    auto r = relax(cfg_.relax_time, true);
+    if (!r.ok()) return with_prefix("tilt: ", r.error());
+    if (*r == Relax::Runaway) break;
+    if (*r == Relax::OutOfTime) {
+      ++res_.unrelaxed_increments;
+      continue;
+    }
+    stop_d_ = measure().d;
+    stop_tilt_ = tilt;
+    stop_time_ = st_.time;
+    rot_at_stop_ = max_rot_;
+  }
+  if (series_every_ && (res_.series.time.empty() || res_.series.time.back() != st_.time)) record();
+  if (frame_every_ && (res_.frames.empty() || res_.frames.back().time != st_.time)) frame();
+  if (!res_.slid) res_.rotation_before_slide = max_rot_;
+  res_.final_displacement = measure().d;
+  if (res_.unrelaxed_increments > 0)
+    res_.warnings.push_back(
+        {"unrelaxed",
+         fmt::format("{} of {} tilt increments did not relax to rest within relax_time = {:.3g} s (rest: unbalanced "
+                     "force below relax_force = {:.3g} of the weight and speed below relax_speed = {:.3g} m/s); the "
+                     "friction angle {:.4f} deg is the last increment that did: raise relax_time",
+                     res_.unrelaxed_increments, res_.increments, cfg_.relax_time, cfg_.relax_force, cfg_.relax_speed,
+                     res_.friction_angle * 180 / std::numbers::pi)});
+  return Ok{};
+}
+
+void TiltRun::finish() {
+  res_.simulated_time = st_.time;
+  res_.steps = st_.steps;
+  res_.timings = st_.timings;
+  res_.steps_beyond_limit = st_.steps_beyond_limit;
+  res_.min_time_step = min_dt_;
+  res_.max_time_step = max_dt_;
+  res_.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start_).count();
+}
+
+// ---- Phase 6: the warnings from the run.
+void run_warnings(const TiltConfig& cfg, TiltResult& res) {
   if (res.rotation_before_slide > cfg.warn_rotation)
     res.warnings.push_back(
         {"rotation",
          fmt::format("the upper block turned by {:.4g} deg against the lower one before the slide (warning above "
                      "{:.4g} deg): the signature assumes it does not rotate; hold_rotation (--hold-rotation) holds it",
                      res.rotation_before_slide * 180 / std::numbers::pi, cfg.warn_rotation * 180 / std::numbers::pi)});
-  if (res.slid && !std::isnan(res.first_creep_tilt) && res.friction_angle - res.first_creep_tilt > cfg.warn_creep_angle)
+  if (res.slid && !std::isnan(res.first_creep_tilt) &&
+      res.friction_angle - res.first_creep_tilt > cfg.warn_creep_angle) {
+    const double creep_max = 0.1 * std::min(res.scales.smallest_feature[0], res.scales.smallest_feature[1]);
     res.warnings.push_back(
         {"creep",
          fmt::format("the upper block slipped {:.3g} m at a tilt of {:.4f} deg and was held again (a slip "
@@ -594,7 +898,63 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
                      res.first_creep_slip, res.first_creep_tilt * 180 / std::numbers::pi, creep_max,
                      (res.friction_angle - res.first_creep_tilt) * 180 / std::numbers::pi,
                      res.friction_angle * 180 / std::numbers::pi, cfg.warn_creep_angle * 180 / std::numbers::pi)});
-  finish();
+  }
+}
+
+}  // namespace
+
+Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surface, const TiltConfig& cfg) {
+  using Clock = std::chrono::steady_clock;
+  const auto setup_start = Clock::now();
+  if (Status s = check_config(cfg); !s.ok()) return s.error();
+  TiltResult res;
+  auto faces = build_faces(lower_surface, upper_surface, cfg);
+  if (!faces.ok()) return faces.error();
+  const unsigned threads = util::thread_count(static_cast<unsigned>(std::max(0, cfg.threads)));
+  auto offset = predict_theta_max(*faces, cfg, threads, res);
+  if (!offset.ok()) return offset.error();
+  auto model = place_blocks(faces->lower, faces->upper, *offset, cfg, res);
+  if (!model.ok()) return model.error();
+  res.warnings = tilt_scale_warnings(res.scales, res, cfg);
+  res.setup_time = std::chrono::duration<double>(Clock::now() - setup_start).count();
+
+  TiltRun run(cfg, *model, res, threads);
+  if (Status s = run.settle(); !s.ok()) return s.error();
+  res.rest_offset = res.initial_offset + (cfg.reverse ? -1.0 : 1.0) * run.settle_displacement();
+  if (Status s = cfg.protocol == TiltProtocol::QuasiStatic ? run.load_quasi_static() : run.load_constant_rate();
+      !s.ok())
+    return s.error();
+  run_warnings(cfg, res);
+  run.finish();
+  const auto hold_start = Clock::now();
+  predict_hold_angles(*faces, cfg, res);
+  res.setup_time += std::chrono::duration<double>(Clock::now() - hold_start).count();
+  if (cfg.check_stiffness) {
+    // The same test from the same offset at 10 k_n (and k_t): in the rigid limit the angle stays.
+    TiltConfig stiff = cfg;
+    stiff.contact.normal_stiffness *= 10;
+    stiff.contact.tangential_stiffness *= 10;
+    stiff.check_stiffness = false;
+    stiff.predict = false;
+    stiff.initial_offset = res.initial_offset;
+    stiff.series_interval = 0;
+    stiff.frame_interval = 0;
+    stiff.runaway_checkpoints.clear();
+    auto r = run_tilt(lower_surface, upper_surface, stiff);
+    if (!r.ok()) return with_prefix("tilt (stiffness check at 10 k_n): ", r.error());
+    const double deg = 180 / std::numbers::pi;
+    if (r->slid) res.stiff_friction_angle = r->friction_angle;
+    if (r->slid != res.slid ||
+        (res.slid && std::fabs(r->friction_angle - res.friction_angle) > cfg.warn_stiffness_angle))
+      res.warnings.push_back(
+          {"stiffness",
+           fmt::format("not in the rigid limit: at 10 k_n = {:.3g} N/m the friction angle is {} against {} at k_n = "
+                       "{:.3g} N/m (warning above a change of {:.3g} deg); raise normal_stiffness",
+                       stiff.contact.normal_stiffness,
+                       r->slid ? fmt::format("{:.4f} deg", r->friction_angle * deg) : std::string("no slide"),
+                       res.slid ? fmt::format("{:.4f} deg", res.friction_angle * deg) : std::string("no slide"),
+                       cfg.contact.normal_stiffness, cfg.warn_stiffness_angle * deg)});
+  }
   return res;
 }
 

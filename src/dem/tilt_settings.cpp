@@ -44,7 +44,8 @@ const std::vector<B>& table() {
                            FRICTAL_MEMBER(contact.tangential_stiffness)),
           bind<TiltConfig>(F("normal_damping", "1/s", 0, Lo::Closed, kInf, "Normal damping gamma_n"),
                            FRICTAL_MEMBER(contact.normal_damping)),
-          bind<TiltConfig>(F("tangential_damping", "1/s", 0, Lo::Closed, kInf, "Tangential damping gamma_t"),
+          bind<TiltConfig>(F("tangential_damping", "1/s", 0, Lo::Closed, kInf,
+                             "Tangential damping gamma_t (constant-rate protocol; off in quasi-static)"),
                            FRICTAL_MEMBER(contact.tangential_damping)),
           bind<TiltConfig>(F("atomic_friction", "", 0, Lo::Closed, kInf, "Atomic (Coulomb) friction coefficient mu_a"),
                            FRICTAL_MEMBER(contact.atomic_friction)),
@@ -81,12 +82,15 @@ const std::vector<B>& table() {
               F("predict", "", 0, Lo::Closed, 1, "Compute the signature prediction theta_max + atan(mu_a)"),
               FRICTAL_MEMBER(predict)),
           // Protocol and detection (docs/dem.md).
-          bind<TiltConfig>(F("tilt_rate", "rad/s", 0, Lo::Open, kInf, "Angular velocity of the lower block"),
+          bind<TiltConfig>(F("tilt_rate", "rad/s", 0, Lo::Open, kInf,
+                             "Angular velocity of the lower block (constant-rate protocol)"),
                            FRICTAL_MEMBER(tilt_rate)),
           bind<TiltConfig>(F("reverse", "", 0, Lo::Closed, 1, "Tilt the other way: the upper block slides towards -x"),
                            FRICTAL_MEMBER(reverse)),
-          bind<TiltConfig>(F("settle_time", "s", 0, Lo::Closed, kInf, "Free settling before the tilt starts"),
-                           FRICTAL_MEMBER(settle_time)),
+          bind<TiltConfig>(
+              F("settle_time", "s", 0, Lo::Closed, kInf,
+                "Free settling before the tilt starts (constant-rate protocol; quasi-static: a relaxation)"),
+              FRICTAL_MEMBER(settle_time)),
           bind<TiltConfig>(
               F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no slide) beyond this tilt", true),
               FRICTAL_MEMBER(max_tilt)),
@@ -94,10 +98,39 @@ const std::vector<B>& table() {
                              "Sliding for good: growth of the displacement since the last stick", false,
                              "the surface's wavelength (generated), 0.01 (files)"),
                            FRICTAL_MEMBER(runaway_distance)),
-          bind<TiltConfig>(F("stick_speed", "m/s", 0, Lo::Open, kInf, "Relative speed counted as stuck"),
-                           FRICTAL_MEMBER(stick_speed)),
-          bind<TiltConfig>(F("stick_duration", "s", 0, Lo::Closed, kInf, "Shortest stick"),
+          bind<TiltConfig>(
+              F("stick_speed", "m/s", 0, Lo::Open, kInf, "Relative speed counted as stuck (constant-rate protocol)"),
+              FRICTAL_MEMBER(stick_speed)),
+          bind<TiltConfig>(F("stick_duration", "s", 0, Lo::Closed, kInf, "Shortest stick (constant-rate protocol)"),
                            FRICTAL_MEMBER(stick_duration)),
+          bind_choice<TiltConfig>(
+              F("protocol", "", 0, Lo::Closed, 0,
+                "How the tilt grows: constant-rate (the paper's, tilt_rate) or quasi-static (tilt_increment, "
+                "each relaxed to rest by FIRE)"),
+              FRICTAL_MEMBER(protocol),
+              std::vector<std::pair<std::string, TiltProtocol>>{{"constant-rate", TiltProtocol::ConstantRate},
+                                                                {"quasi-static", TiltProtocol::QuasiStatic}}),
+          bind<TiltConfig>(
+              F("tilt_increment", "rad", 0, Lo::Open, std::numbers::pi / 2,
+                "Quasi-static: tilt added per increment (the angle reads at most one increment low)", true),
+              FRICTAL_MEMBER(tilt_increment)),
+          bind<TiltConfig>(F("relax_time", "s", 0, Lo::Open, kInf,
+                             "Quasi-static: longest relaxation per increment (and of the settling); beyond it the "
+                             "run warns (unrelaxed)"),
+                           FRICTAL_MEMBER(relax_time)),
+          bind<TiltConfig>(F("relax_force", "", 0, Lo::Open, kInf,
+                             "Quasi-static: at rest below this unbalanced force on the upper block, as a fraction of "
+                             "its weight"),
+                           FRICTAL_MEMBER(relax_force)),
+          bind<TiltConfig>(F("relax_speed", "m/s", 0, Lo::Open, kInf, "Quasi-static: at rest below this speed"),
+                           FRICTAL_MEMBER(relax_speed)),
+          bind<TiltConfig>(F("relax_duration", "s", 0, Lo::Closed, kInf,
+                             "Quasi-static: the rest thresholds must hold this long without a break"),
+                           FRICTAL_MEMBER(relax_duration)),
+          bind<TiltConfig>(F("check_stiffness", "", 0, Lo::Closed, 1,
+                             "Run again at 10 normal_stiffness and tangential_stiffness; warn (stiffness) when the "
+                             "angle moves by more than warn_stiffness_angle"),
+                           FRICTAL_MEMBER(check_stiffness)),
           // Numerics.
           bind<TiltConfig>(F("time_step", "s", 0, Lo::Open, kInf,
                              "Largest time step with the adaptive step, else the fixed step (docs/dem.md)"),
@@ -142,6 +175,9 @@ const std::vector<B>& table() {
                              "Warn (creep) when the first creep event began more than this below the friction "
                              "angle"),
                            FRICTAL_MEMBER(warn_creep_angle)),
+          bind<TiltConfig>(F("warn_stiffness_angle", "rad", 0, Lo::Open, kInf,
+                             "Warn (stiffness) when check_stiffness moves the friction angle by more"),
+                           FRICTAL_MEMBER(warn_stiffness_angle)),
           // Output.
           bind<TiltConfig>(
               F("series_interval", "s", 0, Lo::Closed, kInf, "Time between rows of the time series; 0: none"),

@@ -578,10 +578,17 @@ Result<LiftCurve> lift_curve(const SignatureResult& sig, double period) {
       const double m0 = std::tan(sig.theta_right[i - 1]), m1 = std::tan(sig.theta_left[i]);
       if (std::isfinite(m0) && std::isfinite(m1) && m0 != m1) {
         const double xs = (h1 - h0 + m0 * x0 - m1 * x1) / (m0 - m1);
-        const double span = x1 - x0;
-        if (xs > x0 + 1e-9 * span && xs < x1 - 1e-9 * span) {
-          c.offset.push_back(xs);
-          c.lift.push_back(h0 + m0 * (xs - x0));
+        const double span = x1 - x0, eps = 1e-9 * span;
+        // A meeting point at an end within rounding (a vertical wall of h: theta = 90 deg on one
+        // side) is kept just inside, so the wall stays a piece of (nearly) infinite slope.
+        // No vertex where one tangent already joins both ends (a kink at the event itself).
+        const double tol = 1e-9 * std::abs(h1 - h0) + 1e-14 * std::max(std::abs(h0), std::abs(h1));
+        const bool joined = std::abs(h0 + m0 * span - h1) <= tol || std::abs(h1 - m1 * span - h0) <= tol;
+        if (!joined && xs > x0 - 1e-6 * span && xs < x1 + 1e-6 * span) {
+          const double xc = std::clamp(xs, x0 + eps, x1 - eps);
+          c.offset.push_back(xc);
+          // Height from the flatter tangent (the steeper one may be a wall, tan(90 deg) ~ 1e16).
+          c.lift.push_back(std::abs(m0) <= std::abs(m1) ? h0 + m0 * (xc - x0) : h1 + m1 * (xc - x1));
         }
       }
     }

@@ -524,9 +524,10 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
           part);
       int covered = 0, total = 0;
       for (const auto& [D, hc] : hold_by_d) {
-        t += fmt::format("| {:.2f} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {} |\n",
-                         D, hc.n, hc.low.mean(), hc.high.mean(), hc.mean.mean(), hc.std.mean(), hc.q05.mean(),
-                         hc.q95.mean(), hc.in_mean.mean(), hc.sim.mean(), hc.covered);
+        t += fmt::format(
+            "| {:.2f} | {} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {:.3f} | {} |\n", D, hc.n,
+            hc.low.mean(), hc.high.mean(), hc.mean.mean(), hc.std.mean(), hc.q05.mean(), hc.q95.mean(),
+            hc.in_mean.mean(), hc.sim.mean(), hc.covered);
         covered += hc.covered;
         total += hc.n;
       }

@@ -149,3 +149,26 @@ def test_tilt_reports_both_predictions_and_holds_rotation():
     # A tiny spheroradius: the resting overlap W/k_n is no longer small against r.
     small = frictal.tilt(k0, spheroradius=1e-7, max_tilt=np.radians(1))
     assert "core-overlap" in [w["code"] for w in small["warnings"]]
+
+
+def test_hold_angle_issue_pair_and_sawtooth():
+    # Issue 23's WM pair: an independent numpy computation of the exact rigid lift gives, from a drop
+    # at 23.79 mm with d = 1 cm, phi_qs = 1.549 deg and phi_in = 0.695 deg.
+    kw = dict(dimension=1.5, n_max=6, longest_wavelength=0.01, length=0.2, rms_height=1e-5)
+    f, g = frictal.wm_profile(seed=1, **kw), frictal.wm_profile(seed=2, **kw)
+    h = frictal.hold_angle(f, g, runaway_distance=0.01, start_offset=0.02379)
+    assert np.degrees(h["start"]["hold_angle"]) == pytest.approx(1.549, abs=0.0015)
+    assert np.degrees(h["start"]["inertial_hold_angle"]) == pytest.approx(0.695, abs=0.0015)
+    fw = h["forward"]
+    assert fw["basins"]["weight"].sum() == pytest.approx(f.x[-1] / 2, rel=1e-9)  # the drops cover [0, L/2]
+    assert fw["hold_angle"]["q05"] <= fw["hold_angle"]["q50"] <= fw["hold_angle"]["q95"]
+    # A periodic sawtooth against itself turned over: every drop holds at the rise angle forwards,
+    # at the fall angle atan(tan 25 deg * 0.7 / 0.3) backwards, whatever d (closed forms).
+    saw = frictal.sawtooth_profile(rise_angle=np.radians(25), rise_fraction=0.7)
+    hs = frictal.hold_angle(saw, atomic_friction=0.2)
+    assert hs["runaway_distance"] == pytest.approx(0.01)  # one period
+    assert hs["forward"]["hold_angle"]["min"] == pytest.approx(np.radians(25) + math.atan(0.2), abs=1e-9)
+    fall = math.atan(math.tan(np.radians(25)) * 0.7 / 0.3)
+    assert hs["backward"]["hold_angle"]["max"] == pytest.approx(fall + math.atan(0.2), abs=1e-9)
+    with pytest.raises(ValueError, match="start offset"):
+        frictal.hold_angle(f, g, start_offset=0.5)

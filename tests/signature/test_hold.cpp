@@ -371,3 +371,25 @@ TEST(Hold, BadInputIsRefusedWithTheParameterNamed) {
   bad.offset[1] = 0;
   EXPECT_FALSE(hold_angle(bad, 0.5, HoldOptions{1, 0, 0, 0}).ok());
 }
+
+TEST(Hold, AVerticalWallOfTheLiftHoldsAtNinetyDegrees) {
+  // K2 at alpha = 45 deg: the signature maximum 2 alpha = 90 deg (paper Sec. III) is a vertical
+  // step of h (theta_left = 90 deg at an event). The wall must stay a wall, not a chord.
+  KochParams p = default_koch_params();
+  p.iterations = 2;
+  p.alpha = deg(45);
+  auto prof = koch_profile(p);
+  ASSERT_TRUE(prof.ok());
+  SignatureOptions so;
+  so.keep_contacts = false;
+  auto sig = self_signature(*prof, so);
+  ASSERT_TRUE(sig.ok());
+  ASSERT_NEAR(todeg(sig->theta_max_forward), 90, 1e-9);
+  auto c = lift_curve(*sig, p.wavelength);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  HoldOptions o;
+  o.runaway_distance = p.wavelength;
+  auto dist = hold_distribution(*c, o);
+  ASSERT_TRUE(dist.ok());
+  EXPECT_NEAR(todeg(dist->forward.hold.min), 90, 1e-5);
+}

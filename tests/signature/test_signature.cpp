@@ -544,6 +544,36 @@ TEST(FaceValueWalk, EqualsValueOnNonUniformFacesWithJumps) {
 // start, no lines): the same lift bit for bit and the same one-sided slopes, on WM
 // and self-affine pairs, for an upper grid of 0.7 N points and for offsets halfway between
 // lattice offsets of equal grids; and against the plain scan.
+// A grid of at least a quarter of the exact events on aligned lattices is replaced by every event:
+// exact, so theta_max equals the exact path's, and never costlier (issue 23).
+TEST(SignatureGrid, ADenseGridOnAlignedLatticesTakesTheExactPath) {
+  const SigPair p = index_path_pair(0, 20'001);
+  SignatureOptions exact;
+  exact.keep_contacts = false;
+  auto e = signature(p.lower, p.upper, exact);
+  ASSERT_TRUE(e.ok()) << e.error().message;
+  SignatureOptions grid = exact;
+  grid.offsets = e->offset.size() / 2;
+  auto g = signature(p.lower, p.upper, grid);
+  ASSERT_TRUE(g.ok()) << g.error().message;
+  EXPECT_TRUE(g->grid_replaced);
+  EXPECT_TRUE(g->exact);
+  EXPECT_EQ(g->offset, e->offset);
+  EXPECT_EQ(g->theta_max_forward, e->theta_max_forward);
+  EXPECT_EQ(g->theta_max_backward, e->theta_max_backward);
+  grid.offsets = e->offset.size() / 8;  // a coarse grid stays a grid
+  auto c = signature(p.lower, p.upper, grid);
+  ASSERT_TRUE(c.ok());
+  EXPECT_FALSE(c->grid_replaced);
+  EXPECT_EQ(c->offset.size(), grid.offsets);
+  grid.offsets = e->offset.size() / 2;
+  grid.keep_grid = true;
+  auto k = signature(p.lower, p.upper, grid);
+  ASSERT_TRUE(k.ok());
+  EXPECT_FALSE(k->grid_replaced);
+  EXPECT_EQ(k->offset.size(), grid.offsets);
+}
+
 TEST(SignatureGeneralSearch, BatchFrontierMatchesOffsetByOffsetSearch) {
   for (int kind : {0, 1}) {
     for (int grid : {1, 2}) {
@@ -558,6 +588,7 @@ TEST(SignatureGeneralSearch, BatchFrontierMatchesOffsetByOffsetSearch) {
       o.offset_min = 4000.5 * dx;
       o.offset_max = 5500.5 * dx;
       o.offsets = 1501;  // one lower spacing apart, off the lattice
+      o.keep_grid = true;
       o.threads = 1;
       auto r = signature(p.lower, p.upper, o);
       ASSERT_TRUE(r.ok()) << r.error().message;

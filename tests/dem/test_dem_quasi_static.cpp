@@ -1,0 +1,194 @@
+// The quasi-static tilt protocol (TiltConfig::protocol = QuasiStatic): expected angles derived by
+// hand. The tilt grows in increments of `tilt_increment`; the block holds at a tilt beta while
+// the slope that carries it is at least tan(beta), and the friction angle is the last increment
+// at which it relaxed to rest, so a hold angle phi reads as floor(phi / inc) * inc.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "frictal/generators.hpp"
+#include "frictal/tilt.hpp"
+
+namespace {
+
+constexpr double kDeg = 3.14159265358979323846 / 180.0;
+
+frictal::Curve flat(double length) {
+  frictal::Curve c;
+  c.x = {0.0, length};
+  c.z = {0.0, 0.0};
+  return c;
+}
+
+frictal::Curve koch0(double alpha_deg, double length) {
+  frictal::KochParams p;
+  p.iterations = 0;
+  p.alpha = alpha_deg * kDeg;
+  p.wavelength = 0.01;
+  p.length = length;
+  auto c = frictal::koch_curve(p);
+  EXPECT_TRUE(c.ok());
+  return *c;
+}
+
+frictal::TiltConfig quasi_static(double increment_deg) {
+  frictal::TiltConfig cfg;
+  cfg.protocol = frictal::TiltProtocol::QuasiStatic;
+  cfg.tilt_increment = increment_deg * kDeg;
+  cfg.series_interval = 0;
+  return cfg;
+}
+
+}  // namespace
+
+TEST(DemQuasiStatic, FlatBlockSlidesAtTheLastIncrementBelowAtanMuA) {
+  // A flat block on a flat plane holds while tan(beta) <= mu_a. With increments of 0.1 deg:
+  // atan(0.4) = 21.801 deg -> the last held increment is 21.8 deg; atan(0.6) = 30.964 deg ->
+  // 30.9 deg (neither lies within 0.001 deg of an increment, so neither is marginal).
+  for (double mu : {0.4, 0.6}) {
+    frictal::TiltConfig cfg = quasi_static(0.1);
+    cfg.contact.atomic_friction = mu;
+    cfg.predict = false;
+    cfg.initial_offset = 0.01;
+    cfg.runaway_distance = 1e-3;
+    auto r = frictal::run_tilt(flat(0.1), flat(0.1), cfg);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    ASSERT_TRUE(r->slid);
+    const double expected = std::floor(std::atan(mu) / kDeg / 0.1) * 0.1;
+    EXPECT_NEAR(r->friction_angle / kDeg, expected, 1e-6) << "mu_a = " << mu;
+    EXPECT_EQ(r->unrelaxed_increments, 0);
+    for (const frictal::TiltWarning& w : r->warnings) EXPECT_NE(w.code, "unrelaxed") << w.message;
+    // A flat pair put down at 1 cm rests there.
+    EXPECT_NEAR(r->rest_offset, 0.01, 1e-6);
+  }
+}
+
+TEST(DemQuasiStatic, KochK0HoldsUpToAlphaBothWays) {
+  // K_0 at alpha = 20 deg (Table I block, 0.2 m), mu_a = 0, rotation held: the block rests on flanks of slope alpha and
+  // is held while tan(beta) <= tan(alpha); with increments of 0.3 deg the last held one is
+  // 19.8 deg (20.1 deg passes alpha), in either direction by symmetry.
+  const frictal::Curve k0 = koch0(20, 0.2);
+  for (bool reverse : {false, true}) {
+    frictal::TiltConfig cfg = quasi_static(0.3);
+    cfg.reverse = reverse;
+    cfg.hold_rotation = true;
+    auto r = frictal::run_tilt(k0, k0, cfg);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    ASSERT_TRUE(r->slid) << (reverse ? "reverse" : "forward");
+    EXPECT_NEAR(r->friction_angle / kDeg, 19.8, 1e-6) << (reverse ? "reverse" : "forward");
+    EXPECT_EQ(r->unrelaxed_increments, 0);
+    // The lift of K_0 on itself is a zigzag of slopes +-tan(alpha) with its minima half a
+    // wavelength from the start: the block rests at 5 mm, and from there both the quasi-static
+    // hold angle and the inertial bound (steepest chord within one wavelength ahead) are alpha;
+    // the rounded blocks' flanks have the same slope.
+    EXPECT_NEAR(r->rest_offset, 0.005, 1e-6);
+    EXPECT_NEAR(r->predicted_hold_angle / kDeg, 20.0, 1e-6);
+    EXPECT_NEAR(r->predicted_inertial_hold_angle / kDeg, 20.0, 1e-6);
+    // (the spheropolygon lift has arcs at the tips: its LiftCurve keeps the tangent slopes to ~1e-5 deg)
+    EXPECT_NEAR(r->predicted_sphero_hold_angle / kDeg, 20.0, 1e-4);
+  }
+}
+
+TEST(DemQuasiStatic, ConstantRateRunReportsTheHoldPredictionsToo) {
+  // The paper's protocol on K_0 at alpha = 20 deg: the block settles in the groove at half a
+  // wavelength (5 mm) and the hold angles from there are alpha (see above).
+  frictal::TiltConfig cfg;
+  cfg.series_interval = 0;
+  auto r = frictal::run_tilt(koch0(20, 0.05), koch0(20, 0.05), cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_NEAR(r->rest_offset, 0.005, 1e-5);
+  EXPECT_NEAR(r->predicted_hold_angle / kDeg, 20.0, 1e-6);
+  EXPECT_NEAR(r->predicted_inertial_hold_angle / kDeg, 20.0, 1e-6);
+  EXPECT_TRUE(r->hold_error.empty()) << r->hold_error;
+}
+
+TEST(DemQuasiStatic, StiffnessCheckKeepsTheAngleOfRigidFlanks) {
+  // K_0's flanks are straight: ten times the stiffness leaves the hold at alpha, so the check
+  // finds the same last increment (19.8 deg) and does not warn.
+  frictal::TiltConfig cfg = quasi_static(0.3);
+  cfg.hold_rotation = true;
+  cfg.check_stiffness = true;
+  auto r = frictal::run_tilt(koch0(20, 0.2), koch0(20, 0.2), cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  ASSERT_TRUE(r->slid);
+  EXPECT_NEAR(r->stiff_friction_angle / kDeg, 19.8, 1e-6);
+  for (const frictal::TiltWarning& w : r->warnings) EXPECT_NE(w.code, "stiffness") << w.message;
+}
+
+TEST(DemQuasiStatic, RejectsBadRelaxationSettings) {
+  frictal::TiltConfig cfg = quasi_static(0.1);
+  cfg.relax_force = 0;
+  auto r = frictal::run_tilt(flat(0.05), flat(0.05), cfg);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("relax_force"), std::string::npos);
+  cfg = quasi_static(0.1);
+  cfg.tilt_increment = 0;
+  r = frictal::run_tilt(flat(0.05), flat(0.05), cfg);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("tilt_increment"), std::string::npos);
+}
+
+TEST(DemQuasiStatic, UnrelaxedWarningWhenTheBudgetIsTooShort) {
+  // A relaxation budget of one engine step cannot bring the dropped block to rest.
+  frictal::TiltConfig cfg = quasi_static(1.0);
+  cfg.contact.atomic_friction = 0.2;
+  cfg.predict = false;
+  cfg.initial_offset = 0.01;
+  cfg.relax_time = 1e-4;
+  cfg.relax_duration = 0;
+  cfg.max_tilt = 5 * kDeg;
+  auto r = frictal::run_tilt(flat(0.05), flat(0.05), cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  bool unsettled = false, unrelaxed = false;
+  for (const frictal::TiltWarning& w : r->warnings) {
+    unsettled |= w.code == "unsettled";
+    unrelaxed |= w.code == "unrelaxed";
+  }
+  EXPECT_TRUE(unsettled);
+  EXPECT_TRUE(unrelaxed);
+  EXPECT_GT(r->unrelaxed_increments, 0);
+}
+
+#ifdef FRICTAL_CLI_PATH
+TEST(DemQuasiStaticCli, JsonGivesTheRestOffsetAndTheHoldAngles) {
+  const std::string cli = FRICTAL_CLI_PATH;
+  const std::string out = ::testing::TempDir() + "frictal_qs.json";
+  ASSERT_EQ(std::system((cli +
+                         " tilt koch --alpha 20 --protocol quasi-static --tilt-increment 0.3 --hold-rotation "
+                         "--json > " +
+                         out + " 2> /dev/null")
+                            .c_str()),
+            0);
+  std::FILE* f = std::fopen(out.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  std::string text;
+  char buf[4096];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, f)) text.append(buf, n);
+  std::fclose(f);
+  for (const char* key : {"\"rest_offset_m\"", "\"predicted_hold_angle_deg\"", "\"predicted_inertial_hold_angle_deg\"",
+                          "\"predicted_sphero_hold_angle_deg\"", "\"protocol\":\"quasi-static\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text.substr(0, 400);
+  const std::string key = "\"friction_angle_deg\":";
+  const std::size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NEAR(std::stod(text.substr(at + key.size())), 19.8, 1e-6);  // as in KochK0HoldsUpToAlphaBothWays
+}
+
+TEST(DemQuasiStaticCli, UnknownProtocolExitsWithTwoNamingTheChoices) {
+  const std::string cli = FRICTAL_CLI_PATH;
+  const std::string out = ::testing::TempDir() + "frictal_protocol_err.txt";
+  EXPECT_EQ(std::system((cli + " tilt koch --protocol slow > /dev/null 2> " + out).c_str()), 2 << 8);
+  std::FILE* f = std::fopen(out.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  std::string text;
+  char buf[512];
+  while (std::size_t n = std::fread(buf, 1, sizeof buf, f)) text.append(buf, n);
+  std::fclose(f);
+  EXPECT_NE(text.find("--protocol"), std::string::npos) << text;
+  EXPECT_NE(text.find("slow"), std::string::npos) << text;
+  EXPECT_NE(text.find("quasi-static"), std::string::npos) << text;
+  EXPECT_NE(text.find("constant-rate"), std::string::npos) << text;
+}
+#endif
