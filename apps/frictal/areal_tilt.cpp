@@ -21,6 +21,7 @@ struct Args {
   double atomic_friction = 0;
   double sphere_radius = 0;
   double tilt_step = 0.1;
+  int hfield_refine = 1;
   double runaway_distance = 0;
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   std::string detrend = "plane";
@@ -37,6 +38,8 @@ std::function<int()> setup(CLI::App& app) {
   add_atomic_friction_option(app, a->atomic_friction);
   app.add_option("--sphere-radius", a->sphere_radius,
                  "Radius of the spheres on the upper face's nodes (m; default a fifth of the lower map's spacing)");
+  app.add_option("--hfield-refine", a->hfield_refine,
+                 "Sample the lower map's surface this many times finer for MuJoCo's height field (default 1)");
   app.add_option("--tilt-step", a->tilt_step,
                  "Tilt increment near the run-away (deg; default 0.1; 1 deg increments before it)");
   add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
@@ -66,6 +69,7 @@ std::function<int()> setup(CLI::App& app) {
     o.sphere_radius = a->sphere_radius;
     o.runaway_distance = a->runaway_distance;
     o.tilt_step = a->tilt_step * kDeg;
+    o.hfield_refine = a->hfield_refine;
     const auto t0 = std::chrono::steady_clock::now();
     const ArealTiltResult r = unwrap(areal_tilt(f, g, o));
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

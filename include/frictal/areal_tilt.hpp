@@ -29,6 +29,9 @@ struct ArealTiltOptions {
   double atomic_friction = 0;   ///< mu_a >= 0 at every contact (unitless)
   /// Sphere radius r of the upper face's nodes (0: a fifth of the lower map's smaller spacing) (unit: m).
   double sphere_radius = 0;
+  /// The height field samples the lower map's bilinear surface this many times finer than its
+  /// grid (1: the map's nodes; MuJoCo triangulates every cell along one diagonal) (unitless).
+  int hfield_refine = 1;
   std::array<double, 2> start_offset = {0, 0};       ///< where the block is put down, (x, y) (unit: m)
   double tilt_step = 0.1 * 3.141592653589793 / 180;  ///< tilt increment near the run-away (unit: rad)
   /// Coarse increments up to the first run-away, which is then tilted again in tilt_step from the

@@ -116,6 +116,11 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
                     o.start_offset[0], o.start_offset[1]));
 
   const int ncon = int(std::min<std::size_t>(4 * nodes.size() + 100, 200000));
+  // The height field samples the lower map's bilinear surface hfield_refine times finer.
+  if (o.hfield_refine < 1 || o.hfield_refine > 16)
+    return make_error(fmt::format("areal_tilt: hfield_refine {}: expected 1..16", o.hfield_refine));
+  const std::size_t k = std::size_t(o.hfield_refine);
+  const std::size_t hnx = (f.nx - 1) * k + 1, hny = (f.ny - 1) * k + 1;
   const int rows = o.atomic_friction > 0 ? 4 : 1;
   std::string xml = fmt::format(
       "<mujoco><option timestep=\"{:.9g}\" gravity=\"0 0 -9.81\" integrator=\"Euler\"/>"
@@ -128,7 +133,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       "<joint name=\"y\" type=\"slide\" axis=\"0 1 0\" damping=\"{:.9g}\"/>"
       "<joint name=\"z\" type=\"slide\" axis=\"0 0 1\" damping=\"{:.9g}\"/>"
       "<inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/>",
-      o.time_step, ncon, ncon * rows, f.ny, f.nx, 0.5 * f.width() * S, 0.5 * f.height() * S, relief * S,
+      o.time_step, ncon, ncon * rows, hny, hnx, 0.5 * f.width() * S, 0.5 * f.height() * S, relief * S,
       0.1 * relief * S + r, o.atomic_friction > 0 ? 3 : 1, std::max(o.atomic_friction, 1e-12), o.contact_time, cfx * S,
       cfy * S, zmin * S, o.damping, o.damping, o.damping);
   for (const Node& n : nodes)
@@ -145,10 +150,12 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   sim.m = mj_loadXML("areal_tilt.xml", &sim.vfs, err, sizeof err);
   if (!sim.m) return make_error(fmt::format("areal_tilt: MuJoCo refused the model: {}", err));
   // Heights: row 0 of the height field is at -y, as the map's row 0.
-  for (std::size_t j = 0; j < f.ny; ++j)
-    for (std::size_t i = 0; i < f.nx; ++i) {
-      const double z = f.at(i, j);
-      sim.m->hfield_data[j * f.nx + i] = float(std::isnan(z) ? 0.0 : (z - zmin) / relief);
+  for (std::size_t j = 0; j < hny; ++j)
+    for (std::size_t i = 0; i < hnx; ++i) {
+      const double z = k == 1 ? f.at(i, j)
+                              : interpolate(f, f.x0 + std::min(f.width(), double(i) * f.dx / double(k)),
+                                            f.y0 + std::min(f.height(), double(j) * f.dy / double(k)));
+      sim.m->hfield_data[j * hnx + i] = float(std::isnan(z) ? 0.0 : (z - zmin) / relief);
     }
   sim.d = mj_makeData(sim.m);
   if (!sim.d)
