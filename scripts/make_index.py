@@ -447,6 +447,13 @@ BEYOND = {
                 "report states how often it does, whether the angle depends on the run-away distance (0.5, 1, 2 λ), "
                 "and whether the rigid or the spheropolygon prediction is closer (issue 14).",
                 "wm-tilt"),
+    "eq18-derived": ("Eq. 18 derived: the hold angle over drops",
+                     "Eq. 18 is a heuristic: φ − θ_a in [θ_max − σ, θ_max]. What repeated tilt tests of one pair give "
+                     "can be derived instead: a block dropped at a random offset rests in a basin of the lift h and "
+                     "holds until the quasi-static hold angle φ_qs of that basin (docs/analysis.md). Per D, the "
+                     "distribution of φ_qs over drops (mean, 5–95 %) beside Eq. 18's range and the inertial bound "
+                     "φ_in; and the quasi-static tilt test against φ_qs from where its block rests (issue 23).",
+                     "wm-tilt", ("hold angles that repeated drops give", "hold angle phi_qs", "quasi-static hold angle")),
 }
 
 
@@ -494,10 +501,12 @@ def study_findings(out):
             if key not in seen:
                 seen.add(key)
                 items.append((m.group(1) == "SUPPORTED", m.group(2), crit, cited_figures(m.group(2))))
-        beyond = [k for k, (_, _, st) in BEYOND.items() if st == study]
-        if beyond:  # a study beyond the paper speaks to its own figure only
+        beyond = [k for k, v in BEYOND.items() if v[2] == study]
+        if beyond:  # a study beyond the paper speaks to its own figures only: by text filter, else the first
             for sup, text, crit, _ in items:
-                for k in beyond:
+                match = [k for k in beyond if len(BEYOND[k]) > 3 and any(w in text for w in BEYOND[k][3])]
+                plain = [k for k in beyond if len(BEYOND[k]) <= 3]
+                for k in (match or plain[:1]):
                     found.setdefault(k, []).append((sup, text, crit, study))
             continue
         any_named = any(c & named for *_, c in items)
@@ -544,6 +553,76 @@ def fig04_from(out):
         f.verdicts.append((agree == len(rows) and len(rows) > 0, "θ_max = nα (n = 1, 1, 2, 3) for every α of Table I",
                            "|θ_max − nα| < 1e-6° in both directions"))
     f.source = "scripts/reproduce: `frictal signature --period 0.01` on K0–K3"
+    return f
+
+
+def eq18_derived(out, findings):
+    """The hold angle over drops against Eq. 18, per D, from the wm-tilt store (issue 23)."""
+    f = study_figure(out, "eq18-derived", findings)
+    f.missing = None
+    store = f"{out}/studies/wm-tilt.sqlite"
+    if not os.path.exists(store):
+        f.missing = f"{store} not found (scripts/reproduce runs the wm-tilt study)"
+        return f
+    import sqlite3
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    con = sqlite3.connect(store)
+    rows = [(part, json.loads(sc)) for part, sc in
+            con.execute("select part, scalars from tasks where status = 'done' and scalars is not null")]
+    con.close()
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=False)
+    drew = False
+    for ax, part, name in ((axes[0], "wm", "Weierstrass–Mandelbrot pairs"), (axes[1], "fourier", "Fourier-filtered pairs")):
+        by = {}
+        for p, s in rows:
+            if p != part or s.get("hold_mean_deg") is None:
+                continue
+            by.setdefault(round(s["surface_dimension"], 6), []).append(s)
+        if not by:
+            continue
+        D = sorted(by)
+        mean = lambda k: [sum(r[k] for r in by[d] if r.get(k) is not None) / max(1, sum(r.get(k) is not None for r in by[d])) for d in D]  # noqa: E731
+        lo, hi = mean("eq18_low_deg"), mean("eq18_high_deg")
+        ax.fill_between(D, lo, hi, color="#f2c94c", alpha=0.35, label="Eq. 18: [θ_max − σ, θ_max] + θ_a")
+        m, q05, q95 = mean("hold_mean_deg"), mean("hold_q05_deg"), mean("hold_q95_deg")
+        ax.errorbar(D, m, yerr=[[a - b for a, b in zip(m, q05)], [b - a for a, b in zip(m, q95)]], fmt="o-",
+                    color="C0", capsize=3, label="φ_qs over drops: mean, 5–95 %")
+        ax.plot(D, mean("inertial_hold_mean_deg"), "v--", color="C4", label="φ_in over drops: mean")
+        ax.plot(D, mean("friction_angle_deg"), "s", color="k", mfc="none", label="constant-rate tilt (Table II k_n): mean")
+        ax.set_xlabel("fractal dimension D" + (" (= 2 − H)" if part == "fourier" else ""))
+        ax.set_ylabel("friction angle φ (deg)")
+        ax.set_title(name, fontsize=10)
+        ax.grid(alpha=0.3)
+        drew = True
+        for d in D:
+            r = by[d]
+            avg = lambda k: sum(x[k] for x in r) / len(r)  # noqa: E731
+            f.numbers.append((f"{part}, D = {d:.1f}: Eq. 18 range / φ_qs over drops (mean, 5–95 %) / φ_in mean",
+                              f"{avg('eq18_low_deg'):.3f}–{avg('eq18_high_deg'):.3f}° / {avg('hold_mean_deg'):.3f}° "
+                              f"({avg('hold_q05_deg'):.3f}–{avg('hold_q95_deg'):.3f}°) / {avg('inertial_hold_mean_deg'):.3f}°"))
+    for part in ("wm-quasi-static", "fourier-quasi-static", "wm-quasi-static-table2"):
+        r = [s for p, s in rows if p == part and s.get("sphero_hold_angle_deg") is not None]
+        if not r:
+            continue
+        d1 = [s["friction_minus_sphero_hold_deg"] for s in r if s.get("friction_minus_sphero_hold_deg") is not None]
+        d2 = [s["stiff_minus_sphero_hold_deg"] for s in r if s.get("stiff_minus_sphero_hold_deg") is not None]
+        txt = f"mean φ − φ_qs {sum(d1) / len(d1):+.3f}° (|.| ≤ 0.1° in {sum(abs(x) <= 0.1 for x in d1)} of {len(d1)})" if d1 else "-"
+        if d2:
+            txt += f"; at 10 k_n {sum(d2) / len(d2):+.3f}° ({sum(abs(x) <= 0.1 for x in d2)} of {len(d2)} within 0.1°)"
+        f.numbers.append((f"quasi-static tilt, part {part}", txt))
+    if not drew:
+        f.missing = "no wm-tilt task with the hold angle in the store (kind version >= 3)"
+        plt.close(fig)
+        return f
+    axes[0].legend(fontsize=7.5, loc="upper left")
+    fig.tight_layout()
+    png = f"{out}/eq18-derived.png"
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    f.png = open(png, "rb").read()
+    f.source = "the wm-tilt store (frictal study run studies/wm-tilt.toml), drawn by scripts/make_index.py"
     return f
 
 
@@ -661,7 +740,7 @@ def main(argv):
         figs.append(f)
     for key in BEYOND:
         if want(key):
-            figs.append(study_figure(a.out, key, findings))
+            figs.append(eq18_derived(a.out, findings) if key == "eq18-derived" else study_figure(a.out, key, findings))
     note = "Quick scale (QUICK=1): small grids." if a.quick else "Full scale."
     page = render(figs, "frictal: the paper's figures, reproduced", note)
     with open(f"{a.out}/index.html", "w", encoding="utf-8") as fh:

@@ -115,6 +115,10 @@ struct HoldDistribution {
   HoldStatistics hold;      ///< phi_qs over drops
   HoldStatistics inertial;  ///< phi_in over drops
   HoldBasins basins;
+  /// Drop length whose run-away ran off the end of the curve less than d from its last stop, so
+  /// that the lift beyond the end could still catch it (unit: m): analyse_hold widens a lift cut
+  /// short of the blocks' overlap until this is 0.
+  double near_end = 0;
   double drop_min = 0, drop_max = 0;  ///< the drop range used (unit: m)
 };
 
@@ -163,7 +167,11 @@ struct HoldAnalysis {
 };
 
 /// Computes the lift of `lower` against `upper` (already rotated, as signature() takes it) over
-/// the range the hold process needs and analyses it: drops over the signature's own offset range
+/// the range the hold process needs (non-periodic: the drop range widened by 2d, and by twice as
+/// much again while a run-away leaves a stop, or a rest lies, less than d before a cut end: a
+/// chain of short slips can carry a block more than d from its rest; the blocks' overlap is the
+/// last end)
+/// and analyses it: drops over the signature's own offset range
 /// (`signature_options.offset_min/max`, else one period or half the shorter block), one start
 /// if `start` is finite. `hold.runaway_distance` <= 0: default_runaway_distance of that range;
 /// hold.drop_min/max are ignored. The signature options are used as given (spheroradius,

@@ -298,7 +298,8 @@ Result<double> predict_theta_max(Faces& f, const TiltConfig& cfg, unsigned threa
 }
 
 // ---- Phase 6: the hold-angle predictions (hold.hpp) from where the block rests when the loading
-// starts: the exact lift of the finite blocks over rest +- d (hold_lift_range), rigid profiles
+// starts: the exact lift of the finite blocks from d behind the rest to the end of their overlap
+// in the sliding direction (hold_lift_range), rigid profiles
 // and the run's spheroradius, in the sliding direction. A failure leaves NaN and says why.
 void predict_hold_angles(const Faces& f, const TiltConfig& cfg, TiltResult& res) {
   if (!cfg.predict || !f.has_env) return;
@@ -306,7 +307,16 @@ void predict_hold_angles(const Faces& f, const TiltConfig& cfg, TiltResult& res)
   Profile lower = f.lower_env;
   lower.period.reset();  // the simulated blocks are finite
   const Profile upper_face = rotate180(f.upper_env);
-  const OffsetRange range = hold_lift_range(s, s, d, lower.length(), upper_face.length());
+  // The chain of short slips may carry the block well past rest + d before the run-away (the
+  // measured Dektak pair: its holding stop lies 9.3 mm ahead of the rest with d = 1 cm), so the
+  // lift covers the whole overlap in the sliding direction and d behind the rest.
+  const OffsetRange full =
+      hold_lift_range(s, s, lower.length() + upper_face.length(), lower.length(), upper_face.length());
+  OffsetRange range = full;
+  if (cfg.reverse)
+    range.max = std::min(full.max, s + d);
+  else
+    range.min = std::max(full.min, s - d);
   HoldOptions ho;
   ho.runaway_distance = d;
   ho.atomic_friction = cfg.contact.atomic_friction;

@@ -488,6 +488,9 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
     }
     x = xe;
   }
+  double near_end = 0;  // run-aways that left a stop less than d before the end of the curve
+  for (const Part& q : parts)
+    if (q.oc.off_end && p.X.back() - q.oc.hold_x < d) near_end += q.weight;
   // Basins: parts that rest at one vertex (a periodic frame: one vertex modulo the period).
   const std::size_t nb = fr.periodic ? p.n() / 5 : 0;  // vertices per period in the unrolled frame
   auto key = [&](const Rest& r) -> std::int64_t {
@@ -553,6 +556,7 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
   out.inertial = weighted_stats(out.basins.inertial, out.basins.weight);
   out.drop_min = mirrored ? -b : a;
   out.drop_max = mirrored ? -a : b;
+  out.near_end = near_end;
   return out;
 }
 
@@ -737,31 +741,57 @@ Result<HoldAnalysis> analyse_hold(const Profile& lower, const Profile& upper, co
   if (auto st = check_options(ho); !st) return st.error();
   SignatureOptions o = so;
   o.keep_contacts = false;
-  if (period > 0) {
-    o.offset_min = a;
-    o.offset_max = b;
-  } else {
-    const OffsetRange r = hold_lift_range(a, b, out.runaway_distance, lower_len, upper_len);
-    o.offset_min = r.min;
-    o.offset_max = r.max;
-  }
-  auto sig = signature(lower, upper, o);
-  if (!sig) return with_prefix("hold: ", sig.error());
-  out.events = sig->offset.size();
-  out.exact = sig->exact;
-  auto curve = lift_curve(*sig, period);
-  if (!curve) return curve.error();
-  out.curve = std::move(*curve);
   ho.drop_min = a;
   ho.drop_max = b;
-  auto dist = hold_distribution(out.curve, ho);
-  if (!dist) return dist.error();
-  out.distribution = std::move(*dist);
-  if (std::isfinite(start)) {
-    auto h = hold_angle(out.curve, start, ho);
-    if (!h) return h.error();
-    out.start = *h;
-    out.has_start = true;
+  const OffsetRange whole = hold_lift_range(a, b, std::numeric_limits<double>::infinity(), lower_len, upper_len);
+  // Non-periodic: widen the lift until no run-away runs off a cut end (a chain of short slips can
+  // carry a block more than d from its rest); the blocks' overlap is the last end.
+  for (double margin = 2 * out.runaway_distance;; margin *= 2) {
+    if (period > 0) {
+      o.offset_min = a;
+      o.offset_max = b;
+    } else {
+      const OffsetRange r = hold_lift_range(a, b, margin, lower_len, upper_len);
+      o.offset_min = r.min;
+      o.offset_max = r.max;
+    }
+    auto sig = signature(lower, upper, o);
+    if (!sig) return with_prefix("hold: ", sig.error());
+    out.events = sig->offset.size();
+    out.exact = sig->exact;
+    auto curve = lift_curve(*sig, period);
+    if (!curve) return curve.error();
+    out.curve = std::move(*curve);
+    auto dist = hold_distribution(out.curve, ho);
+    if (!dist) return dist.error();
+    out.distribution = std::move(*dist);
+    out.has_start = false;
+    if (std::isfinite(start)) {
+      auto h = hold_angle(out.curve, start, ho);
+      if (!h) return h.error();
+      out.start = *h;
+      out.has_start = true;
+    }
+    if (period > 0) break;
+    const bool cut_max = o.offset_max<whole.max, cut_min = o.offset_min> whole.min;
+    const double d = out.runaway_distance;
+    const bool off_max =
+        out.distribution.forward.near_end > 0 ||
+        (out.has_start && out.start.forward.ran_off_end && out.curve.offset.back() - out.start.forward.hold_offset < d);
+    const bool off_min =
+        out.distribution.backward.near_end > 0 || (out.has_start && out.start.backward.ran_off_end &&
+                                                   out.start.backward.hold_offset - out.curve.offset.front() < d);
+    // A rest less than d from a cut end: its inertial window reaches past the end.
+    auto rests_near = [&](const HoldDistribution& hd, const HoldAngle& st, bool forward) {
+      std::vector<double> rests = hd.basins.rest;
+      if (out.has_start) rests.push_back(st.rest_offset);
+      for (double r : rests)
+        if (forward ? r + d > out.curve.offset.back() : r - d < out.curve.offset.front()) return true;
+      return false;
+    };
+    const bool near_max = off_max || rests_near(out.distribution.forward, out.start.forward, true);
+    const bool near_min = off_min || rests_near(out.distribution.backward, out.start.backward, false);
+    if (!((near_max && cut_max) || (near_min && cut_min))) break;
   }
   return out;
 }

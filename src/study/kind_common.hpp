@@ -29,7 +29,8 @@ constexpr double kDeg = units::kRadPerDeg;
 // The tilt kinds' warning columns: warning_<code> (code with '-' as '_') is 1 if the run gave
 // that warning (TiltResult::warnings), else 0.
 inline void put_tilt_warnings(std::map<std::string, double>& s, const TiltResult& r) {
-  for (const char* code : {"core-overlap", "rounding", "time-step", "unsettled", "rotation", "creep"}) {
+  for (const char* code :
+       {"core-overlap", "rounding", "time-step", "unsettled", "rotation", "creep", "unrelaxed", "stiffness"}) {
     std::string key = std::string("warning_") + code;
     std::replace(key.begin(), key.end(), '-', '_');
     s[key] =
@@ -48,6 +49,8 @@ inline std::vector<OutputColumn> tilt_warning_columns() {
       {"warning_creep", "1",
        "1 if the block first slipped (a creep shorter than a tenth of the smallest feature) more than "
        "warn_creep_angle below the friction angle"},
+      {"warning_unrelaxed", "1", "1 if a quasi-static relaxation did not reach rest within relax_time"},
+      {"warning_stiffness", "1", "1 if check_stiffness: 10 k_n moved the friction angle by more than the tolerance"},
   };
 }
 

@@ -114,6 +114,12 @@ Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: determin
   s["friction_angle_minus_sphero_deg"] = (r->friction_angle - r->predicted_sphero_friction_angle) / kDeg;
   s["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
   s["resting_overlap_m"] = r->scales.resting_overlap;
+  // What the test reads from where the block rests (hold.hpp), rigid and rounded blocks.
+  s["rest_offset_m"] = r->rest_offset;
+  s["predicted_hold_angle_deg"] = r->predicted_hold_angle / kDeg;
+  s["predicted_inertial_hold_angle_deg"] = r->predicted_inertial_hold_angle / kDeg;
+  s["predicted_sphero_hold_angle_deg"] = r->predicted_sphero_hold_angle / kDeg;
+  s["friction_angle_minus_sphero_hold_deg"] = (r->friction_angle - r->predicted_sphero_hold_angle) / kDeg;
   kind_detail::put_tilt_warnings(s, *r);
   if (*series) {
     // Fig. 7: atan(F_t/F_n)/alpha against the relative displacement / L_b.
@@ -165,7 +171,8 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
                      s.at("atomic_friction_angle_deg"));
     if (s.count("predicted_sphero_friction_angle_deg")) {  // kind version >= 2
       std::string warn;
-      for (const char* code : {"core_overlap", "rounding", "time_step", "unsettled", "rotation", "creep"})
+      for (const char* code :
+           {"core_overlap", "rounding", "time_step", "unsettled", "rotation", "creep", "unrelaxed", "stiffness"})
         if (auto it = s.find(std::string("warning_") + code); it != s.end() && it->second > 0)
           warn += (warn.empty() ? "" : ", ") + std::string(code);
       auto get = [&](const char* key) { return s.count(key) ? s.at(key) : std::nan(""); };  // robust to old rows
@@ -195,7 +202,58 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   f.evidence.push_back(
       fmt::format("criterion: every block slid ({} of {}) and |phi_sim - phi_theory| <= 1 deg; largest {:.3f} deg",
                   slid, n, worst));
+  // The runs outside, each with what explains it: the rounded blocks' signature (spheroradius),
+  // the hold angle from where the block rests (a steeper contact beyond the run-away distance,
+  // e.g. the wall at the block's end), and the model warnings.
+  int hold_n = 0, hold_within = 0, hold_flagged = 0;
+  double hold_worst = 0;
+  std::vector<std::string> hold_outside;
+  for (const auto& r : rows) {
+    const auto& s = r.output.scalars;
+    auto get = [&](const char* key) { return s.count(key) ? s.at(key) : std::nan(""); };
+    std::string warn;
+    for (const char* code :
+         {"core_overlap", "rounding", "time_step", "unsettled", "rotation", "creep", "unrelaxed", "stiffness"})
+      if (auto it = s.find(std::string("warning_") + code); it != s.end() && it->second > 0)
+        warn += (warn.empty() ? "" : ", ") + std::string(code);
+    const std::string name =
+        fmt::format("K{} at {:g} deg, mu_a {:g}", as_int(r.params.at("iterations")), as_number(r.params.at("alpha")),
+                    r.params.count("atomic_friction") ? as_number(r.params.at("atomic_friction")) : 0.0);
+    const double dh = get("friction_angle_minus_sphero_hold_deg");
+    if (std::isfinite(dh)) {
+      ++hold_n;
+      hold_worst = std::max(hold_worst, std::abs(dh));
+      if (std::abs(dh) <= 0.1)
+        ++hold_within;
+      else {
+        hold_flagged += !warn.empty();
+        hold_outside.push_back(fmt::format("{}: sim - phi_qs(rounded) = {:+.3f} deg{}", name, dh,
+                                           warn.empty() ? ", no warning" : "; warnings: " + warn));
+      }
+    }
+    if (!s.count("friction_angle_minus_theory_deg") || std::abs(s.at("friction_angle_minus_theory_deg")) <= 1.0)
+      continue;
+    f.evidence.push_back(fmt::format(
+        "outside: {}: sim {:.3f}, theta_max + theta_a {:.3f}, rounded blocks' theta_max + theta_a {:.3f}, hold angle "
+        "from the rest at {:.4g} m (d = the run-away): rigid {:.3f}, rounded {:.3f} deg{}",
+        name, get("friction_angle_deg"), get("predicted_friction_angle_deg"),
+        get("predicted_sphero_friction_angle_deg"), get("rest_offset_m"), get("predicted_hold_angle_deg"),
+        get("predicted_sphero_hold_angle_deg"), warn.empty() ? "" : "; warnings: " + warn));
+  }
   rep.findings.push_back(f);
+  if (hold_n > 0) {
+    Finding h;
+    h.claim = fmt::format(
+        "Part '{}': the simulated friction angle equals the hold angle of the rounded blocks from where the block "
+        "rests (hold.hpp: the quasi-static process on the lift with the spheroradius, run-away as in the run) "
+        "within 0.1 deg, or the run is flagged by a model warning.",
+        part);
+    h.supported = slid == n && hold_flagged == static_cast<int>(hold_outside.size());
+    h.evidence.push_back(fmt::format("{} of {} runs within 0.1 deg of phi_qs (rounded blocks); largest {:.3f} deg",
+                                     hold_within, hold_n, hold_worst));
+    for (const auto& o : hold_outside) h.evidence.push_back("outside: " + o);
+    rep.findings.push_back(h);
+  }
   if (n_s > 0) {
     Finding h;
     h.claim = fmt::format(
@@ -227,7 +285,7 @@ TaskKind tilt_kind() {
   TaskKind k;
   k.name = "tilt";
   k.description = "Spheropolygon tilting-block test of a Koch pair (Sec. IV): friction angle, Fig. 7 series";
-  k.version = 3;  // 2: spheropolygon prediction, rotation and model warnings; 3: unsettled, creep
+  k.version = 4;  // 2: spheropolygon prediction, rotation and model warnings; 3: unsettled, creep; 4: hold angle
   k.run = run_tilt_task;
   k.cost = tilt_cost;
   k.uses_seed = false;  // a deterministic simulation: shared by every study with the same parameters
@@ -246,6 +304,11 @@ TaskKind tilt_kind() {
       {"time_step_s", "s", "time step used (after retries with smaller steps)"},
       {"upper_mass_kg", "kg/m", "mass of the upper block per unit depth"},
       {"predicted_sphero_friction_angle_deg", "deg", "spheropolygon prediction (signature of the rounded blocks)"},
+      {"rest_offset_m", "m", "the upper block's offset (signature convention) when the loading starts"},
+      {"predicted_hold_angle_deg", "deg", "hold angle phi_qs from that rest, rigid profiles (hold.hpp)"},
+      {"predicted_inertial_hold_angle_deg", "deg", "inertial bound phi_in from that rest, rigid profiles"},
+      {"predicted_sphero_hold_angle_deg", "deg", "phi_qs from that rest for the rounded blocks (spheroradius)"},
+      {"friction_angle_minus_sphero_hold_deg", "deg", "simulated minus the rounded blocks' phi_qs"},
       {"predicted_sphero_theta_max_deg", "deg", "theta_max of the rounded blocks' signature"},
       {"friction_angle_minus_sphero_deg", "deg", "simulated minus spheropolygon prediction"},
       {"rotation_before_slide_deg", "deg",

@@ -8,7 +8,11 @@
 #include <cstdlib>
 #include <string>
 
+#include "frictal/analysis.hpp"
 #include "frictal/generators.hpp"
+#include "frictal/hold.hpp"
+#include "frictal/io.hpp"
+#include "frictal/signature.hpp"
 #include "frictal/tilt.hpp"
 
 namespace {
@@ -103,6 +107,59 @@ TEST(DemQuasiStatic, ConstantRateRunReportsTheHoldPredictionsToo) {
   EXPECT_NEAR(r->predicted_inertial_hold_angle / kDeg, 20.0, 1e-6);
   EXPECT_TRUE(r->hold_error.empty()) << r->hold_error;
 }
+
+#ifdef FRICTAL_TEST_DATA
+TEST(DemQuasiStatic, HoldPredictionFollowsSlipsBeyondRestPlusD) {
+  // The README's measured pair (two halves of a Dektak scan, each scaled to 0.2 m, form removed):
+  // from where the block rests, the chain of short slips ends more than d = 1 cm ahead, so a lift
+  // cut at rest + d would call the slip a run-off. The prediction must equal hold_angle() on the
+  // lift over the whole overlap (an independent choice of range).
+  auto scan = frictal::read_profile(std::string(FRICTAL_TEST_DATA) + "/profiles/dektak-1.csv");
+  ASSERT_TRUE(scan.ok()) << scan.error().message;
+  const std::size_t m = scan->z.size();
+  std::vector<double> x, z;
+  for (std::size_t i = 0; i < m; i += 4) {
+    x.push_back(scan->x.back() * static_cast<double>(i) / static_cast<double>(m - 1));
+    z.push_back(scan->z[i]);
+  }
+  const std::size_t n = x.size() / 2;
+  const double scale = 0.2 / (x[n - 1] - x[0]);
+  auto form = frictal::parse_detrend("poly:2");
+  ASSERT_TRUE(form.ok());
+  frictal::Profile half[2];
+  for (int h = 0; h < 2; ++h) {
+    frictal::Profile p;
+    for (std::size_t i = 0; i < n; ++i) {
+      p.x.push_back(scale * (x[h * n + i] - x[h * n]));
+      p.z.push_back(scale * z[h * n + i]);
+    }
+    auto d = frictal::detrend(p, *form);
+    ASSERT_TRUE(d.ok()) << d.error().message;
+    half[h] = std::move(*d);
+  }
+  frictal::TiltConfig cfg;
+  cfg.period = 0;
+  cfg.series_interval = 0;
+  cfg.max_tilt = 0.5 * kDeg;  // the predictions do not depend on how far the run goes
+  auto r = frictal::run_tilt(frictal::as_curve(half[0]), frictal::as_curve(half[1]), cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  frictal::SignatureOptions so;
+  so.keep_contacts = false;
+  so.offset_min = -0.2 * (1 - 1e-6);
+  so.offset_max = 0.2 * (1 - 1e-6);
+  auto sig = frictal::signature(half[0], frictal::rotate180(half[1]), so);
+  ASSERT_TRUE(sig.ok()) << sig.error().message;
+  auto lift = frictal::lift_curve(*sig);
+  ASSERT_TRUE(lift.ok()) << lift.error().message;
+  frictal::HoldOptions ho;
+  ho.runaway_distance = cfg.runaway_distance;
+  auto h = frictal::hold_angle(*lift, r->rest_offset, ho);
+  ASSERT_TRUE(h.ok()) << h.error().message;
+  EXPECT_GT(h->forward.hold_offset - r->rest_offset, cfg.runaway_distance);  // the case in point
+  EXPECT_NEAR(r->predicted_hold_angle, h->forward.hold_angle, 1e-9);
+  EXPECT_NEAR(r->predicted_hold_offset, h->forward.hold_offset, 1e-9);
+}
+#endif
 
 TEST(DemQuasiStatic, StiffnessCheckKeepsTheAngleOfRigidFlanks) {
   // K_0's flanks are straight: ten times the stiffness leaves the hold at alpha, so the check

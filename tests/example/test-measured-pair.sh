@@ -29,4 +29,18 @@ a, b = sig["theta_max_forward_deg"], tilt["predicted_theta_max_deg"]
 print(f"signature theta_max {a:.10f} deg, tilt rigid prediction {b:.10f} deg")
 assert abs(a - b) <= 1e-9 * max(1.0, abs(a)), (a, b)
 assert 1.0 < a < 10.0, a  # slopes of a polished scan: a few degrees
+print(tilt["rest_offset_m"])
+PY
+# The tilt's hold-angle prediction from where its block rests, against `signature --start-offset`
+# at that rest (a second path through the CLI: the signature's own widened lift).
+rest=$(python3 -c 'import json; print(json.load(open("tilt.json"))["rest_offset_m"])')
+frictal signature dektak-a.csv dektak-b.csv --start-offset "$rest" --runaway-distance 0.01 --json > hold.json
+python3 - <<'PY'
+import json
+tilt = json.load(open("tilt.json"))
+hold = json.load(open("hold.json"))
+a, b = hold["hold_angle_deg"], tilt["predicted_hold_angle_deg"]
+print(f"signature hold angle {a:.10f} deg, tilt hold prediction {b:.10f} deg")
+assert abs(a - b) <= 1e-9 * max(1.0, abs(a)), (a, b)
+assert hold["inertial_hold_angle_deg"] <= a, hold  # the bracket [phi_in, phi_qs]
 PY

@@ -393,3 +393,53 @@ TEST(Hold, AVerticalWallOfTheLiftHoldsAtNinetyDegrees) {
   ASSERT_TRUE(dist.ok());
   EXPECT_NEAR(todeg(dist->forward.hold.min), 90, 1e-5);
 }
+
+TEST(Hold, AnalyseHoldEqualsTheLiftOverTheWholeOverlap) {
+  // analyse_hold computes the lift over the drop range widened by d (and wider while a run-away
+  // leaves a stop near a cut end); the same analysis on the lift over the whole overlap of the
+  // blocks must give the same answers, from starts near both ends of the drop range.
+  WmParams w = default_wm_params();
+  w.dimension = 1.5;
+  w.n_max = 6;
+  w.longest_wavelength = 0.01;
+  w.length = 0.2;
+  w.rms_height = 1e-5;
+  w.seed = 1;
+  auto f = wm_profile(w);
+  w.seed = 2;
+  auto g = wm_profile(w);
+  ASSERT_TRUE(f.ok() && g.ok());
+  const Profile up = rotate180(*g);
+  const double L = f->x.back() - f->x.front();
+  SignatureOptions whole;
+  whole.keep_contacts = false;
+  whole.offset_min = -L * (1 - 1e-6);
+  whole.offset_max = L * (1 - 1e-6);
+  auto sig = signature(*f, up, whole);
+  ASSERT_TRUE(sig.ok()) << sig.error().message;
+  auto c = lift_curve(*sig);
+  ASSERT_TRUE(c.ok());
+  for (double d : {0.002, 0.005, 0.01}) {
+    HoldOptions o;
+    o.runaway_distance = d;
+    for (double start : {0.0005, 0.05, 0.0985}) {
+      auto a = analyse_hold(*f, up, SignatureOptions{}, o, start);
+      ASSERT_TRUE(a.ok()) << a.error().message;
+      auto b = hold_angle(*c, start, o);
+      ASSERT_TRUE(b.ok());
+      EXPECT_NEAR(a->start.forward.hold_angle, b->forward.hold_angle, 1e-12) << d << " " << start;
+      EXPECT_NEAR(a->start.backward.hold_angle, b->backward.hold_angle, 1e-12) << d << " " << start;
+      EXPECT_NEAR(a->start.forward.inertial_hold_angle, b->forward.inertial_hold_angle, 1e-12) << d << " " << start;
+    }
+    auto a = analyse_hold(*f, up, SignatureOptions{}, o);
+    ASSERT_TRUE(a.ok());
+    o.drop_min = 0;
+    o.drop_max = 0.5 * L;
+    auto b = hold_distribution(*c, o);
+    ASSERT_TRUE(b.ok());
+    EXPECT_NEAR(a->distribution.forward.hold.mean, b->forward.hold.mean, 1e-12) << d;
+    EXPECT_NEAR(a->distribution.backward.hold.mean, b->backward.hold.mean, 1e-12) << d;
+    EXPECT_NEAR(a->distribution.forward.inertial.mean, b->forward.inertial.mean, 1e-12) << d;
+    EXPECT_EQ(a->distribution.forward.basins.rest.size(), b->forward.basins.rest.size());
+  }
+}
