@@ -4,12 +4,14 @@
 #                   (QUICK=1 make reproduce: the CI-sized grids, about a minute)
 #   make package    builds the Debian package (CLI, library, headers, CMake package, Python module)
 #   make fuzz       libFuzzer harnesses (9), 10^6 executions each (RUNS=N); make fuzz-smoke: 10^4 (CI)
+#   make docs       the documentation site into build/docs/html (Sphinx, notebooks executed; offline)
 JOBS ?= $(shell nproc)
 # ccache (when installed) shares objects between build trees of this checkout (e.g. the pip build)
 export CCACHE_BASEDIR := $(CURDIR)
 BUILD ?= build/release
+FRICTAL_BIN = $(shell scripts/frictal-path $(BUILD))
 
-.PHONY: all deps configure build test reproduce package bench sanitize tsan-dem fuzz fuzz-smoke format stubs clean
+.PHONY: all deps configure build test docs reproduce package bench sanitize tsan-dem fuzz fuzz-smoke format stubs clean
 
 all: build
 
@@ -29,8 +31,11 @@ package: build
 	cd $(BUILD) && cpack -G DEB -B packages
 	@ls -l $(BUILD)/packages/*.deb
 
+docs: build
+	/usr/bin/python3 scripts/docs/build.py --build $(BUILD) --out build/docs
+
 reproduce: build
-	bash scripts/reproduce $(BUILD)/apps/frictal/frictal out
+	bash scripts/reproduce $(FRICTAL_BIN) out
 
 bench: deps
 	cmake --preset bench && cmake --build build/bench -j $(JOBS)

@@ -4,7 +4,15 @@ alpha = 20 deg (mu_a = 0, Table I/II), from `frictal tilt -o`. Writes bench/resu
 (one row per 10 ms of simulated time). Usage: bench/dem_fig7.py [path/to/frictal]"""
 import csv, os, subprocess, sys, tempfile
 
-cli = sys.argv[1] if len(sys.argv) > 1 else "build/release/apps/frictal/frictal"
+
+def default_cli():
+    """The CLI of the release build, from scripts/frictal-path (the one place that names it)."""
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+    rel = subprocess.run([os.path.join(root, "scripts", "frictal-path")], capture_output=True, text=True, check=True)
+    return os.path.join(root, rel.stdout.strip())
+
+
+cli = sys.argv[1] if len(sys.argv) > 1 else default_cli()
 alpha, Lb = 20.0, 0.2
 out = "bench/results/dem-fig7.csv"
 with open(out, "w", newline="") as f:

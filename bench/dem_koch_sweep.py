@@ -9,6 +9,14 @@ n = 1, 1, 2, 3 for K0..K3, and with the signature prediction of the same pair.
 """
 import json, math, os, platform, subprocess, sys, time
 
+
+def default_cli():
+    """The CLI of the release build, from scripts/frictal-path (the one place that names it)."""
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+    rel = subprocess.run([os.path.join(root, "scripts", "frictal-path")], capture_output=True, text=True, check=True)
+    return os.path.join(root, rel.stdout.strip())
+
+
 N_OF = {0: 1, 1: 1, 2: 2, 3: 3}
 
 # (iterations, alpha_deg, mu_a, face, reverse)
@@ -46,7 +54,7 @@ def run(cli, n, alpha, mu, face, reverse, dt=1e-5):
 
 def main():
     args = [a for a in sys.argv[1:]]
-    cli = next((a for a in args if not a.startswith("--") and os.path.exists(a)), "build/release/apps/frictal/frictal")
+    cli = next((a for a in args if not a.startswith("--") and os.path.exists(a)), default_cli())
     out = "bench/results/dem-koch.md"
     if "--out" in args:
         out = args[args.index("--out") + 1]

@@ -5,7 +5,7 @@
 # process), user s, setup s, stepping s, us per step, split steps, friction angle, load average.
 # Usage: bench/dem_threads.sh [frictal binary] [repeats]
 set -eu
-BIN=${1:-build/release/apps/frictal/frictal}
+BIN=${1:-$(dirname "$0")/../$("$(dirname "$0")/../scripts/frictal-path")}
 REPEATS=${2:-3}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT

@@ -5,7 +5,7 @@
 # warnings. Writes the markdown rows of docs/dem.md sec. 6 ("Which scale is the cause") to
 # standard output. Usage: bench/dem_wm_settle.sh [path/to/frictal]  (about 1 min on 2 cores)
 set -euo pipefail
-F=${1:-build/release/apps/frictal/frictal}
+F=${1:-$(cd "$(dirname "$0")/.." && readlink -f "$(scripts/frictal-path)")}
 F=$(readlink -f "$F")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT

@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "frictal/io.hpp"
+#include "frictal/hold.hpp"
 #include "frictal/tilt.hpp"
 #include "movie.hpp"
 #include "options.hpp"
@@ -56,7 +57,13 @@ int run(TiltOptions& o) {
           "tilt: give a generator (koch, wm, sawtooth, sine, self-affine, fourier) or --lower FILE [--upper FILE]");
     lower = unwrap(read_curve(input_path(o.lower_file)));
     upper = o.upper_file.empty() ? lower : unwrap(read_curve(input_path(o.upper_file)));
-    base = tilt_config_for_surface(0, 0);  // offsets over half the block; run-away 0.01 m
+    // Offsets over half the block; the run-away distance as `signature` takes it by default: a
+    // tenth of that range (L_b/20: 0.01 m on the Table I block), so that it scales with the file.
+    auto span = [](const Curve& c) {
+      const auto [lo, hi] = std::minmax_element(c.x.begin(), c.x.end());
+      return c.x.empty() ? 0.0 : *hi - *lo;
+    };
+    base = tilt_config_for_surface(0, default_runaway_distance(0, 0.5 * std::min(span(lower), span(upper)), 0));
     surface = {{"lower", o.lower_file}, {"upper", o.upper_file.empty() ? o.lower_file : o.upper_file}};
   }
   const ValueSet given = si_values(tilt_settings(), o.settings);

@@ -16,6 +16,7 @@
 #include <zip.h>
 #include <pugixml.hpp>
 
+#include "frictal/version.hpp"
 #include "io/readers.hpp"
 #include "io/text_util.hpp"
 
@@ -674,11 +675,11 @@ Status write_x3p_grid(const std::string& path, const Map& m, bool profile, const
   xml += fmt::format(
       "  <Record2>\n    <Date>{}</Date>\n    <Creator>{}</Creator>\n    <Instrument>\n"
       "      <Manufacturer>frictal</Manufacturer>\n      <Model>frictal</Model>\n"
-      "      <Serial>not available</Serial>\n      <Version>0.1.0</Version>\n    </Instrument>\n"
+      "      <Serial>not available</Serial>\n      <Version>{}</Version>\n    </Instrument>\n"
       "    <CalibrationDate>{}</CalibrationDate>\n    <ProbingSystem>\n      <Type>Software</Type>\n"
       "      <Identification>frictal</Identification>\n    </ProbingSystem>\n"
       "    <Comment>{}</Comment>\n  </Record2>\n",
-      date, esc(o.creator), date, esc(o.comment));
+      date, esc(o.creator), frictal::version(), date, esc(o.comment));
   xml += fmt::format(
       "  <Record3>\n    <MatrixDimension>\n      <SizeX>{}</SizeX>\n      <SizeY>{}</SizeY>\n"
       "      <SizeZ>1</SizeZ>\n    </MatrixDimension>\n",

@@ -301,8 +301,12 @@ Result<std::unique_ptr<Store>> Store::open(const std::string& path, const Study&
 
 Result<std::unique_ptr<Store>> Store::open_existing(const std::string& path) {
   if (auto st = check_input_file(path, "a study store (SQLite file)"); !st) {
-    // A directory, FIFO or device is named as such; a missing file keeps its usual message.
-    if (st.error().message.find("no such file") == std::string::npos) return st.error();
+    // Decided on the code, never on the text: a directory, FIFO or device (InvalidInput) keeps
+    // its message, as does an I/O error other than a missing file (permissions); nothing there
+    // at all is "no such store file".
+    if (st.error().code != ErrorCode::Io) return st.error();
+    struct stat sb {};
+    if (::stat(path.c_str(), &sb) == 0 || errno != ENOENT) return st.error();
     return make_error(ErrorCode::Io, fmt::format("{}: no such store file", path));
   }
   auto im = open_db(path, false);

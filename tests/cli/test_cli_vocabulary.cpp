@@ -131,10 +131,13 @@ TEST(CliVocabulary, NoQuantityHasTwoNames) {
     for (const auto& f : g["fields"]) fields.push_back(f);
   for (const auto& f : fields) {
     const std::string option = f["option"];
-    for (const auto& [desc, names] : names_by_desc)
-      if (desc.rfind(f["help"].get<std::string>() + " ", 0) == 0 || desc == f["help"].get<std::string>())
-        for (const std::string& n : names)
+    for (const auto& [desc, names] : names_by_desc) {
+      if (desc.rfind(f["help"].get<std::string>() + " ", 0) == 0 || desc == f["help"].get<std::string>()) {
+        for (const std::string& n : names) {
           EXPECT_TRUE(n == option || n == "--no-" + option.substr(2)) << f["name"] << " is also offered as " << n;
+        }
+      }
+    }
   }
   // Options named like a table field read the same in every command.
   for (const auto& f : t["tilt"]) EXPECT_LE(descs_by_name[f["option"].get<std::string>()].size(), 1u) << f["option"];

@@ -359,8 +359,9 @@ TEST(SignatureIndexSearch, MatchesPlainScanAndGeneralSearchOnWmAndSelfAffine) {
     for (double z : p.lower.z) zr = std::max(zr, std::abs(z));
     for (std::size_t i = 0; i < r1->offset.size(); ++i) {
       const double s = r1->offset[i];
-      if (i % 5 == 0)  // the plain scan costs O(N) per offset
+      if (i % 5 == 0) {  // the plain scan costs O(N) per offset
         EXPECT_NEAR(r1->lift[i], lift_direct(p.lower, p.upper, s), 1e-12 * zr) << "kind " << kind << " s " << s;
+      }
       const auto g = general->at(s);
       EXPECT_EQ(r1->lift[i], g.lift) << "kind " << kind << " s " << s;
       EXPECT_NEAR(r1->theta_left[i], g.left, 1e-12) << "kind " << kind << " s " << s;
@@ -612,8 +613,9 @@ TEST(SignatureGeneralSearch, BatchFrontierMatchesOffsetByOffsetSearch) {
         ASSERT_EQ(r->lift[i], g.lift) << "kind " << kind << " grid " << grid << " s " << s;
         EXPECT_NEAR(r->theta_left[i], g.left, 1e-12) << "kind " << kind << " grid " << grid << " s " << s;
         EXPECT_NEAR(r->theta_right[i], g.right, 1e-12) << "kind " << kind << " grid " << grid << " s " << s;
-        if (i % 25 == 0)
+        if (i % 25 == 0) {
           EXPECT_NEAR(r->lift[i], lift_direct(p.lower, p.upper, s), 1e-12 * zr) << "kind " << kind << " s " << s;
+        }
       }
     }
   }
