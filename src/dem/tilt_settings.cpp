@@ -94,10 +94,11 @@ const std::vector<B>& table() {
           bind<TiltConfig>(
               F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no slide) beyond this tilt", true),
               FRICTAL_MEMBER(max_tilt)),
-          bind<TiltConfig>(F("runaway_distance", "m", 0, Lo::Open, kInf,
-                             "Sliding for good: growth of the displacement since the last stick", false,
-                             "the surface's wavelength (generated); files: a tenth of half the block, L_b/20, as signature"),
-                           FRICTAL_MEMBER(runaway_distance)),
+          bind<TiltConfig>(
+              F("runaway_distance", "m", 0, Lo::Open, kInf,
+                "Sliding for good: growth of the displacement since the last stick", false,
+                "the surface's wavelength (generated); files: a tenth of half the block, L_b/20, as signature"),
+              FRICTAL_MEMBER(runaway_distance)),
           bind<TiltConfig>(
               F("stick_speed", "m/s", 0, Lo::Open, kInf, "Relative speed counted as stuck (constant-rate protocol)"),
               FRICTAL_MEMBER(stick_speed)),
