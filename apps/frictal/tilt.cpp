@@ -10,8 +10,8 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
-#include "frictal/io.hpp"
 #include "frictal/hold.hpp"
+#include "frictal/io.hpp"
 #include "frictal/tilt.hpp"
 #include "movie.hpp"
 #include "options.hpp"
