@@ -1,9 +1,12 @@
 // frictal anisotropy MAP — polar table of the predicted friction angle over sliding directions,
 // from the parallel line profiles of an areal map (each against itself turned over); with
-// --areal, the true areal signature of the map against itself turned over instead.
+// --areal, the true areal signature of the map against itself turned over instead; with --hold,
+// beside either, the hold angle over drops of a block that may move sideways (free) and of one
+// that may not (locked), on the lift over two dimensions of offset (areal.hpp).
 #include "common.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
+#include "frictal/tilt.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
 
@@ -20,6 +23,9 @@ struct Args {
   std::string upper;
   std::string contact_slope = "lower";
   bool json = false;
+  bool hold = false;
+  double runaway_distance = 0;
+  FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   unsigned threads = 0;
   InputOptions input;
 };
@@ -36,8 +42,14 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--contact-slope", a->contact_slope, "With --areal: lower (Eq. 3, default) or mean (of both faces)");
   app.add_option("--upper", a->upper, "With --areal: the upper block's map (default: the same map turned over)");
   app.add_flag("--json", a->json, "Print one JSON object");
+  app.add_flag("--hold", a->hold,
+               "Also the hold angle over drops per direction, free to move sideways and locked (2D lift; slower)");
+  // --runaway-distance: the tilt table's field (one description everywhere), here the hold angle's run-away.
+  add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
   add_input_options(app, a->input);
   return [a]() {
+    if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
+      a->runaway_distance = as_real(rv.at("runaway_distance"));
     require(a->directions >= 1 && a->directions <= 3600, "--directions must be in 1..3600");
     require(a->max_lines >= 1 && a->max_lines <= 100000, "--lines must be in 1..100000");
     require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,
@@ -47,6 +59,9 @@ std::function<int()> setup(CLI::App& app) {
     const Detrend dt = unwrap(parse_detrend(a->detrend));
     const Map m = unwrap(detrend(s.map, dt));
     if (!a->upper.empty() && !a->areal) throw UsageError("--upper needs --areal");
+    require(std::isfinite(a->runaway_distance) && a->runaway_distance >= 0,
+            fmt::format("--runaway-distance {}: expected a finite number of metres > 0", a->runaway_distance));
+    if (a->runaway_distance > 0 && !a->hold) throw UsageError("--runaway-distance needs --hold");
     Map u = m;
     if (!a->upper.empty()) {
       const SurfaceData us = load_surface(a->upper, a->input);
@@ -55,8 +70,9 @@ std::function<int()> setup(CLI::App& app) {
     }
     nlohmann::json rows = nlohmann::json::array();
     if (!a->json)
-      fmt::print("{}: {} x {} map, {} directions ({})\n  dir_deg  theta+_deg  theta-_deg  sigma_deg  phi_deg    mu\n",
-                 a->file, m.nx, m.ny, a->directions, a->areal ? "areal signature" : "line profiles");
+      fmt::print("{}: {} x {} map, {} directions ({})\n  dir_deg  theta+_deg  theta-_deg  sigma_deg  phi_deg    mu{}\n",
+                 a->file, m.nx, m.ny, a->directions, a->areal ? "areal signature" : "line profiles",
+                 a->hold ? "       hold_free_mean_deg  hold_locked_mean_deg" : "");
     for (int k = 0; k < a->directions; ++k) {
       const double angle = 2 * std::numbers::pi * k / a->directions;
       double fwd, bwd, sigma;
@@ -84,6 +100,21 @@ std::function<int()> setup(CLI::App& app) {
         lines = r.lines;
       }
       const FrictionPrediction p = unwrap(predict_friction(a->atomic_friction, fwd, sigma));
+      // The hold angles over drops on the 2D lift of the same pair (free, then locked).
+      HoldStatistics hold_free, hold_locked;
+      if (a->hold) {
+        ArealLiftOptions lo;
+        lo.threads = a->threads;
+        const ArealLift lift = unwrap(areal_lift(m, u, angle, lo));
+        ArealHoldOptions ho;
+        ho.runaway_distance =
+            a->runaway_distance > 0 ? a->runaway_distance : 0.1 * (lift.along(lift.n_along - 1) - lift.along(0));
+        ho.atomic_friction = a->atomic_friction;
+        ho.threads = a->threads;
+        hold_free = unwrap(areal_hold_distribution(lift, ho)).hold;
+        ho.lateral = LateralMotion::Locked;
+        hold_locked = unwrap(areal_hold_distribution(lift, ho)).hold;
+      }
       if (a->json) {
         nlohmann::json row;
         row["direction_deg"] = to_deg(angle);
@@ -94,10 +125,20 @@ std::function<int()> setup(CLI::App& app) {
         row["friction_coefficient"] = p.friction_coefficient;
         row["friction_coefficient_low"] = p.friction_coefficient_low;
         if (!a->areal) row["lines"] = lines;
+        if (a->hold) {
+          row["hold_angle_free_mean_deg"] = to_deg(hold_free.mean);
+          row["hold_angle_free_q50_deg"] = to_deg(hold_free.q50);
+          row["hold_angle_free_max_deg"] = to_deg(hold_free.max);
+          row["hold_angle_locked_mean_deg"] = to_deg(hold_locked.mean);
+          row["hold_angle_locked_q50_deg"] = to_deg(hold_locked.q50);
+          row["hold_angle_locked_max_deg"] = to_deg(hold_locked.max);
+        }
         rows.push_back(row);
       } else {
-        fmt::print("  {:7.1f}  {:10.4f}  {:10.4f}  {:9.4f}  {:7.4f}  {:.5f}\n", to_deg(angle), to_deg(fwd), to_deg(bwd),
+        fmt::print("  {:7.1f}  {:10.4f}  {:10.4f}  {:9.4f}  {:7.4f}  {:.5f}", to_deg(angle), to_deg(fwd), to_deg(bwd),
                    to_deg(sigma), to_deg(p.friction_angle), p.friction_coefficient);
+        if (a->hold) fmt::print("  {:19.4f}  {:20.4f}", to_deg(hold_free.mean), to_deg(hold_locked.mean));
+        fmt::print("\n");
       }
     }
     if (a->json) {

@@ -36,7 +36,8 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("surface", a->lower, "Surface file: a line profile or an areal map (any readable format)")->required();
   app.add_option("upper", a->upper,
                  "Upper surface, as measured (material below); it is turned over to face SURFACE. "
-                 "Default: SURFACE itself. Profiles only");
+                 "Default: SURFACE itself. For a map, a map: the page adds the lift over two dimensions of offset "
+                 "and the hold angles of a block free to move sideways");
   app.add_option("-o,--output", a->out, "HTML file to write ('-' = standard output)")->required();
   add_atomic_friction_option(app, a->mu_a);
   app.add_option("--detrend", a->detrend,
@@ -70,14 +71,20 @@ std::function<int()> setup(CLI::App& app) {
     const Detrend dt = unwrap(parse_detrend(dt_text));
     for (const auto& w : s.warnings) in.notes.push_back("Reader warning: " + w);
     if (s.is_map) {
-      if (!a->upper.empty())
-        throw UsageError(
-            fmt::format("{}: an areal map; a second surface (UPPER) is supported for profiles only", a->lower));
       in.map = unwrap(detrend(s.map, dt));
+      if (!a->upper.empty()) {  // two maps: the areal section (lift over two dimensions of offset)
+        const SurfaceData u = load_surface(a->upper, a->input);
+        for (const auto& w : u.warnings) in.notes.push_back("Reader warning: " + w);
+        if (!u.is_map)
+          throw UsageError(
+              fmt::format("{}: a line profile; with an areal map as SURFACE, UPPER must be a map too", a->upper));
+        in.upper_map = unwrap(detrend(u.map, dt));
+        in.upper_name = a->upper;
+      }
     } else {
       in.lower = unwrap(detrend(surface_profile(s, a->lower), dt));
     }
-    if (!a->upper.empty()) {
+    if (!a->upper.empty() && !s.is_map) {
       const SurfaceData u = load_surface(a->upper, a->input);
       for (const auto& w : u.warnings) in.notes.push_back("Reader warning: " + w);
       in.upper = unwrap(detrend(surface_profile(u, a->upper), dt));

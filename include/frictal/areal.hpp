@@ -3,9 +3,12 @@
 // of two rigid 3D blocks. Angles in radians, lengths in metres. Definitions: docs/analysis.md.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
+#include "frictal/hold.hpp"
 #include "frictal/map.hpp"
 #include "frictal/signature.hpp"
 
@@ -84,5 +87,119 @@ struct ArealSignature {
 };
 Result<ArealSignature> areal_signature(const Map& lower, const Map& upper, double angle,
                                        const ArealSignatureOptions& o = {});
+
+/// The lift over two dimensions of offset: the upper block moved by s = u d + v e in the plane,
+/// d = (cos angle, sin angle) the sliding direction and e = (-sin angle, cos angle) across it,
+///   h(u, v) = max over nodes p of `lower` [ f(p) + g(c_g + R (p - s - c_f)) ]
+/// with the same faces, turn-over, interpolation and tie rules as areal_signature, which is this
+/// lift on the line v = 0 (bit for bit: the same evaluation, the same products u d).
+/// Offsets form a grid: u_i = offset_min + i step (i = 0 .. n_along - 1) and v_j = across_min +
+/// j across_step with across_min = -m across_step (j = 0 .. 2m: v = 0 is row m).
+struct ArealLiftOptions {
+  double step = 0;        ///< offset step along d (0: min(dx, dy) of lower) (unit: m)
+  double offset_min = 0;  ///< first offset along d (unit: m)
+  /// Last offset along d (<= offset_min: offset_min + half the lower map's extent along d) (unit: m).
+  double offset_max = 0;
+  double across_step = 0;  ///< offset step across d (0: step) (unit: m)
+  /// Offsets across d cover [-across_max, across_max] (0: a quarter of the lower map's extent
+  /// across d) (unit: m).
+  double across_max = 0;
+  bool turn_over_upper = true;  ///< false: `upper` is already in place (see areal_signature)
+  std::size_t block = 16;       ///< block edge for the max bounds (nodes, >= 2)
+  bool prune = true;            ///< false: evaluate every node at every offset (the direct method)
+  unsigned threads = 1;         ///< worker threads over offsets (0 = hardware); results do not depend on it
+};
+struct ArealLift {
+  double angle = 0;          ///< sliding direction d (unit: rad)
+  std::size_t n_along = 0;   ///< offsets along d (unitless)
+  std::size_t n_across = 0;  ///< offsets across d, odd (unitless)
+  double along_min = 0;      ///< u_0 (unit: m)
+  double step = 0;           ///< u_{i+1} - u_i (unit: m)
+  double across_min = 0;     ///< v_0 = -(n_across - 1) / 2 across_step (unit: m)
+  double across_step = 0;    ///< v_{j+1} - v_j (unit: m)
+  /// h(u_i, v_j) at index j * n_along + i, up to a constant; NaN where the blocks do not touch (unit: m).
+  std::vector<double> lift;
+  std::vector<std::int64_t> contact;  ///< lower-map node (row-major) of the contact, -1 where none
+  std::size_t evaluated_nodes = 0;    ///< nodes evaluated exactly, summed over offsets (work measure)
+
+  double along(std::size_t i) const { return along_min + double(i) * step; }           ///< u_i (unit: m)
+  double across(std::size_t j) const { return across_min + double(j) * across_step; }  ///< v_j (unit: m)
+  /// The offset of node k = j * n_along + i in the lower map's frame, u d + v e (unit: m).
+  std::array<double, 2> offset_xy(std::size_t k) const;
+};
+/// Errors: maps that are not valid or smaller than 2 x 2, a direction that is not finite, steps
+/// or ranges that are negative or not finite, more than 5e7 offsets, and blocks that never touch
+/// over the offsets (maps that do not overlap along d).
+Result<ArealLift> areal_lift(const Map& lower, const Map& upper, double angle, const ArealLiftOptions& o = {});
+
+/// The hold angle of a block that may move sideways (docs/analysis.md, "Areal hold angle").
+/// Tilted by beta about e, a rigid block that does not rotate moves in the plane of offsets under
+/// the potential h(s) cos(beta) - u(s) sin(beta). On the lift's grid the block moves between
+/// 8-neighbouring offsets (Free) or between the neighbours along d only (Locked: the 1D rule on
+/// the line through its rest offset). A move from node s to a neighbour n, along the chord
+/// w = (n - s, h(n) - h(s)), is possible at tilt beta when the load F = (sin beta d, -cos beta)
+/// drives it through the Coulomb cone of the contact: F.w / |w| > sin(atan(mu_a)) (mu_a = 0:
+/// the tilted potential drops strictly). The quasi-static process:
+/// - rest: from the drop, steepest descent on h at zero tilt (frictionless: the basins of h);
+/// - a stop holds up to the smallest tilt at which some neighbour can be reached (exact, from the
+///   neighbours' chords; mu_a = 0 and a neighbour ahead: tan(beta) = (h(n) - h(s)) / (n - s).d);
+/// - just above it the block moves, always to the neighbour with the largest F.w / |w|, until no
+///   neighbour can be reached (the next stop);
+/// - the run-away is the first move whose displacement along d since the last stop reaches D,
+///   or that reaches the last column of the grid along d (it runs off the known lift, as the 1D
+///   rule's run off the end); the hold angle is the tilt at which that slip began. A drop that
+///   rests on the last column runs off at atan(mu_a), as onto a flat continuation.
+/// The grid's other edges and offsets where the blocks do not touch are walls.
+enum class LateralMotion { Free, Locked };
+struct ArealHoldOptions {
+  double runaway_distance = 0;  ///< D > 0, along d (unit: m)
+  double atomic_friction = 0;   ///< mu_a >= 0: the half-angle atan(mu_a) of the contact's Coulomb cone (unitless)
+  LateralMotion lateral = LateralMotion::Free;
+  /// Drops for the distribution: every grid node with u in [drop_min, drop_max] (drop_max <=
+  /// drop_min: from the first column to D before the last) and |v| <= v_max - D (every row when
+  /// v_max < D), so that a block steering up to 45 deg off d meets no lateral edge (unit: m).
+  double drop_min = 0;
+  double drop_max = 0;
+  unsigned threads = 1;  ///< worker threads over basins (0 = hardware); results do not depend on it
+};
+struct ArealHold {
+  std::size_t start = 0;      ///< the drop node (j * n_along + i)
+  std::size_t rest = 0;       ///< where the block rests at zero tilt (node)
+  std::size_t hold_node = 0;  ///< the stop that held before the run-away (node)
+  double hold_angle = 0;      ///< the tilt at which the run-away slip began (unit: rad)
+  int slips = 0;              ///< short slips (< D along d) between the rest and the run-away (unitless)
+  bool ran_off_end = false;   ///< the run-away reached the last column of the grid along d
+  bool interlocked = false;   ///< no neighbour can be reached below 90 deg: hold_angle = pi/2
+  /// Angle from d to the run-away slip's displacement, towards e (unit: rad).
+  double steering = 0;
+  /// Nodes visited from the drop to the end of the run-away (or to the last column).
+  std::vector<std::size_t> path;
+};
+/// The test from one drop node. Errors: D <= 0 or not finite, mu_a < 0 or not finite, a start
+/// node outside the grid or where the blocks do not touch.
+Result<ArealHold> areal_hold_angle(const ArealLift& lift, std::size_t start, const ArealHoldOptions& o);
+/// The same block with its lateral motion locked, by the one-dimensional rule of hold.hpp
+/// (hold_angle(), forward) on the LiftCurve through the lift's nodes on the line along d through
+/// `rest` (the run of nodes where the blocks touch that holds it). Equals areal_hold_angle with
+/// LateralMotion::Locked from `rest` (two computations, compared in the tests). Errors as
+/// areal_hold_angle.
+Result<HoldAngle> areal_locked_hold_angle(const ArealLift& lift, std::size_t rest, const ArealHoldOptions& o);
+/// The grid node nearest to the offset (x, y) in the lower map's frame (unit: m). Errors: an offset
+/// that is not finite or lies more than half a step outside the grid (the message gives the
+/// grid's range in u and v).
+Result<std::size_t> areal_lift_node(const ArealLift& lift, double x, double y);
+
+struct ArealHoldDistribution {
+  HoldStatistics hold;                ///< over drops, each drop node weighted equally (unit: rad)
+  std::size_t drops = 0;              ///< drop nodes used (unitless)
+  std::vector<std::size_t> rest;      ///< the distinct rest nodes, increasing
+  std::vector<std::size_t> weight;    ///< drops that rest there (unitless)
+  std::vector<double> angle;          ///< their hold angles (unit: rad)
+  double drop_min = 0, drop_max = 0;  ///< the drop range used along d (unit: m)
+  double across_max = 0;              ///< drops across d: |v| <= this (unit: m)
+};
+/// The distribution over drops spread uniformly over the grid (see drop_min/drop_max). Errors as
+/// areal_hold_angle, and a drop range with no node.
+Result<ArealHoldDistribution> areal_hold_distribution(const ArealLift& lift, const ArealHoldOptions& o);
 
 }  // namespace frictal

@@ -92,6 +92,20 @@ struct MapImage {
   std::optional<double> line_y;
   double line_x0 = 0, line_x1 = 0;
   std::string line_label;
+  /// Axis names (units are added) and the colour bar's name.
+  std::string x_label = "x", y_label = "y", z_label = "height z";
+  /// Ticks at the map's coordinates (x0 + i dx) instead of from its first node.
+  bool absolute_axes = false;
+  /// Optional: a polyline in map coordinates (unit: m), e.g. a block's path, drawn over the map.
+  std::vector<double> path_x, path_y;
+  std::string path_label;
+  /// Optional: labelled points in map coordinates (unit: m).
+  struct Mark {
+    double x = 0, y = 0;
+    std::string label;
+    std::string color = "#d62728";
+  };
+  std::vector<Mark> marks;
 };
 /// An SVG figure of a height map: the map as an embedded PNG (viridis colour map, invalid points
 /// grey), lateral axes with ticks, a colour bar labelled in a length unit and a scale bar.
@@ -134,6 +148,10 @@ struct ReportInput {
   /// The upper block's surface as measured (material below): it is turned over (rotate180) to
   /// face the lower one. Unset: the lower surface itself turned over. Profiles only.
   std::optional<Profile> upper;
+  /// For a map: the upper block's map as measured (turned over onto `map` about the axis across
+  /// x). Set: the page adds the lift over two dimensions of offset with the path of a block that
+  /// may move sideways and the hold angles over drops (frictal/areal.hpp).
+  std::optional<Map> upper_map;
   std::string upper_name;
   std::string detrend;         ///< detrending already applied, as the user wrote it ("none", "line", ...)
   double atomic_friction = 0;  ///< mu_a of Eq. 6 (unitless)

@@ -36,6 +36,7 @@ from ._core import (  # noqa: F401
 
 from ._core import (  # noqa: F401  measured surfaces (io_bindings.cpp)
     anisotropy,
+    areal_hold,
     areal_signature,
     autocorrelation,
     box_dimension,

@@ -6,8 +6,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "bindings.hpp"
 #include "frictal/analysis.hpp"
@@ -287,4 +289,122 @@ void frictal_bind_io(py::module_& m) {
       "Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `angle` (rad; runs without the "
       "GIL); upper as measured (turned over) by default. Returns offset, lift (m), theta (rad), theta_max_forward/"
       "backward (rad), contact_slope_std (rad), evaluated_nodes");
+  m.def(
+      "areal_hold",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, double angle,
+         py::object upper, bool turn_over_upper, double runaway_distance, double atomic_friction,
+         const std::string& lateral, py::object start_offset, double step, double offset_min, double offset_max,
+         double across_step, double across_max, unsigned threads) {
+        Map f = to_map(lower, dx, dy, 0, 0);
+        Map g = upper.is_none() ? f
+                                : to_map(upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(),
+                                         dx, dy, 0, 0);
+        if (lateral != "free" && lateral != "locked")
+          throw py::value_error("lateral '" + lateral + "': expected 'free' or 'locked'");
+        ArealLiftOptions lo;
+        lo.turn_over_upper = turn_over_upper;
+        lo.step = step;
+        lo.offset_min = offset_min;
+        lo.offset_max = offset_max;
+        lo.across_step = across_step;
+        lo.across_max = across_max;
+        lo.threads = threads;
+        ArealHoldOptions ho;
+        ho.runaway_distance = runaway_distance;
+        ho.atomic_friction = atomic_friction;
+        ho.threads = threads;
+        std::optional<std::array<double, 2>> xy;
+        if (!start_offset.is_none()) xy = start_offset.cast<std::array<double, 2>>();
+        struct Out {
+          ArealLift lift;
+          ArealHold free, locked;
+          std::optional<ArealHoldDistribution> dist;
+        };
+        Out r = ok(nogil([&]() -> Result<Out> {
+          Out o;
+          auto lift = areal_lift(f, g, angle, lo);
+          if (!lift) return lift.error();
+          o.lift = std::move(*lift);
+          std::size_t start = (o.lift.n_across / 2) * o.lift.n_along;
+          if (xy) {
+            auto node = areal_lift_node(o.lift, (*xy)[0], (*xy)[1]);
+            if (!node) return node.error();
+            start = *node;
+          } else if (auto node = areal_lift_node(o.lift, 0.0, 0.0); node) {
+            start = *node;
+          }
+          auto fr = areal_hold_angle(o.lift, start, ho);
+          if (!fr) return fr.error();
+          o.free = std::move(*fr);
+          ho.lateral = LateralMotion::Locked;
+          auto lk = areal_hold_angle(o.lift, o.free.rest, ho);
+          if (!lk) return lk.error();
+          o.locked = std::move(*lk);
+          auto line = areal_locked_hold_angle(o.lift, o.free.rest, ho);
+          if (!line) return line.error();
+          o.locked.hold_angle = line->hold_angle;
+          ho.lateral = lateral == "locked" ? LateralMotion::Locked : LateralMotion::Free;
+          if (!xy) {
+            auto d = areal_hold_distribution(o.lift, ho);
+            if (!d) return d.error();
+            o.dist = std::move(*d);
+          }
+          return o;
+        }));
+        const ArealHold& chosen = lateral == "locked" ? r.locked : r.free;
+        py::dict d;
+        py::array_t<double> h({r.lift.n_across, r.lift.n_along});
+        std::copy(r.lift.lift.begin(), r.lift.lift.end(), h.mutable_data());
+        d["lift"] = h;
+        std::vector<double> along, across;
+        for (std::size_t i = 0; i < r.lift.n_along; ++i) along.push_back(r.lift.along(i));
+        for (std::size_t j = 0; j < r.lift.n_across; ++j) across.push_back(r.lift.across(j));
+        d["along"] = arr(along);
+        d["across"] = arr(across);
+        auto xy_of = [&](std::size_t k) {
+          const auto p = r.lift.offset_xy(k);
+          return py::make_tuple(p[0], p[1]);
+        };
+        d["start_offset"] = xy_of(r.free.start);
+        d["rest_offset"] = xy_of(r.free.rest);
+        d["hold_offset"] = xy_of(chosen.hold_node);
+        d["hold_angle"] = chosen.hold_angle;
+        d["hold_angle_free"] = r.free.hold_angle;
+        d["hold_angle_locked"] = r.locked.hold_angle;
+        d["steering"] = chosen.steering;
+        d["ran_off_end"] = chosen.ran_off_end;
+        std::vector<double> px, py_;
+        for (std::size_t k : chosen.path) {
+          const auto p = r.lift.offset_xy(k);
+          px.push_back(p[0]);
+          py_.push_back(p[1]);
+        }
+        d["path_x"] = arr(px);
+        d["path_y"] = arr(py_);
+        if (r.dist) {
+          d["drops"] = r.dist->drops;
+          d["hold_angle_mean"] = r.dist->hold.mean;
+          d["hold_angle_std"] = r.dist->hold.std;
+          d["hold_angle_q05"] = r.dist->hold.q05;
+          d["hold_angle_q50"] = r.dist->hold.q50;
+          d["hold_angle_q95"] = r.dist->hold.q95;
+          d["hold_angle_min"] = r.dist->hold.min;
+          d["hold_angle_max"] = r.dist->hold.max;
+          std::vector<double> w(r.dist->weight.begin(), r.dist->weight.end());
+          d["basin_weight"] = arr(w);
+          d["basin_hold_angle"] = arr(r.dist->angle);
+        }
+        return d;
+      },
+      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,
+      py::arg("upper") = py::none(), py::arg("turn_over_upper") = true, py::arg("runaway_distance"),
+      py::arg("atomic_friction") = 0.0, py::arg("lateral") = "free", py::arg("start_offset") = py::none(),
+      py::arg("step") = 0.0, py::arg("offset_min") = 0.0, py::arg("offset_max") = 0.0, py::arg("across_step") = 0.0,
+      py::arg("across_max") = 0.0, py::arg("threads") = 1,
+      "Hold angle of an areal block that may move sideways (lateral='free') or not ('locked') on the lift over two "
+      "dimensions of offset (runs without the GIL; as `frictal areal --lateral`). Heights, dx, dy, offsets and "
+      "runaway_distance in m, angle in rad, atomic_friction mu_a unitless; start_offset (x, y) in m or None for the "
+      "distribution over drops. Returns lift (n_across, n_along) in m, along/across offsets (m), start/rest/hold "
+      "offsets (x, y) in m, hold_angle (the chosen mode), hold_angle_free, hold_angle_locked, steering (rad), the path "
+      "(path_x, path_y in m) and, without a start, drops and hold_angle_mean/std/q05/q50/q95/min/max (rad)");
 }

@@ -108,7 +108,7 @@ Result<std::string> surface_report(const ReportInput& in) {
     return make_error(fmt::format("report: atomic friction must be a finite number >= 0, got {}", in.atomic_friction));
   if (in.resolution_steps == 1 || in.resolution_steps < 0 || in.resolution_steps > 100)
     return make_error(fmt::format("report: resolution steps must be 0 or 2..100, got {}", in.resolution_steps));
-  if (in.is_map && in.upper) return make_error("report: an upper surface is supported for profiles only");
+  if (in.is_map && in.upper) return make_error("report: an upper profile for a map: give the upper map as upper_map");
   if (in.is_map && (in.directions < 1 || in.directions > 720))
     return make_error(fmt::format("report: directions must be in 1..720, got {}", in.directions));
   if (in.bins < 2 || in.bins > 10000)
@@ -472,6 +472,114 @@ Result<std::string> surface_report(const ReportInput& in) {
     t += "</table>\n";
     html += t;
     sections.push_back({"hold", "What a tilt test reads: the hold angle", html});
+  }
+  // --- areal blocks that may move sideways (two maps) ----------------------------------------------
+  if (in.is_map && in.upper_map) {
+    std::string html;
+    auto section = [&]() -> Status {
+      if (auto v = validate(*in.upper_map, in.upper_name); !v) return v.error();
+      ArealLiftOptions lo;
+      lo.threads = in.threads;
+      auto lift = areal_lift(in.map, *in.upper_map, 0.0, lo);
+      if (!lift) return lift.error();
+      const ArealLift& L = *lift;
+      ArealHoldOptions ho;
+      ho.runaway_distance = in.runaway_distance > 0 ? in.runaway_distance : 0.1 * (L.along(L.n_along - 1) - L.along(0));
+      ho.atomic_friction = in.atomic_friction;
+      ho.threads = in.threads;
+      auto start = areal_lift_node(L, 0.0, 0.0);
+      if (!start) return start.error();
+      auto free = areal_hold_angle(L, *start, ho);
+      if (!free) return free.error();
+      auto locked = areal_locked_hold_angle(L, free->rest, ho);
+      if (!locked) return locked.error();
+      auto dfree = areal_hold_distribution(L, ho);
+      if (!dfree) return dfree.error();
+      ho.lateral = LateralMotion::Locked;
+      auto dlocked = areal_hold_distribution(L, ho);
+      if (!dlocked) return dlocked.error();
+      // The lift as a map over (u, v) (sliding along x: u = x, v = y).
+      Map lm;
+      lm.nx = L.n_along;
+      lm.ny = L.n_across;
+      lm.dx = L.step;
+      lm.dy = L.across_step;
+      lm.x0 = L.along(0);
+      lm.y0 = L.across(0);
+      lm.heights = L.lift;
+      MapImage mi;
+      mi.title = "The lift h over two dimensions of offset";
+      mi.x_label = "offset along the sliding direction, s_x";
+      mi.y_label = "offset across it, s_y";
+      mi.z_label = "lift h";
+      mi.absolute_axes = true;
+      for (std::size_t k : free->path) {
+        const auto p = L.offset_xy(k);
+        mi.path_x.push_back(p[0]);
+        mi.path_y.push_back(p[1]);
+      }
+      mi.path_label = free->ran_off_end ? "runs off the grid" : "run-away";
+      const auto s0 = L.offset_xy(free->start), r0 = L.offset_xy(free->rest), h0 = L.offset_xy(free->hold_node);
+      mi.marks.push_back({s0[0], s0[1], "drop", "#ffffff"});
+      mi.marks.push_back({r0[0], r0[1], "rest", "#d62728"});
+      if (free->hold_node != free->rest) mi.marks.push_back({h0[0], h0[1], "held", "#ff7f0e"});
+      auto msvg = map_svg(lm, mi);
+      if (!msvg) return msvg.error();
+      // The two distributions over drops: weighted histograms of the basins' angles.
+      double amax = std::max(dfree->hold.max, dlocked->hold.max);
+      const int bins = 40;
+      const double top = deg(amax) > 0 ? deg(amax) * 1.0001 : 1.0;
+      auto hist = [&](const ArealHoldDistribution& d, const std::string& label, const std::string& color) {
+        Series sr;
+        sr.style = SeriesStyle::Step;
+        sr.label = label;
+        sr.color = color;
+        for (int b = 0; b <= bins; ++b) sr.x.push_back(top * b / bins);
+        sr.y.assign(bins, 0.0);
+        for (std::size_t k = 0; k < d.angle.size(); ++k) {
+          const int b = std::min(bins - 1, int(deg(d.angle[k]) / top * bins));
+          sr.y[std::size_t(b)] += 100.0 * double(d.weight[k]) / double(d.drops);
+        }
+        return sr;
+      };
+      Plot hp;
+      hp.title = "Hold angle over drops";
+      hp.x_label = "hold angle (deg)";
+      hp.y_label = "drops (%)";
+      hp.series = {hist(*dfree, "free to move sideways", "#d62728"), hist(*dlocked, "locked (1D rule)", "#1f77b4")};
+      auto hsvg = plot_svg(hp);
+      if (!hsvg) return hsvg.error();
+      const LengthUnit su = length_unit(std::max(std::abs(L.along(L.n_along - 1)), std::abs(L.across(0))));
+      html +=
+          "<p>The upper map turned over onto the lower one and moved by an offset s in the plane; the lift h(s) is "
+          "the height of its reference point at contact. Tilted about the axis across the sliding direction (+x), a "
+          "rigid block that does not rotate moves on h under the tilt and steers around asperities if it may move "
+          "sideways. Definitions and how μ_a enters: docs/analysis.md (\"Areal blocks that may move sideways\").</p>\n";
+      html +=
+          figure(*msvg, fmt::format("{} × {} offsets; red: the path of a block dropped at s = 0 (white), from its "
+                                    "rest offset up to the end of its run-away slip (free to move sideways, run-away "
+                                    "distance {:.4g} {}).",
+                                    L.n_along, L.n_across, ho.runaway_distance / su.scale, su.name));
+      html += figure(*hsvg, fmt::format("{} drops spread uniformly over the offsets (the last d along x and d from the "
+                                        "lateral edges left out), each node one drop.",
+                                        dfree->drops));
+      std::string t = "<table class=\"friction\"><tr><th></th><th>free to move sideways</th><th>locked</th></tr>\n";
+      t += fmt::format("<tr><th>hold angle from s = 0 (rest at ({}, {}) {})</th><td>{}</td><td>{}</td></tr>\n",
+                       fmt::format("{:.4g}", r0[0] / su.scale), fmt::format("{:.4g}", r0[1] / su.scale), su.name,
+                       fmt_deg(free->hold_angle), fmt_deg(locked->hold_angle));
+      auto range = [](const HoldStatistics& st) {
+        return fmt::format("{} ± {} (5–95 %: {} … {}; min {}, max {})", fmt_deg(st.mean), fmt_deg(st.std),
+                           fmt_deg(st.q05), fmt_deg(st.q95), fmt_deg(st.min), fmt_deg(st.max));
+      };
+      t +=
+          fmt::format("<tr><th>over drops</th><td>{}</td><td>{}</td></tr>\n", range(dfree->hold), range(dlocked->hold));
+      t += "</table>\n";
+      html += t;
+      return Ok{};
+    };
+    if (auto st = section(); !st)
+      html = fmt::format("<p>Not computed for this pair: {}.</p>\n", escape_html(st.error().message));
+    sections.push_back({"areal-hold", "Areal blocks that may move sideways", html});
   }
   // --- friction over sliding directions (maps) ---------------------------------------------------
   if (in.is_map) {

@@ -696,7 +696,8 @@ Result<std::string> map_svg(const Map& m, const MapImage& o) {
   const double W = std::max(m.width(), m.dx), H = std::max(m.height(), m.dy);
   const LengthUnit lu = length_unit(std::max(W, H));
   const LengthUnit zu = length_unit(std::max(std::abs(zlo), std::abs(zhi)) > 0 ? (zhi - zlo) : 1e-9);
-  auto ytl = nice_ticks(0, H / lu.scale, 5);
+  const double ty0 = o.absolute_axes ? m.y0 : 0;
+  auto ytl = nice_ticks(ty0 / lu.scale, (ty0 + H) / lu.scale, 5);
   std::size_t ylab = 1;
   const double ystep = ytl.size() > 1 ? ytl[1] - ytl[0] : 1;
   for (double v : ytl) ylab = std::max(ylab, text_chars(tick_label(v, ystep)));
@@ -725,6 +726,32 @@ Result<std::string> map_svg(const Map& m, const MapImage& o) {
       ml, mt, iw, ih, base64(*png));
   s += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"none\" stroke=\"#333\"/>",
                    ml, mt, iw, ih);
+  auto px_of = [&](double x) { return ml + (x - m.x0) / W * iw; };
+  auto py_of = [&](double y) { return mt + ih - (y - m.y0) / H * ih; };
+  if (o.path_x.size() >= 2 && o.path_x.size() == o.path_y.size()) {
+    std::string pts;
+    for (std::size_t k = 0; k < o.path_x.size(); ++k)
+      pts += fmt::format("{:.1f},{:.1f} ", px_of(o.path_x[k]), py_of(o.path_y[k]));
+    s += fmt::format(
+        "<polyline points=\"{0}\" fill=\"none\" stroke=\"white\" stroke-width=\"4\"/>"
+        "<polyline points=\"{0}\" fill=\"none\" stroke=\"#d62728\" stroke-width=\"2\"/>",
+        pts);
+    if (!o.path_label.empty())
+      s += fmt::format(
+          "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"white\" stroke=\"black\" "
+          "stroke-width=\"2.5\" paint-order=\"stroke\">{}</text>",
+          px_of(o.path_x.back()) + 6, py_of(o.path_y.back()) + 4, escape_html(o.path_label));
+  }
+  for (const auto& mk : o.marks) {
+    const double x = px_of(mk.x), y = py_of(mk.y);
+    s += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"5\" fill=\"{}\" stroke=\"white\" stroke-width=\"2\"/>", x,
+                     y, mk.color);
+    if (!mk.label.empty())
+      s += fmt::format(
+          "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"11\" fill=\"white\" stroke=\"black\" "
+          "stroke-width=\"2.5\" paint-order=\"stroke\">{}</text>",
+          x + 7, y - 6, escape_html(mk.label));
+  }
   if (o.line_y) {
     const double y = mt + ih - (*o.line_y - m.y0) / H * ih;
     const double xa = ml + (o.line_x0 - m.x0) / W * iw, xb = ml + (o.line_x1 - m.x0) / W * iw;
@@ -739,18 +766,19 @@ Result<std::string> map_svg(const Map& m, const MapImage& o) {
           "stroke-width=\"2.5\" paint-order=\"stroke\">{}</text>",
           xa + 4, y - 5, escape_html(o.line_label));
   }
-  // lateral axes (from the map's first node)
-  auto xtl = nice_ticks(0, W / lu.scale, std::max(3, int(iw / 90)));
+  // lateral axes (from the map's first node, or at its coordinates)
+  const double ax0 = o.absolute_axes ? m.x0 : 0, ay0 = o.absolute_axes ? m.y0 : 0;
+  auto xtl = nice_ticks(ax0 / lu.scale, (ax0 + W) / lu.scale, std::max(3, int(iw / 90)));
   const double xstep = xtl.size() > 1 ? xtl[1] - xtl[0] : 1;
   for (double v : xtl) {
-    const double x = ml + v * lu.scale / W * iw;
+    const double x = ml + (v * lu.scale - ax0) / W * iw;
     s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{0:.1f}\" y2=\"{2:.1f}\" stroke=\"#333\"/>", x, mt + ih,
                      mt + ih + 5);
     s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"{}\" text-anchor=\"middle\">{}</text>", x,
                      mt + ih + 18, kFont, tick_label(v, xstep));
   }
   for (double v : ytl) {
-    const double y = mt + ih - v * lu.scale / H * ih;
+    const double y = mt + ih - (v * lu.scale - ay0) / H * ih;
     s += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1:.1f}\" x2=\"{2:.1f}\" y2=\"{1:.1f}\" stroke=\"#333\"/>", ml - 5, y,
                      ml);
     s += fmt::format(
@@ -758,12 +786,12 @@ Result<std::string> map_svg(const Map& m, const MapImage& o) {
         "dominant-baseline=\"middle\">{}</text>",
         ml - 8, y, kFont, tick_label(v, ystep));
   }
-  s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"13\" text-anchor=\"middle\">x ({})</text>", ml + iw / 2,
-                   total_h - 12, lu.name);
+  s += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"13\" text-anchor=\"middle\">{} ({})</text>",
+                   ml + iw / 2, total_h - 12, escape_html(o.x_label), lu.name);
   s += fmt::format(
       "<text transform=\"translate(16 {:.1f}) rotate(-90)\" font-size=\"13\" "
-      "text-anchor=\"middle\">y ({})</text>",
-      mt + ih / 2, lu.name);
+      "text-anchor=\"middle\">{} ({})</text>",
+      mt + ih / 2, escape_html(o.y_label), lu.name);
   // scale bar: a round length near a fifth of the width, bottom left inside the image
   {
     const double target = W / 5;
@@ -803,8 +831,8 @@ Result<std::string> map_svg(const Map& m, const MapImage& o) {
   }
   s += fmt::format(
       "<text transform=\"translate({:.1f} {:.1f}) rotate(90)\" font-size=\"13\" "
-      "text-anchor=\"middle\">height z ({})</text>",
-      std::min(total_w - 6, bx + bar_w + bar_labels - 4), mt + ih / 2, zu.name);
+      "text-anchor=\"middle\">{} ({})</text>",
+      std::min(total_w - 6, bx + bar_w + bar_labels - 4), mt + ih / 2, escape_html(o.z_label), zu.name);
   if (!o.title.empty())
     s += fmt::format(
         "<text x=\"{:.1f}\" y=\"21\" font-size=\"14\" font-weight=\"bold\" text-anchor=\"middle\">{}</text>",

@@ -38,7 +38,7 @@ TEST(CliReport, UsageErrorsExitTwoAndNameTheProblem) {
   auto b =
       run_cli("report " + kData + "/x3p/sample-land.x3p " + kData + "/profiles/xy-1.txt -o " + temp_path("x.html"));
   EXPECT_EQ(b.code, 2);
-  EXPECT_NE(b.err.find("profiles only"), std::string::npos);
+  EXPECT_NE(b.err.find("UPPER must be a map too"), std::string::npos);
   auto c = run_cli("report " + kData + "/profiles/xy-1.txt -o " + temp_path("x.html") + " --atomic-friction -1");
   EXPECT_EQ(c.code, 2);
   EXPECT_NE(c.err.find("--atomic-friction"), std::string::npos);

@@ -62,6 +62,31 @@ def test_areal_signature_of_tilted_plane_and_anisotropy_of_ridges():
     assert t["theta_forward"][0] > 0.01
 
 
+def test_areal_hold_grooves_steer_when_free():
+    """Grooves at 30 deg to x on a grid whose diagonal runs along them (dy = dx tan 30 deg): free,
+    the block slides along them at once; locked, it holds at atan of the forward slope at the
+    cusp, A sin(2 pi / m) / dx (closed form: tests/analysis/test_areal_hold.cpp)."""
+    a, amp, m = 1e-7, 2e-7, 40
+    dy = a * math.tan(math.pi / 6)
+    i = np.arange(100)
+    h = amp * np.sin(2 * math.pi * (i[None, :] - i[:, None]) / m)
+    kw = dict(dx=a, dy=dy, turn_over_upper=False, runaway_distance=1e-6, step=a, across_step=dy,
+              offset_min=-5e-7, offset_max=2e-6, across_max=1.5e-6)
+    r = frictal.areal_hold(h, start_offset=(0.0, 0.0), **kw)
+    assert r["hold_angle"] == pytest.approx(0, abs=1e-9)
+    assert r["steering"] == pytest.approx(math.pi / 6, abs=1e-12)
+    assert r["hold_angle_locked"] == pytest.approx(math.atan(amp * math.sin(2 * math.pi / m) / a), abs=1e-12)
+    assert r["lift"].shape == (len(r["across"]), len(r["along"]))
+    d = frictal.areal_hold(h, **kw)
+    assert d["hold_angle_max"] == pytest.approx(0, abs=1e-9)
+    locked = frictal.areal_hold(h, lateral="locked", **kw)
+    assert locked["hold_angle_min"] > 0.1
+    with pytest.raises(ValueError, match="start offset"):
+        frictal.areal_hold(h, start_offset=(1.0, 0.0), **kw)
+    with pytest.raises(ValueError, match="lateral"):
+        frictal.areal_hold(h, lateral="sideways", **kw)
+
+
 def test_map_stats_scan_quantities_numpy_reference():
     """n dx sizes, per-profile Rq/Rdq and the forward-difference gradient, against numpy."""
     rng = np.random.default_rng(7)

@@ -1,6 +1,7 @@
 // The SVG/PNG building blocks of frictal report and the report page itself. Expected values come
 // from RFC/PNG specifications (base64 vectors, the IEND CRC), from the data drawn, or from the
 // sawtooth's analytic signature (theta_max = the rise angle, phi = theta_max + atan(mu_a)).
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include <regex>
 #include <string>
 
+#include "frictal/areal.hpp"
 #include "frictal/generators.hpp"
 #include "frictal/report.hpp"
 
@@ -247,6 +249,48 @@ TEST(Report, MapPageHasImagePolarPlotAndCentralLine) {
   expect_self_contained(*page);
   in.upper = frictal::Profile{};
   EXPECT_FALSE(rp::surface_report(in));
+}
+
+TEST(Report, TwoMapsDrawTheArealLiftWithThePathAndTheHoldAngles) {
+  frictal::Map m;
+  m.nx = 48;
+  m.ny = 40;
+  m.dx = m.dy = 1e-6;
+  for (std::size_t j = 0; j < m.ny; ++j)
+    for (std::size_t i = 0; i < m.nx; ++i)
+      m.heights.push_back(2e-7 * std::sin(0.7 * double(i) + 0.3 * double(j)) +
+                          1e-7 * std::cos(0.45 * double(i * j) * 0.1));
+  frictal::Map u = m;
+  u.nx = u.ny = 20;
+  u.heights.clear();
+  for (std::size_t j = 0; j < 20; ++j)
+    for (std::size_t i = 0; i < 20; ++i) u.heights.push_back(m.at(i + 20, j + 10));
+  rp::ReportInput in;
+  in.is_map = true;
+  in.map = m;
+  in.upper_map = u;
+  in.lower_name = "lower.x3p";
+  in.upper_name = "upper.x3p";
+  in.detrend = "none";
+  in.directions = 4;
+  in.max_lines = 4;
+  in.resolution_steps = 0;
+  auto page = rp::surface_report(in);
+  ASSERT_TRUE(page) << page.error().message;
+  EXPECT_NE(page->find("Areal blocks that may move sideways"), std::string::npos);
+  EXPECT_NE(page->find("The lift h over two dimensions of offset"), std::string::npos);
+  EXPECT_GE(count(*page, "<polyline points="), 2u);  // the block's path (white under red)
+  EXPECT_NE(page->find(">rest</text>"), std::string::npos);
+  // The table's numbers are the library's.
+  auto lift = frictal::areal_lift(m, u, 0.0);
+  ASSERT_TRUE(lift);
+  frictal::ArealHoldOptions ho;
+  ho.runaway_distance = 0.1 * (lift->along(lift->n_along - 1) - lift->along(0));
+  auto d = frictal::areal_hold_distribution(*lift, ho);
+  ASSERT_TRUE(d);
+  EXPECT_NE(page->find(fmt::format("{:.3f}\u00b0 \u00b1 {:.3f}\u00b0", d->hold.mean / kDeg, d->hold.std / kDeg)),
+            std::string::npos);
+  expect_self_contained(*page);
 }
 
 TEST(Report, TipRadiusCutoffIsDrawnOnTheResolutionPlot) {

@@ -1,0 +1,131 @@
+// frictal areal-tilt LOWER [UPPER] — the 3D tilt test of two areal blocks on MuJoCo
+// (experimental, docs/mujoco.md), beside the free-lateral and locked hold angles predicted on the
+// lift over two dimensions of offset from the rest offset that the simulation reached.
+#include <array>
+#include <chrono>
+
+#include "common.hpp"
+#include "frictal/analysis.hpp"
+#include "frictal/areal.hpp"
+#include "frictal/areal_tilt.hpp"
+#include "frictal/tilt.hpp"
+#include "options.hpp"
+#include "surface_io.hpp"
+
+namespace frictal::cli {
+namespace {
+
+struct Args {
+  std::string lower, upper;
+  double angle = 0;
+  double atomic_friction = 0;
+  double sphere_radius = 0;
+  double tilt_step = 0.1;
+  int hfield_refine = 1;
+  double runaway_distance = 0;
+  FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
+  std::string detrend = "plane";
+  bool in_place = false;
+  bool json = false;
+  InputOptions input;
+};
+
+std::function<int()> setup(CLI::App& app) {
+  auto a = std::make_shared<Args>();
+  app.add_option("lower", a->lower, "Lower block's map (X3P, Gwyddion text)")->required();
+  app.add_option("upper", a->upper, "Upper block's map as measured (default: the lower map)");
+  app.add_option("--angle", a->angle, "Sliding direction (deg from +x towards +y)");
+  add_atomic_friction_option(app, a->atomic_friction);
+  app.add_option("--sphere-radius", a->sphere_radius,
+                 "Radius of the spheres on the upper face's nodes (m; default a fifth of the lower map's spacing)");
+  app.add_option("--hfield-refine", a->hfield_refine,
+                 "Sample the lower map's surface this many times finer for MuJoCo's height field (default 1)");
+  app.add_option("--tilt-step", a->tilt_step,
+                 "Tilt increment near the run-away (deg; default 0.1; 1 deg increments before it)");
+  add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
+  app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
+  app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
+  app.add_flag("--json", a->json, "Print one JSON object");
+  add_input_options(app, a->input);
+  return [a]() {
+    if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
+      a->runaway_distance = as_real(rv.at("runaway_distance"));
+    require(std::isfinite(a->angle), fmt::format("--angle {}: expected a finite number of degrees", a->angle));
+    require(std::isfinite(a->tilt_step) && a->tilt_step > 0 && a->tilt_step < 10,
+            fmt::format("--tilt-step {}: expected degrees in (0, 10)", a->tilt_step));
+    if (!mujoco_available()) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
+    const Detrend dt = unwrap(parse_detrend(a->detrend));
+    auto load = [&](const std::string& path) {
+      const SurfaceData s = load_surface(path, a->input);
+      if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; areal-tilt needs maps", path));
+      return unwrap(detrend(s.map, dt));
+    };
+    const Map f = load(a->lower);
+    const Map g = a->upper.empty() ? f : load(a->upper);
+    ArealTiltOptions o;
+    o.angle = a->angle * kDeg;
+    o.turn_over_upper = !a->in_place;
+    o.atomic_friction = a->atomic_friction;
+    o.sphere_radius = a->sphere_radius;
+    o.runaway_distance = a->runaway_distance;
+    o.tilt_step = a->tilt_step * kDeg;
+    o.hfield_refine = a->hfield_refine;
+    const auto t0 = std::chrono::steady_clock::now();
+    const ArealTiltResult r = unwrap(areal_tilt(f, g, o));
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // The predictions from the rest offset the simulation reached, on the rigid lift (r = 0).
+    const double c = std::cos(o.angle), s = std::sin(o.angle);
+    const double D =
+        a->runaway_distance > 0 ? a->runaway_distance : 0.05 * (std::abs(c) * f.width() + std::abs(s) * f.height());
+    const double u = r.rest_offset[0] * c + r.rest_offset[1] * s, v = -r.rest_offset[0] * s + r.rest_offset[1] * c;
+    ArealLiftOptions lo;
+    lo.turn_over_upper = o.turn_over_upper;
+    // Offsets on the lower map's lattice when d runs along x or y (the grid's diagonal moves then
+    // follow the map's diagonals; docs/analysis.md, what the grid can and cannot do).
+    const bool along_x = std::abs(s) < 1e-12, along_y = std::abs(c) < 1e-12;
+    lo.step = along_x ? f.dx : along_y ? f.dy : std::min(f.dx, f.dy);
+    lo.across_step = along_x ? f.dy : along_y ? f.dx : lo.step;
+    lo.offset_min = u - 2 * D;
+    lo.offset_max = u + 4 * D;
+    lo.across_max = std::abs(v) + 3 * D;
+    lo.threads = 0;
+    ArealLift lift = unwrap(areal_lift(f, g, o.angle, lo));
+    ArealHoldOptions ho;
+    ho.runaway_distance = D;
+    ho.atomic_friction = o.atomic_friction;
+    const std::size_t rest = unwrap(areal_lift_node(lift, r.rest_offset[0], r.rest_offset[1]));
+    const ArealHold free = unwrap(areal_hold_angle(lift, rest, ho));
+    const double locked = unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
+    if (a->json) {
+      nlohmann::json j;
+      j["lower"] = a->lower;
+      j["upper"] = a->upper.empty() ? a->lower : a->upper;
+      j["direction_deg"] = a->angle;
+      j["runaway_distance_m"] = D;
+      j["friction_angle_deg"] = to_deg(r.friction_angle);
+      j["ran_away"] = r.ran_away;
+      j["rest_offset_m"] = {r.rest_offset[0], r.rest_offset[1]};
+      j["predicted_hold_angle_deg"] = to_deg(free.hold_angle);
+      j["predicted_hold_angle_locked_deg"] = to_deg(locked);
+      j["tilt_step_deg"] = a->tilt_step;
+      j["spheres"] = r.spheres;
+      j["steps"] = r.steps;
+      j["max_contacts"] = r.max_contacts;
+      j["unsettled_increments"] = r.unsettled;
+      j["seconds"] = secs;
+      print_json(j);
+    } else {
+      fmt::print(
+          "{} on {} along {} deg (MuJoCo, {} spheres): rests at ({:.4g}, {:.4g}) m, runs away at {:.2f} deg "
+          "(steps of {} deg)\n  predicted hold angle {:.3f} deg free to move sideways, {:.3f} deg locked\n",
+          a->upper.empty() ? a->lower : a->upper, a->lower, a->angle, r.spheres, r.rest_offset[0], r.rest_offset[1],
+          to_deg(r.friction_angle), a->tilt_step, to_deg(free.hold_angle), to_deg(locked));
+    }
+    return 0;
+  };
+}
+
+FRICTAL_COMMAND({"areal-tilt", "3D tilt test of two areal blocks on MuJoCo (experimental)", setup, 76});
+
+}  // namespace
+}  // namespace frictal::cli

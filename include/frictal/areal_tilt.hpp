@@ -1,0 +1,67 @@
+// frictal — the 3D tilt test of two areal blocks on MuJoCo (experimental; docs/mujoco.md). The
+// lower block's face is a MuJoCo height field of the lower map, the upper block one rigid body
+// whose face is its map's nodes swept by spheres of radius r, on three slide joints (rotation
+// held), frictionless (mu_a = 0, condim 1) or with contact friction mu_a (condim 3). The
+// gravity is turned about the axis across the sliding direction d in increments; after each the
+// block relaxes (joint damping) until its unbalanced force (contact + gravity, without the
+// damping) and its speed are small, and the stick/run-away rule of the hold angle is read: the
+// run-away is the first displacement along d of at least D since the last stop.
+//
+// Built only with FRICTAL_MUJOCO (libmujoco-dev); otherwise areal_tilt() returns
+// ErrorCode::NotAvailable. Lengths in m, angles in rad.
+#pragma once
+
+#include <array>
+#include <cstddef>
+
+#include "frictal/map.hpp"
+#include "frictal/result.hpp"
+
+namespace frictal {
+
+/// True when this build has the MuJoCo adapter.
+bool mujoco_available();
+
+struct ArealTiltOptions {
+  double angle = 0;             ///< sliding direction d, from +x towards +y (unit: rad)
+  bool turn_over_upper = true;  ///< false: the upper map is the upper face in place (areal.hpp)
+  double runaway_distance = 0;  ///< D (0: a tenth of half the lower map along d) (unit: m)
+  double atomic_friction = 0;   ///< mu_a >= 0 at every contact (unitless)
+  /// Sphere radius r of the upper face's nodes (0: a fifth of the lower map's smaller spacing) (unit: m).
+  double sphere_radius = 0;
+  /// The height field samples the lower map's bilinear surface this many times finer than its
+  /// grid (1: the map's nodes; MuJoCo triangulates every cell along one diagonal) (unitless).
+  int hfield_refine = 1;
+  std::array<double, 2> start_offset = {0, 0};       ///< where the block is put down, (x, y) (unit: m)
+  double tilt_step = 0.1 * 3.141592653589793 / 180;  ///< tilt increment near the run-away (unit: rad)
+  /// Coarse increments up to the first run-away, which is then tilted again in tilt_step from the
+  /// state at rest one coarse increment before (unit: rad).
+  double coarse_tilt_step = 1.0 * 3.141592653589793 / 180;
+  double max_tilt = 45 * 3.141592653589793 / 180;  ///< give up above this tilt (unit: rad)
+  /// The model in scaled units (lengths divided by the lower map's larger extent, gravity 9.81):
+  double time_step = 1e-4;     ///< (unit: scaled s)
+  double contact_time = 2e-4;  ///< solref time constant, >= 2 time steps (unit: scaled s)
+  double damping = 0;          ///< viscous joint damping per unit mass (unit: 1/scaled s)
+  /// Local non-viscous damping (Cundall): a force against each joint's velocity, this fraction of
+  /// its unbalanced force, in [0, 1) (unitless).
+  double local_damping = 0.7;
+  double relax_time = 0.5;        ///< longest relaxation per increment (unit: scaled s)
+  double force_tolerance = 1e-4;  ///< at rest: unbalanced force below this fraction of the weight (unitless)
+  double speed_tolerance = 1e-5;  ///< at rest: speed below this (unit: scaled m/s)
+};
+
+struct ArealTiltResult {
+  double friction_angle = 0;                   ///< tilt at which the run-away began (unit: rad)
+  std::array<double, 2> rest_offset = {0, 0};  ///< where the block rested at zero tilt (unit: m)
+  bool ran_away = false;                       ///< false: held up to max_tilt
+  int unsettled = 0;                           ///< increments that ended without reaching rest (unitless)
+  long steps = 0;                              ///< MuJoCo steps (unitless)
+  std::size_t spheres = 0;                     ///< spheres of the upper face (unitless)
+  int max_contacts = 0;                        ///< most contacts at once (unitless)
+};
+
+/// Errors: invalid maps or options (InvalidInput), MuJoCo refusing the model (InvalidInput, its
+/// message), a build without MuJoCo (NotAvailable).
+Result<ArealTiltResult> areal_tilt(const Map& lower, const Map& upper, const ArealTiltOptions& o = {});
+
+}  // namespace frictal
