@@ -572,7 +572,8 @@ def eq18_derived(out, findings):
     rows = [(part, json.loads(sc)) for part, sc in
             con.execute("select part, scalars from tasks where status = 'done' and scalars is not null")]
     con.close()
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.2), sharey=False)
+    plt.rcParams.update({"font.size": 12})  # the page shows it 560 px wide
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6), sharey=False)
     drew = False
     for ax, part, name in ((axes[0], "wm", "Weierstrass–Mandelbrot pairs"), (axes[1], "fourier", "Fourier-filtered pairs")):
         by = {}
@@ -616,7 +617,7 @@ def eq18_derived(out, findings):
         f.missing = "no wm-tilt task with the hold angle in the store (kind version >= 3)"
         plt.close(fig)
         return f
-    axes[0].legend(fontsize=7.5, loc="upper left")
+    axes[0].legend(fontsize=9, loc="upper left")
     fig.tight_layout()
     png = f"{out}/eq18-derived.png"
     fig.savefig(png, dpi=110)
