@@ -469,6 +469,30 @@ constexpr int kFireMinSteps = 5;
 
 // ---- The run: the state and the measurements, output and bookkeeping that every phase
 // shares; one member function per phase (settling, each loading protocol with its detection).
+// The stick/run-away rule of both protocols: with the block at displacement d and its last stop
+// (or stick) at `from` (tilt, time, rotation so far), each checkpoint distance reached for the
+// first time records that stop, and a slip of runaway_distance sets the friction angle. Returns
+// whether the run ran away.
+bool mark_runaway(TiltResult& res, std::size_t& checkpoints_left, double d, double from, double tilt, double time,
+                  double rotation, double runaway_distance) {
+  if (checkpoints_left)
+    for (TiltCheckpoint& k : res.checkpoints)
+      if (!k.reached && d - from >= k.distance) {
+        k.reached = true;
+        k.friction_angle = tilt;
+        k.slide_time = time;
+        k.slide_start_displacement = from;
+        --checkpoints_left;
+      }
+  if (d - from < runaway_distance) return false;
+  res.slid = true;
+  res.rotation_before_slide = rotation;
+  res.friction_angle = tilt;
+  res.slide_time = time;
+  res.slide_start_displacement = from;
+  return true;
+}
+
 class TiltRun {
  public:
   TiltRun(const TiltConfig& cfg, dem::Model& model, TiltResult& res, unsigned threads)
@@ -739,21 +763,7 @@ Status TiltRun::load_constant_rate() {
     d_now = d;
     // The same test as the stop below, for each shorter distance: the first run-away that reaches
     // it (later sticks may reset the stick point before a longer distance is reached).
-    if (checkpoints_left)
-      for (TiltCheckpoint& k : res.checkpoints)
-        if (!k.reached && d - stick_d >= k.distance) {
-          k.reached = true;
-          k.friction_angle = stick_tilt;
-          k.slide_time = stick_time;
-          k.slide_start_displacement = stick_d;
-          --checkpoints_left;
-        }
-    if (d - stick_d >= cfg.runaway_distance) {
-      res.slid = true;
-      res.rotation_before_slide = rot_at_stick;
-      res.friction_angle = stick_tilt;
-      res.slide_time = stick_time;
-      res.slide_start_displacement = stick_d;
+    if (mark_runaway(res, checkpoints_left, d, stick_d, stick_tilt, stick_time, rot_at_stick, cfg.runaway_distance)) {
       if (!rec && series_every_) record();
       break;
     }
@@ -766,22 +776,7 @@ Status TiltRun::load_constant_rate() {
 
 // Quasi-static: the run-away (and the checkpoints) from the displacement since the last stop.
 void TiltRun::record_runaway(double d) {
-  if (checkpoints_left_)
-    for (TiltCheckpoint& k : res_.checkpoints)
-      if (!k.reached && d - stop_d_ >= k.distance) {
-        k.reached = true;
-        k.friction_angle = stop_tilt_;
-        k.slide_time = stop_time_;
-        k.slide_start_displacement = stop_d_;
-        --checkpoints_left_;
-      }
-  if (d - stop_d_ >= cfg_.runaway_distance) {
-    res_.slid = true;
-    res_.rotation_before_slide = rot_at_stop_;
-    res_.friction_angle = stop_tilt_;
-    res_.slide_time = stop_time_;
-    res_.slide_start_displacement = stop_d_;
-  }
+  mark_runaway(res_, checkpoints_left_, d, stop_d_, stop_tilt_, stop_time_, rot_at_stop_, cfg_.runaway_distance);
 }
 
 // One FIRE relaxation of the upper block (Bitzek et al. 2006) for at most `budget` seconds:

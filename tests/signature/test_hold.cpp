@@ -104,6 +104,19 @@ double chord_scan(const LiftCurve& c, double x0, double w) {
   return best;
 }
 
+// A face of issue 23's WM pair: `frictal surface wm -D 1.5 --n-max 6 --longest-wavelength 0.01
+// --length 0.2 --rms-height 1e-5 --seed SEED`.
+Result<Profile> issue23_face(std::uint64_t seed) {
+  WmParams w = default_wm_params();
+  w.dimension = 1.5;
+  w.n_max = 6;
+  w.longest_wavelength = 0.01;
+  w.length = 0.2;
+  w.rms_height = 1e-5;
+  w.seed = seed;
+  return wm_profile(w);
+}
+
 Profile sawtooth(double rise_deg, double fraction) {
   SawtoothParams p;
   p.rise_angle = deg(rise_deg);
@@ -315,16 +328,7 @@ TEST(Hold, Issue23WmPairMatchesTheIndependentNumpyComputation) {
   // numpy computation of the exact rigid lift gives phi_qs = 1.549 deg and phi_in = 0.695 deg for
   // d = 1 cm; from 30 mm with d = 5 mm, phi_qs = 1.510 deg (the steepest slope within 5 mm of
   // the rest is only 0.885 deg: the block creeps to a steeper stop first).
-  WmParams w = default_wm_params();
-  w.dimension = 1.5;
-  w.n_max = 6;
-  w.longest_wavelength = 0.01;
-  w.length = 0.2;
-  w.rms_height = 1e-5;
-  w.seed = 1;
-  auto f = wm_profile(w);
-  w.seed = 2;
-  auto g = wm_profile(w);
+  auto f = issue23_face(1), g = issue23_face(2);
   ASSERT_TRUE(f.ok() && g.ok());
   SignatureOptions so;
   so.keep_contacts = false;
@@ -398,16 +402,7 @@ TEST(Hold, AnalyseHoldEqualsTheLiftOverTheWholeOverlap) {
   // analyse_hold computes the lift over the drop range widened by d (and wider while a run-away
   // leaves a stop near a cut end); the same analysis on the lift over the whole overlap of the
   // blocks must give the same answers, from starts near both ends of the drop range.
-  WmParams w = default_wm_params();
-  w.dimension = 1.5;
-  w.n_max = 6;
-  w.longest_wavelength = 0.01;
-  w.length = 0.2;
-  w.rms_height = 1e-5;
-  w.seed = 1;
-  auto f = wm_profile(w);
-  w.seed = 2;
-  auto g = wm_profile(w);
+  auto f = issue23_face(1), g = issue23_face(2);
   ASSERT_TRUE(f.ok() && g.ok());
   const Profile up = rotate180(*g);
   const double L = f->x.back() - f->x.front();
