@@ -112,6 +112,7 @@ int run(TiltOptions& o) {
       return std::isnan(rad) ? nlohmann::json(nullptr) : nlohmann::json(rad / kDeg);
     };
     j["protocol"] = cfg.protocol == TiltProtocol::QuasiStatic ? "quasi-static" : "constant-rate";
+    j["contact_rule"] = r->contact_rule == dem::ContactRule::Closest ? "closest" : "pairs";
     j["rest_offset_m"] = r->rest_offset;
     j["predicted_hold_angle_deg"] = deg_or_null(r->predicted_hold_angle);
     j["predicted_hold_offset_m"] =
@@ -195,8 +196,9 @@ int run(TiltOptions& o) {
                  std::isnan(r->stiff_friction_angle) ? std::string("no run-away")
                                                      : fmt::format("{:.3f} deg", r->stiff_friction_angle / kDeg));
     if (cfg.protocol == TiltProtocol::QuasiStatic)
-      fmt::print(text, "quasi-static: {} increments of {:.4g} deg, {} not relaxed within {:.3g} s\n", r->increments,
-                 cfg.tilt_increment / kDeg, r->unrelaxed_increments, cfg.relax_time);
+      fmt::print(text, "quasi-static: {} increments of {:.4g} deg, {} not relaxed within {:.3g} s; contact rule {}\n",
+                 r->increments, cfg.tilt_increment / kDeg, r->unrelaxed_increments, cfg.relax_time,
+                 r->contact_rule == dem::ContactRule::Closest ? "closest" : "pairs");
     fmt::print(text, "rotation of the upper block against the lower one before the slide: {:.4g} deg{}\n",
                r->rotation_before_slide / kDeg, cfg.hold_rotation ? " (held)" : "");
     fmt::print(text,

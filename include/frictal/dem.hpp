@@ -81,13 +81,28 @@ struct BodyDef {
 };
 BodyDef default_body_def();
 
+/// Which touching vertex-edge pairs carry a force (docs/dem.md sec. 1, "Contact rule").
+enum class ContactRule : std::uint8_t {
+  /// Every vertex-edge pair within r1 + r2 (the paper's SPOLY rule): near a corner a vertex may
+  /// feel the same surface through two pairs, with normals the rigid contact does not have.
+  Pairs,
+  /// One contact per touching region: pairs whose features (vertex, edge, or an edge's end) are
+  /// the same or meet at a convex vertex, on both bodies, and whose contact points lie within
+  /// r1 + r2 of each other form one region, and only its deepest
+  /// pair (largest overlap) acts; pairs across a concave vertex (a vertex in a valley) stay
+  /// separate. The rigid limit is the same as Pairs; at finite stiffness the force keeps the
+  /// normal of the rigid contact.
+  Closest,
+};
+
 /// Contact law of Eq. 7-11, shared by every pair. Defaults: paper Table II.
 struct ContactParams {
-  double normal_stiffness = 6e5;      ///< k_n > 0 (unit: N/m)
-  double tangential_stiffness = 6e4;  ///< k_t >= 0 (unit: N/m)
-  double normal_damping = 929.5;      ///< gamma_n >= 0 (unit: 1/s)
-  double tangential_damping = 4;      ///< gamma_t >= 0 (unit: 1/s)
-  double atomic_friction = 0;         ///< mu_a >= 0, Coulomb limit of the tangential spring (unitless)
+  double normal_stiffness = 6e5;          ///< k_n > 0 (unit: N/m)
+  double tangential_stiffness = 6e4;      ///< k_t >= 0 (unit: N/m)
+  double normal_damping = 929.5;          ///< gamma_n >= 0 (unit: 1/s)
+  double tangential_damping = 4;          ///< gamma_t >= 0 (unit: 1/s)
+  double atomic_friction = 0;             ///< mu_a >= 0, Coulomb limit of the tangential spring (unitless)
+  ContactRule rule = ContactRule::Pairs;  ///< which touching pairs carry a force
 };
 ContactParams default_contact_params();
 
@@ -145,12 +160,16 @@ struct Model {
   std::vector<double> local_y;              ///< (unit: m)
   std::vector<std::uint32_t> vertex_body;   ///< owning body of each global vertex
   std::vector<std::uint32_t> next_vertex;   ///< edge of vertex i runs from i to next_vertex[i]
-  std::vector<double> edge_inv_length2;     ///< 1 / |edge i|^2, invariant under rigid motion (unit: 1/m^2)
-  std::vector<double> radius;               ///< spheroradius per body (unit: m)
-  std::vector<double> mass;                 ///< (unit: kg)
-  std::vector<double> inertia;              ///< about the centroid (unit: kg m^2)
-  std::vector<double> area;                 ///< core polygon area (unit: m^2)
-  std::vector<double> extent;               ///< max vertex distance from the centroid (unit: m)
+  std::vector<std::uint32_t> prev_vertex;   ///< the vertex whose edge ends at i
+  /// 1 where the core polygon turns left (or goes straight) at vertex i: a convex corner seen
+  /// from outside (counter-clockwise polygons); 0 at a concave one
+  std::vector<unsigned char> convex_vertex;
+  std::vector<double> edge_inv_length2;  ///< 1 / |edge i|^2, invariant under rigid motion (unit: 1/m^2)
+  std::vector<double> radius;            ///< spheroradius per body (unit: m)
+  std::vector<double> mass;              ///< (unit: kg)
+  std::vector<double> inertia;           ///< about the centroid (unit: kg m^2)
+  std::vector<double> area;              ///< core polygon area (unit: m^2)
+  std::vector<double> extent;            ///< max vertex distance from the centroid (unit: m)
   std::vector<BodyType> type;
   std::vector<KinematicMotion> motion;
   std::vector<int> rotation_follows;             ///< BodyDef::rotation_follows per body

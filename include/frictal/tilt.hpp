@@ -38,6 +38,13 @@
 namespace frictal {
 
 /// How the tilt grows (docs/dem.md sec. 4).
+/// Which touching pairs push in the tilt test (dem::ContactRule; docs/dem.md sec. 1).
+enum class TiltContactRule {
+  Auto,     ///< pairs with the constant-rate protocol (the paper's), closest with quasi-static
+  Pairs,    ///< every vertex-edge pair within r1 + r2
+  Closest,  ///< the deepest pair of each contact region
+};
+
 enum class TiltProtocol {
   /// The paper's: the lower block turns at `tilt_rate`; stick/run-away from the relative speed.
   ConstantRate,
@@ -86,6 +93,8 @@ struct TiltConfig {
   double stick_speed = 1e-5;                           ///< relative speed counted as stuck (unit: m/s)
   double stick_duration = 0.02;                        ///< a stick lasts at least this long (unit: s)
   TiltProtocol protocol = TiltProtocol::ConstantRate;  ///< how the tilt grows
+  /// Which touching pairs push (the force law's contact rule); Auto resolves by `protocol`.
+  TiltContactRule contact_rule = TiltContactRule::Auto;
   /// Quasi-static protocol: the tilt added per increment (unit: rad). The friction angle is the
   /// tilt of an increment, so it reads at most one increment below the angle that holds.
   double tilt_increment = 0.01 * std::numbers::pi / 180;
@@ -263,6 +272,7 @@ struct TiltResult {
   /// Quasi-static protocol: increments taken, and those whose relaxation ran out of relax_time.
   int increments = 0;
   int unrelaxed_increments = 0;
+  dem::ContactRule contact_rule = dem::ContactRule::Pairs;  ///< the rule the run used (contact_rule resolved)
   /// check_stiffness: the friction angle at 10 k_n (unit: rad; NaN when not checked or no slide).
   double stiff_friction_angle = std::numeric_limits<double>::quiet_NaN();
   /// Largest |rotation of the upper block relative to the lower one| between the end of
@@ -299,6 +309,10 @@ struct TiltResult {
   TiltSeries series;
   std::vector<TiltFrame> frames;
 };
+
+/// The force law's contact rule a run with `config` uses: TiltConfig::contact_rule, with Auto
+/// resolved by the protocol (pairs for constant-rate, closest for quasi-static).
+dem::ContactRule tilt_contact_rule(const TiltConfig& config);
 
 /// Runs the tilting test. `lower_surface` and `upper_surface` are both given as measured; for a
 /// block on a copy of itself pass the same curve twice. Errors: invalid config or surfaces,

@@ -74,6 +74,7 @@ void frictal_bind_dem(py::module_& m) {
         d["stiff_friction_angle"] = r.stiff_friction_angle;
         d["increments"] = r.increments;
         d["unrelaxed_increments"] = r.unrelaxed_increments;
+        d["contact_rule"] = r.contact_rule == dem::ContactRule::Closest ? "closest" : "pairs";
         d["rotation_before_slide"] = r.rotation_before_slide;
         d["settled_speed"] = r.settled_speed;
         py::list warnings;
@@ -119,7 +120,8 @@ void frictal_bind_dem(py::module_& m) {
        "block rests when the loading starts, in the signature's offset convention), predicted_hold_angle, "
        "predicted_inertial_hold_angle, predicted_sphero_hold_angle (rad, hold angles from rest_offset with the run's "
        "runaway_distance; NaN if not computed), stiff_friction_angle (rad at 10 k_n with check_stiffness, else NaN), "
-       "increments, unrelaxed_increments (protocol quasi-static), rotation_before_slide (rad), "
+       "increments, unrelaxed_increments (protocol quasi-static), contact_rule (the rule used: pairs or closest), "
+       "rotation_before_slide (rad), "
        "settled_speed (m/s, the upper block's speed when the tilt starts), "
        "warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, "
        "smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time "

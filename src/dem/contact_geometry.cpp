@@ -77,7 +77,7 @@ struct Classifier {
     const double rsum = radius[p.vbody] + radius[p.ebody];
     ContactScratch& c = touching[n];
     c.pair = index;
-    c.sx = sx, c.sy = sy, c.dist2 = dist2, c.dx = dx, c.dy = dy, c.vx = vx, c.vy = vy;
+    c.sx = sx, c.sy = sy, c.dist2 = dist2, c.dx = dx, c.dy = dy, c.vx = vx, c.vy = vy, c.t = t;
     const bool touch = dist2 < rsum * rsum;
     n += touch ? 1 : 0;
     if (!touch && p.overlap > -1) {  // write only on the transition (most pairs stay apart)
@@ -177,6 +177,107 @@ std::size_t find_touching_hot(const Model& m, State& st, Workspace& ws, std::siz
     }
   }
   return classify.n - k0;
+}
+
+namespace {
+
+// A pair's feature on one body: a vertex, or an edge (by its first vertex).
+struct Feature {
+  std::uint32_t id = 0;
+  bool edge = false;
+};
+
+// The same feature, or two that meet at a convex vertex (a vertex and an edge that ends there,
+// two edges that share it).
+bool same_or_convex_neighbours(const Model& m, Feature f, Feature g) {
+  if (f.id == g.id && f.edge == g.edge) return true;
+  if (!f.edge && !g.edge) return false;
+  if (!f.edge || !g.edge) {
+    const std::uint32_t v = f.edge ? g.id : f.id, e = f.edge ? f.id : g.id;
+    return (e == v || m.next_vertex[e] == v) && m.convex_vertex[v];
+  }
+  if (m.next_vertex[g.id] == f.id) return m.convex_vertex[f.id];
+  if (m.next_vertex[f.id] == g.id) return m.convex_vertex[g.id];
+  return false;
+}
+
+}  // namespace
+
+void merge_touching(const Model& m, State& st, Workspace& ws) {
+  // ContactRule::Closest (docs/dem.md sec. 1, "Contact rule"). The touching pairs of one region
+  // (features the same or convex neighbours on both bodies, contact points within r1 + r2) are
+  // joined by a union-find; each region keeps its deepest pair. O(n^2) in the touching pairs of a body pair, which are
+  // few (a handful at rest; tens on a flat face).
+  const std::size_t n = ws.touching_count;
+  if (n < 2) return;
+  ContactScratch* const c = ws.touching.data();
+  NeighborPair* const pairs = st.pairs.data();
+  auto& parent = ws.region;
+  parent.resize(n);
+  for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
+  auto find = [&parent](std::uint32_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  // Features of pair i on the lower- and higher-numbered body of its body pair.
+  auto features = [&](std::size_t i, Feature& lo, Feature& hi, std::uint32_t& blo, std::uint32_t& bhi) {
+    const NeighborPair& p = pairs[c[i].pair];
+    const Feature fv{p.vertex, false};
+    Feature fe{p.edge0, true};
+    if (c[i].t <= 0.0)
+      fe = {p.edge0, false};
+    else if (c[i].t >= 1.0)
+      fe = {p.edge1, false};
+    const bool vlow = p.vbody < p.ebody;
+    lo = vlow ? fv : fe, hi = vlow ? fe : fv;
+    blo = vlow ? p.vbody : p.ebody, bhi = vlow ? p.ebody : p.vbody;
+  };
+  for (std::size_t i = 0; i < n; ++i) {
+    Feature li, hi;
+    std::uint32_t ai, bi;
+    features(i, li, hi, ai, bi);
+    for (std::size_t j = i + 1; j < n; ++j) {
+      Feature lj, hj;
+      std::uint32_t aj, bj;
+      features(j, lj, hj, aj, bj);
+      if (ai != aj || bi != bj) continue;
+      // Within one sum of spheroradii of each other (points halfway along the shortest
+      // segments): an edge is adjacent to its ends, but contacts far along it are separate.
+      const double mx = (c[i].vx - 0.5 * c[i].sx) - (c[j].vx - 0.5 * c[j].sx);
+      const double my = (c[i].vy - 0.5 * c[i].sy) - (c[j].vy - 0.5 * c[j].sy);
+      const double reach = m.radius[ai] + m.radius[bi];
+      if (mx * mx + my * my >= reach * reach) continue;
+      if (!same_or_convex_neighbours(m, li, lj) || !same_or_convex_neighbours(m, hi, hj)) continue;
+      const std::uint32_t ri = find(static_cast<std::uint32_t>(i)), rj = find(static_cast<std::uint32_t>(j));
+      if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
+    }
+  }
+  // The deepest pair of each region (the first in list order on a tie) stands for it; the region's
+  // root slot records it in `best` (reusing the parent array is not possible: roots are read).
+  std::vector<std::uint32_t>& best = ws.region_best;
+  best.assign(n, static_cast<std::uint32_t>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t r = find(static_cast<std::uint32_t>(i));
+    if (best[r] == n || c[i].dist2 < c[best[r]].dist2) best[r] = static_cast<std::uint32_t>(i);
+  }
+  // A region's tangential spring (mu_a > 0) lives on its deepest pair: when another pair becomes
+  // the deepest, it takes over the elongation of the pair that carried the region last step.
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::uint32_t r = find(static_cast<std::uint32_t>(i));
+    const std::uint32_t k = best[r];
+    if (k == i) continue;
+    NeighborPair& dropped = pairs[c[i].pair];
+    NeighborPair& kept = pairs[c[k].pair];
+    if (dropped.overlap > 0 && !(kept.overlap > 0)) kept.elongation = dropped.elongation;
+    dropped.elongation = 0;
+    dropped.overlap = -1;
+  }
+  std::size_t w = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    if (best[find(static_cast<std::uint32_t>(i))] == i) c[w++] = c[i];
+  ws.touching_count = w;
+  ws.segments.resize(1);
+  ws.segments[0] = {0, w};
 }
 
 void find_touching(const Model& m, State& st, Workspace& ws) {

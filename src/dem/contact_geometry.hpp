@@ -14,6 +14,11 @@ namespace frictal::dem::detail {
 /// ws.segments is then the one segment [0, ws.touching_count).
 void find_touching(const Model& m, State& st, Workspace& ws);
 
+/// ContactRule::Closest: keeps the deepest touching pair of each contact region (pairs whose
+/// features are the same or meet at a convex vertex on both bodies); the others are apart for
+/// this step (springs reset). Compacts ws.touching in list order.
+void merge_touching(const Model& m, State& st, Workspace& ws);
+
 /// True when the hot list must be refreshed by a full pass over the list at the current poses
 /// (it is invalid, or the bodies have moved by more than hot_skin / 2 since it was made).
 bool hot_list_stale(const Model& m, const State& st, const Workspace& ws);

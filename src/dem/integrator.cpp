@@ -79,7 +79,9 @@ void run_share(void* context, unsigned j) {
 // ws.min_hot_pairs_per_thread, and no full pass over the list due.
 bool can_split(const Model& m, const State& st, const Workspace& ws) {
   const std::size_t per_member = std::max<std::size_t>(1, ws.min_hot_pairs_per_thread);
-  return ws.threads > 1 && ws.hot.valid && ws.hot.pair.size() >= 2 * per_member && !hot_list_stale(m, st, ws);
+  // The contact rule `closest` merges pairs across the shares: serial passes.
+  return ws.threads > 1 && m.def.contact.rule == ContactRule::Pairs && ws.hot.valid &&
+         ws.hot.pair.size() >= 2 * per_member && !hot_list_stale(m, st, ws);
 }
 
 // The contact passes split over the team (docs/dem.md sec. 7, threads): each member classifies
@@ -147,6 +149,7 @@ double compute_forces(const Model& m, State& st, Workspace& ws, double dt_spring
   double max_ratio = split ? split_contact_passes(m, st, ws, dt_spring) : -1.0;
   if (max_ratio < 0) {
     find_touching(m, st, ws);
+    if (m.def.contact.rule == ContactRule::Closest) merge_touching(m, st, ws);
     max_ratio = apply_force_law(m, st, ws, dt_spring);
   }
   if (tuning) {

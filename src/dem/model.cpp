@@ -178,6 +178,13 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
       const double ex = m.local_x[j] - m.local_x[k], ey = m.local_y[j] - m.local_y[k];
       m.edge_inv_length2.push_back(1.0 / (ex * ex + ey * ey));
     }
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t v = base + k, p = base + (k + n - 1) % n, q = base + (k + 1) % n;
+      m.prev_vertex.push_back(static_cast<std::uint32_t>(p));
+      const double turn = (m.local_x[v] - m.local_x[p]) * (m.local_y[q] - m.local_y[v]) -
+                          (m.local_y[v] - m.local_y[p]) * (m.local_x[q] - m.local_x[v]);
+      m.convex_vertex.push_back(turn >= 0 ? 1 : 0);
+    }
     m.vertex_begin.push_back(static_cast<std::uint32_t>(m.local_x.size()));
     m.radius.push_back(d.radius);
     m.area.push_back(area);

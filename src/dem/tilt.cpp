@@ -417,6 +417,8 @@ Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, co
   wd.skin = cfg.skin;
   wd.max_steps_beyond_limit = cfg.max_steps_beyond_limit;
   wd.contact = cfg.contact;
+  wd.contact.rule = tilt_contact_rule(cfg);
+  res.contact_rule = wd.contact.rule;
   auto model_r = dem::make_model(wd, {lb, ub});
   if (!model_r.ok()) {
     std::string msg = model_r.error().message;
@@ -918,6 +920,15 @@ void run_warnings(const TiltConfig& cfg, TiltResult& res) {
 }
 
 }  // namespace
+
+dem::ContactRule tilt_contact_rule(const TiltConfig& cfg) {
+  switch (cfg.contact_rule) {
+    case TiltContactRule::Pairs: return dem::ContactRule::Pairs;
+    case TiltContactRule::Closest: return dem::ContactRule::Closest;
+    case TiltContactRule::Auto: break;
+  }
+  return cfg.protocol == TiltProtocol::QuasiStatic ? dem::ContactRule::Closest : dem::ContactRule::Pairs;
+}
 
 Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surface, const TiltConfig& cfg) {
   using Clock = std::chrono::steady_clock;

@@ -49,6 +49,15 @@ const std::vector<B>& table() {
                            FRICTAL_MEMBER(contact.tangential_damping)),
           bind<TiltConfig>(F("atomic_friction", "", 0, Lo::Closed, kInf, "Atomic (Coulomb) friction coefficient mu_a"),
                            FRICTAL_MEMBER(contact.atomic_friction)),
+          bind_choice<TiltConfig>(
+              F("contact_rule", "", 0, Lo::Closed, 0,
+                "Which touching vertex-edge pairs push: pairs (every one, the paper's), closest (the deepest "
+                "of each contact region: the rigid contact's normal at finite k_n), or auto (pairs with "
+                "constant-rate, closest with quasi-static)"),
+              FRICTAL_MEMBER(contact_rule),
+              std::vector<std::pair<std::string, TiltContactRule>>{{"auto", TiltContactRule::Auto},
+                                                                   {"pairs", TiltContactRule::Pairs},
+                                                                   {"closest", TiltContactRule::Closest}}),
           bind<TiltConfig>(F("restitution", "", 0, Lo::Closed, 1,
                              "Restitution eps of Eq. 12 on the upper block's mass; > 0 replaces normal_damping"),
                            FRICTAL_MEMBER(restitution)),

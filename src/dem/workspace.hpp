@@ -42,6 +42,7 @@ struct PairSlots {
 struct ContactScratch {
   std::uint32_t pair = 0;  ///< index in State::pairs
   double sx = 0, sy = 0, dist2 = 0, dx = 0, dy = 0, vx = 0, vy = 0;
+  double t = 0;  ///< where the closest point lies on the edge, in [0, 1] (0, 1: at its ends)
   double fx = 0, fy = 0, torque_a = 0, torque_b = 0, nx = 0, ny = 0, jt_a = 0, jt_b = 0, mred = 0;
   double jtt_a = 0, jtt_b = 0;  ///< r x t of each body (unit: m)
   double energy = 0;            ///< k_n overlap^2 / 2 + k_t xi^2 / 2 (unit: J), summed in list order
@@ -122,14 +123,16 @@ struct Workspace {
   std::vector<std::uint32_t> slot_of_vertex;
 
   // Contact passes (contact_geometry.cpp, force_law.cpp, stability.cpp).
-  HotList hot;                           ///< pairs that can touch before the next full pass (docs/dem.md sec. 2)
-  std::vector<Pose> pose;                ///< per body, at the current step
-  std::vector<double> inv_mass;          ///< per body, 0 for kinematic bodies (unit: 1/kg)
-  std::vector<int> body_contacts;        ///< per body, touching pairs
-  std::vector<ModeSums> modes;           ///< per body, for the stability limit
-  std::vector<ContactScratch> touching;  ///< grown, never shrunk
-  std::size_t touching_count = 0;        ///< touching pairs in `touching`
-  std::vector<Segment> segments;         ///< where they are in `touching`, in list order
+  HotList hot;                             ///< pairs that can touch before the next full pass (docs/dem.md sec. 2)
+  std::vector<Pose> pose;                  ///< per body, at the current step
+  std::vector<double> inv_mass;            ///< per body, 0 for kinematic bodies (unit: 1/kg)
+  std::vector<int> body_contacts;          ///< per body, touching pairs
+  std::vector<ModeSums> modes;             ///< per body, for the stability limit
+  std::vector<ContactScratch> touching;    ///< grown, never shrunk
+  std::size_t touching_count = 0;          ///< touching pairs in `touching`
+  std::vector<Segment> segments;           ///< where they are in `touching`, in list order
+  std::vector<std::uint32_t> region;       ///< ContactRule::Closest: union-find parent per touching pair
+  std::vector<std::uint32_t> region_best;  ///< ContactRule::Closest: a region's deepest pair, at its root
 
   // Threads (dem::set_thread_count).
   unsigned threads = 1;  ///< threads the contact passes may use
