@@ -86,12 +86,11 @@ enum class ContactRule : std::uint8_t {
   /// Every vertex-edge pair within r1 + r2 (the paper's SPOLY rule): near a corner a vertex may
   /// feel the same surface through two pairs, with normals the rigid contact does not have.
   Pairs,
-  /// One contact per touching region: pairs whose features (vertex, edge, or an edge's end) are
-  /// the same or meet at a convex vertex, on both bodies, and whose contact points lie within
-  /// r1 + r2 of each other form one region, and only its deepest
-  /// pair (largest overlap) acts; pairs across a concave vertex (a vertex in a valley) stay
-  /// separate. The rigid limit is the same as Pairs; at finite stiffness the force keeps the
-  /// normal of the rigid contact.
+  /// One force per contact: a touching pair is dropped when a deeper pair describes the same
+  /// contact (features the same or meeting at a vertex on both bodies, contact points within
+  /// r1 + r2 of each other); a vertex touching two edges inside (a vertex in a valley, on both
+  /// flanks) keeps both. The rigid limit is the same as Pairs; at finite stiffness the force
+  /// keeps the normal of the rigid contact.
   Closest,
 };
 
@@ -160,9 +159,8 @@ struct Model {
   std::vector<double> local_y;              ///< (unit: m)
   std::vector<std::uint32_t> vertex_body;   ///< owning body of each global vertex
   std::vector<std::uint32_t> next_vertex;   ///< edge of vertex i runs from i to next_vertex[i]
-  std::vector<std::uint32_t> prev_vertex;   ///< the vertex whose edge ends at i
-  /// 1 where the core polygon turns left (or goes straight) at vertex i: a convex corner seen
-  /// from outside (counter-clockwise polygons); 0 at a concave one
+  /// 1 where the core polygon turns left (or goes straight) at vertex i: a convex corner, seen
+  /// from outside the (counter-clockwise) polygon; 0 at a concave one
   std::vector<unsigned char> convex_vertex;
   std::vector<double> edge_inv_length2;  ///< 1 / |edge i|^2, invariant under rigid motion (unit: 1/m^2)
   std::vector<double> radius;            ///< spheroradius per body (unit: m)

@@ -181,100 +181,97 @@ std::size_t find_touching_hot(const Model& m, State& st, Workspace& ws, std::siz
 
 namespace {
 
-// A pair's feature on one body: a vertex, or an edge (by its first vertex).
-struct Feature {
-  std::uint32_t id = 0;
-  bool edge = false;
+// One touching pair as the contact rule `closest` sees it: vertex v of body vb against the edge
+// (e0, e1) of body eb, touched inside (end 0) or at its end e0 (1) or e1 (2).
+struct PairView {
+  std::uint32_t vb, eb, v, e0, e1;
+  int end;
 };
 
-// The same feature, or two that meet at a convex vertex (a vertex and an edge that ends there,
-// two edges that share it).
-bool same_or_convex_neighbours(const Model& m, Feature f, Feature g) {
-  if (f.id == g.id && f.edge == g.edge) return true;
-  if (!f.edge && !g.edge) return false;
-  if (!f.edge || !g.edge) {
-    const std::uint32_t v = f.edge ? g.id : f.id, e = f.edge ? f.id : g.id;
-    return (e == v || m.next_vertex[e] == v) && m.convex_vertex[v];
+// Whether two touching pairs describe the same contact of the rigid blocks (docs/dem.md sec. 1,
+// "Contact rule"); their contact points are near each other (checked by the caller).
+//  - the same two vertices (a vertex-vertex contact, found through up to four pairs);
+//  - a vertex-vertex pair (v, w) and a pair of v or w with an edge that ends at the other, when
+//    that end is a convex corner: the rounded corner is part of the edge's band, so the
+//    vertex-vertex pair repeats it (at a concave corner it is the other flank's contact);
+//  - two pairs inside edges, crossed: convex v against the edge of convex w, and w against the
+//    edge of v, with both edges leaving (or both entering) the other pair's vertex in the
+//    polygons' order.
+//    As the bodies' faces run in opposite directions, these are the two corners sliding past
+//    each other on the same side of their meeting: of the two lift pieces, only the higher one
+//    is a contact of the rigid blocks; the lower one touches only because the blocks overlap.
+//    (Both leaving one / entering the other are the two pieces on either side of the meeting:
+//    a block resting in the wedge, which needs both.)
+// A vertex against two edges inside (a vertex in a valley, on both flanks) is two contacts.
+bool same_contact(const Model& m, const PairView& a, const PairView& b) {
+  const auto at = [](const PairView& p) { return p.end == 1 ? p.e0 : p.e1; };  // the edge's end touched
+  if (a.end != 0 && b.end != 0) {  // two vertex-vertex pairs: the same two vertices?
+    const std::uint32_t wa = at(a), wb = at(b);
+    return (a.v == b.v && wa == wb) || (a.v == wb && wa == b.v);
   }
-  if (m.next_vertex[g.id] == f.id) return m.convex_vertex[f.id];
-  if (m.next_vertex[f.id] == g.id) return m.convex_vertex[g.id];
-  return false;
+  if (a.end != 0 || b.end != 0) {  // one vertex-vertex pair (v, w), one pair inside an edge
+    const PairView& vv = a.end != 0 ? a : b;
+    const PairView& in = a.end != 0 ? b : a;
+    const std::uint32_t v = vv.v, w = at(vv);
+    if (in.v != v && in.v != w) return false;
+    const std::uint32_t end = in.v == v ? w : v;  // the vertex-vertex pair's other vertex
+    // ... an end of the edge, at a convex corner (at a concave one, a valley's bottom, the pair
+    // (v, w) is the other flank's contact carried past its end: it stays).
+    return (in.e0 == end || in.e1 == end) && m.convex_vertex[end];
+  }
+  if (a.vb == b.vb) return false;  // both inside edges, one body's vertices: separate contacts
+  // Crossed: b's vertex is an end of a's edge and a's vertex an end of b's edge, both convex.
+  return ((b.v == a.e0 && a.v == b.e0) || (b.v == a.e1 && a.v == b.e1)) && m.convex_vertex[a.v] && m.convex_vertex[b.v];
 }
 
 }  // namespace
 
 void merge_touching(const Model& m, State& st, Workspace& ws) {
-  // ContactRule::Closest (docs/dem.md sec. 1, "Contact rule"). The touching pairs of one region
-  // (features the same or convex neighbours on both bodies, contact points within r1 + r2) are
-  // joined by a union-find; each region keeps its deepest pair. O(n^2) in the touching pairs of a body pair, which are
-  // few (a handful at rest; tens on a flat face).
+  // ContactRule::Closest (docs/dem.md sec. 1, "Contact rule"). A touching pair with a deeper
+  // pair that describes the same contact (same_contact, contact points within r1 + r2) stands
+  // for nothing that one does not: it is dropped. O(n^2) in the touching pairs of a body pair,
+  // which are few (a handful at rest; tens on a flat face).
   const std::size_t n = ws.touching_count;
   if (n < 2) return;
   ContactScratch* const c = ws.touching.data();
   NeighborPair* const pairs = st.pairs.data();
-  auto& parent = ws.region;
-  parent.resize(n);
-  for (std::size_t i = 0; i < n; ++i) parent[i] = static_cast<std::uint32_t>(i);
-  auto find = [&parent](std::uint32_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  // Features of pair i on the lower- and higher-numbered body of its body pair.
-  auto features = [&](std::size_t i, Feature& lo, Feature& hi, std::uint32_t& blo, std::uint32_t& bhi) {
+  auto view = [&](std::size_t i) {
     const NeighborPair& p = pairs[c[i].pair];
-    const Feature fv{p.vertex, false};
-    Feature fe{p.edge0, true};
-    if (c[i].t <= 0.0)
-      fe = {p.edge0, false};
-    else if (c[i].t >= 1.0)
-      fe = {p.edge1, false};
-    const bool vlow = p.vbody < p.ebody;
-    lo = vlow ? fv : fe, hi = vlow ? fe : fv;
-    blo = vlow ? p.vbody : p.ebody, bhi = vlow ? p.ebody : p.vbody;
+    return PairView{p.vbody, p.ebody, p.vertex, p.edge0, p.edge1, c[i].t <= 0.0 ? 1 : (c[i].t >= 1.0 ? 2 : 0)};
   };
+  // by[i]: the deepest pair that makes pair i redundant (n: none).
+  std::vector<std::uint32_t>& by = ws.region;
+  by.assign(n, static_cast<std::uint32_t>(n));
   for (std::size_t i = 0; i < n; ++i) {
-    Feature li, hi;
-    std::uint32_t ai, bi;
-    features(i, li, hi, ai, bi);
+    const PairView pi = view(i);
     for (std::size_t j = i + 1; j < n; ++j) {
-      Feature lj, hj;
-      std::uint32_t aj, bj;
-      features(j, lj, hj, aj, bj);
-      if (ai != aj || bi != bj) continue;
+      const PairView pj = view(j);
+      if (std::min(pi.vb, pi.eb) != std::min(pj.vb, pj.eb) || std::max(pi.vb, pi.eb) != std::max(pj.vb, pj.eb))
+        continue;
       // Within one sum of spheroradii of each other (points halfway along the shortest
-      // segments): an edge is adjacent to its ends, but contacts far along it are separate.
+      // segments): an edge meets its ends, but contacts far along it are separate.
       const double mx = (c[i].vx - 0.5 * c[i].sx) - (c[j].vx - 0.5 * c[j].sx);
       const double my = (c[i].vy - 0.5 * c[i].sy) - (c[j].vy - 0.5 * c[j].sy);
-      const double reach = m.radius[ai] + m.radius[bi];
-      if (mx * mx + my * my >= reach * reach) continue;
-      if (!same_or_convex_neighbours(m, li, lj) || !same_or_convex_neighbours(m, hi, hj)) continue;
-      const std::uint32_t ri = find(static_cast<std::uint32_t>(i)), rj = find(static_cast<std::uint32_t>(j));
-      if (ri != rj) parent[std::max(ri, rj)] = std::min(ri, rj);
+      const double reach = m.radius[pi.vb] + m.radius[pi.eb];
+      if (mx * mx + my * my >= reach * reach || !same_contact(m, pi, pj)) continue;
+      const std::size_t shallow = c[j].dist2 < c[i].dist2 ? i : j, deep = shallow == i ? j : i;
+      if (by[shallow] == n || c[deep].dist2 < c[by[shallow]].dist2) by[shallow] = static_cast<std::uint32_t>(deep);
     }
   }
-  // The deepest pair of each region (the first in list order on a tie) stands for it; the region's
-  // root slot records it in `best` (reusing the parent array is not possible: roots are read).
-  std::vector<std::uint32_t>& best = ws.region_best;
-  best.assign(n, static_cast<std::uint32_t>(n));
+  // A contact's tangential spring (mu_a > 0) lives on the pair that stands for it: a pair that
+  // now stands for a dropped one that touched last step takes over its elongation if it did not
+  // touch itself.
   for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t r = find(static_cast<std::uint32_t>(i));
-    if (best[r] == n || c[i].dist2 < c[best[r]].dist2) best[r] = static_cast<std::uint32_t>(i);
-  }
-  // A region's tangential spring (mu_a > 0) lives on its deepest pair: when another pair becomes
-  // the deepest, it takes over the elongation of the pair that carried the region last step.
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::uint32_t r = find(static_cast<std::uint32_t>(i));
-    const std::uint32_t k = best[r];
-    if (k == i) continue;
+    if (by[i] == n) continue;
     NeighborPair& dropped = pairs[c[i].pair];
-    NeighborPair& kept = pairs[c[k].pair];
+    NeighborPair& kept = pairs[c[by[i]].pair];
     if (dropped.overlap > 0 && !(kept.overlap > 0)) kept.elongation = dropped.elongation;
     dropped.elongation = 0;
     dropped.overlap = -1;
   }
   std::size_t w = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (best[find(static_cast<std::uint32_t>(i))] == i) c[w++] = c[i];
+    if (by[i] == n) c[w++] = c[i];
   ws.touching_count = w;
   ws.segments.resize(1);
   ws.segments[0] = {0, w};

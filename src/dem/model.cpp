@@ -180,7 +180,6 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
     }
     for (std::size_t k = 0; k < n; ++k) {
       const std::size_t v = base + k, p = base + (k + n - 1) % n, q = base + (k + 1) % n;
-      m.prev_vertex.push_back(static_cast<std::uint32_t>(p));
       const double turn = (m.local_x[v] - m.local_x[p]) * (m.local_y[q] - m.local_y[v]) -
                           (m.local_y[v] - m.local_y[p]) * (m.local_x[q] - m.local_x[v]);
       m.convex_vertex.push_back(turn >= 0 ? 1 : 0);

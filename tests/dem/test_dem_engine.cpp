@@ -404,3 +404,80 @@ TEST(DemState, CopyContinuesBitwiseLikeTheOriginal) {
   EXPECT_EQ(s1.angle[1], s2.angle[1]);
   EXPECT_EQ(s1.velocity[1].y, s2.velocity[1].y);
 }
+
+namespace {
+
+// A vertex v (bottom of a diamond) hovers over the left flank of a roof-shaped ground (flanks of
+// slope 10 deg meeting at a convex peak w = (0, 0)), a' = 0.5 um from the peak along the flank
+// and d = 2r - delta above it (delta = 10 nm). Then |v - w| = sqrt(a'^2 + d^2) < 2r as well: the
+// vertex touches the flank (interior) and the peak (the right flank's end, and w touches the
+// diamond's edges at their end v). Without gravity, after one step of 1 ns (the bodies move by
+// ~1e-18 m), the forces are those of this geometry.
+struct ConvexCorner {
+  double r = 2e-5, delta = 1e-8, theta = 10.0 * 3.14159265358979323846 / 180.0, a = 0.5e-6;
+  double nx = 0, ny = 0;  // the flank's outward normal
+  dem::Model model;
+  dem::State state;
+};
+
+ConvexCorner convex_corner(dem::ContactRule rule) {
+  ConvexCorner c;
+  const double t = std::tan(c.theta);
+  dem::BodyDef g;  // counter-clockwise
+  g.x = {-0.01, 0.01, 0.01, 0.0, -0.01};
+  g.y = {-0.01, -0.01, -0.01 * t, 0.0, -0.01 * t};
+  g.type = dem::BodyType::Kinematic;
+  g.radius = c.r;
+  c.nx = -std::sin(c.theta), c.ny = std::cos(c.theta);
+  const double fx = -c.a * std::cos(c.theta), fy = -c.a * std::sin(c.theta);  // foot on the flank
+  const double d = 2 * c.r - c.delta;
+  const double vx = fx + d * c.nx, vy = fy + d * c.ny;
+  dem::BodyDef b;
+  b.x = {vx, vx + 1e-3, vx, vx - 1e-3};
+  b.y = {vy, vy + 1e-3, vy + 2e-3, vy + 1e-3};
+  b.radius = c.r;
+  dem::WorldDef w;
+  w.gravity = {0, 0};
+  w.time_step = 1e-9;
+  w.contact.rule = rule;
+  auto m = dem::make_model(w, {g, b});
+  EXPECT_TRUE(m.ok()) << m.error().message;
+  c.model = *m;
+  c.state = dem::make_state(c.model);
+  EXPECT_TRUE(dem::step(c.model, c.state).ok());
+  return c;
+}
+
+}  // namespace
+
+TEST(DemContactRule, ClosestKeepsTheFlankNormalNextToAConvexPeak) {
+  // closest: one contact, the flank's: f = k_n delta along the flank's normal (no velocity, so no
+  // dashpot), exactly the rigid contact's direction.
+  ConvexCorner c = convex_corner(dem::ContactRule::Closest);
+  const double kn = c.model.def.contact.normal_stiffness;
+  const auto forces = dem::contact_forces(c.model, c.state);
+  ASSERT_EQ(forces.size(), 1u);
+  EXPECT_NEAR(forces[0].overlap, c.delta, 1e-6 * c.delta);
+  EXPECT_NEAR(c.state.force[1].x, kn * c.delta * c.nx, 1e-6 * kn * c.delta);
+  EXPECT_NEAR(c.state.force[1].y, kn * c.delta * c.ny, 1e-6 * kn * c.delta);
+  EXPECT_EQ(c.state.contact_count, 1);
+}
+
+TEST(DemContactRule, PairsAlsoPushAlongTheLineToThePeak) {
+  // pairs (the paper's): the flank's pair and the vertex-vertex pairs with the peak, whose
+  // overlap is 2r - sqrt(a^2 + d^2) and whose normal (v - w) / |v - w| leans further back than
+  // the flank's; the sum of the forces is no longer along the flank's normal.
+  ConvexCorner c = convex_corner(dem::ContactRule::Pairs);
+  const double d = 2 * c.r - c.delta;
+  const double vv_overlap = 2 * c.r - std::sqrt(c.a * c.a + d * d);
+  ASSERT_GT(vv_overlap, 0);
+  const auto forces = dem::contact_forces(c.model, c.state);
+  ASSERT_GE(forces.size(), 2u);
+  int at_peak = 0;
+  for (const auto& f : forces)
+    if (std::fabs(f.overlap - vv_overlap) < 1e-3 * vv_overlap) ++at_peak;
+  EXPECT_GE(at_peak, 1);
+  const double tilt_flank = std::atan2(-c.nx, c.ny);
+  const double tilt_sum = std::atan2(-c.state.force[1].x, c.state.force[1].y);
+  EXPECT_GT(tilt_sum, tilt_flank + 0.01 * tilt_flank);
+}

@@ -249,3 +249,43 @@ TEST(DemQuasiStaticCli, UnknownProtocolExitsWithTwoNamingTheChoices) {
   EXPECT_NE(text.find("constant-rate"), std::string::npos) << text;
 }
 #endif
+
+TEST(DemQuasiStatic, ClosestContactsReadTheHoldAngleOfTheIssuesWmPair) {
+  // Issue 23's WM pair (seeds 1, 2; D = 1.5, n_max = 6, L = 0.01 m, L_b = 0.2 m), rotation held,
+  // r = 2e-5 m, d = 1 cm: from the rest offset 23.8 mm an independent numpy computation of the
+  // rigid lift gives phi_qs = 1.549 deg. With the contact rule of the quasi-static protocol
+  // (auto: closest) the run reads it at k_n = 6e7 N/m, the flat pair's stiffness of the issue's
+  // target: the last increment below 1.549 deg (at most 0.01 deg low). Ten times rougher (rms
+  // 1e-4 m) phi_qs is 15.132 deg (hold_angle on the same lift), read at 6e6 N/m.
+  for (double rms : {1e-5, 1e-4}) {
+    frictal::WmParams w;
+    w.dimension = 1.5;
+    w.n_max = 6;
+    w.longest_wavelength = 0.01;
+    w.length = 0.2;
+    w.rms_height = rms;
+    w.seed = 1;
+    auto a = frictal::wm_profile(w);
+    w.seed = 2;
+    auto b = frictal::wm_profile(w);
+    ASSERT_TRUE(a.ok() && b.ok());
+    frictal::TiltConfig cfg = quasi_static(0.01);
+    cfg.hold_rotation = true;
+    cfg.radius = 2e-5;
+    cfg.runaway_distance = 0.01;
+    cfg.initial_offset = 0.023791495198902606;  // where `frictal tilt` puts these files (the issue's start)
+    cfg.contact.normal_stiffness = rms < 5e-5 ? 6e7 : 6e6;
+    auto r = frictal::run_tilt(frictal::as_curve(*a), frictal::as_curve(*b), cfg);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    ASSERT_TRUE(r->slid);
+    EXPECT_EQ(r->contact_rule, frictal::dem::ContactRule::Closest);
+    EXPECT_NEAR(r->rest_offset, 0.02382, 2e-5);
+    const double phi = r->friction_angle / kDeg, phi_qs = r->predicted_hold_angle / kDeg;
+    if (rms < 5e-5) {
+      EXPECT_NEAR(phi_qs, 1.549, 5e-4);
+    }
+    EXPECT_LE(phi, phi_qs + 1e-9) << "rms " << rms;
+    EXPECT_GT(phi, phi_qs - 0.01 - 1e-9) << "rms " << rms;
+    EXPECT_EQ(r->unrelaxed_increments, 0);
+  }
+}
