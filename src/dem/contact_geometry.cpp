@@ -194,9 +194,9 @@ struct PairView {
 //  - a vertex-vertex pair (v, w) and a pair of v or w with an edge that ends at the other, when
 //    that end is a convex corner: the rounded corner is part of the edge's band, so the
 //    vertex-vertex pair repeats it (at a concave corner it is the other flank's contact);
-//  - two pairs inside edges, crossed: convex v against the edge of convex w, and w against the
-//    edge of v, with both edges leaving (or both entering) the other pair's vertex in the
-//    polygons' order.
+//  - two pairs inside edges, crossed between two convex corners: v against the edge of w, and w
+//    against the edge of v, with both edges leaving (or both entering) the other pair's vertex in
+//    the polygons' order.
 //    As the bodies' faces run in opposite directions, these are the two corners sliding past
 //    each other on the same side of their meeting: of the two lift pieces, only the higher one
 //    is a contact of the rigid blocks; the lower one touches only because the blocks overlap.
@@ -239,12 +239,22 @@ void merge_touching(const Model& m, State& st, Workspace& ws) {
     const NeighborPair& p = pairs[c[i].pair];
     return PairView{p.vbody, p.ebody, p.vertex, p.edge0, p.edge1, c[i].t <= 0.0 ? 1 : (c[i].t >= 1.0 ? 2 : 0)};
   };
-  // by[i]: the deepest pair that makes pair i redundant (n: none).
+  // From the deepest pair down, each pair is kept unless a kept pair describes the same contact
+  // (then by[i] is that pair; n: kept). A pair dropped does not drop others: at a valley's
+  // bottom the vertex-vertex pair of one flank must not go with the crossed pair it repeats.
   std::vector<std::uint32_t>& by = ws.region;
   by.assign(n, static_cast<std::uint32_t>(n));
-  for (std::size_t i = 0; i < n; ++i) {
+  std::vector<std::uint32_t>& order = ws.region_order;
+  order.resize(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
+  std::stable_sort(order.begin(), order.end(),
+                   [c](std::uint32_t x, std::uint32_t y) { return c[x].dist2 < c[y].dist2; });
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::uint32_t i = order[a];
     const PairView pi = view(i);
-    for (std::size_t j = i + 1; j < n; ++j) {
+    for (std::size_t b = 0; b < a; ++b) {
+      const std::uint32_t j = order[b];
+      if (by[j] != n) continue;  // dropped
       const PairView pj = view(j);
       if (std::min(pi.vb, pi.eb) != std::min(pj.vb, pj.eb) || std::max(pi.vb, pi.eb) != std::max(pj.vb, pj.eb))
         continue;
@@ -254,8 +264,8 @@ void merge_touching(const Model& m, State& st, Workspace& ws) {
       const double my = (c[i].vy - 0.5 * c[i].sy) - (c[j].vy - 0.5 * c[j].sy);
       const double reach = m.radius[pi.vb] + m.radius[pi.eb];
       if (mx * mx + my * my >= reach * reach || !same_contact(m, pi, pj)) continue;
-      const std::size_t shallow = c[j].dist2 < c[i].dist2 ? i : j, deep = shallow == i ? j : i;
-      if (by[shallow] == n || c[deep].dist2 < c[by[shallow]].dist2) by[shallow] = static_cast<std::uint32_t>(deep);
+      by[i] = j;
+      break;
     }
   }
   // A contact's tangential spring (mu_a > 0) lives on the pair that stands for it: a pair that
