@@ -22,6 +22,7 @@ struct Args {
   double sphere_radius = 0;
   double tilt_step = 0.1;
   int hfield_refine = 1;
+  int prediction_refine = 2;
   double runaway_distance = 0;
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   std::string detrend = "plane";
@@ -40,6 +41,8 @@ std::function<int()> setup(CLI::App& app) {
                  "Radius of the spheres on the upper face's nodes (m; default a fifth of the lower map's spacing)");
   app.add_option("--hfield-refine", a->hfield_refine,
                  "Sample the lower map's surface this many times finer for MuJoCo's height field (default 1)");
+  app.add_option("--prediction-refine", a->prediction_refine,
+                 "Offset grid of the matched prediction this many times finer than the lower map's (default 2)");
   app.add_option("--tilt-step", a->tilt_step,
                  "Tilt increment near the run-away (deg; default 0.1; 1 deg increments before it)");
   add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
@@ -53,6 +56,10 @@ std::function<int()> setup(CLI::App& app) {
     require(std::isfinite(a->angle), fmt::format("--angle {}: expected a finite number of degrees", a->angle));
     require(std::isfinite(a->tilt_step) && a->tilt_step > 0 && a->tilt_step < 10,
             fmt::format("--tilt-step {}: expected degrees in (0, 10)", a->tilt_step));
+    require(a->prediction_refine >= 1 && a->prediction_refine <= 16,
+            fmt::format("--prediction-refine {}: expected an integer in 1..16", a->prediction_refine));
+    require(a->hfield_refine >= 1 && a->hfield_refine <= 16,
+            fmt::format("--hfield-refine {}: expected an integer in 1..16", a->hfield_refine));
     if (!mujoco_available()) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
     const Detrend dt = unwrap(parse_detrend(a->detrend));
     auto load = [&](const std::string& path) {
@@ -96,6 +103,15 @@ std::function<int()> setup(CLI::App& app) {
     const std::size_t rest = unwrap(areal_lift_node(lift, r.rest_offset[0], r.rest_offset[1]));
     const ArealHold free = unwrap(areal_hold_angle(lift, rest, ho));
     const double locked = unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
+    // The matched prediction: the same spheres on the same triangulated height field as MuJoCo
+    // (areal_tilt_lift), on an offset grid prediction_refine times finer.
+    ArealLiftOptions mo = lo;
+    mo.step /= a->prediction_refine;
+    mo.across_step /= a->prediction_refine;
+    const ArealLift mlift = unwrap(areal_tilt_lift(f, g, o, mo));
+    const std::size_t mrest = unwrap(areal_lift_node(mlift, r.rest_offset[0], r.rest_offset[1]));
+    const ArealHold mfree = unwrap(areal_hold_angle(mlift, mrest, ho));
+    const double mlocked = unwrap(areal_locked_hold_angle(mlift, mfree.rest, ho)).hold_angle;
     if (a->json) {
       nlohmann::json j;
       j["lower"] = a->lower;
@@ -107,6 +123,10 @@ std::function<int()> setup(CLI::App& app) {
       j["rest_offset_m"] = {r.rest_offset[0], r.rest_offset[1]};
       j["predicted_hold_angle_deg"] = to_deg(free.hold_angle);
       j["predicted_hold_angle_locked_deg"] = to_deg(locked);
+      j["matched_hold_angle_deg"] = to_deg(mfree.hold_angle);
+      j["matched_hold_angle_locked_deg"] = to_deg(mlocked);
+      j["matched_steering_deg"] = to_deg(mfree.steering);
+      j["sphere_radius_m"] = r.sphere_radius;
       j["tilt_step_deg"] = a->tilt_step;
       j["spheres"] = r.spheres;
       j["steps"] = r.steps;
@@ -117,9 +137,11 @@ std::function<int()> setup(CLI::App& app) {
     } else {
       fmt::print(
           "{} on {} along {} deg (MuJoCo, {} spheres): rests at ({:.4g}, {:.4g}) m, runs away at {:.2f} deg "
-          "(steps of {} deg)\n  predicted hold angle {:.3f} deg free to move sideways, {:.3f} deg locked\n",
+          "(steps of {} deg)\n  predicted hold angle {:.3f} deg free to move sideways, {:.3f} deg locked\n"
+          "  matched (the simulated spheres and triangles, rigid) {:.3f} deg free, {:.3f} deg locked\n",
           a->upper.empty() ? a->lower : a->upper, a->lower, a->angle, r.spheres, r.rest_offset[0], r.rest_offset[1],
-          to_deg(r.friction_angle), a->tilt_step, to_deg(free.hold_angle), to_deg(locked));
+          to_deg(r.friction_angle), a->tilt_step, to_deg(free.hold_angle), to_deg(locked), to_deg(mfree.hold_angle),
+          to_deg(mlocked));
     }
     return 0;
   };

@@ -14,6 +14,7 @@
 #include <array>
 #include <cstddef>
 
+#include "frictal/areal.hpp"
 #include "frictal/map.hpp"
 #include "frictal/result.hpp"
 
@@ -58,10 +59,24 @@ struct ArealTiltResult {
   long steps = 0;                              ///< MuJoCo steps (unitless)
   std::size_t spheres = 0;                     ///< spheres of the upper face (unitless)
   int max_contacts = 0;                        ///< most contacts at once (unitless)
+  double sphere_radius = 0;                    ///< r used (unit: m)
 };
 
 /// Errors: invalid maps or options (InvalidInput), MuJoCo refusing the model (InvalidInput, its
 /// message), a build without MuJoCo (NotAvailable).
 Result<ArealTiltResult> areal_tilt(const Map& lower, const Map& upper, const ArealTiltOptions& o = {});
+
+/// The matched prediction: the lift of the surfaces that areal_tilt simulates, rigid. The upper
+/// face's spheres of radius r (t.sphere_radius, its default; turned over as t.turn_over_upper)
+/// on the lower face's height field (t.hfield_refine) as MuJoCo 2.2.2 triangulates it: every cell
+/// (i, j) split along its diagonal from node (i, j) to (i+1, j+1) (x, y increasing). h(s) is the
+/// height of the block (the spheres' centres less r less their nodes' heights) when its highest
+/// sphere touches a triangle: for each sphere, max over points p of the triangles within r of its
+/// centre of p_z + sqrt(r^2 - |p - c|^2), exact (a concave maximum: on a face or on an edge, in
+/// closed form). The offset grid, the lift's layout and its errors are areal_lift's (o's step,
+/// offset_min/max, across_step/max, threads; its turn_over_upper, block and prune are not used);
+/// `contact` is the lower-map node nearest to the touching point. Needs no MuJoCo.
+Result<ArealLift> areal_tilt_lift(const Map& lower, const Map& upper, const ArealTiltOptions& t,
+                                  const ArealLiftOptions& o = {});
 
 }  // namespace frictal

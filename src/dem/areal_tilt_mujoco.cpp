@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "areal_tilt_model.hpp"
 #include "frictal/areal_tilt.hpp"
 
 #ifdef FRICTAL_HAVE_MUJOCO
@@ -73,39 +74,18 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   const double L = std::max(f.width(), f.height());
   const double S = 1.0 / L;
   const double dxv = std::cos(o.angle), dyv = std::sin(o.angle);
-  const double r = (o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(f.dx, f.dy)) * S;
+  const double r = detail::tilt_sphere_radius(f, o) * S;
   const double D =
       (o.runaway_distance > 0 ? o.runaway_distance : 0.05 * (std::abs(dxv) * f.width() + std::abs(dyv) * f.height())) *
       S;
-  double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
-  for (double v : f.heights)
-    if (!std::isnan(v)) zmin = std::min(zmin, v), zmax = std::max(zmax, v);
-  const double relief = std::max(zmax - zmin, 1e-12 * L);
-
   // The upper face's nodes at offset 0, in the lower map's frame (turned over about the axis
   // across d through the centres, as areal_signature), heights of the face.
   const double cfx = f.x0 + 0.5 * f.width(), cfy = f.y0 + 0.5 * f.height();
-  const double cgx = g.x0 + 0.5 * g.width(), cgy = g.y0 + 0.5 * g.height();
-  struct Node {
-    double x, y, z;
-  };
-  std::vector<Node> nodes;
-  for (std::size_t j = 0; j < g.ny; ++j)
-    for (std::size_t i = 0; i < g.nx; ++i) {
-      const double z = g.at(i, j);
-      if (std::isnan(z)) continue;
-      const double qx = g.x0 + double(i) * g.dx, qy = g.y0 + double(j) * g.dy;
-      if (o.turn_over_upper) {
-        const double ax = qx - cgx, ay = qy - cgy, along = ax * dxv + ay * dyv;
-        nodes.push_back({cfx + ax - 2 * along * dxv, cfy + ay - 2 * along * dyv, -z});
-      } else {
-        nodes.push_back({qx, qy, z});
-      }
-    }
+  const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, o.angle, o.turn_over_upper);
   if (nodes.empty()) return make_error("areal_tilt: the upper map has no valid node");
   // Put down just above contact at the start offset: the largest gap over the spheres.
   double lift = -std::numeric_limits<double>::infinity();
-  for (const Node& n : nodes) {
+  for (const detail::TiltNode& n : nodes) {
     const double fz = interpolate(f, n.x + o.start_offset[0], n.y + o.start_offset[1]);
     if (!std::isnan(fz)) lift = std::max(lift, fz - n.z);
   }
@@ -119,8 +99,9 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   // The height field samples the lower map's bilinear surface hfield_refine times finer.
   if (o.hfield_refine < 1 || o.hfield_refine > 16)
     return make_error(fmt::format("areal_tilt: hfield_refine {}: expected 1..16", o.hfield_refine));
-  const std::size_t k = std::size_t(o.hfield_refine);
-  const std::size_t hnx = (f.nx - 1) * k + 1, hny = (f.ny - 1) * k + 1;
+  const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(o.hfield_refine));
+  const std::size_t hnx = hf.nx, hny = hf.ny;
+  const double zmin = hf.zmin, relief = hf.relief;
   const int rows = o.atomic_friction > 0 ? 4 : 1;
   std::string xml = fmt::format(
       "<mujoco><option timestep=\"{:.9g}\" gravity=\"0 0 -9.81\" integrator=\"Euler\"/>"
@@ -136,7 +117,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       o.time_step, ncon, ncon * rows, hny, hnx, 0.5 * f.width() * S, 0.5 * f.height() * S, relief * S,
       0.1 * relief * S + r, o.atomic_friction > 0 ? 3 : 1, std::max(o.atomic_friction, 1e-12), o.contact_time, cfx * S,
       cfy * S, zmin * S, o.damping, o.damping, o.damping);
-  for (const Node& n : nodes)
+  for (const detail::TiltNode& n : nodes)
     xml += fmt::format("<geom type=\"sphere\" size=\"{:.17g}\" pos=\"{:.17g} {:.17g} {:.17g}\"/>", r, n.x * S, n.y * S,
                        n.z * S + r);
   xml += "</body></worldbody></mujoco>";
@@ -150,13 +131,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   sim.m = mj_loadXML("areal_tilt.xml", &sim.vfs, err, sizeof err);
   if (!sim.m) return make_error(fmt::format("areal_tilt: MuJoCo refused the model: {}", err));
   // Heights: row 0 of the height field is at -y, as the map's row 0.
-  for (std::size_t j = 0; j < hny; ++j)
-    for (std::size_t i = 0; i < hnx; ++i) {
-      const double z = k == 1 ? f.at(i, j)
-                              : interpolate(f, f.x0 + std::min(f.width(), double(i) * f.dx / double(k)),
-                                            f.y0 + std::min(f.height(), double(j) * f.dy / double(k)));
-      sim.m->hfield_data[j * hnx + i] = float(std::isnan(z) ? 0.0 : (z - zmin) / relief);
-    }
+  std::copy(hf.data.begin(), hf.data.end(), sim.m->hfield_data);
   sim.d = mj_makeData(sim.m);
   if (!sim.d)
     return make_error(ErrorCode::Internal,
@@ -170,6 +145,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
 
   ArealTiltResult out;
   out.spheres = nodes.size();
+  out.sphere_radius = r / S;
   const double grav = 9.81;
   // Relaxes at tilt beta until at rest (unbalanced force and speed small), until the block has
   // gone D along d from `u_stop`, or for relax_time; returns whether it came to rest.
