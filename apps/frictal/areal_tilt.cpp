@@ -22,11 +22,13 @@ struct Args {
   double sphere_radius = 0;
   double tilt_step = 0.1;
   int hfield_refine = 1;
-  int prediction_refine = 2;
+  int prediction_refine = 0;
   double runaway_distance = 0;
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   std::string detrend = "plane";
+  std::string collision = "exact";
   bool in_place = false;
+  bool predict_only = false;
   bool json = false;
   InputOptions input;
 };
@@ -42,11 +44,18 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--hfield-refine", a->hfield_refine,
                  "Sample the lower map's surface this many times finer for MuJoCo's height field (default 1)");
   app.add_option("--prediction-refine", a->prediction_refine,
-                 "Offset grid of the matched prediction this many times finer than the lower map's (default 2)");
+                 "Offset grid of the matched prediction this many times finer than the lower map's (default 0: "
+                 "the smallest with a step <= r / 2, at most 16)");
   app.add_option("--tilt-step", a->tilt_step,
                  "Tilt increment near the run-away (deg; default 0.1; 1 deg increments before it)");
   add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
+  app.add_option(
+      "--collision", a->collision,
+      "Sphere-height field contacts: exact (the nearest point of each triangle; default) or native (MuJoCo's "
+      "MPR on prisms)");
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
+  app.add_flag("--predict-only", a->predict_only,
+               "Only the predictions, from the block dropped at offset 0 (no simulation; needs no MuJoCo)");
   app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
@@ -56,11 +65,13 @@ std::function<int()> setup(CLI::App& app) {
     require(std::isfinite(a->angle), fmt::format("--angle {}: expected a finite number of degrees", a->angle));
     require(std::isfinite(a->tilt_step) && a->tilt_step > 0 && a->tilt_step < 10,
             fmt::format("--tilt-step {}: expected degrees in (0, 10)", a->tilt_step));
-    require(a->prediction_refine >= 1 && a->prediction_refine <= 16,
-            fmt::format("--prediction-refine {}: expected an integer in 1..16", a->prediction_refine));
+    require(a->prediction_refine >= 0 && a->prediction_refine <= 16,
+            fmt::format("--prediction-refine {}: expected an integer in 0..16 (0: automatic)", a->prediction_refine));
     require(a->hfield_refine >= 1 && a->hfield_refine <= 16,
             fmt::format("--hfield-refine {}: expected an integer in 1..16", a->hfield_refine));
-    if (!mujoco_available()) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
+    require(a->collision == "exact" || a->collision == "native",
+            fmt::format("--collision {}: expected exact or native", a->collision));
+    if (!mujoco_available() && !a->predict_only) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
     const Detrend dt = unwrap(parse_detrend(a->detrend));
     auto load = [&](const std::string& path) {
       const SurfaceData s = load_surface(path, a->input);
@@ -77,8 +88,13 @@ std::function<int()> setup(CLI::App& app) {
     o.runaway_distance = a->runaway_distance;
     o.tilt_step = a->tilt_step * kDeg;
     o.hfield_refine = a->hfield_refine;
+    o.exact_contacts = a->collision == "exact";
     const auto t0 = std::chrono::steady_clock::now();
-    const ArealTiltResult r = unwrap(areal_tilt(f, g, o));
+    ArealTiltResult r;
+    if (a->predict_only)
+      r.sphere_radius = o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(f.dx, f.dy);
+    else
+      r = unwrap(areal_tilt(f, g, o));
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The predictions from the rest offset the simulation reached, on the rigid lift (r = 0).
     const double c = std::cos(o.angle), s = std::sin(o.angle);
@@ -105,9 +121,14 @@ std::function<int()> setup(CLI::App& app) {
     const double locked = unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
     // The matched prediction: the same spheres on the same triangulated height field as MuJoCo
     // (areal_tilt_lift), on an offset grid prediction_refine times finer.
+    // The lift varies on the scale of r between the map's nodes (a valley across the cells'
+    // diagonals is a chain of bumps): the grid's chords must resolve it (docs/mujoco.md).
+    const int refine = a->prediction_refine > 0
+                           ? a->prediction_refine
+                           : std::clamp(int(std::ceil(2 * lo.step / r.sphere_radius - 1e-9)), 1, 16);
     ArealLiftOptions mo = lo;
-    mo.step /= a->prediction_refine;
-    mo.across_step /= a->prediction_refine;
+    mo.step /= refine;
+    mo.across_step /= refine;
     const ArealLift mlift = unwrap(areal_tilt_lift(f, g, o, mo));
     const std::size_t mrest = unwrap(areal_lift_node(mlift, r.rest_offset[0], r.rest_offset[1]));
     const ArealHold mfree = unwrap(areal_hold_angle(mlift, mrest, ho));
@@ -118,8 +139,10 @@ std::function<int()> setup(CLI::App& app) {
       j["upper"] = a->upper.empty() ? a->lower : a->upper;
       j["direction_deg"] = a->angle;
       j["runaway_distance_m"] = D;
-      j["friction_angle_deg"] = to_deg(r.friction_angle);
-      j["ran_away"] = r.ran_away;
+      if (!a->predict_only) {
+        j["friction_angle_deg"] = to_deg(r.friction_angle);
+        j["ran_away"] = r.ran_away;
+      }
       j["rest_offset_m"] = {r.rest_offset[0], r.rest_offset[1]};
       j["predicted_hold_angle_deg"] = to_deg(free.hold_angle);
       j["predicted_hold_angle_locked_deg"] = to_deg(locked);
@@ -127,6 +150,8 @@ std::function<int()> setup(CLI::App& app) {
       j["matched_hold_angle_locked_deg"] = to_deg(mlocked);
       j["matched_steering_deg"] = to_deg(mfree.steering);
       j["sphere_radius_m"] = r.sphere_radius;
+      j["collision"] = a->collision;
+      j["prediction_refine"] = refine;
       j["tilt_step_deg"] = a->tilt_step;
       j["spheres"] = r.spheres;
       j["steps"] = r.steps;
@@ -135,13 +160,20 @@ std::function<int()> setup(CLI::App& app) {
       j["seconds"] = secs;
       print_json(j);
     } else {
+      if (a->predict_only)
+        fmt::print("{} on {} along {} deg, dropped at offset 0 (no simulation)\n",
+                   a->upper.empty() ? a->lower : a->upper, a->lower, a->angle);
+      else
+        fmt::print(
+            "{} on {} along {} deg (MuJoCo, {} spheres): rests at ({:.4g}, {:.4g}) m, runs away at {:.2f} deg "
+            "(steps of {} deg)\n",
+            a->upper.empty() ? a->lower : a->upper, a->lower, a->angle, r.spheres, r.rest_offset[0], r.rest_offset[1],
+            to_deg(r.friction_angle), a->tilt_step);
       fmt::print(
-          "{} on {} along {} deg (MuJoCo, {} spheres): rests at ({:.4g}, {:.4g}) m, runs away at {:.2f} deg "
-          "(steps of {} deg)\n  predicted hold angle {:.3f} deg free to move sideways, {:.3f} deg locked\n"
-          "  matched (the simulated spheres and triangles, rigid) {:.3f} deg free, {:.3f} deg locked\n",
-          a->upper.empty() ? a->lower : a->upper, a->lower, a->angle, r.spheres, r.rest_offset[0], r.rest_offset[1],
-          to_deg(r.friction_angle), a->tilt_step, to_deg(free.hold_angle), to_deg(locked), to_deg(mfree.hold_angle),
-          to_deg(mlocked));
+          "  predicted hold angle {:.3f} deg free to move sideways, {:.3f} deg locked\n"
+          "  matched (the simulated spheres on the triangulated height field, rigid) {:.3f} deg free, {:.3f} "
+          "deg locked\n",
+          to_deg(free.hold_angle), to_deg(locked), to_deg(mfree.hold_angle), to_deg(mlocked));
     }
     return 0;
   };

@@ -33,6 +33,9 @@ struct ArealTiltOptions {
   /// The height field samples the lower map's bilinear surface this many times finer than its
   /// grid (1: the map's nodes; MuJoCo triangulates every cell along one diagonal) (unitless).
   int hfield_refine = 1;
+  /// true: the exact sphere-triangle contact on the height field's triangles (the surface that
+  /// areal_tilt_lift evaluates); false: MuJoCo's own (MPR on prisms: internal edges; docs/mujoco.md).
+  bool exact_contacts = true;
   std::array<double, 2> start_offset = {0, 0};       ///< where the block is put down, (x, y) (unit: m)
   double tilt_step = 0.1 * 3.141592653589793 / 180;  ///< tilt increment near the run-away (unit: rad)
   /// Coarse increments up to the first run-away, which is then tilted again in tilt_step from the

@@ -81,16 +81,17 @@ Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOpt
   if (!std::isfinite(t.angle))
     return make_error(fmt::format("areal_tilt_lift: angle {}: expected a finite direction (rad)", t.angle));
   if (!std::isfinite(t.sphere_radius) || t.sphere_radius < 0)
-    return make_error(fmt::format("areal_tilt_lift: sphere radius {}: expected a finite number >= 0 (m)", t.sphere_radius));
+    return make_error(
+        fmt::format("areal_tilt_lift: sphere radius {}: expected a finite number >= 0 (m)", t.sphere_radius));
   if (t.hfield_refine < 1 || t.hfield_refine > 16)
     return make_error(fmt::format("areal_tilt_lift: hfield_refine {}: expected 1..16", t.hfield_refine));
   auto finite_nonneg = [](double v) { return std::isfinite(v) && v >= 0; };
   if (!finite_nonneg(o.step) || !finite_nonneg(o.across_step) || !finite_nonneg(o.across_max) ||
       !std::isfinite(o.offset_min) || !std::isfinite(o.offset_max))
-    return make_error(
-        fmt::format("areal_tilt_lift: step {}, across_step {}, across_max {} must be finite and >= 0, offset_min {} and "
-                    "offset_max {} finite (m)",
-                    o.step, o.across_step, o.across_max, o.offset_min, o.offset_max));
+    return make_error(fmt::format(
+        "areal_tilt_lift: step {}, across_step {}, across_max {} must be finite and >= 0, offset_min {} and "
+        "offset_max {} finite (m)",
+        o.step, o.across_step, o.across_max, o.offset_min, o.offset_max));
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
   if (nodes.empty()) return make_error("areal_tilt_lift: the upper map has no valid node");
   const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
@@ -108,9 +109,10 @@ Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOpt
   const std::size_t m = std::size_t(std::floor(vmax / across_step + 1e-9));
   const std::size_t nv = 2 * m + 1;
   if (double(nu) * double(nv) * double(nodes.size()) > 2e10)
-    return make_error(fmt::format("areal_tilt_lift: {} x {} offsets of {} spheres are too many; increase step or "
-                                  "across_step",
-                                  nu, nv, nodes.size()));
+    return make_error(
+        fmt::format("areal_tilt_lift: {} x {} offsets of {} spheres are too many; increase step or "
+                    "across_step",
+                    nu, nv, nodes.size()));
   ArealLift out;
   out.angle = t.angle;
   out.n_along = nu;
@@ -127,8 +129,7 @@ Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOpt
   std::vector<double> cell_top(cnx * cny);
   for (std::size_t j = 0; j < cny; ++j)
     for (std::size_t i = 0; i < cnx; ++i)
-      cell_top[j * cnx + i] =
-          std::max({hf.at(i, j), hf.at(i + 1, j), hf.at(i, j + 1), hf.at(i + 1, j + 1)});
+      cell_top[j * cnx + i] = std::max({hf.at(i, j), hf.at(i + 1, j), hf.at(i, j + 1), hf.at(i + 1, j + 1)});
   std::vector<std::size_t> work(nu * nv, 0);
   util::parallel_chunks(nu * nv, util::thread_count(o.threads, nu * nv), [&](unsigned, std::size_t k0, std::size_t k1) {
     for (std::size_t k = k0; k < k1; ++k) {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -50,6 +51,134 @@ struct Sim {
   Sim(const Sim&) = delete;
   Sim& operator=(const Sim&) = delete;
 };
+
+// The exact sphere-triangle contact for the (height field, sphere) pair (docs/mujoco.md): MuJoCo
+// 2.2.2's own (mjc_ConvexHField) runs MPR on prisms, each triangle extruded down to the field's
+// base, and a sphere that crosses from one prism into the next meets the next prism's vertical
+// side first: a horizontal contact (an internal edge) that holds the block on a surface that is
+// straight along its path. This one finds, for each of the same triangles (the same diagonal),
+// the point nearest the sphere's centre, and makes one contact per distinct nearest point with
+// the normal from that point to the centre: the surface that areal_tilt_lift evaluates. Chosen
+// per model by the height field geom's user value 1 (nuser_geom = 1); other models go to the
+// function it replaced, so the table entry can be set once for the process.
+mjfCollision g_native_hfield_sphere = nullptr;
+
+/// The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+void nearest_on_triangle(const mjtNum* p, const mjtNum* a, const mjtNum* b, const mjtNum* c, mjtNum* q) {
+  mjtNum ab[3], ac[3], ap[3];
+  mju_sub3(ab, b, a);
+  mju_sub3(ac, c, a);
+  mju_sub3(ap, p, a);
+  const mjtNum d1 = mju_dot3(ab, ap), d2 = mju_dot3(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return mju_copy3(q, a);
+  mjtNum bp[3];
+  mju_sub3(bp, p, b);
+  const mjtNum d3 = mju_dot3(ab, bp), d4 = mju_dot3(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return mju_copy3(q, b);
+  const mjtNum vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const mjtNum v = d1 / (d1 - d3);
+    for (int i = 0; i < 3; ++i) q[i] = a[i] + v * ab[i];
+    return;
+  }
+  mjtNum cp[3];
+  mju_sub3(cp, p, c);
+  const mjtNum d5 = mju_dot3(ab, cp), d6 = mju_dot3(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return mju_copy3(q, c);
+  const mjtNum vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const mjtNum w = d2 / (d2 - d6);
+    for (int i = 0; i < 3; ++i) q[i] = a[i] + w * ac[i];
+    return;
+  }
+  const mjtNum va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const mjtNum w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    for (int i = 0; i < 3; ++i) q[i] = b[i] + w * (c[i] - b[i]);
+    return;
+  }
+  const mjtNum denom = 1 / (va + vb + vc);
+  const mjtNum v = vb * denom, w = vc * denom;
+  for (int i = 0; i < 3; ++i) q[i] = a[i] + ab[i] * v + ac[i] * w;
+}
+
+int exact_hfield_sphere(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2, mjtNum margin) {
+  if (m->nuser_geom < 1 || m->geom_user[g1 * m->nuser_geom] != 1)
+    return g_native_hfield_sphere ? g_native_hfield_sphere(m, d, con, g1, g2, margin) : 0;
+  const int hid = m->geom_dataid[g1];
+  const int nrow = m->hfield_nrow[hid], ncol = m->hfield_ncol[hid];
+  const mjtNum* size = m->hfield_size + 4 * hid;
+  const float* data = m->hfield_data + m->hfield_adr[hid];
+  const mjtNum* pos1 = d->geom_xpos + 3 * g1;
+  const mjtNum* mat1 = d->geom_xmat + 9 * g1;
+  const mjtNum rs = m->geom_size[3 * g2];
+  // The sphere's centre in the height field's frame.
+  mjtNum v[3], c[3];
+  mju_sub3(v, d->geom_xpos + 3 * g2, pos1);
+  mju_mulMatTVec(c, mat1, v, 3, 3);
+  const mjtNum dx = 2 * size[0] / (ncol - 1), dy = 2 * size[1] / (nrow - 1);
+  const mjtNum reach = rs + margin;
+  const int c0 = std::max(0, int(std::floor((c[0] - reach + size[0]) / dx)));
+  const int c1 = std::min(ncol - 2, int(std::floor((c[0] + reach + size[0]) / dx)));
+  const int r0 = std::max(0, int(std::floor((c[1] - reach + size[1]) / dy)));
+  const int r1 = std::min(nrow - 2, int(std::floor((c[1] + reach + size[1]) / dy)));
+  int cnt = 0;
+  for (int r = r0; r <= r1; ++r)
+    for (int cc = c0; cc <= c1; ++cc) {
+      auto vert = [&](int i, int j, mjtNum* out) {
+        out[0] = dx * i - size[0];
+        out[1] = dy * j - size[1];
+        out[2] = mjtNum(data[j * ncol + i]) * size[2];
+      };
+      mjtNum p00[3], p10[3], p01[3], p11[3];
+      vert(cc, r, p00);
+      vert(cc + 1, r, p10);
+      vert(cc, r + 1, p01);
+      vert(cc + 1, r + 1, p11);
+      if (c[2] - reach > std::max({p00[2], p10[2], p01[2], p11[2]})) continue;
+      // MuJoCo's two triangles of the cell: {(c, r+1), (c, r), (c+1, r+1)}, {(c, r), (c+1, r+1), (c+1, r)}.
+      const mjtNum* tri[2][3] = {{p01, p00, p11}, {p00, p11, p10}};
+      for (auto& t : tri) {
+        mjtNum q[3], n[3];
+        nearest_on_triangle(c, t[0], t[1], t[2], q);
+        mju_sub3(n, c, q);
+        const mjtNum dist = mju_normalize3(n) - rs;
+        if (dist >= margin) continue;
+        if (mju_norm3(n) < 0.5) continue;  // the centre on the surface: no direction
+        if (n[2] <= 0) continue;           // below the surface: another triangle holds it
+        bool seen = false;                 // one contact per nearest point (shared edges, vertices)
+        for (int k = 0; k < cnt && !seen; ++k) {
+          mjtNum e[3], qk[3];
+          mju_sub3(e, con[k].pos, pos1);
+          mju_mulMatTVec(qk, mat1, e, 3, 3);
+          // con[k].pos is the midpoint: back to its nearest point.
+          mjtNum nk[3];
+          mju_mulMatTVec(nk, mat1, con[k].frame, 3, 3);
+          for (int i = 0; i < 3; ++i) qk[i] -= 0.5 * con[k].dist * nk[i];
+          mju_sub3(e, qk, q);
+          seen = mju_dot3(e, e) < 1e-18 * rs * rs;
+        }
+        if (seen || cnt >= mjMAXCONPAIR) continue;
+        mjContact& k = con[cnt++];
+        k.dist = dist;
+        mjtNum mid[3];
+        for (int i = 0; i < 3; ++i) mid[i] = q[i] + 0.5 * dist * n[i];
+        mju_rotVecMat(k.pos, mid, mat1);
+        mju_addTo3(k.pos, pos1);
+        mju_rotVecMat(k.frame, n, mat1);
+        mju_zero3(k.frame + 3);
+      }
+    }
+  return cnt;
+}
+
+std::once_flag g_install_once;
+void install_exact_hfield_sphere() {
+  std::call_once(g_install_once, [] {
+    g_native_hfield_sphere = mjCOLLISIONFUNC[mjGEOM_HFIELD][mjGEOM_SPHERE];
+    mjCOLLISIONFUNC[mjGEOM_HFIELD][mjGEOM_SPHERE] = exact_hfield_sphere;
+  });
+}
 
 }  // namespace
 
@@ -105,23 +234,24 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   const int rows = o.atomic_friction > 0 ? 4 : 1;
   std::string xml = fmt::format(
       "<mujoco><option timestep=\"{:.9g}\" gravity=\"0 0 -9.81\" integrator=\"Euler\"/>"
-      "<size nconmax=\"{}\" njmax=\"{}\"/>"
+      "<size nconmax=\"{}\" njmax=\"{}\" nuser_geom=\"1\"/>"
       "<asset><hfield name=\"lower\" nrow=\"{}\" ncol=\"{}\" size=\"{:.17g} {:.17g} {:.17g} {:.17g}\"/></asset>"
       "<default><geom condim=\"{}\" friction=\"{:.17g} 0 0\" solref=\"{:.9g} 1\" solimp=\"0.99 0.99 0.001\"/></default>"
-      "<worldbody><geom type=\"hfield\" hfield=\"lower\" pos=\"{:.17g} {:.17g} {:.17g}\"/>"
+      "<worldbody><geom type=\"hfield\" hfield=\"lower\" user=\"{}\" pos=\"{:.17g} {:.17g} {:.17g}\"/>"
       "<body name=\"block\">"
       "<joint name=\"x\" type=\"slide\" axis=\"1 0 0\" damping=\"{:.9g}\"/>"
       "<joint name=\"y\" type=\"slide\" axis=\"0 1 0\" damping=\"{:.9g}\"/>"
       "<joint name=\"z\" type=\"slide\" axis=\"0 0 1\" damping=\"{:.9g}\"/>"
       "<inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/>",
       o.time_step, ncon, ncon * rows, hny, hnx, 0.5 * f.width() * S, 0.5 * f.height() * S, relief * S,
-      0.1 * relief * S + r, o.atomic_friction > 0 ? 3 : 1, std::max(o.atomic_friction, 1e-12), o.contact_time, cfx * S,
-      cfy * S, zmin * S, o.damping, o.damping, o.damping);
+      0.1 * relief * S + r, o.atomic_friction > 0 ? 3 : 1, std::max(o.atomic_friction, 1e-12), o.contact_time,
+      o.exact_contacts ? 1 : 0, cfx * S, cfy * S, zmin * S, o.damping, o.damping, o.damping);
   for (const detail::TiltNode& n : nodes)
     xml += fmt::format("<geom type=\"sphere\" size=\"{:.17g}\" pos=\"{:.17g} {:.17g} {:.17g}\"/>", r, n.x * S, n.y * S,
                        n.z * S + r);
   xml += "</body></worldbody></mujoco>";
 
+  install_exact_hfield_sphere();
   Sim sim;
   if (mj_makeEmptyFileVFS(&sim.vfs, "areal_tilt.xml", int(xml.size())) != 0)
     return make_error(ErrorCode::Internal, "areal_tilt: MuJoCo's virtual file system refused the model");

@@ -205,3 +205,66 @@ TEST(ArealTiltLift, GroovesAlongTheDiagonalSteerAndTheirMirrorHolds) {
   }
   EXPECT_GT(held[1], 2 * kPi / 180);  // the mirror holds (measured 7 to 13 deg; see docs/mujoco.md)
 }
+
+TEST(ArealTilt, ObliqueGroovesAgreeWithTheMatchedPrediction) {
+  // Grooves at +30 deg to d along the height field's diagonal and their mirror at -30 deg (as in
+  // ArealTiltLift.GroovesAlongTheDiagonalSteerAndTheirMirrorHolds), the upper face a window in
+  // place: the simulation (MuJoCo's dynamics, exact sphere-triangle contacts) against the rigid
+  // quasi-static process on the lift of the same spheres and triangles (a second method). The
+  // +30 deg block steers at the first 0.1 deg increment; the mirror holds near the matched angle.
+  constexpr double kPi = std::numbers::pi;
+  const std::size_t n = 30, w = 8;
+  const int m = 10;
+  const double a = 1e-3 / double(n - 1), A = 2e-5, psi = kPi / 6;
+  for (int mirror = 0; mirror < 2; ++mirror) {
+    frictal::Map f;
+    f.nx = f.ny = n;
+    f.dx = a;
+    f.dy = a * std::tan(psi);
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i)
+        f.heights.push_back(A * std::sin(2 * kPi * (mirror ? double(i + j) : double(i) - double(j)) / m));
+    frictal::Map g;
+    g.nx = g.ny = w;
+    g.dx = f.dx;
+    g.dy = f.dy;
+    const std::size_t i0 = (n - w) / 2;
+    g.x0 = double(i0) * f.dx;
+    g.y0 = double(i0) * f.dy;
+    for (std::size_t j = 0; j < w; ++j)
+      for (std::size_t i = 0; i < w; ++i) g.heights.push_back(f.at(i + i0, j + i0));
+    frictal::ArealTiltOptions t;
+    t.turn_over_upper = false;
+    auto sim = frictal::areal_tilt(f, g, t);
+    if (!frictal::mujoco_available()) {
+      ASSERT_FALSE(sim.ok());
+      return;
+    }
+    ASSERT_TRUE(sim.ok()) << sim.error().message;
+    ASSERT_TRUE(sim->ran_away);
+    // The matched prediction from the simulated rest offset, on offsets r / 2 apart.
+    frictal::ArealLiftOptions o;
+    o.step = 0.1 * f.dx;
+    o.across_step = 0.1 * f.dy;
+    const double D = 0.05 * f.width();
+    o.offset_min = sim->rest_offset[0] - 2 * D;
+    o.offset_max = sim->rest_offset[0] + 4 * D;
+    o.across_max = std::abs(sim->rest_offset[1]) + 3 * D;
+    auto lift = frictal::areal_tilt_lift(f, g, t, o);
+    ASSERT_TRUE(lift.ok()) << lift.error().message;
+    auto rest = frictal::areal_lift_node(*lift, sim->rest_offset[0], sim->rest_offset[1]);
+    ASSERT_TRUE(rest.ok());
+    frictal::ArealHoldOptions ho;
+    ho.runaway_distance = D;
+    auto hold = frictal::areal_hold_angle(*lift, *rest, ho);
+    ASSERT_TRUE(hold.ok()) << hold.error().message;
+    if (!mirror) {
+      EXPECT_NEAR(hold->hold_angle, 0, 1e-12);
+      EXPECT_LE(sim->friction_angle, 0.1 * kPi / 180 + 1e-9);
+    } else {
+      EXPECT_GT(hold->hold_angle, 5 * kPi / 180);
+      EXPECT_GE(sim->friction_angle, hold->hold_angle - 0.1 * kPi / 180);
+      EXPECT_LE(sim->friction_angle, hold->hold_angle + 0.25 * kPi / 180);
+    }
+  }
+}
