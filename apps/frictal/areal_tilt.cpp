@@ -29,6 +29,8 @@ struct Args {
   std::string collision = "exact";
   bool in_place = false;
   bool predict_only = false;
+  ArealTiltOptions model;  ///< the protocol's and the contact model's settings (scaled units)
+  double coarse_tilt_step = 1.0;
   bool json = false;
   InputOptions input;
 };
@@ -54,6 +56,19 @@ std::function<int()> setup(CLI::App& app) {
       "Sphere-height field contacts: exact (the nearest point of each triangle; default) or native (MuJoCo's "
       "MPR on prisms)");
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
+  app.add_option("--coarse-tilt-step", a->coarse_tilt_step,
+                 "Tilt increment up to the first run-away (deg; default 1; then --tilt-step from the state before)");
+  app.add_option("--time-step", a->model.time_step,
+                 "MuJoCo time step (scaled s: lengths / the lower map's larger "
+                 "extent, gravity 9.81; default 1e-4)");
+  app.add_option("--contact-time", a->model.contact_time,
+                 "Contact softness: solref time constant (scaled s, >= 2 time steps; default 2e-4)");
+  app.add_option("--local-damping", a->model.local_damping,
+                 "Local non-viscous damping, a fraction of the unbalanced force in [0, 1) (default 0.7)");
+  app.add_option("--relax-time", a->model.relax_time, "Relaxation chunk per rest test (scaled s; default 0.5)");
+  app.add_option("--force-tolerance", a->model.force_tolerance,
+                 "At rest: unbalanced force below this fraction of the weight (default 1e-4)");
+  app.add_option("--speed-tolerance", a->model.speed_tolerance, "At rest: speed below this (scaled m/s; default 1e-5)");
   app.add_flag("--predict-only", a->predict_only,
                "Only the predictions, from the block dropped at offset 0 (no simulation; needs no MuJoCo)");
   app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
@@ -80,7 +95,10 @@ std::function<int()> setup(CLI::App& app) {
     };
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);
-    ArealTiltOptions o;
+    require(std::isfinite(a->coarse_tilt_step) && a->coarse_tilt_step > 0 && a->coarse_tilt_step < 45,
+            fmt::format("--coarse-tilt-step {}: expected degrees in (0, 45)", a->coarse_tilt_step));
+    ArealTiltOptions o = a->model;
+    o.coarse_tilt_step = a->coarse_tilt_step * kDeg;
     o.angle = a->angle * kDeg;
     o.turn_over_upper = !a->in_place;
     o.atomic_friction = a->atomic_friction;
@@ -152,6 +170,15 @@ std::function<int()> setup(CLI::App& app) {
       j["sphere_radius_m"] = r.sphere_radius;
       j["collision"] = a->collision;
       j["prediction_refine"] = refine;
+      j["matched_steering_deg"] = to_deg(mfree.steering);
+      j["predicted_steering_deg"] = to_deg(free.steering);
+      if (!a->predict_only) {
+        j["steering_deg"] = to_deg(r.steering);
+        nlohmann::json tr = nlohmann::json::array();
+        for (const ArealTiltIncrement& i : r.trace)
+          tr.push_back({to_deg(i.tilt), i.x, i.y, i.rested, i.steps, i.unbalanced_force, i.speed});
+        j["increments"] = tr;  // [tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed]
+      }
       j["tilt_step_deg"] = a->tilt_step;
       j["spheres"] = r.spheres;
       j["steps"] = r.steps;

@@ -13,6 +13,7 @@
 
 #include <array>
 #include <cstddef>
+#include <vector>
 
 #include "frictal/areal.hpp"
 #include "frictal/map.hpp"
@@ -54,6 +55,16 @@ struct ArealTiltOptions {
   double speed_tolerance = 1e-5;  ///< at rest: speed below this (unit: scaled m/s)
 };
 
+/// One tilt increment of the simulation, at its end.
+struct ArealTiltIncrement {
+  double tilt = 0;              ///< (unit: rad)
+  double x = 0, y = 0;          ///< the block's offset (unit: m)
+  bool rested = false;          ///< reached rest (else ran D or waited out its relaxations)
+  long steps = 0;               ///< MuJoCo steps so far (unitless)
+  double unbalanced_force = 0;  ///< at the end, a fraction of the weight (unitless)
+  double speed = 0;             ///< at the end (unit: m per scaled s)
+};
+
 struct ArealTiltResult {
   double friction_angle = 0;                   ///< tilt at which the run-away began (unit: rad)
   std::array<double, 2> rest_offset = {0, 0};  ///< where the block rested at zero tilt (unit: m)
@@ -63,6 +74,9 @@ struct ArealTiltResult {
   std::size_t spheres = 0;                     ///< spheres of the upper face (unitless)
   int max_contacts = 0;                        ///< most contacts at once (unitless)
   double sphere_radius = 0;                    ///< r used (unit: m)
+  /// Angle from d to the run-away's displacement from the last stop, towards e (unit: rad).
+  double steering = 0;
+  std::vector<ArealTiltIncrement> trace;  ///< every increment, coarse then fine, in order
 };
 
 /// Errors: invalid maps or options (InvalidInput), MuJoCo refusing the model (InvalidInput, its

@@ -196,6 +196,14 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
     return make_error("areal_tilt: expected 0 < tilt_step < max_tilt < pi/2 (rad)");
   if (!(o.time_step > 0) || !(o.contact_time >= 2 * o.time_step) || !(o.damping >= 0) || !(o.relax_time > 0))
     return make_error("areal_tilt: expected time_step > 0, contact_time >= 2 time_step, damping >= 0, relax_time > 0");
+  if (!(o.local_damping >= 0 && o.local_damping < 1))
+    return make_error(fmt::format("areal_tilt: local damping {}: expected a fraction in [0, 1)", o.local_damping));
+  if (!(o.force_tolerance > 0) || !(o.speed_tolerance > 0) || bad(o.force_tolerance) || bad(o.speed_tolerance))
+    return make_error(fmt::format("areal_tilt: force tolerance {} and speed tolerance {}: expected finite numbers > 0",
+                                  o.force_tolerance, o.speed_tolerance));
+  if (!(o.coarse_tilt_step > 0) || bad(o.coarse_tilt_step))
+    return make_error(
+        fmt::format("areal_tilt: coarse tilt step {}: expected a finite angle > 0 (rad)", o.coarse_tilt_step));
   if (bad(o.start_offset[0]) || bad(o.start_offset[1]))
     return make_error("areal_tilt: the start offset must be finite (m)");
 
@@ -279,6 +287,8 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   const double grav = 9.81;
   // Relaxes at tilt beta until at rest (unbalanced force and speed small), until the block has
   // gone D along d from `u_stop`, or for relax_time; returns whether it came to rest.
+  constexpr double kDriftDamping = 100;   // per scaled s (block mass 1)
+  double last_force = 0, last_speed = 0;  // at the end of the last relaxation (scaled)
   auto relax = [&](double beta, double u_stop, bool& far) {
     m->opt.gravity[0] = grav * std::sin(beta) * dxv;
     m->opt.gravity[1] = grav * std::sin(beta) * dyv;
@@ -288,9 +298,18 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
     for (long k = 0; k < n; ++k) {
       // Local non-viscous damping (Cundall; YADE, PFC): a force against the velocity of each
       // joint, a fraction of its unbalanced force, so that a slip is not slowed to a creep.
+      // A balanced block (unbalanced force below the rest tolerance) that still moves drifts
+      // along a neutral direction (a frictionless groove): local damping, proportional to the
+      // unbalanced force, would never stop it; the quasi-static block stays at its stop, so
+      // the drift is damped viscously (e-folding time 0.01 scaled s) while balanced.
+      double fb = 0;
+      for (int q = 0; q < 3; ++q) fb += std::pow(d->qfrc_constraint[q] - d->qfrc_bias[q], 2);
+      const bool balanced = std::sqrt(fb) < o.force_tolerance * grav;
       for (int q = 0; q < 3; ++q) {
         const double u = d->qfrc_constraint[q] - d->qfrc_bias[q];
-        d->qfrc_applied[q] = d->qvel[q] == 0 ? 0.0 : -o.local_damping * std::abs(u) * (d->qvel[q] > 0 ? 1 : -1);
+        d->qfrc_applied[q] = balanced          ? -kDriftDamping * d->qvel[q]
+                             : d->qvel[q] == 0 ? 0.0
+                                               : -o.local_damping * std::abs(u) * (d->qvel[q] > 0 ? 1 : -1);
       }
       mj_step(m, d);
       ++out.steps;
@@ -306,14 +325,27 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
         fu += u * u;
         v += d->qvel[q] * d->qvel[q];
       }
-      if (std::sqrt(fu) < o.force_tolerance * grav && std::sqrt(v) < o.speed_tolerance) return true;
+      last_force = std::sqrt(fu) / grav;
+      last_speed = std::sqrt(v);
+      if (last_force < o.force_tolerance && last_speed < o.speed_tolerance) return true;
     }
     return false;
   };
+  // The stop's position (scaled) for the steering of the run-away.
+  double x_stop = 0, y_stop = 0, x_saved = 0, y_saved = 0;
+  auto record = [&](double beta, bool rested) {
+    out.trace.push_back({beta, d->qpos[0] / S, d->qpos[1] / S, rested, out.steps, last_force, last_speed / S});
+  };
   bool far = false;
-  if (!relax(0.0, std::numeric_limits<double>::infinity(), far)) ++out.unsettled;
+  {
+    const bool rested = relax(0.0, std::numeric_limits<double>::infinity(), far);
+    if (!rested) ++out.unsettled;
+    record(0.0, rested);
+  }
   out.rest_offset = {d->qpos[0] / S, d->qpos[1] / S};
   double u_stop = d->qpos[0] * dxv + d->qpos[1] * dyv;
+  x_stop = x_saved = d->qpos[0];
+  y_stop = y_saved = d->qpos[1];
   // Coarse increments (coarse_tilt_step) until the run-away, then again from the state at rest
   // before it in increments of tilt_step: the fine protocol from that state.
   mjData* saved = mj_makeData(m);
@@ -330,14 +362,24 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       constexpr int kMaxWaits = 40;
       bool rest = false;
       for (int w = 0; w < kMaxWaits && !rest && !far; ++w) rest = relax(beta, u_stop, far);
-      if (far) return beta;
-      if (rest)
+      record(beta, rest);
+      if (far) {
+        out.steering = std::atan2(-(d->qpos[0] - x_stop) * dyv + (d->qpos[1] - y_stop) * dxv,
+                                  (d->qpos[0] - x_stop) * dxv + (d->qpos[1] - y_stop) * dyv);
+        return beta;
+      }
+      if (rest) {
         u_stop = d->qpos[0] * dxv + d->qpos[1] * dyv;
-      else
+        x_stop = d->qpos[0];
+        y_stop = d->qpos[1];
+      } else {
         ++out.unsettled;
+      }
       mj_copyData(saved, m, d);
       beta_saved = beta;
       u_saved = u_stop;
+      x_saved = x_stop;
+      y_saved = y_stop;
     }
     return std::numeric_limits<double>::quiet_NaN();
   };
@@ -348,6 +390,8 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   if (!std::isnan(b) && coarse > o.tilt_step) {
     mj_copyData(d, m, saved);
     u_stop = u_saved;
+    x_stop = x_saved;
+    y_stop = y_saved;
     far = false;
     const double b0 = beta_saved;
     b = run(b0, o.tilt_step, beta_saved, u_saved);
