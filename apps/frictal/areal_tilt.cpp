@@ -27,8 +27,10 @@ struct Args {
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   std::string detrend = "plane";
   std::string collision = "exact";
+  std::string lateral = "free";
   bool in_place = false;
   bool predict_only = false;
+  std::string start_offset;
   ArealTiltOptions model;  ///< the protocol's and the contact model's settings (scaled units)
   double coarse_tilt_step = 1.0;
   bool json = false;
@@ -55,6 +57,8 @@ std::function<int()> setup(CLI::App& app) {
       "--collision", a->collision,
       "Sphere-height field contacts: exact (the nearest point of each triangle; default) or native (MuJoCo's "
       "MPR on prisms)");
+  app.add_option("--lateral", a->lateral,
+                 "free (default): the simulated block may move sideways; locked: only along d (and z)");
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
   app.add_option("--coarse-tilt-step", a->coarse_tilt_step,
                  "Tilt increment up to the first run-away (deg; default 1; then --tilt-step from the state before)");
@@ -69,6 +73,8 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--force-tolerance", a->model.force_tolerance,
                  "At rest: unbalanced force below this fraction of the weight (default 1e-4)");
   app.add_option("--speed-tolerance", a->model.speed_tolerance, "At rest: speed below this (scaled m/s; default 1e-5)");
+  app.add_option("--start-offset", a->start_offset,
+                 "X,Y: where the block is put down, in the lower map's frame (m; default 0,0)");
   app.add_flag("--predict-only", a->predict_only,
                "Only the predictions, from the block dropped at offset 0 (no simulation; needs no MuJoCo)");
   app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
@@ -86,6 +92,8 @@ std::function<int()> setup(CLI::App& app) {
             fmt::format("--hfield-refine {}: expected an integer in 1..16", a->hfield_refine));
     require(a->collision == "exact" || a->collision == "native",
             fmt::format("--collision {}: expected exact or native", a->collision));
+    require(a->lateral == "free" || a->lateral == "locked",
+            fmt::format("--lateral {}: expected free or locked", a->lateral));
     if (!mujoco_available() && !a->predict_only) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
     const Detrend dt = unwrap(parse_detrend(a->detrend));
     auto load = [&](const std::string& path) {
@@ -99,6 +107,7 @@ std::function<int()> setup(CLI::App& app) {
             fmt::format("--coarse-tilt-step {}: expected degrees in (0, 45)", a->coarse_tilt_step));
     ArealTiltOptions o = a->model;
     o.coarse_tilt_step = a->coarse_tilt_step * kDeg;
+    if (!a->start_offset.empty()) o.start_offset = parse_offset(a->start_offset, "--start-offset");
     o.angle = a->angle * kDeg;
     o.turn_over_upper = !a->in_place;
     o.atomic_friction = a->atomic_friction;
@@ -107,12 +116,15 @@ std::function<int()> setup(CLI::App& app) {
     o.tilt_step = a->tilt_step * kDeg;
     o.hfield_refine = a->hfield_refine;
     o.exact_contacts = a->collision == "exact";
+    o.lock_lateral = a->lateral == "locked";
     const auto t0 = std::chrono::steady_clock::now();
     ArealTiltResult r;
-    if (a->predict_only)
+    if (a->predict_only) {
+      r.rest_offset = o.start_offset;
       r.sphere_radius = o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(f.dx, f.dy);
-    else
+    } else {
       r = unwrap(areal_tilt(f, g, o));
+    }
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The predictions from the rest offset the simulation reached, on the rigid lift (r = 0).
     const double c = std::cos(o.angle), s = std::sin(o.angle);
@@ -136,7 +148,13 @@ std::function<int()> setup(CLI::App& app) {
     ho.atomic_friction = o.atomic_friction;
     const std::size_t rest = unwrap(areal_lift_node(lift, r.rest_offset[0], r.rest_offset[1]));
     const ArealHold free = unwrap(areal_hold_angle(lift, rest, ho));
-    const double locked = unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
+    // Locked: on the line through the free block's rest (as `frictal areal`), or, when the
+    // simulated block was locked, locked from its own rest on.
+    ArealHoldOptions hl = ho;
+    hl.lateral = LateralMotion::Locked;
+    const bool sim_locked = a->lateral == "locked";
+    const double locked = sim_locked ? unwrap(areal_hold_angle(lift, rest, hl)).hold_angle
+                                     : unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
     // The matched prediction: the same spheres on the same triangulated height field as MuJoCo
     // (areal_tilt_lift), on an offset grid prediction_refine times finer.
     // The lift varies on the scale of r between the map's nodes (a valley across the cells'
@@ -150,7 +168,8 @@ std::function<int()> setup(CLI::App& app) {
     const ArealLift mlift = unwrap(areal_tilt_lift(f, g, o, mo));
     const std::size_t mrest = unwrap(areal_lift_node(mlift, r.rest_offset[0], r.rest_offset[1]));
     const ArealHold mfree = unwrap(areal_hold_angle(mlift, mrest, ho));
-    const double mlocked = unwrap(areal_locked_hold_angle(mlift, mfree.rest, ho)).hold_angle;
+    const double mlocked = sim_locked ? unwrap(areal_hold_angle(mlift, mrest, hl)).hold_angle
+                                      : unwrap(areal_locked_hold_angle(mlift, mfree.rest, ho)).hold_angle;
     if (a->json) {
       nlohmann::json j;
       j["lower"] = a->lower;
@@ -169,6 +188,7 @@ std::function<int()> setup(CLI::App& app) {
       j["matched_steering_deg"] = to_deg(mfree.steering);
       j["sphere_radius_m"] = r.sphere_radius;
       j["collision"] = a->collision;
+      j["lateral"] = a->lateral;
       j["prediction_refine"] = refine;
       j["matched_steering_deg"] = to_deg(mfree.steering);
       j["predicted_steering_deg"] = to_deg(free.steering);

@@ -37,6 +37,9 @@ struct ArealTiltOptions {
   /// true: the exact sphere-triangle contact on the height field's triangles (the surface that
   /// areal_tilt_lift evaluates); false: MuJoCo's own (MPR on prisms: internal edges; docs/mujoco.md).
   bool exact_contacts = true;
+  /// true: the block slides along d only (a slide joint along d and one along z): the locked
+  /// block of areal_locked_hold_angle, on the line through the start offset.
+  bool lock_lateral = false;
   std::array<double, 2> start_offset = {0, 0};       ///< where the block is put down, (x, y) (unit: m)
   double tilt_step = 0.1 * 3.141592653589793 / 180;  ///< tilt increment near the run-away (unit: rad)
   /// Coarse increments up to the first run-away, which is then tilted again in tilt_step from the

@@ -240,20 +240,30 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   const std::size_t hnx = hf.nx, hny = hf.ny;
   const double zmin = hf.zmin, relief = hf.relief;
   const int rows = o.atomic_friction > 0 ? 4 : 1;
+  // Free: slide joints along x and y; locked: one along d, the body put at the start offset's
+  // part across d (so that its offset is (bx, by) + q0 d).
+  const double sd = o.start_offset[0] * dxv + o.start_offset[1] * dyv;
+  const double bx = o.lock_lateral ? (o.start_offset[0] - sd * dxv) * S : 0.0;
+  const double by = o.lock_lateral ? (o.start_offset[1] - sd * dyv) * S : 0.0;
+  const std::string lateral_joints =
+      o.lock_lateral ? fmt::format("<joint name=\"u\" type=\"slide\" axis=\"{:.17g} {:.17g} 0\" damping=\"{:.9g}\"/>",
+                                   dxv, dyv, o.damping)
+                     : fmt::format(
+                           "<joint name=\"x\" type=\"slide\" axis=\"1 0 0\" damping=\"{:.9g}\"/>"
+                           "<joint name=\"y\" type=\"slide\" axis=\"0 1 0\" damping=\"{:.9g}\"/>",
+                           o.damping, o.damping);
   std::string xml = fmt::format(
       "<mujoco><option timestep=\"{:.9g}\" gravity=\"0 0 -9.81\" integrator=\"Euler\"/>"
       "<size nconmax=\"{}\" njmax=\"{}\" nuser_geom=\"1\"/>"
       "<asset><hfield name=\"lower\" nrow=\"{}\" ncol=\"{}\" size=\"{:.17g} {:.17g} {:.17g} {:.17g}\"/></asset>"
       "<default><geom condim=\"{}\" friction=\"{:.17g} 0 0\" solref=\"{:.9g} 1\" solimp=\"0.99 0.99 0.001\"/></default>"
       "<worldbody><geom type=\"hfield\" hfield=\"lower\" user=\"{}\" pos=\"{:.17g} {:.17g} {:.17g}\"/>"
-      "<body name=\"block\">"
-      "<joint name=\"x\" type=\"slide\" axis=\"1 0 0\" damping=\"{:.9g}\"/>"
-      "<joint name=\"y\" type=\"slide\" axis=\"0 1 0\" damping=\"{:.9g}\"/>"
+      "<body name=\"block\" pos=\"{:.17g} {:.17g} 0\">{}"
       "<joint name=\"z\" type=\"slide\" axis=\"0 0 1\" damping=\"{:.9g}\"/>"
       "<inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1 1 1\"/>",
       o.time_step, ncon, ncon * rows, hny, hnx, 0.5 * f.width() * S, 0.5 * f.height() * S, relief * S,
       0.1 * relief * S + r, o.atomic_friction > 0 ? 3 : 1, std::max(o.atomic_friction, 1e-12), o.contact_time,
-      o.exact_contacts ? 1 : 0, cfx * S, cfy * S, zmin * S, o.damping, o.damping, o.damping);
+      o.exact_contacts ? 1 : 0, cfx * S, cfy * S, zmin * S, bx, by, lateral_joints, o.damping);
   for (const detail::TiltNode& n : nodes)
     xml += fmt::format("<geom type=\"sphere\" size=\"{:.17g}\" pos=\"{:.17g} {:.17g} {:.17g}\"/>", r, n.x * S, n.y * S,
                        n.z * S + r);
@@ -276,9 +286,17 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
                       fmt::format("areal_tilt: MuJoCo could not allocate the data of {} spheres", nodes.size()));
   mjModel* m = sim.m;
   mjData* d = sim.d;
-  d->qpos[0] = o.start_offset[0] * S;
-  d->qpos[1] = o.start_offset[1] * S;
-  d->qpos[2] = (lift + 1e-3 * relief) * S;
+  const int nv = m->nv;  // 3 (x, y, z) or 2 (u, z)
+  if (o.lock_lateral) {
+    d->qpos[0] = sd * S;
+  } else {
+    d->qpos[0] = o.start_offset[0] * S;
+    d->qpos[1] = o.start_offset[1] * S;
+  }
+  d->qpos[nv - 1] = (lift + 1e-3 * relief) * S;
+  // The block's offset (scaled).
+  auto X = [&]() { return o.lock_lateral ? bx + d->qpos[0] * dxv : d->qpos[0]; };
+  auto Y = [&]() { return o.lock_lateral ? by + d->qpos[0] * dyv : d->qpos[1]; };
   mj_forward(m, d);
 
   ArealTiltResult out;
@@ -303,9 +321,9 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       // unbalanced force, would never stop it; the quasi-static block stays at its stop, so
       // the drift is damped viscously (e-folding time 0.01 scaled s) while balanced.
       double fb = 0;
-      for (int q = 0; q < 3; ++q) fb += std::pow(d->qfrc_constraint[q] - d->qfrc_bias[q], 2);
+      for (int q = 0; q < nv; ++q) fb += std::pow(d->qfrc_constraint[q] - d->qfrc_bias[q], 2);
       const bool balanced = std::sqrt(fb) < o.force_tolerance * grav;
-      for (int q = 0; q < 3; ++q) {
+      for (int q = 0; q < nv; ++q) {
         const double u = d->qfrc_constraint[q] - d->qfrc_bias[q];
         d->qfrc_applied[q] = balanced          ? -kDriftDamping * d->qvel[q]
                              : d->qvel[q] == 0 ? 0.0
@@ -314,13 +332,13 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       mj_step(m, d);
       ++out.steps;
       out.max_contacts = std::max(out.max_contacts, d->ncon);
-      if (d->qpos[0] * dxv + d->qpos[1] * dyv - u_stop >= D) {
+      if (X() * dxv + Y() * dyv - u_stop >= D) {
         far = true;
         return false;
       }
       if (k < 10) continue;
       double fu = 0, v = 0;
-      for (int q = 0; q < 3; ++q) {
+      for (int q = 0; q < nv; ++q) {
         const double u = d->qfrc_constraint[q] - d->qfrc_bias[q];
         fu += u * u;
         v += d->qvel[q] * d->qvel[q];
@@ -334,18 +352,21 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   // The stop's position (scaled) for the steering of the run-away.
   double x_stop = 0, y_stop = 0, x_saved = 0, y_saved = 0;
   auto record = [&](double beta, bool rested) {
-    out.trace.push_back({beta, d->qpos[0] / S, d->qpos[1] / S, rested, out.steps, last_force, last_speed / S});
+    out.trace.push_back({beta, X() / S, Y() / S, rested, out.steps, last_force, last_speed / S});
   };
   bool far = false;
+  constexpr int kMaxWaits = 40;  // relaxations at one tilt before it counts as unsettled
   {
-    const bool rested = relax(0.0, std::numeric_limits<double>::infinity(), far);
+    // At zero tilt the block slides into the basin that holds its drop: as long as it takes.
+    bool rested = false;
+    for (int w = 0; w < kMaxWaits && !rested; ++w) rested = relax(0.0, std::numeric_limits<double>::infinity(), far);
     if (!rested) ++out.unsettled;
     record(0.0, rested);
   }
-  out.rest_offset = {d->qpos[0] / S, d->qpos[1] / S};
-  double u_stop = d->qpos[0] * dxv + d->qpos[1] * dyv;
-  x_stop = x_saved = d->qpos[0];
-  y_stop = y_saved = d->qpos[1];
+  out.rest_offset = {X() / S, Y() / S};
+  double u_stop = X() * dxv + Y() * dyv;
+  x_stop = x_saved = X();
+  y_stop = y_saved = Y();
   // Coarse increments (coarse_tilt_step) until the run-away, then again from the state at rest
   // before it in increments of tilt_step: the fine protocol from that state.
   mjData* saved = mj_makeData(m);
@@ -359,19 +380,18 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       // A block that is not at rest after relax_time is creeping under the damping (its
       // unbalanced force is not small): the tilt waits until it rests or has run D, up to
       // kMaxWaits relaxations, so that the drag does not let the tilt grow during a run.
-      constexpr int kMaxWaits = 40;
       bool rest = false;
       for (int w = 0; w < kMaxWaits && !rest && !far; ++w) rest = relax(beta, u_stop, far);
       record(beta, rest);
       if (far) {
-        out.steering = std::atan2(-(d->qpos[0] - x_stop) * dyv + (d->qpos[1] - y_stop) * dxv,
-                                  (d->qpos[0] - x_stop) * dxv + (d->qpos[1] - y_stop) * dyv);
+        out.steering =
+            std::atan2(-(X() - x_stop) * dyv + (Y() - y_stop) * dxv, (X() - x_stop) * dxv + (Y() - y_stop) * dyv);
         return beta;
       }
       if (rest) {
-        u_stop = d->qpos[0] * dxv + d->qpos[1] * dyv;
-        x_stop = d->qpos[0];
-        y_stop = d->qpos[1];
+        u_stop = X() * dxv + Y() * dyv;
+        x_stop = X();
+        y_stop = Y();
       } else {
         ++out.unsettled;
       }
