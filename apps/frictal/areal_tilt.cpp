@@ -168,6 +168,10 @@ std::function<int()> setup(CLI::App& app) {
     const ArealLift mlift = unwrap(areal_tilt_lift(f, g, o, mo));
     const std::size_t mrest = unwrap(areal_lift_node(mlift, r.rest_offset[0], r.rest_offset[1]));
     const ArealHold mfree = unwrap(areal_hold_angle(mlift, mrest, ho));
+    // The same rigid block off the grid (areal_tilt_hold), in the simulated lateral mode.
+    ArealTiltOptions co = o;
+    co.runaway_distance = D;
+    const ArealTiltHold cont = unwrap(areal_tilt_hold(f, g, co));
     const double mlocked = sim_locked ? unwrap(areal_hold_angle(mlift, mrest, hl)).hold_angle
                                       : unwrap(areal_locked_hold_angle(mlift, mfree.rest, ho)).hold_angle;
     if (a->json) {
@@ -183,6 +187,11 @@ std::function<int()> setup(CLI::App& app) {
       j["rest_offset_m"] = {r.rest_offset[0], r.rest_offset[1]};
       j["predicted_hold_angle_deg"] = to_deg(free.hold_angle);
       j["predicted_hold_angle_locked_deg"] = to_deg(locked);
+      j["continuous_hold_angle_deg"] = to_deg(cont.hold_angle);
+      j["continuous_runaway_increment_deg"] = to_deg(cont.runaway_increment);
+      j["continuous_steering_deg"] = to_deg(cont.steering);
+      j["continuous_rest_offset_m"] = {cont.rest_offset[0], cont.rest_offset[1]};
+      j["continuous_evaluations"] = cont.evaluations;
       j["matched_hold_angle_deg"] = to_deg(mfree.hold_angle);
       j["matched_hold_angle_locked_deg"] = to_deg(mlocked);
       j["matched_steering_deg"] = to_deg(mfree.steering);

@@ -99,4 +99,27 @@ Result<ArealTiltResult> areal_tilt(const Map& lower, const Map& upper, const Are
 Result<ArealLift> areal_tilt_lift(const Map& lower, const Map& upper, const ArealTiltOptions& t,
                                   const ArealLiftOptions& o = {});
 
+/// The matched prediction off the grid: the rigid, frictionless quasi-static block on the same
+/// spheres and triangles as areal_tilt_lift, with offsets anywhere in the plane. At tilt beta the
+/// block descends the potential V(s) = h(s) cos(beta) - (s.d) sin(beta) by nonsmooth steepest
+/// descent: h is the max over (sphere, triangle) pieces, the gradient of a piece is
+/// (p - c) / sqrt(r^2 - |p - c|^2) (p its touching point, c the sphere's centre: the envelope
+/// theorem), the direction is minus the least-norm point of the convex hull of the tilted
+/// gradients of the pieces within eps of the max (eps shrinking with the step), with a
+/// backtracking step; it stops where that point is below `stationary` or the step below a
+/// millionth of r. The protocol is areal_tilt's: rest at zero tilt from t.start_offset, then
+/// t.coarse_tilt_step increments to the first run-away (a displacement along d of D since the
+/// last stop), again from the stop before it in t.tilt_step, and the run-away tilt is then
+/// bisected to `resolution`. t.lock_lateral restricts the moves to +-d. mu_a must be 0.
+struct ArealTiltHold {
+  double hold_angle = 0;                       ///< bisected (unit: rad)
+  double runaway_increment = 0;                ///< the tilt_step increment at which it ran (unit: rad)
+  bool ran_away = false;                       ///< false: held up to t.max_tilt
+  std::array<double, 2> rest_offset = {0, 0};  ///< at zero tilt (unit: m)
+  double steering = 0;                         ///< from d to the run-away's displacement (unit: rad)
+  long evaluations = 0;                        ///< lift evaluations (unitless)
+};
+Result<ArealTiltHold> areal_tilt_hold(const Map& lower, const Map& upper, const ArealTiltOptions& t,
+                                      double resolution = 1e-4, double stationary = 1e-7);
+
 }  // namespace frictal
