@@ -68,13 +68,16 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--contact-time", a->model.contact_time,
                  "Contact softness: solref time constant (scaled s, >= 2 time steps; default 2e-4)");
   app.add_option("--local-damping", a->model.local_damping,
-                 "Local non-viscous damping, a fraction of the unbalanced force in [0, 1) (default 0.7)");
+                 "Local non-viscous damping, a fraction of the unbalanced force in [0, 1) (default 0.9)");
   app.add_option("--relax-time", a->model.relax_time, "Relaxation chunk per rest test (scaled s; default 0.5)");
   app.add_option("--force-tolerance", a->model.force_tolerance,
                  "At rest: unbalanced force below this fraction of the weight (default 1e-4)");
   app.add_option("--speed-tolerance", a->model.speed_tolerance, "At rest: speed below this (scaled m/s; default 1e-5)");
   app.add_option("--start-offset", a->start_offset,
                  "X,Y: where the block is put down, in the lower map's frame (m; default 0,0)");
+  app.add_option("--rest-steps", a->model.rest_steps,
+                 "At rest: balanced and still for this many steps in a row "
+                 "(default 10)");
   app.add_flag("--predict-only", a->predict_only,
                "Only the predictions, from the block dropped at offset 0 (no simulation; needs no MuJoCo)");
   app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
@@ -170,6 +173,7 @@ std::function<int()> setup(CLI::App& app) {
     const ArealHold mfree = unwrap(areal_hold_angle(mlift, mrest, ho));
     // The same rigid block off the grid (areal_tilt_hold), in the simulated lateral mode.
     ArealTiltOptions co = o;
+    co.start_offset = r.rest_offset;  // from the simulated rest: the same basin
     co.runaway_distance = D;
     const ArealTiltHold cont = unwrap(areal_tilt_hold(f, g, co));
     const double mlocked = sim_locked ? unwrap(areal_hold_angle(mlift, mrest, hl)).hold_angle

@@ -52,10 +52,11 @@ struct ArealTiltOptions {
   double damping = 0;          ///< viscous joint damping per unit mass (unit: 1/scaled s)
   /// Local non-viscous damping (Cundall): a force against each joint's velocity, this fraction of
   /// its unbalanced force, in [0, 1) (unitless).
-  double local_damping = 0.7;
+  double local_damping = 0.9;
   double relax_time = 0.5;        ///< longest relaxation per increment (unit: scaled s)
   double force_tolerance = 1e-4;  ///< at rest: unbalanced force below this fraction of the weight (unitless)
   double speed_tolerance = 1e-5;  ///< at rest: speed below this (unit: scaled m/s)
+  int rest_steps = 10;            ///< ... for this many steps in a row (unitless)
 };
 
 /// One tilt increment of the simulation, at its end.

@@ -196,6 +196,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
     return make_error("areal_tilt: expected 0 < tilt_step < max_tilt < pi/2 (rad)");
   if (!(o.time_step > 0) || !(o.contact_time >= 2 * o.time_step) || !(o.damping >= 0) || !(o.relax_time > 0))
     return make_error("areal_tilt: expected time_step > 0, contact_time >= 2 time_step, damping >= 0, relax_time > 0");
+  if (o.rest_steps < 1) return make_error(fmt::format("areal_tilt: rest steps {}: expected >= 1", o.rest_steps));
   if (!(o.local_damping >= 0 && o.local_damping < 1))
     return make_error(fmt::format("areal_tilt: local damping {}: expected a fraction in [0, 1)", o.local_damping));
   if (!(o.force_tolerance > 0) || !(o.speed_tolerance > 0) || bad(o.force_tolerance) || bad(o.speed_tolerance))
@@ -313,6 +314,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
     m->opt.gravity[2] = -grav * std::cos(beta);
     far = false;
     const long n = long(o.relax_time / o.time_step);
+    int calm = 0;
     for (long k = 0; k < n; ++k) {
       // Local non-viscous damping (Cundall; YADE, PFC): a force against the velocity of each
       // joint, a fraction of its unbalanced force, so that a slip is not slowed to a creep.
@@ -336,7 +338,6 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
         far = true;
         return false;
       }
-      if (k < 10) continue;
       double fu = 0, v = 0;
       for (int q = 0; q < nv; ++q) {
         const double u = d->qfrc_constraint[q] - d->qfrc_bias[q];
@@ -345,7 +346,10 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       }
       last_force = std::sqrt(fu) / grav;
       last_speed = std::sqrt(v);
-      if (last_force < o.force_tolerance && last_speed < o.speed_tolerance) return true;
+      // At rest: balanced and still for rest_steps steps in a row (one instant is not enough: a
+      // block that lands or turns round passes through small force and speed).
+      calm = last_force < o.force_tolerance && last_speed < o.speed_tolerance ? calm + 1 : 0;
+      if (calm >= o.rest_steps) return true;
     }
     return false;
   };
