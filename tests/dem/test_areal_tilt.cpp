@@ -268,3 +268,80 @@ TEST(ArealTilt, ObliqueGroovesAgreeWithTheMatchedPrediction) {
     }
   }
 }
+
+TEST(ArealTiltHold, ATipInAStraightVValley) {
+  // One sphere (the upper face is one node) in a V valley z = sigma * (distance to the valley's
+  // line): along the cells' diagonal at psi = 30 deg to d (dx = a, dy = a tan psi), so the
+  // triangles hold the V exactly. Free: the tip slides along the valley at any tilt (within the
+  // first 0.1 deg increment). Locked along d: it climbs the flank, whose slope along d is
+  // sigma sin(psi): hold atan(sigma sin psi). Across d (psi = 90 deg): atan(sigma) both ways.
+  constexpr double kPi = std::numbers::pi;
+  const std::size_t n = 41;
+  const double a = 1e-5, sigma = 0.4;
+  for (const double psi_deg : {30.0, 90.0}) {
+    const double psi = psi_deg * kPi / 180;
+    const bool across = psi_deg == 90.0;
+    frictal::Map f;
+    f.nx = f.ny = n;
+    f.dx = a;
+    f.dy = across ? a : a * std::tan(psi);
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i) {
+        const double k = across ? double(i) - 20.0 : double(i) - double(j);
+        f.heights.push_back(sigma * a * std::sin(psi) * std::abs(k));
+      }
+    frictal::ArealTiltOptions t;
+    t.turn_over_upper = false;
+    t.runaway_distance = 5 * a;
+    // The tip over the valley at node (20, 20).
+    frictal::Map g = one_node(20 * f.dx, 20 * f.dy, 0);
+    for (const bool lock : {false, true}) {
+      t.lock_lateral = lock;
+      auto h = frictal::areal_tilt_hold(f, g, t);
+      ASSERT_TRUE(h.ok()) << h.error().message;
+      ASSERT_TRUE(h->ran_away);
+      if (!lock && !across) {
+        EXPECT_LE(h->hold_angle, 0.1 * kPi / 180) << psi_deg;
+        EXPECT_NEAR(h->steering, psi, 0.01) << psi_deg;
+      } else {
+        const double expected = std::atan(sigma * std::sin(psi));
+        EXPECT_GE(h->hold_angle, expected - 1e-9) << psi_deg << " " << lock;
+        EXPECT_LE(h->hold_angle, expected + 2e-4) << psi_deg << " " << lock;  // bisected to 1e-4 rad
+      }
+    }
+  }
+}
+
+TEST(ArealTiltHold, GroovesAcrossHoldAtTheirSteepestSegment) {
+  // The MuJoCo test's grooves (above): the rigid block climbs the steepest face, slope
+  // A sin(2 pi / m) / a, whatever the spheres' radius (a sphere on a plane moves parallel to it).
+  constexpr double kPi = std::numbers::pi;
+  const std::size_t n = 20;
+  const int m = 8;
+  const double a = 1e-3 / double(n - 1), A = 2.4e-5;
+  frictal::Map f;
+  f.nx = f.ny = n;
+  f.dx = f.dy = a;
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) f.heights.push_back(A * std::sin(2 * kPi * double(i) / m));
+  frictal::Map g;
+  g.nx = g.ny = 6;
+  g.dx = g.dy = a;
+  g.x0 = g.y0 = 7 * a;
+  for (std::size_t j = 0; j < 6; ++j)
+    for (std::size_t i = 0; i < 6; ++i) g.heights.push_back(f.at(i + 7, j + 7));
+  frictal::ArealTiltOptions t;
+  t.turn_over_upper = false;
+  const double expected = std::atan(A * std::sin(2 * kPi / m) / a);
+  for (const double r : {0.0, 0.4 * a}) {
+    t.sphere_radius = r;
+    auto h = frictal::areal_tilt_hold(f, g, t);
+    ASSERT_TRUE(h.ok()) << h.error().message;
+    EXPECT_GE(h->hold_angle, expected - 1e-9) << r;
+    EXPECT_LE(h->hold_angle, expected + 2e-4) << r;
+  }
+  t.atomic_friction = 0.1;
+  auto bad = frictal::areal_tilt_hold(f, g, t);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("atomic friction 0.1"), std::string::npos) << bad.error().message;
+}
