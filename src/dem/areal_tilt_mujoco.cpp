@@ -373,12 +373,25 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   y_stop = y_saved = Y();
   // Coarse increments (coarse_tilt_step) until the run-away, then again from the state at rest
   // before it in increments of tilt_step: the fine protocol from that state.
-  mjData* saved = mj_makeData(m);
-  if (!saved) return make_error(ErrorCode::Internal, "areal_tilt: MuJoCo could not allocate a second state");
-  struct SavedGuard {
-    mjData* p;
-    ~SavedGuard() { mj_deleteData(p); }
-  } guard{saved};
+  // The state to tilt again from: positions, velocities and the solver's warm start (copying
+  // the whole mjData would copy its arena, sized by nconmax: 0.2 GB for 1,024 spheres).
+  struct Saved {
+    std::vector<mjtNum> qpos, qvel, warm;
+    mjtNum time = 0;
+  } saved;
+  auto save = [&]() {
+    saved.qpos.assign(d->qpos, d->qpos + m->nq);
+    saved.qvel.assign(d->qvel, d->qvel + m->nv);
+    saved.warm.assign(d->qacc_warmstart, d->qacc_warmstart + m->nv);
+    saved.time = d->time;
+  };
+  auto restore = [&]() {
+    std::copy(saved.qpos.begin(), saved.qpos.end(), d->qpos);
+    std::copy(saved.qvel.begin(), saved.qvel.end(), d->qvel);
+    std::copy(saved.warm.begin(), saved.warm.end(), d->qacc_warmstart);
+    d->time = saved.time;
+    mj_forward(m, d);
+  };
   auto run = [&](double beta0, double step, double& beta_saved, double& u_saved) {
     for (double beta = beta0 + step; beta <= o.max_tilt + 1e-12; beta += step) {
       // A block that is not at rest after relax_time is creeping under the damping (its
@@ -399,7 +412,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       } else {
         ++out.unsettled;
       }
-      mj_copyData(saved, m, d);
+      save();
       beta_saved = beta;
       u_saved = u_stop;
       x_saved = x_stop;
@@ -407,12 +420,12 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
     }
     return std::numeric_limits<double>::quiet_NaN();
   };
-  mj_copyData(saved, m, d);
+  save();
   double beta_saved = 0, u_saved = u_stop;
   const double coarse = std::max(o.coarse_tilt_step, o.tilt_step);
   double b = run(0.0, coarse, beta_saved, u_saved);
   if (!std::isnan(b) && coarse > o.tilt_step) {
-    mj_copyData(d, m, saved);
+    restore();
     u_stop = u_saved;
     x_stop = x_saved;
     y_stop = y_saved;
