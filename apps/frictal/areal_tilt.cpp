@@ -49,7 +49,7 @@ std::function<int()> setup(CLI::App& app) {
                  "Sample the lower map's surface this many times finer for MuJoCo's height field (default 1)");
   app.add_option("--prediction-refine", a->prediction_refine,
                  "Offset grid of the matched prediction this many times finer than the lower map's (default 0: "
-                 "the smallest with a step <= r / 2, at most 16)");
+                 "the smallest with a step <= r / 2, at most 16 and at most 2e5 offsets)");
   app.add_option("--tilt-step", a->tilt_step,
                  "Tilt increment near the run-away (deg; default 0.1; 1 deg increments before it)");
   add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
@@ -108,6 +108,19 @@ std::function<int()> setup(CLI::App& app) {
     const Map g = a->upper.empty() ? f : load(a->upper);
     require(std::isfinite(a->coarse_tilt_step) && a->coarse_tilt_step > 0 && a->coarse_tilt_step < 45,
             fmt::format("--coarse-tilt-step {}: expected degrees in (0, 45)", a->coarse_tilt_step));
+    const ArealTiltOptions& mo_ = a->model;
+    auto positive = [](double v) { return std::isfinite(v) && v > 0; };
+    require(positive(mo_.time_step), fmt::format("--time-step {}: expected scaled seconds > 0", mo_.time_step));
+    require(positive(mo_.contact_time) && mo_.contact_time >= 2 * mo_.time_step,
+            fmt::format("--contact-time {}: expected scaled seconds >= 2 time steps ({})", mo_.contact_time,
+                        2 * mo_.time_step));
+    require(std::isfinite(mo_.local_damping) && mo_.local_damping >= 0 && mo_.local_damping < 1,
+            fmt::format("--local-damping {}: expected a fraction in [0, 1)", mo_.local_damping));
+    require(positive(mo_.relax_time), fmt::format("--relax-time {}: expected scaled seconds > 0", mo_.relax_time));
+    require(positive(mo_.force_tolerance),
+            fmt::format("--force-tolerance {}: expected a fraction > 0", mo_.force_tolerance));
+    require(positive(mo_.speed_tolerance), fmt::format("--speed-tolerance {}: expected > 0", mo_.speed_tolerance));
+    require(mo_.rest_steps >= 1, fmt::format("--rest-steps {}: expected an integer >= 1", mo_.rest_steps));
     ArealTiltOptions o = a->model;
     o.coarse_tilt_step = a->coarse_tilt_step * kDeg;
     if (!a->start_offset.empty()) o.start_offset = parse_offset(a->start_offset, "--start-offset");
@@ -162,9 +175,15 @@ std::function<int()> setup(CLI::App& app) {
     // (areal_tilt_lift), on an offset grid prediction_refine times finer.
     // The lift varies on the scale of r between the map's nodes (a valley across the cells'
     // diagonals is a chain of bumps): the grid's chords must resolve it (docs/mujoco.md).
-    const int refine = a->prediction_refine > 0
-                           ? a->prediction_refine
-                           : std::clamp(int(std::ceil(2 * lo.step / r.sphere_radius - 1e-9)), 1, 16);
+    // Automatic: at most 2e5 offsets (the grid is a cross-check; areal_tilt_hold is off the grid).
+    int refine = a->prediction_refine;
+    if (refine == 0) {
+      refine = std::clamp(int(std::ceil(2 * lo.step / r.sphere_radius - 1e-9)), 1, 16);
+      auto offsets = [&](int k) {
+        return ((lo.offset_max - lo.offset_min) / lo.step * k + 1) * (2 * lo.across_max / lo.across_step * k + 1);
+      };
+      while (refine > 1 && offsets(refine) > 2e5) --refine;
+    }
     ArealLiftOptions mo = lo;
     mo.step /= refine;
     mo.across_step /= refine;
