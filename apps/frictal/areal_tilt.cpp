@@ -62,14 +62,14 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
   app.add_option("--coarse-tilt-step", a->coarse_tilt_step,
                  "Tilt increment up to the first run-away (deg; default 1; then --tilt-step from the state before)");
-  app.add_option("--time-step", a->model.time_step,
+  app.add_option("--mujoco-time-step", a->model.time_step,
                  "MuJoCo time step (scaled s: lengths / the lower map's larger "
                  "extent, gravity 9.81; default 1e-4)");
-  app.add_option("--contact-time", a->model.contact_time,
+  app.add_option("--mujoco-contact-time", a->model.contact_time,
                  "Contact softness: solref time constant (scaled s, >= 2 time steps; default 2e-4)");
   app.add_option("--local-damping", a->model.local_damping,
                  "Local non-viscous damping, a fraction of the unbalanced force in [0, 1) (default 0.9)");
-  app.add_option("--relax-time", a->model.relax_time, "Relaxation chunk per rest test (scaled s; default 0.5)");
+  app.add_option("--relax-chunk", a->model.relax_time, "Relaxation chunk per rest test (scaled s; default 0.5)");
   app.add_option("--force-tolerance", a->model.force_tolerance,
                  "At rest: unbalanced force below this fraction of the weight (default 1e-4)");
   app.add_option("--speed-tolerance", a->model.speed_tolerance, "At rest: speed below this (scaled m/s; default 1e-5)");
@@ -110,13 +110,13 @@ std::function<int()> setup(CLI::App& app) {
             fmt::format("--coarse-tilt-step {}: expected degrees in (0, 45)", a->coarse_tilt_step));
     const ArealTiltOptions& mo_ = a->model;
     auto positive = [](double v) { return std::isfinite(v) && v > 0; };
-    require(positive(mo_.time_step), fmt::format("--time-step {}: expected scaled seconds > 0", mo_.time_step));
+    require(positive(mo_.time_step), fmt::format("--mujoco-time-step {}: expected scaled seconds > 0", mo_.time_step));
     require(positive(mo_.contact_time) && mo_.contact_time >= 2 * mo_.time_step,
-            fmt::format("--contact-time {}: expected scaled seconds >= 2 time steps ({})", mo_.contact_time,
+            fmt::format("--mujoco-contact-time {}: expected scaled seconds >= 2 time steps ({})", mo_.contact_time,
                         2 * mo_.time_step));
     require(std::isfinite(mo_.local_damping) && mo_.local_damping >= 0 && mo_.local_damping < 1,
             fmt::format("--local-damping {}: expected a fraction in [0, 1)", mo_.local_damping));
-    require(positive(mo_.relax_time), fmt::format("--relax-time {}: expected scaled seconds > 0", mo_.relax_time));
+    require(positive(mo_.relax_time), fmt::format("--relax-chunk {}: expected scaled seconds > 0", mo_.relax_time));
     require(positive(mo_.force_tolerance),
             fmt::format("--force-tolerance {}: expected a fraction > 0", mo_.force_tolerance));
     require(positive(mo_.speed_tolerance), fmt::format("--speed-tolerance {}: expected > 0", mo_.speed_tolerance));

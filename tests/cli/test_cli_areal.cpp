@@ -173,7 +173,7 @@ TEST(CliAreal, ArealTiltPredictsOnTheSimulatedSurfaces) {
   // Bad input names the option.
   for (const std::string bad :
        {"--lateral sideways", "--collision mpr", "--prediction-refine 17", "--start-offset 1e-6", "--local-damping 1",
-        "--time-step 0", "--rest-steps 0", "--coarse-tilt-step 0"}) {
+        "--mujoco-time-step 0", "--rest-steps 0", "--coarse-tilt-step 0"}) {
     auto b = run_cli(args + " " + bad);
     EXPECT_EQ(b.code, 2) << bad;
     EXPECT_NE(b.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << bad << ": " << b.err;
