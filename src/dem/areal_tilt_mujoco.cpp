@@ -367,6 +367,11 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
     if (!rested) ++out.unsettled;
     record(0.0, rested);
   }
+  if (d->ncon == 0)
+    return make_error(
+        fmt::format("areal_tilt: the block left the lower map at zero tilt (it slid to ({}, {}) m, "
+                    "beyond the height field): expected maps whose upper face rests on the lower one",
+                    X() / S, Y() / S));
   out.rest_offset = {X() / S, Y() / S};
   double u_stop = X() * dxv + Y() * dyv;
   x_stop = x_saved = X();

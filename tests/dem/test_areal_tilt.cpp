@@ -9,6 +9,7 @@
 
 #include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
+#include "frictal/study.hpp"
 
 TEST(ArealTilt, GroovesAcrossHoldAtTheirSteepestSegment) {
   constexpr double kPi = std::numbers::pi;
@@ -344,4 +345,35 @@ TEST(ArealTiltHold, GroovesAcrossHoldAtTheirSteepestSegment) {
   auto bad = frictal::areal_tilt_hold(f, g, t);
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("atomic friction 0.1"), std::string::npos) << bad.error().message;
+}
+
+TEST(ArealTiltStudyKind, GroovesAlongTheDiagonal) {
+  // The study kind 'areal-tilt' on grooves at 30 deg along the cells' diagonal: free slides at
+  // the first increment, locked holds at the steepest face, atan(A sin(2 pi / m) / a) with
+  // A = rms_slope a m / (2 pi) (the kind's definition), and both agree with the matched prediction.
+  constexpr double kPi = std::numbers::pi;
+  const frictal::study::TaskRegistry reg = frictal::study::default_registry();
+  const frictal::study::TaskKind* k = reg.find("areal-tilt");
+  if (!frictal::mujoco_available()) {
+    ASSERT_EQ(k, nullptr);
+    EXPECT_NE(reg.unavailable_reason("areal-tilt").find("MuJoCo"), std::string::npos);
+    return;
+  }
+  ASSERT_NE(k, nullptr);
+  frictal::study::Params p{{"pair", std::string("grooves")},    {"nodes", std::int64_t{30}},
+                           {"upper_nodes", std::int64_t{8}},    {"groove_angle", 30.0},
+                           {"groove_period", std::int64_t{10}}, {"rms_slope", 0.3642}};
+  auto out = k->run(p, 1);
+  ASSERT_TRUE(out.ok()) << out.error().message;
+  const auto& s = out->scalars;
+  const double m = 10, locked = std::atan(0.3642 * m / (2 * kPi) * std::sin(2 * kPi / m)) * 180 / kPi;
+  EXPECT_NEAR(s.at("matched_locked_deg"), locked, 0.012);
+  EXPECT_LE(s.at("simulated_free_deg"), 0.1 + 1e-9);
+  EXPECT_EQ(s.at("within_free"), 1.0);
+  EXPECT_EQ(s.at("within_locked"), 1.0);
+  EXPECT_NEAR(s.at("steering_deg"), 30, 2);
+  p["pair"] = std::string("ridges");
+  auto bad = k->run(p, 1);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("'pair'"), std::string::npos) << bad.error().message;
 }
