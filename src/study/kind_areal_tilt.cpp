@@ -101,7 +101,8 @@ Result<TaskOutput> run_areal_tilt_task(const Params& p, std::uint64_t seed) {
   if (!(hurst > 0 && hurst <= 1)) return make_error(fmt::format("parameter 'hurst': expected (0, 1], got {}", hurst));
   if (!(anis >= 1 && anis <= 100))
     return make_error(fmt::format("parameter 'anisotropy': expected 1..100, got {}", anis));
-  if (!(slope > 0 && slope < 2)) return make_error(fmt::format("parameter 'rms_slope': expected (0, 2), got {}", slope));
+  if (!(slope > 0 && slope < 2))
+    return make_error(fmt::format("parameter 'rms_slope': expected (0, 2), got {}", slope));
   if (!(angle >= 10 && angle <= 90))
     return make_error(fmt::format("parameter 'groove_angle': expected 10..90 deg, got {}", angle));
   if (mirror != 0 && mirror != 1) return make_error(fmt::format("parameter 'mirror': expected 0 or 1, got {}", mirror));
@@ -201,9 +202,10 @@ void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, 
       "mean |steering| {:.1f}°.",
       in_free, n, in_locked, n, fml / n, steer / n));
   Finding f;
-  f.claim = fmt::format("Part '{}': MuJoCo's tilt test agrees within 0.2° with the matched quasi-static prediction "
-                        "(issue 24's target) on every pair, free and locked.",
-                        part);
+  f.claim = fmt::format(
+      "Part '{}': MuJoCo's tilt test agrees within 0.2° with the matched quasi-static prediction "
+      "(issue 24's target) on every pair, free and locked.",
+      part);
   f.supported = in_free == n && in_locked == n;
   f.evidence.push_back(fmt::format("free {}/{}, locked {}/{} within 0.2° (docs/mujoco.md)", in_free, n, in_locked, n));
   rep.findings.push_back(f);
