@@ -1,13 +1,17 @@
 // frictal — the 3D tilt test of two areal blocks on MuJoCo (experimental; docs/mujoco.md). The
-// lower block's face is a MuJoCo height field of the lower map, the upper block one rigid body
-// whose face is its map's nodes swept by spheres of radius r, on three slide joints (rotation
-// held), frictionless (mu_a = 0, condim 1) or with contact friction mu_a (condim 3). The
-// gravity is turned about the axis across the sliding direction d in increments; after each the
-// block relaxes (joint damping) until its unbalanced force (contact + gravity, without the
-// damping) and its speed are small, and the stick/run-away rule of the hold angle is read: the
-// run-away is the first displacement along d of at least D since the last stop.
+// lower block's face is a MuJoCo height field of the lower map (each cell split along its diagonal
+// from (i, j) to (i+1, j+1), as MuJoCo does), the upper block one rigid body whose face is its
+// map's nodes swept by spheres of radius r, on three slide joints (rotation held; or one along d
+// and z: locked), frictionless (mu_a = 0, condim 1) or with contact friction mu_a (condim 3).
+// Sphere-triangle contacts are exact by default (the nearest point of each triangle), replacing
+// MuJoCo's prisms. The gravity is turned about the axis across the sliding direction d in
+// increments; after each the block relaxes (local non-viscous damping) until its unbalanced
+// force (contact + gravity, without the damping) and its speed stay small, and the
+// stick/run-away rule of the hold angle is read: the run-away is the first displacement along d
+// of at least D since the last stop. areal_tilt_lift and areal_tilt_hold predict the same test
+// on the same surfaces, rigid and quasi-static (the matched prediction; they need no MuJoCo).
 //
-// Built only with FRICTAL_MUJOCO (libmujoco-dev); otherwise areal_tilt() returns
+// Only areal_tilt() needs FRICTAL_MUJOCO (libmujoco-dev); without it, it returns
 // ErrorCode::NotAvailable. Lengths in m, angles in rad.
 #pragma once
 
