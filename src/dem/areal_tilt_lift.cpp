@@ -46,11 +46,9 @@ double edge_top(const Vertex& a, const Vertex& b, double cx, double cy, double r
 }
 
 /// The highest centre of a sphere of radius r above (cx, cy) that touches the triangle abc
-/// (kNoContact: none within r); (px, py) the touching point; *on_face: inside the face (else on an
-/// edge or a vertex).
+/// (kNoContact: none within r); (px, py) the touching point.
 double triangle_top(const Vertex& a, const Vertex& b, const Vertex& c, double cx, double cy, double r, double& px,
-                    double& py, bool* on_face = nullptr) {
-  if (on_face) *on_face = false;
+                    double& py) {
   // The plane z = a.z + gx (x - a.x) + gy (y - a.y).
   const double e1x = b.x - a.x, e1y = b.y - a.y, e1z = b.z - a.z;
   const double e2x = c.x - a.x, e2y = c.y - a.y, e2z = c.z - a.z;
@@ -61,7 +59,6 @@ double triangle_top(const Vertex& a, const Vertex& b, const Vertex& c, double cx
   const double fx = cx + r * gx / w - a.x, fy = cy + r * gy / w - a.y;
   const double l1 = (fx * e2y - fy * e2x) / det, l2 = (e1x * fy - e1y * fx) / det;
   if (l1 >= 0 && l2 >= 0 && l1 + l2 <= 1) {
-    if (on_face) *on_face = true;
     px = a.x + fx;
     py = a.y + fy;
     return a.z + gx * (cx - a.x) + gy * (cy - a.y) + r * w;
@@ -110,11 +107,6 @@ class SphereField {
       // The block's height when this sphere (centre n.z + r above the block's origin) touches.
       const double base = -(n.z + r_);
       if (bound + r_ + base <= best - eps) continue;
-      // This sphere's pieces: its highest one, and the others that touch inside a face (a second
-      // face of a concave crease). A piece on an edge or a vertex of a neighbouring triangle is
-      // the same smooth surface seen from outside (coplanar or convex): not a kink.
-      Piece top_piece{kNoContact, 0, 0};
-      const std::size_t first = pieces ? pieces->size() : 0;
       for (std::size_t j = j0; j <= j1; ++j)
         for (std::size_t i = i0; i <= i1; ++i) {
           ++work;
@@ -125,27 +117,18 @@ class SphereField {
           // MuJoCo's two triangles of the cell, split along (i, j)-(i+1, j+1).
           for (int t = 0; t < 2; ++t) {
             double px = 0, py = 0;
-            bool on_face = false;
-            const double top = t == 0 ? triangle_top(p01, p00, p11, cx, cy, r_, px, py, &on_face)
-                                      : triangle_top(p00, p11, p10, cx, cy, r_, px, py, &on_face);
+            const double top = t == 0 ? triangle_top(p01, p00, p11, cx, cy, r_, px, py)
+                                      : triangle_top(p00, p11, p10, cx, cy, r_, px, py);
             if (top == kNoContact) continue;
             const double v = top + base;
             if (v > best) best = v, bx = px, by = py;
-            if (!pieces || v < best - eps) continue;
-            const double ex = px - cx, ey = py - cy;
-            const double q = std::sqrt(std::max(r_ * r_ - ex * ex - ey * ey, 1e-12 * r_ * r_));
-            const Piece piece{v, ex / q, ey / q};
-            if (v > top_piece.value) top_piece = piece;
-            if (on_face) pieces->push_back(piece);
+            if (pieces && v >= best - eps) {
+              const double ex = px - cx, ey = py - cy;
+              const double q = std::sqrt(std::max(r_ * r_ - ex * ex - ey * ey, 1e-12 * r_ * r_));
+              pieces->push_back({v, ex / q, ey / q});
+            }
           }
         }
-      if (pieces && top_piece.value != kNoContact) {
-        bool listed = false;
-        for (std::size_t k = first; k < pieces->size(); ++k)
-          listed = listed || ((*pieces)[k].value == top_piece.value && (*pieces)[k].gx == top_piece.gx &&
-                              (*pieces)[k].gy == top_piece.gy);
-        if (!listed) pieces->push_back(top_piece);
-      }
     }
     if (pieces) std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
     return best;

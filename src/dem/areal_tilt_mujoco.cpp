@@ -63,45 +63,43 @@ struct Sim {
 // function it replaced, so the table entry can be set once for the process.
 mjfCollision g_native_hfield_sphere = nullptr;
 
-/// The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection, 5.1.5); true
-/// when it lies inside the face (not on an edge or a vertex).
-bool nearest_on_triangle(const mjtNum* p, const mjtNum* a, const mjtNum* b, const mjtNum* c, mjtNum* q) {
+/// The point of triangle abc nearest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+void nearest_on_triangle(const mjtNum* p, const mjtNum* a, const mjtNum* b, const mjtNum* c, mjtNum* q) {
   mjtNum ab[3], ac[3], ap[3];
   mju_sub3(ab, b, a);
   mju_sub3(ac, c, a);
   mju_sub3(ap, p, a);
   const mjtNum d1 = mju_dot3(ab, ap), d2 = mju_dot3(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return mju_copy3(q, a), false;
+  if (d1 <= 0 && d2 <= 0) return mju_copy3(q, a);
   mjtNum bp[3];
   mju_sub3(bp, p, b);
   const mjtNum d3 = mju_dot3(ab, bp), d4 = mju_dot3(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return mju_copy3(q, b), false;
+  if (d3 >= 0 && d4 <= d3) return mju_copy3(q, b);
   const mjtNum vc = d1 * d4 - d3 * d2;
   if (vc <= 0 && d1 >= 0 && d3 <= 0) {
     const mjtNum v = d1 / (d1 - d3);
     for (int i = 0; i < 3; ++i) q[i] = a[i] + v * ab[i];
-    return false;
+    return;
   }
   mjtNum cp[3];
   mju_sub3(cp, p, c);
   const mjtNum d5 = mju_dot3(ab, cp), d6 = mju_dot3(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return mju_copy3(q, c), false;
+  if (d6 >= 0 && d5 <= d6) return mju_copy3(q, c);
   const mjtNum vb = d5 * d2 - d1 * d6;
   if (vb <= 0 && d2 >= 0 && d6 <= 0) {
     const mjtNum w = d2 / (d2 - d6);
     for (int i = 0; i < 3; ++i) q[i] = a[i] + w * ac[i];
-    return false;
+    return;
   }
   const mjtNum va = d3 * d6 - d5 * d4;
   if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
     const mjtNum w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
     for (int i = 0; i < 3; ++i) q[i] = b[i] + w * (c[i] - b[i]);
-    return false;
+    return;
   }
   const mjtNum denom = 1 / (va + vb + vc);
   const mjtNum v = vb * denom, w = vc * denom;
   for (int i = 0; i < 3; ++i) q[i] = a[i] + ab[i] * v + ac[i] * w;
-  return true;
 }
 
 int exact_hfield_sphere(const mjModel* m, const mjData* d, mjContact* con, int g1, int g2, mjtNum margin) {
@@ -124,16 +122,7 @@ int exact_hfield_sphere(const mjModel* m, const mjData* d, mjContact* con, int g
   const int c1 = std::min(ncol - 2, int(std::floor((c[0] + reach + size[0]) / dx)));
   const int r0 = std::max(0, int(std::floor((c[1] - reach + size[1]) / dy)));
   const int r1 = std::min(nrow - 2, int(std::floor((c[1] + reach + size[1]) / dy)));
-  // Candidates: the nearest point of every triangle within reach. A point on an edge or a vertex
-  // of a triangle that is not the sphere's nearest is the same smooth surface seen from a
-  // neighbour (coplanar or convex; a concave crease gives two points inside faces): it makes a
-  // contact only when it is the nearest of all, as areal_tilt_lift counts pieces.
-  struct Candidate {
-    mjtNum q[3], n[3], dist;
-    bool face;
-  };
-  Candidate cand[4 * mjMAXCONPAIR];
-  int nc = 0;
+  int cnt = 0;
   for (int r = r0; r <= r1; ++r)
     for (int cc = c0; cc <= c1; ++cc) {
       auto vert = [&](int i, int j, mjtNum* out) {
@@ -150,41 +139,36 @@ int exact_hfield_sphere(const mjModel* m, const mjData* d, mjContact* con, int g
       // MuJoCo's two triangles of the cell: {(c, r+1), (c, r), (c+1, r+1)}, {(c, r), (c+1, r+1), (c+1, r)}.
       const mjtNum* tri[2][3] = {{p01, p00, p11}, {p00, p11, p10}};
       for (auto& t : tri) {
-        if (nc >= 4 * mjMAXCONPAIR) break;
-        Candidate& k = cand[nc];
-        k.face = nearest_on_triangle(c, t[0], t[1], t[2], k.q);
-        mju_sub3(k.n, c, k.q);
-        k.dist = mju_normalize3(k.n) - rs;
-        if (k.dist >= margin) continue;
-        if (mju_norm3(k.n) < 0.5) continue;  // the centre on the surface: no direction
-        if (k.n[2] <= 0) continue;           // below the surface: another triangle holds it
-        ++nc;
+        mjtNum q[3], n[3];
+        nearest_on_triangle(c, t[0], t[1], t[2], q);
+        mju_sub3(n, c, q);
+        const mjtNum dist = mju_normalize3(n) - rs;
+        if (dist >= margin) continue;
+        if (mju_norm3(n) < 0.5) continue;  // the centre on the surface: no direction
+        if (n[2] <= 0) continue;           // below the surface: another triangle holds it
+        bool seen = false;                 // one contact per nearest point (shared edges, vertices)
+        for (int k = 0; k < cnt && !seen; ++k) {
+          mjtNum e[3], qk[3];
+          mju_sub3(e, con[k].pos, pos1);
+          mju_mulMatTVec(qk, mat1, e, 3, 3);
+          // con[k].pos is the midpoint: back to its nearest point.
+          mjtNum nk[3];
+          mju_mulMatTVec(nk, mat1, con[k].frame, 3, 3);
+          for (int i = 0; i < 3; ++i) qk[i] -= 0.5 * con[k].dist * nk[i];
+          mju_sub3(e, qk, q);
+          seen = mju_dot3(e, e) < 1e-18 * rs * rs;
+        }
+        if (seen || cnt >= mjMAXCONPAIR) continue;
+        mjContact& k = con[cnt++];
+        k.dist = dist;
+        mjtNum mid[3];
+        for (int i = 0; i < 3; ++i) mid[i] = q[i] + 0.5 * dist * n[i];
+        mju_rotVecMat(k.pos, mid, mat1);
+        mju_addTo3(k.pos, pos1);
+        mju_rotVecMat(k.frame, n, mat1);
+        mju_zero3(k.frame + 3);
       }
     }
-  int nearest = -1;
-  for (int i = 0; i < nc; ++i)
-    if (nearest < 0 || cand[i].dist < cand[nearest].dist) nearest = i;
-  int cnt = 0;
-  for (int i = 0; i < nc && cnt < mjMAXCONPAIR; ++i) {
-    const Candidate& k = cand[i];
-    if (!k.face && i != nearest) continue;
-    bool seen = false;  // one contact per nearest point (shared edges, vertices)
-    for (int j = 0; j < i && !seen; ++j) {
-      if (!cand[j].face && j != nearest) continue;
-      mjtNum e[3];
-      mju_sub3(e, cand[j].q, k.q);
-      seen = mju_dot3(e, e) < 1e-18 * rs * rs;
-    }
-    if (seen) continue;
-    mjContact& out = con[cnt++];
-    out.dist = k.dist;
-    mjtNum mid[3];
-    for (int j = 0; j < 3; ++j) mid[j] = k.q[j] + 0.5 * k.dist * k.n[j];
-    mju_rotVecMat(out.pos, mid, mat1);
-    mju_addTo3(out.pos, pos1);
-    mju_rotVecMat(out.frame, k.n, mat1);
-    mju_zero3(out.frame + 3);
-  }
   return cnt;
 }
 
