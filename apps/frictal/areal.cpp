@@ -35,25 +35,6 @@ struct Args {
   InputOptions input;
 };
 
-/// "X,Y" in metres.
-std::array<double, 2> parse_offset(const std::string& text) {
-  const auto comma = text.find(',');
-  std::array<double, 2> v{};
-  bool ok = comma != std::string::npos;
-  for (int k = 0; ok && k < 2; ++k) {
-    const std::string part = k == 0 ? text.substr(0, comma) : text.substr(comma + 1);
-    std::size_t used = 0;
-    try {
-      v[k] = std::stod(part, &used);
-    } catch (const std::exception&) {
-      ok = false;
-    }
-    ok = ok && used == part.size() && std::isfinite(v[k]);
-  }
-  require(ok, fmt::format("--start-offset '{}': expected X,Y, two finite numbers of metres", text));
-  return v;
-}
-
 int run_hold(const Args& a, const Map& f, const Map& g) {
   require(a.lateral.empty() || a.lateral == "free" || a.lateral == "locked",
           fmt::format("--lateral '{}' not understood (expected free or locked)", a.lateral));
@@ -82,7 +63,7 @@ int run_hold(const Args& a, const Map& f, const Map& g) {
   const bool locked_mode = a.lateral == "locked";
   std::size_t start = 0;
   if (!a.start_offset.empty()) {
-    const auto xy = parse_offset(a.start_offset);
+    const auto xy = parse_offset(a.start_offset, "--start-offset");
     auto node = areal_lift_node(lift, xy[0], xy[1]);
     if (!node) throw UsageError("--start-offset: " + node.error().message);
     start = *node;

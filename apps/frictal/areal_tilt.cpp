@@ -22,10 +22,17 @@ struct Args {
   double sphere_radius = 0;
   double tilt_step = 0.1;
   int hfield_refine = 1;
+  int prediction_refine = 0;
   double runaway_distance = 0;
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   std::string detrend = "plane";
+  std::string collision = "exact";
+  std::string lateral = "free";
   bool in_place = false;
+  bool predict_only = false;
+  std::string start_offset;
+  ArealTiltOptions model;  ///< the protocol's and the contact model's settings (scaled units)
+  double coarse_tilt_step = 1.0;
   bool json = false;
   InputOptions input;
 };
@@ -40,10 +47,39 @@ std::function<int()> setup(CLI::App& app) {
                  "Radius of the spheres on the upper face's nodes (m; default a fifth of the lower map's spacing)");
   app.add_option("--hfield-refine", a->hfield_refine,
                  "Sample the lower map's surface this many times finer for MuJoCo's height field (default 1)");
+  app.add_option("--prediction-refine", a->prediction_refine,
+                 "Offset grid of the matched prediction this many times finer than the lower map's (default 0: "
+                 "the smallest with a step <= r / 2, at most 16 and at most 2e5 offsets)");
   app.add_option("--tilt-step", a->tilt_step,
                  "Tilt increment near the run-away (deg; default 0.1; 1 deg increments before it)");
   add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
+  app.add_option(
+      "--collision", a->collision,
+      "Sphere-height field contacts: exact (the nearest point of each triangle; default) or native (MuJoCo's "
+      "MPR on prisms)");
+  app.add_option("--lateral", a->lateral,
+                 "free (default): the simulated block may move sideways; locked: only along d (and z)");
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
+  app.add_option("--coarse-tilt-step", a->coarse_tilt_step,
+                 "Tilt increment up to the first run-away (deg; default 1; then --tilt-step from the state before)");
+  app.add_option("--mujoco-time-step", a->model.time_step,
+                 "MuJoCo time step (scaled s: lengths / the lower map's larger "
+                 "extent, gravity 9.81; default 1e-4)");
+  app.add_option("--mujoco-contact-time", a->model.contact_time,
+                 "Contact softness: solref time constant (scaled s, >= 2 time steps; default 2e-4)");
+  app.add_option("--local-damping", a->model.local_damping,
+                 "Local non-viscous damping, a fraction of the unbalanced force in [0, 1) (default 0.9)");
+  app.add_option("--relax-chunk", a->model.relax_time, "Relaxation chunk per rest test (scaled s; default 0.5)");
+  app.add_option("--force-tolerance", a->model.force_tolerance,
+                 "At rest: unbalanced force below this fraction of the weight (default 1e-4)");
+  app.add_option("--speed-tolerance", a->model.speed_tolerance, "At rest: speed below this (scaled m/s; default 1e-5)");
+  app.add_option("--start-offset", a->start_offset,
+                 "X,Y: where the block is put down, in the lower map's frame (m; default 0,0)");
+  app.add_option("--rest-steps", a->model.rest_steps,
+                 "At rest: balanced and still for this many steps in a row "
+                 "(default 10)");
+  app.add_flag("--predict-only", a->predict_only,
+               "Only the predictions, from the block dropped at offset 0 (no simulation; needs no MuJoCo)");
   app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
@@ -53,7 +89,15 @@ std::function<int()> setup(CLI::App& app) {
     require(std::isfinite(a->angle), fmt::format("--angle {}: expected a finite number of degrees", a->angle));
     require(std::isfinite(a->tilt_step) && a->tilt_step > 0 && a->tilt_step < 10,
             fmt::format("--tilt-step {}: expected degrees in (0, 10)", a->tilt_step));
-    if (!mujoco_available()) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
+    require(a->prediction_refine >= 0 && a->prediction_refine <= 16,
+            fmt::format("--prediction-refine {}: expected an integer in 0..16 (0: automatic)", a->prediction_refine));
+    require(a->hfield_refine >= 1 && a->hfield_refine <= 16,
+            fmt::format("--hfield-refine {}: expected an integer in 1..16", a->hfield_refine));
+    require(a->collision == "exact" || a->collision == "native",
+            fmt::format("--collision {}: expected exact or native", a->collision));
+    require(a->lateral == "free" || a->lateral == "locked",
+            fmt::format("--lateral {}: expected free or locked", a->lateral));
+    if (!mujoco_available() && !a->predict_only) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
     const Detrend dt = unwrap(parse_detrend(a->detrend));
     auto load = [&](const std::string& path) {
       const SurfaceData s = load_surface(path, a->input);
@@ -62,7 +106,24 @@ std::function<int()> setup(CLI::App& app) {
     };
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);
-    ArealTiltOptions o;
+    require(std::isfinite(a->coarse_tilt_step) && a->coarse_tilt_step > 0 && a->coarse_tilt_step < 45,
+            fmt::format("--coarse-tilt-step {}: expected degrees in (0, 45)", a->coarse_tilt_step));
+    const ArealTiltOptions& mo_ = a->model;
+    auto positive = [](double v) { return std::isfinite(v) && v > 0; };
+    require(positive(mo_.time_step), fmt::format("--mujoco-time-step {}: expected scaled seconds > 0", mo_.time_step));
+    require(positive(mo_.contact_time) && mo_.contact_time >= 2 * mo_.time_step,
+            fmt::format("--mujoco-contact-time {}: expected scaled seconds >= 2 time steps ({})", mo_.contact_time,
+                        2 * mo_.time_step));
+    require(std::isfinite(mo_.local_damping) && mo_.local_damping >= 0 && mo_.local_damping < 1,
+            fmt::format("--local-damping {}: expected a fraction in [0, 1)", mo_.local_damping));
+    require(positive(mo_.relax_time), fmt::format("--relax-chunk {}: expected scaled seconds > 0", mo_.relax_time));
+    require(positive(mo_.force_tolerance),
+            fmt::format("--force-tolerance {}: expected a fraction > 0", mo_.force_tolerance));
+    require(positive(mo_.speed_tolerance), fmt::format("--speed-tolerance {}: expected > 0", mo_.speed_tolerance));
+    require(mo_.rest_steps >= 1, fmt::format("--rest-steps {}: expected an integer >= 1", mo_.rest_steps));
+    ArealTiltOptions o = a->model;
+    o.coarse_tilt_step = a->coarse_tilt_step * kDeg;
+    if (!a->start_offset.empty()) o.start_offset = parse_offset(a->start_offset, "--start-offset");
     o.angle = a->angle * kDeg;
     o.turn_over_upper = !a->in_place;
     o.atomic_friction = a->atomic_friction;
@@ -70,8 +131,16 @@ std::function<int()> setup(CLI::App& app) {
     o.runaway_distance = a->runaway_distance;
     o.tilt_step = a->tilt_step * kDeg;
     o.hfield_refine = a->hfield_refine;
+    o.exact_contacts = a->collision == "exact";
+    o.lock_lateral = a->lateral == "locked";
     const auto t0 = std::chrono::steady_clock::now();
-    const ArealTiltResult r = unwrap(areal_tilt(f, g, o));
+    ArealTiltResult r;
+    if (a->predict_only) {
+      r.rest_offset = o.start_offset;
+      r.sphere_radius = o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(f.dx, f.dy);
+    } else {
+      r = unwrap(areal_tilt(f, g, o));
+    }
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The predictions from the rest offset the simulation reached, on the rigid lift (r = 0).
     const double c = std::cos(o.angle), s = std::sin(o.angle);
@@ -95,18 +164,73 @@ std::function<int()> setup(CLI::App& app) {
     ho.atomic_friction = o.atomic_friction;
     const std::size_t rest = unwrap(areal_lift_node(lift, r.rest_offset[0], r.rest_offset[1]));
     const ArealHold free = unwrap(areal_hold_angle(lift, rest, ho));
-    const double locked = unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
+    // Locked: on the line through the free block's rest (as `frictal areal`), or, when the
+    // simulated block was locked, locked from its own rest on.
+    ArealHoldOptions hl = ho;
+    hl.lateral = LateralMotion::Locked;
+    const bool sim_locked = a->lateral == "locked";
+    const double locked = sim_locked ? unwrap(areal_hold_angle(lift, rest, hl)).hold_angle
+                                     : unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
+    // The matched prediction: the same spheres on the same triangulated height field as MuJoCo
+    // (areal_tilt_lift), on an offset grid prediction_refine times finer.
+    // The lift varies on the scale of r between the map's nodes (a valley across the cells'
+    // diagonals is a chain of bumps): the grid's chords must resolve it (docs/mujoco.md).
+    // Automatic: at most 2e5 offsets (the grid is a cross-check; areal_tilt_hold is off the grid).
+    int refine = a->prediction_refine;
+    if (refine == 0) {
+      refine = std::clamp(int(std::ceil(2 * lo.step / r.sphere_radius - 1e-9)), 1, 16);
+      auto offsets = [&](int k) {
+        return ((lo.offset_max - lo.offset_min) / lo.step * k + 1) * (2 * lo.across_max / lo.across_step * k + 1);
+      };
+      while (refine > 1 && offsets(refine) > 2e5) --refine;
+    }
+    ArealLiftOptions mo = lo;
+    mo.step /= refine;
+    mo.across_step /= refine;
+    const ArealLift mlift = unwrap(areal_tilt_lift(f, g, o, mo));
+    const std::size_t mrest = unwrap(areal_lift_node(mlift, r.rest_offset[0], r.rest_offset[1]));
+    const ArealHold mfree = unwrap(areal_hold_angle(mlift, mrest, ho));
+    // The same rigid block off the grid (areal_tilt_hold), in the simulated lateral mode.
+    ArealTiltOptions co = o;
+    co.start_offset = r.rest_offset;  // from the simulated rest: the same basin
+    co.runaway_distance = D;
+    const ArealTiltHold cont = unwrap(areal_tilt_hold(f, g, co));
+    const double mlocked = sim_locked ? unwrap(areal_hold_angle(mlift, mrest, hl)).hold_angle
+                                      : unwrap(areal_locked_hold_angle(mlift, mfree.rest, ho)).hold_angle;
     if (a->json) {
       nlohmann::json j;
       j["lower"] = a->lower;
       j["upper"] = a->upper.empty() ? a->lower : a->upper;
       j["direction_deg"] = a->angle;
       j["runaway_distance_m"] = D;
-      j["friction_angle_deg"] = to_deg(r.friction_angle);
-      j["ran_away"] = r.ran_away;
+      if (!a->predict_only) {
+        j["friction_angle_deg"] = to_deg(r.friction_angle);
+        j["ran_away"] = r.ran_away;
+      }
       j["rest_offset_m"] = {r.rest_offset[0], r.rest_offset[1]};
       j["predicted_hold_angle_deg"] = to_deg(free.hold_angle);
       j["predicted_hold_angle_locked_deg"] = to_deg(locked);
+      j["continuous_hold_angle_deg"] = to_deg(cont.hold_angle);
+      j["continuous_runaway_increment_deg"] = to_deg(cont.runaway_increment);
+      j["continuous_steering_deg"] = to_deg(cont.steering);
+      j["continuous_rest_offset_m"] = {cont.rest_offset[0], cont.rest_offset[1]};
+      j["continuous_evaluations"] = cont.evaluations;
+      j["matched_hold_angle_deg"] = to_deg(mfree.hold_angle);
+      j["matched_hold_angle_locked_deg"] = to_deg(mlocked);
+      j["matched_steering_deg"] = to_deg(mfree.steering);
+      j["sphere_radius_m"] = r.sphere_radius;
+      j["collision"] = a->collision;
+      j["lateral"] = a->lateral;
+      j["prediction_refine"] = refine;
+      j["matched_steering_deg"] = to_deg(mfree.steering);
+      j["predicted_steering_deg"] = to_deg(free.steering);
+      if (!a->predict_only) {
+        j["steering_deg"] = to_deg(r.steering);
+        nlohmann::json tr = nlohmann::json::array();
+        for (const ArealTiltIncrement& i : r.trace)
+          tr.push_back({to_deg(i.tilt), i.x, i.y, i.rested, i.steps, i.unbalanced_force, i.speed});
+        j["increments"] = tr;  // [tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed]
+      }
       j["tilt_step_deg"] = a->tilt_step;
       j["spheres"] = r.spheres;
       j["steps"] = r.steps;
@@ -115,11 +239,20 @@ std::function<int()> setup(CLI::App& app) {
       j["seconds"] = secs;
       print_json(j);
     } else {
+      if (a->predict_only)
+        fmt::print("{} on {} along {} deg, dropped at offset 0 (no simulation)\n",
+                   a->upper.empty() ? a->lower : a->upper, a->lower, a->angle);
+      else
+        fmt::print(
+            "{} on {} along {} deg (MuJoCo, {} spheres): rests at ({:.4g}, {:.4g}) m, runs away at {:.2f} deg "
+            "(steps of {} deg)\n",
+            a->upper.empty() ? a->lower : a->upper, a->lower, a->angle, r.spheres, r.rest_offset[0], r.rest_offset[1],
+            to_deg(r.friction_angle), a->tilt_step);
       fmt::print(
-          "{} on {} along {} deg (MuJoCo, {} spheres): rests at ({:.4g}, {:.4g}) m, runs away at {:.2f} deg "
-          "(steps of {} deg)\n  predicted hold angle {:.3f} deg free to move sideways, {:.3f} deg locked\n",
-          a->upper.empty() ? a->lower : a->upper, a->lower, a->angle, r.spheres, r.rest_offset[0], r.rest_offset[1],
-          to_deg(r.friction_angle), a->tilt_step, to_deg(free.hold_angle), to_deg(locked));
+          "  predicted hold angle {:.3f} deg free to move sideways, {:.3f} deg locked\n"
+          "  matched (the simulated spheres on the triangulated height field, rigid) {:.3f} deg free, {:.3f} "
+          "deg locked\n",
+          to_deg(free.hold_angle), to_deg(locked), to_deg(mfree.hold_angle), to_deg(mlocked));
     }
     return 0;
   };

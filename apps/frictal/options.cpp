@@ -87,4 +87,23 @@ void add_atomic_friction_option(CLI::App& app, double& mu_a) {
   app.add_option(cli_option_name(*f), mu_a, field_help(*f));
 }
 
+/// "X,Y" in metres.
+std::array<double, 2> parse_offset(const std::string& text, const std::string& option) {
+  const auto comma = text.find(',');
+  std::array<double, 2> v{};
+  bool ok = comma != std::string::npos;
+  for (int k = 0; ok && k < 2; ++k) {
+    const std::string part = k == 0 ? text.substr(0, comma) : text.substr(comma + 1);
+    std::size_t used = 0;
+    try {
+      v[k] = std::stod(part, &used);
+    } catch (const std::exception&) {
+      ok = false;
+    }
+    ok = ok && used == part.size() && std::isfinite(v[k]);
+  }
+  require(ok, fmt::format("{} '{}': expected X,Y, two finite numbers of metres", option, text));
+  return v;
+}
+
 }  // namespace frictal::cli

@@ -4,6 +4,8 @@
 // self-affine) that every command building a surface takes, from frictal/surface_spec.hpp.
 #pragma once
 
+#include <array>
+
 #include <map>
 #include <memory>
 #include <optional>
@@ -52,5 +54,8 @@ void add_generator_subcommands(CLI::App& app, GeneratorOptions& g, bool fallthro
 /// `--atomic-friction`, the field of the tilt settings table, for the commands that predict
 /// friction without the tilt test (signature, areal, anisotropy).
 void add_atomic_friction_option(CLI::App& app, double& mu_a);
+
+/// "X,Y" in metres; a bad text is a UsageError naming `option`.
+std::array<double, 2> parse_offset(const std::string& text, const std::string& option);
 
 }  // namespace frictal::cli

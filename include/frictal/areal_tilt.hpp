@@ -1,19 +1,25 @@
 // frictal — the 3D tilt test of two areal blocks on MuJoCo (experimental; docs/mujoco.md). The
-// lower block's face is a MuJoCo height field of the lower map, the upper block one rigid body
-// whose face is its map's nodes swept by spheres of radius r, on three slide joints (rotation
-// held), frictionless (mu_a = 0, condim 1) or with contact friction mu_a (condim 3). The
-// gravity is turned about the axis across the sliding direction d in increments; after each the
-// block relaxes (joint damping) until its unbalanced force (contact + gravity, without the
-// damping) and its speed are small, and the stick/run-away rule of the hold angle is read: the
-// run-away is the first displacement along d of at least D since the last stop.
+// lower block's face is a MuJoCo height field of the lower map (each cell split along its diagonal
+// from (i, j) to (i+1, j+1), as MuJoCo does), the upper block one rigid body whose face is its
+// map's nodes swept by spheres of radius r, on three slide joints (rotation held; or one along d
+// and z: locked), frictionless (mu_a = 0, condim 1) or with contact friction mu_a (condim 3).
+// Sphere-triangle contacts are exact by default (the nearest point of each triangle), replacing
+// MuJoCo's prisms. The gravity is turned about the axis across the sliding direction d in
+// increments; after each the block relaxes (local non-viscous damping) until its unbalanced
+// force (contact + gravity, without the damping) and its speed stay small, and the
+// stick/run-away rule of the hold angle is read: the run-away is the first displacement along d
+// of at least D since the last stop. areal_tilt_lift and areal_tilt_hold predict the same test
+// on the same surfaces, rigid and quasi-static (the matched prediction; they need no MuJoCo).
 //
-// Built only with FRICTAL_MUJOCO (libmujoco-dev); otherwise areal_tilt() returns
+// Only areal_tilt() needs FRICTAL_MUJOCO (libmujoco-dev); without it, it returns
 // ErrorCode::NotAvailable. Lengths in m, angles in rad.
 #pragma once
 
 #include <array>
 #include <cstddef>
+#include <vector>
 
+#include "frictal/areal.hpp"
 #include "frictal/map.hpp"
 #include "frictal/result.hpp"
 
@@ -32,6 +38,12 @@ struct ArealTiltOptions {
   /// The height field samples the lower map's bilinear surface this many times finer than its
   /// grid (1: the map's nodes; MuJoCo triangulates every cell along one diagonal) (unitless).
   int hfield_refine = 1;
+  /// true: the exact sphere-triangle contact on the height field's triangles (the surface that
+  /// areal_tilt_lift evaluates); false: MuJoCo's own (MPR on prisms: internal edges; docs/mujoco.md).
+  bool exact_contacts = true;
+  /// true: the block slides along d only (a slide joint along d and one along z): the locked
+  /// block of areal_locked_hold_angle, on the line through the start offset.
+  bool lock_lateral = false;
   std::array<double, 2> start_offset = {0, 0};       ///< where the block is put down, (x, y) (unit: m)
   double tilt_step = 0.1 * 3.141592653589793 / 180;  ///< tilt increment near the run-away (unit: rad)
   /// Coarse increments up to the first run-away, which is then tilted again in tilt_step from the
@@ -44,10 +56,21 @@ struct ArealTiltOptions {
   double damping = 0;          ///< viscous joint damping per unit mass (unit: 1/scaled s)
   /// Local non-viscous damping (Cundall): a force against each joint's velocity, this fraction of
   /// its unbalanced force, in [0, 1) (unitless).
-  double local_damping = 0.7;
+  double local_damping = 0.9;
   double relax_time = 0.5;        ///< longest relaxation per increment (unit: scaled s)
   double force_tolerance = 1e-4;  ///< at rest: unbalanced force below this fraction of the weight (unitless)
   double speed_tolerance = 1e-5;  ///< at rest: speed below this (unit: scaled m/s)
+  int rest_steps = 10;            ///< ... for this many steps in a row (unitless)
+};
+
+/// One tilt increment of the simulation, at its end.
+struct ArealTiltIncrement {
+  double tilt = 0;              ///< (unit: rad)
+  double x = 0, y = 0;          ///< the block's offset (unit: m)
+  bool rested = false;          ///< reached rest (else ran D or waited out its relaxations)
+  long steps = 0;               ///< MuJoCo steps so far (unitless)
+  double unbalanced_force = 0;  ///< at the end, a fraction of the weight (unitless)
+  double speed = 0;             ///< at the end (unit: m per scaled s)
 };
 
 struct ArealTiltResult {
@@ -58,10 +81,50 @@ struct ArealTiltResult {
   long steps = 0;                              ///< MuJoCo steps (unitless)
   std::size_t spheres = 0;                     ///< spheres of the upper face (unitless)
   int max_contacts = 0;                        ///< most contacts at once (unitless)
+  double sphere_radius = 0;                    ///< r used (unit: m)
+  /// Angle from d to the run-away's displacement from the last stop, towards e (unit: rad).
+  double steering = 0;
+  std::vector<ArealTiltIncrement> trace;  ///< every increment, coarse then fine, in order
 };
 
 /// Errors: invalid maps or options (InvalidInput), MuJoCo refusing the model (InvalidInput, its
 /// message), a build without MuJoCo (NotAvailable).
 Result<ArealTiltResult> areal_tilt(const Map& lower, const Map& upper, const ArealTiltOptions& o = {});
+
+/// The matched prediction: the lift of the surfaces that areal_tilt simulates, rigid. The upper
+/// face's spheres of radius r (t.sphere_radius, its default; turned over as t.turn_over_upper)
+/// on the lower face's height field (t.hfield_refine) as MuJoCo 2.2.2 triangulates it: every cell
+/// (i, j) split along its diagonal from node (i, j) to (i+1, j+1) (x, y increasing). h(s) is the
+/// height of the block (the spheres' centres less r less their nodes' heights) when its highest
+/// sphere touches a triangle: for each sphere, max over points p of the triangles within r of its
+/// centre of p_z + sqrt(r^2 - |p - c|^2), exact (a concave maximum: on a face or on an edge, in
+/// closed form). The offset grid, the lift's layout and its errors are areal_lift's (o's step,
+/// offset_min/max, across_step/max, threads; its turn_over_upper, block and prune are not used);
+/// `contact` is the lower-map node nearest to the touching point. Needs no MuJoCo.
+Result<ArealLift> areal_tilt_lift(const Map& lower, const Map& upper, const ArealTiltOptions& t,
+                                  const ArealLiftOptions& o = {});
+
+/// The matched prediction off the grid: the rigid, frictionless quasi-static block on the same
+/// spheres and triangles as areal_tilt_lift, with offsets anywhere in the plane. At tilt beta the
+/// block descends the potential V(s) = h(s) cos(beta) - (s.d) sin(beta) by nonsmooth steepest
+/// descent: h is the max over (sphere, triangle) pieces, the gradient of a piece is
+/// (p - c) / sqrt(r^2 - |p - c|^2) (p its touching point, c the sphere's centre: the envelope
+/// theorem), the direction is minus the least-norm point of the convex hull of the tilted
+/// gradients of the pieces within eps of the max (eps shrinking with the step), with a
+/// backtracking step; it stops where that point is below `stationary` or the step below a
+/// millionth of r. The protocol is areal_tilt's: rest at zero tilt from t.start_offset, then
+/// t.coarse_tilt_step increments to the first run-away (a displacement along d of D since the
+/// last stop), again from the stop before it in t.tilt_step, and the run-away tilt is then
+/// bisected to `resolution`. t.lock_lateral restricts the moves to +-d. mu_a must be 0.
+struct ArealTiltHold {
+  double hold_angle = 0;                       ///< bisected (unit: rad)
+  double runaway_increment = 0;                ///< the tilt_step increment at which it ran (unit: rad)
+  bool ran_away = false;                       ///< false: held up to t.max_tilt
+  std::array<double, 2> rest_offset = {0, 0};  ///< at zero tilt (unit: m)
+  double steering = 0;                         ///< from d to the run-away's displacement (unit: rad)
+  long evaluations = 0;                        ///< lift evaluations (unitless)
+};
+Result<ArealTiltHold> areal_tilt_hold(const Map& lower, const Map& upper, const ArealTiltOptions& t,
+                                      double resolution = 1e-4, double stationary = 1e-7);
 
 }  // namespace frictal

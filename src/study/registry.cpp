@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
+#include "frictal/areal_tilt.hpp"
 #include "frictal/study.hpp"
 
 namespace frictal::study {
@@ -19,11 +20,16 @@ TaskKind wm_pair_statistics_kind();  // kind_wm_pair_statistics.cpp
 TaskKind tilt_kind();                // kind_tilt.cpp
 TaskKind divider_kind();             // kind_divider.cpp
 TaskKind wm_tilt_kind();             // kind_wm_tilt.cpp
+TaskKind areal_tilt_kind();          // kind_areal_tilt.cpp (needs MuJoCo)
 
 TaskRegistry default_registry() {
   TaskRegistry r;
   for (TaskKind (*make)() : {koch_signature_kind, wm_pair_statistics_kind, tilt_kind, divider_kind, wm_tilt_kind})
     r.add(make());
+  if (mujoco_available())
+    r.add(areal_tilt_kind());
+  else
+    r.add_unavailable("areal-tilt", "it needs MuJoCo: install libmujoco-dev and rebuild");
   return r;
 }
 

@@ -138,3 +138,44 @@ TEST(CliAreal, ArealTiltRefusesBadInputBeforeSimulating) {
   EXPECT_NE(a.err.find("--angle"), std::string::npos) << a.err;
   EXPECT_EQ(run_cli("areal-tilt " + groove_file() + " --tilt-step 0").code, 2);
 }
+
+TEST(CliAreal, ArealTiltPredictsOnTheSimulatedSurfaces) {
+  // --predict-only (no MuJoCo needed): a 6 x 6 window of the grooves in place. The grooves run
+  // along the height field's diagonal, so the triangulated valley is straight: free slides within
+  // the first 0.1 deg increment; locked along x climbs the steepest face, slope A sin(2 pi / m) / a.
+  frictal::Map g;
+  g.nx = g.ny = 6;
+  g.dx = kStep;
+  g.dy = kStep * std::tan(kPi / 6);
+  g.x0 = 40 * g.dx;
+  g.y0 = 40 * g.dy;
+  for (std::size_t j = 0; j < 6; ++j)
+    for (std::size_t i = 0; i < 6; ++i)
+      g.heights.push_back(kA * std::sin(2 * kPi * (double(i) - double(j)) / kM));  // i - j as the lower's
+  const std::string upper = temp_path("grooves30-window.x3p");
+  ASSERT_TRUE(frictal::write_x3p(upper, g).ok());
+  const std::string args =
+      "areal-tilt " + groove_file() + " " + upper +
+      " --in-place --detrend none --predict-only --runaway-distance 5e-7 --prediction-refine 2 --json";
+  auto f = run_cli(args);
+  ASSERT_EQ(f.code, 0) << f.err;
+  auto jf = nlohmann::json::parse(f.out);
+  EXPECT_FALSE(jf.contains("friction_angle_deg"));
+  EXPECT_LE(jf["continuous_hold_angle_deg"].get<double>(), 0.1);
+  EXPECT_NEAR(jf["continuous_steering_deg"].get<double>(), 30, 0.5);
+  auto l = run_cli(args + " --lateral locked");
+  ASSERT_EQ(l.code, 0) << l.err;
+  auto jl = nlohmann::json::parse(l.out);
+  const double expected = std::atan(kA * std::sin(2 * kPi / kM) / kStep) * 180 / kPi;
+  EXPECT_GE(jl["continuous_hold_angle_deg"].get<double>(), expected - 1e-7);
+  EXPECT_LE(jl["continuous_hold_angle_deg"].get<double>(), expected + 0.012);  // bisected to 1e-4 rad
+  EXPECT_NEAR(jl["matched_hold_angle_locked_deg"].get<double>(), expected, 0.012);
+  // Bad input names the option.
+  for (const std::string bad :
+       {"--lateral sideways", "--collision mpr", "--prediction-refine 17", "--start-offset 1e-6", "--local-damping 1",
+        "--mujoco-time-step 0", "--rest-steps 0", "--coarse-tilt-step 0"}) {
+    auto b = run_cli(args + " " + bad);
+    EXPECT_EQ(b.code, 2) << bad;
+    EXPECT_NE(b.err.find(bad.substr(0, bad.find(' '))), std::string::npos) << bad << ": " << b.err;
+  }
+}

@@ -9,6 +9,7 @@
 
 #include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
+#include "frictal/study.hpp"
 
 TEST(ArealTilt, GroovesAcrossHoldAtTheirSteepestSegment) {
   constexpr double kPi = std::numbers::pi;
@@ -48,4 +49,331 @@ TEST(ArealTilt, GroovesAcrossHoldAtTheirSteepestSegment) {
   auto bad = frictal::areal_tilt(f, g, o);
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("atomic friction -1"), std::string::npos) << bad.error().message;
+}
+
+// The matched prediction (areal_tilt_lift): spheres on MuJoCo's triangulated height field,
+// against closed forms for a plane, an apex, and one cell split along either diagonal.
+namespace {
+frictal::Map flat_map(std::size_t n, double a) {
+  frictal::Map f;
+  f.nx = f.ny = n;
+  f.dx = f.dy = a;
+  f.heights.assign(n * n, 0.0);
+  return f;
+}
+frictal::Map one_node(double x, double y, double z) {
+  frictal::Map g;
+  g.nx = g.ny = 1;
+  g.dx = g.dy = 1;
+  g.x0 = x;
+  g.y0 = y;
+  g.heights = {z};
+  return g;
+}
+}  // namespace
+
+TEST(ArealTiltLift, SphereOnAPlaneRestsAtItsNormalDistance) {
+  // z = sigma x is exact on any triangulation: the centre lies r sqrt(1 + sigma^2) above the
+  // plane, so the block (centre - r - node height) is at sigma x_c + r (sqrt(1 + sigma^2) - 1).
+  const double a = 1e-5, sigma = 0.3, r = 2e-6;
+  frictal::Map f = flat_map(11, a);
+  for (std::size_t j = 0; j < 11; ++j)
+    for (std::size_t i = 0; i < 11; ++i) f.heights[j * 11 + i] = sigma * double(i) * a;
+  frictal::ArealTiltOptions t;
+  t.turn_over_upper = false;
+  t.sphere_radius = r;
+  frictal::ArealLiftOptions o;
+  o.step = 0.37 * a;
+  o.offset_min = 0;
+  o.offset_max = 3 * a;
+  o.across_max = 1.1 * a;
+  const double z0 = 1e-7;
+  auto lift = frictal::areal_tilt_lift(f, one_node(3.3 * a, 5.2 * a, z0), t, o);
+  ASSERT_TRUE(lift.ok()) << lift.error().message;
+  ASSERT_EQ(lift->n_across, 5u);  // |v| <= 1.1 a in steps of 0.37 a
+  for (std::size_t k = 0; k < lift->lift.size(); ++k) {
+    const auto s = lift->offset_xy(k);
+    const double expected = sigma * (3.3 * a + s[0]) + r * (std::sqrt(1 + sigma * sigma) - 1) - z0;
+    // The heights pass through MuJoCo's float storage (relative 6e-8 of the relief, 3e-5 m).
+    EXPECT_NEAR(lift->lift[k], expected, 4e-12) << k;
+  }
+}
+
+TEST(ArealTiltLift, OneCellIsSplitAlongMuJoCosDiagonal) {
+  // A cell whose corners (0, 0) and (1, 1) are high (H) and (1, 0), (0, 1) low: split along
+  // (0, 0)-(1, 1), as MuJoCo 2.2.2 does, its middle is a ridge at H, where a sphere centred above
+  // rests on the ridge: block height H. The mirror cell ((1, 0), (0, 1) high) is a V valley
+  // along the same diagonal; each flank rises H over a / sqrt(2) across it, slope G = H sqrt(2)
+  // / a, so the sphere above the middle sits r sqrt(1 + G^2) above the valley's bottom (0).
+  // (The bilinear surface is H / 2 at the middle in both cases.)
+  const double a = 1e-5, H = 2e-6, r = 1e-6;
+  for (int mirror = 0; mirror < 2; ++mirror) {
+    frictal::Map f = flat_map(2, a);
+    const double hi = mirror ? 0.0 : H, lo = mirror ? H : 0.0;
+    f.heights = {hi, lo, lo, hi};  // (0, 0), (1, 0), (0, 1), (1, 1)
+    frictal::ArealTiltOptions t;
+    t.turn_over_upper = false;
+    t.sphere_radius = r;
+    frictal::ArealLiftOptions o;
+    o.step = a;
+    o.offset_min = 0;
+    o.offset_max = 0.5 * a;  // one offset along d
+    o.across_max = 0.5 * a;  // one across
+    auto lift = frictal::areal_tilt_lift(f, one_node(0.5 * a, 0.5 * a, 0), t, o);
+    ASSERT_TRUE(lift.ok()) << lift.error().message;
+    ASSERT_EQ(lift->lift.size(), 1u);
+    const double G = H * std::sqrt(2.0) / a;
+    const double expected = mirror ? r * (std::sqrt(1 + G * G) - 1) : H;
+    EXPECT_NEAR(lift->lift[0], expected, 1e-6 * H) << mirror;
+  }
+}
+
+TEST(ArealTiltLift, SphereAboveAnApexTouchesIt) {
+  // One node raised far above flat neighbours: a sphere centred above it touches the apex only.
+  const double a = 1e-5, H = 5e-5, r = 2e-6;
+  frictal::Map f = flat_map(5, a);
+  f.heights[2 * 5 + 2] = H;
+  frictal::ArealTiltOptions t;
+  t.turn_over_upper = false;
+  t.sphere_radius = r;
+  frictal::ArealLiftOptions o;
+  o.step = a;
+  o.offset_min = 0;
+  o.offset_max = 0.5 * a;
+  o.across_max = 0.5 * a;
+  auto lift = frictal::areal_tilt_lift(f, one_node(2 * a, 2 * a, 0), t, o);
+  ASSERT_TRUE(lift.ok()) << lift.error().message;
+  EXPECT_NEAR(lift->lift[0], H, 1e-6 * H);
+  EXPECT_EQ(lift->contact[0], 12);
+  // Bad input names the value.
+  t.sphere_radius = -1;
+  auto bad = frictal::areal_tilt_lift(f, one_node(2 * a, 2 * a, 0), t, o);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("sphere radius -1"), std::string::npos) << bad.error().message;
+}
+
+TEST(ArealTiltLift, GroovesAlongTheDiagonalSteerAndTheirMirrorHolds) {
+  // Grooves A sin(2 pi (i - j) / m) on dx = a, dy = a tan 30 deg run at +30 deg, along the
+  // triangulation's diagonal: the triangulated surface depends on i - j only, so the lift is
+  // constant along (dx, dy) and the free block slides at once (0 deg, steering 30 deg). Their
+  // mirror A sin(2 pi (i + j) / m) runs across the diagonals: each valley is a chain of bumps,
+  // which holds the block (qualitatively: a clear positive angle).
+  constexpr double kPi = std::numbers::pi;
+  const std::size_t n = 30, w = 8;
+  const int m = 10;
+  const double a = 1e-3 / double(n - 1), A = 2e-5, psi = kPi / 6;
+  double held[2] = {0, 0};
+  for (int mirror = 0; mirror < 2; ++mirror) {
+    frictal::Map f;
+    f.nx = f.ny = n;
+    f.dx = a;
+    f.dy = a * std::tan(psi);
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i) {
+        const double ph = mirror ? double(i + j) : double(i) - double(j);
+        f.heights.push_back(A * std::sin(2 * kPi * ph / m));
+      }
+    frictal::Map g;
+    g.nx = g.ny = w;
+    g.dx = f.dx;
+    g.dy = f.dy;
+    const std::size_t i0 = (n - w) / 2;
+    g.x0 = double(i0) * f.dx;
+    g.y0 = double(i0) * f.dy;
+    for (std::size_t j = 0; j < w; ++j)
+      for (std::size_t i = 0; i < w; ++i) g.heights.push_back(f.at(i + i0, j + i0));
+    frictal::ArealTiltOptions t;
+    t.turn_over_upper = false;
+    frictal::ArealLiftOptions o;
+    o.step = 0.5 * f.dx;
+    o.across_step = 0.5 * f.dy;  // the offset grid's diagonal runs along +30 deg
+    o.offset_min = -3 * a;
+    o.offset_max = 6 * a;
+    o.across_max = 8 * a;
+    auto lift = frictal::areal_tilt_lift(f, g, t, o);
+    ASSERT_TRUE(lift.ok()) << lift.error().message;
+    frictal::ArealHoldOptions ho;
+    ho.runaway_distance = 2.5 * a;
+    auto start = frictal::areal_lift_node(*lift, 0, 0);
+    ASSERT_TRUE(start.ok());
+    auto hold = frictal::areal_hold_angle(*lift, *start, ho);
+    ASSERT_TRUE(hold.ok()) << hold.error().message;
+    held[mirror] = hold->hold_angle;
+    if (!mirror) {
+      EXPECT_NEAR(hold->hold_angle, 0, 1e-12);
+      EXPECT_NEAR(hold->steering, psi, 1e-9);
+    }
+  }
+  EXPECT_GT(held[1], 2 * kPi / 180);  // the mirror holds (measured 7 to 13 deg; see docs/mujoco.md)
+}
+
+TEST(ArealTilt, ObliqueGroovesAgreeWithTheMatchedPrediction) {
+  // Grooves at +30 deg to d along the height field's diagonal and their mirror at -30 deg (as in
+  // ArealTiltLift.GroovesAlongTheDiagonalSteerAndTheirMirrorHolds), the upper face a window in
+  // place: the simulation (MuJoCo's dynamics, exact sphere-triangle contacts) against the rigid
+  // quasi-static process on the lift of the same spheres and triangles (a second method). The
+  // +30 deg block steers at the first 0.1 deg increment; the mirror holds near the matched angle.
+  constexpr double kPi = std::numbers::pi;
+  const std::size_t n = 30, w = 8;
+  const int m = 10;
+  const double a = 1e-3 / double(n - 1), A = 2e-5, psi = kPi / 6;
+  for (int mirror = 0; mirror < 2; ++mirror) {
+    frictal::Map f;
+    f.nx = f.ny = n;
+    f.dx = a;
+    f.dy = a * std::tan(psi);
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i)
+        f.heights.push_back(A * std::sin(2 * kPi * (mirror ? double(i + j) : double(i) - double(j)) / m));
+    frictal::Map g;
+    g.nx = g.ny = w;
+    g.dx = f.dx;
+    g.dy = f.dy;
+    const std::size_t i0 = (n - w) / 2;
+    g.x0 = double(i0) * f.dx;
+    g.y0 = double(i0) * f.dy;
+    for (std::size_t j = 0; j < w; ++j)
+      for (std::size_t i = 0; i < w; ++i) g.heights.push_back(f.at(i + i0, j + i0));
+    frictal::ArealTiltOptions t;
+    t.turn_over_upper = false;
+    auto sim = frictal::areal_tilt(f, g, t);
+    if (!frictal::mujoco_available()) {
+      ASSERT_FALSE(sim.ok());
+      return;
+    }
+    ASSERT_TRUE(sim.ok()) << sim.error().message;
+    ASSERT_TRUE(sim->ran_away);
+    // The matched prediction from the simulated rest offset, on offsets r / 2 apart.
+    frictal::ArealLiftOptions o;
+    o.step = 0.1 * f.dx;
+    o.across_step = 0.1 * f.dy;
+    const double D = 0.05 * f.width();
+    o.offset_min = sim->rest_offset[0] - 2 * D;
+    o.offset_max = sim->rest_offset[0] + 4 * D;
+    o.across_max = std::abs(sim->rest_offset[1]) + 3 * D;
+    auto lift = frictal::areal_tilt_lift(f, g, t, o);
+    ASSERT_TRUE(lift.ok()) << lift.error().message;
+    auto rest = frictal::areal_lift_node(*lift, sim->rest_offset[0], sim->rest_offset[1]);
+    ASSERT_TRUE(rest.ok());
+    frictal::ArealHoldOptions ho;
+    ho.runaway_distance = D;
+    auto hold = frictal::areal_hold_angle(*lift, *rest, ho);
+    ASSERT_TRUE(hold.ok()) << hold.error().message;
+    if (!mirror) {
+      EXPECT_NEAR(hold->hold_angle, 0, 1e-12);
+      EXPECT_LE(sim->friction_angle, 0.1 * kPi / 180 + 1e-9);
+    } else {
+      EXPECT_GT(hold->hold_angle, 5 * kPi / 180);
+      EXPECT_GE(sim->friction_angle, hold->hold_angle - 0.1 * kPi / 180);
+      EXPECT_LE(sim->friction_angle, hold->hold_angle + 0.25 * kPi / 180);
+    }
+  }
+}
+
+TEST(ArealTiltHold, ATipInAStraightVValley) {
+  // One sphere (the upper face is one node) in a V valley z = sigma * (distance to the valley's
+  // line): along the cells' diagonal at psi = 30 deg to d (dx = a, dy = a tan psi), so the
+  // triangles hold the V exactly. Free: the tip slides along the valley at any tilt (within the
+  // first 0.1 deg increment). Locked along d: it climbs the flank, whose slope along d is
+  // sigma sin(psi): hold atan(sigma sin psi). Across d (psi = 90 deg): atan(sigma) both ways.
+  constexpr double kPi = std::numbers::pi;
+  const std::size_t n = 41;
+  const double a = 1e-5, sigma = 0.4;
+  for (const double psi_deg : {30.0, 90.0}) {
+    const double psi = psi_deg * kPi / 180;
+    const bool across = psi_deg == 90.0;
+    frictal::Map f;
+    f.nx = f.ny = n;
+    f.dx = a;
+    f.dy = across ? a : a * std::tan(psi);
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i) {
+        const double k = across ? double(i) - 20.0 : double(i) - double(j);
+        f.heights.push_back(sigma * a * std::sin(psi) * std::abs(k));
+      }
+    frictal::ArealTiltOptions t;
+    t.turn_over_upper = false;
+    t.runaway_distance = 5 * a;
+    // The tip over the valley at node (20, 20).
+    frictal::Map g = one_node(20 * f.dx, 20 * f.dy, 0);
+    for (const bool lock : {false, true}) {
+      t.lock_lateral = lock;
+      auto h = frictal::areal_tilt_hold(f, g, t);
+      ASSERT_TRUE(h.ok()) << h.error().message;
+      ASSERT_TRUE(h->ran_away);
+      if (!lock && !across) {
+        EXPECT_LE(h->hold_angle, 0.1 * kPi / 180) << psi_deg;
+        EXPECT_NEAR(h->steering, psi, 0.01) << psi_deg;
+      } else {
+        const double expected = std::atan(sigma * std::sin(psi));
+        EXPECT_GE(h->hold_angle, expected - 1e-9) << psi_deg << " " << lock;
+        EXPECT_LE(h->hold_angle, expected + 2e-4) << psi_deg << " " << lock;  // bisected to 1e-4 rad
+      }
+    }
+  }
+}
+
+TEST(ArealTiltHold, GroovesAcrossHoldAtTheirSteepestSegment) {
+  // The MuJoCo test's grooves (above): the rigid block climbs the steepest face, slope
+  // A sin(2 pi / m) / a, whatever the spheres' radius (a sphere on a plane moves parallel to it).
+  constexpr double kPi = std::numbers::pi;
+  const std::size_t n = 20;
+  const int m = 8;
+  const double a = 1e-3 / double(n - 1), A = 2.4e-5;
+  frictal::Map f;
+  f.nx = f.ny = n;
+  f.dx = f.dy = a;
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) f.heights.push_back(A * std::sin(2 * kPi * double(i) / m));
+  frictal::Map g;
+  g.nx = g.ny = 6;
+  g.dx = g.dy = a;
+  g.x0 = g.y0 = 7 * a;
+  for (std::size_t j = 0; j < 6; ++j)
+    for (std::size_t i = 0; i < 6; ++i) g.heights.push_back(f.at(i + 7, j + 7));
+  frictal::ArealTiltOptions t;
+  t.turn_over_upper = false;
+  const double expected = std::atan(A * std::sin(2 * kPi / m) / a);
+  for (const double r : {0.0, 0.4 * a}) {
+    t.sphere_radius = r;
+    auto h = frictal::areal_tilt_hold(f, g, t);
+    ASSERT_TRUE(h.ok()) << h.error().message;
+    EXPECT_GE(h->hold_angle, expected - 1e-9) << r;
+    EXPECT_LE(h->hold_angle, expected + 2e-4) << r;
+  }
+  t.atomic_friction = 0.1;
+  auto bad = frictal::areal_tilt_hold(f, g, t);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("atomic friction 0.1"), std::string::npos) << bad.error().message;
+}
+
+TEST(ArealTiltStudyKind, GroovesAlongTheDiagonal) {
+  // The study kind 'areal-tilt' on grooves at 30 deg along the cells' diagonal: free slides at
+  // the first increment, locked holds at the steepest face, atan(A sin(2 pi / m) / a) with
+  // A = rms_slope a m / (2 pi) (the kind's definition), and both agree with the matched prediction.
+  constexpr double kPi = std::numbers::pi;
+  const frictal::study::TaskRegistry reg = frictal::study::default_registry();
+  const frictal::study::TaskKind* k = reg.find("areal-tilt");
+  if (!frictal::mujoco_available()) {
+    ASSERT_EQ(k, nullptr);
+    EXPECT_NE(reg.unavailable_reason("areal-tilt").find("MuJoCo"), std::string::npos);
+    return;
+  }
+  ASSERT_NE(k, nullptr);
+  frictal::study::Params p{{"pair", std::string("grooves")},    {"nodes", std::int64_t{30}},
+                           {"upper_nodes", std::int64_t{8}},    {"groove_angle", 30.0},
+                           {"groove_period", std::int64_t{10}}, {"rms_slope", 0.3642}};
+  auto out = k->run(p, 1);
+  ASSERT_TRUE(out.ok()) << out.error().message;
+  const auto& s = out->scalars;
+  const double m = 10, locked = std::atan(0.3642 * m / (2 * kPi) * std::sin(2 * kPi / m)) * 180 / kPi;
+  EXPECT_NEAR(s.at("matched_locked_deg"), locked, 0.012);
+  EXPECT_LE(s.at("simulated_free_deg"), 0.1 + 1e-9);
+  EXPECT_EQ(s.at("within_free"), 1.0);
+  EXPECT_EQ(s.at("within_locked"), 1.0);
+  EXPECT_NEAR(s.at("steering_deg"), 30, 2);
+  p["pair"] = std::string("ridges");
+  auto bad = k->run(p, 1);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("'pair'"), std::string::npos) << bad.error().message;
 }

@@ -78,3 +78,15 @@ TEST(StudyFiles, KochTheoryPartsReproduceSectionThree) {
     for (const auto& f : rep->findings) EXPECT_TRUE(f.supported) << n << ": " << f.claim << " " << f.evidence.front();
   }
 }
+
+TEST(StudyFiles, ArealTiltParsesAtBothScales) {
+  // Issue 24's study: 3 groove angles x 2 diagonals + 2 anisotropies x 4 samples; quick 2 + 2.
+  // Parses whether or not this build has MuJoCo (the kind is then declared, not available).
+  const TaskRegistry reg = default_registry();
+  const std::string p = (studies_dir() / "areal-tilt.toml").string();
+  auto full = load_study(p, false, reg), quick = load_study(p, true, reg);
+  ASSERT_TRUE(full.ok()) << full.error().message;
+  ASSERT_TRUE(quick.ok()) << quick.error().message;
+  EXPECT_EQ(full->tasks.size(), 14u);
+  EXPECT_EQ(quick->tasks.size(), 4u);
+}

@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "frictal/areal_tilt.hpp"
 #include "frictal/generators.hpp"
 #include "frictal/io.hpp"
 #include "frictal/study.hpp"
@@ -196,8 +197,14 @@ TEST(StudyKindsUnit, EveryKindDeclaresWhatItReturnsAndItsViews) {
         {"rms_height", 1e-5},
         {"spheroradius", 2e-5},
         {"pair", std::int64_t{0}}}},
+      {"areal-tilt",
+       {{"pair", std::string("grooves")},
+        {"nodes", std::int64_t{16}},
+        {"upper_nodes", std::int64_t{4}},
+        {"groove_period", std::int64_t{6}}}},
   };
-  ASSERT_EQ(reg.names().size(), sample.size());
+  // areal-tilt is available only in a build with MuJoCo.
+  ASSERT_EQ(reg.names().size(), sample.size() - (frictal::mujoco_available() ? 0 : 1));
   const auto kinds = nlohmann::json::parse(kinds_json(reg))["kinds"];
   for (const auto& name : reg.names()) {
     const TaskKind& k = *reg.find(name);

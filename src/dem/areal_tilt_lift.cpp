@@ -1,0 +1,419 @@
+// The matched prediction of the MuJoCo tilt test (frictal/areal_tilt.hpp, areal_tilt_lift;
+// docs/mujoco.md): the lift of the upper face's spheres of radius r on the lower face's height
+// field triangulated as MuJoCo triangulates it. Needs no MuJoCo.
+#include <fmt/core.h>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <vector>
+
+#include "areal_tilt_model.hpp"
+#include "frictal/areal.hpp"
+#include "frictal/areal_tilt.hpp"
+#include "util/parallel.hpp"
+
+namespace frictal {
+namespace {
+
+constexpr double kNoContact = -std::numeric_limits<double>::infinity();
+
+struct Vertex {
+  double x, y, z;
+};
+
+/// The highest centre of a sphere of radius r above (cx, cy) that touches the segment a-b:
+/// max over points p of the segment within r of (cx, cy) of p_z + sqrt(r^2 - |p - c|^2) (a
+/// concave function of the position along the segment: its maximum, clamped to the segment).
+double edge_top(const Vertex& a, const Vertex& b, double cx, double cy, double r, double& px, double& py) {
+  const double ex = b.x - a.x, ey = b.y - a.y;
+  const double L = std::hypot(ex, ey);
+  const double ux = ex / L, uy = ey / L;
+  const double qx = cx - a.x, qy = cy - a.y;
+  const double tc = qx * ux + qy * uy;
+  const double perp2 = qx * qx + qy * qy - tc * tc;
+  const double R2 = r * r - perp2;
+  if (R2 <= 0) return kNoContact;
+  const double R = std::sqrt(R2);
+  const double lo = std::max(0.0, tc - R), hi = std::min(L, tc + R);
+  if (lo > hi) return kNoContact;
+  const double k = (b.z - a.z) / L;
+  const double t = std::clamp(tc + k * R / std::sqrt(1 + k * k), lo, hi);
+  px = a.x + t * ux;
+  py = a.y + t * uy;
+  return a.z + k * t + std::sqrt(std::max(0.0, R2 - (t - tc) * (t - tc)));
+}
+
+/// The highest centre of a sphere of radius r above (cx, cy) that touches the triangle abc
+/// (kNoContact: none within r); (px, py) the touching point.
+double triangle_top(const Vertex& a, const Vertex& b, const Vertex& c, double cx, double cy, double r, double& px,
+                    double& py) {
+  // The plane z = a.z + gx (x - a.x) + gy (y - a.y).
+  const double e1x = b.x - a.x, e1y = b.y - a.y, e1z = b.z - a.z;
+  const double e2x = c.x - a.x, e2y = c.y - a.y, e2z = c.z - a.z;
+  const double det = e1x * e2y - e1y * e2x;
+  const double gx = (e1z * e2y - e2z * e1y) / det, gy = (e1x * e2z - e2x * e1z) / det;
+  const double w = std::sqrt(1 + gx * gx + gy * gy);
+  // The sphere resting on the plane touches it at c + r g / w (horizontally).
+  const double fx = cx + r * gx / w - a.x, fy = cy + r * gy / w - a.y;
+  const double l1 = (fx * e2y - fy * e2x) / det, l2 = (e1x * fy - e1y * fx) / det;
+  if (l1 >= 0 && l2 >= 0 && l1 + l2 <= 1) {
+    px = a.x + fx;
+    py = a.y + fy;
+    return a.z + gx * (cx - a.x) + gy * (cy - a.y) + r * w;
+  }
+  // Otherwise the maximum of the concave height over the triangle lies on its boundary.
+  double best = kNoContact, qx = 0, qy = 0;
+  const Vertex* v[3] = {&a, &b, &c};
+  for (int e = 0; e < 3; ++e) {
+    const double t = edge_top(*v[e], *v[(e + 1) % 3], cx, cy, r, qx, qy);
+    if (t > best) best = t, px = qx, py = qy;
+  }
+  return best;
+}
+
+/// The spheres of the upper face over the lower face's triangulated height field: the block's
+/// height h(s) at offset s, with the touching point and, on request, every (sphere, triangle)
+/// piece within eps of the max and its gradient (p - c) / sqrt(r^2 - |p - c|^2).
+class SphereField {
+ public:
+  struct Piece {
+    double value, gx, gy;
+  };
+  SphereField(const std::vector<detail::TiltNode>& nodes, const detail::Hfield& hf, double r)
+      : nodes_(nodes), hf_(hf), r_(r), cnx_(hf.nx - 1), cny_(hf.ny - 1), cell_top_(cnx_ * cny_) {
+    for (std::size_t j = 0; j < cny_; ++j)
+      for (std::size_t i = 0; i < cnx_; ++i)
+        cell_top_[j * cnx_ + i] = std::max({hf.at(i, j), hf.at(i + 1, j), hf.at(i, j + 1), hf.at(i + 1, j + 1)});
+  }
+  /// h(s) (kNoContact: no sphere over the field); (bx, by) the touching point; `work` counts
+  /// cells evaluated.
+  double eval(double sx, double sy, double& bx, double& by, std::size_t& work, double eps = 0,
+              std::vector<Piece>* pieces = nullptr) const {
+    double best = kNoContact;
+    if (pieces) pieces->clear();
+    for (const detail::TiltNode& n : nodes_) {
+      const double cx = n.x + sx, cy = n.y + sy;
+      // Cells whose rectangle meets the disc of radius r about (cx, cy).
+      const double fi0 = std::floor((cx - r_ - hf_.x0) / hf_.dx), fi1 = std::floor((cx + r_ - hf_.x0) / hf_.dx);
+      const double fj0 = std::floor((cy - r_ - hf_.y0) / hf_.dy), fj1 = std::floor((cy + r_ - hf_.y0) / hf_.dy);
+      if (fi1 < 0 || fj1 < 0 || fi0 > double(cnx_ - 1) || fj0 > double(cny_ - 1)) continue;
+      const std::size_t i0 = std::size_t(std::max(0.0, fi0)), i1 = std::size_t(std::min(double(cnx_ - 1), fi1));
+      const std::size_t j0 = std::size_t(std::max(0.0, fj0)), j1 = std::size_t(std::min(double(cny_ - 1), fj1));
+      double bound = kNoContact;
+      for (std::size_t j = j0; j <= j1; ++j)
+        for (std::size_t i = i0; i <= i1; ++i) bound = std::max(bound, cell_top_[j * cnx_ + i]);
+      // The block's height when this sphere (centre n.z + r above the block's origin) touches.
+      const double base = -(n.z + r_);
+      if (bound + r_ + base <= best - eps) continue;
+      for (std::size_t j = j0; j <= j1; ++j)
+        for (std::size_t i = i0; i <= i1; ++i) {
+          ++work;
+          const Vertex p00{hf_.x0 + double(i) * hf_.dx, hf_.y0 + double(j) * hf_.dy, hf_.at(i, j)};
+          const Vertex p10{p00.x + hf_.dx, p00.y, hf_.at(i + 1, j)};
+          const Vertex p01{p00.x, p00.y + hf_.dy, hf_.at(i, j + 1)};
+          const Vertex p11{p00.x + hf_.dx, p00.y + hf_.dy, hf_.at(i + 1, j + 1)};
+          // MuJoCo's two triangles of the cell, split along (i, j)-(i+1, j+1).
+          for (int t = 0; t < 2; ++t) {
+            double px = 0, py = 0;
+            const double top = t == 0 ? triangle_top(p01, p00, p11, cx, cy, r_, px, py)
+                                      : triangle_top(p00, p11, p10, cx, cy, r_, px, py);
+            if (top == kNoContact) continue;
+            const double v = top + base;
+            if (v > best) best = v, bx = px, by = py;
+            if (pieces && v >= best - eps) {
+              const double ex = px - cx, ey = py - cy;
+              const double q = std::sqrt(std::max(r_ * r_ - ex * ex - ey * ey, 1e-12 * r_ * r_));
+              pieces->push_back({v, ex / q, ey / q});
+            }
+          }
+        }
+    }
+    if (pieces) std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
+    return best;
+  }
+
+ private:
+  const std::vector<detail::TiltNode>& nodes_;
+  const detail::Hfield& hf_;
+  double r_;
+  std::size_t cnx_, cny_;
+  std::vector<double> cell_top_;
+};
+
+/// The least-norm point of the convex hull of points in the plane (few points).
+std::array<double, 2> least_norm(const std::vector<std::array<double, 2>>& q) {
+  std::array<double, 2> best = q[0];
+  auto n2 = [](const std::array<double, 2>& a) { return a[0] * a[0] + a[1] * a[1]; };
+  for (const auto& p : q)
+    if (n2(p) < n2(best)) best = p;
+  for (std::size_t i = 0; i < q.size(); ++i)
+    for (std::size_t j = i + 1; j < q.size(); ++j) {
+      const double ex = q[j][0] - q[i][0], ey = q[j][1] - q[i][1], L2 = ex * ex + ey * ey;
+      if (L2 <= 0) continue;
+      const double t = std::clamp(-(q[i][0] * ex + q[i][1] * ey) / L2, 0.0, 1.0);
+      const std::array<double, 2> c{q[i][0] + t * ex, q[i][1] + t * ey};
+      if (n2(c) < n2(best)) best = c;
+      for (std::size_t k = j + 1; k < q.size(); ++k) {  // the origin inside triangle ijk
+        auto side = [](const std::array<double, 2>& a, const std::array<double, 2>& b) {
+          return a[0] * b[1] - a[1] * b[0];
+        };
+        const std::array<double, 2> a{q[j][0] - q[i][0], q[j][1] - q[i][1]}, b{q[k][0] - q[i][0], q[k][1] - q[i][1]};
+        const double area = side(a, b);
+        if (std::abs(area) <= 1e-12 * (n2(a) + n2(b))) continue;  // collinear: the segments decide
+        const double s1 = side(q[i], q[j]), s2 = side(q[j], q[k]), s3 = side(q[k], q[i]);
+        if ((s1 >= 0 && s2 >= 0 && s3 >= 0) || (s1 <= 0 && s2 <= 0 && s3 <= 0)) return {0, 0};
+      }
+    }
+  return best;
+}
+
+}  // namespace
+
+Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOptions& t, const ArealLiftOptions& o) {
+  if (auto s = validate(f, "lower map"); !s) return s.error();
+  if (auto s = validate(g, "upper map"); !s) return s.error();
+  if (f.nx < 2 || f.ny < 2) return make_error("areal_tilt_lift: the lower map needs 2 x 2 nodes");
+  if (!std::isfinite(t.angle))
+    return make_error(fmt::format("areal_tilt_lift: angle {}: expected a finite direction (rad)", t.angle));
+  if (!std::isfinite(t.sphere_radius) || t.sphere_radius < 0)
+    return make_error(
+        fmt::format("areal_tilt_lift: sphere radius {}: expected a finite number >= 0 (m)", t.sphere_radius));
+  if (t.hfield_refine < 1 || t.hfield_refine > 16)
+    return make_error(fmt::format("areal_tilt_lift: hfield_refine {}: expected 1..16", t.hfield_refine));
+  auto finite_nonneg = [](double v) { return std::isfinite(v) && v >= 0; };
+  if (!finite_nonneg(o.step) || !finite_nonneg(o.across_step) || !finite_nonneg(o.across_max) ||
+      !std::isfinite(o.offset_min) || !std::isfinite(o.offset_max))
+    return make_error(fmt::format(
+        "areal_tilt_lift: step {}, across_step {}, across_max {} must be finite and >= 0, offset_min {} and "
+        "offset_max {} finite (m)",
+        o.step, o.across_step, o.across_max, o.offset_min, o.offset_max));
+  const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
+  if (nodes.empty()) return make_error("areal_tilt_lift: the upper map has no valid node");
+  const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
+  const double r = detail::tilt_sphere_radius(f, t);
+
+  // The offset grid, as areal_lift.
+  const double dxv = std::cos(t.angle), dyv = std::sin(t.angle), ex = -dyv, ey = dxv;
+  const double step = o.step > 0 ? o.step : std::min(f.dx, f.dy);
+  const double across_step = o.across_step > 0 ? o.across_step : step;
+  const double along_extent = std::abs(dxv) * f.width() + std::abs(dyv) * f.height();
+  const double across_extent = std::abs(ex) * f.width() + std::abs(ey) * f.height();
+  const double umax = o.offset_max > o.offset_min ? o.offset_max : o.offset_min + 0.5 * along_extent;
+  const double vmax = o.across_max > 0 ? o.across_max : 0.25 * across_extent;
+  const std::size_t nu = std::size_t(std::floor((umax - o.offset_min) / step + 1e-9)) + 1;
+  const std::size_t m = std::size_t(std::floor(vmax / across_step + 1e-9));
+  const std::size_t nv = 2 * m + 1;
+  if (double(nu) * double(nv) * double(nodes.size()) > 2e10)
+    return make_error(
+        fmt::format("areal_tilt_lift: {} x {} offsets of {} spheres are too many; increase step or "
+                    "across_step",
+                    nu, nv, nodes.size()));
+  ArealLift out;
+  out.angle = t.angle;
+  out.n_along = nu;
+  out.n_across = nv;
+  out.along_min = o.offset_min;
+  out.step = step;
+  out.across_min = -double(m) * across_step;
+  out.across_step = across_step;
+  out.lift.assign(nu * nv, std::numeric_limits<double>::quiet_NaN());
+  out.contact.assign(nu * nv, -1);
+
+  const SphereField field(nodes, hf, r);
+  std::vector<std::size_t> work(nu * nv, 0);
+  util::parallel_chunks(nu * nv, util::thread_count(o.threads, nu * nv), [&](unsigned, std::size_t k0, std::size_t k1) {
+    for (std::size_t k = k0; k < k1; ++k) {
+      const double u = out.along(k % nu), v = out.across(k / nu);
+      const double sx = u * dxv + v * ex, sy = u * dyv + v * ey;
+      double bx = 0, by = 0;
+      const double best = field.eval(sx, sy, bx, by, work[k]);
+      if (best == kNoContact) continue;
+      out.lift[k] = best;
+      const double ci = std::clamp(std::round((bx - f.x0) / f.dx), 0.0, double(f.nx - 1));
+      const double cj = std::clamp(std::round((by - f.y0) / f.dy), 0.0, double(f.ny - 1));
+      out.contact[k] = std::int64_t(cj) * std::int64_t(f.nx) + std::int64_t(ci);
+    }
+  });
+  bool any = false;
+  for (std::size_t k = 0; k < nu * nv; ++k) {
+    out.evaluated_nodes += work[k];
+    any = any || !std::isnan(out.lift[k]);
+  }
+  if (!any)
+    return make_error(
+        fmt::format("areal_tilt_lift: the spheres never touch the height field over offsets {} to {} m along {} deg "
+                    "(expected maps that overlap along the sliding direction)",
+                    out.along(0), out.along(nu - 1), t.angle * 180 / std::numbers::pi));
+  return out;
+}
+
+}  // namespace frictal
+
+namespace frictal {
+
+Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
+                                      double stationary) {
+  if (auto s = validate(f, "lower map"); !s) return s.error();
+  if (auto s = validate(g, "upper map"); !s) return s.error();
+  if (f.nx < 2 || f.ny < 2) return make_error("areal_tilt_hold: the lower map needs 2 x 2 nodes");
+  if (!std::isfinite(t.angle))
+    return make_error(fmt::format("areal_tilt_hold: angle {}: expected a finite direction (rad)", t.angle));
+  if (t.atomic_friction != 0)
+    return make_error(
+        fmt::format("areal_tilt_hold: atomic friction {}: only 0 (frictionless) is handled", t.atomic_friction));
+  if (!std::isfinite(t.sphere_radius) || t.sphere_radius < 0)
+    return make_error(
+        fmt::format("areal_tilt_hold: sphere radius {}: expected a finite number >= 0 (m)", t.sphere_radius));
+  if (t.hfield_refine < 1 || t.hfield_refine > 16)
+    return make_error(fmt::format("areal_tilt_hold: hfield_refine {}: expected 1..16", t.hfield_refine));
+  if (!(t.tilt_step > 0) || !(t.coarse_tilt_step > 0) || !(t.max_tilt > t.tilt_step) ||
+      !(t.max_tilt < std::numbers::pi / 2) || !(resolution > 0) || !(stationary > 0))
+    return make_error(
+        "areal_tilt_hold: expected 0 < tilt_step < max_tilt < pi/2, coarse_tilt_step > 0, resolution > 0 "
+        "and stationary > 0");
+  if (!std::isfinite(t.start_offset[0]) || !std::isfinite(t.start_offset[1]) || !std::isfinite(t.runaway_distance) ||
+      t.runaway_distance < 0)
+    return make_error("areal_tilt_hold: the start offset must be finite and the run-away distance finite and >= 0 (m)");
+  const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
+  if (nodes.empty()) return make_error("areal_tilt_hold: the upper map has no valid node");
+  const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
+  const double r = detail::tilt_sphere_radius(f, t);
+  const SphereField field(nodes, hf, r);
+  const double dxv = std::cos(t.angle), dyv = std::sin(t.angle);
+  const double D =
+      t.runaway_distance > 0 ? t.runaway_distance : 0.05 * (std::abs(dxv) * f.width() + std::abs(dyv) * f.height());
+  ArealTiltHold out;
+  std::size_t work = 0;
+  std::vector<SphereField::Piece> pieces;
+  std::vector<std::array<double, 2>> q;
+  // h where the spheres touch, +inf (a wall) where none is over the field.
+  auto height = [&](double x, double y, double eps, std::vector<SphereField::Piece>* p) {
+    double bx = 0, by = 0;
+    ++out.evaluations;
+    const double h = field.eval(x, y, bx, by, work, eps, p);
+    return h == kNoContact ? std::numeric_limits<double>::infinity() : h;
+  };
+  struct State {
+    double x = 0, y = 0;            // offset (m)
+    double x_stop = 0, y_stop = 0;  // the last stop
+  };
+  enum class End { Rest, Far, Stuck };
+  // Nonsmooth steepest descent of V at tilt beta from st; Far once it has gone D along d from
+  // its stop (check_far).
+  auto descend = [&](double beta, State& st, bool check_far) {
+    const double cb = std::cos(beta), sb = std::sin(beta);
+    double delta = 0.05 * r;
+    const double delta_min = 1e-6 * r;
+    for (int it = 0; it < 200000; ++it) {
+      // Pieces that a step of delta could make the highest: deficit <= delta |g_i - g_best|
+      // (collected up to a deficit of 4 delta: slopes above 4 are not expected on a map).
+      const double h = height(st.x, st.y, 4 * delta, &pieces);
+      if (!std::isfinite(h)) return End::Stuck;
+      const double V = h * cb - (st.x * dxv + st.y * dyv) * sb;
+      const SphereField::Piece* top = &pieces[0];
+      for (const SphereField::Piece& p : pieces)
+        if (p.value > top->value) top = &p;
+      q.clear();
+      for (const SphereField::Piece& p : pieces) {
+        if (h - p.value > delta * std::min(std::hypot(p.gx - top->gx, p.gy - top->gy), 2.0) + 1e-12 * r) continue;
+        double gx = cb * p.gx - sb * dxv, gy = cb * p.gy - sb * dyv;
+        if (t.lock_lateral) {
+          const double a = gx * dxv + gy * dyv;
+          gx = a * dxv;
+          gy = a * dyv;
+        }
+        q.push_back({gx, gy});
+      }
+      const std::array<double, 2> P = least_norm(q);
+      const double Pn = std::hypot(P[0], P[1]);
+      if (Pn < stationary) {
+        // Stationary for this step's pieces: at rest only if it stays so for the smallest step.
+        if (delta <= delta_min) return End::Rest;
+        delta = std::max(0.5 * delta, delta_min);
+        continue;
+      }
+      const double wx = -P[0] / Pn, wy = -P[1] / Pn;
+      bool moved = false;
+      while (delta >= delta_min) {
+        const double nx = st.x + delta * wx, ny = st.y + delta * wy;
+        const double h2 = height(nx, ny, 0, nullptr);
+        if (h2 * cb - (nx * dxv + ny * dyv) * sb < V - 1e-4 * delta * Pn) {
+          st.x = nx;
+          st.y = ny;
+          delta = std::min(1.5 * delta, 0.5 * r);
+          moved = true;
+          break;
+        }
+        delta *= 0.5;
+      }
+      if (!moved) return End::Rest;
+      if (check_far && (st.x - st.x_stop) * dxv + (st.y - st.y_stop) * dyv >= D) return End::Far;
+    }
+    return End::Stuck;
+  };
+  State st;
+  st.x = t.start_offset[0];
+  st.y = t.start_offset[1];
+  if (!std::isfinite(height(st.x, st.y, 0, nullptr)))
+    return make_error(
+        fmt::format("areal_tilt_hold: at the start offset ({}, {}) m no sphere lies over the lower map", st.x, st.y));
+  descend(0.0, st, false);
+  st.x_stop = st.x;
+  st.y_stop = st.y;
+  out.rest_offset = {st.x, st.y};
+  // Increments from `from` at beta0; returns the run-away increment (NaN: none) and leaves in
+  // `before` the state at the increment before it.
+  auto run = [&](State from, double beta0, double step, State& before, double& beta_before) {
+    State s = from;
+    before = from;
+    beta_before = beta0;
+    for (double beta = beta0 + step; beta <= t.max_tilt + 1e-12; beta += step) {
+      State trial = s;
+      if (descend(beta, trial, true) == End::Far) return beta;
+      trial.x_stop = trial.x;  // a stop (Rest) or a block that did not settle: either way the next
+      trial.y_stop = trial.y;  // increment starts from here, as in areal_tilt
+      s = trial;
+      before = s;
+      beta_before = beta;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  };
+  State before;
+  double beta_before = 0;
+  const double coarse = std::max(t.coarse_tilt_step, t.tilt_step);
+  double b = run(st, 0.0, coarse, before, beta_before);
+  if (!std::isnan(b) && coarse > t.tilt_step) b = run(before, beta_before, t.tilt_step, before, beta_before);
+  if (std::isnan(b)) {
+    out.hold_angle = out.runaway_increment = t.max_tilt;
+    return out;
+  }
+  out.ran_away = true;
+  out.runaway_increment = b;
+  // Bisect the run-away tilt between the increment before and b, from the state before.
+  double lo = beta_before, hi = b;
+  State at_hi;
+  bool have_hi = false;
+  while (hi - lo > resolution) {
+    const double mid = 0.5 * (lo + hi);
+    State trial = before;
+    if (descend(mid, trial, true) == End::Far) {
+      hi = mid;
+      at_hi = trial;
+      have_hi = true;
+    } else {
+      lo = mid;
+    }
+  }
+  if (!have_hi) {
+    at_hi = before;
+    descend(b, at_hi, true);
+  }
+  out.hold_angle = hi;
+  out.steering = std::atan2(-(at_hi.x - before.x_stop) * dyv + (at_hi.y - before.y_stop) * dxv,
+                            (at_hi.x - before.x_stop) * dxv + (at_hi.y - before.y_stop) * dyv);
+  return out;
+}
+
+}  // namespace frictal

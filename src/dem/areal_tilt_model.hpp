@@ -1,0 +1,92 @@
+// The geometry that the MuJoCo tilt test (areal_tilt_mujoco.cpp) simulates and that its matched
+// prediction (areal_tilt_lift.cpp) evaluates: one definition of the upper face's spheres and of
+// the lower face's height field, so that both see the same surfaces (docs/mujoco.md).
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "frictal/areal_tilt.hpp"
+#include "frictal/map.hpp"
+
+namespace frictal::detail {
+
+/// A node of the upper face at offset 0, in the lower map's frame (unit: m).
+struct TiltNode {
+  double x, y, z;
+};
+
+/// The upper map's valid nodes, turned over about the axis across d through the centres (as
+/// areal_signature) or in place.
+inline std::vector<TiltNode> tilt_nodes(const Map& f, const Map& g, double angle, bool turn_over) {
+  const double dxv = std::cos(angle), dyv = std::sin(angle);
+  const double cfx = f.x0 + 0.5 * f.width(), cfy = f.y0 + 0.5 * f.height();
+  const double cgx = g.x0 + 0.5 * g.width(), cgy = g.y0 + 0.5 * g.height();
+  std::vector<TiltNode> nodes;
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) {
+      const double z = g.at(i, j);
+      if (std::isnan(z)) continue;
+      const double qx = g.x0 + double(i) * g.dx, qy = g.y0 + double(j) * g.dy;
+      if (turn_over) {
+        const double ax = qx - cgx, ay = qy - cgy, along = ax * dxv + ay * dyv;
+        nodes.push_back({cfx + ax - 2 * along * dxv, cfy + ay - 2 * along * dyv, -z});
+      } else {
+        nodes.push_back({qx, qy, z});
+      }
+    }
+  return nodes;
+}
+
+/// The sphere radius used: the option, or a fifth of the lower map's smaller spacing (unit: m).
+inline double tilt_sphere_radius(const Map& f, const ArealTiltOptions& o) {
+  return o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(f.dx, f.dy);
+}
+
+/// The lower face as MuJoCo's height field: (nx - 1) k + 1 by (ny - 1) k + 1 vertices sampling the
+/// map's bilinear surface (k = 1: its nodes), holes at the lowest height; `data` is what MuJoCo
+/// stores (float, (z - zmin) / relief) and `z` the heights it then uses (unit: m). MuJoCo 2.2.2
+/// (engine_collision_convex.c, mjc_ConvexHField) splits cell (c, r) into the triangles
+/// {(c, r+1), (c, r), (c+1, r+1)} and {(c, r), (c+1, r+1), (c+1, r)}: along the diagonal from
+/// (c, r) to (c+1, r+1), row r at y0 + r dy.
+struct Hfield {
+  std::size_t nx = 0, ny = 0;
+  double x0 = 0, y0 = 0, dx = 0, dy = 0;
+  double zmin = 0, relief = 0;
+  std::vector<float> data;
+  std::vector<double> z;
+  double at(std::size_t i, std::size_t j) const { return z[j * nx + i]; }
+};
+
+inline Hfield tilt_hfield(const Map& f, std::size_t k) {
+  Hfield h;
+  double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
+  for (double v : f.heights)
+    if (!std::isnan(v)) zmin = std::min(zmin, v), zmax = std::max(zmax, v);
+  const double L = std::max(f.width(), f.height());
+  h.zmin = zmin;
+  h.relief = std::max(zmax - zmin, 1e-12 * L);
+  h.nx = (f.nx - 1) * k + 1;
+  h.ny = (f.ny - 1) * k + 1;
+  h.x0 = f.x0;
+  h.y0 = f.y0;
+  h.dx = f.dx / double(k);
+  h.dy = f.dy / double(k);
+  h.data.resize(h.nx * h.ny);
+  h.z.resize(h.nx * h.ny);
+  for (std::size_t j = 0; j < h.ny; ++j)
+    for (std::size_t i = 0; i < h.nx; ++i) {
+      const double v = k == 1 ? f.at(i, j)
+                              : interpolate(f, f.x0 + std::min(f.width(), double(i) * f.dx / double(k)),
+                                            f.y0 + std::min(f.height(), double(j) * f.dy / double(k)));
+      const float s = float(std::isnan(v) ? 0.0 : (v - zmin) / h.relief);
+      h.data[j * h.nx + i] = s;
+      h.z[j * h.nx + i] = zmin + double(s) * h.relief;
+    }
+  return h;
+}
+
+}  // namespace frictal::detail
