@@ -220,6 +220,8 @@ def figure(store, kinds, spec, outdir):
         first = None
         for vid in panel["views"]:
             for part, kind in store.parts:
+                if panel.get("parts") and part not in panel["parts"]:
+                    continue
                 view = views_of.get(kind, {}).get(vid)
                 if not view:
                     continue
