@@ -10,6 +10,8 @@
 
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
+
+#include "areal_grid.hpp"
 #include "util/parallel.hpp"
 
 namespace frictal {
@@ -394,20 +396,18 @@ Result<ArealSignature> areal_signature(const Map& f, const Map& g_in, double ang
   return out;
 }
 
-Result<ArealLift> areal_lift(const Map& f, const Map& g_in, double angle, const ArealLiftOptions& o) {
-  if (auto s = validate(f, "lower map"); !s) return s.error();
-  if (auto s = validate(g_in, "upper map"); !s) return s.error();
-  LiftEvaluator ev;
-  if (auto s = ev.init(f, g_in, angle, o.turn_over_upper, o.block, "areal_lift"); !s) return s.error();
-  const double dxv = std::cos(angle), dyv = std::sin(angle);
-  const double ex = -dyv, ey = dxv;  // across d
+namespace detail {
+
+Result<ArealLift> areal_offset_grid(const Map& f, double angle, const ArealLiftOptions& o, const char* who) {
   auto finite_nonneg = [](double v) { return std::isfinite(v) && v >= 0; };
   if (!finite_nonneg(o.step) || !finite_nonneg(o.across_step) || !finite_nonneg(o.across_max) ||
       !std::isfinite(o.offset_min) || !std::isfinite(o.offset_max))
     return make_error(
-        fmt::format("areal_lift: step {}, across_step {}, across_max {} must be finite and >= 0, offset_min {} and "
+        fmt::format("{}: step {}, across_step {}, across_max {} must be finite and >= 0, offset_min {} and "
                     "offset_max {} finite (m)",
-                    o.step, o.across_step, o.across_max, o.offset_min, o.offset_max));
+                    who, o.step, o.across_step, o.across_max, o.offset_min, o.offset_max));
+  const double dxv = std::cos(angle), dyv = std::sin(angle);
+  const double ex = -dyv, ey = dxv;  // across d
   const double step = o.step > 0 ? o.step : std::min(f.dx, f.dy);
   const double across_step = o.across_step > 0 ? o.across_step : step;
   const double along_extent = std::abs(dxv) * f.width() + std::abs(dyv) * f.height();
@@ -416,19 +416,33 @@ Result<ArealLift> areal_lift(const Map& f, const Map& g_in, double angle, const 
   const double vmax = o.across_max > 0 ? o.across_max : 0.25 * across_extent;
   const std::size_t nu = std::size_t(std::floor((umax - o.offset_min) / step + 1e-9)) + 1;
   const std::size_t m = std::size_t(std::floor(vmax / across_step + 1e-9));
-  const std::size_t nv = 2 * m + 1;
-  if (double(nu) * double(nv) > 5e7)
-    return make_error(
-        fmt::format("areal_lift: {} x {} offsets are more than 5e7; increase step or across_step", nu, nv));
-
   ArealLift out;
   out.angle = angle;
   out.n_along = nu;
-  out.n_across = nv;
+  out.n_across = 2 * m + 1;
   out.along_min = o.offset_min;
   out.step = step;
   out.across_min = -double(m) * across_step;
   out.across_step = across_step;
+  return out;
+}
+
+}  // namespace detail
+
+Result<ArealLift> areal_lift(const Map& f, const Map& g_in, double angle, const ArealLiftOptions& o) {
+  if (auto s = validate(f, "lower map"); !s) return s.error();
+  if (auto s = validate(g_in, "upper map"); !s) return s.error();
+  LiftEvaluator ev;
+  if (auto s = ev.init(f, g_in, angle, o.turn_over_upper, o.block, "areal_lift"); !s) return s.error();
+  const double dxv = std::cos(angle), dyv = std::sin(angle);
+  const double ex = -dyv, ey = dxv;  // across d
+  auto grid = detail::areal_offset_grid(f, angle, o, "areal_lift");
+  if (!grid) return grid.error();
+  ArealLift out = std::move(*grid);
+  const std::size_t nu = out.n_along, nv = out.n_across;
+  if (double(nu) * double(nv) > 5e7)
+    return make_error(
+        fmt::format("areal_lift: {} x {} offsets are more than 5e7; increase step or across_step", nu, nv));
   out.lift.assign(nu * nv, std::numeric_limits<double>::quiet_NaN());
   out.contact.assign(nu * nv, -1);
   std::vector<std::size_t> work(nu * nv, 0);
@@ -454,7 +468,7 @@ Result<ArealLift> areal_lift(const Map& f, const Map& g_in, double angle, const 
     return make_error(
         fmt::format("areal_lift: the blocks never touch over offsets {} to {} m along {} deg and +-{} m "
                     "across (expected maps that overlap along the sliding direction)",
-                    out.along(0), out.along(nu - 1), angle * 180 / std::numbers::pi, vmax));
+                    out.along(0), out.along(nu - 1), angle * 180 / std::numbers::pi, -out.across_min));
   return out;
 }
 

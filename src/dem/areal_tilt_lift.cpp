@@ -9,6 +9,7 @@
 #include <numbers>
 #include <vector>
 
+#include "analysis/areal_grid.hpp"
 #include "areal_tilt_model.hpp"
 #include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
@@ -182,13 +183,8 @@ Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOpt
         fmt::format("areal_tilt_lift: sphere radius {}: expected a finite number >= 0 (m)", t.sphere_radius));
   if (t.hfield_refine < 1 || t.hfield_refine > 16)
     return make_error(fmt::format("areal_tilt_lift: hfield_refine {}: expected 1..16", t.hfield_refine));
-  auto finite_nonneg = [](double v) { return std::isfinite(v) && v >= 0; };
-  if (!finite_nonneg(o.step) || !finite_nonneg(o.across_step) || !finite_nonneg(o.across_max) ||
-      !std::isfinite(o.offset_min) || !std::isfinite(o.offset_max))
-    return make_error(fmt::format(
-        "areal_tilt_lift: step {}, across_step {}, across_max {} must be finite and >= 0, offset_min {} and "
-        "offset_max {} finite (m)",
-        o.step, o.across_step, o.across_max, o.offset_min, o.offset_max));
+  auto grid = detail::areal_offset_grid(f, t.angle, o, "areal_tilt_lift");
+  if (!grid) return grid.error();
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
   if (nodes.empty()) return make_error("areal_tilt_lift: the upper map has no valid node");
   const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
@@ -196,28 +192,13 @@ Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOpt
 
   // The offset grid, as areal_lift.
   const double dxv = std::cos(t.angle), dyv = std::sin(t.angle), ex = -dyv, ey = dxv;
-  const double step = o.step > 0 ? o.step : std::min(f.dx, f.dy);
-  const double across_step = o.across_step > 0 ? o.across_step : step;
-  const double along_extent = std::abs(dxv) * f.width() + std::abs(dyv) * f.height();
-  const double across_extent = std::abs(ex) * f.width() + std::abs(ey) * f.height();
-  const double umax = o.offset_max > o.offset_min ? o.offset_max : o.offset_min + 0.5 * along_extent;
-  const double vmax = o.across_max > 0 ? o.across_max : 0.25 * across_extent;
-  const std::size_t nu = std::size_t(std::floor((umax - o.offset_min) / step + 1e-9)) + 1;
-  const std::size_t m = std::size_t(std::floor(vmax / across_step + 1e-9));
-  const std::size_t nv = 2 * m + 1;
+  ArealLift out = std::move(*grid);
+  const std::size_t nu = out.n_along, nv = out.n_across;
   if (double(nu) * double(nv) * double(nodes.size()) > 2e10)
     return make_error(
         fmt::format("areal_tilt_lift: {} x {} offsets of {} spheres are too many; increase step or "
                     "across_step",
                     nu, nv, nodes.size()));
-  ArealLift out;
-  out.angle = t.angle;
-  out.n_along = nu;
-  out.n_across = nv;
-  out.along_min = o.offset_min;
-  out.step = step;
-  out.across_min = -double(m) * across_step;
-  out.across_step = across_step;
   out.lift.assign(nu * nv, std::numeric_limits<double>::quiet_NaN());
   out.contact.assign(nu * nv, -1);
 

@@ -1,0 +1,16 @@
+// frictal — the offset grid of an areal lift (private; areal_lift and areal_tilt_lift share it).
+#pragma once
+
+#include "frictal/areal.hpp"
+#include "frictal/result.hpp"
+
+namespace frictal::detail {
+
+/// An ArealLift with its offset grid laid out from `o` (step, across_step, across_max,
+/// offset_min, offset_max; zeros take the defaults: the lower map's finer spacing, half its extent
+/// along d, a quarter of it across); lift and contact are left empty (the caller checks its size
+/// limit, then fills them). `who` prefixes the error for steps or ranges that are negative or not
+/// finite.
+Result<ArealLift> areal_offset_grid(const Map& lower, double angle, const ArealLiftOptions& o, const char* who);
+
+}  // namespace frictal::detail
