@@ -182,9 +182,7 @@ std::function<int()> setup(CLI::App& app) {
             "--atomic-friction must be a finite number >= 0");
     const Detrend dt = unwrap(parse_detrend(a->detrend));
     auto load = [&](const std::string& path) {
-      const SurfaceData s = load_surface(path, a->input);
-      if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; the areal signature needs maps", path));
-      return unwrap(detrend(s.map, dt));
+      return load_detrended_map(path, a->input, dt, "the areal signature needs maps");
     };
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);

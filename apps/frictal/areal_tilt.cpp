@@ -100,9 +100,7 @@ std::function<int()> setup(CLI::App& app) {
     if (!mujoco_available() && !a->predict_only) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
     const Detrend dt = unwrap(parse_detrend(a->detrend));
     auto load = [&](const std::string& path) {
-      const SurfaceData s = load_surface(path, a->input);
-      if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; areal-tilt needs maps", path));
-      return unwrap(detrend(s.map, dt));
+      return load_detrended_map(path, a->input, dt, "areal-tilt needs maps");
     };
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);

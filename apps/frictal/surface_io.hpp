@@ -10,6 +10,7 @@
 #include <string>
 
 #include "common.hpp"
+#include "frictal/analysis.hpp"
 #include "frictal/io.hpp"
 
 namespace frictal::cli {
@@ -92,6 +93,14 @@ inline SurfaceData load_surface(const std::string& path, const InputOptions& o) 
   SurfaceData s = unwrap(read_surface(input_path(path), read_options(o)));
   for (const auto& w : s.warnings) fmt::print(stderr, "frictal: warning: {}\n", w);
   return s;
+}
+
+/// The file's areal map with `dt` removed (error naming the file for a line profile: `needs`
+/// says what the command wants, e.g. "areal-tilt needs maps").
+inline Map load_detrended_map(const std::string& path, const InputOptions& o, const Detrend& dt, const char* needs) {
+  const SurfaceData s = load_surface(path, o);
+  if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; {}", path, needs));
+  return unwrap(detrend(s.map, dt));
 }
 
 /// The surface as a single-valued profile (error naming the file for maps or folded curves).
