@@ -242,9 +242,9 @@ void merge_touching(const Model& m, State& st, Workspace& ws) {
   // From the deepest pair down, each pair is kept unless a kept pair describes the same contact
   // (then by[i] is that pair; n: kept). A pair dropped does not drop others: at a valley's
   // bottom the vertex-vertex pair of one flank must not go with the crossed pair it repeats.
-  std::vector<std::uint32_t>& by = ws.region;
+  std::vector<std::uint32_t>& by = ws.closest_dropped_by;
   by.assign(n, static_cast<std::uint32_t>(n));
-  std::vector<std::uint32_t>& order = ws.region_order;
+  std::vector<std::uint32_t>& order = ws.closest_order;
   order.resize(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
   std::stable_sort(order.begin(), order.end(),

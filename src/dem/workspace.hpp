@@ -123,16 +123,16 @@ struct Workspace {
   std::vector<std::uint32_t> slot_of_vertex;
 
   // Contact passes (contact_geometry.cpp, force_law.cpp, stability.cpp).
-  HotList hot;                              ///< pairs that can touch before the next full pass (docs/dem.md sec. 2)
-  std::vector<Pose> pose;                   ///< per body, at the current step
-  std::vector<double> inv_mass;             ///< per body, 0 for kinematic bodies (unit: 1/kg)
-  std::vector<int> body_contacts;           ///< per body, touching pairs
-  std::vector<ModeSums> modes;              ///< per body, for the stability limit
-  std::vector<ContactScratch> touching;     ///< grown, never shrunk
-  std::size_t touching_count = 0;           ///< touching pairs in `touching`
-  std::vector<Segment> segments;            ///< where they are in `touching`, in list order
-  std::vector<std::uint32_t> region;        ///< ContactRule::Closest: the kept pair that drops a touching pair
-  std::vector<std::uint32_t> region_order;  ///< ContactRule::Closest: touching pairs, deepest first
+  HotList hot;                           ///< pairs that can touch before the next full pass (docs/dem.md sec. 2)
+  std::vector<Pose> pose;                ///< per body, at the current step
+  std::vector<double> inv_mass;          ///< per body, 0 for kinematic bodies (unit: 1/kg)
+  std::vector<int> body_contacts;        ///< per body, touching pairs
+  std::vector<ModeSums> modes;           ///< per body, for the stability limit
+  std::vector<ContactScratch> touching;  ///< grown, never shrunk
+  std::size_t touching_count = 0;        ///< touching pairs in `touching`
+  std::vector<Segment> segments;         ///< where they are in `touching`, in list order
+  std::vector<std::uint32_t> closest_dropped_by;  ///< ContactRule::Closest: the kept pair that drops a touching pair
+  std::vector<std::uint32_t> closest_order;       ///< ContactRule::Closest: touching pairs, deepest first
 
   // Threads (dem::set_thread_count).
   unsigned threads = 1;  ///< threads the contact passes may use
