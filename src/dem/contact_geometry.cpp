@@ -78,6 +78,7 @@ struct Classifier {
     ContactScratch& c = touching[n];
     c.pair = index;
     c.sx = sx, c.sy = sy, c.dist2 = dist2, c.dx = dx, c.dy = dy, c.vx = vx, c.vy = vy, c.t = t;
+    c.weight = 1;
     const bool touch = dist2 < rsum * rsum;
     n += touch ? 1 : 0;
     if (!touch && p.overlap > -1) {  // write only on the transition (most pairs stay apart)
@@ -227,23 +228,28 @@ bool same_contact(const Model& m, const PairView& a, const PairView& b) {
 }  // namespace
 
 void merge_touching(const Model& m, State& st, Workspace& ws) {
-  // ContactRule::Closest (docs/dem.md sec. 1, "Contact rule"). A touching pair with a deeper
-  // pair that describes the same contact (same_contact, contact points within r1 + r2) stands
-  // for nothing that one does not: it is dropped. O(n^2) in the touching pairs of a body pair,
-  // which are few (a handful at rest; tens on a flat face).
+  // ContactRule::Closest (docs/dem.md sec. 1, "Contact rule"). (1) A concave corner is never the
+  // point of a contact: its pairs are dropped. (2) Of the others, a touching pair with a deeper
+  // pair that describes the same contact (same_contact, contact points within r1 + r2) stands for
+  // nothing that one does not: it is dropped. O(n^2) in the touching pairs of a body pair, which
+  // are few (a handful at rest; tens on a flat face). (3) A vertex within reach of a concave
+  // corner of the other body touches both of its flanks; their bands overlap around the corner,
+  // and the vertex-vertex term is subtracted once (inclusion-exclusion).
   const std::size_t n = ws.touching_count;
-  if (n < 2) return;
-  ContactScratch* const c = ws.touching.data();
+  if (n == 0) return;
+  ContactScratch* c = ws.touching.data();
   NeighborPair* const pairs = st.pairs.data();
   auto view = [&](std::size_t i) {
     const NeighborPair& p = pairs[c[i].pair];
     return PairView{p.vbody, p.ebody, p.vertex, p.edge0, p.edge1, c[i].t <= 0.0 ? 1 : (c[i].t >= 1.0 ? 2 : 0)};
   };
-  // From the deepest pair down, each pair is kept unless a kept pair describes the same contact
-  // (then by[i] is that pair; n: kept). A pair dropped does not drop others: at a valley's
-  // bottom the vertex-vertex pair of one flank must not go with the crossed pair it repeats.
+  // by[i]: n = kept; n + 1 = a concave corner's pair (stands for nothing); else the kept pair
+  // that describes the same contact, taken from the deepest pair down. A pair dropped does not
+  // drop others: at a valley's bottom the vertex-vertex pair of one flank must not go with the
+  // crossed pair it repeats.
+  const auto kept = static_cast<std::uint32_t>(n), concave = static_cast<std::uint32_t>(n + 1);
   std::vector<std::uint32_t>& by = ws.closest_dropped_by;
-  by.assign(n, static_cast<std::uint32_t>(n));
+  by.assign(n, kept);
   std::vector<std::uint32_t>& order = ws.closest_order;
   order.resize(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
@@ -252,9 +258,13 @@ void merge_touching(const Model& m, State& st, Workspace& ws) {
   for (std::size_t a = 0; a < n; ++a) {
     const std::uint32_t i = order[a];
     const PairView pi = view(i);
+    if (!m.convex_vertex[pi.v]) {
+      by[i] = concave;
+      continue;
+    }
     for (std::size_t b = 0; b < a; ++b) {
       const std::uint32_t j = order[b];
-      if (by[j] != n) continue;  // dropped
+      if (by[j] != kept) continue;  // dropped
       const PairView pj = view(j);
       if (std::min(pi.vb, pi.eb) != std::min(pj.vb, pj.eb) || std::max(pi.vb, pi.eb) != std::max(pj.vb, pj.eb))
         continue;
@@ -272,16 +282,54 @@ void merge_touching(const Model& m, State& st, Workspace& ws) {
   // now stands for a dropped one that touched last step takes over its elongation if it did not
   // touch itself.
   for (std::size_t i = 0; i < n; ++i) {
-    if (by[i] == n) continue;
+    if (by[i] == kept) continue;
     NeighborPair& dropped = pairs[c[i].pair];
-    NeighborPair& kept = pairs[c[by[i]].pair];
-    if (dropped.overlap > 0 && !(kept.overlap > 0)) kept.elongation = dropped.elongation;
+    if (by[i] != concave) {
+      NeighborPair& keeper = pairs[c[by[i]].pair];
+      if (dropped.overlap > 0 && !(keeper.overlap > 0)) keeper.elongation = dropped.elongation;
+    }
     dropped.elongation = 0;
     dropped.overlap = -1;
   }
   std::size_t w = 0;
   for (std::size_t i = 0; i < n; ++i)
-    if (by[i] == n) c[w++] = c[i];
+    if (by[i] == kept) c[w++] = c[i];
+  // (3) The vertex-vertex terms at concave corners: one per (vertex, corner) within reach, found
+  // through the kept pairs of the vertex with an edge ending at the corner (both flanks touch:
+  // each is no farther than the corner). The corner's world position is the edge's end.
+  struct Corner {
+    std::uint32_t v, corner, from;
+    double sx, sy;
+  };
+  std::vector<Corner> corners;
+  for (std::size_t i = 0; i < w; ++i) {
+    const PairView pi = view(i);
+    const double reach = m.radius[pi.vb] + m.radius[pi.eb];
+    const double px = c[i].vx - c[i].sx, py = c[i].vy - c[i].sy;  // closest point on the edge
+    for (int end = 0; end < 2; ++end) {
+      const std::uint32_t corner = end == 0 ? pi.e0 : pi.e1;
+      if (m.convex_vertex[corner]) continue;
+      const double f = end == 0 ? -c[i].t : 1.0 - c[i].t;
+      const double sx = c[i].vx - (px + f * c[i].dx), sy = c[i].vy - (py + f * c[i].dy);
+      if (sx * sx + sy * sy < reach * reach) corners.push_back({pi.v, corner, static_cast<std::uint32_t>(i), sx, sy});
+    }
+  }
+  std::sort(corners.begin(), corners.end(), [](const Corner& x, const Corner& y) {
+    return x.v != y.v ? x.v < y.v : (x.corner != y.corner ? x.corner < y.corner : x.from < y.from);
+  });
+  corners.erase(std::unique(corners.begin(), corners.end(),
+                            [](const Corner& x, const Corner& y) { return x.v == y.v && x.corner == y.corner; }),
+                corners.end());
+  if (ws.touching.size() < w + corners.size()) {
+    ws.touching.resize(w + corners.size());
+    c = ws.touching.data();
+  }
+  for (const Corner& k : corners) {
+    ContactScratch& e = c[w++];
+    e = c[k.from];
+    e.sx = k.sx, e.sy = k.sy, e.dist2 = k.sx * k.sx + k.sy * k.sy;
+    e.weight = -1;
+  }
   ws.touching_count = w;
   ws.segments.resize(1);
   ws.segments[0] = {0, w};

@@ -75,11 +75,18 @@ void pair_forces(const Model& m, State& st, Workspace& ws, double dt_spring, std
       ft_el = ft_el > 0 ? limit : -limit;
       xi = kt > 0 ? -ft_el / kt : 0.0;
     }
-    p.elongation = xi;
-    p.overlap = overlap;
-    c.energy = 0.5 * fn_el * overlap + 0.5 * kt * xi * xi;  // summed in list order below
-    const double fn = fn_el - mred * gn * vn;
-    const double ft = ft_el - mred * gt * vt;
+    double fn, ft;
+    if (c.weight > 0) {
+      p.elongation = xi;
+      p.overlap = overlap;
+      c.energy = 0.5 * fn_el * overlap + 0.5 * kt * xi * xi;  // summed in list order below
+      fn = fn_el - mred * gn * vn;
+      ft = ft_el - mred * gt * vt;
+    } else {  // the vertex-vertex term subtracted at a concave corner (rule closest): normal only
+      c.energy = -0.5 * fn_el * overlap;
+      fn = -(fn_el - mred * gn * vn);
+      ft = 0;
+    }
     const double fx = fn * nx + ft * tx, fy = fn * ny + ft * ty;
     c.fx = fx, c.fy = fy;
     c.torque_a = cross(rax, ray, fx, fy);
@@ -128,14 +135,15 @@ double sum_contacts(const Model& m, State& st, Workspace& ws, double max_ov, dou
   };
   std::size_t n_touching = 0;
   for (const Segment& seg : ws.segments) {
-    n_touching += seg.count;
     for (std::size_t k = seg.begin; k < seg.begin + seg.count; ++k) {
       const ContactScratch& c = touching[k];
       energy += c.energy;
       const NeighborPair& p = pairs[c.pair];
       const std::uint32_t a = p.vbody, b = p.ebody;
-      ++body_contacts[a];
-      ++body_contacts[b];
+      const bool contact = c.weight > 0;  // not the term subtracted at a concave corner
+      body_contacts[a] += contact;
+      body_contacts[b] += contact;
+      n_touching += contact;
       if (!have_run || a != cur_a || b != cur_b) {
         flush();
         cur_a = a, cur_b = b, have_run = true;
@@ -149,6 +157,7 @@ double sum_contacts(const Model& m, State& st, Workspace& ws, double max_ov, dou
       sb.fy -= c.fy;
       sb.torque -= c.torque_b;
       // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
+      if (!contact) continue;  // its stiffness is less than its flanks' (the limit stays safe)
       if (inv_mass_of[a] > 0) add_outer(sa.modes, c.nx, c.ny, c.jt_a, c.mred);
       if (inv_mass_of[b] > 0) add_outer(sb.modes, c.nx, c.ny, c.jt_b, c.mred);
       if (tangential_modes) {  // J_t = (t_x, t_y, r x t), t = (-n_y, n_x)

@@ -43,6 +43,11 @@ struct ContactScratch {
   std::uint32_t pair = 0;  ///< index in State::pairs
   double sx = 0, sy = 0, dist2 = 0, dx = 0, dy = 0, vx = 0, vy = 0;
   double t = 0;  ///< where the closest point lies on the edge, in [0, 1] (0, 1: at its ends)
+  /// +1; -1 for the vertex-vertex term that rule `closest` subtracts at a concave corner of the
+  /// edge's body (inclusion-exclusion of the two flanks' bands, docs/dem.md sec. 1): its normal
+  /// force (spring and dashpot) counts against the body, it has no tangential force, and it is
+  /// not a contact (counts, stability modes).
+  double weight = 1;
   double fx = 0, fy = 0, torque_a = 0, torque_b = 0, nx = 0, ny = 0, jt_a = 0, jt_b = 0, mred = 0;
   double jtt_a = 0, jtt_b = 0;  ///< r x t of each body (unit: m)
   double energy = 0;            ///< k_n overlap^2 / 2 + k_t xi^2 / 2 (unit: J), summed in list order

@@ -481,3 +481,82 @@ TEST(DemContactRule, PairsAlsoPushAlongTheLineToThePeak) {
   const double tilt_sum = std::atan2(-c.state.force[1].x, c.state.force[1].y);
   EXPECT_GT(tilt_sum, tilt_flank + 0.01 * tilt_flank);
 }
+
+namespace {
+
+// A vertex v (bottom of a diamond) right above the concave corner w = (0, 0) of a valley-shaped
+// ground whose flanks rise at theta on both sides, at height h. Both flanks' lines lie at
+// h cos(theta) from v (feet inside the flanks), so each flank overlaps by 2r - h cos(theta); the
+// corner itself is at h, and the diamond's edges leave v upwards at 45 deg, so w's projections
+// on them clamp at v (w against the diamond's edges: the vertex-vertex pair, twice).
+struct Valley {
+  double r = 2e-5, theta = 0, h = 0;
+  dem::Model model;
+  dem::State state;
+};
+
+Valley valley(dem::ContactRule rule, double theta_deg, double h) {
+  Valley c;
+  c.theta = theta_deg * 3.14159265358979323846 / 180.0;
+  c.h = h;
+  const double t = std::tan(c.theta);
+  dem::BodyDef g;  // counter-clockwise; the corner (0, 0) turns right: concave
+  g.x = {-0.01, 0.01, 0.01, 0.0, -0.01};
+  g.y = {-0.01, -0.01, 0.01 * t, 0.0, 0.01 * t};
+  g.type = dem::BodyType::Kinematic;
+  g.radius = c.r;
+  dem::BodyDef b;
+  b.x = {0.0, 1e-3, 0.0, -1e-3};
+  b.y = {h, h + 1e-3, h + 2e-3, h + 1e-3};
+  b.radius = c.r;
+  dem::WorldDef w;
+  w.gravity = {0, 0};
+  w.time_step = 1e-9;
+  w.contact.rule = rule;
+  auto m = dem::make_model(w, {g, b});
+  EXPECT_TRUE(m.ok()) << m.error().message;
+  c.model = *m;
+  c.state = dem::make_state(c.model);
+  EXPECT_TRUE(dem::step(c.model, c.state).ok());
+  return c;
+}
+
+}  // namespace
+
+TEST(DemContactRule, ClosestCountsANearlyFlatConcaveCornerAsOneContact) {
+  // theta = 0.5 deg, the corner 10 nm inside reach: each flank overlaps by
+  // delta_f = 2r - h cos(theta) = 11.5 nm, the corner by delta_w = 10 nm. Rule closest: the two
+  // flanks' bands overlap around the corner and the vertex-vertex term is subtracted once,
+  // F_y = k_n (2 delta_f cos(theta) - delta_w), about one contact's k_n delta (two flanks
+  // alone would be two contacts' worth on a face that is almost straight). Rule pairs adds the
+  // corner twice: F_y = k_n (2 delta_f cos(theta) + 2 delta_w).
+  // (Tolerance 1e-5 k_n delta: in its one step of 1 ns the light diamond moves by ~1e-14 m.)
+  const double r = 2e-5, dw = 1e-8, h = 2 * r - dw;
+  for (dem::ContactRule rule : {dem::ContactRule::Closest, dem::ContactRule::Pairs}) {
+    Valley c = valley(rule, 0.5, h);
+    const double kn = c.model.def.contact.normal_stiffness;
+    const double df = 2 * r - h * std::cos(c.theta);
+    ASSERT_GT(df, dw);
+    const double expected = rule == dem::ContactRule::Closest ? kn * (2 * df * std::cos(c.theta) - dw)
+                                                              : kn * (2 * df * std::cos(c.theta) + 2 * dw);
+    EXPECT_NEAR(c.state.force[1].y, expected, 1e-5 * kn * dw) << (rule == dem::ContactRule::Closest ? "closest" : "pairs");
+    EXPECT_NEAR(c.state.force[1].x, 0.0, 1e-5 * kn * dw);
+    if (rule == dem::ContactRule::Closest) {
+      EXPECT_EQ(c.state.contact_count, 2);  // the two flanks
+    }
+  }
+}
+
+TEST(DemContactRule, ClosestKeepsBothFlanksOfASharpValley) {
+  // theta = 30 deg, the flanks 10 nm inside reach: the corner is h = (2r - delta) / cos(theta) =
+  // 46 um > 2r away and does not touch; both flanks push along their normals,
+  // F_y = 2 k_n delta cos(theta): a vertex resting in a wedge, with either rule.
+  const double r = 2e-5, delta = 1e-8, theta = 30.0 * 3.14159265358979323846 / 180.0;
+  for (dem::ContactRule rule : {dem::ContactRule::Closest, dem::ContactRule::Pairs}) {
+    Valley c = valley(rule, 30.0, (2 * r - delta) / std::cos(theta));
+    const double kn = c.model.def.contact.normal_stiffness;
+    EXPECT_NEAR(c.state.force[1].y, 2 * kn * delta * std::cos(theta), 1e-5 * kn * delta);
+    EXPECT_NEAR(c.state.force[1].x, 0.0, 1e-5 * kn * delta);
+    EXPECT_EQ(c.state.contact_count, 2);
+  }
+}
