@@ -285,8 +285,8 @@ TaskKind tilt_kind() {
   TaskKind k;
   k.name = "tilt";
   k.description = "Spheropolygon tilting-block test of a Koch pair (Sec. IV): friction angle, Fig. 7 series";
-  k.version = 5;  // 2: spheropolygon prediction, rotation and model warnings; 3: unsettled, creep; 4: hold angle; 5:
-                  // contact rule
+  k.version = 6;  // 2: spheropolygon prediction, rotation and model warnings; 3: unsettled, creep; 4: hold angle; 5:
+                  // contact rule; 6: closest counts concave corners by inclusion-exclusion
   k.run = run_tilt_task;
   k.cost = tilt_cost;
   k.uses_seed = false;  // a deterministic simulation: shared by every study with the same parameters
