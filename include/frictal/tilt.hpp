@@ -54,6 +54,28 @@ enum class TiltProtocol {
   QuasiStatic,
 };
 
+/// How the upper block comes to rest before a constant-rate tilt starts (docs/dem.md sec. 4).
+enum class TiltSettling {
+  /// The paper's: the block falls and moves freely for `settle_time`; a block that still moves
+  /// then (a frictionless block gliding in a wide basin) warns "unsettled".
+  Free,
+  /// A FIRE relaxation at zero tilt, as the quasi-static protocol settles (at most `relax_time`,
+  /// thresholds relax_force, relax_speed, relax_duration): the tilt starts from rest.
+  Relax,
+};
+
+/// What turns in the constant-rate protocol (docs/dem.md sec. 4).
+enum class TiltTurn {
+  /// The paper's: the lower block turns about its centroid at `tilt_rate` from rest, so a block
+  /// resting on it is kicked at the start (relative speed tilt_rate times the height between the
+  /// centroids) and carried round it.
+  Block,
+  /// Gravity turns at `tilt_rate` in the frame of the lower block, which stays still (as in the
+  /// quasi-static protocol): the same test without the start's kick and the frame's fictitious
+  /// forces (centrifugal tilt_rate^2 r, Coriolis 2 tilt_rate v: below 1e-5 g on Table I blocks).
+  Gravity,
+};
+
 /// What the blocks' faces are when a surface folds over (Koch K1 above 45 degrees, ...).
 enum class TiltFace {
   Curve,     ///< the full curve (a rigid block's real face; overhangs can interlock)
@@ -88,6 +110,11 @@ struct TiltConfig {
   double skin = 5e-5;                 ///< neighbour-list skin (unit: m)
   int max_steps_beyond_limit = 1000;  ///< see dem::WorldDef::max_steps_beyond_limit; fixed step only (unitless)
   double settle_time = 0.1;           ///< free settling before the tilt starts (unit: s)
+  /// Constant-rate protocol: free settling (the paper's) or a relaxation to rest before the tilt
+  /// starts (the quasi-static protocol always relaxes).
+  TiltSettling settling = TiltSettling::Free;
+  /// Constant-rate protocol: turn the lower block (the paper's) or gravity in its frame.
+  TiltTurn turn = TiltTurn::Block;
   double max_tilt = 89 * std::numbers::pi / 180;       ///< give up (slid = false) beyond this tilt, 89 deg (unit: rad)
   double runaway_distance = 0.01;                      ///< sliding "for good": growth past this, one lambda (unit: m)
   double stick_speed = 1e-5;                           ///< relative speed counted as stuck (unit: m/s)

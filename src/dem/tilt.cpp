@@ -22,6 +22,12 @@ namespace frictal {
 
 namespace {
 
+// Whether the upper block relaxes to rest (FIRE) before the loading starts: always with the
+// quasi-static protocol, with the constant-rate one when settling = relax.
+bool relaxed_settling(const TiltConfig& cfg) {
+  return cfg.protocol == TiltProtocol::QuasiStatic || cfg.settling == TiltSettling::Relax;
+}
+
 using dem::Vec2;
 
 struct Poly {
@@ -193,10 +199,10 @@ Status check_config(const TiltConfig& c) {
     return make_error("tilt stick_duration: expected >= 0 s");
   if (!(std::isfinite(c.placement_gap) && c.placement_gap >= 0))
     return make_error("tilt placement_gap: expected >= 0 m");
-  if (c.protocol == TiltProtocol::QuasiStatic) {
-    if (!(pos(c.tilt_increment) && c.tilt_increment < c.max_tilt))
-      return make_error(fmt::format("tilt tilt_increment = {} rad: expected > 0 and below max_tilt = {} rad",
-                                    c.tilt_increment, c.max_tilt));
+  if (c.protocol == TiltProtocol::QuasiStatic && !(pos(c.tilt_increment) && c.tilt_increment < c.max_tilt))
+    return make_error(fmt::format("tilt tilt_increment = {} rad: expected > 0 and below max_tilt = {} rad",
+                                  c.tilt_increment, c.max_tilt));
+  if (c.protocol == TiltProtocol::QuasiStatic || c.settling == TiltSettling::Relax) {
     if (!pos(c.relax_time)) return make_error(fmt::format("tilt relax_time = {} s: expected > 0", c.relax_time));
     if (!pos(c.relax_force)) return make_error(fmt::format("tilt relax_force = {}: expected > 0", c.relax_force));
     if (!pos(c.relax_speed)) return make_error(fmt::format("tilt relax_speed = {} m/s: expected > 0", c.relax_speed));
@@ -405,9 +411,10 @@ Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, co
   lb.type = dem::BodyType::Kinematic;
   if (cfg.hold_rotation) ub.rotation_follows = 0;
   // The quasi-static protocol keeps the lower block still and turns gravity instead.
-  if (cfg.protocol == TiltProtocol::ConstantRate)
+  if (cfg.protocol == TiltProtocol::ConstantRate && cfg.turn == TiltTurn::Block)
     lb.motion.angular_velocity = cfg.reverse ? cfg.tilt_rate : -cfg.tilt_rate;
-  lb.motion.start_time = cfg.settle_time;
+  // With a relaxed settling the lower block starts turning when the relaxation ends (set then).
+  lb.motion.start_time = relaxed_settling(cfg) ? std::numeric_limits<double>::max() : cfg.settle_time;
   dem::WorldDef wd;
   wd.gravity = {0, -cfg.gravity};
   wd.time_step = cfg.time_step;
@@ -507,7 +514,8 @@ class TiltRun {
         dt_(cfg.time_step),
         adaptive_(cfg.adaptive_time_step),
         sgn_(cfg.reverse ? -1.0 : 1.0),
-        quasi_(cfg.protocol == TiltProtocol::QuasiStatic) {
+        quasi_(cfg.protocol == TiltProtocol::QuasiStatic),
+        gravity_turns_(quasi_ || cfg.turn == TiltTurn::Gravity) {
     dem::set_thread_count(st_, step_threads_);
     budget();
     // Fixed step: the schedule in steps. Adaptive step: in time (the same instants up to one step).
@@ -580,7 +588,7 @@ class TiltRun {
     const dem::Vec2 f = st_.force[1];
     m.ft = -sgn_ * (f.x * ex + f.y * ey);
     m.fn = -f.x * ey + f.y * ex;
-    m.tilt = quasi_ ? tilt_ : std::fabs(a);
+    m.tilt = gravity_turns_ ? tilt_ : std::fabs(a);
     return m;
   }
   void record() {
@@ -607,7 +615,7 @@ class TiltRun {
     f.normal_force = m.fn;
     f.tangential_force = m.ft;
     f.contacts = dem::contact_forces(model_, st_);
-    if (quasi_) {  // show the lower block turned by the tilt about its pivot (gravity turned instead)
+    if (gravity_turns_) {  // show the lower block turned by the tilt about its pivot (gravity turned instead)
       f.tilt = tilt_;
       const double a = -sgn_ * tilt_, c = std::cos(a), s = std::sin(a);
       const dem::Vec2 p = model_.motion[0].pivot;
@@ -641,7 +649,7 @@ class TiltRun {
     return std::fabs((st_.velocity[1].x - st_.velocity[0].x) * std::cos(a) +
                      (st_.velocity[1].y - st_.velocity[0].y) * std::sin(a));
   }
-  void set_tilt(double tilt) {  // quasi-static: gravity turned by the tilt in the lower block's frame
+  void set_tilt(double tilt) {  // gravity turned by the tilt in the lower block's frame
     tilt_ = tilt;
     model_.def.gravity = {sgn_ * cfg_.gravity * std::sin(tilt), -cfg_.gravity * std::cos(tilt)};
   }
@@ -658,6 +666,7 @@ class TiltRun {
   const bool adaptive_;
   const double sgn_;
   const bool quasi_;
+  const bool gravity_turns_;  // quasi-static, or constant rate with turn = gravity
   std::uint64_t settle_steps_ = 0, series_every_ = 0, frame_every_ = 0, max_steps_ = 0;
   double min_dt_ = std::numeric_limits<double>::infinity(), max_dt_ = 0, last_dt_ = 0;  // steps taken
   double eps_t_ = 0;  // time comparisons of the adaptive schedule
@@ -669,11 +678,12 @@ class TiltRun {
   std::size_t checkpoints_left_ = 0;
 };
 
-// ---- Phase 4: settling. Constant rate: free settling for settle_time. Quasi-static: a
-// relaxation at zero tilt (at most relax_time).
+// ---- Phase 4: settling. Constant rate: free settling for settle_time (settling = free, the
+// paper's). Quasi-static, or settling = relax: a relaxation at zero tilt (at most relax_time);
+// the constant-rate tilt then starts at once.
 Status TiltRun::settle() {
-  if (quasi_) {
-    set_tilt(0);
+  if (relaxed_settling(cfg_)) {
+    if (quasi_) set_tilt(0);
     auto r = relax(cfg_.relax_time, false);
     if (!r.ok()) return with_prefix("tilt (settling): ", r.error());
     res_.settled_speed = std::fabs(st_.velocity[1].x - st_.velocity[0].x);
@@ -684,6 +694,11 @@ Status TiltRun::settle() {
                        "{:.3g} m/s, thresholds relax_force = {:.3g} of its weight, relax_speed = {:.3g} m/s): it is "
                        "not at rest where the prediction starts; raise relax_time",
                        cfg_.relax_time, res_.settled_speed, cfg_.relax_force, cfg_.relax_speed)});
+    if (!quasi_) {  // the lower block turns from now on; the budget of the tilt counts from here
+      model_.motion[0].start_time = st_.time;
+      max_time_ = st_.time + cfg_.max_tilt / cfg_.tilt_rate + dt_;
+      max_steps_ = st_.steps + static_cast<std::uint64_t>(std::ceil(cfg_.max_tilt / cfg_.tilt_rate / dt_)) + 1;
+    }
   } else {
     for (std::uint64_t i = 0; settling(i); ++i) {
       res_.settled_speed = sliding_speed();
@@ -730,7 +745,9 @@ Status TiltRun::load_constant_rate() {
   for (double dist : cfg.runaway_checkpoints) res.checkpoints.push_back({dist, false, nan, nan, nan});
   std::size_t checkpoints_left = res.checkpoints.size();
   double d_now = 0;
+  const double t0 = st_.time;  // turn = gravity: the tilt grows from here
   while (running()) {
+    if (gravity_turns_) set_tilt(cfg.tilt_rate * (st_.time - t0));
     if (Status s = advance_one(); !s.ok()) return with_prefix("tilt: ", s.error());
     const bool rec = series_due();
     if (rec) record();

@@ -51,9 +51,10 @@ const std::vector<B>& table() {
                            FRICTAL_MEMBER(contact.atomic_friction)),
           bind_choice<TiltConfig>(
               F("contact_rule", "", 0, Lo::Closed, 0,
-                "Which touching vertex-edge pairs push: pairs (every one, the paper's), closest (the deepest "
-                "of each contact region: the rigid contact's normal at finite k_n), or auto (pairs with "
-                "constant-rate, closest with quasi-static)"),
+                "Which touching vertex-edge pairs push: pairs (every one, the paper's), closest (one force per "
+                "contact of the rigid rounded blocks: none from concave corners, one pair per contact, a "
+                "concave corner's flanks by inclusion-exclusion), or auto (pairs with constant-rate, closest "
+                "with quasi-static)"),
               FRICTAL_MEMBER(contact_rule),
               std::vector<std::pair<std::string, TiltContactRule>>{{"auto", TiltContactRule::Auto},
                                                                    {"pairs", TiltContactRule::Pairs},
@@ -100,6 +101,21 @@ const std::vector<B>& table() {
               F("settle_time", "s", 0, Lo::Closed, kInf,
                 "Free settling before the tilt starts (constant-rate protocol; quasi-static: a relaxation)"),
               FRICTAL_MEMBER(settle_time)),
+          bind_choice<TiltConfig>(
+              F("settling", "", 0, Lo::Closed, 0,
+                "Constant-rate protocol: how the block comes to rest before the tilt starts: free (the paper's, "
+                "settle_time of free motion) or relax (FIRE at zero tilt, as quasi-static, at most relax_time)"),
+              FRICTAL_MEMBER(settling),
+              std::vector<std::pair<std::string, TiltSettling>>{{"free", TiltSettling::Free},
+                                                                {"relax", TiltSettling::Relax}}),
+          bind_choice<TiltConfig>(
+              F("turn", "", 0, Lo::Closed, 0,
+                "Constant-rate protocol: what turns at tilt_rate: block (the lower block about its centroid, the "
+                "paper's; it kicks a resting block at the start) or gravity (in the lower block's frame, as "
+                "quasi-static)"),
+              FRICTAL_MEMBER(turn),
+              std::vector<std::pair<std::string, TiltTurn>>{{"block", TiltTurn::Block},
+                                                            {"gravity", TiltTurn::Gravity}}),
           bind<TiltConfig>(
               F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no slide) beyond this tilt", true),
               FRICTAL_MEMBER(max_tilt)),
@@ -125,8 +141,8 @@ const std::vector<B>& table() {
                 "Quasi-static: tilt added per increment (the angle reads at most one increment low)", true),
               FRICTAL_MEMBER(tilt_increment)),
           bind<TiltConfig>(F("relax_time", "s", 0, Lo::Open, kInf,
-                             "Quasi-static: longest relaxation per increment (and of the settling); beyond it the "
-                             "run warns (unrelaxed)"),
+                             "Quasi-static: longest relaxation per increment (and of the settling, also with "
+                             "settling = relax); beyond it the run warns (unrelaxed)"),
                            FRICTAL_MEMBER(relax_time)),
           bind<TiltConfig>(F("relax_force", "", 0, Lo::Open, kInf,
                              "Quasi-static: at rest below this unbalanced force on the upper block, as a fraction of "

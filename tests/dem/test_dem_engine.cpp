@@ -539,7 +539,8 @@ TEST(DemContactRule, ClosestCountsANearlyFlatConcaveCornerAsOneContact) {
     ASSERT_GT(df, dw);
     const double expected = rule == dem::ContactRule::Closest ? kn * (2 * df * std::cos(c.theta) - dw)
                                                               : kn * (2 * df * std::cos(c.theta) + 2 * dw);
-    EXPECT_NEAR(c.state.force[1].y, expected, 1e-5 * kn * dw) << (rule == dem::ContactRule::Closest ? "closest" : "pairs");
+    EXPECT_NEAR(c.state.force[1].y, expected, 1e-5 * kn * dw)
+        << (rule == dem::ContactRule::Closest ? "closest" : "pairs");
     EXPECT_NEAR(c.state.force[1].x, 0.0, 1e-5 * kn * dw);
     if (rule == dem::ContactRule::Closest) {
       EXPECT_EQ(c.state.contact_count, 2);  // the two flanks
