@@ -497,27 +497,33 @@ def study_findings(out):
             crit = ""
             if i + 1 < len(lines) and lines[i + 1].strip().startswith("criterion:"):
                 crit = lines[i + 1].strip()[len("criterion:"):].strip()
+            cause = ""  # a finding not supported: the measured cause its report names ("    cause: ...")
+            for follow in lines[i + 1:]:
+                if not follow.startswith("    "):
+                    break
+                if follow.strip().startswith("cause:"):
+                    cause = follow.strip()[len("cause:"):].strip()
             key = (m.group(1), m.group(2), crit)
             if key not in seen:
                 seen.add(key)
-                items.append((m.group(1) == "SUPPORTED", m.group(2), crit, cited_figures(m.group(2))))
+                items.append((m.group(1) == "SUPPORTED", m.group(2), crit, cited_figures(m.group(2)), cause))
         beyond = [k for k, v in BEYOND.items() if v[2] == study]
         if beyond:  # a study beyond the paper speaks to its own figures only: by text filter, else the first
-            for sup, text, crit, _ in items:
+            for sup, text, crit, _, cause in items:
                 match = [k for k in beyond if len(BEYOND[k]) > 3 and any(w in text for w in BEYOND[k][3])]
                 plain = [k for k in beyond if len(BEYOND[k]) <= 3]
                 for k in (match or plain[:1]):
-                    found.setdefault(k, []).append((sup, text, crit, study))
+                    found.setdefault(k, []).append((sup, text, crit, study, cause))
             continue
-        any_named = any(c & named for *_, c in items)
-        for sup, text, crit, cited in items:
+        any_named = any(c & named for *_, c, _ in items)
+        for sup, text, crit, cited, cause in items:
             figs = set(cited)
             if named and not any_named:
                 figs |= named
             elif named and not cited:
                 figs.add(min(named))
             for n in figs:
-                found.setdefault(n, []).append((sup, text, crit, study))
+                found.setdefault(n, []).append((sup, text, crit, study, cause))
     return found
 
 
@@ -635,8 +641,8 @@ def study_figure(out, n, findings):
         f.png = open(png, "rb").read()
     else:
         f.missing = f"{png} not found (scripts/plot_studies.py draws it from the study stores)"
-    for sup, text, crit, study in findings.get(n, []):
-        f.verdicts.append((sup, f"{text} [{study}]", crit))
+    for sup, text, crit, study, cause in findings.get(n, []):
+        f.verdicts.append((sup, f"{text} [{study}]", crit, cause))
     f.source = "the study stores under studies/ (frictal study run/report), plotted by scripts/plot_studies.py"
     return f
 
@@ -655,13 +661,15 @@ table { border-collapse: collapse; font-size: .88em; margin: .5em 0; } th, td { 
 .ok { color: #1e7b1e; font-weight: bold; } .no { color: #b00020; font-weight: bold; }
 .missing { color: #8a6d00; background: #fff8e1; padding: .6em; }
 .summary { background: #f3f7ee; border-left: 4px solid #5a9a2a; padding: .5em .8em; }
-.crit { color: #555; font-size: .88em; } .src { color: #666; font-size: .85em; }
+.crit { color: #555; font-size: .88em; } .cause { color: #6a4a00; font-size: .88em; }
+.nocause { color: #a00; font-size: .88em; font-weight: bold; } .src { color: #666; font-size: .85em; }
 """
 
 
 def render(figs, title, note):
     total = sum(len(f.verdicts) for f in figs)
     good = sum(v[0] for f in figs for v in f.verdicts)
+    explained = sum(1 for f in figs for v in f.verdicts if not v[0] and len(v) > 3 and v[3])
     drawn = sum(f.png is not None for f in figs)
     parts = ["<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n",
              f"<title>{html.escape(title)}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n",
@@ -671,7 +679,8 @@ def render(figs, title, note):
              "frictal computes, beside the paper's claim, the numbers computed here and the verdict of a stated "
              f"criterion. {html.escape(note)}</p>\n",
              f"<p class=\"summary\">{drawn} of {len(figs)} figures drawn; <b>{good} of {total}</b> checked findings "
-             "supported" + ("" if good == total else f", <b>{total - good} not supported</b> (see below)") + ".</p>\n<nav>"]
+             "supported" + ("" if good == total else f", <b>{total - good} not supported</b>: {explained} of them with "
+                            "the cause their data measure, below") + ".</p>\n<nav>"]
     parts += [f"<a href=\"#fig{f.number}\">{html.escape(label(f) if isinstance(f.number, int) else f.number)}</a> "
               for f in figs]
     parts.append("</nav>\n")
@@ -691,10 +700,17 @@ def render(figs, title, note):
                                              for a, b in f.numbers) + "</table>")
         if f.verdicts:
             parts.append("<ul>")
-            for ok, text, crit in f.verdicts:
+            for v in f.verdicts:
+                ok, text, crit = v[:3]
+                cause = v[3] if len(v) > 3 else ""
                 cls, word = ("ok", "SUPPORTED") if ok else ("no", "NOT SUPPORTED")
+                why = ""
+                if not ok:
+                    why = (f"<br><span class=\"cause\">measured cause: {html.escape(cause)}</span>" if cause
+                           else "<br><span class=\"nocause\">no cause measured</span>")
                 parts.append(f"<li><span class=\"{cls}\">{word}</span> {html.escape(text)}"
-                             + (f"<br><span class=\"crit\">criterion: {html.escape(crit)}</span>" if crit else "") + "</li>")
+                             + (f"<br><span class=\"crit\">criterion: {html.escape(crit)}</span>" if crit else "")
+                             + why + "</li>")
             parts.append("</ul>")
         elif f.png is not None:
             parts.append("<p class=\"crit\">No finding of this run cites this figure.</p>")

@@ -526,7 +526,10 @@ bool mpi_broadcast(bool value);
 struct Finding {
   std::string claim;
   bool supported = false;
-  std::vector<std::string> evidence;
+  std::vector<std::string> evidence;  ///< the first line is the criterion and the measured value
+  /// A finding that is not supported: the cause the data measure and name (one line, e.g. which
+  /// runs a model warning flags, or what a test reads instead), or empty when they name none.
+  std::string cause;
 };
 struct Report {
   std::string title;

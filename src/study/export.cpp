@@ -96,7 +96,11 @@ std::string render_markdown(const Report& r) {
     s += "\n## Findings of the paper checked against this store\n\n";
     for (const auto& f : r.findings) {
       s += fmt::format("- [{}] {}\n", f.supported ? "SUPPORTED" : "NOT SUPPORTED", f.claim);
-      for (const auto& e : f.evidence) s += "    " + e + "\n";
+      for (std::size_t i = 0; i < f.evidence.size(); ++i) {
+        s += "    " + f.evidence[i] + "\n";
+        if (i == 0 && !f.supported && !f.cause.empty()) s += "    cause: " + f.cause + "\n";
+      }
+      if (f.evidence.empty() && !f.supported && !f.cause.empty()) s += "    cause: " + f.cause + "\n";
     }
   }
   return s;

@@ -206,6 +206,8 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   // the hold angle from where the block rests (a steeper contact beyond the run-away distance,
   // e.g. the wall at the block's end), and the model warnings.
   int hold_n = 0, hold_within = 0, hold_flagged = 0;
+  int out_n = 0, out_hold = 0, out_flagged = 0;  // runs outside the rigid finding, and what explains them
+  std::set<std::string> out_codes;
   double hold_worst = 0;
   std::vector<std::string> hold_outside;
   for (const auto& r : rows) {
@@ -233,12 +235,29 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
     }
     if (!s.count("friction_angle_minus_theory_deg") || std::abs(s.at("friction_angle_minus_theory_deg")) <= 1.0)
       continue;
+    ++out_n;
+    if (std::abs(dh) <= 0.1) {
+      ++out_hold;
+    } else if (!warn.empty()) {
+      ++out_flagged;
+      out_codes.insert(warn);
+    }
     f.evidence.push_back(fmt::format(
         "outside: {}: sim {:.3f}, theta_max + theta_a {:.3f}, rounded blocks' theta_max + theta_a {:.3f}, hold angle "
         "from the rest at {:.4g} m (d = the run-away): rigid {:.3f}, rounded {:.3f} deg{}",
         name, get("friction_angle_deg"), get("predicted_friction_angle_deg"),
         get("predicted_sphero_friction_angle_deg"), get("rest_offset_m"), get("predicted_hold_angle_deg"),
         get("predicted_sphero_hold_angle_deg"), warn.empty() ? "" : "; warnings: " + warn));
+  }
+  if (!f.supported && slid == n && out_n > 0 && out_hold + out_flagged == out_n) {
+    std::string codes;
+    for (const auto& c : out_codes) codes += (codes.empty() ? "" : "; ") + c;
+    f.cause = fmt::format(
+        "each of the {} runs outside is explained: {} read the hold angle of the rounded blocks from where the block "
+        "rests (within 0.1 deg), which differs from theta_max -- the theory's steepest contact over all offsets is "
+        "not where a block resting at one offset lets go (e.g. a wall beyond the run-away distance); {} are flagged "
+        "by a model warning{}",
+        out_n, out_hold, out_flagged, codes.empty() ? "" : " (" + codes + ")");
   }
   rep.findings.push_back(f);
   if (hold_n > 0) {

@@ -464,6 +464,24 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
         "{} inside, {} below, {} above; unflagged: {} inside, {} below, {} above",
         all.rot, all.rot_inside, all.rot_below, all.rot_above, all.inside - all.rot_inside, all.below - all.rot_below,
         all.above - all.rot_above));
+    if (!f.supported) {  // what a test reads instead: the hold angle from the rest, in its bracket
+      int n = 0, qs_inside = 0, bracket = 0;
+      for (const auto& row : rows) {
+        const auto& sc = row.output.scalars;
+        const double q = get(sc, "sphero_hold_angle_deg");
+        if (!std::isfinite(q)) continue;
+        ++n;
+        qs_inside += q >= get(sc, "eq18_low_deg") && q <= get(sc, "eq18_high_deg");
+        bracket += get(sc, "inside_hold_bracket") > 0;
+      }
+      if (n > 0)
+        f.cause = fmt::format(
+            "Eq. 18 brackets theta_max, the steepest contact over all offsets, and a test reads where a block resting "
+            "at one offset lets go: the hold angle phi_qs from each run's rest offset lies inside Eq. 18's range in "
+            "{} of {} pairs, and the simulated angle inside its own bracket [phi_in - 0.1, phi_qs + 0.1] in {} of {}; "
+            "{} runs are flagged 'unsettled' (the block still moved when the tilt started)",
+            qs_inside, n, bracket, n, all.unsettled);
+    }
     rep.findings.push_back(f);
   }
   // F-hold: what a test reads (hold.hpp) against the simulation, and the distribution over drops
@@ -474,8 +492,8 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
       if (auto pr = get_string(rows.front().params, "protocol", "constant-rate"); pr) protocol = *pr;
     const bool qs = protocol == "quasi-static";
     int n = 0, judged = 0, in_bracket = 0, within = 0, within_rigid = 0, flagged = 0, above_qs = 0, below_in = 0;
-    int stiff_n = 0, stiff_within = 0, stiff_warned = 0, converged_within = 0;
-    Acc err_qs, stiff_err, excess;
+    int stiff_n = 0, stiff_within = 0, stiff_warned = 0, converged_within = 0, unsettled = 0, unrelaxed = 0;
+    Acc err_qs, stiff_err, excess, overlap;
     struct HoldCell {
       Acc low, high, mean, std, q05, q95, in_mean, sim;
       int covered = 0, n = 0;
@@ -490,6 +508,9 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
                             "warning_unrelaxed", "warning_stiffness"})
         flag = flag || get(sc, w) > 0;
       flagged += flag;
+      unsettled += get(sc, "warning_unsettled") > 0;
+      unrelaxed += get(sc, "warning_unrelaxed") > 0;
+      overlap.add(get(sc, "resting_overlap_m"));
       const double dq = get(sc, "friction_minus_sphero_hold_deg");
       if (std::abs(dq) <= 0.1) ++within;
       const double ds = get(sc, "stiff_minus_sphero_hold_deg");
@@ -549,6 +570,12 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
             "at the part's own k_n: within 0.1 deg of phi_qs (rounded) in {} of {} pairs, of the rigid phi_qs in {}; "
             "mean phi - phi_qs = {:+.3f} deg, mean |phi - phi_qs| = {:.3f} deg",
             within, n, within_rigid, excess.mean(), err_qs.mean()));
+        if (!f.supported && (unrelaxed > 0 || stiff_warned > 0))
+          f.cause = fmt::format(
+              "the contacts are not in the rigid limit at this k_n: the block rests {:.3g} m deep in the lower one "
+              "(W / k_n, mean), {} of {} runs did not relax within relax_time ('unrelaxed'), the 10 k_n rerun moved "
+              "{} by more than 0.1 deg ('stiffness'); mean phi - phi_qs = {:+.3f} deg",
+              overlap.mean(), unrelaxed, n, stiff_warned, excess.mean());
       } else {
         f.claim = fmt::format(
             "Part '{}': the constant-rate (dynamic) tilt reads an angle between the inertial bound phi_in and the "
@@ -565,6 +592,13 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
             "within 0.1 deg of phi_qs (rounded) in {} of {} pairs; of the rigid phi_qs in {}; mean |phi - phi_qs| "
             "= {:.3f} deg",
             within, n, within_rigid, err_qs.mean()));
+        if (!f.supported && 2 * flagged >= n)
+          f.cause = fmt::format(
+              "{} of {} runs are flagged and cannot be judged, {} of them 'unsettled': with the paper's free "
+              "settling and mu_a = 0 the block still glides when the tilt starts, so it does not start from rest "
+              "where phi_in and phi_qs are computed (a test from rest: settling = relax, turn = gravity, a slow "
+              "tilt_rate)",
+              flagged, n, unsettled);
       }
       rep.findings.push_back(f);
       // The distribution over drops: Eq. 18 derived.
@@ -601,6 +635,24 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
         per += fmt::format(" D={:.1f}: mean {:.3f} vs Eq. 18 mid {:.3f};", D, hc.mean.mean(),
                            0.5 * (hc.low.mean() + hc.high.mean()));
       g.evidence.push_back("phi_qs over drops against the Eq. 18 range (deg):" + per);
+      if (!g.supported) {  // which end of the range the drops leave, and the widths
+        int low_out = 0, high_out = 0;
+        Acc width, sig;
+        for (const auto& row : rows) {
+          const auto& sc = row.output.scalars;
+          if (!sc.count("hold_angle_deg") || !(get(sc, "slid") > 0)) continue;
+          low_out += get(sc, "hold_q05_deg") < get(sc, "eq18_low_deg") - 0.1;
+          high_out += get(sc, "hold_q95_deg") > get(sc, "eq18_high_deg") + 0.1;
+          width.add(get(sc, "hold_q95_deg") - get(sc, "hold_q05_deg"));
+          sig.add(get(sc, "sigma_deg"));
+        }
+        g.cause = fmt::format(
+            "Eq. 18's range is a heuristic width, not the spread of where dropped blocks hold: the 5 % quantile of "
+            "phi_qs over drops lies below theta_max - sigma - 0.1 in {} of {} pairs and the 95 % quantile above "
+            "theta_max + theta_a + 0.1 in {}; the central 90 % spans {:.3f} deg on average against a mean sigma of "
+            "{:.3f} deg",
+            low_out, total, high_out, width.mean(), sig.mean());
+      }
       rep.findings.push_back(g);
     }
   }
@@ -654,6 +706,12 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
         pred_gap.mean(), max_pred_gap, all.d_rigid.mean(), all.d_sphero.mean()));
     if (judged == 0)
       f.evidence.push_back("the rounding changes the prediction by too little anywhere to tell the two apart");
+    if (!f.supported)
+      f.cause = fmt::format(
+          "the spheroradius moves the prediction by {:.4f} deg on average (largest {:.4f}): by more than {:g} deg in "
+          "only {} of {} pairs, too few and too little for the test, while the simulated angles differ from both "
+          "predictions by {:.3f} deg on average -- they read the hold angle from the rest, not theta_max",
+          pred_gap.mean(), max_pred_gap, kDistinct, judged, judged + ties, all.d_rigid.mean());
     rep.findings.push_back(f);
   }
 }
