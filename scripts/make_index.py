@@ -454,6 +454,13 @@ BEYOND = {
                      "distribution of φ_qs over drops (mean, 5–95 %) beside Eq. 18's range and the inertial bound "
                      "φ_in; and the quasi-static tilt test against φ_qs from where its block rests (issue 23).",
                      "wm-tilt", ("hold angles that repeated drops give", "hold angle phi_qs", "quasi-static hold angle")),
+    "areal-tilt": ("3D tilt test of areal blocks (MuJoCo)",
+                   "Not in the paper, whose theory is one-dimensional: two maps as rigid blocks, the upper one free "
+                   "to move sideways as real blocks do (or locked to the sliding direction), tilted quasi-statically "
+                   "on MuJoCo (a sphere on each node of the upper map over the lower map's height field) against the "
+                   "hold angle that the lift over two dimensions of offset predicts for the same spheres and "
+                   "triangles (issue 24; docs/mujoco.md).",
+                   "areal-tilt"),
 }
 
 
@@ -633,6 +640,70 @@ def eq18_derived(out, findings):
     return f
 
 
+def areal_tilt_figure(out, findings):
+    """The 3D tilt test against its matched prediction, free and locked, from the areal-tilt store (issue 24)."""
+    f = study_figure(out, "areal-tilt", findings)
+    f.missing = None
+    store = f"{out}/studies/areal-tilt.sqlite"
+    if not os.path.exists(store):
+        f.missing = f"{store} not found (scripts/reproduce runs the areal-tilt study when the build has MuJoCo)"
+        return f
+    import sqlite3
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    con = sqlite3.connect(store)
+    rows = [(part, json.loads(sc)) for part, sc in
+            con.execute("select part, scalars from tasks where status = 'done' and scalars is not null")]
+    con.close()
+    rows = [(p, s) for p, s in rows if s.get("simulated_free_deg") is not None]
+    if not rows:
+        f.missing = "no finished areal-tilt task in the store"
+        return f
+    plt.rcParams.update({"font.size": 12})
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.8))
+    top = max(max(s["matched_free_deg"], s["simulated_free_deg"], s["matched_locked_deg"], s["simulated_locked_deg"])
+              for _, s in rows) * 1.08 + 0.5
+    for ax, mode, name in ((axes[0], "free", "free to move sideways"), (axes[1], "locked", "locked to the direction d")):
+        ax.fill_between([0, top], [-0.2, top - 0.2], [0.2, top + 0.2], color="#9ecae1", alpha=0.5,
+                        label="within 0.2° of the prediction")
+        ax.plot([0, top], [0, top], color="#3182bd", lw=1)
+        for part, marker, color in (("grooves", "o", "C1"), ("fourier", "s", "C2")):
+            pts = [(s[f"matched_{mode}_deg"], s[f"simulated_{mode}_deg"], s[f"within_{mode}"] > 0.5)
+                   for p, s in rows if p == part]
+            if not pts:
+                continue
+            ax.plot([a for a, b, ok in pts if ok], [b for a, b, ok in pts if ok], marker, color=color, mfc="none",
+                    label=f"{part}: agrees")
+            miss = [(a, b) for a, b, ok in pts if not ok]
+            if miss:
+                ax.plot([a for a, b in miss], [b for a, b in miss], marker, color="#b00020",
+                        label=f"{part}: misses (> 0.2°)")
+        ax.set_xlim(0, top)
+        ax.set_ylim(0, top)
+        ax.set_xlabel("predicted hold angle, matched spheres and triangles (deg)")
+        ax.set_ylabel("MuJoCo tilt test: friction angle (deg)")
+        ax.set_title(f"block {name}", fontsize=11)
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=9, loc="upper left")
+    fig.tight_layout()
+    png = f"{out}/areal-tilt.png"
+    fig.savefig(png, dpi=110)
+    plt.close(fig)
+    f.png = open(png, "rb").read()
+    n = len(rows)
+    for mode in ("free", "locked"):
+        ok = sum(s[f"within_{mode}"] > 0.5 for _, s in rows)
+        worst = max(s[f"miss_{mode}_deg"] for _, s in rows)
+        f.numbers.append((f"{mode}: within 0.2° of the matched prediction", f"{ok} of {n} pairs (largest miss {worst:.3f}°)"))
+    steer = [abs(s["steering_deg"]) for _, s in rows if s.get("steering_deg") is not None]
+    if steer:
+        f.numbers.append(("steering: angle between d and the free block's path", f"mean {sum(steer) / len(steer):.1f}°, "
+                          f"largest {max(steer):.1f}°"))
+    f.source = "the areal-tilt store (frictal study run studies/areal-tilt.toml), drawn by scripts/make_index.py"
+    return f
+
+
 def study_figure(out, n, findings):
     title, claim = CLAIMS[n] if isinstance(n, int) else BEYOND[n][:2]
     f = Figure(n, title, claim)
@@ -757,7 +828,12 @@ def main(argv):
         figs.append(f)
     for key in BEYOND:
         if want(key):
-            figs.append(eq18_derived(a.out, findings) if key == "eq18-derived" else study_figure(a.out, key, findings))
+            if key == "eq18-derived":
+                figs.append(eq18_derived(a.out, findings))
+            elif key == "areal-tilt":
+                figs.append(areal_tilt_figure(a.out, findings))
+            else:
+                figs.append(study_figure(a.out, key, findings))
     note = "Quick scale (QUICK=1): small grids." if a.quick else "Full scale."
     page = render(figs, "frictal: the paper's figures, reproduced", note)
     with open(f"{a.out}/index.html", "w", encoding="utf-8") as fh:

@@ -129,12 +129,12 @@ struct TiltConfig {
   /// (unit: s); a relaxation that does not end in time warns ("unrelaxed").
   double relax_time = 2.0;
   /// Quasi-static protocol: at rest when the unbalanced force on the upper block (contacts plus
-  /// gravity, and the torque over its extent when it may turn) is below this fraction of its
-  /// weight (unitless) and its speed below `relax_speed`.
+  /// gravity, and the torque over its extent when it may turn), averaged over `relax_duration`,
+  /// is below this fraction of its weight (unitless) and its speed below `relax_speed` throughout.
   double relax_force = 1e-5;
   double relax_speed = 1e-6;  ///< quasi-static: speed of the upper block counted as at rest (unit: m/s)
-  /// Quasi-static: the thresholds must hold this long without a break (a block passing an unstable
-  /// balance meets them for a moment) (unit: s).
+  /// Quasi-static: the speed must stay below relax_speed this long without a break (a block
+  /// passing an unstable balance is slow for a moment), and the force is averaged over it (unit: s).
   double relax_duration = 0.005;
   /// Run the test again at 10 k_n and k_t (series and frames off) and warn ("stiffness") when the
   /// friction angle moves by more than `warn_stiffness_angle`: the run is not in the rigid limit.

@@ -145,13 +145,14 @@ const std::vector<B>& table() {
                              "settling = relax); beyond it the run warns (unrelaxed)"),
                            FRICTAL_MEMBER(relax_time)),
           bind<TiltConfig>(F("relax_force", "", 0, Lo::Open, kInf,
-                             "Quasi-static: at rest below this unbalanced force on the upper block, as a fraction of "
-                             "its weight"),
+                             "Quasi-static: at rest below this unbalanced force on the upper block averaged over "
+                             "relax_duration, as a fraction of its weight"),
                            FRICTAL_MEMBER(relax_force)),
           bind<TiltConfig>(F("relax_speed", "m/s", 0, Lo::Open, kInf, "Quasi-static: at rest below this speed"),
                            FRICTAL_MEMBER(relax_speed)),
           bind<TiltConfig>(F("relax_duration", "s", 0, Lo::Closed, kInf,
-                             "Quasi-static: the rest thresholds must hold this long without a break"),
+                             "Quasi-static: the speed stays below relax_speed this long without a break (the force "
+                             "is averaged over it)"),
                            FRICTAL_MEMBER(relax_duration)),
           bind<TiltConfig>(F("check_stiffness", "", 0, Lo::Closed, 1,
                              "Run again at 10 normal_stiffness and tangential_stiffness; warn (stiffness) when the "

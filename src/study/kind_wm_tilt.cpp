@@ -732,9 +732,9 @@ TaskKind wm_tilt_kind() {
   k.description =
       "Spheropolygon tilt test of a random pair (WM or any seeded generator) beside its Eq. 18 range; friction angle "
       "at run-away 0.5, 1, 2 lambda";
-  k.version = 7;  // 2: the creep warning; 3: the hold angle; 4: from the engine's rest offset, protocols; 5: contact
+  k.version = 8;  // 2: the creep warning; 3: the hold angle; 4: from the engine's rest offset, protocols; 5: contact
                   // rule (quasi-static: closest); 6: the 10 k_n check judged at 2 lambda; 7: closest counts
-                  // concave corners by inclusion-exclusion
+                  // concave corners by inclusion-exclusion; 8: rest test on the averaged force
   k.run = run_wm_tilt_task;
   k.outputs = {
       {"surface_dimension", "1", "fractal dimension D of the faces (wm: dimension; self-affine, fourier: 2 - hurst)"},

@@ -44,3 +44,15 @@ print(f"signature hold angle {a:.10f} deg, tilt hold prediction {b:.10f} deg")
 assert abs(a - b) <= 1e-9 * max(1.0, abs(a)), (a, b)
 assert hold["inertial_hold_angle_deg"] <= a, hold  # the bracket [phi_in, phi_qs]
 PY
+# The dynamic test from rest (the README's last command) lies inside its own bracket
+# [phi_in, phi_qs] from where it rests (0.1 deg slack), and is not flagged.
+frictal tilt --lower dektak-a.csv --upper dektak-b.csv --settling relax --turn gravity --tilt-rate 0.0005 \
+  --hold-rotation --spheroradius 2e-5 --normal-stiffness 6e7 --contact-rule closest --json > rest.json 2> /dev/null
+python3 - <<'PY'
+import json
+r = json.load(open("rest.json"))
+phi, lo, hi = r["friction_angle_deg"], r["predicted_inertial_hold_angle_deg"], r["predicted_sphero_hold_angle_deg"]
+print(f"dynamic from rest {phi:.3f} deg in [{lo:.3f}, {hi:.3f}]")
+assert lo - 0.1 <= phi <= hi + 0.1, (phi, lo, hi)
+assert not any(w["code"] == "unsettled" for w in r["warnings"]), r["warnings"]
+PY
