@@ -17,22 +17,12 @@ namespace {
 
 struct Args {
   std::string lower, upper;
-  double angle = 0;
-  double atomic_friction = 0;
-  double sphere_radius = 0;
-  double tilt_step = 0.1;
-  int hfield_refine = 1;
   int prediction_refine = 0;
-  double runaway_distance = 0;
-  FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   std::string detrend = "plane";
-  std::string collision = "exact";
-  std::string lateral = "free";
   bool in_place = false;
   bool predict_only = false;
   std::string start_offset;
-  ArealTiltOptions model;  ///< the protocol's and the contact model's settings (scaled units)
-  double coarse_tilt_step = 1.0;
+  FieldWords words;  ///< the model's and protocol's settings (areal_tilt_settings(); docs/settings.md)
   bool json = false;
   InputOptions input;
 };
@@ -41,62 +31,24 @@ std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
   app.add_option("lower", a->lower, "Lower block's map (X3P, Gwyddion text)")->required();
   app.add_option("upper", a->upper, "Upper block's map as measured (default: the lower map)");
-  app.add_option("--angle", a->angle, "Sliding direction (deg from +x towards +y)");
-  add_atomic_friction_option(app, a->atomic_friction);
-  app.add_option("--sphere-radius", a->sphere_radius,
-                 "Radius of the spheres on the upper face's nodes (m; default a fifth of the lower map's spacing)");
-  app.add_option("--hfield-refine", a->hfield_refine,
-                 "Sample the lower map's surface this many times finer for MuJoCo's height field (default 1)");
+  add_field_options(app, areal_tilt_settings(), a->words);
   app.add_option("--prediction-refine", a->prediction_refine,
                  "Offset grid of the matched prediction this many times finer than the lower map's (default 0: "
                  "the smallest with a step <= r / 2, at most 16 and at most 2e5 offsets)");
-  app.add_option("--tilt-step", a->tilt_step,
-                 "Tilt increment near the run-away (deg; default 0.1; 1 deg increments before it)");
-  add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
-  app.add_option(
-      "--collision", a->collision,
-      "Sphere-height field contacts: exact (the nearest point of each triangle; default) or native (MuJoCo's "
-      "MPR on prisms)");
-  app.add_option("--lateral", a->lateral,
-                 "free (default): the simulated block may move sideways; locked: only along d (and z)");
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
-  app.add_option("--coarse-tilt-step", a->coarse_tilt_step,
-                 "Tilt increment up to the first run-away (deg; default 1; then --tilt-step from the state before)");
-  app.add_option("--mujoco-time-step", a->model.time_step,
-                 "MuJoCo time step (scaled s: lengths / the lower map's larger "
-                 "extent, gravity 9.81; default 1e-4)");
-  app.add_option("--mujoco-contact-time", a->model.contact_time,
-                 "Contact softness: solref time constant (scaled s, >= 2 time steps; default 2e-4)");
-  app.add_option("--local-damping", a->model.local_damping,
-                 "Local non-viscous damping, a fraction of the unbalanced force in [0, 1) (default 0.9)");
-  app.add_option("--relax-chunk", a->model.relax_time, "Relaxation chunk per rest test (scaled s; default 0.5)");
-  app.add_option("--force-tolerance", a->model.force_tolerance,
-                 "At rest: unbalanced force below this fraction of the weight (default 1e-4)");
-  app.add_option("--speed-tolerance", a->model.speed_tolerance, "At rest: speed below this (scaled m/s; default 1e-5)");
   app.add_option("--start-offset", a->start_offset,
                  "X,Y: where the block is put down, in the lower map's frame (m; default 0,0)");
-  app.add_option("--rest-steps", a->model.rest_steps,
-                 "At rest: balanced and still for this many steps in a row "
-                 "(default 10)");
   app.add_flag("--predict-only", a->predict_only,
                "Only the predictions, from the block dropped at offset 0 (no simulation; needs no MuJoCo)");
   app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
   return [a]() {
-    if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
-      a->runaway_distance = as_real(rv.at("runaway_distance"));
-    require(std::isfinite(a->angle), fmt::format("--angle {}: expected a finite number of degrees", a->angle));
-    require(std::isfinite(a->tilt_step) && a->tilt_step > 0 && a->tilt_step < 10,
-            fmt::format("--tilt-step {}: expected degrees in (0, 10)", a->tilt_step));
+    auto made = make_areal_tilt_options(si_values(areal_tilt_settings(), a->words));
+    if (!made) throw UsageError(made.error().message);
+    ArealTiltOptions o = *made;
     require(a->prediction_refine >= 0 && a->prediction_refine <= 16,
             fmt::format("--prediction-refine {}: expected an integer in 0..16 (0: automatic)", a->prediction_refine));
-    require(a->hfield_refine >= 1 && a->hfield_refine <= 16,
-            fmt::format("--hfield-refine {}: expected an integer in 1..16", a->hfield_refine));
-    require(a->collision == "exact" || a->collision == "native",
-            fmt::format("--collision {}: expected exact or native", a->collision));
-    require(a->lateral == "free" || a->lateral == "locked",
-            fmt::format("--lateral {}: expected free or locked", a->lateral));
     if (!mujoco_available() && !a->predict_only) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
     const Detrend dt = unwrap(parse_detrend(a->detrend));
     auto load = [&](const std::string& path) {
@@ -104,33 +56,10 @@ std::function<int()> setup(CLI::App& app) {
     };
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);
-    require(std::isfinite(a->coarse_tilt_step) && a->coarse_tilt_step > 0 && a->coarse_tilt_step < 45,
-            fmt::format("--coarse-tilt-step {}: expected degrees in (0, 45)", a->coarse_tilt_step));
-    const ArealTiltOptions& mo_ = a->model;
-    auto positive = [](double v) { return std::isfinite(v) && v > 0; };
-    require(positive(mo_.time_step), fmt::format("--mujoco-time-step {}: expected scaled seconds > 0", mo_.time_step));
-    require(positive(mo_.contact_time) && mo_.contact_time >= 2 * mo_.time_step,
-            fmt::format("--mujoco-contact-time {}: expected scaled seconds >= 2 time steps ({})", mo_.contact_time,
-                        2 * mo_.time_step));
-    require(std::isfinite(mo_.local_damping) && mo_.local_damping >= 0 && mo_.local_damping < 1,
-            fmt::format("--local-damping {}: expected a fraction in [0, 1)", mo_.local_damping));
-    require(positive(mo_.relax_time), fmt::format("--relax-chunk {}: expected scaled seconds > 0", mo_.relax_time));
-    require(positive(mo_.force_tolerance),
-            fmt::format("--force-tolerance {}: expected a fraction > 0", mo_.force_tolerance));
-    require(positive(mo_.speed_tolerance), fmt::format("--speed-tolerance {}: expected > 0", mo_.speed_tolerance));
-    require(mo_.rest_steps >= 1, fmt::format("--rest-steps {}: expected an integer >= 1", mo_.rest_steps));
-    ArealTiltOptions o = a->model;
-    o.coarse_tilt_step = a->coarse_tilt_step * kDeg;
     if (!a->start_offset.empty()) o.start_offset = parse_offset(a->start_offset, "--start-offset");
-    o.angle = a->angle * kDeg;
     o.turn_over_upper = !a->in_place;
-    o.atomic_friction = a->atomic_friction;
-    o.sphere_radius = a->sphere_radius;
-    o.runaway_distance = a->runaway_distance;
-    o.tilt_step = a->tilt_step * kDeg;
-    o.hfield_refine = a->hfield_refine;
-    o.exact_contacts = a->collision == "exact";
-    o.lock_lateral = a->lateral == "locked";
+    const double angle_deg = to_deg(o.angle), tilt_step_deg = to_deg(o.tilt_step);
+    const bool sim_locked = o.lock_lateral;
     const auto t0 = std::chrono::steady_clock::now();
     ArealTiltResult r;
     if (a->predict_only) {
@@ -143,7 +72,7 @@ std::function<int()> setup(CLI::App& app) {
     // The predictions from the rest offset the simulation reached, on the rigid lift (r = 0).
     const double c = std::cos(o.angle), s = std::sin(o.angle);
     const double D =
-        a->runaway_distance > 0 ? a->runaway_distance : 0.05 * (std::abs(c) * f.width() + std::abs(s) * f.height());
+        o.runaway_distance > 0 ? o.runaway_distance : 0.05 * (std::abs(c) * f.width() + std::abs(s) * f.height());
     const double u = r.rest_offset[0] * c + r.rest_offset[1] * s, v = -r.rest_offset[0] * s + r.rest_offset[1] * c;
     ArealLiftOptions lo;
     lo.turn_over_upper = o.turn_over_upper;
@@ -166,7 +95,6 @@ std::function<int()> setup(CLI::App& app) {
     // simulated block was locked, locked from its own rest on.
     ArealHoldOptions hl = ho;
     hl.lateral = LateralMotion::Locked;
-    const bool sim_locked = a->lateral == "locked";
     const double locked = sim_locked ? unwrap(areal_hold_angle(lift, rest, hl)).hold_angle
                                      : unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
     // The matched prediction: the same spheres on the same triangulated height field as MuJoCo
@@ -199,7 +127,7 @@ std::function<int()> setup(CLI::App& app) {
       nlohmann::json j;
       j["lower"] = a->lower;
       j["upper"] = a->upper.empty() ? a->lower : a->upper;
-      j["direction_deg"] = a->angle;
+      j["direction_deg"] = angle_deg;
       j["runaway_distance_m"] = D;
       if (!a->predict_only) {
         j["friction_angle_deg"] = to_deg(r.friction_angle);
@@ -217,8 +145,8 @@ std::function<int()> setup(CLI::App& app) {
       j["matched_hold_angle_locked_deg"] = to_deg(mlocked);
       j["matched_steering_deg"] = to_deg(mfree.steering);
       j["sphere_radius_m"] = r.sphere_radius;
-      j["collision"] = a->collision;
-      j["lateral"] = a->lateral;
+      j["collision"] = o.exact_contacts ? "exact" : "native";
+      j["lateral"] = o.lock_lateral ? "locked" : "free";
       j["prediction_refine"] = refine;
       j["matched_steering_deg"] = to_deg(mfree.steering);
       j["predicted_steering_deg"] = to_deg(free.steering);
@@ -229,7 +157,7 @@ std::function<int()> setup(CLI::App& app) {
           tr.push_back({to_deg(i.tilt), i.x, i.y, i.rested, i.steps, i.unbalanced_force, i.speed});
         j["increments"] = tr;  // [tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed]
       }
-      j["tilt_step_deg"] = a->tilt_step;
+      j["tilt_step_deg"] = tilt_step_deg;
       j["spheres"] = r.spheres;
       j["steps"] = r.steps;
       j["max_contacts"] = r.max_contacts;
@@ -239,13 +167,13 @@ std::function<int()> setup(CLI::App& app) {
     } else {
       if (a->predict_only)
         fmt::print("{} on {} along {} deg, dropped at offset 0 (no simulation)\n",
-                   a->upper.empty() ? a->lower : a->upper, a->lower, a->angle);
+                   a->upper.empty() ? a->lower : a->upper, a->lower, angle_deg);
       else
         fmt::print(
             "{} on {} along {} deg (MuJoCo, {} spheres): rests at ({:.4g}, {:.4g}) m, runs away at {:.2f} deg "
             "(steps of {} deg)\n",
-            a->upper.empty() ? a->lower : a->upper, a->lower, a->angle, r.spheres, r.rest_offset[0], r.rest_offset[1],
-            to_deg(r.friction_angle), a->tilt_step);
+            a->upper.empty() ? a->lower : a->upper, a->lower, angle_deg, r.spheres, r.rest_offset[0], r.rest_offset[1],
+            to_deg(r.friction_angle), tilt_step_deg);
       fmt::print(
           "  predicted hold angle {:.3f} deg free to move sideways, {:.3f} deg locked\n"
           "  matched (the simulated spheres on the triangulated height field, rigid) {:.3f} deg free, {:.3f} "

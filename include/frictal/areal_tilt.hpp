@@ -22,6 +22,7 @@
 #include "frictal/areal.hpp"
 #include "frictal/map.hpp"
 #include "frictal/result.hpp"
+#include "frictal/settings.hpp"
 
 namespace frictal {
 
@@ -62,6 +63,16 @@ struct ArealTiltOptions {
   double speed_tolerance = 1e-5;  ///< at rest: speed below this (unit: scaled m/s)
   int rest_steps = 10;            ///< ... for this many steps in a row (unitless)
 };
+
+/// The settings table of ArealTiltOptions (settings.hpp; docs/settings.md): the `areal-tilt`
+/// command's options and the `areal-tilt` study kind's keys. Not in it: start_offset (X,Y) and
+/// turn_over_upper (`--in-place`).
+const std::vector<Field>& areal_tilt_settings();
+/// `base` with the given values (SI; names from areal_tilt_settings(), else an error naming the
+/// nearest one; out of range: an error naming the value and the range).
+Result<ArealTiltOptions> make_areal_tilt_options(const ValueSet& si_values, const ArealTiltOptions& base = {});
+/// Every setting of `options` (SI).
+ValueSet areal_tilt_values(const ArealTiltOptions& options);
 
 /// One tilt increment of the simulation, at its end.
 struct ArealTiltIncrement {

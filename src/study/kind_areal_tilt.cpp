@@ -77,12 +77,20 @@ Map fourier_map(std::size_t n, double a, double hurst, double anisotropy, double
 
 Result<TaskOutput> run_areal_tilt_task(const Params& p, std::uint64_t seed) {
   if (!mujoco_available()) return areal_tilt(Map{}, Map{}, {}).error();
-  if (Status st = only_known_parameters(p, {},
+  if (Status st = only_known_parameters(p, {&areal_tilt_settings()},
                                         {"pair", "nodes", "upper_nodes", "hurst", "anisotropy", "rms_slope",
                                          "groove_angle", "groove_period", "mirror", "sample"},
                                         "areal-tilt");
       !st)
     return st.error();
+  for (const char* fixed : {"lateral", "angle"})
+    if (p.count(fixed))
+      return make_error(fmt::format(
+          "parameter '{}': set by the areal-tilt kind (every pair runs free and locked, sliding along +x)", fixed));
+  auto model_values = table_values(areal_tilt_settings(), p);
+  if (!model_values) return model_values.error();
+  auto model = make_areal_tilt_options(*model_values);
+  if (!model) return model.error();
   using kind_detail::take;
   Error err;
   std::string pair;
@@ -111,7 +119,7 @@ Result<TaskOutput> run_areal_tilt_task(const Params& p, std::uint64_t seed) {
   const std::size_t N = std::size_t(n), W = std::size_t(w);
   const double a = kWidth / double(N - 1);
   Map f, g;
-  ArealTiltOptions o;
+  ArealTiltOptions o = *model;  // the model's and protocol's settings (areal_tilt_settings())
   if (pair == "fourier") {
     auto plane = parse_detrend("plane");
     if (!plane) return plane.error();

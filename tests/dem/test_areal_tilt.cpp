@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
@@ -376,4 +377,36 @@ TEST(ArealTiltStudyKind, GroovesAlongTheDiagonal) {
   auto bad = k->run(p, 1);
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("'pair'"), std::string::npos) << bad.error().message;
+}
+
+TEST(ArealTiltSettings, TheTableSetsTheOptionsAndRefusesBadValues) {
+  // Every field of the table reads back what the struct holds (defaults from its initialisers).
+  const frictal::ArealTiltOptions d;
+  const frictal::ValueSet v = frictal::areal_tilt_values(d);
+  EXPECT_EQ(v.size(), frictal::areal_tilt_settings().size());
+  EXPECT_DOUBLE_EQ(std::get<double>(v.at("local_damping")), d.local_damping);
+  EXPECT_EQ(std::get<std::string>(v.at("collision")), "exact");
+  EXPECT_EQ(std::get<std::string>(v.at("lateral")), "free");
+  // Values in SI (angles in rad) set the members; choices set the bools.
+  auto o = frictal::make_areal_tilt_options({{"angle", 0.5},
+                                             {"lateral", std::string("locked")},
+                                             {"collision", std::string("native")},
+                                             {"rest_steps", std::int64_t{20}},
+                                             {"local_damping", 0.8}});
+  ASSERT_TRUE(o.ok()) << o.error().message;
+  EXPECT_DOUBLE_EQ(o->angle, 0.5);
+  EXPECT_TRUE(o->lock_lateral);
+  EXPECT_FALSE(o->exact_contacts);
+  EXPECT_EQ(o->rest_steps, 20);
+  EXPECT_DOUBLE_EQ(o->local_damping, 0.8);
+  // Out of range, unknown, and the contact time below two time steps: errors naming them.
+  auto bad = frictal::make_areal_tilt_options({{"local_damping", 1.0}});
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("local_damping"), std::string::npos) << bad.error().message;
+  auto typo = frictal::make_areal_tilt_options({{"local_dampng", 0.5}});
+  ASSERT_FALSE(typo.ok());
+  EXPECT_NE(typo.error().message.find("did you mean 'local_damping'"), std::string::npos) << typo.error().message;
+  auto soft = frictal::make_areal_tilt_options({{"mujoco_time_step", 1e-4}, {"mujoco_contact_time", 1.5e-4}});
+  ASSERT_FALSE(soft.ok());
+  EXPECT_NE(soft.error().message.find("mujoco_contact_time"), std::string::npos) << soft.error().message;
 }

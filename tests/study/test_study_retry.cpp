@@ -239,3 +239,24 @@ TEST(StudyKindsUnit, EveryKindDeclaresWhatItReturnsAndItsViews) {
     EXPECT_TRUE(found) << name;
   }
 }
+
+TEST(StudyArealTilt, TakesTheModelSettingsAndRefusesThoseItSets) {
+  // The areal-tilt kind takes every setting of areal_tilt_settings() (docs/settings.md) beside its
+  // own pair parameters; `lateral` and `angle` it sets itself. Refused before any simulation, so
+  // this runs in a build without MuJoCo too.
+  const frictal::study::TaskRegistry reg = frictal::study::default_registry();
+  const frictal::study::TaskKind* k = reg.find("areal-tilt");
+  if (!k) GTEST_SKIP() << "built without MuJoCo";
+  frictal::study::Params p = {{"pair", std::string("grooves")}, {"lateral", std::string("locked")}};
+  auto r = k->run(p, 1);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("'lateral'"), std::string::npos) << r.error().message;
+  p = {{"pair", std::string("grooves")}, {"local_damping", 1.5}};
+  r = k->run(p, 1);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("local_damping"), std::string::npos) << r.error().message;
+  p = {{"pair", std::string("grooves")}, {"local_dampng", 0.5}};
+  r = k->run(p, 1);
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("local_dampng"), std::string::npos) << r.error().message;
+}
