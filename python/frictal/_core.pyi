@@ -32,6 +32,34 @@ def areal_hold(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: flo
 def areal_signature(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, angle: float = ..., upper: Any = ..., turn_over_upper: bool = ..., prune: bool = ..., threads: int = ...) -> dict:
     """Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `angle` (rad; runs without the GIL); upper as measured (turned over) by default. Returns offset, lift (m), theta (rad), theta_max_forward/backward (rad), contact_slope_std (rad), evaluated_nodes"""
 
+def areal_tilt(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, upper: Any = ..., turn_over_upper: bool = ..., start_offset: Any = ..., **kwargs: Any) -> dict:
+    """areal_tilt(lower, *, dx, dy, upper=None, turn_over_upper=True, start_offset=None, **settings) -> dict
+
+    The 3D tilt test on MuJoCo (as `frictal areal-tilt`; docs/mujoco.md; needs a build with MuJoCo, else ValueError naming what it needs; runs without the GIL): lower, upper: 2-D arrays of heights (m, rows along y), spacings dx, dy (m); upper as measured (turned over) unless turn_over_upper=False; start_offset (x, y) in m. Returns friction_angle (rad), ran_away, rest_offset (m), steering (rad), predicted_hold_angle and predicted_steering (rad: the matched rigid quasi-static block from the simulated rest, areal_tilt_hold), sphere_radius (m), spheres, steps, unsettled_increments and the increments (tilt rad, x, y m, rested). Settings (SI units; the `frictal areal-tilt` options and the 'areal-tilt' study kind's keys):
+        angle [rad]: Sliding direction d, from +x towards +y (default 0; valid any finite number)
+        atomic_friction: Atomic (Coulomb) friction coefficient mu_a at every contact (default 0; valid >= 0)
+        runaway_distance [m]: Run-away distance D along d from the last stop; 0: a tenth of half the lower map along d (default 0; valid >= 0)
+        lateral: free: the block may move sideways (slide joints along x, y, z); locked: along d (and z) only (default 'free'; valid free or locked)
+        tilt_step [rad]: Tilt increment near the run-away (the angle reads at most one increment low) (default 0.001745329252; valid (0, 0.1745329252))
+        coarse_tilt_step [rad]: Tilt increment up to the first run-away (then tilt_step from the state before) (default 0.01745329252; valid (0, 0.7853981634))
+        max_tilt [rad]: Give up (no run-away) above this tilt (default 0.7853981634; valid (0, 1.570796327))
+        sphere_radius [m]: Radius r of the spheres on the upper face's nodes; 0: a fifth of the lower map's smaller spacing (default 0; valid >= 0)
+        hfield_refine: Sample the lower map's bilinear surface this many times finer for the height field (default 1; valid 1..16)
+        collision: Sphere-height field contacts: exact (the nearest point of each triangle) or native (MuJoCo's MPR on prisms, whose internal edges catch a sliding sphere) (default 'exact'; valid exact or native)
+        mujoco_time_step [scaled s]: MuJoCo time step (default 0.0001; valid > 0)
+        mujoco_contact_time [scaled s]: Contact softness: solref time constant, at least 2 time steps (default 0.0002; valid > 0)
+        damping [1/scaled s]: Viscous joint damping per unit mass (default 0; valid >= 0)
+        local_damping: Local non-viscous (Cundall) damping: a force against each joint's velocity, this fraction of its unbalanced force (default 0.9; valid [0, 1))
+        relax_chunk [scaled s]: Longest relaxation per rest test; an increment waits for up to 40 of them before it counts as unsettled (default 0.5; valid > 0)
+        force_tolerance: At rest: unbalanced force below this fraction of the weight (default 0.0001; valid > 0)
+        speed_tolerance [scaled m/s]: At rest: speed below this (default 1e-05; valid > 0)
+        rest_steps: At rest: balanced and still for this many steps in a row (default 10; valid 1..1000000000)"""
+
+def areal_tilt_settings() -> list:
+    """areal_tilt_settings() -> list
+
+    The 3D tilt test's settings table: one dict per keyword of areal_tilt() (name, type, unit (SI), default, min, max, choices, help)."""
+
 def autocorrelation(profile: Profile, max_lag: int = ...) -> dict:
     """Autocorrelation of a profile: lag (m), acf (unitless), correlation_length (m); max_lag: 0 = automatic"""
 
@@ -41,7 +69,7 @@ def box_dimension(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArra
 def build_info() -> dict:
     """Version, git commit and CMake build type of the compiled core.
 
-    Returns a dict of str (unitless): version (from CMakeLists.txt), git_commit, build_type."""
+    Returns a dict (unitless): version (from CMakeLists.txt), git_commit, build_type (str), mujoco (bool: the 3D tilt test areal_tilt is available)."""
 
 def detrend(profile: Profile, kind: str = ...) -> Profile:
     """Removes none, mean, line or poly:N (trapezoid-weighted least squares) from a profile (m)"""

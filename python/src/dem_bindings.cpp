@@ -10,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include "bindings.hpp"
+#include "frictal/areal_tilt.hpp"
 #include "frictal/tilt.hpp"
 
 namespace py = pybind11;
@@ -132,6 +133,87 @@ void frictal_bind_dem(py::module_& m) {
        "also sets the run-away distance unless runaway_distance is given):\n" +
        py_detail::keyword_doc(tilt_settings()))
           .c_str());
+  m.def(
+      "areal_tilt",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy,
+         const py::object& upper, bool turn_over_upper, const py::object& start_offset, const py::kwargs& kw) {
+        const ValueSet given = py_detail::keyword_values(areal_tilt_settings(), kw, "areal_tilt");
+        ArealTiltOptions o = py_detail::ok(make_areal_tilt_options(given));
+        o.turn_over_upper = turn_over_upper;
+        if (!start_offset.is_none()) o.start_offset = start_offset.cast<std::array<double, 2>>();
+        auto as_map = [&](const py::array_t<double, py::array::c_style | py::array::forcecast>& a, const char* name) {
+          if (a.ndim() != 2)
+            throw py::value_error(std::string("areal_tilt: ") + name + ": expected a 2-D array of heights (m)");
+          Map mp;
+          mp.ny = std::size_t(a.shape(0));
+          mp.nx = std::size_t(a.shape(1));
+          mp.dx = dx;
+          mp.dy = dy;
+          mp.heights.assign(a.data(), a.data() + a.size());
+          return mp;
+        };
+        const Map f = as_map(lower, "lower");
+        const Map g =
+            upper.is_none()
+                ? f
+                : as_map(upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), "upper");
+        struct Out {
+          ArealTiltResult sim;
+          ArealTiltHold hold;
+        };
+        Out r = py_detail::ok(py_detail::nogil([&]() -> Result<Out> {
+          Out out;
+          auto sim = areal_tilt(f, g, o);
+          if (!sim) return sim.error();
+          out.sim = std::move(*sim);
+          ArealTiltOptions c = o;
+          c.start_offset = out.sim.rest_offset;  // the matched prediction from the simulated rest
+          auto hold = areal_tilt_hold(f, g, c);
+          if (!hold) return hold.error();
+          out.hold = *hold;
+          return out;
+        }));
+        py::dict d;
+        d["friction_angle"] = r.sim.friction_angle;
+        d["ran_away"] = r.sim.ran_away;
+        d["rest_offset"] = py::make_tuple(r.sim.rest_offset[0], r.sim.rest_offset[1]);
+        d["steering"] = r.sim.steering;
+        d["predicted_hold_angle"] = r.hold.hold_angle;
+        d["predicted_steering"] = r.hold.steering;
+        d["sphere_radius"] = r.sim.sphere_radius;
+        d["spheres"] = r.sim.spheres;
+        d["steps"] = r.sim.steps;
+        d["unsettled_increments"] = r.sim.unsettled;
+        std::vector<double> tilt, x, y;
+        std::vector<bool> rested;
+        for (const ArealTiltIncrement& i : r.sim.trace) {
+          tilt.push_back(i.tilt);
+          x.push_back(i.x);
+          y.push_back(i.y);
+          rested.push_back(i.rested);
+        }
+        d["increment_tilt"] = arr(tilt);
+        d["increment_x"] = arr(x);
+        d["increment_y"] = arr(y);
+        d["increment_rested"] = rested;
+        return d;
+      },
+      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("upper") = py::none(),
+      py::arg("turn_over_upper") = true, py::arg("start_offset") = py::none(),
+      ("areal_tilt(lower, *, dx, dy, upper=None, turn_over_upper=True, start_offset=None, **settings) -> dict\n\n"
+       "The 3D tilt test on MuJoCo (as `frictal areal-tilt`; docs/mujoco.md; needs a build with MuJoCo, else "
+       "ValueError naming what it needs; runs without the GIL): lower, upper: 2-D arrays of heights (m, rows along "
+       "y), spacings dx, dy (m); upper as measured (turned over) unless turn_over_upper=False; start_offset (x, y) in "
+       "m. Returns friction_angle (rad), ran_away, rest_offset (m), steering (rad), predicted_hold_angle and "
+       "predicted_steering (rad: the matched rigid quasi-static block from the simulated rest, areal_tilt_hold), "
+       "sphere_radius (m), spheres, steps, unsettled_increments and the increments (tilt rad, x, y m, rested). "
+       "Settings (SI units; the `frictal areal-tilt` options and the 'areal-tilt' study kind's keys):\n" +
+       py_detail::keyword_doc(areal_tilt_settings()))
+          .c_str());
+  m.def(
+      "areal_tilt_settings", [] { return py_detail::field_list(areal_tilt_settings()); },
+      "areal_tilt_settings() -> list\n\nThe 3D tilt test's settings table: one dict per keyword of areal_tilt() "
+      "(name, type, unit (SI), default, min, max, choices, help).");
   m.def(
       "tilt_settings", [] { return py_detail::field_list(tilt_settings()); },
       "tilt_settings() -> list\n\nThe tilt test's settings table: one dict per keyword of tilt() (name, type, unit "

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "bindings.hpp"
+#include "frictal/areal_tilt.hpp"
 #include "frictal/generators.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/io.hpp"
@@ -79,10 +80,13 @@ PYBIND11_MODULE(_core, m) {
         d["version"] = frictal::version();
         d["git_commit"] = frictal::git_commit();
         d["build_type"] = frictal::build_type();
+        d["mujoco"] = frictal::mujoco_available();
         return d;
       },
       "Version, git commit and CMake build type of the compiled core.\n\n"
-      "Returns a dict of str (unitless): version (from CMakeLists.txt), git_commit, build_type.");
+      "Returns a dict (unitless): version (from CMakeLists.txt), git_commit, build_type (str), mujoco (bool: the 3D "
+      "tilt test "
+      "areal_tilt is available).");
 
   py::class_<Profile>(m, "Profile", "Single-valued piecewise-linear profile z(x) in metres")
       .def(py::init([](py::array_t<double, py::array::c_style | py::array::forcecast> x,

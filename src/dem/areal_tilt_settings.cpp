@@ -41,9 +41,9 @@ const std::vector<B>& table() {
   static const auto t = settings_detail::with_defaults<ArealTiltOptions>(
       {
           // The test.
-          bind<ArealTiltOptions>(F("angle", "rad", -kInf, Lo::Open, kInf, "Sliding direction d, from +x towards +y",
-                                   true),
-                                 FRICTAL_MEMBER(angle)),
+          bind<ArealTiltOptions>(
+              F("angle", "rad", -kInf, Lo::Open, kInf, "Sliding direction d, from +x towards +y", true),
+              FRICTAL_MEMBER(angle)),
           bind<ArealTiltOptions>(F("atomic_friction", "", 0, Lo::Closed, kInf,
                                    "Atomic (Coulomb) friction coefficient mu_a at every contact"),
                                  FRICTAL_MEMBER(atomic_friction)),
@@ -56,25 +56,26 @@ const std::vector<B>& table() {
                 "free: the block may move sideways (slide joints along x, y, z); locked: along d (and z) only"),
               FRICTAL_MEMBER(lock_lateral),
               std::vector<std::pair<std::string, bool>>{{"free", false}, {"locked", true}}),
-          bind<ArealTiltOptions>(F("tilt_step", "rad", 0, Lo::Open, 10 * std::numbers::pi / 180,
-                                   "Tilt increment near the run-away (the angle reads at most one increment low)",
-                                   true),
-                                 FRICTAL_MEMBER(tilt_step)),
-          bind<ArealTiltOptions>(F("coarse_tilt_step", "rad", 0, Lo::Open, std::numbers::pi / 4,
-                                   "Tilt increment up to the first run-away (then tilt_step from the state before)",
-                                   true),
-                                 FRICTAL_MEMBER(coarse_tilt_step)),
-          bind<ArealTiltOptions>(F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2,
-                                   "Give up (no run-away) above this tilt", true),
-                                 FRICTAL_MEMBER(max_tilt)),
+          bind<ArealTiltOptions>(
+              F("tilt_step", "rad", 0, Lo::Open, 10 * std::numbers::pi / 180,
+                "Tilt increment near the run-away (the angle reads at most one increment low)", true),
+              FRICTAL_MEMBER(tilt_step)),
+          bind<ArealTiltOptions>(
+              F("coarse_tilt_step", "rad", 0, Lo::Open, std::numbers::pi / 4,
+                "Tilt increment up to the first run-away (then tilt_step from the state before)", true),
+              FRICTAL_MEMBER(coarse_tilt_step)),
+          bind<ArealTiltOptions>(
+              F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no run-away) above this tilt", true),
+              FRICTAL_MEMBER(max_tilt)),
           // The contact model.
           bind<ArealTiltOptions>(F("sphere_radius", "m", 0, Lo::Closed, kInf,
                                    "Radius r of the spheres on the upper face's nodes; 0: a fifth of the lower map's "
                                    "smaller spacing"),
                                  FRICTAL_MEMBER(sphere_radius)),
-          bind<ArealTiltOptions>(F("hfield_refine", "", 1, Lo::Closed, 16,
-                                   "Sample the lower map's bilinear surface this many times finer for the height field"),
-                                 FRICTAL_MEMBER(hfield_refine)),
+          bind<ArealTiltOptions>(
+              F("hfield_refine", "", 1, Lo::Closed, 16,
+                "Sample the lower map's bilinear surface this many times finer for the height field"),
+              FRICTAL_MEMBER(hfield_refine)),
           bind_choice<ArealTiltOptions>(
               F("collision", "", 0, Lo::Closed, 0,
                 "Sphere-height field contacts: exact (the nearest point of each triangle) or native (MuJoCo's MPR "
@@ -87,26 +88,26 @@ const std::vector<B>& table() {
                                    "Contact softness: solref time constant, at least 2 time steps"),
                                  FRICTAL_MEMBER(contact_time)),
           // The quasi-static protocol.
-          bind<ArealTiltOptions>(F("damping", "1/scaled s", 0, Lo::Closed, kInf,
-                                   "Viscous joint damping per unit mass"),
+          bind<ArealTiltOptions>(F("damping", "1/scaled s", 0, Lo::Closed, kInf, "Viscous joint damping per unit mass"),
                                  FRICTAL_MEMBER(damping)),
           bind<ArealTiltOptions>(F("local_damping", "", 0, Lo::Closed, 1,
                                    "Local non-viscous (Cundall) damping: a force against each joint's velocity, this "
                                    "fraction of its unbalanced force",
                                    true),
                                  FRICTAL_MEMBER(local_damping)),
-          bind<ArealTiltOptions>(F("relax_chunk", "scaled s", 0, Lo::Open, kInf,
-                                   "Longest relaxation per rest test; an increment waits for up to 40 of them before it counts as "
-                                   "unsettled"),
-                                 FRICTAL_MEMBER(relax_time)),
+          bind<ArealTiltOptions>(
+              F("relax_chunk", "scaled s", 0, Lo::Open, kInf,
+                "Longest relaxation per rest test; an increment waits for up to 40 of them before it counts as "
+                "unsettled"),
+              FRICTAL_MEMBER(relax_time)),
           bind<ArealTiltOptions>(F("force_tolerance", "", 0, Lo::Open, kInf,
                                    "At rest: unbalanced force below this fraction of the weight"),
                                  FRICTAL_MEMBER(force_tolerance)),
           bind<ArealTiltOptions>(F("speed_tolerance", "scaled m/s", 0, Lo::Open, kInf, "At rest: speed below this"),
                                  FRICTAL_MEMBER(speed_tolerance)),
-          bind<ArealTiltOptions>(F("rest_steps", "", 1, Lo::Closed, 1e9,
-                                   "At rest: balanced and still for this many steps in a row"),
-                                 FRICTAL_MEMBER(rest_steps)),
+          bind<ArealTiltOptions>(
+              F("rest_steps", "", 1, Lo::Closed, 1e9, "At rest: balanced and still for this many steps in a row"),
+              FRICTAL_MEMBER(rest_steps)),
       },
       ArealTiltOptions{});
   return t;

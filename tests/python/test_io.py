@@ -223,3 +223,29 @@ def test_tip_cutoff_equals_surfacetopography_definition_on_a_random_profile():
         want = _surfacetopography_cutoff(z, px, radius)
         got = frictal.profile_stats(p, tip_radius=radius)["short_reliability_cutoff_m"]
         assert got == pytest.approx(want, rel=1e-9, abs=1e-20), radius
+
+
+def test_areal_tilt_grooves_across_on_mujoco():
+    """The 3D tilt test (MuJoCo) on sinusoidal grooves across the sliding direction, an 8 x 8
+    window of the same grooves in place: free and locked both hold until the steepest chord of the
+    triangulated grooves, atan(A sin(2 pi / m) / dx) (closed form); the simulation reads the first
+    0.1 deg increment at or above it. The keywords are the settings table's."""
+    if not frictal.build_info()["mujoco"]:
+        pytest.skip("built without MuJoCo")
+    a, m, n = 1e-6, 10, 30
+    amp = 0.3642 * a * m / (2 * math.pi)
+    i = np.arange(n)
+    h = np.tile(amp * np.sin(2 * math.pi * i / m), (n, 1))
+    expected = math.degrees(math.atan(amp * math.sin(2 * math.pi / m) / a))
+    r = frictal.areal_tilt(h, dx=a, dy=a, upper=h[11:19, 11:19], turn_over_upper=False,
+                           start_offset=(11 * a, 11 * a), runaway_distance=1e-6)
+    assert r["ran_away"]
+    assert math.degrees(r["predicted_hold_angle"]) == pytest.approx(expected, abs=0.01)
+    assert expected - 0.01 <= math.degrees(r["friction_angle"]) <= expected + 0.1 + 0.01
+    assert len(r["increment_tilt"]) == len(r["increment_rested"]) > 0
+    names = {f["name"] for f in frictal.areal_tilt_settings()}
+    assert {"local_damping", "lateral", "collision", "mujoco_time_step"} <= names
+    with pytest.raises(TypeError, match="did you mean 'local_damping'"):
+        frictal.areal_tilt(h, dx=a, dy=a, local_dampng=0.5)
+    with pytest.raises(ValueError, match="local_damping"):
+        frictal.areal_tilt(h, dx=a, dy=a, local_damping=1.5)
