@@ -141,6 +141,9 @@ std::function<int()> setup(CLI::App& app) {
       j["continuous_steering_deg"] = to_deg(cont.steering);
       j["continuous_rest_offset_m"] = {cont.rest_offset[0], cont.rest_offset[1]};
       j["continuous_evaluations"] = cont.evaluations;
+      nlohmann::json cs = nlohmann::json::array();
+      for (const auto& st : cont.stops) cs.push_back({to_deg(st[0]), st[1], st[2]});
+      j["continuous_increments"] = cs;  // [tilt_deg, x_m, y_m] after each increment
       j["matched_hold_angle_deg"] = to_deg(mfree.hold_angle);
       j["matched_hold_angle_locked_deg"] = to_deg(mlocked);
       j["matched_steering_deg"] = to_deg(mfree.steering);

@@ -134,6 +134,10 @@ struct ArealTiltHold {
   std::array<double, 2> rest_offset = {0, 0};  ///< at zero tilt (unit: m)
   double steering = 0;                         ///< from d to the run-away's displacement (unit: rad)
   long evaluations = 0;                        ///< lift evaluations (unitless)
+  /// Where the block stands after each increment, coarse then fine, as areal_tilt's trace: tilt
+  /// (rad), x, y (m); the run-away increments' ends included. To compare the two blocks' chains
+  /// of stops (docs/mujoco.md).
+  std::vector<std::array<double, 3>> stops;
 };
 Result<ArealTiltHold> areal_tilt_hold(const Map& lower, const Map& upper, const ArealTiltOptions& t,
                                       double resolution = 1e-4, double stationary = 1e-7);

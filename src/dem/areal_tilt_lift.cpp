@@ -352,7 +352,9 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
     beta_before = beta0;
     for (double beta = beta0 + step; beta <= t.max_tilt + 1e-12; beta += step) {
       State trial = s;
-      if (descend(beta, trial, true) == End::Far) return beta;
+      const End e = descend(beta, trial, true);
+      out.stops.push_back({beta, trial.x, trial.y});
+      if (e == End::Far) return beta;
       trial.x_stop = trial.x;  // a stop (Rest) or a block that did not settle: either way the next
       trial.y_stop = trial.y;  // increment starts from here, as in areal_tilt
       s = trial;
