@@ -37,12 +37,11 @@ def areal_tilt(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: flo
 
     The 3D tilt test on MuJoCo (as `frictal areal-tilt`; docs/mujoco.md; needs a build with MuJoCo, else ValueError naming what it needs; runs without the GIL): lower, upper: 2-D arrays of heights (m, rows along y), spacings dx, dy (m); upper as measured (turned over) unless turn_over_upper=False; start_offset (x, y) in m. Returns friction_angle (rad), ran_away, rest_offset (m), steering (rad), predicted_hold_angle and predicted_steering (rad: the matched rigid quasi-static block from the simulated rest, areal_tilt_hold), sphere_radius (m), spheres, steps, unsettled_increments and the increments (tilt rad, x, y m, rested). Settings (SI units; the `frictal areal-tilt` options and the 'areal-tilt' study kind's keys):
         angle [rad]: Sliding direction d, from +x towards +y (default 0; valid any finite number)
-        atomic_friction: Atomic (Coulomb) friction coefficient mu_a at every contact (default 0; valid >= 0)
-        runaway_distance [m]: Run-away distance D along d from the last stop; 0: a tenth of half the lower map along d (default 0; valid >= 0)
+        atomic_friction: Atomic (Coulomb) friction coefficient mu_a (default 0; valid >= 0)
+        runaway_distance [m]: Sliding for good: growth of the displacement since the last stick (default 0; valid > 0)
         lateral: free: the block may move sideways (slide joints along x, y, z); locked: along d (and z) only (default 'free'; valid free or locked)
         tilt_step [rad]: Tilt increment near the run-away (the angle reads at most one increment low) (default 0.001745329252; valid (0, 0.1745329252))
         coarse_tilt_step [rad]: Tilt increment up to the first run-away (then tilt_step from the state before) (default 0.01745329252; valid (0, 0.7853981634))
-        max_tilt [rad]: Give up (no run-away) above this tilt (default 0.7853981634; valid (0, 1.570796327))
         sphere_radius [m]: Radius r of the spheres on the upper face's nodes; 0: a fifth of the lower map's smaller spacing (default 0; valid >= 0)
         hfield_refine: Sample the lower map's bilinear surface this many times finer for the height field (default 1; valid 1..16)
         collision: Sphere-height field contacts: exact (the nearest point of each triangle) or native (MuJoCo's MPR on prisms, whose internal edges catch a sliding sphere) (default 'exact'; valid exact or native)

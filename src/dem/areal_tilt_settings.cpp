@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "frictal/areal_tilt.hpp"
+#include "frictal/tilt.hpp"
 #include "settings/binding.hpp"
 
 namespace frictal {
@@ -33,6 +34,14 @@ Field F(std::string name, std::string unit, double min, Lo lo, double max, std::
   return f;
 }
 
+// A quantity that the tilt test has too keeps its one name and reads the same in every command
+// (the tilt table's field: help, unit, range, default text).
+Field from_tilt(const std::string& name) {
+  for (const Field& f : tilt_settings())
+    if (f.name == name) return f;
+  return F(name, "", 0, Lo::Closed, kInf, name);  // not reached: the names below are the tilt table's
+}
+
 using B = Binding<ArealTiltOptions>;
 #define FRICTAL_MEMBER(expr) \
   [](ArealTiltOptions & c) -> auto& { return c.expr; }
@@ -44,13 +53,10 @@ const std::vector<B>& table() {
           bind<ArealTiltOptions>(
               F("angle", "rad", -kInf, Lo::Open, kInf, "Sliding direction d, from +x towards +y", true),
               FRICTAL_MEMBER(angle)),
-          bind<ArealTiltOptions>(F("atomic_friction", "", 0, Lo::Closed, kInf,
-                                   "Atomic (Coulomb) friction coefficient mu_a at every contact"),
-                                 FRICTAL_MEMBER(atomic_friction)),
-          bind<ArealTiltOptions>(F("runaway_distance", "m", 0, Lo::Closed, kInf,
-                                   "Run-away distance D along d from the last stop; 0: a tenth of half the lower map "
-                                   "along d"),
-                                 FRICTAL_MEMBER(runaway_distance)),
+          // As in the tilt test (from_tilt): mu_a at every contact; D along d since the last stop
+          // (default a tenth of half the lower map along d).
+          bind<ArealTiltOptions>(from_tilt("atomic_friction"), FRICTAL_MEMBER(atomic_friction)),
+          bind<ArealTiltOptions>(from_tilt("runaway_distance"), FRICTAL_MEMBER(runaway_distance)),
           bind_choice<ArealTiltOptions>(
               F("lateral", "", 0, Lo::Closed, 0,
                 "free: the block may move sideways (slide joints along x, y, z); locked: along d (and z) only"),
@@ -64,9 +70,6 @@ const std::vector<B>& table() {
               F("coarse_tilt_step", "rad", 0, Lo::Open, std::numbers::pi / 4,
                 "Tilt increment up to the first run-away (then tilt_step from the state before)", true),
               FRICTAL_MEMBER(coarse_tilt_step)),
-          bind<ArealTiltOptions>(
-              F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no run-away) above this tilt", true),
-              FRICTAL_MEMBER(max_tilt)),
           // The contact model.
           bind<ArealTiltOptions>(F("sphere_radius", "m", 0, Lo::Closed, kInf,
                                    "Radius r of the spheres on the upper face's nodes; 0: a fifth of the lower map's "
