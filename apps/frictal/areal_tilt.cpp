@@ -141,6 +141,17 @@ std::function<int()> setup(CLI::App& app) {
       j["continuous_steering_deg"] = to_deg(cont.steering);
       j["continuous_rest_offset_m"] = {cont.rest_offset[0], cont.rest_offset[1]};
       j["continuous_evaluations"] = cont.evaluations;
+      if (!a->predict_only) {  // the rigid block from the simulated block's last seat, at its tilt
+        if (auto seat = areal_tilt_last_seat(r)) {
+          ArealTiltOptions so = co;
+          so.start_offset = {(*seat)[1], (*seat)[2]};
+          so.coarse_tilt_step = o.tilt_step;
+          const ArealTiltHold seated = unwrap(areal_tilt_hold(f, g, so, 1e-4, 1e-7, (*seat)[0]));
+          j["seat_tilt_deg"] = to_deg((*seat)[0]);
+          j["seat_offset_m"] = {(*seat)[1], (*seat)[2]};
+          j["continuous_seated_hold_angle_deg"] = to_deg(seated.hold_angle);
+        }
+      }
       nlohmann::json cs = nlohmann::json::array();
       for (const auto& st : cont.stops) cs.push_back({to_deg(st[0]), st[1], st[2]});
       j["continuous_increments"] = cs;  // [tilt_deg, x_m, y_m] after each increment

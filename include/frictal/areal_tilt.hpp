@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstddef>
+#include <optional>
 #include <vector>
 
 #include "frictal/areal.hpp"
@@ -127,11 +128,14 @@ Result<ArealLift> areal_tilt_lift(const Map& lower, const Map& upper, const Area
 /// t.coarse_tilt_step increments to the first run-away (a displacement along d of D since the
 /// last stop), again from the stop before it in t.tilt_step, and the run-away tilt is then
 /// bisected to `resolution`. t.lock_lateral restricts the moves to +-d. mu_a must be 0.
+/// `start_tilt` (rad, in [0, t.max_tilt)): the block is put down already tilted (it settles at
+/// that tilt and the increments go on from there), e.g. in the seat where a simulated block
+/// stood before its run-away, to ask whether the rigid block holds as long from the same seat.
 struct ArealTiltHold {
   double hold_angle = 0;                       ///< bisected (unit: rad)
   double runaway_increment = 0;                ///< the tilt_step increment at which it ran (unit: rad)
   bool ran_away = false;                       ///< false: held up to t.max_tilt
-  std::array<double, 2> rest_offset = {0, 0};  ///< at zero tilt (unit: m)
+  std::array<double, 2> rest_offset = {0, 0};  ///< settled at start_tilt (zero by default) (unit: m)
   double steering = 0;                         ///< from d to the run-away's displacement (unit: rad)
   long evaluations = 0;                        ///< lift evaluations (unitless)
   /// Where the block stands after each increment, coarse then fine, as areal_tilt's trace: tilt
@@ -140,6 +144,12 @@ struct ArealTiltHold {
   std::vector<std::array<double, 3>> stops;
 };
 Result<ArealTiltHold> areal_tilt_hold(const Map& lower, const Map& upper, const ArealTiltOptions& t,
-                                      double resolution = 1e-4, double stationary = 1e-7);
+                                      double resolution = 1e-4, double stationary = 1e-7, double start_tilt = 0);
+
+/// Where a simulated block sat before its run-away: the position of the last increment of
+/// `r.trace` that ended at rest below the run-away's tilt, and the lowest tilt at which the block
+/// already rested there (within r / 100) (tilt in rad, x, y in m); nullopt if it never rested or
+/// did not run away.
+std::optional<std::array<double, 3>> areal_tilt_last_seat(const ArealTiltResult& r);
 
 }  // namespace frictal

@@ -234,8 +234,24 @@ Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOpt
 
 namespace frictal {
 
+std::optional<std::array<double, 3>> areal_tilt_last_seat(const ArealTiltResult& r) {
+  if (!r.ran_away || r.trace.empty()) return std::nullopt;
+  const double last = r.trace.back().tilt;
+  const ArealTiltIncrement* seat = nullptr;
+  for (auto it = r.trace.rbegin(); it != r.trace.rend() && !seat; ++it)
+    if (it->rested && it->tilt < last) seat = &*it;
+  if (!seat) return std::nullopt;
+  // The lowest tilt at which the block already rested there (coarse or fine increments; a block
+  // at rest sits still to a small fraction of r).
+  const double tol = 0.01 * r.sphere_radius;
+  double first = seat->tilt;
+  for (const ArealTiltIncrement& i : r.trace)
+    if (i.rested && i.tilt < first && std::hypot(i.x - seat->x, i.y - seat->y) <= tol) first = i.tilt;
+  return std::array<double, 3>{first, seat->x, seat->y};
+}
+
 Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
-                                      double stationary) {
+                                      double stationary, double start_tilt) {
   if (auto s = validate(f, "lower map"); !s) return s.error();
   if (auto s = validate(g, "upper map"); !s) return s.error();
   if (f.nx < 2 || f.ny < 2) return make_error("areal_tilt_hold: the lower map needs 2 x 2 nodes");
@@ -254,6 +270,9 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
     return make_error(
         "areal_tilt_hold: expected 0 < tilt_step < max_tilt < pi/2, coarse_tilt_step > 0, resolution > 0 "
         "and stationary > 0");
+  if (!(start_tilt >= 0 && start_tilt < t.max_tilt))
+    return make_error(
+        fmt::format("areal_tilt_hold: start tilt {} rad: expected in [0, max_tilt = {})", start_tilt, t.max_tilt));
   if (!std::isfinite(t.start_offset[0]) || !std::isfinite(t.start_offset[1]) || !std::isfinite(t.runaway_distance) ||
       t.runaway_distance < 0)
     return make_error("areal_tilt_hold: the start offset must be finite and the run-away distance finite and >= 0 (m)");
@@ -340,7 +359,7 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   if (!std::isfinite(height(st.x, st.y, 0, nullptr)))
     return make_error(
         fmt::format("areal_tilt_hold: at the start offset ({}, {}) m no sphere lies over the lower map", st.x, st.y));
-  descend(0.0, st, false);
+  descend(start_tilt, st, false);
   st.x_stop = st.x;
   st.y_stop = st.y;
   out.rest_offset = {st.x, st.y};
@@ -366,7 +385,7 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   State before;
   double beta_before = 0;
   const double coarse = std::max(t.coarse_tilt_step, t.tilt_step);
-  double b = run(st, 0.0, coarse, before, beta_before);
+  double b = run(st, start_tilt, coarse, before, beta_before);
   if (!std::isnan(b) && coarse > t.tilt_step) b = run(before, beta_before, t.tilt_step, before, beta_before);
   if (std::isnan(b)) {
     out.hold_angle = out.runaway_increment = t.max_tilt;

@@ -11,6 +11,7 @@
 // (areal_tilt_hold) from each simulated rest. Not available in a build without MuJoCo.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <fmt/core.h>
@@ -173,6 +174,19 @@ Result<TaskOutput> run_areal_tilt_task(const Params& p, std::uint64_t seed) {
     s["ran_away_" + tag] = sim->ran_away ? 1.0 : 0.0;
     s["unsettled_" + tag] = double(sim->unsettled);
     s["steps_" + tag] = double(sim->steps);
+    // The rigid block put down in the seat where the simulated one stood before its run-away, at
+    // that tilt: do the two hold equally long from the same seat? (NaN: no seat.)
+    s["seated_" + tag + "_deg"] = std::numeric_limits<double>::quiet_NaN();
+    s["seat_tilt_" + tag + "_deg"] = std::numeric_limits<double>::quiet_NaN();
+    if (auto seat = areal_tilt_last_seat(*sim)) {
+      ArealTiltOptions c2 = o;
+      c2.start_offset = {(*seat)[1], (*seat)[2]};
+      c2.coarse_tilt_step = o.tilt_step;
+      auto seated = areal_tilt_hold(f, g, c2, 1e-4, 1e-7, (*seat)[0]);
+      if (!seated) return seated.error();
+      s["seated_" + tag + "_deg"] = seated->hold_angle * 180 / kPi;
+      s["seat_tilt_" + tag + "_deg"] = (*seat)[0] * 180 / kPi;
+    }
     if (!lock) {
       s["steering_deg"] = sim->steering * 180 / kPi;
       s["matched_steering_deg"] = hold->steering * 180 / kPi;
@@ -216,21 +230,36 @@ void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, 
       part);
   f.supported = in_free == n && in_locked == n;
   f.evidence.push_back(fmt::format("free {}/{}, locked {}/{} within 0.2° (docs/mujoco.md)", in_free, n, in_locked, n));
-  // A free miss whose simulated path leaves the predicted one (steering apart by more than 5 deg)
-  // is caught at another stop than the rigid block's: that names it. Other misses are unexplained.
+  // A free miss that the rigid block matches from the simulated block's last seat (the blocks agree
+  // seat by seat and part where a slip ends), or whose simulated path leaves the predicted one
+  // (steering apart by more than 5 deg): that names it. Other misses are unexplained.
   if (!f.supported && in_locked == n) {
     std::string list;
-    int apart = 0;
+    int apart = 0, seated_agree = 0;
     for (const auto& r : rows) {
       const auto& sc = r.output.scalars;
       if (!sc.count("within_free") || sc.at("within_free") > 0.5) continue;
       const double ds = std::abs(sc.at("steering_deg") - sc.at("matched_steering_deg"));
       if (ds > 5) ++apart;
-      list += fmt::format("{}task {}: steering {:.1f}° against {:.1f}°, angle {:.2f}° against {:.2f}°",
-                          list.empty() ? "" : "; ", r.id, sc.at("steering_deg"), sc.at("matched_steering_deg"),
-                          sc.at("simulated_free_deg"), sc.at("matched_free_deg"));
+      const double fa = sc.at("simulated_free_deg");
+      const double seated = sc.count("seated_free_deg") ? sc.at("seated_free_deg") : std::nan("");
+      // Within 0.2 deg of the simulated bracket (reading - one increment, reading], as `within`.
+      const bool agree = std::isfinite(seated) && seated <= fa + 0.2 && seated >= fa - 0.1 - 0.2;
+      seated_agree += agree;
+      list += fmt::format(
+          "{}task {}: {:.2f}° against {:.2f}°, steering {:.1f}° against {:.1f}°{}", list.empty() ? "" : "; ", r.id, fa,
+          sc.at("matched_free_deg"), sc.at("steering_deg"), sc.at("matched_steering_deg"),
+          std::isfinite(seated) ? fmt::format(", from the seat at {:.1f}° the rigid block holds to {:.2f}°",
+                                              sc.at("seat_tilt_free_deg"), seated)
+                                : std::string());
     }
-    if (apart == n - in_free)
+    if (seated_agree == n - in_free)
+      f.cause = fmt::format(
+          "each free miss holds as long as the rigid block put down in its last seat (the simulated block's stop "
+          "before its run-away): the two agree seat by seat and part where a slip ends, the simulated block "
+          "caught at another stop than the rigid block's gradient-flow slip ({}); locked, the same pairs agree",
+          list);
+    else if (apart == n - in_free)
       f.cause = fmt::format(
           "each free miss is a block whose simulated path leaves the predicted one, so it is caught at another stop "
           "than the rigid quasi-static block ({}); locked, the same pairs agree",
@@ -247,7 +276,7 @@ TaskKind areal_tilt_kind() {
   k.description =
       "3D tilt test of two maps on MuJoCo (free and locked) against the matched quasi-static prediction "
       "(docs/mujoco.md)";
-  k.version = 1;
+  k.version = 2;  // 2: the seated predictions
   k.run = run_areal_tilt_task;
   k.cost = [](const Params& p) {
     const double w = kind_detail::number(p, "upper_nodes", 12);
@@ -262,6 +291,10 @@ TaskKind areal_tilt_kind() {
       {"ran_away_free", "1", "1 when the free block ran away below the largest tilt"},
       {"unsettled_free", "1", "increments that did not reach rest, free"},
       {"steps_free", "1", "MuJoCo steps, free"},
+      {"seated_free_deg", "deg",
+       "the rigid block's hold angle from the simulated block's last seat before its run-away (areal_tilt_hold "
+       "with start_tilt), free; NaN without one"},
+      {"seat_tilt_free_deg", "deg", "the tilt of that seat, free"},
       {"simulated_locked_deg", "deg", "MuJoCo's run-away increment, block locked to d"},
       {"matched_locked_deg", "deg", "matched prediction from the simulated rest, locked"},
       {"miss_locked_deg", "deg", "distance of the prediction from the simulated bracket, locked"},
@@ -269,6 +302,8 @@ TaskKind areal_tilt_kind() {
       {"ran_away_locked", "1", "1 when the locked block ran away below the largest tilt"},
       {"unsettled_locked", "1", "increments that did not reach rest, locked"},
       {"steps_locked", "1", "MuJoCo steps, locked"},
+      {"seated_locked_deg", "deg", "the same from the locked block's last seat"},
+      {"seat_tilt_locked_deg", "deg", "the tilt of that seat, locked"},
       {"steering_deg", "deg", "angle from d to the simulated free block's run-away"},
       {"matched_steering_deg", "deg", "the same in the matched prediction"},
       {"free_minus_locked_deg", "deg", "simulated free minus locked"},

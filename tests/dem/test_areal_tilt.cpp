@@ -342,6 +342,18 @@ TEST(ArealTiltHold, GroovesAcrossHoldAtTheirSteepestSegment) {
     EXPECT_GE(h->hold_angle, expected - 1e-9) << r;
     EXPECT_LE(h->hold_angle, expected + 2e-4) << r;
   }
+  // Put down already tilted (start_tilt), in the groove's bottom, at 10 deg or 17 deg: the same
+  // steepest face holds it, so the same hold angle; a start tilt at or above max_tilt is refused.
+  t.sphere_radius = 0;
+  t.coarse_tilt_step = t.tilt_step;
+  for (const double start_deg : {10.0, 17.0}) {
+    auto h = frictal::areal_tilt_hold(f, g, t, 1e-4, 1e-7, start_deg * kPi / 180);
+    ASSERT_TRUE(h.ok()) << h.error().message;
+    EXPECT_GE(h->hold_angle, expected - 1e-9) << start_deg;
+    EXPECT_LE(h->hold_angle, expected + 2e-4) << start_deg;
+    EXPECT_NEAR(h->stops.front()[0], (start_deg + 0.1) * kPi / 180, 1e-12);  // first increment
+  }
+  EXPECT_FALSE(frictal::areal_tilt_hold(f, g, t, 1e-4, 1e-7, t.max_tilt).ok());
   t.atomic_friction = 0.1;
   auto bad = frictal::areal_tilt_hold(f, g, t);
   ASSERT_FALSE(bad.ok());
@@ -409,4 +421,37 @@ TEST(ArealTiltSettings, TheTableSetsTheOptionsAndRefusesBadValues) {
   auto soft = frictal::make_areal_tilt_options({{"mujoco_time_step", 1e-4}, {"mujoco_contact_time", 1.5e-4}});
   ASSERT_FALSE(soft.ok());
   EXPECT_NE(soft.error().message.find("mujoco_contact_time"), std::string::npos) << soft.error().message;
+}
+
+TEST(ArealTiltHold, LastSeatIsWhereTheBlockRestedLongestBeforeItsRunAway) {
+  // A trace as areal_tilt writes it: coarse increments to the first run-away (28 deg), then fine
+  // ones from the state at 27 deg to the run-away at 27.7 deg. The block slipped into its last
+  // seat at 25 deg (coarse) and stayed there (to r / 100) until 27.6 deg: the seat is that
+  // position and 25 deg; nothing without a run-away or a rest.
+  frictal::ArealTiltResult r;
+  r.ran_away = true;
+  r.sphere_radius = 4e-6;
+  const double d = 3.14159265358979323846 / 180;
+  auto inc = [&](double tilt, double x, double y, bool rested) {
+    frictal::ArealTiltIncrement i;
+    i.tilt = tilt * d;
+    i.x = x;
+    i.y = y;
+    i.rested = rested;
+    r.trace.push_back(i);
+  };
+  inc(24, -4.9e-6, 65.2e-6, true);
+  inc(25, 19.203e-6, 155.675e-6, true);
+  inc(26, 19.203e-6, 155.675e-6, true);
+  inc(27, 19.2031e-6, 155.675e-6, true);
+  inc(28, 69.2e-6, 154.4e-6, false);
+  for (int k = 1; k <= 6; ++k) inc(27 + 0.1 * k, 19.203e-6, 155.6751e-6, true);
+  inc(27.7, 69.2e-6, 154.4e-6, false);
+  auto seat = frictal::areal_tilt_last_seat(r);
+  ASSERT_TRUE(seat.has_value());
+  EXPECT_NEAR((*seat)[0], 25 * d, 1e-12);
+  EXPECT_NEAR((*seat)[1], 19.203e-6, 1e-12);
+  EXPECT_NEAR((*seat)[2], 155.6751e-6, 1e-12);
+  r.ran_away = false;
+  EXPECT_FALSE(frictal::areal_tilt_last_seat(r).has_value());
 }
