@@ -696,6 +696,12 @@ def areal_tilt_figure(out, findings):
         ok = sum(s[f"within_{mode}"] > 0.5 for _, s in rows)
         worst = max(s[f"miss_{mode}_deg"] for _, s in rows)
         f.numbers.append((f"{mode}: within 0.2° of the matched prediction", f"{ok} of {n} pairs (largest miss {worst:.3f}°)"))
+    seated = [(s[f"simulated_{m}_deg"], s[f"seated_{m}_deg"]) for _, s in rows for m in ("free", "locked")
+              if isinstance(s.get(f"seated_{m}_deg"), float) and math.isfinite(s[f"seated_{m}_deg"])]
+    if seated:
+        miss = [b - a if b > a else max(0.0, a - 0.1 - b) for a, b in seated]
+        f.numbers.append(("from the simulated block's last seat: the rigid block within 0.2°",
+                          f"{sum(x <= 0.2 for x in miss)} of {len(miss)} runs (largest miss {max(miss):.3f}°)"))
     steer = [abs(s["steering_deg"]) for _, s in rows if s.get("steering_deg") is not None]
     if steer:
         f.numbers.append(("steering: angle between d and the free block's path", f"mean {sum(steer) / len(steer):.1f}°, "
