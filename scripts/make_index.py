@@ -569,22 +569,31 @@ def fig04_from(out):
     return f
 
 
-def eq18_derived(out, findings):
-    """The hold angle over drops against Eq. 18, per D, from the wm-tilt store (issue 23)."""
-    f = study_figure(out, "eq18-derived", findings)
+def store_rows(out, study, f, how):
+    """(part, scalars) of every done task of OUT/studies/STUDY.sqlite; None (and f.missing set,
+    saying `how` it is made) when the store is absent."""
     f.missing = None
-    store = f"{out}/studies/wm-tilt.sqlite"
+    store = f"{out}/studies/{study}.sqlite"
     if not os.path.exists(store):
-        f.missing = f"{store} not found (scripts/reproduce runs the wm-tilt study)"
-        return f
+        f.missing = f"{store} not found ({how})"
+        return None
     import sqlite3
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
     con = sqlite3.connect(store)
     rows = [(part, json.loads(sc)) for part, sc in
             con.execute("select part, scalars from tasks where status = 'done' and scalars is not null")]
     con.close()
+    return rows
+
+
+def eq18_derived(out, findings):
+    """The hold angle over drops against Eq. 18, per D, from the wm-tilt store (issue 23)."""
+    f = study_figure(out, "eq18-derived", findings)
+    rows = store_rows(out, "wm-tilt", f, "scripts/reproduce runs the wm-tilt study")
+    if rows is None:
+        return f
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
     plt.rcParams.update({"font.size": 12})  # the page shows it 560 px wide
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.6), sharey=False)
     drew = False
@@ -643,19 +652,12 @@ def eq18_derived(out, findings):
 def areal_tilt_figure(out, findings):
     """The 3D tilt test against its matched prediction, free and locked, from the areal-tilt store (issue 24)."""
     f = study_figure(out, "areal-tilt", findings)
-    f.missing = None
-    store = f"{out}/studies/areal-tilt.sqlite"
-    if not os.path.exists(store):
-        f.missing = f"{store} not found (scripts/reproduce runs the areal-tilt study when the build has MuJoCo)"
+    rows = store_rows(out, "areal-tilt", f, "scripts/reproduce runs the areal-tilt study when the build has MuJoCo")
+    if rows is None:
         return f
-    import sqlite3
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    con = sqlite3.connect(store)
-    rows = [(part, json.loads(sc)) for part, sc in
-            con.execute("select part, scalars from tasks where status = 'done' and scalars is not null")]
-    con.close()
     rows = [(p, s) for p, s in rows if s.get("simulated_free_deg") is not None]
     if not rows:
         f.missing = "no finished areal-tilt task in the store"

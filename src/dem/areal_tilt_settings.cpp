@@ -4,6 +4,7 @@
 // extent, gravity 9.81 m/s^2; docs/mujoco.md): their unit is written "scaled s".
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "frictal/areal_tilt.hpp"
 #include "frictal/tilt.hpp"
@@ -18,21 +19,8 @@ using settings_detail::Binding;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-enum class Lo { Closed, Open };
-
-Field F(std::string name, std::string unit, double min, Lo lo, double max, std::string help, bool max_open = false,
-        std::string text_default = "") {
-  Field f;
-  f.name = std::move(name);
-  f.unit = std::move(unit);
-  f.min = min;
-  f.min_open = lo == Lo::Open;
-  f.max = max;
-  f.max_open = max_open;
-  f.help = std::move(help);
-  f.text_default = std::move(text_default);
-  return f;
-}
+using settings_detail::F;
+using settings_detail::Lo;
 
 // A quantity that the tilt test has too keeps its one name and reads the same in every command
 // (the tilt table's field: help, unit, range, default text).

@@ -1,6 +1,7 @@
 // The tilt test's settings table (tilt.hpp, settings.hpp): each user-facing TiltConfig member
 // once, with its unit, range and help; defaults are TiltConfig's own initialisers.
 #include <numbers>
+#include <utility>
 
 #include "frictal/tilt.hpp"
 #include "settings/binding.hpp"
@@ -14,21 +15,8 @@ using settings_detail::Binding;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-enum class Lo { Closed, Open };
-
-Field F(std::string name, std::string unit, double min, Lo lo, double max, std::string help, bool max_open = false,
-        std::string text_default = "") {
-  Field f;
-  f.name = std::move(name);
-  f.unit = std::move(unit);
-  f.min = min;
-  f.min_open = lo == Lo::Open;
-  f.max = max;
-  f.max_open = max_open;
-  f.help = std::move(help);
-  f.text_default = std::move(text_default);
-  return f;
-}
+using settings_detail::F;
+using settings_detail::Lo;
 
 using B = Binding<TiltConfig>;
 #define FRICTAL_MEMBER(expr) \

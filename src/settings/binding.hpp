@@ -16,6 +16,30 @@
 
 namespace frictal::settings_detail {
 
+/// Whether a field's lower bound is itself valid (Closed) or not (Open).
+enum class Lo { Closed, Open };
+
+/// A field of a settings table: name, SI unit ("" unitless), valid range [min or (min, max] or
+/// max) (max_open), one help line and, when the default comes from elsewhere, its text.
+inline Field field(std::string name, std::string unit, double min, Lo lo, double max, std::string help,
+                   bool max_open = false, std::string text_default = "") {
+  Field f;
+  f.name = std::move(name);
+  f.unit = std::move(unit);
+  f.min = min;
+  f.min_open = lo == Lo::Open;
+  f.max = max;
+  f.max_open = max_open;
+  f.help = std::move(help);
+  f.text_default = std::move(text_default);
+  return f;
+}
+/// The short form that the table files use.
+template <class... A>
+Field F(A&&... a) {
+  return field(std::forward<A>(a)...);
+}
+
 template <class T>
 struct Binding {
   Field field;

@@ -407,6 +407,21 @@ TEST(DemState, CopyContinuesBitwiseLikeTheOriginal) {
 
 namespace {
 
+// The ground g (kinematic) and a body b, without gravity, after one step of 1 ns under `rule`:
+// the bodies move by ~1e-14 m, so the forces are those of the placed geometry.
+void one_step(dem::ContactRule rule, const dem::BodyDef& g, const dem::BodyDef& b, dem::Model& model,
+              dem::State& state) {
+  dem::WorldDef w;
+  w.gravity = {0, 0};
+  w.time_step = 1e-9;
+  w.contact.rule = rule;
+  auto m = dem::make_model(w, {g, b});
+  EXPECT_TRUE(m.ok()) << m.error().message;
+  model = *m;
+  state = dem::make_state(model);
+  EXPECT_TRUE(dem::step(model, state).ok());
+}
+
 // A vertex v (bottom of a diamond) hovers over the left flank of a roof-shaped ground (flanks of
 // slope 10 deg meeting at a convex peak w = (0, 0)), a' = 0.5 um from the peak along the flank
 // and d = 2r - delta above it (delta = 10 nm). Then |v - w| = sqrt(a'^2 + d^2) < 2r as well: the
@@ -436,15 +451,7 @@ ConvexCorner convex_corner(dem::ContactRule rule) {
   b.x = {vx, vx + 1e-3, vx, vx - 1e-3};
   b.y = {vy, vy + 1e-3, vy + 2e-3, vy + 1e-3};
   b.radius = c.r;
-  dem::WorldDef w;
-  w.gravity = {0, 0};
-  w.time_step = 1e-9;
-  w.contact.rule = rule;
-  auto m = dem::make_model(w, {g, b});
-  EXPECT_TRUE(m.ok()) << m.error().message;
-  c.model = *m;
-  c.state = dem::make_state(c.model);
-  EXPECT_TRUE(dem::step(c.model, c.state).ok());
+  one_step(rule, g, b, c.model, c.state);
   return c;
 }
 
@@ -509,15 +516,7 @@ Valley valley(dem::ContactRule rule, double theta_deg, double h) {
   b.x = {0.0, 1e-3, 0.0, -1e-3};
   b.y = {h, h + 1e-3, h + 2e-3, h + 1e-3};
   b.radius = c.r;
-  dem::WorldDef w;
-  w.gravity = {0, 0};
-  w.time_step = 1e-9;
-  w.contact.rule = rule;
-  auto m = dem::make_model(w, {g, b});
-  EXPECT_TRUE(m.ok()) << m.error().message;
-  c.model = *m;
-  c.state = dem::make_state(c.model);
-  EXPECT_TRUE(dem::step(c.model, c.state).ok());
+  one_step(rule, g, b, c.model, c.state);
   return c;
 }
 

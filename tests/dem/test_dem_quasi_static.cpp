@@ -4,6 +4,8 @@
 // at which it relaxed to rest, so a hold angle phi reads as floor(phi / inc) * inc.
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include <cmath>
 #include <cstdlib>
 #include <string>
@@ -43,6 +45,23 @@ frictal::TiltConfig quasi_static(double increment_deg) {
   cfg.tilt_increment = increment_deg * kDeg;
   cfg.series_interval = 0;
   return cfg;
+}
+
+// Issue 23's WM pair (seeds 1 and 2; D = 1.5, n_max = 6, L = 0.01 m, L_b = 0.2 m) at rms height
+// `rms` (m), as curves for run_tilt.
+std::pair<frictal::Curve, frictal::Curve> issue_wm_pair(double rms) {
+  frictal::WmParams w;
+  w.dimension = 1.5;
+  w.n_max = 6;
+  w.longest_wavelength = 0.01;
+  w.length = 0.2;
+  w.rms_height = rms;
+  w.seed = 1;
+  auto a = frictal::wm_profile(w);
+  w.seed = 2;
+  auto b = frictal::wm_profile(w);
+  EXPECT_TRUE(a.ok() && b.ok());
+  return {frictal::as_curve(*a), frictal::as_curve(*b)};
 }
 
 }  // namespace
@@ -258,24 +277,14 @@ TEST(DemQuasiStatic, ClosestContactsReadTheHoldAngleOfTheIssuesWmPair) {
   // target: the last increment below 1.549 deg (at most 0.01 deg low). Ten times rougher (rms
   // 1e-4 m) phi_qs is 15.132 deg (hold_angle on the same lift), read at 6e6 N/m.
   for (double rms : {1e-5, 1e-4}) {
-    frictal::WmParams w;
-    w.dimension = 1.5;
-    w.n_max = 6;
-    w.longest_wavelength = 0.01;
-    w.length = 0.2;
-    w.rms_height = rms;
-    w.seed = 1;
-    auto a = frictal::wm_profile(w);
-    w.seed = 2;
-    auto b = frictal::wm_profile(w);
-    ASSERT_TRUE(a.ok() && b.ok());
+    const auto [lower, upper] = issue_wm_pair(rms);
     frictal::TiltConfig cfg = quasi_static(0.01);
     cfg.hold_rotation = true;
     cfg.radius = 2e-5;
     cfg.runaway_distance = 0.01;
     cfg.initial_offset = 0.023791495198902606;  // where `frictal tilt` puts these files (the issue's start)
     cfg.contact.normal_stiffness = rms < 5e-5 ? 6e7 : 6e6;
-    auto r = frictal::run_tilt(frictal::as_curve(*a), frictal::as_curve(*b), cfg);
+    auto r = frictal::run_tilt(lower, upper, cfg);
     ASSERT_TRUE(r.ok()) << r.error().message;
     ASSERT_TRUE(r->slid);
     EXPECT_EQ(r->contact_rule, frictal::dem::ContactRule::Closest);
@@ -296,24 +305,14 @@ TEST(DemQuasiStatic, ClosestReadsAStartWhereAConvexCornerCrossesAConcaveBend) {
   // deg). Before concave corners were counted by inclusion-exclusion (docs/dem.md sec. 1, rule
   // 3) the run held up to 1.55 deg at a stop where a convex corner of the lower block slides past
   // a concave bend of the upper one. Now the last increment below the prediction.
-  frictal::WmParams w;
-  w.dimension = 1.5;
-  w.n_max = 6;
-  w.longest_wavelength = 0.01;
-  w.length = 0.2;
-  w.rms_height = 1e-5;
-  w.seed = 1;
-  auto a = frictal::wm_profile(w);
-  w.seed = 2;
-  auto b = frictal::wm_profile(w);
-  ASSERT_TRUE(a.ok() && b.ok());
+  const auto [lower, upper] = issue_wm_pair(1e-5);
   frictal::TiltConfig cfg = quasi_static(0.01);
   cfg.hold_rotation = true;
   cfg.radius = 2e-5;
   cfg.runaway_distance = 0.01;
   cfg.initial_offset = 3.5e-3;
   cfg.contact.normal_stiffness = 6e7;
-  auto r = frictal::run_tilt(frictal::as_curve(*a), frictal::as_curve(*b), cfg);
+  auto r = frictal::run_tilt(lower, upper, cfg);
   ASSERT_TRUE(r.ok()) << r.error().message;
   ASSERT_TRUE(r->slid);
   EXPECT_NEAR(r->rest_offset, 3.51e-3, 1e-5);
@@ -360,17 +359,7 @@ TEST(DemTilt, SlowTiltFromRestOfTheIssuesWmPairReadsInsideTheHoldBracket) {
   // are phi_in = 0.695 deg and phi_qs = 1.549 deg: the run reads between them (0.1 deg slack).
   // The paper's protocol does not: with free settling the frictionless block still glides when
   // the tilt starts ('unsettled', DemTilt.UnsettledWarningForTheIssuesWmPair).
-  frictal::WmParams w;
-  w.dimension = 1.5;
-  w.n_max = 6;
-  w.longest_wavelength = 0.01;
-  w.length = 0.2;
-  w.rms_height = 1e-5;
-  w.seed = 1;
-  auto a = frictal::wm_profile(w);
-  w.seed = 2;
-  auto b = frictal::wm_profile(w);
-  ASSERT_TRUE(a.ok() && b.ok());
+  const auto [lower, upper] = issue_wm_pair(1e-5);
   frictal::TiltConfig cfg;
   cfg.settling = frictal::TiltSettling::Relax;
   cfg.turn = frictal::TiltTurn::Gravity;
@@ -382,7 +371,7 @@ TEST(DemTilt, SlowTiltFromRestOfTheIssuesWmPairReadsInsideTheHoldBracket) {
   cfg.runaway_distance = 0.01;
   cfg.series_interval = 0;
   cfg.initial_offset = 0.023791495198902606;  // where `frictal tilt` puts these files
-  auto r = frictal::run_tilt(frictal::as_curve(*a), frictal::as_curve(*b), cfg);
+  auto r = frictal::run_tilt(lower, upper, cfg);
   ASSERT_TRUE(r.ok()) << r.error().message;
   ASSERT_TRUE(r->slid);
   EXPECT_NEAR(r->rest_offset, 0.02382, 2e-5);
