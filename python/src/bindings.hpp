@@ -14,6 +14,7 @@
 
 #include <cstdio>
 
+#include "frictal/map.hpp"
 #include "frictal/result.hpp"
 #include "frictal/settings.hpp"
 
@@ -30,6 +31,11 @@ T ok(Result<T> r) {
 inline void ok(const Status& s) {
   if (!s) throw py::value_error(s.error().message);
 }
+
+/// A Map from a 2-D array of heights (rows along y; m) with spacings dx, dy and origin x0, y0
+/// (m), checked (ValueError naming what is wrong). io_bindings.cpp.
+Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>& h, double dx, double dy, double x0 = 0,
+           double y0 = 0);
 
 /// Runs `f` (a pure C++ computation returning a Result) with the GIL released, so that other
 /// Python threads run meanwhile; the Result is unwrapped after the GIL is taken back.

@@ -141,22 +141,11 @@ void frictal_bind_dem(py::module_& m) {
         ArealTiltOptions o = py_detail::ok(make_areal_tilt_options(given));
         o.turn_over_upper = turn_over_upper;
         if (!start_offset.is_none()) o.start_offset = start_offset.cast<std::array<double, 2>>();
-        auto as_map = [&](const py::array_t<double, py::array::c_style | py::array::forcecast>& a, const char* name) {
-          if (a.ndim() != 2)
-            throw py::value_error(std::string("areal_tilt: ") + name + ": expected a 2-D array of heights (m)");
-          Map mp;
-          mp.ny = std::size_t(a.shape(0));
-          mp.nx = std::size_t(a.shape(1));
-          mp.dx = dx;
-          mp.dy = dy;
-          mp.heights.assign(a.data(), a.data() + a.size());
-          return mp;
-        };
-        const Map f = as_map(lower, "lower");
-        const Map g =
-            upper.is_none()
-                ? f
-                : as_map(upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), "upper");
+        const Map f = py_detail::to_map(lower, dx, dy);
+        const Map g = upper.is_none()
+                          ? f
+                          : py_detail::to_map(
+                                upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), dx, dy);
         struct Out {
           ArealTiltResult sim;
           ArealTiltHold hold;

@@ -21,11 +21,29 @@
 namespace py = pybind11;
 using namespace frictal;
 
+namespace frictal::py_detail {
+Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>& h, double dx, double dy, double x0,
+           double y0) {
+  if (h.ndim() != 2) throw py::value_error("heights: expected a 2-D array of shape (ny, nx)");
+  Map m;
+  m.ny = std::size_t(h.shape(0));
+  m.nx = std::size_t(h.shape(1));
+  m.dx = dx;
+  m.dy = dy;
+  m.x0 = x0;
+  m.y0 = y0;
+  m.heights.assign(h.data(), h.data() + h.size());
+  ok(validate(m, "heights"));
+  return m;
+}
+}  // namespace frictal::py_detail
+
 namespace {
 
 using frictal::py_detail::arr;
 using frictal::py_detail::nogil;
 using frictal::py_detail::ok;
+using frictal::py_detail::to_map;
 
 py::array_t<double> heights2d(const Map& m) {
   py::array_t<double> a({m.ny, m.nx});
@@ -41,21 +59,6 @@ py::dict map_dict(const Map& m) {
   d["x0"] = m.x0;
   d["y0"] = m.y0;
   return d;
-}
-
-Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>& h, double dx, double dy, double x0,
-           double y0) {
-  if (h.ndim() != 2) throw py::value_error("heights: expected a 2-D array of shape (ny, nx)");
-  Map m;
-  m.ny = std::size_t(h.shape(0));
-  m.nx = std::size_t(h.shape(1));
-  m.dx = dx;
-  m.dy = dy;
-  m.x0 = x0;
-  m.y0 = y0;
-  m.heights.assign(h.data(), h.data() + h.size());
-  ok(validate(m, "heights"));
-  return m;
 }
 
 ReadOptions read_options(const std::string& format, const std::string& unit, double spacing = 0,

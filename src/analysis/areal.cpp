@@ -427,6 +427,15 @@ Result<ArealLift> areal_offset_grid(const Map& f, double angle, const ArealLiftO
   return out;
 }
 
+bool areal_lift_touches(ArealLift& out, const std::vector<std::size_t>& work) {
+  bool any = false;
+  for (std::size_t k = 0; k < out.lift.size(); ++k) {
+    out.evaluated_nodes += work[k];
+    any = any || !std::isnan(out.lift[k]);
+  }
+  return any;
+}
+
 }  // namespace detail
 
 Result<ArealLift> areal_lift(const Map& f, const Map& g_in, double angle, const ArealLiftOptions& o) {
@@ -459,12 +468,7 @@ Result<ArealLift> areal_lift(const Map& f, const Map& g_in, double angle, const 
       out.contact[k] = std::int64_t(b.index);
     }
   });
-  bool any = false;
-  for (std::size_t k = 0; k < nu * nv; ++k) {
-    out.evaluated_nodes += work[k];
-    any = any || !std::isnan(out.lift[k]);
-  }
-  if (!any)
+  if (!detail::areal_lift_touches(out, work))
     return make_error(
         fmt::format("areal_lift: the blocks never touch over offsets {} to {} m along {} deg and +-{} m "
                     "across (expected maps that overlap along the sliding direction)",

@@ -1,6 +1,9 @@
 // frictal — the offset grid of an areal lift (private; areal_lift and areal_tilt_lift share it).
 #pragma once
 
+#include <cstddef>
+#include <vector>
+
 #include "frictal/areal.hpp"
 #include "frictal/result.hpp"
 
@@ -12,5 +15,9 @@ namespace frictal::detail {
 /// limit, then fills them). `who` prefixes the error for steps or ranges that are negative or not
 /// finite.
 Result<ArealLift> areal_offset_grid(const Map& lower, double angle, const ArealLiftOptions& o, const char* who);
+
+/// After filling `out.lift`: adds the per-offset evaluation counts `work` to out.evaluated_nodes
+/// and says whether the blocks touch at any offset (some lift is not NaN).
+bool areal_lift_touches(ArealLift& out, const std::vector<std::size_t>& work);
 
 }  // namespace frictal::detail

@@ -217,12 +217,7 @@ Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOpt
       out.contact[k] = std::int64_t(cj) * std::int64_t(f.nx) + std::int64_t(ci);
     }
   });
-  bool any = false;
-  for (std::size_t k = 0; k < nu * nv; ++k) {
-    out.evaluated_nodes += work[k];
-    any = any || !std::isnan(out.lift[k]);
-  }
-  if (!any)
+  if (!detail::areal_lift_touches(out, work))
     return make_error(
         fmt::format("areal_tilt_lift: the spheres never touch the height field over offsets {} to {} m along {} deg "
                     "(expected maps that overlap along the sliding direction)",

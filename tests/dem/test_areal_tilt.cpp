@@ -7,27 +7,43 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
 #include "frictal/study.hpp"
 
-TEST(ArealTilt, GroovesAcrossHoldAtTheirSteepestSegment) {
+namespace {
+
+// Grooves across x (20 x 20 nodes over 1 mm, period m = 8 nodes, amplitude A = 24 um) and, in
+// place above them, a 6 x 6 window of the same grooves at node (7, 7).
+constexpr int kM = 8;
+constexpr double kA = 2.4e-5;
+constexpr double kA_spacing = 1e-3 / 19.0;
+std::pair<frictal::Map, frictal::Map> grooves_across() {
   constexpr double kPi = std::numbers::pi;
   const std::size_t n = 20;
-  const int m = 8;
-  const double a = 1e-3 / double(n - 1), A = 2.4e-5;
   frictal::Map f;
   f.nx = f.ny = n;
-  f.dx = f.dy = a;
+  f.dx = f.dy = kA_spacing;
   for (std::size_t j = 0; j < n; ++j)
-    for (std::size_t i = 0; i < n; ++i) f.heights.push_back(A * std::sin(2 * kPi * double(i) / m));
+    for (std::size_t i = 0; i < n; ++i) f.heights.push_back(kA * std::sin(2 * kPi * double(i) / kM));
   frictal::Map g;
   g.nx = g.ny = 6;
-  g.dx = g.dy = a;
-  g.x0 = g.y0 = 7 * a;
+  g.dx = g.dy = kA_spacing;
+  g.x0 = g.y0 = 7 * kA_spacing;
   for (std::size_t j = 0; j < 6; ++j)
     for (std::size_t i = 0; i < 6; ++i) g.heights.push_back(f.at(i + 7, j + 7));
+  return {f, g};
+}
+
+}  // namespace
+
+TEST(ArealTilt, GroovesAcrossHoldAtTheirSteepestSegment) {
+  constexpr double kPi = std::numbers::pi;
+  const int m = kM;
+  const double a = kA_spacing, A = kA;
+  const auto [f, g] = grooves_across();
   frictal::ArealTiltOptions o;
   o.turn_over_upper = false;
   auto r = frictal::areal_tilt(f, g, o);
@@ -318,20 +334,9 @@ TEST(ArealTiltHold, GroovesAcrossHoldAtTheirSteepestSegment) {
   // The MuJoCo test's grooves (above): the rigid block climbs the steepest face, slope
   // A sin(2 pi / m) / a, whatever the spheres' radius (a sphere on a plane moves parallel to it).
   constexpr double kPi = std::numbers::pi;
-  const std::size_t n = 20;
-  const int m = 8;
-  const double a = 1e-3 / double(n - 1), A = 2.4e-5;
-  frictal::Map f;
-  f.nx = f.ny = n;
-  f.dx = f.dy = a;
-  for (std::size_t j = 0; j < n; ++j)
-    for (std::size_t i = 0; i < n; ++i) f.heights.push_back(A * std::sin(2 * kPi * double(i) / m));
-  frictal::Map g;
-  g.nx = g.ny = 6;
-  g.dx = g.dy = a;
-  g.x0 = g.y0 = 7 * a;
-  for (std::size_t j = 0; j < 6; ++j)
-    for (std::size_t i = 0; i < 6; ++i) g.heights.push_back(f.at(i + 7, j + 7));
+  const int m = kM;
+  const double a = kA_spacing, A = kA;
+  const auto [f, g] = grooves_across();
   frictal::ArealTiltOptions t;
   t.turn_over_upper = false;
   const double expected = std::atan(A * std::sin(2 * kPi / m) / a);
