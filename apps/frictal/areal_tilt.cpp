@@ -121,6 +121,8 @@ std::function<int()> setup(CLI::App& app) {
     co.start_offset = r.rest_offset;  // from the simulated rest: the same basin
     co.runaway_distance = D;
     const ArealTiltHold cont = unwrap(areal_tilt_hold(f, g, co));
+    // Its conditioning: the slips' ends moved by one sphere radius (areal_tilt_hold_spread).
+    const ArealTiltHoldSpread spread = unwrap(areal_tilt_hold_spread(f, g, co, cont));
     const double mlocked = sim_locked ? unwrap(areal_hold_angle(mlift, mrest, hl)).hold_angle
                                       : unwrap(areal_locked_hold_angle(mlift, mfree.rest, ho)).hold_angle;
     if (a->json) {
@@ -141,6 +143,9 @@ std::function<int()> setup(CLI::App& app) {
       j["continuous_steering_deg"] = to_deg(cont.steering);
       j["continuous_rest_offset_m"] = {cont.rest_offset[0], cont.rest_offset[1]};
       j["continuous_evaluations"] = cont.evaluations;
+      j["continuous_hold_angle_range_deg"] = {to_deg(spread.low), to_deg(spread.high)};
+      j["continuous_slips"] = spread.slips;
+      j["continuous_ambiguous_slips"] = spread.ambiguous;
       if (!a->predict_only) {  // the rigid block from the simulated block's last seat, at its tilt
         if (auto seat = areal_tilt_last_seat(r)) {
           ArealTiltOptions so = co;

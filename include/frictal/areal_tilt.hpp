@@ -146,6 +146,29 @@ struct ArealTiltHold {
 Result<ArealTiltHold> areal_tilt_hold(const Map& lower, const Map& upper, const ArealTiltOptions& t,
                                       double resolution = 1e-4, double stationary = 1e-7, double start_tilt = 0);
 
+/// How well conditioned the hold angle of areal_tilt_hold is. Where a slip ends can hinge on a basin
+/// boundary that passes within a sphere radius of the end; then how the block slides (damped
+/// dynamics in MuJoCo, steepest descent here) decides the seat it takes and the hold angle from
+/// there (docs/mujoco.md, "The 0.2° target"). For each slip of `hold`'s chain of stops (an increment
+/// that moved the block more than r/10, not the run-away), the rigid block is put down
+/// `perturbation` (m; 0: the sphere radius r) from the slip's end in 8 directions (2, along +-d,
+/// when t.lock_lateral) at that tilt; where it settles in another seat (more than r/10 from the
+/// end), the protocol goes on from there (areal_tilt_hold with that start tilt and offset); where
+/// it slides D along d instead, that chain runs away at the slip's increment. First order: the
+/// chains from other seats are not perturbed again. `t`, `resolution` and `stationary`
+/// must be those that made `hold`.
+struct ArealTiltHoldSpread {
+  double low = 0;         ///< least hold angle over `hold` and the chains from other seats (unit: rad)
+  double high = 0;        ///< largest (unit: rad)
+  int slips = 0;          ///< slips examined (unitless)
+  int ambiguous = 0;      ///< slips from whose perturbed ends the block settles in another seat (unitless)
+  int continuations = 0;  ///< chains run from other seats (unitless)
+  long evaluations = 0;   ///< lift evaluations of the continuations (unitless)
+};
+Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& lower, const Map& upper, const ArealTiltOptions& t,
+                                                   const ArealTiltHold& hold, double perturbation = 0,
+                                                   double resolution = 1e-4, double stationary = 1e-7);
+
 /// Where a simulated block sat before its run-away: the position of the last increment of
 /// `r.trace` that ended at rest below the run-away's tilt, and the lowest tilt at which the block
 /// already rested there (within r / 100) (tilt in rad, x, y in m); nullopt if it never rested or

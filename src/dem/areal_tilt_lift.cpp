@@ -277,8 +277,7 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   const double r = detail::tilt_sphere_radius(f, t);
   const SphereField field(nodes, hf, r);
   const double dxv = std::cos(t.angle), dyv = std::sin(t.angle);
-  const double D =
-      t.runaway_distance > 0 ? t.runaway_distance : 0.05 * (std::abs(dxv) * f.width() + std::abs(dyv) * f.height());
+  const double D = detail::tilt_runaway_distance(f, t);
   ArealTiltHold out;
   std::size_t work = 0;
   std::vector<SphereField::Piece> pieces;
@@ -410,6 +409,91 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   out.hold_angle = hi;
   out.steering = std::atan2(-(at_hi.x - before.x_stop) * dyv + (at_hi.y - before.y_stop) * dxv,
                             (at_hi.x - before.x_stop) * dxv + (at_hi.y - before.y_stop) * dyv);
+  return out;
+}
+
+Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& f, const Map& g, const ArealTiltOptions& t,
+                                                   const ArealTiltHold& hold, double perturbation, double resolution,
+                                                   double stationary) {
+  if (!std::isfinite(perturbation) || perturbation < 0)
+    return make_error(fmt::format(
+        "areal_tilt_hold_spread: perturbation {}: expected a finite distance >= 0 (m; 0: the sphere radius)",
+        perturbation));
+  const double r = detail::tilt_sphere_radius(f, t);
+  const double delta = perturbation > 0 ? perturbation : r;
+  const double same = 0.1 * r;  // two stops closer than this are one seat
+  const double dxv = std::cos(t.angle), dyv = std::sin(t.angle);
+  const double D = detail::tilt_runaway_distance(f, t);
+  ArealTiltHoldSpread out;
+  out.low = out.high = hold.hold_angle;
+  // The chain of stops that leads to the run-away: the coarse increments up to the one before
+  // the coarse run-away, then the fine ones (the tilt falls where they begin) but their last
+  // (the run-away itself).
+  struct Slip {
+    double tilt, x, y;
+    bool coarse;
+  };
+  std::vector<Slip> slips;
+  const auto& st = hold.stops;
+  std::size_t fine = st.size();
+  for (std::size_t i = 1; i < st.size(); ++i)
+    if (st[i][0] < st[i - 1][0]) {
+      fine = i;
+      break;
+    }
+  const std::size_t last = hold.ran_away ? st.size() - 1 : st.size();  // the run-away increment
+  std::array<double, 2> prev = hold.rest_offset;
+  for (std::size_t i = 0; i < last; ++i) {
+    if (fine < st.size() && i + 1 == fine) continue;  // the coarse run-away: not a seat
+    if (i == fine) {
+      // The fine chain starts from the coarse stop before the coarse run-away.
+      prev = fine >= 2 ? std::array<double, 2>{st[fine - 2][1], st[fine - 2][2]} : hold.rest_offset;
+    }
+    if (std::hypot(st[i][1] - prev[0], st[i][2] - prev[1]) > same)
+      slips.push_back({st[i][0], st[i][1], st[i][2], i < fine});
+    prev = {st[i][1], st[i][2]};
+  }
+  out.slips = int(slips.size());
+  std::vector<std::array<double, 2>> dirs;
+  if (t.lock_lateral) {
+    dirs = {{dxv, dyv}, {-dxv, -dyv}};
+  } else {
+    for (int k = 0; k < 8; ++k)
+      dirs.push_back({std::cos(k * std::numbers::pi / 4), std::sin(k * std::numbers::pi / 4)});
+  }
+  for (const Slip& s : slips) {
+    std::vector<std::array<double, 2>> seats;  // other seats found from this slip's end
+    for (const auto& e : dirs) {
+      ArealTiltOptions c = t;
+      c.start_offset = {s.x + delta * e[0], s.y + delta * e[1]};
+      if (!s.coarse) c.coarse_tilt_step = t.tilt_step;
+      // The seat from the perturbed end: one descent at the slip's tilt (a hold with no increment).
+      ArealTiltOptions probe = c;
+      probe.max_tilt = std::min(s.tilt + 0.5 * t.tilt_step, std::numbers::pi / 2 - 1e-9);
+      auto seat = areal_tilt_hold(f, g, probe, resolution, stationary, s.tilt);
+      if (!seat) continue;  // the perturbed end lies off the lower map
+      out.evaluations += seat->evaluations;
+      const auto& rest = seat->rest_offset;
+      if (std::hypot(rest[0] - s.x, rest[1] - s.y) <= same) continue;
+      bool known = false;
+      for (const auto& k : seats) known = known || std::hypot(rest[0] - k[0], rest[1] - k[1]) <= same;
+      if (known) continue;
+      seats.push_back(rest);
+      if ((rest[0] - s.x) * dxv + (rest[1] - s.y) * dyv >= D) {  // slid D from its stop: a run-away
+        out.low = std::min(out.low, s.tilt);
+        out.high = std::max(out.high, s.tilt);
+        continue;
+      }
+      c.start_offset = rest;
+      auto h = areal_tilt_hold(f, g, c, resolution, stationary, s.tilt);
+      if (!h) return h.error();
+      out.evaluations += h->evaluations;
+      ++out.continuations;
+      out.low = std::min(out.low, h->hold_angle);
+      out.high = std::max(out.high, h->hold_angle);
+    }
+    out.ambiguous += !seats.empty();
+  }
   return out;
 }
 

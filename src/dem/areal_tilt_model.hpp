@@ -46,6 +46,13 @@ inline double tilt_sphere_radius(const Map& f, const ArealTiltOptions& o) {
   return o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(f.dx, f.dy);
 }
 
+/// The run-away distance used: the option, or a twentieth of the lower map's extent along d (unit: m).
+inline double tilt_runaway_distance(const Map& f, const ArealTiltOptions& o) {
+  return o.runaway_distance > 0
+             ? o.runaway_distance
+             : 0.05 * (std::abs(std::cos(o.angle)) * f.width() + std::abs(std::sin(o.angle)) * f.height());
+}
+
 /// The lower face as MuJoCo's height field: (nx - 1) k + 1 by (ny - 1) k + 1 vertices sampling the
 /// map's bilinear surface (k = 1: its nodes), holes at the lowest height; `data` is what MuJoCo
 /// stores (float, (z - zmin) / relief) and `z` the heights it then uses (unit: m). MuJoCo 2.2.2

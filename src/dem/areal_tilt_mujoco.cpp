@@ -213,9 +213,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   const double S = 1.0 / L;
   const double dxv = std::cos(o.angle), dyv = std::sin(o.angle);
   const double r = detail::tilt_sphere_radius(f, o) * S;
-  const double D =
-      (o.runaway_distance > 0 ? o.runaway_distance : 0.05 * (std::abs(dxv) * f.width() + std::abs(dyv) * f.height())) *
-      S;
+  const double D = detail::tilt_runaway_distance(f, o) * S;
   // The upper face's nodes at offset 0, in the lower map's frame (turned over about the axis
   // across d through the centres, as areal_signature), heights of the face.
   const double cfx = f.x0 + 0.5 * f.width(), cfy = f.y0 + 0.5 * f.height();

@@ -460,3 +460,54 @@ TEST(ArealTiltHold, LastSeatIsWhereTheBlockRestedLongestBeforeItsRunAway) {
   r.ran_away = false;
   EXPECT_FALSE(frictal::areal_tilt_last_seat(r).has_value());
 }
+
+TEST(ArealTiltHold, TheSpreadFindsTheSeatBeyondAThinWall) {
+  // A profile across y (the lower map constant along y), one sphere, locked along d = +x. Nodes
+  // a apart; slopes per cell: basin A at node 2 (walls -0.1, +0.05 up to node 4), down (-0.2) to
+  // B at node 6, a one-cell wall (+0.4) to a spike at node 7, down (-0.2) to C at node 8, a wall
+  // (+0.15) to node 10, then down (-0.2) to the end. Dropped in A, the rigid block leaves A at
+  // tan(beta) = 0.05 (the 3 deg increment), slides 4a into B and holds there to atan(0.4) =
+  // 21.801 deg, then runs over the spike and C's wall. Put down 1.2a beyond B's end (past the
+  // spike), at 3 deg it settles in C instead, which holds only to atan(0.15) = 8.531 deg, then
+  // runs D = 6a. 1.2a before B's end it slides back into B. So the spread with a perturbation of
+  // 1.2a is [8.531, 21.801] deg from one ambiguous slip of one; with one sphere radius (0.05a)
+  // every perturbed end settles back in B: no spread.
+  const double a = 1e-5;
+  const std::vector<double> slope = {-0.1, -0.1, 0.05, 0.05, -0.2, -0.2, 0.4, -0.2, 0.15, 0.15};
+  const std::size_t n = 40;
+  std::vector<double> z(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) z[i] = z[i - 1] + a * (i - 1 < slope.size() ? slope[i - 1] : -0.2);
+  frictal::Map f;
+  f.nx = n;
+  f.ny = 3;
+  f.dx = f.dy = a;
+  for (std::size_t j = 0; j < f.ny; ++j) f.heights.insert(f.heights.end(), z.begin(), z.end());
+  const frictal::Map g = one_node(0, a, 0);
+  frictal::ArealTiltOptions t;
+  t.turn_over_upper = false;
+  t.lock_lateral = true;
+  t.sphere_radius = 0.05 * a;
+  t.runaway_distance = 6 * a;
+  t.start_offset = {2 * a, 0};
+  auto h = frictal::areal_tilt_hold(f, g, t);
+  ASSERT_TRUE(h.ok()) << h.error().message;
+  ASSERT_TRUE(h->ran_away);
+  const double hold_b = std::atan(0.4), hold_c = std::atan(0.15);
+  EXPECT_GE(h->hold_angle, hold_b - 1e-9);
+  EXPECT_LE(h->hold_angle, hold_b + 2e-4);  // bisected to 1e-4 rad
+  auto wide = frictal::areal_tilt_hold_spread(f, g, t, *h, 1.2 * a);
+  ASSERT_TRUE(wide.ok()) << wide.error().message;
+  EXPECT_EQ(wide->slips, 1);
+  EXPECT_EQ(wide->ambiguous, 1);
+  EXPECT_EQ(wide->continuations, 1);
+  EXPECT_GE(wide->low, hold_c - 1e-9);
+  EXPECT_LE(wide->low, hold_c + 2e-4);
+  EXPECT_DOUBLE_EQ(wide->high, h->hold_angle);
+  auto tight = frictal::areal_tilt_hold_spread(f, g, t, *h);
+  ASSERT_TRUE(tight.ok()) << tight.error().message;
+  EXPECT_EQ(tight->slips, 1);
+  EXPECT_EQ(tight->ambiguous, 0);
+  EXPECT_DOUBLE_EQ(tight->low, h->hold_angle);
+  EXPECT_DOUBLE_EQ(tight->high, h->hold_angle);
+  EXPECT_FALSE(frictal::areal_tilt_hold_spread(f, g, t, *h, -a).ok());
+}
