@@ -149,6 +149,7 @@ void frictal_bind_dem(py::module_& m) {
         struct Out {
           ArealTiltResult sim;
           ArealTiltHold hold;
+          ArealTiltHoldSpread spread;
         };
         Out r = py_detail::ok(py_detail::nogil([&]() -> Result<Out> {
           Out out;
@@ -160,6 +161,9 @@ void frictal_bind_dem(py::module_& m) {
           auto hold = areal_tilt_hold(f, g, c);
           if (!hold) return hold.error();
           out.hold = *hold;
+          auto spread = areal_tilt_hold_spread(f, g, c, out.hold);
+          if (!spread) return spread.error();
+          out.spread = *spread;
           return out;
         }));
         py::dict d;
@@ -169,6 +173,8 @@ void frictal_bind_dem(py::module_& m) {
         d["steering"] = r.sim.steering;
         d["predicted_hold_angle"] = r.hold.hold_angle;
         d["predicted_steering"] = r.hold.steering;
+        d["predicted_hold_angle_range"] = py::make_tuple(r.spread.low, r.spread.high);
+        d["predicted_ambiguous_slips"] = r.spread.ambiguous;
         d["sphere_radius"] = r.sim.sphere_radius;
         d["spheres"] = r.sim.spheres;
         d["steps"] = r.sim.steps;
@@ -195,6 +201,8 @@ void frictal_bind_dem(py::module_& m) {
        "y), spacings dx, dy (m); upper as measured (turned over) unless turn_over_upper=False; start_offset (x, y) in "
        "m. Returns friction_angle (rad), ran_away, rest_offset (m), steering (rad), predicted_hold_angle and "
        "predicted_steering (rad: the matched rigid quasi-static block from the simulated rest, areal_tilt_hold), "
+       "predicted_hold_angle_range (rad, rad: its least and largest hold angle when one slip's end is moved by a "
+       "sphere radius, areal_tilt_hold_spread) and predicted_ambiguous_slips, "
        "sphere_radius (m), spheres, steps, unsettled_increments and the increments (tilt rad, x, y m, rested). "
        "Settings (SI units; the `frictal areal-tilt` options and the 'areal-tilt' study kind's keys):\n" +
        py_detail::keyword_doc(areal_tilt_settings()))

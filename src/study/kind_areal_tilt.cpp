@@ -171,6 +171,15 @@ Result<TaskOutput> run_areal_tilt_task(const Params& p, std::uint64_t seed) {
     s["matched_" + tag + "_deg"] = pr;
     s["miss_" + tag + "_deg"] = miss;
     s["within_" + tag] = miss <= 0.2 ? 1.0 : 0.0;
+    // The prediction's conditioning: each slip's end moved by one sphere radius.
+    auto spread = areal_tilt_hold_spread(f, g, c, *hold);
+    if (!spread) return spread.error();
+    const double lo = spread->low * 180 / kPi, hi = spread->high * 180 / kPi;
+    const double miss_range = lo > fa ? lo - fa : std::max(0.0, fa - step - hi);
+    s["spread_low_" + tag + "_deg"] = lo;
+    s["spread_high_" + tag + "_deg"] = hi;
+    s["ambiguous_slips_" + tag] = double(spread->ambiguous);
+    s["within_spread_" + tag] = miss_range <= 0.2 ? 1.0 : 0.0;
     s["ran_away_" + tag] = sim->ran_away ? 1.0 : 0.0;
     s["unsettled_" + tag] = double(sim->unsettled);
     s["steps_" + tag] = double(sim->steps);
@@ -199,10 +208,19 @@ Result<TaskOutput> run_areal_tilt_task(const Params& p, std::uint64_t seed) {
 
 void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, Report& rep) {
   std::string t =
-      "\n| task | simulated free | matched free | simulated locked | matched locked | steering (sim / matched) |\n"
-      "|---|---|---|---|---|---|\n";
-  int n = 0, in_free = 0, in_locked = 0;
+      "\n| task | simulated free | matched free | its spread | simulated locked | matched locked | its spread | "
+      "steering (sim / matched) |\n"
+      "|---|---|---|---|---|---|---|---|\n";
+  int n = 0, in_free = 0, in_locked = 0, spread_in = 0, ill = 0;
   double steer = 0, fml = 0;
+  auto get = [](const std::map<std::string, double>& sc, const std::string& k) {
+    const auto it = sc.find(k);
+    return it == sc.end() ? std::nan("") : it->second;
+  };
+  auto range = [&](const std::map<std::string, double>& sc, const std::string& tag) {
+    const double lo = get(sc, "spread_low_" + tag + "_deg"), hi = get(sc, "spread_high_" + tag + "_deg");
+    return std::isfinite(lo) ? fmt::format("{:.2f}–{:.2f}", lo, hi) : std::string("–");
+  };
   for (const auto& r : rows) {
     const auto& s = r.output.scalars;
     if (!s.count("simulated_free_deg")) continue;
@@ -211,18 +229,26 @@ void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, 
     in_locked += s.at("within_locked") > 0.5;
     steer += std::abs(s.at("steering_deg"));
     fml += s.at("free_minus_locked_deg");
-    t += fmt::format("| {} | {:.1f} | {:.3f}{} | {:.1f} | {:.3f}{} | {:.1f} / {:.1f} |\n", r.id,
+    for (const char* tag : {"free", "locked"}) {
+      spread_in += get(s, std::string("within_spread_") + tag) > 0.5;
+      ill +=
+          get(s, std::string("spread_high_") + tag + "_deg") - get(s, std::string("spread_low_") + tag + "_deg") > 0.2;
+    }
+    t += fmt::format("| {} | {:.1f} | {:.3f}{} | {} | {:.1f} | {:.3f}{} | {} | {:.1f} / {:.1f} |\n", r.id,
                      s.at("simulated_free_deg"), s.at("matched_free_deg"), s.at("within_free") > 0.5 ? "" : " ✗",
-                     s.at("simulated_locked_deg"), s.at("matched_locked_deg"), s.at("within_locked") > 0.5 ? "" : " ✗",
-                     s.at("steering_deg"), s.at("matched_steering_deg"));
+                     range(s, "free"), s.at("simulated_locked_deg"), s.at("matched_locked_deg"),
+                     s.at("within_locked") > 0.5 ? "" : " ✗", range(s, "locked"), s.at("steering_deg"),
+                     s.at("matched_steering_deg"));
   }
   if (n == 0) return;
   rep.lines.push_back(fmt::format("\n## Part '{}' (areal-tilt): {} pairs", part, n));
   rep.lines.push_back(t);
   rep.lines.push_back(fmt::format(
       "\nWithin 0.2° of the matched prediction: {} of {} free, {} of {} locked; mean free − locked {:+.2f}°, "
-      "mean |steering| {:.1f}°.",
-      in_free, n, in_locked, n, fml / n, steer / n));
+      "mean |steering| {:.1f}°. The spread is the least and largest hold angle of the rigid block when one slip's "
+      "end is moved by a sphere radius (areal_tilt_hold_spread): wider than 0.2° in {} of {} runs (an "
+      "ill-conditioned drop), and MuJoCo's reading lies within 0.2° of it in {} of {}.",
+      in_free, n, in_locked, n, fml / n, steer / n, ill, 2 * n, spread_in, 2 * n));
   Finding f;
   f.claim = fmt::format(
       "Part '{}': MuJoCo's tilt test agrees within 0.2° with the matched quasi-static prediction "
@@ -235,7 +261,7 @@ void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, 
   // (steering apart by more than 5 deg): that names it. Other misses are unexplained.
   if (!f.supported && in_locked == n) {
     std::string list;
-    int apart = 0, seated_agree = 0;
+    int apart = 0, seated_agree = 0, in_spread = 0;
     for (const auto& r : rows) {
       const auto& sc = r.output.scalars;
       if (!sc.count("within_free") || sc.at("within_free") > 0.5) continue;
@@ -246,19 +272,25 @@ void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, 
       // Within 0.2 deg of the simulated bracket (reading - one increment, reading], as `within`.
       const bool agree = std::isfinite(seated) && seated <= fa + 0.2 && seated >= fa - 0.1 - 0.2;
       seated_agree += agree;
-      list += fmt::format(
-          "{}task {}: {:.2f}° against {:.2f}°, steering {:.1f}° against {:.1f}°{}", list.empty() ? "" : "; ", r.id, fa,
-          sc.at("matched_free_deg"), sc.at("steering_deg"), sc.at("matched_steering_deg"),
-          std::isfinite(seated) ? fmt::format(", from the seat at {:.1f}° the rigid block holds to {:.2f}°",
-                                              sc.at("seat_tilt_free_deg"), seated)
-                                : std::string());
+      in_spread += get(sc, "within_spread_free") > 0.5;
+      list +=
+          fmt::format("{}task {}: {:.2f}° against {:.2f}° (spread {}), steering {:.1f}° against {:.1f}°{}",
+                      list.empty() ? "" : "; ", r.id, fa, sc.at("matched_free_deg"), range(sc, "free"),
+                      sc.at("steering_deg"), sc.at("matched_steering_deg"),
+                      std::isfinite(seated) ? fmt::format(", from the seat at {:.1f}° the rigid block holds to {:.2f}°",
+                                                          sc.at("seat_tilt_free_deg"), seated)
+                                            : std::string());
     }
     if (seated_agree == n - in_free)
       f.cause = fmt::format(
           "each free miss holds as long as the rigid block put down in its last seat (the simulated block's stop "
           "before its run-away): the two agree seat by seat and part where a slip ends, the simulated block "
-          "caught at another stop than the rigid block's gradient-flow slip ({}); locked, the same pairs agree",
-          list);
+          "caught at another stop than the rigid block's gradient-flow slip ({}); locked, the same pairs agree{}",
+          list,
+          in_spread == n - in_free
+              ? "; each lies within 0.2° of the spread that the rigid block reaches when one slip's end moves by a "
+                "sphere radius"
+              : "");
     else if (apart == n - in_free)
       f.cause = fmt::format(
           "each free miss is a block whose simulated path leaves the predicted one, so it is caught at another stop "
@@ -266,6 +298,21 @@ void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, 
           list);
   }
   rep.findings.push_back(f);
+  // Within the prediction's conditioning: the reading against the spread of hold angles that the rigid
+  // block reaches when one slip's end is moved by a sphere radius.
+  {
+    Finding h;
+    h.claim = fmt::format(
+        "Part '{}': MuJoCo's reading lies within 0.2° of the range of hold angles that the rigid quasi-static "
+        "block reaches when one slip's end is moved by a sphere radius (areal_tilt_hold_spread), free and locked.",
+        part);
+    h.supported = spread_in == 2 * n;
+    h.evidence.push_back(
+        fmt::format("{} of {} runs within 0.2° of that range; the range is wider than 0.2° in {} of "
+                    "{} (drops whose hold angle hinges on where a slip ends)",
+                    spread_in, 2 * n, ill, 2 * n));
+    rep.findings.push_back(h);
+  }
   // Seat by seat: the rigid block put down where the simulated one sat before its run-away.
   int seated_n = 0, seated_in = 0;
   double seated_worst = 0;
@@ -304,7 +351,7 @@ TaskKind areal_tilt_kind() {
   k.description =
       "3D tilt test of two maps on MuJoCo (free and locked) against the matched quasi-static prediction "
       "(docs/mujoco.md)";
-  k.version = 2;  // 2: the seated predictions
+  k.version = 3;  // 2: the seated predictions; 3: the spread
   k.run = run_areal_tilt_task;
   k.cost = [](const Params& p) {
     const double w = kind_detail::number(p, "upper_nodes", 12);
@@ -323,6 +370,12 @@ TaskKind areal_tilt_kind() {
        "the rigid block's hold angle from the simulated block's last seat before its run-away (areal_tilt_hold "
        "with start_tilt), free; NaN without one"},
       {"seat_tilt_free_deg", "deg", "the tilt of that seat, free"},
+      {"spread_low_free_deg", "deg",
+       "least hold angle of the rigid block when one slip's end is moved by a sphere radius (areal_tilt_hold_spread), "
+       "free"},
+      {"spread_high_free_deg", "deg", "largest such hold angle, free"},
+      {"ambiguous_slips_free", "1", "slips from whose moved ends the rigid block settles in another seat, free"},
+      {"within_spread_free", "1", "1 when the simulated bracket lies within 0.2 deg of that range, free"},
       {"simulated_locked_deg", "deg", "MuJoCo's run-away increment, block locked to d"},
       {"matched_locked_deg", "deg", "matched prediction from the simulated rest, locked"},
       {"miss_locked_deg", "deg", "distance of the prediction from the simulated bracket, locked"},
@@ -332,6 +385,10 @@ TaskKind areal_tilt_kind() {
       {"steps_locked", "1", "MuJoCo steps, locked"},
       {"seated_locked_deg", "deg", "the same from the locked block's last seat"},
       {"seat_tilt_locked_deg", "deg", "the tilt of that seat, locked"},
+      {"spread_low_locked_deg", "deg", "the same least hold angle, locked"},
+      {"spread_high_locked_deg", "deg", "largest such hold angle, locked"},
+      {"ambiguous_slips_locked", "1", "slips from whose moved ends the rigid block settles in another seat, locked"},
+      {"within_spread_locked", "1", "1 when the simulated bracket lies within 0.2 deg of that range, locked"},
       {"steering_deg", "deg", "angle from d to the simulated free block's run-away"},
       {"matched_steering_deg", "deg", "the same in the matched prediction"},
       {"free_minus_locked_deg", "deg", "simulated free minus locked"},

@@ -228,8 +228,9 @@ def test_tip_cutoff_equals_surfacetopography_definition_on_a_random_profile():
 def test_areal_tilt_grooves_across_on_mujoco():
     """The 3D tilt test (MuJoCo) on sinusoidal grooves across the sliding direction, an 8 x 8
     window of the same grooves in place: free and locked both hold until the steepest chord of the
-    triangulated grooves, atan(A sin(2 pi / m) / dx) (closed form); the simulation reads the first
-    0.1 deg increment at or above it. The keywords are the settings table's."""
+    triangulated grooves, atan(A sin(2 pi / m) / dx) (closed form), from every seat (so the
+    prediction's spread is that angle too); the simulation reads the first 0.1 deg increment at or
+    above it. The keywords are the settings table's."""
     if not frictal.build_info()["mujoco"]:
         pytest.skip("built without MuJoCo")
     a, m, n = 1e-6, 10, 30
@@ -241,6 +242,10 @@ def test_areal_tilt_grooves_across_on_mujoco():
                            start_offset=(11 * a, 11 * a), runaway_distance=1e-6)
     assert r["ran_away"]
     assert math.degrees(r["predicted_hold_angle"]) == pytest.approx(expected, abs=0.01)
+    # Every seat in a groove across d holds to the same face: the spread is that one angle.
+    lo, hi = r["predicted_hold_angle_range"]
+    assert math.degrees(lo) == pytest.approx(expected, abs=0.01)
+    assert math.degrees(hi) == pytest.approx(expected, abs=0.01)
     assert expected - 0.01 <= math.degrees(r["friction_angle"]) <= expected + 0.1 + 0.01
     assert len(r["increment_tilt"]) == len(r["increment_rested"]) > 0
     names = {f["name"] for f in frictal.areal_tilt_settings()}
