@@ -459,7 +459,9 @@ BEYOND = {
                    "to move sideways as real blocks do (or locked to the sliding direction), tilted quasi-statically "
                    "on MuJoCo (a sphere on each node of the upper map over the lower map's height field) against the "
                    "hold angle that the lift over two dimensions of offset predicts for the same spheres and "
-                   "triangles (issue 24; docs/mujoco.md).",
+                   "triangles (issue 24; docs/mujoco.md). The grey bars are the prediction's spread: the hold angles "
+                   "the rigid block reaches when one slip's end is moved by a sphere radius, wide where a drop's "
+                   "hold angle hinges on where a slip ends.",
                    "areal-tilt"),
 }
 
@@ -670,6 +672,12 @@ def areal_tilt_figure(out, findings):
         ax.fill_between([0, top], [-0.2, top - 0.2], [0.2, top + 0.2], color="#9ecae1", alpha=0.5,
                         label="within 0.2° of the prediction")
         ax.plot([0, top], [0, top], color="#3182bd", lw=1)
+        # The prediction's spread (one slip's end moved by a sphere radius): a bar along x.
+        spread = [(s[f"spread_low_{mode}_deg"], s[f"spread_high_{mode}_deg"], s[f"simulated_{mode}_deg"])
+                  for _, s in rows if isinstance(s.get(f"spread_low_{mode}_deg"), (int, float))]
+        if spread:
+            ax.hlines([y for _, _, y in spread], [lo for lo, _, _ in spread], [hi for _, hi, _ in spread],
+                      color="0.45", lw=1.2, label="spread: a slip's end moved by r")
         for part, marker, color in (("grooves", "o", "C1"), ("fourier", "s", "C2")):
             pts = [(s[f"matched_{mode}_deg"], s[f"simulated_{mode}_deg"], s[f"within_{mode}"] > 0.5)
                    for p, s in rows if p == part]
@@ -698,6 +706,13 @@ def areal_tilt_figure(out, findings):
         ok = sum(s[f"within_{mode}"] > 0.5 for _, s in rows)
         worst = max(s[f"miss_{mode}_deg"] for _, s in rows)
         f.numbers.append((f"{mode}: within 0.2° of the matched prediction", f"{ok} of {n} pairs (largest miss {worst:.3f}°)"))
+    spread = [s[f"within_spread_{m}"] > 0.5 for _, s in rows for m in ("free", "locked")
+              if isinstance(s.get(f"within_spread_{m}"), (int, float))]
+    if spread:
+        wide = sum(s[f"spread_high_{m}_deg"] - s[f"spread_low_{m}_deg"] > 0.2 for _, s in rows for m in ("free", "locked")
+                   if isinstance(s.get(f"spread_low_{m}_deg"), (int, float)))
+        f.numbers.append(("within 0.2° of the prediction's spread (one slip's end moved by a sphere radius)",
+                          f"{sum(spread)} of {len(spread)} runs; the spread is wider than 0.2° in {wide}"))
     seated = [(s[f"simulated_{m}_deg"], s[f"seated_{m}_deg"]) for _, s in rows for m in ("free", "locked")
               if isinstance(s.get(f"seated_{m}_deg"), float) and math.isfinite(s[f"seated_{m}_deg"])]
     if seated:
