@@ -121,7 +121,10 @@ Result<FieldValue> check(const Field& f, const FieldValue& v, const std::string&
   auto expected = [&](const std::string& what) {
     return make_error(fmt::format("{}: expected {}, got {}", prefix, what, got));
   };
-  const std::string range = range_in(f, text);
+  std::string range = range_in(f, text);
+  // Unbounded: "a finite number, in deg" rather than "a number any, in deg".
+  const bool unbounded = range.rfind("any", 0) == 0 && f.type == FieldType::Real;
+  if (unbounded) range = range.size() > 3 ? range.substr(3) : std::string();
   // "a number in (0, 60] deg", "a number > 0 s"
   const std::string in =
       (!range.empty() && (range[0] == '(' || range[0] == '[' || std::isdigit(static_cast<unsigned char>(range[0]))))
@@ -159,10 +162,10 @@ Result<FieldValue> check(const Field& f, const FieldValue& v, const std::string&
       else if (const std::int64_t* p = std::get_if<std::int64_t>(&v))
         x = static_cast<double>(*p);
       else
-        return expected("a number " + in + range);
+        return expected((unbounded ? "a finite number" : "a number " + in) + range);
       if (std::isnan(x) && std::isnan(f.default_value)) return FieldValue{x};  // "automatic"
       if (!std::isfinite(x) || x < f.min || x > f.max || (f.min_open && x == f.min) || (f.max_open && x == f.max))
-        return expected("a number " + in + range);
+        return expected((unbounded ? "a finite number" : "a number " + in) + range);
       return FieldValue{x};
     }
   }
