@@ -198,6 +198,11 @@ std::function<int()> setup(CLI::App& app) {
           "  matched (the simulated spheres on the triangulated height field, rigid) {:.3f} deg free, {:.3f} "
           "deg locked\n",
           to_deg(free.hold_angle), to_deg(locked), to_deg(mfree.hold_angle), to_deg(mlocked));
+      fmt::print(
+          "  matched off the grid, {}: {:.3f} deg; {:.3f} to {:.3f} deg when one slip's end moves by a sphere "
+          "radius ({} of {} slips could end in another seat)\n",
+          o.lock_lateral ? "locked" : "free", to_deg(cont.hold_angle), to_deg(spread.low), to_deg(spread.high),
+          spread.ambiguous, spread.slips);
     }
     return 0;
   };
