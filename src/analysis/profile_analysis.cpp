@@ -15,7 +15,6 @@ namespace frictal {
 namespace {
 
 using cd = std::complex<double>;
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Legendre polynomials P_0..P_deg at t.
 void legendre(double t, int deg, double* out) {
