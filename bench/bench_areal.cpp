@@ -4,11 +4,13 @@
 // upper one from the opposite corner, so the two differ), detrended as the CLI does by default.
 #include <benchmark/benchmark.h>
 
+#include <map>
 #include <numbers>
 #include <string>
 
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
+#include "frictal/areal_tilt.hpp"
 #include "frictal/io.hpp"
 
 using namespace frictal;
@@ -108,6 +110,67 @@ void BM_ArealHoldDistribution(benchmark::State& st) {
   st.counters["hold_mean_deg"] = mean * 180 / std::numbers::pi;
 }
 BENCHMARK(BM_ArealHoldDistribution)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+
+// The matched prediction off the grid (areal_tilt_hold) and its spread (areal_tilt_hold_spread) on
+// the pair "X3P windows 1, heights x 2.5" of docs/mujoco.md (lower 48 x 48 at node (20, 20), upper
+// 12 x 12 at (380, 400), turned over, plane removed; sliding along x, free, D a twentieth of the
+// lower map), dropped at offset 0.
+const Map& tilt_face(std::size_t i0, std::size_t j0, std::size_t n) {
+  static std::map<std::size_t, Map> faces;
+  auto it = faces.find(i0);
+  if (it == faces.end()) {
+    Map w = window(*read_map(kX3p), i0, j0, n);
+    for (double& z : w.heights) z *= 2.5;
+    it = faces.emplace(i0, w).first;
+  }
+  return it->second;
+}
+
+void BM_ArealTiltHold(benchmark::State& st) {
+  const Map& f = tilt_face(20, 20, 48);
+  const Map& g = tilt_face(380, 400, 12);
+  ArealTiltOptions t;
+  double hold = 0;
+  long evaluations = 0;
+  for (auto _ : st) {
+    auto r = areal_tilt_hold(f, g, t);
+    if (!r) {
+      st.SkipWithError(r.error().message.c_str());
+      return;
+    }
+    hold = r->hold_angle;
+    evaluations = r->evaluations;
+  }
+  st.counters["hold_deg"] = hold * 180 / std::numbers::pi;
+  st.counters["evaluations"] = double(evaluations);
+}
+BENCHMARK(BM_ArealTiltHold)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_ArealTiltHoldSpread(benchmark::State& st) {
+  const Map& f = tilt_face(20, 20, 48);
+  const Map& g = tilt_face(380, 400, 12);
+  ArealTiltOptions t;
+  const auto hold = areal_tilt_hold(f, g, t);
+  if (!hold) {
+    st.SkipWithError(hold.error().message.c_str());
+    return;
+  }
+  ArealTiltHoldSpread r;
+  for (auto _ : st) {
+    auto s = areal_tilt_hold_spread(f, g, t, *hold);
+    if (!s) {
+      st.SkipWithError(s.error().message.c_str());
+      return;
+    }
+    r = *s;
+  }
+  st.counters["low_deg"] = r.low * 180 / std::numbers::pi;
+  st.counters["high_deg"] = r.high * 180 / std::numbers::pi;
+  st.counters["slips"] = r.slips;
+  st.counters["ambiguous"] = r.ambiguous;
+  st.counters["evaluations"] = double(r.evaluations);
+}
+BENCHMARK(BM_ArealTiltHoldSpread)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
