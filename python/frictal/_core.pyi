@@ -54,6 +54,11 @@ def areal_tilt(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: flo
         speed_tolerance [scaled m/s]: At rest: speed below this (default 1e-05; valid > 0)
         rest_steps: At rest: balanced and still for this many steps in a row (default 10; valid 1..1000000000)"""
 
+def areal_tilt_hold(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, upper: Any = ..., turn_over_upper: bool = ..., start_offset: Any = ..., start_tilt: float = ..., spread: bool = ..., **kwargs: Any) -> dict:
+    """areal_tilt_hold(lower, *, dx, dy, upper=None, turn_over_upper=True, start_offset=None, start_tilt=0, spread=True, **settings) -> dict
+
+    The matched prediction of the 3D tilt test without MuJoCo (as `frictal areal-tilt --predict-only`; docs/mujoco.md): the rigid, frictionless quasi-static block of spheres on the triangulated lower face, offsets anywhere in the plane, dropped at start_offset (x, y in m; default 0, 0) and put down at start_tilt (rad), tilted in the settings' increments. lower, upper: 2-D arrays of heights (m, rows along y), spacings dx, dy (m); upper as measured (turned over) unless turn_over_upper=False. Returns hold_angle (rad, bisected to 1e-4), runaway_increment (rad), ran_away, rest_offset (m), steering (rad), evaluations, the stops after each increment (stop_tilt rad, stop_x, stop_y m) and, with spread=True, hold_angle_range (rad, rad: one slip's end moved by a sphere radius, areal_tilt_hold_spread), slips and ambiguous_slips. atomic_friction must be 0. Settings: the areal_tilt() keywords (areal_tilt_settings())."""
+
 def areal_tilt_settings() -> list:
     """areal_tilt_settings() -> list
 

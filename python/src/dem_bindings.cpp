@@ -208,6 +208,73 @@ void frictal_bind_dem(py::module_& m) {
        py_detail::keyword_doc(areal_tilt_settings()))
           .c_str());
   m.def(
+      "areal_tilt_hold",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy,
+         const py::object& upper, bool turn_over_upper, const py::object& start_offset, double start_tilt, bool spread,
+         const py::kwargs& kw) {
+        const ValueSet given = py_detail::keyword_values(areal_tilt_settings(), kw, "areal_tilt_hold");
+        ArealTiltOptions o = py_detail::ok(make_areal_tilt_options(given));
+        o.turn_over_upper = turn_over_upper;
+        if (!start_offset.is_none()) o.start_offset = start_offset.cast<std::array<double, 2>>();
+        const Map f = py_detail::to_map(lower, dx, dy);
+        const Map g = upper.is_none()
+                          ? f
+                          : py_detail::to_map(
+                                upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), dx, dy);
+        struct Out {
+          ArealTiltHold hold;
+          ArealTiltHoldSpread spread;
+        };
+        Out r = py_detail::ok(py_detail::nogil([&]() -> Result<Out> {
+          Out out;
+          auto hold = areal_tilt_hold(f, g, o, 1e-4, 1e-7, start_tilt);
+          if (!hold) return hold.error();
+          out.hold = *hold;
+          if (spread) {
+            auto sp = areal_tilt_hold_spread(f, g, o, out.hold);
+            if (!sp) return sp.error();
+            out.spread = *sp;
+          }
+          return out;
+        }));
+        py::dict d;
+        d["hold_angle"] = r.hold.hold_angle;
+        d["runaway_increment"] = r.hold.runaway_increment;
+        d["ran_away"] = r.hold.ran_away;
+        d["rest_offset"] = py::make_tuple(r.hold.rest_offset[0], r.hold.rest_offset[1]);
+        d["steering"] = r.hold.steering;
+        d["evaluations"] = r.hold.evaluations;
+        std::vector<double> tilt, x, y;
+        for (const auto& st : r.hold.stops) {
+          tilt.push_back(st[0]);
+          x.push_back(st[1]);
+          y.push_back(st[2]);
+        }
+        d["stop_tilt"] = arr(tilt);
+        d["stop_x"] = arr(x);
+        d["stop_y"] = arr(y);
+        if (spread) {
+          d["hold_angle_range"] = py::make_tuple(r.spread.low, r.spread.high);
+          d["slips"] = r.spread.slips;
+          d["ambiguous_slips"] = r.spread.ambiguous;
+        }
+        return d;
+      },
+      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("upper") = py::none(),
+      py::arg("turn_over_upper") = true, py::arg("start_offset") = py::none(), py::arg("start_tilt") = 0.0,
+      py::arg("spread") = true,
+      "areal_tilt_hold(lower, *, dx, dy, upper=None, turn_over_upper=True, start_offset=None, start_tilt=0, "
+      "spread=True, **settings) -> dict\n\n"
+      "The matched prediction of the 3D tilt test without MuJoCo (as `frictal areal-tilt --predict-only`; "
+      "docs/mujoco.md): the rigid, frictionless quasi-static block of spheres on the triangulated lower face, "
+      "offsets anywhere in the plane, dropped at start_offset (x, y in m; default 0, 0) and put down at start_tilt "
+      "(rad), tilted in the settings' increments. lower, upper: 2-D arrays of heights (m, rows along y), spacings "
+      "dx, dy (m); upper as measured (turned over) unless turn_over_upper=False. Returns hold_angle (rad, bisected "
+      "to 1e-4), runaway_increment (rad), ran_away, rest_offset (m), steering (rad), evaluations, the stops after "
+      "each increment (stop_tilt rad, stop_x, stop_y m) and, with spread=True, hold_angle_range (rad, rad: one "
+      "slip's end moved by a sphere radius, areal_tilt_hold_spread), slips and ambiguous_slips. atomic_friction "
+      "must be 0. Settings: the areal_tilt() keywords (areal_tilt_settings()).");
+  m.def(
       "areal_tilt_settings", [] { return py_detail::field_list(areal_tilt_settings()); },
       "areal_tilt_settings() -> list\n\nThe 3D tilt test's settings table: one dict per keyword of areal_tilt() "
       "(name, type, unit (SI), default, min, max, choices, help).");

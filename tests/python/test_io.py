@@ -254,3 +254,26 @@ def test_areal_tilt_grooves_across_on_mujoco():
         frictal.areal_tilt(h, dx=a, dy=a, local_dampng=0.5)
     with pytest.raises(ValueError, match="local_damping"):
         frictal.areal_tilt(h, dx=a, dy=a, local_damping=1.5)
+
+
+def test_areal_tilt_hold_without_mujoco_on_grooves():
+    """The matched prediction alone (no MuJoCo): sinusoidal grooves across the sliding direction
+    with an 8 x 8 window of them in place hold to the steepest chord of the triangulated grooves,
+    atan(A sin(2 pi / m) / dx) (closed form), from every seat (no spread); put down at 10 deg it
+    holds to the same face; atomic friction is refused, naming it."""
+    a, m, n = 1e-6, 10, 30
+    amp = 0.3642 * a * m / (2 * math.pi)
+    h = np.tile(amp * np.sin(2 * math.pi * np.arange(n) / m), (n, 1))
+    expected = math.degrees(math.atan(amp * math.sin(2 * math.pi / m) / a))
+    for start_tilt in (0.0, math.radians(10)):
+        r = frictal.areal_tilt_hold(h, dx=a, dy=a, upper=h[11:19, 11:19], turn_over_upper=False,
+                                    start_offset=(11 * a, 11 * a), start_tilt=start_tilt, runaway_distance=1e-6)
+        assert r["ran_away"]
+        assert expected - 1e-6 <= math.degrees(r["hold_angle"]) <= expected + math.degrees(2e-4)
+        lo, hi = r["hold_angle_range"]
+        assert math.degrees(lo) == pytest.approx(expected, abs=0.01)
+        assert math.degrees(hi) == pytest.approx(expected, abs=0.01)
+        assert len(r["stop_tilt"]) == len(r["stop_x"]) > 0
+    with pytest.raises(ValueError, match="atomic friction"):
+        frictal.areal_tilt_hold(h, dx=a, dy=a, upper=h[11:19, 11:19], turn_over_upper=False,
+                                start_offset=(11 * a, 11 * a), atomic_friction=0.1)
