@@ -127,7 +127,12 @@ Result<ArealLift> areal_tilt_lift(const Map& lower, const Map& upper, const Area
 /// millionth of r. The protocol is areal_tilt's: rest at zero tilt from t.start_offset, then
 /// t.coarse_tilt_step increments to the first run-away (a displacement along d of D since the
 /// last stop), again from the stop before it in t.tilt_step, and the run-away tilt is then
-/// bisected to `resolution`. t.lock_lateral restricts the moves to +-d. mu_a must be 0.
+/// bisected to `resolution`. t.lock_lateral restricts the moves to +-d. With atomic friction
+/// mu_a = t.atomic_friction the block is held iff the tilted load lies in the sum of the contacts'
+/// Coulomb cones (half-angle atan mu_a about each contact's normal (-g, 1)): in slopes, iff
+/// tan(beta) d lies in the convex hull of the cones' slope sets, each sampled on its rim (128
+/// points); while it is not held it moves along minus the least-norm point of that hull's tilted
+/// image (docs/mujoco.md, "Atomic friction").
 /// `start_tilt` (rad, in [0, t.max_tilt)): the block is put down already tilted (it settles at
 /// that tilt and the increments go on from there), e.g. in the seat where a simulated block
 /// stood before its run-away, to ask whether the rigid block holds as long from the same seat.

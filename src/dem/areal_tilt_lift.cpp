@@ -170,6 +170,71 @@ std::array<double, 2> least_norm(const std::vector<std::array<double, 2>>& q) {
   return best;
 }
 
+/// The least-norm point of the convex hull of many points (the friction cones' samples): the hull
+/// (Andrew's monotone chain), then the origin inside it (0) or the nearest point of its boundary.
+/// Same answer as least_norm, in O(n log n).
+std::array<double, 2> least_norm_hull(std::vector<std::array<double, 2>> q) {
+  std::sort(q.begin(), q.end());
+  q.erase(std::unique(q.begin(), q.end()), q.end());
+  if (q.size() < 3) return least_norm(q);
+  auto cross = [](const std::array<double, 2>& o, const std::array<double, 2>& a, const std::array<double, 2>& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  };
+  std::vector<std::array<double, 2>> h(2 * q.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    while (k >= 2 && cross(h[k - 2], h[k - 1], q[i]) <= 0) --k;
+    h[k++] = q[i];
+  }
+  for (std::size_t i = q.size() - 1, lo = k + 1; i-- > 0;) {
+    while (k >= lo && cross(h[k - 2], h[k - 1], q[i]) <= 0) --k;
+    h[k++] = q[i];
+  }
+  h.resize(k - 1);  // counter-clockwise, the first point not repeated
+  if (h.size() < 3) return least_norm(h);
+  bool inside = true;
+  std::array<double, 2> best = h[0];
+  auto n2 = [](const std::array<double, 2>& a) { return a[0] * a[0] + a[1] * a[1]; };
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const auto& a = h[i];
+    const auto& b = h[(i + 1) % h.size()];
+    if (cross(a, b, {0, 0}) < 0) inside = false;
+    const double ex = b[0] - a[0], ey = b[1] - a[1], L2 = ex * ex + ey * ey;
+    const double t = L2 > 0 ? std::clamp(-(a[0] * ex + a[1] * ey) / L2, 0.0, 1.0) : 0.0;
+    const std::array<double, 2> c{a[0] + t * ex, a[1] + t * ey};
+    if (n2(c) < n2(best)) best = c;
+  }
+  return inside ? std::array<double, 2>{0, 0} : best;
+}
+
+/// The slopes of the forces within the Coulomb cone of a contact whose lift slope is g (normal
+/// (-g, 1)), of half-angle phi = atan(mu_a): a force f (f_z > 0) has the slope -f_xy / f_z, the
+/// normal itself g. `k` samples of the cone's rim (those pointing up), appended to `out`.
+void cone_slopes(double gx, double gy, double phi, int k, std::vector<std::array<double, 2>>& out) {
+  const double nn = std::sqrt(1 + gx * gx + gy * gy);
+  const double nx = -gx / nn, ny = -gy / nn, nz = 1 / nn;
+  // a = horizontal unit vector across the slope (or x), b = n x a.
+  double ax = -ny, ay = nx;
+  const double al = std::hypot(ax, ay);
+  if (al < 1e-12) {
+    ax = 1;
+    ay = 0;
+  } else {
+    ax /= al;
+    ay /= al;
+  }
+  const double bx = -nz * ay, by = nz * ax, bz = nx * ay - ny * ax;
+  const double c = std::cos(phi), sn = std::sin(phi);
+  out.push_back({gx, gy});  // the normal force (the cone's axis)
+  for (int i = 0; i < k; ++i) {
+    const double th = 2 * std::numbers::pi * i / k, ct = std::cos(th), st = std::sin(th);
+    const double ux = c * nx + sn * (ct * ax + st * bx), uy = c * ny + sn * (ct * ay + st * by),
+                 uz = c * nz + sn * st * bz;
+    if (uz < 1e-9) continue;  // a force along or below the horizontal: no slope (the region is truncated)
+    out.push_back({-ux / uz, -uy / uz});
+  }
+}
+
 }  // namespace
 
 Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOptions& t, const ArealLiftOptions& o) {
@@ -252,9 +317,9 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   if (f.nx < 2 || f.ny < 2) return make_error("areal_tilt_hold: the lower map needs 2 x 2 nodes");
   if (!std::isfinite(t.angle))
     return make_error(fmt::format("areal_tilt_hold: angle {}: expected a finite direction (rad)", t.angle));
-  if (t.atomic_friction != 0)
+  if (!std::isfinite(t.atomic_friction) || t.atomic_friction < 0)
     return make_error(
-        fmt::format("areal_tilt_hold: atomic friction {}: only 0 (frictionless) is handled", t.atomic_friction));
+        fmt::format("areal_tilt_hold: atomic friction {}: expected a finite number >= 0", t.atomic_friction));
   if (!std::isfinite(t.sphere_radius) || t.sphere_radius < 0)
     return make_error(
         fmt::format("areal_tilt_hold: sphere radius {}: expected a finite number >= 0 (m)", t.sphere_radius));
@@ -281,7 +346,13 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   ArealTiltHold out;
   std::size_t work = 0;
   std::vector<SphereField::Piece> pieces;
-  std::vector<std::array<double, 2>> q;
+  std::vector<std::array<double, 2>> q, slopes;
+  // With atomic friction the block is held iff the tilted load lies in the sum of the contacts'
+  // Coulomb cones: in slopes, iff tan(beta) d lies in the convex hull of their cones' slope sets
+  // (docs/mujoco.md); each cone sampled on its rim (inscribed: the hold angle errs low by at most
+  // (1 - cos(pi / k)) phi_a, 3e-5 rad at mu_a = 0.1).
+  const double phi_a = std::atan(t.atomic_friction);
+  constexpr int kConeSamples = 128;
   // h where the spheres touch, +inf (a wall) where none is over the field.
   auto height = [&](double x, double y, double eps, std::vector<SphereField::Piece>* p) {
     double bx = 0, by = 0;
@@ -299,7 +370,11 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   auto descend = [&](double beta, State& st, bool check_far) {
     const double cb = std::cos(beta), sb = std::sin(beta);
     double delta = 0.05 * r;
-    const double delta_min = 1e-6 * r;
+    // The smallest step, which also bounds the window of pieces at a rest: a coplanar neighbour's
+    // piece (clamped at a shared edge) enters it where its slope differs by ~sqrt(delta_min / r).
+    // With friction that error holds the block (the cones' hull grows by it), so there 1e-9 r:
+    // slopes within 4e-5 (docs/mujoco.md, "Atomic friction").
+    const double delta_min = (phi_a > 0 ? 1e-9 : 1e-6) * r;
     for (int it = 0; it < 200000; ++it) {
       // Pieces that a step of delta could make the highest: deficit <= delta |g_i - g_best|
       // (collected up to a deficit of 4 delta: slopes above 4 are not expected on a map).
@@ -312,15 +387,24 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
       q.clear();
       for (const SphereField::Piece& p : pieces) {
         if (h - p.value > delta * std::min(std::hypot(p.gx - top->gx, p.gy - top->gy), 2.0) + 1e-12 * r) continue;
-        double gx = cb * p.gx - sb * dxv, gy = cb * p.gy - sb * dyv;
-        if (t.lock_lateral) {
-          const double a = gx * dxv + gy * dyv;
-          gx = a * dxv;
-          gy = a * dyv;
+        // Frictionless: the slope of the contact's normal force. With mu_a: the slopes of every force
+        // in its Coulomb cone (docs/mujoco.md, "Atomic friction").
+        slopes.clear();
+        if (phi_a > 0)
+          cone_slopes(p.gx, p.gy, phi_a, kConeSamples, slopes);
+        else
+          slopes.push_back({p.gx, p.gy});
+        for (const auto& sl : slopes) {
+          double gx = cb * sl[0] - sb * dxv, gy = cb * sl[1] - sb * dyv;
+          if (t.lock_lateral) {
+            const double a = gx * dxv + gy * dyv;
+            gx = a * dxv;
+            gy = a * dyv;
+          }
+          q.push_back({gx, gy});
         }
-        q.push_back({gx, gy});
       }
-      const std::array<double, 2> P = least_norm(q);
+      const std::array<double, 2> P = phi_a > 0 ? least_norm_hull(q) : least_norm(q);
       const double Pn = std::hypot(P[0], P[1]);
       if (Pn < stationary) {
         // Stationary for this step's pieces: at rest only if it stays so for the smallest step.

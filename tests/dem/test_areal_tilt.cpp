@@ -359,10 +359,66 @@ TEST(ArealTiltHold, GroovesAcrossHoldAtTheirSteepestSegment) {
     EXPECT_NEAR(h->stops.front()[0], (start_deg + 0.1) * kPi / 180, 1e-12);  // first increment
   }
   EXPECT_FALSE(frictal::areal_tilt_hold(f, g, t, 1e-4, 1e-7, t.max_tilt).ok());
-  t.atomic_friction = 0.1;
+  t.atomic_friction = -0.1;
   auto bad = frictal::areal_tilt_hold(f, g, t);
   ASSERT_FALSE(bad.ok());
-  EXPECT_NE(bad.error().message.find("atomic friction 0.1"), std::string::npos) << bad.error().message;
+  EXPECT_NE(bad.error().message.find("atomic friction -0.1"), std::string::npos) << bad.error().message;
+}
+
+TEST(ArealTiltHold, AtomicFrictionEntersThroughTheCoulombCones) {
+  // docs/analysis.md, "Break tilts, and how mu_a enters in 3D": held iff the tilted load lies in
+  // the sum of the contacts' Coulomb cones. (1) Grooves across d, free or locked: one face of
+  // slope sigma along d holds to atan(sigma) + atan(mu_a) (Eq. 6). (2) A tip in a straight V
+  // valley at psi = 30 deg to d, flanks of slope sigma across it, free: per unit weight the load
+  // along the valley is sin(beta) cos(psi), and friction must carry it. Each flank gives a normal
+  // force N and a friction force (f_e along the valley, f_d down the flank), f_e^2 + f_d^2 <=
+  // mu^2 N^2; by symmetry the z balance reads 2 (N - sigma f_d) / sqrt(1 + sigma^2) = cos(beta):
+  // friction down both flanks squeezes the wedge (N = c + sigma f_d, c = cos(beta)
+  // sqrt(1 + sigma^2) / 2). Maximising f_e^2 = mu^2 (c + sigma f_d)^2 - f_d^2 over f_d gives
+  // f_e = mu c / sqrt(1 - mu^2 sigma^2), so it holds to tan(beta) = mu sqrt(1 + sigma^2) /
+  // (cos(psi) sqrt(1 - mu^2 sigma^2)) (a wedge holds more than one cone; the grid's chord rule
+  // counts mu cos(beta) only), then slides along the valley. (A linear program over 720-sided
+  // cones in scipy gives the same tilt, 0.1238271 against 0.1238279 rad.)
+  constexpr double kPi = std::numbers::pi;
+  const double mu = 0.1;
+  {
+    const auto [f, g] = grooves_across();
+    frictal::ArealTiltOptions t;
+    t.turn_over_upper = false;
+    t.atomic_friction = mu;
+    const double expected = std::atan(kA * std::sin(2 * kPi / kM) / kA_spacing) + std::atan(mu);
+    for (const bool lock : {false, true}) {
+      t.lock_lateral = lock;
+      auto h = frictal::areal_tilt_hold(f, g, t);
+      ASSERT_TRUE(h.ok()) << h.error().message;
+      EXPECT_GE(h->hold_angle, expected - 1e-6) << lock;
+      EXPECT_LE(h->hold_angle, expected + 2e-4) << lock;
+    }
+  }
+  {
+    const std::size_t n = 41;
+    const double a = 1e-5, sigma = 0.4, psi = 30 * kPi / 180;
+    frictal::Map f;
+    f.nx = f.ny = n;
+    f.dx = a;
+    f.dy = a * std::tan(psi);
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i)
+        f.heights.push_back(sigma * a * std::sin(psi) * std::abs(double(i) - double(j)));
+    frictal::ArealTiltOptions t;
+    t.turn_over_upper = false;
+    t.runaway_distance = 5 * a;
+    t.atomic_friction = mu;
+    auto h = frictal::areal_tilt_hold(f, one_node(20 * f.dx, 20 * f.dy, 0), t);
+    ASSERT_TRUE(h.ok()) << h.error().message;
+    ASSERT_TRUE(h->ran_away);
+    const double expected =
+        std::atan(mu * std::sqrt(1 + sigma * sigma) / (std::cos(psi) * std::sqrt(1 - mu * mu * sigma * sigma)));
+    // Bisected to 1e-4 rad; the cones sampled on 128 rim points hold at most 3e-5 rad less.
+    EXPECT_GE(h->hold_angle, expected - 3e-5);
+    EXPECT_LE(h->hold_angle, expected + 1.1e-4);
+    EXPECT_NEAR(h->steering, psi, 0.01);
+  }
 }
 
 TEST(ArealTiltStudyKind, GroovesAlongTheDiagonal) {
