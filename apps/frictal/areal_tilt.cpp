@@ -125,8 +125,12 @@ std::function<int()> setup(CLI::App& app) {
     const ArealTiltHoldSpread spread = unwrap(areal_tilt_hold_spread(f, g, co, cont));
     const double mlocked = sim_locked ? unwrap(areal_hold_angle(mlift, mrest, hl)).hold_angle
                                       : unwrap(areal_locked_hold_angle(mlift, mfree.rest, ho)).hold_angle;
+    for (const auto& w : r.warnings)
+      if (!a->json) fmt::print(stderr, "frictal: warning [{}]: {}\n", w[0], w[1]);
     if (a->json) {
       nlohmann::json j;
+      j["warnings"] = nlohmann::json::array();
+      for (const auto& w : r.warnings) j["warnings"].push_back({{"code", w[0]}, {"message", w[1]}});
       j["lower"] = a->lower;
       j["upper"] = a->upper.empty() ? a->lower : a->upper;
       j["direction_deg"] = angle_deg;

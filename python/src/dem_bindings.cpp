@@ -179,6 +179,10 @@ void frictal_bind_dem(py::module_& m) {
         d["spheres"] = r.sim.spheres;
         d["steps"] = r.sim.steps;
         d["unsettled_increments"] = r.sim.unsettled;
+        py::list warnings;
+        for (const auto& w : r.sim.warnings)
+          warnings.append(py::dict(py::arg("code") = w[0], py::arg("message") = w[1]));
+        d["warnings"] = warnings;
         std::vector<double> tilt, x, y;
         std::vector<bool> rested;
         for (const ArealTiltIncrement& i : r.sim.trace) {
@@ -203,7 +207,8 @@ void frictal_bind_dem(py::module_& m) {
        "predicted_steering (rad: the matched rigid quasi-static block from the simulated rest, areal_tilt_hold), "
        "predicted_hold_angle_range (rad, rad: its least and largest hold angle when one slip's end is moved by a "
        "sphere radius, areal_tilt_hold_spread) and predicted_ambiguous_slips, "
-       "sphere_radius (m), spheres, steps, unsettled_increments and the increments (tilt rad, x, y m, rested). "
+       "sphere_radius (m), spheres, steps, unsettled_increments, warnings (list of dicts code, message) and the "
+       "increments (tilt rad, x, y m, rested). "
        "Settings (SI units; the `frictal areal-tilt` options and the 'areal-tilt' study kind's keys):\n" +
        py_detail::keyword_doc(areal_tilt_settings()))
           .c_str());
