@@ -260,7 +260,7 @@ def test_areal_tilt_hold_without_mujoco_on_grooves():
     """The matched prediction alone (no MuJoCo): sinusoidal grooves across the sliding direction
     with an 8 x 8 window of them in place hold to the steepest chord of the triangulated grooves,
     atan(A sin(2 pi / m) / dx) (closed form), from every seat (no spread); put down at 10 deg it
-    holds to the same face; atomic friction is refused, naming it."""
+    holds to the same face; with atomic friction to that face's angle plus atan(mu_a) (Eq. 6)."""
     a, m, n = 1e-6, 10, 30
     amp = 0.3642 * a * m / (2 * math.pi)
     h = np.tile(amp * np.sin(2 * math.pi * np.arange(n) / m), (n, 1))
@@ -274,6 +274,12 @@ def test_areal_tilt_hold_without_mujoco_on_grooves():
         assert math.degrees(lo) == pytest.approx(expected, abs=0.01)
         assert math.degrees(hi) == pytest.approx(expected, abs=0.01)
         assert len(r["stop_tilt"]) == len(r["stop_x"]) > 0
-    with pytest.raises(ValueError, match="atomic friction"):
-        frictal.areal_tilt_hold(h, dx=a, dy=a, upper=h[11:19, 11:19], turn_over_upper=False,
-                                start_offset=(11 * a, 11 * a), atomic_friction=0.1)
+    # With atomic friction the face holds to atan(slope) + atan(mu_a) (Eq. 6); a negative one is refused.
+    r = frictal.areal_tilt_hold(h, dx=a, dy=a, upper=h[11:19, 11:19], turn_over_upper=False,
+                                start_offset=(11 * a, 11 * a), runaway_distance=1e-6, atomic_friction=0.1,
+                                spread=False)
+    with_mu = expected + math.degrees(math.atan(0.1))
+    assert with_mu - 1e-4 <= math.degrees(r["hold_angle"]) <= with_mu + math.degrees(2e-4)
+    assert "hold_angle_range" not in r
+    with pytest.raises(ValueError, match="atomic_friction"):
+        frictal.areal_tilt_hold(h, dx=a, dy=a, atomic_friction=-0.1)
