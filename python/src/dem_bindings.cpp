@@ -35,6 +35,26 @@ Curve to_curve(const py::object& o, const char* name) {
   throw py::type_error(std::string(name) + ": expected a frictal.Profile or an (x, z) pair of 1-D arrays");
 }
 
+using MapArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// The 3D tilt test's inputs from Python: its settings (the keywords, checked by the table), the
+/// lower map and the upper one (the lower by default), the turn-over and the start offset.
+struct ArealTiltInputs {
+  ArealTiltOptions o;
+  Map lower, upper;
+};
+ArealTiltInputs areal_tilt_inputs(const MapArray& lower, double dx, double dy, const py::object& upper,
+                                  bool turn_over_upper, const py::object& start_offset, const py::kwargs& kw,
+                                  const char* name) {
+  ArealTiltInputs in;
+  in.o = py_detail::ok(make_areal_tilt_options(py_detail::keyword_values(areal_tilt_settings(), kw, name)));
+  in.o.turn_over_upper = turn_over_upper;
+  if (!start_offset.is_none()) in.o.start_offset = start_offset.cast<std::array<double, 2>>();
+  in.lower = py_detail::to_map(lower, dx, dy);
+  in.upper = upper.is_none() ? in.lower : py_detail::to_map(upper.cast<MapArray>(), dx, dy);
+  return in;
+}
+
 }  // namespace
 
 void frictal_bind_dem(py::module_& m) {
@@ -137,15 +157,7 @@ void frictal_bind_dem(py::module_& m) {
       "areal_tilt",
       [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy,
          const py::object& upper, bool turn_over_upper, const py::object& start_offset, const py::kwargs& kw) {
-        const ValueSet given = py_detail::keyword_values(areal_tilt_settings(), kw, "areal_tilt");
-        ArealTiltOptions o = py_detail::ok(make_areal_tilt_options(given));
-        o.turn_over_upper = turn_over_upper;
-        if (!start_offset.is_none()) o.start_offset = start_offset.cast<std::array<double, 2>>();
-        const Map f = py_detail::to_map(lower, dx, dy);
-        const Map g = upper.is_none()
-                          ? f
-                          : py_detail::to_map(
-                                upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), dx, dy);
+        const auto [o, f, g] = areal_tilt_inputs(lower, dx, dy, upper, turn_over_upper, start_offset, kw, "areal_tilt");
         struct Out {
           ArealTiltResult sim;
           ArealTiltHold hold;
@@ -217,15 +229,8 @@ void frictal_bind_dem(py::module_& m) {
       [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy,
          const py::object& upper, bool turn_over_upper, const py::object& start_offset, double start_tilt, bool spread,
          const py::kwargs& kw) {
-        const ValueSet given = py_detail::keyword_values(areal_tilt_settings(), kw, "areal_tilt_hold");
-        ArealTiltOptions o = py_detail::ok(make_areal_tilt_options(given));
-        o.turn_over_upper = turn_over_upper;
-        if (!start_offset.is_none()) o.start_offset = start_offset.cast<std::array<double, 2>>();
-        const Map f = py_detail::to_map(lower, dx, dy);
-        const Map g = upper.is_none()
-                          ? f
-                          : py_detail::to_map(
-                                upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), dx, dy);
+        const auto [o, f, g] =
+            areal_tilt_inputs(lower, dx, dy, upper, turn_over_upper, start_offset, kw, "areal_tilt_hold");
         struct Out {
           ArealTiltHold hold;
           ArealTiltHoldSpread spread;

@@ -78,6 +78,24 @@ frictal::Map flat_map(std::size_t n, double a) {
   f.heights.assign(n * n, 0.0);
   return f;
 }
+// A straight V valley of flank slope sigma through node (20, 20) of a 41 x 41 map, at psi to x:
+// along the cells' diagonal (dx = a, dy = a tan psi, so the triangles hold the V exactly), or
+// across x (psi = 90 deg: the valley along y, dy = a).
+frictal::Map v_valley(double a, double sigma, double psi) {
+  const std::size_t n = 41;
+  const bool across = std::abs(psi - std::numbers::pi / 2) < 1e-12;
+  frictal::Map f;
+  f.nx = f.ny = n;
+  f.dx = a;
+  f.dy = across ? a : a * std::tan(psi);
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) {
+      const double k = across ? double(i) - 20.0 : double(i) - double(j);
+      f.heights.push_back(sigma * a * std::sin(psi) * std::abs(k));
+    }
+  return f;
+}
+
 frictal::Map one_node(double x, double y, double z) {
   frictal::Map g;
   g.nx = g.ny = 1;
@@ -294,20 +312,11 @@ TEST(ArealTiltHold, ATipInAStraightVValley) {
   // first 0.1 deg increment). Locked along d: it climbs the flank, whose slope along d is
   // sigma sin(psi): hold atan(sigma sin psi). Across d (psi = 90 deg): atan(sigma) both ways.
   constexpr double kPi = std::numbers::pi;
-  const std::size_t n = 41;
   const double a = 1e-5, sigma = 0.4;
   for (const double psi_deg : {30.0, 90.0}) {
     const double psi = psi_deg * kPi / 180;
     const bool across = psi_deg == 90.0;
-    frictal::Map f;
-    f.nx = f.ny = n;
-    f.dx = a;
-    f.dy = across ? a : a * std::tan(psi);
-    for (std::size_t j = 0; j < n; ++j)
-      for (std::size_t i = 0; i < n; ++i) {
-        const double k = across ? double(i) - 20.0 : double(i) - double(j);
-        f.heights.push_back(sigma * a * std::sin(psi) * std::abs(k));
-      }
+    const frictal::Map f = v_valley(a, sigma, psi);
     frictal::ArealTiltOptions t;
     t.turn_over_upper = false;
     t.runaway_distance = 5 * a;
@@ -396,15 +405,8 @@ TEST(ArealTiltHold, AtomicFrictionEntersThroughTheCoulombCones) {
     }
   }
   {
-    const std::size_t n = 41;
     const double a = 1e-5, sigma = 0.4, psi = 30 * kPi / 180;
-    frictal::Map f;
-    f.nx = f.ny = n;
-    f.dx = a;
-    f.dy = a * std::tan(psi);
-    for (std::size_t j = 0; j < n; ++j)
-      for (std::size_t i = 0; i < n; ++i)
-        f.heights.push_back(sigma * a * std::sin(psi) * std::abs(double(i) - double(j)));
+    const frictal::Map f = v_valley(a, sigma, psi);
     frictal::ArealTiltOptions t;
     t.turn_over_upper = false;
     t.runaway_distance = 5 * a;
