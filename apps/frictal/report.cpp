@@ -8,6 +8,7 @@
 
 #include "common.hpp"
 #include "frictal/analysis.hpp"
+#include "frictal/predict.hpp"
 #include "frictal/report.hpp"
 #include "frictal/tilt.hpp"
 #include "frictal/version.hpp"
@@ -102,6 +103,38 @@ std::function<int()> setup(CLI::App& app) {
     if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
       in.runaway_distance = as_real(rv.at("runaway_distance"));
     in.generated_by = version_line();
+    // The headline: the prediction of this pair, as `frictal predict` computes it from the same
+    // files and options (the same conditioning: the page's --detrend).
+    {
+      PredictOptions po;
+      po.atomic_friction = a->mu_a;
+      po.runaway_distance = in.runaway_distance;
+      po.detrend = dt;
+      po.threads = a->threads;
+      PredictSurface pl;
+      pl.name = a->lower;
+      pl.is_map = s.is_map;
+      pl.reader_warnings = s.warnings;
+      if (s.is_map)
+        pl.map = s.map;
+      else
+        pl.profile = surface_profile(s, a->lower);
+      std::optional<PredictSurface> pu;
+      if (!a->upper.empty()) {
+        const SurfaceData u = unwrap(read_surface(input_path(a->upper), read_options(a->input)));
+        pu.emplace();
+        pu->name = a->upper;
+        pu->is_map = u.is_map;
+        pu->reader_warnings = u.warnings;
+        if (u.is_map)
+          pu->map = u.map;
+        else
+          pu->profile = surface_profile(u, a->upper);
+      }
+      in.prediction = unwrap(predict(pl, pu ? &*pu : nullptr, po));
+      for (const Warning& w : in.prediction->warnings)
+        fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
+    }
     const std::string page = unwrap(report::surface_report(in));
     if (a->out == "-") {
       std::cout << page;

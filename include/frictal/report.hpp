@@ -16,6 +16,7 @@
 
 #include "frictal/geometry.hpp"
 #include "frictal/map.hpp"
+#include "frictal/predict.hpp"
 
 namespace frictal::report {
 
@@ -169,6 +170,11 @@ struct ReportInput {
   unsigned threads = 0;            ///< worker threads (0 = hardware); the page does not depend on it
   std::string generated_by;        ///< e.g. the version line; shown in the footer
   std::vector<std::string> notes;  ///< extra lines for "what was assumed" (e.g. reader warnings)
+  /// The prediction of this pair (frictal/predict.hpp), computed by the caller from the same
+  /// files and options as `frictal predict`: the page leads with it, shows its warnings beside it
+  /// and embeds it as JSON (<script type="application/json" id="prediction">, the object of
+  /// `frictal predict --json`). Unset: the page leads with the rigid upper bound only.
+  std::optional<Prediction> prediction;
 };
 
 /// The complete HTML page (UTF-8). Errors: inputs the analysis refuses (named).

@@ -24,10 +24,11 @@ using namespace frictal;
 using frictal::py_detail::arr;
 using frictal::py_detail::nogil;
 
-void frictal_bind_io(py::module_& m);     // python/src/io_bindings.cpp
-void frictal_bind_dem(py::module_& m);    // python/src/dem_bindings.cpp
-void frictal_bind_study(py::module_& m);  // python/src/study_bindings.cpp
-void frictal_bind_hold(py::module_& m);   // python/src/hold_bindings.cpp
+void frictal_bind_io(py::module_& m);       // python/src/io_bindings.cpp
+void frictal_bind_dem(py::module_& m);      // python/src/dem_bindings.cpp
+void frictal_bind_study(py::module_& m);    // python/src/study_bindings.cpp
+void frictal_bind_hold(py::module_& m);     // python/src/hold_bindings.cpp
+void frictal_bind_predict(py::module_& m);  // python/src/predict_bindings.cpp
 
 namespace {
 
@@ -308,4 +309,5 @@ PYBIND11_MODULE(_core, m) {
   frictal_bind_dem(m);
   frictal_bind_study(m);
   frictal_bind_hold(m);
+  frictal_bind_predict(m);
 }

@@ -351,8 +351,8 @@ Result<std::string> surface_report(const ReportInput& in) {
     two("σ (std of the contact slopes)", fmt_deg(r.contact_slope_std), fmt_deg(r.contact_slope_std));
     two("atomic friction μ_a, θ_a = atan μ_a", fmt::format("{:g}, {}", in.atomic_friction, fmt_deg(fwd->atomic_angle)),
         fmt::format("{:g}, {}", in.atomic_friction, fmt_deg(bwd->atomic_angle)));
-    two("friction angle φ = θ_a + θ_max (Eq. 6)", fmt_deg(fwd->friction_angle), fmt_deg(bwd->friction_angle));
-    two("friction coefficient μ = tan φ", fmt_mu(fwd->friction_coefficient), fmt_mu(bwd->friction_coefficient));
+    two("rigid upper bound θ_a + θ_max (Eq. 6)", fmt_deg(fwd->friction_angle), fmt_deg(bwd->friction_angle));
+    two("upper bound of μ, tan(θ_a + θ_max)", fmt_mu(fwd->friction_coefficient), fmt_mu(bwd->friction_coefficient));
     two("Eq. 18 range of φ", fmt::format("{} … {}", fmt_deg(fwd->friction_angle_low), fmt_deg(fwd->friction_angle)),
         fmt::format("{} … {}", fmt_deg(bwd->friction_angle_low), fmt_deg(bwd->friction_angle)));
     two("Eq. 18 range of μ",
@@ -812,6 +812,8 @@ table.resolution td, table.friction td { font-variant-numeric: tabular-nums; }
 tr.below-tip td { color: #999; }
 tr.unfiltered td { font-weight: bold; }
 .verdict { background: #f3f7ee; border-left: 4px solid #5a9a2a; padding: .5em .8em; }
+.warnings { background: #fff4e5; border-left: 4px solid #e08a00; padding: .4em .8em; margin: .6em 0; }
+.bounds { color: #444; font-size: .95em; }
 .assumptions { background: #f7f7f7; padding: .6em 1.4em; border-radius: 4px; }
 nav a { margin-right: 1em; } footer { margin-top: 2em; font-size: .85em; color: #666; }
 </style>
@@ -819,12 +821,48 @@ nav a { margin-right: 1em; } footer { margin-top: 2em; font-size: .85em; color: 
 <body>
 )";
   page += fmt::format("<h1>{}</h1>\n", escape_html(title));
-  page += fmt::format(
-      "<p class=\"verdict\">Predicted static friction μ = <b>{}</b> towards +x (Eq. 18 range {} … {}) "
-      "and <b>{}</b> towards −x; θ_max = {} / {}, μ_a = {:g}.</p>\n",
-      fmt_mu(fwd->friction_coefficient), fmt_mu(fwd->friction_coefficient_low), fmt_mu(fwd->friction_coefficient),
-      fmt_mu(bwd->friction_coefficient), fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward),
-      in.atomic_friction);
+  if (in.prediction) {
+    const Prediction& p = *in.prediction;
+    const std::string drops =
+        p.single_drop ? "one drop" : fmt::format("{} {}", p.drops, p.is_map ? "drops" : "basins of the drops");
+    page += fmt::format(
+        "<p class=\"verdict\" id=\"headline\">A tilt test of {} reads <b>φ = {}</b> (μ = <b>{}</b>){}; rigid "
+        "upper bound θ_max + θ_a = {} (μ ≤ {}); the paper's Eq. 18 range {} … {}.<br><small>Model: {} ({}); "
+        "sliding at {:g}°, μ_a = {:g}; conditioning: {} removed; run-away distance {:.3g} m; over {}.</small></p>\n",
+        pair ? "these surfaces" : "this surface against itself", fmt_deg(p.friction_angle.q50),
+        fmt_mu(p.friction_coefficient),
+        p.single_drop ? " from this drop"
+                      : fmt::format(", the median over drops; 90 % of tests between {} and {}",
+                                    fmt_deg(p.friction_angle.q05), fmt_deg(p.friction_angle.q95)),
+        fmt_deg(p.upper_bound_friction_angle), fmt_mu(std::tan(std::min(p.upper_bound_friction_angle, 1.5707963))),
+        fmt_deg(p.eq18_range[0]), fmt_deg(p.eq18_range[1]), p.model,
+        p.is_map ? "a rigid block free to move sideways, quasi-static"
+                 : "the quasi-static hold angle on the exact lift",
+        p.direction * 180 / std::numbers::pi, p.atomic_friction, escape_html(p.conditioning), p.runaway_distance,
+        drops);
+    if (!p.warnings.empty()) {
+      page += "<div class=\"warnings\" id=\"warnings\"><b>Warnings</b><ul>\n";
+      for (const Warning& w : p.warnings)
+        page += fmt::format("<li><code>{}</code>: {}</li>\n", escape_html(w.code), escape_html(w.message));
+      page += "</ul></div>\n";
+    }
+    // The same object as `frictal predict --json`, for scripts that read the page ("</" escaped).
+    std::string json = prediction_json(p, "", 0);
+    for (std::size_t k = 0; (k = json.find("</", k)) != std::string::npos; k += 3) json.replace(k, 2, "<\\/");
+    page += "<script type=\"application/json\" id=\"prediction\">" + json + "</script>\n";
+    page += fmt::format(
+        "<p class=\"bounds\">{}: rigid upper bound θ_max + θ_a = {} towards +x and {} towards −x (θ_max = {} / "
+        "{}).</p>\n",
+        in.is_map ? "The map's central line against itself" : "Signature function", fmt_deg(fwd->friction_angle),
+        fmt_deg(bwd->friction_angle), fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward));
+  } else {
+    page += fmt::format(
+        "<p class=\"verdict\">Rigid upper bound θ_max + θ_a: μ ≤ <b>{}</b> towards +x (Eq. 18 range {} … {}) "
+        "and μ ≤ <b>{}</b> towards −x; θ_max = {} / {}, μ_a = {:g}.</p>\n",
+        fmt_mu(fwd->friction_coefficient), fmt_mu(fwd->friction_coefficient_low), fmt_mu(fwd->friction_coefficient),
+        fmt_mu(bwd->friction_coefficient), fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward),
+        in.atomic_friction);
+  }
   page += "<nav>";
   for (const auto& s : sections) page += fmt::format("<a href=\"#{}\">{}</a>", s.id, s.title);
   page += "<a href=\"#assumptions\">What was assumed</a></nav>\n";

@@ -12,7 +12,7 @@
 
 #include "frictal/io.hpp"
 #include "frictal/study.hpp"
-#include "study/json_text.hpp"
+#include "util/json_text.hpp"
 
 namespace frictal::study {
 namespace {

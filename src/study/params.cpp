@@ -6,7 +6,7 @@
 #include <fmt/core.h>
 
 #include "frictal/study.hpp"
-#include "study/json_text.hpp"
+#include "util/json_text.hpp"
 
 namespace frictal::study {
 

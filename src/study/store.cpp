@@ -24,9 +24,9 @@
 #include "frictal/io.hpp"
 #include "frictal/study.hpp"
 #include "frictal/version.hpp"
-#include "study/json_text.hpp"
 #include "study/liveness.hpp"
 #include "study/sqlite_stmt.hpp"
+#include "util/json_text.hpp"
 
 namespace frictal::study {
 namespace {

@@ -237,7 +237,7 @@ TEST(CliVocabulary, MistypedWordsAreNamedWithTheNearest) {
   r = run_cli("xyzzy");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("unknown command 'xyzzy'"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("Commands: surface, signature"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("Commands: predict, surface, signature"), std::string::npos) << r.err;
   r = run_cli("surface kohc -o x.csv");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("unknown subcommand 'kohc' for 'frictal surface'; did you mean 'koch'?"), std::string::npos)

@@ -1,0 +1,172 @@
+// frictal predict LOWER [UPPER] — the one answer: what a tilt test of these surfaces reads (the
+// distribution over drops of the quasi-static hold angle, its median the headline), beside the
+// rigid upper bound theta_max + theta_a (Eq. 6) and the paper's Eq. 18 range. The prediction is
+// the library's (frictal/predict.hpp); this file reads the inputs and prints it.
+#include <algorithm>
+#include <cmath>
+#include <unistd.h>
+
+#include "common.hpp"
+#include "frictal/predict.hpp"
+#include "frictal/tilt.hpp"
+#include "options.hpp"
+#include "surface_io.hpp"
+
+namespace frictal::cli {
+namespace {
+
+struct Args {
+  std::string lower, upper, detrend, start;
+  double direction = 0;
+  double mu_a = 0;
+  int drops = 3;
+  unsigned threads = 0;
+  bool json = false;
+  bool locked = false;
+  bool quiet = false;
+  InputOptions input;
+  FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
+};
+
+PredictSurface read_input(const std::string& path, const InputOptions& o) {
+  SurfaceData s = unwrap(read_surface(input_path(path), read_options(o)));
+  PredictSurface p;
+  p.name = path;
+  p.is_map = s.is_map;
+  p.reader_warnings = s.warnings;
+  if (s.is_map)
+    p.map = std::move(s.map);
+  else
+    p.profile = unwrap(as_profile(s.curve, path));
+  return p;
+}
+
+std::string deg_text(double rad) { return fmt::format("{:.4g}", to_deg(rad)); }
+std::string mu_text(double rad) { return rad >= std::numbers::pi / 2 ? "inf" : fmt::format("{:.4g}", std::tan(rad)); }
+
+void print_text(const Prediction& p, const Args& a) {
+  for (const Warning& w : p.warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
+  const std::string pair =
+      a.upper.empty() ? fmt::format("{} against itself turned over", a.lower) : fmt::format("{} on {}", a.upper, a.lower);
+  fmt::print("frictal predict: {}, sliding at {:g} deg, mu_a = {:g}\n", pair, to_deg(p.direction), p.atomic_friction);
+  if (p.single_drop) {
+    fmt::print("  a tilt test from this drop reads phi = {} deg (mu = {}); it rests at {}\n",
+               deg_text(p.friction_angle.q50), mu_text(p.friction_angle.q50),
+               p.is_map ? fmt::format("({:.6g}, {:.6g}) m", p.rest_offset[0], p.rest_offset[1])
+                        : fmt::format("{:.6g} m", p.rest_offset[0]));
+  } else {
+    fmt::print("  a tilt test of these surfaces reads phi = {} deg (mu = {}), the median over drops; 90 % of tests "
+               "between {} and {} deg (mu {} - {})\n",
+               deg_text(p.friction_angle.q50), mu_text(p.friction_angle.q50), deg_text(p.friction_angle.q05),
+               deg_text(p.friction_angle.q95), mu_text(p.friction_angle.q05), mu_text(p.friction_angle.q95));
+    fmt::print("  over drops: mean {} deg, std {} deg, range [{}, {}] deg\n", deg_text(p.friction_angle.mean),
+               deg_text(p.friction_angle.std), deg_text(p.friction_angle.min), deg_text(p.friction_angle.max));
+  }
+  fmt::print("  rigid upper bound theta_max + theta_a = {} deg (mu = {}); the paper's Eq. 18 range [{}, {}] deg\n",
+             deg_text(p.upper_bound_friction_angle), mu_text(p.upper_bound_friction_angle), deg_text(p.eq18_range[0]),
+             deg_text(p.eq18_range[1]));
+  if (p.has_locked && !p.single_drop)
+    fmt::print("  diagnostic: the block locked to the direction reads {} deg (5-95 %: {} - {} deg)\n",
+               deg_text(p.locked_friction_angle.q50), deg_text(p.locked_friction_angle.q05),
+               deg_text(p.locked_friction_angle.q95));
+  else if (p.has_locked)
+    fmt::print("  diagnostic: the block locked to the direction reads {} deg\n", deg_text(p.locked_friction_angle.q50));
+  const std::string range =
+      p.is_map ? fmt::format("u in [{:.4g}, {:.4g}] m along, v in [{:.4g}, {:.4g}] m across", p.drop_range[0],
+                             p.drop_range[1], p.drop_range[2], p.drop_range[3])
+               : fmt::format("[{:.6g}, {:.6g}] m", p.drop_range[0], p.drop_range[1]);
+  fmt::print("  model: {} ({}); conditioning: {} removed; {} {} over {}; run-away d = {:.4g} m\n", p.model,
+             p.is_map ? "rigid block free to move sideways, off the grid, quasi-static"
+                      : "rigid quasi-static hold angle on the exact lift",
+             p.conditioning, p.drops, p.is_map ? "drops" : "basins", range, p.runaway_distance);
+  if (!p.warnings.empty())
+    fmt::print("  {} warning(s) on standard error: {}\n", p.warnings.size(), [&] {
+      std::string s;
+      for (const Warning& w : p.warnings) s += (s.empty() ? "" : ", ") + w.code;
+      return s;
+    }());
+}
+
+std::function<int()> setup(CLI::App& app) {
+  auto a = std::make_shared<Args>();
+  app.add_option("lower", a->lower, "Lower surface: a line profile or an areal map (any readable format); - reads "
+                                    "standard input")
+      ->required();
+  app.add_option("upper", a->upper,
+                 "Upper surface, as measured (material below): it is turned over to face LOWER. Default: LOWER "
+                 "itself. Two profiles or two maps");
+  app.add_option("--direction", a->direction,
+                 "Sliding direction in deg from +x towards +y (profiles: 0 or 180)")
+      ->capture_default_str();
+  add_atomic_friction_option(app, a->mu_a);
+  app.add_option("--detrend", a->detrend,
+                 "Form removed from each surface first: none, mean, line (plane), poly:N (default: line for profiles, "
+                 "plane for maps)");
+  app.add_option("--start-offset", a->start,
+                 "One drop at this offset instead of the distribution: X for profiles, X,Y for maps (m)");
+  app.add_option("--drops", a->drops, "Maps: drops on an N x N grid over the drop range (2..64)")
+      ->capture_default_str();
+  app.add_flag("--locked", a->locked,
+               "Maps: also the block locked to the direction (a diagnostic beside the free one; doubles the cost)");
+  app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error");
+  app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  add_input_options(app, a->input);
+  // --runaway-distance and --period: the tilt table's fields (one description everywhere).
+  std::vector<std::string> skip = all_but(tilt_settings(), "runaway_distance");
+  skip.erase(std::remove(skip.begin(), skip.end(), "period"), skip.end());
+  add_field_options(app, tilt_settings(), a->runaway_words, skip);
+  app.add_flag("--json", a->json, "Print the prediction as one JSON object (the keys of `frictal columns`)");
+  return [a]() {
+    require(std::isfinite(a->direction), fmt::format("--direction {}: expected a finite angle in deg", a->direction));
+    require(std::isfinite(a->mu_a) && a->mu_a >= 0,
+            fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
+    require(a->drops >= 2 && a->drops <= 64, fmt::format("--drops {}: expected 2..64", a->drops));
+    PredictOptions o;
+    o.direction = a->direction * kDeg;
+    o.atomic_friction = a->mu_a;
+    o.map_drops = a->drops;
+    o.map_locked = a->locked;
+    if (!a->quiet && isatty(fileno(stderr)))
+      o.progress = [](std::size_t done, std::size_t total) {
+        fmt::print(stderr, "\rfrictal predict: drop {} of {}{}", done, total, done == total ? "\n" : "");
+        std::fflush(stderr);
+      };
+    o.threads = a->threads;
+    if (!a->detrend.empty()) o.detrend = unwrap(parse_detrend(a->detrend));
+    if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
+      o.runaway_distance = as_real(rv.at("runaway_distance"));
+    if (const ValueSet pv = si_values(tilt_settings(), a->runaway_words); pv.count("period"))
+      o.period = as_real(pv.at("period"));
+    const PredictSurface lower = read_input(a->lower, a->input);
+    std::optional<PredictSurface> upper;
+    if (!a->upper.empty()) upper = read_input(a->upper, a->input);
+    if (!a->start.empty()) {
+      if (lower.is_map) {
+        o.start_offset = parse_offset(a->start, "--start-offset");
+      } else {
+        char* end = nullptr;
+        const double x = std::strtod(a->start.c_str(), &end);
+        require(end && *end == '\0' && std::isfinite(x),
+                fmt::format("--start-offset '{}': expected one offset X in m for profiles", a->start));
+        o.start_offset = {x, 0};
+      }
+    }
+    const Prediction p = unwrap(predict(lower, upper ? &*upper : nullptr, o));
+    if (a->json) {
+      fmt::print("{}\n", prediction_json(p, fmt::format("\"lower\": {}, \"upper\": {}", nlohmann::json(a->lower).dump(),
+                                                      nlohmann::json(a->upper.empty() ? a->lower : a->upper).dump())));
+    } else {
+      print_text(p, *a);
+    }
+    return 0;
+  };
+}
+
+FRICTAL_COMMAND({"predict",
+                 "The prediction: what a tilt test of two surfaces reads (median and spread over drops), with the "
+                 "rigid upper bound",
+                 setup, 5});
+
+}  // namespace
+}  // namespace frictal::cli

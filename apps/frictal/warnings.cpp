@@ -1,0 +1,32 @@
+// frictal warnings [--json|--markdown] — every warning code the library issues and what it means.
+#include "common.hpp"
+#include "frictal/warnings.hpp"
+
+namespace frictal::cli {
+namespace {
+
+std::function<int()> setup(CLI::App& app) {
+  auto json = std::make_shared<bool>(false);
+  auto markdown = std::make_shared<bool>(false);
+  app.add_flag("--json", *json, "Print the codes as JSON: [{code, meaning}]");
+  app.add_flag("--markdown", *markdown, "Print the codes as a Markdown table");
+  return [json, markdown]() {
+    require(!(*json && *markdown), "give one of --json and --markdown");
+    if (*json) {
+      nlohmann::json j = nlohmann::json::array();
+      for (const WarningCode& c : warning_codes()) j.push_back({{"code", c.code}, {"meaning", c.meaning}});
+      print_json(j);
+    } else if (*markdown) {
+      fmt::print("| code | meaning |\n|---|---|\n");
+      for (const WarningCode& c : warning_codes()) fmt::print("| `{}` | {} |\n", c.code, c.meaning);
+    } else {
+      for (const WarningCode& c : warning_codes()) fmt::print("{:24} {}\n", c.code, c.meaning);
+    }
+    return 0;
+  };
+}
+
+FRICTAL_COMMAND({"warnings", "Every warning code (units, spikes, scale, ...) and what it means", setup, 95});
+
+}  // namespace
+}  // namespace frictal::cli

@@ -1,0 +1,146 @@
+// frictal — the prediction: what a tilt test of two surfaces reads. The one answer that every
+// front end shows (`frictal predict`, Python `frictal.predict`, the report's headline); the other
+// analyses keep their own names (docs/theory: "The prediction").
+//
+// A tilt test puts the upper block down at some offset and reads the tilt at which it slides
+// away. Repeated tests drop it at different offsets, so the answer is a distribution over drops
+// of the quasi-static hold angle (hold.hpp for profiles; for maps the block free to move
+// sideways, the off-grid rigid model of areal_tilt.hpp that the 3D engine checked): its median
+// is the headline (friction_angle.q50, atomic friction included), 5-95 % its spread. Beside it
+// the rigid upper bound theta_max + theta_a (Eq. 6 of Alonso-Marroquín et al., Phys. Rev. E
+// 2015), which a test reaches only where the block can get to the steepest contact (the paper's
+// Koch surfaces), and the paper's Eq. 18 range [theta_max - sigma, theta_max] + theta_a.
+//
+// The surfaces are conditioned first (form removal: a line for profiles, a plane for maps by
+// default), and the result lists what was applied. Plausibility warnings (warnings.hpp) of the
+// inputs and of the result travel with it. Lengths in m, angles in rad.
+#pragma once
+
+#include <array>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "frictal/analysis.hpp"
+#include "frictal/geometry.hpp"
+#include "frictal/hold.hpp"
+#include "frictal/map.hpp"
+#include "frictal/result.hpp"
+#include "frictal/warnings.hpp"
+
+namespace frictal {
+
+struct PredictOptions {
+  /// Sliding direction, from +x towards +y (unit: rad). Profiles: 0 (+x) or pi (-x) only.
+  double direction = 0;
+  double atomic_friction = 0;  ///< mu_a >= 0 (unitless)
+  /// Run-away distance d that a test reads (unit: m); 0: the shared default (hold.hpp's
+  /// default_runaway_distance for profiles, a tenth of half the lower map along d for maps).
+  double runaway_distance = 0;
+  /// Form removal before the prediction; nullopt: a line for profiles, a plane for maps (the
+  /// default of every front end). DetrendKind::None opts out.
+  std::optional<Detrend> detrend;
+  /// One drop at this offset instead of the distribution (x for profiles; x, y for maps; in the
+  /// signature's frame of offsets: 0 = left ends aligned for profiles, the blocks' centres
+  /// aligned for maps) (unit: m). NaN: the distribution over drops.
+  std::array<double, 2> start_offset = {std::numeric_limits<double>::quiet_NaN(), 0};
+  /// Profiles: > 0 marks both profiles periodic with this period (files do not store it; the
+  /// generators set it): drops over one period, the run-away one period (unit: m). 0: as given.
+  double period = 0;
+  /// Maps: drops on a drops x drops grid over the drop range (unitless, >= 2). Each drop costs
+  /// about 10 s of one core on a 650 x 650 self-pair (bench/results/predict.md).
+  int map_drops = 3;
+  /// Maps: sphere radius r of the upper face's nodes (0: a fifth of the lower map's smaller spacing) (unit: m).
+  double sphere_radius = 0;
+  /// Maps: also the block with its lateral motion locked (a diagnostic), from the same drops
+  /// (doubles the cost).
+  bool map_locked = false;
+  /// Maps: refuse when the continuous model would evaluate more than this many sphere-cell
+  /// pairs in all (an estimate; unitless). 0: no limit.
+  double map_work_limit = 2e11;
+  unsigned threads = 0;  ///< worker threads (0 = all cores); results do not depend on it
+  /// Maps: called after each finished drop with (done, total), from the worker threads (one
+  /// call at a time); the front ends draw a progress line with it. Empty: none.
+  std::function<void(std::size_t, std::size_t)> progress;
+};
+
+/// The prediction of one pair, one direction.
+struct Prediction {
+  bool is_map = false;
+  /// Which model produced the distribution: "profile-quasi-static-hold" (the 1D hold angle over
+  /// drops, exact on the rigid lift) or "map-continuous-free" (the 3D rigid block free to move
+  /// sideways, off the grid, quasi-static: areal_tilt_hold).
+  std::string model;
+  std::string conditioning;     ///< the form removed: "none", "mean", "line", "plane", "poly:N"
+  double direction = 0;         ///< (unit: rad)
+  double atomic_friction = 0;   ///< mu_a (unitless)
+  double runaway_distance = 0;  ///< d used (unit: m)
+  bool single_drop = false;     ///< start_offset was given: the statistics are that drop's value
+  std::size_t drops = 0;        ///< drops the distribution is over (profiles: basins that drain them)
+  /// Drop range: profiles [min, max, 0, 0]; maps [u_min, u_max, v_min, v_max] along and across d (unit: m).
+  std::array<double, 4> drop_range = {0, 0, 0, 0};
+  HoldStatistics friction_angle;           ///< the hold angle over drops, atan(mu_a) included (unit: rad)
+  double friction_coefficient = 0;         ///< tan(friction_angle.q50) (unitless)
+  double upper_bound_friction_angle = 0;   ///< theta_max + theta_a, capped at pi/2 (Eq. 6) (unit: rad)
+  double theta_max = 0;                    ///< steepest contact slope along the direction (unit: rad)
+  double contact_slope_std = 0;            ///< sigma of Eq. 18 (unit: rad)
+  std::array<double, 2> eq18_range = {0, 0};  ///< [max(0, theta_max - sigma), theta_max] + theta_a (unit: rad)
+  std::array<double, 2> start_offset = {0, 0};  ///< single_drop: the drop (unit: m)
+  std::array<double, 2> rest_offset = {0, 0};   ///< single_drop: where it rested at zero tilt (unit: m)
+  /// Maps: the same drops with the block locked to d (a diagnostic; the test's block is free).
+  bool has_locked = false;
+  HoldStatistics locked_friction_angle;  ///< (unit: rad)
+  /// Maps: each drop's hold angle, free (and locked), in drop order (unit: rad).
+  std::vector<double> drop_angles, drop_angles_locked;
+  std::vector<std::array<double, 2>> drop_offsets;  ///< maps: the drops (x, y) (unit: m)
+  std::vector<Warning> warnings;
+};
+
+/// A surface as the front ends hand it over: a profile or a map, with the name that messages use
+/// and the warnings its reader issued (code "reader").
+struct PredictSurface {
+  bool is_map = false;
+  Profile profile;
+  Map map;
+  std::string name;
+  std::vector<std::string> reader_warnings;
+};
+
+/// The prediction for `lower` against `upper` turned over (nullptr: `lower` against itself).
+/// Errors (InvalidInput, naming the value and the valid range): a profile and a map in one pair,
+/// a profile direction other than 0 or pi, mu_a < 0, d < 0, a start offset outside the drop
+/// range, maps that do not overlap along the direction, a map job above map_work_limit.
+Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& options = {});
+
+/// An output value: a number (SI inside, converted to the column's interface unit by the writers),
+/// a text, a flag or a list of numbers.
+using OutputValue = std::variant<double, std::string, bool, std::vector<double>>;
+
+/// One output quantity of the prediction, declared once: the JSON key of `frictal predict --json`,
+/// the key of Python's Prediction.to_dict() and of the report's embedded JSON, its interface unit,
+/// what it means, and its value in SI.
+struct OutputColumn {
+  std::string key;   ///< e.g. "friction_angle_deg" (the unit suffix is part of the name)
+  std::string unit;  ///< interface unit: "deg" (SI value in rad), "m", "1" (unitless), "text", "flag", "count"
+  std::string help;
+  std::function<OutputValue(const Prediction&)> si;  ///< the value in SI (rad for "deg")
+};
+
+/// The prediction's output table (every key but "warnings", which is a list of {code, message}).
+const std::vector<OutputColumn>& prediction_columns();
+
+/// The value of a column in its interface unit (degrees for "deg"; NaN/inf stay as they are).
+OutputValue interface_value(const OutputColumn& c, const Prediction& p);
+
+/// The prediction as one JSON object: every column in its interface unit (NaN and inf as null),
+/// then "warnings": [{"code", "message"}], then `extra` (already JSON text: `"key": value` pairs
+/// joined by commas, or empty). `indent` > 0: pretty, that many spaces.
+std::string prediction_json(const Prediction& p, const std::string& extra = "", int indent = 2);
+
+/// Canonical text of a Detrend ("none", "mean", "line", "plane" for maps, "poly:N").
+std::string detrend_name(const Detrend& d, bool is_map);
+
+}  // namespace frictal

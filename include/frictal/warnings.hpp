@@ -1,0 +1,59 @@
+// frictal — warnings as results: a number that was computed without an error but that a reader
+// should not trust as it stands (units, spikes, scale, a clamped range) carries a code. Every
+// front end shows them: the CLI's JSON as `warnings: [{code, message}]` and its text output on
+// standard error, Python on the result and through `warnings.warn`, the report beside its
+// headline. Decisions are taken on codes, never on message text; warning_codes() is the one
+// table of codes (docs/warnings.md is generated from it by `frictal warnings --markdown`).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "frictal/geometry.hpp"
+#include "frictal/map.hpp"
+
+namespace frictal {
+
+/// One warning: a code from warning_codes() and a message that names the file or quantity and
+/// the number that triggered it.
+struct Warning {
+  std::string code;
+  std::string message;
+};
+
+/// A code and what it means (its cause and what to do), for the documentation and `frictal warnings`.
+struct WarningCode {
+  std::string code;
+  std::string meaning;
+};
+
+/// Every warning code the library issues, in one table.
+const std::vector<WarningCode>& warning_codes();
+
+/// Appends `w` unless a warning with the same code and message is already there.
+void add_warning(std::vector<Warning>& list, Warning w);
+
+/// Thresholds of the plausibility checks (documented in docs/warnings.md, why each value).
+struct PlausibilityLimits {
+  /// rms slope above which the lateral and height units are taken to differ (unitless): 10 is a
+  /// slope of 84 deg on average, steeper than any profilometer, AFM or interferometer measures.
+  double max_rms_slope = 10;
+  double min_rms_height = 1e-12;  ///< below 1 pm: a scale factor missing or applied twice (unit: m)
+  double spike_sq = 10;           ///< a point this many rms heights from its neighbours' median is a spike (unitless)
+  double max_kurtosis = 30;       ///< height kurtosis above this: a few outliers dominate (unitless)
+  double max_repeated_fraction = 0.05;  ///< one height value repeated over this fraction: a fill value (unitless)
+  double max_scale_ratio = 10;          ///< two scans whose lengths or spacings differ by more (unitless)
+};
+
+/// Plausibility of one measured profile; `name` names it in the messages. Codes: units-suspect,
+/// heights-tiny, heights-exceed-length, spikes, kurtosis, fill-value.
+std::vector<Warning> check_profile(const Profile& p, const std::string& name, const PlausibilityLimits& limits = {});
+/// The same for an areal map (NaN points are not measured and are skipped).
+std::vector<Warning> check_map(const Map& m, const std::string& name, const PlausibilityLimits& limits = {});
+/// Two scans of one pair: scale-mismatch when their lengths or point spacings differ by more than
+/// limits.max_scale_ratio. Lengths and spacings in m.
+std::vector<Warning> check_pair_scales(double lower_length, double lower_spacing, double upper_length,
+                                       double upper_spacing, const std::string& lower_name,
+                                       const std::string& upper_name, const PlausibilityLimits& limits = {});
+
+}  // namespace frictal

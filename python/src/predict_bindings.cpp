@@ -1,0 +1,202 @@
+// frictal._core — the prediction (frictal/predict.hpp): what a tilt test of two surfaces reads,
+// the same object as `frictal predict --json`. SI attributes; to_dict() has the CLI's JSON keys
+// (interface units), generated from the library's output table (prediction_columns()).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <optional>
+#include <string>
+
+#include "bindings.hpp"
+#include "frictal/io.hpp"
+#include "frictal/predict.hpp"
+
+namespace py = pybind11;
+using namespace frictal;
+using frictal::py_detail::arr;
+using frictal::py_detail::nogil;
+using frictal::py_detail::ok;
+
+namespace {
+
+// A surface from a path, a Profile, a dict of read_surface/read_map, or a numpy array of
+// heights (1-D: a profile, 2-D: a map, rows along y) with `spacing` (m).
+PredictSurface to_surface(const py::handle& obj, double spacing, const std::string& format, const std::string& unit,
+                          const std::string& what) {
+  PredictSurface s;
+  s.name = what;
+  if (py::isinstance<py::str>(obj) || py::hasattr(obj, "__fspath__")) {
+    const std::string path = py::str(py::module_::import("os").attr("fspath")(obj));
+    ReadOptions o;
+    o.format = ok(parse_format(format));
+    o.default_unit = unit;
+    o.spacing = spacing;
+    SurfaceData d = ok(nogil([&] { return read_surface(path, o); }));
+    s.name = path;
+    s.is_map = d.is_map;
+    s.reader_warnings = d.warnings;
+    if (d.is_map)
+      s.map = std::move(d.map);
+    else
+      s.profile = ok(as_profile(d.curve, path));
+    return s;
+  }
+  if (py::isinstance<Profile>(obj)) {
+    s.profile = obj.cast<Profile>();
+    return s;
+  }
+  if (py::isinstance<py::dict>(obj)) {
+    py::dict d = obj.cast<py::dict>();
+    if (d.contains("heights")) {
+      s.is_map = true;
+      s.map = py_detail::to_map(d["heights"].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(),
+                                d["dx"].cast<double>(), d["dy"].cast<double>(),
+                                d.contains("x0") ? d["x0"].cast<double>() : 0.0,
+                                d.contains("y0") ? d["y0"].cast<double>() : 0.0);
+      if (d.contains("warnings"))
+        for (auto w : d["warnings"]) s.reader_warnings.push_back(py::str(w));
+      return s;
+    }
+    if (d.contains("x") && d.contains("z")) {
+      auto x = d["x"].cast<std::vector<double>>(), z = d["z"].cast<std::vector<double>>();
+      s.profile = ok(as_profile(Curve{x, z}, what));
+      if (d.contains("warnings"))
+        for (auto w : d["warnings"]) s.reader_warnings.push_back(py::str(w));
+      return s;
+    }
+    throw py::value_error(what + ": a dict needs 'heights', 'dx', 'dy' (a map) or 'x', 'z' (a profile)");
+  }
+  auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(obj);
+  if (!a) throw py::type_error(what + ": expected a file path, a Profile, a dict or a numpy array of heights");
+  if (!(spacing > 0) || !std::isfinite(spacing))
+    throw py::value_error(what + ": a numpy array of heights needs spacing= (the point spacing in m, > 0)");
+  if (a.ndim() == 1) {
+    std::vector<double> x(std::size_t(a.shape(0))), z(a.data(), a.data() + a.shape(0));
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = double(i) * spacing;
+    s.profile = ok(as_profile(Curve{x, z}, what));
+    return s;
+  }
+  if (a.ndim() == 2) {
+    s.is_map = true;
+    s.map = py_detail::to_map(a, spacing, spacing);
+    return s;
+  }
+  throw py::value_error(what + ": expected a 1-D (profile) or 2-D (map) array of heights");
+}
+
+py::object to_py(const OutputValue& v) {
+  if (auto* d = std::get_if<double>(&v)) return py::float_(*d);
+  if (auto* t = std::get_if<std::string>(&v)) return py::str(*t);
+  if (auto* b = std::get_if<bool>(&v)) return py::bool_(*b);
+  return py::cast(std::get<std::vector<double>>(v));
+}
+
+}  // namespace
+
+void frictal_bind_predict(py::module_& m) {
+  py::class_<Warning>(m, "Warning", "A warning code and its message (frictal.warning_codes() lists the codes)")
+      .def_readonly("code", &Warning::code)
+      .def_readonly("message", &Warning::message)
+      .def("__repr__", [](const Warning& w) { return "<Warning " + w.code + ": " + w.message + ">"; });
+  m.def(
+      "warning_codes",
+      [] {
+        py::dict d;
+        for (const WarningCode& c : warning_codes()) d[py::str(c.code)] = c.meaning;
+        return d;
+      },
+      "Every warning code the library issues and what it means (dict code -> meaning)");
+  m.def(
+      "prediction_columns",
+      [] {
+        py::list l;
+        for (const OutputColumn& c : prediction_columns()) l.append(py::make_tuple(c.key, c.unit, c.help));
+        return l;
+      },
+      "The prediction's output table: (key, interface unit, help) per quantity, as `frictal columns` prints it");
+  py::class_<Prediction>(m, "Prediction",
+                         "What a tilt test of two surfaces reads (frictal.predict). Attributes in SI (radians, "
+                         "metres); to_dict() has the keys and units of `frictal predict --json`")
+      .def_readonly("is_map", &Prediction::is_map)
+      .def_readonly("model", &Prediction::model)
+      .def_readonly("conditioning", &Prediction::conditioning)
+      .def_readonly("direction", &Prediction::direction, "sliding direction (rad)")
+      .def_readonly("atomic_friction", &Prediction::atomic_friction)
+      .def_readonly("runaway_distance", &Prediction::runaway_distance, "(m)")
+      .def_readonly("single_drop", &Prediction::single_drop)
+      .def_readonly("drops", &Prediction::drops)
+      .def_property_readonly("friction_angle", [](const Prediction& p) { return p.friction_angle.q50; },
+                             "median over drops of the hold angle, atan(mu_a) included (rad)")
+      .def_property_readonly("friction_angle_q05", [](const Prediction& p) { return p.friction_angle.q05; })
+      .def_property_readonly("friction_angle_q95", [](const Prediction& p) { return p.friction_angle.q95; })
+      .def_property_readonly("friction_angle_mean", [](const Prediction& p) { return p.friction_angle.mean; })
+      .def_property_readonly("friction_angle_std", [](const Prediction& p) { return p.friction_angle.std; })
+      .def_property_readonly("friction_angle_min", [](const Prediction& p) { return p.friction_angle.min; })
+      .def_property_readonly("friction_angle_max", [](const Prediction& p) { return p.friction_angle.max; })
+      .def_readonly("friction_coefficient", &Prediction::friction_coefficient, "tan of the median")
+      .def_readonly("upper_bound_friction_angle", &Prediction::upper_bound_friction_angle,
+                    "theta_max + theta_a (Eq. 6) (rad)")
+      .def_readonly("theta_max", &Prediction::theta_max, "(rad)")
+      .def_readonly("contact_slope_std", &Prediction::contact_slope_std, "(rad)")
+      .def_readonly("eq18_friction_angle_range", &Prediction::eq18_range, "(rad)")
+      .def_readonly("start_offset", &Prediction::start_offset, "(m)")
+      .def_readonly("rest_offset", &Prediction::rest_offset, "(m)")
+      .def_property_readonly("drop_friction_angles", [](const Prediction& p) { return arr(p.drop_angles); })
+      .def_property_readonly("drop_offsets", [](const Prediction& p) { return p.drop_offsets; })
+      .def_readonly("warnings", &Prediction::warnings)
+      .def(
+          "to_dict",
+          [](const Prediction& p) {
+            py::dict d;
+            for (const OutputColumn& c : prediction_columns()) d[py::str(c.key)] = to_py(interface_value(c, p));
+            py::list w;
+            for (const Warning& x : p.warnings) {
+              py::dict e;
+              e["code"] = x.code;
+              e["message"] = x.message;
+              w.append(e);
+            }
+            d["warnings"] = w;
+            return d;
+          },
+          "The keys and interface units of `frictal predict --json`")
+      .def("to_json", [](const Prediction& p) { return prediction_json(p); })
+      .def("__repr__", [](const Prediction& p) {
+        return "<Prediction " + p.model + ": friction angle " + py_detail::num(p.friction_angle.q50 * 180 / M_PI) +
+               " deg (5-95 %: " + py_detail::num(p.friction_angle.q05 * 180 / M_PI) + " - " +
+               py_detail::num(p.friction_angle.q95 * 180 / M_PI) + "), upper bound " +
+               py_detail::num(p.upper_bound_friction_angle * 180 / M_PI) + " deg, " +
+               std::to_string(p.warnings.size()) + " warning(s)>";
+      });
+  m.def(
+      "predict",
+      [](const py::object& lower, const py::object& upper, double direction, double atomic_friction,
+         double runaway_distance, std::optional<std::string> detrend_text, std::optional<std::vector<double>> start,
+         int drops, bool locked, double spacing, const std::string& format, const std::string& unit,
+         unsigned threads) {
+        PredictOptions o;
+        o.direction = direction;
+        o.atomic_friction = atomic_friction;
+        o.runaway_distance = runaway_distance;
+        if (detrend_text) o.detrend = ok(parse_detrend(*detrend_text));
+        if (start) {
+          if (start->empty() || start->size() > 2)
+            throw py::value_error("start_offset: expected x (profiles) or (x, y) (maps) in m");
+          o.start_offset = {(*start)[0], start->size() > 1 ? (*start)[1] : 0.0};
+        }
+        o.map_drops = drops;
+        o.map_locked = locked;
+        o.threads = threads;
+        const PredictSurface lo = to_surface(lower, spacing, format, unit, "lower");
+        std::optional<PredictSurface> up;
+        if (!upper.is_none()) up = to_surface(upper, spacing, format, unit, "upper");
+        return ok(nogil([&] { return predict(lo, up ? &*up : nullptr, o); }));
+      },
+      py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("direction") = 0.0,
+      py::arg("atomic_friction") = 0.0, py::arg("runaway_distance") = 0.0, py::arg("detrend") = py::none(),
+      py::arg("start_offset") = py::none(), py::arg("drops") = 5, py::arg("locked") = true, py::arg("spacing") = 0.0,
+      py::arg("format") = "auto", py::arg("unit") = "", py::arg("threads") = 0u,
+      "The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)");
+}

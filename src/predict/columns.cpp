@@ -1,0 +1,149 @@
+// The prediction's output table (frictal/predict.hpp): every quantity declared once, with its
+// interface unit; the JSON writer below and the Python binding read it.
+#include <cmath>
+#include <numbers>
+
+#include <fmt/core.h>
+
+#include "frictal/predict.hpp"
+#include "util/json_text.hpp"
+
+namespace frictal {
+
+namespace {
+
+using P = Prediction;
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+
+OutputColumn deg(std::string key, std::string help, std::function<double(const P&)> f) {
+  return {std::move(key), "deg", std::move(help), [f](const P& p) { return OutputValue(f(p)); }};
+}
+OutputColumn num(std::string key, std::string unit, std::string help, std::function<double(const P&)> f) {
+  return {std::move(key), std::move(unit), std::move(help), [f](const P& p) { return OutputValue(f(p)); }};
+}
+OutputColumn list(std::string key, std::string unit, std::string help, std::function<std::vector<double>(const P&)> f) {
+  return {std::move(key), std::move(unit), std::move(help), [f](const P& p) { return OutputValue(f(p)); }};
+}
+double tan_or_inf(double a) { return a >= std::numbers::pi / 2 ? INFINITY : std::tan(a); }
+
+}  // namespace
+
+const std::vector<OutputColumn>& prediction_columns() {
+  static const std::vector<OutputColumn> cols = {
+      {"model", "text", "the model of the hold angle: profile-quasi-static-hold or map-continuous-free",
+       [](const P& p) { return OutputValue(p.model); }},
+      {"conditioning", "text", "the form removed from each surface first: none, mean, line, plane, poly:N",
+       [](const P& p) { return OutputValue(p.conditioning); }},
+      {"is_map", "flag", "the pair is two areal maps", [](const P& p) { return OutputValue(p.is_map); }},
+      deg("direction_deg", "sliding direction, from +x towards +y", [](const P& p) { return p.direction; }),
+      num("atomic_friction", "1", "mu_a at every contact", [](const P& p) { return p.atomic_friction; }),
+      num("runaway_distance_m", "m", "run-away distance d that a test reads",
+          [](const P& p) { return p.runaway_distance; }),
+      {"single_drop", "flag", "one drop (--start-offset): the statistics are that drop's hold angle",
+       [](const P& p) { return OutputValue(p.single_drop); }},
+      num("drops", "count", "drops the distribution is over (profiles: the basins that drain them)",
+          [](const P& p) { return double(p.drops); }),
+      list("drop_range_m", "m", "drop range: profiles [min, max]; maps [u_min, u_max, v_min, v_max] along/across d",
+           [](const P& p) {
+             return p.is_map ? std::vector<double>(p.drop_range.begin(), p.drop_range.end())
+                             : std::vector<double>{p.drop_range[0], p.drop_range[1]};
+           }),
+      deg("friction_angle_deg", "THE PREDICTION: median over drops of the hold angle a tilt test reads, atan(mu_a) "
+                                "included",
+          [](const P& p) { return p.friction_angle.q50; }),
+      deg("friction_angle_q05_deg", "5 % quantile of the hold angle over drops",
+          [](const P& p) { return p.friction_angle.q05; }),
+      deg("friction_angle_q95_deg", "95 % quantile of the hold angle over drops",
+          [](const P& p) { return p.friction_angle.q95; }),
+      deg("friction_angle_mean_deg", "mean of the hold angle over drops", [](const P& p) { return p.friction_angle.mean; }),
+      deg("friction_angle_std_deg", "standard deviation of the hold angle over drops",
+          [](const P& p) { return p.friction_angle.std; }),
+      deg("friction_angle_min_deg", "least hold angle over drops", [](const P& p) { return p.friction_angle.min; }),
+      deg("friction_angle_max_deg", "largest hold angle over drops", [](const P& p) { return p.friction_angle.max; }),
+      num("friction_coefficient", "1", "tan of friction_angle_deg (the median)",
+          [](const P& p) { return p.friction_coefficient; }),
+      num("friction_coefficient_q05", "1", "tan of the 5 % quantile",
+          [](const P& p) { return tan_or_inf(p.friction_angle.q05); }),
+      num("friction_coefficient_q95", "1", "tan of the 95 % quantile",
+          [](const P& p) { return tan_or_inf(p.friction_angle.q95); }),
+      deg("upper_bound_friction_angle_deg", "rigid upper bound theta_max + theta_a (Eq. 6), reached only where the "
+                                            "block can get to the steepest contact",
+          [](const P& p) { return p.upper_bound_friction_angle; }),
+      num("upper_bound_friction_coefficient", "1", "tan of the upper bound",
+          [](const P& p) { return tan_or_inf(p.upper_bound_friction_angle); }),
+      deg("theta_max_deg", "steepest contact slope along the direction (the signature's maximum)",
+          [](const P& p) { return p.theta_max; }),
+      deg("contact_slope_std_deg", "sigma of Eq. 18: standard deviation of the contact slopes",
+          [](const P& p) { return p.contact_slope_std; }),
+      list("eq18_friction_angle_range_deg", "deg", "the paper's Eq. 18 range [max(0, theta_max - sigma), theta_max] "
+                                                   "+ theta_a",
+           [](const P& p) { return std::vector<double>{p.eq18_range[0], p.eq18_range[1]}; }),
+      list("start_offset_m", "m", "single drop: where it was put down (x, y)",
+           [](const P& p) {
+             return p.single_drop ? std::vector<double>{p.start_offset[0], p.start_offset[1]} : std::vector<double>{};
+           }),
+      list("rest_offset_m", "m", "single drop: where it rested at zero tilt (x, y)",
+           [](const P& p) {
+             return p.single_drop ? std::vector<double>{p.rest_offset[0], p.rest_offset[1]} : std::vector<double>{};
+           }),
+      deg("locked_friction_angle_deg", "maps, a diagnostic: the median hold angle with the block locked to d (NaN "
+                                       "for profiles)",
+          [](const P& p) { return p.has_locked ? p.locked_friction_angle.q50 : NAN; }),
+      deg("locked_friction_angle_q05_deg", "maps: 5 % quantile, block locked to d",
+          [](const P& p) { return p.has_locked ? p.locked_friction_angle.q05 : NAN; }),
+      deg("locked_friction_angle_q95_deg", "maps: 95 % quantile, block locked to d",
+          [](const P& p) { return p.has_locked ? p.locked_friction_angle.q95 : NAN; }),
+      list("drop_friction_angles_deg", "deg", "maps: each drop's hold angle (block free), in drop order",
+           [](const P& p) { return p.drop_angles; }),
+  };
+  return cols;
+}
+
+OutputValue interface_value(const OutputColumn& c, const Prediction& p) {
+  OutputValue v = c.si(p);
+  if (c.unit != "deg") return v;
+  if (auto* d = std::get_if<double>(&v)) *d *= kDegPerRad;
+  if (auto* l = std::get_if<std::vector<double>>(&v))
+    for (double& x : *l) x *= kDegPerRad;
+  return v;
+}
+
+std::string prediction_json(const Prediction& p, const std::string& extra, int indent) {
+  using study::json_real;
+  using study::json_string;
+  const std::string nl = indent > 0 ? "\n" : "", pad(std::size_t(std::max(indent, 0)), ' '), sp = indent > 0 ? " " : "";
+  std::string s = "{" + nl;
+  bool first = true;
+  auto key = [&](const std::string& k) {
+    if (!first) s += "," + nl;
+    first = false;
+    s += pad + json_string(k) + ":" + sp;
+  };
+  for (const OutputColumn& c : prediction_columns()) {
+    key(c.key);
+    const OutputValue v = interface_value(c, p);
+    if (auto* d = std::get_if<double>(&v)) {
+      s += c.unit == "count" ? fmt::format("{}", static_cast<long long>(*d)) : json_real(*d);
+    } else if (auto* t = std::get_if<std::string>(&v)) {
+      s += json_string(*t);
+    } else if (auto* b = std::get_if<bool>(&v)) {
+      s += *b ? "true" : "false";
+    } else {
+      const auto& l = std::get<std::vector<double>>(v);
+      s += "[";
+      for (std::size_t i = 0; i < l.size(); ++i) s += (i ? "," + sp : "") + json_real(l[i]);
+      s += "]";
+    }
+  }
+  key("warnings");
+  s += "[";
+  for (std::size_t i = 0; i < p.warnings.size(); ++i)
+    s += (i ? "," + sp : "") + std::string("{\"code\":") + sp + json_string(p.warnings[i].code) + "," + sp +
+         "\"message\":" + sp + json_string(p.warnings[i].message) + "}";
+  s += "]";
+  if (!extra.empty()) s += "," + nl + pad + extra;
+  s += nl + "}";
+  return s;
+}
+
+}  // namespace frictal

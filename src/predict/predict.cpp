@@ -1,0 +1,325 @@
+// The prediction (frictal/predict.hpp): what a tilt test of two surfaces reads, defined once.
+#include "frictal/predict.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <numbers>
+
+#include <fmt/core.h>
+
+#include "frictal/areal.hpp"
+#include "frictal/areal_tilt.hpp"
+#include "frictal/signature.hpp"
+#include "frictal/stats.hpp"
+#include "util/parallel.hpp"
+
+namespace frictal {
+
+std::string detrend_name(const Detrend& d, bool is_map) {
+  switch (d.kind) {
+    case DetrendKind::None: return "none";
+    case DetrendKind::Mean: return "mean";
+    case DetrendKind::Line: return is_map ? "plane" : "line";
+    case DetrendKind::Polynomial: return fmt::format("poly:{}", d.degree);
+  }
+  return "none";
+}
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Equal-weight statistics with the quantile rule of the profiles' distribution (the lower value
+// at a jump: the smallest value whose cumulative share reaches q).
+HoldStatistics plain_stats(const std::vector<double>& v) {
+  HoldStatistics s;
+  if (v.empty()) return s;
+  std::vector<double> w(v);
+  std::sort(w.begin(), w.end());
+  const double n = double(w.size());
+  double m = 0;
+  for (double x : w) m += x;
+  m /= n;
+  double var = 0;
+  for (double x : w) var += (x - m) * (x - m);
+  s.mean = m;
+  s.std = std::sqrt(var / n);
+  auto q = [&](double p) {
+    const double k = std::ceil(p * n * (1 - 1e-12));
+    return w[std::size_t(std::clamp(k, 1.0, n)) - 1];
+  };
+  s.q05 = q(0.05), s.q50 = q(0.50), s.q95 = q(0.95);
+  s.min = w.front(), s.max = w.back();
+  return s;
+}
+
+void finish(Prediction& p, double theta_max, double sigma) {
+  const double ta = std::atan(p.atomic_friction);
+  p.theta_max = theta_max;
+  p.contact_slope_std = sigma;
+  p.upper_bound_friction_angle = std::min(theta_max + ta, kPi / 2);
+  double lo = theta_max - sigma + ta;
+  if (lo < 0) {
+    add_warning(p.warnings,
+                {"eq18-low-clamped", fmt::format("Eq. 18's low end theta_max - sigma + theta_a = {:.4f} deg is below "
+                                                 "zero; reported as 0",
+                                                 lo * 180 / kPi)});
+    lo = 0;
+  }
+  p.eq18_range = {std::min(lo, kPi / 2), p.upper_bound_friction_angle};
+  const double med = p.friction_angle.q50;
+  p.friction_coefficient = med >= kPi / 2 ? INFINITY : std::tan(med);
+  // 89.5 deg: a slope of 115, steeper than any measured contact (a wall, an interlock or units).
+  constexpr double kNear90 = 89.5 * kPi / 180;
+  if (p.friction_angle.q50 >= kNear90 || p.upper_bound_friction_angle >= kNear90)
+    add_warning(p.warnings,
+                {"friction-angle-at-90",
+                 fmt::format("the {} is {:.4f} deg: a vertical wall, an interlock or a unit mix-up holds the block; the "
+                             "number is a single feature of the data, not a friction",
+                             p.friction_angle.q50 >= kNear90 ? "hold angle's median" : "rigid upper bound",
+                             (p.friction_angle.q50 >= kNear90 ? p.friction_angle.q50 : p.upper_bound_friction_angle) *
+                                 180 / kPi)});
+}
+
+void reader_warnings(std::vector<Warning>& out, const PredictSurface& s) {
+  for (const std::string& w : s.reader_warnings)
+    add_warning(out, {"reader", w.find(s.name) == std::string::npos ? s.name + ": " + w : w});
+}
+
+double mean_spacing(const Profile& p) { return p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0; }
+
+Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
+  Prediction p;
+  p.is_map = false;
+  p.model = "profile-quasi-static-hold";
+  const Detrend dt = o.detrend.value_or(Detrend{DetrendKind::Line, 1});
+  p.conditioning = detrend_name(dt, false);
+  p.atomic_friction = o.atomic_friction;
+  p.direction = o.direction;
+  const bool forward = std::abs(o.direction) < 1e-9;
+  const bool backward = std::abs(std::abs(o.direction) - kPi) < 1e-9;
+  if (!forward && !backward)
+    return make_error(fmt::format("direction {:.6g} deg: a profile slides along +x (0) or -x (180) only",
+                                  o.direction * 180 / kPi));
+  reader_warnings(p.warnings, lower);
+  if (upper) reader_warnings(p.warnings, *upper);
+  auto lo = detrend(lower.profile, dt);
+  if (!lo) return lo.error();
+  Profile up_measured;
+  if (upper) {
+    auto u = detrend(upper->profile, dt);
+    if (!u) return u.error();
+    up_measured = std::move(u).value();
+  } else {
+    up_measured = *lo;
+  }
+  for (Warning& w : check_profile(*lo, lower.name)) add_warning(p.warnings, std::move(w));
+  if (upper) {
+    for (Warning& w : check_profile(up_measured, upper->name)) add_warning(p.warnings, std::move(w));
+    const double l1 = lo->x.back() - lo->x.front(), l2 = up_measured.x.back() - up_measured.x.front();
+    for (Warning& w :
+         check_pair_scales(l1, mean_spacing(*lo), l2, mean_spacing(up_measured), lower.name, upper->name))
+      add_warning(p.warnings, std::move(w));
+  }
+  if (o.period != 0) {
+    if (!(o.period > 0) || !std::isfinite(o.period))
+      return make_error(fmt::format("period {} m: expected a positive length", o.period));
+    lo->period = o.period;
+    up_measured.period = o.period;
+    if (auto st = validate(*lo, lower.name); !st) return st.error();
+    if (auto st = validate(up_measured, upper ? upper->name : lower.name); !st) return st.error();
+  }
+  const Profile up = rotate180(up_measured);
+  SignatureOptions so;
+  so.threads = o.threads;
+  so.keep_contacts = false;
+  HoldOptions ho;
+  ho.runaway_distance = o.runaway_distance;
+  ho.atomic_friction = o.atomic_friction;
+  const bool one = std::isfinite(o.start_offset[0]);
+  auto h = analyse_hold(*lo, up, so, ho, one ? o.start_offset[0] : std::numeric_limits<double>::quiet_NaN());
+  if (!h) return h.error();
+  auto sig = signature(*lo, up, so);
+  if (!sig) return sig.error();
+  const HoldDistribution& d = forward ? h->distribution.forward : h->distribution.backward;
+  p.runaway_distance = h->runaway_distance;
+  p.drops = d.basins.rest.size();
+  p.drop_range = {d.drop_min, d.drop_max, 0, 0};
+  if (one) {
+    const HoldAngle& a = forward ? h->start.forward : h->start.backward;
+    p.single_drop = true;
+    p.start_offset = {o.start_offset[0], 0};
+    p.rest_offset = {a.rest_offset, 0};
+    p.friction_angle = plain_stats({a.hold_angle});
+    p.drops = 1;
+  } else {
+    p.friction_angle = d.hold;
+    if (p.drops < 3 && !lo->period)
+      add_warning(p.warnings, {"few-drops", fmt::format("the drops over [{:.6g}, {:.6g}] m drain into {} basin(s) "
+                                                        "only: the spread is not resolved",
+                                                        d.drop_min, d.drop_max, p.drops)});
+  }
+  finish(p, forward ? sig->theta_max_forward : sig->theta_max_backward, sig->contact_slope_std);
+  return p;
+}
+
+Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
+  Prediction p;
+  p.is_map = true;
+  p.model = "map-continuous-free";
+  const Detrend dt = o.detrend.value_or(Detrend{DetrendKind::Line, 1});
+  p.conditioning = detrend_name(dt, true);
+  p.atomic_friction = o.atomic_friction;
+  p.direction = o.direction;
+  if (!std::isfinite(o.direction)) return make_error("direction: expected a finite angle");
+  if (o.map_drops < 2 || o.map_drops > 64)
+    return make_error(fmt::format("map drops {}: expected 2..64 per side", o.map_drops));
+  reader_warnings(p.warnings, lower);
+  if (upper) reader_warnings(p.warnings, *upper);
+  auto lo = detrend(lower.map, dt);
+  if (!lo) return lo.error();
+  Map up;
+  if (upper) {
+    auto u = detrend(upper->map, dt);
+    if (!u) return u.error();
+    up = std::move(u).value();
+  } else {
+    up = *lo;
+  }
+  if (lo->nx < 2 || lo->ny < 2 || up.nx < 2 || up.ny < 2)
+    return make_error(fmt::format("{}: the map prediction needs at least 2 x 2 points", lower.name));
+  for (Warning& w : check_map(*lo, lower.name)) add_warning(p.warnings, std::move(w));
+  if (upper) {
+    for (Warning& w : check_map(up, upper->name)) add_warning(p.warnings, std::move(w));
+    for (Warning& w : check_pair_scales(std::max(lo->width(), lo->height()), std::min(lo->dx, lo->dy),
+                                        std::max(up.width(), up.height()), std::min(up.dx, up.dy), lower.name,
+                                        upper->name))
+      add_warning(p.warnings, std::move(w));
+  }
+  const double c = std::cos(o.direction), s = std::sin(o.direction);
+  const double along = std::abs(c) * lo->width() + std::abs(s) * lo->height();
+  const double across = std::abs(s) * lo->width() + std::abs(c) * lo->height();
+  ArealTiltOptions t;
+  t.angle = o.direction;
+  t.atomic_friction = o.atomic_friction;
+  t.runaway_distance = o.runaway_distance > 0 ? o.runaway_distance : 0.05 * along;
+  t.sphere_radius = o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(lo->dx, lo->dy);
+  p.runaway_distance = t.runaway_distance;
+  // Drops (offsets of the upper map's centre from the lower's). An upper block smaller than the
+  // lower map along d is put down where it lies wholly over it with room to run D:
+  // u in [-(Lf - Lg) / 2, (Lf - Lg) / 2 - D]; a block as long (a self-pair) over [0, Lf / 2 - D]
+  // (it keeps at least half its overlap), as the grid model's drops (areal.hpp). Across d the same
+  // with room to steer D: +-((Wf - Wg) / 2 - D), or +-(Wf / 4 - D).
+  const double along_g = std::abs(c) * up.width() + std::abs(s) * up.height();
+  const double across_g = std::abs(s) * up.width() + std::abs(c) * up.height();
+  const double D = t.runaway_distance;
+  double umin = 0, umax = std::max(0.0, 0.5 * along - D);
+  if (along_g < along - 2 * D) umin = -0.5 * (along - along_g), umax = 0.5 * (along - along_g) - D;
+  const double vmax = across_g < across - 2 * D ? 0.5 * (across - across_g) - D : std::max(0.0, 0.25 * across - D);
+  p.drop_range = {umin, umax, -vmax, vmax};
+  std::vector<std::array<double, 2>> uv;
+  if (std::isfinite(o.start_offset[0])) {
+    const double x = o.start_offset[0], y = o.start_offset[1];
+    const double u = x * c + y * s, v = -x * s + y * c;
+    const double half_along = 0.5 * along, half_across = 0.5 * across;
+    if (!(std::abs(u) <= half_along && std::abs(v) <= half_across))
+      return make_error(fmt::format("start offset ({:.6g}, {:.6g}) m: along the direction {:.6g} m and across it "
+                                    "{:.6g} m; expected within [-{:.6g}, {:.6g}] along and [-{:.6g}, {:.6g}] across",
+                                    x, y, u, v, half_along, half_along, half_across, half_across));
+    uv.push_back({u, v});
+    p.single_drop = true;
+    p.start_offset = {x, y};
+  } else {
+    const int n = o.map_drops;
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        uv.push_back({umin + (umax - umin) * double(i) / double(n - 1), -vmax + 2 * vmax * double(j) / double(n - 1)});
+  }
+  // The cost, estimated before it runs: spheres x cells per sphere x evaluations per drop.
+  const double spheres = double(up.valid_count());
+  const double work = spheres * 4.0 * 3000.0 * double(uv.size()) * (o.map_locked ? 2 : 1);
+  if (o.map_work_limit > 0 && work > o.map_work_limit)
+    return make_error(fmt::format("the map prediction would evaluate about {:.2g} sphere-cell pairs ({} spheres, {} "
+                                  "drops), above the limit {:.2g}: crop or resample the maps, or fewer drops",
+                                  work, std::size_t(spheres), uv.size(), o.map_work_limit));
+  for (const auto& q : uv) p.drop_offsets.push_back({q[0] * c - q[1] * s, q[0] * s + q[1] * c});
+  const std::size_t nd = uv.size();
+  std::vector<double> free_angle(nd), locked_angle(nd, 0);
+  std::vector<std::array<double, 2>> rest(nd);
+  std::vector<char> held(nd, 0), held_locked(nd, 0);
+  std::vector<std::string> errors(nd);
+  const std::size_t jobs = nd * (o.map_locked ? 2 : 1);
+  const unsigned threads = util::thread_count(o.threads, jobs);
+  std::mutex progress_mutex;
+  std::size_t done = 0;
+  util::parallel_chunks(jobs, threads, [&](unsigned, std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
+      const std::size_t drop = k % nd;
+      const bool locked = k >= nd;
+      ArealTiltOptions tk = t;
+      tk.start_offset = p.drop_offsets[drop];
+      tk.lock_lateral = locked;
+      auto r = areal_tilt_hold(*lo, up, tk);
+      if (!r) {
+        errors[drop] = r.error().message;
+        continue;
+      }
+      if (locked) {
+        locked_angle[drop] = r->ran_away ? r->hold_angle : tk.max_tilt;
+        held_locked[drop] = !r->ran_away;
+      } else {
+        free_angle[drop] = r->ran_away ? r->hold_angle : tk.max_tilt;
+        held[drop] = !r->ran_away;
+        rest[drop] = r->rest_offset;
+      }
+      if (o.progress) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        o.progress(++done, jobs);
+      }
+    }
+  });
+  for (std::size_t k = 0; k < nd; ++k)
+    if (!errors[k].empty()) return make_error(fmt::format("drop at ({:.6g}, {:.6g}) m: {}", p.drop_offsets[k][0],
+                                                          p.drop_offsets[k][1], errors[k]));
+  p.drops = nd;
+  p.drop_angles = free_angle;
+  p.friction_angle = plain_stats(free_angle);
+  if (o.map_locked) {
+    p.has_locked = true;
+    p.drop_angles_locked = locked_angle;
+    p.locked_friction_angle = plain_stats(locked_angle);
+  }
+  if (p.single_drop) p.rest_offset = rest[0];
+  const auto nheld = std::count(held.begin(), held.end(), 1);
+  if (nheld > 0)
+    add_warning(p.warnings, {"held-to-max-tilt", fmt::format("{} of {} drops held the block up to 45 deg (the "
+                                                             "model's largest tilt): their hold angle is a lower bound",
+                                                             nheld, nd)});
+  // The rigid upper bound: the areal signature along d (the grid lift's contact slopes).
+  ArealSignatureOptions so;
+  so.threads = o.threads;
+  auto sig = areal_signature(*lo, up, o.direction, so);
+  if (!sig) return sig.error();
+  finish(p, sig->theta_max_forward, sig->contact_slope_std);
+  return p;
+}
+
+}  // namespace
+
+Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
+  if (upper && upper->is_map != lower.is_map)
+    return make_error(fmt::format("{} is {} and {} is {}: a pair is two profiles or two maps", lower.name,
+                                  lower.is_map ? "an areal map" : "a line profile", upper->name,
+                                  upper->is_map ? "an areal map" : "a line profile"));
+  if (!std::isfinite(o.atomic_friction) || o.atomic_friction < 0)
+    return make_error(fmt::format("atomic friction {}: expected a finite number >= 0", o.atomic_friction));
+  if (!std::isfinite(o.runaway_distance) || o.runaway_distance < 0)
+    return make_error(
+        fmt::format("run-away distance {} m: expected a finite length >= 0 (0: the default)", o.runaway_distance));
+  if (std::isinf(o.start_offset[0]) || !std::isfinite(o.start_offset[1]))
+    return make_error("start offset: expected finite offsets (m)");
+  return lower.is_map ? predict_maps(lower, upper, o) : predict_profiles(lower, upper, o);
+}
+
+}  // namespace frictal

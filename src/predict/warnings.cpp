@@ -1,0 +1,232 @@
+// Warnings as results (frictal/warnings.hpp): the table of codes and the plausibility checks of
+// measured surfaces. Thresholds and why: docs/warnings.md.
+#include "frictal/warnings.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <fmt/core.h>
+
+#include "frictal/stats.hpp"
+
+namespace frictal {
+
+const std::vector<WarningCode>& warning_codes() {
+  static const std::vector<WarningCode> codes = {
+      {"reader", "the file's reader said something that did not stop it (a unit assumed, points masked, a checksum)"},
+      {"units-suspect",
+       "the rms slope is above 10 (84 deg on average, steeper than any instrument measures): the lateral and "
+       "height units probably differ (e.g. x in micrometres, z read as metres); give --unit / --z-unit"},
+      {"heights-tiny", "the rms height is below 1 pm: a scale factor is probably missing or applied twice"},
+      {"heights-exceed-length", "the height range exceeds the scan length: units or scale are probably wrong"},
+      {"spikes",
+       "points lie more than 10 rms heights from the median of their neighbours: outliers that can set theta_max "
+       "and the hold angles on their own; remove them (--despike) or check the scan"},
+      {"kurtosis", "the height kurtosis is above 30: a few outlying points dominate the height distribution"},
+      {"fill-value",
+       "runs of one repeated height value cover more than 5 % of the points: a fill value for points not measured; mask it "
+       "(NaN) or crop it away"},
+      {"scale-mismatch", "the two scans' lengths or point spacings differ by more than 10x"},
+      {"eq18-low-clamped",
+       "the low end of the paper's Eq. 18 range, theta_max - sigma + theta_a, is below zero; it is reported as 0"},
+      {"friction-angle-at-90",
+       "the friction angle reaches 90 deg: a vertical wall or an interlock holds the block; the number is a "
+       "single feature of the data, not a friction"},
+      {"few-drops", "the distribution rests on fewer than 3 basins (profiles) or drops: the spread is not resolved"},
+      {"held-to-max-tilt",
+       "some drops held the block up to the model's largest tilt (45 deg): their hold angle is a lower bound"},
+      {"upper-bound-only",
+       "the hold angle's model does not apply (see the message); only the rigid upper bound is given"},
+  };
+  return codes;
+}
+
+void add_warning(std::vector<Warning>& list, Warning w) {
+  for (const Warning& x : list)
+    if (x.code == w.code && x.message == w.message) return;
+  list.push_back(std::move(w));
+}
+
+namespace {
+
+struct Moments {
+  double mean = 0, rms = 0, kurtosis = 0, range = 0;
+  std::size_t n = 0;
+};
+
+Moments moments(const std::vector<double>& z) {
+  Moments m;
+  double lo = INFINITY, hi = -INFINITY, s = 0;
+  for (double v : z)
+    if (std::isfinite(v)) s += v, ++m.n, lo = std::min(lo, v), hi = std::max(hi, v);
+  if (m.n == 0) return m;
+  m.mean = s / double(m.n);
+  double s2 = 0, s4 = 0;
+  for (double v : z)
+    if (std::isfinite(v)) {
+      const double d = (v - m.mean) * (v - m.mean);
+      s2 += d, s4 += d * d;
+    }
+  s2 /= double(m.n), s4 /= double(m.n);
+  m.rms = std::sqrt(s2);
+  m.kurtosis = s2 > 0 ? s4 / (s2 * s2) : 0;
+  m.range = hi - lo;
+  return m;
+}
+
+// A fill value: the most common value among points in runs of 3 or more equal consecutive values
+// (along x for maps), and how many such points there are. Measured heights carry noise, so long
+// runs of one number are points the instrument did not measure (or saturated); a generated
+// polyline may repeat values (a sawtooth's feet), but not in runs.
+std::pair<double, std::size_t> repeated_runs(const std::vector<double>& z, std::size_t row) {
+  std::map<double, std::size_t> count;
+  for (std::size_t r0 = 0; r0 < z.size(); r0 += row)
+    for (std::size_t i = r0; i < r0 + row && i < z.size();) {
+      std::size_t j = i;
+      while (j < r0 + row && j < z.size() && z[j] == z[i]) ++j;
+      if (j - i >= 3 && std::isfinite(z[i])) count[z[i]] += j - i;
+      i = j;
+    }
+  std::pair<double, std::size_t> best{0, 0}, total{0, 0};
+  for (const auto& [v, c] : count) {
+    total.second += c;
+    if (c > best.second) best = {v, c};
+  }
+  return {best.first, total.second};
+}
+
+double median_of(std::vector<double>& v) {
+  const std::size_t k = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
+  double m = v[k];
+  if (v.size() % 2 == 0) m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(k)));
+  return m;
+}
+
+void common_checks(std::vector<Warning>& out, const Moments& m, std::size_t spikes, double worst_spike,
+                   std::pair<double, std::size_t> rep, std::size_t n, double length, const std::string& name,
+                   const PlausibilityLimits& L) {
+  if (m.n == 0) return;
+  if (m.rms < L.min_rms_height)
+    add_warning(out, {"heights-tiny", fmt::format("{}: rms height {:.3g} m, below {:.3g} m (1 pm): a scale factor "
+                                                  "is probably missing or applied twice",
+                                                  name, m.rms, L.min_rms_height)});
+  if (length > 0 && m.range > length)
+    add_warning(out, {"heights-exceed-length",
+                      fmt::format("{}: height range {:.3g} m exceeds the scan length {:.3g} m: units or scale are "
+                                  "probably wrong",
+                                  name, m.range, length)});
+  if (spikes > 0)
+    add_warning(out, {"spikes", fmt::format("{}: {} point(s) lie more than {:g} rms heights from the median of "
+                                            "their neighbours (the worst {:.3g} rms): outliers that can set the "
+                                            "steepest contact on their own",
+                                            name, spikes, L.spike_sq, worst_spike)});
+  if (m.kurtosis > L.max_kurtosis)
+    add_warning(out, {"kurtosis", fmt::format("{}: height kurtosis {:.3g} (a Gaussian surface has 3; above {:g} a "
+                                              "few outlying points dominate)",
+                                              name, m.kurtosis, L.max_kurtosis)});
+  if (n > 20 && double(rep.second) > L.max_repeated_fraction * double(n))
+    add_warning(out, {"fill-value", fmt::format("{}: runs of one height (the commonest {:.9g} m) cover {} of {} "
+                                                "points ({:.1f} %): a fill value for points not measured?",
+                                                name, rep.first, rep.second, n, 100.0 * double(rep.second) / double(n))});
+}
+
+}  // namespace
+
+std::vector<Warning> check_profile(const Profile& p, const std::string& name, const PlausibilityLimits& L) {
+  std::vector<Warning> out;
+  if (p.x.size() < 2) return out;
+  const ProfileStats st = profile_stats(p);
+  if (st.rms_slope > L.max_rms_slope)
+    add_warning(out, {"units-suspect",
+                      fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "
+                                  "measures; the lateral and height units probably differ (give the file's units)",
+                                  name, st.rms_slope, std::atan(st.rms_slope) * 180 / 3.141592653589793)});
+  const Moments m = moments(p.z);
+  // Spikes: a point more than spike_sq rms from the median of its two neighbours on each side.
+  std::size_t spikes = 0;
+  double worst = 0;
+  if (m.rms > 0 && p.z.size() >= 5) {
+    std::vector<double> w(4);
+    for (std::size_t i = 2; i + 2 < p.z.size(); ++i) {
+      w = {p.z[i - 2], p.z[i - 1], p.z[i + 1], p.z[i + 2]};
+      const double dev = std::abs(p.z[i] - median_of(w)) / m.rms;
+      if (dev > L.spike_sq) ++spikes, worst = std::max(worst, dev);
+    }
+  }
+  common_checks(out, m, spikes, worst, repeated_runs(p.z, p.z.size()), p.z.size(), st.length, name, L);
+  return out;
+}
+
+std::vector<Warning> check_map(const Map& mp, const std::string& name, const PlausibilityLimits& L) {
+  std::vector<Warning> out;
+  if (mp.nx < 2 && mp.ny < 2) return out;
+  // rms slope by forward differences over valid neighbours.
+  double s2 = 0;
+  std::size_t ns = 0;
+  for (std::size_t j = 0; j < mp.ny; ++j)
+    for (std::size_t i = 0; i < mp.nx; ++i) {
+      const double z = mp.at(i, j);
+      if (!std::isfinite(z)) continue;
+      if (i + 1 < mp.nx && std::isfinite(mp.at(i + 1, j))) {
+        const double g = (mp.at(i + 1, j) - z) / mp.dx;
+        s2 += g * g, ++ns;
+      }
+      if (j + 1 < mp.ny && std::isfinite(mp.at(i, j + 1))) {
+        const double g = (mp.at(i, j + 1) - z) / mp.dy;
+        s2 += g * g, ++ns;
+      }
+    }
+  // Two directional components: the gradient's rms is sqrt(2) times one component's.
+  const double rms_slope = ns ? std::sqrt(2 * s2 / double(ns)) : 0;
+  if (rms_slope > L.max_rms_slope)
+    add_warning(out, {"units-suspect",
+                      fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "
+                                  "measures; the lateral and height units probably differ (give the file's units)",
+                                  name, rms_slope, std::atan(rms_slope) * 180 / 3.141592653589793)});
+  const Moments m = moments(mp.heights);
+  std::size_t spikes = 0;
+  double worst = 0;
+  if (m.rms > 0) {
+    std::vector<double> w;
+    w.reserve(8);
+    for (std::size_t j = 0; j < mp.ny; ++j)
+      for (std::size_t i = 0; i < mp.nx; ++i) {
+        const double z = mp.at(i, j);
+        if (!std::isfinite(z)) continue;
+        w.clear();
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            if (!di && !dj) continue;
+            const long ii = long(i) + di, jj = long(j) + dj;
+            if (ii < 0 || jj < 0 || ii >= long(mp.nx) || jj >= long(mp.ny)) continue;
+            const double v = mp.at(std::size_t(ii), std::size_t(jj));
+            if (std::isfinite(v)) w.push_back(v);
+          }
+        if (w.size() < 3) continue;
+        const double dev = std::abs(z - median_of(w)) / m.rms;
+        if (dev > L.spike_sq) ++spikes, worst = std::max(worst, dev);
+      }
+  }
+  const double length = std::max(mp.width(), mp.height());
+  common_checks(out, m, spikes, worst, repeated_runs(mp.heights, mp.nx), mp.valid_count(), length, name, L);
+  return out;
+}
+
+std::vector<Warning> check_pair_scales(double l1, double s1, double l2, double s2, const std::string& n1,
+                                       const std::string& n2, const PlausibilityLimits& L) {
+  std::vector<Warning> out;
+  auto ratio = [](double a, double b) { return a > 0 && b > 0 ? std::max(a / b, b / a) : 1.0; };
+  if (ratio(l1, l2) > L.max_scale_ratio)
+    add_warning(out, {"scale-mismatch", fmt::format("{} is {:.3g} m long and {} {:.3g} m ({:.3g}x): two scans of "
+                                                    "one pair are expected to be of similar size",
+                                                    n1, l1, n2, l2, ratio(l1, l2))});
+  if (ratio(s1, s2) > L.max_scale_ratio)
+    add_warning(out, {"scale-mismatch", fmt::format("{} has a point spacing of {:.3g} m and {} {:.3g} m ({:.3g}x): "
+                                                    "the finer scan's small slopes meet a coarse one",
+                                                    n1, s1, n2, s2, ratio(s1, s2))});
+  return out;
+}
+
+}  // namespace frictal

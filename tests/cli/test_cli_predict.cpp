@@ -1,0 +1,102 @@
+// `frictal predict`: the one answer, the same in the CLI's JSON, its text and the report's page.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_runner.hpp"
+
+using json = nlohmann::json;
+
+namespace {
+std::string data(const std::string& rel) { return std::string(FRICTAL_TEST_DATA) + "/" + rel; }
+}  // namespace
+
+TEST(CliPredict, KochK2ReadsTwiceAlphaAsThePaperFinds) {
+  // Alonso-Marroquin et al. (2015), Fig. 4 and 6: K2 reaches a contact slope of 2 alpha and the
+  // tilt test reads it; for Koch surfaces the prediction and the rigid bound meet.
+  const std::string k2 = temp_path("predict-k2.csv");
+  ASSERT_EQ(run_cli("surface koch --iterations 2 --alpha 20 -o " + k2).code, 0);
+  auto r = run_cli("predict " + k2 + " --detrend none --period 0.01 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_NEAR(j["friction_angle_deg"].get<double>(), 40.0, 1e-6);
+  EXPECT_NEAR(j["upper_bound_friction_angle_deg"].get<double>(), 40.0, 1e-6);
+  EXPECT_NEAR(j["friction_coefficient"].get<double>(), std::tan(40.0 * M_PI / 180), 1e-8);
+  EXPECT_EQ(j["model"], "profile-quasi-static-hold");
+  EXPECT_EQ(j["conditioning"], "none");
+  EXPECT_TRUE(j["warnings"].is_array());
+  for (const char* k : {"friction_angle_q05_deg", "friction_angle_q95_deg", "friction_angle_mean_deg",
+                        "friction_angle_std_deg", "eq18_friction_angle_range_deg", "runaway_distance_m"})
+    EXPECT_TRUE(j.contains(k)) << k;
+}
+
+TEST(CliPredict, TextLeadsWithTheAnswerAndTheReportEmbedsTheSameObject) {
+  const std::string f = data("profiles/dektak-1.csv");
+  auto t = run_cli("predict " + f);
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("a tilt test of these surfaces reads phi ="), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("rigid upper bound"), std::string::npos) << t.out;
+  auto j = run_cli("predict " + f + " --json");
+  ASSERT_EQ(j.code, 0) << j.err;
+  const json p = json::parse(j.out);
+  EXPECT_EQ(p["conditioning"], "line");  // the one default for profiles
+  const std::string page = temp_path("predict-report.html");
+  auto rep = run_cli("report " + f + " --resolution-steps 0 -o " + page);
+  ASSERT_EQ(rep.code, 0) << rep.err;
+  const std::string html = read_file(page);
+  const std::string open = "<script type=\"application/json\" id=\"prediction\">";
+  const auto a = html.find(open);
+  ASSERT_NE(a, std::string::npos);
+  const auto b = html.find("</script>", a);
+  const json q = json::parse(html.substr(a + open.size(), b - a - open.size()));
+  for (const char* k : {"friction_angle_deg", "friction_angle_q05_deg", "friction_angle_q95_deg",
+                        "upper_bound_friction_angle_deg", "friction_coefficient", "conditioning", "model"})
+    EXPECT_EQ(q[k], p[k]) << k;
+  EXPECT_NE(html.find("id=\"headline\""), std::string::npos);
+}
+
+TEST(CliPredict, AMapAgainstItselfIsTheFreeBlockOffTheGrid) {
+  // The ISO 5436 pyramid sample (5 x 5) against itself: the map model runs, and a tilt test can
+  // never read more than the rigid bound of the steepest contact along x... of the grid lift
+  // (checked loosely: the continuous model's spheres round the contacts).
+  auto r = run_cli("predict " + data("x3p/pyramid.x3p") + " --drops 3 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["model"], "map-continuous-free");
+  EXPECT_EQ(j["conditioning"], "plane");
+  EXPECT_EQ(j["drops"], 9);
+  EXPECT_EQ(j["drop_friction_angles_deg"].size(), 9u);
+  EXPECT_LE(j["friction_angle_q05_deg"].get<double>(), j["friction_angle_deg"].get<double>());
+  EXPECT_LE(j["friction_angle_deg"].get<double>(), j["friction_angle_q95_deg"].get<double>());
+}
+
+TEST(CliPredict, UnitMixUpCarriesItsWarningCode) {
+  // csv-1.csv: x in microns (its header says so), heights without a unit read as metres.
+  auto r = run_cli("predict " + data("profiles/csv-1.csv") + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  bool units = false;
+  for (const auto& w : j["warnings"]) units |= w["code"] == "units-suspect";
+  EXPECT_TRUE(units) << r.out;
+  auto t = run_cli("predict " + data("profiles/csv-1.csv"));
+  EXPECT_NE(t.err.find("warning [units-suspect]"), std::string::npos) << t.err;
+}
+
+TEST(CliPredict, BadInputExits2NamingTheValueAndTheRange) {
+  const std::string f = data("profiles/dektak-1.csv");
+  auto d = run_cli("predict " + f + " --direction 45");
+  EXPECT_EQ(d.code, 2);
+  EXPECT_NE(d.err.find("45 deg"), std::string::npos) << d.err;
+  auto m = run_cli("predict " + f + " " + data("x3p/pyramid.x3p"));
+  EXPECT_EQ(m.code, 2);
+  EXPECT_NE(m.err.find("a pair is two profiles or two maps"), std::string::npos) << m.err;
+  auto s = run_cli("predict " + data("x3p/pyramid.x3p") + " --start-offset 1e3,0");
+  EXPECT_EQ(s.code, 2);
+  EXPECT_NE(s.err.find("expected within"), std::string::npos) << s.err;
+  auto o = run_cli("predict " + f + " --start-offset 1e3");
+  EXPECT_EQ(o.code, 2);
+  EXPECT_NE(o.err.find("1000"), std::string::npos) << o.err;
+  auto mu = run_cli("predict " + f + " --atomic-friction -1");
+  EXPECT_EQ(mu.code, 2);
+}

@@ -1,0 +1,251 @@
+// The prediction (frictal/predict.hpp): what a tilt test reads, against hand-derived answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "frictal/generators.hpp"
+#include "frictal/predict.hpp"
+#include "frictal/warnings.hpp"
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+constexpr double kDeg = kPi / 180;
+
+frictal::PredictSurface profile_surface(frictal::Profile p, const std::string& name = "profile") {
+  frictal::PredictSurface s;
+  s.profile = std::move(p);
+  s.name = name;
+  return s;
+}
+
+bool has_code(const std::vector<frictal::Warning>& w, const std::string& code) {
+  for (const auto& x : w)
+    if (x.code == code) return true;
+  return false;
+}
+
+frictal::PredictOptions no_form_removal() {
+  frictal::PredictOptions o;
+  o.detrend = frictal::Detrend{frictal::DetrendKind::None, 0};
+  return o;
+}
+
+}  // namespace
+
+TEST(Predict, SawtoothAgainstItselfHoldsAtItsFlanks) {
+  // A sawtooth rising at 25 deg over 0.7 of its wavelength, against itself turned over: the
+  // teeth mate, every drop rests in the mated seat, and the block slides forward when the tilt
+  // passes the rising flank (25 deg) and backward when it passes the falling one,
+  // atan(tan 25 deg * 0.7 / 0.3) (both by hand). Rigid: the upper bound is the same flank.
+  frictal::SawtoothParams sp;
+  sp.rise_angle = 25 * kDeg;
+  sp.rise_fraction = 0.7;
+  const auto saw = profile_surface(frictal::sawtooth_profile(sp).value(), "saw");
+  const double back = std::atan(std::tan(25 * kDeg) * 0.7 / 0.3);
+  for (const double mu : {0.0, 0.1}) {
+    frictal::PredictOptions o = no_form_removal();
+    o.atomic_friction = mu;
+    auto f = frictal::predict(saw, nullptr, o);
+    ASSERT_TRUE(f.ok()) << f.error().message;
+    const double want = 25 * kDeg + std::atan(mu);
+    EXPECT_EQ(f->model, "profile-quasi-static-hold");
+    EXPECT_EQ(f->conditioning, "none");
+    EXPECT_NEAR(f->friction_angle.q05, want, 1e-9);
+    EXPECT_NEAR(f->friction_angle.q50, want, 1e-9);
+    EXPECT_NEAR(f->friction_angle.q95, want, 1e-9);
+    EXPECT_NEAR(f->friction_coefficient, std::tan(want), 1e-9);
+    EXPECT_NEAR(f->upper_bound_friction_angle, want, 1e-9);
+    EXPECT_NEAR(f->runaway_distance, sp.wavelength, 1e-15);  // one period for a periodic pair
+    // The contact slopes are the two flanks, so sigma is large: Eq. 18's low end would be negative
+    // and is reported as 0 with its code; nothing else is warned of on a clean sawtooth.
+    EXPECT_GE(f->eq18_range[0], 0.0);
+    for (const auto& w : f->warnings) EXPECT_EQ(w.code, "eq18-low-clamped") << w.message;
+    EXPECT_EQ(has_code(f->warnings, "eq18-low-clamped"), f->theta_max - f->contact_slope_std + std::atan(mu) < 0);
+    o.direction = kPi;
+    auto b = frictal::predict(saw, nullptr, o);
+    ASSERT_TRUE(b.ok()) << b.error().message;
+    EXPECT_NEAR(b->friction_angle.q50, back + std::atan(mu), 1e-9);
+    EXPECT_NEAR(b->upper_bound_friction_angle, back + std::atan(mu), 1e-9);
+  }
+}
+
+TEST(Predict, KochK1ReadsItsAlphaAsThePaperFinds) {
+  // Alonso-Marroquin et al. (2015), Fig. 4 and 6: K1 surfaces reach a contact slope of alpha,
+  // and the tilt test reads alpha (K0 and K1 identical); so does every drop here.
+  frictal::KochParams kp;
+  kp.iterations = 1;
+  kp.alpha = 20 * kDeg;
+  const auto k1 = profile_surface(frictal::koch_profile(kp).value(), "k1");
+  auto p = frictal::predict(k1, nullptr, no_form_removal());
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  EXPECT_NEAR(p->upper_bound_friction_angle, 20 * kDeg, 1e-9);
+  EXPECT_NEAR(p->friction_angle.q50, 20 * kDeg, 1e-9);
+}
+
+TEST(Predict, TheDefaultConditioningIsALineForProfilesAndIsListed) {
+  // A sawtooth on a ramp of slope 0.05: with the line removed (the default) the flanks are back
+  // at 25 deg to within the fit's residual slope; without it the ramp adds atan 0.05 to the
+  // rising flank (the rigid bound, by hand: atan(tan 25 + 0.05)).
+  frictal::SawtoothParams sp;
+  sp.rise_angle = 25 * kDeg;
+  sp.rise_fraction = 0.7;
+  frictal::Profile p = frictal::sawtooth_profile(sp).value();
+  p.period.reset();
+  for (std::size_t i = 0; i < p.x.size(); ++i) p.z[i] += 0.05 * p.x[i];
+  const auto s = profile_surface(p, "ramp");
+  auto d = frictal::predict(s, nullptr, {});
+  ASSERT_TRUE(d.ok()) << d.error().message;
+  EXPECT_EQ(d->conditioning, "line");
+  EXPECT_NEAR(d->upper_bound_friction_angle, 25 * kDeg, 0.05 * kDeg);
+  auto n = frictal::predict(s, nullptr, no_form_removal());
+  ASSERT_TRUE(n.ok()) << n.error().message;
+  EXPECT_NEAR(n->upper_bound_friction_angle, std::atan(std::tan(25 * kDeg) + 0.05), 1e-9);
+}
+
+TEST(Predict, OneDropRestsInItsSeat) {
+  frictal::SawtoothParams sp;
+  sp.rise_angle = 25 * kDeg;
+  sp.rise_fraction = 0.7;
+  const auto saw = profile_surface(frictal::sawtooth_profile(sp).value(), "saw");
+  frictal::PredictOptions o = no_form_removal();
+  o.start_offset = {0.003, 0};
+  auto p = frictal::predict(saw, nullptr, o);
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  EXPECT_TRUE(p->single_drop);
+  EXPECT_EQ(p->drops, 1u);
+  EXPECT_NEAR(p->friction_angle.q50, 25 * kDeg, 1e-9);
+  // The mated seats: the upper face is the sawtooth turned over, g(x) = -f(L - x) with L a whole
+  // number of wavelengths, so at offset s it lies on f where f(s - x) = -f(x) + c for all x: the
+  // gentle falling stretch of f(s - x), x in [s - 0.7 lambda, s], must be that of -f(x), [0, 0.7
+  // lambda], i.e. s = 0.7 lambda modulo lambda (by hand).
+  const double r = std::remainder(p->rest_offset[0] - 0.7 * sp.wavelength, sp.wavelength);
+  EXPECT_NEAR(r, 0, 1e-12);
+}
+
+TEST(Predict, BadInputIsRefusedNamingTheValue) {
+  frictal::SawtoothParams sp;
+  const auto saw = profile_surface(frictal::sawtooth_profile(sp).value(), "saw.csv");
+  frictal::PredictOptions o;
+  o.direction = 90 * kDeg;
+  auto e = frictal::predict(saw, nullptr, o);
+  ASSERT_FALSE(e.ok());
+  EXPECT_NE(e.error().message.find("90 deg"), std::string::npos) << e.error().message;
+  o = {};
+  o.atomic_friction = -0.2;
+  e = frictal::predict(saw, nullptr, o);
+  ASSERT_FALSE(e.ok());
+  EXPECT_NE(e.error().message.find("-0.2"), std::string::npos) << e.error().message;
+  frictal::PredictSurface map;
+  map.is_map = true;
+  map.name = "map.x3p";
+  map.map.nx = map.map.ny = 3;
+  map.map.heights.assign(9, 0.0);
+  e = frictal::predict(saw, &map, {});
+  ASSERT_FALSE(e.ok());
+  EXPECT_NE(e.error().message.find("map.x3p is an areal map"), std::string::npos) << e.error().message;
+}
+
+TEST(Predict, GroovesMapHoldsAtTheSteepestSegmentFromEveryDrop) {
+  // Grooves across x (heights A sin(2 pi i / m) along x, the same in every row) against
+  // themselves turned over: they mate, the block is free to move along the grooves without
+  // effect, and it climbs the steepest segment of the piecewise-linear grooves, slope
+  // A sin(2 pi / m) / a (by hand), from every drop; the locked block reads the same.
+  const std::size_t n = 16;
+  const int m = 8;
+  const double a = 1e-3 / double(n - 1), A = 2.4e-5;
+  frictal::PredictSurface s;
+  s.is_map = true;
+  s.name = "grooves";
+  s.map.nx = s.map.ny = n;
+  s.map.dx = s.map.dy = a;
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) s.map.heights.push_back(A * std::sin(2 * kPi * double(i) / m));
+  // The upper block: an 8 x 8 window of the same grooves (a smaller block, the same contact).
+  frictal::PredictSurface u;
+  u.is_map = true;
+  u.name = "window";
+  u.map.nx = u.map.ny = 8;
+  u.map.dx = u.map.dy = a;
+  for (std::size_t j = 0; j < 8; ++j)
+    for (std::size_t i = 0; i < 8; ++i) u.map.heights.push_back(s.map.at(i + 4, j + 4));
+  frictal::PredictOptions o = no_form_removal();
+  o.map_drops = 3;
+  o.map_locked = true;
+  auto p = frictal::predict(s, &u, o);
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  const double want = std::atan(A * std::sin(2 * kPi / m) / a);
+  EXPECT_EQ(p->model, "map-continuous-free");
+  EXPECT_EQ(p->drops, 9u);
+  EXPECT_GE(p->friction_angle.min, want - 1e-9);
+  EXPECT_LE(p->friction_angle.max, want + 2e-4);
+  ASSERT_TRUE(p->has_locked);
+  EXPECT_GE(p->locked_friction_angle.min, want - 1e-9);
+  EXPECT_LE(p->locked_friction_angle.max, want + 2e-4);
+  EXPECT_FALSE(has_code(p->warnings, "held-to-max-tilt"));
+}
+
+TEST(Warnings, UnitsSpikesScaleAndFillValuesAreNamed) {
+  // A clean sawtooth gives none.
+  frictal::SawtoothParams sp;
+  const frictal::Profile saw = frictal::sawtooth_profile(sp).value();
+  EXPECT_TRUE(frictal::check_profile(saw, "saw").empty());
+  // x in micrometres read as metres with z in metres: x 10^6 too small, slopes 10^6 too steep.
+  frictal::Profile um = saw;
+  for (double& x : um.x) x *= 1e-6;
+  auto w = frictal::check_profile(um, "um.csv");
+  EXPECT_TRUE(has_code(w, "units-suspect"));
+  EXPECT_TRUE(has_code(w, "heights-exceed-length"));
+  EXPECT_NE(w.front().message.find("um.csv"), std::string::npos);
+  // Heights of femtometres.
+  frictal::Profile fm = saw;
+  for (double& z : fm.z) z *= 1e-12;
+  EXPECT_TRUE(has_code(frictal::check_profile(fm, "fm"), "heights-tiny"));
+  // One spike 50 rms high on a sine.
+  frictal::SineParams sn;
+  frictal::Profile sine = frictal::sine_profile(sn).value();
+  EXPECT_TRUE(frictal::check_profile(sine, "sine").empty());
+  sine.z[sine.z.size() / 2] += 50 * sn.amplitude / std::sqrt(2.0);
+  EXPECT_TRUE(has_code(frictal::check_profile(sine, "spiky"), "spikes"));
+  // A map with a fill value over 20 % of it.
+  frictal::Map mp;
+  mp.nx = mp.ny = 20;
+  mp.dx = mp.dy = 1e-6;
+  for (std::size_t k = 0; k < 400; ++k) mp.heights.push_back(k < 80 ? -1e-6 : 1e-8 * std::sin(0.7 * double(k)));
+  EXPECT_TRUE(has_code(frictal::check_map(mp, "filled"), "fill-value"));
+  // Two scans 20000x apart in length.
+  EXPECT_TRUE(has_code(frictal::check_pair_scales(1.0, 1e-3, 5e-5, 1e-7, "a", "b"), "scale-mismatch"));
+  EXPECT_TRUE(frictal::check_pair_scales(1e-3, 1e-6, 2e-3, 2e-6, "a", "b").empty());
+  // Every code used is in the table.
+  for (const char* code : {"units-suspect", "heights-exceed-length", "heights-tiny", "spikes", "fill-value",
+                           "scale-mismatch", "eq18-low-clamped", "reader"}) {
+    bool found = false;
+    for (const auto& c : frictal::warning_codes()) found |= c.code == code;
+    EXPECT_TRUE(found) << code;
+  }
+}
+
+TEST(PredictColumns, EveryColumnHasAUnitAndTheJsonCarriesEveryKey) {
+  frictal::SawtoothParams sp;
+  const auto saw = profile_surface(frictal::sawtooth_profile(sp).value(), "saw");
+  auto p = frictal::predict(saw, nullptr, no_form_removal());
+  ASSERT_TRUE(p.ok());
+  const std::string json = frictal::prediction_json(*p);
+  for (const auto& c : frictal::prediction_columns()) {
+    EXPECT_FALSE(c.unit.empty()) << c.key;
+    EXPECT_NE(json.find("\"" + c.key + "\""), std::string::npos) << c.key;
+    if (c.unit == "deg") {
+      EXPECT_TRUE(c.key.ends_with("_deg")) << c.key;
+    }
+    if (c.unit == "m") {
+      EXPECT_TRUE(c.key.ends_with("_m")) << c.key;
+    }
+  }
+  EXPECT_NE(json.find("\"warnings\": ["), std::string::npos);
+  // The interface unit: degrees for "deg" columns.
+  for (const auto& c : frictal::prediction_columns())
+    if (c.key == "friction_angle_deg") {
+      EXPECT_NEAR(std::get<double>(frictal::interface_value(c, *p)), 20.0, 1e-9);
+    }
+}

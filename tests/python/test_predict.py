@@ -1,0 +1,88 @@
+"""frictal.predict: the one answer, from paths, Profile objects and numpy arrays, against closed
+forms (a sawtooth's flanks) and with its warnings issued as warnings.warn categories."""
+import math
+import os
+import warnings
+
+import numpy as np
+import pytest
+
+import frictal
+
+DATA = os.path.join(os.path.dirname(__file__), "..", "data")
+
+
+def sawtooth(rise_deg=25.0, fraction=0.7, wavelength=0.01, periods=20):
+    return frictal.sawtooth_profile(rise_angle=math.radians(rise_deg), rise_fraction=fraction,
+                                    wavelength=wavelength, length=wavelength * periods)
+
+
+def test_sawtooth_against_itself_holds_at_its_rising_flank():
+    # Mated teeth: every drop slides forward when the tilt passes the rising flank, 25 deg (by hand),
+    # plus atan(mu_a) (Eq. 6); backward the falling flank, atan(tan 25 deg * 0.7 / 0.3).
+    saw = sawtooth()
+    p = frictal.predict(saw, detrend="none", atomic_friction=0.1)
+    want = math.radians(25) + math.atan(0.1)
+    assert p.friction_angle == pytest.approx(want, abs=1e-9)
+    assert p.friction_angle_q05 == pytest.approx(want, abs=1e-9)
+    assert p.friction_angle_q95 == pytest.approx(want, abs=1e-9)
+    assert p.upper_bound_friction_angle == pytest.approx(want, abs=1e-9)
+    assert p.model == "profile-quasi-static-hold"
+    d = p.to_dict()
+    assert d["friction_angle_deg"] == pytest.approx(math.degrees(want), abs=1e-7)
+    b = frictal.predict(saw, detrend="none", direction=math.pi)
+    assert b.friction_angle == pytest.approx(math.atan(math.tan(math.radians(25)) * 0.7 / 0.3), abs=1e-9)
+
+
+def test_to_dict_has_every_declared_column():
+    p = frictal.predict(sawtooth(), detrend="none")
+    keys = [k for k, _unit, _help in frictal.prediction_columns()]
+    assert list(p.to_dict().keys()) == keys + ["warnings"]
+
+
+def test_path_profile_and_array_give_the_same_numbers():
+    path = os.path.join(DATA, "profiles", "dektak-1.csv")
+    a = frictal.predict(path)
+    s = frictal.read_surface(path)
+    b = frictal.predict(frictal.Profile(s["x"], s["z"]))
+    assert a.friction_angle == b.friction_angle
+    assert a.upper_bound_friction_angle == b.upper_bound_friction_angle
+    assert a.conditioning == "line"
+    # A uniform grid as a numpy array with its spacing: the same as the Profile on that grid.
+    z = np.sin(np.linspace(0, 40 * np.pi, 2001)) * 1e-5
+    x = np.arange(z.size) * 1e-5
+    c = frictal.predict(z, spacing=1e-5)
+    d = frictal.predict(frictal.Profile(x, z))
+    assert c.friction_angle == d.friction_angle
+
+
+def test_a_map_as_a_numpy_array():
+    # Grooves across x mate with themselves turned over; the free block climbs the steepest segment
+    # of the piecewise-linear grooves from every drop: atan(A sin(2 pi / m) / a) (by hand).
+    n, m, a, amp = 24, 8, 1e-3 / 23, 2.4e-5
+    h = np.tile(amp * np.sin(2 * np.pi * np.arange(n) / m), (n, 1))
+    p = frictal.predict(h, spacing=a, detrend="none", drops=2)
+    want = math.atan(amp * math.sin(2 * math.pi / m) / a)
+    assert p.model == "map-continuous-free"
+    assert p.drops == 4
+    assert want - 1e-9 <= p.friction_angle_min and p.friction_angle_max <= want + 2e-4
+
+
+def test_unit_mix_up_is_warned_with_its_category():
+    path = os.path.join(DATA, "profiles", "csv-1.csv")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        p = frictal.predict(path)
+    codes = {w.code for w in p.warnings}
+    assert "units-suspect" in codes
+    assert any(issubclass(w.category, frictal.UnitsSuspectWarning) for w in caught)
+    assert issubclass(frictal.UnitsSuspectWarning, frictal.FrictalWarning)
+
+
+def test_bad_input_raises_naming_the_value():
+    with pytest.raises(ValueError, match="90 deg"):
+        frictal.predict(sawtooth(), direction=math.pi / 2)
+    with pytest.raises(ValueError, match="spacing"):
+        frictal.predict(np.zeros(10))
+    with pytest.raises(ValueError, match="two profiles or two maps"):
+        frictal.predict(sawtooth(), np.zeros((4, 4)), spacing=1e-6)
