@@ -129,6 +129,8 @@ def main() -> int:
                         out.append(f"    @{an}.setter")
                         out.append(f"    def {an}(self, value: {ret}) -> None: ...")
                 elif callable(attr) and hasattr(attr, "__doc__"):
+                    if an == "__init__" and "->" not in (attr.__doc__ or ""):
+                        continue  # no constructor bound (results made by the library only)
                     out.extend(emit_function(an, attr, "    ", is_method=True))
             out.append("")
         elif callable(obj):

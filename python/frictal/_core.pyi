@@ -6,6 +6,88 @@ import numpy.typing
 
 __version__: str
 
+class Prediction:
+    """What a tilt test of two surfaces reads (frictal.predict). Attributes in SI (radians, metres); to_dict() has the keys and units of `frictal predict --json`"""
+    def __repr__(self) -> str: ...
+    @property
+    def atomic_friction(self) -> float:
+        ...
+    @property
+    def conditioning(self) -> str:
+        ...
+    @property
+    def contact_slope_std(self) -> float:
+        """(rad)"""
+    @property
+    def direction(self) -> float:
+        """sliding direction (rad)"""
+    @property
+    def drop_friction_angles(self) -> numpy.typing.NDArray[numpy.float64]:
+        ...
+    @property
+    def drop_offsets(self) -> List[List[float[2]]]:
+        ...
+    @property
+    def drops(self) -> int:
+        ...
+    @property
+    def eq18_friction_angle_range(self) -> List[float[2]]:
+        """(rad)"""
+    @property
+    def friction_angle(self) -> float:
+        """median over drops of the hold angle, atan(mu_a) included (rad)"""
+    @property
+    def friction_angle_max(self) -> float:
+        ...
+    @property
+    def friction_angle_mean(self) -> float:
+        ...
+    @property
+    def friction_angle_min(self) -> float:
+        ...
+    @property
+    def friction_angle_q05(self) -> float:
+        ...
+    @property
+    def friction_angle_q95(self) -> float:
+        ...
+    @property
+    def friction_angle_std(self) -> float:
+        ...
+    @property
+    def friction_coefficient(self) -> float:
+        """tan of the median"""
+    @property
+    def is_map(self) -> bool:
+        ...
+    @property
+    def model(self) -> str:
+        ...
+    @property
+    def rest_offset(self) -> List[float[2]]:
+        """(m)"""
+    @property
+    def runaway_distance(self) -> float:
+        """(m)"""
+    @property
+    def single_drop(self) -> bool:
+        ...
+    @property
+    def start_offset(self) -> List[float[2]]:
+        """(m)"""
+    @property
+    def theta_max(self) -> float:
+        """(rad)"""
+    def to_dict(self) -> dict:
+        """The keys and interface units of `frictal predict --json`"""
+    def to_json(self) -> str: ...
+    @property
+    def upper_bound_friction_angle(self) -> float:
+        """theta_max + theta_a (Eq. 6) (rad)"""
+    @property
+    def warnings(self) -> List[Warning]:
+        ...
+
 class Profile:
     """Single-valued piecewise-linear profile z(x) in metres"""
     def __init__(self, x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArray[numpy.float64], period: Optional[float] = ...) -> None: ...
@@ -22,6 +104,16 @@ class Profile:
     @property
     def z(self) -> numpy.typing.NDArray[numpy.float64]:
         """heights (m)"""
+
+class Warning:
+    """A warning code and its message (frictal.warning_codes() lists the codes)"""
+    def __repr__(self) -> str: ...
+    @property
+    def code(self) -> str:
+        ...
+    @property
+    def message(self) -> str:
+        ...
 
 def anisotropy(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, directions: int = ..., max_lines: int = ..., atomic_friction: float = ..., threads: int = ...) -> dict:
     """Predicted friction over sliding directions from the map's parallel lines (runs without the GIL); heights (m), dx, dy (m), atomic_friction mu_a (unitless). Returns direction, theta_forward/backward, sigma, friction_angle (rad)"""
@@ -135,8 +227,14 @@ def map_stats(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: fl
 def power_spectrum(profile: Profile, max_k: int = ...) -> tuple:
     """Power spectrum of a profile (m, runs without the GIL): returns (q in rad/m, C in m^3) of the piecewise-linear profile, with 2 sum C / L = rms^2; max_k: 0 = automatic"""
 
+def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., detrend: Optional[str] = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., threads: int = ...) -> Prediction:
+    """The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)"""
+
 def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ...) -> dict:
     """Friction prediction of Eq. 6 and the Eq. 18 range: atomic_friction mu_a (unitless), theta_max and sigma (rad). Returns angles in rad and coefficients (unitless)"""
+
+def prediction_columns() -> list:
+    """The prediction's output table: (key, interface unit, help) per quantity, as `frictal columns` prints it"""
 
 def profile_stats(profile: Profile, *, tip_radius: float = ...) -> dict:
     """Statistics of a profile: points, length_m ((n-1) dx), mean/rms height (m), rms slope (unitless), max/mean slope (rad), the slope PDF (edges in rad, density per rad), and the scan quantities sampling_interval_m, physical_length_m (n dx), bandwidth_m (shortest, longest), nyquist_wavelength_m; tip_radius (m) > 0 adds short_reliability_cutoff_m"""
@@ -299,6 +397,9 @@ def tilt_settings() -> list:
 
 def upper_envelope(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArray[numpy.float64]) -> Profile:
     """Exact upper envelope of a polyline curve (x, z in metres) as a Profile"""
+
+def warning_codes() -> dict:
+    """Every warning code the library issues and what it means (dict code -> meaning)"""
 
 def wm_profile(**kwargs: Any) -> Profile:
     """wm_profile(**params) -> Profile
