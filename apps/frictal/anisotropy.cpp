@@ -58,6 +58,9 @@ std::function<int()> setup(CLI::App& app) {
     if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; anisotropy needs an areal map", a->file));
     const Detrend dt = unwrap(parse_detrend(a->detrend));
     const Map m = unwrap(detrend(s.map, dt));
+    std::vector<Warning> warnings;
+    for (const auto& w : s.warnings) add_warning(warnings, {"reader", w});
+    for (Warning& w : check_map(m, a->file)) add_warning(warnings, std::move(w));
     if (!a->upper.empty() && !a->areal) throw UsageError("--upper needs --areal");
     require(std::isfinite(a->runaway_distance) && a->runaway_distance >= 0,
             fmt::format("--runaway-distance {}: expected a finite number of metres > 0", a->runaway_distance));
@@ -67,12 +70,15 @@ std::function<int()> setup(CLI::App& app) {
       const SurfaceData us = load_surface(a->upper, a->input);
       if (!us.is_map) throw UsageError(fmt::format("{}: a line profile; --upper needs an areal map", a->upper));
       u = unwrap(detrend(us.map, dt));
+      for (const auto& w : us.warnings) add_warning(warnings, {"reader", w});
+      for (Warning& w : check_map(u, a->upper)) add_warning(warnings, std::move(w));
     }
     nlohmann::json rows = nlohmann::json::array();
     if (!a->json)
-      fmt::print("{}: {} x {} map, {} directions ({})\n  dir_deg  theta+_deg  theta-_deg  sigma_deg  phi_deg    mu{}\n",
-                 a->file, m.nx, m.ny, a->directions, a->areal ? "areal signature" : "line profiles",
-                 a->hold ? "       hold_free_mean_deg  hold_locked_mean_deg" : "");
+      fmt::print(
+          "{}: {} x {} map, {} directions ({})\n  dir_deg  theta+_deg  theta-_deg  sigma_deg  bound_deg  mu<={}\n",
+          a->file, m.nx, m.ny, a->directions, a->areal ? "areal signature" : "line profiles",
+          a->hold ? "       hold_free_mean_deg  hold_locked_mean_deg" : "");
     for (int k = 0; k < a->directions; ++k) {
       const double angle = 2 * std::numbers::pi * k / a->directions;
       double fwd, bwd, sigma;
@@ -100,6 +106,7 @@ std::function<int()> setup(CLI::App& app) {
         lines = r.lines;
       }
       const FrictionPrediction p = unwrap(predict_friction(a->atomic_friction, fwd, sigma));
+      add_eq18_warning(warnings, p.low_clamped, fmt::format("direction {:g} deg", to_deg(angle)));
       // The hold angles over drops on the 2D lift of the same pair (free, then locked).
       HoldStatistics hold_free, hold_locked;
       if (a->hold) {
@@ -121,9 +128,9 @@ std::function<int()> setup(CLI::App& app) {
         row["theta_forward_deg"] = to_deg(fwd);
         row["theta_backward_deg"] = to_deg(bwd);
         row["sigma_deg"] = to_deg(sigma);
-        row["friction_angle_deg"] = to_deg(p.friction_angle);
-        row["friction_coefficient"] = p.friction_coefficient;
-        row["friction_coefficient_low"] = p.friction_coefficient_low;
+        row["upper_bound_friction_angle_deg"] = to_deg(p.friction_angle);  // theta_max + theta_a (Eq. 6)
+        row["upper_bound_friction_coefficient"] = p.friction_coefficient;
+        row["eq18_low_friction_coefficient"] = p.friction_coefficient_low;
         if (!a->areal) row["lines"] = lines;
         if (a->hold) {
           row["hold_angle_free_mean_deg"] = to_deg(hold_free.mean);
@@ -147,13 +154,19 @@ std::function<int()> setup(CLI::App& app) {
       j["method"] = a->areal ? "areal" : "lines";
       j["atomic_friction"] = a->atomic_friction;
       j["directions"] = rows;
+      j["warnings"] = warnings_json(warnings);
       print_json(j);
+    } else {
+      fmt::print("  (theta_max-based rigid upper bounds; what a tilt test reads: frictal predict --direction DEG)\n");
+      for (const Warning& w : warnings)
+        if (w.code != "reader") print_warnings({w});
     }
     return 0;
   };
 }
 
-FRICTAL_COMMAND({"anisotropy", "Predicted friction of an areal map over sliding directions (polar table)", setup, 70});
+FRICTAL_COMMAND({"anisotropy", "Rigid upper bound of friction of an areal map over sliding directions (polar table)",
+                 setup, 70});
 
 }  // namespace
 }  // namespace frictal::cli

@@ -181,8 +181,9 @@ std::function<int()> setup(CLI::App& app) {
     require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,
             "--atomic-friction must be a finite number >= 0");
     const Detrend dt = unwrap(parse_detrend(a->detrend));
+    std::vector<Warning> warnings;
     auto load = [&](const std::string& path) {
-      return load_detrended_map(path, a->input, dt, "the areal signature needs maps");
+      return load_detrended_map(path, a->input, dt, "the areal signature needs maps", &warnings);
     };
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);
@@ -198,6 +199,7 @@ std::function<int()> setup(CLI::App& app) {
       throw UsageError(fmt::format("--contact-slope '{}' not understood (expected lower or mean)", a->contact_slope));
     const ArealSignature r = unwrap(areal_signature(f, g, a->angle * kDeg, o));
     const FrictionPrediction p = unwrap(predict_friction(a->atomic_friction, r.theta_max_forward, r.contact_slope_std));
+    add_eq18_warning(warnings, p.low_clamped, "areal");
     if (!a->output.empty()) {
       std::string buf = "offset_m,lift_m,theta_rad,contact_x_m,contact_y_m\n";
       for (std::size_t k = 0; k < r.offset.size(); ++k)
@@ -217,19 +219,24 @@ std::function<int()> setup(CLI::App& app) {
       j["theta_max_lift_deg"] = to_deg(r.theta_max_lift);
       j["contact_slope_mean_deg"] = to_deg(r.contact_slope_mean);
       j["contact_slope_std_deg"] = to_deg(r.contact_slope_std);
-      j["friction_angle_deg"] = to_deg(p.friction_angle);
-      j["friction_coefficient"] = p.friction_coefficient;
-      j["friction_coefficient_low"] = p.friction_coefficient_low;
+      // theta_max-based: the rigid upper bound (the prediction of a tilt test is `frictal predict`).
+      j["upper_bound_friction_angle_deg"] = to_deg(p.friction_angle);
+      j["upper_bound_friction_coefficient"] = p.friction_coefficient;
+      j["eq18_low_friction_coefficient"] = p.friction_coefficient_low;
       j["evaluated_nodes"] = r.evaluated_nodes;
+      j["warnings"] = warnings_json(warnings);
       print_json(j);
     } else {
       fmt::print(
           a->output == "-" ? stderr : stdout,
           "{} on {} along {} deg: {} offsets\n  theta_max forward {:.4f} deg, backward {:.4f} deg, sigma {:.4f} deg\n"
-          "  friction angle {:.4f} deg, mu = {:.5f} (low {:.5f})\n",
+          "  rigid upper bound theta_max + theta_a {:.4f} deg, mu <= {:.5f} (Eq. 18 low {:.5f}); what a tilt test "
+          "reads: frictal predict\n",
           a->upper.empty() ? a->lower : a->upper, a->lower, a->angle, r.offset.size(), to_deg(r.theta_max_forward),
           to_deg(r.theta_max_backward), to_deg(r.contact_slope_std), to_deg(p.friction_angle), p.friction_coefficient,
           p.friction_coefficient_low);
+      for (const Warning& w : warnings)
+        if (w.code != "reader") print_warnings({w});  // the reader's are printed as it reads
     }
     return 0;
   };

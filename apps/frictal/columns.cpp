@@ -15,7 +15,8 @@ std::function<int()> setup(CLI::App& app) {
     require(!(*json && *markdown), "give one of --json and --markdown");
     if (*json) {
       nlohmann::json j = nlohmann::json::array();
-      for (const OutputColumn& c : prediction_columns()) j.push_back({{"key", c.key}, {"unit", c.unit}, {"help", c.help}});
+      for (const OutputColumn& c : prediction_columns())
+        j.push_back({{"key", c.key}, {"unit", c.unit}, {"help", c.help}});
       j.push_back({{"key", "warnings"}, {"unit", "list"}, {"help", "[{code, message}]: see frictal warnings"}});
       print_json(j);
     } else if (*markdown) {

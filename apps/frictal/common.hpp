@@ -18,6 +18,7 @@
 #include "frictal/geometry.hpp"
 #include "frictal/io.hpp"
 #include "frictal/units.hpp"
+#include "frictal/warnings.hpp"
 
 namespace frictal::cli {
 
@@ -67,6 +68,23 @@ inline Profile load_profile(const std::string& path, const ReadOptions& options 
 
 /// Prints a JSON object on stdout (NaN/inf become null, as JSON has no such numbers).
 inline void print_json(const nlohmann::json& j) { fmt::print("{}\n", j.dump(2)); }
+
+/// Warnings as results: the JSON array [{code, message}] of a command's output.
+inline nlohmann::json warnings_json(const std::vector<Warning>& w) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const Warning& x : w) a.push_back({{"code", x.code}, {"message", x.message}});
+  return a;
+}
+/// Text output: each warning on standard error, with its code.
+inline void print_warnings(const std::vector<Warning>& w) {
+  for (const Warning& x : w) fmt::print(stderr, "frictal: warning [{}]: {}\n", x.code, x.message);
+}
+/// The eq18-low-clamped warning when a FrictionPrediction-like result was clamped.
+inline void add_eq18_warning(std::vector<Warning>& w, bool clamped, const std::string& where) {
+  if (clamped)
+    add_warning(
+        w, {"eq18-low-clamped", where + ": Eq. 18's low end theta_max - sigma + theta_a is below zero; reported as 0"});
+}
 
 /// A finite number check for options, naming the option.
 inline void require(bool ok, const std::string& message) {

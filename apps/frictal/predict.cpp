@@ -2,9 +2,9 @@
 // distribution over drops of the quasi-static hold angle, its median the headline), beside the
 // rigid upper bound theta_max + theta_a (Eq. 6) and the paper's Eq. 18 range. The prediction is
 // the library's (frictal/predict.hpp); this file reads the inputs and prints it.
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
-#include <unistd.h>
 
 #include "common.hpp"
 #include "frictal/predict.hpp"
@@ -46,8 +46,8 @@ std::string mu_text(double rad) { return rad >= std::numbers::pi / 2 ? "inf" : f
 
 void print_text(const Prediction& p, const Args& a) {
   for (const Warning& w : p.warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
-  const std::string pair =
-      a.upper.empty() ? fmt::format("{} against itself turned over", a.lower) : fmt::format("{} on {}", a.upper, a.lower);
+  const std::string pair = a.upper.empty() ? fmt::format("{} against itself turned over", a.lower)
+                                           : fmt::format("{} on {}", a.upper, a.lower);
   fmt::print("frictal predict: {}, sliding at {:g} deg, mu_a = {:g}\n", pair, to_deg(p.direction), p.atomic_friction);
   if (p.single_drop) {
     fmt::print("  a tilt test from this drop reads phi = {} deg (mu = {}); it rests at {}\n",
@@ -55,10 +55,11 @@ void print_text(const Prediction& p, const Args& a) {
                p.is_map ? fmt::format("({:.6g}, {:.6g}) m", p.rest_offset[0], p.rest_offset[1])
                         : fmt::format("{:.6g} m", p.rest_offset[0]));
   } else {
-    fmt::print("  a tilt test of these surfaces reads phi = {} deg (mu = {}), the median over drops; 90 % of tests "
-               "between {} and {} deg (mu {} - {})\n",
-               deg_text(p.friction_angle.q50), mu_text(p.friction_angle.q50), deg_text(p.friction_angle.q05),
-               deg_text(p.friction_angle.q95), mu_text(p.friction_angle.q05), mu_text(p.friction_angle.q95));
+    fmt::print(
+        "  a tilt test of these surfaces reads phi = {} deg (mu = {}), the median over drops; 90 % of tests "
+        "between {} and {} deg (mu {} - {})\n",
+        deg_text(p.friction_angle.q50), mu_text(p.friction_angle.q50), deg_text(p.friction_angle.q05),
+        deg_text(p.friction_angle.q95), mu_text(p.friction_angle.q05), mu_text(p.friction_angle.q95));
     fmt::print("  over drops: mean {} deg, std {} deg, range [{}, {}] deg\n", deg_text(p.friction_angle.mean),
                deg_text(p.friction_angle.std), deg_text(p.friction_angle.min), deg_text(p.friction_angle.max));
   }
@@ -71,10 +72,9 @@ void print_text(const Prediction& p, const Args& a) {
                deg_text(p.locked_friction_angle.q95));
   else if (p.has_locked)
     fmt::print("  diagnostic: the block locked to the direction reads {} deg\n", deg_text(p.locked_friction_angle.q50));
-  const std::string range =
-      p.is_map ? fmt::format("u in [{:.4g}, {:.4g}] m along, v in [{:.4g}, {:.4g}] m across", p.drop_range[0],
-                             p.drop_range[1], p.drop_range[2], p.drop_range[3])
-               : fmt::format("[{:.6g}, {:.6g}] m", p.drop_range[0], p.drop_range[1]);
+  const std::string range = p.is_map ? fmt::format("u in [{:.4g}, {:.4g}] m along, v in [{:.4g}, {:.4g}] m across",
+                                                   p.drop_range[0], p.drop_range[1], p.drop_range[2], p.drop_range[3])
+                                     : fmt::format("[{:.6g}, {:.6g}] m", p.drop_range[0], p.drop_range[1]);
   fmt::print("  model: {} ({}); conditioning: {} removed; {} {} over {}; run-away d = {:.4g} m\n", p.model,
              p.is_map ? "rigid block free to move sideways, off the grid, quasi-static"
                       : "rigid quasi-static hold angle on the exact lift",
@@ -89,14 +89,14 @@ void print_text(const Prediction& p, const Args& a) {
 
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
-  app.add_option("lower", a->lower, "Lower surface: a line profile or an areal map (any readable format); - reads "
-                                    "standard input")
+  app.add_option("lower", a->lower,
+                 "Lower surface: a line profile or an areal map (any readable format); - reads "
+                 "standard input")
       ->required();
   app.add_option("upper", a->upper,
                  "Upper surface, as measured (material below): it is turned over to face LOWER. Default: LOWER "
                  "itself. Two profiles or two maps");
-  app.add_option("--direction", a->direction,
-                 "Sliding direction in deg from +x towards +y (profiles: 0 or 180)")
+  app.add_option("--direction", a->direction, "Sliding direction in deg from +x towards +y (profiles: 0 or 180)")
       ->capture_default_str();
   add_atomic_friction_option(app, a->mu_a);
   app.add_option("--detrend", a->detrend,
@@ -154,8 +154,9 @@ std::function<int()> setup(CLI::App& app) {
     }
     const Prediction p = unwrap(predict(lower, upper ? &*upper : nullptr, o));
     if (a->json) {
-      fmt::print("{}\n", prediction_json(p, fmt::format("\"lower\": {}, \"upper\": {}", nlohmann::json(a->lower).dump(),
-                                                      nlohmann::json(a->upper.empty() ? a->lower : a->upper).dump())));
+      fmt::print("{}\n",
+                 prediction_json(p, fmt::format("\"lower\": {}, \"upper\": {}", nlohmann::json(a->lower).dump(),
+                                                nlohmann::json(a->upper.empty() ? a->lower : a->upper).dump())));
     } else {
       print_text(p, *a);
     }

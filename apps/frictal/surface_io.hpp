@@ -97,10 +97,18 @@ inline SurfaceData load_surface(const std::string& path, const InputOptions& o) 
 
 /// The file's areal map with `dt` removed (error naming the file for a line profile: `needs`
 /// says what the command wants, e.g. "areal-tilt needs maps").
-inline Map load_detrended_map(const std::string& path, const InputOptions& o, const Detrend& dt, const char* needs) {
+/// `warnings` (if given) gains the reader's warnings (code "reader", already printed on standard
+/// error by load_surface) and the plausibility checks of the detrended map (warnings.hpp).
+inline Map load_detrended_map(const std::string& path, const InputOptions& o, const Detrend& dt, const char* needs,
+                              std::vector<Warning>* warnings = nullptr) {
   const SurfaceData s = load_surface(path, o);
   if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; {}", path, needs));
-  return unwrap(detrend(s.map, dt));
+  Map m = unwrap(detrend(s.map, dt));
+  if (warnings) {
+    for (const auto& w : s.warnings) add_warning(*warnings, {"reader", w});
+    for (Warning& w : check_map(m, path)) add_warning(*warnings, std::move(w));
+  }
+  return m;
 }
 
 /// The surface as a single-valued profile (error naming the file for maps or folded curves).

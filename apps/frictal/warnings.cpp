@@ -1,6 +1,6 @@
 // frictal warnings [--json|--markdown] — every warning code the library issues and what it means.
-#include "common.hpp"
 #include "frictal/warnings.hpp"
+#include "common.hpp"
 
 namespace frictal::cli {
 namespace {

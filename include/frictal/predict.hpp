@@ -40,8 +40,9 @@ struct PredictOptions {
   /// Run-away distance d that a test reads (unit: m); 0: the shared default (hold.hpp's
   /// default_runaway_distance for profiles, a tenth of half the lower map along d for maps).
   double runaway_distance = 0;
-  /// Form removal before the prediction; nullopt: a line for profiles, a plane for maps (the
-  /// default of every front end). DetrendKind::None opts out.
+  /// Form removal before the prediction; nullopt: a line for profiles (the mean for periodic
+  /// ones, which have no form), a plane for maps (the default of every front end).
+  /// DetrendKind::None opts out.
   std::optional<Detrend> detrend;
   /// One drop at this offset instead of the distribution (x for profiles; x, y for maps; in the
   /// signature's frame of offsets: 0 = left ends aligned for profiles, the blocks' centres
@@ -82,12 +83,12 @@ struct Prediction {
   std::size_t drops = 0;        ///< drops the distribution is over (profiles: basins that drain them)
   /// Drop range: profiles [min, max, 0, 0]; maps [u_min, u_max, v_min, v_max] along and across d (unit: m).
   std::array<double, 4> drop_range = {0, 0, 0, 0};
-  HoldStatistics friction_angle;           ///< the hold angle over drops, atan(mu_a) included (unit: rad)
-  double friction_coefficient = 0;         ///< tan(friction_angle.q50) (unitless)
-  double upper_bound_friction_angle = 0;   ///< theta_max + theta_a, capped at pi/2 (Eq. 6) (unit: rad)
-  double theta_max = 0;                    ///< steepest contact slope along the direction (unit: rad)
-  double contact_slope_std = 0;            ///< sigma of Eq. 18 (unit: rad)
-  std::array<double, 2> eq18_range = {0, 0};  ///< [max(0, theta_max - sigma), theta_max] + theta_a (unit: rad)
+  HoldStatistics friction_angle;                ///< the hold angle over drops, atan(mu_a) included (unit: rad)
+  double friction_coefficient = 0;              ///< tan(friction_angle.q50) (unitless)
+  double upper_bound_friction_angle = 0;        ///< theta_max + theta_a, capped at pi/2 (Eq. 6) (unit: rad)
+  double theta_max = 0;                         ///< steepest contact slope along the direction (unit: rad)
+  double contact_slope_std = 0;                 ///< sigma of Eq. 18 (unit: rad)
+  std::array<double, 2> eq18_range = {0, 0};    ///< [max(0, theta_max - sigma), theta_max] + theta_a (unit: rad)
   std::array<double, 2> start_offset = {0, 0};  ///< single_drop: the drop (unit: m)
   std::array<double, 2> rest_offset = {0, 0};   ///< single_drop: where it rested at zero tilt (unit: m)
   /// Maps: the same drops with the block locked to d (a diagnostic; the test's block is free).
@@ -113,7 +114,8 @@ struct PredictSurface {
 /// Errors (InvalidInput, naming the value and the valid range): a profile and a map in one pair,
 /// a profile direction other than 0 or pi, mu_a < 0, d < 0, a start offset outside the drop
 /// range, maps that do not overlap along the direction, a map job above map_work_limit.
-Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& options = {});
+Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper,
+                           const PredictOptions& options = {});
 
 /// An output value: a number (SI inside, converted to the column's interface unit by the writers),
 /// a text, a flag or a list of numbers.

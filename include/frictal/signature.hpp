@@ -136,8 +136,9 @@ struct FrictionPrediction {
   double theta_max = 0;                 ///< (unit: rad)
   double friction_angle = 0;            ///< phi = theta_a + theta_max, capped at pi/2 (unit: rad)
   double friction_coefficient = 0;      ///< mu = tan(phi); +inf when phi reaches pi/2 (unitless)
-  double friction_angle_low = 0;        ///< Eq. 18 lower end: theta_a + theta_max - sigma (unit: rad)
+  double friction_angle_low = 0;        ///< Eq. 18 lower end: max(0, theta_a + theta_max - sigma) (unit: rad)
   double friction_coefficient_low = 0;  ///< tan of the above (unitless)
+  bool low_clamped = false;  ///< theta_a + theta_max - sigma was below 0: the low end is 0 (warning eq18-low-clamped)
 };
 /// mu_a >= 0; theta_max and sigma in radians.
 Result<FrictionPrediction> predict_friction(double atomic_friction, double theta_max, double sigma);

@@ -127,8 +127,9 @@ void frictal_bind_predict(py::module_& m) {
       .def_readonly("runaway_distance", &Prediction::runaway_distance, "(m)")
       .def_readonly("single_drop", &Prediction::single_drop)
       .def_readonly("drops", &Prediction::drops)
-      .def_property_readonly("friction_angle", [](const Prediction& p) { return p.friction_angle.q50; },
-                             "median over drops of the hold angle, atan(mu_a) included (rad)")
+      .def_property_readonly(
+          "friction_angle", [](const Prediction& p) { return p.friction_angle.q50; },
+          "median over drops of the hold angle, atan(mu_a) included (rad)")
       .def_property_readonly("friction_angle_q05", [](const Prediction& p) { return p.friction_angle.q05; })
       .def_property_readonly("friction_angle_q95", [](const Prediction& p) { return p.friction_angle.q95; })
       .def_property_readonly("friction_angle_mean", [](const Prediction& p) { return p.friction_angle.mean; })
@@ -174,8 +175,7 @@ void frictal_bind_predict(py::module_& m) {
       "predict",
       [](const py::object& lower, const py::object& upper, double direction, double atomic_friction,
          double runaway_distance, std::optional<std::string> detrend_text, std::optional<std::vector<double>> start,
-         int drops, bool locked, double spacing, const std::string& format, const std::string& unit,
-         unsigned threads) {
+         int drops, bool locked, double spacing, const std::string& format, const std::string& unit, unsigned threads) {
         PredictOptions o;
         o.direction = direction;
         o.atomic_friction = atomic_friction;

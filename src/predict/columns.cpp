@@ -48,14 +48,16 @@ const std::vector<OutputColumn>& prediction_columns() {
              return p.is_map ? std::vector<double>(p.drop_range.begin(), p.drop_range.end())
                              : std::vector<double>{p.drop_range[0], p.drop_range[1]};
            }),
-      deg("friction_angle_deg", "THE PREDICTION: median over drops of the hold angle a tilt test reads, atan(mu_a) "
-                                "included",
+      deg("friction_angle_deg",
+          "THE PREDICTION: median over drops of the hold angle a tilt test reads, atan(mu_a) "
+          "included",
           [](const P& p) { return p.friction_angle.q50; }),
       deg("friction_angle_q05_deg", "5 % quantile of the hold angle over drops",
           [](const P& p) { return p.friction_angle.q05; }),
       deg("friction_angle_q95_deg", "95 % quantile of the hold angle over drops",
           [](const P& p) { return p.friction_angle.q95; }),
-      deg("friction_angle_mean_deg", "mean of the hold angle over drops", [](const P& p) { return p.friction_angle.mean; }),
+      deg("friction_angle_mean_deg", "mean of the hold angle over drops",
+          [](const P& p) { return p.friction_angle.mean; }),
       deg("friction_angle_std_deg", "standard deviation of the hold angle over drops",
           [](const P& p) { return p.friction_angle.std; }),
       deg("friction_angle_min_deg", "least hold angle over drops", [](const P& p) { return p.friction_angle.min; }),
@@ -66,8 +68,9 @@ const std::vector<OutputColumn>& prediction_columns() {
           [](const P& p) { return tan_or_inf(p.friction_angle.q05); }),
       num("friction_coefficient_q95", "1", "tan of the 95 % quantile",
           [](const P& p) { return tan_or_inf(p.friction_angle.q95); }),
-      deg("upper_bound_friction_angle_deg", "rigid upper bound theta_max + theta_a (Eq. 6), reached only where the "
-                                            "block can get to the steepest contact",
+      deg("upper_bound_friction_angle_deg",
+          "rigid upper bound theta_max + theta_a (Eq. 6), reached only where the "
+          "block can get to the steepest contact",
           [](const P& p) { return p.upper_bound_friction_angle; }),
       num("upper_bound_friction_coefficient", "1", "tan of the upper bound",
           [](const P& p) { return tan_or_inf(p.upper_bound_friction_angle); }),
@@ -75,9 +78,12 @@ const std::vector<OutputColumn>& prediction_columns() {
           [](const P& p) { return p.theta_max; }),
       deg("contact_slope_std_deg", "sigma of Eq. 18: standard deviation of the contact slopes",
           [](const P& p) { return p.contact_slope_std; }),
-      list("eq18_friction_angle_range_deg", "deg", "the paper's Eq. 18 range [max(0, theta_max - sigma), theta_max] "
-                                                   "+ theta_a",
-           [](const P& p) { return std::vector<double>{p.eq18_range[0], p.eq18_range[1]}; }),
+      list("eq18_friction_angle_range_deg", "deg",
+           "the paper's Eq. 18 range [max(0, theta_max - sigma), theta_max] "
+           "+ theta_a",
+           [](const P& p) {
+             return std::vector<double>{p.eq18_range[0], p.eq18_range[1]};
+           }),
       list("start_offset_m", "m", "single drop: where it was put down (x, y)",
            [](const P& p) {
              return p.single_drop ? std::vector<double>{p.start_offset[0], p.start_offset[1]} : std::vector<double>{};
@@ -86,8 +92,9 @@ const std::vector<OutputColumn>& prediction_columns() {
            [](const P& p) {
              return p.single_drop ? std::vector<double>{p.rest_offset[0], p.rest_offset[1]} : std::vector<double>{};
            }),
-      deg("locked_friction_angle_deg", "maps, a diagnostic: the median hold angle with the block locked to d (NaN "
-                                       "for profiles)",
+      deg("locked_friction_angle_deg",
+          "maps, a diagnostic: the median hold angle with the block locked to d (NaN "
+          "for profiles)",
           [](const P& p) { return p.has_locked ? p.locked_friction_angle.q50 : NAN; }),
       deg("locked_friction_angle_q05_deg", "maps: 5 % quantile, block locked to d",
           [](const P& p) { return p.has_locked ? p.locked_friction_angle.q05 : NAN; }),

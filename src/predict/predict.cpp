@@ -73,13 +73,14 @@ void finish(Prediction& p, double theta_max, double sigma) {
   // 89.5 deg: a slope of 115, steeper than any measured contact (a wall, an interlock or units).
   constexpr double kNear90 = 89.5 * kPi / 180;
   if (p.friction_angle.q50 >= kNear90 || p.upper_bound_friction_angle >= kNear90)
-    add_warning(p.warnings,
-                {"friction-angle-at-90",
-                 fmt::format("the {} is {:.4f} deg: a vertical wall, an interlock or a unit mix-up holds the block; the "
-                             "number is a single feature of the data, not a friction",
-                             p.friction_angle.q50 >= kNear90 ? "hold angle's median" : "rigid upper bound",
-                             (p.friction_angle.q50 >= kNear90 ? p.friction_angle.q50 : p.upper_bound_friction_angle) *
-                                 180 / kPi)});
+    add_warning(
+        p.warnings,
+        {"friction-angle-at-90",
+         fmt::format(
+             "the {} is {:.4f} deg: a vertical wall, an interlock or a unit mix-up holds the block; the "
+             "number is a single feature of the data, not a friction",
+             p.friction_angle.q50 >= kNear90 ? "hold angle's median" : "rigid upper bound",
+             (p.friction_angle.q50 >= kNear90 ? p.friction_angle.q50 : p.upper_bound_friction_angle) * 180 / kPi)});
 }
 
 void reader_warnings(std::vector<Warning>& out, const PredictSurface& s) {
@@ -87,21 +88,26 @@ void reader_warnings(std::vector<Warning>& out, const PredictSurface& s) {
     add_warning(out, {"reader", w.find(s.name) == std::string::npos ? s.name + ": " + w : w});
 }
 
-double mean_spacing(const Profile& p) { return p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0; }
+double mean_spacing(const Profile& p) {
+  return p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0;
+}
 
 Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
   Prediction p;
   p.is_map = false;
   p.model = "profile-quasi-static-hold";
-  const Detrend dt = o.detrend.value_or(Detrend{DetrendKind::Line, 1});
+  // A periodic profile (generated, or --period) has no form to remove: a line fitted over its
+  // periods only picks up the phase of the last one, so its default is the mean.
+  const bool periodic = lower.profile.period || o.period > 0;
+  const Detrend dt = o.detrend.value_or(periodic ? Detrend{DetrendKind::Mean, 0} : Detrend{DetrendKind::Line, 1});
   p.conditioning = detrend_name(dt, false);
   p.atomic_friction = o.atomic_friction;
   p.direction = o.direction;
   const bool forward = std::abs(o.direction) < 1e-9;
   const bool backward = std::abs(std::abs(o.direction) - kPi) < 1e-9;
   if (!forward && !backward)
-    return make_error(fmt::format("direction {:.6g} deg: a profile slides along +x (0) or -x (180) only",
-                                  o.direction * 180 / kPi));
+    return make_error(
+        fmt::format("direction {:.6g} deg: a profile slides along +x (0) or -x (180) only", o.direction * 180 / kPi));
   reader_warnings(p.warnings, lower);
   if (upper) reader_warnings(p.warnings, *upper);
   auto lo = detrend(lower.profile, dt);
@@ -118,8 +124,7 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   if (upper) {
     for (Warning& w : check_profile(up_measured, upper->name)) add_warning(p.warnings, std::move(w));
     const double l1 = lo->x.back() - lo->x.front(), l2 = up_measured.x.back() - up_measured.x.front();
-    for (Warning& w :
-         check_pair_scales(l1, mean_spacing(*lo), l2, mean_spacing(up_measured), lower.name, upper->name))
+    for (Warning& w : check_pair_scales(l1, mean_spacing(*lo), l2, mean_spacing(up_measured), lower.name, upper->name))
       add_warning(p.warnings, std::move(w));
   }
   if (o.period != 0) {
@@ -192,9 +197,9 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   for (Warning& w : check_map(*lo, lower.name)) add_warning(p.warnings, std::move(w));
   if (upper) {
     for (Warning& w : check_map(up, upper->name)) add_warning(p.warnings, std::move(w));
-    for (Warning& w : check_pair_scales(std::max(lo->width(), lo->height()), std::min(lo->dx, lo->dy),
-                                        std::max(up.width(), up.height()), std::min(up.dx, up.dy), lower.name,
-                                        upper->name))
+    for (Warning& w :
+         check_pair_scales(std::max(lo->width(), lo->height()), std::min(lo->dx, lo->dy),
+                           std::max(up.width(), up.height()), std::min(up.dx, up.dy), lower.name, upper->name))
       add_warning(p.warnings, std::move(w));
   }
   const double c = std::cos(o.direction), s = std::sin(o.direction);
@@ -224,9 +229,10 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
     const double u = x * c + y * s, v = -x * s + y * c;
     const double half_along = 0.5 * along, half_across = 0.5 * across;
     if (!(std::abs(u) <= half_along && std::abs(v) <= half_across))
-      return make_error(fmt::format("start offset ({:.6g}, {:.6g}) m: along the direction {:.6g} m and across it "
-                                    "{:.6g} m; expected within [-{:.6g}, {:.6g}] along and [-{:.6g}, {:.6g}] across",
-                                    x, y, u, v, half_along, half_along, half_across, half_across));
+      return make_error(
+          fmt::format("start offset ({:.6g}, {:.6g}) m: along the direction {:.6g} m and across it "
+                      "{:.6g} m; expected within [-{:.6g}, {:.6g}] along and [-{:.6g}, {:.6g}] across",
+                      x, y, u, v, half_along, half_along, half_across, half_across));
     uv.push_back({u, v});
     p.single_drop = true;
     p.start_offset = {x, y};
@@ -240,9 +246,10 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   const double spheres = double(up.valid_count());
   const double work = spheres * 4.0 * 3000.0 * double(uv.size()) * (o.map_locked ? 2 : 1);
   if (o.map_work_limit > 0 && work > o.map_work_limit)
-    return make_error(fmt::format("the map prediction would evaluate about {:.2g} sphere-cell pairs ({} spheres, {} "
-                                  "drops), above the limit {:.2g}: crop or resample the maps, or fewer drops",
-                                  work, std::size_t(spheres), uv.size(), o.map_work_limit));
+    return make_error(
+        fmt::format("the map prediction would evaluate about {:.2g} sphere-cell pairs ({} spheres, {} "
+                    "drops), above the limit {:.2g}: crop or resample the maps, or fewer drops",
+                    work, std::size_t(spheres), uv.size(), o.map_work_limit));
   for (const auto& q : uv) p.drop_offsets.push_back({q[0] * c - q[1] * s, q[0] * s + q[1] * c});
   const std::size_t nd = uv.size();
   std::vector<double> free_angle(nd), locked_angle(nd, 0);
@@ -280,8 +287,9 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
     }
   });
   for (std::size_t k = 0; k < nd; ++k)
-    if (!errors[k].empty()) return make_error(fmt::format("drop at ({:.6g}, {:.6g}) m: {}", p.drop_offsets[k][0],
-                                                          p.drop_offsets[k][1], errors[k]));
+    if (!errors[k].empty())
+      return make_error(
+          fmt::format("drop at ({:.6g}, {:.6g}) m: {}", p.drop_offsets[k][0], p.drop_offsets[k][1], errors[k]));
   p.drops = nd;
   p.drop_angles = free_angle;
   p.friction_angle = plain_stats(free_angle);

@@ -25,7 +25,8 @@ const std::vector<WarningCode>& warning_codes() {
        "and the hold angles on their own; remove them (--despike) or check the scan"},
       {"kurtosis", "the height kurtosis is above 30: a few outlying points dominate the height distribution"},
       {"fill-value",
-       "runs of one repeated height value cover more than 5 % of the points: a fill value for points not measured; mask it "
+       "runs of one repeated height value cover more than 5 % of the points: a fill value for points not measured; "
+       "mask it "
        "(NaN) or crop it away"},
       {"scale-mismatch", "the two scans' lengths or point spacings differ by more than 10x"},
       {"eq18-low-clamped",
@@ -83,7 +84,7 @@ std::pair<double, std::size_t> repeated_runs(const std::vector<double>& z, std::
   std::map<double, std::size_t> count;
   for (std::size_t r0 = 0; r0 < z.size(); r0 += row)
     for (std::size_t i = r0; i < r0 + row && i < z.size();) {
-      std::size_t j = i;
+      std::size_t j = i + 1;  // NaN (not measured) equals nothing, itself included: a run of one
       while (j < r0 + row && j < z.size() && z[j] == z[i]) ++j;
       if (j - i >= 3 && std::isfinite(z[i])) count[z[i]] += j - i;
       i = j;
@@ -127,9 +128,10 @@ void common_checks(std::vector<Warning>& out, const Moments& m, std::size_t spik
                                               "few outlying points dominate)",
                                               name, m.kurtosis, L.max_kurtosis)});
   if (n > 20 && double(rep.second) > L.max_repeated_fraction * double(n))
-    add_warning(out, {"fill-value", fmt::format("{}: runs of one height (the commonest {:.9g} m) cover {} of {} "
-                                                "points ({:.1f} %): a fill value for points not measured?",
-                                                name, rep.first, rep.second, n, 100.0 * double(rep.second) / double(n))});
+    add_warning(out,
+                {"fill-value", fmt::format("{}: runs of one height (the commonest {:.9g} m) cover {} of {} "
+                                           "points ({:.1f} %): a fill value for points not measured?",
+                                           name, rep.first, rep.second, n, 100.0 * double(rep.second) / double(n))});
 }
 
 }  // namespace

@@ -860,8 +860,11 @@ Result<FrictionPrediction> predict_friction(double mu_a, double theta_max, doubl
   // Eq. 6: phi = theta_a + theta; beyond 90 degrees the interface cannot slide at all.
   f.friction_angle = std::min(kHalfPi, f.atomic_angle + theta_max);
   f.friction_coefficient = (f.friction_angle >= kHalfPi) ? kInf : std::tan(f.friction_angle);
-  // Eq. 18: theta_max - sigma <= theta <= theta_max.
+  // Eq. 18: theta_max - sigma <= theta <= theta_max. A friction angle below zero is no friction
+  // (the block would slide on its own): the low end is reported as 0 and flagged (low_clamped).
   f.friction_angle_low = std::min(kHalfPi, f.atomic_angle + theta_max - sigma);
+  f.low_clamped = f.friction_angle_low < 0;
+  f.friction_angle_low = std::max(0.0, f.friction_angle_low);
   f.friction_coefficient_low = (f.friction_angle_low >= kHalfPi) ? kInf : std::tan(f.friction_angle_low);
   return f;
 }

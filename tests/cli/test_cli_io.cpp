@@ -100,7 +100,7 @@ TEST(CliIo, AnisotropyTable) {
   ASSERT_EQ(j["directions"].size(), 4u);
   for (const auto& row : j["directions"]) {
     // Eq. 6: phi = atan(mu_a) + theta_forward.
-    EXPECT_NEAR(row["friction_angle_deg"].get<double>(),
+    EXPECT_NEAR(row["upper_bound_friction_angle_deg"].get<double>(),
                 std::atan(0.1) * 180 / 3.141592653589793 + row["theta_forward_deg"].get<double>(), 1e-9);
   }
   auto b = run_cli("anisotropy " + kData + "/x3p/x3p-2.x3p --directions 2 --areal --json");
@@ -184,7 +184,7 @@ TEST(CliIo, ArealSignatureCommand) {
   auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["direction_deg"], 90.0);
   // Eq. 6: phi = atan(mu_a) + theta_max_forward.
-  EXPECT_NEAR(j["friction_angle_deg"].get<double>(),
+  EXPECT_NEAR(j["upper_bound_friction_angle_deg"].get<double>(),
               std::atan(0.2) * 180 / 3.141592653589793 + j["theta_max_forward_deg"].get<double>(), 1e-9);
   const std::string text = read_file(csv);
   EXPECT_EQ(text.rfind("offset_m,lift_m,theta_rad,contact_x_m,contact_y_m\n0,", 0), 0u);

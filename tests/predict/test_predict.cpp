@@ -214,6 +214,10 @@ TEST(Warnings, UnitsSpikesScaleAndFillValuesAreNamed) {
   mp.dx = mp.dy = 1e-6;
   for (std::size_t k = 0; k < 400; ++k) mp.heights.push_back(k < 80 ? -1e-6 : 1e-8 * std::sin(0.7 * double(k)));
   EXPECT_TRUE(has_code(frictal::check_map(mp, "filled"), "fill-value"));
+  // Points not measured (NaN) are no fill value, and a map of holes is checked in finite time
+  // (NaN equals nothing: a run of NaN once never ended).
+  for (std::size_t k = 0; k < 80; ++k) mp.heights[k] = std::nan("");
+  EXPECT_FALSE(has_code(frictal::check_map(mp, "holes"), "fill-value"));
   // Two scans 20000x apart in length.
   EXPECT_TRUE(has_code(frictal::check_pair_scales(1.0, 1e-3, 5e-5, 1e-7, "a", "b"), "scale-mismatch"));
   EXPECT_TRUE(frictal::check_pair_scales(1e-3, 1e-6, 2e-3, 2e-6, "a", "b").empty());
