@@ -61,7 +61,7 @@ struct PredictOptions {
   bool map_locked = false;
   /// Maps: refuse when the continuous model would evaluate more than this many sphere-cell
   /// pairs in all (an estimate; unitless). 0: no limit.
-  double map_work_limit = 2e11;
+  double map_work_limit = 1e12;
   unsigned threads = 0;  ///< worker threads (0 = all cores); results do not depend on it
   /// Maps: called after each finished drop with (done, total), from the worker threads (one
   /// call at a time); the front ends draw a progress line with it. Empty: none.

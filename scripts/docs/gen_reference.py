@@ -5,6 +5,7 @@ unit, default, range, format or header is copied by hand (scripts/docs/build.py 
     reference/cli.md       `frictal commands --json`: every command, subcommand and option, the
                            options from a settings table with the table's unit, default and range
     reference/settings.md  `frictal settings --markdown` (the settings tables)
+    reference/outputs.md   `frictal columns --markdown`, `frictal warnings --markdown` (outputs, warning codes)
     reference/formats.md   `frictal formats --json`, and `frictal info --json` of every measured
                            file under tests/data/ (the instrument files the tests read)
     reference/kinds.md     `frictal study kinds --json`: the study task kinds and their outputs
@@ -202,6 +203,19 @@ def main():
         "settings.md": GENERATED.format(what="`frictal settings --markdown`") + run(a.cli, "settings", "--markdown"),
         "formats.md": formats_page(a.cli),
         "kinds.md": kinds_page(a.cli),
+        "outputs.md": GENERATED.format(what="`frictal columns --markdown` and `frictal warnings --markdown`")
+        + "# Outputs and warnings\n\n"
+        + "## The prediction (`frictal predict --json`, Python `Prediction.to_dict()`)\n\n"
+        + "Every key, declared once in the library's output table (`frictal/predict.hpp`, "
+        + "`prediction_columns()`), with its interface unit; the report embeds the same object as "
+        + "`<script type=\"application/json\" id=\"prediction\">`.\n\n"
+        + run(a.cli, "columns", "--markdown")
+        + "\n## Warning codes\n\n"
+        + "A number computed without error that a reader should not trust as it stands carries one of "
+        + "these codes (`frictal/warnings.hpp`): in the JSON's `warnings`, on standard error, in the "
+        + "report beside the headline, and in Python as `warnings.warn` with the category "
+        + "`frictal.<CamelCase code>Warning` (a subclass of `frictal.FrictalWarning`).\n\n"
+        + run(a.cli, "warnings", "--markdown"),
         "cpp.rst": cpp_page(),
     }
     for name, text in pages.items():
