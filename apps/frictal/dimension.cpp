@@ -90,6 +90,9 @@ std::function<int()> setup(CLI::App& app) {
     } else {
       throw UsageError(fmt::format("--method '{}' not understood (expected divider, box, psd or eq13)", a->method));
     }
+    std::vector<Warning> warnings;
+    for (const auto& w : s.warnings) add_warning(warnings, {"reader", w});
+    for (Warning& w : check_dimension_fit(f.dimension, f.r_squared, a->method)) add_warning(warnings, std::move(w));
     if (a->json) {
       nlohmann::json j;
       j["file"] = a->file;
@@ -100,10 +103,13 @@ std::function<int()> setup(CLI::App& app) {
       j["fit_range_m"] = {f.scale_min, f.scale_max};
       j["scales_m"] = f.scales;
       j["values"] = f.values;
+      j["warnings"] = warnings_json(warnings);
       print_json(j);
     } else {
       fmt::print("{}: D = {:.4f} ({} method, r^2 = {:.4f}, fit over {:.4g} .. {:.4g} m)\n", a->file, f.dimension,
                  a->method, f.r_squared, f.scale_min, f.scale_max);
+      for (const Warning& w : warnings)
+        if (w.code != "reader") print_warnings({w});
     }
     return 0;
   };

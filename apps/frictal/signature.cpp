@@ -5,6 +5,7 @@
 #include <fstream>
 #include <future>
 #include <iterator>
+#include <mutex>
 #include <thread>
 
 #include "common.hpp"
@@ -168,16 +169,35 @@ std::function<int()> setup(CLI::App& app) {
           "signature: give LOWER [UPPER] files, or a generator (koch, wm, sawtooth, sine, self-affine, fourier)");
     }
     const ReadOptions ro = read_options(a->input);
+    // Warnings as results: the readers' (printed as they read) and the plausibility checks of each
+    // profile as it enters the signature (warnings.hpp).
+    std::vector<Warning> warnings;
+    std::mutex warnings_mutex;
+    auto load = [&](const std::string& path) {
+      const SurfaceData sd = unwrap(read_surface(input_path(path), ro));
+      {
+        std::lock_guard<std::mutex> lock(warnings_mutex);
+        for (const auto& w : sd.warnings) add_warning(warnings, {"reader", stdin_name(w)});
+      }
+      return surface_profile(sd, path);
+    };
+    auto checked = [&](Profile p, const std::string& name) {
+      std::vector<Warning> w = check_profile(p, name);
+      std::lock_guard<std::mutex> lock(warnings_mutex);
+      for (Warning& x : w) add_warning(warnings, std::move(x));
+      return p;
+    };
     // Two files are read at the same time when more than one thread is allowed (parsing a text
     // profile is CPU-bound: ~1 s per 10^7 points); the profiles are the same either way.
     std::future<Profile> upper_read;
     if (!a->upper.empty() && a->threads != 1 && a->upper != "-" && a->lower != "-")
-      upper_read =
-          std::async(std::launch::async, [&a, &ro, &dt]() { return unwrap(detrend(load_profile(a->upper, ro), dt)); });
-    Profile lower = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : load_profile(a->lower, ro), dt));
+      upper_read = std::async(std::launch::async, [&a, &dt, &checked, &load]() {
+        return checked(unwrap(detrend(load(a->upper), dt)), a->upper);
+      });
+    Profile lower = checked(unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : load(a->lower), dt)), a->lower);
     Profile upper_measured = a->upper.empty()     ? lower
                              : upper_read.valid() ? upper_read.get()
-                                                  : unwrap(detrend(load_profile(a->upper, ro), dt));
+                                                  : checked(unwrap(detrend(load(a->upper), dt)), a->upper);
     const ValueSet pv = si_values(tilt_settings(), a->period_words);
     if (pv.count("period")) a->period = as_real(pv.at("period"));
     if (pv.count("spheroradius")) a->spheroradius = as_real(pv.at("spheroradius"));
@@ -242,6 +262,7 @@ std::function<int()> setup(CLI::App& app) {
                  r.offset.size());
     FrictionPrediction fwd = unwrap(predict_friction(a->mu_a, r.theta_max_forward, r.contact_slope_std));
     FrictionPrediction bwd = unwrap(predict_friction(a->mu_a, r.theta_max_backward, r.contact_slope_std));
+    add_eq18_warning(warnings, fwd.low_clamped, "signature");
 
     if (!a->out.empty()) {
       // The basin each offset drains into at zero tilt (numbered along the hold analysis' lift).
@@ -296,12 +317,15 @@ std::function<int()> setup(CLI::App& app) {
       j["surface_slope_max_deg"] = to_deg(smax);
       j["atomic_friction"] = a->mu_a;
       j["atomic_friction_angle_deg"] = to_deg(fwd.atomic_angle);
-      j["friction_angle_deg"] = to_deg(fwd.friction_angle);
-      j["friction_coefficient"] = fwd.friction_coefficient;
-      j["friction_angle_low_deg"] = to_deg(fwd.friction_angle_low);
-      j["friction_coefficient_low"] = fwd.friction_coefficient_low;
-      j["friction_angle_backward_deg"] = to_deg(bwd.friction_angle);
-      j["friction_coefficient_backward"] = bwd.friction_coefficient;
+      // theta_max-based: the rigid upper bound (Eq. 6) and Eq. 18; what a tilt test reads is
+      // `frictal predict` (the hold angle's distribution below is its analysis).
+      j["upper_bound_friction_angle_deg"] = to_deg(fwd.friction_angle);
+      j["upper_bound_friction_coefficient"] = fwd.friction_coefficient;
+      j["eq18_low_friction_angle_deg"] = to_deg(fwd.friction_angle_low);
+      j["eq18_low_friction_coefficient"] = fwd.friction_coefficient_low;
+      j["upper_bound_friction_angle_backward_deg"] = to_deg(bwd.friction_angle);
+      j["upper_bound_friction_coefficient_backward"] = bwd.friction_coefficient;
+      j["warnings"] = warnings_json(warnings);
       if (hold) add_hold_json(j, *hold);
       j["wall_time_s"] = wall;
       j["hold_wall_time_s"] = hold_wall;
@@ -321,11 +345,12 @@ std::function<int()> setup(CLI::App& app) {
       fmt::print(text, "  contact slope mean {:.4f} deg, std (sigma) {:.4f} deg; max surface slope {:.4f} deg\n",
                  to_deg(r.contact_slope_mean), to_deg(r.contact_slope_std), to_deg(smax));
       fmt::print(text,
-                 "friction (mu_a = {}): phi = {:.4f} deg, mu = {:.6g}; Eq. 18 range phi in [{:.4f}, {:.4f}] deg; "
-                 "backward phi = {:.4f} deg\n",
+                 "rigid upper bound (mu_a = {}): theta_max + theta_a = {:.4f} deg, mu <= {:.6g}; Eq. 18 range [{:.4f}, "
+                 "{:.4f}] deg; backward {:.4f} deg (what a tilt test reads: frictal predict)\n",
                  a->mu_a, to_deg(fwd.friction_angle), fwd.friction_coefficient, to_deg(fwd.friction_angle_low),
                  to_deg(fwd.friction_angle), to_deg(bwd.friction_angle));
       if (hold) print_hold_text(text, *hold, fwd);
+      print_warnings(warnings);
     }
     return 0;
   };

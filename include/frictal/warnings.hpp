@@ -56,4 +56,10 @@ std::vector<Warning> check_pair_scales(double lower_length, double lower_spacing
                                        double upper_spacing, const std::string& lower_name,
                                        const std::string& upper_name, const PlausibilityLimits& limits = {});
 
+/// A fractal dimension fit (fractal.hpp's FractalFit: `dimension`, `r_squared`): codes
+/// dimension-out-of-range (D outside [1, 2], which no profile has) and poor-fit (r^2 below
+/// `min_r_squared`: the log-log data are not a power law over the fit range). `method` names it.
+std::vector<Warning> check_dimension_fit(double dimension, double r_squared, const std::string& method,
+                                         double min_r_squared = 0.95);
+
 }  // namespace frictal

@@ -107,7 +107,7 @@ void frictal_bind_predict(py::module_& m) {
         for (const WarningCode& c : warning_codes()) d[py::str(c.code)] = c.meaning;
         return d;
       },
-      "Every warning code the library issues and what it means (dict code -> meaning)");
+      "Every warning code the library issues and what it means (dict code -> meaning; text, unitless)");
   m.def(
       "prediction_columns",
       [] {
@@ -115,7 +115,8 @@ void frictal_bind_predict(py::module_& m) {
         for (const OutputColumn& c : prediction_columns()) l.append(py::make_tuple(c.key, c.unit, c.help));
         return l;
       },
-      "The prediction's output table: (key, interface unit, help) per quantity, as `frictal columns` prints it");
+      "The prediction's output table: (key, interface unit, help) per quantity, as `frictal columns` prints it; "
+      "interface units deg (the Prediction attributes are SI: rad), m, 1 (unitless)");
   py::class_<Prediction>(m, "Prediction",
                          "What a tilt test of two surfaces reads (frictal.predict). Attributes in SI (radians, "
                          "metres); to_dict() has the keys and units of `frictal predict --json`")

@@ -37,6 +37,11 @@ const std::vector<WarningCode>& warning_codes() {
       {"few-drops", "the distribution rests on fewer than 3 basins (profiles) or drops: the spread is not resolved"},
       {"held-to-max-tilt",
        "some drops held the block up to the model's largest tilt (45 deg): their hold angle is a lower bound"},
+      {"dimension-out-of-range",
+       "a fractal dimension outside [1, 2]: a profile's dimension lies between 1 (smooth) and 2 (plane filling); "
+       "the fit range or the method does not suit the data"},
+      {"poor-fit",
+       "the fit's r^2 is below 0.95: the data are not a power law over the fit range; narrow it (--min, --max)"},
       {"upper-bound-only",
        "the hold angle's model does not apply (see the message); only the rigid upper bound is given"},
   };
@@ -228,6 +233,19 @@ std::vector<Warning> check_pair_scales(double l1, double s1, double l2, double s
     add_warning(out, {"scale-mismatch", fmt::format("{} has a point spacing of {:.3g} m and {} {:.3g} m ({:.3g}x): "
                                                     "the finer scan's small slopes meet a coarse one",
                                                     n1, s1, n2, s2, ratio(s1, s2))});
+  return out;
+}
+
+std::vector<Warning> check_dimension_fit(double D, double r2, const std::string& method, double min_r2) {
+  std::vector<Warning> out;
+  if (!(D >= 1 && D <= 2))
+    out.push_back({"dimension-out-of-range",
+                   fmt::format("{} method: D = {:.4f}, outside [1, 2] (1: smooth, 2: plane filling); the fit range "
+                               "or the method does not suit the data",
+                               method, D)});
+  if (!(r2 >= min_r2))
+    out.push_back({"poor-fit", fmt::format("{} method: r^2 = {:.4f} below {:g}: not a power law over the fit range",
+                                           method, r2, min_r2)});
   return out;
 }
 

@@ -18,15 +18,18 @@ TEST(Cli, KochSignatureJson) {
   auto r = run_cli("signature " + f + " --atomic-friction 0.2 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = json::parse(r.out);
-  for (const char* key :
-       {"theta_max_forward_deg", "theta_max_backward_deg", "contact_slope_mean_deg", "contact_slope_std_deg",
-        "surface_slope_max_deg", "atomic_friction", "friction_angle_deg", "friction_coefficient", "offsets"})
+  for (const char* key : {"theta_max_forward_deg", "theta_max_backward_deg", "contact_slope_mean_deg",
+                          "contact_slope_std_deg", "surface_slope_max_deg", "atomic_friction",
+                          "upper_bound_friction_angle_deg", "upper_bound_friction_coefficient", "offsets", "warnings"})
     EXPECT_TRUE(j.contains(key)) << key;
   EXPECT_NEAR(j["theta_max_forward_deg"].get<double>(), 40, 1e-6);
   EXPECT_NEAR(j["surface_slope_max_deg"].get<double>(), 60, 1e-6);
   const double phi = 40 + std::atan(0.2) * 180 / M_PI;
-  EXPECT_NEAR(j["friction_angle_deg"].get<double>(), phi, 1e-6);
-  EXPECT_NEAR(j["friction_coefficient"].get<double>(), std::tan(phi * M_PI / 180), 1e-6);
+  EXPECT_NEAR(j["upper_bound_friction_angle_deg"].get<double>(), phi, 1e-6);
+  EXPECT_NEAR(j["upper_bound_friction_coefficient"].get<double>(), std::tan(phi * M_PI / 180), 1e-6);
+  // The prediction's names are the prediction's alone (frictal predict).
+  EXPECT_FALSE(j.contains("friction_angle_deg"));
+  EXPECT_FALSE(j.contains("friction_coefficient"));
   // With --period the periodic signature gives the same maximum.
   auto rp = run_cli("signature " + f + " --period 0.01 --json -o " + temp_path("sig.csv"));
   ASSERT_EQ(rp.code, 0) << rp.err;

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "cli/cli_runner.hpp"
 
@@ -99,4 +100,46 @@ TEST(CliPredict, BadInputExits2NamingTheValueAndTheRange) {
   EXPECT_NE(o.err.find("1000"), std::string::npos) << o.err;
   auto mu = run_cli("predict " + f + " --atomic-friction -1");
   EXPECT_EQ(mu.code, 2);
+}
+
+TEST(CliWarnings, SignatureOfAUnitMixUpCarriesItsCodesAndNoNegativeFriction) {
+  // Issue "No silent nonsense": csv-1.csv's heights have no unit and are read as metres against
+  // x in microns; `signature` printed mu = 10^6 and a negative Eq. 18 low end with no warning.
+  auto r = run_cli("signature " + data("profiles/csv-1.csv") + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  std::set<std::string> codes;
+  for (const auto& w : j["warnings"]) codes.insert(w["code"].get<std::string>());
+  EXPECT_TRUE(codes.count("units-suspect")) << r.out;
+  EXPECT_TRUE(codes.count("reader")) << r.out;
+  EXPECT_GE(j["eq18_low_friction_angle_deg"].get<double>(), 0.0);
+  if (!j["eq18_low_friction_coefficient"].is_null()) {
+    EXPECT_GE(j["eq18_low_friction_coefficient"].get<double>(), 0.0);
+  }
+  // A clean measured scan gives none.
+  auto c = run_cli("signature " + data("profiles/dektak-1.csv") + " --json --no-hold");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_TRUE(json::parse(c.out)["warnings"].empty()) << c.out;
+}
+
+TEST(CliWarnings, ArealAndDimensionCarryWarnings) {
+  auto a = run_cli("areal " + data("x3p/x3p-2.x3p") + " --json --max-offset 2e-6");
+  ASSERT_EQ(a.code, 0) << a.err;
+  const json j = json::parse(a.out);
+  EXPECT_TRUE(j["warnings"].is_array());
+  EXPECT_TRUE(j.contains("upper_bound_friction_angle_deg"));
+  EXPECT_FALSE(j.contains("friction_angle_deg"));
+  // A dimension fit outside [1, 2]: the PSD method over the full range of a smooth sine
+  // (a spectrum that is no power law) is flagged, never printed without comment.
+  const std::string sine = temp_path("warn-sine.csv");
+  ASSERT_EQ(run_cli("surface sine --amplitude 1e-3 --wavelength 0.01 -o " + sine).code, 0);
+  auto d = run_cli("dimension " + sine + " --method psd --json");
+  if (d.code == 0) {
+    const json k = json::parse(d.out);
+    const double D = k["dimension"].get<double>(), r2 = k["r_squared"].get<double>();
+    std::set<std::string> codes;
+    for (const auto& w : k["warnings"]) codes.insert(w["code"].get<std::string>());
+    EXPECT_EQ(codes.count("dimension-out-of-range") == 1, !(D >= 1 && D <= 2)) << d.out;
+    EXPECT_EQ(codes.count("poor-fit") == 1, !(r2 >= 0.95)) << d.out;
+  }
 }

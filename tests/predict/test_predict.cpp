@@ -253,3 +253,13 @@ TEST(PredictColumns, EveryColumnHasAUnitAndTheJsonCarriesEveryKey) {
       EXPECT_NEAR(std::get<double>(frictal::interface_value(c, *p)), 20.0, 1e-9);
     }
 }
+
+TEST(Warnings, DimensionOutsideOneToTwoOrAPoorFit) {
+  EXPECT_TRUE(frictal::check_dimension_fit(1.4, 0.99, "psd").empty());
+  const auto w = frictal::check_dimension_fit(0.78, 0.99, "psd");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].code, "dimension-out-of-range");
+  EXPECT_NE(w[0].message.find("0.78"), std::string::npos);
+  EXPECT_TRUE(has_code(frictal::check_dimension_fit(2.3, 0.99, "box"), "dimension-out-of-range"));
+  EXPECT_TRUE(has_code(frictal::check_dimension_fit(1.5, 0.6, "divider"), "poor-fit"));
+}
