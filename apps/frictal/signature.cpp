@@ -263,6 +263,12 @@ std::function<int()> setup(CLI::App& app) {
     FrictionPrediction fwd = unwrap(predict_friction(a->mu_a, r.theta_max_forward, r.contact_slope_std));
     FrictionPrediction bwd = unwrap(predict_friction(a->mu_a, r.theta_max_backward, r.contact_slope_std));
     add_eq18_warning(warnings, fwd.low_clamped, "signature");
+    for (const auto& [name, f] : {std::pair{"forward", fwd}, std::pair{"backward", bwd}})
+      if (f.friction_angle >= 89.5 * kDeg)
+        add_warning(warnings, {"friction-angle-at-90",
+                               fmt::format("the {} upper bound is {:.4f} deg: a vertical wall, an interlock or a unit "
+                                           "mix-up; the number is a single feature of the data, not a friction",
+                                           name, to_deg(f.friction_angle))});
 
     if (!a->out.empty()) {
       // The basin each offset drains into at zero tilt (numbered along the hold analysis' lift).
