@@ -94,12 +94,12 @@ std::pair<double, std::size_t> repeated_runs(const std::vector<double>& z, std::
       if (j - i >= 3 && std::isfinite(z[i])) count[z[i]] += j - i;
       i = j;
     }
-  std::pair<double, std::size_t> best{0, 0}, total{0, 0};
-  for (const auto& [v, c] : count) {
-    total.second += c;
+  // The commonest value alone: quantised heights (a coarse z step) make runs of many values, a
+  // fill value makes runs of one.
+  std::pair<double, std::size_t> best{0, 0};
+  for (const auto& [v, c] : count)
     if (c > best.second) best = {v, c};
-  }
-  return {best.first, total.second};
+  return best;
 }
 
 double median_of(std::vector<double>& v) {
@@ -134,8 +134,8 @@ void common_checks(std::vector<Warning>& out, const Moments& m, std::size_t spik
                                               name, m.kurtosis, L.max_kurtosis)});
   if (n > 20 && double(rep.second) > L.max_repeated_fraction * double(n))
     add_warning(out,
-                {"fill-value", fmt::format("{}: runs of one height (the commonest {:.9g} m) cover {} of {} "
-                                           "points ({:.1f} %): a fill value for points not measured?",
+                {"fill-value", fmt::format("{}: runs of one height, {:.9g} m, cover {} of {} points ({:.1f} %): a "
+                                           "fill value for points not measured, or a clipped range?",
                                            name, rep.first, rep.second, n, 100.0 * double(rep.second) / double(n))});
 }
 
