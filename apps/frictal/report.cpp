@@ -3,6 +3,8 @@
 // friction with its Eq. 18 range, for maps the friction over sliding directions, and theta_max
 // against resolution. The page is built by the library (frictal/report.hpp); this file reads
 // the inputs and writes the page.
+#include <unistd.h>
+
 #include <fstream>
 #include <iostream>
 
@@ -26,6 +28,8 @@ struct Args {
   std::size_t lines = 32;
   int resolution = 10;
   int bins = 90;
+  int drops = 3;
+  bool quiet = false;
   unsigned threads = 0;
   std::string tip_radius;
   InputOptions input;
@@ -49,6 +53,9 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--resolution-steps", a->resolution, "Cutoff wavelengths of the resolution study (0 = none)")
       ->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the slope distributions")->capture_default_str();
+  app.add_option("--drops", a->drops, "Maps: the headline prediction's drops, an N x N grid (2..64; as predict)")
+      ->capture_default_str();
+  app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error");
   app.add_option("--tip-radius", a->tip_radius,
                  "Tip radius, a length such as 20nm (no unit: metres): draw its short reliability cutoff on the "
                  "resolution plot (see docs/analysis.md)");
@@ -107,6 +114,14 @@ std::function<int()> setup(CLI::App& app) {
     // files and options (the same conditioning: the page's --detrend).
     {
       PredictOptions po;
+      require(a->drops >= 2 && a->drops <= 64, fmt::format("--drops {}: expected 2..64", a->drops));
+      po.map_drops = a->drops;
+      if (!a->quiet && isatty(fileno(stderr)))
+        po.progress = [](std::size_t done, std::size_t total) {
+          fmt::print(stderr, "\rfrictal report: the prediction's drop {} of {}{}", done, total,
+                     done == total ? "\n" : "");
+          std::fflush(stderr);
+        };
       po.atomic_friction = a->mu_a;
       po.runaway_distance = in.runaway_distance;
       po.detrend = dt;

@@ -310,6 +310,14 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   auto sig = areal_signature(*lo, up, o.direction, so);
   if (!sig) return sig.error();
   finish(p, sig->theta_max_forward, sig->contact_slope_std);
+  if (p.friction_angle.max > p.upper_bound_friction_angle + 1e-6)
+    add_warning(p.warnings,
+                {"bound-models-differ",
+                 fmt::format("the largest drop's hold angle, {:.4f} deg, exceeds the upper bound theta_max + theta_a = "
+                             "{:.4f} deg: the bound is the grid areal signature's (the map's nodes, slopes by central "
+                             "differences), the hold angle the continuous model's (spheres on the triangulated "
+                             "surface); read the bound as approximate by that much",
+                             p.friction_angle.max * 180 / kPi, p.upper_bound_friction_angle * 180 / kPi)});
   return p;
 }
 

@@ -42,6 +42,9 @@ const std::vector<WarningCode>& warning_codes() {
        "the fit range or the method does not suit the data"},
       {"poor-fit",
        "the fit's r^2 is below 0.95: the data are not a power law over the fit range; narrow it (--min, --max)"},
+      {"bound-models-differ",
+       "maps: a drop's hold angle (the continuous model: spheres on the triangulated surface) exceeds the upper "
+       "bound (the grid areal signature: nodes, central differences); the bound is approximate by that much"},
       {"upper-bound-only",
        "the hold angle's model does not apply (see the message); only the rigid upper bound is given"},
   };
