@@ -22,7 +22,7 @@ const std::vector<WarningCode>& warning_codes() {
       {"heights-exceed-length", "the height range exceeds the scan length: units or scale are probably wrong"},
       {"spikes",
        "points lie more than 10 rms heights from the median of their neighbours: outliers that can set theta_max "
-       "and the hold angles on their own; remove them (--despike) or check the scan"},
+       "and the hold angles on their own; check the scan or remove them (e.g. Gwyddion's Remove Spikes) first"},
       {"kurtosis", "the height kurtosis is above 30: a few outlying points dominate the height distribution"},
       {"fill-value",
        "runs of one repeated height value cover more than 5 % of the points: a fill value for points not measured; "
@@ -45,8 +45,6 @@ const std::vector<WarningCode>& warning_codes() {
       {"bound-models-differ",
        "maps: a drop's hold angle (the continuous model: spheres on the triangulated surface) exceeds the upper "
        "bound (the grid areal signature: nodes, central differences); the bound is approximate by that much"},
-      {"upper-bound-only",
-       "the hold angle's model does not apply (see the message); only the rigid upper bound is given"},
   };
   return codes;
 }
