@@ -234,7 +234,7 @@ def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ..
     """Friction prediction of Eq. 6 and the Eq. 18 range: atomic_friction mu_a (unitless), theta_max and sigma (rad). Returns angles in rad and coefficients (unitless)"""
 
 def prediction_columns() -> list:
-    """The prediction's output table: (key, interface unit, help) per quantity, as `frictal columns` prints it"""
+    """The prediction's output table: (key, interface unit, help) per quantity, as `frictal columns` prints it; interface units deg (the Prediction attributes are SI: rad), m, 1 (unitless)"""
 
 def profile_stats(profile: Profile, *, tip_radius: float = ...) -> dict:
     """Statistics of a profile: points, length_m ((n-1) dx), mean/rms height (m), rms slope (unitless), max/mean slope (rad), the slope PDF (edges in rad, density per rad), and the scan quantities sampling_interval_m, physical_length_m (n dx), bandwidth_m (shortest, longest), nyquist_wavelength_m; tip_radius (m) > 0 adds short_reliability_cutoff_m"""
@@ -399,7 +399,7 @@ def upper_envelope(x: numpy.typing.NDArray[numpy.float64], z: numpy.typing.NDArr
     """Exact upper envelope of a polyline curve (x, z in metres) as a Profile"""
 
 def warning_codes() -> dict:
-    """Every warning code the library issues and what it means (dict code -> meaning)"""
+    """Every warning code the library issues and what it means (dict code -> meaning; text, unitless)"""
 
 def wm_profile(**kwargs: Any) -> Profile:
     """wm_profile(**params) -> Profile
