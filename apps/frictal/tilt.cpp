@@ -2,9 +2,13 @@
 // The surface is a generator subcommand (frictal tilt koch --alpha 20 ...; every generator of
 // `frictal surface`) or measured files (--lower, --upper); every setting of the test is an
 // option derived from the library's table (tilt_settings(), frictal/tilt.hpp).
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <fmt/core.h>
@@ -19,12 +23,23 @@
 namespace frictal::cli {
 namespace {
 
+// The largest expected step count run without --force (unitless): about 4 to 10 minutes of one
+// core at 5 to 10 us per step (docs/dem.md sec. 7, "cost estimate").
+constexpr double kDefaultMaxSteps = 5e7;
+// The largest spheroradius over the point spacing of measured files (unitless): beyond it one
+// rounded contact spans more than 20 points of each face, every one of them a pushing
+// vertex-edge pair (contact rule pairs), and the rounded faces no longer follow the scan.
+constexpr double kMaxRadiusOverSpacing = 10;
+
 struct TiltOptions {
   GeneratorOptions gen;
   FieldWords settings;
   std::string lower_file, upper_file;
   std::string output, frames, vtk, movie;
   bool json = false;
+  bool quiet = false;
+  bool force = false;
+  double max_steps = kDefaultMaxSteps;
   int threads = 1;
 };
 
@@ -39,9 +54,36 @@ nlohmann::json text_json(const std::vector<Field>& fields, const ValueSet& si) {
   return j;
 }
 
+/// "0.4 s", "3 min", "2.1 h".
+std::string duration_text(double seconds) {
+  if (seconds < 120) return fmt::format("{:.2g} s", seconds);
+  if (seconds < 7200) return fmt::format("{:.3g} min", seconds / 60);
+  return fmt::format("{:.3g} h", seconds / 3600);
+}
+
+/// The scaling of the defaults (file inputs; null for generated surfaces), values in text units.
+nlohmann::json scaling_json(const std::optional<TiltScaling>& sc) {
+  if (!sc) return nullptr;
+  nlohmann::json list = nlohmann::json::array();
+  for (const TiltScaledSetting& t : sc->settings) {
+    const Field* f = find_field(tilt_settings(), t.name);
+    list.push_back({{"name", t.name},
+                    {"unit", f ? text_unit(*f) : std::string()},
+                    {"from", f ? to_text_unit(*f, t.from) : t.from},
+                    {"to", f ? to_text_unit(*f, t.to) : t.to}});
+  }
+  return {{"reference_length_m", kTiltReferenceLength},
+          {"length_m", sc->length},
+          {"point_spacing_m", sc->point_spacing},
+          {"length_factor", sc->length_factor},
+          {"radius_factor", sc->radius_factor},
+          {"settings", list}};
+}
+
 int run(TiltOptions& o) {
   Curve lower, upper;
   TiltConfig base;
+  std::optional<TiltScaling> scaling;  // file inputs: the defaults scaled to the files
   nlohmann::json surface;
   const std::optional<SurfaceSpec> spec = o.gen.spec();
   if (spec) {
@@ -57,30 +99,99 @@ int run(TiltOptions& o) {
           "tilt: give a generator (koch, wm, sawtooth, sine, self-affine, fourier) or --lower FILE [--upper FILE]");
     lower = unwrap(read_curve(input_path(o.lower_file)));
     upper = o.upper_file.empty() ? lower : unwrap(read_curve(input_path(o.upper_file)));
-    // Offsets over half the block; the run-away distance as `signature` takes it by default: a
-    // tenth of that range (L_b/20: 0.01 m on the Table I block), so that it scales with the file.
-    auto span = [](const Curve& c) {
-      const auto [lo, hi] = std::minmax_element(c.x.begin(), c.x.end());
-      return c.x.empty() ? 0.0 : *hi - *lo;
-    };
-    base = tilt_config_for_surface(0, default_runaway_distance(0, 0.5 * std::min(span(lower), span(upper)), 0));
+    // Measured files come at any scale: the macro defaults (Table I/II, made for a 0.2 m block)
+    // carried over to the files' length and point spacing (scale_tilt_defaults, docs/dem.md sec.
+    // 5). The run-away distance becomes L/20, as `signature` takes it by default (a tenth of
+    // half the block).
+    scaling = unwrap(scale_tilt_defaults(lower, upper, tilt_config_for_surface(0, 0)));
+    base = scaling->config;
     surface = {{"lower", o.lower_file}, {"upper", o.upper_file.empty() ? o.lower_file : o.upper_file}};
   }
   const ValueSet given = si_values(tilt_settings(), o.settings);
   TiltConfig cfg = unwrap(make_tilt_config(given, base));
+  if (scaling) {  // what the user set is kept and not reported as scaled
+    std::erase_if(scaling->settings, [&](const TiltScaledSetting& t) { return given.count(t.name) > 0; });
+    // Scaled from the length, the test assumes a surface whose relief is below its length (the
+    // Table I blocks: 1e-2 m of relief or less on 0.2 m); a taller one (typically z in other
+    // units than x) would turn its blocks' ends far faster than the length scale allows.
+    if (scaling->height_range > scaling->length)
+      throw UsageError(fmt::format(
+          "tilt: the surfaces' height range {:.4g} m exceeds their length {:.4g} m (expected a height range "
+          "in [0, {:.4g}] m): are z and x in the same unit? (frictal info FILE; give the unit in the file's "
+          "header)",
+          scaling->height_range, scaling->length, scaling->length));
+    // The surface cannot be resolved by rounded blocks much wider than its point spacing.
+    const double r_max = kMaxRadiusOverSpacing * scaling->point_spacing;
+    if (cfg.radius > r_max)
+      throw UsageError(fmt::format(
+          "tilt: --spheroradius {:.3g} m cannot resolve this surface: expected a value in (0, {:.3g}] m, {} times "
+          "its point spacing {:.3g} m (the default here: {:.3g} m; beyond it one rounded contact spans more than "
+          "{} points of each face)",
+          cfg.radius, r_max, kMaxRadiusOverSpacing, scaling->point_spacing, scaling->config.radius,
+          2 * kMaxRadiusOverSpacing));
+  }
+  if (!(o.max_steps > 0)) throw UsageError(fmt::format("tilt --max-steps {}: expected a value > 0", o.max_steps));
   cfg.threads = o.threads;
   if (o.output.empty()) cfg.series_interval = 0;
   if (o.frames.empty() && o.vtk.empty() && o.movie.empty())
     cfg.frame_interval = 0;
   else if (!given.count("frame_interval"))
-    cfg.frame_interval = 0.01;
+    cfg.frame_interval = 0.01 * (scaling ? std::sqrt(scaling->length_factor) : 1.0);
   if (o.json && (o.output == "-" || o.frames == "-"))
     throw UsageError("--json and -o -/--frames - would both write to standard output; choose one");
 
+  // Before the first step: the estimate on standard error, and the refusal beyond --max-steps.
+  const bool progress_line = !o.quiet && ::isatty(2);
+  cfg.before_run = [&](const TiltEstimate& e) -> Status {
+    const std::string to = cfg.predict && e.simulated_time_expected < e.simulated_time_bound
+                               ? "to the predicted friction angle"
+                               : fmt::format("to the largest tilt {:.3g} deg", cfg.max_tilt / kDeg);
+    if (!o.quiet)
+      fmt::print(stderr,
+                 "frictal: estimate: time step {:.3g} s; about {:.3g} steps ({:.3g} s simulated {}), ~{} of CPU; "
+                 "at most {:.3g} steps ({:.3g} s simulated to {:.3g} deg), ~{}\n",
+                 e.time_step, e.steps_expected, e.simulated_time_expected, to, duration_text(e.seconds_expected),
+                 e.steps_bound, e.simulated_time_bound, cfg.max_tilt / kDeg, duration_text(e.seconds_bound));
+    if (e.steps_expected > o.max_steps && !o.force)
+      return make_error(fmt::format(
+          "tilt: the run needs about {:.3g} steps (time step {:.3g} s, {:.3g} s simulated {}; ~{} of CPU): beyond "
+          "--max-steps {:.3g} (expected at most that many steps); --force runs it anyway, or raise --time-step, "
+          "--tilt-rate or --normal-stiffness (the time step follows sqrt(m / k_n))",
+          e.steps_expected, e.time_step, e.simulated_time_expected, to, duration_text(e.seconds_expected),
+          o.max_steps));
+    return Ok{};
+  };
+  double last_print = 0;
+  bool printed = false;
+  if (progress_line)
+    cfg.progress = [&](const TiltProgress& p) {
+      if (p.wall_time < 2 || p.wall_time - last_print < 0.5) return;
+      last_print = p.wall_time;
+      printed = true;
+      const double share = p.estimate && p.estimate->steps_expected > 0
+                               ? 100 * static_cast<double>(p.steps) / p.estimate->steps_expected
+                               : 0.0;
+      const double left = p.estimate && p.steps > 0 && static_cast<double>(p.steps) < p.estimate->steps_expected
+                              ? (p.estimate->steps_expected - static_cast<double>(p.steps)) * p.wall_time /
+                                    static_cast<double>(p.steps)
+                              : 0.0;
+      fmt::print(stderr,
+                 "\rfrictal: tilt {:.3f} deg at t = {:.4g} s, {} steps ({:.0f}% of the estimate) in {:.0f} s, "
+                 "~{:.0f} s left   ",
+                 p.tilt / kDeg, p.time, p.steps, share, p.wall_time, left);
+      std::fflush(stderr);
+    };
+
   if (!o.movie.empty()) check_movie_tool(o.movie);  // before the run, not after it
   auto r = run_tilt(lower, upper, cfg);
+  if (printed) fmt::print(stderr, "\n");
   if (!r.ok()) fail(r.error());
-  for (const TiltWarning& w : r->warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
+  // A block that turned against the lower one is outside the model (the signature assumes it
+  // does not rotate): the friction angle is then not valid.
+  const bool rotated = std::any_of(r->warnings.begin(), r->warnings.end(),
+                                   [](const TiltWarning& w) { return w.code == "rotation"; });
+  if (!o.quiet)
+    for (const TiltWarning& w : r->warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
   if (!o.output.empty())
     write_output(o.output, [&](const std::string& p) { return write_tilt_series_csv(p, r->series); });
   if (!o.vtk.empty()) {
@@ -100,6 +211,9 @@ int run(TiltOptions& o) {
     nlohmann::json j;
     j["slid"] = r->slid;
     j["friction_angle_deg"] = r->slid ? nlohmann::json(r->friction_angle / kDeg) : nlohmann::json(nullptr);
+    // false when a warning says the run left the model (rotation): the angle is then not a
+    // friction angle of the surfaces.
+    j["friction_angle_valid"] = r->slid && !rotated;
     j["predicted_friction_angle_deg"] =
         cfg.predict ? nlohmann::json(r->predicted_friction_angle / kDeg) : nlohmann::json(nullptr);
     j["predicted_theta_max_deg"] =
@@ -139,6 +253,17 @@ int run(TiltOptions& o) {
     j["warnings"] = nlohmann::json::array();
     for (const TiltWarning& w : r->warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
     j["surface"] = surface;
+    j["scaled_defaults"] = scaling_json(scaling);
+    const TiltEstimate& e = r->estimate;
+    j["estimate"] = {{"time_step_s", e.time_step},
+                     {"steps_expected", e.steps_expected},
+                     {"steps_bound", e.steps_bound},
+                     {"simulated_time_expected_s", e.simulated_time_expected},
+                     {"simulated_time_bound_s", e.simulated_time_bound},
+                     {"list_pairs", e.list_pairs},
+                     {"seconds_per_step", e.seconds_per_step},
+                     {"seconds_expected", e.seconds_expected},
+                     {"seconds_bound", e.seconds_bound}};
     j["settings"] = text_json(tilt_settings(), tilt_values(cfg));
     j["initial_offset_m"] = r->initial_offset;
     j["slide_time_s"] = r->slide_time;
@@ -171,7 +296,14 @@ int run(TiltOptions& o) {
   } else {
     // With a CSV on standard output, the summary goes to standard error.
     std::FILE* text = (o.output == "-" || o.frames == "-") ? stderr : stdout;
-    if (r->slid)
+    // The warnings that invalidate the result lead the output (all of them with --quiet, which
+    // keeps standard error silent).
+    for (const TiltWarning& w : r->warnings)
+      if (w.code == "rotation" || o.quiet) fmt::print(text, "warning [{}]: {}\n", w.code, w.message);
+    if (r->slid && rotated)
+      fmt::print(text, "friction angle (not valid: the block turned, warning [rotation]): {:.3f} deg (slides {} at t = "
+                 "{:.4f} s)\n", r->friction_angle / kDeg, cfg.reverse ? "towards -x" : "towards +x", r->slide_time);
+    else if (r->slid)
       fmt::print(text, "friction angle: {:.3f} deg (slides {} at t = {:.4f} s)\n", r->friction_angle / kDeg,
                  cfg.reverse ? "towards -x" : "towards +x", r->slide_time);
     else
@@ -206,6 +338,19 @@ int run(TiltOptions& o) {
                "vertices\n",
                r->steps, r->min_time_step, r->max_time_step, r->simulated_time, r->wall_time, us_per_step,
                r->lower_vertices, r->upper_vertices);
+    if (scaling) {
+      fmt::print(text,
+                 "defaults scaled to the files (length {:.4g} m, point spacing {:.4g} m: s = L / {:g} m = {:.4g}, "
+                 "q = {:.4g}){}\n",
+                 scaling->length, scaling->point_spacing, kTiltReferenceLength, scaling->length_factor,
+                 scaling->radius_factor, scaling->settings.empty() ? std::string(": none changed") : std::string(":"));
+      for (const TiltScaledSetting& t : scaling->settings) {
+        const Field* f = find_field(tilt_settings(), t.name);
+        const std::string unit = f ? text_unit(*f) : std::string();
+        fmt::print(text, "  {} {:.4g} -> {:.4g}{}{}\n", t.name, f ? to_text_unit(*f, t.from) : t.from,
+                   f ? to_text_unit(*f, t.to) : t.to, unit.empty() ? "" : " ", unit);
+      }
+    }
   }
   return 0;
 }
@@ -227,6 +372,14 @@ std::function<int()> setup(CLI::App& app) {
                  "Render the run to FILE.mp4 or FILE.gif with ffmpeg (tilt angle and atan(F_t/F_n) drawn in), one "
                  "frame per --frame-interval (0.01 s if not set), 25 frames per second");
   app.add_flag("--json", o->json, "Print one JSON object");
+  app.add_flag("-q,--quiet", o->quiet,
+               "Print nothing on standard error: no cost estimate, no progress line, no warnings there (text "
+               "output: the warnings then lead standard output)");
+  app.add_option("--max-steps", o->max_steps,
+                 fmt::format("Refuse (exit 2) a run whose estimated step count exceeds this (default {:g}); "
+                             "--force runs it anyway",
+                             kDefaultMaxSteps));
+  app.add_flag("--force", o->force, "Run even when the estimated step count exceeds --max-steps");
   app.add_option("--threads", o->threads,
                  "Threads (0 = all cores; default 1): the two predictions side by side, the contact passes split "
                  "where it pays; results do not depend on it")

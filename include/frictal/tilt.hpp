@@ -82,6 +82,40 @@ enum class TiltFace {
   Envelope,  ///< the upper envelope of the surface (what the signature sees)
 };
 
+/// The cost of a run, estimated before its first step (TiltResult::estimate, TiltConfig::before_run).
+/// Constant-rate protocol: the simulated time is the settling plus the tilt to max_tilt at
+/// tilt_rate (the bound) or to the spheropolygon prediction (expected, if predicted); steps are
+/// that time over the time step below. Quasi-static: the bound is every increment up to max_tilt
+/// relaxing for relax_time, the expected count the increments up to the prediction relaxing for
+/// a tenth of it (a rough guess: relaxations usually end much earlier). Measured against real
+/// runs in docs/dem.md sec. 7 ("cost estimate").
+struct TiltEstimate {
+  /// The step the run will mostly take: time_step, or with the adaptive step time_step_safety
+  /// times the stability limit of one contact at the upper block's extent, if smaller (unit: s).
+  double time_step = 0;
+  double simulated_time_bound = 0;     ///< settling + tilt to max_tilt (unit: s)
+  double simulated_time_expected = 0;  ///< settling + tilt to the prediction; = bound without one (unit: s)
+  double steps_bound = 0;              ///< simulated_time_bound / time_step (unitless)
+  double steps_expected = 0;           ///< simulated_time_expected / time_step (unitless)
+  /// Neighbour-list pairs when the blocks are placed (unitless): what a step costs.
+  double list_pairs = 0;
+  /// Wall time per step from a cost model measured on one core (docs/dem.md sec. 7):
+  /// kTiltStepSeconds0 + kTiltStepSecondsPerPair x list_pairs (unit: s).
+  double seconds_per_step = 0;
+  double seconds_expected = 0;  ///< steps_expected x seconds_per_step (unit: s)
+  double seconds_bound = 0;     ///< steps_bound x seconds_per_step (unit: s)
+};
+
+/// Where a running tilt test stands (TiltConfig::progress).
+struct TiltProgress {
+  std::uint64_t steps = 0;     ///< steps taken (unitless)
+  double time = 0;             ///< simulated time (unit: s)
+  double tilt = 0;             ///< current tilt (unit: rad)
+  double displacement = 0;     ///< relative displacement d (unit: m)
+  double wall_time = 0;        ///< wall time since the first step (unit: s)
+  const TiltEstimate* estimate = nullptr;  ///< the run's estimate (valid during the call)
+};
+
 struct TiltConfig {
   double block_height = 0.01;  ///< h below the surface minimum, Table I (unit: m)
   double radius = 5e-5;        ///< spheroradius r of both blocks, Table II (unit: m)
@@ -168,6 +202,16 @@ struct TiltConfig {
   /// contact passes then use the count it returns (at least 1), e.g. cores that other tasks of a
   /// study have left idle. Results do not depend on it.
   std::function<unsigned(unsigned)> thread_budget;
+  /// Library only (not a settings-table option; the CLI sets it): if set, called once when the
+  /// blocks are placed, before the first step, with the run's cost estimate (TiltResult::estimate).
+  /// An error it returns ends run_tilt with that error before any step (the CLI refuses a run
+  /// beyond its --max-steps this way). The library prints nothing.
+  std::function<Status(const TiltEstimate&)> before_run;
+  /// Library only: if set, called from the run loop every `progress_interval` steps (and not
+  /// otherwise) with where the run stands; it must not throw. Results do not depend on it.
+  std::function<void(const TiltProgress&)> progress;
+  /// Steps between calls of `progress` (unitless, >= 1).
+  std::uint64_t progress_interval = 4096;
   /// Hold the upper block's rotation relative to the lower block (dem::BodyDef::rotation_follows):
   /// it translates freely but does not rotate against the lower block, as the signature assumes.
   bool hold_rotation = false;
@@ -201,6 +245,49 @@ const std::vector<Field>& tilt_settings();
 /// A default configuration for a surface of period `period` (m; <= 0: none) whose run-away
 /// distance defaults to `scale` (m; <= 0: keep the default one wavelength of 0.01 m).
 TiltConfig tilt_config_for_surface(double period, double scale);
+
+/// The per-step cost model of TiltEstimate (one core of this project's 2-vCPU machine, docs/dem.md
+/// sec. 7): seconds per step = kTiltStepSeconds0 + kTiltStepSecondsPerPair x the vertex-edge pairs
+/// in the neighbour list when the blocks are placed.
+inline constexpr double kTiltStepSeconds0 = 2e-6;       ///< (unit: s)
+inline constexpr double kTiltStepSecondsPerPair = 1e-8;  ///< (unit: s per pair)
+
+/// Length of the block the macro defaults were made for: the Table I block, L_b = 0.2 m (unit: m).
+inline constexpr double kTiltReferenceLength = 0.2;
+
+/// One setting changed by scale_tilt_defaults (SI values; the unit is the field's in tilt_settings()).
+struct TiltScaledSetting {
+  std::string name;  ///< the settings-table name ("spheroradius", ...)
+  double from = 0;   ///< the macro default (unit: the field's)
+  double to = 0;     ///< the scaled default (unit: the field's)
+};
+
+/// The macro defaults carried over to a pair of surfaces of another size (docs/dem.md sec. 5,
+/// "Defaults at any scale"). With s = L / kTiltReferenceLength (L: the shorter face's extent in
+/// x) and the spheroradius r = min(s r_0, dx) (r_0 the default 5e-5 m, dx the point spacing)
+/// and q = r / (s r_0) <= 1, the settings are those of the macro test on the surfaces scaled by
+/// 1/s (gravity and areal density unchanged, every dimensionless group kept):
+///   lengths x s: block_height, skin, runaway_distance, warn_creep_slip; placement_gap x s q;
+///   stiffnesses x s / q (so W / (k_n r) stays); damping rates x 1 / sqrt(s q) and the time-step
+///   cap x sqrt(s q) (one contact's period); protocol times (settle_time, stick_duration,
+///   relax_time, relax_duration, series_interval, frame_interval) x sqrt(s) (sqrt(L / g));
+///   tilt_rate x 1 / sqrt(s); speeds (stick_speed, relax_speed) x sqrt(s).
+/// At s = 1 and q = 1 (a 0.2 m face sampled no finer than r_0) the defaults are unchanged; with
+/// q = 1 a run is the macro run in other units (the same steps and friction angle).
+struct TiltScaling {
+  double length = 0;         ///< L: extent in x of the shorter face (unit: m)
+  double point_spacing = 0;  ///< dx: the smaller of the two faces' median spacing of distinct x (unit: m)
+  double height_range = 0;   ///< the larger of the two faces' z ranges (unit: m)
+  double length_factor = 1;  ///< s = L / kTiltReferenceLength (unitless)
+  double radius_factor = 1;  ///< q = r / (s r_0), below 1 when dx caps r (unitless)
+  TiltConfig config;         ///< `base` with every setting above scaled
+  std::vector<TiltScaledSetting> settings;  ///< the settings changed, in table order
+};
+/// Scales the settings of `base` (the macro defaults) to the surfaces as above; `base` values
+/// other than the defaults are scaled all the same (pass the defaults). Errors: a face with fewer
+/// than two distinct x or a non-finite point.
+Result<TiltScaling> scale_tilt_defaults(const Curve& lower, const Curve& upper,
+                                        const TiltConfig& base = default_tilt_config());
 /// `base` with the given values (SI; names from tilt_settings(), else an error naming the
 /// nearest) checked and applied.
 Result<TiltConfig> make_tilt_config(const ValueSet& si_values, const TiltConfig& base = default_tilt_config());
@@ -311,6 +398,7 @@ struct TiltResult {
   double first_creep_tilt = std::numeric_limits<double>::quiet_NaN();
   double first_creep_slip = std::numeric_limits<double>::quiet_NaN();
   TiltScales scales;
+  TiltEstimate estimate;  ///< the cost estimated before the first step
   std::vector<TiltWarning> warnings;  ///< before the run (scales), then "unsettled" and "rotation" from the run
   double initial_offset = 0;          ///< offset used (unit: m)
   double simulated_time = 0;          ///< (unit: s)

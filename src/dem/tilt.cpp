@@ -518,6 +518,7 @@ class TiltRun {
         gravity_turns_(quasi_ || cfg.turn == TiltTurn::Gravity) {
     dem::set_thread_count(st_, step_threads_);
     budget();
+    progress_every_ = std::max<std::uint64_t>(1, cfg.progress_interval);
     // Fixed step: the schedule in steps. Adaptive step: in time (the same instants up to one step).
     settle_steps_ = static_cast<std::uint64_t>(std::ceil(cfg.settle_time / dt_ - 1e-9));
     series_every_ =
@@ -543,6 +544,8 @@ class TiltRun {
   /// Relative displacement along x during settling (unit: m), signed in the sliding direction.
   double settle_displacement() const { return settle_d_; }
   void finish();
+  /// Pairs in the neighbour list now (the cost of a step).
+  std::size_t list_pairs() const { return st_.pairs.size(); }
 
  private:
   struct Measure {
@@ -639,7 +642,19 @@ class TiltRun {
     Status s = dem::step(model_, st_);
     min_dt_ = std::min(min_dt_, last_dt_);
     max_dt_ = std::max(max_dt_, last_dt_);
+    if (cfg_.progress && st_.steps % progress_every_ == 0) report_progress();
     return s;
+  }
+  void report_progress() {
+    const Measure m = measure();
+    TiltProgress p;
+    p.steps = st_.steps;
+    p.time = st_.time;
+    p.tilt = m.tilt;
+    p.displacement = m.d;
+    p.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start_).count();
+    p.estimate = &res_.estimate;
+    cfg_.progress(p);
   }
   // Sliding speed of the upper block along the lower block's x axis, from the translational
   // velocities only; taken at the start of the last settling step, before the lower block's
@@ -668,6 +683,7 @@ class TiltRun {
   const bool quasi_;
   const bool gravity_turns_;  // quasi-static, or constant rate with turn = gravity
   std::uint64_t settle_steps_ = 0, series_every_ = 0, frame_every_ = 0, max_steps_ = 0;
+  std::uint64_t progress_every_ = 4096;
   double min_dt_ = std::numeric_limits<double>::infinity(), max_dt_ = 0, last_dt_ = 0;  // steps taken
   double eps_t_ = 0;  // time comparisons of the adaptive schedule
   double max_time_ = 0, next_series_ = 0, next_frame_ = 0;
@@ -928,6 +944,41 @@ void TiltRun::finish() {
   res_.wall_time = std::chrono::duration<double>(std::chrono::steady_clock::now() - run_start_).count();
 }
 
+// ---- The cost estimate before the first step (TiltEstimate, docs/dem.md sec. 7).
+TiltEstimate estimate_cost(const dem::Model& model, const TiltConfig& cfg, const TiltResult& res,
+                           std::size_t list_pairs) {
+  TiltEstimate e;
+  double dt = cfg.time_step;
+  if (cfg.adaptive_time_step) {
+    // The engine's rule for one more contact (stability.cpp, choose_time_step): one contact at
+    // the upper block's extent against the kinematic lower block.
+    const double m = model.mass[1], inertia = model.inertia[1], ext = model.extent[1];
+    double one = 2.0 / std::sqrt(cfg.contact.normal_stiffness * std::max(1.0 / m, ext * ext / inertia));
+    if (!cfg.implicit_damping && model.def.contact.normal_damping > 0)
+      one = std::min(one, 2.0 / model.def.contact.normal_damping);
+    dt = std::min(dt, cfg.time_step_safety * one);
+  }
+  e.time_step = dt;
+  const double phi = cfg.predict ? std::min(res.predicted_sphero_friction_angle, cfg.max_tilt) : cfg.max_tilt;
+  if (cfg.protocol == TiltProtocol::QuasiStatic) {
+    const double bound_increments = std::floor(cfg.max_tilt / cfg.tilt_increment);
+    const double expected_increments = std::ceil(phi / cfg.tilt_increment) + 1;
+    e.simulated_time_bound = cfg.relax_time * (1 + bound_increments);
+    e.simulated_time_expected = 0.1 * cfg.relax_time * (1 + std::min(expected_increments, bound_increments));
+  } else {
+    const double settle = relaxed_settling(cfg) ? cfg.relax_time : cfg.settle_time;
+    e.simulated_time_bound = settle + cfg.max_tilt / cfg.tilt_rate;
+    e.simulated_time_expected = settle + phi / cfg.tilt_rate;
+  }
+  e.steps_bound = std::ceil(e.simulated_time_bound / dt);
+  e.steps_expected = std::ceil(e.simulated_time_expected / dt);
+  e.list_pairs = static_cast<double>(list_pairs);
+  e.seconds_per_step = kTiltStepSeconds0 + kTiltStepSecondsPerPair * e.list_pairs;
+  e.seconds_bound = e.steps_bound * e.seconds_per_step;
+  e.seconds_expected = e.steps_expected * e.seconds_per_step;
+  return e;
+}
+
 // ---- Phase 6: the warnings from the run.
 void run_warnings(const TiltConfig& cfg, TiltResult& res) {
   if (res.rotation_before_slide > cfg.warn_rotation)
@@ -975,9 +1026,12 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   auto model = place_blocks(faces->lower, faces->upper, *offset, cfg, res);
   if (!model.ok()) return model.error();
   res.warnings = tilt_scale_warnings(res.scales, res, cfg);
-  res.setup_time = std::chrono::duration<double>(Clock::now() - setup_start).count();
 
   TiltRun run(cfg, *model, res, threads);
+  res.estimate = estimate_cost(*model, cfg, res, run.list_pairs());
+  res.setup_time = std::chrono::duration<double>(Clock::now() - setup_start).count();
+  if (cfg.before_run)
+    if (Status s = cfg.before_run(res.estimate); !s.ok()) return s.error();
   if (Status s = run.settle(); !s.ok()) return s.error();
   res.rest_offset = res.initial_offset + (cfg.reverse ? -1.0 : 1.0) * run.settle_displacement();
   if (Status s = cfg.protocol == TiltProtocol::QuasiStatic ? run.load_quasi_static() : run.load_constant_rate();
@@ -999,6 +1053,8 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     stiff.series_interval = 0;
     stiff.frame_interval = 0;
     stiff.runaway_checkpoints.clear();
+    stiff.before_run = nullptr;  // the rerun is part of this run: one estimate, one progress
+    stiff.progress = nullptr;
     auto r = run_tilt(lower_surface, upper_surface, stiff);
     if (!r.ok()) return with_prefix("tilt (stiffness check at 10 k_n): ", r.error());
     const double deg = 180 / std::numbers::pi;

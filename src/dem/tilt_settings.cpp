@@ -1,7 +1,11 @@
 // The tilt test's settings table (tilt.hpp, settings.hpp): each user-facing TiltConfig member
 // once, with its unit, range and help; defaults are TiltConfig's own initialisers.
+#include <algorithm>
+#include <cmath>
 #include <numbers>
 #include <utility>
+
+#include <fmt/core.h>
 
 #include "frictal/tilt.hpp"
 #include "settings/binding.hpp"
@@ -219,6 +223,83 @@ TiltConfig tilt_config_for_surface(double period, double scale) {
   c.period = period;
   if (scale > 0) c.runaway_distance = scale;
   return c;
+}
+
+namespace {
+
+// Median spacing of the distinct x of a curve, in order of x (unit: m); 0 without two.
+double median_spacing(const Curve& c) {
+  std::vector<double> x(c.x);
+  std::sort(x.begin(), x.end());
+  std::vector<double> d;
+  for (std::size_t i = 1; i < x.size(); ++i)
+    if (x[i] > x[i - 1]) d.push_back(x[i] - x[i - 1]);
+  if (d.empty()) return 0;
+  std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+  return d[d.size() / 2];
+}
+
+}  // namespace
+
+Result<TiltScaling> scale_tilt_defaults(const Curve& lower, const Curve& upper, const TiltConfig& base) {
+  TiltScaling sc;
+  double len[2], dx[2];
+  const Curve* c[2] = {&lower, &upper};
+  for (int i = 0; i < 2; ++i) {
+    const char* what = i ? "upper surface" : "lower surface";
+    for (std::size_t k = 0; k < c[i]->x.size(); ++k)
+      if (!std::isfinite(c[i]->x[k]) || (k < c[i]->z.size() && !std::isfinite(c[i]->z[k])))
+        return make_error(fmt::format("{}: point {} is not finite", what, k));
+    dx[i] = median_spacing(*c[i]);
+    if (!(dx[i] > 0)) return make_error(fmt::format("{}: expected at least two points with distinct x", what));
+    const auto [lo, hi] = std::minmax_element(c[i]->x.begin(), c[i]->x.end());
+    len[i] = *hi - *lo;
+    if (!c[i]->z.empty()) {
+      const auto [zlo, zhi] = std::minmax_element(c[i]->z.begin(), c[i]->z.end());
+      sc.height_range = std::max(sc.height_range, *zhi - *zlo);
+    }
+  }
+  sc.length = std::min(len[0], len[1]);
+  sc.point_spacing = std::min(dx[0], dx[1]);
+  const double s = sc.length / kTiltReferenceLength;
+  sc.length_factor = s;
+  TiltConfig& t = sc.config;
+  t = base;
+  const double r = std::min(s * base.radius, sc.point_spacing);
+  const double q = r / (s * base.radius);
+  sc.radius_factor = q;
+  const double contact_time = std::sqrt(s * q), gravity_time = std::sqrt(s);
+  // In table order (tilt_settings()); each entry: name, member, factor.
+  auto set = [&](const char* name, double& v, double factor) {
+    const double from = v;
+    v *= factor;
+    if (v != from) sc.settings.push_back({name, from, v});
+  };
+  set("normal_stiffness", t.contact.normal_stiffness, s / q);
+  set("tangential_stiffness", t.contact.tangential_stiffness, s / q);
+  set("normal_damping", t.contact.normal_damping, 1 / contact_time);
+  set("tangential_damping", t.contact.tangential_damping, 1 / contact_time);
+  set("block_height", t.block_height, s);
+  {
+    const double from = t.radius;
+    t.radius = r;
+    if (t.radius != from) sc.settings.push_back({"spheroradius", from, r});
+  }
+  set("placement_gap", t.placement_gap, s * q);
+  set("tilt_rate", t.tilt_rate, 1 / gravity_time);
+  set("settle_time", t.settle_time, gravity_time);
+  set("runaway_distance", t.runaway_distance, s);
+  set("stick_speed", t.stick_speed, gravity_time);
+  set("stick_duration", t.stick_duration, gravity_time);
+  set("relax_time", t.relax_time, gravity_time);
+  set("relax_speed", t.relax_speed, gravity_time);
+  set("relax_duration", t.relax_duration, gravity_time);
+  set("time_step", t.time_step, contact_time);
+  set("skin", t.skin, s);
+  set("warn_creep_slip", t.warn_creep_slip, s);
+  set("series_interval", t.series_interval, gravity_time);
+  set("frame_interval", t.frame_interval, gravity_time);
+  return sc;
 }
 
 Result<TiltConfig> make_tilt_config(const ValueSet& si_values, const TiltConfig& base) {

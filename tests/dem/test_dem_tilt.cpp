@@ -499,3 +499,162 @@ TEST(DemTilt, CreepWarningMarksAnEarlierSlipThanTheRunAway) {
   EXPECT_FALSE(has(*k2, "creep"));
   EXPECT_NEAR(k2->friction_angle, 40 * kDeg, 0.1 * kDeg);
 }
+
+namespace {
+
+// n points z = 0 evenly over [0, length] (a face whose point spacing is length / (n - 1)).
+frictal::Curve even(double length, int n) {
+  frictal::Curve c;
+  for (int i = 0; i < n; ++i) {
+    c.x.push_back(length * i / (n - 1));
+    c.z.push_back(0.0);
+  }
+  return c;
+}
+
+double scaled(const frictal::TiltScaling& sc, const std::string& name) {
+  for (const auto& t : sc.settings)
+    if (t.name == name) return t.to;
+  return std::nan("");
+}
+
+}  // namespace
+
+TEST(DemTiltScaling, MacroBlockKeepsEveryDefault) {
+  // A 0.2 m face sampled every 1 mm (coarser than r_0 = 5e-5 m): s = 1, q = 1, nothing changes.
+  auto sc = frictal::scale_tilt_defaults(even(0.2, 201), even(0.3, 301));
+  ASSERT_TRUE(sc.ok()) << sc.error().message;
+  EXPECT_DOUBLE_EQ(sc->length, 0.2);
+  EXPECT_DOUBLE_EQ(sc->length_factor, 1.0);
+  EXPECT_DOUBLE_EQ(sc->radius_factor, 1.0);
+  EXPECT_TRUE(sc->settings.empty());
+  const frictal::TiltConfig d;
+  EXPECT_EQ(sc->config.radius, d.radius);
+  EXPECT_EQ(sc->config.block_height, d.block_height);
+  EXPECT_EQ(sc->config.tilt_rate, d.tilt_rate);
+  EXPECT_EQ(sc->config.contact.normal_stiffness, d.contact.normal_stiffness);
+}
+
+TEST(DemTiltScaling, SmallScanScalesLikeTheMacroTest) {
+  // A 2 mm face every 0.2 mm: s = 2e-3 / 0.2 = 0.01; r = s r_0 = 5e-7 m is below the spacing,
+  // so q = 1. Hand-computed from the Table I/II defaults (tilt.hpp): lengths x 0.01, k x 0.01,
+  // rates x 1 / sqrt(0.01) = 10, times x 0.1, speeds x 0.1.
+  auto sc = frictal::scale_tilt_defaults(even(2e-3, 11), even(2e-3, 11));
+  ASSERT_TRUE(sc.ok()) << sc.error().message;
+  EXPECT_DOUBLE_EQ(sc->point_spacing, 2e-4);
+  EXPECT_NEAR(sc->length_factor, 0.01, 1e-15);
+  EXPECT_NEAR(sc->radius_factor, 1.0, 1e-12);
+  const frictal::TiltConfig& c = sc->config;
+  EXPECT_NEAR(c.radius, 5e-7, 1e-20);
+  EXPECT_NEAR(c.block_height, 1e-4, 1e-18);
+  EXPECT_NEAR(c.placement_gap, 2e-7, 1e-20);
+  EXPECT_NEAR(c.runaway_distance, 1e-4, 1e-18);  // L / 20, as signature's default run-away
+  EXPECT_NEAR(c.skin, 5e-7, 1e-20);
+  EXPECT_NEAR(c.contact.normal_stiffness, 6e3, 1e-9);
+  EXPECT_NEAR(c.contact.tangential_stiffness, 6e2, 1e-10);
+  EXPECT_NEAR(c.contact.normal_damping, 9295, 1e-8);
+  EXPECT_NEAR(c.contact.tangential_damping, 40, 1e-11);
+  EXPECT_NEAR(c.tilt_rate, 0.5, 1e-14);
+  EXPECT_NEAR(c.settle_time, 0.01, 1e-16);
+  EXPECT_NEAR(c.stick_duration, 2e-3, 1e-16);
+  EXPECT_NEAR(c.stick_speed, 1e-6, 1e-20);
+  EXPECT_NEAR(c.time_step, 1e-5, 1e-19);
+  EXPECT_NEAR(c.series_interval, 1e-4, 1e-18);
+  EXPECT_NEAR(c.warn_creep_slip, 1e-9, 1e-23);
+  EXPECT_EQ(c.density, 50);  // areal density and gravity keep their values
+  EXPECT_EQ(c.gravity, 9.81);
+  EXPECT_NEAR(scaled(*sc, "spheroradius"), 5e-7, 1e-20);
+  EXPECT_NEAR(scaled(*sc, "tilt_rate"), 0.5, 1e-14);
+  EXPECT_TRUE(std::isnan(scaled(*sc, "density")));
+  for (const auto& t : sc->settings) EXPECT_NE(frictal::find_field(frictal::tilt_settings(), t.name), nullptr) << t.name;
+}
+
+TEST(DemTiltScaling, FinePointSpacingCapsTheSpheroradius) {
+  // 2 mm every 0.1 um: s = 0.01, s r_0 = 5e-7 m > dx = 1e-7 m, so r = 1e-7 m and q = 0.2;
+  // k_n = 6e5 s / q = 3e4 N/m keeps W / (k_n r); gamma_n = 929.5 / sqrt(s q) = 929.5 / sqrt(2e-3);
+  // time step 1e-4 sqrt(2e-3) s; placement gap 2e-5 s q = 4e-8 m; protocol times still x sqrt(s).
+  auto sc = frictal::scale_tilt_defaults(even(2e-3, 20001), even(2e-3, 20001));
+  ASSERT_TRUE(sc.ok()) << sc.error().message;
+  EXPECT_NEAR(sc->point_spacing, 1e-7, 1e-15);
+  EXPECT_NEAR(sc->radius_factor, 0.2, 1e-8);
+  const frictal::TiltConfig& c = sc->config;
+  EXPECT_NEAR(c.radius, 1e-7, 1e-14);
+  EXPECT_NEAR(c.contact.normal_stiffness, 3e4, 3e-3);
+  EXPECT_NEAR(c.contact.normal_damping, 929.5 / std::sqrt(2e-3), 1e-3);
+  EXPECT_NEAR(c.time_step, 1e-4 * std::sqrt(2e-3), 1e-12);
+  EXPECT_NEAR(c.placement_gap, 4e-8, 1e-15);
+  EXPECT_NEAR(c.settle_time, 0.01, 1e-16);
+  EXPECT_NEAR(c.tilt_rate, 0.5, 1e-14);
+}
+
+TEST(DemTiltScaling, RefusesAFaceWithoutLength) {
+  frictal::Curve one;
+  one.x = {1e-3, 1e-3};
+  one.z = {0, 1e-6};
+  EXPECT_FALSE(frictal::scale_tilt_defaults(one, even(1e-3, 3)).ok());
+}
+
+TEST(DemTiltScaling, AScaledCopyReadsTheSameFrictionAngle) {
+  // Dimensional analysis: with every default scaled (q = 1) the test on a copy of K_0 at 10 deg
+  // shrunk 1000 times is the macro test in other units, so it reads the same friction angle
+  // (10 deg, Eq. 6) in about as many steps.
+  const frictal::Curve big = koch(0, 10, 0.2);
+  frictal::Curve small = big;
+  for (double& x : small.x) x *= 1e-3;
+  for (double& z : small.z) z *= 1e-3;
+  auto a = frictal::scale_tilt_defaults(big, big);
+  auto b = frictal::scale_tilt_defaults(small, small);
+  ASSERT_TRUE(a.ok() && b.ok());
+  ASSERT_DOUBLE_EQ(a->radius_factor, 1.0);
+  ASSERT_DOUBLE_EQ(b->radius_factor, 1.0);
+  a->config.series_interval = b->config.series_interval = 0;
+  auto ra = frictal::run_tilt(big, big, a->config);
+  auto rb = frictal::run_tilt(small, small, b->config);
+  ASSERT_TRUE(ra.ok()) << ra.error().message;
+  ASSERT_TRUE(rb.ok()) << rb.error().message;
+  ASSERT_TRUE(ra->slid && rb->slid);
+  EXPECT_NEAR(ra->friction_angle / kDeg, 10.0, 0.5);
+  EXPECT_NEAR(rb->friction_angle / kDeg, ra->friction_angle / kDeg, 1e-3);
+  EXPECT_NEAR(rb->slide_time, ra->slide_time * std::sqrt(1e-3), 1e-3 * ra->slide_time);
+  EXPECT_NEAR(static_cast<double>(rb->steps), static_cast<double>(ra->steps), 0.01 * static_cast<double>(ra->steps));
+  EXPECT_TRUE(rb->warnings.empty()) << rb->warnings.front().code;
+}
+
+TEST(DemTilt, EstimateAndProgressCallbacks) {
+  // K_0 at 20 deg on 5 cm: the estimate from the time step and the tilt rate before the first
+  // step (bound: settle 0.1 s + 89 deg at 0.05 rad/s), progress every 1000 steps, and a refusal
+  // returned by before_run ends the run before any step.
+  const frictal::Curve k0 = koch(0, 20, 0.05);
+  frictal::TiltConfig cfg;
+  cfg.series_interval = 0;
+  cfg.progress_interval = 1000;
+  frictal::TiltEstimate seen;
+  int calls = 0;
+  std::uint64_t last_steps = 0;
+  cfg.before_run = [&](const frictal::TiltEstimate& e) -> frictal::Status {
+    seen = e;
+    return frictal::Ok{};
+  };
+  cfg.progress = [&](const frictal::TiltProgress& p) {
+    ++calls;
+    EXPECT_EQ(p.steps % 1000, 0u);
+    EXPECT_GT(p.steps, last_steps);
+    last_steps = p.steps;
+    EXPECT_NE(p.estimate, nullptr);
+  };
+  auto r = frictal::run_tilt(k0, k0, cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_NEAR(seen.simulated_time_bound, 0.1 + 89 * kDeg / 0.05, 1e-9);
+  EXPECT_NEAR(seen.simulated_time_expected, 0.1 + r->predicted_sphero_friction_angle / 0.05, 1e-9);
+  EXPECT_LE(seen.time_step, cfg.time_step);
+  EXPECT_NEAR(seen.steps_bound, std::ceil(seen.simulated_time_bound / seen.time_step), 1.0);
+  EXPECT_EQ(calls, static_cast<int>(r->steps / 1000));
+  // The estimate against the run: the run stops just past the predicted angle.
+  EXPECT_NEAR(static_cast<double>(r->steps), seen.steps_expected, 0.5 * seen.steps_expected);
+
+  cfg.progress = nullptr;
+  cfg.before_run = [](const frictal::TiltEstimate&) -> frictal::Status { return frictal::make_error("no"); };
+  auto refused = frictal::run_tilt(k0, k0, cfg);
+  ASSERT_FALSE(refused.ok());
+  EXPECT_EQ(refused.error().message, "no");
+}
