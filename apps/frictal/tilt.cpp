@@ -358,7 +358,9 @@ int run(TiltOptions& o) {
 std::function<int()> setup(CLI::App& app) {
   auto o = std::make_shared<TiltOptions>();
   add_generator_subcommands(app, o->gen, true, " (both blocks)");
-  app.add_option("--lower", o->lower_file, "Lower surface file (x_m,z_m), as measured; - reads standard input");
+  app.add_option("--lower", o->lower_file,
+                 "Lower surface file (x_m,z_m), as measured; - reads standard input. The defaults not given are "
+                 "scaled to the files' length and point spacing (docs/dem.md sec. 5)");
   app.add_option("--upper", o->upper_file, "Upper surface file, as measured (default: the lower one)");
   add_field_options(app, tilt_settings(), o->settings);
   app.add_option("-o,--output", o->output, "Write the time series CSV here (- for standard output)");

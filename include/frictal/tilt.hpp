@@ -267,7 +267,8 @@ struct TiltScaledSetting {
 /// x) and the spheroradius r = min(s r_0, dx) (r_0 the default 5e-5 m, dx the point spacing)
 /// and q = r / (s r_0) <= 1, the settings are those of the macro test on the surfaces scaled by
 /// 1/s (gravity and areal density unchanged, every dimensionless group kept):
-///   lengths x s: block_height, skin, runaway_distance, warn_creep_slip; placement_gap x s q;
+///   lengths x s: block_height, period (if > 0), skin, runaway_distance, warn_creep_slip;
+///   placement_gap x s q;
 ///   stiffnesses x s / q (so W / (k_n r) stays); damping rates x 1 / sqrt(s q) and the time-step
 ///   cap x sqrt(s q) (one contact's period); protocol times (settle_time, stick_duration,
 ///   relax_time, relax_duration, series_interval, frame_interval) x sqrt(s) (sqrt(L / g));

@@ -286,6 +286,7 @@ Result<TiltScaling> scale_tilt_defaults(const Curve& lower, const Curve& upper, 
     if (t.radius != from) sc.settings.push_back({"spheroradius", from, r});
   }
   set("placement_gap", t.placement_gap, s * q);
+  if (t.period > 0) set("period", t.period, s);  // a length like the others (<= 0: none)
   set("tilt_rate", t.tilt_rate, 1 / gravity_time);
   set("settle_time", t.settle_time, gravity_time);
   set("runaway_distance", t.runaway_distance, s);

@@ -1,0 +1,168 @@
+// frictal tilt on measured files at any scale (issue 34, item 4): the defaults scaled to the
+// files, the cost estimate and --quiet, the refusals (exit 2 naming the option), and a turned
+// block's warning leading the output. Expected values are derived here from the files' bytes
+// and the Table I/II defaults (tilt.hpp: r_0 = 5e-5 m on the 0.2 m block), not from frictal's
+// output.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_runner.hpp"
+
+namespace {
+
+const std::string kXy2 = std::string(FRICTAL_TEST_DATA) + "/profiles/xy-2.txt";
+
+// xy-2.txt: a units line ("µm µm"), a count line, then "x, z" rows in micrometres.
+std::vector<double> xy2_x() {
+  std::ifstream f(kXy2);
+  std::string line;
+  std::getline(f, line);
+  std::getline(f, line);
+  std::vector<double> x;
+  while (std::getline(f, line)) {
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream ss(line);
+    double a, b;
+    if (ss >> a >> b) x.push_back(a * 1e-6);
+  }
+  return x;
+}
+
+double setting(const nlohmann::json& j, const char* name) { return j["settings"][name].get<double>(); }
+
+bool scaled_list_has(const nlohmann::json& j, const std::string& name) {
+  for (const auto& t : j["scaled_defaults"]["settings"])
+    if (t["name"] == name) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST(CliTiltScale, ShortMeasuredProfileRunsWithScaledDefaults) {
+  // 24 points over 29 um: s = L / 0.2 m; the point spacing (~1.2 um) is far above s r_0, so
+  // r = s r_0 (q = 1); the run-away distance L / 20; the tilt rate 0.05 / sqrt(s) rad/s. With q = 1
+  // the run is the macro test in other units: a few 1e5 steps, well under a second of CPU.
+  const std::vector<double> x = xy2_x();
+  ASSERT_EQ(x.size(), 24u);
+  const double length = *std::max_element(x.begin(), x.end()) - *std::min_element(x.begin(), x.end());
+  const double s = length / 0.2;
+  const CliRun r = run_cli("tilt --lower " + kXy2 + " --json", 120);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& sd = j["scaled_defaults"];
+  EXPECT_NEAR(sd["length_m"].get<double>(), length, 1e-12 * length);
+  EXPECT_NEAR(sd["length_factor"].get<double>(), s, 1e-12 * s);
+  EXPECT_DOUBLE_EQ(sd["radius_factor"].get<double>(), 1.0);
+  EXPECT_NEAR(setting(j, "spheroradius"), 5e-5 * s, 1e-12 * 5e-5 * s);
+  EXPECT_NEAR(setting(j, "block_height"), 0.01 * s, 1e-12 * 0.01 * s);
+  EXPECT_NEAR(setting(j, "placement_gap"), 2e-5 * s, 1e-12 * 2e-5 * s);
+  EXPECT_NEAR(setting(j, "runaway_distance"), length / 20, 1e-12 * length);
+  EXPECT_NEAR(setting(j, "tilt_rate"), 0.05 / std::sqrt(s), 1e-9);
+  EXPECT_NEAR(setting(j, "normal_stiffness"), 6e5 * s, 1e-9 * 6e5 * s);
+  for (const char* name : {"spheroradius", "placement_gap", "block_height", "runaway_distance"}) {
+    EXPECT_TRUE(scaled_list_has(j, name)) << name;
+  }
+  for (const auto& t : sd["settings"]) {
+    EXPECT_TRUE(t.contains("from") && t.contains("to") && t.contains("unit")) << t.dump();
+  }
+  EXPECT_TRUE(j["slid"].get<bool>());
+  EXPECT_LT(j["steps"].get<double>(), 1e6);
+  EXPECT_GT(j["estimate"]["steps_expected"].get<double>(), 0);
+  // The estimate goes to standard error before the run.
+  EXPECT_NE(r.err.find("frictal: estimate: time step"), std::string::npos) << r.err;
+}
+
+TEST(CliTiltScale, ExplicitValuesAreKept) {
+  const CliRun r = run_cli("tilt --lower " + kXy2 + " --block-height 1e-5 --max-tilt 1 --json", 120);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_DOUBLE_EQ(setting(j, "block_height"), 1e-5);
+  EXPECT_FALSE(scaled_list_has(j, "block_height"));
+  EXPECT_TRUE(scaled_list_has(j, "spheroradius"));
+}
+
+TEST(CliTiltScale, QuietPrintsNothingOnStandardError) {
+  const CliRun r = run_cli("tilt --lower " + kXy2 + " --max-tilt 1 --quiet", 120);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_NE(r.out.find("defaults scaled to the files"), std::string::npos) << r.out;
+}
+
+TEST(CliTiltScale, ASpheroradiusBeyondTheResolutionIsRefused) {
+  // The macro default r = 5e-5 m on a 29 um scan with points ~1.2 um apart: more than ten
+  // point spacings (the refusal's stated limit).
+  const CliRun r = run_cli("tilt --lower " + kXy2 + " --spheroradius 5e-5", 60);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--spheroradius 5e-05 m"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("expected a value in (0, "), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(CliTiltScale, ARunBeyondMaxStepsIsRefusedUnlessForced) {
+  const CliRun r = run_cli("tilt --lower " + kXy2 + " --max-steps 1000", 60);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("beyond --max-steps 1e+03"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--force"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+  const CliRun f = run_cli("tilt --lower " + kXy2 + " --max-steps 1000 --force --max-tilt 1 --quiet", 120);
+  EXPECT_EQ(f.code, 0) << f.err;
+  EXPECT_EQ(run_cli("tilt --lower " + kXy2 + " --max-steps 0", 60).code, 2);
+}
+
+TEST(CliTiltScale, ReliefTallerThanTheLengthIsRefused) {
+  // csv-1.csv gives x in microns and z without a unit (read as metres): 2 m of relief on 0.27 um.
+  const CliRun r = run_cli("tilt --lower " + std::string(FRICTAL_TEST_DATA) + "/profiles/csv-1.csv", 60);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("height range"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("expected a height range in [0, "), std::string::npos) << r.err;
+}
+
+TEST(CliTiltScale, ARotationWarningLeadsTheOutput) {
+  // warn_rotation at 1e-9 deg: any turn of the upper block against the lower one warns.
+  const std::string args = "tilt --lower " + kXy2 + " --warn-rotation 1e-9";
+  const CliRun t = run_cli(args, 120);
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_EQ(t.out.rfind("warning [rotation]: ", 0), 0u) << t.out;
+  EXPECT_NE(t.out.find("friction angle (not valid"), std::string::npos) << t.out;
+  EXPECT_NE(t.err.find("frictal: warning [rotation]"), std::string::npos) << t.err;
+  const CliRun j = run_cli(args + " --json --quiet", 120);
+  ASSERT_EQ(j.code, 0) << j.err;
+  EXPECT_EQ(j.err, "");
+  const auto o = nlohmann::json::parse(j.out);
+  EXPECT_FALSE(o["friction_angle_valid"].get<bool>());
+  bool found = false;
+  for (const auto& w : o["warnings"]) found = found || w["code"] == "rotation";
+  EXPECT_TRUE(found) << o["warnings"].dump();
+}
+
+TEST(CliTiltScale, GeneratedSurfacesKeepTheMacroDefaults) {
+  // Generators are made at the Table I scale (and the paper's Koch tests run on them): no scaling.
+  const CliRun r = run_cli("tilt koch --alpha 5 --length 0.02 --max-tilt 1 --json --quiet", 120);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["scaled_defaults"].is_null());
+  EXPECT_DOUBLE_EQ(setting(j, "spheroradius"), 5e-5);
+  EXPECT_DOUBLE_EQ(setting(j, "block_height"), 0.01);
+}
+
+TEST(CliTiltScale, AMacroFileKeepsTheDefaults) {
+  // A 0.2 m file sampled every 1 cm: s = 1 and r_0 = 5e-5 m below the spacing: nothing changes.
+  const std::string f = temp_path("macro-file.csv");
+  std::string text = "x_m,z_m\n";
+  for (int i = 0; i <= 20; ++i) text += std::to_string(0.01 * i) + "," + (i % 2 ? "0.001" : "0") + "\n";
+  write_file(f, text);
+  const CliRun r = run_cli("tilt --lower " + f + " --max-tilt 1 --json --quiet", 120);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(j["scaled_defaults"]["settings"].empty()) << j["scaled_defaults"].dump();
+  EXPECT_DOUBLE_EQ(setting(j, "spheroradius"), 5e-5);
+  EXPECT_DOUBLE_EQ(setting(j, "runaway_distance"), 0.01);
+}
