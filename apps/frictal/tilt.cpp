@@ -72,12 +72,9 @@ nlohmann::json scaling_json(const std::optional<TiltScaling>& sc) {
                     {"from", f ? to_text_unit(*f, t.from) : t.from},
                     {"to", f ? to_text_unit(*f, t.to) : t.to}});
   }
-  return {{"reference_length_m", kTiltReferenceLength},
-          {"length_m", sc->length},
-          {"point_spacing_m", sc->point_spacing},
-          {"length_factor", sc->length_factor},
-          {"radius_factor", sc->radius_factor},
-          {"settings", list}};
+  return {{"reference_length_m", kTiltReferenceLength}, {"length_m", sc->length},
+          {"point_spacing_m", sc->point_spacing},       {"length_factor", sc->length_factor},
+          {"radius_factor", sc->radius_factor},         {"settings", list}};
 }
 
 int run(TiltOptions& o) {
@@ -171,10 +168,10 @@ int run(TiltOptions& o) {
       const double share = p.estimate && p.estimate->steps_expected > 0
                                ? 100 * static_cast<double>(p.steps) / p.estimate->steps_expected
                                : 0.0;
-      const double left = p.estimate && p.steps > 0 && static_cast<double>(p.steps) < p.estimate->steps_expected
-                              ? (p.estimate->steps_expected - static_cast<double>(p.steps)) * p.wall_time /
-                                    static_cast<double>(p.steps)
-                              : 0.0;
+      const double left =
+          p.estimate && p.steps > 0 && static_cast<double>(p.steps) < p.estimate->steps_expected
+              ? (p.estimate->steps_expected - static_cast<double>(p.steps)) * p.wall_time / static_cast<double>(p.steps)
+              : 0.0;
       fmt::print(stderr,
                  "\rfrictal: tilt {:.3f} deg at t = {:.4g} s, {} steps ({:.0f}% of the estimate) in {:.0f} s, "
                  "~{:.0f} s left   ",
@@ -188,8 +185,8 @@ int run(TiltOptions& o) {
   if (!r.ok()) fail(r.error());
   // A block that turned against the lower one is outside the model (the signature assumes it
   // does not rotate): the friction angle is then not valid.
-  const bool rotated = std::any_of(r->warnings.begin(), r->warnings.end(),
-                                   [](const TiltWarning& w) { return w.code == "rotation"; });
+  const bool rotated =
+      std::any_of(r->warnings.begin(), r->warnings.end(), [](const TiltWarning& w) { return w.code == "rotation"; });
   if (!o.quiet)
     for (const TiltWarning& w : r->warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
   if (!o.output.empty())
@@ -301,8 +298,10 @@ int run(TiltOptions& o) {
     for (const TiltWarning& w : r->warnings)
       if (w.code == "rotation" || o.quiet) fmt::print(text, "warning [{}]: {}\n", w.code, w.message);
     if (r->slid && rotated)
-      fmt::print(text, "friction angle (not valid: the block turned, warning [rotation]): {:.3f} deg (slides {} at t = "
-                 "{:.4f} s)\n", r->friction_angle / kDeg, cfg.reverse ? "towards -x" : "towards +x", r->slide_time);
+      fmt::print(text,
+                 "friction angle (not valid: the block turned, warning [rotation]): {:.3f} deg (slides {} at t = "
+                 "{:.4f} s)\n",
+                 r->friction_angle / kDeg, cfg.reverse ? "towards -x" : "towards +x", r->slide_time);
     else if (r->slid)
       fmt::print(text, "friction angle: {:.3f} deg (slides {} at t = {:.4f} s)\n", r->friction_angle / kDeg,
                  cfg.reverse ? "towards -x" : "towards +x", r->slide_time);

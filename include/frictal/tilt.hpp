@@ -108,11 +108,11 @@ struct TiltEstimate {
 
 /// Where a running tilt test stands (TiltConfig::progress).
 struct TiltProgress {
-  std::uint64_t steps = 0;     ///< steps taken (unitless)
-  double time = 0;             ///< simulated time (unit: s)
-  double tilt = 0;             ///< current tilt (unit: rad)
-  double displacement = 0;     ///< relative displacement d (unit: m)
-  double wall_time = 0;        ///< wall time since the first step (unit: s)
+  std::uint64_t steps = 0;                 ///< steps taken (unitless)
+  double time = 0;                         ///< simulated time (unit: s)
+  double tilt = 0;                         ///< current tilt (unit: rad)
+  double displacement = 0;                 ///< relative displacement d (unit: m)
+  double wall_time = 0;                    ///< wall time since the first step (unit: s)
   const TiltEstimate* estimate = nullptr;  ///< the run's estimate (valid during the call)
 };
 
@@ -249,7 +249,7 @@ TiltConfig tilt_config_for_surface(double period, double scale);
 /// The per-step cost model of TiltEstimate (one core of this project's 2-vCPU machine, docs/dem.md
 /// sec. 7): seconds per step = kTiltStepSeconds0 + kTiltStepSecondsPerPair x the vertex-edge pairs
 /// in the neighbour list when the blocks are placed.
-inline constexpr double kTiltStepSeconds0 = 2e-6;       ///< (unit: s)
+inline constexpr double kTiltStepSeconds0 = 2e-6;        ///< (unit: s)
 inline constexpr double kTiltStepSecondsPerPair = 1e-8;  ///< (unit: s per pair)
 
 /// Length of the block the macro defaults were made for: the Table I block, L_b = 0.2 m (unit: m).
@@ -399,7 +399,7 @@ struct TiltResult {
   double first_creep_tilt = std::numeric_limits<double>::quiet_NaN();
   double first_creep_slip = std::numeric_limits<double>::quiet_NaN();
   TiltScales scales;
-  TiltEstimate estimate;  ///< the cost estimated before the first step
+  TiltEstimate estimate;              ///< the cost estimated before the first step
   std::vector<TiltWarning> warnings;  ///< before the run (scales), then "unsettled" and "rotation" from the run
   double initial_offset = 0;          ///< offset used (unit: m)
   double simulated_time = 0;          ///< (unit: s)

@@ -566,7 +566,8 @@ TEST(DemTiltScaling, SmallScanScalesLikeTheMacroTest) {
   EXPECT_NEAR(scaled(*sc, "spheroradius"), 5e-7, 1e-20);
   EXPECT_NEAR(scaled(*sc, "tilt_rate"), 0.5, 1e-14);
   EXPECT_TRUE(std::isnan(scaled(*sc, "density")));
-  for (const auto& t : sc->settings) EXPECT_NE(frictal::find_field(frictal::tilt_settings(), t.name), nullptr) << t.name;
+  for (const auto& t : sc->settings)
+    EXPECT_NE(frictal::find_field(frictal::tilt_settings(), t.name), nullptr) << t.name;
 }
 
 TEST(DemTiltScaling, FinePointSpacingCapsTheSpheroradius) {
