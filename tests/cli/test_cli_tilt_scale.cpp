@@ -78,6 +78,7 @@ TEST(CliTiltScale, ShortMeasuredProfileRunsWithScaledDefaults) {
   EXPECT_GT(j["estimate"]["steps_expected"].get<double>(), 0);
   // The estimate goes to standard error before the run.
   EXPECT_NE(r.err.find("frictal: estimate: time step"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << "no progress line when standard error is not a terminal";
 }
 
 TEST(CliTiltScale, ExplicitValuesAreKept) {
