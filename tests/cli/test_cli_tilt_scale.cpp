@@ -119,7 +119,7 @@ TEST(CliTiltScale, ARunBeyondMaxStepsIsRefusedUnlessForced) {
 }
 
 TEST(CliTiltScale, ReliefTallerThanTheLengthIsRefused) {
-  // csv-1.csv gives x in microns and z without a unit (read as metres): 2 m of relief on 0.27 um.
+  // csv-1.csv gives x in microns and z without a unit (read as metres): 0.15 m of relief on 0.27 um.
   const CliRun r = run_cli("tilt --lower " + std::string(FRICTAL_TEST_DATA) + "/profiles/csv-1.csv", 60);
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("height range"), std::string::npos) << r.err;
