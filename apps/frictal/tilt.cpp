@@ -194,11 +194,11 @@ int run(TiltOptions& o) {
   if (!o.vtk.empty()) {
     auto w = write_tilt_vtk(o.vtk, *r, cfg.radius);
     if (!w.ok()) fail(w.error());
-    fmt::print(stderr, "frictal: wrote {} VTK files, time index {}\n", w->size(), w->front());
+    if (!o.quiet) fmt::print(stderr, "frictal: wrote {} VTK files, time index {}\n", w->size(), w->front());
   }
   if (!o.movie.empty()) {
     write_tilt_movie(o.movie, *r, cfg.radius);
-    fmt::print(stderr, "frictal: wrote {} ({} frames)\n", o.movie, r->frames.size());
+    if (!o.quiet) fmt::print(stderr, "frictal: wrote {} ({} frames)\n", o.movie, r->frames.size());
   }
   if (!o.frames.empty())
     write_output(

@@ -261,12 +261,16 @@ Result<TiltScaling> scale_tilt_defaults(const Curve& lower, const Curve& upper, 
   }
   sc.length = std::min(len[0], len[1]);
   sc.point_spacing = std::min(dx[0], dx[1]);
-  const double s = sc.length / kTiltReferenceLength;
+  // A file written at the reference length keeps the defaults bit for bit: a length within
+  // rounding of 0.2 m (1e-9 relative: e.g. a scan rescaled to 0.2 m in floating point) is 0.2 m.
+  double s = sc.length / kTiltReferenceLength;
+  if (std::fabs(s - 1) <= 1e-9) s = 1;
   sc.length_factor = s;
   TiltConfig& t = sc.config;
   t = base;
-  const double r = std::min(s * base.radius, sc.point_spacing);
-  const double q = r / (s * base.radius);
+  const double sr = s * base.radius;
+  const double r = std::min(sr, sc.point_spacing);
+  const double q = r < sr ? r / sr : 1.0;
   sc.radius_factor = q;
   const double contact_time = std::sqrt(s * q), gravity_time = std::sqrt(s);
   // In table order (tilt_settings()); each entry: name, member, factor.

@@ -535,6 +535,14 @@ TEST(DemTiltScaling, MacroBlockKeepsEveryDefault) {
   EXPECT_EQ(sc->config.contact.normal_stiffness, d.contact.normal_stiffness);
 }
 
+TEST(DemTiltScaling, ALengthWithinRoundingOfTheReferenceIsTheReference) {
+  // A scan rescaled to 0.2 m in floating point (the README's measured pair) keeps the defaults.
+  auto sc = frictal::scale_tilt_defaults(even(0.2 * (1 + 4e-16), 201), even(0.2 * (1 + 4e-16), 201));
+  ASSERT_TRUE(sc.ok()) << sc.error().message;
+  EXPECT_EQ(sc->length_factor, 1.0);
+  EXPECT_TRUE(sc->settings.empty());
+}
+
 TEST(DemTiltScaling, SmallScanScalesLikeTheMacroTest) {
   // A 2 mm face every 0.2 mm: s = 2e-3 / 0.2 = 0.01; r = s r_0 = 5e-7 m is below the spacing,
   // so q = 1. Hand-computed from the Table I/II defaults (tilt.hpp): lengths x 0.01, k x 0.01,
