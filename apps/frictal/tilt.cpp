@@ -17,6 +17,7 @@
 #include "frictal/hold.hpp"
 #include "frictal/io.hpp"
 #include "frictal/tilt.hpp"
+#include "frictal/warnings.hpp"
 #include "movie.hpp"
 #include "options.hpp"
 
@@ -54,6 +55,18 @@ nlohmann::json text_json(const std::vector<Field>& fields, const ValueSet& si) {
   return j;
 }
 
+/// A line profile from a file; what the reader said that did not stop it becomes a warning
+/// (code "reader", warnings.hpp).
+Curve read_file(const std::string& path, std::vector<Warning>& warnings) {
+  SurfaceData s = unwrap(read_surface(input_path(path), ReadOptions{}));
+  if (s.is_map)
+    throw UsageError(
+        fmt::format("{}: an areal map ({} x {}), not a line profile; extract a line first", path, s.map.nx, s.map.ny));
+  for (const std::string& w : s.warnings)
+    add_warning(warnings, {"reader", w.find(path) == std::string::npos ? path + ": " + w : w});
+  return std::move(s.curve);
+}
+
 /// "0.4 s", "3 min", "2.1 h".
 std::string duration_text(double seconds) {
   if (seconds < 120) return fmt::format("{:.2g} s", seconds);
@@ -81,6 +94,7 @@ int run(TiltOptions& o) {
   Curve lower, upper;
   TiltConfig base;
   std::optional<TiltScaling> scaling;  // file inputs: the defaults scaled to the files
+  std::vector<Warning> data_warnings;  // file inputs: the readers' and the plausibility checks' warnings
   nlohmann::json surface;
   const std::optional<SurfaceSpec> spec = o.gen.spec();
   if (spec) {
@@ -94,8 +108,22 @@ int run(TiltOptions& o) {
     if (o.lower_file.empty())
       throw UsageError(
           "tilt: give a generator (koch, wm, sawtooth, sine, self-affine, fourier) or --lower FILE [--upper FILE]");
-    lower = unwrap(read_curve(input_path(o.lower_file)));
-    upper = o.upper_file.empty() ? lower : unwrap(read_curve(input_path(o.upper_file)));
+    lower = read_file(o.lower_file, data_warnings);
+    upper = o.upper_file.empty() ? lower : read_file(o.upper_file, data_warnings);
+    // The files' plausibility (warnings.hpp: units, tiny heights, spikes, fill values, two scans
+    // of different scales), as `frictal predict` checks them; the faces as given (no detrending).
+    double len[2] = {0, 0}, dx[2] = {0, 0};
+    for (int i = 0; i < (o.upper_file.empty() ? 1 : 2); ++i) {
+      const std::string& name = i ? o.upper_file : o.lower_file;
+      auto p = as_profile(i ? upper : lower, name);
+      if (!p.ok() || p->x.size() < 2) continue;  // a folded curve: not a profile to check
+      for (Warning& w : check_profile(*p, name)) add_warning(data_warnings, std::move(w));
+      len[i] = p->x.back() - p->x.front();
+      dx[i] = len[i] / static_cast<double>(p->x.size() - 1);
+    }
+    if (dx[0] > 0 && dx[1] > 0)
+      for (Warning& w : check_pair_scales(len[0], dx[0], len[1], dx[1], o.lower_file, o.upper_file))
+        add_warning(data_warnings, std::move(w));
     // Measured files come at any scale: the macro defaults (Table I/II, made for a 0.2 m block)
     // carried over to the files' length and point spacing (scale_tilt_defaults, docs/dem.md sec.
     // 5). The run-away distance becomes L/20, as `signature` takes it by default (a tenth of
@@ -187,8 +215,12 @@ int run(TiltOptions& o) {
   // does not rotate): the friction angle is then not valid.
   const bool rotated =
       std::any_of(r->warnings.begin(), r->warnings.end(), [](const TiltWarning& w) { return w.code == "rotation"; });
+  // The files' warnings, then the run's: one list (JSON "warnings"; standard error in text).
+  std::vector<TiltWarning> warnings;
+  for (const Warning& w : data_warnings) warnings.push_back({w.code, w.message});
+  warnings.insert(warnings.end(), r->warnings.begin(), r->warnings.end());
   if (!o.quiet)
-    for (const TiltWarning& w : r->warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
+    for (const TiltWarning& w : warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
   if (!o.output.empty())
     write_output(o.output, [&](const std::string& p) { return write_tilt_series_csv(p, r->series); });
   if (!o.vtk.empty()) {
@@ -248,7 +280,7 @@ int run(TiltOptions& o) {
                    {"time_step_s", sc.time_step},
                    {"contact_period_s", sc.contact_period}};
     j["warnings"] = nlohmann::json::array();
-    for (const TiltWarning& w : r->warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
+    for (const TiltWarning& w : warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
     j["surface"] = surface;
     j["scaled_defaults"] = scaling_json(scaling);
     const TiltEstimate& e = r->estimate;
@@ -295,7 +327,7 @@ int run(TiltOptions& o) {
     std::FILE* text = (o.output == "-" || o.frames == "-") ? stderr : stdout;
     // The warnings that invalidate the result lead the output (all of them with --quiet, which
     // keeps standard error silent).
-    for (const TiltWarning& w : r->warnings)
+    for (const TiltWarning& w : warnings)
       if (w.code == "rotation" || o.quiet) fmt::print(text, "warning [{}]: {}\n", w.code, w.message);
     if (r->slid && rotated)
       fmt::print(text,

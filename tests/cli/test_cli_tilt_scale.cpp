@@ -79,6 +79,23 @@ TEST(CliTiltScale, ShortMeasuredProfileRunsWithScaledDefaults) {
   // The estimate goes to standard error before the run.
   EXPECT_NE(r.err.find("frictal: estimate: time step"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find('\r'), std::string::npos) << "no progress line when standard error is not a terminal";
+  // The file's count line says 23 rows and 24 follow (counted above): the reader's warning is
+  // one of the run's (warnings.hpp code "reader").
+  bool reader = false;
+  for (const auto& w : j["warnings"]) reader = reader || w["code"] == "reader";
+  EXPECT_TRUE(reader) << j["warnings"].dump();
+}
+
+TEST(CliTiltScale, TheFilesPlausibilityChecksWarn) {
+  // csv-2.csv: every height is the same (-1.4274 um), so the rms height is 0: heights-tiny.
+  const CliRun r =
+      run_cli("tilt --lower " + std::string(FRICTAL_TEST_DATA) + "/profiles/csv-2.csv --max-tilt 1 --json", 60);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  bool tiny = false;
+  for (const auto& w : j["warnings"]) tiny = tiny || w["code"] == "heights-tiny";
+  EXPECT_TRUE(tiny) << j["warnings"].dump();
+  EXPECT_NE(r.err.find("frictal: warning [heights-tiny]"), std::string::npos) << r.err;
 }
 
 TEST(CliTiltScale, ExplicitValuesAreKept) {
