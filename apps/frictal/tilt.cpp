@@ -74,7 +74,7 @@ std::string duration_text(double seconds) {
   return fmt::format("{:.3g} h", seconds / 3600);
 }
 
-/// The scaling of the defaults (file inputs; null for generated surfaces), values in text units.
+/// The scaling of the defaults, values in text units.
 nlohmann::json scaling_json(const std::optional<TiltScaling>& sc) {
   if (!sc) return nullptr;
   nlohmann::json list = nlohmann::json::array();
@@ -93,7 +93,7 @@ nlohmann::json scaling_json(const std::optional<TiltScaling>& sc) {
 int run(TiltOptions& o) {
   Curve lower, upper;
   TiltConfig base;
-  std::optional<TiltScaling> scaling;  // file inputs: the defaults scaled to the files
+  std::optional<TiltScaling> scaling;  // the defaults scaled to the surfaces
   std::vector<Warning> data_warnings;  // file inputs: the readers' and the plausibility checks' warnings
   nlohmann::json surface;
   const std::optional<SurfaceSpec> spec = o.gen.spec();
@@ -101,7 +101,21 @@ int run(TiltOptions& o) {
     if (!o.lower_file.empty() || !o.upper_file.empty())
       throw UsageError(fmt::format("tilt {}: a generated surface takes no --lower/--upper files", spec->generator));
     lower = upper = unwrap(generate_curve(*spec));
-    base = tilt_config_for_surface(unwrap(surface_period(*spec)), unwrap(surface_scale(*spec)));
+    const double period = unwrap(surface_period(*spec)), scale = unwrap(surface_scale(*spec));
+    // The defaults scaled to the surface's length and point spacing as for files (below): a
+    // generated surface at the Table I length (Koch, sawtooth, sine, Fourier by default: 0.2 m)
+    // keeps them bit for bit; the surface's own period and run-away distance (its wavelength)
+    // are already at its scale.
+    const TiltConfig own = tilt_config_for_surface(period, scale);
+    scaling = unwrap(scale_tilt_defaults(lower, upper, own));
+    for (const char* name : {"period", "runaway_distance"}) {
+      const bool from_surface = std::string(name) == "period" ? period > 0 : scale > 0;
+      if (!from_surface) continue;
+      std::erase_if(scaling->settings, [&](const TiltScaledSetting& t) { return t.name == name; });
+    }
+    if (period > 0) scaling->config.period = own.period;
+    if (scale > 0) scaling->config.runaway_distance = own.runaway_distance;
+    base = scaling->config;
     surface = text_json(find_generator(spec->generator)->fields, unwrap(surface_values(*spec)));
     surface["generator"] = spec->generator;
   } else {
@@ -127,7 +141,7 @@ int run(TiltOptions& o) {
     // Measured files come at any scale: the macro defaults (Table I/II, made for a 0.2 m block)
     // carried over to the files' length and point spacing (scale_tilt_defaults, docs/dem.md sec.
     // 5). The run-away distance becomes L/20, as `signature` takes it by default (a tenth of
-    // half the block).
+    // half the block). Generated surfaces take the same rule (above).
     scaling = unwrap(scale_tilt_defaults(lower, upper, tilt_config_for_surface(0, 0)));
     base = scaling->config;
     surface = {{"lower", o.lower_file}, {"upper", o.upper_file.empty() ? o.lower_file : o.upper_file}};
@@ -371,7 +385,7 @@ int run(TiltOptions& o) {
                r->lower_vertices, r->upper_vertices);
     if (scaling) {
       fmt::print(text,
-                 "defaults scaled to the files (length {:.4g} m, point spacing {:.4g} m: s = L / {:g} m = {:.4g}, "
+                 "defaults scaled to the surfaces (length {:.4g} m, point spacing {:.4g} m: s = L / {:g} m = {:.4g}, "
                  "q = {:.4g}){}\n",
                  scaling->length, scaling->point_spacing, kTiltReferenceLength, scaling->length_factor,
                  scaling->radius_factor, scaling->settings.empty() ? std::string(": none changed") : std::string(":"));
@@ -391,7 +405,7 @@ std::function<int()> setup(CLI::App& app) {
   add_generator_subcommands(app, o->gen, true, " (both blocks)");
   app.add_option("--lower", o->lower_file,
                  "Lower surface file (x_m,z_m), as measured; - reads standard input. The defaults not given are "
-                 "scaled to the files' length and point spacing (docs/dem.md sec. 5)");
+                 "scaled to the surfaces' length and point spacing (docs/dem.md sec. 5)");
   app.add_option("--upper", o->upper_file, "Upper surface file, as measured (default: the lower one)");
   add_field_options(app, tilt_settings(), o->settings);
   app.add_option("-o,--output", o->output, "Write the time series CSV here (- for standard output)");

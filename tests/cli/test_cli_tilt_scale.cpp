@@ -111,7 +111,7 @@ TEST(CliTiltScale, QuietPrintsNothingOnStandardError) {
   const CliRun r = run_cli("tilt --lower " + kXy2 + " --max-tilt 1 --quiet", 120);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");
-  EXPECT_NE(r.out.find("defaults scaled to the files"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("defaults scaled to the surfaces"), std::string::npos) << r.out;
 }
 
 TEST(CliTiltScale, ASpheroradiusBeyondTheResolutionIsRefused) {
@@ -161,14 +161,26 @@ TEST(CliTiltScale, ARotationWarningLeadsTheOutput) {
   EXPECT_TRUE(found) << o["warnings"].dump();
 }
 
-TEST(CliTiltScale, GeneratedSurfacesKeepTheMacroDefaults) {
-  // Generators are made at the Table I scale (and the paper's Koch tests run on them): no scaling.
+TEST(CliTiltScale, GeneratedSurfacesScaleAsFilesKeepingTheirWavelength) {
+  // Koch at its default 0.2 m (the paper's tests): K0's points are 5 mm apart, above r_0, so
+  // s = 1, q = 1 and nothing changes.
+  const CliRun d = run_cli("tilt koch --alpha 5 --max-tilt 1 --json --quiet", 120);
+  ASSERT_EQ(d.code, 0) << d.err;
+  const auto jd = nlohmann::json::parse(d.out);
+  EXPECT_TRUE(jd["scaled_defaults"]["settings"].empty()) << jd["scaled_defaults"].dump();
+  EXPECT_DOUBLE_EQ(setting(jd, "spheroradius"), 5e-5);
+  EXPECT_DOUBLE_EQ(setting(jd, "block_height"), 0.01);
+  // On 2 cm (s = 0.1): r and h scale, the period and the run-away stay the surface's wavelength.
   const CliRun r = run_cli("tilt koch --alpha 5 --length 0.02 --max-tilt 1 --json --quiet", 120);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  EXPECT_TRUE(j["scaled_defaults"].is_null());
-  EXPECT_DOUBLE_EQ(setting(j, "spheroradius"), 5e-5);
-  EXPECT_DOUBLE_EQ(setting(j, "block_height"), 0.01);
+  EXPECT_NEAR(j["scaled_defaults"]["length_factor"].get<double>(), 0.1, 1e-12);
+  EXPECT_NEAR(setting(j, "spheroradius"), 5e-6, 1e-18);
+  EXPECT_NEAR(setting(j, "block_height"), 1e-3, 1e-15);
+  EXPECT_DOUBLE_EQ(setting(j, "period"), 0.01);
+  EXPECT_DOUBLE_EQ(setting(j, "runaway_distance"), 0.01);
+  EXPECT_FALSE(scaled_list_has(j, "period"));
+  EXPECT_FALSE(scaled_list_has(j, "runaway_distance"));
 }
 
 TEST(CliTiltScale, AMacroFileKeepsTheDefaults) {
