@@ -67,6 +67,9 @@ struct HoldOptions {
   /// (one period for a periodic curve).
   double drop_min = 0;
   double drop_max = 0;
+  /// Threads for the two directions of the distribution (0: up to two; analyse_hold and
+  /// signature_with_hold take SignatureOptions::threads). The result does not depend on it.
+  unsigned threads = 0;
 };
 
 /// The test of one direction from one drop.

@@ -21,11 +21,6 @@
 #include <unordered_map>
 
 #include <fmt/core.h>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
-static double dbg_now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-#define DBG(...) do { if (std::getenv("HOLD_TRACE")) std::fprintf(stderr, __VA_ARGS__); } while (0)
 
 #include "rigid.hpp"
 #include "util/parallel.hpp"
@@ -574,7 +569,6 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
     std::int64_t next;  // the next record of its piece
     Outcome oc;
   };
-  double dbg_t0 = dbg_now();
   std::vector<Basin> basins;
   std::vector<Flat> flats;
   std::unordered_map<std::size_t, std::size_t> seen;  // periodic: key -> basin
@@ -713,8 +707,6 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
     if (q.near_end) near_end += q.weight;
   for (const Flat& f : flats)
     if (f.oc.off_end && x_end - f.oc.hold_x < d) near_end += f.weight;
-  DBG("    passes 1-2: %.3f s (%zu basins, %zu flats)\n", dbg_now() - dbg_t0, basins.size(), flats.size());
-  dbg_t0 = dbg_now();
   // Pass 3: the steepest chords from the rest vertices, in decreasing order; then the basins
   // (flat drops first, each with its own chord) in the order of their first drop.
   HoldDistribution out;
@@ -763,8 +755,6 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
     out.basins.hold.push_back(angle_of(q.hold_slope, o.atomic_friction));
   }
   std::vector<Basin>().swap(basins);
-  DBG("    chords: %.3f s\n", dbg_now() - dbg_t0);
-  dbg_t0 = dbg_now();
   {  // sort the basins by offset
     std::vector<std::size_t> idx(out.basins.rest.size());
     for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
@@ -790,7 +780,6 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
   out.drop_min = mirrored ? -b : a;
   out.drop_max = mirrored ? -a : b;
   out.near_end = near_end;
-  DBG("    assemble+stats: %.3f s\n", dbg_now() - dbg_t0);
   return out;
 }
 
@@ -922,8 +911,7 @@ Result<HoldDistributions> hold_distribution(const LiftCurve& curve, const HoldOp
   b = std::min(b, hi);
   HoldDistributions out;
   // The two directions are independent: one thread each where there are two.
-  double t0 = dbg_now();
-  util::parallel_chunks(2, util::thread_count(0, 2), [&](unsigned, std::size_t i0, std::size_t i1) {
+  util::parallel_chunks(2, util::thread_count(options.threads, 2), [&](unsigned, std::size_t i0, std::size_t i1) {
     for (std::size_t i = i0; i < i1; ++i) {
       if (i == 0)
         out.forward = distribution(make_frame(curve, false, options.runaway_distance), a, b, options, false);
@@ -931,7 +919,6 @@ Result<HoldDistributions> hold_distribution(const LiftCurve& curve, const HoldOp
         out.backward = distribution(make_frame(curve, true, options.runaway_distance), -b, -a, options, true);
     }
   });
-  DBG("  distributions %.3f s\n", dbg_now() - t0);
   return out;
 }
 
@@ -1100,6 +1087,7 @@ Result<HoldSetup> hold_setup(const Profile& lower, const Profile& upper, const S
     return make_error(
         fmt::format("hold: a periodic pair is analysed over one period ({} m), not over [{}, {}] m", s.period, a, b));
   s.ho = hold;
+  if (s.ho.threads == 0) s.ho.threads = so.threads;
   s.ho.runaway_distance = hold.runaway_distance > 0 ? hold.runaway_distance : default_runaway_distance(a, b, s.period);
   if (!std::isnan(start) && !std::isfinite(start))
     return make_error(fmt::format("start offset {} m: expected a finite offset", start));
@@ -1348,15 +1336,11 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   double cut_lo = 0, cut_hi = 0;
   // Builds the curve from R and the extension, analyses it; the side(s) the process reached.
   auto build_and_analyse = [&](const SignatureResult& R) -> Result<Reach> {
-    double t0 = dbg_now();
     MergedPoints mp(R, ext_points, ext_dropped);
     auto curve = build_curve(mp.size(), true, 0.0, [&](std::size_t w) { return mp.get(w); });
     if (!curve) return curve.error();
     out.curve = std::move(*curve);
-    DBG("curve %zu vertices: %.3f s\n", out.curve.offset.size(), dbg_now() - t0);
-    t0 = dbg_now();
     auto reach = analyse_curve(out, S.ho, start);
-    DBG("analysis: %.3f s\n", dbg_now() - t0);
     return reach;
   };
   const detail::WithLift with_lift = [&](const SignatureResult& R, const detail::LiftExtender& extend) -> Status {
@@ -1366,10 +1350,8 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     for (;;) {
       cut_lo = hold_lift_range(S.a, S.b, m_lo, S.lower_len, S.upper_len).min;
       cut_hi = hold_lift_range(S.a, S.b, m_hi, S.lower_len, S.upper_len).max;
-      double t0 = dbg_now();
       auto ext = extend(cut_lo, cut_hi, sampled ? nullptr : &ext_points.offset);
       if (!ext) return with_prefix("hold: ", ext.error());
-      DBG("extend [%g, %g]: %zu evaluated, %.3f s\n", cut_lo, cut_hi, ext->points.offset.size(), dbg_now() - t0);
       out.events = ext->events;
       out.exact = ext->exact;
       ext_dropped = std::move(ext->dropped);
@@ -1390,7 +1372,6 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       }
       // Exact mode: decide on the lift near each cut end (points from d and a bit before the
       // range's end on), before the whole curve is built.
-      t0 = dbg_now();
       MergedPoints mp(R, ext_points, ext_dropped);
       const std::size_t nw = mp.size();
       auto local = [&](std::size_t first, std::size_t last) {
@@ -1419,7 +1400,6 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
         short_min = end_reached(*c, true, -S.a, d);
         more_min = short_min > 0;
       }
-      DBG("end checks: %.3f s, more max %d min %d\n", dbg_now() - t0, more_max, more_min);
       if (!more_max && !more_min) break;
       // Farther by what the check found short, and a quarter of d (a chain may go on).
       if (more_max) m_hi += short_max + 0.25 * d;
