@@ -40,6 +40,7 @@ reproduce: build
 bench: deps
 	cmake --preset bench && cmake --build build/bench -j $(JOBS)
 	bash bench/run-benchmarks build/bench
+	bash bench/commands.sh build/bench
 
 fuzz: deps
 	FUZZ_RECORD=$(FUZZ_RECORD) bash scripts/fuzz $(or $(RUNS),1000000)

@@ -67,6 +67,9 @@ struct HoldOptions {
   /// (one period for a periodic curve).
   double drop_min = 0;
   double drop_max = 0;
+  /// Threads for the two directions of the distribution (0: up to two; analyse_hold and
+  /// signature_with_hold take SignatureOptions::threads). The result does not depend on it.
+  unsigned threads = 0;
 };
 
 /// The test of one direction from one drop.
@@ -167,16 +170,38 @@ struct HoldAnalysis {
 };
 
 /// Computes the lift of `lower` against `upper` (already rotated, as signature() takes it) over
-/// the range the hold process needs (non-periodic: the drop range widened by 2d, and by twice as
-/// much again while a run-away leaves a stop, or a rest lies, less than d before a cut end: a
-/// chain of short slips can carry a block more than d from its rest; the blocks' overlap is the
-/// last end)
-/// and analyses it: drops over the signature's own offset range
+/// the range the hold process needs and analyses it (see signature_with_hold, whose hold part
+/// this is; the signature part is computed too, without contacts): drops over the signature's own offset range
 /// (`signature_options.offset_min/max`, else one period or half the shorter block), one start
 /// if `start` is finite. `hold.runaway_distance` <= 0: default_runaway_distance of that range;
 /// hold.drop_min/max are ignored. The signature options are used as given (spheroradius,
 /// offsets, threads), contacts are not kept. Periodic when `lower` has a period.
 Result<HoldAnalysis> analyse_hold(const Profile& lower, const Profile& upper, const SignatureOptions& signature_options,
                                   const HoldOptions& hold, double start = std::numeric_limits<double>::quiet_NaN());
+
+/// The signature and the hold analysis of a pair.
+struct SignatureWithHold {
+  SignatureResult signature;  ///< what signature(lower, upper, options) returns
+  HoldAnalysis hold;          ///< what analyse_hold(lower, upper, options, hold, start) returns
+};
+
+/// signature() and analyse_hold() in one pass over the lift: the faces are prepared once, the
+/// signature's offsets are evaluated once, and the hold analysis reads them, with the lift
+/// beyond the signature's range evaluated (with the same faces) only on the sides and as far
+/// as the process reaches (non-periodic: each side from 1.5 d, doubled while a run-away leaves
+/// a stop, or a rest lies, less than d before a cut end; the blocks' overlap is the last end).
+/// The lift's offsets beyond the range are those that a signature over the wider range lists
+/// (every event; with `offsets` = N or sampled offsets, the wider range's own grid, from 2 d on
+/// both sides), so the hold numbers are those of a lift computed over that range. Periodic
+/// pairs: the signature's lift is one period, read as it is. Time and memory linear in the
+/// lift's offsets (the chords: n log n). Spheropolygon faces (spheroradius > 0): the two are
+/// computed one after the other. `start`, options and errors as analyse_hold() and signature().
+Result<SignatureWithHold> signature_with_hold(const Profile& lower, const Profile& upper,
+                                              const SignatureOptions& options, const HoldOptions& hold,
+                                              double start = std::numeric_limits<double>::quiet_NaN());
+/// The same, taking both profiles over (as signature(Profile&&, Profile&&)).
+Result<SignatureWithHold> signature_with_hold(Profile&& lower, Profile&& upper, const SignatureOptions& options,
+                                              const HoldOptions& hold,
+                                              double start = std::numeric_limits<double>::quiet_NaN());
 
 }  // namespace frictal

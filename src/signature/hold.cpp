@@ -1,20 +1,29 @@
 // frictal — the hold angle, its inertial bound and their distribution over drops (hold.hpp).
 //
-// Everything works on a continuous piecewise-linear function (Pl): vertices X[0..n], heights
-// H[0..n], slopes M[0..n-1] of the pieces between them. Forward sliding only; backward is the
-// same on the mirrored function. A periodic curve is unrolled over five periods, enough for any
-// drop of the base period: the descent to rest moves at most one period, the record chain from
-// a rest ends within one period (at the next vertex of the globally steepest slope), and the
-// inertial window is at most one period long.
+// Everything works on a continuous piecewise-linear function: vertices X[0..n], heights H[0..n],
+// slopes M[0..n-1] of the pieces between them, read through a View of the LiftCurve's arrays
+// (no copies: the backward direction reads them mirrored, a periodic curve unrolled). Forward
+// sliding only; backward is the same on the mirrored function. A periodic curve is unrolled
+// over five periods, enough for any drop of the base period: the descent to rest moves at most
+// one period, the record chain from a rest ends within one period (at the next vertex of the
+// globally steepest slope), and the inertial window is at most one period long.
+//
+// Memory: the distribution keeps O(basins) values and the record stack besides the curve; the
+// descents are walked (each piece once), the records found in one pass from the right whose
+// stack holds the record chain of the vertex at hand, the chords by monotone hulls over one
+// window at a time. Time: linear in the curve's vertices, plus n log n for the chords.
 #include "frictal/hold.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numbers>
+#include <unordered_map>
 
 #include <fmt/core.h>
+
+#include "rigid.hpp"
+#include "util/parallel.hpp"
 
 namespace frictal {
 
@@ -22,99 +31,139 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kHalfPi = std::numbers::pi / 2;
+// Rounding bound factor of a piece's slope: each stored offset and lift within 2 ulps of its
+// exact value (docs/analysis.md, "Equal slopes").
+constexpr double kSlopeTolerance = 4 * std::numeric_limits<double>::epsilon();
 
-struct Pl {
-  std::vector<double> X, H, M;  // n + 1 vertices, n slopes
-  std::size_t n() const { return M.size(); }
-  // h at x (X.front() <= x <= X.back()), on piece k.
-  double at(std::size_t k, double x) const { return H[k] + M[k] * (x - X[k]); }
+// A read-only view of a LiftCurve as the function the forward process runs on: mirrored
+// (x -> -x, the backward direction) and/or unrolled over copies c0 .. c0 + copies - 1 of a
+// period. Values are computed exactly as copies of the arrays would hold them: the slopes are
+// those of the base curve (negated when mirrored), the unrolled abscissae base + c * period.
+struct View {
+  const double* x = nullptr;  // the curve's m + 1 vertices
+  const double* h = nullptr;
+  std::size_t m = 0;  // pieces of the curve
+  bool mirrored = false;
+  double period = 0;  // > 0: unrolled
+  int c0 = 0;
+  std::size_t copies = 1;
+  // Index arithmetic of the mirror, branch-free: vertex i of the frame is vertex o + s i of the
+  // curve with abscissa sign sx; piece k is piece po + s k with slope sign sx (a negation, exact).
+  std::ptrdiff_t o = 0, po = 0, s = 1;
+  double sx = 1;
+
+  std::size_t n() const { return m * copies; }
+  double bx(std::size_t i) const { return sx * x[o + s * static_cast<std::ptrdiff_t>(i)]; }
+  double bh(std::size_t i) const { return h[o + s * static_cast<std::ptrdiff_t>(i)]; }
+  // The base piece j of the curve for piece k of the frame (k < m).
+  std::size_t bj(std::size_t k) const { return static_cast<std::size_t>(po + s * static_cast<std::ptrdiff_t>(k)); }
+  double bm(std::size_t k) const {
+    const std::size_t j = bj(k);
+    return sx * ((h[j + 1] - h[j]) / (x[j + 1] - x[j]));
+  }
+  double X(std::size_t i) const {
+    if (period == 0) return bx(i);
+    if (i == n()) return bx(m) + static_cast<double>(c0 + static_cast<int>(copies) - 1) * period;
+    return bx(i % m) + static_cast<double>(c0 + static_cast<int>(i / m)) * period;
+  }
+  double H(std::size_t i) const {
+    if (period == 0) return bh(i);
+    return i == n() ? bh(m) : bh(i % m);
+  }
+  double M(std::size_t k) const { return period == 0 ? bm(k) : bm(k % m); }
+  // How far apart two slopes may come out that are equal in exact arithmetic: the rounding
+  // bound of M(k) as a difference quotient of the stored vertices, whose values carry a few
+  // ulps each (docs/analysis.md, "Equal slopes"). Same unit as M.
+  double tol(std::size_t k) const {
+    const std::size_t j = bj(period == 0 ? k : k % m);
+    const double dx = x[j + 1] - x[j];
+    const double mk = (h[j + 1] - h[j]) / dx;
+    return kSlopeTolerance * ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(mk) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+  }
+  // Piece j is steeper than piece k: by more than k's rounding bound (the records rule).
+  bool steeper(std::size_t j, std::size_t k) const { return M(j) > M(k) + tol(k); }
+  // h at x (X(0) <= x <= X(n)), on piece k.
+  double at(std::size_t k, double x0) const { return H(k) + M(k) * (x0 - X(k)); }
+  // The first vertex i with X(i) > x (n + 1 if none), as std::upper_bound.
+  std::size_t upper(double x0) const {
+    std::size_t lo = 0, len = n() + 1;
+    while (len > 0) {
+      const std::size_t half = len / 2;
+      if (!(x0 < X(lo + half))) {
+        lo += half + 1;
+        len -= half + 1;
+      } else {
+        len = half;
+      }
+    }
+    return lo;
+  }
 };
 
-Pl make_pl(const LiftCurve& c) {
-  Pl p;
-  p.X = c.offset;
-  p.H = c.lift;
-  p.M.resize(c.offset.size() - 1);
-  for (std::size_t k = 0; k + 1 < c.offset.size(); ++k)
-    p.M[k] = (c.lift[k + 1] - c.lift[k]) / (c.offset[k + 1] - c.offset[k]);
-  return p;
-}
-
-Pl mirror(const Pl& p) {
-  Pl m;
-  const std::size_t n = p.n();
-  m.X.resize(n + 1);
-  m.H.resize(n + 1);
-  m.M.resize(n);
-  for (std::size_t i = 0; i <= n; ++i) {
-    m.X[i] = -p.X[n - i];
-    m.H[i] = p.H[n - i];
+View make_view(const LiftCurve& c, bool mirrored) {
+  View v;
+  v.x = c.offset.data();
+  v.h = c.lift.data();
+  v.m = c.offset.size() - 1;
+  v.mirrored = mirrored;
+  if (mirrored) {
+    v.o = static_cast<std::ptrdiff_t>(v.m);
+    v.po = static_cast<std::ptrdiff_t>(v.m) - 1;
+    v.s = -1;
+    v.sx = -1;
   }
-  for (std::size_t k = 0; k < n; ++k) m.M[k] = -p.M[n - 1 - k];
-  return m;
+  if (c.period > 0) {
+    v.period = c.period;
+    v.c0 = -1;
+    v.copies = 5;
+  }
+  return v;
 }
 
-// Copies c0 .. c1 (inclusive) of one period of a periodic Pl.
-Pl unroll(const Pl& base, double period, int c0, int c1) {
-  Pl u;
-  const std::size_t n = base.n();
-  for (int c = c0; c <= c1; ++c)
-    for (std::size_t i = 0; i < n; ++i) {
-      u.X.push_back(base.X[i] + c * period);
-      u.H.push_back(base.H[i]);
-      u.M.push_back(base.M[i]);
+// Piece index holding x: the k with X[k] <= x < X[k+1] (the last piece for x = X[n]).
+std::size_t piece_of(const View& p, double x) {
+  const std::size_t u = p.upper(x);
+  std::size_t k = u == 0 ? 0 : u - 1;
+  return std::min(k, p.n() - 1);
+}
+
+// The descents to rest, walked and remembered for queries that move mostly forward.
+class Descents {
+ public:
+  explicit Descents(const View& p) : p_(p) {}
+  // First u >= v with M[u] >= 0, else n.
+  std::size_t forward(std::size_t v) {
+    if (v >= fq_ && v <= fa_ && fq_ != kUnset) return fa_;
+    std::size_t u = v;
+    while (u < p_.n() && !(p_.M(u) >= 0)) ++u;
+    fq_ = v;
+    fa_ = u;
+    return u;
+  }
+  // First u <= v (going down) with u == 0 or M[u-1] <= 0.
+  std::size_t backward(std::size_t v) {
+    if (bq_ != kUnset && v >= ba_) {
+      if (v <= bq_) return ba_;
+      // Extend forward from bq_: the last u in (bq_, v] with M[u-1] <= 0, else ba_.
+      std::size_t a = ba_;
+      for (std::size_t u = bq_ + 1; u <= v; ++u)
+        if (p_.M(u - 1) <= 0) a = u;
+      bq_ = v;
+      ba_ = a;
+      return a;
     }
-  u.X.push_back(base.X[n] + c1 * period);
-  u.H.push_back(base.H[n]);
-  return u;
-}
+    std::size_t u = v;
+    while (u > 0 && !(p_.M(u - 1) <= 0)) --u;
+    bq_ = v;
+    ba_ = u;
+    return u;
+  }
 
-// The record chain of the forward process from every vertex, and the descents to rest.
-struct Forward {
-  std::vector<std::int64_t> next;      // next stop: first j > k with M[j] > M[k]; -1 none
-  std::vector<std::int64_t> held;      // the stop that holds a block stopped at k
-  std::vector<std::int64_t> run_end;   // end of the run-away from held[k]; -1 none
-  std::vector<int> slips;              // short slips from k to held[k]
-  std::vector<std::int64_t> down_fwd;  // forward descent from vertex v: first u >= v with M[u] >= 0, else n
-  std::vector<std::int64_t> down_bwd;  // backward descent: first u <= v with u == 0 or M[u-1] <= 0
+ private:
+  static constexpr std::size_t kUnset = static_cast<std::size_t>(-1);
+  const View& p_;
+  std::size_t fq_ = kUnset, fa_ = 0, bq_ = kUnset, ba_ = 0;
 };
-
-Forward forward_process(const Pl& p, double d) {
-  const std::size_t n = p.n();
-  Forward f;
-  f.next.assign(n + 1, -1);
-  f.held.assign(n + 1, 0);
-  f.run_end.assign(n + 1, -1);
-  f.slips.assign(n + 1, 0);
-  // Next strictly greater slope: one pass from the right; the stack holds the candidates, their
-  // slopes strictly decreasing from bottom to top.
-  std::vector<std::int64_t> stack;
-  stack.reserve(64);
-  for (std::size_t kk = n; kk-- > 0;) {
-    while (!stack.empty() && p.M[static_cast<std::size_t>(stack.back())] <= p.M[kk]) stack.pop_back();
-    f.next[kk] = stack.empty() ? -1 : stack.back();
-    stack.push_back(static_cast<std::int64_t>(kk));
-  }
-  f.held[n] = static_cast<std::int64_t>(n);  // the end: nothing ahead
-  for (std::size_t kk = n; kk-- > 0;) {
-    const std::int64_t j = f.next[kk];
-    if (j < 0 || p.X[static_cast<std::size_t>(j)] - p.X[kk] >= d) {
-      f.held[kk] = static_cast<std::int64_t>(kk);
-      f.run_end[kk] = j;
-    } else {
-      const auto ju = static_cast<std::size_t>(j);
-      f.held[kk] = f.held[ju];
-      f.run_end[kk] = f.run_end[ju];
-      f.slips[kk] = f.slips[ju] + 1;
-    }
-  }
-  f.down_fwd.assign(n + 1, static_cast<std::int64_t>(n));
-  for (std::size_t v = n; v-- > 0;) f.down_fwd[v] = p.M[v] >= 0 ? static_cast<std::int64_t>(v) : f.down_fwd[v + 1];
-  f.down_bwd.assign(n + 1, 0);
-  for (std::size_t v = 1; v <= n; ++v)
-    f.down_bwd[v] = p.M[v - 1] <= 0 ? static_cast<std::int64_t>(v) : f.down_bwd[v - 1];
-  return f;
-}
 
 // Where a drop at x rests: a vertex, or x itself on a flat piece (flat = piece index).
 struct Rest {
@@ -123,36 +172,61 @@ struct Rest {
   double x = 0;
 };
 
-// Piece index holding x: the k with X[k] <= x < X[k+1] (the last piece for x = X[n]).
-std::size_t piece_of(const Pl& p, double x) {
-  const auto it = std::upper_bound(p.X.begin(), p.X.end(), x);
-  std::size_t k = it == p.X.begin() ? 0 : static_cast<std::size_t>(it - p.X.begin()) - 1;
-  return std::min(k, p.n() - 1);
-}
-
-Rest rest_of(const Pl& p, const Forward& f, double x) {
-  const std::size_t k = piece_of(p, x);
+Rest rest_in(const View& p, Descents& ds, std::size_t k, double x) {
   Rest r;
   r.x = x;
   std::int64_t v = -1;
-  if (x == p.X[k]) {  // on a vertex: its two sides decide
-    if (p.M[k] < 0)
-      v = f.down_fwd[k + 1];
-    else if (k > 0 && p.M[k - 1] > 0)
-      v = f.down_bwd[k - 1];
+  if (x == p.X(k)) {  // on a vertex: its two sides decide
+    if (p.M(k) < 0)
+      v = static_cast<std::int64_t>(ds.forward(k + 1));
+    else if (k > 0 && p.M(k - 1) > 0)
+      v = static_cast<std::int64_t>(ds.backward(k - 1));
     else
       v = static_cast<std::int64_t>(k);
-  } else if (p.M[k] < 0) {
-    v = f.down_fwd[k + 1];
-  } else if (p.M[k] > 0) {
-    v = f.down_bwd[k];
+  } else if (p.M(k) < 0) {
+    v = static_cast<std::int64_t>(ds.forward(k + 1));
+  } else if (p.M(k) > 0) {
+    v = static_cast<std::int64_t>(ds.backward(k));
   } else {
     r.flat = static_cast<std::int64_t>(k);
     return r;
   }
   r.vertex = v;
-  r.x = p.X[static_cast<std::size_t>(v)];
+  r.x = p.X(static_cast<std::size_t>(v));
   return r;
+}
+
+Rest rest_of(const View& p, Descents& ds, double x) { return rest_in(p, ds, piece_of(p, x), x); }
+
+// The next record of the forward slope after piece k: the first j > k steeper than k (by more
+// than k's rounding bound), or -1.
+std::int64_t next_record(const View& p, std::size_t k) {
+  const double t = p.M(k) + p.tol(k);
+  for (std::size_t j = k + 1; j < p.n(); ++j)
+    if (p.M(j) > t) return static_cast<std::int64_t>(j);
+  return -1;
+}
+
+// The record chain from vertex s (< n): the stop that holds, the end of its run-away, the short
+// slips before it.
+struct Chain {
+  std::int64_t held = 0, run_end = -1;
+  int slips = 0;
+};
+
+Chain chain_from(const View& p, std::size_t s, double d) {
+  Chain c;
+  std::size_t k = s;
+  for (;;) {
+    const std::int64_t j = next_record(p, k);
+    if (j < 0 || p.X(static_cast<std::size_t>(j)) - p.X(k) >= d) {
+      c.held = static_cast<std::int64_t>(k);
+      c.run_end = j;
+      return c;
+    }
+    k = static_cast<std::size_t>(j);
+    ++c.slips;
+  }
 }
 
 // The forward process from a rest: the stop that held, the run-away end, the slips.
@@ -162,16 +236,18 @@ struct Outcome {
   bool off_end = false;
 };
 
-Outcome outcome_of(const Pl& p, const Forward& f, const Rest& r, double d, bool periodic) {
+// `flat_next`: the next record of a flat rest's piece; `chain(v)`: the record chain from v.
+template <class ChainOf>
+Outcome outcome_of(const View& p, const Rest& r, std::int64_t flat_next, double d, bool periodic, ChainOf&& chain) {
   Outcome o;
   const std::size_t n = p.n();
   std::int64_t start = r.vertex;
   if (r.flat >= 0) {  // a flat piece: the first slip starts at x
-    const std::int64_t j = f.next[static_cast<std::size_t>(r.flat)];
-    if (j < 0 || p.X[static_cast<std::size_t>(j)] - r.x >= d) {
+    const std::int64_t j = flat_next;
+    if (j < 0 || p.X(static_cast<std::size_t>(j)) - r.x >= d) {
       o.hold_x = r.x;
       o.hold_slope = 0;
-      if (j >= 0) o.end_x = p.X[static_cast<std::size_t>(j)];
+      if (j >= 0) o.end_x = p.X(static_cast<std::size_t>(j));
       o.off_end = j < 0 && !periodic;
       return o;
     }
@@ -180,27 +256,27 @@ Outcome outcome_of(const Pl& p, const Forward& f, const Rest& r, double d, bool 
   }
   const auto s = static_cast<std::size_t>(start);
   if (s == n) {  // rests at the end of the range: nothing ahead holds it
-    o.hold_x = p.X[n];
+    o.hold_x = p.X(n);
     o.hold_slope = 0;
     o.off_end = true;
     return o;
   }
-  const auto h = static_cast<std::size_t>(f.held[s]);
-  o.hold_x = p.X[h];
-  o.hold_slope = p.M[h];
-  o.slips += f.slips[s];
-  const std::int64_t e = f.run_end[s];
-  if (e >= 0) o.end_x = p.X[static_cast<std::size_t>(e)];
-  o.off_end = e < 0 && !periodic;
+  const Chain c = chain(s);
+  const auto h = static_cast<std::size_t>(c.held);
+  o.hold_x = p.X(h);
+  o.hold_slope = p.M(h);
+  o.slips += c.slips;
+  if (c.run_end >= 0) o.end_x = p.X(static_cast<std::size_t>(c.run_end));
+  o.off_end = c.run_end < 0 && !periodic;
   return o;
 }
 
 // Steepest chord from (x0, h(x0)) to h over (x0, min(x0 + w, X[n])], by direct scan:
 // {slope, where}. The window's end counts when it falls inside a piece.
-std::pair<double, double> chord_direct(const Pl& p, double x0, double w) {
+std::pair<double, double> chord_direct(const View& p, double x0, double w) {
   const std::size_t n = p.n();
   const double h0 = p.at(piece_of(p, x0), x0);
-  const double x1 = std::min(x0 + w, p.X[n]);
+  const double x1 = std::min(x0 + w, p.X(n));
   if (!(x1 > x0)) return {0.0, x0};
   double best = -std::numeric_limits<double>::infinity(), bx = x1;
   auto consider = [&](double x, double h) {
@@ -210,9 +286,9 @@ std::pair<double, double> chord_direct(const Pl& p, double x0, double w) {
       bx = x;
     }
   };
-  auto v = static_cast<std::size_t>(std::upper_bound(p.X.begin(), p.X.end(), x0) - p.X.begin());
-  for (; v <= n && p.X[v] <= x1; ++v) consider(p.X[v], p.H[v]);
-  if (v <= n && p.X[v - 1] < x1) consider(x1, p.at(v - 1, x1));
+  std::size_t v = p.upper(x0);
+  for (; v <= n && p.X(v) <= x1; ++v) consider(p.X(v), p.H(v));
+  if (v <= n && p.X(v - 1) < x1) consider(x1, p.at(v - 1, x1));
   return {best, bx};
 }
 
@@ -220,14 +296,14 @@ std::pair<double, double> chord_direct(const Pl& p, double x0, double w) {
 // point to the left of every point. cross(o, a, b) > 0: b is to the left of o->a.
 class RollbackHull {
  public:
-  RollbackHull(const Pl& p, int dir) : p_(p), dir_(dir) {}
+  RollbackHull(const View& p, int dir) : p_(p), dir_(dir) {}
   void push(std::size_t v) {
     // Keep the longest prefix whose last turn towards v stays convex (upper hull).
     std::size_t lo = 0, hi = size_;  // answer k in [0, size_]: hull keeps [0, k), v goes at k
     // keep(i): hull[i] stays when v is added, i.e. i == 0 or turn(hull[i-1], hull[i], v) is right.
     auto keep = [&](std::size_t i) { return i == 0 || dir_ * cross(hull_[i - 1], hull_[i], v) < 0; };
     while (lo < hi) {
-      const std::size_t mid = (lo + hi + 1) / 2;  // largest i with keep(i - 1)... binary on count
+      const std::size_t mid = (lo + hi + 1) / 2;
       if (keep(mid - 1))
         lo = mid;
       else
@@ -252,7 +328,7 @@ class RollbackHull {
   // Max of (H[v] - h0) / (X[v] - x0) over the hull; the slope along the hull is unimodal.
   std::pair<double, double> best(double x0, double h0) const {
     if (size_ == 0) return {-std::numeric_limits<double>::infinity(), kNaN};
-    auto slope = [&](std::size_t i) { return (p_.H[hull_[i]] - h0) / (p_.X[hull_[i]] - x0); };
+    auto slope = [&](std::size_t i) { return (p_.H(hull_[i]) - h0) / (p_.X(hull_[i]) - x0); };
     std::size_t lo = 0, hi = size_ - 1;
     while (lo < hi) {
       const std::size_t mid = (lo + hi) / 2;
@@ -261,7 +337,7 @@ class RollbackHull {
       else
         hi = mid;
     }
-    return {slope(lo), p_.X[hull_[lo]]};
+    return {slope(lo), p_.X(hull_[lo])};
   }
 
  private:
@@ -271,48 +347,59 @@ class RollbackHull {
     std::size_t size;
   };
   double cross(std::size_t o, std::size_t a, std::size_t b) const {
-    return (p_.X[a] - p_.X[o]) * (p_.H[b] - p_.H[o]) - (p_.H[a] - p_.H[o]) * (p_.X[b] - p_.X[o]);
+    const double xo = p_.X(o), ho = p_.H(o);
+    return (p_.X(a) - xo) * (p_.H(b) - ho) - (p_.H(a) - ho) * (p_.X(b) - xo);
   }
-  const Pl& p_;
+  const View& p_;
   int dir_;
   std::vector<std::size_t> hull_;
   std::size_t size_ = 0;
   std::vector<Entry> log_;
 };
 
-// Steepest chords from many rest vertices, each over (X[r], min(X[r] + w, X[n])]. The x axis is
-// cut into chunks of length w: a window starting in chunk c covers a suffix of chunk c and a
-// prefix of the chunks after it, up to one chunk length. Per chunk, queries in decreasing x: the
-// suffix hull grows leftwards, the prefix hull shrinks (undo in reverse push order).
-// O((n + q) log n) time, O(n) memory.
-std::vector<std::pair<double, double>> chords_batch(const Pl& p, const std::vector<std::size_t>& rests, double w) {
+// Steepest chords from many rest vertices (in decreasing order), each over
+// (X[r], min(X[r] + w, X[n])]. The x axis is cut into chunks of length w: a window starting in
+// chunk c covers a suffix of chunk c and a prefix of the chunks after it, up to one chunk
+// length. Per chunk, queries in decreasing x: the suffix hull grows leftwards, the prefix hull
+// shrinks (undo in reverse push order). O((n + q) log n) time, O(vertices per window) memory.
+// `out(i, {slope, where})` receives the answer of rests[i].
+template <class Rests, class Out>
+void chords_batch(const View& p, const Rests& rests, double w, Out&& out) {
   const std::size_t n = p.n();
-  std::vector<std::pair<double, double>> out(rests.size());
-  if (rests.empty()) return out;
-  const double x_begin = p.X[0];
+  if (rests.empty()) return;
+  const double x_begin = p.X(0);
   auto chunk_of = [&](double x) { return std::floor((x - x_begin) / w); };
-  std::vector<std::size_t> order(rests.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return rests[a] > rests[b]; });
   RollbackHull suffix(p, -1), prefix(p, +1);
   std::size_t qi = 0;
-  while (qi < order.size()) {
-    const double c = chunk_of(p.X[rests[order[qi]]]);
+  while (qi < rests.size()) {
+    const double c = chunk_of(p.X(rests[qi]));
     // b: the first vertex of a later chunk; e: past the last vertex any window of this chunk reaches.
-    const auto b = static_cast<std::size_t>(
-        std::partition_point(p.X.begin(), p.X.end(), [&](double x) { return chunk_of(x) <= c; }) - p.X.begin());
-    const double reach = p.X[rests[order[qi]]] + w;
-    const auto e = static_cast<std::size_t>(std::upper_bound(p.X.begin(), p.X.end(), reach) - p.X.begin());
+    std::size_t b = 0;
+    {
+      std::size_t lo = 0, len = n + 1;  // partition point of chunk_of(X) <= c
+      while (len > 0) {
+        const std::size_t half = len / 2;
+        if (chunk_of(p.X(lo + half)) <= c) {
+          lo += half + 1;
+          len -= half + 1;
+        } else {
+          len = half;
+        }
+      }
+      b = lo;
+    }
+    const double reach = p.X(rests[qi]) + w;
+    const std::size_t e = p.upper(reach);
     suffix.clear();
     prefix.clear();
     for (std::size_t v = b; v < e; ++v) prefix.push(v);
     std::size_t prefix_end = std::max(b, e);  // prefix holds [b, prefix_end)
     std::size_t suffix_begin = b;             // suffix holds [suffix_begin, b)
-    for (; qi < order.size() && chunk_of(p.X[rests[order[qi]]]) == c; ++qi) {
-      const std::size_t r = rests[order[qi]];
-      const double x0 = p.X[r], h0 = p.H[r], x1 = std::min(x0 + w, p.X[n]);
+    for (; qi < rests.size() && chunk_of(p.X(rests[qi])) == c; ++qi) {
+      const std::size_t r = rests[qi];
+      const double x0 = p.X(r), h0 = p.H(r), x1 = std::min(x0 + w, p.X(n));
       while (suffix_begin > r + 1) suffix.push(--suffix_begin);
-      while (prefix_end > b && p.X[prefix_end - 1] > x1) {
+      while (prefix_end > b && p.X(prefix_end - 1) > x1) {
         prefix.undo();
         --prefix_end;
       }
@@ -321,16 +408,15 @@ std::vector<std::pair<double, double>> chords_batch(const Pl& p, const std::vect
       if (pb.first > best.first) best = pb;
       if (x1 > x0) {  // the window's end inside a piece
         const std::size_t k = piece_of(p, x1);
-        if (p.X[k] < x1 && x1 < p.X[k + 1]) {
+        if (p.X(k) < x1 && x1 < p.X(k + 1)) {
           const double s = (p.at(k, x1) - h0) / (x1 - x0);
           if (s > best.first) best = {s, x1};
         }
       }
       if (!std::isfinite(best.first)) best = {0.0, x0};
-      out[order[qi]] = best;
+      out(qi, best);
     }
   }
-  return out;
 }
 
 double angle_of(double slope, double mu) { return std::min(std::atan(slope) + std::atan(mu), kHalfPi); }
@@ -370,22 +456,20 @@ Status check_options(const HoldOptions& o) {
 
 // One direction's frame: the function the forward process runs on, and the window length.
 struct Frame {
-  Pl pl;
-  Forward fw;
+  View pl;
   bool periodic = false;
   double period = 0;
   double base_lo = 0;  // base period [base_lo, base_lo + period) in this frame (periodic)
   double w = 0;        // inertial window
 };
 
-Frame make_frame(const Pl& base, double period, double d) {
+Frame make_frame(const LiftCurve& c, bool mirrored, double d) {
   Frame fr;
-  fr.periodic = period > 0;
-  fr.period = period;
-  fr.base_lo = base.X.front();
-  fr.pl = fr.periodic ? unroll(base, period, -1, 3) : base;
-  fr.fw = forward_process(fr.pl, d);
-  fr.w = fr.periodic ? std::min(d, period) : d;
+  fr.pl = make_view(c, mirrored);
+  fr.periodic = c.period > 0;
+  fr.period = c.period;
+  fr.base_lo = fr.pl.bx(0);
+  fr.w = fr.periodic ? std::min(d, c.period) : d;
   return fr;
 }
 
@@ -398,8 +482,13 @@ double wrap(const Frame& fr, double x) {
 }
 
 HoldAngle single(const Frame& fr, double x, const HoldOptions& o) {
-  const Rest r = rest_of(fr.pl, fr.fw, x);
-  const Outcome oc = outcome_of(fr.pl, fr.fw, r, o.runaway_distance, fr.periodic);
+  const View& p = fr.pl;
+  Descents ds(p);
+  const Rest r = rest_of(p, ds, x);
+  const double d = o.runaway_distance;
+  const std::int64_t flat_next = r.flat >= 0 ? next_record(p, static_cast<std::size_t>(r.flat)) : -1;
+  const Outcome oc =
+      outcome_of(p, r, flat_next, d, fr.periodic, [&](std::size_t s) { return chain_from(p, s, d); });
   HoldAngle h;
   h.rest_offset = r.x;
   h.hold_slope = oc.hold_slope;
@@ -408,7 +497,7 @@ HoldAngle single(const Frame& fr, double x, const HoldOptions& o) {
   h.runaway_end = oc.end_x;
   h.slips = oc.slips;
   h.ran_off_end = oc.off_end;
-  const auto [slope, cx] = chord_direct(fr.pl, r.x, fr.w);
+  const auto [slope, cx] = chord_direct(p, r.x, fr.w);
   h.inertial_slope = slope;
   h.inertial_offset = cx;
   h.inertial_hold_angle = angle_of(slope, o.atomic_friction);
@@ -457,99 +546,233 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
 }
 
 // Distribution over drops in [a, b] (this frame's coordinates, a < b).
+//
+// Pass 1 (increasing x) cuts the drop range into parts with one outcome each (the pieces of the
+// curve; a flat piece split where the first slip reaches d) and adds each part's length to its
+// basin (the rest vertex; the drops of one basin form one interval, so a basin is a run of
+// parts, apart from the wrap-around of a periodic curve) or keeps it as a flat drop. Pass 2
+// (decreasing x) finds the record chains of the basins' rest vertices with one stack. Pass 3:
+// the steepest chords from the rest vertices.
 HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOptions& o, bool mirrored) {
-  const Pl& p = fr.pl;
+  const View& p = fr.pl;
   const double d = o.runaway_distance;
-  // Parts of the drop range with one outcome each: weight, rest, outcome.
-  struct Part {
+  const std::size_t n = p.n();
+  struct Basin {
+    std::size_t vertex;
+    double weight;
+    double hold_slope = 0;
+    bool near_end = false;  // its run-away ran off the end less than d after its stop
+  };
+  struct Flat {
     double weight;
     Rest rest;
+    std::int64_t next;  // the next record of its piece
     Outcome oc;
   };
-  std::vector<Part> parts;
+  std::vector<Basin> basins;
+  std::vector<Flat> flats;
+  std::unordered_map<std::size_t, std::size_t> seen;  // periodic: key -> basin
+  const std::size_t nb = fr.periodic ? p.m : 0;        // vertices per period in the unrolled frame
+  std::size_t last_key = static_cast<std::size_t>(-1);
+  Descents ds(p);
+  std::int64_t flat_next_q = -1, flat_next_a = -1;  // the last flat piece's next record
+  auto flat_next = [&](std::size_t k) {
+    const auto kk = static_cast<std::int64_t>(k);
+    if (kk != flat_next_q) {
+      flat_next_q = kk;
+      flat_next_a = next_record(p, k);
+    }
+    return flat_next_a;
+  };
   std::size_t k = piece_of(p, a);
-  for (double x = a; x < b && k < p.n(); ++k) {
-    const double xe = std::min(b, p.X[k + 1]);
+  for (double x = a; x < b && k < n; ++k) {
+    const double xe = std::min(b, p.X(k + 1));
     if (xe <= x) continue;
     const double mid = 0.5 * (x + xe);
-    Rest r = rest_of(p, fr.fw, mid);
+    std::size_t km = k;  // the piece of mid, as piece_of() finds it
+    while (km + 1 < n && !(mid < p.X(km + 1))) ++km;
+    while (km > 0 && mid < p.X(km)) --km;
+    const Rest r = rest_in(p, ds, km, mid);
     if (r.flat >= 0) {
       // On a flat piece the first slip starts at the drop: split where it reaches d.
-      const std::int64_t j = fr.fw.next[k];
-      const double split = j >= 0 ? p.X[static_cast<std::size_t>(j)] - d : x;
+      const std::int64_t j = flat_next(k);
+      const double split = j >= 0 ? p.X(static_cast<std::size_t>(j)) - d : x;
+      const std::int64_t jf = flat_next(static_cast<std::size_t>(r.flat));
       for (const auto& [lo, hi] : {std::pair{x, std::min(xe, std::max(x, split))}, std::pair{std::max(x, split), xe}}) {
         if (!(hi > lo)) continue;
         Rest rr = r;
         rr.x = 0.5 * (lo + hi);
-        parts.push_back({hi - lo, rr, outcome_of(p, fr.fw, rr, d, fr.periodic)});
+        flats.push_back({hi - lo, rr, jf, {}});
       }
     } else {
-      parts.push_back({xe - x, r, outcome_of(p, fr.fw, r, d, fr.periodic)});
+      const auto v = static_cast<std::size_t>(r.vertex);
+      const std::size_t key = fr.periodic ? v % nb : v;
+      if (!basins.empty() && key == last_key) {
+        basins.back().weight += xe - x;
+      } else if (fr.periodic) {
+        const auto [it, fresh] = seen.try_emplace(key, basins.size());
+        if (fresh)
+          basins.push_back({v, xe - x});
+        else
+          basins[it->second].weight += xe - x;
+      } else {
+        basins.push_back({v, xe - x});
+      }
+      last_key = key;
     }
     x = xe;
   }
-  double near_end = 0;  // run-aways that left a stop less than d before the end of the curve
-  for (const Part& q : parts)
-    if (q.oc.off_end && p.X.back() - q.oc.hold_x < d) near_end += q.weight;
-  // Basins: parts that rest at one vertex (a periodic frame: one vertex modulo the period).
-  const std::size_t nb = fr.periodic ? p.n() / 5 : 0;  // vertices per period in the unrolled frame
-  auto key = [&](const Rest& r) -> std::int64_t {
-    const std::int64_t v = r.vertex >= 0 ? r.vertex : -2 - r.flat;  // flats keyed apart
-    if (!fr.periodic || v < 0) return v;
-    return v % static_cast<std::int64_t>(nb);
-  };
-  std::map<std::int64_t, std::size_t> basin;  // key -> index into the rest vertices
-  std::vector<std::size_t> rest_vertices;
-  std::vector<std::size_t> part_basin(parts.size(), SIZE_MAX);
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    if (parts[i].rest.vertex < 0) continue;
-    const auto [it, fresh] = basin.try_emplace(key(parts[i].rest), rest_vertices.size());
-    if (fresh) rest_vertices.push_back(static_cast<std::size_t>(parts[i].rest.vertex));
-    part_basin[i] = it->second;
-  }
-  const auto chords = chords_batch(p, rest_vertices, fr.w);
-  HoldDistribution out;
-  // Basins in increasing offset of the lift's frame.
-  std::vector<double> b_rest(rest_vertices.size()), b_w(rest_vertices.size(), 0.0), b_h(rest_vertices.size()),
-      b_i(rest_vertices.size());
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    const Part& q = parts[i];
-    const double hold = angle_of(q.oc.hold_slope, o.atomic_friction);
-    double inert;
-    if (part_basin[i] != SIZE_MAX) {
-      const std::size_t bi = part_basin[i];
-      inert = angle_of(chords[bi].first, o.atomic_friction);
-      b_rest[bi] = wrap(fr, q.rest.x);
-      b_w[bi] += q.weight;
-      b_h[bi] = hold;
-      b_i[bi] = inert;
-    } else {  // a flat drop: its own chord
-      inert = angle_of(chord_direct(p, q.rest.x, fr.w).first, o.atomic_friction);
-      out.basins.rest.push_back(mirrored ? -q.rest.x : q.rest.x);
-      out.basins.weight.push_back(q.weight);
-      out.basins.hold.push_back(hold);
-      out.basins.inertial.push_back(inert);
+  // Pass 2: the record chains, from the right. The stack holds the strict record chain of the
+  // vertex at hand (slopes strictly increasing from top to bottom), each entry with the end of
+  // its own chain. The next record of kk (the first piece ahead steeper than kk by more than
+  // kk's rounding bound) is the first piece exceeding a threshold, hence a strict record too:
+  // the first entry from the top above the threshold (binary search; usually the top). The
+  // chains are read where they are needed: at the basins' rest vertices (in decreasing order)
+  // and at the records that flat drops slip to.
+  const double x_end = p.X(n);
+  {
+    // Basins by decreasing rest vertex: non-periodic basins come in increasing order already.
+    std::vector<std::uint32_t> border;
+    bool increasing = true;
+    for (std::size_t i = 1; i < basins.size() && increasing; ++i) increasing = basins[i - 1].vertex < basins[i].vertex;
+    if (!increasing) {
+      border.resize(basins.size());
+      for (std::size_t i = 0; i < border.size(); ++i) border[i] = static_cast<std::uint32_t>(i);
+      std::sort(border.begin(), border.end(),
+                [&](std::uint32_t x, std::uint32_t y) { return basins[x].vertex > basins[y].vertex; });
     }
+    auto basin_at = [&](std::size_t r) -> Basin& {  // r-th basin in decreasing vertex order
+      return increasing ? basins[basins.size() - 1 - r] : basins[border[r]];
+    };
+    std::vector<std::size_t> fq;  // records that flat drops slip to, decreasing
+    for (const Flat& f : flats)
+      if (f.next >= 0) fq.push_back(static_cast<std::size_t>(f.next));
+    std::sort(fq.begin(), fq.end(), std::greater<>());
+    fq.erase(std::unique(fq.begin(), fq.end()), fq.end());
+    std::vector<Chain> fa(fq.size());
+    auto set_outcome = [&](Basin& q, const Chain& c) {
+      Rest r;
+      r.vertex = static_cast<std::int64_t>(q.vertex);
+      r.x = p.X(q.vertex);
+      const Outcome oc = outcome_of(p, r, -1, d, fr.periodic, [&](std::size_t) { return c; });
+      q.hold_slope = oc.hold_slope;
+      q.near_end = oc.off_end && x_end - oc.hold_x < d;
+    };
+    std::size_t bi = 0, fi = 0;
+    // Basins resting at the end vertex n: nothing ahead holds them.
+    while (bi < basins.size() && basin_at(bi).vertex >= n) set_outcome(basin_at(bi++), Chain{});
+    struct Entry {
+      std::size_t k;
+      double m;  // M(k)
+      Chain c;
+    };
+    std::vector<Entry> stack;
+    stack.reserve(64);
+    for (std::size_t kk = n; kk-- > 0 && (bi < basins.size() || fi < fq.size());) {
+      const double mk = p.M(kk);
+      while (!stack.empty() && stack.back().m <= mk) stack.pop_back();
+      const double t = mk + p.tol(kk);
+      std::size_t top = stack.size();  // past the entry of the next record; 0: none
+      if (top > 0 && !(stack[top - 1].m > t)) {
+        std::size_t lo = 0, hi = top - 1;  // the last index in [0, hi) above t, if any
+        while (lo < hi) {
+          const std::size_t mid = (lo + hi) / 2;
+          if (stack[mid].m > t)
+            lo = mid + 1;
+          else
+            hi = mid;
+        }
+        top = lo;
+      }
+      Chain c;
+      if (top == 0 || p.X(stack[top - 1].k) - p.X(kk) >= d) {
+        c.held = static_cast<std::int64_t>(kk);
+        c.run_end = top == 0 ? -1 : static_cast<std::int64_t>(stack[top - 1].k);
+      } else {
+        c = stack[top - 1].c;
+        ++c.slips;
+      }
+      stack.push_back({kk, mk, c});
+      while (bi < basins.size() && basin_at(bi).vertex == kk) set_outcome(basin_at(bi++), c);
+      if (fi < fq.size() && fq[fi] == kk) fa[fi++] = c;
+    }
+    auto chain = [&](std::size_t s0) {
+      const auto it = std::lower_bound(fq.begin(), fq.end(), s0, std::greater<>());
+      return fa[static_cast<std::size_t>(it - fq.begin())];
+    };
+    for (Flat& f : flats) f.oc = outcome_of(p, f.rest, f.next, d, fr.periodic, chain);
   }
-  for (std::size_t bi = 0; bi < rest_vertices.size(); ++bi) {
-    out.basins.rest.push_back(mirrored ? -b_rest[bi] : b_rest[bi]);
-    out.basins.weight.push_back(b_w[bi]);
-    out.basins.hold.push_back(b_h[bi]);
-    out.basins.inertial.push_back(b_i[bi]);
+  double near_end = 0;  // run-aways that left a stop less than d before the end of the curve
+  for (const Basin& q : basins)
+    if (q.near_end) near_end += q.weight;
+  for (const Flat& f : flats)
+    if (f.oc.off_end && x_end - f.oc.hold_x < d) near_end += f.weight;
+  // Pass 3: the steepest chords from the rest vertices, in decreasing order; then the basins
+  // (flat drops first, each with its own chord) in the order of their first drop.
+  HoldDistribution out;
+  const std::size_t total = basins.size() + flats.size();
+  out.basins.rest.reserve(total);
+  out.basins.weight.reserve(total);
+  out.basins.hold.reserve(total);
+  out.basins.inertial.resize(total);
+  for (const Flat& f : flats) {  // a flat drop: its own chord
+    out.basins.rest.push_back(mirrored ? -f.rest.x : f.rest.x);
+    out.basins.weight.push_back(f.weight);
+    out.basins.hold.push_back(angle_of(f.oc.hold_slope, o.atomic_friction));
+    out.basins.inertial[out.basins.rest.size() - 1] =
+        angle_of(chord_direct(p, f.rest.x, fr.w).first, o.atomic_friction);
   }
+  const std::size_t nf = flats.size();
+  std::vector<Flat>().swap(flats);
+  {
+    bool increasing = true;
+    for (std::size_t i = 1; i < basins.size() && increasing; ++i) increasing = basins[i - 1].vertex < basins[i].vertex;
+    std::vector<std::size_t> order, rests;
+    if (!increasing) {
+      order.resize(basins.size());
+      for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+      std::sort(order.begin(), order.end(),
+                [&](std::size_t x, std::size_t y) { return basins[x].vertex > basins[y].vertex; });
+    }
+    // The queries in decreasing vertex order, as chords_batch takes them.
+    struct Rests {
+      const std::vector<Basin>& bs;
+      const std::vector<std::size_t>& ord;
+      bool inc;
+      std::size_t size() const { return bs.size(); }
+      bool empty() const { return bs.empty(); }
+      std::size_t idx(std::size_t q) const { return inc ? bs.size() - 1 - q : ord[q]; }
+      std::size_t operator[](std::size_t q) const { return bs[idx(q)].vertex; }
+    } rq{basins, order, increasing};
+    chords_batch(p, rq, fr.w, [&](std::size_t qi, std::pair<double, double> best) {
+      out.basins.inertial[nf + rq.idx(qi)] = angle_of(best.first, o.atomic_friction);
+    });
+  }
+  for (const Basin& q : basins) {
+    const double rest = wrap(fr, p.X(q.vertex));
+    out.basins.rest.push_back(mirrored ? -rest : rest);
+    out.basins.weight.push_back(q.weight);
+    out.basins.hold.push_back(angle_of(q.hold_slope, o.atomic_friction));
+  }
+  std::vector<Basin>().swap(basins);
   {  // sort the basins by offset
     std::vector<std::size_t> idx(out.basins.rest.size());
     for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
     std::sort(idx.begin(), idx.end(),
               [&](std::size_t x, std::size_t y) { return out.basins.rest[x] < out.basins.rest[y]; });
-    HoldBasins s;
-    for (std::size_t i : idx) {
-      s.rest.push_back(out.basins.rest[i]);
-      s.weight.push_back(out.basins.weight[i]);
-      s.hold.push_back(out.basins.hold[i]);
-      s.inertial.push_back(out.basins.inertial[i]);
+    bool sorted = true;
+    for (std::size_t i = 0; i < idx.size() && sorted; ++i) sorted = idx[i] == i;
+    if (!sorted) {
+      HoldBasins s;
+      for (std::vector<double>* v : {&s.rest, &s.weight, &s.hold, &s.inertial}) v->reserve(idx.size());
+      for (std::size_t i : idx) {
+        s.rest.push_back(out.basins.rest[i]);
+        s.weight.push_back(out.basins.weight[i]);
+        s.hold.push_back(out.basins.hold[i]);
+        s.inertial.push_back(out.basins.inertial[i]);
+      }
+      out.basins = std::move(s);
     }
-    out.basins = std::move(s);
   }
   // Every drop of a basin gives its basin's angles: the statistics over basins weighted by width.
   out.hold = weighted_stats(out.basins.hold, out.basins.weight);
@@ -562,24 +785,32 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
 
 }  // namespace
 
-Result<LiftCurve> lift_curve(const SignatureResult& sig, double period) {
-  const std::size_t n = sig.offset.size();
-  if (n < 2 || sig.lift.size() != n)
-    return make_error(fmt::format("lift_curve: the signature has {} offsets: expected at least two", n));
-  const bool slopes = sig.theta_left.size() == n && sig.theta_right.size() == n;
-  LiftCurve c;
-  c.period = period;
-  c.offset.reserve(2 * n);
-  c.lift.reserve(2 * n);
+namespace {
+
+// A point of the lift with its one-sided slopes, as the signature lists them.
+struct LiftPoint {
+  double s, h, left, right;
+};
+
+// The LiftCurve through n points get(i) (offsets increasing), with a vertex where the tangent
+// lines of an interval's two ends meet inside it (see hold.hpp). The meeting points are found
+// first (one pass), then the curve is written at its exact size.
+template <class Get>
+Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, Get&& get) {
+  if (n < 2) return make_error(fmt::format("lift_curve: the signature has {} offsets: expected at least two", n));
+  std::vector<double> kx, kh;           // meeting points, in order
+  std::vector<std::uint8_t> kink(n, 0);  // kink[i]: a meeting point between points i - 1 and i
+  LiftPoint prev{};
   for (std::size_t i = 0; i < n; ++i) {
-    if (!std::isfinite(sig.offset[i]) || !std::isfinite(sig.lift[i]))
+    const LiftPoint q = get(i);
+    if (!std::isfinite(q.s) || !std::isfinite(q.h))
       return make_error(fmt::format("lift_curve: offset {} of the signature is not finite", i));
-    if (i > 0 && !(sig.offset[i] > sig.offset[i - 1]))
+    if (i > 0 && !(q.s > prev.s))
       return make_error(fmt::format("lift_curve: the signature's offsets must increase (offset {})", i));
     if (i > 0 && slopes) {
       // The tangent lines at both ends of the interval meet inside it: a vertex there.
-      const double x0 = sig.offset[i - 1], x1 = sig.offset[i], h0 = sig.lift[i - 1], h1 = sig.lift[i];
-      const double m0 = std::tan(sig.theta_right[i - 1]), m1 = std::tan(sig.theta_left[i]);
+      const double x0 = prev.s, x1 = q.s, h0 = prev.h, h1 = q.h;
+      const double m0 = std::tan(prev.right), m1 = std::tan(q.left);
       if (std::isfinite(m0) && std::isfinite(m1) && m0 != m1) {
         const double xs = (h1 - h0 + m0 * x0 - m1 * x1) / (m0 - m1);
         const double span = x1 - x0, eps = 1e-9 * span;
@@ -590,14 +821,29 @@ Result<LiftCurve> lift_curve(const SignatureResult& sig, double period) {
         const bool joined = std::abs(h0 + m0 * span - h1) <= tol || std::abs(h1 - m1 * span - h0) <= tol;
         if (!joined && xs > x0 - 1e-6 * span && xs < x1 + 1e-6 * span) {
           const double xc = std::clamp(xs, x0 + eps, x1 - eps);
-          c.offset.push_back(xc);
+          kink[i] = 1;
+          kx.push_back(xc);
           // Height from the flatter tangent (the steeper one may be a wall, tan(90 deg) ~ 1e16).
-          c.lift.push_back(std::abs(m0) <= std::abs(m1) ? h0 + m0 * (xc - x0) : h1 + m1 * (xc - x1));
+          kh.push_back(std::abs(m0) <= std::abs(m1) ? h0 + m0 * (xc - x0) : h1 + m1 * (xc - x1));
         }
       }
     }
-    c.offset.push_back(sig.offset[i]);
-    c.lift.push_back(sig.lift[i]);
+    prev = q;
+  }
+  LiftCurve c;
+  c.period = period;
+  c.offset.reserve(n + kx.size());
+  c.lift.reserve(n + kx.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (kink[i]) {
+      c.offset.push_back(kx[k]);
+      c.lift.push_back(kh[k]);
+      ++k;
+    }
+    const LiftPoint q = get(i);
+    c.offset.push_back(q.s);
+    c.lift.push_back(q.h);
   }
   if (period > 0) {
     const double span = c.offset.back() - c.offset.front();
@@ -609,20 +855,31 @@ Result<LiftCurve> lift_curve(const SignatureResult& sig, double period) {
   return c;
 }
 
+}  // namespace
+
+Result<LiftCurve> lift_curve(const SignatureResult& sig, double period) {
+  const std::size_t n = sig.offset.size();
+  if (n < 2 || sig.lift.size() != n)
+    return make_error(fmt::format("lift_curve: the signature has {} offsets: expected at least two", n));
+  const bool slopes = sig.theta_left.size() == n && sig.theta_right.size() == n;
+  return build_curve(n, slopes, period, [&](std::size_t i) {
+    return LiftPoint{sig.offset[i], sig.lift[i], slopes ? sig.theta_left[i] : 0.0, slopes ? sig.theta_right[i] : 0.0};
+  });
+}
+
 Result<HoldAngles> hold_angle(const LiftCurve& curve, double start, const HoldOptions& options) {
   if (auto st = check_curve(curve); !st) return st.error();
   if (auto st = check_options(options); !st) return st.error();
   const double lo = curve.offset.front(), hi = curve.offset.back();
   if (!std::isfinite(start) || (curve.period == 0 && (start < lo || start > hi)))
     return make_error(fmt::format("hold: start offset {} m: expected an offset in [{}, {}] m", start, lo, hi));
-  const Pl base = make_pl(curve);
   HoldAngles out;
   {
-    const Frame fr = make_frame(base, curve.period, options.runaway_distance);
+    const Frame fr = make_frame(curve, false, options.runaway_distance);
     out.forward = single(fr, wrap(fr, start), options);
   }
   {
-    const Frame fr = make_frame(mirror(base), curve.period, options.runaway_distance);
+    const Frame fr = make_frame(curve, true, options.runaway_distance);
     out.backward = unmirror(single(fr, wrap(fr, -start), options));
   }
   if (curve.period > 0) {  // report rest offsets in the base period
@@ -652,25 +909,28 @@ Result<HoldDistributions> hold_distribution(const LiftCurve& curve, const HoldOp
         fmt::format("hold: drop range [{}, {}] m: expected a range inside the lift's [{}, {}] m", a, b, lo, hi));
   a = std::max(a, lo);
   b = std::min(b, hi);
-  const Pl base = make_pl(curve);
   HoldDistributions out;
-  out.forward = distribution(make_frame(base, curve.period, options.runaway_distance), a, b, options, false);
-  {
-    const Frame fr = make_frame(mirror(base), curve.period, options.runaway_distance);
-    out.backward = distribution(fr, -b, -a, options, true);
-  }
+  // The two directions are independent: one thread each where there are two.
+  util::parallel_chunks(2, util::thread_count(options.threads, 2), [&](unsigned, std::size_t i0, std::size_t i1) {
+    for (std::size_t i = i0; i < i1; ++i) {
+      if (i == 0)
+        out.forward = distribution(make_frame(curve, false, options.runaway_distance), a, b, options, false);
+      else
+        out.backward = distribution(make_frame(curve, true, options.runaway_distance), -b, -a, options, true);
+    }
+  });
   return out;
 }
 
 std::vector<std::int32_t> basin_index(const LiftCurve& curve, const std::vector<double>& offsets) {
   std::vector<std::int32_t> out(offsets.size(), -1);
   if (!check_curve(curve).ok()) return out;
-  const Pl base = make_pl(curve);
-  const Forward fw = forward_process(base, 1.0);
+  const View base = make_view(curve, false);
+  Descents ds(base);
   // Basins numbered by increasing rest offset: the local minima (rest vertices) and flat pieces.
   std::vector<std::int64_t> keys;
   auto key_of = [&](double x) -> std::int64_t {
-    const Rest r = rest_of(base, fw, x);
+    const Rest r = rest_of(base, ds, x);
     std::int64_t v = r.vertex >= 0 ? r.vertex : r.flat;
     // A flat piece k and its start vertex k (where a descent onto it stops) are one basin.
     if (curve.period > 0 && static_cast<std::size_t>(v) == base.n()) v = 0;  // the same vertex a period on
@@ -709,8 +969,12 @@ double default_runaway_distance(double offset_min, double offset_max, double per
   return 0.1 * (offset_max - offset_min);
 }
 
-Result<HoldAnalysis> analyse_hold(const Profile& lower, const Profile& upper, const SignatureOptions& so,
-                                  const HoldOptions& hold, double start) {
+namespace {
+
+// The analysis on its own lift, a signature over the range the process needs, widened until no
+// run-away runs off a cut end: the way for spheropolygon faces (whose lift is not extended).
+Result<HoldAnalysis> analyse_hold_widened(const Profile& lower, const Profile& upper, const SignatureOptions& so,
+                                          const HoldOptions& hold, double start) {
   if (auto st = validate(lower, "lower surface"); !st) return st.error();
   if (auto st = validate(upper, "upper surface"); !st) return st.error();
   const double lower_len = lower.x.back() - lower.x.front(), upper_len = upper.x.back() - upper.x.front();
@@ -794,6 +1058,399 @@ Result<HoldAnalysis> analyse_hold(const Profile& lower, const Profile& upper, co
     if (!((near_max && cut_max) || (near_min && cut_min))) break;
   }
   return out;
+}
+
+}  // namespace
+
+namespace {
+
+// The drop range, run-away distance and checks of the hold analysis of a pair (hold.hpp).
+struct HoldSetup {
+  double a = 0, b = 0, period = 0, lower_len = 0, upper_len = 0;
+  HoldOptions ho;  // runaway_distance set, drop range [a, b]
+};
+
+Result<HoldSetup> hold_setup(const Profile& lower, const Profile& upper, const SignatureOptions& so,
+                             const HoldOptions& hold, double start) {
+  if (auto st = validate(lower, "lower surface"); !st) return st.error();
+  if (auto st = validate(upper, "upper surface"); !st) return st.error();
+  HoldSetup s;
+  s.lower_len = lower.x.back() - lower.x.front();
+  s.upper_len = upper.x.back() - upper.x.front();
+  s.period = lower.period.value_or(0.0);
+  double a = so.offset_min, b = so.offset_max;
+  if (!(b > a)) {
+    a = 0;
+    b = s.period > 0 ? s.period : 0.5 * std::min(s.lower_len, s.upper_len);
+  }
+  if (s.period > 0 && std::abs((b - a) - s.period) > 1e-9 * s.period)
+    return make_error(
+        fmt::format("hold: a periodic pair is analysed over one period ({} m), not over [{}, {}] m", s.period, a, b));
+  s.ho = hold;
+  if (s.ho.threads == 0) s.ho.threads = so.threads;
+  s.ho.runaway_distance = hold.runaway_distance > 0 ? hold.runaway_distance : default_runaway_distance(a, b, s.period);
+  if (!std::isnan(start) && !std::isfinite(start))
+    return make_error(fmt::format("start offset {} m: expected a finite offset", start));
+  if (std::isfinite(start) && (start < a || start > b))
+    return make_error(
+        fmt::format("start offset {} m: expected an offset in the signature's range [{}, {}] m", start, a, b));
+  const double overlap = std::min(s.lower_len, s.upper_len);
+  if (s.period == 0 && !(s.ho.runaway_distance < overlap))
+    return make_error(
+        fmt::format("runaway_distance = {} m: expected a length > 0 and shorter than the blocks' "
+                    "overlap ({} m)",
+                    s.ho.runaway_distance, overlap));
+  if (auto st = check_options(s.ho); !st) return st.error();
+  s.ho.drop_min = a;
+  s.ho.drop_max = b;
+  s.a = a;
+  s.b = b;
+  return s;
+}
+
+// Distribution and start on `curve`; which cut ends the process reached: a run-away that ran
+// off the end less than d after its stop, or a rest less than d before it (its inertial window
+// reaches past the end). A chain of short slips can carry a block more than d from its rest.
+struct Reach {
+  bool max = false, min = false;
+};
+
+Result<Reach> analyse_curve(HoldAnalysis& out, const HoldOptions& ho, double start) {
+  auto dist = hold_distribution(out.curve, ho);
+  if (!dist) return dist.error();
+  out.distribution = std::move(*dist);
+  out.has_start = false;
+  if (std::isfinite(start)) {
+    auto h = hold_angle(out.curve, start, ho);
+    if (!h) return h.error();
+    out.start = *h;
+    out.has_start = true;
+  }
+  const double d = out.runaway_distance;
+  const bool off_max =
+      out.distribution.forward.near_end > 0 ||
+      (out.has_start && out.start.forward.ran_off_end && out.curve.offset.back() - out.start.forward.hold_offset < d);
+  const bool off_min =
+      out.distribution.backward.near_end > 0 ||
+      (out.has_start && out.start.backward.ran_off_end && out.start.backward.hold_offset - out.curve.offset.front() < d);
+  auto rests_near = [&](const HoldDistribution& hd, const HoldAngle& st, bool forward) {
+    auto near = [&](double r) {
+      return forward ? r + d > out.curve.offset.back() : r - d < out.curve.offset.front();
+    };
+    if (out.has_start && near(st.rest_offset)) return true;
+    for (double r : hd.basins.rest)
+      if (near(r)) return true;
+    return false;
+  };
+  Reach r;
+  r.max = off_max || rests_near(out.distribution.forward, out.start.forward, true);
+  r.min = off_min || rests_near(out.distribution.backward, out.start.backward, false);
+  return r;
+}
+
+// The merged lift points W = (R without `dropped`) + E, read in order by build_curve (which
+// reads them twice, from 0 each time), over W's index range [first, last).
+struct MergedPoints {
+  const SignatureResult& R;
+  const detail::LiftPoints& E;
+  const std::vector<std::size_t>& dropped;
+  std::vector<std::uint8_t> from_r;  // per point of W: 1 from R, 0 from E
+  std::size_t cr = 0, ce = 0, cd = 0, next = 0;
+
+  MergedPoints(const SignatureResult& r, const detail::LiftPoints& e, const std::vector<std::size_t>& d)
+      : R(r), E(e), dropped(d) {
+    const std::size_t nw = R.offset.size() - dropped.size() + E.offset.size();
+    from_r.resize(nw);
+    std::size_t ir = 0, ie = 0, id = 0;
+    for (std::size_t w = 0; w < nw; ++w) {
+      while (id < dropped.size() && dropped[id] == ir) {
+        ++ir;
+        ++id;
+      }
+      const bool take_r = ir < R.offset.size() && (ie >= E.offset.size() || R.offset[ir] < E.offset[ie]);
+      from_r[w] = take_r ? 1 : 0;
+      if (take_r)
+        ++ir;
+      else
+        ++ie;
+    }
+  }
+  std::size_t size() const { return from_r.size(); }
+  // Point w; sequential from any starting point (a seek by walking when w is not the next).
+  LiftPoint get(std::size_t w) {
+    if (w != next) {  // restart and walk to w
+      cr = ce = cd = 0;
+      for (std::size_t u = 0; u < w; ++u) step(u);
+    }
+    const LiftPoint q = at(w);
+    step(w);
+    next = w + 1;
+    return q;
+  }
+
+ private:
+  void skip_dropped() {
+    while (cd < dropped.size() && dropped[cd] == cr) {
+      ++cr;
+      ++cd;
+    }
+  }
+  LiftPoint at(std::size_t w) {
+    if (from_r[w]) {
+      skip_dropped();
+      return LiftPoint{R.offset[cr], R.lift[cr], R.theta_left[cr], R.theta_right[cr]};
+    }
+    return LiftPoint{E.offset[ce], E.lift[ce], E.left[ce], E.right[ce]};
+  }
+  void step(std::size_t w) {
+    if (from_r[w]) {
+      skip_dropped();
+      ++cr;
+    } else {
+      ++ce;
+    }
+  }
+};
+
+// Merges two increasing point sets (offsets distinct).
+detail::LiftPoints merge_points(detail::LiftPoints a, detail::LiftPoints b) {
+  if (a.offset.empty()) return b;
+  if (b.offset.empty()) return a;
+  detail::LiftPoints m;
+  const std::size_t n = a.offset.size() + b.offset.size();
+  for (std::vector<double>* v : {&m.offset, &m.lift, &m.left, &m.right}) v->reserve(n);
+  std::size_t i = 0, j = 0;
+  while (i < a.offset.size() || j < b.offset.size()) {
+    const bool from_a = j >= b.offset.size() || (i < a.offset.size() && a.offset[i] < b.offset[j]);
+    const detail::LiftPoints& s = from_a ? a : b;
+    std::size_t& k = from_a ? i : j;
+    m.offset.push_back(s.offset[k]);
+    m.lift.push_back(s.lift[k]);
+    m.left.push_back(s.left[k]);
+    m.right.push_back(s.right[k]);
+    ++k;
+  }
+  return m;
+}
+
+// Whether the lift cut at one end reaches far enough for the drops of [a, b] (forward: the end
+// after b; backward: mirrored), decided on the lift near that end only (`local`: the curve over
+// the points from about d before the range end to the cut end). A conservative form of the
+// criteria that analyse_curve() reads off the whole analysis (so the faces can be let go before
+// it): every drop of [a, b] rests at or before R_b (b, or where the descent from b ends), so
+// (1) the inertial windows end before the cut end if R_b + d <= end; (2) a record chain that
+// reaches past R_b passes a vertex in (R_b - d, R_b] (its slips are shorter than d) and goes on
+// as that vertex's chain, so if no chain from a vertex there (or from the next record of a flat
+// piece there) runs off the end less than d after its stop, none from the drops does.
+// Returns how much farther the end must lie, at least, for the criteria to hold (0: they hold).
+double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
+  const View p = make_view(local, mirrored);
+  const std::size_t n = p.n();
+  const double end = p.X(n);
+  Descents ds(p);
+  const std::size_t kb = piece_of(p, b);
+  double rb = b;
+  if (p.M(kb) < 0) rb = std::max(b, p.X(ds.forward(kb + 1)));  // the descent from b ends ahead
+  if (!(rb + d <= end)) return rb + d - end;
+  // Chains of every vertex in (rb - d, rb], from the right with the record stack.
+  struct Entry {
+    std::size_t k;
+    double m;
+    Chain c;
+  };
+  std::vector<Entry> stack;
+  double short_by = 0;
+  auto off_near = [&](const Chain& c) {
+    const double x_held = p.X(static_cast<std::size_t>(c.held));
+    if (c.run_end < 0 && end - x_held < d) short_by = std::max(short_by, x_held + d - end);
+    return false;
+  };
+  for (std::size_t kk = n; kk-- > 0;) {
+    const double xk = p.X(kk);
+    if (xk <= rb - d) break;
+    const double mk = p.M(kk);
+    while (!stack.empty() && stack.back().m <= mk) stack.pop_back();
+    const double t = mk + p.tol(kk);
+    std::size_t top = stack.size();
+    if (top > 0 && !(stack[top - 1].m > t)) {
+      std::size_t lo = 0, hi = top - 1;
+      while (lo < hi) {
+        const std::size_t mid = (lo + hi) / 2;
+        if (stack[mid].m > t)
+          lo = mid + 1;
+        else
+          hi = mid;
+      }
+      top = lo;
+    }
+    Chain c;
+    if (top == 0 || p.X(stack[top - 1].k) - xk >= d) {
+      c.held = static_cast<std::int64_t>(kk);
+      c.run_end = top == 0 ? -1 : static_cast<std::int64_t>(stack[top - 1].k);
+    } else {
+      c = stack[top - 1].c;
+      ++c.slips;
+    }
+    stack.push_back({kk, mk, c});
+    if (xk <= rb) off_near(c);
+    if (xk <= rb && mk == 0) {  // a flat piece: drops on it slip first to its next record
+      const std::int64_t j = next_record(p, kk);
+      if (j < 0) continue;  // drops there run off the end from at most rb, which is d before it
+      // j's entry: on the stack (it is a strict record of kk, being the first above a threshold).
+      for (const Entry& e : stack)
+        if (e.k == static_cast<std::size_t>(j)) off_near(e.c);
+    }
+  }
+  return short_by;
+}
+
+// The one pass: the signature over its range, then, with the same prepared faces, the lift
+// beyond it on the sides the process reaches, then (the faces let go) the analysis.
+// Exact mode: each side from 1.25 d, doubled while end_reached() says the process may reach
+// the cut end; the offsets are those a signature over the wider range lists, so the curve, and
+// every number, is that of a lift computed over it. Sampled offsets: the widened range and its
+// grid as analyse_hold_widened takes them (2 d on both sides, doubled on the whole analysis).
+Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, const SignatureOptions& so,
+                                   const HoldOptions& hold, double start, Profile* take_lower, Profile* take_upper) {
+  auto setup = hold_setup(lower, upper, so, hold, start);
+  if (!setup) return setup.error();
+  const HoldSetup S = *setup;
+  SignatureWithHold res;
+  HoldAnalysis& out = res.hold;
+  out.runaway_distance = S.ho.runaway_distance;
+  if (so.spheroradius > 0) {
+    auto h = analyse_hold_widened(lower, upper, so, hold, start);
+    if (!h) return h.error();
+    out = std::move(*h);
+    auto sig = take_lower && take_upper ? signature(std::move(*take_lower), std::move(*take_upper), so)
+                                        : signature(lower, upper, so);
+    if (!sig) return sig.error();
+    res.signature = std::move(*sig);
+    return res;
+  }
+  const double d = S.ho.runaway_distance;
+  const OffsetRange whole = hold_lift_range(S.a, S.b, std::numeric_limits<double>::infinity(), S.lower_len, S.upper_len);
+  bool analysed = false;  // the sampled path analyses inside (it needs the faces to widen)
+  detail::LiftPoints ext_points;
+  std::vector<std::size_t> ext_dropped;
+  double cut_lo = 0, cut_hi = 0;
+  // Builds the curve from R and the extension, analyses it; the side(s) the process reached.
+  auto build_and_analyse = [&](const SignatureResult& R) -> Result<Reach> {
+    MergedPoints mp(R, ext_points, ext_dropped);
+    auto curve = build_curve(mp.size(), true, 0.0, [&](std::size_t w) { return mp.get(w); });
+    if (!curve) return curve.error();
+    out.curve = std::move(*curve);
+    auto reach = analyse_curve(out, S.ho, start);
+    return reach;
+  };
+  const detail::WithLift with_lift = [&](const SignatureResult& R, const detail::LiftExtender& extend) -> Status {
+    if (S.period > 0) return Ok{};  // the signature's own lift: exactly one period
+    const bool sampled = !R.exact || so.offsets > 0;
+    double m_lo = sampled ? 2 * d : 1.25 * d, m_hi = m_lo;
+    for (;;) {
+      cut_lo = hold_lift_range(S.a, S.b, m_lo, S.lower_len, S.upper_len).min;
+      cut_hi = hold_lift_range(S.a, S.b, m_hi, S.lower_len, S.upper_len).max;
+      auto ext = extend(cut_lo, cut_hi, sampled ? nullptr : &ext_points.offset);
+      if (!ext) return with_prefix("hold: ", ext.error());
+      out.events = ext->events;
+      out.exact = ext->exact;
+      ext_dropped = std::move(ext->dropped);
+      ext_points = sampled ? std::move(ext->points) : merge_points(std::move(ext_points), std::move(ext->points));
+      const bool cut_max = cut_hi < whole.max, cut_min = cut_lo > whole.min;
+      bool more_max = false, more_min = false;
+      double short_max = 0, short_min = 0;
+      if (sampled) {  // the widened signature's schedule: the whole analysis decides, both sides together
+        auto reach = build_and_analyse(R);
+        if (!reach) return reach.error();
+        analysed = true;
+        more_max = reach->max && cut_max;
+        more_min = reach->min && cut_min;
+        if (!more_max && !more_min) break;
+        m_lo *= 2;
+        m_hi *= 2;
+        continue;
+      }
+      // Exact mode: decide on the lift near each cut end (points from d and a bit before the
+      // range's end on), before the whole curve is built.
+      MergedPoints mp(R, ext_points, ext_dropped);
+      const std::size_t nw = mp.size();
+      auto local = [&](std::size_t first, std::size_t last) {
+        return build_curve(last - first, true, 0.0, [&](std::size_t w) { return mp.get(first + w); });
+      };
+      // W's indices of the points around [a - d, b + d] (a few spacings' slack).
+      std::size_t i_hi = 0, i_lo = nw;
+      {
+        std::size_t w = 0;
+        for (; w < nw; ++w)
+          if (mp.get(w).s >= S.a + d) break;
+        i_lo = std::min(nw, w + 2);
+        for (; w < nw; ++w)
+          if (mp.get(w).s > S.b - d) break;
+        i_hi = w > 2 ? w - 2 : 0;
+      }
+      if (cut_max) {
+        auto c = local(i_hi, nw);
+        if (!c) return c.error();
+        short_max = end_reached(*c, false, S.b, d);
+        more_max = short_max > 0;
+      }
+      if (cut_min) {
+        auto c = local(0, i_lo);
+        if (!c) return c.error();
+        short_min = end_reached(*c, true, -S.a, d);
+        more_min = short_min > 0;
+      }
+      if (!more_max && !more_min) break;
+      // Farther by what the check found short, and a quarter of d (a chain may go on).
+      if (more_max) m_hi += short_max + 0.25 * d;
+      if (more_min) m_lo += short_min + 0.25 * d;
+    }
+    return Ok{};
+  };
+  auto sig = detail::signature_with_lift(lower, upper, so, take_lower, take_upper, with_lift);
+  if (!sig) return sig.error();
+  res.signature = std::move(*sig);
+  const SignatureResult& R = res.signature;
+  if (S.period > 0) {
+    out.events = R.offset.size();
+    out.exact = R.exact;
+    auto curve = lift_curve(R, S.period);
+    if (!curve) return curve.error();
+    out.curve = std::move(*curve);
+    auto reach = analyse_curve(out, S.ho, start);
+    if (!reach) return reach.error();
+    return res;
+  }
+  if (!analysed) {
+    auto reach = build_and_analyse(R);
+    if (!reach) return reach.error();
+    ext_points = detail::LiftPoints{};
+    if ((reach->max && cut_hi < whole.max) || (reach->min && cut_lo > whole.min))
+      return make_error("hold: internal error: the lift beyond the range was cut short (please report)");
+  }
+  return res;
+}
+
+}  // namespace
+
+Result<SignatureWithHold> signature_with_hold(const Profile& lower, const Profile& upper,
+                                              const SignatureOptions& options, const HoldOptions& hold,
+                                              double start) {
+  return one_pass(lower, upper, options, hold, start, nullptr, nullptr);
+}
+
+Result<SignatureWithHold> signature_with_hold(Profile&& lower, Profile&& upper, const SignatureOptions& options,
+                                              const HoldOptions& hold, double start) {
+  return one_pass(lower, upper, options, hold, start, &lower, &upper);
+}
+
+Result<HoldAnalysis> analyse_hold(const Profile& lower, const Profile& upper, const SignatureOptions& so,
+                                  const HoldOptions& hold, double start) {
+  SignatureOptions o = so;
+  o.keep_contacts = false;
+  auto r = one_pass(lower, upper, o, hold, start, nullptr, nullptr);
+  if (!r) return r.error();
+  return std::move(r->hold);
 }
 
 }  // namespace frictal

@@ -2,7 +2,9 @@
 // prepared faces and contact rules as signature() (used by the spheropolygon signature).
 #pragma once
 
+#include <functional>
 #include <memory>
+#include <vector>
 
 #include "frictal/signature.hpp"
 
@@ -29,6 +31,33 @@ class RigidLift {
   struct Impl;
   std::shared_ptr<const Impl> impl_;
 };
+
+/// The lift at offsets beyond a signature's own (signature_with_lift).
+struct LiftPoints {
+  std::vector<double> offset;  ///< increasing (unit: m)
+  std::vector<double> lift;    ///< h(s) (unit: m)
+  std::vector<double> left;    ///< atan(h'(s-)) (unit: rad)
+  std::vector<double> right;   ///< atan(h'(s+)) (unit: rad)
+};
+/// The offsets W that signature() lists over a wider range [lo, hi]: those the signature R does
+/// not hold, evaluated, and the indices of R's offsets that are not in W (its range ends where
+/// they are no events of the wider range). W = (R without `dropped`) merged with `points`.
+struct LiftExtension {
+  LiftPoints points;
+  std::vector<std::size_t> dropped;
+  bool exact = true;       ///< W holds every event of [lo, hi] (else a sampled grid)
+  std::size_t events = 0;  ///< |W|
+};
+/// extend(lo, hi, have): as above; offsets listed in `have` (increasing; may be null) are
+/// neither evaluated nor returned (they were, by an earlier call).
+using LiftExtender = std::function<Result<LiftExtension>(double lo, double hi, const std::vector<double>* have)>;
+using WithLift = std::function<Status(const SignatureResult& partial, const LiftExtender& extend)>;
+/// signature(), calling `with_lift` once the offsets are evaluated (R holds offset, lift, theta,
+/// theta_min, theta_left/right and contacts, not yet the extremes and the distribution) while
+/// the prepared faces still live, so that `extend` evaluates the lift over wider ranges with
+/// them. Rigid faces only (spheroradius 0). take_lower/take_upper as signature(Profile&&).
+Result<SignatureResult> signature_with_lift(const Profile& lower, const Profile& upper, const SignatureOptions& o,
+                                            Profile* take_lower, Profile* take_upper, const WithLift& with_lift);
 
 /// The signature of spheropolygon blocks (o.spheroradius > 0), see signature.hpp.
 Result<SignatureResult> sphero_signature(const Profile& lower, const Profile& upper, const SignatureOptions& o);

@@ -871,83 +871,25 @@ Result<FrictionPrediction> predict_friction(double mu_a, double theta_max, doubl
 
 namespace {
 
-Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o,
-                                       Profile* take_lower, Profile* take_upper) {
-  if (auto st = validate(lower_in, "lower surface"); !st) return st.error();
-  if (auto st = validate(upper_in, "upper surface"); !st) return st.error();
-  if (!(o.tolerance > 0 && o.tolerance < 1e-3))
-    return make_error(fmt::format("signature: tolerance must be in (0, 1e-3), got {}", o.tolerance));
-  if (o.bins < 1 || o.bins > 100000)
-    return make_error(fmt::format("signature: bins must be in 1..100000, got {}", o.bins));
-  if (o.offsets > 100'000'000) return make_error(fmt::format("signature: offsets must be <= 1e8, got {}", o.offsets));
-  if (!(o.spheroradius >= 0) || !std::isfinite(o.spheroradius))
-    return make_error(fmt::format("signature: spheroradius must be a finite length >= 0 m, got {}", o.spheroradius));
-  if (o.spheroradius > 0) return detail::sphero_signature(lower_in, upper_in, o);
-
-  // Frame: offset 0 puts the upper block's left end over the lower block's left end.
-  const double shift = lower_in.x.front() - upper_in.x.front();
-
-  Problem P;
-  if (auto st = prepare_problem(P, lower_in, upper_in, shift, o, take_lower, take_upper); !st) return st.error();
-
-  // Offset range.
-  double smin = o.offset_min, smax = o.offset_max;
-  if (!(smax > smin)) {
-    smin = 0;
-    smax = P.periodic ? P.period : 0.5 * std::min(P.lower_length, P.upper_length);
-  }
-  if (!std::isfinite(smin) || !std::isfinite(smax)) return make_error("signature: offset range must be finite");
-  if (!P.periodic) {
-    if (!(smin > -P.upper_length) || !(smax < P.lower_length))
-      return make_error(
-          fmt::format("signature: offsets [{}, {}] m leave no overlap between the blocks (allowed: "
-                      "inside ({}, {}) m)",
-                      smin, smax, -P.upper_length, P.lower_length));
-  }
-
-  // Offsets: events (exact) or N equally spaced.
+// The offsets that signature() evaluates over [smin, smax]: every event (exact), or a sampled
+// grid (options.offsets = N, or more events than max_events). One function for the signature's
+// range and for the wider ranges of the hold analysis (signature_with_lift), so that both list
+// the same offsets where they overlap.
+struct OffsetPlan {
   std::vector<double> offs;
+  std::size_t sampled = 0;  // 0: exact
   std::size_t events = 0;
+  bool grid_replaced = false;
+};
+
+Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, double smin, double smax) {
+  OffsetPlan plan;
+  std::vector<double>& offs = plan.offs;
+  std::size_t& events = plan.events;
   const auto& fx = P.F.x();
   const auto& gx = P.G.x();
-  const bool both_uniform = P.F.uniform() && P.G.uniform();
   const double dxf = (fx.back() - fx.front()) / static_cast<double>(fx.size() - 1);
   const double dxg = (gx.back() - gx.front()) / static_cast<double>(gx.size() - 1);
-  if (!P.periodic && both_uniform && std::abs(dxf - dxg) <= 1e-9 * dxf) {
-    const double k = (fx.front() - gx.front()) / dxf;
-    if (std::abs(k - std::round(k)) < 1e-9) {
-      P.aligned_lattice = true;
-      P.lattice_origin = fx.front() - gx.front();
-      P.lattice_step = dxf;
-      // Index search when every point sits on its lattice node far inside xtol, so that at a
-      // lattice offset Face::value(x_F[i] - s) is exactly v_G[i - d].
-      double dev = 0;
-      for (std::size_t i = 0; i < fx.size(); ++i)
-        dev = std::max(dev, std::abs(fx[i] - (fx.front() + dxf * static_cast<double>(i))));
-      for (std::size_t j = 0; j < gx.size(); ++j)
-        dev = std::max(dev, std::abs(gx[j] - (gx.front() + dxf * static_cast<double>(j))));
-      if (dev < 0.05 * P.xtol && P.xtol < 0.05 * dxf) {
-        P.index_search = true;
-        // The few offsets off the lattice (the range ends) bound with the aligned maxima.
-        P.F.drop_sparse_table();
-        P.G.drop_sparse_table();
-        if (o.tilted_bounds) {
-          P.F.build_tilted();
-          P.G.build_tilted();
-          P.tilted = true;
-        }
-      }
-    }
-  }
-  if (o.tilted_bounds && both_uniform) {  // offsets off the lattice too
-    if (!P.tilted) {
-      P.F.build_tilted();
-      P.G.build_tilted();
-    }
-    P.tilt_fg = general_tilt(P.F, P.G, P.xtol);
-    P.tilt_gf = general_tilt(P.G, P.F, P.xtol);
-    P.general_tilted = true;
-  }
   // Exact mode needs every event offset. Count them first: when there are more than
   // max_events (non-aligned grids of measured data give up to N*M), either refuse
   // (require_exact) or sample offsets at the finer vertex spacing, each still evaluated exactly.
@@ -1034,6 +976,129 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
       offs[i] = (i + 1 == n) ? smax : smin + (smax - smin) * static_cast<double>(i) / static_cast<double>(n - 1);
   }
 
+  plan.sampled = sampled;
+  plan.grid_replaced = grid_replaced;
+  return plan;
+}
+
+// The lift and its one-sided slopes at `offs` (increasing), as signature() evaluates them (the
+// same search, warm starts and frontiers per chunk; contacts not kept). False where the blocks do
+// not overlap at some offset.
+bool evaluate_lift(const Problem& P, const std::vector<double>& offs, const SignatureOptions& o,
+                   detail::LiftPoints& out) {
+  const std::size_t n = offs.size();
+  out.offset = offs;
+  out.lift.resize(n);
+  out.left.resize(n);
+  out.right.resize(n);
+  const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, n / 64));
+  util::parallel_chunks(n, T, [&](unsigned, std::size_t i0, std::size_t i1) {
+    std::vector<Cand> cands;
+    double warm = kNaN;
+    Frontier frontier;
+    GeneralFrontier general;
+    constexpr std::size_t kBatch = 64;  // offsets per frontier
+    for (std::size_t i = i0; i < i1; ++i) {
+      if (P.index_search && !(i >= frontier.begin && i < frontier.end))
+        build_frontier(P, offs, i, std::min(i + kBatch, i1), warm, frontier);
+      const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
+      if (!fr && !(i >= general.begin && i < general.end))
+        build_general_frontier(P, offs, i, std::min(i + kBatch, i1), warm, general);
+      const GeneralFrontier* gf = (!fr && i >= general.begin && i < general.end) ? &general : nullptr;
+      const OffsetResult e = evaluate_offset(P, offs[i], warm, o.slopes, nullptr, cands, fr, gf);
+      out.lift[i] = e.lift;
+      out.left[i] = e.theta_left;
+      out.right[i] = e.theta_right;
+      warm = e.contact_x;
+    }
+  });
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(out.lift[i])) return false;
+  return true;
+}
+
+Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o,
+                                       Profile* take_lower, Profile* take_upper,
+                                       const detail::WithLift* with_lift = nullptr) {
+  if (auto st = validate(lower_in, "lower surface"); !st) return st.error();
+  if (auto st = validate(upper_in, "upper surface"); !st) return st.error();
+  if (!(o.tolerance > 0 && o.tolerance < 1e-3))
+    return make_error(fmt::format("signature: tolerance must be in (0, 1e-3), got {}", o.tolerance));
+  if (o.bins < 1 || o.bins > 100000)
+    return make_error(fmt::format("signature: bins must be in 1..100000, got {}", o.bins));
+  if (o.offsets > 100'000'000) return make_error(fmt::format("signature: offsets must be <= 1e8, got {}", o.offsets));
+  if (!(o.spheroradius >= 0) || !std::isfinite(o.spheroradius))
+    return make_error(fmt::format("signature: spheroradius must be a finite length >= 0 m, got {}", o.spheroradius));
+  if (o.spheroradius > 0) return detail::sphero_signature(lower_in, upper_in, o);
+
+  // Frame: offset 0 puts the upper block's left end over the lower block's left end.
+  const double shift = lower_in.x.front() - upper_in.x.front();
+
+  Problem P;
+  if (auto st = prepare_problem(P, lower_in, upper_in, shift, o, take_lower, take_upper); !st) return st.error();
+
+  // Offset range.
+  double smin = o.offset_min, smax = o.offset_max;
+  if (!(smax > smin)) {
+    smin = 0;
+    smax = P.periodic ? P.period : 0.5 * std::min(P.lower_length, P.upper_length);
+  }
+  if (!std::isfinite(smin) || !std::isfinite(smax)) return make_error("signature: offset range must be finite");
+  if (!P.periodic) {
+    if (!(smin > -P.upper_length) || !(smax < P.lower_length))
+      return make_error(
+          fmt::format("signature: offsets [{}, {}] m leave no overlap between the blocks (allowed: "
+                      "inside ({}, {}) m)",
+                      smin, smax, -P.upper_length, P.lower_length));
+  }
+
+  // Offsets: events (exact) or N equally spaced.
+  const auto& fx = P.F.x();
+  const auto& gx = P.G.x();
+  const bool both_uniform = P.F.uniform() && P.G.uniform();
+  const double dxf = (fx.back() - fx.front()) / static_cast<double>(fx.size() - 1);
+  const double dxg = (gx.back() - gx.front()) / static_cast<double>(gx.size() - 1);
+  if (!P.periodic && both_uniform && std::abs(dxf - dxg) <= 1e-9 * dxf) {
+    const double k = (fx.front() - gx.front()) / dxf;
+    if (std::abs(k - std::round(k)) < 1e-9) {
+      P.aligned_lattice = true;
+      P.lattice_origin = fx.front() - gx.front();
+      P.lattice_step = dxf;
+      // Index search when every point sits on its lattice node far inside xtol, so that at a
+      // lattice offset Face::value(x_F[i] - s) is exactly v_G[i - d].
+      double dev = 0;
+      for (std::size_t i = 0; i < fx.size(); ++i)
+        dev = std::max(dev, std::abs(fx[i] - (fx.front() + dxf * static_cast<double>(i))));
+      for (std::size_t j = 0; j < gx.size(); ++j)
+        dev = std::max(dev, std::abs(gx[j] - (gx.front() + dxf * static_cast<double>(j))));
+      if (dev < 0.05 * P.xtol && P.xtol < 0.05 * dxf) {
+        P.index_search = true;
+        // The few offsets off the lattice (the range ends) bound with the aligned maxima.
+        P.F.drop_sparse_table();
+        P.G.drop_sparse_table();
+        if (o.tilted_bounds) {
+          P.F.build_tilted();
+          P.G.build_tilted();
+          P.tilted = true;
+        }
+      }
+    }
+  }
+  if (o.tilted_bounds && both_uniform) {  // offsets off the lattice too
+    if (!P.tilted) {
+      P.F.build_tilted();
+      P.G.build_tilted();
+    }
+    P.tilt_fg = general_tilt(P.F, P.G, P.xtol);
+    P.tilt_gf = general_tilt(P.G, P.F, P.xtol);
+    P.general_tilted = true;
+  }
+  auto plan = plan_offsets(P, o, smin, smax);
+  if (!plan) return plan.error();
+  std::vector<double> offs = std::move(plan->offs);
+  const std::size_t events = plan->events, sampled = plan->sampled;
+  const bool grid_replaced = plan->grid_replaced;
+
   // Evaluate, split into contiguous chunks over threads; each chunk warm-starts from its own
   // previous offset, so the result does not depend on the number of threads. Results go straight
   // into R (no per-offset record kept beside it: memory at 10^7 offsets).
@@ -1090,6 +1155,45 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
       R.contacts.insert(R.contacts.end(), chunk_contacts[t].begin(), chunk_contacts[t].end());
     }
   }
+  std::vector<std::vector<Contact>>().swap(chunk_contacts);
+  std::vector<std::vector<std::uint32_t>>().swap(chunk_counts);
+  if (with_lift) {
+    // The lift over wider ranges, from the same prepared faces: the offsets that signature()
+    // would list there, evaluated where R does not already hold them.
+    const detail::LiftExtender extend = [&](double lo, double hi,
+                                            const std::vector<double>* have) -> Result<detail::LiftExtension> {
+      if (P.periodic) return make_error("signature: a periodic lift is not extended");
+      if (!(lo > -P.upper_length) || !(hi < P.lower_length) || !(lo <= smin) || !(hi >= smax))
+        return make_error(fmt::format("signature: extension [{}, {}] m outside the overlap or inside the range", lo, hi));
+      auto wide = plan_offsets(P, o, lo, hi);
+      if (!wide) return wide.error();
+      detail::LiftExtension ext;
+      ext.exact = wide->sampled == 0;
+      ext.events = wide->offs.size();
+      const std::vector<double>& W = wide->offs;
+      std::vector<double> todo;
+      std::size_t j = 0, hj = 0;  // merge walk: W, R.offset and *have all increasing
+      for (std::size_t i = 0; i < W.size(); ++i) {
+        while (j < n && R.offset[j] < W[i]) ext.dropped.push_back(j++);
+        if (j < n && R.offset[j] == W[i]) {
+          ++j;
+          continue;
+        }
+        if (have) {
+          while (hj < have->size() && (*have)[hj] < W[i]) ++hj;
+          if (hj < have->size() && (*have)[hj] == W[i]) continue;
+        }
+        todo.push_back(W[i]);
+      }
+      while (j < n) ext.dropped.push_back(j++);
+      wide->offs = std::vector<double>();
+      if (!evaluate_lift(P, todo, o, ext.points))
+        return make_error(fmt::format("signature: no overlap between the blocks in [{}, {}] m", lo, hi));
+      return ext;
+    };
+    if (auto st = (*with_lift)(R, extend); !st) return st.error();
+  }
+  P = Problem{};  // the faces are no longer needed
 
   // Extremes: theta at each offset plus the one-sided slopes next to it (inside the range).
   R.theta_max_forward = -kInf;
@@ -1158,6 +1262,15 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
 
 Result<SignatureResult> signature(const Profile& lower, const Profile& upper, const SignatureOptions& options) {
   return signature_impl(lower, upper, options, nullptr, nullptr);
+}
+
+Result<SignatureResult> detail::signature_with_lift(const Profile& lower, const Profile& upper,
+                                                    const SignatureOptions& options, Profile* take_lower,
+                                                    Profile* take_upper, const WithLift& with_lift) {
+  if (options.spheroradius > 0) return make_error("signature: no extended lift for spheropolygons");
+  const bool periodic = lower.period && upper.period;
+  return signature_impl(lower, upper, options, periodic ? nullptr : take_lower, periodic ? nullptr : take_upper,
+                        &with_lift);
 }
 
 Result<SignatureResult> signature(Profile&& lower, Profile&& upper, const SignatureOptions& options) {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -103,4 +104,34 @@ TEST(CliHold, BadHoldOptionsExit2NamingTheOption) {
   r = run_cli("signature " + a + " --no-hold --start-offset 0.01");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--no-hold"), std::string::npos) << r.err;
+}
+
+// Issue 33 item 6: an upper tip on a lower profile with two ramps of slope 0.05 and one of 0.06
+// (the second 0.05 ramp 4 mm after the first, the 0.06 one 8.5 mm after it). From the first
+// ramp the block slides past atan(0.05); the equal ramp cannot hold it, the 0.06 ramp lies
+// farther than d = 5 mm: the hold angle is atan(0.05), with the features moved or not.
+TEST(CliHold, EqualSlopesHoldAtTheFirstRamp) {
+  const std::string tip = temp_path("hold-tip.csv");
+  {
+    std::ofstream f(tip);
+    f << "x_m,z_m\n0,0\n0.05,0.01\n0.1,0\n";
+  }
+  for (const char* shift : {"", "-shifted"}) {
+    const std::string lower = temp_path(std::string("hold-ramps") + shift + ".csv");
+    {
+      const double s = shift[0] ? 1e-4 : 0;
+      std::ofstream f(lower);
+      f.precision(17);
+      f << "x_m,z_m\n0,0\n";
+      const double x[] = {0.065, 0.068, 0.070, 0.072, 0.0735, 0.0765, 0.078};
+      const double z[] = {0, -0.00006, 0.00004, 0.00002, 0.000095, 0.00008, 0.00017};
+      for (int i = 0; i < 7; ++i) f << x[i] + s << "," << z[i] << "\n";
+      f << "0.2,0.00017\n";
+    }
+    auto r = run_cli("signature " + lower + " " + tip +
+                     " --runaway-distance 0.005 --start-offset 0.019 --offset-range 0 0.1 --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const json j = json::parse(r.out);
+    EXPECT_NEAR(j["hold_angle_deg"].get<double>(), std::atan(0.05) * 180 / M_PI, 1e-9) << shift;
+  }
 }

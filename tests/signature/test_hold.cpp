@@ -438,3 +438,73 @@ TEST(Hold, AnalyseHoldEqualsTheLiftOverTheWholeOverlap) {
     EXPECT_EQ(a->distribution.forward.basins.rest.size(), b->forward.basins.rest.size());
   }
 }
+
+// Issue 33 item 6: the records rule slips to the next piece that is steeper by more than the
+// rounding of the slopes, so equal slopes computed a few ulps apart do not hold a block that the
+// first of them let go. Hand-derived: the block rests on a ramp of slope 0.05; past atan(0.05) it
+// slides; the next ramp of slope 0.05 (4 mm on) cannot hold it at that tilt, the ramp of slope
+// 0.06 (8.5 mm from the first) would, but the slide there is longer than d = 5 mm: the run-away.
+namespace {
+struct TipPair {
+  Profile lower, upper;
+};
+TipPair tip_pair(double shift) {
+  TipPair p;
+  p.upper.x = {0, 0.05, 0.1};
+  p.upper.z = {0, 0.01, 0};
+  p.lower.x = {0, 0.065, 0.068, 0.070, 0.072, 0.0735, 0.0765, 0.078, 0.2};
+  p.lower.z = {0, 0, -0.00006, 0.00004, 0.00002, 0.000095, 0.00008, 0.00017, 0.00017};
+  for (std::size_t i = 1; i + 1 < p.lower.x.size(); ++i) p.lower.x[i] += shift;
+  p.upper = rotate180(p.upper);
+  return p;
+}
+}  // namespace
+
+TEST(Hold, EqualSlopesAreEqualTipOnTwoRamps) {
+  HoldOptions o;
+  o.runaway_distance = 0.005;
+  SignatureOptions so;
+  so.offset_min = 0;
+  so.offset_max = 0.1;
+  // The features where the issue found them and moved by +-0.1 mm (which flipped the answer).
+  for (double shift : {0.0, 1e-4, -1e-4, 2e-4}) {
+    const TipPair p = tip_pair(shift);
+    auto a = analyse_hold(p.lower, p.upper, so, o, 0.019);
+    ASSERT_TRUE(a.ok()) << a.error().message;
+    EXPECT_NEAR(a->start.forward.hold_angle, std::atan(0.05), 1e-12) << shift;
+    EXPECT_NEAR(a->start.forward.hold_slope, 0.05, 1e-12) << shift;
+    auto both = signature_with_hold(p.lower, p.upper, so, o, 0.019);
+    ASSERT_TRUE(both.ok()) << both.error().message;
+    EXPECT_NEAR(both->hold.start.forward.hold_angle, std::atan(0.05), 1e-12) << shift;
+  }
+}
+
+TEST(Hold, EqualSlopesAreEqualOnACurveFarFromTheOrigin) {
+  // Ramps of slope 0.05, 0.05 and 0.06 between downhill pieces, 1 km from the origin: the
+  // difference quotients of the two equal ramps differ in their last bits.
+  const std::vector<double> len = {0.001, 0.002, 0.001, 0.002, 0.001, 0.0025, 0.001, 0.002, 0.01};
+  const std::vector<double> m = {-0.01, 0.05, -0.03, 0.05, -0.03, 0.0, -0.03, 0.06, -0.01};
+  LiftCurve c = from_slopes(len, m);
+  for (double& x : c.offset) x += 1000.0;
+  auto q = [&](std::size_t k) { return (c.lift[k + 1] - c.lift[k]) / (c.offset[k + 1] - c.offset[k]); };
+  // The second ramp's quotient comes out larger: the strict rule would slip to it (3 mm < d),
+  // then on to the 0.06 ramp (6.5 mm < d) and hold at atan(0.06).
+  ASSERT_GT(q(3), q(1)) << "the test needs the second equal ramp to round steeper";
+  HoldOptions o;
+  o.runaway_distance = 0.007;  // ramp 1 -> ramp 2: 3 mm; ramp 1 -> the 0.06 ramp: 9.5 mm
+  auto h = hold_angle(c, 1000.0 + 0.0015, o);
+  ASSERT_TRUE(h.ok());
+  EXPECT_NEAR(h->forward.hold_slope, 0.05, 1e-9);
+  EXPECT_NEAR(h->forward.hold_angle, std::atan(0.05), 1e-9);
+  EXPECT_EQ(h->forward.slips, 0);
+  EXPECT_NEAR(h->forward.hold_offset, 1000.001, 1e-9);
+  // Drops over the whole curve: each basin's hold angle in the distribution (pass from the
+  // right with the record stack) is that of a single drop there (records found by a scan).
+  auto dist = hold_distribution(c, o);
+  ASSERT_TRUE(dist.ok());
+  for (std::size_t i = 0; i < dist->forward.basins.rest.size(); ++i) {
+    auto one = hold_angle(c, dist->forward.basins.rest[i], o);
+    ASSERT_TRUE(one.ok());
+    EXPECT_EQ(dist->forward.basins.hold[i], one->forward.hold_angle) << i;
+  }
+}
