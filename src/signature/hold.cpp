@@ -78,7 +78,8 @@ struct View {
     const std::size_t j = bj(period == 0 ? k : k % m);
     const double dx = x[j + 1] - x[j];
     const double mk = (h[j + 1] - h[j]) / dx;
-    return kSlopeTolerance * ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(mk) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+    return kSlopeTolerance *
+           ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(mk) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
   }
   // Piece j is steeper than piece k: by more than k's rounding bound (the records rule).
   bool steeper(std::size_t j, std::size_t k) const { return M(j) > M(k) + tol(k); }
@@ -487,8 +488,7 @@ HoldAngle single(const Frame& fr, double x, const HoldOptions& o) {
   const Rest r = rest_of(p, ds, x);
   const double d = o.runaway_distance;
   const std::int64_t flat_next = r.flat >= 0 ? next_record(p, static_cast<std::size_t>(r.flat)) : -1;
-  const Outcome oc =
-      outcome_of(p, r, flat_next, d, fr.periodic, [&](std::size_t s) { return chain_from(p, s, d); });
+  const Outcome oc = outcome_of(p, r, flat_next, d, fr.periodic, [&](std::size_t s) { return chain_from(p, s, d); });
   HoldAngle h;
   h.rest_offset = r.x;
   h.hold_slope = oc.hold_slope;
@@ -572,7 +572,7 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
   std::vector<Basin> basins;
   std::vector<Flat> flats;
   std::unordered_map<std::size_t, std::size_t> seen;  // periodic: key -> basin
-  const std::size_t nb = fr.periodic ? p.m : 0;        // vertices per period in the unrolled frame
+  const std::size_t nb = fr.periodic ? p.m : 0;       // vertices per period in the unrolled frame
   std::size_t last_key = static_cast<std::size_t>(-1);
   Descents ds(p);
   std::int64_t flat_next_q = -1, flat_next_a = -1;  // the last flat piece's next record
@@ -798,7 +798,7 @@ struct LiftPoint {
 template <class Get>
 Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, Get&& get) {
   if (n < 2) return make_error(fmt::format("lift_curve: the signature has {} offsets: expected at least two", n));
-  std::vector<double> kx, kh;           // meeting points, in order
+  std::vector<double> kx, kh;            // meeting points, in order
   std::vector<std::uint8_t> kink(n, 0);  // kink[i]: a meeting point between points i - 1 and i
   LiftPoint prev{};
   for (std::size_t i = 0; i < n; ++i) {
@@ -1131,12 +1131,10 @@ Result<Reach> analyse_curve(HoldAnalysis& out, const HoldOptions& ho, double sta
       out.distribution.forward.near_end > 0 ||
       (out.has_start && out.start.forward.ran_off_end && out.curve.offset.back() - out.start.forward.hold_offset < d);
   const bool off_min =
-      out.distribution.backward.near_end > 0 ||
-      (out.has_start && out.start.backward.ran_off_end && out.start.backward.hold_offset - out.curve.offset.front() < d);
+      out.distribution.backward.near_end > 0 || (out.has_start && out.start.backward.ran_off_end &&
+                                                 out.start.backward.hold_offset - out.curve.offset.front() < d);
   auto rests_near = [&](const HoldDistribution& hd, const HoldAngle& st, bool forward) {
-    auto near = [&](double r) {
-      return forward ? r + d > out.curve.offset.back() : r - d < out.curve.offset.front();
-    };
+    auto near = [&](double r) { return forward ? r + d > out.curve.offset.back() : r - d < out.curve.offset.front(); };
     if (out.has_start && near(st.rest_offset)) return true;
     for (double r : hd.basins.rest)
       if (near(r)) return true;
@@ -1329,7 +1327,8 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     return res;
   }
   const double d = S.ho.runaway_distance;
-  const OffsetRange whole = hold_lift_range(S.a, S.b, std::numeric_limits<double>::infinity(), S.lower_len, S.upper_len);
+  const OffsetRange whole =
+      hold_lift_range(S.a, S.b, std::numeric_limits<double>::infinity(), S.lower_len, S.upper_len);
   bool analysed = false;  // the sampled path analyses inside (it needs the faces to widen)
   detail::LiftPoints ext_points;
   std::vector<std::size_t> ext_dropped;
@@ -1356,7 +1355,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       out.exact = ext->exact;
       ext_dropped = std::move(ext->dropped);
       ext_points = sampled ? std::move(ext->points) : merge_points(std::move(ext_points), std::move(ext->points));
-      const bool cut_max = cut_hi < whole.max, cut_min = cut_lo > whole.min;
+      const bool cut_max = cut_hi<whole.max, cut_min = cut_lo> whole.min;
       bool more_max = false, more_min = false;
       double short_max = 0, short_min = 0;
       if (sampled) {  // the widened signature's schedule: the whole analysis decides, both sides together
@@ -1434,8 +1433,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
 }  // namespace
 
 Result<SignatureWithHold> signature_with_hold(const Profile& lower, const Profile& upper,
-                                              const SignatureOptions& options, const HoldOptions& hold,
-                                              double start) {
+                                              const SignatureOptions& options, const HoldOptions& hold, double start) {
   return one_pass(lower, upper, options, hold, start, nullptr, nullptr);
 }
 

@@ -1164,7 +1164,8 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
                                             const std::vector<double>* have) -> Result<detail::LiftExtension> {
       if (P.periodic) return make_error("signature: a periodic lift is not extended");
       if (!(lo > -P.upper_length) || !(hi < P.lower_length) || !(lo <= smin) || !(hi >= smax))
-        return make_error(fmt::format("signature: extension [{}, {}] m outside the overlap or inside the range", lo, hi));
+        return make_error(
+            fmt::format("signature: extension [{}, {}] m outside the overlap or inside the range", lo, hi));
       auto wide = plan_offsets(P, o, lo, hi);
       if (!wide) return wide.error();
       detail::LiftExtension ext;
