@@ -29,16 +29,7 @@ struct Args {
 };
 
 PredictSurface read_input(const std::string& path, const InputOptions& o) {
-  SurfaceData s = unwrap(read_surface(input_path(path), read_options(o)));
-  PredictSurface p;
-  p.name = path;
-  p.is_map = s.is_map;
-  p.reader_warnings = s.warnings;
-  if (s.is_map)
-    p.map = std::move(s.map);
-  else
-    p.profile = unwrap(as_profile(s.curve, path));
-  return p;
+  return unwrap(predict_surface(unwrap(read_surface(input_path(path), read_options(o))), path));
 }
 
 std::string deg_text(double rad) { return fmt::format("{:.4g}", to_deg(rad)); }

@@ -126,25 +126,10 @@ std::function<int()> setup(CLI::App& app) {
       po.runaway_distance = in.runaway_distance;
       po.detrend = dt;
       po.threads = a->threads;
-      PredictSurface pl;
-      pl.name = a->lower;
-      pl.is_map = s.is_map;
-      pl.reader_warnings = s.warnings;
-      if (s.is_map)
-        pl.map = s.map;
-      else
-        pl.profile = surface_profile(s, a->lower);
+      const PredictSurface pl = unwrap(predict_surface(s, a->lower));
       std::optional<PredictSurface> pu;
       if (!a->upper.empty()) {
-        const SurfaceData u = unwrap(read_surface(input_path(a->upper), read_options(a->input)));
-        pu.emplace();
-        pu->name = a->upper;
-        pu->is_map = u.is_map;
-        pu->reader_warnings = u.warnings;
-        if (u.is_map)
-          pu->map = u.map;
-        else
-          pu->profile = surface_profile(u, a->upper);
+        pu = unwrap(predict_surface(unwrap(read_surface(input_path(a->upper), read_options(a->input))), a->upper));
       }
       in.prediction = unwrap(predict(pl, pu ? &*pu : nullptr, po));
       for (const Warning& w : in.prediction->warnings)

@@ -27,6 +27,7 @@
 #include "frictal/analysis.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/hold.hpp"
+#include "frictal/io.hpp"
 #include "frictal/map.hpp"
 #include "frictal/result.hpp"
 #include "frictal/warnings.hpp"
@@ -109,6 +110,10 @@ struct PredictSurface {
   std::string name;
   std::vector<std::string> reader_warnings;
 };
+
+/// A surface as a reader gave it (a map, or a curve that must be single-valued), named `name`,
+/// with the reader's warnings. Errors: a folded curve (as_profile's, naming `name`).
+Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name);
 
 /// The prediction for `lower` against `upper` turned over (nullptr: `lower` against itself).
 /// Errors (InvalidInput, naming the value and the valid range): a profile and a map in one pair,

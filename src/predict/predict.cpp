@@ -324,6 +324,21 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
 
 }  // namespace
 
+Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name) {
+  PredictSurface p;
+  p.name = name;
+  p.is_map = data.is_map;
+  p.reader_warnings = std::move(data.warnings);
+  if (data.is_map) {
+    p.map = std::move(data.map);
+  } else {
+    auto pr = as_profile(data.curve, name);
+    if (!pr) return pr.error();
+    p.profile = std::move(pr).value();
+  }
+  return p;
+}
+
 Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
   if (upper && upper->is_map != lower.is_map)
     return make_error(fmt::format("{} is {} and {} is {}: a pair is two profiles or two maps", lower.name,
