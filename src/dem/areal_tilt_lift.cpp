@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numbers>
 #include <vector>
@@ -29,7 +30,7 @@ struct Vertex {
 /// concave function of the position along the segment: its maximum, clamped to the segment).
 double edge_top(const Vertex& a, const Vertex& b, double cx, double cy, double r, double& px, double& py) {
   const double ex = b.x - a.x, ey = b.y - a.y;
-  const double L = std::hypot(ex, ey);
+  const double L = std::sqrt(ex * ex + ey * ey);
   const double ux = ex / L, uy = ey / L;
   const double qx = cx - a.x, qy = cy - a.y;
   const double tc = qx * ux + qy * uy;
@@ -136,6 +137,50 @@ class SphereField {
       tiles_.push_back(tile);
     }
   }
+  /// The spheres that can reach the top anywhere within `radius` of an offset `centre`: every
+  /// sphere whose wide bound (the highest cell top within r + radius of its centre, plus r, less
+  /// its height) is at least `threshold`, sorted by that bound, highest first. Kept by the caller
+  /// (one per descending block) and rebuilt by eval_near when the offset leaves the disc.
+  struct Near {
+    double cx = 0, cy = 0, radius = -1;
+    double threshold = kNoContact;
+    std::vector<std::pair<double, std::uint32_t>> list;  ///< (wide bound (m), node index)
+    long rebuilds = 0, fallbacks = 0;                    ///< (unitless)
+  };
+  /// h(s) as eval, from the spheres of `near` (rebuilt around s when s lies outside its disc):
+  /// visited in the order of their wide bounds until a bound falls below the best height less
+  /// eps. Exact: a sphere left out has a wide bound, an upper bound of its top anywhere in the
+  /// disc, below the best less eps; where the list ends above that (the threshold was set too
+  /// high for this offset), the full evaluation answers. Same h and pieces within eps as eval.
+  double eval_near(double sx, double sy, double& bx, double& by, std::size_t& work, Near& near, double eps = 0,
+                   std::vector<Piece>* pieces = nullptr) const {
+    const double ox = sx - near.cx, oy = sy - near.cy;
+    if (near.radius < 0 || !(ox * ox + oy * oy <= near.radius * near.radius)) {
+      // Rebuild around s: the full evaluation gives h here, the threshold lies below it by eps,
+      // the descent's room (a slope of 2 over the disc) and two sphere radii.
+      const double h0 = eval(sx, sy, bx, by, work, eps, pieces);
+      if (h0 == kNoContact) return h0;
+      rebuild(near, sx, sy, h0 - eps - 0.25 * near_radius());
+      return h0;
+    }
+    double best = kNoContact;
+    if (pieces) pieces->clear();
+    bool complete = false;
+    for (const auto& [wide, k] : near.list) {
+      if (wide < best - eps) {
+        complete = true;
+        break;
+      }
+      sphere(nodes_[k], sx, sy, best, bx, by, work, eps, pieces);
+    }
+    if (!complete && !(best != kNoContact && best - eps >= near.threshold)) {
+      ++near.fallbacks;
+      return eval(sx, sy, bx, by, work, eps, pieces);
+    }
+    if (pieces) std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
+    return best;
+  }
+
   /// h(s) (kNoContact: no sphere over the field); (bx, by) the touching point; `work` counts
   /// cells evaluated.
   double eval(double sx, double sy, double& bx, double& by, std::size_t& work, double eps = 0,
@@ -170,6 +215,36 @@ class SphereField {
 
  private:
   static constexpr std::size_t kTile = 8, kBlock = 8;
+  /// The disc of offsets over which a Near list holds: one lower-map cell (unit: m).
+  double near_radius() const { return 0.5 * std::max(hf_.dx, hf_.dy); }
+
+  void rebuild(Near& near, double sx, double sy, double threshold) const {
+    ++near.rebuilds;
+    near.cx = sx;
+    near.cy = sy;
+    near.radius = near_radius();
+    near.threshold = threshold;
+    near.list.clear();
+    const double wr = near.radius;  // the footprints widened by the disc
+    for (const Tile& tl : tiles_) {
+      std::size_t i0, i1, j0, j1;
+      if (!cell_range(tl.xlo + sx - wr, tl.xhi + sx + wr, tl.ylo + sy - wr, tl.yhi + sy + wr, i0, i1, j0, j1)) continue;
+      double top = kNoContact;
+      for (std::size_t bj = j0 / kBlock; bj <= j1 / kBlock; ++bj)
+        for (std::size_t bi = i0 / kBlock; bi <= i1 / kBlock; ++bi) top = std::max(top, block_top_[bj * bnx_ + bi]);
+      if (top + r_ + tl.base < threshold) continue;
+      for (std::size_t q = tl.begin; q < tl.end; ++q) {
+        const detail::TiltNode& n = nodes_[order_[q]];
+        if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
+        double b = kNoContact;
+        for (std::size_t j = j0; j <= j1; ++j)
+          for (std::size_t i = i0; i <= i1; ++i) b = std::max(b, cell_top_[j * cnx_ + i]);
+        const double wide = b + r_ - (n.z + r_);
+        if (wide >= threshold) near.list.push_back({wide, std::uint32_t(order_[q])});
+      }
+    }
+    std::sort(near.list.begin(), near.list.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  }
   struct Tile {
     std::size_t begin, end;     ///< the tile's spheres: order_[begin, end)
     double xlo, xhi, ylo, yhi;  ///< their centres' extent at offset 0 (unit: m)
@@ -201,6 +276,7 @@ class SphereField {
     if (bound + r_ + base <= best - eps) return;
     for (std::size_t j = j0; j <= j1; ++j)
       for (std::size_t i = i0; i <= i1; ++i) {
+        if (cell_top_[j * cnx_ + i] + r_ + base < best - eps) continue;  // no point of the cell reaches
         ++work;
         const Vertex p00{hf_.x0 + double(i) * hf_.dx, hf_.y0 + double(j) * hf_.dy, hf_.at(i, j)};
         const Vertex p10{p00.x + hf_.dx, p00.y, hf_.at(i + 1, j)};
@@ -436,7 +512,8 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   const double D = detail::tilt_runaway_distance(f, t);
   ArealTiltHold out;
   std::size_t work = 0;
-  std::vector<SphereField::Piece> pieces;
+  SphereField::Near near;
+  std::vector<SphereField::Piece> pieces, trial_pieces;
   std::vector<std::array<double, 2>> q, slopes;
   // With atomic friction the block is held iff the tilted load lies in the sum of the contacts'
   // Coulomb cones: in slopes, iff tan(beta) d lies in the convex hull of their cones' slope sets
@@ -448,7 +525,7 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   auto height = [&](double x, double y, double eps, std::vector<SphereField::Piece>* p) {
     double bx = 0, by = 0;
     ++out.evaluations;
-    const double h = field.eval(x, y, bx, by, work, eps, p);
+    const double h = field.eval_near(x, y, bx, by, work, near, eps, p);
     return h == kNoContact ? std::numeric_limits<double>::infinity() : h;
   };
   struct State {
@@ -466,10 +543,14 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
     // With friction that error holds the block (the cones' hull grows by it), so there 1e-9 r:
     // slopes within 4e-5 (docs/mujoco.md, "Atomic friction").
     const double delta_min = (phi_a > 0 ? 1e-9 : 1e-6) * r;
+    // Pieces that a step of delta could make the highest: deficit <= delta |g_i - g_best|, with
+    // |g_i - g_best| capped at 2 below; collected up to that cap.
+    auto window = [&](double d) { return 2 * d + 2e-12 * r; };
+    double h = 0;
+    bool have = false;  // h and `pieces` hold for st and delta (from the accepted trial step)
     for (int it = 0; it < 200000; ++it) {
-      // Pieces that a step of delta could make the highest: deficit <= delta |g_i - g_best|
-      // (collected up to a deficit of 4 delta: slopes above 4 are not expected on a map).
-      const double h = height(st.x, st.y, 4 * delta, &pieces);
+      if (!have) h = height(st.x, st.y, window(delta), &pieces);
+      have = false;
       if (!std::isfinite(h)) return End::Stuck;
       const double V = h * cb - (st.x * dxv + st.y * dyv) * sb;
       const SphereField::Piece* top = &pieces[0];
@@ -495,23 +576,32 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
           q.push_back({gx, gy});
         }
       }
-      const std::array<double, 2> P = phi_a > 0 ? least_norm_hull(q) : least_norm(q);
+      // (least_norm is cubic in the points: the hull for more than a few, the same point.)
+      const std::array<double, 2> P = phi_a > 0 || q.size() > 16 ? least_norm_hull(q) : least_norm(q);
       const double Pn = std::hypot(P[0], P[1]);
       if (Pn < stationary) {
         // Stationary for this step's pieces: at rest only if it stays so for the smallest step.
         if (delta <= delta_min) return End::Rest;
         delta = std::max(0.5 * delta, delta_min);
+        // The pieces of the smaller window are among these (no new evaluation).
+        std::erase_if(pieces, [&](const SphereField::Piece& p) { return p.value < h - window(delta); });
+        have = true;
         continue;
       }
       const double wx = -P[0] / Pn, wy = -P[1] / Pn;
       bool moved = false;
       while (delta >= delta_min) {
         const double nx = st.x + delta * wx, ny = st.y + delta * wy;
-        const double h2 = height(nx, ny, 0, nullptr);
+        // The trial collects the pieces of the next iteration's window (used if it is accepted).
+        const double next = std::min(1.5 * delta, 0.5 * r);
+        const double h2 = height(nx, ny, window(next), &trial_pieces);
         if (h2 * cb - (nx * dxv + ny * dyv) * sb < V - 1e-4 * delta * Pn) {
           st.x = nx;
           st.y = ny;
-          delta = std::min(1.5 * delta, 0.5 * r);
+          delta = next;
+          h = h2;
+          std::swap(pieces, trial_pieces);
+          have = true;
           moved = true;
           break;
         }
