@@ -1,8 +1,11 @@
 // frictal areal-tilt LOWER [UPPER] — the 3D tilt test of two areal blocks on MuJoCo
 // (experimental, docs/mujoco.md), beside the free-lateral and locked hold angles predicted on the
 // lift over two dimensions of offset from the rest offset that the simulation reached.
+#include <unistd.h>
+
 #include <array>
 #include <chrono>
+#include <cstdio>
 
 #include "common.hpp"
 #include "frictal/analysis.hpp"
@@ -24,6 +27,7 @@ struct Args {
   std::string start_offset;
   FieldWords words;  ///< the model's and protocol's settings (areal_tilt_settings(); docs/settings.md)
   bool json = false;
+  bool quiet = false;
   InputOptions input;
 };
 
@@ -42,6 +46,7 @@ std::function<int()> setup(CLI::App& app) {
                "Only the predictions, from the block dropped at offset 0 (no simulation; needs no MuJoCo)");
   app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
   app.add_flag("--json", a->json, "Print one JSON object");
+  app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error (shown on a terminal only)");
   add_input_options(app, a->input);
   return [a]() {
     auto made = make_areal_tilt_options(si_values(areal_tilt_settings(), a->words));
@@ -66,7 +71,17 @@ std::function<int()> setup(CLI::App& app) {
       r.rest_offset = o.start_offset;
       r.sphere_radius = o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(f.dx, f.dy);
     } else {
-      r = unwrap(areal_tilt(f, g, o));
+      // A progress line (a terminal only): the simulation takes minutes on large maps.
+      ArealTiltProgress progress;
+      if (!a->quiet && ::isatty(2))
+        progress = [&](const ArealTiltIncrement& i) {
+          const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          fmt::print(stderr, "\rfrictal areal-tilt: tilt {:.2f} deg, block at ({:.4g}, {:.4g}) m, {} ({:.0f} s)   ",
+                     to_deg(i.tilt), i.x, i.y, i.rested ? "at rest" : "moving", secs);
+          std::fflush(stderr);
+        };
+      r = unwrap(areal_tilt(f, g, o, progress));
+      if (progress) fmt::print(stderr, "\n");
     }
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     // The predictions from the rest offset the simulation reached, on the rigid lift (r = 0).

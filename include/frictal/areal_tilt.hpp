@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -104,9 +105,14 @@ struct ArealTiltResult {
   std::vector<std::array<std::string, 2>> warnings;
 };
 
+/// Called after each tilt increment with the increment just recorded (for a progress line; it
+/// must not throw).
+using ArealTiltProgress = std::function<void(const ArealTiltIncrement&)>;
+
 /// Errors: invalid maps or options (InvalidInput), MuJoCo refusing the model (InvalidInput, its
 /// message), a build without MuJoCo (NotAvailable).
-Result<ArealTiltResult> areal_tilt(const Map& lower, const Map& upper, const ArealTiltOptions& o = {});
+Result<ArealTiltResult> areal_tilt(const Map& lower, const Map& upper, const ArealTiltOptions& o = {},
+                                   const ArealTiltProgress& progress = {});
 
 /// The matched prediction: the lift of the surfaces that areal_tilt simulates, rigid. The upper
 /// face's spheres of radius r (t.sphere_radius, its default; turned over as t.turn_over_upper)

@@ -114,5 +114,109 @@ def predict(lower, upper=None, **options):
 
 
 from ._core import predict as _core_predict  # noqa: E402
+from ._core import check_dimension_fit, check_map, check_profile  # noqa: E402,F401
+
+
+def _warn_all(items, stacklevel=3):
+    """Issues each warning (a Warning, or a dict with code and message) with its code's category."""
+    import warnings as _warnings
+
+    for w in items:
+        code, message = (w["code"], w["message"]) if isinstance(w, dict) else (w.code, w.message)
+        _warnings.warn(f"[{code}] {message}", WARNING_CATEGORIES.get(code, FrictalWarning), stacklevel=stacklevel)
+
+
+def _as_dicts(items):
+    return [{"code": w.code, "message": w.message} for w in items]
+
+
+def _wrap(core, checks, doc_note):
+    """A function of the core module whose dict result gains ``warnings`` ([{code, message}]): those
+    the core put there and those of ``checks(args, kwargs, result)``, each also issued through
+    ``warnings.warn`` with its code's category (frictal.FrictalWarning subclasses)."""
+    import functools
+
+    @functools.wraps(core)
+    def wrapper(*args, **kwargs):
+        result = core(*args, **kwargs)
+        if not isinstance(result, dict):
+            return result
+        found = list(result.get("warnings", []) or [])
+        found = [w if isinstance(w, dict) else {"code": "reader", "message": str(w)} for w in found]
+        for w in _as_dicts(checks(args, kwargs, result)):
+            if w not in found:
+                found.append(w)
+        result["warnings"] = found
+        _warn_all(found)
+        return result
+
+    wrapper.__doc__ = (core.__doc__ or "") + "\n\n" + doc_note
+    return wrapper
+
+
+def _arg(args, kwargs, index, name, default=None):
+    return args[index] if len(args) > index else kwargs.get(name, default)
+
+
+def _profile_checks(args, kwargs, result):
+    out = []
+    lower = _arg(args, kwargs, 0, "lower", _arg(args, kwargs, 0, "profile"))
+    upper = _arg(args, kwargs, 1, "upper")
+    if isinstance(lower, Profile):
+        out += check_profile(lower, "lower" if upper is not None else "profile")
+    if isinstance(upper, Profile):
+        out += check_profile(upper, "upper")
+    return out
+
+
+def _map_checks(args, kwargs, result):
+    import numpy as _np
+
+    out = []
+    heights = _arg(args, kwargs, 0, "heights", _arg(args, kwargs, 0, "lower"))
+    dx, dy = kwargs.get("dx"), kwargs.get("dy")
+    if heights is not None and dx is not None and dy is not None:
+        out += check_map(_np.asarray(heights, dtype=float), dx=dx, dy=dy, name="lower")
+        upper = kwargs.get("upper")
+        if upper is not None:
+            out += check_map(_np.asarray(upper, dtype=float), dx=dx, dy=dy, name="upper")
+    return out
+
+
+def _fit_checks(method):
+    return lambda args, kwargs, r: check_dimension_fit(r["dimension"], r["r_squared"], method)
+
+
+def _no_checks(args, kwargs, result):
+    return []
+
+
+signature = _wrap(signature, _profile_checks, "Warnings: ``warnings`` in the result holds the plausibility "
+                  "codes of the profiles ([{code, message}]), each also issued with warnings.warn.")
+profile_stats = _wrap(profile_stats, _profile_checks, "Warnings: ``warnings`` holds the profile's plausibility codes.")
+hold_angle = _wrap(hold_angle, _profile_checks, "Warnings: ``warnings`` holds the profiles' plausibility codes.")
+areal_signature = _wrap(areal_signature, _map_checks, "Warnings: ``warnings`` holds the maps' plausibility codes.")
+areal_hold = _wrap(areal_hold, _map_checks, "Warnings: ``warnings`` holds the maps' plausibility codes.")
+map_stats = _wrap(map_stats, _map_checks, "Warnings: ``warnings`` holds the map's plausibility codes.")
+anisotropy = _wrap(anisotropy, _map_checks, "Warnings: ``warnings`` holds the map's plausibility codes.")
+divider_dimension = _wrap(divider_dimension, _fit_checks("divider"), "Warnings: dimension-out-of-range, poor-fit.")
+box_dimension = _wrap(box_dimension, _fit_checks("box"), "Warnings: dimension-out-of-range, poor-fit.")
+psd_dimension = _wrap(psd_dimension, _fit_checks("psd"), "Warnings: dimension-out-of-range, poor-fit.")
+read_surface = _wrap(read_surface, _no_checks, "Warnings: the reader's (code reader), also issued.")
+tilt = _wrap(tilt, _no_checks, "Warnings: the run's codes (e.g. rotation) are also issued with warnings.warn.")
+areal_tilt = _wrap(areal_tilt, _no_checks, "Warnings: the run's codes are also issued with warnings.warn.")
+
+
+def _predict_friction_checks(args, kwargs, result):
+    class _W:
+        code = "eq18-low-clamped"
+        message = ("theta_a + theta_max - sigma is below 0: the low end of Eq. 18's range is reported as 0 "
+                   "(friction is never negative)")
+
+    return [_W()] if result.get("eq18_low_clamped") else []
+
+
+predict_friction = _wrap(predict_friction, _predict_friction_checks,
+                         "Warnings: eq18-low-clamped when the low end of Eq. 18 was clamped at 0.")
 
 __all__ = [name for name in dir() if not name.startswith("_")]

@@ -116,7 +116,7 @@ class Warning:
         ...
 
 def anisotropy(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, directions: int = ..., max_lines: int = ..., atomic_friction: float = ..., threads: int = ...) -> dict:
-    """Predicted friction over sliding directions from the map's parallel lines (runs without the GIL); heights (m), dx, dy (m), atomic_friction mu_a (unitless). Returns direction, theta_forward/backward, sigma, friction_angle (rad)"""
+    """Predicted friction over sliding directions from the map's parallel lines (runs without the GIL); heights (m), dx, dy (m), atomic_friction mu_a (unitless). Returns direction, theta_forward/backward, sigma, upper_bound_friction_angle (theta_max + atan mu_a, rad)"""
 
 def areal_hold(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, angle: float = ..., upper: Any = ..., turn_over_upper: bool = ..., runaway_distance: float, atomic_friction: float = ..., lateral: str = ..., start_offset: Any = ..., step: float = ..., offset_min: float = ..., offset_max: float = ..., across_step: float = ..., across_max: float = ..., threads: int = ...) -> dict:
     """Hold angle of an areal block that may move sideways (lateral='free') or not ('locked') on the lift over two dimensions of offset (runs without the GIL; as `frictal areal --lateral`). Heights, dx, dy, offsets and runaway_distance in m, angle in rad, atomic_friction mu_a unitless; start_offset (x, y) in m or None for the distribution over drops. Returns lift (n_across, n_along) in m, along/across offsets (m), start/rest/hold offsets (x, y) in m, hold_angle (the chosen mode), hold_angle_free, hold_angle_locked, steering (rad), the path (path_x, path_y in m) and, without a start, drops and hold_angle_mean/std/q05/q50/q95/min/max (rad)"""
@@ -166,6 +166,16 @@ def build_info() -> dict:
     """Version, git commit and CMake build type of the compiled core.
 
     Returns a dict (unitless): version (from CMakeLists.txt), git_commit, build_type (str), mujoco (bool: the 3D tilt test areal_tilt is available)."""
+
+def check_dimension_fit(dimension: float, r_squared: float, method: str = ...) -> List[Warning]:
+    """A fractal dimension fit: dimension D and r_squared (unitless) from a fit dict; a list of Warning,
+    dimension-out-of-range (D outside [1, 2]) and poor-fit (r^2 < 0.95)"""
+
+def check_map(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, name: str = ...) -> List[Warning]:
+    """Plausibility of an areal map: heights (ny, nx) in m (NaN: not measured), dx, dy in m; a list of Warning"""
+
+def check_profile(profile: Profile, name: str = ...) -> List[Warning]:
+    """Plausibility of a measured profile (m): a list of Warning (codes units-suspect, heights-tiny, heights-exceed-length, spikes, kurtosis, fill-value); empty when nothing is implausible"""
 
 def detrend(profile: Profile, kind: str = ...) -> Profile:
     """Removes none, mean, line or poly:N (trapezoid-weighted least squares) from a profile (m)"""
@@ -231,7 +241,7 @@ def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_fric
     """The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)"""
 
 def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ...) -> dict:
-    """Friction prediction of Eq. 6 and the Eq. 18 range: atomic_friction mu_a (unitless), theta_max and sigma (rad). Returns angles in rad and coefficients (unitless)"""
+    """The rigid upper bound of Eq. 6 and the Eq. 18 range from atomic_friction mu_a (unitless), theta_max and sigma (rad): upper_bound_friction_angle (theta_max + atan mu_a, rad), upper_bound_friction_coefficient, eq18_low_friction_angle (rad; clamped at 0, eq18_low_clamped then true), eq18_low_friction_coefficient. What a tilt test reads is frictal.predict"""
 
 def prediction_columns() -> list:
     """The prediction's output table: (key, interface unit, help) per quantity, as `frictal columns` prints it; interface units deg (the Prediction attributes are SI: rad), m, 1 (unitless)"""

@@ -256,14 +256,14 @@ void frictal_bind_io(py::module_& m) {
         d["theta_forward"] = arr(fwd);
         d["theta_backward"] = arr(bwd);
         d["sigma"] = arr(sig);
-        d["friction_angle"] = arr(phi);
+        d["upper_bound_friction_angle"] = arr(phi);
         return d;
       },
       py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("directions") = 36,
       py::arg("max_lines") = 128, py::arg("atomic_friction") = 0.0, py::arg("threads") = 0,
       "Predicted friction over sliding directions from the map's parallel lines (runs without the GIL); heights "
       "(m), dx, dy (m), atomic_friction mu_a (unitless). Returns direction, theta_forward/backward, sigma, "
-      "friction_angle (rad)");
+      "upper_bound_friction_angle (theta_max + atan mu_a, rad)");
   m.def(
       "areal_signature",
       [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, double angle,

@@ -285,15 +285,20 @@ PYBIND11_MODULE(_core, m) {
         d["atomic_friction"] = f.atomic_friction;
         d["atomic_angle"] = f.atomic_angle;
         d["theta_max"] = f.theta_max;
-        d["friction_angle"] = f.friction_angle;
-        d["friction_coefficient"] = f.friction_coefficient;
-        d["friction_angle_low"] = f.friction_angle_low;
-        d["friction_coefficient_low"] = f.friction_coefficient_low;
+        // The rigid upper bound and Eq. 18's low end, named as `frictal signature --json` names them:
+        // friction_angle belongs to frictal.predict (what a tilt test reads).
+        d["upper_bound_friction_angle"] = f.friction_angle;
+        d["upper_bound_friction_coefficient"] = f.friction_coefficient;
+        d["eq18_low_friction_angle"] = f.friction_angle_low;
+        d["eq18_low_friction_coefficient"] = f.friction_coefficient_low;
+        d["eq18_low_clamped"] = f.low_clamped;
         return d;
       },
       py::arg("atomic_friction"), py::arg("theta_max"), py::arg("sigma") = 0.0,
-      "Friction prediction of Eq. 6 and the Eq. 18 range: atomic_friction mu_a (unitless), theta_max and sigma "
-      "(rad). Returns angles in rad and coefficients (unitless)");
+      "The rigid upper bound of Eq. 6 and the Eq. 18 range from atomic_friction mu_a (unitless), theta_max and sigma "
+      "(rad): upper_bound_friction_angle (theta_max + atan mu_a, rad), upper_bound_friction_coefficient, "
+      "eq18_low_friction_angle (rad; clamped at 0, eq18_low_clamped then true), eq18_low_friction_coefficient. What a "
+      "tilt test reads is frictal.predict");
   m.def(
       "read_profile", [](const std::string& path) { return unwrap(nogil([&] { return read_profile(path); })); },
       py::arg("path"), "Reads a single-valued profile (any readable format) in metres (runs without the GIL)");

@@ -12,6 +12,7 @@
 #include "bindings.hpp"
 #include "frictal/io.hpp"
 #include "frictal/predict.hpp"
+#include "frictal/warnings.hpp"
 
 namespace py = pybind11;
 using namespace frictal;
@@ -100,6 +101,25 @@ void frictal_bind_predict(py::module_& m) {
       .def_readonly("code", &Warning::code)
       .def_readonly("message", &Warning::message)
       .def("__repr__", [](const Warning& w) { return "<Warning " + w.code + ": " + w.message + ">"; });
+  m.def(
+      "check_profile", [](const Profile& p, const std::string& name) { return check_profile(p, name); },
+      py::arg("profile"), py::arg("name") = "profile",
+      "Plausibility of a measured profile (m): a list of Warning (codes units-suspect, heights-tiny, "
+      "heights-exceed-length, spikes, kurtosis, fill-value); empty when nothing is implausible");
+  m.def(
+      "check_map",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy,
+         const std::string& name) { return check_map(py_detail::to_map(heights, dx, dy), name); },
+      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("name") = "map",
+      "Plausibility of an areal map: heights (ny, nx) in m (NaN: not measured), dx, dy in m; a list of Warning");
+  m.def(
+      "check_dimension_fit",
+      [](double dimension, double r_squared, const std::string& method) {
+        return check_dimension_fit(dimension, r_squared, method);
+      },
+      py::arg("dimension"), py::arg("r_squared"), py::arg("method") = "fit",
+      "A fractal dimension fit: dimension D and r_squared (unitless) from a fit dict; a list of Warning,\n"
+      "dimension-out-of-range (D outside [1, 2]) and poor-fit (r^2 < 0.95)");
   m.def(
       "warning_codes",
       [] {

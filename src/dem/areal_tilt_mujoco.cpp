@@ -25,7 +25,7 @@ namespace frictal {
 
 bool mujoco_available() { return false; }
 
-Result<ArealTiltResult> areal_tilt(const Map&, const Map&, const ArealTiltOptions&) {
+Result<ArealTiltResult> areal_tilt(const Map&, const Map&, const ArealTiltOptions&, const ArealTiltProgress&) {
   return make_error(ErrorCode::NotAvailable,
                     "areal-tilt needs MuJoCo: install Debian's libmujoco-dev (scripts/install-deps does) and "
                     "rebuild with FRICTAL_MUJOCO=ON or AUTO");
@@ -182,7 +182,8 @@ void install_exact_hfield_sphere() {
 
 }  // namespace
 
-Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOptions& o) {
+Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOptions& o,
+                                   const ArealTiltProgress& progress) {
   if (auto s = validate(f, "lower map"); !s) return s.error();
   if (auto s = validate(g, "upper map"); !s) return s.error();
   if (f.nx < 2 || f.ny < 2 || g.nx < 1 || g.ny < 1) return make_error("areal_tilt: the lower map needs 2 x 2 nodes");
@@ -355,6 +356,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   double x_stop = 0, y_stop = 0, x_saved = 0, y_saved = 0;
   auto record = [&](double beta, bool rested) {
     out.trace.push_back({beta, X() / S, Y() / S, rested, out.steps, last_force, last_speed / S});
+    if (progress) progress(out.trace.back());
   };
   bool far = false;
   constexpr int kMaxWaits = 40;  // relaxations at one tilt before it counts as unsettled

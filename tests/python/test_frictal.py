@@ -60,9 +60,9 @@ def test_wm_rms_and_points():
 
 def test_friction_eq6_eq18():
     f = frictal.predict_friction(math.tan(np.radians(10)), np.radians(20), np.radians(3))
-    assert np.degrees(f["friction_angle"]) == pytest.approx(30)
-    assert f["friction_coefficient"] == pytest.approx(math.tan(np.radians(30)))
-    assert np.degrees(f["friction_angle_low"]) == pytest.approx(27)
+    assert np.degrees(f["upper_bound_friction_angle"]) == pytest.approx(30)
+    assert f["upper_bound_friction_coefficient"] == pytest.approx(math.tan(np.radians(30)))
+    assert np.degrees(f["eq18_low_friction_angle"]) == pytest.approx(27)
 
 
 def test_errors_are_value_errors():

@@ -28,7 +28,7 @@ def test_read_surface_profile_and_warnings():
     s = frictal.read_surface(os.path.join(DATA, "profiles", "xy-2.txt"))
     assert s["kind"] == "profile"
     assert len(s["x"]) == 24
-    assert any("23" in w for w in s["warnings"])
+    assert any("23" in w["message"] and w["code"] == "reader" for w in s["warnings"])
 
 
 def test_x3p_round_trip(tmp_path):

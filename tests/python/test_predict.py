@@ -86,3 +86,34 @@ def test_bad_input_raises_naming_the_value():
         frictal.predict(np.zeros(10))
     with pytest.raises(ValueError, match="two profiles or two maps"):
         frictal.predict(sawtooth(), np.zeros((4, 4)), spacing=1e-6)
+
+
+def test_every_function_returns_and_issues_its_warnings():
+    """Issue "No silent nonsense": the plausibility codes reach every Python function that computes
+    from a surface, in the result's ``warnings`` and through warnings.warn with the code's category.
+    A sine of 1 um on 1 mm (rms slope 0.02: plausible) gives none; one point 100 um up (70 rms
+    heights off its neighbours) is a spike; Eq. 18 with sigma above theta_max clamps its low end."""
+    import warnings
+
+    x = np.linspace(0, 1e-3, 400)
+    z = 1e-6 * np.sin(2 * np.pi * x / 2e-4)
+    clean = frictal.Profile(x, z)
+    z2 = z.copy()
+    z2[200] = 1e-4
+    spiky = frictal.Profile(x, z2)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert frictal.signature(clean)["warnings"] == []
+        assert frictal.profile_stats(clean)["warnings"] == []
+        assert frictal.predict_friction(0.0, 0.2, 0.1)["warnings"] == []
+    assert not [w for w in caught if issubclass(w.category, frictal.FrictalWarning)]
+    with pytest.warns(frictal.SpikesWarning):
+        r = frictal.signature(spiky)
+    assert "spikes" in [w["code"] for w in r["warnings"]]
+    with pytest.warns(frictal.Eq18LowClampedWarning):
+        f = frictal.predict_friction(0.0, 0.01, 0.05)
+    assert f["eq18_low_friction_angle"] == 0.0 and f["eq18_low_clamped"]
+    heights = np.tile(z2[150:250], (20, 1))
+    with pytest.warns(frictal.SpikesWarning):
+        m = frictal.anisotropy(heights, dx=x[1], dy=x[1], directions=2, max_lines=4)
+    assert "upper_bound_friction_angle" in m and "friction_angle" not in m

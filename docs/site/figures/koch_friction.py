@@ -7,7 +7,7 @@ for n in range(4):
     phi = []
     for a in alphas:
         sig = frictal.signature(frictal.koch_profile(iterations=n, alpha=np.radians(a)))
-        phi.append(np.degrees(frictal.predict_friction(0.0, sig["theta_max_forward"])["friction_angle"]))
+        phi.append(np.degrees(frictal.predict_friction(0.0, sig["theta_max_forward"])["upper_bound_friction_angle"]))
     ax.plot(alphas, phi, "o-", ms=3, lw=0.9, label=f"K{n}")
 ax.set(xlabel="base angle α (deg)", ylabel="predicted friction angle φ (deg)", title="Eq. 6 on Koch surfaces (μa = 0)")
 ax.legend(fontsize=8)
