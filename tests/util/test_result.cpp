@@ -15,8 +15,8 @@ using frictal::Error;
 using frictal::ErrorCode;
 
 TEST(Result, WithPrefixKeepsTheCode) {
-  for (ErrorCode c : {ErrorCode::InvalidInput, ErrorCode::Io, ErrorCode::Unstable, ErrorCode::NotAvailable,
-                      ErrorCode::Internal}) {
+  for (ErrorCode c :
+       {ErrorCode::InvalidInput, ErrorCode::Io, ErrorCode::Unstable, ErrorCode::NotAvailable, ErrorCode::Internal}) {
     const Error e = frictal::with_prefix("lower surface: ", frictal::make_error("disk gone", c));
     EXPECT_EQ(e.code, c);
     EXPECT_EQ(e.message, "lower surface: disk gone");
@@ -28,7 +28,8 @@ TEST(Result, WithPrefixKeepsTheCode) {
 TEST(Result, NoRewrapResetsTheCode) {
   const std::filesystem::path root = std::filesystem::path(FRICTAL_TEST_DATA).parent_path().parent_path();
   // make_error( or UsageError( whose first argument concatenates another error's message.
-  const std::regex rewrap(R"((make_error|UsageError)\(\s*[^;,()]*(\([^()]*\))?[^;,()]*\+\s*\w+(\.error\(\)|)\.message\s*\))");
+  const std::regex rewrap(
+      R"((make_error|UsageError)\(\s*[^;,()]*(\([^()]*\))?[^;,()]*\+\s*\w+(\.error\(\)|)\.message\s*\))");
   std::vector<std::string> found;
   std::size_t files = 0;
   for (const char* dir : {"src", "apps"})
@@ -47,7 +48,10 @@ TEST(Result, NoRewrapResetsTheCode) {
   for (const auto& f : found) ADD_FAILURE() << "error rebuilt with a fixed code (use with_prefix): " << f;
   // The pattern itself finds the form it is meant to find.
   EXPECT_TRUE(std::regex_search(std::string(R"(return make_error("hold angle: " + hold.error().message);)"), rewrap));
-  EXPECT_TRUE(std::regex_search(std::string(R"(return make_error(std::string(what) + ": " + e.error().message);)"), rewrap));
-  EXPECT_TRUE(std::regex_search(std::string(R"(throw UsageError("--start-offset: " + node.error().message);)"), rewrap));
-  EXPECT_FALSE(std::regex_search(std::string(R"(throw UsageError("x: " + s.error().message, s.error().code);)"), rewrap));
+  EXPECT_TRUE(
+      std::regex_search(std::string(R"(return make_error(std::string(what) + ": " + e.error().message);)"), rewrap));
+  EXPECT_TRUE(
+      std::regex_search(std::string(R"(throw UsageError("--start-offset: " + node.error().message);)"), rewrap));
+  EXPECT_FALSE(
+      std::regex_search(std::string(R"(throw UsageError("x: " + s.error().message, s.error().code);)"), rewrap));
 }
