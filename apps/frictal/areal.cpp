@@ -65,7 +65,7 @@ int run_hold(const Args& a, const Map& f, const Map& g) {
   if (!a.start_offset.empty()) {
     const auto xy = parse_offset(a.start_offset, "--start-offset");
     auto node = areal_lift_node(lift, xy[0], xy[1]);
-    if (!node) throw UsageError("--start-offset: " + node.error().message);
+    if (!node) throw UsageError("--start-offset: " + node.error().message, node.error().code);
     start = *node;
   } else {
     // 0,0 when it lies on the grid, else the first offset along d on the line v = 0.

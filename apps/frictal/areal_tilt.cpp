@@ -50,7 +50,7 @@ std::function<int()> setup(CLI::App& app) {
   add_input_options(app, a->input);
   return [a]() {
     auto made = make_areal_tilt_options(si_values(areal_tilt_settings(), a->words));
-    if (!made) throw UsageError(made.error().message);
+    if (!made) fail(made.error());
     ArealTiltOptions o = *made;
     require(a->prediction_refine >= 0 && a->prediction_refine <= 16,
             fmt::format("--prediction-refine {}: expected an integer in 0..16 (0: automatic)", a->prediction_refine));

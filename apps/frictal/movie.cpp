@@ -1,5 +1,5 @@
-// frictal CLI — the tilt movie (movie.hpp): a small software rasteriser (filled polygons,
-// lines, a 5 x 7 pixel font) writing raw RGB frames into ffmpeg's standard input.
+// frictal CLI — the tilt movie (movie.hpp): each frame drawn with cairo (antialiased polygons,
+// lines and text) on an image surface, written as raw RGB into ffmpeg's standard input.
 #include "movie.hpp"
 
 #include <fcntl.h>
@@ -16,11 +16,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <map>
+#include <memory>
 #include <numbers>
 #include <string>
 #include <vector>
 
+#include <cairo.h>
 #include <fmt/core.h>
 
 #include "command.hpp"
@@ -61,95 +62,41 @@ void check_movie_tool(const std::string& path) {
 namespace {
 
 struct Rgb {
-  std::uint8_t r, g, b;
+  double r, g, b;  // 0..1
 };
 
-struct Image {
-  int w, h;
-  std::vector<std::uint8_t> px;
-  Image(int w_, int h_) : w(w_), h(h_), px(static_cast<std::size_t>(w_) * h_ * 3, 255) {}
-  void set(int x, int y, Rgb c) {
-    if (x < 0 || y < 0 || x >= w || y >= h) return;
-    std::uint8_t* p = &px[(static_cast<std::size_t>(y) * w + x) * 3];
-    p[0] = c.r, p[1] = c.g, p[2] = c.b;
-  }
-  void fill(Rgb c) {
-    for (std::size_t i = 0; i < px.size(); i += 3) px[i] = c.r, px[i + 1] = c.g, px[i + 2] = c.b;
-  }
+void set_colour(cairo_t* cr, Rgb c) { cairo_set_source_rgb(cr, c.r, c.g, c.b); }
+
+void polygon_path(cairo_t* cr, const std::vector<double>& x, const std::vector<double>& y) {
+  cairo_new_path(cr);
+  for (std::size_t i = 0; i < x.size(); ++i) cairo_line_to(cr, x[i], y[i]);
+  cairo_close_path(cr);
+}
+
+void line(cairo_t* cr, double x0, double y0, double x1, double y1, Rgb c, double width) {
+  set_colour(cr, c);
+  cairo_set_line_width(cr, width);
+  cairo_move_to(cr, x0, y0);
+  cairo_line_to(cr, x1, y1);
+  cairo_stroke(cr);
+}
+
+/// Text with its baseline at y, left edge at x; returns the x after it.
+double text(cairo_t* cr, double x, double y, const std::string& s, Rgb c) {
+  set_colour(cr, c);
+  cairo_move_to(cr, x, y);
+  cairo_show_text(cr, s.c_str());
+  double cx = 0, cy = 0;
+  cairo_get_current_point(cr, &cx, &cy);
+  return cx;
+}
+
+struct SurfaceDeleter {
+  void operator()(cairo_surface_t* s) const { cairo_surface_destroy(s); }
 };
-
-// Even-odd scanline fill of a polygon in pixel coordinates.
-void fill_polygon(Image& im, const std::vector<double>& x, const std::vector<double>& y, Rgb c) {
-  const std::size_t n = x.size();
-  const auto [ylo, yhi] = std::minmax_element(y.begin(), y.end());
-  const int y0 = std::max(0, static_cast<int>(std::floor(*ylo))), y1 = std::min(im.h - 1, static_cast<int>(*yhi));
-  std::vector<double> xs;
-  for (int row = y0; row <= y1; ++row) {
-    const double yc = row + 0.5;
-    xs.clear();
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t j = (i + 1) % n;
-      if ((y[i] <= yc) != (y[j] <= yc)) xs.push_back(x[i] + (yc - y[i]) * (x[j] - x[i]) / (y[j] - y[i]));
-    }
-    std::sort(xs.begin(), xs.end());
-    for (std::size_t k = 0; k + 1 < xs.size(); k += 2)
-      for (int col = std::max(0, static_cast<int>(std::ceil(xs[k] - 0.5)));
-           col <= std::min(im.w - 1, static_cast<int>(std::floor(xs[k + 1] - 0.5))); ++col)
-        im.set(col, row, c);
-  }
-}
-
-void line(Image& im, double x0, double y0, double x1, double y1, Rgb c, int thick = 1) {
-  const int steps = static_cast<int>(std::max(std::fabs(x1 - x0), std::fabs(y1 - y0))) + 1;
-  for (int i = 0; i <= steps; ++i) {
-    const double t = static_cast<double>(i) / steps;
-    const int x = static_cast<int>(std::lround(x0 + t * (x1 - x0))),
-              y = static_cast<int>(std::lround(y0 + t * (y1 - y0)));
-    for (int dx = -(thick / 2); dx <= thick / 2; ++dx)
-      for (int dy = -(thick / 2); dy <= thick / 2; ++dy) im.set(x + dx, y + dy, c);
-  }
-}
-
-// 5 x 7 glyphs, one string of 7 rows of 5 characters per glyph ('#' = ink).
-const std::map<char, const char*>& font() {
-  static const std::map<char, const char*> f = {
-      {'0', " ### #   ##  ### # ###  ##   # ### "},   {'1', "  #   ##    #    #    #    #   ### "},
-      {'2', " ### #   #    #  ##  #    #    #####"},  {'3', "#####   #   #    ##     ##   # ### "},
-      {'4', "   #   ##  # # #  # #####   #    # "},   {'5', "######    ####     #    ##   # ### "},
-      {'6', "  ## #    #    #### #   ##   # ### "},   {'7', "#####    #   #   #   #    #    #   "},
-      {'8', " ### #   ##   # ### #   ##   # ### "},   {'9', " ### #   ##   # ####    #   #  ##  "},
-      {'.', "                         ##   ##   "},   {'-', "               ###               "},
-      {'=', "          #####     #####          "},   {'(', "   #   #   #    #    #     #     # "},
-      {')', " #     #     #    #    #   #   #   "},   {'/', "    #    #   #   #   #   #    #    "},
-      {' ', "                                   "},   {'a', "           ###     # #####   # ####"},
-      {'c', "           ### #    #    #   # ### "},   {'d', "    #    # ## ##  ##   ##   # ####"},
-      {'e', "           ### #   #######     ### "},   {'F', "######    #    #### #    #    #    "},
-      {'g', "      #####   ##   # ####    # ### "},   {'i', "  #         ##    #    #    #   ###"},
-      {'l', " ##    #    #    #    #    #   ### "},   {'n', "          # ## ##  ##   ##   ##   #"},
-      {'o', "           ### #   ##   ##   # ### "},   {'r', "          # ## ##  ##    #    #    "},
-      {'s', "           #####     ###     ##### "},   {'t', "  #    #  #####  #    #    #  #  ## "},
-      {'u', "          #   ##   ##   ##  ## ## #"},   {'m', "          ## # # # ## # ##   ##   #"},
-      {'p', "          #### #   ######  #    #    "}, {'h', "#    #    # ## ##  ##   ##   ##   #"},
-  };
-  return f;
-}
-
-void text(Image& im, int x, int y, const std::string& s, int scale, Rgb c) {
-  for (char ch : s) {
-    auto it = font().find(ch);
-    if (it != font().end()) {
-      const std::string g = it->second;
-      for (int row = 0; row < 7; ++row)
-        for (int col = 0; col < 5; ++col) {
-          const std::size_t k = static_cast<std::size_t>(row * 5 + col);
-          if (k < g.size() && g[k] == '#')
-            for (int a = 0; a < scale; ++a)
-              for (int b = 0; b < scale; ++b) im.set(x + col * scale + a, y + row * scale + b, c);
-        }
-    }
-    x += 6 * scale;
-  }
-}
+struct ContextDeleter {
+  void operator()(cairo_t* c) const { cairo_destroy(c); }
+};
 
 }  // namespace
 
@@ -172,7 +119,8 @@ void write_tilt_movie(const std::string& path, const TiltResult& r, double radiu
     }
   const double margin = 0.05 * std::max(x1 - x0, y1 - y0);
   x0 -= margin, x1 += margin, y0 -= margin, y1 += margin;
-  const double top = 60;  // text band (pixels)
+  // Text band at the top: two lines of labels and a legend; the font scales with the frame.
+  const double font = gif ? 15 : 26, top = 3.6 * font;
   const double scale = std::min(W / (x1 - x0), (H - top) / (y1 - y0));
   const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
   auto px = [&](double wx) { return 0.5 * W + (wx - cx) * scale; };
@@ -183,6 +131,20 @@ void write_tilt_movie(const std::string& path, const TiltResult& r, double radiu
   for (const TiltFrame& f : r.frames)
     for (const auto& c : f.contacts) fsum += std::hypot(c.normal_force, c.tangential_force), ++fn;
   const double fscale = fsum > 0 ? 0.04 * H / (fsum / static_cast<double>(fn)) : 0;  // mean force: 4 % of H
+
+  // The frame: a cairo image surface (32-bit xRGB), turned into the rgb24 rows ffmpeg reads.
+  std::unique_ptr<cairo_surface_t, SurfaceDeleter> surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, W, H));
+  std::unique_ptr<cairo_t, ContextDeleter> context(cairo_create(surface.get()));
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS ||
+      cairo_status(context.get()) != CAIRO_STATUS_SUCCESS)
+    throw UsageError(fmt::format("--movie: cairo cannot make a {} x {} image: {}", W, H,
+                                 cairo_status_to_string(cairo_status(context.get()))),
+                     ErrorCode::Internal);
+  cairo_t* cr = context.get();
+  cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+  cairo_set_font_size(cr, font);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(W) * H * 3);
 
   // ffmpeg gets its arguments as a vector (no shell: any file name is safe) and the frames on a pipe.
   std::vector<std::string> args = {"ffmpeg",
@@ -238,22 +200,28 @@ void write_tilt_movie(const std::string& path, const TiltResult& r, double radiu
     ::sigaction(SIGPIPE, &previous, nullptr);
     throw UsageError(fmt::format("--movie: fdopen: {}", std::strerror(errno)), ErrorCode::Io);
   }
-  const Rgb lower_c{150, 150, 160}, upper_c{90, 140, 200}, rim_c{40, 40, 40}, contact_c{220, 30, 30},
-      tang_c{30, 160, 60}, text_c{0, 0, 0};
-  Image im(W, H);
+  const Rgb lower_c{150 / 255.0, 150 / 255.0, 160 / 255.0}, upper_c{90 / 255.0, 140 / 255.0, 200 / 255.0},
+      rim_c{40 / 255.0, 40 / 255.0, 40 / 255.0}, contact_c{220 / 255.0, 30 / 255.0, 30 / 255.0},
+      tang_c{30 / 255.0, 160 / 255.0, 60 / 255.0}, text_c{0, 0, 0};
   const double deg = 180 / std::numbers::pi;
+  const double line_width = gif ? 2 : 3;
   bool write_failed = false;
   for (const TiltFrame& f : r.frames) {
-    im.fill({255, 255, 255});
+    cairo_set_source_rgb(cr, 1, 1, 1);
+    cairo_paint(cr);
     for (int b = 0; b < 2; ++b) {
       tilt_frame_polygon(r, f, b, x, y);
       rounded_outline(x, y, radius, 10 / deg, ox, oy);
       for (auto& v : ox) v = px(v);
       for (auto& v : oy) v = py(v);
-      fill_polygon(im, ox, oy, rim_c);  // the rim shows where the rounded outline extends the core
+      polygon_path(cr, ox, oy);
+      set_colour(cr, rim_c);  // the rim shows where the rounded outline extends the core
+      cairo_fill(cr);
       for (auto& v : x) v = px(v);
       for (auto& v : y) v = py(v);
-      fill_polygon(im, x, y, b == 0 ? lower_c : upper_c);
+      polygon_path(cr, x, y);
+      set_colour(cr, b == 0 ? lower_c : upper_c);
+      cairo_fill(cr);
     }
     for (const auto& c : f.contacts) {
       const double sx = px(c.point.x), sy = py(c.point.y);
@@ -261,19 +229,41 @@ void write_tilt_movie(const std::string& path, const TiltResult& r, double radiu
       const double sgn = c.vertex_body == 1 ? 1.0 : -1.0;
       const double fnx = sgn * c.normal_force * c.normal.x, fny = sgn * c.normal_force * c.normal.y;
       const double ftx = sgn * -c.tangential_force * c.normal.y, fty = sgn * c.tangential_force * c.normal.x;
-      line(im, sx, sy, sx + fnx * fscale, sy - fny * fscale, contact_c, 2);
-      line(im, sx, sy, sx + ftx * fscale, sy - fty * fscale, tang_c, 2);
-      for (int a = -3; a <= 3; ++a)
-        for (int b = -3; b <= 3; ++b)
-          if (a * a + b * b <= 9) im.set(static_cast<int>(sx) + a, static_cast<int>(sy) + b, contact_c);
+      line(cr, sx, sy, sx + fnx * fscale, sy - fny * fscale, contact_c, line_width);
+      line(cr, sx, sy, sx + ftx * fscale, sy - fty * fscale, tang_c, line_width);
+      set_colour(cr, contact_c);
+      cairo_new_path(cr);
+      cairo_arc(cr, sx, sy, 1.5 * line_width, 0, 2 * std::numbers::pi);
+      cairo_fill(cr);
     }
-    const int ts = gif ? 2 : 3;
-    text(im, 10, 8, fmt::format("t = {:.3f} s   tilt = {:.3f} deg", f.time, f.tilt * deg), ts, text_c);
-    text(im, 10, 8 + 9 * ts,
-         fmt::format("atan(Ft/Fn) = {:.3f} deg   contacts {}", std::atan2(f.tangential_force, f.normal_force) * deg,
-                     f.contacts.size()),
-         ts, text_c);
-    if (std::fwrite(im.px.data(), 1, im.px.size(), pipe) != im.px.size()) {
+    // Labels: time, tilt and the force ratio with their units; the legend of the arrows.
+    const double pad = 0.6 * font, line1 = pad + font, line2 = line1 + 1.4 * font;
+    text(cr, pad, line1, fmt::format("t = {:.3f} s     tilt = {:.3f}\u00b0", f.time, f.tilt * deg), text_c);
+    text(cr, pad, line2,
+         fmt::format("atan(F\u209c / F\u2099) = {:.3f}\u00b0     contacts: {}",
+                     std::atan2(f.tangential_force, f.normal_force) * deg, f.contacts.size()),
+         text_c);
+    cairo_text_extents_t ext{};
+    const std::string normal_label = "normal force", tangential_label = "tangential force";
+    cairo_text_extents(cr, tangential_label.c_str(), &ext);
+    const double key = 1.6 * font, legend_x = W - pad - ext.x_advance - key - 0.4 * font;
+    line(cr, legend_x, line1 - 0.35 * font, legend_x + key, line1 - 0.35 * font, contact_c, line_width);
+    text(cr, legend_x + key + 0.4 * font, line1, normal_label, text_c);
+    line(cr, legend_x, line2 - 0.35 * font, legend_x + key, line2 - 0.35 * font, tang_c, line_width);
+    text(cr, legend_x + key + 0.4 * font, line2, tangential_label, text_c);
+    cairo_surface_flush(surface.get());
+    const unsigned char* data = cairo_image_surface_get_data(surface.get());
+    const int stride = cairo_image_surface_get_stride(surface.get());
+    for (int row = 0; row < H; ++row) {
+      const auto* p = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::size_t>(row) * stride);
+      std::uint8_t* out = &rgb[static_cast<std::size_t>(row) * W * 3];
+      for (int col = 0; col < W; ++col) {  // CAIRO_FORMAT_RGB24: 0xXXRRGGBB in native byte order
+        out[3 * col] = static_cast<std::uint8_t>(p[col] >> 16);
+        out[3 * col + 1] = static_cast<std::uint8_t>(p[col] >> 8);
+        out[3 * col + 2] = static_cast<std::uint8_t>(p[col]);
+      }
+    }
+    if (std::fwrite(rgb.data(), 1, rgb.size(), pipe) != rgb.size()) {
       write_failed = true;
       break;
     }

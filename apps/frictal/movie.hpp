@@ -1,5 +1,6 @@
 // frictal CLI — `tilt --movie FILE.mp4|FILE.gif`: renders the frames of a tilt run (both blocks,
-// contact points, tilt angle and atan(F_t/F_n)) and pipes raw RGB frames to Debian's ffmpeg.
+// contact points and forces, time, tilt angle and atan(F_t/F_n)), each frame drawn with cairo,
+// and pipes raw RGB frames to Debian's ffmpeg.
 // The CLI owns this (the library never spawns processes).
 #pragma once
 

@@ -127,14 +127,15 @@ struct LengthUnit {
 /// The unit in which `magnitude` (unit: m) reads between 1 and 1000.
 LengthUnit length_unit(double magnitude);
 
-/// The PNG file (8-bit RGB, zlib stored blocks) of an image of width x height pixels, rgb holding
+/// The PNG file (8-bit RGB, deflate-compressed with zlib) of an image of width x height pixels, rgb holding
 /// 3 bytes per pixel row by row from the top. Errors: sizes that do not match.
 Result<std::string> encode_png(std::size_t width, std::size_t height, const std::vector<std::uint8_t>& rgb);
 /// Base64 (RFC 4648, with padding) of arbitrary bytes.
 std::string base64(const std::string& bytes);
 /// Text escaped for HTML and XML content and attribute values (& < > " ').
 std::string escape_html(const std::string& text);
-/// The viridis colour map at t in [0, 1] (clamped) as r, g, b bytes.
+/// matplotlib's viridis colour map at t in [0, 1] (clamped) as r, g, b bytes: its 256-entry table,
+/// entry floor(256 t) as matplotlib takes it (viridis(0.5) is #21918c).
 void viridis(double t, std::uint8_t rgb[3]);
 
 // ---------------------------------------------------------------------------------------------

@@ -237,9 +237,9 @@ Result<Faces> build_faces(const Curve& lower_surface, const Curve& upper_surface
   f.has_env = cfg.face == TiltFace::Envelope || cfg.predict;
   if (f.has_env) {
     auto le = upper_envelope(lower_surface);
-    if (!le.ok()) return make_error("lower surface: " + le.error().message);
+    if (!le.ok()) return with_prefix("lower surface: ", le.error());
     auto ue = upper_envelope(upper_surface);
-    if (!ue.ok()) return make_error("upper surface: " + ue.error().message);
+    if (!ue.ok()) return with_prefix("upper surface: ", ue.error());
     f.lower_env = std::move(*le);
     f.upper_env = std::move(*ue);
     if (cfg.face == TiltFace::Envelope) {
@@ -287,12 +287,12 @@ Result<double> predict_theta_max(Faces& f, const TiltConfig& cfg, unsigned threa
     if (*sig_r) sph_r.emplace(signature(f.lower_env, upper_face, so));
   }
   const Result<SignatureResult>& sig = *sig_r;
-  if (!sig.ok()) return make_error("signature for the prediction: " + sig.error().message);
+  if (!sig.ok()) return with_prefix("signature for the prediction: ", sig.error());
   res.predicted_theta_max = cfg.reverse ? sig->theta_max_backward : sig->theta_max_forward;
   res.predicted_friction_angle =
       std::min(res.predicted_theta_max + std::atan(cfg.contact.atomic_friction), 1.5707963267948966);
   const Result<SignatureResult>& sph = *sph_r;
-  if (!sph.ok()) return make_error("spheropolygon signature for the prediction: " + sph.error().message);
+  if (!sph.ok()) return with_prefix("spheropolygon signature for the prediction: ", sph.error());
   res.predicted_sphero_theta_max = cfg.reverse ? sph->theta_max_backward : sph->theta_max_forward;
   res.predicted_sphero_friction_angle =
       std::min(res.predicted_sphero_theta_max + std::atan(cfg.contact.atomic_friction), 1.5707963267948966);
@@ -433,8 +433,9 @@ Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, co
       msg = "lower block " + msg.substr(7);
     else if (msg.rfind("body 1", 0) == 0)
       msg = "upper block " + msg.substr(7);
-    return make_error("tilt: " + msg +
-                      (cfg.face == TiltFace::Curve ? " (a folded surface may need face = envelope)" : ""));
+    return make_error(
+        model_r.error().code,
+        "tilt: " + msg + (cfg.face == TiltFace::Curve ? " (a folded surface may need face = envelope)" : ""));
   }
   dem::Model model = std::move(*model_r);
   // Quasi-static: FIRE dissipates; the tangential dashpot (-m gamma_t v_t per contact, not
@@ -444,7 +445,7 @@ Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, co
   model.motion[0].pivot = model.initial_position[0];  // turn about the lower block's centroid
   if (cfg.restitution > 0) {
     auto g = dem::damping_from_restitution(cfg.restitution, cfg.contact.normal_stiffness, model.mass[1]);
-    if (!g.ok()) return make_error("tilt restitution: " + g.error().message);
+    if (!g.ok()) return with_prefix("tilt restitution: ", g.error());
     model.def.contact.normal_damping = *g;
   }
   res.normal_damping = model.def.contact.normal_damping;

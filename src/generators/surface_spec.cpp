@@ -225,7 +225,7 @@ Result<SurfaceSpec> make_surface_spec(const std::string& generator, const ValueS
     for (auto& [name, v] : s.values)
       if (const Field* f = find_field(g->fields, name)) {
         auto c = check_si_value(*f, v);
-        if (!c) return make_error(generator + ": " + c.error().message);
+        if (!c) return with_prefix(generator + ": ", c.error());
         v = *c;
       }
   }

@@ -126,7 +126,7 @@ Result<T> apply(const std::vector<Binding<T>>& table, T base, const ValueSet& si
       return make_error(fmt::format("{}: unknown parameter '{}'{}", what, name, hint));
     }
     auto checked = check_si_value(b->field, value);
-    if (!checked) return make_error(what + ": " + checked.error().message);
+    if (!checked) return with_prefix(what + ": ", checked.error());
     b->set(base, *checked);
   }
   return base;

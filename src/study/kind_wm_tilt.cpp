@@ -44,7 +44,7 @@ constexpr const char* kRunawayName[3] = {"half_lambda", "lambda", "two_lambda"};
 
 Result<Profile> envelope_of(const Curve& c, const char* what) {
   auto e = upper_envelope(c);
-  if (!e) return make_error(std::string(what) + ": " + e.error().message);
+  if (!e) return with_prefix(std::string(what) + ": ", e.error());
   return e;
 }
 
@@ -123,7 +123,7 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
     le->period.reset();
   }
   auto sig = signature(*le, rotate180(*ue), so);
-  if (!sig) return make_error("signature for sigma (Eq. 18): " + sig.error().message);
+  if (!sig) return with_prefix("signature for sigma (Eq. 18): ", sig.error());
 
   // Where the block starts. run_tilt takes the least lift h(s) over the offset range; without a
   // period that is often near the end of the range [0, L_b/2] (the overlap shrinks there and long
@@ -184,10 +184,10 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
   else
     rest = std::clamp(rest, 0.0, 0.5 * std::min(le->x.back() - le->x.front(), ue->x.back() - ue->x.front()));
   auto hold = analyse_hold(*le, rotate180(*ue), hso, ho, rest);
-  if (!hold) return make_error("hold angle: " + hold.error().message);
+  if (!hold) return with_prefix("hold angle: ", hold.error());
   hso.spheroradius = c.radius;
   auto hold_r = analyse_hold(*le, rotate180(*ue), hso, ho, rest);
-  if (!hold_r) return make_error("hold angle of the rounded blocks: " + hold_r.error().message);
+  if (!hold_r) return with_prefix("hold angle of the rounded blocks: ", hold_r.error());
   // The 10 k_n check reads the run's own run-away distance (2 lambda): its prediction is the
   // rounded blocks' hold angle at that distance.
   double stiff_hold = std::nan("");
@@ -195,7 +195,7 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
     HoldOptions ho2 = ho;
     ho2.runaway_distance = kRunaway[2] * lambda;
     auto hold_r2 = analyse_hold(*le, rotate180(*ue), hso, ho2, rest);
-    if (!hold_r2) return make_error("hold angle of the rounded blocks at 2 lambda: " + hold_r2.error().message);
+    if (!hold_r2) return with_prefix("hold angle of the rounded blocks at 2 lambda: ", hold_r2.error());
     stiff_hold = (c.reverse ? hold_r2->start.backward : hold_r2->start.forward).hold_angle;
   }
   const HoldAngle& hq = c.reverse ? hold->start.backward : hold->start.forward;

@@ -173,4 +173,27 @@ TEST(CliExitCodes, TiltMovieNeedsAKnownExtensionAndFfmpegAndHoldsEveryFrame) {
       gif + " > " + count_path;
   ASSERT_EQ(std::system(probe.c_str()), 0);
   EXPECT_EQ(std::stol(read_file(count_path)), reported);
+  // The first frame as ffmpeg decodes it (640 x 360 RGB): the labels (dark antialiased text) in
+  // the band at the top, the blocks (grey lower, blue upper) below it, white around.
+  const std::string raw_path = temp_path("movie_frame0.rgb");
+  ASSERT_EQ(
+      std::system(("ffmpeg -v error -y -i " + gif + " -vframes 1 -f rawvideo -pix_fmt rgb24 " + raw_path).c_str()), 0);
+  const std::string px = read_file(raw_path);
+  ASSERT_EQ(px.size(), 640u * 360u * 3u);
+  auto near = [&](std::size_t i, int r, int g, int b) {
+    return std::abs(std::uint8_t(px[3 * i]) - r) < 30 && std::abs(std::uint8_t(px[3 * i + 1]) - g) < 30 &&
+           std::abs(std::uint8_t(px[3 * i + 2]) - b) < 30;
+  };
+  std::size_t text_dark = 0, text_white = 0, lower = 0, upper = 0;
+  for (std::size_t i = 0; i < 640u * 360u; ++i) {
+    const bool band = i / 640 < 50;  // the two label lines (font 15 px)
+    if (band && near(i, 0, 0, 0)) ++text_dark;
+    if (band && near(i, 255, 255, 255)) ++text_white;
+    if (!band && near(i, 150, 150, 160)) ++lower;
+    if (!band && near(i, 90, 140, 200)) ++upper;
+  }
+  EXPECT_GT(text_dark, 500u);             // "t = 0.000 s  tilt = ...", "atan(...) = ...", legend
+  EXPECT_GT(text_white, 640u * 50u / 2);  // text, not a filled band
+  EXPECT_GT(lower, 2000u);
+  EXPECT_GT(upper, 2000u);
 }

@@ -24,11 +24,18 @@ need '^\./usr/lib/(.*/)?cmake/frictal/frictalConfigVersion\.cmake$'
 need '^\./usr/lib/(.*/)?cmake/frictal/frictalTargets\.cmake$'
 need '^\./usr/lib/python3/dist-packages/frictal/__init__\.py$'
 need '^\./usr/lib/python3/dist-packages/frictal/_core\..*\.so$'
+need '^\./usr/share/doc/frictal/copyright$'
 dpkg-deb -f "$deb" Package Version Depends
 [[ $fail == 0 ]] || exit 1
 # Run the CLI and the Python module from the extracted package (not from the build tree).
 root="$work/root"
 dpkg-deb -x "$deb" "$root"
+# The copyright file: machine-readable (DEP-5), frictal's own files under GPL-3.0-or-later.
+copyright="$root/usr/share/doc/frictal/copyright"
+head -n1 "$copyright" | grep -q '^Format: https://www.debian.org/doc/packaging-manuals/copyright-format/1.0/' ||
+  { echo "copyright: not in the DEP-5 format"; exit 1; }
+grep -Pzq 'Files: \*\nCopyright: [^\n]*\nLicense: GPL-3.0-or-later\n' "$copyright" ||
+  { echo "copyright: no 'Files: *' stanza with License: GPL-3.0-or-later"; exit 1; }
 "$root/usr/bin/frictal" --version
 # K2 Koch surface at alpha = 10 deg: the signature maximum is 2 alpha (paper Fig. 4).
 "$root/usr/bin/frictal" surface koch --iterations 2 --alpha 10 -o "$work/k2.csv" 2>/dev/null

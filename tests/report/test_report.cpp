@@ -9,6 +9,8 @@
 #include <regex>
 #include <string>
 
+#include <zlib.h>
+
 #include "frictal/areal.hpp"
 #include "frictal/generators.hpp"
 #include "frictal/report.hpp"
@@ -59,35 +61,111 @@ TEST(Report, Base64MatchesRfc4648Vectors) {
   EXPECT_EQ(rp::base64(std::string("\xff\xfe", 2)), "//4=");
 }
 
-TEST(Report, PngHasSignatureHeaderStoredDataAndTheStandardIendCrc) {
+/// The pixels of an 8-bit RGB PNG, decoded as the PNG specification says: every chunk's CRC-32
+/// checked, the IDAT data inflated with zlib's uncompress and each scanline unfiltered (any of the
+/// five filter types). Fails the test (and returns nothing) on anything else.
+static std::vector<std::uint8_t> decode_rgb_png(const std::string& s, std::size_t& w, std::size_t& h) {
+  EXPECT_EQ(s.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  std::string idat;
+  bool end = false;
+  for (std::size_t at = 8; at + 12 <= s.size() && !end;) {
+    const std::size_t len = be32(s, at);
+    if (at + 12 + len > s.size()) break;
+    const std::string type = s.substr(at + 4, 4);
+    const std::uint32_t crc =
+        std::uint32_t(crc32(crc32(0L, Z_NULL, 0), reinterpret_cast<const Bytef*>(s.data() + at + 4), uInt(4 + len)));
+    EXPECT_EQ(be32(s, at + 8 + len), crc) << type;
+    if (type == "IHDR") {
+      w = be32(s, at + 8);
+      h = be32(s, at + 12);
+      EXPECT_EQ(int(std::uint8_t(s[at + 16])), 8);  // bit depth
+      EXPECT_EQ(int(std::uint8_t(s[at + 17])), 2);  // RGB
+    }
+    if (type == "IDAT") idat += s.substr(at + 8, len);
+    end = type == "IEND";
+    at += 12 + len;
+  }
+  EXPECT_TRUE(end);
+  const std::size_t stride = 3 * w;
+  std::string raw(h * (1 + stride), '\0');
+  uLongf raw_size = uLongf(raw.size());
+  EXPECT_EQ(uncompress(reinterpret_cast<Bytef*>(raw.data()), &raw_size, reinterpret_cast<const Bytef*>(idat.data()),
+                       uLong(idat.size())),
+            Z_OK);
+  EXPECT_EQ(raw_size, raw.size());
+  std::vector<std::uint8_t> px(h * stride);
+  for (std::size_t r = 0; r < h; ++r) {
+    const int filter = std::uint8_t(raw[r * (1 + stride)]);
+    EXPECT_LE(filter, 4);
+    for (std::size_t i = 0; i < stride; ++i) {
+      const int x = std::uint8_t(raw[r * (1 + stride) + 1 + i]);
+      const int a = i >= 3 ? px[r * stride + i - 3] : 0, b = r > 0 ? px[(r - 1) * stride + i] : 0,
+                c = i >= 3 && r > 0 ? px[(r - 1) * stride + i - 3] : 0;
+      const int p = a + b - c, pa = std::abs(p - a), pb = std::abs(p - b), pc = std::abs(p - c);
+      const int pred = filter == 1   ? a
+                       : filter == 2 ? b
+                       : filter == 3 ? (a + b) / 2
+                       : filter == 4 ? (pa <= pb && pa <= pc ? a
+                                        : pb <= pc           ? b
+                                                             : c)
+                                     : 0;
+      px[r * stride + i] = std::uint8_t(x + pred);
+    }
+  }
+  return px;
+}
+
+TEST(Report, PngDecodesWithZlibToThePixelsPutIn) {
   // 3 x 2 pixels: red, green, blue / white, black, grey.
   const std::vector<std::uint8_t> rgb = {255, 0, 0, 0, 255, 0, 0, 0, 255, 255, 255, 255, 0, 0, 0, 128, 128, 128};
   auto png = rp::encode_png(3, 2, rgb);
   ASSERT_TRUE(png);
   const std::string& s = *png;
-  EXPECT_EQ(s.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   EXPECT_EQ(be32(s, 8), 13u);
   EXPECT_EQ(s.substr(12, 4), "IHDR");
-  EXPECT_EQ(be32(s, 16), 3u);
-  EXPECT_EQ(be32(s, 20), 2u);
-  EXPECT_EQ(int(std::uint8_t(s[24])), 8);  // bit depth
-  EXPECT_EQ(int(std::uint8_t(s[25])), 2);  // RGB
   // IEND is always 00000000 "IEND" AE426082 (PNG specification).
   EXPECT_EQ(s.substr(s.size() - 12), std::string("\0\0\0\0IEND\xae\x42\x60\x82", 12));
-  // IDAT: zlib header, one final stored block holding the two filtered scanlines, Adler-32.
-  const std::size_t idat = 8 + 25;
-  ASSERT_EQ(s.substr(idat + 4, 4), "IDAT");
-  const std::string z = s.substr(idat + 8, be32(s, idat));
-  EXPECT_EQ(int(std::uint8_t(z[0])), 0x78);
-  EXPECT_EQ((std::uint8_t(z[0]) * 256 + std::uint8_t(z[1])) % 31, 0);  // RFC 1950 FCHECK
-  EXPECT_EQ(int(std::uint8_t(z[2])), 1);                               // BFINAL, stored
-  const std::size_t len = std::uint8_t(z[3]) | (std::uint8_t(z[4]) << 8);
-  ASSERT_EQ(len, 2u * (1 + 9));
-  std::string raw = z.substr(7, len);
-  EXPECT_EQ(raw[0], '\0');
-  EXPECT_EQ(std::vector<std::uint8_t>(raw.begin() + 1, raw.begin() + 10),
-            std::vector<std::uint8_t>(rgb.begin(), rgb.begin() + 9));
+  std::size_t w = 0, h = 0;
+  EXPECT_EQ(decode_rgb_png(s, w, h), rgb);
+  EXPECT_EQ(w, 3u);
+  EXPECT_EQ(h, 2u);
+  // A larger image: pseudo-random bytes (every byte value, rows that differ) and a smooth ramp.
+  const std::size_t W = 67, H = 41;
+  std::vector<std::uint8_t> noise(W * H * 3), ramp(W * H * 3);
+  std::uint32_t state = 12345;
+  for (std::size_t i = 0; i < noise.size(); ++i) {
+    state = state * 1664525u + 1013904223u;
+    noise[i] = std::uint8_t(state >> 24);
+    ramp[i] = std::uint8_t((i / 3 % W) * 3 + (i / 3 / W) * 2 + i % 3);
+  }
+  for (const auto* img : {&noise, &ramp}) {
+    auto p = rp::encode_png(W, H, *img);
+    ASSERT_TRUE(p);
+    EXPECT_EQ(decode_rgb_png(*p, w, h), *img);
+    EXPECT_EQ(w, W);
+    EXPECT_EQ(h, H);
+  }
+  // Compressed: the ramp's file is far smaller than its pixels (stored blocks would be larger).
+  EXPECT_LT(rp::encode_png(W, H, ramp)->size(), ramp.size() / 4);
   EXPECT_FALSE(rp::encode_png(3, 3, rgb));
+}
+
+TEST(Report, ViridisIsMatplotlibs) {
+  // matplotlib's published viridis values: viridis(0) #440154, viridis(0.5) #21918c, viridis(1)
+  // #fde725; and entries 32 (#472d7b), 224 (#addc30) of its 256 (matplotlib.colormaps['viridis'](k / 255)).
+  const auto hex = [](double t) {
+    std::uint8_t c[3];
+    rp::viridis(t, c);
+    return fmt::format("#{:02x}{:02x}{:02x}", c[0], c[1], c[2]);
+  };
+  EXPECT_EQ(hex(0), "#440154");
+  EXPECT_EQ(hex(0.5), "#21918c");
+  EXPECT_EQ(hex(1), "#fde725");
+  EXPECT_EQ(hex(32.0 / 255), "#472d7b");
+  EXPECT_EQ(hex(224.0 / 255), "#addc30");
+  EXPECT_EQ(hex(-1), "#440154");  // clamped
+  EXPECT_EQ(hex(2), "#fde725");
+  EXPECT_EQ(hex(std::nan("")), "#440154");
 }
 
 TEST(Report, NiceTicksAndUnits) {
