@@ -124,6 +124,7 @@ class SphereField {
     for (std::size_t t = 0; t < tnx * tny; ++t) count[t + 1] += count[t];
     order_.resize(nodes_.size());
     std::vector<std::size_t> fill(count.begin(), count.end() - 1);
+    std::vector<std::size_t> tile_super;                                             // each tile's super-tile
     for (std::size_t k = 0; k < nodes_.size(); ++k) order_[fill[tile_of[k]]++] = k;  // node order kept in a tile
     for (std::size_t t = 0; t < tnx * tny; ++t) {
       if (count[t] == count[t + 1]) continue;
@@ -135,7 +136,32 @@ class SphereField {
         tile.base = std::max(tile.base, -(n.z + r_));
       }
       tiles_.push_back(tile);
+      tile_super.push_back((t / tnx / kSuper) * ((tnx + kSuper - 1) / kSuper) + (t % tnx) / kSuper);
     }
+    // Super-tiles of kSuper x kSuper tiles over super-blocks of kSuper x kSuper blocks: a rebuild
+    // of a Near list skips a super-tile whose bound is below the threshold without its tiles.
+    const std::size_t nsup = ((tnx + kSuper - 1) / kSuper) * ((tny + kSuper - 1) / kSuper);
+    std::vector<std::size_t> at(nsup, std::size_t(-1));
+    for (std::size_t k = 0; k < tiles_.size(); ++k) {
+      std::size_t& a = at[tile_super[k]];
+      if (a == std::size_t(-1)) {
+        a = supers_.size();
+        supers_.push_back({{}, INFINITY, -INFINITY, INFINITY, -INFINITY, kNoContact});
+      }
+      Super& sp = supers_[a];
+      const Tile& tl = tiles_[k];
+      sp.tiles.push_back(std::uint32_t(k));
+      sp.xlo = std::min(sp.xlo, tl.xlo), sp.xhi = std::max(sp.xhi, tl.xhi);
+      sp.ylo = std::min(sp.ylo, tl.ylo), sp.yhi = std::max(sp.yhi, tl.yhi);
+      sp.base = std::max(sp.base, tl.base);
+    }
+    snx_ = (bnx_ + kSuper - 1) / kSuper;
+    sblock_top_.assign(snx_ * ((bny_ + kSuper - 1) / kSuper), kNoContact);
+    for (std::size_t j = 0; j < bny_; ++j)
+      for (std::size_t i = 0; i < bnx_; ++i) {
+        double& b = sblock_top_[(j / kSuper) * snx_ + i / kSuper];
+        b = std::max(b, block_top_[j * bnx_ + i]);
+      }
   }
   /// The spheres that can reach the top anywhere within `radius` of an offset `centre`: every
   /// sphere whose wide bound (the highest cell top within r + radius of its centre, plus r, less
@@ -144,6 +170,7 @@ class SphereField {
   struct Near {
     double cx = 0, cy = 0, radius = -1;
     double threshold = kNoContact;
+    double last = kNoContact;                            ///< h at the last offset evaluated (unit: m)
     std::vector<std::pair<double, std::uint32_t>> list;  ///< (wide bound (m), node index)
     long rebuilds = 0, fallbacks = 0;                    ///< (unitless)
   };
@@ -155,14 +182,18 @@ class SphereField {
   double eval_near(double sx, double sy, double& bx, double& by, std::size_t& work, Near& near, double eps = 0,
                    std::vector<Piece>* pieces = nullptr) const {
     const double ox = sx - near.cx, oy = sy - near.cy;
-    if (near.radius < 0 || !(ox * ox + oy * oy <= near.radius * near.radius)) {
-      // Rebuild around s: the full evaluation gives h here, the threshold lies below it by eps,
-      // the descent's room (a slope of 2 over the disc) and two sphere radii.
+    if (near.radius < 0 || near.last == kNoContact) {
+      // The first list: around h here (the full evaluation), down by eps and a quarter of the
+      // disc's radius (h changes by less over most of the disc; where it does, the full
+      // evaluation answers).
       const double h0 = eval(sx, sy, bx, by, work, eps, pieces);
       if (h0 == kNoContact) return h0;
       rebuild(near, sx, sy, h0 - eps - 0.25 * near_radius());
+      near.last = h0;
       return h0;
     }
+    if (!(ox * ox + oy * oy <= near.radius * near.radius))  // around the last height found, lower by half the radius
+      rebuild(near, sx, sy, near.last - eps - 0.5 * near_radius());
     double best = kNoContact;
     if (pieces) pieces->clear();
     bool complete = false;
@@ -175,8 +206,12 @@ class SphereField {
     }
     if (!complete && !(best != kNoContact && best - eps >= near.threshold)) {
       ++near.fallbacks;
-      return eval(sx, sy, bx, by, work, eps, pieces);
+      best = eval(sx, sy, bx, by, work, eps, pieces);
+      near.last = best;
+      if (best != kNoContact) rebuild(near, sx, sy, best - eps - 0.25 * near_radius());
+      return best;
     }
+    near.last = best;
     if (pieces) std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
     return best;
   }
@@ -226,21 +261,31 @@ class SphereField {
     near.threshold = threshold;
     near.list.clear();
     const double wr = near.radius;  // the footprints widened by the disc
-    for (const Tile& tl : tiles_) {
+    const std::size_t sblock = kBlock * kSuper;
+    for (const Super& sp : supers_) {
       std::size_t i0, i1, j0, j1;
-      if (!cell_range(tl.xlo + sx - wr, tl.xhi + sx + wr, tl.ylo + sy - wr, tl.yhi + sy + wr, i0, i1, j0, j1)) continue;
-      double top = kNoContact;
-      for (std::size_t bj = j0 / kBlock; bj <= j1 / kBlock; ++bj)
-        for (std::size_t bi = i0 / kBlock; bi <= i1 / kBlock; ++bi) top = std::max(top, block_top_[bj * bnx_ + bi]);
-      if (top + r_ + tl.base < threshold) continue;
-      for (std::size_t q = tl.begin; q < tl.end; ++q) {
-        const detail::TiltNode& n = nodes_[order_[q]];
-        if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
-        double b = kNoContact;
-        for (std::size_t j = j0; j <= j1; ++j)
-          for (std::size_t i = i0; i <= i1; ++i) b = std::max(b, cell_top_[j * cnx_ + i]);
-        const double wide = b + r_ - (n.z + r_);
-        if (wide >= threshold) near.list.push_back({wide, std::uint32_t(order_[q])});
+      if (!cell_range(sp.xlo + sx - wr, sp.xhi + sx + wr, sp.ylo + sy - wr, sp.yhi + sy + wr, i0, i1, j0, j1)) continue;
+      double stop = kNoContact;
+      for (std::size_t bj = j0 / sblock; bj <= j1 / sblock; ++bj)
+        for (std::size_t bi = i0 / sblock; bi <= i1 / sblock; ++bi) stop = std::max(stop, sblock_top_[bj * snx_ + bi]);
+      if (stop + r_ + sp.base < threshold) continue;
+      for (const std::uint32_t ti : sp.tiles) {
+        const Tile& tl = tiles_[ti];
+        if (!cell_range(tl.xlo + sx - wr, tl.xhi + sx + wr, tl.ylo + sy - wr, tl.yhi + sy + wr, i0, i1, j0, j1))
+          continue;
+        double top = kNoContact;
+        for (std::size_t bj = j0 / kBlock; bj <= j1 / kBlock; ++bj)
+          for (std::size_t bi = i0 / kBlock; bi <= i1 / kBlock; ++bi) top = std::max(top, block_top_[bj * bnx_ + bi]);
+        if (top + r_ + tl.base < threshold) continue;
+        for (std::size_t q = tl.begin; q < tl.end; ++q) {
+          const detail::TiltNode& n = nodes_[order_[q]];
+          if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
+          double b = kNoContact;
+          for (std::size_t j = j0; j <= j1; ++j)
+            for (std::size_t i = i0; i <= i1; ++i) b = std::max(b, cell_top_[j * cnx_ + i]);
+          const double wide = b + r_ - (n.z + r_);
+          if (wide >= threshold) near.list.push_back({wide, std::uint32_t(order_[q])});
+        }
       }
     }
     std::sort(near.list.begin(), near.list.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -250,6 +295,15 @@ class SphereField {
     double xlo, xhi, ylo, yhi;  ///< their centres' extent at offset 0 (unit: m)
     double base;                ///< the highest -(z + r) of its spheres (unit: m)
   };
+  static constexpr std::size_t kSuper = 8;  ///< tiles (and blocks) per super-tile side
+  struct Super {
+    std::vector<std::uint32_t> tiles;  ///< indices into tiles_
+    double xlo, xhi, ylo, yhi;         ///< its spheres' extent at offset 0 (unit: m)
+    double base;                       ///< the highest -(z + r) of its spheres (unit: m)
+  };
+  std::vector<Super> supers_;
+  std::size_t snx_ = 0;
+  std::vector<double> sblock_top_;  ///< max of block_top_ over kSuper x kSuper blocks
 
   /// The cells whose rectangle meets the rectangle [x0, x1] x [y0, y1] widened by r; false if none.
   bool cell_range(double x0, double x1, double y0, double y1, std::size_t& i0, std::size_t& i1, std::size_t& j0,
