@@ -162,6 +162,22 @@ struct ArealTiltHold {
 Result<ArealTiltHold> areal_tilt_hold(const Map& lower, const Map& upper, const ArealTiltOptions& t,
                                       double resolution = 1e-4, double stationary = 1e-7, double start_tilt = 0);
 
+/// One drop of areal_tilt_hold_drops: where the block is put down, (x, y) (unit: m), and whether
+/// it slides along d only (t.lock_lateral for this drop).
+struct ArealTiltDrop {
+  std::array<double, 2> start = {0, 0};
+  bool locked = false;
+};
+/// areal_tilt_hold (default resolution and stationary threshold, from zero tilt) from each drop,
+/// on one field of spheres and triangles shared by all of them (built once, read by `threads`
+/// workers, 0 = all cores): element k of the result is drop k's, identical to areal_tilt_hold
+/// from that drop. t.start_offset and t.lock_lateral are those of each drop. `progress` (if set)
+/// is called with (drops done, drops) after each, from the worker threads under a lock.
+/// Errors: as areal_tilt_hold, the first failing drop named by its start offset.
+Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
+    const Map& lower, const Map& upper, const ArealTiltOptions& t, const std::vector<ArealTiltDrop>& drops,
+    unsigned threads = 0, const std::function<void(std::size_t, std::size_t)>& progress = {});
+
 /// How well conditioned the hold angle of areal_tilt_hold is. Where a slip ends can hinge on a basin
 /// boundary that passes within a sphere radius of the end; then how the block slides (damped
 /// dynamics in MuJoCo, steepest descent here) decides the seat it takes and the hold angle from

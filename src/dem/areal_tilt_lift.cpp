@@ -7,7 +7,9 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "analysis/areal_grid.hpp"
@@ -531,8 +533,11 @@ std::optional<std::array<double, 3>> areal_tilt_last_seat(const ArealTiltResult&
   return std::array<double, 3>{first, seat->x, seat->y};
 }
 
-Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
-                                      double stationary, double start_tilt) {
+namespace {
+
+/// The checks of areal_tilt_hold that do not depend on the start offset.
+Status check_hold_inputs(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution, double stationary,
+                         double start_tilt) {
   if (auto s = validate(f, "lower map"); !s) return s.error();
   if (auto s = validate(g, "upper map"); !s) return s.error();
   if (f.nx < 2 || f.ny < 2) return make_error("areal_tilt_hold: the lower map needs 2 x 2 nodes");
@@ -554,14 +559,16 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   if (!(start_tilt >= 0 && start_tilt < t.max_tilt))
     return make_error(
         fmt::format("areal_tilt_hold: start tilt {} rad: expected in [0, max_tilt = {})", start_tilt, t.max_tilt));
-  if (!std::isfinite(t.start_offset[0]) || !std::isfinite(t.start_offset[1]) || !std::isfinite(t.runaway_distance) ||
-      t.runaway_distance < 0)
-    return make_error("areal_tilt_hold: the start offset must be finite and the run-away distance finite and >= 0 (m)");
-  const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
-  if (nodes.empty()) return make_error("areal_tilt_hold: the upper map has no valid node");
-  const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
-  const double r = detail::tilt_sphere_radius(f, t);
-  const SphereField field(nodes, hf, r);
+  if (!std::isfinite(t.runaway_distance) || t.runaway_distance < 0)
+    return make_error("areal_tilt_hold: the run-away distance must be finite and >= 0 (m)");
+  return Ok{};
+}
+
+/// The protocol of areal_tilt_hold on a field already built (inputs checked), from t.start_offset.
+Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, const ArealTiltOptions& t, double r,
+                                    double resolution, double stationary, double start_tilt) {
+  if (!std::isfinite(t.start_offset[0]) || !std::isfinite(t.start_offset[1]))
+    return make_error("areal_tilt_hold: the start offset must be finite (m)");
   const double dxv = std::cos(t.angle), dyv = std::sin(t.angle);
   const double D = detail::tilt_runaway_distance(f, t);
   ArealTiltHold out;
@@ -728,6 +735,55 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   out.hold_angle = hi;
   out.steering = std::atan2(-(at_hi.x - before.x_stop) * dyv + (at_hi.y - before.y_stop) * dxv,
                             (at_hi.x - before.x_stop) * dxv + (at_hi.y - before.y_stop) * dyv);
+  return out;
+}
+
+}  // namespace
+
+Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
+                                      double stationary, double start_tilt) {
+  if (auto s = check_hold_inputs(f, g, t, resolution, stationary, start_tilt); !s) return s.error();
+  const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
+  if (nodes.empty()) return make_error("areal_tilt_hold: the upper map has no valid node");
+  const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
+  const double r = detail::tilt_sphere_radius(f, t);
+  const SphereField field(nodes, hf, r);
+  return hold_on_field(field, f, t, r, resolution, stationary, start_tilt);
+}
+
+Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
+    const Map& f, const Map& g, const ArealTiltOptions& t, const std::vector<ArealTiltDrop>& drops, unsigned threads,
+    const std::function<void(std::size_t, std::size_t)>& progress) {
+  if (auto s = check_hold_inputs(f, g, t, 1e-4, 1e-7, 0); !s) return s.error();
+  const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
+  if (nodes.empty()) return make_error("areal_tilt_hold: the upper map has no valid node");
+  const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
+  const double r = detail::tilt_sphere_radius(f, t);
+  const SphereField field(nodes, hf, r);  // shared (read-only) by every drop
+  std::vector<ArealTiltHold> out(drops.size());
+  std::vector<std::string> errors(drops.size());
+  std::mutex m;
+  std::size_t done = 0;
+  util::parallel_chunks(drops.size(), util::thread_count(threads, drops.size()),
+                        [&](unsigned, std::size_t b, std::size_t e) {
+                          for (std::size_t k = b; k < e; ++k) {
+                            ArealTiltOptions tk = t;
+                            tk.start_offset = drops[k].start;
+                            tk.lock_lateral = drops[k].locked;
+                            auto h = hold_on_field(field, f, tk, r, 1e-4, 1e-7, 0);
+                            if (h)
+                              out[k] = std::move(h).value();
+                            else
+                              errors[k] = h.error().message;
+                            if (progress) {
+                              std::lock_guard<std::mutex> lock(m);
+                              progress(++done, drops.size());
+                            }
+                          }
+                        });
+  for (std::size_t k = 0; k < drops.size(); ++k)
+    if (!errors[k].empty())
+      return make_error(fmt::format("drop at ({:.6g}, {:.6g}) m: {}", drops[k].start[0], drops[k].start[1], errors[k]));
   return out;
 }
 

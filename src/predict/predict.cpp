@@ -255,41 +255,25 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   std::vector<double> free_angle(nd), locked_angle(nd, 0);
   std::vector<std::array<double, 2>> rest(nd);
   std::vector<char> held(nd, 0), held_locked(nd, 0);
-  std::vector<std::string> errors(nd);
-  const std::size_t jobs = nd * (o.map_locked ? 2 : 1);
-  const unsigned threads = util::thread_count(o.threads, jobs);
-  std::mutex progress_mutex;
-  std::size_t done = 0;
-  util::parallel_chunks(jobs, threads, [&](unsigned, std::size_t b, std::size_t e) {
-    for (std::size_t k = b; k < e; ++k) {
-      const std::size_t drop = k % nd;
-      const bool locked = k >= nd;
-      ArealTiltOptions tk = t;
-      tk.start_offset = p.drop_offsets[drop];
-      tk.lock_lateral = locked;
-      auto r = areal_tilt_hold(*lo, up, tk);
-      if (!r) {
-        errors[drop] = r.error().message;
-        continue;
-      }
-      if (locked) {
-        locked_angle[drop] = r->ran_away ? r->hold_angle : tk.max_tilt;
-        held_locked[drop] = !r->ran_away;
-      } else {
-        free_angle[drop] = r->ran_away ? r->hold_angle : tk.max_tilt;
-        held[drop] = !r->ran_away;
-        rest[drop] = r->rest_offset;
-      }
-      if (o.progress) {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        o.progress(++done, jobs);
-      }
+  // Every drop (free, then locked for the diagnostic) on one field of spheres, shared.
+  std::vector<ArealTiltDrop> jobs;
+  for (std::size_t k = 0; k < nd; ++k) jobs.push_back({p.drop_offsets[k], false});
+  if (o.map_locked)
+    for (std::size_t k = 0; k < nd; ++k) jobs.push_back({p.drop_offsets[k], true});
+  auto holds = areal_tilt_hold_drops(*lo, up, t, jobs, o.threads, o.progress);
+  if (!holds) return holds.error();
+  for (std::size_t k = 0; k < jobs.size(); ++k) {
+    const ArealTiltHold& r = (*holds)[k];
+    const std::size_t drop = k % nd;
+    if (jobs[k].locked) {
+      locked_angle[drop] = r.ran_away ? r.hold_angle : t.max_tilt;
+      held_locked[drop] = !r.ran_away;
+    } else {
+      free_angle[drop] = r.ran_away ? r.hold_angle : t.max_tilt;
+      held[drop] = !r.ran_away;
+      rest[drop] = r.rest_offset;
     }
-  });
-  for (std::size_t k = 0; k < nd; ++k)
-    if (!errors[k].empty())
-      return make_error(
-          fmt::format("drop at ({:.6g}, {:.6g}) m: {}", p.drop_offsets[k][0], p.drop_offsets[k][1], errors[k]));
+  }
   p.drops = nd;
   p.drop_angles = free_angle;
   p.friction_angle = plain_stats(free_angle);
