@@ -110,6 +110,11 @@ std::function<int()> setup(CLI::App& app) {
       // The hold angles over drops on the 2D lift of the same pair (free, then locked).
       HoldStatistics hold_free, hold_locked;
       if (a->hold) {
+        add_warning(warnings, {"grid-model",
+                               "the hold angles (--hold) come from the grid model of the lift (offsets on "
+                               "the map's lattice); the prediction, from the continuous model checked "
+                               "on MuJoCo, is `frictal predict --direction` (they differ by up to "
+                               "several degrees)"});
         ArealLiftOptions lo;
         lo.threads = a->threads;
         const ArealLift lift = unwrap(areal_lift(m, u, angle, lo));

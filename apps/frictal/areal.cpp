@@ -35,7 +35,7 @@ struct Args {
   InputOptions input;
 };
 
-int run_hold(const Args& a, const Map& f, const Map& g) {
+int run_hold(const Args& a, const Map& f, const Map& g, std::vector<Warning> warnings) {
   require(a.lateral.empty() || a.lateral == "free" || a.lateral == "locked",
           fmt::format("--lateral '{}' not understood (expected free or locked)", a.lateral));
   require(std::isfinite(a.runaway_distance) && a.runaway_distance >= 0,
@@ -88,6 +88,10 @@ int run_hold(const Args& a, const Map& f, const Map& g) {
   const ArealHold& chosen = locked_mode ? locked : free;
   std::optional<ArealHoldDistribution> dist;
   if (a.start_offset.empty()) dist = unwrap(areal_hold_distribution(lift, ho));
+  add_warning(warnings, {"grid-model",
+                         "the hold angles here come from the grid model of the lift (offsets on the "
+                         "map's lattice); the prediction, from the continuous model checked on "
+                         "MuJoCo, is `frictal predict` (they differ by up to several degrees)"});
   const auto rest = lift.offset_xy(free.rest);
   const auto held = lift.offset_xy(chosen.hold_node);
   const auto dropped = lift.offset_xy(start);
@@ -97,6 +101,8 @@ int run_hold(const Args& a, const Map& f, const Map& g) {
     j["upper"] = a.upper.empty() ? a.lower : a.upper;
     j["direction_deg"] = a.angle;
     j["lateral"] = locked_mode ? "locked" : "free";
+    j["model"] = "grid-lift";
+    j["warnings"] = warnings_json(warnings);
     j["runaway_distance_m"] = ho.runaway_distance;
     j["atomic_friction"] = a.atomic_friction;
     j["offsets_along"] = lift.n_along;
@@ -127,6 +133,8 @@ int run_hold(const Args& a, const Map& f, const Map& g) {
     j["evaluated_nodes"] = lift.evaluated_nodes;
     print_json(j);
   } else {
+    for (const Warning& w : warnings)
+      if (w.code != "reader") print_warnings({w});  // the reader's are printed as it reads
     fmt::print(
         "{} on {} along {} deg: {} x {} offsets, run-away distance {:.4g} m\n"
         "  dropped at ({:.4g}, {:.4g}) m, rests at ({:.4g}, {:.4g}) m\n"
@@ -187,7 +195,8 @@ std::function<int()> setup(CLI::App& app) {
     };
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);
-    if (!a->lateral.empty() || a->runaway_distance != 0 || !a->start_offset.empty()) return run_hold(*a, f, g);
+    if (!a->lateral.empty() || a->runaway_distance != 0 || !a->start_offset.empty())
+      return run_hold(*a, f, g, std::move(warnings));
     ArealSignatureOptions o;
     o.step = a->step;
     o.offset_max = a->offset_max;

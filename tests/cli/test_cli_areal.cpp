@@ -52,6 +52,13 @@ TEST(CliAreal, GroovesSteerWhenFreeAndHoldWhenLocked) {
               1e-9);
   ASSERT_EQ(j["rest_offset_m"].size(), 2u);
   EXPECT_FALSE(j.contains("hold_angle_mean_deg"));  // a start: no distribution
+  // The grid model is a diagnostic: said in the model key and by its warning code (the prediction
+  // is `frictal predict`, the continuous model).
+  EXPECT_EQ(j["model"], "grid-lift");
+  ASSERT_TRUE(j["warnings"].is_array());
+  bool grid = false;
+  for (const auto& w : j["warnings"]) grid = grid || w["code"] == "grid-model";
+  EXPECT_TRUE(grid) << j["warnings"].dump();
   auto l = run_cli("areal " + groove_args() + " --lateral locked --runaway-distance 1e-6 --start-offset 0,0 --json");
   ASSERT_EQ(l.code, 0) << l.err;
   auto jl = nlohmann::json::parse(l.out);
