@@ -19,7 +19,7 @@ struct Args {
   std::string lower, upper, detrend, start;
   double direction = 0;
   double mu_a = 0;
-  int drops = 3;
+  int drops = PredictOptions{}.map_drops;
   unsigned threads = 0;
   bool json = false;
   bool locked = false;

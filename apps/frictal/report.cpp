@@ -28,7 +28,7 @@ struct Args {
   std::size_t lines = 32;
   int resolution = 10;
   int bins = 90;
-  int drops = 3;
+  int drops = PredictOptions{}.map_drops;
   bool quiet = false;
   unsigned threads = 0;
   std::string tip_radius;

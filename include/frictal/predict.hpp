@@ -53,8 +53,8 @@ struct PredictOptions {
   /// generators set it): drops over one period, the run-away one period (unit: m). 0: as given.
   double period = 0;
   /// Maps: drops on a drops x drops grid over the drop range (unitless, >= 2). Each drop costs
-  /// about 10 s of one core on a 650 x 650 self-pair (bench/results/predict.md).
-  int map_drops = 3;
+  /// 0.2-0.7 s of one core on 10^5-10^6-point maps (bench/results/map-predict.md).
+  int map_drops = 5;
   /// Maps: sphere radius r of the upper face's nodes (0: a fifth of the lower map's smaller spacing) (unit: m).
   double sphere_radius = 0;
   /// Maps: also the block with its lateral motion locked (a diagnostic), from the same drops

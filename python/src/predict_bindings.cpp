@@ -217,7 +217,8 @@ void frictal_bind_predict(py::module_& m) {
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("direction") = 0.0,
       py::arg("atomic_friction") = 0.0, py::arg("runaway_distance") = 0.0, py::arg("detrend") = py::none(),
-      py::arg("start_offset") = py::none(), py::arg("drops") = 5, py::arg("locked") = true, py::arg("spacing") = 0.0,
-      py::arg("format") = "auto", py::arg("unit") = "", py::arg("threads") = 0u,
+      py::arg("start_offset") = py::none(), py::arg("drops") = PredictOptions{}.map_drops,
+      py::arg("locked") = PredictOptions{}.map_locked, py::arg("spacing") = 0.0, py::arg("format") = "auto",
+      py::arg("unit") = "", py::arg("threads") = 0u,
       "The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)");
 }
