@@ -59,15 +59,16 @@ struct Conditioning {
 /// What the conditioning did, step by step.
 struct ConditioningRecord {
   bool is_map = false;
-  bool cropped = false;                ///< a window was applied
-  CropWindow window;                   ///< the window asked for (unit: m)
+  bool cropped = false;                      ///< a window was applied
+  CropWindow window;                         ///< the window asked for (unit: m)
   std::size_t nx_before = 0, ny_before = 0;  ///< points (profiles: ny = 1) before the crop (unitless)
   std::size_t nx_after = 0, ny_after = 0;    ///< points kept by the crop (unitless)
-  bool spikes_checked = false;         ///< step 2 ran
-  double spike_threshold = 0;          ///< k used (unitless)
-  std::size_t spikes_removed = 0;      ///< points replaced (profiles) or masked (maps) (unitless)
-  int spike_passes = 0;                ///< passes of the rule until none was left (unitless)
-  Detrend form;                        ///< the form removed
+  bool spikes_checked = false;               ///< step 2 ran
+  double spike_threshold = 0;                ///< k used (unitless)
+  std::size_t spikes_removed = 0;  ///< points removed: replaced or dropped (profiles), masked (maps) (unitless)
+  std::size_t spikes_dropped = 0;  ///< profiles: of those, points dropped at an end (unitless)
+  int spike_passes = 0;            ///< passes of the rule until none was left (unitless)
+  Detrend form;                    ///< the form removed
   /// "crop x [0.0001, 0.0009] m: 801 of 1001 points; spikes (k = 10): 3 points replaced by linear
   /// interpolation; form: line" — every step in order (the form always).
   std::string text() const;
@@ -82,11 +83,12 @@ struct ConditionedMap {
   ConditioningRecord record;
 };
 
-/// Conditions a profile (`name` names it in messages). Spikes are replaced by the straight line
-/// between the nearest kept neighbours (the piecewise-linear profile is then the one without
-/// those points, and a uniform grid stays uniform). A crop that changes the extent clears
-/// `period`. Errors: an invalid window (x_max <= x_min, non-finite), a window along y, a window
-/// that keeps fewer than 2 points (the message gives the data's x extent), k not finite or <= 0.
+/// Conditions a profile (`name` names it in messages). Spikes are removed from the polyline: one
+/// between kept points is replaced by the straight line between its nearest kept neighbours (so
+/// a uniform grid stays uniform), one with no kept point on one side (at an end) is dropped. A
+/// crop or a drop that changes the extent clears `period`. Errors: an invalid window (x_max <= x_min, non-finite), a
+/// window along y, a window that keeps fewer than 2 points (the message gives the data's x extent), k not finite or <=
+/// 0.
 Result<ConditionedProfile> condition(const Profile& p, const Conditioning& c, const std::string& name = "profile");
 /// The same for a map: spikes become NaN (masked). Errors also when the window keeps fewer than 2
 /// columns (2 rows) of a map that had more, or no valid point.
@@ -100,9 +102,10 @@ std::string conditioning_text(const std::vector<ConditioningRecord>& records);
 std::string detrend_name(const Detrend& d, bool is_map);
 
 /// The points the `spikes` rule flags: |z_i - median of its neighbours| > k * Sq, where Sq is the
-/// rms of the (finite) heights about their mean; neighbours: the two points on each side for a
-/// profile (the two points at each end are not tested), the valid points of the 3 x 3
-/// neighbourhood for a map (at least 3 of them). Run on form-removed heights.
+/// rms of the (finite) heights about their mean; neighbours: the points up to two places away on
+/// each side for a profile (4; 2 or 3 at the ends; profiles of fewer than 5 points are not
+/// tested), the valid points of the 3 x 3 neighbourhood for a map (at least 3 of them). Run on
+/// form-removed heights.
 struct SpikeSearch {
   std::vector<std::size_t> points;  ///< indices (profiles) or flat indices j * nx + i (maps), increasing
   double worst = 0;                 ///< the largest deviation, in units of Sq (unitless)

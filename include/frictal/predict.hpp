@@ -87,8 +87,8 @@ struct Prediction {
   /// sideways, off the grid, quasi-static: areal_tilt_hold).
   std::string model;
   /// Every conditioning step with its numbers (ConditioningRecord::text), e.g. "crop x [0.0001,
-  /// 0.0009] m: kept 801 of 1001 points; spikes (k = 10 Sq): 3 points replaced by linear
-  /// interpolation; form: line"; for two surfaces whose records differ "lower: ... | upper: ...".
+  /// 0.0009] m: kept 801 of 1001 points; spikes (k = 10 Sq): 3 points removed (replaced by
+  /// linear interpolation); form: line"; for two surfaces whose records differ "lower: ... | upper: ...".
   std::string conditioning;
   std::string form;                ///< the form removed: "none", "mean", "line", "plane", "poly:N"
   std::size_t spikes_removed = 0;  ///< points replaced or masked by the spike filter, both surfaces (unitless)

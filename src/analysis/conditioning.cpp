@@ -75,9 +75,11 @@ std::string window_text(const CropWindow& w) {
 
 Status check_window(const CropWindow& w, const std::string& source) {
   if (!std::isfinite(w.x_min) || !std::isfinite(w.x_max) || !(w.x_min < w.x_max))
-    return make_error(fmt::format("{}: x window [{:.6g}, {:.6g}] m; expected finite x0 < x1", source, w.x_min, w.x_max));
+    return make_error(
+        fmt::format("{}: x window [{:.6g}, {:.6g}] m; expected finite x0 < x1", source, w.x_min, w.x_max));
   if (w.has_y && (!std::isfinite(w.y_min) || !std::isfinite(w.y_max) || !(w.y_min < w.y_max)))
-    return make_error(fmt::format("{}: y window [{:.6g}, {:.6g}] m; expected finite y0 < y1", source, w.y_min, w.y_max));
+    return make_error(
+        fmt::format("{}: y window [{:.6g}, {:.6g}] m; expected finite y0 < y1", source, w.y_min, w.y_max));
   return Ok{};
 }
 
@@ -150,13 +152,19 @@ std::string ConditioningRecord::text() const {
       steps.push_back(fmt::format("crop {}: kept {} of {} points", window_text(window), nx_after, nx_before));
   }
   if (spikes_checked) {
-    const std::string what = spikes_removed == 0 ? "none found"
-                             : is_map ? fmt::format("{} point{} masked", spikes_removed, spikes_removed == 1 ? "" : "s")
-                                      : fmt::format("{} point{} replaced by linear interpolation", spikes_removed,
-                                                    spikes_removed == 1 ? "" : "s");
-    steps.push_back(fmt::format("spikes (k = {:g} Sq): {}{}", spike_threshold, what,
-                                spike_passes >= kMaxSpikePasses ? fmt::format(" (stopped after {} passes)", spike_passes)
-                                                                : ""));
+    const std::string what =
+        spikes_removed == 0 ? "none found"
+        : is_map            ? fmt::format("{} point{} masked", spikes_removed, spikes_removed == 1 ? "" : "s")
+                            : fmt::format("{} point{} removed ({})", spikes_removed, spikes_removed == 1 ? "" : "s",
+                               spikes_dropped == 0 ? std::string("replaced by linear interpolation")
+                                          : spikes_dropped == spikes_removed
+                                              ? std::string("dropped at the ends")
+                                              : fmt::format("{} replaced by linear interpolation, {} "
+                                                                       "dropped at the ends",
+                                                            spikes_removed - spikes_dropped, spikes_dropped));
+    steps.push_back(
+        fmt::format("spikes (k = {:g} Sq): {}{}", spike_threshold, what,
+                    spike_passes >= kMaxSpikePasses ? fmt::format(" (stopped after {} passes)", spike_passes) : ""));
   }
   steps.push_back("form: " + detrend_name(form, is_map));
   std::string s;
@@ -172,7 +180,10 @@ std::string conditioning_text(const std::vector<ConditioningRecord>& records) {
   if (same) return first;
   std::string s;
   for (std::size_t k = 0; k < records.size(); ++k)
-    s += (k ? " | " : "") + (k == 0 ? std::string("lower") : k == 1 ? std::string("upper") : fmt::format("surface {}", k + 1)) +
+    s += (k ? " | " : "") +
+         (k == 0   ? std::string("lower")
+          : k == 1 ? std::string("upper")
+                   : fmt::format("surface {}", k + 1)) +
          ": " + records[k].text();
   return s;
 }
@@ -180,10 +191,15 @@ std::string conditioning_text(const std::vector<ConditioningRecord>& records) {
 SpikeSearch find_spikes(const Profile& p, double k) {
   SpikeSearch s;
   s.rms = rms_about_mean(p.z);
-  if (!(s.rms > 0) || p.z.size() < 5) return s;
-  std::vector<double> w(4);
-  for (std::size_t i = 2; i + 2 < p.z.size(); ++i) {
-    w = {p.z[i - 2], p.z[i - 1], p.z[i + 1], p.z[i + 2]};
+  const std::size_t n = p.z.size();
+  if (!(s.rms > 0) || n < 5) return s;
+  std::vector<double> w;
+  w.reserve(4);
+  for (std::size_t i = 0; i < n; ++i) {
+    // The points up to two places away on each side (at the ends, those that exist: 2 or 3).
+    w.clear();
+    for (std::size_t j = i >= 2 ? i - 2 : 0; j <= i + 2 && j < n; ++j)
+      if (j != i) w.push_back(p.z[j]);
     const double dev = std::abs(p.z[i] - median_of(w)) / s.rms;
     if (dev > k) s.points.push_back(i), s.worst = std::max(s.worst, dev);
   }
@@ -237,10 +253,10 @@ Result<ConditionedProfile> condition(const Profile& p, const Conditioning& c, co
     const auto b = std::upper_bound(p.x.begin(), p.x.end(), w.x_max + tol) - p.x.begin();
     const std::size_t kept = b > a ? std::size_t(b - a) : 0;
     if (kept < 2 || !(p.x[std::size_t(b - 1)] > p.x[std::size_t(a)]))
-      return make_error(fmt::format("{}: the window x {} keeps {} of the {} points of {}, whose x spans {}; expected a "
-                                    "window inside that extent that keeps at least 2 points",
-                                    c.crop_source, range_text(w.x_min, w.x_max), kept, p.size(), name,
-                                    range_text(p.x_min(), p.x_max())));
+      return make_error(fmt::format(
+          "{}: the window x {} keeps {} of the {} points of {}, whose x spans {}; expected a "
+          "window inside that extent that keeps at least 2 points",
+          c.crop_source, range_text(w.x_min, w.x_max), kept, p.size(), name, range_text(p.x_min(), p.x_max())));
     cur.x.assign(p.x.begin() + a, p.x.begin() + b);
     cur.z.assign(p.z.begin() + a, p.z.begin() + b);
     if (kept == p.size()) cur.period = p.period;  // a crop that keeps everything keeps the period
@@ -263,11 +279,21 @@ Result<ConditionedProfile> condition(const Profile& p, const Conditioning& c, co
         formed = std::move(f).value();
         break;
       }
-      // Replace each spike by the line between its nearest non-spike neighbours (the two points at
-      // each end are never tested, so both neighbours exist).
+      // Remove the spikes from the polyline: each one between kept points is replaced by the
+      // straight line between its nearest kept neighbours (the sampling grid stays), those with no
+      // kept point on one side (at an end) are dropped. Both give the profile without them.
       std::vector<char> spike(cur.size(), 0);
       for (std::size_t i : s.points) spike[i] = 1;
-      for (std::size_t i : s.points) {
+      std::size_t first = 0, last = cur.size() - 1;
+      while (first < cur.size() && spike[first]) ++first;
+      while (last > first && spike[last]) --last;
+      if (last <= first || cur.x[last] <= cur.x[first])
+        return make_error(
+            fmt::format("{}: the spike filter (k = {:g}) flags all but {} of the {} points; expected a "
+                        "threshold that leaves the surface",
+                        name, c.spike_threshold, last >= first ? last - first + 1 : 0, cur.size()));
+      for (std::size_t i = first + 1; i < last; ++i) {
+        if (!spike[i]) continue;
         std::size_t l = i - 1, h = i + 1;
         while (spike[l]) --l;
         while (spike[h]) ++h;
@@ -276,6 +302,12 @@ Result<ConditionedProfile> condition(const Profile& p, const Conditioning& c, co
         cur.z[i] = cur.z[l] + t * (cur.z[h] - cur.z[l]);
       }
       // The neighbours read above were never spikes of this pass, so the order does not matter.
+      if (first > 0 || last + 1 < cur.size()) {
+        r.spikes_dropped += first + (cur.size() - 1 - last);
+        cur.x = std::vector<double>(cur.x.begin() + std::ptrdiff_t(first), cur.x.begin() + std::ptrdiff_t(last + 1));
+        cur.z = std::vector<double>(cur.z.begin() + std::ptrdiff_t(first), cur.z.begin() + std::ptrdiff_t(last + 1));
+        cur.period.reset();  // shorter than the periods it covered
+      }
       r.spikes_removed += s.points.size();
     }
   }
@@ -304,12 +336,13 @@ Result<ConditionedMap> condition(const Map& m, const Conditioning& c, const std:
     const auto [i0, i1] = grid_range(m.x0, m.dx, m.nx, w.x_min, w.x_max, nx);
     std::pair<std::size_t, std::size_t> jr{0, m.ny ? m.ny - 1 : 0};
     if (w.has_y) jr = grid_range(m.y0, m.dy, m.ny, w.y_min, w.y_max, ny);
-    const std::string extent =
-        fmt::format("whose x spans {} and y {}", range_text(m.x0, m.x0 + m.width()), range_text(m.y0, m.y0 + m.height()));
+    const std::string extent = fmt::format("whose x spans {} and y {}", range_text(m.x0, m.x0 + m.width()),
+                                           range_text(m.y0, m.y0 + m.height()));
     if (nx < std::min<std::size_t>(2, m.nx) || ny < std::min<std::size_t>(2, m.ny))
-      return make_error(fmt::format("{}: the window {} keeps {} x {} of the {} x {} points of {}, {}; expected a window "
-                                    "inside that extent that keeps at least 2 points along each side",
-                                    c.crop_source, window_text(w), nx, ny, m.nx, m.ny, name, extent));
+      return make_error(
+          fmt::format("{}: the window {} keeps {} x {} of the {} x {} points of {}, {}; expected a window "
+                      "inside that extent that keeps at least 2 points along each side",
+                      c.crop_source, window_text(w), nx, ny, m.nx, m.ny, name, extent));
     cur.nx = nx, cur.ny = ny, cur.dx = m.dx, cur.dy = m.dy;
     cur.x0 = m.x0 + double(i0) * m.dx;
     cur.y0 = m.y0 + double(jr.first) * m.dy;

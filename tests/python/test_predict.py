@@ -47,7 +47,8 @@ def test_path_profile_and_array_give_the_same_numbers():
     b = frictal.predict(frictal.Profile(s["x"], s["z"]))
     assert a.friction_angle == b.friction_angle
     assert a.upper_bound_friction_angle == b.upper_bound_friction_angle
-    assert a.conditioning == "line"
+    assert a.form == "line"
+    assert a.conditioning == "form: line"
     # A uniform grid as a numpy array with its spacing: the same as the Profile on that grid.
     z = np.sin(np.linspace(0, 40 * np.pi, 2001)) * 1e-5
     x = np.arange(z.size) * 1e-5
