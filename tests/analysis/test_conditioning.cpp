@@ -68,7 +68,8 @@ TEST(Conditioning, TheSpikeFilterRemovesExactlyTheInjectedSpikesAndNothingOfACle
   // Each spike is replaced by the mean of its two neighbours of the clean sine (the midpoint of a
   // uniform grid): A (sin(a - b) + sin(a + b)) / 2 = A sin(a) cos(b), b = 2 pi h / L.
   const double b = 2 * kPi * 1e-6 / 2e-4;
-  for (std::size_t i : at) EXPECT_NEAR(c->profile.z[i], 1e-6 * std::sin(2 * kPi * double(i) * 1e-6 / 2e-4) * std::cos(b), 1e-20) << i;
+  for (std::size_t i : at)
+    EXPECT_NEAR(c->profile.z[i], 1e-6 * std::sin(2 * kPi * double(i) * 1e-6 / 2e-4) * std::cos(b), 1e-20) << i;
   for (std::size_t i = 0; i < 1001; ++i)
     if (i != 250 && i != 500 && i != 753) {
       EXPECT_EQ(c->profile.z[i], clean.z[i]) << i;
@@ -210,7 +211,7 @@ TEST(Conditioning, AMaskedMapKeepsItsMaskThroughCropSpikesAndForm) {
     for (std::size_t i = 0; i < m.nx; ++i)
       m.heights.push_back(2e-3 * double(i) * m.dx - 1e-3 * double(j) * m.dy + 1e-7 * std::sin(2 * kPi * double(i) / 8));
   const std::set<std::pair<std::size_t, std::size_t>> masked = {{12, 10}, {13, 10}, {12, 11}, {13, 11},
-                                                                     {20, 15}, {2, 2},   {30, 25}};
+                                                                {20, 15}, {2, 2},   {30, 25}};
   for (auto [i, j] : masked) m.at(i, j) = NAN;
   m.at(25, 12) += 2e-5;
   frictal::Conditioning cond;
