@@ -66,7 +66,8 @@ bool has_code(const json& j, const std::string& code) {
 }  // namespace
 
 TEST(CliConditioning, EveryCommandThatReadsMeasuredSurfacesOffersTheSameOptions) {
-  for (const char* cmd : {"predict", "report", "signature", "areal", "anisotropy", "stats", "dimension", "areal-tilt"}) {
+  for (const char* cmd :
+       {"predict", "report", "signature", "areal", "anisotropy", "stats", "dimension", "areal-tilt"}) {
     const CliRun r = run_cli(std::string(cmd) + " --help");
     ASSERT_EQ(r.code, 0) << cmd;
     for (const char* opt : {"--crop", "--remove-spikes", "--spike-threshold", "--detrend"})
@@ -85,8 +86,7 @@ TEST(CliConditioning, ACropKeepsTheWindowAndSaysSo) {
   // The same window in metres; the text output states it too.
   const CliRun t = run_cli("stats " + f + " --crop 1e-4,9e-4");
   ASSERT_EQ(t.code, 0) << t.err;
-  EXPECT_NE(t.out.find("conditioning: crop x [0.0001, 0.0009] m: kept 801 of 1001 points"), std::string::npos)
-      << t.out;
+  EXPECT_NE(t.out.find("conditioning: crop x [0.0001, 0.0009] m: kept 801 of 1001 points"), std::string::npos) << t.out;
 }
 
 TEST(CliConditioning, RemoveSpikesGivesTheProfileWithoutThem) {
