@@ -131,6 +131,17 @@ TEST(CliConditioning, PredictListsTheStepsAndTheSpikesWarningPointsAtTheOption) 
   EXPECT_NE(t.out.find("conditioning: spikes (k = 10 Sq): 3 points removed"), std::string::npos) << t.out;
 }
 
+TEST(CliConditioning, TheReportStatesTheConditioningOfItsPageAndOfItsHeadline) {
+  const std::string spiky = sine_csv("cond-report.csv", false);
+  const CliRun r = run_cli("report " + spiky + " --crop 0.05mm,0.95mm --remove-spikes --resolution-steps 0 -q -o -");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string want =
+      "crop x [5e-05, 0.00095] m: kept 901 of 1001 points; spikes (k = 10 Sq): 3 points removed (replaced by linear "
+      "interpolation); form: line";
+  EXPECT_NE(r.out.find("<b>" + want + "</b>"), std::string::npos);                // what the page's analyses read
+  EXPECT_NE(r.out.find("\"conditioning\":\"" + want + "\""), std::string::npos);  // the headline's prediction
+}
+
 TEST(CliConditioning, AMapKeepsItsMaskAndLosesItsSpike) {
   const std::string m = map_file("cond-map.txt");
   // Columns 2..33 (x = 2 .. 33 um), rows 3..22: 32 x 20 points holding both NaN and the spike.
