@@ -108,14 +108,17 @@ struct ConditioningOptions {
 inline void add_conditioning_options(CLI::App& app, ConditioningOptions& o) {
   app.add_option("--crop", o.crop,
                  "Keep only the window X0,X1 (maps: X0,X1 or X0,X1,Y0,Y1) of each surface, in its file's coordinates: "
-                 "m, or a length with a unit such as 0.1mm,0.9mm (first step of the conditioning)");
+                 "m, or a length with a unit such as 0.1mm,0.9mm (first step of the conditioning)")
+      ->type_name("X0,X1[,Y0,Y1]");
   app.add_flag("--remove-spikes", o.remove_spikes,
-               "Replace (profiles: by linear interpolation) or mask (maps) the points more than --spike-threshold rms "
-               "heights from the median of their neighbours, after --crop and before the form removal");
+               "Remove the points more than --spike-threshold rms heights from the median of their neighbours "
+               "(profiles: replaced by linear interpolation, dropped at an end; maps: masked), after --crop and before "
+               "the form removal");
   app.add_option("--spike-threshold", o.spike_threshold,
                  fmt::format("k of --remove-spikes, in rms heights Sq of the form-removed surface (default {:g}: "
                              "the spikes warning's rule)",
-                             kDefaultSpikeThreshold));
+                             kDefaultSpikeThreshold))
+      ->type_name("K");
 }
 
 /// The conditioning the options ask for, with `form` removed last. UsageError (exit 2) naming the
