@@ -68,6 +68,7 @@ struct ConditioningRecord {
   std::size_t spikes_removed = 0;  ///< points removed: replaced or dropped (profiles), masked (maps) (unitless)
   std::size_t spikes_dropped = 0;  ///< profiles: of those, points dropped at an end (unitless)
   int spike_passes = 0;            ///< passes of the rule until none was left (unitless)
+  bool spikes_left = false;        ///< the passes ran out (32) with spikes still flagged
   Detrend form;                    ///< the form removed
   /// "crop x [0.0001, 0.0009] m: 801 of 1001 points; spikes (k = 10): 3 points replaced by linear
   /// interpolation; form: line" — every step in order (the form always).

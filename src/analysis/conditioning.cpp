@@ -152,19 +152,21 @@ std::string ConditioningRecord::text() const {
       steps.push_back(fmt::format("crop {}: kept {} of {} points", window_text(window), nx_after, nx_before));
   }
   if (spikes_checked) {
-    const std::string what =
-        spikes_removed == 0 ? "none found"
-        : is_map            ? fmt::format("{} point{} masked", spikes_removed, spikes_removed == 1 ? "" : "s")
-                            : fmt::format("{} point{} removed ({})", spikes_removed, spikes_removed == 1 ? "" : "s",
-                               spikes_dropped == 0 ? std::string("replaced by linear interpolation")
-                                          : spikes_dropped == spikes_removed
-                                              ? std::string("dropped at the ends")
-                                              : fmt::format("{} replaced by linear interpolation, {} "
-                                                                       "dropped at the ends",
-                                                            spikes_removed - spikes_dropped, spikes_dropped));
-    steps.push_back(
-        fmt::format("spikes (k = {:g} Sq): {}{}", spike_threshold, what,
-                    spike_passes >= kMaxSpikePasses ? fmt::format(" (stopped after {} passes)", spike_passes) : ""));
+    const auto points = [](std::size_t n) { return fmt::format("{} point{}", n, n == 1 ? "" : "s"); };
+    std::string what;
+    if (spikes_removed == 0)
+      what = "none found";
+    else if (is_map)
+      what = points(spikes_removed) + " masked";
+    else if (spikes_dropped == 0)
+      what = points(spikes_removed) + " removed (replaced by linear interpolation)";
+    else if (spikes_dropped == spikes_removed)
+      what = points(spikes_removed) + " removed (dropped at the ends)";
+    else
+      what = fmt::format("{} removed ({} replaced by linear interpolation, {} dropped at the ends)",
+                         points(spikes_removed), spikes_removed - spikes_dropped, spikes_dropped);
+    if (spikes_left) what += fmt::format(" (stopped after {} passes with spikes left)", spike_passes);
+    steps.push_back(fmt::format("spikes (k = {:g} Sq): {}", spike_threshold, what));
   }
   steps.push_back("form: " + detrend_name(form, is_map));
   std::string s;
@@ -311,6 +313,7 @@ Result<ConditionedProfile> condition(const Profile& p, const Conditioning& c, co
       r.spikes_removed += s.points.size();
     }
   }
+  r.spikes_left = c.remove_spikes && !formed;
   if (!formed) {
     auto f = detrend(std::move(cur), c.form);
     if (!f) return f.error();
@@ -377,6 +380,7 @@ Result<ConditionedMap> condition(const Map& m, const Conditioning& c, const std:
       r.spikes_removed += s.points.size();
     }
   }
+  r.spikes_left = c.remove_spikes && !formed;
   if (!formed) {
     auto f = detrend(cur, c.form);
     if (!f) return f.error();
