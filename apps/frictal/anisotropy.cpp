@@ -28,6 +28,7 @@ struct Args {
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   unsigned threads = 0;
   InputOptions input;
+  ConditioningOptions cond;
 };
 
 std::function<int()> setup(CLI::App& app) {
@@ -37,6 +38,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--lines", a->max_lines, "At most this many parallel lines per direction (default 128)");
   add_atomic_friction_option(app, a->atomic_friction);
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from the map first (default plane)");
+  add_conditioning_options(app, a->cond);
   app.add_flag("--areal", a->areal, "Use the areal signature of the two rigid blocks instead of line profiles");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores; default all)");
   app.add_option("--contact-slope", a->contact_slope, "With --areal: lower (Eq. 3, default) or mean (of both faces)");
@@ -56,8 +58,10 @@ std::function<int()> setup(CLI::App& app) {
             "--atomic-friction must be a finite number >= 0");
     const SurfaceData s = load_surface(a->file, a->input);
     if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; anisotropy needs an areal map", a->file));
-    const Detrend dt = unwrap(parse_detrend(a->detrend));
-    const Map m = unwrap(detrend(s.map, dt));
+    const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
+    ConditionedMap cm = unwrap(condition(s.map, cond, a->file));
+    std::vector<ConditioningRecord> records{cm.record};
+    const Map m = std::move(cm.map);
     std::vector<Warning> warnings;
     for (const auto& w : s.warnings) add_warning(warnings, {"reader", w});
     for (Warning& w : check_map(m, a->file)) add_warning(warnings, std::move(w));
@@ -69,7 +73,9 @@ std::function<int()> setup(CLI::App& app) {
     if (!a->upper.empty()) {
       const SurfaceData us = load_surface(a->upper, a->input);
       if (!us.is_map) throw UsageError(fmt::format("{}: a line profile; --upper needs an areal map", a->upper));
-      u = unwrap(detrend(us.map, dt));
+      ConditionedMap cu = unwrap(condition(us.map, cond, a->upper));
+      records.push_back(cu.record);
+      u = std::move(cu.map);
       for (const auto& w : us.warnings) add_warning(warnings, {"reader", w});
       for (Warning& w : check_map(u, a->upper)) add_warning(warnings, std::move(w));
     }
@@ -159,10 +165,12 @@ std::function<int()> setup(CLI::App& app) {
       j["method"] = a->areal ? "areal" : "lines";
       j["atomic_friction"] = a->atomic_friction;
       j["directions"] = rows;
+      j["conditioning"] = conditioning_text(records);
       j["warnings"] = warnings_json(warnings);
       print_json(j);
     } else {
       fmt::print("  (theta_max-based rigid upper bounds; what a tilt test reads: frictal predict --direction DEG)\n");
+      fmt::print("  conditioning: {}\n", conditioning_text(records));
       for (const Warning& w : warnings)
         if (w.code != "reader") print_warnings({w});
     }

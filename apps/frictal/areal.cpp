@@ -33,6 +33,8 @@ struct Args {
   double offset_min = 0, across_step = 0, across_max = 0;
   unsigned threads = 0;
   InputOptions input;
+  ConditioningOptions cond;
+  std::string conditioning;  ///< what the conditioning did (set after reading the maps)
 };
 
 int run_hold(const Args& a, const Map& f, const Map& g, std::vector<Warning> warnings) {
@@ -131,6 +133,7 @@ int run_hold(const Args& a, const Map& f, const Map& g, std::vector<Warning> war
       j["hold_angle_max_deg"] = to_deg(dist->hold.max);
     }
     j["evaluated_nodes"] = lift.evaluated_nodes;
+    j["conditioning"] = a.conditioning;
     print_json(j);
   } else {
     for (const Warning& w : warnings)
@@ -143,6 +146,7 @@ int run_hold(const Args& a, const Map& f, const Map& g, std::vector<Warning> war
         a.upper.empty() ? a.lower : a.upper, a.lower, a.angle, lift.n_along, lift.n_across, ho.runaway_distance,
         dropped[0], dropped[1], rest[0], rest[1], to_deg(free.hold_angle), to_deg(free.steering),
         to_deg(locked.hold_angle));
+    fmt::print("  conditioning: {}\n", a.conditioning);
     if (dist)
       fmt::print(
           "  over {} drops ({}, {} basins): mean {:.4f} deg, std {:.4f}, 5/50/95 % {:.4f} / {:.4f} / {:.4f}, "
@@ -163,6 +167,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--max-offset", a->offset_max, "Largest offset (m; default half the lower map along the direction)");
   add_atomic_friction_option(app, a->atomic_friction);
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
+  add_conditioning_options(app, a->cond);
   app.add_option("--contact-slope", a->contact_slope, "lower (Eq. 3, default) or mean (of both faces)");
   app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
   app.add_option("-o,--output", a->output,
@@ -188,13 +193,15 @@ std::function<int()> setup(CLI::App& app) {
     require(a->step >= 0 && a->offset_max >= 0, "--step and --max-offset must be >= 0 (metres)");
     require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,
             "--atomic-friction must be a finite number >= 0");
-    const Detrend dt = unwrap(parse_detrend(a->detrend));
+    const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
     std::vector<Warning> warnings;
+    std::vector<ConditioningRecord> records;
     auto load = [&](const std::string& path) {
-      return load_detrended_map(path, a->input, dt, "the areal signature needs maps", &warnings);
+      return load_conditioned_map(path, a->input, cond, "the areal signature needs maps", &warnings, &records);
     };
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);
+    a->conditioning = conditioning_text(records);
     if (!a->lateral.empty() || a->runaway_distance != 0 || !a->start_offset.empty())
       return run_hold(*a, f, g, std::move(warnings));
     ArealSignatureOptions o;
@@ -233,6 +240,7 @@ std::function<int()> setup(CLI::App& app) {
       j["upper_bound_friction_coefficient"] = p.friction_coefficient;
       j["eq18_low_friction_coefficient"] = p.friction_coefficient_low;
       j["evaluated_nodes"] = r.evaluated_nodes;
+      j["conditioning"] = a->conditioning;
       j["warnings"] = warnings_json(warnings);
       print_json(j);
     } else {
@@ -240,10 +248,10 @@ std::function<int()> setup(CLI::App& app) {
           a->output == "-" ? stderr : stdout,
           "{} on {} along {} deg: {} offsets\n  theta_max forward {:.4f} deg, backward {:.4f} deg, sigma {:.4f} deg\n"
           "  rigid upper bound theta_max + theta_a {:.4f} deg, mu <= {:.5f} (Eq. 18 low {:.5f}); what a tilt test "
-          "reads: frictal predict\n",
+          "reads: frictal predict\n  conditioning: {}\n",
           a->upper.empty() ? a->lower : a->upper, a->lower, a->angle, r.offset.size(), to_deg(r.theta_max_forward),
           to_deg(r.theta_max_backward), to_deg(r.contact_slope_std), to_deg(p.friction_angle), p.friction_coefficient,
-          p.friction_coefficient_low);
+          p.friction_coefficient_low, a->conditioning);
       for (const Warning& w : warnings)
         if (w.code != "reader") print_warnings({w});  // the reader's are printed as it reads
     }

@@ -29,6 +29,7 @@ struct Args {
   bool json = false;
   bool quiet = false;
   InputOptions input;
+  ConditioningOptions cond;
 };
 
 std::function<int()> setup(CLI::App& app) {
@@ -40,6 +41,7 @@ std::function<int()> setup(CLI::App& app) {
                  "Offset grid of the matched prediction this many times finer than the lower map's (default 0: "
                  "the smallest with a step <= r / 2, at most 16 and at most 2e5 offsets)");
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
+  add_conditioning_options(app, a->cond);
   app.add_option("--start-offset", a->start_offset,
                  "X,Y: where the block is put down, in the lower map's frame (m; default 0,0)");
   app.add_flag("--predict-only", a->predict_only,
@@ -55,12 +57,14 @@ std::function<int()> setup(CLI::App& app) {
     require(a->prediction_refine >= 0 && a->prediction_refine <= 16,
             fmt::format("--prediction-refine {}: expected an integer in 0..16 (0: automatic)", a->prediction_refine));
     if (!mujoco_available() && !a->predict_only) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
-    const Detrend dt = unwrap(parse_detrend(a->detrend));
+    const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
+    std::vector<ConditioningRecord> records;
     auto load = [&](const std::string& path) {
-      return load_detrended_map(path, a->input, dt, "areal-tilt needs maps");
+      return load_conditioned_map(path, a->input, cond, "areal-tilt needs maps", nullptr, &records);
     };
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);
+    const std::string conditioning_done = conditioning_text(records);
     if (!a->start_offset.empty()) o.start_offset = parse_offset(a->start_offset, "--start-offset");
     o.turn_over_upper = !a->in_place;
     const double angle_deg = to_deg(o.angle), tilt_step_deg = to_deg(o.tilt_step);
@@ -201,6 +205,7 @@ std::function<int()> setup(CLI::App& app) {
       j["max_contacts"] = r.max_contacts;
       j["unsettled_increments"] = r.unsettled;
       j["seconds"] = secs;
+      j["conditioning"] = conditioning_done;
       print_json(j);
     } else {
       if (a->predict_only)
@@ -222,6 +227,7 @@ std::function<int()> setup(CLI::App& app) {
           "radius ({} of {} slips could end in another seat)\n",
           o.lock_lateral ? "locked" : "free", to_deg(cont.hold_angle), to_deg(spread.low), to_deg(spread.high),
           spread.ambiguous, spread.slips);
+      fmt::print("  conditioning: {}\n", conditioning_done);
     }
     return 0;
   };

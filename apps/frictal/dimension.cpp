@@ -18,6 +18,7 @@ struct Args {
   bool json = false;
   std::string detrend = "none";
   InputOptions input;
+  ConditioningOptions cond;
   GeneratorOptions gen;
 };
 
@@ -31,6 +32,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--max", a->scale_max, "Largest ruler/box (m) or wavelength (m) of the fit (default: automatic)");
   app.add_option("--scales", a->scales, "Number of rulers (default 16) or boxes (12), or PSD bins per decade (10)");
   app.add_option("--detrend", a->detrend, "Remove none, mean, line or poly:N first");
+  add_conditioning_options(app, a->cond);
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
   return [a]() {
@@ -60,6 +62,14 @@ std::function<int()> setup(CLI::App& app) {
     }
     require(a->scale_min >= 0 && a->scale_max >= 0, "--min and --max must be positive lengths in metres");
     const Detrend d = unwrap(parse_detrend(a->detrend));
+    const Conditioning cond = conditioning(a->cond, d);
+    ConditioningRecord record;
+    record.form = d;
+    auto conditioned = [&](const Profile& p) {
+      ConditionedProfile c = unwrap(condition(p, cond, a->file));
+      record = c.record;
+      return std::move(c.profile);
+    };
     SurfaceData s;
     if (spec)
       s.curve = unwrap(generate_curve(*spec));
@@ -71,16 +81,15 @@ std::function<int()> setup(CLI::App& app) {
     FractalFit f;
     if (a->method == "divider" || a->method == "box") {
       Curve c = s.curve;
-      if (d.kind != DetrendKind::None) {
-        Profile p = unwrap(detrend(unwrap(as_profile(c, a->file)), d));
-        c = as_curve(p);
-      }
+      // A curve that folds over (Koch) is measured as it is when no conditioning is asked for.
+      if (d.kind != DetrendKind::None || cond.crop || cond.remove_spikes)
+        c = as_curve(conditioned(unwrap(as_profile(c, a->file))));
       if (a->method == "divider")
         f = unwrap(divider_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 16}));
       else
         f = unwrap(box_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 12}));
     } else if (a->method == "psd") {
-      Profile p = unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : surface_profile(s, a->file), d));
+      Profile p = conditioned(spec ? unwrap(generate_profile(*spec)) : surface_profile(s, a->file));
       PsdFitOptions o;
       // Wavelength bounds -> wavenumber bounds.
       if (a->scale_max > 0) o.q_min = 2 * std::numbers::pi / a->scale_max;
@@ -103,11 +112,13 @@ std::function<int()> setup(CLI::App& app) {
       j["fit_range_m"] = {f.scale_min, f.scale_max};
       j["scales_m"] = f.scales;
       j["values"] = f.values;
+      j["conditioning"] = record.text();
       j["warnings"] = warnings_json(warnings);
       print_json(j);
     } else {
       fmt::print("{}: D = {:.4f} ({} method, r^2 = {:.4f}, fit over {:.4g} .. {:.4g} m)\n", a->file, f.dimension,
                  a->method, f.r_squared, f.scale_min, f.scale_max);
+      fmt::print("  conditioning: {}\n", record.text());
       for (const Warning& w : warnings)
         if (w.code != "reader") print_warnings({w});
     }

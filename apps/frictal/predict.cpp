@@ -25,6 +25,7 @@ struct Args {
   bool locked = false;
   bool quiet = false;
   InputOptions input;
+  ConditioningOptions cond;
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
 };
 
@@ -66,10 +67,10 @@ void print_text(const Prediction& p, const Args& a) {
   const std::string range = p.is_map ? fmt::format("u in [{:.4g}, {:.4g}] m along, v in [{:.4g}, {:.4g}] m across",
                                                    p.drop_range[0], p.drop_range[1], p.drop_range[2], p.drop_range[3])
                                      : fmt::format("[{:.6g}, {:.6g}] m", p.drop_range[0], p.drop_range[1]);
-  fmt::print("  model: {} ({}); conditioning: {} removed; {} {} over {}; run-away d = {:.4g} m\n", p.model,
+  fmt::print("  model: {} ({}); {} {} over {}; run-away d = {:.4g} m\n  conditioning: {}\n", p.model,
              p.is_map ? "rigid block free to move sideways, off the grid, quasi-static"
                       : "rigid quasi-static hold angle on the exact lift",
-             p.conditioning, p.drops, p.is_map ? "drops" : "basins", range, p.runaway_distance);
+             p.drops, p.is_map ? "drops" : "basins", range, p.runaway_distance, p.conditioning);
   if (!p.warnings.empty())
     fmt::print("  {} warning(s) on standard error: {}\n", p.warnings.size(), [&] {
       std::string s;
@@ -93,6 +94,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--detrend", a->detrend,
                  "Form removed from each surface first: none, mean, line (plane), poly:N (default: line for profiles, "
                  "plane for maps)");
+  add_conditioning_options(app, a->cond);
   app.add_option("--start-offset", a->start,
                  "One drop at this offset instead of the distribution: X for profiles, X,Y for maps (m)");
   app.add_option("--drops", a->drops, "Maps: drops on an N x N grid over the drop range (2..64)")
@@ -125,6 +127,11 @@ std::function<int()> setup(CLI::App& app) {
       };
     o.threads = a->threads;
     if (!a->detrend.empty()) o.detrend = unwrap(parse_detrend(a->detrend));
+    const Conditioning cond = conditioning(a->cond, Detrend{});
+    o.crop = cond.crop;
+    o.crop_source = cond.crop_source;
+    o.remove_spikes = cond.remove_spikes;
+    o.spike_threshold = cond.spike_threshold;
     if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
       o.runaway_distance = as_real(rv.at("runaway_distance"));
     if (const ValueSet pv = si_values(tilt_settings(), a->runaway_words); pv.count("period"))

@@ -33,6 +33,7 @@ struct Args {
   unsigned threads = 0;
   std::string tip_radius;
   InputOptions input;
+  ConditioningOptions cond;
   FieldWords runaway_words;  ///< --runaway-distance, the tilt table's field (the hold-angle section)
 };
 
@@ -48,6 +49,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--detrend", a->detrend,
                  "Remove none, mean, line (plane) or poly:N from each surface first (default: line for profiles, "
                  "plane for maps)");
+  add_conditioning_options(app, a->cond);
   app.add_option("--directions", a->directions, "Maps: sliding directions of the polar plot")->capture_default_str();
   app.add_option("--lines", a->lines, "Maps: at most this many parallel lines per direction")->capture_default_str();
   app.add_option("--resolution-steps", a->resolution, "Cutoff wavelengths of the resolution study (0 = none)")
@@ -77,29 +79,41 @@ std::function<int()> setup(CLI::App& app) {
     in.is_map = s.is_map;
     const std::string dt_text = a->detrend.empty() ? (s.is_map ? "plane" : "line") : a->detrend;
     const Detrend dt = unwrap(parse_detrend(dt_text));
+    const Conditioning cond = conditioning(a->cond, dt);
+    std::vector<ConditioningRecord> records;
+    auto conditioned_map = [&](const Map& m, const std::string& name) {
+      ConditionedMap c = unwrap(condition(m, cond, name));
+      records.push_back(c.record);
+      return std::move(c.map);
+    };
+    auto conditioned_profile = [&](const Profile& p, const std::string& name) {
+      ConditionedProfile c = unwrap(condition(p, cond, name));
+      records.push_back(c.record);
+      return std::move(c.profile);
+    };
     for (const auto& w : s.warnings) in.notes.push_back("Reader warning: " + w);
     if (s.is_map) {
-      in.map = unwrap(detrend(s.map, dt));
+      in.map = conditioned_map(s.map, a->lower);
       if (!a->upper.empty()) {  // two maps: the areal section (lift over two dimensions of offset)
         const SurfaceData u = load_surface(a->upper, a->input);
         for (const auto& w : u.warnings) in.notes.push_back("Reader warning: " + w);
         if (!u.is_map)
           throw UsageError(
               fmt::format("{}: a line profile; with an areal map as SURFACE, UPPER must be a map too", a->upper));
-        in.upper_map = unwrap(detrend(u.map, dt));
+        in.upper_map = conditioned_map(u.map, a->upper);
         in.upper_name = a->upper;
       }
     } else {
-      in.lower = unwrap(detrend(surface_profile(s, a->lower), dt));
+      in.lower = conditioned_profile(surface_profile(s, a->lower), a->lower);
     }
     if (!a->upper.empty() && !s.is_map) {
       const SurfaceData u = load_surface(a->upper, a->input);
       for (const auto& w : u.warnings) in.notes.push_back("Reader warning: " + w);
-      in.upper = unwrap(detrend(surface_profile(u, a->upper), dt));
+      in.upper = conditioned_profile(surface_profile(u, a->upper), a->upper);
       in.upper_name = a->upper;
     }
     in.lower_name = a->lower;
-    in.detrend = dt_text;
+    in.detrend = conditioning_text(records);
     in.atomic_friction = a->mu_a;
     in.directions = a->directions;
     in.max_lines = a->lines;
@@ -111,7 +125,7 @@ std::function<int()> setup(CLI::App& app) {
       in.runaway_distance = as_real(rv.at("runaway_distance"));
     in.generated_by = version_line();
     // The headline: the prediction of this pair, as `frictal predict` computes it from the same
-    // files and options (the same conditioning: the page's --detrend).
+    // files and options (the same conditioning: the page's --crop, --remove-spikes, --detrend).
     {
       PredictOptions po;
       require(a->drops >= 2 && a->drops <= 64, fmt::format("--drops {}: expected 2..64", a->drops));
@@ -125,6 +139,10 @@ std::function<int()> setup(CLI::App& app) {
       po.atomic_friction = a->mu_a;
       po.runaway_distance = in.runaway_distance;
       po.detrend = dt;
+      po.crop = cond.crop;
+      po.crop_source = cond.crop_source;
+      po.remove_spikes = cond.remove_spikes;
+      po.spike_threshold = cond.spike_threshold;
       po.threads = a->threads;
       const PredictSurface pl = unwrap(predict_surface(s, a->lower));
       std::optional<PredictSurface> pu;

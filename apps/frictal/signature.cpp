@@ -103,8 +103,9 @@ struct Args {
   bool no_hold = false;
   std::string detrend = "none";
   GeneratorOptions gen;
-  InputOptions input;       ///< --format, --unit, --spacing, ... of LOWER and UPPER
-  FieldWords period_words;  ///< --period, the tilt table's field
+  InputOptions input;        ///< --format, --unit, --spacing, ... of LOWER and UPPER
+  ConditioningOptions cond;  ///< --crop, --remove-spikes, --spike-threshold (before --detrend)
+  FieldWords period_words;   ///< --period, the tilt table's field
 };
 
 std::function<int()> setup(CLI::App& app) {
@@ -126,6 +127,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--detrend", a->detrend,
                  "Remove none, mean, line or poly:N from each measured surface first (form and tilt of the scan)")
       ->capture_default_str();
+  add_conditioning_options(app, a->cond);
   app.add_flag("--keep-grid", a->keep_grid,
                "With --offsets N: evaluate that grid even where every event offset costs less (aligned grids)");
   app.add_flag("--exact", a->exact, "Refuse to sample offsets when the exact signature has too many events");
@@ -155,7 +157,7 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     require(std::isfinite(a->mu_a) && a->mu_a >= 0,
             fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
-    const Detrend dt = unwrap(parse_detrend(a->detrend));
+    const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
     const int to_stdout = (a->out == "-") + (a->contacts_out == "-") + (a->pdf_out == "-") + (a->json ? 1 : 0);
     require(to_stdout <= 1, "only one of -o -, --contacts -, --pdf - and --json can write to standard output");
     const std::optional<SurfaceSpec> spec = a->gen.spec();
@@ -187,17 +189,24 @@ std::function<int()> setup(CLI::App& app) {
       for (Warning& x : w) add_warning(warnings, std::move(x));
       return p;
     };
+    // Each profile conditioned (crop, spikes, form: conditioning.hpp), its record kept.
+    std::vector<ConditioningRecord> records(a->upper.empty() ? 1 : 2);
+    auto conditioned = [&](const Profile& p, const std::string& name, ConditioningRecord& record) {
+      ConditionedProfile c = unwrap(condition(p, cond, name));
+      record = c.record;
+      return checked(std::move(c.profile), name);
+    };
     // Two files are read at the same time when more than one thread is allowed (parsing a text
     // profile is CPU-bound: ~1 s per 10^7 points); the profiles are the same either way.
     std::future<Profile> upper_read;
     if (!a->upper.empty() && a->threads != 1 && a->upper != "-" && a->lower != "-")
-      upper_read = std::async(std::launch::async, [&a, &dt, &checked, &load]() {
-        return checked(unwrap(detrend(load(a->upper), dt)), a->upper);
+      upper_read = std::async(std::launch::async, [&a, &conditioned, &load, &records]() {
+        return conditioned(load(a->upper), a->upper, records[1]);
       });
-    Profile lower = checked(unwrap(detrend(spec ? unwrap(generate_profile(*spec)) : load(a->lower), dt)), a->lower);
+    Profile lower = conditioned(spec ? unwrap(generate_profile(*spec)) : load(a->lower), a->lower, records[0]);
     Profile upper_measured = a->upper.empty()     ? lower
                              : upper_read.valid() ? upper_read.get()
-                                                  : checked(unwrap(detrend(load(a->upper), dt)), a->upper);
+                                                  : conditioned(load(a->upper), a->upper, records[1]);
     const ValueSet pv = si_values(tilt_settings(), a->period_words);
     if (pv.count("period")) a->period = as_real(pv.at("period"));
     if (pv.count("spheroradius")) a->spheroradius = as_real(pv.at("spheroradius"));
@@ -334,6 +343,7 @@ std::function<int()> setup(CLI::App& app) {
       j["eq18_low_friction_coefficient"] = fwd.friction_coefficient_low;
       j["upper_bound_friction_angle_backward_deg"] = to_deg(bwd.friction_angle);
       j["upper_bound_friction_coefficient_backward"] = bwd.friction_coefficient;
+      j["conditioning"] = conditioning_text(records);
       j["warnings"] = warnings_json(warnings);
       if (hold) add_hold_json(j, *hold);
       j["wall_time_s"] = wall;
@@ -353,6 +363,7 @@ std::function<int()> setup(CLI::App& app) {
                  r.offset_at_backward);
       fmt::print(text, "  contact slope mean {:.4f} deg, std (sigma) {:.4f} deg; max surface slope {:.4f} deg\n",
                  to_deg(r.contact_slope_mean), to_deg(r.contact_slope_std), to_deg(smax));
+      fmt::print(text, "  conditioning: {}\n", conditioning_text(records));
       fmt::print(text,
                  "rigid upper bound (mu_a = {}): theta_max + theta_a = {:.4f} deg, mu <= {:.6g}; Eq. 18 range [{:.4f}, "
                  "{:.4f}] deg; backward {:.4f} deg (what a tilt test reads: frictal predict)\n",

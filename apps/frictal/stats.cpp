@@ -16,6 +16,7 @@ struct Args {
   int bins = 0;
   std::string tip_radius;
   InputOptions input;
+  ConditioningOptions cond;
 };
 
 void write_columns(const std::string& path, const char* header, const std::vector<double>& a,
@@ -40,6 +41,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("file", a->file, "Profile or map file (any readable format; see 'frictal formats')")->required();
   app.add_flag("--json", a->json, "Print one JSON object");
   app.add_option("--detrend", a->detrend, "Remove none, mean, line (plane for maps) or poly:N before the statistics");
+  add_conditioning_options(app, a->cond);
   app.add_option("--psd", a->psd_out, "Write the power spectrum (q_rad_per_m,C_m3) of the profile to this CSV");
   app.add_option("--acf", a->acf_out, "Write the autocorrelation (lag_m,acf) of the profile to this CSV");
   app.add_option("--histograms", a->bins, "Add height and slope distributions with this many bins to --json");
@@ -50,10 +52,11 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     require(a->bins >= 0 && a->bins <= 100000, "--histograms must be in 0..100000");
     const double tip = a->tip_radius.empty() ? 0.0 : parse_length_option(a->tip_radius, "--tip-radius");
-    const Detrend d = unwrap(parse_detrend(a->detrend));
+    const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
     const SurfaceData data = load_surface(a->file, a->input);
     if (data.is_map) {
-      const Map m = unwrap(detrend(data.map, d));
+      const ConditionedMap cm = unwrap(condition(data.map, cond, a->file));
+      const Map& m = cm.map;
       const MapStats s = map_stats(m);
       const MapScanStats sc = map_scan_stats(m);
       const double cutoff = tip > 0 ? unwrap(short_reliability_cutoff(m, tip)) : 0.0;
@@ -98,6 +101,7 @@ std::function<int()> setup(CLI::App& app) {
           j["tip_radius_m"] = tip;
           j["short_reliability_cutoff_m"] = cutoff;  // NaN (unreliable at every scale) prints as null
         }
+        j["conditioning"] = cm.record.text();
         print_json(j);
       } else {
         fmt::print(
@@ -111,10 +115,12 @@ std::function<int()> setup(CLI::App& app) {
             sc.physical_size_x, sc.physical_size_y, sc.bandwidth_short, sc.bandwidth_long, sc.Rq_x, sc.Rdq_x, sc.Rq_y,
             sc.Rdq_y, sc.rms_gradient_fd);
         if (tip > 0) fmt::print("  short reliability cutoff for a {:.6g} m tip: {:.6g} m\n", tip, cutoff);
+        fmt::print("  conditioning: {}\n", cm.record.text());
       }
       return 0;
     }
-    const Profile p = unwrap(detrend(surface_profile(data, a->file), d));
+    const ConditionedProfile cp = unwrap(condition(surface_profile(data, a->file), cond, a->file));
+    const Profile& p = cp.profile;
     const ProfileStats s = profile_stats(p);
     const ProfileScanStats sc = profile_scan_stats(p);
     const double cutoff = tip > 0 ? unwrap(short_reliability_cutoff(p, tip)) : 0.0;
@@ -154,6 +160,7 @@ std::function<int()> setup(CLI::App& app) {
         j["height_distribution"] = histogram_json(height_distribution(p, a->bins));
         j["slope_distribution_rad"] = histogram_json(slope_distribution(p, a->bins));
       }
+      j["conditioning"] = cp.record.text();
       print_json(j);
     } else {
       fmt::print(
@@ -163,6 +170,7 @@ std::function<int()> setup(CLI::App& app) {
       fmt::print("  physical length (n dx) {:.6g} m, bandwidth {:.6g} .. {:.6g} m\n", sc.physical_length,
                  sc.bandwidth_short, sc.bandwidth_long);
       if (tip > 0) fmt::print("  short reliability cutoff for a {:.6g} m tip: {:.6g} m\n", tip, cutoff);
+      fmt::print("  conditioning: {}\n", cp.record.text());
     }
     return 0;
   };

@@ -1,5 +1,6 @@
 // frictal CLI — options shared by the commands that read measured surfaces (any format):
-// --format, --unit, --x-column/--z-column; warnings go to stderr.
+// --format, --unit, --x-column/--z-column; the conditioning before an analysis (--crop,
+// --remove-spikes, --spike-threshold, beside each command's --detrend); warnings go to stderr.
 #pragma once
 
 #include <cctype>
@@ -11,6 +12,7 @@
 
 #include "common.hpp"
 #include "frictal/analysis.hpp"
+#include "frictal/conditioning.hpp"
 #include "frictal/io.hpp"
 
 namespace frictal::cli {
@@ -95,20 +97,70 @@ inline SurfaceData load_surface(const std::string& path, const InputOptions& o) 
   return s;
 }
 
-/// The file's areal map with `dt` removed (error naming the file for a line profile: `needs`
-/// says what the command wants, e.g. "areal-tilt needs maps").
-/// `warnings` (if given) gains the reader's warnings (code "reader", already printed on standard
-/// error by load_surface) and the plausibility checks of the detrended map (warnings.hpp).
-inline Map load_detrended_map(const std::string& path, const InputOptions& o, const Detrend& dt, const char* needs,
-                              std::vector<Warning>* warnings = nullptr) {
+/// The conditioning options (frictal/conditioning.hpp), the same in every command that reads
+/// measured surfaces; the form is each command's --detrend.
+struct ConditioningOptions {
+  std::string crop;             ///< --crop X0,X1[,Y0,Y1]
+  bool remove_spikes = false;   ///< --remove-spikes
+  std::string spike_threshold;  ///< --spike-threshold K (empty: the default)
+};
+
+inline void add_conditioning_options(CLI::App& app, ConditioningOptions& o) {
+  app.add_option("--crop", o.crop,
+                 "Keep only the window X0,X1 (maps: X0,X1 or X0,X1,Y0,Y1) of each surface, in its file's coordinates: "
+                 "m, or a length with a unit such as 0.1mm,0.9mm (first step of the conditioning)")
+      ->type_name("X0,X1[,Y0,Y1]");
+  app.add_flag("--remove-spikes", o.remove_spikes,
+               "Remove the points more than --spike-threshold rms heights from the median of their neighbours "
+               "(profiles: replaced by linear interpolation, dropped at an end; maps: masked), after --crop and before "
+               "the form removal");
+  app.add_option("--spike-threshold", o.spike_threshold,
+                 fmt::format("k of --remove-spikes, in rms heights Sq of the form-removed surface (default {:g}: "
+                             "the spikes warning's rule)",
+                             kDefaultSpikeThreshold))
+      ->type_name("K");
+}
+
+/// The conditioning the options ask for, with `form` removed last. UsageError (exit 2) naming the
+/// option for a bad window or threshold, or a threshold without --remove-spikes.
+inline Conditioning conditioning(const ConditioningOptions& o, const Detrend& form) {
+  Conditioning c;
+  c.form = form;
+  if (!o.crop.empty()) {
+    c.crop_source = fmt::format("--crop '{}'", o.crop);
+    c.crop = unwrap(parse_crop(o.crop, "--crop"));
+  }
+  c.remove_spikes = o.remove_spikes;
+  if (!o.spike_threshold.empty()) {
+    require(o.remove_spikes,
+            fmt::format("--spike-threshold {}: applies to --remove-spikes, which is not given", o.spike_threshold));
+    char* end = nullptr;
+    const double k = std::strtod(o.spike_threshold.c_str(), &end);
+    require(end && end != o.spike_threshold.c_str() && *end == '\0' && std::isfinite(k) && k > 0,
+            fmt::format("--spike-threshold '{}': expected a number > 0 (rms heights from the neighbours' median)",
+                        o.spike_threshold));
+    c.spike_threshold = k;
+  }
+  return c;
+}
+
+/// The file's areal map conditioned by `c` (error naming the file for a line profile: `needs`
+/// says what the command wants, e.g. "areal-tilt needs maps"). `records` (if given) gains the
+/// record of its conditioning. `warnings` (if given) gains the reader's warnings (code "reader",
+/// already printed on standard error by load_surface) and the plausibility checks of the
+/// conditioned map (warnings.hpp).
+inline Map load_conditioned_map(const std::string& path, const InputOptions& o, const Conditioning& c,
+                                const char* needs, std::vector<Warning>* warnings = nullptr,
+                                std::vector<ConditioningRecord>* records = nullptr) {
   const SurfaceData s = load_surface(path, o);
   if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; {}", path, needs));
-  Map m = unwrap(detrend(s.map, dt));
+  ConditionedMap m = unwrap(condition(s.map, c, path));
+  if (records) records->push_back(m.record);
   if (warnings) {
     for (const auto& w : s.warnings) add_warning(*warnings, {"reader", w});
-    for (Warning& w : check_map(m, path)) add_warning(*warnings, std::move(w));
+    for (Warning& w : check_map(m.map, path)) add_warning(*warnings, std::move(w));
   }
-  return m;
+  return std::move(m.map);
 }
 
 /// The surface as a single-valued profile (error naming the file for maps or folded curves).

@@ -11,9 +11,10 @@
 // 2015), which a test reaches only where the block can get to the steepest contact (the paper's
 // Koch surfaces), and the paper's Eq. 18 range [theta_max - sigma, theta_max] + theta_a.
 //
-// The surfaces are conditioned first (form removal: a line for profiles, a plane for maps by
-// default), and the result lists what was applied. Plausibility warnings (warnings.hpp) of the
-// inputs and of the result travel with it. Lengths in m, angles in rad.
+// The surfaces are conditioned first (conditioning.hpp: an optional crop, optional spike removal,
+// then form removal: a line for profiles, a plane for maps by default), and the result lists
+// what was applied. Plausibility warnings (warnings.hpp) of the conditioned inputs and of the
+// result travel with it. Lengths in m, angles in rad.
 #pragma once
 
 #include <array>
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include "frictal/analysis.hpp"
+#include "frictal/conditioning.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/hold.hpp"
 #include "frictal/io.hpp"
@@ -45,6 +47,14 @@ struct PredictOptions {
   /// ones, which have no form), a plane for maps (the default of every front end).
   /// DetrendKind::None opts out.
   std::optional<Detrend> detrend;
+  /// Before the form removal (conditioning.hpp, in this order): keep the window `crop` of each
+  /// surface (in each surface's own coordinates; nullopt: all of it), then, with `remove_spikes`,
+  /// replace (profiles) or mask (maps) the points more than `spike_threshold` rms heights from the
+  /// median of their neighbours. `crop_source` names the window in messages.
+  std::optional<CropWindow> crop;
+  std::string crop_source = "crop";
+  bool remove_spikes = false;
+  double spike_threshold = kDefaultSpikeThreshold;  ///< k (unitless, > 0)
   /// One drop at this offset instead of the distribution (x for profiles; x, y for maps; in the
   /// signature's frame of offsets: 0 = left ends aligned for profiles, the blocks' centres
   /// aligned for maps) (unit: m). NaN: the distribution over drops.
@@ -76,12 +86,18 @@ struct Prediction {
   /// drops, exact on the rigid lift) or "map-continuous-free" (the 3D rigid block free to move
   /// sideways, off the grid, quasi-static: areal_tilt_hold).
   std::string model;
-  std::string conditioning;     ///< the form removed: "none", "mean", "line", "plane", "poly:N"
-  double direction = 0;         ///< (unit: rad)
-  double atomic_friction = 0;   ///< mu_a (unitless)
-  double runaway_distance = 0;  ///< d used (unit: m)
-  bool single_drop = false;     ///< start_offset was given: the statistics are that drop's value
-  std::size_t drops = 0;        ///< drops the distribution is over (profiles: basins that drain them)
+  /// Every conditioning step with its numbers (ConditioningRecord::text), e.g. "crop x [0.0001,
+  /// 0.0009] m: kept 801 of 1001 points; spikes (k = 10 Sq): 3 points removed (replaced by
+  /// linear interpolation); form: line"; for two surfaces whose records differ "lower: ... | upper: ...".
+  std::string conditioning;
+  std::string form;                ///< the form removed: "none", "mean", "line", "plane", "poly:N"
+  std::size_t spikes_removed = 0;  ///< points replaced or masked by the spike filter, both surfaces (unitless)
+  std::vector<ConditioningRecord> conditioning_records;  ///< lower, then upper (when given)
+  double direction = 0;                                  ///< (unit: rad)
+  double atomic_friction = 0;                            ///< mu_a (unitless)
+  double runaway_distance = 0;                           ///< d used (unit: m)
+  bool single_drop = false;  ///< start_offset was given: the statistics are that drop's value
+  std::size_t drops = 0;     ///< drops the distribution is over (profiles: basins that drain them)
   /// Drop range: profiles [min, max, 0, 0]; maps [u_min, u_max, v_min, v_max] along and across d (unit: m).
   std::array<double, 4> drop_range = {0, 0, 0, 0};
   HoldStatistics friction_angle;                ///< the hold angle over drops, atan(mu_a) included (unit: rad)
@@ -146,8 +162,5 @@ OutputValue interface_value(const OutputColumn& c, const Prediction& p);
 /// then "warnings": [{"code", "message"}], then `extra` (already JSON text: `"key": value` pairs
 /// joined by commas, or empty). `indent` > 0: pretty, that many spaces.
 std::string prediction_json(const Prediction& p, const std::string& extra = "", int indent = 2);
-
-/// Canonical text of a Detrend ("none", "mean", "line", "plane" for maps, "poly:N").
-std::string detrend_name(const Detrend& d, bool is_map);
 
 }  // namespace frictal

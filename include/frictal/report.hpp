@@ -155,7 +155,7 @@ struct ReportInput {
   /// may move sideways and the hold angles over drops (frictal/areal.hpp).
   std::optional<Map> upper_map;
   std::string upper_name;
-  std::string detrend;         ///< detrending already applied, as the user wrote it ("none", "line", ...)
+  std::string detrend;  ///< conditioning already applied (ConditioningRecord text, or the form: "none", "line", ...)
   double atomic_friction = 0;  ///< mu_a of Eq. 6 (unitless)
   int directions = 36;         ///< sliding directions of the polar plot (maps) (unitless)
   std::size_t max_lines = 32;  ///< parallel lines per direction (maps) (unitless)

@@ -40,6 +40,7 @@ from ._core import (  # noqa: F401  measured surfaces (io_bindings.cpp)
     areal_signature,
     autocorrelation,
     box_dimension,
+    condition,
     detrend,
     divider_dimension,
     koch_dimension,
@@ -96,7 +97,10 @@ def predict(lower, upper=None, **options):
     2-D: a map with rows along y) with ``spacing=`` in metres. Options (SI: radians, metres):
     ``direction`` (profiles: 0 or pi), ``atomic_friction``, ``runaway_distance`` (0: the default),
     ``detrend`` ("none", "mean", "line", "plane", "poly:N"; default line for profiles, plane for
-    maps), ``start_offset`` (x, or (x, y) for maps: one drop), ``drops`` (maps: N x N), ``locked``
+    maps), ``crop`` ((x0, x1) or (x0, x1, y0, y1) in m: keep that window of each surface first),
+    ``remove_spikes`` (replace, for maps mask, the points more than ``spike_threshold`` rms heights
+    from the median of their neighbours, after the crop and before the form; default 10),
+    ``start_offset`` (x, or (x, y) for maps: one drop), ``drops`` (maps: N x N), ``locked``
     (maps: the locked diagnostic), ``format``, ``unit``, ``threads``.
 
     Returns a ``Prediction``: SI attributes (``friction_angle`` is the median over drops of the hold

@@ -14,7 +14,7 @@ class Prediction:
         ...
     @property
     def conditioning(self) -> str:
-        ...
+        """every conditioning step with its numbers (crop, spikes, form), as `frictal predict` prints it"""
     @property
     def contact_slope_std(self) -> float:
         """(rad)"""
@@ -33,6 +33,9 @@ class Prediction:
     @property
     def eq18_friction_angle_range(self) -> List[float[2]]:
         """(rad)"""
+    @property
+    def form(self) -> str:
+        """the form removed: none, mean, line, plane, poly:N"""
     @property
     def friction_angle(self) -> float:
         """median over drops of the hold angle, atan(mu_a) included (rad)"""
@@ -72,6 +75,9 @@ class Prediction:
     @property
     def single_drop(self) -> bool:
         ...
+    @property
+    def spikes_removed(self) -> int:
+        """points the spike filter replaced (profiles) or masked (maps), both surfaces"""
     @property
     def start_offset(self) -> List[float[2]]:
         """(m)"""
@@ -177,6 +183,9 @@ def check_map(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: fl
 def check_profile(profile: Profile, name: str = ...) -> List[Warning]:
     """Plausibility of a measured profile (m): a list of Warning (codes units-suspect, heights-tiny, heights-exceed-length, spikes, kurtosis, fill-value); empty when nothing is implausible"""
 
+def condition(surface: Any, *, crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., detrend: str = ...) -> tuple:
+    """The conditioning of `frictal predict` and the CLI (crop, then spike removal, then form removal; docs/analysis.md): crop (x0, x1) or (x0, x1, y0, y1) in m in the surface's coordinates; remove_spikes removes (profiles: linear interpolation between kept neighbours, dropped at the ends) or masks (maps: NaN) the points more than spike_threshold rms heights from the median of their neighbours; detrend none, mean, line, plane, poly:N. Returns (the conditioned Profile or map dict, a record dict: text, cropped, window (m), points_before/after (nx, ny), spikes_checked, spike_threshold, spikes_removed, spikes_dropped (profiles: at the ends), spike_passes, form)"""
+
 def detrend(profile: Profile, kind: str = ...) -> Profile:
     """Removes none, mean, line or poly:N (trapezoid-weighted least squares) from a profile (m)"""
 
@@ -237,7 +246,7 @@ def map_stats(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: fl
 def power_spectrum(profile: Profile, max_k: int = ...) -> tuple:
     """Power spectrum of a profile (m, runs without the GIL): returns (q in rad/m, C in m^3) of the piecewise-linear profile, with 2 sum C / L = rms^2; max_k: 0 = automatic"""
 
-def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., detrend: Optional[str] = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., threads: int = ...) -> Prediction:
+def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., threads: int = ...) -> Prediction:
     """The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)"""
 
 def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ...) -> dict:

@@ -8,12 +8,14 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <cstdio>
 
+#include "frictal/conditioning.hpp"
 #include "frictal/map.hpp"
 #include "frictal/result.hpp"
 #include "frictal/settings.hpp"
@@ -36,6 +38,11 @@ inline void ok(const Status& s) {
 /// (m), checked (ValueError naming what is wrong). io_bindings.cpp.
 Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>& h, double dx, double dy, double x0 = 0,
            double y0 = 0);
+
+/// The `crop` keyword: None, a sequence (x0, x1) or (x0, x1, y0, y1) in m, or the CLI's text
+/// "x0,x1[,y0,y1]" (units allowed: "0.1mm,0.9mm"); ValueError naming crop otherwise.
+/// io_bindings.cpp.
+std::optional<CropWindow> crop_window(const py::object& crop);
 
 /// Runs `f` (a pure C++ computation returning a Result) with the GIL released, so that other
 /// Python threads run meanwhile; the Result is unwrapped after the GIL is taken back.

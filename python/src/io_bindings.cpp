@@ -14,6 +14,7 @@
 #include "bindings.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
+#include "frictal/conditioning.hpp"
 #include "frictal/fractal.hpp"
 #include "frictal/io.hpp"
 #include "frictal/scan_stats.hpp"
@@ -36,11 +37,30 @@ Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>&
   ok(validate(m, "heights"));
   return m;
 }
+
+std::optional<CropWindow> crop_window(const py::object& crop) {
+  if (crop.is_none()) return std::nullopt;
+  if (py::isinstance<py::str>(crop)) return ok(parse_crop(crop.cast<std::string>(), "crop"));
+  std::vector<double> v;
+  try {
+    v = crop.cast<std::vector<double>>();
+  } catch (const py::cast_error&) {
+    throw py::value_error("crop: expected (x0, x1) or (x0, x1, y0, y1) in m, or the text \"x0,x1[,y0,y1]\"");
+  }
+  if (v.size() != 2 && v.size() != 4)
+    throw py::value_error("crop: " + std::to_string(v.size()) +
+                          " number(s); expected (x0, x1) or (x0, x1, y0, y1) in m");
+  CropWindow w;
+  w.x_min = v[0], w.x_max = v[1];
+  if (v.size() == 4) w.has_y = true, w.y_min = v[2], w.y_max = v[3];
+  return w;
+}
 }  // namespace frictal::py_detail
 
 namespace {
 
 using frictal::py_detail::arr;
+using frictal::py_detail::crop_window;
 using frictal::py_detail::nogil;
 using frictal::py_detail::ok;
 using frictal::py_detail::to_map;
@@ -69,6 +89,25 @@ ReadOptions read_options(const std::string& format, const std::string& unit, dou
   o.spacing = spacing;
   o.channel = channel;
   return o;
+}
+
+py::dict record_dict(const ConditioningRecord& r) {
+  py::dict d;
+  d["text"] = r.text();
+  d["cropped"] = r.cropped;
+  if (r.cropped) {
+    d["window"] = r.window.has_y ? py::make_tuple(r.window.x_min, r.window.x_max, r.window.y_min, r.window.y_max)
+                                 : py::make_tuple(r.window.x_min, r.window.x_max);
+    d["points_before"] = py::make_tuple(r.nx_before, r.ny_before);
+    d["points_after"] = py::make_tuple(r.nx_after, r.ny_after);
+  }
+  d["spikes_checked"] = r.spikes_checked;
+  d["spike_threshold"] = r.spike_threshold;
+  d["spikes_removed"] = r.spikes_removed;
+  d["spikes_dropped"] = r.spikes_dropped;
+  d["spike_passes"] = r.spike_passes;
+  d["form"] = detrend_name(r.form, r.is_map);
+  return d;
 }
 
 py::dict fit_dict(const FractalFit& f) {
@@ -180,6 +219,42 @@ void frictal_bind_io(py::module_& m) {
       "detrend", [](const Profile& p, const std::string& kind) { return ok(detrend(p, ok(parse_detrend(kind)))); },
       py::arg("profile"), py::arg("kind") = "line",
       "Removes none, mean, line or poly:N (trapezoid-weighted least squares) from a profile (m)");
+  m.def(
+      "condition",
+      [](const py::object& surface, const py::object& crop, bool remove_spikes, double spike_threshold,
+         const std::string& detrend_text) {
+        Conditioning c;
+        c.crop = crop_window(crop);
+        c.remove_spikes = remove_spikes;
+        c.spike_threshold = spike_threshold;
+        c.form = ok(parse_detrend(detrend_text));
+        if (py::isinstance<Profile>(surface)) {
+          const Profile p = surface.cast<Profile>();
+          ConditionedProfile r = ok(nogil([&] { return condition(p, c, "profile"); }));
+          return py::make_tuple(py::cast(std::move(r.profile)), record_dict(r.record));
+        }
+        if (py::isinstance<py::dict>(surface)) {
+          py::dict d = surface.cast<py::dict>();
+          if (!d.contains("heights") || !d.contains("dx") || !d.contains("dy"))
+            throw py::value_error("surface: a map dict needs 'heights', 'dx', 'dy' (as read_map returns)");
+          const Map mp =
+              to_map(d["heights"].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(),
+                     d["dx"].cast<double>(), d["dy"].cast<double>(), d.contains("x0") ? d["x0"].cast<double>() : 0.0,
+                     d.contains("y0") ? d["y0"].cast<double>() : 0.0);
+          ConditionedMap r = ok(nogil([&] { return condition(mp, c, "map"); }));
+          return py::make_tuple(map_dict(r.map), record_dict(r.record));
+        }
+        throw py::type_error("surface: expected a Profile or a map dict (heights, dx, dy[, x0, y0])");
+      },
+      py::arg("surface"), py::kw_only(), py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
+      py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("detrend") = "none",
+      "The conditioning of `frictal predict` and the CLI (crop, then spike removal, then form removal; "
+      "docs/analysis.md): crop (x0, x1) or (x0, x1, y0, y1) in m in the surface's coordinates; remove_spikes "
+      "removes (profiles: linear interpolation between kept neighbours, dropped at the ends) or masks (maps: NaN) the "
+      "points more than spike_threshold rms "
+      "heights from the median of their neighbours; detrend none, mean, line, plane, poly:N. Returns (the "
+      "conditioned Profile or map dict, a record dict: text, cropped, window (m), points_before/after (nx, ny), "
+      "spikes_checked, spike_threshold, spikes_removed, spikes_dropped (profiles: at the ends), spike_passes, form)");
   m.def(
       "power_spectrum",
       [](const Profile& p, std::size_t max_k) {

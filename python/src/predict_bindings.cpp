@@ -142,7 +142,11 @@ void frictal_bind_predict(py::module_& m) {
                          "metres); to_dict() has the keys and units of `frictal predict --json`")
       .def_readonly("is_map", &Prediction::is_map)
       .def_readonly("model", &Prediction::model)
-      .def_readonly("conditioning", &Prediction::conditioning)
+      .def_readonly("conditioning", &Prediction::conditioning,
+                    "every conditioning step with its numbers (crop, spikes, form), as `frictal predict` prints it")
+      .def_readonly("form", &Prediction::form, "the form removed: none, mean, line, plane, poly:N")
+      .def_readonly("spikes_removed", &Prediction::spikes_removed,
+                    "points the spike filter replaced (profiles) or masked (maps), both surfaces")
       .def_readonly("direction", &Prediction::direction, "sliding direction (rad)")
       .def_readonly("atomic_friction", &Prediction::atomic_friction)
       .def_readonly("runaway_distance", &Prediction::runaway_distance, "(m)")
@@ -195,9 +199,14 @@ void frictal_bind_predict(py::module_& m) {
   m.def(
       "predict",
       [](const py::object& lower, const py::object& upper, double direction, double atomic_friction,
-         double runaway_distance, std::optional<std::string> detrend_text, std::optional<std::vector<double>> start,
-         int drops, bool locked, double spacing, const std::string& format, const std::string& unit, unsigned threads) {
+         double runaway_distance, std::optional<std::string> detrend_text, const py::object& crop, bool remove_spikes,
+         double spike_threshold, std::optional<std::vector<double>> start, int drops, bool locked, double spacing,
+         const std::string& format, const std::string& unit, unsigned threads) {
         PredictOptions o;
+        o.crop = py_detail::crop_window(crop);
+        o.crop_source = "crop=" + py::repr(crop).cast<std::string>();
+        o.remove_spikes = remove_spikes;
+        o.spike_threshold = spike_threshold;
         o.direction = direction;
         o.atomic_friction = atomic_friction;
         o.runaway_distance = runaway_distance;
@@ -217,8 +226,9 @@ void frictal_bind_predict(py::module_& m) {
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("direction") = 0.0,
       py::arg("atomic_friction") = 0.0, py::arg("runaway_distance") = 0.0, py::arg("detrend") = py::none(),
-      py::arg("start_offset") = py::none(), py::arg("drops") = PredictOptions{}.map_drops,
-      py::arg("locked") = PredictOptions{}.map_locked, py::arg("spacing") = 0.0, py::arg("format") = "auto",
-      py::arg("unit") = "", py::arg("threads") = 0u,
+      py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
+      py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("start_offset") = py::none(),
+      py::arg("drops") = PredictOptions{}.map_drops, py::arg("locked") = PredictOptions{}.map_locked,
+      py::arg("spacing") = 0.0, py::arg("format") = "auto", py::arg("unit") = "", py::arg("threads") = 0u,
       "The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)");
 }

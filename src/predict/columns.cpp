@@ -32,8 +32,14 @@ const std::vector<OutputColumn>& prediction_columns() {
   static const std::vector<OutputColumn> cols = {
       {"model", "text", "the model of the hold angle: profile-quasi-static-hold or map-continuous-free",
        [](const P& p) { return OutputValue(p.model); }},
-      {"conditioning", "text", "the form removed from each surface first: none, mean, line, plane, poly:N",
+      {"conditioning", "text",
+       "every conditioning step applied to each surface first, in order, with its numbers: crop (the window, points "
+       "kept), spikes (k, points replaced or masked), form",
        [](const P& p) { return OutputValue(p.conditioning); }},
+      {"form", "text", "the form removed from each surface: none, mean, line, plane, poly:N",
+       [](const P& p) { return OutputValue(p.form); }},
+      num("spikes_removed", "count", "points the spike filter replaced (profiles) or masked (maps), both surfaces",
+          [](const P& p) { return double(p.spikes_removed); }),
       {"is_map", "flag", "the pair is two areal maps", [](const P& p) { return OutputValue(p.is_map); }},
       deg("direction_deg", "sliding direction, from +x towards +y", [](const P& p) { return p.direction; }),
       num("atomic_friction", "1", "mu_a at every contact", [](const P& p) { return p.atomic_friction; }),

@@ -16,16 +16,6 @@
 
 namespace frictal {
 
-std::string detrend_name(const Detrend& d, bool is_map) {
-  switch (d.kind) {
-    case DetrendKind::None: return "none";
-    case DetrendKind::Mean: return "mean";
-    case DetrendKind::Line: return is_map ? "plane" : "line";
-    case DetrendKind::Polynomial: return fmt::format("poly:{}", d.degree);
-  }
-  return "none";
-}
-
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -88,6 +78,25 @@ void reader_warnings(std::vector<Warning>& out, const PredictSurface& s) {
     add_warning(out, {"reader", w.find(s.name) == std::string::npos ? s.name + ": " + w : w});
 }
 
+Conditioning conditioning_of(const PredictOptions& o, const Detrend& form) {
+  Conditioning c;
+  c.crop = o.crop;
+  c.crop_source = o.crop_source;
+  c.remove_spikes = o.remove_spikes;
+  c.spike_threshold = o.spike_threshold;
+  c.form = form;
+  return c;
+}
+
+// The prediction's record of the conditioning: the text of each surface's steps (one text when
+// they read the same), the form and the spikes removed.
+void record_conditioning(Prediction& p, std::vector<ConditioningRecord> records, bool is_map, const Detrend& form) {
+  p.form = detrend_name(form, is_map);
+  p.conditioning = conditioning_text(records);
+  for (const ConditioningRecord& r : records) p.spikes_removed += r.spikes_removed;
+  p.conditioning_records = std::move(records);
+}
+
 double mean_spacing(const Profile& p) {
   return p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0;
 }
@@ -100,7 +109,6 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   // periods only picks up the phase of the last one, so its default is the mean.
   const bool periodic = lower.profile.period || o.period > 0;
   const Detrend dt = o.detrend.value_or(periodic ? Detrend{DetrendKind::Mean, 0} : Detrend{DetrendKind::Line, 1});
-  p.conditioning = detrend_name(dt, false);
   p.atomic_friction = o.atomic_friction;
   p.direction = o.direction;
   const bool forward = std::abs(o.direction) < 1e-9;
@@ -110,16 +118,21 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
         fmt::format("direction {:.6g} deg: a profile slides along +x (0) or -x (180) only", o.direction * 180 / kPi));
   reader_warnings(p.warnings, lower);
   if (upper) reader_warnings(p.warnings, *upper);
-  auto lo = detrend(lower.profile, dt);
-  if (!lo) return lo.error();
+  const Conditioning cond = conditioning_of(o, dt);
+  auto lc = condition(lower.profile, cond, lower.name);
+  if (!lc) return lc.error();
+  std::vector<ConditioningRecord> records{lc->record};
+  Result<Profile> lo = std::move(lc->profile);
   Profile up_measured;
   if (upper) {
-    auto u = detrend(upper->profile, dt);
+    auto u = condition(upper->profile, cond, upper->name);
     if (!u) return u.error();
-    up_measured = std::move(u).value();
+    records.push_back(u->record);
+    up_measured = std::move(u->profile);
   } else {
     up_measured = *lo;
   }
+  record_conditioning(p, std::move(records), false, dt);
   for (Warning& w : check_profile(*lo, lower.name)) add_warning(p.warnings, std::move(w));
   if (upper) {
     for (Warning& w : check_profile(up_measured, upper->name)) add_warning(p.warnings, std::move(w));
@@ -174,7 +187,6 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   p.is_map = true;
   p.model = "map-continuous-free";
   const Detrend dt = o.detrend.value_or(Detrend{DetrendKind::Line, 1});
-  p.conditioning = detrend_name(dt, true);
   p.atomic_friction = o.atomic_friction;
   p.direction = o.direction;
   if (!std::isfinite(o.direction)) return make_error("direction: expected a finite angle");
@@ -182,16 +194,21 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
     return make_error(fmt::format("map drops {}: expected 2..64 per side", o.map_drops));
   reader_warnings(p.warnings, lower);
   if (upper) reader_warnings(p.warnings, *upper);
-  auto lo = detrend(lower.map, dt);
-  if (!lo) return lo.error();
+  const Conditioning cond = conditioning_of(o, dt);
+  auto lc = condition(lower.map, cond, lower.name);
+  if (!lc) return lc.error();
+  std::vector<ConditioningRecord> records{lc->record};
+  Result<Map> lo = std::move(lc->map);
   Map up;
   if (upper) {
-    auto u = detrend(upper->map, dt);
+    auto u = condition(upper->map, cond, upper->name);
     if (!u) return u.error();
-    up = std::move(u).value();
+    records.push_back(u->record);
+    up = std::move(u->map);
   } else {
     up = *lo;
   }
+  record_conditioning(p, std::move(records), true, dt);
   if (lo->nx < 2 || lo->ny < 2 || up.nx < 2 || up.ny < 2)
     return make_error(fmt::format("{}: the map prediction needs at least 2 x 2 points", lower.name));
   for (Warning& w : check_map(*lo, lower.name)) add_warning(p.warnings, std::move(w));

@@ -8,6 +8,7 @@
 
 #include <fmt/core.h>
 
+#include "frictal/conditioning.hpp"
 #include "frictal/stats.hpp"
 
 namespace frictal {
@@ -22,7 +23,8 @@ const std::vector<WarningCode>& warning_codes() {
       {"heights-exceed-length", "the height range exceeds the scan length: units or scale are probably wrong"},
       {"spikes",
        "points lie more than 10 rms heights from the median of their neighbours: outliers that can set theta_max "
-       "and the hold angles on their own; check the scan or remove them (e.g. Gwyddion's Remove Spikes) first"},
+       "and the hold angles on their own; check the scan, or remove them with the conditioning's spike filter "
+       "(--remove-spikes, Python remove_spikes=True; the same rule, docs/analysis.md)"},
       {"kurtosis", "the height kurtosis is above 30: a few outlying points dominate the height distribution"},
       {"fill-value",
        "runs of one repeated height value cover more than 5 % of the points: a fill value for points not measured; "
@@ -107,14 +109,6 @@ std::pair<double, std::size_t> repeated_runs(const std::vector<double>& z, std::
   return best;
 }
 
-double median_of(std::vector<double>& v) {
-  const std::size_t k = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(k), v.end());
-  double m = v[k];
-  if (v.size() % 2 == 0) m = 0.5 * (m + *std::max_element(v.begin(), v.begin() + std::ptrdiff_t(k)));
-  return m;
-}
-
 void common_checks(std::vector<Warning>& out, const Moments& m, std::size_t spikes, double worst_spike,
                    std::pair<double, std::size_t> rep, std::size_t n, double length, const std::string& name,
                    const PlausibilityLimits& L) {
@@ -131,8 +125,10 @@ void common_checks(std::vector<Warning>& out, const Moments& m, std::size_t spik
   if (spikes > 0)
     add_warning(out, {"spikes", fmt::format("{}: {} point(s) lie more than {:g} rms heights from the median of "
                                             "their neighbours (the worst {:.3g} rms): outliers that can set the "
-                                            "steepest contact on their own",
-                                            name, spikes, L.spike_sq, worst_spike)});
+                                            "steepest contact on their own; check the scan, or remove them with "
+                                            "--remove-spikes (Python: remove_spikes=True) at a spike threshold of at "
+                                            "most {:g}",
+                                            name, spikes, L.spike_sq, worst_spike, L.spike_sq)});
   if (m.kurtosis > L.max_kurtosis)
     add_warning(out, {"kurtosis", fmt::format("{}: height kurtosis {:.3g} (a Gaussian surface has 3; above {:g} a "
                                               "few outlying points dominate)",
@@ -156,17 +152,11 @@ std::vector<Warning> check_profile(const Profile& p, const std::string& name, co
                                   "measures; the lateral and height units probably differ (give the file's units)",
                                   name, st.rms_slope, std::atan(st.rms_slope) * 180 / 3.141592653589793)});
   const Moments m = moments(p.z);
-  // Spikes: a point more than spike_sq rms from the median of its two neighbours on each side.
-  std::size_t spikes = 0;
-  double worst = 0;
-  if (m.rms > 0 && p.z.size() >= 5) {
-    std::vector<double> w(4);
-    for (std::size_t i = 2; i + 2 < p.z.size(); ++i) {
-      w = {p.z[i - 2], p.z[i - 1], p.z[i + 1], p.z[i + 2]};
-      const double dev = std::abs(p.z[i] - median_of(w)) / m.rms;
-      if (dev > L.spike_sq) ++spikes, worst = std::max(worst, dev);
-    }
-  }
+  // Spikes: a point more than spike_sq rms from the median of its two neighbours on each side
+  // (the rule of the conditioning's spike filter, conditioning.hpp).
+  const SpikeSearch sp = find_spikes(p, L.spike_sq);
+  const std::size_t spikes = sp.points.size();
+  const double worst = sp.worst;
   common_checks(out, m, spikes, worst, repeated_runs(p.z, p.z.size()), p.z.size(), st.length, name, L);
   return out;
 }
@@ -198,29 +188,9 @@ std::vector<Warning> check_map(const Map& mp, const std::string& name, const Pla
                                   "measures; the lateral and height units probably differ (give the file's units)",
                                   name, rms_slope, std::atan(rms_slope) * 180 / 3.141592653589793)});
   const Moments m = moments(mp.heights);
-  std::size_t spikes = 0;
-  double worst = 0;
-  if (m.rms > 0) {
-    std::vector<double> w;
-    w.reserve(8);
-    for (std::size_t j = 0; j < mp.ny; ++j)
-      for (std::size_t i = 0; i < mp.nx; ++i) {
-        const double z = mp.at(i, j);
-        if (!std::isfinite(z)) continue;
-        w.clear();
-        for (int dj = -1; dj <= 1; ++dj)
-          for (int di = -1; di <= 1; ++di) {
-            if (!di && !dj) continue;
-            const long ii = long(i) + di, jj = long(j) + dj;
-            if (ii < 0 || jj < 0 || ii >= long(mp.nx) || jj >= long(mp.ny)) continue;
-            const double v = mp.at(std::size_t(ii), std::size_t(jj));
-            if (std::isfinite(v)) w.push_back(v);
-          }
-        if (w.size() < 3) continue;
-        const double dev = std::abs(z - median_of(w)) / m.rms;
-        if (dev > L.spike_sq) ++spikes, worst = std::max(worst, dev);
-      }
-  }
+  const SpikeSearch sp = find_spikes(mp, L.spike_sq);
+  const std::size_t spikes = sp.points.size();
+  const double worst = sp.worst;
   const double length = std::max(mp.width(), mp.height());
   common_checks(out, m, spikes, worst, repeated_runs(mp.heights, mp.nx), mp.valid_count(), length, name, L);
   return out;

@@ -781,8 +781,10 @@ Result<std::string> surface_report(const ReportInput& in) {
                              : fmt::format("The upper block is the surface itself turned over (rotated 180°): {} "
                                            "slides on a copy of itself.",
                                            escape_html(lower_name)));
-  assumptions.push_back(fmt::format("Detrending applied to each measured surface before anything else: <b>{}</b>.",
-                                    escape_html(in.detrend.empty() ? std::string("none") : in.detrend)));
+  assumptions.push_back(
+      fmt::format("Conditioning applied to each measured surface before anything else (crop, spike "
+                  "removal, form removal, in that order): <b>{}</b>.",
+                  escape_html(in.detrend.empty() ? std::string("none") : in.detrend)));
   if (in.is_map)
     assumptions.push_back(fmt::format(
         "The signature, slope distributions and resolution study use the map's central line along x (y = {}), "
@@ -835,7 +837,7 @@ nav a { margin-right: 1em; } footer { margin-top: 2em; font-size: .85em; color: 
     page += fmt::format(
         "<p class=\"verdict\" id=\"headline\">A tilt test of {} reads <b>φ = {}</b> (μ = <b>{}</b>){}; rigid "
         "upper bound θ_max + θ_a = {} (μ ≤ {}); the paper's Eq. 18 range {} … {}.<br><small>Model: {} ({}); "
-        "sliding at {:g}°, μ_a = {:g}; conditioning: {} removed; run-away distance {:.3g} m; over {}.</small></p>\n",
+        "sliding at {:g}°, μ_a = {:g}; conditioning: {}; run-away distance {:.3g} m; over {}.</small></p>\n",
         pair ? "these surfaces" : "this surface against itself", fmt_deg(p.friction_angle.q50),
         fmt_mu(p.friction_coefficient),
         p.single_drop ? " from this drop"

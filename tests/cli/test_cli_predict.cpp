@@ -25,7 +25,8 @@ TEST(CliPredict, KochK2ReadsTwiceAlphaAsThePaperFinds) {
   EXPECT_NEAR(j["upper_bound_friction_angle_deg"].get<double>(), 40.0, 1e-6);
   EXPECT_NEAR(j["friction_coefficient"].get<double>(), std::tan(40.0 * M_PI / 180), 1e-8);
   EXPECT_EQ(j["model"], "profile-quasi-static-hold");
-  EXPECT_EQ(j["conditioning"], "none");
+  EXPECT_EQ(j["conditioning"], "form: none");
+  EXPECT_EQ(j["form"], "none");
   EXPECT_TRUE(j["warnings"].is_array());
   for (const char* k : {"friction_angle_q05_deg", "friction_angle_q95_deg", "friction_angle_mean_deg",
                         "friction_angle_std_deg", "eq18_friction_angle_range_deg", "runaway_distance_m"})
@@ -41,7 +42,8 @@ TEST(CliPredict, TextLeadsWithTheAnswerAndTheReportEmbedsTheSameObject) {
   auto j = run_cli("predict " + f + " --json");
   ASSERT_EQ(j.code, 0) << j.err;
   const json p = json::parse(j.out);
-  EXPECT_EQ(p["conditioning"], "line");  // the one default for profiles
+  EXPECT_EQ(p["form"], "line");  // the one default for profiles
+  EXPECT_EQ(p["conditioning"], "form: line");
   const std::string page = temp_path("predict-report.html");
   auto rep = run_cli("report " + f + " --resolution-steps 0 -o " + page);
   ASSERT_EQ(rep.code, 0) << rep.err;
@@ -65,7 +67,8 @@ TEST(CliPredict, AMapAgainstItselfIsTheFreeBlockOffTheGrid) {
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);
   EXPECT_EQ(j["model"], "map-continuous-free");
-  EXPECT_EQ(j["conditioning"], "plane");
+  EXPECT_EQ(j["form"], "plane");
+  EXPECT_EQ(j["conditioning"], "form: plane");
   EXPECT_EQ(j["drops"], 9);
   EXPECT_EQ(j["drop_friction_angles_deg"].size(), 9u);
   EXPECT_LE(j["friction_angle_q05_deg"].get<double>(), j["friction_angle_deg"].get<double>());

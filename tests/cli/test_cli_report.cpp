@@ -17,8 +17,8 @@ TEST(CliReport, MeasuredMapAndProfilePairPages) {
   const std::string page = read_file(map_html);
   EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(page.find("sample-land.x3p"), std::string::npos);
-  EXPECT_NE(page.find("<b>plane</b>"), std::string::npos);      // the default detrending for maps, stated
-  EXPECT_NE(page.find("Reader warning: "), std::string::npos);  // the reader's warnings are on the page
+  EXPECT_NE(page.find("<b>form: plane</b>"), std::string::npos);  // the default detrending for maps, stated
+  EXPECT_NE(page.find("Reader warning: "), std::string::npos);    // the reader's warnings are on the page
   EXPECT_NE(page.find("Friction over sliding directions"), std::string::npos);
 
   const std::string wm1 = temp_path("rep_wm1.csv"), wm2 = temp_path("rep_wm2.csv");
@@ -28,7 +28,7 @@ TEST(CliReport, MeasuredMapAndProfilePairPages) {
   ASSERT_EQ(s.code, 0) << s.err;
   EXPECT_EQ(s.out.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(s.out.find("surface slopes: upper"), std::string::npos);
-  EXPECT_NE(s.out.find("<b>line</b>"), std::string::npos);  // the default detrending for profiles
+  EXPECT_NE(s.out.find("<b>form: line</b>"), std::string::npos);  // the default detrending for profiles
 }
 
 TEST(CliReport, UsageErrorsExitTwoAndNameTheProblem) {

@@ -51,7 +51,8 @@ TEST(Predict, SawtoothAgainstItselfHoldsAtItsFlanks) {
     ASSERT_TRUE(f.ok()) << f.error().message;
     const double want = 25 * kDeg + std::atan(mu);
     EXPECT_EQ(f->model, "profile-quasi-static-hold");
-    EXPECT_EQ(f->conditioning, "none");
+    EXPECT_EQ(f->conditioning, "form: none");
+    EXPECT_EQ(f->form, "none");
     EXPECT_NEAR(f->friction_angle.q05, want, 1e-9);
     EXPECT_NEAR(f->friction_angle.q50, want, 1e-9);
     EXPECT_NEAR(f->friction_angle.q95, want, 1e-9);
@@ -97,7 +98,8 @@ TEST(Predict, TheDefaultConditioningIsALineForProfilesAndIsListed) {
   const auto s = profile_surface(p, "ramp");
   auto d = frictal::predict(s, nullptr, {});
   ASSERT_TRUE(d.ok()) << d.error().message;
-  EXPECT_EQ(d->conditioning, "line");
+  EXPECT_EQ(d->conditioning, "form: line");
+  EXPECT_EQ(d->form, "line");
   EXPECT_NEAR(d->upper_bound_friction_angle, 25 * kDeg, 0.05 * kDeg);
   auto n = frictal::predict(s, nullptr, no_form_removal());
   ASSERT_TRUE(n.ok()) << n.error().message;

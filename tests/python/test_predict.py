@@ -47,7 +47,8 @@ def test_path_profile_and_array_give_the_same_numbers():
     b = frictal.predict(frictal.Profile(s["x"], s["z"]))
     assert a.friction_angle == b.friction_angle
     assert a.upper_bound_friction_angle == b.upper_bound_friction_angle
-    assert a.conditioning == "line"
+    assert a.form == "line"
+    assert a.conditioning == "form: line"
     # A uniform grid as a numpy array with its spacing: the same as the Profile on that grid.
     z = np.sin(np.linspace(0, 40 * np.pi, 2001)) * 1e-5
     x = np.arange(z.size) * 1e-5
@@ -117,3 +118,76 @@ def test_every_function_returns_and_issues_its_warnings():
     with pytest.warns(frictal.SpikesWarning):
         m = frictal.anisotropy(heights, dx=x[1], dy=x[1], directions=2, max_lines=4)
     assert "upper_bound_friction_angle" in m and "friction_angle" not in m
+
+
+def _spiky_sine(n=1001, h=1e-6, amplitude=1e-6, wavelength=2e-4, spikes=(250, 500, 753)):
+    # A sine with spikes of +-20 um (about 15 Sq from their neighbours' median), and the profile
+    # the filter must give: each spike's point on the line between its neighbours (their mean).
+    x = np.arange(n) * h
+    z = amplitude * np.sin(2 * np.pi * x / wavelength)
+    reference = z.copy()
+    for i in spikes:
+        reference[i] = 0.5 * (z[i - 1] + z[i + 1])
+    spiky = reference.copy()
+    spiky[list(spikes)] += np.array([2e-5, -2e-5, 2e-5])[: len(spikes)]
+    return x, spiky, reference
+
+
+def test_condition_crops_removes_spikes_and_records_each_step():
+    x, spiky, reference = _spiky_sine()
+    out, rec = frictal.condition(frictal.Profile(x, spiky), crop=(1e-4, 9e-4), remove_spikes=True)
+    assert len(out.x) == 801  # x = 100 .. 900 um
+    assert out.x[0] == x[100] and out.x[-1] == x[900]
+    np.testing.assert_allclose(out.z, reference[100:901], rtol=0, atol=1e-20)
+    assert rec["spikes_removed"] == 3
+    assert rec["points_after"] == (801, 1)
+    assert rec["text"] == ("crop x [0.0001, 0.0009] m: kept 801 of 1001 points; spikes (k = 10 Sq): 3 points removed "
+                           "(replaced by linear interpolation); form: none")
+    # The CLI's text form of the window reads the same.
+    same, _ = frictal.condition(frictal.Profile(x, spiky), crop="0.1mm,0.9mm")
+    assert len(same.x) == 801
+    with pytest.raises(ValueError, match="crop"):
+        frictal.condition(frictal.Profile(x, spiky), crop=(5e-3, 6e-3))
+    with pytest.raises(ValueError, match="crop"):
+        frictal.condition(frictal.Profile(x, spiky), crop=(1e-4,))
+    with pytest.raises(ValueError, match="spike threshold"):
+        frictal.condition(frictal.Profile(x, spiky), remove_spikes=True, spike_threshold=0)
+
+
+def test_condition_keeps_a_maps_mask():
+    ny, nx = 30, 40
+    yy, xx = np.mgrid[0:ny, 0:nx]
+    h = 1e-3 * xx * 1e-6 + 1e-7 * np.sin(2 * np.pi * xx / 8)
+    h[4, 3] = np.nan
+    h[5, 8] += 2e-5
+    out, rec = frictal.condition({"heights": h, "dx": 1e-6, "dy": 1e-6}, crop=(2e-6, 33e-6, 3e-6, 22e-6),
+                                 remove_spikes=True, detrend="plane")
+    m = out["heights"]
+    assert m.shape == (20, 32)
+    assert out["x0"] == pytest.approx(2e-6) and out["y0"] == pytest.approx(3e-6)
+    assert np.isnan(m[4 - 3, 3 - 2]) and np.isnan(m[5 - 3, 8 - 2])
+    assert np.count_nonzero(np.isnan(m)) == 2
+    assert rec["spikes_removed"] == 1 and rec["form"] == "plane"
+
+
+def test_predict_with_spikes_removed_reads_the_clean_profile():
+    x, spiky, reference = _spiky_sine()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        a = frictal.predict(frictal.Profile(x, spiky))
+    assert any(issubclass(w.category, frictal.SpikesWarning) for w in caught)
+    assert a.spikes_removed == 0
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        b = frictal.predict(frictal.Profile(x, spiky), remove_spikes=True)
+    assert not any(issubclass(w.category, frictal.SpikesWarning) for w in caught)
+    c = frictal.predict(frictal.Profile(x, reference))
+    assert b.spikes_removed == 3
+    assert b.conditioning == "spikes (k = 10 Sq): 3 points removed (replaced by linear interpolation); form: line"
+    assert b.to_dict()["spikes_removed"] == 3
+    assert b.friction_angle == pytest.approx(c.friction_angle, abs=1e-12)
+    assert b.theta_max == pytest.approx(c.theta_max, abs=1e-12)
+    d = frictal.predict(frictal.Profile(x, spiky), remove_spikes=True, crop=(5e-5, 9.5e-4))
+    assert d.conditioning.startswith("crop x [5e-05, 0.00095] m: kept 901 of 1001 points; spikes")
+    with pytest.raises(ValueError, match="crop"):
+        frictal.predict(frictal.Profile(x, spiky), crop=(1.0, 2.0))

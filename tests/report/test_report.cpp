@@ -288,7 +288,7 @@ TEST(Report, SawtoothPageStatesTheAnalyticPrediction) {
   std::snprintf(mu, sizeof mu, "%.4f", std::tan(phi * kDeg));
   EXPECT_NE(page->find(std::string("<b>") + mu + "</b>"), std::string::npos);
   EXPECT_NE(page->find("turned over"), std::string::npos);
-  EXPECT_NE(page->find("Detrending applied"), std::string::npos);
+  EXPECT_NE(page->find("Conditioning applied"), std::string::npos);
   EXPECT_GE(count(*page, "<svg"), 4u);  // surface, signature, slopes, resolution
   expect_self_contained(*page);
 }
