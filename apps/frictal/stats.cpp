@@ -54,9 +54,18 @@ std::function<int()> setup(CLI::App& app) {
     const double tip = a->tip_radius.empty() ? 0.0 : parse_length_option(a->tip_radius, "--tip-radius");
     const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
     const SurfaceData data = load_surface(a->file, a->input);
+    // The reader's warnings (printed as it read) and the plausibility of what was read (warnings.hpp).
+    std::vector<Warning> warnings;
+    for (const auto& w : data.warnings) add_warning(warnings, {"reader", w});
+    auto report_warnings = [&](nlohmann::json* j) {
+      if (j) (*j)["warnings"] = warnings_json(warnings);
+      for (const Warning& w : warnings)
+        if (w.code != "reader") print_warnings({w});
+    };
     if (data.is_map) {
       const ConditionedMap cm = unwrap(condition(data.map, cond, a->file));
       const Map& m = cm.map;
+      for (Warning& w : check_map(m, a->file)) add_warning(warnings, std::move(w));
       const MapStats s = map_stats(m);
       const MapScanStats sc = map_scan_stats(m);
       const double cutoff = tip > 0 ? unwrap(short_reliability_cutoff(m, tip)) : 0.0;
@@ -102,6 +111,7 @@ std::function<int()> setup(CLI::App& app) {
           j["short_reliability_cutoff_m"] = cutoff;  // NaN (unreliable at every scale) prints as null
         }
         j["conditioning"] = cm.record.text();
+        report_warnings(&j);
         print_json(j);
       } else {
         fmt::print(
@@ -116,11 +126,13 @@ std::function<int()> setup(CLI::App& app) {
             sc.Rdq_y, sc.rms_gradient_fd);
         if (tip > 0) fmt::print("  short reliability cutoff for a {:.6g} m tip: {:.6g} m\n", tip, cutoff);
         fmt::print("  conditioning: {}\n", cm.record.text());
+        report_warnings(nullptr);
       }
       return 0;
     }
     const ConditionedProfile cp = unwrap(condition(surface_profile(data, a->file), cond, a->file));
     const Profile& p = cp.profile;
+    for (Warning& w : check_profile(p, a->file)) add_warning(warnings, std::move(w));
     const ProfileStats s = profile_stats(p);
     const ProfileScanStats sc = profile_scan_stats(p);
     const double cutoff = tip > 0 ? unwrap(short_reliability_cutoff(p, tip)) : 0.0;
@@ -161,6 +173,7 @@ std::function<int()> setup(CLI::App& app) {
         j["slope_distribution_rad"] = histogram_json(slope_distribution(p, a->bins));
       }
       j["conditioning"] = cp.record.text();
+      report_warnings(&j);
       print_json(j);
     } else {
       fmt::print(
@@ -171,6 +184,7 @@ std::function<int()> setup(CLI::App& app) {
                  sc.bandwidth_short, sc.bandwidth_long);
       if (tip > 0) fmt::print("  short reliability cutoff for a {:.6g} m tip: {:.6g} m\n", tip, cutoff);
       fmt::print("  conditioning: {}\n", cp.record.text());
+      report_warnings(nullptr);
     }
     return 0;
   };

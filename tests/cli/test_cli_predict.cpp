@@ -125,6 +125,25 @@ TEST(CliWarnings, SignatureOfAUnitMixUpCarriesItsCodesAndNoNegativeFriction) {
   EXPECT_TRUE(json::parse(c.out)["warnings"].empty()) << c.out;
 }
 
+TEST(CliWarnings, StatsCarriesTheReadersAndThePlausibilityCodes) {
+  // `stats` of the same unit mix-up: the reader's warning and units-suspect in the JSON (it
+  // printed the reader's on standard error only); a clean scan and a clean map give none.
+  auto r = run_cli("stats " + data("profiles/csv-1.csv") + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::set<std::string> codes;
+  const json j = json::parse(r.out);
+  for (const auto& w : j["warnings"]) codes.insert(w["code"].get<std::string>());
+  EXPECT_TRUE(codes.count("units-suspect")) << r.out;
+  EXPECT_TRUE(codes.count("reader")) << r.out;
+  auto t = run_cli("stats " + data("profiles/csv-1.csv"));
+  EXPECT_NE(t.err.find("[units-suspect]"), std::string::npos) << t.err;
+  for (const char* clean : {"profiles/dektak-1.csv", "x3p/x3p-2.x3p"}) {
+    auto c = run_cli(std::string("stats ") + data(clean) + " --json");
+    ASSERT_EQ(c.code, 0) << c.err;
+    EXPECT_TRUE(json::parse(c.out)["warnings"].empty()) << clean << ": " << c.out;
+  }
+}
+
 TEST(CliWarnings, ArealAndDimensionCarryWarnings) {
   auto a = run_cli("areal " + data("x3p/x3p-2.x3p") + " --json --max-offset 2e-6");
   ASSERT_EQ(a.code, 0) << a.err;
