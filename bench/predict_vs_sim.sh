@@ -59,7 +59,7 @@ print("|---|---|---|---|---|---|---|---|---|")
 summary = []
 for p in pairs:
     pd = json.load(open(f"{d}/{p}-predict.json"))
-    sims, preds, npass = [], [], 0
+    sims, preds, npass, nrest = [], [], 0, 0
     mine = [j for j in jobs if j[0] == p]
     if not all(os.path.exists(f"{d}/runs/{p}-{k}-{w}.json") and os.path.getsize(f"{d}/runs/{p}-{k}-{w}.json") > 0
                for (_, k, _, _) in mine for w in ("sim", "spread", "predict")):
@@ -75,22 +75,24 @@ for p in pairs:
         assert abs(pd["drop_friction_angles_deg"][int(k)] - x) < 1e-9, (p, k, "predict --drops differs from --start-offset")
         ok = abs(fa - x) <= TOL or lo <= fa <= hi
         npass += ok
+        nrest += abs(fa - s["continuous_hold_angle_deg"]) <= TOL
         sims.append(fa); preds.append(x)
         ox, oy = (float(v) * 1e6 for v in xy.split(","))
         print(f"| {p} | {k} | {ox:.0f}, {oy:.0f} | {fa:.1f}{'' if s['ran_away'] else ' (held)'} | {x:.3f} | {lo:.3f}–{hi:.3f} "
               f"| {'pass' if ok else 'FAIL'} | {s['continuous_hold_angle_deg']:.3f} | {s['seconds']:.1f} |")
     ms, mp = statistics.median(sims), statistics.median(preds)
-    summary.append((p, len(sims), npass, ms, mp, pd["friction_angle_deg"], min(sims), max(sims), min(preds), max(preds)))
+    summary.append((p, len(sims), npass, ms, mp, pd["friction_angle_deg"], min(sims), max(sims), min(preds), max(preds), nrest))
 print()
-print("| pair | drops | drops passing | simulated median | predicted median (`predict --drops`) | difference | rule (0.3°) | simulated range | predicted range |")
-print("|---|---|---|---|---|---|---|---|---|")
-for (p, n, k, ms, mp, mq, s0, s1, p0, p1) in summary:
+print("| pair | drops | drops passing | simulated median | predicted median (`predict --drops`) | difference | rule (0.3°) | simulated range | predicted range | within 0.3° from the simulated rest |")
+print("|---|---|---|---|---|---|---|---|---|---|")
+for (p, n, k, ms, mp, mq, s0, s1, p0, p1, nr) in summary:
     print(f"| {p} | {n} | {k} / {n} | {ms:.2f} | {mp:.3f} ({mq:.3f}) | {ms - mp:+.2f} | {'pass' if abs(ms - mp) <= TOL else 'FAIL'} "
-          f"| {s0:.1f}–{s1:.1f} | {p0:.2f}–{p1:.2f} |")
+          f"| {s0:.1f}–{s1:.1f} | {p0:.2f}–{p1:.2f} | {nr} / {n} |")
 tot = sum(s[1] for s in summary); ok = sum(s[2] for s in summary)
 print(f"\ndrops passing: {ok} / {tot}; pairs whose medians agree within {TOL}°: "
       f"{sum(abs(s[3] - s[4]) <= TOL for s in summary)} / {len(summary)}; pairs with every drop passing: "
-      f"{sum(s[1] == s[2] for s in summary)} / {len(summary)}")
+      f"{sum(s[1] == s[2] for s in summary)} / {len(summary)}; drops within {TOL}° of the matched prediction "
+      f"from the simulated rest: {sum(s[10] for s in summary)} / {tot}")
 if incomplete:
     print(f"not run to the end (left out above): {' '.join(incomplete)}")
 PY
