@@ -247,7 +247,9 @@ void search_aligned(const std::vector<double>& va, const std::vector<double>& vb
   } else {
     // Start from the nodes of the level whose size covers [i0, i1] with at most two nodes.
     std::uint32_t top = 0;
-    while (top + 1 < ma.levels() && ((i1 >> (kBlockShift + top)) - (i0 >> (kBlockShift + top))) > 1) ++top;
+    while (top + 1 < std::min(ma.levels(), mb.levels()) &&
+           ((i1 >> (kBlockShift + top)) - (i0 >> (kBlockShift + top))) > 1)
+      ++top;
     const unsigned sh = kBlockShift + top;
     const std::size_t q0 = i0 >> sh, q1 = i1 >> sh;
     const double u0 = bound(top, q0);
@@ -369,12 +371,15 @@ bool build_frontier(const Problem& P, const std::vector<double>& offs, std::size
       b = std::max(b, lb[k]);
     return ma.level(level)[q] + b;
   };
-  // The frontier level: nodes at least four times as long as the batch of shifts is wide.
+  // The frontier level: nodes at least four times as long as the batch of shifts is wide. Both
+  // faces' levels are read (bound() here, search_aligned() from the frontier): at most as many as
+  // the shorter face has (an upper block much shorter than the lower one has fewer).
+  const std::size_t levels = std::min(ma.levels(), mb.levels());
   std::uint32_t lf = 0;
   const auto spread = static_cast<std::size_t>(dmax - dmin) + 1;
-  while (lf + 1 < ma.levels() && (std::size_t{kBlock} << lf) < 4 * spread) ++lf;
+  while (lf + 1 < levels && (std::size_t{kBlock} << lf) < 4 * spread) ++lf;
   std::uint32_t top = lf;
-  while (top + 1 < ma.levels() && ((u1 >> (kBlockShift + top)) - (u0 >> (kBlockShift + top))) > 1) ++top;
+  while (top + 1 < levels && ((u1 >> (kBlockShift + top)) - (u0 >> (kBlockShift + top))) > 1) ++top;
   struct Node {
     std::uint32_t level;
     std::size_t q;

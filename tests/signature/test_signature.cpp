@@ -370,6 +370,38 @@ TEST(SignatureIndexSearch, MatchesPlainScanAndGeneralSearchOnWmAndSelfAffine) {
   }
 }
 
+// An upper block much shorter than the lower one on the same lattice: the batch frontier spans
+// more aligned levels of the lower face than the short face has (it read past the short face's
+// levels and crashed: 200 and 50 points). Every lift equals the plain scan.
+TEST(SignatureIndexSearch, UpperMuchShorterThanLowerMatchesPlainScan) {
+  for (std::size_t nu : {50u, 33u, 2u}) {
+    const std::size_t nl = 2000;
+    const double dx = 1e-3 / double(nl - 1);
+    Profile lower, upper;
+    for (std::size_t i = 0; i < nl; ++i) {
+      const double x = double(i) * dx;
+      lower.x.push_back(x);
+      lower.z.push_back(1e-5 * std::sin(2 * M_PI * x / 7.3e-5) + 4e-6 * std::sin(2 * M_PI * x / 1.9e-5 + 1.0));
+    }
+    for (std::size_t i = 0; i < nu; ++i) {
+      const double x = double(i) * dx;
+      upper.x.push_back(x);
+      upper.z.push_back(8e-6 * std::cos(2 * M_PI * x / 3.1e-5) + 3e-6 * std::sin(2 * M_PI * x / 1.1e-5));
+    }
+    const Profile up = rotate180(upper);
+    for (unsigned threads : {1u, 2u}) {
+      SignatureOptions o;
+      o.threads = threads;
+      auto r = signature(lower, up, o);
+      ASSERT_TRUE(r.ok()) << r.error().message;
+      EXPECT_TRUE(r->exact);
+      ASSERT_FALSE(r->offset.empty());
+      for (std::size_t i = 0; i < r->offset.size(); i += 3)
+        EXPECT_NEAR(r->lift[i], lift_direct(lower, up, r->offset[i]), 1e-18) << nu << " points, s " << r->offset[i];
+    }
+  }
+}
+
 // A grid far from x = 0 is uniform only to within rounding of x (1e-9 dx is below an ulp
 // there): it must still be recognised as an aligned lattice, so every event is evaluated.
 TEST(SignatureIndexSearch, UniformGridFarFromOriginIsExact) {
