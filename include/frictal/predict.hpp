@@ -70,9 +70,10 @@ struct PredictOptions {
   /// Maps: also the block with its lateral motion locked (a diagnostic), from the same drops
   /// (doubles the cost).
   bool map_locked = false;
-  /// Maps: refuse when the continuous model would evaluate more than this many sphere-cell
-  /// pairs in all (an estimate; unitless). 0: no limit.
-  double map_work_limit = 1e12;
+  /// Maps: refuse when the continuous model's estimated CPU time, 2.5e-7 s per sphere of the upper
+  /// map and drop (measured on self-affine 10^6-point maps, bench/results/map-predict.md; maps rough
+  /// at the pixel scale cost up to 30x more), exceeds this (unit: s). 0: no limit.
+  double map_work_limit = 3600;
   unsigned threads = 0;  ///< worker threads (0 = all cores); results do not depend on it
   /// Maps: called after each finished drop with (done, total), from the worker threads (one
   /// call at a time); the front ends draw a progress line with it. Empty: none.

@@ -259,13 +259,14 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
       for (int i = 0; i < n; ++i)
         uv.push_back({umin + (umax - umin) * double(i) / double(n - 1), -vmax + 2 * vmax * double(j) / double(n - 1)});
   }
-  // The cost, estimated before it runs: spheres x cells per sphere x evaluations per drop.
+  // The cost, estimated before it runs: CPU seconds per sphere and drop (measured,
+  // bench/results/map-predict.md).
   const double spheres = double(up.valid_count());
-  const double work = spheres * 4.0 * 3000.0 * double(uv.size()) * (o.map_locked ? 2 : 1);
+  const double work = spheres * 2.5e-7 * double(uv.size()) * (o.map_locked ? 2 : 1);
   if (o.map_work_limit > 0 && work > o.map_work_limit)
     return make_error(
-        fmt::format("the map prediction would evaluate about {:.2g} sphere-cell pairs ({} spheres, {} "
-                    "drops), above the limit {:.2g}: crop or resample the maps, or fewer drops",
+        fmt::format("the map prediction would take about {:.0f} s of CPU ({} spheres, {} drops), above the "
+                    "limit of {:.0f} s: crop or resample the maps, or fewer drops",
                     work, std::size_t(spheres), uv.size(), o.map_work_limit));
   for (const auto& q : uv) p.drop_offsets.push_back({q[0] * c - q[1] * s, q[0] * s + q[1] * c});
   const std::size_t nd = uv.size();
