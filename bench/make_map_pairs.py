@@ -12,21 +12,7 @@ import sys
 import numpy as np
 
 import frictal
-
-
-def fourier_map(n, a, seed, H=0.8, stretch=(1.0, 1.0), rms_slope=0.2, rolloff_cells=32, cutoff_cells=2.5):
-    rng = np.random.default_rng(seed)
-    N = 2 * n
-    qx = np.fft.fftfreq(N, a)[None, :] * 2 * np.pi
-    qy = np.fft.fftfreq(N, a)[:, None] * 2 * np.pi
-    q = np.sqrt((qx * stretch[0]) ** 2 + (qy * stretch[1]) ** 2)
-    qr, qs = 2 * np.pi / (rolloff_cells * a), 2 * np.pi / (cutoff_cells * a)
-    amp = np.where(q < qr, qr ** (-(1 + H)), np.where(q > qs, 0.0, np.maximum(q, 1e-30) ** (-(1 + H))))
-    amp[0, 0] = 0
-    z = np.real(np.fft.ifft2(amp * (rng.normal(size=(N, N)) + 1j * rng.normal(size=(N, N)))))[:n, :n]
-    z -= z.mean()
-    gy, gx = np.gradient(z, a)
-    return z * rms_slope / np.sqrt(np.mean(gx ** 2 + gy ** 2))
+from fourier_maps import fourier_map  # bench/, the script's folder
 
 
 def main():
@@ -37,7 +23,7 @@ def main():
              "ani2": (14, {"stretch": (4.0, 1.0), "H": 0.5})}
     for name, (seed, kw) in pairs.items():
         for side, s in (("lower", seed), ("upper", seed + 1000)):
-            z = fourier_map(n, a, s, rolloff_cells=rolloff, **kw)
+            z = fourier_map(n, a, s, qmin_cells=rolloff, **kw)
             frictal.write_x3p(os.path.join(out, f"{name}-n{n}-r{rolloff:g}-{side}.x3p"), z, dx=a, dy=a)
 
 

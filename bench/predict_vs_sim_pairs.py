@@ -20,22 +20,7 @@ import sys
 
 import numpy as np
 
-
-# A copy of bench/areal_tilt_pairs.py's fourier_map (that script writes its pairs on import).
-def fourier_map(n, a, seed, H=0.8, stretch=(1.0, 1.0), rms_slope=0.2, qmin_cells=8, qmax_cells=2.5):
-    rng = np.random.default_rng(seed)
-    N = 2 * n  # periodic on 2n, cut n x n (not periodic)
-    qx = np.fft.fftfreq(N, a)[None, :] * 2 * np.pi
-    qy = np.fft.fftfreq(N, a)[:, None] * 2 * np.pi
-    q = np.sqrt((qx * stretch[0]) ** 2 + (qy * stretch[1]) ** 2)
-    qr = 2 * np.pi / (qmin_cells * a); qs = 2 * np.pi / (qmax_cells * a)
-    amp = np.where(q < qr, qr ** (-(1 + H)), np.where(q > qs, 0.0, np.maximum(q, 1e-30) ** (-(1 + H))))
-    amp[0, 0] = 0
-    z = np.real(np.fft.ifft2(amp * (rng.normal(size=(N, N)) + 1j * rng.normal(size=(N, N)))))[:n, :n]
-    z -= z.mean()
-    gy, gx = np.gradient(z, a)
-    s = np.sqrt(np.mean(gx ** 2 + gy ** 2))
-    return z * rms_slope / s
+from fourier_maps import fourier_map  # noqa: E402  (bench/, the script's folder)
 
 
 # The same filter in one dimension: periodic on 2n, cut n (not periodic), rms slope fixed.

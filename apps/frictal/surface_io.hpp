@@ -14,6 +14,7 @@
 #include "frictal/analysis.hpp"
 #include "frictal/conditioning.hpp"
 #include "frictal/io.hpp"
+#include "frictal/units.hpp"
 
 namespace frictal::cli {
 
@@ -50,19 +51,10 @@ inline double parse_length_option(const std::string& text, const char* option) {
   double v = 0;
   std::string unit = text.substr(k);
   while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
-  double scale = 1;
-  if (!unit.empty()) {
-    if (unit == "m")
-      scale = 1;
-    else if (unit == "mm")
-      scale = 1e-3;
-    else if (unit == "um" || unit == "\xC2\xB5m" || unit == "\xCE\xBCm")
-      scale = 1e-6;
-    else if (unit == "nm")
-      scale = 1e-9;
-    else
-      throw UsageError(fmt::format("{} '{}': unit '{}' not understood (expected m, mm, um, nm)", option, text, unit));
-  }
+  const std::optional<double> unit_scale = units::length_scale(unit);
+  if (!unit_scale)
+    throw UsageError(fmt::format("{} '{}': unit '{}' not understood (expected m, mm, um, nm)", option, text, unit));
+  const double scale = *unit_scale;
   try {
     std::size_t used = 0;
     v = std::stod(text.substr(0, k), &used);

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <numbers>
+#include <optional>
+#include <string_view>
 
 namespace frictal::units {
 
@@ -18,5 +20,15 @@ constexpr double from_deg(double deg) { return deg * kRadPerDeg; }
 
 /// A density per radian as a density per degree (a PDF over angles: p(deg) = p(rad) * rad/deg).
 constexpr double per_deg(double per_rad) { return per_rad * kRadPerDeg; }
+
+/// Metres per unit of a length written by a user (options, TOML values): "m" (or no unit), "mm",
+/// "um" (also with the micro sign or the Greek mu), "nm"; nullopt for any other (unit: m per unit).
+inline std::optional<double> length_scale(std::string_view unit) {
+  if (unit.empty() || unit == "m") return 1.0;
+  if (unit == "mm") return 1e-3;
+  if (unit == "um" || unit == "\xC2\xB5m" || unit == "\xCE\xBCm") return 1e-6;
+  if (unit == "nm") return 1e-9;
+  return std::nullopt;
+}
 
 }  // namespace frictal::units

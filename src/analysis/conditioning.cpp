@@ -1,6 +1,7 @@
 // Conditioning of measured surfaces (frictal/conditioning.hpp): crop, spike removal, form removal,
 // in that order, with a record of each step. Rules and why: docs/analysis.md, "Conditioning".
 #include "frictal/conditioning.hpp"
+#include "frictal/units.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -50,18 +51,9 @@ bool parse_length(std::string t, double& out) {
   if (end == t.c_str()) return false;
   std::string unit(end);
   while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
-  double scale = 1;
-  if (unit.empty() || unit == "m")
-    scale = 1;
-  else if (unit == "mm")
-    scale = 1e-3;
-  else if (unit == "um" || unit == "\xC2\xB5m" || unit == "\xCE\xBCm")
-    scale = 1e-6;
-  else if (unit == "nm")
-    scale = 1e-9;
-  else
-    return false;
-  out = v * scale;
+  const auto scale = units::length_scale(unit);
+  if (!scale) return false;
+  out = v * *scale;
   return std::isfinite(out);
 }
 

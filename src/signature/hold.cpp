@@ -230,6 +230,53 @@ Chain chain_from(const View& p, std::size_t s, double d) {
   }
 }
 
+// The record chains of every vertex, from the right (vertices pushed in decreasing order): the
+// stack holds the strict records ahead of the vertex last pushed; a vertex's next record is the
+// first entry above its M plus the equal-slopes tolerance (next_record's rule), found by
+// bisection; its chain is chain_from's, built from that record's chain. O(1) amortised per vertex
+// plus the bisection.
+class RecordStack {
+ public:
+  struct Entry {
+    std::size_t k;
+    double m;  // M(k)
+    Chain c;
+  };
+  RecordStack() { stack_.reserve(64); }
+  /// Pushes vertex kk (below every vertex pushed before) and returns its chain (d: run-away, m).
+  Chain push(const View& p, std::size_t kk, double d) {
+    const double mk = p.M(kk);
+    while (!stack_.empty() && stack_.back().m <= mk) stack_.pop_back();
+    const double t = mk + p.tol(kk);
+    std::size_t top = stack_.size();  // past the entry of the next record; 0: none
+    if (top > 0 && !(stack_[top - 1].m > t)) {
+      std::size_t lo = 0, hi = top - 1;  // the last index in [0, hi) above t, if any
+      while (lo < hi) {
+        const std::size_t mid = (lo + hi) / 2;
+        if (stack_[mid].m > t)
+          lo = mid + 1;
+        else
+          hi = mid;
+      }
+      top = lo;
+    }
+    Chain c;
+    if (top == 0 || p.X(stack_[top - 1].k) - p.X(kk) >= d) {
+      c.held = static_cast<std::int64_t>(kk);
+      c.run_end = top == 0 ? -1 : static_cast<std::int64_t>(stack_[top - 1].k);
+    } else {
+      c = stack_[top - 1].c;
+      ++c.slips;
+    }
+    stack_.push_back({kk, mk, c});
+    return c;
+  }
+  const std::vector<Entry>& entries() const { return stack_; }
+
+ private:
+  std::vector<Entry> stack_;
+};
+
 // The forward process from a rest: the stop that held, the run-away end, the slips.
 struct Outcome {
   double hold_x = 0, hold_slope = 0, end_x = kNaN;
@@ -661,38 +708,9 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
     std::size_t bi = 0, fi = 0;
     // Basins resting at the end vertex n: nothing ahead holds them.
     while (bi < basins.size() && basin_at(bi).vertex >= n) set_outcome(basin_at(bi++), Chain{});
-    struct Entry {
-      std::size_t k;
-      double m;  // M(k)
-      Chain c;
-    };
-    std::vector<Entry> stack;
-    stack.reserve(64);
+    RecordStack records;
     for (std::size_t kk = n; kk-- > 0 && (bi < basins.size() || fi < fq.size());) {
-      const double mk = p.M(kk);
-      while (!stack.empty() && stack.back().m <= mk) stack.pop_back();
-      const double t = mk + p.tol(kk);
-      std::size_t top = stack.size();  // past the entry of the next record; 0: none
-      if (top > 0 && !(stack[top - 1].m > t)) {
-        std::size_t lo = 0, hi = top - 1;  // the last index in [0, hi) above t, if any
-        while (lo < hi) {
-          const std::size_t mid = (lo + hi) / 2;
-          if (stack[mid].m > t)
-            lo = mid + 1;
-          else
-            hi = mid;
-        }
-        top = lo;
-      }
-      Chain c;
-      if (top == 0 || p.X(stack[top - 1].k) - p.X(kk) >= d) {
-        c.held = static_cast<std::int64_t>(kk);
-        c.run_end = top == 0 ? -1 : static_cast<std::int64_t>(stack[top - 1].k);
-      } else {
-        c = stack[top - 1].c;
-        ++c.slips;
-      }
-      stack.push_back({kk, mk, c});
+      const Chain c = records.push(p, kk, d);
       while (bi < basins.size() && basin_at(bi).vertex == kk) set_outcome(basin_at(bi++), c);
       if (fi < fq.size() && fq[fi] == kk) fa[fi++] = c;
     }
@@ -1251,12 +1269,7 @@ double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
   if (p.M(kb) < 0) rb = std::max(b, p.X(ds.forward(kb + 1)));  // the descent from b ends ahead
   if (!(rb + d <= end)) return rb + d - end;
   // Chains of every vertex in (rb - d, rb], from the right with the record stack.
-  struct Entry {
-    std::size_t k;
-    double m;
-    Chain c;
-  };
-  std::vector<Entry> stack;
+  RecordStack records;
   double short_by = 0;
   auto off_near = [&](const Chain& c) {
     const double x_held = p.X(static_cast<std::size_t>(c.held));
@@ -1266,36 +1279,13 @@ double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
   for (std::size_t kk = n; kk-- > 0;) {
     const double xk = p.X(kk);
     if (xk <= rb - d) break;
-    const double mk = p.M(kk);
-    while (!stack.empty() && stack.back().m <= mk) stack.pop_back();
-    const double t = mk + p.tol(kk);
-    std::size_t top = stack.size();
-    if (top > 0 && !(stack[top - 1].m > t)) {
-      std::size_t lo = 0, hi = top - 1;
-      while (lo < hi) {
-        const std::size_t mid = (lo + hi) / 2;
-        if (stack[mid].m > t)
-          lo = mid + 1;
-        else
-          hi = mid;
-      }
-      top = lo;
-    }
-    Chain c;
-    if (top == 0 || p.X(stack[top - 1].k) - xk >= d) {
-      c.held = static_cast<std::int64_t>(kk);
-      c.run_end = top == 0 ? -1 : static_cast<std::int64_t>(stack[top - 1].k);
-    } else {
-      c = stack[top - 1].c;
-      ++c.slips;
-    }
-    stack.push_back({kk, mk, c});
+    const Chain c = records.push(p, kk, d);
     if (xk <= rb) off_near(c);
-    if (xk <= rb && mk == 0) {  // a flat piece: drops on it slip first to its next record
+    if (xk <= rb && p.M(kk) == 0) {  // a flat piece: drops on it slip first to its next record
       const std::int64_t j = next_record(p, kk);
       if (j < 0) continue;  // drops there run off the end from at most rb, which is d before it
       // j's entry: on the stack (it is a strict record of kk, being the first above a threshold).
-      for (const Entry& e : stack)
+      for (const RecordStack::Entry& e : records.entries())
         if (e.k == static_cast<std::size_t>(j)) off_near(e.c);
     }
   }
