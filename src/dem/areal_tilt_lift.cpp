@@ -232,10 +232,7 @@ class SphereField {
       const Tile& tl = tiles_[t];
       std::size_t i0, i1, j0, j1;
       if (!cell_range(tl.xlo + sx, tl.xhi + sx, tl.ylo + sy, tl.yhi + sy, i0, i1, j0, j1)) continue;
-      double top = kNoContact;
-      for (std::size_t bj = j0 / kBlock; bj <= j1 / kBlock; ++bj)
-        for (std::size_t bi = i0 / kBlock; bi <= i1 / kBlock; ++bi) top = std::max(top, block_top_[bj * bnx_ + bi]);
-      bound[t] = top + r_ + tl.base;
+      bound[t] = cells_top(block_top_, bnx_, kBlock, i0, i1, j0, j1) + r_ + tl.base;
       if (first == tiles_.size() || bound[t] > bound[first]) first = t;
     }
     if (first == tiles_.size()) return best;
@@ -263,22 +260,15 @@ class SphereField {
     near.threshold = threshold;
     near.list.clear();
     const double wr = near.radius;  // the footprints widened by the disc
-    const std::size_t sblock = kBlock * kSuper;
     for (const Super& sp : supers_) {
       std::size_t i0, i1, j0, j1;
       if (!cell_range(sp.xlo + sx - wr, sp.xhi + sx + wr, sp.ylo + sy - wr, sp.yhi + sy + wr, i0, i1, j0, j1)) continue;
-      double stop = kNoContact;
-      for (std::size_t bj = j0 / sblock; bj <= j1 / sblock; ++bj)
-        for (std::size_t bi = i0 / sblock; bi <= i1 / sblock; ++bi) stop = std::max(stop, sblock_top_[bj * snx_ + bi]);
-      if (stop + r_ + sp.base < threshold) continue;
+      if (cells_top(sblock_top_, snx_, kBlock * kSuper, i0, i1, j0, j1) + r_ + sp.base < threshold) continue;
       for (const std::uint32_t ti : sp.tiles) {
         const Tile& tl = tiles_[ti];
         if (!cell_range(tl.xlo + sx - wr, tl.xhi + sx + wr, tl.ylo + sy - wr, tl.yhi + sy + wr, i0, i1, j0, j1))
           continue;
-        double top = kNoContact;
-        for (std::size_t bj = j0 / kBlock; bj <= j1 / kBlock; ++bj)
-          for (std::size_t bi = i0 / kBlock; bi <= i1 / kBlock; ++bi) top = std::max(top, block_top_[bj * bnx_ + bi]);
-        if (top + r_ + tl.base < threshold) continue;
+        if (cells_top(block_top_, bnx_, kBlock, i0, i1, j0, j1) + r_ + tl.base < threshold) continue;
         for (std::size_t q = tl.begin; q < tl.end; ++q) {
           const detail::TiltNode& n = nodes_[order_[q]];
           if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
@@ -306,6 +296,16 @@ class SphereField {
   std::vector<Super> supers_;
   std::size_t snx_ = 0;
   std::vector<double> sblock_top_;  ///< max of block_top_ over kSuper x kSuper blocks
+
+  /// The highest cell top over cells [i0, i1] x [j0, j1] from a table of block maxima, `size` cells
+  /// on a side per block and `stride` blocks per row (unit: m).
+  static double cells_top(const std::vector<double>& blocks, std::size_t stride, std::size_t size, std::size_t i0,
+                          std::size_t i1, std::size_t j0, std::size_t j1) {
+    double top = kNoContact;
+    for (std::size_t bj = j0 / size; bj <= j1 / size; ++bj)
+      for (std::size_t bi = i0 / size; bi <= i1 / size; ++bi) top = std::max(top, blocks[bj * stride + bi]);
+    return top;
+  }
 
   /// The cells whose rectangle meets the rectangle [x0, x1] x [y0, y1] widened by r; false if none.
   bool cell_range(double x0, double x1, double y0, double y1, std::size_t& i0, std::size_t& i1, std::size_t& j0,
