@@ -197,7 +197,7 @@ std::function<int()> setup(CLI::App& app) {
         nlohmann::json tr = nlohmann::json::array();
         for (const ArealTiltIncrement& i : r.trace)
           tr.push_back({to_deg(i.tilt), i.x, i.y, i.rested, i.steps, i.unbalanced_force, i.speed});
-        j["increments"] = tr;  // [tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed]
+        j["increment_trace"] = tr;  // [tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed]
       }
       j["tilt_step_deg"] = tilt_step_deg;
       j["spheres"] = r.spheres;

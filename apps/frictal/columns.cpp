@@ -1,38 +1,74 @@
-// frictal columns [--json|--markdown] — the output table of the prediction: every key of
-// `frictal predict --json` (and of Python's Prediction.to_dict()) with its unit and meaning.
+// frictal columns [TABLE] [--json|--markdown] — the output tables (frictal/outputs.hpp): every key
+// that a command's --json and Python's dicts print, with its unit and meaning, table by table.
 #include "common.hpp"
-#include "frictal/predict.hpp"
+#include "frictal/outputs.hpp"
+#include "frictal/settings.hpp"
 
 namespace frictal::cli {
 namespace {
 
+std::string python_text(const ColumnInfo& c) {
+  if (c.python.empty()) return "";
+  return c.python + (c.unit == "deg" ? " (rad)" : "");
+}
+
 std::function<int()> setup(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   auto markdown = std::make_shared<bool>(false);
-  app.add_flag("--json", *json, "Print the table as JSON: [{key, unit, help}]");
-  app.add_flag("--markdown", *markdown, "Print the table as Markdown (the docs' outputs reference)");
-  return [json, markdown]() {
+  auto table = std::make_shared<std::string>();
+  app.add_option("table", *table, "Only this table (e.g. prediction, signature, hold, stats, tilt); default: all");
+  app.add_flag("--json", *json, "Print the tables as JSON: [{name, help, columns: [{key, unit, help, python}]}]");
+  app.add_flag("--markdown", *markdown, "Print the tables as Markdown (the docs' outputs reference)");
+  return [json, markdown, table]() {
     require(!(*json && *markdown), "give one of --json and --markdown");
+    std::vector<const OutputTable*> tables;
+    if (table->empty()) {
+      for (const OutputTable& t : output_tables()) tables.push_back(&t);
+    } else {
+      const OutputTable* t = find_output_table(*table);
+      if (!t) {
+        std::vector<std::string> names;
+        for (const OutputTable& x : output_tables()) names.push_back(x.name);
+        std::string hint = nearest_word(*table, names);
+        throw UsageError("columns: no output table '" + *table + "'" +
+                         (hint.empty() ? "" : "; did you mean '" + hint + "'?") + " (frictal columns lists them)");
+      }
+      tables.push_back(t);
+    }
     if (*json) {
       nlohmann::json j = nlohmann::json::array();
-      for (const OutputColumn& c : prediction_columns())
-        j.push_back({{"key", c.key}, {"unit", c.unit}, {"help", c.help}});
-      j.push_back({{"key", "warnings"}, {"unit", "list"}, {"help", "[{code, message}]: see frictal warnings"}});
+      for (const OutputTable* t : tables) {
+        nlohmann::json cols = nlohmann::json::array();
+        for (const ColumnInfo& c : t->columns)
+          cols.push_back({{"key", c.key}, {"unit", c.unit}, {"help", c.help}, {"python", c.python}});
+        j.push_back({{"name", t->name}, {"help", t->help}, {"columns", cols}});
+      }
       print_json(j);
     } else if (*markdown) {
-      fmt::print("| key | unit | meaning |\n|---|---|---|\n");
-      for (const OutputColumn& c : prediction_columns()) fmt::print("| `{}` | {} | {} |\n", c.key, c.unit, c.help);
-      fmt::print("| `warnings` | list | `[{{code, message}}]`: see `frictal warnings` |\n");
+      for (const OutputTable* t : tables) {
+        fmt::print("## `{}`\n\n{}\n\n| key | unit | Python key (SI) | meaning |\n|---|---|---|---|\n", t->name,
+                   t->help);
+        for (const ColumnInfo& c : t->columns)
+          fmt::print("| {} | {} | {} | {} |\n", c.key.empty() ? "" : "`" + c.key + "`", c.unit,
+                     c.python.empty() ? "" : "`" + python_text(c) + "`", c.help);
+        fmt::print("\n");
+      }
     } else {
-      for (const OutputColumn& c : prediction_columns()) fmt::print("{:34} {:6} {}\n", c.key, c.unit, c.help);
-      fmt::print("{:34} {:6} {}\n", "warnings", "list", "[{code, message}]: see frictal warnings");
+      for (const OutputTable* t : tables) {
+        fmt::print("{}: {}\n", t->name, t->help);
+        for (const ColumnInfo& c : t->columns)
+          fmt::print("  {:38} {:24} {:30} {}\n", c.key.empty() ? "-" : c.key, c.unit,
+                     c.python.empty() ? "-" : python_text(c), c.help);
+        fmt::print("\n");
+      }
     }
     return 0;
   };
 }
 
-FRICTAL_COMMAND({"columns", "The prediction's output keys (frictal predict --json, Python to_dict) with units", setup,
-                 94});
+FRICTAL_COMMAND({"columns",
+                 "The output tables: every key of each command's --json and of Python's dicts, with unit and meaning",
+                 setup, 94});
 
 }  // namespace
 }  // namespace frictal::cli

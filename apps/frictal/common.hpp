@@ -17,6 +17,7 @@
 #include "command.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/io.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/units.hpp"
 #include "frictal/warnings.hpp"
 
@@ -68,6 +69,38 @@ inline Profile load_profile(const std::string& path, const ReadOptions& options 
 
 /// Prints a JSON object on stdout (NaN/inf become null, as JSON has no such numbers).
 inline void print_json(const nlohmann::json& j) { fmt::print("{}\n", j.dump(2)); }
+
+/// An output value in JSON, in the interface unit `unit` (frictal/outputs.hpp): degrees for "deg",
+/// an integer for "count", NaN and inf as null.
+inline nlohmann::json json_value(const std::string& unit, const OutputValue& si) {
+  const OutputValue v = to_interface(unit, si);
+  if (auto* d = std::get_if<double>(&v)) {
+    if (!std::isfinite(*d)) return nullptr;
+    if (unit == "count") return static_cast<long long>(*d);
+    return *d;
+  }
+  if (auto* t = std::get_if<std::string>(&v)) return *t;
+  if (auto* b = std::get_if<bool>(&v)) return *b;
+  nlohmann::json l = nlohmann::json::array();
+  for (double x : std::get<std::vector<double>>(v)) l.push_back(std::isfinite(x) ? nlohmann::json(x) : nullptr);
+  return l;
+}
+
+/// The generic JSON writer of an output table: every column of `cols` that the CLI prints (a
+/// non-empty key) and that has a value (nested objects are written by the caller under their
+/// declared keys) into `j`, in its interface unit.
+template <class T>
+void put_columns(nlohmann::json& j, const Columns<T>& cols, const T& value) {
+  for (const Column<T>& c : cols)
+    if (!c.key.empty() && c.si) j[c.key] = json_value(c.unit, c.si(value));
+}
+/// An output table's columns as one JSON object.
+template <class T>
+nlohmann::json object_of(const Columns<T>& cols, const T& value) {
+  nlohmann::json j = nlohmann::json::object();
+  put_columns(j, cols, value);
+  return j;
+}
 
 /// Warnings as results: the JSON array [{code, message}] of a command's output.
 inline nlohmann::json warnings_json(const std::vector<Warning>& w) {

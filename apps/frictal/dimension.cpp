@@ -44,7 +44,7 @@ std::function<int()> setup(CLI::App& app) {
       const double D = unwrap(koch_dimension(kp.alpha));
       if (a->json) {
         nlohmann::json j;
-        j["alpha"] = to_deg(kp.alpha);
+        j["alpha_deg"] = to_deg(kp.alpha);
         j["method"] = "eq13";
         j["dimension"] = D;
         j["equation"] = "2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1";
@@ -106,12 +106,7 @@ std::function<int()> setup(CLI::App& app) {
       nlohmann::json j;
       j["file"] = a->file;
       j["method"] = a->method;
-      j["dimension"] = f.dimension;
-      j["slope"] = f.slope;
-      j["r_squared"] = f.r_squared;
-      j["fit_range_m"] = {f.scale_min, f.scale_max};
-      j["scales_m"] = f.scales;
-      j["values"] = f.values;
+      put_columns(j, fractal_fit_columns(), f);
       j["conditioning"] = record.text();
       j["warnings"] = warnings_json(warnings);
       print_json(j);

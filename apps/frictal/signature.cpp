@@ -20,41 +20,10 @@
 namespace frictal::cli {
 namespace {
 
-// The hold analysis as JSON keys (degrees and metres at the interface).
+// The hold analysis as JSON keys: its output tables (frictal/hold.hpp), in interface units.
 void add_hold_json(nlohmann::json& j, const HoldAnalysis& h) {
-  j["runaway_distance_m"] = h.runaway_distance;
-  j["hold_events"] = h.events;
-  j["hold_exact"] = h.exact;
-  auto stats = [&j](const std::string& prefix, const HoldStatistics& s) {
-    j[prefix + "_mean_deg"] = to_deg(s.mean);
-    j[prefix + "_std_deg"] = to_deg(s.std);
-    j[prefix + "_q05_deg"] = to_deg(s.q05);
-    j[prefix + "_q50_deg"] = to_deg(s.q50);
-    j[prefix + "_q95_deg"] = to_deg(s.q95);
-    j[prefix + "_min_deg"] = to_deg(s.min);
-    j[prefix + "_max_deg"] = to_deg(s.max);
-  };
-  const HoldDistribution& f = h.distribution.forward;
-  const HoldDistribution& b = h.distribution.backward;
-  j["drop_range_m"] = {f.drop_min, f.drop_max};
-  j["hold_basins"] = f.basins.rest.size();
-  stats("hold_angle", f.hold);
-  stats("inertial_hold_angle", f.inertial);
-  stats("hold_angle_backward", b.hold);
-  stats("inertial_hold_angle_backward", b.inertial);
-  if (h.has_start) {
-    auto one = [&j](const std::string& suffix, const HoldAngle& a) {
-      j["rest_offset" + suffix + "_m"] = a.rest_offset;
-      j["hold_angle" + suffix + "_deg"] = to_deg(a.hold_angle);
-      j["hold_offset" + suffix + "_m"] = a.hold_offset;
-      j["runaway_end" + suffix + "_m"] = a.runaway_end;  // NaN (null): off the end, or never caught
-      j["hold_slips" + suffix] = a.slips;
-      j["inertial_hold_angle" + suffix + "_deg"] = to_deg(a.inertial_hold_angle);
-      j["inertial_offset" + suffix + "_m"] = a.inertial_offset;
-    };
-    one("", h.start.forward);
-    one("_backward", h.start.backward);
-  }
+  put_columns(j, hold_columns(), h);
+  if (h.has_start) put_columns(j, hold_start_columns(), h);
 }
 
 void print_hold_text(std::FILE* text, const HoldAnalysis& h, const FrictionPrediction& eq18) {
@@ -321,28 +290,10 @@ std::function<int()> setup(CLI::App& app) {
       j["lower"] = a->lower;
       j["upper"] = a->upper.empty() ? a->lower : a->upper;
       j["slopes"] = a->slopes;
-      j["spheroradius_m"] = r.spheroradius;
-      j["exact"] = r.exact;
-      j["grid_replaced"] = r.grid_replaced;
-      j["offsets"] = r.offset.size();
-      j["offset_range_m"] = {r.offset.front(), r.offset.back()};
-      j["theta_max_forward_deg"] = to_deg(r.theta_max_forward);
-      j["theta_max_backward_deg"] = to_deg(r.theta_max_backward);
-      j["offset_at_forward_m"] = r.offset_at_forward;
-      j["offset_at_backward_m"] = r.offset_at_backward;
-      j["contact_slope_mean_deg"] = to_deg(r.contact_slope_mean);
-      j["contact_slope_std_deg"] = to_deg(r.contact_slope_std);
+      put_columns(j, signature_columns(), r);
       j["surface_slope_max_deg"] = to_deg(smax);
-      j["atomic_friction"] = a->mu_a;
-      j["atomic_friction_angle_deg"] = to_deg(fwd.atomic_angle);
-      // theta_max-based: the rigid upper bound (Eq. 6) and Eq. 18; what a tilt test reads is
-      // `frictal predict` (the hold angle's distribution below is its analysis).
-      j["upper_bound_friction_angle_deg"] = to_deg(fwd.friction_angle);
-      j["upper_bound_friction_coefficient"] = fwd.friction_coefficient;
-      j["eq18_low_friction_angle_deg"] = to_deg(fwd.friction_angle_low);
-      j["eq18_low_friction_coefficient"] = fwd.friction_coefficient_low;
-      j["upper_bound_friction_angle_backward_deg"] = to_deg(bwd.friction_angle);
-      j["upper_bound_friction_coefficient_backward"] = bwd.friction_coefficient;
+      put_columns(j, friction_columns(), fwd);
+      put_columns(j, friction_backward_columns(), bwd);
       j["conditioning"] = conditioning_text(records);
       j["warnings"] = warnings_json(warnings);
       if (hold) add_hold_json(j, *hold);

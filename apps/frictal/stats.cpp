@@ -74,38 +74,9 @@ std::function<int()> setup(CLI::App& app) {
         j["file"] = a->file;
         j["format"] = format_name(data.format);
         j["kind"] = "map";
-        j["points"] = s.points;
-        j["valid_points"] = s.valid;
-        j["nx"] = m.nx;
-        j["ny"] = m.ny;
-        j["dx_m"] = m.dx;
-        j["dy_m"] = m.dy;
-        j["length_m"] = s.width;  // extent along x, as for profiles
-        j["size_x_m"] = s.width;
-        j["size_y_m"] = s.height;
-        j["mean_height_m"] = s.mean;
-        j["Sa_m"] = s.Sa;
-        j["Sq_m"] = s.Sq;
-        j["rms_height_m"] = s.Sq;
-        j["Sp_m"] = s.Sp;
-        j["Sv_m"] = s.Sv;
-        j["Sz_m"] = s.Sz;
-        j["Ssk"] = s.Ssk;
-        j["Sku"] = s.Sku;
-        j["Sdq"] = s.Sdq;
-        j["rms_slope"] = s.Sdq;  // the areal rms gradient, the profiles' rms slope
-        j["max_slope_deg"] = to_deg(s.max_slope);
-        j["physical_size_x_m"] = sc.physical_size_x;  // nx dx (pixel convention)
-        j["physical_size_y_m"] = sc.physical_size_y;
-        j["physical_length_m"] = sc.physical_size_x;
-        j["bandwidth_short_m"] = sc.bandwidth_short;
-        j["bandwidth_long_m"] = sc.bandwidth_long;
-        j["nyquist_wavelength_m"] = sc.nyquist_wavelength;
-        j["Rq_x_m"] = sc.Rq_x;
-        j["Rdq_x"] = sc.Rdq_x;
-        j["Rq_y_m"] = sc.Rq_y;
-        j["Rdq_y"] = sc.Rdq_y;
-        j["rms_gradient_fd"] = sc.rms_gradient_fd;
+        put_columns(j, map_stats_columns(), s);
+        put_columns(j, map_grid_columns(), m);
+        put_columns(j, map_scan_stats_columns(), sc);
         if (tip > 0) {
           j["tip_radius_m"] = tip;
           j["short_reliability_cutoff_m"] = cutoff;  // NaN (unreliable at every scale) prints as null
@@ -151,18 +122,8 @@ std::function<int()> setup(CLI::App& app) {
       j["file"] = a->file;
       j["format"] = format_name(data.format);
       j["kind"] = "profile";
-      j["points"] = s.points;
-      j["length_m"] = s.length;
-      j["mean_height_m"] = s.mean_height;
-      j["rms_height_m"] = s.rms_height;
-      j["rms_slope"] = s.rms_slope;
-      j["max_slope_deg"] = to_deg(s.max_slope);
-      j["mean_slope_deg"] = to_deg(s.mean_slope);
-      j["physical_length_m"] = sc.physical_length;  // n dx with dx = length / (n - 1)
-      j["sampling_interval_m"] = sc.sampling_interval;
-      j["bandwidth_short_m"] = sc.bandwidth_short;
-      j["bandwidth_long_m"] = sc.bandwidth_long;
-      j["nyquist_wavelength_m"] = sc.nyquist_wavelength;
+      put_columns(j, profile_stats_columns(), s);
+      put_columns(j, profile_scan_stats_columns(), sc);
       if (tip > 0) {
         j["tip_radius_m"] = tip;
         j["short_reliability_cutoff_m"] = cutoff;

@@ -85,9 +85,9 @@ nlohmann::json scaling_json(const std::optional<TiltScaling>& sc) {
                     {"from", f ? to_text_unit(*f, t.from) : t.from},
                     {"to", f ? to_text_unit(*f, t.to) : t.to}});
   }
-  return {{"reference_length_m", kTiltReferenceLength}, {"length_m", sc->length},
-          {"point_spacing_m", sc->point_spacing},       {"length_factor", sc->length_factor},
-          {"radius_factor", sc->radius_factor},         {"settings", list}};
+  nlohmann::json j = object_of(tilt_scaling_columns(), *sc);
+  j["settings"] = list;
+  return j;
 }
 
 int run(TiltOptions& o) {
@@ -252,89 +252,16 @@ int run(TiltOptions& o) {
   const double us_per_step = r->steps ? 1e6 * r->wall_time / static_cast<double>(r->steps) : 0.0;
   if (o.json) {
     nlohmann::json j;
-    j["slid"] = r->slid;
-    j["friction_angle_deg"] = r->slid ? nlohmann::json(r->friction_angle / kDeg) : nlohmann::json(nullptr);
-    // false when a warning says the run left the model (rotation): the angle is then not a
-    // friction angle of the surfaces.
-    j["friction_angle_valid"] = r->slid && !rotated;
-    j["predicted_friction_angle_deg"] =
-        cfg.predict ? nlohmann::json(r->predicted_friction_angle / kDeg) : nlohmann::json(nullptr);
-    j["predicted_theta_max_deg"] =
-        cfg.predict ? nlohmann::json(r->predicted_theta_max / kDeg) : nlohmann::json(nullptr);
-    j["predicted_sphero_friction_angle_deg"] =
-        cfg.predict ? nlohmann::json(r->predicted_sphero_friction_angle / kDeg) : nlohmann::json(nullptr);
-    j["predicted_sphero_theta_max_deg"] =
-        cfg.predict ? nlohmann::json(r->predicted_sphero_theta_max / kDeg) : nlohmann::json(nullptr);
-    auto deg_or_null = [](double rad) {
-      return std::isnan(rad) ? nlohmann::json(nullptr) : nlohmann::json(rad / kDeg);
-    };
-    j["protocol"] = cfg.protocol == TiltProtocol::QuasiStatic ? "quasi-static" : "constant-rate";
-    j["contact_rule"] = r->contact_rule == dem::ContactRule::Closest ? "closest" : "pairs";
-    j["rest_offset_m"] = r->rest_offset;
-    j["predicted_hold_angle_deg"] = deg_or_null(r->predicted_hold_angle);
-    j["predicted_hold_offset_m"] =
-        std::isnan(r->predicted_hold_offset) ? nlohmann::json(nullptr) : nlohmann::json(r->predicted_hold_offset);
-    j["slide_start_offset_m"] =
-        r->slid ? nlohmann::json(r->rest_offset + (cfg.reverse ? -1 : 1) * r->slide_start_displacement)
-                : nlohmann::json(nullptr);
-    j["predicted_inertial_hold_angle_deg"] = deg_or_null(r->predicted_inertial_hold_angle);
-    j["predicted_sphero_hold_angle_deg"] = deg_or_null(r->predicted_sphero_hold_angle);
-    if (!r->hold_error.empty()) j["hold_error"] = r->hold_error;
-    if (cfg.check_stiffness) j["stiff_friction_angle_deg"] = deg_or_null(r->stiff_friction_angle);
-    if (cfg.protocol == TiltProtocol::QuasiStatic) {
-      j["increments"] = r->increments;
-      j["unrelaxed_increments"] = r->unrelaxed_increments;
-    }
-    j["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
-    const TiltScales& sc = r->scales;
-    j["scales"] = {{"resting_overlap_m", sc.resting_overlap},
-                   {"spheroradius_m", sc.spheroradius},
-                   {"shortest_edge_m", {sc.shortest_edge[0], sc.shortest_edge[1]}},
-                   {"smallest_feature_m", {sc.smallest_feature[0], sc.smallest_feature[1]}},
-                   {"time_step_s", sc.time_step},
-                   {"contact_period_s", sc.contact_period}};
+    const TiltReport run{*r, cfg};
+    put_columns(j, tilt_columns(), run);
+    j["scales"] = object_of(tilt_scales_columns(), r->scales);
     j["warnings"] = nlohmann::json::array();
     for (const TiltWarning& w : warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
     j["surface"] = surface;
     j["scaled_defaults"] = scaling_json(scaling);
-    const TiltEstimate& e = r->estimate;
-    j["estimate"] = {{"time_step_s", e.time_step},
-                     {"steps_expected", e.steps_expected},
-                     {"steps_bound", e.steps_bound},
-                     {"simulated_time_expected_s", e.simulated_time_expected},
-                     {"simulated_time_bound_s", e.simulated_time_bound},
-                     {"list_pairs", e.list_pairs},
-                     {"seconds_per_step", e.seconds_per_step},
-                     {"seconds_expected", e.seconds_expected},
-                     {"seconds_bound", e.seconds_bound}};
+    j["estimate"] = object_of(tilt_estimate_columns(), r->estimate);
     j["settings"] = text_json(tilt_settings(), tilt_values(cfg));
-    j["initial_offset_m"] = r->initial_offset;
-    j["slide_time_s"] = r->slide_time;
-    j["simulated_time_s"] = r->simulated_time;
-    j["steps"] = r->steps;
-    j["wall_time_s"] = r->wall_time;
-    j["setup_time_s"] = r->setup_time;
-    j["us_per_step"] = us_per_step;
-    j["min_time_step_s"] = r->min_time_step;
-    j["max_time_step_s"] = r->max_time_step;
-    j["list_builds"] = r->timings.list_builds;
-    j["steps_beyond_stability_limit"] = r->steps_beyond_limit;
-    j["mean_pairs_in_list"] =
-        r->steps ? static_cast<double>(r->timings.pairs_visited) / static_cast<double>(r->steps) : 0.0;
-    j["mean_pairs_evaluated"] =
-        r->steps ? static_cast<double>(r->timings.pairs_evaluated) / static_cast<double>(r->steps) : 0.0;
-    j["hot_list_refreshes"] = r->timings.hot_refreshes;
-    j["split_steps"] = r->timings.split_steps;
-    j["stage_time_s"] = {{"neighbor_list", r->timings.neighbor_list},
-                         {"contacts", r->timings.contacts},
-                         {"integration", r->timings.integration}};
-    j["lower_vertices"] = r->lower_vertices;
-    j["upper_vertices"] = r->upper_vertices;
-    j["upper_mass_kg"] = r->upper_mass;
-    j["normal_damping_per_s"] = r->normal_damping;
-    j["settled_contacts"] = r->settled_contacts;
-    j["settled_overlap_m"] = r->settled_overlap;
-    j["settled_speed_m_s"] = r->settled_speed;
+    j["stage_time_s"] = object_of(tilt_stage_time_columns(), r->timings);
     fmt::print("{}\n", j.dump());
   } else {
     // With a CSV on standard output, the summary goes to standard error.

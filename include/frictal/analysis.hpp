@@ -8,6 +8,7 @@
 
 #include "frictal/geometry.hpp"
 #include "frictal/map.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/stats.hpp"
 
 namespace frictal {
@@ -84,5 +85,10 @@ std::vector<Profile> map_line(const Map& m, double x, double y, double angle, do
 /// All lines parallel to `angle`, `spacing` apart (0 = min(dx, dy)), covering the map.
 std::vector<Profile> map_lines(const Map& m, double angle, double spacing = 0, double step = 0,
                                std::size_t min_points = 8);
+
+/// A map's statistics and its grid as output columns (frictal/outputs.hpp; src/analysis/columns.cpp):
+/// `frictal stats --json` and Python's map_stats().
+const Columns<MapStats>& map_stats_columns();
+const Columns<Map>& map_grid_columns();
 
 }  // namespace frictal

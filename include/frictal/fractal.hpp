@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "frictal/geometry.hpp"
+#include "frictal/outputs.hpp"
 
 namespace frictal {
 
@@ -59,5 +60,9 @@ Result<FractalFit> psd_dimension(const Profile& p, const PsdFitOptions& o = {});
 ///   2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1     (D = log 4 / log 3 at alpha = 60 degrees).
 /// alpha in [0, pi/3] (unit: rad). Solved by bisection to machine precision.
 Result<double> koch_dimension(double alpha);
+
+/// A fit's output table (frictal/outputs.hpp; src/analysis/columns.cpp): `frictal dimension
+/// --json` and Python's divider_dimension/box_dimension/psd_dimension dicts.
+const Columns<FractalFit>& fractal_fit_columns();
 
 }  // namespace frictal

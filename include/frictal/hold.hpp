@@ -40,6 +40,7 @@
 #include <limits>
 #include <vector>
 
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 #include "frictal/signature.hpp"
 
@@ -203,5 +204,16 @@ Result<SignatureWithHold> signature_with_hold(const Profile& lower, const Profil
 Result<SignatureWithHold> signature_with_hold(Profile&& lower, Profile&& upper, const SignatureOptions& options,
                                               const HoldOptions& hold,
                                               double start = std::numeric_limits<double>::quiet_NaN());
+
+/// The hold analysis' output tables (frictal/outputs.hpp; src/signature/columns.cpp): the flat keys
+/// of `frictal signature --json` (hold_columns; hold_start_columns with --start-offset) and the
+/// nested dicts of Python's hold_angle() (hold_columns' Python keys, hold_distribution_columns,
+/// hold_statistics_columns, hold_basins_columns, hold_drop_columns).
+const Columns<HoldAnalysis>& hold_columns();
+const Columns<HoldAnalysis>& hold_start_columns();
+const Columns<HoldDistribution>& hold_distribution_columns();
+const Columns<HoldStatistics>& hold_statistics_columns();
+const Columns<HoldBasins>& hold_basins_columns();
+const Columns<HoldAngle>& hold_drop_columns();
 
 }  // namespace frictal

@@ -31,6 +31,7 @@
 #include "frictal/hold.hpp"
 #include "frictal/io.hpp"
 #include "frictal/map.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 #include "frictal/warnings.hpp"
 
@@ -139,25 +140,14 @@ Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name
 Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper,
                            const PredictOptions& options = {});
 
-/// An output value: a number (SI inside, converted to the column's interface unit by the writers),
-/// a text, a flag or a list of numbers.
-using OutputValue = std::variant<double, std::string, bool, std::vector<double>>;
-
-/// One output quantity of the prediction, declared once: the JSON key of `frictal predict --json`,
-/// the key of Python's Prediction.to_dict() and of the report's embedded JSON, its interface unit,
-/// what it means, and its value in SI.
-struct OutputColumn {
-  std::string key;   ///< e.g. "friction_angle_deg" (the unit suffix is part of the name)
-  std::string unit;  ///< interface unit: "deg" (SI value in rad), "m", "1" (unitless), "text", "flag", "count"
-  std::string help;
-  std::function<OutputValue(const Prediction&)> si;  ///< the value in SI (rad for "deg")
-};
-
-/// The prediction's output table (every key but "warnings", which is a list of {code, message}).
-const std::vector<OutputColumn>& prediction_columns();
+/// The prediction's output table (frictal/outputs.hpp): every key of `frictal predict --json`, of
+/// Python's Prediction.to_dict() and of the report's embedded JSON, with its interface unit, its
+/// meaning and its SI value (the Prediction's Python attributes are the columns' Python keys);
+/// every key but "warnings", which is a list of {code, message}.
+const Columns<Prediction>& prediction_columns();
 
 /// The value of a column in its interface unit (degrees for "deg"; NaN/inf stay as they are).
-OutputValue interface_value(const OutputColumn& c, const Prediction& p);
+OutputValue interface_value(const Column<Prediction>& c, const Prediction& p);
 
 /// The prediction as one JSON object: every column in its interface unit (NaN and inf as null),
 /// then "warnings": [{"code", "message"}], then `extra` (already JSON text: `"key": value` pairs

@@ -6,6 +6,7 @@
 
 #include "frictal/geometry.hpp"
 #include "frictal/map.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 
 namespace frictal {
@@ -52,5 +53,9 @@ ProfileScanStats profile_scan_stats(const Profile& p);
 /// of the two (SurfaceTopography looks along x only).
 Result<double> short_reliability_cutoff(const Profile& p, double tip_radius);
 Result<double> short_reliability_cutoff(const Map& m, double tip_radius);
+
+/// The scan quantities as output columns (frictal/outputs.hpp; src/analysis/columns.cpp).
+const Columns<MapScanStats>& map_scan_stats_columns();
+const Columns<ProfileScanStats>& profile_scan_stats_columns();
 
 }  // namespace frictal

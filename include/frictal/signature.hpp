@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "frictal/geometry.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/stats.hpp"
 
 namespace frictal {
@@ -142,5 +143,13 @@ struct FrictionPrediction {
 };
 /// mu_a >= 0; theta_max and sigma in radians.
 Result<FrictionPrediction> predict_friction(double atomic_friction, double theta_max, double sigma);
+
+/// The signature's output table (frictal/outputs.hpp): `frictal signature --json` and Python's
+/// signature() dict (src/signature/columns.cpp).
+const Columns<SignatureResult>& signature_columns();
+/// The rigid bound and the Eq. 18 low end (forward): `signature --json`, Python predict_friction().
+const Columns<FrictionPrediction>& friction_columns();
+/// The backward rigid bound: `signature --json` (upper_bound_friction_angle_backward_deg, ...).
+const Columns<FrictionPrediction>& friction_backward_columns();
 
 }  // namespace frictal

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "frictal/geometry.hpp"
+#include "frictal/outputs.hpp"
 
 namespace frictal {
 
@@ -35,5 +36,9 @@ struct MeanStd {
   double std = 0;  ///< population standard deviation
 };
 MeanStd weighted_mean_std(const std::vector<double>& samples, const std::vector<double>& weights);
+
+/// A profile's statistics as output columns (frictal/outputs.hpp; src/stats/columns.cpp):
+/// `frictal stats --json` and Python's profile_stats().
+const Columns<ProfileStats>& profile_stats_columns();
 
 }  // namespace frictal

@@ -32,6 +32,7 @@
 
 #include "frictal/dem.hpp"
 #include "frictal/geometry.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 #include "frictal/settings.hpp"
 
@@ -464,5 +465,18 @@ void rounded_outline(const std::vector<double>& x, const std::vector<double>& y,
 
 /// Writes the frames in the text format of docs/dem.md ("frictal-dem-frames 1").
 Status write_tilt_frames(const std::string& path, const TiltResult& result);
+
+/// A tilt run as the front ends report it: the result with the configuration that produced it.
+struct TiltReport {
+  const TiltResult& result;
+  const TiltConfig& config;
+};
+/// The tilt test's output tables (frictal/outputs.hpp; src/dem/tilt_columns.cpp): `frictal tilt
+/// --json` and its nested objects "scales", "estimate", "stage_time_s", "scaled_defaults".
+const Columns<TiltReport>& tilt_columns();
+const Columns<TiltScales>& tilt_scales_columns();
+const Columns<TiltEstimate>& tilt_estimate_columns();
+const Columns<dem::StepTimings>& tilt_stage_time_columns();
+const Columns<TiltScaling>& tilt_scaling_columns();
 
 }  // namespace frictal

@@ -7,89 +7,110 @@ import numpy.typing
 __version__: str
 
 class Prediction:
-    """What a tilt test of two surfaces reads (frictal.predict). Attributes in SI (radians, metres); to_dict() has the keys and units of `frictal predict --json`"""
+    """What a tilt test of two surfaces reads (frictal.predict). Attributes in SI (radians, metres), one per column of frictal.prediction_columns() (its Python key); to_dict() has the keys and units of `frictal predict --json`"""
     def __repr__(self) -> str: ...
     @property
-    def atomic_friction(self) -> float:
-        ...
+    def atomic_friction(self) -> Any:
+        """mu_a at every contact (1)"""
     @property
-    def conditioning(self) -> str:
-        """every conditioning step with its numbers (crop, spikes, form), as `frictal predict` prints it"""
+    def conditioning(self) -> Any:
+        """every conditioning step applied to each surface first, in order, with its numbers: crop (the window, points kept), spikes (k, points replaced or masked), form (text)"""
     @property
-    def contact_slope_std(self) -> float:
-        """(rad)"""
+    def contact_slope_std(self) -> Any:
+        """sigma of Eq. 18: standard deviation of the contact slopes (rad)"""
     @property
-    def direction(self) -> float:
-        """sliding direction (rad)"""
+    def direction(self) -> Any:
+        """sliding direction, from +x towards +y (rad)"""
     @property
-    def drop_friction_angles(self) -> numpy.typing.NDArray[numpy.float64]:
-        ...
+    def drop_friction_angles(self) -> Any:
+        """maps: each drop's hold angle (block free), in drop order (rad)"""
     @property
     def drop_offsets(self) -> List[List[float[2]]]:
         ...
     @property
-    def drops(self) -> int:
-        ...
+    def drop_range(self) -> Any:
+        """drop range: profiles [min, max]; maps [u_min, u_max, v_min, v_max] along/across d (m)"""
     @property
-    def eq18_friction_angle_range(self) -> List[float[2]]:
-        """(rad)"""
+    def drops(self) -> Any:
+        """drops the distribution is over (profiles: the basins that drain them) (count)"""
     @property
-    def form(self) -> str:
-        """the form removed: none, mean, line, plane, poly:N"""
+    def eq18_friction_angle_range(self) -> Any:
+        """the paper's Eq. 18 range [max(0, theta_max - sigma), theta_max] + theta_a (rad)"""
     @property
-    def friction_angle(self) -> float:
-        """median over drops of the hold angle, atan(mu_a) included (rad)"""
+    def form(self) -> Any:
+        """the form removed from each surface: none, mean, line, plane, poly:N (text)"""
     @property
-    def friction_angle_max(self) -> float:
-        ...
+    def friction_angle(self) -> Any:
+        """THE PREDICTION: median over drops of the hold angle a tilt test reads, atan(mu_a) included (rad)"""
     @property
-    def friction_angle_mean(self) -> float:
-        ...
+    def friction_angle_max(self) -> Any:
+        """largest hold angle over drops (rad)"""
     @property
-    def friction_angle_min(self) -> float:
-        ...
+    def friction_angle_mean(self) -> Any:
+        """mean of the hold angle over drops (rad)"""
     @property
-    def friction_angle_q05(self) -> float:
-        ...
+    def friction_angle_min(self) -> Any:
+        """least hold angle over drops (rad)"""
     @property
-    def friction_angle_q95(self) -> float:
-        ...
+    def friction_angle_q05(self) -> Any:
+        """5 % quantile of the hold angle over drops (rad)"""
     @property
-    def friction_angle_std(self) -> float:
-        ...
+    def friction_angle_q95(self) -> Any:
+        """95 % quantile of the hold angle over drops (rad)"""
     @property
-    def friction_coefficient(self) -> float:
-        """tan of the median"""
+    def friction_angle_std(self) -> Any:
+        """standard deviation of the hold angle over drops (rad)"""
     @property
-    def is_map(self) -> bool:
-        ...
+    def friction_coefficient(self) -> Any:
+        """tan of friction_angle_deg (the median) (1)"""
     @property
-    def model(self) -> str:
-        ...
+    def friction_coefficient_q05(self) -> Any:
+        """tan of the 5 % quantile (1)"""
     @property
-    def rest_offset(self) -> List[float[2]]:
-        """(m)"""
+    def friction_coefficient_q95(self) -> Any:
+        """tan of the 95 % quantile (1)"""
     @property
-    def runaway_distance(self) -> float:
-        """(m)"""
+    def is_map(self) -> Any:
+        """the pair is two areal maps (flag)"""
     @property
-    def single_drop(self) -> bool:
-        ...
+    def locked_friction_angle(self) -> Any:
+        """maps, a diagnostic: the median hold angle with the block locked to d (NaN for profiles) (rad)"""
     @property
-    def spikes_removed(self) -> int:
-        """points the spike filter replaced (profiles) or masked (maps), both surfaces"""
+    def locked_friction_angle_q05(self) -> Any:
+        """maps: 5 % quantile, block locked to d (rad)"""
     @property
-    def start_offset(self) -> List[float[2]]:
-        """(m)"""
+    def locked_friction_angle_q95(self) -> Any:
+        """maps: 95 % quantile, block locked to d (rad)"""
     @property
-    def theta_max(self) -> float:
-        """(rad)"""
+    def model(self) -> Any:
+        """the model of the hold angle: profile-quasi-static-hold or map-continuous-free (text)"""
+    @property
+    def rest_offset(self) -> Any:
+        """single drop: where it rested at zero tilt (x, y) (m)"""
+    @property
+    def runaway_distance(self) -> Any:
+        """run-away distance d that a test reads (m)"""
+    @property
+    def single_drop(self) -> Any:
+        """one drop (--start-offset): the statistics are that drop's hold angle (flag)"""
+    @property
+    def spikes_removed(self) -> Any:
+        """points the spike filter replaced (profiles) or masked (maps), both surfaces (count)"""
+    @property
+    def start_offset(self) -> Any:
+        """single drop: where it was put down (x, y) (m)"""
+    @property
+    def theta_max(self) -> Any:
+        """steepest contact slope along the direction (the signature's maximum) (rad)"""
     def to_dict(self) -> dict:
         """The keys and interface units of `frictal predict --json`"""
     def to_json(self) -> str: ...
     @property
-    def upper_bound_friction_angle(self) -> float:
-        """theta_max + theta_a (Eq. 6) (rad)"""
+    def upper_bound_friction_angle(self) -> Any:
+        """rigid upper bound theta_max + theta_a (Eq. 6), reached only where the block can get to the steepest contact (rad)"""
+    @property
+    def upper_bound_friction_coefficient(self) -> Any:
+        """tan of the upper bound (1)"""
     @property
     def warnings(self) -> List[Warning]:
         ...
@@ -359,7 +380,7 @@ def surface_curve(generator: str, **kwargs: Any) -> tuple:
 def tilt(lower: Any, upper: Any = ..., **kwargs: Any) -> dict:
     """tilt(lower, upper=None, **settings) -> dict
 
-    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rest_offset (m, where the upper block rests when the loading starts, in the signature's offset convention), predicted_hold_angle, predicted_inertial_hold_angle, predicted_sphero_hold_angle (rad, hold angles from rest_offset with the run's runaway_distance; NaN if not computed), stiff_friction_angle (rad at 10 k_n with check_stiffness, else NaN), increments, unrelaxed_increments (protocol quasi-static), contact_rule (the rule used: pairs or closest), rotation_before_slide (rad), settled_speed (m/s, the upper block's speed when the tilt starts), warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). threads (default 1; 0 = all cores): the two predictions side by side and the contact passes split where it pays; results do not depend on it. Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
+    Tilting-block test on the spheropolygon engine (paper Sec. IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as measured; upper defaults to lower. Returns slid, friction_angle (NaN without a slide), predicted_friction_angle, predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rest_offset (m, where the upper block rests when the loading starts, in the signature's offset convention), predicted_hold_angle, predicted_inertial_hold_angle, predicted_sphero_hold_angle (rad, hold angles from rest_offset with the run's runaway_distance; NaN if not computed), stiff_friction_angle (rad at 10 k_n with check_stiffness, else NaN), increments, unrelaxed_increments (protocol quasi-static), contact_rule (the rule used: pairs or closest), rotation_before_slide (rad), settled_speed (m/s, the upper block's speed when the tilt starts), warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, smallest_feature (lower, upper) in m, time_step, contact_period in s), slide_time, simulated_time, wall_time (s), steps, upper_mass (kg), steps_beyond_limit and the Fig. 7 series (time s, tilt rad, normal_force N, tangential_force N, force_angle rad, displacement m, velocity m/s, contacts). threads (default 1; 0 = all cores): the two predictions side by side and the contact passes split where it pays; results do not depend on it. Settings (SI units; `period` also sets the run-away distance unless runaway_distance is given):
         normal_stiffness [N/m]: Normal contact stiffness k_n (default 600000; valid > 0)
         tangential_stiffness [N/m]: Tangential contact stiffness k_t (default 60000; valid >= 0)
         normal_damping [1/s]: Normal damping gamma_n (default 929.5; valid >= 0)

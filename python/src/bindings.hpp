@@ -17,6 +17,7 @@
 
 #include "frictal/conditioning.hpp"
 #include "frictal/map.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 #include "frictal/settings.hpp"
 
@@ -60,6 +61,32 @@ inline std::string num(double v) {
 }
 
 inline py::array_t<double> arr(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
+
+/// An output value as Python's dicts hold it (frictal/outputs.hpp): SI numbers, an int for a
+/// "count" column, a numpy array for a list.
+inline py::object py_value(const std::string& unit, const OutputValue& v) {
+  if (auto* d = std::get_if<double>(&v)) {
+    if (unit == "count") return std::isfinite(*d) ? py::object(py::int_(static_cast<long long>(*d))) : py::none();
+    return py::float_(*d);
+  }
+  if (auto* t = std::get_if<std::string>(&v)) return py::str(*t);
+  if (auto* b = std::get_if<bool>(&v)) return py::bool_(*b);
+  return arr(std::get<std::vector<double>>(v));
+}
+
+/// The generic Python writer of an output table: every column with a Python key and a value
+/// (nested objects are added by the caller, under their declared keys) into `d`, in SI.
+template <class T>
+void put_columns(py::dict& d, const Columns<T>& cols, const T& value) {
+  for (const Column<T>& c : cols)
+    if (!c.python.empty() && c.si) d[py::str(c.python)] = py_value(c.unit, c.si(value));
+}
+template <class T>
+py::dict to_dict(const Columns<T>& cols, const T& value) {
+  py::dict d;
+  put_columns(d, cols, value);
+  return d;
+}
 
 /// Python keyword arguments -> SI values of the table's fields. An unknown keyword is a
 /// TypeError naming the nearest field; a bad value a ValueError naming the field.

@@ -80,24 +80,7 @@ void frictal_bind_dem(py::module_& m) {
         const Curve lo = to_curve(lower, "lower");
         const Curve up = upper.is_none() ? lo : to_curve(upper, "upper");
         TiltResult r = py_detail::ok(py_detail::nogil([&] { return run_tilt(lo, up, c); }));
-        py::dict d;
-        d["slid"] = r.slid;
-        d["friction_angle"] = r.friction_angle;
-        d["predicted_friction_angle"] = r.predicted_friction_angle;
-        d["predicted_theta_max"] = r.predicted_theta_max;
-        d["predicted_sphero_friction_angle"] = r.predicted_sphero_friction_angle;
-        d["predicted_sphero_theta_max"] = r.predicted_sphero_theta_max;
-        d["rest_offset"] = r.rest_offset;
-        d["predicted_hold_angle"] = r.predicted_hold_angle;
-        d["predicted_inertial_hold_angle"] = r.predicted_inertial_hold_angle;
-        d["predicted_hold_offset"] = r.predicted_hold_offset;
-        d["predicted_sphero_hold_angle"] = r.predicted_sphero_hold_angle;
-        d["stiff_friction_angle"] = r.stiff_friction_angle;
-        d["increments"] = r.increments;
-        d["unrelaxed_increments"] = r.unrelaxed_increments;
-        d["contact_rule"] = r.contact_rule == dem::ContactRule::Closest ? "closest" : "pairs";
-        d["rotation_before_slide"] = r.rotation_before_slide;
-        d["settled_speed"] = r.settled_speed;
+        py::dict d = py_detail::to_dict(tilt_columns(), TiltReport{r, c});
         py::list warnings;
         for (const TiltWarning& w : r.warnings) {
           py::dict wd;
@@ -106,20 +89,7 @@ void frictal_bind_dem(py::module_& m) {
           warnings.append(wd);
         }
         d["warnings"] = warnings;
-        py::dict scales;
-        scales["resting_overlap"] = r.scales.resting_overlap;
-        scales["spheroradius"] = r.scales.spheroradius;
-        scales["shortest_edge"] = py::make_tuple(r.scales.shortest_edge[0], r.scales.shortest_edge[1]);
-        scales["smallest_feature"] = py::make_tuple(r.scales.smallest_feature[0], r.scales.smallest_feature[1]);
-        scales["time_step"] = r.scales.time_step;
-        scales["contact_period"] = r.scales.contact_period;
-        d["scales"] = scales;
-        d["slide_time"] = r.slide_time;
-        d["simulated_time"] = r.simulated_time;
-        d["steps"] = r.steps;
-        d["wall_time"] = r.wall_time;
-        d["upper_mass"] = r.upper_mass;
-        d["steps_beyond_limit"] = r.steps_beyond_limit;
+        d["scales"] = py_detail::to_dict(tilt_scales_columns(), r.scales);
         py::dict s;
         s["time"] = arr(r.series.time);
         s["tilt"] = arr(r.series.tilt);
@@ -135,7 +105,8 @@ void frictal_bind_dem(py::module_& m) {
       py::arg("lower"), py::arg("upper") = py::none(),
       ("tilt(lower, upper=None, **settings) -> dict\n\nTilting-block test on the spheropolygon engine (paper Sec. "
        "IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as "
-       "measured; upper defaults to lower. Returns slid, friction_angle, predicted_friction_angle, "
+       "measured; upper defaults to lower. Returns slid, friction_angle (NaN without a slide), "
+       "predicted_friction_angle, "
        "predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, "
        "predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rest_offset (m, where the upper "
        "block rests when the loading starts, in the signature's offset convention), predicted_hold_angle, "

@@ -19,44 +19,15 @@ using frictal::py_detail::nogil;
 
 namespace {
 
-py::dict stats_dict(const HoldStatistics& s) {
-  py::dict d;
-  d["mean"] = s.mean;
-  d["std"] = s.std;
-  d["q05"] = s.q05;
-  d["q50"] = s.q50;
-  d["q95"] = s.q95;
-  d["min"] = s.min;
-  d["max"] = s.max;
-  return d;
-}
-
 py::dict distribution_dict(const HoldDistribution& h) {
-  py::dict d;
-  d["hold_angle"] = stats_dict(h.hold);
-  d["inertial_hold_angle"] = stats_dict(h.inertial);
-  py::dict b;
-  b["rest_offset"] = arr(h.basins.rest);
-  b["weight"] = arr(h.basins.weight);
-  b["hold_angle"] = arr(h.basins.hold);
-  b["inertial_hold_angle"] = arr(h.basins.inertial);
-  d["basins"] = b;
-  d["drop_range"] = py::make_tuple(h.drop_min, h.drop_max);
+  py::dict d = py_detail::to_dict(hold_distribution_columns(), h);
+  d["hold_angle"] = py_detail::to_dict(hold_statistics_columns(), h.hold);
+  d["inertial_hold_angle"] = py_detail::to_dict(hold_statistics_columns(), h.inertial);
+  d["basins"] = py_detail::to_dict(hold_basins_columns(), h.basins);
   return d;
 }
 
-py::dict angle_dict(const HoldAngle& a) {
-  py::dict d;
-  d["rest_offset"] = a.rest_offset;
-  d["hold_angle"] = a.hold_angle;
-  d["hold_offset"] = a.hold_offset;
-  d["runaway_end"] = a.runaway_end;
-  d["slips"] = a.slips;
-  d["ran_off_end"] = a.ran_off_end;
-  d["inertial_hold_angle"] = a.inertial_hold_angle;
-  d["inertial_offset"] = a.inertial_offset;
-  return d;
-}
+py::dict angle_dict(const HoldAngle& a) { return py_detail::to_dict(hold_drop_columns(), a); }
 
 }  // namespace
 
@@ -82,13 +53,7 @@ void frictal_bind_hold(py::module_& m) {
         if (!upper || rotate_upper) up = rotate180(up);
         const double start = start_offset ? *start_offset : std::numeric_limits<double>::quiet_NaN();
         HoldAnalysis r = py_detail::ok(nogil([&] { return analyse_hold(lower, up, o, h, start); }));
-        py::dict d;
-        d["runaway_distance"] = r.runaway_distance;
-        d["offset"] = arr(r.curve.offset);
-        d["lift"] = arr(r.curve.lift);
-        d["period"] = r.curve.period;
-        d["events"] = r.events;
-        d["exact"] = r.exact;
+        py::dict d = py_detail::to_dict(hold_columns(), r);
         d["forward"] = distribution_dict(r.distribution.forward);
         d["backward"] = distribution_dict(r.distribution.backward);
         if (r.has_start) {

@@ -110,16 +110,7 @@ py::dict record_dict(const ConditioningRecord& r) {
   return d;
 }
 
-py::dict fit_dict(const FractalFit& f) {
-  py::dict d;
-  d["dimension"] = f.dimension;
-  d["slope"] = f.slope;
-  d["r_squared"] = f.r_squared;
-  d["fit_range"] = py::make_tuple(f.scale_min, f.scale_max);
-  d["scales"] = arr(f.scales);
-  d["values"] = arr(f.values);
-  return d;
-}
+py::dict fit_dict(const FractalFit& f) { return py_detail::to_dict(fractal_fit_columns(), f); }
 
 }  // namespace
 
@@ -184,29 +175,9 @@ void frictal_bind_io(py::module_& m) {
          double tip_radius) {
         const Map map = to_map(heights, dx, dy, 0, 0);
         MapStats s = map_stats(map);
-        py::dict d;
-        d["points"] = s.points;
-        d["valid"] = s.valid;
-        d["mean"] = s.mean;
-        d["Sa"] = s.Sa;
-        d["Sq"] = s.Sq;
-        d["Sp"] = s.Sp;
-        d["Sv"] = s.Sv;
-        d["Sz"] = s.Sz;
-        d["Ssk"] = s.Ssk;
-        d["Sku"] = s.Sku;
-        d["Sdq"] = s.Sdq;
-        d["max_slope"] = s.max_slope;
+        py::dict d = py_detail::to_dict(map_stats_columns(), s);
         // Scan quantities (scan_stats.hpp): n dx sizes, bandwidth, per-profile Rq/Rdq, fd gradient.
-        const MapScanStats sc = map_scan_stats(map);
-        d["physical_size_x"] = sc.physical_size_x;
-        d["physical_size_y"] = sc.physical_size_y;
-        d["bandwidth"] = py::make_tuple(sc.bandwidth_short, sc.bandwidth_long);
-        d["Rq_x"] = sc.Rq_x;
-        d["Rdq_x"] = sc.Rdq_x;
-        d["Rq_y"] = sc.Rq_y;
-        d["Rdq_y"] = sc.Rdq_y;
-        d["rms_gradient_fd"] = sc.rms_gradient_fd;
+        py_detail::put_columns(d, map_scan_stats_columns(), map_scan_stats(map));
         if (tip_radius > 0) d["short_reliability_cutoff"] = ok(short_reliability_cutoff(map, tip_radius));
         return d;
       },

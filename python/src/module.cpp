@@ -178,21 +178,10 @@ PYBIND11_MODULE(_core, m) {
       "profile_stats",
       [](const Profile& p, double tip_radius) {
         const ProfileStats s = profile_stats(p);
-        py::dict d;
-        d["points"] = s.points;
-        d["length_m"] = s.length;
-        d["mean_height_m"] = s.mean_height;
-        d["rms_height_m"] = s.rms_height;
-        d["rms_slope"] = s.rms_slope;
-        d["max_slope_rad"] = s.max_slope;
-        d["mean_slope_rad"] = s.mean_slope;
+        py::dict d = py_detail::to_dict(profile_stats_columns(), s);
         d["slope_pdf"] = hist_dict(slope_distribution(p));
         // Scan quantities (scan_stats.hpp): n dx length, sampling interval, bandwidth.
-        const ProfileScanStats sc = profile_scan_stats(p);
-        d["sampling_interval_m"] = sc.sampling_interval;
-        d["physical_length_m"] = sc.physical_length;
-        d["bandwidth_m"] = py::make_tuple(sc.bandwidth_short, sc.bandwidth_long);
-        d["nyquist_wavelength_m"] = sc.nyquist_wavelength;
+        py_detail::put_columns(d, profile_scan_stats_columns(), profile_scan_stats(p));
         if (tip_radius > 0) d["short_reliability_cutoff_m"] = py_detail::ok(short_reliability_cutoff(p, tip_radius));
         return d;
       },
@@ -223,25 +212,8 @@ PYBIND11_MODULE(_core, m) {
         Profile up = upper ? *upper : lower;
         if (!upper || rotate_upper) up = rotate180(up);
         SignatureResult r = unwrap(nogil([&] { return signature(lower, up, o); }));
-        py::dict d;
-        d["offset"] = arr(r.offset);
-        d["lift"] = arr(r.lift);
-        d["theta"] = arr(r.theta);
-        d["theta_min"] = arr(r.theta_min);
-        d["theta_left"] = arr(r.theta_left);
-        d["theta_right"] = arr(r.theta_right);
-        d["theta_max_forward"] = r.theta_max_forward;
-        d["theta_max_backward"] = r.theta_max_backward;
-        d["offset_at_forward"] = r.offset_at_forward;
-        d["offset_at_backward"] = r.offset_at_backward;
-        d["contact_slope_mean"] = r.contact_slope_mean;
-        d["contact_slope_std"] = r.contact_slope_std;
+        py::dict d = py_detail::to_dict(signature_columns(), r);
         d["contact_slope_pdf"] = hist_dict(r.contact_slope_pdf);
-        d["slope_samples"] = arr(r.slope_samples);
-        d["slope_weights"] = arr(r.slope_weights);
-        d["exact"] = r.exact;
-        d["events"] = r.events;
-        d["spheroradius"] = r.spheroradius;
         if (keep_contacts) {
           std::vector<double> off, x, z, s;
           py::list types;
@@ -281,17 +253,9 @@ PYBIND11_MODULE(_core, m) {
       "predict_friction",
       [](double mu_a, double theta_max, double sigma) {
         FrictionPrediction f = unwrap(predict_friction(mu_a, theta_max, sigma));
-        py::dict d;
-        d["atomic_friction"] = f.atomic_friction;
-        d["atomic_angle"] = f.atomic_angle;
-        d["theta_max"] = f.theta_max;
         // The rigid upper bound and Eq. 18's low end, named as `frictal signature --json` names them:
         // friction_angle belongs to frictal.predict (what a tilt test reads).
-        d["upper_bound_friction_angle"] = f.friction_angle;
-        d["upper_bound_friction_coefficient"] = f.friction_coefficient;
-        d["eq18_low_friction_angle"] = f.friction_angle_low;
-        d["eq18_low_friction_coefficient"] = f.friction_coefficient_low;
-        d["eq18_low_clamped"] = f.low_clamped;
+        py::dict d = py_detail::to_dict(friction_columns(), f);
         return d;
       },
       py::arg("atomic_friction"), py::arg("theta_max"), py::arg("sigma") = 0.0,

@@ -87,8 +87,10 @@ PredictSurface to_surface(const py::handle& obj, double spacing, const std::stri
   throw py::value_error(what + ": expected a 1-D (profile) or 2-D (map) array of heights");
 }
 
-py::object to_py(const OutputValue& v) {
-  if (auto* d = std::get_if<double>(&v)) return py::float_(*d);
+// A value as to_dict() and the attributes hold it: lists as Python lists (as in the JSON), an
+// int for a "count", else py_value's.
+py::object to_py(const std::string& unit, const OutputValue& v) {
+  if (auto* d = std::get_if<double>(&v)) return py_detail::py_value(unit, *d);
   if (auto* t = std::get_if<std::string>(&v)) return py::str(*t);
   if (auto* b = std::get_if<bool>(&v)) return py::bool_(*b);
   return py::cast(std::get<std::vector<double>>(v));
@@ -132,51 +134,31 @@ void frictal_bind_predict(py::module_& m) {
       "prediction_columns",
       [] {
         py::list l;
-        for (const OutputColumn& c : prediction_columns()) l.append(py::make_tuple(c.key, c.unit, c.help));
+        for (const Column<Prediction>& c : prediction_columns()) l.append(py::make_tuple(c.key, c.unit, c.help));
         return l;
       },
       "The prediction's output table: (key, interface unit, help) per quantity, as `frictal columns` prints it; "
       "interface units deg (the Prediction attributes are SI: rad), m, 1 (unitless)");
-  py::class_<Prediction>(m, "Prediction",
-                         "What a tilt test of two surfaces reads (frictal.predict). Attributes in SI (radians, "
-                         "metres); to_dict() has the keys and units of `frictal predict --json`")
-      .def_readonly("is_map", &Prediction::is_map)
-      .def_readonly("model", &Prediction::model)
-      .def_readonly("conditioning", &Prediction::conditioning,
-                    "every conditioning step with its numbers (crop, spikes, form), as `frictal predict` prints it")
-      .def_readonly("form", &Prediction::form, "the form removed: none, mean, line, plane, poly:N")
-      .def_readonly("spikes_removed", &Prediction::spikes_removed,
-                    "points the spike filter replaced (profiles) or masked (maps), both surfaces")
-      .def_readonly("direction", &Prediction::direction, "sliding direction (rad)")
-      .def_readonly("atomic_friction", &Prediction::atomic_friction)
-      .def_readonly("runaway_distance", &Prediction::runaway_distance, "(m)")
-      .def_readonly("single_drop", &Prediction::single_drop)
-      .def_readonly("drops", &Prediction::drops)
-      .def_property_readonly(
-          "friction_angle", [](const Prediction& p) { return p.friction_angle.q50; },
-          "median over drops of the hold angle, atan(mu_a) included (rad)")
-      .def_property_readonly("friction_angle_q05", [](const Prediction& p) { return p.friction_angle.q05; })
-      .def_property_readonly("friction_angle_q95", [](const Prediction& p) { return p.friction_angle.q95; })
-      .def_property_readonly("friction_angle_mean", [](const Prediction& p) { return p.friction_angle.mean; })
-      .def_property_readonly("friction_angle_std", [](const Prediction& p) { return p.friction_angle.std; })
-      .def_property_readonly("friction_angle_min", [](const Prediction& p) { return p.friction_angle.min; })
-      .def_property_readonly("friction_angle_max", [](const Prediction& p) { return p.friction_angle.max; })
-      .def_readonly("friction_coefficient", &Prediction::friction_coefficient, "tan of the median")
-      .def_readonly("upper_bound_friction_angle", &Prediction::upper_bound_friction_angle,
-                    "theta_max + theta_a (Eq. 6) (rad)")
-      .def_readonly("theta_max", &Prediction::theta_max, "(rad)")
-      .def_readonly("contact_slope_std", &Prediction::contact_slope_std, "(rad)")
-      .def_readonly("eq18_friction_angle_range", &Prediction::eq18_range, "(rad)")
-      .def_readonly("start_offset", &Prediction::start_offset, "(m)")
-      .def_readonly("rest_offset", &Prediction::rest_offset, "(m)")
-      .def_property_readonly("drop_friction_angles", [](const Prediction& p) { return arr(p.drop_angles); })
-      .def_property_readonly("drop_offsets", [](const Prediction& p) { return p.drop_offsets; })
+  py::class_<Prediction> prediction(
+      m, "Prediction",
+      "What a tilt test of two surfaces reads (frictal.predict). Attributes in SI (radians, metres), one per "
+      "column of frictal.prediction_columns() (its Python key); to_dict() has the keys and units of `frictal "
+      "predict --json`");
+  // One attribute per output column, named by its Python key, in SI (frictal/outputs.hpp).
+  for (const Column<Prediction>& c : prediction_columns()) {
+    if (c.python.empty()) continue;
+    prediction.def_property_readonly(
+        c.python.c_str(), [c](const Prediction& p) { return to_py(c.unit, c.si(p)); },
+        (c.help + " (" + python_unit(c.unit) + ")").c_str());
+  }
+  prediction.def_property_readonly("drop_offsets", [](const Prediction& p) { return p.drop_offsets; })
       .def_readonly("warnings", &Prediction::warnings)
       .def(
           "to_dict",
           [](const Prediction& p) {
             py::dict d;
-            for (const OutputColumn& c : prediction_columns()) d[py::str(c.key)] = to_py(interface_value(c, p));
+            for (const Column<Prediction>& c : prediction_columns())
+              d[py::str(c.key)] = to_py(c.unit, interface_value(c, p));
             py::list w;
             for (const Warning& x : p.warnings) {
               py::dict e;

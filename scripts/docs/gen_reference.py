@@ -204,11 +204,16 @@ def main():
         "formats.md": formats_page(a.cli),
         "kinds.md": kinds_page(a.cli),
         "outputs.md": GENERATED.format(what="`frictal columns --markdown` and `frictal warnings --markdown`")
-        + "# Outputs and warnings\n\n"
-        + "## The prediction (`frictal predict --json`, Python `Prediction.to_dict()`)\n\n"
-        + "Every key, declared once in the library's output table (`frictal/predict.hpp`, "
-        + "`prediction_columns()`), with its interface unit; the report embeds the same object as "
-        + "`<script type=\"application/json\" id=\"prediction\">`.\n\n"
+        + "# Outputs reference\n\n"
+        + "Every key that a command's `--json` and Python's dicts print, table by table, declared once in "
+        + "the library's output tables (`frictal/outputs.hpp`; each result type's table beside it, e.g. "
+        + "`prediction_columns()`, `signature_columns()`, `tilt_columns()`), with its interface unit. The "
+        + "CLI's JSON is in the interface unit (degrees for `deg`); Python's dicts hold SI values (radians) "
+        + "under the Python key; `Prediction.to_dict()` has the JSON's keys and units, and the report embeds "
+        + "the same object as `<script type=\"application/json\" id=\"prediction\">`. A unit `object:T` is a "
+        + "nested object with the columns of table T, `list:T` a list of them, `settings` an object of "
+        + "settings (the [settings reference](settings.md)). A test (tests/outputs/check_output_keys.py) "
+        + "runs every command and Python function and checks each key it prints against these tables.\n\n"
         + run(a.cli, "columns", "--markdown")
         + "\n## Warning codes\n\n"
         + "A number computed without error that a reader should not trust as it stands carries one of "

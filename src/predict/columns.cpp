@@ -13,47 +13,52 @@ namespace frictal {
 namespace {
 
 using P = Prediction;
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
-OutputColumn deg(std::string key, std::string help, std::function<double(const P&)> f) {
-  return {std::move(key), "deg", std::move(help), [f](const P& p) { return OutputValue(f(p)); }};
+Column<P> deg(std::string key, std::string help, std::function<double(const P&)> f) {
+  return column<P>(std::move(key), "deg", std::move(help), std::move(f));
 }
-OutputColumn num(std::string key, std::string unit, std::string help, std::function<double(const P&)> f) {
-  return {std::move(key), std::move(unit), std::move(help), [f](const P& p) { return OutputValue(f(p)); }};
+Column<P> num(std::string key, std::string unit, std::string help, std::function<double(const P&)> f,
+              std::string python = {}) {
+  return column<P>(std::move(key), std::move(unit), std::move(help), std::move(f), std::move(python));
 }
-OutputColumn list(std::string key, std::string unit, std::string help, std::function<std::vector<double>(const P&)> f) {
-  return {std::move(key), std::move(unit), std::move(help), [f](const P& p) { return OutputValue(f(p)); }};
+Column<P> list(std::string key, std::string unit, std::string help, std::function<std::vector<double>(const P&)> f,
+               std::string python = {}) {
+  return column<P>(std::move(key), std::move(unit), std::move(help), std::move(f), std::move(python));
 }
 double tan_or_inf(double a) { return a >= std::numbers::pi / 2 ? INFINITY : std::tan(a); }
 
 }  // namespace
 
-const std::vector<OutputColumn>& prediction_columns() {
-  static const std::vector<OutputColumn> cols = {
-      {"model", "text", "the model of the hold angle: profile-quasi-static-hold or map-continuous-free",
-       [](const P& p) { return OutputValue(p.model); }},
-      {"conditioning", "text",
-       "every conditioning step applied to each surface first, in order, with its numbers: crop (the window, points "
-       "kept), spikes (k, points replaced or masked), form",
-       [](const P& p) { return OutputValue(p.conditioning); }},
-      {"form", "text", "the form removed from each surface: none, mean, line, plane, poly:N",
-       [](const P& p) { return OutputValue(p.form); }},
+const Columns<Prediction>& prediction_columns() {
+  static const Columns<Prediction> cols = {
+      column<P>("model", "text", "the model of the hold angle: profile-quasi-static-hold or map-continuous-free",
+                [](const P& p) { return p.model; }),
+      column<P>(
+          "conditioning", "text",
+          "every conditioning step applied to each surface first, in order, with its numbers: crop (the window, points "
+          "kept), spikes (k, points replaced or masked), form",
+          [](const P& p) { return p.conditioning; }),
+      column<P>("form", "text", "the form removed from each surface: none, mean, line, plane, poly:N",
+                [](const P& p) { return p.form; }),
       num("spikes_removed", "count", "points the spike filter replaced (profiles) or masked (maps), both surfaces",
           [](const P& p) { return double(p.spikes_removed); }),
-      {"is_map", "flag", "the pair is two areal maps", [](const P& p) { return OutputValue(p.is_map); }},
+      column<P>("is_map", "flag", "the pair is two areal maps", [](const P& p) { return p.is_map; }),
       deg("direction_deg", "sliding direction, from +x towards +y", [](const P& p) { return p.direction; }),
       num("atomic_friction", "1", "mu_a at every contact", [](const P& p) { return p.atomic_friction; }),
-      num("runaway_distance_m", "m", "run-away distance d that a test reads",
-          [](const P& p) { return p.runaway_distance; }),
-      {"single_drop", "flag", "one drop (--start-offset): the statistics are that drop's hold angle",
-       [](const P& p) { return OutputValue(p.single_drop); }},
+      num(
+          "runaway_distance_m", "m", "run-away distance d that a test reads",
+          [](const P& p) { return p.runaway_distance; }, "runaway_distance"),
+      column<P>("single_drop", "flag", "one drop (--start-offset): the statistics are that drop's hold angle",
+                [](const P& p) { return p.single_drop; }),
       num("drops", "count", "drops the distribution is over (profiles: the basins that drain them)",
           [](const P& p) { return double(p.drops); }),
-      list("drop_range_m", "m", "drop range: profiles [min, max]; maps [u_min, u_max, v_min, v_max] along/across d",
-           [](const P& p) {
-             return p.is_map ? std::vector<double>(p.drop_range.begin(), p.drop_range.end())
-                             : std::vector<double>{p.drop_range[0], p.drop_range[1]};
-           }),
+      list(
+          "drop_range_m", "m", "drop range: profiles [min, max]; maps [u_min, u_max, v_min, v_max] along/across d",
+          [](const P& p) {
+            return p.is_map ? std::vector<double>(p.drop_range.begin(), p.drop_range.end())
+                            : std::vector<double>{p.drop_range[0], p.drop_range[1]};
+          },
+          "drop_range"),
       deg("friction_angle_deg",
           "THE PREDICTION: median over drops of the hold angle a tilt test reads, atan(mu_a) "
           "included",
@@ -90,14 +95,18 @@ const std::vector<OutputColumn>& prediction_columns() {
            [](const P& p) {
              return std::vector<double>{p.eq18_range[0], p.eq18_range[1]};
            }),
-      list("start_offset_m", "m", "single drop: where it was put down (x, y)",
-           [](const P& p) {
-             return p.single_drop ? std::vector<double>{p.start_offset[0], p.start_offset[1]} : std::vector<double>{};
-           }),
-      list("rest_offset_m", "m", "single drop: where it rested at zero tilt (x, y)",
-           [](const P& p) {
-             return p.single_drop ? std::vector<double>{p.rest_offset[0], p.rest_offset[1]} : std::vector<double>{};
-           }),
+      list(
+          "start_offset_m", "m", "single drop: where it was put down (x, y)",
+          [](const P& p) {
+            return p.single_drop ? std::vector<double>{p.start_offset[0], p.start_offset[1]} : std::vector<double>{};
+          },
+          "start_offset"),
+      list(
+          "rest_offset_m", "m", "single drop: where it rested at zero tilt (x, y)",
+          [](const P& p) {
+            return p.single_drop ? std::vector<double>{p.rest_offset[0], p.rest_offset[1]} : std::vector<double>{};
+          },
+          "rest_offset"),
       deg("locked_friction_angle_deg",
           "maps, a diagnostic: the median hold angle with the block locked to d (NaN "
           "for profiles)",
@@ -112,14 +121,7 @@ const std::vector<OutputColumn>& prediction_columns() {
   return cols;
 }
 
-OutputValue interface_value(const OutputColumn& c, const Prediction& p) {
-  OutputValue v = c.si(p);
-  if (c.unit != "deg") return v;
-  if (auto* d = std::get_if<double>(&v)) *d *= kDegPerRad;
-  if (auto* l = std::get_if<std::vector<double>>(&v))
-    for (double& x : *l) x *= kDegPerRad;
-  return v;
-}
+OutputValue interface_value(const Column<Prediction>& c, const Prediction& p) { return to_interface(c.unit, c.si(p)); }
 
 std::string prediction_json(const Prediction& p, const std::string& extra, int indent) {
   using study::json_real;
@@ -132,7 +134,7 @@ std::string prediction_json(const Prediction& p, const std::string& extra, int i
     first = false;
     s += pad + json_string(k) + ":" + sp;
   };
-  for (const OutputColumn& c : prediction_columns()) {
+  for (const Column<Prediction>& c : prediction_columns()) {
     key(c.key);
     const OutputValue v = interface_value(c, p);
     if (auto* d = std::get_if<double>(&v)) {

@@ -48,7 +48,7 @@ def test_koch_dimension_and_divider():
     x, z = c
     fit = frictal.divider_dimension(x, z, ruler_min=3e-3, ruler_max=0.3)
     assert fit["dimension"] == pytest.approx(math.log(4) / math.log(3), abs=0.015)
-    assert fit["fit_range"] == (3e-3, 0.3)
+    assert tuple(fit["fit_range"]) == (3e-3, 0.3)
 
 
 def test_areal_signature_of_tilted_plane_and_anisotropy_of_ridges():

@@ -1,0 +1,121 @@
+// Output tables: every quantity a result type hands to the front ends, declared once (key,
+// interface unit, meaning, the value in SI), the way settings.hpp declares every input. The CLI's
+// JSON, Python's dicts and the documentation's outputs reference are written from these tables
+// by generic writers; `frictal columns` lists them, and a test checks that every key a command or
+// a Python function prints is declared here with its unit.
+#pragma once
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+namespace frictal {
+
+/// An output value: a number (SI inside: rad for angles, m for lengths), a text, a flag or a list
+/// of numbers. The writers convert numbers to the column's interface unit.
+using OutputValue = std::variant<double, std::string, bool, std::vector<double>>;
+
+/// What a column declares, without its value: the JSON key (with its unit suffix), the interface
+/// unit the text front ends write it in, what it means, and the key of Python's dicts (SI values).
+///
+/// Interface units: "deg" (SI value in rad), "m", "s", "kg", "m/s", "1/s", "1" (unitless), "count"
+/// (an integer), "text", "flag", and for nested values "object:TABLE" (a JSON object whose keys
+/// are the columns of output table TABLE), "list:TABLE" (a list of such objects) and "settings"
+/// (an object whose keys are fields of a settings table, `frictal settings`).
+struct ColumnInfo {
+  std::string key;     ///< the CLI's JSON key, e.g. "theta_max_forward_deg"; "" = Python only
+  std::string unit;    ///< the interface unit (above)
+  std::string help;    ///< what it means
+  std::string python;  ///< the key in Python's dicts, whose numbers are SI; "" = not in Python's dicts
+};
+
+/// One output quantity of result type T: its declaration and its value in SI.
+template <class T>
+struct Column : ColumnInfo {
+  std::function<OutputValue(const T&)> si;
+};
+template <class T>
+using Columns = std::vector<Column<T>>;
+
+/// The Python key that a JSON key has by default: an angle's "_deg" suffix dropped (Python's
+/// dicts hold radians); every other key unchanged.
+inline std::string default_python_key(const std::string& key, const std::string& unit) {
+  if (unit == "deg" && key.size() > 4 && key.ends_with("_deg")) return key.substr(0, key.size() - 4);
+  return key;
+}
+
+/// A key without its unit suffix ("_deg", "_m", "_s", "_kg", "_m_s", "_per_s"): the Python key of
+/// tables whose Python dicts name SI values without units (tilt, areal tilt).
+inline std::string strip_unit_suffix(const std::string& key) {
+  for (const char* u : {"_m_s", "_per_s", "_deg", "_kg", "_m", "_s"}) {
+    const std::string suffix(u);
+    if (key.size() > suffix.size() && key.ends_with(suffix)) return key.substr(0, key.size() - suffix.size());
+  }
+  return key;
+}
+
+/// Names every column of `cols` that has a JSON key in Python by that key without its unit.
+template <class T>
+Columns<T> python_without_units(Columns<T> cols) {
+  for (Column<T>& c : cols)
+    if (!c.key.empty()) c.python = strip_unit_suffix(c.key);
+  return cols;
+}
+
+/// A column of T: `key` in `unit`, its meaning, its SI value; Python key by default_python_key
+/// unless `python` is given ("-" = not in Python's dicts).
+template <class T, class F>
+Column<T> column(std::string key, std::string unit, std::string help, F&& f, std::string python = {}) {
+  Column<T> c;
+  if (python.empty()) python = default_python_key(key, unit);
+  if (python == "-") python.clear();
+  c.key = std::move(key);
+  c.unit = std::move(unit);
+  c.help = std::move(help);
+  c.python = std::move(python);
+  c.si = [g = std::forward<F>(f)](const T& v) { return OutputValue(g(v)); };
+  return c;
+}
+
+/// The factor from SI to a column's interface unit: 180/pi for "deg", 1 otherwise.
+inline double interface_factor(std::string_view unit) { return unit == "deg" ? 180.0 / std::numbers::pi : 1.0; }
+
+/// A value converted from SI to the interface unit `unit` (NaN and inf stay as they are).
+inline OutputValue to_interface(std::string_view unit, OutputValue v) {
+  const double f = interface_factor(unit);
+  if (f == 1.0) return v;
+  if (auto* d = std::get_if<double>(&v)) *d *= f;
+  if (auto* l = std::get_if<std::vector<double>>(&v))
+    for (double& x : *l) x *= f;
+  return v;
+}
+
+/// The SI unit that Python's dicts hold a column in: "rad" for "deg", the interface unit otherwise.
+inline std::string python_unit(std::string_view unit) { return unit == "deg" ? "rad" : std::string(unit); }
+
+/// A named output table: the columns of one result type, or of the objects nested in one.
+struct OutputTable {
+  std::string name;  ///< e.g. "signature", "hold", "tilt"
+  std::string help;  ///< which outputs carry it (command, Python function)
+  std::vector<ColumnInfo> columns;
+};
+
+/// The declarations of typed columns, for an OutputTable.
+template <class T>
+std::vector<ColumnInfo> infos(const Columns<T>& cols) {
+  return {cols.begin(), cols.end()};
+}
+
+/// Every output table of the library and its front ends (src/predict/outputs.cpp): the
+/// vocabulary that `frictal columns`, the docs' outputs reference and the key test read.
+const std::vector<OutputTable>& output_tables();
+
+/// The table named `name`, or nullptr.
+const OutputTable* find_output_table(std::string_view name);
+
+}  // namespace frictal

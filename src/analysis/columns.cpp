@@ -1,0 +1,143 @@
+// The output tables of a map's statistics and of the scan quantities of profiles and maps
+// (frictal/outputs.hpp): the keys of `frictal stats --json` and of Python's map_stats() and
+// profile_stats() dicts.
+#include "frictal/analysis.hpp"
+#include "frictal/fractal.hpp"
+#include "frictal/scan_stats.hpp"
+
+namespace frictal {
+
+const Columns<MapStats>& map_stats_columns() {
+  using T = MapStats;
+  static const Columns<T> cols = {
+      column<T>("points", "count", "nodes of the grid, nx ny", [](const T& s) { return double(s.points); }),
+      column<T>(
+          "valid_points", "count", "nodes with a measured height", [](const T& s) { return double(s.valid); }, "valid"),
+      column<T>(
+          "length_m", "m", "extent along x, (nx - 1) dx (as for profiles)", [](const T& s) { return s.width; }, "-"),
+      column<T>(
+          "size_x_m", "m", "extent along x, (nx - 1) dx", [](const T& s) { return s.width; }, "-"),
+      column<T>(
+          "size_y_m", "m", "extent along y, (ny - 1) dy", [](const T& s) { return s.height; }, "-"),
+      column<T>(
+          "mean_height_m", "m", "mean height", [](const T& s) { return s.mean; }, "mean"),
+      column<T>(
+          "Sa_m", "m", "arithmetic mean height about the mean (ISO 25178-2)", [](const T& s) { return s.Sa; }, "Sa"),
+      column<T>(
+          "Sq_m", "m", "rms height about the mean", [](const T& s) { return s.Sq; }, "Sq"),
+      column<T>(
+          "rms_height_m", "m", "rms height (Sq; as for profiles)", [](const T& s) { return s.Sq; }, "-"),
+      column<T>(
+          "Sp_m", "m", "highest peak above the mean", [](const T& s) { return s.Sp; }, "Sp"),
+      column<T>(
+          "Sv_m", "m", "deepest valley below the mean", [](const T& s) { return s.Sv; }, "Sv"),
+      column<T>(
+          "Sz_m", "m", "Sp + Sv", [](const T& s) { return s.Sz; }, "Sz"),
+      column<T>("Ssk", "1", "skewness", [](const T& s) { return s.Ssk; }),
+      column<T>("Sku", "1", "kurtosis", [](const T& s) { return s.Sku; }),
+      column<T>("Sdq", "1", "rms gradient", [](const T& s) { return s.Sdq; }),
+      column<T>(
+          "rms_slope", "1", "rms gradient (Sdq; the profiles' rms slope)", [](const T& s) { return s.Sdq; }, "-"),
+      column<T>(
+          "max_slope_deg", "deg", "steepest gradient angle", [](const T& s) { return s.max_slope; }, "max_slope"),
+  };
+  return cols;
+}
+
+const Columns<Map>& map_grid_columns() {
+  using T = Map;
+  static const Columns<T> cols = {
+      column<T>("nx", "count", "nodes along x", [](const T& m) { return double(m.nx); }),
+      column<T>("ny", "count", "nodes along y", [](const T& m) { return double(m.ny); }),
+      column<T>(
+          "dx_m", "m", "node spacing along x", [](const T& m) { return m.dx; }, "dx"),
+      column<T>(
+          "dy_m", "m", "node spacing along y", [](const T& m) { return m.dy; }, "dy"),
+  };
+  return cols;
+}
+
+const Columns<MapScanStats>& map_scan_stats_columns() {
+  using T = MapScanStats;
+  static const Columns<T> cols = {
+      column<T>(
+          "physical_size_x_m", "m", "nx dx (the pixel convention)", [](const T& s) { return s.physical_size_x; },
+          "physical_size_x"),
+      column<T>(
+          "physical_size_y_m", "m", "ny dy", [](const T& s) { return s.physical_size_y; }, "physical_size_y"),
+      column<T>(
+          "physical_length_m", "m", "nx dx (as for profiles)", [](const T& s) { return s.physical_size_x; }, "-"),
+      column<T>(
+          "bandwidth_short_m", "m", "shortest scale the scan resolves: (dx + dy) / 2",
+          [](const T& s) { return s.bandwidth_short; }, "-"),
+      column<T>(
+          "bandwidth_long_m", "m", "longest scale: (nx dx + ny dy) / 2", [](const T& s) { return s.bandwidth_long; },
+          "-"),
+      column<T>(
+          "", "m", "(shortest, longest) scale the scan resolves",
+          [](const T& s) {
+            return std::vector<double>{s.bandwidth_short, s.bandwidth_long};
+          },
+          "bandwidth"),
+      column<T>(
+          "nyquist_wavelength_m", "m", "2 max(dx, dy): the shortest wavelength both axes resolve",
+          [](const T& s) { return s.nyquist_wavelength; }, "-"),
+      column<T>(
+          "Rq_x_m", "m", "rms height of the rows (x), each about its own mean", [](const T& s) { return s.Rq_x; },
+          "Rq_x"),
+      column<T>("Rdq_x", "1", "rms slope of the rows (x)", [](const T& s) { return s.Rdq_x; }),
+      column<T>(
+          "Rq_y_m", "m", "rms height of the columns (y)", [](const T& s) { return s.Rq_y; }, "Rq_y"),
+      column<T>("Rdq_y", "1", "rms slope of the columns (y)", [](const T& s) { return s.Rdq_y; }),
+      column<T>("rms_gradient_fd", "1", "rms gradient from forward differences at common nodes",
+                [](const T& s) { return s.rms_gradient_fd; }),
+  };
+  return cols;
+}
+
+const Columns<ProfileScanStats>& profile_scan_stats_columns() {
+  using T = ProfileScanStats;
+  static const Columns<T> cols = {
+      column<T>("physical_length_m", "m", "n dx with dx = length / (n - 1)",
+                [](const T& s) { return s.physical_length; }),
+      column<T>("sampling_interval_m", "m", "mean spacing (x_max - x_min) / (n - 1)",
+                [](const T& s) { return s.sampling_interval; }),
+      column<T>(
+          "bandwidth_short_m", "m", "shortest scale the scan resolves: the sampling interval",
+          [](const T& s) { return s.bandwidth_short; }, "-"),
+      column<T>(
+          "bandwidth_long_m", "m", "longest scale: the physical length", [](const T& s) { return s.bandwidth_long; },
+          "-"),
+      column<T>(
+          "", "m", "(shortest, longest) scale the scan resolves",
+          [](const T& s) {
+            return std::vector<double>{s.bandwidth_short, s.bandwidth_long};
+          },
+          "bandwidth_m"),
+      column<T>("nyquist_wavelength_m", "m", "2 x the sampling interval",
+                [](const T& s) { return s.nyquist_wavelength; }),
+  };
+  return cols;
+}
+
+const Columns<FractalFit>& fractal_fit_columns() {
+  using T = FractalFit;
+  static const Columns<T> cols = {
+      column<T>("dimension", "1", "the fractal dimension D", [](const T& f) { return f.dimension; }),
+      column<T>("slope", "1", "fitted log-log slope", [](const T& f) { return f.slope; }),
+      column<T>("r_squared", "1", "coefficient of determination of the fit", [](const T& f) { return f.r_squared; }),
+      column<T>(
+          "fit_range_m", "m", "[smallest, largest] scale in the fit",
+          [](const T& f) {
+            return std::vector<double>{f.scale_min, f.scale_max};
+          },
+          "fit_range"),
+      column<T>(
+          "scales_m", "m", "every scale used: ruler, box or wavelength", [](const T& f) { return f.scales; }, "scales"),
+      column<T>("values", "1", "L(eps) (m), N(eps) (unitless) or binned C(q) (m^3), by method",
+                [](const T& f) { return f.values; }),
+  };
+  return cols;
+}
+
+}  // namespace frictal

@@ -1,0 +1,210 @@
+// The output tables of the tilt test (frictal/outputs.hpp): the keys of `frictal tilt --json` and
+// of its nested objects, and the tilt study kinds' outputs of the same name.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "frictal/tilt.hpp"
+
+namespace frictal {
+
+namespace {
+
+using R = TiltReport;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+template <class T>
+Column<T> nested(std::string key, std::string unit, std::string help) {
+  Column<T> c;
+  c.key = std::move(key);
+  c.unit = std::move(unit);
+  c.help = std::move(help);
+  return c;
+}
+bool rotated(const TiltResult& r) {
+  return std::any_of(r.warnings.begin(), r.warnings.end(), [](const TiltWarning& w) { return w.code == "rotation"; });
+}
+double per_step(const TiltResult& r, std::uint64_t n) {
+  return r.steps ? static_cast<double>(n) / static_cast<double>(r.steps) : 0.0;
+}
+
+}  // namespace
+
+const Columns<TiltReport>& tilt_columns() {
+  static const Columns<R> cols = python_without_units<R>({
+      column<R>("slid", "flag", "a run-away was detected before max_tilt", [](const R& t) { return t.result.slid; }),
+      column<R>("friction_angle_deg", "deg",
+                "the friction angle this test read: the tilt at the start of the run-away (null: no slide)",
+                [](const R& t) { return t.result.slid ? t.result.friction_angle : kNaN; }),
+      column<R>("friction_angle_valid", "flag",
+                "slid and no warning says the block left the model (rotation): the angle is a friction angle of the "
+                "surfaces",
+                [](const R& t) { return t.result.slid && !rotated(t.result); }),
+      column<R>("predicted_friction_angle_deg", "deg", "rigid upper bound theta_max + atan(mu_a) (null: no prediction)",
+                [](const R& t) { return t.config.predict ? t.result.predicted_friction_angle : kNaN; }),
+      column<R>("predicted_theta_max_deg", "deg", "the signature's theta_max along the sliding direction",
+                [](const R& t) { return t.config.predict ? t.result.predicted_theta_max : kNaN; }),
+      column<R>("predicted_sphero_friction_angle_deg", "deg", "the same bound for the rounded (spheropolygon) blocks",
+                [](const R& t) { return t.config.predict ? t.result.predicted_sphero_friction_angle : kNaN; }),
+      column<R>("predicted_sphero_theta_max_deg", "deg", "theta_max of the rounded blocks",
+                [](const R& t) { return t.config.predict ? t.result.predicted_sphero_theta_max : kNaN; }),
+      column<R>("protocol", "text", "constant-rate (the paper's) or quasi-static",
+                [](const R& t) {
+                  return std::string(t.config.protocol == TiltProtocol::QuasiStatic ? "quasi-static" : "constant-rate");
+                }),
+      column<R>("contact_rule", "text", "the contact rule the run used: pairs or closest",
+                [](const R& t) {
+                  return std::string(t.result.contact_rule == dem::ContactRule::Closest ? "closest" : "pairs");
+                }),
+      column<R>("rest_offset_m", "m", "where the block rested after settling",
+                [](const R& t) { return t.result.rest_offset; }),
+      column<R>("predicted_hold_angle_deg", "deg", "the quasi-static hold angle of a block resting there (hold.hpp)",
+                [](const R& t) { return t.result.predicted_hold_angle; }),
+      column<R>("predicted_hold_offset_m", "m", "the stop that holds it",
+                [](const R& t) { return t.result.predicted_hold_offset; }),
+      column<R>("slide_start_offset_m", "m", "where the run-away started (null: no slide)",
+                [](const R& t) {
+                  return t.result.slid
+                             ? t.result.rest_offset + (t.config.reverse ? -1 : 1) * t.result.slide_start_displacement
+                             : kNaN;
+                }),
+      column<R>("predicted_inertial_hold_angle_deg", "deg", "the inertial bound of the hold angle from the rest",
+                [](const R& t) { return t.result.predicted_inertial_hold_angle; }),
+      column<R>("predicted_sphero_hold_angle_deg", "deg", "the hold angle of the rounded blocks from the rest",
+                [](const R& t) { return t.result.predicted_sphero_hold_angle; }),
+      column<R>("hold_error", "text", "why the hold angles were not computed (empty: they were)",
+                [](const R& t) { return t.result.hold_error; }),
+      column<R>("stiff_friction_angle_deg", "deg", "check_stiffness: the friction angle at 10 k_n (null: not checked)",
+                [](const R& t) { return t.result.stiff_friction_angle; }),
+      column<R>("increments", "count", "quasi-static: tilt increments taken (null: constant rate)",
+                [](const R& t) {
+                  return t.config.protocol == TiltProtocol::QuasiStatic ? double(t.result.increments) : kNaN;
+                }),
+      column<R>("unrelaxed_increments", "count", "quasi-static: increments whose relaxation ran out of relax_time",
+                [](const R& t) {
+                  return t.config.protocol == TiltProtocol::QuasiStatic ? double(t.result.unrelaxed_increments) : kNaN;
+                }),
+      column<R>("rotation_before_slide_deg", "deg", "how far the upper block turned before it slid",
+                [](const R& t) { return t.result.rotation_before_slide; }),
+      nested<R>("scales", "object:tilt_scales", "the run's length and time scales"),
+      nested<R>("estimate", "object:tilt_estimate", "the cost estimate made before the run"),
+      nested<R>("stage_time_s", "object:tilt_stage_times", "wall time by stage of the time stepping"),
+      nested<R>("surface", "settings", "the generated surface's parameters (null for files)"),
+      nested<R>("scaled_defaults", "object:tilt_scaling", "how the defaults were scaled to the surfaces (null: not)"),
+      nested<R>("settings", "settings", "every tilt setting the run used (frictal settings tilt)"),
+      column<R>("initial_offset_m", "m", "the offset the upper block was put down at",
+                [](const R& t) { return t.result.initial_offset; }),
+      column<R>("slide_time_s", "s", "simulated time at the start of the run-away",
+                [](const R& t) { return t.result.slide_time; }),
+      column<R>("simulated_time_s", "s", "simulated time of the run",
+                [](const R& t) { return t.result.simulated_time; }),
+      column<R>("steps", "count", "time steps taken", [](const R& t) { return double(t.result.steps); }),
+      column<R>("wall_time_s", "s", "wall time of the time stepping", [](const R& t) { return t.result.wall_time; }),
+      column<R>("setup_time_s", "s", "wall time of building the blocks, placing them and the predictions",
+                [](const R& t) { return t.result.setup_time; }),
+      column<R>("us_per_step", "1", "microseconds of wall time per step (a speed, unit in the name)",
+                [](const R& t) { return t.result.steps ? 1e6 * t.result.wall_time / double(t.result.steps) : 0.0; }),
+      column<R>("min_time_step_s", "s", "smallest time step taken", [](const R& t) { return t.result.min_time_step; }),
+      column<R>("max_time_step_s", "s", "largest time step taken", [](const R& t) { return t.result.max_time_step; }),
+      column<R>("list_builds", "count", "neighbour list builds",
+                [](const R& t) { return double(t.result.timings.list_builds); }),
+      column<R>("steps_beyond_stability_limit", "count", "steps above the explicit stability limit",
+                [](const R& t) { return double(t.result.steps_beyond_limit); }),
+      column<R>("mean_pairs_in_list", "1", "mean neighbour-list length per step",
+                [](const R& t) { return per_step(t.result, t.result.timings.pairs_visited); }),
+      column<R>("mean_pairs_evaluated", "1", "mean pairs evaluated per step",
+                [](const R& t) { return per_step(t.result, t.result.timings.pairs_evaluated); }),
+      column<R>("hot_list_refreshes", "count", "full passes that rebuilt the hot list",
+                [](const R& t) { return double(t.result.timings.hot_refreshes); }),
+      column<R>("split_steps", "count", "steps whose contact passes were split over threads",
+                [](const R& t) { return double(t.result.timings.split_steps); }),
+      column<R>("lower_vertices", "count", "vertices of the lower block",
+                [](const R& t) { return double(t.result.lower_vertices); }),
+      column<R>("upper_vertices", "count", "vertices of the upper block",
+                [](const R& t) { return double(t.result.upper_vertices); }),
+      column<R>("upper_mass_kg", "kg", "mass of the upper block", [](const R& t) { return t.result.upper_mass; }),
+      column<R>("normal_damping_per_s", "1/s", "normal damping gamma_n used",
+                [](const R& t) { return t.result.normal_damping; }),
+      column<R>("settled_contacts", "count", "contacts at the end of settling",
+                [](const R& t) { return double(t.result.settled_contacts); }),
+      column<R>("settled_overlap_m", "m", "largest overlap at the end of settling",
+                [](const R& t) { return t.result.settled_overlap; }),
+      column<R>("settled_speed_m_s", "m/s", "speed of the upper block at the end of settling",
+                [](const R& t) { return t.result.settled_speed; }),
+      column<R>(
+          "", "count", "steps above the explicit stability limit (as steps_beyond_stability_limit)",
+          [](const R& t) { return double(t.result.steps_beyond_limit); }, "steps_beyond_limit"),
+  });
+  return cols;
+}
+
+const Columns<TiltScales>& tilt_scales_columns() {
+  using T = TiltScales;
+  static const Columns<T> cols = python_without_units<T>({
+      column<T>("resting_overlap_m", "m", "W / k_n: overlap of one contact carrying the upper block",
+                [](const T& s) { return s.resting_overlap; }),
+      column<T>("spheroradius_m", "m", "the spheroradius r", [](const T& s) { return s.spheroradius; }),
+      column<T>("shortest_edge_m", "m", "shortest edge of the lower, upper face",
+                [](const T& s) {
+                  return std::vector<double>{s.shortest_edge[0], s.shortest_edge[1]};
+                }),
+      column<T>("smallest_feature_m", "m", "shortest run between neighbouring extrema of the lower, upper face",
+                [](const T& s) {
+                  return std::vector<double>{s.smallest_feature[0], s.smallest_feature[1]};
+                }),
+      column<T>("time_step_s", "s", "the fixed step, or the adaptive step's cap",
+                [](const T& s) { return s.time_step; }),
+      column<T>("contact_period_s", "s", "2 pi sqrt(m_upper / k_n): one contact's period",
+                [](const T& s) { return s.contact_period; }),
+  });
+  return cols;
+}
+
+const Columns<TiltEstimate>& tilt_estimate_columns() {
+  using T = TiltEstimate;
+  static const Columns<T> cols = {
+      column<T>("time_step_s", "s", "the time step", [](const T& e) { return e.time_step; }),
+      column<T>("steps_expected", "1", "steps to the predicted slide", [](const T& e) { return e.steps_expected; }),
+      column<T>("steps_bound", "1", "steps to max_tilt", [](const T& e) { return e.steps_bound; }),
+      column<T>("simulated_time_expected_s", "s", "settling + tilt to the prediction",
+                [](const T& e) { return e.simulated_time_expected; }),
+      column<T>("simulated_time_bound_s", "s", "settling + tilt to max_tilt",
+                [](const T& e) { return e.simulated_time_bound; }),
+      column<T>("list_pairs", "1", "estimated neighbour-list pairs", [](const T& e) { return e.list_pairs; }),
+      column<T>("seconds_per_step", "s", "estimated wall time per step", [](const T& e) { return e.seconds_per_step; }),
+      column<T>("seconds_expected", "s", "estimated wall time to the predicted slide",
+                [](const T& e) { return e.seconds_expected; }),
+      column<T>("seconds_bound", "s", "estimated wall time to max_tilt", [](const T& e) { return e.seconds_bound; }),
+  };
+  return cols;
+}
+
+const Columns<dem::StepTimings>& tilt_stage_time_columns() {
+  using T = dem::StepTimings;
+  static const Columns<T> cols = {
+      column<T>("neighbor_list", "s", "neighbour-list rebuild tests and rebuilds",
+                [](const T& t) { return t.neighbor_list; }),
+      column<T>("contacts", "s", "pair forces", [](const T& t) { return t.contacts; }),
+      column<T>("integration", "s", "kicks, drift, kinematic motion, guards", [](const T& t) { return t.integration; }),
+  };
+  return cols;
+}
+
+const Columns<TiltScaling>& tilt_scaling_columns() {
+  using T = TiltScaling;
+  static const Columns<T> cols = {
+      column<T>("reference_length_m", "m", "the length the macro defaults are for",
+                [](const T&) { return kTiltReferenceLength; }),
+      column<T>("length_m", "m", "L: extent in x of the shorter face", [](const T& s) { return s.length; }),
+      column<T>("point_spacing_m", "m", "the smaller of the faces' median point spacing",
+                [](const T& s) { return s.point_spacing; }),
+      column<T>("length_factor", "1", "s = L / reference length", [](const T& s) { return s.length_factor; }),
+      column<T>("radius_factor", "1", "q = r / (s r_0), below 1 when the spacing caps r",
+                [](const T& s) { return s.radius_factor; }),
+      nested<T>("settings", "list:tilt_scaled_setting",
+                "the settings changed, each {name, unit, from, to} in text units"),
+  };
+  return cols;
+}
+
+}  // namespace frictal

@@ -1,0 +1,285 @@
+// Every output table (frictal/outputs.hpp): the typed tables of the result types, declared beside
+// them in their modules, and the declarations of what the front ends print around them (the
+// inputs a command echoes, nested objects, the outputs of commands whose result is composed in
+// the front end). `frictal columns` prints this list; a test checks every key a command or a
+// Python function prints against it.
+#include <algorithm>
+
+#include "frictal/analysis.hpp"
+#include "frictal/fractal.hpp"
+#include "frictal/hold.hpp"
+#include "frictal/outputs.hpp"
+#include "frictal/predict.hpp"
+#include "frictal/scan_stats.hpp"
+#include "frictal/signature.hpp"
+#include "frictal/stats.hpp"
+#include "frictal/tilt.hpp"
+
+namespace frictal {
+
+namespace {
+
+/// A declared column (no value here: the front end writes it). python "" = JSON only, "=" = the
+/// same key in Python (SI), "-" none.
+ColumnInfo ci(std::string key, std::string unit, std::string help, std::string python = "-") {
+  if (python == "=") python = default_python_key(key, unit);
+  if (python == "-") python.clear();
+  return {std::move(key), std::move(unit), std::move(help), std::move(python)};
+}
+/// A Python-only column.
+ColumnInfo py(std::string python, std::string unit, std::string help) {
+  return {"", std::move(unit), std::move(help), std::move(python)};
+}
+
+std::vector<OutputTable> make_tables() {
+  std::vector<OutputTable> t;
+  t.push_back({"prediction",
+               "frictal predict --json, Python frictal.predict(...).to_dict() (attributes: the Python keys, SI), the "
+               "report's embedded JSON",
+               infos(prediction_columns())});
+  t.back().columns.push_back(ci("warnings", "list:warning", "the warnings of the inputs and the result", "warnings"));
+  t.push_back(
+      {"command",
+       "what commands print beside their results: the inputs they were given and how they ran",
+       {
+           ci("lower", "text", "the lower surface (file or generator)"),
+           ci("upper", "text", "the upper surface, as measured (turned over to face the lower)"),
+           ci("file", "text", "the surface file read"),
+           ci("format", "text", "the file's format as read", "="),
+           ci("kind", "text", "profile or map", "="),
+           ci("slopes", "text", "the slope method of the signature: exact or spline"),
+           ci("method", "text", "the method the numbers come from"),
+           ci("conditioning", "text", "every conditioning step applied first (crop, spikes, form), with its numbers"),
+           ci("warnings", "list:warning", "warnings: implausible inputs or results (frictal warnings lists the codes)",
+              "warnings"),
+           ci("wall_time_s", "s", "wall time of the computation"),
+           ci("hold_wall_time_s", "s", "wall time of the signature and the hold analysis together (one pass)"),
+           ci("surface_slope_max_deg", "deg", "steepest slope of either surface"),
+           ci("tip_radius_m", "m", "the stylus tip radius given (--tip-radius)"),
+           ci("short_reliability_cutoff_m", "m", "shortest scale the tip resolves (null: unreliable at every scale)",
+              "short_reliability_cutoff_m"),
+           ci("correlation_length_m", "m", "where the autocorrelation falls to 1/e"),
+           ci("height_distribution", "object:histogram", "density of the heights (edges in m, density per m)"),
+           ci("slope_distribution_rad", "object:histogram",
+              "density of the slope angles (edges in rad, density per rad)"),
+           py("slope_pdf", "object:histogram", "density of the slope angles (edges in rad, density per rad)"),
+       }});
+  t.push_back(
+      {"warning",
+       "one warning: its code (frictal warnings) and message",
+       {ci("code", "text", "the warning's code", "="), ci("message", "text", "what was found, with numbers", "=")}});
+  t.push_back(
+      {"histogram",
+       "a density: bin edges and density (units in the parent key's help)",
+       {ci("edges", "list", "bins + 1 edges", "="), ci("density", "list", "density per unit of the edges", "=")}});
+  t.push_back({"signature", "frictal signature --json; Python frictal.signature(...)", infos(signature_columns())});
+  t.push_back({"contacts",
+               "Python frictal.signature(..., keep_contacts=True)['contacts']: every contact",
+               {py("offset", "m", "the offset of each contact"), py("x", "m", "contact abscissa in the lower's frame"),
+                py("z", "m", "contact height"), py("slope", "rad", "contact slope"),
+                py("type", "text", "vertex-edge, edge-vertex or vertex-vertex")}});
+  t.push_back({"friction", "the rigid bound (Eq. 6) and Eq. 18's low end: signature --json, Python predict_friction",
+               infos(friction_columns())});
+  t.push_back({"friction_backward", "the rigid bound sliding towards -x: signature --json",
+               infos(friction_backward_columns())});
+  t.push_back(
+      {"hold", "the hold analysis: signature --json (flat keys), Python hold_angle(...)", infos(hold_columns())});
+  t.push_back({"hold_start", "one drop (--start-offset): signature --json", infos(hold_start_columns())});
+  t.push_back(
+      {"hold_distribution", "Python hold_angle(...)['forward'|'backward']", infos(hold_distribution_columns())});
+  t.push_back(
+      {"hold_statistics", "the statistics over drops of a hold angle (Python)", infos(hold_statistics_columns())});
+  t.push_back({"hold_basins", "the basins of a distribution (Python)", infos(hold_basins_columns())});
+  t.push_back({"hold_drop", "one drop (Python hold_angle(..., start_offset=)['start'])", infos(hold_drop_columns())});
+  t.push_back({"profile_stats", "frictal stats --json of a profile; Python profile_stats(...)",
+               infos(profile_stats_columns())});
+  t.push_back({"profile_scan_stats", "the scan quantities of a profile: stats --json, Python profile_stats",
+               infos(profile_scan_stats_columns())});
+  t.push_back({"map_stats", "frictal stats --json of a map; Python map_stats(...)", infos(map_stats_columns())});
+  t.push_back({"map_grid", "a map's grid: stats --json, info --json", infos(map_grid_columns())});
+  t.push_back({"map_scan_stats", "the scan quantities of a map: stats --json, Python map_stats",
+               infos(map_scan_stats_columns())});
+  t.push_back({"tilt", "frictal tilt --json; Python frictal.tilt(...)", infos(tilt_columns())});
+  t.back().columns.push_back(py("series", "object:tilt_series", "the time series of the run"));
+  t.push_back({"tilt_scales", "tilt --json 'scales'", infos(tilt_scales_columns())});
+  t.push_back({"tilt_estimate", "tilt --json 'estimate'", infos(tilt_estimate_columns())});
+  t.push_back({"tilt_stage_times", "tilt --json 'stage_time_s' (s)", infos(tilt_stage_time_columns())});
+  t.push_back({"tilt_scaling", "tilt --json 'scaled_defaults'", infos(tilt_scaling_columns())});
+  t.push_back({"tilt_scaled_setting",
+               "one setting scaled to the surfaces (text units: the setting's own)",
+               {ci("name", "text", "the setting (frictal settings tilt)"), ci("unit", "text", "its text unit"),
+                ci("from", "1", "the macro default, in that unit"), ci("to", "1", "the scaled value, in that unit")}});
+  t.push_back({"tilt_series",
+               "Python frictal.tilt(...)['series']: one sample per output interval",
+               {py("time", "s", "simulated time"), py("tilt", "rad", "tilt angle"),
+                py("normal_force", "1", "N (per unit depth)"), py("tangential_force", "1", "N (per unit depth)"),
+                py("force_angle", "rad", "atan(F_t / F_n)"), py("displacement", "m", "relative displacement"),
+                py("velocity", "m/s", "relative velocity"), py("contacts", "count", "contacts")}});
+  t.push_back({"dimension", "frictal dimension --json; Python divider_dimension, box_dimension, psd_dimension",
+               infos(fractal_fit_columns())});
+  t.back().columns.insert(t.back().columns.end(),
+                          {ci("alpha_deg", "deg", "dimension koch: the Koch angle alpha"),
+                           ci("equation", "text", "dimension koch: the equation solved (Eq. 13)")});
+  t.push_back(
+      {"info",
+       "frictal info --json: what a surface file holds",
+       {ci("reader", "text", "the reader that read it: native or gwyddion", "="),
+        ci("channel", "count", "the channel read (0-based)"),
+        ci("channels", "list:info_channel", "every channel of the file"), ci("x0_m", "m", "x of the first node", "x0"),
+        ci("y0_m", "m", "y of the first node", "y0"), ci("points", "count", "points of the profile"),
+        ci("valid_points", "count", "nodes with a measured height"), py("x", "m", "the profile's abscissae"),
+        py("z", "m", "the profile's heights"), py("heights", "m", "the map's heights (ny, nx), NaN where not measured"),
+        py("dx", "m", "node spacing along x"), py("dy", "m", "node spacing along y")}});
+  t.push_back({"info_channel",
+               "one channel of a file (frictal info --json)",
+               {ci("name", "text", "the channel's name"), ci("kind", "text", "map or profile"),
+                ci("nx", "count", "nodes along x"), ci("ny", "count", "nodes along y"),
+                ci("size_x", "1", "extent along x, in xy_unit"), ci("size_y", "1", "extent along y, in xy_unit"),
+                ci("xy_unit", "text", "the file's lateral unit"), ci("z_unit", "text", "the file's height unit"),
+                ci("readable", "flag", "frictal reads this channel")}});
+  t.push_back({"warning_code",
+               "frictal warnings --json: every warning code",
+               {ci("code", "text", "the code"), ci("meaning", "text", "what it means")}});
+  t.push_back(
+      {"areal",
+       "frictal areal --json: the areal signature of two blocks along a direction",
+       {ci("direction_deg", "deg", "sliding direction, from +x towards +y", "direction"),
+        ci("offsets", "count", "offsets along the direction"),
+        ci("evaluated_nodes", "count", "lower-surface nodes evaluated (after pruning)", "="),
+        ci("theta_max_lift_deg", "deg", "steepest slope of the lift along the direction"),
+        ci("theta_max_forward_deg", "deg", "steepest contact slope resisting sliding along the direction",
+           "theta_max_forward"),
+        ci("theta_max_backward_deg", "deg", "steepest contact slope resisting sliding against it",
+           "theta_max_backward"),
+        ci("contact_slope_mean_deg", "deg", "mean contact slope"),
+        ci("contact_slope_std_deg", "deg", "sigma of Eq. 18", "contact_slope_std"), ci("atomic_friction", "1", "mu_a"),
+        ci("upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a (Eq. 6)"),
+        ci("upper_bound_friction_coefficient", "1", "tan of the upper bound"),
+        ci("eq18_low_friction_coefficient", "1", "tan of the Eq. 18 low end"),
+        py("offset", "m", "offsets along the direction"), py("lift", "m", "the lift at each offset"),
+        py("theta", "rad", "the contact slope at each offset")}});
+  t.push_back({"anisotropy",
+               "frictal anisotropy --json; Python anisotropy(...) (arrays over directions)",
+               {ci("directions", "list:anisotropy_direction", "one row per sliding direction"),
+                ci("atomic_friction", "1", "mu_a"), py("direction", "rad", "each sliding direction"),
+                py("theta_forward", "rad", "theta_max along each direction"),
+                py("theta_backward", "rad", "theta_max against each direction"),
+                py("sigma", "rad", "sigma of Eq. 18 for each direction"),
+                py("upper_bound_friction_angle", "rad", "rigid upper bound for each direction")}});
+  t.push_back(
+      {"anisotropy_direction",
+       "one direction of frictal anisotropy --json",
+       {ci("direction_deg", "deg", "sliding direction, from +x towards +y"),
+        ci("lines", "count", "map lines the direction's theta_max is over"),
+        ci("theta_forward_deg", "deg", "theta_max along the direction"),
+        ci("theta_backward_deg", "deg", "theta_max against the direction"), ci("sigma_deg", "deg", "sigma of Eq. 18"),
+        ci("upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a"),
+        ci("upper_bound_friction_coefficient", "1", "tan of the upper bound"),
+        ci("eq18_low_friction_coefficient", "1", "tan of the Eq. 18 low end")}});
+  t.push_back(
+      {"areal_tilt",
+       "frictal areal-tilt --json (the MuJoCo run and the predictions matched to it)",
+       {ci("direction_deg", "deg", "tilt direction, from +x towards +y"),
+        ci("runaway_distance_m", "m", "run-away distance d"),
+        ci("friction_angle_deg", "deg", "the friction angle this 3D test read (absent with --predict-only)"),
+        ci("ran_away", "flag", "the block ran away before the largest tilt", "="),
+        ci("rest_offset_m", "m", "where the block rested (x, y)"),
+        ci("predicted_hold_angle_deg", "deg", "grid model, block free (a diagnostic; frictal predict is the answer)"),
+        ci("predicted_hold_angle_locked_deg", "deg", "grid model, block locked to the direction"),
+        ci("predicted_steering_deg", "deg", "grid model: how far the block turned off the direction"),
+        ci("continuous_hold_angle_deg", "deg", "continuous model (the spheres and triangles MuJoCo sees), block free"),
+        ci("continuous_runaway_increment_deg", "deg", "the tilt increment at which it ran away"),
+        ci("continuous_steering_deg", "deg", "continuous model: the block's steering"),
+        ci("continuous_rest_offset_m", "m", "continuous model: where the block rested (x, y)"),
+        ci("continuous_evaluations", "count", "lift evaluations of the continuous model"),
+        ci("continuous_hold_angle_range_deg", "deg",
+           "[least, largest] hold angle with one slip's end moved by a sphere radius"),
+        ci("continuous_slips", "count", "slips of the continuous model"),
+        ci("continuous_ambiguous_slips", "count", "slips whose end a sphere radius changes"),
+        ci("seat_tilt_deg", "deg", "the MuJoCo run's seat: its tilt"),
+        ci("seat_offset_m", "m", "the seat's offset (x, y)"),
+        ci("continuous_seated_hold_angle_deg", "deg", "continuous model dropped at the seat"),
+        ci("continuous_increments", "list", "[tilt_deg, x_m, y_m] after each increment"),
+        ci("matched_hold_angle_deg", "deg", "continuous model from the simulated rest, block free"),
+        ci("matched_hold_angle_locked_deg", "deg", "the same, block locked"),
+        ci("matched_steering_deg", "deg", "the same: steering"),
+        ci("sphere_radius_m", "m", "radius of the upper block's spheres", "sphere_radius"),
+        ci("collision", "text", "MuJoCo's collision: native or exact"),
+        ci("lateral", "text", "free or locked"),
+        ci("prediction_refine", "count", "refinement of the predictions' increments"),
+        ci("steering_deg", "deg", "how far the simulated block turned off the direction", "steering"),
+        ci("increment_trace", "list",
+           "[tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed] per increment"),
+        ci("tilt_step_deg", "deg", "the tilt increment"),
+        ci("spheres", "count", "spheres of the upper block", "="),
+        ci("steps", "count", "MuJoCo steps", "="),
+        ci("max_contacts", "count", "most contacts at once"),
+        ci("unsettled_increments", "count", "increments that did not come to rest", "="),
+        ci("seconds", "s", "wall time"),
+        py("predicted_hold_angle", "rad", "areal_tilt: the matched continuous model from the simulated rest"),
+        py("predicted_steering", "rad", "its steering"),
+        py("predicted_hold_angle_range", "rad", "its range with one slip's end moved by a sphere radius"),
+        py("predicted_ambiguous_slips", "count", "its ambiguous slips"),
+        py("increment_tilt", "rad", "tilt of each increment"),
+        py("increment_x", "m", "x after each increment"),
+        py("increment_y", "m", "y after each increment"),
+        py("increment_rested", "flag", "each increment rested"),
+        py("rest_offset", "m", "where the block rested (x, y)")}});
+  t.push_back(
+      {"areal_tilt_hold",
+       "Python areal_tilt_hold(...): the continuous model of one drop",
+       {py("hold_angle", "rad", "the hold angle (bisected to 1e-4 rad)"),
+        py("runaway_increment", "rad", "the increment at which the block ran away"),
+        py("ran_away", "flag", "it ran away"), py("rest_offset", "m", "where it rested (x, y)"),
+        py("steering", "rad", "how far it turned off the direction"), py("evaluations", "count", "lift evaluations"),
+        py("stop_tilt", "rad", "tilt of each stop"), py("stop_x", "m", "x of each stop"),
+        py("stop_y", "m", "y of each stop"),
+        py("hold_angle_range", "rad", "[least, largest] with one slip's end moved by a sphere radius"),
+        py("slips", "count", "slips"), py("ambiguous_slips", "count", "slips whose end a sphere radius changes")}});
+  t.push_back(
+      {"areal_signature",
+       "Python areal_signature(...)",
+       {py("offset", "m", "offsets along the direction"), py("lift", "m", "the lift at each offset"),
+        py("theta", "rad", "the contact slope at each offset"),
+        py("theta_max_forward", "rad", "steepest contact slope along the direction"),
+        py("theta_max_backward", "rad", "steepest against it"), py("contact_slope_std", "rad", "sigma of Eq. 18"),
+        py("evaluated_nodes", "count", "lower-surface nodes evaluated")}});
+  t.push_back({"conditioning",
+               "Python condition(...)[1]: what each conditioning step did",
+               {py("text", "text", "the steps as frictal prints them"), py("cropped", "flag", "a window was cut"),
+                py("window", "m", "the window (x0, x1[, y0, y1])"),
+                py("points_before", "count", "points before the crop (n, or nx, ny)"),
+                py("points_after", "count", "points after it"), py("spikes_checked", "flag", "spikes were looked for"),
+                py("spike_threshold", "1", "k: spikes are more than k rms heights from the neighbours' median"),
+                py("spikes_removed", "count", "points replaced (profiles) or masked (maps)"),
+                py("spikes_dropped", "count", "profiles: spikes at the ends, dropped"),
+                py("spike_passes", "count", "passes of the spike filter"),
+                py("form", "text", "the form removed: none, mean, line, plane, poly:N")}});
+  t.push_back({"build_info",
+               "Python build_info()",
+               {py("version", "text", "frictal's version"), py("git_commit", "text", "the commit built"),
+                py("build_type", "text", "CMake build type"), py("mujoco", "flag", "the 3D tilt test is available")}});
+  t.push_back({"autocorrelation",
+               "Python autocorrelation(...)",
+               {py("lag", "m", "lags"), py("acf", "1", "normalised autocorrelation at each lag"),
+                py("correlation_length", "m", "where it falls to 1/e")}});
+  t.push_back({"map_extra",
+               "what Python map_stats adds with tip_radius",
+               {py("short_reliability_cutoff", "m", "shortest scale the tip resolves (NaN: none)")}});
+  return t;
+}
+
+}  // namespace
+
+const std::vector<OutputTable>& output_tables() {
+  static const std::vector<OutputTable> tables = make_tables();
+  return tables;
+}
+
+const OutputTable* find_output_table(std::string_view name) {
+  const auto& t = output_tables();
+  auto it = std::find_if(t.begin(), t.end(), [&](const OutputTable& x) { return x.name == name; });
+  return it == t.end() ? nullptr : &*it;
+}
+
+}  // namespace frictal
