@@ -473,7 +473,8 @@ class Findings:
     def load(out, bin_):
         path = f"{out}/studies/findings.json"
         if not os.path.exists(path):  # the stores alone: ask the CLI
-            stores = sorted(glob.glob(f"{out}/studies/*.sqlite"))
+            stores = sorted(p for p in glob.glob(f"{out}/studies/*.sqlite")
+                            if os.path.basename(p) != "results-cache.sqlite")  # the cache is no study
             if not stores:
                 return Findings({})
             run(bin_, "study", "report", "--json", *stores, "-o", path)
@@ -909,7 +910,7 @@ def main(argv):
         # The claims this script checks on the figures it computes: conclusions beside the studies'.
         for v in f.verdicts:
             ok, text, crit = v[:3]
-            findings.add_check(v[3] if len(v) > 3 else f"fig{n:02d}-{slug(text)}", text[:1].upper() + text[1:] + ".",
+            findings.add_check(v[3] if len(v) > 3 else f"fig{n:02d}-{slug(text)}", (text[:1].upper() if text[:1].isascii() else text[:1]) + text[1:] + ".",
                                f"Fig. {n}", [n], ok, crit)
         figs.append(f)
     for key in BEYOND:
