@@ -1,14 +1,19 @@
 #!/usr/bin/python3
-"""Writes OUTDIR/index.html: every figure of the paper that frictal computes, each beside the
-paper's claim, the numbers and the computed verdict. One self-contained page (images embedded).
+"""Writes OUTDIR/index.html: one verdict per claim of the paper that frictal checks (supported, not
+supported with its measured cause, or superseded by frictal's own finding), frictal's own findings,
+and every figure of the paper that frictal computes beside its numbers. One self-contained page
+(images embedded).
 
     scripts/make_index.py BIN OUTDIR [--quick]
 
-BIN is the frictal executable. The figures that the studies draw (scripts/plot_studies.py:
-OUTDIR/fig06.png ...) and Fig. 4 (OUTDIR/fig04/) are taken as scripts/reproduce left them, with
-the findings of OUTDIR/studies/*-report.md that cite each figure. Figures 3, 5, 11, 12, 13 and 16
-are computed here with BIN (under OUTDIR/index/). A figure whose inputs are missing is listed as
-not produced (never a broken image). Only the standard library, numpy and matplotlib.
+BIN is the frictal executable. The findings and conclusions are data: OUTDIR/studies/findings.json,
+written by `frictal study report --json` over every store (scripts/reproduce; asked of BIN here when
+it is missing). The figures that the studies draw (scripts/plot_studies.py: OUTDIR/fig06.png ...)
+and Fig. 4 (OUTDIR/fig04/) are taken as scripts/reproduce left them; the figures beyond the paper
+are drawn from the tables `frictal study export --csv` wrote (OUTDIR/studies/STUDY/PART.csv).
+Figures 3, 5, 11, 12, 13 and 16 are computed here with BIN (under OUTDIR/index/), and the claims
+checked on them join the conclusions. A figure whose inputs are missing is listed as not produced
+(never a broken image). Only the standard library, numpy and matplotlib.
 """
 import argparse
 import base64
@@ -39,7 +44,9 @@ class Figure:
         self.number, self.title, self.claim = number, title, claim
         self.png = None          # bytes
         self.numbers = []        # (name, value) rows
-        self.verdicts = []       # (supported: bool, text, criterion)
+        self.verdicts = []       # checked here: (supported: bool, text, criterion[, claim id])
+        self.conclusions = []    # the claims that speak to it (`frictal study report --json`)
+        self.studies = set()     # the studies named after it
         self.missing = None      # why the figure is not on the page
         self.source = ""         # how it was computed
 
@@ -71,36 +78,6 @@ def slopes_deg(x, z):
     dx = np.diff(x)
     ok = dx > 0
     return np.degrees(np.arctan(np.diff(z)[ok] / dx[ok])), dx[ok]
-
-
-def natural_spline(x, z):
-    """Second derivatives of the natural cubic spline through (x, z) (tridiagonal solve)."""
-    n = len(x)
-    h = np.diff(x)
-    a = np.zeros(n)
-    b = np.ones(n)
-    c = np.zeros(n)
-    r = np.zeros(n)
-    a[1:-1] = h[:-1]
-    b[1:-1] = 2 * (h[:-1] + h[1:])
-    c[1:-1] = h[1:]
-    r[1:-1] = 6 * ((z[2:] - z[1:-1]) / h[1:] - (z[1:-1] - z[:-2]) / h[:-1])
-    for i in range(1, n):  # Thomas algorithm
-        w = a[i] / b[i - 1]
-        b[i] -= w * c[i - 1]
-        r[i] -= w * r[i - 1]
-    m = np.zeros(n)
-    m[-1] = r[-1] / b[-1]
-    for i in range(n - 2, -1, -1):
-        m[i] = (r[i] - c[i] * m[i + 1]) / b[i]
-    return m
-
-
-def spline_eval(x, z, m, xs):
-    i = np.clip(np.searchsorted(x, xs) - 1, 0, len(x) - 2)
-    h = x[i + 1] - x[i]
-    t0, t1 = x[i + 1] - xs, xs - x[i]
-    return (m[i] * t0 ** 3 + m[i + 1] * t1 ** 3) / (6 * h) + (z[i] / h - m[i] * h / 6) * t0 + (z[i + 1] / h - m[i + 1] * h / 6) * t1
 
 
 # ---------------------------------------------------------------------------------------------
@@ -328,21 +305,26 @@ def fig13(bin_, work):
     x, z = read_xz(a)
     sel = slice(0, 40)
     xs, zs = x[sel], z[sel]
-    m = natural_spline(x[:400], z[:400])
-    xf = np.linspace(xs[0], xs[-1], 2000)
+    # The spline that `--slopes spline` takes, as frictal computes it (`frictal stats --spline`), over
+    # the first 400 points (the natural end conditions far from the 40 drawn).
+    spl = f"{work}/wm-pair-1-spline.csv"
+    h0 = 0.5 * (x[1] - x[0])
+    run(bin_, "stats", a, "--crop", f"{x[0] - h0:.17g},{0.5 * (x[399] + x[400]):.17g}", "--spline", spl,
+        "--spline-samples", 50)
+    d = np.genfromtxt(spl, delimiter=",", names=True)
+    keep = d["x_m"] <= xs[-1]
+    xf, zf, sf = d["x_m"][keep], d["z_m"][keep], d["slope_deg"][keep]
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(7.5, 5.2), sharex=True)
     a1.plot(xs * 1e9, zs * 1e12, "o", ms=3, color="k", label="samples")
     a1.plot(xs * 1e9, zs * 1e12, "-", lw=1, label="linear")
-    a1.plot(xf * 1e9, spline_eval(x[:400], z[:400], m, xf) * 1e12, "-", lw=1, label="cubic spline")
+    a1.plot(xf * 1e9, zf * 1e12, "-", lw=1, label="cubic spline")
     a1.set_ylabel("z (pm)")
     a1.legend(fontsize=8)
     a1.set_title("first 40 points of a WM profile (D = 1.5)", fontsize=10)
-    # slopes: linear = piecewise constant; spline = derivative of the cubic
+    # slopes: linear = piecewise constant; spline = frictal's dz/dx of the cubic
     sl = np.degrees(np.arctan(np.diff(zs) / np.diff(xs)))
     a2.step(xs * 1e9, np.append(sl, sl[-1]), where="post", lw=1, label="linear")
-    h = 1e-3 * (xs[1] - xs[0])
-    ds = (spline_eval(x[:400], z[:400], m, xf + h) - spline_eval(x[:400], z[:400], m, xf - h)) / (2 * h)
-    a2.plot(xf * 1e9, np.degrees(np.arctan(ds)), lw=1, label="cubic spline", color="C2")
+    a2.plot(xf * 1e9, sf, lw=1, label="cubic spline", color="C2")
     a2.set_xlabel("x (nm)")
     a2.set_ylabel("slope (deg)")
     a2.legend(fontsize=8)
@@ -355,7 +337,8 @@ def fig13(bin_, work):
                   ("σ of contact slopes: exact / spline", f"{ex['contact_slope_std_deg']:.4f}° / {sp['contact_slope_std_deg']:.4f}°")]
     f.verdicts.append((ds_ < 0.02 and dt < 0.1, "linear and spline contact slopes agree at this sampling",
                        f"σ within 2 % ({100 * ds_:.2f} %), θ_max forward within 10 % ({100 * dt:.2f} %)"))
-    f.source = "`frictal signature A B [--slopes spline] --json` on two WM profiles (seeds 1, 2)"
+    f.source = ("`frictal signature A B [--slopes spline] --json` on two WM profiles (seeds 1, 2); the spline by "
+                "`frictal stats --spline`")
     return f
 
 
@@ -438,22 +421,23 @@ CLAIMS = {
          "(Fig. 18)."),
 }
 
-# Results beyond the paper, drawn from a study's store like the paper's figures: key -> (title,
-# claim, study name; the PNG is OUTDIR/<key>.png, every finding of that study's report is shown).
+# Results beyond the paper, drawn from a study's exported tables like the paper's figures: key -> (title,
+# question, study name, the claims of the catalogue (`frictal study report --json`) it shows; the PNG
+# is OUTDIR/<key>.png).
 BEYOND = {
     "wm-tilt": ("Tilt test on random pairs",
                 "Not in the paper, which simulates Koch surfaces only: the spheropolygon tilt test on stochastic WM pairs "
                 "and on Fourier-filtered self-affine pairs scaled to the Table I block, 20 pairs per D. Eq. 18 claims φ − θ_a lies in [θ_max − σ, θ_max]; the "
                 "report states how often it does, whether the angle depends on the run-away distance (0.5, 1, 2 λ), "
                 "and whether the rigid or the spheropolygon prediction is closer (issue 14).",
-                "wm-tilt"),
+                "wm-tilt", ("eq18-range", "runaway-independent", "sphero-closer-than-rigid")),
     "eq18-derived": ("Eq. 18 derived: the hold angle over drops",
                      "Eq. 18 is a heuristic: φ − θ_a in [θ_max − σ, θ_max]. What repeated tilt tests of one pair give "
                      "can be derived instead: a block dropped at a random offset rests in a basin of the lift h and "
                      "holds until the quasi-static hold angle φ_qs of that basin (docs/analysis.md). Per D, the "
                      "distribution of φ_qs over drops (mean, 5–95 %) beside Eq. 18's range and the inertial bound "
                      "φ_in; and the quasi-static tilt test against φ_qs from where its block rests (issue 23).",
-                     "wm-tilt", ("hold angles that repeated drops give", "hold angle phi_qs", "quasi-static hold angle")),
+                     "wm-tilt", ("eq18-over-drops", "dynamic-hold-bracket", "quasi-static-hold")),
     "areal-tilt": ("3D tilt test of areal blocks (MuJoCo)",
                    "Not in the paper, whose theory is one-dimensional: two maps as rigid blocks, the upper one free "
                    "to move sideways as real blocks do (or locked to the sliding direction), tilted quasi-statically "
@@ -462,7 +446,7 @@ BEYOND = {
                    "triangles (issue 24; docs/mujoco.md). The grey bars are the prediction's spread: the hold angles "
                    "the rigid block reaches when one slip's end is moved by a sphere radius, wide where a drop's "
                    "hold angle hinges on where a slip ends.",
-                   "areal-tilt"),
+                   "areal-tilt", ("areal-matched-prediction", "areal-prediction-spread", "areal-seat-by-seat")),
 }
 
 
@@ -470,70 +454,76 @@ def label(f):
     return f"Fig. {f.number}" if isinstance(f.number, int) else "Beyond the paper"
 
 
-def cited_figures(text):
-    """Figure numbers a finding cites: 'Fig. 4, 6', 'Fig. 17-18', 'Fig. 8b'."""
-    out = set()
-    for m in re.finditer(r"Figs?\.\s*([0-9][0-9a-z,\s\-–]*)", text):
-        for part in re.split(r",\s*", m.group(1)):
-            r = re.match(r"(\d+)[a-z]?\s*[-–]\s*(\d+)", part.strip())
-            if r:
-                out.update(range(int(r.group(1)), int(r.group(2)) + 1))
-                continue
-            r = re.match(r"(\d+)", part.strip())
-            if r:
-                out.add(int(r.group(1)))
-    return out
+# ---------------------------------------------------------------------------------------------
+# The findings as data: `frictal study report --json` over every store (scripts/reproduce writes
+# OUTDIR/studies/findings.json): one conclusion per claim, and the per-part findings behind it.
+
+class Findings:
+    def __init__(self, data):
+        self.conclusions = list(data.get("conclusions", []))
+        self.by_id = {c["id"]: c for c in self.conclusions}
+        self.catalogue = {c["id"]: c for c in data.get("claims", [])}
+        # (claim id, study, part) -> the finding (criterion, numbers, cause)
+        self.detail = {}
+        for r in data.get("reports", []):
+            for f in r["findings"]:
+                self.detail[(f["claim_id"], r["study"], f["part"])] = f
+
+    @staticmethod
+    def load(out, bin_):
+        path = f"{out}/studies/findings.json"
+        if not os.path.exists(path):  # the stores alone: ask the CLI
+            stores = sorted(p for p in glob.glob(f"{out}/studies/*.sqlite")
+                            if os.path.basename(p) != "results-cache.sqlite")  # the cache is no study
+            if not stores:
+                return Findings({})
+            run(bin_, "study", "report", "--json", *stores, "-o", path)
+        with open(path, encoding="utf-8") as fh:
+            return Findings(json.load(fh))
+
+    def add_check(self, cid, statement, where, figures, supported, criterion):
+        """A paper claim checked here (a figure computed by this script): into the conclusion of the
+        same claim when the studies check it too (e.g. Fig. 4's maxima), else a conclusion of its own."""
+        c = self.by_id.get(cid)
+        if c is None:
+            c = {"id": cid, "source": "paper", "statement": statement, "where": where, "figures": figures,
+                 "verdict": "supported", "cause": "", "uncaused": [], "checks": [], "superseded_by": []}
+            self.by_id[cid] = c
+            self.conclusions.append(c)
+        c["checks"].append({"study": "index", "part": f"Fig. {figures[0]}", "verdict":
+                            "supported" if supported else "not supported", "cause": "", "criterion": criterion})
+        if not supported:
+            c["verdict"] = "not supported"
+            c["uncaused"].append(f"index/Fig. {figures[0]}")
+
+    def for_figure(self, n):
+        return [c for c in self.conclusions if n in c.get("figures", [])]
 
 
-def study_findings(out):
-    """(figure -> list of (supported, text, criterion, study)) from every report. A finding goes to the
-    figures it cites; a study named after figures ("fig07-...", "fig14-18-...") also speaks to those:
-    when none of its findings cites them, all its findings go to them, and a finding citing no figure
-    goes to the first of them."""
-    found = {}
-    for path in sorted(glob.glob(f"{out}/studies/*-report.md")):
-        study = os.path.basename(path)[: -len("-report.md")]
-        lines = open(path, encoding="utf-8").read().split("\n")
-        named = set()
-        m = re.match(r"fig(\d+)(?:-(\d+))?", study)
-        if m:
-            named = set(range(int(m.group(1)), int(m.group(2) or m.group(1)) + 1))
-        items, seen = [], set()
-        for i, line in enumerate(lines):
-            m = re.match(r"^- \[(SUPPORTED|NOT SUPPORTED)\] (.*)$", line)
-            if not m:
-                continue
-            crit = ""
-            if i + 1 < len(lines) and lines[i + 1].strip().startswith("criterion:"):
-                crit = lines[i + 1].strip()[len("criterion:"):].strip()
-            cause = ""  # a finding not supported: the measured cause its report names ("    cause: ...")
-            for follow in lines[i + 1:]:
-                if not follow.startswith("    "):
-                    break
-                if follow.strip().startswith("cause:"):
-                    cause = follow.strip()[len("cause:"):].strip()
-            key = (m.group(1), m.group(2), crit)
-            if key not in seen:
-                seen.add(key)
-                items.append((m.group(1) == "SUPPORTED", m.group(2), crit, cited_figures(m.group(2)), cause))
-        beyond = [k for k, v in BEYOND.items() if v[2] == study]
-        if beyond:  # a study beyond the paper speaks to its own figures only: by text filter, else the first
-            for sup, text, crit, _, cause in items:
-                match = [k for k in beyond if len(BEYOND[k]) > 3 and any(w in text for w in BEYOND[k][3])]
-                plain = [k for k in beyond if len(BEYOND[k]) <= 3]
-                for k in (match or plain[:1]):
-                    found.setdefault(k, []).append((sup, text, crit, study, cause))
-            continue
-        any_named = any(c & named for *_, c, _ in items)
-        for sup, text, crit, cited, cause in items:
-            figs = set(cited)
-            if named and not any_named:
-                figs |= named
-            elif named and not cited:
-                figs.add(min(named))
-            for n in figs:
-                found.setdefault(n, []).append((sup, text, crit, study, cause))
-    return found
+def checks_of(c, findings, studies=None):
+    """(study, part, verdict, criterion, cause) of a conclusion's checks; those of `studies` when
+    any of them is, else all."""
+    rows = []
+    for ch in c["checks"]:
+        f = findings.detail.get((c["id"], ch["study"], ch["part"]), {})
+        rows.append((ch["study"], ch["part"], ch["verdict"], ch.get("criterion") or f.get("criterion", ""),
+                     ch.get("cause") or f.get("cause", "")))
+    if studies:
+        mine = [r for r in rows if r[0] in studies]
+        if mine:
+            return mine
+    return rows
+
+
+def figure_studies(out, n):
+    """The studies named after figure n ("fig06-...", "fig14-18-...")."""
+    names = set()
+    for path in glob.glob(f"{out}/studies/*.sqlite"):
+        study = os.path.basename(path)[: -len(".sqlite")]
+        m = re.match(r"fig(\d+)(?:-(\d+))?-", study)
+        if m and int(m.group(1)) <= n <= int(m.group(2) or m.group(1)):
+            names.add(study)
+    return names
 
 
 def fig04_from(out):
@@ -560,36 +550,48 @@ def fig04_from(out):
                 ok &= all(abs(j[k] - 5.0 * mult) < 1e-6 for k in ("theta_max_forward_deg", "theta_max_backward_deg"))
         if have:
             f.verdicts.append((ok and have == 4, "θ_max = nα (n = 1, 1, 2, 3) at α = 5°",
-                               f"|θ_max − nα| < 1e-6° in both directions for {have} of 4 surfaces"))
+                               f"|θ_max − nα| < 1e-6° in both directions for {have} of 4 surfaces", "koch-theta-max"))
     if os.path.exists(summary):
         rows = list(csv.DictReader(open(summary)))
         agree = sum(r["agrees"] == "yes" for r in rows)
         f.numbers.append(("Koch surfaces of Table I whose θ_max = nα (both directions)", f"{agree} of {len(rows)}"))
         f.verdicts.append((agree == len(rows) and len(rows) > 0, "θ_max = nα (n = 1, 1, 2, 3) for every α of Table I",
-                           "|θ_max − nα| < 1e-6° in both directions"))
+                           f"|θ_max − nα| < 1e-6° in both directions, {agree} of {len(rows)} Koch surfaces of Table I",
+                           "koch-theta-max"))
     f.source = "scripts/reproduce: `frictal signature --period 0.01` on K0–K3"
     return f
 
 
 def store_rows(out, study, f, how):
-    """(part, scalars) of every done task of OUT/studies/STUDY.sqlite; None (and f.missing set,
-    saying `how` it is made) when the store is absent."""
+    """(part, scalars) of every done task of a study, from the tables `frictal study export --csv`
+    wrote (OUT/studies/STUDY/PART.csv: parameters then scalars; empty = NaN, read as None); None
+    (and f.missing set, saying `how` they are made) when there are none."""
     f.missing = None
-    store = f"{out}/studies/{study}.sqlite"
-    if not os.path.exists(store):
-        f.missing = f"{store} not found ({how})"
+    parts = [p for p in sorted(glob.glob(f"{out}/studies/{study}/*.csv"))
+             if not p.endswith(("-arrays.csv", "-pooled-pdfs.csv")) and os.path.basename(p) != "tasks.csv"]
+    if not parts:
+        f.missing = f"{out}/studies/{study}/PART.csv not found ({how}; `frictal study export --csv` writes them)"
         return None
-    import sqlite3
-    con = sqlite3.connect(store)
-    rows = [(part, json.loads(sc)) for part, sc in
-            con.execute("select part, scalars from tasks where status = 'done' and scalars is not null")]
-    con.close()
+
+    def value(v):
+        if v == "":
+            return None
+        try:
+            return float(v)
+        except ValueError:
+            return v
+
+    rows = []
+    for path in parts:
+        part = os.path.basename(path)[: -len(".csv")]
+        with open(path, newline="", encoding="utf-8") as fh:
+            rows += [(part, {k: value(v) for k, v in r.items()}) for r in csv.DictReader(fh)]
     return rows
 
 
-def eq18_derived(out, findings):
+def eq18_derived(out):
     """The hold angle over drops against Eq. 18, per D, from the wm-tilt store (issue 23)."""
-    f = study_figure(out, "eq18-derived", findings)
+    f = study_figure(out, "eq18-derived")
     rows = store_rows(out, "wm-tilt", f, "scripts/reproduce runs the wm-tilt study")
     if rows is None:
         return f
@@ -651,9 +653,9 @@ def eq18_derived(out, findings):
     return f
 
 
-def areal_tilt_figure(out, findings):
+def areal_tilt_figure(out):
     """The 3D tilt test against its matched prediction, free and locked, from the areal-tilt store (issue 24)."""
-    f = study_figure(out, "areal-tilt", findings)
+    f = study_figure(out, "areal-tilt")
     rows = store_rows(out, "areal-tilt", f, "scripts/reproduce runs the areal-tilt study when the build has MuJoCo")
     if rows is None:
         return f
@@ -727,7 +729,7 @@ def areal_tilt_figure(out, findings):
     return f
 
 
-def study_figure(out, n, findings):
+def study_figure(out, n):
     title, claim = CLAIMS[n] if isinstance(n, int) else BEYOND[n][:2]
     f = Figure(n, title, claim)
     png = f"{out}/fig{n:02d}.png" if isinstance(n, int) else f"{out}/{n}.png"
@@ -735,8 +737,6 @@ def study_figure(out, n, findings):
         f.png = open(png, "rb").read()
     else:
         f.missing = f"{png} not found (scripts/plot_studies.py draws it from the study stores)"
-    for sup, text, crit, study, cause in findings.get(n, []):
-        f.verdicts.append((sup, f"{text} [{study}]", crit, cause))
     f.source = "the study stores under studies/ (frictal study run/report), plotted by scripts/plot_studies.py"
     return f
 
@@ -755,29 +755,94 @@ table { border-collapse: collapse; font-size: .88em; margin: .5em 0; } th, td { 
 .ok { color: #1e7b1e; font-weight: bold; } .no { color: #b00020; font-weight: bold; }
 .missing { color: #8a6d00; background: #fff8e1; padding: .6em; }
 .summary { background: #f3f7ee; border-left: 4px solid #5a9a2a; padding: .5em .8em; }
+.sup { color: #5b3a9e; font-weight: bold; } .suptext { color: #5b3a9e; font-size: .9em; }
+.conclusions ol li { margin: .45em 0; } .verdicts li { margin: .3em 0; } details { font-size: .9em; }
 .crit { color: #555; font-size: .88em; } .cause { color: #6a4a00; font-size: .88em; }
 .nocause { color: #a00; font-size: .88em; font-weight: bold; } .src { color: #666; font-size: .85em; }
 """
 
 
-def render(figs, title, note):
-    total = sum(len(f.verdicts) for f in figs)
-    good = sum(v[0] for f in figs for v in f.verdicts)
-    explained = sum(1 for f in figs for v in f.verdicts if not v[0] and len(v) > 3 and v[3])
+VERDICT = {"supported": ("ok", "SUPPORTED"), "not supported": ("no", "NOT SUPPORTED"),
+           "superseded": ("sup", "SUPERSEDED")}
+
+
+def badge(verdict):
+    cls, word = VERDICT.get(verdict, ("no", verdict.upper()))
+    return f"<span class=\"{cls}\">{word}</span>"
+
+
+def where_html(c, anchors):
+    """The claim's place in the paper, with links to the figures on this page."""
+    links = [f"<a href=\"#fig{n}\">Fig. {n}</a>" for n in c.get("figures", []) if f"fig{n}" in anchors]
+    return html.escape(c.get("where", "")) + (f" (on this page: {', '.join(links)})" if links else "")
+
+
+def conclusion_html(c, findings, anchors):
+    """One claim: its verdict and why (the measured cause, or the finding that supersedes it)."""
+    n = len(c["checks"])
+    good = sum(ch["verdict"] == "supported" for ch in c["checks"])
+    parts = [f"<li id=\"claim-{html.escape(c['id'])}\">{badge(c['verdict'])} {html.escape(c['statement'])}"
+             f"<br><span class=\"crit\">{where_html(c, anchors)}; checked on {n} part{'s' * (n != 1)}"
+             + (f", supported on {good}" if good != n else "") + "</span>"]
+    if c["verdict"] == "superseded":
+        subs = [findings.by_id[i] for i in c.get("superseded_by", []) if i in findings.by_id]
+        parts.append("<br><span class=\"suptext\">superseded by frictal's own finding: "
+                     + "; ".join(f"<a href=\"#claim-{html.escape(x['id'])}\">{html.escape(x['statement'])}</a>"
+                                 for x in subs) + "</span>")
+    if c["verdict"] != "supported":
+        if c.get("cause"):
+            parts.append(f"<br><span class=\"cause\">measured cause: {html.escape(c['cause'])}</span>")
+        if c.get("uncaused"):
+            parts.append("<br><span class=\"nocause\">no cause measured on "
+                         + html.escape(", ".join(c["uncaused"])) + "</span>")
+    parts.append("</li>")
+    return "".join(parts)
+
+
+def figure_verdict_html(c, findings, studies):
+    """A claim on a figure: the verdict over all parts, and the parts of this figure's studies."""
+    rows = checks_of(c, findings, studies)
+    items = "".join(
+        f"<li>{badge(v)} {html.escape(st)}/{html.escape(pt)}"
+        + (f"<br><span class=\"crit\">criterion: {html.escape(cr)}</span>" if cr else "")
+        + (f"<br><span class=\"cause\">cause: {html.escape(ca)}</span>" if ca and v != "supported" else "") + "</li>"
+        for st, pt, v, cr, ca in rows)
+    return (f"<li>{badge(c['verdict'])} <a href=\"#claim-{html.escape(c['id'])}\">{html.escape(c['statement'])}</a>"
+            f"<details><summary>checked on {len(rows)} part{'s' * (len(rows) != 1)}"
+            + (" of this figure's studies" if studies and any(r[0] in studies for r in rows) else "")
+            + f"</summary><ul>{items}</ul></details></li>")
+
+
+def render(figs, findings, title, note):
+    anchors = {f"fig{f.number}" for f in figs}
+    # the paper's claims in the order of their first figure (those without one after)
+    paper = sorted((c for c in findings.conclusions if c.get("source") == "paper"),
+                   key=lambda c: min(c.get("figures") or [99]))
+    own = [c for c in findings.conclusions if c.get("source") != "paper"]
+    count = lambda cs, v: sum(c["verdict"] == v for c in cs)  # noqa: E731
     drawn = sum(f.png is not None for f in figs)
     parts = ["<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n",
              f"<title>{html.escape(title)}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n",
              f"<h1>{html.escape(title)}</h1>\n",
              "<p>F. Alonso-Marroquín, P. Huang, D. A. H. Hanaor, E. A. Flores-Johnson, G. Proust, Y. Gan and L. Shen, "
-             "“Static friction between rigid fractal surfaces”, Phys. Rev. E 92, 032405 (2015). Each figure that "
-             "frictal computes, beside the paper's claim, the numbers computed here and the verdict of a stated "
-             f"criterion. {html.escape(note)}</p>\n",
-             f"<p class=\"summary\">{drawn} of {len(figs)} figures drawn; <b>{good} of {total}</b> checked findings "
-             "supported" + ("" if good == total else f", <b>{total - good} not supported</b>: {explained} of them with "
-                            "the cause their data measure, below") + ".</p>\n<nav>"]
+             "“Static friction between rigid fractal surfaces”, Phys. Rev. E 92, 032405 (2015). One verdict per claim "
+             "of the paper that frictal checks, over every study part that checks it (supported; not supported, "
+             "with the cause the data measure; or superseded by frictal's own finding), then frictal's own findings, "
+             f"then each figure with its numbers. {html.escape(note)}</p>\n",
+             f"<p class=\"summary\">The paper's claims: <b>{count(paper, 'supported')} of {len(paper)} supported</b>"
+             f", {count(paper, 'superseded')} superseded by frictal's own findings, "
+             f"{count(paper, 'not supported')} not supported. frictal's own findings: "
+             f"<b>{count(own, 'supported')} of {len(own)} supported</b>"
+             + (f", {len(own) - count(own, 'supported')} not supported" if len(own) > count(own, "supported") else "")
+             + f". {drawn} of {len(figs)} figures drawn.</p>\n<nav>"]
     parts += [f"<a href=\"#fig{f.number}\">{html.escape(label(f) if isinstance(f.number, int) else f.number)}</a> "
               for f in figs]
-    parts.append("</nav>\n")
+    parts.append("</nav>\n<section class=\"conclusions\">\n<h2>The paper's claims</h2>\n<ol>")
+    parts += [conclusion_html(c, findings, anchors) for c in paper]
+    parts.append("</ol>\n<h2>frictal's own findings</h2>\n<p class=\"crit\">What frictal found where the paper's "
+                 "claim does not hold, and questions the paper does not ask (the issue that asked each).</p>\n<ol>")
+    parts += [conclusion_html(c, findings, anchors) for c in own]
+    parts.append("</ol>\n</section>\n")
     for f in figs:
         parts.append(f"<section class=\"fig\" id=\"fig{f.number}\">\n<div class=\"img\">")
         if f.png is not None:
@@ -792,27 +857,21 @@ def render(figs, title, note):
         if f.numbers:
             parts.append("<table>" + "".join(f"<tr><th>{html.escape(a)}</th><td>{html.escape(b)}</td></tr>"
                                              for a, b in f.numbers) + "</table>")
-        if f.verdicts:
-            parts.append("<ul>")
-            for v in f.verdicts:
-                ok, text, crit = v[:3]
-                cause = v[3] if len(v) > 3 else ""
-                cls, word = ("ok", "SUPPORTED") if ok else ("no", "NOT SUPPORTED")
-                why = ""
-                if not ok:
-                    why = (f"<br><span class=\"cause\">measured cause: {html.escape(cause)}</span>" if cause
-                           else "<br><span class=\"nocause\">no cause measured</span>")
-                parts.append(f"<li><span class=\"{cls}\">{word}</span> {html.escape(text)}"
-                             + (f"<br><span class=\"crit\">criterion: {html.escape(crit)}</span>" if crit else "")
-                             + why + "</li>")
+        if f.conclusions:
+            parts.append("<ul class=\"verdicts\">")
+            parts += [figure_verdict_html(c, findings, f.studies) for c in f.conclusions]
             parts.append("</ul>")
         elif f.png is not None:
-            parts.append("<p class=\"crit\">No finding of this run cites this figure.</p>")
+            parts.append("<p class=\"crit\">No claim checked in this run speaks to this figure.</p>")
         if f.source:
             parts.append(f"<p class=\"src\">Computed by {html.escape(f.source)}.</p>")
         parts.append("</div>\n</section>\n")
     parts.append("</body>\n</html>\n")
     return "".join(parts)
+
+
+def slug(text):
+    return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-")[:48]
 
 
 def main(argv):
@@ -826,7 +885,7 @@ def main(argv):
     os.makedirs(work, exist_ok=True)
     only = {int(x) if x.strip().isdigit() else x.strip() for x in a.only.split(",") if x.strip()}
     want = lambda n: not only or n in only  # noqa: E731
-    findings = study_findings(a.out)
+    findings = Findings.load(a.out, a.bin)
     computed = {3: lambda: fig03(a.bin, work), 5: lambda: fig05(a.bin, work), 11: lambda: fig11(a.bin, work),
                 12: lambda: fig12(a.bin, work), 13: lambda: fig13(a.bin, work),
                 16: lambda: fig16(a.bin, work, 3 if a.quick else 10)}
@@ -847,22 +906,35 @@ def main(argv):
         elif n == 4:
             f = fig04_from(a.out)
         else:
-            f = study_figure(a.out, n, findings)
+            f = study_figure(a.out, n)
+        # The claims this script checks on the figures it computes: conclusions beside the studies'.
+        for v in f.verdicts:
+            ok, text, crit = v[:3]
+            findings.add_check(v[3] if len(v) > 3 else f"fig{n:02d}-{slug(text)}", (text[:1].upper() if text[:1].isascii() else text[:1]) + text[1:] + ".",
+                               f"Fig. {n}", [n], ok, crit)
         figs.append(f)
     for key in BEYOND:
         if want(key):
             if key == "eq18-derived":
-                figs.append(eq18_derived(a.out, findings))
+                figs.append(eq18_derived(a.out))
             elif key == "areal-tilt":
-                figs.append(areal_tilt_figure(a.out, findings))
+                figs.append(areal_tilt_figure(a.out))
             else:
-                figs.append(study_figure(a.out, key, findings))
+                figs.append(study_figure(a.out, key))
+    for f in figs:
+        if isinstance(f.number, int):
+            f.conclusions, f.studies = findings.for_figure(f.number), figure_studies(a.out, f.number)
+        else:
+            f.conclusions = [findings.by_id[i] for i in BEYOND[f.number][3] if i in findings.by_id]
+            f.studies = {BEYOND[f.number][2]}
     note = "Quick scale (QUICK=1): small grids." if a.quick else "Full scale."
-    page = render(figs, "frictal: the paper's figures, reproduced", note)
+    page = render(figs, findings, "frictal: the paper's claims and figures, reproduced", note)
     with open(f"{a.out}/index.html", "w", encoding="utf-8") as fh:
         fh.write(page)
     bad = [f.number for f in figs if f.missing]
-    print(f"make_index: wrote {a.out}/index.html ({len(figs)} figures"
+    paper = [c for c in findings.conclusions if c.get("source") == "paper"]
+    print(f"make_index: wrote {a.out}/index.html ({len(figs)} figures; the paper's claims: "
+          + ", ".join(f"{sum(c['verdict'] == v for c in paper)} {v}" for v in VERDICT)
           + (f"; not produced: {', '.join(f'Fig. {n}' for n in bad)}" if bad else "") + ")")
     return 0
 

@@ -3,6 +3,7 @@
 #include "common.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/scan_stats.hpp"
+#include "frictal/signature.hpp"
 #include "surface_io.hpp"
 
 namespace frictal::cli {
@@ -12,7 +13,8 @@ struct Args {
   std::string file;
   bool json = false;
   std::string detrend = "none";
-  std::string psd_out, acf_out;
+  std::string psd_out, acf_out, spline_out;
+  int spline_samples = 20;
   int bins = 0;
   std::string tip_radius;
   InputOptions input;
@@ -44,6 +46,11 @@ std::function<int()> setup(CLI::App& app) {
   add_conditioning_options(app, a->cond);
   app.add_option("--psd", a->psd_out, "Write the power spectrum (q_rad_per_m,C_m3) of the profile to this CSV");
   app.add_option("--acf", a->acf_out, "Write the autocorrelation (lag_m,acf) of the profile to this CSV");
+  app.add_option("--spline", a->spline_out,
+                 "Write the natural cubic spline through the profile's points (x_m,z_m,slope_deg), the curve whose "
+                 "slopes `signature --slopes spline` takes (paper Fig. 13), to this CSV");
+  app.add_option("--spline-samples", a->spline_samples,
+                 "Samples of --spline per interval between two points (1..10000)");
   app.add_option("--histograms", a->bins, "Add height and slope distributions with this many bins to --json");
   app.add_option(
       "--tip-radius", a->tip_radius,
@@ -63,6 +70,7 @@ std::function<int()> setup(CLI::App& app) {
         if (w.code != "reader") print_warnings({w});
     };
     if (data.is_map) {
+      require(a->spline_out.empty(), "--spline: profiles only (this file is a map)");
       const ConditionedMap cm = unwrap(condition(data.map, cond, a->file));
       const Map& m = cm.map;
       for (Warning& w : check_map(m, a->file)) add_warning(warnings, std::move(w));
@@ -110,6 +118,16 @@ std::function<int()> setup(CLI::App& app) {
     if (!a->psd_out.empty()) {
       const Spectrum sp = unwrap(power_spectrum(p));
       write_columns(a->psd_out, "q_rad_per_m,C_m3", sp.q, sp.psd);
+    }
+    if (!a->spline_out.empty()) {
+      const SplineSamples sp = unwrap(sample_spline(p, a->spline_samples));
+      std::FILE* f = std::fopen(a->spline_out.c_str(), "wb");
+      if (!f) throw UsageError(fmt::format("{}: cannot open for writing", a->spline_out));
+      std::string buf = "x_m,z_m,slope_deg\n";
+      for (std::size_t k = 0; k < sp.x.size(); ++k)
+        buf += fmt::format("{:.17g},{:.17g},{:.17g}\n", sp.x[k], sp.z[k], units::to_deg(std::atan(sp.slope[k])));
+      const bool ok = std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
+      if (std::fclose(f) != 0 || !ok) throw UsageError(fmt::format("{}: write failed", a->spline_out));
     }
     double corr_length = 0;
     if (!a->acf_out.empty()) {

@@ -482,11 +482,17 @@ std::function<int()> setup(CLI::App& app) {
   export_cmd->add_option("store", *export_store, "SQLite store file")->required();
   export_cmd->add_option("--csv", *export_dir, "Output directory")->required();
 
-  auto report_store = std::make_shared<std::string>();
+  auto report_stores = std::make_shared<std::vector<std::string>>();
   auto report_out = std::make_shared<std::string>();
-  auto* report_cmd = app.add_subcommand("report", "Summarise a store and check the paper's findings against it");
-  report_cmd->add_option("store", *report_store, "SQLite store file")->required();
-  report_cmd->add_option("-o,--output", *report_out, "Also write the report (Markdown) to this file");
+  auto report_json = std::make_shared<bool>(false);
+  auto* report_cmd = app.add_subcommand("report", "Summarise stores and check the paper's findings against them");
+  report_cmd->add_option("stores", *report_stores, "SQLite store files (Markdown: one report after the other)")
+      ->required();
+  report_cmd->add_option("-o,--output", *report_out,
+                         "Also write the report (Markdown, or JSON with --json) to this file");
+  report_cmd->add_flag("--json", *report_json,
+                       "Print the findings as data: per store its findings (claim, figures, part, criterion, numbers, "
+                       "verdict, cause), and one conclusion per claim over all stores (docs/studies.md)");
 
   auto kinds_json_flag = std::make_shared<bool>(false);
   auto* kinds_cmd = app.add_subcommand("kinds", "List the task kinds of this build");
@@ -504,8 +510,16 @@ std::function<int()> setup(CLI::App& app) {
       return 0;
     }
     if (report_cmd->parsed()) {
-      auto store = unwrap(Store::open_existing(*report_store));
-      const std::string text = render_markdown(unwrap(report(*store)));
+      std::vector<Report> reports;
+      for (const auto& path : *report_stores) {
+        auto store = unwrap(Store::open_existing(path));
+        reports.push_back(unwrap(report(*store)));
+      }
+      std::string text;
+      if (*report_json)
+        text = unwrap(render_json(reports)) + "\n";
+      else
+        for (const auto& r : reports) text += (text.empty() ? "" : "\n") + render_markdown(r);
       fmt::print("{}", text);
       if (!report_out->empty()) write_text(*report_out, text);
       return 0;

@@ -126,6 +126,18 @@ Result<SignatureResult> signature(Profile&& lower, Profile&& upper, const Signat
 /// Signature of a surface against itself turned over: upper = rotate180(surface).
 Result<SignatureResult> self_signature(const Profile& surface, const SignatureOptions& options = {});
 
+/// The natural cubic spline through a profile's points: the curve whose slopes SlopeMethod::Spline
+/// takes at the contacts (Sec. V B, Fig. 13), sampled.
+struct SplineSamples {
+  std::vector<double> x;      ///< abscissae (unit: m)
+  std::vector<double> z;      ///< the spline's height (unit: m)
+  std::vector<double> slope;  ///< its slope dz/dx (unit: 1)
+};
+/// `per_interval` evenly spaced samples in each interval between two points (the interval's start
+/// included), and the last point. Error: fewer than 2 points, x not strictly increasing, or
+/// per_interval outside 1..10000.
+Result<SplineSamples> sample_spline(const Profile& profile, int per_interval);
+
 /// Plain reference evaluation of h(s) at one offset: scans every vertex of both profiles.
 /// O(N + M); used by tests and benchmarks as the second method.
 double lift_direct(const Profile& lower, const Profile& upper, double offset);

@@ -521,10 +521,31 @@ bool mpi_broadcast(bool value);
 
 // ---------------------------------------------------------------- analysis of stored results
 
-/// A finding of the paper checked against a store: the claim, whether the data support it, and
-/// the numbers behind it (plain text lines).
+/// A claim that the studies check: a claim of the paper, or one of frictal's own findings (what
+/// frictal found where the paper's claim does not hold, or a question the paper does not ask).
+/// The catalogue (claims()) names each once; a kind's report section checks it on the parts it
+/// applies to (Finding::claim_id), and conclude() gives it one verdict over all of them.
+struct Claim {
+  std::string id;            ///< e.g. "koch-theta-max" (stable: the page links to it)
+  bool paper = true;         ///< a claim of the paper; false: frictal's own finding
+  std::string statement;     ///< the claim in one sentence
+  std::string where;         ///< the paper's section, equation, figures; for frictal's: the issue
+  std::vector<int> figures;  ///< the paper's figures it speaks to
+  std::string applies_to;    ///< which parts check it (one line)
+  std::vector<std::string>
+      superseded_by;  ///< frictal's findings (ids) that replace it where the data do not support it
+};
+/// The catalogue, paper's claims first (src/study/claims.cpp).
+const std::vector<Claim>& claims();
+/// The claim of that id; nullptr if the catalogue has none.
+const Claim* find_claim(const std::string& id);
+
+/// A claim checked on one part of a store: whether the data support it, and the numbers behind it
+/// (plain text lines).
 struct Finding {
-  std::string claim;
+  std::string claim_id;  ///< the claim checked (claims())
+  std::string part;      ///< the part (or variant, e.g. "wm [slopes=spline]") it was checked on
+  std::string claim;     ///< as the report states it, naming the part
   bool supported = false;
   std::vector<std::string> evidence;  ///< the first line is the criterion and the measured value
   /// A finding that is not supported: the cause the data measure and name (one line, e.g. which
@@ -532,10 +553,36 @@ struct Finding {
   std::string cause;
 };
 struct Report {
+  std::string study;  ///< the study's name
   std::string title;
   std::vector<std::string> lines;  ///< summary tables
   std::vector<Finding> findings;
 };
+
+/// A claim's verdict over every part that checks it: supported (by every part); superseded (not
+/// supported, and every one of its superseding findings is supported); not supported (with the
+/// measured causes).
+enum class Verdict { Supported, NotSupported, Superseded };
+/// "supported", "not supported", "superseded".
+const char* verdict_name(Verdict v);
+struct Conclusion {
+  Claim claim;
+  Verdict verdict = Verdict::NotSupported;
+  struct Check {
+    std::string study, part;
+    bool supported = false;
+    std::string cause;
+  };
+  std::vector<Check> checks;  ///< every part that checked it, in report order
+  /// Not supported or superseded: the measured causes, "study/part: cause" joined by "; " (the
+  /// parts without one are named in uncaused).
+  std::string cause;
+  std::vector<std::string> uncaused;  ///< "study/part" of the parts not supported that measure no cause
+};
+/// One conclusion per claim that the reports check, in the catalogue's order (claims checked by
+/// none are left out). Error: a finding names a claim that the catalogue does not have.
+Result<std::vector<Conclusion>> conclude(const std::vector<Report>& reports);
+
 /// A probability density pooled over replicates: every done task of `part` whose parameters
 /// equal `params` except `pair`, rebinned onto common edges (assuming uniform density inside
 /// each source bin) and averaged with equal weights (paper Fig. 16 pools the 20 pairs).
@@ -556,6 +603,10 @@ Result<Report> report(Store& store, const TaskRegistry& registry);
 inline Result<Report> report(Store& store) { return report(store, default_registry()); }
 /// The report as Markdown (what `frictal study report` prints).
 std::string render_markdown(const Report& report);
+/// Reports as one JSON object (what `frictal study report --json` prints): per report its study,
+/// title and findings (claim id, source, statement, figures, part, claim, criterion, numbers,
+/// verdict, cause), and the conclusions over all of them (conclude()). Error: as conclude().
+Result<std::string> render_json(const std::vector<Report>& reports);
 
 /// How far a store is: what `frictal study status` shows.
 struct StoreStatus {

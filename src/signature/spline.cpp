@@ -2,6 +2,10 @@
 
 #include <algorithm>
 
+#include <fmt/core.h>
+
+#include "frictal/signature.hpp"
+
 namespace frictal::detail {
 
 std::optional<std::vector<double>> spline_second_derivatives(const std::vector<double>& x,
@@ -41,3 +45,36 @@ double spline_slope(const std::vector<double>& x, const std::vector<double>& M, 
 }
 
 }  // namespace frictal::detail
+
+namespace frictal {
+
+Result<SplineSamples> sample_spline(const Profile& p, int per_interval) {
+  if (p.size() < 2) return make_error(fmt::format("spline: a profile of {} points (at least 2 needed)", p.size()));
+  if (per_interval < 1 || per_interval > 10000)
+    return make_error(fmt::format("spline: {} samples per interval (expected 1..10000)", per_interval));
+  const auto M = detail::spline_second_derivatives(p.x, p.z);
+  if (!M) return make_error("spline: the profile's x must increase strictly (it has a vertical step)");
+  SplineSamples out;
+  const std::size_t n = (p.size() - 1) * static_cast<std::size_t>(per_interval) + 1;
+  out.x.reserve(n);
+  out.z.reserve(n);
+  out.slope.reserve(n);
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+    const double x0 = p.x[i], h = p.x[i + 1] - x0;
+    for (int k = 0; k < per_interval; ++k) {
+      const double u = x0 + h * k / per_interval;
+      const double a = p.x[i + 1] - u, b = u - x0;
+      out.x.push_back(u);
+      // S(u) = [M_i a^3 + M_i+1 b^3] / 6h + (z_i / h - M_i h / 6) a + (z_i+1 / h - M_i+1 h / 6) b
+      out.z.push_back(((*M)[i] * a * a * a + (*M)[i + 1] * b * b * b) / (6 * h) + (p.z[i] / h - (*M)[i] * h / 6) * a +
+                      (p.z[i + 1] / h - (*M)[i + 1] * h / 6) * b);
+      out.slope.push_back(detail::spline_slope(p.x, *M, 1.0, p.z, u));
+    }
+  }
+  out.x.push_back(p.x.back());
+  out.z.push_back(p.z.back());
+  out.slope.push_back(detail::spline_slope(p.x, *M, 1.0, p.z, p.x.back()));
+  return out;
+}
+
+}  // namespace frictal

@@ -6,6 +6,7 @@
 #include <set>
 
 #include <fmt/core.h>
+#include <nlohmann/json.hpp>
 
 #include "frictal/study.hpp"
 
@@ -104,6 +105,65 @@ std::string render_markdown(const Report& r) {
     }
   }
   return s;
+}
+
+namespace {
+
+nlohmann::json claim_json(const Claim& c) {
+  return {{"id", c.id},
+          {"source", c.paper ? "paper" : "frictal"},
+          {"statement", c.statement},
+          {"where", c.where},
+          {"figures", c.figures},
+          {"applies_to", c.applies_to},
+          {"superseded_by", c.superseded_by}};
+}
+
+}  // namespace
+
+Result<std::string> render_json(const std::vector<Report>& reports) {
+  auto conclusions = conclude(reports);
+  if (!conclusions) return conclusions.error();
+  nlohmann::json j;
+  j["reports"] = nlohmann::json::array();
+  for (const auto& r : reports) {
+    nlohmann::json jr = {{"study", r.study}, {"title", r.title}, {"findings", nlohmann::json::array()}};
+    for (const auto& f : r.findings) {
+      const Claim* c = find_claim(f.claim_id);  // conclude() checked every id
+      // The first evidence line is the criterion with the measured value, the others the numbers.
+      std::string criterion = f.evidence.empty() ? std::string() : f.evidence.front();
+      if (criterion.rfind("criterion: ", 0) == 0) criterion.erase(0, 11);
+      nlohmann::json numbers = nlohmann::json::array();
+      for (std::size_t i = 1; i < f.evidence.size(); ++i) numbers.push_back(f.evidence[i]);
+      jr["findings"].push_back({{"claim_id", f.claim_id},
+                                {"source", c->paper ? "paper" : "frictal"},
+                                {"figures", c->figures},
+                                {"part", f.part},
+                                {"claim", f.claim},
+                                {"criterion", criterion},
+                                {"numbers", numbers},
+                                {"verdict", f.supported ? "supported" : "not supported"},
+                                {"cause", f.cause}});
+    }
+    j["reports"].push_back(std::move(jr));
+  }
+  j["conclusions"] = nlohmann::json::array();
+  for (const auto& k : *conclusions) {
+    nlohmann::json jc = claim_json(k.claim);
+    jc["verdict"] = verdict_name(k.verdict);
+    jc["cause"] = k.cause;
+    jc["uncaused"] = k.uncaused;
+    jc["checks"] = nlohmann::json::array();
+    for (const auto& ch : k.checks)
+      jc["checks"].push_back({{"study", ch.study},
+                              {"part", ch.part},
+                              {"verdict", ch.supported ? "supported" : "not supported"},
+                              {"cause", ch.cause}});
+    j["conclusions"].push_back(std::move(jc));
+  }
+  j["claims"] = nlohmann::json::array();
+  for (const auto& c : claims()) j["claims"].push_back(claim_json(c));
+  return j.dump(1);
 }
 
 Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir, const TaskRegistry& registry) {

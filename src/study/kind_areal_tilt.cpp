@@ -250,6 +250,8 @@ void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, 
       "ill-conditioned drop), and MuJoCo's reading lies within 0.2° of it in {} of {}.",
       in_free, n, in_locked, n, fml / n, steer / n, ill, 2 * n, spread_in, 2 * n));
   Finding f;
+  f.claim_id = "areal-matched-prediction";
+  f.part = part;
   f.claim = fmt::format(
       "Part '{}': MuJoCo's tilt test agrees within 0.2° with the matched quasi-static prediction "
       "(issue 24's target) on every pair, free and locked.",
@@ -302,6 +304,8 @@ void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, 
   // block reaches when one slip's end is moved by a sphere radius.
   {
     Finding h;
+    h.claim_id = "areal-prediction-spread";
+    h.part = part;
     h.claim = fmt::format(
         "Part '{}': MuJoCo's reading lies within 0.2° of the range of hold angles that the rigid quasi-static "
         "block reaches when one slip's end is moved by a sphere radius (areal_tilt_hold_spread), free and locked.",
@@ -330,6 +334,8 @@ void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, 
   }
   if (seated_n > 0) {
     Finding g;
+    g.claim_id = "areal-seat-by-seat";
+    g.part = part;
     g.claim = fmt::format(
         "Part '{}': from the seat where the simulated block sat before its run-away, the rigid quasi-static block "
         "(areal_tilt_hold put down there at that tilt) runs away within 0.2° of MuJoCo, free and locked: the two "

@@ -90,6 +90,8 @@ void divider_part(const std::string& part, const std::vector<Store::Row>& rows, 
   rep.lines.push_back(fmt::format("\n## Part '{}' (divider): {} curves", part, rows.size()));
   rep.lines.push_back(t);
   Finding f;
+  f.claim_id = "divider-dimension";
+  f.part = part;
   f.claim = fmt::format(
       "Part '{}': the divider dimension of the most iterated Koch curve agrees with Eq. 13, and "
       "fewer iterations show the same scaling over a narrower range (Sec. IV C 3, Fig. 9).",

@@ -122,6 +122,8 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   rep.lines.push_back(t);
   const int expect[] = {1, 1, 2, 3};
   Finding f;
+  f.claim_id = "koch-theta-max";
+  f.part = part;
   f.claim = fmt::format(
       "Part '{}': the signature maxima of Koch surfaces K0, K1, K2, K3 are 1, 1, 2, 3 times alpha "
       "(Sec. III, Fig. 4, 6).",
@@ -143,6 +145,8 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   rep.findings.push_back(f);
   // mu grows with D (Fig. 10) at each iteration count, over alpha (D from Eq. 13 grows with alpha).
   Finding g;
+  g.claim_id = "mu-grows-with-dimension";
+  g.part = part;
   g.claim = fmt::format(
       "Part '{}': the friction coefficient grows with the fractal dimension of the Koch surface "
       "(Fig. 10).",
@@ -163,6 +167,8 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   if (steps > 0) rep.findings.push_back(g);
   if (mus.size() > 1) {
     Finding h;
+    h.claim_id = "eq6-atomic-friction";
+    h.part = part;
     h.claim = fmt::format(
         "Part '{}': phi - n alpha = theta_a, the atomic friction angle adds to the signature maximum "
         "(Eq. 6, Fig. 8).",

@@ -194,6 +194,8 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   rep.lines.push_back(t);
   if (!n) return;
   Finding f;
+  f.claim_id = "eq6-simulation";
+  f.part = part;
   f.claim = fmt::format(
       "Part '{}': the simulated friction angle equals the signature prediction theta_max + atan(mu_a) "
       "(Fig. 6, 8).",
@@ -276,6 +278,8 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   rep.findings.push_back(f);
   if (hold_n > 0) {
     Finding h;
+    h.claim_id = "tilt-hold-angle";
+    h.part = part;
     h.claim = fmt::format(
         "Part '{}': the simulated friction angle equals the hold angle of the rounded blocks from where the block "
         "rests (hold.hpp: the quasi-static process on the lift with the spheroradius, run-away as in the run) "
@@ -289,6 +293,8 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   }
   if (n_s > 0) {
     Finding h;
+    h.claim_id = "tilt-sphero-prediction";
+    h.part = part;
     h.claim = fmt::format(
         "Part '{}': the simulated friction angle equals the spheropolygon prediction (the signature of the rounded "
         "blocks, spheroradius r) within 0.1 deg, or the run is flagged by a model warning.",
@@ -303,6 +309,8 @@ void tilt_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
   }
   if (mus.size() > 1) {
     Finding g;
+    g.claim_id = "eq6-atomic-friction";
+    g.part = part;
     g.claim =
         fmt::format("Part '{}': phi - theta_max = theta_a in simulation, the same for every surface (Fig. 8b).", part);
     g.supported = slid == n && worst_a <= 1.0;

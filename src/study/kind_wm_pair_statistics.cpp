@@ -169,6 +169,8 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F1: contact below surface.
   {
     Finding f;
+    f.claim_id = "wm-contact-below-surface";
+    f.part = part;
     f.claim = fmt::format(
         "Part '{}': the maximum contact slope is smaller than the maximum surface slope (Sec. V.C, "
         "Fig. 15).",
@@ -192,6 +194,8 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F2: rise with D at the largest n_max.
   {
     Finding f;
+    f.claim_id = "wm-slopes-grow-with-dimension";
+    f.part = part;
     f.claim =
         fmt::format("Part '{}': maximum contact and surface slopes increase with D (n_max = {}; Fig. 15).", part, nmax);
     int up_c = 0, up_s = 0, steps = 0;
@@ -220,6 +224,8 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F3: rise with n_max for every D.
   if (ns.size() >= 2) {
     Finding f;
+    f.claim_id = "wm-slopes-grow-with-resolution";
+    f.part = part;
     f.claim = fmt::format(
         "Part '{}': maximum contact and surface slopes increase with n_max (finer wavelengths; "
         "Fig. 14).",
@@ -264,6 +270,8 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F4: finite for D < 1.5, growing for D > 1.5.
   if (ns.size() >= 3) {
     Finding f;
+    f.claim_id = "wm-contact-slope-limit";
+    f.part = part;
     f.claim = fmt::format(
         "Part '{}': as n_max grows the contact slope tends to a finite value for D < 1.5 and keeps "
         "growing for D > 1.5 (Sec. V.C, VI).",
@@ -308,6 +316,8 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
   // F5: standard deviations grow with D, fastest above 1.5.
   {
     Finding f;
+    f.claim_id = "wm-slope-std-grow-with-dimension";
+    f.part = part;
     f.claim = fmt::format(
         "Part '{}': the standard deviations of contact and surface slopes grow with D, increasingly "
         "fast above D ~ 1.5 (n_max = {}; Fig. 17-18).",

@@ -312,10 +312,17 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
   // A quasi-static part reads the hold angle at its run-away distance: only that is judged there
   // (the Eq. 18 and run-away-distance findings are the dynamic test's, and the distribution over
   // drops does not depend on the protocol).
-  bool quasi_static = false;
-  if (!rows.empty())
+  bool quasi_static = false, from_rest = false;
+  if (!rows.empty()) {
     if (auto pr = get_string(rows.front().params, "protocol", "constant-rate"); pr)
       quasi_static = *pr == "quasi-static";
+    if (auto st = get_string(rows.front().params, "settling", "free"); st) from_rest = *st == "relax";
+  }
+  // The paper's test (constant rate, free settling) answers the paper's Eq. 18 and issue 14's
+  // questions (run-away distance, rigid or rounded prediction), and its pairs give the hold angles
+  // over drops; a constant-rate test from rest (settling = relax) answers only whether it reads an
+  // angle between phi_in and phi_qs, a quasi-static one only whether it reads phi_qs.
+  const bool paper_protocol = !quasi_static && !from_rest;
   struct Cell {
     int n = 0, slid = 0, inside = 0, below = 0, above = 0, warned = 0;
     int rot = 0, rot_inside = 0, rot_below = 0, rot_above = 0;  // runs with the rotation warning
@@ -419,8 +426,10 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
       "theta_a, judged on phi at 1 lambda.");
 
   // F1: Eq. 18 range.
-  if (!quasi_static) {
+  if (paper_protocol) {
     Finding f;
+    f.claim_id = "eq18-range";
+    f.part = part;
     f.claim = fmt::format(
         "Part '{}': the simulated friction angle of random pairs lies in the Eq. 18 range "
         "[theta_max - sigma, theta_max] + theta_a (run-away 1 lambda).",
@@ -545,62 +554,66 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
                     get(sc, "hold_q95_deg") <= get(sc, "eq18_high_deg") + 0.1;
     }
     if (n > 0) {
-      Finding f;
-      if (qs) {
-        f.claim = fmt::format(
-            "Part '{}': the quasi-static tilt reads the hold angle phi_qs of the rounded blocks from where the block "
-            "rests, within 0.1 deg, in at least 95 % of the pairs.",
-            part);
-        // Judged at the stiffer of the two stiffnesses when check_stiffness ran (the rigid limit).
-        const int ok = stiff_n > 0 ? stiff_within : within, of = stiff_n > 0 ? stiff_n : n;
-        f.supported = of > 0 && ok >= 0.95 * of;
-        if (stiff_n > 0)
+      if (qs || from_rest) {  // the reading of a test from rest (the paper's test is flagged 'unsettled')
+        Finding f;
+        f.claim_id = qs ? "quasi-static-hold" : "dynamic-hold-bracket";
+        f.part = part;
+        if (qs) {
+          f.claim = fmt::format(
+              "Part '{}': the quasi-static tilt reads the hold angle phi_qs of the rounded blocks from where the block "
+              "rests, within 0.1 deg, in at least 95 % of the pairs.",
+              part);
+          // Judged at the stiffer of the two stiffnesses when check_stiffness ran (the rigid limit).
+          const int ok = stiff_n > 0 ? stiff_within : within, of = stiff_n > 0 ? stiff_n : n;
+          f.supported = of > 0 && ok >= 0.95 * of;
+          if (stiff_n > 0)
+            f.evidence.push_back(fmt::format(
+                "criterion: |phi - phi_qs| <= 0.1 deg in >= 95 % of the pairs that slid, judged at 10 k_n "
+                "(check_stiffness); there {} of {} ({:.0f} %), mean |phi - phi_qs| = {:.3f} deg; the 10 k_n run moved "
+                "the angle by more than 0.1 deg (not converged, 'stiffness') in {} pairs, and {} pairs are converged "
+                "and within 0.1 deg",
+                ok, of, of ? 100.0 * ok / of : 0.0, stiff_err.mean(), stiff_warned, converged_within));
+          else
+            f.evidence.push_back(fmt::format(
+                "criterion: |phi - phi_qs| <= 0.1 deg in >= 95 % of the pairs that slid, at the part's own k_n (no "
+                "10 k_n check); {} of {} ({:.0f} %)",
+                ok, of, of ? 100.0 * ok / of : 0.0));
           f.evidence.push_back(fmt::format(
-              "criterion: |phi - phi_qs| <= 0.1 deg in >= 95 % of the pairs that slid, judged at 10 k_n "
-              "(check_stiffness); there {} of {} ({:.0f} %), mean |phi - phi_qs| = {:.3f} deg; the 10 k_n run moved "
-              "the angle by more than 0.1 deg (not converged, 'stiffness') in {} pairs, and {} pairs are converged "
-              "and within 0.1 deg",
-              ok, of, of ? 100.0 * ok / of : 0.0, stiff_err.mean(), stiff_warned, converged_within));
-        else
+              "at the part's own k_n: within 0.1 deg of phi_qs (rounded) in {} of {} pairs, of the rigid phi_qs in {}; "
+              "mean phi - phi_qs = {:+.3f} deg, mean |phi - phi_qs| = {:.3f} deg",
+              within, n, within_rigid, excess.mean(), err_qs.mean()));
+          if (!f.supported && (unrelaxed > 0 || stiff_warned > 0))
+            f.cause = fmt::format(
+                "the contacts are not in the rigid limit at this k_n: the block rests {:.3g} m deep in the lower one "
+                "(W / k_n, mean), {} of {} runs did not relax within relax_time ('unrelaxed'), the 10 k_n rerun moved "
+                "{} by more than 0.1 deg ('stiffness'); mean phi - phi_qs = {:+.3f} deg",
+                overlap.mean(), unrelaxed, n, stiff_warned, excess.mean());
+        } else {
+          f.claim = fmt::format(
+              "Part '{}': the constant-rate (dynamic) tilt reads an angle between the inertial bound phi_in and the "
+              "quasi-static hold angle phi_qs of the rounded blocks (0.1 deg of slack) in at least 90 % of the pairs "
+              "no warning flags.",
+              part);
+          f.supported = judged > 0 && in_bracket >= 0.9 * judged;
           f.evidence.push_back(fmt::format(
-              "criterion: |phi - phi_qs| <= 0.1 deg in >= 95 % of the pairs that slid, at the part's own k_n (no "
-              "10 k_n check); {} of {} ({:.0f} %)",
-              ok, of, of ? 100.0 * ok / of : 0.0));
-        f.evidence.push_back(fmt::format(
-            "at the part's own k_n: within 0.1 deg of phi_qs (rounded) in {} of {} pairs, of the rigid phi_qs in {}; "
-            "mean phi - phi_qs = {:+.3f} deg, mean |phi - phi_qs| = {:.3f} deg",
-            within, n, within_rigid, excess.mean(), err_qs.mean()));
-        if (!f.supported && (unrelaxed > 0 || stiff_warned > 0))
-          f.cause = fmt::format(
-              "the contacts are not in the rigid limit at this k_n: the block rests {:.3g} m deep in the lower one "
-              "(W / k_n, mean), {} of {} runs did not relax within relax_time ('unrelaxed'), the 10 k_n rerun moved "
-              "{} by more than 0.1 deg ('stiffness'); mean phi - phi_qs = {:+.3f} deg",
-              overlap.mean(), unrelaxed, n, stiff_warned, excess.mean());
-      } else {
-        f.claim = fmt::format(
-            "Part '{}': the constant-rate (dynamic) tilt reads an angle between the inertial bound phi_in and the "
-            "quasi-static hold angle phi_qs of the rounded blocks (0.1 deg of slack) in at least 90 % of the pairs "
-            "no warning flags.",
-            part);
-        f.supported = judged > 0 && in_bracket >= 0.9 * judged;
-        f.evidence.push_back(fmt::format(
-            "criterion: inside [phi_in - 0.1, phi_qs + 0.1] deg in >= 90 % of the unflagged pairs; {} of {} ({:.0f} "
-            "%); above phi_qs: {}, below phi_in: {}; flagged (rotation, unsettled, core-overlap, time-step, "
-            "unrelaxed, stiffness): {}",
-            in_bracket, judged, judged ? 100.0 * in_bracket / judged : 0.0, above_qs, below_in, flagged));
-        f.evidence.push_back(fmt::format(
-            "within 0.1 deg of phi_qs (rounded) in {} of {} pairs; of the rigid phi_qs in {}; mean |phi - phi_qs| "
-            "= {:.3f} deg",
-            within, n, within_rigid, err_qs.mean()));
-        if (!f.supported && 2 * flagged >= n)
-          f.cause = fmt::format(
-              "{} of {} runs are flagged and cannot be judged, {} of them 'unsettled': with the paper's free "
-              "settling and mu_a = 0 the block still glides when the tilt starts, so it does not start from rest "
-              "where phi_in and phi_qs are computed (a test from rest: settling = relax, turn = gravity, a slow "
-              "tilt_rate)",
-              flagged, n, unsettled);
+              "criterion: inside [phi_in - 0.1, phi_qs + 0.1] deg in >= 90 % of the unflagged pairs; {} of {} ({:.0f} "
+              "%); above phi_qs: {}, below phi_in: {}; flagged (rotation, unsettled, core-overlap, time-step, "
+              "unrelaxed, stiffness): {}",
+              in_bracket, judged, judged ? 100.0 * in_bracket / judged : 0.0, above_qs, below_in, flagged));
+          f.evidence.push_back(fmt::format(
+              "within 0.1 deg of phi_qs (rounded) in {} of {} pairs; of the rigid phi_qs in {}; mean |phi - phi_qs| "
+              "= {:.3f} deg",
+              within, n, within_rigid, err_qs.mean()));
+          if (!f.supported && 2 * flagged >= n)
+            f.cause = fmt::format(
+                "{} of {} runs are flagged and cannot be judged, {} of them 'unsettled': with the paper's free "
+                "settling and mu_a = 0 the block still glides when the tilt starts, so it does not start from rest "
+                "where phi_in and phi_qs are computed (a test from rest: settling = relax, turn = gravity, a slow "
+                "tilt_rate)",
+                flagged, n, unsettled);
+        }
+        rep.findings.push_back(f);
       }
-      rep.findings.push_back(f);
       // The distribution over drops: Eq. 18 derived.
       std::string t = fmt::format(
           "\nPart '{}': Eq. 18 derived. The hold angle phi_qs over drops spread uniformly over the offset range "
@@ -619,8 +632,10 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
         total += hc.n;
       }
       rep.lines.push_back(t);
-      if (qs) return;  // the rest is the dynamic parts'
+      if (!paper_protocol) return;  // the rest is the paper's test's
       Finding g;
+      g.claim_id = "eq18-over-drops";
+      g.part = part;
       g.claim = fmt::format(
           "Part '{}': Eq. 18's range [theta_max - sigma, theta_max] + theta_a holds the central 90 % of the hold "
           "angles that repeated drops give (0.1 deg of slack), in at least 90 % of the pairs.",
@@ -656,9 +671,12 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
       rep.findings.push_back(g);
     }
   }
+  if (!paper_protocol) return;
   // F2: run-away distance.
   if (with_three > 0) {
     Finding f;
+    f.claim_id = "runaway-independent";
+    f.part = part;
     f.claim = fmt::format(
         "Part '{}': the simulated friction angle does not depend on the run-away distance (0.5, 1, 2 lambda).", part);
     const double m = spread.mean();
@@ -684,6 +702,8 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
   // F3: rigid or spheropolygon prediction.
   {
     Finding f;
+    f.claim_id = "sphero-closer-than-rigid";
+    f.part = part;
     f.claim = fmt::format(
         "Part '{}': the spheropolygon prediction (signature with the spheroradius) is closer to the simulated angle "
         "than the rigid one (Eq. 6).",

@@ -111,6 +111,7 @@ Result<Report> report(Store& store, const TaskRegistry& registry) {
   auto m = store.meta();
   if (!m) return m.error();
   Report r;
+  r.study = (*m)["study_name"];
   r.title = fmt::format("Study '{}' ({} scale)", (*m)["study_name"], (*m)["scale"]);
   auto c = store.counts();
   if (!c) return c.error();

@@ -652,3 +652,40 @@ TEST(SignatureGeneralSearch, BatchFrontierMatchesOffsetByOffsetSearch) {
     }
   }
 }
+
+// The spline that SlopeMethod::Spline takes, sampled (frictal stats --spline): through every point,
+// exact on a straight line, and for a natural spline through a sine sampled finely the height and
+// slope of the sine (derived here: sin and cos), with zero curvature at the ends.
+TEST(SampleSpline, InterpolatesAndFollowsASmoothCurve) {
+  frictal::Profile line;
+  for (int i = 0; i <= 10; ++i) {
+    line.x.push_back(0.1 * i + 0.01 * i * i);  // uneven spacing
+    line.z.push_back(2.0 * line.x.back() - 0.5);
+  }
+  auto s = frictal::sample_spline(line, 7);
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  ASSERT_EQ(s->x.size(), 10u * 7u + 1u);
+  for (std::size_t k = 0; k < s->x.size(); ++k) {
+    EXPECT_NEAR(s->z[k], 2.0 * s->x[k] - 0.5, 1e-12);
+    EXPECT_NEAR(s->slope[k], 2.0, 1e-12);
+  }
+  for (std::size_t i = 0; i < line.size(); ++i) {  // every 7th sample is a point
+    EXPECT_DOUBLE_EQ(s->x[7 * i], line.x[i]);
+    EXPECT_NEAR(s->z[7 * i], line.z[i], 1e-12);
+  }
+  frictal::Profile sine;
+  const double pi = 3.14159265358979323846;
+  for (int i = 0; i <= 400; ++i) {
+    sine.x.push_back(2 * pi * i / 400.0);
+    sine.z.push_back(std::sin(sine.x.back()));
+  }
+  auto t = frictal::sample_spline(sine, 5);
+  ASSERT_TRUE(t.ok());
+  for (std::size_t k = 0; k < t->x.size(); ++k) {
+    EXPECT_NEAR(t->z[k], std::sin(t->x[k]), 1e-6) << t->x[k];
+    EXPECT_NEAR(t->slope[k], std::cos(t->x[k]), 1e-3) << t->x[k];  // sin'' = 0 at both ends: natural fits
+  }
+  EXPECT_FALSE(frictal::sample_spline(sine, 0).ok());
+  frictal::Profile step{{0.0, 1.0, 1.0, 2.0}, {0.0, 0.0, 1.0, 1.0}, {}};
+  EXPECT_FALSE(frictal::sample_spline(step, 3).ok());  // a vertical step: no spline
+}
