@@ -6,6 +6,9 @@ find_package(pugixml REQUIRED)
 find_package(OpenSSL REQUIRED)
 find_package(ZLIB REQUIRED)
 target_link_libraries(frictal PRIVATE PkgConfig::LIBZIP pugixml::pugixml OpenSSL::Crypto ZLIB::ZLIB)
+# Their headers, for the modules that include them (the objects are linked into frictal above).
+target_link_libraries(frictal_io PRIVATE PkgConfig::LIBZIP pugixml::pugixml OpenSSL::Crypto ZLIB::ZLIB)
+target_link_libraries(frictal_report PRIVATE ZLIB::ZLIB)
 
 # Gwyddion backend (src/io/gwyddion.cpp): Gwyddion's libraries are loaded at run time with
 # dlopen(), so no Gwyddion or GLib header is needed to build and frictal runs without them.
@@ -29,7 +32,7 @@ if(NOT FRICTAL_GWYDDION STREQUAL "OFF")
   if(FRICTAL_GWYDDION STREQUAL "ON" AND NOT FRICTAL_GWYAPP_LIBRARY)
     message(FATAL_ERROR "FRICTAL_GWYDDION=ON but libgwyapp2 was not found (install libgwyddion2-0 and gwyddion)")
   endif()
-  target_compile_definitions(frictal PRIVATE FRICTAL_GWYDDION_ENABLED=1
+  target_compile_definitions(frictal_io PRIVATE FRICTAL_GWYDDION_ENABLED=1
     FRICTAL_GWYDDION_MODULE_DIR="${FRICTAL_GWYDDION_MODULE_DIR}")
   target_link_libraries(frictal PRIVATE ${CMAKE_DL_LIBS})
   if(NOT FRICTAL_GWYAPP_LIBRARY)

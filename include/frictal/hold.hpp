@@ -205,7 +205,7 @@ Result<SignatureWithHold> signature_with_hold(Profile&& lower, Profile&& upper, 
                                               const HoldOptions& hold,
                                               double start = std::numeric_limits<double>::quiet_NaN());
 
-/// The hold analysis' output tables (frictal/outputs.hpp; src/signature/columns.cpp): the flat keys
+/// The hold analysis' output tables (frictal/outputs.hpp; src/hold/columns.cpp): the flat keys
 /// of `frictal signature --json` (hold_columns; hold_start_columns with --start-offset) and the
 /// nested dicts of Python's hold_angle() (hold_columns' Python keys, hold_distribution_columns,
 /// hold_statistics_columns, hold_basins_columns, hold_drop_columns).

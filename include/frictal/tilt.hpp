@@ -471,7 +471,7 @@ struct TiltReport {
   const TiltResult& result;
   const TiltConfig& config;
 };
-/// The tilt test's output tables (frictal/outputs.hpp; src/dem/tilt_columns.cpp): `frictal tilt
+/// The tilt test's output tables (frictal/outputs.hpp; src/tilt/tilt_columns.cpp): `frictal tilt
 /// --json` and its nested objects "scales", "estimate", "stage_time_s", "scaled_defaults".
 const Columns<TiltReport>& tilt_columns();
 const Columns<TiltScales>& tilt_scales_columns();

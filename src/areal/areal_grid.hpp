@@ -1,4 +1,5 @@
-// frictal — the offset grid of an areal lift (private; areal_lift and areal_tilt_lift share it).
+// frictal — the offset grid of an areal lift (shared header of src/areal/: areal_lift and the areal
+// tilt's lift in src/tilt/ use it; src/tiers.txt).
 #pragma once
 
 #include <cstddef>

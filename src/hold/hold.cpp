@@ -22,7 +22,7 @@
 
 #include <fmt/core.h>
 
-#include "rigid.hpp"
+#include "signature/rigid.hpp"
 #include "util/parallel.hpp"
 
 namespace frictal {

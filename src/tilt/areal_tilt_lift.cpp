@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "analysis/areal_grid.hpp"
+#include "areal/areal_grid.hpp"
 #include "areal_tilt_model.hpp"
 #include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
