@@ -269,7 +269,8 @@ Result<ReportResolution> resolution_of(const ReportInput& in, const ReportSurfac
   // The short reliability cutoff of the tip: the larger of the surfaces' (the map's: rows and
   // columns). NaN: the tip fails up to a quarter of the scan; 0: it follows every scale.
   if (in.tip_radius > 0) {
-    auto c = in.is_map ? short_reliability_cutoff(in.map, in.tip_radius) : short_reliability_cutoff(lower, in.tip_radius);
+    auto c =
+        in.is_map ? short_reliability_cutoff(in.map, in.tip_radius) : short_reliability_cutoff(lower, in.tip_radius);
     if (!c) return c.error();
     double v = *c;
     if (s.pair && !std::isnan(v)) {

@@ -116,18 +116,17 @@ Result<std::string> map_figure_and_stats(const ReportInput& in, const ReportSurf
   mi.line_label = "line used for the signature";
   auto svg = map_svg(in.map, mi);
   if (!svg) return svg.error();
-  const std::size_t f =
-      std::max<std::size_t>(1, (std::max(in.map.nx, in.map.ny) + mi.max_pixels - 1) / mi.max_pixels);
+  const std::size_t f = std::max<std::size_t>(1, (std::max(in.map.nx, in.map.ny) + mi.max_pixels - 1) / mi.max_pixels);
   const LengthUnit lu = length_unit(std::max(st.width, st.height));
-  html += figure(*svg,
-                 fmt::format("{} × {} points, {} × {}; spacing {} × {}. {}Colours span the {:g} to {:g} % "
-                             "quantiles of the heights (outliers saturate); grey: no data.",
-                             in.map.nx, in.map.ny, fmt_len(st.width, lu), fmt_len(st.height, lu),
-                             fmt_len(in.map.dx, length_unit(in.map.dx)), fmt_len(in.map.dy, length_unit(in.map.dy)),
-                             f > 1 ? fmt::format("Shown block-averaged {} × {} to {} × {} pixels. ", f, f,
-                                                 (in.map.nx + f - 1) / f, (in.map.ny + f - 1) / f)
-                                   : std::string(),
-                             100 * mi.low_quantile, 100 * mi.high_quantile));
+  html +=
+      figure(*svg, fmt::format("{} × {} points, {} × {}; spacing {} × {}. {}Colours span the {:g} to {:g} % "
+                               "quantiles of the heights (outliers saturate); grey: no data.",
+                               in.map.nx, in.map.ny, fmt_len(st.width, lu), fmt_len(st.height, lu),
+                               fmt_len(in.map.dx, length_unit(in.map.dx)), fmt_len(in.map.dy, length_unit(in.map.dy)),
+                               f > 1 ? fmt::format("Shown block-averaged {} × {} to {} × {} pixels. ", f, f,
+                                                   (in.map.nx + f - 1) / f, (in.map.ny + f - 1) / f)
+                                     : std::string(),
+                               100 * mi.low_quantile, 100 * mi.high_quantile));
   const LengthUnit zu = length_unit(st.Sq > 0 ? st.Sq : 1e-9);
   html += "<table class=\"stats\"><caption>Areal statistics (ISO 25178-2 style, about the mean)</caption>\n";
   html +=
@@ -259,11 +258,10 @@ Result<std::string> slopes_section(const ReportInput& in, const ReportData& d) {
           "by the offset length it stands for; mean {}, standard deviation σ = {} (Eq. 18). {} bins over ±{:.2f}°{}.",
           fmt_deg(r.contact_slope_mean), fmt_deg(r.contact_slope_std), in.bins, deg(sl.limit),
           sl.outside_length > 0
-              ? fmt::format(
-                    "; {:.2f} % of the surface length is steeper (counted in the densities, beyond "
-                    "the axis; steepest edge {})",
-                    100 * sl.outside_length / sl.total_length,
-                    fmt_deg(std::max(s.lower_stats.max_slope, s.upper_stats.max_slope)))
+              ? fmt::format("; {:.2f} % of the surface length is steeper (counted in the densities, beyond "
+                            "the axis; steepest edge {})",
+                            100 * sl.outside_length / sl.total_length,
+                            fmt_deg(std::max(s.lower_stats.max_slope, s.upper_stats.max_slope)))
               : std::string()));
 }
 
@@ -355,10 +353,11 @@ Result<std::string> hold_section(const ReportInput&, const ReportData& d) {
                                     "(local minima of h) into which drops spread uniformly over the range fall.",
                                     f.basins.rest.size()));
   html += figure(
-      *hsvg, fmt::format("Each basin weighted by the width of the drop range it drains; run-away distance d = {:.4g} {}. "
-                         "Shaded: Eq. 18's heuristic range [θ_max − σ, θ_max] + θ_a over the offset range; a block "
-                         "that slips on before the run-away can reach steeper contacts beyond it.",
-                         ha.runaway_distance / xu.scale, xu.name));
+      *hsvg,
+      fmt::format("Each basin weighted by the width of the drop range it drains; run-away distance d = {:.4g} {}. "
+                  "Shaded: Eq. 18's heuristic range [θ_max − σ, θ_max] + θ_a over the offset range; a block "
+                  "that slips on before the run-away can reach steeper contacts beyond it.",
+                  ha.runaway_distance / xu.scale, xu.name));
   TwoWayTable t;
   t.two("quasi-static hold angle φ_qs over drops", angle_range(f.hold), angle_range(b.hold));
   t.two("inertial bound φ_in over drops", angle_range(f.inertial), angle_range(b.inertial));
@@ -527,7 +526,7 @@ Result<std::string> resolution_section(const ReportInput& in, const ReportData& 
         "<tr{}><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
         row.below_tip ? " class=\"below-tip\"" : "", fmt_len(c, xu), row.below_tip ? " (below tip cutoff)" : "",
         fmt_deg(row.theta_max_forward), fmt_deg(row.theta_max_backward), fmt_deg(row.contact_slope_std),
-        row.friction_coefficient < 0 ? std::string("0 (θ_a + θ_max < 0)") : fmt_mu(row.friction_coefficient));
+        row.friction_coefficient < 0 ? std::string("0 (θ_a + θ_max &lt; 0)") : fmt_mu(row.friction_coefficient));
   }
   t += fmt::format("<tr class=\"unfiltered\"><td>unfiltered</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
                    fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward), fmt_deg(r.contact_slope_std),
@@ -552,33 +551,35 @@ Result<std::string> resolution_section(const ReportInput& in, const ReportData& 
   if (tip_cutoff && *tip_cutoff > 0 && std::isfinite(*tip_cutoff) && *tip_cutoff / xu.scale < fw.x.back())
     p.x_min = *tip_cutoff / xu.scale / 1.3;  // the line inside the frame, left of the finest cutoff
   if (tip_cutoff && *tip_cutoff > 0 && std::isfinite(*tip_cutoff))
-    p.lines.push_back(
-        {false, *tip_cutoff / xu.scale,
-         fmt::format("tip R = {}: reliable above", fmt_len(in.tip_radius, length_unit(in.tip_radius))), "#555"});
+    p.lines.push_back({false, *tip_cutoff / xu.scale,
+                       fmt::format("tip R = {}: reliable above", fmt_len(in.tip_radius, length_unit(in.tip_radius))),
+                       "#555"});
   auto svg = plot_svg(p);
   if (!svg) return svg.error();
   std::string html = figure(
-      *svg,
-      fmt::format(
-          "The surface{} low-pass filtered (Gaussian, ISO 16610-21: 50 % transmission at λ_c) at {} cutoffs from "
-          "half "
-          "the length down to 4 point spacings, then the signature recomputed at {} equally spaced offsets "
-          "(each evaluated exactly; the unfiltered row is every event). From the coarsest to the finest "
-          "cutoff "
-          "θ_max forward goes from {} to {} (unfiltered: {}); the paper's Fig. 14 shows θ_max growing with the "
-          "resolution of Weierstrass–Mandelbrot profiles.",
-          d.surfaces.pair ? "s" : "", res.rows.size(), res.offsets, fmt::format("{:.3f}°", fw.y.front()),
-          fmt::format("{:.3f}°", fw.y.back()), fmt_deg(r.theta_max_forward)) +
-          tip_text);
+      *svg, fmt::format(
+                "The surface{} low-pass filtered (Gaussian, ISO 16610-21: 50 % transmission at λ_c) at {} cutoffs from "
+                "half "
+                "the length down to 4 point spacings, then the signature recomputed at {} equally spaced offsets "
+                "(each evaluated exactly; the unfiltered row is every event). From the coarsest to the finest "
+                "cutoff "
+                "θ_max forward goes from {} to {} (unfiltered: {}); the paper's Fig. 14 shows θ_max growing with the "
+                "resolution of Weierstrass–Mandelbrot profiles.",
+                d.surfaces.pair ? "s" : "", res.rows.size(), res.offsets, fmt::format("{:.3f}°", fw.y.front()),
+                fmt::format("{:.3f}°", fw.y.back()), fmt_deg(r.theta_max_forward)) +
+                tip_text);
   html += t;
   return html;
 }
 
 // --- the headline, the title, what was assumed --------------------------------------------------
-std::string page_title(const ReportInput&, const ReportData& d) {
+/// Two surfaces: an upper profile, or an upper map (the headline and the areal section are the pair's).
+bool two_surfaces(const ReportInput& in, const ReportData& d) { return d.surfaces.pair || in.upper_map.has_value(); }
+
+std::string page_title(const ReportInput& in, const ReportData& d) {
   const ReportSurfaces& s = d.surfaces;
-  return s.pair ? fmt::format("frictal report: {} on {}", base(s.lower_name), base(s.upper_name))
-                : fmt::format("frictal report: {}", base(s.lower_name));
+  return two_surfaces(in, d) ? fmt::format("frictal report: {} on {}", base(s.lower_name), base(in.upper_name))
+                             : fmt::format("frictal report: {}", base(s.lower_name));
 }
 
 std::string headline(const ReportInput& in, const ReportData& d) {
@@ -594,14 +595,15 @@ std::string headline(const ReportInput& in, const ReportData& d) {
         "<p class=\"verdict\" id=\"headline\">A tilt test of {} reads <b>φ = {}</b> (μ = <b>{}</b>){}; rigid "
         "upper bound θ_max + θ_a = {} (μ ≤ {}); the paper's Eq. 18 range {} … {}.<br><small>Model: {} ({}); "
         "sliding at {:g}°, μ_a = {:g}; conditioning: {}; run-away distance {:.3g} m; over {}.</small></p>\n",
-        d.surfaces.pair ? "these surfaces" : "this surface against itself", fmt_deg(p.friction_angle.q50),
+        two_surfaces(in, d) ? "these surfaces" : "this surface against itself", fmt_deg(p.friction_angle.q50),
         fmt_mu(p.friction_coefficient),
         p.single_drop ? " from this drop"
                       : fmt::format(", the median over drops; 90 % of tests between {} and {}",
                                     fmt_deg(p.friction_angle.q05), fmt_deg(p.friction_angle.q95)),
         fmt_deg(p.upper_bound_friction_angle), fmt_mu(std::tan(std::min(p.upper_bound_friction_angle, 1.5707963))),
         fmt_deg(p.eq18_range[0]), fmt_deg(p.eq18_range[1]), p.model,
-        p.is_map ? "a rigid block free to move sideways, quasi-static" : "the quasi-static hold angle on the exact lift",
+        p.is_map ? "a rigid block free to move sideways, quasi-static"
+                 : "the quasi-static hold angle on the exact lift",
         p.direction * 180 / std::numbers::pi, p.atomic_friction, escape_html(p.conditioning), p.runaway_distance,
         drops);
     if (!p.warnings.empty()) {
@@ -635,12 +637,19 @@ std::vector<std::string> assumptions(const ReportInput& in, const ReportData& d)
   const SignatureResult& r = d.signature;
   const LengthUnit xu = lateral_unit(d);
   std::vector<std::string> out;
-  out.push_back(s.pair ? fmt::format("The lower block's face is {}; the upper block's face is {} as measured "
-                                     "(material below), turned over by 180° to face it.",
-                                     escape_html(s.lower_name), escape_html(s.upper_name))
-                       : fmt::format("The upper block is the surface itself turned over (rotated 180°): {} "
-                                     "slides on a copy of itself.",
-                                     escape_html(s.lower_name)));
+  if (in.is_map && in.upper_map)
+    out.push_back(fmt::format(
+        "The lower block's face is {}; the upper block's face is {} as measured (material below), turned over "
+        "onto it about the axis across x: the headline's prediction and the areal section. The sections on the "
+        "central line take the lower map's line against itself turned over (rotated 180°).",
+        escape_html(s.lower_name), escape_html(in.upper_name)));
+  else
+    out.push_back(s.pair ? fmt::format("The lower block's face is {}; the upper block's face is {} as measured "
+                                       "(material below), turned over by 180° to face it.",
+                                       escape_html(s.lower_name), escape_html(s.upper_name))
+                         : fmt::format("The upper block is the surface itself turned over (rotated 180°): {} "
+                                       "slides on a copy of itself.",
+                                       escape_html(s.lower_name)));
   out.push_back(
       fmt::format("Conditioning applied to each measured surface before anything else (crop, spike "
                   "removal, form removal, in that order): <b>{}</b>.",

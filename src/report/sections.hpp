@@ -15,8 +15,8 @@ namespace frictal::report::detail {
 using SectionWriter = Result<std::string> (*)(const ReportInput& input, const ReportData& data);
 
 struct PageSection {
-  const char* id;                       ///< the HTML id (the navigation's anchor)
-  const char* title;                    ///< its heading
+  const char* id;                         ///< the HTML id (the navigation's anchor)
+  const char* title;                      ///< its heading
   bool (*shown)(const ReportData& data);  ///< whether the page has it (its results were computed)
   SectionWriter write;
 };
