@@ -25,8 +25,9 @@ using OutputValue = std::variant<double, std::string, bool, std::vector<double>>
 ///
 /// Interface units: "deg" (SI value in rad), "m", "s", "kg", "m/s", "1/s", "1" (unitless), "count"
 /// (an integer), "text", "flag", and for nested values "object:TABLE" (a JSON object whose keys
-/// are the columns of output table TABLE), "list:TABLE" (a list of such objects) and "settings"
-/// (an object whose keys are fields of a settings table, `frictal settings`).
+/// are the columns of output table TABLE), "list:TABLE" (a list of such objects), "settings"
+/// (an object whose keys are fields of a settings table, `frictal settings`) and "map" (an object
+/// whose keys are data: versions, a study kind's outputs).
 struct ColumnInfo {
   std::string key;     ///< the CLI's JSON key, e.g. "theta_max_forward_deg"; "" = Python only
   std::string unit;    ///< the interface unit (above)

@@ -14,9 +14,14 @@
 #include <string>
 #include <vector>
 
+#include "frictal/analysis.hpp"
+#include "frictal/areal.hpp"
 #include "frictal/geometry.hpp"
+#include "frictal/hold.hpp"
 #include "frictal/map.hpp"
 #include "frictal/predict.hpp"
+#include "frictal/signature.hpp"
+#include "frictal/stats.hpp"
 
 namespace frictal::report {
 
@@ -178,7 +183,114 @@ struct ReportInput {
   std::optional<Prediction> prediction;
 };
 
-/// The complete HTML page (UTF-8). Errors: inputs the analysis refuses (named).
+// ---------------------------------------------------------------------------------------------
+// The page's analyses: report_data() computes every section's results from a ReportInput (the
+// library's analysis calls: signature, predict_friction, analyse_hold, areal_lift and the areal
+// hold angles, anisotropy, gaussian_lowpass, short_reliability_cutoff, and the histograms the
+// plots draw); the section writers (src/report/sections.cpp) only format them.
+
+/// The surfaces the analyses work on, with their statistics.
+struct ReportSurfaces {
+  std::string lower_name;  ///< the input's lower name, or "surface" when it names none
+  std::string upper_name;  ///< the upper profile's name (pair), else lower_name
+  bool pair = false;       ///< an upper profile was given (ReportInput::upper)
+  /// The lower profile, or a map's central line along x (the longest valid run of the line through
+  /// y = y0 + height / 2; its abscissa starts at the map's x0) (unit: m).
+  Profile lower;
+  Profile upper;  ///< the upper profile as measured (material below); without a pair, `lower` (unit: m)
+  ProfileStats lower_stats, upper_stats;
+  bool lower_uniform = false, upper_uniform = false;  ///< is_uniform with relative tolerance 1e-6
+  double line_y = 0;                                  ///< maps: y of the central line (unit: m)
+  MapStats map_stats;                                 ///< maps: the map's areal statistics
+};
+
+/// The slope distributions (paper Fig. 16 style), all on one range [-limit, limit].
+struct ReportSlopes {
+  /// 1.1 x the largest of theta_max both ways and the 99.5 % quantiles of |surface slope| (at
+  /// most pi/2) (unit: rad).
+  double limit = 0;
+  /// Surface slopes, every edge weighted by its length, densities relative to all the weight
+  /// (steeper edges counted, not binned); `upper` for a pair only (unit: rad; density 1/rad).
+  Histogram lower, upper;
+  Histogram contact;  ///< theta(x_ofs) weighted by the offset length it stands for (unit: rad; 1/rad)
+  /// Surface length steeper than +-limit and all the surface length, both surfaces of a pair (unit: m).
+  double outside_length = 0, total_length = 0;
+};
+
+/// What a tilt test reads on the pair's lift (hold.hpp), towards +x unless said.
+struct ReportHold {
+  HoldAnalysis analysis;  ///< analyse_hold of the pair (run-away distance as given, else its default)
+  std::vector<double>
+      rest_lift;  ///< h at each forward basin's rest offset (the first lift vertex at or after it) (unit: m)
+  Histogram hold,
+      inertial;  ///< phi_qs and phi_in over drops, 40 bins, basins weighted by the width they drain (unit: rad; 1/rad)
+};
+
+/// Two maps: the lift over two dimensions of offset and the hold angles of a block free to move
+/// sideways or locked (areal.hpp), sliding along +x.
+struct ReportArealHold {
+  std::string failure;          ///< non-empty: not computed, and why (the page says so)
+  ArealLift lift;               ///< areal_lift(map, upper_map, 0)
+  double runaway_distance = 0;  ///< the given one, else a tenth of the offset range along x (unit: m)
+  ArealHold free;               ///< from the drop at s = 0, free to move sideways
+  HoldAngle locked;             ///< the same block locked, from the free block's rest
+  ArealHoldDistribution free_drops, locked_drops;  ///< over drops, free and locked
+  /// Both distributions binned over [0, top] in 40 bins: edges (unit: rad) and the percent of the drops in
+  /// each bin (unitless).
+  std::vector<double> edges, free_percent, locked_percent;
+};
+
+/// Maps: the friction over sliding directions (anisotropy()).
+struct ReportDirections {
+  std::string failure;                          ///< non-empty: not computed, and why (the page says so)
+  std::vector<DirectionalFriction> table;       ///< one row per direction
+  std::size_t min_points = 0;                   ///< shortest line used (points, unitless)
+  double best_direction = 0, best_angle = 0;    ///< the direction with the highest phi, and phi (unit: rad)
+  double worst_direction = 0, worst_angle = 0;  ///< the direction with the lowest phi, and phi (unit: rad)
+};
+
+/// One cutoff of the resolution study: the signature of the low-pass filtered pair.
+struct ReportResolutionRow {
+  double cutoff = 0;                ///< Gaussian low-pass cutoff wavelength lambda_c (unit: m)
+  double theta_max_forward = 0;     ///< (unit: rad)
+  double theta_max_backward = 0;    ///< (unit: rad)
+  double contact_slope_std = 0;     ///< sigma (unit: rad)
+  double friction_coefficient = 0;  ///< Eq. 6 mu towards +x (unitless; < 0: theta_a + theta_max < 0)
+  bool below_tip = false;           ///< below the tip's reliability cutoff (or the tip follows no scale)
+};
+/// theta_max against resolution: cutoffs log-spaced from half the length down to 4 point spacings.
+struct ReportResolution {
+  double cutoff_min = 0, cutoff_max = 0;  ///< 4 point spacings, half the shorter length (unit: m)
+  /// The short reliability cutoff of ReportInput::tip_radius (the larger of the surfaces'; a map's: rows
+  /// and columns); NaN: the tip fails up to a quarter of the scan; 0: it follows every scale; unset:
+  /// no tip radius (unit: m).
+  std::optional<double> tip_cutoff;
+  std::size_t offsets = 0;                ///< sampled offsets of each filtered signature (unitless)
+  std::vector<ReportResolutionRow> rows;  ///< empty: too few points (cutoff_max <= 1.5 cutoff_min)
+};
+
+/// Every section's results.
+struct ReportData {
+  ReportSurfaces surfaces;
+  SignatureResult signature;  ///< the pair's (the lower profile or central line against the upper turned over)
+  FrictionPrediction forward, backward;  ///< Eq. 6 and 18 both ways from the signature
+  ReportSlopes slopes;
+  ReportHold hold;
+  std::optional<ReportArealHold> areal_hold;   ///< two maps only
+  std::optional<ReportDirections> directions;  ///< maps only
+  std::optional<ReportResolution> resolution;  ///< resolution_steps >= 2 only
+};
+
+/// The analyses of the page. Errors: inputs the analysis refuses (named). Failures of the areal
+/// hold and directions analyses are results (their `failure`), not errors.
+Result<ReportData> report_data(const ReportInput& input);
+
+/// The HTML page (UTF-8) of results computed by report_data(input): the headline, one section
+/// each, what was assumed. Errors: a plot with nothing to draw.
+Result<std::string> report_page(const ReportInput& input, const ReportData& data);
+
+/// The complete HTML page (UTF-8): report_page(input, report_data(input)). Errors: inputs the
+/// analysis refuses (named).
 Result<std::string> surface_report(const ReportInput& input);
 
 }  // namespace frictal::report

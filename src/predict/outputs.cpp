@@ -266,6 +266,79 @@ std::vector<OutputTable> make_tables() {
   t.push_back({"map_extra",
                "what Python map_stats adds with tip_radius",
                {py("short_reliability_cutoff", "m", "shortest scale the tip resolves (NaN: none)")}});
+  // Studies (frictal study status|report --json; Python study_status, study_run, study_rows).
+  t.push_back({"study_status",
+               "frictal study status --json; Python study_status(store)",
+               {ci("store", "text", "the store", "="), ci("study", "text", "the study's name", "="),
+                ci("scale", "text", "full or quick", "="), ci("study_hash", "text", "hash of the study file", "="),
+                ci("schema_version", "count", "the store's schema version", "="),
+                ci("frictal_version", "text", "frictal's version"),
+                ci("claimed", "count", "tasks claimed by a running process"),
+                ci("tasks", "object:study_tasks", "task counts", "="),
+                ci("parts", "list:study_part", "one entry per part", "=")}});
+  t.push_back({"study_tasks",
+               "task counts of a store or a run",
+               {ci("total", "count", "tasks in the study", "="), ci("done", "count", "tasks done", "="),
+                ci("failed", "count", "tasks failed", "="), ci("pending", "count", "tasks not yet run", "=")}});
+  t.push_back({"study_part",
+               "one part of a study's status",
+               {ci("part", "text", "the part's name", "="), ci("kind", "text", "its task kind", "="),
+                ci("kind_version", "count", "the kind's version"), ci("done", "count", "tasks done", "="),
+                ci("failed", "count", "tasks failed", "="), ci("pending", "count", "tasks pending", "="),
+                ci("available", "flag", "this build can run the kind", "="),
+                ci("done_by_frictal_version", "map", "tasks done by each frictal version"),
+                ci("done_by_kind_version", "map", "tasks done by each kind version"),
+                ci("version_note", "text", "what a version change means for the stored results")}});
+  t.push_back({"study_report",
+               "frictal study report --json: the findings as data (docs/studies.md)",
+               {ci("reports", "list:study_findings", "one report per store"),
+                ci("conclusions", "list:study_conclusion", "one verdict per claim over every store"),
+                ci("claims", "list:study_claim", "the catalogue of claims")}});
+  t.push_back({"study_findings",
+               "the findings of one store",
+               {ci("study", "text", "the study"), ci("title", "text", "the report's title"),
+                ci("findings", "list:study_finding", "each check of a claim on a part")}});
+  t.push_back({"study_finding",
+               "one check of a claim on one part",
+               {ci("claim_id", "text", "the claim checked"), ci("source", "text", "paper or frictal"),
+                ci("figures", "count", "figures of the paper it concerns"), ci("part", "text", "the part"),
+                ci("claim", "text", "the claim as stated"), ci("criterion", "text", "the criterion, with numbers"),
+                ci("numbers", "list", "the numbers behind it"), ci("verdict", "text", "supported, not supported, ..."),
+                ci("cause", "text", "the measured cause")}});
+  t.push_back({"study_claim",
+               "a claim of the paper or of frictal",
+               {ci("id", "text", "stable id"), ci("source", "text", "paper or frictal"),
+                ci("statement", "text", "the claim"), ci("where", "text", "where it is made"),
+                ci("figures", "count", "figures"), ci("applies_to", "text", "which parts it applies to"),
+                ci("superseded_by", "text", "the frictal findings that replace it")}});
+  t.push_back({"study_conclusion",
+               "the verdict on one claim",
+               {ci("id", "text", "the claim"), ci("source", "text", "paper or frictal"),
+                ci("statement", "text", "the claim"), ci("where", "text", "where it is made"),
+                ci("figures", "count", "figures"), ci("applies_to", "text", "which parts it applies to"),
+                ci("superseded_by", "text", "the findings that replace it"),
+                ci("verdict", "text", "supported, superseded or not supported"),
+                ci("cause", "text", "the measured causes"), ci("uncaused", "text", "parts with no measured cause"),
+                ci("checks", "list:study_check", "each part's verdict")}});
+  t.push_back({"study_check",
+               "one part's verdict on a claim",
+               {ci("study", "text", "the study"), ci("part", "text", "the part"), ci("verdict", "text", "the verdict"),
+                ci("cause", "text", "the measured cause")}});
+  t.push_back(
+      {"study_run",
+       "Python study_run(...), study_run_many(...)",
+       {py("ran", "count", "tasks run"), py("failed", "count", "tasks failed"), py("retries", "count", "retries"),
+        py("reused", "count", "tasks taken from the result cache"), py("cache_note", "text", "what the cache did"),
+        py("skipped_unavailable", "text", "parts skipped: their kind is not in this build"),
+        py("threads", "count", "threads used"), py("wall_s", "s", "wall time"),
+        py("tasks", "count", "tasks in the study"), py("study", "text", "the study"),
+        py("store", "text", "the store")}});
+  t.push_back({"study_row",
+               "Python study_rows(store): one done task",
+               {py("task_id", "count", "the task's id"), py("part", "text", "its part"), py("kind", "text", "its kind"),
+                py("params", "map", "its parameters (the kind's settings)"),
+                py("scalars", "map", "its scalar outputs (frictal study kinds lists them with units)"),
+                py("arrays", "map", "its array outputs")}});
   return t;
 }
 

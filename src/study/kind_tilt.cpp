@@ -345,7 +345,7 @@ TaskKind tilt_kind() {
       {"steps", "1", "time steps"},
       {"steps_beyond_limit", "1", "steps above the explicit stability limit"},
       {"time_step_s", "s", "time step used (after retries with smaller steps)"},
-      {"upper_mass_kg", "kg/m", "mass of the upper block per unit depth"},
+      {"upper_mass_kg", "kg", "mass of the upper block (areal density x area)"},
       {"predicted_sphero_friction_angle_deg", "deg", "spheropolygon prediction (signature of the rounded blocks)"},
       {"rest_offset_m", "m", "the upper block's offset (signature convention) when the loading starts"},
       {"predicted_hold_angle_deg", "deg", "hold angle phi_qs from that rest, rigid profiles (hold.hpp)"},

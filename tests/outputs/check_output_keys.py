@@ -132,8 +132,8 @@ def walk(where, obj, table_names, python):
                 for i, e in enumerate(v):
                     if isinstance(e, dict):
                         walk(f"{here}[{i}]", e, [unit[5:]], python)
-        elif unit == "settings":
-            pass  # the keys of a settings table (frictal settings), checked by the vocabulary test
+        elif unit in ("settings", "map"):
+            pass  # the keys of a settings table (frictal settings; the vocabulary test) or data
         else:
             check_value(here, unit, v)
 
@@ -199,6 +199,13 @@ check_cli(["anisotropy"], "anisotropy", map1, "--json", "--directions", "4")
 check_cli(["areal_tilt"], "areal-tilt", map1, map2, "--predict-only", "--json")
 check_cli(["tilt"], "tilt", "koch", "--iterations", "2", "--json", "--max-tilt", "30", "-q")
 check_cli(["warning_code"], "warnings", "--json")
+# A study at the quick scale (seconds): its status and its findings as data; the rows' outputs are
+# checked against the outputs its kind declares (frictal study kinds --json).
+store = os.path.join(tmp, "fig04.sqlite")
+subprocess.run([CLI, "study", "run", os.path.join(SOURCE, "studies", "fig04-koch-signature.toml"), "--store", store,
+                "--quick", "--threads", "2"], check=True, capture_output=True)
+check_cli(["study_status"], "study", "status", store, "--json")
+check_cli(["study_report"], "study", "report", store, "--json")
 
 # Python: every function that returns a dict (the package's wrappers add "warnings").
 import warnings as _w  # noqa: E402
@@ -223,6 +230,22 @@ check_py("areal_tilt_hold", frictal.areal_tilt_hold(m1, dx=dx, dy=dx, upper=m2),
 check_py("condition", frictal.condition(pr)[1], ["conditioning"])
 check_py("build_info", frictal.build_info(), ["build_info"])
 check_py("autocorrelation", frictal.autocorrelation(pr), ["autocorrelation"])
+check_py("study_status", frictal.study_status(store), ["study_status"])
+kind_list = cli_json("study", "kinds", "--json")["kinds"]
+kinds = {k["name"]: {o["name"] for o in k["outputs"]} for k in kind_list}
+# A study output named like a declared JSON key is that quantity: the same unit.
+STUDY_UNIT = {"1": "1", "deg": "deg", "m": "m", "s": "s", "kg": "kg", "count": "count"}
+for k in kind_list:
+    for o in k["outputs"]:
+        units = json_units.get(o["name"])
+        # (a study stores numbers only: a count or a flag as a unitless number)
+        if units and o["unit"] not in units and not (o["unit"] == "1" and ({"count", "flag"} & set(units))):
+            fail(f"study kind {k['name']}: output {o['name']!r} in {o['unit']!r}, declared in {sorted(units)}")
+for row in frictal.study_rows(store):
+    check_py("study_rows", row, ["study_row"])
+    for name in list(row["scalars"]) + list(row["arrays"]):
+        if name not in kinds.get(row["kind"], ()):
+            fail(f"study_rows: output {name!r} of kind {row['kind']!r} is not among the kind's declared outputs")
 check_py("tilt", frictal.tilt(frictal.koch_profile(iterations=2), max_tilt=0.5), ["tilt"])
 
 print(f"checked {len(checked)} outputs: {', '.join(sorted(set(checked)))}")

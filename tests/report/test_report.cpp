@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <regex>
 #include <string>
@@ -14,6 +15,7 @@
 #include "frictal/areal.hpp"
 #include "frictal/generators.hpp"
 #include "frictal/report.hpp"
+#include "report/sections.hpp"
 
 namespace {
 
@@ -411,4 +413,157 @@ TEST(Report, TipRadiusCutoffIsDrawnOnTheResolutionPlot) {
   EXPECT_EQ(none->find("reliable above"), std::string::npos);
   in.tip_radius = -1e-9;
   EXPECT_FALSE(rp::surface_report(in));
+}
+
+// --- the analyses and the section writers apart (src/report/data.cpp, sections.cpp) ---------------
+
+TEST(Report, DataIsTheLibrarysAnalysesAndThePageIsWrittenFromIt) {
+  frictal::SawtoothParams sp;
+  sp.rise_angle = 20 * kDeg;
+  sp.rise_fraction = 0.7;
+  auto saw = frictal::sawtooth_profile(sp);
+  ASSERT_TRUE(saw);
+  rp::ReportInput in;
+  in.lower = *saw;
+  in.lower_name = "saw.csv";
+  in.atomic_friction = 0.2;
+  in.resolution_steps = 3;
+  in.threads = 2;
+  auto d = rp::report_data(in);
+  ASSERT_TRUE(d) << d.error().message;
+  // The signature and Eq. 6 are the library's calls on the same pair.
+  frictal::SignatureOptions so;
+  so.keep_contacts = false;
+  so.bins = in.bins;
+  auto sig = frictal::signature(*saw, frictal::rotate180(*saw), so);
+  ASSERT_TRUE(sig);
+  EXPECT_EQ(d->signature.theta_max_forward, sig->theta_max_forward);
+  EXPECT_EQ(d->signature.theta_max_backward, sig->theta_max_backward);
+  auto fwd = frictal::predict_friction(0.2, sig->theta_max_forward, sig->contact_slope_std);
+  ASSERT_TRUE(fwd);
+  EXPECT_EQ(d->forward.friction_angle, fwd->friction_angle);
+  EXPECT_NEAR(d->forward.friction_angle, 20 * kDeg + std::atan(0.2), 1e-9);
+  // Sections present as computed: a profile has no directions and no areal section.
+  EXPECT_FALSE(d->directions);
+  EXPECT_FALSE(d->areal_hold);
+  ASSERT_TRUE(d->resolution);
+  EXPECT_EQ(d->resolution->rows.size(), 3u);
+  // The slope densities integrate to the share of the length inside the range.
+  double area = 0;
+  for (std::size_t i = 0; i < d->slopes.lower.density.size(); ++i)
+    area += d->slopes.lower.density[i] * (d->slopes.lower.edges[i + 1] - d->slopes.lower.edges[i]);
+  EXPECT_NEAR(area, 1 - d->slopes.outside_length / d->slopes.total_length, 1e-9);
+  // The page is the page of these results.
+  auto page = rp::report_page(in, *d);
+  ASSERT_TRUE(page) << page.error().message;
+  auto whole = rp::surface_report(in);
+  ASSERT_TRUE(whole);
+  EXPECT_EQ(*page, *whole);
+  // Refused inputs are refused by the analysis step.
+  in.bins = 1;
+  EXPECT_FALSE(rp::report_data(in));
+}
+
+TEST(Report, FrictionSectionWritesTheResultsItIsGiven) {
+  // Hand-made results: the writer formats them and computes nothing.
+  rp::ReportInput in;
+  in.atomic_friction = 0.25;
+  rp::ReportData d;
+  d.signature.theta_max_forward = 12.5 * kDeg;
+  d.signature.theta_max_backward = 7.25 * kDeg;
+  d.signature.contact_slope_std = 3 * kDeg;
+  d.forward.atomic_angle = d.backward.atomic_angle = 14 * kDeg;
+  d.forward.friction_angle = 26.5 * kDeg;
+  d.forward.friction_angle_low = 23.5 * kDeg;
+  d.forward.friction_coefficient = 0.5;
+  d.forward.friction_coefficient_low = 0.4321;
+  d.backward.friction_angle = 21.25 * kDeg;
+  d.backward.friction_angle_low = 18.25 * kDeg;
+  d.backward.friction_coefficient = 0.375;
+  d.backward.friction_coefficient_low = 0.3;
+  auto html = rp::detail::friction_section(in, d);
+  ASSERT_TRUE(html) << html.error().message;
+  EXPECT_NE(html->find("<td>12.500\u00b0</td><td>7.250\u00b0</td>"), std::string::npos) << *html;
+  EXPECT_NE(html->find("<td>0.25, 14.000\u00b0</td>"), std::string::npos);
+  EXPECT_NE(html->find("<td>23.500\u00b0 \u2026 26.500\u00b0</td><td>18.250\u00b0 \u2026 21.250\u00b0</td>"),
+            std::string::npos);
+  EXPECT_NE(html->find("<b>\u03bc = 0.5000</b> for sliding towards +x (statistical range 0.4321 \u2026 0.5000"),
+            std::string::npos);
+  EXPECT_NE(html->find("<b>0.3750</b> towards \u2212x, with \u03bc_a = 0.25"), std::string::npos);
+  d.forward.friction_coefficient = std::numeric_limits<double>::infinity();
+  html = rp::detail::friction_section(in, d);
+  ASSERT_TRUE(html);
+  EXPECT_NE(html->find("\u221e (interlocked)"), std::string::npos);
+}
+
+TEST(Report, ResolutionSectionMarksTheRowsBelowTheTipAndSaysWhenTooShort) {
+  rp::ReportInput in;
+  in.tip_radius = 1e-6;
+  rp::ReportData d;
+  d.surfaces.lower.x = {0, 1e-4};
+  d.surfaces.lower.z = {0, 0};
+  d.surfaces.upper = d.surfaces.lower;
+  d.signature.theta_max_forward = 10 * kDeg;
+  rp::ReportResolution res;
+  res.cutoff_min = 4e-7;
+  res.cutoff_max = 5e-5;
+  res.offsets = 1000;
+  res.tip_cutoff = 2e-6;
+  for (double c : {5e-5, 5e-6, 5e-7}) {
+    rp::ReportResolutionRow row;
+    row.cutoff = c;
+    row.theta_max_forward = (c > 1e-6 ? 4 : 8) * kDeg;
+    row.friction_coefficient = c > 1e-6 ? 0.0699 : -0.1;
+    row.below_tip = c < *res.tip_cutoff;
+    res.rows.push_back(row);
+  }
+  d.resolution = res;
+  auto html = rp::detail::resolution_section(in, d);
+  ASSERT_TRUE(html) << html.error().message;
+  EXPECT_EQ(count(*html, "class=\"below-tip\""), 1u);
+  EXPECT_NE(html->find("<td>0.5 \u00b5m (below tip cutoff)</td><td>8.000\u00b0</td>"), std::string::npos) << *html;
+  EXPECT_NE(html->find("0 (\u03b8_a + \u03b8_max &lt; 0)"), std::string::npos);
+  EXPECT_NE(html->find("at 3 cutoffs"), std::string::npos);
+  EXPECT_NE(html->find("goes from 4.000\u00b0 to 8.000\u00b0 (unfiltered: 10.000\u00b0)"), std::string::npos);
+  EXPECT_NE(html->find(": 2 \u00b5m (below it"), std::string::npos);
+  EXPECT_NE(html->find("reliable above"), std::string::npos);
+  // No rows: the range was too short for a study.
+  d.resolution->rows.clear();
+  html = rp::detail::resolution_section(in, d);
+  ASSERT_TRUE(html);
+  EXPECT_NE(html->find("Too few points for a resolution study"), std::string::npos);
+  EXPECT_EQ(html->find("<svg"), std::string::npos);
+}
+
+TEST(Report, TwoMapsAreNamedAsAPairInTitleHeadlineAndAssumptions) {
+  // The headline's prediction of two maps is the pair's (bug: it said "this surface against itself").
+  rp::ReportInput in;
+  in.is_map = true;
+  in.map.nx = in.map.ny = 4;
+  in.map.dx = in.map.dy = 1e-6;
+  in.map.heights.assign(16, 0.0);
+  in.upper_map = in.map;
+  in.lower_name = "dir/lower.x3p";
+  in.upper_name = "dir/upper.x3p";
+  frictal::Prediction p;
+  p.is_map = true;
+  p.model = "map-continuous-free";
+  in.prediction = p;
+  rp::ReportData d;
+  d.surfaces.lower_name = in.lower_name;
+  d.surfaces.upper_name = in.lower_name;  // the central line against itself
+  d.surfaces.lower.x = {0, 1e-6, 2e-6};
+  d.surfaces.lower.z = {0, 0, 0};
+  d.surfaces.upper = d.surfaces.lower;
+  d.signature.offset = {0, 1e-6};
+  EXPECT_EQ(rp::detail::page_title(in, d), "frictal report: lower.x3p on upper.x3p");
+  EXPECT_NE(rp::detail::headline(in, d).find("A tilt test of these surfaces reads"), std::string::npos);
+  const auto a = rp::detail::assumptions(in, d);
+  ASSERT_FALSE(a.empty());
+  EXPECT_NE(a[0].find("the upper block's face is dir/upper.x3p as measured"), std::string::npos) << a[0];
+  // One map: the surface against itself.
+  in.upper_map.reset();
+  EXPECT_EQ(rp::detail::page_title(in, d), "frictal report: lower.x3p");
+  EXPECT_NE(rp::detail::headline(in, d).find("this surface against itself"), std::string::npos);
+  EXPECT_NE(rp::detail::assumptions(in, d)[0].find("slides on a copy of itself"), std::string::npos);
 }

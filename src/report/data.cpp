@@ -1,0 +1,365 @@
+// The analyses of `frictal report`: every section's results, computed from a ReportInput by the
+// library's analysis calls. The page (page.cpp, sections.cpp) only formats them.
+#include <fmt/core.h>
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "frictal/filter.hpp"
+#include "frictal/report.hpp"
+#include "frictal/scan_stats.hpp"
+#include "frictal/units.hpp"
+
+namespace frictal::report {
+
+namespace {
+
+constexpr double kDeg = units::kRadPerDeg;
+constexpr double deg(double rad) { return units::to_deg(rad); }
+
+/// The longest valid run of the line of a map through its centre along x.
+Result<Profile> central_line(const Map& m) {
+  const double yc = m.y0 + m.height() / 2;
+  auto lines = map_line(m, m.x0, yc, 0.0, m.dx, 3);
+  if (lines.empty())
+    return make_error(
+        fmt::format("report: the map ({} x {} points) has no run of 3 valid points on its central "
+                    "line along x",
+                    m.nx, m.ny));
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < lines.size(); ++i)
+    if (lines[i].length() > lines[best].length()) best = i;
+  return lines[best];
+}
+
+Status check_input(const ReportInput& in) {
+  if (!(std::isfinite(in.atomic_friction) && in.atomic_friction >= 0))
+    return make_error(fmt::format("report: atomic friction must be a finite number >= 0, got {}", in.atomic_friction));
+  if (in.resolution_steps == 1 || in.resolution_steps < 0 || in.resolution_steps > 100)
+    return make_error(fmt::format("report: resolution steps must be 0 or 2..100, got {}", in.resolution_steps));
+  if (in.is_map && in.upper) return make_error("report: an upper profile for a map: give the upper map as upper_map");
+  if (in.is_map && (in.directions < 1 || in.directions > 720))
+    return make_error(fmt::format("report: directions must be in 1..720, got {}", in.directions));
+  if (in.bins < 2 || in.bins > 10000)
+    return make_error(fmt::format("report: bins must be in 2..10000, got {}", in.bins));
+  if (!(std::isfinite(in.tip_radius) && in.tip_radius >= 0))
+    return make_error(fmt::format("report: tip radius must be a finite length >= 0 (m), got {}", in.tip_radius));
+  return Ok{};
+}
+
+Result<ReportSurfaces> surfaces_of(const ReportInput& in) {
+  ReportSurfaces s;
+  s.lower_name = in.lower_name.empty() ? std::string("surface") : in.lower_name;
+  if (in.is_map) {
+    if (auto v = validate(in.map, s.lower_name); !v) return v.error();
+    auto c = central_line(in.map);
+    if (!c) return c.error();
+    s.lower = std::move(*c);
+    s.line_y = in.map.y0 + in.map.height() / 2;
+    s.map_stats = map_stats(in.map);
+  } else {
+    if (auto v = validate(in.lower, s.lower_name); !v) return v.error();
+    s.lower = in.lower;
+  }
+  s.pair = in.upper.has_value();
+  s.upper = s.pair ? *in.upper : s.lower;
+  if (s.pair)
+    if (auto v = validate(s.upper, in.upper_name); !v) return v.error();
+  s.upper_name = s.pair ? in.upper_name : s.lower_name;
+  s.lower_stats = profile_stats(s.lower);
+  s.upper_stats = profile_stats(s.upper);
+  s.lower_uniform = is_uniform(s.lower, 1e-6);
+  s.upper_uniform = is_uniform(s.upper, 1e-6);
+  return s;
+}
+
+/// The edges of a profile as slope samples (unit: rad) weighted by their lengths (unit: m).
+void edge_samples(const Profile& pr, std::vector<double>& s, std::vector<double>& w) {
+  for (std::size_t i = 0; i + 1 < pr.size(); ++i) {
+    const double dx = pr.x[i + 1] - pr.x[i];
+    if (dx <= 0) continue;  // vertical jumps have no length
+    s.push_back(std::atan((pr.z[i + 1] - pr.z[i]) / dx));
+    w.push_back(dx);
+  }
+}
+
+/// |slope| below which a fraction q of the weight lies.
+double quantile_abs(const std::vector<double>& s, const std::vector<double>& w, double q) {
+  std::vector<std::pair<double, double>> v;
+  double total = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    v.emplace_back(std::abs(s[i]), w[i]);
+    total += w[i];
+  }
+  std::sort(v.begin(), v.end());
+  double acc = 0;
+  for (const auto& [a, wt] : v) {
+    acc += wt;
+    if (acc >= q * total) return a;
+  }
+  return v.empty() ? 0.0 : v.back().first;
+}
+
+ReportSlopes slopes_of(const ReportSurfaces& s, const SignatureResult& r, int bins) {
+  ReportSlopes out;
+  std::vector<double> ls, lw, us, uw;
+  edge_samples(s.lower, ls, lw);
+  if (s.pair) edge_samples(s.upper, us, uw);
+  double lim = std::max({r.theta_max_forward, r.theta_max_backward, quantile_abs(ls, lw, 0.995),
+                         s.pair ? quantile_abs(us, uw, 0.995) : 0.0});
+  lim = std::min(std::numbers::pi / 2, lim * 1.1 + 1e-12);
+  out.limit = lim;
+  // Densities relative to all the weight: samples outside +-lim are counted, not drawn.
+  auto rebin = [&](const std::vector<double>& samples, const std::vector<double>& weights, bool count_outside) {
+    Histogram h;
+    const int nb = bins;
+    for (int i = 0; i <= nb; ++i) h.edges.push_back(-lim + 2 * lim * i / nb);
+    h.density.assign(std::size_t(nb), 0.0);
+    double total = 0;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      const double w = weights.empty() ? 1.0 : weights[i];
+      if (!std::isfinite(samples[i]) || !(w > 0)) continue;
+      total += w;
+      const double v = samples[i];
+      if (v < -lim || v > lim) {
+        if (count_outside) out.outside_length += w;
+        continue;
+      }
+      h.density[std::size_t(std::min(nb - 1, int((v + lim) / (2 * lim) * nb)))] += w;
+    }
+    if (count_outside) out.total_length += total;
+    const double width = 2 * lim / nb;
+    for (auto& d : h.density) d = total > 0 ? d / (total * width) : 0.0;
+    return h;
+  };
+  out.lower = rebin(ls, lw, true);
+  if (s.pair) out.upper = rebin(us, uw, true);
+  out.contact = rebin(r.slope_samples, r.slope_weights, false);
+  return out;
+}
+
+Result<ReportHold> hold_of(const ReportInput& in, const ReportSurfaces& s, const SignatureOptions& so,
+                           const FrictionPrediction& fwd) {
+  HoldOptions ho;
+  ho.runaway_distance = in.runaway_distance;
+  ho.atomic_friction = in.atomic_friction;
+  auto ha = analyse_hold(s.lower, rotate180(s.upper), so, ho);
+  if (!ha) return ha.error();
+  ReportHold out;
+  out.analysis = std::move(*ha);
+  const LiftCurve& curve = out.analysis.curve;
+  const HoldDistribution& f = out.analysis.distribution.forward;
+  for (double x : f.basins.rest) {
+    const auto it = std::lower_bound(curve.offset.begin(), curve.offset.end(), x);
+    const std::size_t k =
+        std::min<std::size_t>(static_cast<std::size_t>(it - curve.offset.begin()), curve.offset.size() - 1);
+    out.rest_lift.push_back(curve.lift[k]);
+  }
+  // The distribution over drops, each basin weighted by the width it drains; bins centred on
+  // equally spaced angles from the lowest to the highest of the hold angles and the Eq. 18 range.
+  const double lo_deg = deg(std::min({f.hold.min, f.inertial.min, fwd.friction_angle_low}));
+  const double hi_deg = deg(std::max({f.hold.max, f.inertial.max, fwd.friction_angle}));
+  const int nb = 40;
+  const double span = std::max(hi_deg - lo_deg, 1e-6);
+  auto hist = [&](const std::vector<double>& angles) {
+    Histogram h;
+    for (int i = 0; i <= nb; ++i) h.edges.push_back((lo_deg + span * (i - 0.5) / (nb - 1)) * kDeg);
+    h.density.assign(nb, 0.0);
+    double total = 0;
+    for (std::size_t i = 0; i < angles.size(); ++i) {
+      const int k = std::clamp(int(std::lround((deg(angles[i]) - lo_deg) / span * (nb - 1))), 0, nb - 1);
+      h.density[std::size_t(k)] += f.basins.weight[i];
+      total += f.basins.weight[i];
+    }
+    const double width = (h.edges[1] - h.edges[0]);
+    for (double& d : h.density) d = total > 0 ? d / (total * width) : 0.0;
+    return h;
+  };
+  out.hold = hist(f.basins.hold);
+  out.inertial = hist(f.basins.inertial);
+  return out;
+}
+
+/// The areal analyses of two maps; a failure is kept as the section's `failure`.
+Status areal_hold_into(const ReportInput& in, ReportArealHold& out) {
+  if (auto v = validate(*in.upper_map, in.upper_name); !v) return v.error();
+  ArealLiftOptions lo;
+  lo.threads = in.threads;
+  auto lift = areal_lift(in.map, *in.upper_map, 0.0, lo);
+  if (!lift) return lift.error();
+  out.lift = std::move(*lift);
+  const ArealLift& L = out.lift;
+  ArealHoldOptions ho;
+  ho.runaway_distance = in.runaway_distance > 0 ? in.runaway_distance : 0.1 * (L.along(L.n_along - 1) - L.along(0));
+  ho.atomic_friction = in.atomic_friction;
+  ho.threads = in.threads;
+  out.runaway_distance = ho.runaway_distance;
+  auto start = areal_lift_node(L, 0.0, 0.0);
+  if (!start) return start.error();
+  auto free = areal_hold_angle(L, *start, ho);
+  if (!free) return free.error();
+  out.free = std::move(*free);
+  auto locked = areal_locked_hold_angle(L, out.free.rest, ho);
+  if (!locked) return locked.error();
+  out.locked = *locked;
+  auto dfree = areal_hold_distribution(L, ho);
+  if (!dfree) return dfree.error();
+  out.free_drops = std::move(*dfree);
+  ho.lateral = LateralMotion::Locked;
+  auto dlocked = areal_hold_distribution(L, ho);
+  if (!dlocked) return dlocked.error();
+  out.locked_drops = std::move(*dlocked);
+  // The two distributions over drops: weighted histograms of the basins' angles (percent of drops).
+  const double amax = std::max(out.free_drops.hold.max, out.locked_drops.hold.max);
+  const int bins = 40;
+  const double top = deg(amax) > 0 ? deg(amax) * 1.0001 : 1.0;  // (unit: deg)
+  for (int b = 0; b <= bins; ++b) out.edges.push_back(top * b / bins * kDeg);
+  auto percent = [&](const ArealHoldDistribution& d) {
+    std::vector<double> y(bins, 0.0);
+    for (std::size_t k = 0; k < d.angle.size(); ++k) {
+      const int b = std::clamp(int(deg(d.angle[k]) / top * bins), 0, bins - 1);
+      y[std::size_t(b)] += 100.0 * double(d.weight[k]) / double(d.drops);
+    }
+    return y;
+  };
+  out.free_percent = percent(out.free_drops);
+  out.locked_percent = percent(out.locked_drops);
+  return Ok{};
+}
+
+ReportDirections directions_of(const ReportInput& in) {
+  ReportDirections out;
+  DirectionalOptions o;
+  o.max_lines = in.max_lines;
+  o.threads = in.threads;
+  o.atomic_friction = in.atomic_friction;
+  o.signature.keep_contacts = false;
+  // small maps: shorter lines are accepted (at least 4 points, the directional minimum)
+  o.min_points = std::clamp<std::size_t>(std::min(in.map.nx, in.map.ny) / 2, 4, 32);
+  out.min_points = o.min_points;
+  auto table = anisotropy(in.map, in.directions, o);
+  if (!table) {
+    out.failure = table.error().message;
+    return out;
+  }
+  out.table = std::move(*table);
+  double best = -1, worst = 1e9, best_dir = 0, worst_dir = 0;
+  for (const auto& d : out.table) {
+    if (d.prediction.friction_angle > best) best = d.prediction.friction_angle, best_dir = d.angle;
+    if (d.prediction.friction_angle < worst) worst = d.prediction.friction_angle, worst_dir = d.angle;
+  }
+  out.best_angle = best;
+  out.best_direction = best_dir;
+  out.worst_angle = worst;
+  out.worst_direction = worst_dir;
+  return out;
+}
+
+Result<ReportResolution> resolution_of(const ReportInput& in, const ReportSurfaces& s, const SignatureOptions& so) {
+  constexpr std::size_t kResolutionOffsets = 1000;
+  ReportResolution out;
+  out.offsets = kResolutionOffsets;
+  const Profile& lower = s.lower;
+  const Profile& upper = s.upper;
+  const double L = std::min(lower.length(), upper.length());
+  const double h = std::max(lower.length() / double(lower.size() - 1), upper.length() / double(upper.size() - 1));
+  const double cmax = L / 2, cmin = 4 * h;
+  out.cutoff_max = cmax;
+  out.cutoff_min = cmin;
+  // The short reliability cutoff of the tip: the larger of the surfaces' (the map's: rows and
+  // columns). NaN: the tip fails up to a quarter of the scan; 0: it follows every scale.
+  if (in.tip_radius > 0) {
+    auto c =
+        in.is_map ? short_reliability_cutoff(in.map, in.tip_radius) : short_reliability_cutoff(lower, in.tip_radius);
+    if (!c) return c.error();
+    double v = *c;
+    if (s.pair && !std::isnan(v)) {
+      auto cu = short_reliability_cutoff(upper, in.tip_radius);
+      if (!cu) return cu.error();
+      v = std::isnan(*cu) ? *cu : std::max(v, *cu);
+    }
+    out.tip_cutoff = v;
+  }
+  if (!(cmax > cmin * 1.5)) return out;  // too few points
+  for (int k = 0; k < in.resolution_steps; ++k) {
+    const double c = cmax * std::pow(cmin / cmax, double(k) / double(in.resolution_steps - 1));
+    auto lf = gaussian_lowpass(lower, c);
+    if (!lf) return lf.error();
+    Profile uf;
+    if (s.pair) {
+      auto u = gaussian_lowpass(upper, c);
+      if (!u) return u.error();
+      uf = std::move(*u);
+    } else {
+      uf = *lf;
+    }
+    // Sampled offsets (each evaluated exactly): a trend over cutoffs needs no event-exact
+    // maximum, and smooth filtered pairs on grids that do not align cost seconds per cutoff
+    // exactly (bench/results/report.md).
+    SignatureOptions rso = so;
+    rso.offsets = kResolutionOffsets;
+    auto rs = signature(*lf, rotate180(uf), rso);
+    if (!rs) return rs.error();
+    auto pr = predict_friction(in.atomic_friction, rs->theta_max_forward, rs->contact_slope_std);
+    if (!pr) return pr.error();
+    ReportResolutionRow row;
+    row.cutoff = c;
+    row.theta_max_forward = rs->theta_max_forward;
+    row.theta_max_backward = rs->theta_max_backward;
+    row.contact_slope_std = rs->contact_slope_std;
+    row.friction_coefficient = pr->friction_coefficient;
+    row.below_tip = out.tip_cutoff && (std::isnan(*out.tip_cutoff) || c < *out.tip_cutoff);
+    out.rows.push_back(row);
+  }
+  return out;
+}
+
+}  // namespace
+
+Result<ReportData> report_data(const ReportInput& in) {
+  if (auto st = check_input(in); !st) return st.error();
+  ReportData d;
+  auto surfaces = surfaces_of(in);
+  if (!surfaces) return surfaces.error();
+  d.surfaces = std::move(*surfaces);
+  const ReportSurfaces& s = d.surfaces;
+
+  SignatureOptions so;
+  so.threads = in.threads;
+  so.keep_contacts = false;
+  so.bins = in.bins;
+  auto sig = signature(s.lower, rotate180(s.upper), so);
+  if (!sig) return sig.error();
+  d.signature = std::move(*sig);
+  const SignatureResult& r = d.signature;
+  auto fwd = predict_friction(in.atomic_friction, r.theta_max_forward, r.contact_slope_std);
+  if (!fwd) return fwd.error();
+  d.forward = *fwd;
+  auto bwd = predict_friction(in.atomic_friction, r.theta_max_backward, r.contact_slope_std);
+  if (!bwd) return bwd.error();
+  d.backward = *bwd;
+
+  d.slopes = slopes_of(s, r, in.bins);
+
+  auto hold = hold_of(in, s, so, d.forward);
+  if (!hold) return hold.error();
+  d.hold = std::move(*hold);
+
+  if (in.is_map && in.upper_map) {
+    ReportArealHold a;
+    if (auto st = areal_hold_into(in, a); !st) {
+      a = ReportArealHold{};
+      a.failure = st.error().message;
+    }
+    d.areal_hold = std::move(a);
+  }
+  if (in.is_map) d.directions = directions_of(in);
+  if (in.resolution_steps >= 2) {
+    auto res = resolution_of(in, s, so);
+    if (!res) return res.error();
+    d.resolution = std::move(*res);
+  }
+  return d;
+}
+
+}  // namespace frictal::report

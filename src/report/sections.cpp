@@ -1,0 +1,694 @@
+// The sections of the page of `frictal report`: each writer takes the results of report_data()
+// and writes HTML (plots, tables, captions); nothing here computes an analysis.
+#include "report/sections.hpp"
+
+#include <fmt/core.h>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "frictal/units.hpp"
+
+namespace frictal::report::detail {
+
+namespace {
+
+constexpr double kDeg = units::kRadPerDeg;
+constexpr double deg(double rad) { return units::to_deg(rad); }
+
+std::string fmt_len(double v, const LengthUnit& u, int digits = 4) {
+  return fmt::format("{:.{}g} {}", v / u.scale, digits, u.name);
+}
+std::string fmt_deg(double rad) {
+  const double d = deg(rad);
+  return fmt::format("{:.3f}\u00b0", std::abs(d) < 5e-4 ? 0.0 : d);  // no "-0.000"
+}
+std::string fmt_mu(double mu) {
+  if (!std::isfinite(mu)) return std::string("\u221e (interlocked)");
+  return fmt::format("{:.4f}", std::abs(mu) < 5e-5 ? 0.0 : mu);  // no "-0.0000"
+}
+
+std::string row(const std::string& name, const std::string& value, const std::string& note = "") {
+  return fmt::format("<tr><th>{}</th><td>{}</td><td class=\"note\">{}</td></tr>\n", name, value, note);
+}
+
+std::string figure(const std::string& svg, const std::string& caption) {
+  return fmt::format("<figure>{}<figcaption>{}</figcaption></figure>\n", svg, caption);
+}
+
+/// A table with a forward and a backward column; rows added by `two`.
+struct TwoWayTable {
+  std::string html =
+      "<table class=\"friction\"><tr><th></th><th>towards +x (forward)</th><th>towards −x (backward)</th></tr>\n";
+  void two(const std::string& name, const std::string& a, const std::string& b) {
+    html += fmt::format("<tr><th>{}</th><td>{}</td><td>{}</td></tr>\n", name, a, b);
+  }
+  std::string done() { return html + "</table>\n"; }
+};
+
+/// The file name without its folders (titles and legends; the full paths are stated in the assumptions).
+std::string base(const std::string& path) {
+  const auto k = path.find_last_of('/');
+  return k == std::string::npos ? path : path.substr(k + 1);
+}
+
+/// The unit of offsets and lateral lengths: that of the longer surface.
+LengthUnit lateral_unit(const ReportData& d) {
+  return length_unit(std::max(d.surfaces.lower.length(), d.surfaces.upper.length()));
+}
+
+/// The signature's theta as a drawable line: piecewise between events, each interval from its two
+/// one-sided values (theta_right at its start, theta_left at its end).
+Series signature_series(const SignatureResult& r, const LengthUnit& u, const std::string& label,
+                        const std::string& color) {
+  Series s;
+  s.label = label;
+  s.color = color;
+  s.line_width = 1.2;
+  const std::size_t n = r.offset.size();
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    s.x.push_back(r.offset[i] / u.scale);
+    s.y.push_back(deg(r.theta_right[i]));
+    s.x.push_back(r.offset[i + 1] / u.scale);
+    s.y.push_back(deg(r.theta_left[i + 1]));
+  }
+  if (n == 1) {
+    s.x.push_back(r.offset[0] / u.scale);
+    s.y.push_back(deg(r.theta[0]));
+    s.style = SeriesStyle::Points;
+  }
+  return s;
+}
+
+/// A histogram over angles (unit: rad; density 1/rad) drawn in degrees (density 1/deg).
+Series histogram_series(const Histogram& h, const std::string& label, const std::string& color, bool dashed = false) {
+  Series s;
+  s.style = SeriesStyle::Step;
+  s.label = label;
+  s.color = color;
+  s.dashed = dashed;
+  for (double e : h.edges) s.x.push_back(deg(e));
+  for (double d : h.density) s.y.push_back(d * kDeg);  // per degree
+  return s;
+}
+
+std::string profile_stats_table(const ProfileStats& st, bool uniform, const std::string& name) {
+  const LengthUnit zu = length_unit(st.rms_height > 0 ? 3 * st.rms_height : 1e-9);
+  std::string t = fmt::format("<table class=\"stats\"><caption>Profile statistics: {}</caption>\n", escape_html(name));
+  t += row("points", fmt::format("{}", st.points), uniform ? "uniform spacing" : "non-uniform spacing");
+  t += row("length L", fmt_len(st.length, length_unit(st.length)), "x_max − x_min");
+  t += row("rms height", fmt_len(st.rms_height, zu), "exact for the polyline");
+  t += row("rms slope", fmt::format("{:.4f}", st.rms_slope), "√⟨z′²⟩");
+  t += row("steepest edge", fmt_deg(st.max_slope), "max |atan z′|");
+  t += row("mean slope angle", fmt_deg(st.mean_slope), "⟨atan z′⟩");
+  return t + "</table>\n";
+}
+
+Result<std::string> map_figure_and_stats(const ReportInput& in, const ReportSurfaces& s) {
+  std::string html;
+  const MapStats& st = s.map_stats;
+  MapImage mi;
+  mi.title = "Height map";
+  mi.line_y = s.lower.x.empty() ? std::nullopt : std::optional<double>(s.line_y);
+  mi.line_x0 = in.map.x0 + s.lower.x.front();  // the central line's abscissa starts at the map's x0
+  mi.line_x1 = in.map.x0 + s.lower.x.back();
+  mi.line_label = "line used for the signature";
+  auto svg = map_svg(in.map, mi);
+  if (!svg) return svg.error();
+  const std::size_t f = std::max<std::size_t>(1, (std::max(in.map.nx, in.map.ny) + mi.max_pixels - 1) / mi.max_pixels);
+  const LengthUnit lu = length_unit(std::max(st.width, st.height));
+  html +=
+      figure(*svg, fmt::format("{} × {} points, {} × {}; spacing {} × {}. {}Colours span the {:g} to {:g} % "
+                               "quantiles of the heights (outliers saturate); grey: no data.",
+                               in.map.nx, in.map.ny, fmt_len(st.width, lu), fmt_len(st.height, lu),
+                               fmt_len(in.map.dx, length_unit(in.map.dx)), fmt_len(in.map.dy, length_unit(in.map.dy)),
+                               f > 1 ? fmt::format("Shown block-averaged {} × {} to {} × {} pixels. ", f, f,
+                                                   (in.map.nx + f - 1) / f, (in.map.ny + f - 1) / f)
+                                     : std::string(),
+                               100 * mi.low_quantile, 100 * mi.high_quantile));
+  const LengthUnit zu = length_unit(st.Sq > 0 ? st.Sq : 1e-9);
+  html += "<table class=\"stats\"><caption>Areal statistics (ISO 25178-2 style, about the mean)</caption>\n";
+  html +=
+      row("points (valid)", fmt::format("{} ({})", st.points, st.valid), st.valid < st.points ? "holes excluded" : "");
+  html += row("Sq", fmt_len(st.Sq, zu), "rms height");
+  html += row("Sa", fmt_len(st.Sa, zu), "mean absolute height");
+  html += row("Sp / Sv / Sz", fmt::format("{} / {} / {}", fmt_len(st.Sp, zu), fmt_len(st.Sv, zu), fmt_len(st.Sz, zu)),
+              "highest peak, deepest valley, their sum");
+  html += row("Ssk / Sku", fmt::format("{:.4f} / {:.4f}", st.Ssk, st.Sku), "skewness, kurtosis");
+  html += row("Sdq", fmt::format("{:.4f}", st.Sdq), "rms gradient (forward differences)");
+  html += row("steepest neighbour slope", fmt_deg(st.max_slope), "");
+  html += "</table>\n";
+  return html;
+}
+
+Result<std::string> profile_figure(const ReportSurfaces& s, const LengthUnit& xu) {
+  Plot p;
+  p.title = s.pair ? "The two surfaces, as measured (material below)" : "The surface profile";
+  const double zmag = std::max(s.lower_stats.rms_height, s.upper_stats.rms_height);
+  const LengthUnit zu = length_unit(zmag > 0 ? 3 * zmag : 1e-9);
+  p.x_label = fmt::format("x ({})", xu.name);
+  p.y_label = fmt::format("height z ({})", zu.name);
+  auto add = [&](const Profile& pr, const std::string& label, const std::string& color) {
+    Series sr;
+    sr.label = label;
+    sr.color = color;
+    sr.line_width = 1.0;
+    for (std::size_t i = 0; i < pr.size(); ++i) {
+      sr.x.push_back(pr.x[i] / xu.scale);
+      sr.y.push_back(pr.z[i] / zu.scale);
+    }
+    p.series.push_back(std::move(sr));
+  };
+  add(s.lower, s.pair ? "lower: " + base(s.lower_name) : base(s.lower_name), "#1f77b4");
+  if (s.pair) add(s.upper, "upper: " + base(s.upper_name), "#d62728");
+  p.height = 300;
+  auto svg = plot_svg(p);
+  if (!svg) return svg.error();
+  const double ex = xu.scale / zu.scale;
+  return figure(*svg, ex > 1.5 ? fmt::format("Heights (in {}) are drawn magnified relative to x (in {}); slopes "
+                                             "below are true slopes.",
+                                             zu.name, xu.name)
+                               : std::string("Heights and x on their own scales; slopes below are true slopes."));
+}
+
+/// mean ± std (5–95 %: q05 … q95) of a distribution of angles.
+std::string angle_range(const HoldStatistics& st) {
+  return fmt::format("{} ± {} (5–95 %: {} … {})", fmt_deg(st.mean), fmt_deg(st.std), fmt_deg(st.q05), fmt_deg(st.q95));
+}
+
+std::string tip_sentence(const ReportInput& in, const std::optional<double>& tip_cutoff) {
+  if (!tip_cutoff) return {};
+  const std::string r = fmt_len(in.tip_radius, length_unit(in.tip_radius));
+  if (std::isnan(*tip_cutoff))
+    return fmt::format(
+        " A tip of radius {} cannot follow this surface at any scale up to a quarter of its length (its peaks "
+        "are curved more than 1/(2R) there): no cutoff on this page is reliable.",
+        r);
+  if (*tip_cutoff == 0)
+    return fmt::format(
+        " A tip of radius {} follows this surface down to the sampling interval: every cutoff here is within "
+        "its reach.",
+        r);
+  return fmt::format(
+      " The dashed grey vertical line is the short reliability cutoff for a tip of radius {}: {} (below it the "
+      "measured peaks are curved more than 1/(2R), half the tip's curvature: the scan shows the tip rather than "
+      "the surface, and θ_max from the finer scales is not to be trusted; rows below it are marked in the "
+      "table).",
+      r, fmt_len(*tip_cutoff, length_unit(*tip_cutoff)));
+}
+
+}  // namespace
+
+// --- the surface -----------------------------------------------------------------------------
+Result<std::string> surface_section(const ReportInput& in, const ReportData& d) {
+  const ReportSurfaces& s = d.surfaces;
+  auto fig = in.is_map ? map_figure_and_stats(in, s) : profile_figure(s, lateral_unit(d));
+  if (!fig) return fig.error();
+  std::string html = std::move(*fig);
+  html += profile_stats_table(s.lower_stats, s.lower_uniform,
+                              in.is_map ? "the central line along x (used below)" : base(s.lower_name));
+  if (s.pair) html += profile_stats_table(s.upper_stats, s.upper_uniform, base(s.upper_name));
+  return html;
+}
+
+// --- the signature ---------------------------------------------------------------------------
+Result<std::string> signature_section(const ReportInput&, const ReportData& d) {
+  const SignatureResult& r = d.signature;
+  const LengthUnit xu = lateral_unit(d);
+  Plot p;
+  p.title = "Signature function θ(x_ofs) (Eq. 1–3)";
+  p.x_label = fmt::format("offset x_ofs of the upper block ({})", xu.name);
+  p.y_label = "contact slope θ (deg)";
+  p.series.push_back(signature_series(r, xu, "", "#1f77b4"));
+  p.lines.push_back(
+      {true, deg(r.theta_max_forward), fmt::format("θ_max forward = {:.3f}°", deg(r.theta_max_forward)), "#d62728"});
+  p.lines.push_back({true, -deg(r.theta_max_backward),
+                     fmt::format("−θ_max backward = −{:.3f}°", deg(r.theta_max_backward)), "#2ca02c"});
+  auto svg = plot_svg(p);
+  if (!svg) return svg.error();
+  return figure(*svg,
+                fmt::format("{} offsets{}; θ is the slope of the steepest contact at each offset; between offsets the "
+                            "line joins the exact one-sided slopes of the lift h(x_ofs).",
+                            r.offset.size(),
+                            r.exact ? fmt::format(" (every one of the {} event offsets: exact)", r.events)
+                                    : " (the point grids do not align: offsets sampled at the finer point spacing, "
+                                      "each evaluated exactly)"));
+}
+
+// --- slope distributions (Fig. 16 style) -------------------------------------------------------
+Result<std::string> slopes_section(const ReportInput& in, const ReportData& d) {
+  const ReportSlopes& sl = d.slopes;
+  const ReportSurfaces& s = d.surfaces;
+  const SignatureResult& r = d.signature;
+  Plot p;
+  p.title = "Slope distributions (paper Fig. 16)";
+  p.x_label = "slope angle (deg)";
+  p.y_label = "probability density (1/deg)";
+  p.series.push_back(histogram_series(sl.lower, s.pair ? "surface slopes: lower" : "surface slopes", "#1f77b4"));
+  if (s.pair) p.series.push_back(histogram_series(sl.upper, "surface slopes: upper", "#9467bd", true));
+  p.series.push_back(histogram_series(sl.contact, "contact slopes θ(x_ofs)", "#d62728"));
+  auto svg = plot_svg(p);
+  if (!svg) return svg.error();
+  return figure(
+      *svg,
+      fmt::format(
+          "Surface slopes: every edge of the profile weighted by its length. Contact slopes: θ at each offset "
+          "weighted "
+          "by the offset length it stands for; mean {}, standard deviation σ = {} (Eq. 18). {} bins over ±{:.2f}°{}.",
+          fmt_deg(r.contact_slope_mean), fmt_deg(r.contact_slope_std), in.bins, deg(sl.limit),
+          sl.outside_length > 0
+              ? fmt::format("; {:.2f} % of the surface length is steeper (counted in the densities, beyond "
+                            "the axis; steepest edge {})",
+                            100 * sl.outside_length / sl.total_length,
+                            fmt_deg(std::max(s.lower_stats.max_slope, s.upper_stats.max_slope)))
+              : std::string()));
+}
+
+// --- friction ---------------------------------------------------------------------------------
+Result<std::string> friction_section(const ReportInput& in, const ReportData& d) {
+  const SignatureResult& r = d.signature;
+  const FrictionPrediction& fwd = d.forward;
+  const FrictionPrediction& bwd = d.backward;
+  TwoWayTable t;
+  t.two("θ_max (steepest reachable contact)", fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward));
+  t.two("σ (std of the contact slopes)", fmt_deg(r.contact_slope_std), fmt_deg(r.contact_slope_std));
+  t.two("atomic friction μ_a, θ_a = atan μ_a", fmt::format("{:g}, {}", in.atomic_friction, fmt_deg(fwd.atomic_angle)),
+        fmt::format("{:g}, {}", in.atomic_friction, fmt_deg(bwd.atomic_angle)));
+  t.two("rigid upper bound θ_a + θ_max (Eq. 6)", fmt_deg(fwd.friction_angle), fmt_deg(bwd.friction_angle));
+  t.two("upper bound of μ, tan(θ_a + θ_max)", fmt_mu(fwd.friction_coefficient), fmt_mu(bwd.friction_coefficient));
+  t.two("Eq. 18 range of φ", fmt::format("{} … {}", fmt_deg(fwd.friction_angle_low), fmt_deg(fwd.friction_angle)),
+        fmt::format("{} … {}", fmt_deg(bwd.friction_angle_low), fmt_deg(bwd.friction_angle)));
+  t.two("Eq. 18 range of μ",
+        fmt::format("{} … {}", fmt_mu(fwd.friction_coefficient_low), fmt_mu(fwd.friction_coefficient)),
+        fmt::format("{} … {}", fmt_mu(bwd.friction_coefficient_low), fmt_mu(bwd.friction_coefficient)));
+  std::string html = t.done();
+  html += fmt::format(
+      "<p class=\"verdict\">Predicted static friction coefficient <b>μ = {}</b> for sliding towards +x "
+      "(statistical range {} … {}, Eq. 18) and <b>{}</b> towards −x, with μ_a = {:g}.</p>\n",
+      fmt_mu(fwd.friction_coefficient), fmt_mu(fwd.friction_coefficient_low), fmt_mu(fwd.friction_coefficient),
+      fmt_mu(bwd.friction_coefficient), in.atomic_friction);
+  return html;
+}
+
+// --- what a tilt test reads: the hold angle (hold.hpp) -----------------------------------------
+Result<std::string> hold_section(const ReportInput&, const ReportData& d) {
+  const HoldAnalysis& ha = d.hold.analysis;
+  const HoldDistribution& f = ha.distribution.forward;
+  const HoldDistribution& b = ha.distribution.backward;
+  const FrictionPrediction& fwd = d.forward;
+  const FrictionPrediction& bwd = d.backward;
+  const LengthUnit xu = lateral_unit(d);
+  // h(s) over the drop range with the basins' rest offsets.
+  Plot lp;
+  lp.title = "Lift h(x_ofs) of the upper block and the basins where dropped blocks rest";
+  lp.x_label = fmt::format("offset x_ofs of the upper block ({})", xu.name);
+  double hlo = std::numeric_limits<double>::infinity(), hhi = -hlo;  // the lift's range shown: its unit
+  for (std::size_t i = 0; i < ha.curve.offset.size(); ++i)
+    if (ha.curve.offset[i] >= f.drop_min && ha.curve.offset[i] <= f.drop_max) {
+      hlo = std::min(hlo, ha.curve.lift[i]);
+      hhi = std::max(hhi, ha.curve.lift[i]);
+    }
+  const LengthUnit hu = length_unit(std::max(std::abs(hlo), std::abs(hhi)));
+  lp.y_label = fmt::format("lift h ({})", hu.name);
+  Series ls, rs;
+  ls.label = "h(x_ofs)";
+  ls.color = "#1f77b4";
+  ls.line_width = 1.2;
+  for (std::size_t i = 0; i < ha.curve.offset.size(); ++i) {
+    ls.x.push_back(ha.curve.offset[i] / xu.scale);
+    ls.y.push_back(ha.curve.lift[i] / hu.scale);
+  }
+  rs.label = fmt::format("rest offsets ({} basins)", f.basins.rest.size());
+  rs.color = "#d62728";
+  rs.style = SeriesStyle::Points;
+  for (std::size_t k = 0; k < f.basins.rest.size() && k < d.hold.rest_lift.size(); ++k) {
+    rs.x.push_back(f.basins.rest[k] / xu.scale);
+    rs.y.push_back(d.hold.rest_lift[k] / hu.scale);
+  }
+  lp.series = {ls, rs};
+  lp.x_min = f.drop_min / xu.scale;
+  lp.x_max = f.drop_max / xu.scale;
+  auto lsvg = plot_svg(lp);
+  if (!lsvg) return lsvg.error();
+  Plot hp;
+  hp.title = "Hold angle over drops (towards +x): the distribution repeated tilt tests give";
+  hp.x_label = "friction angle φ (deg)";
+  hp.y_label = "probability density (1/deg)";
+  hp.series.push_back(histogram_series(d.hold.hold, "quasi-static hold angle φ_qs", "#1f77b4"));
+  hp.series.push_back(histogram_series(d.hold.inertial, "inertial bound φ_in", "#9467bd", true));
+  hp.bands.push_back({false, deg(fwd.friction_angle_low), deg(fwd.friction_angle), "Eq. 18 range", "#f2c94c", 0.3});
+  hp.lines.push_back(
+      {false, deg(fwd.friction_angle), fmt::format("θ_a + θ_max = {:.3f}°", deg(fwd.friction_angle)), "#d62728"});
+  auto hsvg = plot_svg(hp);
+  if (!hsvg) return hsvg.error();
+  std::string html =
+      "<p>θ_max bounds the friction of a rigid pair; a tilt test reads something else. A block put down at one "
+      "offset slides to the bottom of its basin of the lift h; tilted slowly, it stays where the slope of h ahead "
+      "of it is at least the tilt and otherwise slips to the next steeper slope; the test reads the tilt at the "
+      "first slip of at least the run-away distance d (the <i>quasi-static hold angle</i> φ_qs). Without "
+      "dissipation a block coasts d once no point of h within d rises above the chord from its rest: the "
+      "<i>inertial bound</i> φ_in. Definitions: docs/analysis.md.</p>\n";
+  html += figure(*lsvg, fmt::format("The lift h over the drops' range; red: the rest offsets of the {} basins "
+                                    "(local minima of h) into which drops spread uniformly over the range fall.",
+                                    f.basins.rest.size()));
+  html += figure(
+      *hsvg,
+      fmt::format("Each basin weighted by the width of the drop range it drains; run-away distance d = {:.4g} {}. "
+                  "Shaded: Eq. 18's heuristic range [θ_max − σ, θ_max] + θ_a over the offset range; a block "
+                  "that slips on before the run-away can reach steeper contacts beyond it.",
+                  ha.runaway_distance / xu.scale, xu.name));
+  TwoWayTable t;
+  t.two("quasi-static hold angle φ_qs over drops", angle_range(f.hold), angle_range(b.hold));
+  t.two("inertial bound φ_in over drops", angle_range(f.inertial), angle_range(b.inertial));
+  t.two("Eq. 18 range of φ", fmt::format("{} … {}", fmt_deg(fwd.friction_angle_low), fmt_deg(fwd.friction_angle)),
+        fmt::format("{} … {}", fmt_deg(bwd.friction_angle_low), fmt_deg(bwd.friction_angle)));
+  html += t.done();
+  return html;
+}
+
+// --- areal blocks that may move sideways (two maps) ----------------------------------------------
+Result<std::string> areal_hold_section(const ReportInput&, const ReportData& d) {
+  const ReportArealHold& a = *d.areal_hold;
+  auto write = [&]() -> Result<std::string> {
+    if (!a.failure.empty()) return make_error(a.failure);
+    const ArealLift& L = a.lift;
+    // The lift as a map over (u, v) (sliding along x: u = x, v = y).
+    Map lm;
+    lm.nx = L.n_along;
+    lm.ny = L.n_across;
+    lm.dx = L.step;
+    lm.dy = L.across_step;
+    lm.x0 = L.along(0);
+    lm.y0 = L.across(0);
+    lm.heights = L.lift;
+    MapImage mi;
+    mi.title = "The lift h over two dimensions of offset";
+    mi.x_label = "offset along the sliding direction, s_x";
+    mi.y_label = "offset across it, s_y";
+    mi.z_label = "lift h";
+    mi.absolute_axes = true;
+    for (std::size_t k : a.free.path) {
+      const auto p = L.offset_xy(k);
+      mi.path_x.push_back(p[0]);
+      mi.path_y.push_back(p[1]);
+    }
+    mi.path_label = a.free.ran_off_end ? "runs off the grid" : "run-away";
+    const auto s0 = L.offset_xy(a.free.start), r0 = L.offset_xy(a.free.rest), h0 = L.offset_xy(a.free.hold_node);
+    mi.marks.push_back({s0[0], s0[1], "drop", "#ffffff"});
+    mi.marks.push_back({r0[0], r0[1], "rest", "#d62728"});
+    if (a.free.hold_node != a.free.rest) mi.marks.push_back({h0[0], h0[1], "held", "#ff7f0e"});
+    auto msvg = map_svg(lm, mi);
+    if (!msvg) return msvg.error();
+    auto hist = [&](const std::vector<double>& percent, const std::string& label, const std::string& color) {
+      Series sr;
+      sr.style = SeriesStyle::Step;
+      sr.label = label;
+      sr.color = color;
+      for (double e : a.edges) sr.x.push_back(deg(e));
+      sr.y = percent;
+      return sr;
+    };
+    Plot hp;
+    hp.title = "Hold angle over drops";
+    hp.x_label = "hold angle (deg)";
+    hp.y_label = "drops (%)";
+    hp.series = {hist(a.free_percent, "free to move sideways", "#d62728"),
+                 hist(a.locked_percent, "locked (1D rule)", "#1f77b4")};
+    auto hsvg = plot_svg(hp);
+    if (!hsvg) return hsvg.error();
+    const LengthUnit su = length_unit(std::max(std::abs(L.along(L.n_along - 1)), std::abs(L.across(0))));
+    std::string html =
+        "<p>The upper map turned over onto the lower one and moved by an offset s in the plane; the lift h(s) is "
+        "the height of its reference point at contact. Tilted about the axis across the sliding direction (+x), a "
+        "rigid block that does not rotate moves on h under the tilt and steers around asperities if it may move "
+        "sideways. Definitions and how μ_a enters: docs/analysis.md (\"Areal blocks that may move sideways\").</p>\n";
+    html += figure(*msvg, fmt::format("{} × {} offsets; red: the path of a block dropped at s = 0 (white), from its "
+                                      "rest offset up to the end of its run-away slip (free to move sideways, run-away "
+                                      "distance {:.4g} {}).",
+                                      L.n_along, L.n_across, a.runaway_distance / su.scale, su.name));
+    html += figure(*hsvg, fmt::format("{} drops spread uniformly over the offsets (the last d along x and d from the "
+                                      "lateral edges left out), each node one drop.",
+                                      a.free_drops.drops));
+    std::string t = "<table class=\"friction\"><tr><th></th><th>free to move sideways</th><th>locked</th></tr>\n";
+    t += fmt::format("<tr><th>hold angle from s = 0 (rest at ({}, {}) {})</th><td>{}</td><td>{}</td></tr>\n",
+                     fmt::format("{:.4g}", r0[0] / su.scale), fmt::format("{:.4g}", r0[1] / su.scale), su.name,
+                     fmt_deg(a.free.hold_angle), fmt_deg(a.locked.hold_angle));
+    auto range = [](const HoldStatistics& st) {
+      return fmt::format("{} ± {} (5–95 %: {} … {}; min {}, max {})", fmt_deg(st.mean), fmt_deg(st.std),
+                         fmt_deg(st.q05), fmt_deg(st.q95), fmt_deg(st.min), fmt_deg(st.max));
+    };
+    t += fmt::format("<tr><th>over drops</th><td>{}</td><td>{}</td></tr>\n", range(a.free_drops.hold),
+                     range(a.locked_drops.hold));
+    t += "</table>\n";
+    html += t;
+    return html;
+  };
+  auto html = write();
+  if (!html) return fmt::format("<p>Not computed for this pair: {}.</p>\n", escape_html(html.error().message));
+  return html;
+}
+
+// --- friction over sliding directions (maps) ---------------------------------------------------
+Result<std::string> directions_section(const ReportInput& in, const ReportData& d) {
+  const ReportDirections& dir = *d.directions;
+  if (!dir.failure.empty()) return fmt::format("<p>Not computed for this map: {}.</p>\n", escape_html(dir.failure));
+  Series phi, low;
+  phi.label = "φ (Eq. 6), mean over parallel lines";
+  phi.color = "#d62728";
+  low.label = "φ − σ (Eq. 18 lower end)";
+  low.color = "#1f77b4";
+  low.dashed = true;
+  for (const auto& row : dir.table) {
+    phi.x.push_back(row.angle);
+    phi.y.push_back(deg(row.prediction.friction_angle));
+    low.x.push_back(row.angle);
+    low.y.push_back(std::max(0.0, deg(row.prediction.friction_angle_low)));
+  }
+  PolarPlot pp;
+  pp.title = "Friction over sliding directions";
+  pp.radius_label = "friction angle (deg)";
+  pp.series = {phi, low};
+  auto svg = polar_svg(pp);
+  if (!svg) return svg.error();
+  const double best = dir.best_angle, worst = dir.worst_angle;
+  std::string html = figure(
+      *svg, fmt::format("{} directions (0° = +x, 90° = +y). For each, up to {} parallel lines of the map (of at "
+                        "least {} points), each against itself turned over; θ_max and σ are length-weighted means "
+                        "over the lines. μ_a = {:g}.",
+                        in.directions, in.max_lines, dir.min_points, in.atomic_friction));
+  html += fmt::format(
+      "<p class=\"verdict\">Highest friction sliding towards {:.0f}°: φ = {} (μ = {}); lowest towards {:.0f}°: φ = "
+      "{} "
+      "(μ = {}). Anisotropy ratio μ_max/μ_min = {}.</p>\n",
+      deg(dir.best_direction), fmt_deg(best), fmt_mu(std::tan(best)), deg(dir.worst_direction), fmt_deg(worst),
+      fmt_mu(std::tan(worst)),
+      std::tan(worst) > 1e-6 ? fmt::format("{:.3f}", std::tan(best) / std::tan(worst))
+                             : std::string("unbounded (μ_min ≈ 0)"));
+  return html;
+}
+
+// --- resolution -------------------------------------------------------------------------------
+Result<std::string> resolution_section(const ReportInput& in, const ReportData& d) {
+  const ReportResolution& res = *d.resolution;
+  const SignatureResult& r = d.signature;
+  const LengthUnit xu = lateral_unit(d);
+  const std::string tip_text = tip_sentence(in, res.tip_cutoff);
+  if (res.rows.empty()) {
+    std::string html = fmt::format(
+        "<p>Too few points for a resolution study (needs a cutoff range from 4 spacings, {}, to half "
+        "the length, {}).</p>",
+        fmt_len(res.cutoff_min, xu), fmt_len(res.cutoff_max, xu));
+    if (!tip_text.empty()) html += "<p>" + tip_text.substr(1) + "</p>";
+    return html;
+  }
+  Series fw, bw, sg;
+  fw.label = "θ_max forward";
+  fw.color = "#d62728";
+  bw.label = "θ_max backward";
+  bw.color = "#2ca02c";
+  sg.label = "σ";
+  sg.color = "#1f77b4";
+  sg.dashed = true;
+  std::string t =
+      "<table class=\"resolution\"><tr><th>cutoff λ_c</th><th>θ_max forward</th><th>θ_max "
+      "backward</th><th>σ</th><th>μ forward (μ_a = " +
+      fmt::format("{:g}", in.atomic_friction) + ")</th></tr>\n";
+  for (const ReportResolutionRow& row : res.rows) {
+    const double c = row.cutoff;
+    fw.x.push_back(c / xu.scale);
+    fw.y.push_back(deg(row.theta_max_forward));
+    bw.x.push_back(c / xu.scale);
+    bw.y.push_back(deg(row.theta_max_backward));
+    sg.x.push_back(c / xu.scale);
+    sg.y.push_back(deg(row.contact_slope_std));
+    t += fmt::format(
+        "<tr{}><td>{}{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+        row.below_tip ? " class=\"below-tip\"" : "", fmt_len(c, xu), row.below_tip ? " (below tip cutoff)" : "",
+        fmt_deg(row.theta_max_forward), fmt_deg(row.theta_max_backward), fmt_deg(row.contact_slope_std),
+        row.friction_coefficient < 0 ? std::string("0 (θ_a + θ_max &lt; 0)") : fmt_mu(row.friction_coefficient));
+  }
+  t += fmt::format("<tr class=\"unfiltered\"><td>unfiltered</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>\n",
+                   fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward), fmt_deg(r.contact_slope_std),
+                   fmt_mu(d.forward.friction_coefficient));
+  t += "</table>\n";
+  Plot p;
+  p.title = "θ_max against resolution (measured analogue of Fig. 14)";
+  p.x_label = fmt::format("Gaussian low-pass cutoff wavelength λ_c ({})", xu.name);
+  p.y_label = "angle (deg)";
+  p.x_log = true;
+  fw.style = bw.style = SeriesStyle::Line;
+  p.series = {fw, bw, sg};
+  for (const Series* se : {&fw, &bw, &sg}) {  // markers at the computed cutoffs
+    Series m = *se;
+    m.style = SeriesStyle::Points;
+    m.label.clear();
+    p.series.push_back(std::move(m));
+  }
+  p.lines.push_back({true, deg(r.theta_max_forward), "unfiltered θ_max forward", "#d62728"});
+  p.lines.push_back({true, deg(r.theta_max_backward), "unfiltered θ_max backward", "#2ca02c"});
+  const std::optional<double>& tip_cutoff = res.tip_cutoff;
+  if (tip_cutoff && *tip_cutoff > 0 && std::isfinite(*tip_cutoff) && *tip_cutoff / xu.scale < fw.x.back())
+    p.x_min = *tip_cutoff / xu.scale / 1.3;  // the line inside the frame, left of the finest cutoff
+  if (tip_cutoff && *tip_cutoff > 0 && std::isfinite(*tip_cutoff))
+    p.lines.push_back({false, *tip_cutoff / xu.scale,
+                       fmt::format("tip R = {}: reliable above", fmt_len(in.tip_radius, length_unit(in.tip_radius))),
+                       "#555"});
+  auto svg = plot_svg(p);
+  if (!svg) return svg.error();
+  std::string html = figure(
+      *svg, fmt::format(
+                "The surface{} low-pass filtered (Gaussian, ISO 16610-21: 50 % transmission at λ_c) at {} cutoffs from "
+                "half "
+                "the length down to 4 point spacings, then the signature recomputed at {} equally spaced offsets "
+                "(each evaluated exactly; the unfiltered row is every event). From the coarsest to the finest "
+                "cutoff "
+                "θ_max forward goes from {} to {} (unfiltered: {}); the paper's Fig. 14 shows θ_max growing with the "
+                "resolution of Weierstrass–Mandelbrot profiles.",
+                d.surfaces.pair ? "s" : "", res.rows.size(), res.offsets, fmt::format("{:.3f}°", fw.y.front()),
+                fmt::format("{:.3f}°", fw.y.back()), fmt_deg(r.theta_max_forward)) +
+                tip_text);
+  html += t;
+  return html;
+}
+
+// --- the headline, the title, what was assumed --------------------------------------------------
+/// Two surfaces: an upper profile, or an upper map (the headline and the areal section are the pair's).
+bool two_surfaces(const ReportInput& in, const ReportData& d) { return d.surfaces.pair || in.upper_map.has_value(); }
+
+std::string page_title(const ReportInput& in, const ReportData& d) {
+  const ReportSurfaces& s = d.surfaces;
+  return two_surfaces(in, d) ? fmt::format("frictal report: {} on {}", base(s.lower_name), base(in.upper_name))
+                             : fmt::format("frictal report: {}", base(s.lower_name));
+}
+
+std::string headline(const ReportInput& in, const ReportData& d) {
+  const FrictionPrediction& fwd = d.forward;
+  const FrictionPrediction& bwd = d.backward;
+  const SignatureResult& r = d.signature;
+  std::string page;
+  if (in.prediction) {
+    const Prediction& p = *in.prediction;
+    const std::string drops =
+        p.single_drop ? "one drop" : fmt::format("{} {}", p.drops, p.is_map ? "drops" : "basins of the drops");
+    page += fmt::format(
+        "<p class=\"verdict\" id=\"headline\">A tilt test of {} reads <b>φ = {}</b> (μ = <b>{}</b>){}; rigid "
+        "upper bound θ_max + θ_a = {} (μ ≤ {}); the paper's Eq. 18 range {} … {}.<br><small>Model: {} ({}); "
+        "sliding at {:g}°, μ_a = {:g}; conditioning: {}; run-away distance {:.3g} m; over {}.</small></p>\n",
+        two_surfaces(in, d) ? "these surfaces" : "this surface against itself", fmt_deg(p.friction_angle.q50),
+        fmt_mu(p.friction_coefficient),
+        p.single_drop ? " from this drop"
+                      : fmt::format(", the median over drops; 90 % of tests between {} and {}",
+                                    fmt_deg(p.friction_angle.q05), fmt_deg(p.friction_angle.q95)),
+        fmt_deg(p.upper_bound_friction_angle), fmt_mu(std::tan(std::min(p.upper_bound_friction_angle, 1.5707963))),
+        fmt_deg(p.eq18_range[0]), fmt_deg(p.eq18_range[1]), p.model,
+        p.is_map ? "a rigid block free to move sideways, quasi-static"
+                 : "the quasi-static hold angle on the exact lift",
+        p.direction * 180 / std::numbers::pi, p.atomic_friction, escape_html(p.conditioning), p.runaway_distance,
+        drops);
+    if (!p.warnings.empty()) {
+      page += "<div class=\"warnings\" id=\"warnings\"><b>Warnings</b><ul>\n";
+      for (const Warning& w : p.warnings)
+        page += fmt::format("<li><code>{}</code>: {}</li>\n", escape_html(w.code), escape_html(w.message));
+      page += "</ul></div>\n";
+    }
+    // The same object as `frictal predict --json`, for scripts that read the page ("</" escaped).
+    std::string json = prediction_json(p, "", 0);
+    for (std::size_t k = 0; (k = json.find("</", k)) != std::string::npos; k += 3) json.replace(k, 2, "<\\/");
+    page += "<script type=\"application/json\" id=\"prediction\">" + json + "</script>\n";
+    page += fmt::format(
+        "<p class=\"bounds\">{}: rigid upper bound θ_max + θ_a = {} towards +x and {} towards −x (θ_max = {} / "
+        "{}).</p>\n",
+        in.is_map ? "The map's central line against itself" : "Signature function", fmt_deg(fwd.friction_angle),
+        fmt_deg(bwd.friction_angle), fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward));
+  } else {
+    page += fmt::format(
+        "<p class=\"verdict\">Rigid upper bound θ_max + θ_a: μ ≤ <b>{}</b> towards +x (Eq. 18 range {} … {}) "
+        "and μ ≤ <b>{}</b> towards −x; θ_max = {} / {}, μ_a = {:g}.</p>\n",
+        fmt_mu(fwd.friction_coefficient), fmt_mu(fwd.friction_coefficient_low), fmt_mu(fwd.friction_coefficient),
+        fmt_mu(bwd.friction_coefficient), fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward),
+        in.atomic_friction);
+  }
+  return page;
+}
+
+std::vector<std::string> assumptions(const ReportInput& in, const ReportData& d) {
+  const ReportSurfaces& s = d.surfaces;
+  const SignatureResult& r = d.signature;
+  const LengthUnit xu = lateral_unit(d);
+  std::vector<std::string> out;
+  if (in.is_map && in.upper_map)
+    out.push_back(fmt::format(
+        "The lower block's face is {}; the upper block's face is {} as measured (material below), turned over "
+        "onto it about the axis across x: the headline's prediction and the areal section. The sections on the "
+        "central line take the lower map's line against itself turned over (rotated 180°).",
+        escape_html(s.lower_name), escape_html(in.upper_name)));
+  else
+    out.push_back(s.pair ? fmt::format("The lower block's face is {}; the upper block's face is {} as measured "
+                                       "(material below), turned over by 180° to face it.",
+                                       escape_html(s.lower_name), escape_html(s.upper_name))
+                         : fmt::format("The upper block is the surface itself turned over (rotated 180°): {} "
+                                       "slides on a copy of itself.",
+                                       escape_html(s.lower_name)));
+  out.push_back(
+      fmt::format("Conditioning applied to each measured surface before anything else (crop, spike "
+                  "removal, form removal, in that order): <b>{}</b>.",
+                  escape_html(in.detrend.empty() ? std::string("none") : in.detrend)));
+  if (in.is_map)
+    out.push_back(fmt::format(
+        "The signature, slope distributions and resolution study use the map's central line along x (y = {}), "
+        "the longest valid run: {} points over {}. The polar plot uses parallel lines in every direction.",
+        fmt_len(s.line_y, length_unit(in.map.height())), s.lower.size(), fmt_len(s.lower.length(), xu)));
+  out.push_back(
+      "Rigid blocks: the upper block only translates (no rotation, no deformation). Contact slopes follow the "
+      "paper's exact polyline rules (edge–edge, vertex–edge, vertex–vertex).");
+  out.push_back(fmt::format("Offsets x_ofs from {} to {} ({}).", fmt_len(r.offset.front(), xu),
+                            fmt_len(r.offset.back(), xu),
+                            s.lower.period ? "one period" : "up to half the shorter block"));
+  out.push_back(fmt::format("Atomic friction μ_a = {:g} (Eq. 6).", in.atomic_friction));
+  out.push_back(
+      "Units: lengths as read from the file(s), converted to metres and shown in the unit printed on each axis; "
+      "angles in degrees.");
+  for (const auto& n : in.notes) out.push_back(escape_html(n));
+  return out;
+}
+
+// --- the list ---------------------------------------------------------------------------------
+const std::vector<PageSection>& page_sections() {
+  static const std::vector<PageSection> sections = {
+      {"surface", "The surface", [](const ReportData&) { return true; }, surface_section},
+      {"signature", "Signature function", [](const ReportData&) { return true; }, signature_section},
+      {"slopes", "Slope distributions", [](const ReportData&) { return true; }, slopes_section},
+      {"friction", "Predicted friction (Eq. 6 and 18)", [](const ReportData&) { return true; }, friction_section},
+      {"hold", "What a tilt test reads: the hold angle", [](const ReportData&) { return true; }, hold_section},
+      {"areal-hold", "Areal blocks that may move sideways",
+       [](const ReportData& d) { return d.areal_hold.has_value(); }, areal_hold_section},
+      {"directions", "Friction over sliding directions", [](const ReportData& d) { return d.directions.has_value(); },
+       directions_section},
+      {"resolution", "Dependence on resolution", [](const ReportData& d) { return d.resolution.has_value(); },
+       resolution_section},
+  };
+  return sections;
+}
+
+}  // namespace frictal::report::detail
