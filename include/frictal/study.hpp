@@ -21,6 +21,7 @@
 #include <variant>
 #include <vector>
 
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 
 namespace frictal::study {
@@ -91,6 +92,35 @@ struct OutputColumn {
   std::string description;
   bool array = false;  ///< an array (one value per index) rather than a scalar
 };
+
+/// The study outputs of the columns `keys` of an output table (frictal/outputs.hpp): the key, the
+/// interface unit ("1" for a count or a flag: a store holds numbers) and the table's meaning, so
+/// that a quantity that a kind stores and a command prints is declared once. A key not in the table
+/// is left out (the output key test then names the output that the kind stores undeclared).
+template <class T>
+std::vector<OutputColumn> outputs_of(const Columns<T>& cols, std::initializer_list<const char*> keys) {
+  std::vector<OutputColumn> out;
+  for (const char* k : keys)
+    for (const Column<T>& c : cols)
+      if (c.key == k) {
+        const bool number = c.unit == "count" || c.unit == "flag";
+        out.emplace_back(c.key, number ? "1" : c.unit, c.help, false);
+      }
+  return out;
+}
+
+/// The generic study writer of an output table: the columns `keys` of `value` as scalars of `out`,
+/// in the interface unit (degrees for "deg"), a flag as 1 or 0; text columns are not stored.
+template <class T>
+void put_outputs(TaskOutput& out, const Columns<T>& cols, const T& value, std::initializer_list<const char*> keys) {
+  for (const char* k : keys)
+    for (const Column<T>& c : cols) {
+      if (c.key != k || !c.si) continue;
+      const OutputValue v = to_interface(c.unit, c.si(value));
+      if (const double* d = std::get_if<double>(&v)) out.scalars[c.key] = *d;
+      if (const bool* b = std::get_if<bool>(&v)) out.scalars[c.key] = *b ? 1 : 0;
+    }
+}
 
 /// One axis of a plot view. `column` names a parameter, a scalar or (for both axes of a view
 /// together) an array of the task.

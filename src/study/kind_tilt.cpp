@@ -22,6 +22,20 @@
 namespace frictal::study {
 namespace {
 
+// The outputs this kind takes from the tilt test's output table (tilt_columns(): declared once).
+constexpr std::initializer_list<const char*> kTiltTableOutputs = {"predicted_friction_angle_deg",
+                                                                  "predicted_theta_max_deg",
+                                                                  "simulated_time_s",
+                                                                  "steps",
+                                                                  "upper_mass_kg",
+                                                                  "predicted_sphero_friction_angle_deg",
+                                                                  "predicted_sphero_theta_max_deg",
+                                                                  "rotation_before_slide_deg",
+                                                                  "rest_offset_m",
+                                                                  "predicted_hold_angle_deg",
+                                                                  "predicted_inertial_hold_angle_deg",
+                                                                  "predicted_sphero_hold_angle_deg"};
+
 using kind_detail::number;
 using kind_detail::run_tilt_retrying;
 
@@ -98,27 +112,17 @@ Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: determin
   auto& s = out.scalars;
   s["slid"] = r->slid ? 1 : 0;
   s["friction_angle_deg"] = r->friction_angle / kDeg;
-  s["predicted_friction_angle_deg"] = r->predicted_friction_angle / kDeg;
-  s["predicted_theta_max_deg"] = r->predicted_theta_max / kDeg;
+  // The quantities the tilt command prints too, from its output table (frictal/tilt.hpp).
+  put_outputs(out, tilt_columns(), TiltReport{*r, c}, kTiltTableOutputs);
   s["friction_angle_minus_theory_deg"] = (r->friction_angle - r->predicted_friction_angle) / kDeg;
   s["phi_minus_theta_max_deg"] = (r->friction_angle - r->predicted_theta_max) / kDeg;
   s["atomic_friction_angle_deg"] = std::atan(c.contact.atomic_friction) / kDeg;
   s["friction_coefficient"] = std::tan(r->friction_angle);
-  s["simulated_time_s"] = r->simulated_time;
-  s["steps"] = static_cast<double>(r->steps);
   s["steps_beyond_limit"] = static_cast<double>(r->steps_beyond_limit);
   s["time_step_s"] = c.time_step;
-  s["upper_mass_kg"] = r->upper_mass;
-  s["predicted_sphero_friction_angle_deg"] = r->predicted_sphero_friction_angle / kDeg;
-  s["predicted_sphero_theta_max_deg"] = r->predicted_sphero_theta_max / kDeg;
   s["friction_angle_minus_sphero_deg"] = (r->friction_angle - r->predicted_sphero_friction_angle) / kDeg;
-  s["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
   s["resting_overlap_m"] = r->scales.resting_overlap;
   // What the test reads from where the block rests (hold.hpp), rigid and rounded blocks.
-  s["rest_offset_m"] = r->rest_offset;
-  s["predicted_hold_angle_deg"] = r->predicted_hold_angle / kDeg;
-  s["predicted_inertial_hold_angle_deg"] = r->predicted_inertial_hold_angle / kDeg;
-  s["predicted_sphero_hold_angle_deg"] = r->predicted_sphero_hold_angle / kDeg;
   s["friction_angle_minus_sphero_hold_deg"] = (r->friction_angle - r->predicted_sphero_hold_angle) / kDeg;
   kind_detail::put_tilt_warnings(s, *r);
   if (*series) {
@@ -335,29 +339,18 @@ TaskKind tilt_kind() {
   k.outputs = {
       {"slid", "1", "1 if the upper block slid, else 0"},
       {"friction_angle_deg", "deg", "simulated friction angle (tilt at the slide)"},
-      {"predicted_friction_angle_deg", "deg", "signature prediction theta_max + atan(mu_a)"},
-      {"predicted_theta_max_deg", "deg", "theta_max of the signature of the same pair"},
       {"friction_angle_minus_theory_deg", "deg", "simulated minus predicted friction angle"},
       {"phi_minus_theta_max_deg", "deg", "simulated friction angle minus theta_max"},
       {"atomic_friction_angle_deg", "deg", "atan(mu_a)"},
       {"friction_coefficient", "1", "tan of the simulated friction angle"},
-      {"simulated_time_s", "s", "simulated time"},
-      {"steps", "1", "time steps"},
       {"steps_beyond_limit", "1", "steps above the explicit stability limit"},
       {"time_step_s", "s", "time step used (after retries with smaller steps)"},
-      {"upper_mass_kg", "kg", "mass of the upper block (areal density x area)"},
-      {"predicted_sphero_friction_angle_deg", "deg", "spheropolygon prediction (signature of the rounded blocks)"},
-      {"rest_offset_m", "m", "the upper block's offset (signature convention) when the loading starts"},
-      {"predicted_hold_angle_deg", "deg", "hold angle phi_qs from that rest, rigid profiles (hold.hpp)"},
-      {"predicted_inertial_hold_angle_deg", "deg", "inertial bound phi_in from that rest, rigid profiles"},
-      {"predicted_sphero_hold_angle_deg", "deg", "phi_qs from that rest for the rounded blocks (spheroradius)"},
       {"friction_angle_minus_sphero_hold_deg", "deg", "simulated minus the rounded blocks' phi_qs"},
-      {"predicted_sphero_theta_max_deg", "deg", "theta_max of the rounded blocks' signature"},
       {"friction_angle_minus_sphero_deg", "deg", "simulated minus spheropolygon prediction"},
-      {"rotation_before_slide_deg", "deg",
-       "largest rotation of the upper block against the lower one before the slide"},
       {"resting_overlap_m", "m", "W / k_n"},
   };
+  const std::vector<OutputColumn> table = outputs_of(tilt_columns(), kTiltTableOutputs);
+  k.outputs.insert(k.outputs.end(), table.begin(), table.end());
   const std::vector<OutputColumn> warning_columns = kind_detail::tilt_warning_columns();
   k.outputs.insert(k.outputs.end(), warning_columns.begin(), warning_columns.end());
   k.outputs.insert(k.outputs.end(),
