@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "frictal/predict.hpp"
+#include "frictal/units.hpp"
 #include "util/json_text.hpp"
 
 namespace frictal {
@@ -13,7 +14,6 @@ namespace frictal {
 namespace {
 
 using P = Prediction;
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 
 OutputColumn deg(std::string key, std::string help, std::function<double(const P&)> f) {
   return {std::move(key), "deg", std::move(help), [f](const P& p) { return OutputValue(f(p)); }};
@@ -115,9 +115,9 @@ const std::vector<OutputColumn>& prediction_columns() {
 OutputValue interface_value(const OutputColumn& c, const Prediction& p) {
   OutputValue v = c.si(p);
   if (c.unit != "deg") return v;
-  if (auto* d = std::get_if<double>(&v)) *d *= kDegPerRad;
+  if (auto* d = std::get_if<double>(&v)) *d = units::to_deg(*d);  // the one conversion (units.hpp)
   if (auto* l = std::get_if<std::vector<double>>(&v))
-    for (double& x : *l) x *= kDegPerRad;
+    for (double& x : *l) x = units::to_deg(x);
   return v;
 }
 
