@@ -1,12 +1,17 @@
-// frictal anisotropy MAP — polar table of the predicted friction angle over sliding directions,
-// from the parallel line profiles of an areal map (each against itself turned over); with
-// --areal, the true areal signature of the map against itself turned over instead; with --hold,
-// beside either, the hold angle over drops of a block that may move sideways (free) and of one
-// that may not (locked), on the lift over two dimensions of offset (areal.hpp).
+// frictal anisotropy MAP — polar table of the rigid upper bound of friction over sliding
+// directions, from the parallel line profiles of an areal map (each against itself turned over);
+// with --areal, the true areal signature of the map against itself turned over instead; with
+// --hold, beside either, the hold angle over drops of the continuous model per direction (the
+// library's predict(): the numbers of `frictal predict --direction`), the block free to move
+// sideways, and with --locked also locked to the direction (a diagnostic).
+#include <optional>
+
 #include "common.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
+#include "frictal/predict.hpp"
 #include "frictal/tilt.hpp"
+#include "map_hold.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
 
@@ -24,6 +29,9 @@ struct Args {
   std::string contact_slope = "lower";
   bool json = false;
   bool hold = false;
+  bool locked = false;
+  bool quiet = false;
+  int drops = PredictOptions{}.map_drops;
   double runaway_distance = 0;
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   unsigned threads = 0;
@@ -45,7 +53,13 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--upper", a->upper, "With --areal: the upper block's map (default: the same map turned over)");
   app.add_flag("--json", a->json, "Print one JSON object");
   app.add_flag("--hold", a->hold,
-               "Also the hold angle over drops per direction, free to move sideways and locked (2D lift; slower)");
+               "Also the hold angle over drops per direction: the continuous model of `frictal predict --direction`, "
+               "the block free to move sideways (slower: --drops x --drops drops per direction)");
+  app.add_option("--drops", a->drops, "With --hold: drops on an N x N grid over the drop range (2..64)")
+      ->capture_default_str();
+  app.add_flag("--locked", a->locked,
+               "With --hold: also the block locked to the direction (a diagnostic; doubles the cost)");
+  app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error (--hold)");
   // --runaway-distance: the tilt table's field (one description everywhere), here the hold angle's run-away.
   add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
   add_input_options(app, a->input);
@@ -69,9 +83,13 @@ std::function<int()> setup(CLI::App& app) {
     require(std::isfinite(a->runaway_distance) && a->runaway_distance >= 0,
             fmt::format("--runaway-distance {}: expected a finite number of metres > 0", a->runaway_distance));
     if (a->runaway_distance > 0 && !a->hold) throw UsageError("--runaway-distance needs --hold");
+    if (a->locked && !a->hold) throw UsageError("--locked needs --hold");
+    require(a->drops >= 2 && a->drops <= 64, fmt::format("--drops {}: expected 2..64", a->drops));
     Map u = m;
+    std::optional<PredictSurface> upper;  // --upper as read, for the hold angle
     if (!a->upper.empty()) {
       const SurfaceData us = load_surface(a->upper, a->input);
+      if (a->hold) upper = unwrap(predict_surface(us, a->upper));
       if (!us.is_map) throw UsageError(fmt::format("{}: a line profile; --upper needs an areal map", a->upper));
       ConditionedMap cu = unwrap(condition(us.map, cond, a->upper));
       records.push_back(cu.record);
@@ -79,12 +97,36 @@ std::function<int()> setup(CLI::App& app) {
       for (const auto& w : us.warnings) add_warning(warnings, {"reader", w});
       for (Warning& w : check_map(u, a->upper)) add_warning(warnings, std::move(w));
     }
+    // --hold: one prediction per direction, on the maps as read (predict() conditions them as above).
+    PredictSurface lower;
+    PredictOptions hold_options = conditioned_predict_options(a->cond, a->detrend);
+    std::string progress_prefix;
+    if (a->hold) {
+      lower = unwrap(predict_surface(s, a->file));
+      hold_options.atomic_friction = a->atomic_friction;
+      hold_options.runaway_distance = a->runaway_distance;
+      hold_options.map_drops = a->drops;
+      hold_options.map_locked = a->locked;
+      hold_options.threads = a->threads;
+      hold_options.progress = drop_progress("anisotropy", a->quiet, &progress_prefix, false);
+      // The whole job's estimated cost against the prediction's limit (each direction's own
+      // check would let 36 just-allowed directions through).
+      const std::size_t drops = std::size_t(a->drops * a->drops) * (a->locked ? 2 : 1);
+      const double work = map_work_estimate(u.valid_count(), drops) * a->directions;
+      require(hold_options.map_work_limit <= 0 || work <= hold_options.map_work_limit,
+              fmt::format("--hold: {} directions x {} drops on {} spheres would take about {:.0f} s of CPU, above "
+                          "the prediction's limit of {:.0f} s: fewer --directions or --drops, or crop or resample "
+                          "the map",
+                          a->directions, drops, u.valid_count(), work, hold_options.map_work_limit));
+    }
     nlohmann::json rows = nlohmann::json::array();
+    std::string text;  // the table, printed whole after the progress line
     if (!a->json)
-      fmt::print(
+      text += fmt::format(
           "{}: {} x {} map, {} directions ({})\n  dir_deg  theta+_deg  theta-_deg  sigma_deg  bound_deg  mu<={}\n",
           a->file, m.nx, m.ny, a->directions, a->areal ? "areal signature" : "line profiles",
-          a->hold ? "       hold_free_mean_deg  hold_locked_mean_deg" : "");
+          a->hold ? std::string("  hold_q50_deg  hold_q05 - q95_deg") + (a->locked ? "  locked_q50_deg" : "")
+                  : std::string());
     for (int k = 0; k < a->directions; ++k) {
       const double angle = 2 * std::numbers::pi * k / a->directions;
       double fwd, bwd, sigma;
@@ -113,25 +155,17 @@ std::function<int()> setup(CLI::App& app) {
       }
       const FrictionPrediction p = unwrap(predict_friction(a->atomic_friction, fwd, sigma));
       add_eq18_warning(warnings, p.low_clamped, fmt::format("direction {:g} deg", to_deg(angle)));
-      // The hold angles over drops on the 2D lift of the same pair (free, then locked).
-      HoldStatistics hold_free, hold_locked;
+      // The hold angle over drops of the same pair along this direction: predict() on the maps as
+      // read, with the same conditioning (the numbers of `frictal predict --direction`).
+      std::optional<Prediction> hold;
       if (a->hold) {
-        add_warning(warnings, {"grid-model",
-                               "the hold angles (--hold) come from the grid model of the lift (offsets on "
-                               "the map's lattice); the prediction, from the continuous model checked "
-                               "on MuJoCo, is `frictal predict --direction` (they differ by up to "
-                               "several degrees)"});
-        ArealLiftOptions lo;
-        lo.threads = a->threads;
-        const ArealLift lift = unwrap(areal_lift(m, u, angle, lo));
-        ArealHoldOptions ho;
-        ho.runaway_distance =
-            a->runaway_distance > 0 ? a->runaway_distance : 0.1 * (lift.along(lift.n_along - 1) - lift.along(0));
-        ho.atomic_friction = a->atomic_friction;
-        ho.threads = a->threads;
-        hold_free = unwrap(areal_hold_distribution(lift, ho)).hold;
-        ho.lateral = LateralMotion::Locked;
-        hold_locked = unwrap(areal_hold_distribution(lift, ho)).hold;
+        PredictOptions o = hold_options;
+        o.direction = (360.0 * k / a->directions) * kDeg;  // as `frictal predict --direction DEG` converts
+        progress_prefix = fmt::format("direction {} of {}, ", k + 1, a->directions);
+        hold = unwrap(predict(lower, a->upper.empty() ? nullptr : &*upper, o));
+        for (const Warning& w : hold->warnings)
+          if (w.code != "reader")
+            add_warning(warnings, {w.code, fmt::format("direction {:g} deg: {}", to_deg(angle), w.message)});
       }
       if (a->json) {
         nlohmann::json row;
@@ -143,33 +177,46 @@ std::function<int()> setup(CLI::App& app) {
         row["upper_bound_friction_coefficient"] = p.friction_coefficient;
         row["eq18_low_friction_coefficient"] = p.friction_coefficient_low;
         if (!a->areal) row["lines"] = lines;
-        if (a->hold) {
-          row["hold_angle_free_mean_deg"] = to_deg(hold_free.mean);
-          row["hold_angle_free_q50_deg"] = to_deg(hold_free.q50);
-          row["hold_angle_free_max_deg"] = to_deg(hold_free.max);
-          row["hold_angle_locked_mean_deg"] = to_deg(hold_locked.mean);
-          row["hold_angle_locked_q50_deg"] = to_deg(hold_locked.q50);
-          row["hold_angle_locked_max_deg"] = to_deg(hold_locked.max);
+        if (hold) {
+          row["hold_runaway_distance_m"] = hold->runaway_distance;
+          hold_statistics_json(row, "hold_angle", hold->friction_angle);
+          if (a->locked) hold_statistics_json(row, "hold_angle_locked", hold->locked_friction_angle, true);
         }
         rows.push_back(row);
       } else {
-        fmt::print("  {:7.1f}  {:10.4f}  {:10.4f}  {:9.4f}  {:7.4f}  {:.5f}", to_deg(angle), to_deg(fwd), to_deg(bwd),
-                   to_deg(sigma), to_deg(p.friction_angle), p.friction_coefficient);
-        if (a->hold) fmt::print("  {:19.4f}  {:20.4f}", to_deg(hold_free.mean), to_deg(hold_locked.mean));
-        fmt::print("\n");
+        text += fmt::format("  {:7.1f}  {:10.4f}  {:10.4f}  {:9.4f}  {:7.4f}  {:.5f}", to_deg(angle), to_deg(fwd),
+                            to_deg(bwd), to_deg(sigma), to_deg(p.friction_angle), p.friction_coefficient);
+        if (hold) {
+          text += fmt::format("  {:12.4f}  {:7.4f} - {:7.4f}", to_deg(hold->friction_angle.q50),
+                              to_deg(hold->friction_angle.q05), to_deg(hold->friction_angle.q95));
+          if (a->locked) text += fmt::format("  {:15.4f}", to_deg(hold->locked_friction_angle.q50));
+        }
+        text += fmt::format("\n");
       }
     }
+    if (hold_options.progress) fmt::print(stderr, "\n");
+    fmt::print("{}", text);
     if (a->json) {
       nlohmann::json j;
       j["file"] = a->file;
       j["method"] = a->areal ? "areal" : "lines";
+      if (a->hold) {
+        j["hold_model"] = "map-continuous-free";
+        j["hold_drops"] = a->drops * a->drops;
+      }
       j["atomic_friction"] = a->atomic_friction;
       j["directions"] = rows;
       j["conditioning"] = conditioning_text(records);
       j["warnings"] = warnings_json(warnings);
       print_json(j);
     } else {
-      fmt::print("  (theta_max-based rigid upper bounds; what a tilt test reads: frictal predict --direction DEG)\n");
+      fmt::print("  (theta_max-based rigid upper bounds; what a tilt test reads: frictal predict --direction DEG{})\n",
+                 a->hold
+                     ? fmt::format(", the hold_* columns: {} drops per direction, model map-continuous-free{}, "
+                                   "atomic friction mu_a = {:g} included",
+                                   a->drops * a->drops, a->locked ? " (locked: the block locked to the direction)" : "",
+                                   a->atomic_friction)
+                     : std::string());
       fmt::print("  conditioning: {}\n", conditioning_text(records));
       for (const Warning& w : warnings)
         if (w.code != "reader") print_warnings({w});

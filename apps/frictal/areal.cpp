@@ -1,12 +1,14 @@
 // frictal areal LOWER [UPPER] — the areal signature of two rigid blocks sliding along one
 // direction (the upper block turned over onto the lower one; default: LOWER against itself);
-// with --lateral/--runaway-distance/--start-offset, the lift over two dimensions of offset and
-// the hold angle of a block that may move sideways (free) or not (locked), from one drop or over
-// drops spread over the offset grid.
+// with --lateral/--runaway-distance/--start-offset/--drops, the hold angle of the continuous
+// model (the library's predict(): the numbers of `frictal predict`) with the block free to move
+// sideways or locked to the direction, from one drop or over drops.
 #include "frictal/areal.hpp"
 #include "common.hpp"
 #include "frictal/analysis.hpp"
+#include "frictal/predict.hpp"
 #include "frictal/tilt.hpp"
+#include "map_hold.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
 
@@ -30,131 +32,118 @@ struct Args {
   double runaway_distance = 0;
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   std::string start_offset;
-  double offset_min = 0, across_step = 0, across_max = 0;
+  int drops = PredictOptions{}.map_drops;
+  bool quiet = false;
   unsigned threads = 0;
   InputOptions input;
   ConditioningOptions cond;
   std::string conditioning;  ///< what the conditioning did (set after reading the maps)
+  CLI::Option* drops_option = nullptr;
 };
 
-int run_hold(const Args& a, const Map& f, const Map& g, std::vector<Warning> warnings) {
+// The hold angle over drops (or from one drop) of the continuous model, through the library's
+// predict(): the numbers of `frictal predict LOWER UPPER --direction ANGLE [--locked]` for the
+// same options. The block is free to move sideways (what a tilt test reads) or, with --lateral
+// locked, locked to the direction (a diagnostic; the free one is computed beside it, as predict
+// --locked does).
+int run_hold(const Args& a) {
   require(a.lateral.empty() || a.lateral == "free" || a.lateral == "locked",
           fmt::format("--lateral '{}' not understood (expected free or locked)", a.lateral));
   require(std::isfinite(a.runaway_distance) && a.runaway_distance >= 0,
           fmt::format("--runaway-distance {}: expected a finite number of metres > 0", a.runaway_distance));
-  require(std::isfinite(a.offset_min) && a.across_step >= 0 && a.across_max >= 0 && std::isfinite(a.across_step) &&
-              std::isfinite(a.across_max),
-          "--min-offset must be finite, --across-step and --across-max finite and >= 0 (metres)");
   require(a.output.empty(), "-o is not available with the hold angle (--lateral, --runaway-distance, --start-offset)");
-  ArealLiftOptions lo;
-  lo.step = a.step;
-  lo.offset_min = a.offset_min;
-  lo.offset_max = a.offset_max;
-  lo.across_step = a.across_step;
-  lo.across_max = a.across_max;
-  lo.threads = a.threads;
-  lo.turn_over_upper = !a.in_place;
-  const ArealLift lift = unwrap(areal_lift(f, g, a.angle * kDeg, lo));
-  ArealHoldOptions ho;
-  // A tenth of the offset range along d, as default_runaway_distance() (hold.hpp) for a pair
-  // that is not periodic.
-  ho.runaway_distance =
-      a.runaway_distance > 0 ? a.runaway_distance : 0.1 * (lift.along(lift.n_along - 1) - lift.along(0));
-  ho.atomic_friction = a.atomic_friction;
-  ho.threads = a.threads;
+  // The grid lift's options have no counterpart in the continuous model: its drops are an N x N
+  // grid over the drop range (--drops), its offsets continuous.
+  require(a.step == 0,
+          "--step: the hold angle (--lateral, --runaway-distance, --start-offset, --drops) is the "
+          "continuous model's, off any grid of offsets; --step applies to the areal signature only");
+  require(a.offset_max == 0,
+          "--max-offset: the hold angle's drops cover the drop range of `frictal predict` (docs/analysis.md); "
+          "--max-offset applies to the areal signature only");
+  require(a.contact_slope == "lower",
+          fmt::format("--contact-slope {}: the hold angle's rigid upper bound uses the lower face's slope (Eq. 3); "
+                      "--contact-slope applies to the areal signature only",
+                      a.contact_slope));
+  require(a.drops >= 2 && a.drops <= 64, fmt::format("--drops {}: expected 2..64", a.drops));
   const bool locked_mode = a.lateral == "locked";
-  std::size_t start = 0;
-  if (!a.start_offset.empty()) {
-    const auto xy = parse_offset(a.start_offset, "--start-offset");
-    auto node = areal_lift_node(lift, xy[0], xy[1]);
-    if (!node) throw UsageError("--start-offset: " + node.error().message, node.error().code);
-    start = *node;
-  } else {
-    // 0,0 when it lies on the grid, else the first offset along d on the line v = 0.
-    auto node = areal_lift_node(lift, 0.0, 0.0);
-    start = node ? *node : (lift.n_across / 2) * lift.n_along;
-  }
-  if (std::isnan(lift.lift[start]))
-    throw UsageError(
-        fmt::format("--start-offset: the blocks do not touch at offset ({}, {}) m (expected an offset "
-                    "where they overlap)",
-                    lift.offset_xy(start)[0], lift.offset_xy(start)[1]));
-  ho.lateral = LateralMotion::Free;
-  const ArealHold free = unwrap(areal_hold_angle(lift, start, ho));
-  // Locked: the 1D rule on the line through the free block's rest offset (hold.hpp's hold_angle;
-  // the grid's Locked process gives the same angle and the path).
-  ho.lateral = LateralMotion::Locked;
-  ArealHold locked = unwrap(areal_hold_angle(lift, free.rest, ho));
-  locked.hold_angle = unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
-  ho.lateral = locked_mode ? LateralMotion::Locked : LateralMotion::Free;
-  const ArealHold& chosen = locked_mode ? locked : free;
-  std::optional<ArealHoldDistribution> dist;
-  if (a.start_offset.empty()) dist = unwrap(areal_hold_distribution(lift, ho));
-  add_warning(warnings, {"grid-model",
-                         "the hold angles here come from the grid model of the lift (offsets on the "
-                         "map's lattice); the prediction, from the continuous model checked on "
-                         "MuJoCo, is `frictal predict` (they differ by up to several degrees)"});
-  const auto rest = lift.offset_xy(free.rest);
-  const auto held = lift.offset_xy(chosen.hold_node);
-  const auto dropped = lift.offset_xy(start);
+  PredictOptions o = conditioned_predict_options(a.cond, a.detrend);
+  o.direction = a.angle * kDeg;
+  o.atomic_friction = a.atomic_friction;
+  o.runaway_distance = a.runaway_distance;
+  o.map_drops = a.drops;
+  o.map_locked = locked_mode;
+  o.turn_over_upper = !a.in_place;
+  o.threads = a.threads;
+  o.progress = drop_progress("areal", a.quiet);
+  if (!a.start_offset.empty()) o.start_offset = parse_offset(a.start_offset, "--start-offset");
+  const PredictSurface lower = read_map_surface(a.lower, a.input, "the areal hold angle needs maps");
+  std::optional<PredictSurface> upper;
+  if (!a.upper.empty()) upper = read_map_surface(a.upper, a.input, "the areal hold angle needs maps");
+  const Prediction p = unwrap(predict(lower, upper ? &*upper : nullptr, o));
+  const HoldStatistics& chosen = locked_mode ? p.locked_friction_angle : p.friction_angle;
+  const std::string model = locked_mode ? "map-continuous-locked" : p.model;
   if (a.json) {
     nlohmann::json j;
     j["lower"] = a.lower;
     j["upper"] = a.upper.empty() ? a.lower : a.upper;
     j["direction_deg"] = a.angle;
     j["lateral"] = locked_mode ? "locked" : "free";
-    j["model"] = "grid-lift";
-    j["warnings"] = warnings_json(warnings);
-    j["runaway_distance_m"] = ho.runaway_distance;
-    j["atomic_friction"] = a.atomic_friction;
-    j["offsets_along"] = lift.n_along;
-    j["offsets_across"] = lift.n_across;
-    j["offset_along_range_m"] = {lift.along(0), lift.along(lift.n_along - 1)};
-    j["offset_across_range_m"] = {lift.across(0), lift.across(lift.n_across - 1)};
-    j["start_offset_m"] = {dropped[0], dropped[1]};
-    j["rest_offset_m"] = {rest[0], rest[1]};
-    j["hold_angle_deg"] = to_deg(chosen.hold_angle);
-    j["hold_angle_free_deg"] = to_deg(free.hold_angle);
-    j["hold_angle_locked_deg"] = to_deg(locked.hold_angle);
-    j["hold_offset_m"] = {held[0], held[1]};
-    j["steering_deg"] = to_deg(chosen.steering);
-    j["slips"] = chosen.slips;
-    j["ran_off_end"] = chosen.ran_off_end;
-    j["interlocked"] = chosen.interlocked;
-    if (dist) {
-      j["drops"] = dist->drops;
-      j["basins"] = dist->rest.size();
-      j["hold_angle_mean_deg"] = to_deg(dist->hold.mean);
-      j["hold_angle_std_deg"] = to_deg(dist->hold.std);
-      j["hold_angle_q05_deg"] = to_deg(dist->hold.q05);
-      j["hold_angle_q50_deg"] = to_deg(dist->hold.q50);
-      j["hold_angle_q95_deg"] = to_deg(dist->hold.q95);
-      j["hold_angle_min_deg"] = to_deg(dist->hold.min);
-      j["hold_angle_max_deg"] = to_deg(dist->hold.max);
+    j["model"] = model;
+    j["in_place"] = a.in_place;
+    j["atomic_friction"] = p.atomic_friction;
+    j["runaway_distance_m"] = p.runaway_distance;
+    j["drops"] = p.drops;
+    j["drop_range_m"] = p.drop_range;
+    if (p.single_drop) {
+      j["start_offset_m"] = p.start_offset;
+      j["rest_offset_m"] = p.rest_offset;
+      j["hold_angle_deg"] = to_deg(chosen.q50);
+      if (locked_mode) j["hold_angle_free_deg"] = to_deg(p.friction_angle.q50);
+      j["steering_deg"] = to_deg(p.drop_steering.at(0));  // the free block's run-away
+    } else {
+      hold_statistics_json(j, "hold_angle", chosen);
+      if (locked_mode) hold_statistics_json(j, "hold_angle_free", p.friction_angle, true);
+      nlohmann::json angles = nlohmann::json::array(), offsets = nlohmann::json::array();
+      for (double v : locked_mode ? p.drop_angles_locked : p.drop_angles) angles.push_back(to_deg(v));
+      for (const auto& q : p.drop_offsets) offsets.push_back(q);
+      j["drop_hold_angles_deg"] = angles;
+      j["drop_offsets_m"] = offsets;
     }
-    j["evaluated_nodes"] = lift.evaluated_nodes;
-    j["conditioning"] = a.conditioning;
+    j["upper_bound_friction_angle_deg"] = to_deg(p.upper_bound_friction_angle);
+    j["conditioning"] = p.conditioning;
+    j["warnings"] = warnings_json(p.warnings);
     print_json(j);
-  } else {
-    for (const Warning& w : warnings)
-      if (w.code != "reader") print_warnings({w});  // the reader's are printed as it reads
-    fmt::print(
-        "{} on {} along {} deg: {} x {} offsets, run-away distance {:.4g} m\n"
-        "  dropped at ({:.4g}, {:.4g}) m, rests at ({:.4g}, {:.4g}) m\n"
-        "  hold angle {:.4f} deg with the block free to move sideways (it steers {:.1f} deg off the direction), "
-        "{:.4f} deg with it locked\n",
-        a.upper.empty() ? a.lower : a.upper, a.lower, a.angle, lift.n_along, lift.n_across, ho.runaway_distance,
-        dropped[0], dropped[1], rest[0], rest[1], to_deg(free.hold_angle), to_deg(free.steering),
-        to_deg(locked.hold_angle));
-    fmt::print("  conditioning: {}\n", a.conditioning);
-    if (dist)
-      fmt::print(
-          "  over {} drops ({}, {} basins): mean {:.4f} deg, std {:.4f}, 5/50/95 % {:.4f} / {:.4f} / {:.4f}, "
-          "min {:.4f}, max {:.4f} deg\n",
-          dist->drops, locked_mode ? "locked" : "free", dist->rest.size(), to_deg(dist->hold.mean),
-          to_deg(dist->hold.std), to_deg(dist->hold.q05), to_deg(dist->hold.q50), to_deg(dist->hold.q95),
-          to_deg(dist->hold.min), to_deg(dist->hold.max));
+    return 0;
   }
+  for (const Warning& w : p.warnings)
+    if (w.code != "reader") print_warnings({w});  // the reader's are printed as it reads
+  fmt::print("{} on {} along {} deg{}: model {} (the rigid block {}, off the grid, quasi-static)\n",
+             a.upper.empty() ? a.lower : a.upper, a.lower, a.angle, a.in_place ? " (upper in place)" : "", model,
+             locked_mode ? "locked to the direction: a diagnostic" : "free to move sideways");
+  fmt::print("  run-away distance {:.4g} m; atomic friction mu_a = {:g}, atan(mu_a) included in every hold angle\n",
+             p.runaway_distance, p.atomic_friction);
+  if (p.single_drop) {
+    fmt::print("  dropped at ({:.4g}, {:.4g}) m, rests at ({:.4g}, {:.4g}) m\n", p.start_offset[0], p.start_offset[1],
+               p.rest_offset[0], p.rest_offset[1]);
+    fmt::print("  hold angle {:.4f} deg{}; the free block's run-away steers {:.1f} deg off the direction\n",
+               to_deg(chosen.q50),
+               locked_mode ? fmt::format(" locked ({:.4f} deg free to move sideways)", to_deg(p.friction_angle.q50))
+                           : std::string(),
+               to_deg(p.drop_steering.at(0)));
+  } else {
+    fmt::print(
+        "  hold angle over {} drops (u in [{:.4g}, {:.4g}] m along, v in [{:.4g}, {:.4g}] m across): median {:.4f} "
+        "deg, 5-95 % {:.4f} - {:.4f} deg, mean {:.4f}, std {:.4f}, min {:.4f}, max {:.4f} deg\n",
+        p.drops, p.drop_range[0], p.drop_range[1], p.drop_range[2], p.drop_range[3], to_deg(chosen.q50),
+        to_deg(chosen.q05), to_deg(chosen.q95), to_deg(chosen.mean), to_deg(chosen.std), to_deg(chosen.min),
+        to_deg(chosen.max));
+    if (locked_mode)
+      fmt::print("  free to move sideways (what a tilt test reads): median {:.4f} deg, 5-95 % {:.4f} - {:.4f} deg\n",
+                 to_deg(p.friction_angle.q50), to_deg(p.friction_angle.q05), to_deg(p.friction_angle.q95));
+  }
+  fmt::print("  rigid upper bound theta_max + theta_a {:.4f} deg; the same numbers as frictal predict{}\n",
+             to_deg(p.upper_bound_friction_angle), locked_mode ? " --locked" : "");
+  fmt::print("  conditioning: {}\n", p.conditioning);
   return 0;
 }
 
@@ -174,16 +163,18 @@ std::function<int()> setup(CLI::App& app) {
                  "Write offset_m,lift_m,theta_rad,contact_x_m,contact_y_m to this CSV (- for standard output)");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores)");
   app.add_option("--lateral", a->lateral,
-                 "Hold angle of a block that may move sideways (free) or not (locked) over the 2D lift");
+                 "Hold angle over drops of the continuous model (the numbers of `frictal predict --direction`): the "
+                 "block free to move sideways (free) or locked to the direction (locked, a diagnostic; also computes "
+                 "the free one)");
   // --runaway-distance: the tilt table's field (one description everywhere), here the hold angle's run-away.
   add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
   app.add_option("--start-offset", a->start_offset,
-                 "Drop the block at offset X,Y (m, in the lower map's frame; default: the distribution over drops "
-                 "and the test from 0,0)");
-  app.add_option("--min-offset", a->offset_min, "Smallest offset along the direction for the 2D lift (m; default 0)");
-  app.add_option("--across-step", a->across_step, "Offset step across the direction (m; default --step)");
-  app.add_option("--across-max", a->across_max,
-                 "Offsets across the direction cover +-this (m; default a quarter of the lower map across it)");
+                 "Hold angle from one drop at offset X,Y (m; from the maps' centres aligned, or with --in-place "
+                 "from the upper map's place) instead of the distribution over drops");
+  a->drops_option =
+      app.add_option("--drops", a->drops, "Hold angle over drops on an N x N grid over the drop range (2..64)")
+          ->capture_default_str();
+  app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error (hold angle)");
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
   return [a]() {
@@ -193,6 +184,8 @@ std::function<int()> setup(CLI::App& app) {
     require(a->step >= 0 && a->offset_max >= 0, "--step and --max-offset must be >= 0 (metres)");
     require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,
             "--atomic-friction must be a finite number >= 0");
+    if (!a->lateral.empty() || a->runaway_distance != 0 || !a->start_offset.empty() || a->drops_option->count())
+      return run_hold(*a);
     const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
     std::vector<Warning> warnings;
     std::vector<ConditioningRecord> records;
@@ -202,8 +195,6 @@ std::function<int()> setup(CLI::App& app) {
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);
     a->conditioning = conditioning_text(records);
-    if (!a->lateral.empty() || a->runaway_distance != 0 || !a->start_offset.empty())
-      return run_hold(*a, f, g, std::move(warnings));
     ArealSignatureOptions o;
     o.step = a->step;
     o.offset_max = a->offset_max;

@@ -2,13 +2,13 @@
 // distribution over drops of the quasi-static hold angle, its median the headline), beside the
 // rigid upper bound theta_max + theta_a (Eq. 6) and the paper's Eq. 18 range. The prediction is
 // the library's (frictal/predict.hpp); this file reads the inputs and prints it.
-#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 
 #include "common.hpp"
 #include "frictal/predict.hpp"
 #include "frictal/tilt.hpp"
+#include "map_hold.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
 
@@ -23,6 +23,7 @@ struct Args {
   unsigned threads = 0;
   bool json = false;
   bool locked = false;
+  bool in_place = false;
   bool quiet = false;
   InputOptions input;
   ConditioningOptions cond;
@@ -38,8 +39,9 @@ std::string mu_text(double rad) { return rad >= std::numbers::pi / 2 ? "inf" : f
 
 void print_text(const Prediction& p, const Args& a) {
   for (const Warning& w : p.warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
-  const std::string pair = a.upper.empty() ? fmt::format("{} against itself turned over", a.lower)
-                                           : fmt::format("{} on {}", a.upper, a.lower);
+  const std::string pair = a.upper.empty()
+                               ? fmt::format("{} against itself {}", a.lower, a.in_place ? "in place" : "turned over")
+                               : fmt::format("{} on {}{}", a.upper, a.lower, a.in_place ? " in place" : "");
   fmt::print("frictal predict: {}, sliding at {:g} deg, mu_a = {:g}\n", pair, to_deg(p.direction), p.atomic_friction);
   if (p.single_drop) {
     fmt::print("  a tilt test from this drop reads phi = {} deg (mu = {}); it rests at {}\n",
@@ -101,6 +103,9 @@ std::function<int()> setup(CLI::App& app) {
       ->capture_default_str();
   app.add_flag("--locked", a->locked,
                "Maps: also the block locked to the direction (a diagnostic beside the free one; doubles the cost)");
+  app.add_flag("--in-place", a->in_place,
+               "Maps: UPPER is the upper face already in place in LOWER's coordinates (not turned over); offsets "
+               "count from that place");
   app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
@@ -115,23 +120,14 @@ std::function<int()> setup(CLI::App& app) {
     require(std::isfinite(a->mu_a) && a->mu_a >= 0,
             fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
     require(a->drops >= 2 && a->drops <= 64, fmt::format("--drops {}: expected 2..64", a->drops));
-    PredictOptions o;
+    PredictOptions o = conditioned_predict_options(a->cond, a->detrend);
     o.direction = a->direction * kDeg;
     o.atomic_friction = a->mu_a;
     o.map_drops = a->drops;
     o.map_locked = a->locked;
-    if (!a->quiet && isatty(fileno(stderr)))
-      o.progress = [](std::size_t done, std::size_t total) {
-        fmt::print(stderr, "\rfrictal predict: drop {} of {}{}", done, total, done == total ? "\n" : "");
-        std::fflush(stderr);
-      };
+    o.turn_over_upper = !a->in_place;
+    o.progress = drop_progress("predict", a->quiet);
     o.threads = a->threads;
-    if (!a->detrend.empty()) o.detrend = unwrap(parse_detrend(a->detrend));
-    const Conditioning cond = conditioning(a->cond, Detrend{});
-    o.crop = cond.crop;
-    o.crop_source = cond.crop_source;
-    o.remove_spikes = cond.remove_spikes;
-    o.spike_threshold = cond.spike_threshold;
     if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
       o.runaway_distance = as_real(rv.at("runaway_distance"));
     if (const ValueSet pv = si_values(tilt_settings(), a->runaway_words); pv.count("period"))

@@ -14,6 +14,8 @@
 #include <variant>
 #include <vector>
 
+#include "frictal/units.hpp"
+
 namespace frictal {
 
 /// An output value: a number (SI inside: rad for angles, m for lengths), a text, a flag or a list
@@ -84,15 +86,15 @@ Column<T> column(std::string key, std::string unit, std::string help, F&& f, std
 }
 
 /// The factor from SI to a column's interface unit: 180/pi for "deg", 1 otherwise.
-inline double interface_factor(std::string_view unit) { return unit == "deg" ? 180.0 / std::numbers::pi : 1.0; }
+inline double interface_factor(std::string_view unit) { return unit == "deg" ? 1.0 / units::kRadPerDeg : 1.0; }
 
-/// A value converted from SI to the interface unit `unit` (NaN and inf stay as they are).
+/// A value converted from SI to the interface unit `unit` (NaN and inf stay as they are): for
+/// "deg", units::to_deg, the one degree conversion.
 inline OutputValue to_interface(std::string_view unit, OutputValue v) {
-  const double f = interface_factor(unit);
-  if (f == 1.0) return v;
-  if (auto* d = std::get_if<double>(&v)) *d *= f;
+  if (unit != "deg") return v;
+  if (auto* d = std::get_if<double>(&v)) *d = units::to_deg(*d);
   if (auto* l = std::get_if<std::vector<double>>(&v))
-    for (double& x : *l) x *= f;
+    for (double& x : *l) x = units::to_deg(x);
   return v;
 }
 

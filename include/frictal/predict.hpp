@@ -71,6 +71,11 @@ struct PredictOptions {
   /// Maps: also the block with its lateral motion locked (a diagnostic), from the same drops
   /// (doubles the cost).
   bool map_locked = false;
+  /// Maps: true (the default): the upper map is the upper face as measured, turned over onto the
+  /// lower one; offsets count from the two maps' centres aligned. false: it is the upper face
+  /// already in place, in the lower map's coordinates (areal.hpp), and offsets count from that
+  /// place (drops and start offset alike). Profiles: true only (an error otherwise).
+  bool turn_over_upper = true;
   /// Maps: refuse when the continuous model's estimated CPU time, 2.5e-7 s per sphere of the upper
   /// map and drop (measured on self-affine 10^6-point maps, bench/results/map-predict.md; maps rough
   /// at the pixel scale cost up to 30x more), exceeds this (unit: s). 0: no limit.
@@ -115,6 +120,9 @@ struct Prediction {
   HoldStatistics locked_friction_angle;  ///< (unit: rad)
   /// Maps: each drop's hold angle, free (and locked), in drop order (unit: rad).
   std::vector<double> drop_angles, drop_angles_locked;
+  /// Maps: each free drop's run-away direction, the angle from d to its displacement, towards d turned by
+  /// +90 deg (areal_tilt_hold's steering) (unit: rad).
+  std::vector<double> drop_steering;
   std::vector<std::array<double, 2>> drop_offsets;  ///< maps: the drops (x, y) (unit: m)
   std::vector<Warning> warnings;
 };
@@ -139,6 +147,12 @@ Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name
 /// range, maps that do not overlap along the direction, a map job above map_work_limit.
 Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper,
                            const PredictOptions& options = {});
+
+/// The map prediction's estimated CPU time before it runs, the figure PredictOptions::map_work_limit
+/// is compared with: 2.5e-7 s per sphere of the upper map and drop (free and locked drops count
+/// each) (unit: s). For a front end that runs several predictions (e.g. over directions) to
+/// refuse the whole job at once.
+double map_work_estimate(std::size_t upper_spheres, std::size_t drops);
 
 /// The prediction's output table (frictal/outputs.hpp): every key of `frictal predict --json`, of
 /// Python's Prediction.to_dict() and of the report's embedded JSON, with its interface unit, its

@@ -200,7 +200,8 @@ signature = _wrap(signature, _profile_checks, "Warnings: ``warnings`` in the res
 profile_stats = _wrap(profile_stats, _profile_checks, "Warnings: ``warnings`` holds the profile's plausibility codes.")
 hold_angle = _wrap(hold_angle, _profile_checks, "Warnings: ``warnings`` holds the profiles' plausibility codes.")
 areal_signature = _wrap(areal_signature, _map_checks, "Warnings: ``warnings`` holds the maps' plausibility codes.")
-areal_hold = _wrap(areal_hold, _map_checks, "Warnings: ``warnings`` holds the maps' plausibility codes.")
+areal_hold = _wrap(areal_hold, _no_checks, "Warnings: ``warnings`` holds the prediction's codes (the maps' plausibility "
+                   "codes among them).")
 map_stats = _wrap(map_stats, _map_checks, "Warnings: ``warnings`` holds the map's plausibility codes.")
 anisotropy = _wrap(anisotropy, _map_checks, "Warnings: ``warnings`` holds the map's plausibility codes.")
 divider_dimension = _wrap(divider_dimension, _fit_checks("divider"), "Warnings: dimension-out-of-range, poor-fit.")

@@ -213,4 +213,100 @@ void frictal_bind_predict(py::module_& m) {
       py::arg("drops") = PredictOptions{}.map_drops, py::arg("locked") = PredictOptions{}.map_locked,
       py::arg("spacing") = 0.0, py::arg("format") = "auto", py::arg("unit") = "", py::arg("threads") = 0u,
       "The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)");
+  m.def(
+      "areal_hold",
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, double angle,
+         py::object upper, bool turn_over_upper, double runaway_distance, double atomic_friction,
+         const std::string& lateral, py::object start_offset, int drops, std::optional<std::string> detrend_text,
+         unsigned threads) {
+        if (lateral != "free" && lateral != "locked")
+          throw py::value_error("lateral '" + lateral + "': expected 'free' or 'locked'");
+        PredictSurface lo, up;
+        lo.is_map = up.is_map = true;
+        lo.name = "lower";
+        up.name = "upper";
+        lo.map = py_detail::to_map(lower, dx, dy, 0, 0);
+        const bool pair = !upper.is_none();
+        if (pair)
+          up.map = py_detail::to_map(upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), dx,
+                                     dy, 0, 0);
+        PredictOptions o;
+        o.direction = angle;
+        o.turn_over_upper = turn_over_upper;
+        o.runaway_distance = runaway_distance;
+        o.atomic_friction = atomic_friction;
+        o.map_drops = drops;
+        o.map_locked = lateral == "locked";
+        o.threads = threads;
+        if (detrend_text) o.detrend = ok(parse_detrend(*detrend_text));
+        if (!start_offset.is_none()) {
+          const auto xy = start_offset.cast<std::array<double, 2>>();
+          o.start_offset = {xy[0], xy[1]};
+        }
+        const Prediction p = ok(nogil([&] { return predict(lo, pair ? &up : nullptr, o); }));
+        const bool locked = o.map_locked;
+        const HoldStatistics& h = locked ? p.locked_friction_angle : p.friction_angle;
+        py::dict d;
+        d["model"] = locked ? std::string("map-continuous-locked") : p.model;
+        d["lateral"] = lateral;
+        d["direction"] = p.direction;
+        d["atomic_friction"] = p.atomic_friction;
+        d["runaway_distance"] = p.runaway_distance;
+        d["drops"] = p.drops;
+        d["drop_range"] = py::make_tuple(p.drop_range[0], p.drop_range[1], p.drop_range[2], p.drop_range[3]);
+        if (p.single_drop) {
+          d["start_offset"] = py::make_tuple(p.start_offset[0], p.start_offset[1]);
+          d["rest_offset"] = py::make_tuple(p.rest_offset[0], p.rest_offset[1]);
+          d["hold_angle"] = h.q50;
+          if (locked) d["hold_angle_free"] = p.friction_angle.q50;
+          d["steering"] = p.drop_steering.at(0);
+        } else {
+          d["hold_angle_mean"] = h.mean;
+          d["hold_angle_std"] = h.std;
+          d["hold_angle_q05"] = h.q05;
+          d["hold_angle_q50"] = h.q50;
+          d["hold_angle_q95"] = h.q95;
+          d["hold_angle_min"] = h.min;
+          d["hold_angle_max"] = h.max;
+          if (locked) {
+            d["hold_angle_free_q05"] = p.friction_angle.q05;
+            d["hold_angle_free_q50"] = p.friction_angle.q50;
+            d["hold_angle_free_q95"] = p.friction_angle.q95;
+          }
+          d["drop_hold_angles"] = arr(locked ? p.drop_angles_locked : p.drop_angles);
+          py::array_t<double> xy({p.drop_offsets.size(), std::size_t(2)});
+          for (std::size_t k = 0; k < p.drop_offsets.size(); ++k) {
+            xy.mutable_at(k, 0) = p.drop_offsets[k][0];
+            xy.mutable_at(k, 1) = p.drop_offsets[k][1];
+          }
+          d["drop_offsets"] = xy;
+        }
+        d["upper_bound_friction_angle"] = p.upper_bound_friction_angle;
+        d["conditioning"] = p.conditioning;
+        py::list w;
+        for (const Warning& x : p.warnings) {
+          py::dict e;
+          e["code"] = x.code;
+          e["message"] = x.message;
+          w.append(e);
+        }
+        d["warnings"] = w;
+        return d;
+      },
+      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,
+      py::arg("upper") = py::none(), py::arg("turn_over_upper") = true, py::arg("runaway_distance") = 0.0,
+      py::arg("atomic_friction") = 0.0, py::arg("lateral") = "free", py::arg("start_offset") = py::none(),
+      py::arg("drops") = PredictOptions{}.map_drops, py::arg("detrend") = py::none(), py::arg("threads") = 0u,
+      "Hold angle over drops of an areal block, from the continuous model of frictal.predict (the same library "
+      "path and numbers; runs without the GIL; as `frictal areal --lateral`): the block free to move sideways "
+      "(lateral='free', what a tilt test reads) or locked to the direction (lateral='locked', a diagnostic; the free "
+      "one is computed beside it). Heights, dx, dy, runaway_distance (0: predict's default) and start_offset in m, "
+      "angle in rad, atomic_friction mu_a unitless (atan(mu_a) is included in every hold angle); upper as measured "
+      "(turned over) unless turn_over_upper=False; drops: N x N over predict's drop range; detrend: none, mean, "
+      "plane, poly:N (None: plane, predict's default). start_offset (x, y) (from the centres aligned, or from the "
+      "upper's place when in place) or None for the distribution. Returns model, lateral, direction, atomic_friction, "
+      "runaway_distance, drops, drop_range (u0, u1, v0, v1), upper_bound_friction_angle, conditioning, warnings and, "
+      "over drops: hold_angle_mean/std/q05/q50/q95/min/max (rad), drop_hold_angles (rad), drop_offsets (drops x 2, m) "
+      "(locked: also hold_angle_free_q05/q50/q95); from one drop: start_offset, rest_offset, hold_angle, steering "
+      "(the free block's run-away direction from d, rad) (locked: also hold_angle_free)");
 }

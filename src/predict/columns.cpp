@@ -6,6 +6,7 @@
 #include <fmt/core.h>
 
 #include "frictal/predict.hpp"
+#include "frictal/units.hpp"
 #include "util/json_text.hpp"
 
 namespace frictal {

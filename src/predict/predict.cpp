@@ -224,6 +224,7 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   const double across = std::abs(s) * lo->width() + std::abs(c) * lo->height();
   ArealTiltOptions t;
   t.angle = o.direction;
+  t.turn_over_upper = o.turn_over_upper;
   t.atomic_friction = o.atomic_friction;
   t.runaway_distance = o.runaway_distance > 0 ? o.runaway_distance : 0.05 * along;
   t.sphere_radius = o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(lo->dx, lo->dy);
@@ -239,17 +240,26 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   double umin = 0, umax = std::max(0.0, 0.5 * along - D);
   if (along_g < along - 2 * D) umin = -0.5 * (along - along_g), umax = 0.5 * (along - along_g) - D;
   const double vmax = across_g < across - 2 * D ? 0.5 * (across - across_g) - D : std::max(0.0, 0.25 * across - D);
-  p.drop_range = {umin, umax, -vmax, vmax};
+  // The model's offsets count from the centres aligned (turned over) or from the upper face's
+  // place (in place: its centre then sits (cu, cv) from the lower's, along and across d); the
+  // drops, the drop range and the start offset are in the model's offsets.
+  double cu = 0, cv = 0;
+  if (!o.turn_over_upper) {
+    const double ox = (up.x0 + 0.5 * up.width()) - (lo->x0 + 0.5 * lo->width());
+    const double oy = (up.y0 + 0.5 * up.height()) - (lo->y0 + 0.5 * lo->height());
+    cu = ox * c + oy * s, cv = -ox * s + oy * c;
+  }
+  p.drop_range = {umin - cu, umax - cu, -vmax - cv, vmax - cv};
   std::vector<std::array<double, 2>> uv;
   if (std::isfinite(o.start_offset[0])) {
     const double x = o.start_offset[0], y = o.start_offset[1];
     const double u = x * c + y * s, v = -x * s + y * c;
     const double half_along = 0.5 * along, half_across = 0.5 * across;
-    if (!(std::abs(u) <= half_along && std::abs(v) <= half_across))
+    if (!(std::abs(u + cu) <= half_along && std::abs(v + cv) <= half_across))
       return make_error(
           fmt::format("start offset ({:.6g}, {:.6g}) m: along the direction {:.6g} m and across it "
-                      "{:.6g} m; expected within [-{:.6g}, {:.6g}] along and [-{:.6g}, {:.6g}] across",
-                      x, y, u, v, half_along, half_along, half_across, half_across));
+                      "{:.6g} m; expected within [{:.6g}, {:.6g}] along and [{:.6g}, {:.6g}] across",
+                      x, y, u, v, -half_along - cu, half_along - cu, -half_across - cv, half_across - cv));
     uv.push_back({u, v});
     p.single_drop = true;
     p.start_offset = {x, y};
@@ -257,12 +267,13 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
     const int n = o.map_drops;
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
-        uv.push_back({umin + (umax - umin) * double(i) / double(n - 1), -vmax + 2 * vmax * double(j) / double(n - 1)});
+        uv.push_back(
+            {umin + (umax - umin) * double(i) / double(n - 1) - cu, -vmax + 2 * vmax * double(j) / double(n - 1) - cv});
   }
   // The cost, estimated before it runs: CPU seconds per sphere and drop (measured,
   // bench/results/map-predict.md).
   const double spheres = double(up.valid_count());
-  const double work = spheres * 2.5e-7 * double(uv.size()) * (o.map_locked ? 2 : 1);
+  const double work = map_work_estimate(up.valid_count(), uv.size() * (o.map_locked ? 2 : 1));
   if (o.map_work_limit > 0 && work > o.map_work_limit)
     return make_error(
         fmt::format("the map prediction would take about {:.0f} s of CPU ({} spheres, {} drops), above the "
@@ -270,7 +281,7 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
                     work, std::size_t(spheres), uv.size(), o.map_work_limit));
   for (const auto& q : uv) p.drop_offsets.push_back({q[0] * c - q[1] * s, q[0] * s + q[1] * c});
   const std::size_t nd = uv.size();
-  std::vector<double> free_angle(nd), locked_angle(nd, 0);
+  std::vector<double> free_angle(nd), locked_angle(nd, 0), steering(nd, 0);
   std::vector<std::array<double, 2>> rest(nd);
   std::vector<char> held(nd, 0), held_locked(nd, 0);
   // Every drop (free, then locked for the diagnostic) on one field of spheres, shared.
@@ -288,12 +299,14 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
       held_locked[drop] = !r.ran_away;
     } else {
       free_angle[drop] = r.ran_away ? r.hold_angle : t.max_tilt;
+      steering[drop] = r.steering;
       held[drop] = !r.ran_away;
       rest[drop] = r.rest_offset;
     }
   }
   p.drops = nd;
   p.drop_angles = free_angle;
+  p.drop_steering = steering;
   p.friction_angle = plain_stats(free_angle);
   if (o.map_locked) {
     p.has_locked = true;
@@ -309,6 +322,7 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   // The rigid upper bound: the areal signature along d (the grid lift's contact slopes).
   ArealSignatureOptions so;
   so.threads = o.threads;
+  so.turn_over_upper = o.turn_over_upper;
   auto sig = areal_signature(*lo, up, o.direction, so);
   if (!sig) return sig.error();
   finish(p, sig->theta_max_forward, sig->contact_slope_std);
@@ -325,6 +339,10 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
 }
 
 }  // namespace
+
+double map_work_estimate(std::size_t upper_spheres, std::size_t drops) {
+  return double(upper_spheres) * 2.5e-7 * double(drops);
+}
 
 Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name) {
   PredictSurface p;
@@ -353,6 +371,10 @@ Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* up
         fmt::format("run-away distance {} m: expected a finite length >= 0 (0: the default)", o.runaway_distance));
   if (std::isinf(o.start_offset[0]) || !std::isfinite(o.start_offset[1]))
     return make_error("start offset: expected finite offsets (m)");
+  if (!lower.is_map && !o.turn_over_upper)
+    return make_error(
+        "in place (turn_over_upper = false): for maps only; a profile pair's upper profile is "
+        "always turned over");
   return lower.is_map ? predict_maps(lower, upper, o) : predict_profiles(lower, upper, o);
 }
 

@@ -1,15 +1,15 @@
-// CLI: `frictal areal` with the hold angle over two dimensions of offset, `anisotropy --hold`.
-// The maps are written here: sinusoidal grooves at 30 deg to x on a grid whose diagonal runs
-// along them (the lift's closed form and hold angles: tests/analysis/test_areal_hold.cpp).
+// CLI: `frictal areal --lateral` and `anisotropy --hold`, the hold angle of the continuous model
+// (the numbers of `frictal predict`). The maps are written here: sinusoidal grooves at 30 deg to
+// x on a grid whose diagonal runs along them (closed forms below).
 #include <fmt/core.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "cli/cli_runner.hpp"
-#include "frictal/areal.hpp"
 #include "frictal/io.hpp"
 
 namespace {
@@ -33,77 +33,107 @@ const std::string& groove_file() {
   return path;
 }
 
-std::string groove_args() {
-  return groove_file() +
-         fmt::format(" --in-place --detrend none --step {:.17g} --across-step {:.17g}", kStep,
-                     kStep * std::tan(kPi / 6)) +
-         " --min-offset -5e-7 --max-offset 2e-6 --across-max 1.5e-6";
+/// A 6 x 6 window of the grooves, in place at node (40, 40) (the same heights i - j as the lower).
+const std::string& window_file() {
+  static const std::string path = [] {
+    frictal::Map g;
+    g.nx = g.ny = 6;
+    g.dx = kStep;
+    g.dy = kStep * std::tan(kPi / 6);
+    g.x0 = 40 * g.dx;
+    g.y0 = 40 * g.dy;
+    for (std::size_t j = 0; j < 6; ++j)
+      for (std::size_t i = 0; i < 6; ++i) g.heights.push_back(kA * std::sin(2 * kPi * (double(i) - double(j)) / kM));
+    const std::string p = temp_path("grooves30-window6.x3p");
+    EXPECT_TRUE(frictal::write_x3p(p, g).ok());
+    return p;
+  }();
+  return path;
+}
+
+// The window on the grooves in place (its face the lower one's own heights), no form removed: the
+// surface that the continuous model evaluates is MuJoCo's triangulated height field, and with the
+// grooves along the cells' diagonal (dy = dx tan 30 deg) it is exactly grooves of one profile
+// across them. (A whole map nested in itself would put all its 10^4 spheres in contact at once: slow.)
+std::string groove_args() { return groove_file() + " " + window_file() + " --in-place --detrend none"; }
+
+/// A 25 x 42-node crop of the grooves (turned over against itself: a few seconds per prediction).
+const std::string kCrop = " --crop 0,2.4e-6,0,2.4e-6";
+
+/// The forward slope of the steepest face of the triangulated grooves along x, A sin(2 pi / m) / a:
+/// the locked block's hold angle (the faces next to a groove's zero crossing are the steepest).
+double locked_groove_angle_deg() { return std::atan(kA * std::sin(2 * kPi / kM) / kStep) * 180 / kPi; }
+
+nlohmann::json json_of(const std::string& args) {
+  auto r = run_cli(args);
+  EXPECT_EQ(r.code, 0) << args << ": " << r.err;
+  return r.code == 0 ? nlohmann::json::parse(r.out) : nlohmann::json::object();
 }
 }  // namespace
 
 TEST(CliAreal, GroovesSteerWhenFreeAndHoldWhenLocked) {
-  auto r = run_cli("areal " + groove_args() + " --lateral free --runaway-distance 1e-6 --start-offset 0,0 --json");
-  ASSERT_EQ(r.code, 0) << r.err;
-  auto j = nlohmann::json::parse(r.out);
-  EXPECT_NEAR(j["hold_angle_deg"].get<double>(), 0, 1e-7);
-  EXPECT_NEAR(j["steering_deg"].get<double>(), 30, 1e-9);
-  // Locked: atan of the forward slope at the cusp, A sin(2 pi / m) / a (~ atan(A k sin 30 deg)).
-  EXPECT_NEAR(j["hold_angle_locked_deg"].get<double>(), std::atan(kA * std::sin(2 * kPi / kM) / kStep) * 180 / kPi,
-              1e-9);
+  // One drop: free, the block slides along the grooves (30 deg off x) at the first tilt; locked to
+  // x it climbs the steepest face. Bisected to 1e-4 rad = 0.0057 deg.
+  auto j = json_of("areal " + groove_args() + " --lateral free --runaway-distance 1e-6 --start-offset 0,0 --json");
+  EXPECT_EQ(j["model"], "map-continuous-free");
+  EXPECT_LE(j["hold_angle_deg"].get<double>(), 0.1);
+  EXPECT_NEAR(j["steering_deg"].get<double>(), 30, 0.5);
   ASSERT_EQ(j["rest_offset_m"].size(), 2u);
-  EXPECT_FALSE(j.contains("hold_angle_mean_deg"));  // a start: no distribution
-  // The grid model is a diagnostic: said in the model key and by its warning code (the prediction
-  // is `frictal predict`, the continuous model).
-  EXPECT_EQ(j["model"], "grid-lift");
-  ASSERT_TRUE(j["warnings"].is_array());
-  bool grid = false;
-  for (const auto& w : j["warnings"]) grid = grid || w["code"] == "grid-model";
-  EXPECT_TRUE(grid) << j["warnings"].dump();
-  auto l = run_cli("areal " + groove_args() + " --lateral locked --runaway-distance 1e-6 --start-offset 0,0 --json");
-  ASSERT_EQ(l.code, 0) << l.err;
-  auto jl = nlohmann::json::parse(l.out);
-  EXPECT_EQ(jl["hold_angle_deg"], j["hold_angle_locked_deg"]);
+  EXPECT_FALSE(j.contains("hold_angle_q50_deg"));  // a start: no distribution
+  EXPECT_FALSE(j.contains("friction_angle_deg"));  // the prediction's keys are predict's
+  for (const auto& w : j["warnings"]) EXPECT_NE(w["code"], "grid-model");
+  auto jl = json_of("areal " + groove_args() + " --lateral locked --runaway-distance 1e-6 --start-offset 0,0 --json");
+  EXPECT_EQ(jl["model"], "map-continuous-locked");
+  EXPECT_GE(jl["hold_angle_deg"].get<double>(), locked_groove_angle_deg() - 1e-7);
+  EXPECT_LE(jl["hold_angle_deg"].get<double>(), locked_groove_angle_deg() + 0.012);
+  EXPECT_EQ(jl["hold_angle_free_deg"], j["hold_angle_deg"]);
 }
 
-TEST(CliAreal, DistributionMatchesTheLibrary) {
-  auto r = run_cli("areal " + groove_args() + " --runaway-distance 1e-6 --json");
+TEST(CliAreal, HoldOverDropsIsThePredictionToTheDigit) {
+  // Free over drops: every drop slides along the grooves at once (closed form above), and the
+  // numbers are `frictal predict`'s for the same options, to the last digit.
+  const std::string opts = " --runaway-distance 1e-6 --drops 3 --json";
+  auto j = json_of("areal " + groove_args() + " --lateral free" + opts);
+  auto p = json_of("predict " + groove_args() + opts);
+  ASSERT_TRUE(j.contains("hold_angle_q50_deg")) << j.dump();
+  EXPECT_EQ(j["drops"], 9);
+  // The closed forms hold away from the ends of the drop range along d (drops 1, 4, 7 of the 3 x 3,
+  // u in the middle): at the ends the window is put down at the lower map's edge (start) or runs
+  // exactly up to it (end), where the model holds some blocks to 45 deg (the edge drops of issue 33).
+  for (int k : {1, 4, 7}) EXPECT_LE(j["drop_hold_angles_deg"][k].get<double>(), 0.1) << k;
+  for (const std::string q : {"q05", "q95", "mean", "std", "min", "max"})
+    EXPECT_EQ(j["hold_angle_" + q + "_deg"], p["friction_angle_" + q + "_deg"]) << q;
+  EXPECT_EQ(j["hold_angle_q50_deg"], p["friction_angle_deg"]);
+  EXPECT_EQ(j["drop_hold_angles_deg"], p["drop_friction_angles_deg"]);
+  EXPECT_EQ(j["upper_bound_friction_angle_deg"], p["upper_bound_friction_angle_deg"]);
+  EXPECT_EQ(j["runaway_distance_m"], p["runaway_distance_m"]);
+  EXPECT_EQ(j["drop_range_m"], p["drop_range_m"]);
+  EXPECT_EQ(j["conditioning"], p["conditioning"]);
+  // Locked: every drop climbs the steepest face (closed form), = predict --locked's diagnostic.
+  auto l = json_of("areal " + groove_args() + " --lateral locked" + opts);
+  auto pl = json_of("predict " + groove_args() + " --locked" + opts);
+  for (int k : {1, 4, 7}) {
+    EXPECT_GE(l["drop_hold_angles_deg"][k].get<double>(), locked_groove_angle_deg() - 1e-7) << k;
+    EXPECT_LE(l["drop_hold_angles_deg"][k].get<double>(), locked_groove_angle_deg() + 0.012) << k;
+  }
+  EXPECT_EQ(l["hold_angle_q50_deg"], pl["locked_friction_angle_deg"]);
+  EXPECT_EQ(l["hold_angle_q05_deg"], pl["locked_friction_angle_q05_deg"]);
+  EXPECT_EQ(l["hold_angle_q95_deg"], pl["locked_friction_angle_q95_deg"]);
+  EXPECT_EQ(l["hold_angle_free_q50_deg"], pl["friction_angle_deg"]);
+  // Turned over, along 30 deg, with atomic friction and the default form (a plane): still predict's.
+  const std::string turned = groove_file() + " --crop 0,1.2e-6,0,1.2e-6 --atomic-friction 0.1 --drops 2 --json";
+  auto t = json_of("areal " + turned + " --angle 30 --lateral free");
+  auto pt = json_of("predict " + turned + " --direction 30");
+  EXPECT_EQ(t["hold_angle_q50_deg"], pt["friction_angle_deg"]);
+  EXPECT_EQ(t["hold_angle_q05_deg"], pt["friction_angle_q05_deg"]);
+  EXPECT_EQ(t["hold_angle_q95_deg"], pt["friction_angle_q95_deg"]);
+  EXPECT_GE(t["hold_angle_min_deg"].get<double>(), std::atan(0.1) * 180 / kPi - 1e-9);  // atan(mu_a) included
+  // Text output: lines a person reads.
+  auto r = run_cli("areal " + groove_args() + " --lateral free --runaway-distance 1e-6 --drops 2");
   ASSERT_EQ(r.code, 0) << r.err;
-  auto j = nlohmann::json::parse(r.out);
-  for (const char* k :
-       {"hold_angle_mean_deg", "hold_angle_std_deg", "hold_angle_q05_deg", "hold_angle_q50_deg", "hold_angle_q95_deg",
-        "hold_angle_min_deg", "hold_angle_max_deg", "hold_angle_deg", "hold_angle_locked_deg", "rest_offset_m"})
-    EXPECT_TRUE(j.contains(k)) << k;
-  // Every drop on the grooves steers along them at once.
-  EXPECT_NEAR(j["hold_angle_max_deg"].get<double>(), 0, 1e-7);
-  auto m = frictal::read_map(groove_file());
-  ASSERT_TRUE(m.ok());
-  frictal::ArealLiftOptions lo;
-  lo.turn_over_upper = false;
-  lo.step = kStep;
-  lo.across_step = kStep * std::tan(kPi / 6);
-  lo.offset_min = -5e-7;
-  lo.offset_max = 2e-6;
-  lo.across_max = 1.5e-6;
-  auto lift = frictal::areal_lift(*m, *m, 0.0, lo);
-  ASSERT_TRUE(lift.ok());
-  EXPECT_EQ(j["offsets_along"], lift->n_along);
-  EXPECT_EQ(j["offsets_across"], lift->n_across);
-  frictal::ArealHoldOptions ho;
-  ho.runaway_distance = 1e-6;
-  ho.lateral = frictal::LateralMotion::Locked;
-  auto locked = frictal::areal_hold_distribution(*lift, ho);
-  ASSERT_TRUE(locked.ok());
-  auto rl = run_cli("areal " + groove_args() + " --runaway-distance 1e-6 --lateral locked --json");
-  ASSERT_EQ(rl.code, 0) << rl.err;
-  auto jl = nlohmann::json::parse(rl.out);
-  EXPECT_NEAR(jl["hold_angle_mean_deg"].get<double>(), locked->hold.mean * 180 / kPi, 1e-9);
-  EXPECT_NEAR(jl["hold_angle_q95_deg"].get<double>(), locked->hold.q95 * 180 / kPi, 1e-9);
-  EXPECT_EQ(jl["drops"], locked->drops);
-  // Text output: one line a person reads.
-  auto t = run_cli("areal " + groove_args() + " --runaway-distance 1e-6");
-  ASSERT_EQ(t.code, 0) << t.err;
-  EXPECT_NE(t.out.find("free to move sideways"), std::string::npos) << t.out;
-  EXPECT_NE(t.out.find("drops"), std::string::npos) << t.out;
+  EXPECT_NE(r.out.find("free to move sideways"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("over 4 drops"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("map-continuous-free"), std::string::npos) << r.out;
 }
 
 TEST(CliAreal, BadInputExitsTwoNamingTheValue) {
@@ -115,28 +145,59 @@ TEST(CliAreal, BadInputExitsTwoNamingTheValue) {
   auto s = run_cli(base + " --start-offset 1,0");
   EXPECT_EQ(s.code, 2);
   EXPECT_NE(s.err.find("start offset (1, 0)"), std::string::npos) << s.err;
-  EXPECT_NE(s.err.find("expected u in"), std::string::npos) << s.err;
+  EXPECT_NE(s.err.find("expected within"), std::string::npos) << s.err;
   EXPECT_EQ(run_cli(base + " --start-offset 1e-7").code, 2);
   EXPECT_EQ(run_cli(base + " --lateral sideways").code, 2);
+  EXPECT_EQ(run_cli(base + " --drops 1").code, 2);
   EXPECT_EQ(run_cli("areal " + groove_args() + " --runaway-distance -1").code, 2);
-  // Maps that never overlap along the direction over the offsets asked for.
-  auto o =
-      run_cli("areal " + groove_file() + " --in-place --min-offset 1 --max-offset 1.000001 --runaway-distance 1e-6");
-  EXPECT_EQ(o.code, 2);
-  EXPECT_NE(o.err.find("overlap"), std::string::npos) << o.err;
+  // The grid lift's options have no counterpart in the continuous model: refused by name, or gone.
+  for (const std::string opt : {"--step 1e-7", "--max-offset 2e-6", "--contact-slope mean", "--across-max 1e-6",
+                                "--min-offset 0", "--across-step 1e-7"}) {
+    auto b = run_cli(base + " --lateral free " + opt);
+    EXPECT_EQ(b.code, 2) << opt;
+    EXPECT_NE(b.err.find(opt.substr(0, opt.find(' '))), std::string::npos) << opt << ": " << b.err;
+  }
+  // A line profile is not a map.
+  const std::string prof = temp_path("areal-profile.csv");
+  {
+    std::FILE* f = std::fopen(prof.c_str(), "w");
+    ASSERT_NE(f, nullptr);
+    std::fputs("x_m,z_m\n0,0\n1e-6,1e-7\n2e-6,0\n", f);
+    std::fclose(f);
+  }
+  auto pr = run_cli("areal " + prof + " --lateral free");
+  EXPECT_EQ(pr.code, 2);
+  EXPECT_NE(pr.err.find("needs maps"), std::string::npos) << pr.err;
 }
 
-TEST(CliAreal, AnisotropyGainsTheHoldAngles) {
-  auto r = run_cli("anisotropy " + groove_file() + " --detrend none --directions 2 --lines 8 --hold --json");
-  ASSERT_EQ(r.code, 0) << r.err;
-  auto j = nlohmann::json::parse(r.out);
-  ASSERT_EQ(j["directions"].size(), 2u);
+TEST(CliAreal, AnisotropyHoldIsThePredictionPerDirection) {
+  auto j = json_of("anisotropy " + groove_file() + kCrop +
+                   " --detrend none --directions 4 --lines 8 --hold --locked --drops 2 --runaway-distance 2e-7 --json");
+  ASSERT_EQ(j["directions"].size(), 4u);
+  EXPECT_EQ(j["hold_model"], "map-continuous-free");
+  EXPECT_EQ(j["hold_drops"], 4);
   for (const auto& row : j["directions"]) {
-    EXPECT_TRUE(row.contains("hold_angle_free_mean_deg"));
-    EXPECT_TRUE(row.contains("hold_angle_locked_mean_deg"));
-    EXPECT_LE(row["hold_angle_free_mean_deg"].get<double>(), row["hold_angle_locked_mean_deg"].get<double>() + 1e-9);
+    const double dir = row["direction_deg"].get<double>();
+    auto p =
+        json_of(fmt::format("predict {}{} --detrend none --direction {:g} --locked --drops 2 --runaway-distance "
+                            "2e-7 --json",
+                            groove_file(), kCrop, dir));
+    EXPECT_EQ(row["hold_angle_q50_deg"], p["friction_angle_deg"]) << dir;
+    EXPECT_EQ(row["hold_angle_q05_deg"], p["friction_angle_q05_deg"]) << dir;
+    EXPECT_EQ(row["hold_angle_q95_deg"], p["friction_angle_q95_deg"]) << dir;
+    EXPECT_EQ(row["hold_angle_mean_deg"], p["friction_angle_mean_deg"]) << dir;
+    EXPECT_EQ(row["hold_angle_locked_q50_deg"], p["locked_friction_angle_deg"]) << dir;
+    EXPECT_FALSE(row.contains("friction_angle_deg"));
   }
+  for (const auto& w : j["warnings"]) EXPECT_NE(w["code"], "grid-model");
   EXPECT_EQ(run_cli("anisotropy " + groove_file() + " --runaway-distance 1e-6").code, 2);
+  EXPECT_EQ(run_cli("anisotropy " + groove_file() + " --locked").code, 2);
+  EXPECT_EQ(run_cli("anisotropy " + groove_file() + " --hold --drops 65").code, 2);
+  // The whole job's cost against the prediction's limit, refused before it runs: 3600 directions
+  // x 64^2 drops x 10^4 spheres x 2.5e-7 s = 3.7e4 s > 3600 s.
+  auto w = run_cli("anisotropy " + groove_file() + " --hold --directions 3600 --drops 64");
+  EXPECT_EQ(w.code, 2);
+  EXPECT_NE(w.err.find("--directions"), std::string::npos) << w.err;
 }
 
 TEST(CliAreal, ArealTiltRefusesBadInputBeforeSimulating) {

@@ -63,28 +63,55 @@ def test_areal_signature_of_tilted_plane_and_anisotropy_of_ridges():
 
 
 def test_areal_hold_grooves_steer_when_free():
-    """Grooves at 30 deg to x on a grid whose diagonal runs along them (dy = dx tan 30 deg): free,
-    the block slides along them at once; locked, it holds at atan of the forward slope at the
-    cusp, A sin(2 pi / m) / dx (closed form: tests/analysis/test_areal_hold.cpp)."""
+    """Grooves at 30 deg to x on a grid whose diagonal runs along them (dy = dx tan 30 deg), in
+    place: the continuous model's triangulated surface is exactly grooves of one profile. Free,
+    the block slides along them at the first tilt; locked to x, it holds at atan of the steepest
+    face's slope, A sin(2 pi / m) / dx (bisected to 1e-4 rad)."""
     a, amp, m = 1e-7, 2e-7, 40
     dy = a * math.tan(math.pi / 6)
     i = np.arange(100)
     h = amp * np.sin(2 * math.pi * (i[None, :] - i[:, None]) / m)
-    kw = dict(dx=a, dy=dy, turn_over_upper=False, runaway_distance=1e-6, step=a, across_step=dy,
-              offset_min=-5e-7, offset_max=2e-6, across_max=1.5e-6)
-    r = frictal.areal_hold(h, start_offset=(0.0, 0.0), **kw)
-    assert r["hold_angle"] == pytest.approx(0, abs=1e-9)
-    assert r["steering"] == pytest.approx(math.pi / 6, abs=1e-12)
-    assert r["hold_angle_locked"] == pytest.approx(math.atan(amp * math.sin(2 * math.pi / m) / a), abs=1e-12)
-    assert r["lift"].shape == (len(r["across"]), len(r["along"]))
-    d = frictal.areal_hold(h, **kw)
-    assert d["hold_angle_max"] == pytest.approx(0, abs=1e-9)
-    locked = frictal.areal_hold(h, lateral="locked", **kw)
-    assert locked["hold_angle_min"] > 0.1
+    # A 6 x 6 window of the grooves as the upper face in place (the whole map nested in itself would
+    # put all its 10^4 spheres in contact at once: slow).
+    kw = dict(dx=a, dy=dy, upper=h[:6, :6], turn_over_upper=False, runaway_distance=1e-6, detrend="none")
+    locked_angle = math.atan(amp * math.sin(2 * math.pi / m) / a)
+    r = frictal.areal_hold(h, start_offset=(40 * a, 40 * dy), **kw)  # the window moved to node (40, 40)
+    assert r["model"] == "map-continuous-free"
+    assert r["hold_angle"] <= math.radians(0.1)
+    assert r["steering"] == pytest.approx(math.pi / 6, abs=math.radians(0.5))
+    # Over drops: the closed forms away from the ends of the drop range along d (the middle column of
+    # the 3 x 3 drops), where the window is not put down at, or run up to, the lower map's edge.
+    d = frictal.areal_hold(h, drops=3, **kw)
+    assert d["drop_offsets"].shape == (9, 2)
+    assert max(d["drop_hold_angles"][k] for k in (1, 4, 7)) <= math.radians(0.1)
+    locked = frictal.areal_hold(h, lateral="locked", drops=3, **kw)
+    assert locked["model"] == "map-continuous-locked"
+    for k in (1, 4, 7):
+        assert locked_angle - 1e-9 <= locked["drop_hold_angles"][k] <= locked_angle + 2.1e-4
     with pytest.raises(ValueError, match="start offset"):
         frictal.areal_hold(h, start_offset=(1.0, 0.0), **kw)
     with pytest.raises(ValueError, match="lateral"):
         frictal.areal_hold(h, lateral="sideways", **kw)
+    with pytest.raises(TypeError):
+        frictal.areal_hold(h, across_max=1e-6, **kw)  # the grid lift's options are gone
+
+
+def test_areal_hold_is_predict():
+    """The same library path as frictal.predict: the same numbers for the same map and options."""
+    rng = np.random.default_rng(3)
+    h = np.cumsum(np.cumsum(rng.normal(size=(20, 24)), axis=0), axis=1) * 1e-9
+    kw = dict(atomic_friction=0.05, drops=2)
+    r = frictal.areal_hold(h, dx=1e-6, dy=1e-6, angle=0.5, **kw)
+    p = frictal.predict(h, spacing=1e-6, direction=0.5, **kw)
+    for q in ("q05", "q95", "mean", "std", "min", "max"):
+        assert r["hold_angle_" + q] == getattr(p, "friction_angle_" + q), q
+    assert r["hold_angle_q50"] == p.friction_angle
+    assert list(r["drop_hold_angles"]) == list(p.drop_friction_angles)
+    assert r["upper_bound_friction_angle"] == p.upper_bound_friction_angle
+    locked = frictal.areal_hold(h, dx=1e-6, dy=1e-6, angle=0.5, lateral="locked", **kw)
+    pl = frictal.predict(h, spacing=1e-6, direction=0.5, locked=True, **kw).to_dict()
+    assert math.degrees(locked["hold_angle_q50"]) == pytest.approx(pl["locked_friction_angle_deg"], rel=1e-14)
+    assert locked["hold_angle_free_q50"] == r["hold_angle_q50"]
 
 
 def test_map_stats_scan_quantities_numpy_reference():
