@@ -49,7 +49,8 @@ std::vector<OutputTable> make_tables() {
            ci("kind", "text", "profile or map", "="),
            ci("slopes", "text", "the slope method of the signature: exact or spline"),
            ci("method", "text", "the method the numbers come from"),
-           ci("conditioning", "text", "every conditioning step applied first (crop, spikes, form), with its numbers"),
+           ci("conditioning", "text", "every conditioning step applied first (crop, spikes, form), with its numbers",
+              "="),
            ci("warnings", "list:warning", "warnings: implausible inputs or results (frictal warnings lists the codes)",
               "warnings"),
            ci("wall_time_s", "s", "wall time of the computation"),
@@ -158,14 +159,47 @@ std::vector<OutputTable> make_tables() {
         ci("eq18_low_friction_coefficient", "1", "tan of the Eq. 18 low end"),
         py("offset", "m", "offsets along the direction"), py("lift", "m", "the lift at each offset"),
         py("theta", "rad", "the contact slope at each offset")}});
-  t.push_back({"anisotropy",
-               "frictal anisotropy --json; Python anisotropy(...) (arrays over directions)",
-               {ci("directions", "list:anisotropy_direction", "one row per sliding direction"),
-                ci("atomic_friction", "1", "mu_a"), py("direction", "rad", "each sliding direction"),
-                py("theta_forward", "rad", "theta_max along each direction"),
-                py("theta_backward", "rad", "theta_max against each direction"),
-                py("sigma", "rad", "sigma of Eq. 18 for each direction"),
-                py("upper_bound_friction_angle", "rad", "rigid upper bound for each direction")}});
+  {
+    // The hold mode of `frictal areal` (--lateral, --drops, --start-offset) and Python areal_hold:
+    // predict()'s continuous model of a map pair along one direction, named as hold angles.
+    OutputTable h{"areal_hold",
+                  "frictal areal --lateral|--drops|--start-offset --json; Python areal_hold(...) (SI, no unit suffix)",
+                  {ci("direction_deg", "deg", "sliding direction, from +x towards +y", "direction"),
+                   ci("lateral", "text", "free (the block may move sideways) or locked to the direction", "="),
+                   ci("model", "text", "map-continuous-free or map-continuous-locked (frictal predict's model)", "="),
+                   ci("in_place", "flag", "the upper map is the upper face in place (not turned over)", "="),
+                   ci("atomic_friction", "1", "mu_a, included in every hold angle as atan(mu_a)", "="),
+                   ci("runaway_distance_m", "m", "run-away distance d", "runaway_distance"),
+                   ci("drops", "count", "drops the distribution is over", "="),
+                   ci("drop_range_m", "m", "[u_min, u_max, v_min, v_max] along/across the direction", "drop_range"),
+                   ci("start_offset_m", "m", "one drop: where it was put down (x, y)", "start_offset"),
+                   ci("rest_offset_m", "m", "one drop: where it rested (x, y)", "rest_offset"),
+                   ci("hold_angle_deg", "deg", "one drop: its hold angle (the lateral mode's)", "hold_angle"),
+                   ci("hold_angle_free_deg", "deg", "one drop, locked: the free block's hold angle"),
+                   ci("steering_deg", "deg", "one drop: the direction the free block ran away in", "steering"),
+                   ci("drop_hold_angles_deg", "deg", "each drop's hold angle, in drop order", "drop_hold_angles"),
+                   ci("drop_offsets_m", "m", "each drop's (x, y)", "drop_offsets"),
+                   ci("upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a (Eq. 6)",
+                      "upper_bound_friction_angle")}};
+    for (const char* st : {"mean", "std", "q05", "q50", "q95", "min", "max"}) {
+      const std::string k = std::string("hold_angle_") + st;
+      h.columns.push_back(ci(k + "_deg", "deg", std::string("hold angle over drops: ") + st, k));
+    }
+    for (const char* st : {"q05", "q50", "q95"})
+      h.columns.push_back(ci(std::string("hold_angle_free_") + st + "_deg", "deg",
+                             std::string("locked mode: the free block's hold angle over drops, ") + st));
+    t.push_back(std::move(h));
+  }
+  t.push_back(
+      {"anisotropy",
+       "frictal anisotropy --json; Python anisotropy(...) (arrays over directions)",
+       {ci("directions", "list:anisotropy_direction", "one row per sliding direction"),
+        ci("hold_model", "text", "--hold: the model of the hold angles (frictal predict's)"),
+        ci("hold_drops", "count", "--hold: drops per direction"), ci("atomic_friction", "1", "mu_a"),
+        py("direction", "rad", "each sliding direction"), py("theta_forward", "rad", "theta_max along each direction"),
+        py("theta_backward", "rad", "theta_max against each direction"),
+        py("sigma", "rad", "sigma of Eq. 18 for each direction"),
+        py("upper_bound_friction_angle", "rad", "rigid upper bound for each direction")}});
   t.push_back(
       {"anisotropy_direction",
        "one direction of frictal anisotropy --json",
@@ -175,7 +209,17 @@ std::vector<OutputTable> make_tables() {
         ci("theta_backward_deg", "deg", "theta_max against the direction"), ci("sigma_deg", "deg", "sigma of Eq. 18"),
         ci("upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a"),
         ci("upper_bound_friction_coefficient", "1", "tan of the upper bound"),
-        ci("eq18_low_friction_coefficient", "1", "tan of the Eq. 18 low end")}});
+        ci("eq18_low_friction_coefficient", "1", "tan of the Eq. 18 low end"),
+        ci("hold_runaway_distance_m", "m", "--hold: run-away distance d")}});
+  {
+    OutputTable& d = t.back();
+    for (const char* st : {"mean", "std", "q05", "q50", "q95", "min", "max"})
+      d.columns.push_back(ci(std::string("hold_angle_") + st + "_deg", "deg",
+                             std::string("--hold: hold angle over drops (frictal predict --direction): ") + st));
+    for (const char* st : {"q05", "q50", "q95"})
+      d.columns.push_back(ci(std::string("hold_angle_locked_") + st + "_deg", "deg",
+                             std::string("--hold --locked: the block locked to the direction, ") + st));
+  }
   t.push_back(
       {"areal_tilt",
        "frictal areal-tilt --json (the MuJoCo run and the predictions matched to it)",
