@@ -58,6 +58,7 @@ from ._core import __version__, build_info  # noqa: F401  version defined once, 
 
 from ._core import (  # noqa: F401  studies: run a study file, read its store (study_bindings.cpp)
     study_export,
+    study_findings,
     study_kinds,
     study_report,
     study_rows,

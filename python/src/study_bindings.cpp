@@ -187,6 +187,19 @@ void frictal_bind_study(py::module_& m) {
       "The report of a store (Markdown): per-part tables and the paper's findings checked.\n\n"
       "Numbers carry their units in the text (deg, m, unitless ratios).");
   m.def(
+      "study_findings",
+      [](const std::vector<std::string>& paths) {
+        std::vector<Report> reports;
+        for (const std::string& p : paths) reports.push_back(ok(report(*open_existing(p))));
+        const std::string text = ok(render_json(reports));
+        return py::module_::import("json").attr("loads")(text);
+      },
+      py::arg("stores"),
+      "The findings of one or more stores as data, the object of `frictal study report --json`: reports (each "
+      "store's findings: claim_id, part, claim, criterion, numbers, verdict, cause), conclusions (one verdict per "
+      "claim over every store: supported, superseded or not supported, with the measured causes) and the claims "
+      "catalogue. Texts and numbers as the CLI prints them.");
+  m.def(
       "study_export",
       [](const std::string& path, const std::string& dir) { return ok(export_csv(*open_existing(path), dir)); },
       py::arg("store"), py::arg("directory"),

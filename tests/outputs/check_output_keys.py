@@ -238,6 +238,7 @@ check_py("condition", frictal.condition(pr)[1], ["conditioning"])
 check_py("build_info", frictal.build_info(), ["build_info"])
 check_py("autocorrelation", frictal.autocorrelation(pr), ["autocorrelation"])
 check_py("study_status", frictal.study_status(store), ["study_status"])
+check_py("study_findings", frictal.study_findings([store]), ["study_report"], python=False)
 kind_list = cli_json("study", "kinds", "--json")["kinds"]
 kinds = {k["name"]: {o["name"] for o in k["outputs"]} for k in kind_list}
 # A study output named like a declared JSON key is that quantity: the same unit.

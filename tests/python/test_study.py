@@ -63,6 +63,13 @@ def test_run_status_rows_report_export(tmp_path):
     assert len(rows[0]["arrays"]["signature_theta_over_alpha"]) == len(rows[0]["arrays"]["signature_offset_over_wavelength"])
     rep = frictal.study_report(store)
     assert "[SUPPORTED]" in rep and "1, 1, 2, 3 times alpha" in rep
+    # The same findings as data: the Koch maxima (theta_max/alpha = 1, 1, 2 checked above, exact)
+    # are the koch-theta-max claim, supported on this part, one conclusion per claim.
+    fj = frictal.study_findings([store])
+    koch = [f for r in fj["reports"] for f in r["findings"] if f["claim_id"] == "koch-theta-max"]
+    assert koch and all(f["verdict"] == "supported" and f["part"] == "theory" for f in koch)
+    ids = [c["id"] for c in fj["conclusions"]]
+    assert len(ids) == len(set(ids)) and "koch-theta-max" in ids
     files = frictal.study_export(store, str(tmp_path / "csv"))
     assert files[0] == "tasks.csv" and "theory.csv" in files and files[-1] == "report.md"
     wide = (tmp_path / "csv" / "theory.csv").read_text().splitlines()
