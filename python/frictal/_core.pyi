@@ -331,7 +331,7 @@ def study_export(store: str, directory: str) -> List[str]:
     Columns are named with their units (_m, _deg, _s; unitless otherwise)."""
 
 def study_findings(stores: List[str]) -> Any:
-    """The findings of one or more stores as data, the object of `frictal study report --json`: reports (each store's findings: claim_id, part, claim, criterion, numbers, verdict, cause), conclusions (one verdict per claim over every store: supported, superseded or not supported, with the measured causes) and the claims catalogue. Texts and numbers as the CLI prints them."""
+    """The findings of one or more stores as data, the object of `frictal study report --json`: reports (each store's findings: claim_id, part, claim, criterion, numbers, verdict, cause), conclusions (one verdict per claim over every store: supported, superseded or not supported, with the measured causes) and the claims catalogue. Texts and numbers as the CLI prints them (angles in deg, lengths in m, ratios unitless)."""
 
 def study_kinds() -> Any:
     """The task kinds of this build: a list of dicts (name, description, version, available, reason, outputs with name/unit/description/array, plots: the plot views scripts/plot_studies.py draws).

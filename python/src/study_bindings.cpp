@@ -198,7 +198,7 @@ void frictal_bind_study(py::module_& m) {
       "The findings of one or more stores as data, the object of `frictal study report --json`: reports (each "
       "store's findings: claim_id, part, claim, criterion, numbers, verdict, cause), conclusions (one verdict per "
       "claim over every store: supported, superseded or not supported, with the measured causes) and the claims "
-      "catalogue. Texts and numbers as the CLI prints them.");
+      "catalogue. Texts and numbers as the CLI prints them (angles in deg, lengths in m, ratios unitless).");
   m.def(
       "study_export",
       [](const std::string& path, const std::string& dir) { return ok(export_csv(*open_existing(path), dir)); },
