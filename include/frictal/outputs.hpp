@@ -85,6 +85,18 @@ Column<T> column(std::string key, std::string unit, std::string help, F&& f, std
   return c;
 }
 
+/// A declared column of T without a value: a nested object or list that the front end writes
+/// under `key` (JSON; "" = none) or `python` (Python's dicts; "" = none); the generic writers skip it.
+template <class T>
+Column<T> declared_column(std::string key, std::string unit, std::string help, std::string python = {}) {
+  Column<T> c;
+  c.key = std::move(key);
+  c.unit = std::move(unit);
+  c.help = std::move(help);
+  c.python = std::move(python);
+  return c;
+}
+
 /// The factor from SI to a column's interface unit: 180/pi for "deg", 1 otherwise.
 inline double interface_factor(std::string_view unit) { return unit == "deg" ? 1.0 / units::kRadPerDeg : 1.0; }
 

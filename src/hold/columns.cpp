@@ -11,16 +11,6 @@ namespace {
 
 using H = HoldAnalysis;
 
-/// A column written only by the Python layer as a nested object (declared, no value here).
-template <class T>
-Column<T> nested(std::string python, std::string table, std::string help) {
-  Column<T> c;
-  c.unit = "object:" + table;
-  c.help = std::move(help);
-  c.python = std::move(python);
-  return c;
-}
-
 }  // namespace
 
 const Columns<HoldStatistics>& hold_statistics_columns() {
@@ -71,9 +61,9 @@ const Columns<HoldAngle>& hold_drop_columns() {
 const Columns<HoldDistribution>& hold_distribution_columns() {
   using T = HoldDistribution;
   static const Columns<T> cols = {
-      nested<T>("hold_angle", "hold_statistics", "phi_qs, the quasi-static hold angle, over drops"),
-      nested<T>("inertial_hold_angle", "hold_statistics", "phi_in, the inertial bound, over drops"),
-      nested<T>("basins", "hold_basins", "the basins the drops drain into"),
+      declared_column<T>("", "object:hold_statistics", "phi_qs, the quasi-static hold angle, over drops", "hold_angle"),
+      declared_column<T>("", "object:hold_statistics", "phi_in, the inertial bound, over drops", "inertial_hold_angle"),
+      declared_column<T>("", "object:hold_basins", "the basins the drops drain into", "basins"),
       column<T>(
           "", "m", "[min, max] of the drops",
           [](const T& d) {
@@ -152,10 +142,13 @@ const Columns<HoldAnalysis>& hold_columns() {
             "", "m", "the lift h(s_k)", [](const H& h) { return h.curve.lift; }, "lift"),
         column<H>(
             "", "m", "the lift's period (0: not periodic)", [](const H& h) { return h.curve.period; }, "period"),
-        nested<H>("forward", "hold_distribution", "the distribution over drops, sliding towards +x"),
-        nested<H>("backward", "hold_distribution", "the distribution over drops, sliding towards -x"),
-        nested<H>("start", "hold_drop", "the drop from the given start offset, forward (start_offset given)"),
-        nested<H>("start_backward", "hold_drop", "the same drop, sliding backward"),
+        declared_column<H>("", "object:hold_distribution", "the distribution over drops, sliding towards +x",
+                           "forward"),
+        declared_column<H>("", "object:hold_distribution", "the distribution over drops, sliding towards -x",
+                           "backward"),
+        declared_column<H>("", "object:hold_drop", "the drop from the given start offset, forward (start_offset given)",
+                           "start"),
+        declared_column<H>("", "object:hold_drop", "the same drop, sliding backward", "start_backward"),
     };
     const auto& st = hold_statistics_columns();
     flatten(

@@ -13,16 +13,6 @@ namespace {
 using S = SignatureResult;
 using F = FrictionPrediction;
 
-/// A column written only by the Python layer as a nested object (declared, no value here).
-template <class T>
-Column<T> nested(std::string python, std::string table, std::string help) {
-  Column<T> c;
-  c.unit = "object:" + table;
-  c.help = std::move(help);
-  c.python = std::move(python);
-  return c;
-}
-
 }  // namespace
 
 const Columns<SignatureResult>& signature_columns() {
@@ -74,7 +64,8 @@ const Columns<SignatureResult>& signature_columns() {
                 [](const S& r) { return r.contact_slope_mean; }),
       column<S>("contact_slope_std_deg", "deg", "sigma of Eq. 18: standard deviation of the contact slopes",
                 [](const S& r) { return r.contact_slope_std; }),
-      nested<S>("contact_slope_pdf", "histogram", "density of the contact slopes (edges in rad, density per rad)"),
+      declared_column<S>("", "object:histogram", "density of the contact slopes (edges in rad, density per rad)",
+                         "contact_slope_pdf"),
       column<S>(
           "", "deg", "contact slope samples the statistics are over", [](const S& r) { return r.slope_samples; },
           "slope_samples"),
@@ -83,7 +74,7 @@ const Columns<SignatureResult>& signature_columns() {
           "slope_weights"),
       column<S>(
           "", "count", "distinct event offsets in the range", [](const S& r) { return double(r.events); }, "events"),
-      nested<S>("contacts", "contacts", "every contact at every offset (keep_contacts=True)"),
+      declared_column<S>("", "object:contacts", "every contact at every offset (keep_contacts=True)", "contacts"),
   };
   return cols;
 }

@@ -13,14 +13,6 @@ namespace {
 using R = TiltReport;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-template <class T>
-Column<T> nested(std::string key, std::string unit, std::string help) {
-  Column<T> c;
-  c.key = std::move(key);
-  c.unit = std::move(unit);
-  c.help = std::move(help);
-  return c;
-}
 bool rotated(const TiltResult& r) {
   return std::any_of(r.warnings.begin(), r.warnings.end(), [](const TiltWarning& w) { return w.code == "rotation"; });
 }
@@ -86,12 +78,13 @@ const Columns<TiltReport>& tilt_columns() {
                 }),
       column<R>("rotation_before_slide_deg", "deg", "how far the upper block turned before it slid",
                 [](const R& t) { return t.result.rotation_before_slide; }),
-      nested<R>("scales", "object:tilt_scales", "the run's length and time scales"),
-      nested<R>("estimate", "object:tilt_estimate", "the cost estimate made before the run"),
-      nested<R>("stage_time_s", "object:tilt_stage_times", "wall time by stage of the time stepping"),
-      nested<R>("surface", "settings", "the generated surface's parameters (null for files)"),
-      nested<R>("scaled_defaults", "object:tilt_scaling", "how the defaults were scaled to the surfaces (null: not)"),
-      nested<R>("settings", "settings", "every tilt setting the run used (frictal settings tilt)"),
+      declared_column<R>("scales", "object:tilt_scales", "the run's length and time scales"),
+      declared_column<R>("estimate", "object:tilt_estimate", "the cost estimate made before the run"),
+      declared_column<R>("stage_time_s", "object:tilt_stage_times", "wall time by stage of the time stepping"),
+      declared_column<R>("surface", "settings", "the generated surface's parameters (null for files)"),
+      declared_column<R>("scaled_defaults", "object:tilt_scaling",
+                         "how the defaults were scaled to the surfaces (null: not)"),
+      declared_column<R>("settings", "settings", "every tilt setting the run used (frictal settings tilt)"),
       column<R>("initial_offset_m", "m", "the offset the upper block was put down at",
                 [](const R& t) { return t.result.initial_offset; }),
       column<R>("slide_time_s", "s", "simulated time at the start of the run-away",
@@ -201,8 +194,8 @@ const Columns<TiltScaling>& tilt_scaling_columns() {
       column<T>("length_factor", "1", "s = L / reference length", [](const T& s) { return s.length_factor; }),
       column<T>("radius_factor", "1", "q = r / (s r_0), below 1 when the spacing caps r",
                 [](const T& s) { return s.radius_factor; }),
-      nested<T>("settings", "list:tilt_scaled_setting",
-                "the settings changed, each {name, unit, from, to} in text units"),
+      declared_column<T>("settings", "list:tilt_scaled_setting",
+                         "the settings changed, each {name, unit, from, to} in text units"),
   };
   return cols;
 }
