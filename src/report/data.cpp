@@ -138,15 +138,10 @@ ReportSlopes slopes_of(const ReportSurfaces& s, const SignatureResult& r, int bi
   return out;
 }
 
-Result<ReportHold> hold_of(const ReportInput& in, const ReportSurfaces& s, const SignatureOptions& so,
-                           const FrictionPrediction& fwd) {
-  HoldOptions ho;
-  ho.runaway_distance = in.runaway_distance;
-  ho.atomic_friction = in.atomic_friction;
-  auto ha = analyse_hold(s.lower, rotate180(s.upper), so, ho);
-  if (!ha) return ha.error();
+/// The hold section from the analysis that came with the signature (one pass over the lift).
+ReportHold hold_of(HoldAnalysis analysis, const FrictionPrediction& fwd) {
   ReportHold out;
-  out.analysis = std::move(*ha);
+  out.analysis = std::move(analysis);
   const LiftCurve& curve = out.analysis.curve;
   const HoldDistribution& f = out.analysis.distribution.forward;
   for (double x : f.basins.rest) {
@@ -328,9 +323,14 @@ Result<ReportData> report_data(const ReportInput& in) {
   so.threads = in.threads;
   so.keep_contacts = false;
   so.bins = in.bins;
-  auto sig = signature(s.lower, rotate180(s.upper), so);
+  // The signature and the hold analysis in one pass over the lift (signature_with_hold: the
+  // signature is the one signature() returns), not one lift each.
+  HoldOptions ho;
+  ho.runaway_distance = in.runaway_distance;
+  ho.atomic_friction = in.atomic_friction;
+  auto sig = signature_with_hold(s.lower, rotate180(s.upper), so, ho);
   if (!sig) return sig.error();
-  d.signature = std::move(*sig);
+  d.signature = std::move(sig->signature);
   const SignatureResult& r = d.signature;
   auto fwd = predict_friction(in.atomic_friction, r.theta_max_forward, r.contact_slope_std);
   if (!fwd) return fwd.error();
@@ -341,9 +341,7 @@ Result<ReportData> report_data(const ReportInput& in) {
 
   d.slopes = slopes_of(s, r, in.bins);
 
-  auto hold = hold_of(in, s, so, d.forward);
-  if (!hold) return hold.error();
-  d.hold = std::move(*hold);
+  d.hold = hold_of(std::move(sig->hold), d.forward);
 
   if (in.is_map && in.upper_map) {
     ReportArealHold a;
