@@ -148,7 +148,9 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     if (auto st = validate(*lo, lower.name); !st) return st.error();
     if (auto st = validate(up_measured, upper ? upper->name : lower.name); !st) return st.error();
   }
-  const Profile up = rotate180(up_measured);
+  Profile up = rotate180(up_measured);
+  up_measured = Profile{};  // the rotated copy is the one used from here (memory: 10^7 points are 160 MB a copy)
+  const bool lower_periodic = lo->period.has_value();
   SignatureOptions so;
   so.threads = o.threads;
   so.keep_contacts = false;
@@ -156,10 +158,12 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   ho.runaway_distance = o.runaway_distance;
   ho.atomic_friction = o.atomic_friction;
   const bool one = std::isfinite(o.start_offset[0]);
-  auto h = analyse_hold(*lo, up, so, ho, one ? o.start_offset[0] : std::numeric_limits<double>::quiet_NaN());
-  if (!h) return h.error();
-  auto sig = signature(*lo, up, so);
-  if (!sig) return sig.error();
+  // The bound and the hold analysis from one pass over the lift (not a signature each).
+  auto both = signature_with_hold(std::move(*lo), std::move(up), so, ho,
+                                  one ? o.start_offset[0] : std::numeric_limits<double>::quiet_NaN());
+  if (!both) return both.error();
+  const SignatureResult* sig = &both->signature;
+  const HoldAnalysis* h = &both->hold;
   const HoldDistribution& d = forward ? h->distribution.forward : h->distribution.backward;
   p.runaway_distance = h->runaway_distance;
   p.drops = d.basins.rest.size();
@@ -173,7 +177,7 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     p.drops = 1;
   } else {
     p.friction_angle = d.hold;
-    if (p.drops < 3 && !lo->period)
+    if (p.drops < 3 && !lower_periodic)
       add_warning(p.warnings, {"few-drops", fmt::format("the drops over [{:.6g}, {:.6g}] m drain into {} basin(s) "
                                                         "only: the spread is not resolved",
                                                         d.drop_min, d.drop_max, p.drops)});
