@@ -24,6 +24,7 @@
 
 #include "frictal/areal.hpp"
 #include "frictal/map.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 #include "frictal/settings.hpp"
 
@@ -104,6 +105,11 @@ struct ArealTiltResult {
   /// damping creeps instead of sliding, so the angle reads late).
   std::vector<std::array<std::string, 2>> warnings;
 };
+
+/// The run's output columns (frictal/outputs.hpp; src/tilt/tilt_columns.cpp): the keys of
+/// `frictal areal-tilt --json` that are the run's numbers (its table "areal_tilt") and the
+/// areal-tilt study kind's outputs of the same quantities.
+const Columns<ArealTiltResult>& areal_tilt_run_columns();
 
 /// Called after each tilt increment with the increment just recorded (for a progress line; it
 /// must not throw).

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <map>
 #include <memory>
 #include <string>
@@ -82,7 +83,8 @@ struct TaskRow {
 };
 struct Report;
 
-/// An output a kind writes: a named scalar or array, its unit and meaning.
+/// An output a kind writes: a named scalar or array, its unit and meaning, and, for an output
+/// taken from an output table (outputs_of), which column of which table it is.
 struct OutputColumn {
   OutputColumn() = default;
   OutputColumn(std::string name_, std::string unit_, std::string description_, bool array_ = false)
@@ -91,34 +93,59 @@ struct OutputColumn {
   std::string unit;  ///< e.g. "deg", "m", "s", "1" (unitless)
   std::string description;
   bool array = false;  ///< an array (one value per index) rather than a scalar
+  std::string table;   ///< the output table (frictal columns) it is a column of; "" = declared by the kind
+  std::string column;  ///< that column's key (the table's declaration: its unit and, ending the description, help)
 };
 
-/// The study outputs of the columns `keys` of an output table (frictal/outputs.hpp): the key, the
-/// interface unit ("1" for a count or a flag: a store holds numbers) and the table's meaning, so
-/// that a quantity that a kind stores and a command prints is declared once. A key not in the table
-/// is left out (the output key test then names the output that the kind stores undeclared).
+/// One column of an output table that a kind stores: the table's `column` under the study key
+/// `name` (nullptr: the same key), its help after `context` + ": " (nullptr: the help alone), e.g.
+/// {"hold_angle_deg", "sphero_hold_angle_deg", "the rounded blocks"}. A plain key converts. A
+/// column without a JSON key is named by its Python key (e.g. the signature's "events").
+struct ColumnOutput {
+  constexpr ColumnOutput(const char* column_) : column(column_) {}  // NOLINT: a key converts
+  constexpr ColumnOutput(const char* column_, const char* name_, const char* context_ = nullptr)
+      : column(column_), name(name_), context(context_) {}
+  const char* column;
+  const char* name = nullptr;
+  const char* context = nullptr;
+  std::string key() const { return name ? name : column; }
+  /// Whether `c` is the column named.
+  bool names(const ColumnInfo& c) const { return c.key.empty() ? c.python == column : c.key == column; }
+};
+
+/// The study outputs of the columns `keys` of the output table `table` (its name in frictal
+/// columns; `cols` its typed columns, frictal/outputs.hpp): the study key, the interface unit ("1"
+/// for a count or a flag: a store holds numbers), the table's meaning and where it comes from, so
+/// that a quantity that a kind stores and a command prints is declared once (the output key test
+/// checks each against the table). A key not in the table is left out (the key test then names
+/// the output that the kind stores undeclared).
 template <class T>
-std::vector<OutputColumn> outputs_of(const Columns<T>& cols, std::initializer_list<const char*> keys) {
+std::vector<OutputColumn> outputs_of(const std::string& table, const Columns<T>& cols,
+                                     std::initializer_list<ColumnOutput> keys) {
   std::vector<OutputColumn> out;
-  for (const char* k : keys)
+  for (const ColumnOutput& k : keys)
     for (const Column<T>& c : cols)
-      if (c.key == k) {
+      if (k.names(c)) {
         const bool number = c.unit == "count" || c.unit == "flag";
-        out.emplace_back(c.key, number ? "1" : c.unit, c.help, false);
+        OutputColumn o(k.key(), number ? "1" : c.unit, k.context ? std::string(k.context) + ": " + c.help : c.help);
+        o.table = table;
+        o.column = k.column;
+        out.push_back(std::move(o));
       }
   return out;
 }
 
-/// The generic study writer of an output table: the columns `keys` of `value` as scalars of `out`,
-/// in the interface unit (degrees for "deg"), a flag as 1 or 0; text columns are not stored.
+/// The generic study writer of an output table: the columns `keys` of `value` as scalars of `out`
+/// under their study keys, in the interface unit (degrees for "deg"), a flag as 1 or 0; text and
+/// list columns are not stored.
 template <class T>
-void put_outputs(TaskOutput& out, const Columns<T>& cols, const T& value, std::initializer_list<const char*> keys) {
-  for (const char* k : keys)
+void put_outputs(TaskOutput& out, const Columns<T>& cols, const T& value, std::initializer_list<ColumnOutput> keys) {
+  for (const ColumnOutput& k : keys)
     for (const Column<T>& c : cols) {
-      if (c.key != k || !c.si) continue;
+      if (!k.names(c) || !c.si) continue;
       const OutputValue v = to_interface(c.unit, c.si(value));
-      if (const double* d = std::get_if<double>(&v)) out.scalars[c.key] = *d;
-      if (const bool* b = std::get_if<bool>(&v)) out.scalars[c.key] = *b ? 1 : 0;
+      if (const double* d = std::get_if<double>(&v)) out.scalars[k.key()] = *d;
+      if (const bool* b = std::get_if<bool>(&v)) out.scalars[k.key()] = *b ? 1 : 0;
     }
 }
 

@@ -145,8 +145,10 @@ def kinds_page(cli):
                    f"{'' if k.get('available', True) else ' (not available in this build)'}\n")
         out.append("| output | unit | array | meaning |\n|---|---|---|---|")
         for o in k["outputs"]:
+            # an output taken from an output table names its column (the outputs reference)
+            src = f" (column `{o['column']}` of table `{o['table']}`)" if o.get("table") else ""
             out.append(f"| `{o['name']}` | {cell(o['unit'])} | {'yes' if o['array'] else '–'} | "
-                       f"{cell(o['description'])} |")
+                       f"{cell(o['description'] + src)} |")
         if k.get("plots"):
             out.append("\nPlot views: " + ", ".join(f"`{p['id']}`" for p in k["plots"]) + ".")
         out.append("")

@@ -4,8 +4,10 @@
 // the front end). `frictal columns` prints this list; a test checks every key a command or a
 // Python function prints against it.
 #include <algorithm>
+#include <string_view>
 
 #include "frictal/analysis.hpp"
+#include "frictal/areal_tilt.hpp"
 #include "frictal/fractal.hpp"
 #include "frictal/hold.hpp"
 #include "frictal/outputs.hpp"
@@ -25,6 +27,13 @@ ColumnInfo ci(std::string key, std::string unit, std::string help, std::string p
   if (python == "=") python = default_python_key(key, unit);
   if (python == "-") python.clear();
   return {std::move(key), std::move(unit), std::move(help), std::move(python)};
+}
+/// The declaration of column `key` of typed columns `cols` (declared there, written here by hand).
+template <class T>
+ColumnInfo info_of(const Columns<T>& cols, std::string_view key) {
+  for (const Column<T>& c : cols)
+    if (c.key == key) return c;
+  return {std::string(key), "undeclared", "", ""};  // the key test names it
 }
 /// A Python-only column.
 ColumnInfo py(std::string python, std::string unit, std::string help) {
@@ -225,8 +234,8 @@ std::vector<OutputTable> make_tables() {
        "frictal areal-tilt --json (the MuJoCo run and the predictions matched to it)",
        {ci("direction_deg", "deg", "tilt direction, from +x towards +y"),
         ci("runaway_distance_m", "m", "run-away distance d"),
-        ci("friction_angle_deg", "deg", "the friction angle this 3D test read (absent with --predict-only)"),
-        ci("ran_away", "flag", "the block ran away before the largest tilt", "="),
+        info_of(areal_tilt_run_columns(), "friction_angle_deg"),
+        info_of(areal_tilt_run_columns(), "ran_away"),
         ci("rest_offset_m", "m", "where the block rested (x, y)"),
         ci("predicted_hold_angle_deg", "deg", "grid model, block free (a diagnostic; frictal predict is the answer)"),
         ci("predicted_hold_angle_locked_deg", "deg", "grid model, block locked to the direction"),
@@ -251,14 +260,14 @@ std::vector<OutputTable> make_tables() {
         ci("collision", "text", "MuJoCo's collision: native or exact"),
         ci("lateral", "text", "free or locked"),
         ci("prediction_refine", "count", "refinement of the predictions' increments"),
-        ci("steering_deg", "deg", "how far the simulated block turned off the direction", "steering"),
+        info_of(areal_tilt_run_columns(), "steering_deg"),
         ci("increment_trace", "list",
            "[tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed] per increment"),
         ci("tilt_step_deg", "deg", "the tilt increment"),
-        ci("spheres", "count", "spheres of the upper block", "="),
-        ci("steps", "count", "MuJoCo steps", "="),
+        info_of(areal_tilt_run_columns(), "spheres"),
+        info_of(areal_tilt_run_columns(), "steps"),
         ci("max_contacts", "count", "most contacts at once"),
-        ci("unsettled_increments", "count", "increments that did not come to rest", "="),
+        info_of(areal_tilt_run_columns(), "unsettled_increments"),
         ci("seconds", "s", "wall time"),
         py("predicted_hold_angle", "rad", "areal_tilt: the matched continuous model from the simulated rest"),
         py("predicted_steering", "rad", "its steering"),

@@ -30,6 +30,21 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 constexpr double kWidth = 1e-3;  // the lower map's width (m)
 
+// The run's outputs, from the areal tilt test's table (areal_tilt_run_columns(): the numbers of
+// frictal areal-tilt --json, declared once there), for the block free and locked.
+constexpr std::initializer_list<ColumnOutput> kFreeRun = {
+    {"friction_angle_deg", "simulated_free_deg", "MuJoCo's run-away increment, block free to move sideways"},
+    {"ran_away", "ran_away_free", "block free"},
+    {"unsettled_increments", "unsettled_free", "block free"},
+    {"steps", "steps_free", "block free"},
+    {"steering_deg", nullptr, "block free: the angle from d to its run-away"},
+    "spheres"};
+constexpr std::initializer_list<ColumnOutput> kLockedRun = {
+    {"friction_angle_deg", "simulated_locked_deg", "MuJoCo's run-away increment, block locked to d"},
+    {"ran_away", "ran_away_locked", "block locked"},
+    {"unsettled_increments", "unsettled_locked", "block locked"},
+    {"steps", "steps_locked", "block locked"}};
+
 /// A Fourier-filtered random map of n x n nodes on spacing a: a sum of cosines over the
 /// wavevectors 2 pi (kx, ky) / (2 (n - 1) a) with Gaussian coefficients, filtered flat below the
 /// rolloff (8 spacings) and as q^-(1 + H) up to the cut-off (2.5 spacings), q measured with the
@@ -163,11 +178,11 @@ Result<TaskOutput> run_areal_tilt_task(const Params& p, std::uint64_t seed) {
     c.start_offset = sim->rest_offset;
     auto hold = areal_tilt_hold(f, g, c);
     if (!hold) return hold.error();
-    const double fa = sim->friction_angle * 180 / kPi, pr = hold->hold_angle * 180 / kPi;
+    put_outputs(out, areal_tilt_run_columns(), *sim, lock ? kLockedRun : kFreeRun);
+    const double fa = s["simulated_" + tag + "_deg"], pr = hold->hold_angle * 180 / kPi;
     const double step = o.tilt_step * 180 / kPi;
     // Within 0.2 deg of the simulated bracket (reading - one increment, reading].
     const double miss = pr > fa ? pr - fa : std::max(0.0, fa - step - pr);
-    s["simulated_" + tag + "_deg"] = fa;
     s["matched_" + tag + "_deg"] = pr;
     s["miss_" + tag + "_deg"] = miss;
     s["within_" + tag] = miss <= 0.2 ? 1.0 : 0.0;
@@ -180,9 +195,6 @@ Result<TaskOutput> run_areal_tilt_task(const Params& p, std::uint64_t seed) {
     s["spread_high_" + tag + "_deg"] = hi;
     s["ambiguous_slips_" + tag] = double(spread->ambiguous);
     s["within_spread_" + tag] = miss_range <= 0.2 ? 1.0 : 0.0;
-    s["ran_away_" + tag] = sim->ran_away ? 1.0 : 0.0;
-    s["unsettled_" + tag] = double(sim->unsettled);
-    s["steps_" + tag] = double(sim->steps);
     // The rigid block put down in the seat where the simulated one stood before its run-away, at
     // that tilt: do the two hold equally long from the same seat? (NaN: no seat.)
     s["seated_" + tag + "_deg"] = std::numeric_limits<double>::quiet_NaN();
@@ -197,12 +209,10 @@ Result<TaskOutput> run_areal_tilt_task(const Params& p, std::uint64_t seed) {
       s["seat_tilt_" + tag + "_deg"] = (*seat)[0] * 180 / kPi;
     }
     if (!lock) {
-      s["steering_deg"] = sim->steering * 180 / kPi;
       s["matched_steering_deg"] = hold->steering * 180 / kPi;
     }
   }
   s["free_minus_locked_deg"] = s["simulated_free_deg"] - s["simulated_locked_deg"];
-  s["spheres"] = double(g.heights.size());
   return out;
 }
 
@@ -365,13 +375,9 @@ TaskKind areal_tilt_kind() {
   };
   k.uses_seed = true;
   k.outputs = {
-      {"simulated_free_deg", "deg", "MuJoCo's run-away increment, block free to move sideways"},
       {"matched_free_deg", "deg", "matched prediction (areal_tilt_hold) from the simulated rest, free"},
       {"miss_free_deg", "deg", "distance of the prediction from the simulated bracket, free"},
       {"within_free", "1", "1 when within 0.2 deg, free"},
-      {"ran_away_free", "1", "1 when the free block ran away below the largest tilt"},
-      {"unsettled_free", "1", "increments that did not reach rest, free"},
-      {"steps_free", "1", "MuJoCo steps, free"},
       {"seated_free_deg", "deg",
        "the rigid block's hold angle from the simulated block's last seat before its run-away (areal_tilt_hold "
        "with start_tilt), free; NaN without one"},
@@ -382,24 +388,21 @@ TaskKind areal_tilt_kind() {
       {"spread_high_free_deg", "deg", "largest such hold angle, free"},
       {"ambiguous_slips_free", "1", "slips from whose moved ends the rigid block settles in another seat, free"},
       {"within_spread_free", "1", "1 when the simulated bracket lies within 0.2 deg of that range, free"},
-      {"simulated_locked_deg", "deg", "MuJoCo's run-away increment, block locked to d"},
       {"matched_locked_deg", "deg", "matched prediction from the simulated rest, locked"},
       {"miss_locked_deg", "deg", "distance of the prediction from the simulated bracket, locked"},
       {"within_locked", "1", "1 when within 0.2 deg, locked"},
-      {"ran_away_locked", "1", "1 when the locked block ran away below the largest tilt"},
-      {"unsettled_locked", "1", "increments that did not reach rest, locked"},
-      {"steps_locked", "1", "MuJoCo steps, locked"},
       {"seated_locked_deg", "deg", "the same from the locked block's last seat"},
       {"seat_tilt_locked_deg", "deg", "the tilt of that seat, locked"},
       {"spread_low_locked_deg", "deg", "the same least hold angle, locked"},
       {"spread_high_locked_deg", "deg", "largest such hold angle, locked"},
       {"ambiguous_slips_locked", "1", "slips from whose moved ends the rigid block settles in another seat, locked"},
       {"within_spread_locked", "1", "1 when the simulated bracket lies within 0.2 deg of that range, locked"},
-      {"steering_deg", "deg", "angle from d to the simulated free block's run-away"},
       {"matched_steering_deg", "deg", "the same in the matched prediction"},
       {"free_minus_locked_deg", "deg", "simulated free minus locked"},
-      {"spheres", "1", "spheres of the upper face"},
   };
+  for (const auto& run : {outputs_of("areal_tilt", areal_tilt_run_columns(), kFreeRun),
+                          outputs_of("areal_tilt", areal_tilt_run_columns(), kLockedRun)})
+    k.outputs.insert(k.outputs.end(), run.begin(), run.end());
   k.report = areal_tilt_part;
   return k;
 }

@@ -19,6 +19,16 @@
 
 namespace frictal::study {
 
+namespace {
+
+// The fit's outputs, from the dimension table (fractal_fit_columns(): declared once there).
+constexpr std::initializer_list<ColumnOutput> kFitOutputs = {
+    {"dimension", nullptr, "the divider's, D = 1 - slope of log L against log eps"},
+    {"slope", nullptr, "log L against log eps"},
+    "r_squared"};
+
+}  // namespace
+
 Result<TaskOutput> run_divider_task(const Params& p, std::uint64_t /*seed: deterministic curve*/) {
   auto rmin = get_real(p, "ruler_min_over_wavelength", 3e-4);
   auto rmax = get_real(p, "ruler_max_over_wavelength", 0.25);
@@ -55,11 +65,9 @@ Result<TaskOutput> run_divider_task(const Params& p, std::uint64_t /*seed: deter
   if (!d13) return d13.error();
   TaskOutput out;
   auto& s = out.scalars;
-  s["dimension"] = fit->dimension;
+  put_outputs(out, fractal_fit_columns(), *fit, kFitOutputs);
   s["dimension_eq13"] = *d13;
   s["dimension_minus_eq13"] = fit->dimension - *d13;
-  s["r_squared"] = fit->r_squared;
-  s["slope"] = fit->slope;
   s["ruler_min_m"] = fit->scale_min;
   s["ruler_max_m"] = fit->scale_max;
   s["points"] = static_cast<double>(curve->size());
@@ -137,17 +145,16 @@ TaskKind divider_kind() {
   k.cost = divider_cost;
   k.uses_seed = false;  // a deterministic curve
   k.outputs = {
-      {"dimension", "1", "divider dimension D = 1 - slope of log L against log eps"},
       {"dimension_eq13", "1", "fractal dimension of Eq. 13"},
       {"dimension_minus_eq13", "1", "D - D(Eq. 13)"},
-      {"r_squared", "1", "fit quality"},
-      {"slope", "1", "slope of log L against log eps"},
       {"ruler_min_m", "m", "smallest ruler"},
       {"ruler_max_m", "m", "largest ruler"},
       {"points", "1", "curve points"},
       {"ruler_m", "m", "rulers eps (Fig. 9)", true},
       {"measured_length_m", "m", "measured length L(eps) (Fig. 9)", true},
   };
+  const std::vector<OutputColumn> fit = outputs_of("dimension", fractal_fit_columns(), kFitOutputs);
+  k.outputs.insert(k.outputs.end(), fit.begin(), fit.end());
   k.report = divider_part;
   PlotView v = PlotView::of("divider", {"ruler_m", "ruler ε / λ", "wavelength", true},
                             {"measured_length_m", "measured length L / λ", "wavelength", true})

@@ -23,6 +23,28 @@ namespace frictal::study {
 
 using namespace kind_detail;
 
+namespace {
+
+// The outputs taken from output tables (frictal columns): declared once there. The signature's
+// (signature_columns(); events: its Python key)...
+constexpr std::initializer_list<ColumnOutput> kSignatureOutputs = {"theta_max_forward_deg",
+                                                                   "theta_max_backward_deg",
+                                                                   "contact_slope_mean_deg",
+                                                                   "contact_slope_std_deg",
+                                                                   "offsets",
+                                                                   "events"};
+// ... Eq. 6's bound (friction_columns()), under the keys the tilt kind's simulated angle has (the
+// figures draw both in one panel) ...
+constexpr std::initializer_list<ColumnOutput> kFrictionOutputs = {
+    "atomic_friction_angle_deg",
+    {"upper_bound_friction_angle_deg", "friction_angle_deg", "phi, capped at 90 deg"},
+    {"upper_bound_friction_coefficient", "friction_coefficient", "tan(phi), +inf at 90 deg"}};
+// ... and the profile's (profile_stats_columns()).
+constexpr std::initializer_list<ColumnOutput> kProfileOutputs = {
+    {"max_slope_deg", "surface_slope_max_deg", "the profile"}, "points"};
+
+}  // namespace
+
 Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: deterministic surfaces*/) {
   Error err;
   std::int64_t offsets = 0;
@@ -64,22 +86,14 @@ Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: det
   const ProfileStats ps = profile_stats(*prof);
   TaskOutput out;
   auto& s = out.scalars;
-  s["theta_max_forward_deg"] = r.theta_max_forward / kDeg;
-  s["theta_max_backward_deg"] = r.theta_max_backward / kDeg;
+  put_outputs(out, signature_columns(), r, kSignatureOutputs);
+  put_outputs(out, friction_columns(), *fr, kFrictionOutputs);
+  put_outputs(out, profile_stats_columns(), ps, kProfileOutputs);
   s["theta_max_over_alpha"] = r.theta_max_forward / kp.alpha;
-  s["surface_slope_max_deg"] = ps.max_slope / kDeg;
   s["surface_slope_max_over_alpha"] = ps.max_slope / kp.alpha;
-  s["contact_slope_mean_deg"] = r.contact_slope_mean / kDeg;
-  s["contact_slope_std_deg"] = r.contact_slope_std / kDeg;
-  s["atomic_friction_angle_deg"] = fr->atomic_angle / kDeg;
-  s["friction_angle_deg"] = fr->friction_angle / kDeg;
-  s["friction_coefficient"] = fr->friction_coefficient;
   auto d13 = koch_dimension(kp.alpha);
   if (!d13) return d13.error();
   s["dimension_eq13"] = *d13;
-  s["points"] = static_cast<double>(prof->size());
-  s["offsets"] = static_cast<double>(r.offset.size());
-  s["events"] = static_cast<double>(r.events);
   std::vector<double> xo, th;
   xo.reserve(r.offset.size());
   th.reserve(r.offset.size());
@@ -212,23 +226,16 @@ TaskKind koch_signature_kind() {
   k.cost = koch_signature_cost;
   k.uses_seed = false;  // deterministic surfaces
   k.outputs = {
-      {"theta_max_forward_deg", "deg", "maximum contact slope resisting sliding towards +x"},
-      {"theta_max_backward_deg", "deg", "maximum contact slope resisting sliding towards -x"},
       {"theta_max_over_alpha", "1", "theta_max / alpha (1, 1, 2, 3 for K0..K3)"},
-      {"surface_slope_max_deg", "deg", "steepest edge of the profile"},
       {"surface_slope_max_over_alpha", "1", "steepest edge / alpha (n + 1 for K_n)"},
-      {"contact_slope_mean_deg", "deg", "mean contact slope"},
-      {"contact_slope_std_deg", "deg", "standard deviation of contact slopes (sigma of Eq. 18)"},
-      {"atomic_friction_angle_deg", "deg", "atan(mu_a)"},
-      {"friction_angle_deg", "deg", "phi = atan(mu_a) + theta_max (Eq. 6), capped at 90"},
-      {"friction_coefficient", "1", "tan(phi); NaN when phi = 90 deg"},
       {"dimension_eq13", "1", "fractal dimension of Eq. 13"},
-      {"points", "1", "profile points"},
-      {"offsets", "1", "offsets evaluated"},
-      {"events", "1", "event offsets"},
       {"signature_offset_over_wavelength", "1", "offset / lambda (Fig. 4)", true},
       {"signature_theta_over_alpha", "1", "theta / alpha at each offset (Fig. 4)", true},
   };
+  for (const auto& table : {outputs_of("signature", signature_columns(), kSignatureOutputs),
+                            outputs_of("friction", friction_columns(), kFrictionOutputs),
+                            outputs_of("profile_stats", profile_stats_columns(), kProfileOutputs)})
+    k.outputs.insert(k.outputs.end(), table.begin(), table.end());
   k.report = koch_part;
   k.plots = {
       PlotView::of("friction-vs-alpha", {"alpha", "α (deg)"}, {"friction_angle_deg", "friction angle φ (deg)"})

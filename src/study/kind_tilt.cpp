@@ -12,6 +12,7 @@
 
 #include <fmt/core.h>
 
+#include "frictal/signature.hpp"
 #include "frictal/study.hpp"
 #include "frictal/surface_spec.hpp"
 #include "frictal/tilt.hpp"
@@ -22,19 +23,28 @@
 namespace frictal::study {
 namespace {
 
-// The outputs this kind takes from the tilt test's output table (tilt_columns(): declared once).
-constexpr std::initializer_list<const char*> kTiltTableOutputs = {"predicted_friction_angle_deg",
-                                                                  "predicted_theta_max_deg",
-                                                                  "simulated_time_s",
-                                                                  "steps",
-                                                                  "upper_mass_kg",
-                                                                  "predicted_sphero_friction_angle_deg",
-                                                                  "predicted_sphero_theta_max_deg",
-                                                                  "rotation_before_slide_deg",
-                                                                  "rest_offset_m",
-                                                                  "predicted_hold_angle_deg",
-                                                                  "predicted_inertial_hold_angle_deg",
-                                                                  "predicted_sphero_hold_angle_deg"};
+// The outputs this kind takes from output tables (frictal columns: declared once there). The tilt
+// test's (tilt_columns()):
+constexpr std::initializer_list<ColumnOutput> kTiltTableOutputs = {
+    "slid",
+    "predicted_friction_angle_deg",
+    "predicted_theta_max_deg",
+    "simulated_time_s",
+    "steps",
+    "upper_mass_kg",
+    "predicted_sphero_friction_angle_deg",
+    "predicted_sphero_theta_max_deg",
+    "rotation_before_slide_deg",
+    "rest_offset_m",
+    "predicted_hold_angle_deg",
+    "predicted_inertial_hold_angle_deg",
+    "predicted_sphero_hold_angle_deg",
+    {"steps_beyond_stability_limit", "steps_beyond_limit"}};
+// Its scales (tilt_scales_columns()).
+constexpr std::initializer_list<ColumnOutput> kScalesOutputs = {
+    "resting_overlap_m", {"time_step_s", nullptr, "after the retries with 2.5x smaller steps"}};
+// theta_a (friction_columns()).
+constexpr std::initializer_list<ColumnOutput> kFrictionOutputs = {"atomic_friction_angle_deg"};
 
 using kind_detail::number;
 using kind_detail::run_tilt_retrying;
@@ -110,18 +120,17 @@ Result<TaskOutput> run_tilt_task(const Params& p, std::uint64_t /*seed: determin
   if (!r) return r.error();
   TaskOutput out;
   auto& s = out.scalars;
-  s["slid"] = r->slid ? 1 : 0;
-  s["friction_angle_deg"] = r->friction_angle / kDeg;
-  // The quantities the tilt command prints too, from its output table (frictal/tilt.hpp).
+  s["friction_angle_deg"] = r->friction_angle / kDeg;  // 0 without a slide (the tilt table's: null)
+  // The quantities the tilt command prints too, from its output tables (frictal/tilt.hpp).
   put_outputs(out, tilt_columns(), TiltReport{*r, c}, kTiltTableOutputs);
+  put_outputs(out, tilt_scales_columns(), r->scales, kScalesOutputs);
+  auto theta_a = predict_friction(c.contact.atomic_friction, 0, 0);  // theta_a alone
+  if (!theta_a) return theta_a.error();
+  put_outputs(out, friction_columns(), *theta_a, kFrictionOutputs);
   s["friction_angle_minus_theory_deg"] = (r->friction_angle - r->predicted_friction_angle) / kDeg;
   s["phi_minus_theta_max_deg"] = (r->friction_angle - r->predicted_theta_max) / kDeg;
-  s["atomic_friction_angle_deg"] = std::atan(c.contact.atomic_friction) / kDeg;
   s["friction_coefficient"] = std::tan(r->friction_angle);
-  s["steps_beyond_limit"] = static_cast<double>(r->steps_beyond_limit);
-  s["time_step_s"] = c.time_step;
   s["friction_angle_minus_sphero_deg"] = (r->friction_angle - r->predicted_sphero_friction_angle) / kDeg;
-  s["resting_overlap_m"] = r->scales.resting_overlap;
   // What the test reads from where the block rests (hold.hpp), rigid and rounded blocks.
   s["friction_angle_minus_sphero_hold_deg"] = (r->friction_angle - r->predicted_sphero_hold_angle) / kDeg;
   kind_detail::put_tilt_warnings(s, *r);
@@ -337,20 +346,17 @@ TaskKind tilt_kind() {
   k.cost = tilt_cost;
   k.uses_seed = false;  // a deterministic simulation: shared by every study with the same parameters
   k.outputs = {
-      {"slid", "1", "1 if the upper block slid, else 0"},
       {"friction_angle_deg", "deg", "simulated friction angle (tilt at the slide)"},
       {"friction_angle_minus_theory_deg", "deg", "simulated minus predicted friction angle"},
       {"phi_minus_theta_max_deg", "deg", "simulated friction angle minus theta_max"},
-      {"atomic_friction_angle_deg", "deg", "atan(mu_a)"},
       {"friction_coefficient", "1", "tan of the simulated friction angle"},
-      {"steps_beyond_limit", "1", "steps above the explicit stability limit"},
-      {"time_step_s", "s", "time step used (after retries with smaller steps)"},
       {"friction_angle_minus_sphero_hold_deg", "deg", "simulated minus the rounded blocks' phi_qs"},
       {"friction_angle_minus_sphero_deg", "deg", "simulated minus spheropolygon prediction"},
-      {"resting_overlap_m", "m", "W / k_n"},
   };
-  const std::vector<OutputColumn> table = outputs_of(tilt_columns(), kTiltTableOutputs);
-  k.outputs.insert(k.outputs.end(), table.begin(), table.end());
+  for (const auto& table : {outputs_of("tilt", tilt_columns(), kTiltTableOutputs),
+                            outputs_of("tilt_scales", tilt_scales_columns(), kScalesOutputs),
+                            outputs_of("friction", friction_columns(), kFrictionOutputs)})
+    k.outputs.insert(k.outputs.end(), table.begin(), table.end());
   const std::vector<OutputColumn> warning_columns = kind_detail::tilt_warning_columns();
   k.outputs.insert(k.outputs.end(), warning_columns.begin(), warning_columns.end());
   k.outputs.insert(k.outputs.end(),

@@ -23,6 +23,26 @@ namespace frictal::study {
 
 using namespace kind_detail;
 
+namespace {
+
+// The outputs taken from output tables (frictal columns): declared once there. The pair's
+// signature (signature_columns(); events: its Python key)...
+constexpr std::initializer_list<ColumnOutput> kSignatureOutputs = {"theta_max_forward_deg",
+                                                                   "theta_max_backward_deg",
+                                                                   "contact_slope_mean_deg",
+                                                                   "contact_slope_std_deg",
+                                                                   "offsets",
+                                                                   "events"};
+// ... and each profile's statistics (profile_stats_columns()).
+constexpr std::initializer_list<ColumnOutput> kLowerOutputs = {
+    {"max_slope_deg", "surface_slope_max_lower_deg", "the lower profile"},
+    {"points", nullptr, "the lower profile (the upper has as many)"}};
+constexpr std::initializer_list<ColumnOutput> kUpperOutputs = {
+    {"max_slope_deg", "surface_slope_max_upper_deg", "the upper profile"},
+    {"rms_slope", "surface_rms_slope", "the upper profile"}};
+
+}  // namespace
+
 Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   Error err;
   std::int64_t bins = 0, offsets = 0;
@@ -72,22 +92,15 @@ Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   auto& s = out.scalars;
   const double cmax = std::max(fwd, bwd);
   const double smax = std::max(sl.max_slope, su.max_slope);
-  s["theta_max_forward_deg"] = fwd / kDeg;
-  s["theta_max_backward_deg"] = bwd / kDeg;
+  put_outputs(out, signature_columns(), r, kSignatureOutputs);
+  put_outputs(out, profile_stats_columns(), sl, kLowerOutputs);
+  put_outputs(out, profile_stats_columns(), su, kUpperOutputs);
   s["contact_slope_max_deg"] = cmax / kDeg;
   s["tan_contact_slope_max"] = std::tan(cmax);
-  s["contact_slope_mean_deg"] = r.contact_slope_mean / kDeg;
-  s["contact_slope_std_deg"] = r.contact_slope_std / kDeg;
   s["surface_slope_max_deg"] = smax / kDeg;
   s["tan_surface_slope_max"] = std::tan(smax);
-  s["surface_slope_max_lower_deg"] = sl.max_slope / kDeg;
-  s["surface_slope_max_upper_deg"] = su.max_slope / kDeg;
   s["surface_slope_std_deg"] = slope_angle_std(*upper) / kDeg;
   s["surface_slope_std_lower_deg"] = slope_angle_std(*lower) / kDeg;
-  s["surface_rms_slope"] = su.rms_slope;
-  s["points"] = static_cast<double>(lower->size());
-  s["offsets"] = static_cast<double>(r.offset.size());
-  s["events"] = static_cast<double>(r.events);
   put_pdf(out, "contact_slope_pdf", r.contact_slope_pdf);
   put_pdf(out, "surface_slope_pdf", slope_distribution(*upper, static_cast<int>(bins)));
   return out;
@@ -375,27 +388,21 @@ TaskKind wm_pair_statistics_kind() {
   k.run = run_wm_pair_statistics;
   k.cost = wm_pair_cost;
   k.outputs = {
-      {"theta_max_forward_deg", "deg", "maximum contact slope towards +x"},
-      {"theta_max_backward_deg", "deg", "maximum contact slope towards -x"},
       {"contact_slope_max_deg", "deg", "max(theta_max_forward, theta_max_backward)"},
       {"tan_contact_slope_max", "1", "tan of contact_slope_max"},
-      {"contact_slope_mean_deg", "deg", "mean contact slope"},
-      {"contact_slope_std_deg", "deg", "standard deviation of contact slopes (sigma of Eq. 18)"},
       {"surface_slope_max_deg", "deg", "steepest edge of both profiles"},
       {"tan_surface_slope_max", "1", "tan of surface_slope_max"},
-      {"surface_slope_max_lower_deg", "deg", "steepest edge of the lower profile"},
-      {"surface_slope_max_upper_deg", "deg", "steepest edge of the upper profile"},
       {"surface_slope_std_deg", "deg", "length-weighted std of the upper profile's edge angles"},
       {"surface_slope_std_lower_deg", "deg", "the same of the lower profile"},
-      {"surface_rms_slope", "1", "rms slope of the upper profile"},
-      {"points", "1", "points of each profile"},
-      {"offsets", "1", "offsets evaluated"},
-      {"events", "1", "event offsets"},
       {"contact_slope_pdf_edges_deg", "deg", "contact slope PDF bin edges (Fig. 16)", true},
       {"contact_slope_pdf_density_per_deg", "1/deg", "contact slope PDF density", true},
       {"surface_slope_pdf_edges_deg", "deg", "surface slope PDF bin edges (upper profile)", true},
       {"surface_slope_pdf_density_per_deg", "1/deg", "surface slope PDF density", true},
   };
+  for (const auto& table : {outputs_of("signature", signature_columns(), kSignatureOutputs),
+                            outputs_of("profile_stats", profile_stats_columns(), kLowerOutputs),
+                            outputs_of("profile_stats", profile_stats_columns(), kUpperOutputs)})
+    k.outputs.insert(k.outputs.end(), table.begin(), table.end());
   k.report = wm_section;
   // Fig. 14/17 (against n_max, one series per D) and Fig. 15/18 (against D): means over pairs.
   struct Y {

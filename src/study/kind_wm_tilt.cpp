@@ -42,6 +42,51 @@ namespace {
 constexpr double kRunaway[3] = {0.5, 1.0, 2.0};
 constexpr const char* kRunawayName[3] = {"half_lambda", "lambda", "two_lambda"};
 
+// The outputs taken from output tables (frictal columns): declared once there, with the study key
+// and the kind's context where they differ.
+// The tilt test's (tilt_columns()), of the run.
+constexpr std::initializer_list<ColumnOutput> kTiltOutputs = {
+    {"predicted_theta_max_deg", "theta_max_deg", "theta_max of the rigid signature (Eq. 6)"},
+    "predicted_friction_angle_deg",
+    {"predicted_friction_angle_deg", "eq18_high_deg", "upper end of the Eq. 18 range"},
+    "predicted_sphero_theta_max_deg",
+    "predicted_sphero_friction_angle_deg",
+    "initial_offset_m",
+    "stiff_friction_angle_deg",
+    "rotation_before_slide_deg",
+    "simulated_time_s",
+    "steps",
+    "settled_contacts",
+    "settled_speed_m_s"};
+// Its scales (tilt_scales_columns()).
+constexpr std::initializer_list<ColumnOutput> kScalesOutputs = {
+    "resting_overlap_m", {"time_step_s", nullptr, "after the retries with 2.5x smaller steps"}};
+// theta_a (friction_columns()).
+constexpr std::initializer_list<ColumnOutput> kFrictionOutputs = {"atomic_friction_angle_deg"};
+// sigma of Eq. 18 from the kind's own signature (signature_columns()).
+constexpr std::initializer_list<ColumnOutput> kSignatureOutputs = {
+    {"contact_slope_std_deg", "sigma_deg", "the signature of the run's offsets"}};
+// The drop from the rest (hold_drop_columns()): rigid blocks, then rounded ones.
+constexpr std::initializer_list<ColumnOutput> kHoldOutputs = {
+    {"rest_offset_m", nullptr, "the upper block when the loading starts (signature convention), in the range"},
+    {"hold_angle_deg", nullptr, "the rigid blocks from the rest, d = 1 lambda"},
+    {"inertial_hold_angle_deg", nullptr, "the rigid blocks from the rest, d = 1 lambda"}};
+constexpr std::initializer_list<ColumnOutput> kSpheroHoldOutputs = {
+    {"hold_angle_deg", "sphero_hold_angle_deg", "the rounded blocks (signature with the spheroradius)"},
+    {"inertial_hold_angle_deg", "sphero_inertial_hold_angle_deg", "the rounded blocks"}};
+// The hold angles over drops spread over the offset range (hold_statistics_columns()).
+constexpr std::initializer_list<ColumnOutput> kHoldOverDrops = {
+    {"mean_deg", "hold_mean_deg", "phi_qs (the derived Eq. 18)"},
+    {"std_deg", "hold_std_deg", "phi_qs"},
+    {"q05_deg", "hold_q05_deg", "phi_qs"},
+    {"q50_deg", "hold_q50_deg", "phi_qs"},
+    {"q95_deg", "hold_q95_deg", "phi_qs"},
+    {"min_deg", "hold_min_deg", "phi_qs"},
+    {"max_deg", "hold_max_deg", "phi_qs"}};
+constexpr std::initializer_list<ColumnOutput> kInertialOverDrops = {{"mean_deg", "inertial_hold_mean_deg", "phi_in"},
+                                                                    {"q05_deg", "inertial_hold_q05_deg", "phi_in"},
+                                                                    {"q95_deg", "inertial_hold_q95_deg", "phi_in"}};
+
 Result<Profile> envelope_of(const Curve& c, const char* what) {
   auto e = upper_envelope(c);
   if (!e) return with_prefix(std::string(what) + ": ", e.error());
@@ -215,16 +260,16 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
     dim = 2 - as_real(all->at("hurst"));  // self-affine profile: D = 2 - H
   s["surface_dimension"] = dim;
   s["wavelength_m"] = lambda;
-  s["theta_max_deg"] = theta_max / kDeg;
+  // theta_max, the predictions, where the block was put down, the run's own numbers: the tilt
+  // table's; sigma: the signature table's; theta_a: the friction table's.
+  put_outputs(out, tilt_columns(), TiltReport{*r, c}, kTiltOutputs);
+  put_outputs(out, tilt_scales_columns(), r->scales, kScalesOutputs);
+  put_outputs(out, signature_columns(), *sig, kSignatureOutputs);
+  auto theta_a_of = predict_friction(c.contact.atomic_friction, 0, 0);  // theta_a alone
+  if (!theta_a_of) return theta_a_of.error();
+  put_outputs(out, friction_columns(), *theta_a_of, kFrictionOutputs);
   s["theta_max_signature_deg"] = (c.reverse ? sig->theta_max_backward : sig->theta_max_forward) / kDeg;
-  s["sigma_deg"] = sigma / kDeg;
-  s["atomic_friction_angle_deg"] = theta_a / kDeg;
   s["eq18_low_deg"] = low / kDeg;
-  s["eq18_high_deg"] = high / kDeg;
-  s["predicted_friction_angle_deg"] = high / kDeg;
-  s["predicted_sphero_theta_max_deg"] = r->predicted_sphero_theta_max / kDeg;
-  s["predicted_sphero_friction_angle_deg"] = r->predicted_sphero_friction_angle / kDeg;
-  s["initial_offset_m"] = r->initial_offset;
   s["start_rule"] = start_rule;
   s["final_displacement_m"] = r->final_displacement;
   for (int k = 0; k < 3; ++k) {
@@ -243,11 +288,8 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
   s["friction_minus_rigid_deg"] = (phi - high) / kDeg;
   s["friction_minus_sphero_deg"] = (phi - r->predicted_sphero_friction_angle) / kDeg;
   s["inside_eq18"] = one.reached && phi >= low && phi <= high ? 1 : 0;
-  s["rest_offset_m"] = hq.rest_offset;
-  s["hold_angle_deg"] = hq.hold_angle / kDeg;
-  s["inertial_hold_angle_deg"] = hq.inertial_hold_angle / kDeg;
-  s["sphero_hold_angle_deg"] = hr.hold_angle / kDeg;
-  s["sphero_inertial_hold_angle_deg"] = hr.inertial_hold_angle / kDeg;
+  put_outputs(out, hold_drop_columns(), hq, kHoldOutputs);
+  put_outputs(out, hold_drop_columns(), hr, kSpheroHoldOutputs);
   s["friction_minus_hold_deg"] = (phi - hq.hold_angle) / kDeg;
   s["friction_minus_sphero_hold_deg"] = (phi - hr.hold_angle) / kDeg;
   // Between the inertial bound and the quasi-static angle of the rounded blocks (the simulated
@@ -259,29 +301,13 @@ Result<TaskOutput> run_wm_tilt_task(const Params& p, std::uint64_t seed) {
   // check_stiffness: the same run at 10 k_n, read at the run's run-away distance (2 lambda), so
   // judged against the rounded blocks' hold angle at 2 lambda (the quasi-static chain may go on
   // past a stop that holds at 1 lambda).
-  s["stiff_friction_angle_deg"] = r->stiff_friction_angle / kDeg;
   s["sphero_hold_angle_two_lambda_deg"] = stiff_hold / kDeg;
   s["stiff_minus_sphero_hold_deg"] = (r->stiff_friction_angle - stiff_hold) / kDeg;
-  s["hold_mean_deg"] = hd.hold.mean / kDeg;
-  s["hold_std_deg"] = hd.hold.std / kDeg;
-  s["hold_q05_deg"] = hd.hold.q05 / kDeg;
-  s["hold_q50_deg"] = hd.hold.q50 / kDeg;
-  s["hold_q95_deg"] = hd.hold.q95 / kDeg;
-  s["hold_min_deg"] = hd.hold.min / kDeg;
-  s["hold_max_deg"] = hd.hold.max / kDeg;
-  s["inertial_hold_mean_deg"] = hd.inertial.mean / kDeg;
-  s["inertial_hold_q05_deg"] = hd.inertial.q05 / kDeg;
-  s["inertial_hold_q95_deg"] = hd.inertial.q95 / kDeg;
+  put_outputs(out, hold_statistics_columns(), hd.hold, kHoldOverDrops);
+  put_outputs(out, hold_statistics_columns(), hd.inertial, kInertialOverDrops);
   s["hold_basins"] = static_cast<double>(hd.basins.rest.size());
-  s["rotation_before_slide_deg"] = r->rotation_before_slide / kDeg;
-  s["resting_overlap_m"] = r->scales.resting_overlap;
   s["smallest_feature_m"] = std::min(r->scales.smallest_feature[0], r->scales.smallest_feature[1]);
-  s["simulated_time_s"] = r->simulated_time;
-  s["steps"] = static_cast<double>(r->steps);
-  s["time_step_s"] = c.time_step;
-  s["settled_contacts"] = r->settled_contacts;
   s["points"] = static_cast<double>(lower->size());
-  s["settled_speed_m_s"] = r->settled_speed;
   kind_detail::put_tilt_warnings(s, *r);
   return out;
 }
@@ -770,41 +796,18 @@ TaskKind wm_tilt_kind() {
       {"slide_start_half_lambda_m", "m", "displacement since settling where that run-away started"},
       {"slide_start_lambda_m", "m", "displacement since settling where that run-away started"},
       {"slide_start_two_lambda_m", "m", "displacement since settling where that run-away started"},
-      {"theta_max_deg", "deg", "theta_max of the rigid signature in the sliding direction (Eq. 6)"},
-      {"theta_max_signature_deg", "deg", "the same from the kind's own signature (the one giving sigma)"},
-      {"sigma_deg", "deg", "standard deviation of the contact slopes (sigma of Eq. 18)"},
-      {"atomic_friction_angle_deg", "deg", "theta_a = atan(mu_a)"},
+      {"theta_max_signature_deg", "deg",
+       "theta_max in the sliding direction from the kind's own signature (the one giving sigma)"},
       {"eq18_low_deg", "deg", "theta_a + theta_max - sigma: lower end of the Eq. 18 range"},
-      {"eq18_high_deg", "deg", "theta_a + theta_max: upper end of the Eq. 18 range"},
-      {"predicted_friction_angle_deg", "deg", "rigid prediction theta_max + theta_a (Eq. 6)"},
-      {"predicted_sphero_theta_max_deg", "deg", "theta_max of the rounded blocks' signature (spheroradius r)"},
-      {"predicted_sphero_friction_angle_deg", "deg", "spheropolygon prediction: that theta_max + theta_a"},
       {"friction_minus_rigid_deg", "deg", "simulated (1 lambda) minus rigid prediction"},
       {"friction_minus_sphero_deg", "deg", "simulated (1 lambda) minus spheropolygon prediction"},
       {"inside_eq18", "1", "1 if the simulated angle (1 lambda) lies in the Eq. 18 range"},
-      {"initial_offset_m", "m", "offset of the upper block at the start (start_rule)"},
-      {"rest_offset_m", "m", "the upper block's offset when the loading starts (signature convention), in the range"},
-      {"hold_angle_deg", "deg", "quasi-static hold angle phi_qs of the rigid blocks from the rest, d = 1 lambda"},
-      {"inertial_hold_angle_deg", "deg", "inertial bound phi_in of the rigid blocks from the rest, d = 1 lambda"},
-      {"sphero_hold_angle_deg", "deg", "phi_qs of the rounded blocks (signature with the spheroradius)"},
-      {"sphero_inertial_hold_angle_deg", "deg", "phi_in of the rounded blocks"},
       {"friction_minus_hold_deg", "deg", "simulated (1 lambda) minus phi_qs (rigid)"},
       {"friction_minus_sphero_hold_deg", "deg", "simulated (1 lambda) minus phi_qs (rounded)"},
       {"inside_hold_bracket", "1",
        "1 if the simulated angle lies in [phi_in, phi_qs] of the rounded blocks, with 0.1 deg of slack"},
-      {"stiff_friction_angle_deg", "deg", "check_stiffness: the friction angle of the same run at 10 k_n (NaN: none)"},
       {"sphero_hold_angle_two_lambda_deg", "deg", "check_stiffness: phi_qs of the rounded blocks at d = 2 lambda"},
       {"stiff_minus_sphero_hold_deg", "deg", "that angle minus phi_qs of the rounded blocks at 2 lambda (its d)"},
-      {"hold_mean_deg", "deg", "phi_qs over drops spread over the offset range: mean (the derived Eq. 18)"},
-      {"hold_std_deg", "deg", "phi_qs over drops: standard deviation"},
-      {"hold_q05_deg", "deg", "phi_qs over drops: 5 % quantile"},
-      {"hold_q50_deg", "deg", "phi_qs over drops: median"},
-      {"hold_q95_deg", "deg", "phi_qs over drops: 95 % quantile"},
-      {"hold_min_deg", "deg", "phi_qs over drops: minimum"},
-      {"hold_max_deg", "deg", "phi_qs over drops: maximum"},
-      {"inertial_hold_mean_deg", "deg", "phi_in over drops: mean"},
-      {"inertial_hold_q05_deg", "deg", "phi_in over drops: 5 % quantile"},
-      {"inertial_hold_q95_deg", "deg", "phi_in over drops: 95 % quantile"},
       {"hold_basins", "1", "basins of h over the offset range"},
       {"start_rule", "1",
        "how the start was chosen: 2 least lift among the local minima of h(s) in the first half of the offset range "
@@ -813,21 +816,20 @@ TaskKind wm_tilt_kind() {
       {"displacement_before_slide_m", "m", "how far the block moved between settling and the 1 lambda run-away"},
       {"slide_distance_m", "m", "how far it slid from the start of the last run-away to the end of the run"},
       {"final_displacement_m", "m", "displacement since settling when the run stopped"},
-      {"rotation_before_slide_deg", "deg", "largest rotation of the upper block before the slide"},
-      {"resting_overlap_m", "m", "W / k_n"},
       {"smallest_feature_m", "m", "shortest run between neighbouring extrema of either face"},
-      {"simulated_time_s", "s", "simulated time"},
-      {"steps", "1", "time steps"},
-      {"time_step_s", "s", "largest time step (after retries)"},
-      {"settled_contacts", "1", "vertex-edge contacts after settling"},
       {"points", "1", "points of each face"},
   };
   const std::vector<OutputColumn> warning_columns = kind_detail::tilt_warning_columns();
   k.outputs.insert(k.outputs.end(), warning_columns.begin(), warning_columns.end());
-  k.outputs.insert(k.outputs.end(), {
-                                        {"settled_speed_m_s", "m/s",
-                                         "speed of the upper block against the lower one when the tilt started"},
-                                    });
+  for (const auto& table : {outputs_of("tilt", tilt_columns(), kTiltOutputs),
+                            outputs_of("tilt_scales", tilt_scales_columns(), kScalesOutputs),
+                            outputs_of("friction", friction_columns(), kFrictionOutputs),
+                            outputs_of("signature", signature_columns(), kSignatureOutputs),
+                            outputs_of("hold_drop", hold_drop_columns(), kHoldOutputs),
+                            outputs_of("hold_drop", hold_drop_columns(), kSpheroHoldOutputs),
+                            outputs_of("hold_statistics", hold_statistics_columns(), kHoldOverDrops),
+                            outputs_of("hold_statistics", hold_statistics_columns(), kInertialOverDrops)})
+    k.outputs.insert(k.outputs.end(), table.begin(), table.end());
   k.report = wm_tilt_section;
   const PlotAxis x{"surface_dimension", "D"};
   k.plots.push_back(PlotView::of("wm-tilt-friction", x, {"friction_angle_deg", "friction angle φ (deg)"})

@@ -87,7 +87,12 @@ std::string kinds_json(const TaskRegistry& registry) {
                         {"reason", ""},         {"report_section", bool(k.report)}};
     j["outputs"] = nlohmann::json::array();
     for (const auto& c : k.outputs)
-      j["outputs"].push_back({{"name", c.name}, {"unit", c.unit}, {"description", c.description}, {"array", c.array}});
+      j["outputs"].push_back({{"name", c.name},
+                              {"unit", c.unit},
+                              {"description", c.description},
+                              {"array", c.array},
+                              {"table", c.table},
+                              {"column", c.column}});
     j["plots"] = nlohmann::json::array();
     for (const auto& v : k.plots)
       j["plots"].push_back({{"id", v.id},

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "frictal/areal_tilt.hpp"
 #include "frictal/tilt.hpp"
 
 namespace frictal {
@@ -128,6 +129,25 @@ const Columns<TiltReport>& tilt_columns() {
           "", "count", "steps above the explicit stability limit (as steps_beyond_stability_limit)",
           [](const R& t) { return double(t.result.steps_beyond_limit); }, "steps_beyond_limit"),
   });
+  return cols;
+}
+
+const Columns<ArealTiltResult>& areal_tilt_run_columns() {
+  using T = ArealTiltResult;
+  static const Columns<T> cols = {
+      column<T>(
+          "friction_angle_deg", "deg", "the friction angle this 3D test read (absent with --predict-only)",
+          [](const T& r) { return r.friction_angle; }, "-"),
+      column<T>("ran_away", "flag", "the block ran away before the largest tilt",
+                [](const T& r) { return r.ran_away; }),
+      column<T>(
+          "steering_deg", "deg", "how far the simulated block turned off the direction",
+          [](const T& r) { return r.steering; }, "steering"),
+      column<T>("spheres", "count", "spheres of the upper block", [](const T& r) { return double(r.spheres); }),
+      column<T>("steps", "count", "MuJoCo steps", [](const T& r) { return double(r.steps); }),
+      column<T>("unsettled_increments", "count", "increments that did not come to rest",
+                [](const T& r) { return double(r.unsettled); }),
+  };
   return cols;
 }
 

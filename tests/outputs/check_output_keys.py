@@ -241,14 +241,54 @@ check_py("study_status", frictal.study_status(store), ["study_status"])
 check_py("study_findings", frictal.study_findings([store]), ["study_report"], python=False)
 kind_list = cli_json("study", "kinds", "--json")["kinds"]
 kinds = {k["name"]: {o["name"] for o in k["outputs"]} for k in kind_list}
-# A study output named like a declared JSON key is that quantity: the same unit.
-STUDY_UNIT = {"1": "1", "deg": "deg", "m": "m", "s": "s", "kg": "kg", "count": "count"}
+# A study output is declared once: one taken from an output table (outputs_of in study.hpp) names
+# its table and column and has that column's unit (a study stores numbers only: a count or a flag
+# as a unitless number) and help (after the kind's context, "context: help"); an output that the
+# kind declares itself must not be named like a declared JSON key -- that would be the table's
+# quantity declared a second time by hand -- unless it is listed here as another quantity under a
+# name that stores and scripts/make_index.py already use.
+NOT_THE_TABLES = {
+    ("tilt", "friction_angle_deg"): "0, not NaN, when the block did not slide (stored values kept)",
+    ("tilt", "friction_coefficient"): "tan of the simulated friction angle (the prediction table's: of the prediction)",
+    ("wm-tilt", "slid"): "the run-away of 1 lambda (the run's own run-away distance is 2 lambda)",
+    ("wm-tilt", "friction_angle_deg"): "read at the run-away of 1 lambda (a checkpoint of the 2 lambda run)",
+    ("wm-tilt", "smallest_feature_m"): "the smaller of the two faces' (the table's: both, a list)",
+    ("wm-tilt", "hold_basins"): "of the drops in the sliding direction (the table's: always forward)",
+    ("wm-tilt", "points"): "points of each generated face (a curve, not a profile's statistics)",
+    ("divider", "points"): "points of the Koch curve (a curve, not a profile's statistics)",
+    ("wm-pair-statistics", "surface_slope_max_deg"):
+        "the command table's (declared without values in the predict tier, above the study tier)",
+    ("areal-tilt", "matched_steering_deg"):
+        "the areal_tilt table's (the CLI's matched model, declared without values in the predict tier)",
+}
+table_columns = {}  # (table, key or Python key of a key-less column) -> column
+for t in tables.values():
+    for c in t["columns"]:
+        table_columns[(t["name"], c["key"] or c["python"])] = c
+from_tables = 0
 for k in kind_list:
     for o in k["outputs"]:
+        where = f"study kind {k['name']}: output {o['name']!r}"
+        if o.get("table"):
+            from_tables += 1
+            c = table_columns.get((o["table"], o.get("column", "")))
+            if c is None:
+                fail(f"{where}: taken from column {o.get('column')!r} of table {o['table']!r}, which has none")
+                continue
+            unit = "1" if c["unit"] in ("count", "flag") else c["unit"]
+            if o["unit"] != unit:
+                fail(f"{where}: in {o['unit']!r}, its column {o['table']}.{o['column']} in {c['unit']!r}")
+            if not (o["description"] == c["help"] or o["description"].endswith(": " + c["help"])):
+                fail(f"{where}: its help {o['description']!r} is not its column's {c['help']!r}")
+            continue
         units = json_units.get(o["name"])
-        # (a study stores numbers only: a count or a flag as a unitless number)
-        if units and o["unit"] not in units and not (o["unit"] == "1" and ({"count", "flag"} & set(units))):
-            fail(f"study kind {k['name']}: output {o['name']!r} in {o['unit']!r}, declared in {sorted(units)}")
+        if units and (k["name"], o["name"]) not in NOT_THE_TABLES:
+            fail(f"{where}: declared by hand, but {o['name']!r} is a column of {sorted(sum(units.values(), []))} "
+                 f"(take it with outputs_of, or list it in NOT_THE_TABLES as another quantity)")
+for (kind, name), why in NOT_THE_TABLES.items():
+    outs = {o["name"]: o for k in kind_list if k["name"] == kind for o in k["outputs"]}
+    if outs and (name not in outs or outs[name].get("table") or name not in json_units):
+        fail(f"NOT_THE_TABLES lists {kind}.{name}, which is not a hand-declared output named like a column: drop it")
 for row in frictal.study_rows(store):
     check_py("study_rows", row, ["study_row"])
     for name in list(row["scalars"]) + list(row["arrays"]):
@@ -256,7 +296,7 @@ for row in frictal.study_rows(store):
             fail(f"study_rows: output {name!r} of kind {row['kind']!r} is not among the kind's declared outputs")
 check_py("tilt", frictal.tilt(frictal.koch_profile(iterations=2), max_tilt=0.5), ["tilt"])
 
-print(f"checked {len(checked)} outputs: {', '.join(sorted(set(checked)))}")
+print(f"checked {len(checked)} outputs: {', '.join(sorted(set(checked)))}; {from_tables} study outputs from tables")
 if failures:
     print(f"{len(failures)} undeclared or mistyped keys:")
     for f in failures:
