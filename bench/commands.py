@@ -5,7 +5,7 @@ For each case (a command line at a size), runs the CLI REPS times and records th
 and the largest peak resident set (the child's ru_maxrss from wait4), then fits the scaling
 exponent p of wall ~ size^p over each command's sizes. With --baseline the same cases run on a
 second build (A = baseline, B = --build), A and B alternating run by run, and the table gives
-B / A: the previous commit's build against this one (`make bench` builds it; see bench/README.md).
+B / A: the previous commit's build against this one (`make bench` builds it with bench/build-baseline.sh).
 Every finished row is appended to OUT.partial.tsv at once (an interrupted run keeps its rows).
 
 Cases (issue 32): `signature` (and `--no-hold`) and `predict` of self-affine profile pairs of
@@ -260,8 +260,8 @@ def main():
     head = "| command | size | what | wall (s) | cpu (s) | peak (MB) |"
     rule = "|---|---|---|---|---|---|"
     if bin_a:
-        head += " A wall (s) | A peak (MB) | B/A wall | B/A memory |"
-        rule += "---|---|---|---|"
+        head += " A wall (s) | A cpu (s) | A peak (MB) | B/A wall | B/A cpu | B/A memory |"
+        rule += "---|---|---|---|---|---|"
     if old:
         head += " / recorded wall | / recorded memory |"
         rule += "---|---|"
@@ -277,8 +277,8 @@ def main():
         cell += (f"{b[0]:.2f} | {b[3]:.2f} | {b[1]:.0f} |" if not b[2] else f"failed: {b[2]} | - | {b[1]:.0f} |")
         if bin_a:
             aa = d.get("A")
-            cell += f" {aa[0]:.2f} | {aa[1]:.0f} | {b[0] / aa[0]:.2f} | {b[1] / aa[1]:.2f} |" if aa and not aa[2] \
-                else " - | - | - | - |"
+            cell += (f" {aa[0]:.2f} | {aa[3]:.2f} | {aa[1]:.0f} | {b[0] / aa[0]:.2f} | {b[3] / aa[3]:.2f} | "
+                     f"{b[1] / aa[1]:.2f} |") if aa and not aa[2] and not b[2] else " - | - | - | - | - | - |"
         if old:
             o = old.get((c, n))
             cell += f" {b[0] / o[0]:.2f} | {b[1] / o[1]:.2f} |" if o and not b[2] else " - | - |"
