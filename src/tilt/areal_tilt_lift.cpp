@@ -128,6 +128,9 @@ class SphereField {
     std::vector<std::size_t> fill(count.begin(), count.end() - 1);
     std::vector<std::size_t> tile_super;                                             // each tile's super-tile
     for (std::size_t k = 0; k < nodes_.size(); ++k) order_[fill[tile_of[k]]++] = k;  // node order kept in a tile
+    // The nodes in that order too: a rebuild reads them tile by tile, contiguously (not through order_).
+    tiled_.resize(nodes_.size());
+    for (std::size_t q = 0; q < nodes_.size(); ++q) tiled_[q] = nodes_[order_[q]];
     for (std::size_t t = 0; t < tnx * tny; ++t) {
       if (count[t] == count[t + 1]) continue;
       Tile tile{count[t], count[t + 1], INFINITY, -INFINITY, INFINITY, -INFINITY, kNoContact};
@@ -269,8 +272,15 @@ class SphereField {
         if (!cell_range(tl.xlo + sx - wr, tl.xhi + sx + wr, tl.ylo + sy - wr, tl.yhi + sy + wr, i0, i1, j0, j1))
           continue;
         if (cells_top(block_top_, bnx_, kBlock, i0, i1, j0, j1) + r_ + tl.base < threshold) continue;
+        // The highest cell top under the tile's widened footprint bounds every one of its
+        // spheres' (their windows lie inside it): a sphere below the threshold even against it is
+        // left without reading its window (the same list, in the same order).
+        double tile_top = kNoContact;
+        for (std::size_t j = j0; j <= j1; ++j)
+          for (std::size_t i = i0; i <= i1; ++i) tile_top = std::max(tile_top, cell_top_[j * cnx_ + i]);
         for (std::size_t q = tl.begin; q < tl.end; ++q) {
-          const detail::TiltNode& n = nodes_[order_[q]];
+          const detail::TiltNode& n = tiled_[q];
+          if (tile_top + r_ - (n.z + r_) < threshold) continue;  // as `wide` below: rounding is monotone
           if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
           double b = kNoContact;
           for (std::size_t j = j0; j <= j1; ++j)
@@ -361,8 +371,9 @@ class SphereField {
   std::size_t cnx_, cny_;
   std::vector<double> cell_top_;
   std::size_t bnx_ = 0, bny_ = 0;
-  std::vector<double> block_top_;   ///< max of cell_top_ over kBlock x kBlock cells
-  std::vector<std::size_t> order_;  ///< sphere indices grouped by tile
+  std::vector<double> block_top_;        ///< max of cell_top_ over kBlock x kBlock cells
+  std::vector<std::size_t> order_;       ///< sphere indices grouped by tile
+  std::vector<detail::TiltNode> tiled_;  ///< nodes_[order_[q]] at q
   std::vector<Tile> tiles_;
 };
 
