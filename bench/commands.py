@@ -156,8 +156,8 @@ def read_recorded(path):
         for line in open(path):
             if line.startswith("#") or not line.strip():
                 continue
-            case, n, wall, peak = line.rstrip("\n").split("\t")[:4]
-            old[(case, int(n))] = (float(wall), float(peak))
+            f = line.rstrip("\n").split("\t")
+            old[(f[0], int(f[1]))] = (float(f[2]), float(f[3]), float(f[4]) if len(f) > 4 else math.nan)
     return old
 
 
@@ -263,8 +263,8 @@ def main():
         head += " A wall (s) | A cpu (s) | A peak (MB) | B/A wall | B/A cpu | B/A memory |"
         rule += "---|---|---|---|---|---|"
     if old:
-        head += " / recorded wall | / recorded memory |"
-        rule += "---|---|"
+        head += " / recorded wall | / recorded cpu | / recorded memory |"
+        rule += "---|---|---|"
     lines += [head, rule]
 
     def size_text(c, n):
@@ -281,28 +281,30 @@ def main():
                      f"{b[1] / aa[1]:.2f} |") if aa and not aa[2] and not b[2] else " - | - | - | - | - | - |"
         if old:
             o = old.get((c, n))
-            cell += f" {b[0] / o[0]:.2f} | {b[1] / o[1]:.2f} |" if o and not b[2] else " - | - |"
+            cell += f" {b[0] / o[0]:.2f} | {b[3] / o[2]:.2f} | {b[1] / o[1]:.2f} |" if o and not b[2] else " - | - | - |"
         lines.append(cell)
     if skipped:
         lines += ["", "Not run (--budget reached, or a smaller size of the command failed): " +
                   ", ".join(f"{c} {size_text(c, n)}" for c, n in skipped) + "."]
-    lines += ["", "Scaling exponent p of wall ~ size^p (least squares over the sizes; maps: size = nodes, "
-              "i.e. (nodes per side)^2):", ""]
+    lines += ["", "Scaling exponent p of wall ~ size^p and of cpu ~ size^p (least squares over the sizes; maps: "
+              "size = nodes, i.e. (nodes per side)^2):", ""]
     for c in cases:
-        pts = [((n * n if CASES[c][1] == "nodes per side" else n), rows[(c, n)]["B"][0])
-               for n in sizes_of(c) if (c, n) in rows and not rows[(c, n)]["B"][2]]
-        if len(pts) >= 2:
-            lines.append(f"- {c}: p = {fit_exponent(pts):.2f}")
+        done = [n for n in sizes_of(c) if (c, n) in rows and not rows[(c, n)]["B"][2]]
+        size = (lambda n: n * n) if CASES[c][1] == "nodes per side" else (lambda n: n)
+        if len(done) >= 2:
+            pw = fit_exponent([(size(n), rows[(c, n)]["B"][0]) for n in done])
+            pc = fit_exponent([(size(n), rows[(c, n)]["B"][3]) for n in done])
+            lines.append(f"- {c}: wall p = {pw:.2f}, cpu p = {pc:.2f}")
     text = "\n".join(lines) + "\n"
     with open(out_md, "w") as f:
         f.write(text)
     print(text)
     if a.record or not old:
         with open(a.recorded, "w") as f:
-            f.write(f"# case\tsize\twall_s\tpeak_MB\t({stamp:%Y-%m-%d %H:%M} UTC; {mach}; {version})\n")
+            f.write(f"# case\tsize\twall_s\tpeak_MB\tcpu_s\t({stamp:%Y-%m-%d %H:%M} UTC; {mach}; {version})\n")
             for (c, n), d in rows.items():
                 if not d["B"][2]:
-                    f.write(f"{c}\t{n}\t{d['B'][0]:.4f}\t{d['B'][1]:.0f}\n")
+                    f.write(f"{c}\t{n}\t{d['B'][0]:.4f}\t{d['B'][1]:.0f}\t{d['B'][3]:.4f}\n")
         print(f"recorded as {a.recorded}")
     os.remove(partial)
     print(f"wrote {out_md}")
