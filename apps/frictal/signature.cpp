@@ -1,11 +1,11 @@
 // frictal signature LOWER [UPPER] | signature <generator> [options] — the signature function and
 // the friction prediction, of two measured surfaces or of a generated surface with itself.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <fstream>
 #include <future>
 #include <iterator>
-#include <mutex>
 #include <thread>
 
 #include "common.hpp"
@@ -143,39 +143,34 @@ std::function<int()> setup(CLI::App& app) {
     // Warnings as results: the readers' (printed as they read) and the plausibility checks of each
     // profile as it enters the signature (warnings.hpp).
     std::vector<Warning> warnings;
-    std::mutex warnings_mutex;
-    auto load = [&](const std::string& path) {
+    // Each side's warnings apart (the two files may be read at the same time), then lower's
+    // before upper's: the same order on every run.
+    std::array<std::vector<Warning>, 2> side_warnings;
+    auto load = [&](const std::string& path, int side) {
       const SurfaceData sd = unwrap(read_surface(input_path(path), ro));
-      {
-        std::lock_guard<std::mutex> lock(warnings_mutex);
-        for (const auto& w : sd.warnings) add_warning(warnings, {"reader", stdin_name(w)});
-      }
+      for (const auto& w : sd.warnings) add_warning(side_warnings[side], {"reader", stdin_name(w)});
       return surface_profile(sd, path);
-    };
-    auto checked = [&](Profile p, const std::string& name) {
-      std::vector<Warning> w = check_profile(p, name);
-      std::lock_guard<std::mutex> lock(warnings_mutex);
-      for (Warning& x : w) add_warning(warnings, std::move(x));
-      return p;
     };
     // Each profile conditioned (crop, spikes, form: conditioning.hpp), its record kept.
     std::vector<ConditioningRecord> records(a->upper.empty() ? 1 : 2);
-    auto conditioned = [&](const Profile& p, const std::string& name, ConditioningRecord& record) {
+    auto conditioned = [&](const Profile& p, const std::string& name, int side) {
       ConditionedProfile c = unwrap(condition(p, cond, name));
-      record = c.record;
-      return checked(std::move(c.profile), name);
+      records[std::size_t(side)] = c.record;
+      for (Warning& x : check_profile(c.profile, name)) add_warning(side_warnings[side], std::move(x));
+      return std::move(c.profile);
     };
     // Two files are read at the same time when more than one thread is allowed (parsing a text
     // profile is CPU-bound: ~1 s per 10^7 points); the profiles are the same either way.
     std::future<Profile> upper_read;
     if (!a->upper.empty() && a->threads != 1 && a->upper != "-" && a->lower != "-")
-      upper_read = std::async(std::launch::async, [&a, &conditioned, &load, &records]() {
-        return conditioned(load(a->upper), a->upper, records[1]);
-      });
-    Profile lower = conditioned(spec ? unwrap(generate_profile(*spec)) : load(a->lower), a->lower, records[0]);
+      upper_read = std::async(std::launch::async,
+                              [&a, &conditioned, &load]() { return conditioned(load(a->upper, 1), a->upper, 1); });
+    Profile lower = conditioned(spec ? unwrap(generate_profile(*spec)) : load(a->lower, 0), a->lower, 0);
     Profile upper_measured = a->upper.empty()     ? lower
                              : upper_read.valid() ? upper_read.get()
-                                                  : conditioned(load(a->upper), a->upper, records[1]);
+                                                  : conditioned(load(a->upper, 1), a->upper, 1);
+    for (auto& side : side_warnings)
+      for (Warning& w : side) add_warning(warnings, std::move(w));
     const ValueSet pv = si_values(tilt_settings(), a->period_words);
     if (pv.count("period")) a->period = as_real(pv.at("period"));
     if (pv.count("spheroradius")) a->spheroradius = as_real(pv.at("spheroradius"));
