@@ -128,9 +128,14 @@ class SphereField {
     std::vector<std::size_t> fill(count.begin(), count.end() - 1);
     std::vector<std::size_t> tile_super;                                             // each tile's super-tile
     for (std::size_t k = 0; k < nodes_.size(); ++k) order_[fill[tile_of[k]]++] = k;  // node order kept in a tile
-    // The nodes in that order too: a rebuild reads them tile by tile, contiguously (not through order_).
+    // The nodes in that order too, and within each tile by height from the lowest (the one that
+    // reaches highest when turned over): a rebuild reads them tile by tile, contiguously, and stops
+    // at the first that cannot reach the threshold.
     tiled_.resize(nodes_.size());
-    for (std::size_t q = 0; q < nodes_.size(); ++q) tiled_[q] = nodes_[order_[q]];
+    for (std::size_t q = 0; q < nodes_.size(); ++q) tiled_[q] = {nodes_[order_[q]], std::uint32_t(order_[q])};
+    for (std::size_t t = 0; t < tnx * tny; ++t)
+      std::sort(tiled_.begin() + std::ptrdiff_t(count[t]), tiled_.begin() + std::ptrdiff_t(count[t + 1]),
+                [](const TiledNode& a, const TiledNode& b) { return a.n.z < b.n.z || (a.n.z == b.n.z && a.k < b.k); });
     for (std::size_t t = 0; t < tnx * tny; ++t) {
       if (count[t] == count[t + 1]) continue;
       Tile tile{count[t], count[t + 1], INFINITY, -INFINITY, INFINITY, -INFINITY, kNoContact};
@@ -279,18 +284,22 @@ class SphereField {
         for (std::size_t j = j0; j <= j1; ++j)
           for (std::size_t i = i0; i <= i1; ++i) tile_top = std::max(tile_top, cell_top_[j * cnx_ + i]);
         for (std::size_t q = tl.begin; q < tl.end; ++q) {
-          const detail::TiltNode& n = tiled_[q];
-          if (tile_top + r_ - (n.z + r_) < threshold) continue;  // as `wide` below: rounding is monotone
+          const detail::TiltNode& n = tiled_[q].n;
+          // As `wide` below, and rounding is monotone: the rest of the tile (higher) cannot reach either.
+          if (tile_top + r_ - (n.z + r_) < threshold) break;
           if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
           double b = kNoContact;
           for (std::size_t j = j0; j <= j1; ++j)
             for (std::size_t i = i0; i <= i1; ++i) b = std::max(b, cell_top_[j * cnx_ + i]);
           const double wide = b + r_ - (n.z + r_);
-          if (wide >= threshold) near.list.push_back({wide, std::uint32_t(order_[q])});
+          if (wide >= threshold) near.list.push_back({wide, tiled_[q].k});
         }
       }
     }
-    std::sort(near.list.begin(), near.list.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    // Highest bound first; equal bounds by node index (the order does not depend on the scan's).
+    std::sort(near.list.begin(), near.list.end(), [](const auto& a, const auto& b) {
+      return a.first > b.first || (a.first == b.first && a.second < b.second);
+    });
   }
   struct Tile {
     std::size_t begin, end;     ///< the tile's spheres: order_[begin, end)
@@ -371,9 +380,13 @@ class SphereField {
   std::size_t cnx_, cny_;
   std::vector<double> cell_top_;
   std::size_t bnx_ = 0, bny_ = 0;
-  std::vector<double> block_top_;        ///< max of cell_top_ over kBlock x kBlock cells
-  std::vector<std::size_t> order_;       ///< sphere indices grouped by tile
-  std::vector<detail::TiltNode> tiled_;  ///< nodes_[order_[q]] at q
+  std::vector<double> block_top_;   ///< max of cell_top_ over kBlock x kBlock cells
+  std::vector<std::size_t> order_;  ///< sphere indices grouped by tile
+  struct TiledNode {
+    detail::TiltNode n;
+    std::uint32_t k;  ///< its index in nodes_
+  };
+  std::vector<TiledNode> tiled_;  ///< each tile's nodes (order_'s tiles), lowest z first
   std::vector<Tile> tiles_;
 };
 
