@@ -239,7 +239,7 @@ struct ReportArealHold {
   /// distance), the block free: its stops after each tilt increment are the path drawn.
   ArealTiltHold from_zero;
   /// The lift of the map's nodes (areal_lift(map, upper_map, 0)) over the drops' offsets and the
-  /// path, a quarter of d around them: the picture (the model rounds the nodes by spheres of radius r).
+  /// path, half of d around them: the picture (the model rounds the nodes by spheres of radius r).
   ArealLift lift;
   double sphere_radius = 0;  ///< r of the model (unit: m)
   /// The prediction's drops binned over [0, top] in 40 bins: edges (unit: rad) and the percent of the

@@ -219,7 +219,7 @@ Status areal_hold_into(const ReportInput& in, ReportArealHold& out) {
   for (const auto& q : p.drop_offsets) cover(q[0], q[1]);
   cover(out.from_zero.rest_offset[0], out.from_zero.rest_offset[1]);
   for (const auto& st : out.from_zero.stops) cover(st[1], st[2]);
-  const double margin = 0.25 * p.runaway_distance;
+  const double margin = 0.5 * p.runaway_distance;
   ArealLiftOptions lo;
   lo.threads = in.threads;
   lo.offset_min = umin - margin;

@@ -385,7 +385,7 @@ Result<std::string> areal_hold_section(const ReportInput&, const ReportData& d) 
     lm.y0 = L.across(0);
     lm.heights = L.lift;
     MapImage mi;
-    mi.title = "The lift h of the map's nodes over two dimensions of offset, with the prediction's drops";
+    mi.title = "Lift h with the prediction's drops";
     mi.x_label = "offset along the sliding direction, s_x";
     mi.y_label = "offset across it, s_y";
     mi.z_label = "lift h";
@@ -405,7 +405,6 @@ Result<std::string> areal_hold_section(const ReportInput&, const ReportData& d) 
       mi.path_y.push_back(st[2]);
     }
     mi.path_label = z.ran_away ? fmt::format("run-away at {}", fmt_deg(z.hold_angle)) : "held to 45°";
-    mi.marks.push_back({0.0, 0.0, "drop s = 0", "#ffffff"});
     mi.marks.push_back({z.rest_offset[0], z.rest_offset[1], "rest", "#d62728"});
     auto msvg = map_svg(lm, mi);
     if (!msvg) return msvg.error();

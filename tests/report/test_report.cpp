@@ -390,7 +390,7 @@ TEST(Report, TwoMapsShowThePredictionsHoldAnglesOnTheLift) {
   auto page = rp::surface_report(in);
   ASSERT_TRUE(page) << page.error().message;
   EXPECT_NE(page->find("Areal blocks that may move sideways"), std::string::npos);
-  EXPECT_NE(page->find("nodes over two dimensions of offset, with the prediction"), std::string::npos);
+  EXPECT_NE(page->find("Lift h with the prediction"), std::string::npos);
   EXPECT_GE(count(*page, "<polyline points="), 2u);  // the block's path (white under red)
   EXPECT_NE(page->find(">rest</text>"), std::string::npos);
   EXPECT_NE(page->find("median " + fmt_like(0.5 / kDeg)), std::string::npos);
