@@ -174,7 +174,7 @@ std::function<int()> setup(CLI::App& app) {
             a->upper.empty() ? a->lower : a->upper, a->lower, angle_deg, r.spheres, r.rest_offset[0], r.rest_offset[1],
             to_deg(r.friction_angle), tilt_step_deg);
       fmt::print(
-          "  predicted hold angle (frictal predict's model, from that rest) {:.3f} deg, the block free to move "
+          "  predicted hold angle (frictal predict's model, from there) {:.3f} deg, the block free to move "
           "sideways; {:.3f} deg locked to the direction (a diagnostic)\n",
           to_deg(pfree.hold_angle), to_deg(plocked.hold_angle));
       fmt::print(
