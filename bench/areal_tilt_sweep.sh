@@ -27,7 +27,8 @@ print("|---|---|---|---|---|---|---|")
 for f in sorted(glob.glob(os.path.join(sys.argv[1], "*.json"))):
     j = json.load(open(f))
     case, lat = os.path.basename(f)[:-5].rsplit("-", 1)
-    fa, x = j["friction_angle_deg"], j["continuous_hold_angle_deg"]
+    fa = j["friction_angle_deg"]
+    x = j["predicted_hold_angle_deg" if lat == "free" else "predicted_hold_angle_locked_deg"]
     lo, hi = j["continuous_hold_angle_range_deg"]
     m, mr = miss(fa, x, x), miss(fa, lo, hi)
     t = tot[lat]; t[0] += 1; t[1] += m <= 0.2; t[2] += mr <= 0.2

@@ -71,15 +71,15 @@ for p in pairs:
         pr = json.load(open(f"{d}/runs/{p}-{k}-predict.json"))
         fa, x = s["friction_angle_deg"], pr["friction_angle_deg"]
         lo, hi = sp["continuous_hold_angle_range_deg"]
-        assert abs(sp["continuous_hold_angle_deg"] - x) < 1e-9, (p, k, "predict and areal-tilt --predict-only differ")
+        assert abs(sp["predicted_hold_angle_deg"] - x) < 1e-9, (p, k, "predict and areal-tilt --predict-only differ")
         assert abs(pd["drop_friction_angles_deg"][int(k)] - x) < 1e-9, (p, k, "predict --drops differs from --start-offset")
         ok = abs(fa - x) <= TOL or lo <= fa <= hi
         npass += ok
-        nrest += abs(fa - s["continuous_hold_angle_deg"]) <= TOL
+        nrest += abs(fa - s["predicted_hold_angle_deg"]) <= TOL
         sims.append(fa); preds.append(x)
         ox, oy = (float(v) * 1e6 for v in xy.split(","))
         print(f"| {p} | {k} | {ox:.0f}, {oy:.0f} | {fa:.1f}{'' if s['ran_away'] else ' (held)'} | {x:.3f} | {lo:.3f}–{hi:.3f} "
-              f"| {'pass' if ok else 'FAIL'} | {s['continuous_hold_angle_deg']:.3f} | {s['seconds']:.1f} |")
+              f"| {'pass' if ok else 'FAIL'} | {s['predicted_hold_angle_deg']:.3f} | {s['seconds']:.1f} |")
     ms, mp = statistics.median(sims), statistics.median(preds)
     summary.append((p, len(sims), npass, ms, mp, pd["friction_angle_deg"], min(sims), max(sims), min(preds), max(preds), nrest))
 print()

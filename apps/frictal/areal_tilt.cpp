@@ -1,6 +1,6 @@
 // frictal areal-tilt LOWER [UPPER] — the 3D tilt test of two areal blocks on MuJoCo
-// (experimental, docs/mujoco.md), beside the free-lateral and locked hold angles predicted on the
-// lift over two dimensions of offset from the rest offset that the simulation reached.
+// (experimental, docs/mujoco.md), beside the prediction from the rest offset that the simulation
+// reached: frictal predict's map model (areal_tilt_hold), the block free, and locked as a diagnostic.
 #include <unistd.h>
 
 #include <array>
@@ -9,8 +9,8 @@
 
 #include "common.hpp"
 #include "frictal/analysis.hpp"
-#include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
+#include "frictal/predict.hpp"
 #include "frictal/tilt.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
@@ -20,7 +20,6 @@ namespace {
 
 struct Args {
   std::string lower, upper;
-  int prediction_refine = 0;
   std::string detrend = "plane";
   bool in_place = false;
   bool predict_only = false;
@@ -37,9 +36,6 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("lower", a->lower, "Lower block's map (X3P, Gwyddion text)")->required();
   app.add_option("upper", a->upper, "Upper block's map as measured (default: the lower map)");
   add_field_options(app, areal_tilt_settings(), a->words);
-  app.add_option("--prediction-refine", a->prediction_refine,
-                 "Offset grid of the matched prediction this many times finer than the lower map's (default 0: "
-                 "the smallest with a step <= r / 2, at most 16 and at most 2e5 offsets)");
   app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
   add_conditioning_options(app, a->cond);
   app.add_option("--start-offset", a->start_offset,
@@ -54,8 +50,6 @@ std::function<int()> setup(CLI::App& app) {
     auto made = make_areal_tilt_options(si_values(areal_tilt_settings(), a->words));
     if (!made) fail(made.error());
     ArealTiltOptions o = *made;
-    require(a->prediction_refine >= 0 && a->prediction_refine <= 16,
-            fmt::format("--prediction-refine {}: expected an integer in 0..16 (0: automatic)", a->prediction_refine));
     if (!mujoco_available() && !a->predict_only) unwrap(areal_tilt(Map{}, Map{}, {}));  // says what it needs (exit 2)
     const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
     std::vector<ConditioningRecord> records;
@@ -88,62 +82,31 @@ std::function<int()> setup(CLI::App& app) {
       if (progress) fmt::print(stderr, "\n");
     }
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // The predictions from the rest offset the simulation reached, on the rigid lift (r = 0).
-    const double c = std::cos(o.angle), s = std::sin(o.angle);
-    const double D =
-        o.runaway_distance > 0 ? o.runaway_distance : 0.05 * (std::abs(c) * f.width() + std::abs(s) * f.height());
-    const double u = r.rest_offset[0] * c + r.rest_offset[1] * s, v = -r.rest_offset[0] * s + r.rest_offset[1] * c;
-    ArealLiftOptions lo;
-    lo.turn_over_upper = o.turn_over_upper;
-    // Offsets on the lower map's lattice when d runs along x or y (the grid's diagonal moves then
-    // follow the map's diagonals; docs/analysis.md, what the grid can and cannot do).
-    const bool along_x = std::abs(s) < 1e-12, along_y = std::abs(c) < 1e-12;
-    lo.step = along_x ? f.dx : along_y ? f.dy : std::min(f.dx, f.dy);
-    lo.across_step = along_x ? f.dy : along_y ? f.dx : lo.step;
-    lo.offset_min = u - 2 * D;
-    lo.offset_max = u + 4 * D;
-    lo.across_max = std::abs(v) + 3 * D;
-    lo.threads = 0;
-    ArealLift lift = unwrap(areal_lift(f, g, o.angle, lo));
-    ArealHoldOptions ho;
-    ho.runaway_distance = D;
-    ho.atomic_friction = o.atomic_friction;
-    const std::size_t rest = unwrap(areal_lift_node(lift, r.rest_offset[0], r.rest_offset[1]));
-    const ArealHold free = unwrap(areal_hold_angle(lift, rest, ho));
-    // Locked: on the line through the free block's rest (as `frictal areal`), or, when the
-    // simulated block was locked, locked from its own rest on.
-    ArealHoldOptions hl = ho;
-    hl.lateral = LateralMotion::Locked;
-    const double locked = sim_locked ? unwrap(areal_hold_angle(lift, rest, hl)).hold_angle
-                                     : unwrap(areal_locked_hold_angle(lift, free.rest, ho)).hold_angle;
-    // The matched prediction: the same spheres on the same triangulated height field as MuJoCo
-    // (areal_tilt_lift), on an offset grid prediction_refine times finer.
-    // The lift varies on the scale of r between the map's nodes (a valley across the cells'
-    // diagonals is a chain of bumps): the grid's chords must resolve it (docs/mujoco.md).
-    // Automatic: at most 2e5 offsets (the grid is a cross-check; areal_tilt_hold is off the grid).
-    int refine = a->prediction_refine;
-    if (refine == 0) {
-      refine = std::clamp(int(std::ceil(2 * lo.step / r.sphere_radius - 1e-9)), 1, 16);
-      auto offsets = [&](int k) {
-        return ((lo.offset_max - lo.offset_min) / lo.step * k + 1) * (2 * lo.across_max / lo.across_step * k + 1);
-      };
-      while (refine > 1 && offsets(refine) > 2e5) --refine;
-    }
-    ArealLiftOptions mo = lo;
-    mo.step /= refine;
-    mo.across_step /= refine;
-    const ArealLift mlift = unwrap(areal_tilt_lift(f, g, o, mo));
-    const std::size_t mrest = unwrap(areal_lift_node(mlift, r.rest_offset[0], r.rest_offset[1]));
-    const ArealHold mfree = unwrap(areal_hold_angle(mlift, mrest, ho));
-    // The same rigid block off the grid (areal_tilt_hold), in the simulated lateral mode.
-    ArealTiltOptions co = o;
+    // The prediction from the rest offset the simulation reached: predict()'s map model
+    // (areal_tilt_hold: the rigid quasi-static block on the simulated spheres and triangles, off
+    // the grid) with predict()'s defaults of d and r (map_model_options), block free; locked as a
+    // diagnostic. Both drops on one field of spheres (areal_tilt_hold_drops).
+    PredictOptions po;
+    po.direction = o.angle;
+    po.turn_over_upper = o.turn_over_upper;
+    po.atomic_friction = o.atomic_friction;
+    po.runaway_distance = o.runaway_distance;
+    po.sphere_radius = o.sphere_radius;
+    const ArealTiltOptions model = map_model_options(f, po);
+    const double D = model.runaway_distance;
+    ArealTiltOptions co = o;          // the protocol's settings as given (tilt steps, height field, contacts)
     co.start_offset = r.rest_offset;  // from the simulated rest: the same basin
     co.runaway_distance = D;
-    const ArealTiltHold cont = unwrap(areal_tilt_hold(f, g, co));
+    co.sphere_radius = model.sphere_radius;
+    const std::vector<ArealTiltHold> held =
+        unwrap(areal_tilt_hold_drops(f, g, co, {{r.rest_offset, false}, {r.rest_offset, true}}));
+    const ArealTiltHold& pfree = held[0];
+    const ArealTiltHold& plocked = held[1];
+    // The prediction in the simulated lateral mode, in detail (the continuous_* keys).
+    co.lock_lateral = sim_locked;
+    const ArealTiltHold& cont = sim_locked ? plocked : pfree;
     // Its conditioning: the slips' ends moved by one sphere radius (areal_tilt_hold_spread).
     const ArealTiltHoldSpread spread = unwrap(areal_tilt_hold_spread(f, g, co, cont));
-    const double mlocked = sim_locked ? unwrap(areal_hold_angle(mlift, mrest, hl)).hold_angle
-                                      : unwrap(areal_locked_hold_angle(mlift, mfree.rest, ho)).hold_angle;
     for (const auto& w : r.warnings)
       if (!a->json) fmt::print(stderr, "frictal: warning [{}]: {}\n", w[0], w[1]);
     if (a->json) {
@@ -159,11 +122,10 @@ std::function<int()> setup(CLI::App& app) {
         j["ran_away"] = r.ran_away;
       }
       j["rest_offset_m"] = {r.rest_offset[0], r.rest_offset[1]};
-      j["predicted_hold_angle_deg"] = to_deg(free.hold_angle);
-      j["predicted_hold_angle_locked_deg"] = to_deg(locked);
-      j["continuous_hold_angle_deg"] = to_deg(cont.hold_angle);
+      j["predicted_hold_angle_deg"] = to_deg(pfree.hold_angle);
+      j["predicted_hold_angle_locked_deg"] = to_deg(plocked.hold_angle);
+      j["predicted_steering_deg"] = to_deg(pfree.steering);
       j["continuous_runaway_increment_deg"] = to_deg(cont.runaway_increment);
-      j["continuous_steering_deg"] = to_deg(cont.steering);
       j["continuous_rest_offset_m"] = {cont.rest_offset[0], cont.rest_offset[1]};
       j["continuous_evaluations"] = cont.evaluations;
       j["continuous_hold_angle_range_deg"] = {to_deg(spread.low), to_deg(spread.high)};
@@ -183,15 +145,9 @@ std::function<int()> setup(CLI::App& app) {
       nlohmann::json cs = nlohmann::json::array();
       for (const auto& st : cont.stops) cs.push_back({to_deg(st[0]), st[1], st[2]});
       j["continuous_increments"] = cs;  // [tilt_deg, x_m, y_m] after each increment
-      j["matched_hold_angle_deg"] = to_deg(mfree.hold_angle);
-      j["matched_hold_angle_locked_deg"] = to_deg(mlocked);
-      j["matched_steering_deg"] = to_deg(mfree.steering);
       j["sphere_radius_m"] = r.sphere_radius;
       j["collision"] = o.exact_contacts ? "exact" : "native";
       j["lateral"] = o.lock_lateral ? "locked" : "free";
-      j["prediction_refine"] = refine;
-      j["matched_steering_deg"] = to_deg(mfree.steering);
-      j["predicted_steering_deg"] = to_deg(free.steering);
       if (!a->predict_only) {
         j["steering_deg"] = to_deg(r.steering);
         nlohmann::json tr = nlohmann::json::array();
@@ -218,15 +174,13 @@ std::function<int()> setup(CLI::App& app) {
             a->upper.empty() ? a->lower : a->upper, a->lower, angle_deg, r.spheres, r.rest_offset[0], r.rest_offset[1],
             to_deg(r.friction_angle), tilt_step_deg);
       fmt::print(
-          "  predicted hold angle {:.3f} deg free to move sideways, {:.3f} deg locked\n"
-          "  matched (the simulated spheres on the triangulated height field, rigid) {:.3f} deg free, {:.3f} "
-          "deg locked\n",
-          to_deg(free.hold_angle), to_deg(locked), to_deg(mfree.hold_angle), to_deg(mlocked));
+          "  predicted hold angle (frictal predict's model, from there) {:.3f} deg, the block free to move "
+          "sideways; {:.3f} deg locked to the direction (a diagnostic)\n",
+          to_deg(pfree.hold_angle), to_deg(plocked.hold_angle));
       fmt::print(
-          "  matched off the grid, {}: {:.3f} deg; {:.3f} to {:.3f} deg when one slip's end moves by a sphere "
-          "radius ({} of {} slips could end in another seat)\n",
-          o.lock_lateral ? "locked" : "free", to_deg(cont.hold_angle), to_deg(spread.low), to_deg(spread.high),
-          spread.ambiguous, spread.slips);
+          "  {}: {:.3f} to {:.3f} deg when one slip's end moves by a sphere radius ({} of {} slips could end in "
+          "another seat)\n",
+          sim_locked ? "locked" : "free", to_deg(spread.low), to_deg(spread.high), spread.ambiguous, spread.slips);
       fmt::print("  conditioning: {}\n", conditioning_done);
     }
     return 0;

@@ -77,7 +77,7 @@ std::string markdown() {
        "`angle` itself: every pair runs free and locked along +x). MuJoCo's times are in scaled units: lengths\n"
        "divided by the lower map's larger extent, gravity 9.81 m/s² (docs/mujoco.md). Not in the table:\n"
        "`--start-offset X,Y` (m), `--in-place`, `--detrend`, `--crop`, `--remove-spikes`, `--spike-threshold`\n"
-       "(the conditioning, docs/analysis.md), `--prediction-refine`, `--predict-only`.\n\n" +
+       "(the conditioning, docs/analysis.md), `--predict-only`.\n\n" +
        md_table(areal_tilt_settings());
   return s;
 }

@@ -132,7 +132,10 @@ struct ArealLift {
 /// over the offsets (maps that do not overlap along d).
 Result<ArealLift> areal_lift(const Map& lower, const Map& upper, double angle, const ArealLiftOptions& o = {});
 
-/// The hold angle of a block that may move sideways (docs/analysis.md, "Areal hold angle").
+/// The hold angle of a block that may move sideways on the lift's grid (docs/analysis.md, "Areal
+/// blocks that may move sideways"): the grid model, a fast approximation that differs from the
+/// continuous model of predict() (areal_tilt_hold) by up to 7 deg on random maps. No front end
+/// shows it (they show predict()'s); it stays for the tests and benchmarks that document it.
 /// Tilted by beta about e, a rigid block that does not rotate moves in the plane of offsets under
 /// the potential h(s) cos(beta) - u(s) sin(beta). On the lift's grid the block moves between
 /// 8-neighbouring offsets (Free) or between the neighbours along d only (Locked: the 1D rule on

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "frictal/analysis.hpp"
+#include "frictal/areal_tilt.hpp"
 #include "frictal/conditioning.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/hold.hpp"
@@ -147,6 +148,14 @@ Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name
 /// range, maps that do not overlap along the direction, a map job above map_work_limit.
 Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper,
                            const PredictOptions& options = {});
+
+/// The map model's settings as predict() sets them for the lower map `lower` (conditioned) and
+/// `o`: the direction, turn-over and mu_a of `o`; its run-away distance, else the default (a tenth
+/// of half the lower map along the direction); its sphere radius, else the default (a fifth of the
+/// lower map's smaller spacing); areal_tilt's defaults for the rest. The front ends that show the
+/// map model for one drop (`frictal areal-tilt`, the report's two-map section) take the
+/// defaults from here, so that their hold angles are the prediction's.
+ArealTiltOptions map_model_options(const Map& lower, const PredictOptions& o);
 
 /// The map prediction's estimated CPU time before it runs, the figure PredictOptions::map_work_limit
 /// is compared with: 2.5e-7 s per sphere of the upper map and drop (free and locked drops count

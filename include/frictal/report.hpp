@@ -156,8 +156,8 @@ struct ReportInput {
   /// face the lower one. Unset: the lower surface itself turned over. Profiles only.
   std::optional<Profile> upper;
   /// For a map: the upper block's map as measured (turned over onto `map` about the axis across
-  /// x). Set: the page adds the lift over two dimensions of offset with the path of a block that
-  /// may move sideways and the hold angles over drops (frictal/areal.hpp).
+  /// x). Set: the page adds the prediction's hold angles over drops (its block free to move
+  /// sideways) and the path of its block dropped at s = 0 on the lift over two dimensions of offset.
   std::optional<Map> upper_map;
   std::string upper_name;
   std::string detrend;  ///< conditioning already applied (ConditioningRecord text, or the form: "none", "line", ...)
@@ -185,8 +185,8 @@ struct ReportInput {
 
 // ---------------------------------------------------------------------------------------------
 // The page's analyses: report_data() computes every section's results from a ReportInput (the
-// library's analysis calls: signature, predict_friction, analyse_hold, areal_lift and the areal
-// hold angles, anisotropy, gaussian_lowpass, short_reliability_cutoff, and the histograms the
+// library's analysis calls: signature, predict_friction, analyse_hold, areal_lift, predict() and
+// areal_tilt_hold (two maps), anisotropy, gaussian_lowpass, short_reliability_cutoff, and the histograms the
 // plots draw); the section writers (src/report/sections.cpp) only format them.
 
 /// The surfaces the analyses work on, with their statistics.
@@ -226,17 +226,24 @@ struct ReportHold {
       inertial;  ///< phi_qs and phi_in over drops, 40 bins, basins weighted by the width they drain (unit: rad; 1/rad)
 };
 
-/// Two maps: the lift over two dimensions of offset and the hold angles of a block free to move
-/// sideways or locked (areal.hpp), sliding along +x.
+/// Two maps: the prediction's hold angles over drops (the headline's: frictal predict's map model,
+/// the block free to move sideways; locked too where the prediction has them), the block dropped at
+/// s = 0 in the same model, and the lift of the map's nodes over two dimensions of offset as the
+/// picture of the landscape it moves on, sliding along +x.
 struct ReportArealHold {
-  std::string failure;          ///< non-empty: not computed, and why (the page says so)
-  ArealLift lift;               ///< areal_lift(map, upper_map, 0)
-  double runaway_distance = 0;  ///< the given one, else a tenth of the offset range along x (unit: m)
-  ArealHold free;               ///< from the drop at s = 0, free to move sideways
-  HoldAngle locked;             ///< the same block locked, from the free block's rest
-  ArealHoldDistribution free_drops, locked_drops;  ///< over drops, free and locked
-  /// Both distributions binned over [0, top] in 40 bins: edges (unit: rad) and the percent of the drops in
-  /// each bin (unitless).
+  std::string failure;  ///< non-empty: not computed, and why (the page says so)
+  /// ReportInput::prediction when it is a map prediction over drops along +x, else predict() of
+  /// the page's maps (already conditioned: no form removed again) with its run-away distance and mu_a.
+  Prediction prediction;
+  /// areal_tilt_hold from s = 0 with the prediction's settings (map_model_options, its run-away
+  /// distance), the block free: its stops after each tilt increment are the path drawn.
+  ArealTiltHold from_zero;
+  /// The lift of the map's nodes (areal_lift(map, upper_map, 0)) over the drops' offsets and the
+  /// path, half of d around them: the picture (the model rounds the nodes by spheres of radius r).
+  ArealLift lift;
+  double sphere_radius = 0;  ///< r of the model (unit: m)
+  /// The prediction's drops binned over [0, top] in 40 bins: edges (unit: rad) and the percent of the
+  /// drops in each bin, free and (with the prediction's locked drops; else empty) locked (unitless).
   std::vector<double> edges, free_percent, locked_percent;
 };
 

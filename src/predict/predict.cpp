@@ -226,12 +226,7 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   const double c = std::cos(o.direction), s = std::sin(o.direction);
   const double along = std::abs(c) * lo->width() + std::abs(s) * lo->height();
   const double across = std::abs(s) * lo->width() + std::abs(c) * lo->height();
-  ArealTiltOptions t;
-  t.angle = o.direction;
-  t.turn_over_upper = o.turn_over_upper;
-  t.atomic_friction = o.atomic_friction;
-  t.runaway_distance = o.runaway_distance > 0 ? o.runaway_distance : 0.05 * along;
-  t.sphere_radius = o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(lo->dx, lo->dy);
+  const ArealTiltOptions t = map_model_options(*lo, o);
   p.runaway_distance = t.runaway_distance;
   // Drops (offsets of the upper map's centre from the lower's). An upper block smaller than the
   // lower map along d is put down where it lies wholly over it with room to run D:
@@ -343,6 +338,18 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
 }
 
 }  // namespace
+
+ArealTiltOptions map_model_options(const Map& lower, const PredictOptions& o) {
+  const double c = std::cos(o.direction), s = std::sin(o.direction);
+  const double along = std::abs(c) * lower.width() + std::abs(s) * lower.height();
+  ArealTiltOptions t;
+  t.angle = o.direction;
+  t.turn_over_upper = o.turn_over_upper;
+  t.atomic_friction = o.atomic_friction;
+  t.runaway_distance = o.runaway_distance > 0 ? o.runaway_distance : 0.05 * along;
+  t.sphere_radius = o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(lower.dx, lower.dy);
+  return t;
+}
 
 double map_work_estimate(std::size_t upper_spheres, std::size_t drops) {
   return double(upper_spheres) * 2.5e-7 * double(drops);

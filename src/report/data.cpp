@@ -175,50 +175,76 @@ ReportHold hold_of(HoldAnalysis analysis, const FrictionPrediction& fwd) {
   return out;
 }
 
-/// The areal analyses of two maps; a failure is kept as the section's `failure`.
+/// The two-map section: the prediction's hold angles over drops (the headline's), its block
+/// dropped at s = 0 and the lift of the map's nodes as their picture; a failure is kept as the
+/// section's `failure`.
 Status areal_hold_into(const ReportInput& in, ReportArealHold& out) {
   if (auto v = validate(*in.upper_map, in.upper_name); !v) return v.error();
+  PredictOptions po;
+  po.atomic_friction = in.atomic_friction;
+  po.runaway_distance = in.runaway_distance;
+  po.threads = in.threads;
+  const Prediction* given = in.prediction ? &*in.prediction : nullptr;
+  if (given && given->is_map && !given->single_drop && given->direction == 0) {
+    out.prediction = *given;
+  } else {
+    // As `frictal predict` computes it, on the page's maps (conditioned already: no form again).
+    po.detrend = Detrend{DetrendKind::None, 0};
+    PredictSurface lower, upper;
+    lower.is_map = upper.is_map = true;
+    lower.map = in.map;
+    lower.name = in.lower_name;
+    upper.map = *in.upper_map;
+    upper.name = in.upper_name;
+    auto p = predict(lower, &upper, po);
+    if (!p) return p.error();
+    out.prediction = std::move(*p);
+  }
+  const Prediction& p = out.prediction;
+  // The block dropped at s = 0 in the prediction's model with its settings (map_model_options).
+  po.runaway_distance = p.runaway_distance;
+  ArealTiltOptions t = map_model_options(in.map, po);
+  t.start_offset = {0, 0};
+  auto hold = areal_tilt_hold(in.map, *in.upper_map, t);
+  if (!hold) return hold.error();
+  out.from_zero = std::move(*hold);
+  out.sphere_radius = t.sphere_radius;
+  // The lift of the map's nodes over the drops and the path (sliding along +x: u = x, v = y).
+  double umin = 0, umax = 0, vmax = 0;
+  auto cover = [&](double x, double y) {
+    umin = std::min(umin, x);
+    umax = std::max(umax, x);
+    vmax = std::max(vmax, std::abs(y));
+  };
+  for (const auto& q : p.drop_offsets) cover(q[0], q[1]);
+  cover(out.from_zero.rest_offset[0], out.from_zero.rest_offset[1]);
+  for (const auto& st : out.from_zero.stops) cover(st[1], st[2]);
+  const double margin = 0.5 * p.runaway_distance;
   ArealLiftOptions lo;
   lo.threads = in.threads;
+  lo.offset_min = umin - margin;
+  lo.offset_max = umax + margin;
+  lo.across_max = vmax + margin;
   auto lift = areal_lift(in.map, *in.upper_map, 0.0, lo);
   if (!lift) return lift.error();
   out.lift = std::move(*lift);
-  const ArealLift& L = out.lift;
-  ArealHoldOptions ho;
-  ho.runaway_distance = in.runaway_distance > 0 ? in.runaway_distance : 0.1 * (L.along(L.n_along - 1) - L.along(0));
-  ho.atomic_friction = in.atomic_friction;
-  ho.threads = in.threads;
-  out.runaway_distance = ho.runaway_distance;
-  auto start = areal_lift_node(L, 0.0, 0.0);
-  if (!start) return start.error();
-  auto free = areal_hold_angle(L, *start, ho);
-  if (!free) return free.error();
-  out.free = std::move(*free);
-  auto locked = areal_locked_hold_angle(L, out.free.rest, ho);
-  if (!locked) return locked.error();
-  out.locked = *locked;
-  auto dfree = areal_hold_distribution(L, ho);
-  if (!dfree) return dfree.error();
-  out.free_drops = std::move(*dfree);
-  ho.lateral = LateralMotion::Locked;
-  auto dlocked = areal_hold_distribution(L, ho);
-  if (!dlocked) return dlocked.error();
-  out.locked_drops = std::move(*dlocked);
-  // The two distributions over drops: weighted histograms of the basins' angles (percent of drops).
-  const double amax = std::max(out.free_drops.hold.max, out.locked_drops.hold.max);
+  // The drops' hold angles: histograms over [0, top], each drop one (percent of the drops).
+  double amax = 0;
+  for (double a : p.drop_angles) amax = std::max(amax, a);
+  for (double a : p.drop_angles_locked) amax = std::max(amax, a);
   const int bins = 40;
   const double top = deg(amax) > 0 ? deg(amax) * 1.0001 : 1.0;  // (unit: deg)
   for (int b = 0; b <= bins; ++b) out.edges.push_back(top * b / bins * kDeg);
-  auto percent = [&](const ArealHoldDistribution& d) {
+  auto percent = [&](const std::vector<double>& angles) {
     std::vector<double> y(bins, 0.0);
-    for (std::size_t k = 0; k < d.angle.size(); ++k) {
-      const int b = std::clamp(int(deg(d.angle[k]) / top * bins), 0, bins - 1);
-      y[std::size_t(b)] += 100.0 * double(d.weight[k]) / double(d.drops);
+    for (double a : angles) {
+      const int b = std::clamp(int(deg(a) / top * bins), 0, bins - 1);
+      y[std::size_t(b)] += 100.0 / double(angles.size());
     }
     return y;
   };
-  out.free_percent = percent(out.free_drops);
-  out.locked_percent = percent(out.locked_drops);
+  out.free_percent = percent(p.drop_angles);
+  if (p.has_locked) out.locked_percent = percent(p.drop_angles_locked);
   return Ok{};
 }
 

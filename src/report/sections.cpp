@@ -372,6 +372,8 @@ Result<std::string> areal_hold_section(const ReportInput&, const ReportData& d) 
   const ReportArealHold& a = *d.areal_hold;
   auto write = [&]() -> Result<std::string> {
     if (!a.failure.empty()) return make_error(a.failure);
+    const Prediction& p = a.prediction;
+    const ArealTiltHold& z = a.from_zero;
     const ArealLift& L = a.lift;
     // The lift as a map over (u, v) (sliding along x: u = x, v = y).
     Map lm;
@@ -383,21 +385,27 @@ Result<std::string> areal_hold_section(const ReportInput&, const ReportData& d) 
     lm.y0 = L.across(0);
     lm.heights = L.lift;
     MapImage mi;
-    mi.title = "The lift h over two dimensions of offset";
+    mi.title = "Lift h with the prediction's drops";
     mi.x_label = "offset along the sliding direction, s_x";
     mi.y_label = "offset across it, s_y";
     mi.z_label = "lift h";
     mi.absolute_axes = true;
-    for (std::size_t k : a.free.path) {
-      const auto p = L.offset_xy(k);
-      mi.path_x.push_back(p[0]);
-      mi.path_y.push_back(p[1]);
+    for (const auto& q : p.drop_offsets) mi.marks.push_back({q[0], q[1], "", "#ffffff"});
+    // The chain of stops: the coarse increments up to the first run-away are tilted again in fine
+    // increments from the stop before it, so a stop at a lower tilt than the last replaces those above.
+    std::vector<std::array<double, 3>> chain;
+    for (const auto& st : z.stops) {
+      while (!chain.empty() && chain.back()[0] >= st[0]) chain.pop_back();
+      chain.push_back(st);
     }
-    mi.path_label = a.free.ran_off_end ? "runs off the grid" : "run-away";
-    const auto s0 = L.offset_xy(a.free.start), r0 = L.offset_xy(a.free.rest), h0 = L.offset_xy(a.free.hold_node);
-    mi.marks.push_back({s0[0], s0[1], "drop", "#ffffff"});
-    mi.marks.push_back({r0[0], r0[1], "rest", "#d62728"});
-    if (a.free.hold_node != a.free.rest) mi.marks.push_back({h0[0], h0[1], "held", "#ff7f0e"});
+    mi.path_x = {0.0, z.rest_offset[0]};
+    mi.path_y = {0.0, z.rest_offset[1]};
+    for (const auto& st : chain) {
+      mi.path_x.push_back(st[1]);
+      mi.path_y.push_back(st[2]);
+    }
+    mi.path_label = z.ran_away ? fmt::format("run-away at {}", fmt_deg(z.hold_angle)) : "held to 45°";
+    mi.marks.push_back({z.rest_offset[0], z.rest_offset[1], "rest", "#d62728"});
     auto msvg = map_svg(lm, mi);
     if (!msvg) return msvg.error();
     auto hist = [&](const std::vector<double>& percent, const std::string& label, const std::string& color) {
@@ -410,36 +418,50 @@ Result<std::string> areal_hold_section(const ReportInput&, const ReportData& d) 
       return sr;
     };
     Plot hp;
-    hp.title = "Hold angle over drops";
+    hp.title = "Hold angle over the prediction's drops";
     hp.x_label = "hold angle (deg)";
     hp.y_label = "drops (%)";
-    hp.series = {hist(a.free_percent, "free to move sideways", "#d62728"),
-                 hist(a.locked_percent, "locked (1D rule)", "#1f77b4")};
+    hp.series = {hist(a.free_percent, "free to move sideways (the prediction)", "#d62728")};
+    if (p.has_locked) hp.series.push_back(hist(a.locked_percent, "locked to +x (a diagnostic)", "#1f77b4"));
+    hp.lines.push_back(
+        {false, deg(p.friction_angle.q50), fmt::format("median {}", fmt_deg(p.friction_angle.q50)), "#d62728"});
     auto hsvg = plot_svg(hp);
     if (!hsvg) return hsvg.error();
-    const LengthUnit su = length_unit(std::max(std::abs(L.along(L.n_along - 1)), std::abs(L.across(0))));
+    const LengthUnit su = length_unit(
+        std::max({std::abs(L.along(0)), std::abs(L.along(L.n_along - 1)), std::abs(L.across(0)), p.runaway_distance}));
     std::string html =
-        "<p>The upper map turned over onto the lower one and moved by an offset s in the plane; the lift h(s) is "
-        "the height of its reference point at contact. Tilted about the axis across the sliding direction (+x), a "
-        "rigid block that does not rotate moves on h under the tilt and steers around asperities if it may move "
-        "sideways. Definitions and how μ_a enters: docs/analysis.md (\"Areal blocks that may move sideways\").</p>\n";
-    html += figure(*msvg, fmt::format("{} × {} offsets; red: the path of a block dropped at s = 0 (white), from its "
-                                      "rest offset up to the end of its run-away slip (free to move sideways, run-away "
-                                      "distance {:.4g} {}).",
-                                      L.n_along, L.n_across, a.runaway_distance / su.scale, su.name));
-    html += figure(*hsvg, fmt::format("{} drops spread uniformly over the offsets (the last d along x and d from the "
-                                      "lateral edges left out), each node one drop.",
-                                      a.free_drops.drops));
-    std::string t = "<table class=\"friction\"><tr><th></th><th>free to move sideways</th><th>locked</th></tr>\n";
-    t += fmt::format("<tr><th>hold angle from s = 0 (rest at ({}, {}) {})</th><td>{}</td><td>{}</td></tr>\n",
-                     fmt::format("{:.4g}", r0[0] / su.scale), fmt::format("{:.4g}", r0[1] / su.scale), su.name,
-                     fmt_deg(a.free.hold_angle), fmt_deg(a.locked.hold_angle));
-    auto range = [](const HoldStatistics& st) {
-      return fmt::format("{} ± {} (5–95 %: {} … {}; min {}, max {})", fmt_deg(st.mean), fmt_deg(st.std),
-                         fmt_deg(st.q05), fmt_deg(st.q95), fmt_deg(st.min), fmt_deg(st.max));
+        "<p>The upper map turned over onto the lower one and moved by an offset s in the plane. Tilted about the "
+        "axis across the sliding direction (+x), a rigid block that does not rotate slides on the lift h(s), the "
+        "height of its reference point at contact, and steers around asperities if it may move sideways. The hold "
+        "angles here are the headline's prediction (model " +
+        escape_html(p.model) +
+        ": the upper map's nodes as spheres on the lower map's triangulated surface, offsets anywhere, "
+        "quasi-static; docs/analysis.md, docs/mujoco.md).</p>\n";
+    html += figure(
+        *msvg,
+        fmt::format("{} × {} offsets of the lift of the map's nodes (areal_lift: the landscape; the prediction's "
+                    "model rounds each node of the upper map by a sphere of radius r = {:.4g} {}, so its lift is "
+                    "this one smoothed on that scale). White: the prediction's {} drops. Red: the block dropped at "
+                    "s = 0, to its rest at zero tilt and then where it stands after each tilt increment, up to the "
+                    "end of its run-away (free to move sideways, run-away distance d = {:.4g} {}).",
+                    L.n_along, L.n_across, a.sphere_radius / su.scale, su.name, p.drops, p.runaway_distance / su.scale,
+                    su.name));
+    const long side = std::lround(std::sqrt(double(p.drops)));
+    html += figure(*hsvg, fmt::format("The hold angle of each of the prediction's {} drops ({} × {} over the drop "
+                                      "range); the headline's median and 5–95 % are over these.",
+                                      p.drops, side, side));
+    std::string t = "<table class=\"friction\"><tr><th></th><th>free to move sideways (the prediction)</th>";
+    if (p.has_locked) t += "<th>locked to +x (a diagnostic)</th>";
+    t += "</tr>\n";
+    auto stats = [](const HoldStatistics& st) {
+      return fmt::format("median {}; 5–95 %: {} … {}; {} ± {}; min {}, max {}", fmt_deg(st.q50), fmt_deg(st.q05),
+                         fmt_deg(st.q95), fmt_deg(st.mean), fmt_deg(st.std), fmt_deg(st.min), fmt_deg(st.max));
     };
-    t += fmt::format("<tr><th>over drops</th><td>{}</td><td>{}</td></tr>\n", range(a.free_drops.hold),
-                     range(a.locked_drops.hold));
+    t += fmt::format("<tr><th>hold angle over {} drops</th><td>{}</td>{}</tr>\n", p.drops, stats(p.friction_angle),
+                     p.has_locked ? fmt::format("<td>{}</td>", stats(p.locked_friction_angle)) : std::string());
+    t += fmt::format("<tr><th>the block dropped at s = 0 (rest at ({:.4g}, {:.4g}) {})</th><td>{}</td>{}</tr>\n",
+                     z.rest_offset[0] / su.scale, z.rest_offset[1] / su.scale, su.name,
+                     z.ran_away ? fmt_deg(z.hold_angle) : "held to 45°", p.has_locked ? "<td></td>" : "");
     t += "</table>\n";
     html += t;
     return html;

@@ -222,25 +222,44 @@ TEST(CliAreal, ArealTiltPredictsOnTheSimulatedSurfaces) {
       g.heights.push_back(kA * std::sin(2 * kPi * (double(i) - double(j)) / kM));  // i - j as the lower's
   const std::string upper = temp_path("grooves30-window.x3p");
   ASSERT_TRUE(frictal::write_x3p(upper, g).ok());
-  const std::string args =
-      "areal-tilt " + groove_file() + " " + upper +
-      " --in-place --detrend none --predict-only --runaway-distance 5e-7 --prediction-refine 2 --json";
+  const std::string args = "areal-tilt " + groove_file() + " " + upper +
+                           " --in-place --detrend none --predict-only --runaway-distance 5e-7 --json";
   auto f = run_cli(args);
   ASSERT_EQ(f.code, 0) << f.err;
   auto jf = nlohmann::json::parse(f.out);
   EXPECT_FALSE(jf.contains("friction_angle_deg"));
-  EXPECT_LE(jf["continuous_hold_angle_deg"].get<double>(), 0.1);
-  EXPECT_NEAR(jf["continuous_steering_deg"].get<double>(), 30, 0.5);
+  // The prediction's model only (the grid model is retired from the output), free and locked.
+  for (const char* gone : {"matched_hold_angle_deg", "matched_hold_angle_locked_deg", "matched_steering_deg",
+                           "prediction_refine", "continuous_hold_angle_deg", "continuous_steering_deg"})
+    EXPECT_FALSE(jf.contains(gone)) << gone;
+  EXPECT_LE(jf["predicted_hold_angle_deg"].get<double>(), 0.1);
+  EXPECT_NEAR(jf["predicted_steering_deg"].get<double>(), 30, 0.5);
+  const double expected = std::atan(kA * std::sin(2 * kPi / kM) / kStep) * 180 / kPi;
+  EXPECT_GE(jf["predicted_hold_angle_locked_deg"].get<double>(), expected - 1e-7);
+  EXPECT_LE(jf["predicted_hold_angle_locked_deg"].get<double>(), expected + 0.012);  // bisected to 1e-4 rad
+  EXPECT_EQ(jf["lateral"], "free");
+  // The same number as `frictal predict` from the same drop (its defaults of d and r).
+  auto p = run_cli("predict " + groove_file() + " " + upper +
+                   " --in-place --detrend none --start-offset 0,0 --runaway-distance 5e-7 --json");
+  ASSERT_EQ(p.code, 0) << p.err;
+  EXPECT_NEAR(nlohmann::json::parse(p.out)["friction_angle_deg"].get<double>(),
+              jf["predicted_hold_angle_deg"].get<double>(), 1e-9);
+  auto pl = run_cli("predict " + groove_file() + " " + upper +
+                    " --in-place --detrend none --start-offset 0,0 --runaway-distance 5e-7 --locked --json");
+  ASSERT_EQ(pl.code, 0) << pl.err;
+  EXPECT_NEAR(nlohmann::json::parse(pl.out)["locked_friction_angle_deg"].get<double>(),
+              jf["predicted_hold_angle_locked_deg"].get<double>(), 1e-9);
+  // Simulated locked: the same predictions; the continuous_* details follow the locked block.
   auto l = run_cli(args + " --lateral locked");
   ASSERT_EQ(l.code, 0) << l.err;
   auto jl = nlohmann::json::parse(l.out);
-  const double expected = std::atan(kA * std::sin(2 * kPi / kM) / kStep) * 180 / kPi;
-  EXPECT_GE(jl["continuous_hold_angle_deg"].get<double>(), expected - 1e-7);
-  EXPECT_LE(jl["continuous_hold_angle_deg"].get<double>(), expected + 0.012);  // bisected to 1e-4 rad
-  EXPECT_NEAR(jl["matched_hold_angle_locked_deg"].get<double>(), expected, 0.012);
+  EXPECT_EQ(jl["lateral"], "locked");
+  EXPECT_EQ(jl["predicted_hold_angle_deg"], jf["predicted_hold_angle_deg"]);
+  EXPECT_EQ(jl["predicted_hold_angle_locked_deg"], jf["predicted_hold_angle_locked_deg"]);
+  EXPECT_GE(jl["continuous_hold_angle_range_deg"][1].get<double>(), expected - 1e-7);
   // Bad input names the option.
   for (const std::string bad :
-       {"--lateral sideways", "--collision mpr", "--prediction-refine 17", "--start-offset 1e-6", "--local-damping 1",
+       {"--lateral sideways", "--collision mpr", "--prediction-refine 2", "--start-offset 1e-6", "--local-damping 1",
         "--mujoco-time-step 0", "--rest-steps 0", "--coarse-tilt-step 0"}) {
     auto b = run_cli(args + " " + bad);
     EXPECT_EQ(b.code, 2) << bad;

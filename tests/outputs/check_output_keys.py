@@ -258,8 +258,6 @@ NOT_THE_TABLES = {
     ("divider", "points"): "points of the Koch curve (a curve, not a profile's statistics)",
     ("wm-pair-statistics", "surface_slope_max_deg"):
         "the command table's (declared without values in the predict tier, above the study tier)",
-    ("areal-tilt", "matched_steering_deg"):
-        "the areal_tilt table's (the CLI's matched model, declared without values in the predict tier)",
 }
 table_columns = {}  # (table, key or Python key of a key-less column) -> column
 for t in tables.values():

@@ -331,23 +331,29 @@ TEST(Report, MapPageHasImagePolarPlotAndCentralLine) {
   EXPECT_FALSE(rp::surface_report(in));
 }
 
-TEST(Report, TwoMapsDrawTheArealLiftWithThePathAndTheHoldAngles) {
-  frictal::Map m;
-  m.nx = 48;
-  m.ny = 40;
-  m.dx = m.dy = 1e-6;
-  for (std::size_t j = 0; j < m.ny; ++j)
-    for (std::size_t i = 0; i < m.nx; ++i)
-      m.heights.push_back(2e-7 * std::sin(0.7 * double(i) + 0.3 * double(j)) +
-                          1e-7 * std::cos(0.45 * double(i * j) * 0.1));
-  frictal::Map u = m;
-  u.nx = u.ny = 20;
-  u.heights.clear();
-  for (std::size_t j = 0; j < 20; ++j)
-    for (std::size_t i = 0; i < 20; ++i) u.heights.push_back(m.at(i + 20, j + 10));
+TEST(Report, TwoMapsShowThePredictionsHoldAnglesOnTheLift) {
+  // Grooves across x (A sin(2 pi i / m) along x, the same in every row) and a 12 x 12 window of
+  // them turned over: they mate, the block gains nothing by moving along the grooves, and from
+  // every drop it climbs the steepest segment of the piecewise-linear grooves, slope
+  // A sin(2 pi / m) / a (by hand; as tests/predict's grooves). The section shows the prediction's
+  // model (no grid model): its drops and the block dropped at s = 0 hold there.
+  const std::size_t nx = 32, ny = 24;
+  const int m = 8;
+  const double a = 1e-6, A = 2.4e-8 * 15;
+  frictal::Map g;
+  g.nx = nx;
+  g.ny = ny;
+  g.dx = g.dy = a;
+  for (std::size_t j = 0; j < ny; ++j)
+    for (std::size_t i = 0; i < nx; ++i) g.heights.push_back(A * std::sin(2 * std::numbers::pi * double(i) / m));
+  frictal::Map u;
+  u.nx = u.ny = 12;
+  u.dx = u.dy = a;
+  for (std::size_t j = 0; j < 12; ++j)
+    for (std::size_t i = 0; i < 12; ++i) u.heights.push_back(g.at(i + 4, j + 4));
   rp::ReportInput in;
   in.is_map = true;
-  in.map = m;
+  in.map = g;
   in.upper_map = u;
   in.lower_name = "lower.x3p";
   in.upper_name = "upper.x3p";
@@ -355,21 +361,43 @@ TEST(Report, TwoMapsDrawTheArealLiftWithThePathAndTheHoldAngles) {
   in.directions = 4;
   in.max_lines = 4;
   in.resolution_steps = 0;
+  const double want = std::atan(A * std::sin(2 * std::numbers::pi / m) / a);
+  auto d = rp::report_data(in);
+  ASSERT_TRUE(d) << d.error().message;
+  ASSERT_TRUE(d->areal_hold);
+  const rp::ReportArealHold& h = *d->areal_hold;
+  ASSERT_TRUE(h.failure.empty()) << h.failure;
+  EXPECT_EQ(h.prediction.model, "map-continuous-free");
+  EXPECT_EQ(h.prediction.drops, 25u);
+  EXPECT_GE(h.prediction.friction_angle.min, want - 1e-9);
+  EXPECT_LE(h.prediction.friction_angle.max, want + 2e-4);  // bisected to 1e-4 rad
+  EXPECT_TRUE(h.from_zero.ran_away);
+  EXPECT_GE(h.from_zero.hold_angle, want - 1e-9);
+  EXPECT_LE(h.from_zero.hold_angle, want + 2e-4);
+  // The prediction is predict()'s on the same maps (no form removed again) ...
+  frictal::PredictSurface pl, pu;
+  pl.is_map = pu.is_map = true;
+  pl.map = g;
+  pu.map = u;
+  frictal::PredictOptions po;
+  po.detrend = frictal::Detrend{frictal::DetrendKind::None, 0};
+  auto p = frictal::predict(pl, &pu, po);
+  ASSERT_TRUE(p) << p.error().message;
+  EXPECT_EQ(h.prediction.drop_angles, p->drop_angles);
+  // ... and a prediction given with the input (the CLI's headline) is the one the section shows.
+  in.prediction = *p;
+  in.prediction->friction_angle.q50 = 0.5;  // marked: the section must take it, not recompute
   auto page = rp::surface_report(in);
   ASSERT_TRUE(page) << page.error().message;
   EXPECT_NE(page->find("Areal blocks that may move sideways"), std::string::npos);
-  EXPECT_NE(page->find("The lift h over two dimensions of offset"), std::string::npos);
+  EXPECT_NE(page->find("Lift h with the prediction"), std::string::npos);
   EXPECT_GE(count(*page, "<polyline points="), 2u);  // the block's path (white under red)
   EXPECT_NE(page->find(">rest</text>"), std::string::npos);
-  // The table's numbers are the library's.
-  auto lift = frictal::areal_lift(m, u, 0.0);
-  ASSERT_TRUE(lift);
-  frictal::ArealHoldOptions ho;
-  ho.runaway_distance = 0.1 * (lift->along(lift->n_along - 1) - lift->along(0));
-  auto d = frictal::areal_hold_distribution(*lift, ho);
-  ASSERT_TRUE(d);
-  EXPECT_NE(page->find(fmt::format("{:.3f}\u00b0 \u00b1 {:.3f}\u00b0", d->hold.mean / kDeg, d->hold.std / kDeg)),
-            std::string::npos);
+  EXPECT_NE(page->find("median " + fmt_like(0.5 / kDeg)), std::string::npos);
+  EXPECT_NE(page->find(fmt::format("over {} drops", p->drops)), std::string::npos);
+  // No grid model on the page: no locked column without the prediction's locked drops.
+  EXPECT_EQ(page->find("locked (1D rule)"), std::string::npos);
+  EXPECT_EQ(page->find("a diagnostic)</th>"), std::string::npos);
   expect_self_contained(*page);
 }
 
