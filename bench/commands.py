@@ -106,11 +106,14 @@ def ensure_data(binary, data, cases, sizes_of):
                          f"and pass --data): {r.stderr.strip().splitlines()[-1:]}")
 
 
-def run_once(binary, argv, timeout):
+def run_once(binary, argv, timeout, stdout_path=None):
     """(wall s, peak MB, cpu s, error text) of one run; peak and cpu (user + system, all threads)
     are the child's own rusage."""
     t0 = time.perf_counter()
-    p = subprocess.Popen([binary] + argv, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    out = open(stdout_path, "wb") if stdout_path else subprocess.DEVNULL
+    p = subprocess.Popen([binary] + argv, stdout=out, stderr=subprocess.PIPE)
+    if stdout_path:
+        out.close()
     deadline = t0 + timeout
     while True:
         pid, status, ru = os.wait4(p.pid, os.WNOHANG)
