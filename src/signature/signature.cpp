@@ -965,12 +965,20 @@ Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, dou
         for (auto it = lo; it != hi; ++it) offs.push_back(std::clamp(fx[i] - *it, smin, smax));
       }
     }
-    offs.push_back(smin);
-    offs.push_back(smax);
+    // The lattice's offsets come out increasing: with the range ends put in place (before an
+    // equal value, as a sort may place them; equal values are the same number) no sort is needed.
+    bool in_order = P.aligned_lattice && std::is_sorted(offs.begin(), offs.end());
+    if (in_order) {
+      for (const double e : {smin, smax})
+        offs.insert(std::lower_bound(offs.begin(), offs.end(), e), e);
+    } else {
+      offs.push_back(smin);
+      offs.push_back(smax);
+    }
     // Sorted in chunks on the worker threads, then merged (the same order as one sort: the
     // values are totally ordered; up to 2e7 events of two measured grids that do not align).
     const unsigned st = offs.size() > (std::size_t{1} << 20) ? util::thread_count(o.threads, offs.size() >> 20) : 1;
-    if (st > 1) {
+    if (!in_order && st > 1) {
       std::vector<std::size_t> bounds(st + 1);
       for (unsigned c = 0; c <= st; ++c) bounds[c] = offs.size() * c / st;
       util::parallel_chunks(st, st, [&](unsigned, std::size_t c0, std::size_t c1) {
@@ -981,7 +989,7 @@ Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, dou
         for (std::size_t c = 0; c + width < st; c += 2 * width)
           std::inplace_merge(offs.begin() + std::ptrdiff_t(bounds[c]), offs.begin() + std::ptrdiff_t(bounds[c + width]),
                              offs.begin() + std::ptrdiff_t(bounds[std::min<std::size_t>(c + 2 * width, st)]));
-    } else {
+    } else if (!in_order) {
       std::sort(offs.begin(), offs.end());
     }
     std::size_t w = 0;  // drop near-duplicates in place (each kept value compared with the last kept)
