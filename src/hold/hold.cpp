@@ -643,22 +643,27 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
   for (std::size_t i = 0; i < v.size(); ++i) var += w[i] * (v[i] - m) * (v[i] - m);
   s.mean = m;
   s.std = std::sqrt(var / tw);
-  std::vector<std::size_t> idx(v.size());
-  for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-  std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
+  // The values with their weights by increasing value: std::sort of the pairs makes the same
+  // comparisons, hence the same order (ties included), as a sort of the indices by value.
+  struct ValueWeight {
+    double v, w;
+  };
+  std::vector<ValueWeight> sorted(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) sorted[i] = {v[i], w[i]};
+  std::sort(sorted.begin(), sorted.end(), [](const ValueWeight& x, const ValueWeight& y) { return x.v < y.v; });
   auto quantile = [&](double q) {
     double cum = 0;
-    for (std::size_t i : idx) {
-      cum += w[i];
-      if (cum >= q * tw * (1 - 1e-12)) return v[i];
+    for (const ValueWeight& e : sorted) {
+      cum += e.w;
+      if (cum >= q * tw * (1 - 1e-12)) return e.v;
     }
-    return v[idx.back()];
+    return sorted.back().v;
   };
   s.q05 = quantile(0.05);
   s.q50 = quantile(0.50);
   s.q95 = quantile(0.95);
-  s.min = v[idx.front()];
-  s.max = v[idx.back()];
+  s.min = sorted.front().v;
+  s.max = sorted.back().v;
   return s;
 }
 
@@ -674,19 +679,17 @@ template <class V>
 HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, const HoldOptions& o, bool mirrored) {
   const double d = o.runaway_distance;
   const std::size_t n = p.n();
-  struct Basin {
-    std::size_t vertex;
-    double weight;
-    double hold_slope = 0;
-    bool near_end = false;  // its run-away ran off the end less than d after its stop
-  };
+  // The basins, one entry each: rest vertex and weight (pass 1), hold slope and whether the
+  // run-away ran off the end less than d after its stop (pass 2), inertial angle (pass 3).
+  std::vector<std::size_t> bv;
+  std::vector<double> bw, bslope, binert;
+  std::vector<std::uint8_t> bnear;
   struct Flat {
     double weight;
     Rest rest;
     std::int64_t next;  // the next record of its piece
     Outcome oc;
   };
-  std::vector<Basin> basins;
   std::vector<Flat> flats;
   std::unordered_map<std::size_t, std::size_t> seen;  // periodic: key -> basin
   const std::size_t nb = fr.periodic ? p.m : 0;       // vertices per period in the unrolled frame
@@ -724,16 +727,19 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
     } else {
       const auto v = static_cast<std::size_t>(r.vertex);
       const std::size_t key = fr.periodic ? v % nb : v;
-      if (!basins.empty() && key == last_key) {
-        basins.back().weight += xe - x;
+      if (!bv.empty() && key == last_key) {
+        bw.back() += xe - x;
       } else if (fr.periodic) {
-        const auto [it, fresh] = seen.try_emplace(key, basins.size());
-        if (fresh)
-          basins.push_back({v, xe - x});
-        else
-          basins[it->second].weight += xe - x;
+        const auto [it, fresh] = seen.try_emplace(key, bv.size());
+        if (fresh) {
+          bv.push_back(v);
+          bw.push_back(xe - x);
+        } else {
+          bw[it->second] += xe - x;
+        }
       } else {
-        basins.push_back({v, xe - x});
+        bv.push_back(v);
+        bw.push_back(xe - x);
       }
       last_key = key;
     }
@@ -751,37 +757,38 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
     // Basins by decreasing rest vertex: non-periodic basins come in increasing order already.
     std::vector<std::uint32_t> border;
     bool increasing = true;
-    for (std::size_t i = 1; i < basins.size() && increasing; ++i) increasing = basins[i - 1].vertex < basins[i].vertex;
+    for (std::size_t i = 1; i < bv.size() && increasing; ++i) increasing = bv[i - 1] < bv[i];
     if (!increasing) {
-      border.resize(basins.size());
+      border.resize(bv.size());
       for (std::size_t i = 0; i < border.size(); ++i) border[i] = static_cast<std::uint32_t>(i);
-      std::sort(border.begin(), border.end(),
-                [&](std::uint32_t x, std::uint32_t y) { return basins[x].vertex > basins[y].vertex; });
+      std::sort(border.begin(), border.end(), [&](std::uint32_t x, std::uint32_t y) { return bv[x] > bv[y]; });
     }
-    auto basin_at = [&](std::size_t r) -> Basin& {  // r-th basin in decreasing vertex order
-      return increasing ? basins[basins.size() - 1 - r] : basins[border[r]];
+    auto basin_at = [&](std::size_t r) -> std::size_t {  // the r-th basin in decreasing vertex order
+      return increasing ? bv.size() - 1 - r : border[r];
     };
+    bslope.resize(bv.size());
+    bnear.resize(bv.size());
     std::vector<std::size_t> fq;  // records that flat drops slip to, decreasing
     for (const Flat& f : flats)
       if (f.next >= 0) fq.push_back(static_cast<std::size_t>(f.next));
     std::sort(fq.begin(), fq.end(), std::greater<>());
     fq.erase(std::unique(fq.begin(), fq.end()), fq.end());
     std::vector<Chain> fa(fq.size());
-    auto set_outcome = [&](Basin& q, const Chain& c) {
+    auto set_outcome = [&](std::size_t q, const Chain& c) {
       Rest r;
-      r.vertex = static_cast<std::int64_t>(q.vertex);
-      r.x = p.X(q.vertex);
+      r.vertex = static_cast<std::int64_t>(bv[q]);
+      r.x = p.X(bv[q]);
       const Outcome oc = outcome_of(p, r, -1, d, fr.periodic, [&](std::size_t) { return c; });
-      q.hold_slope = oc.hold_slope;
-      q.near_end = oc.off_end && x_end - oc.hold_x < d;
+      bslope[q] = oc.hold_slope;
+      bnear[q] = oc.off_end && x_end - oc.hold_x < d;
     };
     std::size_t bi = 0, fi = 0;
     // Basins resting at the end vertex n: nothing ahead holds them.
-    while (bi < basins.size() && basin_at(bi).vertex >= n) set_outcome(basin_at(bi++), Chain{});
+    while (bi < bv.size() && bv[basin_at(bi)] >= n) set_outcome(basin_at(bi++), Chain{});
     RecordStack records;
-    for (std::size_t kk = n; kk-- > 0 && (bi < basins.size() || fi < fq.size());) {
+    for (std::size_t kk = n; kk-- > 0 && (bi < bv.size() || fi < fq.size());) {
       const Chain c = records.push(p, kk, d);
-      while (bi < basins.size() && basin_at(bi).vertex == kk) set_outcome(basin_at(bi++), c);
+      while (bi < bv.size() && bv[basin_at(bi)] == kk) set_outcome(basin_at(bi++), c);
       if (fi < fq.size() && fq[fi] == kk) fa[fi++] = c;
     }
     auto chain = [&](std::size_t s0) {
@@ -791,59 +798,74 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
     for (Flat& f : flats) f.oc = outcome_of(p, f.rest, f.next, d, fr.periodic, chain);
   }
   double near_end = 0;  // run-aways that left a stop less than d before the end of the curve
-  for (const Basin& q : basins)
-    if (q.near_end) near_end += q.weight;
+  for (std::size_t q = 0; q < bv.size(); ++q)
+    if (bnear[q]) near_end += bw[q];
+  std::vector<std::uint8_t>().swap(bnear);
   for (const Flat& f : flats)
     if (f.oc.off_end && x_end - f.oc.hold_x < d) near_end += f.weight;
   // Pass 3: the steepest chords from the rest vertices, in decreasing order; then the basins
   // (flat drops first, each with its own chord) in the order of their first drop.
-  HoldDistribution out;
-  const std::size_t total = basins.size() + flats.size();
-  out.basins.rest.reserve(total);
-  out.basins.weight.reserve(total);
-  out.basins.hold.reserve(total);
-  out.basins.inertial.resize(total);
-  for (const Flat& f : flats) {  // a flat drop: its own chord
-    out.basins.rest.push_back(mirrored ? -f.rest.x : f.rest.x);
-    out.basins.weight.push_back(f.weight);
-    out.basins.hold.push_back(angle_of(f.oc.hold_slope, o.atomic_friction));
-    out.basins.inertial[out.basins.rest.size() - 1] =
-        angle_of(chord_direct(p, f.rest.x, fr.w).first, o.atomic_friction);
-  }
-  const std::size_t nf = flats.size();
-  std::vector<Flat>().swap(flats);
   {
     bool increasing = true;
-    for (std::size_t i = 1; i < basins.size() && increasing; ++i) increasing = basins[i - 1].vertex < basins[i].vertex;
-    std::vector<std::size_t> order, rests;
+    for (std::size_t i = 1; i < bv.size() && increasing; ++i) increasing = bv[i - 1] < bv[i];
+    std::vector<std::size_t> order;
     if (!increasing) {
-      order.resize(basins.size());
+      order.resize(bv.size());
       for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-      std::sort(order.begin(), order.end(),
-                [&](std::size_t x, std::size_t y) { return basins[x].vertex > basins[y].vertex; });
+      std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return bv[x] > bv[y]; });
     }
     // The queries in decreasing vertex order, as chords_batch takes them.
     struct Rests {
-      const std::vector<Basin>& bs;
+      const std::vector<std::size_t>& bs;
       const std::vector<std::size_t>& ord;
       bool inc;
       std::size_t size() const { return bs.size(); }
       bool empty() const { return bs.empty(); }
       std::size_t idx(std::size_t q) const { return inc ? bs.size() - 1 - q : ord[q]; }
-      std::size_t operator[](std::size_t q) const { return bs[idx(q)].vertex; }
-    } rq{basins, order, increasing};
+      std::size_t operator[](std::size_t q) const { return bs[idx(q)]; }
+    } rq{bv, order, increasing};
+    binert.resize(bv.size());
     chords_batch(p, rq, fr.w, [&](std::size_t qi, std::pair<double, double> best) {
-      out.basins.inertial[nf + rq.idx(qi)] = angle_of(best.first, o.atomic_friction);
+      binert[rq.idx(qi)] = angle_of(best.first, o.atomic_friction);
     });
   }
-  for (const Basin& q : basins) {
-    const double rest = wrap(fr, p.X(q.vertex));
-    out.basins.rest.push_back(mirrored ? -rest : rest);
-    out.basins.weight.push_back(q.weight);
-    out.basins.hold.push_back(angle_of(q.hold_slope, o.atomic_friction));
+  // The basins' rest offsets and hold angles, in place of their vertices and hold slopes.
+  std::vector<double> brest(bv.size());
+  for (std::size_t q = 0; q < bv.size(); ++q) {
+    const double rest = wrap(fr, p.X(bv[q]));
+    brest[q] = mirrored ? -rest : rest;
+    bslope[q] = angle_of(bslope[q], o.atomic_friction);
   }
-  std::vector<Basin>().swap(basins);
-  {  // sort the basins by offset
+  std::vector<std::size_t>().swap(bv);
+  HoldDistribution out;
+  if (flats.empty()) {
+    out.basins.rest = std::move(brest);
+    out.basins.weight = std::move(bw);
+    out.basins.hold = std::move(bslope);
+    out.basins.inertial = std::move(binert);
+  } else {
+    HoldBasins& ob = out.basins;
+    const std::size_t total = brest.size() + flats.size();
+    for (std::vector<double>* v : {&ob.rest, &ob.weight, &ob.hold, &ob.inertial}) v->reserve(total);
+    for (const Flat& f : flats) {  // a flat drop: its own chord
+      ob.rest.push_back(mirrored ? -f.rest.x : f.rest.x);
+      ob.weight.push_back(f.weight);
+      ob.hold.push_back(angle_of(f.oc.hold_slope, o.atomic_friction));
+      ob.inertial.push_back(angle_of(chord_direct(p, f.rest.x, fr.w).first, o.atomic_friction));
+    }
+    std::vector<Flat>().swap(flats);
+    ob.rest.insert(ob.rest.end(), brest.begin(), brest.end());
+    ob.weight.insert(ob.weight.end(), bw.begin(), bw.end());
+    ob.hold.insert(ob.hold.end(), bslope.begin(), bslope.end());
+    ob.inertial.insert(ob.inertial.end(), binert.begin(), binert.end());
+  }
+  for (std::vector<double>* v : {&brest, &bw, &bslope, &binert}) std::vector<double>().swap(*v);
+  // Sort the basins by offset (nothing to do where they are in strictly increasing order, the
+  // one order a sort can give then).
+  bool strictly = true;
+  for (std::size_t i = 1; i < out.basins.rest.size() && strictly; ++i)
+    strictly = out.basins.rest[i - 1] < out.basins.rest[i];
+  if (!strictly) {
     std::vector<std::size_t> idx(out.basins.rest.size());
     for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
     std::sort(idx.begin(), idx.end(),
@@ -1422,6 +1444,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     auto h = analyse_hold_widened(lower, upper, so, hold, start);
     if (!h) return h.error();
     out = std::move(*h);
+    if (!S.ho.keep_curve) out.curve = LiftCurve{};
     auto sig = take_lower && take_upper ? signature(std::move(*take_lower), std::move(*take_upper), so)
                                         : signature(lower, upper, so);
     if (!sig) return sig.error();
@@ -1502,27 +1525,30 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     }
     return Ok{};
   };
-  auto sig = detail::signature_with_lift(lower, upper, so, take_lower, take_upper, with_lift);
+  // The analysis once the faces are let go, before the signature's slope distribution is
+  // computed (so that the two do not hold their memory at the same time).
+  const detail::AfterFaces after_faces = [&](const SignatureResult& R) -> Status {
+    if (S.period > 0) {
+      out.events = R.offset.size();
+      out.exact = R.exact;
+      auto curve = lift_curve(R, S.period);
+      if (!curve) return curve.error();
+      out.curve = std::move(*curve);
+      auto reach = analyse_curve(out, S.ho, start);
+      if (!reach) return reach.error();
+    } else if (!analysed) {
+      auto reach = build_and_analyse(R);
+      if (!reach) return reach.error();
+      ext_points = detail::LiftPoints{};
+      if ((reach->max && cut_hi < whole.max) || (reach->min && cut_lo > whole.min))
+        return make_error("hold: internal error: the lift beyond the range was cut short (please report)");
+    }
+    if (!S.ho.keep_curve) out.curve = LiftCurve{};
+    return Ok{};
+  };
+  auto sig = detail::signature_with_lift(lower, upper, so, take_lower, take_upper, with_lift, after_faces);
   if (!sig) return sig.error();
   res.signature = std::move(*sig);
-  const SignatureResult& R = res.signature;
-  if (S.period > 0) {
-    out.events = R.offset.size();
-    out.exact = R.exact;
-    auto curve = lift_curve(R, S.period);
-    if (!curve) return curve.error();
-    out.curve = std::move(*curve);
-    auto reach = analyse_curve(out, S.ho, start);
-    if (!reach) return reach.error();
-    return res;
-  }
-  if (!analysed) {
-    auto reach = build_and_analyse(R);
-    if (!reach) return reach.error();
-    ext_points = detail::LiftPoints{};
-    if ((reach->max && cut_hi < whole.max) || (reach->min && cut_lo > whole.min))
-      return make_error("hold: internal error: the lift beyond the range was cut short (please report)");
-  }
   return res;
 }
 

@@ -1048,7 +1048,8 @@ bool evaluate_lift(const Problem& P, const std::vector<double>& offs, const Sign
 
 Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o,
                                        Profile* take_lower, Profile* take_upper,
-                                       const detail::WithLift* with_lift = nullptr) {
+                                       const detail::WithLift* with_lift = nullptr,
+                                       const detail::AfterFaces* after_faces = nullptr) {
   if (auto st = validate(lower_in, "lower surface"); !st) return st.error();
   if (auto st = validate(upper_in, "upper surface"); !st) return st.error();
   if (!(o.tolerance > 0 && o.tolerance < 1e-3))
@@ -1224,6 +1225,9 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
     if (auto st = (*with_lift)(R, extend); !st) return st.error();
   }
   P = Problem{};  // the faces are no longer needed
+  if (after_faces && *after_faces) {
+    if (auto st = (*after_faces)(R); !st) return st.error();
+  }
 
   // Extremes: theta at each offset plus the one-sided slopes next to it (inside the range).
   R.theta_max_forward = -kInf;
@@ -1296,11 +1300,12 @@ Result<SignatureResult> signature(const Profile& lower, const Profile& upper, co
 
 Result<SignatureResult> detail::signature_with_lift(const Profile& lower, const Profile& upper,
                                                     const SignatureOptions& options, Profile* take_lower,
-                                                    Profile* take_upper, const WithLift& with_lift) {
+                                                    Profile* take_upper, const WithLift& with_lift,
+                                                    const AfterFaces& after_faces) {
   if (options.spheroradius > 0) return make_error("signature: no extended lift for spheropolygons");
   const bool periodic = lower.period && upper.period;
   return signature_impl(lower, upper, options, periodic ? nullptr : take_lower, periodic ? nullptr : take_upper,
-                        &with_lift);
+                        &with_lift, &after_faces);
 }
 
 Result<SignatureResult> signature(Profile&& lower, Profile&& upper, const SignatureOptions& options) {
