@@ -474,11 +474,26 @@ class RollbackHull {
 // chunk c covers a suffix of chunk c and a prefix of the chunks after it, up to one chunk
 // length. Per chunk, queries in decreasing x: the suffix hull grows leftwards, the prefix hull
 // shrinks (undo in reverse push order). O((n + q) log n) time, O(vertices per window) memory.
-// `out(i, {slope, where})` receives the answer of rests[i].
+// A vertex where the slope after it exceeds the slope before it by more than both their
+// rounding bounds (a convex corner: between two events h is convex, so every tangent meeting
+// point is one) lies strictly below the chord of its two neighbours, and a chord from the left
+// to it is strictly less steep than to one of them: the hulls leave such vertices out, and the
+// window's first and last vertices (whose neighbours may lie outside it) are tried on their own.
+// `out(i, slope)` receives the steepest slope of rests[i].
 template <class V, class Rests, class Out>
 void chords_batch(const V& p, const Rests& rests, double w, Out&& out) {
   const std::size_t n = p.n();
   if (rests.empty()) return;
+  std::vector<std::uint8_t> skip(n + 1, 0);  // clearly convex corners (not the ends)
+  {
+    double m_prev = p.M(0), t_prev = p.tol(0);
+    for (std::size_t v = 1; v < n; ++v) {
+      const double m = p.M(v), t = p.tol(v);
+      skip[v] = m > m_prev + t_prev + t;
+      m_prev = m;
+      t_prev = t;
+    }
+  }
   const double x_begin = p.X(0);
   auto chunk_of = [&](double x) { return std::floor((x - x_begin) / w); };
   RollbackHull<V, -1, false> suffix(p);
@@ -506,38 +521,62 @@ void chords_batch(const V& p, const Rests& rests, double w, Out&& out) {
     const std::size_t e = p.upper(reach);
     suffix.clear();
     prefix.clear();
-    for (std::size_t v = b; v < e; ++v) prefix.push(v);
+    for (std::size_t v = b; v < e; ++v)
+      if (!skip[v]) prefix.push(v);
     std::size_t prefix_end = std::max(b, e);  // prefix holds [b, prefix_end)
     std::size_t suffix_begin = b;             // suffix holds [suffix_begin, b)
     for (; qi < rests.size() && chunk_of(p.X(rests[qi])) == c; ++qi) {
       const std::size_t r = rests[qi];
       const double x0 = p.X(r), h0 = p.H(r), x1 = std::min(x0 + w, p.X(n));
-      while (suffix_begin > r + 1) suffix.push(--suffix_begin);
-      while (prefix_end > b && p.X(prefix_end - 1) > x1) {
-        prefix.undo();
-        --prefix_end;
-      }
-      std::pair<double, double> best = suffix.best(x0, h0);
-      const auto pb = prefix.best(x0, h0);
-      if (pb.first > best.first) best = pb;
-      if (x1 > x0) {  // the window's end inside a piece
-        if (u1 > n + 1)
-          u1 = p.upper(x1);
-        else
-          while (u1 > 0 && p.X(u1 - 1) > x1) --u1;
-        const std::size_t k = std::min(u1 == 0 ? 0 : u1 - 1, n - 1);  // piece_of(p, x1)
-        if (p.X(k) < x1 && x1 < p.X(k + 1)) {
-          const double s = (p.at(k, x1) - h0) / (x1 - x0);
-          if (s > best.first) best = {s, x1};
+      while (suffix_begin > r + 1)
+        if (!skip[--suffix_begin]) suffix.push(suffix_begin);
+      while (prefix_end > b && p.X(prefix_end - 1) > x1)
+        if (!skip[--prefix_end]) prefix.undo();
+      double best = std::max(suffix.best(x0, h0).first, prefix.best(x0, h0).first);
+      if (u1 > n + 1)
+        u1 = p.upper(x1);
+      else
+        while (u1 > 0 && p.X(u1 - 1) > x1) --u1;
+      // The window's first and last vertices.
+      const std::size_t last = u1 == 0 ? 0 : u1 - 1;
+      if (last > r) {
+        for (const std::size_t v : {r + 1, last}) {
+          const double s = (p.H(v) - h0) / (p.X(v) - x0);
+          if (s > best) best = s;
         }
       }
-      if (!std::isfinite(best.first)) best = {0.0, x0};
+      if (x1 > x0) {  // the window's end inside a piece
+        const std::size_t k = std::min(last, n - 1);  // piece_of(p, x1)
+        if (p.X(k) < x1 && x1 < p.X(k + 1)) {
+          const double s = (p.at(k, x1) - h0) / (x1 - x0);
+          if (s > best) best = s;
+        }
+      }
+      if (!std::isfinite(best)) best = 0.0;
       out(qi, best);
     }
   }
 }
 
 double angle_of(double slope, double mu) { return std::min(std::atan(slope) + std::atan(mu), kHalfPi); }
+
+// angle_of(slope, mu) for many slopes of one mu, remembering the last slope (chains that join
+// hold at the same stop: neighbouring basins often share their slope).
+class AngleOf {
+ public:
+  explicit AngleOf(double mu) : atan_mu_(std::atan(mu)) {}
+  double operator()(double slope) {
+    if (!(slope == last_slope_ && std::signbit(slope) == std::signbit(last_slope_))) {
+      last_slope_ = slope;
+      last_angle_ = std::min(std::atan(slope) + atan_mu_, kHalfPi);
+    }
+    return last_angle_;
+  }
+
+ private:
+  double atan_mu_;
+  double last_slope_ = std::numeric_limits<double>::quiet_NaN(), last_angle_ = 0;
+};
 
 Status check_curve(const LiftCurve& c) {
   if (c.offset.size() != c.lift.size() || c.offset.size() < 2)
@@ -825,16 +864,16 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
       std::size_t operator[](std::size_t q) const { return bs[idx(q)]; }
     } rq{bv, order, increasing};
     binert.resize(bv.size());
-    chords_batch(p, rq, fr.w, [&](std::size_t qi, std::pair<double, double> best) {
-      binert[rq.idx(qi)] = angle_of(best.first, o.atomic_friction);
-    });
+    AngleOf inertial_angle(o.atomic_friction);
+    chords_batch(p, rq, fr.w, [&](std::size_t qi, double best) { binert[rq.idx(qi)] = inertial_angle(best); });
   }
   // The basins' rest offsets and hold angles, in place of their vertices and hold slopes.
   std::vector<double> brest(bv.size());
+  AngleOf hold_angle(o.atomic_friction);
   for (std::size_t q = 0; q < bv.size(); ++q) {
     const double rest = wrap(fr, p.X(bv[q]));
     brest[q] = mirrored ? -rest : rest;
-    bslope[q] = angle_of(bslope[q], o.atomic_friction);
+    bslope[q] = hold_angle(bslope[q]);
   }
   std::vector<std::size_t>().swap(bv);
   HoldDistribution out;
