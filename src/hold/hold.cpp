@@ -18,6 +18,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <unordered_map>
 
 #include <fmt/core.h>
@@ -1349,20 +1350,31 @@ struct MergedPoints {
       : R(r), E(e) {
     const std::size_t nr = R.offset.size(), ne = E.offset.size();
     nw = nr - dropped.size() + ne;
-    std::size_t ir = 0, ie = 0, id = 0;
-    for (std::size_t w = 0; w < nw; ++w) {
+    // Whole runs at a time: R's points below E's next one (up to the next dropped index), then
+    // E's points up to R's next one (a point of R before an equal one of E, as one by one).
+    std::size_t ir = 0, ie = 0, id = 0, w = 0;
+    const double* ro = R.offset.data();
+    const double* eo = E.offset.data();
+    while (w < nw) {
       while (id < dropped.size() && dropped[id] == ir) {
         ++ir;
         ++id;
       }
-      const bool take_r = ir < nr && (ie >= ne || R.offset[ir] < E.offset[ie]);
-      const std::size_t i = take_r ? ir : ie;
-      if (runs.empty() || runs.back().from_r != take_r || runs.back().i0 + (w - runs.back().w0) != i)
-        runs.push_back({w, i, take_r});
-      if (take_r)
-        ++ir;
-      else
-        ++ie;
+      const bool has_r = ir < nr, has_e = ie < ne;
+      if (!has_r && !has_e) break;
+      if (has_r && (!has_e || ro[ir] < eo[ie])) {
+        std::size_t end = id < dropped.size() ? std::min(nr, dropped[id]) : nr;
+        if (has_e) end = static_cast<std::size_t>(std::lower_bound(ro + ir, ro + end, eo[ie]) - ro);
+        runs.push_back({w, ir, true});
+        w += end - ir;
+        ir = end;
+      } else {
+        const std::size_t end =
+            has_r ? static_cast<std::size_t>(std::upper_bound(eo + ie, eo + ne, ro[ir]) - eo) : ne;
+        runs.push_back({w, ie, false});
+        w += end - ie;
+        ie = end;
+      }
     }
   }
   std::size_t size() const { return nw; }
@@ -1467,8 +1479,9 @@ double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
 
 // The one pass: the signature over its range, then, with the same prepared faces, the lift
 // beyond it on the sides the process reaches, then (the faces let go) the analysis.
-// Exact mode: each side from 1.25 d, doubled while end_reached() says the process may reach
-// the cut end; the offsets are those a signature over the wider range lists, so the curve, and
+// Exact mode: each side from 1.75 d (the three benchmark pairs of issue 32 need 1.0 to 2.6 d;
+// a round costs more than 0.3 d of lift), widened by what end_reached() finds short and d/4
+// while it says the process may reach the cut end; the offsets are those a signature over the wider range lists, so the curve, and
 // every number, is that of a lift computed over it. Sampled offsets: the widened range and its
 // grid as analyse_hold_widened takes them (2 d on both sides, doubled on the whole analysis).
 Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, const SignatureOptions& so,
@@ -1509,7 +1522,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   const detail::WithLift with_lift = [&](const SignatureResult& R, const detail::LiftExtender& extend) -> Status {
     if (S.period > 0) return Ok{};  // the signature's own lift: exactly one period
     const bool sampled = !R.exact || so.offsets > 0;
-    double m_lo = sampled ? 2 * d : 1.25 * d, m_hi = m_lo;
+    double m_lo = sampled ? 2 * d : 1.75 * d, m_hi = m_lo;
     for (;;) {
       cut_lo = hold_lift_range(S.a, S.b, m_lo, S.lower_len, S.upper_len).min;
       cut_hi = hold_lift_range(S.a, S.b, m_hi, S.lower_len, S.upper_len).max;
@@ -1537,26 +1550,29 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       // range's end on), before the whole curve is built.
       MergedPoints mp(R, ext_points, ext_dropped);
       const std::size_t nw = mp.size();
-      auto local = [&](std::size_t first, std::size_t last) {
-        return merged_curve(mp, first, last, util::thread_count(so.threads, 2));
-      };
       // W's indices of the points around [a - d, b + d] (a few spacings' slack).
       const std::size_t w_lo = mp.first_at(S.a + d, false);
       const std::size_t i_lo = std::min(nw, w_lo + 2);
       const std::size_t w_hi = std::max(w_lo, mp.first_at(S.b - d, true));
       const std::size_t i_hi = w_hi > 2 ? w_hi - 2 : 0;
-      if (cut_max) {
-        auto c = local(i_hi, nw);
-        if (!c) return c.error();
-        short_max = end_reached(*c, false, S.b, d);
-        more_max = short_max > 0;
-      }
-      if (cut_min) {
-        auto c = local(0, i_lo);
-        if (!c) return c.error();
-        short_min = end_reached(*c, true, -S.a, d);
-        more_min = short_min > 0;
-      }
+      // Both ends at once (each curve on one thread).
+      std::optional<Status> side_error[2];
+      util::parallel_chunks(2, util::thread_count(so.threads, 2), [&](unsigned, std::size_t s0, std::size_t s1) {
+        for (std::size_t side = s0; side < s1; ++side) {
+          const bool hi = side == 0;
+          if (!(hi ? cut_max : cut_min)) continue;
+          auto c = hi ? merged_curve(mp, i_hi, nw, 1) : merged_curve(mp, 0, i_lo, 1);
+          if (!c) {
+            side_error[side] = Status(c.error());
+            continue;
+          }
+          (hi ? short_max : short_min) = hi ? end_reached(*c, false, S.b, d) : end_reached(*c, true, -S.a, d);
+        }
+      });
+      for (const auto& e : side_error)
+        if (e) return *e;
+      more_max = short_max > 0;
+      more_min = short_min > 0;
       if (!more_max && !more_min) break;
       // Farther by what the check found short, and a quarter of d (a chain may go on).
       if (more_max) m_hi += short_max + 0.25 * d;
