@@ -82,6 +82,15 @@ struct View {
     return kSlopeTolerance *
            ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(mk) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
   }
+  // M(k) and tol(k) at once (one division fewer; the same values).
+  void slope_tol(std::size_t k, double& mk, double& tk) const {
+    const std::size_t j = bj(period == 0 ? k : k % m);
+    const double dx = x[j + 1] - x[j];
+    const double raw = (h[j + 1] - h[j]) / dx;
+    mk = sx * raw;
+    tk = kSlopeTolerance *
+         ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(raw) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+  }
   // Piece j is steeper than piece k: by more than k's rounding bound (the records rule).
   bool steeper(std::size_t j, std::size_t k) const { return M(j) > M(k) + tol(k); }
   // h at x (X(0) <= x <= X(n)), on piece k.
@@ -145,6 +154,14 @@ struct LinearView {
     const double mk = (h[j + 1] - h[j]) / dx;
     return kSlopeTolerance *
            ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(mk) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+  }
+  void slope_tol(std::size_t k, double& mk, double& tk) const {
+    const std::size_t j = bj(k);
+    const double dx = x[j + 1] - x[j];
+    const double raw = (h[j + 1] - h[j]) / dx;
+    mk = Mirrored ? -1.0 * raw : raw;
+    tk = kSlopeTolerance *
+         ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(raw) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
   }
   double at(std::size_t k, double x0) const { return H(k) + M(k) * (x0 - X(k)); }
   std::size_t upper(double x0) const {
@@ -301,9 +318,10 @@ class RecordStack {
   /// Pushes vertex kk (below every vertex pushed before) and returns its chain (d: run-away, m).
   template <class V>
   Chain push(const V& p, std::size_t kk, double d) {
-    const double mk = p.M(kk);
+    double mk, tk;
+    p.slope_tol(kk, mk, tk);
     while (!stack_.empty() && stack_.back().m <= mk) stack_.pop_back();
-    const double t = mk + p.tol(kk);
+    const double t = mk + tk;
     std::size_t top = stack_.size();  // past the entry of the next record; 0: none
     if (top > 0 && !(stack_[top - 1].m > t)) {
       std::size_t lo = 0, hi = top - 1;  // the last index in [0, hi) above t, if any
@@ -487,9 +505,11 @@ void chords_batch(const V& p, const Rests& rests, double w, Out&& out) {
   if (rests.empty()) return;
   std::vector<std::uint8_t> skip(n + 1, 0);  // clearly convex corners (not the ends)
   {
-    double m_prev = p.M(0), t_prev = p.tol(0);
+    double m_prev, t_prev;
+    p.slope_tol(0, m_prev, t_prev);
     for (std::size_t v = 1; v < n; ++v) {
-      const double m = p.M(v), t = p.tol(v);
+      double m, t;
+      p.slope_tol(v, m, t);
       skip[v] = m > m_prev + t_prev + t;
       m_prev = m;
       t_prev = t;
@@ -1049,8 +1069,10 @@ Result<LiftCurve> lift_curve(const SignatureResult& sig, double period) {
   });
 }
 
-Result<HoldAngles> hold_angle(const LiftCurve& curve, double start, const HoldOptions& options) {
-  if (auto st = check_curve(curve); !st) return st.error();
+namespace {
+
+// hold_angle and hold_distribution on a curve already checked (check_curve).
+Result<HoldAngles> hold_angle_checked(const LiftCurve& curve, double start, const HoldOptions& options) {
   if (auto st = check_options(options); !st) return st.error();
   const double lo = curve.offset.front(), hi = curve.offset.back();
   if (!std::isfinite(start) || (curve.period == 0 && (start < lo || start > hi)))
@@ -1078,8 +1100,7 @@ Result<HoldAngles> hold_angle(const LiftCurve& curve, double start, const HoldOp
   return out;
 }
 
-Result<HoldDistributions> hold_distribution(const LiftCurve& curve, const HoldOptions& options) {
-  if (auto st = check_curve(curve); !st) return st.error();
+Result<HoldDistributions> hold_distribution_checked(const LiftCurve& curve, const HoldOptions& options) {
   if (auto st = check_options(options); !st) return st.error();
   const double lo = curve.offset.front(), hi = curve.offset.back();
   double a = options.drop_min, b = options.drop_max;
@@ -1107,6 +1128,18 @@ Result<HoldDistributions> hold_distribution(const LiftCurve& curve, const HoldOp
     }
   });
   return out;
+}
+
+}  // namespace
+
+Result<HoldAngles> hold_angle(const LiftCurve& curve, double start, const HoldOptions& options) {
+  if (auto st = check_curve(curve); !st) return st.error();
+  return hold_angle_checked(curve, start, options);
+}
+
+Result<HoldDistributions> hold_distribution(const LiftCurve& curve, const HoldOptions& options) {
+  if (auto st = check_curve(curve); !st) return st.error();
+  return hold_distribution_checked(curve, options);
 }
 
 std::vector<std::int32_t> basin_index(const LiftCurve& curve, const std::vector<double>& offsets) {
@@ -1303,12 +1336,12 @@ struct Reach {
 };
 
 Result<Reach> analyse_curve(HoldAnalysis& out, const HoldOptions& ho, double start) {
-  auto dist = hold_distribution(out.curve, ho);
+  auto dist = hold_distribution_checked(out.curve, ho);  // built by build_curve: checked
   if (!dist) return dist.error();
   out.distribution = std::move(*dist);
   out.has_start = false;
   if (std::isfinite(start)) {
-    auto h = hold_angle(out.curve, start, ho);
+    auto h = hold_angle_checked(out.curve, start, ho);
     if (!h) return h.error();
     out.start = *h;
     out.has_start = true;
