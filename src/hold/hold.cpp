@@ -18,7 +18,6 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
-#include <optional>
 #include <unordered_map>
 
 #include <fmt/core.h>
@@ -267,7 +266,9 @@ Rest rest_in(const V& p, Descents<V>& ds, std::size_t k, double x) {
 }
 
 template <class V>
-Rest rest_of(const V& p, Descents<V>& ds, double x) { return rest_in(p, ds, piece_of(p, x), x); }
+Rest rest_of(const V& p, Descents<V>& ds, double x) {
+  return rest_in(p, ds, piece_of(p, x), x);
+}
 
 // The next record of the forward slope after piece k: the first j > k steeper than k (by more
 // than k's rounding bound), or -1.
@@ -566,7 +567,7 @@ void chords_batch(const V& p, const Rests& rests, double w, Out&& out) {
           if (s > best) best = s;
         }
       }
-      if (x1 > x0) {  // the window's end inside a piece
+      if (x1 > x0) {                                  // the window's end inside a piece
         const std::size_t k = std::min(last, n - 1);  // piece_of(p, x1)
         if (p.X(k) < x1 && x1 < p.X(k + 1)) {
           const double s = (p.at(k, x1) - h0) / (x1 - x0);
@@ -1020,10 +1021,10 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
   std::vector<std::size_t> before(T);  // meeting points before chunk c
   for (unsigned c = 0; c < T; ++c) {
     if (chunks[c].error_at != static_cast<std::size_t>(-1))
-      return make_error(chunks[c].not_finite
-                            ? fmt::format("lift_curve: offset {} of the signature is not finite", chunks[c].error_at)
-                            : fmt::format("lift_curve: the signature's offsets must increase (offset {})",
-                                          chunks[c].error_at));
+      return make_error(
+          chunks[c].not_finite
+              ? fmt::format("lift_curve: offset {} of the signature is not finite", chunks[c].error_at)
+              : fmt::format("lift_curve: the signature's offsets must increase (offset {})", chunks[c].error_at));
     before[c] = kinks;
     kinks += chunks[c].kx.size();
   }
@@ -1402,8 +1403,7 @@ struct MergedPoints {
         w += end - ir;
         ir = end;
       } else {
-        const std::size_t end =
-            has_r ? static_cast<std::size_t>(std::upper_bound(eo + ie, eo + ne, ro[ir]) - eo) : ne;
+        const std::size_t end = has_r ? static_cast<std::size_t>(std::upper_bound(eo + ie, eo + ne, ro[ir]) - eo) : ne;
         runs.push_back({w, ie, false});
         w += end - ie;
         ie = end;
@@ -1514,9 +1514,9 @@ double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
 // beyond it on the sides the process reaches, then (the faces let go) the analysis.
 // Exact mode: each side from 1.75 d (the three benchmark pairs of issue 32 need 1.0 to 2.6 d;
 // a round costs more than 0.3 d of lift), widened by what end_reached() finds short and d/4
-// while it says the process may reach the cut end; the offsets are those a signature over the wider range lists, so the curve, and
-// every number, is that of a lift computed over it. Sampled offsets: the widened range and its
-// grid as analyse_hold_widened takes them (2 d on both sides, doubled on the whole analysis).
+// while it says the process may reach the cut end; the offsets are those a signature over the wider range lists, so the
+// curve, and every number, is that of a lift computed over it. Sampled offsets: the widened range and its grid as
+// analyse_hold_widened takes them (2 d on both sides, doubled on the whole analysis).
 Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, const SignatureOptions& so,
                                    const HoldOptions& hold, double start, Profile* take_lower, Profile* take_upper) {
   auto setup = hold_setup(lower, upper, so, hold, start);
@@ -1588,22 +1588,18 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       const std::size_t i_lo = std::min(nw, w_lo + 2);
       const std::size_t w_hi = std::max(w_lo, mp.first_at(S.b - d, true));
       const std::size_t i_hi = w_hi > 2 ? w_hi - 2 : 0;
-      // Both ends at once (each curve on one thread).
-      std::optional<Status> side_error[2];
-      util::parallel_chunks(2, util::thread_count(so.threads, 2), [&](unsigned, std::size_t s0, std::size_t s1) {
-        for (std::size_t side = s0; side < s1; ++side) {
-          const bool hi = side == 0;
-          if (!(hi ? cut_max : cut_min)) continue;
-          auto c = hi ? merged_curve(mp, i_hi, nw, 1) : merged_curve(mp, 0, i_lo, 1);
-          if (!c) {
-            side_error[side] = Status(c.error());
-            continue;
-          }
-          (hi ? short_max : short_min) = hi ? end_reached(*c, false, S.b, d) : end_reached(*c, true, -S.a, d);
-        }
-      });
-      for (const auto& e : side_error)
-        if (e) return *e;
+      // One end after the other (each curve on the threads; one local curve held at a time).
+      const unsigned threads = util::thread_count(so.threads, 2);
+      if (cut_max) {
+        auto c = merged_curve(mp, i_hi, nw, threads);
+        if (!c) return c.error();
+        short_max = end_reached(*c, false, S.b, d);
+      }
+      if (cut_min) {
+        auto c = merged_curve(mp, 0, i_lo, threads);
+        if (!c) return c.error();
+        short_min = end_reached(*c, true, -S.a, d);
+      }
       more_max = short_max > 0;
       more_min = short_min > 0;
       if (!more_max && !more_min) break;

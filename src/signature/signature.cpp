@@ -969,8 +969,7 @@ Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, dou
     // equal value, as a sort may place them; equal values are the same number) no sort is needed.
     bool in_order = P.aligned_lattice && std::is_sorted(offs.begin(), offs.end());
     if (in_order) {
-      for (const double e : {smin, smax})
-        offs.insert(std::lower_bound(offs.begin(), offs.end(), e), e);
+      for (const double e : {smin, smax}) offs.insert(std::lower_bound(offs.begin(), offs.end(), e), e);
     } else {
       offs.push_back(smin);
       offs.push_back(smax);
