@@ -217,6 +217,7 @@ std::function<int()> setup(CLI::App& app) {
       HoldOptions ho;
       ho.runaway_distance = runaway;
       ho.atomic_friction = a->mu_a;
+      ho.keep_curve = !a->out.empty();  // the lift's basins are written with --out only
       SignatureWithHold both = unwrap(signature_with_hold(std::move(lower), std::move(upper), o, ho, a->start_offset));
       r = std::move(both.signature);
       hold = std::move(both.hold);

@@ -71,6 +71,9 @@ struct HoldOptions {
   /// Threads for the two directions of the distribution (0: up to two; analyse_hold and
   /// signature_with_hold take SignatureOptions::threads). The result does not depend on it.
   unsigned threads = 0;
+  /// analyse_hold and signature_with_hold: keep the lift in HoldAnalysis::curve (false: the
+  /// curve is left empty and its memory let go once analysed; every other number is the same).
+  bool keep_curve = true;
 };
 
 /// The test of one direction from one drop.
@@ -161,7 +164,8 @@ double default_runaway_distance(double offset_min, double offset_max, double per
 
 /// The whole analysis of a pair, as `frictal signature` and the tilt test use it.
 struct HoldAnalysis {
-  LiftCurve curve;                 ///< h over the range the process needs (see hold_lift_range)
+  LiftCurve curve;                 ///< h over the range the process needs (see hold_lift_range); empty
+                                   ///< with HoldOptions::keep_curve false
   double runaway_distance = 0;     ///< d used (unit: m)
   HoldDistributions distribution;  ///< drops over the signature's offset range
   bool has_start = false;          ///< `start` was given
@@ -189,7 +193,7 @@ struct SignatureWithHold {
 /// signature() and analyse_hold() in one pass over the lift: the faces are prepared once, the
 /// signature's offsets are evaluated once, and the hold analysis reads them, with the lift
 /// beyond the signature's range evaluated (with the same faces) only on the sides and as far
-/// as the process reaches (non-periodic: each side from 1.5 d, doubled while a run-away leaves
+/// as the process reaches (non-periodic: each side from 1.75 d, widened while a run-away may leave
 /// a stop, or a rest lies, less than d before a cut end; the blocks' overlap is the last end).
 /// The lift's offsets beyond the range are those that a signature over the wider range lists
 /// (every event; with `offsets` = N or sampled offsets, the wider range's own grid, from 2 d on

@@ -81,6 +81,15 @@ struct View {
     return kSlopeTolerance *
            ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(mk) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
   }
+  // M(k) and tol(k) at once (one division fewer; the same values).
+  void slope_tol(std::size_t k, double& mk, double& tk) const {
+    const std::size_t j = bj(period == 0 ? k : k % m);
+    const double dx = x[j + 1] - x[j];
+    const double raw = (h[j + 1] - h[j]) / dx;
+    mk = sx * raw;
+    tk = kSlopeTolerance *
+         ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(raw) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+  }
   // Piece j is steeper than piece k: by more than k's rounding bound (the records rule).
   bool steeper(std::size_t j, std::size_t k) const { return M(j) > M(k) + tol(k); }
   // h at x (X(0) <= x <= X(n)), on piece k.
@@ -121,17 +130,75 @@ View make_view(const LiftCurve& c, bool mirrored) {
   return v;
 }
 
+// The View of a non-periodic curve, the mirror fixed at compile time: the same values as View
+// (the same expressions), without its run-time index arithmetic.
+template <bool Mirrored>
+struct LinearView {
+  const double* x = nullptr;
+  const double* h = nullptr;
+  std::size_t m = 0;
+  explicit LinearView(const LiftCurve& c) : x(c.offset.data()), h(c.lift.data()), m(c.offset.size() - 1) {}
+  std::size_t n() const { return m; }
+  double X(std::size_t i) const { return Mirrored ? -1.0 * x[m - i] : x[i]; }
+  double H(std::size_t i) const { return Mirrored ? h[m - i] : h[i]; }
+  std::size_t bj(std::size_t k) const { return Mirrored ? m - 1 - k : k; }
+  double M(std::size_t k) const {
+    const std::size_t j = bj(k);
+    const double v = (h[j + 1] - h[j]) / (x[j + 1] - x[j]);
+    return Mirrored ? -1.0 * v : v;
+  }
+  double tol(std::size_t k) const {
+    const std::size_t j = bj(k);
+    const double dx = x[j + 1] - x[j];
+    const double mk = (h[j + 1] - h[j]) / dx;
+    return kSlopeTolerance *
+           ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(mk) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+  }
+  void slope_tol(std::size_t k, double& mk, double& tk) const {
+    const std::size_t j = bj(k);
+    const double dx = x[j + 1] - x[j];
+    const double raw = (h[j + 1] - h[j]) / dx;
+    mk = Mirrored ? -1.0 * raw : raw;
+    tk = kSlopeTolerance *
+         ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(raw) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+  }
+  double at(std::size_t k, double x0) const { return H(k) + M(k) * (x0 - X(k)); }
+  std::size_t upper(double x0) const {
+    std::size_t lo = 0, len = m + 1;
+    while (len > 0) {
+      const std::size_t half = len / 2;
+      if (!(x0 < X(lo + half))) {
+        lo += half + 1;
+        len -= half + 1;
+      } else {
+        len = half;
+      }
+    }
+    return lo;
+  }
+};
+
+// Runs f(view) with the fastest view of the curve that gives View's values.
+template <class F>
+decltype(auto) with_view(const LiftCurve& c, bool mirrored, F&& f) {
+  if (c.period > 0) return f(make_view(c, mirrored));
+  if (mirrored) return f(LinearView<true>(c));
+  return f(LinearView<false>(c));
+}
+
 // Piece index holding x: the k with X[k] <= x < X[k+1] (the last piece for x = X[n]).
-std::size_t piece_of(const View& p, double x) {
+template <class V>
+std::size_t piece_of(const V& p, double x) {
   const std::size_t u = p.upper(x);
   std::size_t k = u == 0 ? 0 : u - 1;
   return std::min(k, p.n() - 1);
 }
 
 // The descents to rest, walked and remembered for queries that move mostly forward.
+template <class V>
 class Descents {
  public:
-  explicit Descents(const View& p) : p_(p) {}
+  explicit Descents(const V& p) : p_(p) {}
   // First u >= v with M[u] >= 0, else n.
   std::size_t forward(std::size_t v) {
     if (v >= fq_ && v <= fa_ && fq_ != kUnset) return fa_;
@@ -162,7 +229,7 @@ class Descents {
 
  private:
   static constexpr std::size_t kUnset = static_cast<std::size_t>(-1);
-  const View& p_;
+  const V& p_;
   std::size_t fq_ = kUnset, fa_ = 0, bq_ = kUnset, ba_ = 0;
 };
 
@@ -173,7 +240,8 @@ struct Rest {
   double x = 0;
 };
 
-Rest rest_in(const View& p, Descents& ds, std::size_t k, double x) {
+template <class V>
+Rest rest_in(const V& p, Descents<V>& ds, std::size_t k, double x) {
   Rest r;
   r.x = x;
   std::int64_t v = -1;
@@ -197,11 +265,15 @@ Rest rest_in(const View& p, Descents& ds, std::size_t k, double x) {
   return r;
 }
 
-Rest rest_of(const View& p, Descents& ds, double x) { return rest_in(p, ds, piece_of(p, x), x); }
+template <class V>
+Rest rest_of(const V& p, Descents<V>& ds, double x) {
+  return rest_in(p, ds, piece_of(p, x), x);
+}
 
 // The next record of the forward slope after piece k: the first j > k steeper than k (by more
 // than k's rounding bound), or -1.
-std::int64_t next_record(const View& p, std::size_t k) {
+template <class V>
+std::int64_t next_record(const V& p, std::size_t k) {
   const double t = p.M(k) + p.tol(k);
   for (std::size_t j = k + 1; j < p.n(); ++j)
     if (p.M(j) > t) return static_cast<std::int64_t>(j);
@@ -215,7 +287,8 @@ struct Chain {
   int slips = 0;
 };
 
-Chain chain_from(const View& p, std::size_t s, double d) {
+template <class V>
+Chain chain_from(const V& p, std::size_t s, double d) {
   Chain c;
   std::size_t k = s;
   for (;;) {
@@ -244,10 +317,12 @@ class RecordStack {
   };
   RecordStack() { stack_.reserve(64); }
   /// Pushes vertex kk (below every vertex pushed before) and returns its chain (d: run-away, m).
-  Chain push(const View& p, std::size_t kk, double d) {
-    const double mk = p.M(kk);
+  template <class V>
+  Chain push(const V& p, std::size_t kk, double d) {
+    double mk, tk;
+    p.slope_tol(kk, mk, tk);
     while (!stack_.empty() && stack_.back().m <= mk) stack_.pop_back();
-    const double t = mk + p.tol(kk);
+    const double t = mk + tk;
     std::size_t top = stack_.size();  // past the entry of the next record; 0: none
     if (top > 0 && !(stack_[top - 1].m > t)) {
       std::size_t lo = 0, hi = top - 1;  // the last index in [0, hi) above t, if any
@@ -285,8 +360,8 @@ struct Outcome {
 };
 
 // `flat_next`: the next record of a flat rest's piece; `chain(v)`: the record chain from v.
-template <class ChainOf>
-Outcome outcome_of(const View& p, const Rest& r, std::int64_t flat_next, double d, bool periodic, ChainOf&& chain) {
+template <class V, class ChainOf>
+Outcome outcome_of(const V& p, const Rest& r, std::int64_t flat_next, double d, bool periodic, ChainOf&& chain) {
   Outcome o;
   const std::size_t n = p.n();
   std::int64_t start = r.vertex;
@@ -321,7 +396,8 @@ Outcome outcome_of(const View& p, const Rest& r, std::int64_t flat_next, double 
 
 // Steepest chord from (x0, h(x0)) to h over (x0, min(x0 + w, X[n])], by direct scan:
 // {slope, where}. The window's end counts when it falls inside a piece.
-std::pair<double, double> chord_direct(const View& p, double x0, double w) {
+template <class V>
+std::pair<double, double> chord_direct(const V& p, double x0, double w) {
   const std::size_t n = p.n();
   const double h0 = p.at(piece_of(p, x0), x0);
   const double x1 = std::min(x0 + w, p.X(n));
@@ -340,16 +416,23 @@ std::pair<double, double> chord_direct(const View& p, double x0, double w) {
   return {best, bx};
 }
 
-// Upper hull of points pushed in monotone x order with an undo log; max-slope queries from a
-// point to the left of every point. cross(o, a, b) > 0: b is to the left of o->a.
+// Upper hull of points pushed in monotone x order (Dir = +1 increasing, -1 decreasing) with an
+// undo log (Undo); max-slope queries from a point to the left of every point. cross(o, a, b) > 0:
+// b is to the left of o->a. The hull keeps the points' coordinates (read once per push).
+template <class V, int Dir, bool Undo>
 class RollbackHull {
  public:
-  RollbackHull(const View& p, int dir) : p_(p), dir_(dir) {}
+  explicit RollbackHull(const V& p) : p_(p) {}
   void push(std::size_t v) {
+    const Pt b{p_.X(v), p_.H(v)};
     // Keep the longest prefix whose last turn towards v stays convex (upper hull).
     std::size_t lo = 0, hi = size_;  // answer k in [0, size_]: hull keeps [0, k), v goes at k
     // keep(i): hull[i] stays when v is added, i.e. i == 0 or turn(hull[i-1], hull[i], v) is right.
-    auto keep = [&](std::size_t i) { return i == 0 || dir_ * cross(hull_[i - 1], hull_[i], v) < 0; };
+    auto keep = [&](std::size_t i) {
+      if (i == 0) return true;
+      const double c = cross(hull_[i - 1], hull_[i], b);
+      return Dir > 0 ? c < 0 : c > 0;  // Dir * c < 0
+    };
     while (lo < hi) {
       const std::size_t mid = (lo + hi + 1) / 2;
       if (keep(mid - 1))
@@ -359,8 +442,8 @@ class RollbackHull {
     }
     const std::size_t k = lo;  // points [0, k) kept
     if (hull_.size() <= k) hull_.resize(k + 1);
-    log_.push_back({k, hull_[k], size_});
-    hull_[k] = v;
+    if constexpr (Undo) log_.push_back({k, size_, hull_[k]});
+    hull_[k] = b;
     size_ = k + 1;
   }
   void undo() {
@@ -376,7 +459,7 @@ class RollbackHull {
   // Max of (H[v] - h0) / (X[v] - x0) over the hull; the slope along the hull is unimodal.
   std::pair<double, double> best(double x0, double h0) const {
     if (size_ == 0) return {-std::numeric_limits<double>::infinity(), kNaN};
-    auto slope = [&](std::size_t i) { return (p_.H(hull_[i]) - h0) / (p_.X(hull_[i]) - x0); };
+    auto slope = [&](std::size_t i) { return (hull_[i].h - h0) / (hull_[i].x - x0); };
     std::size_t lo = 0, hi = size_ - 1;
     while (lo < hi) {
       const std::size_t mid = (lo + hi) / 2;
@@ -385,22 +468,23 @@ class RollbackHull {
       else
         hi = mid;
     }
-    return {slope(lo), p_.X(hull_[lo])};
+    return {slope(lo), hull_[lo].x};
   }
 
  private:
+  struct Pt {
+    double x, h;
+  };
   struct Entry {
     std::size_t pos;
-    std::size_t old;
     std::size_t size;
+    Pt old;
   };
-  double cross(std::size_t o, std::size_t a, std::size_t b) const {
-    const double xo = p_.X(o), ho = p_.H(o);
-    return (p_.X(a) - xo) * (p_.H(b) - ho) - (p_.H(a) - ho) * (p_.X(b) - xo);
+  static double cross(const Pt& o, const Pt& a, const Pt& b) {
+    return (a.x - o.x) * (b.h - o.h) - (a.h - o.h) * (b.x - o.x);
   }
-  const View& p_;
-  int dir_;
-  std::vector<std::size_t> hull_;
+  const V& p_;
+  std::vector<Pt> hull_;
   std::size_t size_ = 0;
   std::vector<Entry> log_;
 };
@@ -410,15 +494,34 @@ class RollbackHull {
 // chunk c covers a suffix of chunk c and a prefix of the chunks after it, up to one chunk
 // length. Per chunk, queries in decreasing x: the suffix hull grows leftwards, the prefix hull
 // shrinks (undo in reverse push order). O((n + q) log n) time, O(vertices per window) memory.
-// `out(i, {slope, where})` receives the answer of rests[i].
-template <class Rests, class Out>
-void chords_batch(const View& p, const Rests& rests, double w, Out&& out) {
+// A vertex where the slope after it exceeds the slope before it by more than both their
+// rounding bounds (a convex corner: between two events h is convex, so every tangent meeting
+// point is one) lies strictly below the chord of its two neighbours, and a chord from the left
+// to it is strictly less steep than to one of them: the hulls leave such vertices out, and the
+// window's first and last vertices (whose neighbours may lie outside it) are tried on their own.
+// `out(i, slope)` receives the steepest slope of rests[i].
+template <class V, class Rests, class Out>
+void chords_batch(const V& p, const Rests& rests, double w, Out&& out) {
   const std::size_t n = p.n();
   if (rests.empty()) return;
+  std::vector<std::uint8_t> skip(n + 1, 0);  // clearly convex corners (not the ends)
+  {
+    double m_prev, t_prev;
+    p.slope_tol(0, m_prev, t_prev);
+    for (std::size_t v = 1; v < n; ++v) {
+      double m, t;
+      p.slope_tol(v, m, t);
+      skip[v] = m > m_prev + t_prev + t;
+      m_prev = m;
+      t_prev = t;
+    }
+  }
   const double x_begin = p.X(0);
   auto chunk_of = [&](double x) { return std::floor((x - x_begin) / w); };
-  RollbackHull suffix(p, -1), prefix(p, +1);
+  RollbackHull<V, -1, false> suffix(p);
+  RollbackHull<V, +1, true> prefix(p);
   std::size_t qi = 0;
+  std::size_t u1 = n + 2;  // upper(x1) of the last query (x1 does not increase from query to query)
   while (qi < rests.size()) {
     const double c = chunk_of(p.X(rests[qi]));
     // b: the first vertex of a later chunk; e: past the last vertex any window of this chunk reaches.
@@ -440,34 +543,62 @@ void chords_batch(const View& p, const Rests& rests, double w, Out&& out) {
     const std::size_t e = p.upper(reach);
     suffix.clear();
     prefix.clear();
-    for (std::size_t v = b; v < e; ++v) prefix.push(v);
+    for (std::size_t v = b; v < e; ++v)
+      if (!skip[v]) prefix.push(v);
     std::size_t prefix_end = std::max(b, e);  // prefix holds [b, prefix_end)
     std::size_t suffix_begin = b;             // suffix holds [suffix_begin, b)
     for (; qi < rests.size() && chunk_of(p.X(rests[qi])) == c; ++qi) {
       const std::size_t r = rests[qi];
       const double x0 = p.X(r), h0 = p.H(r), x1 = std::min(x0 + w, p.X(n));
-      while (suffix_begin > r + 1) suffix.push(--suffix_begin);
-      while (prefix_end > b && p.X(prefix_end - 1) > x1) {
-        prefix.undo();
-        --prefix_end;
-      }
-      std::pair<double, double> best = suffix.best(x0, h0);
-      const auto pb = prefix.best(x0, h0);
-      if (pb.first > best.first) best = pb;
-      if (x1 > x0) {  // the window's end inside a piece
-        const std::size_t k = piece_of(p, x1);
-        if (p.X(k) < x1 && x1 < p.X(k + 1)) {
-          const double s = (p.at(k, x1) - h0) / (x1 - x0);
-          if (s > best.first) best = {s, x1};
+      while (suffix_begin > r + 1)
+        if (!skip[--suffix_begin]) suffix.push(suffix_begin);
+      while (prefix_end > b && p.X(prefix_end - 1) > x1)
+        if (!skip[--prefix_end]) prefix.undo();
+      double best = std::max(suffix.best(x0, h0).first, prefix.best(x0, h0).first);
+      if (u1 > n + 1)
+        u1 = p.upper(x1);
+      else
+        while (u1 > 0 && p.X(u1 - 1) > x1) --u1;
+      // The window's first and last vertices.
+      const std::size_t last = u1 == 0 ? 0 : u1 - 1;
+      if (last > r) {
+        for (const std::size_t v : {r + 1, last}) {
+          const double s = (p.H(v) - h0) / (p.X(v) - x0);
+          if (s > best) best = s;
         }
       }
-      if (!std::isfinite(best.first)) best = {0.0, x0};
+      if (x1 > x0) {                                  // the window's end inside a piece
+        const std::size_t k = std::min(last, n - 1);  // piece_of(p, x1)
+        if (p.X(k) < x1 && x1 < p.X(k + 1)) {
+          const double s = (p.at(k, x1) - h0) / (x1 - x0);
+          if (s > best) best = s;
+        }
+      }
+      if (!std::isfinite(best)) best = 0.0;
       out(qi, best);
     }
   }
 }
 
 double angle_of(double slope, double mu) { return std::min(std::atan(slope) + std::atan(mu), kHalfPi); }
+
+// angle_of(slope, mu) for many slopes of one mu, remembering the last slope (chains that join
+// hold at the same stop: neighbouring basins often share their slope).
+class AngleOf {
+ public:
+  explicit AngleOf(double mu) : atan_mu_(std::atan(mu)) {}
+  double operator()(double slope) {
+    if (!(slope == last_slope_ && std::signbit(slope) == std::signbit(last_slope_))) {
+      last_slope_ = slope;
+      last_angle_ = std::min(std::atan(slope) + atan_mu_, kHalfPi);
+    }
+    return last_angle_;
+  }
+
+ private:
+  double atan_mu_;
+  double last_slope_ = std::numeric_limits<double>::quiet_NaN(), last_angle_ = 0;
+};
 
 Status check_curve(const LiftCurve& c) {
   if (c.offset.size() != c.lift.size() || c.offset.size() < 2)
@@ -529,9 +660,9 @@ double wrap(const Frame& fr, double x) {
   return fr.base_lo + y;
 }
 
-HoldAngle single(const Frame& fr, double x, const HoldOptions& o) {
-  const View& p = fr.pl;
-  Descents ds(p);
+template <class V>
+HoldAngle single(const Frame& fr, const V& p, double x, const HoldOptions& o) {
+  Descents<V> ds(p);
   const Rest r = rest_of(p, ds, x);
   const double d = o.runaway_distance;
   const std::int64_t flat_next = r.flat >= 0 ? next_record(p, static_cast<std::size_t>(r.flat)) : -1;
@@ -573,22 +704,27 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
   for (std::size_t i = 0; i < v.size(); ++i) var += w[i] * (v[i] - m) * (v[i] - m);
   s.mean = m;
   s.std = std::sqrt(var / tw);
-  std::vector<std::size_t> idx(v.size());
-  for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
-  std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return v[a] < v[b]; });
+  // The values with their weights by increasing value: std::sort of the pairs makes the same
+  // comparisons, hence the same order (ties included), as a sort of the indices by value.
+  struct ValueWeight {
+    double v, w;
+  };
+  std::vector<ValueWeight> sorted(v.size());
+  for (std::size_t i = 0; i < v.size(); ++i) sorted[i] = {v[i], w[i]};
+  std::sort(sorted.begin(), sorted.end(), [](const ValueWeight& x, const ValueWeight& y) { return x.v < y.v; });
   auto quantile = [&](double q) {
     double cum = 0;
-    for (std::size_t i : idx) {
-      cum += w[i];
-      if (cum >= q * tw * (1 - 1e-12)) return v[i];
+    for (const ValueWeight& e : sorted) {
+      cum += e.w;
+      if (cum >= q * tw * (1 - 1e-12)) return e.v;
     }
-    return v[idx.back()];
+    return sorted.back().v;
   };
   s.q05 = quantile(0.05);
   s.q50 = quantile(0.50);
   s.q95 = quantile(0.95);
-  s.min = v[idx.front()];
-  s.max = v[idx.back()];
+  s.min = sorted.front().v;
+  s.max = sorted.back().v;
   return s;
 }
 
@@ -600,28 +736,26 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
 // parts, apart from the wrap-around of a periodic curve) or keeps it as a flat drop. Pass 2
 // (decreasing x) finds the record chains of the basins' rest vertices with one stack. Pass 3:
 // the steepest chords from the rest vertices.
-HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOptions& o, bool mirrored) {
-  const View& p = fr.pl;
+template <class V>
+HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, const HoldOptions& o, bool mirrored) {
   const double d = o.runaway_distance;
   const std::size_t n = p.n();
-  struct Basin {
-    std::size_t vertex;
-    double weight;
-    double hold_slope = 0;
-    bool near_end = false;  // its run-away ran off the end less than d after its stop
-  };
+  // The basins, one entry each: rest vertex and weight (pass 1), hold slope and whether the
+  // run-away ran off the end less than d after its stop (pass 2), inertial angle (pass 3).
+  std::vector<std::size_t> bv;
+  std::vector<double> bw, bslope, binert;
+  std::vector<std::uint8_t> bnear;
   struct Flat {
     double weight;
     Rest rest;
     std::int64_t next;  // the next record of its piece
     Outcome oc;
   };
-  std::vector<Basin> basins;
   std::vector<Flat> flats;
   std::unordered_map<std::size_t, std::size_t> seen;  // periodic: key -> basin
   const std::size_t nb = fr.periodic ? p.m : 0;       // vertices per period in the unrolled frame
   std::size_t last_key = static_cast<std::size_t>(-1);
-  Descents ds(p);
+  Descents<V> ds(p);
   std::int64_t flat_next_q = -1, flat_next_a = -1;  // the last flat piece's next record
   auto flat_next = [&](std::size_t k) {
     const auto kk = static_cast<std::int64_t>(k);
@@ -654,16 +788,19 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
     } else {
       const auto v = static_cast<std::size_t>(r.vertex);
       const std::size_t key = fr.periodic ? v % nb : v;
-      if (!basins.empty() && key == last_key) {
-        basins.back().weight += xe - x;
+      if (!bv.empty() && key == last_key) {
+        bw.back() += xe - x;
       } else if (fr.periodic) {
-        const auto [it, fresh] = seen.try_emplace(key, basins.size());
-        if (fresh)
-          basins.push_back({v, xe - x});
-        else
-          basins[it->second].weight += xe - x;
+        const auto [it, fresh] = seen.try_emplace(key, bv.size());
+        if (fresh) {
+          bv.push_back(v);
+          bw.push_back(xe - x);
+        } else {
+          bw[it->second] += xe - x;
+        }
       } else {
-        basins.push_back({v, xe - x});
+        bv.push_back(v);
+        bw.push_back(xe - x);
       }
       last_key = key;
     }
@@ -681,37 +818,38 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
     // Basins by decreasing rest vertex: non-periodic basins come in increasing order already.
     std::vector<std::uint32_t> border;
     bool increasing = true;
-    for (std::size_t i = 1; i < basins.size() && increasing; ++i) increasing = basins[i - 1].vertex < basins[i].vertex;
+    for (std::size_t i = 1; i < bv.size() && increasing; ++i) increasing = bv[i - 1] < bv[i];
     if (!increasing) {
-      border.resize(basins.size());
+      border.resize(bv.size());
       for (std::size_t i = 0; i < border.size(); ++i) border[i] = static_cast<std::uint32_t>(i);
-      std::sort(border.begin(), border.end(),
-                [&](std::uint32_t x, std::uint32_t y) { return basins[x].vertex > basins[y].vertex; });
+      std::sort(border.begin(), border.end(), [&](std::uint32_t x, std::uint32_t y) { return bv[x] > bv[y]; });
     }
-    auto basin_at = [&](std::size_t r) -> Basin& {  // r-th basin in decreasing vertex order
-      return increasing ? basins[basins.size() - 1 - r] : basins[border[r]];
+    auto basin_at = [&](std::size_t r) -> std::size_t {  // the r-th basin in decreasing vertex order
+      return increasing ? bv.size() - 1 - r : border[r];
     };
+    bslope.resize(bv.size());
+    bnear.resize(bv.size());
     std::vector<std::size_t> fq;  // records that flat drops slip to, decreasing
     for (const Flat& f : flats)
       if (f.next >= 0) fq.push_back(static_cast<std::size_t>(f.next));
     std::sort(fq.begin(), fq.end(), std::greater<>());
     fq.erase(std::unique(fq.begin(), fq.end()), fq.end());
     std::vector<Chain> fa(fq.size());
-    auto set_outcome = [&](Basin& q, const Chain& c) {
+    auto set_outcome = [&](std::size_t q, const Chain& c) {
       Rest r;
-      r.vertex = static_cast<std::int64_t>(q.vertex);
-      r.x = p.X(q.vertex);
+      r.vertex = static_cast<std::int64_t>(bv[q]);
+      r.x = p.X(bv[q]);
       const Outcome oc = outcome_of(p, r, -1, d, fr.periodic, [&](std::size_t) { return c; });
-      q.hold_slope = oc.hold_slope;
-      q.near_end = oc.off_end && x_end - oc.hold_x < d;
+      bslope[q] = oc.hold_slope;
+      bnear[q] = oc.off_end && x_end - oc.hold_x < d;
     };
     std::size_t bi = 0, fi = 0;
     // Basins resting at the end vertex n: nothing ahead holds them.
-    while (bi < basins.size() && basin_at(bi).vertex >= n) set_outcome(basin_at(bi++), Chain{});
+    while (bi < bv.size() && bv[basin_at(bi)] >= n) set_outcome(basin_at(bi++), Chain{});
     RecordStack records;
-    for (std::size_t kk = n; kk-- > 0 && (bi < basins.size() || fi < fq.size());) {
+    for (std::size_t kk = n; kk-- > 0 && (bi < bv.size() || fi < fq.size());) {
       const Chain c = records.push(p, kk, d);
-      while (bi < basins.size() && basin_at(bi).vertex == kk) set_outcome(basin_at(bi++), c);
+      while (bi < bv.size() && bv[basin_at(bi)] == kk) set_outcome(basin_at(bi++), c);
       if (fi < fq.size() && fq[fi] == kk) fa[fi++] = c;
     }
     auto chain = [&](std::size_t s0) {
@@ -721,59 +859,74 @@ HoldDistribution distribution(const Frame& fr, double a, double b, const HoldOpt
     for (Flat& f : flats) f.oc = outcome_of(p, f.rest, f.next, d, fr.periodic, chain);
   }
   double near_end = 0;  // run-aways that left a stop less than d before the end of the curve
-  for (const Basin& q : basins)
-    if (q.near_end) near_end += q.weight;
+  for (std::size_t q = 0; q < bv.size(); ++q)
+    if (bnear[q]) near_end += bw[q];
+  std::vector<std::uint8_t>().swap(bnear);
   for (const Flat& f : flats)
     if (f.oc.off_end && x_end - f.oc.hold_x < d) near_end += f.weight;
   // Pass 3: the steepest chords from the rest vertices, in decreasing order; then the basins
   // (flat drops first, each with its own chord) in the order of their first drop.
-  HoldDistribution out;
-  const std::size_t total = basins.size() + flats.size();
-  out.basins.rest.reserve(total);
-  out.basins.weight.reserve(total);
-  out.basins.hold.reserve(total);
-  out.basins.inertial.resize(total);
-  for (const Flat& f : flats) {  // a flat drop: its own chord
-    out.basins.rest.push_back(mirrored ? -f.rest.x : f.rest.x);
-    out.basins.weight.push_back(f.weight);
-    out.basins.hold.push_back(angle_of(f.oc.hold_slope, o.atomic_friction));
-    out.basins.inertial[out.basins.rest.size() - 1] =
-        angle_of(chord_direct(p, f.rest.x, fr.w).first, o.atomic_friction);
-  }
-  const std::size_t nf = flats.size();
-  std::vector<Flat>().swap(flats);
   {
     bool increasing = true;
-    for (std::size_t i = 1; i < basins.size() && increasing; ++i) increasing = basins[i - 1].vertex < basins[i].vertex;
-    std::vector<std::size_t> order, rests;
+    for (std::size_t i = 1; i < bv.size() && increasing; ++i) increasing = bv[i - 1] < bv[i];
+    std::vector<std::size_t> order;
     if (!increasing) {
-      order.resize(basins.size());
+      order.resize(bv.size());
       for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-      std::sort(order.begin(), order.end(),
-                [&](std::size_t x, std::size_t y) { return basins[x].vertex > basins[y].vertex; });
+      std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return bv[x] > bv[y]; });
     }
     // The queries in decreasing vertex order, as chords_batch takes them.
     struct Rests {
-      const std::vector<Basin>& bs;
+      const std::vector<std::size_t>& bs;
       const std::vector<std::size_t>& ord;
       bool inc;
       std::size_t size() const { return bs.size(); }
       bool empty() const { return bs.empty(); }
       std::size_t idx(std::size_t q) const { return inc ? bs.size() - 1 - q : ord[q]; }
-      std::size_t operator[](std::size_t q) const { return bs[idx(q)].vertex; }
-    } rq{basins, order, increasing};
-    chords_batch(p, rq, fr.w, [&](std::size_t qi, std::pair<double, double> best) {
-      out.basins.inertial[nf + rq.idx(qi)] = angle_of(best.first, o.atomic_friction);
-    });
+      std::size_t operator[](std::size_t q) const { return bs[idx(q)]; }
+    } rq{bv, order, increasing};
+    binert.resize(bv.size());
+    AngleOf inertial_angle(o.atomic_friction);
+    chords_batch(p, rq, fr.w, [&](std::size_t qi, double best) { binert[rq.idx(qi)] = inertial_angle(best); });
   }
-  for (const Basin& q : basins) {
-    const double rest = wrap(fr, p.X(q.vertex));
-    out.basins.rest.push_back(mirrored ? -rest : rest);
-    out.basins.weight.push_back(q.weight);
-    out.basins.hold.push_back(angle_of(q.hold_slope, o.atomic_friction));
+  // The basins' rest offsets and hold angles, in place of their vertices and hold slopes.
+  std::vector<double> brest(bv.size());
+  AngleOf hold_angle(o.atomic_friction);
+  for (std::size_t q = 0; q < bv.size(); ++q) {
+    const double rest = wrap(fr, p.X(bv[q]));
+    brest[q] = mirrored ? -rest : rest;
+    bslope[q] = hold_angle(bslope[q]);
   }
-  std::vector<Basin>().swap(basins);
-  {  // sort the basins by offset
+  std::vector<std::size_t>().swap(bv);
+  HoldDistribution out;
+  if (flats.empty()) {
+    out.basins.rest = std::move(brest);
+    out.basins.weight = std::move(bw);
+    out.basins.hold = std::move(bslope);
+    out.basins.inertial = std::move(binert);
+  } else {
+    HoldBasins& ob = out.basins;
+    const std::size_t total = brest.size() + flats.size();
+    for (std::vector<double>* v : {&ob.rest, &ob.weight, &ob.hold, &ob.inertial}) v->reserve(total);
+    for (const Flat& f : flats) {  // a flat drop: its own chord
+      ob.rest.push_back(mirrored ? -f.rest.x : f.rest.x);
+      ob.weight.push_back(f.weight);
+      ob.hold.push_back(angle_of(f.oc.hold_slope, o.atomic_friction));
+      ob.inertial.push_back(angle_of(chord_direct(p, f.rest.x, fr.w).first, o.atomic_friction));
+    }
+    std::vector<Flat>().swap(flats);
+    ob.rest.insert(ob.rest.end(), brest.begin(), brest.end());
+    ob.weight.insert(ob.weight.end(), bw.begin(), bw.end());
+    ob.hold.insert(ob.hold.end(), bslope.begin(), bslope.end());
+    ob.inertial.insert(ob.inertial.end(), binert.begin(), binert.end());
+  }
+  for (std::vector<double>* v : {&brest, &bw, &bslope, &binert}) std::vector<double>().swap(*v);
+  // Sort the basins by offset (nothing to do where they are in strictly increasing order, the
+  // one order a sort can give then).
+  bool strictly = true;
+  for (std::size_t i = 1; i < out.basins.rest.size() && strictly; ++i)
+    strictly = out.basins.rest[i - 1] < out.basins.rest[i];
+  if (!strictly) {
     std::vector<std::size_t> idx(out.basins.rest.size());
     for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
     std::sort(idx.begin(), idx.end(),
@@ -812,57 +965,89 @@ struct LiftPoint {
 
 // The LiftCurve through n points get(i) (offsets increasing), with a vertex where the tangent
 // lines of an interval's two ends meet inside it (see hold.hpp). The meeting points are found
-// first (one pass), then the curve is written at its exact size.
+// first (one pass), then the curve is written at its exact size. Both passes run in `threads`
+// contiguous chunks of the points (get(i) is read from any thread, in increasing i within a
+// chunk); the curve and the first error do not depend on their number.
 template <class Get>
-Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, Get&& get) {
+Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigned threads, Get&& get) {
   if (n < 2) return make_error(fmt::format("lift_curve: the signature has {} offsets: expected at least two", n));
-  std::vector<double> kx, kh;            // meeting points, in order
+  const unsigned T = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(n / 4096 + 1)));
+  struct Chunk {
+    std::vector<double> kx, kh;  // meeting points, in order
+    std::size_t error_at = static_cast<std::size_t>(-1);
+    bool not_finite = false;
+  };
+  std::vector<Chunk> chunks(T);
   std::vector<std::uint8_t> kink(n, 0);  // kink[i]: a meeting point between points i - 1 and i
-  LiftPoint prev{};
-  for (std::size_t i = 0; i < n; ++i) {
-    const LiftPoint q = get(i);
-    if (!std::isfinite(q.s) || !std::isfinite(q.h))
-      return make_error(fmt::format("lift_curve: offset {} of the signature is not finite", i));
-    if (i > 0 && !(q.s > prev.s))
-      return make_error(fmt::format("lift_curve: the signature's offsets must increase (offset {})", i));
-    if (i > 0 && slopes) {
-      // The tangent lines at both ends of the interval meet inside it: a vertex there.
-      const double x0 = prev.s, x1 = q.s, h0 = prev.h, h1 = q.h;
-      const double m0 = std::tan(prev.right), m1 = std::tan(q.left);
-      if (std::isfinite(m0) && std::isfinite(m1) && m0 != m1) {
-        const double xs = (h1 - h0 + m0 * x0 - m1 * x1) / (m0 - m1);
-        const double span = x1 - x0, eps = 1e-9 * span;
-        // A meeting point at an end within rounding (a vertical wall of h: theta = 90 deg on one
-        // side) is kept just inside, so the wall stays a piece of (nearly) infinite slope.
-        // No vertex where one tangent already joins both ends (a kink at the event itself).
-        const double tol = 1e-9 * std::abs(h1 - h0) + 1e-14 * std::max(std::abs(h0), std::abs(h1));
-        const bool joined = std::abs(h0 + m0 * span - h1) <= tol || std::abs(h1 - m1 * span - h0) <= tol;
-        if (!joined && xs > x0 - 1e-6 * span && xs < x1 + 1e-6 * span) {
-          const double xc = std::clamp(xs, x0 + eps, x1 - eps);
-          kink[i] = 1;
-          kx.push_back(xc);
-          // Height from the flatter tangent (the steeper one may be a wall, tan(90 deg) ~ 1e16).
-          kh.push_back(std::abs(m0) <= std::abs(m1) ? h0 + m0 * (xc - x0) : h1 + m1 * (xc - x1));
+  util::parallel_chunks(n, T, [&](unsigned c, std::size_t i0, std::size_t i1) {
+    Chunk& ch = chunks[c];
+    LiftPoint prev = i0 > 0 ? get(i0 - 1) : LiftPoint{};
+    for (std::size_t i = i0; i < i1; ++i) {
+      const LiftPoint q = get(i);
+      if (!std::isfinite(q.s) || !std::isfinite(q.h)) {
+        ch.error_at = i;
+        ch.not_finite = true;
+        return;
+      }
+      if (i > 0 && !(q.s > prev.s)) {
+        ch.error_at = i;
+        return;
+      }
+      if (i > 0 && slopes) {
+        // The tangent lines at both ends of the interval meet inside it: a vertex there.
+        const double x0 = prev.s, x1 = q.s, h0 = prev.h, h1 = q.h;
+        const double m0 = std::tan(prev.right), m1 = std::tan(q.left);
+        if (std::isfinite(m0) && std::isfinite(m1) && m0 != m1) {
+          const double xs = (h1 - h0 + m0 * x0 - m1 * x1) / (m0 - m1);
+          const double span = x1 - x0, eps = 1e-9 * span;
+          // A meeting point at an end within rounding (a vertical wall of h: theta = 90 deg on one
+          // side) is kept just inside, so the wall stays a piece of (nearly) infinite slope.
+          // No vertex where one tangent already joins both ends (a kink at the event itself).
+          const double tol = 1e-9 * std::abs(h1 - h0) + 1e-14 * std::max(std::abs(h0), std::abs(h1));
+          const bool joined = std::abs(h0 + m0 * span - h1) <= tol || std::abs(h1 - m1 * span - h0) <= tol;
+          if (!joined && xs > x0 - 1e-6 * span && xs < x1 + 1e-6 * span) {
+            const double xc = std::clamp(xs, x0 + eps, x1 - eps);
+            kink[i] = 1;
+            ch.kx.push_back(xc);
+            // Height from the flatter tangent (the steeper one may be a wall, tan(90 deg) ~ 1e16).
+            ch.kh.push_back(std::abs(m0) <= std::abs(m1) ? h0 + m0 * (xc - x0) : h1 + m1 * (xc - x1));
+          }
         }
       }
+      prev = q;
     }
-    prev = q;
+  });
+  std::size_t kinks = 0;
+  std::vector<std::size_t> before(T);  // meeting points before chunk c
+  for (unsigned c = 0; c < T; ++c) {
+    if (chunks[c].error_at != static_cast<std::size_t>(-1))
+      return make_error(
+          chunks[c].not_finite
+              ? fmt::format("lift_curve: offset {} of the signature is not finite", chunks[c].error_at)
+              : fmt::format("lift_curve: the signature's offsets must increase (offset {})", chunks[c].error_at));
+    before[c] = kinks;
+    kinks += chunks[c].kx.size();
   }
   LiftCurve c;
   c.period = period;
-  c.offset.reserve(n + kx.size());
-  c.lift.reserve(n + kx.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (kink[i]) {
-      c.offset.push_back(kx[k]);
-      c.lift.push_back(kh[k]);
-      ++k;
+  c.offset.resize(n + kinks);
+  c.lift.resize(n + kinks);
+  util::parallel_chunks(n, T, [&](unsigned t, std::size_t i0, std::size_t i1) {
+    const Chunk& ch = chunks[t];
+    std::size_t w = i0 + before[t], k = 0;
+    for (std::size_t i = i0; i < i1; ++i) {
+      if (kink[i]) {
+        c.offset[w] = ch.kx[k];
+        c.lift[w] = ch.kh[k];
+        ++w;
+        ++k;
+      }
+      const LiftPoint q = get(i);
+      c.offset[w] = q.s;
+      c.lift[w] = q.h;
+      ++w;
     }
-    const LiftPoint q = get(i);
-    c.offset.push_back(q.s);
-    c.lift.push_back(q.h);
-  }
+  });
   if (period > 0) {
     const double span = c.offset.back() - c.offset.front();
     if (std::abs(span - period) > 1e-6 * period)
@@ -880,13 +1065,15 @@ Result<LiftCurve> lift_curve(const SignatureResult& sig, double period) {
   if (n < 2 || sig.lift.size() != n)
     return make_error(fmt::format("lift_curve: the signature has {} offsets: expected at least two", n));
   const bool slopes = sig.theta_left.size() == n && sig.theta_right.size() == n;
-  return build_curve(n, slopes, period, [&](std::size_t i) {
+  return build_curve(n, slopes, period, 1, [&](std::size_t i) {
     return LiftPoint{sig.offset[i], sig.lift[i], slopes ? sig.theta_left[i] : 0.0, slopes ? sig.theta_right[i] : 0.0};
   });
 }
 
-Result<HoldAngles> hold_angle(const LiftCurve& curve, double start, const HoldOptions& options) {
-  if (auto st = check_curve(curve); !st) return st.error();
+namespace {
+
+// hold_angle and hold_distribution on a curve already checked (check_curve).
+Result<HoldAngles> hold_angle_checked(const LiftCurve& curve, double start, const HoldOptions& options) {
   if (auto st = check_options(options); !st) return st.error();
   const double lo = curve.offset.front(), hi = curve.offset.back();
   if (!std::isfinite(start) || (curve.period == 0 && (start < lo || start > hi)))
@@ -894,11 +1081,12 @@ Result<HoldAngles> hold_angle(const LiftCurve& curve, double start, const HoldOp
   HoldAngles out;
   {
     const Frame fr = make_frame(curve, false, options.runaway_distance);
-    out.forward = single(fr, wrap(fr, start), options);
+    out.forward = with_view(curve, false, [&](const auto& p) { return single(fr, p, wrap(fr, start), options); });
   }
   {
     const Frame fr = make_frame(curve, true, options.runaway_distance);
-    out.backward = unmirror(single(fr, wrap(fr, -start), options));
+    out.backward =
+        unmirror(with_view(curve, true, [&](const auto& p) { return single(fr, p, wrap(fr, -start), options); }));
   }
   if (curve.period > 0) {  // report rest offsets in the base period
     const double p = curve.period;
@@ -913,8 +1101,7 @@ Result<HoldAngles> hold_angle(const LiftCurve& curve, double start, const HoldOp
   return out;
 }
 
-Result<HoldDistributions> hold_distribution(const LiftCurve& curve, const HoldOptions& options) {
-  if (auto st = check_curve(curve); !st) return st.error();
+Result<HoldDistributions> hold_distribution_checked(const LiftCurve& curve, const HoldOptions& options) {
   if (auto st = check_options(options); !st) return st.error();
   const double lo = curve.offset.front(), hi = curve.offset.back();
   double a = options.drop_min, b = options.drop_max;
@@ -932,19 +1119,35 @@ Result<HoldDistributions> hold_distribution(const LiftCurve& curve, const HoldOp
   util::parallel_chunks(2, util::thread_count(options.threads, 2), [&](unsigned, std::size_t i0, std::size_t i1) {
     for (std::size_t i = i0; i < i1; ++i) {
       if (i == 0)
-        out.forward = distribution(make_frame(curve, false, options.runaway_distance), a, b, options, false);
+        out.forward = with_view(curve, false, [&](const auto& p) {
+          return distribution(make_frame(curve, false, options.runaway_distance), p, a, b, options, false);
+        });
       else
-        out.backward = distribution(make_frame(curve, true, options.runaway_distance), -b, -a, options, true);
+        out.backward = with_view(curve, true, [&](const auto& p) {
+          return distribution(make_frame(curve, true, options.runaway_distance), p, -b, -a, options, true);
+        });
     }
   });
   return out;
+}
+
+}  // namespace
+
+Result<HoldAngles> hold_angle(const LiftCurve& curve, double start, const HoldOptions& options) {
+  if (auto st = check_curve(curve); !st) return st.error();
+  return hold_angle_checked(curve, start, options);
+}
+
+Result<HoldDistributions> hold_distribution(const LiftCurve& curve, const HoldOptions& options) {
+  if (auto st = check_curve(curve); !st) return st.error();
+  return hold_distribution_checked(curve, options);
 }
 
 std::vector<std::int32_t> basin_index(const LiftCurve& curve, const std::vector<double>& offsets) {
   std::vector<std::int32_t> out(offsets.size(), -1);
   if (!check_curve(curve).ok()) return out;
   const View base = make_view(curve, false);
-  Descents ds(base);
+  Descents<View> ds(base);
   // Basins numbered by increasing rest offset: the local minima (rest vertices) and flat pieces.
   std::vector<std::int64_t> keys;
   auto key_of = [&](double x) -> std::int64_t {
@@ -1134,12 +1337,12 @@ struct Reach {
 };
 
 Result<Reach> analyse_curve(HoldAnalysis& out, const HoldOptions& ho, double start) {
-  auto dist = hold_distribution(out.curve, ho);
+  auto dist = hold_distribution_checked(out.curve, ho);  // built by build_curve: checked
   if (!dist) return dist.error();
   out.distribution = std::move(*dist);
   out.has_start = false;
   if (std::isfinite(start)) {
-    auto h = hold_angle(out.curve, start, ho);
+    auto h = hold_angle_checked(out.curve, start, ho);
     if (!h) return h.error();
     out.start = *h;
     out.has_start = true;
@@ -1164,69 +1367,80 @@ Result<Reach> analyse_curve(HoldAnalysis& out, const HoldOptions& ho, double sta
   return r;
 }
 
-// The merged lift points W = (R without `dropped`) + E, read in order by build_curve (which
-// reads them twice, from 0 each time), over W's index range [first, last).
+// The merged lift points W = (R without `dropped`) + E, as runs of consecutive points from one
+// source (in exact mode three: E below R's range, R, E above it), read at random.
 struct MergedPoints {
   const SignatureResult& R;
   const detail::LiftPoints& E;
-  const std::vector<std::size_t>& dropped;
-  std::vector<std::uint8_t> from_r;  // per point of W: 1 from R, 0 from E
-  std::size_t cr = 0, ce = 0, cd = 0, next = 0;
+  struct Run {
+    std::size_t w0;  // index in W of its first point
+    std::size_t i0;  // index of that point in its source
+    bool from_r;
+  };
+  std::vector<Run> runs;
+  std::size_t nw = 0;
 
-  MergedPoints(const SignatureResult& r, const detail::LiftPoints& e, const std::vector<std::size_t>& d)
-      : R(r), E(e), dropped(d) {
-    const std::size_t nw = R.offset.size() - dropped.size() + E.offset.size();
-    from_r.resize(nw);
-    std::size_t ir = 0, ie = 0, id = 0;
-    for (std::size_t w = 0; w < nw; ++w) {
+  MergedPoints(const SignatureResult& r, const detail::LiftPoints& e, const std::vector<std::size_t>& dropped)
+      : R(r), E(e) {
+    const std::size_t nr = R.offset.size(), ne = E.offset.size();
+    nw = nr - dropped.size() + ne;
+    // Whole runs at a time: R's points below E's next one (up to the next dropped index), then
+    // E's points up to R's next one (a point of R before an equal one of E, as one by one).
+    std::size_t ir = 0, ie = 0, id = 0, w = 0;
+    const double* ro = R.offset.data();
+    const double* eo = E.offset.data();
+    while (w < nw) {
       while (id < dropped.size() && dropped[id] == ir) {
         ++ir;
         ++id;
       }
-      const bool take_r = ir < R.offset.size() && (ie >= E.offset.size() || R.offset[ir] < E.offset[ie]);
-      from_r[w] = take_r ? 1 : 0;
-      if (take_r)
-        ++ir;
-      else
-        ++ie;
+      const bool has_r = ir < nr, has_e = ie < ne;
+      if (!has_r && !has_e) break;
+      if (has_r && (!has_e || ro[ir] < eo[ie])) {
+        std::size_t end = id < dropped.size() ? std::min(nr, dropped[id]) : nr;
+        if (has_e) end = static_cast<std::size_t>(std::lower_bound(ro + ir, ro + end, eo[ie]) - ro);
+        runs.push_back({w, ir, true});
+        w += end - ir;
+        ir = end;
+      } else {
+        const std::size_t end = has_r ? static_cast<std::size_t>(std::upper_bound(eo + ie, eo + ne, ro[ir]) - eo) : ne;
+        runs.push_back({w, ie, false});
+        w += end - ie;
+        ie = end;
+      }
     }
   }
-  std::size_t size() const { return from_r.size(); }
-  // Point w; sequential from any starting point (a seek by walking when w is not the next).
-  LiftPoint get(std::size_t w) {
-    if (w != next) {  // restart and walk to w
-      cr = ce = cd = 0;
-      for (std::size_t u = 0; u < w; ++u) step(u);
-    }
-    const LiftPoint q = at(w);
-    step(w);
-    next = w + 1;
-    return q;
+  std::size_t size() const { return nw; }
+  // Point w (the runs are few in exact mode: a search among them).
+  LiftPoint get(std::size_t w) const {
+    const auto it = std::upper_bound(runs.begin(), runs.end(), w, [](std::size_t x, const Run& u) { return x < u.w0; });
+    const Run& u = *(it - 1);
+    const std::size_t i = u.i0 + (w - u.w0);
+    if (u.from_r) return LiftPoint{R.offset[i], R.lift[i], R.theta_left[i], R.theta_right[i]};
+    return LiftPoint{E.offset[i], E.lift[i], E.left[i], E.right[i]};
   }
-
- private:
-  void skip_dropped() {
-    while (cd < dropped.size() && dropped[cd] == cr) {
-      ++cr;
-      ++cd;
+  double offset(std::size_t w) const { return get(w).s; }
+  // The first w with offset(w) >= x (strictly > x with `after`), as std::lower_bound (upper_bound).
+  std::size_t first_at(double x, bool after) const {
+    std::size_t lo = 0, len = nw;
+    while (len > 0) {
+      const std::size_t half = len / 2;
+      const double v = offset(lo + half);
+      if (after ? !(v > x) : v < x) {
+        lo += half + 1;
+        len -= half + 1;
+      } else {
+        len = half;
+      }
     }
-  }
-  LiftPoint at(std::size_t w) {
-    if (from_r[w]) {
-      skip_dropped();
-      return LiftPoint{R.offset[cr], R.lift[cr], R.theta_left[cr], R.theta_right[cr]};
-    }
-    return LiftPoint{E.offset[ce], E.lift[ce], E.left[ce], E.right[ce]};
-  }
-  void step(std::size_t w) {
-    if (from_r[w]) {
-      skip_dropped();
-      ++cr;
-    } else {
-      ++ce;
-    }
+    return lo;
   }
 };
+
+// The curve through the points [first, last) of W, on up to `threads` threads.
+Result<LiftCurve> merged_curve(const MergedPoints& mp, std::size_t first, std::size_t last, unsigned threads) {
+  return build_curve(last - first, true, 0.0, threads, [&](std::size_t w) { return mp.get(first + w); });
+}
 
 // Merges two increasing point sets (offsets distinct).
 detail::LiftPoints merge_points(detail::LiftPoints a, detail::LiftPoints b) {
@@ -1259,11 +1473,11 @@ detail::LiftPoints merge_points(detail::LiftPoints a, detail::LiftPoints b) {
 // as that vertex's chain, so if no chain from a vertex there (or from the next record of a flat
 // piece there) runs off the end less than d after its stop, none from the drops does.
 // Returns how much farther the end must lie, at least, for the criteria to hold (0: they hold).
-double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
-  const View p = make_view(local, mirrored);
+template <class V>
+double end_reached_on(const V& p, double b, double d) {
   const std::size_t n = p.n();
   const double end = p.X(n);
-  Descents ds(p);
+  Descents<V> ds(p);
   const std::size_t kb = piece_of(p, b);
   double rb = b;
   if (p.M(kb) < 0) rb = std::max(b, p.X(ds.forward(kb + 1)));  // the descent from b ends ahead
@@ -1292,12 +1506,17 @@ double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
   return short_by;
 }
 
+double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
+  return with_view(local, mirrored, [&](const auto& p) { return end_reached_on(p, b, d); });
+}
+
 // The one pass: the signature over its range, then, with the same prepared faces, the lift
 // beyond it on the sides the process reaches, then (the faces let go) the analysis.
-// Exact mode: each side from 1.25 d, doubled while end_reached() says the process may reach
-// the cut end; the offsets are those a signature over the wider range lists, so the curve, and
-// every number, is that of a lift computed over it. Sampled offsets: the widened range and its
-// grid as analyse_hold_widened takes them (2 d on both sides, doubled on the whole analysis).
+// Exact mode: each side from 1.75 d (the three benchmark pairs of issue 32 need 1.0 to 2.6 d;
+// a round costs more than 0.3 d of lift), widened by what end_reached() finds short and d/4
+// while it says the process may reach the cut end; the offsets are those a signature over the wider range lists, so the
+// curve, and every number, is that of a lift computed over it. Sampled offsets: the widened range and its grid as
+// analyse_hold_widened takes them (2 d on both sides, doubled on the whole analysis).
 Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, const SignatureOptions& so,
                                    const HoldOptions& hold, double start, Profile* take_lower, Profile* take_upper) {
   auto setup = hold_setup(lower, upper, so, hold, start);
@@ -1310,6 +1529,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     auto h = analyse_hold_widened(lower, upper, so, hold, start);
     if (!h) return h.error();
     out = std::move(*h);
+    if (!S.ho.keep_curve) out.curve = LiftCurve{};
     auto sig = take_lower && take_upper ? signature(std::move(*take_lower), std::move(*take_upper), so)
                                         : signature(lower, upper, so);
     if (!sig) return sig.error();
@@ -1326,7 +1546,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   // Builds the curve from R and the extension, analyses it; the side(s) the process reached.
   auto build_and_analyse = [&](const SignatureResult& R) -> Result<Reach> {
     MergedPoints mp(R, ext_points, ext_dropped);
-    auto curve = build_curve(mp.size(), true, 0.0, [&](std::size_t w) { return mp.get(w); });
+    auto curve = merged_curve(mp, 0, mp.size(), util::thread_count(so.threads, 2));
     if (!curve) return curve.error();
     out.curve = std::move(*curve);
     auto reach = analyse_curve(out, S.ho, start);
@@ -1335,7 +1555,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   const detail::WithLift with_lift = [&](const SignatureResult& R, const detail::LiftExtender& extend) -> Status {
     if (S.period > 0) return Ok{};  // the signature's own lift: exactly one period
     const bool sampled = !R.exact || so.offsets > 0;
-    double m_lo = sampled ? 2 * d : 1.25 * d, m_hi = m_lo;
+    double m_lo = sampled ? 2 * d : 1.75 * d, m_hi = m_lo;
     for (;;) {
       cut_lo = hold_lift_range(S.a, S.b, m_lo, S.lower_len, S.upper_len).min;
       cut_hi = hold_lift_range(S.a, S.b, m_hi, S.lower_len, S.upper_len).max;
@@ -1363,32 +1583,25 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       // range's end on), before the whole curve is built.
       MergedPoints mp(R, ext_points, ext_dropped);
       const std::size_t nw = mp.size();
-      auto local = [&](std::size_t first, std::size_t last) {
-        return build_curve(last - first, true, 0.0, [&](std::size_t w) { return mp.get(first + w); });
-      };
       // W's indices of the points around [a - d, b + d] (a few spacings' slack).
-      std::size_t i_hi = 0, i_lo = nw;
-      {
-        std::size_t w = 0;
-        for (; w < nw; ++w)
-          if (mp.get(w).s >= S.a + d) break;
-        i_lo = std::min(nw, w + 2);
-        for (; w < nw; ++w)
-          if (mp.get(w).s > S.b - d) break;
-        i_hi = w > 2 ? w - 2 : 0;
-      }
+      const std::size_t w_lo = mp.first_at(S.a + d, false);
+      const std::size_t i_lo = std::min(nw, w_lo + 2);
+      const std::size_t w_hi = std::max(w_lo, mp.first_at(S.b - d, true));
+      const std::size_t i_hi = w_hi > 2 ? w_hi - 2 : 0;
+      // One end after the other (each curve on the threads; one local curve held at a time).
+      const unsigned threads = util::thread_count(so.threads, 2);
       if (cut_max) {
-        auto c = local(i_hi, nw);
+        auto c = merged_curve(mp, i_hi, nw, threads);
         if (!c) return c.error();
         short_max = end_reached(*c, false, S.b, d);
-        more_max = short_max > 0;
       }
       if (cut_min) {
-        auto c = local(0, i_lo);
+        auto c = merged_curve(mp, 0, i_lo, threads);
         if (!c) return c.error();
         short_min = end_reached(*c, true, -S.a, d);
-        more_min = short_min > 0;
       }
+      more_max = short_max > 0;
+      more_min = short_min > 0;
       if (!more_max && !more_min) break;
       // Farther by what the check found short, and a quarter of d (a chain may go on).
       if (more_max) m_hi += short_max + 0.25 * d;
@@ -1396,27 +1609,30 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     }
     return Ok{};
   };
-  auto sig = detail::signature_with_lift(lower, upper, so, take_lower, take_upper, with_lift);
+  // The analysis once the faces are let go, before the signature's slope distribution is
+  // computed (so that the two do not hold their memory at the same time).
+  const detail::AfterFaces after_faces = [&](const SignatureResult& R) -> Status {
+    if (S.period > 0) {
+      out.events = R.offset.size();
+      out.exact = R.exact;
+      auto curve = lift_curve(R, S.period);
+      if (!curve) return curve.error();
+      out.curve = std::move(*curve);
+      auto reach = analyse_curve(out, S.ho, start);
+      if (!reach) return reach.error();
+    } else if (!analysed) {
+      auto reach = build_and_analyse(R);
+      if (!reach) return reach.error();
+      ext_points = detail::LiftPoints{};
+      if ((reach->max && cut_hi < whole.max) || (reach->min && cut_lo > whole.min))
+        return make_error("hold: internal error: the lift beyond the range was cut short (please report)");
+    }
+    if (!S.ho.keep_curve) out.curve = LiftCurve{};
+    return Ok{};
+  };
+  auto sig = detail::signature_with_lift(lower, upper, so, take_lower, take_upper, with_lift, after_faces);
   if (!sig) return sig.error();
   res.signature = std::move(*sig);
-  const SignatureResult& R = res.signature;
-  if (S.period > 0) {
-    out.events = R.offset.size();
-    out.exact = R.exact;
-    auto curve = lift_curve(R, S.period);
-    if (!curve) return curve.error();
-    out.curve = std::move(*curve);
-    auto reach = analyse_curve(out, S.ho, start);
-    if (!reach) return reach.error();
-    return res;
-  }
-  if (!analysed) {
-    auto reach = build_and_analyse(R);
-    if (!reach) return reach.error();
-    ext_points = detail::LiftPoints{};
-    if ((reach->max && cut_hi < whole.max) || (reach->min && cut_lo > whole.min))
-      return make_error("hold: internal error: the lift beyond the range was cut short (please report)");
-  }
   return res;
 }
 

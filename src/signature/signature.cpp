@@ -965,12 +965,19 @@ Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, dou
         for (auto it = lo; it != hi; ++it) offs.push_back(std::clamp(fx[i] - *it, smin, smax));
       }
     }
-    offs.push_back(smin);
-    offs.push_back(smax);
+    // The lattice's offsets come out increasing: with the range ends put in place (before an
+    // equal value, as a sort may place them; equal values are the same number) no sort is needed.
+    bool in_order = P.aligned_lattice && std::is_sorted(offs.begin(), offs.end());
+    if (in_order) {
+      for (const double e : {smin, smax}) offs.insert(std::lower_bound(offs.begin(), offs.end(), e), e);
+    } else {
+      offs.push_back(smin);
+      offs.push_back(smax);
+    }
     // Sorted in chunks on the worker threads, then merged (the same order as one sort: the
     // values are totally ordered; up to 2e7 events of two measured grids that do not align).
     const unsigned st = offs.size() > (std::size_t{1} << 20) ? util::thread_count(o.threads, offs.size() >> 20) : 1;
-    if (st > 1) {
+    if (!in_order && st > 1) {
       std::vector<std::size_t> bounds(st + 1);
       for (unsigned c = 0; c <= st; ++c) bounds[c] = offs.size() * c / st;
       util::parallel_chunks(st, st, [&](unsigned, std::size_t c0, std::size_t c1) {
@@ -981,7 +988,7 @@ Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, dou
         for (std::size_t c = 0; c + width < st; c += 2 * width)
           std::inplace_merge(offs.begin() + std::ptrdiff_t(bounds[c]), offs.begin() + std::ptrdiff_t(bounds[c + width]),
                              offs.begin() + std::ptrdiff_t(bounds[std::min<std::size_t>(c + 2 * width, st)]));
-    } else {
+    } else if (!in_order) {
       std::sort(offs.begin(), offs.end());
     }
     std::size_t w = 0;  // drop near-duplicates in place (each kept value compared with the last kept)
@@ -1040,7 +1047,8 @@ bool evaluate_lift(const Problem& P, const std::vector<double>& offs, const Sign
 
 Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o,
                                        Profile* take_lower, Profile* take_upper,
-                                       const detail::WithLift* with_lift = nullptr) {
+                                       const detail::WithLift* with_lift = nullptr,
+                                       const detail::AfterFaces* after_faces = nullptr) {
   if (auto st = validate(lower_in, "lower surface"); !st) return st.error();
   if (auto st = validate(upper_in, "upper surface"); !st) return st.error();
   if (!(o.tolerance > 0 && o.tolerance < 1e-3))
@@ -1216,6 +1224,9 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
     if (auto st = (*with_lift)(R, extend); !st) return st.error();
   }
   P = Problem{};  // the faces are no longer needed
+  if (after_faces && *after_faces) {
+    if (auto st = (*after_faces)(R); !st) return st.error();
+  }
 
   // Extremes: theta at each offset plus the one-sided slopes next to it (inside the range).
   R.theta_max_forward = -kInf;
@@ -1288,11 +1299,12 @@ Result<SignatureResult> signature(const Profile& lower, const Profile& upper, co
 
 Result<SignatureResult> detail::signature_with_lift(const Profile& lower, const Profile& upper,
                                                     const SignatureOptions& options, Profile* take_lower,
-                                                    Profile* take_upper, const WithLift& with_lift) {
+                                                    Profile* take_upper, const WithLift& with_lift,
+                                                    const AfterFaces& after_faces) {
   if (options.spheroradius > 0) return make_error("signature: no extended lift for spheropolygons");
   const bool periodic = lower.period && upper.period;
   return signature_impl(lower, upper, options, periodic ? nullptr : take_lower, periodic ? nullptr : take_upper,
-                        &with_lift);
+                        &with_lift, &after_faces);
 }
 
 Result<SignatureResult> signature(Profile&& lower, Profile&& upper, const SignatureOptions& options) {
