@@ -1539,7 +1539,8 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   const double d = S.ho.runaway_distance;
   const OffsetRange whole =
       hold_lift_range(S.a, S.b, std::numeric_limits<double>::infinity(), S.lower_len, S.upper_len);
-  bool analysed = false;  // the sampled path analyses inside (it needs the faces to widen)
+  bool analysed = false;   // the sampled path analyses inside (it needs the faces to widen)
+  bool cut_short = false;  // the one-pass lift fell short: analyse_hold_widened instead
   detail::LiftPoints ext_points;
   std::vector<std::size_t> ext_dropped;
   double cut_lo = 0, cut_hi = 0;
@@ -1624,8 +1625,14 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       auto reach = build_and_analyse(R);
       if (!reach) return reach.error();
       ext_points = detail::LiftPoints{};
-      if ((reach->max && cut_hi < whole.max) || (reach->min && cut_lo > whole.min))
-        return make_error("hold: internal error: the lift beyond the range was cut short (please report)");
+      if ((reach->max && cut_hi < whole.max) || (reach->min && cut_lo > whole.min)) {
+        // The local end checks let through a lift that the whole analysis finds too short (seen
+        // on exactly sampled grooves): with the profiles still at hand, the two-lift path
+        // (analyse_hold_widened, the older exact analysis) answers after the signature.
+        if (take_lower)
+          return make_error("hold: internal error: the lift beyond the range was cut short (please report)");
+        cut_short = true;
+      }
     }
     if (!S.ho.keep_curve) out.curve = LiftCurve{};
     return Ok{};
@@ -1633,6 +1640,12 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   auto sig = detail::signature_with_lift(lower, upper, so, take_lower, take_upper, with_lift, after_faces);
   if (!sig) return sig.error();
   res.signature = std::move(*sig);
+  if (cut_short) {
+    auto h = analyse_hold_widened(lower, upper, so, hold, start);
+    if (!h) return h.error();
+    res.hold = std::move(*h);
+    if (!S.ho.keep_curve) res.hold.curve = LiftCurve{};
+  }
   return res;
 }
 

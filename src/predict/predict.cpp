@@ -159,8 +159,9 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   ho.atomic_friction = o.atomic_friction;
   const bool one = std::isfinite(o.start_offset[0]);
   // The bound and the hold analysis from one pass over the lift (not a signature each).
-  auto both = signature_with_hold(std::move(*lo), std::move(up), so, ho,
-                                  one ? o.start_offset[0] : std::numeric_limits<double>::quiet_NaN());
+  // The profiles by reference (not taken over): a lift that the one pass finds too short is
+  // analysed again from them (signature_with_hold's fallback).
+  auto both = signature_with_hold(*lo, up, so, ho, one ? o.start_offset[0] : std::numeric_limits<double>::quiet_NaN());
   if (!both) return both.error();
   const SignatureResult* sig = &both->signature;
   const HoldAnalysis* h = &both->hold;
