@@ -183,4 +183,13 @@ inline Status no_threads_parameter(const Params& p) {
   return Ok{};
 }
 
+/// The signature's summary outputs of the kinds that store one (koch-signature,
+/// wm-pair-statistics), taken from signature_columns() (events: its Python key).
+inline constexpr std::initializer_list<ColumnOutput> kSignatureSummaryOutputs = {"theta_max_forward_deg",
+                                                                                 "theta_max_backward_deg",
+                                                                                 "contact_slope_mean_deg",
+                                                                                 "contact_slope_std_deg",
+                                                                                 "offsets",
+                                                                                 "events"};
+
 }  // namespace frictal::study::kind_detail

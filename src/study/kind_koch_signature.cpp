@@ -26,13 +26,7 @@ using namespace kind_detail;
 namespace {
 
 // The outputs taken from output tables (frictal columns): declared once there. The signature's
-// (signature_columns(); events: its Python key)...
-constexpr std::initializer_list<ColumnOutput> kSignatureOutputs = {"theta_max_forward_deg",
-                                                                   "theta_max_backward_deg",
-                                                                   "contact_slope_mean_deg",
-                                                                   "contact_slope_std_deg",
-                                                                   "offsets",
-                                                                   "events"};
+// (kSignatureSummaryOutputs, kind_common.hpp)...
 // ... Eq. 6's bound (friction_columns()), under the keys the tilt kind's simulated angle has (the
 // figures draw both in one panel) ...
 constexpr std::initializer_list<ColumnOutput> kFrictionOutputs = {
@@ -86,7 +80,7 @@ Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: det
   const ProfileStats ps = profile_stats(*prof);
   TaskOutput out;
   auto& s = out.scalars;
-  put_outputs(out, signature_columns(), r, kSignatureOutputs);
+  put_outputs(out, signature_columns(), r, kSignatureSummaryOutputs);
   put_outputs(out, friction_columns(), *fr, kFrictionOutputs);
   put_outputs(out, profile_stats_columns(), ps, kProfileOutputs);
   s["theta_max_over_alpha"] = r.theta_max_forward / kp.alpha;
@@ -232,7 +226,7 @@ TaskKind koch_signature_kind() {
       {"signature_offset_over_wavelength", "1", "offset / lambda (Fig. 4)", true},
       {"signature_theta_over_alpha", "1", "theta / alpha at each offset (Fig. 4)", true},
   };
-  for (const auto& table : {outputs_of("signature", signature_columns(), kSignatureOutputs),
+  for (const auto& table : {outputs_of("signature", signature_columns(), kSignatureSummaryOutputs),
                             outputs_of("friction", friction_columns(), kFrictionOutputs),
                             outputs_of("profile_stats", profile_stats_columns(), kProfileOutputs)})
     k.outputs.insert(k.outputs.end(), table.begin(), table.end());

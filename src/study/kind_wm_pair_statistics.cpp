@@ -25,14 +25,8 @@ using namespace kind_detail;
 
 namespace {
 
-// The outputs taken from output tables (frictal columns): declared once there. The pair's
-// signature (signature_columns(); events: its Python key)...
-constexpr std::initializer_list<ColumnOutput> kSignatureOutputs = {"theta_max_forward_deg",
-                                                                   "theta_max_backward_deg",
-                                                                   "contact_slope_mean_deg",
-                                                                   "contact_slope_std_deg",
-                                                                   "offsets",
-                                                                   "events"};
+// The outputs taken from output tables (frictal columns): declared once there. The signature's
+// (kSignatureSummaryOutputs, kind_common.hpp)...
 // ... and each profile's statistics (profile_stats_columns()).
 constexpr std::initializer_list<ColumnOutput> kLowerOutputs = {
     {"max_slope_deg", "surface_slope_max_lower_deg", "the lower profile"},
@@ -92,7 +86,7 @@ Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   auto& s = out.scalars;
   const double cmax = std::max(fwd, bwd);
   const double smax = std::max(sl.max_slope, su.max_slope);
-  put_outputs(out, signature_columns(), r, kSignatureOutputs);
+  put_outputs(out, signature_columns(), r, kSignatureSummaryOutputs);
   put_outputs(out, profile_stats_columns(), sl, kLowerOutputs);
   put_outputs(out, profile_stats_columns(), su, kUpperOutputs);
   s["contact_slope_max_deg"] = cmax / kDeg;
@@ -399,7 +393,7 @@ TaskKind wm_pair_statistics_kind() {
       {"surface_slope_pdf_edges_deg", "deg", "surface slope PDF bin edges (upper profile)", true},
       {"surface_slope_pdf_density_per_deg", "1/deg", "surface slope PDF density", true},
   };
-  for (const auto& table : {outputs_of("signature", signature_columns(), kSignatureOutputs),
+  for (const auto& table : {outputs_of("signature", signature_columns(), kSignatureSummaryOutputs),
                             outputs_of("profile_stats", profile_stats_columns(), kLowerOutputs),
                             outputs_of("profile_stats", profile_stats_columns(), kUpperOutputs)})
     k.outputs.insert(k.outputs.end(), table.begin(), table.end());
