@@ -349,16 +349,39 @@ class SphereField {
     // The block's height when this sphere (centre n.z + r above the block's origin) touches.
     const double base = -(n.z + r_);
     if (bound + r_ + base <= best - eps) return;
+    const double r2 = r_ * r_;
     for (std::size_t j = j0; j <= j1; ++j)
       for (std::size_t i = i0; i <= i1; ++i) {
         if (cell_top_[j * cnx_ + i] + r_ + base < best - eps) continue;  // no point of the cell reaches
-        ++work;
         const Vertex p00{hf_.x0 + double(i) * hf_.dx, hf_.y0 + double(j) * hf_.dy, hf_.at(i, j)};
-        const Vertex p10{p00.x + hf_.dx, p00.y, hf_.at(i + 1, j)};
-        const Vertex p01{p00.x, p00.y + hf_.dy, hf_.at(i, j + 1)};
-        const Vertex p11{p00.x + hf_.dx, p00.y + hf_.dy, hf_.at(i + 1, j + 1)};
+        // A point of the cell at horizontal distance rho >= delta from the centre lifts the
+        // sphere to at most its height + sqrt(r^2 - delta^2): the cell's bound at its distance
+        // (delta to the cell's rectangle), and each triangle's (delta also at least the distance
+        // to the diagonal when the centre lies on the other triangle's side). Exact: the bound
+        // is an upper bound (less rounding: kBoundSlack r), so a triangle left out holds no
+        // piece within eps of the max; h, the touching point and the pieces are unchanged.
+        const double ux = cx - p00.x, uy = cy - p00.y;
+        const double ddx = std::max({0.0, -ux, ux - hf_.dx}), ddy = std::max({0.0, -uy, uy - hf_.dy});
+        const double d2 = ddx * ddx + ddy * ddy;
+        if (d2 >= r2 * (1 + kBoundSlack)) continue;
+        const double z10 = hf_.at(i + 1, j), z01 = hf_.at(i, j + 1), z11 = hf_.at(i + 1, j + 1);
+        // s > 0: the centre on the lower-right triangle's side of the diagonal; its distance to
+        // the diagonal's line s / |(1/dx, -1/dy)|.
+        const double s = ux * inv_dx_ - uy * inv_dy_;
+        const double dd2 = s * s * diag_scale2_;
+        const double top_t[2] = {std::max({p00.z, z01, z11}), std::max({p00.z, z11, z10})};
+        const double d2_t[2] = {s > 0 ? std::max(d2, dd2) : d2, s < 0 ? std::max(d2, dd2) : d2};
+        bool any = false;
+        for (int t = 0; t < 2; ++t)
+          any = any || top_t[t] + std::sqrt(std::max(0.0, r2 - d2_t[t])) + kBoundSlack * r_ + base >= best - eps;
+        if (!any) continue;
+        ++work;
+        const Vertex p10{p00.x + hf_.dx, p00.y, z10};
+        const Vertex p01{p00.x, p00.y + hf_.dy, z01};
+        const Vertex p11{p00.x + hf_.dx, p00.y + hf_.dy, z11};
         // MuJoCo's two triangles of the cell, split along (i, j)-(i+1, j+1).
         for (int t = 0; t < 2; ++t) {
+          if (top_t[t] + std::sqrt(std::max(0.0, r2 - d2_t[t])) + kBoundSlack * r_ + base < best - eps) continue;
           double px = 0, py = 0;
           const double top = t == 0 ? triangle_top(p01, p00, p11, cx, cy, r_, px, py)
                                     : triangle_top(p00, p11, p10, cx, cy, r_, px, py);
@@ -374,9 +397,13 @@ class SphereField {
       }
   }
 
+  /// Relative slack of the distance bounds in sphere() against rounding (unitless).
+  static constexpr double kBoundSlack = 1e-9;
   const std::vector<detail::TiltNode>& nodes_;
   const detail::Hfield& hf_;
   double r_;
+  double inv_dx_ = 1 / hf_.dx, inv_dy_ = 1 / hf_.dy;                  ///< (unit: 1/m)
+  double diag_scale2_ = 1 / (inv_dx_ * inv_dx_ + inv_dy_ * inv_dy_);  ///< (unit: m^2)
   std::size_t cnx_, cny_;
   std::vector<double> cell_top_;
   std::size_t bnx_ = 0, bny_ = 0;
