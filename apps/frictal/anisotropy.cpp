@@ -154,7 +154,7 @@ std::function<int()> setup(CLI::App& app) {
         lines = r.lines;
       }
       const FrictionPrediction p = unwrap(predict_friction(a->atomic_friction, fwd, sigma));
-      add_eq18_warning(warnings, p.low_clamped, fmt::format("direction {:g} deg", to_deg(angle)));
+      add_bound_warnings(warnings, p, fmt::format("direction {:g} deg", to_deg(angle)));
       // The hold angle over drops of the same pair along this direction: predict() on the maps as
       // read, with the same conditioning (the numbers of `frictal predict --direction`).
       std::optional<Prediction> hold;

@@ -206,7 +206,7 @@ std::function<int()> setup(CLI::App& app) {
       throw UsageError(fmt::format("--contact-slope '{}' not understood (expected lower or mean)", a->contact_slope));
     const ArealSignature r = unwrap(areal_signature(f, g, a->angle * kDeg, o));
     const FrictionPrediction p = unwrap(predict_friction(a->atomic_friction, r.theta_max_forward, r.contact_slope_std));
-    add_eq18_warning(warnings, p.low_clamped, "areal");
+    add_bound_warnings(warnings, p, "areal");
     if (!a->output.empty()) {
       std::string buf = "offset_m,lift_m,theta_rad,contact_x_m,contact_y_m\n";
       for (std::size_t k = 0; k < r.offset.size(); ++k)

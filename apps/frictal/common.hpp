@@ -112,11 +112,14 @@ inline nlohmann::json warnings_json(const std::vector<Warning>& w) {
 inline void print_warnings(const std::vector<Warning>& w) {
   for (const Warning& x : w) fmt::print(stderr, "frictal: warning [{}]: {}\n", x.code, x.message);
 }
-/// The eq18-low-clamped warning when a FrictionPrediction-like result was clamped.
-inline void add_eq18_warning(std::vector<Warning>& w, bool clamped, const std::string& where) {
-  if (clamped)
+/// The warnings of a FrictionPrediction-like result (`low_clamped`, `friction_angle` in rad):
+/// eq18-low-clamped when its Eq. 18 low end was clamped, bound-negative when the bound is below 0.
+template <class P>
+void add_bound_warnings(std::vector<Warning>& w, const P& p, const std::string& where) {
+  if (p.low_clamped)
     add_warning(
         w, {"eq18-low-clamped", where + ": Eq. 18's low end theta_max - sigma + theta_a is below zero; reported as 0"});
+  for (Warning& x : check_friction_bound(p.friction_angle, where)) add_warning(w, std::move(x));
 }
 
 /// A finite number check for options, naming the option.

@@ -239,7 +239,7 @@ std::function<int()> setup(CLI::App& app) {
                  r.offset.size());
     FrictionPrediction fwd = unwrap(predict_friction(a->mu_a, r.theta_max_forward, r.contact_slope_std));
     FrictionPrediction bwd = unwrap(predict_friction(a->mu_a, r.theta_max_backward, r.contact_slope_std));
-    add_eq18_warning(warnings, fwd.low_clamped, "signature");
+    add_bound_warnings(warnings, fwd, "signature");
     for (const auto& [name, f] : {std::pair{"forward", fwd}, std::pair{"backward", bwd}})
       if (f.friction_angle >= 89.5 * kDeg)
         add_warning(warnings, {"friction-angle-at-90",

@@ -62,4 +62,10 @@ std::vector<Warning> check_pair_scales(double lower_length, double lower_spacing
 std::vector<Warning> check_dimension_fit(double dimension, double r_squared, const std::string& method,
                                          double min_r_squared = 0.95);
 
+/// A rigid upper bound phi = theta_max + theta_a (unit: rad) below zero: code bound-negative
+/// (mu = tan(phi) < 0: every contact along the sliding direction descends, so no tilt holds the
+/// block; a wrong direction, scans that do not overlap or a unit mix-up). `where` names the
+/// result in the message. Empty when phi >= 0 or NaN.
+std::vector<Warning> check_friction_bound(double friction_angle, const std::string& where);
+
 }  // namespace frictal

@@ -119,7 +119,7 @@ def predict(lower, upper=None, **options):
 
 
 from ._core import predict as _core_predict  # noqa: E402
-from ._core import check_dimension_fit, check_map, check_profile  # noqa: E402,F401
+from ._core import check_dimension_fit, check_friction_bound, check_map, check_profile  # noqa: E402,F401
 
 
 def _warn_all(items, stacklevel=3):
@@ -188,6 +188,24 @@ def _map_checks(args, kwargs, result):
     return out
 
 
+def _bound_checks(key, where):
+    """bound-negative when result[key] (a rigid bound in rad, or an array of them) is below zero."""
+    import numpy as _np
+
+    def checks(args, kwargs, result):
+        value = result.get(key)
+        if value is None:
+            return []
+        values = _np.atleast_1d(_np.asarray(value, dtype=float))
+        return check_friction_bound(float(_np.nanmin(values)) if _np.isfinite(values).any() else float("nan"), where)
+
+    return checks
+
+
+def _both(*checks):
+    return lambda args, kwargs, result: [w for c in checks for w in c(args, kwargs, result)]
+
+
 def _fit_checks(method):
     return lambda args, kwargs, r: check_dimension_fit(r["dimension"], r["r_squared"], method)
 
@@ -196,15 +214,18 @@ def _no_checks(args, kwargs, result):
     return []
 
 
-signature = _wrap(signature, _profile_checks, "Warnings: ``warnings`` in the result holds the plausibility "
-                  "codes of the profiles ([{code, message}]), each also issued with warnings.warn.")
+signature = _wrap(signature, _both(_profile_checks, _bound_checks("theta_max_forward", "signature (theta_max)")),
+                  "Warnings: ``warnings`` in the result holds the plausibility codes of the profiles ([{code, "
+                  "message}]) and bound-negative when theta_max_forward < 0, each also issued with warnings.warn.")
 profile_stats = _wrap(profile_stats, _profile_checks, "Warnings: ``warnings`` holds the profile's plausibility codes.")
 hold_angle = _wrap(hold_angle, _profile_checks, "Warnings: ``warnings`` holds the profiles' plausibility codes.")
-areal_signature = _wrap(areal_signature, _map_checks, "Warnings: ``warnings`` holds the maps' plausibility codes.")
+areal_signature = _wrap(areal_signature, _both(_map_checks, _bound_checks("theta_max_forward", "areal (theta_max)")),
+                        "Warnings: ``warnings`` holds the maps' plausibility codes and bound-negative.")
 areal_hold = _wrap(areal_hold, _no_checks, "Warnings: ``warnings`` holds the prediction's codes (the maps' plausibility "
                    "codes among them).")
 map_stats = _wrap(map_stats, _map_checks, "Warnings: ``warnings`` holds the map's plausibility codes.")
-anisotropy = _wrap(anisotropy, _map_checks, "Warnings: ``warnings`` holds the map's plausibility codes.")
+anisotropy = _wrap(anisotropy, _both(_map_checks, _bound_checks("upper_bound_friction_angle", "anisotropy")),
+                   "Warnings: ``warnings`` holds the map's plausibility codes and bound-negative (any direction).")
 divider_dimension = _wrap(divider_dimension, _fit_checks("divider"), "Warnings: dimension-out-of-range, poor-fit.")
 box_dimension = _wrap(box_dimension, _fit_checks("box"), "Warnings: dimension-out-of-range, poor-fit.")
 psd_dimension = _wrap(psd_dimension, _fit_checks("psd"), "Warnings: dimension-out-of-range, poor-fit.")
@@ -219,10 +240,12 @@ def _predict_friction_checks(args, kwargs, result):
         message = ("theta_a + theta_max - sigma is below 0: the low end of Eq. 18's range is reported as 0 "
                    "(friction is never negative)")
 
-    return [_W()] if result.get("eq18_low_clamped") else []
+    return ([_W()] if result.get("eq18_low_clamped") else []) + check_friction_bound(
+        result.get("upper_bound_friction_angle", float("nan")), "predict_friction")
 
 
 predict_friction = _wrap(predict_friction, _predict_friction_checks,
-                         "Warnings: eq18-low-clamped when the low end of Eq. 18 was clamped at 0.")
+                         "Warnings: eq18-low-clamped when the low end of Eq. 18 was clamped at 0, bound-negative "
+                         "when the rigid bound is below 0.")
 
 __all__ = [name for name in dir() if not name.startswith("_")]

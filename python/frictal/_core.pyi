@@ -198,6 +198,10 @@ def check_dimension_fit(dimension: float, r_squared: float, method: str = ...) -
     """A fractal dimension fit: dimension D and r_squared (unitless) from a fit dict; a list of Warning,
     dimension-out-of-range (D outside [1, 2]) and poor-fit (r^2 < 0.95)"""
 
+def check_friction_bound(friction_angle: float, where: str = ...) -> List[Warning]:
+    """A rigid upper bound theta_max + theta_a (rad): a list of Warning, bound-negative when it is below zero
+    (mu < 0: every contact along the sliding direction descends); empty otherwise"""
+
 def check_map(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, name: str = ...) -> List[Warning]:
     """Plausibility of an areal map: heights (ny, nx) in m (NaN: not measured), dx, dy in m; a list of Warning"""
 

@@ -122,6 +122,9 @@ void frictal_bind_predict(py::module_& m) {
       py::arg("dimension"), py::arg("r_squared"), py::arg("method") = "fit",
       "A fractal dimension fit: dimension D and r_squared (unitless) from a fit dict; a list of Warning,\n"
       "dimension-out-of-range (D outside [1, 2]) and poor-fit (r^2 < 0.95)");
+  m.def("check_friction_bound", &check_friction_bound, py::arg("friction_angle"), py::arg("where") = "bound",
+        "A rigid upper bound theta_max + theta_a (rad): a list of Warning, bound-negative when it is below zero\n"
+        "(mu < 0: every contact along the sliding direction descends); empty otherwise");
   m.def(
       "warning_codes",
       [] {

@@ -58,6 +58,7 @@ void finish(Prediction& p, double theta_max, double sigma) {
     lo = 0;
   }
   p.eq18_range = {std::min(lo, kPi / 2), p.upper_bound_friction_angle};
+  for (Warning& w : check_friction_bound(p.upper_bound_friction_angle, "prediction")) add_warning(p.warnings, w);
   const double med = p.friction_angle.q50;
   p.friction_coefficient = med >= kPi / 2 ? INFINITY : std::tan(med);
   // 89.5 deg: a slope of 115, steeper than any measured contact (a wall, an interlock or units).

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numbers>
 
 #include <fmt/core.h>
 
@@ -33,6 +34,10 @@ const std::vector<WarningCode>& warning_codes() {
       {"scale-mismatch", "the two scans' lengths or point spacings differ by more than 10x"},
       {"eq18-low-clamped",
        "the low end of the paper's Eq. 18 range, theta_max - sigma + theta_a, is below zero; it is reported as 0"},
+      {"bound-negative",
+       "the rigid upper bound theta_max + theta_a is below zero (mu < 0): every contact along the sliding direction "
+       "descends, so the block slides without tilt; check the direction, that the two scans overlap at one scale, "
+       "and their units"},
       {"friction-angle-at-90",
        "the friction angle reaches 90 deg: a vertical wall or an interlock holds the block; the number is a "
        "single feature of the data, not a friction"},
@@ -217,6 +222,18 @@ std::vector<Warning> check_dimension_fit(double D, double r2, const std::string&
   if (!(r2 >= min_r2))
     out.push_back({"poor-fit", fmt::format("{} method: r^2 = {:.4f} below {:g}: not a power law over the fit range",
                                            method, r2, min_r2)});
+  return out;
+}
+
+std::vector<Warning> check_friction_bound(double phi, const std::string& where) {
+  std::vector<Warning> out;
+  if (phi < 0)
+    out.push_back(
+        {"bound-negative",
+         fmt::format("{}: the rigid upper bound theta_max + theta_a = {:.4f} deg is below zero (mu = {:.4g}): every "
+                     "contact along the sliding direction descends, so the block slides without tilt; check the "
+                     "direction, that the two scans overlap at one scale, and their units",
+                     where, phi * 180 / std::numbers::pi, std::tan(phi))});
   return out;
 }
 

@@ -337,7 +337,9 @@ Result<std::string> hold_section(const ReportInput&, const ReportData& d) {
   hp.y_label = "probability density (1/deg)";
   hp.series.push_back(histogram_series(d.hold.hold, "quasi-static hold angle φ_qs", "#1f77b4"));
   hp.series.push_back(histogram_series(d.hold.inertial, "inertial bound φ_in", "#9467bd", true));
-  hp.bands.push_back({false, deg(fwd.friction_angle_low), deg(fwd.friction_angle), "Eq. 18 range", "#f2c94c", 0.3});
+  // A bound below zero (warning bound-negative) leaves Eq. 18 no range: no band then.
+  if (fwd.friction_angle_low <= fwd.friction_angle)
+    hp.bands.push_back({false, deg(fwd.friction_angle_low), deg(fwd.friction_angle), "Eq. 18 range", "#f2c94c", 0.3});
   hp.lines.push_back(
       {false, deg(fwd.friction_angle), fmt::format("θ_a + θ_max = {:.3f}°", deg(fwd.friction_angle)), "#d62728"});
   auto hsvg = plot_svg(hp);

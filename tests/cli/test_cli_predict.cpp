@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <set>
 
@@ -164,4 +165,43 @@ TEST(CliWarnings, ArealAndDimensionCarryWarnings) {
     EXPECT_EQ(codes.count("dimension-out-of-range") == 1, !(D >= 1 && D <= 2)) << d.out;
     EXPECT_EQ(codes.count("poor-fit") == 1, !(r2 >= 0.95)) << d.out;
   }
+}
+
+TEST(CliWarnings, ABoundBelowZeroIsWarnedAndTheReportStillWritten) {
+  // A flat block on a straight ramp descending along +x (slope -0.1), form kept: the lift falls
+  // at every offset, so every contact slope lies in [atan(-0.1), 0) and so does theta_max: the
+  // rigid bound is a negative friction. `predict`, `signature` and `report` carried no warning,
+  // and the report failed on its Eq. 18 band ([0, bound] with bound < 0).
+  const std::string lo = temp_path("ramp-lower.csv"), up = temp_path("ramp-flat.csv");
+  std::string ramp = "x_m,z_m\n", flat = "x_m,z_m\n";
+  char line[64];
+  for (int i = 0; i <= 1000; ++i) {
+    std::snprintf(line, sizeof line, "%.6g,%.9g\n", i * 1e-4, -0.1 * i * 1e-4);
+    ramp += line;
+  }
+  for (int i = 0; i <= 14; ++i) {
+    std::snprintf(line, sizeof line, "%.6g,0\n", i * 0.7e-4);
+    flat += line;
+  }
+  write_file(lo, ramp);
+  write_file(up, flat);
+  auto has = [](const json& j, const char* code) {
+    bool found = false;
+    for (const auto& w : j["warnings"]) found |= w["code"] == code;
+    return found;
+  };
+  const double ramp_deg = std::atan(-0.1) * 180 / M_PI;
+  auto p = run_cli("predict " + lo + " " + up + " --detrend none --json");
+  ASSERT_EQ(p.code, 0) << p.err;
+  const json pj = json::parse(p.out);
+  EXPECT_LT(pj["upper_bound_friction_angle_deg"].get<double>(), 0.0);
+  EXPECT_GE(pj["upper_bound_friction_angle_deg"].get<double>(), ramp_deg - 1e-9);
+  EXPECT_TRUE(has(pj, "bound-negative")) << p.out;
+  auto s = run_cli("signature " + lo + " " + up + " --detrend none --json");
+  ASSERT_EQ(s.code, 0) << s.err;
+  EXPECT_TRUE(has(json::parse(s.out), "bound-negative")) << s.out;
+  const std::string page = temp_path("ramp-report.html");
+  auto r = run_cli("report " + lo + " " + up + " --detrend none -o " + page);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("[bound-negative]"), std::string::npos) << r.err;
 }

@@ -265,3 +265,18 @@ TEST(Warnings, DimensionOutsideOneToTwoOrAPoorFit) {
   EXPECT_TRUE(has_code(frictal::check_dimension_fit(2.3, 0.99, "box"), "dimension-out-of-range"));
   EXPECT_TRUE(has_code(frictal::check_dimension_fit(1.5, 0.6, "divider"), "poor-fit"));
 }
+
+TEST(Warnings, ABoundBelowZeroIsNegativeFriction) {
+  // mu = tan(phi) < 0 exactly when phi < 0; none at 0, above or for NaN.
+  EXPECT_TRUE(frictal::check_friction_bound(0.1, "x").empty());
+  EXPECT_TRUE(frictal::check_friction_bound(0.0, "x").empty());
+  EXPECT_TRUE(frictal::check_friction_bound(std::nan(""), "x").empty());
+  const auto w = frictal::check_friction_bound(-0.1, "areal");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].code, "bound-negative");
+  EXPECT_NE(w[0].message.find("areal: "), std::string::npos) << w[0].message;
+  EXPECT_NE(w[0].message.find("-5.7296 deg"), std::string::npos) << w[0].message;  // -0.1 rad
+  bool listed = false;
+  for (const auto& c : frictal::warning_codes()) listed |= c.code == "bound-negative";
+  EXPECT_TRUE(listed);
+}

@@ -191,3 +191,21 @@ def test_predict_with_spikes_removed_reads_the_clean_profile():
     assert d.conditioning.startswith("crop x [5e-05, 0.00095] m: kept 901 of 1001 points; spikes")
     with pytest.raises(ValueError, match="crop"):
         frictal.predict(frictal.Profile(x, spiky), crop=(1.0, 2.0))
+
+
+def test_a_bound_below_zero_is_warned_in_python_too():
+    # predict_friction of theta_max = -0.1 rad: mu = tan(-0.1) < 0, bound-negative; and
+    # signature() of a flat block on a ramp descending along +x (every contact slope < 0).
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        r = frictal.predict_friction(0.0, -0.1, 0.01)
+    assert "bound-negative" in {w["code"] for w in r["warnings"]}
+    assert any(issubclass(w.category, frictal.BoundNegativeWarning) for w in caught)
+    assert not frictal.check_friction_bound(0.2)
+    ramp = frictal.Profile(np.arange(1001) * 1e-4, -0.1 * np.arange(1001) * 1e-4)
+    flat = frictal.Profile(np.arange(15) * 0.7e-4, np.zeros(15))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        s = frictal.signature(ramp, flat)
+    assert math.atan(-0.1) - 1e-12 <= s["theta_max_forward"] < 0
+    assert "bound-negative" in {w["code"] for w in s["warnings"]}
