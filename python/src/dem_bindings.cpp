@@ -11,6 +11,7 @@
 
 #include "bindings.hpp"
 #include "frictal/areal_tilt.hpp"
+#include "frictal/predict.hpp"
 #include "frictal/tilt.hpp"
 
 namespace py = pybind11;
@@ -131,7 +132,7 @@ void frictal_bind_dem(py::module_& m) {
         const auto [o, f, g] = areal_tilt_inputs(lower, dx, dy, upper, turn_over_upper, start_offset, kw, "areal_tilt");
         struct Out {
           ArealTiltResult sim;
-          ArealTiltHold hold;
+          ArealTiltHold free, locked;
           ArealTiltHoldSpread spread;
         };
         Out r = py_detail::ok(py_detail::nogil([&]() -> Result<Out> {
@@ -139,12 +140,25 @@ void frictal_bind_dem(py::module_& m) {
           auto sim = areal_tilt(f, g, o);
           if (!sim) return sim.error();
           out.sim = std::move(*sim);
+          // As `frictal areal-tilt`: predict()'s map model (its run-away distance and sphere radius,
+          // map_model_options) from the simulated rest, block free and locked, and the spread in
+          // the simulated lateral mode.
+          PredictOptions po;
+          po.direction = o.angle;
+          po.turn_over_upper = o.turn_over_upper;
+          po.atomic_friction = o.atomic_friction;
+          po.runaway_distance = o.runaway_distance;
+          po.sphere_radius = o.sphere_radius;
+          const ArealTiltOptions model = map_model_options(f, po);
           ArealTiltOptions c = o;
-          c.start_offset = out.sim.rest_offset;  // the matched prediction from the simulated rest
-          auto hold = areal_tilt_hold(f, g, c);
-          if (!hold) return hold.error();
-          out.hold = *hold;
-          auto spread = areal_tilt_hold_spread(f, g, c, out.hold);
+          c.start_offset = out.sim.rest_offset;
+          c.runaway_distance = model.runaway_distance;
+          c.sphere_radius = model.sphere_radius;
+          auto held = areal_tilt_hold_drops(f, g, c, {{out.sim.rest_offset, false}, {out.sim.rest_offset, true}});
+          if (!held) return held.error();
+          out.free = (*held)[0];
+          out.locked = (*held)[1];
+          auto spread = areal_tilt_hold_spread(f, g, c, o.lock_lateral ? out.locked : out.free);
           if (!spread) return spread.error();
           out.spread = *spread;
           return out;
@@ -154,8 +168,9 @@ void frictal_bind_dem(py::module_& m) {
         d["ran_away"] = r.sim.ran_away;
         d["rest_offset"] = py::make_tuple(r.sim.rest_offset[0], r.sim.rest_offset[1]);
         d["steering"] = r.sim.steering;
-        d["predicted_hold_angle"] = r.hold.hold_angle;
-        d["predicted_steering"] = r.hold.steering;
+        d["predicted_hold_angle"] = r.free.hold_angle;
+        d["predicted_hold_angle_locked"] = r.locked.hold_angle;
+        d["predicted_steering"] = r.free.steering;
         d["predicted_hold_angle_range"] = py::make_tuple(r.spread.low, r.spread.high);
         d["predicted_ambiguous_slips"] = r.spread.ambiguous;
         d["sphere_radius"] = r.sim.sphere_radius;
@@ -186,10 +201,11 @@ void frictal_bind_dem(py::module_& m) {
        "The 3D tilt test on MuJoCo (as `frictal areal-tilt`; docs/mujoco.md; needs a build with MuJoCo, else "
        "ValueError naming what it needs; runs without the GIL): lower, upper: 2-D arrays of heights (m, rows along "
        "y), spacings dx, dy (m); upper as measured (turned over) unless turn_over_upper=False; start_offset (x, y) in "
-       "m. Returns friction_angle (rad), ran_away, rest_offset (m), steering (rad), predicted_hold_angle and "
-       "predicted_steering (rad: the matched rigid quasi-static block from the simulated rest, areal_tilt_hold), "
-       "predicted_hold_angle_range (rad, rad: its least and largest hold angle when one slip's end is moved by a "
-       "sphere radius, areal_tilt_hold_spread) and predicted_ambiguous_slips, "
+       "m. Returns friction_angle (rad), ran_away, rest_offset (m), steering (rad), predicted_hold_angle, "
+       "predicted_hold_angle_locked and predicted_steering (rad: predict()'s map model from the simulated rest, block "
+       "free, locked, and the free block's steering; the same numbers as `frictal areal-tilt --json`), "
+       "predicted_hold_angle_range (rad, rad: the least and largest hold angle in the simulated lateral mode when one "
+       "slip's end is moved by a sphere radius, areal_tilt_hold_spread) and predicted_ambiguous_slips, "
        "sphere_radius (m), spheres, steps, unsettled_increments, warnings (list of dicts code, message) and the "
        "increments (tilt rad, x, y m, rested). "
        "Settings (SI units; the `frictal areal-tilt` options and the 'areal-tilt' study kind's keys):\n" +

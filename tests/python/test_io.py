@@ -269,6 +269,8 @@ def test_areal_tilt_grooves_across_on_mujoco():
                            start_offset=(11 * a, 11 * a), runaway_distance=1e-6)
     assert r["ran_away"]
     assert math.degrees(r["predicted_hold_angle"]) == pytest.approx(expected, abs=0.01)
+    # Grooves across d: the locked block (a diagnostic, as `frictal areal-tilt`) holds to the same face.
+    assert math.degrees(r["predicted_hold_angle_locked"]) == pytest.approx(expected, abs=0.01)
     # Every seat in a groove across d holds to the same face: the spread is that one angle.
     lo, hi = r["predicted_hold_angle_range"]
     assert math.degrees(lo) == pytest.approx(expected, abs=0.01)
