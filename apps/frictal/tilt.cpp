@@ -20,6 +20,7 @@
 #include "frictal/warnings.hpp"
 #include "movie.hpp"
 #include "options.hpp"
+#include "surface_io.hpp"
 
 namespace frictal::cli {
 namespace {
@@ -36,6 +37,8 @@ struct TiltOptions {
   GeneratorOptions gen;
   FieldWords settings;
   std::string lower_file, upper_file;
+  std::string detrend = "none";  ///< --detrend (files)
+  ConditioningOptions cond;      ///< --crop, --remove-spikes, --spike-threshold (files)
   std::string output, frames, vtk, movie;
   bool json = false;
   bool quiet = false;
@@ -124,8 +127,33 @@ int run(TiltOptions& o) {
           "tilt: give a generator (koch, wm, sawtooth, sine, self-affine, fourier) or --lower FILE [--upper FILE]");
     lower = read_file(o.lower_file, data_warnings);
     upper = o.upper_file.empty() ? lower : read_file(o.upper_file, data_warnings);
+    // Each file conditioned as `signature` does it (crop, spikes, form: none unless --detrend
+    // names one), the record stated in the output. A folded curve (not a profile) is taken as
+    // given unless an option asks for conditioning.
+    const Conditioning cond = conditioning(o.cond, unwrap(parse_detrend(o.detrend)));
+    const bool asked = o.detrend != "none" || !o.cond.crop.empty() || o.cond.remove_spikes;
+    std::vector<ConditioningRecord> records;
+    for (int i = 0; i < (o.upper_file.empty() ? 1 : 2); ++i) {
+      Curve& c = i ? upper : lower;
+      const std::string& name = i ? o.upper_file : o.lower_file;
+      auto p = as_profile(c, name);
+      if (!p.ok()) {
+        if (asked)
+          throw UsageError(
+              fmt::format("{}: a folded curve, not a profile: it cannot be conditioned ({})", name, p.error().message));
+        ConditioningRecord none;
+        none.form = Detrend{DetrendKind::None, 0};
+        records.push_back(none);
+        continue;
+      }
+      ConditionedProfile cp = unwrap(condition(*p, cond, name));
+      records.push_back(cp.record);
+      c.x = std::move(cp.profile.x);
+      c.z = std::move(cp.profile.z);
+    }
+    if (o.upper_file.empty()) upper = lower;
     // The files' plausibility (warnings.hpp: units, tiny heights, spikes, fill values, two scans
-    // of different scales), as `frictal predict` checks them; the faces as given (no detrending).
+    // of different scales), as `frictal predict` checks them, on the conditioned faces.
     double len[2] = {0, 0}, dx[2] = {0, 0};
     for (int i = 0; i < (o.upper_file.empty() ? 1 : 2); ++i) {
       const std::string& name = i ? o.upper_file : o.lower_file;
@@ -144,7 +172,9 @@ int run(TiltOptions& o) {
     // half the block). Generated surfaces take the same rule (above).
     scaling = unwrap(scale_tilt_defaults(lower, upper, tilt_config_for_surface(0, 0)));
     base = scaling->config;
-    surface = {{"lower", o.lower_file}, {"upper", o.upper_file.empty() ? o.lower_file : o.upper_file}};
+    surface = {{"lower", o.lower_file},
+               {"upper", o.upper_file.empty() ? o.lower_file : o.upper_file},
+               {"conditioning", conditioning_text(records)}};
   }
   const ValueSet given = si_values(tilt_settings(), o.settings);
   TiltConfig cfg = unwrap(make_tilt_config(given, base));
@@ -303,6 +333,8 @@ int run(TiltOptions& o) {
       fmt::print(text, "quasi-static: {} increments of {:.4g} deg, {} not relaxed within {:.3g} s; contact rule {}\n",
                  r->increments, cfg.tilt_increment / kDeg, r->unrelaxed_increments, cfg.relax_time,
                  r->contact_rule == dem::ContactRule::Closest ? "closest" : "pairs");
+    if (surface.contains("conditioning"))
+      fmt::print(text, "conditioning: {}\n", surface["conditioning"].get<std::string>());
     fmt::print(text, "rotation of the upper block against the lower one before the slide: {:.4g} deg{}\n",
                r->rotation_before_slide / kDeg, cfg.hold_rotation ? " (held)" : "");
     fmt::print(text,
@@ -334,6 +366,11 @@ std::function<int()> setup(CLI::App& app) {
                  "Lower surface file (x_m,z_m), as measured; - reads standard input. The defaults not given are "
                  "scaled to the surfaces' length and point spacing (docs/dem.md sec. 5)");
   app.add_option("--upper", o->upper_file, "Upper surface file, as measured (default: the lower one)");
+  app.add_option("--detrend", o->detrend,
+                 "Remove none, mean, line or poly:N from each surface file first, as signature (form and tilt of the "
+                 "scan; `predict` removes a line by default)")
+      ->capture_default_str();
+  add_conditioning_options(app, o->cond);
   add_field_options(app, tilt_settings(), o->settings);
   app.add_option("-o,--output", o->output, "Write the time series CSV here (- for standard output)");
   app.add_option(

@@ -67,7 +67,7 @@ bool has_code(const json& j, const std::string& code) {
 
 TEST(CliConditioning, EveryCommandThatReadsMeasuredSurfacesOffersTheSameOptions) {
   for (const char* cmd :
-       {"predict", "report", "signature", "areal", "anisotropy", "stats", "dimension", "areal-tilt"}) {
+       {"predict", "report", "signature", "areal", "anisotropy", "stats", "dimension", "areal-tilt", "tilt"}) {
     const CliRun r = run_cli(std::string(cmd) + " --help");
     ASSERT_EQ(r.code, 0) << cmd;
     for (const char* opt : {"--crop", "--remove-spikes", "--spike-threshold", "--detrend"})
@@ -174,6 +174,31 @@ TEST(CliConditioning, SignatureAndDimensionStateIt) {
   const CliRun d = run_cli("dimension " + spiky + " --crop 0.1mm,0.9mm --method psd --json");
   ASSERT_EQ(d.code, 0) << d.err;
   EXPECT_EQ(json::parse(d.out)["conditioning"], "crop x [0.0001, 0.0009] m: kept 801 of 1001 points; form: none");
+}
+
+TEST(CliConditioning, TiltConditionsItsFilesAndStatesIt) {
+  // The spheropolygon tilt test of a spiky scan with --remove-spikes runs on the profile the
+  // filter must give (the spikes' points at the mean of their neighbours, written directly):
+  // the same reading; the record in the JSON and the text, the form none unless asked.
+  const std::string spiky = sine_csv("cond-tilt-spiky.csv", false);
+  const std::string reference = sine_csv("cond-tilt-reference.csv", false, true);
+  const CliRun a = run_cli("tilt --lower " + spiky + " --remove-spikes --json");
+  ASSERT_EQ(a.code, 0) << a.err;
+  const CliRun b = run_cli("tilt --lower " + reference + " --json");
+  ASSERT_EQ(b.code, 0) << b.err;
+  const json ja = json::parse(a.out), jb = json::parse(b.out);
+  EXPECT_EQ(ja["surface"]["conditioning"],
+            "spikes (k = 10 Sq): 3 points removed (replaced by linear interpolation); form: none");
+  EXPECT_EQ(jb["surface"]["conditioning"], "form: none");
+  EXPECT_EQ(ja["friction_angle_deg"], jb["friction_angle_deg"]);
+  const CliRun c = run_cli("tilt --lower " + reference + " --crop 0.1mm,0.9mm --detrend line");
+  ASSERT_EQ(c.code, 0) << c.err;
+  EXPECT_NE(c.out.find("conditioning: crop x [0.0001, 0.0009] m: kept 801 of 1001 points; form: line"),
+            std::string::npos)
+      << c.out;
+  const CliRun d = run_cli("tilt --lower " + reference + " --detrend wobble");
+  EXPECT_EQ(d.code, 2);
+  EXPECT_NE(d.err.find("wobble"), std::string::npos) << d.err;
 }
 
 TEST(CliConditioning, BadValuesExitTwoNamingTheOptionTheValueAndWhatWasExpected) {
