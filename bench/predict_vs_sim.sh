@@ -116,7 +116,7 @@ elif [ "$MODE" = profiles ]; then
       echo "$p $k $x $RA"; k=$((k + 1))
     done
   done > "$D/jobs.txt"
-  tilt='"$bin" tilt --lower "$d/in/$p-lower.csv" --upper "$d/in/$p-upper.csv" --protocol quasi-static --hold-rotation --runaway-distance "$ra" --initial-offset="$x" --json -q'
+  tilt='"$bin" tilt --lower "$d/in/$p-lower.csv" --upper "$d/in/$p-upper.csv" --detrend line --protocol quasi-static --hold-rotation --runaway-distance "$ra" --initial-offset="$x" --json -q'
   xargs -P 2 -L 1 bash -c '
     p=$0; k=$1; x=$2; ra=$3; shift 3; d='"$D"'; bin='"$BIN"'
     '"$tilt"' "$@" > "$d/runs/$p-$k-tilt.json"
