@@ -86,18 +86,9 @@ std::function<int()> setup(CLI::App& app) {
     // (areal_tilt_hold: the rigid quasi-static block on the simulated spheres and triangles, off
     // the grid) with predict()'s defaults of d and r (map_model_options), block free; locked as a
     // diagnostic. Both drops on one field of spheres (areal_tilt_hold_drops).
-    PredictOptions po;
-    po.direction = o.angle;
-    po.turn_over_upper = o.turn_over_upper;
-    po.atomic_friction = o.atomic_friction;
-    po.runaway_distance = o.runaway_distance;
-    po.sphere_radius = o.sphere_radius;
-    const ArealTiltOptions model = map_model_options(f, po);
-    const double D = model.runaway_distance;
-    ArealTiltOptions co = o;          // the protocol's settings as given (tilt steps, height field, contacts)
-    co.start_offset = r.rest_offset;  // from the simulated rest: the same basin
-    co.runaway_distance = D;
-    co.sphere_radius = model.sphere_radius;
+    ArealTiltOptions co = map_model_options(f, o);  // the protocol's settings, the model's d and r
+    co.start_offset = r.rest_offset;                // from the simulated rest: the same basin
+    const double D = co.runaway_distance;
     const std::vector<ArealTiltHold> held =
         unwrap(areal_tilt_hold_drops(f, g, co, {{r.rest_offset, false}, {r.rest_offset, true}}));
     const ArealTiltHold& pfree = held[0];

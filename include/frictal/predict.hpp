@@ -156,6 +156,11 @@ Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* up
 /// map model for one drop (`frictal areal-tilt`, the report's two-map section) take the
 /// defaults from here, so that their hold angles are the prediction's.
 ArealTiltOptions map_model_options(const Map& lower, const PredictOptions& o);
+/// The same for a simulation's settings `sim` (areal_tilt's): `sim` with the map model's run-away
+/// distance and sphere radius (sim's where it sets them, > 0), so that the hold angle predicted
+/// beside a MuJoCo run (`frictal areal-tilt`, Python areal_tilt) is the prediction's model, in
+/// the simulation's protocol (tilt steps, height field, lateral mode, start offset).
+ArealTiltOptions map_model_options(const Map& lower, const ArealTiltOptions& sim);
 
 /// The map prediction's estimated CPU time before it runs, the figure PredictOptions::map_work_limit
 /// is compared with: 2.5e-7 s per sphere of the upper map and drop (free and locked drops count

@@ -143,17 +143,8 @@ void frictal_bind_dem(py::module_& m) {
           // As `frictal areal-tilt`: predict()'s map model (its run-away distance and sphere radius,
           // map_model_options) from the simulated rest, block free and locked, and the spread in
           // the simulated lateral mode.
-          PredictOptions po;
-          po.direction = o.angle;
-          po.turn_over_upper = o.turn_over_upper;
-          po.atomic_friction = o.atomic_friction;
-          po.runaway_distance = o.runaway_distance;
-          po.sphere_radius = o.sphere_radius;
-          const ArealTiltOptions model = map_model_options(f, po);
-          ArealTiltOptions c = o;
+          ArealTiltOptions c = map_model_options(f, o);
           c.start_offset = out.sim.rest_offset;
-          c.runaway_distance = model.runaway_distance;
-          c.sphere_radius = model.sphere_radius;
           auto held = areal_tilt_hold_drops(f, g, c, {{out.sim.rest_offset, false}, {out.sim.rest_offset, true}});
           if (!held) return held.error();
           out.free = (*held)[0];

@@ -353,6 +353,20 @@ ArealTiltOptions map_model_options(const Map& lower, const PredictOptions& o) {
   return t;
 }
 
+ArealTiltOptions map_model_options(const Map& lower, const ArealTiltOptions& sim) {
+  PredictOptions po;
+  po.direction = sim.angle;
+  po.turn_over_upper = sim.turn_over_upper;
+  po.atomic_friction = sim.atomic_friction;
+  po.runaway_distance = sim.runaway_distance;
+  po.sphere_radius = sim.sphere_radius;
+  const ArealTiltOptions model = map_model_options(lower, po);
+  ArealTiltOptions out = sim;
+  out.runaway_distance = model.runaway_distance;
+  out.sphere_radius = model.sphere_radius;
+  return out;
+}
+
 double map_work_estimate(std::size_t upper_spheres, std::size_t drops) {
   return double(upper_spheres) * 2.5e-7 * double(drops);
 }
