@@ -1492,9 +1492,12 @@ double end_reached_on(const V& p, double b, double d) {
   };
   for (std::size_t kk = n; kk-- > 0;) {
     const double xk = p.X(kk);
-    if (xk <= rb - d) break;
+    // A flat piece that starts at or before rb - d but reaches past it: its drops in (rb - d, rb]
+    // slip first to its next record, which may lie past rb with no vertex of the window before it.
+    const bool flat_into = xk <= rb - d && p.M(kk) == 0 && p.X(kk + 1) > rb - d;
+    if (xk <= rb - d && !flat_into) break;
     const Chain c = records.push(p, kk, d);
-    if (xk <= rb) off_near(c);
+    if (xk <= rb && !flat_into) off_near(c);
     if (xk <= rb && p.M(kk) == 0) {  // a flat piece: drops on it slip first to its next record
       const std::int64_t j = next_record(p, kk);
       if (j < 0) continue;  // drops there run off the end from at most rb, which is d before it
@@ -1502,6 +1505,7 @@ double end_reached_on(const V& p, double b, double d) {
       for (const RecordStack::Entry& e : records.entries())
         if (e.k == static_cast<std::size_t>(j)) off_near(e.c);
     }
+    if (flat_into) break;
   }
   return short_by;
 }
@@ -1512,8 +1516,9 @@ double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
 
 // The one pass: the signature over its range, then, with the same prepared faces, the lift
 // beyond it on the sides the process reaches, then (the faces let go) the analysis.
-// Exact mode: each side from 1.75 d (the three benchmark pairs of issue 32 need 1.0 to 2.6 d;
-// a round costs more than 0.3 d of lift), widened by what end_reached() finds short and d/4
+// Exact mode: each side from 1.55 d (end_reached()'s need on the three benchmark pairs of issue
+// 32: 1.50 and 1.52 d for H = 0.8, 1.32 and 2.58 d for H = 0.3, 1.03 and 1.47 d for the WM pair;
+// a round costs about 0.2 d of lift), widened by what end_reached() finds short and d/20
 // while it says the process may reach the cut end; the offsets are those a signature over the wider range lists, so the
 // curve, and every number, is that of a lift computed over it. Sampled offsets: the widened range and its grid as
 // analyse_hold_widened takes them (2 d on both sides, doubled on the whole analysis).
@@ -1545,18 +1550,26 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   std::vector<std::size_t> ext_dropped;
   double cut_lo = 0, cut_hi = 0;
   // Builds the curve from R and the extension, analyses it; the side(s) the process reached.
+  // The points beyond the range are let go once the curve holds them (the sampled path's next
+  // round evaluates its own).
   auto build_and_analyse = [&](const SignatureResult& R) -> Result<Reach> {
-    MergedPoints mp(R, ext_points, ext_dropped);
-    auto curve = merged_curve(mp, 0, mp.size(), util::thread_count(so.threads, 2));
-    if (!curve) return curve.error();
-    out.curve = std::move(*curve);
+    {
+      MergedPoints mp(R, ext_points, ext_dropped);
+      auto curve = merged_curve(mp, 0, mp.size(), util::thread_count(so.threads, 2));
+      if (!curve) return curve.error();
+      out.curve = std::move(*curve);
+    }
+    ext_points = detail::LiftPoints{};
     auto reach = analyse_curve(out, S.ho, start);
     return reach;
   };
   const detail::WithLift with_lift = [&](const SignatureResult& R, const detail::LiftExtender& extend) -> Status {
     if (S.period > 0) return Ok{};  // the signature's own lift: exactly one period
     const bool sampled = !R.exact || so.offsets > 0;
-    double m_lo = sampled ? 2 * d : 1.75 * d, m_hi = m_lo;
+    double m_lo = sampled ? 2 * d : 1.55 * d, m_hi = m_lo;
+    // Exact mode: a side whose check passed is not widened again, and the points near its end do
+    // not change when the other side is widened: it is not checked again.
+    bool passed_max = false, passed_min = false;
     for (;;) {
       cut_lo = hold_lift_range(S.a, S.b, m_lo, S.lower_len, S.upper_len).min;
       cut_hi = hold_lift_range(S.a, S.b, m_hi, S.lower_len, S.upper_len).max;
@@ -1589,29 +1602,33 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       const std::size_t i_lo = std::min(nw, w_lo + 2);
       const std::size_t w_hi = std::max(w_lo, mp.first_at(S.b - d, true));
       const std::size_t i_hi = w_hi > 2 ? w_hi - 2 : 0;
-      // One end after the other (each curve on the threads; one local curve held at a time).
+      // One end after the other (each curve on the threads; one local curve held at a time:
+      // the two at once cost more memory than the serial checks' time is worth).
       const unsigned threads = util::thread_count(so.threads, 2);
-      if (cut_max) {
+      if (cut_max && !passed_max) {
         auto c = merged_curve(mp, i_hi, nw, threads);
         if (!c) return c.error();
         short_max = end_reached(*c, false, S.b, d);
       }
-      if (cut_min) {
+      if (cut_min && !passed_min) {
         auto c = merged_curve(mp, 0, i_lo, threads);
         if (!c) return c.error();
         short_min = end_reached(*c, true, -S.a, d);
       }
       more_max = short_max > 0;
       more_min = short_min > 0;
+      passed_max = !more_max;
+      passed_min = !more_min;
       if (!more_max && !more_min) break;
-      // Farther by what the check found short, and a quarter of d (a chain may go on).
-      if (more_max) m_hi += short_max + 0.25 * d;
-      if (more_min) m_lo += short_min + 0.25 * d;
+      // Farther by what the check found short, and d/20 (a chain may go on: another round).
+      if (more_max) m_hi += short_max + 0.05 * d;
+      if (more_min) m_lo += short_min + 0.05 * d;
     }
     return Ok{};
   };
-  // The analysis once the faces are let go, before the signature's slope distribution is
-  // computed (so that the two do not hold their memory at the same time).
+  // The analysis once the faces are let go, on a thread of its own while the signature computes
+  // its extremes and slope distribution (signature_with_lift; their memory together stays below
+  // that of the faces, the points beyond the range let go once the curve is built).
   const detail::AfterFaces after_faces = [&](const SignatureResult& R) -> Status {
     if (S.period > 0) {
       out.events = R.offset.size();
@@ -1624,7 +1641,6 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     } else if (!analysed) {
       auto reach = build_and_analyse(R);
       if (!reach) return reach.error();
-      ext_points = detail::LiftPoints{};
       if ((reach->max && cut_hi < whole.max) || (reach->min && cut_lo > whole.min)) {
         // The local end checks let through a lift that the whole analysis finds too short (seen
         // on exactly sampled grooves): with the profiles still at hand, the two-lift path
