@@ -56,11 +56,9 @@ using WithLift = std::function<Status(const SignatureResult& partial, const Lift
 /// theta_min, theta_left/right and contacts, not yet the extremes and the distribution) while
 /// the prepared faces still live, so that `extend` evaluates the lift over wider ranges with
 /// them. Rigid faces only (spheroradius 0). take_lower/take_upper as signature(Profile&&).
-/// `after_faces` (if given) is called next, with R as with_lift saw it, once the faces are let go;
-/// with more than one thread (o.threads) on a thread of its own while the calling thread computes
-/// R's extremes and slope distribution (which write none of R's offset, lift, theta_left and
-/// theta_right: after_faces may read those, and nothing else of R); signature_with_lift returns
-/// when both are done.
+/// `after_faces` (if given) is called next, with R as with_lift saw it, once the faces are let go
+/// and before the extremes and the slope distribution are computed (their memory is not yet
+/// taken).
 using AfterFaces = std::function<Status(const SignatureResult& partial)>;
 Result<SignatureResult> signature_with_lift(const Profile& lower, const Profile& upper, const SignatureOptions& o,
                                             Profile* take_lower, Profile* take_upper, const WithLift& with_lift,

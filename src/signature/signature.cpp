@@ -1224,91 +1224,76 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
     if (auto st = (*with_lift)(R, extend); !st) return st.error();
   }
   P = Problem{};  // the faces are no longer needed
-
-  // The tail: extremes, slope distribution and its statistics. `after_faces` reads R's offsets,
-  // lifts and one-sided slopes, which the tail does not write: with more than one thread the two
-  // run at the same time (the tail is serial; the hold analysis then uses the other core).
-  auto tail = [&] {
-    // Extremes: theta at each offset plus the one-sided slopes next to it (inside the range).
-    R.theta_max_forward = -kInf;
-    R.theta_max_backward = -kInf;
-    for (std::size_t i = 0; i < n; ++i) {
-      double hi = R.theta[i], lo = R.theta_min[i];
-      if (i > 0) {
-        hi = std::max(hi, R.theta_left[i]);
-        lo = std::min(lo, R.theta_left[i]);
-      }
-      if (i + 1 < n) {
-        hi = std::max(hi, R.theta_right[i]);
-        lo = std::min(lo, R.theta_right[i]);
-      }
-      if (hi > R.theta_max_forward) {
-        R.theta_max_forward = hi;
-        R.offset_at_forward = offs_r[i];
-      }
-      if (-lo > R.theta_max_backward) {
-        R.theta_max_backward = -lo;
-        R.offset_at_backward = offs_r[i];
-      }
-    }
-
-    // Contact-slope distribution, one value per offset. Exact mode: each interval between
-    // events is represented by the slopes of h at its two ends, split at the crossing of the two
-    // lines (exact when the interval holds at most two linear pieces). Sampled mode: theta(s).
-    if (R.exact && o.slopes == SlopeMethod::Exact) {
-      // At most two values per interval: reserved at once (no copy of a half-grown vector; pages
-      // are taken only as the values are written).
-      R.slope_samples.reserve(2 * n);
-      R.slope_weights.reserve(2 * n);
-      for (std::size_t i = 0; i + 1 < n; ++i) {
-        const double s0 = offs_r[i], s1 = offs_r[i + 1], L = s1 - s0;
-        const double a0 = R.theta_right[i], a1 = R.theta_left[i + 1];
-        const bool w0 = std::abs(a0) < kHalfPi, w1 = std::abs(a1) < kHalfPi;
-        if (!w0 && !w1) continue;
-        if (!w1 || (w0 && std::abs(a0 - a1) < 1e-12)) {
-          R.slope_samples.push_back(a0);
-          R.slope_weights.push_back(L);
-          continue;
-        }
-        if (!w0) {
-          R.slope_samples.push_back(a1);
-          R.slope_weights.push_back(L);
-          continue;
-        }
-        const double t0 = std::tan(a0), t1 = std::tan(a1);
-        double sc = (t0 == t1) ? s1 : (R.lift[i + 1] - R.lift[i] + t0 * s0 - t1 * s1) / (t0 - t1);
-        sc = std::clamp(sc, s0, s1);
-        R.slope_samples.push_back(a0);
-        R.slope_weights.push_back(sc - s0);
-        R.slope_samples.push_back(a1);
-        R.slope_weights.push_back(s1 - sc);
-      }
-    } else {
-      R.slope_samples.reserve(n);
-      R.slope_weights.reserve(n);
-      for (std::size_t i = 0; i < n; ++i) {
-        R.slope_samples.push_back(R.theta[i]);
-        R.slope_weights.push_back(1.0);
-      }
-    }
-    const MeanStd ms = weighted_mean_std(R.slope_samples, R.slope_weights);
-    R.contact_slope_mean = ms.mean;
-    R.contact_slope_std = ms.std;
-    R.contact_slope_pdf = histogram(R.slope_samples, R.slope_weights, o.bins);
-  };
-  Status after = Ok{};
   if (after_faces && *after_faces) {
-    if (util::thread_count(o.threads, 2) > 1)
-      util::run_workers(
-          1, [&](unsigned) { after = (*after_faces)(R); }, tail);
-    else {
-      after = (*after_faces)(R);
-      tail();
+    if (auto st = (*after_faces)(R); !st) return st.error();
+  }
+
+  // Extremes: theta at each offset plus the one-sided slopes next to it (inside the range).
+  R.theta_max_forward = -kInf;
+  R.theta_max_backward = -kInf;
+  for (std::size_t i = 0; i < n; ++i) {
+    double hi = R.theta[i], lo = R.theta_min[i];
+    if (i > 0) {
+      hi = std::max(hi, R.theta_left[i]);
+      lo = std::min(lo, R.theta_left[i]);
+    }
+    if (i + 1 < n) {
+      hi = std::max(hi, R.theta_right[i]);
+      lo = std::min(lo, R.theta_right[i]);
+    }
+    if (hi > R.theta_max_forward) {
+      R.theta_max_forward = hi;
+      R.offset_at_forward = offs_r[i];
+    }
+    if (-lo > R.theta_max_backward) {
+      R.theta_max_backward = -lo;
+      R.offset_at_backward = offs_r[i];
+    }
+  }
+
+  // Contact-slope distribution, one value per offset. Exact mode: each interval between
+  // events is represented by the slopes of h at its two ends, split at the crossing of the two
+  // lines (exact when the interval holds at most two linear pieces). Sampled mode: theta(s).
+  if (R.exact && o.slopes == SlopeMethod::Exact) {
+    // At most two values per interval: reserved at once (no copy of a half-grown vector; pages
+    // are taken only as the values are written).
+    R.slope_samples.reserve(2 * n);
+    R.slope_weights.reserve(2 * n);
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      const double s0 = offs_r[i], s1 = offs_r[i + 1], L = s1 - s0;
+      const double a0 = R.theta_right[i], a1 = R.theta_left[i + 1];
+      const bool w0 = std::abs(a0) < kHalfPi, w1 = std::abs(a1) < kHalfPi;
+      if (!w0 && !w1) continue;
+      if (!w1 || (w0 && std::abs(a0 - a1) < 1e-12)) {
+        R.slope_samples.push_back(a0);
+        R.slope_weights.push_back(L);
+        continue;
+      }
+      if (!w0) {
+        R.slope_samples.push_back(a1);
+        R.slope_weights.push_back(L);
+        continue;
+      }
+      const double t0 = std::tan(a0), t1 = std::tan(a1);
+      double sc = (t0 == t1) ? s1 : (R.lift[i + 1] - R.lift[i] + t0 * s0 - t1 * s1) / (t0 - t1);
+      sc = std::clamp(sc, s0, s1);
+      R.slope_samples.push_back(a0);
+      R.slope_weights.push_back(sc - s0);
+      R.slope_samples.push_back(a1);
+      R.slope_weights.push_back(s1 - sc);
     }
   } else {
-    tail();
+    R.slope_samples.reserve(n);
+    R.slope_weights.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      R.slope_samples.push_back(R.theta[i]);
+      R.slope_weights.push_back(1.0);
+    }
   }
-  if (!after) return after.error();
+  const MeanStd ms = weighted_mean_std(R.slope_samples, R.slope_weights);
+  R.contact_slope_mean = ms.mean;
+  R.contact_slope_std = ms.std;
+  R.contact_slope_pdf = histogram(R.slope_samples, R.slope_weights, o.bins);
   return R;
 }
 
