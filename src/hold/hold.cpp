@@ -1531,7 +1531,7 @@ double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
 // Exact mode: each side from 1.55 d (end_reached()'s need on the three benchmark pairs of issue
 // 32: 1.50 and 1.52 d for H = 0.8, 1.32 and 2.58 d for H = 0.3, 1.03 and 1.47 d for the WM pair;
 // a round re-plans the wide range and rebuilds the local curves), widened by what end_reached()
-// finds short and d/20 while it says the process may reach the cut end (a side that passed is
+// finds short and d/5 while it says the process may reach the cut end (a side that passed is
 // not checked again); the offsets are those a signature over the wider range lists, so the
 // curve, and every number, is that of a lift computed over it. Sampled offsets: the widened
 // range and its grid as analyse_hold_widened takes them (2 d on both sides, doubled on the whole
@@ -1634,9 +1634,10 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       passed_max = !more_max;
       passed_min = !more_min;
       if (!more_max && !more_min) break;
-      // Farther by what the check found short, and d/20 (a chain may go on: another round).
-      if (more_max) m_hi += short_max + 0.05 * d;
-      if (more_min) m_lo += short_min + 0.05 * d;
+      // Farther by what the check found short, and d/5 (a chain may go on: another round, which
+      // costs about as much as 0.4 d of lift on one side).
+      if (more_max) m_hi += short_max + 0.2 * d;
+      if (more_min) m_lo += short_min + 0.2 * d;
     }
     return Ok{};
   };
