@@ -193,7 +193,7 @@ struct SignatureWithHold {
 /// signature() and analyse_hold() in one pass over the lift: the faces are prepared once, the
 /// signature's offsets are evaluated once, and the hold analysis reads them, with the lift
 /// beyond the signature's range evaluated (with the same faces) only on the sides and as far
-/// as the process reaches (non-periodic: each side from 1.75 d, widened while a run-away may leave
+/// as the process reaches (non-periodic: each side from 1.55 d, widened while a run-away may leave
 /// a stop, or a rest lies, less than d before a cut end; the blocks' overlap is the last end).
 /// The lift's offsets beyond the range are those that a signature over the wider range lists
 /// (every event; with `offsets` = N or sampled offsets, the wider range's own grid, from 2 d on

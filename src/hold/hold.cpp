@@ -744,6 +744,12 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
   // run-away ran off the end less than d after its stop (pass 2), inertial angle (pass 3).
   std::vector<std::size_t> bv;
   std::vector<double> bw, bslope, binert;
+  // At most one basin per piece in the drop range, reserved at once (pages are taken as written).
+  {
+    const std::size_t pieces = p.upper(b) - std::min(p.upper(b), piece_of(p, a)) + 1;
+    bv.reserve(pieces);
+    bw.reserve(pieces);
+  }
   std::vector<std::uint8_t> bnear;
   struct Flat {
     double weight;
@@ -981,6 +987,12 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
   std::vector<std::uint8_t> kink(n, 0);  // kink[i]: a meeting point between points i - 1 and i
   util::parallel_chunks(n, T, [&](unsigned c, std::size_t i0, std::size_t i1) {
     Chunk& ch = chunks[c];
+    // At most one meeting point per interval: reserved at once (pages are taken only as they are
+    // written; no copy of a half-grown vector beside the new one).
+    if (slopes) {
+      ch.kx.reserve(i1 - i0);
+      ch.kh.reserve(i1 - i0);
+    }
     LiftPoint prev = i0 > 0 ? get(i0 - 1) : LiftPoint{};
     for (std::size_t i = i0; i < i1; ++i) {
       const LiftPoint q = get(i);
@@ -1492,9 +1504,12 @@ double end_reached_on(const V& p, double b, double d) {
   };
   for (std::size_t kk = n; kk-- > 0;) {
     const double xk = p.X(kk);
-    if (xk <= rb - d) break;
+    // A flat piece that starts at or before rb - d but reaches past it: its drops in (rb - d, rb]
+    // slip first to its next record, which may lie past rb with no vertex of the window before it.
+    const bool flat_into = xk <= rb - d && p.M(kk) == 0 && p.X(kk + 1) > rb - d;
+    if (xk <= rb - d && !flat_into) break;
     const Chain c = records.push(p, kk, d);
-    if (xk <= rb) off_near(c);
+    if (xk <= rb && !flat_into) off_near(c);
     if (xk <= rb && p.M(kk) == 0) {  // a flat piece: drops on it slip first to its next record
       const std::int64_t j = next_record(p, kk);
       if (j < 0) continue;  // drops there run off the end from at most rb, which is d before it
@@ -1502,6 +1517,7 @@ double end_reached_on(const V& p, double b, double d) {
       for (const RecordStack::Entry& e : records.entries())
         if (e.k == static_cast<std::size_t>(j)) off_near(e.c);
     }
+    if (flat_into) break;
   }
   return short_by;
 }
@@ -1512,11 +1528,14 @@ double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
 
 // The one pass: the signature over its range, then, with the same prepared faces, the lift
 // beyond it on the sides the process reaches, then (the faces let go) the analysis.
-// Exact mode: each side from 1.75 d (the three benchmark pairs of issue 32 need 1.0 to 2.6 d;
-// a round costs more than 0.3 d of lift), widened by what end_reached() finds short and d/4
-// while it says the process may reach the cut end; the offsets are those a signature over the wider range lists, so the
-// curve, and every number, is that of a lift computed over it. Sampled offsets: the widened range and its grid as
-// analyse_hold_widened takes them (2 d on both sides, doubled on the whole analysis).
+// Exact mode: each side from 1.55 d (end_reached()'s need on the three benchmark pairs of issue
+// 32: 1.50 and 1.52 d for H = 0.8, 1.32 and 2.58 d for H = 0.3, 1.03 and 1.47 d for the WM pair;
+// a round re-plans the wide range and rebuilds the local curves), widened by what end_reached()
+// finds short and d/5 while it says the process may reach the cut end (a side that passed is
+// not checked again); the offsets are those a signature over the wider range lists, so the
+// curve, and every number, is that of a lift computed over it. Sampled offsets: the widened
+// range and its grid as analyse_hold_widened takes them (2 d on both sides, doubled on the whole
+// analysis).
 Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, const SignatureOptions& so,
                                    const HoldOptions& hold, double start, Profile* take_lower, Profile* take_upper) {
   auto setup = hold_setup(lower, upper, so, hold, start);
@@ -1545,18 +1564,26 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   std::vector<std::size_t> ext_dropped;
   double cut_lo = 0, cut_hi = 0;
   // Builds the curve from R and the extension, analyses it; the side(s) the process reached.
+  // The points beyond the range are let go once the curve holds them (the sampled path's next
+  // round evaluates its own).
   auto build_and_analyse = [&](const SignatureResult& R) -> Result<Reach> {
-    MergedPoints mp(R, ext_points, ext_dropped);
-    auto curve = merged_curve(mp, 0, mp.size(), util::thread_count(so.threads, 2));
-    if (!curve) return curve.error();
-    out.curve = std::move(*curve);
+    {
+      MergedPoints mp(R, ext_points, ext_dropped);
+      auto curve = merged_curve(mp, 0, mp.size(), util::thread_count(so.threads, 2));
+      if (!curve) return curve.error();
+      out.curve = std::move(*curve);
+    }
+    ext_points = detail::LiftPoints{};
     auto reach = analyse_curve(out, S.ho, start);
     return reach;
   };
   const detail::WithLift with_lift = [&](const SignatureResult& R, const detail::LiftExtender& extend) -> Status {
     if (S.period > 0) return Ok{};  // the signature's own lift: exactly one period
     const bool sampled = !R.exact || so.offsets > 0;
-    double m_lo = sampled ? 2 * d : 1.75 * d, m_hi = m_lo;
+    double m_lo = sampled ? 2 * d : 1.55 * d, m_hi = m_lo;
+    // Exact mode: a side whose check passed is not widened again, and the points near its end do
+    // not change when the other side is widened: it is not checked again.
+    bool passed_max = false, passed_min = false;
     for (;;) {
       cut_lo = hold_lift_range(S.a, S.b, m_lo, S.lower_len, S.upper_len).min;
       cut_hi = hold_lift_range(S.a, S.b, m_hi, S.lower_len, S.upper_len).max;
@@ -1589,29 +1616,34 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       const std::size_t i_lo = std::min(nw, w_lo + 2);
       const std::size_t w_hi = std::max(w_lo, mp.first_at(S.b - d, true));
       const std::size_t i_hi = w_hi > 2 ? w_hi - 2 : 0;
-      // One end after the other (each curve on the threads; one local curve held at a time).
+      // One end after the other (each curve on the threads; one local curve held at a time:
+      // the two at once cost more memory than the serial checks' time is worth).
       const unsigned threads = util::thread_count(so.threads, 2);
-      if (cut_max) {
+      if (cut_max && !passed_max) {
         auto c = merged_curve(mp, i_hi, nw, threads);
         if (!c) return c.error();
         short_max = end_reached(*c, false, S.b, d);
       }
-      if (cut_min) {
+      if (cut_min && !passed_min) {
         auto c = merged_curve(mp, 0, i_lo, threads);
         if (!c) return c.error();
         short_min = end_reached(*c, true, -S.a, d);
       }
       more_max = short_max > 0;
       more_min = short_min > 0;
+      passed_max = !more_max;
+      passed_min = !more_min;
       if (!more_max && !more_min) break;
-      // Farther by what the check found short, and a quarter of d (a chain may go on).
-      if (more_max) m_hi += short_max + 0.25 * d;
-      if (more_min) m_lo += short_min + 0.25 * d;
+      // Farther by what the check found short, and d/5 (a chain may go on: another round, which
+      // costs about as much as 0.4 d of lift on one side).
+      if (more_max) m_hi += short_max + 0.2 * d;
+      if (more_min) m_lo += short_min + 0.2 * d;
     }
     return Ok{};
   };
   // The analysis once the faces are let go, before the signature's slope distribution is
-  // computed (so that the two do not hold their memory at the same time).
+  // computed (so that the two do not hold their memory at the same time: run side by side, on
+  // the H = 0.3 pair of issue 32, they took 72 MB more than one after the other).
   const detail::AfterFaces after_faces = [&](const SignatureResult& R) -> Status {
     if (S.period > 0) {
       out.events = R.offset.size();
@@ -1624,7 +1656,6 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     } else if (!analysed) {
       auto reach = build_and_analyse(R);
       if (!reach) return reach.error();
-      ext_points = detail::LiftPoints{};
       if ((reach->max && cut_hi < whole.max) || (reach->min && cut_lo > whole.min)) {
         // The local end checks let through a lift that the whole analysis finds too short (seen
         // on exactly sampled grooves): with the profiles still at hand, the two-lift path

@@ -1255,6 +1255,10 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
   // events is represented by the slopes of h at its two ends, split at the crossing of the two
   // lines (exact when the interval holds at most two linear pieces). Sampled mode: theta(s).
   if (R.exact && o.slopes == SlopeMethod::Exact) {
+    // At most two values per interval: reserved at once (no copy of a half-grown vector; pages
+    // are taken only as the values are written).
+    R.slope_samples.reserve(2 * n);
+    R.slope_weights.reserve(2 * n);
     for (std::size_t i = 0; i + 1 < n; ++i) {
       const double s0 = offs_r[i], s1 = offs_r[i + 1], L = s1 - s0;
       const double a0 = R.theta_right[i], a1 = R.theta_left[i + 1];
@@ -1279,6 +1283,8 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
       R.slope_weights.push_back(s1 - sc);
     }
   } else {
+    R.slope_samples.reserve(n);
+    R.slope_weights.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
       R.slope_samples.push_back(R.theta[i]);
       R.slope_weights.push_back(1.0);

@@ -508,3 +508,63 @@ TEST(Hold, EqualSlopesAreEqualOnACurveFarFromTheOrigin) {
     EXPECT_EQ(dist->forward.basins.hold[i], one->forward.hold_angle) << i;
   }
 }
+
+// A flat stretch of the lift that starts more than d before the end of the drop range and runs
+// past it: the drops near the end slip first to a ramp just beyond the range, and from it a chain
+// of short slips (ramps 0.8 d apart, each steeper) runs farther than the first lift beyond the
+// range. The one pass's end check must see that chain (it once read only the vertices within d
+// of the end, none here): signature_with_hold on moved profiles (the CLI's way, which cannot fall
+// back to the two-lift analysis) failed with "internal error: the lift beyond the range was cut
+// short". Both overloads must agree with the analysis of the lift over the whole overlap.
+TEST(Hold, AFlatStretchIntoTheEndOfTheDropRangeIsFollowedPastIt) {
+  const double d = 0.005;  // the default run-away distance: a tenth of the drop range [0, 0.05]
+  Profile lower;
+  lower.x = {0.0};
+  lower.z = {0.0};
+  const std::vector<double> ramps = {0.02, 0.03, 0.04, 0.05, 0.06};
+  for (std::size_t k = 0; k < ramps.size(); ++k) {
+    const double xk = 0.1 + 0.2 * d + 0.8 * d * static_cast<double>(k);  // the tip is over 0.05 + s
+    for (auto [x, z] : {std::pair{xk, 0.0}, std::pair{xk + 0.0005, ramps[k] * 0.0005}, std::pair{xk + 0.001, 0.0}}) {
+      lower.x.push_back(x);
+      lower.z.push_back(z);
+    }
+  }
+  lower.x.push_back(0.2);
+  lower.z.push_back(0.0);
+  Profile tent;
+  tent.x = {0, 0.05, 0.1};
+  tent.z = {0, 0.01, 0};
+  const Profile upper = rotate180(tent);
+  HoldOptions o;
+  auto ref = signature_with_hold(lower, upper, SignatureOptions{}, o);
+  ASSERT_TRUE(ref.ok()) << ref.error().message;
+  Profile lo = lower, up = upper;
+  auto moved = signature_with_hold(std::move(lo), std::move(up), SignatureOptions{}, o);
+  ASSERT_TRUE(moved.ok()) << moved.error().message;
+  EXPECT_DOUBLE_EQ(moved->hold.runaway_distance, d);
+  // The lift over the whole overlap, analysed over the same drops.
+  SignatureOptions whole;
+  whole.offset_min = -0.1 * (1 - 1e-9);
+  whole.offset_max = 0.2 * (1 - 1e-9);
+  auto sig = signature(lower, upper, whole);
+  ASSERT_TRUE(sig.ok()) << sig.error().message;
+  auto c = lift_curve(*sig);
+  ASSERT_TRUE(c.ok());
+  HoldOptions ow = o;
+  ow.runaway_distance = d;
+  ow.drop_min = 0;
+  ow.drop_max = 0.05;
+  auto w = hold_distribution(*c, ow);
+  ASSERT_TRUE(w.ok());
+  // The drops within 0.8 d of the end slip to the first ramp and creep up the chain to the last
+  // (steepest) ramp, which holds them (nothing steeper follows).
+  EXPECT_NEAR(w->forward.hold.max, std::atan(0.06), 1e-9);
+  for (const SignatureWithHold* r : {&*ref, &*moved}) {
+    EXPECT_NEAR(r->hold.distribution.forward.hold.max, std::atan(0.06), 1e-9);
+    EXPECT_NEAR(r->hold.distribution.forward.hold.mean, w->forward.hold.mean, 1e-12);
+    EXPECT_NEAR(r->hold.distribution.forward.hold.std, w->forward.hold.std, 1e-12);
+    EXPECT_NEAR(r->hold.distribution.backward.hold.mean, w->backward.hold.mean, 1e-12);
+    EXPECT_NEAR(r->hold.distribution.forward.inertial.mean, w->forward.inertial.mean, 1e-12);
+    EXPECT_EQ(r->hold.distribution.forward.basins.rest.size(), w->forward.basins.rest.size());
+  }
+}
