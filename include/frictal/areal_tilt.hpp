@@ -62,6 +62,11 @@ struct ArealTiltOptions {
   /// Local non-viscous damping (Cundall): a force against each joint's velocity, this fraction of
   /// its unbalanced force, in [0, 1) (unitless).
   double local_damping = 0.9;
+  /// Viscous damping per unit mass that replaces the local damping while the block settles at
+  /// zero tilt, the block put down gently: an overdamped descent from the drop (its velocity
+  /// tends to the unbalanced force over this), the prediction's steepest descent as it grows; 0:
+  /// the drop settles under the local damping as every increment (unit: 1/scaled s).
+  double settle_damping = 0;
   double relax_time = 0.5;        ///< longest relaxation per increment (unit: scaled s)
   double force_tolerance = 1e-4;  ///< at rest: unbalanced force below this fraction of the weight (unitless)
   double speed_tolerance = 1e-5;  ///< at rest: speed below this (unit: scaled m/s)

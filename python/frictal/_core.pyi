@@ -168,6 +168,7 @@ def areal_tilt(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: flo
         mujoco_contact_time [scaled s]: Contact softness: solref time constant, at least 2 time steps (default 0.0002; valid > 0)
         damping [1/scaled s]: Viscous joint damping per unit mass (default 0; valid >= 0)
         local_damping: Local non-viscous (Cundall) damping: a force against each joint's velocity, this fraction of its unbalanced force (default 0.9; valid [0, 1))
+        settle_damping [1/scaled s]: Viscous damping per unit mass in place of the local damping while the dropped block settles at zero tilt (an overdamped descent; the prediction's steepest descent as it grows); 0: the local damping (default 0; valid >= 0)
         relax_chunk [scaled s]: Longest relaxation per rest test; an increment waits for up to 40 of them before it counts as unsettled (default 0.5; valid > 0)
         force_tolerance: At rest: unbalanced force below this fraction of the weight (default 0.0001; valid > 0)
         speed_tolerance [scaled m/s]: At rest: speed below this (default 1e-05; valid > 0)

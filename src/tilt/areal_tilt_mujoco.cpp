@@ -200,6 +200,9 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   if (o.rest_steps < 1) return make_error(fmt::format("areal_tilt: rest steps {}: expected >= 1", o.rest_steps));
   if (!(o.local_damping >= 0 && o.local_damping < 1))
     return make_error(fmt::format("areal_tilt: local damping {}: expected a fraction in [0, 1)", o.local_damping));
+  if (!(o.settle_damping >= 0) || bad(o.settle_damping))
+    return make_error(
+        fmt::format("areal_tilt: settle damping {}: expected a finite number >= 0 (1/scaled s)", o.settle_damping));
   if (!(o.force_tolerance > 0) || !(o.speed_tolerance > 0) || bad(o.force_tolerance) || bad(o.speed_tolerance))
     return make_error(fmt::format("areal_tilt: force tolerance {} and speed tolerance {}: expected finite numbers > 0",
                                   o.force_tolerance, o.speed_tolerance));
@@ -304,10 +307,11 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   out.sphere_radius = r / S;
   const double grav = 9.81;
   // Relaxes at tilt beta until at rest (unbalanced force and speed small), until the block has
-  // gone D along d from `u_stop`, or for relax_time; returns whether it came to rest.
+  // gone D along d from `u_stop`, or for relax_time; returns whether it came to rest. `alpha`:
+  // the local damping (0 while the joints' viscous damping settles the drop).
   constexpr double kDriftDamping = 100;   // per scaled s (block mass 1)
   double last_force = 0, last_speed = 0;  // at the end of the last relaxation (scaled)
-  auto relax = [&](double beta, double u_stop, bool& far) {
+  auto relax = [&](double beta, double u_stop, bool& far, double alpha) {
     m->opt.gravity[0] = grav * std::sin(beta) * dxv;
     m->opt.gravity[1] = grav * std::sin(beta) * dyv;
     m->opt.gravity[2] = -grav * std::cos(beta);
@@ -328,7 +332,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
         const double u = d->qfrc_constraint[q] - d->qfrc_bias[q];
         d->qfrc_applied[q] = balanced          ? -kDriftDamping * d->qvel[q]
                              : d->qvel[q] == 0 ? 0.0
-                                               : -o.local_damping * std::abs(u) * (d->qvel[q] > 0 ? 1 : -1);
+                                               : -alpha * std::abs(u) * (d->qvel[q] > 0 ? 1 : -1);
       }
       mj_step(m, d);
       ++out.steps;
@@ -362,9 +366,21 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   constexpr int kMaxWaits = 40;  // relaxations at one tilt before it counts as unsettled
   {
     // At zero tilt the block slides into the basin that holds its drop: as long as it takes.
+    // With settle_damping c the joints' viscous damping (implicit in MuJoCo's Euler step)
+    // replaces the local damping meanwhile: the block put down gently, an overdamped descent at
+    // the speed (unbalanced force) / c, whose path tends to the steepest descent of the prediction
+    // as c grows (docs/mujoco.md). Being slower by c, it may wait c / 20 times as many chunks.
+    const bool viscous = o.settle_damping > 0;
+    if (viscous)
+      for (int q = 0; q < nv; ++q) m->dof_damping[q] = o.settle_damping;
+    const int waits =
+        viscous ? int(std::min(1e6, std::ceil(kMaxWaits * std::max(1.0, o.settle_damping / 20)))) : kMaxWaits;
     bool rested = false;
-    for (int w = 0; w < kMaxWaits && !rested; ++w) rested = relax(0.0, std::numeric_limits<double>::infinity(), far);
+    for (int w = 0; w < waits && !rested; ++w)
+      rested = relax(0.0, std::numeric_limits<double>::infinity(), far, viscous ? 0.0 : o.local_damping);
     if (!rested) ++out.unsettled;
+    if (viscous)
+      for (int q = 0; q < nv; ++q) m->dof_damping[q] = o.damping;
     record(0.0, rested);
   }
   if (d->ncon == 0)
@@ -403,7 +419,7 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       // unbalanced force is not small): the tilt waits until it rests or has run D, up to
       // kMaxWaits relaxations, so that the drag does not let the tilt grow during a run.
       bool rest = false;
-      for (int w = 0; w < kMaxWaits && !rest && !far; ++w) rest = relax(beta, u_stop, far);
+      for (int w = 0; w < kMaxWaits && !rest && !far; ++w) rest = relax(beta, u_stop, far, o.local_damping);
       record(beta, rest);
       if (far) {
         out.steering =

@@ -87,6 +87,12 @@ const std::vector<B>& table() {
                                    true),
                                  FRICTAL_MEMBER(local_damping)),
           bind<ArealTiltOptions>(
+              F("settle_damping", "1/scaled s", 0, Lo::Closed, kInf,
+                "Viscous damping per unit mass in place of the local damping while the dropped block settles at "
+                "zero tilt (an overdamped descent; the prediction's steepest descent as it grows); 0: the local "
+                "damping"),
+              FRICTAL_MEMBER(settle_damping)),
+          bind<ArealTiltOptions>(
               F("relax_chunk", "scaled s", 0, Lo::Open, kInf,
                 "Longest relaxation per rest test; an increment waits for up to 40 of them before it counts as "
                 "unsettled"),

@@ -569,3 +569,65 @@ TEST(ArealTiltHold, TheSpreadFindsTheSeatBeyondAThinWall) {
   EXPECT_DOUBLE_EQ(tight->high, h->hold_angle);
   EXPECT_FALSE(frictal::areal_tilt_hold_spread(f, g, t, *h, -a).ok());
 }
+
+TEST(ArealTilt, TheSettleDampingPutsTheBlockDownInTheBasinOfSteepestDescent) {
+  // A profile across y (the lower map constant along y), one sphere, locked along d = +x, nodes a
+  // apart. Slopes per cell: down (-0.2) from node 0 to basin A at node 10, a low wall (+0.02, one
+  // cell), down (-0.2) again to basin B at node 16, a wall (+0.4) to node 21, then level. Dropped
+  // at node 1 at zero tilt, the steepest descent (the quasi-static block, the prediction) stops in
+  // A: the wall goes up from there. A block that arrives with momentum climbs over the low wall:
+  // under Cundall's local damping alpha it keeps about (1 - alpha) / (1 + alpha) of the 1.8 a it
+  // fell as height it can climb, 0.095 a at alpha = 0.9, more than the wall's 0.02 a, and rests in
+  // B. With settle_damping the drop settles by an overdamped (viscous) descent instead: in A.
+  const double a = 1e-5;
+  std::vector<double> slope(10, -0.2);
+  slope.push_back(0.02);
+  slope.insert(slope.end(), 5, -0.2);
+  slope.insert(slope.end(), 5, 0.4);
+  const std::size_t n = 30;
+  std::vector<double> z(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) z[i] = z[i - 1] + a * (i - 1 < slope.size() ? slope[i - 1] : 0.0);
+  frictal::Map f;
+  f.nx = n;
+  f.ny = 3;
+  f.dx = f.dy = a;
+  for (std::size_t j = 0; j < f.ny; ++j) f.heights.insert(f.heights.end(), z.begin(), z.end());
+  const frictal::Map g = one_node(0, a, 0);
+  frictal::ArealTiltOptions t;
+  t.turn_over_upper = false;
+  t.lock_lateral = true;
+  t.sphere_radius = 0.05 * a;
+  t.runaway_distance = 6 * a;
+  t.start_offset = {a, 0};
+  // Zero tilt is what is tested: one coarse increment of 1 deg, then give up.
+  t.coarse_tilt_step = t.tilt_step = 0.5 * std::numbers::pi / 180;
+  t.max_tilt = 1.0 * std::numbers::pi / 180;
+  t.settle_damping = 100;
+  auto gentle = frictal::areal_tilt(f, g, t);
+  if (!frictal::mujoco_available()) {
+    ASSERT_FALSE(gentle.ok());
+    EXPECT_EQ(gentle.error().code, frictal::ErrorCode::NotAvailable);
+    return;
+  }
+  ASSERT_TRUE(gentle.ok()) << gentle.error().message;
+  EXPECT_EQ(gentle->unsettled, 0);
+  EXPECT_NEAR(gentle->rest_offset[0], 10 * a, 0.1 * a);  // A
+  // The steepest descent of the prediction from the same drop stops there too.
+  auto hold = frictal::areal_tilt_hold(f, g, t);
+  ASSERT_TRUE(hold.ok()) << hold.error().message;
+  EXPECT_NEAR(hold->rest_offset[0], 10 * a, 0.1 * a);
+  // Under the local damping alone (the default) the dropped block carries its momentum into B.
+  t.settle_damping = 0;
+  auto dropped = frictal::areal_tilt(f, g, t);
+  ASSERT_TRUE(dropped.ok()) << dropped.error().message;
+  EXPECT_GT(dropped->rest_offset[0], 11 * a);
+  EXPECT_NEAR(dropped->rest_offset[0], 16 * a, 0.1 * a);  // B
+  // A settle damping that is not a finite number >= 0 is refused, naming it.
+  t.settle_damping = -1;
+  auto bad = frictal::areal_tilt(f, g, t);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("settle damping -1"), std::string::npos) << bad.error().message;
+  auto badset = frictal::make_areal_tilt_options({{"settle_damping", -1.0}});
+  ASSERT_FALSE(badset.ok());
+  EXPECT_NE(badset.error().message.find("settle_damping"), std::string::npos) << badset.error().message;
+}
