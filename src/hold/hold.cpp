@@ -35,6 +35,31 @@ constexpr double kHalfPi = std::numbers::pi / 2;
 // exact value (docs/analysis.md, "Equal slopes").
 constexpr double kSlopeTolerance = 4 * std::numeric_limits<double>::epsilon();
 
+// How far apart two slopes may come out that are equal in exact arithmetic: the rounding bound of
+// piece j's slope raw = (h[j+1] - h[j]) / dx as a difference quotient of the stored vertices,
+// whose values carry a few ulps each (docs/analysis.md, "Equal slopes"). Same unit as the slope.
+inline double slope_rounding(const double* x, const double* h, std::size_t j, double raw, double dx) {
+  return kSlopeTolerance *
+         ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(raw) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+}
+
+// The first vertex i of a view (View, LinearView) with X(i) > x0 (n() + 1 if none), as
+// std::upper_bound.
+template <class V>
+std::size_t first_vertex_above(const V& v, double x0) {
+  std::size_t lo = 0, len = v.n() + 1;
+  while (len > 0) {
+    const std::size_t half = len / 2;
+    if (!(x0 < v.X(lo + half))) {
+      lo += half + 1;
+      len -= half + 1;
+    } else {
+      len = half;
+    }
+  }
+  return lo;
+}
+
 // A read-only view of a LiftCurve as the function the forward process runs on: mirrored
 // (x -> -x, the backward direction) and/or unrolled over copies c0 .. c0 + copies - 1 of a
 // period. Values are computed exactly as copies of the arrays would hold them: the slopes are
@@ -71,15 +96,11 @@ struct View {
     return i == n() ? bh(m) : bh(i % m);
   }
   double M(std::size_t k) const { return period == 0 ? bm(k) : bm(k % m); }
-  // How far apart two slopes may come out that are equal in exact arithmetic: the rounding
-  // bound of M(k) as a difference quotient of the stored vertices, whose values carry a few
-  // ulps each (docs/analysis.md, "Equal slopes"). Same unit as M.
+  // The rounding bound of M(k) (slope_rounding).
   double tol(std::size_t k) const {
     const std::size_t j = bj(period == 0 ? k : k % m);
     const double dx = x[j + 1] - x[j];
-    const double mk = (h[j + 1] - h[j]) / dx;
-    return kSlopeTolerance *
-           ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(mk) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+    return slope_rounding(x, h, j, (h[j + 1] - h[j]) / dx, dx);
   }
   // M(k) and tol(k) at once (one division fewer; the same values).
   void slope_tol(std::size_t k, double& mk, double& tk) const {
@@ -87,27 +108,14 @@ struct View {
     const double dx = x[j + 1] - x[j];
     const double raw = (h[j + 1] - h[j]) / dx;
     mk = sx * raw;
-    tk = kSlopeTolerance *
-         ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(raw) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+    tk = slope_rounding(x, h, j, raw, dx);
   }
   // Piece j is steeper than piece k: by more than k's rounding bound (the records rule).
   bool steeper(std::size_t j, std::size_t k) const { return M(j) > M(k) + tol(k); }
   // h at x (X(0) <= x <= X(n)), on piece k.
   double at(std::size_t k, double x0) const { return H(k) + M(k) * (x0 - X(k)); }
   // The first vertex i with X(i) > x (n + 1 if none), as std::upper_bound.
-  std::size_t upper(double x0) const {
-    std::size_t lo = 0, len = n() + 1;
-    while (len > 0) {
-      const std::size_t half = len / 2;
-      if (!(x0 < X(lo + half))) {
-        lo += half + 1;
-        len -= half + 1;
-      } else {
-        len = half;
-      }
-    }
-    return lo;
-  }
+  std::size_t upper(double x0) const { return first_vertex_above(*this, x0); }
 };
 
 View make_view(const LiftCurve& c, bool mirrored) {
@@ -150,32 +158,17 @@ struct LinearView {
   double tol(std::size_t k) const {
     const std::size_t j = bj(k);
     const double dx = x[j + 1] - x[j];
-    const double mk = (h[j + 1] - h[j]) / dx;
-    return kSlopeTolerance *
-           ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(mk) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+    return slope_rounding(x, h, j, (h[j + 1] - h[j]) / dx, dx);
   }
   void slope_tol(std::size_t k, double& mk, double& tk) const {
     const std::size_t j = bj(k);
     const double dx = x[j + 1] - x[j];
     const double raw = (h[j + 1] - h[j]) / dx;
     mk = Mirrored ? -1.0 * raw : raw;
-    tk = kSlopeTolerance *
-         ((std::abs(h[j]) + std::abs(h[j + 1])) + std::abs(raw) * (std::abs(x[j]) + std::abs(x[j + 1]))) / dx;
+    tk = slope_rounding(x, h, j, raw, dx);
   }
   double at(std::size_t k, double x0) const { return H(k) + M(k) * (x0 - X(k)); }
-  std::size_t upper(double x0) const {
-    std::size_t lo = 0, len = m + 1;
-    while (len > 0) {
-      const std::size_t half = len / 2;
-      if (!(x0 < X(lo + half))) {
-        lo += half + 1;
-        len -= half + 1;
-      } else {
-        len = half;
-      }
-    }
-    return lo;
-  }
+  std::size_t upper(double x0) const { return first_vertex_above(*this, x0); }
 };
 
 // Runs f(view) with the fastest view of the curve that gives View's values.

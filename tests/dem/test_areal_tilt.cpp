@@ -96,6 +96,19 @@ frictal::Map v_valley(double a, double sigma, double psi) {
   return f;
 }
 
+// A lower map of n x 3 nodes a apart, constant along y: along x it rises by slope[k] a over cell
+// k (by `rest` a after the listed slopes), from z = 0 at node 0.
+frictal::Map profile_across_y(const std::vector<double>& slope, double rest, std::size_t n, double a) {
+  std::vector<double> z(n, 0.0);
+  for (std::size_t i = 1; i < n; ++i) z[i] = z[i - 1] + a * (i - 1 < slope.size() ? slope[i - 1] : rest);
+  frictal::Map f;
+  f.nx = n;
+  f.ny = 3;
+  f.dx = f.dy = a;
+  for (std::size_t j = 0; j < f.ny; ++j) f.heights.insert(f.heights.end(), z.begin(), z.end());
+  return f;
+}
+
 frictal::Map one_node(double x, double y, double z) {
   frictal::Map g;
   g.nx = g.ny = 1;
@@ -532,14 +545,7 @@ TEST(ArealTiltHold, TheSpreadFindsTheSeatBeyondAThinWall) {
   // every perturbed end settles back in B: no spread.
   const double a = 1e-5;
   const std::vector<double> slope = {-0.1, -0.1, 0.05, 0.05, -0.2, -0.2, 0.4, -0.2, 0.15, 0.15};
-  const std::size_t n = 40;
-  std::vector<double> z(n, 0.0);
-  for (std::size_t i = 1; i < n; ++i) z[i] = z[i - 1] + a * (i - 1 < slope.size() ? slope[i - 1] : -0.2);
-  frictal::Map f;
-  f.nx = n;
-  f.ny = 3;
-  f.dx = f.dy = a;
-  for (std::size_t j = 0; j < f.ny; ++j) f.heights.insert(f.heights.end(), z.begin(), z.end());
+  const frictal::Map f = profile_across_y(slope, -0.2, 40, a);
   const frictal::Map g = one_node(0, a, 0);
   frictal::ArealTiltOptions t;
   t.turn_over_upper = false;
@@ -584,14 +590,7 @@ TEST(ArealTilt, TheSettleDampingPutsTheBlockDownInTheBasinOfSteepestDescent) {
   slope.push_back(0.02);
   slope.insert(slope.end(), 5, -0.2);
   slope.insert(slope.end(), 5, 0.4);
-  const std::size_t n = 30;
-  std::vector<double> z(n, 0.0);
-  for (std::size_t i = 1; i < n; ++i) z[i] = z[i - 1] + a * (i - 1 < slope.size() ? slope[i - 1] : 0.0);
-  frictal::Map f;
-  f.nx = n;
-  f.ny = 3;
-  f.dx = f.dy = a;
-  for (std::size_t j = 0; j < f.ny; ++j) f.heights.insert(f.heights.end(), z.begin(), z.end());
+  const frictal::Map f = profile_across_y(slope, 0.0, 30, a);
   const frictal::Map g = one_node(0, a, 0);
   frictal::ArealTiltOptions t;
   t.turn_over_upper = false;
