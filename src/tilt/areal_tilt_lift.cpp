@@ -372,17 +372,18 @@ class SphereField {
         const double dd2 = s * s * diag_scale2_;
         const double top_t[2] = {std::max({p00.z, z01, z11}), std::max({p00.z, z11, z10})};
         const double d2_t[2] = {s > 0 ? std::max(d2, dd2) : d2, s < 0 ? std::max(d2, dd2) : d2};
-        bool any = false;
+        // Each triangle's bound on the block's height (best may rise between the two).
+        double reach[2];
         for (int t = 0; t < 2; ++t)
-          any = any || top_t[t] + std::sqrt(std::max(0.0, r2 - d2_t[t])) + kBoundSlack * r_ + base >= best - eps;
-        if (!any) continue;
+          reach[t] = top_t[t] + std::sqrt(std::max(0.0, r2 - d2_t[t])) + kBoundSlack * r_ + base;
+        if (std::max(reach[0], reach[1]) < best - eps) continue;
         ++work;
         const Vertex p10{p00.x + hf_.dx, p00.y, z10};
         const Vertex p01{p00.x, p00.y + hf_.dy, z01};
         const Vertex p11{p00.x + hf_.dx, p00.y + hf_.dy, z11};
         // MuJoCo's two triangles of the cell, split along (i, j)-(i+1, j+1).
         for (int t = 0; t < 2; ++t) {
-          if (top_t[t] + std::sqrt(std::max(0.0, r2 - d2_t[t])) + kBoundSlack * r_ + base < best - eps) continue;
+          if (reach[t] < best - eps) continue;
           double px = 0, py = 0;
           const double top = t == 0 ? triangle_top(p01, p00, p11, cx, cy, r_, px, py)
                                     : triangle_top(p00, p11, p10, cx, cy, r_, px, py);
