@@ -41,7 +41,7 @@ for name, row in (("x3-a.csv", 150), ("x3-b.csv", 450)):
     frictal.write_profile_csv(name, frictal.detrend(frictal.Profile(s * xr, s * zr), "poly:2"))
 PY
 run() {  # name lower upper k_n rule
-  /usr/bin/time -f "%e" -o t.txt nice -n 19 "$F" tilt --lower "$2" --upper "$3" --protocol quasi-static \
+  /usr/bin/time -f "%e" -o t.txt nice -n 19 "$F" tilt --lower "$2" --upper "$3" --detrend none --protocol quasi-static \
     --hold-rotation --spheroradius 2e-5 --normal-stiffness "$4" --contact-rule "$5" --json > r.json 2> /dev/null
   /usr/bin/python3 - "$1" "$4" "$5" <<'PY'
 import json, sys

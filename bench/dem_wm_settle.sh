@@ -16,8 +16,8 @@ wm="wm -D 1.5 --n-max 6 --longest-wavelength 0.01 --length 0.2 --rms-height 1e-5
 echo "| r (m) | simulated, settle 0.1 s | speed at the tilt start (mm/s) | simulated, settle 1 s | warnings (settle 0.1 s) |"
 echo "|---|---|---|---|---|"
 for r in 1e-4 5e-5 2e-5 1e-5 5e-6 1e-6; do
-  nice -n 19 "$F" tilt --lower wm1.csv --upper wm2.csv --spheroradius $r --json > a.json 2> /dev/null
-  nice -n 19 "$F" tilt --lower wm1.csv --upper wm2.csv --spheroradius $r --settle-time 1 --json > b.json 2> /dev/null
+  nice -n 19 "$F" tilt --lower wm1.csv --upper wm2.csv --detrend none --spheroradius $r --json > a.json 2> /dev/null
+  nice -n 19 "$F" tilt --lower wm1.csv --upper wm2.csv --detrend none --spheroradius $r --settle-time 1 --json > b.json 2> /dev/null
   /usr/bin/python3 - "$r" <<'PY'
 import json, sys
 a, b = json.load(open("a.json")), json.load(open("b.json"))

@@ -97,7 +97,10 @@ def main():
                 for tag, binary in (("A", a.a), ("B", a.b)):
                     for mode in ("default", "no-hold"):
                         # --no-hold takes no --start-offset: the plain signature is the reference
-                        argv = ["signature"] + files + ["--json"] + (["--no-hold"] if mode == "no-hold" else extra)
+                        # --detrend none: the same surfaces for builds on either side of the default form's
+                        # change (none until 2026-11-27, then a line; the hold analysis is the same either way)
+                        argv = ["signature"] + files + ["--json", "--detrend", "none"] + \
+                            (["--no-hold"] if mode == "no-hold" else extra)
                         keep = os.path.join(a.data, f"out-{tag}.json") if r == 0 and mode == "default" else None
                         w, m, cpu, err = run_once(pin[0] if pin else binary, (pin[1:] + [binary] if pin else []) + argv,
                                                   3600, keep)

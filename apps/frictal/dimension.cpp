@@ -16,7 +16,7 @@ struct Args {
   double scale_min = 0, scale_max = 0;
   int scales = 0;  // 0: 16 rulers, 12 boxes, 10 PSD bins per decade
   bool json = false;
-  std::string detrend = "none";
+  std::string detrend;  ///< --detrend (empty: form_to_remove's default)
   InputOptions input;
   ConditioningOptions cond;
   GeneratorOptions gen;
@@ -31,7 +31,10 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--min", a->scale_min, "Smallest ruler/box (m) or wavelength (m) of the fit (default: automatic)");
   app.add_option("--max", a->scale_max, "Largest ruler/box (m) or wavelength (m) of the fit (default: automatic)");
   app.add_option("--scales", a->scales, "Number of rulers (default 16) or boxes (12), or PSD bins per decade (10)");
-  app.add_option("--detrend", a->detrend, "Remove none, mean, line or poly:N first");
+  app.add_option("--detrend", a->detrend,
+                 fmt::format("Remove none, mean, line or poly:N first ({}; a file holding a curve that folds over "
+                             "is measured as it is unless asked)",
+                             kDetrendDefaultHelp));
   add_conditioning_options(app, a->cond);
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
@@ -61,7 +64,7 @@ std::function<int()> setup(CLI::App& app) {
       throw UsageError("dimension: give a FILE, or a generator (koch, wm, sawtooth, sine, self-affine, fourier)");
     }
     require(a->scale_min >= 0 && a->scale_max >= 0, "--min and --max must be positive lengths in metres");
-    const Detrend d = unwrap(parse_detrend(a->detrend));
+    const Detrend d = form_to_remove(a->detrend, spec.has_value());
     const Conditioning cond = conditioning(a->cond, d);
     ConditioningRecord record;
     record.form = d;
@@ -81,9 +84,16 @@ std::function<int()> setup(CLI::App& app) {
     FractalFit f;
     if (a->method == "divider" || a->method == "box") {
       Curve c = s.curve;
-      // A curve that folds over (Koch) is measured as it is when no conditioning is asked for.
-      if (d.kind != DetrendKind::None || cond.crop || cond.remove_spikes)
-        c = as_curve(conditioned(unwrap(as_profile(c, a->file))));
+      // A curve that folds over (Koch) is measured as it is when no conditioning is asked for (the
+      // default form included: the record then says none).
+      const bool asked = !a->detrend.empty() || cond.crop || cond.remove_spikes;
+      if (d.kind != DetrendKind::None || cond.crop || cond.remove_spikes) {
+        auto p = as_profile(c, a->file);
+        if (p.ok() || asked)
+          c = as_curve(conditioned(unwrap(std::move(p))));
+        else
+          record.form = Detrend{DetrendKind::None, 0};
+      }
       if (a->method == "divider")
         f = unwrap(divider_dimension(c, {a->scale_min, a->scale_max, a->scales ? a->scales : 16}));
       else

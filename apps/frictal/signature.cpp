@@ -70,7 +70,7 @@ struct Args {
   bool keep_grid = false;
   double start_offset = std::numeric_limits<double>::quiet_NaN();
   bool no_hold = false;
-  std::string detrend = "none";
+  std::string detrend;  ///< --detrend (empty: form_to_remove's default)
   GeneratorOptions gen;
   InputOptions input;        ///< --format, --unit, --spacing, ... of LOWER and UPPER
   ConditioningOptions cond;  ///< --crop, --remove-spikes, --spike-threshold (before --detrend)
@@ -94,8 +94,9 @@ std::function<int()> setup(CLI::App& app) {
                  "N: N equally spaced offsets")
       ->capture_default_str();
   app.add_option("--detrend", a->detrend,
-                 "Remove none, mean, line or poly:N from each measured surface first (form and tilt of the scan)")
-      ->capture_default_str();
+                 fmt::format("Remove none, mean, line or poly:N from each measured surface first (form and tilt of the "
+                             "scan; {})",
+                             kDetrendDefaultHelp));
   add_conditioning_options(app, a->cond);
   app.add_flag("--keep-grid", a->keep_grid,
                "With --offsets N: evaluate that grid even where every event offset costs less (aligned grids)");
@@ -126,10 +127,12 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     require(std::isfinite(a->mu_a) && a->mu_a >= 0,
             fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
-    const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
+    const std::optional<SurfaceSpec> spec = a->gen.spec();
+    const ValueSet pv = si_values(tilt_settings(), a->period_words);
+    if (pv.count("period")) a->period = as_real(pv.at("period"));
+    const Conditioning cond = conditioning(a->cond, form_to_remove(a->detrend, spec.has_value(), a->period > 0));
     const int to_stdout = (a->out == "-") + (a->contacts_out == "-") + (a->pdf_out == "-") + (a->json ? 1 : 0);
     require(to_stdout <= 1, "only one of -o -, --contacts -, --pdf - and --json can write to standard output");
-    const std::optional<SurfaceSpec> spec = a->gen.spec();
     if (spec) {
       require(
           a->lower.empty() && a->upper.empty(),
@@ -154,7 +157,9 @@ std::function<int()> setup(CLI::App& app) {
     // Each profile conditioned (crop, spikes, form: conditioning.hpp), its record kept.
     std::vector<ConditioningRecord> records(a->upper.empty() ? 1 : 2);
     auto conditioned = [&](const Profile& p, const std::string& name, int side) {
-      ConditionedProfile c = unwrap(condition(p, cond, name));
+      Conditioning own = cond;  // a file's own period (as --period) makes the default the mean
+      if (a->detrend.empty() && !spec && p.period) own.form = form_to_remove("", false, true);
+      ConditionedProfile c = unwrap(condition(p, own, name));
       records[std::size_t(side)] = c.record;
       for (Warning& x : check_profile(c.profile, name)) add_warning(side_warnings[side], std::move(x));
       return std::move(c.profile);
@@ -171,8 +176,6 @@ std::function<int()> setup(CLI::App& app) {
                                                   : conditioned(load(a->upper, 1), a->upper, 1);
     for (auto& side : side_warnings)
       for (Warning& w : side) add_warning(warnings, std::move(w));
-    const ValueSet pv = si_values(tilt_settings(), a->period_words);
-    if (pv.count("period")) a->period = as_real(pv.at("period"));
     if (pv.count("spheroradius")) a->spheroradius = as_real(pv.at("spheroradius"));
     const double runaway = pv.count("runaway_distance") ? as_real(pv.at("runaway_distance")) : 0.0;
     require(!a->no_hold || (std::isnan(a->start_offset) && runaway == 0),

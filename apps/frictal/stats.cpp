@@ -12,7 +12,7 @@ namespace {
 struct Args {
   std::string file;
   bool json = false;
-  std::string detrend = "none";
+  std::string detrend;  ///< --detrend (empty: form_to_remove's default)
   std::string psd_out, acf_out, spline_out;
   int spline_samples = 20;
   int bins = 0;
@@ -42,7 +42,10 @@ std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
   app.add_option("file", a->file, "Profile or map file (any readable format; see 'frictal formats')")->required();
   app.add_flag("--json", a->json, "Print one JSON object");
-  app.add_option("--detrend", a->detrend, "Remove none, mean, line (plane for maps) or poly:N before the statistics");
+  app.add_option("--detrend", a->detrend,
+                 fmt::format("Remove none, mean, line (plane for maps) or poly:N before the statistics ({}; none: the "
+                             "heights as read)",
+                             kDetrendDefaultHelp));
   add_conditioning_options(app, a->cond);
   app.add_option("--psd", a->psd_out, "Write the power spectrum (q_rad_per_m,C_m3) of the profile to this CSV");
   app.add_option("--acf", a->acf_out, "Write the autocorrelation (lag_m,acf) of the profile to this CSV");
@@ -59,7 +62,7 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     require(a->bins >= 0 && a->bins <= 100000, "--histograms must be in 0..100000");
     const double tip = a->tip_radius.empty() ? 0.0 : parse_length_option(a->tip_radius, "--tip-radius");
-    const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
+    const Conditioning cond = conditioning(a->cond, form_to_remove(a->detrend, false));
     const SurfaceData data = load_surface(a->file, a->input);
     // The reader's warnings (printed as it read) and the plausibility of what was read (warnings.hpp).
     std::vector<Warning> warnings;

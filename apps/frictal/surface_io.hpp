@@ -113,6 +113,18 @@ inline void add_conditioning_options(CLI::App& app, ConditioningOptions& o) {
       ->type_name("K");
 }
 
+/// What --detrend's help says of the default, the same in every command.
+inline constexpr const char* kDetrendDefaultHelp =
+    "default: line for profiles, plane for maps, mean for a periodic profile; none for a generated surface";
+
+/// The form to remove: --detrend's text `given`, or when it is empty the one default of every
+/// front end (default_form(): a line, a plane for maps, the mean of a periodic profile), none for a
+/// generated surface (exact). UsageError (exit 2) for text parse_detrend refuses.
+inline Detrend form_to_remove(const std::string& given, bool generated, bool periodic = false) {
+  if (!given.empty()) return unwrap(parse_detrend(given));
+  return generated ? Detrend{DetrendKind::None, 0} : default_form(periodic);
+}
+
 /// The conditioning the options ask for, with `form` removed last. UsageError (exit 2) naming the
 /// option for a bad window or threshold, or a threshold without --remove-spikes.
 inline Conditioning conditioning(const ConditioningOptions& o, const Detrend& form) {

@@ -37,8 +37,8 @@ struct TiltOptions {
   GeneratorOptions gen;
   FieldWords settings;
   std::string lower_file, upper_file;
-  std::string detrend = "none";  ///< --detrend (files)
-  ConditioningOptions cond;      ///< --crop, --remove-spikes, --spike-threshold (files)
+  std::string detrend;       ///< --detrend (files; empty: form_to_remove's default)
+  ConditioningOptions cond;  ///< --crop, --remove-spikes, --spike-threshold (files)
   std::string output, frames, vtk, movie;
   bool json = false;
   bool quiet = false;
@@ -127,11 +127,13 @@ int run(TiltOptions& o) {
           "tilt: give a generator (koch, wm, sawtooth, sine, self-affine, fourier) or --lower FILE [--upper FILE]");
     lower = read_file(o.lower_file, data_warnings);
     upper = o.upper_file.empty() ? lower : read_file(o.upper_file, data_warnings);
-    // Each file conditioned as `signature` does it (crop, spikes, form: none unless --detrend
-    // names one), the record stated in the output. A folded curve (not a profile) is taken as
-    // given unless an option asks for conditioning.
-    const Conditioning cond = conditioning(o.cond, unwrap(parse_detrend(o.detrend)));
-    const bool asked = o.detrend != "none" || !o.cond.crop.empty() || o.cond.remove_spikes;
+    // Each file conditioned as `signature` and `predict` do it (crop, spikes, form: the one
+    // default, a line, unless --detrend names one), the record stated in the output. A folded
+    // curve (not a profile) is taken as given unless an option asks for conditioning.
+    const ValueSet asked_settings = si_values(tilt_settings(), o.settings);
+    const bool periodic = asked_settings.count("period") && as_real(asked_settings.at("period")) > 0;
+    const Conditioning cond = conditioning(o.cond, form_to_remove(o.detrend, false, periodic));
+    const bool asked = (!o.detrend.empty() && o.detrend != "none") || !o.cond.crop.empty() || o.cond.remove_spikes;
     std::vector<ConditioningRecord> records;
     for (int i = 0; i < (o.upper_file.empty() ? 1 : 2); ++i) {
       Curve& c = i ? upper : lower;
@@ -367,9 +369,9 @@ std::function<int()> setup(CLI::App& app) {
                  "scaled to the surfaces' length and point spacing (docs/dem.md sec. 5)");
   app.add_option("--upper", o->upper_file, "Upper surface file, as measured (default: the lower one)");
   app.add_option("--detrend", o->detrend,
-                 "Remove none, mean, line or poly:N from each surface file first, as signature (form and tilt of the "
-                 "scan; `predict` removes a line by default)")
-      ->capture_default_str();
+                 fmt::format("Remove none, mean, line or poly:N from each surface file first, as signature and predict "
+                             "(form and tilt of the scan; {})",
+                             kDetrendDefaultHelp));
   add_conditioning_options(app, o->cond);
   add_field_options(app, tilt_settings(), o->settings);
   app.add_option("-o,--output", o->output, "Write the time series CSV here (- for standard output)");

@@ -102,6 +102,15 @@ std::string conditioning_text(const std::vector<ConditioningRecord>& records);
 /// Canonical text of a Detrend ("none", "mean", "line", "plane" for maps, "poly:N").
 std::string detrend_name(const Detrend& d, bool is_map);
 
+/// The form every front end removes from a measured surface unless told otherwise (the CLI's
+/// --detrend, Python's detrend=; docs/analysis.md, "Conditioning"): the least-squares line of a
+/// profile, the plane of a map (both first order), and only the mean of a periodic profile, whose
+/// period a line would break. Generated surfaces are exact and keep their form (front ends pass
+/// DetrendKind::None for them).
+inline Detrend default_form(bool periodic = false) {
+  return periodic ? Detrend{DetrendKind::Mean, 0} : Detrend{DetrendKind::Line, 1};
+}
+
 /// The points the `spikes` rule flags: |z_i - median of its neighbours| > k * Sq, where Sq is the
 /// rms of the (finite) heights about their mean; neighbours: the points up to two places away on
 /// each side for a profile (4; 2 or 3 at the ends; profiles of fewer than 5 points are not

@@ -193,21 +193,40 @@ void frictal_bind_io(py::module_& m) {
   m.def(
       "condition",
       [](const py::object& surface, const py::object& crop, bool remove_spikes, double spike_threshold,
-         const std::string& detrend_text) {
+         const std::optional<std::string>& detrend_text) {
         Conditioning c;
         c.crop = crop_window(crop);
         c.remove_spikes = remove_spikes;
         c.spike_threshold = spike_threshold;
-        c.form = ok(parse_detrend(detrend_text));
+        // None: the one default of every front end (default_form: a line, a plane for maps, the
+        // mean of a periodic profile).
+        if (detrend_text) c.form = ok(parse_detrend(*detrend_text));
         if (py::isinstance<Profile>(surface)) {
           const Profile p = surface.cast<Profile>();
+          if (!detrend_text) c.form = default_form(p.period.has_value());
+          ConditionedProfile r = ok(nogil([&] { return condition(p, c, "profile"); }));
+          return py::make_tuple(py::cast(std::move(r.profile)), record_dict(r.record));
+        }
+        if (py::isinstance<py::dict>(surface) && surface.cast<py::dict>().contains("x") &&
+            surface.cast<py::dict>().contains("z") && !surface.cast<py::dict>().contains("heights")) {
+          // A profile as read_surface returns it: condition(read_surface(path)) is the CLI's conditioning.
+          py::dict d = surface.cast<py::dict>();
+          using A = py::array_t<double, py::array::c_style | py::array::forcecast>;
+          const A xa = d["x"].cast<A>(), za = d["z"].cast<A>();
+          Profile p{std::vector<double>(xa.data(), xa.data() + xa.size()),
+                    std::vector<double>(za.data(), za.data() + za.size()), std::nullopt};
+          if (auto st = validate(p, "surface"); !st) throw py::value_error(st.error().message);
+          if (!detrend_text) c.form = default_form();
           ConditionedProfile r = ok(nogil([&] { return condition(p, c, "profile"); }));
           return py::make_tuple(py::cast(std::move(r.profile)), record_dict(r.record));
         }
         if (py::isinstance<py::dict>(surface)) {
           py::dict d = surface.cast<py::dict>();
           if (!d.contains("heights") || !d.contains("dx") || !d.contains("dy"))
-            throw py::value_error("surface: a map dict needs 'heights', 'dx', 'dy' (as read_map returns)");
+            throw py::value_error(
+                "surface: expected a Profile, a profile dict (x, z: as read_surface returns) or a map dict "
+                "(heights, dx, dy: as read_map returns)");
+          if (!detrend_text) c.form = default_form();
           const Map mp =
               to_map(d["heights"].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(),
                      d["dx"].cast<double>(), d["dy"].cast<double>(), d.contains("x0") ? d["x0"].cast<double>() : 0.0,
@@ -215,15 +234,19 @@ void frictal_bind_io(py::module_& m) {
           ConditionedMap r = ok(nogil([&] { return condition(mp, c, "map"); }));
           return py::make_tuple(map_dict(r.map), record_dict(r.record));
         }
-        throw py::type_error("surface: expected a Profile or a map dict (heights, dx, dy[, x0, y0])");
+        throw py::type_error(
+            "surface: expected a Profile, a profile dict (x, z) or a map dict (heights, dx, dy[, x0, y0])");
       },
       py::arg("surface"), py::kw_only(), py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
-      py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("detrend") = "none",
+      py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("detrend") = py::none(),
       "The conditioning of `frictal predict` and the CLI (crop, then spike removal, then form removal; "
+      "surface: a Profile, a profile dict as read_surface returns it, or a map dict as read_map returns it; "
       "docs/analysis.md): crop (x0, x1) or (x0, x1, y0, y1) in m in the surface's coordinates; remove_spikes "
       "removes (profiles: linear interpolation between kept neighbours, dropped at the ends) or masks (maps: NaN) the "
       "points more than spike_threshold rms "
-      "heights from the median of their neighbours; detrend none, mean, line, plane, poly:N. Returns (the "
+      "heights from the median of their neighbours; detrend none, mean, line, plane, poly:N (None: the default of "
+      "every front end, a line for profiles, a "
+      "plane for maps, the mean of a periodic profile). Returns (the "
       "conditioned Profile or map dict, a record dict: text, cropped, window (m), points_before/after (nx, ny), "
       "spikes_checked, spike_threshold, spikes_removed, spikes_dropped (profiles: at the ends), spike_passes, form)");
   m.def(

@@ -109,7 +109,7 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   // A periodic profile (generated, or --period) has no form to remove: a line fitted over its
   // periods only picks up the phase of the last one, so its default is the mean.
   const bool periodic = lower.profile.period || o.period > 0;
-  const Detrend dt = o.detrend.value_or(periodic ? Detrend{DetrendKind::Mean, 0} : Detrend{DetrendKind::Line, 1});
+  const Detrend dt = o.detrend.value_or(default_form(periodic));
   p.atomic_friction = o.atomic_friction;
   p.direction = o.direction;
   const bool forward = std::abs(o.direction) < 1e-9;
@@ -192,7 +192,7 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   Prediction p;
   p.is_map = true;
   p.model = "map-continuous-free";
-  const Detrend dt = o.detrend.value_or(Detrend{DetrendKind::Line, 1});
+  const Detrend dt = o.detrend.value_or(default_form());
   p.atomic_friction = o.atomic_friction;
   p.direction = o.direction;
   if (!std::isfinite(o.direction)) return make_error("direction: expected a finite angle");

@@ -82,7 +82,7 @@ TEST(CliConditioning, ACropKeepsTheWindowAndSaysSo) {
   const json j = json::parse(r.out);
   EXPECT_EQ(j["points"], 801);  // x = 100 .. 900 um
   EXPECT_NEAR(j["length_m"].get<double>(), 8e-4, 1e-15);
-  EXPECT_EQ(j["conditioning"], "crop x [0.0001, 0.0009] m: kept 801 of 1001 points; form: none");
+  EXPECT_EQ(j["conditioning"], "crop x [0.0001, 0.0009] m: kept 801 of 1001 points; form: line");
   // The same window in metres; the text output states it too.
   const CliRun t = run_cli("stats " + f + " --crop 1e-4,9e-4");
   ASSERT_EQ(t.code, 0) << t.err;
@@ -97,13 +97,13 @@ TEST(CliConditioning, RemoveSpikesGivesTheProfileWithoutThem) {
   const CliRun b = run_cli("stats " + reference + " --json");
   ASSERT_EQ(b.code, 0) << b.err;
   const json ja = json::parse(a.out), jb = json::parse(b.out);
-  EXPECT_EQ(ja["conditioning"], "spikes (k = 10 Sq): 3 points removed (replaced by linear interpolation); form: none");
+  EXPECT_EQ(ja["conditioning"], "spikes (k = 10 Sq): 3 points removed (replaced by linear interpolation); form: line");
   EXPECT_NEAR(ja["rms_height_m"].get<double>(), jb["rms_height_m"].get<double>(), 1e-20);
   EXPECT_NEAR(ja["max_slope_deg"].get<double>(), jb["max_slope_deg"].get<double>(), 1e-9);
   // A higher threshold than the spikes reach keeps them: about 15 Sq each.
   const CliRun k = run_cli("stats " + spiky + " --remove-spikes --spike-threshold 20 --json");
   ASSERT_EQ(k.code, 0) << k.err;
-  EXPECT_EQ(json::parse(k.out)["conditioning"], "spikes (k = 20 Sq): none found; form: none");
+  EXPECT_EQ(json::parse(k.out)["conditioning"], "spikes (k = 20 Sq): none found; form: line");
 }
 
 TEST(CliConditioning, PredictListsTheStepsAndTheSpikesWarningPointsAtTheOption) {
@@ -153,7 +153,7 @@ TEST(CliConditioning, AMapKeepsItsMaskAndLosesItsSpike) {
   EXPECT_EQ(j["valid_points"], 32 * 20 - 3);  // two masked by the file, one by the filter
   EXPECT_EQ(j["conditioning"],
             "crop x [2e-06, 3.3e-05] m, y [3e-06, 2.2e-05] m: kept 32 x 20 of 40 x 30 points; spikes (k = 10 Sq): 1 "
-            "point masked; form: none");
+            "point masked; form: plane");
   // anisotropy and areal state the conditioning as well.
   // (Its lines need 32 valid points: the whole width, a window of 40 of the 40 columns.)
   const CliRun an = run_cli("anisotropy " + m + " --crop 0,39um --remove-spikes --directions 2 --json");
@@ -165,21 +165,76 @@ TEST(CliConditioning, AMapKeepsItsMaskAndLosesItsSpike) {
   EXPECT_EQ(json::parse(ar.out)["conditioning"], "spikes (k = 10 Sq): 1 point masked; form: plane");
 }
 
+// A zigzag of flank slope 0.1 (peaks at x = 0, 0.2, ... 1 mm, valleys between) on a tilt of
+// 0.02, x = i um, i = 0..1000. The zigzag is even about the middle, so the (trapezoid-weighted)
+// least-squares line of the file is the tilt alone: removed, the flanks have slopes +-0.1 exactly
+// and the self-signature's theta_max is atan 0.1; kept, the rising flank is 0.12 steep.
+std::string tilted_zigzag_csv(const std::string& name) {
+  std::string s = "x_m,z_m\n";
+  for (int i = 0; i <= 1000; ++i) {
+    const int k = i % 200;
+    const double tri = 0.1 * 1e-6 * (k <= 100 ? 100 - k : k - 100);  // 10 um high, flanks of slope 0.1
+    s += fmt_num(i * 1e-6) + "," + fmt_num(0.02 * i * 1e-6 + tri) + "\n";
+  }
+  const std::string path = temp_path(name);
+  write_file(path, s);
+  return path;
+}
+
+TEST(CliConditioning, EveryCommandRemovesTheSameFormByDefault) {
+  // One default for every command (issue 33 item 3): a line from a profile, a plane from a map,
+  // stated in the output; --detrend none keeps the heights as read.
+  const std::string f = tilted_zigzag_csv("cond-default.csv");
+  const double atan01 = std::atan(0.1) * 180 / kPi;
+  const CliRun sig = run_cli("signature " + f + " --no-hold --json");
+  ASSERT_EQ(sig.code, 0) << sig.err;
+  const json js = json::parse(sig.out);
+  EXPECT_EQ(js["conditioning"], "form: line");
+  EXPECT_NEAR(js["theta_max_forward_deg"].get<double>(), atan01, 1e-6);
+  const CliRun raw = run_cli("signature " + f + " --no-hold --detrend none --json");
+  ASSERT_EQ(raw.code, 0) << raw.err;
+  EXPECT_EQ(json::parse(raw.out)["conditioning"], "form: none");
+  EXPECT_GT(std::abs(json::parse(raw.out)["theta_max_forward_deg"].get<double>() - atan01), 0.5);
+  // predict's rigid upper bound is signature's theta_max of the same surfaces.
+  const CliRun pr = run_cli("predict " + f + " --json");
+  ASSERT_EQ(pr.code, 0) << pr.err;
+  const json jp = json::parse(pr.out);
+  EXPECT_EQ(jp["conditioning"], "form: line");
+  EXPECT_NEAR(jp["upper_bound_friction_angle_deg"].get<double>(), atan01, 1e-6);
+  // stats and dimension: the same record; the rms height of the zigzag alone (a triangle wave of
+  // height h = 10 um: h / sqrt(12)), not of the tilted file.
+  const CliRun st = run_cli("stats " + f + " --json");
+  ASSERT_EQ(st.code, 0) << st.err;
+  const json jst = json::parse(st.out);
+  EXPECT_EQ(jst["conditioning"], "form: line");
+  EXPECT_NEAR(jst["rms_height_m"].get<double>(), 1e-5 / std::sqrt(12.0), 1e-12);
+  const CliRun dm = run_cli("dimension " + f + " --method psd --json");
+  ASSERT_EQ(dm.code, 0) << dm.err;
+  EXPECT_EQ(json::parse(dm.out)["conditioning"], "form: line");
+  // Maps: a plane.
+  const std::string m = map_file("cond-default-map.txt");
+  for (const char* cmd : {"stats", "areal", "anisotropy --directions 2"}) {
+    const CliRun r = run_cli(std::string(cmd) + " " + m + " --json");
+    ASSERT_EQ(r.code, 0) << cmd << ": " << r.err;
+    EXPECT_EQ(json::parse(r.out)["conditioning"], "form: plane") << cmd;
+  }
+}
+
 TEST(CliConditioning, SignatureAndDimensionStateIt) {
   const std::string spiky = sine_csv("cond-sig.csv", false);
   const CliRun s = run_cli("signature " + spiky + " --remove-spikes --no-hold --json");
   ASSERT_EQ(s.code, 0) << s.err;
   EXPECT_EQ(json::parse(s.out)["conditioning"],
-            "spikes (k = 10 Sq): 3 points removed (replaced by linear interpolation); form: none");
+            "spikes (k = 10 Sq): 3 points removed (replaced by linear interpolation); form: line");
   const CliRun d = run_cli("dimension " + spiky + " --crop 0.1mm,0.9mm --method psd --json");
   ASSERT_EQ(d.code, 0) << d.err;
-  EXPECT_EQ(json::parse(d.out)["conditioning"], "crop x [0.0001, 0.0009] m: kept 801 of 1001 points; form: none");
+  EXPECT_EQ(json::parse(d.out)["conditioning"], "crop x [0.0001, 0.0009] m: kept 801 of 1001 points; form: line");
 }
 
 TEST(CliConditioning, TiltConditionsItsFilesAndStatesIt) {
   // The spheropolygon tilt test of a spiky scan with --remove-spikes runs on the profile the
   // filter must give (the spikes' points at the mean of their neighbours, written directly):
-  // the same reading; the record in the JSON and the text, the form none unless asked.
+  // the same reading; the record in the JSON and the text, the form the default line.
   const std::string spiky = sine_csv("cond-tilt-spiky.csv", false);
   const std::string reference = sine_csv("cond-tilt-reference.csv", false, true);
   const CliRun a = run_cli("tilt --lower " + spiky + " --remove-spikes --json");
@@ -188,8 +243,8 @@ TEST(CliConditioning, TiltConditionsItsFilesAndStatesIt) {
   ASSERT_EQ(b.code, 0) << b.err;
   const json ja = json::parse(a.out), jb = json::parse(b.out);
   EXPECT_EQ(ja["surface"]["conditioning"],
-            "spikes (k = 10 Sq): 3 points removed (replaced by linear interpolation); form: none");
-  EXPECT_EQ(jb["surface"]["conditioning"], "form: none");
+            "spikes (k = 10 Sq): 3 points removed (replaced by linear interpolation); form: line");
+  EXPECT_EQ(jb["surface"]["conditioning"], "form: line");
   EXPECT_EQ(ja["friction_angle_deg"], jb["friction_angle_deg"]);
   const CliRun c = run_cli("tilt --lower " + reference + " --crop 0.1mm,0.9mm --detrend line");
   ASSERT_EQ(c.code, 0) << c.err;

@@ -94,10 +94,10 @@ TEST(Cli, AbsurdParametersAreRejected) {
 TEST(Cli, SignatureDetrendRemovesTheTiltOfAScan) {
   // A tilted flat scan z = 0.1 x: turned over it stays parallel to itself, so every contact has
   // the tilt's slope, atan(0.1) = 5.7106 deg, forward (and -5.7106 backward). After removing the
-  // line both are 0.
+  // line (the default, as --detrend line) both are 0.
   const std::string f = temp_path("tilted.csv");
   write_file(f, "x_m,z_m\n0,0\n0.25,0.025\n0.5,0.05\n0.75,0.075\n1,0.1\n");
-  auto raw = run_cli("signature " + f + " --json");
+  auto raw = run_cli("signature " + f + " --detrend none --json");
   ASSERT_EQ(raw.code, 0) << raw.err;
   auto j = json::parse(raw.out);
   EXPECT_NEAR(j["theta_max_forward_deg"].get<double>(), std::atan(0.1) * 180 / M_PI, 1e-9);
@@ -107,6 +107,9 @@ TEST(Cli, SignatureDetrendRemovesTheTiltOfAScan) {
   auto k = json::parse(flat.out);
   EXPECT_NEAR(k["theta_max_forward_deg"].get<double>(), 0, 1e-9);
   EXPECT_NEAR(k["theta_max_backward_deg"].get<double>(), 0, 1e-9);
+  auto by_default = run_cli("signature " + f + " --json");
+  ASSERT_EQ(by_default.code, 0) << by_default.err;
+  EXPECT_NEAR(json::parse(by_default.out)["theta_max_forward_deg"].get<double>(), 0, 1e-9);
   EXPECT_EQ(run_cli("signature " + f + " --detrend bogus").code, 2);
 }
 

@@ -86,15 +86,15 @@ TEST(CliExitCodes, EdgeProfilesAndMapsGiveTheRightNumberOrExitTwo) {
     const auto at = out.find("\"" + key + "\":");
     return at == std::string::npos ? std::nan("") : std::stod(out.substr(at + key.size() + 3));
   };
-  // Constant profile: rms height and slope 0, mean 3 m.
-  auto r = run_cli("stats --json --unit m " + file("edge_const.csv", "x,z\n0,3\n1,3\n2,3\n"));
+  // Constant profile: rms height and slope 0, mean 3 m (the heights as read: --detrend none).
+  auto r = run_cli("stats --json --detrend none --unit m " + file("edge_const.csv", "x,z\n0,3\n1,3\n2,3\n"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(json_number(r.out, "rms_height_m"), 0.0);
   EXPECT_EQ(json_number(r.out, "rms_slope"), 0.0);
   EXPECT_EQ(json_number(r.out, "mean_height_m"), 3.0);
   // Two points (0, 0), (2, 1): one edge of slope 1/2; rms about the mean of a linear ramp of
   // rise 1 is 1/sqrt(12).
-  r = run_cli("stats --json --unit m " + file("edge_two.csv", "x,z\n0,0\n2,1\n"));
+  r = run_cli("stats --json --detrend none --unit m " + file("edge_two.csv", "x,z\n0,0\n2,1\n"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NEAR(json_number(r.out, "rms_height_m"), 1 / std::sqrt(12.0), 1e-12);
   EXPECT_NEAR(json_number(r.out, "rms_slope"), 0.5, 1e-12);
@@ -128,8 +128,9 @@ TEST(CliExitCodes, EdgeProfilesAndMapsGiveTheRightNumberOrExitTwo) {
   // (StatsEdges in tests/stats derives them); +-1e-300 likewise, never inf or 0.
   for (double A : {1e300, 1e-300}) {
     const std::string a = fmt_double(A), b = fmt_double(-A);
-    r = run_cli("stats --json " + file("edge_map.txt", "# Width: 3 m\n# Height: 2 m\n# Value units: m\n" + a + " " + b +
-                                                           " " + a + "\n" + b + " " + a + " " + b + "\n"));
+    r = run_cli("stats --json --detrend none " +
+                file("edge_map.txt", "# Width: 3 m\n# Height: 2 m\n# Value units: m\n" + a + " " + b + " " + a + "\n" +
+                                         b + " " + a + " " + b + "\n"));
     ASSERT_EQ(r.code, 0) << r.err;
     EXPECT_NEAR(json_number(r.out, "Sq_m") / A, 1.0, 1e-12) << r.out;
     EXPECT_NEAR(json_number(r.out, "Sdq") / (2 * std::sqrt(2.0) * A), 1.0, 1e-12) << r.out;

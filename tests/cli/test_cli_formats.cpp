@@ -67,10 +67,11 @@ TEST(CliFormats, NativeFileHasOneChannel) {
 }
 
 TEST(CliFormats, StatsPrintsPhysicalSizesAndPerProfileValues) {
-  // 4 x 3 map in nm with w = 4 um, h = 3 um: dx = dy = 1 um. Rows 0 1 2 3 (+ 10 per row).
+  // 4 x 3 map in nm with w = 4 um, h = 3 um: dx = dy = 1 um. Rows 0 1 2 3 (+ 10 per row). A plane,
+  // so its statistics are those of the heights as read (--detrend none; the default removes it).
   const std::string path = temp_path("stats-matrix.txt");
   write_file(path, "# w=4um h=3um unit=nm\n0 1 2 3\n10 11 12 13\n20 21 22 23\n");
-  auto r = run_cli("stats " + path + " --json --tip-radius 1mm");
+  auto r = run_cli("stats " + path + " --json --detrend none --tip-radius 1mm");
   ASSERT_EQ(r.code, 0) << r.err;
   auto j = nlohmann::json::parse(r.out);
   EXPECT_NEAR(j["physical_size_x_m"].get<double>(), 4e-6, 1e-18);
@@ -106,7 +107,7 @@ TEST(CliFormats, InfoAndStatsOfAGwyddionFile) {
   EXPECT_EQ(j["reader"], "gwyddion:surffile");
   EXPECT_EQ(j["nx"], 4);
   EXPECT_NEAR(j["channels"][0]["size_x"].get<double>(), 4e-6, 1e-15);
-  auto s = run_cli("stats " + path + " --json");
+  auto s = run_cli("stats " + path + " --json --detrend none");
   ASSERT_EQ(s.code, 0) << s.err;
   auto k = nlohmann::json::parse(s.out);
   EXPECT_NEAR(k["physical_size_x_m"].get<double>(), 4e-6, 1e-15);
@@ -117,9 +118,10 @@ TEST(CliFormats, InfoAndStatsOfAGwyddionFile) {
 // gives the names users compare -- physical_size_x_m/_y_m (n dx), Sq_m, Rq_x_m, rms_gradient_fd,
 // bandwidth -- with the values SurfaceTopography's test/IO/test_asc.py::test_example4 states for
 // matrix-4.txt.gz (75 x 305 points, 2.773965e-05 x 0.00011280791 m, rms height 1.1745891510991089e-07
-// m, rms_height_from_profile 7.198047e-08 m, rms_gradient 0.06776316911544318), and the tip cutoff.
+// m, rms_height_from_profile 7.198047e-08 m, rms_gradient 0.06776316911544318: the heights as read,
+// hence --detrend none), and the tip cutoff.
 TEST(CliFormats, InstrumentMatrixStatsJson) {
-  auto r = run_cli("stats " + kData + "/instruments/matrix-4.txt.gz --tip-radius 20nm --json");
+  auto r = run_cli("stats " + kData + "/instruments/matrix-4.txt.gz --detrend none --tip-radius 20nm --json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");  // the header names the height unit: no warning
   auto j = nlohmann::json::parse(r.out);

@@ -6,6 +6,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <vector>
 
 #include "cli/cli_runner.hpp"
 
@@ -24,7 +25,9 @@ std::string wm_file(int seed) {
 
 TEST(CliHold, SignaturePrintsTheHoldAngleFromAStartAndOverDrops) {
   const std::string a = wm_file(1), b = wm_file(2);
-  auto r = run_cli("signature " + a + " " + b + " --start-offset 0.02379 --runaway-distance 0.01 --json");
+  // The surfaces as generated (--detrend none), as issue 23's computation read them.
+  auto r =
+      run_cli("signature " + a + " " + b + " --detrend none --start-offset 0.02379 --runaway-distance 0.01 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);
   // Issue 23's independent numpy computation of the exact rigid lift: 1.549 and 0.695 deg.
@@ -44,7 +47,7 @@ TEST(CliHold, SignaturePrintsTheHoldAngleFromAStartAndOverDrops) {
   EXPECT_LE(j["hold_angle_q05_deg"].get<double>(), j["hold_angle_q50_deg"].get<double>());
   EXPECT_LE(j["hold_angle_q50_deg"].get<double>(), j["hold_angle_q95_deg"].get<double>());
   // The text output says it in a line a person reads.
-  auto t = run_cli("signature " + a + " " + b + " --start-offset 0.03 --runaway-distance 5e-3");
+  auto t = run_cli("signature " + a + " " + b + " --detrend none --start-offset 0.03 --runaway-distance 5e-3");
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_NE(t.out.find("hold angle (what a tilt test reads"), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("held up to 1.5095 deg"), std::string::npos) << t.out;  // issue 23: 1.510 deg
@@ -109,7 +112,26 @@ TEST(CliHold, BadHoldOptionsExit2NamingTheOption) {
 // Issue 33 item 6: an upper tip on a lower profile with two ramps of slope 0.05 and one of 0.06
 // (the second 0.05 ramp 4 mm after the first, the 0.06 one 8.5 mm after it). From the first
 // ramp the block slides past atan(0.05); the equal ramp cannot hold it, the 0.06 ramp lies
-// farther than d = 5 mm: the hold angle is atan(0.05), with the features moved or not.
+// farther than d = 5 mm: the hold angle is atan(0.05), with the features moved or not, on the
+// profiles as written (--detrend none). With the default line removed from each file the ramps
+// are all tilted by the same slope s of the lower file's line (the tip's line is flat: it is
+// symmetric), so the hold angle is atan(0.05 - s): s from the trapezoid-weighted least-squares
+// line, computed here from its normal equations.
+namespace {
+double trapezoid_line_slope(const std::vector<double>& x, const std::vector<double>& z) {
+  double sw = 0, sx = 0, sz = 0, sxx = 0, sxz = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double w = 0.5 * ((i > 0 ? x[i] - x[i - 1] : 0) + (i + 1 < x.size() ? x[i + 1] - x[i] : 0));
+    sw += w;
+    sx += w * x[i];
+    sz += w * z[i];
+    sxx += w * x[i] * x[i];
+    sxz += w * x[i] * z[i];
+  }
+  return (sw * sxz - sx * sz) / (sw * sxx - sx * sx);
+}
+}  // namespace
+
 TEST(CliHold, EqualSlopesHoldAtTheFirstRamp) {
   const std::string tip = temp_path("hold-tip.csv");
   {
@@ -118,6 +140,7 @@ TEST(CliHold, EqualSlopesHoldAtTheFirstRamp) {
   }
   for (const char* shift : {"", "-shifted"}) {
     const std::string lower = temp_path(std::string("hold-ramps") + shift + ".csv");
+    double line_slope = 0;
     {
       const double s = shift[0] ? 1e-4 : 0;
       std::ofstream f(lower);
@@ -127,11 +150,19 @@ TEST(CliHold, EqualSlopesHoldAtTheFirstRamp) {
       const double z[] = {0, -0.00006, 0.00004, 0.00002, 0.000095, 0.00008, 0.00017};
       for (int i = 0; i < 7; ++i) f << x[i] + s << "," << z[i] << "\n";
       f << "0.2,0.00017\n";
+      std::vector<double> xs = {0}, zs = {0};
+      for (int i = 0; i < 7; ++i) xs.push_back(x[i] + s), zs.push_back(z[i]);
+      xs.push_back(0.2), zs.push_back(0.00017);
+      line_slope = trapezoid_line_slope(xs, zs);
     }
-    auto r = run_cli("signature " + lower + " " + tip +
-                     " --runaway-distance 0.005 --start-offset 0.019 --offset-range 0 0.1 --json");
+    const std::string args = " --runaway-distance 0.005 --start-offset 0.019 --offset-range 0 0.1 --json";
+    auto r = run_cli("signature " + lower + " " + tip + " --detrend none" + args);
     ASSERT_EQ(r.code, 0) << r.err;
-    const json j = json::parse(r.out);
-    EXPECT_NEAR(j["hold_angle_deg"].get<double>(), std::atan(0.05) * 180 / M_PI, 1e-9) << shift;
+    EXPECT_NEAR(json::parse(r.out)["hold_angle_deg"].get<double>(), std::atan(0.05) * 180 / M_PI, 1e-9) << shift;
+    auto d = run_cli("signature " + lower + " " + tip + args);
+    ASSERT_EQ(d.code, 0) << d.err;
+    EXPECT_EQ(json::parse(d.out)["conditioning"], "form: line");
+    EXPECT_NEAR(json::parse(d.out)["hold_angle_deg"].get<double>(), std::atan(0.05 - line_slope) * 180 / M_PI, 1e-9)
+        << shift;
   }
 }

@@ -214,7 +214,8 @@ def main():
             continue
         extra = ["--channel", chan] if chan else []
         info = frictal_json(exe, ["info", path] + extra)
-        st = frictal_json(exe, ["stats", path] + extra)
+        # Gwyddion's statistics are of the heights as read: --detrend none (frictal's default removes a plane).
+        st = frictal_json(exe, ["stats", path, "--detrend", "none"] + extra)
         fname = info["channels"][info["channel"]]["name"]
         # Through Gwyddion, frictal must have read the channel whose numbers Gwyddion gives here
         # (native readers name their one channel after the format).
@@ -258,7 +259,7 @@ def main():
             failures.append(f"{rel_path}: Gwyddion does not load it")
             continue
         info = frictal_json(exe, ["info", path])
-        st = frictal_json(exe, ["stats", path])
+        st = frictal_json(exe, ["stats", path, "--detrend", "none"])
         pts = [(x, y) for x, y in zip(g["x"], g["y"]) if math.isfinite(y)]
         # frictal's profile statistics are those of the piecewise-linear profile (docs/analysis.md):
         # mean = integral of z / L, rms about it = sqrt(integral of (z - mean)^2 / L), each segment

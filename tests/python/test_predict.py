@@ -135,7 +135,7 @@ def _spiky_sine(n=1001, h=1e-6, amplitude=1e-6, wavelength=2e-4, spikes=(250, 50
 
 def test_condition_crops_removes_spikes_and_records_each_step():
     x, spiky, reference = _spiky_sine()
-    out, rec = frictal.condition(frictal.Profile(x, spiky), crop=(1e-4, 9e-4), remove_spikes=True)
+    out, rec = frictal.condition(frictal.Profile(x, spiky), crop=(1e-4, 9e-4), remove_spikes=True, detrend="none")
     assert len(out.x) == 801  # x = 100 .. 900 um
     assert out.x[0] == x[100] and out.x[-1] == x[900]
     np.testing.assert_allclose(out.z, reference[100:901], rtol=0, atol=1e-20)
@@ -143,6 +143,16 @@ def test_condition_crops_removes_spikes_and_records_each_step():
     assert rec["points_after"] == (801, 1)
     assert rec["text"] == ("crop x [0.0001, 0.0009] m: kept 801 of 1001 points; spikes (k = 10 Sq): 3 points removed "
                            "(replaced by linear interpolation); form: none")
+    # By default the form of every front end: a line, the trapezoid-weighted least-squares line
+    # (numpy's weighted fit; polyfit's w multiplies the residuals, hence the square root).
+    line, rec = frictal.condition(frictal.Profile(x, spiky), crop=(1e-4, 9e-4), remove_spikes=True)
+    assert rec["form"] == "line" and rec["text"].endswith("form: line")
+    xs, zs = np.asarray(x[100:901]), np.asarray(reference[100:901])
+    w = np.zeros_like(xs)
+    w[1:] += 0.5 * np.diff(xs)
+    w[:-1] += 0.5 * np.diff(xs)
+    fit = np.polyfit(xs, zs, 1, w=np.sqrt(w))
+    np.testing.assert_allclose(line.z, zs - np.polyval(fit, xs), rtol=0, atol=1e-15)
     # The CLI's text form of the window reads the same.
     same, _ = frictal.condition(frictal.Profile(x, spiky), crop="0.1mm,0.9mm")
     assert len(same.x) == 801
@@ -152,6 +162,25 @@ def test_condition_crops_removes_spikes_and_records_each_step():
         frictal.condition(frictal.Profile(x, spiky), crop=(1e-4,))
     with pytest.raises(ValueError, match="spike threshold"):
         frictal.condition(frictal.Profile(x, spiky), remove_spikes=True, spike_threshold=0)
+
+
+def test_condition_of_a_file_as_read_is_the_clis():
+    # condition(read_surface(path)) conditions a file as every CLI command does by default: the
+    # profile's line (plane for a map) removed, stated in the record; the same heights as `frictal
+    # signature`/`stats` analyse, checked here against the library's own detrend on the raw profile
+    # and against `predict`'s record of the same file.
+    path = os.path.join(DATA, "profiles", "dektak-1.csv")
+    raw = frictal.read_surface(path)
+    out, rec = frictal.condition(raw)
+    assert rec["form"] == "line" and rec["text"] == "form: line"
+    ref = frictal.detrend(frictal.Profile(raw["x"], raw["z"]), "line")
+    np.testing.assert_array_equal(out.z, ref.z)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert frictal.predict(path).conditioning == rec["text"]
+    m, mrec = frictal.condition(frictal.read_map(os.path.join(DATA, "x3p", "x3p-2.x3p")))
+    assert mrec["text"] == "form: plane"
+    assert abs(np.nanmean(m["heights"])) < 1e-6 * np.nanstd(m["heights"])
 
 
 def test_condition_keeps_a_maps_mask():
