@@ -58,6 +58,8 @@ def run(bin_, *args, check=True):
     return r.stdout
 
 
+# The surfaces here are generated (the paper's): every analysis of their files reads them as
+# generated, --detrend none (the CLI removes a file's line by default).
 def run_json(bin_, *args):
     return json.loads(run(bin_, *args))
 
@@ -102,7 +104,7 @@ def fig03(bin_, work):
         ax.set_ylabel(f"K{n}\nz (mm)")
         ax.set_aspect("equal")
         ax.set_ylim(z.min() * 1e3 - 0.5, z.max() * 1e3 + 0.6)
-        st = run_json(bin_, "stats", path, "--json")
+        st = run_json(bin_, "stats", path, "--detrend", "none", "--json")
         smax = st["max_slope_deg"]
         length = float(np.sum(np.hypot(np.diff(x), np.diff(z))))
         lengths.append(length)
@@ -239,7 +241,8 @@ def fig11(bin_, work):
     det, rnd = f"{work}/wm-det.csv", f"{work}/wm-rnd.csv"
     run(bin_, "surface", "wm", "--dimension", 1.5, "--no-stochastic", "-o", det)
     run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 1, "-o", rnd)
-    sd, sr = run_json(bin_, "stats", det, "--json"), run_json(bin_, "stats", rnd, "--json")
+    sd, sr = (run_json(bin_, "stats", det, "--detrend", "none", "--json"),
+              run_json(bin_, "stats", rnd, "--detrend", "none", "--json"))
     fig, axes = plt.subplots(2, 1, figsize=(7.5, 4.8), sharex=True)
     for ax, p, name in ((axes[0], det, "deterministic (Eq. 17)"), (axes[1], rnd, "random phases (Eq. 14), seed 1")):
         x, z = read_xz(p)
@@ -274,7 +277,7 @@ def fig12(bin_, work):
         off = -6 * k
         ax.plot(x * 1e6, z * 1e9 + off, lw=0.7)
         ax.text(20.3, off, f"D = {d:.1f}", va="center", fontsize=9)
-        st = run_json(bin_, "stats", p, "--json")
+        st = run_json(bin_, "stats", p, "--detrend", "none", "--json")
         rms_slopes.append(st["rms_slope"])
         f.numbers.append((f"D = {d:.1f}: rms height, rms slope, steepest edge",
                           f"{st['rms_height_m'] * 1e9:.3f} nm, {st['rms_slope']:.5f}, {st['max_slope_deg']:.3f}°"))
@@ -300,8 +303,8 @@ def fig13(bin_, work):
     a, b = f"{work}/wm-pair-1.csv", f"{work}/wm-pair-2.csv"
     run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 1, "-o", a)
     run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 2, "-o", b)
-    ex = run_json(bin_, "signature", a, b, "--json")
-    sp = run_json(bin_, "signature", a, b, "--slopes", "spline", "--json")
+    ex = run_json(bin_, "signature", a, b, "--detrend", "none", "--json")
+    sp = run_json(bin_, "signature", a, b, "--detrend", "none", "--slopes", "spline", "--json")
     x, z = read_xz(a)
     sel = slice(0, 40)
     xs, zs = x[sel], z[sel]
@@ -309,7 +312,7 @@ def fig13(bin_, work):
     # the first 400 points (the natural end conditions far from the 40 drawn).
     spl = f"{work}/wm-pair-1-spline.csv"
     h0 = 0.5 * (x[1] - x[0])
-    run(bin_, "stats", a, "--crop", f"{x[0] - h0:.17g},{0.5 * (x[399] + x[400]):.17g}", "--spline", spl,
+    run(bin_, "stats", a, "--detrend", "none", "--crop", f"{x[0] - h0:.17g},{0.5 * (x[399] + x[400]):.17g}", "--spline", spl,
         "--spline-samples", 50)
     d = np.genfromtxt(spl, delimiter=",", names=True)
     keep = d["x_m"] <= xs[-1]
@@ -357,7 +360,7 @@ def fig16(bin_, work, pairs):
         run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 2 * k + 1, "-o", a)
         run(bin_, "surface", "wm", "--dimension", 1.5, "--seed", 2 * k + 2, "-o", b)
         pdf = f"{work}/pdf-{k}.csv"
-        j = run_json(bin_, "signature", a, b, "--pdf", pdf, "--json")
+        j = run_json(bin_, "signature", a, b, "--detrend", "none", "--pdf", pdf, "--json")
         s, w = slopes_deg(*read_xz(a))
         s_std = float(np.sqrt(np.average((s - np.average(s, weights=w)) ** 2, weights=w)))
         h, _ = np.histogram(s, bins=edges, weights=w, density=True)
