@@ -418,22 +418,17 @@ class RollbackHull {
   explicit RollbackHull(const V& p) : p_(p) {}
   void push(std::size_t v) {
     const Pt b{p_.X(v), p_.H(v)};
-    // Keep the longest prefix whose last turn towards v stays convex (upper hull).
-    std::size_t lo = 0, hi = size_;  // answer k in [0, size_]: hull keeps [0, k), v goes at k
-    // keep(i): hull[i] stays when v is added, i.e. i == 0 or turn(hull[i-1], hull[i], v) is right.
+    // Keep the longest prefix whose last turn towards v stays convex (upper hull): pop from the
+    // back while the last kept point would make a turn that is not right. keep(i): hull[i] stays
+    // when v is added, i.e. i == 0 or turn(hull[i-1], hull[i], v) is right. Pushes come in runs
+    // (after clear(), before any undo()), so the pops cost O(1) amortised per push.
     auto keep = [&](std::size_t i) {
       if (i == 0) return true;
       const double c = cross(hull_[i - 1], hull_[i], b);
       return Dir > 0 ? c < 0 : c > 0;  // Dir * c < 0
     };
-    while (lo < hi) {
-      const std::size_t mid = (lo + hi + 1) / 2;
-      if (keep(mid - 1))
-        lo = mid;
-      else
-        hi = mid - 1;
-    }
-    const std::size_t k = lo;  // points [0, k) kept
+    std::size_t k = size_;  // points [0, k) kept
+    while (k > 0 && !keep(k - 1)) --k;
     if (hull_.size() <= k) hull_.resize(k + 1);
     if constexpr (Undo) log_.push_back({k, size_, hull_[k]});
     hull_[k] = b;
@@ -453,10 +448,14 @@ class RollbackHull {
   std::pair<double, double> best(double x0, double h0) const {
     if (size_ == 0) return {-std::numeric_limits<double>::infinity(), kNaN};
     auto slope = [&](std::size_t i) { return (hull_[i].h - h0) / (hull_[i].x - x0); };
+    // slope(i) < slope(j), the denominators (> 0) multiplied out: no division on the search's path.
+    auto less = [&](std::size_t i, std::size_t j) {
+      return (hull_[i].h - h0) * (hull_[j].x - x0) < (hull_[j].h - h0) * (hull_[i].x - x0);
+    };
     std::size_t lo = 0, hi = size_ - 1;
     while (lo < hi) {
       const std::size_t mid = (lo + hi) / 2;
-      if (slope(mid) < slope(mid + 1))
+      if (less(mid, mid + 1))
         lo = mid + 1;
       else
         hi = mid;
