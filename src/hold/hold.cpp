@@ -24,6 +24,7 @@
 
 #include "signature/rigid.hpp"
 #include "util/parallel.hpp"
+#include "util/weighted_select.hpp"
 
 namespace frictal {
 
@@ -683,63 +684,6 @@ HoldAngle unmirror(HoldAngle h) {
   return h;
 }
 
-// The weighted quantiles of `e[0..n)` (reordered) at cumulative weights thr[0..k) (increasing):
-// out[j] = the least value v whose cumulative weight W(<= v) reaches thr[j] (the greatest value
-// where none does), i.e. the value at which a scan of the values sorted by value, adding up their
-// weights, first reaches thr[j]. By selection (three-way partitions around a median of three,
-// recursing into the parts that hold a threshold): expected linear time, no sort. `below`: the
-// weight of the values below e[0..n).
-struct ValueWeight {
-  double v, w;
-};
-
-void weighted_select(ValueWeight* e, std::size_t n, double below, const double* thr, std::size_t k, double* out) {
-  while (k > 0) {
-    if (n == 0) return;
-    if (n <= 16) {  // a few values: sort and scan
-      std::sort(e, e + n, [](const ValueWeight& x, const ValueWeight& y) { return x.v < y.v; });
-      double cum = below;
-      std::size_t i = 0;
-      for (std::size_t j = 0; j < k; ++j) {
-        while (i + 1 < n && !(cum + e[i].w >= thr[j])) cum += e[i++].w;
-        out[j] = e[i].v;
-      }
-      return;
-    }
-    // Median of three values as the pivot.
-    double a = e[0].v, b = e[n / 2].v, c = e[n - 1].v;
-    if (b < a) std::swap(a, b);
-    if (c < b) b = std::max(a, c);
-    const double pv = b;
-    // Three-way partition: [0, lt) < pv, [lt, gt) == pv, [gt, n) > pv (Dutch national flag).
-    std::size_t lt = 0, i = 0, gt = n;
-    while (i < gt) {
-      if (e[i].v < pv)
-        std::swap(e[lt++], e[i++]);
-      else if (pv < e[i].v)
-        std::swap(e[i], e[--gt]);
-      else
-        ++i;
-    }
-    double wl = below, we = 0;
-    for (std::size_t q = 0; q < lt; ++q) wl += e[q].w;
-    for (std::size_t q = lt; q < gt; ++q) we += e[q].w;
-    // Thresholds reached within the lower part, at the pivot, above it.
-    std::size_t jl = 0;
-    while (jl < k && thr[jl] <= wl) ++jl;
-    std::size_t je = jl;
-    while (je < k && (thr[je] <= wl + we || gt == n)) out[je++] = pv;
-    if (jl > 0) weighted_select(e, lt, below, thr, jl, out);
-    // The upper part, iteratively.
-    e += gt;
-    n -= gt;
-    below = wl + we;
-    thr += je;
-    out += je;
-    k -= je;
-  }
-}
-
 HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<double>& w) {
   HoldStatistics s;
   double tw = 0, m = 0;
@@ -757,7 +701,7 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
   // q * tw (less a relative 1e-12, so that a quantile falling on a jump takes the lower value).
   // By selection rather than a sort: the cumulative weights are added up in another order, which
   // moves them by rounding only (about n ulps at most, typically far less than the 1e-12 slack).
-  std::vector<ValueWeight> e(v.size());
+  std::vector<util::ValueWeight> e(v.size());
   double lo = v[0], hi = v[0];
   for (std::size_t i = 0; i < v.size(); ++i) {
     e[i] = {v[i], w[i]};
@@ -766,7 +710,7 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
   }
   const double thr[3] = {0.05 * tw * (1 - 1e-12), 0.50 * tw * (1 - 1e-12), 0.95 * tw * (1 - 1e-12)};
   double q[3];
-  weighted_select(e.data(), e.size(), 0.0, thr, 3, q);
+  util::weighted_select(e.data(), e.size(), 0.0, thr, 3, q);
   s.q05 = q[0];
   s.q50 = q[1];
   s.q95 = q[2];
