@@ -20,11 +20,12 @@ struct ValueWeight {
 /// median of three, recursing into the parts that hold a threshold): expected linear time, no
 /// sort. The weights are added up in another order than such a scan's, so the sums may differ
 /// from its by rounding. `below`: the weight of the values below e[0..n) (0 for a whole set).
-inline void weighted_select(ValueWeight* e, std::size_t n, double below, const double* thr, std::size_t k,
-                            double* out) {
+/// `depth`: partitions before it sorts what is left (worst case O(n log n), as introsort).
+inline void weighted_select(ValueWeight* e, std::size_t n, double below, const double* thr, std::size_t k, double* out,
+                            int depth = 64) {
   while (k > 0) {
     if (n == 0) return;
-    if (n <= 16) {  // a few values: sort and scan
+    if (n <= 16 || depth-- <= 0) {  // a few values (or unlucky pivots, as introsort): sort and scan
       std::sort(e, e + n, [](const ValueWeight& x, const ValueWeight& y) { return x.v < y.v; });
       double cum = below;
       std::size_t i = 0;
@@ -57,7 +58,7 @@ inline void weighted_select(ValueWeight* e, std::size_t n, double below, const d
     while (jl < k && thr[jl] <= wl) ++jl;
     std::size_t je = jl;
     while (je < k && (thr[je] <= wl + we || gt == n)) out[je++] = pv;
-    if (jl > 0) weighted_select(e, lt, below, thr, jl, out);
+    if (jl > 0) weighted_select(e, lt, below, thr, jl, out, depth);
     // The upper part, iteratively.
     e += gt;
     n -= gt;
