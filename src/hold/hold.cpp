@@ -11,7 +11,8 @@
 // Memory: the distribution keeps O(basins) values and the record stack besides the curve; the
 // descents are walked (each piece once), the records found in one pass from the right whose
 // stack holds the record chain of the vertex at hand, the chords by monotone hulls over one
-// window at a time. Time: linear in the curve's vertices, plus n log n for the chords.
+// window at a time. Time: linear in the curve's vertices, plus a binary search per rest for the
+// chords.
 #include "frictal/hold.hpp"
 
 #include <algorithm>
@@ -486,7 +487,8 @@ class RollbackHull {
 // (X[r], min(X[r] + w, X[n])]. The x axis is cut into chunks of length w: a window starting in
 // chunk c covers a suffix of chunk c and a prefix of the chunks after it, up to one chunk
 // length. Per chunk, queries in decreasing x: the suffix hull grows leftwards, the prefix hull
-// shrinks (undo in reverse push order). O((n + q) log n) time, O(vertices per window) memory.
+// shrinks (undo in reverse push order). O(n + q log n) time (pushes O(1) amortised), O(vertices
+// per window) memory.
 // A vertex where the slope after it exceeds the slope before it by more than both their
 // rounding bounds (a convex corner: between two events h is convex, so every tangent meeting
 // point is one) lies strictly below the chord of its two neighbours, and a chord from the left
