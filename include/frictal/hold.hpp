@@ -32,8 +32,9 @@
 // construction keeps the exact tangent slopes at the listed points.
 //
 // Everything here is exact on the LiftCurve and linear in its number of vertices (records and
-// basins: one pass with a stack each), apart from the steepest chords (n log n: monotone hulls
-// with rollback over windows of length d). The library neither prints nor keeps state.
+// basins: one pass with a stack each), apart from the steepest chords (monotone hulls with
+// rollback over windows of length d: a binary search per rest). The library neither prints nor
+// keeps state.
 #pragma once
 
 #include <cstdint>
@@ -199,7 +200,7 @@ struct SignatureWithHold {
 /// (every event; with `offsets` = N or sampled offsets, the wider range's own grid, from 2 d on
 /// both sides), so the hold numbers are those of a lift computed over that range. Periodic
 /// pairs: the signature's lift is one period, read as it is. Time and memory linear in the
-/// lift's offsets (the chords: n log n). Spheropolygon faces (spheroradius > 0): the two are
+/// lift's offsets (the chords: a binary search per rest). Spheropolygon faces (spheroradius > 0): the two are
 /// computed one after the other. `start`, options and errors as analyse_hold() and signature().
 Result<SignatureWithHold> signature_with_hold(const Profile& lower, const Profile& upper,
                                               const SignatureOptions& options, const HoldOptions& hold,

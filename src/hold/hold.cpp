@@ -11,7 +11,8 @@
 // Memory: the distribution keeps O(basins) values and the record stack besides the curve; the
 // descents are walked (each piece once), the records found in one pass from the right whose
 // stack holds the record chain of the vertex at hand, the chords by monotone hulls over one
-// window at a time. Time: linear in the curve's vertices, plus n log n for the chords.
+// window at a time. Time: linear in the curve's vertices, plus a binary search per rest for the
+// chords.
 #include "frictal/hold.hpp"
 
 #include <algorithm>
@@ -24,6 +25,7 @@
 
 #include "signature/rigid.hpp"
 #include "util/parallel.hpp"
+#include "util/weighted_select.hpp"
 
 namespace frictal {
 
@@ -418,22 +420,17 @@ class RollbackHull {
   explicit RollbackHull(const V& p) : p_(p) {}
   void push(std::size_t v) {
     const Pt b{p_.X(v), p_.H(v)};
-    // Keep the longest prefix whose last turn towards v stays convex (upper hull).
-    std::size_t lo = 0, hi = size_;  // answer k in [0, size_]: hull keeps [0, k), v goes at k
-    // keep(i): hull[i] stays when v is added, i.e. i == 0 or turn(hull[i-1], hull[i], v) is right.
+    // Keep the longest prefix whose last turn towards v stays convex (upper hull): pop from the
+    // back while the last kept point would make a turn that is not right. keep(i): hull[i] stays
+    // when v is added, i.e. i == 0 or turn(hull[i-1], hull[i], v) is right. Pushes come in runs
+    // (after clear(), before any undo()), so the pops cost O(1) amortised per push.
     auto keep = [&](std::size_t i) {
       if (i == 0) return true;
       const double c = cross(hull_[i - 1], hull_[i], b);
       return Dir > 0 ? c < 0 : c > 0;  // Dir * c < 0
     };
-    while (lo < hi) {
-      const std::size_t mid = (lo + hi + 1) / 2;
-      if (keep(mid - 1))
-        lo = mid;
-      else
-        hi = mid - 1;
-    }
-    const std::size_t k = lo;  // points [0, k) kept
+    std::size_t k = size_;  // points [0, k) kept
+    while (k > 0 && !keep(k - 1)) --k;
     if (hull_.size() <= k) hull_.resize(k + 1);
     if constexpr (Undo) log_.push_back({k, size_, hull_[k]});
     hull_[k] = b;
@@ -453,10 +450,14 @@ class RollbackHull {
   std::pair<double, double> best(double x0, double h0) const {
     if (size_ == 0) return {-std::numeric_limits<double>::infinity(), kNaN};
     auto slope = [&](std::size_t i) { return (hull_[i].h - h0) / (hull_[i].x - x0); };
+    // slope(i) < slope(j), the denominators (> 0) multiplied out: no division on the search's path.
+    auto less = [&](std::size_t i, std::size_t j) {
+      return (hull_[i].h - h0) * (hull_[j].x - x0) < (hull_[j].h - h0) * (hull_[i].x - x0);
+    };
     std::size_t lo = 0, hi = size_ - 1;
     while (lo < hi) {
       const std::size_t mid = (lo + hi) / 2;
-      if (slope(mid) < slope(mid + 1))
+      if (less(mid, mid + 1))
         lo = mid + 1;
       else
         hi = mid;
@@ -486,7 +487,8 @@ class RollbackHull {
 // (X[r], min(X[r] + w, X[n])]. The x axis is cut into chunks of length w: a window starting in
 // chunk c covers a suffix of chunk c and a prefix of the chunks after it, up to one chunk
 // length. Per chunk, queries in decreasing x: the suffix hull grows leftwards, the prefix hull
-// shrinks (undo in reverse push order). O((n + q) log n) time, O(vertices per window) memory.
+// shrinks (undo in reverse push order). O(n + q log n) time (pushes O(1) amortised), O(vertices
+// per window) memory.
 // A vertex where the slope after it exceeds the slope before it by more than both their
 // rounding bounds (a convex corner: between two events h is convex, so every tangent meeting
 // point is one) lies strictly below the chord of its two neighbours, and a chord from the left
@@ -697,27 +699,25 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
   for (std::size_t i = 0; i < v.size(); ++i) var += w[i] * (v[i] - m) * (v[i] - m);
   s.mean = m;
   s.std = std::sqrt(var / tw);
-  // The values with their weights by increasing value: std::sort of the pairs makes the same
-  // comparisons, hence the same order (ties included), as a sort of the indices by value.
-  struct ValueWeight {
-    double v, w;
-  };
-  std::vector<ValueWeight> sorted(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) sorted[i] = {v[i], w[i]};
-  std::sort(sorted.begin(), sorted.end(), [](const ValueWeight& x, const ValueWeight& y) { return x.v < y.v; });
-  auto quantile = [&](double q) {
-    double cum = 0;
-    for (const ValueWeight& e : sorted) {
-      cum += e.w;
-      if (cum >= q * tw * (1 - 1e-12)) return e.v;
-    }
-    return sorted.back().v;
-  };
-  s.q05 = quantile(0.05);
-  s.q50 = quantile(0.50);
-  s.q95 = quantile(0.95);
-  s.min = sorted.front().v;
-  s.max = sorted.back().v;
+  // Quantiles: the first value, by increasing value, at which the cumulative weight reaches
+  // q * tw (less a relative 1e-12, so that a quantile falling on a jump takes the lower value).
+  // By selection rather than a sort: the cumulative weights are added up in another order, which
+  // moves them by rounding only (about n ulps at most, typically far less than the 1e-12 slack).
+  std::vector<util::ValueWeight> e(v.size());
+  double lo = v[0], hi = v[0];
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    e[i] = {v[i], w[i]};
+    if (v[i] < lo) lo = v[i];
+    if (hi < v[i]) hi = v[i];
+  }
+  const double thr[3] = {0.05 * tw * (1 - 1e-12), 0.50 * tw * (1 - 1e-12), 0.95 * tw * (1 - 1e-12)};
+  double q[3];
+  util::weighted_select(e.data(), e.size(), 0.0, thr, 3, q);
+  s.q05 = q[0];
+  s.q50 = q[1];
+  s.q95 = q[2];
+  s.min = lo;
+  s.max = hi;
   return s;
 }
 

@@ -1009,13 +1009,14 @@ Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, dou
   return plan;
 }
 
-// The lift and its one-sided slopes at `offs` (increasing), as signature() evaluates them (the
-// same search, warm starts and frontiers per chunk; contacts not kept). False where the blocks do
-// not overlap at some offset.
-bool evaluate_lift(const Problem& P, const std::vector<double>& offs, const SignatureOptions& o,
+// The lift and its one-sided slopes at `offsets` (increasing; taken over as out.offset), as
+// signature() evaluates them (the same search, warm starts and frontiers per chunk; contacts not
+// kept). False where the blocks do not overlap at some offset.
+bool evaluate_lift(const Problem& P, std::vector<double>&& offsets, const SignatureOptions& o,
                    detail::LiftPoints& out) {
+  out.offset = std::move(offsets);
+  const std::vector<double>& offs = out.offset;
   const std::size_t n = offs.size();
-  out.offset = offs;
   out.lift.resize(n);
   out.left.resize(n);
   out.right.resize(n);
@@ -1202,6 +1203,7 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
       ext.events = wide->offs.size();
       const std::vector<double>& W = wide->offs;
       std::vector<double> todo;
+      todo.reserve(W.size());     // at most W (pages are taken only as they are written)
       std::size_t j = 0, hj = 0;  // merge walk: W, R.offset and *have all increasing
       for (std::size_t i = 0; i < W.size(); ++i) {
         while (j < n && R.offset[j] < W[i]) ext.dropped.push_back(j++);
@@ -1217,7 +1219,7 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
       }
       while (j < n) ext.dropped.push_back(j++);
       wide->offs = std::vector<double>();
-      if (!evaluate_lift(P, todo, o, ext.points))
+      if (!evaluate_lift(P, std::move(todo), o, ext.points))
         return make_error(fmt::format("signature: no overlap between the blocks in [{}, {}] m", lo, hi));
       return ext;
     };
