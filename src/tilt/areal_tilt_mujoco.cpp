@@ -434,7 +434,8 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
     for (double beta = beta0 + step; beta <= o.max_tilt + 1e-12; beta += step) {
       // A block that is not at rest after relax_time is creeping under the damping (its
       // unbalanced force is not small): the tilt waits until it rests or has run D, up to
-      // kMaxWaits relaxations, so that the drag does not let the tilt grow during a run.
+      // tilt_waits relaxations (kMaxWaits under the local damping), so that the drag does not let
+      // the tilt grow during a run.
       bool rest = false;
       for (int w = 0; w < tilt_waits && !rest && !far; ++w) rest = relax(beta, u_stop, far, tilt_alpha);
       record(beta, rest);
