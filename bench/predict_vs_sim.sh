@@ -6,6 +6,8 @@
 #   SIM_ARGS="--settle-damping 100" bash bench/predict_vs_sim.sh maps ...   (settings of the
 #                                                           simulation only; use a new OUT for each)
 #   bash bench/predict_vs_sim.sh profiles [BIN] [OUT] [N]   (spheropolygons, `frictal tilt`)
+#   NO_RUN=1 ... maps ...   no new simulation: the tables over the simulations OUT holds (a pair
+#                           not complete is left out and named), e.g. of a run stopped part way
 # BIN default build/release/apps/frictal/frictal, OUT default /tmp/frictal-predict-vs-sim, N 4.
 # Two processes at a time (xargs -P 2). Prints the tables (bench/results/predict-vs-sim.md).
 #
@@ -50,6 +52,7 @@ if [ "$MODE" = maps ]; then
     p=$0; k=$1; xy=$2; ra=$3; d='"$D"'; bin='"$BIN"'
     common=("$d/in/$p-lower.x3p" "$d/in/$p-upper.x3p" --detrend plane --runaway-distance "$ra" -q --json)
     if [ ! -s "$d/runs/$p-$k-sim.json" ]; then  # kept from an earlier run of the same OUT
+      [ -z "'"${NO_RUN:-}"'" ] || exit 0          # NO_RUN: tables over what OUT holds
       "$bin" areal-tilt "${common[@]}" --start-offset="$xy" --lateral free '"$SIM_ARGS"' > "$d/runs/$p-$k-sim.json.tmp"
       mv "$d/runs/$p-$k-sim.json.tmp" "$d/runs/$p-$k-sim.json"
     fi

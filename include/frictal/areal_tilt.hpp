@@ -67,6 +67,12 @@ struct ArealTiltOptions {
   /// tends to the unbalanced force over this), the prediction's steepest descent as it grows; 0:
   /// the drop settles under the local damping as every increment (unit: 1/scaled s).
   double settle_damping = 0;
+  /// Viscous damping per unit mass that replaces the local damping during the tilt increments: an
+  /// overdamped slip (velocity = unbalanced force / this), the prediction's descent into the next
+  /// seat as it grows; an increment then waits up to the time the block needs to creep two
+  /// lower-map cells at the drive of one tilt step (at least 40 chunks). 0: the local damping
+  /// (unit: 1/scaled s).
+  double tilt_damping = 0;
   double relax_time = 0.5;        ///< longest relaxation per increment (unit: scaled s)
   double force_tolerance = 1e-4;  ///< at rest: unbalanced force below this fraction of the weight (unitless)
   double speed_tolerance = 1e-5;  ///< at rest: speed below this (unit: scaled m/s)

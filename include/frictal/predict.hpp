@@ -106,7 +106,11 @@ struct Prediction {
   double runaway_distance = 0;                           ///< d used (unit: m)
   bool single_drop = false;  ///< start_offset was given: the statistics are that drop's value
   std::size_t drops = 0;     ///< drops the distribution is over (profiles: basins that drain them)
-  /// Drop range: profiles [min, max, 0, 0]; maps [u_min, u_max, v_min, v_max] along and across d (unit: m).
+  /// Drop range: profiles [min, max, 0, 0]; maps [u_min, u_max, v_min, v_max] along and across d (unit: m),
+  /// offsets of the upper map's centre; for an upper map smaller than the lower one, +-((Lf - Lg) / 2 - r - D)
+  /// along d and +-((Wf - Wg) / 2 - r - D) across (Lf, Lg, Wf, Wg the maps' node extents, r the sphere
+  /// radius, D the run-away distance): the block's spheres lie wholly over the lower map with room D on
+  /// every side, none on its edge (docs/analysis.md, "The drops of the map prediction").
   std::array<double, 4> drop_range = {0, 0, 0, 0};
   HoldStatistics friction_angle;                ///< the hold angle over drops, atan(mu_a) included (unit: rad)
   double friction_coefficient = 0;              ///< tan(friction_angle.q50) (unitless)

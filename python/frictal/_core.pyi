@@ -29,7 +29,7 @@ class Prediction:
         ...
     @property
     def drop_range(self) -> Any:
-        """drop range: profiles [min, max]; maps [u_min, u_max, v_min, v_max] along/across d (m)"""
+        """drop range: profiles [min, max]; maps [u_min, u_max, v_min, v_max] along/across d (the block's spheres r + D inside the lower map) (m)"""
     @property
     def drops(self) -> Any:
         """drops the distribution is over (profiles: the basins that drain them) (count)"""
@@ -169,6 +169,7 @@ def areal_tilt(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: flo
         damping [1/scaled s]: Viscous joint damping per unit mass (default 0; valid >= 0)
         local_damping: Local non-viscous (Cundall) damping: a force against each joint's velocity, this fraction of its unbalanced force (default 0.9; valid [0, 1))
         settle_damping [1/scaled s]: Viscous damping per unit mass in place of the local damping while the dropped block settles at zero tilt (an overdamped descent; the prediction's steepest descent as it grows); 0: the local damping (default 0; valid >= 0)
+        tilt_damping [1/scaled s]: Viscous damping per unit mass in place of the local damping during the tilt increments (an overdamped slip; each increment waits until the block could creep two lower-map cells at one tilt step's drive); 0: the local damping (default 0; valid >= 0)
         relax_chunk [scaled s]: Longest relaxation per rest test; an increment waits for up to 40 of them before it counts as unsettled (default 0.5; valid > 0)
         force_tolerance: At rest: unbalanced force below this fraction of the weight (default 0.0001; valid > 0)
         speed_tolerance [scaled m/s]: At rest: speed below this (default 1e-05; valid > 0)

@@ -54,7 +54,10 @@ const Columns<Prediction>& prediction_columns() {
       num("drops", "count", "drops the distribution is over (profiles: the basins that drain them)",
           [](const P& p) { return double(p.drops); }),
       list(
-          "drop_range_m", "m", "drop range: profiles [min, max]; maps [u_min, u_max, v_min, v_max] along/across d",
+          "drop_range_m", "m",
+          "drop range: profiles [min, max]; maps [u_min, u_max, v_min, v_max] along/across d (the block's spheres r + "
+          "D "
+          "inside the lower map)",
           [](const P& p) {
             return p.is_map ? std::vector<double>(p.drop_range.begin(), p.drop_range.end())
                             : std::vector<double>{p.drop_range[0], p.drop_range[1]};

@@ -171,25 +171,28 @@ std::vector<OutputTable> make_tables() {
   {
     // The hold mode of `frictal areal` (--lateral, --drops, --start-offset) and Python areal_hold:
     // predict()'s continuous model of a map pair along one direction, named as hold angles.
-    OutputTable h{"areal_hold",
-                  "frictal areal --lateral|--drops|--start-offset --json; Python areal_hold(...) (SI, no unit suffix)",
-                  {ci("direction_deg", "deg", "sliding direction, from +x towards +y", "direction"),
-                   ci("lateral", "text", "free (the block may move sideways) or locked to the direction", "="),
-                   ci("model", "text", "map-continuous-free or map-continuous-locked (frictal predict's model)", "="),
-                   ci("in_place", "flag", "the upper map is the upper face in place (not turned over)", "="),
-                   ci("atomic_friction", "1", "mu_a, included in every hold angle as atan(mu_a)", "="),
-                   ci("runaway_distance_m", "m", "run-away distance d", "runaway_distance"),
-                   ci("drops", "count", "drops the distribution is over", "="),
-                   ci("drop_range_m", "m", "[u_min, u_max, v_min, v_max] along/across the direction", "drop_range"),
-                   ci("start_offset_m", "m", "one drop: where it was put down (x, y)", "start_offset"),
-                   ci("rest_offset_m", "m", "one drop: where it rested (x, y)", "rest_offset"),
-                   ci("hold_angle_deg", "deg", "one drop: its hold angle (the lateral mode's)", "hold_angle"),
-                   ci("hold_angle_free_deg", "deg", "one drop, locked: the free block's hold angle"),
-                   ci("steering_deg", "deg", "one drop: the direction the free block ran away in", "steering"),
-                   ci("drop_hold_angles_deg", "deg", "each drop's hold angle, in drop order", "drop_hold_angles"),
-                   ci("drop_offsets_m", "m", "each drop's (x, y)", "drop_offsets"),
-                   ci("upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a (Eq. 6)",
-                      "upper_bound_friction_angle")}};
+    OutputTable h{
+        "areal_hold",
+        "frictal areal --lateral|--drops|--start-offset --json; Python areal_hold(...) (SI, no unit suffix)",
+        {ci("direction_deg", "deg", "sliding direction, from +x towards +y", "direction"),
+         ci("lateral", "text", "free (the block may move sideways) or locked to the direction", "="),
+         ci("model", "text", "map-continuous-free or map-continuous-locked (frictal predict's model)", "="),
+         ci("in_place", "flag", "the upper map is the upper face in place (not turned over)", "="),
+         ci("atomic_friction", "1", "mu_a, included in every hold angle as atan(mu_a)", "="),
+         ci("runaway_distance_m", "m", "run-away distance d", "runaway_distance"),
+         ci("drops", "count", "drops the distribution is over", "="),
+         ci("drop_range_m", "m",
+            "[u_min, u_max, v_min, v_max] along/across the direction (the spheres r + D inside the lower map)",
+            "drop_range"),
+         ci("start_offset_m", "m", "one drop: where it was put down (x, y)", "start_offset"),
+         ci("rest_offset_m", "m", "one drop: where it rested (x, y)", "rest_offset"),
+         ci("hold_angle_deg", "deg", "one drop: its hold angle (the lateral mode's)", "hold_angle"),
+         ci("hold_angle_free_deg", "deg", "one drop, locked: the free block's hold angle"),
+         ci("steering_deg", "deg", "one drop: the direction the free block ran away in", "steering"),
+         ci("drop_hold_angles_deg", "deg", "each drop's hold angle, in drop order", "drop_hold_angles"),
+         ci("drop_offsets_m", "m", "each drop's (x, y)", "drop_offsets"),
+         ci("upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a (Eq. 6)",
+            "upper_bound_friction_angle")}};
     for (const char* st : {"mean", "std", "q05", "q50", "q95", "min", "max"}) {
       const std::string k = std::string("hold_angle_") + st;
       h.columns.push_back(ci(k + "_deg", "deg", std::string("hold angle over drops: ") + st, k));

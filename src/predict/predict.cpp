@@ -230,17 +230,25 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   const double across = std::abs(s) * lo->width() + std::abs(c) * lo->height();
   const ArealTiltOptions t = map_model_options(*lo, o);
   p.runaway_distance = t.runaway_distance;
-  // Drops (offsets of the upper map's centre from the lower's). An upper block smaller than the
-  // lower map along d is put down where it lies wholly over it with room to run D:
-  // u in [-(Lf - Lg) / 2, (Lf - Lg) / 2 - D]; a block as long (a self-pair) over [0, Lf / 2 - D]
-  // (it keeps at least half its overlap), as the grid model's drops (areal.hpp). Across d the same
-  // with room to steer D: +-((Wf - Wg) / 2 - D), or +-(Wf / 4 - D).
+  // Drops (offsets of the upper map's centre from the lower's). The block's footprint is its
+  // nodes' extent widened by the sphere radius r on every side (the spheres that touch). An upper
+  // block smaller than the lower map along d is put down where that footprint lies wholly over the
+  // lower map with room D (the run-away distance) on every side: ahead to run away, behind to
+  // descend into its basin at zero tilt, across d to steer. So no drop starts with spheres on the
+  // lower map's edge (a drop there is a knife-edge: MuJoCo's block stays balanced on the boundary
+  // where the prediction's descent leaves it, bench/results/predict-vs-sim.md):
+  // u in +-((Lf - Lg) / 2 - r - D), Lf, Lg the lower and upper maps' node extents along d. A block
+  // not that much shorter (a self-pair) over [0, Lf / 2 - D] (it keeps at least half its overlap),
+  // as the grid model's drops (areal.hpp). Across d the same: +-((Wf - Wg) / 2 - r - D), or
+  // +-(Wf / 4 - D).
   const double along_g = std::abs(c) * up.width() + std::abs(s) * up.height();
   const double across_g = std::abs(s) * up.width() + std::abs(c) * up.height();
   const double D = t.runaway_distance;
+  const double margin = t.sphere_radius + D;  // m: the footprint's r and the room D
   double umin = 0, umax = std::max(0.0, 0.5 * along - D);
-  if (along_g < along - 2 * D) umin = -0.5 * (along - along_g), umax = 0.5 * (along - along_g) - D;
-  const double vmax = across_g < across - 2 * D ? 0.5 * (across - across_g) - D : std::max(0.0, 0.25 * across - D);
+  if (along_g < along - 2 * margin) umax = 0.5 * (along - along_g) - margin, umin = -umax;
+  const double vmax =
+      across_g < across - 2 * margin ? 0.5 * (across - across_g) - margin : std::max(0.0, 0.25 * across - D);
   // The model's offsets count from the centres aligned (turned over) or from the upper face's
   // place (in place: its centre then sits (cu, cv) from the lower's, along and across d); the
   // drops, the drop range and the start offset are in the model's offsets.

@@ -203,6 +203,9 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   if (!(o.settle_damping >= 0) || bad(o.settle_damping))
     return make_error(
         fmt::format("areal_tilt: settle damping {}: expected a finite number >= 0 (1/scaled s)", o.settle_damping));
+  if (!(o.tilt_damping >= 0) || bad(o.tilt_damping))
+    return make_error(
+        fmt::format("areal_tilt: tilt damping {}: expected a finite number >= 0 (1/scaled s)", o.tilt_damping));
   if (!(o.force_tolerance > 0) || !(o.speed_tolerance > 0) || bad(o.force_tolerance) || bad(o.speed_tolerance))
     return make_error(fmt::format("areal_tilt: force tolerance {} and speed tolerance {}: expected finite numbers > 0",
                                   o.force_tolerance, o.speed_tolerance));
@@ -379,10 +382,24 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
     for (int w = 0; w < waits && !rested; ++w)
       rested = relax(0.0, std::numeric_limits<double>::infinity(), far, viscous ? 0.0 : o.local_damping);
     if (!rested) ++out.unsettled;
-    if (viscous)
-      for (int q = 0; q < nv; ++q) m->dof_damping[q] = o.damping;
     record(0.0, rested);
   }
+  // The tilt increments: under the local damping, or with tilt_damping c under a viscous joint
+  // damping c instead (an overdamped slip at the speed (unbalanced force) / c, the prediction's
+  // descent into the next seat as c grows: docs/mujoco.md, "The tilt's damping"). An overdamped
+  // block that starts to slip just past its seat creeps: at a drive of one tilt step's excess,
+  // g tilt_step, it crosses one lower-map cell (of the larger spacing) in c cell / (g tilt_step);
+  // an increment waits up to twice that (at least the usual 40 chunks) before it counts as
+  // unsettled, so that the tilt does not grow while a slip is still under way.
+  const bool tilt_viscous = o.tilt_damping > 0;
+  for (int q = 0; q < nv; ++q) m->dof_damping[q] = tilt_viscous ? o.tilt_damping : o.damping;
+  const double tilt_alpha = tilt_viscous ? 0.0 : o.local_damping;
+  const double cell = std::max(f.dx, f.dy) * S;
+  const int tilt_waits =
+      tilt_viscous
+          ? int(std::min(1e6, std::max<double>(kMaxWaits, std::ceil(2 * cell * o.tilt_damping /
+                                                                    (grav * std::sin(o.tilt_step) * o.relax_time)))))
+          : kMaxWaits;
   if (d->ncon == 0)
     return make_error(
         fmt::format("areal_tilt: the block left the lower map at zero tilt (it slid to ({}, {}) m, "
@@ -417,9 +434,10 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
     for (double beta = beta0 + step; beta <= o.max_tilt + 1e-12; beta += step) {
       // A block that is not at rest after relax_time is creeping under the damping (its
       // unbalanced force is not small): the tilt waits until it rests or has run D, up to
-      // kMaxWaits relaxations, so that the drag does not let the tilt grow during a run.
+      // tilt_waits relaxations (kMaxWaits under the local damping), so that the drag does not let
+      // the tilt grow during a run.
       bool rest = false;
-      for (int w = 0; w < kMaxWaits && !rest && !far; ++w) rest = relax(beta, u_stop, far, o.local_damping);
+      for (int w = 0; w < tilt_waits && !rest && !far; ++w) rest = relax(beta, u_stop, far, tilt_alpha);
       record(beta, rest);
       if (far) {
         out.steering =

@@ -93,6 +93,12 @@ const std::vector<B>& table() {
                 "damping"),
               FRICTAL_MEMBER(settle_damping)),
           bind<ArealTiltOptions>(
+              F("tilt_damping", "1/scaled s", 0, Lo::Closed, kInf,
+                "Viscous damping per unit mass in place of the local damping during the tilt increments (an "
+                "overdamped slip; each increment waits until the block could creep two lower-map cells at one "
+                "tilt step's drive); 0: the local damping"),
+              FRICTAL_MEMBER(tilt_damping)),
+          bind<ArealTiltOptions>(
               F("relax_chunk", "scaled s", 0, Lo::Open, kInf,
                 "Longest relaxation per rest test; an increment waits for up to 40 of them before it counts as "
                 "unsettled"),

@@ -1,6 +1,7 @@
 // The prediction (frictal/predict.hpp): what a tilt test reads, against hand-derived answers.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -186,6 +187,53 @@ TEST(Predict, GroovesMapHoldsAtTheSteepestSegmentFromEveryDrop) {
   EXPECT_GE(p->locked_friction_angle.min, want - 1e-9);
   EXPECT_LE(p->locked_friction_angle.max, want + 2e-4);
   EXPECT_FALSE(has_code(p->warnings, "held-to-max-tilt"));
+}
+
+TEST(Predict, MapDropsKeepTheBlocksSpheresWhollyOverTheLowerMapWithRoomD) {
+  // Lower 41 x 21 nodes, upper 9 x 5, both at 5 um: node extents Lf = 200 um, Wf = 100 um,
+  // Lg = 40 um, Wg = 20 um. The block's footprint is its nodes widened by the sphere radius r
+  // (default a fifth of the lower spacing, 1 um); D defaults to a twentieth of Lf, 10 um. By hand
+  // the drop range is +-((Lf - Lg) / 2 - r - D) = +-69 um along x and +-((Wf - Wg) / 2 - r - D) =
+  // +-29 um across, and the 2 x 2 drops are its corners: at each, the footprint's nearest side
+  // lies exactly D from the lower map's edge (no sphere starts on the edge).
+  const double a = 5e-6;
+  auto grid = [&](std::size_t nx, std::size_t ny, double k) {
+    frictal::PredictSurface m;
+    m.is_map = true;
+    m.name = "waves";
+    m.map.nx = nx;
+    m.map.ny = ny;
+    m.map.dx = m.map.dy = a;
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i)
+        m.map.heights.push_back(2e-7 * std::sin(k * double(i)) * std::cos(0.7 * k * double(j)));
+    return m;
+  };
+  const auto lower = grid(41, 21, 0.9), upper = grid(9, 5, 1.3);
+  const double Lf = 200e-6, Wf = 100e-6, Lg = 40e-6, Wg = 20e-6;
+  frictal::PredictOptions o = no_form_removal();
+  o.map_drops = 2;
+  for (const double r : {0.0, 3e-6}) {
+    o.sphere_radius = r;
+    const double rr = r > 0 ? r : 0.2 * a, D = Lf / 20;
+    auto p = frictal::predict(lower, &upper, o);
+    ASSERT_TRUE(p.ok()) << p.error().message;
+    EXPECT_NEAR(p->runaway_distance, D, 1e-18);
+    const double u = 0.5 * (Lf - Lg) - rr - D, v = 0.5 * (Wf - Wg) - rr - D;
+    EXPECT_NEAR(p->drop_range[0], -u, 1e-15);
+    EXPECT_NEAR(p->drop_range[1], u, 1e-15);
+    EXPECT_NEAR(p->drop_range[2], -v, 1e-15);
+    EXPECT_NEAR(p->drop_range[3], v, 1e-15);
+    ASSERT_EQ(p->drop_offsets.size(), 4u);
+    double gap[4] = {1, 1, 1, 1};  // least room from the footprint to the lower map's -x, +x, -y, +y edges
+    for (const auto& q : p->drop_offsets) {
+      gap[0] = std::min(gap[0], (q[0] - Lg / 2 - rr) + Lf / 2);
+      gap[1] = std::min(gap[1], Lf / 2 - (q[0] + Lg / 2 + rr));
+      gap[2] = std::min(gap[2], (q[1] - Wg / 2 - rr) + Wf / 2);
+      gap[3] = std::min(gap[3], Wf / 2 - (q[1] + Wg / 2 + rr));
+    }
+    for (const double g : gap) EXPECT_NEAR(g, D, 1e-15);
+  }
 }
 
 TEST(Warnings, UnitsSpikesScaleAndFillValuesAreNamed) {
