@@ -709,6 +709,9 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
         // The trial collects the pieces of the next iteration's window (used if it is accepted).
         const double next = std::min(1.5 * delta, 0.5 * r);
         const double h2 = height(nx, ny, window(next), &trial_pieces);
+        // No sphere left over the lower map: the descent carries the block off its edge, where
+        // nothing holds it (MuJoCo's block falls off the height field): a run-away, not a wall.
+        if (h2 == std::numeric_limits<double>::infinity()) return End::Far;
         if (h2 * cb - (nx * dxv + ny * dyv) * sb < V - 1e-4 * delta * Pn) {
           st.x = nx;
           st.y = ny;
