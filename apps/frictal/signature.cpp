@@ -158,7 +158,7 @@ std::function<int()> setup(CLI::App& app) {
     std::vector<ConditioningRecord> records(a->upper.empty() ? 1 : 2);
     auto conditioned = [&](const Profile& p, const std::string& name, int side) {
       Conditioning own = cond;  // a file's own period (as --period) makes the default the mean
-      if (a->detrend.empty() && !spec && p.period) own.form = form_to_remove("", false, true);
+      if (a->detrend.empty() && !spec && p.period) own.form = default_form(true);
       ConditionedProfile c = unwrap(condition(p, own, name));
       records[std::size_t(side)] = c.record;
       for (Warning& x : check_profile(c.profile, name)) add_warning(side_warnings[side], std::move(x));

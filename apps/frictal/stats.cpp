@@ -114,7 +114,7 @@ std::function<int()> setup(CLI::App& app) {
     }
     const Profile read = surface_profile(data, a->file);
     Conditioning own = cond;  // a file that carries its period: the default form is the mean
-    if (a->detrend.empty() && read.period) own.form = form_to_remove("", false, true);
+    if (a->detrend.empty() && read.period) own.form = default_form(true);
     const ConditionedProfile cp = unwrap(condition(read, own, a->file));
     const Profile& p = cp.profile;
     for (Warning& w : check_profile(p, a->file)) add_warning(warnings, std::move(w));

@@ -18,6 +18,7 @@
 #include "frictal/conditioning.hpp"
 #include "frictal/map.hpp"
 #include "frictal/outputs.hpp"
+#include "frictal/predict.hpp"
 #include "frictal/result.hpp"
 #include "frictal/settings.hpp"
 
@@ -44,6 +45,12 @@ Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>&
 /// "x0,x1[,y0,y1]" (units allowed: "0.1mm,0.9mm"); ValueError naming crop otherwise.
 /// io_bindings.cpp.
 std::optional<CropWindow> crop_window(const py::object& crop);
+
+/// A surface from a path (read with `format`, `unit`, `spacing`), a Profile, a dict as
+/// read_surface/read_map return it, or a numpy array of heights (1-D: a profile, 2-D: a map, rows
+/// along y) with `spacing` (m); `what` names it in errors (ValueError/TypeError).
+PredictSurface to_surface(const py::handle& obj, double spacing, const std::string& format, const std::string& unit,
+                          const std::string& what);
 
 /// Runs `f` (a pure C++ computation returning a Result) with the GIL released, so that other
 /// Python threads run meanwhile; the Result is unwrapped after the GIL is taken back.

@@ -64,6 +64,7 @@ using frictal::py_detail::crop_window;
 using frictal::py_detail::nogil;
 using frictal::py_detail::ok;
 using frictal::py_detail::to_map;
+using frictal::py_detail::to_surface;
 
 py::array_t<double> heights2d(const Map& m) {
   py::array_t<double> a({m.ny, m.nx});
@@ -201,41 +202,20 @@ void frictal_bind_io(py::module_& m) {
         // None: the one default of every front end (default_form: a line, a plane for maps, the
         // mean of a periodic profile).
         if (detrend_text) c.form = ok(parse_detrend(*detrend_text));
-        if (py::isinstance<Profile>(surface)) {
-          const Profile p = surface.cast<Profile>();
-          if (!detrend_text) c.form = default_form(p.period.has_value());
-          ConditionedProfile r = ok(nogil([&] { return condition(p, c, "profile"); }));
+        // A Profile, or a dict as read_surface/read_map return it (condition(read_surface(path)) is
+        // the CLI's conditioning of that file): predict's reading of such objects.
+        if (!py::isinstance<Profile>(surface) && !py::isinstance<py::dict>(surface))
+          throw py::type_error(
+              "surface: expected a Profile, a profile dict (x, z) or a map dict (heights, dx, dy[, x0, y0])");
+        const PredictSurface s = to_surface(surface, 0, "auto", "", "surface");
+        if (!s.is_map) {
+          if (!detrend_text) c.form = default_form(s.profile.period.has_value());
+          ConditionedProfile r = ok(nogil([&] { return condition(s.profile, c, "profile"); }));
           return py::make_tuple(py::cast(std::move(r.profile)), record_dict(r.record));
         }
-        if (py::isinstance<py::dict>(surface) && surface.cast<py::dict>().contains("x") &&
-            surface.cast<py::dict>().contains("z") && !surface.cast<py::dict>().contains("heights")) {
-          // A profile as read_surface returns it: condition(read_surface(path)) is the CLI's conditioning.
-          py::dict d = surface.cast<py::dict>();
-          using A = py::array_t<double, py::array::c_style | py::array::forcecast>;
-          const A xa = d["x"].cast<A>(), za = d["z"].cast<A>();
-          Profile p{std::vector<double>(xa.data(), xa.data() + xa.size()),
-                    std::vector<double>(za.data(), za.data() + za.size()), std::nullopt};
-          if (auto st = validate(p, "surface"); !st) throw py::value_error(st.error().message);
-          if (!detrend_text) c.form = default_form();
-          ConditionedProfile r = ok(nogil([&] { return condition(p, c, "profile"); }));
-          return py::make_tuple(py::cast(std::move(r.profile)), record_dict(r.record));
-        }
-        if (py::isinstance<py::dict>(surface)) {
-          py::dict d = surface.cast<py::dict>();
-          if (!d.contains("heights") || !d.contains("dx") || !d.contains("dy"))
-            throw py::value_error(
-                "surface: expected a Profile, a profile dict (x, z: as read_surface returns) or a map dict "
-                "(heights, dx, dy: as read_map returns)");
-          if (!detrend_text) c.form = default_form();
-          const Map mp =
-              to_map(d["heights"].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(),
-                     d["dx"].cast<double>(), d["dy"].cast<double>(), d.contains("x0") ? d["x0"].cast<double>() : 0.0,
-                     d.contains("y0") ? d["y0"].cast<double>() : 0.0);
-          ConditionedMap r = ok(nogil([&] { return condition(mp, c, "map"); }));
-          return py::make_tuple(map_dict(r.map), record_dict(r.record));
-        }
-        throw py::type_error(
-            "surface: expected a Profile, a profile dict (x, z) or a map dict (heights, dx, dy[, x0, y0])");
+        if (!detrend_text) c.form = default_form();
+        ConditionedMap r = ok(nogil([&] { return condition(s.map, c, "map"); }));
+        return py::make_tuple(map_dict(r.map), record_dict(r.record));
       },
       py::arg("surface"), py::kw_only(), py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
       py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("detrend") = py::none(),

@@ -19,13 +19,10 @@ using namespace frictal;
 using frictal::py_detail::arr;
 using frictal::py_detail::nogil;
 using frictal::py_detail::ok;
+using frictal::py_detail::to_surface;
 
-namespace {
-
-// A surface from a path, a Profile, a dict of read_surface/read_map, or a numpy array of
-// heights (1-D: a profile, 2-D: a map, rows along y) with `spacing` (m).
-PredictSurface to_surface(const py::handle& obj, double spacing, const std::string& format, const std::string& unit,
-                          const std::string& what) {
+PredictSurface frictal::py_detail::to_surface(const py::handle& obj, double spacing, const std::string& format,
+                                              const std::string& unit, const std::string& what) {
   PredictSurface s;
   s.name = what;
   if (py::isinstance<py::str>(obj) || py::hasattr(obj, "__fspath__")) {
@@ -51,6 +48,8 @@ PredictSurface to_surface(const py::handle& obj, double spacing, const std::stri
   if (py::isinstance<py::dict>(obj)) {
     py::dict d = obj.cast<py::dict>();
     if (d.contains("heights")) {
+      if (!d.contains("dx") || !d.contains("dy"))
+        throw py::value_error(what + ": a map dict needs 'heights', 'dx', 'dy' (as read_map returns)");
       s.is_map = true;
       s.map = py_detail::to_map(d["heights"].cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(),
                                 d["dx"].cast<double>(), d["dy"].cast<double>(),
@@ -86,6 +85,8 @@ PredictSurface to_surface(const py::handle& obj, double spacing, const std::stri
   }
   throw py::value_error(what + ": expected a 1-D (profile) or 2-D (map) array of heights");
 }
+
+namespace {
 
 // A value as to_dict() and the attributes hold it: lists as Python lists (as in the JSON), an
 // int for a "count", else py_value's.

@@ -349,29 +349,30 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
 
 }  // namespace
 
+namespace {
+// The map model's defaults where t leaves them unset (<= 0): the run-away distance 5 % of the
+// lower map along t.angle, the sphere radius a fifth of its smaller spacing (m).
+void fill_model_defaults(const Map& lower, ArealTiltOptions& t) {
+  const double along = std::abs(std::cos(t.angle)) * lower.width() + std::abs(std::sin(t.angle)) * lower.height();
+  if (!(t.runaway_distance > 0)) t.runaway_distance = 0.05 * along;
+  if (!(t.sphere_radius > 0)) t.sphere_radius = 0.2 * std::min(lower.dx, lower.dy);
+}
+}  // namespace
+
 ArealTiltOptions map_model_options(const Map& lower, const PredictOptions& o) {
-  const double c = std::cos(o.direction), s = std::sin(o.direction);
-  const double along = std::abs(c) * lower.width() + std::abs(s) * lower.height();
   ArealTiltOptions t;
   t.angle = o.direction;
   t.turn_over_upper = o.turn_over_upper;
   t.atomic_friction = o.atomic_friction;
-  t.runaway_distance = o.runaway_distance > 0 ? o.runaway_distance : 0.05 * along;
-  t.sphere_radius = o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(lower.dx, lower.dy);
+  t.runaway_distance = o.runaway_distance;
+  t.sphere_radius = o.sphere_radius;
+  fill_model_defaults(lower, t);
   return t;
 }
 
 ArealTiltOptions map_model_options(const Map& lower, const ArealTiltOptions& sim) {
-  PredictOptions po;
-  po.direction = sim.angle;
-  po.turn_over_upper = sim.turn_over_upper;
-  po.atomic_friction = sim.atomic_friction;
-  po.runaway_distance = sim.runaway_distance;
-  po.sphere_radius = sim.sphere_radius;
-  const ArealTiltOptions model = map_model_options(lower, po);
   ArealTiltOptions out = sim;
-  out.runaway_distance = model.runaway_distance;
-  out.sphere_radius = model.sphere_radius;
+  fill_model_defaults(lower, out);
   return out;
 }
 

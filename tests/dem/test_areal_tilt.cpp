@@ -648,14 +648,7 @@ TEST(ArealTilt, TheTiltDampingEndsASlipInTheNextSeatAsTheQuasiStaticBlock) {
   slope.push_back(0.2);
   slope.insert(slope.end(), 6, -0.5);
   slope.push_back(0.25);
-  const std::size_t n = 30;
-  std::vector<double> z(n, 0.0);
-  for (std::size_t i = 1; i < n; ++i) z[i] = z[i - 1] + a * (i - 1 < slope.size() ? slope[i - 1] : 0.0);
-  frictal::Map f;
-  f.nx = n;
-  f.ny = 3;
-  f.dx = f.dy = a;
-  for (std::size_t j = 0; j < f.ny; ++j) f.heights.insert(f.heights.end(), z.begin(), z.end());
+  const frictal::Map f = profile_across_y(slope, 0.0, 30, a);
   const frictal::Map g = one_node(0, a, 0);
   frictal::ArealTiltOptions t;
   t.turn_over_upper = false;
