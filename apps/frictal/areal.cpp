@@ -151,7 +151,8 @@ std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
   app.add_option("lower", a->lower, "Lower block's map (X3P, Gwyddion text)")->required();
   app.add_option("upper", a->upper, "Upper block's map as measured (default: the lower map)");
-  app.add_option("--angle", a->angle, "Sliding direction (deg from +x towards +y)");
+  app.add_option("--direction,--angle", a->angle,
+                 "Sliding direction (deg from +x towards +y; the name `predict` uses, --angle its older name)");
   app.add_option("--step", a->step, "Offset step (m; default min(dx, dy))");
   app.add_option("--max-offset", a->offset_max, "Largest offset (m; default half the lower map along the direction)");
   add_atomic_friction_option(app, a->atomic_friction);
@@ -180,7 +181,7 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
       a->runaway_distance = as_real(rv.at("runaway_distance"));
-    require(std::isfinite(a->angle), fmt::format("--angle {}: expected a finite number of degrees", a->angle));
+    require(std::isfinite(a->angle), fmt::format("--direction {}: expected a finite number of degrees", a->angle));
     require(a->step >= 0 && a->offset_max >= 0, "--step and --max-offset must be >= 0 (metres)");
     require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,
             "--atomic-friction must be a finite number >= 0");

@@ -15,12 +15,25 @@ std::string field_help(const Field& f) {
   return s + " (default " + default_text(f) + "; valid " + range_text(f) + ")";
 }
 
+namespace {
+/// First names shown in the help and in errors: the name every command gives the quantity
+/// (`predict --direction`) where the settings table keeps its own (`angle`, the key of study
+/// files and the field's option, still accepted).
+const std::map<std::string, std::string> kFirstNames = {{"angle", "--direction"}};
+}  // namespace
+
+std::string shown_option_name(const Field& f) {
+  auto it = kFirstNames.find(f.name);
+  return it != kFirstNames.end() ? it->second : cli_option_name(f);
+}
+
 void add_field_options(CLI::App& app, const std::vector<Field>& fields, FieldWords& words,
                        const std::vector<std::string>& skip) {
   for (const Field& f : fields) {
     if (std::find(skip.begin(), skip.end(), f.name) != skip.end()) continue;
     const std::string name = cli_option_name(f);
     std::string flags = f.short_name ? fmt::format("-{},{}", f.short_name, name) : name;
+    if (auto it = kFirstNames.find(f.name); it != kFirstNames.end()) flags = it->second + "," + flags;
     const std::string key = f.name;
     if (f.type == FieldType::Boolean) {
       const std::string no = "--no-" + name.substr(2);
@@ -55,7 +68,7 @@ ValueSet si_values(const std::vector<Field>& fields, const FieldWords& words) {
   for (const auto& [name, word] : words.words) {
     const Field* f = find_field(fields, name);
     if (!f) continue;
-    const std::string option = cli_option_name(*f);
+    const std::string option = shown_option_name(*f);
     FieldValue text = unwrap(parse_text_word(*f, word, option));
     v[name] = unwrap(si_from_text(*f, text, option));
   }

@@ -21,6 +21,11 @@ namespace frictal::cli {
 /// The help line of a field: help, unit, default and valid range (identical in every command).
 std::string field_help(const Field& f);
 
+/// The option name a field shows in the help, in errors and in docs/settings.md: its own
+/// (`cli_option_name`) but where every command calls the quantity otherwise (`angle`:
+/// `--direction`, as `predict`); the field's own name is then read as well.
+std::string shown_option_name(const Field& f);
+
 /// Words typed for the fields of one table, by field name (converted after parsing).
 struct FieldWords {
   std::map<std::string, std::string> words;

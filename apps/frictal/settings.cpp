@@ -39,6 +39,7 @@ std::string md_table(const std::vector<Field>& fields) {
   std::string s = "| name | CLI option | unit | default | valid | meaning |\n|---|---|---|---|---|---|\n";
   for (const Field& f : fields) {
     std::string opt = cli_option_name(f);
+    if (shown_option_name(f) != opt) opt = shown_option_name(f) + ", " + opt;
     if (f.short_name) opt = fmt::format("-{}, {}", f.short_name, opt);
     if (f.type == FieldType::Boolean) opt += ", --no-" + cli_option_name(f).substr(2);
     s += fmt::format("| `{}` | `{}` | {} | {} | {} | {} |\n", f.name, opt, text_unit(f).empty() ? "–" : text_unit(f),

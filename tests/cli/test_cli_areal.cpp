@@ -143,7 +143,7 @@ TEST(CliAreal, BadInputExitsTwoNamingTheValue) {
   const std::string base = "areal " + groove_args() + " --runaway-distance 1e-6";
   auto a = run_cli(base + " --angle nan");
   EXPECT_EQ(a.code, 2);
-  EXPECT_NE(a.err.find("--angle"), std::string::npos) << a.err;
+  EXPECT_NE(a.err.find("--direction"), std::string::npos) << a.err;
   EXPECT_NE(a.err.find("finite"), std::string::npos) << a.err;
   auto s = run_cli(base + " --start-offset 1,0");
   EXPECT_EQ(s.code, 2);
@@ -203,10 +203,28 @@ TEST(CliAreal, AnisotropyHoldIsThePredictionPerDirection) {
   EXPECT_NE(w.err.find("--directions"), std::string::npos) << w.err;
 }
 
+// `predict`'s name for the sliding direction works in `areal` and `areal-tilt` too; `--angle`,
+// their older name, still reads the same direction.
+TEST(CliAreal, DirectionIsTheNamePredictUsesAndAngleStillReads) {
+  for (const std::string& cmd : {"areal " + groove_args(), "areal-tilt " + groove_args() + " --predict-only"}) {
+    const auto d = run_cli(cmd + " --direction 30 --json");
+    const auto a = run_cli(cmd + " --angle 30 --json");
+    const auto z = run_cli(cmd + " --json");
+    ASSERT_EQ(d.code, 0) << cmd << d.err;
+    ASSERT_EQ(a.code, 0) << cmd << a.err;
+    auto jd = nlohmann::json::parse(d.out), ja = nlohmann::json::parse(a.out), jz = nlohmann::json::parse(z.out);
+    for (auto* j : {&jd, &ja, &jz}) j->erase("seconds");  // the run's own timing
+    EXPECT_EQ(jd, ja) << cmd;
+    EXPECT_DOUBLE_EQ(jd["direction_deg"].get<double>(), 30.0) << cmd;
+    EXPECT_DOUBLE_EQ(jz["direction_deg"].get<double>(), 0.0) << cmd;
+  }
+  EXPECT_NE(run_cli("areal-tilt --help").out.find("--direction"), std::string::npos);
+}
+
 TEST(CliAreal, ArealTiltRefusesBadInputBeforeSimulating) {
   auto a = run_cli("areal-tilt " + groove_file() + " --angle inf --json");
   EXPECT_EQ(a.code, 2);
-  EXPECT_NE(a.err.find("--angle"), std::string::npos) << a.err;
+  EXPECT_NE(a.err.find("--direction"), std::string::npos) << a.err;
   EXPECT_EQ(run_cli("areal-tilt " + groove_file() + " --tilt-step 0").code, 2);
 }
 
