@@ -95,12 +95,46 @@ class SphereField {
  public:
   struct Piece {
     double value, gx, gy;
+    double cap;  ///< the cap of |g - g_top| its window was collected with (unitless; see Window)
+  };
+  /// The window of pieces a descent step of `delta` asks for: a piece within deficit
+  /// delta * min(2, 2 (s + s_top)) + abs of the max, where s bounds the facet slopes around the
+  /// piece's cell and s_top those around the top piece's (two contacts on those facets, or on
+  /// edges between them, differ in gradient by at most s + s_top; 2 caps it, as before, and is the
+  /// cap where no bound holds: the cells on the lower map's border, whose outer edges a sphere can
+  /// touch sideways). On a rough map every cap is 2; on a smooth one (slopes of 0.01) the window is
+  /// a hundredth as deep, and so is the work.
+  struct Window {
+    double delta = 0;  ///< (unit: m)
+    double s_top = 0;  ///< (unitless)
+    double abs = 0;    ///< (unit: m)
+    double cap(double s) const { return std::min(2.0, 2 * (s + s_top)); }
+    double eps(double s) const { return delta * cap(s) + abs; }
   };
   SphereField(const std::vector<detail::TiltNode>& nodes, const detail::Hfield& hf, double r)
       : nodes_(nodes), hf_(hf), r_(r), cnx_(hf.nx - 1), cny_(hf.ny - 1), cell_top_(cnx_ * cny_) {
     for (std::size_t j = 0; j < cny_; ++j)
       for (std::size_t i = 0; i < cnx_; ++i)
         cell_top_[j * cnx_ + i] = std::max({hf.at(i, j), hf.at(i + 1, j), hf.at(i, j + 1), hf.at(i + 1, j + 1)});
+    // Each cell's facet slopes (its two triangles), then their max over the 3 x 3 cells around
+    // it: a contact in the cell touches one of those facets or an edge or vertex between them,
+    // whose gradient lies between theirs. The border's cells: no bound (infinity).
+    std::vector<double> cell_slope(cnx_ * cny_);
+    for (std::size_t j = 0; j < cny_; ++j)
+      for (std::size_t i = 0; i < cnx_; ++i) {
+        const double z00 = hf.at(i, j), z10 = hf.at(i + 1, j), z01 = hf.at(i, j + 1), z11 = hf.at(i + 1, j + 1);
+        cell_slope[j * cnx_ + i] = std::max(std::hypot((z11 - z01) / hf.dx, (z01 - z00) / hf.dy),
+                                            std::hypot((z10 - z00) / hf.dx, (z11 - z10) / hf.dy));
+      }
+    slope3_.assign(cnx_ * cny_, std::numeric_limits<double>::infinity());
+    for (std::size_t j = 1; j + 1 < cny_; ++j)
+      for (std::size_t i = 1; i + 1 < cnx_; ++i) {
+        double m = 0;
+        for (std::size_t jj = j - 1; jj <= j + 1; ++jj)
+          for (std::size_t ii = i - 1; ii <= i + 1; ++ii) m = std::max(m, cell_slope[jj * cnx_ + ii]);
+        slope3_[j * cnx_ + i] = m;
+        slope_max_ = std::max(slope_max_, m);
+      }
     bnx_ = (cnx_ + kBlock - 1) / kBlock;
     bny_ = (cny_ + kBlock - 1) / kBlock;
     block_top_.assign(bnx_ * bny_, kNoContact);
@@ -174,6 +208,16 @@ class SphereField {
         b = std::max(b, block_top_[j * bnx_ + i]);
       }
   }
+  /// The bound s of the facet slopes around the cell under (x, y) (unitless; infinity on the
+  /// border's cells and off the map).
+  double slope_at(double x, double y) const {
+    const double fi = std::floor((x - hf_.x0) / hf_.dx), fj = std::floor((y - hf_.y0) / hf_.dy);
+    if (!(fi >= 0 && fj >= 0 && fi <= double(cnx_ - 1) && fj <= double(cny_ - 1)))
+      return std::numeric_limits<double>::infinity();
+    return slope3_[std::size_t(fj) * cnx_ + std::size_t(fi)];
+  }
+  /// The largest of the bounds off the border (unitless).
+  double slope_max() const { return slope_max_; }
   /// The spheres that can reach the top anywhere within `radius` of an offset `centre`: every
   /// sphere whose wide bound (the highest cell top within r + radius of its centre, plus r, less
   /// its height) is at least `threshold`, sorted by that bound, highest first. Kept by the caller
@@ -181,23 +225,29 @@ class SphereField {
   struct Near {
     double cx = 0, cy = 0, radius = -1;
     double threshold = kNoContact;
-    double last = kNoContact;                            ///< h at the last offset evaluated (unit: m)
-    std::vector<std::pair<double, std::uint32_t>> list;  ///< (wide bound (m), node index)
-    long rebuilds = 0, fallbacks = 0;                    ///< (unitless)
+    double last = kNoContact;  ///< h at the last offset evaluated (unit: m)
+    struct Entry {
+      double wide;      ///< the sphere's wide bound (unit: m)
+      std::uint32_t k;  ///< its node index
+      float s;          ///< the facet slopes' bound over the cells it can touch (unitless; see Window)
+    };
+    std::vector<Entry> list;
+    long rebuilds = 0, fallbacks = 0;  ///< (unitless)
   };
   /// h(s) as eval, from the spheres of `near` (rebuilt around s when s lies outside its disc):
   /// visited in the order of their wide bounds until a bound falls below the best height less
   /// eps. Exact: a sphere left out has a wide bound, an upper bound of its top anywhere in the
   /// disc, below the best less eps; where the list ends above that (the threshold was set too
   /// high for this offset), the full evaluation answers. Same h and pieces within eps as eval.
+  /// With `win`, the pieces are those within its window of each cell (eps: the deepest of them).
   double eval_near(double sx, double sy, double& bx, double& by, std::size_t& work, Near& near, double eps = 0,
-                   std::vector<Piece>* pieces = nullptr) const {
+                   std::vector<Piece>* pieces = nullptr, const Window* win = nullptr) const {
     const double ox = sx - near.cx, oy = sy - near.cy;
     if (near.radius < 0 || near.last == kNoContact) {
       // The first list: around h here (the full evaluation), down by eps and a quarter of the
       // disc's radius (h changes by less over most of the disc; where it does, the full
       // evaluation answers).
-      const double h0 = eval(sx, sy, bx, by, work, eps, pieces);
+      const double h0 = eval(sx, sy, bx, by, work, eps, pieces, win);
       if (h0 == kNoContact) return h0;
       rebuild(near, sx, sy, h0 - eps - 0.25 * near_radius());
       near.last = h0;
@@ -208,29 +258,31 @@ class SphereField {
     double best = kNoContact;
     if (pieces) pieces->clear();
     bool complete = false;
-    for (const auto& [wide, k] : near.list) {
-      if (wide < best - eps) {
+    for (const Near::Entry& e : near.list) {
+      if (e.wide < best - eps) {
         complete = true;
         break;
       }
-      sphere(nodes_[k], sx, sy, best, bx, by, work, eps, pieces);
+      // Below its own window (best only grows: it stays below).
+      if (win && e.wide < best - win->eps(e.s)) continue;
+      sphere(nodes_[e.k], sx, sy, best, bx, by, work, eps, pieces, win);
     }
     if (!complete && !(best != kNoContact && best - eps >= near.threshold)) {
       ++near.fallbacks;
-      best = eval(sx, sy, bx, by, work, eps, pieces);
+      best = eval(sx, sy, bx, by, work, eps, pieces, win);
       near.last = best;
       if (best != kNoContact) rebuild(near, sx, sy, best - eps - 0.25 * near_radius());
       return best;
     }
     near.last = best;
-    if (pieces) std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
+    erase_outside(pieces, best, eps, win);
     return best;
   }
 
   /// h(s) (kNoContact: no sphere over the field); (bx, by) the touching point; `work` counts
   /// cells evaluated.
   double eval(double sx, double sy, double& bx, double& by, std::size_t& work, double eps = 0,
-              std::vector<Piece>* pieces = nullptr) const {
+              std::vector<Piece>* pieces = nullptr, const Window* win = nullptr) const {
     double best = kNoContact;
     if (pieces) pieces->clear();
     // Each tile's bound at this offset; the tile of the highest bound first (it sets a high best),
@@ -246,17 +298,25 @@ class SphereField {
     }
     if (first == tiles_.size()) return best;
     for (std::size_t q = tiles_[first].begin; q < tiles_[first].end; ++q)
-      sphere(nodes_[order_[q]], sx, sy, best, bx, by, work, eps, pieces);
+      sphere(nodes_[order_[q]], sx, sy, best, bx, by, work, eps, pieces, win);
     for (std::size_t t = 0; t < tiles_.size(); ++t) {
       if (t == first || bound[t] == kNoContact || bound[t] < best - eps) continue;
       for (std::size_t q = tiles_[t].begin; q < tiles_[t].end; ++q)
-        sphere(nodes_[order_[q]], sx, sy, best, bx, by, work, eps, pieces);
+        sphere(nodes_[order_[q]], sx, sy, best, bx, by, work, eps, pieces, win);
     }
-    if (pieces) std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
+    erase_outside(pieces, best, eps, win);
     return best;
   }
 
  private:
+  /// Drops the pieces below the window of the final max `best`.
+  static void erase_outside(std::vector<Piece>* pieces, double best, double eps, const Window* win) {
+    if (!pieces) return;
+    if (win)
+      std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - (win->delta * p.cap + win->abs); });
+    else
+      std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
+  }
   static constexpr std::size_t kTile = 8, kBlock = 8;
   /// The disc of offsets over which a Near list holds: one lower-map cell (unit: m).
   double near_radius() const { return 0.5 * std::max(hf_.dx, hf_.dy); }
@@ -289,17 +349,23 @@ class SphereField {
           // As `wide` below, and rounding is monotone: the rest of the tile (higher) cannot reach either.
           if (tile_top + r_ - (n.z + r_) < threshold) break;
           if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
-          double b = kNoContact;
+          double b = kNoContact, sm = 0;
           for (std::size_t j = j0; j <= j1; ++j)
-            for (std::size_t i = i0; i <= i1; ++i) b = std::max(b, cell_top_[j * cnx_ + i]);
+            for (std::size_t i = i0; i <= i1; ++i) {
+              b = std::max(b, cell_top_[j * cnx_ + i]);
+              sm = std::max(sm, slope3_[j * cnx_ + i]);
+            }
           const double wide = b + r_ - (n.z + r_);
-          if (wide >= threshold) near.list.push_back({wide, tiled_[q].k});
+          // (float: rounded up, so that it stays a bound)
+          const float sf = std::isinf(sm) ? std::numeric_limits<float>::infinity()
+                                          : std::nextafter(float(sm), std::numeric_limits<float>::infinity());
+          if (wide >= threshold) near.list.push_back({wide, tiled_[q].k, sf});
         }
       }
     }
     // Highest bound first; equal bounds by node index (the order does not depend on the scan's).
-    std::sort(near.list.begin(), near.list.end(), [](const auto& a, const auto& b) {
-      return a.first > b.first || (a.first == b.first && a.second < b.second);
+    std::sort(near.list.begin(), near.list.end(), [](const Near::Entry& a, const Near::Entry& b) {
+      return a.wide > b.wide || (a.wide == b.wide && a.k < b.k);
     });
   }
   struct Tile {
@@ -339,21 +405,27 @@ class SphereField {
   }
 
   void sphere(const detail::TiltNode& n, double sx, double sy, double& best, double& bx, double& by, std::size_t& work,
-              double eps, std::vector<Piece>* pieces) const {
+              double eps, std::vector<Piece>* pieces, const Window* win = nullptr) const {
     const double cx = n.x + sx, cy = n.y + sy;
     // Cells whose rectangle meets the disc of radius r about (cx, cy).
     std::size_t i0, i1, j0, j1;
     if (!cell_range(cx, cx, cy, cy, i0, i1, j0, j1)) return;
-    double bound = kNoContact;
+    double bound = kNoContact, sm = 0;
     for (std::size_t j = j0; j <= j1; ++j)
-      for (std::size_t i = i0; i <= i1; ++i) bound = std::max(bound, cell_top_[j * cnx_ + i]);
+      for (std::size_t i = i0; i <= i1; ++i) {
+        bound = std::max(bound, cell_top_[j * cnx_ + i]);
+        if (win) sm = std::max(sm, slope3_[j * cnx_ + i]);
+      }
     // The block's height when this sphere (centre n.z + r above the block's origin) touches.
     const double base = -(n.z + r_);
-    if (bound + r_ + base <= best - eps) return;
+    if (bound + r_ + base <= best - (win ? win->eps(sm) : eps)) return;
     const double r2 = r_ * r_;
     for (std::size_t j = j0; j <= j1; ++j)
       for (std::size_t i = i0; i <= i1; ++i) {
-        if (cell_top_[j * cnx_ + i] + r_ + base < best - eps) continue;  // no point of the cell reaches
+        // The cell's own window (eps where none is asked for).
+        const double cap = win ? win->cap(slope3_[j * cnx_ + i]) : 2.0;
+        const double eps_c = win ? win->delta * cap + win->abs : eps;
+        if (cell_top_[j * cnx_ + i] + r_ + base < best - eps_c) continue;  // no point of the cell reaches
         const Vertex p00{hf_.x0 + double(i) * hf_.dx, hf_.y0 + double(j) * hf_.dy, hf_.at(i, j)};
         // A point of the cell at horizontal distance rho >= delta from the centre lifts the
         // sphere to at most its height + sqrt(r^2 - delta^2): the cell's bound at its distance
@@ -376,24 +448,24 @@ class SphereField {
         double reach[2];
         for (int t = 0; t < 2; ++t)
           reach[t] = top_t[t] + std::sqrt(std::max(0.0, r2 - d2_t[t])) + kBoundSlack * r_ + base;
-        if (std::max(reach[0], reach[1]) < best - eps) continue;
+        if (std::max(reach[0], reach[1]) < best - eps_c) continue;
         ++work;
         const Vertex p10{p00.x + hf_.dx, p00.y, z10};
         const Vertex p01{p00.x, p00.y + hf_.dy, z01};
         const Vertex p11{p00.x + hf_.dx, p00.y + hf_.dy, z11};
         // MuJoCo's two triangles of the cell, split along (i, j)-(i+1, j+1).
         for (int t = 0; t < 2; ++t) {
-          if (reach[t] < best - eps) continue;
+          if (reach[t] < best - eps_c) continue;
           double px = 0, py = 0;
           const double top = t == 0 ? triangle_top(p01, p00, p11, cx, cy, r_, px, py)
                                     : triangle_top(p00, p11, p10, cx, cy, r_, px, py);
           if (top == kNoContact) continue;
           const double v = top + base;
           if (v > best) best = v, bx = px, by = py;
-          if (pieces && v >= best - eps) {
+          if (pieces && v >= best - eps_c) {
             const double ex = px - cx, ey = py - cy;
             const double q = std::sqrt(std::max(r_ * r_ - ex * ex - ey * ey, 1e-12 * r_ * r_));
-            pieces->push_back({v, ex / q, ey / q});
+            pieces->push_back({v, ex / q, ey / q, cap});
           }
         }
       }
@@ -408,6 +480,8 @@ class SphereField {
   double diag_scale2_ = 1 / (inv_dx_ * inv_dx_ + inv_dy_ * inv_dy_);  ///< (unit: m^2)
   std::size_t cnx_, cny_;
   std::vector<double> cell_top_;
+  std::vector<double> slope3_;  ///< per cell: the facet slopes' max over the 3 x 3 cells around it (unitless)
+  double slope_max_ = 0;        ///< slope3_'s max off the border (unitless)
   std::size_t bnx_ = 0, bny_ = 0;
   std::vector<double> block_top_;   ///< max of cell_top_ over kBlock x kBlock cells
   std::vector<std::size_t> order_;  ///< sphere indices grouped by tile
@@ -636,10 +710,26 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   const double phi_a = std::atan(t.atomic_friction);
   constexpr int kConeSamples = 128;
   // h where the spheres touch, +inf (a wall) where none is over the field.
-  auto height = [&](double x, double y, double eps, std::vector<SphereField::Piece>* p) {
+  // With pieces: those a step of `delta` could make the highest (SphereField::Window), from the
+  // max first (where it touches sets the top's slope bound), then every piece within its window;
+  // `full`: the window of cap 2 for every piece.
+  // Where a bound reaches 0.5, some caps are 2 anyway: there every piece's cap is 2, in one pass
+  // (the windows as they were before the bounds; the same descents, to the bit).
+  const bool local = field.slope_max() < 0.5;
+  auto height = [&](double x, double y, double delta, std::vector<SphereField::Piece>* p, bool full = false) {
     double bx = 0, by = 0;
     ++out.evaluations;
-    const double h = field.eval_near(x, y, bx, by, work, near, eps, p);
+    if (!local || !p) {
+      const double h = field.eval_near(x, y, bx, by, work, near, p ? 2 * delta + 2e-12 * r : 0, p);
+      return h == kNoContact ? std::numeric_limits<double>::infinity() : h;
+    }
+    double h = field.eval_near(x, y, bx, by, work, near, 0, nullptr);
+    if (h != kNoContact) {
+      const double s_top = full ? std::numeric_limits<double>::infinity() : field.slope_at(bx, by);
+      const SphereField::Window w{delta, s_top, 2e-12 * r};
+      // The deepest window: a border cell's (cap 2).
+      h = field.eval_near(x, y, bx, by, work, near, w.eps(std::numeric_limits<double>::infinity()), p, &w);
+    }
     return h == kNoContact ? std::numeric_limits<double>::infinity() : h;
   };
   struct State {
@@ -658,12 +748,15 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     // slopes within 4e-5 (docs/mujoco.md, "Atomic friction").
     const double delta_min = (phi_a > 0 ? 1e-9 : 1e-6) * r;
     // Pieces that a step of delta could make the highest: deficit <= delta |g_i - g_best|, with
-    // |g_i - g_best| capped at 2 below; collected up to that cap.
-    auto window = [&](double d) { return 2 * d + 2e-12 * r; };
+    // |g_i - g_best| capped by each piece's cap (SphereField::Window); collected up to it.
     double h = 0;
     bool have = false;  // h and `pieces` hold for st and delta (from the accepted trial step)
+    // A direction from the local windows that no step down to delta_min follows may have left out
+    // a piece steeper than the facets around it: the rest is taken only once the full window
+    // (cap 2 for every piece) finds no step either.
+    bool full = false;
     for (int it = 0; it < 200000; ++it) {
-      if (!have) h = height(st.x, st.y, window(delta), &pieces);
+      if (!have) h = height(st.x, st.y, delta, &pieces, full);
       have = false;
       if (!std::isfinite(h)) return End::Stuck;
       const double V = h * cb - (st.x * dxv + st.y * dyv) * sb;
@@ -672,7 +765,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
         if (p.value > top->value) top = &p;
       q.clear();
       for (const SphereField::Piece& p : pieces) {
-        if (h - p.value > delta * std::min(std::hypot(p.gx - top->gx, p.gy - top->gy), 2.0) + 1e-12 * r) continue;
+        if (h - p.value > delta * std::min(std::hypot(p.gx - top->gx, p.gy - top->gy), p.cap) + 1e-12 * r) continue;
         // Frictionless: the slope of the contact's normal force. With mu_a: the slopes of every force
         // in its Coulomb cone (docs/mujoco.md, "Atomic friction").
         slopes.clear();
@@ -698,17 +791,18 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
         if (delta <= delta_min) return End::Rest;
         delta = std::max(0.5 * delta, delta_min);
         // The pieces of the smaller window are among these (no new evaluation).
-        std::erase_if(pieces, [&](const SphereField::Piece& p) { return p.value < h - window(delta); });
+        std::erase_if(pieces, [&](const SphereField::Piece& p) { return p.value < h - (delta * p.cap + 2e-12 * r); });
         have = true;
         continue;
       }
       const double wx = -P[0] / Pn, wy = -P[1] / Pn;
       bool moved = false;
+      const double delta_start = delta;
       while (delta >= delta_min) {
         const double nx = st.x + delta * wx, ny = st.y + delta * wy;
         // The trial collects the pieces of the next iteration's window (used if it is accepted).
         const double next = std::min(1.5 * delta, 0.5 * r);
-        const double h2 = height(nx, ny, window(next), &trial_pieces);
+        const double h2 = height(nx, ny, next, &trial_pieces, full);
         // No sphere left over the lower map: the descent carries the block off its edge, where
         // nothing holds it (MuJoCo's block falls off the height field): a run-away, not a wall.
         if (h2 == std::numeric_limits<double>::infinity()) return End::Far;
@@ -724,7 +818,13 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
         }
         delta *= 0.5;
       }
-      if (!moved) return End::Rest;
+      if (!moved) {
+        if (full || !local) return End::Rest;
+        full = true;
+        delta = delta_start;
+        continue;  // have is false: the pieces again, in the full window
+      }
+      full = false;
       if (check_far && (st.x - st.x_stop) * dxv + (st.y - st.y_stop) * dyv >= D) return End::Far;
     }
     return End::Stuck;

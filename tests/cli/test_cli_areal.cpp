@@ -89,6 +89,37 @@ TEST(CliAreal, GroovesSteerWhenFreeAndHoldWhenLocked) {
   EXPECT_EQ(jl["hold_angle_free_deg"], j["hold_angle_deg"]);
 }
 
+// Grooves a tenth as deep (facet slopes below 0.07): the continuous model reads each piece's
+// window from the facet slopes around it (a tenth of the rough grooves' depth here) where every
+// bound is below 0.5; the closed forms above hold the same.
+TEST(CliAreal, ShallowGroovesKeepTheClosedFormsWithTheLocalWindows) {
+  const double a = kA / 10;
+  auto write = [&](std::size_t n, std::size_t at, const std::string& name) {
+    frictal::Map g;
+    g.nx = g.ny = n;
+    g.dx = kStep;
+    g.dy = kStep * std::tan(kPi / 6);
+    g.x0 = double(at) * g.dx;
+    g.y0 = double(at) * g.dy;
+    for (std::size_t j = 0; j < n; ++j)
+      for (std::size_t i = 0; i < n; ++i) g.heights.push_back(a * std::sin(2 * kPi * (double(i) - double(j)) / kM));
+    const std::string path = temp_path(name);
+    EXPECT_TRUE(frictal::write_x3p(path, g).ok());
+    return path;
+  };
+  const std::string args = write(100, 0, "shallow-grooves.x3p") + " " + write(6, 40, "shallow-grooves-window6.x3p") +
+                           " --in-place --detrend none --runaway-distance 1e-6";
+  const double locked = std::atan(a * std::sin(2 * kPi / kM) / kStep) * 180 / kPi;  // 1.79 deg
+  for (const std::string start : {"0,0", "1e-7,2e-7"}) {
+    auto j = json_of("areal " + args + " --lateral free --start-offset " + start + " --json");
+    EXPECT_LE(j["hold_angle_deg"].get<double>(), 0.1) << start;
+    EXPECT_NEAR(j["steering_deg"].get<double>(), 30, 0.5) << start;
+    auto l = json_of("areal " + args + " --lateral locked --start-offset " + start + " --json");
+    EXPECT_GE(l["hold_angle_deg"].get<double>(), locked - 1e-7) << start;
+    EXPECT_LE(l["hold_angle_deg"].get<double>(), locked + 0.012) << start;
+  }
+}
+
 TEST(CliAreal, HoldOverDropsIsThePredictionToTheDigit) {
   // Free over drops: every drop slides along the grooves at once (closed form above), and the
   // numbers are `frictal predict`'s for the same options, to the last digit.
