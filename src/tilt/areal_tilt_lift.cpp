@@ -118,7 +118,9 @@ class SphereField {
         cell_top_[j * cnx_ + i] = std::max({hf.at(i, j), hf.at(i + 1, j), hf.at(i, j + 1), hf.at(i + 1, j + 1)});
     // Each cell's facet slopes (its two triangles), then their max over the 3 x 3 cells around
     // it: a contact in the cell touches one of those facets or an edge or vertex between them,
-    // whose gradient lies between theirs. The border's cells: no bound (infinity).
+    // whose gradient lies between theirs. (On the border's outer edges a sphere beyond the map
+    // can touch sideways, steeper than any facet: there the descent's re-check in the full window
+    // keeps a rest from being taken for one.)
     std::vector<double> cell_slope(cnx_ * cny_);
     for (std::size_t j = 0; j < cny_; ++j)
       for (std::size_t i = 0; i < cnx_; ++i) {
@@ -126,12 +128,13 @@ class SphereField {
         cell_slope[j * cnx_ + i] = std::max(std::hypot((z11 - z01) / hf.dx, (z01 - z00) / hf.dy),
                                             std::hypot((z10 - z00) / hf.dx, (z11 - z10) / hf.dy));
       }
-    slope3_.assign(cnx_ * cny_, std::numeric_limits<double>::infinity());
-    for (std::size_t j = 1; j + 1 < cny_; ++j)
-      for (std::size_t i = 1; i + 1 < cnx_; ++i) {
+    slope3_.assign(cnx_ * cny_, 0);
+    for (std::size_t j = 0; j < cny_; ++j)
+      for (std::size_t i = 0; i < cnx_; ++i) {
         double m = 0;
-        for (std::size_t jj = j - 1; jj <= j + 1; ++jj)
-          for (std::size_t ii = i - 1; ii <= i + 1; ++ii) m = std::max(m, cell_slope[jj * cnx_ + ii]);
+        for (std::size_t jj = j > 0 ? j - 1 : 0; jj <= std::min(j + 1, cny_ - 1); ++jj)
+          for (std::size_t ii = i > 0 ? i - 1 : 0; ii <= std::min(i + 1, cnx_ - 1); ++ii)
+            m = std::max(m, cell_slope[jj * cnx_ + ii]);
         slope3_[j * cnx_ + i] = m;
         slope_max_ = std::max(slope_max_, m);
       }
@@ -208,15 +211,15 @@ class SphereField {
         b = std::max(b, block_top_[j * bnx_ + i]);
       }
   }
-  /// The bound s of the facet slopes around the cell under (x, y) (unitless; infinity on the
-  /// border's cells and off the map).
+  /// The bound s of the facet slopes around the cell under (x, y) (unitless; infinity off the
+  /// map).
   double slope_at(double x, double y) const {
     const double fi = std::floor((x - hf_.x0) / hf_.dx), fj = std::floor((y - hf_.y0) / hf_.dy);
     if (!(fi >= 0 && fj >= 0 && fi <= double(cnx_ - 1) && fj <= double(cny_ - 1)))
       return std::numeric_limits<double>::infinity();
     return slope3_[std::size_t(fj) * cnx_ + std::size_t(fi)];
   }
-  /// The largest of the bounds off the border (unitless).
+  /// The largest of the bounds (unitless).
   double slope_max() const { return slope_max_; }
   /// The spheres that can reach the top anywhere within `radius` of an offset `centre`: every
   /// sphere whose wide bound (the highest cell top within r + radius of its centre, plus r, less
@@ -249,12 +252,12 @@ class SphereField {
       // evaluation answers).
       const double h0 = eval(sx, sy, bx, by, work, eps, pieces, win);
       if (h0 == kNoContact) return h0;
-      rebuild(near, sx, sy, h0 - eps - 0.25 * near_radius());
+      rebuild(near, sx, sy, h0 - eps - 0.5 * near_fall() * near_radius());
       near.last = h0;
       return h0;
     }
     if (!(ox * ox + oy * oy <= near.radius * near.radius))  // around the last height found, lower by half the radius
-      rebuild(near, sx, sy, near.last - eps - 0.5 * near_radius());
+      rebuild(near, sx, sy, near.last - eps - near_fall() * near_radius());
     double best = kNoContact;
     if (pieces) pieces->clear();
     bool complete = false;
@@ -271,7 +274,7 @@ class SphereField {
       ++near.fallbacks;
       best = eval(sx, sy, bx, by, work, eps, pieces, win);
       near.last = best;
-      if (best != kNoContact) rebuild(near, sx, sy, best - eps - 0.25 * near_radius());
+      if (best != kNoContact) rebuild(near, sx, sy, best - eps - 0.5 * near_fall() * near_radius());
       return best;
     }
     near.last = best;
@@ -320,6 +323,9 @@ class SphereField {
   static constexpr std::size_t kTile = 8, kBlock = 8;
   /// The disc of offsets over which a Near list holds: one lower-map cell (unit: m).
   double near_radius() const { return 0.5 * std::max(hf_.dx, hf_.dy); }
+  /// How far h may fall across a Near disc, per unit of its radius: 0.5 (a guess: where h falls
+  /// faster, the full evaluation answers), less where no facet is that steep (unitless).
+  double near_fall() const { return std::min(0.5, slope_max_); }
 
   void rebuild(Near& near, double sx, double sy, double threshold) const {
     ++near.rebuilds;
@@ -481,7 +487,7 @@ class SphereField {
   std::size_t cnx_, cny_;
   std::vector<double> cell_top_;
   std::vector<double> slope3_;  ///< per cell: the facet slopes' max over the 3 x 3 cells around it (unitless)
-  double slope_max_ = 0;        ///< slope3_'s max off the border (unitless)
+  double slope_max_ = 0;        ///< slope3_'s max (unitless)
   std::size_t bnx_ = 0, bny_ = 0;
   std::vector<double> block_top_;   ///< max of cell_top_ over kBlock x kBlock cells
   std::vector<std::size_t> order_;  ///< sphere indices grouped by tile
@@ -727,8 +733,8 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     if (h != kNoContact) {
       const double s_top = full ? std::numeric_limits<double>::infinity() : field.slope_at(bx, by);
       const SphereField::Window w{delta, s_top, 2e-12 * r};
-      // The deepest window: a border cell's (cap 2).
-      h = field.eval_near(x, y, bx, by, work, near, w.eps(std::numeric_limits<double>::infinity()), p, &w);
+      // The deepest window: the steepest cell's.
+      h = field.eval_near(x, y, bx, by, work, near, w.eps(field.slope_max()), p, &w);
     }
     return h == kNoContact ? std::numeric_limits<double>::infinity() : h;
   };
