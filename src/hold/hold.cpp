@@ -16,6 +16,7 @@
 #include "frictal/hold.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -967,8 +968,14 @@ struct LiftPoint {
 // first (one pass), then the curve is written at its exact size. Both passes run in `threads`
 // contiguous chunks of the points (get(i) is read from any thread, in increasing i within a
 // chunk); the curve and the first error do not depend on their number.
+//
+// `head` / `tail` (optional, not periodic): curves built the same way over the points that come
+// before / after these, whose last / first vertex is point 0 / n - 1 (the same point): the curve
+// written is head, then these points' curve, then tail, as one build over all the points would
+// write it (a vertex depends on its point, a meeting point on the two points around it only).
 template <class Get>
-Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigned threads, Get&& get) {
+Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigned threads, Get&& get,
+                              const LiftCurve* head = nullptr, const LiftCurve* tail = nullptr) {
   if (n < 2) return make_error(fmt::format("lift_curve: the signature has {} offsets: expected at least two", n));
   const unsigned T = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(n / 4096 + 1)));
   struct Chunk {
@@ -987,6 +994,12 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
       ch.kh.reserve(i1 - i0);
     }
     LiftPoint prev = i0 > 0 ? get(i0 - 1) : LiftPoint{};
+    // tan(prev.right) once computed, and a tan reused where its angle repeats bit for bit (a
+    // contact that slides along one edge from one event to the next has that edge's angle on both
+    // sides of the interval): the same values, fewer tan calls.
+    bool have_tan_right = false;
+    double tan_right = 0;
+    auto same = [](double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); };
     for (std::size_t i = i0; i < i1; ++i) {
       const LiftPoint q = get(i);
       if (!std::isfinite(q.s) || !std::isfinite(q.h)) {
@@ -1001,7 +1014,10 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
       if (i > 0 && slopes) {
         // The tangent lines at both ends of the interval meet inside it: a vertex there.
         const double x0 = prev.s, x1 = q.s, h0 = prev.h, h1 = q.h;
-        const double m0 = std::tan(prev.right), m1 = std::tan(q.left);
+        const double m0 = have_tan_right ? tan_right : std::tan(prev.right);
+        const double m1 = same(q.left, prev.right) ? m0 : std::tan(q.left);
+        tan_right = same(q.right, q.left) ? m1 : std::tan(q.right);
+        have_tan_right = true;
         if (std::isfinite(m0) && std::isfinite(m1) && m0 != m1) {
           const double xs = (h1 - h0 + m0 * x0 - m1 * x1) / (m0 - m1);
           const double span = x1 - x0, eps = 1e-9 * span;
@@ -1035,11 +1051,20 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
   }
   LiftCurve c;
   c.period = period;
-  c.offset.resize(n + kinks);
-  c.lift.resize(n + kinks);
+  const std::size_t nh = head ? head->offset.size() - 1 : 0, nt = tail ? tail->offset.size() - 1 : 0;
+  c.offset.resize(nh + n + kinks + nt);
+  c.lift.resize(nh + n + kinks + nt);
+  if (head) {
+    std::copy(head->offset.begin(), head->offset.end() - 1, c.offset.begin());
+    std::copy(head->lift.begin(), head->lift.end() - 1, c.lift.begin());
+  }
+  if (tail) {
+    std::copy(tail->offset.begin() + 1, tail->offset.end(), c.offset.end() - static_cast<std::ptrdiff_t>(nt));
+    std::copy(tail->lift.begin() + 1, tail->lift.end(), c.lift.end() - static_cast<std::ptrdiff_t>(nt));
+  }
   util::parallel_chunks(n, T, [&](unsigned t, std::size_t i0, std::size_t i1) {
     const Chunk& ch = chunks[t];
-    std::size_t w = i0 + before[t], k = 0;
+    std::size_t w = nh + i0 + before[t], k = 0;
     for (std::size_t i = i0; i < i1; ++i) {
       if (kink[i]) {
         c.offset[w] = ch.kx[k];
@@ -1447,24 +1472,113 @@ Result<LiftCurve> merged_curve(const MergedPoints& mp, std::size_t first, std::s
   return build_curve(last - first, true, 0.0, threads, [&](std::size_t w) { return mp.get(first + w); });
 }
 
-// Merges two increasing point sets (offsets distinct).
+// A curve of the points at one end of W, built for an end check, kept for the whole curve: it
+// covers W's first (head) or last (tail) `points` points, from `front` to `back`.
+struct EndCurve {
+  LiftCurve curve;
+  std::size_t points = 0;  // 0: none
+  void reset() {
+    curve = LiftCurve{};
+    points = 0;
+  }
+};
+
+// The curve through W's points [first, last), one of its ends (first 0: head, last W's end: tail),
+// for the end check: from `old`, that end's curve of the round before, where it still covers
+// the points at the range's side (W grew by points beyond the cut end), else built anew.
+Result<LiftCurve> end_curve(const MergedPoints& mp, std::size_t first, std::size_t last, const EndCurve& old,
+                            unsigned threads) {
+  const bool head = first == 0;
+  const std::size_t n = last - first, k = old.points;
+  if (k >= 2 && k < n) {
+    const std::size_t o0 = head ? last - k : first;  // W's index of old's first point
+    if (old.curve.offset.front() == mp.offset(o0) && old.curve.offset.back() == mp.offset(o0 + k - 1)) {
+      if (head)  // the new points [0, o0] (old's first one included), then old
+        return build_curve(
+            o0 + 1, true, 0.0, threads, [&](std::size_t w) { return mp.get(w); }, nullptr, &old.curve);
+      const std::size_t b0 = o0 + k - 1;  // old, then the new points [b0, last)
+      return build_curve(
+          last - b0, true, 0.0, threads, [&](std::size_t w) { return mp.get(b0 + w); }, &old.curve, nullptr);
+    }
+  }
+  return merged_curve(mp, first, last, threads);
+}
+
+// The curve through all of W: the end curves where they still cover W's end points (W only grows
+// by points beyond a cut end, which moves its head's or tail's points; a moved end curve is
+// rebuilt with the rest), the points between them built here.
+Result<LiftCurve> whole_curve(const MergedPoints& mp, EndCurve& head, EndCurve& tail, unsigned threads) {
+  const std::size_t nw = mp.size();
+  auto covers = [&](const EndCurve& e, std::size_t first) {
+    return e.points >= 2 && e.points <= nw && e.curve.offset.front() == mp.offset(first) &&
+           e.curve.offset.back() == mp.offset(first + e.points - 1);
+  };
+  const bool use_head = covers(head, 0), use_tail = covers(tail, nw - std::min(nw, tail.points));
+  const std::size_t m0 = use_head ? head.points - 1 : 0, m1 = use_tail ? nw - tail.points + 1 : nw;
+  if (!(m1 >= m0 + 2)) {  // the end curves meet: one build
+    head.reset();
+    tail.reset();
+    return merged_curve(mp, 0, nw, threads);
+  }
+  auto c = build_curve(
+      m1 - m0, true, 0.0, threads, [&](std::size_t w) { return mp.get(m0 + w); }, use_head ? &head.curve : nullptr,
+      use_tail ? &tail.curve : nullptr);
+  head.reset();
+  tail.reset();
+  return c;
+}
+
+// Merges two increasing point sets (offsets distinct), one array at a time (each source array
+// let go as soon as its merged array is written: the merged set and both sources are not held
+// at once).
 detail::LiftPoints merge_points(detail::LiftPoints a, detail::LiftPoints b) {
   if (a.offset.empty()) return b;
   if (b.offset.empty()) return a;
-  detail::LiftPoints m;
-  const std::size_t n = a.offset.size() + b.offset.size();
-  for (std::vector<double>* v : {&m.offset, &m.lift, &m.left, &m.right}) v->reserve(n);
-  std::size_t i = 0, j = 0;
-  while (i < a.offset.size() || j < b.offset.size()) {
-    const bool from_a = j >= b.offset.size() || (i < a.offset.size() && a.offset[i] < b.offset[j]);
-    const detail::LiftPoints& s = from_a ? a : b;
-    std::size_t& k = from_a ? i : j;
-    m.offset.push_back(s.offset[k]);
-    m.lift.push_back(s.lift[k]);
-    m.left.push_back(s.left[k]);
-    m.right.push_back(s.right[k]);
-    ++k;
+  struct Run {
+    bool from_a;
+    std::size_t begin, end;
+  };
+  std::vector<Run> runs;  // whole runs of one source, in the merged order
+  {
+    const std::vector<double>& ao = a.offset;
+    const std::vector<double>& bo = b.offset;
+    std::size_t i = 0, j = 0;
+    while (i < ao.size() || j < bo.size()) {
+      if (j >= bo.size() || (i < ao.size() && ao[i] < bo[j])) {  // a's points below b's next one
+        const std::size_t e =
+            j < bo.size()
+                ? static_cast<std::size_t>(
+                      std::lower_bound(ao.begin() + static_cast<std::ptrdiff_t>(i), ao.end(), bo[j]) - ao.begin())
+                : ao.size();
+        runs.push_back({true, i, e});
+        i = e;
+      } else {  // b's points up to a's next one (b before an equal point of a, as one by one)
+        const std::size_t e =
+            i < ao.size()
+                ? static_cast<std::size_t>(
+                      std::upper_bound(bo.begin() + static_cast<std::ptrdiff_t>(j), bo.end(), ao[i]) - bo.begin())
+                : bo.size();
+        runs.push_back({false, j, e});
+        j = e;
+      }
+    }
   }
+  const std::size_t n = a.offset.size() + b.offset.size();
+  detail::LiftPoints m;
+  auto merge = [&](std::vector<double>& x, std::vector<double>& y, std::vector<double>& out) {
+    out.reserve(n);
+    for (const Run& r : runs) {
+      const std::vector<double>& src = r.from_a ? x : y;
+      out.insert(out.end(), src.begin() + static_cast<std::ptrdiff_t>(r.begin),
+                 src.begin() + static_cast<std::ptrdiff_t>(r.end));
+    }
+    std::vector<double>().swap(x);
+    std::vector<double>().swap(y);
+  };
+  merge(a.lift, b.lift, m.lift);
+  merge(a.left, b.left, m.left);
+  merge(a.right, b.right, m.right);
+  merge(a.offset, b.offset, m.offset);
   return m;
 }
 
@@ -1556,13 +1670,15 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   detail::LiftPoints ext_points;
   std::vector<std::size_t> ext_dropped;
   double cut_lo = 0, cut_hi = 0;
+  // Exact mode: the end checks' curves of the last round, the whole curve's ends (not built twice).
+  EndCurve head_end, tail_end;
   // Builds the curve from R and the extension, analyses it; the side(s) the process reached.
   // The points beyond the range are let go once the curve holds them (the sampled path's next
   // round evaluates its own).
   auto build_and_analyse = [&](const SignatureResult& R) -> Result<Reach> {
     {
       MergedPoints mp(R, ext_points, ext_dropped);
-      auto curve = merged_curve(mp, 0, mp.size(), util::thread_count(so.threads, 2));
+      auto curve = whole_curve(mp, head_end, tail_end, util::thread_count(so.threads, 2));
       if (!curve) return curve.error();
       out.curve = std::move(*curve);
     }
@@ -1613,14 +1729,18 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       // the two at once cost more memory than the serial checks' time is worth).
       const unsigned threads = util::thread_count(so.threads, 2);
       if (cut_max && !passed_max) {
-        auto c = merged_curve(mp, i_hi, nw, threads);
+        auto c = end_curve(mp, i_hi, nw, tail_end, threads);
         if (!c) return c.error();
         short_max = end_reached(*c, false, S.b, d);
+        tail_end.curve = std::move(*c);
+        tail_end.points = nw - i_hi;
       }
       if (cut_min && !passed_min) {
-        auto c = merged_curve(mp, 0, i_lo, threads);
+        auto c = end_curve(mp, 0, i_lo, head_end, threads);
         if (!c) return c.error();
         short_min = end_reached(*c, true, -S.a, d);
+        head_end.curve = std::move(*c);
+        head_end.points = i_lo;
       }
       more_max = short_max > 0;
       more_min = short_min > 0;
