@@ -722,36 +722,46 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
   return s;
 }
 
-// Distribution over drops in [a, b] (this frame's coordinates, a < b).
-//
+// A drop on a flat piece: its own outcome (pass 1 of distribution()).
+struct Flat {
+  double weight;
+  Rest rest;
+  std::int64_t next;  // the next record of its piece
+  Outcome oc;
+};
+
+// Pass 1 of distribution(): the basins over the drop range (rest vertex and weight, in the order
+// of their first drop) and the flat drops. With `starts`: each basin's first piece, and whether
+// the mirrored frame's pass 1 is this one mirrored (mirror_pass1): no flat drop, and every
+// part's midpoint strictly inside its piece (so that rest_in() takes the same rule on both sides).
+struct Basins {
+  std::vector<std::size_t> bv;
+  std::vector<double> bw;
+  std::vector<Flat> flats;
+  std::vector<std::size_t> start;
+  bool mirrorable = false;
+};
+
 // Pass 1 (increasing x) cuts the drop range into parts with one outcome each (the pieces of the
 // curve; a flat piece split where the first slip reaches d) and adds each part's length to its
 // basin (the rest vertex; the drops of one basin form one interval, so a basin is a run of
-// parts, apart from the wrap-around of a periodic curve) or keeps it as a flat drop. Pass 2
-// (decreasing x) finds the record chains of the basins' rest vertices with one stack. Pass 3:
-// the steepest chords from the rest vertices.
+// parts, apart from the wrap-around of a periodic curve) or keeps it as a flat drop.
 template <class V>
-HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, const HoldOptions& o, bool mirrored) {
+Basins basins_of(const Frame& fr, const V& p, double a, double b, const HoldOptions& o, bool starts) {
   const double d = o.runaway_distance;
   const std::size_t n = p.n();
-  // The basins, one entry each: rest vertex and weight (pass 1), hold slope and whether the
-  // run-away ran off the end less than d after its stop (pass 2), inertial angle (pass 3).
-  std::vector<std::size_t> bv;
-  std::vector<double> bw, bslope, binert;
+  Basins out;
+  std::vector<std::size_t>& bv = out.bv;
+  std::vector<double>& bw = out.bw;
+  std::vector<Flat>& flats = out.flats;
+  out.mirrorable = starts && !fr.periodic;
   // At most one basin per piece in the drop range, reserved at once (pages are taken as written).
   {
     const std::size_t pieces = p.upper(b) - std::min(p.upper(b), piece_of(p, a)) + 1;
     bv.reserve(pieces);
     bw.reserve(pieces);
+    if (out.mirrorable) out.start.reserve(pieces);
   }
-  std::vector<std::uint8_t> bnear;
-  struct Flat {
-    double weight;
-    Rest rest;
-    std::int64_t next;  // the next record of its piece
-    Outcome oc;
-  };
-  std::vector<Flat> flats;
   std::unordered_map<std::size_t, std::size_t> seen;  // periodic: key -> basin
   const std::size_t nb = fr.periodic ? p.m : 0;       // vertices per period in the unrolled frame
   std::size_t last_key = static_cast<std::size_t>(-1);
@@ -773,8 +783,10 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
     std::size_t km = k;  // the piece of mid, as piece_of() finds it
     while (km + 1 < n && !(mid < p.X(km + 1))) ++km;
     while (km > 0 && mid < p.X(km)) --km;
+    if (out.mirrorable && !(km == k && p.X(k) < mid && mid < p.X(k + 1))) out.mirrorable = false;
     const Rest r = rest_in(p, ds, km, mid);
     if (r.flat >= 0) {
+      out.mirrorable = false;
       // On a flat piece the first slip starts at the drop: split where it reaches d.
       const std::int64_t j = flat_next(k);
       const double split = j >= 0 ? p.X(static_cast<std::size_t>(j)) - d : x;
@@ -801,11 +813,67 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
       } else {
         bv.push_back(v);
         bw.push_back(xe - x);
+        if (out.mirrorable) out.start.push_back(k);
       }
       last_key = key;
     }
     x = xe;
   }
+  if (!out.mirrorable) std::vector<std::size_t>().swap(out.start);
+  return out;
+}
+
+// Pass 1 of the mirrored frame (`pm`, drops over [a, b] of its coordinates) from that of the
+// frame it mirrors (`f`, basins_of(..., true), mirrorable): a drop that rests at vertex v there
+// rests at vertex n - v here (the descents stop where the slope ahead turns non-negative, which
+// the mirror turns into the slope behind turning non-positive: the same vertex). The basins come
+// in the reverse order, each with its parts' lengths added up as basins_of() adds them in this
+// frame (from this frame's parts, walked as it walks them: the same lengths, in its order).
+// False where the two do not match part for part (then basins_of() is run here).
+template <class V>
+bool mirror_basins(const V& pm, const Basins& f, double a, double b, Basins& out) {
+  const std::size_t n = pm.n(), nf = f.bv.size();
+  out = Basins{};
+  out.bv.reserve(nf);
+  out.bw.reserve(nf);
+  std::size_t cur = nf;  // the other frame's basin of the last part (nf: none yet)
+  std::size_t i = nf;    // basins [0, i) start at or before the part at hand
+  std::size_t k = piece_of(pm, a);
+  for (double x = a; x < b && k < n; ++k) {
+    const double xe = std::min(b, pm.X(k + 1));
+    if (xe <= x) continue;
+    const std::size_t kf = n - 1 - k;  // the piece in the other frame
+    while (i > 0 && f.start[i - 1] > kf) --i;
+    if (i == 0) return false;
+    const std::size_t fb = i - 1;
+    if (fb != cur) {  // the next basin (the one before in the other frame)
+      if (cur == nf ? fb + 1 != nf : fb + 1 != cur) return false;
+      out.bv.push_back(n - f.bv[fb]);
+      out.bw.push_back(xe - x);
+      cur = fb;
+    } else {
+      out.bw.back() += xe - x;
+    }
+    x = xe;
+  }
+  return out.bv.size() == nf && (nf == 0 || cur == 0);
+}
+
+// Distribution over drops in [a, b] (this frame's coordinates, a < b), from its basins (pass 1,
+// basins_of). Pass 2 (decreasing x) finds the record chains of the basins' rest vertices with one
+// stack. Pass 3: the steepest chords from the rest vertices.
+template <class V>
+HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, const HoldOptions& o, bool mirrored,
+                              Basins&& pass1) {
+  const double d = o.runaway_distance;
+  const std::size_t n = p.n();
+  // The basins, one entry each: rest vertex and weight (pass 1), hold slope and whether the
+  // run-away ran off the end less than d after its stop (pass 2), inertial angle (pass 3).
+  std::vector<std::size_t> bv = std::move(pass1.bv);
+  std::vector<double> bw = std::move(pass1.bw), bslope, binert;
+  std::vector<Flat> flats = std::move(pass1.flats);
+  pass1 = Basins{};
+  std::vector<std::uint8_t> bnear;
   // Pass 2: the record chains, from the right. The stack holds the strict record chain of the
   // vertex at hand (slopes strictly increasing from top to bottom), each entry with the end of
   // its own chain. The next record of kk (the first piece ahead steeper than kk by more than
@@ -1145,16 +1213,30 @@ Result<HoldDistributions> hold_distribution_checked(const LiftCurve& curve, cons
   a = std::max(a, lo);
   b = std::min(b, hi);
   HoldDistributions out;
+  const Frame ff = make_frame(curve, false, options.runaway_distance);
+  const Frame fb = make_frame(curve, true, options.runaway_distance);
+  // The basins of both directions from one pass 1 where the backward one is the forward one
+  // mirrored (mirror_basins; not periodic); each direction's own otherwise.
+  Basins pf, pb;
+  bool have_pf = false, have_pb = false;
+  if (curve.period == 0) {
+    pf = basins_of(ff, LinearView<false>(curve), a, b, options, true);
+    have_pf = true;
+    if (pf.mirrorable) have_pb = mirror_basins(LinearView<true>(curve), pf, -b, -a, pb);
+    std::vector<std::size_t>().swap(pf.start);
+  }
   // The two directions are independent: one thread each where there are two.
   util::parallel_chunks(2, util::thread_count(options.threads, 2), [&](unsigned, std::size_t i0, std::size_t i1) {
     for (std::size_t i = i0; i < i1; ++i) {
       if (i == 0)
         out.forward = with_view(curve, false, [&](const auto& p) {
-          return distribution(make_frame(curve, false, options.runaway_distance), p, a, b, options, false);
+          return distribution(ff, p, a, b, options, false,
+                              have_pf ? std::move(pf) : basins_of(ff, p, a, b, options, false));
         });
       else
         out.backward = with_view(curve, true, [&](const auto& p) {
-          return distribution(make_frame(curve, true, options.runaway_distance), p, -b, -a, options, true);
+          return distribution(fb, p, -b, -a, options, true,
+                              have_pb ? std::move(pb) : basins_of(fb, p, -b, -a, options, false));
         });
     }
   });
