@@ -687,7 +687,9 @@ HoldAngle unmirror(HoldAngle h) {
   return h;
 }
 
-HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<double>& w) {
+// `e`: scratch space for the selection (reused from call to call: its pages are taken once).
+HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<double>& w,
+                              std::vector<util::ValueWeight>& e) {
   HoldStatistics s;
   double tw = 0, m = 0;
   for (std::size_t i = 0; i < v.size(); ++i) {
@@ -704,7 +706,7 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
   // q * tw (less a relative 1e-12, so that a quantile falling on a jump takes the lower value).
   // By selection rather than a sort: the cumulative weights are added up in another order, which
   // moves them by rounding only (about n ulps at most, typically far less than the 1e-12 slack).
-  std::vector<util::ValueWeight> e(v.size());
+  e.resize(v.size());
   double lo = v[0], hi = v[0];
   for (std::size_t i = 0; i < v.size(); ++i) {
     e[i] = {v[i], w[i]};
@@ -1014,8 +1016,9 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
     }
   }
   // Every drop of a basin gives its basin's angles: the statistics over basins weighted by width.
-  out.hold = weighted_stats(out.basins.hold, out.basins.weight);
-  out.inertial = weighted_stats(out.basins.inertial, out.basins.weight);
+  std::vector<util::ValueWeight> scratch;
+  out.hold = weighted_stats(out.basins.hold, out.basins.weight, scratch);
+  out.inertial = weighted_stats(out.basins.inertial, out.basins.weight, scratch);
   out.drop_min = mirrored ? -b : a;
   out.drop_max = mirrored ? -a : b;
   out.near_end = near_end;
