@@ -1703,10 +1703,12 @@ double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
 // beyond it on the sides the process reaches, then (the faces let go) the analysis.
 // Exact mode: each side from 1.55 d (end_reached()'s need on the three benchmark pairs of issue
 // 32: 1.50 and 1.52 d for H = 0.8, 1.32 and 2.58 d for H = 0.3, 1.03 and 1.47 d for the WM pair;
-// a round re-plans the wide range and rebuilds the local curves), widened by what end_reached()
-// finds short and d/5 while it says the process may reach the cut end (a side that passed is
-// not checked again); the offsets are those a signature over the wider range lists, so the
-// curve, and every number, is that of a lift computed over it. Sampled offsets: the widened
+// a round plans the wide range's new offsets and rebuilds the widened side's local curve),
+// widened by what end_reached() finds short and d/5 while it says the process may reach the cut
+// end (a side that passed is not checked again); the offsets are those a signature over the
+// wider range lists, so the curve, and every number, is that of a lift computed over it (after
+// a second round the first round's cut end stays an offset as well: one vertex more on a piece
+// of the same lift, test Hold.OnePassCurveIsTheLiftOfItsRangeToTheBit). Sampled offsets: the widened
 // range and its grid as analyse_hold_widened takes them (2 d on both sides, doubled on the whole
 // analysis).
 Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, const SignatureOptions& so,
@@ -1791,8 +1793,10 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       const std::size_t i_lo = std::min(nw, w_lo + 2);
       const std::size_t w_hi = std::max(w_lo, mp.first_at(S.b - d, true));
       const std::size_t i_hi = w_hi > 2 ? w_hi - 2 : 0;
-      // One end after the other (each curve on the threads; one local curve held at a time:
-      // the two at once cost more memory than the serial checks' time is worth).
+      // One end after the other (each curve on the threads). The curves are kept for the whole
+      // curve's ends (the first one held while the second is built: about 25 MB at the peak of
+      // issue 32's pairs, for about 0.1 s of CPU that the whole curve then saves); building the
+      // two at once would cost their build buffers too, for the serial checks' 0.05-0.1 s of wall.
       const unsigned threads = util::thread_count(so.threads, 2);
       if (cut_max && !passed_max) {
         tail_end.reset();
