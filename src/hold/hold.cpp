@@ -16,6 +16,7 @@
 #include "frictal/hold.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -686,7 +687,9 @@ HoldAngle unmirror(HoldAngle h) {
   return h;
 }
 
-HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<double>& w) {
+// `e`: scratch space for the selection (reused from call to call: its pages are taken once).
+HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<double>& w,
+                              std::vector<util::ValueWeight>& e) {
   HoldStatistics s;
   double tw = 0, m = 0;
   for (std::size_t i = 0; i < v.size(); ++i) {
@@ -703,7 +706,7 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
   // q * tw (less a relative 1e-12, so that a quantile falling on a jump takes the lower value).
   // By selection rather than a sort: the cumulative weights are added up in another order, which
   // moves them by rounding only (about n ulps at most, typically far less than the 1e-12 slack).
-  std::vector<util::ValueWeight> e(v.size());
+  e.resize(v.size());
   double lo = v[0], hi = v[0];
   for (std::size_t i = 0; i < v.size(); ++i) {
     e[i] = {v[i], w[i]};
@@ -721,36 +724,46 @@ HoldStatistics weighted_stats(const std::vector<double>& v, const std::vector<do
   return s;
 }
 
-// Distribution over drops in [a, b] (this frame's coordinates, a < b).
-//
+// A drop on a flat piece: its own outcome (pass 1 of distribution()).
+struct Flat {
+  double weight;
+  Rest rest;
+  std::int64_t next;  // the next record of its piece
+  Outcome oc;
+};
+
+// Pass 1 of distribution(): the basins over the drop range (rest vertex and weight, in the order
+// of their first drop) and the flat drops. With `starts`: each basin's first piece, and whether
+// the mirrored frame's pass 1 is this one mirrored (mirror_pass1): no flat drop, and every
+// part's midpoint strictly inside its piece (so that rest_in() takes the same rule on both sides).
+struct Basins {
+  std::vector<std::size_t> bv;
+  std::vector<double> bw;
+  std::vector<Flat> flats;
+  std::vector<std::size_t> start;
+  bool mirrorable = false;
+};
+
 // Pass 1 (increasing x) cuts the drop range into parts with one outcome each (the pieces of the
 // curve; a flat piece split where the first slip reaches d) and adds each part's length to its
 // basin (the rest vertex; the drops of one basin form one interval, so a basin is a run of
-// parts, apart from the wrap-around of a periodic curve) or keeps it as a flat drop. Pass 2
-// (decreasing x) finds the record chains of the basins' rest vertices with one stack. Pass 3:
-// the steepest chords from the rest vertices.
+// parts, apart from the wrap-around of a periodic curve) or keeps it as a flat drop.
 template <class V>
-HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, const HoldOptions& o, bool mirrored) {
+Basins basins_of(const Frame& fr, const V& p, double a, double b, const HoldOptions& o, bool starts) {
   const double d = o.runaway_distance;
   const std::size_t n = p.n();
-  // The basins, one entry each: rest vertex and weight (pass 1), hold slope and whether the
-  // run-away ran off the end less than d after its stop (pass 2), inertial angle (pass 3).
-  std::vector<std::size_t> bv;
-  std::vector<double> bw, bslope, binert;
+  Basins out;
+  std::vector<std::size_t>& bv = out.bv;
+  std::vector<double>& bw = out.bw;
+  std::vector<Flat>& flats = out.flats;
+  out.mirrorable = starts && !fr.periodic;
   // At most one basin per piece in the drop range, reserved at once (pages are taken as written).
   {
     const std::size_t pieces = p.upper(b) - std::min(p.upper(b), piece_of(p, a)) + 1;
     bv.reserve(pieces);
     bw.reserve(pieces);
+    if (out.mirrorable) out.start.reserve(pieces);
   }
-  std::vector<std::uint8_t> bnear;
-  struct Flat {
-    double weight;
-    Rest rest;
-    std::int64_t next;  // the next record of its piece
-    Outcome oc;
-  };
-  std::vector<Flat> flats;
   std::unordered_map<std::size_t, std::size_t> seen;  // periodic: key -> basin
   const std::size_t nb = fr.periodic ? p.m : 0;       // vertices per period in the unrolled frame
   std::size_t last_key = static_cast<std::size_t>(-1);
@@ -772,8 +785,10 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
     std::size_t km = k;  // the piece of mid, as piece_of() finds it
     while (km + 1 < n && !(mid < p.X(km + 1))) ++km;
     while (km > 0 && mid < p.X(km)) --km;
+    if (out.mirrorable && !(km == k && p.X(k) < mid && mid < p.X(k + 1))) out.mirrorable = false;
     const Rest r = rest_in(p, ds, km, mid);
     if (r.flat >= 0) {
+      out.mirrorable = false;
       // On a flat piece the first slip starts at the drop: split where it reaches d.
       const std::int64_t j = flat_next(k);
       const double split = j >= 0 ? p.X(static_cast<std::size_t>(j)) - d : x;
@@ -800,11 +815,67 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
       } else {
         bv.push_back(v);
         bw.push_back(xe - x);
+        if (out.mirrorable) out.start.push_back(k);
       }
       last_key = key;
     }
     x = xe;
   }
+  if (!out.mirrorable) std::vector<std::size_t>().swap(out.start);
+  return out;
+}
+
+// Pass 1 of the mirrored frame (`pm`, drops over [a, b] of its coordinates) from that of the
+// frame it mirrors (`f`, basins_of(..., true), mirrorable): a drop that rests at vertex v there
+// rests at vertex n - v here (the descents stop where the slope ahead turns non-negative, which
+// the mirror turns into the slope behind turning non-positive: the same vertex). The basins come
+// in the reverse order, each with its parts' lengths added up as basins_of() adds them in this
+// frame (from this frame's parts, walked as it walks them: the same lengths, in its order).
+// False where the two do not match part for part (then basins_of() is run here).
+template <class V>
+bool mirror_basins(const V& pm, const Basins& f, double a, double b, Basins& out) {
+  const std::size_t n = pm.n(), nf = f.bv.size();
+  out = Basins{};
+  out.bv.reserve(nf);
+  out.bw.reserve(nf);
+  std::size_t cur = nf;  // the other frame's basin of the last part (nf: none yet)
+  std::size_t i = nf;    // basins [0, i) start at or before the part at hand
+  std::size_t k = piece_of(pm, a);
+  for (double x = a; x < b && k < n; ++k) {
+    const double xe = std::min(b, pm.X(k + 1));
+    if (xe <= x) continue;
+    const std::size_t kf = n - 1 - k;  // the piece in the other frame
+    while (i > 0 && f.start[i - 1] > kf) --i;
+    if (i == 0) return false;
+    const std::size_t fb = i - 1;
+    if (fb != cur) {  // the next basin (the one before in the other frame)
+      if (cur == nf ? fb + 1 != nf : fb + 1 != cur) return false;
+      out.bv.push_back(n - f.bv[fb]);
+      out.bw.push_back(xe - x);
+      cur = fb;
+    } else {
+      out.bw.back() += xe - x;
+    }
+    x = xe;
+  }
+  return out.bv.size() == nf && (nf == 0 || cur == 0);
+}
+
+// Distribution over drops in [a, b] (this frame's coordinates, a < b), from its basins (pass 1,
+// basins_of). Pass 2 (decreasing x) finds the record chains of the basins' rest vertices with one
+// stack. Pass 3: the steepest chords from the rest vertices.
+template <class V>
+HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, const HoldOptions& o, bool mirrored,
+                              Basins&& pass1) {
+  const double d = o.runaway_distance;
+  const std::size_t n = p.n();
+  // The basins, one entry each: rest vertex and weight (pass 1), hold slope and whether the
+  // run-away ran off the end less than d after its stop (pass 2), inertial angle (pass 3).
+  std::vector<std::size_t> bv = std::move(pass1.bv);
+  std::vector<double> bw = std::move(pass1.bw), bslope, binert;
+  std::vector<Flat> flats = std::move(pass1.flats);
+  pass1 = Basins{};
+  std::vector<std::uint8_t> bnear;
   // Pass 2: the record chains, from the right. The stack holds the strict record chain of the
   // vertex at hand (slopes strictly increasing from top to bottom), each entry with the end of
   // its own chain. The next record of kk (the first piece ahead steeper than kk by more than
@@ -945,8 +1016,9 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
     }
   }
   // Every drop of a basin gives its basin's angles: the statistics over basins weighted by width.
-  out.hold = weighted_stats(out.basins.hold, out.basins.weight);
-  out.inertial = weighted_stats(out.basins.inertial, out.basins.weight);
+  std::vector<util::ValueWeight> scratch;
+  out.hold = weighted_stats(out.basins.hold, out.basins.weight, scratch);
+  out.inertial = weighted_stats(out.basins.inertial, out.basins.weight, scratch);
   out.drop_min = mirrored ? -b : a;
   out.drop_max = mirrored ? -a : b;
   out.near_end = near_end;
@@ -967,8 +1039,14 @@ struct LiftPoint {
 // first (one pass), then the curve is written at its exact size. Both passes run in `threads`
 // contiguous chunks of the points (get(i) is read from any thread, in increasing i within a
 // chunk); the curve and the first error do not depend on their number.
+//
+// `head` / `tail` (optional, not periodic): curves built the same way over the points that come
+// before / after these, whose last / first vertex is point 0 / n - 1 (the same point): the curve
+// written is head, then these points' curve, then tail, as one build over all the points would
+// write it (a vertex depends on its point, a meeting point on the two points around it only).
 template <class Get>
-Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigned threads, Get&& get) {
+Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigned threads, Get&& get,
+                              const LiftCurve* head = nullptr, const LiftCurve* tail = nullptr) {
   if (n < 2) return make_error(fmt::format("lift_curve: the signature has {} offsets: expected at least two", n));
   const unsigned T = std::max(1u, std::min<unsigned>(threads, static_cast<unsigned>(n / 4096 + 1)));
   struct Chunk {
@@ -987,6 +1065,12 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
       ch.kh.reserve(i1 - i0);
     }
     LiftPoint prev = i0 > 0 ? get(i0 - 1) : LiftPoint{};
+    // tan(prev.right) once computed, and a tan reused where its angle repeats bit for bit (a
+    // contact that slides along one edge from one event to the next has that edge's angle on both
+    // sides of the interval): the same values, fewer tan calls.
+    bool have_tan_right = false;
+    double tan_right = 0;
+    auto same = [](double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); };
     for (std::size_t i = i0; i < i1; ++i) {
       const LiftPoint q = get(i);
       if (!std::isfinite(q.s) || !std::isfinite(q.h)) {
@@ -1001,7 +1085,10 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
       if (i > 0 && slopes) {
         // The tangent lines at both ends of the interval meet inside it: a vertex there.
         const double x0 = prev.s, x1 = q.s, h0 = prev.h, h1 = q.h;
-        const double m0 = std::tan(prev.right), m1 = std::tan(q.left);
+        const double m0 = have_tan_right ? tan_right : std::tan(prev.right);
+        const double m1 = same(q.left, prev.right) ? m0 : std::tan(q.left);
+        tan_right = same(q.right, q.left) ? m1 : std::tan(q.right);
+        have_tan_right = true;
         if (std::isfinite(m0) && std::isfinite(m1) && m0 != m1) {
           const double xs = (h1 - h0 + m0 * x0 - m1 * x1) / (m0 - m1);
           const double span = x1 - x0, eps = 1e-9 * span;
@@ -1035,11 +1122,20 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
   }
   LiftCurve c;
   c.period = period;
-  c.offset.resize(n + kinks);
-  c.lift.resize(n + kinks);
+  const std::size_t nh = head ? head->offset.size() - 1 : 0, nt = tail ? tail->offset.size() - 1 : 0;
+  c.offset.resize(nh + n + kinks + nt);
+  c.lift.resize(nh + n + kinks + nt);
+  if (head) {
+    std::copy(head->offset.begin(), head->offset.end() - 1, c.offset.begin());
+    std::copy(head->lift.begin(), head->lift.end() - 1, c.lift.begin());
+  }
+  if (tail) {
+    std::copy(tail->offset.begin() + 1, tail->offset.end(), c.offset.end() - static_cast<std::ptrdiff_t>(nt));
+    std::copy(tail->lift.begin() + 1, tail->lift.end(), c.lift.end() - static_cast<std::ptrdiff_t>(nt));
+  }
   util::parallel_chunks(n, T, [&](unsigned t, std::size_t i0, std::size_t i1) {
     const Chunk& ch = chunks[t];
-    std::size_t w = i0 + before[t], k = 0;
+    std::size_t w = nh + i0 + before[t], k = 0;
     for (std::size_t i = i0; i < i1; ++i) {
       if (kink[i]) {
         c.offset[w] = ch.kx[k];
@@ -1120,16 +1216,30 @@ Result<HoldDistributions> hold_distribution_checked(const LiftCurve& curve, cons
   a = std::max(a, lo);
   b = std::min(b, hi);
   HoldDistributions out;
+  const Frame ff = make_frame(curve, false, options.runaway_distance);
+  const Frame fb = make_frame(curve, true, options.runaway_distance);
+  // The basins of both directions from one pass 1 where the backward one is the forward one
+  // mirrored (mirror_basins; not periodic); each direction's own otherwise.
+  Basins pf, pb;
+  bool have_pf = false, have_pb = false;
+  if (curve.period == 0) {
+    pf = basins_of(ff, LinearView<false>(curve), a, b, options, true);
+    have_pf = true;
+    if (pf.mirrorable) have_pb = mirror_basins(LinearView<true>(curve), pf, -b, -a, pb);
+    std::vector<std::size_t>().swap(pf.start);
+  }
   // The two directions are independent: one thread each where there are two.
   util::parallel_chunks(2, util::thread_count(options.threads, 2), [&](unsigned, std::size_t i0, std::size_t i1) {
     for (std::size_t i = i0; i < i1; ++i) {
       if (i == 0)
         out.forward = with_view(curve, false, [&](const auto& p) {
-          return distribution(make_frame(curve, false, options.runaway_distance), p, a, b, options, false);
+          return distribution(ff, p, a, b, options, false,
+                              have_pf ? std::move(pf) : basins_of(ff, p, a, b, options, false));
         });
       else
         out.backward = with_view(curve, true, [&](const auto& p) {
-          return distribution(make_frame(curve, true, options.runaway_distance), p, -b, -a, options, true);
+          return distribution(fb, p, -b, -a, options, true,
+                              have_pb ? std::move(pb) : basins_of(fb, p, -b, -a, options, false));
         });
     }
   });
@@ -1447,24 +1557,94 @@ Result<LiftCurve> merged_curve(const MergedPoints& mp, std::size_t first, std::s
   return build_curve(last - first, true, 0.0, threads, [&](std::size_t w) { return mp.get(first + w); });
 }
 
-// Merges two increasing point sets (offsets distinct).
+// A curve of the points at one end of W, built for an end check, kept for the whole curve: it
+// covers W's first (head) or last (tail) `points` points. A side widened after its check lets
+// its curve go and builds it anew (grown from the old one, both would be held at once: +20 MB at
+// the H = 0.3 pair's peak for 0.06 s of CPU).
+struct EndCurve {
+  LiftCurve curve;
+  std::size_t points = 0;  // 0: none
+  void reset() {
+    curve = LiftCurve{};
+    points = 0;
+  }
+};
+
+// The curve through all of W: the end curves where they still cover W's end points (W only grows
+// by points beyond a cut end, which moves its head's or tail's points; a moved end curve is
+// rebuilt with the rest), the points between them built here.
+Result<LiftCurve> whole_curve(const MergedPoints& mp, EndCurve& head, EndCurve& tail, unsigned threads) {
+  const std::size_t nw = mp.size();
+  auto covers = [&](const EndCurve& e, std::size_t first) {
+    return e.points >= 2 && e.points <= nw && e.curve.offset.front() == mp.offset(first) &&
+           e.curve.offset.back() == mp.offset(first + e.points - 1);
+  };
+  const bool use_head = covers(head, 0), use_tail = covers(tail, nw - std::min(nw, tail.points));
+  const std::size_t m0 = use_head ? head.points - 1 : 0, m1 = use_tail ? nw - tail.points + 1 : nw;
+  if (!(m1 >= m0 + 2)) {  // the end curves meet: one build
+    head.reset();
+    tail.reset();
+    return merged_curve(mp, 0, nw, threads);
+  }
+  auto c = build_curve(
+      m1 - m0, true, 0.0, threads, [&](std::size_t w) { return mp.get(m0 + w); }, use_head ? &head.curve : nullptr,
+      use_tail ? &tail.curve : nullptr);
+  head.reset();
+  tail.reset();
+  return c;
+}
+
+// Merges two increasing point sets (offsets distinct), one array at a time (each source array
+// let go as soon as its merged array is written: the merged set and both sources are not held
+// at once).
 detail::LiftPoints merge_points(detail::LiftPoints a, detail::LiftPoints b) {
   if (a.offset.empty()) return b;
   if (b.offset.empty()) return a;
-  detail::LiftPoints m;
-  const std::size_t n = a.offset.size() + b.offset.size();
-  for (std::vector<double>* v : {&m.offset, &m.lift, &m.left, &m.right}) v->reserve(n);
-  std::size_t i = 0, j = 0;
-  while (i < a.offset.size() || j < b.offset.size()) {
-    const bool from_a = j >= b.offset.size() || (i < a.offset.size() && a.offset[i] < b.offset[j]);
-    const detail::LiftPoints& s = from_a ? a : b;
-    std::size_t& k = from_a ? i : j;
-    m.offset.push_back(s.offset[k]);
-    m.lift.push_back(s.lift[k]);
-    m.left.push_back(s.left[k]);
-    m.right.push_back(s.right[k]);
-    ++k;
+  struct Run {
+    bool from_a;
+    std::size_t begin, end;
+  };
+  std::vector<Run> runs;  // whole runs of one source, in the merged order
+  {
+    const std::vector<double>& ao = a.offset;
+    const std::vector<double>& bo = b.offset;
+    std::size_t i = 0, j = 0;
+    while (i < ao.size() || j < bo.size()) {
+      if (j >= bo.size() || (i < ao.size() && ao[i] < bo[j])) {  // a's points below b's next one
+        const std::size_t e =
+            j < bo.size()
+                ? static_cast<std::size_t>(
+                      std::lower_bound(ao.begin() + static_cast<std::ptrdiff_t>(i), ao.end(), bo[j]) - ao.begin())
+                : ao.size();
+        runs.push_back({true, i, e});
+        i = e;
+      } else {  // b's points up to a's next one (b before an equal point of a, as one by one)
+        const std::size_t e =
+            i < ao.size()
+                ? static_cast<std::size_t>(
+                      std::upper_bound(bo.begin() + static_cast<std::ptrdiff_t>(j), bo.end(), ao[i]) - bo.begin())
+                : bo.size();
+        runs.push_back({false, j, e});
+        j = e;
+      }
+    }
   }
+  const std::size_t n = a.offset.size() + b.offset.size();
+  detail::LiftPoints m;
+  auto merge = [&](std::vector<double>& x, std::vector<double>& y, std::vector<double>& out) {
+    out.reserve(n);
+    for (const Run& r : runs) {
+      const std::vector<double>& src = r.from_a ? x : y;
+      out.insert(out.end(), src.begin() + static_cast<std::ptrdiff_t>(r.begin),
+                 src.begin() + static_cast<std::ptrdiff_t>(r.end));
+    }
+    std::vector<double>().swap(x);
+    std::vector<double>().swap(y);
+  };
+  merge(a.lift, b.lift, m.lift);
+  merge(a.left, b.left, m.left);
+  merge(a.right, b.right, m.right);
+  merge(a.offset, b.offset, m.offset);
   return m;
 }
 
@@ -1523,10 +1703,12 @@ double end_reached(const LiftCurve& local, bool mirrored, double b, double d) {
 // beyond it on the sides the process reaches, then (the faces let go) the analysis.
 // Exact mode: each side from 1.55 d (end_reached()'s need on the three benchmark pairs of issue
 // 32: 1.50 and 1.52 d for H = 0.8, 1.32 and 2.58 d for H = 0.3, 1.03 and 1.47 d for the WM pair;
-// a round re-plans the wide range and rebuilds the local curves), widened by what end_reached()
-// finds short and d/5 while it says the process may reach the cut end (a side that passed is
-// not checked again); the offsets are those a signature over the wider range lists, so the
-// curve, and every number, is that of a lift computed over it. Sampled offsets: the widened
+// a round plans the wide range's new offsets and rebuilds the widened side's local curve),
+// widened by what end_reached() finds short and d/5 while it says the process may reach the cut
+// end (a side that passed is not checked again); the offsets are those a signature over the
+// wider range lists, so the curve, and every number, is that of a lift computed over it (after
+// a second round the first round's cut end stays an offset as well: one vertex more on a piece
+// of the same lift, test Hold.OnePassCurveIsTheLiftOfItsRangeToTheBit). Sampled offsets: the widened
 // range and its grid as analyse_hold_widened takes them (2 d on both sides, doubled on the whole
 // analysis).
 Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, const SignatureOptions& so,
@@ -1556,13 +1738,15 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   detail::LiftPoints ext_points;
   std::vector<std::size_t> ext_dropped;
   double cut_lo = 0, cut_hi = 0;
+  // Exact mode: the end checks' curves of the last round, the whole curve's ends (not built twice).
+  EndCurve head_end, tail_end;
   // Builds the curve from R and the extension, analyses it; the side(s) the process reached.
   // The points beyond the range are let go once the curve holds them (the sampled path's next
   // round evaluates its own).
   auto build_and_analyse = [&](const SignatureResult& R) -> Result<Reach> {
     {
       MergedPoints mp(R, ext_points, ext_dropped);
-      auto curve = merged_curve(mp, 0, mp.size(), util::thread_count(so.threads, 2));
+      auto curve = whole_curve(mp, head_end, tail_end, util::thread_count(so.threads, 2));
       if (!curve) return curve.error();
       out.curve = std::move(*curve);
     }
@@ -1609,18 +1793,26 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       const std::size_t i_lo = std::min(nw, w_lo + 2);
       const std::size_t w_hi = std::max(w_lo, mp.first_at(S.b - d, true));
       const std::size_t i_hi = w_hi > 2 ? w_hi - 2 : 0;
-      // One end after the other (each curve on the threads; one local curve held at a time:
-      // the two at once cost more memory than the serial checks' time is worth).
+      // One end after the other (each curve on the threads). The curves are kept for the whole
+      // curve's ends (the first one held while the second is built: about 25 MB at the peak of
+      // issue 32's pairs, for about 0.1 s of CPU that the whole curve then saves); building the
+      // two at once would cost their build buffers too, for the serial checks' 0.05-0.1 s of wall.
       const unsigned threads = util::thread_count(so.threads, 2);
       if (cut_max && !passed_max) {
+        tail_end.reset();
         auto c = merged_curve(mp, i_hi, nw, threads);
         if (!c) return c.error();
         short_max = end_reached(*c, false, S.b, d);
+        tail_end.curve = std::move(*c);
+        tail_end.points = nw - i_hi;
       }
       if (cut_min && !passed_min) {
+        head_end.reset();
         auto c = merged_curve(mp, 0, i_lo, threads);
         if (!c) return c.error();
         short_min = end_reached(*c, true, -S.a, d);
+        head_end.curve = std::move(*c);
+        head_end.points = i_lo;
       }
       more_max = short_max > 0;
       more_min = short_min > 0;
@@ -1629,8 +1821,14 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       if (!more_max && !more_min) break;
       // Farther by what the check found short, and d/5 (a chain may go on: another round, which
       // costs about as much as 0.4 d of lift on one side).
-      if (more_max) m_hi += short_max + 0.2 * d;
-      if (more_min) m_lo += short_min + 0.2 * d;
+      if (more_max) {
+        m_hi += short_max + 0.2 * d;
+        tail_end.reset();  // its points move: built anew by the next check
+      }
+      if (more_min) {
+        m_lo += short_min + 0.2 * d;
+        head_end.reset();
+      }
     }
     return Ok{};
   };

@@ -883,11 +883,18 @@ namespace {
 struct OffsetPlan {
   std::vector<double> offs;
   std::size_t sampled = 0;  // 0: exact
-  std::size_t events = 0;
+  std::size_t events = 0;   // offsets listed, the skipped ones included
   bool grid_replaced = false;
+  // With a lattice range to skip: offs[gap] is the first offset after the skipped lattice
+  // offsets, `skipped` of them (0: none skipped).
+  std::size_t gap = 0, skipped = 0;
 };
 
-Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, double smin, double smax) {
+// `skip_k0` <= `skip_k1` (exact mode on an aligned lattice): the lattice offsets origin + k step
+// with k in [skip_k0, skip_k1] are left out of offs (the caller has them: the wider ranges of the
+// hold analysis around the signature's own), the others are listed as without it.
+Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, double smin, double smax,
+                                double skip_k0 = 1, double skip_k1 = 0) {
   OffsetPlan plan;
   std::vector<double>& offs = plan.offs;
   std::size_t& events = plan.events;
@@ -941,8 +948,18 @@ Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, dou
     if (P.aligned_lattice) {
       const double k0 = std::ceil((smin - P.lattice_origin) / P.lattice_step - 1e-9);
       const double k1 = std::floor((smax - P.lattice_origin) / P.lattice_step + 1e-9);
-      if (k1 >= k0) offs.reserve(static_cast<std::size_t>(k1 - k0) + 3);
-      for (double k = k0; k <= k1; k += 1) offs.push_back(P.lattice_origin + k * P.lattice_step);
+      const bool skip = skip_k0 <= skip_k1 && k0 < skip_k0 && skip_k1 < k1;
+      if (k1 >= k0)
+        offs.reserve(static_cast<std::size_t>(k1 - k0) + 3 -
+                     (skip ? static_cast<std::size_t>(skip_k1 - skip_k0 + 1) : 0));
+      for (double k = k0; k <= k1; k += 1) {
+        if (skip && k == skip_k0) {
+          plan.skipped = static_cast<std::size_t>(skip_k1 - skip_k0 + 1);
+          k = skip_k1;
+          continue;
+        }
+        offs.push_back(P.lattice_origin + k * P.lattice_step);
+      }
     } else if (P.periodic) {
       std::vector<double> base;
       base.reserve((P.f_hi - P.f_lo + 1) * (P.g_hi - P.g_lo + 1));
@@ -991,12 +1008,19 @@ Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, dou
     } else if (!in_order) {
       std::sort(offs.begin(), offs.end());
     }
-    std::size_t w = 0;  // drop near-duplicates in place (each kept value compared with the last kept)
-    for (std::size_t r = 0; r < offs.size(); ++r)
-      if (w == 0 || offs[r] > offs[w - 1] + P.xtol) offs[w++] = offs[r];
+    // Drop near-duplicates in place (each kept value compared with the last kept; across a skipped
+    // range, lattice offsets more than a step apart, as without it).
+    const double after_gap = plan.skipped > 0 ? P.lattice_origin + (skip_k1 + 1) * P.lattice_step : 0.0;
+    std::size_t w = 0;
+    for (std::size_t r = 0; r < offs.size(); ++r) {
+      if (w == 0 || offs[r] > offs[w - 1] + P.xtol) {
+        if (plan.skipped > 0 && offs[r] == after_gap) plan.gap = w;
+        offs[w++] = offs[r];
+      }
+    }
     offs.resize(w);
     if (offs.back() < smax) offs.back() = smax;
-    events = offs.size();
+    events = offs.size() + plan.skipped;
   } else {
     const std::size_t n = std::max<std::size_t>(sampled, 2);
     offs.resize(n);
@@ -1196,16 +1220,39 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
       if (!(lo > -P.upper_length) || !(hi < P.lower_length) || !(lo <= smin) || !(hi >= smax))
         return make_error(
             fmt::format("signature: extension [{}, {}] m outside the overlap or inside the range", lo, hi));
-      auto wide = plan_offsets(P, o, lo, hi);
+      // Exact mode on an aligned lattice: R's lattice offsets from its third to its third last
+      // (listed by the same expression, without near-duplicates so far from R's ends) are W's
+      // there too; they are not listed again (W skips them, the walk below steps over them).
+      double k0 = 1, k1 = 0;
+      if (R.exact && o.offsets == 0 && P.aligned_lattice) {
+        k0 = std::ceil((smin - P.lattice_origin) / P.lattice_step - 1e-9) + 2;
+        k1 = std::floor((smax - P.lattice_origin) / P.lattice_step + 1e-9) - 2;
+      }
+      auto wide = plan_offsets(P, o, lo, hi, k0, k1);
       if (!wide) return wide.error();
+      std::size_t j_skip = 0;  // R's index of its offset k0
+      if (wide->skipped > 0) {
+        const double x0 = P.lattice_origin + k0 * P.lattice_step, x1 = P.lattice_origin + k1 * P.lattice_step;
+        j_skip = static_cast<std::size_t>(std::lower_bound(R.offset.begin(), R.offset.end(), x0) - R.offset.begin());
+        const std::size_t m = wide->skipped;
+        if (!(j_skip + m <= n && R.offset[j_skip] == x0 && R.offset[j_skip + m - 1] == x1)) {
+          wide = plan_offsets(P, o, lo, hi);  // not expected: list them all
+          if (!wide) return wide.error();
+        }
+      }
       detail::LiftExtension ext;
       ext.exact = wide->sampled == 0;
-      ext.events = wide->offs.size();
+      ext.events = wide->events;
       const std::vector<double>& W = wide->offs;
       std::vector<double> todo;
       todo.reserve(W.size());     // at most W (pages are taken only as they are written)
       std::size_t j = 0, hj = 0;  // merge walk: W, R.offset and *have all increasing
+      const std::size_t gap = wide->skipped > 0 ? wide->gap : W.size();
       for (std::size_t i = 0; i < W.size(); ++i) {
+        if (i == gap) {  // R's offsets k0 .. k1, W's skipped ones
+          while (j < j_skip) ext.dropped.push_back(j++);
+          j += wide->skipped;
+        }
         while (j < n && R.offset[j] < W[i]) ext.dropped.push_back(j++);
         if (j < n && R.offset[j] == W[i]) {
           ++j;

@@ -568,3 +568,132 @@ TEST(Hold, AFlatStretchIntoTheEndOfTheDropRangeIsFollowedPastIt) {
     EXPECT_EQ(r->hold.distribution.forward.basins.rest.size(), w->forward.basins.rest.size());
   }
 }
+
+// Issue 32: the one-pass analysis builds its lift from the signature's own offsets, those beyond
+// the range (listed by the wider range's plan, less the ones the signature has) and the end
+// checks' curves (kept for the whole curve's ends, not built twice). Where both ends pass the
+// check at once (the lift cut 1.55 d beyond the drop range on both sides), that is the lift of a
+// signature over the curve's range, bit for bit, with the hold numbers of that lift; where a side
+// was widened, the lift keeps the first round's cut end as an offset (the other numbers the same).
+TEST(Hold, OnePassCurveIsTheLiftOfItsRangeToTheBit) {
+  auto f = issue23_face(1), g = issue23_face(2);
+  ASSERT_TRUE(f.ok() && g.ok());
+  const Profile up = rotate180(*g);
+  const double L = f->x.back() - f->x.front();
+  int one_round = 0, widened = 0;
+  for (double d : {0.002, 0.003, 0.004, 0.005, 0.006, 0.008, 0.01, 0.012, 0.015}) {
+    HoldOptions o;
+    o.runaway_distance = d;
+    auto a = analyse_hold(*f, up, SignatureOptions{}, o);
+    ASSERT_TRUE(a.ok()) << a.error().message;
+    const LiftCurve& ca = a->curve;
+    o.drop_min = a->distribution.forward.drop_min;
+    o.drop_max = a->distribution.forward.drop_max;
+    const OffsetRange first = hold_lift_range(o.drop_min, o.drop_max, 1.55 * d, L, L);
+    SignatureOptions so;
+    so.keep_contacts = false;
+    so.offset_min = ca.offset.front();
+    so.offset_max = ca.offset.back();
+    auto sig = signature(*f, up, so);
+    ASSERT_TRUE(sig.ok()) << sig.error().message;
+    auto cb = lift_curve(*sig);
+    ASSERT_TRUE(cb.ok());
+    auto b = hold_distribution(*cb, o);
+    ASSERT_TRUE(b.ok());
+    const bool once = ca.offset.front() == first.min && ca.offset.back() == first.max;
+    for (auto [x, y] : {std::pair{&a->distribution.forward, &b->forward}, {&a->distribution.backward, &b->backward}}) {
+      if (once) {
+        EXPECT_EQ(x->hold.mean, y->hold.mean) << d;
+        EXPECT_EQ(x->hold.q50, y->hold.q50) << d;
+        EXPECT_EQ(x->inertial.mean, y->inertial.mean) << d;
+        EXPECT_EQ(x->basins.rest, y->basins.rest) << d;
+      } else {  // a vertex more on a piece: its slopes may differ in the last bits
+        EXPECT_NEAR(x->hold.mean, y->hold.mean, 1e-12) << d;
+        EXPECT_NEAR(x->inertial.mean, y->inertial.mean, 1e-12) << d;
+        EXPECT_EQ(x->basins.rest.size(), y->basins.rest.size()) << d;
+      }
+    }
+    if (once) {
+      ++one_round;
+      ASSERT_EQ(ca.offset.size(), cb->offset.size()) << d;
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < ca.offset.size(); ++i)
+        differ += ca.offset[i] != cb->offset[i] || ca.lift[i] != cb->lift[i];
+      EXPECT_EQ(differ, 0u) << d;
+    } else {
+      ++widened;
+      EXPECT_GE(ca.offset.size(), cb->offset.size()) << d;
+    }
+  }
+  EXPECT_GE(one_round, 1);
+  EXPECT_GE(widened, 1);
+}
+
+// Issue 32: the backward distribution takes its basins from the forward pass mirrored (the same
+// rest vertices, the weights added up in the backward order) where no drop lands on a flat
+// piece. Either way it must be the forward distribution of the mirrored curve, to the bit: random
+// curves, some with flat pieces and pieces one ulp long (where it computes its own), drop ranges
+// that start and end inside pieces and on vertices.
+TEST(Hold, BackwardIsTheForwardOfTheMirroredCurveToTheBit) {
+  std::mt19937_64 rng(32);
+  std::uniform_real_distribution<double> len(0.1, 1.0), slope(-1, 1), u(0, 1);
+  for (int trial = 0; trial < 120; ++trial) {
+    const int n = 8 + trial % 70;
+    std::vector<double> L(n), M(n);
+    for (int k = 0; k < n; ++k) {
+      L[k] = len(rng);
+      M[k] = slope(rng);
+      if (trial % 3 == 1 && u(rng) < 0.15) M[k] = 0;  // flat pieces
+    }
+    LiftCurve c = from_slopes(L, M);
+    if (trial % 3 == 2) {  // a piece one ulp long
+      const std::size_t k = 1 + static_cast<std::size_t>(u(rng) * (n - 2));
+      c.offset[k + 1] = std::nextafter(c.offset[k], 1e300);
+    }
+    LiftCurve mc;  // x -> -x
+    for (std::size_t i = c.offset.size(); i-- > 0;) {
+      mc.offset.push_back(-c.offset[i]);
+      mc.lift.push_back(c.lift[i]);
+    }
+    HoldOptions o;
+    o.runaway_distance = 0.3 + 0.2 * (trial % 10);
+    const double span = c.offset.back();
+    if (trial % 4 == 0) {
+      o.drop_min = 0;
+      o.drop_max = span;
+    } else if (trial % 4 == 1) {  // on vertices
+      o.drop_min = c.offset[2];
+      o.drop_max = c.offset[c.offset.size() - 3];
+    } else {
+      o.drop_min = span * 0.2 * u(rng);
+      o.drop_max = span * (1 - 0.2 * u(rng));
+    }
+    auto r = hold_distribution(c, o);
+    ASSERT_TRUE(r.ok()) << r.error().message;
+    HoldOptions om = o;
+    om.drop_min = -o.drop_max;
+    om.drop_max = -o.drop_min;
+    auto q = hold_distribution(mc, om);
+    ASSERT_TRUE(q.ok()) << q.error().message;
+    const HoldDistribution& back = r->backward;
+    const HoldDistribution& fwd = q->forward;
+    ASSERT_EQ(back.basins.rest.size(), fwd.basins.rest.size()) << trial;
+    for (std::size_t i = 0; i < fwd.basins.rest.size(); ++i) {
+      // Backward basins in the lift's frame (increasing offset) against the mirror's (increasing in its frame).
+      const std::size_t j = fwd.basins.rest.size() - 1 - i;
+      EXPECT_EQ(back.basins.rest[j], -fwd.basins.rest[i]) << trial << " " << i;
+      EXPECT_EQ(back.basins.weight[j], fwd.basins.weight[i]) << trial << " " << i;
+      EXPECT_EQ(back.basins.hold[j], fwd.basins.hold[i]) << trial << " " << i;
+      EXPECT_EQ(back.basins.inertial[j], fwd.basins.inertial[i]) << trial << " " << i;
+    }
+    for (auto [x, y] : {std::pair{&back.hold, &fwd.hold}, {&back.inertial, &fwd.inertial}}) {
+      // Sums over the basins in the opposite order (each frame's by increasing offset): rounding.
+      EXPECT_NEAR(x->mean, y->mean, 1e-15) << trial;
+      EXPECT_NEAR(x->std, y->std, 1e-15) << trial;
+      EXPECT_EQ(x->q05, y->q05) << trial;
+      EXPECT_EQ(x->q50, y->q50) << trial;
+      EXPECT_EQ(x->q95, y->q95) << trial;
+    }
+    EXPECT_EQ(back.near_end, fwd.near_end) << trial;
+  }
+}
