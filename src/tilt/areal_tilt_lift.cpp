@@ -651,14 +651,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   // its stop (check_far).
   auto descend = [&](double beta, State& st, bool check_far) {
     const double cb = std::cos(beta), sb = std::sin(beta);
-    // The largest step, a fraction of r: a longer step can cross a basin's rim (a crease of h
-    // and the rounded ridge beyond it, each narrower than r) and land in the next basin, where
-    // the block that slides (MuJoCo's, quenched) stops before the rim. Measured on the
-    // statistical check's maps (bench/results/predict-vs-sim.md, "2026-11-27 quench"): from 0.5 r
-    // to 0.005 r the hold angle of 15 of 128 drops moves by more than 0.3 deg, from 0.02 r to
-    // 0.005 r 7, from 0.005 r to 0.002 r 1 (a drop whose slip ends on a basin boundary).
-    constexpr double kMaxStep = 0.005;
-    double delta = kMaxStep * r;
+    double delta = 0.05 * r;
     // The smallest step, which also bounds the window of pieces at a rest: a coplanar neighbour's
     // piece (clamped at a shared edge) enters it where its slope differs by ~sqrt(delta_min / r).
     // With friction that error holds the block (the cones' hull grows by it), so there 1e-9 r:
@@ -714,7 +707,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
       while (delta >= delta_min) {
         const double nx = st.x + delta * wx, ny = st.y + delta * wy;
         // The trial collects the pieces of the next iteration's window (used if it is accepted).
-        const double next = std::min(1.5 * delta, kMaxStep * r);
+        const double next = std::min(1.5 * delta, 0.5 * r);
         const double h2 = height(nx, ny, window(next), &trial_pieces);
         // No sphere left over the lower map: the descent carries the block off its edge, where
         // nothing holds it (MuJoCo's block falls off the height field): a run-away, not a wall.
