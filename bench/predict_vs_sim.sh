@@ -3,8 +3,10 @@
 # on (bench/predict_vs_sim_pairs.py), N x N drops each over the prediction's drop range; from every
 # drop the simulated tilt test and the prediction from the same drop.
 #   bash bench/predict_vs_sim.sh maps [BIN] [OUT] [N]       (MuJoCo, `frictal areal-tilt`)
-#   SIM_ARGS="--settle-damping 100" bash bench/predict_vs_sim.sh maps ...   (settings of the
-#                                                           simulation only; use a new OUT for each)
+#   SIM_ARGS="--settle-damping 100 --relaxation quench --quench-speed 1e-2" bash bench/predict_vs_sim.sh maps ...
+#                           (settings of the simulation only; use a new OUT for each). This is the
+#                           check's protocol (the quasi-static tilt: the drop settled under a
+#                           viscous damping, the tilt quenched; bench/results/predict-vs-sim.md)
 #   bash bench/predict_vs_sim.sh profiles [BIN] [OUT] [N]   (spheropolygons, `frictal tilt`)
 #   NO_RUN=1 ... maps ...   no new simulation: the tables over the simulations OUT holds (a pair
 #                           not complete is left out and named), e.g. of a run stopped part way

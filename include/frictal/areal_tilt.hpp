@@ -73,6 +73,16 @@ struct ArealTiltOptions {
   /// lower-map cells at the drive of one tilt step (at least 40 chunks). 0: the local damping
   /// (unit: 1/scaled s).
   double tilt_damping = 0;
+  /// true: quenched dynamics (kinetic damping) in place of the local damping, while the block
+  /// settles (unless settle_damping) and during the tilt increments (unless tilt_damping): no
+  /// force against the motion, but the velocity is set to zero whenever the unbalanced force F
+  /// does negative work on the block's offset (F.v < 0) and its speed is capped at quench_speed:
+  /// it stops at the first minimum along its path (no momentum past a seat), turns with the force
+  /// within a radius speed^2 / |F| (the prediction's steepest descent as the cap shrinks) and
+  /// does not creep at small forces (its speed does not fall with the force). An increment waits
+  /// at least the time to cross the lower map at the cap (a slip may go far across d).
+  bool quench = false;
+  double quench_speed = 1e-2;     ///< with quench: the block's largest speed (unit: scaled m/s)
   double relax_time = 0.5;        ///< longest relaxation per increment (unit: scaled s)
   double force_tolerance = 1e-4;  ///< at rest: unbalanced force below this fraction of the weight (unitless)
   double speed_tolerance = 1e-5;  ///< at rest: speed below this (unit: scaled m/s)

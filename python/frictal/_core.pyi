@@ -170,6 +170,8 @@ def areal_tilt(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: flo
         local_damping: Local non-viscous (Cundall) damping: a force against each joint's velocity, this fraction of its unbalanced force (default 0.9; valid [0, 1))
         settle_damping [1/scaled s]: Viscous damping per unit mass in place of the local damping while the dropped block settles at zero tilt (an overdamped descent; the prediction's steepest descent as it grows); 0: the local damping (default 0; valid >= 0)
         tilt_damping [1/scaled s]: Viscous damping per unit mass in place of the local damping during the tilt increments (an overdamped slip; each increment waits until the block could creep two lower-map cells at one tilt step's drive); 0: the local damping (default 0; valid >= 0)
+        relaxation: How the block relaxes after the drop and each tilt increment (unless settle_damping or tilt_damping): local (Cundall's local damping) or quench (quenched dynamics: the velocity zeroed whenever the unbalanced force does negative work, the speed capped at quench_speed; no creep, no momentum past a seat) (default 'local'; valid local or quench)
+        quench_speed [scaled m/s]: With relaxation quench: the block's largest speed (it turns with the force within speed^2 / force; the steepest descent as it shrinks) (default 0.01; valid > 0)
         relax_chunk [scaled s]: Longest relaxation per rest test; an increment waits for up to 40 of them before it counts as unsettled (default 0.5; valid > 0)
         force_tolerance: At rest: unbalanced force below this fraction of the weight (default 0.0001; valid > 0)
         speed_tolerance [scaled m/s]: At rest: speed below this (default 1e-05; valid > 0)

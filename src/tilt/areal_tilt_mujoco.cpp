@@ -206,6 +206,9 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   if (!(o.tilt_damping >= 0) || bad(o.tilt_damping))
     return make_error(
         fmt::format("areal_tilt: tilt damping {}: expected a finite number >= 0 (1/scaled s)", o.tilt_damping));
+  if (!(o.quench_speed > 0) || bad(o.quench_speed))
+    return make_error(
+        fmt::format("areal_tilt: quench speed {}: expected a finite speed > 0 (scaled m/s)", o.quench_speed));
   if (!(o.force_tolerance > 0) || !(o.speed_tolerance > 0) || bad(o.force_tolerance) || bad(o.speed_tolerance))
     return make_error(fmt::format("areal_tilt: force tolerance {} and speed tolerance {}: expected finite numbers > 0",
                                   o.force_tolerance, o.speed_tolerance));
@@ -314,7 +317,15 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   // the local damping (0 while the joints' viscous damping settles the drop).
   constexpr double kDriftDamping = 100;   // per scaled s (block mass 1)
   double last_force = 0, last_speed = 0;  // at the end of the last relaxation (scaled)
-  auto relax = [&](double beta, double u_stop, bool& far, double alpha) {
+  // `quench`: quenched dynamics (kinetic damping) instead of the local damping: no force against
+  // the motion, but whenever the unbalanced force does negative work on the block (F.v < 0: it
+  // has passed the lowest point along its path) its velocity is set to zero, and its speed is
+  // capped at quench_speed: the block stops at the first minimum along its path (no momentum
+  // carried past a seat), and it turns with the force within a radius speed^2 / force (the path
+  // of steepest descent as the cap shrinks), at a speed that does not fall with the force (no
+  // creep).
+  const double qv = o.quench_speed;
+  auto relax = [&](double beta, double u_stop, bool& far, double alpha, bool quench) {
     m->opt.gravity[0] = grav * std::sin(beta) * dxv;
     m->opt.gravity[1] = grav * std::sin(beta) * dyv;
     m->opt.gravity[2] = -grav * std::cos(beta);
@@ -331,11 +342,27 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       double fb = 0;
       for (int q = 0; q < nv; ++q) fb += std::pow(d->qfrc_constraint[q] - d->qfrc_bias[q], 2);
       const bool balanced = std::sqrt(fb) < o.force_tolerance * grav;
-      for (int q = 0; q < nv; ++q) {
-        const double u = d->qfrc_constraint[q] - d->qfrc_bias[q];
-        d->qfrc_applied[q] = balanced          ? -kDriftDamping * d->qvel[q]
-                             : d->qvel[q] == 0 ? 0.0
-                                               : -alpha * std::abs(u) * (d->qvel[q] > 0 ? 1 : -1);
+      if (quench && !balanced) {
+        // The power of the unbalanced force on the joints in the plane (x, y; or u along d), the
+        // quasi-static block's offset (z's soft contact is critically damped on its own); the
+        // whole velocity is zeroed (a velocity of zero is consistent with every contact).
+        double p = 0, v2 = 0;
+        for (int q = 0; q + 1 < nv; ++q) p += (d->qfrc_constraint[q] - d->qfrc_bias[q]) * d->qvel[q];
+        for (int q = 0; q < nv; ++q) v2 += d->qvel[q] * d->qvel[q];
+        if (p < 0) {
+          for (int q = 0; q < nv; ++q) d->qvel[q] = 0;
+        } else if (v2 > qv * qv) {
+          const double k = qv / std::sqrt(v2);
+          for (int q = 0; q < nv; ++q) d->qvel[q] *= k;
+        }
+        for (int q = 0; q < nv; ++q) d->qfrc_applied[q] = 0;
+      } else {
+        for (int q = 0; q < nv; ++q) {
+          const double u = d->qfrc_constraint[q] - d->qfrc_bias[q];
+          d->qfrc_applied[q] = balanced          ? -kDriftDamping * d->qvel[q]
+                               : d->qvel[q] == 0 ? 0.0
+                                                 : -alpha * std::abs(u) * (d->qvel[q] > 0 ? 1 : -1);
+        }
       }
       mj_step(m, d);
       ++out.steps;
@@ -367,6 +394,10 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
   };
   bool far = false;
   constexpr int kMaxWaits = 40;  // relaxations at one tilt before it counts as unsettled
+  // Quenched, the block moves at most at quench_speed: an increment waits at least as long as it
+  // takes to cross the lower map (its larger extent, 1 scaled) at that speed (a slip that is not a
+  // run-away can go far across d, along a groove).
+  const int quench_waits = int(std::min(1e6, std::max<double>(kMaxWaits, std::ceil(1.0 / (qv * o.relax_time)))));
   {
     // At zero tilt the block slides into the basin that holds its drop: as long as it takes.
     // With settle_damping c the joints' viscous damping (implicit in MuJoCo's Euler step)
@@ -376,11 +407,13 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
     const bool viscous = o.settle_damping > 0;
     if (viscous)
       for (int q = 0; q < nv; ++q) m->dof_damping[q] = o.settle_damping;
-    const int waits =
-        viscous ? int(std::min(1e6, std::ceil(kMaxWaits * std::max(1.0, o.settle_damping / 20)))) : kMaxWaits;
+    const int waits = viscous    ? int(std::min(1e6, std::ceil(kMaxWaits * std::max(1.0, o.settle_damping / 20))))
+                      : o.quench ? quench_waits
+                                 : kMaxWaits;
     bool rested = false;
     for (int w = 0; w < waits && !rested; ++w)
-      rested = relax(0.0, std::numeric_limits<double>::infinity(), far, viscous ? 0.0 : o.local_damping);
+      rested = relax(0.0, std::numeric_limits<double>::infinity(), far, viscous ? 0.0 : o.local_damping,
+                     !viscous && o.quench);
     if (!rested) ++out.unsettled;
     record(0.0, rested);
   }
@@ -399,7 +432,8 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       tilt_viscous
           ? int(std::min(1e6, std::max<double>(kMaxWaits, std::ceil(2 * cell * o.tilt_damping /
                                                                     (grav * std::sin(o.tilt_step) * o.relax_time)))))
-          : kMaxWaits;
+      : o.quench ? quench_waits
+                 : kMaxWaits;
   if (d->ncon == 0)
     return make_error(
         fmt::format("areal_tilt: the block left the lower map at zero tilt (it slid to ({}, {}) m, "
@@ -437,7 +471,8 @@ Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOp
       // tilt_waits relaxations (kMaxWaits under the local damping), so that the drag does not let
       // the tilt grow during a run.
       bool rest = false;
-      for (int w = 0; w < tilt_waits && !rest && !far; ++w) rest = relax(beta, u_stop, far, tilt_alpha);
+      for (int w = 0; w < tilt_waits && !rest && !far; ++w)
+        rest = relax(beta, u_stop, far, tilt_alpha, !tilt_viscous && o.quench);
       record(beta, rest);
       if (far) {
         out.steering =

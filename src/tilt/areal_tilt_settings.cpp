@@ -98,6 +98,18 @@ const std::vector<B>& table() {
                 "overdamped slip; each increment waits until the block could creep two lower-map cells at one "
                 "tilt step's drive); 0: the local damping"),
               FRICTAL_MEMBER(tilt_damping)),
+          bind_choice<ArealTiltOptions>(
+              F("relaxation", "", 0, Lo::Closed, 0,
+                "How the block relaxes after the drop and each tilt increment (unless settle_damping or "
+                "tilt_damping): local (Cundall's local damping) or quench (quenched dynamics: the velocity zeroed "
+                "whenever the unbalanced force does negative work, the speed capped at quench_speed; no creep, no "
+                "momentum past a seat)"),
+              FRICTAL_MEMBER(quench), std::vector<std::pair<std::string, bool>>{{"local", false}, {"quench", true}}),
+          bind<ArealTiltOptions>(
+              F("quench_speed", "scaled m/s", 0, Lo::Open, kInf,
+                "With relaxation quench: the block's largest speed (it turns with the force within speed^2 / "
+                "force; the steepest descent as it shrinks)"),
+              FRICTAL_MEMBER(quench_speed)),
           bind<ArealTiltOptions>(
               F("relax_chunk", "scaled s", 0, Lo::Open, kInf,
                 "Longest relaxation per rest test; an increment waits for up to 40 of them before it counts as "

@@ -691,3 +691,65 @@ TEST(ArealTilt, TheTiltDampingEndsASlipInTheNextSeatAsTheQuasiStaticBlock) {
   ASSERT_FALSE(badset.ok());
   EXPECT_NE(badset.error().message.find("tilt_damping"), std::string::npos) << badset.error().message;
 }
+
+TEST(ArealTilt, TheQuenchEndsASlipInTheNextSeatWithoutCreeping) {
+  // The geometry of TheTiltDampingEndsASlipInTheNextSeatAsTheQuasiStaticBlock: a profile across y,
+  // one sphere, locked along d = +x, nodes a apart; slopes per cell: down (-0.5) for 4 cells to
+  // seat A at node 4, up (+0.2) one cell, down (-0.5) 6 cells to seat B at node 11, a short wall
+  // (+0.25) one cell, then level. Dropped in A, the quasi-static block leaves A when tan(tilt)
+  // exceeds 0.2, slides into B, holds there up to atan(0.25) = 14.04 deg and then runs away on the
+  // level (by hand). Under a local damping of 0.5 the first slip's momentum carries the block over
+  // B's wall (that test). Quenched, the block keeps no momentum past the bottom of B (its velocity
+  // is zeroed as soon as the wall's force does negative work; at the speed cap v it could climb
+  // v^2 / 2g = 5e-5 of the map, against the wall's 0.05 a = 1.7e-3 above the balanced slope), so it
+  // reads the quasi-static 14.04 deg at either cap; and it does not creep: the slips take fewer
+  // steps than under the viscous tilt damping of 100.
+  const double a = 1e-5;
+  std::vector<double> slope(4, -0.5);
+  slope.push_back(0.2);
+  slope.insert(slope.end(), 6, -0.5);
+  slope.push_back(0.25);
+  const frictal::Map f = profile_across_y(slope, 0.0, 30, a);
+  const frictal::Map g = one_node(0, a, 0);
+  frictal::ArealTiltOptions t;
+  t.turn_over_upper = false;
+  t.lock_lateral = true;
+  t.sphere_radius = 0.05 * a;
+  t.runaway_distance = 10 * a;  // A to B is 7 a: a stop, not a run-away
+  t.start_offset = {4 * a, 0};
+  t.local_damping = 0.5;  // not used while quenched
+  t.quench = true;
+  const double want = std::atan(0.25);
+  long quench_steps = 0;
+  for (double cap : {0.03, 0.1}) {  // scaled m/s (the map is 1 scaled long)
+    t.quench_speed = cap;
+    auto q = frictal::areal_tilt(f, g, t);
+    if (!frictal::mujoco_available()) {
+      ASSERT_FALSE(q.ok());
+      EXPECT_EQ(q.error().code, frictal::ErrorCode::NotAvailable);
+      return;
+    }
+    ASSERT_TRUE(q.ok()) << q.error().message;
+    EXPECT_EQ(q->unsettled, 0) << cap;
+    EXPECT_NEAR(q->rest_offset[0], 4 * a, 0.1 * a) << cap;  // A
+    // The reading is the first increment of 0.1 deg above the hold angle.
+    EXPECT_GT(q->friction_angle, want) << cap;
+    EXPECT_LE(q->friction_angle, want + t.tilt_step + 1e-9) << cap;
+    if (cap == 0.03) quench_steps = q->steps;
+  }
+  t.quench = false;
+  t.tilt_damping = 100;
+  auto viscous = frictal::areal_tilt(f, g, t);
+  ASSERT_TRUE(viscous.ok()) << viscous.error().message;
+  EXPECT_LT(quench_steps, viscous->steps);
+  // A speed cap that is not a finite number > 0 is refused, naming it.
+  t.tilt_damping = 0;
+  t.quench = true;
+  t.quench_speed = 0;
+  auto bad = frictal::areal_tilt(f, g, t);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("quench speed 0"), std::string::npos) << bad.error().message;
+  auto badset = frictal::make_areal_tilt_options({{"quench_speed", -1.0}});
+  ASSERT_FALSE(badset.ok());
+  EXPECT_NE(badset.error().message.find("quench_speed"), std::string::npos) << badset.error().message;
+}
