@@ -221,6 +221,9 @@ class SphereField {
   }
   /// The largest of the bounds (unitless).
   double slope_max() const { return slope_max_; }
+  /// A smooth map (every bound below 0.5): there the descent's windows and the Near lists follow
+  /// the slopes; on a rough one they are those of before the bounds, to the bit.
+  bool local() const { return slope_max_ < 0.5; }
   /// The spheres that can reach the top anywhere within `radius` of an offset `centre`: every
   /// sphere whose wide bound (the highest cell top within r + radius of its centre, plus r, less
   /// its height) is at least `threshold`, sorted by that bound, highest first. Kept by the caller
@@ -355,17 +358,21 @@ class SphereField {
           // As `wide` below, and rounding is monotone: the rest of the tile (higher) cannot reach either.
           if (tile_top + r_ - (n.z + r_) < threshold) break;
           if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
-          double b = kNoContact, sm = 0;
+          double b = kNoContact;
           for (std::size_t j = j0; j <= j1; ++j)
-            for (std::size_t i = i0; i <= i1; ++i) {
-              b = std::max(b, cell_top_[j * cnx_ + i]);
-              sm = std::max(sm, slope3_[j * cnx_ + i]);
-            }
+            for (std::size_t i = i0; i <= i1; ++i) b = std::max(b, cell_top_[j * cnx_ + i]);
           const double wide = b + r_ - (n.z + r_);
-          // (float: rounded up, so that it stays a bound)
-          const float sf = std::isinf(sm) ? std::numeric_limits<float>::infinity()
-                                          : std::nextafter(float(sm), std::numeric_limits<float>::infinity());
-          if (wide >= threshold) near.list.push_back({wide, tiled_[q].k, sf});
+          if (wide < threshold) continue;
+          // The slopes' bound, read only where the windows use it (a smooth map): as a float
+          // rounded up, so that it stays a bound.
+          float sf = 0;
+          if (local()) {
+            double sm = 0;
+            for (std::size_t j = j0; j <= j1; ++j)
+              for (std::size_t i = i0; i <= i1; ++i) sm = std::max(sm, slope3_[j * cnx_ + i]);
+            sf = std::nextafter(float(sm), std::numeric_limits<float>::infinity());
+          }
+          near.list.push_back({wide, tiled_[q].k, sf});
         }
       }
     }
@@ -726,7 +733,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   // `full`: the window of cap 2 for every piece.
   // Where a bound reaches 0.5, some caps are 2 anyway: there every piece's cap is 2, in one pass
   // (the windows as they were before the bounds; the same descents, to the bit).
-  const bool local = field.slope_max() < 0.5;
+  const bool local = field.local();
   auto height = [&](double x, double y, double delta, std::vector<SphereField::Piece>* p, bool full = false) {
     double bx = 0, by = 0;
     ++out.evaluations;

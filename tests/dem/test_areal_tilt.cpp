@@ -118,6 +118,31 @@ frictal::Map one_node(double x, double y, double z) {
   g.heights = {z};
   return g;
 }
+
+/// Nodes' spacing of two_seats() (m).
+constexpr double kTwoSeatSpacing = 1e-5;
+/// The two-seat profile across y (the lower map constant along y), one sphere locked along
+/// d = +x, nodes a apart: slopes per cell down (-0.5) for 4 cells to seat A at node 4, up (+0.2)
+/// one cell, down (-0.5) 6 cells to seat B at node 11, a short wall (+0.25) one cell, then level;
+/// dropped in A. Sphere radius 0.05 a, run-away distance 10 a (A to B is 7 a: a stop).
+struct TwoSeats {
+  frictal::Map lower, upper;
+  frictal::ArealTiltOptions options;
+};
+TwoSeats two_seats() {
+  const double a = kTwoSeatSpacing;
+  std::vector<double> slope(4, -0.5);
+  slope.push_back(0.2);
+  slope.insert(slope.end(), 6, -0.5);
+  slope.push_back(0.25);
+  TwoSeats s{profile_across_y(slope, 0.0, 30, a), one_node(0, a, 0), {}};
+  s.options.turn_over_upper = false;
+  s.options.lock_lateral = true;
+  s.options.sphere_radius = 0.05 * a;
+  s.options.runaway_distance = 10 * a;
+  s.options.start_offset = {4 * a, 0};
+  return s;
+}
 }  // namespace
 
 TEST(ArealTiltLift, SphereOnAPlaneRestsAtItsNormalDistance) {
@@ -643,19 +668,10 @@ TEST(ArealTilt, TheTiltDampingEndsASlipInTheNextSeatAsTheQuasiStaticBlock) {
   // stops it: the 2D momentum is weaker than on the maps' failing drops, bench/results/
   // predict-vs-sim.md). With tilt_damping the slips are overdamped whatever the local damping: it
   // stops in B and reads the quasi-static 14.04 deg.
-  const double a = 1e-5;
-  std::vector<double> slope(4, -0.5);
-  slope.push_back(0.2);
-  slope.insert(slope.end(), 6, -0.5);
-  slope.push_back(0.25);
-  const frictal::Map f = profile_across_y(slope, 0.0, 30, a);
-  const frictal::Map g = one_node(0, a, 0);
-  frictal::ArealTiltOptions t;
-  t.turn_over_upper = false;
-  t.lock_lateral = true;
-  t.sphere_radius = 0.05 * a;
-  t.runaway_distance = 10 * a;  // A to B is 7 a: a stop, not a run-away
-  t.start_offset = {4 * a, 0};
+  const double a = kTwoSeatSpacing;
+  const TwoSeats seats = two_seats();
+  const frictal::Map &f = seats.lower, &g = seats.upper;
+  frictal::ArealTiltOptions t = seats.options;
   t.local_damping = 0.5;
   const double want = std::atan(0.25);
   // The quasi-static prediction from the same drop.
@@ -704,19 +720,10 @@ TEST(ArealTilt, TheQuenchEndsASlipInTheNextSeatWithoutCreeping) {
   // v^2 / 2g = 5e-5 of the map, against the wall's 0.05 a = 1.7e-3 above the balanced slope), so it
   // reads the quasi-static 14.04 deg at either cap; and it does not creep: the slips take fewer
   // steps than under the viscous tilt damping of 100.
-  const double a = 1e-5;
-  std::vector<double> slope(4, -0.5);
-  slope.push_back(0.2);
-  slope.insert(slope.end(), 6, -0.5);
-  slope.push_back(0.25);
-  const frictal::Map f = profile_across_y(slope, 0.0, 30, a);
-  const frictal::Map g = one_node(0, a, 0);
-  frictal::ArealTiltOptions t;
-  t.turn_over_upper = false;
-  t.lock_lateral = true;
-  t.sphere_radius = 0.05 * a;
-  t.runaway_distance = 10 * a;  // A to B is 7 a: a stop, not a run-away
-  t.start_offset = {4 * a, 0};
+  const double a = kTwoSeatSpacing;
+  const TwoSeats seats = two_seats();
+  const frictal::Map &f = seats.lower, &g = seats.upper;
+  frictal::ArealTiltOptions t = seats.options;
   t.local_damping = 0.5;  // not used while quenched
   t.quench = true;
   const double want = std::atan(0.25);
