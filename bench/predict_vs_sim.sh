@@ -8,10 +8,14 @@
 #                           check's protocol (the quasi-static tilt: the drop settled under a
 #                           viscous damping, the tilt quenched; bench/results/predict-vs-sim.md)
 #   bash bench/predict_vs_sim.sh profiles [BIN] [OUT] [N]   (spheropolygons, `frictal tilt`)
+#   MAP_SEEDS="211 261" ...  maps: another set of pairs (isotropic seeds 211-214, anisotropic 261-264)
+#   JOBS=16 ...             processes at a time (default 2)
+#   SIM_ONLY=1 ... maps ... only the simulations of an OUT that a NO_RUN=1 run prepared (its in/ and
+#                           jobs.txt): no Python, no prediction, no table (a machine without numpy)
 #   NO_RUN=1 ... maps ...   no new simulation: the tables over the simulations OUT holds (a pair
 #                           not complete is left out and named), e.g. of a run stopped part way
 # BIN default build/release/apps/frictal/frictal, OUT default /tmp/frictal-predict-vs-sim, N 4.
-# Two processes at a time (xargs -P 2). Prints the tables (bench/results/predict-vs-sim.md).
+# JOBS processes at a time (xargs -P). Prints the tables (bench/results/predict-vs-sim.md).
 #
 # Maps, settings shared by both sides (the defaults of both commands, passed explicitly where the
 # command takes them): sliding along +x, plane removed from both maps, the upper map turned over,
@@ -41,7 +45,8 @@ if [ "$MODE" = maps ]; then
     echo "$D holds simulations run with SIM_ARGS='$(cat "$D/sim-args.txt")': use another OUT" >&2; exit 2
   fi
   echo "$SIM_ARGS" > "$D/sim-args.txt"
-  $PY bench/predict_vs_sim_pairs.py maps "$D/in" > "$D/pairs.txt"
+  if [ -z "${SIM_ONLY:-}" ]; then
+  $PY bench/predict_vs_sim_pairs.py maps "$D/in" ${MAP_SEEDS:-} > "$D/pairs.txt"
   for p in $(cat "$D/pairs.txt"); do
     "$BIN" predict "$D/in/$p-lower.x3p" "$D/in/$p-upper.x3p" --detrend plane --drops "$N" --json -q > "$D/$p-predict.json"
     RA=$($PY -c 'import json,sys; print(repr(json.load(open(sys.argv[1]))["runaway_distance_m"]))' "$D/$p-predict.json")
@@ -50,7 +55,8 @@ if [ "$MODE" = maps ]; then
       echo "$p $k $xy $RA"; k=$((k + 1))
     done
   done > "$D/jobs.txt"
-  xargs -P 2 -L 1 bash -c '
+  fi
+  xargs -P "${JOBS:-2}" -L 1 bash -c '
     p=$0; k=$1; xy=$2; ra=$3; d='"$D"'; bin='"$BIN"'
     common=("$d/in/$p-lower.x3p" "$d/in/$p-upper.x3p" --detrend plane --runaway-distance "$ra" -q --json)
     if [ ! -s "$d/runs/$p-$k-sim.json" ]; then  # kept from an earlier run of the same OUT
@@ -58,9 +64,11 @@ if [ "$MODE" = maps ]; then
       "$bin" areal-tilt "${common[@]}" --start-offset="$xy" --lateral free '"$SIM_ARGS"' > "$d/runs/$p-$k-sim.json.tmp"
       mv "$d/runs/$p-$k-sim.json.tmp" "$d/runs/$p-$k-sim.json"
     fi
+    [ -z "'"${SIM_ONLY:-}"'" ] || exit 0
     "$bin" areal-tilt "${common[@]}" --start-offset="$xy" --lateral free --predict-only > "$d/runs/$p-$k-spread.json"
     "$bin" predict "${common[@]}" --start-offset="$xy" > "$d/runs/$p-$k-predict.json"
   ' < "$D/jobs.txt"
+  [ -z "${SIM_ONLY:-}" ] || exit 0
   $PY - "$D" <<'PY'
 import json, os, statistics, sys
 d = sys.argv[1]
@@ -143,7 +151,7 @@ elif [ "$MODE" = profiles ]; then
     done
   done > "$D/jobs.txt"
   tilt='"$bin" tilt --lower "$d/in/$p-lower.csv" --upper "$d/in/$p-upper.csv" --detrend line --protocol quasi-static --hold-rotation --runaway-distance "$ra" --initial-offset="$x" --json -q'
-  xargs -P 2 -L 1 bash -c '
+  xargs -P "${JOBS:-2}" -L 1 bash -c '
     p=$0; k=$1; x=$2; ra=$3; shift 3; d='"$D"'; bin='"$BIN"'
     '"$tilt"' "$@" > "$d/runs/$p-$k-tilt.json"
     [ "${k#c}" = "$k" ] || exit 0  # a convergence run: no prediction
@@ -161,7 +169,7 @@ elif [ "$MODE" = profiles ]; then
     echo "$p c-r $x $ra --spheroradius $($PY -c "print(0.5 * $r)")"
     echo "$p c-inc $x $ra --tilt-increment $($PY -c "print(0.5 * $inc)")"
   done > "$D/conv-jobs.txt"
-  xargs -P 2 -L 1 bash -c '
+  xargs -P "${JOBS:-2}" -L 1 bash -c '
     p=$0; k=$1; x=$2; ra=$3; shift 3; d='"$D"'; bin='"$BIN"'
     '"$tilt"' "$@" > "$d/runs/$p-$k-tilt.json"
   ' < "$D/conv-jobs.txt"

@@ -6,6 +6,8 @@ simulation, statistically), on seeds not used or tuned on anywhere else.
                 pairs of bench/areal_tilt_pairs.py (lower 48 x 48, upper 12 x 12 from another seed,
                 1 mm wide, Hurst 0.8, rolloff at 8 cells, cut-off at 2.5, rms slope 0.2; ani:
                 correlation 4 times longer along y). Seeds: iso 201-204, ani 251-254 (upper +1000).
+  maps OUT ISO ANI  the same with seeds ISO..ISO+3 and ANI..ANI+3 (a second set of pairs, e.g.
+                211 261: the check rerun on pairs no setting of the prediction was tuned on).
   profiles OUT  OUT/<pair>-lower.csv, OUT/<pair>-upper.csv: Fourier-filtered profiles (see
                 fourier_profile; lower 200 points, upper 50, spacing 1 mm / 199, best line removed).
                 Seeds 301-304 (upper +1000).
@@ -37,14 +39,14 @@ def fourier_profile(n, a, seed, H=0.8, rms_slope=0.2, qmin_cells=8, qmax_cells=2
     return z * rms_slope / s
 
 
-def maps(out):
+def maps(out, iso=201, ani=251):
     import frictal
     os.makedirs(out, exist_ok=True)
     n, w = 48, 12
     a = 1e-3 / (n - 1)
     cases = []  # isotropic and anisotropic in turn (bench/predict_vs_sim.sh runs them in this order)
     for k in range(4):
-        cases += [(f"iso{201 + k}", 201 + k, {}), (f"ani{251 + k}", 251 + k, {"stretch": (1.0, 4.0)})]
+        cases += [(f"iso{iso + k}", iso + k, {}), (f"ani{ani + k}", ani + k, {"stretch": (1.0, 4.0)})]
     for name, seed, kw in cases:
         frictal.write_x3p(f"{out}/{name}-lower.x3p", fourier_map(n, a, seed, **kw), dx=a, dy=a)
         frictal.write_x3p(f"{out}/{name}-upper.x3p", fourier_map(w, a, seed + 1000, **kw), dx=a, dy=a)
@@ -83,7 +85,7 @@ def offsets(pred_json, n, m):
 if __name__ == "__main__":
     what = sys.argv[1]
     if what == "maps":
-        maps(sys.argv[2])
+        maps(sys.argv[2], *(int(v) for v in sys.argv[3:5]))
     elif what == "profiles":
         profiles(sys.argv[2])
     elif what == "offsets-along":
