@@ -238,7 +238,13 @@ class SphereField {
       float s;          ///< the facet slopes' bound over the cells it can touch (unitless; see Window)
     };
     std::vector<Entry> list;
+    /// list[0, sorted) is in its final order; the rest is sorted as a visit reaches it, twice as
+    /// many entries each time (on a smooth map the list holds most spheres and a visit reads a
+    /// few: a full sort per rebuild took 97 % of a drop). The order is total (ties by node index):
+    /// the same visits either way.
+    std::size_t sorted = 0;
     long rebuilds = 0, fallbacks = 0;  ///< (unitless)
+    static bool before(const Entry& a, const Entry& b) { return a.wide > b.wide || (a.wide == b.wide && a.k < b.k); }
   };
   /// h(s) as eval, from the spheres of `near` (rebuilt around s when s lies outside its disc):
   /// visited in the order of their wide bounds until a bound falls below the best height less
@@ -264,7 +270,13 @@ class SphereField {
     double best = kNoContact;
     if (pieces) pieces->clear();
     bool complete = false;
-    for (const Near::Entry& e : near.list) {
+    for (std::size_t i = 0; i < near.list.size(); ++i) {
+      if (i == near.sorted) {  // the next entries, twice as many as are sorted
+        near.sorted = std::min(near.list.size(), 2 * i);
+        std::partial_sort(near.list.begin() + std::ptrdiff_t(i), near.list.begin() + std::ptrdiff_t(near.sorted),
+                          near.list.end(), Near::before);
+      }
+      const Near::Entry& e = near.list[i];
       if (e.wide < best - eps) {
         complete = true;
         break;
@@ -324,6 +336,7 @@ class SphereField {
       std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
   }
   static constexpr std::size_t kTile = 8, kBlock = 8;
+  static constexpr std::size_t kNearSorted = 64;  ///< entries of a Near list sorted at its rebuild
   /// The disc of offsets over which a Near list holds: one lower-map cell (unit: m).
   double near_radius() const { return 0.5 * std::max(hf_.dx, hf_.dy); }
   /// How far h may fall across a Near disc, per unit of its radius: 0.5 (a guess: where h falls
@@ -376,10 +389,11 @@ class SphereField {
         }
       }
     }
-    // Highest bound first; equal bounds by node index (the order does not depend on the scan's).
-    std::sort(near.list.begin(), near.list.end(), [](const Near::Entry& a, const Near::Entry& b) {
-      return a.wide > b.wide || (a.wide == b.wide && a.k < b.k);
-    });
+    // Highest bound first; equal bounds by node index (the order does not depend on the scan's):
+    // the first kNearSorted now, the rest when a visit reaches them.
+    near.sorted = std::min(near.list.size(), kNearSorted);
+    std::partial_sort(near.list.begin(), near.list.begin() + std::ptrdiff_t(near.sorted), near.list.end(),
+                      Near::before);
   }
   struct Tile {
     std::size_t begin, end;     ///< the tile's spheres: order_[begin, end)
