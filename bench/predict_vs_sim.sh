@@ -64,6 +64,15 @@ if [ "$MODE" = maps ]; then
       "$bin" areal-tilt "${common[@]}" --start-offset="$xy" --lateral free '"$SIM_ARGS"' > "$d/runs/$p-$k-sim.json.tmp"
       mv "$d/runs/$p-$k-sim.json.tmp" "$d/runs/$p-$k-sim.json"
     fi
+    # An increment that did not settle (its wait, 40 relaxation chunks, ran out: the block still
+    # creeping, no quasi-static reading): once more with chunks 8 times as long; the first run is
+    # kept as -sim-unsettled.json.
+    if grep -q "\"unsettled_increments\": [1-9]" "$d/runs/$p-$k-sim.json" && [ ! -e "$d/runs/$p-$k-sim-unsettled.json" ] \
+       && [ -z "'"${NO_RUN:-}"'" ]; then
+      "$bin" areal-tilt "${common[@]}" --start-offset="$xy" --lateral free '"$SIM_ARGS"' --relax-chunk 4 > "$d/runs/$p-$k-sim.json.tmp"
+      mv "$d/runs/$p-$k-sim.json" "$d/runs/$p-$k-sim-unsettled.json"
+      mv "$d/runs/$p-$k-sim.json.tmp" "$d/runs/$p-$k-sim.json"
+    fi
     [ -z "'"${SIM_ONLY:-}"'" ] || exit 0
     "$bin" areal-tilt "${common[@]}" --start-offset="$xy" --lateral free --predict-only > "$d/runs/$p-$k-spread.json"
     "$bin" predict "${common[@]}" --start-offset="$xy" > "$d/runs/$p-$k-predict.json"

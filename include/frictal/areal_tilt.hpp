@@ -65,13 +65,14 @@ struct ArealTiltOptions {
   /// Viscous damping per unit mass that replaces the local damping while the block settles at
   /// zero tilt, the block put down gently: an overdamped descent from the drop (its velocity
   /// tends to the unbalanced force over this), the prediction's steepest descent as it grows; 0:
-  /// the drop settles under the local damping as every increment (unit: 1/scaled s).
-  double settle_damping = 0;
+  /// the drop relaxes as every increment (quench or local damping). Default 100, with the quench:
+  /// the protocol the prediction is checked against (docs/mujoco.md) (unit: 1/scaled s).
+  double settle_damping = 100;
   /// Viscous damping per unit mass that replaces the local damping during the tilt increments: an
   /// overdamped slip (velocity = unbalanced force / this), the prediction's descent into the next
   /// seat as it grows; an increment then waits up to the time the block needs to creep two
-  /// lower-map cells at the drive of one tilt step (at least 40 chunks). 0: the local damping
-  /// (unit: 1/scaled s).
+  /// lower-map cells at the drive of one tilt step (at least 40 chunks). 0: the relaxation
+  /// (quench or local damping) (unit: 1/scaled s).
   double tilt_damping = 0;
   /// true: quenched dynamics (kinetic damping) in place of the local damping, while the block
   /// settles (unless settle_damping) and during the tilt increments (unless tilt_damping): no
@@ -80,8 +81,9 @@ struct ArealTiltOptions {
   /// it stops at the first minimum along its path (no momentum past a seat), turns with the force
   /// within a radius speed^2 / |F| (the prediction's steepest descent as the cap shrinks) and
   /// does not creep at small forces (its speed does not fall with the force). An increment waits
-  /// at least the time to cross the lower map at the cap (a slip may go far across d).
-  bool quench = false;
+  /// at least the time to cross the lower map at the cap (a slip may go far across d). The
+  /// default since 2026-11-27 (before: false, the local damping).
+  bool quench = true;
   double quench_speed = 1e-2;     ///< with quench: the block's largest speed (unit: scaled m/s)
   double relax_time = 0.5;        ///< longest relaxation per increment (unit: scaled s)
   double force_tolerance = 1e-4;  ///< at rest: unbalanced force below this fraction of the weight (unitless)

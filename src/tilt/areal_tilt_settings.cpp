@@ -89,14 +89,14 @@ const std::vector<B>& table() {
           bind<ArealTiltOptions>(
               F("settle_damping", "1/scaled s", 0, Lo::Closed, kInf,
                 "Viscous damping per unit mass in place of the local damping while the dropped block settles at "
-                "zero tilt (an overdamped descent; the prediction's steepest descent as it grows); 0: the local "
-                "damping"),
+                "zero tilt (an overdamped descent; the prediction's steepest descent as it grows); 0: the drop "
+                "relaxes as the increments (relaxation)"),
               FRICTAL_MEMBER(settle_damping)),
           bind<ArealTiltOptions>(
               F("tilt_damping", "1/scaled s", 0, Lo::Closed, kInf,
                 "Viscous damping per unit mass in place of the local damping during the tilt increments (an "
                 "overdamped slip; each increment waits until the block could creep two lower-map cells at one "
-                "tilt step's drive); 0: the local damping"),
+                "tilt step's drive); 0: the relaxation (local or quench)"),
               FRICTAL_MEMBER(tilt_damping)),
           bind_choice<ArealTiltOptions>(
               F("relaxation", "", 0, Lo::Closed, 0,

@@ -623,6 +623,7 @@ TEST(ArealTilt, TheSettleDampingPutsTheBlockDownInTheBasinOfSteepestDescent) {
   t.sphere_radius = 0.05 * a;
   t.runaway_distance = 6 * a;
   t.start_offset = {a, 0};
+  t.quench = false;  // the settle against the local damping (B), not the default quench
   // Zero tilt is what is tested: one coarse increment of 1 deg, then give up.
   t.coarse_tilt_step = t.tilt_step = 0.5 * std::numbers::pi / 180;
   t.max_tilt = 1.0 * std::numbers::pi / 180;
@@ -673,6 +674,8 @@ TEST(ArealTilt, TheTiltDampingEndsASlipInTheNextSeatAsTheQuasiStaticBlock) {
   const frictal::Map &f = seats.lower, &g = seats.upper;
   frictal::ArealTiltOptions t = seats.options;
   t.local_damping = 0.5;
+  t.quench = false;      // the tilt damping against the local damping, not the default quench
+  t.settle_damping = 0;  // the drop settled under the local damping too (the default puts it down gently)
   const double want = std::atan(0.25);
   // The quasi-static prediction from the same drop.
   auto hold = frictal::areal_tilt_hold(f, g, t);
