@@ -138,6 +138,18 @@ class SphereField {
         slope3_[j * cnx_ + i] = m;
         slope_max_ = std::max(slope_max_, m);
       }
+    // How far h may fall across a Near disc (near_fall): the steepest facet bounds it, but on a
+    // smooth measured map a few spikes set that max, and a list deep enough for them holds nearly
+    // every sphere. Twice the 99th percentile of the facet slopes instead (at least a tenth of the
+    // max, at most the max and 0.5): where h falls faster (by a spike) the list cannot decide and
+    // the full evaluation answers, so the results are the same (plu-1 one drop: the same JSON in
+    // 0.5 s instead of 5.7 s). On a rough map it is 0.5 as before.
+    {
+      std::vector<double> s = cell_slope;
+      const auto k = std::ptrdiff_t(0.99 * double(s.size() - 1));
+      std::nth_element(s.begin(), s.begin() + k, s.end());
+      fall_ = std::min({0.5, slope_max_, std::max(2 * s[std::size_t(k)], 0.1 * slope_max_)});
+    }
     bnx_ = (cnx_ + kBlock - 1) / kBlock;
     bny_ = (cny_ + kBlock - 1) / kBlock;
     block_top_.assign(bnx_ * bny_, kNoContact);
@@ -340,8 +352,8 @@ class SphereField {
   /// The disc of offsets over which a Near list holds: one lower-map cell (unit: m).
   double near_radius() const { return 0.5 * std::max(hf_.dx, hf_.dy); }
   /// How far h may fall across a Near disc, per unit of its radius: 0.5 (a guess: where h falls
-  /// faster, the full evaluation answers), less where no facet is that steep (unitless).
-  double near_fall() const { return std::min(0.5, slope_max_); }
+  /// faster, the full evaluation answers), less on a smooth map (fall_) (unitless).
+  double near_fall() const { return fall_; }
 
   void rebuild(Near& near, double sx, double sy, double threshold) const {
     ++near.rebuilds;
@@ -509,6 +521,7 @@ class SphereField {
   std::vector<double> cell_top_;
   std::vector<double> slope3_;  ///< per cell: the facet slopes' max over the 3 x 3 cells around it (unitless)
   double slope_max_ = 0;        ///< slope3_'s max (unitless)
+  double fall_ = 0.5;           ///< near_fall(): see the constructor (unitless)
   std::size_t bnx_ = 0, bny_ = 0;
   std::vector<double> block_top_;   ///< max of cell_top_ over kBlock x kBlock cells
   std::vector<std::size_t> order_;  ///< sphere indices grouped by tile
