@@ -173,6 +173,10 @@ struct HoldAnalysis {
   HoldAngles start;                ///< from the given start offset
   std::size_t events = 0;          ///< offsets of the lift's signature (exact events, or samples)
   bool exact = true;               ///< that signature evaluated every event
+  /// Of those, the event offsets beyond the drops' reach whose lift could not change any number
+  /// here (no chain's stop can lie among them, no inertial window reaches them), left out
+  /// (HoldOptions::keep_curve false only: the curve joins the offsets around them by chords).
+  std::size_t pruned = 0;
 };
 
 /// Computes the lift of `lower` against `upper` (already rotated, as signature() takes it) over
