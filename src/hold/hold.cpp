@@ -1779,29 +1779,55 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       prune_req.inner_lo = S.a - 1.02 * d;
       prune_req.inner_hi = S.b + 1.02 * d;
       prune_req.decide = [&, decided = false, found = detail::LiftPrune{}](
-                             const detail::LiftPoints& inner, const std::vector<std::size_t>& dropped) mutable {
+                             const double* io, const double* ih, std::size_t ni,
+                             const std::vector<std::size_t>& dropped) mutable {
         if (decided) return found;
         decided = true;
-        const MergedPoints mp(R, inner, dropped);
-        const std::size_t nw = mp.size();
-        // Forward: pairs of consecutive points from b on.
+        // W's points so far: R's (but the dropped ones, a few at its ends), then the inner ones
+        // beyond R's range (or before it).
+        auto kept = [&](std::size_t j) { return !std::binary_search(dropped.begin(), dropped.end(), j); };
+        const auto i_above = static_cast<std::size_t>(std::upper_bound(io, io + ni, S.b) - io);
+        const auto i_below = static_cast<std::size_t>(std::lower_bound(io, io + ni, S.a) - io);
+        // Forward: the points from b on, in increasing offset (R's there: its last one or two).
+        std::vector<std::pair<double, double>> head;
+        for (auto j =
+                 static_cast<std::size_t>(std::lower_bound(R.offset.begin(), R.offset.end(), S.b) - R.offset.begin());
+             j < R.offset.size(); ++j)
+          if (kept(j)) head.emplace_back(R.offset[j], R.lift[j]);
+        auto fwd_at = [&](std::size_t w) {
+          return w < head.size() ? head[w] : std::pair{io[i_above + w - head.size()], ih[i_above + w - head.size()]};
+        };
+        const std::size_t nf = head.size() + (ni - std::min(ni, i_above));
         double q = kNaN, steepest = -std::numeric_limits<double>::infinity();
-        for (std::size_t w = mp.first_at(S.b, false); w + 1 < nw; ++w) {
-          const LiftPoint p0 = mp.get(w), p1 = mp.get(w + 1);
-          if (std::isnan(q) && p1.h >= p0.h) q = p1.s;
-          steepest = std::max(steepest, (p1.h - p0.h) / (p1.s - p0.s));
+        for (std::size_t w = 0; w + 1 < nf; ++w) {
+          const auto [s0, h0] = fwd_at(w);
+          const auto [s1, h1] = fwd_at(w + 1);
+          if (std::isnan(q) && h1 >= h0) q = s1;
+          steepest = std::max(steepest, (h1 - h0) / (s1 - s0));
         }
         if (!std::isnan(q) && steepest > 0 && std::isfinite(steepest)) {
           found.fwd_from = q + d;
           found.fwd_max = steepest - 1e-12 * steepest;
         }
-        // Backward: pairs of consecutive points up to a, from a down.
+        // Backward: the points up to a, in decreasing offset.
+        head.clear();
+        for (auto j =
+                 static_cast<std::size_t>(std::upper_bound(R.offset.begin(), R.offset.end(), S.a) - R.offset.begin());
+             j-- > 0;)
+          if (kept(j)) head.emplace_back(R.offset[j], R.lift[j]);
+        const std::size_t nb_in = std::min(i_below, ni);
+        auto bwd_at = [&](std::size_t w) {  // w-th point from a down
+          return w < head.size() ? head[w]
+                                 : std::pair{io[nb_in - 1 - (w - head.size())], ih[nb_in - 1 - (w - head.size())]};
+        };
+        const std::size_t nb = head.size() + nb_in;
         q = kNaN;
         steepest = -std::numeric_limits<double>::infinity();
-        for (std::size_t w = mp.first_at(S.a, true); w-- > 1;) {
-          const LiftPoint p0 = mp.get(w - 1), p1 = mp.get(w);
-          if (std::isnan(q) && p0.h >= p1.h) q = p0.s;
-          steepest = std::max(steepest, (p0.h - p1.h) / (p1.s - p0.s));
+        for (std::size_t w = 0; w + 1 < nb; ++w) {
+          const auto [s1, h1] = bwd_at(w);  // the higher offset
+          const auto [s0, h0] = bwd_at(w + 1);
+          if (std::isnan(q) && h0 >= h1) q = s0;
+          steepest = std::max(steepest, (h0 - h1) / (s1 - s0));
         }
         if (!std::isnan(q) && steepest > 0 && std::isfinite(steepest)) {
           found.bwd_to = q - d;

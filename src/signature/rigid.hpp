@@ -59,16 +59,18 @@ struct LiftPrune {
   double bwd_to = -std::numeric_limits<double>::infinity(), bwd_max = 0;
 };
 /// Exact mode on an aligned lattice only: the offsets to evaluate inside [inner_lo, inner_hi]
-/// are evaluated first; decide(inner points, dropped) then gives the stretches (LiftPrune) from
-/// them and the signature's points. Outside, a block of 65 consecutive lattice offsets k0 .. k0 +
-/// 64 (k0 a multiple of 64; the whole block beyond fwd_from or before bwd_to) whose slopes are
-/// bounded below the stretch's limit, by the steepest edge of both faces at every candidate
-/// contact of its offsets (the batch frontier of the first one's contact), is evaluated at its
-/// two ends only: the first end's right slope is NaN (the lift curve joins the two by a chord,
-/// no steeper than the lift between them), the 63 offsets between are listed in `skipped`.
+/// are evaluated first; decide(offsets, lifts, count, dropped) then gives the stretches
+/// (LiftPrune) from those points (increasing offsets) and the signature's points. Outside, a block of 65 consecutive
+/// lattice offsets k0 .. k0 + 64 (k0 a multiple of 64; the whole block beyond fwd_from or before bwd_to) whose slopes
+/// are bounded below the stretch's limit, by the steepest edge of both faces at every candidate contact of its offsets
+/// (the batch frontier of the first one's contact), is evaluated at its two ends only: the first end's right slope is
+/// NaN (the lift curve joins the two by a chord, no steeper than the lift between them), the 63 offsets between are
+/// listed in `skipped`.
 struct LiftPruneRequest {
   double inner_lo = 0, inner_hi = 0;
-  std::function<LiftPrune(const LiftPoints& inner, const std::vector<std::size_t>& dropped)> decide;
+  std::function<LiftPrune(const double* offset, const double* lift, std::size_t count,
+                          const std::vector<std::size_t>& dropped)>
+      decide;
 };
 /// extend(lo, hi, have, prune): as above; offsets listed in `have` (increasing; may be null) are
 /// neither evaluated nor returned (they were, by an earlier call); `prune` (may be null) leaves

@@ -1120,117 +1120,116 @@ bool block_slopes(const Problem& P, const std::vector<double>& offs, const Front
   return std::isfinite(smax) && std::isfinite(smin);
 }
 
-// evaluate_lift() of `todo` (increasing) with a LiftPruneRequest (see rigid.hpp): the offsets
-// inside the inner range first, then the others, where a block that cannot matter is evaluated at
-// its ends only. The decision for a block depends on its first end's contact alone (the batch
+// evaluate_lift() of `todo` (increasing) with a LiftPruneRequest (see rigid.hpp), in place (the
+// arrays evaluate_lift() would write, the left-out offsets squeezed out at the end): the offsets
+// inside the inner range first, then the others, where a block that cannot matter is evaluated
+// at its ends only. The decision for a block depends on its first end's contact alone (the batch
 // frontier of the block from it), and the threads' chunks start at block starts, so the points
 // do not depend on the threads.
 bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const SignatureOptions& o,
                           const detail::LiftPruneRequest& req, const std::vector<std::size_t>& dropped,
                           detail::LiftExtension& ext) {
-  const auto i_in0 = static_cast<std::size_t>(std::lower_bound(todo.begin(), todo.end(), req.inner_lo) - todo.begin());
+  detail::LiftPoints& out = ext.points;
+  out.offset = std::move(todo);
+  const std::vector<double>& offs = out.offset;
+  const std::size_t n = offs.size();
+  out.lift.resize(n);
+  out.left.resize(n);
+  out.right.resize(n);
+  const auto i_in0 = static_cast<std::size_t>(std::lower_bound(offs.begin(), offs.end(), req.inner_lo) - offs.begin());
   const auto i_in1 = std::max(
-      i_in0, static_cast<std::size_t>(std::upper_bound(todo.begin(), todo.end(), req.inner_hi) - todo.begin()));
-  detail::LiftPoints inner;
-  if (!evaluate_lift(P,
-                     std::vector<double>(todo.begin() + static_cast<std::ptrdiff_t>(i_in0),
-                                         todo.begin() + static_cast<std::ptrdiff_t>(i_in1)),
-                     o, inner))
-    return false;
-  const detail::LiftPrune pr = req.decide(inner, dropped);
-  // The outer offsets: below the inner range (the first `split`), then above it.
-  detail::LiftPoints outer;
-  std::vector<double>& offs = outer.offset;
-  offs.reserve(todo.size() - (i_in1 - i_in0));
-  offs.insert(offs.end(), todo.begin(), todo.begin() + static_cast<std::ptrdiff_t>(i_in0));
-  offs.insert(offs.end(), todo.begin() + static_cast<std::ptrdiff_t>(i_in1), todo.end());
-  std::vector<double>().swap(todo);
-  const std::size_t n = offs.size(), split = i_in0;
+      i_in0, static_cast<std::size_t>(std::upper_bound(offs.begin(), offs.end(), req.inner_hi) - offs.begin()));
+  std::vector<std::uint8_t> mark(n, 0);  // 1: a block start, 2: left out
+  detail::LiftPrune pr;
+  // Evaluates [r0, r1) on the threads, in chunks that start at block starts.
+  auto run = [&](std::size_t r0, std::size_t r1) {
+    if (r1 <= r0) return;
+    const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, (r1 - r0) / 64));
+    std::vector<std::size_t> bounds(T + 1, r1);
+    bounds[0] = r0;
+    for (unsigned c = 1; c < T; ++c) {
+      std::size_t t = std::max(bounds[c - 1], r0 + (r1 - r0) * c / T);
+      while (t < r1 && mark[t] != 1) ++t;
+      bounds[c] = t;
+    }
+    util::parallel_chunks(T, T, [&](unsigned, std::size_t c0, std::size_t c1) {
+      for (std::size_t c = c0; c < c1; ++c) {
+        const std::size_t i0 = bounds[c], i1 = bounds[c + 1];
+        std::vector<Cand> cands;
+        double warm = kNaN;
+        Frontier frontier, block;
+        GeneralFrontier general;
+        constexpr std::size_t kBatch = 64;
+        for (std::size_t i = i0; i < i1; ++i) {
+          if (P.index_search && !(i >= frontier.begin && i < frontier.end))
+            build_frontier(P, offs, i, std::min(i + kBatch, i1), warm, frontier);
+          const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
+          if (!fr && !(i >= general.begin && i < general.end))
+            build_general_frontier(P, offs, i, std::min(i + kBatch, i1), warm, general);
+          const GeneralFrontier* gf = (!fr && i >= general.begin && i < general.end) ? &general : nullptr;
+          const OffsetResult e = evaluate_offset(P, offs[i], warm, o.slopes, nullptr, cands, fr, gf);
+          out.lift[i] = e.lift;
+          out.left[i] = e.theta_left;
+          out.right[i] = e.theta_right;
+          warm = e.contact_x;
+          if (mark[i] != 1 || !std::isfinite(e.lift)) continue;
+          if (!build_frontier(P, offs, i, i + 65, warm, block) || block.end != i + 65) continue;
+          double smax, smin;
+          if (!block_slopes(P, offs, block, smax, smin)) continue;
+          // Margins: the chord between the two ends is computed from their rounded lifts, the
+          // bound from rounded edge slopes (relative rounding, and an absolute term for the lifts).
+          const double gap = offs[i + 64] - offs[i];
+          const double err = 1e-14 * (std::abs(e.lift) + std::max(std::abs(smax), std::abs(smin)) * gap) / gap;
+          const bool fwd = offs[i] >= pr.fwd_from && smax + 1e-12 * std::abs(smax) + err <= pr.fwd_max;
+          const bool bwd = offs[i + 64] <= pr.bwd_to && -smin + 1e-12 * std::abs(smin) + err <= pr.bwd_max;
+          if (!fwd && !bwd) continue;
+          out.right[i] = kNaN;  // the curve joins it to offs[i + 64] by a chord
+          for (std::size_t t = i + 1; t < i + 64; ++t) mark[t] = 2;
+          i += 63;
+          frontier = Frontier{};
+        }
+      }
+    });
+  };
+  run(i_in0, i_in1);
+  for (std::size_t i = i_in0; i < i_in1; ++i)
+    if (!std::isfinite(out.lift[i])) return false;
+  pr = req.decide(offs.data() + i_in0, out.lift.data() + i_in0, i_in1 - i_in0, dropped);
   // Block starts: 65 consecutive lattice offsets k0 .. k0 + 64 from entry t, k0 a multiple of
   // 64, on one side of the inner range and all in one stretch.
-  std::vector<std::uint8_t> mark(n, 0);  // 1: a block start, 2: left out
   auto lattice_k = [&](double s, double& k) {
     const double kk = (s - P.lattice_origin) / P.lattice_step;
     k = std::round(kk);
     return std::abs(kk - k) < 1e-9;
   };
   for (std::size_t t = 0; t + 64 < n; ++t) {
+    if (t + 64 >= i_in0 && t < i_in1) continue;
     double k0, k1;
     if (!lattice_k(offs[t], k0) || std::fmod(k0, 64.0) != 0) continue;
-    if (t < split && t + 64 >= split) continue;
     if (!lattice_k(offs[t + 64], k1) || k1 - k0 != 64) continue;
     if (offs[t] >= pr.fwd_from || offs[t + 64] <= pr.bwd_to) mark[t] = 1;
   }
-  // Chunks that start at block starts (or at the inner range's place): no block crosses a chunk.
-  const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, n / 64));
-  std::vector<std::size_t> bounds(T + 1, n);
-  bounds[0] = 0;
-  for (unsigned c = 1; c < T; ++c) {
-    std::size_t t = std::max(bounds[c - 1], n * c / T);
-    while (t < n && mark[t] != 1 && t != split) ++t;
-    bounds[c] = t;
-  }
-  outer.lift.resize(n);
-  outer.left.resize(n);
-  outer.right.resize(n);
-  util::parallel_chunks(T, T, [&](unsigned, std::size_t c0, std::size_t c1) {
-    for (std::size_t c = c0; c < c1; ++c) {
-      const std::size_t i0 = bounds[c], i1 = bounds[c + 1];
-      std::vector<Cand> cands;
-      double warm = kNaN;
-      Frontier frontier, block;
-      GeneralFrontier general;
-      constexpr std::size_t kBatch = 64;
-      for (std::size_t i = i0; i < i1; ++i) {
-        if (P.index_search && !(i >= frontier.begin && i < frontier.end))
-          build_frontier(P, offs, i, std::min(i + kBatch, i1), warm, frontier);
-        const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
-        if (!fr && !(i >= general.begin && i < general.end))
-          build_general_frontier(P, offs, i, std::min(i + kBatch, i1), warm, general);
-        const GeneralFrontier* gf = (!fr && i >= general.begin && i < general.end) ? &general : nullptr;
-        const OffsetResult e = evaluate_offset(P, offs[i], warm, o.slopes, nullptr, cands, fr, gf);
-        outer.lift[i] = e.lift;
-        outer.left[i] = e.theta_left;
-        outer.right[i] = e.theta_right;
-        warm = e.contact_x;
-        if (mark[i] != 1 || !std::isfinite(e.lift)) continue;
-        if (!build_frontier(P, offs, i, i + 65, warm, block) || block.end != i + 65) continue;
-        double smax, smin;
-        if (!block_slopes(P, offs, block, smax, smin)) continue;
-        // Margins: the chord between the two ends is computed from their rounded lifts, the
-        // bound from rounded edge slopes (relative rounding, and an absolute term for the lifts).
-        const double gap = offs[i + 64] - offs[i];
-        const double err = 1e-14 * (std::abs(e.lift) + std::max(std::abs(smax), std::abs(smin)) * gap) / gap;
-        const bool fwd = offs[i] >= pr.fwd_from && smax + 1e-12 * std::abs(smax) + err <= pr.fwd_max;
-        const bool bwd = offs[i + 64] <= pr.bwd_to && -smin + 1e-12 * std::abs(smin) + err <= pr.bwd_max;
-        if (!fwd && !bwd) continue;
-        outer.right[i] = kNaN;  // the curve joins it to offs[i + 64] by a chord
-        for (std::size_t t = i + 1; t < i + 64; ++t) mark[t] = 2;
-        i += 63;
-        frontier = Frontier{};
-      }
+  run(0, i_in0);
+  run(i_in1, n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (mark[i] != 2 && !std::isfinite(out.lift[i])) return false;
+  // Squeeze the left-out offsets out (in place; the arrays keep their capacity).
+  std::size_t w = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (mark[i] == 2) {
+      ext.skipped.push_back(offs[i]);
+      continue;
     }
-  });
-  for (std::size_t i = 0; i < n; ++i)
-    if (mark[i] != 2 && !std::isfinite(outer.lift[i])) return false;
-  // W's new points: outer's first `split` kept ones, inner's, outer's other kept ones.
-  for (std::size_t i = 0; i < n; ++i)
-    if (mark[i] == 2) ext.skipped.push_back(offs[i]);
-  detail::LiftPoints& m = ext.points;
-  auto cat = [&](std::vector<double>& a, std::vector<double>& b, std::vector<double>& out) {
-    out.reserve(n - ext.skipped.size() + b.size());
-    for (std::size_t i = 0; i < split; ++i)
-      if (mark[i] != 2) out.push_back(a[i]);
-    out.insert(out.end(), b.begin(), b.end());
-    for (std::size_t i = split; i < n; ++i)
-      if (mark[i] != 2) out.push_back(a[i]);
-    std::vector<double>().swap(a);
-    std::vector<double>().swap(b);
-  };
-  cat(outer.lift, inner.lift, m.lift);
-  cat(outer.left, inner.left, m.left);
-  cat(outer.right, inner.right, m.right);
-  cat(outer.offset, inner.offset, m.offset);
+    out.offset[w] = out.offset[i];
+    out.lift[w] = out.lift[i];
+    out.left[w] = out.left[i];
+    out.right[w] = out.right[i];
+    ++w;
+  }
+  out.offset.resize(w);
+  out.lift.resize(w);
+  out.left.resize(w);
+  out.right.resize(w);
   return true;
 }
 
