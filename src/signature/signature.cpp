@@ -1077,7 +1077,9 @@ bool evaluate_lift(const Problem& P, std::vector<double>&& offsets, const Signat
 // first and the left slope at the second, each the slope of an edge next to one of their contacts.
 // False where a node reaches an overlap end of some offset (a contact there may have no
 // continuation: the lift may jump) or an offset leaves the index search.
-bool block_slopes(const Problem& P, const std::vector<double>& offs, const Frontier& fr, double& smax, double& smin) {
+// Stops (false) as soon as the slopes exceed both limits (fwd_limit for smax, bwd_limit for -smin).
+bool block_slopes(const Problem& P, const std::vector<double>& offs, const Frontier& fr, double fwd_limit,
+                  double bwd_limit, double& smax, double& smin) {
   std::size_t u0 = std::numeric_limits<std::size_t>::max(), u1 = 0, f0max = 0;
   std::size_t f1min = std::numeric_limits<std::size_t>::max();
   std::ptrdiff_t dmin = std::numeric_limits<std::ptrdiff_t>::max(), dmax = std::numeric_limits<std::ptrdiff_t>::min();
@@ -1116,6 +1118,7 @@ bool block_slopes(const Problem& P, const std::vector<double>& offs, const Front
     if (lo <= f0max || hi >= f1min) return false;
     const auto l = static_cast<std::ptrdiff_t>(lo), h = static_cast<std::ptrdiff_t>(hi);
     if (!edges(F, nf, l - 1, h) || !edges(G, ng, l - dmax - 1, h - dmin)) return false;
+    if (smax > fwd_limit && -smin > bwd_limit) return false;
   }
   return std::isfinite(smax) && std::isfinite(smin);
 }
@@ -1175,7 +1178,9 @@ bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const Si
           if (mark[i] != 1 || !std::isfinite(e.lift)) continue;
           if (!build_frontier(P, offs, i, i + 65, warm, block) || block.end != i + 65) continue;
           double smax, smin;
-          if (!block_slopes(P, offs, block, smax, smin)) continue;
+          const double fwd_limit = offs[i] >= pr.fwd_from ? pr.fwd_max : -kInf;
+          const double bwd_limit = offs[i + 64] <= pr.bwd_to ? pr.bwd_max : -kInf;
+          if (!block_slopes(P, offs, block, fwd_limit, bwd_limit, smax, smin)) continue;
           // Margins: the chord between the two ends is computed from their rounded lifts, the
           // bound from rounded edge slopes (relative rounding, and an absolute term for the lifts).
           const double gap = offs[i + 64] - offs[i];
