@@ -202,7 +202,9 @@ struct SignatureWithHold {
 /// a stop, or a rest lies, less than d before a cut end; the blocks' overlap is the last end).
 /// The lift's offsets beyond the range are those that a signature over the wider range lists
 /// (every event; with `offsets` = N or sampled offsets, the wider range's own grid, from 2 d on
-/// both sides), so the hold numbers are those of a lift computed over that range. Periodic
+/// both sides), so the hold numbers are those of a lift computed over that range (with
+/// keep_curve false, the blocks of them that no chain can stop in are left out past the drops'
+/// reach and d, HoldAnalysis::pruned; the numbers are the same). Periodic
 /// pairs: the signature's lift is one period, read as it is. Time and memory linear in the
 /// lift's offsets (the chords: a binary search per rest). Spheropolygon faces (spheroradius > 0): the two are
 /// computed one after the other. `start`, options and errors as analyse_hold() and signature().
