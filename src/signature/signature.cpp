@@ -1144,7 +1144,8 @@ bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const Si
       i_in0, static_cast<std::size_t>(std::upper_bound(offs.begin(), offs.end(), req.inner_hi) - offs.begin()));
   std::vector<std::uint8_t> mark(n, 0);  // 1: a block start, 2: left out
   detail::LiftPrune pr;
-  // Evaluates [r0, r1) on the threads, in chunks that start at block starts.
+  // Evaluates [r0, r1) on the threads, in chunks none of which starts inside a block (a block
+  // start and its 63 offsets are in one chunk; its other end may open the next).
   auto run = [&](std::size_t r0, std::size_t r1) {
     if (r1 <= r0) return;
     const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, (r1 - r0) / 64));
@@ -1152,7 +1153,11 @@ bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const Si
     bounds[0] = r0;
     for (unsigned c = 1; c < T; ++c) {
       std::size_t t = std::max(bounds[c - 1], r0 + (r1 - r0) * c / T);
-      while (t < r1 && mark[t] != 1) ++t;
+      for (std::size_t u = t > r0 + 63 ? t - 63 : r0; u < t; ++u)
+        if (mark[u] == 1) {  // t inside the block from u: the chunk starts at its other end
+          t = std::min(r1, u + 64);
+          break;
+        }
       bounds[c] = t;
     }
     util::parallel_chunks(T, T, [&](unsigned, std::size_t c0, std::size_t c1) {
