@@ -173,6 +173,10 @@ struct HoldAnalysis {
   HoldAngles start;                ///< from the given start offset
   std::size_t events = 0;          ///< offsets of the lift's signature (exact events, or samples)
   bool exact = true;               ///< that signature evaluated every event
+  /// Of those, the event offsets beyond the drops' reach whose lift could not change any number
+  /// here (no chain's stop can lie among them, no inertial window reaches them), left out
+  /// (HoldOptions::keep_curve false only: the curve joins the offsets around them by chords).
+  std::size_t pruned = 0;
 };
 
 /// Computes the lift of `lower` against `upper` (already rotated, as signature() takes it) over
@@ -198,7 +202,9 @@ struct SignatureWithHold {
 /// a stop, or a rest lies, less than d before a cut end; the blocks' overlap is the last end).
 /// The lift's offsets beyond the range are those that a signature over the wider range lists
 /// (every event; with `offsets` = N or sampled offsets, the wider range's own grid, from 2 d on
-/// both sides), so the hold numbers are those of a lift computed over that range. Periodic
+/// both sides), so the hold numbers are those of a lift computed over that range (with
+/// keep_curve false, the blocks of them that no chain can stop in are left out past the drops'
+/// reach and d, HoldAnalysis::pruned; the numbers are the same). Periodic
 /// pairs: the signature's lift is one period, read as it is. Time and memory linear in the
 /// lift's offsets (the chords: a binary search per rest). Spheropolygon faces (spheroradius > 0): the two are
 /// computed one after the other. `start`, options and errors as analyse_hold() and signature().

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <numbers>
 #include <unordered_map>
@@ -1761,13 +1762,104 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     // Exact mode: a side whose check passed is not widened again, and the points near its end do
     // not change when the other side is widened: it is not checked again.
     bool passed_max = false, passed_min = false;
+    // Exact mode, the curve not kept: the lift beyond what the inertial windows read (every drop
+    // rests at or before q, the first rise after b, mirrored before a) in blocks whose slopes are
+    // bounded by the steepest piece of the lift between b and the inner range's end is left out
+    // but for its ends (detail::LiftPruneRequest). Every chain that gets there stops at a piece
+    // at least that steep or steeper than all pieces between b and there (a record is steeper than
+    // the stop before it, the pieces a slip passes are not), so no piece of such a block, nor the
+    // chord that joins its ends, is a record of any chain: the stops, slips and run-away ends,
+    // the inertial windows (which end by q + d) and the end checks are those of the whole lift.
+    // Blocks are left out only beyond q + d (forward) and before q' - d (backward). The curve
+    // then differs from the lift there (chords), so not with keep_curve.
+    detail::LiftPruneRequest prune_req;
+    std::vector<double> ext_skipped, have_all;
+    const bool use_prune = !sampled && !S.ho.keep_curve;
+    if (use_prune) {
+      prune_req.inner_lo = S.a - 1.02 * d;
+      prune_req.inner_hi = S.b + 1.02 * d;
+      prune_req.decide = [&, decided = false, found = detail::LiftPrune{}](
+                             const double* io, const double* ih, std::size_t ni,
+                             const std::vector<std::size_t>& dropped) mutable {
+        if (decided) return found;
+        decided = true;
+        // W's points so far: R's (but the dropped ones, a few at its ends), then the inner ones
+        // beyond R's range (or before it).
+        auto kept = [&](std::size_t j) { return !std::binary_search(dropped.begin(), dropped.end(), j); };
+        const auto i_above = static_cast<std::size_t>(std::upper_bound(io, io + ni, S.b) - io);
+        const auto i_below = static_cast<std::size_t>(std::lower_bound(io, io + ni, S.a) - io);
+        // Forward: the points from b on, in increasing offset (R's there: its last one or two).
+        std::vector<std::pair<double, double>> head;
+        for (auto j =
+                 static_cast<std::size_t>(std::lower_bound(R.offset.begin(), R.offset.end(), S.b) - R.offset.begin());
+             j < R.offset.size(); ++j)
+          if (kept(j)) head.emplace_back(R.offset[j], R.lift[j]);
+        auto fwd_at = [&](std::size_t w) {
+          return w < head.size() ? head[w] : std::pair{io[i_above + w - head.size()], ih[i_above + w - head.size()]};
+        };
+        const std::size_t nf = head.size() + (ni - std::min(ni, i_above));
+        double q = kNaN, steepest = -std::numeric_limits<double>::infinity();
+        for (std::size_t w = 0; w + 1 < nf; ++w) {
+          const auto [s0, h0] = fwd_at(w);
+          const auto [s1, h1] = fwd_at(w + 1);
+          if (std::isnan(q) && h1 >= h0) q = s1;
+          steepest = std::max(steepest, (h1 - h0) / (s1 - s0));
+        }
+        if (!std::isnan(q) && steepest > 0 && std::isfinite(steepest)) {
+          found.fwd_from = q + d;
+          found.fwd_max = steepest - 1e-12 * steepest;
+        }
+        // Backward: the points up to a, in decreasing offset.
+        head.clear();
+        for (auto j =
+                 static_cast<std::size_t>(std::upper_bound(R.offset.begin(), R.offset.end(), S.a) - R.offset.begin());
+             j-- > 0;)
+          if (kept(j)) head.emplace_back(R.offset[j], R.lift[j]);
+        const std::size_t nb_in = std::min(i_below, ni);
+        auto bwd_at = [&](std::size_t w) {  // w-th point from a down
+          return w < head.size() ? head[w]
+                                 : std::pair{io[nb_in - 1 - (w - head.size())], ih[nb_in - 1 - (w - head.size())]};
+        };
+        const std::size_t nb = head.size() + nb_in;
+        q = kNaN;
+        steepest = -std::numeric_limits<double>::infinity();
+        for (std::size_t w = 0; w + 1 < nb; ++w) {
+          const auto [s1, h1] = bwd_at(w);  // the higher offset
+          const auto [s0, h0] = bwd_at(w + 1);
+          if (std::isnan(q) && h0 >= h1) q = s0;
+          steepest = std::max(steepest, (h0 - h1) / (s1 - s0));
+        }
+        if (!std::isnan(q) && steepest > 0 && std::isfinite(steepest)) {
+          found.bwd_to = q - d;
+          found.bwd_max = steepest - 1e-12 * steepest;
+        }
+        return found;
+      };
+    }
     for (;;) {
       cut_lo = hold_lift_range(S.a, S.b, m_lo, S.lower_len, S.upper_len).min;
       cut_hi = hold_lift_range(S.a, S.b, m_hi, S.lower_len, S.upper_len).max;
-      auto ext = extend(cut_lo, cut_hi, sampled ? nullptr : &ext_points.offset);
+      const std::vector<double>* have = sampled ? nullptr : &ext_points.offset;
+      if (!ext_skipped.empty()) {  // the offsets left out count as had
+        have_all.clear();
+        have_all.reserve(ext_points.offset.size() + ext_skipped.size());
+        std::merge(ext_points.offset.begin(), ext_points.offset.end(), ext_skipped.begin(), ext_skipped.end(),
+                   std::back_inserter(have_all));
+        have = &have_all;
+      }
+      auto ext = extend(cut_lo, cut_hi, have, use_prune ? &prune_req : nullptr);
       if (!ext) return with_prefix("hold: ", ext.error());
+      std::vector<double>().swap(have_all);
+      if (!ext->skipped.empty()) {
+        std::vector<double> all;
+        all.reserve(ext_skipped.size() + ext->skipped.size());
+        std::merge(ext_skipped.begin(), ext_skipped.end(), ext->skipped.begin(), ext->skipped.end(),
+                   std::back_inserter(all));
+        ext_skipped = std::move(all);
+      }
       out.events = ext->events;
       out.exact = ext->exact;
+      out.pruned = ext_skipped.size();
       ext_dropped = std::move(ext->dropped);
       ext_points = sampled ? std::move(ext->points) : merge_points(std::move(ext_points), std::move(ext->points));
       const bool cut_max = cut_hi<whole.max, cut_min = cut_lo> whole.min;

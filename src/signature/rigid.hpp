@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <vector>
 
@@ -45,12 +46,37 @@ struct LiftPoints {
 struct LiftExtension {
   LiftPoints points;
   std::vector<std::size_t> dropped;
-  bool exact = true;       ///< W holds every event of [lo, hi] (else a sampled grid)
-  std::size_t events = 0;  ///< |W|
+  bool exact = true;            ///< W holds every event of [lo, hi] (else a sampled grid)
+  std::size_t events = 0;       ///< |W|
+  std::vector<double> skipped;  ///< offsets of W left out by a LiftPruneRequest (increasing)
 };
-/// extend(lo, hi, have): as above; offsets listed in `have` (increasing; may be null) are
-/// neither evaluated nor returned (they were, by an earlier call).
-using LiftExtender = std::function<Result<LiftExtension>(double lo, double hi, const std::vector<double>* have)>;
+/// Stretches of a wider range whose lift cannot change the hold analysis (issue 32): beyond
+/// `fwd_from` a stretch whose forward slopes h' are all at most `fwd_max`, before `bwd_to` one
+/// whose backward slopes -h' are all at most `bwd_max`. Such a stretch holds no record of any
+/// chain that gets there (hold.cpp, LiftPruneRequest's use) and lies beyond every inertial window.
+struct LiftPrune {
+  double fwd_from = std::numeric_limits<double>::infinity(), fwd_max = 0;
+  double bwd_to = -std::numeric_limits<double>::infinity(), bwd_max = 0;
+};
+/// Exact mode on an aligned lattice only: the offsets to evaluate inside [inner_lo, inner_hi]
+/// are evaluated first; decide(offsets, lifts, count, dropped) then gives the stretches
+/// (LiftPrune) from those points (increasing offsets) and the signature's points. Outside, a block of 65 consecutive
+/// lattice offsets k0 .. k0 + 64 (k0 a multiple of 64; the whole block beyond fwd_from or before bwd_to) whose slopes
+/// are bounded below the stretch's limit, by the steepest edge of both faces at every candidate contact of its offsets
+/// (the batch frontier of the first one's contact), is evaluated at its two ends only: the first end's right slope is
+/// NaN (the lift curve joins the two by a chord, no steeper than the lift between them), the 63 offsets between are
+/// listed in `skipped`.
+struct LiftPruneRequest {
+  double inner_lo = 0, inner_hi = 0;
+  std::function<LiftPrune(const double* offset, const double* lift, std::size_t count,
+                          const std::vector<std::size_t>& dropped)>
+      decide;
+};
+/// extend(lo, hi, have, prune): as above; offsets listed in `have` (increasing; may be null) are
+/// neither evaluated nor returned (they were, by an earlier call); `prune` (may be null) leaves
+/// out the offsets that cannot matter, in LiftExtension::skipped.
+using LiftExtender = std::function<Result<LiftExtension>(double lo, double hi, const std::vector<double>* have,
+                                                         const LiftPruneRequest* prune)>;
 using WithLift = std::function<Status(const SignatureResult& partial, const LiftExtender& extend)>;
 /// signature(), calling `with_lift` once the offsets are evaluated (R holds offset, lift, theta,
 /// theta_min, theta_left/right and contacts, not yet the extremes and the distribution) while

@@ -1070,6 +1070,179 @@ bool evaluate_lift(const Problem& P, std::vector<double>&& offsets, const Signat
   return true;
 }
 
+// The steepest and the least steep lift slope (sign * dv / dx of an edge of either face next to a
+// candidate contact) over the lattice offsets offs[fr.begin, fr.end), from the frontier's nodes:
+// every candidate within vtol of an offset's maximum lies in them (F vertex i against G vertex
+// i - d), and between two lattice offsets the lift's slope lies between the right slope at the
+// first and the left slope at the second, each the slope of an edge next to one of their contacts.
+// False where a node reaches an overlap end of some offset (a contact there may have no
+// continuation: the lift may jump) or an offset leaves the index search.
+// Stops (false) as soon as the slopes exceed both limits (fwd_limit for smax, bwd_limit for -smin).
+bool block_slopes(const Problem& P, const std::vector<double>& offs, const Frontier& fr, double fwd_limit,
+                  double bwd_limit, double& smax, double& smin) {
+  std::size_t u0 = std::numeric_limits<std::size_t>::max(), u1 = 0, f0max = 0;
+  std::size_t f1min = std::numeric_limits<std::size_t>::max();
+  std::ptrdiff_t dmin = std::numeric_limits<std::ptrdiff_t>::max(), dmax = std::numeric_limits<std::ptrdiff_t>::min();
+  for (std::size_t e = fr.begin; e < fr.end; ++e) {
+    std::size_t f0, f1;
+    std::ptrdiff_t d;
+    if (!index_range(P, offs[e], f0, f1, d)) return false;
+    u0 = std::min(u0, f0);
+    u1 = std::max(u1, f1);
+    f0max = std::max(f0max, f0);
+    f1min = std::min(f1min, f1);
+    dmin = std::min(dmin, d);
+    dmax = std::max(dmax, d);
+  }
+  const Face& F = P.F;
+  const Face& G = P.G;
+  const auto nf = static_cast<std::ptrdiff_t>(F.size()), ng = static_cast<std::ptrdiff_t>(G.size());
+  smax = -kInf;
+  smin = kInf;
+  auto edges = [&](const Face& A, std::ptrdiff_t na, std::ptrdiff_t e0, std::ptrdiff_t e1) {
+    if (e0 < 0 || e1 + 1 >= na) return false;
+    const auto& v = A.v();
+    const auto& x = A.x();
+    const double sg = A.sign();
+    for (auto e = static_cast<std::size_t>(e0); e <= static_cast<std::size_t>(e1); ++e) {
+      const double m = sg * (v[e + 1] - v[e]) / (x[e + 1] - x[e]);
+      smax = std::max(smax, m);
+      smin = std::min(smin, m);
+    }
+    return true;
+  };
+  const unsigned sh = detail::kBlockShift + fr.level;
+  for (const std::size_t q : fr.nodes) {
+    const std::size_t lo = std::max(q << sh, u0), hi = std::min(((q + 1) << sh) - 1, u1);
+    if (lo > hi) continue;
+    if (lo <= f0max || hi >= f1min) return false;
+    const auto l = static_cast<std::ptrdiff_t>(lo), h = static_cast<std::ptrdiff_t>(hi);
+    if (!edges(F, nf, l - 1, h) || !edges(G, ng, l - dmax - 1, h - dmin)) return false;
+    if (smax > fwd_limit && -smin > bwd_limit) return false;
+  }
+  return std::isfinite(smax) && std::isfinite(smin);
+}
+
+// evaluate_lift() of `todo` (increasing) with a LiftPruneRequest (see rigid.hpp), in place (the
+// arrays evaluate_lift() would write, the left-out offsets squeezed out at the end): the offsets
+// inside the inner range first, then the others, where a block that cannot matter is evaluated
+// at its ends only. The decision for a block depends on its first end's contact alone (the batch
+// frontier of the block from it), and the threads' chunks start at block starts, so the points
+// do not depend on the threads.
+bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const SignatureOptions& o,
+                          const detail::LiftPruneRequest& req, const std::vector<std::size_t>& dropped,
+                          detail::LiftExtension& ext) {
+  detail::LiftPoints& out = ext.points;
+  out.offset = std::move(todo);
+  const std::vector<double>& offs = out.offset;
+  const std::size_t n = offs.size();
+  out.lift.resize(n);
+  out.left.resize(n);
+  out.right.resize(n);
+  const auto i_in0 = static_cast<std::size_t>(std::lower_bound(offs.begin(), offs.end(), req.inner_lo) - offs.begin());
+  const auto i_in1 = std::max(
+      i_in0, static_cast<std::size_t>(std::upper_bound(offs.begin(), offs.end(), req.inner_hi) - offs.begin()));
+  std::vector<std::uint8_t> mark(n, 0);  // 1: a block start, 2: left out
+  detail::LiftPrune pr;
+  // Evaluates [r0, r1) on the threads, in chunks none of which starts inside a block (a block
+  // start and its 63 offsets are in one chunk; its other end may open the next).
+  auto run = [&](std::size_t r0, std::size_t r1) {
+    if (r1 <= r0) return;
+    const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, (r1 - r0) / 64));
+    std::vector<std::size_t> bounds(T + 1, r1);
+    bounds[0] = r0;
+    for (unsigned c = 1; c < T; ++c) {
+      std::size_t t = std::max(bounds[c - 1], r0 + (r1 - r0) * c / T);
+      for (std::size_t u = t > r0 + 63 ? t - 63 : r0; u < t; ++u)
+        if (mark[u] == 1) {  // t inside the block from u: the chunk starts at its other end
+          t = std::min(r1, u + 64);
+          break;
+        }
+      bounds[c] = t;
+    }
+    util::parallel_chunks(T, T, [&](unsigned, std::size_t c0, std::size_t c1) {
+      for (std::size_t c = c0; c < c1; ++c) {
+        const std::size_t i0 = bounds[c], i1 = bounds[c + 1];
+        std::vector<Cand> cands;
+        double warm = kNaN;
+        Frontier frontier, block;
+        GeneralFrontier general;
+        constexpr std::size_t kBatch = 64;
+        for (std::size_t i = i0; i < i1; ++i) {
+          if (P.index_search && !(i >= frontier.begin && i < frontier.end))
+            build_frontier(P, offs, i, std::min(i + kBatch, i1), warm, frontier);
+          const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
+          if (!fr && !(i >= general.begin && i < general.end))
+            build_general_frontier(P, offs, i, std::min(i + kBatch, i1), warm, general);
+          const GeneralFrontier* gf = (!fr && i >= general.begin && i < general.end) ? &general : nullptr;
+          const OffsetResult e = evaluate_offset(P, offs[i], warm, o.slopes, nullptr, cands, fr, gf);
+          out.lift[i] = e.lift;
+          out.left[i] = e.theta_left;
+          out.right[i] = e.theta_right;
+          warm = e.contact_x;
+          if (mark[i] != 1 || !std::isfinite(e.lift)) continue;
+          if (!build_frontier(P, offs, i, i + 65, warm, block) || block.end != i + 65) continue;
+          double smax, smin;
+          const double fwd_limit = offs[i] >= pr.fwd_from ? pr.fwd_max : -kInf;
+          const double bwd_limit = offs[i + 64] <= pr.bwd_to ? pr.bwd_max : -kInf;
+          if (!block_slopes(P, offs, block, fwd_limit, bwd_limit, smax, smin)) continue;
+          // Margins: the chord between the two ends is computed from their rounded lifts, the
+          // bound from rounded edge slopes (relative rounding, and an absolute term for the lifts).
+          const double gap = offs[i + 64] - offs[i];
+          const double err = 1e-14 * (std::abs(e.lift) + std::max(std::abs(smax), std::abs(smin)) * gap) / gap;
+          const bool fwd = offs[i] >= pr.fwd_from && smax + 1e-12 * std::abs(smax) + err <= pr.fwd_max;
+          const bool bwd = offs[i + 64] <= pr.bwd_to && -smin + 1e-12 * std::abs(smin) + err <= pr.bwd_max;
+          if (!fwd && !bwd) continue;
+          out.right[i] = kNaN;  // the curve joins it to offs[i + 64] by a chord
+          for (std::size_t t = i + 1; t < i + 64; ++t) mark[t] = 2;
+          i += 63;
+          frontier = Frontier{};
+        }
+      }
+    });
+  };
+  run(i_in0, i_in1);
+  for (std::size_t i = i_in0; i < i_in1; ++i)
+    if (!std::isfinite(out.lift[i])) return false;
+  pr = req.decide(offs.data() + i_in0, out.lift.data() + i_in0, i_in1 - i_in0, dropped);
+  // Block starts: 65 consecutive lattice offsets k0 .. k0 + 64 from entry t, k0 a multiple of
+  // 64, on one side of the inner range and all in one stretch.
+  auto lattice_k = [&](double s, double& k) {
+    const double kk = (s - P.lattice_origin) / P.lattice_step;
+    k = std::round(kk);
+    return std::abs(kk - k) < 1e-9;
+  };
+  for (std::size_t t = 0; t + 64 < n; ++t) {
+    if (t + 64 >= i_in0 && t < i_in1) continue;
+    double k0, k1;
+    if (!lattice_k(offs[t], k0) || std::fmod(k0, 64.0) != 0) continue;
+    if (!lattice_k(offs[t + 64], k1) || k1 - k0 != 64) continue;
+    if (offs[t] >= pr.fwd_from || offs[t + 64] <= pr.bwd_to) mark[t] = 1;
+  }
+  run(0, i_in0);
+  run(i_in1, n);
+  for (std::size_t i = 0; i < n; ++i)
+    if (mark[i] != 2 && !std::isfinite(out.lift[i])) return false;
+  // Squeeze the left-out offsets out (in place; the arrays keep their capacity).
+  std::size_t w = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (mark[i] == 2) {
+      ext.skipped.push_back(offs[i]);
+      continue;
+    }
+    out.offset[w] = out.offset[i];
+    out.lift[w] = out.lift[i];
+    out.left[w] = out.left[i];
+    out.right[w] = out.right[i];
+    ++w;
+  }
+  out.offset.resize(w);
+  out.lift.resize(w);
+  out.left.resize(w);
+  out.right.resize(w);
+  return true;
+}
+
 Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o,
                                        Profile* take_lower, Profile* take_upper,
                                        const detail::WithLift* with_lift = nullptr,
@@ -1214,8 +1387,8 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
   if (with_lift) {
     // The lift over wider ranges, from the same prepared faces: the offsets that signature()
     // would list there, evaluated where R does not already hold them.
-    const detail::LiftExtender extend = [&](double lo, double hi,
-                                            const std::vector<double>* have) -> Result<detail::LiftExtension> {
+    const detail::LiftExtender extend = [&](double lo, double hi, const std::vector<double>* have,
+                                            const detail::LiftPruneRequest* prune) -> Result<detail::LiftExtension> {
       if (P.periodic) return make_error("signature: a periodic lift is not extended");
       if (!(lo > -P.upper_length) || !(hi < P.lower_length) || !(lo <= smin) || !(hi >= smax))
         return make_error(
@@ -1266,7 +1439,9 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
       }
       while (j < n) ext.dropped.push_back(j++);
       wide->offs = std::vector<double>();
-      if (!evaluate_lift(P, std::move(todo), o, ext.points))
+      const bool pruned = prune && prune->decide && ext.exact && o.offsets == 0 && P.index_search && !P.periodic;
+      if (!(pruned ? evaluate_lift_pruned(P, std::move(todo), o, *prune, ext.dropped, ext)
+                   : evaluate_lift(P, std::move(todo), o, ext.points)))
         return make_error(fmt::format("signature: no overlap between the blocks in [{}, {}] m", lo, hi));
       return ext;
     };

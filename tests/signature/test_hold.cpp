@@ -4,9 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "frictal/generators.hpp"
@@ -627,6 +630,113 @@ TEST(Hold, OnePassCurveIsTheLiftOfItsRangeToTheBit) {
   }
   EXPECT_GE(one_round, 1);
   EXPECT_GE(widened, 1);
+}
+
+// Issue 32: without the curve kept, the lift beyond the drops' reach (past the first rise after
+// the drop range and d) is left out in blocks of 64 offsets whose slopes, bounded from the faces'
+// edges at every candidate contact, cannot exceed the steepest piece between the range's end and
+// there: no chain's stop can lie there. Every number must be that of the whole lift, to the bit:
+// against the same analysis with the curve kept (which evaluates every offset), and, where the
+// lift was cut once, against the hold distribution of a signature's lift over the same range.
+TEST(Hold, PrunedLiftGivesTheNumbersOfTheWholeLiftToTheBit) {
+  auto same = [](double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); };
+  auto expect_stats = [&](const HoldStatistics& x, const HoldStatistics& y, const std::string& what) {
+    EXPECT_TRUE(same(x.mean, y.mean) && same(x.std, y.std) && same(x.q05, y.q05) && same(x.q50, y.q50) &&
+                same(x.q95, y.q95) && same(x.min, y.min) && same(x.max, y.max))
+        << what << ": mean " << x.mean << " vs " << y.mean;
+  };
+  auto expect_dist = [&](const HoldDistribution& x, const HoldDistribution& y, const std::string& what) {
+    expect_stats(x.hold, y.hold, what + " hold");
+    expect_stats(x.inertial, y.inertial, what + " inertial");
+    EXPECT_EQ(x.basins.rest, y.basins.rest) << what;
+    EXPECT_EQ(x.basins.weight, y.basins.weight) << what;
+    EXPECT_EQ(x.basins.hold, y.basins.hold) << what;
+    EXPECT_EQ(x.basins.inertial, y.basins.inertial) << what;
+    EXPECT_TRUE(same(x.near_end, y.near_end)) << what;
+  };
+  auto expect_angle = [&](const HoldAngle& x, const HoldAngle& y, const std::string& what) {
+    EXPECT_TRUE(same(x.rest_offset, y.rest_offset) && same(x.hold_angle, y.hold_angle) &&
+                same(x.hold_offset, y.hold_offset) && same(x.runaway_end, y.runaway_end) && x.slips == y.slips &&
+                x.ran_off_end == y.ran_off_end && same(x.inertial_hold_angle, y.inertial_hold_angle) &&
+                same(x.inertial_offset, y.inertial_offset))
+        << what;
+  };
+  std::size_t pruned = 0, cases = 0, against_signature = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    WmParams w = default_wm_params();
+    w.dimension = 1.3 + 0.1 * static_cast<double>(seed);
+    w.n_max = 5 + static_cast<int>(seed % 3);
+    w.longest_wavelength = 0.01;
+    w.length = 0.2;
+    w.rms_height = 1e-5;
+    w.spacing = 4e-6;  // 5e4 points: blocks of 64 offsets fit the stretch beyond the drops' reach
+    w.seed = seed;
+    auto f = wm_profile(w);
+    w.seed = seed + 100;
+    auto g = wm_profile(w);
+    ASSERT_TRUE(f.ok() && g.ok());
+    const Profile up = rotate180(*g);
+    const double L = f->x.back() - f->x.front();
+    for (double d : {0.004, 0.008, 0.012}) {
+      for (bool with_start : {false, true}) {
+        HoldOptions o;
+        o.runaway_distance = d;
+        const double start =
+            with_start ? 0.03 + 0.01 * static_cast<double>(seed) : std::numeric_limits<double>::quiet_NaN();
+        o.keep_curve = true;
+        auto whole = analyse_hold(*f, up, SignatureOptions{}, o, start);
+        o.keep_curve = false;
+        auto cut = analyse_hold(*f, up, SignatureOptions{}, o, start);
+        ASSERT_TRUE(whole.ok() && cut.ok());
+        const std::string what = "seed " + std::to_string(seed) + " d " + std::to_string(d);
+        EXPECT_EQ(whole->pruned, 0u) << what;
+        EXPECT_EQ(whole->events, cut->events) << what;
+        expect_dist(cut->distribution.forward, whole->distribution.forward, what + " forward");
+        expect_dist(cut->distribution.backward, whole->distribution.backward, what + " backward");
+        EXPECT_EQ(cut->has_start, whole->has_start);
+        if (with_start) {
+          expect_angle(cut->start.forward, whole->start.forward, what + " start forward");
+          expect_angle(cut->start.backward, whole->start.backward, what + " start backward");
+        }
+        pruned += cut->pruned;
+        ++cases;
+        if (d == 0.008 && !with_start) {  // the offsets left out do not depend on the threads
+          for (unsigned threads : {1u, 3u}) {
+            SignatureOptions st;
+            st.threads = threads;
+            auto t = analyse_hold(*f, up, st, o, start);
+            ASSERT_TRUE(t.ok());
+            EXPECT_EQ(t->pruned, cut->pruned) << what << " threads " << threads;
+            expect_dist(t->distribution.forward, cut->distribution.forward, what + " threads");
+            expect_dist(t->distribution.backward, cut->distribution.backward, what + " threads");
+          }
+        }
+        // Cut once (1.55 d on both sides): the lift of a signature over that range.
+        const LiftCurve& ca = whole->curve;
+        o.drop_min = whole->distribution.forward.drop_min;
+        o.drop_max = whole->distribution.forward.drop_max;
+        const OffsetRange first = hold_lift_range(o.drop_min, o.drop_max, 1.55 * d, L, L);
+        if (with_start || !(ca.offset.front() == first.min && ca.offset.back() == first.max)) continue;
+        SignatureOptions so;
+        so.keep_contacts = false;
+        so.offset_min = ca.offset.front();
+        so.offset_max = ca.offset.back();
+        auto sig = signature(*f, up, so);
+        ASSERT_TRUE(sig.ok()) << sig.error().message;
+        auto cb = lift_curve(*sig);
+        ASSERT_TRUE(cb.ok());
+        auto b = hold_distribution(*cb, o);
+        ASSERT_TRUE(b.ok());
+        expect_dist(cut->distribution.forward, b->forward, what + " forward vs signature");
+        expect_dist(cut->distribution.backward, b->backward, what + " backward vs signature");
+        ++against_signature;
+      }
+    }
+  }
+  EXPECT_GT(pruned, 0u);  // the blocks were left out somewhere (else this tests nothing)
+  EXPECT_GE(against_signature, 1u);
+  EXPECT_EQ(cases, 24u);
+  RecordProperty("pruned_offsets", static_cast<int>(pruned));
 }
 
 // Issue 32: the backward distribution takes its basins from the forward pass mirrored (the same
