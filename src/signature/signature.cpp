@@ -1033,6 +1033,40 @@ Result<OffsetPlan> plan_offsets(const Problem& P, const SignatureOptions& o, dou
   return plan;
 }
 
+// One thread's walk over increasing offsets as signature() makes it: the contact search warm
+// started from the last offset's contact, through batch frontiers of kBatch offsets (up to `end`).
+struct OffsetSweep {
+  static constexpr std::size_t kBatch = 64;  // offsets per frontier
+  std::vector<Cand> cands;
+  double warm = kNaN;
+  Frontier frontier;
+  GeneralFrontier general;
+
+  /// evaluate_offset at offs[i] (its contacts appended to `contacts` if not null).
+  OffsetResult next(const Problem& P, const std::vector<double>& offs, std::size_t i, std::size_t end,
+                    SlopeMethod slopes, std::vector<Contact>* contacts = nullptr) {
+    if (P.index_search && !(i >= frontier.begin && i < frontier.end))
+      build_frontier(P, offs, i, std::min(i + kBatch, end), warm, frontier);
+    const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
+    // Offsets that take the general search (off the lattice, or grids that do not align).
+    if (!fr && !(i >= general.begin && i < general.end))
+      build_general_frontier(P, offs, i, std::min(i + kBatch, end), warm, general);
+    const GeneralFrontier* gf = (!fr && i >= general.begin && i < general.end) ? &general : nullptr;
+    const OffsetResult e = evaluate_offset(P, offs[i], warm, slopes, contacts, cands, fr, gf);
+    warm = e.contact_x;
+    return e;
+  }
+  /// next(), the lift and slopes stored in out[i].
+  OffsetResult at(const Problem& P, const std::vector<double>& offs, std::size_t i, std::size_t end, SlopeMethod slopes,
+                  detail::LiftPoints& out) {
+    const OffsetResult e = next(P, offs, i, end, slopes);
+    out.lift[i] = e.lift;
+    out.left[i] = e.theta_left;
+    out.right[i] = e.theta_right;
+    return e;
+  }
+};
+
 // The lift and its one-sided slopes at `offsets` (increasing; taken over as out.offset), as
 // signature() evaluates them (the same search, warm starts and frontiers per chunk; contacts not
 // kept). False where the blocks do not overlap at some offset.
@@ -1046,24 +1080,8 @@ bool evaluate_lift(const Problem& P, std::vector<double>&& offsets, const Signat
   out.right.resize(n);
   const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, n / 64));
   util::parallel_chunks(n, T, [&](unsigned, std::size_t i0, std::size_t i1) {
-    std::vector<Cand> cands;
-    double warm = kNaN;
-    Frontier frontier;
-    GeneralFrontier general;
-    constexpr std::size_t kBatch = 64;  // offsets per frontier
-    for (std::size_t i = i0; i < i1; ++i) {
-      if (P.index_search && !(i >= frontier.begin && i < frontier.end))
-        build_frontier(P, offs, i, std::min(i + kBatch, i1), warm, frontier);
-      const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
-      if (!fr && !(i >= general.begin && i < general.end))
-        build_general_frontier(P, offs, i, std::min(i + kBatch, i1), warm, general);
-      const GeneralFrontier* gf = (!fr && i >= general.begin && i < general.end) ? &general : nullptr;
-      const OffsetResult e = evaluate_offset(P, offs[i], warm, o.slopes, nullptr, cands, fr, gf);
-      out.lift[i] = e.lift;
-      out.left[i] = e.theta_left;
-      out.right[i] = e.theta_right;
-      warm = e.contact_x;
-    }
+    OffsetSweep sweep;
+    for (std::size_t i = i0; i < i1; ++i) sweep.at(P, offs, i, i1, o.slopes, out);
   });
   for (std::size_t i = 0; i < n; ++i)
     if (!std::isfinite(out.lift[i])) return false;
@@ -1163,25 +1181,12 @@ bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const Si
     util::parallel_chunks(T, T, [&](unsigned, std::size_t c0, std::size_t c1) {
       for (std::size_t c = c0; c < c1; ++c) {
         const std::size_t i0 = bounds[c], i1 = bounds[c + 1];
-        std::vector<Cand> cands;
-        double warm = kNaN;
-        Frontier frontier, block;
-        GeneralFrontier general;
-        constexpr std::size_t kBatch = 64;
+        OffsetSweep sweep;
+        Frontier block;
         for (std::size_t i = i0; i < i1; ++i) {
-          if (P.index_search && !(i >= frontier.begin && i < frontier.end))
-            build_frontier(P, offs, i, std::min(i + kBatch, i1), warm, frontier);
-          const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
-          if (!fr && !(i >= general.begin && i < general.end))
-            build_general_frontier(P, offs, i, std::min(i + kBatch, i1), warm, general);
-          const GeneralFrontier* gf = (!fr && i >= general.begin && i < general.end) ? &general : nullptr;
-          const OffsetResult e = evaluate_offset(P, offs[i], warm, o.slopes, nullptr, cands, fr, gf);
-          out.lift[i] = e.lift;
-          out.left[i] = e.theta_left;
-          out.right[i] = e.theta_right;
-          warm = e.contact_x;
+          const OffsetResult e = sweep.at(P, offs, i, i1, o.slopes, out);
           if (mark[i] != 1 || !std::isfinite(e.lift)) continue;
-          if (!build_frontier(P, offs, i, i + 65, warm, block) || block.end != i + 65) continue;
+          if (!build_frontier(P, offs, i, i + 65, sweep.warm, block) || block.end != i + 65) continue;
           double smax, smin;
           const double fwd_limit = offs[i] >= pr.fwd_from ? pr.fwd_max : -kInf;
           const double bwd_limit = offs[i + 64] <= pr.bwd_to ? pr.bwd_max : -kInf;
@@ -1196,7 +1201,7 @@ bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const Si
           out.right[i] = kNaN;  // the curve joins it to offs[i + 64] by a chord
           for (std::size_t t = i + 1; t < i + 64; ++t) mark[t] = 2;
           i += 63;
-          frontier = Frontier{};
+          sweep.frontier = Frontier{};
         }
       }
     });
@@ -1344,30 +1349,17 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
   std::vector<std::vector<Contact>> chunk_contacts(T);
   std::vector<std::vector<std::uint32_t>> chunk_counts(T);
   util::parallel_chunks(n, T, [&](unsigned t, std::size_t i0, std::size_t i1) {
-    std::vector<Cand> cands;
-    double warm = kNaN;
+    OffsetSweep sweep;
     if (o.keep_contacts) chunk_counts[t].reserve(i1 - i0);
-    Frontier frontier;
-    GeneralFrontier general;
-    constexpr std::size_t kBatch = 64;  // offsets per frontier
     for (std::size_t i = i0; i < i1; ++i) {
       const std::size_t before = chunk_contacts[t].size();
-      if (P.index_search && !(i >= frontier.begin && i < frontier.end))
-        build_frontier(P, R.offset, i, std::min(i + kBatch, i1), warm, frontier);
-      const Frontier* fr = (i >= frontier.begin && i < frontier.end) ? &frontier : nullptr;
-      // Offsets that take the general search (off the lattice, or grids that do not align).
-      if (!fr && !(i >= general.begin && i < general.end))
-        build_general_frontier(P, R.offset, i, std::min(i + kBatch, i1), warm, general);
-      const GeneralFrontier* gf = (!fr && i >= general.begin && i < general.end) ? &general : nullptr;
-      const OffsetResult e = evaluate_offset(P, R.offset[i], warm, o.slopes,
-                                             o.keep_contacts ? &chunk_contacts[t] : nullptr, cands, fr, gf);
+      const OffsetResult e = sweep.next(P, R.offset, i, i1, o.slopes, o.keep_contacts ? &chunk_contacts[t] : nullptr);
       R.lift[i] = e.lift;
       R.theta[i] = e.theta;
       R.theta_min[i] = e.theta_min;
       R.theta_left[i] = e.theta_left;
       R.theta_right[i] = e.theta_right;
       if (o.keep_contacts) chunk_counts[t].push_back(static_cast<std::uint32_t>(chunk_contacts[t].size() - before));
-      warm = e.contact_x;
     }
   });
   const std::vector<double>& offs_r = R.offset;

@@ -572,6 +572,19 @@ TEST(Hold, AFlatStretchIntoTheEndOfTheDropRangeIsFollowedPastIt) {
   }
 }
 
+namespace {
+// The lift of a plain signature of f against up over [lo, hi] (no hold analysis, no contacts kept).
+Result<LiftCurve> signature_lift(const Profile& f, const Profile& up, double lo, double hi) {
+  SignatureOptions so;
+  so.keep_contacts = false;
+  so.offset_min = lo;
+  so.offset_max = hi;
+  auto sig = signature(f, up, so);
+  if (!sig) return sig.error();
+  return lift_curve(*sig);
+}
+}  // namespace
+
 // Issue 32: the one-pass analysis builds its lift from the signature's own offsets, those beyond
 // the range (listed by the wider range's plan, less the ones the signature has) and the end
 // checks' curves (kept for the whole curve's ends, not built twice). Where both ends pass the
@@ -593,14 +606,8 @@ TEST(Hold, OnePassCurveIsTheLiftOfItsRangeToTheBit) {
     o.drop_min = a->distribution.forward.drop_min;
     o.drop_max = a->distribution.forward.drop_max;
     const OffsetRange first = hold_lift_range(o.drop_min, o.drop_max, 1.55 * d, L, L);
-    SignatureOptions so;
-    so.keep_contacts = false;
-    so.offset_min = ca.offset.front();
-    so.offset_max = ca.offset.back();
-    auto sig = signature(*f, up, so);
-    ASSERT_TRUE(sig.ok()) << sig.error().message;
-    auto cb = lift_curve(*sig);
-    ASSERT_TRUE(cb.ok());
+    auto cb = signature_lift(*f, up, ca.offset.front(), ca.offset.back());
+    ASSERT_TRUE(cb.ok()) << cb.error().message;
     auto b = hold_distribution(*cb, o);
     ASSERT_TRUE(b.ok());
     const bool once = ca.offset.front() == first.min && ca.offset.back() == first.max;
@@ -717,14 +724,8 @@ TEST(Hold, PrunedLiftGivesTheNumbersOfTheWholeLiftToTheBit) {
         o.drop_max = whole->distribution.forward.drop_max;
         const OffsetRange first = hold_lift_range(o.drop_min, o.drop_max, 1.55 * d, L, L);
         if (with_start || !(ca.offset.front() == first.min && ca.offset.back() == first.max)) continue;
-        SignatureOptions so;
-        so.keep_contacts = false;
-        so.offset_min = ca.offset.front();
-        so.offset_max = ca.offset.back();
-        auto sig = signature(*f, up, so);
-        ASSERT_TRUE(sig.ok()) << sig.error().message;
-        auto cb = lift_curve(*sig);
-        ASSERT_TRUE(cb.ok());
+        auto cb = signature_lift(*f, up, ca.offset.front(), ca.offset.back());
+        ASSERT_TRUE(cb.ok()) << cb.error().message;
         auto b = hold_distribution(*cb, o);
         ASSERT_TRUE(b.ok());
         expect_dist(cut->distribution.forward, b->forward, what + " forward vs signature");
