@@ -1219,18 +1219,18 @@ Result<HoldDistributions> hold_distribution_checked(const LiftCurve& curve, cons
   HoldDistributions out;
   const Frame ff = make_frame(curve, false, options.runaway_distance);
   const Frame fb = make_frame(curve, true, options.runaway_distance);
-  // The basins of both directions from one pass 1 where the backward one is the forward one
-  // mirrored (mirror_basins; not periodic); each direction's own otherwise.
+  // The two directions are independent: one thread each where there are two. (Where there is
+  // one, the backward pass 1 is the forward one mirrored where they match: mirror_basins.)
+  const unsigned threads = util::thread_count(options.threads, 2);
   Basins pf, pb;
   bool have_pf = false, have_pb = false;
-  if (curve.period == 0) {
+  if (curve.period == 0 && threads < 2) {
     pf = basins_of(ff, LinearView<false>(curve), a, b, options, true);
     have_pf = true;
     if (pf.mirrorable) have_pb = mirror_basins(LinearView<true>(curve), pf, -b, -a, pb);
     std::vector<std::size_t>().swap(pf.start);
   }
-  // The two directions are independent: one thread each where there are two.
-  util::parallel_chunks(2, util::thread_count(options.threads, 2), [&](unsigned, std::size_t i0, std::size_t i1) {
+  util::parallel_chunks(2, threads, [&](unsigned, std::size_t i0, std::size_t i1) {
     for (std::size_t i = i0; i < i1; ++i) {
       if (i == 0)
         out.forward = with_view(curve, false, [&](const auto& p) {
@@ -1885,27 +1885,44 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       const std::size_t i_lo = std::min(nw, w_lo + 2);
       const std::size_t w_hi = std::max(w_lo, mp.first_at(S.b - d, true));
       const std::size_t i_hi = w_hi > 2 ? w_hi - 2 : 0;
-      // One end after the other (each curve on the threads). The curves are kept for the whole
-      // curve's ends (the first one held while the second is built: about 25 MB at the peak of
-      // issue 32's pairs, for about 0.1 s of CPU that the whole curve then saves); building the
-      // two at once would cost their build buffers too, for the serial checks' 0.05-0.1 s of wall.
+      // Both ends at once, a thread each (each check is serial; on two threads this takes the
+      // wall of one end, for about 25 MB more than one end after the other on issue 32's pairs,
+      // whose peak lies in reading the files); one after the other on one thread. The curves are
+      // kept for the whole curve's ends (about 0.1 s of CPU that the whole curve then saves).
       const unsigned threads = util::thread_count(so.threads, 2);
-      if (cut_max && !passed_max) {
+      const bool check_max = cut_max && !passed_max, check_min = cut_min && !passed_min;
+      Status st_max = Ok{}, st_min = Ok{};
+      auto check_end_max = [&](unsigned th) {
         tail_end.reset();
-        auto c = merged_curve(mp, i_hi, nw, threads);
-        if (!c) return c.error();
+        auto c = merged_curve(mp, i_hi, nw, th);
+        if (!c) {
+          st_max = c.error();
+          return;
+        }
         short_max = end_reached(*c, false, S.b, d);
         tail_end.curve = std::move(*c);
         tail_end.points = nw - i_hi;
-      }
-      if (cut_min && !passed_min) {
+      };
+      auto check_end_min = [&](unsigned th) {
         head_end.reset();
-        auto c = merged_curve(mp, 0, i_lo, threads);
-        if (!c) return c.error();
+        auto c = merged_curve(mp, 0, i_lo, th);
+        if (!c) {
+          st_min = c.error();
+          return;
+        }
         short_min = end_reached(*c, true, -S.a, d);
         head_end.curve = std::move(*c);
         head_end.points = i_lo;
+      };
+      if (check_max && check_min && threads >= 2) {  // the two ends side by side, a thread each
+        util::run_workers(
+            1, [&](unsigned) { check_end_max(1); }, [&] { check_end_min(1); });
+      } else {
+        if (check_max) check_end_max(threads);
+        if (check_min) check_end_min(threads);
       }
+      if (!st_max) return st_max.error();
+      if (!st_min) return st_min.error();
       more_max = short_max > 0;
       more_min = short_min > 0;
       passed_max = !more_max;

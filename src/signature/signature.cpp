@@ -3,6 +3,7 @@
 
 #include <fmt/core.h>
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -1163,14 +1164,19 @@ bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const Si
   std::vector<std::uint8_t> mark(n, 0);  // 1: a block start, 2: left out
   detail::LiftPrune pr;
   // Evaluates [r0, r1) on the threads, in chunks none of which starts inside a block (a block
-  // start and its 63 offsets are in one chunk; its other end may open the next).
+  // start and its 63 offsets are in one chunk; its other end may open the next). Eight chunks a
+  // thread, taken in turn by the threads as they come free: the offsets' costs differ along the
+  // range (the overlap's length, the pruned blocks), so equal shares would leave a thread idle.
+  // Every offset's result is the same however the range is cut (signature()'s rule).
   auto run = [&](std::size_t r0, std::size_t r1) {
     if (r1 <= r0) return;
     const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, (r1 - r0) / 64));
-    std::vector<std::size_t> bounds(T + 1, r1);
+    const std::size_t C =
+        T > 1 ? std::min<std::size_t>(8 * std::size_t{T}, std::max<std::size_t>(1, (r1 - r0) / 4096)) : 1;
+    std::vector<std::size_t> bounds(C + 1, r1);
     bounds[0] = r0;
-    for (unsigned c = 1; c < T; ++c) {
-      std::size_t t = std::max(bounds[c - 1], r0 + (r1 - r0) * c / T);
+    for (std::size_t c = 1; c < C; ++c) {
+      std::size_t t = std::max(bounds[c - 1], r0 + (r1 - r0) * c / C);
       for (std::size_t u = t > r0 + 63 ? t - 63 : r0; u < t; ++u)
         if (mark[u] == 1) {  // t inside the block from u: the chunk starts at its other end
           t = std::min(r1, u + 64);
@@ -1178,8 +1184,9 @@ bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const Si
         }
       bounds[c] = t;
     }
-    util::parallel_chunks(T, T, [&](unsigned, std::size_t c0, std::size_t c1) {
-      for (std::size_t c = c0; c < c1; ++c) {
+    std::atomic<std::size_t> next{0};
+    util::parallel_chunks(T, T, [&](unsigned, std::size_t, std::size_t) {
+      for (std::size_t c; (c = next.fetch_add(1)) < C;) {
         const std::size_t i0 = bounds[c], i1 = bounds[c + 1];
         OffsetSweep sweep;
         Frontier block;
@@ -1246,6 +1253,100 @@ bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const Si
   out.left.resize(w);
   out.right.resize(w);
   return true;
+}
+
+// What signature() derives from the lift after the search (the extremes of theta and the
+// contact-slope distribution): read from R, written to T (R's fields of the same names), so that
+// it can run beside the hold analysis, which reads R too.
+struct SignatureTail {
+  double theta_max_forward = 0, theta_max_backward = 0, offset_at_forward = 0, offset_at_backward = 0;
+  std::vector<double> slope_samples, slope_weights;
+  double contact_slope_mean = 0, contact_slope_std = 0;
+  Histogram contact_slope_pdf;
+};
+
+SignatureTail signature_tail(const SignatureResult& R, const SignatureOptions& o) {
+  SignatureTail T;
+  const std::size_t n = R.offset.size();
+  // Extremes: theta at each offset plus the one-sided slopes next to it (inside the range).
+  T.theta_max_forward = -kInf;
+  T.theta_max_backward = -kInf;
+  for (std::size_t i = 0; i < n; ++i) {
+    double hi = R.theta[i], lo = R.theta_min[i];
+    if (i > 0) {
+      hi = std::max(hi, R.theta_left[i]);
+      lo = std::min(lo, R.theta_left[i]);
+    }
+    if (i + 1 < n) {
+      hi = std::max(hi, R.theta_right[i]);
+      lo = std::min(lo, R.theta_right[i]);
+    }
+    if (hi > T.theta_max_forward) {
+      T.theta_max_forward = hi;
+      T.offset_at_forward = R.offset[i];
+    }
+    if (-lo > T.theta_max_backward) {
+      T.theta_max_backward = -lo;
+      T.offset_at_backward = R.offset[i];
+    }
+  }
+
+  // Contact-slope distribution, one value per offset. Exact mode: each interval between
+  // events is represented by the slopes of h at its two ends, split at the crossing of the two
+  // lines (exact when the interval holds at most two linear pieces). Sampled mode: theta(s).
+  if (R.exact && o.slopes == SlopeMethod::Exact) {
+    // At most two values per interval: reserved at once (no copy of a half-grown vector; pages
+    // are taken only as the values are written).
+    T.slope_samples.reserve(2 * n);
+    T.slope_weights.reserve(2 * n);
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+      const double s0 = R.offset[i], s1 = R.offset[i + 1], L = s1 - s0;
+      const double a0 = R.theta_right[i], a1 = R.theta_left[i + 1];
+      const bool w0 = std::abs(a0) < kHalfPi, w1 = std::abs(a1) < kHalfPi;
+      if (!w0 && !w1) continue;
+      if (!w1 || (w0 && std::abs(a0 - a1) < 1e-12)) {
+        T.slope_samples.push_back(a0);
+        T.slope_weights.push_back(L);
+        continue;
+      }
+      if (!w0) {
+        T.slope_samples.push_back(a1);
+        T.slope_weights.push_back(L);
+        continue;
+      }
+      const double t0 = std::tan(a0), t1 = std::tan(a1);
+      double sc = (t0 == t1) ? s1 : (R.lift[i + 1] - R.lift[i] + t0 * s0 - t1 * s1) / (t0 - t1);
+      sc = std::clamp(sc, s0, s1);
+      T.slope_samples.push_back(a0);
+      T.slope_weights.push_back(sc - s0);
+      T.slope_samples.push_back(a1);
+      T.slope_weights.push_back(s1 - sc);
+    }
+  } else {
+    T.slope_samples.reserve(n);
+    T.slope_weights.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      T.slope_samples.push_back(R.theta[i]);
+      T.slope_weights.push_back(1.0);
+    }
+  }
+  const MeanStd ms = weighted_mean_std(T.slope_samples, T.slope_weights);
+  T.contact_slope_mean = ms.mean;
+  T.contact_slope_std = ms.std;
+  T.contact_slope_pdf = histogram(T.slope_samples, T.slope_weights, o.bins);
+  return T;
+}
+
+void apply_tail(SignatureResult& R, SignatureTail&& T) {
+  R.theta_max_forward = T.theta_max_forward;
+  R.theta_max_backward = T.theta_max_backward;
+  R.offset_at_forward = T.offset_at_forward;
+  R.offset_at_backward = T.offset_at_backward;
+  R.slope_samples = std::move(T.slope_samples);
+  R.slope_weights = std::move(T.slope_weights);
+  R.contact_slope_mean = T.contact_slope_mean;
+  R.contact_slope_std = T.contact_slope_std;
+  R.contact_slope_pdf = std::move(T.contact_slope_pdf);
 }
 
 Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o,
@@ -1441,75 +1542,22 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
   }
   P = Problem{};  // the faces are no longer needed
   if (after_faces && *after_faces) {
-    if (auto st = (*after_faces)(R); !st) return st.error();
+    // The analysis after the faces and the signature's own tail read R side by side (two
+    // threads where there are two: the tail is serial, the analysis in part).
+    SignatureTail T;
+    Status st = Ok{};
+    if (util::thread_count(o.threads, 2) >= 2) {
+      util::run_workers(
+          1, [&](unsigned) { T = signature_tail(R, o); }, [&] { st = (*after_faces)(R); });
+    } else {
+      st = (*after_faces)(R);
+      if (st) T = signature_tail(R, o);
+    }
+    if (!st) return st.error();
+    apply_tail(R, std::move(T));
+    return R;
   }
-
-  // Extremes: theta at each offset plus the one-sided slopes next to it (inside the range).
-  R.theta_max_forward = -kInf;
-  R.theta_max_backward = -kInf;
-  for (std::size_t i = 0; i < n; ++i) {
-    double hi = R.theta[i], lo = R.theta_min[i];
-    if (i > 0) {
-      hi = std::max(hi, R.theta_left[i]);
-      lo = std::min(lo, R.theta_left[i]);
-    }
-    if (i + 1 < n) {
-      hi = std::max(hi, R.theta_right[i]);
-      lo = std::min(lo, R.theta_right[i]);
-    }
-    if (hi > R.theta_max_forward) {
-      R.theta_max_forward = hi;
-      R.offset_at_forward = offs_r[i];
-    }
-    if (-lo > R.theta_max_backward) {
-      R.theta_max_backward = -lo;
-      R.offset_at_backward = offs_r[i];
-    }
-  }
-
-  // Contact-slope distribution, one value per offset. Exact mode: each interval between
-  // events is represented by the slopes of h at its two ends, split at the crossing of the two
-  // lines (exact when the interval holds at most two linear pieces). Sampled mode: theta(s).
-  if (R.exact && o.slopes == SlopeMethod::Exact) {
-    // At most two values per interval: reserved at once (no copy of a half-grown vector; pages
-    // are taken only as the values are written).
-    R.slope_samples.reserve(2 * n);
-    R.slope_weights.reserve(2 * n);
-    for (std::size_t i = 0; i + 1 < n; ++i) {
-      const double s0 = offs_r[i], s1 = offs_r[i + 1], L = s1 - s0;
-      const double a0 = R.theta_right[i], a1 = R.theta_left[i + 1];
-      const bool w0 = std::abs(a0) < kHalfPi, w1 = std::abs(a1) < kHalfPi;
-      if (!w0 && !w1) continue;
-      if (!w1 || (w0 && std::abs(a0 - a1) < 1e-12)) {
-        R.slope_samples.push_back(a0);
-        R.slope_weights.push_back(L);
-        continue;
-      }
-      if (!w0) {
-        R.slope_samples.push_back(a1);
-        R.slope_weights.push_back(L);
-        continue;
-      }
-      const double t0 = std::tan(a0), t1 = std::tan(a1);
-      double sc = (t0 == t1) ? s1 : (R.lift[i + 1] - R.lift[i] + t0 * s0 - t1 * s1) / (t0 - t1);
-      sc = std::clamp(sc, s0, s1);
-      R.slope_samples.push_back(a0);
-      R.slope_weights.push_back(sc - s0);
-      R.slope_samples.push_back(a1);
-      R.slope_weights.push_back(s1 - sc);
-    }
-  } else {
-    R.slope_samples.reserve(n);
-    R.slope_weights.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      R.slope_samples.push_back(R.theta[i]);
-      R.slope_weights.push_back(1.0);
-    }
-  }
-  const MeanStd ms = weighted_mean_std(R.slope_samples, R.slope_weights);
-  R.contact_slope_mean = ms.mean;
-  R.contact_slope_std = ms.std;
-  R.contact_slope_pdf = histogram(R.slope_samples, R.slope_weights, o.bins);
+  apply_tail(R, signature_tail(R, o));
   return R;
 }
 

@@ -442,6 +442,63 @@ TEST(Hold, AnalyseHoldEqualsTheLiftOverTheWholeOverlap) {
   }
 }
 
+// signature_with_hold derives the signature's own numbers (the extremes of theta, the contact-
+// slope distribution) beside the hold analysis, on a thread of their own where there are two:
+// they must be signature()'s to the bit, on one thread and on several, and the hold analysis the
+// same whatever the threads (two threads: the ends of the lift checked side by side, each
+// direction's basins found on its own thread; one: the backward basins mirrored from the forward).
+TEST(Hold, SignatureWithHoldIsTheSignatureToTheBitOnAnyThreads) {
+  auto f = issue23_face(3), g = issue23_face(4);
+  ASSERT_TRUE(f.ok() && g.ok());
+  const Profile up = rotate180(*g);
+  auto same = [](double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); };
+  SignatureOptions plain;
+  plain.keep_contacts = false;
+  auto ref = signature(*f, up, plain);
+  ASSERT_TRUE(ref.ok()) << ref.error().message;
+  std::vector<double> mean_by_threads;
+  for (unsigned threads : {1u, 2u, 3u}) {
+    SignatureOptions so = plain;
+    so.threads = threads;
+    HoldOptions o;
+    o.keep_curve = false;
+    auto both = signature_with_hold(*f, up, so, o, 0.02);
+    ASSERT_TRUE(both.ok()) << both.error().message;
+    const SignatureResult& s = both->signature;
+    const std::string what = "threads " + std::to_string(threads);
+    EXPECT_TRUE(same(s.theta_max_forward, ref->theta_max_forward) &&
+                same(s.theta_max_backward, ref->theta_max_backward))
+        << what;
+    EXPECT_TRUE(same(s.offset_at_forward, ref->offset_at_forward) &&
+                same(s.offset_at_backward, ref->offset_at_backward))
+        << what;
+    EXPECT_TRUE(same(s.contact_slope_mean, ref->contact_slope_mean) &&
+                same(s.contact_slope_std, ref->contact_slope_std))
+        << what;
+    EXPECT_EQ(s.slope_samples, ref->slope_samples) << what;
+    EXPECT_EQ(s.slope_weights, ref->slope_weights) << what;
+    EXPECT_EQ(s.contact_slope_pdf.edges, ref->contact_slope_pdf.edges) << what;
+    EXPECT_EQ(s.contact_slope_pdf.density, ref->contact_slope_pdf.density) << what;
+    EXPECT_EQ(s.lift, ref->lift) << what;
+    EXPECT_GT(s.slope_samples.size(), 1000u) << what;
+    // The hold analysis: every number the same on any threads.
+    const HoldAnalysis& h = both->hold;
+    ASSERT_TRUE(h.has_start);
+    if (!mean_by_threads.empty()) {
+      EXPECT_TRUE(same(h.distribution.forward.hold.mean, mean_by_threads[0])) << what;
+      EXPECT_TRUE(same(h.distribution.backward.hold.mean, mean_by_threads[1])) << what;
+      EXPECT_TRUE(same(h.distribution.forward.inertial.mean, mean_by_threads[2])) << what;
+      EXPECT_TRUE(same(h.distribution.backward.inertial.q50, mean_by_threads[3])) << what;
+      EXPECT_TRUE(same(h.start.backward.hold_angle, mean_by_threads[4])) << what;
+    } else {
+      mean_by_threads = {h.distribution.forward.hold.mean, h.distribution.backward.hold.mean,
+                         h.distribution.forward.inertial.mean, h.distribution.backward.inertial.q50,
+                         h.start.backward.hold_angle};
+      EXPECT_GT(h.distribution.backward.basins.rest.size(), 50u);
+    }
+  }
+}
+
 // Issue 33 item 6: the records rule slips to the next piece that is steeper by more than the
 // rounding of the slopes, so equal slopes computed a few ulps apart do not hold a block that the
 // first of them let go. Hand-derived: the block rests on a ramp of slope 0.05; past atan(0.05) it
@@ -779,8 +836,19 @@ TEST(Hold, BackwardIsTheForwardOfTheMirroredCurveToTheBit) {
       o.drop_min = span * 0.2 * u(rng);
       o.drop_max = span * (1 - 0.2 * u(rng));
     }
+    o.threads = 2;  // each direction's basins found on its own thread
     auto r = hold_distribution(c, o);
     ASSERT_TRUE(r.ok()) << r.error().message;
+    {  // one thread: the backward basins mirrored from the forward pass (mirror_basins), the same
+      HoldOptions o1 = o;
+      o1.threads = 1;
+      auto r1 = hold_distribution(c, o1);
+      ASSERT_TRUE(r1.ok());
+      EXPECT_EQ(r1->backward.basins.rest, r->backward.basins.rest) << trial;
+      EXPECT_EQ(r1->backward.basins.weight, r->backward.basins.weight) << trial;
+      EXPECT_EQ(r1->backward.basins.hold, r->backward.basins.hold) << trial;
+      EXPECT_EQ(r1->backward.basins.inertial, r->backward.basins.inertial) << trial;
+    }
     HoldOptions om = o;
     om.drop_min = -o.drop_max;
     om.drop_max = -o.drop_min;
