@@ -1068,6 +1068,34 @@ struct OffsetSweep {
   }
 };
 
+// A list of n offsets cut into contiguous chunks that the threads take in turn as they come
+// free: eight a thread (at least 4096 offsets each), one chunk on one thread. An offset's cost
+// varies along a range (the overlap's length, how far the warm start carries), so equal shares,
+// one a thread, left a thread idle for a tenth of the run. Every offset's result is the same
+// however the list is cut (the warm start only speeds up the search).
+class OffsetChunks {
+ public:
+  OffsetChunks(std::size_t n, unsigned threads)
+      : n_(n), threads_(util::thread_count(threads, std::max<std::size_t>(1, n / 64))) {
+    chunks_ = threads_ > 1 ? std::min<std::size_t>(8 * std::size_t{threads_}, std::max<std::size_t>(1, n / 4096)) : 1;
+    chunks_ = std::max<std::size_t>(chunks_, threads_ > 1 ? std::min<std::size_t>(threads_, n) : 1);
+  }
+  std::size_t count() const { return chunks_; }
+  /// body(chunk, begin, end) for each chunk [n*c/C, n*(c+1)/C), on up to `threads` threads.
+  template <class Body>
+  void run(Body&& body) const {
+    std::atomic<std::size_t> next{0};
+    util::parallel_chunks(threads_, threads_, [&](unsigned, std::size_t, std::size_t) {
+      for (std::size_t c; (c = next.fetch_add(1)) < chunks_;) body(c, n_ * c / chunks_, n_ * (c + 1) / chunks_);
+    });
+  }
+
+ private:
+  std::size_t n_;
+  unsigned threads_;
+  std::size_t chunks_ = 1;
+};
+
 // The lift and its one-sided slopes at `offsets` (increasing; taken over as out.offset), as
 // signature() evaluates them (the same search, warm starts and frontiers per chunk; contacts not
 // kept). False where the blocks do not overlap at some offset.
@@ -1079,8 +1107,7 @@ bool evaluate_lift(const Problem& P, std::vector<double>&& offsets, const Signat
   out.lift.resize(n);
   out.left.resize(n);
   out.right.resize(n);
-  const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, n / 64));
-  util::parallel_chunks(n, T, [&](unsigned, std::size_t i0, std::size_t i1) {
+  OffsetChunks(n, o.threads).run([&](std::size_t, std::size_t i0, std::size_t i1) {
     OffsetSweep sweep;
     for (std::size_t i = i0; i < i1; ++i) sweep.at(P, offs, i, i1, o.slopes, out);
   });
@@ -1446,10 +1473,12 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
   R.theta_min.resize(n);
   R.theta_left.resize(n);
   R.theta_right.resize(n);
-  const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, n / 64));
-  std::vector<std::vector<Contact>> chunk_contacts(T);
-  std::vector<std::vector<std::uint32_t>> chunk_counts(T);
-  util::parallel_chunks(n, T, [&](unsigned t, std::size_t i0, std::size_t i1) {
+  // The offsets in chunks taken in turn by the threads as they come free (see OffsetChunks).
+  const OffsetChunks chunks(n, o.threads);
+  const std::size_t C = chunks.count();
+  std::vector<std::vector<Contact>> chunk_contacts(C);
+  std::vector<std::vector<std::uint32_t>> chunk_counts(C);
+  chunks.run([&](std::size_t t, std::size_t i0, std::size_t i1) {
     OffsetSweep sweep;
     if (o.keep_contacts) chunk_counts[t].reserve(i1 - i0);
     for (std::size_t i = i0; i < i1; ++i) {
@@ -1470,7 +1499,7 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
   if (o.keep_contacts) {
     R.contact_begin.reserve(n + 1);
     R.contact_begin.push_back(0);
-    for (unsigned t = 0; t < T; ++t) {
+    for (std::size_t t = 0; t < C; ++t) {
       for (auto c : chunk_counts[t]) R.contact_begin.push_back(R.contact_begin.back() + c);
       R.contacts.insert(R.contacts.end(), chunk_contacts[t].begin(), chunk_contacts[t].end());
     }
