@@ -413,19 +413,19 @@ std::pair<double, double> chord_direct(const V& p, double x0, double w) {
   return {best, bx};
 }
 
-// Upper hull of points pushed in monotone x order (Dir = +1 increasing, -1 decreasing) with an
-// undo log (Undo); max-slope queries from a point to the left of every point. cross(o, a, b) > 0:
+// Upper hull of points pushed in monotone x order (Dir = +1 increasing, -1 decreasing); max-slope
+// queries from a point to the left of every point. cross(o, a, b) > 0:
 // b is to the left of o->a. The hull keeps the points' coordinates (read once per push).
-template <class V, int Dir, bool Undo>
-class RollbackHull {
+template <class V, int Dir>
+class MonotoneHull {
  public:
-  explicit RollbackHull(const V& p) : p_(p) {}
+  explicit MonotoneHull(const V& p) : p_(p) {}
   void push(std::size_t v) {
     const Pt b{p_.X(v), p_.H(v)};
     // Keep the longest prefix whose last turn towards v stays convex (upper hull): pop from the
     // back while the last kept point would make a turn that is not right. keep(i): hull[i] stays
-    // when v is added, i.e. i == 0 or turn(hull[i-1], hull[i], v) is right. Pushes come in runs
-    // (after clear(), before any undo()), so the pops cost O(1) amortised per push.
+    // when v is added, i.e. i == 0 or turn(hull[i-1], hull[i], v) is right. The pops cost O(1)
+    // amortised per push.
     auto keep = [&](std::size_t i) {
       if (i == 0) return true;
       const double c = cross(hull_[i - 1], hull_[i], b);
@@ -434,20 +434,10 @@ class RollbackHull {
     std::size_t k = size_;  // points [0, k) kept
     while (k > 0 && !keep(k - 1)) --k;
     if (hull_.size() <= k) hull_.resize(k + 1);
-    if constexpr (Undo) log_.push_back({k, size_, hull_[k]});
     hull_[k] = b;
     size_ = k + 1;
   }
-  void undo() {
-    const Entry e = log_.back();
-    log_.pop_back();
-    hull_[e.pos] = e.old;
-    size_ = e.size;
-  }
-  void clear() {
-    size_ = 0;
-    log_.clear();
-  }
+  void clear() { size_ = 0; }
   // Max of (H[v] - h0) / (X[v] - x0) over the hull; the slope along the hull is unimodal.
   std::pair<double, double> best(double x0, double h0) const {
     if (size_ == 0) return {-std::numeric_limits<double>::infinity(), kNaN};
@@ -471,26 +461,21 @@ class RollbackHull {
   struct Pt {
     double x, h;
   };
-  struct Entry {
-    std::size_t pos;
-    std::size_t size;
-    Pt old;
-  };
   static double cross(const Pt& o, const Pt& a, const Pt& b) {
     return (a.x - o.x) * (b.h - o.h) - (a.h - o.h) * (b.x - o.x);
   }
   const V& p_;
   std::vector<Pt> hull_;
   std::size_t size_ = 0;
-  std::vector<Entry> log_;
 };
 
 // Steepest chords from many rest vertices (in decreasing order), each over
 // (X[r], min(X[r] + w, X[n])]. The x axis is cut into chunks of length w: a window starting in
 // chunk c covers a suffix of chunk c and a prefix of the chunks after it, up to one chunk
-// length. Per chunk, queries in decreasing x: the suffix hull grows leftwards, the prefix hull
-// shrinks (undo in reverse push order). O(n + q log n) time (pushes O(1) amortised), O(vertices
-// per window) memory.
+// length. Per chunk, the queries by increasing x (their windows' ends move forwards) against the
+// hull of the later chunks' vertices up to the window's end (grown forwards), then by decreasing
+// x against the hull of the chunk's vertices after the rest (grown backwards). O(n + q log n)
+// time (pushes O(1) amortised), O(vertices per window) memory.
 // A vertex where the slope after it exceeds the slope before it by more than both their
 // rounding bounds (a convex corner: between two events h is convex, so every tangent meeting
 // point is one) lies strictly below the chord of its two neighbours, and a chord from the left
@@ -515,13 +500,14 @@ void chords_batch(const V& p, const Rests& rests, double w, Out&& out) {
   }
   const double x_begin = p.X(0);
   auto chunk_of = [&](double x) { return std::floor((x - x_begin) / w); };
-  RollbackHull<V, -1, false> suffix(p);
-  RollbackHull<V, +1, true> prefix(p);
+  MonotoneHull<V, -1> suffix(p);
+  MonotoneHull<V, +1> prefix(p);
+  std::vector<double> prefix_best;  // per query of the chunk at hand
   std::size_t qi = 0;
   std::size_t u1 = n + 2;  // upper(x1) of the last query (x1 does not increase from query to query)
   while (qi < rests.size()) {
     const double c = chunk_of(p.X(rests[qi]));
-    // b: the first vertex of a later chunk; e: past the last vertex any window of this chunk reaches.
+    // b: the first vertex of a later chunk.
     std::size_t b = 0;
     {
       std::size_t lo = 0, len = n + 1;  // partition point of chunk_of(X) <= c
@@ -536,22 +522,31 @@ void chords_batch(const V& p, const Rests& rests, double w, Out&& out) {
       }
       b = lo;
     }
-    const double reach = p.X(rests[qi]) + w;
-    const std::size_t e = p.upper(reach);
-    suffix.clear();
+    const std::size_t q0 = qi;  // the chunk's queries: [q0, q_end)
+    std::size_t q_end = qi;
+    while (q_end < rests.size() && chunk_of(p.X(rests[q_end])) == c) ++q_end;
+    // The prefix part, queries by increasing x (their windows' ends do not decrease): the hull of
+    // the vertices from b to the window's end grows forwards.
     prefix.clear();
-    for (std::size_t v = b; v < e; ++v)
-      if (!skip[v]) prefix.push(v);
-    std::size_t prefix_end = std::max(b, e);  // prefix holds [b, prefix_end)
-    std::size_t suffix_begin = b;             // suffix holds [suffix_begin, b)
-    for (; qi < rests.size() && chunk_of(p.X(rests[qi])) == c; ++qi) {
+    prefix_best.resize(q_end - q0);
+    std::size_t prefix_end = b;  // prefix holds [b, prefix_end)
+    for (std::size_t q = q_end; q-- > q0;) {
+      const std::size_t r = rests[q];
+      const double x0 = p.X(r), h0 = p.H(r), x1 = std::min(x0 + w, p.X(n));
+      for (; prefix_end <= n && p.X(prefix_end) <= x1; ++prefix_end)
+        if (!skip[prefix_end]) prefix.push(prefix_end);
+      prefix_best[q - q0] = prefix.best(x0, h0).first;
+    }
+    // The suffix part, queries by decreasing x: the hull of the chunk's vertices after the rest
+    // grows backwards.
+    suffix.clear();
+    std::size_t suffix_begin = b;  // suffix holds [suffix_begin, b)
+    for (; qi < q_end; ++qi) {
       const std::size_t r = rests[qi];
       const double x0 = p.X(r), h0 = p.H(r), x1 = std::min(x0 + w, p.X(n));
       while (suffix_begin > r + 1)
         if (!skip[--suffix_begin]) suffix.push(suffix_begin);
-      while (prefix_end > b && p.X(prefix_end - 1) > x1)
-        if (!skip[--prefix_end]) prefix.undo();
-      double best = std::max(suffix.best(x0, h0).first, prefix.best(x0, h0).first);
+      double best = std::max(suffix.best(x0, h0).first, prefix_best[qi - q0]);
       if (u1 > n + 1)
         u1 = p.upper(x1);
       else
