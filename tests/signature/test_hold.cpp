@@ -442,11 +442,12 @@ TEST(Hold, AnalyseHoldEqualsTheLiftOverTheWholeOverlap) {
   }
 }
 
-// signature_with_hold derives the signature's own numbers (the extremes of theta, the contact-
-// slope distribution) beside the hold analysis, on a thread of their own where there are two:
-// they must be signature()'s to the bit, on one thread and on several, and the hold analysis the
-// same whatever the threads (two threads: the ends of the lift checked side by side, each
-// direction's basins found on its own thread; one: the backward basins mirrored from the forward).
+// signature_with_hold computes the signature's range, the lift beyond it and the hold analysis in
+// one pass, on chunks of offsets that the threads take as they come free: the signature's numbers
+// (the lift, the extremes of theta, the contact-slope distribution) must be signature()'s to the
+// bit, on one thread and on several, and the hold analysis the same whatever the threads (two
+// threads: the ends of the lift checked side by side, each direction's basins found on its own
+// thread; one: the backward basins mirrored from the forward).
 TEST(Hold, SignatureWithHoldIsTheSignatureToTheBitOnAnyThreads) {
   auto f = issue23_face(3), g = issue23_face(4);
   ASSERT_TRUE(f.ok() && g.ok());
