@@ -773,11 +773,41 @@ Basins basins_of(const Frame& fr, const V& p, double a, double b, const HoldOpti
     }
     return flat_next_a;
   };
+  // A part of length len of piece k whose drops rest at vertex v: to its basin (the drops of one
+  // basin form one interval, so a basin is a run of parts, apart from a periodic wrap-around).
+  auto add_part = [&](std::size_t v, double len, std::size_t k) {
+    const std::size_t key = fr.periodic ? v % nb : v;
+    if (!bv.empty() && key == last_key) {
+      bw.back() += len;
+    } else if (fr.periodic) {
+      const auto [it, fresh] = seen.try_emplace(key, bv.size());
+      if (fresh) {
+        bv.push_back(v);
+        bw.push_back(len);
+      } else {
+        bw[it->second] += len;
+      }
+    } else {
+      bv.push_back(v);
+      bw.push_back(len);
+      if (out.mirrorable) out.start.push_back(k);
+    }
+    last_key = key;
+  };
   std::size_t k = piece_of(p, a);
   for (double x = a; x < b && k < n; ++k) {
     const double xe = std::min(b, p.X(k + 1));
     if (xe <= x) continue;
     const double mid = 0.5 * (x + xe);
+    // The common case, mid strictly inside piece k on a slope: its descent, as rest_in() takes it.
+    if (p.X(k) < mid && mid < p.X(k + 1)) {
+      const double mk = p.M(k);
+      if (mk != 0) {
+        add_part(mk < 0 ? ds.forward(k + 1) : ds.backward(k), xe - x, k);
+        x = xe;
+        continue;
+      }
+    }
     std::size_t km = k;  // the piece of mid, as piece_of() finds it
     while (km + 1 < n && !(mid < p.X(km + 1))) ++km;
     while (km > 0 && mid < p.X(km)) --km;
@@ -796,24 +826,7 @@ Basins basins_of(const Frame& fr, const V& p, double a, double b, const HoldOpti
         flats.push_back({hi - lo, rr, jf, {}});
       }
     } else {
-      const auto v = static_cast<std::size_t>(r.vertex);
-      const std::size_t key = fr.periodic ? v % nb : v;
-      if (!bv.empty() && key == last_key) {
-        bw.back() += xe - x;
-      } else if (fr.periodic) {
-        const auto [it, fresh] = seen.try_emplace(key, bv.size());
-        if (fresh) {
-          bv.push_back(v);
-          bw.push_back(xe - x);
-        } else {
-          bw[it->second] += xe - x;
-        }
-      } else {
-        bv.push_back(v);
-        bw.push_back(xe - x);
-        if (out.mirrorable) out.start.push_back(k);
-      }
-      last_key = key;
+      add_part(static_cast<std::size_t>(r.vertex), xe - x, k);
     }
     x = xe;
   }
