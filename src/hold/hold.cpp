@@ -310,6 +310,7 @@ class RecordStack {
   struct Entry {
     std::size_t k;
     double m;  // M(k)
+    double x;  // X(k)
     Chain c;
   };
   RecordStack() { stack_.reserve(64); }
@@ -333,14 +334,15 @@ class RecordStack {
       top = lo;
     }
     Chain c;
-    if (top == 0 || p.X(stack_[top - 1].k) - p.X(kk) >= d) {
+    const double xk = p.X(kk);
+    if (top == 0 || stack_[top - 1].x - xk >= d) {
       c.held = static_cast<std::int64_t>(kk);
       c.run_end = top == 0 ? -1 : static_cast<std::int64_t>(stack_[top - 1].k);
     } else {
       c = stack_[top - 1].c;
       ++c.slips;
     }
-    stack_.push_back({kk, mk, c});
+    stack_.push_back({kk, mk, xk, c});
     return c;
   }
   const std::vector<Entry>& entries() const { return stack_; }
@@ -923,13 +925,24 @@ HoldDistribution distribution(const Frame& fr, const V& p, double a, double b, c
       bnear[q] = oc.off_end && x_end - oc.hold_x < d;
     };
     std::size_t bi = 0, fi = 0;
+    const std::size_t nbv = bv.size(), nfq = fq.size();
+    constexpr std::size_t kNone = static_cast<std::size_t>(-1);
     // Basins resting at the end vertex n: nothing ahead holds them.
-    while (bi < bv.size() && bv[basin_at(bi)] >= n) set_outcome(basin_at(bi++), Chain{});
+    while (bi < nbv && bv[basin_at(bi)] >= n) set_outcome(basin_at(bi++), Chain{});
+    // The next basin's rest vertex and the next flat drop's record (kNone: none left), so that a
+    // vertex that is neither costs two comparisons.
+    std::size_t next_b = bi < nbv ? bv[basin_at(bi)] : kNone, next_f = fi < nfq ? fq[fi] : kNone;
     RecordStack records;
-    for (std::size_t kk = n; kk-- > 0 && (bi < bv.size() || fi < fq.size());) {
+    for (std::size_t kk = n; kk-- > 0 && (bi < nbv || fi < nfq);) {
       const Chain c = records.push(p, kk, d);
-      while (bi < bv.size() && bv[basin_at(bi)] == kk) set_outcome(basin_at(bi++), c);
-      if (fi < fq.size() && fq[fi] == kk) fa[fi++] = c;
+      if (kk == next_b) {
+        while (bi < nbv && bv[basin_at(bi)] == kk) set_outcome(basin_at(bi++), c);
+        next_b = bi < nbv ? bv[basin_at(bi)] : kNone;
+      }
+      if (kk == next_f) {
+        fa[fi++] = c;
+        next_f = fi < nfq ? fq[fi] : kNone;
+      }
     }
     auto chain = [&](std::size_t s0) {
       const auto it = std::lower_bound(fq.begin(), fq.end(), s0, std::greater<>());
