@@ -1095,32 +1095,43 @@ struct OffsetSweep {
   }
 };
 
-// A list of n offsets cut into contiguous chunks that the threads take in turn as they come
-// free: eight a thread (at least 4096 offsets each), one chunk on one thread. An offset's cost
-// varies along a range (the overlap's length, how far the warm start carries), so equal shares,
-// one a thread, left a thread idle for a tenth of the run. Every offset's result is the same
-// however the list is cut (the warm start only speeds up the search).
+// The offsets [begin, end) of a list cut into contiguous chunks that the threads take in turn as
+// they come free: eight a thread (at least 4096 offsets each, at least one a thread), one chunk
+// on one thread. An offset's cost varies along a range (the overlap's length, how far the warm
+// start carries), so equal shares, one a thread, left a thread idle for a tenth of the run. Every
+// offset's result is the same however the list is cut (the warm start only speeds up the search).
 class OffsetChunks {
  public:
-  OffsetChunks(std::size_t n, unsigned threads)
-      : n_(n), threads_(util::thread_count(threads, std::max<std::size_t>(1, n / 64))) {
-    chunks_ = threads_ > 1 ? std::min<std::size_t>(8 * std::size_t{threads_}, std::max<std::size_t>(1, n / 4096)) : 1;
-    chunks_ = std::max<std::size_t>(chunks_, threads_ > 1 ? std::min<std::size_t>(threads_, n) : 1);
+  OffsetChunks(std::size_t begin, std::size_t end, unsigned threads) {
+    const std::size_t n = end > begin ? end - begin : 0;
+    threads_ = util::thread_count(threads, std::max<std::size_t>(1, n / 64));
+    std::size_t chunks = 1;
+    if (threads_ > 1)
+      chunks = std::max(std::min<std::size_t>(8 * std::size_t{threads_}, std::max<std::size_t>(1, n / 4096)),
+                        std::min<std::size_t>(threads_, std::max<std::size_t>(n, 1)));
+    bounds_.resize(chunks + 1);
+    for (std::size_t c = 0; c <= chunks; ++c) bounds_[c] = begin + n * c / chunks;
   }
-  std::size_t count() const { return chunks_; }
-  /// body(chunk, begin, end) for each chunk [n*c/C, n*(c+1)/C), on up to `threads` threads.
+  std::size_t count() const { return bounds_.size() - 1; }
+  /// Moves each inner cut, in order: cut c becomes move(max(cut c - 1 as moved, cut c)), which
+  /// must lie in [that, end].
+  template <class Move>
+  void move_cuts(Move&& move) {
+    for (std::size_t c = 1; c + 1 < bounds_.size(); ++c) bounds_[c] = move(std::max(bounds_[c - 1], bounds_[c]));
+  }
+  /// body(chunk, begin, end) for each chunk, on up to `threads` threads.
   template <class Body>
   void run(Body&& body) const {
     std::atomic<std::size_t> next{0};
+    const std::size_t chunks = count();
     util::parallel_chunks(threads_, threads_, [&](unsigned, std::size_t, std::size_t) {
-      for (std::size_t c; (c = next.fetch_add(1)) < chunks_;) body(c, n_ * c / chunks_, n_ * (c + 1) / chunks_);
+      for (std::size_t c; (c = next.fetch_add(1)) < chunks;) body(c, bounds_[c], bounds_[c + 1]);
     });
   }
 
  private:
-  std::size_t n_;
-  unsigned threads_;
-  std::size_t chunks_ = 1;
+  unsigned threads_ = 1;
+  std::vector<std::size_t> bounds_;
 };
 
 // The lift and its one-sided slopes at `offsets` (increasing; taken over as out.offset), as
@@ -1134,7 +1145,7 @@ bool evaluate_lift(const Problem& P, std::vector<double>&& offsets, const Signat
   out.lift.resize(n);
   out.left.resize(n);
   out.right.resize(n);
-  OffsetChunks(n, o.threads).run([&](std::size_t, std::size_t i0, std::size_t i1) {
+  OffsetChunks(0, n, o.threads).run([&](std::size_t, std::size_t i0, std::size_t i1) {
     OffsetSweep sweep;
     for (std::size_t i = i0; i < i1; ++i) sweep.at(P, offs, i, i1, o.slopes, out);
   });
@@ -1224,46 +1235,34 @@ bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const Si
   // Every offset's result is the same however the range is cut (signature()'s rule).
   auto run = [&](std::size_t r0, std::size_t r1) {
     if (r1 <= r0) return;
-    const unsigned T = util::thread_count(o.threads, std::max<std::size_t>(1, (r1 - r0) / 64));
-    const std::size_t C =
-        T > 1 ? std::min<std::size_t>(8 * std::size_t{T}, std::max<std::size_t>(1, (r1 - r0) / 4096)) : 1;
-    std::vector<std::size_t> bounds(C + 1, r1);
-    bounds[0] = r0;
-    for (std::size_t c = 1; c < C; ++c) {
-      std::size_t t = std::max(bounds[c - 1], r0 + (r1 - r0) * c / C);
+    OffsetChunks chunks(r0, r1, o.threads);
+    chunks.move_cuts([&](std::size_t t) {
       for (std::size_t u = t > r0 + 63 ? t - 63 : r0; u < t; ++u)
-        if (mark[u] == 1) {  // t inside the block from u: the chunk starts at its other end
-          t = std::min(r1, u + 64);
-          break;
-        }
-      bounds[c] = t;
-    }
-    std::atomic<std::size_t> next{0};
-    util::parallel_chunks(T, T, [&](unsigned, std::size_t, std::size_t) {
-      for (std::size_t c; (c = next.fetch_add(1)) < C;) {
-        const std::size_t i0 = bounds[c], i1 = bounds[c + 1];
-        OffsetSweep sweep;
-        Frontier block;
-        for (std::size_t i = i0; i < i1; ++i) {
-          const OffsetResult e = sweep.at(P, offs, i, i1, o.slopes, out);
-          if (mark[i] != 1 || !std::isfinite(e.lift)) continue;
-          if (!build_frontier(P, offs, i, i + 65, sweep.warm, block) || block.end != i + 65) continue;
-          double smax, smin;
-          const double fwd_limit = offs[i] >= pr.fwd_from ? pr.fwd_max : -kInf;
-          const double bwd_limit = offs[i + 64] <= pr.bwd_to ? pr.bwd_max : -kInf;
-          if (!block_slopes(P, offs, block, fwd_limit, bwd_limit, smax, smin)) continue;
-          // Margins: the chord between the two ends is computed from their rounded lifts, the
-          // bound from rounded edge slopes (relative rounding, and an absolute term for the lifts).
-          const double gap = offs[i + 64] - offs[i];
-          const double err = 1e-14 * (std::abs(e.lift) + std::max(std::abs(smax), std::abs(smin)) * gap) / gap;
-          const bool fwd = offs[i] >= pr.fwd_from && smax + 1e-12 * std::abs(smax) + err <= pr.fwd_max;
-          const bool bwd = offs[i + 64] <= pr.bwd_to && -smin + 1e-12 * std::abs(smin) + err <= pr.bwd_max;
-          if (!fwd && !bwd) continue;
-          out.right[i] = kNaN;  // the curve joins it to offs[i + 64] by a chord
-          for (std::size_t t = i + 1; t < i + 64; ++t) mark[t] = 2;
-          i += 63;
-          sweep.frontier = Frontier{};
-        }
+        if (mark[u] == 1) return std::min(r1, u + 64);  // t inside the block from u: its other end
+      return t;
+    });
+    chunks.run([&](std::size_t, std::size_t i0, std::size_t i1) {
+      OffsetSweep sweep;
+      Frontier block;
+      for (std::size_t i = i0; i < i1; ++i) {
+        const OffsetResult e = sweep.at(P, offs, i, i1, o.slopes, out);
+        if (mark[i] != 1 || !std::isfinite(e.lift)) continue;
+        if (!build_frontier(P, offs, i, i + 65, sweep.warm, block) || block.end != i + 65) continue;
+        double smax, smin;
+        const double fwd_limit = offs[i] >= pr.fwd_from ? pr.fwd_max : -kInf;
+        const double bwd_limit = offs[i + 64] <= pr.bwd_to ? pr.bwd_max : -kInf;
+        if (!block_slopes(P, offs, block, fwd_limit, bwd_limit, smax, smin)) continue;
+        // Margins: the chord between the two ends is computed from their rounded lifts, the
+        // bound from rounded edge slopes (relative rounding, and an absolute term for the lifts).
+        const double gap = offs[i + 64] - offs[i];
+        const double err = 1e-14 * (std::abs(e.lift) + std::max(std::abs(smax), std::abs(smin)) * gap) / gap;
+        const bool fwd = offs[i] >= pr.fwd_from && smax + 1e-12 * std::abs(smax) + err <= pr.fwd_max;
+        const bool bwd = offs[i + 64] <= pr.bwd_to && -smin + 1e-12 * std::abs(smin) + err <= pr.bwd_max;
+        if (!fwd && !bwd) continue;
+        out.right[i] = kNaN;  // the curve joins it to offs[i + 64] by a chord
+        for (std::size_t t = i + 1; t < i + 64; ++t) mark[t] = 2;
+        i += 63;
+        sweep.frontier = Frontier{};
       }
     });
   };
@@ -1309,24 +1308,15 @@ bool evaluate_lift_pruned(const Problem& P, std::vector<double>&& todo, const Si
   return true;
 }
 
-// What signature() derives from the lift after the search (the extremes of theta and the
-// contact-slope distribution): read from R, written to T (R's fields of the same names). After
-// the hold analysis (AfterFaces), not beside it: side by side they took 15-50 MB more at the
-// H = 0.3 pair's peak (1.25x of --no-hold) for no wall time measurable on 2 cores, where the
-// analysis already keeps both busy.
-struct SignatureTail {
-  double theta_max_forward = 0, theta_max_backward = 0, offset_at_forward = 0, offset_at_backward = 0;
-  std::vector<double> slope_samples, slope_weights;
-  double contact_slope_mean = 0, contact_slope_std = 0;
-  Histogram contact_slope_pdf;
-};
-
-SignatureTail signature_tail(const SignatureResult& R, const SignatureOptions& o) {
-  SignatureTail T;
+// What signature() derives from the lift after the search (and after the hold analysis, which
+// runs while the faces are still at hand: beside it this took 15-50 MB more at the H = 0.3 pair's
+// peak for no wall time measurable on 2 cores): the extremes of theta and the contact-slope
+// distribution.
+void signature_tail(SignatureResult& R, const SignatureOptions& o) {
   const std::size_t n = R.offset.size();
   // Extremes: theta at each offset plus the one-sided slopes next to it (inside the range).
-  T.theta_max_forward = -kInf;
-  T.theta_max_backward = -kInf;
+  R.theta_max_forward = -kInf;
+  R.theta_max_backward = -kInf;
   for (std::size_t i = 0; i < n; ++i) {
     double hi = R.theta[i], lo = R.theta_min[i];
     if (i > 0) {
@@ -1337,13 +1327,13 @@ SignatureTail signature_tail(const SignatureResult& R, const SignatureOptions& o
       hi = std::max(hi, R.theta_right[i]);
       lo = std::min(lo, R.theta_right[i]);
     }
-    if (hi > T.theta_max_forward) {
-      T.theta_max_forward = hi;
-      T.offset_at_forward = R.offset[i];
+    if (hi > R.theta_max_forward) {
+      R.theta_max_forward = hi;
+      R.offset_at_forward = R.offset[i];
     }
-    if (-lo > T.theta_max_backward) {
-      T.theta_max_backward = -lo;
-      T.offset_at_backward = R.offset[i];
+    if (-lo > R.theta_max_backward) {
+      R.theta_max_backward = -lo;
+      R.offset_at_backward = R.offset[i];
     }
   }
 
@@ -1353,56 +1343,43 @@ SignatureTail signature_tail(const SignatureResult& R, const SignatureOptions& o
   if (R.exact && o.slopes == SlopeMethod::Exact) {
     // At most two values per interval: reserved at once (no copy of a half-grown vector; pages
     // are taken only as the values are written).
-    T.slope_samples.reserve(2 * n);
-    T.slope_weights.reserve(2 * n);
+    R.slope_samples.reserve(2 * n);
+    R.slope_weights.reserve(2 * n);
     for (std::size_t i = 0; i + 1 < n; ++i) {
       const double s0 = R.offset[i], s1 = R.offset[i + 1], L = s1 - s0;
       const double a0 = R.theta_right[i], a1 = R.theta_left[i + 1];
       const bool w0 = std::abs(a0) < kHalfPi, w1 = std::abs(a1) < kHalfPi;
       if (!w0 && !w1) continue;
       if (!w1 || (w0 && std::abs(a0 - a1) < 1e-12)) {
-        T.slope_samples.push_back(a0);
-        T.slope_weights.push_back(L);
+        R.slope_samples.push_back(a0);
+        R.slope_weights.push_back(L);
         continue;
       }
       if (!w0) {
-        T.slope_samples.push_back(a1);
-        T.slope_weights.push_back(L);
+        R.slope_samples.push_back(a1);
+        R.slope_weights.push_back(L);
         continue;
       }
       const double t0 = std::tan(a0), t1 = std::tan(a1);
       double sc = (t0 == t1) ? s1 : (R.lift[i + 1] - R.lift[i] + t0 * s0 - t1 * s1) / (t0 - t1);
       sc = std::clamp(sc, s0, s1);
-      T.slope_samples.push_back(a0);
-      T.slope_weights.push_back(sc - s0);
-      T.slope_samples.push_back(a1);
-      T.slope_weights.push_back(s1 - sc);
+      R.slope_samples.push_back(a0);
+      R.slope_weights.push_back(sc - s0);
+      R.slope_samples.push_back(a1);
+      R.slope_weights.push_back(s1 - sc);
     }
   } else {
-    T.slope_samples.reserve(n);
-    T.slope_weights.reserve(n);
+    R.slope_samples.reserve(n);
+    R.slope_weights.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
-      T.slope_samples.push_back(R.theta[i]);
-      T.slope_weights.push_back(1.0);
+      R.slope_samples.push_back(R.theta[i]);
+      R.slope_weights.push_back(1.0);
     }
   }
-  const MeanStd ms = weighted_mean_std(T.slope_samples, T.slope_weights);
-  T.contact_slope_mean = ms.mean;
-  T.contact_slope_std = ms.std;
-  T.contact_slope_pdf = histogram(T.slope_samples, T.slope_weights, o.bins);
-  return T;
-}
-
-void apply_tail(SignatureResult& R, SignatureTail&& T) {
-  R.theta_max_forward = T.theta_max_forward;
-  R.theta_max_backward = T.theta_max_backward;
-  R.offset_at_forward = T.offset_at_forward;
-  R.offset_at_backward = T.offset_at_backward;
-  R.slope_samples = std::move(T.slope_samples);
-  R.slope_weights = std::move(T.slope_weights);
-  R.contact_slope_mean = T.contact_slope_mean;
-  R.contact_slope_std = T.contact_slope_std;
-  R.contact_slope_pdf = std::move(T.contact_slope_pdf);
+  const MeanStd ms = weighted_mean_std(R.slope_samples, R.slope_weights);
+  R.contact_slope_mean = ms.mean;
+  R.contact_slope_std = ms.std;
+  R.contact_slope_pdf = histogram(R.slope_samples, R.slope_weights, o.bins);
 }
 
 Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& upper_in, const SignatureOptions& o,
@@ -1503,7 +1480,7 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
   R.theta_left.resize(n);
   R.theta_right.resize(n);
   // The offsets in chunks taken in turn by the threads as they come free (see OffsetChunks).
-  const OffsetChunks chunks(n, o.threads);
+  const OffsetChunks chunks(0, n, o.threads);
   const std::size_t C = chunks.count();
   std::vector<std::vector<Contact>> chunk_contacts(C);
   std::vector<std::vector<std::uint32_t>> chunk_counts(C);
@@ -1602,7 +1579,7 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
   if (after_faces && *after_faces) {
     if (auto st = (*after_faces)(R); !st) return st.error();
   }
-  apply_tail(R, signature_tail(R, o));
+  signature_tail(R, o);
   return R;
 }
 
