@@ -156,12 +156,16 @@ std::function<int()> setup(CLI::App& app) {
     };
     // Each profile conditioned (crop, spikes, form: conditioning.hpp), its record kept.
     std::vector<ConditioningRecord> records(a->upper.empty() ? 1 : 2);
+    // Each side's steepest edge (the summary's surface_slope_max_deg), taken while the side is
+    // read: the two sides at the same time, not one after the other once both are in.
+    std::array<double, 2> side_max_slope{0, 0};
     auto conditioned = [&](const Profile& p, const std::string& name, int side) {
       Conditioning own = cond;  // a file's own period (as --period) makes the default the mean
       if (a->detrend.empty() && !spec && p.period) own.form = default_form(true);
       ConditionedProfile c = unwrap(condition(p, own, name));
       records[std::size_t(side)] = c.record;
       for (Warning& x : check_profile(c.profile, name)) add_warning(side_warnings[side], std::move(x));
+      side_max_slope[std::size_t(side)] = max_slope_angle(c.profile);
       return std::move(c.profile);
     };
     // Two files are read at the same time when more than one thread is allowed (parsing a text
@@ -208,7 +212,7 @@ std::function<int()> setup(CLI::App& app) {
     }
     // The profiles are handed over to the evaluator (no copies: 160 MB each at 10^7 points);
     // what the summary needs of them is taken first.
-    const double smax = std::max(profile_stats(lower).max_slope, profile_stats(upper_measured).max_slope);
+    const double smax = std::max(side_max_slope[0], a->upper.empty() ? side_max_slope[0] : side_max_slope[1]);
     Profile upper = rotate180(upper_measured);
     upper_measured = Profile{};
     // The hold angle (what a tilt test reads), from the same lift in one pass.

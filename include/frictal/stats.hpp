@@ -18,6 +18,9 @@ struct ProfileStats {
   double mean_slope = 0;   ///< (1/L) int atan(z') dx (unit: rad)
 };
 ProfileStats profile_stats(const Profile& p);
+/// ProfileStats::max_slope alone: max |atan z'| over edges, pi/2 at jumps (unit: rad); one atan
+/// in all (atan is monotone), where profile_stats() takes two a point.
+double max_slope_angle(const Profile& p);
 
 /// A histogram normalised as a probability density.
 struct Histogram {

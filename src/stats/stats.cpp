@@ -70,6 +70,20 @@ ProfileStats profile_stats(const Profile& p) {
   return s;
 }
 
+double max_slope_angle(const Profile& p) {
+  double m = 0;
+  for (std::size_t i = 0; i + 1 < p.size(); ++i) {
+    const double dx = p.x[i + 1] - p.x[i];
+    const double dz = p.z[i + 1] - p.z[i];
+    if (dx == 0) {
+      if (dz != 0) return std::numbers::pi / 2;
+      continue;
+    }
+    m = std::max(m, std::abs(dz / dx));
+  }
+  return std::atan(m);
+}
+
 Histogram histogram(const std::vector<double>& samples, const std::vector<double>& weights, int bins, double lo,
                     double hi) {
   Histogram h;

@@ -50,6 +50,24 @@ TEST(Stats, JumpCountsAsVerticalAndHistogramIsADensity) {
   EXPECT_NEAR(ms.std, std::sqrt(0.75), 1e-15);
 }
 
+// max_slope_angle (the signature summary's surface_slope_max_deg) by hand, and bit for bit
+// against profile_stats().max_slope (two atans a point there, one in all here) on rough profiles.
+TEST(Stats, MaxSlopeAngleByHandAndAsProfileStats) {
+  EXPECT_EQ(max_slope_angle(Profile{{0, 1, 2, 3}, {0, 1, 1, -2}, std::nullopt}), std::atan(3.0));  // slopes 1, 0, -3
+  EXPECT_EQ(max_slope_angle(Profile{{0, 1, 1, 2}, {0, 0, 1, 1}, std::nullopt}), M_PI / 2);         // a jump
+  EXPECT_EQ(max_slope_angle(Profile{{0, 1, 1, 2}, {0, 0, 0, 0}, std::nullopt}), 0.0);  // a repeated flat point
+  EXPECT_EQ(max_slope_angle(Profile{{0}, {1}, std::nullopt}), 0.0);
+  for (double h : {0.3, 0.8}) {
+    SelfAffineParams sp;
+    sp.hurst = h;
+    sp.points = 4097;
+    sp.seed = 7;
+    const auto p = self_affine_profile(sp);
+    ASSERT_TRUE(p) << p.error().message;
+    EXPECT_EQ(max_slope_angle(*p), profile_stats(*p).max_slope) << "H = " << h;
+  }
+}
+
 // Numbers at the edges of double. For z = (A, -A, A) over x = (0, h, 2h) the mean is 0 and each
 // edge contributes (1/3)(A^2 - A^2 + A^2) h, so rms = A / sqrt(3); the slope is 2A/h on each edge.
 TEST(StatsEdges, HeightsNearTheTopOfDoubleGiveTheExactRmsNotZero) {
