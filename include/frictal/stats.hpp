@@ -18,6 +18,10 @@ struct ProfileStats {
   double mean_slope = 0;   ///< (1/L) int atan(z') dx (unit: rad)
 };
 ProfileStats profile_stats(const Profile& p);
+/// profile_stats() without the slope angles: points, length, mean and rms height and rms slope
+/// bit for bit profile_stats()'s, mean_slope and max_slope left 0; no atan per edge (what the
+/// plausibility checks read, warnings.hpp).
+ProfileStats profile_stats_no_angles(const Profile& p);
 /// ProfileStats::max_slope alone: max |atan z'| over edges, pi/2 at jumps (unit: rad); one atan
 /// in all (atan is monotone), where profile_stats() takes two a point.
 double max_slope_angle(const Profile& p);

@@ -146,7 +146,7 @@ void common_checks(std::vector<Warning>& out, const Moments& m, std::size_t spik
 std::vector<Warning> check_profile(const Profile& p, const std::string& name, const PlausibilityLimits& L) {
   std::vector<Warning> out;
   if (p.x.size() < 2) return out;
-  const ProfileStats st = profile_stats(p);
+  const ProfileStats st = profile_stats_no_angles(p);  // rms slope and length only
   if (st.rms_slope > L.max_rms_slope)
     add_warning(out, {"units-suspect",
                       fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "

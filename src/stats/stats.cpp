@@ -12,7 +12,9 @@ namespace {
 // The exact integrals in arithmetic type T. Called with double first; extended precision (long
 // double: range to about 1e4932 on x86-64) only where double overflows or underflows, so that
 // ordinary profiles keep their double results bit for bit.
-template <class T>
+// Angles = false: mean_slope and max_slope are left 0 (no atan per edge); the other fields are
+// the same sums in the same order.
+template <class T, bool Angles = true>
 ProfileStats profile_stats_in(const Profile& p) {
   ProfileStats s;
   s.points = p.size();
@@ -27,14 +29,17 @@ ProfileStats profile_stats_in(const Profile& p) {
     const T dx = static_cast<T>(p.x[i + 1]) - static_cast<T>(p.x[i]);
     const T dz = static_cast<T>(p.z[i + 1]) - static_cast<T>(p.z[i]);
     if (dx == 0) {
-      if (dz != 0) max_slope = std::numbers::pi_v<T> / 2;
+      if (Angles && dz != 0) max_slope = std::numbers::pi_v<T> / 2;
       continue;
     }
     iz += dx * (static_cast<T>(p.z[i]) + static_cast<T>(p.z[i + 1])) / 2;
     const T m = dz / dx;
     slope2 += dx * m * m;
-    slope_angle += dx * std::atan(m);
-    max_slope = std::max(max_slope, std::abs(std::atan(m)));
+    if constexpr (Angles) {
+      const T a = std::atan(m);
+      slope_angle += dx * a;
+      max_slope = std::max(max_slope, std::abs(a));
+    }
   }
   const T mean = iz / length;
   T var = 0;
@@ -52,10 +57,9 @@ ProfileStats profile_stats_in(const Profile& p) {
   return s;
 }
 
-}  // namespace
-
-ProfileStats profile_stats(const Profile& p) {
-  ProfileStats s = profile_stats_in<double>(p);
+template <bool Angles>
+ProfileStats profile_stats_with(const Profile& p) {
+  ProfileStats s = profile_stats_in<double, Angles>(p);
   if (p.size() < 2) return s;
   // Double loses the answer when a square or a difference overflows (heights near 1e308 give inf
   // or NaN, which max(0, NaN) would turn into a silent 0) or when squares underflow (heights near
@@ -66,9 +70,15 @@ ProfileStats profile_stats(const Profile& p) {
   const bool lost = !std::isfinite(s.length) || !std::isfinite(s.mean_height) || !std::isfinite(s.rms_height) ||
                     !std::isfinite(s.rms_slope) || !std::isfinite(s.mean_slope) || (rough && !(s.rms_height > 0)) ||
                     (rough && !(s.rms_slope > 0));
-  if (lost) s = profile_stats_in<long double>(p);
+  if (lost) s = profile_stats_in<long double, Angles>(p);
   return s;
 }
+
+}  // namespace
+
+ProfileStats profile_stats(const Profile& p) { return profile_stats_with<true>(p); }
+
+ProfileStats profile_stats_no_angles(const Profile& p) { return profile_stats_with<false>(p); }
 
 double max_slope_angle(const Profile& p) {
   double m = 0;

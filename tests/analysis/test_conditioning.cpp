@@ -3,7 +3,9 @@
 // spike filter and the `spikes` warning read the same rule; predict conditions as asked.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <set>
 
@@ -305,4 +307,47 @@ TEST(Conditioning, PredictWithSpikesRemovedReadsTheCleanProfile) {
   auto bad = frictal::predict(s_spiky, nullptr, o);
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("spiky"), std::string::npos) << bad.error().message;
+}
+
+// find_spikes against the rule written out: the median of the (up to) four neighbours by a full
+// sort, on rough heights with ties (heights on a coarse grid) and with spikes, at every threshold
+// from 0: every flagged point and the worst deviation bit for bit.
+TEST(Conditioning, FindSpikesIsTheSortedMedianRuleToTheBit) {
+  std::uint64_t state = 12345;
+  auto next = [&] {  // xorshift64: a fixed stream on every platform
+    state ^= state << 13;
+    state ^= state >> 7;
+    state ^= state << 17;
+    return state;
+  };
+  frictal::Profile p;
+  for (std::size_t i = 0; i < 2000; ++i) {
+    p.x.push_back(double(i) * 1e-6);
+    double z = double(next() % 64) * 1e-7;                  // ties: 64 levels
+    if (next() % 97 == 0) z += double(next() % 50) * 1e-6;  // spikes
+    p.z.push_back(z);
+  }
+  double mean = 0;
+  for (double z : p.z) mean += z;
+  mean /= double(p.z.size());
+  double s2 = 0;
+  for (double z : p.z) s2 += (z - mean) * (z - mean);
+  const double rms = std::sqrt(s2 / double(p.z.size()));
+  for (double k : {0.0, 0.5, 2.0, 5.0}) {
+    std::vector<std::size_t> want;
+    double worst = 0;
+    for (std::size_t i = 0; i < p.z.size(); ++i) {
+      std::vector<double> w;
+      for (std::size_t j = i >= 2 ? i - 2 : 0; j <= i + 2 && j < p.z.size(); ++j)
+        if (j != i) w.push_back(p.z[j]);
+      std::sort(w.begin(), w.end());
+      const std::size_t h = w.size() / 2;
+      const double med = w.size() % 2 ? w[h] : 0.5 * (w[h] + w[h - 1]);
+      const double dev = std::abs(p.z[i] - med) / rms;
+      if (dev > k) want.push_back(i), worst = std::max(worst, dev);
+    }
+    const frictal::SpikeSearch got = frictal::find_spikes(p, k);
+    EXPECT_EQ(got.points, want) << "k = " << k;
+    EXPECT_EQ(got.worst, worst) << "k = " << k;
+  }
 }

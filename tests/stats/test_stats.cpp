@@ -65,6 +65,13 @@ TEST(Stats, MaxSlopeAngleByHandAndAsProfileStats) {
     const auto p = self_affine_profile(sp);
     ASSERT_TRUE(p) << p.error().message;
     EXPECT_EQ(max_slope_angle(*p), profile_stats(*p).max_slope) << "H = " << h;
+    // The checks' statistics without the angles: the same sums, bit for bit.
+    const ProfileStats a = profile_stats(*p), b = profile_stats_no_angles(*p);
+    EXPECT_EQ(b.points, a.points);
+    EXPECT_EQ(b.length, a.length);
+    EXPECT_EQ(b.mean_height, a.mean_height);
+    EXPECT_EQ(b.rms_height, a.rms_height);
+    EXPECT_EQ(b.rms_slope, a.rms_slope);
   }
 }
 
