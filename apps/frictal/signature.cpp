@@ -150,19 +150,19 @@ std::function<int()> setup(CLI::App& app) {
     // before upper's: the same order on every run.
     std::array<std::vector<Warning>, 2> side_warnings;
     auto load = [&](const std::string& path, int side) {
-      const SurfaceData sd = unwrap(read_surface(input_path(path), ro));
+      SurfaceData sd = unwrap(read_surface(input_path(path), ro));
       for (const auto& w : sd.warnings) add_warning(side_warnings[side], {"reader", stdin_name(w)});
-      return surface_profile(sd, path);
+      return surface_profile(std::move(sd), path);
     };
     // Each profile conditioned (crop, spikes, form: conditioning.hpp), its record kept.
     std::vector<ConditioningRecord> records(a->upper.empty() ? 1 : 2);
     // Each side's steepest edge (the summary's surface_slope_max_deg), taken while the side is
     // read: the two sides at the same time, not one after the other once both are in.
     std::array<double, 2> side_max_slope{0, 0};
-    auto conditioned = [&](const Profile& p, const std::string& name, int side) {
+    auto conditioned = [&](Profile p, const std::string& name, int side) {
       Conditioning own = cond;  // a file's own period (as --period) makes the default the mean
       if (a->detrend.empty() && !spec && p.period) own.form = default_form(true);
-      ConditionedProfile c = unwrap(condition(p, own, name));
+      ConditionedProfile c = unwrap(condition(std::move(p), own, name));
       records[std::size_t(side)] = c.record;
       for (Warning& x : check_profile(c.profile, name)) add_warning(side_warnings[side], std::move(x));
       side_max_slope[std::size_t(side)] = max_slope_angle(c.profile);

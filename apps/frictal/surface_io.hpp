@@ -174,5 +174,12 @@ inline Profile surface_profile(const SurfaceData& s, const std::string& path) {
         fmt::format("{}: an areal map ({} x {}); this command needs a line profile", path, s.map.nx, s.map.ny));
   return unwrap(as_profile(s.curve, path));
 }
+/// The same, taking the data's points over (no copy).
+inline Profile surface_profile(SurfaceData&& s, const std::string& path) {
+  if (s.is_map)
+    throw UsageError(
+        fmt::format("{}: an areal map ({} x {}); this command needs a line profile", path, s.map.nx, s.map.ny));
+  return unwrap(as_profile(std::move(s.curve), path));
+}
 
 }  // namespace frictal::cli

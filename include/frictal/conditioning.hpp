@@ -91,6 +91,9 @@ struct ConditionedMap {
 /// window along y, a window that keeps fewer than 2 points (the message gives the data's x extent), k not finite or <=
 /// 0.
 Result<ConditionedProfile> condition(const Profile& p, const Conditioning& c, const std::string& name = "profile");
+/// The same, taking p over: without a crop its points become the result's (no copy of a profile
+/// that is not kept; at 10^7 points 160 MB and a tenth of a second less).
+Result<ConditionedProfile> condition(Profile&& p, const Conditioning& c, const std::string& name = "profile");
 /// The same for a map: spikes become NaN (masked). Errors also when the window keeps fewer than 2
 /// columns (2 rows) of a map that had more, or no valid point.
 Result<ConditionedMap> condition(const Map& m, const Conditioning& c, const std::string& name = "map");

@@ -51,6 +51,8 @@ Status validate(const Profile& p, const std::string& what = "profile");
 
 /// Converts a curve whose x is already non-decreasing into a Profile; error otherwise.
 Result<Profile> as_profile(const Curve& c, const std::string& what = "curve");
+/// The same, taking c's points over (no copy).
+Result<Profile> as_profile(Curve&& c, const std::string& what = "curve");
 /// The curve through the points of a profile (same points).
 Curve as_curve(const Profile& p);
 

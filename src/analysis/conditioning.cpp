@@ -238,7 +238,12 @@ SpikeSearch find_spikes(const Map& mp, double k) {
   return s;
 }
 
-Result<ConditionedProfile> condition(const Profile& p, const Conditioning& c, const std::string& name) {
+namespace {
+
+// condition() of p; with `take` (p itself) p's points move into the result where no crop copies
+// a window of them.
+Result<ConditionedProfile> condition_impl(const Profile& p, Profile* take, const Conditioning& c,
+                                          const std::string& name) {
   if (auto st = check_threshold(c); !st) return st.error();
   ConditionedProfile out;
   ConditioningRecord& r = out.record;
@@ -269,6 +274,8 @@ Result<ConditionedProfile> condition(const Profile& p, const Conditioning& c, co
     r.cropped = true;
     r.window = w;
     r.nx_after = kept;
+  } else if (take) {
+    cur = std::move(*take);
   } else {
     cur = p;
   }
@@ -325,6 +332,16 @@ Result<ConditionedProfile> condition(const Profile& p, const Conditioning& c, co
   }
   out.profile = std::move(*formed);
   return out;
+}
+
+}  // namespace
+
+Result<ConditionedProfile> condition(const Profile& p, const Conditioning& c, const std::string& name) {
+  return condition_impl(p, nullptr, c, name);
+}
+
+Result<ConditionedProfile> condition(Profile&& p, const Conditioning& c, const std::string& name) {
+  return condition_impl(p, &p, c, name);
 }
 
 Result<ConditionedMap> condition(const Map& m, const Conditioning& c, const std::string& name) {

@@ -201,6 +201,12 @@ Result<Profile> as_profile(const Curve& c, const std::string& what) {
   return p;
 }
 
+Result<Profile> as_profile(Curve&& c, const std::string& what) {
+  Profile p{std::move(c.x), std::move(c.z), std::nullopt};
+  if (auto st = validate(p, what); !st) return st.error();
+  return p;
+}
+
 Curve as_curve(const Profile& p) { return Curve{p.x, p.z}; }
 
 Result<Profile> upper_envelope(const Curve& c) { return envelope(c, true); }

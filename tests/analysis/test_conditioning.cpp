@@ -351,3 +351,30 @@ TEST(Conditioning, FindSpikesIsTheSortedMedianRuleToTheBit) {
     EXPECT_EQ(got.worst, worst) << "k = " << k;
   }
 }
+
+// condition(Profile&&) gives condition(const Profile&)'s result to the bit, with and without a
+// crop, spikes removed and a form taken off (it only avoids copying the points).
+TEST(Conditioning, TakingTheProfileOverGivesTheSameResult) {
+  frictal::Profile p = sine(3000, 1e-6, 1e-6, 5e-4);
+  p.z[1234] += 1e-4;  // a spike
+  for (const bool crop : {false, true})
+    for (const bool spikes : {false, true}) {
+      frictal::Conditioning c = spikes ? spikes_only() : frictal::Conditioning{};
+      c.form.kind = frictal::DetrendKind::Polynomial;
+      c.form.degree = 2;
+      if (crop) {
+        frictal::CropWindow w;
+        w.x_min = 1e-4;
+        w.x_max = 2e-3;
+        c.crop = w;
+      }
+      auto a = frictal::condition(p, c, "p");
+      frictal::Profile q = p;
+      auto b = frictal::condition(std::move(q), c, "p");
+      ASSERT_TRUE(a && b);
+      EXPECT_EQ(a->profile.x, b->profile.x) << crop << spikes;
+      EXPECT_EQ(a->profile.z, b->profile.z) << crop << spikes;
+      EXPECT_EQ(a->record.spikes_removed, b->record.spikes_removed);
+      EXPECT_EQ(a->record.nx_after, b->record.nx_after);
+    }
+}
