@@ -168,17 +168,18 @@ inline Map load_conditioned_map(const std::string& path, const InputOptions& o, 
 }
 
 /// The surface as a single-valued profile (error naming the file for maps or folded curves).
-inline Profile surface_profile(const SurfaceData& s, const std::string& path) {
+inline void require_profile(const SurfaceData& s, const std::string& path) {
   if (s.is_map)
     throw UsageError(
         fmt::format("{}: an areal map ({} x {}); this command needs a line profile", path, s.map.nx, s.map.ny));
+}
+inline Profile surface_profile(const SurfaceData& s, const std::string& path) {
+  require_profile(s, path);
   return unwrap(as_profile(s.curve, path));
 }
 /// The same, taking the data's points over (no copy).
 inline Profile surface_profile(SurfaceData&& s, const std::string& path) {
-  if (s.is_map)
-    throw UsageError(
-        fmt::format("{}: an areal map ({} x {}); this command needs a line profile", path, s.map.nx, s.map.ny));
+  require_profile(s, path);
   return unwrap(as_profile(std::move(s.curve), path));
 }
 

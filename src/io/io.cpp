@@ -381,9 +381,7 @@ Result<Profile> read_profile(const std::string& path, const ReadOptions& options
     if (c->x[k] < c->x[k - 1])
       return make_error(fmt::format("{}: x decreases at point {} ({} after {}); a profile needs non-decreasing x", path,
                                     k + 1, c->x[k], c->x[k - 1]));
-  Profile p{std::move(c->x), std::move(c->z), std::nullopt};  // as_profile without a copy
-  if (auto st = validate(p, path); !st) return st.error();
-  return p;
+  return as_profile(std::move(*c), path);
 }
 
 Result<Map> read_map(const std::string& path, const ReadOptions& options) {

@@ -1114,9 +1114,10 @@ struct OffsetSweep {
 };
 
 // The offsets [begin, end) of a list cut into contiguous chunks that the threads take in turn as
-// they come free: shorter towards the end (below), one chunk on one thread. An offset's cost varies along a range (the
-// overlap's length, how far the warm start carries), so equal shares, one a thread, left a thread idle for a tenth of
-// the run. Every offset's result is the same however the list is cut (the warm start only speeds up the search).
+// they come free: shorter towards the end (below), one chunk on one thread. An offset's cost
+// varies along a range (the overlap's length, how far the warm start carries), so equal shares,
+// one a thread, left a thread idle for a tenth of the run. Every offset's result is the same
+// however the list is cut (the warm start only speeds up the search).
 class OffsetChunks {
  public:
   OffsetChunks(std::size_t begin, std::size_t end, unsigned threads) {
