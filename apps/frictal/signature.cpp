@@ -213,8 +213,7 @@ std::function<int()> setup(CLI::App& app) {
     // The profiles are handed over to the evaluator (no copies: 160 MB each at 10^7 points);
     // what the summary needs of them is taken first.
     const double smax = std::max(side_max_slope[0], a->upper.empty() ? side_max_slope[0] : side_max_slope[1]);
-    Profile upper = rotate180(upper_measured);
-    upper_measured = Profile{};
+    Profile upper = rotate180(std::move(upper_measured));  // in place
     // The hold angle (what a tilt test reads), from the same lift in one pass.
     std::optional<HoldAnalysis> hold;
     double hold_wall = 0;

@@ -61,7 +61,7 @@ PredictSurface frictal::py_detail::to_surface(const py::handle& obj, double spac
     }
     if (d.contains("x") && d.contains("z")) {
       auto x = d["x"].cast<std::vector<double>>(), z = d["z"].cast<std::vector<double>>();
-      s.profile = ok(as_profile(Curve{x, z}, what));
+      s.profile = ok(as_profile(Curve{std::move(x), std::move(z)}, what));
       if (d.contains("warnings"))
         for (auto w : d["warnings"]) s.reader_warnings.push_back(py::str(w));
       return s;
@@ -75,7 +75,7 @@ PredictSurface frictal::py_detail::to_surface(const py::handle& obj, double spac
   if (a.ndim() == 1) {
     std::vector<double> x(std::size_t(a.shape(0))), z(a.data(), a.data() + a.shape(0));
     for (std::size_t i = 0; i < x.size(); ++i) x[i] = double(i) * spacing;
-    s.profile = ok(as_profile(Curve{x, z}, what));
+    s.profile = ok(as_profile(Curve{std::move(x), std::move(z)}, what));
     return s;
   }
   if (a.ndim() == 2) {
@@ -205,10 +205,20 @@ void frictal_bind_predict(py::module_& m) {
         o.map_drops = drops;
         o.map_locked = locked;
         o.threads = threads;
-        const PredictSurface lo = to_surface(lower, spacing, format, unit, "lower");
+        // The surfaces handed over (a profile's points moved, not copied); where the one pass's lift
+        // falls short (an Internal error; rare) they are made again and kept for the second analysis.
+        auto make = [&](const py::object& obj, const char* what) {
+          return to_surface(obj, spacing, format, unit, what);
+        };
+        PredictSurface lo = make(lower, "lower");
         std::optional<PredictSurface> up;
-        if (!upper.is_none()) up = to_surface(upper, spacing, format, unit, "upper");
-        return ok(nogil([&] { return predict(lo, up ? &*up : nullptr, o); }));
+        if (!upper.is_none()) up = make(upper, "upper");
+        Result<Prediction> taken = nogil([&] { return predict(std::move(lo), std::move(up), o); });
+        if (taken || taken.error().code != ErrorCode::Internal) return ok(std::move(taken));
+        const PredictSurface lo2 = make(lower, "lower");
+        std::optional<PredictSurface> up2;
+        if (!upper.is_none()) up2 = make(upper, "upper");
+        return ok(nogil([&] { return predict(lo2, up2 ? &*up2 : nullptr, o); }));
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("direction") = 0.0,
       py::arg("atomic_friction") = 0.0, py::arg("runaway_distance") = 0.0, py::arg("detrend") = py::none(),

@@ -228,6 +228,23 @@ Profile rotate180(const Profile& p) {
   return r;
 }
 
+Profile rotate180(Profile&& p) {
+  Profile r = std::move(p);
+  const std::size_t n = r.size();
+  if (n == 0) return r;
+  const double a = r.x.front(), b = r.x.back();
+  // The same expression as the copy's on the same values: x'[i] = (a + b) - x[n - 1 - i].
+  std::reverse(r.x.begin(), r.x.end());
+  std::reverse(r.z.begin(), r.z.end());
+  for (std::size_t i = 0; i < n; ++i) {
+    r.x[i] = (a + b) - r.x[i];
+    r.z[i] = -r.z[i];
+  }
+  r.x.front() = a;  // exact ends despite rounding
+  r.x.back() = b;
+  return r;
+}
+
 Curve rotate180(const Curve& c) {
   Curve r;
   const std::size_t n = c.size();

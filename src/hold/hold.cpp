@@ -1982,7 +1982,8 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
         // on exactly sampled grooves): with the profiles still at hand, the two-lift path
         // (analyse_hold_widened, the older exact analysis) answers after the signature.
         if (take_lower)
-          return make_error("hold: internal error: the lift beyond the range was cut short (please report)");
+          return make_error(ErrorCode::Internal,
+                            "hold: internal error: the lift beyond the range was cut short (please report)");
         cut_short = true;
       }
     }

@@ -102,7 +102,11 @@ double mean_spacing(const Profile& p) {
   return p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0;
 }
 
-Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
+// `take_lower` / `take_upper` (may be null): the surfaces' profiles to take over (moved through the
+// conditioning into the signature; then no second analysis from them where the one pass's lift
+// falls short: signature_with_hold's Internal error instead).
+Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o,
+                                    Profile* take_lower, Profile* take_upper) {
   Prediction p;
   p.is_map = false;
   p.model = "profile-quasi-static-hold";
@@ -120,13 +124,15 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   reader_warnings(p.warnings, lower);
   if (upper) reader_warnings(p.warnings, *upper);
   const Conditioning cond = conditioning_of(o, dt);
-  auto lc = condition(lower.profile, cond, lower.name);
+  auto lc =
+      take_lower ? condition(std::move(*take_lower), cond, lower.name) : condition(lower.profile, cond, lower.name);
   if (!lc) return lc.error();
   std::vector<ConditioningRecord> records{lc->record};
   Result<Profile> lo = std::move(lc->profile);
   Profile up_measured;
   if (upper) {
-    auto u = condition(upper->profile, cond, upper->name);
+    auto u = take_upper ? condition(std::move(*take_upper), cond, upper->name)
+                        : condition(upper->profile, cond, upper->name);
     if (!u) return u.error();
     records.push_back(u->record);
     up_measured = std::move(u->profile);
@@ -149,8 +155,7 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     if (auto st = validate(*lo, lower.name); !st) return st.error();
     if (auto st = validate(up_measured, upper ? upper->name : lower.name); !st) return st.error();
   }
-  Profile up = rotate180(up_measured);
-  up_measured = Profile{};  // the rotated copy is the one used from here (memory: 10^7 points are 160 MB a copy)
+  Profile up = rotate180(std::move(up_measured));  // in place (memory: 10^7 points are 160 MB a copy)
   const bool lower_periodic = lo->period.has_value();
   SignatureOptions so;
   so.threads = o.threads;
@@ -160,9 +165,12 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   ho.atomic_friction = o.atomic_friction;
   const bool one = std::isfinite(o.start_offset[0]);
   // The bound and the hold analysis from one pass over the lift (not a signature each).
-  // The profiles by reference (not taken over): a lift that the one pass finds too short is
-  // analysed again from them (signature_with_hold's fallback).
-  auto both = signature_with_hold(*lo, up, so, ho, one ? o.start_offset[0] : std::numeric_limits<double>::quiet_NaN());
+  // The caller's profiles at hand (not taken over): the conditioned ones by reference, so that a
+  // lift that the one pass finds too short is analysed again from them (signature_with_hold's
+  // fallback). Taken over: they go to the signature (no copies).
+  const double start = one ? o.start_offset[0] : std::numeric_limits<double>::quiet_NaN();
+  auto both = take_lower ? signature_with_hold(std::move(*lo), std::move(up), so, ho, start)
+                         : signature_with_hold(*lo, up, so, ho, start);
   if (!both) return both.error();
   const SignatureResult* sig = &both->signature;
   const HoldAnalysis* h = &both->hold;
@@ -388,14 +396,17 @@ Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name
   if (data.is_map) {
     p.map = std::move(data.map);
   } else {
-    auto pr = as_profile(data.curve, name);
+    auto pr = as_profile(std::move(data.curve), name);
     if (!pr) return pr.error();
     p.profile = std::move(pr).value();
   }
   return p;
 }
 
-Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
+namespace {
+
+// predict()'s checks of the pair and the options that come before either model.
+Status check_request(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
   if (upper && upper->is_map != lower.is_map)
     return make_error(fmt::format("{} is {} and {} is {}: a pair is two profiles or two maps", lower.name,
                                   lower.is_map ? "an areal map" : "a line profile", upper->name,
@@ -411,7 +422,21 @@ Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* up
     return make_error(
         "in place (turn_over_upper = false): for maps only; a profile pair's upper profile is "
         "always turned over");
-  return lower.is_map ? predict_maps(lower, upper, o) : predict_profiles(lower, upper, o);
+  return Ok{};
+}
+
+}  // namespace
+
+Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
+  if (auto st = check_request(lower, upper, o); !st) return st.error();
+  return lower.is_map ? predict_maps(lower, upper, o) : predict_profiles(lower, upper, o, nullptr, nullptr);
+}
+
+Result<Prediction> predict(PredictSurface&& lower, std::optional<PredictSurface>&& upper, const PredictOptions& o) {
+  const PredictSurface* up = upper ? &*upper : nullptr;
+  if (auto st = check_request(lower, up, o); !st) return st.error();
+  if (lower.is_map) return predict_maps(lower, up, o);  // the map model reads the maps as they are
+  return predict_profiles(lower, up, o, &lower.profile, up ? &upper->profile : nullptr);
 }
 
 }  // namespace frictal

@@ -118,6 +118,39 @@ TEST(Geometry, Rotate180IsAnInvolutionAndSwapsEnvelopes) {
   }
 }
 
+TEST(Geometry, Rotate180InPlaceIsTheCopyToTheBit) {
+  // rotate180(Profile&&) against its definition written out here: x'[i] = (a + b) - x[n - 1 - i]
+  // with the ends a and b exact, z'[i] = -z[n - 1 - i], the period kept; in the profile's own
+  // storage (the same buffer), and equal to the copying overload bit for bit.
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> step(0.1, 2.0), height(-1.0, 1.0);
+  for (const std::size_t n : {1u, 2u, 3u, 1000u, 1001u}) {
+    Profile p;
+    double x = 0.37;
+    for (std::size_t i = 0; i < n; ++i) {
+      p.x.push_back(x);
+      p.z.push_back(height(rng));
+      x += step(rng);
+    }
+    if (n % 2) p.period = 123.0;
+    const Profile copy = rotate180(p);
+    Profile moved = p;
+    const double* buffer = moved.x.data();
+    const Profile r = rotate180(std::move(moved));
+    EXPECT_EQ(r.x.data(), buffer);
+    ASSERT_EQ(r.size(), n);
+    const double a = p.x.front(), b = p.x.back();
+    for (std::size_t i = 0; i < n; ++i) {
+      const double want = i == 0 ? a : i + 1 == n ? b : (a + b) - p.x[n - 1 - i];
+      EXPECT_EQ(r.x[i], want) << n << " " << i;
+      EXPECT_EQ(r.z[i], -p.z[n - 1 - i]);
+      EXPECT_EQ(r.x[i], copy.x[i]);
+      EXPECT_EQ(r.z[i], copy.z[i]);
+    }
+    EXPECT_EQ(r.period, p.period);
+  }
+}
+
 TEST(Geometry, ValidationNamesTheProblem) {
   EXPECT_FALSE(validate(Curve{{0}, {0}}).ok());
   auto st = validate(Profile{{0, 1, NAN}, {0, 0, 0}, std::nullopt}, "f.csv");

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <random>
 
 #include "frictal/generators.hpp"
 #include "frictal/predict.hpp"
@@ -278,6 +280,68 @@ TEST(Warnings, UnitsSpikesScaleAndFillValuesAreNamed) {
     for (const auto& c : frictal::warning_codes()) found |= c.code == code;
     EXPECT_TRUE(found) << code;
   }
+}
+
+TEST(Predict, TakingTheSurfacesOverGivesTheSamePrediction) {
+  // The overload that takes the surfaces (their points moved through the conditioning into the
+  // signature) against the one that reads them where they are: the same prediction to the bit
+  // (its whole JSON) on a random non-uniform pair with a spike (default form, spike removal), a
+  // profile against itself, one drop, the backward direction, and a map pair.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> step(0.5e-6, 1.5e-6), height(-1e-7, 1e-7);
+  auto random_profile = [&](std::size_t n, double ramp) {
+    frictal::Profile p;
+    double x = 0, z = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      p.x.push_back(x);
+      p.z.push_back(z + ramp * x);
+      x += step(rng);
+      z += height(rng);
+    }
+    p.z[n / 3] += 5e-6;  // a spike
+    return p;
+  };
+  const frictal::Profile lo = random_profile(400, 0.02), up = random_profile(250, -0.01);
+  frictal::PredictOptions spikes;
+  spikes.remove_spikes = true;
+  frictal::PredictOptions one = no_form_removal();
+  one.start_offset = {6e-5, 0};
+  frictal::PredictOptions backward;
+  backward.direction = kPi;
+  int compared = 0;
+  for (const frictal::PredictOptions& o : {frictal::PredictOptions{}, spikes, one, backward})
+    for (const bool pair : {true, false}) {
+      const auto l = profile_surface(lo, "lower"), u = profile_surface(up, "upper");
+      auto kept = frictal::predict(l, pair ? &u : nullptr, o);
+      ASSERT_TRUE(kept.ok()) << kept.error().message;
+      std::optional<frictal::PredictSurface> taken_upper;
+      if (pair) taken_upper = profile_surface(up, "upper");
+      auto taken = frictal::predict(profile_surface(lo, "lower"), std::move(taken_upper), o);
+      ASSERT_TRUE(taken.ok()) << taken.error().message;
+      EXPECT_EQ(frictal::prediction_json(*taken), frictal::prediction_json(*kept));
+      EXPECT_GT(kept->drops, 0u);
+      ++compared;
+    }
+  EXPECT_EQ(compared, 8);
+  // Maps: read where they are by both.
+  frictal::PredictSurface m;
+  m.is_map = true;
+  m.name = "map";
+  m.map.nx = m.map.ny = 12;
+  m.map.dx = m.map.dy = 1e-6;
+  for (std::size_t k = 0; k < 144; ++k) m.map.heights.push_back(height(rng) * 3);
+  frictal::PredictOptions mo = no_form_removal();
+  mo.map_drops = 2;
+  auto mk = frictal::predict(m, nullptr, mo);
+  ASSERT_TRUE(mk.ok()) << mk.error().message;
+  auto mt = frictal::predict(frictal::PredictSurface(m), std::nullopt, mo);
+  ASSERT_TRUE(mt.ok()) << mt.error().message;
+  EXPECT_EQ(frictal::prediction_json(*mt), frictal::prediction_json(*mk));
+  // The checks come first on both: a profile against a map is refused naming both.
+  std::optional<frictal::PredictSurface> map_upper = m;
+  auto mixed = frictal::predict(profile_surface(lo, "lower"), std::move(map_upper), {});
+  ASSERT_FALSE(mixed.ok());
+  EXPECT_NE(mixed.error().message.find("a pair is two profiles or two maps"), std::string::npos);
 }
 
 TEST(PredictColumns, EveryColumnHasAUnitAndTheJsonCarriesEveryKey) {
