@@ -1951,14 +1951,13 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       if (!more_max && !more_min) break;
       // Farther by what the check found short, and d/5 (a chain may go on: another round, which
       // costs about as much as 0.4 d of lift on one side).
-      if (more_max) {
-        m_hi += short_max + 0.2 * d;
-        tail_end.reset();  // its points move: built anew by the next check
-      }
-      if (more_min) {
-        m_lo += short_min + 0.2 * d;
-        head_end.reset();
-      }
+      // Both end curves let go: the widened side's points move (built anew by the next check),
+      // and the side that passed is built again by the whole curve rather than held beside the
+      // next round's lift and check, where a two-round run peaks.
+      tail_end.reset();
+      head_end.reset();
+      if (more_max) m_hi += short_max + 0.2 * d;
+      if (more_min) m_lo += short_min + 0.2 * d;
     }
     return Ok{};
   };
