@@ -1783,6 +1783,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     // Exact mode: a side whose check passed is not widened again, and the points near its end do
     // not change when the other side is widened: it is not checked again.
     bool passed_max = false, passed_min = false;
+    int widened_max = 0, widened_min = 0;  // exact mode: rounds that widened each side
     // Exact mode, the curve not kept: the lift beyond what the inertial windows read (every drop
     // rests at or before q, the first rise after b, mirrored before a) in blocks whose slopes are
     // bounded by the steepest piece of the lift between b and the inner range's end is left out
@@ -1956,8 +1957,13 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       // next round's lift and check, where a two-round run peaks.
       tail_end.reset();
       head_end.reset();
-      if (more_max) m_hi += short_max + 0.2 * d;
-      if (more_min) m_lo += short_min + 0.2 * d;
+      // From a side's third round on, at least twice as far as before: a process that runs on far
+      // past the range (a run-away over a long overlap, e.g. a millimetre scan under a block
+      // thousands of times longer) then takes O(log) rounds, each planning the offsets of the
+      // range so far, instead of one round per d or so (quadratic: it seemed to hang). The first
+      // two rounds as before (every pair measured needs at most two).
+      if (more_max) m_hi = std::max(m_hi + short_max + 0.2 * d, ++widened_max >= 2 ? 2 * m_hi : 0.0);
+      if (more_min) m_lo = std::max(m_lo + short_min + 0.2 * d, ++widened_min >= 2 ? 2 * m_lo : 0.0);
     }
     return Ok{};
   };
