@@ -75,6 +75,12 @@ struct HoldOptions {
   /// analyse_hold and signature_with_hold: keep the lift in HoldAnalysis::curve (false: the
   /// curve is left empty and its memory let go once analysed; every other number is the same).
   bool keep_curve = true;
+  /// analyse_hold and signature_with_hold, exact offsets on a non-periodic pair: where the whole
+  /// overlap holds about this many offsets or fewer (estimated from the signature's density of
+  /// offsets), the lift is computed over all of it at once instead of in rounds that stop where
+  /// local checks at each end say the process stops (those are a saving for long pairs; on about
+  /// 1 % of small random pairs they stopped short). 0: always the rounds (unit: offsets).
+  double whole_lift_offsets = 1e5;
 };
 
 /// The test of one direction from one drop.
