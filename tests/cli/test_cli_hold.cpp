@@ -194,3 +194,17 @@ TEST(CliHold, AProcessThatRunsFarPastTheRangeIsFollowedToWhereItStops) {
   EXPECT_LT(std::abs(j["hold_angle_backward_max_deg"].get<double>()), 1e-9);
   EXPECT_LT(std::abs(j["inertial_hold_angle_backward_max_deg"].get<double>()), 1e-9);
 }
+
+TEST(CliHold, ARunAwayOverALongOverlapEnds) {
+  // The Dektak scan (1.5 mm) under the non-uniform profile that names no unit (read as metres: a
+  // block 1.7 km long, a unit mix-up): the backward process runs away towards the far end of the
+  // overlap, and the lift beyond the range is followed there in rounds that double (one round
+  // per run-away distance, each planning the range so far, did not end in 300 s). It ends with
+  // the exact analysis.
+  const std::string data = FRICTAL_TEST_DATA;
+  auto r = run_cli("signature " + data + "/profiles/dektak-1.csv " + data + "/profiles/nonuniform.asc --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_TRUE(j["hold_exact"].get<bool>());
+  EXPECT_TRUE(std::isfinite(j["hold_angle_q50_deg"].get<double>()));
+}
