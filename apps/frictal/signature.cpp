@@ -180,6 +180,13 @@ std::function<int()> setup(CLI::App& app) {
                                                   : conditioned(load(a->upper, 1), a->upper, 1);
     for (auto& side : side_warnings)
       for (Warning& w : side) add_warning(warnings, std::move(w));
+    if (!a->upper.empty()) {  // two scans of one pair: of similar size (as predict and tilt check)
+      auto length = [](const Profile& p) { return p.x.back() - p.x.front(); };
+      auto spacing = [&](const Profile& p) { return length(p) / double(p.x.size() - 1); };
+      for (Warning& w : check_pair_scales(length(lower), spacing(lower), length(upper_measured),
+                                          spacing(upper_measured), a->lower, a->upper))
+        add_warning(warnings, std::move(w));
+    }
     if (pv.count("spheroradius")) a->spheroradius = as_real(pv.at("spheroradius"));
     const double runaway = pv.count("runaway_distance") ? as_real(pv.at("runaway_distance")) : 0.0;
     require(!a->no_hold || (std::isnan(a->start_offset) && runaway == 0),

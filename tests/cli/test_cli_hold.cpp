@@ -207,4 +207,8 @@ TEST(CliHold, ARunAwayOverALongOverlapEnds) {
   const json j = json::parse(r.out);
   EXPECT_TRUE(j["hold_exact"].get<bool>());
   EXPECT_TRUE(std::isfinite(j["hold_angle_q50_deg"].get<double>()));
+  // The mix-up named, as `predict` names it: lengths 0.0015 m and 1685 m (by the files' x columns).
+  bool named = false;
+  for (const auto& w : j["warnings"]) named = named || w["code"] == "scale-mismatch";
+  EXPECT_TRUE(named) << j["warnings"].dump();
 }
