@@ -157,10 +157,10 @@ Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* up
 /// over: a profile pair's points move through the conditioning into the signature instead of
 /// being copied (10^7 points are 160 MB a copy; `frictal predict` on two such profiles peaks at
 /// about the memory of `frictal signature`). The same prediction to the bit. One difference:
-/// where the one pass's lift beyond the range falls short (rare: seen on exactly sampled grooves,
-/// not on measured or random pairs; the other overload then analyses again from the profiles it
-/// still has), this one returns
-/// an Internal error, and the caller may call the other overload with the surfaces read again.
+/// where the one pass's analysis finds its lift beyond the range too short (rare: seen once, on
+/// exactly sampled grooves; the other overload then analyses again from the profiles it still
+/// has), this one returns an Internal error, and the caller may call the other overload with the
+/// surfaces read again.
 /// Maps are read as by the other overload.
 Result<Prediction> predict(PredictSurface&& lower, std::optional<PredictSurface>&& upper,
                            const PredictOptions& options = {});

@@ -1784,10 +1784,9 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     // 10^5 by default): the end checks are a saving for long pairs only, and on about 1 % of
     // small random pairs they let a lift through that is too short for the process (session 21:
     // 3 of 400, against the lift over the whole overlap).
-    if (!sampled && R.offset.size() >= 2) {
-      const double span = R.offset.back() - R.offset.front();
-      const double per_m = double(R.offset.size() - 1) / std::max(span, std::numeric_limits<double>::min());
-      if (span > 0 && (whole.max - whole.min) * per_m <= S.ho.whole_lift_offsets)
+    if (const double span = R.offset.empty() ? 0.0 : R.offset.back() - R.offset.front(); !sampled && span > 0) {
+      const double per_m = double(R.offset.size() - 1) / span;  // the signature's offsets per metre
+      if ((whole.max - whole.min) * per_m <= S.ho.whole_lift_offsets)
         m_lo = m_hi = std::numeric_limits<double>::infinity();
     }
     // Exact mode: a side whose check passed is not widened again, and the points near its end do
