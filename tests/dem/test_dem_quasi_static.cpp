@@ -352,7 +352,7 @@ TEST(DemTilt, ConstantRateFromRestWithGravityTurningReadsKochK0AndFlatAngles) {
   EXPECT_NEAR(f->friction_angle / kDeg, std::atan(0.3) / kDeg, 0.1);
 }
 
-TEST(DemTilt, SlowTiltFromRestOfTheIssuesWmPairReadsInsideTheHoldBracket) {
+TEST(DemTilt, SlowTiltFromRestOfTheReferenceWmPairReadsInsideTheHoldBracket) {
   // The dynamic test from rest that issue 23 asks about: the issue's WM pair, rotation held,
   // r = 2e-5 m, d = 1 cm, k_n = 6e7 N/m, contact rule closest, relaxed at zero tilt, gravity
   // turning at 0.005 rad/s. From the rest offset (23.8 mm) the issue's independent numpy values
