@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""Issue 32's check: `frictal signature --json` with the hold analysis (default) against
-`--no-hold`, on issue 32's three 10^7-point pairs, for two builds A and B, runs alternating
-(A default, A --no-hold, B default, B --no-hold, repeated), and whether B prints the same numbers
-as A.
+"""`frictal signature --json` with the hold analysis (default) against `--no-hold`, on three
+10^7-point pairs (self-affine H = 0.8 and 0.3, a 12-scale WM pair), for two builds A and B, runs
+alternating (A default, A --no-hold, B default, B --no-hold, repeated), and whether B prints the
+same numbers as A.
 
 Pairs (made when missing, under --data): self-affine H = 0.8 and H = 0.3 (bench/make_pairs.py's
 self_affine: Fourier-filtered white noise, spacing 1 nm, rms 1 um, seeds 1 and 2; written as .npy,
