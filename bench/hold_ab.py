@@ -99,8 +99,8 @@ def main():
                 for tag, binary in (("A", a.a), ("B", a.b)):
                     for mode in ("default", "no-hold"):
                         # --no-hold takes no --start-offset: the plain signature is the reference
-                        # --detrend none: the same surfaces for builds on either side of the default form's
-                        # change (none until 2026-11-27, then a line; the hold analysis is the same either way)
+                        # --detrend none: the same surfaces for builds whose default form differs (none
+                        # or a line; the hold analysis is the same either way)
                         argv = ["signature"] + files + ["--json", "--detrend", "none"] + \
                             (["--no-hold"] if mode == "no-hold" else extra)
                         keep = os.path.join(a.data, f"out-{tag}.json") if r == 0 and mode == "default" else None
