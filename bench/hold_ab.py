@@ -59,7 +59,7 @@ def flat(j, prefix=""):
             continue
         if isinstance(v, dict):
             out.update(flat(v, prefix + k + "."))
-        elif k == "warnings":  # a set: before e1f6b93+ the two readers' warnings came in either order
+        elif k == "warnings":  # a set: builds before commit e1f6b93 print the two readers' warnings in either order
             out[prefix + k] = sorted(json.dumps(w, sort_keys=True) for w in v)
         else:
             out[prefix + k] = v
