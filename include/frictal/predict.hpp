@@ -42,9 +42,15 @@ struct PredictOptions {
   /// Sliding direction, from +x towards +y (unit: rad). Profiles: 0 (+x) or pi (-x) only.
   double direction = 0;
   double atomic_friction = 0;  ///< mu_a >= 0 (unitless)
-  /// Run-away distance d that a test reads (unit: m); 0: the shared default (hold.hpp's
-  /// default_runaway_distance for profiles, a tenth of half the lower map along d for maps).
+  /// The stated test (docs/theory.md, "The stated test"). Run-away distance d: how far the block
+  /// must slide from its last stop to count as sliding for good (unit: m); 0: the default,
+  /// default_test_lengths() (profiles and maps alike; never a fraction of the scan).
   double runaway_distance = 0;
+  /// Profiles: the block's length L_b, the piece of the upper surface (its middle) that slides
+  /// over the lower one; drops over every offset at which it lies wholly over the lower scan
+  /// (unit: m). 0: the default, default_test_lengths(). A periodic pair (`period`) slides the
+  /// whole upper profile, as the paper's blocks: 0 only.
+  double block_length = 0;
   /// Form removal before the prediction; nullopt: a line for profiles (the mean for periodic
   /// ones, which have no form), a plane for maps (the default of every front end).
   /// DetrendKind::None opts out.
@@ -104,6 +110,14 @@ struct Prediction {
   double direction = 0;                                  ///< (unit: rad)
   double atomic_friction = 0;                            ///< mu_a (unitless)
   double runaway_distance = 0;                           ///< d used (unit: m)
+  /// Profiles: the block's length L_b used (periodic pairs: the whole upper profile) (unit: m).
+  double block_length = 0;
+  /// How d and L_b were set: "given", or the default's rule with its numbers (text).
+  std::string test_lengths;
+  /// How the answer depends on d: the hold angle's median and 5-95 % over the same drops for
+  /// d/4, d/2, d, 2d, 4d (those that fit in the blocks' overlap), from the one lift; the entry at
+  /// d is the headline (profiles; maps: empty) (unit: m, rad).
+  std::vector<double> d_sweep_distance, d_sweep_q05, d_sweep_q50, d_sweep_q95;
   bool single_drop = false;  ///< start_offset was given: the statistics are that drop's value
   std::size_t drops = 0;     ///< drops the distribution is over (profiles: basins that drain them)
   /// Drop range: profiles [min, max, 0, 0]; maps [u_min, u_max, v_min, v_max] along and across d (unit: m),
@@ -131,6 +145,23 @@ struct Prediction {
   std::vector<std::array<double, 2>> drop_offsets;  ///< maps: the drops (x, y) (unit: m)
   std::vector<Warning> warnings;
 };
+
+/// The stated test's default lengths (docs/theory.md, "The stated test"; why these numbers):
+/// the run-away distance d is kRunawayPerSpacing sampling intervals of the (conditioned) lower
+/// profile, the block kBlockPerRunaway d long; a scan holds the test when the lower scan is at
+/// least L_b + kRoomPerRunaway d long and the upper scan at least L_b (else predict() answers
+/// the largest test of the same shape that fits, warning scan-too-short). None of them is a
+/// fraction of the scan's length: a crop of a scan has the same defaults (unitless counts).
+inline constexpr double kRunawayPerSpacing = 64;
+inline constexpr double kBlockPerRunaway = 20;
+inline constexpr double kRoomPerRunaway = 4;
+struct StatedTest {
+  double runaway_distance = 0;  ///< d (unit: m)
+  double block_length = 0;      ///< L_b (unit: m)
+  std::string rule;             ///< how d was derived, with its numbers (text)
+};
+/// The default test for a profile pair whose (conditioned) lower profile is `lower`.
+StatedTest default_test_lengths(const Profile& lower);
 
 /// A surface as the front ends hand it over: a profile or a map, with the name that messages use
 /// and the warnings its reader issued (code "reader").

@@ -102,6 +102,29 @@ double mean_spacing(const Profile& p) {
   return p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0;
 }
 
+// The piece [x0, x1] of a profile (within its range), its ends linearly interpolated.
+Profile piece(const Profile& p, double x0, double x1) {
+  x0 = std::max(x0, p.x.front());
+  x1 = std::min(x1, p.x.back());
+  Profile out;
+  auto at = [&](double x) {
+    const auto it = std::upper_bound(p.x.begin(), p.x.end(), x);
+    const std::size_t k = std::clamp<std::size_t>(std::size_t(it - p.x.begin()), 1, p.x.size() - 1);
+    const double w = p.x[k] - p.x[k - 1];
+    if (!(w > 0)) return p.z[k];
+    const double t = (x - p.x[k - 1]) / w;
+    return p.z[k - 1] + t * (p.z[k] - p.z[k - 1]);
+  };
+  const double tol = 1e-9 * (p.x.back() - p.x.front());
+  out.x.push_back(x0);
+  out.z.push_back(at(x0));
+  for (std::size_t i = 0; i < p.x.size(); ++i)
+    if (p.x[i] > x0 + tol && p.x[i] < x1 - tol) out.x.push_back(p.x[i]), out.z.push_back(p.z[i]);
+  out.x.push_back(x1);
+  out.z.push_back(at(x1));
+  return out;
+}
+
 // `take_lower` / `take_upper` (may be null): the surfaces' profiles to take over (moved through the
 // conditioning into the signature; then no second analysis from them where the one pass's lift
 // falls short: signature_with_hold's Internal error instead).
@@ -155,13 +178,69 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     if (auto st = validate(*lo, lower.name); !st) return st.error();
     if (auto st = validate(up_measured, upper ? upper->name : lower.name); !st) return st.error();
   }
-  Profile up = rotate180(std::move(up_measured));  // in place (memory: 10^7 points are 160 MB a copy)
+  // The stated test: the block's length L_b and the run-away distance d (never a fraction of the
+  // scan: default_test_lengths), and where the scan is too short for it, the largest test of the
+  // same shape that fits, with a warning that says so.
   const bool lower_periodic = lo->period.has_value();
+  const double lower_len = lo->x.back() - lo->x.front(), upper_len = up_measured.x.back() - up_measured.x.front();
+  double d = o.runaway_distance, lb = o.block_length;
   SignatureOptions so;
   so.threads = o.threads;
   so.keep_contacts = false;
+  if (lower_periodic) {
+    if (o.block_length > 0)
+      return make_error(fmt::format(
+          "block length {:.6g} m: a periodic pair slides the whole upper profile (a whole number of periods, as "
+          "the paper's blocks); leave the block length unset, or drop the period",
+          o.block_length));
+    lb = upper_len;
+    if (!(d > 0)) d = *lo->period;
+    p.test_lengths = o.runaway_distance > 0 ? "d given; block: the whole upper profile (periodic)"
+                                            : "d: one period; block: the whole upper profile (periodic)";
+  } else {
+    const StatedTest def = default_test_lengths(*lo);
+    const bool given_d = d > 0, given_lb = lb > 0;
+    if (!given_d) d = def.runaway_distance;
+    if (!given_lb) lb = given_d && !(def.block_length > 0) ? kBlockPerRunaway * d : def.block_length;
+    if (!given_d && given_lb && o.runaway_distance == 0 && def.runaway_distance > lb / kBlockPerRunaway)
+      d = lb / kBlockPerRunaway;  // a stated block shorter than the default's: the same shape
+    p.test_lengths = fmt::format("d: {}; block: {}", given_d ? "given" : def.rule,
+                                 given_lb ? "given" : fmt::format("{:g} d", lb / d));
+    // The largest test of this shape that the scans hold: the block within the upper scan, and
+    // sliding room L - L_b of at least kRoomPerRunaway d over the lower one.
+    const double f = std::min({1.0, upper_len / lb, lower_len / (lb + kRoomPerRunaway * d)});
+    if (f < 1) {
+      const double lb_f = f * lb, d_f = f * d;
+      add_warning(p.warnings,
+                  {"scan-too-short",
+                   fmt::format("the stated test (a block of {:.4g} m, d = {:.4g} m) needs a lower scan of {:.4g} m "
+                               "(the block and {:g} d of sliding room) and an upper scan of {:.4g} m; the scans are "
+                               "{:.4g} m and {:.4g} m: the answer is for the largest test of that shape they hold, "
+                               "a block of {:.4g} m and d = {:.4g} m (a shorter test reads other angles: measure "
+                               "longer scans, or state a shorter test with --block-length and --runaway-distance)",
+                               lb, d, lb + kRoomPerRunaway * d, kRoomPerRunaway, lb, lower_len, upper_len, lb_f, d_f)});
+      lb = lb_f;
+      d = d_f;
+    }
+    // The block: the middle of the upper scan, L_b long (its ends interpolated).
+    const double mid = 0.5 * (up_measured.x.front() + up_measured.x.back());
+    up_measured = piece(up_measured, mid - 0.5 * lb, mid + 0.5 * lb);
+    lb = up_measured.x.back() - up_measured.x.front();
+    // Drops: every offset at which the block lies wholly over the lower scan (0: left ends aligned).
+    so.offset_min = 0;
+    so.offset_max = std::max(lower_len - lb, 1e-9 * lower_len);
+  }
+  p.block_length = lb;
+  Profile up = rotate180(std::move(up_measured));  // in place (memory: 10^7 points are 160 MB a copy)
+  // One lift for the headline and the sweep over d: analysed for the largest d of the sweep that
+  // the blocks' overlap allows (the lift then reaches every stop that a smaller d needs).
+  const std::array<double, 5> sweep = {0.25, 0.5, 1, 2, 4};
+  const double overlap = std::min(lower_len, lb);
+  double d_lift = d;
+  for (double k : sweep)
+    if (lower_periodic || k * d < overlap * (1 - 1e-9)) d_lift = std::max(d_lift, k * d);
   HoldOptions ho;
-  ho.runaway_distance = o.runaway_distance;
+  ho.runaway_distance = d_lift;
   ho.atomic_friction = o.atomic_friction;
   const bool one = std::isfinite(o.start_offset[0]);
   // The bound and the hold analysis from one pass over the lift (not a signature each).
@@ -174,23 +253,45 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   if (!both) return both.error();
   const SignatureResult* sig = &both->signature;
   const HoldAnalysis* h = &both->hold;
-  const HoldDistribution& d = forward ? h->distribution.forward : h->distribution.backward;
-  p.runaway_distance = h->runaway_distance;
-  p.drops = d.basins.rest.size();
-  p.drop_range = {d.drop_min, d.drop_max, 0, 0};
+  // Every d of the sweep on that lift, over the same drops.
+  HoldOptions hk = ho;
+  hk.drop_min = h->distribution.forward.drop_min;
+  hk.drop_max = h->distribution.forward.drop_max;
+  HoldDistribution at_d;
+  HoldAngles start_at_d;
+  for (double k : sweep) {
+    if (!lower_periodic && !(k * d < overlap * (1 - 1e-9))) continue;
+    hk.runaway_distance = k * d;
+    auto dist = hold_distribution(h->curve, hk);
+    if (!dist) return dist.error();
+    const HoldDistribution& dd = forward ? dist->forward : dist->backward;
+    if (k == 1) at_d = dd;
+    if (one && k == 1) {
+      auto a = hold_angle(h->curve, start, hk);
+      if (!a) return a.error();
+      start_at_d = *a;
+    }
+    p.d_sweep_distance.push_back(k * d);
+    p.d_sweep_q05.push_back(dd.hold.q05);
+    p.d_sweep_q50.push_back(dd.hold.q50);
+    p.d_sweep_q95.push_back(dd.hold.q95);
+  }
+  p.runaway_distance = d;
+  p.drops = at_d.basins.rest.size();
+  p.drop_range = {at_d.drop_min, at_d.drop_max, 0, 0};
   if (one) {
-    const HoldAngle& a = forward ? h->start.forward : h->start.backward;
+    const HoldAngle& a = forward ? start_at_d.forward : start_at_d.backward;
     p.single_drop = true;
     p.start_offset = {o.start_offset[0], 0};
     p.rest_offset = {a.rest_offset, 0};
     p.friction_angle = plain_stats({a.hold_angle});
     p.drops = 1;
   } else {
-    p.friction_angle = d.hold;
+    p.friction_angle = at_d.hold;
     if (p.drops < 3 && !lower_periodic)
       add_warning(p.warnings, {"few-drops", fmt::format("the drops over [{:.6g}, {:.6g}] m drain into {} basin(s) "
                                                         "only: the spread is not resolved",
-                                                        d.drop_min, d.drop_max, p.drops)});
+                                                        at_d.drop_min, at_d.drop_max, p.drops)});
   }
   finish(p, forward ? sig->theta_max_forward : sig->theta_max_backward, sig->contact_slope_std);
   return p;
@@ -386,6 +487,15 @@ ArealTiltOptions map_model_options(const Map& lower, const ArealTiltOptions& sim
 
 double map_work_estimate(std::size_t upper_spheres, std::size_t drops) {
   return double(upper_spheres) * 2.5e-7 * double(drops);
+}
+
+StatedTest default_test_lengths(const Profile& lower) {
+  StatedTest t;
+  const double dx = lower.x.size() > 1 ? (lower.x.back() - lower.x.front()) / double(lower.x.size() - 1) : 0;
+  t.runaway_distance = kRunawayPerSpacing * dx;
+  t.block_length = kBlockPerRunaway * t.runaway_distance;
+  t.rule = fmt::format("{:g} sampling intervals of the lower scan ({:.4g} m each)", kRunawayPerSpacing, dx);
+  return t;
 }
 
 Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name) {
