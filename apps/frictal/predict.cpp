@@ -74,6 +74,16 @@ void print_text(const Prediction& p, const Args& a) {
              p.is_map ? "rigid block free to move sideways, off the grid, quasi-static"
                       : "rigid quasi-static hold angle on the exact lift",
              p.drops, p.is_map ? "drops" : "basins", range, p.runaway_distance, p.conditioning);
+  if (!p.is_map)
+    fmt::print("  the test: a block of {:.4g} m, sliding for good after d = {:.4g} m ({})\n", p.block_length,
+               p.runaway_distance, p.test_lengths);
+  if (!p.d_sweep_distance.empty() && !p.single_drop) {
+    fmt::print("  how the answer depends on d (same drops):\n    {:>12}  {:>10}  {:>17}\n", "d (m)", "median (deg)", "5-95 % (deg)");
+    for (std::size_t i = 0; i < p.d_sweep_distance.size(); ++i)
+      fmt::print("    {:>12.4g}  {:>10}  {:>17}{}\n", p.d_sweep_distance[i], deg_text(p.d_sweep_q50[i]),
+                 fmt::format("{} - {}", deg_text(p.d_sweep_q05[i]), deg_text(p.d_sweep_q95[i])),
+                 p.d_sweep_distance[i] == p.runaway_distance ? "  <- d" : "");
+  }
   if (!p.warnings.empty())
     fmt::print("  {} warning(s) on standard error: {}\n", p.warnings.size(), [&] {
       std::string s;
@@ -114,9 +124,9 @@ std::function<int()> setup(CLI::App& app) {
   // The stated test: lengths with a unit (predict.hpp's defaults, named in the help).
   app.add_option("--runaway-distance", a->runaway,
                  fmt::format("The test: how far the block slides from its last stop to count as sliding for good, a "
-                             "length such as 10um (no unit: m). Default: {:g} sampling intervals of the lower scan "
-                             "(periodic: one period); never a fraction of the scan",
-                             kRunawayPerSpacing));
+                             "length such as 10um (no unit: m). Default: {:g} slope correlation lengths of the lower "
+                             "scan (periodic: one period); never a fraction of the scan's length",
+                             kRunawayPerSlopeCorrelation));
   app.add_option("--block-length", a->block,
                  fmt::format("The test: length of the upper block, the middle piece of UPPER that slides over LOWER "
                              "(drops wherever it lies wholly on LOWER), a length such as 0.2mm (no unit: m). Default: "

@@ -146,13 +146,15 @@ struct Prediction {
   std::vector<Warning> warnings;
 };
 
-/// The stated test's default lengths (docs/theory.md, "The stated test"; why these numbers):
-/// the run-away distance d is kRunawayPerSpacing sampling intervals of the (conditioned) lower
-/// profile, the block kBlockPerRunaway d long; a scan holds the test when the lower scan is at
-/// least L_b + kRoomPerRunaway d long and the upper scan at least L_b (else predict() answers
-/// the largest test of the same shape that fits, warning scan-too-short). None of them is a
-/// fraction of the scan's length: a crop of a scan has the same defaults (unitless counts).
-inline constexpr double kRunawayPerSpacing = 64;
+/// The stated test's default lengths (docs/theory.md, "The stated test", says why these
+/// numbers): the run-away distance d is kRunawayPerSlopeCorrelation slope correlation lengths of
+/// the (conditioned) lower profile (slope_correlation_length; where it has none, that many
+/// sampling intervals; never less than one sampling interval), the block kBlockPerRunaway d long. A scan holds the test when the lower
+/// scan is at least L_b + kRoomPerRunaway d long and the upper one at least L_b; else predict()
+/// answers the largest test of the same shape that fits, with the warning scan-too-short. None of
+/// them is a fraction of the scan's length: a crop of a stationary surface has the same defaults
+/// within the estimate's scatter (unitless counts).
+inline constexpr double kRunawayPerSlopeCorrelation = 12.5;
 inline constexpr double kBlockPerRunaway = 20;
 inline constexpr double kRoomPerRunaway = 4;
 struct StatedTest {
@@ -160,6 +162,13 @@ struct StatedTest {
   double block_length = 0;      ///< L_b (unit: m)
   std::string rule;             ///< how d was derived, with its numbers (text)
 };
+/// The slope correlation length of a profile (unit: m): the lag at which the autocorrelation of
+/// its slope (averaged over cells of an eighth of the mean spacing, at most 2^20 cells; mean
+/// removed) first falls below 1/e, interpolated linearly. A local statistic: for a stationary
+/// surface it does not grow with the scan (unlike the heights' correlation length, which on a
+/// self-affine scan is a fixed fraction of it). 0 for a flat profile or slopes correlated over
+/// half the scan.
+double slope_correlation_length(const Profile& p);
 /// The default test for a profile pair whose (conditioned) lower profile is `lower`.
 StatedTest default_test_lengths(const Profile& lower);
 

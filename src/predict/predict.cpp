@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <mutex>
 #include <numbers>
 
@@ -12,6 +13,7 @@
 #include "frictal/areal_tilt.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
+#include "util/fft.hpp"
 #include "util/parallel.hpp"
 
 namespace frictal {
@@ -489,12 +491,61 @@ double map_work_estimate(std::size_t upper_spheres, std::size_t drops) {
   return double(upper_spheres) * 2.5e-7 * double(drops);
 }
 
+double slope_correlation_length(const Profile& p) {
+  const std::size_t n = p.x.size();
+  const double len = n > 1 ? p.x.back() - p.x.front() : 0;
+  if (!(len > 0)) return 0;
+  // The slope averaged over M equal cells (exact for cells inside one segment), its mean removed.
+  const std::size_t m = std::clamp<std::size_t>(8 * (n - 1), 4096, std::size_t(1) << 20);
+  const double h = len / double(m);
+  std::vector<double> zc(m + 1);
+  std::size_t k = 1;
+  for (std::size_t i = 0; i <= m; ++i) {
+    const double x = i == m ? p.x.back() : p.x.front() + double(i) * h;
+    while (k + 1 < n && p.x[k] <= x) ++k;
+    const double w = p.x[k] - p.x[k - 1];
+    zc[i] = w > 0 ? p.z[k - 1] + (x - p.x[k - 1]) / w * (p.z[k] - p.z[k - 1]) : p.z[k];
+  }
+  std::vector<double> s(m);
+  double mean = 0;
+  for (std::size_t i = 0; i < m; ++i) mean += (s[i] = (zc[i + 1] - zc[i]) / h);
+  mean /= double(m);
+  std::size_t size = 1;
+  while (size < 2 * m) size <<= 1;
+  std::vector<std::complex<double>> a(size, 0.0);
+  for (std::size_t i = 0; i < m; ++i) a[i] = s[i] - mean;
+  util::dft(a);
+  for (auto& v : a) v = std::norm(v);
+  util::dft(a, true);
+  const double r0 = a[0].real() / double(m);
+  if (!(r0 > 0)) return 0;  // no slope variation: a flat profile
+  const double target = std::exp(-1.0);
+  double prev = 1;
+  for (std::size_t lag = 1; lag < m / 2; ++lag) {
+    const double r = a[lag].real() / double(m - lag) / r0;
+    if (r < target) return (double(lag) - 1 + (prev - target) / (prev - r)) * h;
+    prev = r;
+  }
+  return 0;  // the slopes stay correlated over half the scan: no local length to read
+}
+
 StatedTest default_test_lengths(const Profile& lower) {
   StatedTest t;
+  const double xi = slope_correlation_length(lower);
   const double dx = lower.x.size() > 1 ? (lower.x.back() - lower.x.front()) / double(lower.x.size() - 1) : 0;
-  t.runaway_distance = kRunawayPerSpacing * dx;
+  if (xi > 0) {
+    // The scan resolves no slope structure finer than its sampling interval (a rounded x column
+    // makes neighbouring slopes alternate, which the cells would read as a shorter length).
+    const double l = std::max(xi, dx);
+    t.runaway_distance = kRunawayPerSlopeCorrelation * l;
+    t.rule = fmt::format("{:g} slope correlation lengths of the lower scan ({:.4g} m{})", kRunawayPerSlopeCorrelation,
+                         l, xi < dx ? ", its sampling interval" : "");
+  } else {
+    t.runaway_distance = kRunawayPerSlopeCorrelation * dx;
+    t.rule = fmt::format("{:g} sampling intervals of the lower scan ({:.4g} m; its slopes have no correlation length)",
+                         kRunawayPerSlopeCorrelation, dx);
+  }
   t.block_length = kBlockPerRunaway * t.runaway_distance;
-  t.rule = fmt::format("{:g} sampling intervals of the lower scan ({:.4g} m each)", kRunawayPerSpacing, dx);
   return t;
 }
 
