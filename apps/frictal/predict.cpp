@@ -27,8 +27,8 @@ struct Args {
   bool quiet = false;
   InputOptions input;
   ConditioningOptions cond;
-  FieldWords period_words;  ///< --period (the tilt table's field)
-  std::string runaway, block;  ///< --runaway-distance, --block-length: lengths with a unit
+  FieldWords period_words;  ///< --runaway-distance, --period (the tilt table's fields)
+  std::string block;        ///< --block-length: a length with a unit
 };
 
 PredictSurface read_input(const std::string& path, const InputOptions& o) {
@@ -121,19 +121,18 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
   add_input_options(app, a->input);
-  // The stated test: lengths with a unit (predict.hpp's defaults, named in the help).
-  app.add_option("--runaway-distance", a->runaway,
-                 fmt::format("The test: how far the block slides from its last stop to count as sliding for good, a "
-                             "length such as 10um (no unit: m). Default: {:g} slope correlation lengths of the lower "
-                             "scan (periodic: one period); never a fraction of the scan's length",
-                             kRunawayPerSlopeCorrelation));
+  // The stated test's block: a length with a unit (predict.hpp's default, named in the help).
   app.add_option("--block-length", a->block,
                  fmt::format("The test: length of the upper block, the middle piece of UPPER that slides over LOWER "
-                             "(drops wherever it lies wholly on LOWER), a length such as 0.2mm (no unit: m). Default: "
-                             "{:g} run-away distances (periodic pairs: the whole profile)",
+                             "(drops wherever it lies wholly on LOWER), a length such as 0.2mm (no unit: m); whole: all of "
+                             "UPPER, dropped over the first half of LOWER (the blocks of `frictal tilt` on files). "
+                             "Default: {:g} run-away distances (periodic pairs: the whole profile)",
                              kBlockPerRunaway));
-  // --period: the tilt table's field (one description everywhere).
-  add_field_options(app, tilt_settings(), a->period_words, all_but(tilt_settings(), "period"));
+  // --runaway-distance (d of the stated test) and --period: the tilt table's fields (one
+  // description everywhere; lengths may name their unit).
+  std::vector<std::string> skip = all_but(tilt_settings(), "runaway_distance");
+  skip.erase(std::remove(skip.begin(), skip.end(), "period"), skip.end());
+  add_field_options(app, tilt_settings(), a->period_words, skip);
   app.add_flag("--json", a->json, "Print the prediction as one JSON object (the keys of `frictal columns`)");
   return [a]() {
     require(std::isfinite(a->direction), fmt::format("--direction {}: expected a finite angle in deg", a->direction));
@@ -148,8 +147,12 @@ std::function<int()> setup(CLI::App& app) {
     o.turn_over_upper = !a->in_place;
     o.progress = drop_progress("predict", a->quiet);
     o.threads = a->threads;
-    if (!a->runaway.empty()) o.runaway_distance = parse_length_option(a->runaway, "--runaway-distance");
-    if (!a->block.empty()) o.block_length = parse_length_option(a->block, "--block-length");
+    if (const ValueSet rv = si_values(tilt_settings(), a->period_words); rv.count("runaway_distance"))
+      o.runaway_distance = as_real(rv.at("runaway_distance"));
+    if (a->block == "whole")
+      o.block_length = -1;
+    else if (!a->block.empty())
+      o.block_length = parse_length_option(a->block, "--block-length");
     if (const ValueSet pv = si_values(tilt_settings(), a->period_words); pv.count("period"))
       o.period = as_real(pv.at("period"));
     PredictSurface lower = read_input(a->lower, a->input);

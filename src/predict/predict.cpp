@@ -127,6 +127,26 @@ Profile piece(const Profile& p, double x0, double x1) {
   return out;
 }
 
+// The lift over [a, b] (inside its range), its ends interpolated: the same piecewise-linear h.
+LiftCurve cut_curve(const LiftCurve& c, double a, double b) {
+  LiftCurve out;
+  auto at = [&](double s) {
+    const auto it = std::upper_bound(c.offset.begin(), c.offset.end(), s);
+    const std::size_t k = std::clamp<std::size_t>(std::size_t(it - c.offset.begin()), 1, c.offset.size() - 1);
+    const double t = (s - c.offset[k - 1]) / (c.offset[k] - c.offset[k - 1]);
+    return c.lift[k - 1] + t * (c.lift[k] - c.lift[k - 1]);
+  };
+  a = std::max(a, c.offset.front());
+  b = std::min(b, c.offset.back());
+  out.offset.push_back(a);
+  out.lift.push_back(at(a));
+  for (std::size_t i = 0; i < c.offset.size(); ++i)
+    if (c.offset[i] > a && c.offset[i] < b) out.offset.push_back(c.offset[i]), out.lift.push_back(c.lift[i]);
+  out.offset.push_back(b);
+  out.lift.push_back(at(b));
+  return out;
+}
+
 // `take_lower` / `take_upper` (may be null): the surfaces' profiles to take over (moved through the
 // conditioning into the signature; then no second analysis from them where the one pass's lift
 // falls short: signature_with_hold's Internal error instead).
@@ -186,11 +206,12 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   const bool lower_periodic = lo->period.has_value();
   const double lower_len = lo->x.back() - lo->x.front(), upper_len = up_measured.x.back() - up_measured.x.front();
   double d = o.runaway_distance, lb = o.block_length;
+  bool whole_block = false;
   SignatureOptions so;
   so.threads = o.threads;
   so.keep_contacts = false;
   if (lower_periodic) {
-    if (o.block_length > 0)
+    if (o.block_length != 0)
       return make_error(fmt::format(
           "block length {:.6g} m: a periodic pair slides the whole upper profile (a whole number of periods, as "
           "the paper's blocks); leave the block length unset, or drop the period",
@@ -200,16 +221,30 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     p.test_lengths = o.runaway_distance > 0 ? "d given; block: the whole upper profile (periodic)"
                                             : "d: one period; block: the whole upper profile (periodic)";
   } else {
-    const StatedTest def = default_test_lengths(*lo);
-    const bool given_d = d > 0, given_lb = lb > 0;
-    if (!given_d) d = def.runaway_distance;
-    if (!given_lb) lb = given_d && !(def.block_length > 0) ? kBlockPerRunaway * d : def.block_length;
-    if (!given_d && given_lb && o.runaway_distance == 0 && def.runaway_distance > lb / kBlockPerRunaway)
-      d = lb / kBlockPerRunaway;  // a stated block shorter than the default's: the same shape
-    p.test_lengths = fmt::format("d: {}; block: {}", given_d ? "given" : def.rule,
-                                 given_lb ? "given" : fmt::format("{:g} d", lb / d));
+    const bool given_d = d > 0;
+    std::string d_rule = "given";
+    if (!given_d) {
+      const StatedTest def = default_test_lengths(*lo);
+      d = def.runaway_distance;
+      d_rule = def.rule;
+    }
+    if (lb < 0) {
+      // The whole upper profile over the first half of the lower one (the blocks of `frictal tilt`
+      // on files): the signature's own drop range, no piece cut.
+      p.test_lengths = "d: " + d_rule + "; block: the whole upper profile, dropped over the first half of the lower one";
+      whole_block = true;
+      lb = upper_len;
+    } else {
+      const bool given_lb = lb > 0;
+      if (!given_lb) lb = kBlockPerRunaway * d;
+      p.test_lengths =
+          fmt::format("d: {}; block: {}", d_rule, given_lb ? "given" : fmt::format("{:g} d", kBlockPerRunaway));
+    }
+  }
+  if (!lower_periodic && !whole_block) {
     // The largest test of this shape that the scans hold: the block within the upper scan, and
-    // sliding room L - L_b of at least kRoomPerRunaway d over the lower one.
+    // sliding room L - L_b of at least kRoomPerRunaway d over the lower one (drops over all but
+    // kEndRoomPerRunaway d at each end).
     const double f = std::min({1.0, upper_len / lb, lower_len / (lb + kRoomPerRunaway * d)});
     if (f < 1) {
       const double lb_f = f * lb, d_f = f * d;
@@ -234,15 +269,8 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   }
   p.block_length = lb;
   Profile up = rotate180(std::move(up_measured));  // in place (memory: 10^7 points are 160 MB a copy)
-  // One lift for the headline and the sweep over d: analysed for the largest d of the sweep that
-  // the blocks' overlap allows (the lift then reaches every stop that a smaller d needs).
-  const std::array<double, 5> sweep = {0.25, 0.5, 1, 2, 4};
-  const double overlap = std::min(lower_len, lb);
-  double d_lift = d;
-  for (double k : sweep)
-    if (lower_periodic || k * d < overlap * (1 - 1e-9)) d_lift = std::max(d_lift, k * d);
   HoldOptions ho;
-  ho.runaway_distance = d_lift;
+  ho.runaway_distance = d;
   ho.atomic_friction = o.atomic_friction;
   const bool one = std::isfinite(o.start_offset[0]);
   // The bound and the hold analysis from one pass over the lift (not a signature each).
@@ -255,21 +283,35 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   if (!both) return both.error();
   const SignatureResult* sig = &both->signature;
   const HoldAnalysis* h = &both->hold;
-  // Every d of the sweep on that lift, over the same drops.
+  // The lift the test runs on, and its drops. A stated block: the lift where it lies wholly on
+  // the lower scan, [0, L - L_b] (a slip that reaches an end has slid off the scan), drops over
+  // it with kEndRoomPerRunaway d of room at each end; so every d of the sweep reads the same
+  // lift, which does not depend on how far the analysis above widened it. The whole block
+  // (periodic, or `whole`): the analysis' own lift and drops.
+  LiftCurve stated_curve;
+  const LiftCurve* curve = &h->curve;
   HoldOptions hk = ho;
   hk.drop_min = h->distribution.forward.drop_min;
   hk.drop_max = h->distribution.forward.drop_max;
+  if (!lower_periodic && !whole_block) {
+    stated_curve = cut_curve(h->curve, so.offset_min, so.offset_max);
+    curve = &stated_curve;
+    const double room = kEndRoomPerRunaway * d;
+    hk.drop_min = so.offset_min + room;
+    hk.drop_max = std::max(so.offset_max - room, hk.drop_min + 1e-9 * lower_len);
+  }
+  // Every d of the sweep on that one lift, over the same drops (linear in its vertices each).
+  constexpr std::array<double, 5> sweep = {0.25, 0.5, 1, 2, 4};
   HoldDistribution at_d;
   HoldAngles start_at_d;
   for (double k : sweep) {
-    if (!lower_periodic && !(k * d < overlap * (1 - 1e-9))) continue;
     hk.runaway_distance = k * d;
-    auto dist = hold_distribution(h->curve, hk);
+    auto dist = hold_distribution(*curve, hk);
     if (!dist) return dist.error();
     const HoldDistribution& dd = forward ? dist->forward : dist->backward;
     if (k == 1) at_d = dd;
     if (one && k == 1) {
-      auto a = hold_angle(h->curve, start, hk);
+      auto a = hold_angle(*curve, start, hk);
       if (!a) return a.error();
       start_at_d = *a;
     }
@@ -280,7 +322,7 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   }
   p.runaway_distance = d;
   p.drops = at_d.basins.rest.size();
-  p.drop_range = {at_d.drop_min, at_d.drop_max, 0, 0};
+  p.drop_range = {hk.drop_min, hk.drop_max, 0, 0};
   if (one) {
     const HoldAngle& a = forward ? start_at_d.forward : start_at_d.backward;
     p.single_drop = true;
@@ -293,7 +335,7 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     if (p.drops < 3 && !lower_periodic)
       add_warning(p.warnings, {"few-drops", fmt::format("the drops over [{:.6g}, {:.6g}] m drain into {} basin(s) "
                                                         "only: the spread is not resolved",
-                                                        at_d.drop_min, at_d.drop_max, p.drops)});
+                                                        hk.drop_min, hk.drop_max, p.drops)});
   }
   finish(p, forward ? sig->theta_max_forward : sig->theta_max_backward, sig->contact_slope_std);
   return p;
@@ -339,7 +381,21 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   const double c = std::cos(o.direction), s = std::sin(o.direction);
   const double along = std::abs(c) * lo->width() + std::abs(s) * lo->height();
   const double across = std::abs(s) * lo->width() + std::abs(c) * lo->height();
-  const ArealTiltOptions t = map_model_options(*lo, o);
+  ArealTiltOptions t = map_model_options(*lo, o);
+  if (o.runaway_distance > 0) {
+    p.test_lengths = "d: given; block: the whole upper map";
+  } else {
+    p.test_lengths = "d: " + default_map_runaway_distance(*lo, o.direction).rule + "; block: the whole upper map";
+    // Drops over half the lower map along d need kRoomPerRunaway d of room on it.
+    if (along < 2 * kRoomPerRunaway * t.runaway_distance) {
+      const double dm = along / (2 * kRoomPerRunaway);
+      add_warning(p.warnings, {"scan-too-short",
+                               fmt::format("the stated test's d = {:.4g} m needs a lower map of {:.4g} m along the "
+                                           "direction; it is {:.4g} m: the answer is for d = {:.4g} m",
+                                           t.runaway_distance, 2 * kRoomPerRunaway * t.runaway_distance, along, dm)});
+      t.runaway_distance = dm;
+    }
+  }
   p.runaway_distance = t.runaway_distance;
   // Drops (offsets of the upper map's centre from the lower's). The block's footprint is its
   // nodes' extent widened by the sphere radius r on every side (the spheres that touch). An upper
@@ -461,11 +517,10 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
 }  // namespace
 
 namespace {
-// The map model's defaults where t leaves them unset (<= 0): the run-away distance 5 % of the
-// lower map along t.angle, the sphere radius a fifth of its smaller spacing (m).
+// The map model's defaults where t leaves them unset (<= 0): the run-away distance
+// default_map_runaway_distance, the sphere radius a fifth of the lower map's smaller spacing (m).
 void fill_model_defaults(const Map& lower, ArealTiltOptions& t) {
-  const double along = std::abs(std::cos(t.angle)) * lower.width() + std::abs(std::sin(t.angle)) * lower.height();
-  if (!(t.runaway_distance > 0)) t.runaway_distance = 0.05 * along;
+  if (!(t.runaway_distance > 0)) t.runaway_distance = default_map_runaway_distance(lower, t.angle).runaway_distance;
   if (!(t.sphere_radius > 0)) t.sphere_radius = 0.2 * std::min(lower.dx, lower.dy);
 }
 }  // namespace
@@ -549,6 +604,50 @@ StatedTest default_test_lengths(const Profile& lower) {
   return t;
 }
 
+StatedTest default_map_runaway_distance(const Map& lower, double direction) {
+  // Lines along the grid axis nearer to the direction: up to 32, evenly spaced; each line's
+  // longest run of valid points (at least 16) is a profile.
+  const bool along_x = std::abs(std::cos(direction)) >= std::abs(std::sin(direction));
+  const std::size_t lines = along_x ? lower.ny : lower.nx, len = along_x ? lower.nx : lower.ny;
+  const double h = along_x ? lower.dx : lower.dy;
+  const std::size_t used = std::min<std::size_t>(lines, 32);
+  std::vector<double> xi;
+  for (std::size_t k = 0; k < used; ++k) {
+    const std::size_t line = used > 1 ? k * (lines - 1) / (used - 1) : 0;
+    auto z = [&](std::size_t i) { return along_x ? lower.at(i, line) : lower.at(line, i); };
+    std::size_t best0 = 0, best1 = 0;
+    for (std::size_t i = 0; i < len;) {
+      if (!std::isfinite(z(i))) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      while (j < len && std::isfinite(z(j))) ++j;
+      if (j - i > best1 - best0) best0 = i, best1 = j;
+      i = j;
+    }
+    if (best1 - best0 < 16) continue;
+    Profile p;
+    for (std::size_t i = best0; i < best1; ++i) p.x.push_back(double(i) * h), p.z.push_back(z(i));
+    const double l = slope_correlation_length(p);
+    if (l > 0) xi.push_back(l);
+  }
+  StatedTest t;
+  const char* axis = along_x ? "x" : "y";
+  if (xi.empty()) {
+    t.runaway_distance = kRunawayPerSlopeCorrelation * h;
+    t.rule = fmt::format("{:g} spacings of the lower map along {} ({:.4g} m; its slopes have no correlation length)",
+                         kRunawayPerSlopeCorrelation, axis, h);
+    return t;
+  }
+  std::nth_element(xi.begin(), xi.begin() + std::ptrdiff_t(xi.size() / 2), xi.end());
+  const double l = std::max(xi[xi.size() / 2], h);
+  t.runaway_distance = kRunawayPerSlopeCorrelation * l;
+  t.rule = fmt::format("{:g} slope correlation lengths of the lower map along {} ({:.4g} m, the median over {} lines)",
+                       kRunawayPerSlopeCorrelation, axis, l, xi.size());
+  return t;
+}
+
 Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name) {
   PredictSurface p;
   p.name = name;
@@ -577,6 +676,13 @@ Status check_request(const PredictSurface& lower, const PredictSurface* upper, c
   if (!std::isfinite(o.runaway_distance) || o.runaway_distance < 0)
     return make_error(
         fmt::format("run-away distance {} m: expected a finite length >= 0 (0: the default)", o.runaway_distance));
+  if (!std::isfinite(o.block_length))
+    return make_error(fmt::format("block length {} m: expected a finite length (0: the default, < 0: the whole upper "
+                                  "profile)",
+                                  o.block_length));
+  if (lower.is_map && o.block_length != 0)
+    return make_error(
+        "block length: for profiles only (a map pair's block is the whole upper map; crop it to state another)");
   if (std::isinf(o.start_offset[0]) || !std::isfinite(o.start_offset[1]))
     return make_error("start offset: expected finite offsets (m)");
   if (!lower.is_map && !o.turn_over_upper)
