@@ -636,6 +636,9 @@ std::string d_sweep_figure(const Prediction& p) {
   pl.width = 560;
   pl.height = 300;
   pl.y_min = 0;
+  pl.y_max = 1.4 * *std::max_element(hi.y.begin(), hi.y.end());  // room for the legend above the band
+  pl.x_min = 0.7 * med.x.front();
+  pl.x_max = 1.4 * med.x.back();
   RefLine at;
   at.horizontal = false;
   at.value = p.runaway_distance * scale;
