@@ -242,22 +242,43 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     }
   }
   if (!lower_periodic && !whole_block) {
-    // The largest test of this shape that the scans hold: the block within the upper scan, and
-    // sliding room L - L_b of at least kRoomPerRunaway d over the lower one (drops over all but
-    // kEndRoomPerRunaway d at each end).
-    const double f = std::min({1.0, upper_len / lb, lower_len / (lb + kRoomPerRunaway * d)});
-    if (f < 1) {
-      const double lb_f = f * lb, d_f = f * d;
+    // The test fits where the block lies within the upper scan and the lower one leaves sliding
+    // room L - L_b of at least kRoomPerRunaway d (drops over all but kEndRoomPerRunaway d at each
+    // end). Where it does not, a length that was defaulted gives way (warned, with the test
+    // answered); a length the caller stated never changes: with no room left, a refusal.
+    const bool given_d = o.runaway_distance > 0, given_lb = o.block_length > 0;
+    const double need = lb + kRoomPerRunaway * d;
+    if (upper_len < lb || lower_len < need) {
+      const std::string stated = fmt::format(
+          "the test (a block of {:.4g} m{}, d = {:.4g} m{}) needs a lower scan of {:.4g} m (the block and {:g} d of "
+          "sliding room) and an upper scan of {:.4g} m; the scans are {:.4g} m and {:.4g} m",
+          lb, given_lb ? " as given" : "", d, given_d ? " as given" : "", need, kRoomPerRunaway, lb, lower_len,
+          upper_len);
+      const std::string fix =
+          "measure longer scans, state a shorter test (--block-length, --runaway-distance), or slide the whole "
+          "upper profile over the first half of the lower one (--block-length whole)";
+      double lb_new = lb, d_new = d;
+      if (!given_d && !given_lb) {  // the largest test of the default's shape
+        const double f = std::min(upper_len / lb, lower_len / need);
+        lb_new = f * lb, d_new = f * d;
+      } else if (given_d && !given_lb) {  // the block shortened, down to 2 d
+        lb_new = std::min({lb, upper_len, lower_len - kRoomPerRunaway * d});
+        if (!(lb_new >= 2 * d))
+          return make_error(fmt::format("{}: no block of at least 2 d fits with d = {:.4g} m; {}", stated, d, fix));
+      } else if (!given_d && given_lb) {  // d shortened, down to a hundredth of the default
+        d_new = std::min(d, (lower_len - lb) / kRoomPerRunaway);
+        if (!(lb <= upper_len) || !(d_new >= 0.01 * d))
+          return make_error(fmt::format("{}: the block of {:.4g} m leaves no room on these scans; {}", stated, lb, fix));
+      } else {
+        return make_error(fmt::format("{}; {}", stated, fix));
+      }
       add_warning(p.warnings,
-                  {"scan-too-short",
-                   fmt::format("the stated test (a block of {:.4g} m, d = {:.4g} m) needs a lower scan of {:.4g} m "
-                               "(the block and {:g} d of sliding room) and an upper scan of {:.4g} m; the scans are "
-                               "{:.4g} m and {:.4g} m: the answer is for the largest test of that shape they hold, "
-                               "a block of {:.4g} m and d = {:.4g} m (a shorter test reads other angles: measure "
-                               "longer scans, or state a shorter test with --block-length and --runaway-distance)",
-                               lb, d, lb + kRoomPerRunaway * d, kRoomPerRunaway, lb, lower_len, upper_len, lb_f, d_f)});
-      lb = lb_f;
-      d = d_f;
+                  {"scan-too-short", fmt::format("{}: the answer is for the test they hold, a block of {:.4g} m and "
+                                                 "d = {:.4g} m (a shorter test reads other angles; d_sweep shows how "
+                                                 "much); {}",
+                                                 stated, lb_new, d_new, fix)});
+      lb = lb_new;
+      d = d_new;
     }
     // The block: the middle of the upper scan, L_b long (its ends interpolated).
     const double mid = 0.5 * (up_measured.x.front() + up_measured.x.back());

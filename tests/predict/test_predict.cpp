@@ -495,21 +495,25 @@ TEST(PredictStatedTest, AScanTooShortIsWarnedAndAnsweredForTheLargestTestOfTheSa
   EXPECT_TRUE(has_code(r->warnings, "scan-too-short"));
   EXPECT_NEAR(r->runaway_distance, len / (frictal::kBlockPerRunaway + frictal::kRoomPerRunaway), 1e-9 * len);
   EXPECT_NEAR(r->block_length, frictal::kBlockPerRunaway * r->runaway_distance, 1e-6 * len);
-  // A block longer than the upper scan: the same rule, the block cut to the scan.
+  // A stated d keeps: the defaulted block gives way (to the upper scan here), warned.
   frictal::PredictOptions o;
-  o.block_length = 0.2;
-  o.runaway_distance = 0.005;
-  auto q = frictal::predict(profile_surface(window(p, 0.0, 0.6), "lower"), nullptr, o);
+  o.runaway_distance = 0.005;  // the default block: 20 d = 0.1 m
+  const frictal::PredictSurface lower = profile_surface(window(p, 0.0, 0.6), "lower");
+  auto q = frictal::predict(lower, nullptr, o);
   ASSERT_TRUE(q.ok()) << q.error().message;
   EXPECT_FALSE(has_code(q->warnings, "scan-too-short"));
-  EXPECT_NEAR(q->block_length, 0.2, 1e-9);
-  const frictal::PredictSurface lower = profile_surface(window(p, 0.0, 0.6), "lower");
-  const frictal::PredictSurface upper = profile_surface(window(p, 0.6, 0.7), "upper");
+  EXPECT_NEAR(q->block_length, 0.1, 1e-9);
+  const frictal::PredictSurface upper = profile_surface(window(p, 0.6, 0.66), "upper");
   auto u = frictal::predict(lower, &upper, o);
   ASSERT_TRUE(u.ok()) << u.error().message;
   EXPECT_TRUE(has_code(u->warnings, "scan-too-short"));
-  EXPECT_NEAR(u->block_length, 0.1, 1e-9);
-  EXPECT_NEAR(u->runaway_distance, 0.0025, 1e-12);
+  EXPECT_NEAR(u->block_length, upper.profile.x.back() - upper.profile.x.front(), 1e-12);  // all of it
+  EXPECT_EQ(u->runaway_distance, 0.005);
+  // A stated test that the scans cannot hold is refused, naming what it needs.
+  o.block_length = 0.2;
+  auto e = frictal::predict(lower, &upper, o);
+  ASSERT_FALSE(e.ok());
+  EXPECT_NE(e.error().message.find("needs a lower scan of 0.24 m"), std::string::npos) << e.error().message;
 }
 
 TEST(PredictStatedTest, TheSweepOverDHoldsTheHeadlineAtD) {
