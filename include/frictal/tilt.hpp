@@ -290,6 +290,22 @@ struct TiltScaling {
 /// than two distinct x or a non-finite point.
 Result<TiltScaling> scale_tilt_defaults(const Curve& lower, const Curve& upper,
                                         const TiltConfig& base = default_tilt_config());
+/// The largest spheroradius over the point spacing of the surfaces (unitless): beyond it one
+/// rounded contact spans more than 20 points of each face, each a pushing vertex-edge pair, and
+/// the rounded faces no longer follow the scan.
+inline constexpr double kTiltMaxRadiusOverSpacing = 10;
+
+/// The tilt test's settings for two surfaces, as every front end takes them (`frictal tilt`,
+/// Python's tilt(), one call): the defaults of a surface of period `period` and scale `scale`
+/// (tilt_config_for_surface; measured surfaces: 0, 0) scaled to the surfaces
+/// (scale_tilt_defaults), the period and run-away distance kept where the surface gives them
+/// (period > 0, scale > 0), then the `given` settings (SI, by field name) over them. The result's
+/// `config` is the run's; its `settings` list what was scaled and not given. Errors, each saying
+/// what is expected: a bad given value; a height range above the length (z and x in different
+/// units); a spheroradius beyond kTiltMaxRadiusOverSpacing point spacings.
+Result<TiltScaling> tilt_setup(const Curve& lower, const Curve& upper, const ValueSet& given, double period = 0,
+                               double scale = 0);
+
 /// `base` with the given values (SI; names from tilt_settings(), else an error naming the
 /// nearest) checked and applied.
 Result<TiltConfig> make_tilt_config(const ValueSet& si_values, const TiltConfig& base = default_tilt_config());
@@ -471,6 +487,14 @@ struct TiltReport {
   const TiltResult& result;
   const TiltConfig& config;
 };
+/// Whether a run's friction angle is a friction angle of the surfaces (`friction_angle_valid`):
+/// "valid", or why not, with the option that would make it so (`validity`; every front end prints
+/// it). Not valid: no slide; the block turned (warning rotation); or the angle lies outside the
+/// rigid model's bracket from the block's own rest, [phi_in - t, max(phi_qs, phi_qs of the rounded
+/// blocks) + t] with t = max(0.1 deg, one tilt increment) (docs/dem.md: the validated runs read
+/// inside it). Without the hold angles (hold_error) the bracket is not checked.
+std::string tilt_validity(const TiltResult& result, const TiltConfig& config);
+
 /// The tilt test's output tables (frictal/outputs.hpp; src/tilt/tilt_columns.cpp): `frictal tilt
 /// --json` and its nested objects "scales", "estimate", "stage_time_s", "scaled_defaults".
 const Columns<TiltReport>& tilt_columns();

@@ -137,3 +137,19 @@ def test_a_missing_file_is_file_not_found_with_its_path():
         assert e.value.filename == missing
     r = subprocess.run([CLI, "predict", missing], capture_output=True, text=True, timeout=60)
     assert r.returncode != 0 and missing in r.stderr
+
+
+def test_tilt_of_a_measured_profile_equals_the_cli():
+    # A 50 um piece of the Dektak scan: Python conditions it (a line) and scales the defaults to it
+    # by the library call the CLI makes; the same run, bit for bit.
+    path = os.path.join(DATA, "dektak-1.csv")
+    want = cli("tilt", "--lower", path, "--crop", "0.5mm,0.55mm", "--quiet")
+    piece, _ = frictal.condition(frictal.read_profile(path), crop=(5e-4, 5.5e-4), detrend="none")
+    got = quiet(frictal.tilt, piece)
+    assert got["conditioning"] == "form: line"
+    assert got["validity"] == want["validity"] and got["friction_angle_valid"] == want["friction_angle_valid"]
+    assert same(deg(got["friction_angle"]), want["friction_angle_deg"])
+    assert got["steps"] == want["steps"]
+    scaled = {t["name"]: (t["from"], t["to"]) for t in got["scaled_defaults"]["settings"]}
+    assert set(scaled) == {t["name"] for t in want["scaled_defaults"]["settings"]}
+    assert same(scaled["normal_stiffness"][1], want["settings"]["normal_stiffness"])
