@@ -179,7 +179,7 @@ int run(TiltOptions& o) {
   const bool progress_line = !o.quiet && ::isatty(2);
   cfg.before_run = [&](const TiltEstimate& e) -> Status {
     const std::string to = cfg.predict && e.simulated_time_expected < e.simulated_time_bound
-                               ? "to the rigid upper bound"
+                               ? "to the hold angle from the drop"
                                : fmt::format("to the largest tilt {:.3g} deg", cfg.max_tilt / kDeg);
     if (!o.quiet)
       fmt::print(stderr,
