@@ -36,7 +36,9 @@ bool mujoco_available();
 struct ArealTiltOptions {
   double angle = 0;             ///< sliding direction d, from +x towards +y (unit: rad)
   bool turn_over_upper = true;  ///< false: the upper map is the upper face in place (areal.hpp)
-  double runaway_distance = 0;  ///< D (0: a tenth of half the lower map along d) (unit: m)
+  /// D (unit: m); 0: a twentieth of the lower map along d here; the front ends and predict() set
+  /// it from default_map_runaway_distance (map_model_options in predict.hpp).
+  double runaway_distance = 0;
   double atomic_friction = 0;   ///< mu_a >= 0 at every contact (unitless)
   /// Sphere radius r of the upper face's nodes (0: a fifth of the lower map's smaller spacing) (unit: m).
   double sphere_radius = 0;
@@ -235,5 +237,17 @@ Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& lower, const Map& 
 /// already rested there (within r / 100) (tilt in rad, x, y in m); nullopt if it never rested or
 /// did not run away.
 std::optional<std::array<double, 3>> areal_tilt_last_seat(const ArealTiltResult& r);
+
+/// The default run-away distance D of the map model and of the simulation for sliding along
+/// `direction` (unit: rad) on the lower map `lower`: kRunawayPerSlopeCorrelation (analysis.hpp)
+/// times the median slope correlation length of up to 32 evenly spaced lines of the map along the
+/// grid axis nearer to the direction (each line's longest run of valid points, at least 16; never
+/// less than the spacing), or that many spacings where no line has one. A length of the surface,
+/// not a fraction of the map (docs/site/theory.md, "The stated test").
+struct DefaultRunaway {
+  double distance = 0;  ///< D (unit: m)
+  std::string rule;     ///< how it was derived, with its numbers (text)
+};
+DefaultRunaway default_map_runaway_distance(const Map& lower, double direction);
 
 }  // namespace frictal

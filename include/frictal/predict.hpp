@@ -158,7 +158,6 @@ struct Prediction {
 /// answers the largest test of the same shape that fits, with the warning scan-too-short. None of
 /// them is a fraction of the scan's length: a crop of a stationary surface has the same defaults
 /// within the estimate's scatter (unitless counts).
-inline constexpr double kRunawayPerSlopeCorrelation = 12.5;
 inline constexpr double kBlockPerRunaway = 20;
 inline constexpr double kRoomPerRunaway = 8;
 /// Drops keep this many d from each end of the offsets where the block lies wholly on the lower
@@ -169,23 +168,8 @@ struct StatedTest {
   double block_length = 0;      ///< L_b (unit: m)
   std::string rule;             ///< how d was derived, with its numbers (text)
 };
-/// The slope correlation length of a profile (unit: m): the lag at which the autocorrelation of
-/// its slope (averaged over cells of an eighth of the mean spacing, at most 2^20 cells; mean
-/// removed) first falls below 1/e, interpolated linearly. A local statistic: for a stationary
-/// surface it does not grow with the scan (unlike the heights' correlation length, which on a
-/// self-affine scan is a fixed fraction of it). 0 for a flat profile or slopes correlated over
-/// half the scan.
-double slope_correlation_length(const Profile& p);
 /// The default test for a profile pair whose (conditioned) lower profile is `lower`.
 StatedTest default_test_lengths(const Profile& lower);
-
-/// The map model's default run-away distance for sliding along `direction` (unit: rad) on the
-/// lower map `lower` (conditioned): kRunawayPerSlopeCorrelation times the median slope
-/// correlation length of up to 32 evenly spaced lines of the map along the grid axis nearer to
-/// the direction (each line's longest run of valid points, at least 16; never less than the
-/// spacing), or that many spacings where no line has one. Not a fraction of the map's size.
-/// block_length is left 0 (the block is the whole upper map).
-StatedTest default_map_runaway_distance(const Map& lower, double direction);
 
 /// A surface as the front ends hand it over: a profile or a map, with the name that messages use
 /// and the warnings its reader issued (code "reader").

@@ -428,4 +428,42 @@ std::vector<Profile> map_lines(const Map& m, double angle, double spacing, doubl
   return out;
 }
 
+double slope_correlation_length(const Profile& p) {
+  const std::size_t n = p.x.size();
+  const double len = n > 1 ? p.x.back() - p.x.front() : 0;
+  if (!(len > 0)) return 0;
+  // The slope averaged over M equal cells (exact for cells inside one segment), its mean removed.
+  const std::size_t m = std::clamp<std::size_t>(8 * (n - 1), 4096, std::size_t(1) << 20);
+  const double h = len / double(m);
+  std::vector<double> zc(m + 1);
+  std::size_t k = 1;
+  for (std::size_t i = 0; i <= m; ++i) {
+    const double x = i == m ? p.x.back() : p.x.front() + double(i) * h;
+    while (k + 1 < n && p.x[k] <= x) ++k;
+    const double w = p.x[k] - p.x[k - 1];
+    zc[i] = w > 0 ? p.z[k - 1] + (x - p.x[k - 1]) / w * (p.z[k] - p.z[k - 1]) : p.z[k];
+  }
+  std::vector<double> s(m);
+  double mean = 0;
+  for (std::size_t i = 0; i < m; ++i) mean += (s[i] = (zc[i + 1] - zc[i]) / h);
+  mean /= double(m);
+  std::size_t size = 1;
+  while (size < 2 * m) size <<= 1;
+  std::vector<std::complex<double>> a(size, 0.0);
+  for (std::size_t i = 0; i < m; ++i) a[i] = s[i] - mean;
+  util::dft(a);
+  for (auto& v : a) v = std::norm(v);
+  util::dft(a, true);
+  const double r0 = a[0].real() / double(m);
+  if (!(r0 > 0)) return 0;  // no slope variation: a flat profile
+  const double target = std::exp(-1.0);
+  double prev = 1;
+  for (std::size_t lag = 1; lag < m / 2; ++lag) {
+    const double r = a[lag].real() / double(m - lag) / r0;
+    if (r < target) return (double(lag) - 1 + (prev - target) / (prev - r)) * h;
+    prev = r;
+  }
+  return 0;  // the slopes stay correlated over half the scan: no local length to read
+}
+
 }  // namespace frictal

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <complex>
 #include <mutex>
 #include <numbers>
 
@@ -13,7 +12,6 @@
 #include "frictal/areal_tilt.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
-#include "util/fft.hpp"
 #include "util/parallel.hpp"
 
 namespace frictal {
@@ -541,7 +539,7 @@ namespace {
 // The map model's defaults where t leaves them unset (<= 0): the run-away distance
 // default_map_runaway_distance, the sphere radius a fifth of the lower map's smaller spacing (m).
 void fill_model_defaults(const Map& lower, ArealTiltOptions& t) {
-  if (!(t.runaway_distance > 0)) t.runaway_distance = default_map_runaway_distance(lower, t.angle).runaway_distance;
+  if (!(t.runaway_distance > 0)) t.runaway_distance = default_map_runaway_distance(lower, t.angle).distance;
   if (!(t.sphere_radius > 0)) t.sphere_radius = 0.2 * std::min(lower.dx, lower.dy);
 }
 }  // namespace
@@ -567,44 +565,6 @@ double map_work_estimate(std::size_t upper_spheres, std::size_t drops) {
   return double(upper_spheres) * 2.5e-7 * double(drops);
 }
 
-double slope_correlation_length(const Profile& p) {
-  const std::size_t n = p.x.size();
-  const double len = n > 1 ? p.x.back() - p.x.front() : 0;
-  if (!(len > 0)) return 0;
-  // The slope averaged over M equal cells (exact for cells inside one segment), its mean removed.
-  const std::size_t m = std::clamp<std::size_t>(8 * (n - 1), 4096, std::size_t(1) << 20);
-  const double h = len / double(m);
-  std::vector<double> zc(m + 1);
-  std::size_t k = 1;
-  for (std::size_t i = 0; i <= m; ++i) {
-    const double x = i == m ? p.x.back() : p.x.front() + double(i) * h;
-    while (k + 1 < n && p.x[k] <= x) ++k;
-    const double w = p.x[k] - p.x[k - 1];
-    zc[i] = w > 0 ? p.z[k - 1] + (x - p.x[k - 1]) / w * (p.z[k] - p.z[k - 1]) : p.z[k];
-  }
-  std::vector<double> s(m);
-  double mean = 0;
-  for (std::size_t i = 0; i < m; ++i) mean += (s[i] = (zc[i + 1] - zc[i]) / h);
-  mean /= double(m);
-  std::size_t size = 1;
-  while (size < 2 * m) size <<= 1;
-  std::vector<std::complex<double>> a(size, 0.0);
-  for (std::size_t i = 0; i < m; ++i) a[i] = s[i] - mean;
-  util::dft(a);
-  for (auto& v : a) v = std::norm(v);
-  util::dft(a, true);
-  const double r0 = a[0].real() / double(m);
-  if (!(r0 > 0)) return 0;  // no slope variation: a flat profile
-  const double target = std::exp(-1.0);
-  double prev = 1;
-  for (std::size_t lag = 1; lag < m / 2; ++lag) {
-    const double r = a[lag].real() / double(m - lag) / r0;
-    if (r < target) return (double(lag) - 1 + (prev - target) / (prev - r)) * h;
-    prev = r;
-  }
-  return 0;  // the slopes stay correlated over half the scan: no local length to read
-}
-
 StatedTest default_test_lengths(const Profile& lower) {
   StatedTest t;
   const double xi = slope_correlation_length(lower);
@@ -622,50 +582,6 @@ StatedTest default_test_lengths(const Profile& lower) {
                          kRunawayPerSlopeCorrelation, dx);
   }
   t.block_length = kBlockPerRunaway * t.runaway_distance;
-  return t;
-}
-
-StatedTest default_map_runaway_distance(const Map& lower, double direction) {
-  // Lines along the grid axis nearer to the direction: up to 32, evenly spaced; each line's
-  // longest run of valid points (at least 16) is a profile.
-  const bool along_x = std::abs(std::cos(direction)) >= std::abs(std::sin(direction));
-  const std::size_t lines = along_x ? lower.ny : lower.nx, len = along_x ? lower.nx : lower.ny;
-  const double h = along_x ? lower.dx : lower.dy;
-  const std::size_t used = std::min<std::size_t>(lines, 32);
-  std::vector<double> xi;
-  for (std::size_t k = 0; k < used; ++k) {
-    const std::size_t line = used > 1 ? k * (lines - 1) / (used - 1) : 0;
-    auto z = [&](std::size_t i) { return along_x ? lower.at(i, line) : lower.at(line, i); };
-    std::size_t best0 = 0, best1 = 0;
-    for (std::size_t i = 0; i < len;) {
-      if (!std::isfinite(z(i))) {
-        ++i;
-        continue;
-      }
-      std::size_t j = i;
-      while (j < len && std::isfinite(z(j))) ++j;
-      if (j - i > best1 - best0) best0 = i, best1 = j;
-      i = j;
-    }
-    if (best1 - best0 < 16) continue;
-    Profile p;
-    for (std::size_t i = best0; i < best1; ++i) p.x.push_back(double(i) * h), p.z.push_back(z(i));
-    const double l = slope_correlation_length(p);
-    if (l > 0) xi.push_back(l);
-  }
-  StatedTest t;
-  const char* axis = along_x ? "x" : "y";
-  if (xi.empty()) {
-    t.runaway_distance = kRunawayPerSlopeCorrelation * h;
-    t.rule = fmt::format("{:g} spacings of the lower map along {} ({:.4g} m; its slopes have no correlation length)",
-                         kRunawayPerSlopeCorrelation, axis, h);
-    return t;
-  }
-  std::nth_element(xi.begin(), xi.begin() + std::ptrdiff_t(xi.size() / 2), xi.end());
-  const double l = std::max(xi[xi.size() / 2], h);
-  t.runaway_distance = kRunawayPerSlopeCorrelation * l;
-  t.rule = fmt::format("{:g} slope correlation lengths of the lower map along {} ({:.4g} m, the median over {} lines)",
-                       kRunawayPerSlopeCorrelation, axis, l, xi.size());
   return t;
 }
 

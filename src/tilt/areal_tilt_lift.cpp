@@ -16,6 +16,7 @@
 #include "areal/areal_grid.hpp"
 #include "areal_tilt_model.hpp"
 #include "frictal/areal.hpp"
+#include "frictal/analysis.hpp"
 #include "frictal/areal_tilt.hpp"
 #include "util/parallel.hpp"
 
@@ -1098,6 +1099,50 @@ Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& f, const Map& g, c
     out.ambiguous += !seats.empty();
   }
   return out;
+}
+
+DefaultRunaway default_map_runaway_distance(const Map& lower, double direction) {
+  // Lines along the grid axis nearer to the direction: up to 32, evenly spaced; each line's
+  // longest run of valid points (at least 16) is a profile.
+  const bool along_x = std::abs(std::cos(direction)) >= std::abs(std::sin(direction));
+  const std::size_t lines = along_x ? lower.ny : lower.nx, len = along_x ? lower.nx : lower.ny;
+  const double h = along_x ? lower.dx : lower.dy;
+  const std::size_t used = std::min<std::size_t>(lines, 32);
+  std::vector<double> xi;
+  for (std::size_t k = 0; k < used; ++k) {
+    const std::size_t line = used > 1 ? k * (lines - 1) / (used - 1) : 0;
+    auto z = [&](std::size_t i) { return along_x ? lower.at(i, line) : lower.at(line, i); };
+    std::size_t best0 = 0, best1 = 0;
+    for (std::size_t i = 0; i < len;) {
+      if (!std::isfinite(z(i))) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      while (j < len && std::isfinite(z(j))) ++j;
+      if (j - i > best1 - best0) best0 = i, best1 = j;
+      i = j;
+    }
+    if (best1 - best0 < 16) continue;
+    Profile p;
+    for (std::size_t i = best0; i < best1; ++i) p.x.push_back(double(i) * h), p.z.push_back(z(i));
+    const double l = slope_correlation_length(p);
+    if (l > 0) xi.push_back(l);
+  }
+  DefaultRunaway t;
+  const char* axis = along_x ? "x" : "y";
+  if (xi.empty()) {
+    t.distance = kRunawayPerSlopeCorrelation * h;
+    t.rule = fmt::format("{:g} spacings of the lower map along {} ({:.4g} m; its slopes have no correlation length)",
+                         kRunawayPerSlopeCorrelation, axis, h);
+    return t;
+  }
+  std::nth_element(xi.begin(), xi.begin() + std::ptrdiff_t(xi.size() / 2), xi.end());
+  const double l = std::max(xi[xi.size() / 2], h);
+  t.distance = kRunawayPerSlopeCorrelation * l;
+  t.rule = fmt::format("{:g} slope correlation lengths of the lower map along {} ({:.4g} m, the median over {} lines)",
+                       kRunawayPerSlopeCorrelation, axis, l, xi.size());
+  return t;
 }
 
 }  // namespace frictal

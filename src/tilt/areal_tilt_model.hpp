@@ -48,6 +48,9 @@ inline double tilt_sphere_radius(const Map& f, const ArealTiltOptions& o) {
 
 /// The run-away distance used: the option, or a twentieth of the lower map's extent along d (unit: m).
 inline double tilt_runaway_distance(const Map& f, const ArealTiltOptions& o) {
+  // Called with D unset (the library's areal_tilt and areal_tilt_hold on their own): 5 % of the
+  // lower map along d, the simulations' setting. The front ends and predict() set D first
+  // (map_model_options: default_map_runaway_distance, a length of the surface).
   return o.runaway_distance > 0
              ? o.runaway_distance
              : 0.05 * (std::abs(std::cos(o.angle)) * f.width() + std::abs(std::sin(o.angle)) * f.height());

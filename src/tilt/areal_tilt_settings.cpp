@@ -42,7 +42,7 @@ const std::vector<B>& table() {
               F("angle", "rad", -kInf, Lo::Open, kInf, "Sliding direction d, from +x towards +y", true),
               FRICTAL_MEMBER(angle)),
           // As in the tilt test (from_tilt): mu_a at every contact; D along d since the last stop
-          // (default a tenth of half the lower map along d).
+          // (the front ends' default: default_map_runaway_distance, a length of the lower map's surface).
           bind<ArealTiltOptions>(from_tilt("atomic_friction"), FRICTAL_MEMBER(atomic_friction)),
           bind<ArealTiltOptions>(from_tilt("runaway_distance"), FRICTAL_MEMBER(runaway_distance)),
           bind_choice<ArealTiltOptions>(

@@ -576,8 +576,8 @@ TEST(PredictStatedTest, TheMapDefaultIsTheSlopeCorrelationLengthAlongTheDirectio
   for (std::size_t j = 0; j < m.ny; ++j)
     for (std::size_t i = 0; i < m.nx; ++i) m.at(i, j) = 1e-6 * std::sin(2 * kPi * double(i) / 64);
   const double xi = 0.01 * std::acos(std::exp(-1.0)) / (2 * kPi);
-  EXPECT_NEAR(frictal::default_map_runaway_distance(m, 0).runaway_distance, frictal::kRunawayPerSlopeCorrelation * xi,
+  EXPECT_NEAR(frictal::default_map_runaway_distance(m, 0).distance, frictal::kRunawayPerSlopeCorrelation * xi,
               frictal::kRunawayPerSlopeCorrelation * 2e-3 * 0.01);
-  EXPECT_NEAR(frictal::default_map_runaway_distance(m, kPi / 2).runaway_distance,
+  EXPECT_NEAR(frictal::default_map_runaway_distance(m, kPi / 2).distance,
               frictal::kRunawayPerSlopeCorrelation * m.dy, 1e-15);
 }
