@@ -8,6 +8,7 @@
 
 #include "frictal/analysis.hpp"
 #include "frictal/areal_tilt.hpp"
+#include "frictal/contact.hpp"
 #include "frictal/fractal.hpp"
 #include "frictal/hold.hpp"
 #include "frictal/outputs.hpp"
@@ -83,6 +84,10 @@ std::vector<OutputTable> make_tables() {
        "a density: bin edges and density (units in the parent key's help)",
        {ci("edges", "list", "bins + 1 edges", "="), ci("density", "list", "density per unit of the edges", "=")}});
   t.push_back({"signature", "frictal signature --json; Python frictal.signature(...)", infos(signature_columns())});
+  t.push_back({"contact",
+               "frictal contact --json (one load: these keys; several: a list of them under 'curve'); Python "
+               "frictal.contact(...) (SI under the same keys)",
+               infos(contact_columns())});
   t.push_back({"contacts",
                "Python frictal.signature(..., keep_contacts=True)['contacts']: every contact",
                {py("offset", "m", "the offset of each contact"), py("x", "m", "contact abscissa in the lower's frame"),
