@@ -77,7 +77,7 @@ struct ContactOptions {
 };
 
 /// A warning of the contact solution (frictal warnings lists the codes): contact-full,
-/// small-slope, contact-not-converged, contact-at-edge.
+/// small-slope, contact-not-converged, contact-at-edge, contact-resampled.
 struct ContactWarning {
   std::string code;
   std::string message;
@@ -126,6 +126,11 @@ struct ContactResult {
   std::vector<ContactWarning> warnings;
 };
 
+/// `p` on equally spaced points, as the solver needs them: itself when its spacing is uniform
+/// (within 1e-6), else resampled on as many equally spaced points over its range (linear
+/// interpolation; resample()), with a contact-resampled warning naming `name` added to `warnings`.
+Result<Profile> equally_spaced(const Profile& p, const std::string& name, std::vector<ContactWarning>& warnings);
+
 /// The composite topography of the gap between `lower` and `upper` (both as measured: material
 /// below, heights outward): with turn_over_upper the upper face is turned over onto the lower one
 /// about the y axis (x -> -x about the map's centre, z -> -z), so the composite height is
@@ -146,7 +151,9 @@ Result<Profile> composite_topography(const Profile& lower, const Profile& upper,
 /// or <= 0, a load above H times the nominal area, fewer than 2 x 2 valid points.
 Result<ContactResult> solve_contact(const Map& surface, const ContactLoad& load, const ContactOptions& options);
 /// The same for a profile in plane strain: equally spaced points (error otherwise), the force
-/// per unit length (N/m). A profile with a period is periodic whatever options.periodic says.
+/// per unit length (N/m). A profile with a period is periodic whatever options.periodic says (a
+/// last point one period after the first is left out); periodic without a period: a last point
+/// at the first one's height closes the period and is left out, otherwise the period is n dx.
 Result<ContactResult> solve_contact(const Profile& surface, const ContactLoad& load, const ContactOptions& options);
 
 /// The solutions at several loads (a load curve), in the order given, each solve starting from

@@ -476,6 +476,13 @@ Result<Grid> profile_grid(const Profile& p, bool periodic) {
   g.dx = (p.x.back() - p.x.front()) / double(g.nx - 1);
   g.periodic = periodic || p.period.has_value();
   g.heights = p.z.data();
+  if (!p.period && periodic) {
+    // Periodic without a stored period: a last point that repeats the first (the same height)
+    // closes the period and is left out; otherwise the period is nx dx.
+    double lo = p.z.front(), hi = p.z.front();
+    for (double z : p.z) lo = std::min(lo, z), hi = std::max(hi, z);
+    if (std::abs(p.z.back() - p.z.front()) <= 1e-9 * (hi - lo)) --g.nx;
+  }
   if (p.period) {
     // One or more whole periods: the grid's period is nx dx; a last point one period after the
     // first repeats it and is left out.
@@ -503,6 +510,20 @@ Result<double> contact_modulus(const ElasticMaterial& first, const ElasticMateri
   if (Status s = check_material(second, "second body: "); !s) return s.error();
   return 1.0 / ((1 - first.poisson * first.poisson) / first.modulus +
                 (1 - second.poisson * second.poisson) / second.modulus);
+}
+
+Result<Profile> equally_spaced(const Profile& p, const std::string& name, std::vector<ContactWarning>& warnings) {
+  if (p.size() < 2) return make_error(fmt::format("contact: {}: {} points; expected at least 4", name, p.size()));
+  if (is_uniform(p, 1e-6)) return p;
+  double lo = INFINITY, hi = 0;
+  for (std::size_t i = 1; i < p.size(); ++i) lo = std::min(lo, p.x[i] - p.x[i - 1]), hi = std::max(hi, p.x[i] - p.x[i - 1]);
+  auto r = resample(p, p.size());
+  if (!r) return with_prefix("contact: " + name + ": ", r.error());
+  warnings.push_back({"contact-resampled",
+                      fmt::format("{}: the points are not equally spaced (spacing {:.4g} to {:.4g} m); resampled on {} "
+                                  "equally spaced points by linear interpolation for the FFT solver",
+                                  name, lo, hi, p.size())});
+  return r;
 }
 
 Result<Map> composite_topography(const Map& lower, const Map& upper, bool turn_over_upper,

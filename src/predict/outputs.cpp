@@ -64,6 +64,7 @@ std::vector<OutputTable> make_tables() {
            ci("warnings", "list:warning", "warnings: implausible inputs or results (frictal warnings lists the codes)",
               "warnings"),
            ci("wall_time_s", "s", "wall time of the computation"),
+           ci("curve", "list:contact", "frictal contact with several loads: one contact object per load"),
            ci("hold_wall_time_s", "s", "wall time of the signature and the hold analysis together (one pass)"),
            ci("surface_slope_max_deg", "deg", "steepest slope of either surface"),
            ci("tip_radius_m", "m", "the stylus tip radius given (--tip-radius)"),
@@ -88,6 +89,8 @@ std::vector<OutputTable> make_tables() {
                "frictal contact --json (one load: these keys; several: a list of them under 'curve'); Python "
                "frictal.contact(...) (SI under the same keys)",
                infos(contact_columns())});
+  t.back().columns.push_back(py("pressure", "list", "fields=True: the pressure at every point (Pa; maps: (ny, nx))"));
+  t.back().columns.push_back(py("gap", "list", "fields=True: the gap at every point (m; maps: (ny, nx))"));
   t.push_back({"contacts",
                "Python frictal.signature(..., keep_contacts=True)['contacts']: every contact",
                {py("offset", "m", "the offset of each contact"), py("x", "m", "contact abscissa in the lower's frame"),

@@ -60,6 +60,9 @@ const std::vector<WarningCode>& warning_codes() {
        "(the small-slope approximation), so its areas and pressures are approximate"},
       {"contact-not-converged",
        "contact: the conjugate-gradient solve did not reach its tolerance; the numbers are approximate"},
+      {"contact-resampled",
+       "contact: a profile whose points are not equally spaced was resampled on as many equally spaced points "
+       "(linear interpolation) for the FFT solver"},
       {"contact-at-edge",
        "contact: the contact reaches the edge of a non-periodic surface, beyond which the solver takes the surface "
        "as never touching; use a larger scan, or --periodic for a surface that repeats"},
