@@ -66,12 +66,18 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
     (void)threads;
 #endif
     auto* spec = static_cast<fftw_complex*>(op->spec_);
+    // Measured plans from 2^19 points on: they halve a 1024 x 1024 transform's time for about a
+    // second of planning (bench/results/contact.md), which the hundred-odd iterations of one
+    // solve repay; FFTW keeps what it measured for the later plans of the same size in the
+    // process. Smaller grids take the estimated plan at once. The planner's measurements may
+    // pick a different algorithm from run to run: results agree to rounding, not to the bit.
+    const unsigned flags = total >= (std::size_t(1) << 19) ? FFTW_MEASURE : FFTW_ESTIMATE;
     if (ny == 1) {
-      op->forward_ = fftw_plan_dft_r2c_1d(int(Nx), op->real_, spec, FFTW_ESTIMATE);
-      op->backward_ = fftw_plan_dft_c2r_1d(int(Nx), spec, op->real_, FFTW_ESTIMATE);
+      op->forward_ = fftw_plan_dft_r2c_1d(int(Nx), op->real_, spec, flags);
+      op->backward_ = fftw_plan_dft_c2r_1d(int(Nx), spec, op->real_, flags);
     } else {
-      op->forward_ = fftw_plan_dft_r2c_2d(int(Ny), int(Nx), op->real_, spec, FFTW_ESTIMATE);
-      op->backward_ = fftw_plan_dft_c2r_2d(int(Ny), int(Nx), spec, op->real_, FFTW_ESTIMATE);
+      op->forward_ = fftw_plan_dft_r2c_2d(int(Ny), int(Nx), op->real_, spec, flags);
+      op->backward_ = fftw_plan_dft_c2r_2d(int(Ny), int(Nx), spec, op->real_, flags);
     }
   }
   if (!op->forward_ || !op->backward_) return make_error(ErrorCode::Internal, "contact: FFTW could not plan");
