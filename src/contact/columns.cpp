@@ -48,6 +48,8 @@ const Columns<ContactResult>& contact_columns() {
                 [](const T& r) { return r.rms_slope; }),
       column<T>("iterations", "count", "conjugate-gradient iterations of the solve",
                 [](const T& r) { return double(r.iterations); }),
+      column<T>("stiffness_iterations", "count", "conjugate-gradient iterations of the stiffness (0: not computed)",
+                [](const T& r) { return double(r.stiffness_iterations); }),
       column<T>("converged", "flag", "the solve reached its tolerance", [](const T& r) { return r.converged; }),
       column<T>("residual", "1", "the convergence measure reached (gap residual over the rms height)",
                 [](const T& r) { return r.residual; }),
