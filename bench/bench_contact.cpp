@@ -40,8 +40,8 @@ Map self_affine_map(std::size_t n, double dx, unsigned seed) {
   m.nx = m.ny = n;
   m.dx = m.dy = dx;
   m.heights.assign(n * n, 0.0);
-  fftw_plan plan = fftw_plan_dft_c2r_2d(int(n), int(n), reinterpret_cast<fftw_complex*>(spec.data()),
-                                        m.heights.data(), FFTW_ESTIMATE);
+  fftw_plan plan = fftw_plan_dft_c2r_2d(int(n), int(n), reinterpret_cast<fftw_complex*>(spec.data()), m.heights.data(),
+                                        FFTW_ESTIMATE);
   fftw_execute(plan);
   fftw_destroy_plan(plan);
   double s = 0;
@@ -113,7 +113,8 @@ void BM_ContactProfile1M(benchmark::State& st) {
   for (std::size_t k = 1; k < spec.size(); ++k) spec[k] = std::polar(std::pow(double(k), -1.5 - 0.8 + 1.0), phase(rng));
   Profile p;
   p.z.assign(n, 0.0);
-  fftw_plan plan = fftw_plan_dft_c2r_1d(int(n), reinterpret_cast<fftw_complex*>(spec.data()), p.z.data(), FFTW_ESTIMATE);
+  fftw_plan plan =
+      fftw_plan_dft_c2r_1d(int(n), reinterpret_cast<fftw_complex*>(spec.data()), p.z.data(), FFTW_ESTIMATE);
   fftw_execute(plan);
   fftw_destroy_plan(plan);
   const double dx = 1e-8;
@@ -135,7 +136,13 @@ void BM_ContactProfile1M(benchmark::State& st) {
   st.counters["cg_iterations"] = iterations;
   st.counters["contact_fraction"] = fraction;
 }
-BENCHMARK(BM_ContactProfile1M)->Arg(1)->Arg(0)->ArgName("periodic")->Unit(benchmark::kSecond)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_ContactProfile1M)
+    ->Arg(1)
+    ->Arg(0)
+    ->ArgName("periodic")
+    ->Unit(benchmark::kSecond)
+    ->Iterations(1)
+    ->UseRealTime();
 
 }  // namespace
 

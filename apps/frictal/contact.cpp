@@ -6,8 +6,8 @@
 #include <cstdlib>
 
 #include "common.hpp"
-#include "frictal/contact.hpp"
 #include "frictal/conditioning.hpp"
+#include "frictal/contact.hpp"
 #include "surface_io.hpp"
 
 namespace frictal::cli {
@@ -74,14 +74,16 @@ std::vector<ContactLoad> parse_loads(const std::vector<std::string>& words, bool
       for (const auto& [name, factor] : forces) {
         if (unit == name) {
           if (!is_map)
-            throw UsageError(fmt::format("--load '{}': a profile is in plane strain and takes a force per unit length "
-                                         "of its depth (e.g. {}/m) or a nominal pressure (Pa)",
-                                         item, item));
+            throw UsageError(
+                fmt::format("--load '{}': a profile is in plane strain and takes a force per unit length "
+                            "of its depth (e.g. {}/m) or a nominal pressure (Pa)",
+                            item, item));
           l.kind = ContactLoadKind::Force, l.value = v * factor, known = true;
         }
         if (unit == name + "/m") {
           if (is_map)
-            throw UsageError(fmt::format("--load '{}': a map takes a total force (N) or a nominal pressure (Pa)", item));
+            throw UsageError(
+                fmt::format("--load '{}': a map takes a total force (N) or a nominal pressure (Pa)", item));
           l.kind = ContactLoadKind::Force, l.value = v * factor, known = true;
         }
       }
@@ -153,9 +155,9 @@ std::function<int()> setup(CLI::App& app) {
                "The surface repeats with its length (a generated periodic surface); default: not periodic (padded)");
   app.add_flag("--in-place", a->in_place,
                "UPPER is the upper face already in place in LOWER's coordinates (not turned over)");
-  app.add_option("--detrend", a->detrend,
-                 fmt::format("Form removed from each surface first: none, mean, line (plane), poly:N ({})",
-                             kDetrendDefaultHelp));
+  app.add_option(
+      "--detrend", a->detrend,
+      fmt::format("Form removed from each surface first: none, mean, line (plane), poly:N ({})", kDetrendDefaultHelp));
   add_conditioning_options(app, a->cond);
   app.add_option("--tolerance", a->tolerance,
                  "Convergence: gap residual over the rms height of the composite topography")
@@ -172,8 +174,9 @@ std::function<int()> setup(CLI::App& app) {
     ContactOptions o;
     const ElasticMaterial first{E, nu};
     if (a->upper.empty()) {
-      require(a->modulus2.empty() && a->poisson2.empty(),
-              "--modulus2/--poisson2: apply to UPPER, which is not given (LOWER alone is pressed against a rigid flat)");
+      require(
+          a->modulus2.empty() && a->poisson2.empty(),
+          "--modulus2/--poisson2: apply to UPPER, which is not given (LOWER alone is pressed against a rigid flat)");
       o.contact_modulus = unwrap(contact_modulus(first));
     } else if (a->modulus2 == "rigid") {
       require(a->poisson2.empty(), "--poisson2: a rigid UPPER has none");
@@ -238,17 +241,17 @@ std::function<int()> setup(CLI::App& app) {
     } else {
       const ContactResult& f = results.front();
       fmt::print("frictal contact: {}{} ({}, {} x {} points, {}), E* = {:.5g} Pa{}\n", a->lower,
-                 a->upper.empty() ? " on a rigid flat" : " against " + a->upper, lower.is_map ? "map" : "profile",
-                 f.nx, f.ny, f.periodic ? "periodic" : "not periodic", f.contact_modulus,
+                 a->upper.empty() ? " on a rigid flat" : " against " + a->upper, lower.is_map ? "map" : "profile", f.nx,
+                 f.ny, f.periodic ? "periodic" : "not periodic", f.contact_modulus,
                  f.hardness > 0 ? fmt::format(", H = {:.5g} Pa", f.hardness) : std::string());
       for (const ContactResult& r : results) {
-        fmt::print("  load {} (nominal {:.5g} Pa): contact {:.4g} % ({}), max pressure {:.5g} Pa, mean separation {}, "
-                   "approach {}, stiffness {}\n",
-                   r.is_map ? si_text(r.force, "N") : si_text(r.force, "N/m"), r.nominal_pressure,
-                   100 * r.contact_fraction,
-                   r.is_map ? si_text(r.contact_area, "m^2") : si_text(r.contact_length, "m"), r.max_pressure,
-                   si_text(r.mean_separation, "m"), si_text(r.approach, "m"),
-                   r.is_map ? si_text(r.stiffness, "N/m") : si_text(r.stiffness, "N/m per m"));
+        fmt::print(
+            "  load {} (nominal {:.5g} Pa): contact {:.4g} % ({}), max pressure {:.5g} Pa, mean separation {}, "
+            "approach {}, stiffness {}\n",
+            r.is_map ? si_text(r.force, "N") : si_text(r.force, "N/m"), r.nominal_pressure, 100 * r.contact_fraction,
+            r.is_map ? si_text(r.contact_area, "m^2") : si_text(r.contact_length, "m"), r.max_pressure,
+            si_text(r.mean_separation, "m"), si_text(r.approach, "m"),
+            r.is_map ? si_text(r.stiffness, "N/m") : si_text(r.stiffness, "N/m per m"));
       }
       fmt::print("  conditioning: {}\n", record);
       print_warnings(warnings);

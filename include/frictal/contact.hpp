@@ -99,9 +99,9 @@ struct ContactResult {
   double contact_area = std::numeric_limits<double>::quiet_NaN();
   /// Profiles: the length in contact (points with p > 0 times dx) (unit: m); maps: NaN.
   double contact_length = std::numeric_limits<double>::quiet_NaN();
-  double contact_fraction = 0;  ///< the fraction of the points in contact (unitless)
-  double plastic_fraction = 0;  ///< the fraction of the points at p = H (unitless)
-  double max_pressure = 0;      ///< (unit: Pa)
+  double contact_fraction = 0;       ///< the fraction of the points in contact (unitless)
+  double plastic_fraction = 0;       ///< the fraction of the points at p = H (unitless)
+  double max_pressure = 0;           ///< (unit: Pa)
   double mean_contact_pressure = 0;  ///< the force over the contact area or length (unit: Pa)
   /// The mean gap between the deformed surface and the flat over the (unmasked) points (unit: m).
   double mean_separation = 0;
@@ -118,7 +118,7 @@ struct ContactResult {
   int iterations = 0;    ///< conjugate-gradient iterations of the solve
   int stiffness_iterations = 0;
   bool converged = false;
-  double residual = 0;  ///< the convergence measure reached (ContactOptions::tolerance) (unitless)
+  double residual = 0;   ///< the convergence measure reached (ContactOptions::tolerance) (unitless)
   double wall_time = 0;  ///< (unit: s)
   /// Pressure (unit: Pa) and gap (unit: m) at every point, x fastest (empty unless keep_fields).
   std::vector<double> pressure;
@@ -142,8 +142,7 @@ Result<Map> composite_topography(const Map& lower, const Map& upper, bool turn_o
 /// The same for profiles (rotate180 for turn_over_upper): both equally spaced with the same
 /// number of points and spacing.
 Result<Profile> composite_topography(const Profile& lower, const Profile& upper, bool turn_over_upper,
-                                     const std::string& lower_name = "lower",
-                                     const std::string& upper_name = "upper");
+                                     const std::string& lower_name = "lower", const std::string& upper_name = "upper");
 
 /// The contact of the elastic half-space whose surface is `surface` (the composite topography;
 /// NaN points are masked: they carry no pressure) pressed against a rigid flat under `load`.

@@ -23,8 +23,8 @@ void frictal_bind_contact(py::module_& m) {
       [](const py::object& lower, const py::object& upper, const py::object& load, const py::object& pressure,
          double modulus, double poisson, std::optional<double> modulus2, std::optional<double> poisson2,
          double hardness, bool periodic, bool in_place, std::optional<std::string> detrend_text, const py::object& crop,
-         bool remove_spikes, double spike_threshold, double spacing, const std::string& format,
-         const std::string& unit, double tolerance, bool stiffness, bool fields, unsigned threads) {
+         bool remove_spikes, double spike_threshold, double spacing, const std::string& format, const std::string& unit,
+         double tolerance, bool stiffness, bool fields, unsigned threads) {
         const std::vector<double> forces = as_values(load), pressures = as_values(pressure);
         if (forces.empty() == pressures.empty())
           throw py::value_error(
@@ -126,10 +126,9 @@ void frictal_bind_contact(py::module_& m) {
       py::arg("pressure") = py::none(), py::arg("modulus"), py::arg("poisson"), py::arg("modulus2") = py::none(),
       py::arg("poisson2") = py::none(), py::arg("hardness") = 0.0, py::arg("periodic") = false,
       py::arg("in_place") = false, py::arg("detrend") = py::none(), py::arg("crop") = py::none(),
-      py::arg("remove_spikes") = false, py::arg("spike_threshold") = kDefaultSpikeThreshold,
-      py::arg("spacing") = 0.0, py::arg("format") = "auto", py::arg("unit") = "",
-      py::arg("tolerance") = ContactOptions{}.tolerance, py::arg("stiffness") = true, py::arg("fields") = false,
-      py::arg("threads") = 1u,
+      py::arg("remove_spikes") = false, py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("spacing") = 0.0,
+      py::arg("format") = "auto", py::arg("unit") = "", py::arg("tolerance") = ContactOptions{}.tolerance,
+      py::arg("stiffness") = true, py::arg("fields") = false, py::arg("threads") = 1u,
       "Elastic normal contact (as `frictal contact`; runs without the GIL; no warnings.warn: frictal.contact issues "
       "them). lower alone: an elastic body (modulus E in Pa, poisson nu) pressed against a rigid flat; with upper: "
       "two bodies (modulus2/poisson2, default the same; modulus2=inf: a rigid upper) whose composite topography "

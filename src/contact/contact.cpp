@@ -19,8 +19,8 @@ namespace {
 
 Status check_material(const ElasticMaterial& m, const char* which) {
   if (!std::isfinite(m.modulus) || !(m.modulus > 0))
-    return make_error(fmt::format("{}Young's modulus {} Pa: expected a finite modulus > 0 (unit: Pa)", which,
-                                  m.modulus));
+    return make_error(
+        fmt::format("{}Young's modulus {} Pa: expected a finite modulus > 0 (unit: Pa)", which, m.modulus));
   if (!std::isfinite(m.poisson) || !(m.poisson > -1) || !(m.poisson <= 0.5))
     return make_error(fmt::format("{}Poisson's ratio {}: expected a value in (-1, 0.5]", which, m.poisson));
   return Ok{};
@@ -416,11 +416,10 @@ unsigned thread_count(unsigned t) {
 Result<std::vector<ContactResult>> solve_grid(const Grid& g, const std::vector<ContactLoad>& loads,
                                               const ContactOptions& o) {
   if (!std::isfinite(o.contact_modulus) || !(o.contact_modulus > 0))
-    return make_error(fmt::format("contact modulus E* {} Pa: expected a finite value > 0 (unit: Pa)",
-                                  o.contact_modulus));
+    return make_error(
+        fmt::format("contact modulus E* {} Pa: expected a finite value > 0 (unit: Pa)", o.contact_modulus));
   if (!std::isfinite(o.hardness) || o.hardness < 0)
-    return make_error(fmt::format("hardness {} Pa: expected a finite value > 0 (unit: Pa), or 0 for none",
-                                  o.hardness));
+    return make_error(fmt::format("hardness {} Pa: expected a finite value > 0 (unit: Pa), or 0 for none", o.hardness));
   if (!std::isfinite(o.tolerance) || !(o.tolerance > 0) || o.tolerance >= 1)
     return make_error(fmt::format("contact tolerance {}: expected a value in (0, 1)", o.tolerance));
   if (o.max_iterations < 0)
@@ -460,11 +459,11 @@ Result<std::vector<ContactResult>> solve_grid(const Grid& g, const std::vector<C
     ContactResult r = solver.solve(forces[k], k > 0);
     r.rms_slope = slope;
     if (slope > o.max_rms_slope)
-      r.warnings.insert(r.warnings.begin(),
-                        {"small-slope",
-                         fmt::format("the composite topography's rms slope is {:.3g}, above {:.3g}: the half-space "
-                                     "solution assumes small slopes; its contact area and pressures are approximate",
-                                     slope, o.max_rms_slope)});
+      r.warnings.insert(
+          r.warnings.begin(),
+          {"small-slope", fmt::format("the composite topography's rms slope is {:.3g}, above {:.3g}: the half-space "
+                                      "solution assumes small slopes; its contact area and pressures are approximate",
+                                      slope, o.max_rms_slope)});
     out.push_back(std::move(r));
   }
   return out;
@@ -524,15 +523,16 @@ Result<double> contact_modulus(const ElasticMaterial& body) {
 Result<double> contact_modulus(const ElasticMaterial& first, const ElasticMaterial& second) {
   if (Status s = check_material(first, "first body: "); !s) return s.error();
   if (Status s = check_material(second, "second body: "); !s) return s.error();
-  return 1.0 / ((1 - first.poisson * first.poisson) / first.modulus +
-                (1 - second.poisson * second.poisson) / second.modulus);
+  return 1.0 /
+         ((1 - first.poisson * first.poisson) / first.modulus + (1 - second.poisson * second.poisson) / second.modulus);
 }
 
 Result<Profile> equally_spaced(const Profile& p, const std::string& name, std::vector<ContactWarning>& warnings) {
   if (p.size() < 2) return make_error(fmt::format("contact: {}: {} points; expected at least 4", name, p.size()));
   if (is_uniform(p, 1e-6)) return p;
   double lo = INFINITY, hi = 0;
-  for (std::size_t i = 1; i < p.size(); ++i) lo = std::min(lo, p.x[i] - p.x[i - 1]), hi = std::max(hi, p.x[i] - p.x[i - 1]);
+  for (std::size_t i = 1; i < p.size(); ++i)
+    lo = std::min(lo, p.x[i] - p.x[i - 1]), hi = std::max(hi, p.x[i] - p.x[i - 1]);
   auto r = resample(p, p.size());
   if (!r) return with_prefix("contact: " + name + ": ", r.error());
   warnings.push_back({"contact-resampled",

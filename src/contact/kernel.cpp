@@ -41,9 +41,8 @@ double love_primitive(double x, double y) {
 
 }  // namespace
 
-Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx, std::size_t ny, double dx,
-                                                                  double dy, bool periodic, double e_star,
-                                                                  unsigned threads) {
+Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx, std::size_t ny, double dx, double dy,
+                                                                 bool periodic, double e_star, unsigned threads) {
   std::unique_ptr<ElasticOperator> op(new ElasticOperator());
   op->nx_ = nx;
   op->ny_ = ny;
@@ -55,8 +54,8 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
   op->real_ = fftw_alloc_real(total);
   op->spec_ = fftw_alloc_complex(spectral);
   if (!op->real_ || !op->spec_)
-    return make_error(ErrorCode::Internal, "contact: out of memory for the FFT buffers (" +
-                                               std::to_string(total) + " points)");
+    return make_error(ErrorCode::Internal,
+                      "contact: out of memory for the FFT buffers (" + std::to_string(total) + " points)");
   {
     std::lock_guard<std::mutex> lock(planner_mutex());
 #ifdef FRICTAL_FFTW_THREADS

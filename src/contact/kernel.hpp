@@ -29,8 +29,8 @@ class ElasticOperator {
   ElasticOperator() = default;
   std::size_t nx_ = 0, ny_ = 0, Nx_ = 0, Ny_ = 0;
   bool padded_ = false;
-  double* real_ = nullptr;  // Nx Ny reals
-  void* spec_ = nullptr;    // Ny (Nx/2 + 1) complex numbers
+  double* real_ = nullptr;      // Nx Ny reals
+  void* spec_ = nullptr;        // Ny (Nx/2 + 1) complex numbers
   std::vector<double> kernel_;  // the transfer function, normalised (1 / (Nx Ny) folded in)
   void* forward_ = nullptr;
   void* backward_ = nullptr;

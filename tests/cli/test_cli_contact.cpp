@@ -72,8 +72,8 @@ TEST(CliContact, WavySurfaceCurve) {
 TEST(CliContact, HertzSphereMapAndTwoBodies) {
   const std::string sphere = sphere_map();
   const double Es = 2e9 / (1 - 0.25), R = 0.01, a = 30e-6, F = 4 * Es * a * a * a / (3 * R);
-  const CliRun r = run_cli("contact " + sphere + " --load " + num(F) + "N --modulus 2GPa --poisson 0.5 " +
-                           "--detrend none --json");
+  const CliRun r =
+      run_cli("contact " + sphere + " --load " + num(F) + "N --modulus 2GPa --poisson 0.5 " + "--detrend none --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);
   EXPECT_EQ(j["kind"], "map");

@@ -111,7 +111,8 @@ TEST(Contact, HertzSphereOnAFlat) {
   // uz = (a^2/(2R)) [(2 - r^2/a^2) asin(a/r) + (r/a) sqrt(1 - a^2/r^2)] / (pi/2), gap = r^2/(2R) - delta + uz.
   const std::size_t n = 200, i = n / 2 + 80, j = n / 2;
   const double rr = 80 * dx;
-  const double uz = (a * a / (kPi * R)) * ((2 - rr * rr / (a * a)) * std::asin(a / rr) + (rr / a) * std::sqrt(1 - a * a / (rr * rr)));
+  const double uz =
+      (a * a / (kPi * R)) * ((2 - rr * rr / (a * a)) * std::asin(a / rr) + (rr / a) * std::sqrt(1 - a * a / (rr * rr)));
   const double gap = rr * rr / (2 * R) - a * a / R + uz;
   EXPECT_NEAR(r->gap[j * n + i] / gap, 1.0, 0.02) << "gap at r = 2a";
   EXPECT_EQ(r->pressure[j * n + i], 0.0);
@@ -154,7 +155,8 @@ TEST(Contact, WavySurfaceFullAndPartialContact) {
   EXPECT_NEAR(full->mean_separation, 0.0, 1e-6 * D);
   double worst = 0;
   for (std::size_t i = 0; i < n; ++i)
-    worst = std::max(worst, std::abs(full->pressure[i] - (2 * pstar + pstar * std::cos(2 * kPi * double(i) / double(n)))));
+    worst =
+        std::max(worst, std::abs(full->pressure[i] - (2 * pstar + pstar * std::cos(2 * kPi * double(i) / double(n)))));
   EXPECT_LT(worst, 1e-6 * pstar);
   EXPECT_TRUE(std::isinf(full->stiffness));
 
