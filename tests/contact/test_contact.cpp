@@ -246,3 +246,59 @@ TEST(Contact, BadLoadsAndWarnings) {
   ASSERT_FALSE(not_uniform);
   EXPECT_NE(not_uniform.error().message.find("equally spaced"), std::string::npos);
 }
+
+// Two surfaces as one: the upper face turned over about the y axis adds its mirrored heights; in
+// place it is subtracted (the gap between the faces); grids must match.
+TEST(Contact, CompositeTopography) {
+  Map lower, upper;
+  lower.nx = upper.nx = 3;
+  lower.ny = upper.ny = 2;
+  lower.dx = upper.dx = lower.dy = upper.dy = 1e-6;
+  lower.heights = {1, 2, 3, 4, 5, 6};
+  upper.heights = {10, 20, 30, 40, 50, 60};
+  auto turned = composite_topography(lower, upper, true);
+  ASSERT_TRUE(turned);
+  EXPECT_EQ(turned->heights, (std::vector<double>{31, 22, 13, 64, 55, 46}));
+  auto in_place = composite_topography(lower, upper, false);
+  ASSERT_TRUE(in_place);
+  EXPECT_EQ(in_place->heights, (std::vector<double>{-9, -18, -27, -36, -45, -54}));
+  upper.dx = 2e-6;
+  auto mismatch = composite_topography(lower, upper, true, "a.x3p", "b.x3p");
+  ASSERT_FALSE(mismatch);
+  EXPECT_NE(mismatch.error().message.find("b.x3p"), std::string::npos);
+  Profile a = cylinder(8, 1e-6, 0.01), b = cylinder(8, 1e-6, 0.01);
+  for (std::size_t i = 0; i < 8; ++i) b.z[i] = double(i);
+  auto p = composite_topography(a, b, true);
+  ASSERT_TRUE(p);
+  for (std::size_t i = 0; i < 8; ++i) EXPECT_DOUBLE_EQ(p->z[i], a.z[i] + double(7 - i));
+}
+
+// A contact that reaches the edge of a non-periodic map is flagged; the same map periodic is not.
+// A profile whose points are not equally spaced is resampled, with a warning that says so.
+TEST(Contact, EdgeAndResampleWarnings) {
+  ContactOptions o;
+  o.contact_modulus = 1e9;
+  Map flat;
+  flat.nx = flat.ny = 16;
+  flat.dx = flat.dy = 1e-6;
+  flat.heights.assign(256, 0.0);
+  flat.heights[0] = 1e-9;  // a corner touches first
+  auto edge = solve_contact(flat, {ContactLoadKind::Pressure, 1e3}, o);
+  ASSERT_TRUE(edge) << edge.error().message;
+  EXPECT_TRUE(has_warning(*edge, "contact-at-edge"));
+  o.periodic = true;
+  auto periodic = solve_contact(flat, {ContactLoadKind::Pressure, 1e3}, o);
+  ASSERT_TRUE(periodic);
+  EXPECT_FALSE(has_warning(*periodic, "contact-at-edge"));
+  Profile uneven = wave(64, 1e-3, 1e-6);
+  uneven.x[10] += 3e-6;
+  uneven.period.reset();  // a measured scan: no period
+  std::vector<ContactWarning> w;
+  auto even = equally_spaced(uneven, "scan.csv", w);
+  ASSERT_TRUE(even) << even.error().message;
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0].code, "contact-resampled");
+  EXPECT_NE(w[0].message.find("scan.csv"), std::string::npos);
+  EXPECT_TRUE(is_uniform(*even, 1e-9));
+  EXPECT_EQ(even->size(), uneven.size());
+}
