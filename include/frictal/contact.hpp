@@ -63,7 +63,8 @@ struct ContactOptions {
   /// surrounded by points that never touch (the convolution on a grid padded to 2N).
   bool periodic = false;
   /// Convergence: the rms gap on the contact set and the largest interpenetration outside it,
-  /// both below tolerance times the rms height of the composite topography (unitless, > 0).
+  /// both below tolerance times the rms height of the composite topography (of a flat surface:
+  /// the displacement of the mean pressure over one spacing, p dx / E*) (unitless, > 0).
   double tolerance = 1e-8;
   /// Largest number of conjugate-gradient iterations per solve (0: 20 sqrt(points) + 1000).
   int max_iterations = 0;

@@ -94,7 +94,7 @@ class Solver {
         s2 += (g.heights[k] - mean) * (g.heights[k] - mean);
       }
     h_rms_ = std::sqrt(s2 / double(n_active_));
-    if (!(h_rms_ > 0)) h_rms_ = std::max(std::abs(hmax_), 1e-300);
+
     p_.assign(n, 0.0);
     g_field_.assign(n, 0.0);
     t_.assign(n, 0.0);
@@ -195,6 +195,9 @@ class Solver {
     enforce_load(sum);
     const int max_it = o_.max_iterations > 0 ? o_.max_iterations : int(20 * std::sqrt(double(n_active_))) + 1000;
     const double tol = o_.tolerance;
+    // The scale of the residual: the rms height; for a flat surface (rms 0) the displacement
+    // that the mean pressure makes over one spacing (a flat punch's scale).
+    const double scale = std::max(h_rms_, sum / double(n_active_) * g_.dx / o_.contact_modulus);
     double g_old = 1;
     bool conjugate = false;
     std::fill(t_.begin(), t_.end(), 0.0);
@@ -222,7 +225,7 @@ class Solver {
         else
           worst = std::max(worst, g_field_[k]);  // a capped point whose gap opens
       }
-      residual = std::max(nc ? std::sqrt(G / double(nc)) : 0.0, worst) / h_rms_;
+      residual = std::max(nc ? std::sqrt(G / double(nc)) : 0.0, worst) / scale;
       if (residual < tol || it >= max_it) break;
       // The conjugate direction on the free contact set.
       const double beta = conjugate ? G / g_old : 0.0;

@@ -302,3 +302,21 @@ TEST(Contact, EdgeAndResampleWarnings) {
   EXPECT_TRUE(is_uniform(*even, 1e-9));
   EXPECT_EQ(even->size(), uneven.size());
 }
+
+// A flat surface (rms height 0) on a rigid flat: full contact at once, converged, with the load.
+TEST(Contact, FlatSurfaceConverges) {
+  ContactOptions o;
+  o.contact_modulus = 1e9;
+  Map flat;
+  flat.nx = flat.ny = 32;
+  flat.dx = flat.dy = 1e-6;
+  flat.heights.assign(32 * 32, 0.0);
+  auto r = solve_contact(flat, {ContactLoadKind::Pressure, 1e6}, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->converged);
+  EXPECT_DOUBLE_EQ(r->contact_fraction, 1.0);
+  EXPECT_TRUE(has_warning(*r, "contact-full"));
+  // A flat punch: the pressure is least at the centre and grows towards the edges.
+  EXPECT_LT(r->pressure[16 * 32 + 16], r->pressure[16 * 32 + 0]);
+  EXPECT_NEAR(r->force, 1e6 * 32 * 32 * 1e-12, 1e-9 * r->force);
+}
