@@ -1,5 +1,5 @@
 // The lift over two dimensions of offset (areal_lift) and the free-lateral hold angle on it.
-// Issue 24's target: 256 x 256 lower and 128 x 128 upper nodes over 256 x 64 offsets in <= 5 s
+// Target: 256 x 256 lower and 128 x 128 upper nodes over 256 x 64 offsets in <= 5 s
 // on 2 cores. The faces are windows of the measured 650 x 650 X3P map of the test data (the
 // upper one from the opposite corner, so the two differ), detrended as the CLI does by default.
 #include <benchmark/benchmark.h>

@@ -1,4 +1,4 @@
-// Measured-surface benchmarks (issue 4), each beside the obvious direct method in the same run:
+// Measured-surface benchmarks, each beside the obvious direct method in the same run:
 //  (1) reading the 650 x 650 float64 X3P (x3p-2.x3p: libzip in memory, pugixml, MD5 checks)
 //      vs `unzip -p` of bindata/data.bin into memory + memcpy (no XML, no checks);
 //  (2) the anisotropy table of that map over 36 directions (128 lines per direction, exact

@@ -1,4 +1,4 @@
-// Signature-function benchmarks (issue 2):
+// Signature-function benchmarks:
 //  (1) one WM pair at the paper's finest resolution (D = 1.5, n_max = 10, 11,534 points), every
 //      event offset up to L_b/2 — target < 50 ms on 2 cores;
 //  (2) a pair of 1,000,000-point random self-affine profiles at every sample offset up to half
@@ -129,7 +129,7 @@ void BM_KochK5Envelope(benchmark::State& st) {
 }
 BENCHMARK(BM_KochK5Envelope)->Unit(benchmark::kMillisecond);
 
-// Scaling (issue 11): cost per offset vs the number of points N for two surface kinds, both
+// Scaling: cost per offset vs the number of points N for two surface kinds, both
 // profiles of N points on the same length (finer sampling of the same kind of surface):
 //   kind 0: random self-affine (H = 0.8), kind 1: Weierstrass-Mandelbrot with 12 scales
 //   (n_max = 11, D = 1.5, gamma = 1.5, L_b = 20 L).
@@ -246,8 +246,8 @@ BENCHMARK(BM_SignatureScalingNonAligned)
 
 }  // namespace
 
-// Issue 23: the hold-angle distribution over drops of the 10^6-point pair (target <= 2 s on 2
-// cores, the lift over the widened range included). Stages: the lift (a signature over
+// The hold-angle distribution over drops of the 10^6-point pair (target <= 2 s on 2 cores, the
+// lift over the widened range included). Stages: the lift (a signature over
 // [0, L/2] widened by d = L/20 on both sides), the LiftCurve, the distribution of both directions.
 void BM_HoldDistribution1M(benchmark::State& st) {
   const Pair& p = big_pair();

@@ -8,7 +8,7 @@ second build (A = baseline, B = --build), A and B alternating run by run, and th
 B / A: the previous commit's build against this one (`make bench` builds it with bench/build-baseline.sh).
 Every finished row is appended to OUT.partial.tsv at once (an interrupted run keeps its rows).
 
-Cases (issue 32): `signature` (and `--no-hold`) and `predict` of self-affine profile pairs of
+Cases: `signature` (and `--no-hold`) and `predict` of self-affine profile pairs of
 10^5, 10^6, 10^7 points (H 0.8, spacing 1 nm, rms 1 um, made by `frictal surface fourier`, so no
 numpy is needed); `predict` (the map prediction, the map against itself turned over), `areal`,
 `anisotropy` and `report` of self-affine maps of 512^2, 1024^2, 2048^2 nodes (bench/fourier_maps.py,

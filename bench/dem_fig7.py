@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Paper Fig. 7 data: atan(F_t/F_n)/alpha against relative displacement / L_b for K0..K3 at
-alpha = 20 deg (mu_a = 0, Table I/II), from `frictal tilt -o`. Writes bench/results/dem-fig7.csv
-(one row per 10 ms of simulated time). Usage: bench/dem_fig7.py [path/to/frictal]"""
+alpha = 20 deg (mu_a = 0, Table I/II), from `frictal tilt -o`. Writes OUT (default
+out/dem-fig7.csv, git-ignored; one row per 10 ms of simulated time).
+Usage: bench/dem_fig7.py [path/to/frictal] [OUT]"""
 import csv, os, subprocess, sys, tempfile
 
 
@@ -14,7 +15,8 @@ def default_cli():
 
 cli = sys.argv[1] if len(sys.argv) > 1 else default_cli()
 alpha, Lb = 20.0, 0.2
-out = "bench/results/dem-fig7.csv"
+out = sys.argv[2] if len(sys.argv) > 2 else "out/dem-fig7.csv"
+os.makedirs(os.path.dirname(out) or ".", exist_ok=True)
 with open(out, "w", newline="") as f:
     w = csv.writer(f)
     w.writerow(["surface", "time_s", "tilt_deg", "displacement_over_Lb", "force_angle_over_alpha", "contacts"])

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue 23: the quasi-static tilt protocol against the hold angle phi_qs from the rest offset, on
+# The quasi-static tilt protocol against the hold angle phi_qs from the rest offset, on
 # WM pairs (D = 1.5, n_max = 6, L = 0.01 m, L_b = 0.2 m; rms 1e-5 and 1e-4 m), Fourier pairs, and
 # two measured pairs (the README's Dektak halves; two rows of the X3P map tests/data/x3p/x3p-2.x3p),
 # rotation held, r = 2e-5 m, d = 0.01 m, over the normal stiffness and both contact rules.

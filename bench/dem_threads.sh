@@ -1,5 +1,5 @@
 #!/bin/sh
-# Whole-command timing of the tilt test with 1 and 2 threads (bench/results/dem-threads.md):
+# Whole-command timing of the tilt test with 1 and 2 threads (docs/dem.md sec. 7, "Threads"):
 # K3 at alpha = 20 deg and K2 at alpha = 25 deg, the CLI's defaults, `--threads N`, pinned to
 # CPUs 0 and 1, runs interleaved. Prints one line per run: case, threads, wall s (whole
 # process), user s, setup s, stepping s, us per step, split steps, friction angle, load average.

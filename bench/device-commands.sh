@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench/commands.py on a lent many-core machine (the `device` tool), with the CLI carried in the
+# bench/commands.py on another (e.g. many-core) machine, with the CLI copied into the
 # git-ignored .device/ (the binary and the shared libraries `ldd` names, not libc/libm/libstdc++/
 # libgcc). The inputs are made there (profiles by the CLI, maps by that machine's numpy).
 #   bench/device-commands.sh OUTDIR [extra bench/commands.py options]

@@ -1,8 +1,8 @@
 #!/usr/bin/python3
-"""Issue 32's check: `frictal signature --json` with the hold analysis (default) against
-`--no-hold`, on issue 32's three 10^7-point pairs, for two builds A and B, runs alternating
-(A default, A --no-hold, B default, B --no-hold, repeated), and whether B prints the same numbers
-as A.
+"""`frictal signature --json` with the hold analysis (default) against `--no-hold`, on three
+10^7-point pairs (self-affine H = 0.8 and 0.3, a 12-scale WM pair), for two builds A and B, runs
+alternating (A default, A --no-hold, B default, B --no-hold, repeated), and whether B prints the
+same numbers as A.
 
 Pairs (made when missing, under --data): self-affine H = 0.8 and H = 0.3 (bench/make_pairs.py's
 self_affine: Fourier-filtered white noise, spacing 1 nm, rms 1 um, seeds 1 and 2; written as .npy,
@@ -59,7 +59,7 @@ def flat(j, prefix=""):
             continue
         if isinstance(v, dict):
             out.update(flat(v, prefix + k + "."))
-        elif k == "warnings":  # a set: before e1f6b93+ the two readers' warnings came in either order
+        elif k == "warnings":  # a set: builds before commit e1f6b93 print the two readers' warnings in either order
             out[prefix + k] = sorted(json.dumps(w, sort_keys=True) for w in v)
         else:
             out[prefix + k] = v
@@ -99,8 +99,8 @@ def main():
                 for tag, binary in (("A", a.a), ("B", a.b)):
                     for mode in ("default", "no-hold"):
                         # --no-hold takes no --start-offset: the plain signature is the reference
-                        # --detrend none: the same surfaces for builds on either side of the default form's
-                        # change (none until 2026-11-27, then a line; the hold analysis is the same either way)
+                        # --detrend none: the same surfaces for builds whose default form differs (none
+                        # or a line; the hold analysis is the same either way)
                         argv = ["signature"] + files + ["--json", "--detrend", "none"] + \
                             (["--no-hold"] if mode == "no-hold" else extra)
                         keep = os.path.join(a.data, f"out-{tag}.json") if r == 0 and mode == "default" else None

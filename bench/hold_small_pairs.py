@@ -1,13 +1,14 @@
 #!/usr/bin/python3
 """Random small profile pairs for checking the hold analysis' one pass against the lift over the
-whole overlap (session 21). Writes a.csv and b.csv (x_m,z_m) in the current folder; prints
+whole overlap. Writes a.csv and b.csv (x_m,z_m) in the current folder; prints
 "n nu kind_a kind_b". Kinds: 0 triangle wave, 1 trapezoid grooves, 2 random integers (ties),
 3 sawtooth, 4 steps, 5 sampled sine, 6 rounded sine, 7 Gaussian noise; spacing 1 um, heights
 scaled by 0.3, 1 or 5 um; the upper either its own kind or a window of the lower.
   bench/hold_small_pairs.py SEED
 Check: `frictal signature a.csv b.csv --json` of this build against one built with
 HoldOptions::whole_lift_offsets = inf (or m_lo = m_hi = inf in one_pass), every *_deg key
-within 1e-9 (seeds 301-900 and 291 pass since cc4dc09; before it 291, 349, 483 and 485 did not).
+within 1e-9 (seeds 291 and 301-900 pass, measured at commit cc4dc09; at the commit before it
+seeds 291, 349, 483 and 485 did not).
 """
 import os
 import sys

@@ -1,10 +1,10 @@
 #!/usr/bin/python3
-"""Writes the bench pairs of issue 32 into bench/data/ (git-ignored): two self-affine profiles per
+"""Writes the 10^7-point bench pairs of bench/hold_ab.py into bench/data/ (git-ignored): two self-affine profiles per
 Hurst exponent, Fourier-filtered white noise (numpy), spacing 1 nm, rms 1 um, as CSV x_m,z_m.
 
 Usage: bench/make_pairs.py [N] [--hurst 0.8 0.3] [--out bench/data]
 Files: sa-H{H}-N{N}-{1,2}.csv (seeds 1 and 2). Existing files are kept.
-With --wm FRICTAL also the 12-scale WM pair of issue 32, by the CLI itself:
+With --wm FRICTAL also the 12-scale WM pair, by the CLI itself:
 wm-12-{1,2}.csv = `FRICTAL surface wm -D 1.5 --n-max 11 --longest-wavelength 0.01 --length 0.2
 --rms-height 1e-5 --spacing 2e-8 --seed {1,2}` (10^7 points).
 """

@@ -4,7 +4,8 @@ bench/bench_signature.cpp): CPU time per offset vs number of points, for both su
 
 Usage: bench/plot_signature_scaling.py BEFORE.json NOW.json OUT.png
 
-BEFORE: a run of the code before issue 11 (its BM_SignatureScaling has no `tilted` argument).
+BEFORE: a run of a build whose BM_SignatureScaling has no `tilted` argument (block maxima only,
+without the index search's tilted lines), e.g. one built by bench/build-baseline.sh.
 NOW: a run with BM_SignatureScaling/kind/points/tilted (tilted 1: the default, 0: block maxima
 only) and BM_SignatureScalingNonAligned/kind/points/grid (grids that do not align, sampled).
 Left: everything on log axes. Right: the aligned runs of NOW on a linear axis, where a flat cost
@@ -44,9 +45,9 @@ def main():
     for kind, label in KINDS.items():
         c = COLORS[kind]
         series = [
-            (before.get(("BM_SignatureScaling", kind, -1)), ":", "o", f"{label}: before issue 11"),
+            (before.get(("BM_SignatureScaling", kind, -1)), ":", "o", f"{label}: BEFORE"),
             (now.get(("BM_SignatureScaling", kind, 0)), "--", "^", f"{label}: block maxima only"),
-            (now.get(("BM_SignatureScaling", kind, 1)), "-", "s", f"{label}: now (tilted lines)"),
+            (now.get(("BM_SignatureScaling", kind, 1)), "-", "s", f"{label}: NOW (tilted lines)"),
             (now.get(("BM_SignatureScalingNonAligned", kind, 1)), "-.", "x",
              f"{label}: offsets between lattice offsets (sampled)"),
             (now.get(("BM_SignatureScalingNonAligned", kind, 2)), "-.", "+",

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Issue 33 item 5: the prediction against the simulation, statistically. Random pairs not tuned
+# The prediction against the simulation, statistically (bench/results/predict-vs-sim.md). Random pairs not tuned
 # on (bench/predict_vs_sim_pairs.py), N x N drops each over the prediction's drop range; from every
 # drop the simulated tilt test and the prediction from the same drop.
 #   bash bench/predict_vs_sim.sh maps [BIN] [OUT] [N]       (MuJoCo, `frictal areal-tilt`)

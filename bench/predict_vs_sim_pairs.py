@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The random pairs of bench/predict_vs_sim.sh (issue 33 item 5: the prediction against the
+"""The random pairs of bench/predict_vs_sim.sh (the prediction against the
 simulation, statistically), on seeds not used or tuned on anywhere else.
 
   maps OUT      OUT/<pair>-lower.x3p, OUT/<pair>-upper.x3p: Fourier-filtered maps as the iso/ani

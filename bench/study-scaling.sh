@@ -2,7 +2,7 @@
 # Times the full fig14-18-wm-statistics grid (11 D x 11 n_max x 20 pairs = 2420 tasks) on 1 and
 # 2 threads (also pinned to cores) and on 1 and 2 MPI ranks, and checks that the stores hold identical rows.
 # Usage: bench/study-scaling.sh [BUILD_DIR=build/release] [REPEATS=2]
-# Results are recorded by hand in bench/results/studies.md. Every run computes every task (--cache none:
+# Results: docs/performance.md, "Studies and the reproduction". Every run computes every task (--cache none:
 # the result cache would otherwise give the second configuration the first one's results).
 set -euo pipefail
 cd "$(dirname "$0")/.."

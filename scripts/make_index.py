@@ -432,21 +432,21 @@ BEYOND = {
                 "Not in the paper, which simulates Koch surfaces only: the spheropolygon tilt test on stochastic WM pairs "
                 "and on Fourier-filtered self-affine pairs scaled to the Table I block, 20 pairs per D. Eq. 18 claims φ − θ_a lies in [θ_max − σ, θ_max]; the "
                 "report states how often it does, whether the angle depends on the run-away distance (0.5, 1, 2 λ), "
-                "and whether the rigid or the spheropolygon prediction is closer (issue 14).",
+                "and whether the rigid or the spheropolygon prediction is closer (docs/dem.md sec. 6).",
                 "wm-tilt", ("eq18-range", "runaway-independent", "sphero-closer-than-rigid")),
     "eq18-derived": ("Eq. 18 derived: the hold angle over drops",
                      "Eq. 18 is a heuristic: φ − θ_a in [θ_max − σ, θ_max]. What repeated tilt tests of one pair give "
                      "can be derived instead: a block dropped at a random offset rests in a basin of the lift h and "
                      "holds until the quasi-static hold angle φ_qs of that basin (docs/analysis.md). Per D, the "
                      "distribution of φ_qs over drops (mean, 5–95 %) beside Eq. 18's range and the inertial bound "
-                     "φ_in; and the quasi-static tilt test against φ_qs from where its block rests (issue 23).",
+                     "φ_in; and the quasi-static tilt test against φ_qs from where its block rests (docs/dem.md sec. 6).",
                      "wm-tilt", ("eq18-over-drops", "dynamic-hold-bracket", "quasi-static-hold")),
     "areal-tilt": ("3D tilt test of areal blocks (MuJoCo)",
                    "Not in the paper, whose theory is one-dimensional: two maps as rigid blocks, the upper one free "
                    "to move sideways as real blocks do (or locked to the sliding direction), tilted quasi-statically "
                    "on MuJoCo (a sphere on each node of the upper map over the lower map's height field) against the "
                    "hold angle that the lift over two dimensions of offset predicts for the same spheres and "
-                   "triangles (issue 24; docs/mujoco.md). The grey bars are the prediction's spread: the hold angles "
+                   "triangles (docs/mujoco.md). The grey bars are the prediction's spread: the hold angles "
                    "the rigid block reaches when one slip's end is moved by a sphere radius, wide where a drop's "
                    "hold angle hinges on where a slip ends.",
                    "areal-tilt", ("areal-matched-prediction", "areal-prediction-spread", "areal-seat-by-seat")),
@@ -593,7 +593,7 @@ def store_rows(out, study, f, how):
 
 
 def eq18_derived(out):
-    """The hold angle over drops against Eq. 18, per D, from the wm-tilt store (issue 23)."""
+    """The hold angle over drops against Eq. 18, per D, from the wm-tilt store."""
     f = study_figure(out, "eq18-derived")
     rows = store_rows(out, "wm-tilt", f, "scripts/reproduce runs the wm-tilt study")
     if rows is None:
@@ -657,7 +657,7 @@ def eq18_derived(out):
 
 
 def areal_tilt_figure(out):
-    """The 3D tilt test against its matched prediction, free and locked, from the areal-tilt store (issue 24)."""
+    """The 3D tilt test against its matched prediction, free and locked, from the areal-tilt store."""
     f = study_figure(out, "areal-tilt")
     rows = store_rows(out, "areal-tilt", f, "scripts/reproduce runs the areal-tilt study when the build has MuJoCo")
     if rows is None:
@@ -843,7 +843,7 @@ def render(figs, findings, title, note):
     parts.append("</nav>\n<section class=\"conclusions\">\n<h2>The paper's claims</h2>\n<ol>")
     parts += [conclusion_html(c, findings, anchors) for c in paper]
     parts.append("</ol>\n<h2>frictal's own findings</h2>\n<p class=\"crit\">What frictal found where the paper's "
-                 "claim does not hold, and questions the paper does not ask (the issue that asked each).</p>\n<ol>")
+                 "claim does not hold, and questions the paper does not ask (the docs section that explains each).</p>\n<ol>")
     parts += [conclusion_html(c, findings, anchors) for c in own]
     parts.append("</ol>\n</section>\n")
     for f in figs:

@@ -27,7 +27,8 @@ struct Args {
   bool quiet = false;
   InputOptions input;
   ConditioningOptions cond;
-  FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
+  FieldWords period_words;  ///< --runaway-distance, --period (the tilt table's fields)
+  std::string block;        ///< --block-length: a length with a unit
 };
 
 PredictSurface read_input(const std::string& path, const InputOptions& o) {
@@ -73,6 +74,16 @@ void print_text(const Prediction& p, const Args& a) {
              p.is_map ? "rigid block free to move sideways, off the grid, quasi-static"
                       : "rigid quasi-static hold angle on the exact lift",
              p.drops, p.is_map ? "drops" : "basins", range, p.runaway_distance, p.conditioning);
+  if (!p.is_map)
+    fmt::print("  the test: a block of {:.4g} m, sliding for good after d = {:.4g} m ({})\n", p.block_length,
+               p.runaway_distance, p.test_lengths);
+  if (!p.d_sweep_distance.empty() && !p.single_drop) {
+    fmt::print("  how the answer depends on d (same drops):\n    {:>12}  {:>10}  {:>17}\n", "d (m)", "median (deg)", "5-95 % (deg)");
+    for (std::size_t i = 0; i < p.d_sweep_distance.size(); ++i)
+      fmt::print("    {:>12.4g}  {:>10}  {:>17}{}\n", p.d_sweep_distance[i], deg_text(p.d_sweep_q50[i]),
+                 fmt::format("{} - {}", deg_text(p.d_sweep_q05[i]), deg_text(p.d_sweep_q95[i])),
+                 p.d_sweep_distance[i] == p.runaway_distance ? "  <- d" : "");
+  }
   if (!p.warnings.empty())
     fmt::print("  {} warning(s) on standard error: {}\n", p.warnings.size(), [&] {
       std::string s;
@@ -110,10 +121,18 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
   add_input_options(app, a->input);
-  // --runaway-distance and --period: the tilt table's fields (one description everywhere).
+  // The stated test's block: a length with a unit (predict.hpp's default, named in the help).
+  app.add_option("--block-length", a->block,
+                 fmt::format("The test: length of the upper block, the middle piece of UPPER that slides over LOWER "
+                             "(drops wherever it lies wholly on LOWER), a length such as 0.2mm (no unit: m); whole: all of "
+                             "UPPER, dropped over the first half of LOWER (the blocks of `frictal tilt` on files). "
+                             "Default: {:g} run-away distances (periodic pairs: the whole profile)",
+                             kBlockPerRunaway));
+  // --runaway-distance (d of the stated test) and --period: the tilt table's fields (one
+  // description everywhere; lengths may name their unit).
   std::vector<std::string> skip = all_but(tilt_settings(), "runaway_distance");
   skip.erase(std::remove(skip.begin(), skip.end(), "period"), skip.end());
-  add_field_options(app, tilt_settings(), a->runaway_words, skip);
+  add_field_options(app, tilt_settings(), a->period_words, skip);
   app.add_flag("--json", a->json, "Print the prediction as one JSON object (the keys of `frictal columns`)");
   return [a]() {
     require(std::isfinite(a->direction), fmt::format("--direction {}: expected a finite angle in deg", a->direction));
@@ -128,9 +147,13 @@ std::function<int()> setup(CLI::App& app) {
     o.turn_over_upper = !a->in_place;
     o.progress = drop_progress("predict", a->quiet);
     o.threads = a->threads;
-    if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
+    if (const ValueSet rv = si_values(tilt_settings(), a->period_words); rv.count("runaway_distance"))
       o.runaway_distance = as_real(rv.at("runaway_distance"));
-    if (const ValueSet pv = si_values(tilt_settings(), a->runaway_words); pv.count("period"))
+    if (a->block == "whole")
+      o.block_length = -1;
+    else if (!a->block.empty())
+      o.block_length = parse_length_option(a->block, "--block-length");
+    if (const ValueSet pv = si_values(tilt_settings(), a->period_words); pv.count("period"))
       o.period = as_real(pv.at("period"));
     PredictSurface lower = read_input(a->lower, a->input);
     std::optional<PredictSurface> upper;

@@ -42,9 +42,18 @@ struct PredictOptions {
   /// Sliding direction, from +x towards +y (unit: rad). Profiles: 0 (+x) or pi (-x) only.
   double direction = 0;
   double atomic_friction = 0;  ///< mu_a >= 0 (unitless)
-  /// Run-away distance d that a test reads (unit: m); 0: the shared default (hold.hpp's
-  /// default_runaway_distance for profiles, a tenth of half the lower map along d for maps).
+  /// The stated test (docs/theory.md, "The stated test"). Run-away distance d: how far the block
+  /// must slide from its last stop to count as sliding for good (unit: m); 0: the default,
+  /// default_test_lengths() for profiles, default_map_runaway_distance() for maps (never a
+  /// fraction of the scan).
   double runaway_distance = 0;
+  /// Profiles: the block's length L_b, the piece of the upper surface (its middle) that slides
+  /// over the lower one; drops over every offset at which it lies wholly over the lower scan
+  /// (unit: m). 0: the default, kBlockPerRunaway d. < 0: the whole upper profile, dropped over
+  /// the first half of the lower one (partly overhanging its end: the blocks of `frictal tilt`
+  /// on files and of `frictal signature`'s hold analysis). A periodic pair (`period`) slides the
+  /// whole upper profile, as the paper's blocks: 0 only. Maps: 0 only (the whole upper map).
+  double block_length = 0;
   /// Form removal before the prediction; nullopt: a line for profiles (the mean for periodic
   /// ones, which have no form), a plane for maps (the default of every front end).
   /// DetrendKind::None opts out.
@@ -104,6 +113,14 @@ struct Prediction {
   double direction = 0;                                  ///< (unit: rad)
   double atomic_friction = 0;                            ///< mu_a (unitless)
   double runaway_distance = 0;                           ///< d used (unit: m)
+  /// Profiles: the block's length L_b used (periodic pairs: the whole upper profile) (unit: m).
+  double block_length = 0;
+  /// How d and L_b were set: "given", or the default's rule with its numbers (text).
+  std::string test_lengths;
+  /// How the answer depends on d: the hold angle's median and 5-95 % over the same drops for
+  /// d/4, d/2, d, 2d, 4d (those that fit in the blocks' overlap), from the one lift; the entry at
+  /// d is the headline (profiles; maps: empty) (unit: m, rad).
+  std::vector<double> d_sweep_distance, d_sweep_q05, d_sweep_q50, d_sweep_q95;
   bool single_drop = false;  ///< start_offset was given: the statistics are that drop's value
   std::size_t drops = 0;     ///< drops the distribution is over (profiles: basins that drain them)
   /// Drop range: profiles [min, max, 0, 0]; maps [u_min, u_max, v_min, v_max] along and across d (unit: m),
@@ -131,6 +148,44 @@ struct Prediction {
   std::vector<std::array<double, 2>> drop_offsets;  ///< maps: the drops (x, y) (unit: m)
   std::vector<Warning> warnings;
 };
+
+/// The stated test's default lengths (docs/theory.md, "The stated test", says why these
+/// numbers): the run-away distance d (when not given) is kRunawayPerSlopeCorrelation slope correlation lengths of
+/// the (conditioned) lower profile (slope_correlation_length; where it has none, that many
+/// sampling intervals; never less than one sampling interval), the block (when not given)
+/// kBlockPerRunaway d long, d given or not. A scan holds the test when the lower
+/// scan is at least L_b + kRoomPerRunaway d long and the upper one at least L_b; else predict()
+/// answers the largest test of the same shape that fits, with the warning scan-too-short. None of
+/// them is a fraction of the scan's length: a crop of a stationary surface has the same defaults
+/// within the estimate's scatter (unitless counts).
+inline constexpr double kRunawayPerSlopeCorrelation = 12.5;
+inline constexpr double kBlockPerRunaway = 20;
+inline constexpr double kRoomPerRunaway = 8;
+/// Drops keep this many d from each end of the offsets where the block lies wholly on the lower
+/// scan, so that a run-away has room before it slides off the scan (unitless).
+inline constexpr double kEndRoomPerRunaway = 2;
+struct StatedTest {
+  double runaway_distance = 0;  ///< d (unit: m)
+  double block_length = 0;      ///< L_b (unit: m)
+  std::string rule;             ///< how d was derived, with its numbers (text)
+};
+/// The slope correlation length of a profile (unit: m): the lag at which the autocorrelation of
+/// its slope (averaged over cells of an eighth of the mean spacing, at most 2^20 cells; mean
+/// removed) first falls below 1/e, interpolated linearly. A local statistic: for a stationary
+/// surface it does not grow with the scan (unlike the heights' correlation length, which on a
+/// self-affine scan is a fixed fraction of it). 0 for a flat profile or slopes correlated over
+/// half the scan.
+double slope_correlation_length(const Profile& p);
+/// The default test for a profile pair whose (conditioned) lower profile is `lower`.
+StatedTest default_test_lengths(const Profile& lower);
+
+/// The map model's default run-away distance for sliding along `direction` (unit: rad) on the
+/// lower map `lower` (conditioned): kRunawayPerSlopeCorrelation times the median slope
+/// correlation length of up to 32 evenly spaced lines of the map along the grid axis nearer to
+/// the direction (each line's longest run of valid points, at least 16; never less than the
+/// spacing), or that many spacings where no line has one. Not a fraction of the map's size.
+/// block_length is left 0 (the block is the whole upper map).
+StatedTest default_map_runaway_distance(const Map& lower, double direction);
 
 /// A surface as the front ends hand it over: a profile or a map, with the name that messages use
 /// and the warnings its reader issued (code "reader").
@@ -166,8 +221,8 @@ Result<Prediction> predict(PredictSurface&& lower, std::optional<PredictSurface>
                            const PredictOptions& options = {});
 
 /// The map model's settings as predict() sets them for the lower map `lower` (conditioned) and
-/// `o`: the direction, turn-over and mu_a of `o`; its run-away distance, else the default (a tenth
-/// of half the lower map along the direction); its sphere radius, else the default (a fifth of the
+/// `o`: the direction, turn-over and mu_a of `o`; its run-away distance, else the default
+/// (default_map_runaway_distance); its sphere radius, else the default (a fifth of the
 /// lower map's smaller spacing); areal_tilt's defaults for the rest. The front ends that show the
 /// map model for one drop (`frictal areal-tilt`, the report's two-map section) take the
 /// defaults from here, so that their hold angles are the prediction's.

@@ -457,7 +457,7 @@ struct RunOptions {
   unsigned threads = 1;           ///< compute threads (0 = hardware concurrency)
   bool skip_unavailable = false;  ///< leave tasks of unavailable kinds pending
   /// Pin compute thread i to CPU i mod (CPUs allowed), as mpirun binds ranks to cores. Results do
-  /// not change; on a busy machine it can help the scheduler (see bench/results/studies.md).
+  /// not change; on a busy machine it can help the scheduler (docs/performance.md, "Studies and the reproduction").
   bool pin_threads = false;
   std::vector<std::string> parts;                 ///< run only these parts (empty: all)
   std::function<void(const Progress&)> progress;  ///< called after each finished task
@@ -586,7 +586,7 @@ struct Claim {
   std::string id;            ///< e.g. "koch-theta-max" (stable: the page links to it)
   bool paper = true;         ///< a claim of the paper; false: frictal's own finding
   std::string statement;     ///< the claim in one sentence
-  std::string where;         ///< the paper's section, equation, figures; for frictal's: the issue
+  std::string where;         ///< the paper's section, equation, figures; for frictal's: the docs page and section
   std::vector<int> figures;  ///< the paper's figures it speaks to
   std::string applies_to;    ///< which parts check it (one line)
   std::vector<std::string>

@@ -140,7 +140,7 @@ struct TiltConfig {
   bool adaptive_time_step = true;
   double time_step_safety = 0.5;  ///< fraction of the stability limit taken (unitless, (0, 1])
   /// Normal dashpots integrated implicitly (dem::WorldDef::implicit_damping): the damping of many
-  /// contacts no longer limits the step. false: explicit, as before 2026-11-23.
+  /// contacts no longer limits the step. false: the explicit step (bit for bit the fixed-step engine).
   bool implicit_damping = true;
   double skin = 5e-5;                 ///< neighbour-list skin (unit: m)
   int max_steps_beyond_limit = 1000;  ///< see dem::WorldDef::max_steps_beyond_limit; fixed step only (unitless)

@@ -96,7 +96,12 @@ def predict(lower, upper=None, **options):
     ``lower`` and ``upper`` (default: ``lower`` itself, turned over) are file paths, ``Profile``
     objects, dicts from ``read_surface``/``read_map``, or numpy arrays of heights (1-D: a profile,
     2-D: a map with rows along y) with ``spacing=`` in metres. Options (SI: radians, metres):
-    ``direction`` (profiles: 0 or pi), ``atomic_friction``, ``runaway_distance`` (0: the default),
+    ``direction`` (profiles: 0 or pi), ``atomic_friction``; the stated test: ``runaway_distance`` d (m;
+    0: 12.5 slope correlation lengths of the lower scan, periodic profiles one period) and, for
+    profiles, ``block_length`` L_b (m; the middle piece of the upper surface that slides, dropped
+    wherever it lies wholly on the lower one; None/0: 20 d; ``"whole"``: the whole upper profile over
+    the first half of the lower one); where the scans cannot hold the test, a defaulted length gives
+    way (warning ``scan-too-short``) and stated lengths that do not fit raise ValueError;
     ``detrend`` ("none", "mean", "line", "plane", "poly:N"; default line for profiles, plane for
     maps), ``crop`` ((x0, x1) or (x0, x1, y0, y1) in m: keep that window of each surface first),
     ``remove_spikes`` (replace, for maps mask, the points more than ``spike_threshold`` rms heights
@@ -105,7 +110,9 @@ def predict(lower, upper=None, **options):
     (maps: the locked diagnostic), ``format``, ``unit``, ``threads``.
 
     Returns a ``Prediction``: SI attributes (``friction_angle`` is the median over drops of the hold
-    angle, atomic friction included; ``upper_bound_friction_angle`` is theta_max + theta_a) and
+    angle, atomic friction included; ``upper_bound_friction_angle`` is theta_max + theta_a;
+    ``runaway_distance``, ``block_length`` and ``test_lengths`` state the test; ``d_sweep``,
+    ``d_sweep_median``, ``d_sweep_q05``, ``d_sweep_q95`` the answer at d/4 .. 4d) and
     ``to_dict()`` with the keys and units of ``frictal predict --json``. Each of its warnings is also
     issued through ``warnings.warn`` with the category of its code (``FrictalWarning`` subclasses).
     """

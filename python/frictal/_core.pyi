@@ -13,11 +13,26 @@ class Prediction:
     def atomic_friction(self) -> Any:
         """mu_a at every contact (1)"""
     @property
+    def block_length(self) -> Any:
+        """the test's block length L_b: the piece of the upper surface that slides (periodic pairs: the whole profile) (m)"""
+    @property
     def conditioning(self) -> Any:
         """every conditioning step applied to each surface first, in order, with its numbers: crop (the window, points kept), spikes (k, points replaced or masked), form (text)"""
     @property
     def contact_slope_std(self) -> Any:
         """sigma of Eq. 18: standard deviation of the contact slopes (rad)"""
+    @property
+    def d_sweep(self) -> Any:
+        """how the answer depends on d: the run-away distances d/4, d/2, d, 2d, 4d (those shorter than the blocks' overlap) of d_sweep_*_deg, from the same lift and drops (profiles; maps: empty) (m)"""
+    @property
+    def d_sweep_median(self) -> Any:
+        """the hold angle's median over drops at each d of d_sweep_m (at d: the headline) (rad)"""
+    @property
+    def d_sweep_q05(self) -> Any:
+        """its 5 % quantile at each d of d_sweep_m (rad)"""
+    @property
+    def d_sweep_q95(self) -> Any:
+        """its 95 % quantile at each d of d_sweep_m (rad)"""
     @property
     def direction(self) -> Any:
         """sliding direction, from +x towards +y (rad)"""
@@ -99,6 +114,9 @@ class Prediction:
     @property
     def start_offset(self) -> Any:
         """single drop: where it was put down (x, y) (m)"""
+    @property
+    def test_lengths(self) -> Any:
+        """how d and L_b were set: given, or the default's rule with its numbers (text)"""
     @property
     def theta_max(self) -> Any:
         """steepest contact slope along the direction (the signature's maximum) (rad)"""
@@ -278,7 +296,7 @@ def map_stats(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: fl
 def power_spectrum(profile: Profile, max_k: int = ...) -> tuple:
     """Power spectrum of a profile (m, runs without the GIL): returns (q in rad/m, C in m^3) of the piecewise-linear profile, with 2 sum C / L = rms^2; max_k: 0 = automatic"""
 
-def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., threads: int = ...) -> Prediction:
+def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., block_length: Any = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., threads: int = ...) -> Prediction:
     """The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)"""
 
 def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ...) -> dict:

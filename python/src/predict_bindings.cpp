@@ -185,7 +185,7 @@ void frictal_bind_predict(py::module_& m) {
   m.def(
       "predict",
       [](const py::object& lower, const py::object& upper, double direction, double atomic_friction,
-         double runaway_distance, std::optional<std::string> detrend_text, const py::object& crop, bool remove_spikes,
+         double runaway_distance, const py::object& block_length, std::optional<std::string> detrend_text, const py::object& crop, bool remove_spikes,
          double spike_threshold, std::optional<std::vector<double>> start, int drops, bool locked, double spacing,
          const std::string& format, const std::string& unit, unsigned threads) {
         PredictOptions o;
@@ -196,6 +196,15 @@ void frictal_bind_predict(py::module_& m) {
         o.direction = direction;
         o.atomic_friction = atomic_friction;
         o.runaway_distance = runaway_distance;
+        if (py::isinstance<py::str>(block_length)) {
+          if (block_length.cast<std::string>() != "whole")
+            throw py::value_error("block_length: expected a length in m, 0 (the default) or 'whole'");
+          o.block_length = -1;
+        } else if (!block_length.is_none()) {
+          o.block_length = block_length.cast<double>();
+          if (!(o.block_length >= 0))
+            throw py::value_error("block_length: expected a length in m >= 0 (0: the default) or 'whole'");
+        }
         if (detrend_text) o.detrend = ok(parse_detrend(*detrend_text));
         if (start) {
           if (start->empty() || start->size() > 2)
@@ -221,8 +230,8 @@ void frictal_bind_predict(py::module_& m) {
         return ok(nogil([&] { return predict(lo2, up2 ? &*up2 : nullptr, o); }));
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("direction") = 0.0,
-      py::arg("atomic_friction") = 0.0, py::arg("runaway_distance") = 0.0, py::arg("detrend") = py::none(),
-      py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
+      py::arg("atomic_friction") = 0.0, py::arg("runaway_distance") = 0.0, py::arg("block_length") = py::none(),
+      py::arg("detrend") = py::none(), py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
       py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("start_offset") = py::none(),
       py::arg("drops") = PredictOptions{}.map_drops, py::arg("locked") = PredictOptions{}.map_locked,
       py::arg("spacing") = 0.0, py::arg("format") = "auto", py::arg("unit") = "", py::arg("threads") = 0u,

@@ -49,6 +49,23 @@ const Columns<Prediction>& prediction_columns() {
       num(
           "runaway_distance_m", "m", "run-away distance d that a test reads",
           [](const P& p) { return p.runaway_distance; }, "runaway_distance"),
+      num(
+          "block_length_m", "m",
+          "the test's block length L_b: the piece of the upper surface that slides (periodic pairs: the whole "
+          "profile)",
+          [](const P& p) { return p.block_length; }, "block_length"),
+      column<P>("test_lengths", "text", "how d and L_b were set: given, or the default's rule with its numbers",
+                [](const P& p) { return p.test_lengths; }),
+      list(
+          "d_sweep_m", "m",
+          "how the answer depends on d: the run-away distances d/4, d/2, d, 2d, 4d (those shorter than the blocks' "
+          "overlap) of d_sweep_*_deg, from the same lift and drops (profiles; maps: empty)",
+          [](const P& p) { return p.d_sweep_distance; }, "d_sweep"),
+      list("d_sweep_median_deg", "deg", "the hold angle's median over drops at each d of d_sweep_m (at d: the headline)",
+           [](const P& p) { return p.d_sweep_q50; }),
+      list("d_sweep_q05_deg", "deg", "its 5 % quantile at each d of d_sweep_m", [](const P& p) { return p.d_sweep_q05; }),
+      list("d_sweep_q95_deg", "deg", "its 95 % quantile at each d of d_sweep_m",
+           [](const P& p) { return p.d_sweep_q95; }),
       column<P>("single_drop", "flag", "one drop (--start-offset): the statistics are that drop's hold angle",
                 [](const P& p) { return p.single_drop; }),
       num("drops", "count", "drops the distribution is over (profiles: the basins that drain them)",

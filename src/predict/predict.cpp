@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <mutex>
 #include <numbers>
 
@@ -12,6 +13,7 @@
 #include "frictal/areal_tilt.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
+#include "util/fft.hpp"
 #include "util/parallel.hpp"
 
 namespace frictal {
@@ -102,6 +104,49 @@ double mean_spacing(const Profile& p) {
   return p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0;
 }
 
+// The piece [x0, x1] of a profile (within its range), its ends linearly interpolated.
+Profile piece(const Profile& p, double x0, double x1) {
+  x0 = std::max(x0, p.x.front());
+  x1 = std::min(x1, p.x.back());
+  Profile out;
+  auto at = [&](double x) {
+    const auto it = std::upper_bound(p.x.begin(), p.x.end(), x);
+    const std::size_t k = std::clamp<std::size_t>(std::size_t(it - p.x.begin()), 1, p.x.size() - 1);
+    const double w = p.x[k] - p.x[k - 1];
+    if (!(w > 0)) return p.z[k];
+    const double t = (x - p.x[k - 1]) / w;
+    return p.z[k - 1] + t * (p.z[k] - p.z[k - 1]);
+  };
+  const double tol = 1e-9 * (p.x.back() - p.x.front());
+  out.x.push_back(x0);
+  out.z.push_back(at(x0));
+  for (std::size_t i = 0; i < p.x.size(); ++i)
+    if (p.x[i] > x0 + tol && p.x[i] < x1 - tol) out.x.push_back(p.x[i]), out.z.push_back(p.z[i]);
+  out.x.push_back(x1);
+  out.z.push_back(at(x1));
+  return out;
+}
+
+// The lift over [a, b] (inside its range), its ends interpolated: the same piecewise-linear h.
+LiftCurve cut_curve(const LiftCurve& c, double a, double b) {
+  LiftCurve out;
+  auto at = [&](double s) {
+    const auto it = std::upper_bound(c.offset.begin(), c.offset.end(), s);
+    const std::size_t k = std::clamp<std::size_t>(std::size_t(it - c.offset.begin()), 1, c.offset.size() - 1);
+    const double t = (s - c.offset[k - 1]) / (c.offset[k] - c.offset[k - 1]);
+    return c.lift[k - 1] + t * (c.lift[k] - c.lift[k - 1]);
+  };
+  a = std::max(a, c.offset.front());
+  b = std::min(b, c.offset.back());
+  out.offset.push_back(a);
+  out.lift.push_back(at(a));
+  for (std::size_t i = 0; i < c.offset.size(); ++i)
+    if (c.offset[i] > a && c.offset[i] < b) out.offset.push_back(c.offset[i]), out.lift.push_back(c.lift[i]);
+  out.offset.push_back(b);
+  out.lift.push_back(at(b));
+  return out;
+}
+
 // `take_lower` / `take_upper` (may be null): the surfaces' profiles to take over (moved through the
 // conditioning into the signature; then no second analysis from them where the one pass's lift
 // falls short: signature_with_hold's Internal error instead).
@@ -155,13 +200,98 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     if (auto st = validate(*lo, lower.name); !st) return st.error();
     if (auto st = validate(up_measured, upper ? upper->name : lower.name); !st) return st.error();
   }
-  Profile up = rotate180(std::move(up_measured));  // in place (memory: 10^7 points are 160 MB a copy)
+  // The stated test: the block's length L_b and the run-away distance d (never a fraction of the
+  // scan: default_test_lengths), and where the scan is too short for it, the largest test of the
+  // same shape that fits, with a warning that says so.
   const bool lower_periodic = lo->period.has_value();
+  const double lower_len = lo->x.back() - lo->x.front(), upper_len = up_measured.x.back() - up_measured.x.front();
+  double d = o.runaway_distance, lb = o.block_length;
+  bool whole_block = false;
   SignatureOptions so;
   so.threads = o.threads;
   so.keep_contacts = false;
+  if (lower_periodic) {
+    if (o.block_length != 0)
+      return make_error(fmt::format(
+          "block length {:.6g} m: a periodic pair slides the whole upper profile (a whole number of periods, as "
+          "the paper's blocks); leave the block length unset, or drop the period",
+          o.block_length));
+    lb = upper_len;
+    if (!(d > 0)) d = *lo->period;
+    p.test_lengths = o.runaway_distance > 0 ? "d given; block: the whole upper profile (periodic)"
+                                            : "d: one period; block: the whole upper profile (periodic)";
+  } else {
+    const bool given_d = d > 0;
+    std::string d_rule = "given";
+    if (!given_d) {
+      const StatedTest def = default_test_lengths(*lo);
+      d = def.runaway_distance;
+      d_rule = def.rule;
+    }
+    if (lb < 0) {
+      // The whole upper profile over the first half of the lower one (the blocks of `frictal tilt`
+      // on files): the signature's own drop range, no piece cut.
+      p.test_lengths = "d: " + d_rule + "; block: the whole upper profile, dropped over the first half of the lower one";
+      whole_block = true;
+      lb = upper_len;
+    } else {
+      const bool given_lb = lb > 0;
+      if (!given_lb) lb = kBlockPerRunaway * d;
+      p.test_lengths =
+          fmt::format("d: {}; block: {}", d_rule, given_lb ? "given" : fmt::format("{:g} d", kBlockPerRunaway));
+    }
+  }
+  if (!lower_periodic && !whole_block) {
+    // The test fits where the block lies within the upper scan and the lower one leaves sliding
+    // room L - L_b of at least kRoomPerRunaway d (drops over all but kEndRoomPerRunaway d at each
+    // end). Where it does not, a length that was defaulted gives way (warned, with the test
+    // answered); a length the caller stated never changes: with no room left, a refusal.
+    const bool given_d = o.runaway_distance > 0, given_lb = o.block_length > 0;
+    const double need = lb + kRoomPerRunaway * d;
+    if (upper_len < lb || lower_len < need) {
+      const std::string stated = fmt::format(
+          "the test (a block of {:.4g} m{}, d = {:.4g} m{}) needs a lower scan of {:.4g} m (the block and {:g} d of "
+          "sliding room) and an upper scan of {:.4g} m; the scans are {:.4g} m and {:.4g} m",
+          lb, given_lb ? " as given" : "", d, given_d ? " as given" : "", need, kRoomPerRunaway, lb, lower_len,
+          upper_len);
+      const std::string fix =
+          "measure longer scans, state a shorter test (--block-length, --runaway-distance), or slide the whole "
+          "upper profile over the first half of the lower one (--block-length whole)";
+      double lb_new = lb, d_new = d;
+      if (!given_d && !given_lb) {  // the largest test of the default's shape
+        const double f = std::min(upper_len / lb, lower_len / need);
+        lb_new = f * lb, d_new = f * d;
+      } else if (given_d && !given_lb) {  // the block shortened, down to 2 d
+        lb_new = std::min({lb, upper_len, lower_len - kRoomPerRunaway * d});
+        if (!(lb_new >= 2 * d))
+          return make_error(fmt::format("{}: no block of at least 2 d fits with d = {:.4g} m; {}", stated, d, fix));
+      } else if (!given_d && given_lb) {  // d shortened, down to a hundredth of the default
+        d_new = std::min(d, (lower_len - lb) / kRoomPerRunaway);
+        if (!(lb <= upper_len) || !(d_new >= 0.01 * d))
+          return make_error(fmt::format("{}: the block of {:.4g} m leaves no room on these scans; {}", stated, lb, fix));
+      } else {
+        return make_error(fmt::format("{}; {}", stated, fix));
+      }
+      add_warning(p.warnings,
+                  {"scan-too-short", fmt::format("{}: the answer is for the test they hold, a block of {:.4g} m and "
+                                                 "d = {:.4g} m (a shorter test reads other angles; d_sweep shows how "
+                                                 "much); {}",
+                                                 stated, lb_new, d_new, fix)});
+      lb = lb_new;
+      d = d_new;
+    }
+    // The block: the middle of the upper scan, L_b long (its ends interpolated).
+    const double mid = 0.5 * (up_measured.x.front() + up_measured.x.back());
+    up_measured = piece(up_measured, mid - 0.5 * lb, mid + 0.5 * lb);
+    lb = up_measured.x.back() - up_measured.x.front();
+    // Drops: every offset at which the block lies wholly over the lower scan (0: left ends aligned).
+    so.offset_min = 0;
+    so.offset_max = std::max(lower_len - lb, 1e-9 * lower_len);
+  }
+  p.block_length = lb;
+  Profile up = rotate180(std::move(up_measured));  // in place (memory: 10^7 points are 160 MB a copy)
   HoldOptions ho;
-  ho.runaway_distance = o.runaway_distance;
+  ho.runaway_distance = d;
   ho.atomic_friction = o.atomic_friction;
   const bool one = std::isfinite(o.start_offset[0]);
   // The bound and the hold analysis from one pass over the lift (not a signature each).
@@ -174,23 +304,59 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   if (!both) return both.error();
   const SignatureResult* sig = &both->signature;
   const HoldAnalysis* h = &both->hold;
-  const HoldDistribution& d = forward ? h->distribution.forward : h->distribution.backward;
-  p.runaway_distance = h->runaway_distance;
-  p.drops = d.basins.rest.size();
-  p.drop_range = {d.drop_min, d.drop_max, 0, 0};
+  // The lift the test runs on, and its drops. A stated block: the lift where it lies wholly on
+  // the lower scan, [0, L - L_b] (a slip that reaches an end has slid off the scan), drops over
+  // it with kEndRoomPerRunaway d of room at each end; so every d of the sweep reads the same
+  // lift, which does not depend on how far the analysis above widened it. The whole block
+  // (periodic, or `whole`): the analysis' own lift and drops.
+  LiftCurve stated_curve;
+  const LiftCurve* curve = &h->curve;
+  HoldOptions hk = ho;
+  hk.drop_min = h->distribution.forward.drop_min;
+  hk.drop_max = h->distribution.forward.drop_max;
+  if (!lower_periodic && !whole_block) {
+    stated_curve = cut_curve(h->curve, so.offset_min, so.offset_max);
+    curve = &stated_curve;
+    const double room = kEndRoomPerRunaway * d;
+    hk.drop_min = so.offset_min + room;
+    hk.drop_max = std::max(so.offset_max - room, hk.drop_min + 1e-9 * lower_len);
+  }
+  // Every d of the sweep on that one lift, over the same drops (linear in its vertices each).
+  constexpr std::array<double, 5> sweep = {0.25, 0.5, 1, 2, 4};
+  HoldDistribution at_d;
+  HoldAngles start_at_d;
+  for (double k : sweep) {
+    hk.runaway_distance = k * d;
+    auto dist = hold_distribution(*curve, hk);
+    if (!dist) return dist.error();
+    const HoldDistribution& dd = forward ? dist->forward : dist->backward;
+    if (k == 1) at_d = dd;
+    if (one && k == 1) {
+      auto a = hold_angle(*curve, start, hk);
+      if (!a) return a.error();
+      start_at_d = *a;
+    }
+    p.d_sweep_distance.push_back(k * d);
+    p.d_sweep_q05.push_back(dd.hold.q05);
+    p.d_sweep_q50.push_back(dd.hold.q50);
+    p.d_sweep_q95.push_back(dd.hold.q95);
+  }
+  p.runaway_distance = d;
+  p.drops = at_d.basins.rest.size();
+  p.drop_range = {hk.drop_min, hk.drop_max, 0, 0};
   if (one) {
-    const HoldAngle& a = forward ? h->start.forward : h->start.backward;
+    const HoldAngle& a = forward ? start_at_d.forward : start_at_d.backward;
     p.single_drop = true;
     p.start_offset = {o.start_offset[0], 0};
     p.rest_offset = {a.rest_offset, 0};
     p.friction_angle = plain_stats({a.hold_angle});
     p.drops = 1;
   } else {
-    p.friction_angle = d.hold;
+    p.friction_angle = at_d.hold;
     if (p.drops < 3 && !lower_periodic)
       add_warning(p.warnings, {"few-drops", fmt::format("the drops over [{:.6g}, {:.6g}] m drain into {} basin(s) "
                                                         "only: the spread is not resolved",
-                                                        d.drop_min, d.drop_max, p.drops)});
+                                                        hk.drop_min, hk.drop_max, p.drops)});
   }
   finish(p, forward ? sig->theta_max_forward : sig->theta_max_backward, sig->contact_slope_std);
   return p;
@@ -236,7 +402,21 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   const double c = std::cos(o.direction), s = std::sin(o.direction);
   const double along = std::abs(c) * lo->width() + std::abs(s) * lo->height();
   const double across = std::abs(s) * lo->width() + std::abs(c) * lo->height();
-  const ArealTiltOptions t = map_model_options(*lo, o);
+  ArealTiltOptions t = map_model_options(*lo, o);
+  if (o.runaway_distance > 0) {
+    p.test_lengths = "d: given; block: the whole upper map";
+  } else {
+    p.test_lengths = "d: " + default_map_runaway_distance(*lo, o.direction).rule + "; block: the whole upper map";
+    // Drops over half the lower map along d need kRoomPerRunaway d of room on it.
+    if (along < 2 * kRoomPerRunaway * t.runaway_distance) {
+      const double dm = along / (2 * kRoomPerRunaway);
+      add_warning(p.warnings, {"scan-too-short",
+                               fmt::format("the stated test's d = {:.4g} m needs a lower map of {:.4g} m along the "
+                                           "direction; it is {:.4g} m: the answer is for d = {:.4g} m",
+                                           t.runaway_distance, 2 * kRoomPerRunaway * t.runaway_distance, along, dm)});
+      t.runaway_distance = dm;
+    }
+  }
   p.runaway_distance = t.runaway_distance;
   // Drops (offsets of the upper map's centre from the lower's). The block's footprint is its
   // nodes' extent widened by the sphere radius r on every side (the spheres that touch). An upper
@@ -358,11 +538,10 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
 }  // namespace
 
 namespace {
-// The map model's defaults where t leaves them unset (<= 0): the run-away distance 5 % of the
-// lower map along t.angle, the sphere radius a fifth of its smaller spacing (m).
+// The map model's defaults where t leaves them unset (<= 0): the run-away distance
+// default_map_runaway_distance, the sphere radius a fifth of the lower map's smaller spacing (m).
 void fill_model_defaults(const Map& lower, ArealTiltOptions& t) {
-  const double along = std::abs(std::cos(t.angle)) * lower.width() + std::abs(std::sin(t.angle)) * lower.height();
-  if (!(t.runaway_distance > 0)) t.runaway_distance = 0.05 * along;
+  if (!(t.runaway_distance > 0)) t.runaway_distance = default_map_runaway_distance(lower, t.angle).runaway_distance;
   if (!(t.sphere_radius > 0)) t.sphere_radius = 0.2 * std::min(lower.dx, lower.dy);
 }
 }  // namespace
@@ -386,6 +565,108 @@ ArealTiltOptions map_model_options(const Map& lower, const ArealTiltOptions& sim
 
 double map_work_estimate(std::size_t upper_spheres, std::size_t drops) {
   return double(upper_spheres) * 2.5e-7 * double(drops);
+}
+
+double slope_correlation_length(const Profile& p) {
+  const std::size_t n = p.x.size();
+  const double len = n > 1 ? p.x.back() - p.x.front() : 0;
+  if (!(len > 0)) return 0;
+  // The slope averaged over M equal cells (exact for cells inside one segment), its mean removed.
+  const std::size_t m = std::clamp<std::size_t>(8 * (n - 1), 4096, std::size_t(1) << 20);
+  const double h = len / double(m);
+  std::vector<double> zc(m + 1);
+  std::size_t k = 1;
+  for (std::size_t i = 0; i <= m; ++i) {
+    const double x = i == m ? p.x.back() : p.x.front() + double(i) * h;
+    while (k + 1 < n && p.x[k] <= x) ++k;
+    const double w = p.x[k] - p.x[k - 1];
+    zc[i] = w > 0 ? p.z[k - 1] + (x - p.x[k - 1]) / w * (p.z[k] - p.z[k - 1]) : p.z[k];
+  }
+  std::vector<double> s(m);
+  double mean = 0;
+  for (std::size_t i = 0; i < m; ++i) mean += (s[i] = (zc[i + 1] - zc[i]) / h);
+  mean /= double(m);
+  std::size_t size = 1;
+  while (size < 2 * m) size <<= 1;
+  std::vector<std::complex<double>> a(size, 0.0);
+  for (std::size_t i = 0; i < m; ++i) a[i] = s[i] - mean;
+  util::dft(a);
+  for (auto& v : a) v = std::norm(v);
+  util::dft(a, true);
+  const double r0 = a[0].real() / double(m);
+  if (!(r0 > 0)) return 0;  // no slope variation: a flat profile
+  const double target = std::exp(-1.0);
+  double prev = 1;
+  for (std::size_t lag = 1; lag < m / 2; ++lag) {
+    const double r = a[lag].real() / double(m - lag) / r0;
+    if (r < target) return (double(lag) - 1 + (prev - target) / (prev - r)) * h;
+    prev = r;
+  }
+  return 0;  // the slopes stay correlated over half the scan: no local length to read
+}
+
+StatedTest default_test_lengths(const Profile& lower) {
+  StatedTest t;
+  const double xi = slope_correlation_length(lower);
+  const double dx = lower.x.size() > 1 ? (lower.x.back() - lower.x.front()) / double(lower.x.size() - 1) : 0;
+  if (xi > 0) {
+    // The scan resolves no slope structure finer than its sampling interval (a rounded x column
+    // makes neighbouring slopes alternate, which the cells would read as a shorter length).
+    const double l = std::max(xi, dx);
+    t.runaway_distance = kRunawayPerSlopeCorrelation * l;
+    t.rule = fmt::format("{:g} slope correlation lengths of the lower scan ({:.4g} m{})", kRunawayPerSlopeCorrelation,
+                         l, xi < dx ? ", its sampling interval" : "");
+  } else {
+    t.runaway_distance = kRunawayPerSlopeCorrelation * dx;
+    t.rule = fmt::format("{:g} sampling intervals of the lower scan ({:.4g} m; its slopes have no correlation length)",
+                         kRunawayPerSlopeCorrelation, dx);
+  }
+  t.block_length = kBlockPerRunaway * t.runaway_distance;
+  return t;
+}
+
+StatedTest default_map_runaway_distance(const Map& lower, double direction) {
+  // Lines along the grid axis nearer to the direction: up to 32, evenly spaced; each line's
+  // longest run of valid points (at least 16) is a profile.
+  const bool along_x = std::abs(std::cos(direction)) >= std::abs(std::sin(direction));
+  const std::size_t lines = along_x ? lower.ny : lower.nx, len = along_x ? lower.nx : lower.ny;
+  const double h = along_x ? lower.dx : lower.dy;
+  const std::size_t used = std::min<std::size_t>(lines, 32);
+  std::vector<double> xi;
+  for (std::size_t k = 0; k < used; ++k) {
+    const std::size_t line = used > 1 ? k * (lines - 1) / (used - 1) : 0;
+    auto z = [&](std::size_t i) { return along_x ? lower.at(i, line) : lower.at(line, i); };
+    std::size_t best0 = 0, best1 = 0;
+    for (std::size_t i = 0; i < len;) {
+      if (!std::isfinite(z(i))) {
+        ++i;
+        continue;
+      }
+      std::size_t j = i;
+      while (j < len && std::isfinite(z(j))) ++j;
+      if (j - i > best1 - best0) best0 = i, best1 = j;
+      i = j;
+    }
+    if (best1 - best0 < 16) continue;
+    Profile p;
+    for (std::size_t i = best0; i < best1; ++i) p.x.push_back(double(i) * h), p.z.push_back(z(i));
+    const double l = slope_correlation_length(p);
+    if (l > 0) xi.push_back(l);
+  }
+  StatedTest t;
+  const char* axis = along_x ? "x" : "y";
+  if (xi.empty()) {
+    t.runaway_distance = kRunawayPerSlopeCorrelation * h;
+    t.rule = fmt::format("{:g} spacings of the lower map along {} ({:.4g} m; its slopes have no correlation length)",
+                         kRunawayPerSlopeCorrelation, axis, h);
+    return t;
+  }
+  std::nth_element(xi.begin(), xi.begin() + std::ptrdiff_t(xi.size() / 2), xi.end());
+  const double l = std::max(xi[xi.size() / 2], h);
+  t.runaway_distance = kRunawayPerSlopeCorrelation * l;
+  t.rule = fmt::format("{:g} slope correlation lengths of the lower map along {} ({:.4g} m, the median over {} lines)",
+                       kRunawayPerSlopeCorrelation, axis, l, xi.size());
+  return t;
 }
 
 Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name) {
@@ -416,6 +697,13 @@ Status check_request(const PredictSurface& lower, const PredictSurface* upper, c
   if (!std::isfinite(o.runaway_distance) || o.runaway_distance < 0)
     return make_error(
         fmt::format("run-away distance {} m: expected a finite length >= 0 (0: the default)", o.runaway_distance));
+  if (!std::isfinite(o.block_length))
+    return make_error(fmt::format("block length {} m: expected a finite length (0: the default, < 0: the whole upper "
+                                  "profile)",
+                                  o.block_length));
+  if (lower.is_map && o.block_length != 0)
+    return make_error(
+        "block length: for profiles only (a map pair's block is the whole upper map; crop it to state another)");
   if (std::isinf(o.start_offset[0]) || !std::isfinite(o.start_offset[1]))
     return make_error("start offset: expected finite offsets (m)");
   if (!lower.is_map && !o.turn_over_upper)

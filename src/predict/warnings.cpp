@@ -41,6 +41,12 @@ const std::vector<WarningCode>& warning_codes() {
       {"friction-angle-at-90",
        "the friction angle reaches 90 deg: a vertical wall or an interlock holds the block; the number is a "
        "single feature of the data, not a friction"},
+      {"scan-too-short",
+       "the scans are too short for the stated test (profiles: the lower scan shorter than the block plus 8 run-away "
+       "distances of sliding room, or the upper scan shorter than the block; maps: the lower map shorter than 16 "
+       "run-away distances along the direction): the answer is for the largest test of "
+       "the same shape (L_b / d) that the scans hold, named in the message; a shorter test reads other angles "
+       "(d_sweep_*): measure longer scans, or state the test with --block-length and --runaway-distance"},
       {"few-drops", "the distribution rests on fewer than 3 basins (profiles) or drops: the spread is not resolved"},
       {"held-to-max-tilt",
        "some drops held the block up to the model's largest tilt (45 deg): their hold angle is a lower bound"},

@@ -606,6 +606,58 @@ std::string page_title(const ReportInput& in, const ReportData& d) {
                              : fmt::format("frictal report: {}", base(s.lower_name));
 }
 
+// How the headline depends on the run-away distance d: the median and the 5-95 % range over the
+// same drops at d/4 ... 4d (Prediction::d_sweep_*), d marked; empty where there is no sweep.
+std::string d_sweep_figure(const Prediction& p) {
+  if (p.d_sweep_distance.size() < 2 || p.single_drop) return {};
+  const double scale = p.runaway_distance < 1e-3 ? 1e6 : 1e3;
+  const char* unit = scale == 1e6 ? "µm" : "mm";
+  Series med, lo, hi;
+  med.label = "median over drops (the headline at d)";
+  med.color = "#d62728";
+  lo.label = "5 % and 95 % quantiles";
+  lo.color = hi.color = "#1f77b4";
+  lo.dashed = hi.dashed = true;
+  for (std::size_t i = 0; i < p.d_sweep_distance.size(); ++i) {
+    const double x = p.d_sweep_distance[i] * scale;
+    med.x.push_back(x), med.y.push_back(deg(p.d_sweep_q50[i]));
+    lo.x.push_back(x), lo.y.push_back(deg(p.d_sweep_q05[i]));
+    hi.x.push_back(x), hi.y.push_back(deg(p.d_sweep_q95[i]));
+  }
+  Series marks = med;
+  marks.label.clear();
+  marks.style = SeriesStyle::Points;
+  Plot pl;
+  pl.title = "How the answer depends on the run-away distance d";
+  pl.x_label = fmt::format("run-away distance d ({})", unit);
+  pl.y_label = "hold angle φ (deg)";
+  pl.series = {hi, lo, med, marks};
+  pl.x_log = true;
+  pl.width = 560;
+  pl.height = 300;
+  pl.y_min = 0;
+  pl.y_max = 1.4 * *std::max_element(hi.y.begin(), hi.y.end());  // room for the legend above the band
+  pl.x_min = 0.7 * med.x.front();
+  pl.x_max = 1.4 * med.x.back();
+  RefLine at;
+  at.horizontal = false;
+  at.value = p.runaway_distance * scale;
+  at.label = "d of the test";
+  pl.lines = {at};
+  auto svg = plot_svg(pl);
+  if (!svg) return {};
+  std::string rows;
+  for (std::size_t i = 0; i < p.d_sweep_distance.size(); ++i)
+    rows += fmt::format("<tr><td>{:.3g} {}</td><td>{}</td><td>{} … {}</td></tr>", p.d_sweep_distance[i] * scale,
+                        unit, fmt_deg(p.d_sweep_q50[i]), fmt_deg(p.d_sweep_q05[i]), fmt_deg(p.d_sweep_q95[i]));
+  return figure(*svg, fmt::format("The same drops read with other run-away distances (one lift; key d_sweep_* of "
+                                  "the JSON): a test that calls a block sliding only after a longer slide reads a "
+                                  "higher angle. d = {:.3g} {} ({}).",
+                                  p.runaway_distance * scale, unit, escape_html(p.test_lengths))) +
+         "<table class=\"friction\" id=\"d-sweep\"><tr><th>d</th><th>median</th><th>5–95 %</th></tr>" + rows +
+         "</table>\n";
+}
+
 std::string headline(const ReportInput& in, const ReportData& d) {
   const FrictionPrediction& fwd = d.forward;
   const FrictionPrediction& bwd = d.backward;
@@ -618,7 +670,8 @@ std::string headline(const ReportInput& in, const ReportData& d) {
     page += fmt::format(
         "<p class=\"verdict\" id=\"headline\">A tilt test of {} reads <b>φ = {}</b> (μ = <b>{}</b>){}; rigid "
         "upper bound θ_max + θ_a = {} (μ ≤ {}); the paper's Eq. 18 range {} … {}.<br><small>Model: {} ({}); "
-        "sliding at {:g}°, μ_a = {:g}; conditioning: {}; run-away distance {:.3g} m; over {}.</small></p>\n",
+        "sliding at {:g}°, μ_a = {:g}; conditioning: {}; the test: {}run-away distance d = {:.3g} m ({}); over "
+        "{}.</small></p>\n",
         two_surfaces(in, d) ? "these surfaces" : "this surface against itself", fmt_deg(p.friction_angle.q50),
         fmt_mu(p.friction_coefficient),
         p.single_drop ? " from this drop"
@@ -628,14 +681,16 @@ std::string headline(const ReportInput& in, const ReportData& d) {
         fmt_deg(p.eq18_range[0]), fmt_deg(p.eq18_range[1]), p.model,
         p.is_map ? "a rigid block free to move sideways, quasi-static"
                  : "the quasi-static hold angle on the exact lift",
-        p.direction * 180 / std::numbers::pi, p.atomic_friction, escape_html(p.conditioning), p.runaway_distance,
-        drops);
+        p.direction * 180 / std::numbers::pi, p.atomic_friction, escape_html(p.conditioning),
+        p.is_map ? std::string() : fmt::format("block length L_b = {:.3g} m, ", p.block_length), p.runaway_distance,
+        escape_html(p.test_lengths), drops);
     if (!p.warnings.empty()) {
       page += "<div class=\"warnings\" id=\"warnings\"><b>Warnings</b><ul>\n";
       for (const Warning& w : p.warnings)
         page += fmt::format("<li><code>{}</code>: {}</li>\n", escape_html(w.code), escape_html(w.message));
       page += "</ul></div>\n";
     }
+    page += d_sweep_figure(p);
     // The same object as `frictal predict --json`, for scripts that read the page ("</" escaped).
     std::string json = prediction_json(p, "", 0);
     for (std::size_t k = 0; (k = json.find("</", k)) != std::string::npos; k += 3) json.replace(k, 2, "<\\/");

@@ -211,7 +211,15 @@ Result<FieldValue> parse_text_word(const Field& f, const std::string& word, cons
       const char* end = word.data() + word.size();
       auto [p, ec] = std::from_chars(word.data(), end, d);
       if (ec == std::errc() && p == end) return FieldValue{d};
-      return make_error(fmt::format("{}: expected a number in {}, got '{}'", prefix, range_text(f), word));
+      // A length may name its unit: 10um, 0.1mm, 5e-6 m (units::length_scale).
+      if (ec == std::errc() && f.unit == "m") {
+        std::string_view unit(p, std::size_t(end - p));
+        while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
+        if (const auto scale = units::length_scale(unit); scale && std::isfinite(d * *scale))
+          return FieldValue{d * *scale};
+      }
+      return make_error(fmt::format("{}: expected a number in {}{}, got '{}'", prefix, range_text(f),
+                                    f.unit == "m" ? " (a unit may follow: m, mm, um, nm)" : "", word));
     }
   }
   return make_error(prefix + ": cannot parse '" + word + "'");

@@ -50,7 +50,7 @@ struct LiftExtension {
   std::size_t events = 0;       ///< |W|
   std::vector<double> skipped;  ///< offsets of W left out by a LiftPruneRequest (increasing)
 };
-/// Stretches of a wider range whose lift cannot change the hold analysis (issue 32): beyond
+/// Stretches of a wider range whose lift cannot change the hold analysis: beyond
 /// `fwd_from` a stretch whose forward slopes h' are all at most `fwd_max`, before `bwd_to` one
 /// whose backward slopes -h' are all at most `bwd_max`. Such a stretch holds no record of any
 /// chain that gets there (hold.cpp, LiftPruneRequest's use) and lies beyond every inertial window.

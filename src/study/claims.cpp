@@ -96,7 +96,7 @@ const std::vector<Claim>& claims() {
        false,
        "A Koch tilt test reads the hold angle of the rounded blocks from where the block rests (hold.hpp: the "
        "quasi-static process on the lift), within 0.1 deg, or a model warning flags the run.",
-       "issue 23; docs/analysis.md",
+       "docs/analysis.md, \"What a tilt test reads: the hold angle\"",
        {6, 7, 8, 10},
        "tilt parts (Koch blocks)",
        {}},
@@ -104,7 +104,7 @@ const std::vector<Claim>& claims() {
        false,
        "A Koch tilt test reads the spheropolygon prediction (the signature of the rounded blocks), within 0.1 deg, or "
        "a model warning flags the run.",
-       "issue 14; docs/dem.md",
+       "docs/dem.md sec. 6, \"Both predictions in every run, and the model warnings\"",
        {6, 7, 8, 10},
        "tilt parts (Koch blocks)",
        {}},
@@ -112,7 +112,7 @@ const std::vector<Claim>& claims() {
        false,
        "The quasi-static tilt of random pairs reads the hold angle phi_qs of the rounded blocks from where the block "
        "rests, within 0.1 deg, in at least 95 % of the pairs.",
-       "issue 23; docs/dem.md",
+       "docs/dem.md sec. 6, \"The quasi-static protocol against the hold angle\"",
        {},
        "wm-tilt parts, quasi-static protocol",
        {}},
@@ -120,7 +120,7 @@ const std::vector<Claim>& claims() {
        false,
        "The constant-rate tilt of random pairs from rest reads an angle between the inertial bound phi_in and the "
        "quasi-static hold angle phi_qs (0.1 deg of slack) in at least 90 % of the pairs that no warning flags.",
-       "issue 23; docs/dem.md",
+       "docs/dem.md sec. 4, \"A constant-rate test from rest\"",
        {},
        "wm-tilt parts, constant rate from rest (settling = relax)",
        {}},
@@ -128,7 +128,7 @@ const std::vector<Claim>& claims() {
        false,
        "Eq. 18's range holds the central 90 % of the hold angles that repeated drops of a block on the same pair give, "
        "in at least 90 % of the pairs.",
-       "issue 23; docs/analysis.md",
+       "docs/analysis.md, \"What a tilt test reads: the hold angle\"; docs/dem.md sec. 6",
        {},
        "wm-tilt parts on the paper's protocol (their pairs)",
        {}},
@@ -136,7 +136,7 @@ const std::vector<Claim>& claims() {
        false,
        "The friction angle of the tilt test of random pairs does not depend on the run-away distance (0.5, 1, 2 "
        "lambda) that defines the slide.",
-       "issue 14",
+       "docs/dem.md sec. 6, \"Random pairs: the wm-tilt study\"",
        {},
        "wm-tilt parts on the paper's protocol",
        {}},
@@ -144,7 +144,7 @@ const std::vector<Claim>& claims() {
        false,
        "On random pairs the spheropolygon prediction (signature with the spheroradius) is closer to the simulated "
        "angle than the rigid one.",
-       "issue 14",
+       "docs/dem.md sec. 6, \"Random pairs: the wm-tilt study\"",
        {},
        "wm-tilt parts on the paper's protocol",
        {}},
@@ -152,7 +152,7 @@ const std::vector<Claim>& claims() {
        false,
        "MuJoCo's 3D tilt test agrees within 0.2 deg with the matched quasi-static prediction on every pair of maps, "
        "block free and locked.",
-       "issue 24; docs/mujoco.md",
+       "docs/mujoco.md, \"The 0.2° target\"",
        {},
        "areal-tilt parts",
        {}},
@@ -160,7 +160,7 @@ const std::vector<Claim>& claims() {
        false,
        "MuJoCo's reading lies within 0.2 deg of the hold angles that the rigid quasi-static block reaches when one "
        "slip's end is moved by a sphere radius, free and locked.",
-       "issue 24; docs/mujoco.md",
+       "docs/mujoco.md, \"The prediction's spread\"",
        {},
        "areal-tilt parts",
        {}},
@@ -168,7 +168,7 @@ const std::vector<Claim>& claims() {
        false,
        "From the seat where MuJoCo's block sat before its run-away, the rigid quasi-static block runs away within 0.2 "
        "deg of MuJoCo, free and locked.",
-       "issue 24; docs/mujoco.md",
+       "docs/mujoco.md, \"The study areal-tilt (pairs not tuned on)\"",
        {},
        "areal-tilt parts",
        {}},

@@ -264,7 +264,7 @@ void areal_tilt_part(const std::string& part, const std::vector<TaskRow>& rows, 
   f.part = part;
   f.claim = fmt::format(
       "Part '{}': MuJoCo's tilt test agrees within 0.2° with the matched quasi-static prediction "
-      "(issue 24's target) on every pair, free and locked.",
+      "on every pair, free and locked (docs/mujoco.md, \"The 0.2° target\").",
       part);
   f.supported = in_free == n && in_locked == n;
   f.evidence.push_back(fmt::format("free {}/{}, locked {}/{} within 0.2° (docs/mujoco.md)", in_free, n, in_locked, n));
@@ -371,7 +371,7 @@ TaskKind areal_tilt_kind() {
   k.run = run_areal_tilt_task;
   k.cost = [](const Params& p) {
     const double w = kind_detail::number(p, "upper_nodes", 12);
-    return 1.0 + 0.02 * w * w;  // ~10 s for 144 spheres, ~20 s for 1,024 (bench/results/areal-tilt.md)
+    return 1.0 + 0.02 * w * w;  // ~10 s for 144 spheres, ~20 s for 1,024 (docs/mujoco.md, "Speed")
   };
   k.uses_seed = true;
   k.outputs = {

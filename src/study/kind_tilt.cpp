@@ -61,10 +61,9 @@ Result<bool> get_bool(const Params& p, const std::string& name, bool fallback) {
 /// Estimated CPU time of a tilt task (unit: s; the scheduler's model, TaskKind::cost):
 /// c0(n) + c1(n) T, with T the time to tilt to the expected slide (theta_max + atan(mu_a), n alpha
 /// for a Koch pair, at tilt_rate), scaled with the number of wavelengths. Fitted to the 208 tilts
-/// of the Fig. 6 and Fig. 8 grids with the adaptive step (2026-11-23, bench/results/schedule.md):
-/// the steps grow as 2e4 + 9.6e3 T for every K_n, but the cost of a step grows steeply with n
-/// and the contacts, so that a K3 test costs about 2.2 s whatever alpha (flatter K3 blocks carry
-/// more contacts). Other surfaces count as K1 at phi = 30 deg + atan(mu_a).
+/// of the Fig. 6 and Fig. 8 grids with the adaptive step (2026-11-23): the steps grow as 2e4 + 9.6e3 T for every K_n,
+/// but the cost of a step grows steeply with n and the contacts, so that a K3 test costs about 2.2 s whatever alpha
+/// (flatter K3 blocks carry more contacts). Other surfaces count as K1 at phi = 30 deg + atan(mu_a).
 double tilt_cost(const Params& p) {
   const auto generator = get_string(p, "generator", "koch");
   const bool koch = generator && *generator == "koch";

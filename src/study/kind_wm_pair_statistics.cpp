@@ -360,7 +360,7 @@ void wm_section(const std::string& part, const std::vector<TaskRow>& rows, Repor
 }
 
 /// Estimated CPU time (unit: s; TaskKind::cost): the profiles' points (about gamma^n_max per
-/// longest wavelength) set the cost (bench/results/studies.md: 46 ms per pair at n_max = 10,
+/// longest wavelength) set the cost (measured 2026-11-21: 46 ms per pair at n_max = 10,
 /// L_b / L = 20, gamma = 1.5).
 double wm_pair_cost(const Params& p) {
   const double gamma = std::clamp(number(p, "gamma", 1.5), 1.0001, 100.0);

@@ -1,6 +1,6 @@
 // Task kind 'wm-tilt', one unit: the spheropolygon tilting-block test (Sec. IV) on a pair of random
 // surfaces (stochastic Weierstrass-Mandelbrot by default), beside the Eq. 18 range of the same
-// pair -- a result the paper does not have (issue 14, "Random and measured surfaces").
+// pair -- a result the paper does not have (docs/dem.md sec. 6, "Random pairs: the wm-tilt study").
 //
 // Parameters: `generator` (default wm; any generator with a `seed` field -- wm, self-affine, the
 // Fourier-filtered one -- gives a pair of independent faces from two streams of the task seed;
@@ -344,8 +344,8 @@ void wm_tilt_part(const std::string& part, const std::vector<Store::Row>& rows, 
       quasi_static = *pr == "quasi-static";
     if (auto st = get_string(rows.front().params, "settling", "free"); st) from_rest = *st == "relax";
   }
-  // The paper's test (constant rate, free settling) answers the paper's Eq. 18 and issue 14's
-  // questions (run-away distance, rigid or rounded prediction), and its pairs give the hold angles
+  // The paper's test (constant rate, free settling) answers the paper's Eq. 18 and the questions
+  // of frictal's own findings (run-away distance, rigid or rounded prediction), and its pairs give the hold angles
   // over drops; a constant-rate test from rest (settling = relax) answers only whether it reads an
   // angle between phi_in and phi_qs, a quasi-static one only whether it reads phi_qs.
   const bool paper_protocol = !quasi_static && !from_rest;

@@ -114,7 +114,9 @@ const std::vector<B>& table() {
           bind<TiltConfig>(
               F("runaway_distance", "m", 0, Lo::Open, kInf,
                 "Sliding for good: growth of the displacement since the last stick", false,
-                "the surface's wavelength (generated); files: a tenth of half the block, L_b/20, as signature"),
+                "predict and areal-tilt: 12.5 slope correlation lengths of the lower surface along the direction "
+                "(periodic profiles: one period); tilt: the surface's wavelength (generated), files: a tenth of half "
+                "the block, L_b/20, as signature"),
               FRICTAL_MEMBER(runaway_distance)),
           bind<TiltConfig>(
               F("stick_speed", "m/s", 0, Lo::Open, kInf, "Relative speed counted as stuck (constant-rate protocol)"),

@@ -133,7 +133,7 @@ TEST(CliAreal, HoldOverDropsIsThePredictionToTheDigit) {
   // tilt (measured: drop 7 rests at (0.10, 2.66) um from (0.70, 2.11) um) and then slides along the
   // grooves, D tan 30 deg = 0.58 um further towards +y: the 6-node window (0.29 um across) leaves the
   // lower map before it has gone D along x, and a block off the map is a run-away (nothing holds it;
-  // until 2026-11-27 the model stopped it there as at a wall and held it to 45 deg).
+  // a wall there would hold it to 45 deg).
   for (int k = 0; k < 9; ++k) EXPECT_LE(j["drop_hold_angles_deg"][k].get<double>(), 0.1) << k;
   for (const std::string q : {"q05", "q95", "mean", "std", "min", "max"})
     EXPECT_EQ(j["hold_angle_" + q + "_deg"], p["friction_angle_" + q + "_deg"]) << q;

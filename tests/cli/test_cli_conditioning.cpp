@@ -182,7 +182,7 @@ std::string tilted_zigzag_csv(const std::string& name) {
 }
 
 TEST(CliConditioning, EveryCommandRemovesTheSameFormByDefault) {
-  // One default for every command (issue 33 item 3): a line from a profile, a plane from a map,
+  // One default for every command: a line from a profile, a plane from a map,
   // stated in the output; --detrend none keeps the heights as read.
   const std::string f = tilted_zigzag_csv("cond-default.csv");
   const double atan01 = std::atan(0.1) * 180 / kPi;

@@ -143,8 +143,8 @@ TEST(CliExitCodes, EdgeProfilesAndMapsGiveTheRightNumberOrExitTwo) {
   EXPECT_NE(r.err.find("below the smallest normal double"), std::string::npos) << r.err;
 }
 
-// tilt --movie: the name and ffmpeg are checked before the run (a missing ffmpeg used to end the
-// process with SIGPIPE after the whole simulation); with ffmpeg the GIF holds every frame.
+// tilt --movie: the name and ffmpeg are checked before the run (so that a missing ffmpeg cannot end
+// the process with SIGPIPE after the whole simulation); with ffmpeg the GIF holds every frame.
 TEST(CliExitCodes, TiltMovieNeedsAKnownExtensionAndFfmpegAndHoldsEveryFrame) {
   const std::string gif = temp_path("movie_k0.gif");
   std::remove(gif.c_str());

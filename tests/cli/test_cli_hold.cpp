@@ -1,4 +1,4 @@
-// `frictal signature` and the hold angle: the JSON keys of issue 23, the signature CSV's basin
+// `frictal signature` and the hold angle: its JSON keys, the signature CSV's basin
 // column, and bad input (exit 2 naming the option).
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@
 using nlohmann::json;
 
 namespace {
-// The WM pair of issue 23 (rms 1e-5 m on the Table I block), written once.
+// The reference WM pair (rms 1e-5 m on the Table I block), written once.
 std::string wm_file(int seed) {
   const std::string f = temp_path("hold-wm" + std::to_string(seed) + ".csv");
   auto g = run_cli("surface wm -D 1.5 --n-max 6 --longest-wavelength 0.01 --length 0.2 --rms-height 1e-5 --seed " +
@@ -25,12 +25,12 @@ std::string wm_file(int seed) {
 
 TEST(CliHold, SignaturePrintsTheHoldAngleFromAStartAndOverDrops) {
   const std::string a = wm_file(1), b = wm_file(2);
-  // The surfaces as generated (--detrend none), as issue 23's computation read them.
+  // The surfaces as generated (--detrend none), as the independent computation reads them.
   auto r =
       run_cli("signature " + a + " " + b + " --detrend none --start-offset 0.02379 --runaway-distance 0.01 --json");
   ASSERT_EQ(r.code, 0) << r.err;
   const json j = json::parse(r.out);
-  // Issue 23's independent numpy computation of the exact rigid lift: 1.549 and 0.695 deg.
+  // An independent numpy computation of the exact rigid lift: 1.549 and 0.695 deg.
   EXPECT_NEAR(j["hold_angle_deg"].get<double>(), 1.549, 0.0015);
   EXPECT_NEAR(j["inertial_hold_angle_deg"].get<double>(), 0.695, 0.0015);
   EXPECT_DOUBLE_EQ(j["runaway_distance_m"].get<double>(), 0.01);
@@ -50,7 +50,7 @@ TEST(CliHold, SignaturePrintsTheHoldAngleFromAStartAndOverDrops) {
   auto t = run_cli("signature " + a + " " + b + " --detrend none --start-offset 0.03 --runaway-distance 5e-3");
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_NE(t.out.find("hold angle (what a tilt test reads"), std::string::npos) << t.out;
-  EXPECT_NE(t.out.find("held up to 1.5095 deg"), std::string::npos) << t.out;  // issue 23: 1.510 deg
+  EXPECT_NE(t.out.find("held up to 1.5095 deg"), std::string::npos) << t.out;  // independent: 1.510 deg
 }
 
 TEST(CliHold, DefaultRunawayDistanceScalesWithTheFile) {
@@ -109,7 +109,7 @@ TEST(CliHold, BadHoldOptionsExit2NamingTheOption) {
   EXPECT_NE(r.err.find("--no-hold"), std::string::npos) << r.err;
 }
 
-// Issue 33 item 6: an upper tip on a lower profile with two ramps of slope 0.05 and one of 0.06
+// An upper tip on a lower profile with two ramps of slope 0.05 and one of 0.06
 // (the second 0.05 ramp 4 mm after the first, the 0.06 one 8.5 mm after it). From the first
 // ramp the block slides past atan(0.05); the equal ramp cannot hold it, the 0.06 ramp lies
 // farther than d = 5 mm: the hold angle is atan(0.05), with the features moved or not, on the
@@ -172,9 +172,9 @@ TEST(CliHold, AProcessThatRunsFarPastTheRangeIsFollowedToWhereItStops) {
   // (ramps of slope 0.3 and flat tops, 28 points a period, spacing 1 um; their line removed too):
   // the backward chains of the drops near the range's end run past it for several rounds of the
   // lift beyond the range. Second method: the same analysis with the lift computed over the whole
-  // overlap at once (a build of session 21 that skips the rounds) reads every backward drop's
-  // hold angle as 0 to rounding (4.9e-14 deg); the rounds of d/5 and what each check found short
-  // had stopped early and read 17.27 deg for some drops. Rounds that at least double from the
+  // overlap at once (HoldOptions::whole_lift_offsets = inf, no rounds) reads every backward drop's
+  // hold angle as 0 to rounding (4.9e-14 deg); rounds of d/5 extended by what each check finds
+  // short stop early and read 17.27 deg for some drops. Rounds that at least double from the
   // third on go on to where the process stops.
   const std::string lower = temp_path("hold-far-lower.csv"), upper = temp_path("hold-far-upper.csv");
   {
@@ -199,7 +199,7 @@ TEST(CliHold, ARunAwayOverALongOverlapEnds) {
   // The Dektak scan (1.5 mm) under the non-uniform profile that names no unit (read as metres: a
   // block 1.7 km long, a unit mix-up): the backward process runs away towards the far end of the
   // overlap, and the lift beyond the range is followed there in rounds that double (one round
-  // per run-away distance, each planning the range so far, did not end in 300 s). It ends with
+  // per run-away distance, each planning the range so far, does not end in 300 s). It ends with
   // the exact analysis.
   const std::string data = FRICTAL_TEST_DATA;
   auto r = run_cli("signature " + data + "/profiles/dektak-1.csv " + data + "/profiles/nonuniform.asc --json");

@@ -196,7 +196,7 @@ TEST(CliIo, ArealSignatureCommand) {
   EXPECT_EQ(run_cli("areal " + kData + "/x3p/x3p-2.x3p --contact-slope max").code, 2);
 }
 
-// Issue 11: `frictal signature` reads a 1-D .npy (heights only) with --spacing (and --unit), as
+// `frictal signature` reads a 1-D .npy (heights only) with --spacing (and --unit), as
 // every other reading command does; without --spacing the reader's error names the option.
 // A triangle wave of slope angle 30 deg (heights 0, h, 0, h, ... with h = dx tan 30 deg) against
 // itself turned over: theta_max is the slope angle both ways (paper, Sec. III: K0 gives alpha).

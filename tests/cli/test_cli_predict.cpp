@@ -205,3 +205,78 @@ TEST(CliWarnings, ABoundBelowZeroIsWarnedAndTheReportStillWritten) {
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.err.find("[bound-negative]"), std::string::npos) << r.err;
 }
+
+// --- The stated test -----------------------------------------------------------------------------
+
+namespace {
+json predict_json(const std::string& args) {
+  auto r = run_cli("predict " + args + " --json");
+  EXPECT_EQ(r.code, 0) << r.err;
+  return r.code == 0 ? json::parse(r.out) : json::object();
+}
+bool warned(const json& j, const std::string& code) {
+  for (const auto& w : j["warnings"])
+    if (w["code"] == code) return true;
+  return false;
+}
+}  // namespace
+
+TEST(CliPredict, TheTestIsStatedInLengthsWithUnits) {
+  const std::string f = data("profiles/dektak-1.csv") + " --crop 0,0.4mm";
+  const json a = predict_json(f + " --runaway-distance 5um --block-length 0.1mm");
+  EXPECT_DOUBLE_EQ(a["runaway_distance_m"].get<double>(), 5e-6);
+  EXPECT_NEAR(a["block_length_m"].get<double>(), 1e-4, 1e-12);
+  EXPECT_EQ(a["test_lengths"], "d: given; block: given");
+  // The d table: d/4 .. 4d, its entry at d the headline.
+  ASSERT_EQ(a["d_sweep_m"].size(), 5u);
+  EXPECT_NEAR(a["d_sweep_m"][0].get<double>(), 1.25e-6, 1e-18);
+  EXPECT_EQ(a["d_sweep_median_deg"][2], a["friction_angle_deg"]);
+  EXPECT_EQ(a["d_sweep_q05_deg"][2], a["friction_angle_q05_deg"]);
+  auto t = run_cli("predict " + f + " --runaway-distance 5e-6");
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("how the answer depends on d"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("<- d"), std::string::npos) << t.out;
+  auto h = run_cli("predict --help");
+  EXPECT_NE(h.out.find("--block-length"), std::string::npos);
+  EXPECT_NE(h.out.find("slope correlation lengths"), std::string::npos) << h.out;
+  auto bad = run_cli("predict " + f + " --block-length 2furlongs");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--block-length"), std::string::npos) << bad.err;
+}
+
+TEST(CliPredict, TheCropAndTheScanAgreeAndA50umPieceIsWarned) {
+  // The old default d was a twentieth of the scan (the crop's d 0.53 of the scan's, the answers
+  // 4.49 and 1.41 deg, each outside the other's 5-95 % range). The stated test's d is a length
+  // of the surface: the same within the estimate's scatter, and each median inside the other's
+  // spread.
+  const std::string f = data("profiles/dektak-1.csv");
+  const json all = predict_json(f);
+  const json crop = predict_json(f + " --crop 0.1mm,0.9mm");
+  EXPECT_NEAR(crop["runaway_distance_m"].get<double>() / all["runaway_distance_m"].get<double>(), 1.0, 0.15);
+  for (const auto* p : {&all, &crop}) {
+    const json& o = p == &all ? crop : all;
+    EXPECT_GE((*p)["friction_angle_deg"].get<double>(), o["friction_angle_q05_deg"].get<double>());
+    EXPECT_LE((*p)["friction_angle_deg"].get<double>(), o["friction_angle_q95_deg"].get<double>());
+  }
+  EXPECT_FALSE(warned(all, "scan-too-short"));
+  const json piece = predict_json(f + " --crop 0.6mm,0.65mm");
+  EXPECT_TRUE(warned(piece, "scan-too-short"));
+  // The answer is for the largest test of the default's shape that fits: L = L_b + 8 d, L_b = 20 d.
+  EXPECT_NEAR(piece["block_length_m"].get<double>(), 20 * piece["runaway_distance_m"].get<double>(), 1e-9);
+  // A stated test the scan cannot hold is refused, saying what it needs.
+  auto r = run_cli("predict " + f + " --runaway-distance 0.3mm --block-length 1mm");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("needs a lower scan of"), std::string::npos) << r.err;
+}
+
+TEST(CliPredict, TheWholeBlockIsSignaturesHoldAnalysis) {
+  // --block-length whole: the whole scan over the first half of itself, the test `frictal
+  // signature` analyses; the same d gives the same hold angles.
+  const std::string f = data("profiles/dektak-1.csv");
+  const json p = predict_json(f + " --runaway-distance 75um --block-length whole");
+  auto s = run_cli("signature " + f + " --runaway-distance 75um --json");
+  ASSERT_EQ(s.code, 0) << s.err;
+  const json g = json::parse(s.out);
+  EXPECT_NEAR(p["friction_angle_deg"].get<double>(), g["hold_angle_q50_deg"].get<double>(), 1e-9);
+  EXPECT_NEAR(p["friction_angle_q95_deg"].get<double>(), g["hold_angle_q95_deg"].get<double>(), 1e-9);
+}

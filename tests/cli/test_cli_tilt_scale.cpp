@@ -1,4 +1,4 @@
-// frictal tilt on measured files at any scale (issue 34, item 4): the defaults scaled to the
+// frictal tilt on measured files at any scale: the defaults scaled to the
 // files, the cost estimate and --quiet, the refusals (exit 2 naming the option), and a turned
 // block's warning leading the output. Expected values are derived here from the files' bytes
 // and the Table I/II defaults (tilt.hpp: r_0 = 5e-5 m on the 0.2 m block), not from frictal's

@@ -666,9 +666,9 @@ TEST(ArealTilt, TheTiltDampingEndsASlipInTheNextSeatAsTheQuasiStaticBlock) {
   // deg (by hand). A block that slips with momentum climbs B's short wall (0.05 a above the
   // 0.2 slope that the tilt balances) and runs away at the first slip, just above atan(0.2) =
   // 11.31 deg: so it does under a local damping of 0.5 (measured; at the default 0.9 the wall
-  // stops it: the 2D momentum is weaker than on the maps' failing drops, bench/results/
-  // predict-vs-sim.md). With tilt_damping the slips are overdamped whatever the local damping: it
-  // stops in B and reads the quasi-static 14.04 deg.
+  // stops it: the 2D momentum is weaker than on the maps, bench/results/predict-vs-sim.md,
+  // "Maps: the damping towards the quasi-static limit"). With tilt_damping the slips are
+  // overdamped whatever the local damping: it stops in B and reads the quasi-static 14.04 deg.
   const double a = kTwoSeatSpacing;
   const TwoSeats seats = two_seats();
   const frictal::Map &f = seats.lower, &g = seats.upper;

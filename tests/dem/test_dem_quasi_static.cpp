@@ -47,9 +47,9 @@ frictal::TiltConfig quasi_static(double increment_deg) {
   return cfg;
 }
 
-// Issue 23's WM pair (seeds 1 and 2; D = 1.5, n_max = 6, L = 0.01 m, L_b = 0.2 m) at rms height
+// The reference WM pair (seeds 1 and 2; D = 1.5, n_max = 6, L = 0.01 m, L_b = 0.2 m) at rms height
 // `rms` (m), as curves for run_tilt.
-std::pair<frictal::Curve, frictal::Curve> issue_wm_pair(double rms) {
+std::pair<frictal::Curve, frictal::Curve> reference_wm_pair(double rms) {
   frictal::WmParams w;
   w.dimension = 1.5;
   w.n_max = 6;
@@ -269,15 +269,15 @@ TEST(DemQuasiStaticCli, UnknownProtocolExitsWithTwoNamingTheChoices) {
 }
 #endif
 
-TEST(DemQuasiStatic, ClosestContactsReadTheHoldAngleOfTheIssuesWmPair) {
-  // Issue 23's WM pair (seeds 1, 2; D = 1.5, n_max = 6, L = 0.01 m, L_b = 0.2 m), rotation held,
+TEST(DemQuasiStatic, ClosestContactsReadTheHoldAngleOfTheReferenceWmPair) {
+  // The reference WM pair (seeds 1, 2; D = 1.5, n_max = 6, L = 0.01 m, L_b = 0.2 m), rotation held,
   // r = 2e-5 m, d = 1 cm: from the rest offset 23.8 mm an independent numpy computation of the
   // rigid lift gives phi_qs = 1.549 deg. With the contact rule of the quasi-static protocol
   // (auto: closest) the run reads it at k_n = 6e7 N/m, the flat pair's stiffness of the issue's
   // target: the last increment below 1.549 deg (at most 0.01 deg low). Ten times rougher (rms
   // 1e-4 m) phi_qs is 15.132 deg (hold_angle on the same lift), read at 6e6 N/m.
   for (double rms : {1e-5, 1e-4}) {
-    const auto [lower, upper] = issue_wm_pair(rms);
+    const auto [lower, upper] = reference_wm_pair(rms);
     frictal::TiltConfig cfg = quasi_static(0.01);
     cfg.hold_rotation = true;
     cfg.radius = 2e-5;
@@ -305,7 +305,7 @@ TEST(DemQuasiStatic, ClosestReadsAStartWhereAConvexCornerCrossesAConcaveBend) {
   // deg). Before concave corners were counted by inclusion-exclusion (docs/dem.md sec. 1, rule
   // 3) the run held up to 1.55 deg at a stop where a convex corner of the lower block slides past
   // a concave bend of the upper one. Now the last increment below the prediction.
-  const auto [lower, upper] = issue_wm_pair(1e-5);
+  const auto [lower, upper] = reference_wm_pair(1e-5);
   frictal::TiltConfig cfg = quasi_static(0.01);
   cfg.hold_rotation = true;
   cfg.radius = 2e-5;
@@ -352,14 +352,14 @@ TEST(DemTilt, ConstantRateFromRestWithGravityTurningReadsKochK0AndFlatAngles) {
   EXPECT_NEAR(f->friction_angle / kDeg, std::atan(0.3) / kDeg, 0.1);
 }
 
-TEST(DemTilt, SlowTiltFromRestOfTheIssuesWmPairReadsInsideTheHoldBracket) {
-  // The dynamic test from rest that issue 23 asks about: the issue's WM pair, rotation held,
+TEST(DemTilt, SlowTiltFromRestOfTheReferenceWmPairReadsInsideTheHoldBracket) {
+  // The dynamic test from rest on the reference WM pair, rotation held,
   // r = 2e-5 m, d = 1 cm, k_n = 6e7 N/m, contact rule closest, relaxed at zero tilt, gravity
-  // turning at 0.005 rad/s. From the rest offset (23.8 mm) the issue's independent numpy values
+  // turning at 0.005 rad/s. From the rest offset (23.8 mm) the independent numpy values
   // are phi_in = 0.695 deg and phi_qs = 1.549 deg: the run reads between them (0.1 deg slack).
   // The paper's protocol does not: with free settling the frictionless block still glides when
-  // the tilt starts ('unsettled', DemTilt.UnsettledWarningForTheIssuesWmPair).
-  const auto [lower, upper] = issue_wm_pair(1e-5);
+  // the tilt starts ('unsettled', DemTilt.UnsettledWarningForTheReferenceWmPair).
+  const auto [lower, upper] = reference_wm_pair(1e-5);
   frictal::TiltConfig cfg;
   cfg.settling = frictal::TiltSettling::Relax;
   cfg.turn = frictal::TiltTurn::Gravity;

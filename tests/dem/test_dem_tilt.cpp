@@ -425,7 +425,7 @@ TEST(DemTilt, RunawayCheckpointsEqualSeparateRuns) {
 // starts the tilt elsewhere than the prediction's offset, with kinetic energy (docs/dem.md
 // sec. 6). Settled for 1 s it is at rest and the warning is silent. K0 at 20 deg (which agrees
 // with alpha) is at rest after 0.1 s: many contacts on 20 deg flanks stop it at once.
-TEST(DemTilt, UnsettledWarningForTheIssuesWmPair) {
+TEST(DemTilt, UnsettledWarningForTheReferenceWmPair) {
   auto has = [](const frictal::TiltResult& x, const std::string& code) {
     for (const auto& w : x.warnings)
       if (w.code == code) return true;

@@ -67,7 +67,7 @@ std::string slurp(const std::string& name) {
   return ss.str();
 }
 
-// Found by fuzz_read_npy: a dtype whose item size has ten digits ("f4294967296, ...") overflowed
+// Found by fuzz_read_npy: a dtype whose item size has ten digits ("f4294967296, ...") does not fit
 // the int that parses it (UBSan: signed integer overflow).
 TEST(FuzzRegressions, NpyDtypeWithAHugeItemSizeIsUnsupported) {
   const std::string bytes = slurp("npy-dtype-size-overflow.npy");

@@ -526,7 +526,7 @@ TEST(ReadX3p, HugeDeclaredMemberSizeIsRefusedWithoutAllocating) {
   EXPECT_NE(s.error().message.find("1073741824 bytes"), std::string::npos) << s.error().message;
 }
 
-// Issue 11: large text files are parsed from a memory mapping, lines one at a time, and the
+// Large text files are parsed from a memory mapping, lines one at a time, and the
 // delimiter is found from a tail of the file. A file of 6,000 rows separated by ';' with
 // decimal commas, whose last 3,000 lines are comments and blank lines (so the tail holding 200
 // data lines is longer than the first one looked at), CRLF line ends and a UTF-8 BOM: every

@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <optional>
 #include <random>
 
 #include "frictal/generators.hpp"
+#include "frictal/hold.hpp"
 #include "frictal/predict.hpp"
 #include "frictal/warnings.hpp"
 
@@ -194,7 +196,7 @@ TEST(Predict, GroovesMapHoldsAtTheSteepestSegmentFromEveryDrop) {
 TEST(Predict, MapDropsKeepTheBlocksSpheresWhollyOverTheLowerMapWithRoomD) {
   // Lower 41 x 21 nodes, upper 9 x 5, both at 5 um: node extents Lf = 200 um, Wf = 100 um,
   // Lg = 40 um, Wg = 20 um. The block's footprint is its nodes widened by the sphere radius r
-  // (default a fifth of the lower spacing, 1 um); D defaults to a twentieth of Lf, 10 um. By hand
+  // (default a fifth of the lower spacing, 1 um); D is stated, 10 um. By hand
   // the drop range is +-((Lf - Lg) / 2 - r - D) = +-69 um along x and +-((Wf - Wg) / 2 - r - D) =
   // +-29 um across, and the 2 x 2 drops are its corners: at each, the footprint's nearest side
   // lies exactly D from the lower map's edge (no sphere starts on the edge).
@@ -215,9 +217,10 @@ TEST(Predict, MapDropsKeepTheBlocksSpheresWhollyOverTheLowerMapWithRoomD) {
   const double Lf = 200e-6, Wf = 100e-6, Lg = 40e-6, Wg = 20e-6;
   frictal::PredictOptions o = no_form_removal();
   o.map_drops = 2;
+  o.runaway_distance = 10e-6;
   for (const double r : {0.0, 3e-6}) {
     o.sphere_radius = r;
-    const double rr = r > 0 ? r : 0.2 * a, D = Lf / 20;
+    const double rr = r > 0 ? r : 0.2 * a, D = 10e-6;
     auto p = frictal::predict(lower, &upper, o);
     ASSERT_TRUE(p.ok()) << p.error().message;
     EXPECT_NEAR(p->runaway_distance, D, 1e-18);
@@ -391,4 +394,190 @@ TEST(Warnings, ABoundBelowZeroIsNegativeFriction) {
   bool listed = false;
   for (const auto& c : frictal::warning_codes()) listed |= c.code == "bound-negative";
   EXPECT_TRUE(listed);
+}
+
+// --- The stated test: d and L_b are lengths of the surface, not fractions of the scan ---------
+
+namespace {
+
+// A sine z = A sin(2 pi x / lambda) over `waves` wavelengths, `per` points a wavelength, not
+// marked periodic (as a measured scan).
+frictal::Profile sine(double lambda, int waves, int per) {
+  frictal::Profile p;
+  const int n = waves * per;
+  for (int i = 0; i <= n; ++i) {
+    const double x = lambda * double(i) / per;
+    p.x.push_back(x);
+    p.z.push_back(1e-6 * std::sin(2 * kPi * x / lambda));
+  }
+  return p;
+}
+
+// The piece [a, b] of a uniformly sampled profile (its own samples, x from 0).
+frictal::Profile window(const frictal::Profile& p, double a, double b) {
+  frictal::Profile w;
+  for (std::size_t i = 0; i < p.x.size(); ++i)
+    if (p.x[i] >= a - 1e-15 && p.x[i] <= b + 1e-15) w.x.push_back(p.x[i] - a), w.z.push_back(p.z[i]);
+  return w;
+}
+
+// A stationary random self-affine scan (Fourier-filtered, H = 0.8, rolloff 1 cm, 16384 points
+// over 1.6 m), its period dropped: a measured scan much longer than its slope correlation length.
+frictal::Profile long_scan() {
+  frictal::FourierSelfAffineParams fp;
+  fp.points = 16384;
+  fp.length = 1.6;
+  fp.rolloff_wavelength = 0.01;
+  fp.short_cutoff_wavelength = 0.001;
+  fp.seed = 7;
+  frictal::Profile p = frictal::fourier_self_affine_profile(fp).value();
+  p.period.reset();
+  return p;
+}
+
+}  // namespace
+
+TEST(PredictStatedTest, SlopeCorrelationLengthOfASineAndASawtooth) {
+  // A sine's slope is a cosine, whose autocorrelation cos(2 pi tau / lambda) falls to 1/e at
+  // tau = lambda acos(1/e) / (2 pi) = 0.19204 lambda. A sawtooth's slope is a two-level wave
+  // with duty p; its normalised autocorrelation falls linearly, 1 - tau / (lambda p (1 - p)),
+  // to 1/e at tau = (1 - 1/e) p (1 - p) lambda (0.13276 lambda for p = 0.7): both by hand.
+  const double lambda = 0.01;
+  EXPECT_NEAR(frictal::slope_correlation_length(sine(lambda, 20, 64)), lambda * std::acos(std::exp(-1.0)) / (2 * kPi),
+              2e-3 * lambda);
+  frictal::SawtoothParams sp;
+  sp.rise_angle = 25 * kDeg;
+  sp.rise_fraction = 0.7;
+  frictal::Profile saw = frictal::sawtooth_profile(sp).value();  // 2 vertices a wavelength
+  saw.period.reset();
+  EXPECT_NEAR(frictal::slope_correlation_length(saw), (1 - std::exp(-1.0)) * 0.7 * 0.3 * sp.wavelength,
+              3e-3 * sp.wavelength);
+  // No slope variation: no length (the default then counts sampling intervals).
+  frictal::Profile flat{{0, 1e-3, 2e-3, 3e-3}, {0, 0, 0, 0}, {}};
+  EXPECT_EQ(frictal::slope_correlation_length(flat), 0.0);
+}
+
+TEST(PredictStatedTest, TheDefaultsOfTwoCropsOfOneSurfaceAreTheSame) {
+  // The old default d was L_b / 20 of the scan: a half crop had half the d. The stated test's
+  // defaults are a local statistic of the surface: the whole 1.6 m scan and two 0.4 m crops of
+  // it give the same d and L_b within 15 % (the estimate's scatter), and medians that lie in
+  // each other's 5-95 % range.
+  const frictal::Profile p = long_scan();
+  const frictal::Profile a = window(p, 0.0, 0.4), b = window(p, 0.8, 1.2);
+  const double d_all = frictal::default_test_lengths(p).runaway_distance;
+  for (const frictal::Profile* c : {&a, &b}) {
+    const frictal::StatedTest t = frictal::default_test_lengths(*c);
+    EXPECT_NEAR(t.runaway_distance / d_all, 1.0, 0.15);
+    EXPECT_NEAR(t.block_length, frictal::kBlockPerRunaway * t.runaway_distance, 1e-15);
+  }
+  auto pa = frictal::predict(profile_surface(a, "a"), nullptr, {});
+  auto pb = frictal::predict(profile_surface(b, "b"), nullptr, {});
+  ASSERT_TRUE(pa.ok()) << pa.error().message;
+  ASSERT_TRUE(pb.ok()) << pb.error().message;
+  EXPECT_FALSE(has_code(pa->warnings, "scan-too-short"));
+  EXPECT_FALSE(has_code(pb->warnings, "scan-too-short"));
+  EXPECT_NEAR(pa->runaway_distance / pb->runaway_distance, 1.0, 0.15);
+  EXPECT_GE(pa->friction_angle.q50, pb->friction_angle.q05);
+  EXPECT_LE(pa->friction_angle.q50, pb->friction_angle.q95);
+  EXPECT_GE(pb->friction_angle.q50, pa->friction_angle.q05);
+  EXPECT_LE(pb->friction_angle.q50, pa->friction_angle.q95);
+}
+
+TEST(PredictStatedTest, AScanTooShortIsWarnedAndAnsweredForTheLargestTestOfTheSameShape) {
+  // A 5 cm piece of the scan cannot hold the default test (L_b = 20 d plus 8 d of room, about
+  // 0.14 m here): the answer is for the test of the same shape that just fits (L = L_b + 8 d
+  // with L_b = 20 d, so d = L / 28), and says so.
+  const frictal::Profile p = long_scan();
+  const frictal::Profile s = window(p, 0.3, 0.35);
+  const double len = s.x.back() - s.x.front();
+  auto r = frictal::predict(profile_surface(s, "piece"), nullptr, {});
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  EXPECT_TRUE(has_code(r->warnings, "scan-too-short"));
+  EXPECT_NEAR(r->runaway_distance, len / (frictal::kBlockPerRunaway + frictal::kRoomPerRunaway), 1e-9 * len);
+  EXPECT_NEAR(r->block_length, frictal::kBlockPerRunaway * r->runaway_distance, 1e-6 * len);
+  // A stated d keeps: the defaulted block gives way (to the upper scan here), warned.
+  frictal::PredictOptions o;
+  o.runaway_distance = 0.005;  // the default block: 20 d = 0.1 m
+  const frictal::PredictSurface lower = profile_surface(window(p, 0.0, 0.6), "lower");
+  auto q = frictal::predict(lower, nullptr, o);
+  ASSERT_TRUE(q.ok()) << q.error().message;
+  EXPECT_FALSE(has_code(q->warnings, "scan-too-short"));
+  EXPECT_NEAR(q->block_length, 0.1, 1e-9);
+  const frictal::PredictSurface upper = profile_surface(window(p, 0.6, 0.66), "upper");
+  auto u = frictal::predict(lower, &upper, o);
+  ASSERT_TRUE(u.ok()) << u.error().message;
+  EXPECT_TRUE(has_code(u->warnings, "scan-too-short"));
+  EXPECT_NEAR(u->block_length, upper.profile.x.back() - upper.profile.x.front(), 1e-12);  // all of it
+  EXPECT_EQ(u->runaway_distance, 0.005);
+  // A stated test that the scans cannot hold is refused, naming what it needs.
+  o.block_length = 0.2;
+  auto e = frictal::predict(lower, &upper, o);
+  ASSERT_FALSE(e.ok());
+  EXPECT_NE(e.error().message.find("needs a lower scan of 0.24 m"), std::string::npos) << e.error().message;
+}
+
+TEST(PredictStatedTest, TheSweepOverDHoldsTheHeadlineAtD) {
+  const frictal::Profile p = window(long_scan(), 0.0, 0.4);
+  frictal::PredictOptions o;
+  o.runaway_distance = 0.004;
+  auto r = frictal::predict(profile_surface(p, "scan"), nullptr, o);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  ASSERT_EQ(r->d_sweep_distance.size(), 5u);
+  const double want[5] = {0.001, 0.002, 0.004, 0.008, 0.016};
+  for (int i = 0; i < 5; ++i) EXPECT_NEAR(r->d_sweep_distance[i], want[i], 1e-15);
+  EXPECT_EQ(r->d_sweep_q50[2], r->friction_angle.q50);
+  EXPECT_EQ(r->d_sweep_q05[2], r->friction_angle.q05);
+  EXPECT_EQ(r->d_sweep_q95[2], r->friction_angle.q95);
+  EXPECT_NEAR(r->block_length, frictal::kBlockPerRunaway * 0.004, 1e-12);  // L_b = 20 d, d given
+  for (std::size_t i = 0; i < 5; ++i) EXPECT_LE(r->d_sweep_q05[i], r->d_sweep_q50[i]);
+}
+
+TEST(PredictStatedTest, TheWholeBlockIsTheHoldAnalysisOfTheWholePair) {
+  // --block-length whole: the whole upper profile over the first half of the lower one, the
+  // hold analysis of `frictal signature` (analyse_hold over its own range), to rounding.
+  const frictal::Profile p = window(long_scan(), 0.0, 0.2);
+  frictal::PredictOptions o = no_form_removal();
+  o.block_length = -1;
+  o.runaway_distance = 0.01;
+  auto r = frictal::predict(profile_surface(p, "scan"), nullptr, o);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  frictal::HoldOptions ho;
+  ho.runaway_distance = 0.01;
+  auto h = frictal::analyse_hold(p, frictal::rotate180(p), {}, ho);
+  ASSERT_TRUE(h.ok()) << h.error().message;
+  EXPECT_NEAR(r->friction_angle.q50, h->distribution.forward.hold.q50, 1e-12);
+  EXPECT_NEAR(r->friction_angle.q95, h->distribution.forward.hold.q95, 1e-12);
+  EXPECT_NEAR(r->block_length, 0.2, 1e-12);
+}
+
+TEST(PredictStatedTest, BadBlockLengthsAreRefusedNamingTheValue) {
+  frictal::KochParams kp;
+  kp.iterations = 1;
+  auto k = profile_surface(frictal::koch_profile(kp).value(), "k1");
+  frictal::PredictOptions o;
+  o.block_length = 0.05;
+  auto r = frictal::predict(k, nullptr, o);  // periodic: the whole profile slides
+  ASSERT_FALSE(r.ok());
+  EXPECT_NE(r.error().message.find("periodic"), std::string::npos) << r.error().message;
+  o.block_length = std::numeric_limits<double>::quiet_NaN();
+  auto n = frictal::predict(profile_surface(sine(0.01, 20, 64)), nullptr, o);
+  ASSERT_FALSE(n.ok());
+  EXPECT_NE(n.error().message.find("block length"), std::string::npos) << n.error().message;
+}
+
+TEST(PredictStatedTest, TheMapDefaultIsTheSlopeCorrelationLengthAlongTheDirection) {
+  // Rows z = A sin(2 pi x / lambda), the same along y: along x the slope correlation length is
+  // 0.19204 lambda (above), so d = 12.5 of it; along y the rows are flat and d counts spacings.
+  frictal::Map m;
+  m.nx = 64 * 40 + 1;
+  m.ny = 8;
+  m.dx = m.dy = 0.01 / 64;
+  m.heights.resize(m.nx * m.ny);
+  for (std::size_t j = 0; j < m.ny; ++j)
+    for (std::size_t i = 0; i < m.nx; ++i) m.at(i, j) = 1e-6 * std::sin(2 * kPi * double(i) / 64);
+  const double xi = 0.01 * std::acos(std::exp(-1.0)) / (2 * kPi);
+  EXPECT_NEAR(frictal::default_map_runaway_distance(m, 0).runaway_distance, frictal::kRunawayPerSlopeCorrelation * xi,
+              frictal::kRunawayPerSlopeCorrelation * 2e-3 * 0.01);
+  EXPECT_NEAR(frictal::default_map_runaway_distance(m, kPi / 2).runaway_distance,
+              frictal::kRunawayPerSlopeCorrelation * m.dy, 1e-15);
 }

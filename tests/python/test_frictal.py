@@ -153,8 +153,8 @@ def test_tilt_reports_both_predictions_and_holds_rotation():
     assert "core-overlap" in [w["code"] for w in small["warnings"]]
 
 
-def test_hold_angle_issue_pair_and_sawtooth():
-    # Issue 23's WM pair: an independent numpy computation of the exact rigid lift gives, from a drop
+def test_hold_angle_reference_wm_pair_and_sawtooth():
+    # The reference WM pair: an independent numpy computation of the exact rigid lift gives, from a drop
     # at 23.79 mm with d = 1 cm, phi_qs = 1.549 deg and phi_in = 0.695 deg.
     kw = dict(dimension=1.5, n_max=6, longest_wavelength=0.01, length=0.2, rms_height=1e-5)
     f, g = frictal.wm_profile(seed=1, **kw), frictal.wm_profile(seed=2, **kw)

@@ -238,3 +238,35 @@ def test_a_bound_below_zero_is_warned_in_python_too():
         s = frictal.signature(ramp, flat)
     assert math.atan(-0.1) - 1e-12 <= s["theta_max_forward"] < 0
     assert "bound-negative" in {w["code"] for w in s["warnings"]}
+
+
+def test_the_stated_test_takes_lengths_and_returns_the_d_sweep():
+    # A sine of 64 points a wavelength over 80 wavelengths, not periodic: its slope correlation
+    # length is lambda acos(1/e) / (2 pi) (the slope is a cosine; by hand), so the default d is
+    # 12.5 of it and the block 20 d; the scan holds that test (80 > 0.192 * 12.5 * 28 = 67 wavelengths).
+    lam = 0.01
+    x = np.arange(80 * 64 + 1) * lam / 64
+    prof = frictal.Profile(x, 1e-6 * np.sin(2 * np.pi * x / lam))
+    p = frictal.predict(prof, detrend="none")
+    d = 12.5 * lam * math.acos(math.exp(-1)) / (2 * math.pi)
+    assert p.runaway_distance == pytest.approx(d, rel=2e-3)
+    assert p.block_length == pytest.approx(20 * p.runaway_distance, rel=1e-9)
+    assert list(p.d_sweep) == pytest.approx([k * p.runaway_distance for k in (0.25, 0.5, 1, 2, 4)])
+    assert p.d_sweep_median[2] == p.friction_angle  # the headline is the sweep's entry at d
+    dd = p.to_dict()
+    assert dd["d_sweep_median_deg"][2] == pytest.approx(math.degrees(p.friction_angle))
+    # Stated lengths are kept; 'whole' slides the whole profile over the first half of the other.
+    q = frictal.predict(prof, detrend="none", runaway_distance=0.004, block_length=0.08)
+    assert (q.runaway_distance, q.block_length) == pytest.approx((0.004, 0.08))
+    w = frictal.predict(prof, detrend="none", runaway_distance=0.004, block_length="whole")
+    assert w.block_length == pytest.approx(x[-1])
+    with pytest.raises(ValueError, match="block_length"):
+        frictal.predict(prof, block_length="half")
+
+
+def test_a_short_scan_is_warned_with_its_category():
+    lam = 0.01
+    x = np.arange(4 * 64 + 1) * lam / 64  # four wavelengths: too short for the default test
+    with pytest.warns(frictal.ScanTooShortWarning):
+        p = frictal.predict(frictal.Profile(x, 1e-6 * np.sin(2 * np.pi * x / lam)), detrend="none")
+    assert p.block_length + 8 * p.runaway_distance == pytest.approx(x[-1], rel=1e-9)

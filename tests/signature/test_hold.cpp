@@ -1,6 +1,6 @@
 // The hold angle (hold.hpp) against hand-derived answers, against a second method (a tilt-by-tilt
 // simulation of the quasi-static process and a direct scan for the steepest chords), and against
-// the independent numpy computation quoted in issue 23 for its WM pair.
+// an independent numpy computation of the exact rigid lift of the reference WM pair.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -107,9 +107,9 @@ double chord_scan(const LiftCurve& c, double x0, double w) {
   return best;
 }
 
-// A face of issue 23's WM pair: `frictal surface wm -D 1.5 --n-max 6 --longest-wavelength 0.01
+// A face of the reference WM pair: `frictal surface wm -D 1.5 --n-max 6 --longest-wavelength 0.01
 // --length 0.2 --rms-height 1e-5 --seed SEED`.
-Result<Profile> issue23_face(std::uint64_t seed) {
+Result<Profile> reference_wm_face(std::uint64_t seed) {
   WmParams w = default_wm_params();
   w.dimension = 1.5;
   w.n_max = 6;
@@ -325,13 +325,13 @@ TEST(Hold, KochSurfacesHoldAtTheSignatureMaximum) {
   }
 }
 
-TEST(Hold, Issue23WmPairMatchesTheIndependentNumpyComputation) {
-  // Issue 23: `frictal surface wm -D 1.5 --n-max 6 --longest-wavelength 0.01 --length 0.2
+TEST(Hold, ReferenceWmPairMatchesTheIndependentNumpyComputation) {
+  // `frictal surface wm -D 1.5 --n-max 6 --longest-wavelength 0.01 --length 0.2
   // --rms-height 1e-5 --seed 1` (and seed 2), the upper block dropped at 23.79 mm: an independent
   // numpy computation of the exact rigid lift gives phi_qs = 1.549 deg and phi_in = 0.695 deg for
   // d = 1 cm; from 30 mm with d = 5 mm, phi_qs = 1.510 deg (the steepest slope within 5 mm of
   // the rest is only 0.885 deg: the block creeps to a steeper stop first).
-  auto f = issue23_face(1), g = issue23_face(2);
+  auto f = reference_wm_face(1), g = reference_wm_face(2);
   ASSERT_TRUE(f.ok() && g.ok());
   SignatureOptions so;
   so.keep_contacts = false;
@@ -405,7 +405,7 @@ TEST(Hold, AnalyseHoldEqualsTheLiftOverTheWholeOverlap) {
   // analyse_hold computes the lift over the drop range widened by d (and wider while a run-away
   // leaves a stop near a cut end); the same analysis on the lift over the whole overlap of the
   // blocks must give the same answers, from starts near both ends of the drop range.
-  auto f = issue23_face(1), g = issue23_face(2);
+  auto f = reference_wm_face(1), g = reference_wm_face(2);
   ASSERT_TRUE(f.ok() && g.ok());
   const Profile up = rotate180(*g);
   const double L = f->x.back() - f->x.front();
@@ -449,7 +449,7 @@ TEST(Hold, AnalyseHoldEqualsTheLiftOverTheWholeOverlap) {
 // threads: the ends of the lift checked side by side, each direction's basins found on its own
 // thread; one: the backward basins mirrored from the forward).
 TEST(Hold, SignatureWithHoldIsTheSignatureToTheBitOnAnyThreads) {
-  auto f = issue23_face(3), g = issue23_face(4);
+  auto f = reference_wm_face(3), g = reference_wm_face(4);
   ASSERT_TRUE(f.ok() && g.ok());
   const Profile up = rotate180(*g);
   auto same = [](double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); };
@@ -500,7 +500,7 @@ TEST(Hold, SignatureWithHoldIsTheSignatureToTheBitOnAnyThreads) {
   }
 }
 
-// Issue 33 item 6: the records rule slips to the next piece that is steeper by more than the
+// The records rule slips to the next piece that is steeper by more than the
 // rounding of the slopes, so equal slopes computed a few ulps apart do not hold a block that the
 // first of them let go. Hand-derived: the block rests on a ramp of slope 0.05; past atan(0.05) it
 // slides; the next ramp of slope 0.05 (4 mm on) cannot hold it at that tilt, the ramp of slope
@@ -643,14 +643,14 @@ Result<LiftCurve> signature_lift(const Profile& f, const Profile& up, double lo,
 }
 }  // namespace
 
-// Issue 32: the one-pass analysis builds its lift from the signature's own offsets, those beyond
+// The one-pass analysis builds its lift from the signature's own offsets, those beyond
 // the range (listed by the wider range's plan, less the ones the signature has) and the end
 // checks' curves (kept for the whole curve's ends, not built twice). Where both ends pass the
 // check at once (the lift cut 1.55 d beyond the drop range on both sides), that is the lift of a
 // signature over the curve's range, bit for bit, with the hold numbers of that lift; where a side
 // was widened, the lift keeps the first round's cut end as an offset (the other numbers the same).
 TEST(Hold, OnePassCurveIsTheLiftOfItsRangeToTheBit) {
-  auto f = issue23_face(1), g = issue23_face(2);
+  auto f = reference_wm_face(1), g = reference_wm_face(2);
   ASSERT_TRUE(f.ok() && g.ok());
   const Profile up = rotate180(*g);
   const double L = f->x.back() - f->x.front();
@@ -698,7 +698,7 @@ TEST(Hold, OnePassCurveIsTheLiftOfItsRangeToTheBit) {
   EXPECT_GE(widened, 1);
 }
 
-// Issue 32: without the curve kept, the lift beyond the drops' reach (past the first rise after
+// Without the curve kept, the lift beyond the drops' reach (past the first rise after
 // the drop range and d) is left out in blocks of 64 offsets whose slopes, bounded from the faces'
 // edges at every candidate contact, cannot exceed the steepest piece between the range's end and
 // there: no chain's stop can lie there. Every number must be that of the whole lift, to the bit:
@@ -800,7 +800,7 @@ TEST(Hold, PrunedLiftGivesTheNumbersOfTheWholeLiftToTheBit) {
   RecordProperty("pruned_offsets", static_cast<int>(pruned));
 }
 
-// Issue 32: the backward distribution takes its basins from the forward pass mirrored (the same
+// The backward distribution takes its basins from the forward pass mirrored (the same
 // rest vertices, the weights added up in the backward order) where no drop lands on a flat
 // piece. Either way it must be the forward distribution of the mirrored curve, to the bit: random
 // curves, some with flat pieces and pieces one ulp long (where it computes its own), drop ranges

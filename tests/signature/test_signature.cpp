@@ -303,7 +303,7 @@ TEST(SignatureJumps, JumpOnJumpAtARoundedEventKeepsBothExtremes) {
   EXPECT_NEAR(sig->theta_left[at], M_PI / 2, 1e-12);  // h jumps up from -0.2: a wall towards +x
 }
 
-// Issue 11: on aligned lattices the lift is searched over indices with aligned block maxima.
+// On aligned lattices the lift is searched over indices with aligned block maxima.
 // Checked against the two other methods at every event offset of a window: the plain scan of
 // every vertex (lift_direct) and the general branch and bound over both faces (the rigid
 // evaluator of the spheropolygon signature, which never takes the index path); and the same
@@ -419,7 +419,7 @@ TEST(SignatureIndexSearch, UniformGridFarFromOriginIsExact) {
   EXPECT_NEAR(static_cast<double>(r->offset.size()), 1001.0, 1.0);
 }
 
-// Issue 11: the index search also bounds each node by tilted upper lines (the chord of the node
+// The index search also bounds each node by tilted upper lines (the chord of the node
 // raised over its points, TiltedMax). They only prune; a line that cut below a point would lose a
 // maximiser or a contact. Checked against the search with block maxima only (every field, every
 // contact, bit for bit) and against the plain scan of every vertex (lift_direct), on one and two
@@ -578,7 +578,7 @@ TEST(FaceValueWalk, EqualsValueOnNonUniformFacesWithJumps) {
 // and self-affine pairs, for an upper grid of 0.7 N points and for offsets halfway between
 // lattice offsets of equal grids; and against the plain scan.
 // A grid of at least a quarter of the exact events on aligned lattices is replaced by every event:
-// exact, so theta_max equals the exact path's, and never costlier (issue 23).
+// exact, so theta_max equals the exact path's, and never costlier.
 TEST(SignatureGrid, ADenseGridOnAlignedLatticesTakesTheExactPath) {
   const SigPair p = index_path_pair(0, 20'001);
   SignatureOptions exact;

@@ -150,8 +150,8 @@ TEST(StudyGrid, ErrorsNameTheProblem) {
                 .find("quick overrides 'y'"),
             std::string::npos);
   EXPECT_NE(parse_error("[study]\nname='a'\nseed=1\nbogus=2\n").find("unknown key 'bogus'"), std::string::npos);
-  // A list that repeats a value would define one task twice (it used to fail later, in the store, with
-  // "writing tasks: not an error").
+  // A list that repeats a value would define one task twice (caught here, not later in the store
+  // as "writing tasks: not an error").
   EXPECT_NE(parse_error("[study]\nname='a'\nseed=1\n[[part]]\nname='p'\nkind='koch-signature'\n[part.parameters]\n"
                         "iterations=[1, 2, 1]\n")
                 .find("appears twice"),

@@ -80,7 +80,7 @@ TEST(StudyFiles, KochTheoryPartsReproduceSectionThree) {
 }
 
 TEST(StudyFiles, ArealTiltParsesAtBothScales) {
-  // Issue 24's study: 3 groove angles x 2 diagonals + 2 anisotropies x 4 samples; quick 2 + 2.
+  // The areal-tilt study: 3 groove angles x 2 diagonals + 2 anisotropies x 4 samples; quick 2 + 2.
   // Parses whether or not this build has MuJoCo (the kind is then declared, not available).
   const TaskRegistry reg = default_registry();
   const std::string p = (studies_dir() / "areal-tilt.toml").string();

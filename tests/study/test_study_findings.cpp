@@ -1,4 +1,4 @@
-// Findings as data (issue 31, item 3): one conclusion per claim over every part that checks it,
+// Findings as data: one conclusion per claim over every part that checks it,
 // with a verdict from the allowed set; `frictal study report --json` writes them; a claim is not
 // checked on the parts it does not apply to (Eq. 18 only on the paper's test, the bracket
 // [phi_in, phi_qs] only on a test from rest). The verdicts are derived again here from the
@@ -188,7 +188,7 @@ hold_rotation = true
     parts_of[id].insert(part);
     verdict_on[id + "/" + part] = f.at("verdict");
   }
-  // The paper's Eq. 18 and issue 14's questions on the paper's test only; the bracket only on
+  // The paper's Eq. 18 and the run-away and prediction questions on the paper's test only; the bracket only on
   // the test from rest.
   EXPECT_EQ(parts_of["eq18-range"], std::set<std::string>{"wm"});
   EXPECT_EQ(parts_of["eq18-over-drops"], std::set<std::string>{"wm"});

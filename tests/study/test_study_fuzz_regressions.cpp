@@ -1,5 +1,5 @@
-// Inputs of the study harnesses (fuzz/fuzz_study.cpp, fuzz/fuzz_store.cpp) that once crashed or
-// misbehaved, kept under tests/data/fuzz-regressions/{study,store}/: each is read through the
+// Inputs of the study harnesses (fuzz/fuzz_study.cpp, fuzz/fuzz_store.cpp) that a reader or parser
+// must withstand, kept under tests/data/fuzz-regressions/{study,store}/: each is read through the
 // normal API and must give a clean result or a clear error, as in the harness.
 #include <gtest/gtest.h>
 

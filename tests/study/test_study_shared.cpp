@@ -171,7 +171,7 @@ TEST(StudyShared, ClaimsAreExclusiveWhileTheOwnerLivesAndTakenOverWhenItDies) {
 
 // Switching a new file to WAL needs an exclusive lock, and SQLite fails it at once (SQLITE_BUSY,
 // no busy handler) while another connection holds a write lock on the file: three runs started
-// together on one new store used to stop with "database is locked" (CI, 2026-11-23).
+// together on one new store would stop with "database is locked".
 // Store::open must wait for the other connection instead.
 TEST(StudyShared, OpeningANewStoreWaitsForAnotherConnectionsLock) {
   const Study study = load(study_file("busy"));

@@ -1,4 +1,4 @@
-// Task kind wm-tilt (the tilt test on random pairs, issue 14): invariants derived independently of
+// Task kind wm-tilt (the tilt test on random pairs, docs/dem.md sec. 6): invariants derived independently of
 // the kind -- a sine pair's friction angle is its steepest slope atan(2 pi A / lambda) at every
 // run-away distance; theta_max and sigma of a WM pair equal what `frictal signature` computes on
 // the same faces written by `frictal surface wm --seed` (a second path: CLI, CSV files, no study
@@ -205,8 +205,8 @@ spheroradius = 2e-5
 }
 
 TEST(StudyWmTilt, ShippedStudyFileParsesAtBothScales) {
-  // studies/wm-tilt.toml: 9 D x 20 pairs for WM and for Fourier-filtered pairs (issue 14), the
-  // quasi-static parts (issue 23: 2 D x 3 pairs each for WM and Fourier at 6e7 N/m, and for WM at
+  // studies/wm-tilt.toml: 9 D x 20 pairs for WM and for Fourier-filtered pairs, the
+  // quasi-static parts (2 D x 3 pairs each for WM and Fourier at 6e7 N/m, and for WM at
   // Table II's 6e5 N/m), the dynamic parts from rest (2 D x 3 pairs, WM and Fourier), and the
   // quick scale that `QUICK=1 make reproduce` runs: 2 D x 2 pairs of each paper-protocol part and
   // one pair per issue-23 part.

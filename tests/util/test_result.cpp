@@ -1,4 +1,4 @@
-// Error and Result: context added to an error keeps its code (issue 31, item 4), and no code in
+// Error and Result: context added to an error keeps its code, and no code in
 // src/ or apps/ rebuilds an error from another's message with a fixed code.
 #include <gtest/gtest.h>
 
