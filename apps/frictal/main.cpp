@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -100,6 +101,19 @@ std::string diagnose(CLI::App& app, int argc, char** argv) {
     for (CLI::App* s : cur->get_subcommands([](CLI::App*) { return true; })) names.push_back(s->get_name());
     if (names.empty()) return "";  // CLI11 reports the extra argument
     const bool top = chain.size() == 1;
+    // A file where a command takes its surfaces by option (`frictal tilt FILE`): name the option.
+    std::error_code ec;
+    if (!top && std::filesystem::is_regular_file(a, ec)) {
+      for (const CLI::Option* o : cur->get_options())
+        if (o->check_lname("lower"))
+          return fmt::format(
+              "'{}' is a file, and '{}' takes its surfaces by option: --lower {} [--upper FILE] (or a generator: {})",
+              a, path_of(chain), a, [&] {
+                std::string l;
+                for (const std::string& n : names) l += (l.empty() ? "" : ", ") + n;
+                return l;
+              }());
+    }
     std::string msg =
         fmt::format("unknown {} '{}'{}", top ? "command" : "subcommand", a, top ? "" : " for '" + path_of(chain) + "'");
     if (std::string n = frictal::nearest_word(a, names); !n.empty()) msg += fmt::format("; did you mean '{}'?", n);

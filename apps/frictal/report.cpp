@@ -25,7 +25,7 @@ struct Args {
   double mu_a = 0;
   std::string detrend;
   int directions = 36;
-  std::size_t lines = 32;
+  std::size_t lines = report::ReportInput{}.max_lines;  // anisotropy's default: the polar plot is its table
   int resolution = 10;
   int bins = 90;
   int drops = PredictOptions{}.map_drops;
@@ -51,7 +51,9 @@ std::function<int()> setup(CLI::App& app) {
                  "plane for maps)");
   add_conditioning_options(app, a->cond);
   app.add_option("--directions", a->directions, "Maps: sliding directions of the polar plot")->capture_default_str();
-  app.add_option("--lines", a->lines, "Maps: at most this many parallel lines per direction")->capture_default_str();
+  app.add_option("--lines", a->lines,
+                 "Maps: at most this many parallel lines per direction (as frictal anisotropy --lines)")
+      ->capture_default_str();
   app.add_option("--resolution-steps", a->resolution, "Cutoff wavelengths of the resolution study (0 = none)")
       ->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the slope distributions")->capture_default_str();

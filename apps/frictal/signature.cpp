@@ -263,13 +263,7 @@ std::function<int()> setup(CLI::App& app) {
                  r.offset.size());
     FrictionPrediction fwd = unwrap(predict_friction(a->mu_a, r.theta_max_forward, r.contact_slope_std));
     FrictionPrediction bwd = unwrap(predict_friction(a->mu_a, r.theta_max_backward, r.contact_slope_std));
-    add_bound_warnings(warnings, fwd, "signature");
-    for (const auto& [name, f] : {std::pair{"forward", fwd}, std::pair{"backward", bwd}})
-      if (f.friction_angle >= 89.5 * kDeg)
-        add_warning(warnings, {"friction-angle-at-90",
-                               fmt::format("the {} upper bound is {:.4f} deg: a vertical wall, an interlock or a unit "
-                                           "mix-up; the number is a single feature of the data, not a friction",
-                                           name, to_deg(f.friction_angle))});
+    for (Warning& w : check_signature_bounds(fwd, bwd)) add_warning(warnings, std::move(w));
 
     if (!a->out.empty()) {
       // The basin each offset drains into at zero tilt (numbered along the hold analysis' lift).

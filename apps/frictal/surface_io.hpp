@@ -121,8 +121,8 @@ inline constexpr const char* kDetrendDefaultHelp =
 /// front end (default_form(): a line, a plane for maps, the mean of a periodic profile), none for a
 /// generated surface (exact). UsageError (exit 2) for text parse_detrend refuses.
 inline Detrend form_to_remove(const std::string& given, bool generated, bool periodic = false) {
-  if (!given.empty()) return unwrap(parse_detrend(given));
-  return generated ? Detrend{DetrendKind::None, 0} : default_form(periodic);
+  if (generated && given.empty()) return Detrend{DetrendKind::None, 0};
+  return form_or_default(given.empty() ? std::nullopt : std::optional<Detrend>(unwrap(parse_detrend(given))), periodic);
 }
 
 /// The conditioning the options ask for, with `form` removed last. UsageError (exit 2) naming the

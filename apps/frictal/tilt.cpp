@@ -28,10 +28,6 @@ namespace {
 // The largest expected step count run without --force (unitless): about 4 to 10 minutes of one
 // core at 5 to 10 us per step (docs/dem.md sec. 7, "cost estimate").
 constexpr double kDefaultMaxSteps = 5e7;
-// The largest spheroradius over the point spacing of measured files (unitless): beyond it one
-// rounded contact spans more than 20 points of each face, every one of them a pushing
-// vertex-edge pair (contact rule pairs), and the rounded faces no longer follow the scan.
-constexpr double kMaxRadiusOverSpacing = 10;
 
 struct TiltOptions {
   GeneratorOptions gen;
@@ -95,7 +91,6 @@ nlohmann::json scaling_json(const std::optional<TiltScaling>& sc) {
 
 int run(TiltOptions& o) {
   Curve lower, upper;
-  TiltConfig base;
   std::optional<TiltScaling> scaling;  // the defaults scaled to the surfaces
   std::vector<Warning> data_warnings;  // file inputs: the readers' and the plausibility checks' warnings
   nlohmann::json surface;
@@ -109,16 +104,7 @@ int run(TiltOptions& o) {
     // generated surface at the Table I length (Koch, sawtooth, sine, Fourier by default: 0.2 m)
     // keeps them bit for bit; the surface's own period and run-away distance (its wavelength)
     // are already at its scale.
-    const TiltConfig own = tilt_config_for_surface(period, scale);
-    scaling = unwrap(scale_tilt_defaults(lower, upper, own));
-    for (const char* name : {"period", "runaway_distance"}) {
-      const bool from_surface = std::string(name) == "period" ? period > 0 : scale > 0;
-      if (!from_surface) continue;
-      std::erase_if(scaling->settings, [&](const TiltScaledSetting& t) { return t.name == name; });
-    }
-    if (period > 0) scaling->config.period = own.period;
-    if (scale > 0) scaling->config.runaway_distance = own.runaway_distance;
-    base = scaling->config;
+    scaling = unwrap(tilt_setup(lower, upper, si_values(tilt_settings(), o.settings), period, scale));
     surface = text_json(find_generator(spec->generator)->fields, unwrap(surface_values(*spec)));
     surface["generator"] = spec->generator;
   } else {
@@ -172,35 +158,13 @@ int run(TiltOptions& o) {
     // carried over to the files' length and point spacing (scale_tilt_defaults, docs/dem.md sec.
     // 5). The run-away distance becomes L/20, as `signature` takes it by default (a tenth of
     // half the block). Generated surfaces take the same rule (above).
-    scaling = unwrap(scale_tilt_defaults(lower, upper, tilt_config_for_surface(0, 0)));
-    base = scaling->config;
+    scaling = unwrap(tilt_setup(lower, upper, si_values(tilt_settings(), o.settings)));
     surface = {{"lower", o.lower_file},
                {"upper", o.upper_file.empty() ? o.lower_file : o.upper_file},
                {"conditioning", conditioning_text(records)}};
   }
   const ValueSet given = si_values(tilt_settings(), o.settings);
-  TiltConfig cfg = unwrap(make_tilt_config(given, base));
-  if (scaling) {  // what the user set is kept and not reported as scaled
-    std::erase_if(scaling->settings, [&](const TiltScaledSetting& t) { return given.count(t.name) > 0; });
-    // Scaled from the length, the test assumes a surface whose relief is below its length (the
-    // Table I blocks: 1e-2 m of relief or less on 0.2 m); a taller one (typically z in other
-    // units than x) would turn its blocks' ends far faster than the length scale allows.
-    if (scaling->height_range > scaling->length)
-      throw UsageError(fmt::format(
-          "tilt: the surfaces' height range {:.4g} m exceeds their length {:.4g} m (expected a height range "
-          "in [0, {:.4g}] m): are z and x in the same unit? (frictal info FILE; give the unit in the file's "
-          "header)",
-          scaling->height_range, scaling->length, scaling->length));
-    // The surface cannot be resolved by rounded blocks much wider than its point spacing.
-    const double r_max = kMaxRadiusOverSpacing * scaling->point_spacing;
-    if (cfg.radius > r_max)
-      throw UsageError(fmt::format(
-          "tilt: --spheroradius {:.3g} m cannot resolve this surface: expected a value in (0, {:.3g}] m, {} times "
-          "its point spacing {:.3g} m (the default here: {:.3g} m; beyond it one rounded contact spans more than "
-          "{} points of each face)",
-          cfg.radius, r_max, kMaxRadiusOverSpacing, scaling->point_spacing, scaling->config.radius,
-          2 * kMaxRadiusOverSpacing));
-  }
+  TiltConfig cfg = scaling->config;
   if (!(o.max_steps > 0)) throw UsageError(fmt::format("tilt --max-steps {}: expected a value > 0", o.max_steps));
   cfg.threads = o.threads;
   if (o.output.empty()) cfg.series_interval = 0;
@@ -215,7 +179,7 @@ int run(TiltOptions& o) {
   const bool progress_line = !o.quiet && ::isatty(2);
   cfg.before_run = [&](const TiltEstimate& e) -> Status {
     const std::string to = cfg.predict && e.simulated_time_expected < e.simulated_time_bound
-                               ? "to the predicted friction angle"
+                               ? "to the hold angle from the drop"
                                : fmt::format("to the largest tilt {:.3g} deg", cfg.max_tilt / kDeg);
     if (!o.quiet)
       fmt::print(stderr,
@@ -257,10 +221,6 @@ int run(TiltOptions& o) {
   auto r = run_tilt(lower, upper, cfg);
   if (printed) fmt::print(stderr, "\n");
   if (!r.ok()) fail(r.error());
-  // A block that turned against the lower one is outside the model (the signature assumes it
-  // does not rotate): the friction angle is then not valid.
-  const bool rotated =
-      std::any_of(r->warnings.begin(), r->warnings.end(), [](const TiltWarning& w) { return w.code == "rotation"; });
   // The files' warnings, then the run's: one list (JSON "warnings"; standard error in text).
   std::vector<TiltWarning> warnings;
   for (const Warning& w : data_warnings) warnings.push_back({w.code, w.message});
@@ -302,10 +262,9 @@ int run(TiltOptions& o) {
     // keeps standard error silent).
     for (const TiltWarning& w : warnings)
       if (w.code == "rotation" || o.quiet) fmt::print(text, "warning [{}]: {}\n", w.code, w.message);
-    if (r->slid && rotated)
-      fmt::print(text,
-                 "friction angle (not valid: the block turned, warning [rotation]): {:.3f} deg (slides {} at t = "
-                 "{:.4f} s)\n",
+    const std::string validity = tilt_validity(*r, cfg);
+    if (r->slid && validity != "valid")
+      fmt::print(text, "friction angle (not valid: {}): {:.3f} deg (slides {} at t = {:.4f} s)\n", validity,
                  r->friction_angle / kDeg, cfg.reverse ? "towards -x" : "towards +x", r->slide_time);
     else if (r->slid)
       fmt::print(text, "friction angle: {:.3f} deg (slides {} at t = {:.4f} s)\n", r->friction_angle / kDeg,
@@ -313,10 +272,10 @@ int run(TiltOptions& o) {
     else
       fmt::print(text, "no run-away before the maximal tilt of {:.2f} deg\n", cfg.max_tilt / kDeg);
     if (cfg.predict) {
-      fmt::print(text, "predicted (signature theta_max {:.3f} + atan(mu_a) {:.3f}): {:.3f} deg\n",
+      fmt::print(text, "rigid upper bound (signature theta_max {:.3f} + atan(mu_a) {:.3f}): {:.3f} deg\n",
                  r->predicted_theta_max / kDeg, std::atan(cfg.contact.atomic_friction) / kDeg,
                  r->predicted_friction_angle / kDeg);
-      fmt::print(text, "predicted for spheropolygons (r = {:.3g} m, theta_max {:.3f} + atan(mu_a)): {:.3f} deg\n",
+      fmt::print(text, "upper bound for spheropolygons (r = {:.3g} m, theta_max {:.3f} + atan(mu_a)): {:.3f} deg\n",
                  cfg.radius, r->predicted_sphero_theta_max / kDeg, r->predicted_sphero_friction_angle / kDeg);
       if (!std::isnan(r->predicted_hold_angle))
         fmt::print(text,

@@ -114,6 +114,14 @@ inline Detrend default_form(bool periodic = false) {
   return periodic ? Detrend{DetrendKind::Mean, 0} : Detrend{DetrendKind::Line, 1};
 }
 
+/// The one conditioning rule of every front end, for every surface it is given as data (a file, an
+/// array of heights, a Profile or map object, in the CLI and in Python alike): the form `asked`
+/// for, else default_form(periodic). Only a surface that a front end generates itself (the CLI's
+/// generator subcommands) is exempt: it keeps its form (DetrendKind::None).
+inline Detrend form_or_default(const std::optional<Detrend>& asked, bool periodic = false) {
+  return asked ? *asked : default_form(periodic);
+}
+
 /// The points the `spikes` rule flags: |z_i - median of its neighbours| > k * Sq, where Sq is the
 /// rms of the (finite) heights about their mean; neighbours: the points up to two places away on
 /// each side for a profile (4; 2 or 3 at the ends; profiles of fewer than 5 points are not

@@ -163,9 +163,11 @@ struct ReportInput {
   std::string detrend;  ///< conditioning already applied (ConditioningRecord text, or the form: "none", "line", ...)
   double atomic_friction = 0;  ///< mu_a of Eq. 6 (unitless)
   int directions = 36;         ///< sliding directions of the polar plot (maps) (unitless)
-  std::size_t max_lines = 32;  ///< parallel lines per direction (maps) (unitless)
-  int resolution_steps = 10;   ///< cutoff wavelengths of the resolution study (unitless, >= 2; 0: none)
-  int bins = 90;               ///< bins of the slope PDFs (unitless)
+  /// Parallel lines per direction (maps), `frictal anisotropy --lines`'s default: the polar plot
+  /// is that command's table (unitless).
+  std::size_t max_lines = DirectionalOptions{}.max_lines;
+  int resolution_steps = 10;  ///< cutoff wavelengths of the resolution study (unitless, >= 2; 0: none)
+  int bins = 90;              ///< bins of the slope PDFs (unitless)
   /// Radius of the stylus or AFM tip (unit: m); > 0: the short reliability cutoff for it
   /// (frictal/scan_stats.hpp) is drawn on the resolution plot and marks the finer cutoffs of
   /// its table as not to be trusted. 0: none.
@@ -193,7 +195,7 @@ struct ReportInput {
 struct ReportSurfaces {
   std::string lower_name;  ///< the input's lower name, or "surface" when it names none
   std::string upper_name;  ///< the upper profile's name (pair), else lower_name
-  bool pair = false;       ///< an upper profile was given (ReportInput::upper)
+  bool pair = false;       ///< an upper profile (ReportInput::upper) or an upper map (its central line) was given
   /// The lower profile, or a map's central line along x (the longest valid run of the line through
   /// y = y0 + height / 2; its abscissa starts at the map's x0) (unit: m).
   Profile lower;
@@ -202,6 +204,8 @@ struct ReportSurfaces {
   bool lower_uniform = false, upper_uniform = false;  ///< is_uniform with relative tolerance 1e-6
   double line_y = 0;                                  ///< maps: y of the central line (unit: m)
   MapStats map_stats;                                 ///< maps: the map's areal statistics
+  MapStats upper_map_stats;                           ///< map pairs: the upper map's areal statistics
+  double upper_line_y = 0;                            ///< map pairs: y of the upper map's central line (unit: m)
 };
 
 /// The slope distributions (paper Fig. 16 style), all on one range [-limit, limit].

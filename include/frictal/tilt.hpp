@@ -83,13 +83,18 @@ enum class TiltFace {
   Envelope,  ///< the upper envelope of the surface (what the signature sees)
 };
 
+/// The share of relax_time an increment of the quasi-static protocol relaxes for, on average
+/// (unitless): 0.0066-0.044 measured on scans of 323 to 9,602 vertices (docs/dem.md sec. 7).
+inline constexpr double kTiltRelaxShare = 0.02;
+
 /// The cost of a run, estimated before its first step (TiltResult::estimate, TiltConfig::before_run).
-/// Constant-rate protocol: the simulated time is the settling plus the tilt to max_tilt at
-/// tilt_rate (the bound) or to the spheropolygon prediction (expected, if predicted); steps are
-/// that time over the time step below. Quasi-static: the bound is every increment up to max_tilt
-/// relaxing for relax_time, the expected count the increments up to the prediction relaxing for
-/// a tenth of it (a rough guess: relaxations usually end much earlier). Measured against real
-/// runs in docs/dem.md sec. 7 ("cost estimate").
+/// The run is expected to end at the quasi-static hold angle of the block from where it is put
+/// down (hold.hpp; without one, the rounded blocks' upper bound). Constant-rate protocol: the
+/// simulated time is the settling plus the tilt to max_tilt at tilt_rate (the bound) or to that
+/// angle (expected, if predicted); steps are that time over the time step below. Quasi-static:
+/// the bound is every increment up to max_tilt relaxing for relax_time, the expected count the
+/// increments up to that angle relaxing for kTiltRelaxShare of it. Measured against real runs in
+/// docs/dem.md sec. 7 ("cost estimate").
 struct TiltEstimate {
   /// The step the run will mostly take: time_step, or with the adaptive step time_step_safety
   /// times the stability limit of one contact at the upper block's extent, if smaller (unit: s).
@@ -290,6 +295,22 @@ struct TiltScaling {
 /// than two distinct x or a non-finite point.
 Result<TiltScaling> scale_tilt_defaults(const Curve& lower, const Curve& upper,
                                         const TiltConfig& base = default_tilt_config());
+/// The largest spheroradius over the point spacing of the surfaces (unitless): beyond it one
+/// rounded contact spans more than 20 points of each face, each a pushing vertex-edge pair, and
+/// the rounded faces no longer follow the scan.
+inline constexpr double kTiltMaxRadiusOverSpacing = 10;
+
+/// The tilt test's settings for two surfaces, as every front end takes them (`frictal tilt`,
+/// Python's tilt(), one call): the defaults of a surface of period `period` and scale `scale`
+/// (tilt_config_for_surface; measured surfaces: 0, 0) scaled to the surfaces
+/// (scale_tilt_defaults), the period and run-away distance kept where the surface gives them
+/// (period > 0, scale > 0), then the `given` settings (SI, by field name) over them. The result's
+/// `config` is the run's; its `settings` list what was scaled and not given. Errors, each saying
+/// what is expected: a bad given value; a height range above the length (z and x in different
+/// units); a spheroradius beyond kTiltMaxRadiusOverSpacing point spacings.
+Result<TiltScaling> tilt_setup(const Curve& lower, const Curve& upper, const ValueSet& given, double period = 0,
+                               double scale = 0);
+
 /// `base` with the given values (SI; names from tilt_settings(), else an error naming the
 /// nearest) checked and applied.
 Result<TiltConfig> make_tilt_config(const ValueSet& si_values, const TiltConfig& base = default_tilt_config());
@@ -471,6 +492,14 @@ struct TiltReport {
   const TiltResult& result;
   const TiltConfig& config;
 };
+/// Whether a run's friction angle is a friction angle of the surfaces (`friction_angle_valid`):
+/// "valid", or why not, with the option that would make it so (`validity`; every front end prints
+/// it). Not valid: no slide; the block turned (warning rotation); or the angle lies outside the
+/// rigid model's bracket from the block's own rest, [phi_in - t, max(phi_qs, phi_qs of the rounded
+/// blocks) + t] with t = max(0.1 deg, one tilt increment) (docs/dem.md: the validated runs read
+/// inside it). Without the hold angles (hold_error) the bracket is not checked.
+std::string tilt_validity(const TiltResult& result, const TiltConfig& config);
+
 /// The tilt test's output tables (frictal/outputs.hpp; src/tilt/tilt_columns.cpp): `frictal tilt
 /// --json` and its nested objects "scales", "estimate", "stage_time_s", "scaled_defaults".
 const Columns<TiltReport>& tilt_columns();

@@ -68,4 +68,11 @@ std::vector<Warning> check_dimension_fit(double dimension, double r_squared, con
 /// result in the message. Empty when phi >= 0 or NaN.
 std::vector<Warning> check_friction_bound(double friction_angle, const std::string& where);
 
+struct FrictionPrediction;  // signature.hpp
+/// The warnings of a signature's rigid bounds (`frictal signature`, Python signature(); the same
+/// words in both): eq18-low-clamped and bound-negative of the forward bound, friction-angle-at-90
+/// of either direction's bound at 89.5 deg or more (a wall, an interlock or a unit mix-up).
+std::vector<Warning> check_signature_bounds(const FrictionPrediction& forward, const FrictionPrediction& backward,
+                                            const std::string& where = "signature");
+
 }  // namespace frictal

@@ -250,11 +250,14 @@ def _no_checks(args, kwargs, result):
     return []
 
 
-signature = _wrap(signature, _both(_profile_checks, _bound_checks("theta_max_forward", "signature (theta_max)")),
-                  "Warnings: ``warnings`` in the result holds the plausibility codes of the profiles ([{code, "
-                  "message}]) and bound-negative when theta_max_forward < 0, each also issued with warnings.warn.")
+signature = _wrap(signature, _no_checks,
+                  "Warnings: ``warnings`` in the result holds the readers' notes, the plausibility codes of the "
+                  "conditioned profiles and the bounds' codes (bound-negative, eq18-low-clamped, "
+                  "friction-angle-at-90) ([{code, message}]), as `frictal signature` gives them, each also issued "
+                  "with warnings.warn.")
 profile_stats = _wrap(profile_stats, _profile_checks, "Warnings: ``warnings`` holds the profile's plausibility codes.")
-hold_angle = _wrap(hold_angle, _profile_checks, "Warnings: ``warnings`` holds the profiles' plausibility codes.")
+hold_angle = _wrap(hold_angle, _no_checks, "Warnings: ``warnings`` holds the readers' notes and the conditioned "
+                   "profiles' plausibility codes.")
 areal_signature = _wrap(areal_signature, _both(_map_checks, _bound_checks("theta_max_forward", "areal (theta_max)")),
                         "Warnings: ``warnings`` holds the maps' plausibility codes and bound-negative.")
 areal_hold = _wrap(areal_hold, _no_checks, "Warnings: ``warnings`` holds the prediction's codes (the maps' plausibility "

@@ -7,7 +7,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cerrno>
 #include <cmath>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <utility>
@@ -36,6 +38,16 @@ inline void ok(const Status& s) {
   if (!s) throw py::value_error(s.error().message);
 }
 
+/// A path to read that names nothing: FileNotFoundError (errno ENOENT, with the path as its
+/// filename, the reader's words as its message), as open() raises it; any other reading error stays
+/// the library's ValueError. Every Python function that reads a file calls this first.
+inline void require_file(const std::string& path) {
+  std::error_code ec;
+  if (path == "-" || std::filesystem::exists(path, ec) || ec) return;
+  PyErr_SetObject(PyExc_FileNotFoundError, py::make_tuple(ENOENT, "no such file, expected a surface file", path).ptr());
+  throw py::error_already_set();
+}
+
 /// A Map from a 2-D array of heights (rows along y; m) with spacings dx, dy and origin x0, y0
 /// (m), checked (ValueError naming what is wrong). io_bindings.cpp.
 Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>& h, double dx, double dy, double x0 = 0,
@@ -51,6 +63,34 @@ std::optional<CropWindow> crop_window(const py::object& crop);
 /// along y) with `spacing` (m); `what` names it in errors (ValueError/TypeError).
 PredictSurface to_surface(const py::handle& obj, double spacing, const std::string& format, const std::string& unit,
                           const std::string& what);
+
+/// A profile pair as signature() and hold_angle() take it: each side read as to_surface reads it
+/// and conditioned as `frictal signature` conditions its files (crop, spikes, then the form
+/// `detrend` names, else the rule of every front end: form_or_default, conditioning.hpp), with the
+/// warnings the CLI gives (the readers', each conditioned profile's plausibility, the pair's scales).
+struct ProfilePair {
+  Profile lower;
+  Profile upper;           ///< as measured (not turned over); lower's copy when none was given
+  bool has_upper = false;  ///< an upper surface was given
+  std::vector<Warning> warnings;
+  std::string conditioning;  ///< what the conditioning did (the CLI's "conditioning")
+};
+ProfilePair conditioned_profiles(const py::object& lower, const py::object& upper,
+                                 const std::optional<std::string>& detrend, const py::object& crop, bool remove_spikes,
+                                 double spike_threshold, double spacing, const std::string& format,
+                                 const std::string& unit);
+
+/// The warnings as Python's dicts hold them: [{code, message}].
+inline py::list warning_list(const std::vector<Warning>& ws) {
+  py::list l;
+  for (const Warning& x : ws) {
+    py::dict e;
+    e["code"] = x.code;
+    e["message"] = x.message;
+    l.append(e);
+  }
+  return l;
+}
 
 /// Runs `f` (a pure C++ computation returning a Result) with the GIL released, so that other
 /// Python threads run meanwhile; the Result is unwrapped after the GIL is taken back.

@@ -65,24 +65,52 @@ void frictal_bind_dem(py::module_& m) {
         // `threads` is not a setting (results do not depend on it): taken out before the table.
         py::kwargs kw;
         int threads = 1;
+        std::optional<std::string> detrend;  // the form removed from a measured Profile
         for (const auto& item : all) {
           if (py::str(item.first).cast<std::string>() == "threads") {
             threads = item.second.cast<int>();
             if (threads < 0) throw py::value_error("tilt: threads: expected >= 0 (0 = all cores)");
+          } else if (py::str(item.first).cast<std::string>() == "detrend") {
+            if (!item.second.is_none()) detrend = item.second.cast<std::string>();
           } else {
             kw[item.first] = item.second;
           }
         }
         const ValueSet given = py_detail::keyword_values(tilt_settings(), kw, "tilt");
-        // The period (default 0.01 m) also sets the run-away distance unless that is given.
-        const double period = given.count("period") ? as_real(given.at("period")) : default_tilt_config().period;
-        TiltConfig c = py_detail::ok(make_tilt_config(given, tilt_config_for_surface(period, period)));
+        // The surfaces as `frictal tilt` takes them: a Profile that repeats (a generator's) or an
+        // (x, z) curve is a generated surface of its period (the curve's: period=, else 0.01 m),
+        // which also sets the run-away distance unless that is given; a Profile that does not
+        // repeat is measured: conditioned by the one rule of every front end (a line, unless
+        // detrend= names another form; conditioning.hpp) and checked as the CLI checks files.
+        const bool lower_profile = py::isinstance<Profile>(lower);
+        const bool measured = lower_profile && !lower.cast<Profile>().period && !given.count("period");
+        double period = 0;
+        if (!measured)
+          period = given.count("period") ? as_real(given.at("period"))
+                   : lower_profile       ? lower.cast<Profile>().period.value_or(0.0)
+                                         : default_tilt_config().period;
+        Curve lo = to_curve(lower, "lower");
+        Curve up = upper.is_none() ? lo : to_curve(upper, "upper");
+        std::vector<Warning> data_warnings;
+        std::string conditioning;
+        if (measured) {
+          if (!py::isinstance<Profile>(upper) && !upper.is_none())
+            throw py::type_error("tilt: upper: a measured lower Profile takes a Profile as upper");
+          py_detail::ProfilePair pair = py_detail::conditioned_profiles(lower, upper, detrend, py::none(), false,
+                                                                        kDefaultSpikeThreshold, 0.0, "auto", "");
+          lo = as_curve(pair.lower);
+          up = as_curve(pair.upper);
+          data_warnings = std::move(pair.warnings);
+          conditioning = pair.conditioning;
+        } else if (detrend) {
+          throw py::value_error("tilt: detrend applies to a measured Profile (one that does not repeat)");
+        }
+        TiltScaling sc = py_detail::ok(tilt_setup(lo, up, given, period, period));
+        TiltConfig c = sc.config;
         c.threads = threads;
-        const Curve lo = to_curve(lower, "lower");
-        const Curve up = upper.is_none() ? lo : to_curve(upper, "upper");
         TiltResult r = py_detail::ok(py_detail::nogil([&] { return run_tilt(lo, up, c); }));
         py::dict d = py_detail::to_dict(tilt_columns(), TiltReport{r, c});
-        py::list warnings;
+        py::list warnings = py_detail::warning_list(data_warnings);
         for (const TiltWarning& w : r.warnings) {
           py::dict wd;
           wd["code"] = w.code;
@@ -90,6 +118,20 @@ void frictal_bind_dem(py::module_& m) {
           warnings.append(wd);
         }
         d["warnings"] = warnings;
+        py::dict scaled = py_detail::to_dict(tilt_scaling_columns(), sc);
+        py::list changed;
+        for (const TiltScaledSetting& t : sc.settings) {
+          py::dict e;
+          e["name"] = t.name;
+          const Field* f = find_field(tilt_settings(), t.name);
+          e["unit"] = f ? f->unit : std::string();
+          e["from"] = t.from;
+          e["to"] = t.to;
+          changed.append(e);
+        }
+        scaled["settings"] = changed;
+        d["scaled_defaults"] = scaled;
+        if (measured) d["conditioning"] = conditioning;
         d["scales"] = py_detail::to_dict(tilt_scales_columns(), r.scales);
         py::dict s;
         s["time"] = arr(r.series.time);
@@ -105,8 +147,15 @@ void frictal_bind_dem(py::module_& m) {
       },
       py::arg("lower"), py::arg("upper") = py::none(),
       ("tilt(lower, upper=None, **settings) -> dict\n\nTilting-block test on the spheropolygon engine (paper Sec. "
-       "IV, Table I/II defaults; runs without the GIL). lower, upper: a Profile or an (x, z) pair of arrays (m), as "
-       "measured; upper defaults to lower. Returns slid, friction_angle (NaN without a slide), "
+       "IV, Table I/II defaults; runs without the GIL; the numbers of `frictal tilt`). lower, upper: a Profile or an "
+       "(x, z) pair of arrays (m), as measured; upper defaults to lower. A Profile that does not repeat is a measured "
+       "surface, as `frictal tilt --lower FILE` takes it: conditioned (detrend=: none, mean, line, poly:N; default "
+       "a line), checked (warnings) and the defaults scaled to its length and point spacing (scaled_defaults: "
+       "length, point_spacing, factors and the (name, from, to) of each setting changed, SI); a repeating Profile "
+       "(a generator's) or an (x, z) curve is a generated surface of its period (period=, default 0.01 m for a "
+       "curve), its defaults scaled as the CLI's generator subcommands scale them. Returns validity (\"valid\", or "
+       "why the angle is not a friction angle of the surfaces and what would make it one), slid, friction_angle (NaN "
+       "without a slide), "
        "predicted_friction_angle, "
        "predicted_theta_max (rad) (rigid profiles, Eq. 6), predicted_sphero_friction_angle, "
        "predicted_sphero_theta_max (rad) (the rounded blocks of spheroradius r), rest_offset (m, where the upper "

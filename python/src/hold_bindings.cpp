@@ -34,10 +34,11 @@ py::dict angle_dict(const HoldAngle& a) { return py_detail::to_dict(hold_drop_co
 void frictal_bind_hold(py::module_& m) {
   m.def(
       "hold_angle",
-      [](const Profile& lower, std::optional<Profile> upper, bool rotate_upper, double runaway_distance,
+      [](const py::object& lower, const py::object& upper, bool rotate_upper, double runaway_distance,
          double atomic_friction, std::optional<double> start_offset,
          std::optional<std::pair<double, double>> offset_range, double spheroradius, std::size_t offsets,
-         unsigned threads) {
+         unsigned threads, const std::optional<std::string>& detrend, const py::object& crop, bool remove_spikes,
+         double spike_threshold, double spacing, const std::string& format, const std::string& unit) {
         SignatureOptions o;
         o.spheroradius = spheroradius;
         o.offsets = offsets;
@@ -49,11 +50,15 @@ void frictal_bind_hold(py::module_& m) {
         HoldOptions h;
         h.runaway_distance = runaway_distance;
         h.atomic_friction = atomic_friction;
-        Profile up = upper ? *upper : lower;
-        if (!upper || rotate_upper) up = rotate180(up);
+        py_detail::ProfilePair pair = py_detail::conditioned_profiles(lower, upper, detrend, crop, remove_spikes,
+                                                                      spike_threshold, spacing, format, unit);
+        Profile up = std::move(pair.upper);
+        if (!pair.has_upper || rotate_upper) up = rotate180(std::move(up));
         const double start = start_offset ? *start_offset : std::numeric_limits<double>::quiet_NaN();
-        HoldAnalysis r = py_detail::ok(nogil([&] { return analyse_hold(lower, up, o, h, start); }));
+        HoldAnalysis r = py_detail::ok(nogil([&] { return analyse_hold(pair.lower, up, o, h, start); }));
         py::dict d = py_detail::to_dict(hold_columns(), r);
+        d["conditioning"] = pair.conditioning;
+        d["warnings"] = py_detail::warning_list(pair.warnings);
         d["forward"] = distribution_dict(r.distribution.forward);
         d["backward"] = distribution_dict(r.distribution.backward);
         if (r.has_start) {
@@ -65,8 +70,13 @@ void frictal_bind_hold(py::module_& m) {
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("rotate_upper") = true,
       py::arg("runaway_distance") = 0.0, py::arg("atomic_friction") = 0.0, py::arg("start_offset") = py::none(),
       py::arg("offset_range") = py::none(), py::arg("spheroradius") = 0.0, py::arg("offsets") = 0,
-      py::arg("threads") = 0,
-      "Hold angle of a rigid upper block on `lower` (what a tilt test reads; runs without the GIL). `upper` is a "
+      py::arg("threads") = 0, py::arg("detrend") = py::none(), py::arg("crop") = py::none(),
+      py::arg("remove_spikes") = false, py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("spacing") = 0.0,
+      py::arg("format") = "auto", py::arg("unit") = "",
+      "Hold angle of a rigid upper block on `lower` (what a tilt test reads; runs without the GIL), the numbers of "
+      "`frictal signature --json`'s hold_angle_* on the same input. `lower`, `upper`: file paths, Profile objects, "
+      "profile dicts or 1-D arrays with spacing= (m), conditioned as in signature() (detrend None: a line, the mean "
+      "of a periodic profile; 'none' keeps a generated surface exact). `upper` is a "
       "surface as measured (rotated by 180 degrees) unless rotate_upper=False; default: lower turned over. "
       "runaway_distance d (m; 0: one period, else a tenth of the offset range), atomic_friction mu_a, start_offset "
       "(m) for one drop, offset_range (min, max) of the drops (m; default one period or half the block), "
@@ -75,5 +85,6 @@ void frictal_bind_hold(py::module_& m) {
       "backward: the distribution over drops (hold_angle and inertial_hold_angle statistics mean, std, q05, q50, "
       "q95, min, max in rad; basins with rest_offset (m), weight (m), hold_angle, inertial_hold_angle (rad)); with "
       "start_offset, start and start_backward: rest_offset, hold_angle (rad), hold_offset (m), runaway_end (m, NaN "
-      "if off the end), slips, ran_off_end, inertial_hold_angle (rad), inertial_offset (m)");
+      "if off the end), slips, ran_off_end, inertial_hold_angle (rad), inertial_offset (m); conditioning (text), "
+      "warnings ([{code, message}])");
 }

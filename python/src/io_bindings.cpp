@@ -63,6 +63,7 @@ using frictal::py_detail::arr;
 using frictal::py_detail::crop_window;
 using frictal::py_detail::nogil;
 using frictal::py_detail::ok;
+using frictal::py_detail::require_file;
 using frictal::py_detail::to_map;
 using frictal::py_detail::to_surface;
 
@@ -120,6 +121,7 @@ void frictal_bind_io(py::module_& m) {
       "read_surface",
       [](const std::string& path, const std::string& format, const std::string& unit, double spacing,
          const std::string& channel) {
+        require_file(path);
         const ReadOptions o = read_options(format, unit, spacing, channel);
         SurfaceData s = ok(nogil([&] { return read_surface(path, o); }));
         py::dict d = s.is_map ? map_dict(s.map) : py::dict();
@@ -144,6 +146,7 @@ void frictal_bind_io(py::module_& m) {
       "read_map",
       [](const std::string& path, const std::string& format) {
         const ReadOptions o = read_options(format, "");
+        require_file(path);
         return map_dict(ok(nogil([&] { return read_map(path, o); })));
       },
       py::arg("path"), py::kw_only(), py::arg("format") = "auto",

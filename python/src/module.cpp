@@ -18,6 +18,7 @@
 #include "frictal/stats.hpp"
 #include "frictal/surface_spec.hpp"
 #include "frictal/version.hpp"
+#include "frictal/warnings.hpp"
 
 namespace py = pybind11;
 using namespace frictal;
@@ -194,9 +195,11 @@ PYBIND11_MODULE(_core, m) {
 
   m.def(
       "signature",
-      [](const Profile& lower, std::optional<Profile> upper, bool rotate_upper, const std::string& slopes,
+      [](const py::object& lower, const py::object& upper, bool rotate_upper, const std::string& slopes,
          std::size_t offsets, std::optional<std::pair<double, double>> offset_range, unsigned threads,
-         bool keep_contacts, int bins, double spheroradius) {
+         bool keep_contacts, int bins, double spheroradius, const std::optional<std::string>& detrend,
+         const py::object& crop, bool remove_spikes, double spike_threshold, double spacing, const std::string& format,
+         const std::string& unit) {
         SignatureOptions o;
         o.spheroradius = spheroradius;
         if (slopes != "exact" && slopes != "spline")
@@ -210,11 +213,19 @@ PYBIND11_MODULE(_core, m) {
           o.offset_min = offset_range->first;
           o.offset_max = offset_range->second;
         }
-        Profile up = upper ? *upper : lower;
-        if (!upper || rotate_upper) up = rotate180(up);
-        SignatureResult r = unwrap(nogil([&] { return signature(lower, up, o); }));
+        py_detail::ProfilePair pair = py_detail::conditioned_profiles(lower, upper, detrend, crop, remove_spikes,
+                                                                      spike_threshold, spacing, format, unit);
+        Profile up = std::move(pair.upper);
+        if (!pair.has_upper || rotate_upper) up = rotate180(std::move(up));
+        SignatureResult r = unwrap(nogil([&] { return signature(std::move(pair.lower), std::move(up), o); }));
         py::dict d = py_detail::to_dict(signature_columns(), r);
         d["contact_slope_pdf"] = hist_dict(r.contact_slope_pdf);
+        d["conditioning"] = pair.conditioning;
+        // The rigid bounds' warnings in the CLI's words (no atomic friction here: the bound is theta_max).
+        const FrictionPrediction fwd = unwrap(predict_friction(0, r.theta_max_forward, r.contact_slope_std));
+        const FrictionPrediction bwd = unwrap(predict_friction(0, r.theta_max_backward, r.contact_slope_std));
+        for (Warning& w : check_signature_bounds(fwd, bwd)) add_warning(pair.warnings, std::move(w));
+        d["warnings"] = py_detail::warning_list(pair.warnings);
         if (keep_contacts) {
           std::vector<double> off, x, z, s;
           py::list types;
@@ -239,7 +250,15 @@ PYBIND11_MODULE(_core, m) {
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("rotate_upper") = true,
       py::arg("slopes") = "exact", py::arg("offsets") = 0, py::arg("offset_range") = py::none(), py::arg("threads") = 0,
       py::arg("keep_contacts") = false, py::arg("bins") = 90, py::arg("spheroradius") = 0.0,
-      "Signature function theta(x_ofs) of two profiles (runs without the GIL). `upper` is a surface as measured "
+      py::arg("detrend") = py::none(), py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
+      py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("spacing") = 0.0, py::arg("format") = "auto",
+      py::arg("unit") = "",
+      "Signature function theta(x_ofs) of two profiles (runs without the GIL), the numbers of `frictal signature "
+      "--json` on the same input. `lower`, `upper`: file paths, Profile objects, profile dicts (x, z) or 1-D numpy "
+      "arrays of heights with spacing= (m), each conditioned as frictal.predict and the CLI condition them: crop, "
+      "remove_spikes, spike_threshold, then the form `detrend` names (none, mean, line, poly:N; None: a line, the "
+      "mean of a periodic profile; detrend='none' keeps a generated surface exact); format and unit as read_surface. "
+      "`upper` is a surface as measured "
       "(rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = "
       "every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores; "
       "spheroradius (m) > 0: the "
@@ -247,7 +266,7 @@ PYBIND11_MODULE(_core, m) {
       "rigid profiles. Returns "
       "offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), "
       "offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events, spheroradius "
-      "(m).");
+      "(m), conditioning (text), warnings ([{code, message}]).");
   m.def("lift_direct", &lift_direct, py::arg("lower"), py::arg("upper_rotated"), py::arg("offset"),
         "Lift h(s) (m) of the turned-over upper profile at offset s (m): plain O(N+M) evaluation (reference method)");
   m.def(
@@ -265,7 +284,11 @@ PYBIND11_MODULE(_core, m) {
       "eq18_low_friction_angle (rad; clamped at 0, eq18_low_clamped then true), eq18_low_friction_coefficient. What a "
       "tilt test reads is frictal.predict");
   m.def(
-      "read_profile", [](const std::string& path) { return unwrap(nogil([&] { return read_profile(path); })); },
+      "read_profile",
+      [](const std::string& path) {
+        py_detail::require_file(path);
+        return unwrap(nogil([&] { return read_profile(path); }));
+      },
       py::arg("path"), "Reads a single-valued profile (any readable format) in metres (runs without the GIL)");
   m.def(
       "write_profile_csv",

@@ -17,6 +17,7 @@
 namespace py = pybind11;
 using namespace frictal;
 using frictal::py_detail::arr;
+using frictal::py_detail::crop_window;
 using frictal::py_detail::nogil;
 using frictal::py_detail::ok;
 using frictal::py_detail::to_surface;
@@ -27,6 +28,7 @@ PredictSurface frictal::py_detail::to_surface(const py::handle& obj, double spac
   s.name = what;
   if (py::isinstance<py::str>(obj) || py::hasattr(obj, "__fspath__")) {
     const std::string path = py::str(py::module_::import("os").attr("fspath")(obj));
+    py_detail::require_file(path);
     ReadOptions o;
     o.format = ok(parse_format(format));
     o.default_unit = unit;
@@ -86,6 +88,50 @@ PredictSurface frictal::py_detail::to_surface(const py::handle& obj, double spac
   throw py::value_error(what + ": expected a 1-D (profile) or 2-D (map) array of heights");
 }
 
+frictal::py_detail::ProfilePair frictal::py_detail::conditioned_profiles(
+    const py::object& lower, const py::object& upper, const std::optional<std::string>& detrend, const py::object& crop,
+    bool remove_spikes, double spike_threshold, double spacing, const std::string& format, const std::string& unit) {
+  Conditioning c;
+  c.crop = crop_window(crop);
+  c.crop_source = "crop=" + py::repr(crop).cast<std::string>();
+  c.remove_spikes = remove_spikes;
+  c.spike_threshold = spike_threshold;
+  const std::optional<Detrend> asked =
+      detrend ? std::optional<Detrend>(ok(parse_detrend(*detrend))) : std::optional<Detrend>();
+  ProfilePair out;
+  std::vector<ConditioningRecord> records;
+  auto side = [&](const py::object& obj, const char* what) {
+    PredictSurface s = to_surface(obj, spacing, format, unit, what);
+    if (s.is_map)
+      throw py::value_error(s.name +
+                            ": an areal map; this function needs line profiles (areal_signature, "
+                            "areal_hold or predict take maps)");
+    for (const std::string& w : s.reader_warnings) add_warning(out.warnings, {"reader", w});
+    Conditioning own = c;
+    own.form = form_or_default(asked, s.profile.period.has_value());
+    ConditionedProfile r = ok(nogil([&] { return condition(std::move(s.profile), own, s.name); }));
+    records.push_back(r.record);
+    for (Warning& w : check_profile(r.profile, s.name)) add_warning(out.warnings, std::move(w));
+    return std::make_pair(std::move(r.profile), s.name);
+  };
+  auto [lo, lo_name] = side(lower, "lower");
+  out.lower = std::move(lo);
+  out.has_upper = !upper.is_none();
+  if (out.has_upper) {
+    auto [up, up_name] = side(upper, "upper");
+    out.upper = std::move(up);
+    auto length = [](const Profile& p) { return p.x.back() - p.x.front(); };
+    auto spacing_of = [&](const Profile& p) { return length(p) / double(p.x.size() - 1); };
+    for (Warning& w : check_pair_scales(length(out.lower), spacing_of(out.lower), length(out.upper),
+                                        spacing_of(out.upper), lo_name, up_name))
+      add_warning(out.warnings, std::move(w));
+  } else {
+    out.upper = out.lower;
+  }
+  out.conditioning = conditioning_text(records);
+  return out;
+}
+
 namespace {
 
 // A value as to_dict() and the attributes hold it: lists as Python lists (as in the JSON), an
@@ -95,6 +141,17 @@ py::object to_py(const std::string& unit, const OutputValue& v) {
   if (auto* t = std::get_if<std::string>(&v)) return py::str(*t);
   if (auto* b = std::get_if<bool>(&v)) return py::bool_(*b);
   return py::cast(std::get<std::vector<double>>(v));
+}
+
+// A value as the CLI's JSON writes it: a number that is not finite is null (None), in lists too.
+py::object json_safe(const py::object& v) {
+  if (py::isinstance<py::float_>(v)) return std::isfinite(v.cast<double>()) ? v : py::none();
+  if (py::isinstance<py::list>(v)) {
+    py::list out;
+    for (const py::handle& x : v) out.append(json_safe(py::reinterpret_borrow<py::object>(x)));
+    return out;
+  }
+  return v;
 }
 
 }  // namespace
@@ -162,18 +219,12 @@ void frictal_bind_predict(py::module_& m) {
           [](const Prediction& p) {
             py::dict d;
             for (const Column<Prediction>& c : prediction_columns())
-              d[py::str(c.key)] = to_py(c.unit, interface_value(c, p));
-            py::list w;
-            for (const Warning& x : p.warnings) {
-              py::dict e;
-              e["code"] = x.code;
-              e["message"] = x.message;
-              w.append(e);
-            }
-            d["warnings"] = w;
+              d[py::str(c.key)] = json_safe(to_py(c.unit, interface_value(c, p)));
+            d["warnings"] = py_detail::warning_list(p.warnings);
             return d;
           },
-          "The keys and interface units of `frictal predict --json`")
+          "The keys and interface units of `frictal predict --json`, and its values: None where the JSON has null "
+          "(a number that is not finite), so that json.dumps(..., allow_nan=False) writes it")
       .def("to_json", [](const Prediction& p) { return prediction_json(p); })
       .def("__repr__", [](const Prediction& p) {
         return "<Prediction " + p.model + ": friction angle " + py_detail::num(p.friction_angle.q50 * 180 / M_PI) +

@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 
 #include "frictal/conditioning.hpp"
+#include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 
 namespace frictal {
@@ -254,6 +255,23 @@ std::vector<Warning> check_friction_bound(double phi, const std::string& where) 
                      "contact along the sliding direction descends, so the block slides without tilt; check the "
                      "direction, that the two scans overlap at one scale, and their units",
                      where, phi * 180 / std::numbers::pi, std::tan(phi))});
+  return out;
+}
+
+std::vector<Warning> check_signature_bounds(const FrictionPrediction& forward, const FrictionPrediction& backward,
+                                            const std::string& where) {
+  std::vector<Warning> out;
+  if (forward.low_clamped)
+    out.push_back(
+        {"eq18-low-clamped", where + ": Eq. 18's low end theta_max - sigma + theta_a is below zero; reported as 0"});
+  for (Warning& w : check_friction_bound(forward.friction_angle, where)) out.push_back(std::move(w));
+  constexpr double kNear90 = 89.5 * std::numbers::pi / 180;
+  for (const auto& [name, f] : {std::pair{"forward", &forward}, std::pair{"backward", &backward}})
+    if (f->friction_angle >= kNear90)
+      out.push_back({"friction-angle-at-90",
+                     fmt::format("the {} upper bound is {:.4f} deg: a vertical wall, an interlock or a unit mix-up; "
+                                 "the number is a single feature of the data, not a friction",
+                                 name, f->friction_angle * 180 / std::numbers::pi)});
   return out;
 }
 

@@ -61,8 +61,19 @@ Result<ReportSurfaces> surfaces_of(const ReportInput& in) {
     if (auto v = validate(in.lower, s.lower_name); !v) return v.error();
     s.lower = in.lower;
   }
-  s.pair = in.upper.has_value();
-  s.upper = s.pair ? *in.upper : s.lower;
+  s.pair = in.upper.has_value() || (in.is_map && in.upper_map);
+  if (in.is_map && in.upper_map) {
+    // A pair of maps: the upper map's central line is the upper face of every line analysis.
+    const std::string name = in.upper_name.empty() ? std::string("upper") : in.upper_name;
+    if (auto v = validate(*in.upper_map, name); !v) return v.error();
+    auto c = central_line(*in.upper_map);
+    if (!c) return c.error();
+    s.upper = std::move(*c);
+    s.upper_line_y = in.upper_map->y0 + in.upper_map->height() / 2;
+    s.upper_map_stats = map_stats(*in.upper_map);
+  } else {
+    s.upper = s.pair ? *in.upper : s.lower;
+  }
   if (s.pair)
     if (auto v = validate(s.upper, in.upper_name); !v) return v.error();
   s.upper_name = s.pair ? in.upper_name : s.lower_name;
@@ -255,10 +266,14 @@ ReportDirections directions_of(const ReportInput& in) {
   o.threads = in.threads;
   o.atomic_friction = in.atomic_friction;
   o.signature.keep_contacts = false;
-  // small maps: shorter lines are accepted (at least 4 points, the directional minimum)
-  o.min_points = std::clamp<std::size_t>(std::min(in.map.nx, in.map.ny) / 2, 4, 32);
-  out.min_points = o.min_points;
+  // `frictal anisotropy`'s options (its lines of at least min_points points); only a map too small
+  // for them takes shorter lines (at least 4 points, the directional minimum), said in the caption.
   auto table = anisotropy(in.map, in.directions, o);
+  if (!table) {
+    o.min_points = std::clamp<std::size_t>(std::min(in.map.nx, in.map.ny) / 2, 4, 32);
+    table = anisotropy(in.map, in.directions, o);
+  }
+  out.min_points = o.min_points;
   if (!table) {
     out.failure = table.error().message;
     return out;

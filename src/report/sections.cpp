@@ -105,30 +105,31 @@ std::string profile_stats_table(const ProfileStats& st, bool uniform, const std:
   return t + "</table>\n";
 }
 
-Result<std::string> map_figure_and_stats(const ReportInput& in, const ReportSurfaces& s) {
+/// One map's figure and areal statistics; `line` is its central line at y = line_y, `name` names it.
+Result<std::string> map_figure_and_stats(const Map& map, const MapStats& st, const Profile& line, double line_y,
+                                         const std::string& name) {
   std::string html;
-  const MapStats& st = s.map_stats;
   MapImage mi;
-  mi.title = "Height map";
-  mi.line_y = s.lower.x.empty() ? std::nullopt : std::optional<double>(s.line_y);
-  mi.line_x0 = in.map.x0 + s.lower.x.front();  // the central line's abscissa starts at the map's x0
-  mi.line_x1 = in.map.x0 + s.lower.x.back();
+  mi.title = "Height map: " + name;
+  mi.line_y = line.x.empty() ? std::nullopt : std::optional<double>(line_y);
+  mi.line_x0 = map.x0 + line.x.front();  // the central line's abscissa starts at the map's x0
+  mi.line_x1 = map.x0 + line.x.back();
   mi.line_label = "line used for the signature";
-  auto svg = map_svg(in.map, mi);
+  auto svg = map_svg(map, mi);
   if (!svg) return svg.error();
-  const std::size_t f = std::max<std::size_t>(1, (std::max(in.map.nx, in.map.ny) + mi.max_pixels - 1) / mi.max_pixels);
+  const std::size_t f = std::max<std::size_t>(1, (std::max(map.nx, map.ny) + mi.max_pixels - 1) / mi.max_pixels);
   const LengthUnit lu = length_unit(std::max(st.width, st.height));
-  html +=
-      figure(*svg, fmt::format("{} × {} points, {} × {}; spacing {} × {}. {}Colours span the {:g} to {:g} % "
-                               "quantiles of the heights (outliers saturate); grey: no data.",
-                               in.map.nx, in.map.ny, fmt_len(st.width, lu), fmt_len(st.height, lu),
-                               fmt_len(in.map.dx, length_unit(in.map.dx)), fmt_len(in.map.dy, length_unit(in.map.dy)),
-                               f > 1 ? fmt::format("Shown block-averaged {} × {} to {} × {} pixels. ", f, f,
-                                                   (in.map.nx + f - 1) / f, (in.map.ny + f - 1) / f)
-                                     : std::string(),
-                               100 * mi.low_quantile, 100 * mi.high_quantile));
+  html += figure(*svg, fmt::format("{} × {} points, {} × {}; spacing {} × {}. {}Colours span the {:g} to {:g} % "
+                                   "quantiles of the heights (outliers saturate); grey: no data.",
+                                   map.nx, map.ny, fmt_len(st.width, lu), fmt_len(st.height, lu),
+                                   fmt_len(map.dx, length_unit(map.dx)), fmt_len(map.dy, length_unit(map.dy)),
+                                   f > 1 ? fmt::format("Shown block-averaged {} × {} to {} × {} pixels. ", f, f,
+                                                       (map.nx + f - 1) / f, (map.ny + f - 1) / f)
+                                         : std::string(),
+                                   100 * mi.low_quantile, 100 * mi.high_quantile));
   const LengthUnit zu = length_unit(st.Sq > 0 ? st.Sq : 1e-9);
-  html += "<table class=\"stats\"><caption>Areal statistics (ISO 25178-2 style, about the mean)</caption>\n";
+  html += "<table class=\"stats\"><caption>Areal statistics of " + escape_html(name) +
+          " (ISO 25178-2 style, about the mean)</caption>\n";
   html +=
       row("points (valid)", fmt::format("{} ({})", st.points, st.valid), st.valid < st.points ? "holes excluded" : "");
   html += row("Sq", fmt_len(st.Sq, zu), "rms height");
@@ -203,12 +204,22 @@ std::string tip_sentence(const ReportInput& in, const std::optional<double>& tip
 // --- the surface -----------------------------------------------------------------------------
 Result<std::string> surface_section(const ReportInput& in, const ReportData& d) {
   const ReportSurfaces& s = d.surfaces;
-  auto fig = in.is_map ? map_figure_and_stats(in, s) : profile_figure(s, lateral_unit(d));
+  auto fig = in.is_map ? map_figure_and_stats(in.map, s.map_stats, s.lower, s.line_y, base(s.lower_name))
+                       : profile_figure(s, lateral_unit(d));
   if (!fig) return fig.error();
   std::string html = std::move(*fig);
-  html += profile_stats_table(s.lower_stats, s.lower_uniform,
-                              in.is_map ? "the central line along x (used below)" : base(s.lower_name));
-  if (s.pair) html += profile_stats_table(s.upper_stats, s.upper_uniform, base(s.upper_name));
+  if (in.is_map && in.upper_map) {  // the pair's upper map, as the lower one
+    auto up = map_figure_and_stats(*in.upper_map, s.upper_map_stats, s.upper, s.upper_line_y, base(s.upper_name));
+    if (!up) return up.error();
+    html += *up;
+  }
+  html += profile_stats_table(
+      s.lower_stats, s.lower_uniform,
+      in.is_map ? "the central line along x of " + base(s.lower_name) + " (used below)" : base(s.lower_name));
+  if (s.pair)
+    html += profile_stats_table(
+        s.upper_stats, s.upper_uniform,
+        in.is_map ? "the central line along x of " + base(s.upper_name) + " (used below)" : base(s.upper_name));
   return html;
 }
 
@@ -284,15 +295,16 @@ Result<std::string> friction_section(const ReportInput& in, const ReportData& d)
         fmt::format("{} … {}", fmt_mu(bwd.friction_coefficient_low), fmt_mu(bwd.friction_coefficient)));
   std::string html = t.done();
   html += fmt::format(
-      "<p class=\"verdict\">Predicted static friction coefficient <b>μ = {}</b> for sliding towards +x "
-      "(statistical range {} … {}, Eq. 18) and <b>{}</b> towards −x, with μ_a = {:g}.</p>\n",
+      "<p class=\"bounds\">Rigid upper bound of the friction coefficient: μ ≤ {} sliding towards +x (Eq. 18's "
+      "range below it {} … {}) and μ ≤ {} towards −x, with μ_a = {:g}. A bound, not what a tilt test reads: that is "
+      "the headline.</p>\n",
       fmt_mu(fwd.friction_coefficient), fmt_mu(fwd.friction_coefficient_low), fmt_mu(fwd.friction_coefficient),
       fmt_mu(bwd.friction_coefficient), in.atomic_friction);
   return html;
 }
 
 // --- what a tilt test reads: the hold angle (hold.hpp) -----------------------------------------
-Result<std::string> hold_section(const ReportInput&, const ReportData& d) {
+Result<std::string> hold_section(const ReportInput& in, const ReportData& d) {
   const HoldAnalysis& ha = d.hold.analysis;
   const HoldDistribution& f = ha.distribution.forward;
   const HoldDistribution& b = ha.distribution.backward;
@@ -345,6 +357,11 @@ Result<std::string> hold_section(const ReportInput&, const ReportData& d) {
   auto hsvg = plot_svg(hp);
   if (!hsvg) return hsvg.error();
   std::string html =
+      in.is_map ? "<p class=\"diagnostic\">A diagnostic: the hold angle of the maps' central lines along x (line "
+                  "profiles, as `frictal signature` of those lines computes it), not the maps' prediction: that is "
+                  "the headline.</p>\n"
+                : std::string();
+  html +=
       "<p>θ_max bounds the friction of a rigid pair; a tilt test reads something else. A block put down at one "
       "offset slides to the bottom of its basin of the lift h; tilted slowly, it stays where the slope of h ahead "
       "of it is at least the tilt and otherwise slips to the next steeper slope; the test reads the tilt at the "
@@ -478,9 +495,9 @@ Result<std::string> directions_section(const ReportInput& in, const ReportData& 
   const ReportDirections& dir = *d.directions;
   if (!dir.failure.empty()) return fmt::format("<p>Not computed for this map: {}.</p>\n", escape_html(dir.failure));
   Series phi, low;
-  phi.label = "φ (Eq. 6), mean over parallel lines";
+  phi.label = "upper bound θ_a + θ_max (Eq. 6), mean over parallel lines";
   phi.color = "#d62728";
-  low.label = "φ − σ (Eq. 18 lower end)";
+  low.label = "bound − σ (Eq. 18 lower end)";
   low.color = "#1f77b4";
   low.dashed = true;
   for (const auto& row : dir.table) {
@@ -490,21 +507,24 @@ Result<std::string> directions_section(const ReportInput& in, const ReportData& 
     low.y.push_back(std::max(0.0, deg(row.prediction.friction_angle_low)));
   }
   PolarPlot pp;
-  pp.title = "Friction over sliding directions";
+  pp.title = "Rigid upper bound by direction";
   pp.radius_label = "friction angle (deg)";
   pp.series = {phi, low};
   auto svg = polar_svg(pp);
   if (!svg) return svg.error();
   const double best = dir.best_angle, worst = dir.worst_angle;
   std::string html = figure(
-      *svg, fmt::format("{} directions (0° = +x, 90° = +y). For each, up to {} parallel lines of the map (of at "
-                        "least {} points), each against itself turned over; θ_max and σ are length-weighted means "
-                        "over the lines. μ_a = {:g}.",
-                        in.directions, in.max_lines, dir.min_points, in.atomic_friction));
+      *svg,
+      fmt::format("{} directions (0° = +x, 90° = +y). For each, up to {} parallel lines of {} (of at "
+                  "least {} points), each against itself turned over; θ_max and σ are length-weighted means "
+                  "over the lines: the numbers of `frictal anisotropy {} --directions {}`{}. μ_a = {:g}. "
+                  "Rigid upper bounds, not what a tilt test reads (the headline).",
+                  in.directions, in.max_lines, escape_html(base(d.surfaces.lower_name)), dir.min_points,
+                  escape_html(base(d.surfaces.lower_name)), in.directions,
+                  in.upper_map ? " (the lower map alone: a diagnostic of its anisotropy)" : "", in.atomic_friction));
   html += fmt::format(
-      "<p class=\"verdict\">Highest friction sliding towards {:.0f}°: φ = {} (μ = {}); lowest towards {:.0f}°: φ = "
-      "{} "
-      "(μ = {}). Anisotropy ratio μ_max/μ_min = {}.</p>\n",
+      "<p class=\"bounds\">Highest rigid upper bound sliding towards {:.0f}°: θ_a + θ_max = {} (μ ≤ {}); lowest "
+      "towards {:.0f}°: {} (μ ≤ {}). Anisotropy ratio of the bounds = {}.</p>\n",
       deg(dir.best_direction), fmt_deg(best), fmt_mu(std::tan(best)), deg(dir.worst_direction), fmt_deg(worst),
       fmt_mu(std::tan(worst)),
       std::tan(worst) > 1e-6 ? fmt::format("{:.3f}", std::tan(best) / std::tan(worst))
@@ -597,6 +617,20 @@ Result<std::string> resolution_section(const ReportInput& in, const ReportData& 
 }
 
 // --- the headline, the title, what was assumed --------------------------------------------------
+/// A name as a JSON string.
+std::string json_quoted(const std::string& t) {
+  std::string o = "\"";
+  for (char c : t) {
+    if (c == '"' || c == '\\') o += '\\';
+    if (static_cast<unsigned char>(c) < 0x20) {
+      o += fmt::format("\\u{:04x}", static_cast<unsigned>(c));
+      continue;
+    }
+    o += c;
+  }
+  return o + "\"";
+}
+
 /// Two surfaces: an upper profile, or an upper map (the headline and the areal section are the pair's).
 bool two_surfaces(const ReportInput& in, const ReportData& d) { return d.surfaces.pair || in.upper_map.has_value(); }
 
@@ -692,14 +726,21 @@ std::string headline(const ReportInput& in, const ReportData& d) {
     }
     page += d_sweep_figure(p);
     // The same object as `frictal predict --json`, for scripts that read the page ("</" escaped).
-    std::string json = prediction_json(p, "", 0);
+    const std::string upper = d.surfaces.pair ? in.upper_name : d.surfaces.lower_name;
+    std::string json = prediction_json(p,
+                                       fmt::format("\"lower\": {}, \"upper\": {}", json_quoted(d.surfaces.lower_name),
+                                                   json_quoted(upper.empty() ? d.surfaces.lower_name : upper)),
+                                       0);
     for (std::size_t k = 0; (k = json.find("</", k)) != std::string::npos; k += 3) json.replace(k, 2, "<\\/");
     page += "<script type=\"application/json\" id=\"prediction\">" + json + "</script>\n";
     page += fmt::format(
         "<p class=\"bounds\">{}: rigid upper bound θ_max + θ_a = {} towards +x and {} towards −x (θ_max = {} / "
         "{}).</p>\n",
-        in.is_map ? "The map's central line against itself" : "Signature function", fmt_deg(fwd.friction_angle),
-        fmt_deg(bwd.friction_angle), fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward));
+        in.is_map ? (in.upper_map ? "The maps' central lines (a diagnostic)"
+                                  : "The map's central line against itself (a diagnostic)")
+                  : "Signature function",
+        fmt_deg(fwd.friction_angle), fmt_deg(bwd.friction_angle), fmt_deg(r.theta_max_forward),
+        fmt_deg(r.theta_max_backward));
   } else {
     page += fmt::format(
         "<p class=\"verdict\">Rigid upper bound θ_max + θ_a: μ ≤ <b>{}</b> towards +x (Eq. 18 range {} … {}) "
@@ -720,7 +761,8 @@ std::vector<std::string> assumptions(const ReportInput& in, const ReportData& d)
     out.push_back(fmt::format(
         "The lower block's face is {}; the upper block's face is {} as measured (material below), turned over "
         "onto it about the axis across x: the headline's prediction and the areal section. The sections on the "
-        "central line take the lower map's line against itself turned over (rotated 180°).",
+        "central lines take the lower map's line against the upper map's line turned over (rotated 180°); the "
+        "polar plot is the lower map's anisotropy.",
         escape_html(s.lower_name), escape_html(in.upper_name)));
   else
     out.push_back(s.pair ? fmt::format("The lower block's face is {}; the upper block's face is {} as measured "
@@ -735,9 +777,14 @@ std::vector<std::string> assumptions(const ReportInput& in, const ReportData& d)
                   escape_html(in.detrend.empty() ? std::string("none") : in.detrend)));
   if (in.is_map)
     out.push_back(fmt::format(
-        "The signature, slope distributions and resolution study use the map's central line along x (y = {}), "
-        "the longest valid run: {} points over {}. The polar plot uses parallel lines in every direction.",
-        fmt_len(s.line_y, length_unit(in.map.height())), s.lower.size(), fmt_len(s.lower.length(), xu)));
+        "The signature, slope distributions and resolution study use the central line along x of {} (y = {}), "
+        "the longest valid run: {} points over {}{}. The polar plot uses parallel lines of {} in every direction.",
+        in.upper_map ? "each map" : "the map", fmt_len(s.line_y, length_unit(in.map.height())), s.lower.size(),
+        fmt_len(s.lower.length(), xu),
+        in.upper_map
+            ? fmt::format(" (the upper map's: {} points over {})", s.upper.size(), fmt_len(s.upper.length(), xu))
+            : std::string(),
+        in.upper_map ? "the lower map" : "the map"));
   out.push_back(
       "Rigid blocks: the upper block only translates (no rotation, no deformation). Contact slopes follow the "
       "paper's exact polyline rules (edge–edge, vertex–edge, vertex–vertex).");
@@ -758,12 +805,13 @@ const std::vector<PageSection>& page_sections() {
       {"surface", "The surface", [](const ReportData&) { return true; }, surface_section},
       {"signature", "Signature function", [](const ReportData&) { return true; }, signature_section},
       {"slopes", "Slope distributions", [](const ReportData&) { return true; }, slopes_section},
-      {"friction", "Predicted friction (Eq. 6 and 18)", [](const ReportData&) { return true; }, friction_section},
-      {"hold", "What a tilt test reads: the hold angle", [](const ReportData&) { return true; }, hold_section},
+      {"friction", "Rigid upper bound (Eq. 6) and Eq. 18's range", [](const ReportData&) { return true; },
+       friction_section},
+      {"hold", "The hold angle over drops", [](const ReportData&) { return true; }, hold_section},
       {"areal-hold", "Areal blocks that may move sideways",
        [](const ReportData& d) { return d.areal_hold.has_value(); }, areal_hold_section},
-      {"directions", "Friction over sliding directions", [](const ReportData& d) { return d.directions.has_value(); },
-       directions_section},
+      {"directions", "Rigid upper bound over sliding directions",
+       [](const ReportData& d) { return d.directions.has_value(); }, directions_section},
       {"resolution", "Dependence on resolution", [](const ReportData& d) { return d.resolution.has_value(); },
        resolution_section},
   };

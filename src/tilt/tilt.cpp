@@ -947,7 +947,7 @@ void TiltRun::finish() {
 
 // ---- The cost estimate before the first step (TiltEstimate, docs/dem.md sec. 7).
 TiltEstimate estimate_cost(const dem::Model& model, const TiltConfig& cfg, const TiltResult& res,
-                           std::size_t list_pairs) {
+                           std::size_t list_pairs, double expected_end) {
   TiltEstimate e;
   double dt = cfg.time_step;
   if (cfg.adaptive_time_step) {
@@ -960,12 +960,14 @@ TiltEstimate estimate_cost(const dem::Model& model, const TiltConfig& cfg, const
     dt = std::min(dt, cfg.time_step_safety * one);
   }
   e.time_step = dt;
-  const double phi = cfg.predict ? std::min(res.predicted_sphero_friction_angle, cfg.max_tilt) : cfg.max_tilt;
+  const double end = std::isfinite(expected_end) ? expected_end : res.predicted_sphero_friction_angle;
+  const double phi = cfg.predict && std::isfinite(end) ? std::min(end, cfg.max_tilt) : cfg.max_tilt;
   if (cfg.protocol == TiltProtocol::QuasiStatic) {
     const double bound_increments = std::floor(cfg.max_tilt / cfg.tilt_increment);
     const double expected_increments = std::ceil(phi / cfg.tilt_increment) + 1;
     e.simulated_time_bound = cfg.relax_time * (1 + bound_increments);
-    e.simulated_time_expected = 0.1 * cfg.relax_time * (1 + std::min(expected_increments, bound_increments));
+    e.simulated_time_expected =
+        kTiltRelaxShare * cfg.relax_time * (1 + std::min(expected_increments, bound_increments));
   } else {
     const double settle = relaxed_settling(cfg) ? cfg.relax_time : cfg.settle_time;
     e.simulated_time_bound = settle + cfg.max_tilt / cfg.tilt_rate;
@@ -1029,7 +1031,16 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   res.warnings = tilt_scale_warnings(res.scales, res, cfg);
 
   TiltRun run(cfg, *model, res, threads);
-  res.estimate = estimate_cost(*model, cfg, res, run.list_pairs());
+  // The angle the run is expected to end at: the quasi-static hold angle of the block from where it
+  // is put down (the rest is not known yet), else the rounded blocks' bound.
+  double expected_end = std::numeric_limits<double>::quiet_NaN();
+  if (cfg.predict) {
+    TiltResult from_start;
+    from_start.rest_offset = res.initial_offset;
+    predict_hold_angles(*faces, cfg, from_start);
+    expected_end = std::max(from_start.predicted_hold_angle, from_start.predicted_sphero_hold_angle);
+  }
+  res.estimate = estimate_cost(*model, cfg, res, run.list_pairs(), expected_end);
   res.setup_time = std::chrono::duration<double>(Clock::now() - setup_start).count();
   if (cfg.before_run)
     if (Status s = cfg.before_run(res.estimate); !s.ok()) return s.error();

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
+
+#include <fmt/core.h>
 
 #include "frictal/areal_tilt.hpp"
 #include "frictal/tilt.hpp"
@@ -23,6 +26,31 @@ double per_step(const TiltResult& r, std::uint64_t n) {
 
 }  // namespace
 
+std::string tilt_validity(const TiltResult& r, const TiltConfig& c) {
+  constexpr double kDegree = 3.14159265358979323846 / 180;
+  if (!r.slid) return fmt::format("no run-away before the largest tilt {:.3g} deg", c.max_tilt / kDegree);
+  if (rotated(r))
+    return "the block turned (warning rotation): the signature's model does not hold; --hold-rotation holds it, "
+           "--protocol quasi-static loads it without the turning kick";
+  const double qs = std::max(r.predicted_hold_angle, r.predicted_sphero_hold_angle);
+  if (!std::isfinite(qs) || !std::isfinite(r.predicted_inertial_hold_angle)) return "valid";
+  const double tol = std::max(0.1 * kDegree, c.protocol == TiltProtocol::QuasiStatic ? c.tilt_increment : 0.0);
+  const double lo = r.predicted_inertial_hold_angle - tol, hi = qs + tol;
+  if (r.friction_angle >= lo && r.friction_angle <= hi) return "valid";
+  std::string own;  // the run's own warnings that bear on it
+  for (const TiltWarning& w : r.warnings)
+    if (w.code == "unsettled" || w.code == "unrelaxed" || w.code == "rounding" || w.code == "creep")
+      own += (own.empty() ? "; this run warned " : ", ") + w.code;
+  return fmt::format(
+      "{:.3f} deg lies outside the rigid model's bracket [{:.3f}, {:.3f}] deg from the block's rest (inertial bound "
+      "{:.3f}, quasi-static hold angle {:.3f}, +-{:.2g}): the run does not follow rigid blocks{}. The runs that read "
+      "the hold angle use --protocol quasi-static --hold-rotation and contacts far stiffer than Table II's "
+      "(--normal-stiffness 100 times the scaled value read it on the measured Dektak scan; docs/dem.md, \"The "
+      "quasi-static protocol against the hold angle\")",
+      r.friction_angle / kDegree, lo / kDegree, hi / kDegree, r.predicted_inertial_hold_angle / kDegree, qs / kDegree,
+      tol / kDegree, own);
+}
+
 const Columns<TiltReport>& tilt_columns() {
   static const Columns<R> cols = python_without_units<R>({
       column<R>("slid", "flag", "a run-away was detected before max_tilt", [](const R& t) { return t.result.slid; }),
@@ -30,9 +58,13 @@ const Columns<TiltReport>& tilt_columns() {
                 "the friction angle this test read: the tilt at the start of the run-away (null: no slide)",
                 [](const R& t) { return t.result.slid ? t.result.friction_angle : kNaN; }),
       column<R>("friction_angle_valid", "flag",
-                "slid and no warning says the block left the model (rotation): the angle is a friction angle of the "
-                "surfaces",
-                [](const R& t) { return t.result.slid && !rotated(t.result); }),
+                "slid, the block did not turn (rotation) and the angle lies inside the rigid model's bracket from "
+                "its rest (tilt_validity): the angle is a friction angle of the surfaces",
+                [](const R& t) { return tilt_validity(t.result, t.config) == "valid"; }),
+      column<R>("validity", "text",
+                "\"valid\", or why the angle is not a friction angle of the surfaces and the "
+                "option that would make it one",
+                [](const R& t) { return tilt_validity(t.result, t.config); }),
       column<R>("predicted_friction_angle_deg", "deg", "rigid upper bound theta_max + atan(mu_a) (null: no prediction)",
                 [](const R& t) { return t.config.predict ? t.result.predicted_friction_angle : kNaN; }),
       column<R>("predicted_theta_max_deg", "deg", "the signature's theta_max along the sliding direction",
@@ -215,7 +247,7 @@ const Columns<TiltScaling>& tilt_scaling_columns() {
       column<T>("radius_factor", "1", "q = r / (s r_0), below 1 when the spacing caps r",
                 [](const T& s) { return s.radius_factor; }),
       declared_column<T>("settings", "list:tilt_scaled_setting",
-                         "the settings changed, each {name, unit, from, to} in text units"),
+                         "the settings changed, each {name, unit, from, to} (CLI: text units; Python: SI)", "settings"),
   };
   return cols;
 }

@@ -309,6 +309,45 @@ Result<TiltScaling> scale_tilt_defaults(const Curve& lower, const Curve& upper, 
   return sc;
 }
 
+Result<TiltScaling> tilt_setup(const Curve& lower, const Curve& upper, const ValueSet& given, double period,
+                               double scale) {
+  const TiltConfig own = tilt_config_for_surface(period, scale);
+  auto sc = scale_tilt_defaults(lower, upper, own);
+  if (!sc) return sc.error();
+  // A surface's own period and run-away distance (its wavelength) are already at its scale.
+  if (period > 0) {
+    std::erase_if(sc->settings, [](const TiltScaledSetting& t) { return t.name == "period"; });
+    sc->config.period = own.period;
+  }
+  if (scale > 0) {
+    std::erase_if(sc->settings, [](const TiltScaledSetting& t) { return t.name == "runaway_distance"; });
+    sc->config.runaway_distance = own.runaway_distance;
+  }
+  auto cfg = make_tilt_config(given, sc->config);
+  if (!cfg) return cfg.error();
+  // What the caller set is kept and not reported as scaled.
+  std::erase_if(sc->settings, [&](const TiltScaledSetting& t) { return given.count(t.name) > 0; });
+  // Scaled from the length, the test assumes a surface whose relief is below its length (the
+  // Table I blocks: 1e-2 m of relief or less on 0.2 m); a taller one (typically z in other units
+  // than x) would turn its blocks' ends far faster than the length scale allows.
+  if (sc->height_range > sc->length)
+    return make_error(
+        fmt::format("tilt: the surfaces' height range {:.4g} m exceeds their length {:.4g} m (expected a height "
+                    "range in [0, {:.4g}] m): are z and x in the same unit? (frictal info FILE; give the unit in the "
+                    "file's header)",
+                    sc->height_range, sc->length, sc->length));
+  const double r_max = kTiltMaxRadiusOverSpacing * sc->point_spacing;
+  if (cfg->radius > r_max)
+    return make_error(fmt::format(
+        "tilt: spheroradius {:.3g} m cannot resolve this surface: expected a value in (0, {:.3g}] m, {} times its "
+        "point spacing {:.3g} m (the default here: {:.3g} m; beyond it one rounded contact spans more than {} points "
+        "of each face)",
+        cfg->radius, r_max, kTiltMaxRadiusOverSpacing, sc->point_spacing, sc->config.radius,
+        2 * kTiltMaxRadiusOverSpacing));
+  sc->config = std::move(*cfg);
+  return sc;
+}
+
 Result<TiltConfig> make_tilt_config(const ValueSet& si_values, const TiltConfig& base) {
   return settings_detail::apply(table(), base, si_values, "tilt");
 }

@@ -5,13 +5,49 @@
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <string>
+#include <vector>
 
 #include "cli/cli_runner.hpp"
 #include "frictal/io.hpp"
 
 namespace {
 const std::string kData = FRICTAL_TEST_DATA;
+
+/// The page's text (tags dropped, entities kept), sentence by sentence.
+std::vector<std::string> sentences(const std::string& page) {
+  std::string text;
+  bool tag = false;
+  for (char c : page) {
+    if (c == '<') tag = true;
+    if (!tag) text += c;
+    if (c == '>') tag = false, text += ' ';
+  }
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  for (std::size_t k = 0; k < text.size(); ++k)
+    if ((text[k] == '.' && k + 1 < text.size() && text[k + 1] == ' ') || text[k] == '\n') {
+      out.push_back(text.substr(start, k - start));
+      start = k + 1;
+    }
+  out.push_back(text.substr(start));
+  return out;
 }
+
+/// No friction number on the page is called predicted unless it is the headline's: a sentence
+/// that says "predict" and gives an angle or a coefficient must be in the headline paragraph.
+void expect_no_unnamed_bound(const std::string& page) {
+  const auto at = page.find("id=\"headline\"");
+  const std::string rest = at == std::string::npos ? page : page.substr(0, at) + page.substr(page.find("</p>", at));
+  for (const std::string& s : sentences(rest)) {
+    std::string low = s;
+    for (char& c : low) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (low.find("predicted") == std::string::npos) continue;
+    const bool number = s.find("\u00b0") != std::string::npos || s.find("\u03bc =") != std::string::npos ||
+                        s.find("\u03bc \u2264") != std::string::npos;
+    EXPECT_FALSE(number) << "a friction number called predicted outside the headline: " << s;
+  }
+}
+}  // namespace
 
 TEST(CliReport, MeasuredMapAndProfilePairPages) {
   const std::string map_html = temp_path("report_map.html");
@@ -23,7 +59,10 @@ TEST(CliReport, MeasuredMapAndProfilePairPages) {
   EXPECT_NE(page.find("sample-land.x3p"), std::string::npos);
   EXPECT_NE(page.find("<b>form: plane</b>"), std::string::npos);  // the default detrending for maps, stated
   EXPECT_NE(page.find("Reader warning: "), std::string::npos);    // the reader's warnings are on the page
-  EXPECT_NE(page.find("Friction over sliding directions"), std::string::npos);
+  EXPECT_NE(page.find("Rigid upper bound over sliding directions"), std::string::npos);
+  // The polar plot is `frictal anisotropy`'s table with its line count.
+  EXPECT_NE(page.find("the numbers of `frictal anisotropy sample-land.x3p --directions 12`"), std::string::npos);
+  expect_no_unnamed_bound(page);
 
   const std::string wm1 = temp_path("rep_wm1.csv"), wm2 = temp_path("rep_wm2.csv");
   ASSERT_EQ(run_cli("surface wm --dimension 1.5 --n-max 8 --seed 1 -o " + wm1).code, 0);
@@ -33,6 +72,14 @@ TEST(CliReport, MeasuredMapAndProfilePairPages) {
   EXPECT_EQ(s.out.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(s.out.find("surface slopes: upper"), std::string::npos);
   EXPECT_NE(s.out.find("<b>form: line</b>"), std::string::npos);  // the default detrending for profiles
+  expect_no_unnamed_bound(s.out);
+}
+
+TEST(CliReport, AMeasuredProfilesPageCallsNoBoundPredicted) {
+  auto r = run_cli("report " + kData + "/profiles/dektak-1.csv -o - --resolution-steps 0 -q");
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_no_unnamed_bound(r.out);
+  EXPECT_NE(r.out.find("Rigid upper bound of the friction coefficient"), std::string::npos);
 }
 
 TEST(CliReport, TwoMapsSectionIsThePredictionOfFrictalPredict) {
@@ -73,6 +120,17 @@ TEST(CliReport, TwoMapsSectionIsThePredictionOfFrictalPredict) {
       nlohmann::json::parse(page.substr(at + open.size(), page.find("</script>", at) - at - open.size()));
   EXPECT_EQ(q["friction_angle_deg"], p["friction_angle_deg"]);
   EXPECT_EQ(q["drop_friction_angles_deg"], p["drop_friction_angles_deg"]);
+  EXPECT_EQ(q["lower"], lower);  // the pair named, as `frictal predict --json` names it
+  EXPECT_EQ(q["upper"], upper);
+  // Both maps and both maps' statistics are on the page: the upper one is 12 x 12 points.
+  const std::string lname = lower.substr(lower.rfind('/') + 1), uname = upper.substr(upper.rfind('/') + 1);
+  EXPECT_NE(page.find("Height map: " + lname), std::string::npos);
+  EXPECT_NE(page.find("Height map: " + uname), std::string::npos);
+  EXPECT_NE(page.find("Areal statistics of " + uname), std::string::npos);
+  EXPECT_NE(page.find("12 \u00d7 12 points"), std::string::npos);
+  // The line sections are the pair's: the upper map's central line is the upper face.
+  EXPECT_NE(page.find("the central line along x of " + uname), std::string::npos);
+  expect_no_unnamed_bound(page);
   // The section: its table's median and drops are the prediction's; no grid hold angle.
   const auto sec = page.find("Areal blocks that may move sideways</h2>");
   ASSERT_NE(sec, std::string::npos);

@@ -119,7 +119,7 @@ TEST(CliTiltScale, ASpheroradiusBeyondTheResolutionIsRefused) {
   // point spacings (the refusal's stated limit).
   const CliRun r = run_cli("tilt --lower " + kXy2 + " --spheroradius 5e-5", 60);
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--spheroradius 5e-05 m"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("spheroradius 5e-05 m"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("expected a value in (0, "), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
 }
@@ -195,4 +195,54 @@ TEST(CliTiltScale, AMacroFileKeepsTheDefaults) {
   EXPECT_TRUE(j["scaled_defaults"]["settings"].empty()) << j["scaled_defaults"].dump();
   EXPECT_DOUBLE_EQ(setting(j, "spheroradius"), 5e-5);
   EXPECT_DOUBLE_EQ(setting(j, "runaway_distance"), 0.01);
+}
+
+namespace {
+const std::string kDektak = std::string(FRICTAL_TEST_DATA) + "/profiles/dektak-1.csv";
+// A 50 um piece of the Dektak scan (321 points): short enough for a quasi-static run in a second.
+const std::string kPiece = "tilt --lower " + kDektak + " --crop 0.5mm,0.55mm --json --quiet";
+constexpr double kDegree = 3.14159265358979323846 / 180;
+}  // namespace
+
+TEST(CliTiltScale, AFileGivenAsAWordNamesLower) {
+  const CliRun r = run_cli("tilt " + kDektak, 60);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--lower " + kDektak), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("unknown subcommand"), std::string::npos) << r.err;
+}
+
+TEST(CliTiltScale, AnAngleOutsideTheRigidBracketIsNotValidAndSaysWhy) {
+  // The block's own rest gives the rigid model's bracket [phi_in, phi_qs] (hold.hpp, computed
+  // from the lift, a second method beside the time stepping). With the defaults the piece slides
+  // at once (0 deg, the block still moving when the tilt starts): outside it, so not valid, and
+  // the reason names the options of the validated protocol.
+  const CliRun d = run_cli(kPiece, 120);
+  ASSERT_EQ(d.code, 0) << d.err;
+  const auto j = nlohmann::json::parse(d.out);
+  const double phi = j["friction_angle_deg"].get<double>();
+  const double lo = j["predicted_inertial_hold_angle_deg"].get<double>() - 0.1;
+  const double hi =
+      std::max(j["predicted_hold_angle_deg"].get<double>(), j["predicted_sphero_hold_angle_deg"].get<double>()) + 0.1;
+  ASSERT_TRUE(phi < lo || phi > hi) << phi << " in [" << lo << ", " << hi << "]";
+  EXPECT_FALSE(j["friction_angle_valid"].get<bool>());
+  const std::string why = j["validity"].get<std::string>();
+  for (const char* option : {"--protocol quasi-static", "--hold-rotation", "--normal-stiffness"})
+    EXPECT_NE(why.find(option), std::string::npos) << why;
+  // The text says so on the friction angle's line, and names the bound as a bound.
+  const CliRun t = run_cli("tilt --lower " + kDektak + " --crop 0.5mm,0.55mm --quiet", 120);
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("friction angle (not valid: "), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("rigid upper bound (signature theta_max"), std::string::npos) << t.out;
+  EXPECT_EQ(t.out.find("predicted ("), std::string::npos) << t.out;
+  // The validated protocol with contacts 140 times stiffer than the scaled Table II value reads
+  // the quasi-static hold angle from its rest within one increment (0.01 deg) and is valid.
+  const double k = 140 * setting(j, "normal_stiffness");
+  const CliRun q =
+      run_cli(kPiece + " --protocol quasi-static --hold-rotation --normal-stiffness " + std::to_string(k), 120);
+  ASSERT_EQ(q.code, 0) << q.err;
+  const auto jq = nlohmann::json::parse(q.out);
+  EXPECT_TRUE(jq["friction_angle_valid"].get<bool>()) << jq["validity"];
+  EXPECT_EQ(jq["validity"], "valid");
+  EXPECT_NEAR(jq["friction_angle_deg"].get<double>(), jq["predicted_hold_angle_deg"].get<double>(), 0.01 + 1e-9);
+  (void)kDegree;
 }

@@ -34,7 +34,7 @@ def test_lift_matches_reference_and_numpy_scan():
     f = frictal.wm_profile(n_max=5, seed=3)
     g = frictal.wm_profile(n_max=5, seed=4)
     up = frictal.rotate180(g)
-    sig = frictal.signature(f, g)
+    sig = frictal.signature(f, g, detrend="none")  # the generated heights as they are
     fz, gz = np.asarray(f.z), np.asarray(up.z)
     dx = f.x[1] - f.x[0]
     for i in range(0, len(sig["offset"]), 50):
@@ -158,7 +158,7 @@ def test_hold_angle_reference_wm_pair_and_sawtooth():
     # at 23.79 mm with d = 1 cm, phi_qs = 1.549 deg and phi_in = 0.695 deg.
     kw = dict(dimension=1.5, n_max=6, longest_wavelength=0.01, length=0.2, rms_height=1e-5)
     f, g = frictal.wm_profile(seed=1, **kw), frictal.wm_profile(seed=2, **kw)
-    h = frictal.hold_angle(f, g, runaway_distance=0.01, start_offset=0.02379)
+    h = frictal.hold_angle(f, g, runaway_distance=0.01, start_offset=0.02379, detrend="none")
     assert np.degrees(h["start"]["hold_angle"]) == pytest.approx(1.549, abs=0.0015)
     assert np.degrees(h["start"]["inertial_hold_angle"]) == pytest.approx(0.695, abs=0.0015)
     fw = h["forward"]
@@ -173,4 +173,4 @@ def test_hold_angle_reference_wm_pair_and_sawtooth():
     fall = math.atan(math.tan(np.radians(25)) * 0.7 / 0.3)
     assert hs["backward"]["hold_angle"]["max"] == pytest.approx(fall + math.atan(0.2), abs=1e-9)
     with pytest.raises(ValueError, match="start offset"):
-        frictal.hold_angle(f, g, start_offset=0.5)
+        frictal.hold_angle(f, g, start_offset=0.5, detrend="none")

@@ -1,0 +1,155 @@
+"""Python = CLI: the same file and options give the same numbers in Python as in the CLI's --json.
+
+Each case runs the CLI (FRICTAL_CLI, else `frictal` on PATH; skipped where neither exists) and
+the Python function on the same measured profiles from tests/data, once on the path and once on
+the Profile that read_profile returns (the one conditioning rule applies to both), and compares
+every number the two print. The CLI is the second computation: a different front end, its own
+option parsing and reading, its own JSON writer.
+"""
+import json
+import math
+import os
+import shutil
+import subprocess
+import warnings
+
+import numpy as np
+import pytest
+
+import frictal
+
+DATA = os.path.join(os.path.dirname(__file__), "..", "data", "profiles")
+CLI = os.environ.get("FRICTAL_CLI") or shutil.which("frictal")
+pytestmark = pytest.mark.skipif(CLI is None, reason="no frictal CLI (set FRICTAL_CLI)")
+
+# Measured profiles of three instruments/formats: a Dektak scan, a text x,z pair, a non-uniform scan.
+FILES = ["dektak-1.csv", "xy-1.txt", "nonuniform.asc"]
+# Options as the CLI spells them, and as Python's keywords do.
+OPTIONS = [
+    ([], {}),
+    (["--detrend", "none"], {"detrend": "none"}),
+    (["--detrend", "poly:2", "--atomic-friction", "0.1"], {"detrend": "poly:2", "atomic_friction": 0.1}),
+]
+# Every file with every option set, but the Dektak scan with its form kept (its tilt makes the
+# lift long: 9 s a run, and nothing the other two files do not test).
+CASES = [(f, *o) for f in FILES for o in OPTIONS if not (f == "dektak-1.csv" and o[1].get("detrend") == "none")]
+
+
+def cli(*args):
+    r = subprocess.run([CLI, *args, "--json"], capture_output=True, text=True, timeout=120, check=True)
+    return json.loads(r.stdout)
+
+
+def quiet(f, *args, **kw):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return f(*args, **kw)
+
+
+def deg(v):
+    return None if v is None else math.degrees(v)
+
+
+def same(a, b):
+    """Equal numbers (to the last few bits: the CLI's JSON writes 17 digits) or both null."""
+    if a is None or b is None:
+        return a is None and b is None
+    return a == pytest.approx(b, rel=1e-12, abs=1e-15)
+
+
+def inputs(name):
+    path = os.path.join(DATA, name)
+    return [path, frictal.read_profile(path)]
+
+
+@pytest.mark.parametrize("name,cli_opts,py_opts", CASES)
+def test_predict_equals_the_cli(name, cli_opts, py_opts):
+    want = cli("predict", os.path.join(DATA, name), *cli_opts)
+    for surface in inputs(name):
+        got = quiet(frictal.predict, surface, **py_opts).to_dict()
+        json.dumps(got, allow_nan=False)  # JSON-safe: None where the CLI writes null
+        assert set(got) == set(want) - {"lower", "upper"}
+        for key, value in want.items():
+            if key in ("lower", "upper", "warnings"):
+                continue
+            if isinstance(value, float) or isinstance(got[key], float):
+                assert same(got[key], value), (key, got[key], value)
+            else:
+                assert got[key] == value, key
+        # The readers' notes come with a path (a Profile object carries none).
+        codes = [w["code"] for w in want["warnings"] if isinstance(surface, str) or w["code"] != "reader"]
+        assert [w["code"] for w in got["warnings"]] == codes
+
+
+@pytest.mark.parametrize("name,cli_opts,py_opts", CASES)
+def test_signature_and_hold_angle_equal_the_cli(name, cli_opts, py_opts):
+    want = cli("signature", os.path.join(DATA, name), *cli_opts)
+    mu_a = py_opts.get("atomic_friction", 0.0)
+    sig_opts = {k: v for k, v in py_opts.items() if k != "atomic_friction"}
+    for surface in inputs(name):
+        s = quiet(frictal.signature, surface, **sig_opts)
+        assert s["conditioning"] == want["conditioning"]
+        for key in ("theta_max_forward", "theta_max_backward", "contact_slope_mean", "contact_slope_std"):
+            assert same(deg(s[key]), want[key + "_deg"]), key
+        assert same(s["offset_at_forward"], want["offset_at_forward_m"])
+        assert len(s["offset"]) == want["offsets"] and s["exact"] == want["exact"]
+        # The plausibility codes of the conditioned profile and the bounds' (the readers' notes
+        # aside: a Profile object carries none).
+        # Python's signature() has no atomic friction: its bounds are theta_max alone, and so are
+        # their codes only without one.
+        if mu_a == 0:
+            codes = {w["code"] for w in s["warnings"]} - {"reader"}
+            assert codes == {w["code"] for w in want["warnings"]} - {"reader"}
+
+        h = quiet(frictal.hold_angle, surface, atomic_friction=mu_a, **sig_opts)
+        assert h["conditioning"] == want["conditioning"]
+        assert same(h["runaway_distance"], want["runaway_distance_m"])
+        for side, suffix in (("forward", ""), ("backward", "_backward")):
+            for kind in ("hold_angle", "inertial_hold_angle"):
+                for stat in ("mean", "std", "q05", "q50", "q95", "min", "max"):
+                    key = f"{kind}{suffix}_{stat}_deg"
+                    assert same(deg(h[side][kind][stat]), want[key]), key
+
+
+def test_numpy_heights_are_conditioned_by_the_same_rule(tmp_path):
+    # The Dektak scan's heights as a 1-D array with a spacing, and the same heights written on that
+    # grid as a file for the CLI (x_m,z_m): the same conditioning (a line) and the same numbers.
+    z = np.asarray(frictal.read_profile(os.path.join(DATA, "dektak-1.csv")).z)[:4000]
+    dx = 2e-7
+    path = tmp_path / "grid.csv"
+    np.savetxt(path, np.column_stack([np.arange(len(z)) * dx, z]), delimiter=",", header="x_m,z_m", comments="",
+               fmt="%.17g")
+    want = cli("predict", str(path))
+    got = quiet(frictal.predict, z, spacing=dx).to_dict()
+    assert got["conditioning"] == want["conditioning"] == "form: line"
+    for key in ("friction_angle_deg", "friction_angle_q05_deg", "friction_angle_q95_deg", "theta_max_deg"):
+        assert got[key] == pytest.approx(want[key], rel=1e-9), key
+    s = quiet(frictal.signature, z, spacing=dx)
+    assert math.degrees(s["theta_max_forward"]) == pytest.approx(want["theta_max_deg"], rel=1e-9)
+
+
+def test_a_missing_file_is_file_not_found_with_its_path():
+    missing = os.path.join(DATA, "no-such-scan.csv")
+    for f in (frictal.read_profile, frictal.read_surface, frictal.read_map, frictal.predict, frictal.signature,
+              frictal.hold_angle):
+        with pytest.raises(FileNotFoundError) as e:
+            f(missing)
+        assert e.value.filename == missing
+    r = subprocess.run([CLI, "predict", missing], capture_output=True, text=True, timeout=60)
+    assert r.returncode != 0 and missing in r.stderr
+
+
+def test_tilt_of_a_measured_profile_equals_the_cli():
+    # A 50 um piece of the Dektak scan: Python conditions it (a line) and scales the defaults to it
+    # by the library call the CLI makes; the same run, bit for bit.
+    path = os.path.join(DATA, "dektak-1.csv")
+    want = cli("tilt", "--lower", path, "--crop", "0.5mm,0.55mm", "--quiet")
+    piece, _ = frictal.condition(frictal.read_profile(path), crop=(5e-4, 5.5e-4), detrend="none")
+    got = quiet(frictal.tilt, piece)
+    assert got["conditioning"] == "form: line"
+    assert got["validity"] == want["validity"] and got["friction_angle_valid"] == want["friction_angle_valid"]
+    assert same(deg(got["friction_angle"]), want["friction_angle_deg"])
+    assert got["steps"] == want["steps"]
+    scaled = {t["name"]: (t["from"], t["to"]) for t in got["scaled_defaults"]["settings"]}
+    assert set(scaled) == {t["name"] for t in want["scaled_defaults"]["settings"]}
+    assert same(scaled["normal_stiffness"][1], want["settings"]["normal_stiffness"])
