@@ -14,7 +14,8 @@ numpy is needed); `predict` (the map prediction, the map against itself turned o
 `anisotropy` and `report` of self-affine maps of 512^2, 1024^2, 2048^2 nodes (bench/fourier_maps.py,
 spacing 1 um, float32 .npy; needs numpy once: --data DIR may hold them made elsewhere); `report`
 of the measured pair tests/data/profiles/dektak-1.csv on tests/data/instruments/hfm-1.hfm; the
-README's tilt example `tilt koch --iterations 2 --alpha 20`.
+README's tilt example `tilt koch --iterations 2 --alpha 20`; `contact` of the maps at one load
+(periodic, about 5 % contact).
 
 Usage:
   bench/commands.py [--build build/bench] [--baseline build/bench-prev] [--reps 3]
@@ -66,6 +67,10 @@ CASES = {
     "anisotropy": (MAP_SIZES, "nodes per side",
                    lambda d, n, s: ["anisotropy", map_file(d, n), "--spacing", f"{MAP_SPACING}", "--json"],
                    "theta_max over 36 directions"),
+    "contact-map": (MAP_SIZES, "nodes per side",
+                    lambda d, n, s: ["contact", map_file(d, n), "--spacing", f"{MAP_SPACING}", "--load", "5MPa",
+                                     "--modulus", "1GPa", "--poisson", "0", "--periodic", "--json"],
+                    "elastic contact at one load, about 5 % contact (periodic; with the stiffness)"),
     "report-map": (MAP_SIZES, "nodes per side",
                    lambda d, n, s: ["report", map_file(d, n), "--spacing", f"{MAP_SPACING}", "--quiet",
                                     "-o", os.path.join(s, "report.html")],

@@ -126,6 +126,35 @@ def predict(lower, upper=None, **options):
 
 
 from ._core import predict as _core_predict  # noqa: E402
+
+
+def contact(lower, upper=None, **options):
+    """Elastic normal contact of rough surfaces: the same solution as ``frictal contact``.
+
+    ``lower`` alone is an elastic body (``modulus`` E in Pa, ``poisson`` nu) pressed against a
+    rigid flat; with ``upper`` the two bodies' composite topography is (``modulus2``/``poisson2``,
+    default the same material; ``modulus2=float("inf")``: a rigid upper). Surfaces as for
+    :func:`predict`. ``load`` (the force: N for maps, N/m per unit depth for profiles) or
+    ``pressure`` (nominal, Pa): a number, or a list for a load curve (each load starts from the
+    previous solution). ``hardness`` (Pa) caps the pressure (perfect plasticity); ``periodic``
+    takes the surface as repeating (else it is padded); ``fields=True`` adds the ``pressure`` and
+    ``gap`` arrays. Returns a dict (a list of dicts for a list of loads) with the keys of
+    ``frictal contact --json`` in SI: ``contact_area_m2``, ``contact_area_fraction``,
+    ``max_pressure_pa``, ``mean_separation_m``, ``contact_stiffness_n_per_m``, ... Warnings
+    (``small-slope``, ``contact-full``, ...) are in ``warnings`` and issued through
+    ``warnings.warn``.
+    """
+    result = _core_contact(lower, upper, **options)
+    seen = set()
+    for d in result if isinstance(result, list) else [result]:
+        for w in d["warnings"]:
+            if (w["code"], w["message"]) not in seen:
+                seen.add((w["code"], w["message"]))
+                _warn_all([w])
+    return result
+
+
+from ._core import contact as _core_contact  # noqa: E402
 from ._core import check_dimension_fit, check_friction_bound, check_map, check_profile  # noqa: E402,F401
 
 

@@ -30,6 +30,7 @@ void frictal_bind_dem(py::module_& m);      // python/src/dem_bindings.cpp
 void frictal_bind_study(py::module_& m);    // python/src/study_bindings.cpp
 void frictal_bind_hold(py::module_& m);     // python/src/hold_bindings.cpp
 void frictal_bind_predict(py::module_& m);  // python/src/predict_bindings.cpp
+void frictal_bind_contact(py::module_& m);  // python/src/contact_bindings.cpp
 
 namespace {
 
@@ -302,4 +303,5 @@ PYBIND11_MODULE(_core, m) {
   frictal_bind_study(m);
   frictal_bind_hold(m);
   frictal_bind_predict(m);
+  frictal_bind_contact(m);
 }

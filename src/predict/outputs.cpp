@@ -8,6 +8,7 @@
 
 #include "frictal/analysis.hpp"
 #include "frictal/areal_tilt.hpp"
+#include "frictal/contact.hpp"
 #include "frictal/fractal.hpp"
 #include "frictal/hold.hpp"
 #include "frictal/outputs.hpp"
@@ -63,6 +64,7 @@ std::vector<OutputTable> make_tables() {
            ci("warnings", "list:warning", "warnings: implausible inputs or results (frictal warnings lists the codes)",
               "warnings"),
            ci("wall_time_s", "s", "wall time of the computation"),
+           ci("curve", "list:contact", "frictal contact with several loads: one contact object per load"),
            ci("hold_wall_time_s", "s", "wall time of the signature and the hold analysis together (one pass)"),
            ci("surface_slope_max_deg", "deg", "steepest slope of either surface"),
            ci("tip_radius_m", "m", "the stylus tip radius given (--tip-radius)"),
@@ -83,6 +85,12 @@ std::vector<OutputTable> make_tables() {
        "a density: bin edges and density (units in the parent key's help)",
        {ci("edges", "list", "bins + 1 edges", "="), ci("density", "list", "density per unit of the edges", "=")}});
   t.push_back({"signature", "frictal signature --json; Python frictal.signature(...)", infos(signature_columns())});
+  t.push_back({"contact",
+               "frictal contact --json (one load: these keys; several: a list of them under 'curve'); Python "
+               "frictal.contact(...) (SI under the same keys)",
+               infos(contact_columns())});
+  t.back().columns.push_back(py("pressure", "list", "fields=True: the pressure at every point (Pa; maps: (ny, nx))"));
+  t.back().columns.push_back(py("gap", "list", "fields=True: the gap at every point (m; maps: (ny, nx))"));
   t.push_back({"contacts",
                "Python frictal.signature(..., keep_contacts=True)['contacts']: every contact",
                {py("offset", "m", "the offset of each contact"), py("x", "m", "contact abscissa in the lower's frame"),

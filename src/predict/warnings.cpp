@@ -59,6 +59,20 @@ const std::vector<WarningCode>& warning_codes() {
       {"bound-models-differ",
        "maps: a drop's hold angle (the continuous model: spheres on the triangulated surface) exceeds the upper "
        "bound (the grid areal signature: nodes, central differences); the bound is approximate by that much"},
+      {"contact-full",
+       "contact: every point of the surface touches (full contact): a larger load only compresses the half-space; "
+       "the contact area is the nominal area"},
+      {"small-slope",
+       "contact: the composite topography's rms slope is above 0.3; the half-space solution assumes small slopes "
+       "(the small-slope approximation), so its areas and pressures are approximate"},
+      {"contact-not-converged",
+       "contact: the conjugate-gradient solve did not reach its tolerance; the numbers are approximate"},
+      {"contact-resampled",
+       "contact: a profile whose points are not equally spaced was resampled on as many equally spaced points "
+       "(linear interpolation) for the FFT solver"},
+      {"contact-at-edge",
+       "contact: the contact reaches the edge of a non-periodic surface, beyond which the solver takes the surface "
+       "as never touching; use a larger scan, or --periodic for a surface that repeats"},
   };
   return codes;
 }

@@ -54,7 +54,8 @@ for t in tables.values():
             python_units.setdefault(c["python"], {}).setdefault(pu, []).append(t["name"])
 
 # The tables: one unit per JSON key, suffixes that say the unit.
-SUFFIX = [("_m_s", "m/s"), ("_per_s", "1/s"), ("_deg", "deg"), ("_kg", "kg"), ("_m", "m"), ("_s", "s")]
+SUFFIX = [("_m_s", "m/s"), ("_per_s", "1/s"), ("_n_per_m", "N/m"), ("_deg", "deg"), ("_kg", "kg"), ("_m2", "m2"),
+          ("_pa", "Pa"), ("_n", "N"), ("_m", "m"), ("_s", "s")]
 for key, units in json_units.items():
     plain = [u for u in units if not u.startswith(("object:", "list:")) and u != "settings"]
     if len(plain) > 1:
@@ -71,7 +72,7 @@ for key, units in python_units.items():
     if key.endswith("_deg"):
         fail(f"Python key {key!r} ends in _deg: Python's dicts are SI ({units})")
 
-NUMBER_UNITS = {"deg", "rad", "m", "s", "kg", "m/s", "1/s", "1", "list"}
+NUMBER_UNITS = {"deg", "rad", "m", "s", "kg", "m/s", "1/s", "1", "list", "m2", "Pa", "N", "N/m"}
 
 
 def check_value(where, unit, v):
@@ -204,6 +205,9 @@ check_cli(["anisotropy"], "anisotropy", map1, "--json", "--directions", "2", "--
 check_cli(["areal_tilt"], "areal-tilt", map1, map2, "--predict-only", "--json")
 check_cli(["tilt"], "tilt", "koch", "--iterations", "2", "--json", "--max-tilt", "30", "-q")
 check_cli(["warning_code"], "warnings", "--json")
+check_cli(["contact"], "contact", map1, "--load", "1MPa", "--modulus", "1GPa", "--poisson", "0.3", "--json")
+check_cli(["contact"], "contact", prof, prof, "--load", "1MPa,2MPa", "--modulus", "1GPa", "--poisson", "0.3",
+          "--json")
 # A study at the quick scale (seconds): its status and its findings as data; the rows' outputs are
 # checked against the outputs its kind declares (frictal study kinds --json).
 store = os.path.join(tmp, "fig04.sqlite")
@@ -236,6 +240,8 @@ check_py("areal_hold(start)", frictal.areal_hold(m1, dx=dx, dy=dx, upper=m2, sta
 check_py("areal_tilt_hold", frictal.areal_tilt_hold(m1, dx=dx, dy=dx, upper=m2), ["areal_tilt_hold"])
 check_py("condition", frictal.condition(pr)[1], ["conditioning"])
 check_py("build_info", frictal.build_info(), ["build_info"])
+check_py("contact", frictal.contact(m1, spacing=dx, pressure=1e6, modulus=1e9, poisson=0.3, fields=True), ["contact"])
+check_py("contact(profile)", frictal.contact(pr, load=1e3, modulus=1e9, poisson=0.3), ["contact"])
 check_py("autocorrelation", frictal.autocorrelation(pr), ["autocorrelation"])
 check_py("study_status", frictal.study_status(store), ["study_status"])
 check_py("study_findings", frictal.study_findings([store]), ["study_report"], python=False)

@@ -1,0 +1,150 @@
+// The elastic convolution on FFTW (kernel.hpp). The transfer function of the periodic operator is
+// the continuous one, 2 / (E* |q|) with the mean (q = 0) term zero; the padded operator's is the
+// transform of the real-space influence coefficients of uniform pressure on one cell (Love's
+// rectangle for maps, the logarithmic half-plane for profiles) on the 2N grid, whose wrap-around
+// never meets the N points (the discrete convolution theorem on the padded grid).
+#include "kernel.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <numbers>
+
+#include <fftw3.h>
+
+namespace frictal::contact_detail {
+
+namespace {
+
+// FFTW's planner is not thread-safe: every plan is made and destroyed under this lock.
+std::mutex& planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+#ifdef FRICTAL_FFTW_THREADS
+void init_threads_once() {
+  static std::once_flag once;
+  std::call_once(once, [] { fftw_init_threads(); });
+}
+#endif
+
+/// The integral of 1 / r over the rectangle [x1, x2] x [y1, y2] as the corner sum of
+/// F(x, y) = x asinh(y / |x|) + y asinh(x / |y|) (the x ln|x| + y ln|y| terms of the primitive
+/// cancel in the corner sum); F is 0 where x or y is 0 (its limit).
+double love_primitive(double x, double y) {
+  double f = 0;
+  if (x != 0) f += x * std::asinh(y / std::abs(x));
+  if (y != 0) f += y * std::asinh(x / std::abs(y));
+  return f;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx, std::size_t ny, double dx, double dy,
+                                                                 bool periodic, double e_star, unsigned threads) {
+  std::unique_ptr<ElasticOperator> op(new ElasticOperator());
+  op->nx_ = nx;
+  op->ny_ = ny;
+  op->padded_ = !periodic;
+  op->Nx_ = periodic ? nx : 2 * nx;
+  op->Ny_ = (periodic || ny == 1) ? ny : 2 * ny;
+  const std::size_t Nx = op->Nx_, Ny = op->Ny_, Nh = Nx / 2 + 1;
+  const std::size_t total = Nx * Ny, spectral = Ny * Nh;
+  op->real_ = fftw_alloc_real(total);
+  op->spec_ = fftw_alloc_complex(spectral);
+  if (!op->real_ || !op->spec_)
+    return make_error(ErrorCode::Internal,
+                      "contact: out of memory for the FFT buffers (" + std::to_string(total) + " points)");
+  {
+    std::lock_guard<std::mutex> lock(planner_mutex());
+#ifdef FRICTAL_FFTW_THREADS
+    init_threads_once();
+    fftw_plan_with_nthreads(int(threads < 1 ? 1 : threads));
+#else
+    (void)threads;
+#endif
+    auto* spec = static_cast<fftw_complex*>(op->spec_);
+    // Measured plans from 2^19 points on: they halve a 1024 x 1024 transform's time for about a
+    // second of planning (bench/results/contact.md), which the hundred-odd iterations of one
+    // solve repay; FFTW keeps what it measured for the later plans of the same size in the
+    // process. Smaller grids take the estimated plan at once. The planner's measurements may
+    // pick a different algorithm from run to run: results agree to rounding, not to the bit.
+    const unsigned flags = total >= (std::size_t(1) << 19) ? FFTW_MEASURE : FFTW_ESTIMATE;
+    if (ny == 1) {
+      op->forward_ = fftw_plan_dft_r2c_1d(int(Nx), op->real_, spec, flags);
+      op->backward_ = fftw_plan_dft_c2r_1d(int(Nx), spec, op->real_, flags);
+    } else {
+      op->forward_ = fftw_plan_dft_r2c_2d(int(Ny), int(Nx), op->real_, spec, flags);
+      op->backward_ = fftw_plan_dft_c2r_2d(int(Ny), int(Nx), spec, op->real_, flags);
+    }
+  }
+  if (!op->forward_ || !op->backward_) return make_error(ErrorCode::Internal, "contact: FFTW could not plan");
+  op->kernel_.assign(spectral, 0.0);
+  const double norm = 1.0 / double(total);
+  if (periodic) {
+    const double lx = double(Nx) * dx, ly = ny == 1 ? 1.0 : double(Ny) * dy;
+    for (std::size_t j = 0; j < Ny; ++j) {
+      const double fy = ny == 1 ? 0.0 : double(j <= Ny / 2 ? double(j) : double(j) - double(Ny)) / ly;
+      for (std::size_t i = 0; i < Nh; ++i) {
+        const double fx = double(i) / lx;
+        const double q = 2 * std::numbers::pi * std::hypot(fx, fy);
+        op->kernel_[j * Nh + i] = q > 0 ? 2.0 / (e_star * q) * norm : 0.0;
+      }
+    }
+    return op;
+  }
+  // Influence coefficients at the wrapped offsets of the padded grid (offset -N at index N is
+  // never used by two of the N points).
+  auto wrapped = [](std::size_t k, std::size_t n) { return k < n / 2 ? double(k) : double(k) - double(n); };
+  if (ny == 1) {
+    const double a = dx / 2, c = -2.0 / (std::numbers::pi * e_star);
+    // G(t) = t ln|t / dx| - t, whose difference over [x - a, x + a] integrates ln|x - s|.
+    auto G = [dx](double t) { return t == 0 ? 0.0 : t * std::log(std::abs(t) / dx) - t; };
+    for (std::size_t i = 0; i < Nx; ++i) {
+      const double x = wrapped(i, Nx) * dx;
+      op->real_[i] = c * (G(x + a) - G(x - a));
+    }
+  } else {
+    const double a = dx / 2, b = dy / 2, c = 1.0 / (std::numbers::pi * e_star);
+    for (std::size_t j = 0; j < Ny; ++j) {
+      const double y = wrapped(j, Ny) * dy;
+      for (std::size_t i = 0; i < Nx; ++i) {
+        const double x = wrapped(i, Nx) * dx;
+        op->real_[j * Nx + i] = c * (love_primitive(x + a, y + b) - love_primitive(x - a, y + b) -
+                                     love_primitive(x + a, y - b) + love_primitive(x - a, y - b));
+      }
+    }
+  }
+  fftw_execute(static_cast<fftw_plan>(op->forward_));
+  const auto* spec = static_cast<const fftw_complex*>(op->spec_);
+  for (std::size_t k = 0; k < spectral; ++k) op->kernel_[k] = spec[k][0] * norm;  // even: real
+  return op;
+}
+
+ElasticOperator::~ElasticOperator() {
+  {
+    std::lock_guard<std::mutex> lock(planner_mutex());
+    if (forward_) fftw_destroy_plan(static_cast<fftw_plan>(forward_));
+    if (backward_) fftw_destroy_plan(static_cast<fftw_plan>(backward_));
+  }
+  fftw_free(real_);
+  fftw_free(spec_);
+}
+
+void ElasticOperator::apply(const double* in, double* out) {
+  const std::size_t Nh = Nx_ / 2 + 1;
+  if (padded_) std::memset(real_, 0, sizeof(double) * Nx_ * Ny_);
+  for (std::size_t j = 0; j < ny_; ++j) std::memcpy(real_ + j * Nx_, in + j * nx_, sizeof(double) * nx_);
+  fftw_execute(static_cast<fftw_plan>(forward_));
+  auto* spec = static_cast<fftw_complex*>(spec_);
+  const std::size_t spectral = Ny_ * Nh;
+  for (std::size_t k = 0; k < spectral; ++k) {
+    spec[k][0] *= kernel_[k];
+    spec[k][1] *= kernel_[k];
+  }
+  fftw_execute(static_cast<fftw_plan>(backward_));
+  for (std::size_t j = 0; j < ny_; ++j) std::memcpy(out + j * nx_, real_ + j * Nx_, sizeof(double) * nx_);
+}
+
+}  // namespace frictal::contact_detail
