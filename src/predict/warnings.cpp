@@ -49,9 +49,6 @@ const std::vector<WarningCode>& warning_codes() {
        "the fit range or the method does not suit the data"},
       {"poor-fit",
        "the fit's r^2 is below 0.95: the data are not a power law over the fit range; narrow it (--min, --max)"},
-      {"bound-models-differ",
-       "maps: a drop's hold angle (the continuous model: spheres on the triangulated surface) exceeds the upper "
-       "bound (the grid areal signature: nodes, central differences); the bound is approximate by that much"},
   };
   return codes;
 }
