@@ -234,7 +234,12 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
                            std::max(up.width(), up.height()), std::min(up.dx, up.dy), lower.name, upper->name))
       add_warning(p.warnings, std::move(w));
   }
-  const double c = std::cos(o.direction), s = std::sin(o.direction);
+  // (A direction within 1e-12 rad of an axis is on it: the drops of the same experiment turned by
+  // quarter turns then lie at the same offsets to the bit; areal_tilt.hpp turns it likewise.)
+  auto snap = [](double v) {
+    return std::abs(v) < 1e-12 ? 0.0 : std::abs(std::abs(v) - 1) < 1e-12 ? std::copysign(1.0, v) : v;
+  };
+  const double c = snap(std::cos(o.direction)), s = snap(std::sin(o.direction));
   const double along = std::abs(c) * lo->width() + std::abs(s) * lo->height();
   const double across = std::abs(s) * lo->width() + std::abs(c) * lo->height();
   const ArealTiltOptions t = map_model_options(*lo, o);

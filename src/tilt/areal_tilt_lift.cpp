@@ -158,8 +158,16 @@ class SphereField {
         double& b = block_top_[(j / kBlock) * bnx_ + i / kBlock];
         b = std::max(b, cell_top_[j * cnx_ + i]);
       }
-    flat_ = slope_max_ == 0 && !nodes_.empty() &&
-            std::all_of(nodes_.begin(), nodes_.end(), [&](const detail::TiltNode& n) { return n.z == nodes_[0].z; });
+    // Flat: the lower field's relief and the spheres' spread in height together within a tenth of
+    // the hold angle's resolution of a cell (a plane removed from a constant map leaves rounding,
+    // 1e-21 m on 2 um): every contact slope then lies below that, and so does the answer's
+    // distance from the flat pair's.
+    if (!nodes_.empty()) {
+      const auto [lo, hi] = std::minmax_element(hf.z.begin(), hf.z.end());
+      double nlo = nodes_[0].z, nhi = nlo;
+      for (const detail::TiltNode& n : nodes_) nlo = std::min(nlo, n.z), nhi = std::max(nhi, n.z);
+      flat_ = (*hi - *lo) + (nhi - nlo) <= 0.1 * kArealHoldResolution * std::min(hf.dx, hf.dy);
+    }
     // Tiles of the spheres by their position at offset 0.
     if (nodes_.empty()) return;
     double xmin = nodes_[0].x, ymin = nodes_[0].y, xmax = xmin, ymax = ymin;
@@ -235,9 +243,9 @@ class SphereField {
   }
   /// The largest of the bounds (unitless).
   double slope_max() const { return slope_max_; }
-  /// Two flat faces: the lower height field one horizontal plane and every sphere at one height,
-  /// so that h is one constant wherever a sphere lies over the field and every contact's slope is
-  /// zero.
+  /// Two flat faces: the lower height field one horizontal plane and every sphere at one height
+  /// (to a tenth of the hold angle's resolution of a cell), so that h is one constant wherever a
+  /// sphere lies over the field and every contact's slope is zero.
   bool flat() const { return flat_; }
   /// A smooth map (every bound below 0.5): there the descent's windows and the Near lists follow
   /// the slopes; on a rough one they are those of before the bounds, to the bit.
@@ -656,6 +664,15 @@ double ray_hull_max(std::vector<std::array<double, 2>> q, double dxv, double dyv
   std::sort(q.begin(), q.end());
   q.erase(std::unique(q.begin(), q.end()), q.end());
   auto cross = [](double ax, double ay, double bx, double by) { return ax * by - ay * bx; };
+  // Points on the line along d (the locked block's slopes, projected): the hull is a segment of
+  // it, and the largest t its far end.
+  if (std::all_of(q.begin(), q.end(), [&](const std::array<double, 2>& p) {
+        return std::abs(cross(p[0], p[1], dxv, dyv)) <= 1e-12 * std::hypot(p[0], p[1]);
+      })) {
+    double best = -std::numeric_limits<double>::infinity();
+    for (const auto& p : q) best = std::max(best, p[0] * dxv + p[1] * dyv);
+    return q.empty() ? std::numeric_limits<double>::quiet_NaN() : best;
+  }
   double best = std::numeric_limits<double>::quiet_NaN();
   auto edge = [&](const std::array<double, 2>& a, const std::array<double, 2>& b) {
     const double ex = b[0] - a[0], ey = b[1] - a[1];
@@ -718,6 +735,20 @@ Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOpt
         fmt::format("areal_tilt_lift: sphere radius {}: expected a finite number >= 0 (m)", t.sphere_radius));
   if (t.hfield_refine < 1 || t.hfield_refine > 16)
     return make_error(fmt::format("areal_tilt_lift: hfield_refine {}: expected 1..16", t.hfield_refine));
+  if (detail::direction_quarters(t.angle) != 0 || f.x0 != 0 || f.y0 != 0) {
+    // In the frame of the direction (detail::TurnedExperiment; there it has no quarter turn and
+    // the lower map starts at the origin): the offsets count along and across d in both frames;
+    // the contacts' nodes are turned back.
+    const detail::TurnedExperiment e(f, g, t);
+    auto lift = areal_tilt_lift(e.f, e.g, e.t, o);
+    if (!lift) return lift;
+    Map index = f;
+    for (std::size_t k = 0; k < index.heights.size(); ++k) index.heights[k] = double(k);
+    const Map at = detail::turned(std::move(index), -e.q);
+    for (std::int64_t& c : lift->contact)
+      if (c >= 0) c = std::int64_t(at.heights[std::size_t(c)]);
+    return lift;
+  }
   auto grid = detail::areal_offset_grid(f, t.angle, o, "areal_tilt_lift");
   if (!grid) return grid.error();
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
@@ -1168,9 +1199,12 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
 
 }  // namespace
 
-Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
-                                      double stationary, double start_tilt) {
-  if (auto s = check_hold_inputs(f, g, t, resolution, stationary, start_tilt); !s) return s.error();
+namespace {
+
+// The hold of one drop in the frame where the direction lies within 45 deg of +x
+// (detail::TurnedExperiment); inputs checked.
+Result<ArealTiltHold> hold_turned(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
+                                  double stationary, double start_tilt) {
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
   if (nodes.empty()) return make_error("areal_tilt_hold: the upper map has no valid node");
   const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
@@ -1179,10 +1213,19 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   return hold_on_field(field, f, t, r, resolution, stationary, start_tilt);
 }
 
-Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
-    const Map& f, const Map& g, const ArealTiltOptions& t, const std::vector<ArealTiltDrop>& drops, unsigned threads,
-    const std::function<void(std::size_t, std::size_t)>& progress) {
-  if (auto s = check_hold_inputs(f, g, t, kArealHoldResolution, 1e-7, 0); !s) return s.error();
+// A hold's positions turned back to the caller's frame.
+void turn_back(ArealTiltHold& h, const detail::TurnedExperiment& e) {
+  h.rest_offset = e.back(h.rest_offset);
+  for (auto& s : h.stops) {
+    const auto p = e.back({s[1], s[2]});
+    s[1] = p[0];
+    s[2] = p[1];
+  }
+}
+
+Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g, const ArealTiltOptions& t,
+                                                     const std::vector<ArealTiltDrop>& drops, unsigned threads,
+                                                     const std::function<void(std::size_t, std::size_t)>& progress) {
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
   if (nodes.empty()) return make_error("areal_tilt_hold: the upper map has no valid node");
   const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
@@ -1206,7 +1249,7 @@ Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
       if (h)
         out[k] = std::move(h).value();
       else
-        errors[k] = h.error().message;
+        errors[k] = "#" + std::to_string(k) + ": " + h.error().message;
       if (progress) {
         std::lock_guard<std::mutex> lock(m);
         progress(++done, drops.size());
@@ -1214,9 +1257,41 @@ Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
     }
   });
   for (std::size_t k = 0; k < drops.size(); ++k)
-    if (!errors[k].empty())
-      return make_error(fmt::format("drop at ({:.6g}, {:.6g}) m: {}", drops[k].start[0], drops[k].start[1], errors[k]));
+    if (!errors[k].empty()) return make_error(std::move(errors[k]));
   return out;
+}
+
+}  // namespace
+
+Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
+                                      double stationary, double start_tilt) {
+  if (auto s = check_hold_inputs(f, g, t, resolution, stationary, start_tilt); !s) return s.error();
+  const detail::TurnedExperiment e(f, g, t);
+  auto h = hold_turned(e.f, e.g, e.t, resolution, stationary, start_tilt);
+  if (h) turn_back(*h, e);
+  return h;
+}
+
+Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
+    const Map& f, const Map& g, const ArealTiltOptions& t, const std::vector<ArealTiltDrop>& drops, unsigned threads,
+    const std::function<void(std::size_t, std::size_t)>& progress) {
+  if (auto s = check_hold_inputs(f, g, t, kArealHoldResolution, 1e-7, 0); !s) return s.error();
+  auto named = [&](Result<std::vector<ArealTiltHold>> r) -> Result<std::vector<ArealTiltHold>> {
+    if (r) return r;
+    // The failing drop named by its start offset in the caller's frame.
+    for (std::size_t k = 0; k < drops.size(); ++k)
+      if (r.error().message.rfind("#" + std::to_string(k) + ":", 0) == 0)
+        return make_error(fmt::format("drop at ({:.6g}, {:.6g}) m: {}", drops[k].start[0], drops[k].start[1],
+                                      r.error().message.substr(r.error().message.find(':') + 2)));
+    return r;
+  };
+  const detail::TurnedExperiment e(f, g, t);
+  std::vector<ArealTiltDrop> td = drops;
+  for (ArealTiltDrop& d : td) d.start = detail::turned(d.start, -e.q);
+  auto r = named(hold_drops_turned(e.f, e.g, e.t, td, threads, progress));
+  if (r)
+    for (ArealTiltHold& h : *r) turn_back(h, e);
+  return r;
 }
 
 Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& f, const Map& g, const ArealTiltOptions& t,
