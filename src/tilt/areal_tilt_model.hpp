@@ -117,21 +117,44 @@ inline double tilt_runaway_distance(const Map& f, const ArealTiltOptions& o) {
              : 0.05 * (std::abs(std::cos(o.angle)) * f.width() + std::abs(std::sin(o.angle)) * f.height());
 }
 
-/// Fills the NaN entries of a grid of nx x ny values (row-major) from their valid neighbours: in
-/// layers from the valid region, each hole node the mean of its already known 4-neighbours (a
-/// node not measured is taken as its surroundings; all NaN: zero). A masked node, a spike the
-/// conditioning removed or a point the instrument missed, is then no pit: a pit at the lowest
-/// height, as before, made steep walls around every mask that the block's contacts and the
-/// descent's windows had to resolve (a nearly flat map with its spikes removed: 40 times the
-/// cost of the map with them).
+/// The holes of a grid of nx x ny values (row-major, NaN: no height) as the lower face takes them:
+/// a hole of at most kSmallHole nodes (4-connected: a spike the conditioning masked, a dropout)
+/// is filled from its surroundings, in layers from the valid nodes, each node the mean of its
+/// already known 4-neighbours, so that it is no pit (pits with steep walls around every masked
+/// spike made the contacts and the descent's windows resolve them: a nearly flat map with its
+/// spikes masked took many times the map with them); a larger hole, a region not measured, stays
+/// at the lowest height (no contact there; filling it would invent a surface), marked NaN here for
+/// the caller. All NaN: zero.
+inline constexpr std::size_t kSmallHole = 16;
 inline void fill_holes(std::vector<double>& z, std::size_t nx, std::size_t ny) {
-  std::vector<std::size_t> front, next;
-  for (std::size_t k = 0; k < z.size(); ++k)
-    if (std::isnan(z[k])) front.push_back(k);
-  if (front.size() == z.size()) {
+  std::vector<int> comp(z.size(), -1);  // component of each hole node
+  std::vector<std::size_t> size_of, stack;
+  std::size_t holes = 0;
+  for (std::size_t k0 = 0; k0 < z.size(); ++k0) {
+    if (!std::isnan(z[k0]) || comp[k0] >= 0) continue;
+    const int c = int(size_of.size());
+    std::size_t n = 0;
+    stack = {k0};
+    comp[k0] = c;
+    while (!stack.empty()) {
+      const std::size_t k = stack.back();
+      stack.pop_back();
+      ++n;
+      const std::size_t i = k % nx, j = k / nx;
+      for (const std::size_t q :
+           {i > 0 ? k - 1 : k, i + 1 < nx ? k + 1 : k, j > 0 ? k - nx : k, j + 1 < ny ? k + nx : k})
+        if (q != k && std::isnan(z[q]) && comp[q] < 0) comp[q] = c, stack.push_back(q);
+    }
+    size_of.push_back(n);
+    holes += n;
+  }
+  if (holes == z.size()) {
     std::fill(z.begin(), z.end(), 0.0);
     return;
   }
+  std::vector<std::size_t> front, next;
+  for (std::size_t k = 0; k < z.size(); ++k)
+    if (comp[k] >= 0 && size_of[std::size_t(comp[k])] <= kSmallHole) front.push_back(k);
   while (!front.empty()) {
     std::vector<std::pair<std::size_t, double>> fill;
     next.clear();
@@ -151,13 +174,15 @@ inline void fill_holes(std::vector<double>& z, std::size_t nx, std::size_t ny) {
       else
         next.push_back(k);
     }
+    if (fill.empty()) break;                   // (cannot happen: a small hole touches a valid node)
     for (const auto& [k, v] : fill) z[k] = v;  // a layer at once: the order of the nodes does not matter
     std::swap(front, next);
   }
 }
 
 /// The lower face as MuJoCo's height field: (nx - 1) k + 1 by (ny - 1) k + 1 vertices sampling the
-/// map's bilinear surface (k = 1: its nodes), holes filled from their surroundings (fill_holes); `data` is what MuJoCo
+/// map's bilinear surface (k = 1: its nodes), small holes filled from their surroundings and
+/// large ones at the lowest height (fill_holes); `data` is what MuJoCo
 /// stores (float, (z - zmin) / relief) and `z` the heights it then uses (unit: m). MuJoCo 2.2.2
 /// (engine_collision_convex.c, mjc_ConvexHField) splits cell (c, r) into the triangles
 /// {(c, r+1), (c, r), (c+1, r+1)} and {(c, r), (c+1, r+1), (c+1, r)}: along the diagonal from
@@ -187,7 +212,10 @@ inline Hfield tilt_hfield(const Map& f, std::size_t k) {
                                              f.y0 + std::min(f.height(), double(j) * f.dy / double(k)));
   fill_holes(v, h.nx, h.ny);
   double zmin = std::numeric_limits<double>::infinity(), zmax = -zmin;
-  for (double x : v) zmin = std::min(zmin, x), zmax = std::max(zmax, x);
+  for (double x : v)
+    if (!std::isnan(x)) zmin = std::min(zmin, x), zmax = std::max(zmax, x);
+  for (double& x : v)
+    if (std::isnan(x)) x = zmin;  // a large hole: at the lowest height
   const double L = std::max(f.width(), f.height());
   h.zmin = zmin;
   h.relief = std::max(zmax - zmin, 1e-12 * L);
