@@ -173,8 +173,12 @@ std::function<int()> setup(CLI::App& app) {
         row["theta_forward_deg"] = to_deg(fwd);
         row["theta_backward_deg"] = to_deg(bwd);
         row["sigma_deg"] = to_deg(sigma);
-        row["upper_bound_friction_angle_deg"] = to_deg(p.friction_angle);  // theta_max + theta_a (Eq. 6)
-        row["upper_bound_friction_coefficient"] = p.friction_coefficient;
+        // theta_max + theta_a (Eq. 6) of the signature; with --hold the hold model's own bound (the
+        // same model as the hold angles beside it: above every drop), the signature's kept apart.
+        row["upper_bound_friction_angle_deg"] = to_deg(hold ? hold->upper_bound_friction_angle : p.friction_angle);
+        row["upper_bound_friction_coefficient"] =
+            hold ? std::tan(hold->upper_bound_friction_angle) : p.friction_coefficient;
+        if (hold) row["signature_bound_friction_angle_deg"] = to_deg(p.friction_angle);
         row["eq18_low_friction_coefficient"] = p.friction_coefficient_low;
         if (!a->areal) row["lines"] = lines;
         if (hold) {
@@ -184,8 +188,9 @@ std::function<int()> setup(CLI::App& app) {
         }
         rows.push_back(row);
       } else {
+        const double bound = hold ? hold->upper_bound_friction_angle : p.friction_angle;
         text += fmt::format("  {:7.1f}  {:10.4f}  {:10.4f}  {:9.4f}  {:7.4f}  {:.5f}", to_deg(angle), to_deg(fwd),
-                            to_deg(bwd), to_deg(sigma), to_deg(p.friction_angle), p.friction_coefficient);
+                            to_deg(bwd), to_deg(sigma), to_deg(bound), std::tan(bound));
         if (hold) {
           text += fmt::format("  {:12.4f}  {:7.4f} - {:7.4f}", to_deg(hold->friction_angle.q50),
                               to_deg(hold->friction_angle.q05), to_deg(hold->friction_angle.q95));
@@ -210,13 +215,18 @@ std::function<int()> setup(CLI::App& app) {
       j["warnings"] = warnings_json(warnings);
       print_json(j);
     } else {
-      fmt::print("  (theta_max-based rigid upper bounds; what a tilt test reads: frictal predict --direction DEG{})\n",
-                 a->hold
-                     ? fmt::format(", the hold_* columns: {} drops per direction, model map-continuous-free{}, "
-                                   "atomic friction mu_a = {:g} included",
-                                   a->drops * a->drops, a->locked ? " (locked: the block locked to the direction)" : "",
-                                   a->atomic_friction)
-                     : std::string());
+      if (a->hold)
+        fmt::print(
+            "  (theta+, theta-, sigma: the {}; bound_deg and mu<=: the hold model's rigid upper bound, the steepest "
+            "seat the drops rested in, above every drop; the hold_* columns: {} drops per direction, model "
+            "map-continuous-free{}, atomic friction mu_a = {:g} included: frictal predict --direction DEG)\n",
+            a->areal ? "grid areal signature (a diagnostic of the map's nodes)" : "line profiles' signatures",
+            a->drops * a->drops, a->locked ? " (locked: the block locked to the direction)" : "", a->atomic_friction);
+      else
+        fmt::print(
+            "  (theta_max-based rigid upper bounds of the {}; what a tilt test reads: frictal predict --direction "
+            "DEG)\n",
+            a->areal ? "grid areal signature (a diagnostic of the map's nodes)" : "line profiles");
       fmt::print("  conditioning: {}\n", conditioning_text(records));
       for (const Warning& w : warnings)
         if (w.code != "reader") print_warnings({w});

@@ -238,9 +238,11 @@ std::function<int()> setup(CLI::App& app) {
     } else {
       fmt::print(
           a->output == "-" ? stderr : stdout,
-          "{} on {} along {} deg: {} offsets\n  theta_max forward {:.4f} deg, backward {:.4f} deg, sigma {:.4f} deg\n"
-          "  rigid upper bound theta_max + theta_a {:.4f} deg, mu <= {:.5f} (Eq. 18 low {:.5f}); what a tilt test "
-          "reads: frictal predict\n  conditioning: {}\n",
+          "{} on {} along {} deg: {} offsets of the grid areal signature (a diagnostic of the map's nodes, slopes by "
+          "central differences)\n  theta_max forward {:.4f} deg, backward {:.4f} deg, sigma {:.4f} deg\n"
+          "  the grid's theta_max + theta_a {:.4f} deg, mu {:.5f} (Eq. 18 low {:.5f}): not a bound of the tilt "
+          "test's hold angle; what a tilt test reads, and its bound: frictal predict (or areal --lateral)\n"
+          "  conditioning: {}\n",
           a->upper.empty() ? a->lower : a->upper, a->lower, a->angle, r.offset.size(), to_deg(r.theta_max_forward),
           to_deg(r.theta_max_backward), to_deg(r.contact_slope_std), to_deg(p.friction_angle), p.friction_coefficient,
           p.friction_coefficient_low, a->conditioning);

@@ -127,7 +127,7 @@ std::function<int()> setup(CLI::App& app) {
           ArealTiltOptions so = co;
           so.start_offset = {(*seat)[1], (*seat)[2]};
           so.coarse_tilt_step = o.tilt_step;
-          const ArealTiltHold seated = unwrap(areal_tilt_hold(f, g, so, 1e-4, 1e-7, (*seat)[0]));
+          const ArealTiltHold seated = unwrap(areal_tilt_hold(f, g, so, kArealHoldResolution, 1e-7, (*seat)[0]));
           j["seat_tilt_deg"] = to_deg((*seat)[0]);
           j["seat_offset_m"] = {(*seat)[1], (*seat)[2]};
           j["continuous_seated_hold_angle_deg"] = to_deg(seated.hold_angle);

@@ -5,8 +5,11 @@
 #pragma once
 
 #include <unistd.h>
+#include <chrono>
 #include <cstdio>
 #include <functional>
+#include <memory>
+#include <optional>
 #include <string>
 
 #include <fmt/core.h>
@@ -38,9 +41,20 @@ inline std::function<void(std::size_t, std::size_t)> drop_progress(const std::st
                                                                    const std::string* prefix = nullptr,
                                                                    bool last_newline = true) {
   if (quiet || !isatty(fileno(stderr))) return {};
-  return [who, prefix, last_newline](std::size_t done, std::size_t total) {
-    fmt::print(stderr, "\rfrictal {}: {}drop {} of {}{}", who, prefix ? *prefix : std::string(), done, total,
-               done == total && last_newline ? "\n" : "");
+  // The time left: the drops so far at their mean time (drops differ in cost by several times, so
+  // the estimate settles as they come in); from the first call of this progress line.
+  auto start = std::make_shared<std::optional<std::chrono::steady_clock::time_point>>();
+  return [who, prefix, last_newline, start](std::size_t done, std::size_t total) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!*start || done <= 1) *start = now;  // (a new run of drops: another direction)
+    std::string left;
+    if (done > 1 && done < total) {
+      const double per = std::chrono::duration<double>(now - **start).count() / double(done - 1);
+      const double s = per * double(total - done);
+      left = s < 90 ? fmt::format(", about {:.0f} s left", s) : fmt::format(", about {:.1f} min left", s / 60);
+    }
+    fmt::print(stderr, "\rfrictal {}: {}drop {} of {}{}\033[K{}", who, prefix ? *prefix : std::string(), done, total,
+               left, done == total && last_newline ? "\n" : "");
     std::fflush(stderr);
   };
 }

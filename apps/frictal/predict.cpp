@@ -58,7 +58,8 @@ void print_text(const Prediction& p, const Args& a) {
     fmt::print("  over drops: mean {} deg, std {} deg, range [{}, {}] deg\n", deg_text(p.friction_angle.mean),
                deg_text(p.friction_angle.std), deg_text(p.friction_angle.min), deg_text(p.friction_angle.max));
   }
-  fmt::print("  rigid upper bound theta_max + theta_a = {} deg (mu = {}); the paper's Eq. 18 range [{}, {}] deg\n",
+  fmt::print("  rigid upper bound {} = {} deg (mu = {}); the paper's Eq. 18 range [{}, {}] deg\n",
+             p.is_map ? "(the steepest seat the drops rested in, friction cones included)" : "theta_max + theta_a",
              deg_text(p.upper_bound_friction_angle), mu_text(p.upper_bound_friction_angle), deg_text(p.eq18_range[0]),
              deg_text(p.eq18_range[1]));
   if (p.has_locked && !p.single_drop)

@@ -178,8 +178,21 @@ Result<ArealLift> areal_tilt_lift(const Map& lower, const Map& upper, const Area
 /// `start_tilt` (rad, in [0, t.max_tilt)): the block is put down already tilted (it settles at
 /// that tilt and the increments go on from there), e.g. in the seat where a simulated block
 /// stood before its run-away, to ask whether the rigid block holds as long from the same seat.
+/// The resolution to which areal_tilt_hold bisects the run-away tilt by default: 1e-6 rad
+/// (5.7e-5 deg), from the tilt_step bracket in 11 halvings (unit: rad).
+inline constexpr double kArealHoldResolution = 1e-6;
+
 struct ArealTiltHold {
-  double hold_angle = 0;                       ///< bisected (unit: rad)
+  double hold_angle = 0;  ///< bisected (unit: rad)
+  /// The rigid upper bound of this drop from the same model: the steepest slope along d (with
+  /// the friction cone of mu_a, whole) of the contacts of every seat where the block rested, plus
+  /// the residual of the rest test, as an angle; plus how far the reported hold angle lies above
+  /// the highest tilt that held (at most `resolution`). At least hold_angle by construction: at a
+  /// rest at tilt beta, tan(beta) d lies within the residual of the hull of the contacts' slopes
+  /// (cones), so tan(beta) is at most their steepest slope along d. Capped at pi/2 (unit: rad).
+  double seat_bound = 0;
+  /// The steepest contact slope along d over the same seats, without friction (unit: rad).
+  double seat_slope = 0;
   double runaway_increment = 0;                ///< the tilt_step increment at which it ran (unit: rad)
   bool ran_away = false;                       ///< false: held up to t.max_tilt
   std::array<double, 2> rest_offset = {0, 0};  ///< settled at start_tilt (zero by default) (unit: m)
@@ -191,7 +204,8 @@ struct ArealTiltHold {
   std::vector<std::array<double, 3>> stops;
 };
 Result<ArealTiltHold> areal_tilt_hold(const Map& lower, const Map& upper, const ArealTiltOptions& t,
-                                      double resolution = 1e-4, double stationary = 1e-7, double start_tilt = 0);
+                                      double resolution = kArealHoldResolution, double stationary = 1e-7,
+                                      double start_tilt = 0);
 
 /// One drop of areal_tilt_hold_drops: where the block is put down, (x, y) (unit: m), and whether
 /// it slides along d only (t.lock_lateral for this drop).
@@ -230,7 +244,7 @@ struct ArealTiltHoldSpread {
 };
 Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& lower, const Map& upper, const ArealTiltOptions& t,
                                                    const ArealTiltHold& hold, double perturbation = 0,
-                                                   double resolution = 1e-4, double stationary = 1e-7);
+                                                   double resolution = kArealHoldResolution, double stationary = 1e-7);
 
 /// Where a simulated block sat before its run-away: the position of the last increment of
 /// `r.trace` that ended at rest below the run-away's tilt, and the lowest tilt at which the block

@@ -9,7 +9,10 @@
 // is the headline (friction_angle.q50, atomic friction included), 5-95 % its spread. Beside it
 // the rigid upper bound theta_max + theta_a (Eq. 6 of Alonso-Marroquín et al., Phys. Rev. E
 // 2015), which a test reaches only where the block can get to the steepest contact (the paper's
-// Koch surfaces), and the paper's Eq. 18 range [theta_max - sigma, theta_max] + theta_a.
+// Koch surfaces), and the paper's Eq. 18 range [theta_max - sigma, theta_max] + theta_a. For maps
+// the bound comes from the hold angles' own model: the steepest slope along d, friction cones
+// included, of the contacts of every seat a drop rested in (ArealTiltHold::seat_bound), so that it
+// lies above every drop by construction.
 //
 // The surfaces are conditioned first (conditioning.hpp: an optional crop, optional spike removal,
 // then form removal: a line for profiles, a plane for maps by default), and the result lists
@@ -131,9 +134,15 @@ struct Prediction {
   std::array<double, 4> drop_range = {0, 0, 0, 0};
   HoldStatistics friction_angle;                ///< the hold angle over drops, atan(mu_a) included (unit: rad)
   double friction_coefficient = 0;              ///< tan(friction_angle.q50) (unitless)
-  double upper_bound_friction_angle = 0;        ///< theta_max + theta_a, capped at pi/2 (Eq. 6) (unit: rad)
-  double theta_max = 0;                         ///< steepest contact slope along the direction (unit: rad)
-  double contact_slope_std = 0;                 ///< sigma of Eq. 18 (unit: rad)
+  /// Profiles: theta_max + theta_a (Eq. 6); maps: the largest of the drops' seat bounds (free
+  /// block), at least every drop's hold angle; capped at pi/2 (unit: rad).
+  double upper_bound_friction_angle = 0;
+  /// Steepest contact slope along the direction: profiles the signature's maximum; maps the steepest
+  /// seat slope of the drops (ArealTiltHold::seat_slope) (unit: rad).
+  double theta_max = 0;
+  /// sigma of Eq. 18: profiles the contact slopes' standard deviation; maps that of the drops'
+  /// steepest seat slopes (unit: rad).
+  double contact_slope_std = 0;
   std::array<double, 2> eq18_range = {0, 0};    ///< [max(0, theta_max - sigma), theta_max] + theta_a (unit: rad)
   std::array<double, 2> start_offset = {0, 0};  ///< single_drop: the drop (unit: m)
   std::array<double, 2> rest_offset = {0, 0};   ///< single_drop: where it rested at zero tilt (unit: m)

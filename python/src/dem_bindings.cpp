@@ -264,7 +264,7 @@ void frictal_bind_dem(py::module_& m) {
         };
         Out r = py_detail::ok(py_detail::nogil([&]() -> Result<Out> {
           Out out;
-          auto hold = areal_tilt_hold(f, g, o, 1e-4, 1e-7, start_tilt);
+          auto hold = areal_tilt_hold(f, g, o, kArealHoldResolution, 1e-7, start_tilt);
           if (!hold) return hold.error();
           out.hold = *hold;
           if (spread) {
@@ -276,6 +276,7 @@ void frictal_bind_dem(py::module_& m) {
         }));
         py::dict d;
         d["hold_angle"] = r.hold.hold_angle;
+        d["seat_bound"] = r.hold.seat_bound;
         d["runaway_increment"] = r.hold.runaway_increment;
         d["ran_away"] = r.hold.ran_away;
         d["rest_offset"] = py::make_tuple(r.hold.rest_offset[0], r.hold.rest_offset[1]);
@@ -307,7 +308,8 @@ void frictal_bind_dem(py::module_& m) {
       "offsets anywhere in the plane, dropped at start_offset (x, y in m; default 0, 0) and put down at start_tilt "
       "(rad), tilted in the settings' increments. lower, upper: 2-D arrays of heights (m, rows along y), spacings "
       "dx, dy (m); upper as measured (turned over) unless turn_over_upper=False. Returns hold_angle (rad, bisected "
-      "to 1e-4), runaway_increment (rad), ran_away, rest_offset (m), steering (rad), evaluations, the stops after "
+      "to 1e-6), seat_bound (rad: the drop's rigid upper bound, >= hold_angle), runaway_increment (rad), ran_away, "
+      "rest_offset (m), steering (rad), evaluations, the stops after "
       "each increment (stop_tilt rad, stop_x, stop_y m) and, with spread=True, hold_angle_range (rad, rad: one "
       "slip's end moved by a sphere radius, areal_tilt_hold_spread), slips and ambiguous_slips. atomic_friction "
       "must be 0. Settings: the areal_tilt() keywords (areal_tilt_settings()).");

@@ -342,6 +342,8 @@ void frictal_bind_io(py::module_& m) {
       py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,
       py::arg("upper") = py::none(), py::arg("turn_over_upper") = true, py::arg("prune") = true, py::arg("threads") = 1,
       "Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `angle` (rad; runs without the "
-      "GIL); upper as measured (turned over) by default. Returns offset, lift (m), theta (rad), theta_max_forward/"
-      "backward (rad), contact_slope_std (rad), evaluated_nodes");
+      "GIL); upper as measured (turned over) by default: the grid model (the maps' nodes, slopes by central "
+      "differences), a diagnostic of the grid, not a bound of the tilt test's hold angle (that and its bound: "
+      "predict). Returns offset, lift (m), theta (rad), theta_max_forward/backward (rad), contact_slope_std (rad), "
+      "evaluated_nodes");
 }

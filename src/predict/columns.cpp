@@ -101,14 +101,18 @@ const Columns<Prediction>& prediction_columns() {
       num("friction_coefficient_q95", "1", "tan of the 95 % quantile",
           [](const P& p) { return tan_or_inf(p.friction_angle.q95); }),
       deg("upper_bound_friction_angle_deg",
-          "rigid upper bound theta_max + theta_a (Eq. 6), reached only where the "
-          "block can get to the steepest contact",
+          "rigid upper bound, from the hold angles' own model: profiles theta_max + theta_a (Eq. 6), reached only "
+          "where the block can get to the steepest contact; maps the steepest slope along the direction, friction "
+          "cones included, of the contacts of every seat a drop rested in (above every drop by construction)",
           [](const P& p) { return p.upper_bound_friction_angle; }),
       num("upper_bound_friction_coefficient", "1", "tan of the upper bound",
           [](const P& p) { return tan_or_inf(p.upper_bound_friction_angle); }),
-      deg("theta_max_deg", "steepest contact slope along the direction (the signature's maximum)",
+      deg("theta_max_deg",
+          "steepest contact slope along the direction (profiles: the signature's maximum; maps: of the seats the "
+          "drops rested in)",
           [](const P& p) { return p.theta_max; }),
-      deg("contact_slope_std_deg", "sigma of Eq. 18: standard deviation of the contact slopes",
+      deg("contact_slope_std_deg",
+          "sigma of Eq. 18: standard deviation of the contact slopes (maps: of the drops' steepest seat slopes)",
           [](const P& p) { return p.contact_slope_std; }),
       list("eq18_friction_angle_range_deg", "deg",
            "the paper's Eq. 18 range [max(0, theta_max - sigma), theta_max] "

@@ -227,7 +227,10 @@ std::vector<OutputTable> make_tables() {
         ci("lines", "count", "map lines the direction's theta_max is over"),
         ci("theta_forward_deg", "deg", "theta_max along the direction"),
         ci("theta_backward_deg", "deg", "theta_max against the direction"), ci("sigma_deg", "deg", "sigma of Eq. 18"),
-        ci("upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a"),
+        ci("upper_bound_friction_angle_deg", "deg",
+           "rigid upper bound: theta_max + theta_a of the signature; with --hold the hold model's (the steepest "
+           "seat the drops rested in, above every drop)"),
+        ci("signature_bound_friction_angle_deg", "deg", "--hold: the signature's theta_max + theta_a, beside it"),
         ci("upper_bound_friction_coefficient", "1", "tan of the upper bound"),
         ci("eq18_low_friction_coefficient", "1", "tan of the Eq. 18 low end"),
         ci("hold_runaway_distance_m", "m", "--hold: run-away distance d")}});
@@ -291,7 +294,8 @@ std::vector<OutputTable> make_tables() {
   t.push_back(
       {"areal_tilt_hold",
        "Python areal_tilt_hold(...): the continuous model of one drop",
-       {py("hold_angle", "rad", "the hold angle (bisected to 1e-4 rad)"),
+       {py("hold_angle", "rad", "the hold angle (bisected to 1e-6 rad)"),
+        py("seat_bound", "rad", "the drop's rigid upper bound from the same model (>= hold_angle)"),
         py("runaway_increment", "rad", "the increment at which the block ran away"),
         py("ran_away", "flag", "it ran away"), py("rest_offset", "m", "where it rested (x, y)"),
         py("steering", "rad", "how far it turned off the direction"), py("evaluations", "count", "lift evaluations"),

@@ -44,11 +44,12 @@ HoldStatistics plain_stats(const std::vector<double>& v) {
   return s;
 }
 
-void finish(Prediction& p, double theta_max, double sigma) {
+// `bound`: the upper bound where the model gives it (maps: the seats'), else theta_max + theta_a.
+void finish(Prediction& p, double theta_max, double sigma, double bound = -1) {
   const double ta = std::atan(p.atomic_friction);
   p.theta_max = theta_max;
   p.contact_slope_std = sigma;
-  p.upper_bound_friction_angle = std::min(theta_max + ta, kPi / 2);
+  p.upper_bound_friction_angle = std::min(bound >= 0 ? bound : theta_max + ta, kPi / 2);
   double lo = theta_max - sigma + ta;
   if (lo < 0) {
     add_warning(p.warnings,
@@ -397,7 +398,12 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
                            std::max(up.width(), up.height()), std::min(up.dx, up.dy), lower.name, upper->name))
       add_warning(p.warnings, std::move(w));
   }
-  const double c = std::cos(o.direction), s = std::sin(o.direction);
+  // (A direction within 1e-12 rad of an axis is on it: the drops of the same experiment turned by
+  // quarter turns then lie at the same offsets to the bit; areal_tilt.hpp turns it likewise.)
+  auto snap = [](double v) {
+    return std::abs(v) < 1e-12 ? 0.0 : std::abs(std::abs(v) - 1) < 1e-12 ? std::copysign(1.0, v) : v;
+  };
+  const double c = snap(std::cos(o.direction)), s = snap(std::sin(o.direction));
   const double along = std::abs(c) * lo->width() + std::abs(s) * lo->height();
   const double across = std::abs(s) * lo->width() + std::abs(c) * lo->height();
   ArealTiltOptions t = map_model_options(*lo, o);
@@ -514,22 +520,18 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
     add_warning(p.warnings, {"held-to-max-tilt", fmt::format("{} of {} drops held the block up to 45 deg (the "
                                                              "model's largest tilt): their hold angle is a lower bound",
                                                              nheld, nd)});
-  // The rigid upper bound: the areal signature along d (the grid lift's contact slopes).
-  ArealSignatureOptions so;
-  so.threads = o.threads;
-  so.turn_over_upper = o.turn_over_upper;
-  auto sig = areal_signature(*lo, up, o.direction, so);
-  if (!sig) return sig.error();
-  finish(p, sig->theta_max_forward, sig->contact_slope_std);
-  // 2e-4 rad: twice the bisection resolution of areal_tilt_hold's hold angle.
-  if (p.friction_angle.max > p.upper_bound_friction_angle + 2e-4)
-    add_warning(p.warnings,
-                {"bound-models-differ",
-                 fmt::format("the largest drop's hold angle, {:.4f} deg, exceeds the upper bound theta_max + theta_a = "
-                             "{:.4f} deg: the bound is the grid areal signature's (the map's nodes, slopes by central "
-                             "differences), the hold angle the continuous model's (spheres on the triangulated "
-                             "surface); read the bound as approximate by that much",
-                             p.friction_angle.max * 180 / kPi, p.upper_bound_friction_angle * 180 / kPi)});
+  // The rigid upper bound from the same model: the largest of the drops' seat bounds (the
+  // steepest slope along d, friction cones included, of the contacts of every seat a block rested
+  // in), so that it lies above every drop's hold angle by construction; theta_max the steepest
+  // seat slope without friction, sigma the spread of the drops' steepest seat slopes.
+  std::vector<double> seat_slopes;
+  double bound = 0;
+  for (std::size_t k = 0; k < nd; ++k) {
+    bound = std::max(bound, (*holds)[k].seat_bound);
+    seat_slopes.push_back((*holds)[k].seat_slope);
+  }
+  const HoldStatistics seats = plain_stats(seat_slopes);
+  finish(p, seats.max, seats.std, bound);
   return p;
 }
 

@@ -56,9 +56,6 @@ const std::vector<WarningCode>& warning_codes() {
        "the fit range or the method does not suit the data"},
       {"poor-fit",
        "the fit's r^2 is below 0.95: the data are not a power law over the fit range; narrow it (--min, --max)"},
-      {"bound-models-differ",
-       "maps: a drop's hold angle (the continuous model: spheres on the triangulated surface) exceeds the upper "
-       "bound (the grid areal signature: nodes, central differences); the bound is approximate by that much"},
       {"contact-full",
        "contact: every point of the surface touches (full contact): a larger load only compresses the half-space; "
        "the contact area is the nominal area"},

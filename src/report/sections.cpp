@@ -703,7 +703,7 @@ std::string headline(const ReportInput& in, const ReportData& d) {
         p.single_drop ? "one drop" : fmt::format("{} {}", p.drops, p.is_map ? "drops" : "basins of the drops");
     page += fmt::format(
         "<p class=\"verdict\" id=\"headline\">A tilt test of {} reads <b>φ = {}</b> (μ = <b>{}</b>){}; rigid "
-        "upper bound θ_max + θ_a = {} (μ ≤ {}); the paper's Eq. 18 range {} … {}.<br><small>Model: {} ({}); "
+        "upper bound {} = {} (μ ≤ {}); the paper's Eq. 18 range {} … {}.<br><small>Model: {} ({}); "
         "sliding at {:g}°, μ_a = {:g}; conditioning: {}; the test: {}run-away distance d = {:.3g} m ({}); over "
         "{}.</small></p>\n",
         two_surfaces(in, d) ? "these surfaces" : "this surface against itself", fmt_deg(p.friction_angle.q50),
@@ -711,8 +711,9 @@ std::string headline(const ReportInput& in, const ReportData& d) {
         p.single_drop ? " from this drop"
                       : fmt::format(", the median over drops; 90 % of tests between {} and {}",
                                     fmt_deg(p.friction_angle.q05), fmt_deg(p.friction_angle.q95)),
-        fmt_deg(p.upper_bound_friction_angle), fmt_mu(std::tan(std::min(p.upper_bound_friction_angle, 1.5707963))),
-        fmt_deg(p.eq18_range[0]), fmt_deg(p.eq18_range[1]), p.model,
+        p.is_map ? "(the steepest seat the drops rested in)" : "θ_max + θ_a", fmt_deg(p.upper_bound_friction_angle),
+        fmt_mu(std::tan(std::min(p.upper_bound_friction_angle, 1.5707963))), fmt_deg(p.eq18_range[0]),
+        fmt_deg(p.eq18_range[1]), p.model,
         p.is_map ? "a rigid block free to move sideways, quasi-static"
                  : "the quasi-static hold angle on the exact lift",
         p.direction * 180 / std::numbers::pi, p.atomic_friction, escape_html(p.conditioning),

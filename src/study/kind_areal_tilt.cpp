@@ -203,7 +203,7 @@ Result<TaskOutput> run_areal_tilt_task(const Params& p, std::uint64_t seed) {
       ArealTiltOptions c2 = o;
       c2.start_offset = {(*seat)[1], (*seat)[2]};
       c2.coarse_tilt_step = o.tilt_step;
-      auto seated = areal_tilt_hold(f, g, c2, 1e-4, 1e-7, (*seat)[0]);
+      auto seated = areal_tilt_hold(f, g, c2, kArealHoldResolution, 1e-7, (*seat)[0]);
       if (!seated) return seated.error();
       s["seated_" + tag + "_deg"] = seated->hold_angle * 180 / kPi;
       s["seat_tilt_" + tag + "_deg"] = (*seat)[0] * 180 / kPi;

@@ -159,6 +159,16 @@ class SphereField {
         double& b = block_top_[(j / kBlock) * bnx_ + i / kBlock];
         b = std::max(b, cell_top_[j * cnx_ + i]);
       }
+    // Flat: the lower field's relief and the spheres' spread in height together within a tenth of
+    // the hold angle's resolution of a cell (a plane removed from a constant map leaves rounding,
+    // 1e-21 m on 2 um): every contact slope then lies below that, and so does the answer's
+    // distance from the flat pair's.
+    if (!nodes_.empty()) {
+      const auto [lo, hi] = std::minmax_element(hf.z.begin(), hf.z.end());
+      double nlo = nodes_[0].z, nhi = nlo;
+      for (const detail::TiltNode& n : nodes_) nlo = std::min(nlo, n.z), nhi = std::max(nhi, n.z);
+      flat_ = (*hi - *lo) + (nhi - nlo) <= 0.1 * kArealHoldResolution * std::min(hf.dx, hf.dy);
+    }
     // Tiles of the spheres by their position at offset 0.
     if (nodes_.empty()) return;
     double xmin = nodes_[0].x, ymin = nodes_[0].y, xmax = xmin, ymax = ymin;
@@ -234,6 +244,10 @@ class SphereField {
   }
   /// The largest of the bounds (unitless).
   double slope_max() const { return slope_max_; }
+  /// Two flat faces: the lower height field one horizontal plane and every sphere at one height
+  /// (to a tenth of the hold angle's resolution of a cell), so that h is one constant wherever a
+  /// sphere lies over the field and every contact's slope is zero.
+  bool flat() const { return flat_; }
   /// A smooth map (every bound below 0.5): there the descent's windows and the Near lists follow
   /// the slopes; on a rough one they are those of before the bounds, to the bit.
   bool local() const { return slope_max_ < 0.5; }
@@ -243,6 +257,7 @@ class SphereField {
   /// (one per descending block) and rebuilt by eval_near when the offset leaves the disc.
   struct Near {
     double cx = 0, cy = 0, radius = -1;
+    double scale = 1;  ///< the disc's radius in half lower-map cells (unitless; see rebuild)
     double threshold = kNoContact;
     double last = kNoContact;  ///< h at the last offset evaluated (unit: m)
     struct Entry {
@@ -274,12 +289,12 @@ class SphereField {
       // evaluation answers).
       const double h0 = eval(sx, sy, bx, by, work, eps, pieces, win);
       if (h0 == kNoContact) return h0;
-      rebuild(near, sx, sy, h0 - eps - 0.5 * near_fall() * near_radius());
+      rebuild(near, sx, sy, h0 - eps - 0.5 * near_fall() * near_radius(near));
       near.last = h0;
       return h0;
     }
     if (!(ox * ox + oy * oy <= near.radius * near.radius))  // around the last height found, lower by half the radius
-      rebuild(near, sx, sy, near.last - eps - near_fall() * near_radius());
+      rebuild(near, sx, sy, near.last - eps - near_fall() * near_radius(near));
     double best = kNoContact;
     if (pieces) pieces->clear();
     bool complete = false;
@@ -302,7 +317,7 @@ class SphereField {
       ++near.fallbacks;
       best = eval(sx, sy, bx, by, work, eps, pieces, win);
       near.last = best;
-      if (best != kNoContact) rebuild(near, sx, sy, best - eps - 0.5 * near_fall() * near_radius());
+      if (best != kNoContact) rebuild(near, sx, sy, best - eps - 0.5 * near_fall() * near_radius(near));
       return best;
     }
     near.last = best;
@@ -350,8 +365,14 @@ class SphereField {
   }
   static constexpr std::size_t kTile = 8, kBlock = 8;
   static constexpr std::size_t kNearSorted = 64;  ///< entries of a Near list sorted at its rebuild
+  /// Lists longer than kNearLong halve the next disc (down to kNearScaleMin of half a cell),
+  /// shorter than kNearShort double it (up to half a cell) (unitless).
+  static constexpr std::size_t kNearLong = 256, kNearShort = 32;
+  static constexpr double kNearScaleMin = 1.0 / 64;
   /// The disc of offsets over which a Near list holds: one lower-map cell (unit: m).
-  double near_radius() const { return 0.5 * std::max(hf_.dx, hf_.dy); }
+  /// The disc of offsets over which a Near list holds: half a lower-map cell, or less where lists
+  /// grew long (Near::scale) (unit: m).
+  double near_radius(const Near& near) const { return near.scale * 0.5 * std::max(hf_.dx, hf_.dy); }
   /// How far h may fall across a Near disc, per unit of its radius: 0.5 (a guess: where h falls
   /// faster, the full evaluation answers), less on a smooth map (fall_) (unitless).
   double near_fall() const { return fall_; }
@@ -360,7 +381,7 @@ class SphereField {
     ++near.rebuilds;
     near.cx = sx;
     near.cy = sy;
-    near.radius = near_radius();
+    near.radius = near_radius(near);
     near.threshold = threshold;
     near.list.clear();
     const double wr = near.radius;  // the footprints widened by the disc
@@ -402,6 +423,16 @@ class SphereField {
         }
       }
     }
+    // The next disc: half as wide while lists run long, back towards half a cell while they are
+    // short. Where many spheres reach nearly the same height (two nearly flat faces: their tops
+    // differ by noise), a disc of half a cell admits every sphere within its fall (fall_ times the
+    // radius) and its wide bound's slack: lists of 10^4 spheres, rebuilt every few steps, 60 % of a
+    // drop; a narrower disc lowers both, at more rebuilds of short lists. Exact either way (a
+    // list answers only where it can decide; the full evaluation otherwise).
+    if (near.list.size() > kNearLong && near.scale > kNearScaleMin)
+      near.scale *= 0.5;
+    else if (near.list.size() < kNearShort && near.scale < 1)
+      near.scale = std::min(1.0, 2 * near.scale);
     // Highest bound first; equal bounds by node index (the order does not depend on the scan's):
     // the first kNearSorted now, the rest when a visit reaches them.
     near.sorted = std::min(near.list.size(), kNearSorted);
@@ -522,6 +553,7 @@ class SphereField {
   std::vector<double> cell_top_;
   std::vector<double> slope3_;  ///< per cell: the facet slopes' max over the 3 x 3 cells around it (unitless)
   double slope_max_ = 0;        ///< slope3_'s max (unitless)
+  bool flat_ = false;           ///< see flat()
   double fall_ = 0.5;           ///< near_fall(): see the constructor (unitless)
   std::size_t bnx_ = 0, bny_ = 0;
   std::vector<double> block_top_;   ///< max of cell_top_ over kBlock x kBlock cells
@@ -626,6 +658,71 @@ void cone_slopes(double gx, double gy, double phi, int k, std::vector<std::array
   }
 }
 
+/// The largest t with t d in the convex hull of points q in the plane (NaN where the line along d
+/// through the origin misses it): the steepest tilt, as tan, at which contacts of those slopes
+/// (or friction cones' slopes) still hold a block, the free block's seat in one evaluation.
+double ray_hull_max(std::vector<std::array<double, 2>> q, double dxv, double dyv) {
+  std::sort(q.begin(), q.end());
+  q.erase(std::unique(q.begin(), q.end()), q.end());
+  auto cross = [](double ax, double ay, double bx, double by) { return ax * by - ay * bx; };
+  // Points on the line along d (the locked block's slopes, projected): the hull is a segment of
+  // it, and the largest t its far end.
+  if (std::all_of(q.begin(), q.end(), [&](const std::array<double, 2>& p) {
+        return std::abs(cross(p[0], p[1], dxv, dyv)) <= 1e-12 * std::hypot(p[0], p[1]);
+      })) {
+    double best = -std::numeric_limits<double>::infinity();
+    for (const auto& p : q) best = std::max(best, p[0] * dxv + p[1] * dyv);
+    return q.empty() ? std::numeric_limits<double>::quiet_NaN() : best;
+  }
+  double best = std::numeric_limits<double>::quiet_NaN();
+  auto edge = [&](const std::array<double, 2>& a, const std::array<double, 2>& b) {
+    const double ex = b[0] - a[0], ey = b[1] - a[1];
+    const double den = cross(dxv, dyv, ex, ey);
+    if (den == 0) return;
+    const double lam = cross(a[0], a[1], dxv, dyv) / den;
+    if (lam < -1e-12 || lam > 1 + 1e-12) return;
+    const double tt = cross(a[0], a[1], ex, ey) / den;
+    if (!(tt <= best)) best = tt;
+  };
+  if (q.size() == 1) {
+    if (std::abs(cross(q[0][0], q[0][1], dxv, dyv)) <= 1e-12 * std::hypot(q[0][0], q[0][1]))
+      best = q[0][0] * dxv + q[0][1] * dyv;
+    return best;
+  }
+  // The hull (Andrew's monotone chain), then its edges.
+  std::vector<std::array<double, 2>> h(2 * q.size());
+  std::size_t k = 0;
+  auto turn = [&](const std::array<double, 2>& o, const std::array<double, 2>& a, const std::array<double, 2>& b) {
+    return cross(a[0] - o[0], a[1] - o[1], b[0] - o[0], b[1] - o[1]);
+  };
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    while (k >= 2 && turn(h[k - 2], h[k - 1], q[i]) <= 0) --k;
+    h[k++] = q[i];
+  }
+  for (std::size_t i = q.size() - 1, lo = k + 1; i-- > 0;) {
+    while (k >= lo && turn(h[k - 2], h[k - 1], q[i]) <= 0) --k;
+    h[k++] = q[i];
+  }
+  h.resize(k - 1);
+  for (std::size_t i = 0; i < h.size(); ++i) edge(h[i], h[(i + 1) % h.size()]);
+  return best;
+}
+
+/// The steepest slope along d (unit vector (dx, dy)) of the forces in the Coulomb cone of
+/// half-angle phi (rad) about the normal (-g, 1) of a contact whose lift slope is g: max over
+/// forces f of the cone of -f.d / f_z (unitless; +inf where the cone reaches the horizontal). The
+/// cone's support in the vertical plane of d: the largest t with (t - g.d) = N sin(phi)
+/// sqrt(1 + t^2), N = |(-g, 1)|; for g along d it is tan(atan(g.d) + phi) (Eq. 6's
+/// theta + theta_a). The model samples the rim (cone_slopes), so its slopes lie below this.
+double cone_max_slope(double gx, double gy, double dxv, double dyv, double phi) {
+  const double gd = gx * dxv + gy * dyv;
+  if (!(phi > 0)) return gd;
+  const double ns = std::sqrt(1 + gx * gx + gy * gy) * std::sin(phi);
+  const double a = 1 - ns * ns;
+  if (a <= 0) return std::numeric_limits<double>::infinity();
+  return (gd + ns * std::sqrt(1 + gd * gd - ns * ns)) / a;
+}
+
 }  // namespace
 
 Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOptions& t, const ArealLiftOptions& o) {
@@ -639,6 +736,20 @@ Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOpt
         fmt::format("areal_tilt_lift: sphere radius {}: expected a finite number >= 0 (m)", t.sphere_radius));
   if (t.hfield_refine < 1 || t.hfield_refine > 16)
     return make_error(fmt::format("areal_tilt_lift: hfield_refine {}: expected 1..16", t.hfield_refine));
+  if (detail::direction_quarters(t.angle) != 0 || f.x0 != 0 || f.y0 != 0) {
+    // In the frame of the direction (detail::TurnedExperiment; there it has no quarter turn and
+    // the lower map starts at the origin): the offsets count along and across d in both frames;
+    // the contacts' nodes are turned back.
+    const detail::TurnedExperiment e(f, g, t);
+    auto lift = areal_tilt_lift(e.f, e.g, e.t, o);
+    if (!lift) return lift;
+    Map index = f;
+    for (std::size_t k = 0; k < index.heights.size(); ++k) index.heights[k] = double(k);
+    const Map at = detail::turned(std::move(index), -e.q);
+    for (std::int64_t& c : lift->contact)
+      if (c >= 0) c = std::int64_t(at.heights[std::size_t(c)]);
+    return lift;
+  }
   auto grid = detail::areal_offset_grid(f, t.angle, o, "areal_tilt_lift");
   if (!grid) return grid.error();
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
@@ -754,6 +865,8 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   // kLocal 0.0025 and kTurn 0.1 the same, kMaxStep 0.05 or 0.15, kLocal 0.01 or kTurn 0.02 one drop
   // (a basin boundary) off by 4 deg (bench/results/predict-vs-sim.md, "the local direction").
   constexpr double kLocal = 0.005, kMaxStep = 0.1, kTurn = 0.05;
+  // Guesses of the run-away tilt from the seat before the bisection (see there).
+  constexpr int kSeatGuesses = 6;
   // The window of pieces for a step of delta (m).
   auto window = [&](double delta) { return std::min(delta, kLocal * r); };
   std::vector<std::array<double, 2>> q, slopes;
@@ -791,10 +904,27 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     double x_stop = 0, y_stop = 0;  // the last stop
   };
   enum class End { Rest, Far, Stuck };
+  // The seat where a descent ended (not Far): whatever the pieces, the least-norm point P of the
+  // hull of their tilted slopes cos(beta) H - sin(beta) d (H in the hull of their slopes, or of
+  // their friction cones' samples) gives tan(beta) = H.d - P.d / cos(beta) <= cone + |P| /
+  // cos(beta), cone the steepest slope along d of the pieces' cones (cone_max_slope: the whole
+  // cone, above its samples). So every tilt at which the block rested lies at or below
+  // atan(cone + |P| / cos(beta)) of that seat, by construction (ArealTiltHold::seat_bound).
+  struct Seat {
+    double cone = -std::numeric_limits<double>::infinity();  // tan of the bound (unitless)
+    double geo = -std::numeric_limits<double>::infinity();   // steepest slope along d, no cone (unitless)
+  };
+  double dir_geo = 0, dir_cone = 0;
+  Seat last_seat;
+  // The slopes (or cone samples) of the pieces of the last direction, untilted; at a rest, the
+  // tan of the tilt up to which they hold the block where it stands (ray_hull_max; NaN: none).
+  std::vector<std::array<double, 2>> raw;
+  double last_tstar = std::numeric_limits<double>::quiet_NaN();
   // Nonsmooth steepest descent of V at tilt beta from st; Far once it has gone D along d from
   // its stop (check_far).
   auto descend = [&](double beta, State& st, bool check_far) {
     const double cb = std::cos(beta), sb = std::sin(beta);
+    last_tstar = std::numeric_limits<double>::quiet_NaN();
     double delta = 0.05 * r;
     // The smallest step, which also bounds the window of pieces at a rest: a coplanar neighbour's
     // piece (clamped at a shared edge) enters it where its slope differs by ~sqrt(delta_min / r).
@@ -811,13 +941,19 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     bool full = false;
     // Minus the descent direction at a point of height h: the least-norm point of the hull of the
     // tilted slopes of the pieces a step of d could make the highest.
+    // dir_geo, dir_cone: the steepest slope along d of those pieces, without and with their
+    // friction cones (the seat's slopes where the block rests: Seat below).
     auto direction = [&](const std::vector<SphereField::Piece>& ps, double h, double d) {
       const SphereField::Piece* top = &ps[0];
       for (const SphereField::Piece& p : ps)
         if (p.value > top->value) top = &p;
       q.clear();
+      raw.clear();
+      dir_geo = dir_cone = -std::numeric_limits<double>::infinity();
       for (const SphereField::Piece& p : ps) {
         if (h - p.value > d * std::min(std::hypot(p.gx - top->gx, p.gy - top->gy), p.cap) + 1e-12 * r) continue;
+        dir_geo = std::max(dir_geo, p.gx * dxv + p.gy * dyv);
+        dir_cone = std::max(dir_cone, cone_max_slope(p.gx, p.gy, dxv, dyv, phi_a));
         // Frictionless: the slope of the contact's normal force. With mu_a: the slopes of every force
         // in its Coulomb cone (docs/mujoco.md, "Atomic friction").
         slopes.clear();
@@ -826,6 +962,12 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
         else
           slopes.push_back({p.gx, p.gy});
         for (const auto& sl : slopes) {
+          if (t.lock_lateral) {
+            const double a = sl[0] * dxv + sl[1] * dyv;
+            raw.push_back({a * dxv, a * dyv});
+          } else {
+            raw.push_back(sl);
+          }
           double gx = cb * sl[0] - sb * dxv, gy = cb * sl[1] - sb * dyv;
           if (t.lock_lateral) {
             const double a = gx * dxv + gy * dyv;
@@ -841,13 +983,20 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     for (int it = 0; it < 200000; ++it) {
       if (!have) h = height(st.x, st.y, window(delta), &pieces, full);
       have = false;
-      if (!std::isfinite(h)) return End::Stuck;
+      if (!std::isfinite(h)) {
+        last_seat = {std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+        return End::Stuck;
+      }
       const double V = h * cb - (st.x * dxv + st.y * dyv) * sb;
       const std::array<double, 2> P = direction(pieces, h, window(delta));
       const double Pn = std::hypot(P[0], P[1]);
+      last_seat = {dir_cone + Pn / cb, dir_geo};
       if (Pn < stationary) {
         // Stationary for this step's pieces: at rest only if it stays so for the smallest step.
-        if (delta <= delta_min) return End::Rest;
+        if (delta <= delta_min) {
+          last_tstar = ray_hull_max(raw, dxv, dyv);
+          return End::Rest;
+        }
         delta = std::max(0.5 * delta, delta_min);
         // The pieces of the smaller window are among these (no new evaluation).
         std::erase_if(pieces,
@@ -888,7 +1037,10 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
         delta *= 0.5;
       }
       if (!moved) {
-        if (full || !local) return End::Rest;
+        if (full || !local) {
+          last_tstar = std::numeric_limits<double>::quiet_NaN();  // not stationary: no seat to read
+          return End::Rest;
+        }
         full = true;
         delta = delta_start;
         continue;  // have is false: the pieces again, in the full window
@@ -898,13 +1050,55 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     }
     return End::Stuck;
   };
+  // Two flat faces: every contact has slope zero, so the block rests wherever it is put down and
+  // is held exactly up to the tilt at which the load leaves the contacts' cones: tan(beta) d in the
+  // hull of the cones' slopes (cone_slopes of slope 0; atan mu_a along a sampled direction, the
+  // axes among them; 0 without friction), and at any larger tilt slides without end. The
+  // protocol's answer, without its descents: each of them evaluates every sphere (all tie for
+  // the max), thousands of times per drop (a 650 x 650 flat pair did not end in 600 s).
+  if (field.flat()) {
+    if (!std::isfinite(height(t.start_offset[0], t.start_offset[1], 0, nullptr)))
+      return make_error(fmt::format("areal_tilt_hold: at the start offset ({}, {}) m no sphere lies over the lower map",
+                                    t.start_offset[0], t.start_offset[1]));
+    double tan_hold = 0;
+    if (phi_a > 0) {
+      std::vector<std::array<double, 2>> cone;
+      cone_slopes(0, 0, phi_a, kConeSamples, cone);
+      if (t.lock_lateral)
+        for (auto& c : cone) {
+          const double a = c[0] * dxv + c[1] * dyv;
+          c = {a * dxv, a * dyv};
+        }
+      tan_hold = std::max(0.0, ray_hull_max(cone, dxv, dyv));
+    }
+    out.rest_offset = t.start_offset;
+    out.hold_angle = std::min(std::max(std::atan(tan_hold), start_tilt), t.max_tilt);
+    out.ran_away = out.hold_angle < t.max_tilt;
+    out.runaway_increment = out.hold_angle;
+    out.seat_slope = 0;
+    out.seat_bound = std::max(out.hold_angle, std::atan(cone_max_slope(0, 0, dxv, dyv, phi_a)));
+    out.stops.push_back({out.hold_angle, t.start_offset[0] + (out.ran_away ? D * dxv : 0),
+                         t.start_offset[1] + (out.ran_away ? D * dyv : 0)});
+    return out;
+  }
+  // Every descent that did not run away: its seat and tilt (the seat bound's inputs).
+  Seat seats;
+  double held_tilt = -std::numeric_limits<double>::infinity();
+  auto held = [&](End e, double beta) {
+    if (e == End::Far) return e;
+    seats.cone = std::max(seats.cone, last_seat.cone);
+    seats.geo = std::max(seats.geo, last_seat.geo);
+    held_tilt = std::max(held_tilt, beta);
+    return e;
+  };
   State st;
   st.x = t.start_offset[0];
   st.y = t.start_offset[1];
   if (!std::isfinite(height(st.x, st.y, 0, nullptr)))
     return make_error(
         fmt::format("areal_tilt_hold: at the start offset ({}, {}) m no sphere lies over the lower map", st.x, st.y));
-  descend(start_tilt, st, false);
+  held(descend(start_tilt, st, false), start_tilt);
+  double tstar = last_tstar;  // the seat's run-away tan at `before` (run)
   st.x_stop = st.x;
   st.y_stop = st.y;
   out.rest_offset = {st.x, st.y};
@@ -916,7 +1110,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     beta_before = beta0;
     for (double beta = beta0 + step; beta <= t.max_tilt + 1e-12; beta += step) {
       State trial = s;
-      const End e = descend(beta, trial, true);
+      const End e = held(descend(beta, trial, true), beta);
       out.stops.push_back({beta, trial.x, trial.y});
       if (e == End::Far) return beta;
       trial.x_stop = trial.x;  // a stop (Rest) or a block that did not settle: either way the next
@@ -924,6 +1118,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
       s = trial;
       before = s;
       beta_before = beta;
+      tstar = last_tstar;
     }
     return std::numeric_limits<double>::quiet_NaN();
   };
@@ -932,8 +1127,15 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   const double coarse = std::max(t.coarse_tilt_step, t.tilt_step);
   double b = run(st, start_tilt, coarse, before, beta_before);
   if (!std::isnan(b) && coarse > t.tilt_step) b = run(before, beta_before, t.tilt_step, before, beta_before);
+  // The seat bound: above every tilt that held (by construction, Seat), and above the hold angle
+  // reported, which lies at most the last bracket above the highest tilt that held.
+  auto finish_seats = [&] {
+    out.seat_bound = std::min(std::atan(seats.cone) + std::max(0.0, out.hold_angle - held_tilt), std::numbers::pi / 2);
+    out.seat_slope = std::atan(seats.geo);
+  };
   if (std::isnan(b)) {
     out.hold_angle = out.runaway_increment = t.max_tilt;
+    finish_seats();
     return out;
   }
   out.ran_away = true;
@@ -942,10 +1144,42 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   double lo = beta_before, hi = b;
   State at_hi;
   bool have_hi = false;
+  // First the tilt up to which the seat's own contacts hold the block where it stands (ray_hull_max
+  // at its rest), a quarter of the resolution above it: where the block still rests (it crept in
+  // its seat, on an edge or vertex contact whose slope changes as it moves), the reading at that
+  // rest is the next guess (a fixed-point iteration on the seat) while it rises; where it runs
+  // away, a quarter below closes the bracket. Then from the highest tilt that held, steps of 4, 16,
+  // 64, ... resolutions up to the first run-away. A few descents, most of them rests, instead of
+  // a bisection's eleven, half of them run-aways (each a slide of D). What is left is bisected: lo
+  // always held, hi always ran away, as in the bisection alone.
+  auto probe = [&](double beta) {
+    State trial = before;
+    if (held(descend(beta, trial, true), beta) == End::Far) {
+      hi = beta;
+      at_hi = trial;
+      have_hi = true;
+      return true;
+    }
+    lo = beta;
+    return false;
+  };
+  bool bracketed = false;
+  for (int k = 0; k < kSeatGuesses && std::isfinite(tstar) && hi - lo > resolution; ++k) {
+    const double up = std::atan(tstar) + 0.25 * resolution;
+    if (!(up > lo && up < hi)) break;
+    if (probe(up)) {
+      if (up - 0.5 * resolution > lo) probe(up - 0.5 * resolution);
+      bracketed = true;
+      break;
+    }
+    tstar = last_tstar;
+  }
+  for (double step = 4 * resolution; !bracketed && lo + step < hi && step < 0.25 * (hi - lo); step *= 4)
+    bracketed = probe(lo + step);
   while (hi - lo > resolution) {
     const double mid = 0.5 * (lo + hi);
     State trial = before;
-    if (descend(mid, trial, true) == End::Far) {
+    if (held(descend(mid, trial, true), mid) == End::Far) {
       hi = mid;
       at_hi = trial;
       have_hi = true;
@@ -955,9 +1189,10 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   }
   if (!have_hi) {
     at_hi = before;
-    descend(b, at_hi, true);
+    held(descend(b, at_hi, true), b);
   }
   out.hold_angle = hi;
+  finish_seats();
   out.steering = std::atan2(-(at_hi.x - before.x_stop) * dyv + (at_hi.y - before.y_stop) * dxv,
                             (at_hi.x - before.x_stop) * dxv + (at_hi.y - before.y_stop) * dyv);
   return out;
@@ -965,9 +1200,12 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
 
 }  // namespace
 
-Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
-                                      double stationary, double start_tilt) {
-  if (auto s = check_hold_inputs(f, g, t, resolution, stationary, start_tilt); !s) return s.error();
+namespace {
+
+// The hold of one drop in the frame where the direction lies within 45 deg of +x
+// (detail::TurnedExperiment); inputs checked.
+Result<ArealTiltHold> hold_turned(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
+                                  double stationary, double start_tilt) {
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
   if (nodes.empty()) return make_error("areal_tilt_hold: the upper map has no valid node");
   const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
@@ -976,10 +1214,19 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
   return hold_on_field(field, f, t, r, resolution, stationary, start_tilt);
 }
 
-Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
-    const Map& f, const Map& g, const ArealTiltOptions& t, const std::vector<ArealTiltDrop>& drops, unsigned threads,
-    const std::function<void(std::size_t, std::size_t)>& progress) {
-  if (auto s = check_hold_inputs(f, g, t, 1e-4, 1e-7, 0); !s) return s.error();
+// A hold's positions turned back to the caller's frame.
+void turn_back(ArealTiltHold& h, const detail::TurnedExperiment& e) {
+  h.rest_offset = e.back(h.rest_offset);
+  for (auto& s : h.stops) {
+    const auto p = e.back({s[1], s[2]});
+    s[1] = p[0];
+    s[2] = p[1];
+  }
+}
+
+Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g, const ArealTiltOptions& t,
+                                                     const std::vector<ArealTiltDrop>& drops, unsigned threads,
+                                                     const std::function<void(std::size_t, std::size_t)>& progress) {
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
   if (nodes.empty()) return make_error("areal_tilt_hold: the upper map has no valid node");
   const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
@@ -999,11 +1246,11 @@ Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
       ArealTiltOptions tk = t;
       tk.start_offset = drops[k].start;
       tk.lock_lateral = drops[k].locked;
-      auto h = hold_on_field(field, f, tk, r, 1e-4, 1e-7, 0);
+      auto h = hold_on_field(field, f, tk, r, kArealHoldResolution, 1e-7, 0);
       if (h)
         out[k] = std::move(h).value();
       else
-        errors[k] = h.error().message;
+        errors[k] = "#" + std::to_string(k) + ": " + h.error().message;
       if (progress) {
         std::lock_guard<std::mutex> lock(m);
         progress(++done, drops.size());
@@ -1011,9 +1258,41 @@ Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
     }
   });
   for (std::size_t k = 0; k < drops.size(); ++k)
-    if (!errors[k].empty())
-      return make_error(fmt::format("drop at ({:.6g}, {:.6g}) m: {}", drops[k].start[0], drops[k].start[1], errors[k]));
+    if (!errors[k].empty()) return make_error(std::move(errors[k]));
   return out;
+}
+
+}  // namespace
+
+Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
+                                      double stationary, double start_tilt) {
+  if (auto s = check_hold_inputs(f, g, t, resolution, stationary, start_tilt); !s) return s.error();
+  const detail::TurnedExperiment e(f, g, t);
+  auto h = hold_turned(e.f, e.g, e.t, resolution, stationary, start_tilt);
+  if (h) turn_back(*h, e);
+  return h;
+}
+
+Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
+    const Map& f, const Map& g, const ArealTiltOptions& t, const std::vector<ArealTiltDrop>& drops, unsigned threads,
+    const std::function<void(std::size_t, std::size_t)>& progress) {
+  if (auto s = check_hold_inputs(f, g, t, kArealHoldResolution, 1e-7, 0); !s) return s.error();
+  auto named = [&](Result<std::vector<ArealTiltHold>> r) -> Result<std::vector<ArealTiltHold>> {
+    if (r) return r;
+    // The failing drop named by its start offset in the caller's frame.
+    for (std::size_t k = 0; k < drops.size(); ++k)
+      if (r.error().message.rfind("#" + std::to_string(k) + ":", 0) == 0)
+        return make_error(fmt::format("drop at ({:.6g}, {:.6g}) m: {}", drops[k].start[0], drops[k].start[1],
+                                      r.error().message.substr(r.error().message.find(':') + 2)));
+    return r;
+  };
+  const detail::TurnedExperiment e(f, g, t);
+  std::vector<ArealTiltDrop> td = drops;
+  for (ArealTiltDrop& d : td) d.start = detail::turned(d.start, -e.q);
+  auto r = named(hold_drops_turned(e.f, e.g, e.t, td, threads, progress));
+  if (r)
+    for (ArealTiltHold& h : *r) turn_back(h, e);
+  return r;
 }
 
 Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& f, const Map& g, const ArealTiltOptions& t,

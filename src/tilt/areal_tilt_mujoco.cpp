@@ -184,6 +184,29 @@ void install_exact_hfield_sphere() {
 
 Result<ArealTiltResult> areal_tilt(const Map& f, const Map& g, const ArealTiltOptions& o,
                                    const ArealTiltProgress& progress) {
+  if (std::isfinite(o.angle) && (detail::direction_quarters(o.angle) != 0 || f.x0 != 0 || f.y0 != 0)) {
+    // In the frame of the direction, as the matched prediction (detail::TurnedExperiment): the
+    // same triangles of the height field for the same experiment turned by quarter turns.
+    const detail::TurnedExperiment e(f, g, o);
+    ArealTiltProgress back;
+    if (progress)
+      back = [&](const ArealTiltIncrement& i) {
+        ArealTiltIncrement c = i;
+        const auto p = e.back({i.x, i.y});
+        c.x = p[0];
+        c.y = p[1];
+        progress(c);
+      };
+    auto r = areal_tilt(e.f, e.g, e.t, back);
+    if (!r) return r;
+    r->rest_offset = e.back(r->rest_offset);
+    for (ArealTiltIncrement& i : r->trace) {
+      const auto p = e.back({i.x, i.y});
+      i.x = p[0];
+      i.y = p[1];
+    }
+    return r;
+  }
   if (auto s = validate(f, "lower map"); !s) return s.error();
   if (auto s = validate(g, "upper map"); !s) return s.error();
   if (f.nx < 2 || f.ny < 2 || g.nx < 1 || g.ny < 1) return make_error("areal_tilt: the lower map needs 2 x 2 nodes");
