@@ -606,7 +606,9 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
     fallback_unit = *s;
   }
-  // A length from the header ("w = 10 um"; a bare number is in `bare_scale`).
+  // A length from the header ("w = 10 um"; a bare number is in `bare_scale`); the unit of the
+  // last one read is the lateral unit the reader applied (SurfaceData::x_unit_scale).
+  std::optional<double> lateral_unit_seen;
   auto header_length = [&](std::initializer_list<const char*> keys,
                            double bare_scale) -> Result<std::optional<double>> {
     const std::string* v = hp.get(keys);
@@ -616,6 +618,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     if (!number_with_unit(*v, x, sc) || !(x > 0))
       return make_error(fmt::format("{}: header value '{}' for '{}' is not a positive length (number and unit)", name,
                                     *v, *keys.begin()));
+    lateral_unit_seen = sc.value_or(bare_scale);
     return std::optional<double>{x * sc.value_or(bare_scale)};
   };
   // Height unit named in the header ("# unit: nm", "Value units: um", "z unit = nm").
@@ -650,6 +653,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       out.warnings.push_back(
           fmt::format("{}: no length unit found for the heights; read as metres (give a unit to override)", name));
     const double zs = zu.value_or(fallback_unit);
+    out.z_unit_scale = zs;
+    out.x_unit_scale = options.spacing > 0 ? 1.0 : lateral_unit_seen.value_or(fallback_unit);
     InvalidCount invalid;
     for (std::size_t k = 0; k < rows.size(); ++k) {
       double z = rows[k][0];
@@ -711,6 +716,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       m.dx = gx->second * xu.value_or(fallback_unit);
       m.y0 = gy->first * yu.value_or(fallback_unit);
       m.dy = gy->second * yu.value_or(fallback_unit);
+      out.x_unit_scale = xu.value_or(fallback_unit);
+      out.z_unit_scale = zu.value_or(fallback_unit);
       m.heights.assign(nx * ny, std::numeric_limits<double>::quiet_NaN());
       std::vector<char> seen(nx * ny, 0);
       InvalidCount invalid;
@@ -826,6 +833,10 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     InvalidCount invalid;
     mask_invalid(m.heights, invalid);
     const double zs = zu.value_or(fallback_unit);
+    out.z_unit_scale = zs;
+    out.x_unit_scale = dx && !dxh->has_value() && !w->has_value() && !pixel->has_value() && options.spacing > 0
+                           ? 1.0
+                           : lateral_unit_seen.value_or(fallback_unit);
     for (double& v : m.heights) v *= zs;
     if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
     if (m.valid_count() == 0) return make_error(fmt::format("{}: no valid point", name));
@@ -894,14 +905,28 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
     fallback = *s;
   }
+  // A column without a unit takes the override given for its axis, else default_unit, else metres
+  // (with a warning); a column with one is rescaled by the override later (read_surface).
+  auto axis_fallback = [&](const std::string& unit) -> Result<std::optional<double>> {
+    if (unit.empty()) return std::optional<double>{};
+    auto s = unit_scale(unit);
+    if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", unit));
+    return std::optional<double>{*s};
+  };
+  auto xo = axis_fallback(options.x_unit), zo = axis_fallback(options.z_unit);
+  if (!xo) return xo.error();
+  if (!zo) return zo.error();
   auto xu = find_unit(xc), zu = find_unit(zc);
-  if ((!xu || !zu) && options.default_unit.empty())
+  const bool x_none = !xu && !*xo, z_none = !zu && !*zo;
+  if ((x_none || z_none) && options.default_unit.empty())
     out.warnings.push_back(
         fmt::format("{}: no length unit found for the {} column; values read as metres (give a unit to override)", name,
-                    !xu && !zu ? "x and z"
-                    : !xu      ? "x"
-                               : "z"));
-  double xs = xu.value_or(fallback), zs = zu.value_or(fallback);
+                    x_none && z_none ? "x and z"
+                    : x_none         ? "x"
+                                     : "z"));
+  double xs = xu.value_or(xo->value_or(fallback)), zs = zu.value_or(zo->value_or(fallback));
+  out.x_unit_scale = xs;
+  out.z_unit_scale = zs;
 
   // An x column that is uniform within the digits it is printed with (an exporter that rounds
   // x, e.g. steps alternating 0.1 and 0.2 um for 0.15625 um) is read as the uniform grid: the
@@ -1076,7 +1101,7 @@ bool looks_like_gwyddion(std::string_view text) {
 
 Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& name, const ReadOptions& options) {
   auto lines = split_lines(text);
-  std::optional<double> width, height, zscale;
+  std::optional<double> width, height, zscale, width_scale;
   std::vector<double> positional;  // length-valued header entries in order (fallback for unknown languages)
   std::vector<double> values;
   std::size_t nx = 0, ny = 0, first_line = 0;
@@ -1088,9 +1113,12 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
     if (t.front() == '#') {
       if (!header_key(t, k, v)) continue;
       auto len = length_value(v);
-      if (is_width_key(k) && len)
+      if (is_width_key(k) && len) {
         width = len;
-      else if (is_height_key(k) && len)
+        double number = 0;
+        std::optional<double> unit;
+        if (number_with_unit(v, number, unit) && unit) width_scale = unit;
+      } else if (is_height_key(k) && len)
         height = len;
       else if (len)
         positional.push_back(*len);
@@ -1149,6 +1177,9 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
   if (!(m.dx > 0) || !(m.dy > 0) || !std::isfinite(m.dx) || !std::isfinite(m.dy))
     return make_error(fmt::format("{}: Width and Height must be positive", name));
   double zs = zscale.value_or(fallback);
+  out.z_unit_scale = zs;
+  if (!width || !height) out.x_unit_scale = fallback;
+  if (width_scale) out.x_unit_scale = *width_scale;
   m.heights = std::move(values);
   InvalidCount invalid;
   mask_invalid(m.heights, invalid);
