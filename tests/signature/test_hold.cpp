@@ -899,6 +899,8 @@ TEST(Hold, CoincidentEventsAndIntervalsTooShortForAVertexMakeAValidLift) {
   for (std::size_t i = 0; i < sig.offset.size(); ++i) {
     const auto it = std::find(c->offset.begin(), c->offset.end(), sig.offset[i]);
     ASSERT_NE(it, c->offset.end()) << i;
-    if (i != 2) EXPECT_EQ(c->lift[std::size_t(it - c->offset.begin())], sig.lift[i]) << i;
+    if (i != 2) {
+      EXPECT_EQ(c->lift[std::size_t(it - c->offset.begin())], sig.lift[i]) << i;
+    }
   }
 }
