@@ -88,7 +88,8 @@ struct SurfaceData {
   std::size_t channel = 0;
   /// Metres per unit of the file's lateral numbers and of its heights as read: the unit the reader
   /// applied (the file's, ReadOptions::default_unit's, or an override's; 1 for formats that store
-  /// SI values) (unit: m per file unit).
+  /// SI values; x_unit_scale 0 where the file holds no lateral numbers and the spacing was given,
+  /// in metres: then ReadOptions::x_unit changes nothing) (unit: m per file unit).
   double x_unit_scale = 1, z_unit_scale = 1;
 };
 

@@ -654,7 +654,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
           fmt::format("{}: no length unit found for the heights; read as metres (give a unit to override)", name));
     const double zs = zu.value_or(fallback_unit);
     out.z_unit_scale = zs;
-    out.x_unit_scale = options.spacing > 0 ? 1.0 : lateral_unit_seen.value_or(fallback_unit);
+    out.x_unit_scale = options.spacing > 0 ? 0.0 : lateral_unit_seen.value_or(fallback_unit);
     InvalidCount invalid;
     for (std::size_t k = 0; k < rows.size(); ++k) {
       double z = rows[k][0];
@@ -834,8 +834,9 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     mask_invalid(m.heights, invalid);
     const double zs = zu.value_or(fallback_unit);
     out.z_unit_scale = zs;
+    // 0: no lateral numbers in the file (the spacing given, in metres, is the one lateral length).
     out.x_unit_scale = dx && !dxh->has_value() && !w->has_value() && !pixel->has_value() && options.spacing > 0
-                           ? 1.0
+                           ? 0.0
                            : lateral_unit_seen.value_or(fallback_unit);
     for (double& v : m.heights) v *= zs;
     if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));

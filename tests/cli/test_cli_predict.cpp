@@ -124,7 +124,8 @@ TEST(CliWarnings, SignatureOfAUnitMixUpCarriesItsCodesAndNoNegativeFriction) {
   // as the uniform grid.
   auto c = run_cli("signature " + data("profiles/dektak-1.csv") + " --json --no-hold");
   ASSERT_EQ(c.code, 0) << c.err;
-  for (const auto& w : json::parse(c.out)["warnings"]) {
+  const json cj = json::parse(c.out);
+  for (const auto& w : cj["warnings"]) {
     EXPECT_EQ(w["code"], "reader") << c.out;
     EXPECT_NE(w["message"].get<std::string>().find("uniform grid"), std::string::npos) << c.out;
   }
@@ -145,7 +146,8 @@ TEST(CliWarnings, StatsCarriesTheReadersAndThePlausibilityCodes) {
   for (const char* clean : {"profiles/dektak-1.csv", "x3p/x3p-2.x3p"}) {
     auto c = run_cli(std::string("stats ") + data(clean) + " --json");
     ASSERT_EQ(c.code, 0) << c.err;
-    for (const auto& w : json::parse(c.out)["warnings"])  // the Dektak x grid's reader note only
+    const json cj = json::parse(c.out);
+    for (const auto& w : cj["warnings"])  // the Dektak x grid's reader note only
       EXPECT_NE(w["message"].get<std::string>().find("uniform grid"), std::string::npos) << clean << ": " << c.out;
   }
 }

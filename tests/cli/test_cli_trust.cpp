@@ -203,9 +203,11 @@ TEST(CliTrust, EveryOptionAWarningNamesIsARealOption) {
     if (cmd.contains("subcommands"))
       for (const auto& sub : cmd["subcommands"]) walk(sub);
   };
-  for (const auto& cmd : json::parse(c.out)["commands"]) walk(cmd);
+  const json commands = json::parse(c.out);
+  for (const auto& cmd : commands["commands"]) walk(cmd);
   ASSERT_TRUE(predict_options.count("--remove-spikes"));
-  for (const auto& code : json::parse(run_cli("warnings --json").out)) {
+  const json table = json::parse(run_cli("warnings --json").out);
+  for (const auto& code : table) {
     const std::string fix = code["fix"].get<std::string>();
     const std::regex opt("--[a-z][a-z-]*[a-z]");
     for (auto it = std::sregex_iterator(fix.begin(), fix.end(), opt); it != std::sregex_iterator(); ++it)
@@ -221,7 +223,9 @@ TEST(CliTrust, EveryOptionAWarningNamesIsARealOption) {
       ++named;
       EXPECT_TRUE(options.count(it->str())) << code["code"] << " names " << it->str() << ", which no command has";
     }
-    if (code["doubtful"].get<bool>()) EXPECT_FALSE(code["fix"].get<std::string>().empty()) << code["code"];
+    if (code["doubtful"].get<bool>()) {
+      EXPECT_FALSE(code["fix"].get<std::string>().empty()) << code["code"];
+    }
   }
   EXPECT_GE(named, 5u);
 }
