@@ -227,7 +227,8 @@ Result<SurfaceData> with_units(Result<SurfaceData> r, const ReadOptions& o, cons
     if (unit.empty()) continue;
     const std::optional<double> s = io_detail::unit_scale(unit);
     if (!s)
-      return make_error(fmt::format("{}: unknown unit '{}' (expected m, mm, um, nm)", lateral ? "x_unit" : "z_unit", unit));
+      return make_error(
+          fmt::format("{}: unknown unit '{}' (expected m, mm, um, nm)", lateral ? "x_unit" : "z_unit", unit));
     double& applied = lateral ? r->x_unit_scale : r->z_unit_scale;
     if (!(applied > 0) || std::abs(*s - applied) <= 1e-12 * *s) {
       applied = *s;

@@ -954,9 +954,10 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       if (const std::string* v = hp.get({"spacing", "dx", "xspacing", "step", "xstep", "sampling", "samplinginterval",
                                          "interval", "increment", "xincrement", "resolution", "xresolution"}))
         stated = grid->from_header ? fmt::format("the header's stated spacing '{}'", *v)
-                                   : fmt::format("the whole column's (x_last - x_0) / (n - 1); the header's '{}' "
-                                                 "does not fit the column within its digits",
-                                                 *v);
+                                   : fmt::format(
+                                         "the whole column's (x_last - x_0) / (n - 1); the header's '{}' "
+                                         "does not fit the column within its digits",
+                                         *v);
       else
         stated = "the whole column's (x_last - x_0) / (n - 1)";
       out.warnings.push_back(fmt::format(

@@ -500,8 +500,8 @@ Result<Prediction> with_trust(Result<Prediction> r, const PredictSurface& lower)
 
 Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
   if (auto st = check_request(lower, upper, o); !st) return st.error();
-  return with_trust(
-      lower.is_map ? predict_maps(lower, upper, o) : predict_profiles(lower, upper, o, nullptr, nullptr), lower);
+  return with_trust(lower.is_map ? predict_maps(lower, upper, o) : predict_profiles(lower, upper, o, nullptr, nullptr),
+                    lower);
 }
 
 Result<Prediction> predict(PredictSurface&& lower, std::optional<PredictSurface>&& upper, const PredictOptions& o) {

@@ -16,7 +16,8 @@ namespace frictal {
 
 const std::vector<WarningCode>& warning_codes() {
   static const std::vector<WarningCode> codes = {
-      {"reader", "the file's reader said something that did not stop it (a unit assumed, points masked, a checksum)", false, ""},
+      {"reader", "the file's reader said something that did not stop it (a unit assumed, points masked, a checksum)",
+       false, ""},
       {"units-suspect",
        "the rms slope is above 10 (84 deg on average, steeper than any instrument measures): the lateral and "
        "height units probably differ (e.g. x in micrometres, z read as metres); give the heights' unit with "
@@ -35,7 +36,8 @@ const std::vector<WarningCode>& warning_codes() {
        "and the hold angles on their own; check the scan, or remove them with the conditioning's spike filter "
        "(--remove-spikes, Python remove_spikes=True; the same rule, docs/analysis.md)",
        true, "--remove-spikes (Python remove_spikes=True)"},
-      {"kurtosis", "the height kurtosis is above 30: a few outlying points dominate the height distribution", false, ""},
+      {"kurtosis", "the height kurtosis is above 30: a few outlying points dominate the height distribution", false,
+       ""},
       {"fill-value",
        "runs of one repeated height value cover more than 5 % of the points: a fill value for points not measured; "
        "mask it (NaN) or crop it away (--crop)",
@@ -45,7 +47,8 @@ const std::vector<WarningCode>& warning_codes() {
        "unit (--x-unit), or they are not scans of one pair",
        true, "--x-unit UNIT for the scan read in the wrong unit (Python x_unit=), or a matching pair"},
       {"eq18-low-clamped",
-       "the low end of the paper's Eq. 18 range, theta_max - sigma + theta_a, is below zero; it is reported as 0", false, ""},
+       "the low end of the paper's Eq. 18 range, theta_max - sigma + theta_a, is below zero; it is reported as 0",
+       false, ""},
       {"bound-negative",
        "the rigid upper bound theta_max + theta_a is below zero (mu < 0): every contact along the sliding direction "
        "descends, so the block slides without tilt; check the direction, that the two scans overlap at one scale, "
@@ -55,17 +58,22 @@ const std::vector<WarningCode>& warning_codes() {
        "the friction angle reaches 90 deg: a vertical wall or an interlock holds the block; the number is a "
        "single feature of the data, not a friction",
        true, "--z-unit UNIT if the heights are in another unit (Python z_unit=); --remove-spikes for a spike"},
-      {"few-drops", "the distribution rests on fewer than 3 basins (profiles) or drops: the spread is not resolved", false, ""},
+      {"few-drops", "the distribution rests on fewer than 3 basins (profiles) or drops: the spread is not resolved",
+       false, ""},
       {"held-to-max-tilt",
-       "some drops held the block up to the model's largest tilt (45 deg): their hold angle is a lower bound", false, ""},
+       "some drops held the block up to the model's largest tilt (45 deg): their hold angle is a lower bound", false,
+       ""},
       {"dimension-out-of-range",
        "a fractal dimension outside [1, 2]: a profile's dimension lies between 1 (smooth) and 2 (plane filling); "
-       "the fit range or the method does not suit the data", false, ""},
+       "the fit range or the method does not suit the data",
+       false, ""},
       {"poor-fit",
-       "the fit's r^2 is below 0.95: the data are not a power law over the fit range; narrow it (--min, --max)", false, ""},
+       "the fit's r^2 is below 0.95: the data are not a power law over the fit range; narrow it (--min, --max)", false,
+       ""},
       {"bound-models-differ",
        "maps: a drop's hold angle (the continuous model: spheres on the triangulated surface) exceeds the upper "
-       "bound (the grid areal signature: nodes, central differences); the bound is approximate by that much", false, ""},
+       "bound (the grid areal signature: nodes, central differences); the bound is approximate by that much",
+       false, ""},
   };
   return codes;
 }
@@ -193,10 +201,11 @@ std::vector<Warning> check_profile(const Profile& p, const std::string& name, co
   if (p.x.size() < 2) return out;
   const ProfileStats st = profile_stats_no_angles(p);  // rms slope and length only
   if (st.rms_slope > L.max_rms_slope)
-    add_warning(out, {"units-suspect",
-                      fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "
-                                  "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
-                                  name, st.rms_slope, std::atan(st.rms_slope) * 180 / 3.141592653589793)});
+    add_warning(
+        out, {"units-suspect",
+              fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "
+                          "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
+                          name, st.rms_slope, std::atan(st.rms_slope) * 180 / 3.141592653589793)});
   const double spacing = p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0;
   lateral_check(out, st.rms_slope, spacing, name, L);
   const Moments m = moments(p.z);
@@ -231,10 +240,11 @@ std::vector<Warning> check_map(const Map& mp, const std::string& name, const Pla
   // Two directional components: the gradient's rms is sqrt(2) times one component's.
   const double rms_slope = ns ? std::sqrt(2 * s2 / double(ns)) : 0;
   if (rms_slope > L.max_rms_slope)
-    add_warning(out, {"units-suspect",
-                      fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "
-                                  "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
-                                  name, rms_slope, std::atan(rms_slope) * 180 / 3.141592653589793)});
+    add_warning(
+        out, {"units-suspect",
+              fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "
+                          "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
+                          name, rms_slope, std::atan(rms_slope) * 180 / 3.141592653589793)});
   if (ns) lateral_check(out, rms_slope, std::max(mp.dx, mp.dy), name, L);
   const Moments m = moments(mp.heights);
   const SpikeSearch sp = find_spikes(mp, L.spike_sq);
