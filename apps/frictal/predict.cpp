@@ -43,6 +43,14 @@ void print_text(const Prediction& p, const Args& a) {
   const std::string pair = a.upper.empty()
                                ? fmt::format("{} against itself {}", a.lower, a.in_place ? "in place" : "turned over")
                                : fmt::format("{} on {}{}", a.upper, a.lower, a.in_place ? " in place" : "");
+  if (p.trust != "ok") {
+    std::string codes;
+    for (const std::string& c : p.trust_codes) codes += (codes.empty() ? "" : ", ") + c;
+    fmt::print(
+        "DOUBTFUL ({}): the input was probably read wrong; the number below is not these surfaces' friction "
+        "until it is fixed: add {}\n",
+        codes, p.trust_fix.empty() ? "the fix the warnings name" : p.trust_fix);
+  }
   fmt::print("frictal predict: {}, sliding at {:g} deg, mu_a = {:g}\n", pair, to_deg(p.direction), p.atomic_friction);
   if (p.single_drop) {
     fmt::print("  a tilt test from this drop reads phi = {} deg (mu = {}); it rests at {}\n",

@@ -20,7 +20,7 @@ namespace frictal::cli {
 
 struct InputOptions {
   std::string format = "auto";
-  std::string unit;
+  std::string unit, x_unit, z_unit;
   int x_column = -1, z_column = -1;
   std::string spacing;  ///< "0.5um", "2e-6" (m)
   std::string channel;
@@ -30,7 +30,14 @@ inline void add_input_options(CLI::App& app, InputOptions& o) {
   app.add_option("--format", o.format,
                  "Input format: auto, csv, dektak, gwyddion, x3p, matrix, xyz, sdf, npy, gwyddion-lib (default: detect "
                  "from content)");
-  app.add_option("--unit", o.unit, "Unit of text columns that name none: m, mm, um, nm (default m, with a warning)");
+  app.add_option("--unit", o.unit,
+                 "Unit of the file's lengths, x and z: m, mm, um, nm; overrides the units the file names (a warning "
+                 "says so); where it names none, instead of metres (default: the file's, else m with a warning)");
+  app.add_option("--x-unit", o.x_unit,
+                 "Unit of the file's lateral lengths (x, y, spacing): m, mm, um, nm; overrides the file's (and "
+                 "--unit's) for them");
+  app.add_option("--z-unit", o.z_unit,
+                 "Unit of the file's heights: m, mm, um, nm; overrides the file's (and --unit's) for them");
   app.add_option("--x-column", o.x_column, "0-based column of x in delimited text (default: automatic)");
   app.add_option("--z-column", o.z_column, "0-based column of z in delimited text (default: the one after x)");
   app.add_option(
@@ -73,9 +80,14 @@ inline double parse_length_option(const std::string& text, const char* option) {
 }
 
 inline ReadOptions read_options(const InputOptions& o) {
+  for (const auto& [option, unit] : {std::pair{"--unit", &o.unit}, {"--x-unit", &o.x_unit}, {"--z-unit", &o.z_unit}})
+    if (!unit->empty() && !units::length_scale(*unit))
+      throw UsageError(fmt::format("{} '{}': not a length unit (expected m, mm, um, nm)", option, *unit));
   ReadOptions r;
   r.format = unwrap(parse_format(o.format));
   r.default_unit = o.unit;
+  r.x_unit = o.x_unit.empty() ? o.unit : o.x_unit;
+  r.z_unit = o.z_unit.empty() ? o.unit : o.z_unit;
   r.x_column = o.x_column;
   r.z_column = o.z_column;
   if (!o.spacing.empty()) r.spacing = parse_length_option(o.spacing, "--spacing");

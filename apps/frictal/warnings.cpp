@@ -8,19 +8,23 @@ namespace {
 std::function<int()> setup(CLI::App& app) {
   auto json = std::make_shared<bool>(false);
   auto markdown = std::make_shared<bool>(false);
-  app.add_flag("--json", *json, "Print the codes as JSON: [{code, meaning}]");
+  app.add_flag("--json", *json, "Print the codes as JSON: [{code, meaning, doubtful, fix}]");
   app.add_flag("--markdown", *markdown, "Print the codes as a Markdown table");
   return [json, markdown]() {
     require(!(*json && *markdown), "give one of --json and --markdown");
     if (*json) {
       nlohmann::json j = nlohmann::json::array();
-      for (const WarningCode& c : warning_codes()) j.push_back({{"code", c.code}, {"meaning", c.meaning}});
+      for (const WarningCode& c : warning_codes())
+        j.push_back({{"code", c.code}, {"meaning", c.meaning}, {"doubtful", c.doubtful}, {"fix", c.fix}});
       print_json(j);
     } else if (*markdown) {
-      fmt::print("| code | meaning |\n|---|---|\n");
-      for (const WarningCode& c : warning_codes()) fmt::print("| `{}` | {} |\n", c.code, c.meaning);
+      fmt::print("| code | meaning | prediction | fix |\n|---|---|---|---|\n");
+      for (const WarningCode& c : warning_codes())
+        fmt::print("| `{}` | {} | {} | {} |\n", c.code, c.meaning, c.doubtful ? "doubtful" : "ok", c.fix);
     } else {
-      for (const WarningCode& c : warning_codes()) fmt::print("{:24} {}\n", c.code, c.meaning);
+      for (const WarningCode& c : warning_codes())
+        fmt::print("{:24} {}{}\n", c.code, c.meaning,
+                   c.doubtful ? fmt::format(" [the prediction is doubtful; fix: {}]", c.fix) : "");
     }
     return 0;
   };

@@ -36,6 +36,13 @@ struct ReadOptions {
   ProfileFormat format = ProfileFormat::Auto;
   /// Unit assumed for text columns that carry no unit ("m", "mm", "um", "nm"; empty = metres).
   std::string default_unit;
+  /// The unit of the file's numbers, overriding whatever the file says (a header, a column name,
+  /// a format's metadata; "m", "mm", "um", "nm", "pm", "angstrom"; empty = the file's own):
+  /// x_unit for the lateral lengths (x, y, their spacing and origin), z_unit for the heights. The
+  /// values read are rescaled from the unit the reader applied (SurfaceData::x_unit_scale,
+  /// z_unit_scale; metres for formats that store SI values) and a warning says so when that
+  /// changes them (docs/io.md, "Units").
+  std::string x_unit, z_unit;
   /// Columns (0-based) used for x and z in delimited text; -1 = automatic (an index column
   /// 0, 1, 2, ... before two more columns is skipped).
   int x_column = -1;
@@ -79,6 +86,11 @@ struct SurfaceData {
   /// Every channel the file holds (one for the native formats); `channel` is the one read.
   std::vector<ChannelInfo> channels;
   std::size_t channel = 0;
+  /// Metres per unit of the file's lateral numbers and of its heights as read: the unit the reader
+  /// applied (the file's, ReadOptions::default_unit's, or an override's; 1 for formats that store
+  /// SI values; x_unit_scale 0 where the file holds no lateral numbers and the spacing was given,
+  /// in metres: then ReadOptions::x_unit changes nothing) (unit: m per file unit).
+  double x_unit_scale = 1, z_unit_scale = 1;
 };
 
 /// A readable format, for `frictal formats`.

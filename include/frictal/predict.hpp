@@ -156,6 +156,15 @@ struct Prediction {
   std::vector<double> drop_steering;
   std::vector<std::array<double, 2>> drop_offsets;  ///< maps: the drops (x, y) (unit: m)
   std::vector<Warning> warnings;
+  /// "ok", or "doubtful" where a warning says the input was probably read wrong (a code marked
+  /// `doubtful` in warning_codes(): units, spikes left in, scans that do not match, an angle at 90
+  /// deg): then the number is not the surfaces' friction until the fix is applied.
+  std::string trust = "ok";
+  std::vector<std::string> trust_codes;  ///< the codes that made it doubtful, in the order met
+  /// The fix that exists, as options to add (Python keywords in parentheses), with the unit named
+  /// where the file's unit and the slopes tell it (e.g. "--z-unit um (Python z_unit='um')"); empty
+  /// when ok.
+  std::string trust_fix;
 };
 
 /// The stated test's default lengths (docs/theory.md, "The stated test", says why these
@@ -188,6 +197,9 @@ struct PredictSurface {
   Map map;
   std::string name;
   std::vector<std::string> reader_warnings;
+  /// Metres per unit of the file's lateral numbers and heights as read (SurfaceData's); 0: not read
+  /// from a file. The trust's fix names the unit to give from them (unit: m per file unit).
+  double x_unit_scale = 0, z_unit_scale = 0;
 };
 
 /// A surface as a reader gave it (a map, or a curve that must be single-valued), named `name`,

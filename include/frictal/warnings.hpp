@@ -25,10 +25,28 @@ struct Warning {
 struct WarningCode {
   std::string code;
   std::string meaning;
+  /// The input was probably read wrong (units, spikes left in, scans that do not match, an angle
+  /// at 90 deg): a prediction that carries the code is "doubtful" (Prediction::trust), its number
+  /// not the surfaces' friction until the fix is applied.
+  bool doubtful = false;
+  /// The fix that exists: the CLI options to add (Python's keywords in parentheses); empty: none.
+  std::string fix;
 };
 
 /// Every warning code the library issues, in one table.
 const std::vector<WarningCode>& warning_codes();
+/// The entry of `code` in warning_codes(); nullptr for a code not in it.
+const WarningCode* find_warning_code(const std::string& code);
+
+/// Whether a result with these warnings is to be trusted: "ok", or "doubtful" with the codes
+/// that make it so (warning_codes()' `doubtful` ones, in the order met, each once) and their
+/// fixes joined ("; ").
+struct Trust {
+  std::string verdict = "ok";
+  std::vector<std::string> codes;
+  std::string fix;
+};
+Trust assess_trust(const std::vector<Warning>& warnings);
 
 /// Appends `w` unless a warning with the same code and message is already there.
 void add_warning(std::vector<Warning>& list, Warning w);
@@ -43,10 +61,16 @@ struct PlausibilityLimits {
   double max_kurtosis = 30;       ///< height kurtosis above this: a few outliers dominate (unitless)
   double max_repeated_fraction = 0.05;  ///< one height value repeated over this fraction: a fill value (unitless)
   double max_scale_ratio = 10;          ///< two scans whose lengths or spacings differ by more (unitless)
+  /// lateral-suspect: an rms slope below this (unitless; 1e-4 is 0.006 deg, 40x below the smoothest
+  /// measured surface in the project's test files, 0.0037) on points spaced more than
+  /// `lateral_suspect_spacing` apart: lateral lengths read in a unit too large (x in mm read as m
+  /// makes the slopes 1000x smaller and the spacing 1000x larger).
+  double min_rms_slope = 1e-4;
+  double lateral_suspect_spacing = 2e-5;  ///< (unit: m) 20 um: coarser than roughness instruments sample
 };
 
 /// Plausibility of one measured profile; `name` names it in the messages. Codes: units-suspect,
-/// heights-tiny, heights-exceed-length, spikes, kurtosis, fill-value.
+/// lateral-suspect, heights-tiny, heights-exceed-length, spikes, kurtosis, fill-value.
 std::vector<Warning> check_profile(const Profile& p, const std::string& name, const PlausibilityLimits& limits = {});
 /// The same for an areal map (NaN points are not measured and are skipped).
 std::vector<Warning> check_map(const Map& m, const std::string& name, const PlausibilityLimits& limits = {});

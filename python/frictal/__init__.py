@@ -107,7 +107,9 @@ def predict(lower, upper=None, **options):
     ``remove_spikes`` (replace, for maps mask, the points more than ``spike_threshold`` rms heights
     from the median of their neighbours, after the crop and before the form; default 10),
     ``start_offset`` (x, or (x, y) for maps: one drop), ``drops`` (maps: N x N), ``locked``
-    (maps: the locked diagnostic), ``format``, ``unit``, ``threads``.
+    (maps: the locked diagnostic), ``format``, ``unit`` (the files' lengths, x and z: "m", "mm",
+    "um", "nm", overriding the units a file names), ``x_unit`` / ``z_unit`` (the lateral lengths or
+    the heights alone), ``threads``.
 
     Returns a ``Prediction``: SI attributes (``friction_angle`` is the median over drops of the hold
     angle, atomic friction included; ``upper_bound_friction_angle`` is theta_max + theta_a;
@@ -115,6 +117,9 @@ def predict(lower, upper=None, **options):
     ``d_sweep_median``, ``d_sweep_q05``, ``d_sweep_q95`` the answer at d/4 .. 4d) and
     ``to_dict()`` with the keys and units of ``frictal predict --json``. Each of its warnings is also
     issued through ``warnings.warn`` with the category of its code (``FrictalWarning`` subclasses).
+    ``trust`` is "ok", or "doubtful" where a warning says the input was probably read wrong
+    (``trust_codes``); ``trust_fix`` then names the keywords (and CLI options) that fix it, e.g.
+    ``z_unit='um'``.
     """
     import warnings as _warnings
 

@@ -124,6 +124,15 @@ class Prediction:
         """The keys and interface units of `frictal predict --json`, and its values: None where the JSON has null (a number that is not finite), so that json.dumps(..., allow_nan=False) writes it"""
     def to_json(self) -> str: ...
     @property
+    def trust(self) -> Any:
+        """ok, or doubtful: a warning says the input was probably read wrong (units, spikes left in, scans that do not match, an angle at 90 deg); the number is then not the surfaces' friction until trust_fix is applied (text)"""
+    @property
+    def trust_codes(self) -> Any:
+        """the warning codes that made the prediction doubtful, comma-separated (text)"""
+    @property
+    def trust_fix(self) -> Any:
+        """the fix for a doubtful prediction: the options to add (Python keywords in parentheses), the unit named where the file's unit and the slopes tell it (text)"""
+    @property
     def upper_bound_friction_angle(self) -> Any:
         """rigid upper bound theta_max + theta_a (Eq. 6), reached only where the block can get to the steepest contact (rad)"""
     @property
@@ -296,7 +305,7 @@ def map_stats(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: fl
 def power_spectrum(profile: Profile, max_k: int = ...) -> tuple:
     """Power spectrum of a profile (m, runs without the GIL): returns (q in rad/m, C in m^3) of the piecewise-linear profile, with 2 sum C / L = rms^2; max_k: 0 = automatic"""
 
-def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., block_length: Any = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., threads: int = ...) -> Prediction:
+def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., x_unit: str = ..., z_unit: str = ..., threads: int = ...) -> Prediction:
     """The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)"""
 
 def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ...) -> dict:
@@ -317,8 +326,8 @@ def read_map(path: str, *, format: str = ...) -> dict:
 def read_profile(path: str) -> Profile:
     """Reads a single-valued profile (any readable format) in metres (runs without the GIL)"""
 
-def read_surface(path: str, *, format: str = ..., unit: str = ..., spacing: float = ..., channel: str = ...) -> dict:
-    """Reads any supported file (CSV/TSV/text, .npy, gzip, Dektak, Gwyddion text, X3P, SDF, and every format Gwyddion's modules load when installed; runs without the GIL). format: auto or a name of `frictal formats`; unit: m, mm, um or nm for text columns that name none; spacing: point spacing (m) for a single column of heights; channel: index or name of a multi-channel file's channel. Returns a dict: kind 'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings. Metres."""
+def read_surface(path: str, *, format: str = ..., unit: str = ..., spacing: float = ..., channel: str = ..., x_unit: str = ..., z_unit: str = ...) -> dict:
+    """Reads any supported file (CSV/TSV/text, .npy, gzip, Dektak, Gwyddion text, X3P, SDF, and every format Gwyddion's modules load when installed; runs without the GIL). format: auto or a name of `frictal formats`; unit: m, mm, um or nm for the file's lengths, x and z (overriding the units it names, with a warning; for columns that name none instead of metres); x_unit, z_unit: the same for the lateral lengths or the heights alone; spacing: point spacing (m) for a single column of heights; channel: index or name of a multi-channel file's channel. Returns a dict: kind 'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings, x_unit_scale and z_unit_scale (m per unit of the file's numbers as read). Metres."""
 
 def rotate180(profile: Profile) -> Profile:
     """The profile (m) turned over by 180 degrees (x -> -x, z -> -z, re-sorted): how an upper block's face, measured with its material below, faces the lower one"""

@@ -58,11 +58,16 @@ Map to_map(const py::array_t<double, py::array::c_style | py::array::forcecast>&
 /// io_bindings.cpp.
 std::optional<CropWindow> crop_window(const py::object& crop);
 
-/// A surface from a path (read with `format`, `unit`, `spacing`), a Profile, a dict as
-/// read_surface/read_map return it, or a numpy array of heights (1-D: a profile, 2-D: a map, rows
-/// along y) with `spacing` (m); `what` names it in errors (ValueError/TypeError).
+/// A surface from a path (read with `format`, `unit`, `spacing`, and the unit overrides `x_unit`,
+/// `z_unit`: ReadOptions'), a Profile, a dict as read_surface/read_map return it, or a numpy array
+/// of heights (1-D: a profile, 2-D: a map, rows along y) with `spacing` (m); `what` names it in
+/// errors (ValueError/TypeError).
 PredictSurface to_surface(const py::handle& obj, double spacing, const std::string& format, const std::string& unit,
-                          const std::string& what);
+                          const std::string& what, const std::string& x_unit = "", const std::string& z_unit = "");
+
+/// ReadOptions' units from Python's keywords: `unit` for both axes (and for columns that name
+/// none), `x_unit` / `z_unit` for one (ValueError for a unit that is no length).
+void set_units(ReadOptions& o, const std::string& unit, const std::string& x_unit, const std::string& z_unit);
 
 /// A profile pair as signature() and hold_angle() take it: each side read as to_surface reads it
 /// and conditioned as `frictal signature` conditions its files (crop, spikes, then the form

@@ -84,10 +84,11 @@ py::dict map_dict(const Map& m) {
 }
 
 ReadOptions read_options(const std::string& format, const std::string& unit, double spacing = 0,
-                         const std::string& channel = "") {
+                         const std::string& channel = "", const std::string& x_unit = "",
+                         const std::string& z_unit = "") {
   ReadOptions o;
   o.format = ok(parse_format(format));
-  o.default_unit = unit;
+  py_detail::set_units(o, unit, x_unit, z_unit);
   o.spacing = spacing;
   o.channel = channel;
   return o;
@@ -120,9 +121,9 @@ void frictal_bind_io(py::module_& m) {
   m.def(
       "read_surface",
       [](const std::string& path, const std::string& format, const std::string& unit, double spacing,
-         const std::string& channel) {
+         const std::string& channel, const std::string& x_unit, const std::string& z_unit) {
         require_file(path);
-        const ReadOptions o = read_options(format, unit, spacing, channel);
+        const ReadOptions o = read_options(format, unit, spacing, channel, x_unit, z_unit);
         SurfaceData s = ok(nogil([&] { return read_surface(path, o); }));
         py::dict d = s.is_map ? map_dict(s.map) : py::dict();
         d["kind"] = s.is_map ? "map" : "profile";
@@ -133,15 +134,19 @@ void frictal_bind_io(py::module_& m) {
         d["format"] = format_name(s.format);
         d["warnings"] = s.warnings;
         d["reader"] = s.reader;  // "native", "native (gzip)" or "gwyddion:<module>"
+        d["x_unit_scale"] = s.x_unit_scale;
+        d["z_unit_scale"] = s.z_unit_scale;
         return d;
       },
       py::arg("path"), py::kw_only(), py::arg("format") = "auto", py::arg("unit") = "", py::arg("spacing") = 0.0,
-      py::arg("channel") = "",
+      py::arg("channel") = "", py::arg("x_unit") = "", py::arg("z_unit") = "",
       "Reads any supported file (CSV/TSV/text, .npy, gzip, Dektak, Gwyddion text, X3P, SDF, and every format "
       "Gwyddion's modules load when installed; runs without the GIL). format: auto or a name of `frictal formats`; "
-      "unit: m, mm, um or nm for text columns that name none; spacing: point spacing (m) for a single column of "
-      "heights; channel: index or name of a multi-channel file's channel. Returns a dict: kind "
-      "'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings. Metres.");
+      "unit: m, mm, um or nm for the file's lengths, x and z (overriding the units it names, with a warning; for "
+      "columns that name none instead of metres); x_unit, z_unit: the same for the lateral lengths or the heights "
+      "alone; spacing: point spacing (m) for a single column of heights; channel: index or name of a multi-channel "
+      "file's channel. Returns a dict: kind 'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, "
+      "warnings, x_unit_scale and z_unit_scale (m per unit of the file's numbers as read). Metres.");
   m.def(
       "read_map",
       [](const std::string& path, const std::string& format) {

@@ -12,6 +12,7 @@
 #include "bindings.hpp"
 #include "frictal/io.hpp"
 #include "frictal/predict.hpp"
+#include "frictal/units.hpp"
 #include "frictal/warnings.hpp"
 
 namespace py = pybind11;
@@ -22,8 +23,19 @@ using frictal::py_detail::nogil;
 using frictal::py_detail::ok;
 using frictal::py_detail::to_surface;
 
+void frictal::py_detail::set_units(ReadOptions& o, const std::string& unit, const std::string& x_unit,
+                                   const std::string& z_unit) {
+  for (const auto& [key, u] : {std::pair{"unit", &unit}, {"x_unit", &x_unit}, {"z_unit", &z_unit}})
+    if (!u->empty() && !units::length_scale(*u))
+      throw py::value_error(std::string(key) + "='" + *u + "': not a length unit (expected m, mm, um, nm)");
+  o.default_unit = unit;
+  o.x_unit = x_unit.empty() ? unit : x_unit;
+  o.z_unit = z_unit.empty() ? unit : z_unit;
+}
+
 PredictSurface frictal::py_detail::to_surface(const py::handle& obj, double spacing, const std::string& format,
-                                              const std::string& unit, const std::string& what) {
+                                              const std::string& unit, const std::string& what,
+                                              const std::string& x_unit, const std::string& z_unit) {
   PredictSurface s;
   s.name = what;
   if (py::isinstance<py::str>(obj) || py::hasattr(obj, "__fspath__")) {
@@ -31,12 +43,14 @@ PredictSurface frictal::py_detail::to_surface(const py::handle& obj, double spac
     py_detail::require_file(path);
     ReadOptions o;
     o.format = ok(parse_format(format));
-    o.default_unit = unit;
+    set_units(o, unit, x_unit, z_unit);
     o.spacing = spacing;
     SurfaceData d = ok(nogil([&] { return read_surface(path, o); }));
     s.name = path;
     s.is_map = d.is_map;
     s.reader_warnings = d.warnings;
+    s.x_unit_scale = d.x_unit_scale;
+    s.z_unit_scale = d.z_unit_scale;
     if (d.is_map)
       s.map = std::move(d.map);
     else
@@ -238,7 +252,8 @@ void frictal_bind_predict(py::module_& m) {
       [](const py::object& lower, const py::object& upper, double direction, double atomic_friction,
          double runaway_distance, const py::object& block_length, std::optional<std::string> detrend_text, const py::object& crop, bool remove_spikes,
          double spike_threshold, std::optional<std::vector<double>> start, int drops, bool locked, double spacing,
-         const std::string& format, const std::string& unit, unsigned threads) {
+         const std::string& format, const std::string& unit, const std::string& x_unit, const std::string& z_unit,
+         unsigned threads) {
         PredictOptions o;
         o.crop = py_detail::crop_window(crop);
         o.crop_source = "crop=" + py::repr(crop).cast<std::string>();
@@ -268,7 +283,7 @@ void frictal_bind_predict(py::module_& m) {
         // The surfaces handed over (a profile's points moved, not copied); where the one pass's lift
         // falls short (an Internal error; rare) they are made again and kept for the second analysis.
         auto make = [&](const py::object& obj, const char* what) {
-          return to_surface(obj, spacing, format, unit, what);
+          return to_surface(obj, spacing, format, unit, what, x_unit, z_unit);
         };
         PredictSurface lo = make(lower, "lower");
         std::optional<PredictSurface> up;
@@ -285,7 +300,8 @@ void frictal_bind_predict(py::module_& m) {
       py::arg("detrend") = py::none(), py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
       py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("start_offset") = py::none(),
       py::arg("drops") = PredictOptions{}.map_drops, py::arg("locked") = PredictOptions{}.map_locked,
-      py::arg("spacing") = 0.0, py::arg("format") = "auto", py::arg("unit") = "", py::arg("threads") = 0u,
+      py::arg("spacing") = 0.0, py::arg("format") = "auto", py::arg("unit") = "", py::arg("x_unit") = "",
+      py::arg("z_unit") = "", py::arg("threads") = 0u,
       "The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)");
   m.def(
       "areal_hold",

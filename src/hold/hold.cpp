@@ -1074,10 +1074,14 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
   struct Chunk {
     std::vector<double> kx, kh;  // meeting points, in order
     std::size_t error_at = static_cast<std::size_t>(-1);
+    std::size_t skipped = 0;  // points at the offset of the point before them (written once)
     bool not_finite = false;
   };
+  constexpr std::uint8_t kMeeting = 1, kSkipPoint = 2;
   std::vector<Chunk> chunks(T);
-  std::vector<std::uint8_t> kink(n, 0);  // kink[i]: a meeting point between points i - 1 and i
+  // kink[i]: kMeeting, a meeting point between points i - 1 and i; kSkipPoint, point i coincides
+  // with point i - 1 and is not written.
+  std::vector<std::uint8_t> kink(n, 0);
   util::parallel_chunks(n, T, [&](unsigned c, std::size_t i0, std::size_t i1) {
     Chunk& ch = chunks[c];
     // At most one meeting point per interval: reserved at once (pages are taken only as they are
@@ -1100,6 +1104,15 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
         ch.not_finite = true;
         return;
       }
+      if (i > 0 && q.s == prev.s) {
+        // Two events at one offset (the same contact change reached from two sides, or two sets of
+        // points merged): one vertex, with the later event's slope to its right.
+        kink[i] = kSkipPoint;
+        ++ch.skipped;
+        prev.right = q.right;
+        have_tan_right = false;
+        continue;
+      }
       if (i > 0 && !(q.s > prev.s)) {
         ch.error_at = i;
         return;
@@ -1119,9 +1132,12 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
           // No vertex where one tangent already joins both ends (a kink at the event itself).
           const double tol = 1e-9 * std::abs(h1 - h0) + 1e-14 * std::max(std::abs(h0), std::abs(h1));
           const bool joined = std::abs(h0 + m0 * span - h1) <= tol || std::abs(h1 - m1 * span - h0) <= tol;
-          if (!joined && xs > x0 - 1e-6 * span && xs < x1 + 1e-6 * span) {
-            const double xc = std::clamp(xs, x0 + eps, x1 - eps);
-            kink[i] = 1;
+          const double xc = std::clamp(xs, x0 + eps, x1 - eps);
+          // An interval too short for a point strictly inside it (two events within a few ulps of
+          // each other, as the offsets of an x column printed with 8 digits give): no vertex; the
+          // piece between the events is their chord, off the tangents by rounding only.
+          if (!joined && xs > x0 - 1e-6 * span && xs < x1 + 1e-6 * span && xc > x0 && xc < x1) {
+            kink[i] = kMeeting;
             ch.kx.push_back(xc);
             // Height from the flatter tangent (the steeper one may be a wall, tan(90 deg) ~ 1e16).
             ch.kh.push_back(std::abs(m0) <= std::abs(m1) ? h0 + m0 * (xc - x0) : h1 + m1 * (xc - x1));
@@ -1131,22 +1147,23 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
       prev = q;
     }
   });
-  std::size_t kinks = 0;
-  std::vector<std::size_t> before(T);  // meeting points before chunk c
+  std::size_t kinks = 0, skipped = 0;
+  std::vector<std::ptrdiff_t> before(T);  // meeting points less skipped points before chunk c
   for (unsigned c = 0; c < T; ++c) {
     if (chunks[c].error_at != static_cast<std::size_t>(-1))
       return make_error(
           chunks[c].not_finite
               ? fmt::format("lift_curve: offset {} of the signature is not finite", chunks[c].error_at)
               : fmt::format("lift_curve: the signature's offsets must increase (offset {})", chunks[c].error_at));
-    before[c] = kinks;
+    before[c] = kinks - skipped;
     kinks += chunks[c].kx.size();
+    skipped += chunks[c].skipped;
   }
   LiftCurve c;
   c.period = period;
   const std::size_t nh = head ? head->offset.size() - 1 : 0, nt = tail ? tail->offset.size() - 1 : 0;
-  c.offset.resize(nh + n + kinks + nt);
-  c.lift.resize(nh + n + kinks + nt);
+  c.offset.resize(nh + n - skipped + kinks + nt);
+  c.lift.resize(nh + n - skipped + kinks + nt);
   if (head) {
     std::copy(head->offset.begin(), head->offset.end() - 1, c.offset.begin());
     std::copy(head->lift.begin(), head->lift.end() - 1, c.lift.begin());
@@ -1157,9 +1174,10 @@ Result<LiftCurve> build_curve(std::size_t n, bool slopes, double period, unsigne
   }
   util::parallel_chunks(n, T, [&](unsigned t, std::size_t i0, std::size_t i1) {
     const Chunk& ch = chunks[t];
-    std::size_t w = nh + i0 + before[t], k = 0;
+    std::size_t w = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(nh + i0) + before[t]), k = 0;
     for (std::size_t i = i0; i < i1; ++i) {
-      if (kink[i]) {
+      if (kink[i] == kSkipPoint) continue;
+      if (kink[i] == kMeeting) {
         c.offset[w] = ch.kx[k];
         c.lift[w] = ch.kh[k];
         ++w;

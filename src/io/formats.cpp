@@ -186,6 +186,8 @@ Result<SurfaceData> read_npy_bytes(std::string_view bytes, const std::string& na
     out.warnings.push_back(
         fmt::format("{}: .npy arrays carry no unit; heights read as metres (give a unit to override)", name));
   }
+  out.z_unit_scale = zs;
+  out.x_unit_scale = 0;  // no lateral numbers: the spacing, given in metres, is the one lateral length
   InvalidCount invalid;
   const bool profile = dims.size() == 1 || dims[0] == 1 || dims[1] == 1;
   if (profile) {

@@ -473,6 +473,8 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
   if (!sxy || !sz)
     return make_error(fmt::format("{}: channel {} '{}' has lateral unit '{}' and value unit '{}', not lengths", path,
                                   pick, ch.info.name, ch.info.xy_unit, ch.info.z_unit));
+  out.x_unit_scale = *sxy;
+  out.z_unit_scale = *sz;
   io_detail::InvalidCount invalid;
   if (ch.info.is_map) {
     void* f = nullptr;

@@ -211,12 +211,53 @@ Result<SurfaceData> checked_spacing(Result<SurfaceData> r, const std::string& na
   return r;
 }
 
+/// The name of a unit scale (metres per unit) for messages: "m", "mm", "um", "nm", "pm", or "1e-05 m".
+std::string unit_word(double scale) {
+  for (const auto& [s, w] : {std::pair{1.0, "m"}, {1e-3, "mm"}, {1e-6, "um"}, {1e-9, "nm"}, {1e-12, "pm"}})
+    if (std::abs(scale - s) <= 1e-9 * s) return w;
+  return fmt::format("{:g} m", scale);
+}
+
+/// ReadOptions::x_unit / z_unit: the values read rescaled from the unit the reader applied to the
+/// unit given, with a warning where that changes them.
+Result<SurfaceData> with_units(Result<SurfaceData> r, const ReadOptions& o, const std::string& name) {
+  if (!r) return r;
+  for (const bool lateral : {true, false}) {
+    const std::string& unit = lateral ? o.x_unit : o.z_unit;
+    if (unit.empty()) continue;
+    const std::optional<double> s = io_detail::unit_scale(unit);
+    if (!s)
+      return make_error(
+          fmt::format("{}: unknown unit '{}' (expected m, mm, um, nm)", lateral ? "x_unit" : "z_unit", unit));
+    double& applied = lateral ? r->x_unit_scale : r->z_unit_scale;
+    if (!(applied > 0) || std::abs(*s - applied) <= 1e-12 * *s) {
+      applied = *s;
+      continue;
+    }
+    const double f = *s / applied;
+    if (lateral) {
+      if (r->is_map) {
+        r->map.dx *= f, r->map.dy *= f, r->map.x0 *= f, r->map.y0 *= f;
+      } else {
+        for (double& x : r->curve.x) x *= f;
+      }
+    } else {
+      for (double& z : r->is_map ? r->map.heights : r->curve.z) z *= f;
+    }
+    r->warnings.push_back(fmt::format("{}: {} are read in {}, the {} given, not in {} as the file gives or implies",
+                                      name, lateral ? "the lateral lengths" : "the heights", unit_word(*s),
+                                      lateral ? "x unit" : "z unit", unit_word(applied)));
+    applied = *s;
+  }
+  return r;
+}
+
 }  // namespace
 
 Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
   auto r = read_native_bytes(bytes, name, options, 0);
   if (r) describe_native(*r);
-  return checked_spacing(std::move(r), name);
+  return checked_spacing(with_units(std::move(r), options, name), name);
 }
 
 static Status check_native_channel(const SurfaceData& s, const std::string& path, const ReadOptions& options) {
@@ -298,7 +339,7 @@ std::optional<SurfaceData> read_text_mapped(const std::string& path, const ReadO
 static Result<SurfaceData> read_surface_unchecked(const std::string& path, const ReadOptions& options);
 
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {
-  return checked_spacing(read_surface_unchecked(path, options), path);
+  return checked_spacing(with_units(read_surface_unchecked(path, options), options, path), path);
 }
 
 static Result<SurfaceData> read_surface_unchecked(const std::string& path, const ReadOptions& options) {

@@ -319,6 +319,91 @@ std::optional<std::pair<double, double>> regular_axis(std::vector<double> v, std
   return std::pair{a, b};
 }
 
+/// An x column that is a uniform grid as far as its printed digits tell: x_k = x0 + k dx.
+struct PrintedGrid {
+  double x0 = 0, dx = 0;
+  double min_step = 0, max_step = 0;  // the steps as printed
+  double unit = 0;                    // the coarsest last printed digit (10^e)
+  bool changed = false;               // some printed x differs from the grid by more than float rounding
+  bool from_header = false;           // dx is the header's stated spacing
+};
+
+/// Whether the printed x column `x` (last printed digits at 10^e[k]) is a uniform grid within its
+/// printing: every x_k lies within half a unit of its printing precision of the grid x0 + k dx,
+/// where the grid's ends are the printed first and last values (each off by up to half its unit:
+/// the line through them is off by at most the larger half unit anywhere), plus a few ulps of
+/// float slack. The printing precision of a value is the writer's format, read from the whole
+/// column: a fixed number of decimals (the most any value has) or of significant digits (the most
+/// any value has); of the two, the coarser at that value, and never coarser than the value's own
+/// last digit. (A writer that drops trailing zeros prints 0.5 for 0.50000000: its other values
+/// show how many digits it keeps; a shortest round-trip writer keeps 17, and nothing is changed.)
+/// The spacing is the header's (`header_dx`, in the column's unit) when the grid with it fits the
+/// same bound, else the whole column's (x_last - x_0) / (n - 1). A column that is not uniform
+/// within its printing (a non-uniform sampling, a column printed with all its digits) gives
+/// nullopt.
+std::optional<PrintedGrid> printed_uniform_grid(const std::vector<double>& x, const std::vector<signed char>& e,
+                                                std::optional<double> header_dx) {
+  const std::size_t n = x.size();
+  if (n < 3 || e.size() != n) return std::nullopt;
+  double scale = 0;
+  int finest = kNoPrintedDigit, significant = 0;  // the most decimals, the most significant digits
+  std::vector<int> lead(n, kNoPrintedDigit);      // exponent of each value's leading digit
+  for (std::size_t k = 0; k < n; ++k) {
+    if (e[k] == kNoPrintedDigit || !std::isfinite(x[k])) return std::nullopt;
+    scale = std::max(scale, std::abs(x[k]));
+    finest = std::min(finest, int(e[k]));
+    if (x[k] != 0) {
+      lead[k] = int(std::floor(std::log10(std::abs(x[k]))));
+      significant = std::max(significant, lead[k] - e[k] + 1);
+    }
+  }
+  std::vector<double> halfs(n);
+  double unit = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    double u = std::pow(10.0, finest);
+    if (lead[k] != kNoPrintedDigit && significant > 0) u = std::max(u, std::pow(10.0, lead[k] - significant + 1));
+    u = std::min(u, std::pow(10.0, e[k]));
+    halfs[k] = 0.5 * u;
+    unit = std::max(unit, u);
+  }
+  const double slack = 8 * std::numeric_limits<double>::epsilon() * scale;
+  auto half = [&](std::size_t k) { return halfs[k]; };
+  // The largest residual beyond its bound (<= 0: every point fits), and the largest residual.
+  auto misfit = [&](double x0, double dx, double end_error, double& largest) {
+    double worst = -INFINITY;
+    largest = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double r = std::abs(x[k] - (x0 + double(k) * dx));
+      largest = std::max(largest, r);
+      worst = std::max(worst, r - (half(k) + end_error + slack));
+    }
+    return worst;
+  };
+  PrintedGrid g;
+  g.x0 = x[0];
+  g.dx = (x[n - 1] - x[0]) / double(n - 1);
+  if (!(std::abs(g.dx) > 0) || !std::isfinite(g.dx)) return std::nullopt;
+  double largest = 0;
+  if (misfit(g.x0, g.dx, std::max(half(0), half(n - 1)), largest) > 0) return std::nullopt;
+  g.changed = largest > slack;
+  g.unit = unit;
+  g.min_step = INFINITY, g.max_step = -INFINITY;
+  for (std::size_t k = 1; k < n; ++k) {
+    g.min_step = std::min(g.min_step, x[k] - x[k - 1]);
+    g.max_step = std::max(g.max_step, x[k] - x[k - 1]);
+  }
+  if (header_dx && *header_dx > 0) {
+    const double hdx = g.dx < 0 ? -*header_dx : *header_dx;
+    double l = 0;
+    if (misfit(g.x0, hdx, half(0), l) <= 0) {
+      g.dx = hdx;
+      g.from_header = true;
+      g.changed = l > slack;
+    }
+  }
+  return g;
+}
+
 }  // namespace
 
 // Lines of a text one at a time, as split_lines() cuts them (no vector of every line: a 10^7
@@ -413,6 +498,10 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     std::size_t size() const { return ncols ? v.size() / ncols : 0; }
     const double* operator[](std::size_t k) const { return v.data() + k * ncols; }
     void push_back(const std::vector<double>& r) { v.insert(v.end(), r.begin(), r.end()); }
+    // The last printed digit (last_digit_exponent) of the first `dcols` columns of each row, the
+    // columns x can be in: whether x is a rounded uniform grid (printed_uniform_grid).
+    std::vector<signed char> digits;
+    std::size_t dcols = 0;
   } rows;
   RowLines row_line;
   std::vector<double> vals;
@@ -456,6 +545,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       }
       if (rows.empty()) {
         ncols = rows.ncols = vals.size();
+        rows.dcols = std::min<std::size_t>(ncols, std::size_t(std::max(2, options.x_column + 1)));
       } else if (vals.size() != ncols) {
         return make_error(fmt::format("{}:{}: expected {} columns like line {}, found {}", name, ln.number, ncols,
                                       row_line.front(), vals.size()));
@@ -463,6 +553,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       if (rows.size() >= options.max_points)
         return make_error(fmt::format("{}: more than {} points (limit max_points)", name, options.max_points));
       rows.push_back(vals);
+      for (std::size_t c = 0; c < rows.dcols; ++c)
+        rows.digits.push_back(static_cast<signed char>(last_digit_exponent(f[c], delim.decimal_comma)));
       row_line.push_back(ln.number);
       if (!reserved && rows.size() == 4096) {
         // Room for the rest at the bytes per row so far (+10 %), so that a large file's rows are
@@ -472,6 +564,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
         const double estimate = 1.1 * static_cast<double>(rows.size()) * static_cast<double>(text.size()) / used;
         const double cap = static_cast<double>(options.max_points) + 1;
         rows.v.reserve(static_cast<std::size_t>(std::min(estimate, cap)) * ncols);
+        rows.digits.reserve(static_cast<std::size_t>(std::min(estimate, cap)) * rows.dcols);
       }
     } else if (rows.empty()) {
       headers.push_back(f);
@@ -489,6 +582,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   // A single column whose first line is not its count: that line is the first height.
   if (ncols == 1 && count_line_number && (std::size_t(count_line_value) != rows.size() || rows.size() < 2)) {
     rows.v.insert(rows.v.begin(), double(count_line_value));
+    rows.digits.insert(rows.digits.begin(), 0);
     row_line.push_front(count_line_number);
     count_line_value = -1;
   }
@@ -512,7 +606,9 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
     fallback_unit = *s;
   }
-  // A length from the header ("w = 10 um"; a bare number is in `bare_scale`).
+  // A length from the header ("w = 10 um"; a bare number is in `bare_scale`); the unit of the
+  // last one read is the lateral unit the reader applied (SurfaceData::x_unit_scale).
+  std::optional<double> lateral_unit_seen;
   auto header_length = [&](std::initializer_list<const char*> keys,
                            double bare_scale) -> Result<std::optional<double>> {
     const std::string* v = hp.get(keys);
@@ -522,6 +618,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     if (!number_with_unit(*v, x, sc) || !(x > 0))
       return make_error(fmt::format("{}: header value '{}' for '{}' is not a positive length (number and unit)", name,
                                     *v, *keys.begin()));
+    lateral_unit_seen = sc.value_or(bare_scale);
     return std::optional<double>{x * sc.value_or(bare_scale)};
   };
   // Height unit named in the header ("# unit: nm", "Value units: um", "z unit = nm").
@@ -556,6 +653,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       out.warnings.push_back(
           fmt::format("{}: no length unit found for the heights; read as metres (give a unit to override)", name));
     const double zs = zu.value_or(fallback_unit);
+    out.z_unit_scale = zs;
+    out.x_unit_scale = options.spacing > 0 ? 0.0 : lateral_unit_seen.value_or(fallback_unit);
     InvalidCount invalid;
     for (std::size_t k = 0; k < rows.size(); ++k) {
       double z = rows[k][0];
@@ -617,6 +716,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       m.dx = gx->second * xu.value_or(fallback_unit);
       m.y0 = gy->first * yu.value_or(fallback_unit);
       m.dy = gy->second * yu.value_or(fallback_unit);
+      out.x_unit_scale = xu.value_or(fallback_unit);
+      out.z_unit_scale = zu.value_or(fallback_unit);
       m.heights.assign(nx * ny, std::numeric_limits<double>::quiet_NaN());
       std::vector<char> seen(nx * ny, 0);
       InvalidCount invalid;
@@ -732,6 +833,11 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     InvalidCount invalid;
     mask_invalid(m.heights, invalid);
     const double zs = zu.value_or(fallback_unit);
+    out.z_unit_scale = zs;
+    // 0: no lateral numbers in the file (the spacing given, in metres, is the one lateral length).
+    out.x_unit_scale = dx && !dxh->has_value() && !w->has_value() && !pixel->has_value() && options.spacing > 0
+                           ? 0.0
+                           : lateral_unit_seen.value_or(fallback_unit);
     for (double& v : m.heights) v *= zs;
     if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
     if (m.valid_count() == 0) return make_error(fmt::format("{}: no valid point", name));
@@ -800,14 +906,66 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
     fallback = *s;
   }
+  // A column without a unit takes the override given for its axis, else default_unit, else metres
+  // (with a warning); a column with one is rescaled by the override later (read_surface).
+  auto axis_fallback = [&](const std::string& unit) -> Result<std::optional<double>> {
+    if (unit.empty()) return std::optional<double>{};
+    auto s = unit_scale(unit);
+    if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", unit));
+    return std::optional<double>{*s};
+  };
+  auto xo = axis_fallback(options.x_unit), zo = axis_fallback(options.z_unit);
+  if (!xo) return xo.error();
+  if (!zo) return zo.error();
   auto xu = find_unit(xc), zu = find_unit(zc);
-  if ((!xu || !zu) && options.default_unit.empty())
+  const bool x_none = !xu && !*xo, z_none = !zu && !*zo;
+  if ((x_none || z_none) && options.default_unit.empty())
     out.warnings.push_back(
         fmt::format("{}: no length unit found for the {} column; values read as metres (give a unit to override)", name,
-                    !xu && !zu ? "x and z"
-                    : !xu      ? "x"
-                               : "z"));
-  double xs = xu.value_or(fallback), zs = zu.value_or(fallback);
+                    x_none && z_none ? "x and z"
+                    : x_none         ? "x"
+                                     : "z"));
+  double xs = xu.value_or(xo->value_or(fallback)), zs = zu.value_or(zo->value_or(fallback));
+  out.x_unit_scale = xs;
+  out.z_unit_scale = zs;
+
+  // An x column that is uniform within the digits it is printed with (an exporter that rounds
+  // x, e.g. steps alternating 0.1 and 0.2 um for 0.15625 um) is read as the uniform grid: the
+  // rounding's alternating steps are slopes that the surface does not have.
+  std::optional<PrintedGrid> grid;
+  if (std::size_t(xc) < rows.dcols) {
+    std::vector<double> xcol(rows.size());
+    std::vector<signed char> xdig(rows.size());
+    for (std::size_t k = 0; k < rows.size(); ++k) {
+      xcol[k] = rows[k][xc];
+      xdig[k] = rows.digits[k * rows.dcols + std::size_t(xc)];
+    }
+    // A spacing the header states ("# spacing: 0.5 um", Dektak's "Resolution"), in the x unit.
+    std::optional<double> header_dx;
+    if (const std::string* v = hp.get({"spacing", "dx", "xspacing", "step", "xstep", "sampling", "samplinginterval",
+                                       "interval", "increment", "xincrement", "resolution", "xresolution"})) {
+      double d = 0;
+      std::optional<double> sc;
+      if (number_with_unit(*v, d, sc) && d > 0) header_dx = d * sc.value_or(xs) / xs;
+    }
+    grid = printed_uniform_grid(xcol, xdig, header_dx);
+    if (grid && grid->changed) {
+      std::string stated;
+      if (const std::string* v = hp.get({"spacing", "dx", "xspacing", "step", "xstep", "sampling", "samplinginterval",
+                                         "interval", "increment", "xincrement", "resolution", "xresolution"}))
+        stated = grid->from_header ? fmt::format("the header's stated spacing '{}'", *v)
+                                   : fmt::format(
+                                         "the whole column's (x_last - x_0) / (n - 1); the header's '{}' "
+                                         "does not fit the column within its digits",
+                                         *v);
+      else
+        stated = "the whole column's (x_last - x_0) / (n - 1)";
+      out.warnings.push_back(fmt::format(
+          "{}: the x column is a uniform grid within the precision it is printed with (steps {:.6g} to {:.6g} m, last "
+          "printed digit {:.3g} m); read as the uniform grid of spacing {:.10g} m: {}",
+          name, grid->min_step * xs, grid->max_step * xs, grid->unit * xs, std::abs(grid->dx) * xs, stated));
+    }
+  }
 
   if (vc == xc || vc == zc) vc = -1;
   InvalidCount invalid;
@@ -833,6 +991,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       invalid.add(z);
       continue;
     }
+    if (grid && grid->changed) x = grid->x0 + double(k) * grid->dx;
     out.curve.x.push_back(x * xs);
     out.curve.z.push_back(z * zs);
   }
@@ -879,6 +1038,16 @@ Result<SurfaceData> parse_dektak(std::string_view text, const std::string& name,
   const char* e = last < lines.size() ? lines[last].text.data() : text.data() + text.size();
   // Keep the file's line numbers in messages: prefix as many newlines as lines skipped.
   std::string section(lines[first].number - 1, '\n');
+  // The stated resolution ("Resolution,0.156 um/sample") as a header line of the section, where
+  // the x column's reading compares it with the column (printed_uniform_grid).
+  for (std::size_t j = 0; j < k && !section.empty(); ++j) {
+    auto t = trim(lines[j].text);
+    if (lower_ascii(t).rfind("resolution,", 0) != 0) continue;
+    std::string value(trim(t.substr(11)));
+    if (auto slash = value.find('/'); slash != std::string::npos) value.resize(slash);
+    section = fmt::format("# resolution = {}{}", trim(value), section);
+    break;
+  }
   section.append(b, e);
   auto r = parse_delimited(section, name, options);
   if (!r) return r;
@@ -934,7 +1103,7 @@ bool looks_like_gwyddion(std::string_view text) {
 
 Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& name, const ReadOptions& options) {
   auto lines = split_lines(text);
-  std::optional<double> width, height, zscale;
+  std::optional<double> width, height, zscale, width_scale;
   std::vector<double> positional;  // length-valued header entries in order (fallback for unknown languages)
   std::vector<double> values;
   std::size_t nx = 0, ny = 0, first_line = 0;
@@ -946,9 +1115,12 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
     if (t.front() == '#') {
       if (!header_key(t, k, v)) continue;
       auto len = length_value(v);
-      if (is_width_key(k) && len)
+      if (is_width_key(k) && len) {
         width = len;
-      else if (is_height_key(k) && len)
+        double number = 0;
+        std::optional<double> unit;
+        if (number_with_unit(v, number, unit) && unit) width_scale = unit;
+      } else if (is_height_key(k) && len)
         height = len;
       else if (len)
         positional.push_back(*len);
@@ -1007,6 +1179,9 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
   if (!(m.dx > 0) || !(m.dy > 0) || !std::isfinite(m.dx) || !std::isfinite(m.dy))
     return make_error(fmt::format("{}: Width and Height must be positive", name));
   double zs = zscale.value_or(fallback);
+  out.z_unit_scale = zs;
+  if (!width || !height) out.x_unit_scale = fallback;
+  if (width_scale) out.x_unit_scale = *width_scale;
   m.heights = std::move(values);
   InvalidCount invalid;
   mask_invalid(m.heights, invalid);

@@ -1,6 +1,7 @@
 #include "io/text_util.hpp"
 
 #include <fmt/core.h>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -26,6 +27,40 @@ std::string lower_ascii(std::string_view s) {
   for (char& c : r)
     if (c >= 'A' && c <= 'Z') c = char(c - 'A' + 'a');
   return r;
+}
+
+int last_digit_exponent(std::string_view s, bool decimal_comma) {
+  s = trim(s);
+  const char point = decimal_comma ? ',' : '.';
+  std::size_t k = 0;
+  if (k < s.size() && (s[k] == '+' || s[k] == '-')) ++k;
+  bool digit = false, after_point = false;
+  int fraction = 0;
+  for (; k < s.size(); ++k) {
+    const char c = s[k];
+    if (c >= '0' && c <= '9') {
+      digit = true;
+      fraction += after_point;
+    } else if (c == point && !after_point) {
+      after_point = true;
+    } else {
+      break;
+    }
+  }
+  if (!digit) return kNoPrintedDigit;
+  long exponent = 0;
+  if (k < s.size() && (s[k] == 'e' || s[k] == 'E')) {
+    std::size_t j = k + 1;
+    bool negative = false;
+    if (j < s.size() && (s[j] == '+' || s[j] == '-')) negative = s[j++] == '-';
+    if (j >= s.size()) return kNoPrintedDigit;
+    for (; j < s.size() && s[j] >= '0' && s[j] <= '9'; ++j) exponent = std::min(exponent * 10 + (s[j] - '0'), 1000L);
+    if (j != s.size()) return kNoPrintedDigit;
+    if (negative) exponent = -exponent;
+  } else if (k != s.size()) {
+    return kNoPrintedDigit;
+  }
+  return static_cast<int>(std::clamp(exponent - fraction, -126L, 126L));
 }
 
 bool parse_double(std::string_view s, double& out, bool decimal_comma) {

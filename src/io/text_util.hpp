@@ -18,6 +18,11 @@ std::string lower_ascii(std::string_view s);
 /// Empty or partly numeric fields fail; numbers beyond the double range fail.
 bool parse_double(std::string_view s, double& out, bool decimal_comma = false);
 bool parse_int64(std::string_view s, long long& out);
+/// The decimal exponent of the last digit a number was printed with: "0.2" -> -1, "1500" -> 0,
+/// "1.6655563e-08" -> -15, "2,50" with decimal_comma -> -2 (clamped to [-126, 126]);
+/// kNoPrintedDigit for text without one (nan, inf).
+inline constexpr int kNoPrintedDigit = 127;
+int last_digit_exponent(std::string_view s, bool decimal_comma = false);
 
 /// Metres per unit for a unit word ("m", "mm", "um", "µm", "micron", "micrometer", "nm",
 /// "angstrom", "pm", ...); nullopt if the word is not a length unit.

@@ -32,6 +32,21 @@ double tan_or_inf(double a) { return a >= std::numbers::pi / 2 ? INFINITY : std:
 
 const Columns<Prediction>& prediction_columns() {
   static const Columns<Prediction> cols = {
+      column<P>("trust", "text",
+                "ok, or doubtful: a warning says the input was probably read wrong (units, spikes left in, scans "
+                "that do not match, an angle at 90 deg); the number is then not the surfaces' friction until "
+                "trust_fix is applied",
+                [](const P& p) { return p.trust; }),
+      column<P>("trust_codes", "text", "the warning codes that made the prediction doubtful, comma-separated",
+                [](const P& p) {
+                  std::string s;
+                  for (const std::string& c : p.trust_codes) s += (s.empty() ? "" : ",") + c;
+                  return s;
+                }),
+      column<P>("trust_fix", "text",
+                "the fix for a doubtful prediction: the options to add (Python keywords in parentheses), the unit "
+                "named where the file's unit and the slopes tell it",
+                [](const P& p) { return p.trust_fix; }),
       column<P>("model", "text", "the model of the hold angle: profile-quasi-static-hold or map-continuous-free",
                 [](const P& p) { return p.model; }),
       column<P>(

@@ -147,7 +147,10 @@ std::vector<OutputTable> make_tables() {
         ci("y0_m", "m", "y of the first node", "y0"), ci("points", "count", "points of the profile"),
         ci("valid_points", "count", "nodes with a measured height"), py("x", "m", "the profile's abscissae"),
         py("z", "m", "the profile's heights"), py("heights", "m", "the map's heights (ny, nx), NaN where not measured"),
-        py("dx", "m", "node spacing along x"), py("dy", "m", "node spacing along y")}});
+        py("dx", "m", "node spacing along x"), py("dy", "m", "node spacing along y"),
+        py("x_unit_scale", "1",
+           "metres per unit of the file's lateral numbers as read (0: none in the file, the spacing given)"),
+        py("z_unit_scale", "1", "metres per unit of the file's heights as read")}});
   t.push_back({"info_channel",
                "one channel of a file (frictal info --json)",
                {ci("name", "text", "the channel's name"), ci("kind", "text", "map or profile"),
@@ -157,7 +160,9 @@ std::vector<OutputTable> make_tables() {
                 ci("readable", "flag", "frictal reads this channel")}});
   t.push_back({"warning_code",
                "frictal warnings --json: every warning code",
-               {ci("code", "text", "the code"), ci("meaning", "text", "what it means")}});
+               {ci("code", "text", "the code"), ci("meaning", "text", "what it means"),
+                ci("doubtful", "flag", "the input was probably read wrong: a prediction with the code is doubtful"),
+                ci("fix", "text", "the fix that exists: the options to add (Python keywords in parentheses)")}});
   t.push_back(
       {"areal",
        "frictal areal --json: the areal signature of two blocks along a direction",

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 #include <numbers>
 
@@ -592,6 +593,8 @@ Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name
   p.name = name;
   p.is_map = data.is_map;
   p.reader_warnings = std::move(data.warnings);
+  p.x_unit_scale = data.x_unit_scale;
+  p.z_unit_scale = data.z_unit_scale;
   if (data.is_map) {
     p.map = std::move(data.map);
   } else {
@@ -631,18 +634,93 @@ Status check_request(const PredictSurface& lower, const PredictSurface* upper, c
   return Ok{};
 }
 
+// The rms slope along x of a surface as read (profile: its points; map: its rows), unitless.
+double rms_slope_along_x(const PredictSurface& s) {
+  double s2 = 0;
+  std::size_t n = 0;
+  auto add = [&](double dz, double dx) {
+    if (dx > 0 && std::isfinite(dz)) s2 += (dz / dx) * (dz / dx), ++n;
+  };
+  if (s.is_map) {
+    for (std::size_t j = 0; j < s.map.ny; ++j)
+      for (std::size_t i = 0; i + 1 < s.map.nx; ++i) add(s.map.at(i + 1, j) - s.map.at(i, j), s.map.dx);
+  } else {
+    for (std::size_t k = 0; k + 1 < s.profile.x.size(); ++k)
+      add(s.profile.z[k + 1] - s.profile.z[k], s.profile.x[k + 1] - s.profile.x[k]);
+  }
+  return n ? std::sqrt(s2 / double(n)) : 0;
+}
+
+// "m", "mm", "um", "nm" for a scale that is one (m per unit), else empty.
+std::string unit_name(double scale) {
+  for (const auto& [v, w] : {std::pair{1.0, "m"}, {1e-3, "mm"}, {1e-6, "um"}, {1e-9, "nm"}})
+    if (std::abs(scale - v) <= 1e-9 * v) return w;
+  return {};
+}
+
+// The trust of a finished prediction (assess_trust on its warnings), its fix naming the unit to
+// give where the file's unit is known and a factor of 10^3, 10^6 or 10^9 brings the lower
+// surface's rms slope into what instruments measure: heights in a smaller unit (rms slope at most
+// 1, 45 deg) for the codes of too steep a surface, lateral lengths in a smaller unit (at least
+// 1e-3) for lateral-suspect. Each code's fix once, in the order of the codes.
+void settle_trust(Prediction& p, const PredictSurface& lower) {
+  const Trust t = assess_trust(p.warnings);
+  p.trust = t.verdict;
+  p.trust_codes = t.codes;
+  p.trust_fix.clear();
+  if (t.codes.empty()) return;
+  const double slope = rms_slope_along_x(lower);
+  std::string z_unit, x_unit;
+  if (lower.z_unit_scale > 0 && slope > 1)
+    for (double f : {1e-3, 1e-6, 1e-9})
+      if (slope * f <= 1) {
+        z_unit = unit_name(lower.z_unit_scale * f);
+        break;
+      }
+  if (lower.x_unit_scale > 0 && slope > 0)
+    for (double f : {1e-3, 1e-6})
+      if (slope / f >= 1e-3) {
+        x_unit = unit_name(lower.x_unit_scale * f);
+        break;
+      }
+  for (const std::string& code : t.codes) {
+    std::string fix;
+    if ((code == "units-suspect" || code == "heights-exceed-length" || code == "friction-angle-at-90") &&
+        !z_unit.empty())
+      fix = fmt::format("--z-unit {} (Python z_unit='{}')", z_unit, z_unit);
+    else if (code == "lateral-suspect" && !x_unit.empty())
+      fix = fmt::format("--x-unit {} (Python x_unit='{}')", x_unit, x_unit);
+    else if (const WarningCode* c = find_warning_code(code))
+      fix = c->fix;
+    if (!fix.empty() && p.trust_fix.find(fix) == std::string::npos)
+      p.trust_fix += (p.trust_fix.empty() ? "" : "; ") + fix;
+  }
+}
+
+Result<Prediction> with_trust(Result<Prediction> r, const PredictSurface& lower) {
+  if (r) settle_trust(*r, lower);
+  return r;
+}
+
 }  // namespace
 
 Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
   if (auto st = check_request(lower, upper, o); !st) return st.error();
-  return lower.is_map ? predict_maps(lower, upper, o) : predict_profiles(lower, upper, o, nullptr, nullptr);
+  return with_trust(lower.is_map ? predict_maps(lower, upper, o) : predict_profiles(lower, upper, o, nullptr, nullptr),
+                    lower);
 }
 
 Result<Prediction> predict(PredictSurface&& lower, std::optional<PredictSurface>&& upper, const PredictOptions& o) {
   const PredictSurface* up = upper ? &*upper : nullptr;
   if (auto st = check_request(lower, up, o); !st) return st.error();
-  if (lower.is_map) return predict_maps(lower, up, o);  // the map model reads the maps as they are
-  return predict_profiles(lower, up, o, &lower.profile, up ? &upper->profile : nullptr);
+  if (lower.is_map) return with_trust(predict_maps(lower, up, o), lower);  // the map model reads the maps as they are
+  // The lower profile's points move into the analysis: its slope (for the trust's fix) first.
+  PredictSurface probe;
+  probe.x_unit_scale = lower.x_unit_scale;
+  probe.z_unit_scale = lower.z_unit_scale;
+  probe.profile.x = {0, 1};
+  probe.profile.z = {0, rms_slope_along_x(lower)};
+  return with_trust(predict_profiles(lower, up, o, &lower.profile, up ? &upper->profile : nullptr), probe);
 }
 
 }  // namespace frictal

@@ -17,61 +17,105 @@ namespace frictal {
 
 const std::vector<WarningCode>& warning_codes() {
   static const std::vector<WarningCode> codes = {
-      {"reader", "the file's reader said something that did not stop it (a unit assumed, points masked, a checksum)"},
+      {"reader", "the file's reader said something that did not stop it (a unit assumed, points masked, a checksum)",
+       false, ""},
       {"units-suspect",
        "the rms slope is above 10 (84 deg on average, steeper than any instrument measures): the lateral and "
-       "height units probably differ (e.g. x in micrometres, z read as metres); give --unit / --z-unit"},
-      {"heights-tiny", "the rms height is below 1 pm: a scale factor is probably missing or applied twice"},
-      {"heights-exceed-length", "the height range exceeds the scan length: units or scale are probably wrong"},
+       "height units probably differ (e.g. x in micrometres, z read as metres); give the heights' unit with "
+       "--z-unit (or the lateral one with --x-unit)",
+       true, "--z-unit UNIT or --x-unit UNIT (Python z_unit=, x_unit=)"},
+      {"lateral-suspect",
+       "the rms slope is below 1e-4 (0.006 deg) on points more than 20 um apart: the lateral lengths were "
+       "probably read in a unit too large (e.g. x in mm read as m); give their unit with --x-unit",
+       true, "--x-unit UNIT (Python x_unit=)"},
+      {"heights-tiny", "the rms height is below 1 pm: a scale factor is probably missing or applied twice", true,
+       "--z-unit UNIT (Python z_unit=)"},
+      {"heights-exceed-length", "the height range exceeds the scan length: units or scale are probably wrong", true,
+       "--z-unit UNIT or --x-unit UNIT (Python z_unit=, x_unit=)"},
       {"spikes",
        "points lie more than 10 rms heights from the median of their neighbours: outliers that can set theta_max "
        "and the hold angles on their own; check the scan, or remove them with the conditioning's spike filter "
-       "(--remove-spikes, Python remove_spikes=True; the same rule, docs/analysis.md)"},
-      {"kurtosis", "the height kurtosis is above 30: a few outlying points dominate the height distribution"},
+       "(--remove-spikes, Python remove_spikes=True; the same rule, docs/analysis.md)",
+       true, "--remove-spikes (Python remove_spikes=True)"},
+      {"kurtosis", "the height kurtosis is above 30: a few outlying points dominate the height distribution", false,
+       ""},
       {"fill-value",
        "runs of one repeated height value cover more than 5 % of the points: a fill value for points not measured; "
-       "mask it "
-       "(NaN) or crop it away"},
-      {"scale-mismatch", "the two scans' lengths or point spacings differ by more than 10x"},
+       "mask it (NaN) or crop it away (--crop)",
+       true, "--crop X0,X1 to the measured part (Python crop=), or mask the fill value (NaN) in the file"},
+      {"scale-mismatch",
+       "the two scans' lengths or point spacings differ by more than 10x: one of them is probably read in the wrong "
+       "unit (--x-unit), or they are not scans of one pair",
+       true, "--x-unit UNIT for the scan read in the wrong unit (Python x_unit=), or a matching pair"},
       {"eq18-low-clamped",
-       "the low end of the paper's Eq. 18 range, theta_max - sigma + theta_a, is below zero; it is reported as 0"},
+       "the low end of the paper's Eq. 18 range, theta_max - sigma + theta_a, is below zero; it is reported as 0",
+       false, ""},
       {"bound-negative",
        "the rigid upper bound theta_max + theta_a is below zero (mu < 0): every contact along the sliding direction "
        "descends, so the block slides without tilt; check the direction, that the two scans overlap at one scale, "
-       "and their units"},
+       "and their units",
+       true, "--direction, or the scans' units (--x-unit UNIT, --z-unit UNIT)"},
       {"friction-angle-at-90",
        "the friction angle reaches 90 deg: a vertical wall or an interlock holds the block; the number is a "
-       "single feature of the data, not a friction"},
+       "single feature of the data, not a friction",
+       true, "--z-unit UNIT if the heights are in another unit (Python z_unit=); --remove-spikes for a spike"},
       {"scan-too-short",
        "the scans are too short for the stated test (profiles: the lower scan shorter than the block plus 8 run-away "
        "distances of sliding room, or the upper scan shorter than the block; maps: the lower map shorter than 16 "
        "run-away distances along the direction): the answer is for the largest test of "
        "the same shape (L_b / d) that the scans hold, named in the message; a shorter test reads other angles "
-       "(d_sweep_*): measure longer scans, or state the test with --block-length and --runaway-distance"},
-      {"few-drops", "the distribution rests on fewer than 3 basins (profiles) or drops: the spread is not resolved"},
+       "(d_sweep_*): measure longer scans, or state the test with --block-length and --runaway-distance",
+       false, ""},
+      {"few-drops", "the distribution rests on fewer than 3 basins (profiles) or drops: the spread is not resolved",
+       false, ""},
       {"held-to-max-tilt",
-       "some drops held the block up to the model's largest tilt (45 deg): their hold angle is a lower bound"},
+       "some drops held the block up to the model's largest tilt (45 deg): their hold angle is a lower bound", false,
+       ""},
       {"dimension-out-of-range",
        "a fractal dimension outside [1, 2]: a profile's dimension lies between 1 (smooth) and 2 (plane filling); "
-       "the fit range or the method does not suit the data"},
+       "the fit range or the method does not suit the data",
+       false, ""},
       {"poor-fit",
-       "the fit's r^2 is below 0.95: the data are not a power law over the fit range; narrow it (--min, --max)"},
+       "the fit's r^2 is below 0.95: the data are not a power law over the fit range; narrow it (--min, --max)", false,
+       ""},
       {"contact-full",
        "contact: every point of the surface touches (full contact): a larger load only compresses the half-space; "
-       "the contact area is the nominal area"},
+       "the contact area is the nominal area",
+       false, ""},
       {"small-slope",
        "contact: the composite topography's rms slope is above 0.3; the half-space solution assumes small slopes "
-       "(the small-slope approximation), so its areas and pressures are approximate"},
+       "(the small-slope approximation), so its areas and pressures are approximate",
+       false, ""},
       {"contact-not-converged",
-       "contact: the conjugate-gradient solve did not reach its tolerance; the numbers are approximate"},
+       "contact: the conjugate-gradient solve did not reach its tolerance; the numbers are approximate", false, ""},
       {"contact-resampled",
        "contact: a profile whose points are not equally spaced was resampled on as many equally spaced points "
-       "(linear interpolation) for the FFT solver"},
+       "(linear interpolation) for the FFT solver",
+       false, ""},
       {"contact-at-edge",
        "contact: the contact reaches the edge of a non-periodic surface, beyond which the solver takes the surface "
-       "as never touching; use a larger scan, or --periodic for a surface that repeats"},
+       "as never touching; use a larger scan, or --periodic for a surface that repeats",
+       false, ""},
   };
   return codes;
+}
+
+const WarningCode* find_warning_code(const std::string& code) {
+  for (const WarningCode& c : warning_codes())
+    if (c.code == code) return &c;
+  return nullptr;
+}
+
+Trust assess_trust(const std::vector<Warning>& warnings) {
+  Trust t;
+  for (const Warning& w : warnings) {
+    const WarningCode* c = find_warning_code(w.code);
+    if (!c || !c->doubtful || std::find(t.codes.begin(), t.codes.end(), w.code) != t.codes.end()) continue;
+    t.codes.push_back(w.code);
+    if (!c->fix.empty() && t.fix.find(c->fix) == std::string::npos) t.fix += (t.fix.empty() ? "" : "; ") + c->fix;
+  }
+  if (!t.codes.empty()) t.verdict = "doubtful";
+  return t;
 }
 
 void add_warning(std::vector<Warning>& list, Warning w) {
@@ -159,6 +203,19 @@ void common_checks(std::vector<Warning>& out, const Moments& m, std::size_t spik
                                            name, rep.first, rep.second, n, 100.0 * double(rep.second) / double(n))});
 }
 
+// Lateral lengths read in a unit too large: slopes implausibly small on points spaced coarser
+// than roughness instruments sample (x in mm read as m: both by 1000). A flat surface (rms slope
+// 0: no heights to compare) is left to heights-tiny.
+void lateral_check(std::vector<Warning>& out, double rms_slope, double spacing, const std::string& name,
+                   const PlausibilityLimits& L) {
+  if (rms_slope > 0 && rms_slope < L.min_rms_slope && spacing > L.lateral_suspect_spacing)
+    add_warning(out, {"lateral-suspect",
+                      fmt::format("{}: rms slope {:.3g} ({:.3g} deg on average) on points {:.3g} m apart: flatter and "
+                                  "coarser than a roughness measurement; the lateral lengths were probably read in a "
+                                  "unit too large (x in mm read as m?): give their unit (--x-unit)",
+                                  name, rms_slope, std::atan(rms_slope) * 180 / 3.141592653589793, spacing)});
+}
+
 }  // namespace
 
 std::vector<Warning> check_profile(const Profile& p, const std::string& name, const PlausibilityLimits& L) {
@@ -166,10 +223,13 @@ std::vector<Warning> check_profile(const Profile& p, const std::string& name, co
   if (p.x.size() < 2) return out;
   const ProfileStats st = profile_stats_no_angles(p);  // rms slope and length only
   if (st.rms_slope > L.max_rms_slope)
-    add_warning(out, {"units-suspect",
-                      fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "
-                                  "measures; the lateral and height units probably differ (give the file's units)",
-                                  name, st.rms_slope, std::atan(st.rms_slope) * 180 / 3.141592653589793)});
+    add_warning(
+        out, {"units-suspect",
+              fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "
+                          "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
+                          name, st.rms_slope, std::atan(st.rms_slope) * 180 / 3.141592653589793)});
+  const double spacing = p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0;
+  lateral_check(out, st.rms_slope, spacing, name, L);
   const Moments m = moments(p.z);
   // Spikes: a point more than spike_sq rms from the median of its two neighbours on each side
   // (the rule of the conditioning's spike filter, conditioning.hpp).
@@ -202,10 +262,12 @@ std::vector<Warning> check_map(const Map& mp, const std::string& name, const Pla
   // Two directional components: the gradient's rms is sqrt(2) times one component's.
   const double rms_slope = ns ? std::sqrt(2 * s2 / double(ns)) : 0;
   if (rms_slope > L.max_rms_slope)
-    add_warning(out, {"units-suspect",
-                      fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "
-                                  "measures; the lateral and height units probably differ (give the file's units)",
-                                  name, rms_slope, std::atan(rms_slope) * 180 / 3.141592653589793)});
+    add_warning(
+        out, {"units-suspect",
+              fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average): steeper than any instrument "
+                          "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
+                          name, rms_slope, std::atan(rms_slope) * 180 / 3.141592653589793)});
+  if (ns) lateral_check(out, rms_slope, std::max(mp.dx, mp.dy), name, L);
   const Moments m = moments(mp.heights);
   const SpikeSearch sp = find_spikes(mp, L.spike_sq);
   const std::size_t spikes = sp.points.size();

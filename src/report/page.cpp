@@ -35,6 +35,7 @@ table.resolution td, table.friction td { font-variant-numeric: tabular-nums; }
 tr.below-tip td { color: #999; }
 tr.unfiltered td { font-weight: bold; }
 .verdict { background: #f3f7ee; border-left: 4px solid #5a9a2a; padding: .5em .8em; }
+.verdict.doubtful { background: #fdf0e8; border-left-color: #d62728; }
 .warnings { background: #fff4e5; border-left: 4px solid #e08a00; padding: .4em .8em; margin: .6em 0; }
 .bounds { color: #444; font-size: .95em; }
 .assumptions { background: #f7f7f7; padding: .6em 1.4em; border-radius: 4px; }

@@ -701,6 +701,14 @@ std::string headline(const ReportInput& in, const ReportData& d) {
     const Prediction& p = *in.prediction;
     const std::string drops =
         p.single_drop ? "one drop" : fmt::format("{} {}", p.drops, p.is_map ? "drops" : "basins of the drops");
+    if (p.trust != "ok") {
+      std::string codes;
+      for (const std::string& c : p.trust_codes) codes += (codes.empty() ? "" : ", ") + c;
+      page += fmt::format(
+          "<p class=\"verdict doubtful\" id=\"trust\"><b>DOUBTFUL</b> ({}): the input was probably read wrong; "
+          "the number below is not these surfaces' friction until it is fixed: add <code>{}</code>.</p>\n",
+          escape_html(codes), escape_html(p.trust_fix));
+    }
     page += fmt::format(
         "<p class=\"verdict\" id=\"headline\">A tilt test of {} reads <b>φ = {}</b> (μ = <b>{}</b>){}; rigid "
         "upper bound {} = {} (μ ≤ {}); the paper's Eq. 18 range {} … {}.<br><small>Model: {} ({}); "

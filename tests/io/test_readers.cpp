@@ -65,6 +65,21 @@ void expect_points(const frictal::Curve& c, const std::vector<std::vector<double
   }
 }
 
+// An x column that is uniform within its printed digits is read as the uniform grid from its first
+// to its last value (docs/io.md): each x within `half_unit` (the printing's half unit, in the
+// file's unit) of the value printed, the steps all equal; z as printed.
+void expect_grid_points(const frictal::Curve& c, const std::vector<std::vector<double>>& rows, int xc, int zc,
+                        double xs, double zs, double half_unit) {
+  ASSERT_EQ(c.x.size(), rows.size());
+  const std::size_t n = rows.size();
+  const double dx = (rows[n - 1][xc] - rows[0][xc]) * xs / double(n - 1);
+  for (std::size_t k = 0; k < n; ++k) {
+    EXPECT_NEAR(c.x[k], rows[0][xc] * xs + double(k) * dx, 1e-9 * std::abs(dx)) << "point " << k;
+    EXPECT_LE(std::abs(c.x[k] - rows[k][xc] * xs), 2 * half_unit * xs) << "point " << k;
+    EXPECT_DOUBLE_EQ(c.z[k], rows[k][zc] * zs) << "point " << k;
+  }
+}
+
 }  // namespace
 
 TEST(ReadText, Csv1MicronsHeader) {
@@ -76,8 +91,13 @@ TEST(ReadText, Csv1MicronsHeader) {
   // Header "X_(microns),y1": x in µm; z has no unit, read as metres with a warning.
   auto rows = numeric_rows(slurp(path), 2);
   ASSERT_EQ(rows.size(), 8u);
-  expect_points(s->curve, rows, 0, 1, 1e-6, 1.0);
+  // x printed with 4 decimals (0.0386, 0.0772, ... 0.2703: steps of 0.0386 and 0.0387 um):
+  // within its digits a uniform grid, read as one, with a note.
+  expect_grid_points(s->curve, rows, 0, 1, 1e-6, 1.0, 0.5e-4);
   EXPECT_FALSE(s->warnings.empty());
+  bool grid_note = false;
+  for (const auto& w : s->warnings) grid_note = grid_note || w.find("uniform grid") != std::string::npos;
+  EXPECT_TRUE(grid_note);
   // With an explicit unit for unlabeled columns the z column follows it.
   frictal::ReadOptions o;
   o.default_unit = "um";
@@ -111,8 +131,9 @@ TEST(ReadText, DektakLatin1ScanData) {
   auto s = frictal::read_surface(path);
   ASSERT_TRUE(s.ok()) << s.error().message;
   EXPECT_EQ(s->format, frictal::ProfileFormat::Dektak);
-  // "Lateral um,Raw Micrometer": both columns in micrometres.
-  expect_points(s->curve, rows, 0, 1, 1e-6, 1e-6);
+  // "Lateral um,Raw Micrometer": both columns in micrometres; x printed with one decimal, steps
+  // alternating 0.1 and 0.2 um: the uniform grid of 1499.8 / 9599 um.
+  expect_grid_points(s->curve, rows, 0, 1, 1e-6, 1e-6, 0.05);
   EXPECT_NEAR(s->curve.x.back() - s->curve.x.front(), 1499.8e-6, 1e-12);
   std::vector<double> x, z;
   for (auto& r : rows) {

@@ -270,3 +270,42 @@ def test_a_short_scan_is_warned_with_its_category():
     with pytest.warns(frictal.ScanTooShortWarning):
         p = frictal.predict(frictal.Profile(x, 1e-6 * np.sin(2 * np.pi * x / lam)), detrend="none")
     assert p.block_length + 8 * p.runaway_distance == pytest.approx(x[-1], rel=1e-9)
+
+
+def _self_affine_rows(tmp_path):
+    """A clean self-affine profile of 2000 points over 1 mm (x, z in m) from the CLI's generator."""
+    p = frictal.self_affine_profile(points=2000, length=1e-3, rms_height=5e-7, seed=7)
+    return np.asarray(p.x), np.asarray(p.z)
+
+
+def _write(path, x, z):
+    with open(path, "w") as f:
+        f.write("x_m,z_m\n")
+        for a, b in zip(x, z):
+            f.write(f"{a!r},{b!r}\n")
+    return str(path)
+
+
+def test_heights_in_micrometres_labelled_metres_are_doubtful_and_z_unit_fixes_them(tmp_path):
+    x, z = _self_affine_rows(tmp_path)
+    clean = frictal.predict(_write(tmp_path / "clean.csv", x, z))
+    assert clean.trust == "ok" and clean.trust_codes == ""
+    wrong = _write(tmp_path / "wrong.csv", x, z * 1e6)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        d = frictal.predict(wrong)
+    assert d.trust == "doubtful"
+    assert "units-suspect" in d.trust_codes.split(",")
+    assert "z_unit='um'" in d.trust_fix
+    assert d.to_dict()["trust"] == "doubtful"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fixed = frictal.predict(wrong, z_unit="um")
+    assert fixed.trust == "ok"
+    assert fixed.friction_angle == pytest.approx(clean.friction_angle, abs=1e-9)
+    # read_surface takes the same units: x in mm labelled m, read with x_unit="mm".
+    s = frictal.read_surface(_write(tmp_path / "xmm.csv", x * 1e3, z), x_unit="mm")
+    assert np.allclose(s["x"], x, rtol=1e-12, atol=0)
+    assert s["x_unit_scale"] == pytest.approx(1e-3)
+    with pytest.raises(ValueError, match="z_unit"):
+        frictal.predict(wrong, z_unit="furlong")

@@ -879,3 +879,28 @@ TEST(Hold, BackwardIsTheForwardOfTheMirroredCurveToTheBit) {
     EXPECT_EQ(back.near_end, fwd.near_end) << trial;
   }
 }
+
+TEST(Hold, CoincidentEventsAndIntervalsTooShortForAVertexMakeAValidLift) {
+  // A lift whose events meet at one offset (the same contact change listed twice) and whose
+  // tangents meet inside an interval one ulp wide (events of an x column printed with 8 digits):
+  // a valid lift, every offset strictly after the one before, one vertex at the coincident
+  // events, the lift through the events' heights.
+  SignatureResult sig;
+  const double a = 1e-5, b = std::nextafter(a, 1.0);
+  sig.offset = {0, a, a, b, 2e-5};
+  sig.lift = {0, 1e-6, 1e-6, 1e-6 + 1e-12, 0};
+  const double up = std::atan(0.1), wall = std::atan(1e12), down = std::atan(-0.1);
+  sig.theta_left = {up, up, up, wall, down};
+  sig.theta_right = {up, up, wall, down, down};
+  auto c = lift_curve(sig);
+  ASSERT_TRUE(c.ok()) << c.error().message;
+  for (std::size_t k = 1; k < c->offset.size(); ++k) EXPECT_GT(c->offset[k], c->offset[k - 1]) << k;
+  EXPECT_EQ(std::count(c->offset.begin(), c->offset.end(), a), 1);
+  for (std::size_t i = 0; i < sig.offset.size(); ++i) {
+    const auto it = std::find(c->offset.begin(), c->offset.end(), sig.offset[i]);
+    ASSERT_NE(it, c->offset.end()) << i;
+    if (i != 2) {
+      EXPECT_EQ(c->lift[std::size_t(it - c->offset.begin())], sig.lift[i]) << i;
+    }
+  }
+}

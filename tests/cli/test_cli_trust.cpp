@@ -1,0 +1,231 @@
+// The same surface, the same answer, however the file presents it: a rounded x column read as the
+// uniform grid it is, units given on the command line over the file's, and a prediction that a
+// warning calls doubtful says so first and names the option that fixes it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli/cli_runner.hpp"
+
+using json = nlohmann::json;
+
+namespace {
+
+std::string data(const std::string& rel) { return std::string(FRICTAL_TEST_DATA) + "/" + rel; }
+
+json predict_json(const std::string& args) {
+  auto r = run_cli("predict " + args + " --json -q");
+  EXPECT_EQ(r.code, 0) << args << "\n" << r.err;
+  return r.code == 0 ? json::parse(r.out) : json::object();
+}
+
+std::set<std::string> codes_of(const json& j) {
+  std::set<std::string> c;
+  for (const auto& w : j["warnings"]) c.insert(w["code"].get<std::string>());
+  return c;
+}
+
+// The x, z columns of the data rows of a text file (rows of two numbers after any header).
+std::vector<std::pair<double, double>> two_columns(const std::string& path, char delim) {
+  std::ifstream f(path);
+  std::vector<std::pair<double, double>> rows;
+  for (std::string line; std::getline(f, line);) {
+    for (char& c : line)
+      if (c == delim) c = ' ';
+    std::istringstream ls(line);
+    double x, z;
+    if (ls >> x >> z) rows.push_back({x, z});
+  }
+  return rows;
+}
+
+// A clean self-affine profile of 2000 points over 1 mm (rms height 0.5 um), as the generator
+// writes it: x and z in m, full precision.
+std::vector<std::pair<double, double>> clean_profile() {
+  const std::string f = temp_path("trust-clean-src.csv");
+  EXPECT_EQ(run_cli("surface self-affine --points 2000 --length 1e-3 --rms-height 5e-7 --seed 7 -o " + f).code, 0);
+  return two_columns(f, ',');
+}
+
+// Writes rows as "x_m,z_m" CSV, x times xs and z times zs, with 17 significant digits.
+std::string write_rows(const std::string& name, const std::vector<std::pair<double, double>>& rows, double xs,
+                       double zs, const std::set<std::size_t>& spikes = {}, double spike = 0) {
+  const std::string path = temp_path(name);
+  std::ofstream f(path);
+  f << "x_m,z_m\n";
+  char buf[96];
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    std::snprintf(buf, sizeof buf, "%.17g,%.17g\n", rows[k].first * xs,
+                  (rows[k].second + (spikes.count(k) ? spike : 0.0)) * zs);
+    f << buf;
+  }
+  return path;
+}
+
+// The option a doubtful prediction's fix names for `option` ("--z-unit um" -> "um").
+std::string fix_value(const json& j, const std::string& option) {
+  std::smatch m;
+  const std::string fix = j["trust_fix"].get<std::string>();
+  if (std::regex_search(fix, m, std::regex(option + " ([a-z]+)"))) return m[1];
+  return "";
+}
+
+}  // namespace
+
+TEST(CliTrust, RoundedDektakGridPredictsAsItsUniformGrid) {
+  // dektak-1.csv prints x with one decimal: steps alternate 0.1 and 0.2 um for a sampling of
+  // 1499.8 um / 9599. Second presentation: the same heights on the uniform grid of the header's
+  // nominal sampling (1500 um / 9600 = 0.15625 um), x written with 17 digits.
+  const auto rows = two_columns(data("profiles/dektak-1.csv"), ',');
+  ASSERT_EQ(rows.size(), 9600u);
+  std::vector<std::pair<double, double>> uniform;
+  for (std::size_t k = 0; k < rows.size(); ++k) uniform.push_back({double(k) * 0.15625e-6, rows[k].second * 1e-6});
+  const std::string u = write_rows("trust-dektak-uniform.csv", uniform, 1, 1);
+  const json a = predict_json(data("profiles/dektak-1.csv"));
+  const json b = predict_json(u);
+  EXPECT_NEAR(a["friction_angle_deg"].get<double>(), b["friction_angle_deg"].get<double>(), 0.1);
+  EXPECT_NEAR(a["upper_bound_friction_angle_deg"].get<double>(), b["upper_bound_friction_angle_deg"].get<double>(),
+              0.1);
+  EXPECT_EQ(a["trust"], "ok") << a.dump();
+  bool note = false;
+  for (const auto& w : a["warnings"])
+    note = note || w["message"].get<std::string>().find("uniform grid") != std::string::npos;
+  EXPECT_TRUE(note) << a.dump();
+}
+
+TEST(CliTrust, EightDigitExportGivesTheAnswerOfItsUniformGrid) {
+  // opdx-3.txt: a profilometer's text export, x with 8 significant digits (spacing
+  // 1.6655563e-08 m); predict, signature and report exited 2 on it ("lift curve offsets must
+  // increase"). Second presentation: its heights on x = k * 1.6655563e-08 m at full precision.
+  const auto rows = two_columns(data("instruments/opdx-3.txt"), ' ');
+  ASSERT_EQ(rows.size(), 3001u);
+  std::vector<std::pair<double, double>> uniform;
+  for (std::size_t k = 0; k < rows.size(); ++k) uniform.push_back({double(k) * 1.6655563e-08, rows[k].second});
+  const json a = predict_json(data("instruments/opdx-3.txt"));
+  const json b = predict_json(write_rows("trust-opdx-uniform.csv", uniform, 1, 1));
+  EXPECT_NEAR(a["friction_angle_deg"].get<double>(), b["friction_angle_deg"].get<double>(), 0.01);
+  auto s = run_cli("signature " + data("instruments/opdx-3.txt") + " --json");
+  EXPECT_EQ(s.code, 0) << s.err;
+}
+
+TEST(CliTrust, HeightsInMicrometresLabelledMetresAreDoubtfulAndTheNamedFixGivesTheCleanAnswer) {
+  const auto rows = clean_profile();
+  const json clean = predict_json(write_rows("trust-clean.csv", rows, 1, 1));
+  EXPECT_EQ(clean["trust"], "ok") << clean.dump();
+  const std::string wrong = write_rows("trust-z-um-as-m.csv", rows, 1, 1e6);
+  const json d = predict_json(wrong);
+  EXPECT_EQ(d["trust"], "doubtful");
+  EXPECT_NE(d["trust_codes"].get<std::string>().find("units-suspect"), std::string::npos) << d.dump();
+  const std::string unit = fix_value(d, "--z-unit");
+  EXPECT_EQ(unit, "um") << d["trust_fix"];
+  auto t = run_cli("predict " + wrong + " -q");
+  EXPECT_EQ(t.out.rfind("DOUBTFUL", 0), 0u) << t.out;  // the text says it first
+  EXPECT_NE(t.out.find("--z-unit um"), std::string::npos) << t.out;
+  const json fixed = predict_json(wrong + " --z-unit " + unit);
+  EXPECT_EQ(fixed["trust"], "ok") << fixed.dump();
+  // The same surface: the clean file's answer (the heights scaled by 10^6 and back).
+  EXPECT_NEAR(fixed["friction_angle_deg"].get<double>(), clean["friction_angle_deg"].get<double>(), 1e-6);
+  EXPECT_TRUE(codes_of(fixed).count("reader"));  // the override is said
+}
+
+TEST(CliTrust, ThreeSpikesAreDoubtfulAndRemovingThemGivesTheCleanAnswerWithinItsSpread) {
+  const auto rows = clean_profile();
+  const json clean = predict_json(write_rows("trust-clean2.csv", rows, 1, 1));
+  // Three points raised by 10 um (about 14 rms heights) in 2000.
+  const std::string spiky = write_rows("trust-spikes.csv", rows, 1, 1, {400, 1100, 1700}, 1e-5);
+  const json d = predict_json(spiky);
+  EXPECT_EQ(d["trust"], "doubtful");
+  EXPECT_NE(d["trust_codes"].get<std::string>().find("spikes"), std::string::npos) << d.dump();
+  EXPECT_NE(d["trust_fix"].get<std::string>().find("--remove-spikes"), std::string::npos) << d.dump();
+  const json fixed = predict_json(spiky + " --remove-spikes");
+  EXPECT_EQ(fixed["trust"], "ok") << fixed.dump();
+  EXPECT_EQ(fixed["spikes_removed"].get<double>(), 3);
+  const double phi = fixed["friction_angle_deg"].get<double>();
+  EXPECT_GE(phi, clean["friction_angle_q05_deg"].get<double>());
+  EXPECT_LE(phi, clean["friction_angle_q95_deg"].get<double>());
+}
+
+TEST(CliTrust, LateralLengthsInMillimetresLabelledMetresAreWarnedAndTheFixGivesTheCleanAnswer) {
+  const auto rows = clean_profile();
+  const json clean = predict_json(write_rows("trust-clean3.csv", rows, 1, 1));
+  const std::string wrong = write_rows("trust-x-mm-as-m.csv", rows, 1e3, 1);
+  const json d = predict_json(wrong);
+  EXPECT_TRUE(codes_of(d).count("lateral-suspect")) << d.dump();
+  EXPECT_EQ(d["trust"], "doubtful");
+  const std::string unit = fix_value(d, "--x-unit");
+  EXPECT_EQ(unit, "mm") << d["trust_fix"];
+  const json fixed = predict_json(wrong + " --x-unit " + unit);
+  EXPECT_EQ(fixed["trust"], "ok") << fixed.dump();
+  EXPECT_NEAR(fixed["friction_angle_deg"].get<double>(), clean["friction_angle_deg"].get<double>(), 1e-6);
+}
+
+TEST(CliTrust, UnitOptionsOverrideTheFilesUnitsWithANote) {
+  // csv-2.csv names its columns "x in µm", "y in µm": --unit nm reads both in nm, 1000x smaller,
+  // --z-unit alone the heights only.
+  const std::string f = data("profiles/csv-2.csv");
+  auto stats = [&](const std::string& opt) {
+    auto r = run_cli("stats " + f + " --json " + opt);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return r.code == 0 ? json::parse(r.out) : json::object();
+  };
+  const json a = stats(""), b = stats("--unit nm"), c = stats("--x-unit nm");
+  EXPECT_NEAR(b["length_m"].get<double>(), a["length_m"].get<double>() * 1e-3, 1e-12 * a["length_m"].get<double>());
+  EXPECT_NEAR(c["length_m"].get<double>(), a["length_m"].get<double>() * 1e-3, 1e-12 * a["length_m"].get<double>());
+  bool note = false;
+  for (const auto& w : b["warnings"])
+    note = note || w["message"].get<std::string>().find("the z unit given") != std::string::npos;
+  EXPECT_TRUE(note) << b.dump();
+  auto bad = run_cli("predict " + f + " --z-unit furlong");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--z-unit"), std::string::npos) << bad.err;
+}
+
+TEST(CliTrust, EveryOptionAWarningNamesIsARealOption) {
+  // The options the warnings table names (in a code's meaning and its fix) exist: the fixes of the
+  // codes a prediction can carry are options of `frictal predict`, the others of some command.
+  auto c = run_cli("commands --json");
+  ASSERT_EQ(c.code, 0) << c.err;
+  std::set<std::string> options, predict_options;
+  std::function<void(const json&)> walk = [&](const json& cmd) {
+    for (const auto& o : cmd["options"])
+      for (const auto& n : o["names"]) {
+        options.insert(n.get<std::string>());
+        if (cmd["name"] == "predict") predict_options.insert(n.get<std::string>());
+      }
+    if (cmd.contains("subcommands"))
+      for (const auto& sub : cmd["subcommands"]) walk(sub);
+  };
+  const json commands = json::parse(c.out);
+  for (const auto& cmd : commands["commands"]) walk(cmd);
+  ASSERT_TRUE(predict_options.count("--remove-spikes"));
+  const json table = json::parse(run_cli("warnings --json").out);
+  for (const auto& code : table) {
+    const std::string fix = code["fix"].get<std::string>();
+    const std::regex opt("--[a-z][a-z-]*[a-z]");
+    for (auto it = std::sregex_iterator(fix.begin(), fix.end(), opt); it != std::sregex_iterator(); ++it)
+      EXPECT_TRUE(predict_options.count(it->str())) << code["code"] << "'s fix names " << it->str();
+  }
+  auto w = run_cli("warnings --json");
+  ASSERT_EQ(w.code, 0) << w.err;
+  const std::regex option("--[a-z][a-z-]*[a-z]");
+  std::size_t named = 0;
+  for (const auto& code : json::parse(w.out)) {
+    const std::string text = code["meaning"].get<std::string>() + " " + code["fix"].get<std::string>();
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), option); it != std::sregex_iterator(); ++it) {
+      ++named;
+      EXPECT_TRUE(options.count(it->str())) << code["code"] << " names " << it->str() << ", which no command has";
+    }
+    if (code["doubtful"].get<bool>()) {
+      EXPECT_FALSE(code["fix"].get<std::string>().empty()) << code["code"];
+    }
+  }
+  EXPECT_GE(named, 5u);
+}
