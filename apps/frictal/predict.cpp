@@ -87,7 +87,8 @@ void print_text(const Prediction& p, const Args& a) {
     fmt::print("  the test: a block of {:.4g} m, sliding for good after d = {:.4g} m ({})\n", p.block_length,
                p.runaway_distance, p.test_lengths);
   if (!p.d_sweep_distance.empty() && !p.single_drop) {
-    fmt::print("  how the answer depends on d (same drops):\n    {:>12}  {:>10}  {:>17}\n", "d (m)", "median (deg)", "5-95 % (deg)");
+    fmt::print("  how the answer depends on d (same drops):\n    {:>12}  {:>10}  {:>17}\n", "d (m)", "median (deg)",
+               "5-95 % (deg)");
     for (std::size_t i = 0; i < p.d_sweep_distance.size(); ++i)
       fmt::print("    {:>12.4g}  {:>10}  {:>17}{}\n", p.d_sweep_distance[i], deg_text(p.d_sweep_q50[i]),
                  fmt::format("{} - {}", deg_text(p.d_sweep_q05[i]), deg_text(p.d_sweep_q95[i])),
@@ -131,12 +132,13 @@ std::function<int()> setup(CLI::App& app) {
       ->capture_default_str();
   add_input_options(app, a->input);
   // The stated test's block: a length with a unit (predict.hpp's default, named in the help).
-  app.add_option("--block-length", a->block,
-                 fmt::format("The test: length of the upper block, the middle piece of UPPER that slides over LOWER "
-                             "(drops wherever it lies wholly on LOWER), a length such as 0.2mm (no unit: m); whole: all of "
-                             "UPPER, dropped over the first half of LOWER (the blocks of `frictal tilt` on files). "
-                             "Default: {:g} run-away distances (periodic pairs: the whole profile)",
-                             kBlockPerRunaway));
+  app.add_option(
+      "--block-length", a->block,
+      fmt::format("The test: length of the upper block, the middle piece of UPPER that slides over LOWER "
+                  "(drops wherever it lies wholly on LOWER), a length such as 0.2mm (no unit: m); whole: all of "
+                  "UPPER, dropped over the first half of LOWER (the blocks of `frictal tilt` on files). "
+                  "Default: {:g} run-away distances (periodic pairs: the whole profile)",
+                  kBlockPerRunaway));
   // --runaway-distance (d of the stated test) and --period: the tilt table's fields (one
   // description everywhere; lengths may name their unit).
   std::vector<std::string> skip = all_but(tilt_settings(), "runaway_distance");

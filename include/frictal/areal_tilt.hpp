@@ -39,7 +39,7 @@ struct ArealTiltOptions {
   /// D (unit: m); 0: a twentieth of the lower map along d here; the front ends and predict() set
   /// it from default_map_runaway_distance (map_model_options in predict.hpp).
   double runaway_distance = 0;
-  double atomic_friction = 0;   ///< mu_a >= 0 at every contact (unitless)
+  double atomic_friction = 0;  ///< mu_a >= 0 at every contact (unitless)
   /// Sphere radius r of the upper face's nodes (0: a fifth of the lower map's smaller spacing) (unit: m).
   double sphere_radius = 0;
   /// The height field samples the lower map's bilinear surface this many times finer than its

@@ -132,8 +132,8 @@ struct Prediction {
   /// radius, D the run-away distance): the block's spheres lie wholly over the lower map with room D on
   /// every side, none on its edge (docs/analysis.md, "The drops of the map prediction").
   std::array<double, 4> drop_range = {0, 0, 0, 0};
-  HoldStatistics friction_angle;                ///< the hold angle over drops, atan(mu_a) included (unit: rad)
-  double friction_coefficient = 0;              ///< tan(friction_angle.q50) (unitless)
+  HoldStatistics friction_angle;    ///< the hold angle over drops, atan(mu_a) included (unit: rad)
+  double friction_coefficient = 0;  ///< tan(friction_angle.q50) (unitless)
   /// Profiles: theta_max + theta_a (Eq. 6); maps: the largest of the drops' seat bounds (free
   /// block), at least every drop's hold angle; capped at pi/2 (unit: rad).
   double upper_bound_friction_angle = 0;

@@ -250,10 +250,10 @@ void frictal_bind_predict(py::module_& m) {
   m.def(
       "predict",
       [](const py::object& lower, const py::object& upper, double direction, double atomic_friction,
-         double runaway_distance, const py::object& block_length, std::optional<std::string> detrend_text, const py::object& crop, bool remove_spikes,
-         double spike_threshold, std::optional<std::vector<double>> start, int drops, bool locked, double spacing,
-         const std::string& format, const std::string& unit, const std::string& x_unit, const std::string& z_unit,
-         unsigned threads) {
+         double runaway_distance, const py::object& block_length, std::optional<std::string> detrend_text,
+         const py::object& crop, bool remove_spikes, double spike_threshold, std::optional<std::vector<double>> start,
+         int drops, bool locked, double spacing, const std::string& format, const std::string& unit,
+         const std::string& x_unit, const std::string& z_unit, unsigned threads) {
         PredictOptions o;
         o.crop = py_detail::crop_window(crop);
         o.crop_source = "crop=" + py::repr(crop).cast<std::string>();

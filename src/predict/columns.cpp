@@ -76,9 +76,11 @@ const Columns<Prediction>& prediction_columns() {
           "how the answer depends on d: the run-away distances d/4, d/2, d, 2d, 4d (those shorter than the blocks' "
           "overlap) of d_sweep_*_deg, from the same lift and drops (profiles; maps: empty)",
           [](const P& p) { return p.d_sweep_distance; }, "d_sweep"),
-      list("d_sweep_median_deg", "deg", "the hold angle's median over drops at each d of d_sweep_m (at d: the headline)",
+      list("d_sweep_median_deg", "deg",
+           "the hold angle's median over drops at each d of d_sweep_m (at d: the headline)",
            [](const P& p) { return p.d_sweep_q50; }),
-      list("d_sweep_q05_deg", "deg", "its 5 % quantile at each d of d_sweep_m", [](const P& p) { return p.d_sweep_q05; }),
+      list("d_sweep_q05_deg", "deg", "its 5 % quantile at each d of d_sweep_m",
+           [](const P& p) { return p.d_sweep_q05; }),
       list("d_sweep_q95_deg", "deg", "its 95 % quantile at each d of d_sweep_m",
            [](const P& p) { return p.d_sweep_q95; }),
       column<P>("single_drop", "flag", "one drop (--start-offset): the statistics are that drop's hold angle",

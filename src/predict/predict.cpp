@@ -231,7 +231,8 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     if (lb < 0) {
       // The whole upper profile over the first half of the lower one (the blocks of `frictal tilt`
       // on files): the signature's own drop range, no piece cut.
-      p.test_lengths = "d: " + d_rule + "; block: the whole upper profile, dropped over the first half of the lower one";
+      p.test_lengths =
+          "d: " + d_rule + "; block: the whole upper profile, dropped over the first half of the lower one";
       whole_block = true;
       lb = upper_len;
     } else {
@@ -268,7 +269,8 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
       } else if (!given_d && given_lb) {  // d shortened, down to a hundredth of the default
         d_new = std::min(d, (lower_len - lb) / kRoomPerRunaway);
         if (!(lb <= upper_len) || !(d_new >= 0.01 * d))
-          return make_error(fmt::format("{}: the block of {:.4g} m leaves no room on these scans; {}", stated, lb, fix));
+          return make_error(
+              fmt::format("{}: the block of {:.4g} m leaves no room on these scans; {}", stated, lb, fix));
       } else {
         return make_error(fmt::format("{}; {}", stated, fix));
       }
@@ -619,9 +621,10 @@ Status check_request(const PredictSurface& lower, const PredictSurface* upper, c
     return make_error(
         fmt::format("run-away distance {} m: expected a finite length >= 0 (0: the default)", o.runaway_distance));
   if (!std::isfinite(o.block_length))
-    return make_error(fmt::format("block length {} m: expected a finite length (0: the default, < 0: the whole upper "
-                                  "profile)",
-                                  o.block_length));
+    return make_error(
+        fmt::format("block length {} m: expected a finite length (0: the default, < 0: the whole upper "
+                    "profile)",
+                    o.block_length));
   if (lower.is_map && o.block_length != 0)
     return make_error(
         "block length: for profiles only (a map pair's block is the whole upper map; crop it to state another)");

@@ -682,8 +682,8 @@ std::string d_sweep_figure(const Prediction& p) {
   if (!svg) return {};
   std::string rows;
   for (std::size_t i = 0; i < p.d_sweep_distance.size(); ++i)
-    rows += fmt::format("<tr><td>{:.3g} {}</td><td>{}</td><td>{} … {}</td></tr>", p.d_sweep_distance[i] * scale,
-                        unit, fmt_deg(p.d_sweep_q50[i]), fmt_deg(p.d_sweep_q05[i]), fmt_deg(p.d_sweep_q95[i]));
+    rows += fmt::format("<tr><td>{:.3g} {}</td><td>{}</td><td>{} … {}</td></tr>", p.d_sweep_distance[i] * scale, unit,
+                        fmt_deg(p.d_sweep_q50[i]), fmt_deg(p.d_sweep_q05[i]), fmt_deg(p.d_sweep_q95[i]));
   return figure(*svg, fmt::format("The same drops read with other run-away distances (one lift; key d_sweep_* of "
                                   "the JSON): a test that calls a block sliding only after a longer slide reads a "
                                   "higher angle. d = {:.3g} {} ({}).",

@@ -15,8 +15,8 @@
 
 #include "areal/areal_grid.hpp"
 #include "areal_tilt_model.hpp"
-#include "frictal/areal.hpp"
 #include "frictal/analysis.hpp"
+#include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
 #include "util/parallel.hpp"
 
