@@ -581,25 +581,27 @@ TEST(PredictStatedTest, TheMapDefaultIsTheSlopeCorrelationLengthAlongTheDirectio
               frictal::kRunawayPerSlopeCorrelation * 2e-3 * 0.01);
   EXPECT_NEAR(frictal::default_map_runaway_distance(m, kPi / 2).distance, frictal::kRunawayPerSlopeCorrelation * m.dy,
               1e-15);
-  TEST(Predict, EightDigitXColumnAsPrintedGivesAnAnswer) {
-    // instruments/opdx-3.txt, a profilometer's text export: x with 8 significant digits, so its
-    // steps of 1.6655563e-08 m wobble in the last digit and the lift's events come within ulps of
-    // each other. Taken as printed (not through the reader, which reads it as its uniform grid), the
-    // prediction ended in "hold: lift curve offsets must increase"; now it gives the answer of the
-    // uniform grid x = k * 1.6655563e-08 m to within the x column's rounding.
-    std::ifstream f(std::string(FRICTAL_TEST_DATA) + "/instruments/opdx-3.txt");
-    frictal::Profile printed, grid;
-    for (double x, z; f >> x >> z;) {
-      grid.x.push_back(double(printed.x.size()) * 1.6655563e-08);
-      printed.x.push_back(x);
-      printed.z.push_back(z);
-      grid.z.push_back(z);
-    }
-    ASSERT_EQ(printed.x.size(), 3001u);
-    auto a = frictal::predict(profile_surface(printed, "printed"), nullptr);
-    ASSERT_TRUE(a.ok()) << a.error().message;
-    auto b = frictal::predict(profile_surface(grid, "grid"), nullptr);
-    ASSERT_TRUE(b.ok()) << b.error().message;
-    EXPECT_NEAR(a->friction_angle.q50, b->friction_angle.q50, 0.05 * kDeg);
-    EXPECT_NEAR(a->upper_bound_friction_angle, b->upper_bound_friction_angle, 0.05 * kDeg);
+}
+
+TEST(Predict, EightDigitXColumnAsPrintedGivesAnAnswer) {
+  // instruments/opdx-3.txt, a profilometer's text export: x with 8 significant digits, so its
+  // steps of 1.6655563e-08 m wobble in the last digit and the lift's events come within ulps of
+  // each other. Taken as printed (not through the reader, which reads it as its uniform grid), the
+  // prediction ended in "hold: lift curve offsets must increase"; now it gives the answer of the
+  // uniform grid x = k * 1.6655563e-08 m to within the x column's rounding.
+  std::ifstream f(std::string(FRICTAL_TEST_DATA) + "/instruments/opdx-3.txt");
+  frictal::Profile printed, grid;
+  for (double x, z; f >> x >> z;) {
+    grid.x.push_back(double(printed.x.size()) * 1.6655563e-08);
+    printed.x.push_back(x);
+    printed.z.push_back(z);
+    grid.z.push_back(z);
   }
+  ASSERT_EQ(printed.x.size(), 3001u);
+  auto a = frictal::predict(profile_surface(printed, "printed"), nullptr);
+  ASSERT_TRUE(a.ok()) << a.error().message;
+  auto b = frictal::predict(profile_surface(grid, "grid"), nullptr);
+  ASSERT_TRUE(b.ok()) << b.error().message;
+  EXPECT_NEAR(a->friction_angle.q50, b->friction_angle.q50, 0.05 * kDeg);
+  EXPECT_NEAR(a->upper_bound_friction_angle, b->upper_bound_friction_angle, 0.05 * kDeg);
+}
