@@ -20,7 +20,7 @@ class Prediction:
         """every conditioning step applied to each surface first, in order, with its numbers: crop (the window, points kept), spikes (k, points replaced or masked), form (text)"""
     @property
     def contact_slope_std(self) -> Any:
-        """sigma of Eq. 18: standard deviation of the contact slopes (rad)"""
+        """sigma of Eq. 18: standard deviation of the contact slopes (maps: of the drops' steepest seat slopes) (rad)"""
     @property
     def d_sweep(self) -> Any:
         """how the answer depends on d: the run-away distances d/4, d/2, d, 2d, 4d (those shorter than the blocks' overlap) of d_sweep_*_deg, from the same lift and drops (profiles; maps: empty) (m)"""
@@ -119,7 +119,7 @@ class Prediction:
         """how d and L_b were set: given, or the default's rule with its numbers (text)"""
     @property
     def theta_max(self) -> Any:
-        """steepest contact slope along the direction (the signature's maximum) (rad)"""
+        """steepest contact slope along the direction (profiles: the signature's maximum; maps: of the seats the drops rested in) (rad)"""
     def to_dict(self) -> dict:
         """The keys and interface units of `frictal predict --json`, and its values: None where the JSON has null (a number that is not finite), so that json.dumps(..., allow_nan=False) writes it"""
     def to_json(self) -> str: ...
@@ -134,7 +134,7 @@ class Prediction:
         """the fix for a doubtful prediction: the options to add (Python keywords in parentheses), the unit named where the file's unit and the slopes tell it (text)"""
     @property
     def upper_bound_friction_angle(self) -> Any:
-        """rigid upper bound theta_max + theta_a (Eq. 6), reached only where the block can get to the steepest contact (rad)"""
+        """rigid upper bound, from the hold angles' own model: profiles theta_max + theta_a (Eq. 6), reached only where the block can get to the steepest contact; maps the steepest slope along the direction, friction cones included, of the contacts of every seat a drop rested in (above every drop by construction) (rad)"""
     @property
     def upper_bound_friction_coefficient(self) -> Any:
         """tan of the upper bound (1)"""
@@ -176,7 +176,7 @@ def areal_hold(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: flo
     """Hold angle over drops of an areal block, from the continuous model of frictal.predict (the same library path and numbers; runs without the GIL; as `frictal areal --lateral`): the block free to move sideways (lateral='free', what a tilt test reads) or locked to the direction (lateral='locked', a diagnostic; the free one is computed beside it). Heights, dx, dy, runaway_distance (0: predict's default) and start_offset in m, angle in rad, atomic_friction mu_a unitless (atan(mu_a) is included in every hold angle); upper as measured (turned over) unless turn_over_upper=False; drops: N x N over predict's drop range; detrend: none, mean, plane, poly:N (None: plane, predict's default). start_offset (x, y) (from the centres aligned, or from the upper's place when in place) or None for the distribution. Returns model, lateral, direction, atomic_friction, runaway_distance, drops, drop_range (u0, u1, v0, v1), upper_bound_friction_angle, conditioning, warnings and, over drops: hold_angle_mean/std/q05/q50/q95/min/max (rad), drop_hold_angles (rad), drop_offsets (drops x 2, m) (locked: also hold_angle_free_q05/q50/q95); from one drop: start_offset, rest_offset, hold_angle, steering (the free block's run-away direction from d, rad) (locked: also hold_angle_free)"""
 
 def areal_signature(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, angle: float = ..., upper: Any = ..., turn_over_upper: bool = ..., prune: bool = ..., threads: int = ...) -> dict:
-    """Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `angle` (rad; runs without the GIL); upper as measured (turned over) by default. Returns offset, lift (m), theta (rad), theta_max_forward/backward (rad), contact_slope_std (rad), evaluated_nodes"""
+    """Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `angle` (rad; runs without the GIL); upper as measured (turned over) by default: the grid model (the maps' nodes, slopes by central differences), a diagnostic of the grid, not a bound of the tilt test's hold angle (that and its bound: predict). Returns offset, lift (m), theta (rad), theta_max_forward/backward (rad), contact_slope_std (rad), evaluated_nodes"""
 
 def areal_tilt(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, upper: Any = ..., turn_over_upper: bool = ..., start_offset: Any = ..., **kwargs: Any) -> dict:
     """areal_tilt(lower, *, dx, dy, upper=None, turn_over_upper=True, start_offset=None, **settings) -> dict
@@ -207,7 +207,7 @@ def areal_tilt(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: flo
 def areal_tilt_hold(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, upper: Any = ..., turn_over_upper: bool = ..., start_offset: Any = ..., start_tilt: float = ..., spread: bool = ..., **kwargs: Any) -> dict:
     """areal_tilt_hold(lower, *, dx, dy, upper=None, turn_over_upper=True, start_offset=None, start_tilt=0, spread=True, **settings) -> dict
 
-    The matched prediction of the 3D tilt test without MuJoCo (as `frictal areal-tilt --predict-only`; docs/mujoco.md): the rigid, frictionless quasi-static block of spheres on the triangulated lower face, offsets anywhere in the plane, dropped at start_offset (x, y in m; default 0, 0) and put down at start_tilt (rad), tilted in the settings' increments. lower, upper: 2-D arrays of heights (m, rows along y), spacings dx, dy (m); upper as measured (turned over) unless turn_over_upper=False. Returns hold_angle (rad, bisected to 1e-4), runaway_increment (rad), ran_away, rest_offset (m), steering (rad), evaluations, the stops after each increment (stop_tilt rad, stop_x, stop_y m) and, with spread=True, hold_angle_range (rad, rad: one slip's end moved by a sphere radius, areal_tilt_hold_spread), slips and ambiguous_slips. atomic_friction must be 0. Settings: the areal_tilt() keywords (areal_tilt_settings())."""
+    The matched prediction of the 3D tilt test without MuJoCo (as `frictal areal-tilt --predict-only`; docs/mujoco.md): the rigid, frictionless quasi-static block of spheres on the triangulated lower face, offsets anywhere in the plane, dropped at start_offset (x, y in m; default 0, 0) and put down at start_tilt (rad), tilted in the settings' increments. lower, upper: 2-D arrays of heights (m, rows along y), spacings dx, dy (m); upper as measured (turned over) unless turn_over_upper=False. Returns hold_angle (rad, bisected to 1e-6), seat_bound (rad: the drop's rigid upper bound, >= hold_angle), runaway_increment (rad), ran_away, rest_offset (m), steering (rad), evaluations, the stops after each increment (stop_tilt rad, stop_x, stop_y m) and, with spread=True, hold_angle_range (rad, rad: one slip's end moved by a sphere radius, areal_tilt_hold_spread), slips and ambiguous_slips. atomic_friction must be 0. Settings: the areal_tilt() keywords (areal_tilt_settings())."""
 
 def areal_tilt_settings() -> list:
     """areal_tilt_settings() -> list
@@ -305,7 +305,7 @@ def map_stats(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: fl
 def power_spectrum(profile: Profile, max_k: int = ...) -> tuple:
     """Power spectrum of a profile (m, runs without the GIL): returns (q in rad/m, C in m^3) of the piecewise-linear profile, with 2 sum C / L = rms^2; max_k: 0 = automatic"""
 
-def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., x_unit: str = ..., z_unit: str = ..., threads: int = ...) -> Prediction:
+def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., block_length: Any = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., x_unit: str = ..., z_unit: str = ..., threads: int = ...) -> Prediction:
     """The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)"""
 
 def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ...) -> dict:
