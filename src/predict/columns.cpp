@@ -74,7 +74,7 @@ const Columns<Prediction>& prediction_columns() {
       list(
           "d_sweep_m", "m",
           "how the answer depends on d: the run-away distances d/4, d/2, d, 2d, 4d (those shorter than the blocks' "
-          "overlap) of d_sweep_*_deg, from the same lift and drops (profiles; maps: empty)",
+          "overlap) of the d_sweep median, q05 and q95 columns, from the same lift and drops (profiles; maps: empty)",
           [](const P& p) { return p.d_sweep_distance; }, "d_sweep"),
       list("d_sweep_median_deg", "deg",
            "the hold angle's median over drops at each d of d_sweep_m (at d: the headline)",
