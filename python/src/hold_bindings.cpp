@@ -74,7 +74,8 @@ void frictal_bind_hold(py::module_& m) {
       py::arg("remove_spikes") = false, py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("spacing") = 0.0,
       py::arg("format") = "auto", py::arg("unit") = "",
       "Hold angle of a rigid upper block on `lower` (what a tilt test reads; runs without the GIL), the numbers of "
-      "the hold_angle keys of `frictal signature --json` on the same input. `lower`, `upper`: file paths, Profile objects, "
+      "the hold_angle keys of `frictal signature --json` on the same input. `lower`, `upper`: file paths, Profile "
+      "objects, "
       "profile dicts or 1-D arrays with spacing= (m), conditioned as in signature() (detrend None: a line, the mean "
       "of a periodic profile; 'none' keeps a generated surface exact). `upper` is a "
       "surface as measured (rotated by 180 degrees) unless rotate_upper=False; default: lower turned over. "

@@ -64,7 +64,8 @@ const std::vector<WarningCode>& warning_codes() {
        "distances of sliding room, or the upper scan shorter than the block; maps: the lower map shorter than 16 "
        "run-away distances along the direction): the answer is for the largest test of "
        "the same shape (L_b / d) that the scans hold, named in the message; a shorter test reads other angles "
-       "(the d sweep of the result): measure longer scans, or state the test with --block-length and --runaway-distance",
+       "(the d sweep of the result): measure longer scans, or state the test with --block-length and "
+       "--runaway-distance",
        false, ""},
       {"few-drops", "the distribution rests on fewer than 3 basins (profiles) or drops: the spread is not resolved",
        false, ""},
