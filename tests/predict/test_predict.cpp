@@ -286,6 +286,27 @@ TEST(Warnings, UnitsSpikesScaleAndFillValuesAreNamed) {
   }
 }
 
+TEST(Warnings, SpikesAloneDoNotMakeTheUnitsSuspect) {
+  // A sawtooth of 2 points a wavelength rising at 20 deg (rms slope about 0.36) with three spikes
+  // of 20 rms heights: the spikes' edges are steeper than any instrument measures (rms slope over
+  // the whole profile about 30), but the surface between them is not: the warning is the spikes',
+  // whose fix is their removal, not another unit for the heights.
+  frictal::SawtoothParams sp;
+  sp.length = 2.0;  // 200 wavelengths, 400 points
+  frictal::Profile saw = frictal::sawtooth_profile(sp).value();
+  saw.period.reset();
+  double rq = 0;
+  for (double z : saw.z) rq += z * z;
+  rq = std::sqrt(rq / double(saw.size()));
+  for (std::size_t k : {100u, 201u, 333u}) saw.z[k] += 20 * rq;
+  const auto w = frictal::check_profile(saw, "spiky");
+  EXPECT_TRUE(has_code(w, "spikes"));
+  EXPECT_FALSE(has_code(w, "units-suspect"));
+  // The same with heights 10^6 too large (micrometres read as metres): the units still are.
+  for (double& z : saw.z) z *= 1e6;
+  EXPECT_TRUE(has_code(frictal::check_profile(saw, "spiky-um"), "units-suspect"));
+}
+
 TEST(Predict, TakingTheSurfacesOverGivesTheSamePrediction) {
   // The overload that takes the surfaces (their points moved through the conditioning into the
   // signature) against the one that reads them where they are: the same prediction to the bit
