@@ -1800,8 +1800,8 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
     double m_lo = sampled ? 2 * d : 1.55 * d, m_hi = m_lo;
     // Exact mode on a small lift: the whole overlap at once (HoldOptions::whole_lift_offsets,
     // 10^5 by default): the end checks are a saving for long pairs only, and on about 1 % of
-    // small random pairs they let a lift through that is too short for the process (session 21:
-    // 3 of 400, against the lift over the whole overlap).
+    // small random pairs they let a lift through that is too short for the process (3 of 400
+    // against the lift over the whole overlap).
     if (const double span = R.offset.empty() ? 0.0 : R.offset.back() - R.offset.front(); !sampled && span > 0) {
       const double per_m = double(R.offset.size() - 1) / span;  // the signature's offsets per metre
       if ((whole.max - whole.min) * per_m <= S.ho.whole_lift_offsets)
@@ -1935,7 +1935,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       const std::size_t w_hi = std::max(w_lo, mp.first_at(S.b - d, true));
       const std::size_t i_hi = w_hi > 2 ? w_hi - 2 : 0;
       // Both ends at once, a thread each (each check is serial; on two threads this takes the
-      // wall of one end, for about 25 MB more than one end after the other on issue 32's pairs,
+      // wall of one end, for about 25 MB more than one end after the other on the 10^7-point self-affine pairs,
       // whose peak lies in reading the files); one after the other on one thread. The curves are
       // kept for the whole curve's ends (about 0.1 s of CPU that the whole curve then saves).
       const unsigned threads = util::thread_count(so.threads, 2);
@@ -1996,7 +1996,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   };
   // The analysis once the faces are let go, before the signature's slope distribution is
   // computed (so that the two do not hold their memory at the same time: run side by side, on
-  // the H = 0.3 pair of issue 32, they took 72 MB more than one after the other).
+  // a 10^7-point H = 0.3 pair, they took 72 MB more than one after the other).
   const detail::AfterFaces after_faces = [&](const SignatureResult& R) -> Status {
     if (S.period > 0) {
       out.events = R.offset.size();

@@ -331,7 +331,7 @@ Result<ReportResolution> resolution_of(const ReportInput& in, const ReportSurfac
     }
     // Sampled offsets (each evaluated exactly): a trend over cutoffs needs no event-exact
     // maximum, and smooth filtered pairs on grids that do not align cost seconds per cutoff
-    // exactly (bench/results/report.md).
+    // exactly.
     SignatureOptions rso = so;
     rso.offsets = kResolutionOffsets;
     auto rs = signature(*lf, rotate180(uf), rso);
