@@ -232,7 +232,8 @@ TEST(CliPredict, TheTestIsStatedInLengthsWithUnits) {
   const std::string f = data("profiles/dektak-1.csv") + " --crop 0,0.4mm";
   const json a = predict_json(f + " --runaway-distance 5um --block-length 0.1mm");
   EXPECT_DOUBLE_EQ(a["runaway_distance_m"].get<double>(), 5e-6);
-  EXPECT_NEAR(a["block_length_m"].get<double>(), 1e-4, 1e-12);
+  // The block: 0.1 mm to the nearest samples (the scan's grid, 0.15625 um).
+  EXPECT_NEAR(a["block_length_m"].get<double>(), 1e-4, 0.15625e-6 * (1 + 1e-6));
   EXPECT_EQ(a["test_lengths"], "d: given; block: given");
   // The d table: d/4 .. 4d, its entry at d the headline.
   ASSERT_EQ(a["d_sweep_m"].size(), 5u);
@@ -269,7 +270,9 @@ TEST(CliPredict, TheCropAndTheScanAgreeAndA50umPieceIsWarned) {
   const json piece = predict_json(f + " --crop 0.6mm,0.65mm");
   EXPECT_TRUE(warned(piece, "scan-too-short"));
   // The answer is for the largest test of the default's shape that fits: L = L_b + 8 d, L_b = 20 d.
-  EXPECT_NEAR(piece["block_length_m"].get<double>(), 20 * piece["runaway_distance_m"].get<double>(), 1e-9);
+  // (L_b to the nearest samples: within one sampling interval, 0.15625 um.)
+  EXPECT_NEAR(piece["block_length_m"].get<double>(), 20 * piece["runaway_distance_m"].get<double>(),
+              0.15625e-6 * (1 + 1e-6));
   // A stated test the scan cannot hold is refused, saying what it needs.
   auto r = run_cli("predict " + f + " --runaway-distance 0.3mm --block-length 1mm");
   EXPECT_EQ(r.code, 2);

@@ -516,7 +516,9 @@ TEST(PredictStatedTest, AScanTooShortIsWarnedAndAnsweredForTheLargestTestOfTheSa
   ASSERT_TRUE(r.ok()) << r.error().message;
   EXPECT_TRUE(has_code(r->warnings, "scan-too-short"));
   EXPECT_NEAR(r->runaway_distance, len / (frictal::kBlockPerRunaway + frictal::kRoomPerRunaway), 1e-9 * len);
-  EXPECT_NEAR(r->block_length, frictal::kBlockPerRunaway * r->runaway_distance, 1e-6 * len);
+  // The block is L_b to the nearest samples of the scan (each end within half a sampling interval).
+  const double dx = len / double(s.size() - 1);
+  EXPECT_NEAR(r->block_length, frictal::kBlockPerRunaway * r->runaway_distance, dx * (1 + 1e-9));
   // A stated d keeps: the defaulted block gives way (to the upper scan here), warned.
   frictal::PredictOptions o;
   o.runaway_distance = 0.005;  // the default block: 20 d = 0.1 m
@@ -550,7 +552,8 @@ TEST(PredictStatedTest, TheSweepOverDHoldsTheHeadlineAtD) {
   EXPECT_EQ(r->d_sweep_q50[2], r->friction_angle.q50);
   EXPECT_EQ(r->d_sweep_q05[2], r->friction_angle.q05);
   EXPECT_EQ(r->d_sweep_q95[2], r->friction_angle.q95);
-  EXPECT_NEAR(r->block_length, frictal::kBlockPerRunaway * 0.004, 1e-12);  // L_b = 20 d, d given
+  // L_b = 20 d, d given, to the nearest samples (one sampling interval of 1.6 m / 16384 at most).
+  EXPECT_NEAR(r->block_length, frictal::kBlockPerRunaway * 0.004, 1.6 / 16384 * (1 + 1e-9));
   for (std::size_t i = 0; i < 5; ++i) EXPECT_LE(r->d_sweep_q05[i], r->d_sweep_q50[i]);
 }
 

@@ -250,7 +250,8 @@ def test_the_stated_test_takes_lengths_and_returns_the_d_sweep():
     p = frictal.predict(prof, detrend="none")
     d = 12.5 * lam * math.acos(math.exp(-1)) / (2 * math.pi)
     assert p.runaway_distance == pytest.approx(d, rel=2e-3)
-    assert p.block_length == pytest.approx(20 * p.runaway_distance, rel=1e-9)
+    # the block: 20 d to the nearest samples (within one sampling interval, lam / 64)
+    assert p.block_length == pytest.approx(20 * p.runaway_distance, abs=lam / 64 * (1 + 1e-9))
     assert list(p.d_sweep) == pytest.approx([k * p.runaway_distance for k in (0.25, 0.5, 1, 2, 4)])
     assert p.d_sweep_median[2] == p.friction_angle  # the headline is the sweep's entry at d
     dd = p.to_dict()
@@ -269,7 +270,8 @@ def test_a_short_scan_is_warned_with_its_category():
     x = np.arange(4 * 64 + 1) * lam / 64  # four wavelengths: too short for the default test
     with pytest.warns(frictal.ScanTooShortWarning):
         p = frictal.predict(frictal.Profile(x, 1e-6 * np.sin(2 * np.pi * x / lam)), detrend="none")
-    assert p.block_length + 8 * p.runaway_distance == pytest.approx(x[-1], rel=1e-9)
+    # the largest test of the same shape: L_b + 8 d = L, L_b to the nearest samples
+    assert p.block_length + 8 * p.runaway_distance == pytest.approx(x[-1], abs=lam / 64 * (1 + 1e-9))
 
 
 def _self_affine_rows(tmp_path):
