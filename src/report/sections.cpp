@@ -747,7 +747,8 @@ std::string headline(const ReportInput& in, const ReportData& d) {
         "{}).</p>\n",
         in.is_map ? (in.upper_map ? "The maps' central lines (a diagnostic)"
                                   : "The map's central line against itself (a diagnostic)")
-                  : "Signature function",
+                  : "The signature function below (the whole upper scan over offsets 0 to half its length, as "
+                    "`frictal signature` computes it; a diagnostic of another block than the stated test's)",
         fmt_deg(fwd.friction_angle), fmt_deg(bwd.friction_angle), fmt_deg(r.theta_max_forward),
         fmt_deg(r.theta_max_backward));
   } else {
