@@ -98,14 +98,7 @@ void frictal_bind_contact(py::module_& m) {
           d["conditioning"] = record;
           std::vector<Warning> w = warnings;
           for (const ContactWarning& x : r.warnings) add_warning(w, {x.code, x.message});
-          py::list wl;
-          for (const Warning& x : w) {
-            py::dict e;
-            e["code"] = x.code;
-            e["message"] = x.message;
-            wl.append(e);
-          }
-          d["warnings"] = wl;
+          d["warnings"] = py_detail::warning_list(w);
           if (fields) {
             py::array_t<double> pa = py_detail::arr(r.pressure), ga = py_detail::arr(r.gap);
             if (r.is_map) {

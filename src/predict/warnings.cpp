@@ -204,6 +204,19 @@ void common_checks(std::vector<Warning>& out, const Moments& m, std::size_t spik
                                            name, rep.first, rep.second, n, 100.0 * double(rep.second) / double(n))});
 }
 
+// Heights read in a unit too small for the lateral lengths: slopes (`rms_slope`, read away from
+// the spikes where `spikes` were found) steeper than any instrument measures.
+void units_check(std::vector<Warning>& out, double rms_slope, bool spikes, const std::string& name,
+                 const PlausibilityLimits& L) {
+  if (rms_slope > L.max_rms_slope)
+    add_warning(
+        out, {"units-suspect",
+              fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average){}: steeper than any instrument "
+                          "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
+                          name, rms_slope, std::atan(rms_slope) * 180 / 3.141592653589793,
+                          spikes ? " away from the spikes" : "")});
+}
+
 // Lateral lengths read in a unit too large: slopes implausibly small on points spaced coarser
 // than roughness instruments sample (x in mm read as m: both by 1000). A flat surface (rms slope
 // 0: no heights to compare) is left to heights-tiny.
@@ -242,13 +255,7 @@ std::vector<Warning> check_profile(const Profile& p, const std::string& name, co
   // The units check reads the slopes of the surface, not of its spikes: three spikes in 2000
   // points raise the rms slope tenfold, and a units warning there would name the wrong fix.
   const double units_slope = sp.points.empty() ? st.rms_slope : rms_slope_without(p, sp.points);
-  if (units_slope > L.max_rms_slope)
-    add_warning(
-        out, {"units-suspect",
-              fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average){}: steeper than any instrument "
-                          "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
-                          name, units_slope, std::atan(units_slope) * 180 / 3.141592653589793,
-                          sp.points.empty() ? "" : " away from the spikes")});
+  units_check(out, units_slope, !sp.points.empty(), name, L);
   const double spacing = p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0;
   lateral_check(out, st.rms_slope, spacing, name, L);
   const Moments m = moments(p.z);
@@ -285,13 +292,7 @@ std::vector<Warning> check_map(const Map& mp, const std::string& name, const Pla
   const double rms_slope = ns ? std::sqrt(2 * s2 / double(ns)) : 0;
   // The units check away from the spikes (as for profiles).
   const double units_slope = nu ? std::sqrt(2 * u2 / double(nu)) : 0;
-  if (units_slope > L.max_rms_slope)
-    add_warning(
-        out, {"units-suspect",
-              fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average){}: steeper than any instrument "
-                          "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
-                          name, units_slope, std::atan(units_slope) * 180 / 3.141592653589793,
-                          sp.points.empty() ? "" : " away from the spikes")});
+  units_check(out, units_slope, !sp.points.empty(), name, L);
   if (ns) lateral_check(out, rms_slope, std::max(mp.dx, mp.dy), name, L);
   const Moments m = moments(mp.heights);
   const std::size_t spikes = sp.points.size();

@@ -593,13 +593,9 @@ std::array<double, 2> least_norm(const std::vector<std::array<double, 2>>& q) {
   return best;
 }
 
-/// The least-norm point of the convex hull of many points (the friction cones' samples): the hull
-/// (Andrew's monotone chain), then the origin inside it (0) or the nearest point of its boundary.
-/// Same answer as least_norm, in O(n log n).
-std::array<double, 2> least_norm_hull(std::vector<std::array<double, 2>> q) {
-  std::sort(q.begin(), q.end());
-  q.erase(std::unique(q.begin(), q.end()), q.end());
-  if (q.size() < 3) return least_norm(q);
+/// The convex hull of points q, sorted and without repeats (at least two), by Andrew's monotone
+/// chain: counter-clockwise, the first point not repeated (two points: both).
+std::vector<std::array<double, 2>> convex_hull(const std::vector<std::array<double, 2>>& q) {
   auto cross = [](const std::array<double, 2>& o, const std::array<double, 2>& a, const std::array<double, 2>& b) {
     return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
   };
@@ -613,7 +609,21 @@ std::array<double, 2> least_norm_hull(std::vector<std::array<double, 2>> q) {
     while (k >= lo && cross(h[k - 2], h[k - 1], q[i]) <= 0) --k;
     h[k++] = q[i];
   }
-  h.resize(k - 1);  // counter-clockwise, the first point not repeated
+  h.resize(k - 1);
+  return h;
+}
+
+/// The least-norm point of the convex hull of many points (the friction cones' samples): the hull
+/// (Andrew's monotone chain), then the origin inside it (0) or the nearest point of its boundary.
+/// Same answer as least_norm, in O(n log n).
+std::array<double, 2> least_norm_hull(std::vector<std::array<double, 2>> q) {
+  std::sort(q.begin(), q.end());
+  q.erase(std::unique(q.begin(), q.end()), q.end());
+  if (q.size() < 3) return least_norm(q);
+  auto cross = [](const std::array<double, 2>& o, const std::array<double, 2>& a, const std::array<double, 2>& b) {
+    return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  };
+  const std::vector<std::array<double, 2>> h = convex_hull(q);
   if (h.size() < 3) return least_norm(h);
   bool inside = true;
   std::array<double, 2> best = h[0];
@@ -689,21 +699,8 @@ double ray_hull_max(std::vector<std::array<double, 2>> q, double dxv, double dyv
       best = q[0][0] * dxv + q[0][1] * dyv;
     return best;
   }
-  // The hull (Andrew's monotone chain), then its edges.
-  std::vector<std::array<double, 2>> h(2 * q.size());
-  std::size_t k = 0;
-  auto turn = [&](const std::array<double, 2>& o, const std::array<double, 2>& a, const std::array<double, 2>& b) {
-    return cross(a[0] - o[0], a[1] - o[1], b[0] - o[0], b[1] - o[1]);
-  };
-  for (std::size_t i = 0; i < q.size(); ++i) {
-    while (k >= 2 && turn(h[k - 2], h[k - 1], q[i]) <= 0) --k;
-    h[k++] = q[i];
-  }
-  for (std::size_t i = q.size() - 1, lo = k + 1; i-- > 0;) {
-    while (k >= lo && turn(h[k - 2], h[k - 1], q[i]) <= 0) --k;
-    h[k++] = q[i];
-  }
-  h.resize(k - 1);
+  // The hull, then its edges.
+  const std::vector<std::array<double, 2>> h = convex_hull(q);
   for (std::size_t i = 0; i < h.size(); ++i) edge(h[i], h[(i + 1) % h.size()]);
   return best;
 }
