@@ -71,16 +71,17 @@ struct LoadedState {
 
 /// Diagnostics of one load over the offsets of a loaded lift (the model's assumptions).
 struct LoadedLiftDiagnostics {
-  double load = 0;                 ///< W (unit: N)
-  double mean_contacts = 0;        ///< contacts carrying force per offset, mean (unitless)
-  double mean_approach = 0;        ///< h(s) - z, mean over offsets (unit: m)
+  double load = 0;                    ///< W (unit: N)
+  double mean_contacts = 0;           ///< contacts carrying force per offset, mean (unitless)
+  double mean_approach = 0;           ///< h(s) - z, mean over offsets (unit: m)
   double max_interference_ratio = 0;  ///< largest delta / R of any loaded contact (unitless)
   /// Share of the offsets where some loaded contact has delta / R above 0.1 (Hertz wants a << R,
   /// a = sqrt(R delta)) (unitless).
   double deep_share = 0;
   /// Share of the load, averaged over offsets, carried by contacts that have merged with a
-  /// neighbour (the block below the saddle between them, or their Hertz half-widths a = sqrt(R
-  /// delta) overlapping) (unitless).
+  /// neighbouring asperity (the next local maximum of d_s on either side, loaded or not): the
+  /// block below the saddle between them, or the contact's Hertz half-width a = sqrt(R delta)
+  /// reaching it (unitless).
   double merged_share = 0;
   /// sqrt of the force-weighted mean of tan^2 theta over contacts and offsets (unitless).
   double rms_contact_slope = 0;

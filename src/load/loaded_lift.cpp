@@ -109,6 +109,7 @@ class RangeMax {
 class Pair {
  public:
   static constexpr std::size_t kFine = 64, kCoarse = 2048;
+  static constexpr double kOvershoot = 0.02;  // of the pair's height range (unitless)
 
   Pair(const Profile& lower, const Profile& upper, double modulus, double max_radius)
       : f_(fitted(lower, 0)),
@@ -153,13 +154,16 @@ class Pair {
       flush();
       region_j0 = j0, region_j1 = j1, open = true;
     };
+    // The bounds are the polyline's; the spline through its samples may rise above them by a
+    // fraction of the local height range.
+    const double reach = threshold - kOvershoot * scale_;
     for (std::size_t c0 = (jlo / kCoarse) * kCoarse; c0 < jhi; c0 += kCoarse) {
       const std::size_t c1 = std::min(c0 + kCoarse, m - 1);
-      if (bound(s, c0, c1, coarse_min_[c0 / kCoarse], a, b) < threshold) continue;
+      if (bound(s, c0, c1, coarse_min_[c0 / kCoarse], a, b) < reach) continue;
       for (std::size_t f0 = c0; f0 < c1; f0 += kFine) {
         const std::size_t f1 = std::min(f0 + kFine, m - 1);
         if (f1 < jlo || f0 > jhi) continue;
-        if (bound(s, f0, f1, fine_min_[f0 / kFine], a, b) >= threshold) keep(f0, f1);
+        if (bound(s, f0, f1, fine_min_[f0 / kFine], a, b) >= reach) keep(f0, f1);
       }
     }
     flush();
@@ -233,58 +237,122 @@ class Pair {
     return fmax_.max(i0, i1) - gmin;
   }
 
-  // The local maxima of d_s over the span of upper vertices [j0, j1] (within [a, b]).
+  // The local maxima of d_s over the span of upper vertices [j0, j1] (within [a, b]): the maxima of
+  // the natural cubic spline through d_s sampled at the lower vertices (and the overlap's ends),
+  // kPad samples beyond the span on each side. A spline's maxima move with s continuously, with
+  // their curvature (the polyline's own vertex maxima jump from sample to sample, and with them
+  // the radius, at every change of the rigid lift's contact).
+  static constexpr std::size_t kPad = 8;
   void region(double s, double threshold, std::size_t j0, std::size_t j1, double a, double b,
               std::vector<HertzContact>& out) const {
     const double xl = std::max(g_.x[j0] + s, a), xr = std::min(g_.x[j1] + s, b);
     if (!(xl <= xr)) return;
-    // The merged vertices of d_s over [xl, xr]: both ends, the lower vertices and the upper ones
-    // (one point where the two coincide).
-    pts_.clear();
-    const double tol = 1e-9 * (f_.x.back() - f_.x.front()) / double(f_.x.size());
-    std::size_t i = edge_of(f_.x, xl), j = edge_of(g_.x, xl - s);
-    auto d_at = [&](double x) {
-      i = std::min(edge_of_from(f_.x, x, i), f_.x.size() - 2);
-      j = std::min(edge_of_from(g_.x, x - s, j), g_.x.size() - 2);
-      return lerp_at(f_.x, f_.z, i, x) - lerp_at(g_.x, g_.z, j, x - s);
-    };
-    pts_.push_back({xl, d_at(xl)});
-    std::size_t pi = i + 1, pj = j + 1;
-    while (true) {
-      const double xf = pi < f_.x.size() ? f_.x[pi] : kInf, xg = pj < g_.x.size() ? g_.x[pj] + s : kInf;
-      const double x = std::min(xf, xg);
-      if (!(x < xr - tol)) break;
-      if (x > pts_.back().x + tol) pts_.push_back({x, d_at(x)});
-      if (xf <= x + tol) ++pi;
-      if (xg <= x + tol) ++pj;
-    }
-    if (xr > pts_.back().x + tol) pts_.push_back({xr, d_at(xr)});
-    // Local maxima: a run of equal values higher than both sides (an end of the overlap counts as
-    // lower beyond); its middle is the contact. The saddle before each: the least d since the last.
-    const std::size_t n = pts_.size();
-    double saddle = -kInf;
-    for (std::size_t k = 0; k < n;) {
-      std::size_t e = k;
-      while (e + 1 < n && pts_[e + 1].d == pts_[k].d) ++e;
-      const bool left = k == 0 ? pts_[0].x <= a + tol : pts_[k - 1].d < pts_[k].d;
-      const bool right = e + 1 == n ? pts_[e].x >= b - tol : pts_[e + 1].d < pts_[k].d;
-      if (left && right && pts_[k].d >= threshold) {
-        out.push_back(contact_at(s, 0.5 * (pts_[k].x + pts_[e].x), pts_[k].d, saddle));
-        saddle = kInf;
+    const std::size_t n = f_.x.size();
+    const std::size_t il = edge_of(f_.x, xl), ir = edge_of(f_.x, xr) + 1;
+    const std::size_t i0 = il > kPad ? il - kPad : 0, i1 = std::min(ir + kPad, n - 1);
+    xs_.clear(), ys_.clear();
+    std::size_t j = edge_of(g_.x, f_.x[i0] - s);
+    // A sample closer than a quarter of the lower's spacing to the previous one (an end of the
+    // overlap next to a vertex) is left out, the end kept: a spline over a tiny interval swings.
+    const double gap = 0.25 * (f_.x.back() - f_.x.front()) / double(n - 1);
+    auto add = [&](double x, double fz, bool end) {
+      const double y = fz - g_at(x - s, j);
+      if (!xs_.empty() && x - xs_.back() < gap) {
+        if (end && xs_.size() > 1)
+          xs_.back() = x, ys_.back() = y;
+        else if (end && x > xs_.back())
+          xs_.push_back(x), ys_.push_back(y);  // a tiny overlap: its two ends
+        return;
       }
-      for (std::size_t q = k; q <= e; ++q) saddle = std::min(saddle, pts_[q].d);
-      k = e + 1;
+      xs_.push_back(x), ys_.push_back(y);
+    };
+    if (f_.x[i0] <= a) add(a, f_at(a), true);
+    for (std::size_t i = i0; i <= i1; ++i)
+      if (f_.x[i] > a && f_.x[i] < b) add(f_.x[i], f_.z[i], false);
+    if (f_.x[i1] >= b) add(b, f_at(b), true);
+    const std::size_t m = xs_.size();
+    if (m < 2) return;
+    // The spline's second derivatives M by the tridiagonal solve, with parabolic run-out ends
+    // (M_0 = M_1, M_(m-1) = M_(m-2)): a natural end (M = 0) would flatten the curvature of a
+    // contact at an end of the overlap (the block's corner), and with it the radius.
+    ms_.assign(m, 0.0);
+    if (m >= 3) {
+      cs_.assign(m, 0.0);
+      for (std::size_t k = 1; k + 1 < m; ++k) {
+        const double h0 = xs_[k] - xs_[k - 1], h1 = xs_[k + 1] - xs_[k];
+        const double rhs = 6 * ((ys_[k + 1] - ys_[k]) / h1 - (ys_[k] - ys_[k - 1]) / h0);
+        const bool first = k == 1, last = k + 2 == m;
+        const double sub = first ? 0.0 : h0, super = last ? 0.0 : h1;
+        const double diag = 2 * (h0 + h1) + (first ? h0 : 0.0) + (last ? h1 : 0.0) - sub * (first ? 0.0 : cs_[k - 1]);
+        cs_[k] = super / diag;
+        ms_[k] = (rhs - sub * (first ? 0.0 : ms_[k - 1])) / diag;
+      }
+      for (std::size_t k = m - 2; k >= 2; --k) ms_[k - 1] -= cs_[k - 1] * ms_[k];
+      ms_[0] = ms_[1];
+      ms_[m - 1] = ms_[m - 2];
+    }
+    // Maxima of each piece inside [xl, xr] (an end of the overlap where the spline falls from it),
+    // with the least sample between each and the previous as its saddle.
+    double saddle = -kInf;
+    for (std::size_t k = 0; k + 1 < m; ++k) {
+      const double h = xs_[k + 1] - xs_[k], M0 = ms_[k], M1 = ms_[k + 1];
+      const double y0 = ys_[k], y1 = ys_[k + 1];
+      auto value = [&](double t) {
+        const double u = h - t;
+        return M0 * u * u * u / (6 * h) + M1 * t * t * t / (6 * h) + (y0 / h - M0 * h / 6) * u +
+               (y1 / h - M1 * h / 6) * t;
+      };
+      // S'(t) = A t^2 + B t + C on t in [0, h].
+      const double A = (M1 - M0) / (2 * h), B = M0, C = -M0 * h / 2 + (y1 - y0) / h - (M1 - M0) * h / 6;
+      auto emit = [&](double t, double curvature_d2) {
+        const double x = xs_[k] + t;
+        if (x < xl || x > xr) return;
+        const double d = value(t);
+        if (d >= threshold) {
+          out.push_back(contact_at(s, x, d, curvature_d2, saddle));
+          saddle = kInf;
+        }
+      };
+      if (k == 0 && xs_[0] <= a && C < 0) emit(0, M0);
+      double roots[2];
+      int nr = 0;
+      if (std::abs(A) * h < 1e-12 * (std::abs(B) + std::abs(C) / h)) {
+        if (B != 0) roots[nr++] = -C / B;
+      } else {
+        const double disc = B * B - 4 * A * C;
+        if (disc >= 0) {
+          const double q = -0.5 * (B + std::copysign(std::sqrt(disc), B));
+          roots[nr++] = q / A;
+          if (q != 0) roots[nr++] = C / q;
+        }
+      }
+      if (nr == 2 && roots[0] > roots[1]) std::swap(roots[0], roots[1]);
+      for (int r = 0; r < nr; ++r) {
+        const double t = roots[r];
+        if (!(t > 0 && t <= h)) continue;
+        const double d2 = M0 + (M1 - M0) * t / h;  // S''(t)
+        if (2 * A * t + B < 0) emit(t, d2);        // a maximum: S' falls through 0
+      }
+      saddle = std::min(saddle, y1);
+      if (k + 2 == m && xs_[k + 1] >= b && A * h * h + B * h + C > 0) emit(h, M1);
     }
   }
 
-  HertzContact contact_at(double s, double x, double d, double saddle) const {
+  double f_at(double x) const { return lerp_at(f_.x, f_.z, edge_of(f_.x, x), x); }
+  // g at u, walking its edge index j forward from the last call's.
+  double g_at(double u, std::size_t& j) const {
+    j = std::min(edge_of_from(g_.x, u, j), g_.x.size() - 2);
+    return lerp_at(g_.x, g_.z, j, u);
+  }
+
+  // The contact at x of touch height d, the composite's second derivative d2 there (the spline's).
+  HertzContact contact_at(double s, double x, double d, double d2, double saddle) const {
     HertzContact c;
     c.x = x;
     c.touch_height = d;
     c.saddle_left = std::isinf(saddle) ? -kInf : saddle;
     const std::size_t i = edge_of(f_.x, x), j = edge_of(g_.x, x - s);
     const double t = 0.5 * (lerp_at(f_.x, f_.d1, i, x) + lerp_at(g_.x, g_.d1, j, x - s));
-    const double d2 = lerp_at(f_.x, f_.d2, i, x) - lerp_at(g_.x, g_.d2, j, x - s);
     c.slope = std::atan(t);
     const double cs = std::cos(c.slope);
     const double curvature = -d2 * cs * cs * cs;  // 1/R of the composite, along the contact normal
@@ -302,17 +370,14 @@ class Pair {
     return k;
   }
 
-  struct Pt {
-    double x, d;
-  };
   Fitted f_, g_;
   RangeMax fmax_;
   std::vector<double> fine_min_, coarse_min_;
   double modulus_ = 0, max_radius_ = 0, scale_ = 1;
-  static thread_local std::vector<Pt> pts_;
+  static thread_local std::vector<double> xs_, ys_, ms_, cs_;
 };
 
-thread_local std::vector<Pair::Pt> Pair::pts_;
+thread_local std::vector<double> Pair::xs_, Pair::ys_, Pair::ms_, Pair::cs_;
 
 Status check_inputs(const Profile& lower, const Profile& upper, const LoadedLiftOptions& o) {
   if (!(o.contact_modulus > 0) || !std::isfinite(o.contact_modulus))
@@ -321,8 +386,8 @@ Status check_inputs(const Profile& lower, const Profile& upper, const LoadedLift
   for (double w : o.loads)
     if (!(w > 0) || !std::isfinite(w)) return make_error(fmt::format("load {} N: expected a finite force > 0", w));
   if (!(o.max_radius >= 0) || !std::isfinite(o.max_radius))
-    return make_error(fmt::format("largest radius {} m: expected a finite length >= 0 (0: the block's length)",
-                                  o.max_radius));
+    return make_error(
+        fmt::format("largest radius {} m: expected a finite length >= 0 (0: the block's length)", o.max_radius));
   if (lower.x.size() < 3 || upper.x.size() < 3)
     return make_error("the loaded lift needs profiles of at least 3 points (the curvature at a contact)");
   if (auto st = validate(lower, "lower"); !st) return st;
@@ -345,7 +410,7 @@ double reach(const HertzContact& top, double modulus, double wmax) {
 // top one's touch height (-inf where none). `hint`: a height a little below h(s) (the rigid
 // lift's value there), for a first pass that finds the top contact; inf: none (all of d_s).
 double collect(const Pair& pair, double s, double hint, double modulus, double wmax, std::vector<HertzContact>& c) {
-  double first = std::isfinite(hint) ? hint - 1e-6 * pair.scale() : -kInf;
+  double first = std::isfinite(hint) ? hint - 1e-3 * pair.scale() : -kInf;
   pair.candidates(s, first, c);
   if (c.empty() && std::isfinite(first)) pair.candidates(s, first = -kInf, c);
   if (c.empty()) return -kInf;
@@ -368,8 +433,7 @@ Result<LoadedState> loaded_state(const Profile& lower, const Profile& upper, dou
   if (!std::isfinite(offset)) return make_error(fmt::format("offset {} m: expected a finite offset", offset));
   const Pair pair(lower, upper, o.contact_modulus, radius_cap(upper, o));
   const auto [a, b] = pair.overlap(offset);
-  if (!(a < b))
-    return make_error(fmt::format("offset {:.6g} m: the blocks do not overlap there", offset));
+  if (!(a < b)) return make_error(fmt::format("offset {:.6g} m: the blocks do not overlap there", offset));
   LoadedState st;
   st.offset = offset;
   st.load = load;
@@ -427,19 +491,20 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
         out.slopes[l][k] = bal.horizontal / W;
         Terms& t = terms[l][k];
         t.approach = h - bal.height;
+        // A loaded contact merges with a neighbouring asperity (the next local maximum of d_s on
+        // either side, loaded or not) where the block is below the saddle between them or its
+        // Hertz half-width a = sqrt(R delta) reaches it: the patch is then not one sphere's.
         double merged = 0;
-        const HertzContact* prev = nullptr;
-        for (const HertzContact& q : c) {
-          if (!(q.force > 0)) continue;
+        for (std::size_t q = 0; q < c.size(); ++q) {
+          const HertzContact& k = c[q];
+          if (!(k.force > 0)) continue;
           t.contacts += 1;
-          const double ratio = q.interference / q.radius;
-          t.ratio = std::max(t.ratio, ratio);
-          t.slope2 += q.force * std::tan(q.slope) * std::tan(q.slope) / W;
-          if (prev) {
-            const double widths = std::sqrt(prev->radius * prev->interference) + std::sqrt(q.radius * q.interference);
-            if (q.saddle_left > bal.height || widths > q.x - prev->x) merged += prev->force + q.force;
-          }
-          prev = &q;
+          t.ratio = std::max(t.ratio, k.interference / k.radius);
+          t.slope2 += k.force * std::tan(k.slope) * std::tan(k.slope) / W;
+          const double a = std::sqrt(k.radius * k.interference);
+          const bool left = q > 0 && (k.saddle_left > bal.height || a >= k.x - c[q - 1].x);
+          const bool right = q + 1 < c.size() && (c[q + 1].saddle_left > bal.height || a >= c[q + 1].x - k.x);
+          if (left || right) merged += k.force * std::cos(k.slope);
         }
         t.deep = t.ratio > 0.1 ? 1 : 0;
         t.merged = std::min(merged / std::max(W, 1e-300), 1.0);

@@ -21,7 +21,8 @@ void expect_usage_error(const std::string& args, const std::string& words) {
 TEST(CliLoad, PredictsUnderLoadWithItsCurve) {
   const std::string wm = temp_path("load-wm.csv");
   ASSERT_EQ(run_cli("surface wm --dimension 1.5 --n-max 7 --rms-height 1e-6 --longest-wavelength 1e-4 --length "
-                    "1e-3 -o " + wm)
+                    "1e-3 -o " +
+                    wm)
                 .code,
             0);
   const CliRun rigid = run_cli("predict " + wm + " --json");
@@ -52,11 +53,14 @@ TEST(CliLoad, ErrorsNameTheOption) {
   expect_usage_error("predict " + f + " --modulus 70GPa --poisson 0.3", "give the load with --load");
   expect_usage_error("predict " + f + " --load 2 --modulus 70GPa --poisson 0.3", "--load '2': unit '' not understood");
   expect_usage_error("predict " + f + " --load 2N/m --modulus 70GPa --poisson 0.3", "--load '2N/m'");
-  expect_usage_error("predict " + f + " --load -1N --modulus 70GPa --poisson 0.3", "--load '-1N': expected a force > 0");
+  expect_usage_error("predict " + f + " --load -1N --modulus 70GPa --poisson 0.3",
+                     "--load '-1N': expected a force > 0");
   expect_usage_error("predict " + f + " --load 2N --modulus 70Gpa --poisson 0.3", "--modulus '70Gpa': unit 'Gpa'");
-  expect_usage_error("predict " + f + " --load 2N --modulus 70GPa --poisson 0.7", "--poisson '0.7': expected a number in (-1, 0.5]");
-  expect_usage_error("predict " + f + " --load 2N --modulus 70GPa --poisson 0.3 --upper-modulus rigid --upper-poisson 0.2",
-                     "--upper-poisson: a rigid upper block has none");
+  expect_usage_error("predict " + f + " --load 2N --modulus 70GPa --poisson 0.7",
+                     "--poisson '0.7': expected a number in (-1, 0.5]");
+  expect_usage_error(
+      "predict " + f + " --load 2N --modulus 70GPa --poisson 0.3 --upper-modulus rigid --upper-poisson 0.2",
+      "--upper-poisson: a rigid upper block has none");
   expect_usage_error("predict " + data("maps/matrix-6.txt") + " --load 2N --modulus 70GPa --poisson 0.3",
                      "for line profiles");
 }

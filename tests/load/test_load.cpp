@@ -62,8 +62,9 @@ TEST(LoadedLift, OneTiltedAsperityIsHertzAlongItsNormal) {
   EXPECT_NEAR(st->rigid_lift, h, 1e-15);
   ASSERT_EQ(std::count_if(st->contacts.begin(), st->contacts.end(), [](const HertzContact& k) { return k.force > 0; }),
             1);
-  const HertzContact& k = *std::max_element(st->contacts.begin(), st->contacts.end(),
-                                            [](const HertzContact& a, const HertzContact& b) { return a.force < b.force; });
+  const HertzContact& k =
+      *std::max_element(st->contacts.begin(), st->contacts.end(),
+                        [](const HertzContact& a, const HertzContact& b) { return a.force < b.force; });
   EXPECT_NEAR(k.x, x0, 1e-12);
   EXPECT_NEAR(k.slope, theta, 1e-9);
   EXPECT_NEAR(k.radius / R, 1, 1e-6);
@@ -187,7 +188,7 @@ TEST(LoadedLift, ItsSlopeIsTheForceResolvedSlopePlusTheStiffnessChange) {
     largest_stiffness_term = std::max(largest_stiffness_term, std::abs(stiffness_term));
     EXPECT_NEAR(fd, m->effective_slope + stiffness_term, 1e-2 * std::abs(fd) + 2e-5) << "s = " << s;
   }
-  EXPECT_GE(several, 2);                  // shared loads, not only single contacts
+  EXPECT_GE(several, 2);                    // shared loads, not only single contacts
   EXPECT_GT(largest_stiffness_term, 1e-4);  // the second term is there to be checked
 }
 
