@@ -203,10 +203,10 @@ std::string load_breaks(const LoadedLiftDiagnostics& d) {
 }
 
 // The prediction under load (PredictOptions::loads): the loaded lift of each load of the curve
-// on the rigid lift's vertices (load.hpp), each analysed as the rigid one (`analyse`: the d sweep
-// and the headline on one lift, into p), the headline load's last.
+// on the rigid lift's vertices (load.hpp), each analysed as the rigid one (`analyse`: the headline
+// at d, and for the headline load the d sweep, on one lift, into p), the headline load's last.
 Status predict_under_load(Prediction& p, const Profile& lower, const Profile& upper, const LiftCurve& rigid,
-                          const PredictOptions& o, const std::function<Status(const LiftCurve&)>& analyse) {
+                          const PredictOptions& o, const std::function<Status(const LiftCurve&, bool)>& analyse) {
   for (double w : o.loads)
     if (!(w > 0) || !std::isfinite(w)) return make_error(fmt::format("load {} N: expected a finite force > 0", w));
   auto em = o.rigid_upper ? contact_modulus(o.lower_material)
@@ -236,7 +236,7 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
   std::string beyond;
   for (std::size_t l = 0; l < curve.size(); ++l) {
     if (l == head) continue;
-    if (auto st = analyse(loaded->curves[l]); !st) return st;
+    if (auto st = analyse(loaded->curves[l], true); !st) return st;
     p.load_curve.push_back(curve[l]);
     p.load_curve_q05.push_back(p.friction_angle.q05);
     p.load_curve_q50.push_back(p.friction_angle.q50);
@@ -244,7 +244,7 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
     if (!load_breaks(loaded->diagnostics[l]).empty())
       beyond += fmt::format("{}{:.4g} N", beyond.empty() ? "" : ", ", curve[l]);
   }
-  if (auto st = analyse(loaded->curves[head]); !st) return st;
+  if (auto st = analyse(loaded->curves[head], false); !st) return st;
   const std::size_t at =
       std::size_t(std::lower_bound(p.load_curve.begin(), p.load_curve.end(), curve[head]) - p.load_curve.begin());
   p.load_curve.insert(p.load_curve.begin() + std::ptrdiff_t(at), curve[head]);
@@ -472,12 +472,14 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   }
   // Every d of the sweep on that one lift, over the same drops (linear in its vertices each); the
   // headline at d.
-  auto analyse = [&](const LiftCurve& lift) -> Status {
+  // `at_d_only`: the headline alone (a load curve's other loads), the sweep left as it is.
+  auto analyse = [&](const LiftCurve& lift, bool at_d_only) -> Status {
     constexpr std::array<double, 5> sweep = {0.25, 0.5, 1, 2, 4};
     HoldDistribution at_d;
     HoldAngles start_at_d;
-    p.d_sweep_distance.clear(), p.d_sweep_q05.clear(), p.d_sweep_q50.clear(), p.d_sweep_q95.clear();
+    if (!at_d_only) p.d_sweep_distance.clear(), p.d_sweep_q05.clear(), p.d_sweep_q50.clear(), p.d_sweep_q95.clear();
     for (double k : sweep) {
+      if (at_d_only && k != 1) continue;
       hk.runaway_distance = k * d;
       auto dist = hold_distribution(lift, hk);
       if (!dist) return dist.error();
@@ -488,6 +490,7 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
         if (!a) return a.error();
         start_at_d = *a;
       }
+      if (at_d_only) continue;
       p.d_sweep_distance.push_back(k * d);
       p.d_sweep_q05.push_back(dd.hold.q05);
       p.d_sweep_q50.push_back(dd.hold.q50);
@@ -505,7 +508,7 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     }
     return Ok{};
   };
-  if (auto st = analyse(*curve); !st) return st.error();
+  if (auto st = analyse(*curve, false); !st) return st.error();
   p.runaway_distance = d;
   p.drop_range = {hk.drop_min, hk.drop_max, 0, 0};
   if (one) {

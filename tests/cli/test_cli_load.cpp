@@ -44,6 +44,14 @@ TEST(CliLoad, PredictsUnderLoadWithItsCurve) {
   const CliRun text = run_cli("predict " + wm + " --load 1mN --modulus 3GPa --poisson 0.35 --upper-modulus rigid");
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_NE(text.out.find("friction angle against load"), std::string::npos) << text.out;
+  // The report leads with the same prediction, and plots the curve.
+  const std::string page = temp_path("load-report.html");
+  const CliRun rep =
+      run_cli("report " + wm + " --load 1mN --modulus 3GPa --poisson 0.35 --resolution-steps 0 -o " + page);
+  ASSERT_EQ(rep.code, 0) << rep.err;
+  const std::string html = read_file(page);
+  EXPECT_NE(html.find("id=\"load-curve\""), std::string::npos);
+  EXPECT_NE(html.find("Friction under load"), std::string::npos);
 }
 
 TEST(CliLoad, ErrorsNameTheOption) {
