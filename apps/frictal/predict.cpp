@@ -82,7 +82,8 @@ void print_text(const Prediction& p, const Args& a) {
                                      : fmt::format("[{:.6g}, {:.6g}] m", p.drop_range[0], p.drop_range[1]);
   fmt::print("  model: {} ({}); {} {} over {}; run-away d = {:.4g} m\n  conditioning: {}\n", p.model,
              p.is_map ? "rigid block free to move sideways, off the grid, quasi-static"
-                      : "rigid quasi-static hold angle on the exact lift",
+                      : (std::isfinite(p.load) ? "quasi-static hold angle on the loaded lift of Hertzian asperities"
+                                               : "rigid quasi-static hold angle on the exact lift"),
              p.drops, p.is_map ? "drops" : "basins", range, p.runaway_distance, p.conditioning);
   if (!p.is_map)
     fmt::print("  the test: a block of {:.4g} m, sliding for good after d = {:.4g} m ({})\n", p.block_length,

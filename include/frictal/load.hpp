@@ -7,20 +7,24 @@
 // its left end over the lower's left end), the composite d_s(x) = f(x) - g(x - s) is the height at
 // which the block's reference touches the lower surface at x; the rigid lift is h(s) = max d_s.
 // Every local maximum c of d_s (a minimum of the gap) is an asperity contact: a projected
-// Hertzian sphere of composite radius R_c, 1/R_c = (f'' - g'')(-cos^3 theta_c) (the two surfaces'
-// curvatures at the contact, from local quadratic fits through three neighbouring samples of each),
-// its normal tilted by the local slope theta_c (tan theta_c the mean of the two fitted slopes). The
+// Hertzian sphere of composite radius R_c, 1/R_c = -d_s''(x_c) cos^3 theta_c (the sum of the two
+// surfaces' curvatures at the contact), d_s read through a cubic spline through its samples at
+// the lower profile's points (its maxima and their curvature move with s continuously), the
+// normal tilted by the local slope theta_c (tan theta_c the mean of the two surfaces' slopes, each
+// from the quadratic through a sample and its two neighbours). The
 // block sinks to the height z at which the vertical components of the contact forces carry the
 // load W: with v_c = d_s(x_c) - z the vertical interference and delta_c = v_c cos theta_c the normal
 // one,
 //   F_c = (4/3) E* sqrt(R_c) delta_c^(3/2),     sum_c F_c cos theta_c = W.
 // The loaded lift is the minimum potential energy per unit load,
 //   H_W(s) = z + sum_c (8/15) E* sqrt(R_c) delta_c^(5/2) / W,
-// whose slope is, by the envelope theorem, the force-resolved contact slope
-//   dH_W/ds = sum F_c sin theta_c / sum F_c cos theta_c,
+// whose slope is, by the envelope theorem, the force-resolved contact slope plus the work of the
+// contacts' changing stiffness k_c = (4/3) E* sqrt(R_c) cos^(5/2) theta_c as they move,
+//   dH_W/ds = sum F_c sin theta_c / sum F_c cos theta_c + sum_c (2/5) v_c^(5/2) k_c'(s) / W,
 // and which tends to h(s) as W -> 0 (the elastic terms scale as W^(2/3)). With atomic friction
 // mu_a at each contact, tan phi = sum F (sin + mu_a cos) / sum F (cos - mu_a sin) is exactly
-// tan(atan(mu_a) + atan(dH_W/ds)), so the hold analysis of H_W is the loaded prediction.
+// tan(atan(mu_a) + atan(tau)), tau the force-resolved slope, the rule the hold analysis applies to
+// the slope of H_W: the hold analysis of H_W is the loaded prediction.
 //
 // SI units: lengths in m, forces in N, moduli in Pa, angles in rad.
 #pragma once
@@ -61,7 +65,7 @@ struct LoadedLiftOptions {
 struct LoadedState {
   double offset = 0;       ///< s (unit: m)
   double load = 0;         ///< W (unit: N)
-  double rigid_lift = 0;   ///< h(s) = max d_s (unit: m)
+  double rigid_lift = 0;   ///< the top contact's touch height: h(s) to the sampling's accuracy (unit: m)
   double height = 0;       ///< z: the block's reference height under the load (unit: m)
   double loaded_lift = 0;  ///< H_W(s) = z + elastic energy / W (unit: m)
   /// sum F sin theta / sum F cos theta: the force-resolved contact slope, dH_W/ds (unitless).
@@ -103,11 +107,12 @@ Result<LoadedState> loaded_state(const Profile& lower, const Profile& upper, dou
 
 /// The loaded lift of every load of `options` on the vertices of `rigid` (the pair's rigid lift
 /// over offsets where the blocks overlap; not periodic): H_W(s_k) = rigid.lift[k] + (z - h(s_k)) +
-/// energy / W, so that the loaded lift equals `rigid` to the bit as W -> 0 (the curve's vertices
-/// between events, where lift_curve() places its tangents' meeting point, keep its value). The
-/// contacts are the local maxima of d_s within the approach of the largest load (pruned by
-/// chunks of the upper profile whose bound, the lower's maximum over their span minus their
-/// minimum, cannot reach it). Errors as loaded_state, and a periodic or malformed curve.
+/// energy / W, h(s_k) the top contact's touch height, so that the loaded lift equals `rigid` to the
+/// bit as W -> 0 (the curve's vertices between events, where lift_curve() places its tangents'
+/// meeting point, keep its value). The contacts are the maxima of d_s within the approach of the
+/// largest load (pruned by chunks of the upper profile whose bound, the lower's maximum over their
+/// span minus their minimum, cannot reach it). Errors as loaded_state, and a periodic or
+/// malformed curve.
 Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const LiftCurve& rigid,
                                const LoadedLiftOptions& options);
 

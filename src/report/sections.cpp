@@ -779,7 +779,8 @@ std::string headline(const ReportInput& in, const ReportData& d) {
         fmt_mu(std::tan(std::min(p.upper_bound_friction_angle, 1.5707963))), fmt_deg(p.eq18_range[0]),
         fmt_deg(p.eq18_range[1]), p.model,
         p.is_map ? "a rigid block free to move sideways, quasi-static"
-                 : "the quasi-static hold angle on the exact lift",
+                 : (std::isfinite(p.load) ? "the quasi-static hold angle on the loaded lift of Hertzian asperities"
+                                          : "the quasi-static hold angle on the exact lift"),
         p.direction * 180 / std::numbers::pi, p.atomic_friction, escape_html(p.conditioning),
         p.is_map ? std::string() : fmt::format("block length L_b = {:.3g} m, ", p.block_length), p.runaway_distance,
         escape_html(p.test_lengths), drops);
