@@ -306,14 +306,16 @@ class Pair {
       const double A = (M1 - M0) / (2 * h), B = M0, C = -M0 * h / 2 + (y1 - y0) / h - (M1 - M0) * h / 6;
       auto emit = [&](double t, double curvature_d2) {
         const double x = xs_[k] + t;
-        if (x < xl || x > xr) return;
+        if (x < xl || x > xr || (!out.empty() && out.back().x == x)) return;
         const double d = value(t);
         if (d >= threshold) {
           out.push_back(contact_at(s, x, d, curvature_d2, saddle));
           saddle = kInf;
         }
       };
-      if (k == 0 && xs_[0] <= a && C < 0) emit(0, M0);
+      // An end of the overlap is a contact (the block's corner, or the lower's end under it) where
+      // the spline or the samples fall from it.
+      if (k == 0 && xs_[0] <= a && (C <= 0 || y0 > y1)) emit(0, M0);
       double roots[2];
       int nr = 0;
       if (std::abs(A) * h < 1e-12 * (std::abs(B) + std::abs(C) / h)) {
@@ -334,7 +336,7 @@ class Pair {
         if (2 * A * t + B < 0) emit(t, d2);        // a maximum: S' falls through 0
       }
       saddle = std::min(saddle, y1);
-      if (k + 2 == m && xs_[k + 1] >= b && A * h * h + B * h + C > 0) emit(h, M1);
+      if (k + 2 == m && xs_[k + 1] >= b && (A * h * h + B * h + C >= 0 || y1 > y0)) emit(h, M1);
     }
   }
 
