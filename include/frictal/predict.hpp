@@ -216,11 +216,7 @@ Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* up
 /// As predict(lower, upper, options) (std::nullopt: `lower` against itself), taking the surfaces
 /// over: a profile pair's points move through the conditioning into the signature instead of
 /// being copied (10^7 points are 160 MB a copy; `frictal predict` on two such profiles peaks at
-/// about the memory of `frictal signature`). The same prediction to the bit. One difference:
-/// where the one pass's analysis finds its lift beyond the range too short (rare: seen once, on
-/// exactly sampled grooves; the other overload then analyses again from the profiles it still
-/// has), this one returns an Internal error, and the caller may call the other overload with the
-/// surfaces read again.
+/// about the memory of `frictal signature`). The same prediction to the bit.
 /// Maps are read as by the other overload.
 Result<Prediction> predict(PredictSurface&& lower, std::optional<PredictSurface>&& upper,
                            const PredictOptions& options = {});
