@@ -364,14 +364,7 @@ void frictal_bind_predict(py::module_& m) {
         }
         d["upper_bound_friction_angle"] = p.upper_bound_friction_angle;
         d["conditioning"] = p.conditioning;
-        py::list w;
-        for (const Warning& x : p.warnings) {
-          py::dict e;
-          e["code"] = x.code;
-          e["message"] = x.message;
-          w.append(e);
-        }
-        d["warnings"] = w;
+        d["warnings"] = py_detail::warning_list(p.warnings);
         return d;
       },
       py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,
