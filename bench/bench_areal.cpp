@@ -90,27 +90,6 @@ void BM_ArealLiftDirectSubset(benchmark::State& st) {
 }
 BENCHMARK(BM_ArealLiftDirectSubset)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(1);
 
-// The distribution over drops of the free-lateral hold angle on the target lift (one thread).
-void BM_ArealHoldDistribution(benchmark::State& st) {
-  static const ArealLift lift = *areal_lift(lower(), upper(), 0.0, target_options(2, true));
-  ArealHoldOptions o;
-  o.runaway_distance = 32 * lift.step;
-  double mean = 0;
-  std::size_t basins = 0;
-  for (auto _ : st) {
-    auto r = areal_hold_distribution(lift, o);
-    if (!r) {
-      st.SkipWithError(r.error().message.c_str());
-      return;
-    }
-    mean = r->hold.mean;
-    basins = r->rest.size();
-  }
-  st.counters["basins"] = double(basins);
-  st.counters["hold_mean_deg"] = mean * 180 / std::numbers::pi;
-}
-BENCHMARK(BM_ArealHoldDistribution)->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
-
 // The matched prediction off the grid (areal_tilt_hold) and its spread (areal_tilt_hold_spread) on
 // the pair "X3P windows 1, heights x 2.5" of docs/mujoco.md (lower 48 x 48 at node (20, 20), upper
 // 12 x 12 at (380, 400), turned over, plane removed; sliding along x, free, D a twentieth of the

@@ -62,76 +62,51 @@ std::function<int()> setup(CLI::App& app) {
     if (!a->start_offset.empty()) o.start_offset = parse_offset(a->start_offset, "--start-offset");
     o.turn_over_upper = !a->in_place;
     const double angle_deg = to_deg(o.angle), tilt_step_deg = to_deg(o.tilt_step);
-    const bool sim_locked = o.lock_lateral;
     const auto t0 = std::chrono::steady_clock::now();
-    ArealTiltResult r;
-    if (a->predict_only) {
-      r.rest_offset = o.start_offset;
-      r.sphere_radius = o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(f.dx, f.dy);
-    } else {
-      // A progress line (a terminal only): the simulation takes minutes on large maps.
-      ArealTiltProgress progress;
-      if (!a->quiet && ::isatty(2))
-        progress = [&](const ArealTiltIncrement& i) {
-          const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-          fmt::print(stderr, "\rfrictal areal-tilt: tilt {:.2f} deg, block at ({:.4g}, {:.4g}) m, {} ({:.0f} s)   ",
-                     to_deg(i.tilt), i.x, i.y, i.rested ? "at rest" : "moving", secs);
-          std::fflush(stderr);
-        };
-      r = unwrap(areal_tilt(f, g, o, progress));
-      if (progress) fmt::print(stderr, "\n");
-    }
+    // A progress line (a terminal only): the simulation takes minutes on large maps.
+    ArealTiltProgress progress;
+    if (!a->quiet && !a->predict_only && ::isatty(2))
+      progress = [&](const ArealTiltIncrement& i) {
+        const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        fmt::print(stderr, "\rfrictal areal-tilt: tilt {:.2f} deg, block at ({:.4g}, {:.4g}) m, {} ({:.0f} s)   ",
+                   to_deg(i.tilt), i.x, i.y, i.rested ? "at rest" : "moving", secs);
+        std::fflush(stderr);
+      };
+    // The run, and the prediction from the rest offset it reached (areal_tilt_matched).
+    const ArealTiltMatched m = unwrap(areal_tilt_matched(f, g, o, !a->predict_only, progress));
+    if (progress) fmt::print(stderr, "\n");
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // The prediction from the rest offset the simulation reached: predict()'s map model
-    // (areal_tilt_hold: the rigid quasi-static block on the simulated spheres and triangles, off
-    // the grid) with predict()'s defaults of d and r (map_model_options), block free; locked as a
-    // diagnostic. Both drops on one field of spheres (areal_tilt_hold_drops).
-    ArealTiltOptions co = map_model_options(f, o);  // the protocol's settings, the model's d and r
-    co.start_offset = r.rest_offset;                // from the simulated rest: the same basin
-    const double D = co.runaway_distance;
-    const std::vector<ArealTiltHold> held =
-        unwrap(areal_tilt_hold_drops(f, g, co, {{r.rest_offset, false}, {r.rest_offset, true}}));
-    const ArealTiltHold& pfree = held[0];
-    const ArealTiltHold& plocked = held[1];
-    // The prediction in the simulated lateral mode, in detail (the continuous_* keys).
-    co.lock_lateral = sim_locked;
-    const ArealTiltHold& cont = sim_locked ? plocked : pfree;
-    // Its conditioning: the slips' ends moved by one sphere radius (areal_tilt_hold_spread).
-    const ArealTiltHoldSpread spread = unwrap(areal_tilt_hold_spread(f, g, co, cont));
+    const ArealTiltResult& r = m.run;
+    const ArealTiltHold& cont = m.matched();
+    const ArealTiltHoldSpread& spread = m.spread;
     for (const auto& w : r.warnings)
-      if (!a->json) fmt::print(stderr, "frictal: warning [{}]: {}\n", w[0], w[1]);
+      if (!a->json) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
     if (a->json) {
       nlohmann::json j;
       j["warnings"] = nlohmann::json::array();
-      for (const auto& w : r.warnings) j["warnings"].push_back({{"code", w[0]}, {"message", w[1]}});
+      for (const auto& w : r.warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
       j["lower"] = a->lower;
       j["upper"] = a->upper.empty() ? a->lower : a->upper;
       j["direction_deg"] = angle_deg;
-      j["runaway_distance_m"] = D;
+      j["runaway_distance_m"] = m.runaway_distance;
       if (!a->predict_only) {
         j["friction_angle_deg"] = to_deg(r.friction_angle);
         j["ran_away"] = r.ran_away;
       }
       j["rest_offset_m"] = {r.rest_offset[0], r.rest_offset[1]};
-      j["predicted_hold_angle_deg"] = to_deg(pfree.hold_angle);
-      j["predicted_hold_angle_locked_deg"] = to_deg(plocked.hold_angle);
-      j["predicted_steering_deg"] = to_deg(pfree.steering);
+      j["predicted_hold_angle_deg"] = to_deg(m.free.hold_angle);
+      j["predicted_hold_angle_locked_deg"] = to_deg(m.locked.hold_angle);
+      j["predicted_steering_deg"] = to_deg(m.free.steering);
       j["continuous_runaway_increment_deg"] = to_deg(cont.runaway_increment);
       j["continuous_rest_offset_m"] = {cont.rest_offset[0], cont.rest_offset[1]};
       j["continuous_evaluations"] = cont.evaluations;
       j["continuous_hold_angle_range_deg"] = {to_deg(spread.low), to_deg(spread.high)};
       j["continuous_slips"] = spread.slips;
       j["continuous_ambiguous_slips"] = spread.ambiguous;
-      if (!a->predict_only) {  // the rigid block from the simulated block's last seat, at its tilt
-        if (auto seat = areal_tilt_last_seat(r)) {
-          ArealTiltOptions so = co;
-          so.start_offset = {(*seat)[1], (*seat)[2]};
-          so.coarse_tilt_step = o.tilt_step;
-          const ArealTiltHold seated = unwrap(areal_tilt_hold(f, g, so, kArealHoldResolution, 1e-7, (*seat)[0]));
-          j["seat_tilt_deg"] = to_deg((*seat)[0]);
-          j["seat_offset_m"] = {(*seat)[1], (*seat)[2]};
-          j["continuous_seated_hold_angle_deg"] = to_deg(seated.hold_angle);
-        }
+      if (m.seated) {  // the rigid block from the simulated block's last seat, at its tilt
+        j["seat_tilt_deg"] = to_deg(m.seat_tilt);
+        j["seat_offset_m"] = {m.seat_offset[0], m.seat_offset[1]};
+        j["continuous_seated_hold_angle_deg"] = to_deg(m.seated_hold_angle);
       }
       nlohmann::json cs = nlohmann::json::array();
       for (const auto& st : cont.stops) cs.push_back({to_deg(st[0]), st[1], st[2]});
@@ -167,11 +142,11 @@ std::function<int()> setup(CLI::App& app) {
       fmt::print(
           "  predicted hold angle (frictal predict's model, from there) {:.3f} deg, the block free to move "
           "sideways; {:.3f} deg locked to the direction (a diagnostic)\n",
-          to_deg(pfree.hold_angle), to_deg(plocked.hold_angle));
+          to_deg(m.free.hold_angle), to_deg(m.locked.hold_angle));
       fmt::print(
           "  {}: {:.3f} to {:.3f} deg when one slip's end moves by a sphere radius ({} of {} slips could end in "
           "another seat)\n",
-          sim_locked ? "locked" : "free", to_deg(spread.low), to_deg(spread.high), spread.ambiguous, spread.slips);
+          o.lock_lateral ? "locked" : "free", to_deg(spread.low), to_deg(spread.high), spread.ambiguous, spread.slips);
       fmt::print("  conditioning: {}\n", conditioning_done);
     }
     return 0;

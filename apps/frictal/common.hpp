@@ -115,14 +115,10 @@ inline nlohmann::json warnings_json(const std::vector<Warning>& w) {
 inline void print_warnings(const std::vector<Warning>& w) {
   for (const Warning& x : w) fmt::print(stderr, "frictal: warning [{}]: {}\n", x.code, x.message);
 }
-/// The warnings of a FrictionPrediction-like result (`low_clamped`, `friction_angle` in rad):
-/// eq18-low-clamped when its Eq. 18 low end was clamped, bound-negative when the bound is below 0.
+/// The warnings of a rigid bound (the library's check_friction_prediction), each added once.
 template <class P>
 void add_bound_warnings(std::vector<Warning>& w, const P& p, const std::string& where) {
-  if (p.low_clamped)
-    add_warning(
-        w, {"eq18-low-clamped", where + ": Eq. 18's low end theta_max - sigma + theta_a is below zero; reported as 0"});
-  for (Warning& x : check_friction_bound(p.friction_angle, where)) add_warning(w, std::move(x));
+  for (Warning& x : check_friction_prediction(p, where)) add_warning(w, std::move(x));
 }
 
 /// A finite number check for options, naming the option.

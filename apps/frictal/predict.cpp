@@ -198,18 +198,8 @@ std::function<int()> setup(CLI::App& app) {
         o.start_offset = {x, 0};
       }
     }
-    // The surfaces handed over (no copies of a profile's points). Where the one pass's lift falls
-    // short (an Internal error; rare), the files are read again and kept for the library's
-    // second analysis from them (standard input cannot be read twice).
-    const Prediction p = [&]() -> Prediction {
-      Result<Prediction> taken = predict(std::move(lower), std::move(upper), o);
-      if (taken || taken.error().code != ErrorCode::Internal || a->lower == "-" || a->upper == "-")
-        return unwrap(std::move(taken));
-      const PredictSurface l2 = read_input(a->lower, a->input);
-      std::optional<PredictSurface> u2;
-      if (!a->upper.empty()) u2 = read_input(a->upper, a->input);
-      return unwrap(predict(l2, u2 ? &*u2 : nullptr, o));
-    }();
+    // The surfaces handed over (no copies of a profile's points).
+    const Prediction p = unwrap(predict(std::move(lower), std::move(upper), o));
     if (a->json) {
       fmt::print("{}\n",
                  prediction_json(p, fmt::format("\"lower\": {}, \"upper\": {}", nlohmann::json(a->lower).dump(),

@@ -231,18 +231,8 @@ std::function<int()> setup(CLI::App& app) {
       ho.runaway_distance = runaway;
       ho.atomic_friction = a->mu_a;
       ho.keep_curve = !a->out.empty();  // the lift's basins are written with --out only
-      // The profiles handed over. Where the one pass's lift falls short (an Internal error; rare)
-      // they are read (or generated) and conditioned again, and kept for the library's second
-      // analysis from them (standard input cannot be read twice).
-      SignatureWithHold both = [&]() -> SignatureWithHold {
-        auto taken = signature_with_hold(std::move(lower), std::move(upper), o, ho, a->start_offset);
-        if (taken || taken.error().code != ErrorCode::Internal || a->lower == "-" || a->upper == "-")
-          return unwrap(std::move(taken));
-        Profile lo = conditioned(spec ? unwrap(generate_profile(*spec)) : load(a->lower, 0), a->lower, 0);
-        Profile up = a->upper.empty() ? lo : conditioned(load(a->upper, 1), a->upper, 1);
-        if (a->period != 0) lo.period = up.period = a->period;
-        return unwrap(signature_with_hold(lo, rotate180(std::move(up)), o, ho, a->start_offset));
-      }();
+      // The profiles handed over.
+      SignatureWithHold both = unwrap(signature_with_hold(std::move(lower), std::move(upper), o, ho, a->start_offset));
       r = std::move(both.signature);
       hold = std::move(both.hold);
     } else {

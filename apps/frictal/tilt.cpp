@@ -222,11 +222,10 @@ int run(TiltOptions& o) {
   if (printed) fmt::print(stderr, "\n");
   if (!r.ok()) fail(r.error());
   // The files' warnings, then the run's: one list (JSON "warnings"; standard error in text).
-  std::vector<TiltWarning> warnings;
-  for (const Warning& w : data_warnings) warnings.push_back({w.code, w.message});
+  std::vector<Warning> warnings = data_warnings;
   warnings.insert(warnings.end(), r->warnings.begin(), r->warnings.end());
   if (!o.quiet)
-    for (const TiltWarning& w : warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
+    for (const Warning& w : warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
   if (!o.output.empty())
     write_output(o.output, [&](const std::string& p) { return write_tilt_series_csv(p, r->series); });
   if (!o.vtk.empty()) {
@@ -248,7 +247,7 @@ int run(TiltOptions& o) {
     put_columns(j, tilt_columns(), run);
     j["scales"] = object_of(tilt_scales_columns(), r->scales);
     j["warnings"] = nlohmann::json::array();
-    for (const TiltWarning& w : warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
+    for (const Warning& w : warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
     j["surface"] = surface;
     j["scaled_defaults"] = scaling_json(scaling);
     j["estimate"] = object_of(tilt_estimate_columns(), r->estimate);
@@ -260,7 +259,7 @@ int run(TiltOptions& o) {
     std::FILE* text = (o.output == "-" || o.frames == "-") ? stderr : stdout;
     // The warnings that invalidate the result lead the output (all of them with --quiet, which
     // keeps standard error silent).
-    for (const TiltWarning& w : warnings)
+    for (const Warning& w : warnings)
       if (w.code == "rotation" || o.quiet) fmt::print(text, "warning [{}]: {}\n", w.code, w.message);
     const std::string validity = tilt_validity(*r, cfg);
     if (r->slid && validity != "valid")

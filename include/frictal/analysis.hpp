@@ -98,7 +98,7 @@ std::vector<Profile> map_line(const Map& m, double x, double y, double angle, do
 std::vector<Profile> map_lines(const Map& m, double angle, double spacing = 0, double step = 0,
                                std::size_t min_points = 8);
 
-/// A map's statistics and its grid as output columns (frictal/outputs.hpp; src/analysis/columns.cpp):
+/// A map's statistics and its grid as output columns (frictal/outputs.hpp; src/analysis/analysis_columns.cpp):
 /// `frictal stats --json` and Python's map_stats().
 const Columns<MapStats>& map_stats_columns();
 const Columns<Map>& map_grid_columns();

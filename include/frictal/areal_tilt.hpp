@@ -125,10 +125,10 @@ struct ArealTiltResult {
   /// Angle from d to the run-away's displacement from the last stop, towards e (unit: rad).
   double steering = 0;
   std::vector<ArealTiltIncrement> trace;  ///< every increment, coarse then fine, in order
-  /// (code, message) for a reading to distrust: "friction-not-validated" with atomic friction
-  /// (measured in docs/mujoco.md, "Atomic friction": MuJoCo's regularised friction under the local
-  /// damping creeps instead of sliding, so the angle reads late).
-  std::vector<std::array<std::string, 2>> warnings;
+  /// A reading to distrust: "friction-not-validated" with atomic friction (measured in
+  /// docs/mujoco.md, "Atomic friction": MuJoCo's regularised friction under the local damping
+  /// creeps instead of sliding, so the angle reads late).
+  std::vector<Warning> warnings;
 };
 
 /// The run's output columns (frictal/outputs.hpp; src/tilt/tilt_columns.cpp): the keys of

@@ -163,7 +163,7 @@ Result<std::vector<ContactResult>> solve_contact_curve(const Map& surface, const
 Result<std::vector<ContactResult>> solve_contact_curve(const Profile& surface, const std::vector<ContactLoad>& loads,
                                                        const ContactOptions& options);
 
-/// The contact solution as output columns (frictal/outputs.hpp; src/contact/columns.cpp): the
+/// The contact solution as output columns (frictal/outputs.hpp; src/contact/contact_columns.cpp): the
 /// keys of `frictal contact --json` and Python's frictal.contact() dicts.
 const Columns<ContactResult>& contact_columns();
 

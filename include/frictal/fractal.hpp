@@ -61,7 +61,7 @@ Result<FractalFit> psd_dimension(const Profile& p, const PsdFitOptions& o = {});
 /// alpha in [0, pi/3] (unit: rad). Solved by bisection to machine precision.
 Result<double> koch_dimension(double alpha);
 
-/// A fit's output table (frictal/outputs.hpp; src/analysis/columns.cpp): `frictal dimension
+/// A fit's output table (frictal/outputs.hpp; src/analysis/analysis_columns.cpp): `frictal dimension
 /// --json` and Python's divider_dimension/box_dimension/psd_dimension dicts.
 const Columns<FractalFit>& fractal_fit_columns();
 

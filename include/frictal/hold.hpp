@@ -78,8 +78,9 @@ struct HoldOptions {
   /// analyse_hold and signature_with_hold, exact offsets on a non-periodic pair: where the whole
   /// overlap holds about this many offsets or fewer (estimated from the signature's density of
   /// offsets), the lift is computed over all of it at once instead of in rounds that stop where
-  /// local checks at each end say the process stops (those are a saving for long pairs; on about
-  /// 1 % of small random pairs they stopped short). 0: always the rounds (unit: offsets).
+  /// local checks at each end say the process stops (a saving for long pairs only; on about 1 %
+  /// of small random pairs the analysis then widens a cut end the checks passed). 0: always the
+  /// rounds (unit: offsets).
   double whole_lift_offsets = 1e5;
 };
 
@@ -206,6 +207,8 @@ struct SignatureWithHold {
 /// beyond the signature's range evaluated (with the same faces) only on the sides and as far
 /// as the process reaches (non-periodic: each side from 1.55 d, widened while a run-away may leave
 /// a stop, or a rest lies, less than d before a cut end; the blocks' overlap is the last end).
+/// Local checks at each cut end decide the rounds; the analysis of the lift so cut confirms them
+/// before the faces are let go, and widens a cut end they passed too early.
 /// The lift's offsets beyond the range are those that a signature over the wider range lists
 /// (every event; with `offsets` = N or sampled offsets, the wider range's own grid, from 2 d on
 /// both sides), so the hold numbers are those of a lift computed over that range (with
@@ -217,12 +220,12 @@ struct SignatureWithHold {
 Result<SignatureWithHold> signature_with_hold(const Profile& lower, const Profile& upper,
                                               const SignatureOptions& options, const HoldOptions& hold,
                                               double start = std::numeric_limits<double>::quiet_NaN());
-/// The same, taking both profiles over (as signature(Profile&&, Profile&&)).
+/// The same, taking both profiles over (as signature(Profile&&, Profile&&)); the same result.
 Result<SignatureWithHold> signature_with_hold(Profile&& lower, Profile&& upper, const SignatureOptions& options,
                                               const HoldOptions& hold,
                                               double start = std::numeric_limits<double>::quiet_NaN());
 
-/// The hold analysis' output tables (frictal/outputs.hpp; src/hold/columns.cpp): the flat keys
+/// The hold analysis' output tables (frictal/outputs.hpp; src/hold/hold_columns.cpp): the flat keys
 /// of `frictal signature --json` (hold_columns; hold_start_columns with --start-offset) and the
 /// nested dicts of Python's hold_angle() (hold_columns' Python keys, hold_distribution_columns,
 /// hold_statistics_columns, hold_basins_columns, hold_drop_columns).

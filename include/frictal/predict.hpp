@@ -249,11 +249,7 @@ Result<Prediction> predict(const PredictSurface& lower, const PredictSurface* up
 /// As predict(lower, upper, options) (std::nullopt: `lower` against itself), taking the surfaces
 /// over: a profile pair's points move through the conditioning into the signature instead of
 /// being copied (10^7 points are 160 MB a copy; `frictal predict` on two such profiles peaks at
-/// about the memory of `frictal signature`). The same prediction to the bit. One difference:
-/// where the one pass's analysis finds its lift beyond the range too short (rare: seen once, on
-/// exactly sampled grooves; the other overload then analyses again from the profiles it still
-/// has), this one returns an Internal error, and the caller may call the other overload with the
-/// surfaces read again.
+/// about the memory of `frictal signature`). The same prediction to the bit.
 /// Maps are read as by the other overload.
 Result<Prediction> predict(PredictSurface&& lower, std::optional<PredictSurface>&& upper,
                            const PredictOptions& options = {});
@@ -270,6 +266,30 @@ ArealTiltOptions map_model_options(const Map& lower, const PredictOptions& o);
 /// beside a MuJoCo run (`frictal areal-tilt`, Python areal_tilt) is the prediction's model, in
 /// the simulation's protocol (tilt steps, height field, lateral mode, start offset).
 ArealTiltOptions map_model_options(const Map& lower, const ArealTiltOptions& sim);
+
+/// The 3D tilt test beside the prediction matched to it (`frictal areal-tilt`, Python areal_tilt):
+/// the MuJoCo run (areal_tilt), then predict()'s map model (map_model_options of the run's
+/// settings) from the rest offset the run reached, the block free and locked (a diagnostic), on
+/// one field of spheres (areal_tilt_hold_drops); the spread in the simulated lateral mode
+/// (areal_tilt_hold_spread); the rigid block put down in the run's last seat at its tilt.
+struct ArealTiltMatched {
+  bool simulated = false;   ///< the run was made (else only the predictions, dropped at o.start_offset)
+  bool run_locked = false;  ///< the run's lateral mode: locked to the direction
+  /// The run; without it, rest_offset = o.start_offset and sphere_radius the model's, the rest zero.
+  ArealTiltResult run;
+  double runaway_distance = 0;          ///< the model's run-away distance D (unit: m)
+  ArealTiltHold free, locked;           ///< the model from run.rest_offset, block free and locked
+  ArealTiltHoldSpread spread;           ///< in the simulated lateral mode: a slip's end moved by r
+  bool seated = false;                  ///< the run rested in a seat before its run-away
+  double seat_tilt = 0;                 ///< that seat's tilt (unit: rad)
+  std::array<double, 2> seat_offset{};  ///< its offset (x, y) (unit: m)
+  double seated_hold_angle = 0;         ///< the model put down there at that tilt, simulated lateral mode (unit: rad)
+  /// The model in the simulated lateral mode (free or locked above, in detail).
+  const ArealTiltHold& matched() const { return run_locked ? locked : free; }
+};
+/// `simulate` false: no run (needs no MuJoCo). Errors: areal_tilt's and areal_tilt_hold's.
+Result<ArealTiltMatched> areal_tilt_matched(const Map& lower, const Map& upper, const ArealTiltOptions& o,
+                                            bool simulate = true, const ArealTiltProgress& progress = {});
 
 /// The map prediction's estimated CPU time before it runs, the figure PredictOptions::map_work_limit
 /// is compared with: 2.5e-7 s per sphere of the upper map and drop (free and locked drops count

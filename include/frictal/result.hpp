@@ -39,6 +39,15 @@ struct Error {
   ErrorCode code = ErrorCode::InvalidInput;
 };
 
+/// A warning as a result: a number computed without an error that a reader should not trust as
+/// it stands. `code` is one of warning_codes() (warnings.hpp), on which decisions are taken; the
+/// message names the file or quantity and the number that triggered it. Every result that
+/// carries warnings carries this type.
+struct Warning {
+  std::string code;
+  std::string message;
+};
+
 template <class T>
 class [[nodiscard]] Result {
  public:

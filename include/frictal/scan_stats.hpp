@@ -54,7 +54,7 @@ ProfileScanStats profile_scan_stats(const Profile& p);
 Result<double> short_reliability_cutoff(const Profile& p, double tip_radius);
 Result<double> short_reliability_cutoff(const Map& m, double tip_radius);
 
-/// The scan quantities as output columns (frictal/outputs.hpp; src/analysis/columns.cpp).
+/// The scan quantities as output columns (frictal/outputs.hpp; src/analysis/analysis_columns.cpp).
 const Columns<MapScanStats>& map_scan_stats_columns();
 const Columns<ProfileScanStats>& profile_scan_stats_columns();
 

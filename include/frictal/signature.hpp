@@ -157,7 +157,7 @@ struct FrictionPrediction {
 Result<FrictionPrediction> predict_friction(double atomic_friction, double theta_max, double sigma);
 
 /// The signature's output table (frictal/outputs.hpp): `frictal signature --json` and Python's
-/// signature() dict (src/signature/columns.cpp).
+/// signature() dict (src/signature/signature_columns.cpp).
 const Columns<SignatureResult>& signature_columns();
 /// The rigid bound and the Eq. 18 low end (forward): `signature --json`, Python predict_friction().
 const Columns<FrictionPrediction>& friction_columns();

@@ -44,7 +44,7 @@ struct MeanStd {
 };
 MeanStd weighted_mean_std(const std::vector<double>& samples, const std::vector<double>& weights);
 
-/// A profile's statistics as output columns (frictal/outputs.hpp; src/stats/columns.cpp):
+/// A profile's statistics as output columns (frictal/outputs.hpp; src/stats/stats_columns.cpp):
 /// `frictal stats --json` and Python's profile_stats().
 const Columns<ProfileStats>& profile_stats_columns();
 

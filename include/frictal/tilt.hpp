@@ -352,15 +352,6 @@ struct TiltScales {
   double contact_period = 0;            ///< 2 pi sqrt(m_upper / k_n): one contact's period (unit: s)
 };
 
-/// A run outside the model the prediction assumes (code: "core-overlap", "rounding",
-/// "time-step", "unsettled", "rotation", "creep", "unrelaxed" (quasi-static: an increment, or the
-/// settling, did not relax to rest within relax_time), "stiffness" (check_stiffness: 10 k_n
-/// moves the angle by more than warn_stiffness_angle); message: what was compared, with numbers and SI units).
-struct TiltWarning {
-  std::string code;
-  std::string message;
-};
-
 /// The run-away at one of TiltConfig::runaway_checkpoints.
 struct TiltCheckpoint {
   double distance = 0;        ///< the run-away distance (unit: m)
@@ -421,10 +412,15 @@ struct TiltResult {
   double first_creep_tilt = std::numeric_limits<double>::quiet_NaN();
   double first_creep_slip = std::numeric_limits<double>::quiet_NaN();
   TiltScales scales;
-  TiltEstimate estimate;              ///< the cost estimated before the first step
-  std::vector<TiltWarning> warnings;  ///< before the run (scales), then "unsettled" and "rotation" from the run
-  double initial_offset = 0;          ///< offset used (unit: m)
-  double simulated_time = 0;          ///< (unit: s)
+  TiltEstimate estimate;  ///< the cost estimated before the first step
+  /// A run outside the model the prediction assumes, before the run (scales), then from it (code:
+  /// "core-overlap", "rounding", "time-step", "unsettled", "rotation", "creep", "unrelaxed"
+  /// (quasi-static: an increment, or the settling, did not relax to rest within relax_time),
+  /// "stiffness" (check_stiffness: 10 k_n moves the angle by more than warn_stiffness_angle);
+  /// message: what was compared, with numbers and SI units).
+  std::vector<Warning> warnings;
+  double initial_offset = 0;  ///< offset used (unit: m)
+  double simulated_time = 0;  ///< (unit: s)
   std::uint64_t steps = 0;
   double wall_time = 0;   ///< wall time of the time stepping only (unit: s)
   double setup_time = 0;  ///< wall time of building blocks, placement, predictions (hold angles included) (unit: s)
@@ -462,8 +458,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
 Status write_tilt_series_csv(const std::string& path, const TiltSeries& series);
 /// The warnings that `run_tilt` issues before it runs, from the scales and both predictions
 /// (predicted_* of `result`; "rounding" only if config.predict).
-std::vector<TiltWarning> tilt_scale_warnings(const TiltScales& scales, const TiltResult& result,
-                                             const TiltConfig& config);
+std::vector<Warning> tilt_scale_warnings(const TiltScales& scales, const TiltResult& result, const TiltConfig& config);
 
 /// Writes the frames as VTK XML PolyData for ParaView into directory `dir` (created if missing):
 /// per frame i, bodies_<i>.vtp (the two core polygons as polygons and their rounded outlines,

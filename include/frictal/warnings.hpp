@@ -11,15 +11,9 @@
 
 #include "frictal/geometry.hpp"
 #include "frictal/map.hpp"
+#include "frictal/result.hpp"
 
 namespace frictal {
-
-/// One warning: a code from warning_codes() and a message that names the file or quantity and
-/// the number that triggered it.
-struct Warning {
-  std::string code;
-  std::string message;
-};
 
 /// A code and what it means (its cause and what to do), for the documentation and `frictal warnings`.
 struct WarningCode {
@@ -93,8 +87,12 @@ std::vector<Warning> check_dimension_fit(double dimension, double r_squared, con
 std::vector<Warning> check_friction_bound(double friction_angle, const std::string& where);
 
 struct FrictionPrediction;  // signature.hpp
+/// The warnings of one rigid bound and its Eq. 18 range (`frictal areal`, `anisotropy`, Python
+/// areal_signature, anisotropy, predict_friction): eq18-low-clamped and bound-negative. `where`
+/// names the result in the messages.
+std::vector<Warning> check_friction_prediction(const FrictionPrediction& p, const std::string& where);
 /// The warnings of a signature's rigid bounds (`frictal signature`, Python signature(); the same
-/// words in both): eq18-low-clamped and bound-negative of the forward bound, friction-angle-at-90
+/// words in both): check_friction_prediction of the forward bound, friction-angle-at-90
 /// of either direction's bound at 89.5 deg or more (a wall, an interlock or a unit mix-up).
 std::vector<Warning> check_signature_bounds(const FrictionPrediction& forward, const FrictionPrediction& backward,
                                             const std::string& where = "signature");

@@ -234,24 +234,6 @@ def _map_checks(args, kwargs, result):
     return out
 
 
-def _bound_checks(key, where):
-    """bound-negative when result[key] (a rigid bound in rad, or an array of them) is below zero."""
-    import numpy as _np
-
-    def checks(args, kwargs, result):
-        value = result.get(key)
-        if value is None:
-            return []
-        values = _np.atleast_1d(_np.asarray(value, dtype=float))
-        return check_friction_bound(float(_np.nanmin(values)) if _np.isfinite(values).any() else float("nan"), where)
-
-    return checks
-
-
-def _both(*checks):
-    return lambda args, kwargs, result: [w for c in checks for w in c(args, kwargs, result)]
-
-
 def _fit_checks(method):
     return lambda args, kwargs, r: check_dimension_fit(r["dimension"], r["r_squared"], method)
 
@@ -268,13 +250,13 @@ signature = _wrap(signature, _no_checks,
 profile_stats = _wrap(profile_stats, _profile_checks, "Warnings: ``warnings`` holds the profile's plausibility codes.")
 hold_angle = _wrap(hold_angle, _no_checks, "Warnings: ``warnings`` holds the readers' notes and the conditioned "
                    "profiles' plausibility codes.")
-areal_signature = _wrap(areal_signature, _both(_map_checks, _bound_checks("theta_max_forward", "areal (theta_max)")),
-                        "Warnings: ``warnings`` holds the maps' plausibility codes and bound-negative.")
+areal_signature = _wrap(areal_signature, _map_checks, "Warnings: ``warnings`` holds the maps' plausibility codes and "
+                        "the bound's (eq18-low-clamped, bound-negative), as `frictal areal` gives them.")
 areal_hold = _wrap(areal_hold, _no_checks, "Warnings: ``warnings`` holds the prediction's codes (the maps' plausibility "
                    "codes among them).")
 map_stats = _wrap(map_stats, _map_checks, "Warnings: ``warnings`` holds the map's plausibility codes.")
-anisotropy = _wrap(anisotropy, _both(_map_checks, _bound_checks("upper_bound_friction_angle", "anisotropy")),
-                   "Warnings: ``warnings`` holds the map's plausibility codes and bound-negative (any direction).")
+anisotropy = _wrap(anisotropy, _map_checks, "Warnings: ``warnings`` holds the map's plausibility codes and each "
+                   "direction's bound codes, as `frictal anisotropy` gives them.")
 divider_dimension = _wrap(divider_dimension, _fit_checks("divider"), "Warnings: dimension-out-of-range, poor-fit.")
 box_dimension = _wrap(box_dimension, _fit_checks("box"), "Warnings: dimension-out-of-range, poor-fit.")
 psd_dimension = _wrap(psd_dimension, _fit_checks("psd"), "Warnings: dimension-out-of-range, poor-fit.")
@@ -282,18 +264,7 @@ read_surface = _wrap(read_surface, _no_checks, "Warnings: the reader's (code rea
 tilt = _wrap(tilt, _no_checks, "Warnings: the run's codes (e.g. rotation) are also issued with warnings.warn.")
 areal_tilt = _wrap(areal_tilt, _no_checks, "Warnings: the run's codes are also issued with warnings.warn.")
 
-
-def _predict_friction_checks(args, kwargs, result):
-    class _W:
-        code = "eq18-low-clamped"
-        message = ("theta_a + theta_max - sigma is below 0: the low end of Eq. 18's range is reported as 0 "
-                   "(friction is never negative)")
-
-    return ([_W()] if result.get("eq18_low_clamped") else []) + check_friction_bound(
-        result.get("upper_bound_friction_angle", float("nan")), "predict_friction")
-
-
-predict_friction = _wrap(predict_friction, _predict_friction_checks,
+predict_friction = _wrap(predict_friction, _no_checks,
                          "Warnings: eq18-low-clamped when the low end of Eq. 18 was clamped at 0, bound-negative "
                          "when the rigid bound is below 0.")
 

@@ -3,6 +3,7 @@
 // fold over (e.g. koch_curve(...)). SI units: m, rad, s, kg. The keywords of tilt() are the
 // library's tilt settings table (tilt_settings(), frictal/tilt.hpp): the same names as the
 // `frictal tilt` options and the 'tilt' study kind's TOML keys.
+#include <limits>
 #include <optional>
 
 #include <pybind11/numpy.h>
@@ -110,14 +111,8 @@ void frictal_bind_dem(py::module_& m) {
         c.threads = threads;
         TiltResult r = py_detail::ok(py_detail::nogil([&] { return run_tilt(lo, up, c); }));
         py::dict d = py_detail::to_dict(tilt_columns(), TiltReport{r, c});
-        py::list warnings = py_detail::warning_list(data_warnings);
-        for (const TiltWarning& w : r.warnings) {
-          py::dict wd;
-          wd["code"] = w.code;
-          wd["message"] = w.message;
-          warnings.append(wd);
-        }
-        d["warnings"] = warnings;
+        data_warnings.insert(data_warnings.end(), r.warnings.begin(), r.warnings.end());
+        d["warnings"] = py_detail::warning_list(data_warnings);
         py::dict scaled = py_detail::to_dict(tilt_scaling_columns(), sc);
         py::list changed;
         for (const TiltScaledSetting& t : sc.settings) {
@@ -179,51 +174,30 @@ void frictal_bind_dem(py::module_& m) {
       [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy,
          const py::object& upper, bool turn_over_upper, const py::object& start_offset, const py::kwargs& kw) {
         const auto [o, f, g] = areal_tilt_inputs(lower, dx, dy, upper, turn_over_upper, start_offset, kw, "areal_tilt");
-        struct Out {
-          ArealTiltResult sim;
-          ArealTiltHold free, locked;
-          ArealTiltHoldSpread spread;
-        };
-        Out r = py_detail::ok(py_detail::nogil([&]() -> Result<Out> {
-          Out out;
-          auto sim = areal_tilt(f, g, o);
-          if (!sim) return sim.error();
-          out.sim = std::move(*sim);
-          // As `frictal areal-tilt`: predict()'s map model (its run-away distance and sphere radius,
-          // map_model_options) from the simulated rest, block free and locked, and the spread in
-          // the simulated lateral mode.
-          ArealTiltOptions c = map_model_options(f, o);
-          c.start_offset = out.sim.rest_offset;
-          auto held = areal_tilt_hold_drops(f, g, c, {{out.sim.rest_offset, false}, {out.sim.rest_offset, true}});
-          if (!held) return held.error();
-          out.free = (*held)[0];
-          out.locked = (*held)[1];
-          auto spread = areal_tilt_hold_spread(f, g, c, o.lock_lateral ? out.locked : out.free);
-          if (!spread) return spread.error();
-          out.spread = *spread;
-          return out;
-        }));
+        // As `frictal areal-tilt`: the run and predict()'s map model from its rest (areal_tilt_matched).
+        const ArealTiltMatched r = py_detail::ok(py_detail::nogil([&] { return areal_tilt_matched(f, g, o); }));
         py::dict d;
-        d["friction_angle"] = r.sim.friction_angle;
-        d["ran_away"] = r.sim.ran_away;
-        d["rest_offset"] = py::make_tuple(r.sim.rest_offset[0], r.sim.rest_offset[1]);
-        d["steering"] = r.sim.steering;
+        d["friction_angle"] = r.run.friction_angle;
+        d["ran_away"] = r.run.ran_away;
+        d["rest_offset"] = py::make_tuple(r.run.rest_offset[0], r.run.rest_offset[1]);
+        d["steering"] = r.run.steering;
         d["predicted_hold_angle"] = r.free.hold_angle;
         d["predicted_hold_angle_locked"] = r.locked.hold_angle;
         d["predicted_steering"] = r.free.steering;
         d["predicted_hold_angle_range"] = py::make_tuple(r.spread.low, r.spread.high);
         d["predicted_ambiguous_slips"] = r.spread.ambiguous;
-        d["sphere_radius"] = r.sim.sphere_radius;
-        d["spheres"] = r.sim.spheres;
-        d["steps"] = r.sim.steps;
-        d["unsettled_increments"] = r.sim.unsettled;
-        py::list warnings;
-        for (const auto& w : r.sim.warnings)
-          warnings.append(py::dict(py::arg("code") = w[0], py::arg("message") = w[1]));
-        d["warnings"] = warnings;
+        d["seat_tilt"] = r.seated ? r.seat_tilt : std::numeric_limits<double>::quiet_NaN();
+        d["seat_offset"] =
+            r.seated ? py::object(py::make_tuple(r.seat_offset[0], r.seat_offset[1])) : py::object(py::none());
+        d["seated_hold_angle"] = r.seated ? r.seated_hold_angle : std::numeric_limits<double>::quiet_NaN();
+        d["sphere_radius"] = r.run.sphere_radius;
+        d["spheres"] = r.run.spheres;
+        d["steps"] = r.run.steps;
+        d["unsettled_increments"] = r.run.unsettled;
+        d["warnings"] = py_detail::warning_list(r.run.warnings);
         std::vector<double> tilt, x, y;
         std::vector<bool> rested;
-        for (const ArealTiltIncrement& i : r.sim.trace) {
+        for (const ArealTiltIncrement& i : r.run.trace) {
           tilt.push_back(i.tilt);
           x.push_back(i.x);
           y.push_back(i.y);
@@ -246,7 +220,9 @@ void frictal_bind_dem(py::module_& m) {
        "free, locked, and the free block's steering; the same numbers as `frictal areal-tilt --json`), "
        "predicted_hold_angle_range (rad, rad: the least and largest hold angle in the simulated lateral mode when one "
        "slip's end is moved by a sphere radius, areal_tilt_hold_spread) and predicted_ambiguous_slips, "
-       "sphere_radius (m), spheres, steps, unsettled_increments, warnings (list of dicts code, message) and the "
+       "seat_tilt (rad), seat_offset (m) and seated_hold_angle (rad: the model put down in the run's last seat at "
+       "its tilt; NaN, None without one), sphere_radius (m), spheres, steps, unsettled_increments, warnings (list of "
+       "dicts code, message) and the "
        "increments (tilt rad, x, y m, rested). "
        "Settings (SI units; the `frictal areal-tilt` options and the 'areal-tilt' study kind's keys):\n" +
        py_detail::keyword_doc(areal_tilt_settings()))

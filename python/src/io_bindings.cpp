@@ -8,7 +8,9 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <numbers>
 #include <optional>
 
 #include "bindings.hpp"
@@ -301,7 +303,11 @@ void frictal_bind_io(py::module_& m) {
         const Map map = to_map(heights, dx, dy, 0, 0);
         auto t = ok(nogil([&] { return anisotropy(map, directions, o); }));
         std::vector<double> dir, fwd, bwd, sig, phi;
+        std::vector<Warning> warnings;  // each direction's bound, as `frictal anisotropy` names it
         for (const auto& r : t) {
+          char where[64];
+          std::snprintf(where, sizeof where, "direction %g deg", r.angle * 180 / std::numbers::pi);
+          for (Warning& w : check_friction_prediction(r.prediction, where)) add_warning(warnings, std::move(w));
           dir.push_back(r.angle);
           fwd.push_back(r.theta_forward);
           bwd.push_back(r.theta_backward);
@@ -314,6 +320,7 @@ void frictal_bind_io(py::module_& m) {
         d["theta_backward"] = arr(bwd);
         d["sigma"] = arr(sig);
         d["upper_bound_friction_angle"] = arr(phi);
+        d["warnings"] = py_detail::warning_list(warnings);
         return d;
       },
       py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("directions") = 36,
@@ -342,6 +349,9 @@ void frictal_bind_io(py::module_& m) {
         d["theta_max_backward"] = r.theta_max_backward;
         d["contact_slope_std"] = r.contact_slope_std;
         d["evaluated_nodes"] = r.evaluated_nodes;
+        // The bound's warnings as `frictal areal` gives them (theta_a = 0 here).
+        d["warnings"] = py_detail::warning_list(
+            check_friction_prediction(ok(predict_friction(0.0, r.theta_max_forward, r.contact_slope_std)), "areal"));
         return d;
       },
       py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,

@@ -306,20 +306,11 @@ void frictal_bind_predict(py::module_& m) {
         o.map_drops = drops;
         o.map_locked = locked;
         o.threads = threads;
-        // The surfaces handed over (a profile's points moved, not copied); where the one pass's lift
-        // falls short (an Internal error; rare) they are made again and kept for the second analysis.
-        auto make = [&](const py::object& obj, const char* what) {
-          return to_surface(obj, spacing, format, unit, what, x_unit, z_unit);
-        };
-        PredictSurface lo = make(lower, "lower");
+        // The surfaces handed over (a profile's points moved, not copied).
+        PredictSurface lo = to_surface(lower, spacing, format, unit, "lower", x_unit, z_unit);
         std::optional<PredictSurface> up;
-        if (!upper.is_none()) up = make(upper, "upper");
-        Result<Prediction> taken = nogil([&] { return predict(std::move(lo), std::move(up), o); });
-        if (taken || taken.error().code != ErrorCode::Internal) return ok(std::move(taken));
-        const PredictSurface lo2 = make(lower, "lower");
-        std::optional<PredictSurface> up2;
-        if (!upper.is_none()) up2 = make(upper, "upper");
-        return ok(nogil([&] { return predict(lo2, up2 ? &*up2 : nullptr, o); }));
+        if (!upper.is_none()) up = to_surface(upper, spacing, format, unit, "upper", x_unit, z_unit);
+        return ok(nogil([&] { return predict(std::move(lo), std::move(up), o); }));
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("direction") = 0.0,
       py::arg("atomic_friction") = 0.0, py::arg("runaway_distance") = 0.0, py::arg("block_length") = py::none(),
@@ -400,14 +391,7 @@ void frictal_bind_predict(py::module_& m) {
         }
         d["upper_bound_friction_angle"] = p.upper_bound_friction_angle;
         d["conditioning"] = p.conditioning;
-        py::list w;
-        for (const Warning& x : p.warnings) {
-          py::dict e;
-          e["code"] = x.code;
-          e["message"] = x.message;
-          w.append(e);
-        }
-        d["warnings"] = w;
+        d["warnings"] = py_detail::warning_list(p.warnings);
         return d;
       },
       py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,

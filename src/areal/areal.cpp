@@ -77,6 +77,12 @@ Result<std::vector<DirectionalFriction>> anisotropy(const Map& m, int directions
   return out;
 }
 
+std::array<double, 2> ArealLift::offset_xy(std::size_t k) const {
+  const double u = along(k % n_along), v = across(k / n_along);
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {u * c - v * s, u * s + v * c};
+}
+
 namespace {
 
 /// Range maximum over a 2D grid of values in O(1) per query (sparse table of sparse tables).

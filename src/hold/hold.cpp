@@ -1773,24 +1773,25 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   const double d = S.ho.runaway_distance;
   const OffsetRange whole =
       hold_lift_range(S.a, S.b, std::numeric_limits<double>::infinity(), S.lower_len, S.upper_len);
-  bool analysed = false;   // the sampled path analyses inside (it needs the faces to widen)
-  bool cut_short = false;  // the one-pass lift fell short: analyse_hold_widened instead
+  // A lift cut at an end is analysed inside, while the faces can still widen it; a lift over the
+  // whole overlap (or one period) after the faces are let go.
+  bool analysed = false;
   detail::LiftPoints ext_points;
   std::vector<std::size_t> ext_dropped;
-  double cut_lo = 0, cut_hi = 0;
   // Exact mode: the end checks' curves of the last round, the whole curve's ends (not built twice).
   EndCurve head_end, tail_end;
   // Builds the curve from R and the extension, analyses it; the side(s) the process reached.
   // The points beyond the range are let go once the curve holds them (the sampled path's next
   // round evaluates its own).
-  auto build_and_analyse = [&](const SignatureResult& R) -> Result<Reach> {
+  // `keep_points`: the points beyond the range stay (a cut end may still be widened with them).
+  auto build_and_analyse = [&](const SignatureResult& R, bool keep_points) -> Result<Reach> {
     {
       MergedPoints mp(R, ext_points, ext_dropped);
       auto curve = whole_curve(mp, head_end, tail_end, util::thread_count(so.threads, 2));
       if (!curve) return curve.error();
       out.curve = std::move(*curve);
     }
-    ext_points = detail::LiftPoints{};
+    if (!keep_points) ext_points = detail::LiftPoints{};
     auto reach = analyse_curve(out, S.ho, start);
     return reach;
   };
@@ -1886,8 +1887,8 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       };
     }
     for (;;) {
-      cut_lo = hold_lift_range(S.a, S.b, m_lo, S.lower_len, S.upper_len).min;
-      cut_hi = hold_lift_range(S.a, S.b, m_hi, S.lower_len, S.upper_len).max;
+      const double cut_lo = hold_lift_range(S.a, S.b, m_lo, S.lower_len, S.upper_len).min;
+      const double cut_hi = hold_lift_range(S.a, S.b, m_hi, S.lower_len, S.upper_len).max;
       const std::vector<double>* have = sampled ? nullptr : &ext_points.offset;
       if (!ext_skipped.empty()) {  // the offsets left out count as had
         have_all.clear();
@@ -1915,7 +1916,7 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       bool more_max = false, more_min = false;
       double short_max = 0, short_min = 0;
       if (sampled) {  // the widened signature's schedule: the whole analysis decides, both sides together
-        auto reach = build_and_analyse(R);
+        auto reach = build_and_analyse(R, false);  // the next round evaluates its own points
         if (!reach) return reach.error();
         analysed = true;
         more_max = reach->max && cut_max;
@@ -1976,7 +1977,28 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       more_min = short_min > 0;
       passed_max = !more_max;
       passed_min = !more_min;
-      if (!more_max && !more_min) break;
+      if (!more_max && !more_min) {
+        if (!cut_max && !cut_min) break;  // the whole overlap: analysed once the faces are let go
+        // The end checks read the lift near each cut end only, and on exactly sampled grooves
+        // they passed a lift that the analysis over it finds too short (a rest less than d from
+        // the cut end). The analysis is the judge: it runs here, while the faces can still widen
+        // the lift, and a cut end it finds reached is widened again (doubled) and checked anew.
+        auto reach = build_and_analyse(R, true);
+        if (!reach) return reach.error();
+        more_max = reach->max && cut_max;
+        more_min = reach->min && cut_min;
+        if (!more_max && !more_min) {
+          analysed = true;
+          ext_points = detail::LiftPoints{};
+          break;
+        }
+        out.curve = LiftCurve{};
+        tail_end.reset();
+        head_end.reset();
+        if (more_max) m_hi *= 2, passed_max = false;
+        if (more_min) m_lo *= 2, passed_min = false;
+        continue;
+      }
       // Farther by what the check found short, and d/5 (a chain may go on: another round, which
       // costs about as much as 0.4 d of lift on one side).
       // Both end curves let go: the widened side's points move (built anew by the next check),
@@ -2006,18 +2028,9 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
       out.curve = std::move(*curve);
       auto reach = analyse_curve(out, S.ho, start);
       if (!reach) return reach.error();
-    } else if (!analysed) {
-      auto reach = build_and_analyse(R);
+    } else if (!analysed) {  // the lift over the whole overlap: no cut end to reach
+      auto reach = build_and_analyse(R, false);
       if (!reach) return reach.error();
-      if ((reach->max && cut_hi < whole.max) || (reach->min && cut_lo > whole.min)) {
-        // The local end checks let through a lift that the whole analysis finds too short (seen
-        // on exactly sampled grooves): with the profiles still at hand, the two-lift path
-        // (analyse_hold_widened, the older exact analysis) answers after the signature.
-        if (take_lower)
-          return make_error(ErrorCode::Internal,
-                            "hold: internal error: the lift beyond the range was cut short (please report)");
-        cut_short = true;
-      }
     }
     if (!S.ho.keep_curve) out.curve = LiftCurve{};
     return Ok{};
@@ -2025,12 +2038,6 @@ Result<SignatureWithHold> one_pass(const Profile& lower, const Profile& upper, c
   auto sig = detail::signature_with_lift(lower, upper, so, take_lower, take_upper, with_lift, after_faces);
   if (!sig) return sig.error();
   res.signature = std::move(*sig);
-  if (cut_short) {
-    auto h = analyse_hold_widened(lower, upper, so, hold, start);
-    if (!h) return h.error();
-    res.hold = std::move(*h);
-    if (!S.ho.keep_curve) res.hold.curve = LiftCurve{};
-  }
   return res;
 }
 

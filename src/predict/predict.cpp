@@ -290,8 +290,7 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
 }
 
 // `take_lower` / `take_upper` (may be null): the surfaces' profiles to take over (moved through the
-// conditioning into the signature; then no second analysis from them where the one pass's lift
-// falls short: signature_with_hold's Internal error instead).
+// conditioning into the signature).
 Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o,
                                     Profile* take_lower, Profile* take_upper) {
   Prediction p;

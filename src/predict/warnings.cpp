@@ -358,13 +358,18 @@ std::vector<Warning> check_friction_bound(double phi, const std::string& where) 
   return out;
 }
 
-std::vector<Warning> check_signature_bounds(const FrictionPrediction& forward, const FrictionPrediction& backward,
-                                            const std::string& where) {
+std::vector<Warning> check_friction_prediction(const FrictionPrediction& p, const std::string& where) {
   std::vector<Warning> out;
-  if (forward.low_clamped)
+  if (p.low_clamped)
     out.push_back(
         {"eq18-low-clamped", where + ": Eq. 18's low end theta_max - sigma + theta_a is below zero; reported as 0"});
-  for (Warning& w : check_friction_bound(forward.friction_angle, where)) out.push_back(std::move(w));
+  for (Warning& w : check_friction_bound(p.friction_angle, where)) out.push_back(std::move(w));
+  return out;
+}
+
+std::vector<Warning> check_signature_bounds(const FrictionPrediction& forward, const FrictionPrediction& backward,
+                                            const std::string& where) {
+  std::vector<Warning> out = check_friction_prediction(forward, where);
   constexpr double kNear90 = 89.5 * std::numbers::pi / 180;
   for (const auto& [name, f] : {std::pair{"forward", &forward}, std::pair{"backward", &backward}})
     if (f->friction_angle >= kNear90)

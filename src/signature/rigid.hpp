@@ -72,8 +72,8 @@ struct LiftPruneRequest {
                           const std::vector<std::size_t>& dropped)>
       decide;
 };
-/// extend(lo, hi, have, prune): as above; offsets listed in `have` (increasing; may be null) are
-/// neither evaluated nor returned (they were, by an earlier call); `prune` (may be null) leaves
+/// extend(lo, hi, have, prune): as above; offsets listed in `have` (increasing; may be null), or
+/// within xtol of one, are neither evaluated nor returned (they were, by an earlier call); `prune` (may be null) leaves
 /// out the offsets that cannot matter, in LiftExtension::skipped.
 using LiftExtender = std::function<Result<LiftExtension>(double lo, double hi, const std::vector<double>* have,
                                                          const LiftPruneRequest* prune)>;

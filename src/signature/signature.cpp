@@ -1589,9 +1589,10 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
           ++j;
           continue;
         }
-        if (have) {
-          while (hj < have->size() && (*have)[hj] < W[i]) ++hj;
-          if (hj < have->size() && (*have)[hj] == W[i]) continue;
+        if (have) {  // had: within xtol, as plan_offsets drops near-duplicates (a former cut end
+                     // within rounding of an event would leave a piece of zero length)
+          while (hj < have->size() && (*have)[hj] < W[i] - P.xtol) ++hj;
+          if (hj < have->size() && (*have)[hj] <= W[i] + P.xtol) continue;
         }
         todo.push_back(W[i]);
       }

@@ -15,6 +15,10 @@
 #include "util/json_text.hpp"
 
 namespace frictal::study {
+
+using util::json_real;
+using util::json_string;
+
 namespace {
 
 constexpr int kDefinitionFormat = 1;

@@ -34,7 +34,7 @@ inline void put_tilt_warnings(std::map<std::string, double>& s, const TiltResult
     std::string key = std::string("warning_") + code;
     std::replace(key.begin(), key.end(), '-', '_');
     s[key] =
-        std::any_of(r.warnings.begin(), r.warnings.end(), [&](const TiltWarning& w) { return w.code == code; }) ? 1 : 0;
+        std::any_of(r.warnings.begin(), r.warnings.end(), [&](const Warning& w) { return w.code == code; }) ? 1 : 0;
   }
 }
 

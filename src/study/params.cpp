@@ -10,6 +10,9 @@
 
 namespace frictal::study {
 
+using util::json_real;
+using util::json_string;
+
 std::string canonical(const Value& v) {
   struct V {
     std::string operator()(std::int64_t i) const { return std::to_string(i); }

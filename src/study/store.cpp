@@ -29,6 +29,11 @@
 #include "util/json_text.hpp"
 
 namespace frictal::study {
+
+using util::json_array;
+using util::json_real;
+using util::json_string;
+
 namespace {
 
 const char* kSchema = R"sql(

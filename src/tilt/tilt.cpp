@@ -1085,8 +1085,8 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
   return res;
 }
 
-std::vector<TiltWarning> tilt_scale_warnings(const TiltScales& sc, const TiltResult& r, const TiltConfig& cfg) {
-  std::vector<TiltWarning> w;
+std::vector<Warning> tilt_scale_warnings(const TiltScales& sc, const TiltResult& r, const TiltConfig& cfg) {
+  std::vector<Warning> w;
   const double deg = 180 / std::numbers::pi;
   if (sc.resting_overlap > cfg.warn_overlap_fraction * sc.spheroradius)
     w.push_back(

@@ -18,7 +18,7 @@ using R = TiltReport;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 bool rotated(const TiltResult& r) {
-  return std::any_of(r.warnings.begin(), r.warnings.end(), [](const TiltWarning& w) { return w.code == "rotation"; });
+  return std::any_of(r.warnings.begin(), r.warnings.end(), [](const Warning& w) { return w.code == "rotation"; });
 }
 double per_step(const TiltResult& r, std::uint64_t n) {
   return r.steps ? static_cast<double>(n) / static_cast<double>(r.steps) : 0.0;
@@ -38,7 +38,7 @@ std::string tilt_validity(const TiltResult& r, const TiltConfig& c) {
   const double lo = r.predicted_inertial_hold_angle - tol, hi = qs + tol;
   if (r.friction_angle >= lo && r.friction_angle <= hi) return "valid";
   std::string own;  // the run's own warnings that bear on it
-  for (const TiltWarning& w : r.warnings)
+  for (const Warning& w : r.warnings)
     if (w.code == "unsettled" || w.code == "unrelaxed" || w.code == "rounding" || w.code == "creep")
       own += (own.empty() ? "; this run warned " : ", ") + w.code;
   return fmt::format(

@@ -8,7 +8,7 @@
 
 #include <fmt/core.h>
 
-namespace frictal::study {
+namespace frictal::util {
 
 /// Shortest text that reads back to the same double; "null" for NaN/inf (JSON has none).
 /// With `mark_real`, integral values get ".0" so that reals and integers stay distinct.
@@ -49,4 +49,4 @@ inline std::string json_array(const std::vector<double>& v) {
   return s + "]";
 }
 
-}  // namespace frictal::study
+}  // namespace frictal::util

@@ -225,10 +225,10 @@ TEST(ArealTiltLift, SphereAboveAnApexTouchesIt) {
   EXPECT_NE(bad.error().message.find("sphere radius -1"), std::string::npos) << bad.error().message;
 }
 
-TEST(ArealTiltLift, GroovesAlongTheDiagonalSteerAndTheirMirrorHolds) {
+TEST(ArealTiltHold, GroovesAlongTheDiagonalSteerAndTheirMirrorHolds) {
   // Grooves A sin(2 pi (i - j) / m) on dx = a, dy = a tan 30 deg run at +30 deg, along the
-  // triangulation's diagonal: the triangulated surface depends on i - j only, so the lift is
-  // constant along (dx, dy) and the free block slides at once (0 deg, steering 30 deg). Their
+  // triangulation's diagonal: the triangulated surface depends on i - j only, so the lift repeats
+  // along (dx, dy) and the free block slides along the grooves (steering 30 deg) at once. Their
   // mirror A sin(2 pi (i + j) / m) runs across the diagonals: each valley is a chain of bumps,
   // which holds the block (qualitatively: a clear positive angle).
   constexpr double kPi = std::numbers::pi;
@@ -257,24 +257,15 @@ TEST(ArealTiltLift, GroovesAlongTheDiagonalSteerAndTheirMirrorHolds) {
       for (std::size_t i = 0; i < w; ++i) g.heights.push_back(f.at(i + i0, j + i0));
     frictal::ArealTiltOptions t;
     t.turn_over_upper = false;
-    frictal::ArealLiftOptions o;
-    o.step = 0.5 * f.dx;
-    o.across_step = 0.5 * f.dy;  // the offset grid's diagonal runs along +30 deg
-    o.offset_min = -3 * a;
-    o.offset_max = 6 * a;
-    o.across_max = 8 * a;
-    auto lift = frictal::areal_tilt_lift(f, g, t, o);
-    ASSERT_TRUE(lift.ok()) << lift.error().message;
-    frictal::ArealHoldOptions ho;
-    ho.runaway_distance = 2.5 * a;
-    auto start = frictal::areal_lift_node(*lift, 0, 0);
-    ASSERT_TRUE(start.ok());
-    auto hold = frictal::areal_hold_angle(*lift, *start, ho);
+    t.runaway_distance = 2.5 * a;
+    auto hold = frictal::areal_tilt_hold(f, g, t);  // the continuous model, dropped at 0
     ASSERT_TRUE(hold.ok()) << hold.error().message;
     held[mirror] = hold->hold_angle;
     if (!mirror) {
-      EXPECT_NEAR(hold->hold_angle, 0, 1e-12);
-      EXPECT_NEAR(hold->steering, psi, 1e-9);
+      // Off the lattice offsets the spheres ride the facets' small ripples along the grooves: the
+      // block slides within the simulation's first 0.1 deg increment (0.054 deg), along them.
+      EXPECT_LT(hold->hold_angle, 0.1 * kPi / 180);
+      EXPECT_NEAR(hold->steering, psi, 1e-6);
     }
   }
   EXPECT_GT(held[1], 2 * kPi / 180);  // the mirror holds (measured 7 to 13 deg; see docs/mujoco.md)
@@ -282,7 +273,7 @@ TEST(ArealTiltLift, GroovesAlongTheDiagonalSteerAndTheirMirrorHolds) {
 
 TEST(ArealTilt, ObliqueGroovesAgreeWithTheMatchedPrediction) {
   // Grooves at +30 deg to d along the height field's diagonal and their mirror at -30 deg (as in
-  // ArealTiltLift.GroovesAlongTheDiagonalSteerAndTheirMirrorHolds), the upper face a window in
+  // ArealTiltHold.GroovesAlongTheDiagonalSteerAndTheirMirrorHolds), the upper face a window in
   // place: the simulation (MuJoCo's dynamics, exact sphere-triangle contacts) against the rigid
   // quasi-static process on the lift of the same spheres and triangles (a second method). The
   // +30 deg block steers at the first 0.1 deg increment; the mirror holds near the matched angle.
@@ -316,24 +307,14 @@ TEST(ArealTilt, ObliqueGroovesAgreeWithTheMatchedPrediction) {
     }
     ASSERT_TRUE(sim.ok()) << sim.error().message;
     ASSERT_TRUE(sim->ran_away);
-    // The matched prediction from the simulated rest offset, on offsets r / 2 apart.
-    frictal::ArealLiftOptions o;
-    o.step = 0.1 * f.dx;
-    o.across_step = 0.1 * f.dy;
-    const double D = 0.05 * f.width();
-    o.offset_min = sim->rest_offset[0] - 2 * D;
-    o.offset_max = sim->rest_offset[0] + 4 * D;
-    o.across_max = std::abs(sim->rest_offset[1]) + 3 * D;
-    auto lift = frictal::areal_tilt_lift(f, g, t, o);
-    ASSERT_TRUE(lift.ok()) << lift.error().message;
-    auto rest = frictal::areal_lift_node(*lift, sim->rest_offset[0], sim->rest_offset[1]);
-    ASSERT_TRUE(rest.ok());
-    frictal::ArealHoldOptions ho;
-    ho.runaway_distance = D;
-    auto hold = frictal::areal_hold_angle(*lift, *rest, ho);
+    // The matched prediction (the continuous model) from the simulated rest offset.
+    frictal::ArealTiltOptions c = t;
+    c.runaway_distance = 0.05 * f.width();
+    c.start_offset = sim->rest_offset;
+    auto hold = frictal::areal_tilt_hold(f, g, c);
     ASSERT_TRUE(hold.ok()) << hold.error().message;
-    if (!mirror) {
-      EXPECT_NEAR(hold->hold_angle, 0, 1e-12);
+    if (!mirror) {  // both slide within the first 0.1 deg increment
+      EXPECT_LT(hold->hold_angle, 0.1 * kPi / 180);
       EXPECT_LE(sim->friction_angle, 0.1 * kPi / 180 + 1e-9);
     } else {
       EXPECT_GT(hold->hold_angle, 5 * kPi / 180);

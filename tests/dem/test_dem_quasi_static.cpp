@@ -82,7 +82,7 @@ TEST(DemQuasiStatic, FlatBlockSlidesAtTheLastIncrementBelowAtanMuA) {
     const double expected = std::floor(std::atan(mu) / kDeg / 0.1) * 0.1;
     EXPECT_NEAR(r->friction_angle / kDeg, expected, 1e-6) << "mu_a = " << mu;
     EXPECT_EQ(r->unrelaxed_increments, 0);
-    for (const frictal::TiltWarning& w : r->warnings) EXPECT_NE(w.code, "unrelaxed") << w.message;
+    for (const frictal::Warning& w : r->warnings) EXPECT_NE(w.code, "unrelaxed") << w.message;
     // A flat pair put down at 1 cm rests there.
     EXPECT_NEAR(r->rest_offset, 0.01, 1e-6);
   }
@@ -190,7 +190,7 @@ TEST(DemQuasiStatic, StiffnessCheckKeepsTheAngleOfRigidFlanks) {
   ASSERT_TRUE(r.ok()) << r.error().message;
   ASSERT_TRUE(r->slid);
   EXPECT_NEAR(r->stiff_friction_angle / kDeg, 19.8, 1e-6);
-  for (const frictal::TiltWarning& w : r->warnings) EXPECT_NE(w.code, "stiffness") << w.message;
+  for (const frictal::Warning& w : r->warnings) EXPECT_NE(w.code, "stiffness") << w.message;
 }
 
 TEST(DemQuasiStatic, RejectsBadRelaxationSettings) {
@@ -218,7 +218,7 @@ TEST(DemQuasiStatic, UnrelaxedWarningWhenTheBudgetIsTooShort) {
   auto r = frictal::run_tilt(flat(0.05), flat(0.05), cfg);
   ASSERT_TRUE(r.ok()) << r.error().message;
   bool unsettled = false, unrelaxed = false;
-  for (const frictal::TiltWarning& w : r->warnings) {
+  for (const frictal::Warning& w : r->warnings) {
     unsettled |= w.code == "unsettled";
     unrelaxed |= w.code == "unrelaxed";
   }

@@ -156,3 +156,24 @@ def test_tilt_of_a_measured_profile_equals_the_cli():
     scaled = {t["name"]: (t["from"], t["to"]) for t in got["scaled_defaults"]["settings"]}
     assert set(scaled) == {t["name"] for t in want["scaled_defaults"]["settings"]}
     assert same(scaled["normal_stiffness"][1], want["settings"]["normal_stiffness"])
+
+
+def test_the_bound_warnings_are_the_librarys_words(tmp_path):
+    # A ramp descending along +x under a flat block: every contact slope is -0.1, so the rigid
+    # bound theta_max is below zero (bound-negative), in `frictal areal` and in Python's
+    # areal_signature with the same words: one library check, not one per front end.
+    n, dx = 24, 1e-6
+    ramp = np.tile(-0.1 * np.arange(n) * dx, (n, 1))
+    flat = np.zeros((8, 8))
+    lo, up = str(tmp_path / "ramp.x3p"), str(tmp_path / "flat.x3p")
+    frictal.write_x3p(lo, ramp, dx=dx, dy=dx)
+    frictal.write_x3p(up, flat, dx=dx, dy=dx)
+    c = cli("areal", lo, up, "--detrend", "none")
+    p = quiet(frictal.areal_signature, ramp, dx=dx, dy=dx, upper=flat)
+    assert p["theta_max_forward"] == pytest.approx(math.atan(-0.1), abs=1e-9)
+
+    def bound(ws):
+        return [(w["code"], w["message"]) for w in ws if w["code"] == "bound-negative"]
+
+    assert len(bound(c["warnings"])) == 1
+    assert bound(p["warnings"]) == bound(c["warnings"])

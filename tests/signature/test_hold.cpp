@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "frictal/analysis.hpp"
 #include "frictal/generators.hpp"
 #include "frictal/hold.hpp"
 #include "frictal/signature.hpp"
@@ -627,6 +628,54 @@ TEST(Hold, AFlatStretchIntoTheEndOfTheDropRangeIsFollowedPastIt) {
     EXPECT_NEAR(r->hold.distribution.backward.hold.mean, w->backward.hold.mean, 1e-12);
     EXPECT_NEAR(r->hold.distribution.forward.inertial.mean, w->forward.inertial.mean, 1e-12);
     EXPECT_EQ(r->hold.distribution.forward.basins.rest.size(), w->forward.basins.rest.size());
+  }
+}
+
+TEST(Hold, AFormerCutEndOnAnEventLeavesNoPieceOfZeroLength) {
+  // Exactly sampled trapezoid grooves (period 35 points, flanks of 8 steps of 5 um, flat tops)
+  // under a 21-point block of integer steps, both with their lines removed (as `frictal
+  // signature` reads files). The rounds widen the lift past b + 1.55 d four times; a round's
+  // cut end fell within rounding of an event offset that the next round listed again, and the
+  // two made a piece of zero length on which the drops of a whole basin came to rest (forward
+  // mean 0.823 against 1.372 rad). The rounds, on both overloads, must answer as the lift over
+  // the whole overlap at once, which has no rounds (a second method).
+  const double dx = 1e-6, step = 5e-6;
+  Profile lower, block;
+  for (int i = 0; i < 131; ++i) {
+    const int t = i % 35;
+    lower.x.push_back(i * dx);
+    lower.z.push_back(step * std::clamp(std::min(t, 35 - t), 0, 8));
+  }
+  const int steps[21] = {1, 2, 1, 0, 1, 2, 2, 0, 1, 1, 1, 1, 2, 0, 2, 0, 0, 0, 2, 0, 1};
+  for (int i = 0; i < 21; ++i) {
+    block.x.push_back(i * dx);
+    block.z.push_back(step * steps[i]);
+  }
+  const Detrend line{DetrendKind::Line, 1};
+  auto lo = detrend(lower, line);
+  auto bl = detrend(block, line);
+  ASSERT_TRUE(lo.ok() && bl.ok());
+  const Profile upper = rotate180(*bl);
+  HoldOptions whole;
+  whole.whole_lift_offsets = std::numeric_limits<double>::infinity();
+  auto w = signature_with_hold(*lo, upper, SignatureOptions{}, whole);
+  ASSERT_TRUE(w.ok()) << w.error().message;
+  HoldOptions rounds;
+  rounds.whole_lift_offsets = 0;  // the rounds and their end checks
+  auto ref = signature_with_hold(*lo, upper, SignatureOptions{}, rounds);
+  ASSERT_TRUE(ref.ok()) << ref.error().message;
+  Profile l2 = *lo, u2 = upper;
+  auto moved = signature_with_hold(std::move(l2), std::move(u2), SignatureOptions{}, rounds);
+  ASSERT_TRUE(moved.ok()) << moved.error().message;
+  EXPECT_GT(w->hold.distribution.forward.hold.mean, 1.3);  // the case: far above the short lift's 0.823
+  for (const SignatureWithHold* r : {&*ref, &*moved}) {
+    for (const auto& [got, want] : {std::pair{&r->hold.distribution.forward, &w->hold.distribution.forward},
+                                    std::pair{&r->hold.distribution.backward, &w->hold.distribution.backward}}) {
+      EXPECT_NEAR(got->hold.mean, want->hold.mean, 1e-12);
+      EXPECT_NEAR(got->hold.max, want->hold.max, 1e-12);
+      EXPECT_NEAR(got->inertial.mean, want->inertial.mean, 1e-12);
+      EXPECT_EQ(got->basins.rest.size(), want->basins.rest.size());
+    }
   }
 }
 

@@ -206,8 +206,8 @@ const Columns<Prediction>& prediction_columns() {
 OutputValue interface_value(const Column<Prediction>& c, const Prediction& p) { return to_interface(c.unit, c.si(p)); }
 
 std::string prediction_json(const Prediction& p, const std::string& extra, int indent) {
-  using study::json_real;
-  using study::json_string;
+  using util::json_real;
+  using util::json_string;
   const std::string nl = indent > 0 ? "\n" : "", pad(std::size_t(std::max(indent, 0)), ' '), sp = indent > 0 ? " " : "";
   std::string s = "{" + nl;
   bool first = true;

@@ -1,6 +1,6 @@
 // The output tables of the signature and the rigid-bound friction prediction (frictal/outputs.hpp):
 // the keys of `frictal signature --json` and of Python's signature() and predict_friction() dicts,
-// each declared once with its unit (the hold analysis's: src/hold/columns.cpp).
+// each declared once with its unit (the hold analysis's: src/hold/hold_columns.cpp).
 #include <string>
 #include <vector>
 
