@@ -99,7 +99,6 @@ class Solver {
     g_field_.assign(n, 0.0);
     t_.assign(n, 0.0);
     r_.assign(n, 0.0);
-    u_.assign(n, 0.0);
   }
   std::size_t active_points() const { return n_active_; }
   double cap() const { return o_.hardness > 0 ? o_.hardness : INFINITY; }
@@ -205,12 +204,12 @@ class Solver {
     double shift = 0, residual = INFINITY;
     int it = 0;
     for (;; ++it) {
-      op_->apply(p_.data(), u_.data());
+      op_->apply(p_.data(), g_field_.data());  // u, made the gap in place below
       // gap up to a constant: u - h; the constant makes its mean over the free contact zero.
       double gsum = 0;
       std::size_t nc = 0;
       for (std::size_t k = 0; k < n; ++k) {
-        g_field_[k] = u_[k] - h_[k];
+        g_field_[k] -= h_[k];
         if (active_[k] && p_[k] > 0 && p_[k] < H) gsum += g_field_[k], ++nc;
       }
       shift = nc ? gsum / double(nc) : 0.0;
@@ -407,7 +406,7 @@ class Solver {
   std::unique_ptr<ElasticOperator> op_;
   std::vector<char> active_;
   std::size_t n_active_ = 0;
-  std::vector<double> h_, p_, g_field_, t_, r_, u_;
+  std::vector<double> h_, p_, g_field_, t_, r_;
   double hmax_ = 0, h_rms_ = 1;
 };
 

@@ -49,13 +49,15 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
   op->padded_ = !periodic;
   op->Nx_ = periodic ? nx : 2 * nx;
   op->Ny_ = (periodic || ny == 1) ? ny : 2 * ny;
+  op->pruned_ = !periodic && ny > 1;
   const std::size_t Nx = op->Nx_, Ny = op->Ny_, Nh = Nx / 2 + 1;
   const std::size_t total = Nx * Ny, spectral = Ny * Nh;
-  op->real_ = fftw_alloc_real(total);
+  op->real_ = fftw_alloc_real(op->pruned_ ? Nx * ny : total);
   op->spec_ = fftw_alloc_complex(spectral);
   if (!op->real_ || !op->spec_)
     return make_error(ErrorCode::Internal,
                       "contact: out of memory for the FFT buffers (" + std::to_string(total) + " points)");
+  auto* spec = static_cast<fftw_complex*>(op->spec_);
   {
     std::lock_guard<std::mutex> lock(planner_mutex());
 #ifdef FRICTAL_FFTW_THREADS
@@ -64,19 +66,34 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
 #else
     (void)threads;
 #endif
-    auto* spec = static_cast<fftw_complex*>(op->spec_);
-    // Measured plans from 2^19 points on: they halve a 1024 x 1024 transform's time for about a
-    // second of planning (bench/results/contact.md), which the hundred-odd iterations of one
-    // solve repay; FFTW keeps what it measured for the later plans of the same size in the
-    // process. Smaller grids take the estimated plan at once. The planner's measurements may
-    // pick a different algorithm from run to run: results agree to rounding, not to the bit.
-    const unsigned flags = total >= (std::size_t(1) << 19) ? FFTW_MEASURE : FFTW_ESTIMATE;
+    // Measured plans for maps from 2^19 points on: they cut a 1024 x 1024 transform pair's time
+    // by a third to a half for 0.2-0.6 s of CPU planning (bench/results/contact.md), which the
+    // hundred-odd iterations of one solve repay; FFTW keeps what it measured for later plans of
+    // the same size in the process. Profiles and smaller grids take estimated plans at once:
+    // measuring a 1D transform of 10^6 points or more takes FFTW 30-60 s. The planner's
+    // measurements may pick a different algorithm from run to run: results agree to rounding,
+    // not to the bit.
+    const unsigned flags = (ny > 1 && total >= (std::size_t(1) << 19)) ? FFTW_MEASURE : FFTW_ESTIMATE;
     if (ny == 1) {
       op->forward_ = fftw_plan_dft_r2c_1d(int(Nx), op->real_, spec, flags);
       op->backward_ = fftw_plan_dft_c2r_1d(int(Nx), spec, op->real_, flags);
-    } else {
+    } else if (!op->pruned_) {
       op->forward_ = fftw_plan_dft_r2c_2d(int(Ny), int(Nx), op->real_, spec, flags);
       op->backward_ = fftw_plan_dft_c2r_2d(int(Ny), int(Nx), spec, op->real_, flags);
+    } else {
+      // Rows: ny real transforms of length Nx (row stride Nx reals, Nh complex numbers).
+      // Columns: Nh complex transforms of length Ny, in place (element stride Nh).
+      const int n_row[1] = {int(Nx)}, n_col[1] = {int(Ny)};
+      op->forward_ =
+          fftw_plan_many_dft_r2c(1, n_row, int(ny), op->real_, nullptr, 1, int(Nx), spec, nullptr, 1, int(Nh), flags);
+      op->backward_ =
+          fftw_plan_many_dft_c2r(1, n_row, int(ny), spec, nullptr, 1, int(Nh), op->real_, nullptr, 1, int(Nx), flags);
+      op->columns_forward_ = fftw_plan_many_dft(1, n_col, int(Nh), spec, nullptr, int(Nh), 1, spec, nullptr, int(Nh), 1,
+                                                FFTW_FORWARD, flags);
+      op->columns_backward_ = fftw_plan_many_dft(1, n_col, int(Nh), spec, nullptr, int(Nh), 1, spec, nullptr, int(Nh),
+                                                 1, FFTW_BACKWARD, flags);
+      if (!op->columns_forward_ || !op->columns_backward_)
+        return make_error(ErrorCode::Internal, "contact: FFTW could not plan");
     }
   }
   if (!op->forward_ || !op->backward_) return make_error(ErrorCode::Internal, "contact: FFTW could not plan");
@@ -105,19 +122,43 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
       const double x = wrapped(i, Nx) * dx;
       op->real_[i] = c * (G(x + a) - G(x - a));
     }
+    fftw_execute(static_cast<fftw_plan>(op->forward_));
   } else {
+    // The pruned rows' transform takes ny rows at a time: the coefficients' first ny rows with
+    // the operator's plan, the other ny rows with an estimated plan of its own (used once, it
+    // leaves the arrays alone while planning), then the columns' transform.
     const double a = dx / 2, b = dy / 2, c = 1.0 / (std::numbers::pi * e_star);
-    for (std::size_t j = 0; j < Ny; ++j) {
-      const double y = wrapped(j, Ny) * dy;
-      for (std::size_t i = 0; i < Nx; ++i) {
-        const double x = wrapped(i, Nx) * dx;
-        op->real_[j * Nx + i] = c * (love_primitive(x + a, y + b) - love_primitive(x - a, y + b) -
-                                     love_primitive(x + a, y - b) + love_primitive(x - a, y - b));
+    auto rows = [&](std::size_t j0) {
+      for (std::size_t j = 0; j < ny; ++j) {
+        const double y = wrapped(j0 + j, Ny) * dy;
+        double* row = op->real_ + j * Nx;
+        // Even in x: the offsets -x (i > Nx/2) repeat the coefficients of +x.
+        for (std::size_t i = 0; i <= Nx / 2; ++i) {
+          const double x = wrapped(i, Nx) * dx;
+          row[i] = c * (love_primitive(x + a, y + b) - love_primitive(x - a, y + b) - love_primitive(x + a, y - b) +
+                        love_primitive(x - a, y - b));
+        }
+        for (std::size_t i = Nx / 2 + 1; i < Nx; ++i) row[i] = row[Nx - i];
       }
+    };
+    rows(0);
+    fftw_execute(static_cast<fftw_plan>(op->forward_));
+    rows(ny);
+    fftw_plan upper = nullptr;
+    {
+      std::lock_guard<std::mutex> lock(planner_mutex());
+      const int n_row[1] = {int(Nx)};
+      upper = fftw_plan_many_dft_r2c(1, n_row, int(Ny - ny), op->real_, nullptr, 1, int(Nx), spec + ny * Nh, nullptr, 1,
+                                     int(Nh), FFTW_ESTIMATE);
     }
+    if (!upper) return make_error(ErrorCode::Internal, "contact: FFTW could not plan");
+    fftw_execute(upper);
+    {
+      std::lock_guard<std::mutex> lock(planner_mutex());
+      fftw_destroy_plan(upper);
+    }
+    fftw_execute(static_cast<fftw_plan>(op->columns_forward_));
   }
-  fftw_execute(static_cast<fftw_plan>(op->forward_));
-  const auto* spec = static_cast<const fftw_complex*>(op->spec_);
   for (std::size_t k = 0; k < spectral; ++k) op->kernel_[k] = spec[k][0] * norm;  // even: real
   return op;
 }
@@ -127,6 +168,8 @@ ElasticOperator::~ElasticOperator() {
     std::lock_guard<std::mutex> lock(planner_mutex());
     if (forward_) fftw_destroy_plan(static_cast<fftw_plan>(forward_));
     if (backward_) fftw_destroy_plan(static_cast<fftw_plan>(backward_));
+    if (columns_forward_) fftw_destroy_plan(static_cast<fftw_plan>(columns_forward_));
+    if (columns_backward_) fftw_destroy_plan(static_cast<fftw_plan>(columns_backward_));
   }
   fftw_free(real_);
   fftw_free(spec_);
@@ -134,11 +177,30 @@ ElasticOperator::~ElasticOperator() {
 
 void ElasticOperator::apply(const double* in, double* out) {
   const std::size_t Nh = Nx_ / 2 + 1;
+  auto* spec = static_cast<fftw_complex*>(spec_);
+  const std::size_t spectral = Ny_ * Nh;
+  if (pruned_) {
+    // The ny data rows, each padded with zeros to Nx; the rows' transforms fill the first ny
+    // rows of the spectrum, the other Ny - ny rows (the padding) are zero.
+    for (std::size_t j = 0; j < ny_; ++j) {
+      std::memcpy(real_ + j * Nx_, in + j * nx_, sizeof(double) * nx_);
+      std::memset(real_ + j * Nx_ + nx_, 0, sizeof(double) * (Nx_ - nx_));
+    }
+    fftw_execute(static_cast<fftw_plan>(forward_));
+    std::memset(spec + ny_ * Nh, 0, sizeof(fftw_complex) * (Ny_ - ny_) * Nh);
+    fftw_execute(static_cast<fftw_plan>(columns_forward_));
+    for (std::size_t k = 0; k < spectral; ++k) {
+      spec[k][0] *= kernel_[k];
+      spec[k][1] *= kernel_[k];
+    }
+    fftw_execute(static_cast<fftw_plan>(columns_backward_));
+    fftw_execute(static_cast<fftw_plan>(backward_));  // the first ny rows only: the ones asked for
+    for (std::size_t j = 0; j < ny_; ++j) std::memcpy(out + j * nx_, real_ + j * Nx_, sizeof(double) * nx_);
+    return;
+  }
   if (padded_) std::memset(real_, 0, sizeof(double) * Nx_ * Ny_);
   for (std::size_t j = 0; j < ny_; ++j) std::memcpy(real_ + j * Nx_, in + j * nx_, sizeof(double) * nx_);
   fftw_execute(static_cast<fftw_plan>(forward_));
-  auto* spec = static_cast<fftw_complex*>(spec_);
-  const std::size_t spectral = Ny_ * Nh;
   for (std::size_t k = 0; k < spectral; ++k) {
     spec[k][0] *= kernel_[k];
     spec[k][1] *= kernel_[k];

@@ -14,7 +14,9 @@ namespace frictal::contact_detail {
 class ElasticOperator {
  public:
   /// nx, ny points at spacings dx, dy (unit: m); periodic, or padded to 2 nx (x 2 ny); E* (unit:
-  /// Pa); FFTW threads (>= 1). Internal error when FFTW cannot plan (memory).
+  /// Pa); FFTW threads (>= 1). Internal error when FFTW cannot plan (memory). Maps from 2^19
+  /// transform points take measured plans (planning about 0.2-0.6 s at 1024^2); profiles take
+  /// estimated plans (measuring a 10^6-point 1D transform takes FFTW half a minute).
   static Result<std::unique_ptr<ElasticOperator>> create(std::size_t nx, std::size_t ny, double dx, double dy,
                                                          bool periodic, double contact_modulus, unsigned threads);
   ~ElasticOperator();
@@ -29,11 +31,17 @@ class ElasticOperator {
   ElasticOperator() = default;
   std::size_t nx_ = 0, ny_ = 0, Nx_ = 0, Ny_ = 0;
   bool padded_ = false;
-  double* real_ = nullptr;      // Nx Ny reals
-  void* spec_ = nullptr;        // Ny (Nx/2 + 1) complex numbers
-  std::vector<double> kernel_;  // the transfer function, normalised (1 / (Nx Ny) folded in)
-  void* forward_ = nullptr;
-  void* backward_ = nullptr;
+  /// A padded map's transform is pruned: the rows' real transforms run over the ny rows that hold
+  /// data only (the other Ny - ny rows are zero on the way in and not needed on the way out), the
+  /// columns' complex transforms over the whole padded height.
+  bool pruned_ = false;
+  double* real_ = nullptr;            // Nx Ny reals (pruned: Nx ny)
+  void* spec_ = nullptr;              // Ny (Nx/2 + 1) complex numbers
+  std::vector<double> kernel_;        // the transfer function, normalised (1 / (Nx Ny) folded in)
+  void* forward_ = nullptr;           // the whole r2c transform (pruned: the rows' r2c transforms)
+  void* backward_ = nullptr;          // the whole c2r transform (pruned: the rows' c2r transforms)
+  void* columns_forward_ = nullptr;   // pruned only: the columns' forward complex transforms
+  void* columns_backward_ = nullptr;  // pruned only: the columns' backward complex transforms
 };
 
 }  // namespace frictal::contact_detail
