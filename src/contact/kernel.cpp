@@ -175,38 +175,74 @@ ElasticOperator::~ElasticOperator() {
   fftw_free(spec_);
 }
 
+template <class Body>
+void ElasticOperator::chunks(std::size_t n, const Body& body) {
+  const unsigned members = team_ ? team_->members() : 1;
+  if (members <= 1) {
+    body(std::size_t(0), n);
+    return;
+  }
+  struct Context {
+    const Body* body;
+    std::size_t n;
+    unsigned members;
+  } context{&body, n, members};
+  team_->run(
+      members,
+      [](void* c, unsigned m) {
+        const auto* x = static_cast<const Context*>(c);
+        (*x->body)(x->n * m / x->members, x->n * (m + 1) / x->members);
+      },
+      &context);
+}
+
 void ElasticOperator::apply(const double* in, double* out) {
   const std::size_t Nh = Nx_ / 2 + 1;
   auto* spec = static_cast<fftw_complex*>(spec_);
   const std::size_t spectral = Ny_ * Nh;
-  if (pruned_) {
-    // The ny data rows, each padded with zeros to Nx; the rows' transforms fill the first ny
-    // rows of the spectrum, the other Ny - ny rows (the padding) are zero.
-    for (std::size_t j = 0; j < ny_; ++j) {
-      std::memcpy(real_ + j * Nx_, in + j * nx_, sizeof(double) * nx_);
-      std::memset(real_ + j * Nx_ + nx_, 0, sizeof(double) * (Nx_ - nx_));
-    }
-    fftw_execute(static_cast<fftw_plan>(forward_));
-    std::memset(spec + ny_ * Nh, 0, sizeof(fftw_complex) * (Ny_ - ny_) * Nh);
-    fftw_execute(static_cast<fftw_plan>(columns_forward_));
-    for (std::size_t k = 0; k < spectral; ++k) {
+  const auto multiply = [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
       spec[k][0] *= kernel_[k];
       spec[k][1] *= kernel_[k];
     }
+  };
+  const auto copy_out = [&](std::size_t b, std::size_t e) {
+    for (std::size_t j = b; j < e; ++j) std::memcpy(out + j * nx_, real_ + j * Nx_, sizeof(double) * nx_);
+  };
+  if (pruned_) {
+    // The ny data rows, each padded with zeros to Nx; the rows' transforms fill the first ny
+    // rows of the spectrum, the other Ny - ny rows (the padding) are zero.
+    chunks(ny_, [&](std::size_t b, std::size_t e) {
+      for (std::size_t j = b; j < e; ++j) {
+        std::memcpy(real_ + j * Nx_, in + j * nx_, sizeof(double) * nx_);
+        std::memset(real_ + j * Nx_ + nx_, 0, sizeof(double) * (Nx_ - nx_));
+      }
+    });
+    fftw_execute(static_cast<fftw_plan>(forward_));
+    chunks(Ny_ - ny_, [&](std::size_t b, std::size_t e) {
+      std::memset(spec + (ny_ + b) * Nh, 0, sizeof(fftw_complex) * (e - b) * Nh);
+    });
+    fftw_execute(static_cast<fftw_plan>(columns_forward_));
+    chunks(spectral, multiply);
     fftw_execute(static_cast<fftw_plan>(columns_backward_));
     fftw_execute(static_cast<fftw_plan>(backward_));  // the first ny rows only: the ones asked for
-    for (std::size_t j = 0; j < ny_; ++j) std::memcpy(out + j * nx_, real_ + j * Nx_, sizeof(double) * nx_);
+    chunks(ny_, copy_out);
     return;
   }
   if (padded_) std::memset(real_, 0, sizeof(double) * Nx_ * Ny_);
-  for (std::size_t j = 0; j < ny_; ++j) std::memcpy(real_ + j * Nx_, in + j * nx_, sizeof(double) * nx_);
+  if (ny_ == 1)
+    std::memcpy(real_, in, sizeof(double) * nx_);
+  else
+    chunks(ny_, [&](std::size_t b, std::size_t e) {
+      for (std::size_t j = b; j < e; ++j) std::memcpy(real_ + j * Nx_, in + j * nx_, sizeof(double) * nx_);
+    });
   fftw_execute(static_cast<fftw_plan>(forward_));
-  for (std::size_t k = 0; k < spectral; ++k) {
-    spec[k][0] *= kernel_[k];
-    spec[k][1] *= kernel_[k];
-  }
+  chunks(spectral, multiply);
   fftw_execute(static_cast<fftw_plan>(backward_));
-  for (std::size_t j = 0; j < ny_; ++j) std::memcpy(out + j * nx_, real_ + j * Nx_, sizeof(double) * nx_);
+  if (ny_ == 1)
+    std::memcpy(out, real_, sizeof(double) * nx_);
+  else
+    chunks(ny_, copy_out);
 }
 
 }  // namespace frictal::contact_detail

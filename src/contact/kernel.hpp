@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "frictal/result.hpp"
+#include "util/team.hpp"
 
 namespace frictal::contact_detail {
 
@@ -26,8 +27,15 @@ class ElasticOperator {
   /// out = K in: the displacement (unit: m, positive into the body) of the pressures `in` (unit:
   /// Pa) at the nx ny points (x fastest). `in` and `out` may be the same array.
   void apply(const double* in, double* out);
+  /// The team that shares apply's copies and the spectrum's product with FFTW's threads (nullptr:
+  /// the calling thread alone); it must outlive the operator's use.
+  void set_team(util::Team* team) { team_ = team; }
 
  private:
+  /// Runs body(begin, end) over [0, n) in one contiguous chunk per member of the team.
+  template <class Body>
+  void chunks(std::size_t n, const Body& body);
+  util::Team* team_ = nullptr;
   ElasticOperator() = default;
   std::size_t nx_ = 0, ny_ = 0, Nx_ = 0, Ny_ = 0;
   bool padded_ = false;
