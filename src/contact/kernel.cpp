@@ -1,10 +1,12 @@
 // The elastic convolution on FFTW (kernel.hpp). The transfer function of the periodic operator is
 // the continuous one, 2 / (E* |q|) with the mean (q = 0) term zero; the padded operator's is the
 // transform of the real-space influence coefficients of uniform pressure on one cell (Love's
-// rectangle for maps, the logarithmic half-plane for profiles) on the 2N grid, whose wrap-around
+// rectangle for maps, the logarithmic half-plane for profiles) on the padded grid (at least 2N - 1
+// points a side, the next product of 2, 3, 5, 7), whose wrap-around
 // never meets the N points (the discrete convolution theorem on the padded grid).
 #include "kernel.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <mutex>
@@ -39,6 +41,20 @@ double love_primitive(double x, double y) {
   return f;
 }
 
+/// The transform length of a padded direction of n points: the smallest product of 2, 3, 5 and 7
+/// that is at least 2 n - 1, the length whose wrap-around never brings one of the n points onto
+/// another's offset (a length with a large prime factor, 2 n of n = 100001 = 11 x 9091, makes
+/// FFTW's transform several times slower).
+std::size_t padded_size(std::size_t n) {
+  const std::size_t want = 2 * n - 1;
+  for (std::size_t m = want;; ++m) {
+    std::size_t r = m;
+    for (std::size_t f : {2, 3, 5, 7})
+      while (r % f == 0) r /= f;
+    if (r == 1) return m;
+  }
+}
+
 }  // namespace
 
 Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx, std::size_t ny, double dx, double dy,
@@ -47,8 +63,8 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
   op->nx_ = nx;
   op->ny_ = ny;
   op->padded_ = !periodic;
-  op->Nx_ = periodic ? nx : 2 * nx;
-  op->Ny_ = (periodic || ny == 1) ? ny : 2 * ny;
+  op->Nx_ = periodic ? nx : padded_size(nx);
+  op->Ny_ = (periodic || ny == 1) ? ny : padded_size(ny);
   op->pruned_ = !periodic && ny > 1;
   const std::size_t Nx = op->Nx_, Ny = op->Ny_, Nh = Nx / 2 + 1;
   const std::size_t total = Nx * Ny, spectral = Ny * Nh;
@@ -111,9 +127,9 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
     }
     return op;
   }
-  // Influence coefficients at the wrapped offsets of the padded grid (offset -N at index N is
-  // never used by two of the N points).
-  auto wrapped = [](std::size_t k, std::size_t n) { return k < n / 2 ? double(k) : double(k) - double(n); };
+  // Influence coefficients at the wrapped offsets of the padded grid: 0 .. (N - 1)/2 at indices
+  // 0 .. (N - 1)/2, the negative ones above (N >= 2 n - 1 holds the offsets -(n - 1) .. n - 1).
+  auto wrapped = [](std::size_t k, std::size_t n) { return k <= (n - 1) / 2 ? double(k) : double(k) - double(n); };
   if (ny == 1) {
     const double a = dx / 2, c = -2.0 / (std::numbers::pi * e_star);
     // G(t) = t ln|t / dx| - t, whose difference over [x - a, x + a] integrates ln|x - s|.
@@ -125,11 +141,11 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
     fftw_execute(static_cast<fftw_plan>(op->forward_));
   } else {
     // The pruned rows' transform takes ny rows at a time: the coefficients' first ny rows with
-    // the operator's plan, the other ny rows with an estimated plan of its own (used once, it
-    // leaves the arrays alone while planning), then the columns' transform.
+    // the operator's plan, the other Ny - ny rows with estimated plans of their own (used once,
+    // they leave the arrays alone while planning), then the columns' transform.
     const double a = dx / 2, b = dy / 2, c = 1.0 / (std::numbers::pi * e_star);
-    auto rows = [&](std::size_t j0) {
-      for (std::size_t j = 0; j < ny; ++j) {
+    auto rows = [&](std::size_t j0, std::size_t count) {
+      for (std::size_t j = 0; j < count; ++j) {
         const double y = wrapped(j0 + j, Ny) * dy;
         double* row = op->real_ + j * Nx;
         // Even in x: the offsets -x (i > Nx/2) repeat the coefficients of +x.
@@ -141,19 +157,20 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
         for (std::size_t i = Nx / 2 + 1; i < Nx; ++i) row[i] = row[Nx - i];
       }
     };
-    rows(0);
+    rows(0, ny);
     fftw_execute(static_cast<fftw_plan>(op->forward_));
-    rows(ny);
-    fftw_plan upper = nullptr;
-    {
-      std::lock_guard<std::mutex> lock(planner_mutex());
-      const int n_row[1] = {int(Nx)};
-      upper = fftw_plan_many_dft_r2c(1, n_row, int(Ny - ny), op->real_, nullptr, 1, int(Nx), spec + ny * Nh, nullptr, 1,
-                                     int(Nh), FFTW_ESTIMATE);
-    }
-    if (!upper) return make_error(ErrorCode::Internal, "contact: FFTW could not plan");
-    fftw_execute(upper);
-    {
+    for (std::size_t j0 = ny; j0 < Ny; j0 += ny) {
+      const std::size_t count = std::min(ny, Ny - j0);
+      rows(j0, count);
+      fftw_plan upper = nullptr;
+      {
+        std::lock_guard<std::mutex> lock(planner_mutex());
+        const int n_row[1] = {int(Nx)};
+        upper = fftw_plan_many_dft_r2c(1, n_row, int(count), op->real_, nullptr, 1, int(Nx), spec + j0 * Nh, nullptr, 1,
+                                       int(Nh), FFTW_ESTIMATE);
+      }
+      if (!upper) return make_error(ErrorCode::Internal, "contact: FFTW could not plan");
+      fftw_execute(upper);
       std::lock_guard<std::mutex> lock(planner_mutex());
       fftw_destroy_plan(upper);
     }
