@@ -401,10 +401,12 @@ class Solver {
       res.stiffness = INFINITY;  // the mean mode costs nothing to compress: no finite force moves it
       return;
     }
-    // CG on the set: x = dp, residual rr = 1 - K x on the set.
+    // CG on the set: x = dp, residual rr = 1 - K x on the set. The gap field is free once the
+    // result has its numbers (the next solve makes it anew): it holds K d.
     std::vector<double>& x = t_;
     std::vector<double>& d = r_;
-    std::vector<double> rr(n, 0.0), kd(n, 0.0);
+    std::vector<double>& kd = g_field_;
+    std::vector<double> rr(n, 0.0);
     std::fill(x.begin(), x.end(), 0.0);
     for (std::size_t k = 0; k < n; ++k) rr[k] = set[k] ? 1.0 : 0.0;
     d = rr;

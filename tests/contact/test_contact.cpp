@@ -393,3 +393,26 @@ TEST(ContactOperator, PaddedEqualsTheDirectSum) {
     EXPECT_LT(worst, 1e-10 * scale) << n << " points";  // rounding of the 2 x 10^5-point transform: ~1e-11
   }
 }
+
+// Two threads split the transforms and the solver's passes (from 2^16 points on) and add their
+// partial sums in a fixed order: Hertz's sphere on a 256 x 256 map (the contact radius 30
+// spacings; padded, 511 -> 512 points a side) holds Hertz's radius and peak pressure as the
+// single-threaded solve does, and the two solves agree to the solver's tolerance.
+TEST(Contact, TwoThreadsSolveHertzAsOne) {
+  const double Es = 1e9, R = 0.01, dx = 1e-6, a = 30 * dx;
+  const double F = 4 * Es * a * a * a / (3 * R);
+  ContactOptions o;
+  o.contact_modulus = Es;
+  const Map m = sphere(256, dx, R);
+  auto one = solve_contact(m, {ContactLoadKind::Force, F}, o);
+  o.threads = 2;
+  auto two = solve_contact(m, {ContactLoadKind::Force, F}, o);
+  ASSERT_TRUE(one && two);
+  ASSERT_TRUE(one->converged && two->converged);
+  EXPECT_NEAR(std::sqrt(two->contact_area / kPi) / a, 1.0, 0.015);
+  EXPECT_NEAR(two->max_pressure / (3 * F / (2 * kPi * a * a)), 1.0, 0.01);
+  EXPECT_EQ(two->contact_area, one->contact_area);
+  EXPECT_NEAR(two->max_pressure, one->max_pressure, 1e-6 * one->max_pressure);
+  EXPECT_NEAR(two->approach, one->approach, 1e-6 * one->approach);
+  EXPECT_NEAR(two->stiffness, one->stiffness, 1e-5 * one->stiffness);
+}
