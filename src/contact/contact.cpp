@@ -86,8 +86,8 @@ class Solver {
     members_ = team_ ? team_->members() : 1;
     op_->set_team(team_.get());
     partial_.assign(members_, {0, 0, 0, 0});
+    h_ = g.heights;
     active_.assign(n, 0);
-    h_.assign(n, 0.0);
     hmax_ = -INFINITY;
     double mean = 0;
     for (std::size_t k = 0; k < n; ++k)
@@ -98,7 +98,6 @@ class Solver {
     double s2 = 0;
     for (std::size_t k = 0; k < n; ++k)
       if (active_[k]) {
-        h_[k] = g.heights[k];
         s2 += (g.heights[k] - mean) * (g.heights[k] - mean);
       }
     h_rms_ = std::sqrt(s2 / double(n_active_));
@@ -482,7 +481,10 @@ class Solver {
   std::vector<std::array<double, 4>> partial_;  // one chunk's partial sums per member
   std::vector<char> active_;
   std::size_t n_active_ = 0;
-  std::vector<double> h_, p_, g_field_, t_, r_;
+  /// The heights, the caller's (NaN where masked: the gap is NaN there, and every pass skips the
+  /// masked points).
+  const double* h_ = nullptr;
+  std::vector<double> p_, g_field_, t_, r_;
   double hmax_ = 0, h_rms_ = 1;
 };
 

@@ -68,9 +68,11 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
   op->pruned_ = !periodic && ny > 1;
   const std::size_t Nx = op->Nx_, Ny = op->Ny_, Nh = Nx / 2 + 1;
   const std::size_t total = Nx * Ny, spectral = Ny * Nh;
-  op->real_ = fftw_alloc_real(op->pruned_ ? Nx * ny : total);
   op->spec_ = fftw_alloc_complex(spectral);
-  if (!op->real_ || !op->spec_)
+  op->real_ = reinterpret_cast<double*>(op->spec_);
+  op->rs_ = 2 * Nh;
+  const std::size_t rs = op->rs_;
+  if (!op->spec_)
     return make_error(ErrorCode::Internal,
                       "contact: out of memory for the FFT buffers (" + std::to_string(total) + " points)");
   auto* spec = static_cast<fftw_complex*>(op->spec_);
@@ -101,9 +103,9 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
       // Columns: Nh complex transforms of length Ny, in place (element stride Nh).
       const int n_row[1] = {int(Nx)}, n_col[1] = {int(Ny)};
       op->forward_ =
-          fftw_plan_many_dft_r2c(1, n_row, int(ny), op->real_, nullptr, 1, int(Nx), spec, nullptr, 1, int(Nh), flags);
+          fftw_plan_many_dft_r2c(1, n_row, int(ny), op->real_, nullptr, 1, int(rs), spec, nullptr, 1, int(Nh), flags);
       op->backward_ =
-          fftw_plan_many_dft_c2r(1, n_row, int(ny), spec, nullptr, 1, int(Nh), op->real_, nullptr, 1, int(Nx), flags);
+          fftw_plan_many_dft_c2r(1, n_row, int(ny), spec, nullptr, 1, int(Nh), op->real_, nullptr, 1, int(rs), flags);
       op->columns_forward_ = fftw_plan_many_dft(1, n_col, int(Nh), spec, nullptr, int(Nh), 1, spec, nullptr, int(Nh), 1,
                                                 FFTW_FORWARD, flags);
       op->columns_backward_ = fftw_plan_many_dft(1, n_col, int(Nh), spec, nullptr, int(Nh), 1, spec, nullptr, int(Nh),
@@ -140,39 +142,32 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
     }
     fftw_execute(static_cast<fftw_plan>(op->forward_));
   } else {
-    // The pruned rows' transform takes ny rows at a time: the coefficients' first ny rows with
-    // the operator's plan, the other Ny - ny rows with estimated plans of their own (used once,
-    // they leave the arrays alone while planning), then the columns' transform.
+    // All Ny rows of coefficients, the rows' transforms in place by an estimated plan of their
+    // own (used once; it leaves the arrays alone while planning), then the columns' transform.
     const double a = dx / 2, b = dy / 2, c = 1.0 / (std::numbers::pi * e_star);
-    auto rows = [&](std::size_t j0, std::size_t count) {
-      for (std::size_t j = 0; j < count; ++j) {
-        const double y = wrapped(j0 + j, Ny) * dy;
-        double* row = op->real_ + j * Nx;
-        // Even in x: the offsets -x (i > Nx/2) repeat the coefficients of +x.
-        for (std::size_t i = 0; i <= Nx / 2; ++i) {
-          const double x = wrapped(i, Nx) * dx;
-          row[i] = c * (love_primitive(x + a, y + b) - love_primitive(x - a, y + b) - love_primitive(x + a, y - b) +
-                        love_primitive(x - a, y - b));
-        }
-        for (std::size_t i = Nx / 2 + 1; i < Nx; ++i) row[i] = row[Nx - i];
+    for (std::size_t j = 0; j < Ny; ++j) {
+      const double y = wrapped(j, Ny) * dy;
+      double* row = op->real_ + j * rs;
+      // Even in x: the offsets -x (i > Nx/2) repeat the coefficients of +x.
+      for (std::size_t i = 0; i <= Nx / 2; ++i) {
+        const double x = wrapped(i, Nx) * dx;
+        row[i] = c * (love_primitive(x + a, y + b) - love_primitive(x - a, y + b) - love_primitive(x + a, y - b) +
+                      love_primitive(x - a, y - b));
       }
-    };
-    rows(0, ny);
-    fftw_execute(static_cast<fftw_plan>(op->forward_));
-    for (std::size_t j0 = ny; j0 < Ny; j0 += ny) {
-      const std::size_t count = std::min(ny, Ny - j0);
-      rows(j0, count);
-      fftw_plan upper = nullptr;
-      {
-        std::lock_guard<std::mutex> lock(planner_mutex());
-        const int n_row[1] = {int(Nx)};
-        upper = fftw_plan_many_dft_r2c(1, n_row, int(count), op->real_, nullptr, 1, int(Nx), spec + j0 * Nh, nullptr, 1,
-                                       int(Nh), FFTW_ESTIMATE);
-      }
-      if (!upper) return make_error(ErrorCode::Internal, "contact: FFTW could not plan");
-      fftw_execute(upper);
+      for (std::size_t i = Nx / 2 + 1; i < Nx; ++i) row[i] = row[Nx - i];
+    }
+    fftw_plan rows = nullptr;
+    {
       std::lock_guard<std::mutex> lock(planner_mutex());
-      fftw_destroy_plan(upper);
+      const int n_row[1] = {int(Nx)};
+      rows = fftw_plan_many_dft_r2c(1, n_row, int(Ny), op->real_, nullptr, 1, int(rs), spec, nullptr, 1, int(Nh),
+                                    FFTW_ESTIMATE);
+    }
+    if (!rows) return make_error(ErrorCode::Internal, "contact: FFTW could not plan");
+    fftw_execute(rows);
+    {
+      std::lock_guard<std::mutex> lock(planner_mutex());
+      fftw_destroy_plan(rows);
     }
     fftw_execute(static_cast<fftw_plan>(op->columns_forward_));
   }
@@ -188,7 +183,6 @@ ElasticOperator::~ElasticOperator() {
     if (columns_forward_) fftw_destroy_plan(static_cast<fftw_plan>(columns_forward_));
     if (columns_backward_) fftw_destroy_plan(static_cast<fftw_plan>(columns_backward_));
   }
-  fftw_free(real_);
   fftw_free(spec_);
 }
 
@@ -223,43 +217,41 @@ void ElasticOperator::apply(const double* in, double* out) {
       spec[k][1] *= kernel_[k];
     }
   };
-  const auto copy_out = [&](std::size_t b, std::size_t e) {
-    for (std::size_t j = b; j < e; ++j) std::memcpy(out + j * nx_, real_ + j * Nx_, sizeof(double) * nx_);
+  // The ny data rows into the in-place buffer, each padded with zeros to Nx where padded (the
+  // last two doubles of a row are the spectrum's, not read by the real transform).
+  const auto copy_in = [&](std::size_t b, std::size_t e) {
+    for (std::size_t j = b; j < e; ++j) {
+      std::memcpy(real_ + j * rs_, in + j * nx_, sizeof(double) * nx_);
+      if (padded_) std::memset(real_ + j * rs_ + nx_, 0, sizeof(double) * (Nx_ - nx_));
+    }
   };
-  if (pruned_) {
-    // The ny data rows, each padded with zeros to Nx; the rows' transforms fill the first ny
-    // rows of the spectrum, the other Ny - ny rows (the padding) are zero.
-    chunks(ny_, [&](std::size_t b, std::size_t e) {
-      for (std::size_t j = b; j < e; ++j) {
-        std::memcpy(real_ + j * Nx_, in + j * nx_, sizeof(double) * nx_);
-        std::memset(real_ + j * Nx_ + nx_, 0, sizeof(double) * (Nx_ - nx_));
-      }
-    });
+  const auto copy_out = [&](std::size_t b, std::size_t e) {
+    for (std::size_t j = b; j < e; ++j) std::memcpy(out + j * nx_, real_ + j * rs_, sizeof(double) * nx_);
+  };
+  if (ny_ == 1) {
+    copy_in(0, 1);
     fftw_execute(static_cast<fftw_plan>(forward_));
+    chunks(spectral, multiply);
+    fftw_execute(static_cast<fftw_plan>(backward_));
+    copy_out(0, 1);
+    return;
+  }
+  chunks(ny_, copy_in);
+  fftw_execute(static_cast<fftw_plan>(forward_));
+  if (pruned_) {
+    // The rows' transforms filled the first ny rows of the spectrum; the other Ny - ny rows (the
+    // padding) are zero.
     chunks(Ny_ - ny_, [&](std::size_t b, std::size_t e) {
       std::memset(spec + (ny_ + b) * Nh, 0, sizeof(fftw_complex) * (e - b) * Nh);
     });
     fftw_execute(static_cast<fftw_plan>(columns_forward_));
     chunks(spectral, multiply);
     fftw_execute(static_cast<fftw_plan>(columns_backward_));
-    fftw_execute(static_cast<fftw_plan>(backward_));  // the first ny rows only: the ones asked for
-    chunks(ny_, copy_out);
-    return;
+  } else {
+    chunks(spectral, multiply);
   }
-  if (padded_) std::memset(real_, 0, sizeof(double) * Nx_ * Ny_);
-  if (ny_ == 1)
-    std::memcpy(real_, in, sizeof(double) * nx_);
-  else
-    chunks(ny_, [&](std::size_t b, std::size_t e) {
-      for (std::size_t j = b; j < e; ++j) std::memcpy(real_ + j * Nx_, in + j * nx_, sizeof(double) * nx_);
-    });
-  fftw_execute(static_cast<fftw_plan>(forward_));
-  chunks(spectral, multiply);
-  fftw_execute(static_cast<fftw_plan>(backward_));
-  if (ny_ == 1)
-    std::memcpy(out, real_, sizeof(double) * nx_);
-  else
-    chunks(ny_, copy_out);
+  fftw_execute(static_cast<fftw_plan>(backward_));  // pruned: the first ny rows only, the ones asked for
+  chunks(ny_, copy_out);
 }
 
 }  // namespace frictal::contact_detail

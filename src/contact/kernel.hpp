@@ -43,7 +43,10 @@ class ElasticOperator {
   /// data only (the other Ny - ny rows are zero on the way in and not needed on the way out), the
   /// columns' complex transforms over the whole padded height.
   bool pruned_ = false;
-  double* real_ = nullptr;            // Nx Ny reals (pruned: Nx ny)
+  // The transforms are in place: the reals are the spectrum's buffer seen as rows of 2 (Nx/2 + 1)
+  // doubles (row stride rs_), Nx of them used.
+  double* real_ = nullptr;
+  std::size_t rs_ = 0;
   void* spec_ = nullptr;              // Ny (Nx/2 + 1) complex numbers
   std::vector<double> kernel_;        // the transfer function, normalised (1 / (Nx Ny) folded in)
   void* forward_ = nullptr;           // the whole r2c transform (pruned: the rows' r2c transforms)
