@@ -68,8 +68,8 @@ struct ContactOptions {
   double tolerance = 1e-8;
   /// Largest number of conjugate-gradient iterations per solve (0: 20 sqrt(points) + 1000).
   int max_iterations = 0;
-  /// Worker threads of the FFTs (0: hardware concurrency, 1: none); results do not depend on it
-  /// beyond rounding.
+  /// Worker threads of the FFTs and of the solver's passes over the points (0: hardware
+  /// concurrency, 1: none); results do not depend on it beyond rounding.
   unsigned threads = 1;
   bool stiffness = true;    ///< also the contact stiffness (one linear solve on the contact set)
   bool keep_fields = true;  ///< keep the pressure and gap fields in the result
