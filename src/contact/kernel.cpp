@@ -99,7 +99,7 @@ Result<std::unique_ptr<ElasticOperator>> ElasticOperator::create(std::size_t nx,
       op->forward_ = fftw_plan_dft_r2c_2d(int(Ny), int(Nx), op->real_, spec, flags);
       op->backward_ = fftw_plan_dft_c2r_2d(int(Ny), int(Nx), spec, op->real_, flags);
     } else {
-      // Rows: ny real transforms of length Nx (row stride Nx reals, Nh complex numbers).
+      // Rows: ny real transforms of length Nx, in place (row stride 2 Nh reals, Nh complex numbers).
       // Columns: Nh complex transforms of length Ny, in place (element stride Nh).
       const int n_row[1] = {int(Nx)}, n_col[1] = {int(Ny)};
       op->forward_ =

@@ -14,9 +14,9 @@ namespace frictal::contact_detail {
 /// The operator of one grid. ny = 1 and dy = 0 for a profile. Not copyable; one apply at a time.
 class ElasticOperator {
  public:
-  /// nx, ny points at spacings dx, dy (unit: m); periodic, or padded to about 2 nx (x 2 ny); E* (unit:
-  /// Pa); FFTW threads (>= 1). Internal error when FFTW cannot plan (memory). Maps from 2^19
-  /// transform points take measured plans (planning about 0.2-0.6 s at 1024^2); profiles take
+  /// nx, ny points at spacings dx, dy (unit: m); periodic, or padded to 2 nx - 1 (x 2 ny - 1)
+  /// rounded up to a product of 2, 3, 5, 7; E* (unit: Pa); FFTW threads (>= 1). Internal error when FFTW cannot plan
+  /// (memory). Maps from 2^19 transform points take measured plans (planning about 0.2-0.6 s at 1024^2); profiles take
   /// estimated plans (measuring a 10^6-point 1D transform takes FFTW half a minute).
   static Result<std::unique_ptr<ElasticOperator>> create(std::size_t nx, std::size_t ny, double dx, double dy,
                                                          bool periodic, double contact_modulus, unsigned threads);
