@@ -80,7 +80,7 @@ CASES = {
     "contact-map-padded": (MAP_SIZES, "nodes per side",
                            lambda d, n, s: ["contact", map_file(d, n), "--spacing", f"{MAP_SPACING}", "--load", "5MPa",
                                             "--modulus", "1GPa", "--poisson", "0", "--threads", "2", "--json"],
-                           "the same, not periodic (padded to 2N x 2N)"),
+                           "the same, not periodic (padded to 2N - 1 a side, rounded up to 2048 at 1024)"),
     "contact-curve": (MAP_SIZES, "nodes per side",
                       lambda d, n, s: ["contact", map_file(d, n), "--spacing", f"{MAP_SPACING}", "--load",
                                        ",".join(f"{k}MPa" for k in range(1, 11)), "--modulus", "1GPa", "--poisson", "0",
