@@ -70,14 +70,16 @@ void BM_ContactMap1024(benchmark::State& st) {
   o.contact_modulus = kE;
   o.periodic = st.range(0) != 0;
   o.threads = unsigned(st.range(1));
-  double iterations = 0, fraction = 0;
+  double iterations = 0, fraction = 0, stiffness_iterations = 0;
   for (auto _ : st) {
     auto r = solve_contact(map1024(), {ContactLoadKind::Pressure, pressure_for(0.05)}, o);
     if (!r) st.SkipWithError(r.error().message.c_str());
     iterations = r->iterations;
+    stiffness_iterations = r->stiffness_iterations;
     fraction = r->contact_fraction;
   }
   st.counters["cg_iterations"] = iterations;
+  st.counters["stiffness_iterations"] = stiffness_iterations;
   st.counters["contact_fraction"] = fraction;
 }
 BENCHMARK(BM_ContactMap1024)

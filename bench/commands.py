@@ -15,7 +15,8 @@ numpy is needed); `predict` (the map prediction, the map against itself turned o
 spacing 1 um, float32 .npy; needs numpy once: --data DIR may hold them made elsewhere); `report`
 of the measured pair tests/data/profiles/dektak-1.csv on tests/data/instruments/hfm-1.hfm; the
 README's tilt example `tilt koch --iterations 2 --alpha 20`; `contact` of the maps at one load
-(periodic, about 5 % contact).
+(about 5 % contact; periodic and padded), a 10-load curve of them (periodic), and of self-affine
+profiles of 10^5 and 10^6 points of rms slope about 0.1 at one load (padded), all on 2 threads.
 
 Usage:
   bench/commands.py [--build build/bench] [--baseline build/bench-prev] [--reps 3]
@@ -44,6 +45,11 @@ def profile(data, n, seed):
     return os.path.join(data, f"fourier-H0.8-N{n}-{seed}.x3p")
 
 
+def contact_profile(data, n):
+    """A profile for the contact case: the same spectrum as profile(), rms slope about 0.1."""
+    return os.path.join(data, f"fourier-H0.8-N{n}-slope0.1.x3p")
+
+
 def map_file(data, n):
     return os.path.join(data, f"map-n{n}.npy")
 
@@ -69,8 +75,21 @@ CASES = {
                    "theta_max over 36 directions"),
     "contact-map": (MAP_SIZES, "nodes per side",
                     lambda d, n, s: ["contact", map_file(d, n), "--spacing", f"{MAP_SPACING}", "--load", "5MPa",
-                                     "--modulus", "1GPa", "--poisson", "0", "--periodic", "--json"],
-                    "elastic contact at one load, about 5 % contact (periodic; with the stiffness)"),
+                                     "--modulus", "1GPa", "--poisson", "0", "--periodic", "--threads", "2", "--json"],
+                    "elastic contact at one load, about 5 % contact (periodic, 2 threads; with the stiffness)"),
+    "contact-map-padded": (MAP_SIZES, "nodes per side",
+                           lambda d, n, s: ["contact", map_file(d, n), "--spacing", f"{MAP_SPACING}", "--load", "5MPa",
+                                            "--modulus", "1GPa", "--poisson", "0", "--threads", "2", "--json"],
+                           "the same, not periodic (padded to 2N - 1 a side, rounded up to 2048 at 1024)"),
+    "contact-curve": (MAP_SIZES, "nodes per side",
+                      lambda d, n, s: ["contact", map_file(d, n), "--spacing", f"{MAP_SPACING}", "--load",
+                                       ",".join(f"{k}MPa" for k in range(1, 11)), "--modulus", "1GPa", "--poisson", "0",
+                                       "--periodic", "--threads", "2", "--json"],
+                      "a 10-load curve, 1-10 MPa (periodic, 2 threads; warm starts)"),
+    "contact-profile": ([100_000, 1_000_000], "points",
+                        lambda d, n, s: ["contact", contact_profile(d, n), "--load", "2.5MPa",
+                                         "--modulus", "1GPa", "--poisson", "0", "--threads", "2", "--json"],
+                        "plane-strain contact of a profile at one load, about 5 % contact (padded, 2 threads)"),
     "report-map": (MAP_SIZES, "nodes per side",
                    lambda d, n, s: ["report", map_file(d, n), "--spacing", f"{MAP_SPACING}", "--quiet",
                                     "-o", os.path.join(s, "report.html")],
@@ -97,6 +116,14 @@ def ensure_data(binary, data, cases, sizes_of):
                                 "--hurst", "0.8", "--rolloff-wavelength", f"{length / 10!r}",
                                 "--short-cutoff-wavelength", "4e-9", "--rms-height", "1e-6", "--seed", str(seed)],
                                check=True, stdout=subprocess.DEVNULL)
+    for n in sorted({n for c in cases for n in sizes_of(c) if c == "contact-profile"}):
+        path = contact_profile(data, n)
+        if not os.path.exists(path):
+            length = n * 1e-9
+            subprocess.run([binary, "surface", "-o", path, "fourier", "--points", str(n), "--length", f"{length!r}",
+                            "--hurst", "0.8", "--rolloff-wavelength", f"{length / 10!r}",
+                            "--short-cutoff-wavelength", "4e-9", "--rms-height", f"{3e-8 * (n / 1e5) ** 0.8!r}",
+                            "--seed", "1"], check=True, stdout=subprocess.DEVNULL)
     for n in sorted({n for c in cases for n in sizes_of(c) if CASES[c][1] == "nodes per side"}):
         path = map_file(data, n)
         if not os.path.exists(path):

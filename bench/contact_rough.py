@@ -13,6 +13,13 @@ roll-off L / 4 and C(q) ~ q^-(2 + 2H) from there to the short cutoff at 16 spaci
 spot resolved by several points), random phases; E* = 1 GPa; loads p / (E* g) from 0.005 to 0.05
 (1-10 % contact), one load curve per map (warm starts).
 
+The mean separation u (the mean gap, the periodic convention: the flat's distance from the
+surface's mean plane) is compared with Persson's theory (Yang & Persson, J. Phys.: Condens.
+Matter 20, 215214, 2008; Persson, Phys. Rev. Lett. 99, 125502, 2007):
+u(p) = sqrt(pi) int dq q^2 C(q) w(q) int_p^inf dp'/p' [gamma + 3 (1 - gamma) P(q, p')^2]
+exp(-(w(q) p' / E*)^2), w(q) = (pi int_q0^q dq' q'^3 C(q'))^(-1/2), P(q, p) = erf(w(q) p / E*),
+gamma = 0.45, with the surface's own spectrum C(q) (2 pi int q C dq = the mean square height).
+
 Usage: PYTHONPATH=build/release/python python3 bench/contact_rough.py [N] [SEEDS] [OUT.md]"""
 import datetime
 import math
@@ -21,6 +28,7 @@ import sys
 import time
 
 import numpy as np
+from scipy.special import erf
 
 import frictal
 
@@ -44,6 +52,36 @@ def surface(n, dx, seed, hurst=0.8, rolloff_cells=None, cutoff_cells=16):
     return h, g, nayak
 
 
+def persson_separation(h, dx, pressures, Es, gamma=0.45):
+    """Persson's mean separation (m) at the nominal pressures (Pa) for the periodic surface h (m)
+    on spacing dx (m): the sums over the surface's Fourier modes stand for the isotropic
+    integrals, int d^2q f(q) = 2 pi int q f(q) dq, with C(q) = |H(q)|^2 / n^4 (L / 2 pi)^2."""
+    n = h.shape[0]
+    L = n * dx
+    q = 2 * np.pi * np.hypot(*np.meshgrid(np.fft.fftfreq(n, dx), np.fft.fftfreq(n, dx))).ravel()
+    C = (np.abs(np.fft.fft2(h)).ravel() ** 2 / n ** 4) * (L / (2 * np.pi)) ** 2
+    keep = q > 0
+    q, C = q[keep], C[keep]
+    order = np.argsort(q)
+    q, C = q[order], C[order]
+    dq2 = (2 * np.pi / L) ** 2  # the area of one mode in q space
+    # int_q0^q dq' q'^3 C = (1 / 2 pi) sum over the modes up to q of q^2 C dq2
+    cum = np.cumsum(q ** 2 * C * dq2) / (2 * np.pi)
+    w = 1 / np.sqrt(np.pi * cum)
+    # F(x0) = int_x0^inf dx / x [gamma + 3 (1 - gamma) erf(x)^2] exp(-x^2), on a log grid
+    xs = np.logspace(-9, 1.5, 4000)
+    f = (gamma + 3 * (1 - gamma) * erf(xs) ** 2) * np.exp(-xs ** 2)  # integrand times x (d ln x)
+    seg = 0.5 * (f[1:] + f[:-1]) * np.diff(np.log(xs))
+    F = np.concatenate([np.cumsum(seg[::-1])[::-1], [0.0]])
+    out = []
+    for p in pressures:
+        x0 = np.clip(w * p / Es, xs[0], xs[-1])
+        inner = np.interp(np.log(x0), np.log(xs), F)
+        # int dq q^2 C w (...) = (1 / 2 pi) sum q C w (...) dq2
+        out.append(math.sqrt(math.pi) * float(np.sum(q * C * w * inner * dq2)) / (2 * np.pi))
+    return out
+
+
 def main():
     n = int(sys.argv[1]) if len(sys.argv) > 1 else 512
     seeds = int(sys.argv[2]) if len(sys.argv) > 2 else 3
@@ -57,22 +95,28 @@ def main():
         curve = frictal.contact(h, spacing=dx, pressure=[s * Es * g for s in scaled], modulus=Es, poisson=0.0,
                                 detrend="none", periodic=True, stiffness=False)
         wall = time.perf_counter() - t
-        for s, r in zip(scaled, curve):
-            rows.append((seed, nayak, s, r["contact_area_fraction"], r["contact_area_fraction"] / s, r["iterations"]))
-        rows.append((seed, nayak, None, None, None, wall))
+        persson = persson_separation(h, dx, [s * Es * g for s in scaled], Es)
+        hrms = float(np.sqrt(np.mean((h - h.mean()) ** 2)))
+        for s, r, up in zip(scaled, curve, persson):
+            rows.append((seed, nayak, s, r["contact_area_fraction"], r["contact_area_fraction"] / s, r["iterations"],
+                         r["mean_separation_m"] / hrms, up / hrms))
+        rows.append((seed, nayak, None, None, None, wall, None, None))
     lines = [f"# Rough contact: relative area against load ({datetime.date.today()}, {platform.node()})", "",
              f"bench/contact_rough.py {n} {seeds}: periodic {n} x {n} self-affine maps, Hurst 0.8, roll-off L/4, "
              "short cutoff 16 spacings; kappa = (A/A0) / (p / (E* g)).", "",
-             "| seed | Nayak alpha | p / (E* g) | A / A0 | kappa | iterations |", "|---|---|---|---|---|---|"]
-    kappas = []
-    for seed, nayak, s, a, k, it in rows:
+             "| seed | Nayak alpha | p / (E* g) | A / A0 | kappa | iterations | u / h_rms | Persson u / h_rms |",
+             "|---|---|---|---|---|---|---|---|"]
+    kappas, ratios = [], []
+    for seed, nayak, s, a, k, it, u, up in rows:
         if s is None:
-            lines.append(f"| {seed} | | curve of {len(scaled)} loads: {it:.1f} s wall | | | |")
+            lines.append(f"| {seed} | | curve of {len(scaled)} loads: {it:.1f} s wall | | | | | |")
             continue
         kappas.append(k)
-        lines.append(f"| {seed} | {nayak:.1f} | {s:.3f} | {a:.4f} | {k:.3f} | {it} |")
+        ratios.append(u / up)
+        lines.append(f"| {seed} | {nayak:.1f} | {s:.3f} | {a:.4f} | {k:.3f} | {it} | {u:.3f} | {up:.3f} |")
     lines += ["", f"kappa over all: {min(kappas):.3f} .. {max(kappas):.3f} (mean {np.mean(kappas):.3f}); "
-              "Persson sqrt(8/pi) = 1.596, Bush-Gibson-Thomas sqrt(2 pi) = 2.507."]
+              "Persson sqrt(8/pi) = 1.596, Bush-Gibson-Thomas sqrt(2 pi) = 2.507.",
+              f"mean separation / Persson's: {min(ratios):.3f} .. {max(ratios):.3f} (mean {np.mean(ratios):.3f})."]
     text = "\n".join(lines) + "\n"
     print(text)
     if out:

@@ -10,7 +10,7 @@
 // Maps use the half-space's Green's function (Boussinesq): u(q) = 2 p(q) / (E* |q|) in Fourier
 // space (periodic, Stanley & Kato 1997), or for a surface that does not repeat the real-space
 // influence coefficients of uniform pressure on one pixel (Love 1929) convolved on a grid padded
-// to 2N (linear convolution, no wrap-around). Profiles are in plane strain: the half-plane,
+// to at least 2N - 1 (linear convolution, no wrap-around). Profiles are in plane strain: the half-plane,
 // u(q) = 2 p(q) / (E* |q|) periodic, or the logarithmic kernel -(2 / (pi E*)) ln|x - s| padded
 // (a force per unit length of the out-of-plane depth). The contact pressure solves the
 // complementarity problem p >= 0, gap >= 0, p gap = 0 at a given total force, by the constrained
@@ -60,7 +60,7 @@ struct ContactOptions {
   /// Hardness H: the pressure is capped at H (perfect plasticity); 0: purely elastic (unit: Pa).
   double hardness = 0;
   /// true: the surface repeats with the grid's period (nx dx by ny dy); false: the surface is
-  /// surrounded by points that never touch (the convolution on a grid padded to 2N).
+  /// surrounded by points that never touch (the convolution on a grid padded to at least 2N - 1).
   bool periodic = false;
   /// Convergence: the rms gap on the contact set and the largest interpenetration outside it,
   /// both below tolerance times the rms height of the composite topography (of a flat surface:
@@ -68,8 +68,8 @@ struct ContactOptions {
   double tolerance = 1e-8;
   /// Largest number of conjugate-gradient iterations per solve (0: 20 sqrt(points) + 1000).
   int max_iterations = 0;
-  /// Worker threads of the FFTs (0: hardware concurrency, 1: none); results do not depend on it
-  /// beyond rounding.
+  /// Worker threads of the FFTs and of the solver's passes over the points (0: hardware
+  /// concurrency, 1: none); results do not depend on it beyond rounding.
   unsigned threads = 1;
   bool stiffness = true;    ///< also the contact stiffness (one linear solve on the contact set)
   bool keep_fields = true;  ///< keep the pressure and gap fields in the result

@@ -3,6 +3,7 @@
 #include "frictal/contact.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -10,6 +11,7 @@
 #include <fmt/core.h>
 
 #include "kernel.hpp"
+#include "util/team.hpp"
 
 namespace frictal {
 
@@ -75,11 +77,17 @@ double rms_slope(const Grid& g) {
 /// The solver of one surface: its operator and work arrays, kept across the loads of a curve.
 class Solver {
  public:
-  Solver(const Grid& g, const ContactOptions& o, std::unique_ptr<ElasticOperator> op)
+  Solver(const Grid& g, const ContactOptions& o, std::unique_ptr<ElasticOperator> op, unsigned threads)
       : g_(g), o_(o), op_(std::move(op)) {
     const std::size_t n = g.size();
+    // The passes over the points on `threads` threads from 2^16 points on (below, a pass takes
+    // microseconds and the team's hand-over would cost more than it saves).
+    if (threads > 1 && n >= (std::size_t(1) << 16)) team_ = util::Team::make(threads);
+    members_ = team_ ? team_->members() : 1;
+    op_->set_team(team_.get());
+    partial_.assign(members_, {0, 0, 0, 0});
+    h_ = g.heights;
     active_.assign(n, 0);
-    h_.assign(n, 0.0);
     hmax_ = -INFINITY;
     double mean = 0;
     for (std::size_t k = 0; k < n; ++k)
@@ -90,7 +98,6 @@ class Solver {
     double s2 = 0;
     for (std::size_t k = 0; k < n; ++k)
       if (active_[k]) {
-        h_[k] = g.heights[k];
         s2 += (g.heights[k] - mean) * (g.heights[k] - mean);
       }
     h_rms_ = std::sqrt(s2 / double(n_active_));
@@ -99,7 +106,6 @@ class Solver {
     g_field_.assign(n, 0.0);
     t_.assign(n, 0.0);
     r_.assign(n, 0.0);
-    u_.assign(n, 0.0);
   }
   std::size_t active_points() const { return n_active_; }
   double cap() const { return o_.hardness > 0 ? o_.hardness : INFINITY; }
@@ -204,66 +210,92 @@ class Solver {
     ContactResult res;
     double shift = 0, residual = INFINITY;
     int it = 0;
+    // The passes over the points run in `members_` fixed contiguous chunks whose partial sums
+    // are added in chunk order (the same numbers for a given thread count).
     for (;; ++it) {
-      op_->apply(p_.data(), u_.data());
+      op_->apply(p_.data(), g_field_.data());  // u, made the gap in place below
       // gap up to a constant: u - h; the constant makes its mean over the free contact zero.
+      chunks([&](unsigned m, std::size_t b, std::size_t e) {
+        double gsum = 0, nc = 0;
+        for (std::size_t k = b; k < e; ++k) {
+          g_field_[k] -= h_[k];
+          if (active_[k] && p_[k] > 0 && p_[k] < H) gsum += g_field_[k], ++nc;
+        }
+        partial_[m] = {gsum, nc, 0, 0};
+      });
       double gsum = 0;
       std::size_t nc = 0;
-      for (std::size_t k = 0; k < n; ++k) {
-        g_field_[k] = u_[k] - h_[k];
-        if (active_[k] && p_[k] > 0 && p_[k] < H) gsum += g_field_[k], ++nc;
-      }
+      for (unsigned m = 0; m < members_; ++m) gsum += partial_[m][0], nc += std::size_t(partial_[m][1]);
       shift = nc ? gsum / double(nc) : 0.0;
+      chunks([&](unsigned m, std::size_t b, std::size_t e) {
+        double G = 0, worst = 0;
+        for (std::size_t k = b; k < e; ++k) {
+          g_field_[k] -= shift;
+          if (!active_[k]) continue;
+          if (p_[k] > 0 && p_[k] < H)
+            G += g_field_[k] * g_field_[k];
+          else if (p_[k] <= 0)
+            worst = std::max(worst, -g_field_[k]);  // interpenetration outside the contact
+          else
+            worst = std::max(worst, g_field_[k]);  // a capped point whose gap opens
+        }
+        partial_[m] = {G, worst, 0, 0};
+      });
       double G = 0, worst = 0;
-      for (std::size_t k = 0; k < n; ++k) {
-        g_field_[k] -= shift;
-        if (!active_[k]) continue;
-        if (p_[k] > 0 && p_[k] < H)
-          G += g_field_[k] * g_field_[k];
-        else if (p_[k] <= 0)
-          worst = std::max(worst, -g_field_[k]);  // interpenetration outside the contact
-        else
-          worst = std::max(worst, g_field_[k]);  // a capped point whose gap opens
-      }
+      for (unsigned m = 0; m < members_; ++m) G += partial_[m][0], worst = std::max(worst, partial_[m][1]);
       residual = std::max(nc ? std::sqrt(G / double(nc)) : 0.0, worst) / scale;
       if (residual < tol || it >= max_it) break;
       // The conjugate direction on the free contact set.
       const double beta = conjugate ? G / g_old : 0.0;
-      for (std::size_t k = 0; k < n; ++k)
-        t_[k] = (active_[k] && p_[k] > 0 && p_[k] < H) ? g_field_[k] + beta * t_[k] : 0.0;
+      chunks([&](unsigned, std::size_t b, std::size_t e) {
+        for (std::size_t k = b; k < e; ++k)
+          t_[k] = (active_[k] && p_[k] > 0 && p_[k] < H) ? g_field_[k] + beta * t_[k] : 0.0;
+      });
       g_old = G;
       op_->apply(t_.data(), r_.data());
       // One pass (t is zero outside the free contact): the mean of r over the free contact
       // rbar, and sum (r - rbar) t = sum r t - rbar sum t.
+      chunks([&](unsigned m, std::size_t b, std::size_t e) {
+        double rsum = 0, rt = 0, tsum = 0, num = 0;
+        for (std::size_t k = b; k < e; ++k)
+          if (active_[k] && p_[k] > 0 && p_[k] < H) {
+            rsum += r_[k];
+            rt += r_[k] * t_[k];
+            tsum += t_[k];
+            num += g_field_[k] * t_[k];
+          }
+        partial_[m] = {rsum, rt, tsum, num};
+      });
       double rsum = 0, rt = 0, tsum = 0, num = 0;
-      for (std::size_t k = 0; k < n; ++k)
-        if (active_[k] && p_[k] > 0 && p_[k] < H) {
-          rsum += r_[k];
-          rt += r_[k] * t_[k];
-          tsum += t_[k];
-          num += g_field_[k] * t_[k];
-        }
+      for (unsigned m = 0; m < members_; ++m)
+        rsum += partial_[m][0], rt += partial_[m][1], tsum += partial_[m][2], num += partial_[m][3];
       const double rbar = nc ? rsum / double(nc) : 0.0;
       const double den = rt - rbar * tsum;
       const double tau = (den > 0 && nc) ? num / den : 0.0;
+      chunks([&](unsigned m, std::size_t b, std::size_t e) {
+        double entered = 0, total = 0, reset = 0;
+        for (std::size_t k = b; k < e; ++k) {
+          if (!active_[k]) continue;
+          const bool free_point = p_[k] > 0 && p_[k] < H;
+          if (free_point) {
+            p_[k] = std::clamp(p_[k] - tau * t_[k], 0.0, H);
+          } else if (p_[k] <= 0 && g_field_[k] < 0) {
+            // Polonsky & Keer's overlap set: points that interpenetrate take pressure.
+            p_[k] = std::min(H, -tau * g_field_[k]);
+            ++entered;
+          } else if (p_[k] >= H && g_field_[k] > 0) {
+            p_[k] = std::max(0.0, H - tau * g_field_[k]);  // a capped point whose gap opens unloads
+            reset = 1;
+          }
+          total += p_[k];
+        }
+        partial_[m] = {entered, total, reset, 0};
+      });
       bool reset = false;
       std::size_t entered = 0;
       double total = 0;
-      for (std::size_t k = 0; k < n; ++k) {
-        if (!active_[k]) continue;
-        const bool free_point = p_[k] > 0 && p_[k] < H;
-        if (free_point) {
-          p_[k] = std::clamp(p_[k] - tau * t_[k], 0.0, H);
-        } else if (p_[k] <= 0 && g_field_[k] < 0) {
-          // Polonsky & Keer's overlap set: points that interpenetrate take pressure.
-          p_[k] = std::min(H, -tau * g_field_[k]);
-          ++entered;
-        } else if (p_[k] >= H && g_field_[k] > 0) {
-          p_[k] = std::max(0.0, H - tau * g_field_[k]);  // a capped point whose gap opens unloads
-          reset = true;
-        }
-        total += p_[k];
-      }
+      for (unsigned m = 0; m < members_; ++m)
+        entered += std::size_t(partial_[m][0]), total += partial_[m][1], reset = reset || partial_[m][2] > 0;
       // Polonsky & Keer restart the conjugate directions whenever a point enters the contact;
       // on rough surfaces a few points enter at almost every step while the contact set settles,
       // which leaves steepest descent (3-4 times the iterations at 1024 x 1024). The directions
@@ -273,7 +305,9 @@ class Solver {
       conjugate = !reset;
       if (!std::isfinite(H) && total > 0) {
         const double f = sum / total;  // the load (enforce_load without a cap, its sum known)
-        for (std::size_t k = 0; k < n; ++k) p_[k] *= f;
+        chunks([&](unsigned, std::size_t b, std::size_t e) {
+          for (std::size_t k = b; k < e; ++k) p_[k] *= f;
+        });
       } else {
         enforce_load(sum);
       }
@@ -366,10 +400,12 @@ class Solver {
       res.stiffness = INFINITY;  // the mean mode costs nothing to compress: no finite force moves it
       return;
     }
-    // CG on the set: x = dp, residual rr = 1 - K x on the set.
+    // CG on the set: x = dp, residual rr = 1 - K x on the set. The gap field is free once the
+    // result has its numbers (the next solve makes it anew): it holds K d.
     std::vector<double>& x = t_;
     std::vector<double>& d = r_;
-    std::vector<double> rr(n, 0.0), kd(n, 0.0);
+    std::vector<double>& kd = g_field_;
+    std::vector<double> rr(n, 0.0);
     std::fill(x.begin(), x.end(), 0.0);
     for (std::size_t k = 0; k < n; ++k) rr[k] = set[k] ? 1.0 : 0.0;
     d = rr;
@@ -379,21 +415,33 @@ class Solver {
     int it = 0;
     for (; it < max_it && std::sqrt(rho) > stop; ++it) {
       op_->apply(d.data(), kd.data());
+      chunks([&](unsigned c, std::size_t b, std::size_t e) {
+        double dkd = 0;
+        for (std::size_t k = b; k < e; ++k)
+          if (set[k]) dkd += d[k] * kd[k];
+        partial_[c] = {dkd, 0, 0, 0};
+      });
       double dkd = 0;
-      for (std::size_t k = 0; k < n; ++k)
-        if (set[k]) dkd += d[k] * kd[k];
+      for (unsigned c = 0; c < members_; ++c) dkd += partial_[c][0];
       if (!(dkd > 0)) break;
       const double alpha = rho / dkd;
+      chunks([&](unsigned c, std::size_t b, std::size_t e) {
+        double rho_new = 0;
+        for (std::size_t k = b; k < e; ++k)
+          if (set[k]) {
+            x[k] += alpha * d[k];
+            rr[k] -= alpha * kd[k];
+            rho_new += rr[k] * rr[k];
+          }
+        partial_[c] = {rho_new, 0, 0, 0};
+      });
       double rho_new = 0;
-      for (std::size_t k = 0; k < n; ++k)
-        if (set[k]) {
-          x[k] += alpha * d[k];
-          rr[k] -= alpha * kd[k];
-          rho_new += rr[k] * rr[k];
-        }
+      for (unsigned c = 0; c < members_; ++c) rho_new += partial_[c][0];
       const double beta = rho_new / rho;
       rho = rho_new;
-      for (std::size_t k = 0; k < n; ++k) d[k] = set[k] ? rr[k] + beta * d[k] : 0.0;
+      chunks([&](unsigned, std::size_t b, std::size_t e) {
+        for (std::size_t k = b; k < e; ++k) d[k] = set[k] ? rr[k] + beta * d[k] : 0.0;
+      });
     }
     double s = 0;
     for (std::size_t k = 0; k < n; ++k)
@@ -402,12 +450,41 @@ class Solver {
     res.stiffness_iterations = it;
   }
 
+  /// Runs body(member, begin, end) on the members_ contiguous chunks of [0, points), chunk m
+  /// [n m / M, n (m + 1) / M), chunk 0 on the calling thread.
+  template <class Body>
+  void chunks(const Body& body) {
+    const std::size_t n = g_.size();
+    if (members_ <= 1) {
+      body(0u, std::size_t(0), n);
+      return;
+    }
+    struct Context {
+      const Body* body;
+      std::size_t n;
+      unsigned members;
+    } context{&body, n, members_};
+    team_->run(
+        members_,
+        [](void* c, unsigned m) {
+          const auto* x = static_cast<const Context*>(c);
+          (*x->body)(m, x->n * m / x->members, x->n * (m + 1) / x->members);
+        },
+        &context);
+  }
+
   Grid g_;
   ContactOptions o_;
   std::unique_ptr<ElasticOperator> op_;
+  std::unique_ptr<util::Team> team_;
+  unsigned members_ = 1;
+  std::vector<std::array<double, 4>> partial_;  // one chunk's partial sums per member
   std::vector<char> active_;
   std::size_t n_active_ = 0;
-  std::vector<double> h_, p_, g_field_, t_, r_, u_;
+  /// The heights, the caller's (NaN where masked: the gap is NaN there, and every pass skips the
+  /// masked points).
+  const double* h_ = nullptr;
+  std::vector<double> p_, g_field_, t_, r_;
   double hmax_ = 0, h_rms_ = 1;
 };
 
@@ -454,7 +531,7 @@ Result<std::vector<ContactResult>> solve_grid(const Grid& g, const std::vector<C
   auto op = ElasticOperator::create(g.nx, g.ny, g.dx, g.is_map ? g.dy : 0.0, g.periodic, o.contact_modulus,
                                     thread_count(o.threads));
   if (!op) return op.error();
-  Solver solver(g, o, std::move(*op));
+  Solver solver(g, o, std::move(*op), thread_count(o.threads));
   const double slope = rms_slope(g);
   std::vector<ContactResult> out;
   out.reserve(loads.size());

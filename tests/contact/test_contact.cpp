@@ -5,8 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
+#include <utility>
+#include <vector>
 
+#include "contact/kernel.hpp"
 #include "frictal/contact.hpp"
 
 using namespace frictal;
@@ -319,4 +323,96 @@ TEST(Contact, FlatSurfaceConverges) {
   // A flat punch: the pressure is least at the centre and grows towards the edges.
   EXPECT_LT(r->pressure[16 * 32 + 16], r->pressure[16 * 32 + 0]);
   EXPECT_NEAR(r->force, 1e6 * 32 * 32 * 1e-12, 1e-9 * r->force);
+}
+
+// The padded (non-periodic) operator against the direct sum of the influence coefficients: the
+// displacement of a pressure on one cell at offset (x, y) is (1 / (pi E*)) times the integral of
+// 1/r over the cell (Johnson, Contact Mechanics, eq. 3.25), here by the corner sum of
+// x asinh(y/|x|) + y asinh(x/|y|); in plane strain -(2 / (pi E*)) times the integral of ln|x - s|
+// over the cell. The padded transforms are 2N - 1 long (8: 15, 11: 21, 13: 25, 25: 49, 32: 63)
+// or longer (100001 points: the next product of 2, 3, 5, 7 above 2N - 1), where a wrap-around
+// onto the N points or a row left out of the pruned transform would show at once.
+TEST(ContactOperator, PaddedEqualsTheDirectSum) {
+  using frictal::contact_detail::ElasticOperator;
+  const double E = 2e9;
+  const auto rect = [](double x, double y) {
+    double f = 0;
+    if (x != 0) f += x * std::asinh(y / std::abs(x));
+    if (y != 0) f += y * std::asinh(x / std::abs(y));
+    return f;
+  };
+  std::uint64_t state = 12345;
+  const auto uniform = [&] {  // a fixed pseudo-random pressure in [0, 1) MPa
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return double(state >> 11) * 0x1.0p-53 * 1e6;
+  };
+  for (auto [nx, ny] : {std::pair<std::size_t, std::size_t>{13, 8}, {11, 25}, {32, 13}}) {
+    const double dx = 1e-6, dy = 1.5e-6, a = dx / 2, b = dy / 2;
+    auto op = ElasticOperator::create(nx, ny, dx, dy, false, E, 1);
+    ASSERT_TRUE(op) << op.error().message;
+    std::vector<double> p(nx * ny), u(nx * ny);
+    for (double& v : p) v = uniform();
+    (*op)->apply(p.data(), u.data());
+    double worst = 0, scale = 0;
+    for (std::size_t j = 0; j < ny; ++j)
+      for (std::size_t i = 0; i < nx; ++i) {
+        double direct = 0;
+        for (std::size_t l = 0; l < ny; ++l)
+          for (std::size_t k = 0; k < nx; ++k) {
+            const double x = (double(i) - double(k)) * dx, y = (double(j) - double(l)) * dy;
+            direct += p[l * nx + k] / (kPi * E) *
+                      (rect(x + a, y + b) - rect(x - a, y + b) - rect(x + a, y - b) + rect(x - a, y - b));
+          }
+        worst = std::max(worst, std::abs(u[j * nx + i] - direct));
+        scale = std::max(scale, std::abs(direct));
+      }
+    EXPECT_LT(worst, 1e-12 * scale) << nx << " x " << ny;
+  }
+  for (std::size_t n : {8, 13, 25, 100001}) {
+    const double dx = 1e-7, a = dx / 2;
+    auto op = ElasticOperator::create(n, 1, dx, 0, false, E, 1);
+    ASSERT_TRUE(op) << op.error().message;
+    // A few loaded points (the direct sum of 10^5 points stays cheap), at both ends.
+    std::vector<double> p(n, 0.0), u(n);
+    const std::vector<std::size_t> loaded = {0, 1, n / 2, n - 2, n - 1};
+    for (std::size_t k : loaded) p[k] = uniform();
+    (*op)->apply(p.data(), u.data());
+    const auto G = [](double t) { return t == 0 ? 0.0 : t * std::log(std::abs(t)) - t; };  // of ln|t|
+    double worst = 0, scale = 0;
+    for (std::size_t i = 0; i < n; i += (n > 1000 ? 997 : 1)) {
+      double direct = 0;
+      for (std::size_t k : loaded) {
+        const double x = (double(i) - double(k)) * dx;
+        // ln|t / dx| rather than ln|t|: the half-plane's displacement is defined up to a
+        // constant times the load; the operator takes its reference at one spacing.
+        direct += p[k] * -2 / (kPi * E) * (G(x + a) - G(x - a) - dx * std::log(dx));
+      }
+      worst = std::max(worst, std::abs(u[i] - direct));
+      scale = std::max(scale, std::abs(direct));
+    }
+    EXPECT_LT(worst, 1e-10 * scale) << n << " points";  // rounding of the 2 x 10^5-point transform: ~1e-11
+  }
+}
+
+// Two threads split the transforms and the solver's passes (from 2^16 points on) and add their
+// partial sums in a fixed order: Hertz's sphere on a 256 x 256 map (the contact radius 30
+// spacings; padded, 511 -> 512 points a side) holds Hertz's radius and peak pressure as the
+// single-threaded solve does, and the two solves agree to the solver's tolerance.
+TEST(Contact, TwoThreadsSolveHertzAsOne) {
+  const double Es = 1e9, R = 0.01, dx = 1e-6, a = 30 * dx;
+  const double F = 4 * Es * a * a * a / (3 * R);
+  ContactOptions o;
+  o.contact_modulus = Es;
+  const Map m = sphere(256, dx, R);
+  auto one = solve_contact(m, {ContactLoadKind::Force, F}, o);
+  o.threads = 2;
+  auto two = solve_contact(m, {ContactLoadKind::Force, F}, o);
+  ASSERT_TRUE(one && two);
+  ASSERT_TRUE(one->converged && two->converged);
+  EXPECT_NEAR(std::sqrt(two->contact_area / kPi) / a, 1.0, 0.015);
+  EXPECT_NEAR(two->max_pressure / (3 * F / (2 * kPi * a * a)), 1.0, 0.01);
+  EXPECT_EQ(two->contact_area, one->contact_area);
+  EXPECT_NEAR(two->max_pressure, one->max_pressure, 1e-6 * one->max_pressure);
+  EXPECT_NEAR(two->approach, one->approach, 1e-6 * one->approach);
+  EXPECT_NEAR(two->stiffness, one->stiffness, 1e-5 * one->stiffness);
 }
