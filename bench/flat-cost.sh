@@ -4,12 +4,15 @@
 # (5-95 %) per map and build, one Markdown row each; with a second build B, A's and B's JSON
 # compared (largest drop difference). The filled (spikes removed) pair must not cost more than
 # the spiky one (bench/results/map-predict.md, "Nearly flat maps").
-#   bench/flat-cost.sh [BUILD_A [BUILD_B]]     THREADS=1
+# A run over TIMEOUT seconds of wall time is stopped and its row says so (the smooth `longwave`
+# map with its spikes removed is conformal to itself turned over: every sphere touches at once).
+#   bench/flat-cost.sh [BUILD_A [BUILD_B]]     THREADS=1 TIMEOUT=600
 set -euo pipefail
 cd "$(dirname "$0")/.."
 A=$(scripts/frictal-path "${1:-build/release}")
 B=${2:+$(scripts/frictal-path "$2")}
 THREADS=${THREADS:-1}
+TIMEOUT=${TIMEOUT:-600}
 DATA=bench/data/flat
 mkdir -p "$DATA"
 PYTHONPATH=$(dirname "$A")/../../python:${PYTHONPATH:-} /usr/bin/python3 bench/flat_maps.py "$DATA"
@@ -25,8 +28,11 @@ for name in wave noise tilt quant longwave; do
     for build in A B; do
       bin=$A
       [[ $build == B ]] && { [[ -n "$B" ]] || continue; bin=$B; }
-      /usr/bin/time -f '%U %e %M' -o "$tmp/time" "$bin" predict "$f" "${extra[@]}" --threads "$THREADS" --quiet \
-        --json >"$tmp/$name-$mode-$build.json"
+      if ! /usr/bin/time -f '%U %e %M' -o "$tmp/time" timeout "$TIMEOUT" "$bin" predict "$f" "${extra[@]}" \
+        --threads "$THREADS" --quiet --json >"$tmp/$name-$mode-$build.json"; then
+        echo "| $name | $mode | $build | $(tail -1 "$tmp/time" | cut -d' ' -f1) | stopped at $TIMEOUT s | | |"
+        continue
+      fi
       read -r user wall peak <"$tmp/time"
       /usr/bin/python3 - "$tmp/$name-$mode-$build.json" "$name" "$mode" "$build" "$user" "$wall" "$peak" <<'PY'
 import json, sys
@@ -35,7 +41,7 @@ print(f"| {sys.argv[2]} | {sys.argv[3]} | {sys.argv[4]} | {sys.argv[5]} | {sys.a
       f"{j['friction_angle_deg']:.4f} ({j['friction_angle_q05_deg']:.4f}-{j['friction_angle_q95_deg']:.4f}) |")
 PY
     done
-    if [[ -n "$B" ]]; then
+    if [[ -n "$B" && -s "$tmp/$name-$mode-A.json" && -s "$tmp/$name-$mode-B.json" ]]; then
       /usr/bin/python3 - "$tmp/$name-$mode-A.json" "$tmp/$name-$mode-B.json" "$name" "$mode" <<'PY'
 import json, sys
 a = json.load(open(sys.argv[1]))["drop_friction_angles_deg"]
