@@ -455,7 +455,7 @@ class SphereField {
         const detail::TiltNode& n = nodes_[e.k];
         std::size_t i0, i1, j0, j1;
         if (!cell_range(n.x + sx - R, n.x + sx + R, n.y + sy - R, n.y + sy + R, i0, i1, j0, j1)) continue;
-        const double wide = wide_bound(n, sx, sy, R, i0, i1, j0, j1);
+        const double wide = wide_bound(n, sx, sy, R, i0, i1, j0, j1, threshold);
         if (wide < threshold) continue;
         near.list.push_back({wide, e.k, local() ? slope_bound(i0, i1, j0, j1) : 0.0f});
       }
@@ -490,15 +490,17 @@ class SphereField {
   /// lower face's roughness within a cell (max cell top against the height under the centre):
   /// the lists hold the few spheres whose tops tie within the fall of the disc, not every sphere
   /// whose cell top does.
+  /// Below `threshold` already by the first bound, that one (the caller drops the sphere).
   double wide_bound(const detail::TiltNode& n, double sx, double sy, double R, std::size_t i0, std::size_t i1,
-                    std::size_t j0, std::size_t j1) const {
-    double b = kNoContact, g = 0;
+                    std::size_t j0, std::size_t j1, double threshold) const {
+    double b = kNoContact;
     for (std::size_t j = j0; j <= j1; ++j)
-      for (std::size_t i = i0; i <= i1; ++i) {
-        b = std::max(b, cell_top_[j * cnx_ + i]);
-        g = std::max(g, cell_slope_[j * cnx_ + i]);
-      }
+      for (std::size_t i = i0; i <= i1; ++i) b = std::max(b, cell_top_[j * cnx_ + i]);
     const double loose = b + r_ - (n.z + r_);
+    if (loose < threshold) return loose;
+    double g = 0;
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t i = i0; i <= i1; ++i) g = std::max(g, cell_slope_[j * cnx_ + i]);
     const double cx = n.x + sx, cy = n.y + sy;
     const double u = (cx - hf_.x0) * inv_dx_, v = (cy - hf_.y0) * inv_dy_;
     const double fi = std::floor(u), fj = std::floor(v);
@@ -557,7 +559,7 @@ class SphereField {
           if (tile_top + r_ - (n.z + r_) < threshold) break;
           if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
           ++near.work;
-          const double wide = wide_bound(n, sx, sy, wr, i0, i1, j0, j1);
+          const double wide = wide_bound(n, sx, sy, wr, i0, i1, j0, j1, threshold);
           if (wide < threshold) continue;
           // The slopes' bound, read only where the windows use it (a smooth map).
           list.push_back({wide, tiled_[q].k, slopes ? slope_bound(i0, i1, j0, j1) : 0.0f});
