@@ -198,6 +198,10 @@ struct ArealTiltHold {
   std::array<double, 2> rest_offset = {0, 0};  ///< settled at start_tilt (zero by default) (unit: m)
   double steering = 0;                         ///< from d to the run-away's displacement (unit: rad)
   long evaluations = 0;                        ///< lift evaluations (unitless)
+  /// The model's work, a measure of its cost that does not depend on the machine: tiles and
+  /// spheres read to build the candidate lists, spheres evaluated, and cells whose triangles
+  /// were evaluated (unitless).
+  long work = 0;
   /// Where the block stands after each increment, coarse then fine, as areal_tilt's trace: tilt
   /// (rad), x, y (m); the run-away increments' ends included. To compare the two blocks' chains
   /// of stops (docs/mujoco.md).

@@ -122,7 +122,8 @@ class SphereField {
     // whose gradient lies between theirs. (On the border's outer edges a sphere beyond the map
     // can touch sideways, steeper than any facet: there the descent's re-check in the full window
     // keeps a rest from being taken for one.)
-    std::vector<double> cell_slope(cnx_ * cny_);
+    std::vector<double>& cell_slope = cell_slope_;
+    cell_slope.assign(cnx_ * cny_, 0);
     for (std::size_t j = 0; j < cny_; ++j)
       for (std::size_t i = 0; i < cnx_; ++i) {
         const double z00 = hf.at(i, j), z10 = hf.at(i + 1, j), z01 = hf.at(i, j + 1), z11 = hf.at(i + 1, j + 1);
@@ -150,6 +151,20 @@ class SphereField {
       const auto k = std::ptrdiff_t(0.99 * double(s.size() - 1));
       std::nth_element(s.begin(), s.begin() + k, s.end());
       fall_ = std::min({0.5, slope_max_, std::max(2 * s[std::size_t(k)], 0.1 * slope_max_)});
+    }
+    // The highest cell top of every square of kSquare x kSquare cells, by its first cell (a
+    // tile's footprint in four reads: cells_max).
+    if (cnx_ >= kSquare && cny_ >= kSquare) {
+      const std::size_t n = cnx_ - kSquare + 1, m = cny_ - kSquare + 1;
+      std::vector<double> rows(n * cny_);
+      for (std::size_t j = 0; j < cny_; ++j)
+        for (std::size_t i = 0; i < n; ++i)
+          rows[j * n + i] = *std::max_element(cell_top_.begin() + std::ptrdiff_t(j * cnx_ + i),
+                                              cell_top_.begin() + std::ptrdiff_t(j * cnx_ + i + kSquare));
+      top8_.assign(n * m, kNoContact);
+      for (std::size_t j = 0; j < m; ++j)
+        for (std::size_t k = 0; k < kSquare; ++k)
+          for (std::size_t i = 0; i < n; ++i) top8_[j * n + i] = std::max(top8_[j * n + i], rows[(j + k) * n + i]);
     }
     bnx_ = (cnx_ + kBlock - 1) / kBlock;
     bny_ = (cny_ + kBlock - 1) / kBlock;
@@ -272,6 +287,17 @@ class SphereField {
     /// the same visits either way.
     std::size_t sorted = 0;
     long rebuilds = 0, fallbacks = 0;  ///< (unitless)
+    /// The model's work: tiles and spheres read to build lists, and spheres evaluated (unitless;
+    /// ArealTiltHold::work).
+    long work = 0;
+    /// A list over a wider disc, from which the lists of narrow discs inside it are built without
+    /// the scan of every tile (see rebuild): every sphere whose wide bound over it reaches
+    /// `threshold`, sorted (Near::before).
+    struct Outer {
+      double cx = 0, cy = 0, radius = -1;  ///< (unit: m; radius < 0: none)
+      double threshold = kNoContact;       ///< (unit: m)
+      std::vector<Entry> list;
+    } outer;
     static bool before(const Entry& a, const Entry& b) { return a.wide > b.wide || (a.wide == b.wide && a.k < b.k); }
   };
   /// h(s) as eval, from the spheres of `near` (rebuilt around s when s lies outside its disc):
@@ -287,7 +313,7 @@ class SphereField {
       // The first list: around h here (the full evaluation), down by eps and a quarter of the
       // disc's radius (h changes by less over most of the disc; where it does, the full
       // evaluation answers).
-      const double h0 = eval(sx, sy, bx, by, work, eps, pieces, win);
+      const double h0 = eval(sx, sy, bx, by, work, eps, pieces, win, &near.work);
       if (h0 == kNoContact) return h0;
       rebuild(near, sx, sy, h0 - eps - 0.5 * near_fall() * near_radius(near));
       near.last = h0;
@@ -311,11 +337,12 @@ class SphereField {
       }
       // Below its own window (best only grows: it stays below).
       if (win && e.wide < best - win->eps(e.s)) continue;
+      ++near.work;
       sphere(nodes_[e.k], sx, sy, best, bx, by, work, eps, pieces, win);
     }
     if (!complete && !(best != kNoContact && best - eps >= near.threshold)) {
       ++near.fallbacks;
-      best = eval(sx, sy, bx, by, work, eps, pieces, win);
+      best = eval(sx, sy, bx, by, work, eps, pieces, win, &near.work);
       near.last = best;
       if (best != kNoContact) rebuild(near, sx, sy, best - eps - 0.5 * near_fall() * near_radius(near));
       return best;
@@ -328,7 +355,7 @@ class SphereField {
   /// h(s) (kNoContact: no sphere over the field); (bx, by) the touching point; `work` counts
   /// cells evaluated.
   double eval(double sx, double sy, double& bx, double& by, std::size_t& work, double eps = 0,
-              std::vector<Piece>* pieces = nullptr, const Window* win = nullptr) const {
+              std::vector<Piece>* pieces = nullptr, const Window* win = nullptr, long* visits = nullptr) const {
     double best = kNoContact;
     if (pieces) pieces->clear();
     // Each tile's bound at this offset; the tile of the highest bound first (it sets a high best),
@@ -345,8 +372,10 @@ class SphereField {
     if (first == tiles_.size()) return best;
     for (std::size_t q = tiles_[first].begin; q < tiles_[first].end; ++q)
       sphere(nodes_[order_[q]], sx, sy, best, bx, by, work, eps, pieces, win);
+    if (visits) *visits += long(tiles_.size() + tiles_[first].end - tiles_[first].begin);
     for (std::size_t t = 0; t < tiles_.size(); ++t) {
       if (t == first || bound[t] == kNoContact || bound[t] < best - eps) continue;
+      if (visits) *visits += long(tiles_[t].end - tiles_[t].begin);
       for (std::size_t q = tiles_[t].begin; q < tiles_[t].end; ++q)
         sphere(nodes_[order_[q]], sx, sy, best, bx, by, work, eps, pieces, win);
     }
@@ -355,19 +384,35 @@ class SphereField {
   }
 
  private:
-  /// Drops the pieces below the window of the final max `best`.
+  /// Drops the pieces below the window of the final max `best`, then puts the rest in one order
+  /// (highest first, then by gradient): the descent reads the first of the highest as the top
+  /// piece, and the order of the visits (which the lists' discs set) must not choose it.
   static void erase_outside(std::vector<Piece>* pieces, double best, double eps, const Window* win) {
     if (!pieces) return;
     if (win)
       std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - (win->delta * p.cap + win->abs); });
     else
       std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
+    std::sort(pieces->begin(), pieces->end(), [](const Piece& a, const Piece& b) {
+      return a.value != b.value ? a.value > b.value
+             : a.gx != b.gx     ? a.gx < b.gx
+             : a.gy != b.gy     ? a.gy < b.gy
+                                : a.cap < b.cap;
+    });
   }
   static constexpr std::size_t kTile = 8, kBlock = 8;
   static constexpr std::size_t kNearSorted = 64;  ///< entries of a Near list sorted at its rebuild
   /// Lists longer than kNearLong halve the next disc (down to kNearScaleMin of half a cell),
   /// shorter than kNearShort double it (up to half a cell) (unitless).
-  static constexpr std::size_t kNearLong = 256, kNearShort = 32;
+  static constexpr std::size_t kNearLong = 64, kNearShort = 8;
+  /// Discs of at most kOuterFrom of half a cell take their lists from an outer list over
+  /// kOuterRatio times their radius, kOuterDepth times its fall below (unitless; see rebuild).
+  /// Lists of 64 and 8 instead of 256 and 32: 1.4 s against 2.3 s. Measured on the tilted noisy
+  /// plane of bench/flat_maps.py with its spikes removed, 4 drops, user CPU on a loaded VM: ratio
+  /// 4 and depth 0.1 1.7 s, ratio 3 2.3 s, 6 1.8 s, depth 0.05 2.0 s, 0.2 2.3 s, 0.5 5.5 s, 1
+  /// 10.7 s (deeper outer lists); from 1 (every disc: outer discs of two cells on a rough map)
+  /// made bcrf-1's 25 drops 4 times slower, from 0.25 left them as they were.
+  static constexpr double kOuterFrom = 0.25, kOuterRatio = 4, kOuterDepth = 0.1;
   static constexpr double kNearScaleMin = 1.0 / 64;
   /// The disc of offsets over which a Near list holds: one lower-map cell (unit: m).
   /// The disc of offsets over which a Near list holds: half a lower-map cell, or less where lists
@@ -384,44 +429,38 @@ class SphereField {
     near.radius = near_radius(near);
     near.threshold = threshold;
     near.list.clear();
-    const double wr = near.radius;  // the footprints widened by the disc
-    for (const Super& sp : supers_) {
-      std::size_t i0, i1, j0, j1;
-      if (!cell_range(sp.xlo + sx - wr, sp.xhi + sx + wr, sp.ylo + sy - wr, sp.yhi + sy + wr, i0, i1, j0, j1)) continue;
-      if (cells_top(sblock_top_, snx_, kBlock * kSuper, i0, i1, j0, j1) + r_ + sp.base < threshold) continue;
-      for (const std::uint32_t ti : sp.tiles) {
-        const Tile& tl = tiles_[ti];
-        if (!cell_range(tl.xlo + sx - wr, tl.xhi + sx + wr, tl.ylo + sy - wr, tl.yhi + sy + wr, i0, i1, j0, j1))
-          continue;
-        if (cells_top(block_top_, bnx_, kBlock, i0, i1, j0, j1) + r_ + tl.base < threshold) continue;
-        // The highest cell top under the tile's widened footprint bounds every one of its
-        // spheres' (their windows lie inside it): a sphere below the threshold even against it is
-        // left without reading its window (the same list, in the same order).
-        double tile_top = kNoContact;
-        for (std::size_t j = j0; j <= j1; ++j)
-          for (std::size_t i = i0; i <= i1; ++i) tile_top = std::max(tile_top, cell_top_[j * cnx_ + i]);
-        for (std::size_t q = tl.begin; q < tl.end; ++q) {
-          const detail::TiltNode& n = tiled_[q].n;
-          // As `wide` below, and rounding is monotone: the rest of the tile (higher) cannot reach either.
-          if (tile_top + r_ - (n.z + r_) < threshold) break;
-          if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
-          double b = kNoContact;
-          for (std::size_t j = j0; j <= j1; ++j)
-            for (std::size_t i = i0; i <= i1; ++i) b = std::max(b, cell_top_[j * cnx_ + i]);
-          const double wide = b + r_ - (n.z + r_);
-          if (wide < threshold) continue;
-          // The slopes' bound, read only where the windows use it (a smooth map): as a float
-          // rounded up, so that it stays a bound.
-          float sf = 0;
-          if (local()) {
-            double sm = 0;
-            for (std::size_t j = j0; j <= j1; ++j)
-              for (std::size_t i = i0; i <= i1; ++i) sm = std::max(sm, slope3_[j * cnx_ + i]);
-            sf = std::nextafter(float(sm), std::numeric_limits<float>::infinity());
-          }
-          near.list.push_back({wide, tiled_[q].k, sf});
-        }
+    const double R = near.radius;
+    // Narrow discs (lists ran long: nearly flat faces, where every tile holds spheres within the
+    // fall of the top and a scan reads thousands of them to list a hundred) from an outer list over
+    // kOuterRatio times the disc, down by kOuterDepth of its fall more: a narrow list is every
+    // outer entry whose bound over the narrow disc reaches its threshold. Exact: a sphere not in
+    // the outer list reaches below the outer threshold anywhere in the outer disc, which holds
+    // the narrow one, and the narrow threshold is not below it (else the outer list is rebuilt).
+    // On the noisy flat 563 x 484 pairs of bench/flat_maps.py: one scan per 3-4 lists.
+    if (near.scale <= kOuterFrom) {
+      Near::Outer& o = near.outer;
+      if (!(o.radius >= 0 && threshold >= o.threshold &&
+            std::hypot(sx - o.cx, sy - o.cy) + R <= o.radius * (1 - 1e-6))) {
+        o.cx = sx;
+        o.cy = sy;
+        o.radius = kOuterRatio * R;
+        o.threshold = threshold - kOuterDepth * near_fall() * o.radius - kBoundSlack * r_;
+        o.list.clear();
+        collect(near, sx, sy, o.radius, o.threshold, o.list, false);
+        std::sort(o.list.begin(), o.list.end(), Near::before);
       }
+      for (const Near::Entry& e : o.list) {
+        if (e.wide < threshold) break;
+        ++near.work;
+        const detail::TiltNode& n = nodes_[e.k];
+        std::size_t i0, i1, j0, j1;
+        if (!cell_range(n.x + sx - R, n.x + sx + R, n.y + sy - R, n.y + sy + R, i0, i1, j0, j1)) continue;
+        const double wide = wide_bound(n, sx, sy, R, i0, i1, j0, j1, threshold);
+        if (wide < threshold) continue;
+        near.list.push_back({wide, e.k, local() ? slope_bound(i0, i1, j0, j1) : 0.0f});
+      }
+    } else {
+      collect(near, sx, sy, R, threshold, near.list, local());
     }
     // The next disc: half as wide while lists run long, back towards half a cell while they are
     // short. Where many spheres reach nearly the same height (two nearly flat faces: their tops
@@ -438,6 +477,95 @@ class SphereField {
     near.sorted = std::min(near.list.size(), kNearSorted);
     std::partial_sort(near.list.begin(), near.list.begin() + std::ptrdiff_t(near.sorted), near.list.end(),
                       Near::before);
+  }
+  /// A sphere's wide bound over a disc of offsets: its centre at offset s lies within R of c0
+  /// (the centre at the disc's centre); it touches the lower face at points within r of its
+  /// centre, so within r + R of c0, all in the window of cells [i0, i1] x [j0, j1]. Two bounds of
+  /// the block's height where it touches: the highest cell top of the window (b) plus r, less
+  /// its height; and, where c0 lies over the lower face, the face's height z(c0) there plus the
+  /// rise along the straight path to the touching point, at most g (r' + R) for a point at r'
+  /// from the centre (g the steepest facet of the window), so that the centre lies at most
+  /// z(c0) + g R + max over r' of (g r' + sqrt(r^2 - r'^2)) = z(c0) + g R + r sqrt(1 + g^2) high
+  /// (a little slack for rounding). On two nearly flat faces the second is tighter by the
+  /// lower face's roughness within a cell (max cell top against the height under the centre):
+  /// the lists hold the few spheres whose tops tie within the fall of the disc, not every sphere
+  /// whose cell top does.
+  /// Below `threshold` already by the first bound, that one (the caller drops the sphere).
+  double wide_bound(const detail::TiltNode& n, double sx, double sy, double R, std::size_t i0, std::size_t i1,
+                    std::size_t j0, std::size_t j1, double threshold) const {
+    double b = kNoContact;
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t i = i0; i <= i1; ++i) b = std::max(b, cell_top_[j * cnx_ + i]);
+    const double loose = b + r_ - (n.z + r_);
+    if (loose < threshold) return loose;
+    double g = 0;
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t i = i0; i <= i1; ++i) g = std::max(g, cell_slope_[j * cnx_ + i]);
+    const double cx = n.x + sx, cy = n.y + sy;
+    const double u = (cx - hf_.x0) * inv_dx_, v = (cy - hf_.y0) * inv_dy_;
+    const double fi = std::floor(u), fj = std::floor(v);
+    if (!(fi >= 0 && fj >= 0 && fi <= double(cnx_ - 1) && fj <= double(cny_ - 1))) return loose;
+    const std::size_t i = std::size_t(fi), j = std::size_t(fj);
+    const double a = std::clamp(u - fi, 0.0, 1.0), c = std::clamp(v - fj, 0.0, 1.0);
+    const double z00 = hf_.at(i, j), z10 = hf_.at(i + 1, j), z01 = hf_.at(i, j + 1), z11 = hf_.at(i + 1, j + 1);
+    // MuJoCo's split along (i, j)-(i+1, j+1).
+    const double z = a >= c ? z00 + a * (z10 - z00) + c * (z11 - z10) : z00 + c * (z01 - z00) + a * (z11 - z01);
+    const double slack = kBoundSlack * r_ + 1e-14 * (std::abs(z) + std::abs(n.z) + r_ + g * R);
+    const double tight = z + g * R + r_ * std::sqrt(1 + g * g) - (n.z + r_) + slack;
+    return std::min(loose, tight);
+  }
+  /// The highest cell top over cells [i0, i1] x [j0, j1] (unit: m): from four overlapping
+  /// squares of kSquare cells (top8_) where the range is kSquare to 2 kSquare cells on a side, else
+  /// cell by cell; the same value either way (a max).
+  double cells_max(std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1) const {
+    const std::size_t w = i1 - i0 + 1, h = j1 - j0 + 1;
+    if (!top8_.empty() && w >= kSquare && h >= kSquare && w <= 2 * kSquare && h <= 2 * kSquare) {
+      const std::size_t n = cnx_ - kSquare + 1, ia = i1 + 1 - kSquare, ja = j1 + 1 - kSquare;
+      return std::max({top8_[j0 * n + i0], top8_[j0 * n + ia], top8_[ja * n + i0], top8_[ja * n + ia]});
+    }
+    double top = kNoContact;
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t i = i0; i <= i1; ++i) top = std::max(top, cell_top_[j * cnx_ + i]);
+    return top;
+  }
+  /// The facet slopes' bound over cells [i0, i1] x [j0, j1], as a float rounded up (a bound).
+  float slope_bound(std::size_t i0, std::size_t i1, std::size_t j0, std::size_t j1) const {
+    double sm = 0;
+    for (std::size_t j = j0; j <= j1; ++j)
+      for (std::size_t i = i0; i <= i1; ++i) sm = std::max(sm, slope3_[j * cnx_ + i]);
+    return std::nextafter(float(sm), std::numeric_limits<float>::infinity());
+  }
+  /// Appends to `list` every sphere whose wide bound over the disc of radius wr about (sx, sy)
+  /// reaches `threshold` (unsorted); with `slopes`, each entry's slope bound.
+  void collect(Near& near, double sx, double sy, double wr, double threshold, std::vector<Near::Entry>& list,
+               bool slopes) const {
+    for (const Super& sp : supers_) {
+      std::size_t i0, i1, j0, j1;
+      if (!cell_range(sp.xlo + sx - wr, sp.xhi + sx + wr, sp.ylo + sy - wr, sp.yhi + sy + wr, i0, i1, j0, j1)) continue;
+      if (cells_top(sblock_top_, snx_, kBlock * kSuper, i0, i1, j0, j1) + r_ + sp.base < threshold) continue;
+      for (const std::uint32_t ti : sp.tiles) {
+        const Tile& tl = tiles_[ti];
+        if (!cell_range(tl.xlo + sx - wr, tl.xhi + sx + wr, tl.ylo + sy - wr, tl.yhi + sy + wr, i0, i1, j0, j1))
+          continue;
+        if (cells_top(block_top_, bnx_, kBlock, i0, i1, j0, j1) + r_ + tl.base < threshold) continue;
+        ++near.work;
+        // The highest cell top under the tile's widened footprint bounds every one of its
+        // spheres' (their windows lie inside it): a sphere below the threshold even against it is
+        // left without reading its window (the same list, in the same order).
+        const double tile_top = cells_max(i0, i1, j0, j1);
+        for (std::size_t q = tl.begin; q < tl.end; ++q) {
+          const detail::TiltNode& n = tiled_[q].n;
+          // As `wide` below, and rounding is monotone: the rest of the tile (higher) cannot reach either.
+          if (tile_top + r_ - (n.z + r_) < threshold) break;
+          if (!cell_range(n.x + sx - wr, n.x + sx + wr, n.y + sy - wr, n.y + sy + wr, i0, i1, j0, j1)) continue;
+          ++near.work;
+          const double wide = wide_bound(n, sx, sy, wr, i0, i1, j0, j1, threshold);
+          if (wide < threshold) continue;
+          // The slopes' bound, read only where the windows use it (a smooth map).
+          list.push_back({wide, tiled_[q].k, slopes ? slope_bound(i0, i1, j0, j1) : 0.0f});
+        }
+      }
+    }
   }
   struct Tile {
     std::size_t begin, end;     ///< the tile's spheres: order_[begin, end)
@@ -489,7 +617,7 @@ class SphereField {
       }
     // The block's height when this sphere (centre n.z + r above the block's origin) touches.
     const double base = -(n.z + r_);
-    if (bound + r_ + base <= best - (win ? win->eps(sm) : eps)) return;
+    if (bound + r_ + base < best - (win ? win->eps(sm) : eps)) return;
     const double r2 = r_ * r_;
     for (std::size_t j = j0; j <= j1; ++j)
       for (std::size_t i = i0; i <= i1; ++i) {
@@ -532,7 +660,9 @@ class SphereField {
                                     : triangle_top(p00, p11, p10, cx, cy, r_, px, py);
           if (top == kNoContact) continue;
           const double v = top + base;
-          if (v > best) best = v, bx = px, by = py;
+          // Ties (quantised heights) to the lowest touching point: h, the point and the pieces do
+          // not depend on the order in which spheres are visited (lists, tiles).
+          if (v > best || (v == best && (px < bx || (px == bx && py < by)))) best = v, bx = px, by = py;
           if (pieces && v >= best - eps_c) {
             const double ex = px - cx, ey = py - cy;
             const double q = std::sqrt(std::max(r_ * r_ - ex * ex - ey * ey, 1e-12 * r_ * r_));
@@ -551,10 +681,13 @@ class SphereField {
   double diag_scale2_ = 1 / (inv_dx_ * inv_dx_ + inv_dy_ * inv_dy_);  ///< (unit: m^2)
   std::size_t cnx_, cny_;
   std::vector<double> cell_top_;
-  std::vector<double> slope3_;  ///< per cell: the facet slopes' max over the 3 x 3 cells around it (unitless)
-  double slope_max_ = 0;        ///< slope3_'s max (unitless)
-  bool flat_ = false;           ///< see flat()
-  double fall_ = 0.5;           ///< near_fall(): see the constructor (unitless)
+  static constexpr std::size_t kSquare = 8;
+  std::vector<double> top8_;        ///< the highest cell top of the kSquare x kSquare cells from each cell (unit: m)
+  std::vector<double> cell_slope_;  ///< per cell: the steeper of its two facets' slopes (unitless)
+  std::vector<double> slope3_;      ///< per cell: the facet slopes' max over the 3 x 3 cells around it (unitless)
+  double slope_max_ = 0;            ///< slope3_'s max (unitless)
+  bool flat_ = false;               ///< see flat()
+  double fall_ = 0.5;               ///< near_fall(): see the constructor (unitless)
   std::size_t bnx_ = 0, bny_ = 0;
   std::vector<double> block_top_;   ///< max of cell_top_ over kBlock x kBlock cells
   std::vector<std::size_t> order_;  ///< sphere indices grouped by tile
@@ -1076,6 +1209,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     out.seat_bound = std::max(out.hold_angle, std::atan(cone_max_slope(0, 0, dxv, dyv, phi_a)));
     out.stops.push_back({out.hold_angle, t.start_offset[0] + (out.ran_away ? D * dxv : 0),
                          t.start_offset[1] + (out.ran_away ? D * dyv : 0)});
+    out.work = near.work + long(work);
     return out;
   }
   // Every descent that did not run away: its seat and tilt (the seat bound's inputs).
@@ -1129,6 +1263,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   auto finish_seats = [&] {
     out.seat_bound = std::min(std::atan(seats.cone) + std::max(0.0, out.hold_angle - held_tilt), std::numbers::pi / 2);
     out.seat_slope = std::atan(seats.geo);
+    out.work = near.work + long(work);
   };
   if (std::isnan(b)) {
     out.hold_angle = out.runaway_increment = t.max_tilt;

@@ -1,15 +1,19 @@
 // The map prediction (predict() on two maps, the continuous model of areal_tilt.hpp): its upper
 // bound against its own drops on every map the project ships, the known answer of a flat pair,
-// and the resolution of its hold angles.
+// and the resolution of its hold angles; the cost of nearly flat pairs, in the model's own count of
+// its work.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <numbers>
 #include <string>
 #include <vector>
 
+#include "frictal/areal_tilt.hpp"
+#include "frictal/conditioning.hpp"
 #include "frictal/io.hpp"
 #include "frictal/predict.hpp"
 
@@ -216,4 +220,51 @@ TEST(MapPrediction, TurningTheWholeExperimentChangesNothing) {
       EXPECT_NEAR(p->upper_bound_friction_angle, p0->upper_bound_friction_angle, 1e-6 * kDeg);
     }
   }
+}
+
+TEST(MapPrediction, RemovingSpikesFromANearlyFlatMapCostsAtMostABoundedMultipleOfTheSpikyMap) {
+  // A nearly flat map (1 nm rms white noise on a 1 um grid, 160 x 144 nodes) with 6 spikes of
+  // 1 um, against itself turned over, as predict() runs it (its model options, 9 drops over the
+  // middle): with the spikes the block rests on them; with them masked by the spike filter and
+  // filled (the model's small holes), the two faces are nearly flat and every sphere lies within a
+  // few nm of the top. The model's work (ArealTiltHold::work: tiles and spheres read for the
+  // candidate lists, spheres and cells evaluated; no clock), filled against spiky: 9.2 times
+  // with the lists of before (cell-top bounds, every list from a scan of every tile), 6.1 times
+  // now (the tight bound and the outer lists), of which 2.0 is the descents' own evaluations (the
+  // block settles on noise instead of three spikes). The aim, removal never costlier, is not met
+  // yet (bench/results/map-predict.md, "Nearly flat maps"); the bound keeps what was gained.
+  frictal::Map m;
+  m.nx = 160;
+  m.ny = 144;
+  m.dx = m.dy = 1e-6;
+  m.heights.resize(m.nx * m.ny);
+  std::uint64_t state = 12345;
+  auto uniform = [&] {  // a fixed generator (the same heights on every platform)
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double(state >> 11) + 0.5) / 9007199254740992.0;
+  };
+  for (double& z : m.heights)
+    z = 1e-9 * std::sqrt(-2 * std::log(uniform())) * std::cos(2 * kPi * uniform());  // Box-Muller
+  const std::size_t spikes[][2] = {{11, 9}, {123, 24}, {60, 80}, {140, 120}, {37, 118}, {95, 57}};
+  for (const auto& sp : spikes) m.heights[sp[1] * m.nx + sp[0]] += 1e-6;
+  frictal::Conditioning c;
+  c.remove_spikes = true;
+  auto cleaned = frictal::condition(m, c);
+  ASSERT_TRUE(cleaned.ok()) << cleaned.error().message;
+  ASSERT_EQ(cleaned->record.spikes_removed, std::size(spikes));
+  auto work = [](const frictal::Map& map) {
+    const frictal::ArealTiltOptions t = frictal::map_model_options(map, frictal::PredictOptions{});
+    std::vector<frictal::ArealTiltDrop> drops;
+    for (const double u : {0.0, 8e-6, 16e-6})
+      for (const double v : {-8e-6, 0.0, 8e-6}) drops.push_back({{u, v}, false});
+    auto holds = frictal::areal_tilt_hold_drops(map, map, t, drops, 2);
+    EXPECT_TRUE(holds.ok()) << holds.error().message;
+    long total = 0;
+    if (holds)
+      for (const frictal::ArealTiltHold& h : *holds) total += h.work;
+    return total;
+  };
+  const long spiky = work(m), removed = work(cleaned->map);
+  EXPECT_GT(spiky, 0);
+  EXPECT_LE(removed, 8 * spiky) << "spiky " << spiky << ", spikes removed " << removed;
 }
