@@ -18,6 +18,7 @@ the tilt increment, the spheroradius and the damping ratio halved, the modulus d
 BIN default build/release/apps/frictal/frictal; OUT default /tmp/frictal-loaded-tilt.
 """
 import argparse
+import hashlib
 import json
 import os
 import platform
@@ -73,11 +74,27 @@ def make_pairs(out, repo):
     return pairs
 
 
+CACHE = {}
+TIMEOUT = 60  # s per run: past the spheroradius a run can relax for minutes (reported as such)
+
+
 def run(cmd):
-    r = subprocess.run(cmd, capture_output=True, text=True)
-    if r.returncode != 0:
-        return {"error": (r.stderr or r.stdout).strip().splitlines()[-1:]}
-    return json.loads(r.stdout)
+    # Runs are kept in OUT/runs by their command line: a second call of the script reuses them.
+    key = hashlib.sha1(" ".join(cmd).encode()).hexdigest()[:16]
+    path = f"{CACHE['dir']}/{key}.json"
+    if os.path.exists(path):
+        return json.load(open(path))
+    try:
+        r = subprocess.run(cmd, capture_output=True, text=True, timeout=TIMEOUT)
+        if r.returncode != 0:
+            out = {"error": (r.stderr or r.stdout).strip().splitlines()[-1:]}
+        else:
+            out = json.loads(r.stdout)
+    except subprocess.TimeoutExpired:
+        out = {"error": [f"stopped after {TIMEOUT} s"]}
+    with open(path, "w") as f:
+        json.dump(out, f)
+    return out
 
 
 def predict_cmd(bin_, files, cond, extra):
@@ -93,7 +110,8 @@ def main():
     args = ap.parse_args()
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     bin_ = os.path.abspath(args.bin)
-    os.makedirs(args.out, exist_ok=True)
+    os.makedirs(f"{args.out}/runs", exist_ok=True)
+    CACHE["dir"] = f"{args.out}/runs"
     t0 = time.time()
     pairs = make_pairs(args.out, repo)
     has_load = "--load" in subprocess.run([bin_, "predict", "--help"], capture_output=True, text=True).stdout
@@ -157,6 +175,12 @@ def main():
                 pfuts[(name, k, W if has_load else None)] = pool.submit(
                     run, predict_cmd(bin_, files, cond, ["--runaway-distance", repr(ra), f"--start-offset={x!r}",
                                                          *load_args(W)]))
+    # The linear law (rigid limit, the scaled defaults) from the same drops: the ground truth at no load.
+    lfuts = {}
+    for (name, files, cond, k, x, ra, W) in jobs:
+        if W == LOADS[0] and (name, W) in density:
+            lfuts[(name, k)] = pool.submit(tilt, name, files, cond, x, ra, W, ("--contact-law", "linear"))
+    linear = {key: f.result() for key, f in lfuts.items()}
     for key, f in futs.items():
         results[key] = f.result()
     for key, f in pfuts.items():
@@ -196,9 +220,12 @@ def main():
         pass
     commit = subprocess.run(["git", "-C", repo, "rev-parse", "--short", "HEAD"], capture_output=True,
                             text=True).stdout.strip()
+    sim_wall = sum(json.load(open(f"{CACHE['dir']}/{f}")).get("wall_time_s", 0) for f in os.listdir(CACHE["dir"]))
     out(f"Measured {time.strftime('%Y-%m-%d', time.gmtime())} at commit {commit} on {os.cpu_count()} cores "
-        f"({cpu}, {platform.system()}, load {os.getloadavg()[0]:.1f}), {wall:.0f} s wall, {args.drops} drops "
-        f"per pair and load: `nice /usr/bin/python3 bench/loaded_tilt.py`.")
+        f"({cpu}, {platform.system()}, load {os.getloadavg()[0]:.1f}), {args.drops} drops per pair and load, "
+        f"{len(os.listdir(CACHE['dir']))} runs, {sim_wall:.0f} s of time stepping in all (runs stopped at "
+        f"{TIMEOUT} s not counted; this call {wall:.0f} s wall, runs kept from an earlier call reused): "
+        "`nice /usr/bin/python3 bench/loaded_tilt.py`.")
     out("")
     ref = "`frictal predict --load W --modulus E --poisson NU`" if has_load else \
         "the rigid `frictal predict` (this build's predict has no --load: the load model is not compared)"
@@ -211,8 +238,9 @@ def main():
         "predictions from the same drops; `predict` q50 (q05-q95): the prediction over its own drops.")
     out("")
     out("| pair | W (N) | contacts | mean overlap / R | max overlap / r | drops slid | simulated median | "
-        "simulated q05-q95 | predicted median | `predict` q50 (q05-q95) | difference | rule | warnings |")
-    out("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+        "simulated q05-q95 | linear law (rigid limit) median | predicted median | `predict` q50 (q05-q95) | "
+        "difference | rule | warnings |")
+    out("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     summary = []
     for name, files, cond in pairs:
         for W in LOADS:
@@ -238,6 +266,9 @@ def main():
             codes = sorted({w["code"] for r in good for w in r["warnings"]})
             if errs:
                 codes.append(f"{len(errs)} failed: {errs[0]['error'][0][:80] if errs[0]['error'] else ''}")
+            lin = [linear.get((name, k)) for k in range(args.drops)]
+            lin = [r["friction_angle_deg"] for r in lin if r and "error" not in r and r.get("slid")]
+            lmed = f"{statistics.median(lin):.3f}" if lin else "-"
             if angles:
                 med = statistics.median(angles)
                 q = np.percentile(angles, [5, 95])
@@ -245,10 +276,10 @@ def main():
                 rule = "pass" if abs(diff) <= TOL or p5 <= med <= p95 else "FAIL"
                 summary.append((name, W, rule, diff))
                 out(f"| {name} | {W:.0e} | {nc:.0f} | {statistics.median(ir) if ir else float('nan'):.2e} | "
-                    f"{max(ovr):.3f} | {len(ok)} / {len(runs)} | {med:.3f} | {q[0]:.2f}-{q[1]:.2f} | {pm:.3f} | "
+                    f"{max(ovr):.3f} | {len(ok)} / {len(runs)} | {med:.3f} | {q[0]:.2f}-{q[1]:.2f} | {lmed} | {pm:.3f} | "
                     f"{pq50:.2f} ({p5:.2f}-{p95:.2f}) | {diff:+.3f} | {rule} | {', '.join(codes) or '-'} |")
             else:
-                out(f"| {name} | {W:.0e} | {nc:.0f} | - | - | 0 / {len(runs)} | - | - | {pm:.3f} | "
+                out(f"| {name} | {W:.0e} | {nc:.0f} | - | - | 0 / {len(runs)} | - | - | {lmed} | {pm:.3f} | "
                     f"{pq50:.2f} ({p5:.2f}-{p95:.2f}) | - | - | {', '.join(codes) or '-'} |")
     out("")
     for W0, (s, cases) in conv.items():

@@ -7,9 +7,12 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "frictal/dem.hpp"
+#include "frictal/generators.hpp"
+#include "frictal/tilt.hpp"
 
 namespace dem = frictal::dem;
 
@@ -147,8 +150,7 @@ TEST(DemHertz, DashpotRestitutionIndependentOfImpactSpeed) {
       auto m = dem::make_model(w, {ground(), disc(2 * kSphero + 1e-6, -v0)});
       ASSERT_TRUE(m.ok());
       dem::State st = dem::make_state(*m);
-      while (st.time < 0.05 && !(st.velocity[1].y > 0 && st.contact_count == 0))
-        ASSERT_TRUE(dem::step(*m, st).ok());
+      while (st.time < 0.05 && !(st.velocity[1].y > 0 && st.contact_count == 0)) ASSERT_TRUE(dem::step(*m, st).ok());
       EXPECT_NEAR(st.velocity[1].y / v0, expected, 1e-3) << "zeta " << zeta << " v0 " << v0;
     }
   }
@@ -166,4 +168,34 @@ TEST(DemHertz, RejectsBadParameters) {
   EXPECT_NE(m.error().message.find("contact_modulus"), std::string::npos);
   w = hertz_world(-1, 9.81);
   EXPECT_FALSE(dem::make_model(w, {ground(), disc(1e-3)}).ok());
+}
+
+TEST(DemHertz, TiltKochK0SlidesAtAlphaPlusAtomicAngle) {
+  // The tilt test with Hertz contacts (E = 70 GPa): a K_0 pair at alpha = 20 deg with mu_a = 0.3
+  // slides at alpha + atan(mu_a) (Eq. 6 with theta_max = alpha), whatever the contact law; the
+  // Table I block (~0.1 kg) sinks by nanometres, far below r.
+  frictal::KochParams p;
+  p.iterations = 0;
+  p.alpha = 20 * std::numbers::pi / 180;
+  p.wavelength = 0.01;
+  p.length = 0.05;
+  auto k0 = frictal::koch_curve(p);
+  ASSERT_TRUE(k0.ok());
+  frictal::TiltConfig cfg;
+  cfg.contact.law = dem::ContactLaw::Hertz;
+  cfg.modulus = 7e10;
+  cfg.contact.atomic_friction = 0.3;
+  cfg.series_interval = 0;
+  auto r = frictal::run_tilt(*k0, *k0, cfg);
+  ASSERT_TRUE(r.ok()) << r.error().message;
+  ASSERT_TRUE(r->slid);
+  EXPECT_NEAR(r->friction_angle * 180 / std::numbers::pi, 20.0 + std::atan(0.3) * 180 / std::numbers::pi, 0.5);
+  EXPECT_NEAR(r->contact_modulus, 7e10 / (1 - 0.3 * 0.3), 1);
+  EXPECT_GT(r->settled_interference_ratio, 0);
+  EXPECT_LT(r->settled_overlap, 0.01 * cfg.radius);
+  // Without a modulus the Hertz law is refused before any step, naming the option.
+  cfg.modulus = 0;
+  auto bad = frictal::run_tilt(*k0, *k0, cfg);
+  ASSERT_FALSE(bad.ok());
+  EXPECT_NE(bad.error().message.find("modulus"), std::string::npos);
 }
