@@ -188,6 +188,7 @@ struct TiltConfig {
   double relax_duration = 0.005;
   /// Run the test again at 10 k_n and k_t (series and frames off) and warn ("stiffness") when the
   /// friction angle moves by more than `warn_stiffness_angle`: the run is not in the rigid limit.
+  /// With the Hertz law the rerun is at 10 `modulus`.
   bool check_stiffness = false;
   /// Shorter run-away distances observed in the same run (unit: m), each in (0, runaway_distance]:
   /// for each, TiltResult::checkpoints records the tilt at the start of the first run-away that

@@ -1116,12 +1116,20 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
         (res.slid && std::fabs(r->friction_angle - res.friction_angle) > cfg.warn_stiffness_angle))
       res.warnings.push_back(
           {"stiffness",
-           fmt::format("not in the rigid limit: at 10 k_n = {:.3g} N/m the friction angle is {} against {} at k_n = "
-                       "{:.3g} N/m (warning above a change of {:.3g} deg); raise normal_stiffness",
-                       stiff.contact.normal_stiffness,
-                       r->slid ? fmt::format("{:.4f} deg", r->friction_angle * deg) : std::string("no slide"),
-                       res.slid ? fmt::format("{:.4f} deg", res.friction_angle * deg) : std::string("no slide"),
-                       cfg.contact.normal_stiffness, cfg.warn_stiffness_angle * deg)});
+           cfg.contact.law == dem::ContactLaw::Hertz
+               ? fmt::format("the angle depends on the contacts' compliance: at 10 E = {:.3g} Pa the friction angle "
+                             "is {} against {} at E = {:.3g} Pa (warning above a change of {:.3g} deg); a "
+                             "load-dependent angle, or overlaps beyond the spheroradius (core-overlap)",
+                             stiff.modulus,
+                             r->slid ? fmt::format("{:.4f} deg", r->friction_angle * deg) : std::string("no slide"),
+                             res.slid ? fmt::format("{:.4f} deg", res.friction_angle * deg) : std::string("no slide"),
+                             cfg.modulus, cfg.warn_stiffness_angle * deg)
+               : fmt::format("not in the rigid limit: at 10 k_n = {:.3g} N/m the friction angle is {} against {} at "
+                             "k_n = {:.3g} N/m (warning above a change of {:.3g} deg); raise normal_stiffness",
+                             stiff.contact.normal_stiffness,
+                             r->slid ? fmt::format("{:.4f} deg", r->friction_angle * deg) : std::string("no slide"),
+                             res.slid ? fmt::format("{:.4f} deg", res.friction_angle * deg) : std::string("no slide"),
+                             cfg.contact.normal_stiffness, cfg.warn_stiffness_angle * deg)});
   }
   return res;
 }
