@@ -11,7 +11,7 @@ points, upper 50, spacing 1 mm / 199, rms slope 0.2; seeds 501-504 not used else
 0.6) and one measured pair (two windows of tests/data/profiles/dektak-1.csv, 60 and 20 um). Per
 pair, N drops evenly over the prediction's drop range (the drops of predict_vs_sim.sh), per load
 W (the upper block's weight, set through its areal density) one `frictal tilt --contact-law hertz
---protocol quasi-static --hold-rotation` from each drop. Material: E = 70 GPa, nu = 0.3, one
+--protocol quasi-static --hold-rotation --block-modulus E --block-poisson NU` from each drop. Material: E = 70 GPa, nu = 0.3, one
 elastic block on a rigid one (E* = E / (1 - nu^2)). The other settings are the scaled defaults.
 Convergence at the middle drop of the first pair at the middle load: the time-step safety factor,
 the tilt increment, the spheroradius and the damping ratio halved, the modulus doubled.
@@ -138,7 +138,7 @@ def main():
 
     def tilt(name, files, cond, x, ra, W, extra=(), density=None):
         opts = {"--protocol": "quasi-static", "--runaway-distance": repr(ra), "--contact-law": "hertz",
-                "--modulus": repr(E), "--poisson": repr(NU)}
+                "--block-modulus": repr(E), "--block-poisson": repr(NU)}
         if density is not None:
             opts["--density"] = repr(density)
         opts.update(dict(zip(extra[::2], extra[1::2])))  # a convergence run's changes replace the defaults
@@ -203,7 +203,7 @@ def main():
             ("spheroradius / 2", ("--spheroradius", repr(s["spheroradius"] / 2))),
             ("spheroradius x 2", ("--spheroradius", repr(s["spheroradius"] * 2))),
             ("damping ratio / 2", ("--damping-ratio", repr(s["damping_ratio"] / 2))),
-            ("modulus x 2", ("--modulus", repr(2 * E))),
+            ("modulus x 2", ("--block-modulus", repr(2 * E))),
         ]
         conv[W0] = (s, {label: pool.submit(tilt, name0, files0, cond0, x0, ra0, W0, extra, density[(name0, W0)])
                         for label, extra in cases})

@@ -195,11 +195,11 @@ Status check_config(const TiltConfig& c) {
   if (c.contact.law == dem::ContactLaw::Hertz) {
     if (!pos(c.modulus))
       return make_error(
-          fmt::format("tilt modulus = {} Pa: expected Young's modulus > 0 with contact_law hertz "
-                      "(e.g. --modulus 7e10 for 70 GPa)",
+          fmt::format("tilt block_modulus = {} Pa: expected Young's modulus > 0 with contact_law hertz "
+                      "(e.g. --block-modulus 7e10 for 70 GPa)",
                       c.modulus));
     if (!(c.poisson > -1 && c.poisson <= 0.5))
-      return make_error(fmt::format("tilt poisson = {}: expected a Poisson ratio in (-1, 0.5]", c.poisson));
+      return make_error(fmt::format("tilt block_poisson = {}: expected a Poisson ratio in (-1, 0.5]", c.poisson));
     if (c.elastic_blocks != 1 && c.elastic_blocks != 2)
       return make_error(fmt::format("tilt elastic_blocks = {}: expected 1 or 2", c.elastic_blocks));
   }
@@ -1145,7 +1145,7 @@ std::vector<TiltWarning> tilt_scale_warnings(const TiltScales& sc, const TiltRes
                              "interpenetrate (2r = {:.3g} m); raise the spheroradius or {}",
                              hertz ? "of one Hertz contact on the sharpest vertex" : "W/k_n", sc.resting_overlap,
                              sc.resting_overlap / sc.spheroradius, cfg.warn_overlap_fraction, sc.spheroradius,
-                             2 * sc.spheroradius, hertz ? "the modulus" : "normal_stiffness")});
+                             2 * sc.spheroradius, hertz ? "block_modulus" : "normal_stiffness")});
   if (cfg.predict &&
       std::fabs(r.predicted_sphero_friction_angle - r.predicted_friction_angle) > cfg.warn_prediction_tolerance)
     w.push_back(

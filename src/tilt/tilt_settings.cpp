@@ -54,15 +54,17 @@ const std::vector<B>& table() {
           bind_choice<TiltConfig>(
               F("contact_law", "", 0, Lo::Closed, 0,
                 "Normal force law: linear (f_n = k_n overlap, Eq. 8, stiff enough for rigid blocks) or hertz "
-                "((4/3) E* sqrt(R) overlap^1.5 with R the local radius of curvature at the contact; needs modulus)"),
+                "((4/3) E* sqrt(R) overlap^1.5 with R the local radius of curvature at the contact; needs "
+                "block_modulus)"),
               FRICTAL_MEMBER(contact.law),
               std::vector<std::pair<std::string, dem::ContactLaw>>{{"linear", dem::ContactLaw::Linear},
                                                                    {"hertz", dem::ContactLaw::Hertz}}),
+          bind<TiltConfig>(F("block_modulus", "Pa", 0, Lo::Closed, kInf,
+                             "Young's modulus E of the blocks (contact_law hertz; > 0 there)"),
+                           FRICTAL_MEMBER(modulus)),
           bind<TiltConfig>(
-              F("modulus", "Pa", 0, Lo::Closed, kInf, "Young's modulus E of the blocks (contact_law hertz; > 0 there)"),
-              FRICTAL_MEMBER(modulus)),
-          bind<TiltConfig>(F("poisson", "", -1, Lo::Open, 0.5, "Poisson's ratio nu of the blocks (contact_law hertz)"),
-                           FRICTAL_MEMBER(poisson)),
+              F("block_poisson", "", -1, Lo::Open, 0.5, "Poisson's ratio nu of the blocks (contact_law hertz)"),
+              FRICTAL_MEMBER(poisson)),
           bind<TiltConfig>(F("elastic_blocks", "", 1, Lo::Closed, 2,
                              "Contact law hertz: 1 (one elastic block on a rigid one, E* = E/(1-nu^2)) or 2 "
                              "(both of that material, E* = E/(2(1-nu^2)))"),
