@@ -7,9 +7,12 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <functional>
 #include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -126,5 +129,29 @@ void add_bound_warnings(std::vector<Warning>& w, const P& p, const std::string& 
 inline void require(bool ok, const std::string& message) {
   if (!ok) throw UsageError(message);
 }
+
+/// A number with an optional unit from `units` (name, factor to SI); UsageError naming `option`.
+inline double parse_quantity(const std::string& text, const char* option,
+                             const std::vector<std::pair<std::string, double>>& units, const char* expected) {
+  const char* s = text.c_str();
+  char* end = nullptr;
+  const double v = std::strtod(s, &end);
+  if (end == s) throw UsageError(fmt::format("{} '{}': not a number (expected {})", option, text, expected));
+  std::string unit(end);
+  while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
+  for (const auto& [name, factor] : units)
+    if (unit == name) {
+      if (!std::isfinite(v)) throw UsageError(fmt::format("{} '{}': expected a finite number", option, text));
+      return v * factor;
+    }
+  throw UsageError(fmt::format("{} '{}': unit '{}' not understood (expected {})", option, text, unit, expected));
+}
+
+/// Moduli and pressures: Pa (or no unit), kPa, MPa, GPa.
+inline const std::vector<std::pair<std::string, double>> kPressureUnits = {
+    {"", 1}, {"Pa", 1}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}};
+/// Forces: N, mN, uN, kN (the unit is required).
+inline const std::vector<std::pair<std::string, double>> kForceUnits = {
+    {"N", 1}, {"mN", 1e-3}, {"uN", 1e-6}, {"kN", 1e3}};
 
 }  // namespace frictal::cli

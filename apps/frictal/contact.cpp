@@ -24,26 +24,6 @@ struct Args {
   ConditioningOptions cond;
 };
 
-/// A number with an optional unit from `units` (name, factor to SI); UsageError naming `option`.
-double parse_quantity(const std::string& text, const char* option,
-                      const std::vector<std::pair<std::string, double>>& units, const char* expected) {
-  const char* s = text.c_str();
-  char* end = nullptr;
-  const double v = std::strtod(s, &end);
-  if (end == s) throw UsageError(fmt::format("{} '{}': not a number (expected {})", option, text, expected));
-  std::string unit(end);
-  while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
-  for (const auto& [name, factor] : units)
-    if (unit == name) {
-      if (!std::isfinite(v)) throw UsageError(fmt::format("{} '{}': expected a finite number", option, text));
-      return v * factor;
-    }
-  throw UsageError(fmt::format("{} '{}': unit '{}' not understood (expected {})", option, text, unit, expected));
-}
-
-const std::vector<std::pair<std::string, double>> kPressureUnits = {
-    {"", 1}, {"Pa", 1}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}};
-
 /// --load's words: a force (N, mN, kN), a force per unit length (N/m, for profiles) or a nominal
 /// pressure (Pa, kPa, MPa, GPa); comma-separated lists allowed.
 std::vector<ContactLoad> parse_loads(const std::vector<std::string>& words, bool is_map) {

@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -79,6 +80,87 @@ inline PredictSurface read_map_surface(const std::string& path, const InputOptio
   PredictSurface s = unwrap(predict_surface(load_surface(path, in), path));
   if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; {}", path, needs));
   return s;
+}
+
+/// Friction under load (docs/load.md): the words of --load, --modulus, --poisson,
+/// --upper-modulus and --upper-poisson, converted after parsing (predict and report).
+struct LoadWords {
+  std::vector<std::string> loads;
+  std::string modulus, poisson, upper_modulus, upper_poisson;
+};
+
+inline void add_load_options(CLI::App& app, LoadWords& w) {
+  app.add_option("--load", w.loads,
+                 "Friction under load (profiles; docs/load.md): the upper block's weight W, a force with its unit "
+                 "(N, mN, uN, kN); a comma-separated list gives the friction-against-load curve, the first load the "
+                 "headline (one load: the curve over W x 10^(-2..1)). Needs --modulus and --poisson. Default: rigid "
+                 "blocks");
+  app.add_option("--modulus", w.modulus,
+                 "With --load: Young's modulus E of LOWER (and of UPPER unless --upper-modulus): Pa, MPa, GPa");
+  app.add_option("--poisson", w.poisson,
+                 "With --load: Poisson's ratio nu of LOWER (and of UPPER unless --upper-poisson), in (-1, 0.5]");
+  app.add_option("--upper-modulus", w.upper_modulus,
+                 "With --load: Young's modulus of UPPER (default: --modulus); rigid: a rigid upper block");
+  app.add_option("--upper-poisson", w.upper_poisson, "With --load: Poisson's ratio of UPPER (default: --poisson)");
+}
+
+/// --load's words: forces with their unit (N, mN, uN, kN), comma-separated lists allowed; the
+/// first is the headline.
+inline std::vector<double> parse_forces(const std::vector<std::string>& words) {
+  std::vector<double> out;
+  for (const std::string& w : words) {
+    std::size_t start = 0;
+    while (start <= w.size()) {
+      std::size_t comma = w.find(',', start);
+      if (comma == std::string::npos) comma = w.size();
+      const std::string item = w.substr(start, comma - start);
+      start = comma + 1;
+      if (item.empty()) continue;
+      const double v = parse_quantity(item, "--load", kForceUnits,
+                                      "a force with its unit: N, mN, uN, kN, e.g. 2N; the block's weight");
+      require(v > 0, fmt::format("--load '{}': expected a force > 0", item));
+      out.push_back(v);
+    }
+  }
+  require(!out.empty(), "--load: give at least one force (e.g. 2N, or 0.1N,1N,10N for a curve)");
+  return out;
+}
+
+/// The loaded model's options from the CLI's words (errors name the option).
+inline void apply_load_options(const LoadWords& a, PredictOptions& o) {
+  const bool material =
+      !a.modulus.empty() || !a.poisson.empty() || !a.upper_modulus.empty() || !a.upper_poisson.empty();
+  if (a.loads.empty()) {
+    require(!material,
+            "--modulus/--poisson/--upper-modulus/--upper-poisson: the materials of friction under load; give the "
+            "load with --load (e.g. --load 2N)");
+    return;
+  }
+  o.loads = parse_forces(a.loads);
+  require(!a.modulus.empty() && !a.poisson.empty(),
+          "--load: friction under load needs the material: give --modulus (Young's modulus, e.g. 70GPa) and "
+          "--poisson (Poisson's ratio, e.g. 0.3)");
+  o.lower_material.modulus =
+      parse_quantity(a.modulus, "--modulus", kPressureUnits, "a modulus such as 70GPa, 3GPa, 2e11");
+  o.lower_material.poisson = parse_quantity(a.poisson, "--poisson", {{"", 1}}, "a number in (-1, 0.5]");
+  require(o.lower_material.modulus > 0, fmt::format("--modulus '{}': expected a modulus > 0", a.modulus));
+  require(o.lower_material.poisson > -1 && o.lower_material.poisson <= 0.5,
+          fmt::format("--poisson '{}': expected a number in (-1, 0.5]", a.poisson));
+  if (a.upper_modulus == "rigid") {
+    require(a.upper_poisson.empty(), "--upper-poisson: a rigid upper block has none");
+    o.rigid_upper = true;
+  } else if (!a.upper_modulus.empty() || !a.upper_poisson.empty()) {
+    ElasticMaterial up = o.lower_material;
+    if (!a.upper_modulus.empty())
+      up.modulus =
+          parse_quantity(a.upper_modulus, "--upper-modulus", kPressureUnits, "a modulus such as 70GPa, or rigid");
+    if (!a.upper_poisson.empty())
+      up.poisson = parse_quantity(a.upper_poisson, "--upper-poisson", {{"", 1}}, "a number in (-1, 0.5]");
+    require(up.modulus > 0, fmt::format("--upper-modulus '{}': expected a modulus > 0", a.upper_modulus));
+    require(up.poisson > -1 && up.poisson <= 0.5,
+            fmt::format("--upper-poisson '{}': expected a number in (-1, 0.5]", a.upper_poisson));
+    o.upper_material = up;
+  }
 }
 
 }  // namespace frictal::cli

@@ -29,6 +29,7 @@ struct Args {
   ConditioningOptions cond;
   FieldWords period_words;  ///< --runaway-distance, --period (the tilt table's fields)
   std::string block;        ///< --block-length: a length with a unit
+  LoadWords load;           ///< friction under load: --load, --modulus, --poisson, --upper-*
 };
 
 PredictSurface read_input(const std::string& path, const InputOptions& o) {
@@ -81,11 +82,26 @@ void print_text(const Prediction& p, const Args& a) {
                                      : fmt::format("[{:.6g}, {:.6g}] m", p.drop_range[0], p.drop_range[1]);
   fmt::print("  model: {} ({}); {} {} over {}; run-away d = {:.4g} m\n  conditioning: {}\n", p.model,
              p.is_map ? "rigid block free to move sideways, off the grid, quasi-static"
-                      : "rigid quasi-static hold angle on the exact lift",
+                      : (std::isfinite(p.load) ? "quasi-static hold angle on the loaded lift of Hertzian asperities"
+                                               : "rigid quasi-static hold angle on the exact lift"),
              p.drops, p.is_map ? "drops" : "basins", range, p.runaway_distance, p.conditioning);
   if (!p.is_map)
     fmt::print("  the test: a block of {:.4g} m, sliding for good after d = {:.4g} m ({})\n", p.block_length,
                p.runaway_distance, p.test_lengths);
+  if (std::isfinite(p.load)) {
+    fmt::print(
+        "  under load: W = {:.4g} N (normal force {:.4g} N at the rigid median {} deg), E* = {:.4g} Pa; the rigid "
+        "prediction reads {} deg\n  the asperities: {:.3g} contacts per offset, approach {:.3g} m, largest "
+        "delta/R {:.3g}, {:.3g} % of the load on merged contacts, rms contact slope {:.3g}\n",
+        p.load, p.normal_load, deg_text(p.rigid_friction_angle), p.contact_modulus, deg_text(p.rigid_friction_angle),
+        p.load_contacts, p.load_approach, p.load_interference_ratio, 100 * p.load_merged_share, p.load_contact_slope);
+    fmt::print("  friction angle against load (same drops, d):\n    {:>12}  {:>10}  {:>17}\n", "load (N)",
+               "median (deg)", "5-95 % (deg)");
+    for (std::size_t i = 0; i < p.load_curve.size(); ++i)
+      fmt::print("    {:>12.4g}  {:>10}  {:>17}{}\n", p.load_curve[i], deg_text(p.load_curve_q50[i]),
+                 fmt::format("{} - {}", deg_text(p.load_curve_q05[i]), deg_text(p.load_curve_q95[i])),
+                 p.load_curve[i] == p.load ? "  <- W" : "");
+  }
   if (!p.d_sweep_distance.empty() && !p.single_drop) {
     fmt::print("  how the answer depends on d (same drops):\n    {:>12}  {:>10}  {:>17}\n", "d (m)", "median (deg)",
                "5-95 % (deg)");
@@ -144,6 +160,7 @@ std::function<int()> setup(CLI::App& app) {
   std::vector<std::string> skip = all_but(tilt_settings(), "runaway_distance");
   skip.erase(std::remove(skip.begin(), skip.end(), "period"), skip.end());
   add_field_options(app, tilt_settings(), a->period_words, skip);
+  add_load_options(app, a->load);
   app.add_flag("--json", a->json, "Print the prediction as one JSON object (the keys of `frictal columns`)");
   return [a]() {
     require(std::isfinite(a->direction), fmt::format("--direction {}: expected a finite angle in deg", a->direction));
@@ -166,6 +183,7 @@ std::function<int()> setup(CLI::App& app) {
       o.block_length = parse_length_option(a->block, "--block-length");
     if (const ValueSet pv = si_values(tilt_settings(), a->period_words); pv.count("period"))
       o.period = as_real(pv.at("period"));
+    apply_load_options(a->load, o);
     PredictSurface lower = read_input(a->lower, a->input);
     std::optional<PredictSurface> upper;
     if (!a->upper.empty()) upper = read_input(a->upper, a->input);

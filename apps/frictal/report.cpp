@@ -14,6 +14,7 @@
 #include "frictal/report.hpp"
 #include "frictal/tilt.hpp"
 #include "frictal/version.hpp"
+#include "map_hold.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
 
@@ -35,6 +36,7 @@ struct Args {
   InputOptions input;
   ConditioningOptions cond;
   FieldWords runaway_words;  ///< --runaway-distance, the tilt table's field (the hold-angle section)
+  LoadWords load;            ///< friction under load (--load, --modulus, ...): the headline under load
 };
 
 std::function<int()> setup(CLI::App& app) {
@@ -63,6 +65,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--tip-radius", a->tip_radius,
                  "Tip radius, a length such as 20nm (no unit: metres): draw its short reliability cutoff on the "
                  "resolution plot (see docs/analysis.md)");
+  add_load_options(app, a->load);
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); the page does not depend on it")
       ->capture_default_str();
   add_input_options(app, a->input);
@@ -146,6 +149,7 @@ std::function<int()> setup(CLI::App& app) {
       po.remove_spikes = cond.remove_spikes;
       po.spike_threshold = cond.spike_threshold;
       po.threads = a->threads;
+      apply_load_options(a->load, po);
       const PredictSurface pl = unwrap(predict_surface(s, a->lower));
       std::optional<PredictSurface> pu;
       if (!a->upper.empty()) {

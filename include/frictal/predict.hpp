@@ -31,6 +31,7 @@
 #include "frictal/analysis.hpp"
 #include "frictal/areal_tilt.hpp"
 #include "frictal/conditioning.hpp"
+#include "frictal/contact.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/hold.hpp"
 #include "frictal/io.hpp"
@@ -94,6 +95,18 @@ struct PredictOptions {
   /// at the pixel scale cost up to 30x more), exceeds this (unit: s). 0: no limit.
   double map_work_limit = 3600;
   unsigned threads = 0;  ///< worker threads (0 = all cores); results do not depend on it
+  /// Friction under load (profiles; docs/load.md: the Hertzian-asperity model, load.hpp): the
+  /// loads W pressing the upper block onto the lower one, its weight (unit: N). Empty: the rigid
+  /// prediction. The first is the headline (friction_angle, d_sweep, the single drop); the load
+  /// curve is over every load given, in increasing order, or for one load over W x 10^(-2..1) in
+  /// half decades. At the tilt phi a block of weight W presses with W cos(phi): each lift is
+  /// evaluated at W cos(phi_0), phi_0 the rigid median (Prediction::normal_load).
+  std::vector<double> loads;
+  /// The materials of the loaded model (Pa, unitless): the lower block's, and the upper block's
+  /// (nullopt: the same as the lower's); rigid_upper: the upper block rigid.
+  ElasticMaterial lower_material;
+  std::optional<ElasticMaterial> upper_material;
+  bool rigid_upper = false;
   /// Maps: called after each finished drop with (done, total), from the worker threads (one
   /// call at a time); the front ends draw a progress line with it. Empty: none.
   std::function<void(std::size_t, std::size_t)> progress;
@@ -103,6 +116,8 @@ struct PredictOptions {
 struct Prediction {
   bool is_map = false;
   /// Which model produced the distribution: "profile-quasi-static-hold" (the 1D hold angle over
+  /// drops, exact on the rigid lift), "profile-hertz-asperity-hold" (the same on the loaded lift of
+  /// PredictOptions::loads, load.hpp), or
   /// drops, exact on the rigid lift) or "map-continuous-free" (the 3D rigid block free to move
   /// sideways, off the grid, quasi-static: areal_tilt_hold).
   std::string model;
@@ -155,6 +170,24 @@ struct Prediction {
   /// +90 deg (areal_tilt_hold's steering) (unit: rad).
   std::vector<double> drop_steering;
   std::vector<std::array<double, 2>> drop_offsets;  ///< maps: the drops (x, y) (unit: m)
+  /// Friction under load (PredictOptions::loads; NaN and empty without): the headline load W
+  /// (unit: N), the normal force W cos(phi_0) its lift was evaluated at (unit: N), the contact
+  /// modulus E* (unit: Pa), and the rigid prediction's median beside it (unit: rad).
+  double load = std::numeric_limits<double>::quiet_NaN();
+  double normal_load = std::numeric_limits<double>::quiet_NaN();
+  double contact_modulus = std::numeric_limits<double>::quiet_NaN();
+  double rigid_friction_angle = std::numeric_limits<double>::quiet_NaN();
+  /// The friction angle against load: the loads in increasing order (unit: N) and the hold
+  /// angle's median and 5-95 % over the same drops at d at each (unit: rad).
+  std::vector<double> load_curve, load_curve_q05, load_curve_q50, load_curve_q95;
+  /// The asperity model at the headline load (LoadedLiftDiagnostics): contacts carrying force per
+  /// offset (mean), the block's approach from first touch (mean, unit: m), the largest delta / R,
+  /// the share of the load on merged contacts, the force-weighted rms contact slope (unitless).
+  double load_contacts = std::numeric_limits<double>::quiet_NaN();
+  double load_approach = std::numeric_limits<double>::quiet_NaN();
+  double load_interference_ratio = std::numeric_limits<double>::quiet_NaN();
+  double load_merged_share = std::numeric_limits<double>::quiet_NaN();
+  double load_contact_slope = std::numeric_limits<double>::quiet_NaN();
   std::vector<Warning> warnings;
   /// "ok", or "doubtful" where a warning says the input was probably read wrong (a code marked
   /// `doubtful` in warning_codes(): units, spikes left in, scans that do not match, an angle at 90

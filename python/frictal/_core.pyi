@@ -19,6 +19,9 @@ class Prediction:
     def conditioning(self) -> Any:
         """every conditioning step applied to each surface first, in order, with its numbers: crop (the window, points kept), spikes (k, points replaced or masked), form (text)"""
     @property
+    def contact_modulus(self) -> Any:
+        """under load: the contact modulus E* of the Hertzian contacts (Pa)"""
+    @property
     def contact_slope_std(self) -> Any:
         """sigma of Eq. 18: standard deviation of the contact slopes (maps: of the drops' steepest seat slopes) (rad)"""
     @property
@@ -88,6 +91,36 @@ class Prediction:
     def is_map(self) -> Any:
         """the pair is two areal maps (flag)"""
     @property
+    def load(self) -> Any:
+        """friction under load (profiles; null: the rigid prediction): the load W on the upper block, its weight; the headline is the hold angle at this load (N)"""
+    @property
+    def load_approach(self) -> Any:
+        """under load: the block's approach from first touch, mean over offsets (m)"""
+    @property
+    def load_contact_slope_rms(self) -> Any:
+        """under load: the force-weighted rms of the contact slopes tan(theta) (1)"""
+    @property
+    def load_contacts_mean(self) -> Any:
+        """under load: asperity contacts carrying force per offset, mean (1)"""
+    @property
+    def load_curve(self) -> Any:
+        """under load: the loads of the friction-against-load curve, increasing (one load W given: W x 10^(-2..1) in half decades) (N)"""
+    @property
+    def load_curve_median(self) -> Any:
+        """the hold angle's median over drops at each load of load_curve_n (rad)"""
+    @property
+    def load_curve_q05(self) -> Any:
+        """its 5 % quantile at each load of load_curve_n (rad)"""
+    @property
+    def load_curve_q95(self) -> Any:
+        """its 95 % quantile at each load of load_curve_n (rad)"""
+    @property
+    def load_interference_ratio_max(self) -> Any:
+        """under load: the largest interference over radius delta/R of a loaded contact (Hertz wants << 1) (1)"""
+    @property
+    def load_merged_share(self) -> Any:
+        """under load: the share of the load on contacts that merge with a neighbour, mean over offsets (1)"""
+    @property
     def locked_friction_angle(self) -> Any:
         """maps, a diagnostic: the median hold angle with the block locked to d (NaN for profiles) (rad)"""
     @property
@@ -98,10 +131,16 @@ class Prediction:
         """maps: 95 % quantile, block locked to d (rad)"""
     @property
     def model(self) -> Any:
-        """the model of the hold angle: profile-quasi-static-hold or map-continuous-free (text)"""
+        """the model of the hold angle: profile-quasi-static-hold, profile-hertz-asperity-hold (under load) or map-continuous-free (text)"""
+    @property
+    def normal_load(self) -> Any:
+        """under load: the normal force W cos(phi_0) the loaded lift was evaluated at (phi_0 the rigid median) (N)"""
     @property
     def rest_offset(self) -> Any:
         """single drop: where it rested at zero tilt (x, y) (m)"""
+    @property
+    def rigid_friction_angle(self) -> Any:
+        """under load: the rigid prediction's median beside the loaded one (rad)"""
     @property
     def runaway_distance(self) -> Any:
         """run-away distance d that a test reads (m)"""
@@ -305,7 +344,7 @@ def map_stats(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: fl
 def power_spectrum(profile: Profile, max_k: int = ...) -> tuple:
     """Power spectrum of a profile (m, runs without the GIL): returns (q in rad/m, C in m^3) of the piecewise-linear profile, with 2 sum C / L = rms^2; max_k: 0 = automatic"""
 
-def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., block_length: Any = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., x_unit: str = ..., z_unit: str = ..., threads: int = ...) -> Prediction:
+def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., block_length: Any = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., x_unit: str = ..., z_unit: str = ..., threads: int = ..., load: Any = ..., modulus: Optional[float] = ..., poisson: Optional[float] = ..., upper_modulus: Any = ..., upper_poisson: Optional[float] = ...) -> Prediction:
     """The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)"""
 
 def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ...) -> dict:

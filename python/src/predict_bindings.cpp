@@ -253,8 +253,34 @@ void frictal_bind_predict(py::module_& m) {
          double runaway_distance, const py::object& block_length, std::optional<std::string> detrend_text,
          const py::object& crop, bool remove_spikes, double spike_threshold, std::optional<std::vector<double>> start,
          int drops, bool locked, double spacing, const std::string& format, const std::string& unit,
-         const std::string& x_unit, const std::string& z_unit, unsigned threads) {
+         const std::string& x_unit, const std::string& z_unit, unsigned threads, const py::object& load,
+         std::optional<double> modulus, std::optional<double> poisson, const py::object& upper_modulus,
+         std::optional<double> upper_poisson) {
         PredictOptions o;
+        // Friction under load: load (N, or a list: the first the headline), the materials (Pa).
+        if (!load.is_none()) {
+          o.loads = py::isinstance<py::float_>(load) || py::isinstance<py::int_>(load)
+                        ? std::vector<double>{load.cast<double>()}
+                        : load.cast<std::vector<double>>();
+          if (o.loads.empty()) throw py::value_error("load: expected a force in N > 0, or a list of them");
+          if (!modulus || !poisson)
+            throw py::value_error(
+                "load: friction under load needs the material: modulus= (Young's modulus, Pa) and poisson= "
+                "(Poisson's ratio)");
+          o.lower_material = {*modulus, *poisson};
+          if (py::isinstance<py::str>(upper_modulus)) {
+            if (upper_modulus.cast<std::string>() != "rigid")
+              throw py::value_error("upper_modulus: expected a modulus in Pa or 'rigid'");
+            if (upper_poisson) throw py::value_error("upper_poisson: a rigid upper block has none");
+            o.rigid_upper = true;
+          } else if (!upper_modulus.is_none() || upper_poisson) {
+            o.upper_material = ElasticMaterial{upper_modulus.is_none() ? *modulus : upper_modulus.cast<double>(),
+                                               upper_poisson.value_or(*poisson)};
+          }
+        } else if (modulus || poisson || !upper_modulus.is_none() || upper_poisson) {
+          throw py::value_error(
+              "modulus/poisson/upper_modulus/upper_poisson: the materials of friction under load; give load= (N)");
+        }
         o.crop = py_detail::crop_window(crop);
         o.crop_source = "crop=" + py::repr(crop).cast<std::string>();
         o.remove_spikes = remove_spikes;
@@ -301,7 +327,8 @@ void frictal_bind_predict(py::module_& m) {
       py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("start_offset") = py::none(),
       py::arg("drops") = PredictOptions{}.map_drops, py::arg("locked") = PredictOptions{}.map_locked,
       py::arg("spacing") = 0.0, py::arg("format") = "auto", py::arg("unit") = "", py::arg("x_unit") = "",
-      py::arg("z_unit") = "", py::arg("threads") = 0u,
+      py::arg("z_unit") = "", py::arg("threads") = 0u, py::arg("load") = py::none(), py::arg("modulus") = py::none(),
+      py::arg("poisson") = py::none(), py::arg("upper_modulus") = py::none(), py::arg("upper_poisson") = py::none(),
       "The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)");
   m.def(
       "areal_hold",

@@ -22,7 +22,7 @@ import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 # The Markdown guides of docs/ that the site shows as pages (docs/settings.md is regenerated).
-GUIDES = ["ARCHITECTURE.md", "STYLE.md", "analysis.md", "contact.md", "dem.md", "io.md", "mujoco.md", "performance.md", "report.md",
+GUIDES = ["ARCHITECTURE.md", "STYLE.md", "analysis.md", "contact.md", "load.md", "dem.md", "io.md", "mujoco.md", "performance.md", "report.md",
           "studies.md"]
 MATHJAX = "/usr/share/javascript/mathjax"
 MATHJAX_PARTS = ["MathJax.js", "config/TeX-AMS_CHTML.js", "extensions", "jax/input/TeX", "jax/output/CommonHTML",

@@ -47,7 +47,9 @@ const Columns<Prediction>& prediction_columns() {
                 "the fix for a doubtful prediction: the options to add (Python keywords in parentheses), the unit "
                 "named where the file's unit and the slopes tell it",
                 [](const P& p) { return p.trust_fix; }),
-      column<P>("model", "text", "the model of the hold angle: profile-quasi-static-hold or map-continuous-free",
+      column<P>("model", "text",
+                "the model of the hold angle: profile-quasi-static-hold, profile-hertz-asperity-hold (under load) or "
+                "map-continuous-free",
                 [](const P& p) { return p.model; }),
       column<P>(
           "conditioning", "text",
@@ -159,6 +161,44 @@ const Columns<Prediction>& prediction_columns() {
           [](const P& p) { return p.has_locked ? p.locked_friction_angle.q95 : NAN; }),
       list("drop_friction_angles_deg", "deg", "maps: each drop's hold angle (block free), in drop order",
            [](const P& p) { return p.drop_angles; }),
+      num(
+          "load_n", "N",
+          "friction under load (profiles; null: the rigid prediction): the load W on the upper block, its weight; "
+          "the headline is the hold angle at this load",
+          [](const P& p) { return p.load; }, "load"),
+      num(
+          "normal_load_n", "N",
+          "under load: the normal force W cos(phi_0) the loaded lift was evaluated at (phi_0 the rigid median)",
+          [](const P& p) { return p.normal_load; }, "normal_load"),
+      num(
+          "contact_modulus_pa", "Pa", "under load: the contact modulus E* of the Hertzian contacts",
+          [](const P& p) { return p.contact_modulus; }, "contact_modulus"),
+      deg("rigid_friction_angle_deg", "under load: the rigid prediction's median beside the loaded one",
+          [](const P& p) { return p.rigid_friction_angle; }),
+      list(
+          "load_curve_n", "N",
+          "under load: the loads of the friction-against-load curve, increasing (one load W given: W x 10^(-2..1) "
+          "in half decades)",
+          [](const P& p) { return p.load_curve; }, "load_curve"),
+      list("load_curve_median_deg", "deg", "the hold angle's median over drops at each load of load_curve_n",
+           [](const P& p) { return p.load_curve_q50; }),
+      list("load_curve_q05_deg", "deg", "its 5 % quantile at each load of load_curve_n",
+           [](const P& p) { return p.load_curve_q05; }),
+      list("load_curve_q95_deg", "deg", "its 95 % quantile at each load of load_curve_n",
+           [](const P& p) { return p.load_curve_q95; }),
+      num("load_contacts_mean", "1", "under load: asperity contacts carrying force per offset, mean",
+          [](const P& p) { return p.load_contacts; }),
+      num(
+          "load_approach_m", "m", "under load: the block's approach from first touch, mean over offsets",
+          [](const P& p) { return p.load_approach; }, "load_approach"),
+      num("load_interference_ratio_max", "1",
+          "under load: the largest interference over radius delta/R of a loaded contact (Hertz wants << 1)",
+          [](const P& p) { return p.load_interference_ratio; }),
+      num("load_merged_share", "1",
+          "under load: the share of the load on contacts that merge with a neighbour, mean over offsets",
+          [](const P& p) { return p.load_merged_share; }),
+      num("load_contact_slope_rms", "1", "under load: the force-weighted rms of the contact slopes tan(theta)",
+          [](const P& p) { return p.load_contact_slope; }),
   };
   return cols;
 }

@@ -11,6 +11,7 @@
 
 #include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
+#include "frictal/load.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 #include "util/parallel.hpp"
@@ -176,6 +177,118 @@ LiftCurve cut_curve(const LiftCurve& c, double a, double b) {
   return out;
 }
 
+// The load model's limits (docs/load.md, "Where it stops holding"): the force-weighted rms contact
+// slope of small-slope elasticity, delta / R of Hertz's a << R (a = sqrt(R delta); 0.1: a/R ~ 0.3)
+// at more than 5 % of the offsets, and 10 % of the load on merged contacts (unitless).
+constexpr double kLoadMaxSlope = 0.3, kLoadMaxRatio = 0.1, kLoadMaxDeepShare = 0.05, kLoadMaxMerged = 0.1;
+
+// The assumptions that a load's diagnostics break, as text ("" where none).
+std::string load_breaks(const LoadedLiftDiagnostics& d) {
+  std::string s;
+  auto add = [&](const std::string& t) { s += (s.empty() ? "" : "; ") + t; };
+  if (d.rms_contact_slope > kLoadMaxSlope)
+    add(fmt::format("the force-weighted rms contact slope is {:.3g} (small-slope elasticity wants < {:g})",
+                    d.rms_contact_slope, kLoadMaxSlope));
+  if (d.deep_share > kLoadMaxDeepShare)
+    add(
+        fmt::format("at {:.3g} % of the offsets a contact's interference exceeds {:g} of its radius (largest "
+                    "delta/R {:.3g}; Hertz wants delta << R)",
+                    100 * d.deep_share, kLoadMaxRatio, d.max_interference_ratio));
+  if (d.merged_share > kLoadMaxMerged)
+    add(
+        fmt::format("{:.3g} % of the load is on contacts that merge with a neighbour (the block below the saddle "
+                    "between them, or their Hertz widths overlapping): they are one contact, not two spheres",
+                    100 * d.merged_share));
+  return s;
+}
+
+// The prediction under load (PredictOptions::loads): the loaded lift of each load of the curve
+// on the rigid lift's vertices (load.hpp), each analysed as the rigid one (`analyse`: the headline
+// at d, and for the headline load the d sweep, on one lift, into p), the headline load's last.
+Status predict_under_load(Prediction& p, const Profile& lower, const Profile& upper, const LiftCurve& rigid,
+                          const PredictOptions& o, const std::function<Status(const LiftCurve&, bool)>& analyse) {
+  for (double w : o.loads)
+    if (!(w > 0) || !std::isfinite(w)) return make_error(fmt::format("load {} N: expected a finite force > 0", w));
+  auto em = o.rigid_upper ? contact_modulus(o.lower_material)
+                          : contact_modulus(o.lower_material, o.upper_material.value_or(o.lower_material));
+  if (!em) return em.error();
+  std::vector<double> curve;
+  if (o.loads.size() == 1) {
+    for (int k = -4; k <= 2; ++k) curve.push_back(o.loads[0] * std::pow(10.0, 0.5 * k));
+    curve[4] = o.loads[0];
+  } else {
+    curve = o.loads;
+    std::sort(curve.begin(), curve.end());
+    curve.erase(std::unique(curve.begin(), curve.end()), curve.end());
+  }
+  const std::size_t head = std::size_t(std::find(curve.begin(), curve.end(), o.loads[0]) - curve.begin());
+  // The block of weight W presses with W cos(phi) at the tilt phi that moves it: evaluated at the
+  // rigid median phi_0 (the loaded median differs from it by the elastic correction, whose cosine
+  // changes the normal force by a second-order amount).
+  p.rigid_friction_angle = p.friction_angle.q50;
+  const double cosine = std::cos(std::min(p.rigid_friction_angle, 1.5));
+  LoadedLiftOptions lo;
+  lo.contact_modulus = *em;
+  lo.threads = o.threads;
+  for (double w : curve) lo.loads.push_back(w * cosine);
+  auto loaded = loaded_lift(lower, upper, rigid, lo);
+  if (!loaded) return loaded.error();
+  std::string beyond;
+  for (std::size_t l = 0; l < curve.size(); ++l) {
+    if (l == head) continue;
+    if (auto st = analyse(loaded->curves[l], true); !st) return st;
+    p.load_curve.push_back(curve[l]);
+    p.load_curve_q05.push_back(p.friction_angle.q05);
+    p.load_curve_q50.push_back(p.friction_angle.q50);
+    p.load_curve_q95.push_back(p.friction_angle.q95);
+    if (!load_breaks(loaded->diagnostics[l]).empty())
+      beyond += fmt::format("{}{:.4g} N", beyond.empty() ? "" : ", ", curve[l]);
+  }
+  if (auto st = analyse(loaded->curves[head], false); !st) return st;
+  const std::size_t at =
+      std::size_t(std::lower_bound(p.load_curve.begin(), p.load_curve.end(), curve[head]) - p.load_curve.begin());
+  p.load_curve.insert(p.load_curve.begin() + std::ptrdiff_t(at), curve[head]);
+  p.load_curve_q05.insert(p.load_curve_q05.begin() + std::ptrdiff_t(at), p.friction_angle.q05);
+  p.load_curve_q50.insert(p.load_curve_q50.begin() + std::ptrdiff_t(at), p.friction_angle.q50);
+  p.load_curve_q95.insert(p.load_curve_q95.begin() + std::ptrdiff_t(at), p.friction_angle.q95);
+  p.load = curve[head];
+  p.normal_load = curve[head] * cosine;
+  p.contact_modulus = *em;
+  const LoadedLiftDiagnostics& dg = loaded->diagnostics[head];
+  p.load_contacts = dg.mean_contacts;
+  p.load_approach = dg.mean_approach;
+  p.load_interference_ratio = dg.max_interference_ratio;
+  p.load_merged_share = dg.merged_share;
+  p.load_contact_slope = dg.rms_contact_slope;
+  p.model = "profile-hertz-asperity-hold";
+  if (dg.rms_contact_slope > kLoadMaxSlope)
+    add_warning(p.warnings, {"load-steep-contacts",
+                             fmt::format("at {:.4g} N the force-weighted rms contact slope is {:.3g}: above {:g}, the "
+                                         "small-slope elasticity of the Hertzian contacts is approximate",
+                                         p.load, dg.rms_contact_slope, kLoadMaxSlope)});
+  if (dg.deep_share > kLoadMaxDeepShare)
+    add_warning(p.warnings,
+                {"load-deep-interference",
+                 fmt::format("at {:.4g} N a contact's interference exceeds {:g} of its radius at {:.3g} % of the "
+                             "offsets (largest delta/R {:.3g}): beyond Hertz's small contacts (a << R); the load is "
+                             "more than the asperity model represents",
+                             p.load, kLoadMaxRatio, 100 * dg.deep_share, dg.max_interference_ratio)});
+  if (dg.merged_share > kLoadMaxMerged)
+    add_warning(p.warnings,
+                {"load-contacts-merge",
+                 fmt::format("at {:.4g} N {:.3g} % of the load is on contacts that merge with a neighbour (the block "
+                             "below the saddle between two asperities, or their Hertz widths overlapping): the "
+                             "asperities are no longer separate spheres",
+                             p.load, 100 * dg.merged_share)});
+  if (!beyond.empty())
+    add_warning(p.warnings, {"load-curve-beyond-model",
+                             fmt::format("the load curve's loads {} break the asperity model's assumptions (steep "
+                                         "contacts, deep interference or merged contacts; docs/load.md): read the "
+                                         "curve there as an extrapolation",
+                                         beyond)});
+  return Ok{};
+}
+
 // `take_lower` / `take_upper` (may be null): the surfaces' profiles to take over (moved through the
 // conditioning into the signature; then no second analysis from them where the one pass's lift
 // falls short: signature_with_hold's Internal error instead).
@@ -233,6 +346,10 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   // scan: default_test_lengths), and where the scan is too short for it, the largest test of the
   // same shape that fits, with a warning that says so.
   const bool lower_periodic = lo->period.has_value();
+  if (lower_periodic && !o.loads.empty())
+    return make_error(
+        "load: the loaded model needs a stated block on a non-periodic pair (a periodic pair's lift wraps round); "
+        "drop the period, or the load");
   const double lower_len = lo->x.back() - lo->x.front(), upper_len = up_measured.x.back() - up_measured.x.front();
   double d = o.runaway_distance, lb = o.block_length;
   bool whole_block = false;
@@ -330,8 +447,9 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   // lift that the one pass finds too short is analysed again from them (signature_with_hold's
   // fallback). Taken over: they go to the signature (no copies).
   const double start = one ? o.start_offset[0] : std::numeric_limits<double>::quiet_NaN();
-  auto both = take_lower ? signature_with_hold(std::move(*lo), std::move(up), so, ho, start)
-                         : signature_with_hold(*lo, up, so, ho, start);
+  // Under load the profiles stay: the loaded lift reads them after the rigid one.
+  auto both = take_lower && o.loads.empty() ? signature_with_hold(std::move(*lo), std::move(up), so, ho, start)
+                                            : signature_with_hold(*lo, up, so, ho, start);
   if (!both) return both.error();
   const SignatureResult* sig = &both->signature;
   const HoldAnalysis* h = &both->hold;
@@ -352,43 +470,57 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     hk.drop_min = so.offset_min + room;
     hk.drop_max = std::max(so.offset_max - room, hk.drop_min + 1e-9 * lower_len);
   }
-  // Every d of the sweep on that one lift, over the same drops (linear in its vertices each).
-  constexpr std::array<double, 5> sweep = {0.25, 0.5, 1, 2, 4};
-  HoldDistribution at_d;
-  HoldAngles start_at_d;
-  for (double k : sweep) {
-    hk.runaway_distance = k * d;
-    auto dist = hold_distribution(*curve, hk);
-    if (!dist) return dist.error();
-    const HoldDistribution& dd = forward ? dist->forward : dist->backward;
-    if (k == 1) at_d = dd;
-    if (one && k == 1) {
-      auto a = hold_angle(*curve, start, hk);
-      if (!a) return a.error();
-      start_at_d = *a;
+  // Every d of the sweep on that one lift, over the same drops (linear in its vertices each); the
+  // headline at d.
+  // `at_d_only`: the headline alone (a load curve's other loads), the sweep left as it is.
+  auto analyse = [&](const LiftCurve& lift, bool at_d_only) -> Status {
+    constexpr std::array<double, 5> sweep = {0.25, 0.5, 1, 2, 4};
+    HoldDistribution at_d;
+    HoldAngles start_at_d;
+    if (!at_d_only) p.d_sweep_distance.clear(), p.d_sweep_q05.clear(), p.d_sweep_q50.clear(), p.d_sweep_q95.clear();
+    for (double k : sweep) {
+      if (at_d_only && k != 1) continue;
+      hk.runaway_distance = k * d;
+      auto dist = hold_distribution(lift, hk);
+      if (!dist) return dist.error();
+      const HoldDistribution& dd = forward ? dist->forward : dist->backward;
+      if (k == 1) at_d = dd;
+      if (one && k == 1) {
+        auto a = hold_angle(lift, start, hk);
+        if (!a) return a.error();
+        start_at_d = *a;
+      }
+      if (at_d_only) continue;
+      p.d_sweep_distance.push_back(k * d);
+      p.d_sweep_q05.push_back(dd.hold.q05);
+      p.d_sweep_q50.push_back(dd.hold.q50);
+      p.d_sweep_q95.push_back(dd.hold.q95);
     }
-    p.d_sweep_distance.push_back(k * d);
-    p.d_sweep_q05.push_back(dd.hold.q05);
-    p.d_sweep_q50.push_back(dd.hold.q50);
-    p.d_sweep_q95.push_back(dd.hold.q95);
-  }
+    hk.runaway_distance = d;
+    p.drops = at_d.basins.rest.size();
+    if (one) {
+      const HoldAngle& a = forward ? start_at_d.forward : start_at_d.backward;
+      p.rest_offset = {a.rest_offset, 0};
+      p.friction_angle = plain_stats({a.hold_angle});
+      p.drops = 1;
+    } else {
+      p.friction_angle = at_d.hold;
+    }
+    return Ok{};
+  };
+  if (auto st = analyse(*curve, false); !st) return st.error();
   p.runaway_distance = d;
-  p.drops = at_d.basins.rest.size();
   p.drop_range = {hk.drop_min, hk.drop_max, 0, 0};
   if (one) {
-    const HoldAngle& a = forward ? start_at_d.forward : start_at_d.backward;
     p.single_drop = true;
     p.start_offset = {o.start_offset[0], 0};
-    p.rest_offset = {a.rest_offset, 0};
-    p.friction_angle = plain_stats({a.hold_angle});
-    p.drops = 1;
-  } else {
-    p.friction_angle = at_d.hold;
-    if (p.drops < 3 && !lower_periodic)
-      add_warning(p.warnings, {"few-drops", fmt::format("the drops over [{:.6g}, {:.6g}] m drain into {} basin(s) "
-                                                        "only: the spread is not resolved",
-                                                        hk.drop_min, hk.drop_max, p.drops)});
+  } else if (p.drops < 3 && !lower_periodic) {
+    add_warning(p.warnings, {"few-drops", fmt::format("the drops over [{:.6g}, {:.6g}] m drain into {} basin(s) "
+                                                      "only: the spread is not resolved",
+                                                      hk.drop_min, hk.drop_max, p.drops)});
   }
+  if (!o.loads.empty())
+    if (auto st = predict_under_load(p, *lo, up, *curve, o, analyse); !st) return st.error();
   finish(p, forward ? sig->theta_max_forward : sig->theta_max_backward, sig->contact_slope_std);
   return p;
 }
@@ -659,6 +791,12 @@ Status check_request(const PredictSurface& lower, const PredictSurface* upper, c
         "block length: for profiles only (a map pair's block is the whole upper map; crop it to state another)");
   if (std::isinf(o.start_offset[0]) || !std::isfinite(o.start_offset[1]))
     return make_error("start offset: expected finite offsets (m)");
+  if (!o.loads.empty() && lower.is_map)
+    return make_error(
+        "load: friction under load (the Hertzian-asperity model) is for line profiles; a map pair is predicted "
+        "for rigid blocks only (leave out the load, or predict profiles extracted from the maps)");
+  for (double w : o.loads)
+    if (!(w > 0) || !std::isfinite(w)) return make_error(fmt::format("load {} N: expected a finite force > 0", w));
   if (!lower.is_map && !o.turn_over_upper)
     return make_error(
         "in place (turn_over_upper = false): for maps only; a profile pair's upper profile is "

@@ -83,6 +83,22 @@ const std::vector<WarningCode>& warning_codes() {
        "contact: every point of the surface touches (full contact): a larger load only compresses the half-space; "
        "the contact area is the nominal area",
        false, ""},
+      {"load-steep-contacts",
+       "under load: the force-weighted rms slope of the asperity contacts is above 0.3, beyond the small-slope "
+       "elasticity of the Hertzian contacts (docs/load.md)",
+       false, ""},
+      {"load-deep-interference",
+       "under load: at more than 5 % of the offsets a contact's interference exceeds a tenth of its radius: beyond "
+       "Hertz's small contacts; the load is more than the asperity model represents (docs/load.md)",
+       false, ""},
+      {"load-contacts-merge",
+       "under load: more than 10 % of the load is on asperity contacts that merge with a neighbour (the block below "
+       "the saddle between them, or their Hertz widths overlapping): beyond separate spheres (docs/load.md)",
+       false, ""},
+      {"load-curve-beyond-model",
+       "under load: loads of the friction-against-load curve (not the headline) break the asperity model's "
+       "assumptions; the curve there is an extrapolation (docs/load.md)",
+       false, ""},
       {"small-slope",
        "contact: the composite topography's rms slope is above 0.3; the half-space solution assumes small slopes "
        "(the small-slope approximation), so its areas and pressures are approximate",

@@ -692,6 +692,62 @@ std::string d_sweep_figure(const Prediction& p) {
          "</table>\n";
 }
 
+// Friction under load: the hold angle's median and 5-95 % range over the same drops against the
+// load (Prediction::load_curve*), the headline load marked, the rigid median beside; empty
+// without a load.
+std::string load_curve_figure(const Prediction& p) {
+  if (p.load_curve.size() < 2 || p.single_drop) return {};
+  Series med, lo, hi;
+  med.label = "median over drops (the headline at W)";
+  med.color = "#d62728";
+  lo.label = "5 % and 95 % quantiles";
+  lo.color = hi.color = "#1f77b4";
+  lo.dashed = hi.dashed = true;
+  for (std::size_t i = 0; i < p.load_curve.size(); ++i) {
+    const double x = p.load_curve[i];
+    med.x.push_back(x), med.y.push_back(deg(p.load_curve_q50[i]));
+    lo.x.push_back(x), lo.y.push_back(deg(p.load_curve_q05[i]));
+    hi.x.push_back(x), hi.y.push_back(deg(p.load_curve_q95[i]));
+  }
+  Series marks = med;
+  marks.label.clear();
+  marks.style = SeriesStyle::Points;
+  Plot pl;
+  pl.title = "Friction under load (Hertzian asperities)";
+  pl.x_label = "load W on the block (N)";
+  pl.y_label = "hold angle φ (deg)";
+  pl.series = {hi, lo, med, marks};
+  pl.x_log = true;
+  pl.width = 560;
+  pl.height = 300;
+  pl.y_min = 0;
+  pl.y_max = 1.4 * std::max(*std::max_element(hi.y.begin(), hi.y.end()), deg(p.rigid_friction_angle));
+  pl.x_min = 0.7 * med.x.front();
+  pl.x_max = 1.4 * med.x.back();
+  RefLine at;
+  at.horizontal = false;
+  at.value = p.load;
+  at.label = "W of the test";
+  RefLine rigid;
+  rigid.horizontal = true;
+  rigid.value = deg(p.rigid_friction_angle);
+  rigid.label = "rigid median";
+  pl.lines = {at, rigid};
+  auto svg = plot_svg(pl);
+  if (!svg) return {};
+  std::string rows;
+  for (std::size_t i = 0; i < p.load_curve.size(); ++i)
+    rows += fmt::format("<tr><td>{:.3g} N</td><td>{}</td><td>{} … {}</td></tr>", p.load_curve[i],
+                        fmt_deg(p.load_curve_q50[i]), fmt_deg(p.load_curve_q05[i]), fmt_deg(p.load_curve_q95[i]));
+  return figure(*svg, fmt::format("The same drops on the loaded lift at other loads (key load_curve_* of the JSON; "
+                                  "docs/load.md): E* = {:.3g} Pa; at W = {:.3g} N {:.3g} asperity contacts per "
+                                  "offset, the block {:.3g} m below first touch; the rigid median {}.",
+                                  p.contact_modulus, p.load, p.load_contacts, p.load_approach,
+                                  fmt_deg(p.rigid_friction_angle))) +
+         "<table class=\"friction\" id=\"load-curve\"><tr><th>load</th><th>median</th><th>5–95 %</th></tr>" + rows +
+         "</table>\n";
+}
+
 std::string headline(const ReportInput& in, const ReportData& d) {
   const FrictionPrediction& fwd = d.forward;
   const FrictionPrediction& bwd = d.backward;
@@ -723,7 +779,8 @@ std::string headline(const ReportInput& in, const ReportData& d) {
         fmt_mu(std::tan(std::min(p.upper_bound_friction_angle, 1.5707963))), fmt_deg(p.eq18_range[0]),
         fmt_deg(p.eq18_range[1]), p.model,
         p.is_map ? "a rigid block free to move sideways, quasi-static"
-                 : "the quasi-static hold angle on the exact lift",
+                 : (std::isfinite(p.load) ? "the quasi-static hold angle on the loaded lift of Hertzian asperities"
+                                          : "the quasi-static hold angle on the exact lift"),
         p.direction * 180 / std::numbers::pi, p.atomic_friction, escape_html(p.conditioning),
         p.is_map ? std::string() : fmt::format("block length L_b = {:.3g} m, ", p.block_length), p.runaway_distance,
         escape_html(p.test_lengths), drops);
@@ -734,6 +791,7 @@ std::string headline(const ReportInput& in, const ReportData& d) {
       page += "</ul></div>\n";
     }
     page += d_sweep_figure(p);
+    page += load_curve_figure(p);
     // The same object as `frictal predict --json`, for scripts that read the page ("</" escaped).
     const std::string upper = d.surfaces.pair ? in.upper_name : d.surfaces.lower_name;
     std::string json = prediction_json(p,

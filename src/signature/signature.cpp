@@ -1544,9 +1544,13 @@ Result<SignatureResult> signature_impl(const Profile& lower_in, const Profile& u
     const detail::LiftExtender extend = [&](double lo, double hi, const std::vector<double>* have,
                                             const detail::LiftPruneRequest* prune) -> Result<detail::LiftExtension> {
       if (P.periodic) return make_error("signature: a periodic lift is not extended");
-      if (!(lo > -P.upper_length) || !(hi < P.lower_length) || !(lo <= smin) || !(hi >= smax))
-        return make_error(
-            fmt::format("signature: extension [{}, {}] m outside the overlap or inside the range", lo, hi));
+      if (!(lo > -P.upper_length) || !(hi < P.lower_length))
+        return make_error(fmt::format("signature: extension [{}, {}] m outside the overlap (-{}, {}) m", lo, hi,
+                                      P.upper_length, P.lower_length));
+      // A side that asks for less than R already holds (R's range may end nearer the overlap's
+      // end than the hold's sliver) is R's own end there: nothing is listed beyond it.
+      lo = std::min(lo, smin);
+      hi = std::max(hi, smax);
       // Exact mode on an aligned lattice: R's lattice offsets from its third to its third last
       // (listed by the same expression, without near-duplicates so far from R's ends) are W's
       // there too; they are not listed again (W skips them, the walk below steps over them).

@@ -629,3 +629,24 @@ TEST(Predict, EightDigitXColumnAsPrintedGivesAnAnswer) {
   EXPECT_NEAR(a->friction_angle.q50, b->friction_angle.q50, 0.05 * kDeg);
   EXPECT_NEAR(a->upper_bound_friction_angle, b->upper_bound_friction_angle, 0.05 * kDeg);
 }
+
+TEST(Predict, AShortUpperScanOnALongLowerOneGivesAnAnswer) {
+  // profiles/xy-2.txt (29 um long as read) on profiles/xy-1.txt (187 m): the stated test shrinks
+  // to the short scan (scan-too-short), the lift's own range then ends nearer the overlap's end
+  // than the hold analysis's sliver, and the widening asked the signature for a range that lay
+  // partly inside its own: "extension ... outside the overlap or inside the range", an internal
+  // failure on two valid files. The answer exists and keeps the rigid order of things: every
+  // drop between atan(mu_a) = 0 and the bound, both overloads to the bit.
+  const std::string dir = std::string(FRICTAL_TEST_DATA) + "/profiles/";
+  auto lower = frictal::read_profile(dir + "xy-1.txt");
+  auto upper = frictal::read_profile(dir + "xy-2.txt");
+  ASSERT_TRUE(lower.ok() && upper.ok());
+  const auto lo = profile_surface(*lower, "xy-1"), up = profile_surface(*upper, "xy-2");
+  auto a = frictal::predict(lo, &up);
+  ASSERT_TRUE(a.ok()) << a.error().message;
+  EXPECT_GE(a->friction_angle.min, 0.0);
+  EXPECT_LE(a->friction_angle.max, a->upper_bound_friction_angle + 1e-12);
+  auto b = frictal::predict(profile_surface(*lower, "xy-1"), std::optional(profile_surface(*upper, "xy-2")));
+  ASSERT_TRUE(b.ok()) << b.error().message;
+  EXPECT_EQ(a->friction_angle.q50, b->friction_angle.q50);
+}

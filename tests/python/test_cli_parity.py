@@ -33,6 +33,9 @@ OPTIONS = [
 # Every file with every option set, but the Dektak scan with its form kept (its tilt makes the
 # lift long: 9 s a run, and nothing the other two files do not test).
 CASES = [(f, *o) for f in FILES for o in OPTIONS if not (f == "dektak-1.csv" and o[1].get("detrend") == "none")]
+# Friction under load (predict only): the load (N; a list, the first the headline) and the material.
+LOAD_CASES = [("xy-1.txt", ["--load", "1e-6N,1e-5N", "--modulus", "70GPa", "--poisson", "0.3"],
+               {"load": [1e-6, 1e-5], "modulus": 70e9, "poisson": 0.3})]
 
 
 def cli(*args):
@@ -62,7 +65,7 @@ def inputs(name):
     return [path, frictal.read_profile(path)]
 
 
-@pytest.mark.parametrize("name,cli_opts,py_opts", CASES)
+@pytest.mark.parametrize("name,cli_opts,py_opts", CASES + LOAD_CASES)
 def test_predict_equals_the_cli(name, cli_opts, py_opts):
     want = cli("predict", os.path.join(DATA, name), *cli_opts)
     for surface in inputs(name):

@@ -1,0 +1,119 @@
+// frictal — friction under load for profiles: the Hertzian-asperity model of Hanaor, Gan & Einav
+// ("Contact mechanics of fractal surfaces by spline assisted discretisation", Int. J. Solids
+// Struct. 2015; "Static friction at fractal interfaces", Tribology International 93, 2016), cast
+// as a loaded lift that the rigid hold analysis (hold.hpp) reads unchanged (docs/load.md).
+//
+// At an offset s of the upper block (the signature's frame: `upper` is turned over, offset 0 puts
+// its left end over the lower's left end), the composite d_s(x) = f(x) - g(x - s) is the height at
+// which the block's reference touches the lower surface at x; the rigid lift is h(s) = max d_s.
+// Every local maximum c of d_s (a minimum of the gap) is an asperity contact: a projected
+// Hertzian sphere of composite radius R_c, 1/R_c = -d_s''(x_c) cos^3 theta_c (the sum of the two
+// surfaces' curvatures at the contact), d_s read through a cubic spline through its samples at
+// the lower profile's points (its maxima and their curvature move with s continuously), the
+// normal tilted by the local slope theta_c (tan theta_c the mean of the two surfaces' slopes, each
+// from the quadratic through a sample and its two neighbours). The
+// block sinks to the height z at which the vertical components of the contact forces carry the
+// load W: with v_c = d_s(x_c) - z the vertical interference and delta_c = v_c cos theta_c the normal
+// one,
+//   F_c = (4/3) E* sqrt(R_c) delta_c^(3/2),     sum_c F_c cos theta_c = W.
+// The loaded lift is the minimum potential energy per unit load,
+//   H_W(s) = z + sum_c (8/15) E* sqrt(R_c) delta_c^(5/2) / W,
+// whose slope is, by the envelope theorem, the force-resolved contact slope plus the work of the
+// contacts' changing stiffness k_c = (4/3) E* sqrt(R_c) cos^(5/2) theta_c as they move,
+//   dH_W/ds = sum F_c sin theta_c / sum F_c cos theta_c + sum_c (2/5) v_c^(5/2) k_c'(s) / W,
+// and which tends to h(s) as W -> 0 (the elastic terms scale as W^(2/3)). With atomic friction
+// mu_a at each contact, tan phi = sum F (sin + mu_a cos) / sum F (cos - mu_a sin) is exactly
+// tan(atan(mu_a) + atan(tau)), tau the force-resolved slope, the rule the hold analysis applies to
+// the slope of H_W: the hold analysis of H_W is the loaded prediction.
+//
+// SI units: lengths in m, forces in N, moduli in Pa, angles in rad.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "frictal/geometry.hpp"
+#include "frictal/hold.hpp"
+#include "frictal/result.hpp"
+
+namespace frictal {
+
+/// One asperity contact of a loaded block (a local maximum of d_s within reach of the load).
+struct HertzContact {
+  double x = 0;             ///< the contact's abscissa in the lower profile's frame (unit: m)
+  double touch_height = 0;  ///< d_s(x): the block height at which it touches (unit: m)
+  double slope = 0;         ///< theta: the contact normal's tilt from vertical (unit: rad)
+  double radius = 0;        ///< composite radius R (unit: m)
+  double interference = 0;  ///< normal interference delta = v cos theta, 0 when open (unit: m)
+  double force = 0;         ///< normal force F (unit: N)
+  /// The lowest d_s between this contact and the previous one (in x) of the list, -inf for the
+  /// first: the saddle between two asperities; the block below it merges them (unit: m).
+  double saddle_left = 0;
+};
+
+struct LoadedLiftOptions {
+  double contact_modulus = 0;  ///< E* (contact_modulus() of contact.hpp), > 0 (unit: Pa)
+  /// Normal loads W on the block, each > 0 (unit: N): one loaded lift per load.
+  std::vector<double> loads;
+  /// Largest composite radius (a flat or concave local fit at a contact gives an infinite one):
+  /// radii are capped here; 0: 100 times the upper block's length (unit: m).
+  double max_radius = 0;
+  unsigned threads = 0;  ///< worker threads (0 = all cores); results do not depend on it
+};
+
+/// The block at one offset under one load.
+struct LoadedState {
+  double offset = 0;       ///< s (unit: m)
+  double load = 0;         ///< W (unit: N)
+  double rigid_lift = 0;   ///< the top contact's touch height: h(s) to the sampling's accuracy (unit: m)
+  double height = 0;       ///< z: the block's reference height under the load (unit: m)
+  double loaded_lift = 0;  ///< H_W(s) = z + elastic energy / W (unit: m)
+  /// sum F sin theta / sum F cos theta: the force-resolved contact slope, dH_W/ds (unitless).
+  double effective_slope = 0;
+  std::vector<HertzContact> contacts;  ///< in x order; open ones (force 0) included
+};
+
+/// Diagnostics of one load over the offsets of a loaded lift (the model's assumptions).
+struct LoadedLiftDiagnostics {
+  double load = 0;                    ///< W (unit: N)
+  double mean_contacts = 0;           ///< contacts carrying force per offset, mean (unitless)
+  double mean_approach = 0;           ///< h(s) - z, mean over offsets (unit: m)
+  double max_interference_ratio = 0;  ///< largest delta / R of any loaded contact (unitless)
+  /// Share of the offsets where some loaded contact has delta / R above 0.1 (Hertz wants a << R,
+  /// a = sqrt(R delta)) (unitless).
+  double deep_share = 0;
+  /// Share of the load, averaged over offsets, carried by contacts that have merged with a
+  /// neighbouring asperity (the next local maximum of d_s on either side, loaded or not): the
+  /// block below the saddle between them, or the contact's Hertz half-width a = sqrt(R delta)
+  /// reaching it (unitless).
+  double merged_share = 0;
+  /// sqrt of the force-weighted mean of tan^2 theta over contacts and offsets (unitless).
+  double rms_contact_slope = 0;
+};
+
+struct LoadedLift {
+  std::vector<double> loads;                       ///< as given (unit: N)
+  std::vector<LiftCurve> curves;                   ///< H_W per load, on the rigid lift's vertices
+  std::vector<std::vector<double>> slopes;         ///< effective_slope at each vertex, per load (unitless)
+  std::vector<LoadedLiftDiagnostics> diagnostics;  ///< per load
+  std::size_t candidates = 0;                      ///< asperity contacts examined, all offsets (unitless)
+};
+
+/// The block at offset `offset` under load `load` (N), `upper` turned over as signature() takes
+/// it. Errors (InvalidInput, naming the value): E* or W not finite or <= 0, fewer than 3 points in
+/// a profile, an offset at which the blocks do not overlap.
+Result<LoadedState> loaded_state(const Profile& lower, const Profile& upper, double offset, double load,
+                                 const LoadedLiftOptions& options);
+
+/// The loaded lift of every load of `options` on the vertices of `rigid` (the pair's rigid lift
+/// over offsets where the blocks overlap; not periodic): H_W(s_k) = rigid.lift[k] + (z - h(s_k)) +
+/// energy / W, h(s_k) the top contact's touch height, so that the loaded lift equals `rigid` to the
+/// bit as W -> 0 (the curve's vertices between events, where lift_curve() places its tangents'
+/// meeting point, keep its value). The contacts are the maxima of d_s within the approach of the
+/// largest load (pruned by chunks of the upper profile whose bound, the lower's maximum over their
+/// span minus their minimum, cannot reach it). Errors as loaded_state, and a periodic or
+/// malformed curve.
+Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const LiftCurve& rigid,
+                               const LoadedLiftOptions& options);
+
+}  // namespace frictal

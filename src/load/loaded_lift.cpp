@@ -1,0 +1,540 @@
+// The loaded lift of a profile pair (frictal/load.hpp): projected Hertzian asperity contacts at
+// the local maxima of the composite d_s(x) = f(x) - g(x - s), the block's height under the load
+// from the balance of their vertical forces, and the minimum potential energy per unit load.
+#include "frictal/load.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <fmt/core.h>
+
+#include "util/parallel.hpp"
+
+namespace frictal {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A surface's vertices with the first and second derivatives of the quadratic through each
+// vertex and its two neighbours (ends: the end edge's slope and the neighbour's curvature; a
+// vertical jump gives the slope of the edge beside it and no curvature).
+struct Fitted {
+  std::vector<double> x, z, d1, d2;
+};
+
+Fitted fitted(const Profile& p, double shift) {
+  Fitted f;
+  const std::size_t n = p.x.size();
+  f.x.resize(n), f.z = p.z, f.d1.assign(n, 0), f.d2.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) f.x[i] = p.x[i] + shift;
+  auto edge = [&](std::size_t i) {  // slope of edge i -> i + 1, 0 across a jump
+    const double w = p.x[i + 1] - p.x[i];
+    return w > 0 ? (p.z[i + 1] - p.z[i]) / w : 0.0;
+  };
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const double w0 = p.x[i] - p.x[i - 1], w1 = p.x[i + 1] - p.x[i];
+    const double s0 = edge(i - 1), s1 = edge(i);
+    if (w0 > 0 && w1 > 0) {
+      f.d1[i] = (s0 * w1 + s1 * w0) / (w0 + w1);
+      f.d2[i] = 2 * (s1 - s0) / (w0 + w1);
+    } else {
+      f.d1[i] = w0 > 0 ? s0 : s1;
+    }
+  }
+  if (n >= 2) {
+    f.d1[0] = edge(0);
+    f.d1[n - 1] = edge(n - 2);
+  }
+  if (n >= 3) {
+    f.d2[0] = f.d2[1];
+    f.d2[n - 1] = f.d2[n - 2];
+  }
+  return f;
+}
+
+// Index k of the edge [x_k, x_(k+1)] that holds x (clamped to the first and last edges).
+std::size_t edge_of(const std::vector<double>& xs, double x) {
+  const auto it = std::upper_bound(xs.begin(), xs.end(), x);
+  const std::size_t k = std::size_t(it - xs.begin());
+  return std::clamp<std::size_t>(k, 1, xs.size() - 1) - 1;
+}
+
+double lerp_at(const std::vector<double>& xs, const std::vector<double>& v, std::size_t k, double x) {
+  const double w = xs[k + 1] - xs[k];
+  if (!(w > 0)) return v[k + 1];
+  const double t = std::clamp((x - xs[k]) / w, 0.0, 1.0);
+  return v[k] + t * (v[k + 1] - v[k]);
+}
+
+// Range maximum of the lower heights over vertex indices [i0, i1]: a sparse table over blocks
+// of kBlock vertices and a scan of the partial blocks at the ends.
+class RangeMax {
+ public:
+  static constexpr std::size_t kBlock = 16;
+  explicit RangeMax(const std::vector<double>& z) : z_(z) {
+    const std::size_t nb = (z.size() + kBlock - 1) / kBlock;
+    std::vector<double> base(nb, -kInf);
+    for (std::size_t i = 0; i < z.size(); ++i) base[i / kBlock] = std::max(base[i / kBlock], z[i]);
+    table_.push_back(std::move(base));
+    for (std::size_t w = 2; w <= nb; w *= 2) {
+      const std::vector<double>& prev = table_.back();
+      std::vector<double> next(nb - w + 1);
+      for (std::size_t b = 0; b + w <= nb; ++b) next[b] = std::max(prev[b], prev[b + w / 2]);
+      table_.push_back(std::move(next));
+    }
+  }
+  double max(std::size_t i0, std::size_t i1) const {
+    double m = -kInf;
+    const std::size_t b0 = (i0 + kBlock - 1) / kBlock, b1 = (i1 + 1) / kBlock;  // whole blocks [b0, b1)
+    if (b0 >= b1) {
+      for (std::size_t i = i0; i <= i1; ++i) m = std::max(m, z_[i]);
+      return m;
+    }
+    for (std::size_t i = i0; i < b0 * kBlock; ++i) m = std::max(m, z_[i]);
+    for (std::size_t i = b1 * kBlock; i <= i1; ++i) m = std::max(m, z_[i]);
+    std::size_t level = 0;
+    while ((std::size_t(2) << level) <= b1 - b0) ++level;
+    const std::vector<double>& t = table_[level];
+    return std::max({m, t[b0], t[b1 - (std::size_t(1) << level)]});
+  }
+
+ private:
+  const std::vector<double>& z_;
+  std::vector<std::vector<double>> table_;
+};
+
+// The pair prepared once for every offset.
+class Pair {
+ public:
+  static constexpr std::size_t kFine = 64, kCoarse = 2048;
+  static constexpr double kOvershoot = 0.02;  // of the pair's height range (unitless)
+
+  Pair(const Profile& lower, const Profile& upper, double modulus, double max_radius)
+      : f_(fitted(lower, 0)),
+        g_(fitted(upper, lower.x.front() - upper.x.front())),
+        fmax_(f_.z),
+        modulus_(modulus),
+        max_radius_(max_radius) {
+    fine_min_ = chunk_min(kFine);
+    coarse_min_ = chunk_min(kCoarse);
+    double lo = kInf, hi = -kInf;
+    for (double z : f_.z) lo = std::min(lo, z), hi = std::max(hi, z);
+    for (double z : g_.z) lo = std::min(lo, -z), hi = std::max(hi, -z);
+    scale_ = std::max(hi - lo, 1e-300);
+  }
+
+  // Overlap of the blocks at offset s, [a, b]; empty (a > b) where they do not overlap.
+  std::pair<double, double> overlap(double s) const {
+    return {std::max(f_.x.front(), g_.x.front() + s), std::min(f_.x.back(), g_.x.back() + s)};
+  }
+
+  // Local maxima of d_s with d >= threshold, appended to `out` in x order (cleared first).
+  void candidates(double s, double threshold, std::vector<HertzContact>& out) const {
+    out.clear();
+    const auto [a, b] = overlap(s);
+    if (!(a < b)) return;
+    const std::size_t m = g_.x.size();
+    // The upper vertices over [a, b], in chunks [j0, j0 + chunk] (neighbours share a vertex, so
+    // that the chunks' spans cover every edge); a chunk is kept where the lower's maximum over
+    // its span minus its own lowest height reaches the threshold.
+    const std::size_t jlo = edge_of(g_.x, a - s), jhi = std::min(edge_of(g_.x, b - s) + 1, m - 1);
+    std::size_t region_j0 = 0, region_j1 = 0;
+    bool open = false;
+    auto flush = [&]() {
+      if (open) region(s, threshold, region_j0, region_j1, a, b, out);
+      open = false;
+    };
+    auto keep = [&](std::size_t j0, std::size_t j1) {
+      if (open && j0 <= region_j1) {
+        region_j1 = std::max(region_j1, j1);
+        return;
+      }
+      flush();
+      region_j0 = j0, region_j1 = j1, open = true;
+    };
+    // The bounds are the polyline's; the spline through its samples may rise above them by a
+    // fraction of the local height range.
+    const double reach = threshold - kOvershoot * scale_;
+    for (std::size_t c0 = (jlo / kCoarse) * kCoarse; c0 < jhi; c0 += kCoarse) {
+      const std::size_t c1 = std::min(c0 + kCoarse, m - 1);
+      if (bound(s, c0, c1, coarse_min_[c0 / kCoarse], a, b) < reach) continue;
+      for (std::size_t f0 = c0; f0 < c1; f0 += kFine) {
+        const std::size_t f1 = std::min(f0 + kFine, m - 1);
+        if (f1 < jlo || f0 > jhi) continue;
+        if (bound(s, f0, f1, fine_min_[f0 / kFine], a, b) >= reach) keep(f0, f1);
+      }
+    }
+    flush();
+  }
+
+  // The block's state at offset s for the contacts `c` (their touch heights, slopes, radii set)
+  // under load W: the height z, and each contact's interference and force.
+  struct Balance {
+    double height = 0, energy = 0, horizontal = 0;
+  };
+  Balance balance(std::vector<HertzContact>& c, double W) const {
+    Balance r;
+    double top = -kInf, ktop = 0;
+    for (const HertzContact& k : c)
+      if (k.touch_height > top) top = k.touch_height, ktop = stiffness(k);
+    // Newton on the vertical balance, convex and decreasing in z, from below (where the top
+    // contact alone carries W): monotone, no overshoot.
+    double z = top - std::pow(W / ktop, 2.0 / 3.0);
+    for (int it = 0; it < 100; ++it) {
+      double sum = 0, der = 0;
+      for (const HertzContact& k : c) {
+        const double v = k.touch_height - z;
+        if (v <= 0) continue;
+        const double kv = stiffness(k) * std::sqrt(v);
+        sum += kv * v, der += 1.5 * kv;
+      }
+      const double f = sum - W;
+      if (!(der > 0) || f <= 1e-13 * W) break;
+      const double dz = f / der;
+      z += dz;
+      if (dz <= 1e-15 * scale_) break;
+    }
+    r.height = z;
+    for (HertzContact& k : c) {
+      const double v = std::max(k.touch_height - z, 0.0);
+      const double cs = std::cos(k.slope);
+      const double vertical = stiffness(k) * v * std::sqrt(v);  // F cos theta
+      k.interference = v * cs;
+      k.force = vertical / cs;
+      r.energy += 0.4 * vertical * v;
+      r.horizontal += k.force * std::sin(k.slope);
+    }
+    return r;
+  }
+
+  double scale() const { return scale_; }
+
+ private:
+  // k = (4/3) E* sqrt(R) cos^(5/2) theta: F cos theta = k v^(3/2), v the vertical interference.
+  double stiffness(const HertzContact& k) const {
+    const double cs = std::cos(k.slope);
+    return (4.0 / 3.0) * modulus_ * std::sqrt(k.radius) * cs * cs * std::sqrt(cs);
+  }
+
+  std::vector<double> chunk_min(std::size_t chunk) const {
+    const std::size_t m = g_.x.size();
+    std::vector<double> out;
+    for (std::size_t j0 = 0; j0 < m; j0 += chunk) {
+      double lo = kInf;
+      for (std::size_t j = j0; j <= std::min(j0 + chunk, m - 1); ++j) lo = std::min(lo, g_.z[j]);
+      out.push_back(lo);
+    }
+    return out;
+  }
+
+  // An upper bound of d_s over the span of upper vertices [j0, j1] within [a, b].
+  double bound(double s, std::size_t j0, std::size_t j1, double gmin, double a, double b) const {
+    const double x0 = std::max(g_.x[j0] + s, a), x1 = std::min(g_.x[j1] + s, b);
+    if (x0 > x1) return -kInf;
+    const std::size_t i0 = edge_of(f_.x, x0), i1 = std::min(edge_of(f_.x, x1) + 1, f_.x.size() - 1);
+    return fmax_.max(i0, i1) - gmin;
+  }
+
+  // The local maxima of d_s over the span of upper vertices [j0, j1] (within [a, b]): the maxima of
+  // the natural cubic spline through d_s sampled at the lower vertices (and the overlap's ends),
+  // kPad samples beyond the span on each side. A spline's maxima move with s continuously, with
+  // their curvature (the polyline's own vertex maxima jump from sample to sample, and with them
+  // the radius, at every change of the rigid lift's contact).
+  static constexpr std::size_t kPad = 8;
+  void region(double s, double threshold, std::size_t j0, std::size_t j1, double a, double b,
+              std::vector<HertzContact>& out) const {
+    const double xl = std::max(g_.x[j0] + s, a), xr = std::min(g_.x[j1] + s, b);
+    if (!(xl <= xr)) return;
+    const std::size_t n = f_.x.size();
+    const std::size_t il = edge_of(f_.x, xl), ir = edge_of(f_.x, xr) + 1;
+    const std::size_t i0 = il > kPad ? il - kPad : 0, i1 = std::min(ir + kPad, n - 1);
+    xs_.clear(), ys_.clear();
+    std::size_t j = edge_of(g_.x, f_.x[i0] - s);
+    // A sample closer than a quarter of the lower's spacing to the previous one (an end of the
+    // overlap next to a vertex) is left out, the end kept: a spline over a tiny interval swings.
+    const double gap = 0.25 * (f_.x.back() - f_.x.front()) / double(n - 1);
+    auto add = [&](double x, double fz, bool end) {
+      const double y = fz - g_at(x - s, j);
+      if (!xs_.empty() && x - xs_.back() < gap) {
+        if (end && xs_.size() > 1)
+          xs_.back() = x, ys_.back() = y;
+        else if (end && x > xs_.back())
+          xs_.push_back(x), ys_.push_back(y);  // a tiny overlap: its two ends
+        return;
+      }
+      xs_.push_back(x), ys_.push_back(y);
+    };
+    if (f_.x[i0] <= a) add(a, f_at(a), true);
+    for (std::size_t i = i0; i <= i1; ++i)
+      if (f_.x[i] > a && f_.x[i] < b) add(f_.x[i], f_.z[i], false);
+    if (f_.x[i1] >= b) add(b, f_at(b), true);
+    const std::size_t m = xs_.size();
+    if (m < 2) return;
+    // The spline's second derivatives M by the tridiagonal solve, with parabolic run-out ends
+    // (M_0 = M_1, M_(m-1) = M_(m-2)): a natural end (M = 0) would flatten the curvature of a
+    // contact at an end of the overlap (the block's corner), and with it the radius.
+    ms_.assign(m, 0.0);
+    if (m >= 3) {
+      cs_.assign(m, 0.0);
+      for (std::size_t k = 1; k + 1 < m; ++k) {
+        const double h0 = xs_[k] - xs_[k - 1], h1 = xs_[k + 1] - xs_[k];
+        const double rhs = 6 * ((ys_[k + 1] - ys_[k]) / h1 - (ys_[k] - ys_[k - 1]) / h0);
+        const bool first = k == 1, last = k + 2 == m;
+        const double sub = first ? 0.0 : h0, super = last ? 0.0 : h1;
+        const double diag = 2 * (h0 + h1) + (first ? h0 : 0.0) + (last ? h1 : 0.0) - sub * (first ? 0.0 : cs_[k - 1]);
+        cs_[k] = super / diag;
+        ms_[k] = (rhs - sub * (first ? 0.0 : ms_[k - 1])) / diag;
+      }
+      for (std::size_t k = m - 2; k >= 2; --k) ms_[k - 1] -= cs_[k - 1] * ms_[k];
+      ms_[0] = ms_[1];
+      ms_[m - 1] = ms_[m - 2];
+    }
+    // Maxima of each piece inside [xl, xr] (an end of the overlap where the spline falls from it),
+    // with the least sample between each and the previous as its saddle.
+    double saddle = -kInf;
+    for (std::size_t k = 0; k + 1 < m; ++k) {
+      const double h = xs_[k + 1] - xs_[k], M0 = ms_[k], M1 = ms_[k + 1];
+      const double y0 = ys_[k], y1 = ys_[k + 1];
+      auto value = [&](double t) {
+        const double u = h - t;
+        return M0 * u * u * u / (6 * h) + M1 * t * t * t / (6 * h) + (y0 / h - M0 * h / 6) * u +
+               (y1 / h - M1 * h / 6) * t;
+      };
+      // S'(t) = A t^2 + B t + C on t in [0, h].
+      const double A = (M1 - M0) / (2 * h), B = M0, C = -M0 * h / 2 + (y1 - y0) / h - (M1 - M0) * h / 6;
+      auto emit = [&](double t, double curvature_d2) {
+        const double x = xs_[k] + t;
+        if (x < xl || x > xr || (!out.empty() && out.back().x == x)) return;
+        const double d = value(t);
+        if (d >= threshold) {
+          out.push_back(contact_at(s, x, d, curvature_d2, saddle));
+          saddle = kInf;
+        }
+      };
+      // An end of the overlap is a contact (the block's corner, or the lower's end under it) where
+      // the spline or the samples fall from it.
+      if (k == 0 && xs_[0] <= a && (C <= 0 || y0 > y1)) emit(0, M0);
+      double roots[2];
+      int nr = 0;
+      if (std::abs(A) * h < 1e-12 * (std::abs(B) + std::abs(C) / h)) {
+        if (B != 0) roots[nr++] = -C / B;
+      } else {
+        const double disc = B * B - 4 * A * C;
+        if (disc >= 0) {
+          const double q = -0.5 * (B + std::copysign(std::sqrt(disc), B));
+          roots[nr++] = q / A;
+          if (q != 0) roots[nr++] = C / q;
+        }
+      }
+      if (nr == 2 && roots[0] > roots[1]) std::swap(roots[0], roots[1]);
+      for (int r = 0; r < nr; ++r) {
+        const double t = roots[r];
+        if (!(t > 0 && t <= h)) continue;
+        const double d2 = M0 + (M1 - M0) * t / h;  // S''(t)
+        if (2 * A * t + B < 0) emit(t, d2);        // a maximum: S' falls through 0
+      }
+      saddle = std::min(saddle, y1);
+      if (k + 2 == m && xs_[k + 1] >= b && (A * h * h + B * h + C >= 0 || y1 > y0)) emit(h, M1);
+    }
+  }
+
+  double f_at(double x) const { return lerp_at(f_.x, f_.z, edge_of(f_.x, x), x); }
+  // g at u, walking its edge index j forward from the last call's.
+  double g_at(double u, std::size_t& j) const {
+    j = std::min(edge_of_from(g_.x, u, j), g_.x.size() - 2);
+    return lerp_at(g_.x, g_.z, j, u);
+  }
+
+  // The contact at x of touch height d, the composite's second derivative d2 there (the spline's).
+  HertzContact contact_at(double s, double x, double d, double d2, double saddle) const {
+    HertzContact c;
+    c.x = x;
+    c.touch_height = d;
+    c.saddle_left = std::isinf(saddle) ? -kInf : saddle;
+    const std::size_t i = edge_of(f_.x, x), j = edge_of(g_.x, x - s);
+    const double t = 0.5 * (lerp_at(f_.x, f_.d1, i, x) + lerp_at(g_.x, g_.d1, j, x - s));
+    c.slope = std::atan(t);
+    const double cs = std::cos(c.slope);
+    const double curvature = -d2 * cs * cs * cs;  // 1/R of the composite, along the contact normal
+    c.radius = curvature * max_radius_ > 1 ? 1 / curvature : max_radius_;
+    return c;
+  }
+
+  static std::size_t edge_of_from(const std::vector<double>& xs, double x, std::size_t k) {
+    // Forward walk from a known edge (the merged walk only moves right); far jumps search.
+    std::size_t steps = 0;
+    while (k + 2 < xs.size() && xs[k + 1] <= x) {
+      ++k;
+      if (++steps > 8) return edge_of(xs, x);
+    }
+    return k;
+  }
+
+  Fitted f_, g_;
+  RangeMax fmax_;
+  std::vector<double> fine_min_, coarse_min_;
+  double modulus_ = 0, max_radius_ = 0, scale_ = 1;
+  static thread_local std::vector<double> xs_, ys_, ms_, cs_;
+};
+
+thread_local std::vector<double> Pair::xs_, Pair::ys_, Pair::ms_, Pair::cs_;
+
+Status check_inputs(const Profile& lower, const Profile& upper, const LoadedLiftOptions& o) {
+  if (!(o.contact_modulus > 0) || !std::isfinite(o.contact_modulus))
+    return make_error(fmt::format("contact modulus E* {} Pa: expected a finite modulus > 0", o.contact_modulus));
+  if (o.loads.empty()) return make_error("loads: expected at least one load (N)");
+  for (double w : o.loads)
+    if (!(w > 0) || !std::isfinite(w)) return make_error(fmt::format("load {} N: expected a finite force > 0", w));
+  if (!(o.max_radius >= 0) || !std::isfinite(o.max_radius))
+    return make_error(
+        fmt::format("largest radius {} m: expected a finite length >= 0 (0: the block's length)", o.max_radius));
+  if (lower.x.size() < 3 || upper.x.size() < 3)
+    return make_error("the loaded lift needs profiles of at least 3 points (the curvature at a contact)");
+  if (auto st = validate(lower, "lower"); !st) return st;
+  if (auto st = validate(upper, "upper"); !st) return st;
+  return Ok{};
+}
+
+double radius_cap(const Profile& upper, const LoadedLiftOptions& o) {
+  return o.max_radius > 0 ? o.max_radius : 100 * (upper.x.back() - upper.x.front());
+}
+
+// The threshold below the top that the largest load can reach: the top contact alone carrying it.
+double reach(const HertzContact& top, double modulus, double wmax) {
+  const double cs = std::cos(top.slope);
+  const double k = (4.0 / 3.0) * modulus * std::sqrt(top.radius) * cs * cs * std::sqrt(cs);
+  return std::pow(wmax / k, 2.0 / 3.0);
+}
+
+// Every contact at offset s within reach of the largest load `wmax`, in `c`; returns h(s), the
+// top one's touch height (-inf where none). `hint`: a height a little below h(s) (the rigid
+// lift's value there), for a first pass that finds the top contact; inf: none (all of d_s).
+double collect(const Pair& pair, double s, double hint, double modulus, double wmax, std::vector<HertzContact>& c) {
+  double first = std::isfinite(hint) ? hint - 1e-3 * pair.scale() : -kInf;
+  pair.candidates(s, first, c);
+  if (c.empty() && std::isfinite(first)) pair.candidates(s, first = -kInf, c);
+  if (c.empty()) return -kInf;
+  const HertzContact* t = &c.front();
+  for (const HertzContact& k : c)
+    if (k.touch_height > t->touch_height) t = &k;
+  const double top = t->touch_height;
+  const double threshold = top - reach(*t, modulus, wmax) * (1 + 1e-9) - 1e-12 * pair.scale();
+  if (threshold < first) pair.candidates(s, threshold, c);
+  return top;
+}
+
+}  // namespace
+
+Result<LoadedState> loaded_state(const Profile& lower, const Profile& upper, double offset, double load,
+                                 const LoadedLiftOptions& options) {
+  LoadedLiftOptions o = options;
+  o.loads = {load};
+  if (auto st = check_inputs(lower, upper, o); !st) return st.error();
+  if (!std::isfinite(offset)) return make_error(fmt::format("offset {} m: expected a finite offset", offset));
+  const Pair pair(lower, upper, o.contact_modulus, radius_cap(upper, o));
+  const auto [a, b] = pair.overlap(offset);
+  if (!(a < b)) return make_error(fmt::format("offset {:.6g} m: the blocks do not overlap there", offset));
+  LoadedState st;
+  st.offset = offset;
+  st.load = load;
+  std::vector<HertzContact> c;
+  st.rigid_lift = collect(pair, offset, kInf, o.contact_modulus, load, c);
+  if (c.empty()) return make_error(fmt::format("offset {:.6g} m: no contact found", offset));
+  const Pair::Balance bal = pair.balance(c, load);
+  st.height = bal.height;
+  st.loaded_lift = bal.height + bal.energy / load;
+  st.effective_slope = bal.horizontal / load;
+  st.contacts = std::move(c);
+  return st;
+}
+
+Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const LiftCurve& rigid,
+                               const LoadedLiftOptions& o) {
+  if (auto st = check_inputs(lower, upper, o); !st) return st.error();
+  if (rigid.period > 0)
+    return make_error("the loaded lift: periodic pairs are not supported (state a block on a non-periodic pair)");
+  const std::size_t n = rigid.offset.size();
+  if (n < 2 || rigid.lift.size() != n) return make_error("the loaded lift: a rigid lift of at least 2 vertices");
+  const Pair pair(lower, upper, o.contact_modulus, radius_cap(upper, o));
+  for (double s : {rigid.offset.front(), rigid.offset.back()}) {
+    const auto [a, b] = pair.overlap(s);
+    if (!(a < b)) return make_error(fmt::format("offset {:.6g} m of the rigid lift: the blocks do not overlap", s));
+  }
+  const std::size_t nl = o.loads.size();
+  const double wmax = *std::max_element(o.loads.begin(), o.loads.end());
+  LoadedLift out;
+  out.loads = o.loads;
+  out.curves.assign(nl, LiftCurve{rigid.offset, std::vector<double>(n), 0});
+  out.slopes.assign(nl, std::vector<double>(n));
+  // Per vertex and load: the diagnostics' terms (weighted by the vertex's share of the offsets).
+  struct Terms {
+    double contacts = 0, approach = 0, ratio = 0, deep = 0, merged = 0, slope2 = 0;
+  };
+  std::vector<std::vector<Terms>> terms(nl, std::vector<Terms>(n));
+  std::vector<std::size_t> found(n, 0);
+  const unsigned T = util::thread_count(o.threads, n);
+  std::vector<std::string> failures(T);
+  util::parallel_chunks(n, T, [&](unsigned chunk, std::size_t k0, std::size_t k1) {
+    std::vector<HertzContact> c;
+    for (std::size_t k = k0; k < k1; ++k) {
+      const double s = rigid.offset[k];
+      const double h = collect(pair, s, rigid.lift[k], o.contact_modulus, wmax, c);
+      if (c.empty()) {
+        failures[chunk] = fmt::format("offset {:.6g} m: no contact found", s);
+        return;
+      }
+      found[k] = c.size();
+      for (std::size_t l = 0; l < nl; ++l) {
+        const double W = o.loads[l];
+        const Pair::Balance bal = pair.balance(c, W);
+        out.curves[l].lift[k] = rigid.lift[k] + (bal.height - h) + bal.energy / W;
+        out.slopes[l][k] = bal.horizontal / W;
+        Terms& t = terms[l][k];
+        t.approach = h - bal.height;
+        // A loaded contact merges with a neighbouring asperity (the next local maximum of d_s on
+        // either side, loaded or not) where the block is below the saddle between them or its
+        // Hertz half-width a = sqrt(R delta) reaches it: the patch is then not one sphere's.
+        double merged = 0;
+        for (std::size_t q = 0; q < c.size(); ++q) {
+          const HertzContact& k = c[q];
+          if (!(k.force > 0)) continue;
+          t.contacts += 1;
+          t.ratio = std::max(t.ratio, k.interference / k.radius);
+          t.slope2 += k.force * std::tan(k.slope) * std::tan(k.slope) / W;
+          const double a = std::sqrt(k.radius * k.interference);
+          const bool left = q > 0 && (k.saddle_left > bal.height || a >= k.x - c[q - 1].x);
+          const bool right = q + 1 < c.size() && (c[q + 1].saddle_left > bal.height || a >= c[q + 1].x - k.x);
+          if (left || right) merged += k.force * std::cos(k.slope);
+        }
+        t.deep = t.ratio > 0.1 ? 1 : 0;
+        t.merged = std::min(merged / std::max(W, 1e-300), 1.0);
+      }
+    }
+  });
+  for (const std::string& f : failures)
+    if (!f.empty()) return make_error("the loaded lift: " + f);
+  for (std::size_t k = 0; k < n; ++k) out.candidates += found[k];
+  const double span = rigid.offset.back() - rigid.offset.front();
+  for (std::size_t l = 0; l < nl; ++l) {
+    LoadedLiftDiagnostics d;
+    d.load = o.loads[l];
+    double slope2 = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double w = 0.5 * (rigid.offset[std::min(k + 1, n - 1)] - rigid.offset[k == 0 ? 0 : k - 1]) / span;
+      const Terms& t = terms[l][k];
+      d.mean_contacts += w * t.contacts;
+      d.mean_approach += w * t.approach;
+      d.max_interference_ratio = std::max(d.max_interference_ratio, t.ratio);
+      d.deep_share += w * t.deep;
+      d.merged_share += w * t.merged;
+      slope2 += w * t.slope2;
+    }
+    d.rms_contact_slope = std::sqrt(slope2);
+    out.diagnostics.push_back(d);
+  }
+  return out;
+}
+
+}  // namespace frictal

@@ -1,0 +1,74 @@
+// `frictal predict --load`: friction under load from the CLI (the keys of the output table, the
+// rigid answer without --load) and its errors, each naming the option and what it expects.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_runner.hpp"
+
+using json = nlohmann::json;
+
+namespace {
+std::string data(const std::string& rel) { return std::string(FRICTAL_TEST_DATA) + "/" + rel; }
+
+void expect_usage_error(const std::string& args, const std::string& words) {
+  const CliRun r = run_cli(args);
+  EXPECT_NE(r.code, 0) << args;
+  EXPECT_NE(r.err.find(words), std::string::npos) << args << "\n" << r.err;
+}
+}  // namespace
+
+TEST(CliLoad, PredictsUnderLoadWithItsCurve) {
+  const std::string wm = temp_path("load-wm.csv");
+  ASSERT_EQ(run_cli("surface wm --dimension 1.5 --n-max 7 --rms-height 1e-6 --longest-wavelength 1e-4 --length "
+                    "1e-3 -o " +
+                    wm)
+                .code,
+            0);
+  const CliRun rigid = run_cli("predict " + wm + " --json");
+  ASSERT_EQ(rigid.code, 0) << rigid.err;
+  const json r = json::parse(rigid.out);
+  EXPECT_TRUE(r["load_n"].is_null());
+  EXPECT_TRUE(r["load_curve_n"].empty());
+  const CliRun loaded = run_cli("predict " + wm + " --load 1mN,0.1mN,10mN --modulus 3GPa --poisson 0.35 --json");
+  ASSERT_EQ(loaded.code, 0) << loaded.err;
+  const json j = json::parse(loaded.out);
+  EXPECT_DOUBLE_EQ(j["load_n"].get<double>(), 1e-3);  // the first load is the headline
+  EXPECT_EQ(j["model"], "profile-hertz-asperity-hold");
+  ASSERT_EQ(j["load_curve_n"].size(), 3u);
+  EXPECT_DOUBLE_EQ(j["load_curve_n"][0].get<double>(), 1e-4);  // the curve in increasing load
+  EXPECT_DOUBLE_EQ(j["load_curve_median_deg"][1].get<double>(), j["friction_angle_deg"].get<double>());
+  EXPECT_DOUBLE_EQ(j["rigid_friction_angle_deg"].get<double>(), r["friction_angle_deg"].get<double>());
+  // Two bodies of E = 3 GPa, nu = 0.35: E* = E / (2 (1 - nu^2)).
+  EXPECT_NEAR(j["contact_modulus_pa"].get<double>(), 3e9 / (2 * (1 - 0.35 * 0.35)), 1);
+  const CliRun text = run_cli("predict " + wm + " --load 1mN --modulus 3GPa --poisson 0.35 --upper-modulus rigid");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("friction angle against load"), std::string::npos) << text.out;
+  // The report leads with the same prediction, and plots the curve.
+  const std::string page = temp_path("load-report.html");
+  const CliRun rep =
+      run_cli("report " + wm + " --load 1mN --modulus 3GPa --poisson 0.35 --resolution-steps 0 -o " + page);
+  ASSERT_EQ(rep.code, 0) << rep.err;
+  const std::string html = read_file(page);
+  EXPECT_NE(html.find("id=\"load-curve\""), std::string::npos);
+  EXPECT_NE(html.find("Friction under load"), std::string::npos);
+}
+
+TEST(CliLoad, ErrorsNameTheOption) {
+  const std::string f = data("profiles/dektak-1.csv");
+  expect_usage_error("predict " + f + " --load 2N", "--load: friction under load needs the material: give --modulus");
+  expect_usage_error("predict " + f + " --load 2N --modulus 70GPa", "--poisson");
+  expect_usage_error("predict " + f + " --modulus 70GPa --poisson 0.3", "give the load with --load");
+  expect_usage_error("predict " + f + " --load 2 --modulus 70GPa --poisson 0.3", "--load '2': unit '' not understood");
+  expect_usage_error("predict " + f + " --load 2N/m --modulus 70GPa --poisson 0.3", "--load '2N/m'");
+  expect_usage_error("predict " + f + " --load -1N --modulus 70GPa --poisson 0.3",
+                     "--load '-1N': expected a force > 0");
+  expect_usage_error("predict " + f + " --load 2N --modulus 70Gpa --poisson 0.3", "--modulus '70Gpa': unit 'Gpa'");
+  expect_usage_error("predict " + f + " --load 2N --modulus 70GPa --poisson 0.7",
+                     "--poisson '0.7': expected a number in (-1, 0.5]");
+  expect_usage_error(
+      "predict " + f + " --load 2N --modulus 70GPa --poisson 0.3 --upper-modulus rigid --upper-poisson 0.2",
+      "--upper-poisson: a rigid upper block has none");
+  expect_usage_error("predict " + data("maps/matrix-6.txt") + " --load 2N --modulus 70GPa --poisson 0.3",
+                     "for line profiles");
+}
