@@ -11,8 +11,9 @@ points, upper 50, spacing 1 mm / 199, rms slope 0.2; seeds 501-504 not used else
 0.6) and one measured pair (two windows of tests/data/profiles/dektak-1.csv, 60 and 20 um). Per
 pair, N drops evenly over the prediction's drop range (the drops of predict_vs_sim.sh), per load
 W (the upper block's weight, set through its areal density) one `frictal tilt --contact-law hertz
---protocol quasi-static --hold-rotation --block-modulus E --block-poisson NU` from each drop. Material: E = 70 GPa, nu = 0.3, one
-elastic block on a rigid one (E* = E / (1 - nu^2)). The other settings are the scaled defaults.
+--protocol quasi-static --hold-rotation --block-modulus E --block-poisson NU` from each drop.
+Material: E = 70 GPa, nu = 0.3, both blocks of it (E* = E / (2 (1 - nu^2)): `--elastic-blocks 2`,
+predict's default). The other settings are the scaled defaults.
 Convergence at the middle drop of the first pair at the middle load: the time-step safety factor,
 the tilt increment, the spheroradius and the damping ratio halved, the modulus doubled.
 BIN default build/release/apps/frictal/frictal; OUT default /tmp/frictal-loaded-tilt.
@@ -117,6 +118,9 @@ def main():
     has_load = "--load" in subprocess.run([bin_, "predict", "--help"], capture_output=True, text=True).stdout
     pool = ThreadPoolExecutor(args.jobs)
 
+    def load_args(W):  # predict's load and material: both blocks of the material, as the tilt's default
+        return ["--load", f"{W!r}N", "--modulus", f"{E / 1e9:g}GPa", "--poisson", repr(NU)] if has_load else []
+
     # The prediction per pair (rigid; and per load where predict takes one), and the drops.
     jobs, preds = [], {}
     for name, files, cond in pairs:
@@ -127,8 +131,7 @@ def main():
         preds[(name, None)] = p
         for W in LOADS:
             if has_load:
-                preds[(name, W)] = run(predict_cmd(bin_, files, cond, ["--load", repr(W), "--modulus", repr(E),
-                                                                       "--poisson", repr(NU)]))
+                preds[(name, W)] = run(predict_cmd(bin_, files, cond, load_args(W)))
         lo, hi = p["drop_range_m"][0], p["drop_range_m"][1]
         ra = p["runaway_distance_m"]
         for k in range(args.drops):
@@ -138,7 +141,7 @@ def main():
 
     def tilt(name, files, cond, x, ra, W, extra=(), density=None):
         opts = {"--protocol": "quasi-static", "--runaway-distance": repr(ra), "--contact-law": "hertz",
-                "--block-modulus": repr(E), "--block-poisson": repr(NU)}
+                "--block-modulus": repr(E), "--block-poisson": repr(NU), "--elastic-blocks": "2"}
         if density is not None:
             opts["--density"] = repr(density)
         opts.update(dict(zip(extra[::2], extra[1::2])))  # a convergence run's changes replace the defaults
@@ -161,9 +164,6 @@ def main():
         rho0 = j["settings"]["density"]
         for W in LOADS:
             density[(name, W)] = rho0 * W / (j["upper_mass_kg"] * j["settings"]["gravity"])
-
-    def load_args(W):
-        return ["--load", repr(W), "--modulus", repr(E), "--poisson", repr(NU)] if has_load else []
 
     results, drop_preds = {}, {}
     futs, pfuts = {}, {}
@@ -229,7 +229,7 @@ def main():
     out("")
     ref = "`frictal predict --load W --modulus E --poisson NU`" if has_load else \
         "the rigid `frictal predict` (this build's predict has no --load: the load model is not compared)"
-    out(f"Compared with {ref}; E = {E:.3g} Pa, nu = {NU}, E* = E / (1 - nu^2). Angles in degrees; the "
+    out(f"Compared with {ref}; E = {E:.3g} Pa, nu = {NU}, both blocks elastic, E* = E / (2 (1 - nu^2)). Angles in degrees; the "
         "simulated median and 5-95 % over the drops; `rule`: |simulated median - predicted median| <= "
         f"{TOL} deg or the simulated median inside the prediction's q05-q95.")
     out("")
