@@ -94,14 +94,38 @@ enum class ContactRule : std::uint8_t {
   Closest,
 };
 
+/// The normal force of a touching pair (docs/dem.md sec. 1, "Hertzian contacts").
+enum class ContactLaw : std::uint8_t {
+  /// Eq. 8: f_n = k_n overlap - m gamma_n v_n (the paper's; stiff enough for rigid blocks).
+  Linear,
+  /// Hertz: f_n = (4/3) E* sqrt(R) overlap^(3/2) - 2 zeta sqrt(m k) v_n with R the composite radius
+  /// of curvature at the contact (Model::curvature_radius; 1/R = 1/R_vertex, plus 1/R of the
+  /// edge's end vertex when the closest point is that end) and k = 2 E* sqrt(R overlap) the
+  /// tangent stiffness. The dashpot keeps the damping ratio zeta of the linearised contact at
+  /// every overlap (the restitution is then independent of the impact speed: Tsuji et al. 1992);
+  /// the tangential spring is tangential_ratio x k. The stability limit of the time step uses k.
+  Hertz,
+};
+
 /// Contact law of Eq. 7-11, shared by every pair. Defaults: paper Table II.
 struct ContactParams {
-  double normal_stiffness = 6e5;          ///< k_n > 0 (unit: N/m)
-  double tangential_stiffness = 6e4;      ///< k_t >= 0 (unit: N/m)
-  double normal_damping = 929.5;          ///< gamma_n >= 0 (unit: 1/s)
+  double normal_stiffness = 6e5;          ///< k_n > 0 (unit: N/m); linear law
+  double tangential_stiffness = 6e4;      ///< k_t >= 0 (unit: N/m); linear law
+  double normal_damping = 929.5;          ///< gamma_n >= 0 (unit: 1/s); linear law
   double tangential_damping = 4;          ///< gamma_t >= 0 (unit: 1/s)
   double atomic_friction = 0;             ///< mu_a >= 0, Coulomb limit of the tangential spring (unitless)
   ContactRule rule = ContactRule::Pairs;  ///< which touching pairs carry a force
+  ContactLaw law = ContactLaw::Linear;    ///< the normal force law
+  /// Hertz law: the contact modulus E* > 0, E / (1 - nu^2) of one elastic body on a rigid one or
+  /// the composite 1/E* = (1 - nu1^2)/E1 + (1 - nu2^2)/E2 of two (unit: Pa).
+  double contact_modulus = 0;
+  /// Hertz law: damping ratio zeta >= 0 of the normal dashpot 2 zeta sqrt(m k) (unitless; 0.2, the
+  /// ratio of Table II's gamma_n on a Table I block: restitution 0.53 for the linear law, 0.49
+  /// for Hertz, hertz_restitution).
+  double damping_ratio = 0.2;
+  /// Hertz law: tangential over normal tangent stiffness, >= 0 (unitless): Mindlin's
+  /// 2 (1 - nu) / (2 - nu) for two bodies of the same nu, 0.82 at nu = 0.3.
+  double tangential_ratio = 2 * (1 - 0.3) / (2 - 0.3);
 };
 ContactParams default_contact_params();
 
@@ -163,11 +187,21 @@ struct Model {
   /// from outside the (counter-clockwise) polygon; 0 at a concave one
   std::vector<unsigned char> convex_vertex;
   std::vector<double> edge_inv_length2;  ///< 1 / |edge i|^2, invariant under rigid motion (unit: 1/m^2)
-  std::vector<double> radius;            ///< spheroradius per body (unit: m)
-  std::vector<double> mass;              ///< (unit: kg)
-  std::vector<double> inertia;           ///< about the centroid (unit: kg m^2)
-  std::vector<double> area;              ///< core polygon area (unit: m^2)
-  std::vector<double> extent;            ///< max vertex distance from the centroid (unit: m)
+  /// Hertz law only (empty for the linear law): radius of curvature of the rounded body at vertex
+  /// i: the radius of the circle through it and its two neighbours (the discrete curvature of
+  /// the core polygon), at least the body's spheroradius r (the swept disk rounds every corner
+  /// to r, so no contact there is sharper) and at most the body's extent (a straight or nearly
+  /// straight run, or a concave corner, acts as a sphere of the body's size: its flank pairs
+  /// carry the contact) (unit: m).
+  std::vector<double> curvature_radius;
+  /// Hertz law: (4/3) E* sqrt(min over the body's vertices of curvature_radius): the softest
+  /// contact coefficient of each body (unit: N/m^1.5); and the stiffest, with the largest radius.
+  std::vector<double> hertz_coeff_min, hertz_coeff_max;
+  std::vector<double> radius;   ///< spheroradius per body (unit: m)
+  std::vector<double> mass;     ///< (unit: kg)
+  std::vector<double> inertia;  ///< about the centroid (unit: kg m^2)
+  std::vector<double> area;     ///< core polygon area (unit: m^2)
+  std::vector<double> extent;   ///< max vertex distance from the centroid (unit: m)
   std::vector<BodyType> type;
   std::vector<KinematicMotion> motion;
   std::vector<int> rotation_follows;             ///< BodyDef::rotation_follows per body
@@ -288,10 +322,12 @@ Status advance(const Model& model, State& state, std::uint64_t steps);
 /// One touching vertex-edge pair and its force (Eq. 7-11) at the state's time.
 struct ContactForce {
   std::uint32_t vertex_body = 0, edge_body = 0;
-  Vec2 point;                   ///< contact point, the middle of the overlap (unit: m)
-  Vec2 normal;                  ///< unit normal, from the edge towards the vertex
-  double overlap = 0;           ///< (unit: m)
-  double normal_force = 0;      ///< f_n = k_n overlap - m gamma_n v_n, on the vertex body along `normal` (unit: N)
+  Vec2 point;               ///< contact point, the middle of the overlap (unit: m)
+  Vec2 normal;              ///< unit normal, from the edge towards the vertex
+  double overlap = 0;       ///< (unit: m)
+  double normal_force = 0;  ///< f_n (linear or Hertz law), on the vertex body along `normal` (unit: N)
+  /// Hertz law: the composite radius of curvature R of the pair; 0 for the linear law (unit: m).
+  double curvature_radius = 0;
   double tangential_force = 0;  ///< f_t on the vertex body along t = normal turned by +90 deg (unit: N)
 };
 /// The touching pairs of `state` with their forces, recomputed from the poses, velocities and
@@ -309,6 +345,21 @@ double kinetic_energy(const Model& model, const State& state, std::size_t b);
 double stability_limit(const Model& model, std::size_t b, int contacts);
 /// Half the smallest stability_limit over the dynamic bodies (unit: s).
 double suggested_time_step(const Model& model, int contacts);
+
+/// Hertz law: the tangent stiffness of a contact of `body` when it carries its weight alone on
+/// its softest vertex (hertz_coeff_min; gravity from the model), or at the overlap
+/// `overlap` if larger, on its stiffest vertex: the stiffness the time step and the cost estimate
+/// assume for one contact (unit: N/m). The linear law: k_n.
+double contact_stiffness(const Model& model, std::size_t body, double overlap = 0);
+/// Hertz: overlap of a sphere of radius R (m) pressed by force W (N) on a flat of contact modulus
+/// E* (Pa): (3 W / (4 E* sqrt(R)))^(2/3) (unit: m).
+double hertz_overlap(double force, double contact_modulus, double radius);
+/// Restitution of one Hertz contact with the dashpot of ContactLaw::Hertz at damping ratio zeta
+/// (unitless, >= 0): independent of the mass, modulus, radius and impact speed; from the
+/// dimensionless equation of motion integrated to the separation (unitless).
+double hertz_restitution(double zeta);
+/// The damping ratio zeta that gives restitution eps in (0, 1] to one Hertz contact (unitless).
+Result<double> hertz_damping_ratio(double eps);
 
 /// Eq. 12 solved for gamma_n: damping that gives restitution `eps` in (0, 1] for one contact of
 /// stiffness k_n (N/m) on mass m (kg). Result in 1/s.

@@ -128,8 +128,18 @@ struct TiltConfig {
   double density = 50;         ///< areal density rho, Table II (unit: kg/m^2)
   dem::ContactParams contact;  ///< k_n, k_t, gamma_n, gamma_t, mu_a (Table II, mu_a = 0)
   /// If > 0: restitution eps of Eq. 12, replacing contact.normal_damping by the gamma_n that gives
-  /// eps for one contact on the upper block's mass (unitless, in (0, 1]).
+  /// eps for one contact on the upper block's mass (unitless, in (0, 1]); with the Hertz law,
+  /// contact.damping_ratio by the zeta that gives it (dem::hertz_damping_ratio).
   double restitution = 0;
+  /// Hertz law (contact.law = dem::ContactLaw::Hertz): Young's modulus E of the blocks, > 0 (unit:
+  /// Pa), and their Poisson ratio nu in (-1, 0.5] (unitless). The contact modulus is
+  /// E* = E / (1 - nu^2) with one elastic block on a rigid one (`elastic_blocks` = 1), half that
+  /// with two of the same material (2); the tangential spring is Mindlin's 2 (1 - nu) / (2 - nu)
+  /// of the tangent normal stiffness. normal_stiffness, tangential_stiffness and normal_damping
+  /// are not used then.
+  double modulus = 0;
+  double poisson = 0.3;
+  int elastic_blocks = 1;   ///< 1 or 2 (unitless)
   double gravity = 9.81;    ///< (unit: m/s^2)
   double tilt_rate = 0.05;  ///< |angular velocity| of the lower block (unit: rad/s)
   bool reverse = false;     ///< tilt so that the upper block slides towards -x
@@ -178,6 +188,7 @@ struct TiltConfig {
   double relax_duration = 0.005;
   /// Run the test again at 10 k_n and k_t (series and frames off) and warn ("stiffness") when the
   /// friction angle moves by more than `warn_stiffness_angle`: the run is not in the rigid limit.
+  /// With the Hertz law the rerun is at 10 `modulus`.
   bool check_stiffness = false;
   /// Shorter run-away distances observed in the same run (unit: m), each in (0, runaway_distance]:
   /// for each, TiltResult::checkpoints records the tilt at the start of the first run-away that
@@ -344,12 +355,16 @@ struct TiltFrame {
 
 /// The scales `run_tilt` compares before it runs (TiltResult::scales, docs/dem.md sec. 6).
 struct TiltScales {
-  double resting_overlap = 0;           ///< W / k_n: overlap of one contact carrying the upper block (unit: m)
+  /// W / k_n: overlap of one contact carrying the upper block (unit: m); Hertz law: that contact
+  /// on the sharpest vertex of the faces, (3 W / (4 E* sqrt(R_min)))^(2/3).
+  double resting_overlap = 0;
   double spheroradius = 0;              ///< r (unit: m)
   double shortest_edge[2] = {0, 0};     ///< shortest edge of the lower, upper face (unit: m)
   double smallest_feature[2] = {0, 0};  ///< shortest run between neighbouring extrema of each face (unit: m)
   double time_step = 0;                 ///< the fixed step, or the adaptive step's cap (unit: s)
-  double contact_period = 0;            ///< 2 pi sqrt(m_upper / k_n): one contact's period (unit: s)
+  /// 2 pi sqrt(m_upper / k_n): one contact's period (unit: s); Hertz law: k_n the tangent stiffness
+  /// of that resting contact (dem::contact_stiffness).
+  double contact_period = 0;
 };
 
 /// The run-away at one of TiltConfig::runaway_checkpoints.
@@ -433,6 +448,12 @@ struct TiltResult {
   std::size_t lower_vertices = 0, upper_vertices = 0;
   double settled_overlap = 0;  ///< largest overlap at the end of settling (unit: m)
   int settled_contacts = 0;
+  /// Hertz law: the mean over the contacts at the end of settling of overlap / R, R the pair's
+  /// composite radius of curvature (dem::ContactForce::curvature_radius); the contact radius over R
+  /// is its square root (unitless). NaN for the linear law or without contacts.
+  double settled_interference_ratio = std::numeric_limits<double>::quiet_NaN();
+  /// Hertz law: the contact modulus E* the run used (unit: Pa); 0 for the linear law.
+  double contact_modulus = 0;
   /// Sliding speed of the upper block against the lower one along the lower block's x axis at the
   /// end of settling (the start of its last step, before the tilt reaches the block); above
   /// stick_speed the "unsettled" warning fires: the block is not at rest where the prediction

@@ -22,10 +22,11 @@ namespace {
 
 double cross(double ax, double ay, double bx, double by) { return ax * by - ay * bx; }
 
-}  // namespace
-
-void pair_forces(const Model& m, State& st, Workspace& ws, double dt_spring, std::size_t k0, std::size_t k1,
-                 double& max_overlap, double& max_ratio) {
+// The force pass; kHertz: the Hertz law (ContactLaw::Hertz), else the linear law of Eq. 8-11
+// (a separate instance, so that the linear law's arithmetic is the same as without the other).
+template <bool kHertz>
+void pair_forces_law(const Model& m, State& st, Workspace& ws, double dt_spring, std::size_t k0, std::size_t k1,
+                     double& max_overlap, double& max_ratio) {
   const ContactParams& cp = m.def.contact;
   const Pose* const ps = ws.pose.data();
   double max_ov = max_overlap, max_r = max_ratio;
@@ -67,24 +68,40 @@ void pair_forces(const Model& m, State& st, Workspace& ws, double dt_spring, std
     const double vn = relx * nx + rely * ny;
     const double vt = relx * tx + rely * ty;
     const double mred = p.reduced_mass;
-    const double fn_el = kn * overlap;
+    double fn_el, kt_c, damping;  // elastic normal force, tangential stiffness, normal dashpot
+    if constexpr (kHertz) {
+      const HertzPair h = hertz_pair(m, p.vertex, p.edge0, p.edge1, c.t, overlap, mred);
+      fn_el = h.force;
+      kt_c = h.tangential_stiffness;
+      damping = h.damping;
+      c.k_normal = h.stiffness;
+      c.damping = h.damping;
+      c.k_tangential = h.tangential_stiffness;
+    } else {
+      fn_el = kn * overlap;
+      kt_c = kt;
+      damping = 0;
+    }
     double xi = p.elongation + vt * dt_spring;
-    double ft_el = -kt * xi;
+    double ft_el = -kt_c * xi;
     const double limit = mu * fn_el;
     if (std::fabs(ft_el) > limit) {
       ft_el = ft_el > 0 ? limit : -limit;
-      xi = kt > 0 ? -ft_el / kt : 0.0;
+      xi = kt_c > 0 ? -ft_el / kt_c : 0.0;
     }
+    // Elastic energy of the normal spring: k_n overlap^2 / 2, or (2/5) f_n overlap for Hertz.
+    const double en = kHertz ? 0.4 * fn_el * overlap : 0.5 * fn_el * overlap;
+    const double fd = kHertz ? damping * vn : mred * gn * vn;
     double fn, ft;
     if (c.weight > 0) {
       p.elongation = xi;
       p.overlap = overlap;
-      c.energy = 0.5 * fn_el * overlap + 0.5 * kt * xi * xi;  // summed in list order below
-      fn = fn_el - mred * gn * vn;
+      c.energy = en + 0.5 * kt_c * xi * xi;  // summed in list order below
+      fn = fn_el - fd;
       ft = ft_el - mred * gt * vt;
     } else {  // the vertex-vertex term subtracted at a concave corner (rule closest): normal only
-      c.energy = -0.5 * fn_el * overlap;
-      fn = -(fn_el - mred * gn * vn);
+      c.energy = -en;
+      fn = -(fn_el - fd);
       ft = 0;
     }
     const double fx = fn * nx + ft * tx, fy = fn * ny + ft * ty;
@@ -102,6 +119,16 @@ void pair_forces(const Model& m, State& st, Workspace& ws, double dt_spring, std
   max_ratio = max_r;
 }
 
+}  // namespace
+
+void pair_forces(const Model& m, State& st, Workspace& ws, double dt_spring, std::size_t k0, std::size_t k1,
+                 double& max_overlap, double& max_ratio) {
+  if (m.def.contact.law == ContactLaw::Hertz)
+    pair_forces_law<true>(m, st, ws, dt_spring, k0, k1, max_overlap, max_ratio);
+  else
+    pair_forces_law<false>(m, st, ws, dt_spring, k0, k1, max_overlap, max_ratio);
+}
+
 double sum_contacts(const Model& m, State& st, Workspace& ws, double max_ov, double max_ratio) {
   const ContactParams& cp = m.def.contact;
   const double* const inv_mass_of = ws.inv_mass.data();
@@ -110,7 +137,8 @@ double sum_contacts(const Model& m, State& st, Workspace& ws, double max_ov, dou
   const double kt = cp.tangential_stiffness, mu = cp.atomic_friction;
   // The tangential springs enter the stability limit of the implicit-damping scheme only; they
   // act only with mu_a > 0 (else they are cut back to zero).
-  const bool tangential_modes = m.def.implicit_damping && kt > 0 && mu > 0;
+  const bool hertz = cp.law == ContactLaw::Hertz;
+  const bool tangential_modes = m.def.implicit_damping && (hertz ? cp.tangential_ratio : kt) > 0 && mu > 0;
   const NeighborPair* const pairs = st.pairs.data();
   const ContactScratch* const touching = ws.touching.data();
   double energy = 0;
@@ -158,6 +186,15 @@ double sum_contacts(const Model& m, State& st, Workspace& ws, double max_ov, dou
       sb.torque -= c.torque_b;
       // Normal-mode matrices sum J J^T, J = (n_x, n_y, r x n), for the stability limit.
       if (!contact) continue;  // its stiffness is less than its flanks' (the limit stays safe)
+      if (hertz) {             // each contact's own stiffnesses and dashpot as the weights (stability.hpp)
+        if (inv_mass_of[a] > 0) add_outer_weighted(sa.modes, c.nx, c.ny, c.jt_a, c.k_normal, c.damping);
+        if (inv_mass_of[b] > 0) add_outer_weighted(sb.modes, c.nx, c.ny, c.jt_b, c.k_normal, c.damping);
+        if (tangential_modes) {
+          if (inv_mass_of[a] > 0) add_outer_tangential(sa.modes, -c.ny, c.nx, c.jtt_a, c.k_tangential);
+          if (inv_mass_of[b] > 0) add_outer_tangential(sb.modes, -c.ny, c.nx, c.jtt_b, c.k_tangential);
+        }
+        continue;
+      }
       if (inv_mass_of[a] > 0) add_outer(sa.modes, c.nx, c.ny, c.jt_a, c.mred);
       if (inv_mass_of[b] > 0) add_outer(sb.modes, c.nx, c.ny, c.jt_b, c.mred);
       if (tangential_modes) {  // J_t = (t_x, t_y, r x t), t = (-n_y, n_x)

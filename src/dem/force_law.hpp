@@ -2,10 +2,44 @@
 // forces, torques and mode matrices per body.
 #pragma once
 
+#include <cmath>
+#include <cstdint>
+
 #include "frictal/dem.hpp"
 #include "workspace.hpp"
 
 namespace frictal::dem::detail {
+
+/// The Hertz law (ContactLaw::Hertz) of one touching pair.
+struct HertzPair {
+  double radius = 0;                ///< composite radius of curvature R (unit: m)
+  double force = 0;                 ///< elastic normal force (4/3) E* sqrt(R) overlap^(3/2) (unit: N)
+  double stiffness = 0;             ///< tangent stiffness k = 2 E* sqrt(R overlap) (unit: N/m)
+  double damping = 0;               ///< dashpot coefficient 2 zeta sqrt(m k) (unit: kg/s)
+  double tangential_stiffness = 0;  ///< tangential_ratio x k (unit: N/m)
+};
+
+/// The Hertz law of vertex `vertex` against the edge (edge0, edge1) whose closest point lies at
+/// `t` in [0, 1] along it: R from the vertex's curvature radius, and at an end of the edge (t = 0
+/// or 1: two corners touch) also that end's (1/R = 1/R_1 + 1/R_2); `mred` the reduced mass (kg),
+/// `overlap` in m (<= 0: no force). Inline: once per touching pair and step.
+inline HertzPair hertz_pair(const Model& m, std::uint32_t vertex, std::uint32_t edge0, std::uint32_t edge1, double t,
+                            double overlap, double mred) {
+  const ContactParams& cp = m.def.contact;
+  double inv = 1.0 / m.curvature_radius[vertex];
+  if (t <= 0)
+    inv += 1.0 / m.curvature_radius[edge0];
+  else if (t >= 1)
+    inv += 1.0 / m.curvature_radius[edge1];
+  HertzPair h;
+  h.radius = 1.0 / inv;
+  const double d = overlap > 0 ? overlap : 0.0;
+  h.stiffness = 2.0 * cp.contact_modulus * std::sqrt(h.radius * d);
+  h.force = (2.0 / 3.0) * h.stiffness * d;
+  h.damping = 2.0 * cp.damping_ratio * std::sqrt(mred * h.stiffness);
+  h.tangential_stiffness = cp.tangential_ratio * h.stiffness;
+  return h;
+}
 
 /// Forces of the touching pairs found by find_touching (ws.touching), their springs advanced by
 /// `dt_spring` (unit: s; 0 for the initial evaluation), then summed per body into State::force,

@@ -202,7 +202,8 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 void kick(const Model& m, State& st, const Workspace& ws, double h) {
   const Vec2 g = m.def.gravity;
   const bool implicit = m.def.implicit_damping;
-  const double c = 2.0 * h * m.def.contact.normal_damping;
+  // Hertz: the mode sums G_m carry each contact's dashpot coefficient (force_law.cpp).
+  const double c = 2.0 * h * (m.def.contact.law == ContactLaw::Hertz ? 1.0 : m.def.contact.normal_damping);
   for (std::size_t b = 0; b < m.body_count(); ++b) {
     if (m.type[b] != BodyType::Dynamic) continue;
     if (m.rotation_follows[b] >= 0) {  // rotation held: translation only (the angle follows its leader)

@@ -9,6 +9,7 @@
 
 #include <fmt/core.h>
 
+#include "force_law.hpp"
 #include "frictal/dem.hpp"
 #include "integrator.hpp"
 #include "neighbor_list.hpp"
@@ -113,6 +114,19 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
     return bad(fmt::format("contact tangential_damping gamma_t = {} 1/s: expected >= 0", c.tangential_damping));
   if (!finite_nonneg(c.atomic_friction))
     return bad(fmt::format("contact atomic_friction mu_a = {}: expected >= 0", c.atomic_friction));
+  if (c.law == ContactLaw::Hertz) {
+    if (!finite_pos(c.contact_modulus))
+      return bad(fmt::format("contact contact_modulus E* = {} Pa: expected a finite value > 0 (Hertz law)",
+                             c.contact_modulus));
+    if (!finite_nonneg(c.damping_ratio))
+      return bad(
+          fmt::format("contact damping_ratio zeta = {}: expected a finite value >= 0 (Hertz law)", c.damping_ratio));
+    if (!finite_nonneg(c.tangential_ratio))
+      return bad(
+          fmt::format("contact tangential_ratio = {}: expected a finite value >= 0 (Hertz law)", c.tangential_ratio));
+  } else if (c.law != ContactLaw::Linear) {
+    return bad("contact law: expected Linear or Hertz");
+  }
   if (!finite_pos(world.max_overlap_ratio)) return bad("world max_overlap_ratio: expected > 0");
   if (!finite_pos(world.max_speed)) return bad("world max_speed: expected > 0 m/s");
   if (world.max_steps_beyond_limit < 0) return bad("world max_steps_beyond_limit: expected >= 0");
@@ -183,6 +197,26 @@ Result<Model> make_model(const WorldDef& world, const std::vector<BodyDef>& bodi
       const double turn = (m.local_x[v] - m.local_x[p]) * (m.local_y[q] - m.local_y[v]) -
                           (m.local_y[v] - m.local_y[p]) * (m.local_x[q] - m.local_x[v]);
       m.convex_vertex.push_back(turn >= 0 ? 1 : 0);
+    }
+    if (c.law == ContactLaw::Hertz) {
+      // Radius of the circle through each vertex and its neighbours, between r and the extent.
+      const double r_max = ext + d.radius;
+      double r_lo = r_max, r_hi = 0;
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t v = base + k, p = base + (k + n - 1) % n, q = base + (k + 1) % n;
+        const double ax = m.local_x[v] - m.local_x[p], ay = m.local_y[v] - m.local_y[p];
+        const double bx = m.local_x[q] - m.local_x[v], by = m.local_y[q] - m.local_y[v];
+        const double cx2 = m.local_x[q] - m.local_x[p], cy2 = m.local_y[q] - m.local_y[p];
+        const double turn = cross(ax, ay, bx, by);  // > 0: convex (counter-clockwise)
+        double rc = r_max;
+        if (turn > 0) rc = std::hypot(ax, ay) * std::hypot(bx, by) * std::hypot(cx2, cy2) / (2.0 * turn);
+        rc = std::clamp(rc, d.radius, r_max);
+        m.curvature_radius.push_back(rc);
+        r_lo = std::min(r_lo, rc);
+        r_hi = std::max(r_hi, rc);
+      }
+      m.hertz_coeff_min.push_back(4.0 / 3.0 * c.contact_modulus * std::sqrt(r_lo));
+      m.hertz_coeff_max.push_back(4.0 / 3.0 * c.contact_modulus * std::sqrt(r_hi));
     }
     m.vertex_begin.push_back(static_cast<std::uint32_t>(m.local_x.size()));
     m.radius.push_back(d.radius);
@@ -288,8 +322,15 @@ std::vector<ContactForce> contact_forces(const Model& m, const State& st) {
     c.point = {cx, cy};
     c.normal = {nx, ny};
     c.overlap = overlap;
-    c.normal_force = cp.normal_stiffness * overlap - p.reduced_mass * cp.normal_damping * vn;
-    c.tangential_force = -cp.tangential_stiffness * p.elongation - p.reduced_mass * cp.tangential_damping * vt;
+    if (cp.law == ContactLaw::Hertz) {
+      const detail::HertzPair h = detail::hertz_pair(m, p.vertex, p.edge0, p.edge1, t, overlap, p.reduced_mass);
+      c.curvature_radius = h.radius;
+      c.normal_force = h.force - h.damping * vn;
+      c.tangential_force = -h.tangential_stiffness * p.elongation - p.reduced_mass * cp.tangential_damping * vt;
+    } else {
+      c.normal_force = cp.normal_stiffness * overlap - p.reduced_mass * cp.normal_damping * vn;
+      c.tangential_force = -cp.tangential_stiffness * p.elongation - p.reduced_mass * cp.tangential_damping * vt;
+    }
     out.push_back(c);
   }
   return out;
@@ -309,6 +350,48 @@ Result<double> damping_from_restitution(double eps, double k_n, double m) {
   const double L = -std::log(eps);
   const double pi = 3.14159265358979323846;
   return 2.0 * L * std::sqrt(k_n / m) / std::sqrt(pi * pi + L * L);
+}
+
+double hertz_restitution(double zeta) {
+  if (!(zeta > 0)) return 1.0;
+  // Units with m = 1, c = (4/3) E* sqrt(R) = 1 and impact speed 1 (the restitution depends on
+  // none of them): x'' = -x^1.5 - 2 zeta sqrt(1.5 sqrt(x)) x' from x = 0, x' = 1, to x = 0 again
+  // (RK4; the overlap is ~1 and the contact lasts ~3 time units).
+  auto acc = [zeta](double x, double v) {
+    const double xp = x > 0 ? x : 0.0;
+    return -xp * std::sqrt(xp) - 2.0 * zeta * std::sqrt(1.5 * std::sqrt(xp)) * v;
+  };
+  const double h = 1e-4;
+  double x = 0, v = 1;
+  for (int i = 0; i < 2000000; ++i) {  // 200 time units: an overdamped contact that never parts gives 0
+    const double k1x = v, k1v = acc(x, v);
+    const double k2x = v + 0.5 * h * k1v, k2v = acc(x + 0.5 * h * k1x, v + 0.5 * h * k1v);
+    const double k3x = v + 0.5 * h * k2v, k3v = acc(x + 0.5 * h * k2x, v + 0.5 * h * k2v);
+    const double k4x = v + h * k3v, k4v = acc(x + h * k3x, v + h * k3v);
+    const double xn = x + h / 6.0 * (k1x + 2 * k2x + 2 * k3x + k4x);
+    const double vn = v + h / 6.0 * (k1v + 2 * k2v + 2 * k3v + k4v);
+    if (xn <= 0 && vn < 0) {  // parted within this step: the speed where x crosses 0 (linear)
+      const double s = x / (x - xn);
+      return std::max(0.0, -(v + s * (vn - v)));
+    }
+    x = xn, v = vn;
+  }
+  return 0.0;
+}
+
+Result<double> hertz_damping_ratio(double eps) {
+  if (!(eps > 0 && eps <= 1)) return make_error(fmt::format("restitution eps = {}: expected 0 < eps <= 1", eps));
+  if (eps == 1) return 0.0;
+  double lo = 0, hi = 1;
+  while (hertz_restitution(hi) > eps) {
+    if (hi > 1e3) return make_error(fmt::format("restitution eps = {}: below what a Hertz dashpot gives", eps));
+    hi *= 2;
+  }
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (hertz_restitution(mid) > eps ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 double restitution_from_damping(double gamma_n, double k_n, double m) {

@@ -68,10 +68,14 @@ double mode_limit(const ModeSums& s, double mass, double inertia, double kn, dou
 }
 
 void update_step_limits(const Model& m, State& st, const Workspace& ws) {
-  const double kn = m.def.contact.normal_stiffness, gn = m.def.contact.normal_damping;
+  double kn = m.def.contact.normal_stiffness, gn = m.def.contact.normal_damping;
   const bool implicit = m.def.implicit_damping;
   const ContactParams& cp = m.def.contact;
-  const double kt = implicit && cp.atomic_friction > 0 ? cp.tangential_stiffness : 0.0;
+  double kt = implicit && cp.atomic_friction > 0 ? cp.tangential_stiffness : 0.0;
+  if (cp.law == ContactLaw::Hertz) {  // the mode sums carry each contact's k and dashpot
+    kn = 1, gn = 1;
+    kt = implicit && cp.atomic_friction > 0 && cp.tangential_ratio > 0 ? 1.0 : 0.0;
+  }
   for (std::size_t b = 0; b < m.body_count(); ++b)
     st.step_limit[b] = ws.inv_mass[b] > 0 && ws.body_contacts[b] > 0
                            ? mode_limit(ws.modes[b], m.mass[b], m.inertia[b], kn, gn, implicit, kt)
@@ -81,14 +85,26 @@ void update_step_limits(const Model& m, State& st, const Workspace& ws) {
 void choose_time_step(const Model& m, State& st) {
   double dt = m.def.time_step;
   const double skin = m.def.skin;
-  const double kn = m.def.contact.normal_stiffness, gn = m.def.contact.normal_damping;
+  const double gn = m.def.contact.normal_damping;
+  const bool hertz = m.def.contact.law == ContactLaw::Hertz;
+  const double zeta = m.def.contact.damping_ratio;
   for (std::size_t b = 0; b < m.body_count(); ++b) {
     if (m.type[b] != BodyType::Dynamic) continue;
     // The contacts present, and one more: the first step of a new contact is taken with the step
     // chosen before it (its stiffest mode: one contact at the body's extent, kinematic partner).
+    // Hertz: a new contact starts at zero stiffness and stiffens with its overlap, which the
+    // modes of the contacts present follow step by step; one more is one contact on the sharpest
+    // vertex at the body's weight or the largest overlap present (contact_stiffness).
     const double e = m.extent[b];
-    double one_more = 2.0 / std::sqrt(kn * std::max(1.0 / m.mass[b], e * e / m.inertia[b]));
-    if (!m.def.implicit_damping && gn > 0) one_more = std::min(one_more, 2.0 / gn);
+    const double kn = contact_stiffness(m, b, st.max_overlap);
+    const double w2 = kn * std::max(1.0 / m.mass[b], e * e / m.inertia[b]);
+    double one_more = 2.0 / std::sqrt(w2);
+    if (hertz) {
+      if (!(w2 > 0)) one_more = std::numeric_limits<double>::infinity();
+      if (!m.def.implicit_damping && zeta > 0 && w2 > 0) one_more = std::min(one_more, 1.0 / (zeta * std::sqrt(w2)));
+    } else if (!m.def.implicit_damping && gn > 0) {
+      one_more = std::min(one_more, 2.0 / gn);
+    }
     dt = std::min(dt, m.def.time_step_safety * std::min(st.step_limit[b], one_more));
     // Keep the motion per step well inside the skin (the list check wants <= skin / 2).
     const double speed =
@@ -100,10 +116,35 @@ void choose_time_step(const Model& m, State& st) {
 
 }  // namespace detail
 
+double contact_stiffness(const Model& m, std::size_t b, double overlap) {
+  const ContactParams& cp = m.def.contact;
+  if (cp.law != ContactLaw::Hertz) return cp.normal_stiffness;
+  double c = std::numeric_limits<double>::infinity();  // the softest coefficient of any body
+  for (const double ci : m.hertz_coeff_min) c = std::min(c, ci);
+  if (!std::isfinite(c)) return 0;
+  const double weight = m.mass[b] * std::hypot(m.def.gravity.x, m.def.gravity.y);
+  // f = c d^1.5 = W  =>  k = 1.5 c sqrt(d) = 1.5 c^(2/3) W^(1/3)
+  const double k_weight = 1.5 * std::cbrt(c * c * weight);
+  const double k_overlap = overlap > 0 ? 1.5 * c * std::sqrt(overlap) : 0.0;
+  return std::max(k_weight, k_overlap);
+}
+
+double hertz_overlap(double force, double contact_modulus, double radius) {
+  return std::cbrt(std::pow(3.0 * force / (4.0 * contact_modulus * std::sqrt(radius)), 2.0));
+}
+
 double stability_limit(const Model& m, std::size_t b, int contacts) {
   if (contacts <= 0) return std::numeric_limits<double>::infinity();
   const double n = contacts;
   const double e = m.extent[b];
+  if (m.def.contact.law == ContactLaw::Hertz) {
+    const double w2 = n * contact_stiffness(m, b, 0) * std::max(1.0 / m.mass[b], e * e / m.inertia[b]);
+    if (!(w2 > 0)) return std::numeric_limits<double>::infinity();
+    double limit = 2.0 / std::sqrt(w2);
+    const double zeta = m.def.contact.damping_ratio;
+    if (zeta > 0) limit = std::min(limit, 1.0 / (zeta * std::sqrt(n * w2)));
+    return limit;
+  }
   const double w2 = n * m.def.contact.normal_stiffness * std::max(1.0 / m.mass[b], e * e / m.inertia[b]);
   double limit = 2.0 / std::sqrt(w2);
   // The reduced mass is at most the body's mass, so each dashpot adds at most gamma_n to the rate.

@@ -2,6 +2,8 @@
 // each body's contact modes (docs/dem.md sec. 3).
 #pragma once
 
+#include <limits>
+
 #include "frictal/dem.hpp"
 #include "workspace.hpp"
 
@@ -18,10 +20,28 @@ inline void add_outer(ModeSums& s, double jx, double jy, double jt, double w) {
   s.mred_min = w < s.mred_min ? w : s.mred_min;
 }
 
-/// Adds J_t J_t^T, J_t = (tx, ty, jt), to the tangential mode sum.
-inline void add_outer_tangential(ModeSums& s, double tx, double ty, double jt) {
+/// Adds J_t J_t^T, J_t = (tx, ty, jt), to the tangential mode sum (times `w`, the Hertz law's
+/// tangential stiffness in N/m; 1 for the linear law, whose k_t multiplies the sum).
+inline void add_outer_tangential(ModeSums& s, double tx, double ty, double jt, double w = 1) {
   const double v[6] = {tx * tx, tx * ty, tx * jt, ty * ty, ty * jt, jt * jt};
-  for (int i = 0; i < 6; ++i) s.gt[i] += v[i];
+  if (w == 1) {
+    for (int i = 0; i < 6; ++i) s.gt[i] += v[i];
+  } else {
+    for (int i = 0; i < 6; ++i) s.gt[i] += w * v[i];
+  }
+}
+
+/// The Hertz law's mode sums: J J^T weighted by the contact's tangent stiffness k (N/m) in g and
+/// by its dashpot coefficient eta (kg/s) in gm, and mred_min the smallest eta / k (unit: s); the
+/// limit then takes kn = gn = 1 (mode_limit).
+inline void add_outer_weighted(ModeSums& s, double jx, double jy, double jt, double k, double eta) {
+  const double v[6] = {jx * jx, jx * jy, jx * jt, jy * jy, jy * jt, jt * jt};
+  for (int i = 0; i < 6; ++i) {
+    s.g[i] += k * v[i];
+    s.gm[i] += eta * v[i];
+  }
+  const double ratio = k > 0 ? eta / k : std::numeric_limits<double>::infinity();
+  s.mred_min = ratio < s.mred_min ? ratio : s.mred_min;
 }
 
 /// Stability limit of one body's time step from its mode sums (unit: s): mass in kg, inertia in

@@ -51,6 +51,9 @@ struct ContactScratch {
   double fx = 0, fy = 0, torque_a = 0, torque_b = 0, nx = 0, ny = 0, jt_a = 0, jt_b = 0, mred = 0;
   double jtt_a = 0, jtt_b = 0;  ///< r x t of each body (unit: m)
   double energy = 0;            ///< k_n overlap^2 / 2 + k_t xi^2 / 2 (unit: J), summed in list order
+  /// Hertz law: the tangent normal stiffness k (unit: N/m), the dashpot 2 zeta sqrt(m k) (unit:
+  /// kg/s) and the tangential stiffness (unit: N/m), the mode sums' weights.
+  double k_normal = 0, damping = 0, k_tangential = 0;
 };
 
 /// A run of touching pairs in Workspace::touching: [begin, begin + count). One segment in a

@@ -192,6 +192,17 @@ Status check_config(const TiltConfig& c) {
       return make_error(
           fmt::format("tilt runaway_checkpoints: {} m: expected a distance in (0, runaway_distance = {} m]", d,
                       c.runaway_distance));
+  if (c.contact.law == dem::ContactLaw::Hertz) {
+    if (!pos(c.modulus))
+      return make_error(
+          fmt::format("tilt block_modulus = {} Pa: expected Young's modulus > 0 with contact_law hertz "
+                      "(e.g. --block-modulus 7e10 for 70 GPa)",
+                      c.modulus));
+    if (!(c.poisson > -1 && c.poisson <= 0.5))
+      return make_error(fmt::format("tilt block_poisson = {}: expected a Poisson ratio in (-1, 0.5]", c.poisson));
+    if (c.elastic_blocks != 1 && c.elastic_blocks != 2)
+      return make_error(fmt::format("tilt elastic_blocks = {}: expected 1 or 2", c.elastic_blocks));
+  }
   if (!(std::isfinite(c.restitution) && c.restitution <= 1))
     return make_error(fmt::format("tilt restitution = {}: expected <= 1 (0 or less: use gamma_n)", c.restitution));
   if (!pos(c.stick_speed)) return make_error(fmt::format("tilt stick_speed = {} m/s: expected > 0", c.stick_speed));
@@ -425,6 +436,11 @@ Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, co
   wd.max_steps_beyond_limit = cfg.max_steps_beyond_limit;
   wd.contact = cfg.contact;
   wd.contact.rule = tilt_contact_rule(cfg);
+  if (cfg.contact.law == dem::ContactLaw::Hertz) {
+    wd.contact.contact_modulus = cfg.modulus / ((1 - cfg.poisson * cfg.poisson) * cfg.elastic_blocks);
+    wd.contact.tangential_ratio = 2 * (1 - cfg.poisson) / (2 - cfg.poisson);
+    res.contact_modulus = wd.contact.contact_modulus;
+  }
   res.contact_rule = wd.contact.rule;
   auto model_r = dem::make_model(wd, {lb, ub});
   if (!model_r.ok()) {
@@ -443,7 +459,11 @@ Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, co
   // not change where a block comes to rest (docs/dem.md sec. 4).
   if (cfg.protocol == TiltProtocol::QuasiStatic) model.def.contact.tangential_damping = 0;
   model.motion[0].pivot = model.initial_position[0];  // turn about the lower block's centroid
-  if (cfg.restitution > 0) {
+  if (cfg.restitution > 0 && cfg.contact.law == dem::ContactLaw::Hertz) {
+    auto z = dem::hertz_damping_ratio(cfg.restitution);
+    if (!z.ok()) return with_prefix("tilt restitution: ", z.error());
+    model.def.contact.damping_ratio = *z;
+  } else if (cfg.restitution > 0) {
     auto g = dem::damping_from_restitution(cfg.restitution, cfg.contact.normal_stiffness, model.mass[1]);
     if (!g.ok()) return with_prefix("tilt restitution: ", g.error());
     model.def.contact.normal_damping = *g;
@@ -460,13 +480,19 @@ Result<dem::Model> place_blocks(const Poly& lower, Poly upper, double offset, co
   // Scales (the warnings they give come from tilt_scale_warnings).
   TiltScales& sc = res.scales;
   sc.resting_overlap = model.mass[1] * cfg.gravity / cfg.contact.normal_stiffness;
+  double k_rest = cfg.contact.normal_stiffness;
+  if (cfg.contact.law == dem::ContactLaw::Hertz) {
+    const double r_min = *std::min_element(model.curvature_radius.begin(), model.curvature_radius.end());
+    sc.resting_overlap = dem::hertz_overlap(model.mass[1] * cfg.gravity, model.def.contact.contact_modulus, r_min);
+    k_rest = dem::contact_stiffness(model, 1);
+  }
   sc.spheroradius = cfg.radius;
   sc.shortest_edge[0] = shortest_edge(lower);
   sc.shortest_edge[1] = shortest_edge(upper);
   sc.smallest_feature[0] = smallest_feature(lower).first;
   sc.smallest_feature[1] = smallest_feature(upper).first;
   sc.time_step = cfg.time_step;
-  sc.contact_period = 2 * std::numbers::pi * std::sqrt(model.mass[1] / cfg.contact.normal_stiffness);
+  sc.contact_period = 2 * std::numbers::pi * std::sqrt(model.mass[1] / k_rest);
   return model;
 }
 
@@ -726,6 +752,15 @@ Status TiltRun::settle() {
   }
   res_.settled_overlap = st_.max_overlap;
   res_.settled_contacts = st_.contact_count;
+  if (model_.def.contact.law == dem::ContactLaw::Hertz) {
+    double sum = 0;
+    int n = 0;
+    for (const dem::ContactForce& c : dem::contact_forces(model_, st_)) {
+      sum += c.overlap / c.curvature_radius;
+      ++n;
+    }
+    res_.settled_interference_ratio = n > 0 ? sum / n : std::numeric_limits<double>::quiet_NaN();
+  }
   // From here on, relative to the settled position.
   settle_d_ = measure().d;
   d_ref_ += settle_d_;
@@ -954,9 +989,14 @@ TiltEstimate estimate_cost(const dem::Model& model, const TiltConfig& cfg, const
     // The engine's rule for one more contact (stability.cpp, choose_time_step): one contact at
     // the upper block's extent against the kinematic lower block.
     const double m = model.mass[1], inertia = model.inertia[1], ext = model.extent[1];
-    double one = 2.0 / std::sqrt(cfg.contact.normal_stiffness * std::max(1.0 / m, ext * ext / inertia));
-    if (!cfg.implicit_damping && model.def.contact.normal_damping > 0)
+    const double w2 = dem::contact_stiffness(model, 1) * std::max(1.0 / m, ext * ext / inertia);
+    double one = 2.0 / std::sqrt(w2);
+    if (model.def.contact.law == dem::ContactLaw::Hertz) {
+      if (!cfg.implicit_damping && model.def.contact.damping_ratio > 0)
+        one = std::min(one, 1.0 / (model.def.contact.damping_ratio * std::sqrt(w2)));
+    } else if (!cfg.implicit_damping && model.def.contact.normal_damping > 0) {
       one = std::min(one, 2.0 / model.def.contact.normal_damping);
+    }
     dt = std::min(dt, cfg.time_step_safety * one);
   }
   e.time_step = dt;
@@ -1059,6 +1099,7 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
     TiltConfig stiff = cfg;
     stiff.contact.normal_stiffness *= 10;
     stiff.contact.tangential_stiffness *= 10;
+    stiff.modulus *= 10;  // the Hertz law's stiffness
     stiff.check_stiffness = false;
     stiff.predict = false;
     stiff.initial_offset = res.initial_offset;
@@ -1075,12 +1116,20 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
         (res.slid && std::fabs(r->friction_angle - res.friction_angle) > cfg.warn_stiffness_angle))
       res.warnings.push_back(
           {"stiffness",
-           fmt::format("not in the rigid limit: at 10 k_n = {:.3g} N/m the friction angle is {} against {} at k_n = "
-                       "{:.3g} N/m (warning above a change of {:.3g} deg); raise normal_stiffness",
-                       stiff.contact.normal_stiffness,
-                       r->slid ? fmt::format("{:.4f} deg", r->friction_angle * deg) : std::string("no slide"),
-                       res.slid ? fmt::format("{:.4f} deg", res.friction_angle * deg) : std::string("no slide"),
-                       cfg.contact.normal_stiffness, cfg.warn_stiffness_angle * deg)});
+           cfg.contact.law == dem::ContactLaw::Hertz
+               ? fmt::format("the angle depends on the contacts' compliance: at 10 E = {:.3g} Pa the friction angle "
+                             "is {} against {} at E = {:.3g} Pa (warning above a change of {:.3g} deg); a "
+                             "load-dependent angle, or overlaps beyond the spheroradius (core-overlap)",
+                             stiff.modulus,
+                             r->slid ? fmt::format("{:.4f} deg", r->friction_angle * deg) : std::string("no slide"),
+                             res.slid ? fmt::format("{:.4f} deg", res.friction_angle * deg) : std::string("no slide"),
+                             cfg.modulus, cfg.warn_stiffness_angle * deg)
+               : fmt::format("not in the rigid limit: at 10 k_n = {:.3g} N/m the friction angle is {} against {} at "
+                             "k_n = {:.3g} N/m (warning above a change of {:.3g} deg); raise normal_stiffness",
+                             stiff.contact.normal_stiffness,
+                             r->slid ? fmt::format("{:.4f} deg", r->friction_angle * deg) : std::string("no slide"),
+                             res.slid ? fmt::format("{:.4f} deg", res.friction_angle * deg) : std::string("no slide"),
+                             cfg.contact.normal_stiffness, cfg.warn_stiffness_angle * deg)});
   }
   return res;
 }
@@ -1088,14 +1137,15 @@ Result<TiltResult> run_tilt(const Curve& lower_surface, const Curve& upper_surfa
 std::vector<Warning> tilt_scale_warnings(const TiltScales& sc, const TiltResult& r, const TiltConfig& cfg) {
   std::vector<Warning> w;
   const double deg = 180 / std::numbers::pi;
+  const bool hertz = cfg.contact.law == dem::ContactLaw::Hertz;
   if (sc.resting_overlap > cfg.warn_overlap_fraction * sc.spheroradius)
-    w.push_back(
-        {"core-overlap",
-         fmt::format("the resting overlap W/k_n = {:.3g} m is {:.3g} r (warning above {:.3g} r, r = {:.3g} m): a "
-                     "contact carrying the block sinks far into the rounded rims and the cores can "
-                     "interpenetrate (2r = {:.3g} m); raise the spheroradius or normal_stiffness",
-                     sc.resting_overlap, sc.resting_overlap / sc.spheroradius, cfg.warn_overlap_fraction,
-                     sc.spheroradius, 2 * sc.spheroradius)});
+    w.push_back({"core-overlap",
+                 fmt::format("the resting overlap {} = {:.3g} m is {:.3g} r (warning above {:.3g} r, r = {:.3g} m): a "
+                             "contact carrying the block sinks far into the rounded rims and the cores can "
+                             "interpenetrate (2r = {:.3g} m); raise the spheroradius or {}",
+                             hertz ? "of one Hertz contact on the sharpest vertex" : "W/k_n", sc.resting_overlap,
+                             sc.resting_overlap / sc.spheroradius, cfg.warn_overlap_fraction, sc.spheroradius,
+                             2 * sc.spheroradius, hertz ? "block_modulus" : "normal_stiffness")});
   if (cfg.predict &&
       std::fabs(r.predicted_sphero_friction_angle - r.predicted_friction_angle) > cfg.warn_prediction_tolerance)
     w.push_back(

@@ -157,6 +157,12 @@ const Columns<TiltReport>& tilt_columns() {
                 [](const R& t) { return t.result.settled_overlap; }),
       column<R>("settled_speed_m_s", "m/s", "speed of the upper block at the end of settling",
                 [](const R& t) { return t.result.settled_speed; }),
+      column<R>("settled_interference_ratio", "",
+                "contact law hertz: mean overlap / R over the contacts at the end of settling (R the pair's "
+                "radius of curvature); null for the linear law",
+                [](const R& t) { return t.result.settled_interference_ratio; }),
+      column<R>("contact_modulus_pa", "Pa", "contact law hertz: the contact modulus E* used; 0 for the linear law",
+                [](const R& t) { return t.result.contact_modulus; }),
       column<R>(
           "", "count", "steps above the explicit stability limit (as steps_beyond_stability_limit)",
           [](const R& t) { return double(t.result.steps_beyond_limit); }, "steps_beyond_limit"),

@@ -51,6 +51,27 @@ const std::vector<B>& table() {
               std::vector<std::pair<std::string, TiltContactRule>>{{"auto", TiltContactRule::Auto},
                                                                    {"pairs", TiltContactRule::Pairs},
                                                                    {"closest", TiltContactRule::Closest}}),
+          bind_choice<TiltConfig>(
+              F("contact_law", "", 0, Lo::Closed, 0,
+                "Normal force law: linear (f_n = k_n overlap, Eq. 8, stiff enough for rigid blocks) or hertz "
+                "((4/3) E* sqrt(R) overlap^1.5 with R the local radius of curvature at the contact; needs "
+                "block_modulus)"),
+              FRICTAL_MEMBER(contact.law),
+              std::vector<std::pair<std::string, dem::ContactLaw>>{{"linear", dem::ContactLaw::Linear},
+                                                                   {"hertz", dem::ContactLaw::Hertz}}),
+          bind<TiltConfig>(F("block_modulus", "Pa", 0, Lo::Closed, kInf,
+                             "Young's modulus E of the blocks (contact_law hertz; > 0 there)"),
+                           FRICTAL_MEMBER(modulus)),
+          bind<TiltConfig>(
+              F("block_poisson", "", -1, Lo::Open, 0.5, "Poisson's ratio nu of the blocks (contact_law hertz)"),
+              FRICTAL_MEMBER(poisson)),
+          bind<TiltConfig>(F("elastic_blocks", "", 1, Lo::Closed, 2,
+                             "Contact law hertz: 1 (one elastic block on a rigid one, E* = E/(1-nu^2)) or 2 "
+                             "(both of that material, E* = E/(2(1-nu^2)))"),
+                           FRICTAL_MEMBER(elastic_blocks)),
+          bind<TiltConfig>(F("damping_ratio", "", 0, Lo::Closed, kInf,
+                             "Damping ratio zeta of the Hertz dashpot 2 zeta sqrt(m k) (contact_law hertz)"),
+                           FRICTAL_MEMBER(contact.damping_ratio)),
           bind<TiltConfig>(F("restitution", "", 0, Lo::Closed, 1,
                              "Restitution eps of Eq. 12 on the upper block's mass; > 0 replaces normal_damping"),
                            FRICTAL_MEMBER(restitution)),
