@@ -60,8 +60,9 @@ void print_text(const Prediction& p, const Args& a) {
                         : fmt::format("{:.6g} m", p.rest_offset[0]));
   } else {
     fmt::print(
-        "  a tilt test of these surfaces reads phi = {} deg (mu = {}), the median over drops; 90 % of tests "
+        "  a tilt test of these surfaces{} reads phi = {} deg (mu = {}), the median over drops; 90 % of tests "
         "between {} and {} deg (mu {} - {})\n",
+        std::isfinite(p.load) ? fmt::format(" under W = {:g} N", p.load) : std::string(),
         deg_text(p.friction_angle.q50), mu_text(p.friction_angle.q50), deg_text(p.friction_angle.q05),
         deg_text(p.friction_angle.q95), mu_text(p.friction_angle.q05), mu_text(p.friction_angle.q95));
     fmt::print("  over drops: mean {} deg, std {} deg, range [{}, {}] deg\n", deg_text(p.friction_angle.mean),

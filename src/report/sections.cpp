@@ -766,12 +766,14 @@ std::string headline(const ReportInput& in, const ReportData& d) {
           escape_html(codes), escape_html(p.trust_fix));
     }
     page += fmt::format(
-        "<p class=\"verdict\" id=\"headline\">A tilt test of {} reads <b>φ = {}</b> (μ = <b>{}</b>){}; rigid "
+        "<p class=\"verdict\" id=\"headline\">A tilt test of {}{} reads <b>φ = {}</b> (μ = <b>{}</b>){}; rigid "
         "upper bound {} = {} (μ ≤ {}); the paper's Eq. 18 range {} … {}.<br><small>Model: {} ({}); "
         "sliding at {:g}°, μ_a = {:g}; conditioning: {}; the test: {}run-away distance d = {:.3g} m ({}); over "
         "{}.</small></p>\n",
-        two_surfaces(in, d) ? "these surfaces" : "this surface against itself", fmt_deg(p.friction_angle.q50),
-        fmt_mu(p.friction_coefficient),
+        two_surfaces(in, d) ? "these surfaces" : "this surface against itself",
+        std::isfinite(p.load) ? fmt::format(" under a load of {:.3g} N (E* = {:.3g} Pa)", p.load, p.contact_modulus)
+                              : std::string(),
+        fmt_deg(p.friction_angle.q50), fmt_mu(p.friction_coefficient),
         p.single_drop ? " from this drop"
                       : fmt::format(", the median over drops; 90 % of tests between {} and {}",
                                     fmt_deg(p.friction_angle.q05), fmt_deg(p.friction_angle.q95)),
