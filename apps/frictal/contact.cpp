@@ -1,6 +1,6 @@
 // frictal contact LOWER [UPPER] — elastic normal contact of rough surfaces (frictal/contact.hpp):
 // LOWER alone is an elastic body pressed against a rigid flat; LOWER and UPPER are two elastic
-// bodies (the same material unless --modulus2/--poisson2 say otherwise) whose composite
+// bodies (the same material unless --upper-modulus/--upper-poisson say otherwise) whose composite
 // topography is pressed against a rigid flat. One load, or a list of loads (a load curve).
 #include <cmath>
 #include <cstdlib>
@@ -16,7 +16,7 @@ namespace {
 struct Args {
   std::string lower, upper, detrend;
   std::vector<std::string> loads;
-  std::string modulus, poisson, modulus2, poisson2, hardness;
+  std::string modulus, poisson, upper_modulus, upper_poisson, hardness;
   bool periodic = false, in_place = false, json = false, no_stiffness = false;
   double tolerance = ContactOptions{}.tolerance;
   unsigned threads = 1;
@@ -123,12 +123,15 @@ std::function<int()> setup(CLI::App& app) {
                  "Load(s) with their unit: a force (maps: N, mN, kN; profiles, per unit depth: N/m) or a nominal "
                  "pressure (Pa, kPa, MPa, GPa); several (or a comma-separated list) give a load curve")
       ->required();
-  app.add_option("--modulus", a->modulus, "Young's modulus E of LOWER (and of UPPER unless --modulus2): Pa, MPa, GPa")
+  app.add_option("--modulus", a->modulus,
+                 "Young's modulus E of LOWER (and of UPPER unless --upper-modulus): Pa, MPa, GPa")
       ->required();
-  app.add_option("--poisson", a->poisson, "Poisson's ratio nu of LOWER (and of UPPER unless --poisson2), in (-1, 0.5]")
+  app.add_option("--poisson", a->poisson,
+                 "Poisson's ratio nu of LOWER (and of UPPER unless --upper-poisson), in (-1, 0.5]")
       ->required();
-  app.add_option("--modulus2", a->modulus2, "Young's modulus of UPPER (default: --modulus); 'rigid' for a rigid UPPER");
-  app.add_option("--poisson2", a->poisson2, "Poisson's ratio of UPPER (default: --poisson)");
+  app.add_option("--upper-modulus", a->upper_modulus,
+                 "Young's modulus of UPPER (default: --modulus); 'rigid' for a rigid UPPER");
+  app.add_option("--upper-poisson", a->upper_poisson, "Poisson's ratio of UPPER (default: --poisson)");
   app.add_option("--hardness", a->hardness,
                  "Hardness H: the pressure is capped at H (perfect plasticity), Pa, MPa, GPa (default: elastic)");
   app.add_flag("--periodic", a->periodic,
@@ -154,18 +157,20 @@ std::function<int()> setup(CLI::App& app) {
     ContactOptions o;
     const ElasticMaterial first{E, nu};
     if (a->upper.empty()) {
-      require(
-          a->modulus2.empty() && a->poisson2.empty(),
-          "--modulus2/--poisson2: apply to UPPER, which is not given (LOWER alone is pressed against a rigid flat)");
+      require(a->upper_modulus.empty() && a->upper_poisson.empty(),
+              "--upper-modulus/--upper-poisson: apply to UPPER, which is not given (LOWER alone is pressed against a "
+              "rigid flat)");
       o.contact_modulus = unwrap(contact_modulus(first));
-    } else if (a->modulus2 == "rigid") {
-      require(a->poisson2.empty(), "--poisson2: a rigid UPPER has none");
+    } else if (a->upper_modulus == "rigid") {
+      require(a->upper_poisson.empty(), "--upper-poisson: a rigid UPPER has none");
       o.contact_modulus = unwrap(contact_modulus(first));
     } else {
       ElasticMaterial second = first;
-      if (!a->modulus2.empty())
-        second.modulus = parse_quantity(a->modulus2, "--modulus2", kPressureUnits, "a modulus such as 70GPa, or rigid");
-      if (!a->poisson2.empty()) second.poisson = parse_quantity(a->poisson2, "--poisson2", {{"", 1}}, "a number");
+      if (!a->upper_modulus.empty())
+        second.modulus =
+            parse_quantity(a->upper_modulus, "--upper-modulus", kPressureUnits, "a modulus such as 70GPa, or rigid");
+      if (!a->upper_poisson.empty())
+        second.poisson = parse_quantity(a->upper_poisson, "--upper-poisson", {{"", 1}}, "a number");
       o.contact_modulus = unwrap(contact_modulus(first, second));
     }
     if (!a->hardness.empty()) {

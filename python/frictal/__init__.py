@@ -142,8 +142,8 @@ def contact(lower, upper=None, **options):
     """Elastic normal contact of rough surfaces: the same solution as ``frictal contact``.
 
     ``lower`` alone is an elastic body (``modulus`` E in Pa, ``poisson`` nu) pressed against a
-    rigid flat; with ``upper`` the two bodies' composite topography is (``modulus2``/``poisson2``,
-    default the same material; ``modulus2=float("inf")``: a rigid upper). Surfaces as for
+    rigid flat; with ``upper`` the two bodies' composite topography is (``upper_modulus``/``upper_poisson``,
+    default the same material; ``upper_modulus=float("inf")``: a rigid upper). Surfaces as for
     :func:`predict`. ``load`` (the force: N for maps, N/m per unit depth for profiles) or
     ``pressure`` (nominal, Pa): a number, or a list for a load curve (each load starts from the
     previous solution). ``hardness`` (Pa) caps the pressure (perfect plasticity); ``periodic``

@@ -21,7 +21,7 @@ void frictal_bind_contact(py::module_& m) {
   m.def(
       "contact",
       [](const py::object& lower, const py::object& upper, const py::object& load, const py::object& pressure,
-         double modulus, double poisson, std::optional<double> modulus2, std::optional<double> poisson2,
+         double modulus, double poisson, std::optional<double> upper_modulus, std::optional<double> upper_poisson,
          double hardness, bool periodic, bool in_place, std::optional<std::string> detrend_text, const py::object& crop,
          bool remove_spikes, double spike_threshold, double spacing, const std::string& format, const std::string& unit,
          double tolerance, bool stiffness, bool fields, unsigned threads) {
@@ -32,12 +32,13 @@ void frictal_bind_contact(py::module_& m) {
         ContactOptions o;
         const ElasticMaterial first{modulus, poisson};
         if (upper.is_none()) {
-          if (modulus2 || poisson2) throw py::value_error("modulus2/poisson2: apply to upper, which is not given");
+          if (upper_modulus || upper_poisson)
+            throw py::value_error("upper_modulus/upper_poisson: apply to upper, which is not given");
           o.contact_modulus = ok(contact_modulus(first));
-        } else if (modulus2 && std::isinf(*modulus2)) {
+        } else if (upper_modulus && std::isinf(*upper_modulus)) {
           o.contact_modulus = ok(contact_modulus(first));  // a rigid upper body
         } else {
-          const ElasticMaterial second{modulus2.value_or(modulus), poisson2.value_or(poisson)};
+          const ElasticMaterial second{upper_modulus.value_or(modulus), upper_poisson.value_or(poisson)};
           o.contact_modulus = ok(contact_modulus(first, second));
         }
         o.hardness = hardness;
@@ -116,15 +117,16 @@ void frictal_bind_contact(py::module_& m) {
         return py::object(out);
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("load") = py::none(),
-      py::arg("pressure") = py::none(), py::arg("modulus"), py::arg("poisson"), py::arg("modulus2") = py::none(),
-      py::arg("poisson2") = py::none(), py::arg("hardness") = 0.0, py::arg("periodic") = false,
+      py::arg("pressure") = py::none(), py::arg("modulus"), py::arg("poisson"), py::arg("upper_modulus") = py::none(),
+      py::arg("upper_poisson") = py::none(), py::arg("hardness") = 0.0, py::arg("periodic") = false,
       py::arg("in_place") = false, py::arg("detrend") = py::none(), py::arg("crop") = py::none(),
       py::arg("remove_spikes") = false, py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("spacing") = 0.0,
       py::arg("format") = "auto", py::arg("unit") = "", py::arg("tolerance") = ContactOptions{}.tolerance,
       py::arg("stiffness") = true, py::arg("fields") = false, py::arg("threads") = 1u,
       "Elastic normal contact (as `frictal contact`; runs without the GIL; no warnings.warn: frictal.contact issues "
       "them). lower alone: an elastic body (modulus E in Pa, poisson nu) pressed against a rigid flat; with upper: "
-      "two bodies (modulus2/poisson2, default the same; modulus2=inf: a rigid upper) whose composite topography "
+      "two bodies (upper_modulus/upper_poisson, default the same; upper_modulus=inf: a rigid upper) whose composite "
+      "topography "
       "(upper turned over unless in_place) meets a rigid flat. Surfaces: paths, Profiles, dicts from read_surface/"
       "read_map or arrays of heights with spacing (m). load: the force (N for maps, N/m per unit depth for profiles) "
       "or pressure: the nominal pressure (Pa), a number or a list (a load curve). hardness H (Pa, 0: none) caps the "

@@ -108,7 +108,7 @@ TEST(CliContact, BadOptionsExit2NamingThem) {
       {"--load -5Pa --modulus 1GPa --poisson 0.3", "> 0"},
       {"--load 1MPa --modulus 1GPa --poisson 0.6", "Poisson's ratio"},
       {"--load 1MPa --modulus -1GPa --poisson 0.3", "Young's modulus"},
-      {"--load 1MPa --modulus 1GPa --poisson 0.3 --modulus2 2GPa", "UPPER, which is not given"},
+      {"--load 1MPa --modulus 1GPa --poisson 0.3 --upper-modulus 2GPa", "UPPER, which is not given"},
       {"--load 1MPa --modulus 1GPa --poisson 0.3 --hardness 0.5MPa", "hardness"},
   };
   for (const Case& c : cases) {
