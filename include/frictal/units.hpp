@@ -31,4 +31,14 @@ inline std::optional<double> length_scale(std::string_view unit) {
   return std::nullopt;
 }
 
+/// Pascals per unit of a pressure or modulus written by a user (options, TOML values): "Pa" (or
+/// no unit), "kPa", "MPa", "GPa"; nullopt for any other (unit: Pa per unit).
+inline std::optional<double> pressure_scale(std::string_view unit) {
+  if (unit.empty() || unit == "Pa") return 1.0;
+  if (unit == "kPa") return 1e3;
+  if (unit == "MPa") return 1e6;
+  if (unit == "GPa") return 1e9;
+  return std::nullopt;
+}
+
 }  // namespace frictal::units

@@ -211,15 +211,19 @@ Result<FieldValue> parse_text_word(const Field& f, const std::string& word, cons
       const char* end = word.data() + word.size();
       auto [p, ec] = std::from_chars(word.data(), end, d);
       if (ec == std::errc() && p == end) return FieldValue{d};
-      // A length may name its unit: 10um, 0.1mm, 5e-6 m (units::length_scale).
-      if (ec == std::errc() && f.unit == "m") {
+      // A length may name its unit: 10um, 0.1mm, 5e-6 m (units::length_scale); a pressure or
+      // modulus too: 70GPa, 200 MPa (units::pressure_scale).
+      if (ec == std::errc() && (f.unit == "m" || f.unit == "Pa")) {
         std::string_view unit(p, std::size_t(end - p));
         while (!unit.empty() && unit.front() == ' ') unit.remove_prefix(1);
-        if (const auto scale = units::length_scale(unit); scale && std::isfinite(d * *scale))
-          return FieldValue{d * *scale};
+        const auto scale = f.unit == "m" ? units::length_scale(unit) : units::pressure_scale(unit);
+        if (scale && std::isfinite(d * *scale)) return FieldValue{d * *scale};
       }
       return make_error(fmt::format("{}: expected a number in {}{}, got '{}'", prefix, range_text(f),
-                                    f.unit == "m" ? " (a unit may follow: m, mm, um, nm)" : "", word));
+                                    f.unit == "m"    ? " (a unit may follow: m, mm, um, nm)"
+                                    : f.unit == "Pa" ? " (a unit may follow: Pa, kPa, MPa, GPa)"
+                                                     : "",
+                                    word));
     }
   }
   return make_error(prefix + ": cannot parse '" + word + "'");

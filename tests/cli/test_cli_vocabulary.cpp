@@ -287,3 +287,24 @@ TEST(CliVocabulary, DashComposesCommandsInPipes) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_EQ(bad.err.find("frictal-"), std::string::npos) << bad.err;
 }
+
+TEST(CliVocabulary, AModulusSettingTakesItsUnitAsFrictalContactDoes) {
+  // `frictal contact --modulus 70GPa` and `predict --load ... --modulus 70GPa` take a unit; a
+  // settings table's field in Pa (tilt's block_modulus) takes the same words: 70GPa is 7e10 Pa
+  // to the bit, 70000MPa and 7e7kPa too, and a unit that is no pressure is refused naming the
+  // units it takes.
+  const std::string base = "tilt koch --alpha 5 --length 0.02 --max-tilt 1 --contact-law hertz --json --block-modulus ";
+  double pa[4] = {0, 0, 0, 0};
+  const std::string words[4] = {"7e10", "70GPa", "70000MPa", "7e7kPa"};
+  for (int i = 0; i < 4; ++i) {
+    const CliRun r = run_cli(base + words[i]);
+    ASSERT_EQ(r.code, 0) << words[i] << ": " << r.err;
+    pa[i] = nlohmann::json::parse(r.out)["settings"]["block_modulus"].get<double>();
+  }
+  EXPECT_EQ(pa[0], 7e10);
+  for (int i = 1; i < 4; ++i) EXPECT_EQ(pa[i], pa[0]) << words[i];
+  const CliRun bad = run_cli(base + "70GN");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--block-modulus"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("Pa, kPa, MPa, GPa"), std::string::npos) << bad.err;
+}
