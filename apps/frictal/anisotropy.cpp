@@ -77,7 +77,7 @@ std::function<int()> setup(CLI::App& app) {
     std::vector<ConditioningRecord> records{cm.record};
     const Map m = std::move(cm.map);
     std::vector<Warning> warnings;
-    for (const auto& w : s.warnings) add_warning(warnings, {"reader", w});
+    for (const auto& w : s.warnings) add_warning(warnings, w);
     for (Warning& w : check_map(m, a->file)) add_warning(warnings, std::move(w));
     if (!a->upper.empty() && !a->areal) throw UsageError("--upper needs --areal");
     require(std::isfinite(a->runaway_distance) && a->runaway_distance >= 0,
@@ -94,7 +94,7 @@ std::function<int()> setup(CLI::App& app) {
       ConditionedMap cu = unwrap(condition(us.map, cond, a->upper));
       records.push_back(cu.record);
       u = std::move(cu.map);
-      for (const auto& w : us.warnings) add_warning(warnings, {"reader", w});
+      for (const auto& w : us.warnings) add_warning(warnings, w);
       for (Warning& w : check_map(u, a->upper)) add_warning(warnings, std::move(w));
     }
     // --hold: one prediction per direction, on the maps as read (predict() conditions them as above).

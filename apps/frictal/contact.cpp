@@ -87,7 +87,7 @@ struct Surface {
 
 Surface read(const std::string& path, const Args& a, const Conditioning& c, std::vector<Warning>& warnings) {
   SurfaceData s = load_surface(path, a.input);
-  for (const auto& w : s.warnings) add_warning(warnings, {"reader", w});
+  for (const auto& w : s.warnings) add_warning(warnings, w);
   Surface out;
   out.is_map = s.is_map;
   if (s.is_map) {

@@ -110,7 +110,7 @@ std::function<int()> setup(CLI::App& app) {
       throw UsageError(fmt::format("--method '{}' not understood (expected divider, box, psd or eq13)", a->method));
     }
     std::vector<Warning> warnings;
-    for (const auto& w : s.warnings) add_warning(warnings, {"reader", w});
+    for (const auto& w : s.warnings) add_warning(warnings, w);
     for (Warning& w : check_dimension_fit(f.dimension, f.r_squared, a->method)) add_warning(warnings, std::move(w));
     if (a->json) {
       nlohmann::json j;

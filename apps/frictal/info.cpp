@@ -52,7 +52,8 @@ std::function<int()> setup(CLI::App& app) {
       } else {
         j["points"] = s.curve.size();
       }
-      j["warnings"] = s.warnings;
+      j["warnings"] = nlohmann::json::array();  // the messages, as the text output gives them
+      for (const Warning& w : s.warnings) j["warnings"].push_back(w.message);
       print_json(j);
       return 0;
     }

@@ -96,12 +96,12 @@ std::function<int()> setup(CLI::App& app) {
       records.push_back(c.record);
       return std::move(c.profile);
     };
-    for (const auto& w : s.warnings) in.notes.push_back("Reader warning: " + w);
+    for (const auto& w : s.warnings) in.notes.push_back("Reader warning: " + w.message);
     if (s.is_map) {
       in.map = conditioned_map(s.map, a->lower);
       if (!a->upper.empty()) {  // two maps: the areal section (lift over two dimensions of offset)
         const SurfaceData u = load_surface(a->upper, a->input);
-        for (const auto& w : u.warnings) in.notes.push_back("Reader warning: " + w);
+        for (const auto& w : u.warnings) in.notes.push_back("Reader warning: " + w.message);
         if (!u.is_map)
           throw UsageError(
               fmt::format("{}: a line profile; with an areal map as SURFACE, UPPER must be a map too", a->upper));
@@ -113,7 +113,7 @@ std::function<int()> setup(CLI::App& app) {
     }
     if (!a->upper.empty() && !s.is_map) {
       const SurfaceData u = load_surface(a->upper, a->input);
-      for (const auto& w : u.warnings) in.notes.push_back("Reader warning: " + w);
+      for (const auto& w : u.warnings) in.notes.push_back("Reader warning: " + w.message);
       in.upper = conditioned_profile(surface_profile(u, a->upper), a->upper);
       in.upper_name = a->upper;
     }

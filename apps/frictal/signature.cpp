@@ -151,7 +151,7 @@ std::function<int()> setup(CLI::App& app) {
     std::array<std::vector<Warning>, 2> side_warnings;
     auto load = [&](const std::string& path, int side) {
       SurfaceData sd = unwrap(read_surface(input_path(path), ro));
-      for (const auto& w : sd.warnings) add_warning(side_warnings[side], {"reader", stdin_name(w)});
+      for (Warning& w : sd.warnings) add_warning(side_warnings[side], {std::move(w.code), stdin_name(w.message)});
       return surface_profile(std::move(sd), path);
     };
     // Each profile conditioned (crop, spikes, form: conditioning.hpp), its record kept.

@@ -66,7 +66,7 @@ std::function<int()> setup(CLI::App& app) {
     const SurfaceData data = load_surface(a->file, a->input);
     // The reader's warnings (printed as it read) and the plausibility of what was read (warnings.hpp).
     std::vector<Warning> warnings;
-    for (const auto& w : data.warnings) add_warning(warnings, {"reader", w});
+    for (const auto& w : data.warnings) add_warning(warnings, w);
     auto report_warnings = [&](nlohmann::json* j) {
       if (j) (*j)["warnings"] = warnings_json(warnings);
       for (const Warning& w : warnings)

@@ -97,7 +97,7 @@ inline ReadOptions read_options(const InputOptions& o) {
 
 inline SurfaceData load_surface(const std::string& path, const InputOptions& o) {
   SurfaceData s = unwrap(read_surface(input_path(path), read_options(o)));
-  for (const auto& w : s.warnings) fmt::print(stderr, "frictal: warning: {}\n", w);
+  for (const auto& w : s.warnings) fmt::print(stderr, "frictal: warning: {}\n", w.message);
   return s;
 }
 
@@ -162,7 +162,7 @@ inline Conditioning conditioning(const ConditioningOptions& o, const Detrend& fo
 
 /// The file's areal map conditioned by `c` (error naming the file for a line profile: `needs`
 /// says what the command wants, e.g. "areal-tilt needs maps"). `records` (if given) gains the
-/// record of its conditioning. `warnings` (if given) gains the reader's warnings (code "reader",
+/// record of its conditioning. `warnings` (if given) gains the reader's warnings (with its codes,
 /// already printed on standard error by load_surface) and the plausibility checks of the
 /// conditioned map (warnings.hpp).
 inline Map load_conditioned_map(const std::string& path, const InputOptions& o, const Conditioning& c,
@@ -173,7 +173,7 @@ inline Map load_conditioned_map(const std::string& path, const InputOptions& o, 
   ConditionedMap m = unwrap(condition(s.map, c, path));
   if (records) records->push_back(m.record);
   if (warnings) {
-    for (const auto& w : s.warnings) add_warning(*warnings, {"reader", w});
+    for (const auto& w : s.warnings) add_warning(*warnings, w);
     for (Warning& w : check_map(m.map, path)) add_warning(*warnings, std::move(w));
   }
   return std::move(m.map);

@@ -54,15 +54,17 @@ nlohmann::json text_json(const std::vector<Field>& fields, const ValueSet& si) {
   return j;
 }
 
-/// A line profile from a file; what the reader said that did not stop it becomes a warning
-/// (code "reader", warnings.hpp).
+/// A line profile from a file; what the reader said that did not stop it joins the warnings (with
+/// the reader's code), each naming the file.
 Curve read_file(const std::string& path, std::vector<Warning>& warnings) {
   SurfaceData s = unwrap(read_surface(input_path(path), ReadOptions{}));
   if (s.is_map)
     throw UsageError(
         fmt::format("{}: an areal map ({} x {}), not a line profile; extract a line first", path, s.map.nx, s.map.ny));
-  for (const std::string& w : s.warnings)
-    add_warning(warnings, {"reader", w.find(path) == std::string::npos ? path + ": " + w : w});
+  for (Warning& w : s.warnings) {
+    if (w.message.find(path) == std::string::npos) w.message = path + ": " + w.message;
+    add_warning(warnings, std::move(w));
+  }
   return std::move(s.curve);
 }
 

@@ -10,6 +10,7 @@
 
 #include "frictal/geometry.hpp"
 #include "frictal/map.hpp"
+#include "frictal/result.hpp"
 
 namespace frictal {
 
@@ -73,13 +74,14 @@ struct ChannelInfo {
 };
 
 /// Everything a surface file gave: a line profile or an areal map, plus warnings (e.g. an X3P
-/// checksum mismatch, a count line that does not match) that did not stop the reading.
+/// checksum mismatch, a count line that does not match) that did not stop the reading, each with
+/// the code the reader gives it ("reader", warnings.hpp).
 struct SurfaceData {
   bool is_map = false;                         ///< true: `map` holds the data; false: `curve` does
   Curve curve;                                 ///< line profile in metres (x may decrease only in curve formats)
   Map map;                                     ///< areal map in metres
   ProfileFormat format = ProfileFormat::Auto;  ///< the format actually read
-  std::vector<std::string> warnings;
+  std::vector<Warning> warnings;
   /// Which reader read it: "native" or "gwyddion:<module>" (e.g. "gwyddion:surffile"), with
   /// " (gzip)" when the file was gzip-compressed.
   std::string reader;

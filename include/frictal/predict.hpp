@@ -223,13 +223,13 @@ struct StatedTest {
 StatedTest default_test_lengths(const Profile& lower);
 
 /// A surface as the front ends hand it over: a profile or a map, with the name that messages use
-/// and the warnings its reader issued (code "reader").
+/// and the warnings its reader issued (with the reader's codes).
 struct PredictSurface {
   bool is_map = false;
   Profile profile;
   Map map;
   std::string name;
-  std::vector<std::string> reader_warnings;
+  std::vector<Warning> reader_warnings;
   /// Metres per unit of the file's lateral numbers and heights as read (SurfaceData's); 0: not read
   /// from a file. The trust's fix names the unit to give from them (unit: m per file unit).
   double x_unit_scale = 0, z_unit_scale = 0;

@@ -193,7 +193,6 @@ def _wrap(core, checks, doc_note):
         if not isinstance(result, dict):
             return result
         found = list(result.get("warnings", []) or [])
-        found = [w if isinstance(w, dict) else {"code": "reader", "message": str(w)} for w in found]
         for w in _as_dicts(checks(args, kwargs, result)):
             if w not in found:
                 found.append(w)
@@ -260,7 +259,7 @@ anisotropy = _wrap(anisotropy, _map_checks, "Warnings: ``warnings`` holds the ma
 divider_dimension = _wrap(divider_dimension, _fit_checks("divider"), "Warnings: dimension-out-of-range, poor-fit.")
 box_dimension = _wrap(box_dimension, _fit_checks("box"), "Warnings: dimension-out-of-range, poor-fit.")
 psd_dimension = _wrap(psd_dimension, _fit_checks("psd"), "Warnings: dimension-out-of-range, poor-fit.")
-read_surface = _wrap(read_surface, _no_checks, "Warnings: the reader's (code reader), also issued.")
+read_surface = _wrap(read_surface, _no_checks, "Warnings: the reader's ([{code, message}], code reader), also issued.")
 tilt = _wrap(tilt, _no_checks, "Warnings: the run's codes (e.g. rotation) are also issued with warnings.warn.")
 areal_tilt = _wrap(areal_tilt, _no_checks, "Warnings: the run's codes are also issued with warnings.warn.")
 

@@ -56,7 +56,7 @@ void frictal_bind_contact(py::module_& m) {
         std::vector<Warning> warnings;
         auto conditioned = [&](const py::object& obj, const char* what, std::string& record) {
           PredictSurface s = py_detail::to_surface(obj, spacing, format, unit, what);
-          for (const std::string& w : s.reader_warnings) add_warning(warnings, {"reader", w});
+          for (const Warning& w : s.reader_warnings) add_warning(warnings, w);
           if (s.is_map) {
             ConditionedMap cm = ok(condition(s.map, c, s.name));
             for (Warning& w : check_map(cm.map, s.name)) add_warning(warnings, std::move(w));

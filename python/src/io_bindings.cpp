@@ -134,7 +134,7 @@ void frictal_bind_io(py::module_& m) {
           d["z"] = arr(s.curve.z);
         }
         d["format"] = format_name(s.format);
-        d["warnings"] = s.warnings;
+        d["warnings"] = py_detail::warning_list(s.warnings);
         d["reader"] = s.reader;  // "native", "native (gzip)" or "gwyddion:<module>"
         d["x_unit_scale"] = s.x_unit_scale;
         d["z_unit_scale"] = s.z_unit_scale;

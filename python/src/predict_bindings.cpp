@@ -33,6 +33,24 @@ void frictal::py_detail::set_units(ReadOptions& o, const std::string& unit, cons
   o.z_unit = z_unit.empty() ? unit : z_unit;
 }
 
+namespace {
+/// A surface dict's "warnings" (as read_surface returns them: [{code, message}]), kept with their
+/// codes. Errors (ValueError naming `what`): an entry that is not such a dict.
+std::vector<Warning> dict_warnings(const py::dict& d, const std::string& what) {
+  std::vector<Warning> out;
+  if (!d.contains("warnings")) return out;
+  for (auto w : d["warnings"]) {
+    if (!py::isinstance<py::dict>(w) || !w.contains("code") || !w.contains("message"))
+      throw py::value_error(what +
+                            ": each of a dict's 'warnings' must be a dict with 'code' and 'message' (as "
+                            "read_surface returns them), not " +
+                            py::repr(w).cast<std::string>());
+    out.push_back({py::str(w["code"]), py::str(w["message"])});
+  }
+  return out;
+}
+}  // namespace
+
 PredictSurface frictal::py_detail::to_surface(const py::handle& obj, double spacing, const std::string& format,
                                               const std::string& unit, const std::string& what,
                                               const std::string& x_unit, const std::string& z_unit) {
@@ -71,15 +89,13 @@ PredictSurface frictal::py_detail::to_surface(const py::handle& obj, double spac
                                 d["dx"].cast<double>(), d["dy"].cast<double>(),
                                 d.contains("x0") ? d["x0"].cast<double>() : 0.0,
                                 d.contains("y0") ? d["y0"].cast<double>() : 0.0);
-      if (d.contains("warnings"))
-        for (auto w : d["warnings"]) s.reader_warnings.push_back(py::str(w));
+      s.reader_warnings = dict_warnings(d, what);
       return s;
     }
     if (d.contains("x") && d.contains("z")) {
       auto x = d["x"].cast<std::vector<double>>(), z = d["z"].cast<std::vector<double>>();
       s.profile = ok(as_profile(Curve{std::move(x), std::move(z)}, what));
-      if (d.contains("warnings"))
-        for (auto w : d["warnings"]) s.reader_warnings.push_back(py::str(w));
+      s.reader_warnings = dict_warnings(d, what);
       return s;
     }
     throw py::value_error(what + ": a dict needs 'heights', 'dx', 'dy' (a map) or 'x', 'z' (a profile)");
@@ -120,7 +136,7 @@ frictal::py_detail::ProfilePair frictal::py_detail::conditioned_profiles(
       throw py::value_error(s.name +
                             ": an areal map; this function needs line profiles (areal_signature, "
                             "areal_hold or predict take maps)");
-    for (const std::string& w : s.reader_warnings) add_warning(out.warnings, {"reader", w});
+    for (const Warning& w : s.reader_warnings) add_warning(out.warnings, w);
     Conditioning own = c;
     own.form = form_or_default(asked, s.profile.period.has_value());
     ConditionedProfile r = ok(nogil([&] { return condition(std::move(s.profile), own, s.name); }));

@@ -183,8 +183,8 @@ Result<SurfaceData> read_npy_bytes(std::string_view bytes, const std::string& na
     if (!s) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
     zs = *s;
   } else {
-    out.warnings.push_back(
-        fmt::format("{}: .npy arrays carry no unit; heights read as metres (give a unit to override)", name));
+    out.warnings.emplace_back(
+        "reader", fmt::format("{}: .npy arrays carry no unit; heights read as metres (give a unit to override)", name));
   }
   out.z_unit_scale = zs;
   out.x_unit_scale = 0;  // no lateral numbers: the spacing, given in metres, is the one lateral length
@@ -206,7 +206,7 @@ Result<SurfaceData> read_npy_bytes(std::string_view bytes, const std::string& na
       out.curve.x.push_back(double(k) * options.spacing);
       out.curve.z.push_back(v[k] * zs);
     }
-    if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, false));
+    if (invalid.total()) out.warnings.emplace_back("reader", invalid_warning(name, invalid, false));
     if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than 2 points with finite values", name));
     return out;
   }
@@ -222,9 +222,10 @@ Result<SurfaceData> read_npy_bytes(std::string_view bytes, const std::string& na
     m.dx = m.dy = options.spacing;
   } else {
     m.dx = m.dy = 1;
-    out.warnings.push_back(fmt::format("{}: .npy arrays carry no grid spacing; set to 1 m (give --spacing)", name));
+    out.warnings.emplace_back("reader",
+                              fmt::format("{}: .npy arrays carry no grid spacing; set to 1 m (give --spacing)", name));
   }
-  if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
+  if (invalid.total()) out.warnings.emplace_back("reader", invalid_warning(name, invalid, true));
   if (m.valid_count() == 0) return make_error(fmt::format("{}: no valid point", name));
   out.is_map = true;
   return out;
@@ -358,7 +359,7 @@ Result<SurfaceData> parse_sdf_text(std::string_view text, const std::string& nam
   InvalidCount invalid;
   mask_invalid(v, invalid);
   for (double& z : v) z *= *zs;
-  if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, *nx > 1 && *ny > 1));
+  if (invalid.total()) out.warnings.emplace_back("reader", invalid_warning(name, invalid, *nx > 1 && *ny > 1));
   if (*ny == 1 || *nx == 1) {
     const double d = *ny == 1 ? *xs : *ys;
     for (std::size_t i = 0; i < count; ++i)

@@ -421,7 +421,7 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
   SurfaceData out;
   out.format = ProfileFormat::GwyddionLib;
   out.reader = fmt::format("gwyddion:{}", module ? module : detected);
-  for (const auto& m : logged) out.warnings.push_back(fmt::format("{}: {}", path, m));
+  for (const auto& m : logged) out.warnings.emplace_back("reader", fmt::format("{}: {}", path, m));
   std::vector<Channel> chans = list_channels(a, c);
   for (const auto& ch : chans) out.channels.push_back(ch.info);
   if (chans.empty())
@@ -466,7 +466,8 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
     if (!fallback) return make_error(fmt::format("unknown unit '{}' (expected m, mm, um, nm)", options.default_unit));
     sxy = sz = fallback;
     if (options.default_unit.empty())
-      out.warnings.push_back(
+      out.warnings.emplace_back(
+          "reader",
           fmt::format("{}: channel '{}' carries no units; sizes and heights read as metres (give a unit to override)",
                       path, ch.info.name));
   }
@@ -503,7 +504,7 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
       for (std::size_t k = 0; k < nx * ny; ++k)
         if (md[k] > 0.5) m.heights[k] = std::numeric_limits<double>::quiet_NaN();
     }
-    if (invalid.total()) out.warnings.push_back(io_detail::invalid_warning(path, invalid, true));
+    if (invalid.total()) out.warnings.emplace_back("reader", io_detail::invalid_warning(path, invalid, true));
     if (m.valid_count() == 0) return make_error(fmt::format("{}: channel '{}' has no valid point", path, ch.info.name));
     if (!(m.dx > 0) || !(m.dy > 0))
       return make_error(fmt::format("{}: channel '{}' has a zero or negative size", path, ch.info.name));
@@ -525,7 +526,7 @@ Result<SurfaceData> read_gwyddion(const std::string& path, const ReadOptions& op
       out.curve.x.push_back(x[k] * *sxy);
       out.curve.z.push_back(y[k] * *sz);
     }
-    if (invalid.total()) out.warnings.push_back(io_detail::invalid_warning(path, invalid, false));
+    if (invalid.total()) out.warnings.emplace_back("reader", io_detail::invalid_warning(path, invalid, false));
     if (out.curve.size() < 2)
       return make_error(fmt::format("{}: curve '{}' has fewer than 2 valid points", path, ch.info.name));
   }

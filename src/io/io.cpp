@@ -244,9 +244,10 @@ Result<SurfaceData> with_units(Result<SurfaceData> r, const ReadOptions& o, cons
     } else {
       for (double& z : r->is_map ? r->map.heights : r->curve.z) z *= f;
     }
-    r->warnings.push_back(fmt::format("{}: {} are read in {}, the {} given, not in {} as the file gives or implies",
-                                      name, lateral ? "the lateral lengths" : "the heights", unit_word(*s),
-                                      lateral ? "x unit" : "z unit", unit_word(applied)));
+    r->warnings.emplace_back(
+        "reader", fmt::format("{}: {} are read in {}, the {} given, not in {} as the file gives or implies", name,
+                              lateral ? "the lateral lengths" : "the heights", unit_word(*s),
+                              lateral ? "x unit" : "z unit", unit_word(applied)));
     applied = *s;
   }
   return r;

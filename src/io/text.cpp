@@ -650,7 +650,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       if (!is_comment(*it) && it->find_first_of("=:") == std::string_view::npos)
         zu = unit_in_header(*it);  // "height [nm]"
     if (!zu && options.default_unit.empty())
-      out.warnings.push_back(
+      out.warnings.emplace_back(
+          "reader",
           fmt::format("{}: no length unit found for the heights; read as metres (give a unit to override)", name));
     const double zs = zu.value_or(fallback_unit);
     out.z_unit_scale = zs;
@@ -665,7 +666,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       out.curve.x.push_back(double(k) * dx);
       out.curve.z.push_back(z * zs);
     }
-    if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, false));
+    if (invalid.total()) out.warnings.emplace_back("reader", invalid_warning(name, invalid, false));
     if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than 2 points with finite values", name));
     return out;
   }
@@ -707,8 +708,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
       auto xu = unit_of(0), yu = unit_of(1), zu = unit_of(2);
       if (!zu) zu = z_unit_header;
       if ((!xu || !yu || !zu) && options.default_unit.empty())
-        out.warnings.push_back(
-            fmt::format("{}: no length unit found for some of the x, y, z columns; read as metres", name));
+        out.warnings.emplace_back(
+            "reader", fmt::format("{}: no length unit found for some of the x, y, z columns; read as metres", name));
       Map& m = out.map;
       m.nx = nx;
       m.ny = ny;
@@ -736,11 +737,11 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
         }
         m.heights[at] = z * zu.value_or(fallback_unit);
       }
-      if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
+      if (invalid.total()) out.warnings.emplace_back("reader", invalid_warning(name, invalid, true));
       if (nx * ny > rows.size())
-        out.warnings.push_back(
-            fmt::format("{}: {} of the {} x {} grid nodes are missing from the list (invalid points)", name,
-                        nx * ny - rows.size(), nx, ny));
+        out.warnings.emplace_back(
+            "reader", fmt::format("{}: {} of the {} x {} grid nodes are missing from the list (invalid points)", name,
+                                  nx * ny - rows.size(), nx, ny));
       if (m.valid_count() == 0) return make_error(fmt::format("{}: no valid point", name));
       out.is_map = true;
       out.format = ProfileFormat::Xyz;
@@ -800,7 +801,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     if (!dx && options.spacing > 0) dx = options.spacing;
     if (!dy && options.spacing > 0) dy = options.spacing;
     if (!dx || !dy)
-      out.warnings.push_back(
+      out.warnings.emplace_back(
+          "reader",
           fmt::format("{}: a {} x {} matrix of heights without sizes; grid spacing set to 1 {} (give --spacing)", name,
                       m.nx, m.ny, options.default_unit.empty() ? "m" : options.default_unit));
     m.dx = dx.value_or(fallback_unit);
@@ -827,8 +829,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
         zu = factor * *unit;
       }
     if (!zu && options.default_unit.empty())
-      out.warnings.push_back(
-          fmt::format("{}: no unit for the heights; read as metres (give a unit to override)", name));
+      out.warnings.emplace_back(
+          "reader", fmt::format("{}: no unit for the heights; read as metres (give a unit to override)", name));
     m.heights = std::move(rows.v);
     InvalidCount invalid;
     mask_invalid(m.heights, invalid);
@@ -839,7 +841,7 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
                            ? 0.0
                            : lateral_unit_seen.value_or(fallback_unit);
     for (double& v : m.heights) v *= zs;
-    if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
+    if (invalid.total()) out.warnings.emplace_back("reader", invalid_warning(name, invalid, true));
     if (m.valid_count() == 0) return make_error(fmt::format("{}: no valid point", name));
     out.is_map = true;
     out.format = ProfileFormat::Matrix;
@@ -847,8 +849,9 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   }
 
   if (count_line_value >= 0 && std::size_t(count_line_value) != rows.size())
-    out.warnings.push_back(fmt::format("{}: line {} gives a count of {} but {} data rows follow; all rows were read",
-                                       name, count_line_number, count_line_value, rows.size()));
+    out.warnings.emplace_back(
+        "reader", fmt::format("{}: line {} gives a count of {} but {} data rows follow; all rows were read", name,
+                              count_line_number, count_line_value, rows.size()));
 
   // Columns.
   int xc = options.x_column, zc = options.z_column;
@@ -878,7 +881,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     if (zc < 0) zc = xc + 1;
     const std::size_t used = std::size_t(std::max(xc, zc)) + 1 + (vc == std::max(xc, zc) + 1 ? 1 : 0);
     if (ncols > used || (index_col && ncols > 3))
-      out.warnings.push_back(
+      out.warnings.emplace_back(
+          "reader",
           fmt::format("{}: {} columns; using column {} as x and column {} as z (0-based)", name, ncols, xc, zc));
   }
   if (std::size_t(std::max(xc, zc)) >= ncols || xc == zc)
@@ -920,7 +924,8 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   auto xu = find_unit(xc), zu = find_unit(zc);
   const bool x_none = !xu && !*xo, z_none = !zu && !*zo;
   if ((x_none || z_none) && options.default_unit.empty())
-    out.warnings.push_back(
+    out.warnings.emplace_back(
+        "reader",
         fmt::format("{}: no length unit found for the {} column; values read as metres (give a unit to override)", name,
                     x_none && z_none ? "x and z"
                     : x_none         ? "x"
@@ -960,10 +965,12 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
                                          *v);
       else
         stated = "the whole column's (x_last - x_0) / (n - 1)";
-      out.warnings.push_back(fmt::format(
-          "{}: the x column is a uniform grid within the precision it is printed with (steps {:.6g} to {:.6g} m, last "
-          "printed digit {:.3g} m); read as the uniform grid of spacing {:.10g} m: {}",
-          name, grid->min_step * xs, grid->max_step * xs, grid->unit * xs, std::abs(grid->dx) * xs, stated));
+      out.warnings.emplace_back(
+          "reader", fmt::format("{}: the x column is a uniform grid within the precision it is printed with (steps "
+                                "{:.6g} to {:.6g} m, last "
+                                "printed digit {:.3g} m); read as the uniform grid of spacing {:.10g} m: {}",
+                                name, grid->min_step * xs, grid->max_step * xs, grid->unit * xs,
+                                std::abs(grid->dx) * xs, stated));
     }
   }
 
@@ -995,10 +1002,10 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
     out.curve.x.push_back(x * xs);
     out.curve.z.push_back(z * zs);
   }
-  if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, false));
+  if (invalid.total()) out.warnings.emplace_back("reader", invalid_warning(name, invalid, false));
   if (flagged)
-    out.warnings.push_back(
-        fmt::format("{}: {} points flagged invalid (0) in the 'valid' column dropped", name, flagged));
+    out.warnings.emplace_back(
+        "reader", fmt::format("{}: {} points flagged invalid (0) in the 'valid' column dropped", name, flagged));
   if (out.curve.x.size() < 2) return make_error(fmt::format("{}: fewer than 2 points with finite values", name));
   return out;
 }
@@ -1166,10 +1173,10 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
     fallback = *s;
   }
   if (!width || !height)
-    out.warnings.push_back(fmt::format("{}: no Width/Height header; grid spacing set to 1 {}", name,
-                                       options.default_unit.empty() ? "m" : options.default_unit));
+    out.warnings.emplace_back("reader", fmt::format("{}: no Width/Height header; grid spacing set to 1 {}", name,
+                                                    options.default_unit.empty() ? "m" : options.default_unit));
   if (!zscale && options.default_unit.empty())
-    out.warnings.push_back(fmt::format("{}: no 'Value units' header; heights read as metres", name));
+    out.warnings.emplace_back("reader", fmt::format("{}: no 'Value units' header; heights read as metres", name));
   Map& m = out.map;
   m.nx = nx;
   m.ny = ny;
@@ -1186,7 +1193,7 @@ Result<SurfaceData> parse_gwyddion(std::string_view text, const std::string& nam
   InvalidCount invalid;
   mask_invalid(m.heights, invalid);
   for (double& h : m.heights) h *= zs;
-  if (invalid.total()) out.warnings.push_back(invalid_warning(name, invalid, true));
+  if (invalid.total()) out.warnings.emplace_back("reader", invalid_warning(name, invalid, true));
   if (invalid.total() == m.heights.size())
     return make_error(fmt::format("{}: no valid point (every height is NaN or infinite)", name));
   return out;

@@ -236,7 +236,7 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
   }
   if (main_name.empty()) return make_error(fmt::format("{}: X3P archive without main.xml", name));
   base = main_name.substr(0, main_name.size() - 8);
-  if (!base.empty()) warn.push_back(fmt::format("{}: main.xml is in the sub-folder '{}'", name, base));
+  if (!base.empty()) warn.emplace_back("reader", fmt::format("{}: main.xml is in the sub-folder '{}'", name, base));
   // main.xml holds metadata (and at most an XML data list): 1 KiB per point of max_points is
   // plenty, capped at 256 MiB.
   auto xml =
@@ -257,7 +257,7 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
     return make_error(
         fmt::format("{}: {}: root element is '{}' (expected ISO5436_2)", name, main_name, root ? root.name() : ""));
   if (std::string_view(root.name()).find(':') == std::string_view::npos && !root.attribute("xmlns"))
-    warn.push_back(fmt::format("{}: root element '{}' has no namespace", name, root.name()));
+    warn.emplace_back("reader", fmt::format("{}: root element '{}' has no namespace", name, root.name()));
 
   // Checksum of main.xml (a mismatch is a warning: real files often carry stale ones).
   {
@@ -265,12 +265,13 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
     if (cname.empty()) cname = "md5checksum.hex";
     auto sum = ar.read(base + cname, 4096);
     if (!sum) {
-      warn.push_back(fmt::format("{}: no checksum file '{}'; main.xml not verified", name, cname));
+      warn.emplace_back("reader", fmt::format("{}: no checksum file '{}'; main.xml not verified", name, cname));
     } else {
       std::string expect = std::string(trim(*sum)).substr(0, 32);
       if (!same_hex(expect, md5_hex(*xml)))
-        warn.push_back(fmt::format("{}: MD5 checksum of main.xml does not match {} (file says {}, content is {})", name,
-                                   cname, expect, md5_hex(*xml)));
+        warn.emplace_back(
+            "reader", fmt::format("{}: MD5 checksum of main.xml does not match {} (file says {}, content is {})", name,
+                                  cname, expect, md5_hex(*xml)));
     }
   }
 
@@ -349,7 +350,7 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
                                     count, rec, expect));
     std::string sum = text_of(child(link, "MD5ChecksumPointData"));
     if (!sum.empty() && !same_hex(sum, md5_hex(*data)))
-      warn.push_back(fmt::format("{}: MD5 checksum of {} does not match main.xml", name, dname));
+      warn.emplace_back("reader", fmt::format("{}: MD5 checksum of {} does not match main.xml", name, dname));
     const auto* p = reinterpret_cast<const unsigned char*>(data->data());
     for (std::uint64_t k = 0; k < count; ++k)
       for (char c : stored) {
@@ -372,7 +373,7 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
                                       valid->size(), count, (count + 7) / 8));
       std::string vs = text_of(child(link, "MD5ChecksumValidPoints"));
       if (!vs.empty() && !same_hex(vs, md5_hex(*valid)))
-        warn.push_back(fmt::format("{}: MD5 checksum of {} does not match main.xml", name, vname));
+        warn.emplace_back("reader", fmt::format("{}: MD5 checksum of {} does not match main.xml", name, vname));
       valid_bits = std::move(*valid);
     }
     // Heights stored as NaN or +-inf on points the mask calls valid: invalid points (one rule
@@ -526,15 +527,16 @@ Result<SurfaceData> read_x3p_bytes(const std::string& bytes, const std::string& 
       out.curve.x.push_back(along_y ? m.y0 + double(k) * m.dy : m.x0 + double(k) * m.dx);
       out.curve.z.push_back(z);
     }
-    if (invalid.total()) warn.push_back(invalid_warning(name, invalid, false));
+    if (invalid.total()) warn.emplace_back("reader", invalid_warning(name, invalid, false));
     if (dropped > invalid.total())
-      warn.push_back(fmt::format("{}: {} points flagged invalid were dropped", name, dropped - invalid.total()));
+      warn.emplace_back("reader",
+                        fmt::format("{}: {} points flagged invalid were dropped", name, dropped - invalid.total()));
     if (out.curve.x.size() < 2) return make_error(fmt::format("{}: profile with fewer than two valid points", name));
     out.is_map = false;
   } else {
     out.is_map = true;
     out.map = std::move(m);
-    if (invalid.total()) warn.push_back(invalid_warning(name, invalid, true));
+    if (invalid.total()) warn.emplace_back("reader", invalid_warning(name, invalid, true));
     if (out.map.valid_count() == 0) return make_error(fmt::format("{}: no valid points", name));
   }
   return out;

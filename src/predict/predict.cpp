@@ -78,8 +78,10 @@ void finish(Prediction& p, double theta_max, double sigma, double bound = -1) {
 }
 
 void reader_warnings(std::vector<Warning>& out, const PredictSurface& s) {
-  for (const std::string& w : s.reader_warnings)
-    add_warning(out, {"reader", w.find(s.name) == std::string::npos ? s.name + ": " + w : w});
+  for (Warning w : s.reader_warnings) {
+    if (w.message.find(s.name) == std::string::npos) w.message = s.name + ": " + w.message;
+    add_warning(out, std::move(w));
+  }
 }
 
 Conditioning conditioning_of(const PredictOptions& o, const Detrend& form) {

@@ -25,7 +25,7 @@ frictal::ReadOptions with_spacing(double dx) {
 
 bool has_warning(const frictal::SurfaceData& s, const std::string& what) {
   for (const auto& w : s.warnings)
-    if (w.find(what) != std::string::npos) return true;
+    if (w.message.find(what) != std::string::npos) return true;
   return false;
 }
 
@@ -92,7 +92,7 @@ TEST(DetectText, SingleColumnWithSpacingHeaderIsAProfile) {
   ASSERT_TRUE(h.ok()) << h.error().message;
   EXPECT_DOUBLE_EQ(h->curve.x[1], 2e-6);
   EXPECT_DOUBLE_EQ(h->curve.z[1], 2e-6);
-  EXPECT_TRUE(h->warnings.empty()) << h->warnings[0];
+  EXPECT_TRUE(h->warnings.empty()) << h->warnings[0].message;
 }
 
 TEST(DetectText, SingleColumnWithoutSpacingIsAClearError) {
@@ -171,7 +171,7 @@ TEST(DetectText, MatrixWithSmallHeaders) {
   EXPECT_DOUBLE_EQ(a->map.dx, 1e-6);  // 4 um / 4 columns
   EXPECT_DOUBLE_EQ(a->map.dy, 1e-6);  // 3 um / 3 rows
   EXPECT_DOUBLE_EQ(a->map.at(1, 2), 10e-9);
-  EXPECT_TRUE(a->warnings.empty()) << a->warnings[0];
+  EXPECT_TRUE(a->warnings.empty()) << a->warnings[0].message;
   // Two columns are a matrix when the header gives sizes; nx/ny are checked.
   auto b = frictal::read_surface_bytes("nx = 2, ny = 2\ndx = 0.5 um\n1 2\n3 4\n", "nxny.txt", [] {
     frictal::ReadOptions o;
@@ -218,7 +218,7 @@ TEST(DetectText, XyzListOnAGridIsAMap) {
   EXPECT_DOUBLE_EQ(m.dy, 1e-6);
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 2; ++j) EXPECT_DOUBLE_EQ(m.at(i, j), (10 * i + j) * 1e-9);
-  EXPECT_TRUE(s->warnings.empty()) << s->warnings[0];
+  EXPECT_TRUE(s->warnings.empty()) << s->warnings[0].message;
   // A missing node is an invalid point, with a warning.
   auto t = frictal::read_surface_bytes("0 0 1\n1 0 2\n2 0 3\n0 1 4\n1 1 5\n", "holes.xyz");
   ASSERT_TRUE(t.ok()) << t.error().message;

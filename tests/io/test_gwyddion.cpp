@@ -354,6 +354,6 @@ TEST(Gwyddion, ItsLogMessagesBecomeWarningsNotStderr) {
   ASSERT_TRUE(s.ok()) << s.error().message;
   EXPECT_EQ(err, "");
   bool found = false;
-  for (const auto& w : s->warnings) found |= w.find("GwySelectionPoint") != std::string::npos;
+  for (const auto& w : s->warnings) found |= w.message.find("GwySelectionPoint") != std::string::npos;
   EXPECT_TRUE(found);
 }

@@ -359,7 +359,7 @@ TEST(Instruments, WykoAsciiHeader) {
   EXPECT_DOUBLE_EQ(r->map.dy, 2.5e-7);
   EXPECT_DOUBLE_EQ(r->map.at(0, 0), 0.5e-6);
   EXPECT_DOUBLE_EQ(r->map.at(2, 1), 3.0e-6);
-  EXPECT_TRUE(r->warnings.empty()) << r->warnings.front();
+  EXPECT_TRUE(r->warnings.empty()) << r->warnings.front().message;
   // "w" with a length unit stays the physical width (pixel convention); the pixel size is then
   // only a fallback: dx = 3 um / 3 columns.
   auto sized = frictal::read_surface_bytes("w=3um h=2um\npixel size=2.5e-007 m\nunit: nm\n1 2 3\n4 5 6\n", "w.txt");
@@ -414,14 +414,14 @@ TEST(Instruments, ValidColumnFlagsPoints) {
   EXPECT_DOUBLE_EQ(r->curve.x[1], 2e-3);
   EXPECT_DOUBLE_EQ(r->curve.z[1], 3e-3);
   ASSERT_EQ(r->warnings.size(), 1u);
-  EXPECT_NE(r->warnings[0].find("1 points flagged invalid"), std::string::npos) << r->warnings[0];
+  EXPECT_NE(r->warnings[0].message.find("1 points flagged invalid"), std::string::npos) << r->warnings[0].message;
   auto bad = frictal::read_surface_bytes("X;Y;valid\n[mm];[mm];[1/0]\n0;1;1\n1;2;2\n2;3;1\n", "v.hfm");
   ASSERT_FALSE(bad.ok());
   EXPECT_NE(bad.error().message.find("v.hfm:4:"), std::string::npos) << bad.error().message;
   // The real file: 9,600 points, all flagged valid, no column warning.
   auto hfm = frictal::read_surface(kDir + "hfm-1.hfm");
   ASSERT_TRUE(hfm.ok());
-  EXPECT_TRUE(hfm->warnings.empty()) << hfm->warnings.front();
+  EXPECT_TRUE(hfm->warnings.empty()) << hfm->warnings.front().message;
 }
 
 // An Igor file whose one channel has no name and no units: test/IO/test_ibw.py::
@@ -436,7 +436,7 @@ TEST(Instruments, IgorChannelWithoutUnits) {
   EXPECT_EQ(m.map.nx, 10u);
   EXPECT_EQ(m.map.ny, 10u);
   ASSERT_EQ(m.warnings.size(), 1u);
-  EXPECT_NE(m.warnings[0].find("carries no units"), std::string::npos) << m.warnings[0];
+  EXPECT_NE(m.warnings[0].message.find("carries no units"), std::string::npos) << m.warnings[0].message;
   frictal::ReadOptions o;
   o.default_unit = "nm";
   frictal::SurfaceData n = read_ok("10x10-one_channel_without_name.ibw", o);

@@ -15,9 +15,9 @@
 
 namespace {
 
-std::size_t count_containing(const std::vector<std::string>& w, const std::string& what) {
+std::size_t count_containing(const std::vector<frictal::Warning>& w, const std::string& what) {
   std::size_t n = 0;
-  for (const auto& s : w) n += s.find(what) != std::string::npos;
+  for (const auto& s : w) n += s.message.find(what) != std::string::npos;
   return n;
 }
 
@@ -68,7 +68,7 @@ TEST(InvalidPoints, TextProfileEverySpellingIsDroppedWithOneWarning) {
     EXPECT_DOUBLE_EQ(s->curve.z[k], ez[k]);
   }
   ASSERT_EQ(count_containing(s->warnings, "invalid point"), 1u);
-  const std::string& w = s->warnings[0];
+  const std::string& w = s->warnings[0].message;
   EXPECT_NE(w.find("7 invalid points"), std::string::npos) << w;
   EXPECT_NE(w.find("2 NaN"), std::string::npos) << w;
   EXPECT_NE(w.find("3 +inf"), std::string::npos) << w;
@@ -119,7 +119,8 @@ TEST(InvalidPoints, GwyddionTextMapMasksAndStatisticsIgnoreThem) {
   EXPECT_TRUE(std::isnan(m.heights[5]));
   EXPECT_EQ(m.valid_count(), 3u);
   ASSERT_EQ(count_containing(s->warnings, "invalid point"), 1u);
-  EXPECT_EQ(count_containing(s->warnings, "3 invalid points (1 NaN, 1 +inf, 1 -inf) masked"), 1u) << s->warnings[0];
+  EXPECT_EQ(count_containing(s->warnings, "3 invalid points (1 NaN, 1 +inf, 1 -inf) masked"), 1u)
+      << s->warnings[0].message;
   // Statistics over 1, 3, 5 nm only: mean 3 nm, Sq = sqrt((4 + 0 + 4) / 3) nm, Sz = 4 nm.
   auto st = frictal::map_stats(m);
   EXPECT_EQ(st.valid, 3u);

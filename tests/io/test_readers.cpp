@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "frictal/io.hpp"
+#include "frictal/warnings.hpp"
 #include "io/zip_builder.hpp"
 
 namespace {
@@ -96,7 +97,7 @@ TEST(ReadText, Csv1MicronsHeader) {
   expect_grid_points(s->curve, rows, 0, 1, 1e-6, 1.0, 0.5e-4);
   EXPECT_FALSE(s->warnings.empty());
   bool grid_note = false;
-  for (const auto& w : s->warnings) grid_note = grid_note || w.find("uniform grid") != std::string::npos;
+  for (const auto& w : s->warnings) grid_note = grid_note || w.message.find("uniform grid") != std::string::npos;
   EXPECT_TRUE(grid_note);
   // With an explicit unit for unlabeled columns the z column follows it.
   frictal::ReadOptions o;
@@ -165,7 +166,10 @@ TEST(ReadText, Xy2UnitLineAndCountLine) {
   ASSERT_TRUE(s.ok()) << s.error().message;
   expect_points(s->curve, rows, 0, 1, 1e-6, 1e-6);  // unit line "µm µm"
   ASSERT_FALSE(s->warnings.empty());                // count line says 23, 24 rows follow
-  EXPECT_NE(s->warnings[0].find("23"), std::string::npos);
+  EXPECT_NE(s->warnings[0].message.find("23"), std::string::npos);
+  // The reader gives its own warnings their code, one that `frictal warnings` lists.
+  EXPECT_EQ(s->warnings[0].code, "reader");
+  EXPECT_NE(frictal::find_warning_code(s->warnings[0].code), nullptr);
 }
 
 TEST(ReadText, GwyddionEnglishGerman) {
@@ -207,7 +211,7 @@ TEST(ReadX3p, Sample1XmlAndBinary) {
   for (const char* f : {"/x3p/ISO5436-sample1.x3p", "/x3p/ISO5436-sample1_bin.x3p"}) {
     auto s = frictal::read_surface(kData + f);
     ASSERT_TRUE(s.ok()) << s.error().message;
-    EXPECT_TRUE(s->warnings.empty()) << s->warnings[0];  // checksums are correct in these files
+    EXPECT_TRUE(s->warnings.empty()) << s->warnings[0].message;  // checksums are correct in these files
     ASSERT_TRUE(s->is_map);
     const auto& m = s->map;
     ASSERT_EQ(m.nx, 4u);
@@ -303,8 +307,8 @@ TEST(ReadX3p, SampleLandSubfolderNoNamespaceNaN) {
   EXPECT_DOUBLE_EQ(m.heights[0], -5.421108289738186e-05);
   bool subfolder = false, ns = false;
   for (auto& w : s->warnings) {
-    subfolder |= w.find("sub-folder") != std::string::npos;
-    ns |= w.find("namespace") != std::string::npos;
+    subfolder |= w.message.find("sub-folder") != std::string::npos;
+    ns |= w.message.find("namespace") != std::string::npos;
   }
   EXPECT_TRUE(subfolder);
   EXPECT_TRUE(ns);
@@ -313,7 +317,7 @@ TEST(ReadX3p, SampleLandSubfolderNoNamespaceNaN) {
 TEST(ReadX3p, MountainsMap650UpperCaseMd5) {
   auto s = frictal::read_surface(kData + "/x3p/x3p-2.x3p");
   ASSERT_TRUE(s.ok()) << s.error().message;
-  EXPECT_TRUE(s->warnings.empty()) << s->warnings[0];  // upper-case MD5 hex still matches
+  EXPECT_TRUE(s->warnings.empty()) << s->warnings[0].message;  // upper-case MD5 hex still matches
   const auto& m = s->map;
   ASSERT_EQ(m.nx, 650u);
   ASSERT_EQ(m.ny, 650u);
@@ -348,7 +352,7 @@ const std::string kList2x2 =
 
 bool has_warning(const frictal::SurfaceData& s, const char* what) {
   for (auto& w : s.warnings)
-    if (w.find(what) != std::string::npos) return true;
+    if (w.message.find(what) != std::string::npos) return true;
   return false;
 }
 

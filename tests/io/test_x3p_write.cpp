@@ -68,7 +68,7 @@ TEST(X3pWrite, MapRoundTripEveryTypeBinaryAndXml) {
         ASSERT_TRUE(w.ok()) << w.error().message;
         auto s = frictal::read_surface(path);
         ASSERT_TRUE(s.ok()) << s.error().message;
-        EXPECT_TRUE(s->warnings.empty()) << s->warnings[0];  // our own checksums verify
+        EXPECT_TRUE(s->warnings.empty()) << s->warnings[0].message;  // our own checksums verify
         ASSERT_TRUE(s->is_map);
         const auto& r = s->map;
         ASSERT_EQ(r.nx, m.nx);

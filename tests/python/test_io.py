@@ -31,6 +31,19 @@ def test_read_surface_profile_and_warnings():
     assert any("23" in w["message"] and w["code"] == "reader" for w in s["warnings"])
 
 
+def test_a_read_surface_dict_hands_its_reader_warnings_on():
+    path = os.path.join(DATA, "profiles", "xy-2.txt")
+    s = frictal.read_surface(path)
+    with pytest.warns(frictal.FrictalWarning):
+        p = frictal.predict(s).to_dict()
+    # The reader's warning keeps its code and its message (the file's count line says 23 rows).
+    read = [w for w in p["warnings"] if w["code"] == "reader"]
+    assert len(read) == 1
+    assert read[0]["message"].endswith(path + ": line 2 gives a count of 23 but 24 data rows follow; all rows were read")
+    with pytest.raises(ValueError, match="'code' and 'message'"):
+        frictal.predict({"x": s["x"], "z": s["z"], "warnings": ["a bare string"]})
+
+
 def test_x3p_round_trip(tmp_path):
     h = np.arange(12, dtype=float).reshape(3, 4) * 1e-9
     h[1, 2] = np.nan
