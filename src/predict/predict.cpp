@@ -382,6 +382,22 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
           "d: " + d_rule + "; block: the whole upper profile, dropped over the first half of the lower one";
       whole_block = true;
       lb = upper_len;
+      // A defaulted d longer than the default's shape allows on these blocks (a short upper scan
+      // on a long lower one: d from the lower scan's slopes, the block the whole short scan) gives
+      // way to the largest of that shape, L_b / kBlockPerRunaway over the blocks' overlap, with
+      // the warning; a stated d never changes.
+      const double d_fit = std::min(lower_len, upper_len) / kBlockPerRunaway;
+      if (!given_d && d > d_fit) {
+        add_warning(p.warnings,
+                    {"scan-too-short",
+                     fmt::format("the default run-away distance d = {:.4g} m ({}) does not fit the whole upper profile "
+                                 "({:.4g} m on a lower one of {:.4g} m): the answer is for d = {:.4g} m, the "
+                                 "blocks' overlap over {:g} (a shorter test reads other angles; d_sweep shows how "
+                                 "much); measure longer scans or state d (--runaway-distance)",
+                                 d, d_rule, upper_len, lower_len, d_fit, kBlockPerRunaway)});
+        d = d_fit;
+        p.test_lengths += fmt::format("; d shortened to the blocks' overlap over {:g}", kBlockPerRunaway);
+      }
     } else {
       const bool given_lb = lb > 0;
       if (!given_lb) lb = kBlockPerRunaway * d;

@@ -650,3 +650,27 @@ TEST(Predict, AShortUpperScanOnALongLowerOneGivesAnAnswer) {
   ASSERT_TRUE(b.ok()) << b.error().message;
   EXPECT_EQ(a->friction_angle.q50, b->friction_angle.q50);
 }
+
+TEST(Predict, TheWholeShortUpperScanOnALongLowerOneShortensTheDefaultDWithAWarning) {
+  // xy-2.txt (29 um as read) whole on xy-1.txt (187 m): d from the lower scan's slopes (tens of
+  // metres) does not fit the 29 um block; it gave "runaway_distance ... expected a length shorter
+  // than the blocks' overlap", an error for a default the caller never chose. The default gives
+  // way to the default's shape, d = L_b / kBlockPerRunaway over the blocks' overlap, warned; a
+  // stated d is never changed.
+  const std::string dir = std::string(FRICTAL_TEST_DATA) + "/profiles/";
+  auto lower = frictal::read_profile(dir + "xy-1.txt");
+  auto upper = frictal::read_profile(dir + "xy-2.txt");
+  ASSERT_TRUE(lower.ok() && upper.ok());
+  const auto lo = profile_surface(*lower, "xy-1"), up = profile_surface(*upper, "xy-2");
+  frictal::PredictOptions o;
+  o.block_length = -1;
+  auto a = frictal::predict(lo, &up, o);
+  ASSERT_TRUE(a.ok()) << a.error().message;
+  const double overlap = std::min(lower->x.back() - lower->x.front(), upper->x.back() - upper->x.front());
+  EXPECT_NEAR(a->runaway_distance, overlap / frictal::kBlockPerRunaway, 1e-12 * overlap);
+  bool warned = false;
+  for (const auto& w : a->warnings) warned = warned || w.code == "scan-too-short";
+  EXPECT_TRUE(warned);
+  o.runaway_distance = 1.0;  // stated: longer than the overlap, refused, not shortened
+  EXPECT_FALSE(frictal::predict(lo, &up, o).ok());
+}
