@@ -152,7 +152,8 @@ struct Prediction {
   /// Profiles: theta_max + theta_a (Eq. 6); maps: the largest of the drops' seat bounds (free
   /// block), at least every drop's hold angle; capped at pi/2 (unit: rad).
   double upper_bound_friction_angle = 0;
-  /// Steepest contact slope along the direction: profiles the signature's maximum; maps the steepest
+  /// Steepest contact slope along the direction: profiles the signature's maximum over its range, or
+  /// the slope of a stop the rigid hold analysis read beyond it where that is steeper; maps the steepest
   /// seat slope of the drops (ArealTiltHold::seat_slope) (unit: rad).
   double theta_max = 0;
   /// sigma of Eq. 18: profiles the contact slopes' standard deviation; maps that of the drops'

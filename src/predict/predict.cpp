@@ -538,7 +538,15 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   }
   if (!o.loads.empty())
     if (auto st = predict_under_load(p, *lo, up, *curve, o, analyse); !st) return st.error();
-  finish(p, forward ? sig->theta_max_forward : sig->theta_max_backward, sig->contact_slope_std);
+  // The rigid bound: the steepest contact slope the test reaches. The signature's theta_max is
+  // over its own range; a stop the hold analysis read beyond it (a whole block's run-away past
+  // the first half, a block creeping past its last drop) is a contact slope too, and the drops'
+  // hold angles are atan(mu_a) + atan(slope of a stop): the bound is at least each. Under load
+  // the bound stays the rigid signature's (the loaded lift is not a rigid contact slope).
+  const double theta_sig = forward ? sig->theta_max_forward : sig->theta_max_backward;
+  // (A hold angle of atan(mu_a) is a block that slid at zero tilt: no stop's slope was read.)
+  const double theta_stops = p.friction_angle.max - std::atan(o.atomic_friction);
+  finish(p, o.loads.empty() && theta_stops > 0 ? std::max(theta_sig, theta_stops) : theta_sig, sig->contact_slope_std);
   return p;
 }
 

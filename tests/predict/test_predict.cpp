@@ -671,6 +671,10 @@ TEST(Predict, TheWholeShortUpperScanOnALongLowerOneShortensTheDefaultDWithAWarni
   bool warned = false;
   for (const auto& w : a->warnings) warned = warned || w.code == "scan-too-short";
   EXPECT_TRUE(warned);
+  // The whole block's run-aways read stops beyond the signature's range (the first half of the
+  // short scan); the bound is the steepest contact slope the test reached, so at least each drop.
+  EXPECT_LE(a->friction_angle.max, a->upper_bound_friction_angle + 1e-12);
+  EXPECT_GE(a->theta_max + std::atan(o.atomic_friction), a->friction_angle.max - 1e-12);
   o.runaway_distance = 1.0;  // stated: longer than the overlap, refused, not shortened
   EXPECT_FALSE(frictal::predict(lo, &up, o).ok());
 }
