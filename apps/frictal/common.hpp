@@ -126,6 +126,22 @@ inline void require(bool ok, const std::string& message) {
   if (!ok) throw UsageError(message);
 }
 
+/// The items of option words that may each hold a comma-separated list ("1N,2N" "5N" -> 1N 2N
+/// 5N), empty items skipped.
+inline std::vector<std::string> list_items(const std::vector<std::string>& words) {
+  std::vector<std::string> out;
+  for (const std::string& w : words) {
+    std::size_t start = 0;
+    while (start <= w.size()) {
+      std::size_t comma = w.find(',', start);
+      if (comma == std::string::npos) comma = w.size();
+      if (comma > start) out.push_back(w.substr(start, comma - start));
+      start = comma + 1;
+    }
+  }
+  return out;
+}
+
 /// A number with an optional unit from `units` (name, factor to SI); UsageError naming `option`.
 inline double parse_quantity(const std::string& text, const char* option,
                              const std::vector<std::pair<std::string, double>>& units, const char* expected) {

@@ -28,51 +28,42 @@ struct Args {
 /// pressure (Pa, kPa, MPa, GPa); comma-separated lists allowed.
 std::vector<ContactLoad> parse_loads(const std::vector<std::string>& words, bool is_map) {
   std::vector<ContactLoad> loads;
-  for (const std::string& w : words) {
-    std::size_t start = 0;
-    while (start <= w.size()) {
-      std::size_t comma = w.find(',', start);
-      if (comma == std::string::npos) comma = w.size();
-      const std::string item = w.substr(start, comma - start);
-      start = comma + 1;
-      if (item.empty()) continue;
-      const char* s = item.c_str();
-      char* end = nullptr;
-      const double v = std::strtod(s, &end);
-      std::string unit(end);
-      while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
-      if (end == s || !std::isfinite(v) || unit.empty())
-        throw UsageError(fmt::format(
-            "--load '{}': expected a number with its unit: a force ({}) or a nominal pressure (Pa, kPa, MPa, GPa)",
-            item, is_map ? "N, mN, kN" : "per unit length for a profile: N/m"));
-      ContactLoad l;
-      l.value = v;
-      bool known = false;
-      for (const auto& [name, factor] : kPressureUnits)
-        if (!name.empty() && unit == name) l.kind = ContactLoadKind::Pressure, l.value = v * factor, known = true;
-      const std::vector<std::pair<std::string, double>> forces = {{"N", 1}, {"mN", 1e-3}, {"kN", 1e3}};
-      for (const auto& [name, factor] : forces) {
-        if (unit == name) {
-          if (!is_map)
-            throw UsageError(
-                fmt::format("--load '{}': a profile is in plane strain and takes a force per unit length "
-                            "of its depth (e.g. {}/m) or a nominal pressure (Pa)",
-                            item, item));
-          l.kind = ContactLoadKind::Force, l.value = v * factor, known = true;
-        }
-        if (unit == name + "/m") {
-          if (is_map)
-            throw UsageError(
-                fmt::format("--load '{}': a map takes a total force (N) or a nominal pressure (Pa)", item));
-          l.kind = ContactLoadKind::Force, l.value = v * factor, known = true;
-        }
+  for (const std::string& item : list_items(words)) {
+    const char* s = item.c_str();
+    char* end = nullptr;
+    const double v = std::strtod(s, &end);
+    std::string unit(end);
+    while (!unit.empty() && unit.front() == ' ') unit.erase(0, 1);
+    if (end == s || !std::isfinite(v) || unit.empty())
+      throw UsageError(fmt::format(
+          "--load '{}': expected a number with its unit: a force ({}) or a nominal pressure (Pa, kPa, MPa, GPa)", item,
+          is_map ? "N, mN, kN" : "per unit length for a profile: N/m"));
+    ContactLoad l;
+    l.value = v;
+    bool known = false;
+    for (const auto& [name, factor] : kPressureUnits)
+      if (!name.empty() && unit == name) l.kind = ContactLoadKind::Pressure, l.value = v * factor, known = true;
+    const std::vector<std::pair<std::string, double>> forces = {{"N", 1}, {"mN", 1e-3}, {"kN", 1e3}};
+    for (const auto& [name, factor] : forces) {
+      if (unit == name) {
+        if (!is_map)
+          throw UsageError(
+              fmt::format("--load '{}': a profile is in plane strain and takes a force per unit length "
+                          "of its depth (e.g. {}/m) or a nominal pressure (Pa)",
+                          item, item));
+        l.kind = ContactLoadKind::Force, l.value = v * factor, known = true;
       }
-      if (!known)
-        throw UsageError(fmt::format("--load '{}': unit '{}' not understood (expected {}, or Pa, kPa, MPa, GPa)", item,
-                                     unit, is_map ? "N, mN, kN" : "N/m, mN/m, kN/m"));
-      if (!(l.value > 0)) throw UsageError(fmt::format("--load '{}': expected a load > 0", item));
-      loads.push_back(l);
+      if (unit == name + "/m") {
+        if (is_map)
+          throw UsageError(fmt::format("--load '{}': a map takes a total force (N) or a nominal pressure (Pa)", item));
+        l.kind = ContactLoadKind::Force, l.value = v * factor, known = true;
+      }
     }
+    if (!known)
+      throw UsageError(fmt::format("--load '{}': unit '{}' not understood (expected {}, or Pa, kPa, MPa, GPa)", item,
+                                   unit, is_map ? "N, mN, kN" : "N/m, mN/m, kN/m"));
+    if (!(l.value > 0)) throw UsageError(fmt::format("--load '{}': expected a load > 0", item));
+    loads.push_back(l);
   }
   if (loads.empty()) throw UsageError("--load: give at least one load (e.g. 2N, 1e7Pa)");
   return loads;

@@ -108,19 +108,11 @@ inline void add_load_options(CLI::App& app, LoadWords& w) {
 /// first is the headline.
 inline std::vector<double> parse_forces(const std::vector<std::string>& words) {
   std::vector<double> out;
-  for (const std::string& w : words) {
-    std::size_t start = 0;
-    while (start <= w.size()) {
-      std::size_t comma = w.find(',', start);
-      if (comma == std::string::npos) comma = w.size();
-      const std::string item = w.substr(start, comma - start);
-      start = comma + 1;
-      if (item.empty()) continue;
-      const double v = parse_quantity(item, "--load", kForceUnits,
-                                      "a force with its unit: N, mN, uN, kN, e.g. 2N; the block's weight");
-      require(v > 0, fmt::format("--load '{}': expected a force > 0", item));
-      out.push_back(v);
-    }
+  for (const std::string& item : list_items(words)) {
+    const double v = parse_quantity(item, "--load", kForceUnits,
+                                    "a force with its unit: N, mN, uN, kN, e.g. 2N; the block's weight");
+    require(v > 0, fmt::format("--load '{}': expected a force > 0", item));
+    out.push_back(v);
   }
   require(!out.empty(), "--load: give at least one force (e.g. 2N, or 0.1N,1N,10N for a curve)");
   return out;

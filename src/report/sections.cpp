@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numbers>
 
@@ -640,30 +641,31 @@ std::string page_title(const ReportInput& in, const ReportData& d) {
                              : fmt::format("frictal report: {}", base(s.lower_name));
 }
 
-// How the headline depends on the run-away distance d: the median and the 5-95 % range over the
-// same drops at d/4 ... 4d (Prediction::d_sweep_*), d marked; empty where there is no sweep.
-std::string d_sweep_figure(const Prediction& p) {
-  if (p.d_sweep_distance.size() < 2 || p.single_drop) return {};
-  const double scale = p.runaway_distance < 1e-3 ? 1e6 : 1e3;
-  const char* unit = scale == 1e6 ? "µm" : "mm";
+// A median with its 5-95 % band over the same drops against a swept quantity x (log axis),
+// the test's value marked by a vertical line: the d sweep's and the load curve's plot.
+struct QuantileBand {
+  std::vector<double> x, q05, q50, q95;  ///< x in the axis's unit; quantiles (unit: rad)
+  std::string title, x_label, median_label, mark_label;
+  double mark = 0;  ///< the test's x (axis unit)
+};
+Plot quantile_band_plot(const QuantileBand& b) {
   Series med, lo, hi;
-  med.label = "median over drops (the headline at d)";
+  med.label = b.median_label;
   med.color = "#d62728";
   lo.label = "5 % and 95 % quantiles";
   lo.color = hi.color = "#1f77b4";
   lo.dashed = hi.dashed = true;
-  for (std::size_t i = 0; i < p.d_sweep_distance.size(); ++i) {
-    const double x = p.d_sweep_distance[i] * scale;
-    med.x.push_back(x), med.y.push_back(deg(p.d_sweep_q50[i]));
-    lo.x.push_back(x), lo.y.push_back(deg(p.d_sweep_q05[i]));
-    hi.x.push_back(x), hi.y.push_back(deg(p.d_sweep_q95[i]));
+  for (std::size_t i = 0; i < b.x.size(); ++i) {
+    med.x.push_back(b.x[i]), med.y.push_back(deg(b.q50[i]));
+    lo.x.push_back(b.x[i]), lo.y.push_back(deg(b.q05[i]));
+    hi.x.push_back(b.x[i]), hi.y.push_back(deg(b.q95[i]));
   }
   Series marks = med;
   marks.label.clear();
   marks.style = SeriesStyle::Points;
   Plot pl;
-  pl.title = "How the answer depends on the run-away distance d";
-  pl.x_label = fmt::format("run-away distance d ({})", unit);
+  pl.title = b.title;
+  pl.x_label = b.x_label;
   pl.y_label = "hold angle φ (deg)";
   pl.series = {hi, lo, med, marks};
   pl.x_log = true;
@@ -675,21 +677,44 @@ std::string d_sweep_figure(const Prediction& p) {
   pl.x_max = 1.4 * med.x.back();
   RefLine at;
   at.horizontal = false;
-  at.value = p.runaway_distance * scale;
-  at.label = "d of the test";
+  at.value = b.mark;
+  at.label = b.mark_label;
   pl.lines = {at};
-  auto svg = plot_svg(pl);
-  if (!svg) return {};
+  return pl;
+}
+// The band's table: x as `x_text` writes it, the median and the 5-95 % range.
+std::string quantile_band_table(const QuantileBand& b, const char* id, const char* x_head,
+                                const std::function<std::string(double)>& x_text) {
   std::string rows;
-  for (std::size_t i = 0; i < p.d_sweep_distance.size(); ++i)
-    rows += fmt::format("<tr><td>{:.3g} {}</td><td>{}</td><td>{} … {}</td></tr>", p.d_sweep_distance[i] * scale, unit,
-                        fmt_deg(p.d_sweep_q50[i]), fmt_deg(p.d_sweep_q05[i]), fmt_deg(p.d_sweep_q95[i]));
+  for (std::size_t i = 0; i < b.x.size(); ++i)
+    rows += fmt::format("<tr><td>{}</td><td>{}</td><td>{} … {}</td></tr>", x_text(b.x[i]), fmt_deg(b.q50[i]),
+                        fmt_deg(b.q05[i]), fmt_deg(b.q95[i]));
+  return fmt::format(
+      "<table class=\"friction\" id=\"{}\"><tr><th>{}</th><th>median</th><th>5–95 %</th></tr>{}</table>\n", id, x_head,
+      rows);
+}
+
+// How the headline depends on the run-away distance d: the median and the 5-95 % range over the
+// same drops at d/4 ... 4d (Prediction::d_sweep_*), d marked; empty where there is no sweep.
+std::string d_sweep_figure(const Prediction& p) {
+  if (p.d_sweep_distance.size() < 2 || p.single_drop) return {};
+  const double scale = p.runaway_distance < 1e-3 ? 1e6 : 1e3;
+  const char* unit = scale == 1e6 ? "µm" : "mm";
+  QuantileBand b;
+  for (double d : p.d_sweep_distance) b.x.push_back(d * scale);
+  b.q05 = p.d_sweep_q05, b.q50 = p.d_sweep_q50, b.q95 = p.d_sweep_q95;
+  b.title = "How the answer depends on the run-away distance d";
+  b.x_label = fmt::format("run-away distance d ({})", unit);
+  b.median_label = "median over drops (the headline at d)";
+  b.mark = p.runaway_distance * scale;
+  b.mark_label = "d of the test";
+  auto svg = plot_svg(quantile_band_plot(b));
+  if (!svg) return {};
   return figure(*svg, fmt::format("The same drops read with other run-away distances (one lift; key d_sweep_* of "
                                   "the JSON): a test that calls a block sliding only after a longer slide reads a "
                                   "higher angle. d = {:.3g} {} ({}).",
                                   p.runaway_distance * scale, unit, escape_html(p.test_lengths))) +
-         "<table class=\"friction\" id=\"d-sweep\"><tr><th>d</th><th>median</th><th>5–95 %</th></tr>" + rows +
-         "</table>\n";
+         quantile_band_table(b, "d-sweep", "d", [&](double x) { return fmt::format("{:.3g} {}", x, unit); });
 }
 
 // Friction under load: the hold angle's median and 5-95 % range over the same drops against the
@@ -697,55 +722,29 @@ std::string d_sweep_figure(const Prediction& p) {
 // without a load.
 std::string load_curve_figure(const Prediction& p) {
   if (p.load_curve.size() < 2 || p.single_drop) return {};
-  Series med, lo, hi;
-  med.label = "median over drops (the headline at W)";
-  med.color = "#d62728";
-  lo.label = "5 % and 95 % quantiles";
-  lo.color = hi.color = "#1f77b4";
-  lo.dashed = hi.dashed = true;
-  for (std::size_t i = 0; i < p.load_curve.size(); ++i) {
-    const double x = p.load_curve[i];
-    med.x.push_back(x), med.y.push_back(deg(p.load_curve_q50[i]));
-    lo.x.push_back(x), lo.y.push_back(deg(p.load_curve_q05[i]));
-    hi.x.push_back(x), hi.y.push_back(deg(p.load_curve_q95[i]));
-  }
-  Series marks = med;
-  marks.label.clear();
-  marks.style = SeriesStyle::Points;
-  Plot pl;
-  pl.title = "Friction under load (Hertzian asperities)";
-  pl.x_label = "load W on the block (N)";
-  pl.y_label = "hold angle φ (deg)";
-  pl.series = {hi, lo, med, marks};
-  pl.x_log = true;
-  pl.width = 560;
-  pl.height = 300;
-  pl.y_min = 0;
-  pl.y_max = 1.4 * std::max(*std::max_element(hi.y.begin(), hi.y.end()), deg(p.rigid_friction_angle));
-  pl.x_min = 0.7 * med.x.front();
-  pl.x_max = 1.4 * med.x.back();
-  RefLine at;
-  at.horizontal = false;
-  at.value = p.load;
-  at.label = "W of the test";
+  QuantileBand b;
+  b.x = p.load_curve;
+  b.q05 = p.load_curve_q05, b.q50 = p.load_curve_q50, b.q95 = p.load_curve_q95;
+  b.title = "Friction under load (Hertzian asperities)";
+  b.x_label = "load W on the block (N)";
+  b.median_label = "median over drops (the headline at W)";
+  b.mark = p.load;
+  b.mark_label = "W of the test";
+  Plot pl = quantile_band_plot(b);
+  pl.y_max = std::max(*pl.y_max, 1.4 * deg(p.rigid_friction_angle));
   RefLine rigid;
   rigid.horizontal = true;
   rigid.value = deg(p.rigid_friction_angle);
   rigid.label = "rigid median";
-  pl.lines = {at, rigid};
+  pl.lines.push_back(rigid);
   auto svg = plot_svg(pl);
   if (!svg) return {};
-  std::string rows;
-  for (std::size_t i = 0; i < p.load_curve.size(); ++i)
-    rows += fmt::format("<tr><td>{:.3g} N</td><td>{}</td><td>{} … {}</td></tr>", p.load_curve[i],
-                        fmt_deg(p.load_curve_q50[i]), fmt_deg(p.load_curve_q05[i]), fmt_deg(p.load_curve_q95[i]));
   return figure(*svg, fmt::format("The same drops on the loaded lift at other loads (key load_curve_* of the JSON; "
                                   "docs/load.md): E* = {:.3g} Pa; at W = {:.3g} N {:.3g} asperity contacts per "
                                   "offset, the block {:.3g} m below first touch; the rigid median {}.",
                                   p.contact_modulus, p.load, p.load_contacts, p.load_approach,
                                   fmt_deg(p.rigid_friction_angle))) +
-         "<table class=\"friction\" id=\"load-curve\"><tr><th>load</th><th>median</th><th>5–95 %</th></tr>" + rows +
-         "</table>\n";
+         quantile_band_table(b, "load-curve", "load", [](double x) { return fmt::format("{:.3g} N", x); });
 }
 
 std::string headline(const ReportInput& in, const ReportData& d) {
