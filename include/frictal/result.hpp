@@ -46,6 +46,11 @@ struct Error {
 struct Warning {
   std::string code;
   std::string message;
+
+  Warning() = default;
+  /// Constructor rather than aggregate: `emplace_back(code, message)` needs it on compilers
+  /// without C++20's parenthesized aggregate initialization (clang 14, the fuzz build).
+  Warning(std::string c, std::string m) : code(std::move(c)), message(std::move(m)) {}
 };
 
 template <class T>

@@ -133,7 +133,8 @@ class Pair {
   // Local maxima of d_s with d >= threshold, appended to `out` in x order (cleared first).
   void candidates(double s, double threshold, std::vector<HertzContact>& out) const {
     out.clear();
-    const auto [a, b] = overlap(s);
+    const auto span = overlap(s);
+    const double a = span.first, b = span.second;  // named copies: lambdas capture them (clang 14)
     if (!(a < b)) return;
     const std::size_t m = g_.x.size();
     // The upper vertices over [a, b], in chunks [j0, j0 + chunk] (neighbours share a vertex, so
