@@ -503,6 +503,18 @@ void rounded_outline(const std::vector<double>& x, const std::vector<double>& y,
 /// Writes the frames in the text format of docs/dem.md ("frictal-dem-frames 1").
 Status write_tilt_frames(const std::string& path, const TiltResult& result);
 
+/// A frames file read back (write_tilt_frames): the bodies' core polygons and each frame's pose.
+struct TiltFramesFile {
+  /// Core polygons relative to the centroids, at the initial orientation (unit: m).
+  std::vector<double> lower_polygon_x, lower_polygon_y, upper_polygon_x, upper_polygon_y;
+  /// time, tilt, position and angle of each frame; the file has no forces or contacts (0, empty).
+  std::vector<TiltFrame> frames;
+};
+
+/// Reads a file written by write_tilt_frames (docs/dem.md, "frictal-dem-frames 1"). Errors: Io
+/// (cannot open), InvalidInput naming the file, the line and what was expected there.
+Result<TiltFramesFile> read_tilt_frames(const std::string& path);
+
 /// A tilt run as the front ends report it: the result with the configuration that produced it.
 struct TiltReport {
   const TiltResult& result;

@@ -368,6 +368,11 @@ def read_profile(path: str) -> Profile:
 def read_surface(path: str, *, format: str = ..., unit: str = ..., spacing: float = ..., channel: str = ..., x_unit: str = ..., z_unit: str = ...) -> dict:
     """Reads any supported file (CSV/TSV/text, .npy, gzip, Dektak, Gwyddion text, X3P, SDF, and every format Gwyddion's modules load when installed; runs without the GIL). format: auto or a name of `frictal formats`; unit: m, mm, um or nm for the file's lengths, x and z (overriding the units it names, with a warning; for columns that name none instead of metres); x_unit, z_unit: the same for the lateral lengths or the heights alone; spacing: point spacing (m) for a single column of heights; channel: index or name of a multi-channel file's channel. Returns a dict: kind 'profile' (x, z) or 'map' (heights (ny, nx), dx, dy, x0, y0), format, warnings, x_unit_scale and z_unit_scale (m per unit of the file's numbers as read). Metres."""
 
+def read_tilt_frames(path: str) -> dict:
+    """read_tilt_frames(path) -> dict
+
+    A frames file of the tilt test read back (`frictal tilt --frames FILE`; format in docs/dem.md): lower_polygon and upper_polygon (n x 2 arrays, m, core polygons relative to the centroids at the initial orientation), and per frame time (s), tilt (rad), position (frames x 2 x 2: the centroids of lower and upper, m) and angle (frames x 2, rad). A vertex's world position is position + R(angle) @ polygon. A missing file raises FileNotFoundError, a malformed one ValueError naming the line."""
+
 def rotate180(profile: Profile) -> Profile:
     """The profile (m) turned over by 180 degrees (x -> -x, z -> -z, re-sorted): how an upper block's face, measured with its material below, faces the lower one"""
 
