@@ -1008,8 +1008,9 @@ TiltEstimate estimate_cost(const dem::Model& model, const TiltConfig& cfg, const
     const double bound_increments = std::floor(cfg.max_tilt / cfg.tilt_increment);
     const double expected_increments = std::ceil(phi / cfg.tilt_increment) + 1;
     e.simulated_time_bound = cfg.relax_time * (1 + bound_increments);
-    e.simulated_time_expected =
-        kTiltRelaxShare * cfg.relax_time * (1 + std::min(expected_increments, bound_increments));
+    e.simulated_time_expected = std::min(
+        e.simulated_time_bound,
+        cfg.relax_time * (kTiltRelaxFixed + kTiltRelaxShare * std::min(expected_increments, bound_increments)));
   } else {
     const double settle = relaxed_settling(cfg) ? cfg.relax_time : cfg.settle_time;
     e.simulated_time_bound = settle + cfg.max_tilt / cfg.tilt_rate;

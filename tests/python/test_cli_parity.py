@@ -150,6 +150,10 @@ def test_tilt_of_a_measured_profile_equals_the_cli():
     piece, _ = frictal.condition(frictal.read_profile(path), crop=(5e-4, 5.5e-4), detrend="none")
     got = quiet(frictal.tilt, piece)
     assert got["conditioning"] == "form: line"
+    # Both load a measured pair as the library's setup says: quasi-statically, the rotation held.
+    assert got["protocol"] == want["protocol"] == "quasi-static"
+    assert got["scaled_defaults"]["measured_defaults"] == want["scaled_defaults"]["measured_defaults"]
+    assert got["scaled_defaults"]["measured_defaults"] == "protocol = quasi-static, hold_rotation = true"
     assert got["validity"] == want["validity"] and got["friction_angle_valid"] == want["friction_angle_valid"]
     assert same(deg(got["friction_angle"]), want["friction_angle_deg"])
     assert got["steps"] == want["steps"]
