@@ -412,12 +412,12 @@ class SphereField {
   /// 4 and depth 0.1 1.7 s, ratio 3 2.3 s, 6 1.8 s, depth 0.05 2.0 s, 0.2 2.3 s, 0.5 5.5 s, 1
   /// 10.7 s (deeper outer lists); from 1 (every disc: outer discs of two cells on a rough map)
   /// made bcrf-1's 25 drops 4 times slower, from 0.25 left them as they were. With the outer disc
-  /// ahead of the block (kOuterLead), ratio 6 (noise and tilt maps of bench/flat_maps.py without
+  /// ahead of the block (kOuterAhead), ratio 6 (noise and tilt maps of bench/flat_maps.py without
   /// their spikes, 25 drops: 4.76 and 6.02 s at 4, 4.38 and 5.31 at 6, 4.39 and 5.27 at 8).
   static constexpr double kOuterFrom = 0.25, kOuterRatio = 6, kOuterDepth = 0.1;
   /// An outer disc lies this fraction of the way it can ahead of the block, along the way the
   /// block went since the last list (unitless; see rebuild).
-  static constexpr double kOuterLead = 0.9;
+  static constexpr double kOuterAhead = 0.9;
   static constexpr double kNearScaleMin = 1.0 / 64;
   /// The disc of offsets over which a Near list holds: one lower-map cell (unit: m).
   /// The disc of offsets over which a Near list holds: half a lower-map cell, or less where lists
@@ -458,9 +458,9 @@ class SphereField {
       if (!(o.radius >= 0 && threshold >= o.threshold &&
             std::hypot(sx - o.cx, sy - o.cy) + R <= o.radius * (1 - 1e-6))) {
         o.radius = kOuterRatio * R;
-        const double lead = kOuterLead * (o.radius - R);
-        o.cx = sx + lead * ux;
-        o.cy = sy + lead * uy;
+        const double ahead = kOuterAhead * (o.radius - R);
+        o.cx = sx + ahead * ux;
+        o.cy = sy + ahead * uy;
         o.threshold = threshold - kOuterDepth * near_fall() * o.radius - kBoundSlack * r_;
         o.list.clear();
         collect(near, o.cx, o.cy, o.radius, o.threshold, o.list, false);
