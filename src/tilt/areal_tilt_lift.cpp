@@ -97,6 +97,7 @@ class SphereField {
   struct Piece {
     double value, gx, gy;
     double cap;  ///< the cap of |g - g_top| its window was collected with (unitless; see Window)
+    double s;    ///< the facet slopes' bound around its cell (unitless; see Window)
   };
   /// The window of pieces a descent step of `delta` asks for: a piece within deficit
   /// delta * min(2, 2 (s + s_top)) + abs of the max, where s bounds the facet slopes around the
@@ -259,6 +260,8 @@ class SphereField {
   }
   /// The largest of the bounds (unitless).
   double slope_max() const { return slope_max_; }
+  /// No outliers among the facet slopes: near_fall() is their max (unitless).
+  bool uniform() const { return fall_ >= slope_max_; }
   /// Two flat faces: the lower height field one horizontal plane and every sphere at one height
   /// (to a tenth of the hold angle's resolution of a cell), so that h is one constant wherever a
   /// sphere lies over the field and every contact's slope is zero.
@@ -350,6 +353,14 @@ class SphereField {
     near.last = best;
     erase_outside(pieces, best, eps, win);
     return best;
+  }
+
+  /// Pieces collected with a window of a higher s_top, narrowed to `win` (each piece's cap
+  /// recomputed from its cell's bound, then those below the window of `best` dropped): the same
+  /// pieces, caps and order as collected with `win` itself, whose pieces are among them.
+  static void narrow_window(std::vector<Piece>& pieces, double best, const Window& win) {
+    for (Piece& p : pieces) p.cap = win.cap(p.s);
+    erase_outside(&pieces, best, 0, &win);
   }
 
   /// h(s) (kNoContact: no sphere over the field); (bx, by) the touching point; `work` counts
@@ -683,7 +694,7 @@ class SphereField {
           if (pieces && v >= best - eps_c) {
             const double ex = px - cx, ey = py - cy;
             const double q = std::sqrt(std::max(r_ * r_ - ex * ex - ey * ey, 1e-12 * r_ * r_));
-            pieces->push_back({v, ex / q, ey / q, cap});
+            pieces->push_back({v, ex / q, ey / q, cap, win ? slope3_[j * cnx_ + i] : 0.0});
           }
         }
       }
@@ -1030,12 +1041,33 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   // Where a bound reaches 0.5, some caps are 2 anyway: there every piece's cap is 2, in one pass
   // (the windows as they were before the bounds; the same descents, to the bit).
   const bool local = field.local();
+  // A smooth map whose steepest facets are not outliers (the 99th percentile's fall reaches the
+  // max): the window of the steepest top is not much deeper than the top's own, and one pass
+  // with it costs less than a pass for the top and one for the window.
+  const bool one_pass = local && field.uniform();
   auto height = [&](double x, double y, double delta, std::vector<SphereField::Piece>* p, bool full = false) {
     double bx = 0, by = 0;
     ++out.evaluations;
     if (!local || !p) {
       const double h = field.eval_near(x, y, bx, by, work, near, p ? 2 * delta + 2e-12 * r : 0, p);
       return h == kNoContact ? std::numeric_limits<double>::infinity() : h;
+    }
+    if (one_pass) {
+      // In one pass, with the window of the steepest top (a superset), then narrowed to the top's.
+      const double s_wide = full ? std::numeric_limits<double>::infinity() : field.slope_max();
+      const SphereField::Window wide{delta, s_wide, 2e-12 * r};
+      const double h = field.eval_near(x, y, bx, by, work, near, wide.eps(field.slope_max()), p, &wide);
+      if (h == kNoContact) return std::numeric_limits<double>::infinity();
+      if (full) return h;
+      const SphereField::Window w{delta, field.slope_at(bx, by), 2e-12 * r};
+      if (w.s_top <= s_wide) {
+        SphereField::narrow_window(*p, h, w);
+        return h;
+      }
+      // The top off the map (slope_at: infinity, a sphere beyond the border touching its outer
+      // edge sideways): a deeper window than the pass's; again with it.
+      const double h2 = field.eval_near(x, y, bx, by, work, near, w.eps(field.slope_max()), p, &w);
+      return h2 == kNoContact ? std::numeric_limits<double>::infinity() : h2;
     }
     double h = field.eval_near(x, y, bx, by, work, near, 0, nullptr);
     if (h != kNoContact) {
