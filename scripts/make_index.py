@@ -11,8 +11,8 @@ written by `frictal study report --json` over every store (scripts/reproduce; as
 it is missing). The figures that the studies draw (scripts/plot_studies.py: OUTDIR/fig06.png ...)
 and Fig. 4 (OUTDIR/fig04/) are taken as scripts/reproduce left them; the figures beyond the paper
 are drawn from the tables `frictal study export --csv` wrote (OUTDIR/studies/STUDY/PART.csv).
-Figures 3, 5, 11, 12, 13 and 16 are computed here with BIN (under OUTDIR/index/), and the claims
-checked on them join the conclusions. A figure whose inputs are missing is listed as not produced
+Figures 3, 5, 11, 12, 13 and 16 are drawn here with BIN (under OUTDIR/index/). Every verdict on
+the page is a study's finding (findings.json); this script decides none. A figure whose inputs are missing is listed as not produced
 (never a broken image). The standard library, numpy, matplotlib and frictal's Python package
 (BIN's build's, for the DEM frames file).
 """
@@ -45,7 +45,6 @@ class Figure:
         self.number, self.title, self.claim = number, title, claim
         self.png = None          # bytes
         self.numbers = []        # (name, value) rows
-        self.verdicts = []       # checked here: (supported: bool, text, criterion[, claim id])
         self.conclusions = []    # the claims that speak to it (`frictal study report --json`)
         self.studies = set()     # the studies named after it
         self.missing = None      # why the figure is not on the page
@@ -94,7 +93,7 @@ def fig03(bin_, work):
                "kept, the middle third replaced by two sides of length 1/(6 cos α)).")
     alpha = 20.0
     fig, axes = plt.subplots(4, 1, figsize=(7.5, 6.2), sharex=True)
-    ok_slope, ok_len, lengths = True, True, []
+    lengths = []
     for n, ax in enumerate(axes):
         path = f"{work}/k{n}-curve.csv"
         run(bin_, "surface", "koch", "--iterations", n, "--alpha", alpha, "--wavelength", 0.01, "--length", 0.03,
@@ -109,20 +108,15 @@ def fig03(bin_, work):
         smax = st["max_slope_deg"]
         length = float(np.sum(np.hypot(np.diff(x), np.diff(z))))
         lengths.append(length)
-        ok_slope &= abs(smax - (n + 1) * alpha) < 1e-6
         f.numbers.append((f"K{n}: points, steepest edge, curve length",
                           f"{len(x)}, {smax:.6f}° (expected {(n + 1) * alpha:g}°), {length * 1e3:.6f} mm"))
     ratio = (2 + 1 / math.cos(math.radians(alpha))) / 3
-    for n in range(1, 4):
-        ok_len &= abs(lengths[n] / lengths[n - 1] - ratio) < 1e-9
     f.numbers.append(("length ratio K_n / K_(n-1) (expected (2 + 1/cos α)/3 = %.9f)" % ratio,
                       ", ".join(f"{lengths[n] / lengths[n - 1]:.9f}" for n in range(1, 4))))
     axes[-1].set_xlabel("x (mm)")
     fig.suptitle(f"Koch surfaces K0–K3, α = {alpha:g}°, λ = 10 mm (paper Fig. 3)")
     fig.tight_layout()
     f.png = png_bytes(fig)
-    f.verdicts.append((ok_slope, "the steepest edge of K_n is (n+1)α", "|max slope − (n+1)α| < 1e-6° for n = 0..3"))
-    f.verdicts.append((ok_len, "each iteration multiplies the length by (2 + 1/cos α)/3", "relative error < 1e-9"))
     f.source = f"`frictal surface koch --curve --alpha {alpha:g}` and `frictal stats`"
     return f
 
@@ -213,8 +207,6 @@ def fig05(bin_, work):
                                f"{slide:.3f} s)"),
                   ("friction angle: simulated / predicted (Eq. 6)", f"{sim:.4f}° / {pred:.4f}°"),
                   ("steps, wall time", f"{j['steps']}, {j['wall_time_s']:.1f} s")]
-    f.verdicts.append((bool(j.get("slid")) and abs(sim - pred) < 0.1,
-                       "the block slides at the predicted friction angle", "|φ_sim − φ_pred| < 0.1°"))
     f.source = "`frictal tilt koch --iterations 1 --alpha 20 --frames` (format: docs/dem.md)"
     return f
 
@@ -243,8 +235,6 @@ def fig11(bin_, work):
     f.numbers += [("rms height: deterministic / random", f"{sd['rms_height_m'] * 1e9:.4f} nm / {sr['rms_height_m'] * 1e9:.4f} nm"),
                   ("rms slope: deterministic / random", f"{sd['rms_slope']:.5f} / {sr['rms_slope']:.5f} (differ by {100 * rel:.2f} %)"),
                   ("steepest edge: deterministic / random", f"{sd['max_slope_deg']:.3f}° / {sr['max_slope_deg']:.3f}°")]
-    f.verdicts.append((rel < 0.02, "same mode amplitudes: the same rms slope (a spectral moment)",
-                       "rms slopes within 2 %"))
     f.source = "`frictal surface wm --dimension 1.5 [--no-stochastic | --seed 1]`, `frictal stats`"
     return f
 
@@ -255,7 +245,6 @@ def fig12(bin_, work):
                "dominated by the longest wavelength) to 2 (every wavelength with comparable weight) (Fig. 12).")
     ds = [1.0, 1.2, 1.4, 1.6, 1.8, 2.0]
     fig, ax = plt.subplots(figsize=(7.5, 5.5))
-    rms_slopes = []
     for k, d in enumerate(ds):
         p = f"{work}/wm-d{d:.1f}.csv"
         run(bin_, "surface", "wm", "--dimension", d, "--seed", 1, "-o", p)
@@ -264,7 +253,6 @@ def fig12(bin_, work):
         ax.plot(x * 1e6, z * 1e9 + off, lw=0.7)
         ax.text(20.3, off, f"D = {d:.1f}", va="center", fontsize=9)
         st = run_json(bin_, "stats", p, "--detrend", "none", "--json")
-        rms_slopes.append(st["rms_slope"])
         f.numbers.append((f"D = {d:.1f}: rms height, rms slope, steepest edge",
                           f"{st['rms_height_m'] * 1e9:.3f} nm, {st['rms_slope']:.5f}, {st['max_slope_deg']:.3f}°"))
     ax.set_xlim(0, 23)
@@ -274,9 +262,6 @@ def fig12(bin_, work):
     ax.set_title("WM profiles, rms height 1 nm, seed 1 (paper Fig. 12)")
     fig.tight_layout()
     f.png = png_bytes(fig)
-    mono = all(b > a for a, b in zip(rms_slopes, rms_slopes[1:]))
-    f.verdicts.append((mono, "rougher with D: the rms slope grows with D at equal rms height",
-                       "rms slope strictly increasing over D = " + ", ".join(f"{d:.1f}" for d in ds)))
     f.source = "`frictal surface wm --dimension D --seed 1`, `frictal stats`"
     return f
 
@@ -319,13 +304,9 @@ def fig13(bin_, work):
     a2.legend(fontsize=8)
     fig.tight_layout()
     f.png = png_bytes(fig)
-    ds_ = abs(ex["contact_slope_std_deg"] - sp["contact_slope_std_deg"]) / ex["contact_slope_std_deg"]
-    dt = abs(ex["theta_max_forward_deg"] - sp["theta_max_forward_deg"]) / ex["theta_max_forward_deg"]
     f.numbers += [("θ_max forward: exact polyline / spline", f"{ex['theta_max_forward_deg']:.4f}° / {sp['theta_max_forward_deg']:.4f}°"),
                   ("θ_max backward: exact polyline / spline", f"{ex['theta_max_backward_deg']:.4f}° / {sp['theta_max_backward_deg']:.4f}°"),
                   ("σ of contact slopes: exact / spline", f"{ex['contact_slope_std_deg']:.4f}° / {sp['contact_slope_std_deg']:.4f}°")]
-    f.verdicts.append((ds_ < 0.02 and dt < 0.1, "linear and spline contact slopes agree at this sampling",
-                       f"σ within 2 % ({100 * ds_:.2f} %), θ_max forward within 10 % ({100 * dt:.2f} %)"))
     f.source = ("`frictal signature A B [--slopes spline] --json` on two WM profiles (seeds 1, 2); the spline by "
                 "`frictal stats --spline`")
     return f
@@ -339,7 +320,6 @@ def fig16(bin_, work, pairs):
     edges = np.linspace(-12, 12, 97)
     surf = np.zeros(len(edges) - 1)
     cont = np.zeros(len(edges) - 1)
-    ok_std, ok_max = True, True
     rows = []
     for k in range(pairs):
         a, b = f"{work}/pdf-{k}-a.csv", f"{work}/pdf-{k}-b.csv"
@@ -360,9 +340,7 @@ def fig16(bin_, work, pairs):
         for i in range(len(edges) - 1):
             ov = np.clip(np.minimum(hi, edges[i + 1]) - np.maximum(lo, edges[i]), 0, None)
             cont[i] += float(np.sum(dn * ov)) / (edges[i + 1] - edges[i]) / pairs
-        ok_std &= j["contact_slope_std_deg"] < s_std
         tmax = max(j["theta_max_forward_deg"], j["theta_max_backward_deg"])
-        ok_max &= tmax < j["surface_slope_max_deg"]
         rows.append((k, j["contact_slope_std_deg"], s_std, tmax, j["surface_slope_max_deg"]))
     fig, ax = plt.subplots(figsize=(7, 4.5))
     ax.stairs(surf, edges, label="surface slopes", lw=1.5)
@@ -377,9 +355,6 @@ def fig16(bin_, work, pairs):
     for k, cs, ss, tm, sm in rows:
         f.numbers.append((f"pair {k + 1}: σ contact / σ surface; max θ / steepest surface edge",
                           f"{cs:.3f}° / {ss:.3f}°; {tm:.3f}° / {sm:.3f}°"))
-    f.verdicts.append((ok_std, "the contact-slope distribution is narrower than the surface-slope one",
-                       f"σ_contact < σ_surface in every one of {pairs} pairs"))
-    f.verdicts.append((ok_max, "θ_max is below the steepest surface slope", f"in every one of {pairs} pairs"))
     f.source = "`frictal signature A B --pdf` on WM pairs (seeds 2k+1, 2k+2)"
     return f
 
@@ -470,21 +445,6 @@ class Findings:
         with open(path, encoding="utf-8") as fh:
             return Findings(json.load(fh))
 
-    def add_check(self, cid, statement, where, figures, supported, criterion):
-        """A paper claim checked here (a figure computed by this script): into the conclusion of the
-        same claim when the studies check it too (e.g. Fig. 4's maxima), else a conclusion of its own."""
-        c = self.by_id.get(cid)
-        if c is None:
-            c = {"id": cid, "source": "paper", "statement": statement, "where": where, "figures": figures,
-                 "verdict": "supported", "cause": "", "uncaused": [], "checks": [], "superseded_by": []}
-            self.by_id[cid] = c
-            self.conclusions.append(c)
-        c["checks"].append({"study": "index", "part": f"Fig. {figures[0]}", "verdict":
-                            "supported" if supported else "not supported", "cause": "", "criterion": criterion})
-        if not supported:
-            c["verdict"] = "not supported"
-            c["uncaused"].append(f"index/Fig. {figures[0]}")
-
     def for_figure(self, n):
         return [c for c in self.conclusions if n in c.get("figures", [])]
 
@@ -529,24 +489,10 @@ def fig04_from(out):
             j = json.load(open(jp))
             f.numbers.append((f"K{n}, α = 5°: θ_max forward / backward",
                               f"{j['theta_max_forward_deg']:.9f}° / {j['theta_max_backward_deg']:.9f}°"))
-    if not os.path.exists(summary):  # the per-surface JSONs alone: theta_max = n alpha at alpha = 5 deg
-        ok, have = True, 0
-        for n, mult in enumerate([1, 1, 2, 3]):
-            jp = f"{out}/fig04/k{n}.json"
-            if os.path.exists(jp):
-                j = json.load(open(jp))
-                have += 1
-                ok &= all(abs(j[k] - 5.0 * mult) < 1e-6 for k in ("theta_max_forward_deg", "theta_max_backward_deg"))
-        if have:
-            f.verdicts.append((ok and have == 4, "θ_max = nα (n = 1, 1, 2, 3) at α = 5°",
-                               f"|θ_max − nα| < 1e-6° in both directions for {have} of 4 surfaces", "koch-theta-max"))
     if os.path.exists(summary):
         rows = list(csv.DictReader(open(summary)))
         agree = sum(r["agrees"] == "yes" for r in rows)
         f.numbers.append(("Koch surfaces of Table I whose θ_max = nα (both directions)", f"{agree} of {len(rows)}"))
-        f.verdicts.append((agree == len(rows) and len(rows) > 0, "θ_max = nα (n = 1, 1, 2, 3) for every α of Table I",
-                           f"|θ_max − nα| < 1e-6° in both directions, {agree} of {len(rows)} Koch surfaces of Table I",
-                           "koch-theta-max"))
     f.source = "scripts/reproduce: `frictal signature --period 0.01` on K0–K3"
     return f
 
@@ -859,10 +805,6 @@ def render(figs, findings, title, note):
     return "".join(parts)
 
 
-def slug(text):
-    return re.sub(r"[^a-z0-9]+", "-", text.lower()).strip("-")[:48]
-
-
 def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("bin", help="the frictal executable")
@@ -896,11 +838,6 @@ def main(argv):
             f = fig04_from(a.out)
         else:
             f = study_figure(a.out, n)
-        # The claims this script checks on the figures it computes: conclusions beside the studies'.
-        for v in f.verdicts:
-            ok, text, crit = v[:3]
-            findings.add_check(v[3] if len(v) > 3 else f"fig{n:02d}-{slug(text)}", (text[:1].upper() if text[:1].isascii() else text[:1]) + text[1:] + ".",
-                               f"Fig. {n}", [n], ok, crit)
         figs.append(f)
     for key in BEYOND:
         if want(key):

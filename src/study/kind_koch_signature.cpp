@@ -65,6 +65,17 @@ Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: det
   const double wavelength = kp.wavelength;
   auto prof = koch_profile(kp);
   if (!prof) return prof.error();
+  // The folded curve (Fig. 3): its steepest edge and its length, which the profile (the upper
+  // envelope) loses where the edges overhang.
+  auto curve = koch_curve(kp);
+  if (!curve) return curve.error();
+  double curve_length = 0, steepest = 0;
+  for (std::size_t i = 1; i < curve->size(); ++i) {
+    const double dx = curve->x[i] - curve->x[i - 1], dz = curve->z[i] - curve->z[i - 1];
+    if (dx == 0 && dz == 0) continue;
+    curve_length += std::hypot(dx, dz);
+    steepest = std::max(steepest, std::abs(std::atan2(dz, dx)));
+  }
   SignatureOptions o;
   Status st = Ok{};
   o.slopes = slope_method(slopes, &st);
@@ -85,6 +96,8 @@ Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: det
   put_outputs(out, profile_stats_columns(), ps, kProfileOutputs);
   s["theta_max_over_alpha"] = r.theta_max_forward / kp.alpha;
   s["surface_slope_max_over_alpha"] = ps.max_slope / kp.alpha;
+  s["curve_edge_max_deg"] = steepest * 180 / std::numbers::pi;
+  s["curve_length_over_length"] = curve_length / (curve->x.back() - curve->x.front());
   auto d13 = koch_dimension(kp.alpha);
   if (!d13) return d13.error();
   s["dimension_eq13"] = *d13;
@@ -104,6 +117,60 @@ Result<TaskOutput> run_koch_signature(const Params& p, std::uint64_t /*seed: det
 
 namespace {
 
+/// Fig. 3: the steepest edge of K_n is (n + 1) alpha, and each iteration multiplies the curve's
+/// length by (2 + 1/cos alpha) / 3 (two thirds kept, the middle third replaced by two sides of
+/// 1/(6 cos alpha)); over the tasks of the part (stores of kind version 1 lack the curve's outputs).
+void koch_curve_findings(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
+  std::map<double, std::map<int, double>> lengths;  // alpha (deg) -> iterations -> length / extent
+  int edges = 0;
+  double worst_edge = 0;
+  for (const auto& r : rows) {
+    const auto& s = r.output.scalars;
+    if (!r.params.count("iterations") || !r.params.count("alpha") || !s.count("curve_edge_max_deg") ||
+        !s.count("curve_length_over_length"))
+      continue;
+    const int n = as_int(r.params.at("iterations"));
+    const double a = as_number(r.params.at("alpha"));
+    ++edges;
+    worst_edge = std::max(worst_edge, std::abs(s.at("curve_edge_max_deg") - (n + 1) * a));
+    lengths[a][n] = s.at("curve_length_over_length");
+  }
+  if (!edges) return;
+  Finding e;
+  e.claim_id = "koch-steepest-edge";
+  e.part = part;
+  e.claim =
+      fmt::format("Part '{}': the steepest edge of the Koch curve K_n is (n + 1) alpha (Sec. III, Fig. 3).", part);
+  e.supported = worst_edge < 1e-6;
+  e.evidence.push_back(fmt::format(
+      "criterion: |steepest edge - (n + 1) alpha| < 1e-6 deg for every (K_n, alpha) task ({}); largest {:.2e} deg",
+      edges, worst_edge));
+  rep.findings.push_back(e);
+  int steps = 0;
+  double worst_len = 0;
+  for (const auto& [a, by_n] : lengths) {
+    const double expect = (2 + 1 / std::cos(a * std::numbers::pi / 180)) / 3;
+    for (const auto& [n, len] : by_n)
+      if (auto prev = by_n.find(n - 1); prev != by_n.end()) {
+        ++steps;
+        worst_len = std::max(worst_len, std::abs(len / prev->second / expect - 1));
+      }
+  }
+  if (!steps) return;  // no two consecutive iterations at one alpha
+  Finding l;
+  l.claim_id = "koch-length-ratio";
+  l.part = part;
+  l.claim = fmt::format(
+      "Part '{}': each iteration multiplies the length of the Koch curve by (2 + 1/cos alpha)/3 (Sec. III, Fig. 3).",
+      part);
+  l.supported = worst_len < 1e-9;
+  l.evidence.push_back(
+      fmt::format("criterion: |(L_n / L_(n-1)) / ((2 + 1/cos alpha)/3) - 1| < 1e-9 over {} steps K_(n-1) -> K_n at "
+                  "equal alpha; largest {:.2e}",
+                  steps, worst_len));
+  rep.findings.push_back(l);
+}
+
 void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
   std::map<int, std::map<double, double>> ratio, phi, mu, dim, phi0;  // iterations -> alpha -> value
   std::set<double> mus;
@@ -122,6 +189,7 @@ void koch_part(const std::string& part, const std::vector<Store::Row>& rows, Rep
     phi[n][a] = r.output.scalars.at("friction_angle_deg");
   }
   if (ratio.empty()) return;
+  koch_curve_findings(part, rows, rep);
   rep.lines.push_back(fmt::format("\n## Part '{}' (koch-signature): {} tasks", part, rows.size()));
   std::string t = "\n| K_n | alpha (deg) | theta_max/alpha | mu (mu_a = 0) | D (Eq. 13) |\n|---|---|---|---|---|\n";
   for (const auto& [n, m] : ratio)
@@ -215,7 +283,7 @@ TaskKind koch_signature_kind() {
   TaskKind k;
   k.name = "koch-signature";
   k.description = "Self-signature of a Koch surface K_n (Sec. III): theta_max/alpha, friction angle, Eq. 13 dimension";
-  k.version = 1;
+  k.version = 2;  // 2: the folded curve's steepest edge and length (Fig. 3)
   k.run = run_koch_signature;
   k.cost = koch_signature_cost;
   k.uses_seed = false;  // deterministic surfaces
@@ -223,6 +291,10 @@ TaskKind koch_signature_kind() {
       {"theta_max_over_alpha", "1", "theta_max / alpha (1, 1, 2, 3 for K0..K3)"},
       {"surface_slope_max_over_alpha", "1", "steepest edge / alpha (n + 1 for K_n)"},
       {"dimension_eq13", "1", "fractal dimension of Eq. 13"},
+      {"curve_edge_max_deg", "deg",
+       "steepest edge of the folded curve, max |atan2(dz, dx)| (above 90 deg where it overhangs; (n + 1) alpha for "
+       "K_n)"},
+      {"curve_length_over_length", "1", "length of the folded curve / its horizontal extent (Fig. 3)"},
       {"signature_offset_over_wavelength", "1", "offset / lambda (Fig. 4)", true},
       {"signature_theta_over_alpha", "1", "theta / alpha at each offset (Fig. 4)", true},
   };

@@ -39,16 +39,27 @@ constexpr std::initializer_list<ColumnOutput> kUpperOutputs = {
 
 Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   Error err;
-  std::int64_t bins = 0, offsets = 0;
+  std::int64_t bins = 0, offsets = 0, compare_phases = 0, compare_slopes = 0;
   std::string slopes;
   if (!take(get_string(p, "slopes", "exact"), slopes, err) || !take(get_int(p, "bins", 90), bins, err) ||
-      !take(get_int(p, "offsets", 0), offsets, err))
+      !take(get_int(p, "offsets", 0), offsets, err) || !take(get_int(p, "compare_phases", 0), compare_phases, err) ||
+      !take(get_int(p, "compare_slopes", 0), compare_slopes, err))
     return err;
   if (bins < 1 || bins > 100000) return make_error("parameter 'bins': expected 1..100000");
   if (offsets < 0) return make_error("parameter 'offsets': expected >= 0");
+  if (compare_phases != 0 && compare_phases != 1)
+    return make_error(fmt::format("parameter 'compare_phases': expected 0 or 1, got {}", compare_phases));
+  if (compare_slopes != 0 && compare_slopes != 1)
+    return make_error(fmt::format("parameter 'compare_slopes': expected 0 or 1, got {}", compare_slopes));
+  if (compare_slopes && slopes != "exact")
+    return make_error(fmt::format(
+        "parameter 'compare_slopes': compares the spline's contact slopes with the exact ones, so 'slopes' must be "
+        "\"exact\", got \"{}\"",
+        slopes));
   // dimension, gamma, n_max, longest_wavelength, length, rms_height, exponent, spacing: the wm
   // generator's table; the phases are always random, from the task seed.
-  if (Status st = only_known_parameters(p, {&find_generator("wm")->fields}, {"pair", "slopes", "bins", "offsets"},
+  if (Status st = only_known_parameters(p, {&find_generator("wm")->fields},
+                                        {"pair", "slopes", "bins", "offsets", "compare_phases", "compare_slopes"},
                                         "wm-pair-statistics");
       !st)
     return st.error();
@@ -95,6 +106,28 @@ Result<TaskOutput> run_wm_pair_statistics(const Params& p, std::uint64_t seed) {
   s["tan_surface_slope_max"] = std::tan(smax);
   s["surface_slope_std_deg"] = slope_angle_std(*upper) / kDeg;
   s["surface_slope_std_lower_deg"] = slope_angle_std(*lower) / kDeg;
+  // The comparisons' outputs are NaN (stored as NULL) when not asked for.
+  for (const char* key : {"deterministic_rms_slope", "surface_rms_slope_lower", "contact_slope_std_spline_deg",
+                          "theta_max_forward_spline_deg"})
+    s[key] = std::nan("");
+  if (compare_phases) {
+    // Fig. 11: the same modes with zero phases (Eq. 17); every mode's amplitude is unchanged.
+    WmParams d = w;
+    d.stochastic = false;
+    auto det = wm_profile(d);
+    if (!det) return det.error();
+    s["deterministic_rms_slope"] = profile_stats(*det).rms_slope;
+    s["surface_rms_slope_lower"] = sl.rms_slope;
+  }
+  if (compare_slopes) {
+    // Fig. 13: the contact slopes of the cubic spline through the same points.
+    SignatureOptions os = o;
+    os.slopes = SlopeMethod::Spline;
+    auto spl = signature(*lower, rotate180(*upper), os);
+    if (!spl) return spl.error();
+    s["contact_slope_std_spline_deg"] = spl->contact_slope_std / kDeg;
+    s["theta_max_forward_spline_deg"] = spl->theta_max_forward / kDeg;
+  }
   put_pdf(out, "contact_slope_pdf", r.contact_slope_pdf);
   put_pdf(out, "surface_slope_pdf", slope_distribution(*upper, static_cast<int>(bins)));
   return out;
@@ -226,7 +259,7 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
                     "surface in {} of {}",
                     up_c, steps, up_s, steps));
     f.evidence.push_back("tan contact / tan surface:" + vals);
-    rep.findings.push_back(f);
+    if (steps > 0) rep.findings.push_back(f);  // a part at one D does not check a trend in D
   }
   // F3: rise with n_max for every D.
   if (ns.size() >= 2) {
@@ -349,6 +382,122 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
                     "D = 1.5 ({:.3f} deg) than up to 1.5 ({:.3f} deg)",
                     up, steps, hi_gain, lo_gain));
     f.evidence.push_back("sigma contact / sigma surface (deg):" + vals);
+    if (steps > 0) rep.findings.push_back(f);
+  }
+}
+
+/// Fig. 11, 12, 13, 16: the profiles' own claims, on the pairs of a part.
+void wm_profile_findings(const std::string& part, const std::vector<Store::Row>& rows, Report& rep) {
+  int nmax = -1;
+  for (const auto& r : rows)
+    if (r.params.count("n_max")) nmax = std::max(nmax, static_cast<int>(as_int(r.params.at("n_max"))));
+  // Fig. 16 and 12 at the part's finest resolution (at n_max = 0 both faces are one cosine, which
+  // mate exactly: contact and surface slopes coincide there).
+  int pairs = 0, narrower = 0;
+  double widest = 0;           // the largest sigma_contact / sigma_surface
+  std::map<double, Cell> rms;  // D -> pair-mean rms slope of the upper profile
+  for (const auto& r : rows) {
+    const auto& s = r.output.scalars;
+    if (!r.params.count("dimension") || !r.params.count("n_max") || as_int(r.params.at("n_max")) != nmax) continue;
+    if (!s.count("contact_slope_std_deg") || !s.count("surface_slope_std_deg") ||
+        !s.count("surface_slope_std_lower_deg"))
+      continue;
+    ++pairs;
+    const double ratio =
+        s.at("contact_slope_std_deg") / std::min(s.at("surface_slope_std_deg"), s.at("surface_slope_std_lower_deg"));
+    narrower += ratio < 1;
+    widest = std::max(widest, ratio);
+    if (s.count("surface_rms_slope")) rms[as_number(r.params.at("dimension"))].add(s.at("surface_rms_slope"));
+  }
+  if (pairs && nmax > 0) {
+    Finding f;
+    f.claim_id = "wm-contact-narrower";
+    f.part = part;
+    f.claim = fmt::format(
+        "Part '{}': the contact slopes are distributed more narrowly than the surface slopes (n_max = {}; Sec. V C, "
+        "Fig. 16).",
+        part, nmax);
+    f.supported = narrower == pairs;
+    f.evidence.push_back(
+        fmt::format("criterion: sigma_contact < sigma_surface of both profiles in every pair at n_max = {}; {} of {} "
+                    "pairs; largest sigma_contact / sigma_surface {:.3f}",
+                    nmax, narrower, pairs, widest));
+    rep.findings.push_back(f);
+  }
+  if (rms.size() >= 2) {
+    Finding f;
+    f.claim_id = "wm-rougher-with-dimension";
+    f.part = part;
+    f.claim = fmt::format(
+        "Part '{}': at equal rms height the profile gets rougher with D: the rms slope grows with D (n_max = {}; "
+        "Fig. 12).",
+        part, nmax);
+    int up = 0, steps = 0;
+    double prev = NAN;
+    std::string vals;
+    for (const auto& [D, cell] : rms) {
+      if (std::isfinite(prev)) ++steps, up += cell.mean() > prev;
+      prev = cell.mean();
+      vals += fmt::format(" D={:.1f}: {:.5f}", D, cell.mean());
+    }
+    f.supported = up == steps;
+    f.evidence.push_back(fmt::format(
+        "criterion: the pair-mean rms slope of the upper profile rises at every step in D; {} of {} steps", up, steps));
+    f.evidence.push_back("rms slope:" + vals);
+    rep.findings.push_back(f);
+  }
+  // Fig. 11 and 13: on the parts that compute the comparisons (compare_phases, compare_slopes).
+  int phased = 0, same_rms = 0, splined = 0, same_slopes = 0;
+  double worst_rms = 0, worst_std = 0, worst_theta = 0;
+  for (const auto& r : rows) {
+    const auto& s = r.output.scalars;
+    auto has = [&](const char* key) { return s.count(key) && std::isfinite(s.at(key)); };
+    if (has("deterministic_rms_slope") && has("surface_rms_slope") && has("surface_rms_slope_lower")) {
+      ++phased;
+      const double det = s.at("deterministic_rms_slope");
+      const double d =
+          std::max(std::abs(s.at("surface_rms_slope") / det - 1), std::abs(s.at("surface_rms_slope_lower") / det - 1));
+      same_rms += d < 0.02;
+      worst_rms = std::max(worst_rms, d);
+    }
+    if (has("contact_slope_std_spline_deg") && has("theta_max_forward_spline_deg") && has("contact_slope_std_deg") &&
+        has("theta_max_forward_deg")) {
+      ++splined;
+      const double ds = std::abs(s.at("contact_slope_std_spline_deg") / s.at("contact_slope_std_deg") - 1);
+      const double dt = std::abs(s.at("theta_max_forward_spline_deg") / s.at("theta_max_forward_deg") - 1);
+      same_slopes += ds < 0.02 && dt < 0.1;
+      worst_std = std::max(worst_std, ds);
+      worst_theta = std::max(worst_theta, dt);
+    }
+  }
+  if (phased) {
+    Finding f;
+    f.claim_id = "wm-phases-keep-rms-slope";
+    f.part = part;
+    f.claim = fmt::format(
+        "Part '{}': random phases (Eq. 14) keep every mode's amplitude of the deterministic profile (Eq. 17), hence "
+        "its rms slope (Sec. V A, Fig. 11).",
+        part);
+    f.supported = same_rms == phased;
+    f.evidence.push_back(
+        fmt::format("criterion: both random profiles' rms slopes within 2 % of the zero-phase profile's; {} of {} "
+                    "pairs; largest difference {:.2f} %",
+                    same_rms, phased, 100 * worst_rms));
+    rep.findings.push_back(f);
+  }
+  if (splined) {
+    Finding f;
+    f.claim_id = "wm-spline-matches-linear";
+    f.part = part;
+    f.claim = fmt::format(
+        "Part '{}': at the sampling of Eq. 16 the cubic spline and the polyline give the same contact-slope "
+        "statistics (Sec. V B, Fig. 13).",
+        part);
+    f.supported = same_slopes == splined;
+    f.evidence.push_back(
+        fmt::format("criterion: sigma_contact within 2 % and theta_max forward within 10 % in every pair; {} of {} "
+                    "pairs; largest differences {:.2f} % and {:.2f} %",
+                    same_slopes, splined, 100 * worst_std, 100 * worst_theta));
     rep.findings.push_back(f);
   }
 }
@@ -356,7 +505,10 @@ void wm_part(const std::string& part, const std::vector<Store::Row>& rows, Repor
 /// wm-pair-statistics: rows pooled over D, n_max and pair (wm_part reads those axes); any other
 /// axis (e.g. slopes = ["exact", "spline"]) makes a separate variant.
 void wm_section(const std::string& part, const std::vector<TaskRow>& rows, Report& rep) {
-  for (const auto& [label, vrows] : variants_of(part, rows, {"dimension", "n_max", "pair"})) wm_part(label, vrows, rep);
+  for (const auto& [label, vrows] : variants_of(part, rows, {"dimension", "n_max", "pair"})) {
+    wm_part(label, vrows, rep);
+    wm_profile_findings(label, vrows, rep);
+  }
 }
 
 /// Estimated CPU time (unit: s; TaskKind::cost): the profiles' points (about gamma^n_max per
@@ -378,7 +530,7 @@ TaskKind wm_pair_statistics_kind() {
   TaskKind k;
   k.name = "wm-pair-statistics";
   k.description = "A pair of stochastic WM profiles (Sec. V): max/std of contact and surface slopes, slope PDFs";
-  k.version = 2;
+  k.version = 3;  // 3: compare_phases, compare_slopes (Fig. 11, 13)
   k.run = run_wm_pair_statistics;
   k.cost = wm_pair_cost;
   k.outputs = {
@@ -392,6 +544,10 @@ TaskKind wm_pair_statistics_kind() {
       {"contact_slope_pdf_density_per_deg", "1/deg", "contact slope PDF density", true},
       {"surface_slope_pdf_edges_deg", "deg", "surface slope PDF bin edges (upper profile)", true},
       {"surface_slope_pdf_density_per_deg", "1/deg", "surface slope PDF density", true},
+      {"deterministic_rms_slope", "1", "compare_phases: rms slope of the same modes with zero phases (Eq. 17)"},
+      {"surface_rms_slope_lower", "1", "compare_phases: rms slope of the lower profile"},
+      {"contact_slope_std_spline_deg", "deg", "compare_slopes: contact_slope_std with the cubic spline's slopes"},
+      {"theta_max_forward_spline_deg", "deg", "compare_slopes: theta_max_forward with the cubic spline's slopes"},
   };
   for (const auto& table : {outputs_of("signature", signature_columns(), kSignatureSummaryOutputs),
                             outputs_of("profile_stats", profile_stats_columns(), kLowerOutputs),

@@ -4,6 +4,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <set>
+#include <string>
 
 #include "frictal/study.hpp"
 
@@ -21,9 +23,9 @@ std::string fresh(const std::string& name) {
 
 TEST(StudyFiles, EveryPaperFigureHasAStudyThatParsesAtBothScales) {
   const TaskRegistry reg = default_registry();
-  const char* names[] = {"fig04-koch-signature",  "fig06-koch-friction", "fig07-time-evolution",
-                         "fig08-atomic-friction", "fig09-divider",       "fig10-mu-vs-dimension",
-                         "fig14-18-wm-statistics"};
+  const char* names[] = {"fig03-koch-surfaces",   "fig04-koch-signature",  "fig06-koch-friction",
+                         "fig07-time-evolution",  "fig08-atomic-friction", "fig09-divider",
+                         "fig10-mu-vs-dimension", "fig11-16-wm-profiles",  "fig14-18-wm-statistics"};
   for (const char* n : names) {
     const fs::path p = studies_dir() / (std::string(n) + ".toml");
     for (bool quick : {false, true}) {
@@ -53,7 +55,9 @@ TEST(StudyFiles, QuickWmStudyReproducesThePaperFindings) {
   EXPECT_EQ(sum->failed, 0);
   auto rep = report(**st);
   ASSERT_TRUE(rep.ok()) << rep.error().message;
-  ASSERT_EQ(rep->findings.size(), 5u);
+  // the five slope claims of Figs. 14-18, the narrower contact slopes (Fig. 16) and the rms slope
+  // against D (Fig. 12)
+  ASSERT_EQ(rep->findings.size(), 7u);
   for (const auto& f : rep->findings) {
     std::string ev;
     for (const auto& e : f.evidence) ev += e + "\n";
@@ -61,9 +65,10 @@ TEST(StudyFiles, QuickWmStudyReproducesThePaperFindings) {
   }
 }
 
-TEST(StudyFiles, KochTheoryPartsReproduceSectionThree) {
+TEST(StudyFiles, QuickTheoryStudiesReproduceThePaperFindings) {
   const TaskRegistry reg = default_registry();
-  for (const char* n : {"fig04-koch-signature", "fig06-koch-friction", "fig08-atomic-friction"}) {
+  for (const char* n : {"fig03-koch-surfaces", "fig04-koch-signature", "fig06-koch-friction", "fig08-atomic-friction",
+                        "fig11-16-wm-profiles"}) {
     auto s = load_study((studies_dir() / (std::string(n) + ".toml")).string(), true, reg);
     ASSERT_TRUE(s.ok());
     auto st = Store::open(fresh(std::string(n) + ".sqlite"), *s);
@@ -75,7 +80,19 @@ TEST(StudyFiles, KochTheoryPartsReproduceSectionThree) {
     auto rep = report(**st);
     ASSERT_TRUE(rep.ok());
     EXPECT_FALSE(rep->findings.empty()) << n;
-    for (const auto& f : rep->findings) EXPECT_TRUE(f.supported) << n << ": " << f.claim << " " << f.evidence.front();
+    std::set<std::string> ids;
+    for (const auto& f : rep->findings) {
+      ids.insert(f.claim_id);
+      EXPECT_TRUE(f.supported) << n << ": " << f.claim << " " << f.evidence.front();
+    }
+    // The claims of the figures each study is named after.
+    if (std::string(n) == "fig03-koch-surfaces") {
+      EXPECT_EQ(ids, (std::set<std::string>{"koch-theta-max", "koch-steepest-edge", "koch-length-ratio"}));
+    }
+    if (std::string(n) == "fig11-16-wm-profiles") {
+      EXPECT_EQ(ids, (std::set<std::string>{"wm-contact-below-surface", "wm-contact-narrower",
+                                            "wm-phases-keep-rms-slope", "wm-spline-matches-linear"}));
+    }
   }
 }
 
