@@ -189,6 +189,10 @@ struct Prediction {
   double load_interference_ratio = std::numeric_limits<double>::quiet_NaN();
   double load_merged_share = std::numeric_limits<double>::quiet_NaN();
   double load_contact_slope = std::numeric_limits<double>::quiet_NaN();
+  /// Maps under load (the half-space model): the largest fraction of the overlap's points in
+  /// contact over the offsets at the headline load (unitless); NaN otherwise. load_contacts is then
+  /// the mean number of contact patches, and load_interference_ratio, load_merged_share are NaN.
+  double load_contact_fraction = std::numeric_limits<double>::quiet_NaN();
   std::vector<Warning> warnings;
   /// "ok", or "doubtful" where a warning says the input was probably read wrong (a code marked
   /// `doubtful` in warning_codes(): units, spikes left in, scans that do not match, an angle at 90

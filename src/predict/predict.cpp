@@ -183,6 +183,9 @@ LiftCurve cut_curve(const LiftCurve& c, double a, double b) {
 // slope of small-slope elasticity, delta / R of Hertz's a << R (a = sqrt(R delta); 0.1: a/R ~ 0.3)
 // at more than 5 % of the offsets, and 10 % of the load on merged contacts (unitless).
 constexpr double kLoadMaxSlope = 0.3, kLoadMaxRatio = 0.1, kLoadMaxDeepShare = 0.05, kLoadMaxMerged = 0.1;
+// Maps: the share of the offsets at which more than kMapFullContact of the overlap touches
+// (MapLoadedDiagnostics::full_share) beyond which the load nears full contact (unitless).
+constexpr double kLoadMaxFullShare = 0.05, kMapFullContact = 0.5;
 
 // The assumptions that a load's diagnostics break, as text ("" where none).
 std::string load_breaks(const LoadedLiftDiagnostics& d) {
@@ -550,6 +553,127 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   return p;
 }
 
+// A map pair under load (PredictOptions::loads; docs/load.md, "Maps"): the drops `uv` (offsets
+// along and across d, the model's frame) grouped into lines along d, the loaded lift of each line
+// from the half-space solution at every offset (load.hpp's map_loaded_lift, the offsets at the
+// lower map's spacing), and each drop's hold angle on its line (the block locked to d, hold.hpp),
+// at every load of the curve. The rigid prediction `p` (free block) gives phi_0 and stays the bound.
+Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper, const ArealTiltOptions& t,
+                               const std::vector<std::array<double, 2>>& uv, const PredictOptions& o) {
+  auto em = o.rigid_upper ? contact_modulus(o.lower_material)
+                          : contact_modulus(o.lower_material, o.upper_material.value_or(o.lower_material));
+  if (!em) return em.error();
+  // One load: a decade either side (each load is a contact solve per offset, the cost of the map
+  // model); a list: those loads.
+  std::vector<double> curve;
+  if (o.loads.size() == 1) {
+    curve = {0.1 * o.loads[0], o.loads[0], 10 * o.loads[0]};
+  } else {
+    curve = o.loads;
+    std::sort(curve.begin(), curve.end());
+    curve.erase(std::unique(curve.begin(), curve.end()), curve.end());
+  }
+  const std::size_t head = std::size_t(std::find(curve.begin(), curve.end(), o.loads[0]) - curve.begin());
+  p.rigid_friction_angle = p.friction_angle.q50;
+  const double cosine = std::cos(std::min(p.rigid_friction_angle, 1.5));
+  MapLoadedLiftOptions lo;
+  lo.contact_modulus = *em;
+  lo.angle = t.angle;
+  lo.turn_over_upper = t.turn_over_upper;
+  lo.threads = o.threads;
+  lo.step = std::min(lower.dx, lower.dy);
+  for (double w : curve) lo.loads.push_back(w * cosine);
+  // Lines: the drops' distinct offsets across d; along each, the drops' range widened by room for
+  // the descent and the run-away (3 d), on the step's grid.
+  const double D = t.runaway_distance;
+  std::vector<double> across;
+  for (const auto& q : uv)
+    if (std::find(across.begin(), across.end(), q[1]) == across.end()) across.push_back(q[1]);
+  double umin = INFINITY, umax = -INFINITY;
+  for (const auto& q : uv) umin = std::min(umin, q[0]), umax = std::max(umax, q[0]);
+  const double room = 3 * D + 2 * lo.step;
+  const double a0 = std::floor((umin - room) / lo.step) * lo.step, a1 = std::ceil((umax + room) / lo.step) * lo.step;
+  auto loaded = map_loaded_lift(lower, upper, across, a0, a1, lo);
+  if (!loaded) return loaded.error();
+  HoldOptions hk;
+  hk.runaway_distance = D;
+  hk.atomic_friction = o.atomic_friction;
+  // Each drop's hold angle on its line's curve (rigid: curve index npos).
+  std::size_t off_end = 0;
+  auto drops_on = [&](std::size_t l, std::vector<double>& angles) -> Status {
+    angles.assign(uv.size(), 0);
+    for (std::size_t k = 0; k < uv.size(); ++k) {
+      const std::size_t li = std::size_t(std::find(across.begin(), across.end(), uv[k][1]) - across.begin());
+      const MapLoadedLine& line = loaded->lines[li];
+      const LiftCurve& c = l < curve.size() ? line.curves[l] : line.rigid;
+      const double u = std::clamp(uv[k][0], c.offset.front(), c.offset.back());
+      auto a = hold_angle(c, u, hk);
+      if (!a) return a.error();
+      angles[k] = a->forward.hold_angle;
+      if (a->forward.ran_off_end && l == head) ++off_end;
+    }
+    return Ok{};
+  };
+  std::vector<double> angles;
+  std::string beyond;
+  for (std::size_t l = 0; l < curve.size(); ++l) {
+    if (auto st = drops_on(l, angles); !st) return st;
+    const HoldStatistics h = plain_stats(angles);
+    p.load_curve.push_back(curve[l]);
+    p.load_curve_q05.push_back(h.q05);
+    p.load_curve_q50.push_back(h.q50);
+    p.load_curve_q95.push_back(h.q95);
+    const MapLoadedDiagnostics& dg = loaded->diagnostics[l];
+    if (l != head && (dg.rms_contact_slope > kLoadMaxSlope || dg.full_share > kLoadMaxFullShare))
+      beyond += fmt::format("{}{:.4g} N", beyond.empty() ? "" : ", ", curve[l]);
+    if (l == head) {
+      p.friction_angle = h;
+      p.drop_angles = angles;
+      p.drop_steering.assign(angles.size(), 0.0);
+    }
+  }
+  p.load = curve[head];
+  p.normal_load = curve[head] * cosine;
+  p.contact_modulus = *em;
+  const MapLoadedDiagnostics& dg = loaded->diagnostics[head];
+  p.load_contacts = dg.mean_patches;
+  p.load_approach = dg.mean_approach;
+  p.load_contact_slope = dg.rms_contact_slope;
+  p.load_contact_fraction = dg.max_contact_fraction;
+  p.model = "map-halfspace-locked-hold";
+  p.friction_coefficient = p.friction_angle.q50 >= kPi / 2 ? INFINITY : std::tan(p.friction_angle.q50);
+  if (dg.rms_contact_slope > kLoadMaxSlope)
+    add_warning(p.warnings, {"load-steep-contacts",
+                             fmt::format("at {:.4g} N the force-weighted rms slope of the contact is {:.3g}: above "
+                                         "{:g}, the small-slope half-space solution is approximate",
+                                         p.load, dg.rms_contact_slope, kLoadMaxSlope)});
+  if (dg.full_share > kLoadMaxFullShare)
+    add_warning(p.warnings,
+                {"load-full-contact",
+                 fmt::format("at {:.4g} N more than {:g} % of the overlap is in contact at {:.3g} % of the offsets "
+                             "(largest contact fraction {:.3g}): the load flattens the roughness that makes the "
+                             "friction; the lift is then the half-space's, not the surfaces'",
+                             p.load, 100 * kMapFullContact, 100 * dg.full_share, dg.max_contact_fraction)});
+  if (dg.unconverged > 0)
+    add_warning(p.warnings,
+                {"contact-not-converged",
+                 fmt::format("at {:.4g} N the contact solution did not reach its tolerance at {} offsets: the loaded "
+                             "lift there is approximate",
+                             p.load, dg.unconverged)});
+  if (off_end > 0)
+    add_warning(p.warnings,
+                {"load-lift-ends", fmt::format("{} of {} drops ran off the end of their line of loaded offsets (the "
+                                               "maps' overlap): their hold angle is the last stop's",
+                                               off_end, uv.size())});
+  if (!beyond.empty())
+    add_warning(p.warnings, {"load-curve-beyond-model",
+                             fmt::format("the load curve's loads {} break the half-space model's assumptions (steep "
+                                         "contacts or near full contact; docs/load.md): read the curve there as an "
+                                         "extrapolation",
+                                         beyond)});
+  return Ok{};
+}
+
 Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
   Prediction p;
   p.is_map = true;
@@ -721,6 +845,8 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   }
   const HoldStatistics seats = plain_stats(seat_slopes);
   finish(p, seats.max, seats.std, bound);
+  if (!o.loads.empty())
+    if (auto st = predict_maps_under_load(p, *lo, up, t, uv, o); !st) return st.error();
   return p;
 }
 
@@ -816,10 +942,6 @@ Status check_request(const PredictSurface& lower, const PredictSurface* upper, c
         "block length: for profiles only (a map pair's block is the whole upper map; crop it to state another)");
   if (std::isinf(o.start_offset[0]) || !std::isfinite(o.start_offset[1]))
     return make_error("start offset: expected finite offsets (m)");
-  if (!o.loads.empty() && lower.is_map)
-    return make_error(
-        "load: friction under load (the Hertzian-asperity model) is for line profiles; a map pair is predicted "
-        "for rigid blocks only (leave out the load, or predict profiles extracted from the maps)");
   for (double w : o.loads)
     if (!(w > 0) || !std::isfinite(w)) return make_error(fmt::format("load {} N: expected a finite force > 0", w));
   if (!lower.is_map && !o.turn_over_upper)
