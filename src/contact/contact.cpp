@@ -277,7 +277,13 @@ class Solver {
         rsum += partial_[m][0], rt += partial_[m][1], tsum += partial_[m][2], num += partial_[m][3];
       const double rbar = nc ? rsum / double(nc) : 0.0;
       const double den = rt - rbar * tsum;
-      const double tau = (den > 0 && nc) ? num / den : 0.0;
+      double tau = (den > 0 && nc) ? num / den : 0.0;
+      // No step on the free contact (one point, or its gap already uniform) while points outside
+      // it interpenetrate: the step above would change nothing, and the iteration would stall
+      // there (a start whose contact lies elsewhere: a warm start from a neighbouring problem).
+      // Those points enter with the pressure that about closes their overlap over one spacing,
+      // p = E* |g| / dx.
+      if (!(tau > 0) && worst > 0) tau = o_.contact_modulus / g_.dx;
       chunks([&](unsigned m, std::size_t b, std::size_t e) {
         double entered = 0, total = 0, reset = 0;
         for (std::size_t k = b; k < e; ++k) {

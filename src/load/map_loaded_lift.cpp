@@ -231,9 +231,10 @@ Result<MapLoadedState> map_loaded_state(const Map& lower, const Map& upper, doub
   auto r = solve_offset(comp, along, across, o, starts);
   if (!r) return r.error();
   if (r->empty())
-    return make_error(fmt::format("offset ({:.6g}, {:.6g}) m along and across the direction: the maps overlap by "
-                                  "fewer than 2 x 2 nodes there",
-                                  along, across));
+    return make_error(
+        fmt::format("offset ({:.6g}, {:.6g}) m along and across the direction: the maps overlap by "
+                    "fewer than 2 x 2 nodes there",
+                    along, across));
   return r->front();
 }
 
@@ -248,8 +249,8 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
   const double step = o.step > 0 ? o.step : std::min(lower.dx, lower.dy);
   const std::size_t n = std::size_t(std::floor((along_max - along_min) / step + 1e-9)) + 1;
   if (n < 2 || n > 100000)
-    return make_error(fmt::format("offsets along the direction: {} at a step of {:.6g} m; expected 2 to 100000", n,
-                                  step));
+    return make_error(
+        fmt::format("offsets along the direction: {} at a step of {:.6g} m; expected 2 to 100000", n, step));
   const Composite comp(lower, upper, o.angle, o.turn_over_upper);
   const std::size_t nl = o.loads.size();
   MapLoadedLift out;
@@ -299,9 +300,10 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
         }
       }
       if (errors[li].empty() && line.rigid.offset.size() < 2)
-        errors[li] = fmt::format("the line {:.6g} m across the direction: the maps overlap at fewer than 2 of its "
-                                 "offsets in [{:.6g}, {:.6g}] m",
-                                 across[li], along_min, along_max);
+        errors[li] = fmt::format(
+            "the line {:.6g} m across the direction: the maps overlap at fewer than 2 of its "
+            "offsets in [{:.6g}, {:.6g}] m",
+            across[li], along_min, along_max);
     }
   });
   for (const std::string& e : errors)

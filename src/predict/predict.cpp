@@ -595,22 +595,74 @@ Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper
   const double a0 = std::floor((umin - room) / lo.step) * lo.step, a1 = std::ceil((umax + room) / lo.step) * lo.step;
   auto loaded = map_loaded_lift(lower, upper, across, a0, a1, lo);
   if (!loaded) return loaded.error();
+  // The rigid lift of each line: the rigid map model's own (areal_tilt_lift: the spheres of the
+  // upper face on the lower one's triangles, exact), on offsets kLiftPerStep times finer than the
+  // contact solves (it has a kink wherever the touching sphere or triangle changes, and the hold
+  // angle reads its steepest stops); the elastic correction H_W - h of the solves, which varies
+  // with the contact, linear between them. So each curve tends to the rigid line's as W -> 0.
+  constexpr int kLiftPerStep = 10;
+  std::vector<LiftCurve> rigid_lines(across.size());
+  for (std::size_t li = 0; li < across.size(); ++li) {
+    const MapLoadedLine& line = loaded->lines[li];
+    const double v = across[li];
+    ArealLiftOptions ao;
+    ao.step = lo.step / kLiftPerStep;
+    ao.offset_min = line.rigid.offset.front();
+    ao.offset_max = line.rigid.offset.back();
+    // Rows -|v|, 0, |v| (or the row v = 0 alone): the line is the row at v.
+    ao.across_step = v != 0 ? std::abs(v) : 1;
+    ao.across_max = v != 0 ? std::abs(v) : 0.5;
+    ao.threads = o.threads;
+    auto al = areal_tilt_lift(lower, upper, t, ao);
+    if (!al) return al.error();
+    const std::size_t row = v > 0 ? 2 : 0;
+    LiftCurve& c = rigid_lines[li];
+    for (std::size_t i = 0; i < al->n_along; ++i) {
+      const double h = al->lift[row * al->n_along + i];
+      if (std::isfinite(h)) c.offset.push_back(al->along(i)), c.lift.push_back(h);
+    }
+    if (c.offset.size() < 2)
+      return make_error(
+          fmt::format("the line {:.6g} m across the direction: the rigid lift has fewer than 2 offsets "
+                      "where the blocks touch",
+                      v));
+  }
+  // The loaded curve of line li at load l on the rigid line's vertices.
+  auto loaded_curve = [&](std::size_t li, std::size_t l) {
+    const MapLoadedLine& line = loaded->lines[li];
+    const std::vector<double>& us = line.rigid.offset;
+    LiftCurve c = rigid_lines[li];
+    for (std::size_t k = 0; k < c.offset.size(); ++k) {
+      const double u = std::clamp(c.offset[k], us.front(), us.back());
+      const std::size_t j =
+          std::min<std::size_t>(std::size_t(std::upper_bound(us.begin(), us.end(), u) - us.begin()), us.size() - 1);
+      const std::size_t i = j - 1;
+      const double f = (u - us[i]) / (us[j] - us[i]);
+      const double ci = line.curves[l].lift[i] - line.rigid.lift[i], cj = line.curves[l].lift[j] - line.rigid.lift[j];
+      c.lift[k] += (1 - f) * ci + f * cj;
+    }
+    return c;
+  };
   HoldOptions hk;
   hk.runaway_distance = D;
   hk.atomic_friction = o.atomic_friction;
-  // Each drop's hold angle on its line's curve (rigid: curve index npos).
-  std::size_t off_end = 0;
+  // Each drop's hold angle on its line's curve at load l; a run-away that leaves the line less
+  // than d after its last stop is counted (the lift beyond could still have caught it).
+  std::size_t off_end = 0, held = 0;
   auto drops_on = [&](std::size_t l, std::vector<double>& angles) -> Status {
     angles.assign(uv.size(), 0);
+    std::vector<LiftCurve> curves(across.size());
+    for (std::size_t li = 0; li < across.size(); ++li) curves[li] = loaded_curve(li, l);
     for (std::size_t k = 0; k < uv.size(); ++k) {
       const std::size_t li = std::size_t(std::find(across.begin(), across.end(), uv[k][1]) - across.begin());
-      const MapLoadedLine& line = loaded->lines[li];
-      const LiftCurve& c = l < curve.size() ? line.curves[l] : line.rigid;
+      const LiftCurve& c = curves[li];
       const double u = std::clamp(uv[k][0], c.offset.front(), c.offset.back());
       auto a = hold_angle(c, u, hk);
       if (!a) return a.error();
-      angles[k] = a->forward.hold_angle;
-      if (a->forward.ran_off_end && l == head) ++off_end;
+      // The rigid model's largest tilt caps the loaded one too (held-to-max-tilt).
+      angles[k] = std::min(a->forward.hold_angle, t.max_tilt);
+      if (l == head && a->forward.hold_angle >= t.max_tilt) ++held;
+      if (l == head && a->forward.ran_off_end && c.offset.back() - a->forward.hold_offset < D) ++off_end;
     }
     return Ok{};
   };
@@ -660,6 +712,13 @@ Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper
                  fmt::format("at {:.4g} N the contact solution did not reach its tolerance at {} offsets: the loaded "
                              "lift there is approximate",
                              p.load, dg.unconverged)});
+  // The rigid prediction's own held-to-max-tilt warning is of the free block: the loaded one's replaces it.
+  std::erase_if(p.warnings, [](const Warning& w) { return w.code == "held-to-max-tilt"; });
+  if (held > 0)
+    add_warning(p.warnings,
+                {"held-to-max-tilt", fmt::format("{} of {} drops held the block up to {:g} deg (the model's largest "
+                                                 "tilt) under load: their hold angle is a lower bound",
+                                                 held, uv.size(), t.max_tilt * 180 / kPi)});
   if (off_end > 0)
     add_warning(p.warnings,
                 {"load-lift-ends", fmt::format("{} of {} drops ran off the end of their line of loaded offsets (the "

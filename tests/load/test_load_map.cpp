@@ -4,6 +4,7 @@
 // limit (the loaded prediction tends to the rigid one) on measured maps.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -72,8 +73,9 @@ TEST(MapLoadedLift, ItsSlopeIsThePressureWeightedContactSlope) {
   // The envelope theorem: H_W(u) = min over the contact of (W z + U) / W, so dH_W/du is the sum of
   // the contact forces times dc_i/du over W, the pressure-weighted slope of the composite at the
   // contact points (dc_i/du from the composite itself). Checked by central differences of H_W over
-  // +-0.1 spacing about offsets within a cell (where the bilinear upper face moves linearly), on a
-  // pair of crossed waves with several contact patches, at three loads.
+  // +-0.01 spacing (the contact set changes by a few points over larger steps: kinks of the
+  // discrete solution) on a pair of crossed waves with up to 19 contact patches, at four loads,
+  // where the loaded slope differs from the rigid lift's by up to 0.07.
   const double dx = 1e-6, E = 1e9;
   auto wave = [&](double phase) {
     return [=](double x, double y) {
@@ -84,31 +86,34 @@ TEST(MapLoadedLift, ItsSlopeIsThePressureWeightedContactSlope) {
   };
   const Map lower = sampled(48, 40, dx, wave(0.3));
   const Map upper = sampled(28, 28, dx, wave(1.9));
-  int checked = 0;
-  for (const double W : {1e-4, 1e-3, 1e-2}) {
+  double largest_change = 0;
+  for (const double W : {1e-5, 1e-4, 1e-3, 1e-2}) {
     for (const double u0 : {-3.5 * dx, 0.5 * dx, 4.5 * dx}) {
-      const double h = 0.1 * dx;
+      const double h = 0.01 * dx;
       auto sm = map_loaded_state(lower, upper, u0 - h, 2 * dx, W, options(E));
       auto s0 = map_loaded_state(lower, upper, u0, 2 * dx, W, options(E));
       auto sp = map_loaded_state(lower, upper, u0 + h, 2 * dx, W, options(E));
       ASSERT_TRUE(sm && s0 && sp);
       const double fd = (sp->loaded_lift - sm->loaded_lift) / (2 * h);
-      // Only where the contact set does not change over the interval (else H_W has a kink there).
-      if (sm->contact_points != sp->contact_points || sm->patches != sp->patches) continue;
-      ++checked;
-      EXPECT_NEAR(fd, s0->effective_slope, 1e-3 + 0.01 * std::abs(fd)) << W << " " << u0;
+      const double rigid = (sp->rigid_lift - sm->rigid_lift) / (2 * h);
+      EXPECT_NEAR(fd, s0->effective_slope, 2e-4 + 0.005 * std::abs(fd)) << W << " " << u0;
+      largest_change = std::max(largest_change, std::abs(s0->effective_slope - rigid));
       if (W == 1e-2) {
-        EXPECT_GT(s0->patches, 1u);
+        EXPECT_GT(s0->patches, 10u);
       }
     }
   }
-  EXPECT_GE(checked, 6);
+  EXPECT_GT(largest_change, 0.03);
 }
 
 TEST(MapLoadedLift, TheZeroLoadLimitIsTheRigidPrediction) {
-  // At 1 nN between steel blocks the loaded prediction of two measured maps (a 40 x 40 window
-  // each, against itself turned over, 3 x 3 drops) equals the rigid one within 0.1 deg.
-  for (const char* file : {"instruments/di-3.di", "x3p/x3p-2.x3p"}) {
+  // At 1 nN between steel blocks the loaded prediction of three measured maps (a 40 x 40 window
+  // each, against itself turned over, 3 x 3 drops) equals the rigid prediction of the block locked
+  // to d (the model's own zero-load limit; the locked block descends on the exact lift, the loaded
+  // model's hold analysis reads it sampled at a tenth of a spacing). The free block (the headline
+  // of the rigid prediction) steers round some stops: it reads 0.04 deg less on di-3, 0.56 deg
+  // less on al3d-1, 0.003 deg less on metropro-1 (docs/load.md).
+  for (const char* file : {"instruments/di-3.di", "instruments/al3d-1.al3d", "instruments/metropro-1.dat"}) {
     auto data = read_surface(std::string(FRICTAL_TEST_DATA) + "/" + file);
     ASSERT_TRUE(data) << file;
     ASSERT_TRUE(data->is_map);
@@ -126,10 +131,14 @@ TEST(MapLoadedLift, TheZeroLoadLimitIsTheRigidPrediction) {
     o.crop = w;
     o.loads = {1e-9};
     o.lower_material = {200e9, 0.3};
+    o.map_locked = true;
     auto p = predict(s, nullptr, o);
     ASSERT_TRUE(p) << file << ": " << p.error().message;
     EXPECT_EQ(p->model, "map-halfspace-locked-hold");
-    EXPECT_NEAR(p->friction_angle.q50, p->rigid_friction_angle, 0.1 * kDeg) << file;
+    EXPECT_NEAR(p->friction_angle.q50, p->locked_friction_angle.q50, 0.02 * kDeg) << file;
+    // (Drop by drop they agree within 0.01 deg on 9, 4 and 7 of the 9 drops of these windows: the
+    // loaded model's sampled lift and the locked block's exact one differ at the steepest sphere
+    // pieces; the medians agree.)
     EXPECT_LT(p->load_approach, 1e-3 * p->runaway_distance) << file;
   }
 }
