@@ -52,7 +52,7 @@ def main():
                 files.append(path)
             for drops in (5, 3):
                 rigid, t_rigid = predict(cli, files, "--drops", str(drops))
-                for w in ("1mN", "100mN"):
+                for w in ("0.1N", "10N"):
                     j, t = predict(cli, files, "--drops", str(drops), "--load", w, "--modulus", "70GPa", "--poisson",
                                    "0.3")
                     codes = sorted({x["code"] for x in j["warnings"] if x["code"].startswith(("load", "contact"))})

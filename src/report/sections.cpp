@@ -736,7 +736,7 @@ std::string load_curve_figure(const Prediction& p) {
   RefLine rigid;
   rigid.horizontal = true;
   rigid.value = deg(p.rigid_friction_angle);
-  rigid.label = "rigid median";
+  rigid.label = p.is_map ? "rigid median (free block)" : "rigid median";
   pl.lines.push_back(rigid);
   auto svg = plot_svg(pl);
   if (!svg) return {};

@@ -105,4 +105,11 @@ TEST(CliLoad, PredictsAMapPairUnderLoad) {
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_NE(text.out.find("friction angle against load"), std::string::npos) << text.out;
   EXPECT_NE(text.out.find("contact patches per offset"), std::string::npos) << text.out;
+  // The report plots the map's curve.
+  const std::string page = temp_path("load-map-report.html");
+  const CliRun rep = run_cli("report " + f + " --drops 2 --load 1mN --modulus 70GPa --poisson 0.3 -o " + page);
+  ASSERT_EQ(rep.code, 0) << rep.err;
+  const std::string html = read_file(page);
+  EXPECT_NE(html.find("id=\"load-curve\""), std::string::npos);
+  EXPECT_NE(html.find("elastic half-space"), std::string::npos);
 }
