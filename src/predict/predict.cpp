@@ -581,7 +581,10 @@ Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper
   lo.angle = t.angle;
   lo.turn_over_upper = t.turn_over_upper;
   lo.threads = o.threads;
-  lo.step = std::min(lower.dx, lower.dy);
+  if (!std::isfinite(o.map_load_step) || o.map_load_step < 0)
+    return make_error(
+        fmt::format("map load step {} m: expected a finite length >= 0 (0: the spacing)", o.map_load_step));
+  lo.step = o.map_load_step > 0 ? o.map_load_step : std::min(lower.dx, lower.dy);
   for (double w : curve) lo.loads.push_back(w * cosine);
   // Lines: the drops' distinct offsets across d; along each, the drops' range widened by room for
   // the descent and the run-away (3 d), on the step's grid.
@@ -597,8 +600,8 @@ Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper
   if (!loaded) return loaded.error();
   // The rigid lift of each line: the rigid map model's own (areal_tilt_lift: the spheres of the
   // upper face on the lower one's triangles, exact), on offsets kLiftPerStep times finer than the
-  // contact solves (it has a kink wherever the touching sphere or triangle changes, and the hold
-  // angle reads its steepest stops); the elastic correction H_W - h of the solves, which varies
+  // lower map's spacing (the contact solves' default step) (it has a kink wherever the touching sphere or triangle
+  // changes, and the hold angle reads its steepest stops); the elastic correction H_W - h of the solves, which varies
   // with the contact, linear between them. So each curve tends to the rigid line's as W -> 0.
   constexpr int kLiftPerStep = 10;
   std::vector<LiftCurve> rigid_lines(across.size());
@@ -606,7 +609,7 @@ Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper
     const MapLoadedLine& line = loaded->lines[li];
     const double v = across[li];
     ArealLiftOptions ao;
-    ao.step = lo.step / kLiftPerStep;
+    ao.step = std::min(lower.dx, lower.dy) / kLiftPerStep;
     ao.offset_min = line.rigid.offset.front();
     ao.offset_max = line.rigid.offset.back();
     // Rows -|v|, 0, |v| (or the row v = 0 alone): the line is the row at v.
