@@ -163,3 +163,34 @@ TEST(MapLoadedLift, BadInputIsAnErrorNamingIt) {
   ASSERT_FALSE(s);
   EXPECT_NE(s.error().message.find("overlap"), std::string::npos) << s.error().message;
 }
+
+TEST(MapLoadedLift, SteepContactsAndFullContactAreWarned) {
+  // Crossed waves of slope up to 0.6 (24 x 24 nodes at 1 um, against themselves turned over). At
+  // a light load the contact sits on the crests, where the slope is small: no warning. At 100 N on
+  // a 1 GPa pair more than half of the overlap touches, down the steep flanks: both warnings.
+  PredictSurface s;
+  s.is_map = true;
+  s.name = "steep waves";
+  s.map = sampled(24, 24, 1e-6, [](double x, double y) { return 0.3e-6 * std::sin(2e6 * x) * std::cos(1.5e6 * y); });
+  PredictOptions o;
+  o.map_drops = 2;
+  o.lower_material = {2e9, 0.3};
+  auto has = [](const Prediction& p, const std::string& code) {
+    for (const Warning& w : p.warnings)
+      if (w.code == code) return true;
+    return false;
+  };
+  o.loads = {1e-4};
+  auto light = predict(s, nullptr, o);
+  ASSERT_TRUE(light) << light.error().message;
+  EXPECT_LT(light->load_contact_slope, 0.3);
+  EXPECT_FALSE(has(*light, "load-steep-contacts"));
+  EXPECT_FALSE(has(*light, "load-full-contact"));
+  o.loads = {100};
+  auto heavy = predict(s, nullptr, o);
+  ASSERT_TRUE(heavy) << heavy.error().message;
+  EXPECT_GT(heavy->load_contact_fraction, 0.5);
+  EXPECT_GT(heavy->load_contact_slope, 0.3);
+  EXPECT_TRUE(has(*heavy, "load-full-contact"));
+  EXPECT_TRUE(has(*heavy, "load-steep-contacts"));
+}
