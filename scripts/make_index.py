@@ -13,7 +13,8 @@ and Fig. 4 (OUTDIR/fig04/) are taken as scripts/reproduce left them; the figures
 are drawn from the tables `frictal study export --csv` wrote (OUTDIR/studies/STUDY/PART.csv).
 Figures 3, 5, 11, 12, 13 and 16 are computed here with BIN (under OUTDIR/index/), and the claims
 checked on them join the conclusions. A figure whose inputs are missing is listed as not produced
-(never a broken image). Only the standard library, numpy and matplotlib.
+(never a broken image). The standard library, numpy, matplotlib and frictal's Python package
+(BIN's build's, for the DEM frames file).
 """
 import argparse
 import base64
@@ -126,32 +127,14 @@ def fig03(bin_, work):
     return f
 
 
-def read_frames(path):
-    bodies, frames = {}, []
-    with open(path) as fh:
-        lines = fh.read().split("\n")
-    i = 0
-    assert lines[0].startswith("frictal-dem-frames 1"), path
-    i = 1
-    while i < len(lines):
-        t = lines[i].split()
-        if not t:
-            i += 1
-            continue
-        if t[0] == "body":
-            k, n = int(t[1]), int(t[3])
-            bodies[k] = np.array([[float(v) for v in lines[i + 1 + j].split()] for j in range(n)])
-            i += 1 + n
-        elif t[0] == "frame":
-            poses = {}
-            for j in range(2):
-                b = lines[i + 1 + j].split()
-                poses[int(b[0])] = tuple(float(v) for v in b[1:4])
-            frames.append((float(t[1]), float(t[2]), poses))
-            i += 3
-        else:
-            raise ValueError(f"{path}: line {i + 1}: unexpected '{t[0]}'")
-    return bodies, frames
+def frictal_module(bin_):
+    """The frictal Python package of BIN's build (BUILD/python beside BUILD/apps/frictal/frictal), else
+    the one installed with it."""
+    here = os.path.realpath(os.path.join(os.path.dirname(bin_), "..", "..", "python"))
+    if os.path.isdir(os.path.join(here, "frictal")) and here not in sys.path:
+        sys.path.insert(0, here)
+    import frictal
+    return frictal
 
 
 def world(poly, pose):
@@ -183,10 +166,13 @@ def fig05(bin_, work):
     frames = f"{work}/k1-frames.txt"
     j = run_json(bin_, "tilt", "koch", "--iterations", 1, "--alpha", 20, "--frames", frames,
                  "--frame-interval", 0.05, "--json")
-    bodies, fr = read_frames(frames)
-    slide = j["slide_time_s"] if j.get("slid") else fr[-1][0]
-    t, tilt, poses = max((x for x in fr if x[0] <= slide), key=lambda x: x[0])
-    low, up = world(bodies[0], poses[0]), world(bodies[1], poses[1])
+    fr = frictal_module(bin_).read_tilt_frames(frames)  # the library's reader of its own format
+    times = fr["time"]
+    slide = j["slide_time_s"] if j.get("slid") else times[-1]
+    k = max((i for i in range(len(times)) if times[i] <= slide), key=lambda i: times[i])
+    t, tilt = times[k], fr["tilt"][k]
+    pose = lambda b: (*fr["position"][k][b], fr["angle"][k][b])  # noqa: E731
+    low, up = world(fr["lower_polygon"], pose(0)), world(fr["upper_polygon"], pose(1))
     r = 5e-5
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(7.5, 8.5), gridspec_kw={"height_ratios": [1, 1.3]})
     for pts, col, name in ((low, "#1f77b4", "lower block"), (up, "#d62728", "upper block")):
@@ -201,7 +187,7 @@ def fig05(bin_, work):
     a1.legend(loc="upper left", fontsize=8)
     # Zoom on the closest pair of vertices (a contact), with the spheroradius drawn to scale.
     # (away from the blocks' ends: the middle 60 % of the lower block's extent along its length)
-    xs = bodies[0][:, 0]
+    xs = fr["lower_polygon"][:, 0]
     mid = np.abs(xs - 0.5 * (xs.min() + xs.max())) < 0.3 * (xs.max() - xs.min())
     d2 = ((low[:, None, :] - up[None, :, :]) ** 2).sum(-1)
     d2[~mid, :] = np.inf

@@ -89,9 +89,9 @@ Surface read(const std::string& path, const Args& a, const Conditioning& c, std:
   } else {
     ConditionedProfile p = unwrap(condition(surface_profile(std::move(s), path), c, path));
     for (Warning& w : check_profile(p.profile, path)) add_warning(warnings, std::move(w));
-    std::vector<ContactWarning> resampled;
+    std::vector<Warning> resampled;
     out.profile = unwrap(equally_spaced(p.profile, path, resampled));
-    for (ContactWarning& w : resampled) add_warning(warnings, {w.code, w.message});
+    for (Warning& w : resampled) add_warning(warnings, std::move(w));
     out.record = p.record.text();
   }
   return out;
@@ -197,7 +197,7 @@ std::function<int()> setup(CLI::App& app) {
     double wall = 0;
     for (const ContactResult& r : results) {
       wall += r.wall_time;
-      for (const ContactWarning& w : r.warnings) add_warning(warnings, {w.code, w.message});
+      for (const Warning& w : r.warnings) add_warning(warnings, w);
     }
     if (a->json) {
       nlohmann::json j;

@@ -316,6 +316,11 @@ int run(TiltOptions& o) {
         fmt::print(text, "  {} {:.4g} -> {:.4g}{}{}\n", t.name, f ? to_text_unit(*f, t.from) : t.from,
                    f ? to_text_unit(*f, t.to) : t.to, unit.empty() ? "" : " ", unit);
       }
+      if (!scaling->measured_defaults.empty())
+        fmt::print(text,
+                   "measured surfaces default to {} (the protocol that reads their friction angle; the paper's: "
+                   "--protocol constant-rate --no-hold-rotation)\n",
+                   scaling->measured_defaults);
     }
   }
   return 0;
@@ -326,7 +331,8 @@ std::function<int()> setup(CLI::App& app) {
   add_generator_subcommands(app, o->gen, true, " (both blocks)");
   app.add_option("--lower", o->lower_file,
                  "Lower surface file (x_m,z_m), as measured; - reads standard input. The defaults not given are "
-                 "scaled to the surfaces' length and point spacing (docs/dem.md sec. 5)");
+                 "scaled to the surfaces' length and point spacing, and a measured pair is loaded quasi-statically "
+                 "with the rotation held (--protocol quasi-static --hold-rotation; docs/dem.md sec. 5)");
   app.add_option("--upper", o->upper_file, "Upper surface file, as measured (default: the lower one)");
   app.add_option("--detrend", o->detrend,
                  fmt::format("Remove none, mean, line or poly:N from each surface file first, as signature and predict "

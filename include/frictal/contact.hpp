@@ -77,13 +77,6 @@ struct ContactOptions {
   double max_rms_slope = 0.3;
 };
 
-/// A warning of the contact solution (frictal warnings lists the codes): contact-full,
-/// small-slope, contact-not-converged, contact-at-edge, contact-resampled.
-struct ContactWarning {
-  std::string code;
-  std::string message;
-};
-
 /// The solution at one load.
 struct ContactResult {
   bool is_map = false;
@@ -124,13 +117,15 @@ struct ContactResult {
   /// Pressure (unit: Pa) and gap (unit: m) at every point, x fastest (empty unless keep_fields).
   std::vector<double> pressure;
   std::vector<double> gap;
-  std::vector<ContactWarning> warnings;
+  /// What the solution warns of (codes in `frictal warnings`): contact-full, small-slope,
+  /// contact-not-converged, contact-at-edge.
+  std::vector<Warning> warnings;
 };
 
 /// `p` on equally spaced points, as the solver needs them: itself when its spacing is uniform
 /// (within 1e-6), else resampled on as many equally spaced points over its range (linear
 /// interpolation; resample()), with a contact-resampled warning naming `name` added to `warnings`.
-Result<Profile> equally_spaced(const Profile& p, const std::string& name, std::vector<ContactWarning>& warnings);
+Result<Profile> equally_spaced(const Profile& p, const std::string& name, std::vector<Warning>& warnings);
 
 /// The composite topography of the gap between `lower` and `upper` (both as measured: material
 /// below, heights outward): with turn_over_upper the upper face is turned over onto the lower one

@@ -84,17 +84,22 @@ enum class TiltFace {
 };
 
 /// The share of relax_time an increment of the quasi-static protocol relaxes for, on average
-/// (unitless): 0.0066-0.044 measured on scans of 323 to 9,602 vertices (docs/dem.md sec. 7).
-inline constexpr double kTiltRelaxShare = 0.02;
+/// (unitless): 0.0045-0.006 on the measured profiles of tests/data with the rotation held, 24 to
+/// 9,600 points, beside the fixed kTiltRelaxFixed (docs/dem.md sec. 7, "cost estimate").
+inline constexpr double kTiltRelaxShare = 0.006;
+/// What a quasi-static run costs beside its relaxed increments, in relax_time (unitless): the
+/// settling's relaxation and the run-away increment, which does not come to rest, each up to one
+/// relax_time; 1.5 to 1.6 measured on a flat scan (one increment) (docs/dem.md sec. 7).
+inline constexpr double kTiltRelaxFixed = 1.5;
 
 /// The cost of a run, estimated before its first step (TiltResult::estimate, TiltConfig::before_run).
 /// The run is expected to end at the quasi-static hold angle of the block from where it is put
 /// down (hold.hpp; without one, the rounded blocks' upper bound). Constant-rate protocol: the
 /// simulated time is the settling plus the tilt to max_tilt at tilt_rate (the bound) or to that
 /// angle (expected, if predicted); steps are that time over the time step below. Quasi-static:
-/// the bound is every increment up to max_tilt relaxing for relax_time, the expected count the
-/// increments up to that angle relaxing for kTiltRelaxShare of it. Measured against real runs in
-/// docs/dem.md sec. 7 ("cost estimate").
+/// the bound is every increment up to max_tilt relaxing for relax_time, the expected time
+/// kTiltRelaxFixed relax_times plus the increments up to that angle relaxing for kTiltRelaxShare
+/// of it. Measured against real runs in docs/dem.md sec. 7 ("cost estimate").
 struct TiltEstimate {
   /// The step the run will mostly take: time_step, or with the adaptive step time_step_safety
   /// times the stability limit of one contact at the upper block's extent, if smaller (unit: s).
@@ -300,6 +305,10 @@ struct TiltScaling {
   double radius_factor = 1;  ///< q = r / (s r_0), below 1 when dx caps r (unitless)
   TiltConfig config;         ///< `base` with every setting above scaled
   std::vector<TiltScaledSetting> settings;  ///< the settings changed, in table order
+  /// tilt_setup on measured surfaces: the protocol settings a measured surface takes by default
+  /// and the caller did not give, as "name = value" joined by ", " (e.g. "protocol = quasi-static,
+  /// hold_rotation = true"); empty for generated surfaces and from scale_tilt_defaults.
+  std::string measured_defaults;
 };
 /// Scales the settings of `base` (the macro defaults) to the surfaces as above; `base` values
 /// other than the defaults are scaled all the same (pass the defaults). Errors: a face with fewer
@@ -315,7 +324,12 @@ inline constexpr double kTiltMaxRadiusOverSpacing = 10;
 /// Python's tilt(), one call): the defaults of a surface of period `period` and scale `scale`
 /// (tilt_config_for_surface; measured surfaces: 0, 0) scaled to the surfaces
 /// (scale_tilt_defaults), the period and run-away distance kept where the surface gives them
-/// (period > 0, scale > 0), then the `given` settings (SI, by field name) over them. The result's
+/// (period > 0, scale > 0), then the `given` settings (SI, by field name) over them. Measured
+/// surfaces (period and scale both <= 0) default to the protocol whose angle is a friction angle
+/// of the surfaces (tilt_validity; docs/dem.md sec. 5, "The protocol on measured surfaces"): the
+/// quasi-static protocol with the rotation held, each where not given (TiltScaling::
+/// measured_defaults). The paper's constant-rate protocol with a free block turns or slides before
+/// the rigid model's hold angle on every measured scan in tests/data. The result's
 /// `config` is the run's; its `settings` list what was scaled and not given. Errors, each saying
 /// what is expected: a bad given value; a height range above the length (z and x in different
 /// units); a spheroradius beyond kTiltMaxRadiusOverSpacing point spacings.
@@ -502,6 +516,18 @@ void rounded_outline(const std::vector<double>& x, const std::vector<double>& y,
 
 /// Writes the frames in the text format of docs/dem.md ("frictal-dem-frames 1").
 Status write_tilt_frames(const std::string& path, const TiltResult& result);
+
+/// A frames file read back (write_tilt_frames): the bodies' core polygons and each frame's pose.
+struct TiltFramesFile {
+  /// Core polygons relative to the centroids, at the initial orientation (unit: m).
+  std::vector<double> lower_polygon_x, lower_polygon_y, upper_polygon_x, upper_polygon_y;
+  /// time, tilt, position and angle of each frame; the file has no forces or contacts (0, empty).
+  std::vector<TiltFrame> frames;
+};
+
+/// Reads a file written by write_tilt_frames (docs/dem.md, "frictal-dem-frames 1"). Errors: Io
+/// (cannot open), InvalidInput naming the file, the line and what was expected there.
+Result<TiltFramesFile> read_tilt_frames(const std::string& path);
 
 /// A tilt run as the front ends report it: the result with the configuration that produced it.
 struct TiltReport {

@@ -52,7 +52,7 @@ from ._core import (  # noqa: F401  measured surfaces (io_bindings.cpp)
     write_x3p,
 )
 
-from ._core import tilt, tilt_settings  # noqa: F401  spheropolygon tilting-block test (dem_bindings.cpp)
+from ._core import read_tilt_frames, tilt, tilt_settings  # noqa: F401  spheropolygon tilting-block test (dem_bindings.cpp)
 from ._core import areal_tilt, areal_tilt_hold, areal_tilt_settings  # noqa: F401  3D tilt test (dem_bindings.cpp)
 from ._core import __version__, build_info  # noqa: F401  version defined once, in CMakeLists.txt
 

@@ -65,9 +65,9 @@ void frictal_bind_contact(py::module_& m) {
           } else {
             ConditionedProfile cp = ok(condition(s.profile, c, s.name));
             for (Warning& w : check_profile(cp.profile, s.name)) add_warning(warnings, std::move(w));
-            std::vector<ContactWarning> resampled;
+            std::vector<Warning> resampled;
             s.profile = ok(equally_spaced(cp.profile, s.name, resampled));
-            for (ContactWarning& w : resampled) add_warning(warnings, {w.code, w.message});
+            for (Warning& w : resampled) add_warning(warnings, std::move(w));
             record = cp.record.text();
           }
           return s;
@@ -98,7 +98,7 @@ void frictal_bind_contact(py::module_& m) {
           d["kind"] = lo.is_map ? "map" : "profile";
           d["conditioning"] = record;
           std::vector<Warning> w = warnings;
-          for (const ContactWarning& x : r.warnings) add_warning(w, {x.code, x.message});
+          for (const Warning& x : r.warnings) add_warning(w, x);
           d["warnings"] = py_detail::warning_list(w);
           if (fields) {
             py::array_t<double> pa = py_detail::arr(r.pressure), ga = py_detail::arr(r.gap);

@@ -146,7 +146,10 @@ void frictal_bind_dem(py::module_& m) {
        "(x, z) pair of arrays (m), as measured; upper defaults to lower. A Profile that does not repeat is a measured "
        "surface, as `frictal tilt --lower FILE` takes it: conditioned (detrend=: none, mean, line, poly:N; default "
        "a line), checked (warnings) and the defaults scaled to its length and point spacing (scaled_defaults: "
-       "length, point_spacing, factors and the (name, from, to) of each setting changed, SI); a repeating Profile "
+       "length, point_spacing, factors and the (name, from, to) of each setting changed, SI), and loaded as the CLI "
+       "loads a measured pair: protocol quasi-static with hold_rotation, where not given (scaled_defaults' "
+       "measured_defaults names them; protocol=\"constant-rate\", hold_rotation=False: the paper's); a repeating "
+       "Profile "
        "(a generator's) or an (x, z) curve is a generated surface of its period (period=, default 0.01 m for a "
        "curve), its defaults scaled as the CLI's generator subcommands scale them. Returns validity (\"valid\", or "
        "why the angle is not a friction angle of the surfaces and what would make it one), slid, friction_angle (NaN "
@@ -293,6 +296,43 @@ void frictal_bind_dem(py::module_& m) {
       "areal_tilt_settings", [] { return py_detail::field_list(areal_tilt_settings()); },
       "areal_tilt_settings() -> list\n\nThe 3D tilt test's settings table: one dict per keyword of areal_tilt() "
       "(name, type, unit (SI), default, min, max, choices, help).");
+  m.def(
+      "read_tilt_frames",
+      [](const std::string& path) {
+        py_detail::require_file(path);
+        const TiltFramesFile f = py_detail::ok(read_tilt_frames(path));
+        const auto n = static_cast<py::ssize_t>(f.frames.size());
+        py::array_t<double> time(n), tilt(n), position({n, py::ssize_t{2}, py::ssize_t{2}}), angle({n, py::ssize_t{2}});
+        auto t = time.mutable_unchecked<1>();
+        auto a = tilt.mutable_unchecked<1>();
+        auto p = position.mutable_unchecked<3>();
+        auto q = angle.mutable_unchecked<2>();
+        for (py::ssize_t k = 0; k < n; ++k) {
+          const TiltFrame& fr = f.frames[static_cast<std::size_t>(k)];
+          t(k) = fr.time, a(k) = fr.tilt;
+          for (int b = 0; b < 2; ++b)
+            p(k, b, 0) = fr.position[b].x, p(k, b, 1) = fr.position[b].y, q(k, b) = fr.angle[b];
+        }
+        auto polygon = [](const std::vector<double>& x, const std::vector<double>& y) {
+          py::array_t<double> out({static_cast<py::ssize_t>(x.size()), py::ssize_t{2}});
+          auto o = out.mutable_unchecked<2>();
+          for (std::size_t i = 0; i < x.size(); ++i)
+            o(static_cast<py::ssize_t>(i), 0) = x[i], o(static_cast<py::ssize_t>(i), 1) = y[i];
+          return out;
+        };
+        py::dict d;
+        d["lower_polygon"] = polygon(f.lower_polygon_x, f.lower_polygon_y);
+        d["upper_polygon"] = polygon(f.upper_polygon_x, f.upper_polygon_y);
+        d["time"] = time, d["tilt"] = tilt, d["position"] = position, d["angle"] = angle;
+        return d;
+      },
+      py::arg("path"),
+      "read_tilt_frames(path) -> dict\n\nA frames file of the tilt test read back (`frictal tilt --frames FILE`; "
+      "format in docs/dem.md): lower_polygon and upper_polygon (n x 2 arrays, "
+      "m, core polygons relative to the centroids at the initial orientation), and per frame time (s), tilt (rad), "
+      "position (frames x 2 x 2: the centroids of lower and upper, m) and angle (frames x 2, rad). A vertex's "
+      "world position is position + R(angle) @ polygon. A missing file raises FileNotFoundError, a malformed one "
+      "ValueError naming the line.");
   m.def(
       "tilt_settings", [] { return py_detail::field_list(tilt_settings()); },
       "tilt_settings() -> list\n\nThe tilt test's settings table: one dict per keyword of tilt() (name, type, unit "

@@ -630,7 +630,7 @@ Result<double> contact_modulus(const ElasticMaterial& first, const ElasticMateri
          ((1 - first.poisson * first.poisson) / first.modulus + (1 - second.poisson * second.poisson) / second.modulus);
 }
 
-Result<Profile> equally_spaced(const Profile& p, const std::string& name, std::vector<ContactWarning>& warnings) {
+Result<Profile> equally_spaced(const Profile& p, const std::string& name, std::vector<Warning>& warnings) {
   if (p.size() < 2) return make_error(fmt::format("contact: {}: {} points; expected at least 4", name, p.size()));
   if (is_uniform(p, 1e-6)) return p;
   double lo = INFINITY, hi = 0;

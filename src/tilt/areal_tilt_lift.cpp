@@ -97,6 +97,7 @@ class SphereField {
   struct Piece {
     double value, gx, gy;
     double cap;  ///< the cap of |g - g_top| its window was collected with (unitless; see Window)
+    double s;    ///< the facet slopes' bound around its cell (unitless; see Window)
   };
   /// The window of pieces a descent step of `delta` asks for: a piece within deficit
   /// delta * min(2, 2 (s + s_top)) + abs of the max, where s bounds the facet slopes around the
@@ -259,6 +260,8 @@ class SphereField {
   }
   /// The largest of the bounds (unitless).
   double slope_max() const { return slope_max_; }
+  /// No outliers among the facet slopes: near_fall() is their max (unitless).
+  bool uniform() const { return fall_ >= slope_max_; }
   /// Two flat faces: the lower height field one horizontal plane and every sphere at one height
   /// (to a tenth of the hold angle's resolution of a cell), so that h is one constant wherever a
   /// sphere lies over the field and every contact's slope is zero.
@@ -352,6 +355,14 @@ class SphereField {
     return best;
   }
 
+  /// Pieces collected with a window of a higher s_top, narrowed to `win` (each piece's cap
+  /// recomputed from its cell's bound, then those below the window of `best` dropped): the same
+  /// pieces, caps and order as collected with `win` itself, whose pieces are among them.
+  static void narrow_window(std::vector<Piece>& pieces, double best, const Window& win) {
+    for (Piece& p : pieces) p.cap = win.cap(p.s);
+    erase_outside(&pieces, best, 0, &win);
+  }
+
   /// h(s) (kNoContact: no sphere over the field); (bx, by) the touching point; `work` counts
   /// cells evaluated.
   double eval(double sx, double sy, double& bx, double& by, std::size_t& work, double eps = 0,
@@ -411,8 +422,13 @@ class SphereField {
   /// plane of bench/flat_maps.py with its spikes removed, 4 drops, user CPU on a loaded VM: ratio
   /// 4 and depth 0.1 1.7 s, ratio 3 2.3 s, 6 1.8 s, depth 0.05 2.0 s, 0.2 2.3 s, 0.5 5.5 s, 1
   /// 10.7 s (deeper outer lists); from 1 (every disc: outer discs of two cells on a rough map)
-  /// made bcrf-1's 25 drops 4 times slower, from 0.25 left them as they were.
-  static constexpr double kOuterFrom = 0.25, kOuterRatio = 4, kOuterDepth = 0.1;
+  /// made bcrf-1's 25 drops 4 times slower, from 0.25 left them as they were. With the outer disc
+  /// ahead of the block (kOuterAhead), ratio 6 (noise and tilt maps of bench/flat_maps.py without
+  /// their spikes, 25 drops: 4.76 and 6.02 s at 4, 4.38 and 5.31 at 6, 4.39 and 5.27 at 8).
+  static constexpr double kOuterFrom = 0.25, kOuterRatio = 6, kOuterDepth = 0.1;
+  /// An outer disc lies this fraction of the way it can ahead of the block, along the way the
+  /// block went since the last list (unitless; see rebuild).
+  static constexpr double kOuterAhead = 0.9;
   static constexpr double kNearScaleMin = 1.0 / 64;
   /// The disc of offsets over which a Near list holds: one lower-map cell (unit: m).
   /// The disc of offsets over which a Near list holds: half a lower-map cell, or less where lists
@@ -424,6 +440,12 @@ class SphereField {
 
   void rebuild(Near& near, double sx, double sy, double threshold) const {
     ++near.rebuilds;
+    // The way the block went since the last list (a unit vector; zero where there was none).
+    double ux = 0, uy = 0;
+    if (near.radius >= 0) {
+      const double mx = sx - near.cx, my = sy - near.cy, m = std::hypot(mx, my);
+      if (m > 0) ux = mx / m, uy = my / m;
+    }
     near.cx = sx;
     near.cy = sy;
     near.radius = near_radius(near);
@@ -436,17 +458,23 @@ class SphereField {
     // outer entry whose bound over the narrow disc reaches its threshold. Exact: a sphere not in
     // the outer list reaches below the outer threshold anywhere in the outer disc, which holds
     // the narrow one, and the narrow threshold is not below it (else the outer list is rebuilt).
-    // On the noisy flat 563 x 484 pairs of bench/flat_maps.py: one scan per 3-4 lists.
+    // The outer disc lies ahead of the block, along its way since the last list (descents and
+    // slides go on much as they went): the narrow discs stay inside it about twice as far as in
+    // one about the block (a descent that turns back costs a scan sooner; exact either way, the
+    // narrow disc lies inside). On the noisy flat 563 x 484 pairs of bench/flat_maps.py the scans
+    // took 74 % of the time with the disc about the block; ahead of it and 6 times the narrow one
+    // instead of 4, 12-30 % less time (the same answers).
     if (near.scale <= kOuterFrom) {
       Near::Outer& o = near.outer;
       if (!(o.radius >= 0 && threshold >= o.threshold &&
             std::hypot(sx - o.cx, sy - o.cy) + R <= o.radius * (1 - 1e-6))) {
-        o.cx = sx;
-        o.cy = sy;
         o.radius = kOuterRatio * R;
+        const double ahead = kOuterAhead * (o.radius - R);
+        o.cx = sx + ahead * ux;
+        o.cy = sy + ahead * uy;
         o.threshold = threshold - kOuterDepth * near_fall() * o.radius - kBoundSlack * r_;
         o.list.clear();
-        collect(near, sx, sy, o.radius, o.threshold, o.list, false);
+        collect(near, o.cx, o.cy, o.radius, o.threshold, o.list, false);
         std::sort(o.list.begin(), o.list.end(), Near::before);
       }
       for (const Near::Entry& e : o.list) {
@@ -666,7 +694,7 @@ class SphereField {
           if (pieces && v >= best - eps_c) {
             const double ex = px - cx, ey = py - cy;
             const double q = std::sqrt(std::max(r_ * r_ - ex * ex - ey * ey, 1e-12 * r_ * r_));
-            pieces->push_back({v, ex / q, ey / q, cap});
+            pieces->push_back({v, ex / q, ey / q, cap, win ? slope3_[j * cnx_ + i] : 0.0});
           }
         }
       }
@@ -1013,12 +1041,33 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   // Where a bound reaches 0.5, some caps are 2 anyway: there every piece's cap is 2, in one pass
   // (the windows as they were before the bounds; the same descents, to the bit).
   const bool local = field.local();
+  // A smooth map whose steepest facets are not outliers (the 99th percentile's fall reaches the
+  // max): the window of the steepest top is not much deeper than the top's own, and one pass
+  // with it costs less than a pass for the top and one for the window.
+  const bool one_pass = local && field.uniform();
   auto height = [&](double x, double y, double delta, std::vector<SphereField::Piece>* p, bool full = false) {
     double bx = 0, by = 0;
     ++out.evaluations;
     if (!local || !p) {
       const double h = field.eval_near(x, y, bx, by, work, near, p ? 2 * delta + 2e-12 * r : 0, p);
       return h == kNoContact ? std::numeric_limits<double>::infinity() : h;
+    }
+    if (one_pass) {
+      // In one pass, with the window of the steepest top (a superset), then narrowed to the top's.
+      const double s_wide = full ? std::numeric_limits<double>::infinity() : field.slope_max();
+      const SphereField::Window wide{delta, s_wide, 2e-12 * r};
+      const double h = field.eval_near(x, y, bx, by, work, near, wide.eps(field.slope_max()), p, &wide);
+      if (h == kNoContact) return std::numeric_limits<double>::infinity();
+      if (full) return h;
+      const SphereField::Window w{delta, field.slope_at(bx, by), 2e-12 * r};
+      if (w.s_top <= s_wide) {
+        SphereField::narrow_window(*p, h, w);
+        return h;
+      }
+      // The top off the map (slope_at: infinity, a sphere beyond the border touching its outer
+      // edge sideways): a deeper window than the pass's; again with it.
+      const double h2 = field.eval_near(x, y, bx, by, work, near, w.eps(field.slope_max()), p, &w);
+      return h2 == kNoContact ? std::numeric_limits<double>::infinity() : h2;
     }
     double h = field.eval_near(x, y, bx, by, work, near, 0, nullptr);
     if (h != kNoContact) {

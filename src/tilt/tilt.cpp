@@ -1,8 +1,10 @@
 // frictal — tilting-block friction test (paper Sec. IV) on the spheropolygon engine.
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -1006,8 +1008,9 @@ TiltEstimate estimate_cost(const dem::Model& model, const TiltConfig& cfg, const
     const double bound_increments = std::floor(cfg.max_tilt / cfg.tilt_increment);
     const double expected_increments = std::ceil(phi / cfg.tilt_increment) + 1;
     e.simulated_time_bound = cfg.relax_time * (1 + bound_increments);
-    e.simulated_time_expected =
-        kTiltRelaxShare * cfg.relax_time * (1 + std::min(expected_increments, bound_increments));
+    e.simulated_time_expected = std::min(
+        e.simulated_time_bound,
+        cfg.relax_time * (kTiltRelaxFixed + kTiltRelaxShare * std::min(expected_increments, bound_increments)));
   } else {
     const double settle = relaxed_settling(cfg) ? cfg.relax_time : cfg.settle_time;
     e.simulated_time_bound = settle + cfg.max_tilt / cfg.tilt_rate;
@@ -1198,6 +1201,99 @@ Status write_tilt_frames(const std::string& path, const TiltResult& r) {
   }
   if (std::ferror(f.get())) return make_error(ErrorCode::Io, fmt::format("{}: write failed", path));
   return Ok{};
+}
+
+namespace {
+
+// The whitespace-separated numbers of `line`; false where a field is not a finite number or the
+// count differs from `n`.
+bool frame_numbers(const std::string& line, std::size_t n, std::vector<double>& out) {
+  out.clear();
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i]))) ++i;
+    if (i == line.size()) break;
+    std::size_t j = i;
+    while (j < line.size() && !std::isspace(static_cast<unsigned char>(line[j]))) ++j;
+    const std::string field = line.substr(i, j - i);
+    char* end = nullptr;
+    const double v = std::strtod(field.c_str(), &end);
+    if (end != field.c_str() + field.size() || !std::isfinite(v)) return false;
+    out.push_back(v);
+    i = j;
+  }
+  return out.size() == n;
+}
+
+}  // namespace
+
+Result<TiltFramesFile> read_tilt_frames(const std::string& path) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "r"), &std::fclose);
+  if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for reading", path));
+  std::vector<std::string> lines;
+  std::string cur;
+  for (int c; (c = std::fgetc(f.get())) != EOF;) {
+    if (c == '\n') {
+      lines.push_back(std::move(cur));
+      cur.clear();
+    } else if (c != '\r') {
+      cur.push_back(static_cast<char>(c));
+    }
+  }
+  if (!cur.empty()) lines.push_back(std::move(cur));
+  auto bad = [&](std::size_t i, const std::string& what) {
+    return make_error(ErrorCode::InvalidInput, fmt::format("{}: line {}: {}", path, i + 1, what));
+  };
+  if (lines.empty() || lines[0].rfind("frictal-dem-frames 1", 0) != 0)
+    return bad(0, "expected the header 'frictal-dem-frames 1' (a file written by frictal tilt --frames)");
+  TiltFramesFile out;
+  std::vector<double>* px[2] = {&out.lower_polygon_x, &out.upper_polygon_x};
+  std::vector<double>* py[2] = {&out.lower_polygon_y, &out.upper_polygon_y};
+  bool have[2] = {false, false};
+  std::vector<double> v;
+  for (std::size_t i = 1; i < lines.size();) {
+    const std::string& line = lines[i];
+    if (line.find_first_not_of(" \t") == std::string::npos) {
+      ++i;
+      continue;
+    }
+    if (line.rfind("body ", 0) == 0) {
+      int b = -1;
+      unsigned long n = 0;
+      char name[16] = {0};
+      if (std::sscanf(line.c_str(), "body %d %15s %lu", &b, name, &n) != 3 || (b != 0 && b != 1))
+        return bad(i, "expected 'body <0|1> <lower|upper> <vertex count>'");
+      if (have[b]) return bad(i, fmt::format("body {} is given twice", b));
+      if (!out.frames.empty()) return bad(i, "a body after the first frame");
+      if (n < 3 || n > lines.size() - i - 1)
+        return bad(i, fmt::format("{} vertices: expected at least 3 and as many lines of 'x y' after it", n));
+      for (std::size_t k = 0; k < n; ++k) {
+        if (!frame_numbers(lines[i + 1 + k], 2, v)) return bad(i + 1 + k, "expected two numbers 'x y' (m)");
+        px[b]->push_back(v[0]);
+        py[b]->push_back(v[1]);
+      }
+      have[b] = true;
+      i += 1 + n;
+    } else if (line.rfind("frame ", 0) == 0) {
+      if (!have[0] || !have[1]) return bad(i, "a frame before both bodies ('body 0 ...', 'body 1 ...')");
+      TiltFrame fr;
+      if (!frame_numbers(line.substr(6), 2, v)) return bad(i, "expected 'frame <time_s> <tilt_rad>'");
+      fr.time = v[0], fr.tilt = v[1];
+      for (int b = 0; b < 2; ++b) {
+        const std::size_t k = i + 1 + static_cast<std::size_t>(b);
+        if (k >= lines.size() || !frame_numbers(lines[k], 4, v) || v[0] != b)
+          return bad(k, fmt::format("expected the pose of body {}: '{} <cx> <cy> <angle_rad>'", b, b));
+        fr.position[b] = {v[1], v[2]};
+        fr.angle[b] = v[3];
+      }
+      out.frames.push_back(std::move(fr));
+      i += 3;
+    } else {
+      return bad(i, fmt::format("expected 'body ...' or 'frame ...', found '{}'", line.substr(0, 40)));
+    }
+  }
+  if (!have[0] || !have[1]) return bad(lines.size() - 1, "the file ends before both bodies are given");
+  return out;
 }
 
 }  // namespace frictal

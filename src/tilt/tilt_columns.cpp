@@ -252,6 +252,10 @@ const Columns<TiltScaling>& tilt_scaling_columns() {
       column<T>("length_factor", "1", "s = L / reference length", [](const T& s) { return s.length_factor; }),
       column<T>("radius_factor", "1", "q = r / (s r_0), below 1 when the spacing caps r",
                 [](const T& s) { return s.radius_factor; }),
+      column<T>("measured_defaults", "text",
+                "the protocol settings a measured surface takes by default and the caller did not give "
+                "(\"name = value, ...\"; empty for a generated surface)",
+                [](const T& s) { return s.measured_defaults; }),
       declared_column<T>("settings", "list:tilt_scaled_setting",
                          "the settings changed, each {name, unit, from, to} (CLI: text units; Python: SI)", "settings"),
   };

@@ -344,6 +344,24 @@ Result<TiltScaling> tilt_setup(const Curve& lower, const Curve& upper, const Val
     std::erase_if(sc->settings, [](const TiltScaledSetting& t) { return t.name == "runaway_distance"; });
     sc->config.runaway_distance = own.runaway_distance;
   }
+  // A measured scan: the quasi-static protocol with the rotation held, where not given. On every
+  // profile of tests/data the paper's protocol (the lower block turning at tilt_rate, the upper
+  // block free to turn) reads no friction angle of the surfaces: the block turns against the
+  // lower one (warning rotation) or is still moving when the tilt starts and slides below the
+  // rigid model's bracket; loaded quasi-statically with its rotation held, each reads inside it
+  // (docs/dem.md sec. 5, "The protocol on measured surfaces").
+  if (!(period > 0) && !(scale > 0)) {
+    std::string note;
+    if (!given.count("protocol")) {
+      sc->config.protocol = TiltProtocol::QuasiStatic;
+      note = "protocol = quasi-static";
+    }
+    if (!given.count("hold_rotation")) {
+      sc->config.hold_rotation = true;
+      note += std::string(note.empty() ? "" : ", ") + "hold_rotation = true";
+    }
+    sc->measured_defaults = note;
+  }
   auto cfg = make_tilt_config(given, sc->config);
   if (!cfg) return cfg.error();
   // What the caller set is kept and not reported as scaled.

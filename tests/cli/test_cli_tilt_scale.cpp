@@ -144,8 +144,9 @@ TEST(CliTiltScale, ReliefTallerThanTheLengthIsRefused) {
 }
 
 TEST(CliTiltScale, ARotationWarningLeadsTheOutput) {
-  // warn_rotation at 1e-9 deg: any turn of the upper block against the lower one warns.
-  const std::string args = "tilt --lower " + kXy2 + " --warn-rotation 1e-9";
+  // warn_rotation at 1e-9 deg: any turn of the upper block against the lower one warns (the
+  // paper's protocol, the block free to turn: a measured file holds it by default).
+  const std::string args = "tilt --lower " + kXy2 + " --protocol constant-rate --no-hold-rotation --warn-rotation 1e-9";
   const CliRun t = run_cli(args, 120);
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_EQ(t.out.rfind("warning [rotation]: ", 0), 0u) << t.out;
@@ -168,6 +169,9 @@ TEST(CliTiltScale, GeneratedSurfacesScaleAsFilesKeepingTheirWavelength) {
   ASSERT_EQ(d.code, 0) << d.err;
   const auto jd = nlohmann::json::parse(d.out);
   EXPECT_TRUE(jd["scaled_defaults"]["settings"].empty()) << jd["scaled_defaults"].dump();
+  // A generated surface keeps the paper's protocol.
+  EXPECT_EQ(jd["scaled_defaults"]["measured_defaults"], "");
+  EXPECT_EQ(jd["protocol"], "constant-rate");
   EXPECT_DOUBLE_EQ(setting(jd, "spheroradius"), 5e-5);
   EXPECT_DOUBLE_EQ(setting(jd, "block_height"), 0.01);
   // On 2 cm (s = 0.1): r and h scale, the period and the run-away stay the surface's wavelength.
@@ -201,6 +205,8 @@ namespace {
 const std::string kDektak = std::string(FRICTAL_TEST_DATA) + "/profiles/dektak-1.csv";
 // A 50 um piece of the Dektak scan (321 points): short enough for a quasi-static run in a second.
 const std::string kPiece = "tilt --lower " + kDektak + " --crop 0.5mm,0.55mm --json --quiet";
+// The paper's protocol on it: the lower block turning at tilt_rate, the upper block free to turn.
+const std::string kPaper = " --protocol constant-rate --no-hold-rotation";
 constexpr double kDegree = 3.14159265358979323846 / 180;
 }  // namespace
 
@@ -213,10 +219,10 @@ TEST(CliTiltScale, AFileGivenAsAWordNamesLower) {
 
 TEST(CliTiltScale, AnAngleOutsideTheRigidBracketIsNotValidAndSaysWhy) {
   // The block's own rest gives the rigid model's bracket [phi_in, phi_qs] (hold.hpp, computed
-  // from the lift, a second method beside the time stepping). With the defaults the piece slides
-  // at once (0 deg, the block still moving when the tilt starts): outside it, so not valid, and
-  // the reason names the options of the validated protocol.
-  const CliRun d = run_cli(kPiece, 120);
+  // from the lift, a second method beside the time stepping). With the paper's protocol the piece
+  // slides at once (0 deg, the block still moving when the tilt starts): outside it, so not
+  // valid, and the reason names the options of the validated protocol.
+  const CliRun d = run_cli(kPiece + kPaper, 120);
   ASSERT_EQ(d.code, 0) << d.err;
   const auto j = nlohmann::json::parse(d.out);
   const double phi = j["friction_angle_deg"].get<double>();
@@ -229,7 +235,7 @@ TEST(CliTiltScale, AnAngleOutsideTheRigidBracketIsNotValidAndSaysWhy) {
   for (const char* option : {"--protocol quasi-static", "--hold-rotation", "--normal-stiffness"})
     EXPECT_NE(why.find(option), std::string::npos) << why;
   // The text says so on the friction angle's line, and names the bound as a bound.
-  const CliRun t = run_cli("tilt --lower " + kDektak + " --crop 0.5mm,0.55mm --quiet", 120);
+  const CliRun t = run_cli("tilt --lower " + kDektak + " --crop 0.5mm,0.55mm --quiet" + kPaper, 120);
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_NE(t.out.find("friction angle (not valid: "), std::string::npos) << t.out;
   EXPECT_NE(t.out.find("rigid upper bound (signature theta_max"), std::string::npos) << t.out;
@@ -245,4 +251,43 @@ TEST(CliTiltScale, AnAngleOutsideTheRigidBracketIsNotValidAndSaysWhy) {
   EXPECT_EQ(jq["validity"], "valid");
   EXPECT_NEAR(jq["friction_angle_deg"].get<double>(), jq["predicted_hold_angle_deg"].get<double>(), 0.01 + 1e-9);
   (void)kDegree;
+}
+
+TEST(CliTiltScale, AMeasuredScanWithTheDefaultsReadsItsHoldAngle) {
+  // The defaults on a measured scan: the quasi-static protocol with the rotation held (tilt_setup),
+  // named in the output. Its angle is valid and lies within one increment (0.01 deg) below the
+  // quasi-static hold angle that hold.hpp reads from the block's rest on the rigid lift (a second
+  // method beside the time stepping; the rounded blocks' hold angle is the same here).
+  const CliRun d = run_cli(kPiece, 120);
+  ASSERT_EQ(d.code, 0) << d.err;
+  const auto j = nlohmann::json::parse(d.out);
+  EXPECT_EQ(j["protocol"], "quasi-static");
+  EXPECT_EQ(j["settings"]["protocol"], "quasi-static");
+  EXPECT_EQ(j["settings"]["hold_rotation"], true);
+  EXPECT_EQ(j["scaled_defaults"]["measured_defaults"], "protocol = quasi-static, hold_rotation = true");
+  EXPECT_TRUE(j["friction_angle_valid"].get<bool>()) << j["validity"];
+  const double phi = j["friction_angle_deg"].get<double>();
+  const double qs = j["predicted_hold_angle_deg"].get<double>();
+  const double increment = setting(j, "tilt_increment");  // deg, as every angle of the text settings
+  EXPECT_GT(qs, 0.1);  // a scan with relief: not an angle that a block on a flat would read
+  EXPECT_LE(phi, qs + 1e-9);
+  EXPECT_GE(phi, qs - increment - 1e-9);
+  EXPECT_DOUBLE_EQ(j["rotation_before_slide_deg"].get<double>(), 0.0);
+  // The cost estimate made before the run: its steps within a factor of 3 of the run's.
+  const double steps = j["steps"].get<double>(), expected = j["estimate"]["steps_expected"].get<double>();
+  EXPECT_LT(steps, 3 * expected);
+  EXPECT_GT(steps, expected / 3);
+  // The text names the defaults and how to get the paper's protocol.
+  const CliRun t = run_cli("tilt --lower " + kDektak + " --crop 0.5mm,0.55mm --quiet", 120);
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_EQ(t.out.find("not valid"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("measured surfaces default to protocol = quasi-static, hold_rotation = true"), std::string::npos)
+      << t.out;
+  EXPECT_NE(t.out.find("--protocol constant-rate --no-hold-rotation"), std::string::npos) << t.out;
+  // A protocol the caller gives is kept; the rotation is still held by default.
+  const CliRun c = run_cli(kPiece + " --protocol constant-rate --max-tilt 1", 120);
+  ASSERT_EQ(c.code, 0) << c.err;
+  const auto jc = nlohmann::json::parse(c.out);
+  EXPECT_EQ(jc["protocol"], "constant-rate");
+  EXPECT_EQ(jc["scaled_defaults"]["measured_defaults"], "hold_rotation = true");
 }

@@ -20,7 +20,7 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 
 bool has_warning(const ContactResult& r, const std::string& code) {
-  return std::any_of(r.warnings.begin(), r.warnings.end(), [&](const ContactWarning& w) { return w.code == code; });
+  return std::any_of(r.warnings.begin(), r.warnings.end(), [&](const Warning& w) { return w.code == code; });
 }
 
 /// A paraboloid z = -r^2 / (2 R) on an n x n grid, centred on node (n/2, n/2).
@@ -297,7 +297,7 @@ TEST(Contact, EdgeAndResampleWarnings) {
   Profile uneven = wave(64, 1e-3, 1e-6);
   uneven.x[10] += 3e-6;
   uneven.period.reset();  // a measured scan: no period
-  std::vector<ContactWarning> w;
+  std::vector<Warning> w;
   auto even = equally_spaced(uneven, "scan.csv", w);
   ASSERT_TRUE(even) << even.error().message;
   ASSERT_EQ(w.size(), 1u);

@@ -157,6 +157,51 @@ TEST(DemTilt, WritesSeriesAndFrames) {
   std::ifstream g(frames);
   std::getline(g, header);
   EXPECT_EQ(header, "frictal-dem-frames 1");
+  // Read back: the polygons and every pose as written (17 significant digits: exact), time and
+  // tilt to the 9 digits the file keeps.
+  auto back = frictal::read_tilt_frames(frames);
+  ASSERT_TRUE(back.ok()) << back.error().message;
+  EXPECT_EQ(back->lower_polygon_x, r->lower_polygon_x);
+  EXPECT_EQ(back->upper_polygon_y, r->upper_polygon_y);
+  ASSERT_EQ(back->frames.size(), r->frames.size());
+  ASSERT_GT(r->frames.size(), 1u);
+  for (std::size_t k = 0; k < r->frames.size(); ++k) {
+    const auto &a = back->frames[k], &b = r->frames[k];
+    EXPECT_NEAR(a.time, b.time, 1e-8 * std::max(1.0, b.time));
+    EXPECT_NEAR(a.tilt, b.tilt, 1e-8);
+    for (int j = 0; j < 2; ++j) {
+      EXPECT_EQ(a.position[j].x, b.position[j].x);
+      EXPECT_EQ(a.position[j].y, b.position[j].y);
+      EXPECT_EQ(a.angle[j], b.angle[j]);
+    }
+  }
+}
+
+TEST(DemTilt, ReadingAFramesFileNamesTheBadLine) {
+  const std::string path = ::testing::TempDir() + "dem_frames_bad.txt";
+  auto read_with = [&](const std::string& text) {
+    std::ofstream(path) << text;
+    return frictal::read_tilt_frames(path);
+  };
+  const std::string bodies = "frictal-dem-frames 1\nbody 0 lower 3\n0 0\n1 0\n0 1\nbody 1 upper 3\n0 0\n1 0\n0 1\n";
+  auto ok = read_with(bodies + "frame 0.5 0.01\n0 0 0 0\n1 0.1 0.2 0.003\n");
+  ASSERT_TRUE(ok.ok()) << ok.error().message;
+  ASSERT_EQ(ok->frames.size(), 1u);
+  EXPECT_DOUBLE_EQ(ok->frames[0].position[1].y, 0.2);
+  EXPECT_DOUBLE_EQ(ok->frames[0].angle[1], 0.003);
+  struct Case {
+    std::string text, line;
+  };
+  for (const Case& c :
+       {Case{"a csv file\n", "line 1:"}, Case{bodies + "frame 0.5 x\n0 0 0 0\n1 0 0 0\n", "line 10:"},
+        Case{bodies + "frame 0.5 0\n0 0 0 0\n", "line 12:"},
+        Case{"frictal-dem-frames 1\nbody 0 lower 5\n0 0\n", "line 2:"}, Case{bodies + "bogus\n", "line 10:"}}) {
+    auto r = read_with(c.text);
+    ASSERT_FALSE(r.ok()) << c.text;
+    EXPECT_EQ(r.error().code, frictal::ErrorCode::InvalidInput);
+    EXPECT_NE(r.error().message.find(path + ": " + c.line), std::string::npos) << r.error().message;
+  }
+  EXPECT_EQ(frictal::read_tilt_frames(path + ".missing").error().code, frictal::ErrorCode::Io);
 }
 
 TEST(DemTilt, RejectsBadConfig) {

@@ -46,7 +46,7 @@ assert hold["inertial_hold_angle_deg"] <= a, hold  # the bracket [phi_in, phi_qs
 PY
 # The dynamic test from rest (the README's last command) lies inside its own bracket
 # [phi_in, phi_qs] from where it rests (0.1 deg slack), and is not flagged.
-frictal tilt --lower dektak-a.csv --upper dektak-b.csv --settling relax --turn gravity --tilt-rate 0.0005 \
+frictal tilt --lower dektak-a.csv --upper dektak-b.csv --protocol constant-rate --settling relax --turn gravity --tilt-rate 0.0005 \
   --hold-rotation --spheroradius 2e-5 --normal-stiffness 6e7 --contact-rule closest --json > rest.json 2> /dev/null
 python3 - <<'PY'
 import json

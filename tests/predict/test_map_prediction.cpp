@@ -230,9 +230,11 @@ TEST(MapPrediction, RemovingSpikesFromANearlyFlatMapCostsAtMostABoundedMultipleO
   // few nm of the top. The model's work (ArealTiltHold::work: tiles and spheres read for the
   // candidate lists, spheres and cells evaluated; no clock), filled against spiky: 9.2 times
   // with the lists of before (cell-top bounds, every list from a scan of every tile), 6.1 times
-  // now (the tight bound and the outer lists), of which 2.0 is the descents' own evaluations (the
-  // block settles on noise instead of three spikes). The aim, removal never costlier, is not met
-  // yet (bench/results/map-predict.md, "Nearly flat maps"); the bound keeps what was gained.
+  // with the tight bound and outer lists about the block, 5.1 times with outer lists wider and
+  // ahead of the block on its way (fewer scans), of which 2.0 is the descents' own evaluations
+  // (the block settles on noise instead of three spikes). The aim, removal never costlier, is not
+  // met yet (bench/results/map-predict.md, "Nearly flat maps"); the bound keeps what was gained
+  // (the outer lists about the block fail it).
   frictal::Map m;
   m.nx = 160;
   m.ny = 144;
@@ -266,5 +268,5 @@ TEST(MapPrediction, RemovingSpikesFromANearlyFlatMapCostsAtMostABoundedMultipleO
   };
   const long spiky = work(m), removed = work(cleaned->map);
   EXPECT_GT(spiky, 0);
-  EXPECT_LE(removed, 8 * spiky) << "spiky " << spiky << ", spikes removed " << removed;
+  EXPECT_LE(double(removed), 5.5 * double(spiky)) << "spiky " << spiky << ", spikes removed " << removed;
 }

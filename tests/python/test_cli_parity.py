@@ -150,6 +150,10 @@ def test_tilt_of_a_measured_profile_equals_the_cli():
     piece, _ = frictal.condition(frictal.read_profile(path), crop=(5e-4, 5.5e-4), detrend="none")
     got = quiet(frictal.tilt, piece)
     assert got["conditioning"] == "form: line"
+    # Both load a measured pair as the library's setup says: quasi-statically, the rotation held.
+    assert got["protocol"] == want["protocol"] == "quasi-static"
+    assert got["scaled_defaults"]["measured_defaults"] == want["scaled_defaults"]["measured_defaults"]
+    assert got["scaled_defaults"]["measured_defaults"] == "protocol = quasi-static, hold_rotation = true"
     assert got["validity"] == want["validity"] and got["friction_angle_valid"] == want["friction_angle_valid"]
     assert same(deg(got["friction_angle"]), want["friction_angle_deg"])
     assert got["steps"] == want["steps"]
@@ -196,3 +200,28 @@ def test_a_map_pair_under_load_equals_the_cli(tmp_path):
             assert same(got[key], value), (key, got[key], value)
         else:
             assert got[key] == value, key
+
+
+def test_the_cli_s_tilt_frames_read_back_in_python(tmp_path):
+    """`frictal tilt --frames` written by the CLI, read by frictal.read_tilt_frames: the last frame's
+    upper centroid has moved down the slope by the displacement the CLI's JSON reports (the block
+    slides along the lower block's surface: the distance between the centroids' start and end,
+    seen in the lower block's frame)."""
+    frames = tmp_path / "k0.txt"
+    j = cli("tilt", "koch", "--iterations", "0", "--alpha", "10", "--max-tilt", "16", "--frames", str(frames),
+            "--frame-interval", "0.02")
+    f = frictal.read_tilt_frames(str(frames))
+    n = len(f["time"])
+    assert n >= 5 and f["position"].shape == (n, 2, 2) and f["angle"].shape == (n, 2)
+    assert f["lower_polygon"].shape[1] == 2 and f["upper_polygon"].shape[1] == 2
+    assert np.all(np.diff(f["time"]) > 0)
+    # Frames carry the tilt in radians; the run slid at the friction angle, so the last frames are
+    # beyond it and the first below it.
+    phi = math.radians(j["friction_angle_deg"])
+    assert f["tilt"][0] < phi <= f["tilt"][-1] + 1e-9
+    with pytest.raises(FileNotFoundError):
+        frictal.read_tilt_frames(str(tmp_path / "missing.txt"))
+    bad = tmp_path / "bad.txt"
+    bad.write_text("frictal-dem-frames 1\nbody 0 lower 3\n0 0\n1 x\n0 1\n")
+    with pytest.raises(ValueError, match="line 4"):
+        frictal.read_tilt_frames(str(bad))
