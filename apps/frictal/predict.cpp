@@ -82,20 +82,31 @@ void print_text(const Prediction& p, const Args& a) {
                                                    p.drop_range[0], p.drop_range[1], p.drop_range[2], p.drop_range[3])
                                      : fmt::format("[{:.6g}, {:.6g}] m", p.drop_range[0], p.drop_range[1]);
   fmt::print("  model: {} ({}); {} {} over {}; run-away d = {:.4g} m\n  conditioning: {}\n", p.model,
-             p.is_map ? "rigid block free to move sideways, off the grid, quasi-static"
+             p.is_map ? (std::isfinite(p.load) ? "block locked to the direction, quasi-static hold angle on the loaded "
+                                                 "lift of the elastic half-space"
+                                               : "rigid block free to move sideways, off the grid, quasi-static")
                       : (std::isfinite(p.load) ? "quasi-static hold angle on the loaded lift of Hertzian asperities"
                                                : "rigid quasi-static hold angle on the exact lift"),
              p.drops, p.is_map ? "drops" : "basins", range, p.runaway_distance, p.conditioning);
   if (!p.is_map)
     fmt::print("  the test: a block of {:.4g} m, sliding for good after d = {:.4g} m ({})\n", p.block_length,
                p.runaway_distance, p.test_lengths);
-  if (std::isfinite(p.load)) {
+  if (std::isfinite(p.load) && p.is_map) {
+    fmt::print(
+        "  under load: W = {:.4g} N (normal force {:.4g} N at the rigid median {} deg), E* = {:.4g} Pa; the rigid "
+        "prediction (free block) reads {} deg\n  the half-space: {:.3g} contact patches per offset, approach {:.3g} m, "
+        "largest contact fraction {:.3g}, rms contact slope {:.3g}\n",
+        p.load, p.normal_load, deg_text(p.rigid_friction_angle), p.contact_modulus, deg_text(p.rigid_friction_angle),
+        p.load_contacts, p.load_approach, p.load_contact_fraction, p.load_contact_slope);
+  } else if (std::isfinite(p.load)) {
     fmt::print(
         "  under load: W = {:.4g} N (normal force {:.4g} N at the rigid median {} deg), E* = {:.4g} Pa; the rigid "
         "prediction reads {} deg\n  the asperities: {:.3g} contacts per offset, approach {:.3g} m, largest "
         "delta/R {:.3g}, {:.3g} % of the load on merged contacts, rms contact slope {:.3g}\n",
         p.load, p.normal_load, deg_text(p.rigid_friction_angle), p.contact_modulus, deg_text(p.rigid_friction_angle),
         p.load_contacts, p.load_approach, p.load_interference_ratio, 100 * p.load_merged_share, p.load_contact_slope);
+  }
+  if (std::isfinite(p.load)) {
     fmt::print("  friction angle against load (same drops, d):\n    {:>12}  {:>10}  {:>17}\n", "load (N)",
                "median (deg)", "5-95 % (deg)");
     for (std::size_t i = 0; i < p.load_curve.size(); ++i)

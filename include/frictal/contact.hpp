@@ -158,6 +158,16 @@ Result<std::vector<ContactResult>> solve_contact_curve(const Map& surface, const
 Result<std::vector<ContactResult>> solve_contact_curve(const Profile& surface, const std::vector<ContactLoad>& loads,
                                                        const ContactOptions& options);
 
+/// solve_contact_curve with a start for each load: `starts[k]` (empty, or one pressure per point
+/// of `surface`, x fastest, unit: Pa) is where the solve of load k begins, scaled to carry it (its
+/// points of zero or NaN pressure start out of contact), in place of the previous load's pressure.
+/// The solution of a nearby problem (the same pair moved a little) is a start close to the answer:
+/// the solver then needs fewer iterations; the answer is the same to the tolerance. `starts` is
+/// empty or has one entry per load. The same errors as solve_contact, and a start of another size.
+Result<std::vector<ContactResult>> solve_contact_curve(const Map& surface, const std::vector<ContactLoad>& loads,
+                                                       const ContactOptions& options,
+                                                       const std::vector<std::vector<double>>& starts);
+
 /// The contact solution as output columns (frictal/outputs.hpp; src/contact/contact_columns.cpp): the
 /// keys of `frictal contact --json` and Python's frictal.contact() dicts.
 const Columns<ContactResult>& contact_columns();

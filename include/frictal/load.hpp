@@ -1,4 +1,4 @@
-// frictal — friction under load for profiles: the Hertzian-asperity model of Hanaor, Gan & Einav
+// frictal — friction under load. Profiles: the Hertzian-asperity model of Hanaor, Gan & Einav
 // ("Contact mechanics of fractal surfaces by spline assisted discretisation", Int. J. Solids
 // Struct. 2015; "Static friction at fractal interfaces", Tribology International 93, 2016), cast
 // as a loaded lift that the rigid hold analysis (hold.hpp) reads unchanged (docs/load.md).
@@ -24,7 +24,8 @@
 // and which tends to h(s) as W -> 0 (the elastic terms scale as W^(2/3)). With atomic friction
 // mu_a at each contact, tan phi = sum F (sin + mu_a cos) / sum F (cos - mu_a sin) is exactly
 // tan(atan(mu_a) + atan(tau)), tau the force-resolved slope, the rule the hold analysis applies to
-// the slope of H_W: the hold analysis of H_W is the loaded prediction.
+// the slope of H_W: the hold analysis of H_W is the loaded prediction. Maps: the elastic
+// half-space's loaded lift on lines along the sliding direction ("Maps" below).
 //
 // SI units: lengths in m, forces in N, moduli in Pa, angles in rad.
 #pragma once
@@ -34,6 +35,7 @@
 
 #include "frictal/geometry.hpp"
 #include "frictal/hold.hpp"
+#include "frictal/map.hpp"
 #include "frictal/result.hpp"
 
 namespace frictal {
@@ -115,5 +117,98 @@ Result<LoadedState> loaded_state(const Profile& lower, const Profile& upper, dou
 /// malformed curve.
 Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const LiftCurve& rigid,
                                const LoadedLiftOptions& options);
+
+// ---- Maps: the elastic half-space under the sliding block (docs/load.md, "Maps") ----
+//
+// At an offset (u, v) of the upper map (u along the sliding direction d, v across it; the turn-over
+// and the frame of areal_lift in areal.hpp) the composite c(p) = f(p) + g(q(p)) at the lower
+// map's nodes p of the overlap (g bilinear; in place: f(p) - g(p - s)) is the height at which the
+// block's reference touches the lower surface at p; the rigid lift is h = max_p c(p). Under the
+// normal load W the two blocks (composite modulus E*) are pressed together as one elastic
+// half-space against a rigid flat (contact.hpp's solver, non-periodic, on the overlap's bounding
+// box): the block sinks by the approach delta, the contact pressure p_i carries W, and the elastic
+// energy is U = (1/2) sum_i F_i (c_i - z), F_i = p_i dx dy, z = h - delta. The loaded lift is the
+// minimum potential energy per unit load, as for profiles,
+//   H_W = z + U / W = h - delta + U / W,
+// and its slope is, by the envelope theorem (the Lagrange multipliers of the contact constraints
+// are the forces), the pressure-weighted contact slope sum_i F_i dc_i/du / W, exactly (no
+// stiffness term: the half-space's influence coefficients do not move with the block).
+
+/// Options of the loaded lift of a map pair.
+struct MapLoadedLiftOptions {
+  double contact_modulus = 0;  ///< E* (contact_modulus() of contact.hpp), > 0 (unit: Pa)
+  /// Normal loads W on the block, each > 0 (unit: N); solved in the order given at each offset.
+  std::vector<double> loads;
+  double angle = 0;             ///< sliding direction d, from +x towards +y (unit: rad)
+  bool turn_over_upper = true;  ///< false: the upper map is the upper face in place (areal.hpp)
+  /// Offset step along d (0: the lower map's smaller spacing) (unit: m).
+  double step = 0;
+  /// The contact solver's tolerance (ContactOptions::tolerance) (unitless).
+  double tolerance = 1e-8;
+  unsigned threads = 0;  ///< worker threads over lines (0 = all cores); results do not depend on it
+};
+
+/// The block at one offset under one load (maps).
+struct MapLoadedState {
+  double along = 0, across = 0;  ///< the offset u along d and v across it (unit: m)
+  double load = 0;               ///< W (unit: N)
+  double rigid_lift = 0;         ///< h = max of the composite over the overlap (unit: m)
+  double approach = 0;           ///< delta: the block's sink from first touch (unit: m)
+  double energy = 0;             ///< U, the elastic energy (unit: J)
+  double loaded_lift = 0;        ///< H_W = h - delta + U / W (unit: m)
+  /// sum F_i dc_i/du / W: the pressure-weighted contact slope along d, dH_W/du (unitless).
+  double effective_slope = 0;
+  /// sqrt of the pressure-weighted mean of |grad c|^2 over the contact: the slopes the small-slope
+  /// half-space is asked to carry (unitless).
+  double contact_slope_rms = 0;
+  std::size_t contact_points = 0;  ///< nodes carrying pressure (unitless)
+  std::size_t patches = 0;         ///< connected contact patches (4-neighbours) (unitless)
+  double contact_fraction = 0;     ///< contact points over the overlap's nodes (unitless)
+  bool converged = false;          ///< the contact solver reached its tolerance
+  int iterations = 0;              ///< conjugate-gradient iterations (unitless)
+};
+
+/// Diagnostics of one load over the offsets of a map's loaded lift.
+struct MapLoadedDiagnostics {
+  double load = 0;                  ///< W (unit: N)
+  double mean_patches = 0;          ///< contact patches per offset, mean (unitless)
+  double mean_approach = 0;         ///< delta, mean over offsets (unit: m)
+  double rms_contact_slope = 0;     ///< sqrt of the force-weighted mean |grad c|^2, all offsets (unitless)
+  double max_contact_fraction = 0;  ///< the largest contact fraction of the overlap (unitless)
+  /// Share of the offsets where more than half of the overlap's nodes are in contact: the load
+  /// approaches full contact, where the roughness no longer decides the lift (unitless).
+  double full_share = 0;
+  std::size_t unconverged = 0;  ///< offsets whose solve did not reach the tolerance (unitless)
+};
+
+/// One line of offsets along d at a given v.
+struct MapLoadedLine {
+  double across = 0;                        ///< v (unit: m)
+  LiftCurve rigid;                          ///< h(u) at the offsets u of the line
+  std::vector<LiftCurve> curves;            ///< H_W(u) per load, on the same offsets
+  std::vector<std::vector<double>> slopes;  ///< effective_slope at each offset, per load (unitless)
+};
+
+struct MapLoadedLift {
+  std::vector<double> loads;                      ///< as given (unit: N)
+  std::vector<MapLoadedLine> lines;               ///< in the order of `across`
+  std::vector<MapLoadedDiagnostics> diagnostics;  ///< per load
+  std::size_t solves = 0;                         ///< contact solves, all lines and loads (unitless)
+  long iterations = 0;                            ///< conjugate-gradient iterations of them (unitless)
+};
+
+/// The block at the offset (along, across) under `load` (N). Errors (InvalidInput, naming the
+/// value): E* or W not finite or <= 0, maps smaller than 2 x 2, an offset at which fewer than 2 x 2
+/// nodes overlap, a failing contact solve.
+Result<MapLoadedState> map_loaded_state(const Map& lower, const Map& upper, double along, double across, double load,
+                                        const MapLoadedLiftOptions& options);
+
+/// The loaded lift of every load of `options` on lines along d: for each v of `across`, the
+/// offsets u = along_min + k step up to along_max (those where the maps overlap by at least 2 x 2
+/// nodes, a contiguous run; an error if none), one contact solve per offset and load, each started
+/// from the previous offset's pressure at that load (the lines run in parallel). rigid.lift is h,
+/// curves[l].lift is h + (H_W - h) so that it equals h as W -> 0. Errors as map_loaded_state.
+Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const std::vector<double>& across,
+                                      double along_min, double along_max, const MapLoadedLiftOptions& options);
 
 }  // namespace frictal

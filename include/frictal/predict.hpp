@@ -95,13 +95,17 @@ struct PredictOptions {
   /// at the pixel scale cost up to 30x more), exceeds this (unit: s). 0: no limit.
   double map_work_limit = 3600;
   unsigned threads = 0;  ///< worker threads (0 = all cores); results do not depend on it
-  /// Friction under load (profiles; docs/load.md: the Hertzian-asperity model, load.hpp): the
-  /// loads W pressing the upper block onto the lower one, its weight (unit: N). Empty: the rigid
+  /// Friction under load (docs/load.md, load.hpp: profiles the Hertzian-asperity model, maps the
+  /// elastic half-space with the block locked to the direction; a map's curve for one load is
+  /// W x 10^(-1..1)): the loads W pressing the upper block onto the lower one, its weight (unit: N). Empty: the rigid
   /// prediction. The first is the headline (friction_angle, d_sweep, the single drop); the load
   /// curve is over every load given, in increasing order, or for one load over W x 10^(-2..1) in
   /// half decades. At the tilt phi a block of weight W presses with W cos(phi): each lift is
   /// evaluated at W cos(phi_0), phi_0 the rigid median (Prediction::normal_load).
   std::vector<double> loads;
+  /// Maps under load: the offset step of the contact solves along each line (0: the lower map's
+  /// smaller spacing; the elastic correction is linear between them) (unit: m).
+  double map_load_step = 0;
   /// The materials of the loaded model (Pa, unitless): the lower block's, and the upper block's
   /// (nullopt: the same as the lower's); rigid_upper: the upper block rigid.
   ElasticMaterial lower_material;
@@ -189,6 +193,10 @@ struct Prediction {
   double load_interference_ratio = std::numeric_limits<double>::quiet_NaN();
   double load_merged_share = std::numeric_limits<double>::quiet_NaN();
   double load_contact_slope = std::numeric_limits<double>::quiet_NaN();
+  /// Maps under load (the half-space model): the largest fraction of the overlap's points in
+  /// contact over the offsets at the headline load (unitless); NaN otherwise. load_contacts is then
+  /// the mean number of contact patches, and load_interference_ratio, load_merged_share are NaN.
+  double load_contact_fraction = std::numeric_limits<double>::quiet_NaN();
   std::vector<Warning> warnings;
   /// "ok", or "doubtful" where a warning says the input was probably read wrong (a code marked
   /// `doubtful` in warning_codes(): units, spikes left in, scans that do not match, an angle at 90

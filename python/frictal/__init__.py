@@ -109,9 +109,9 @@ def predict(lower, upper=None, **options):
     ``start_offset`` (x, or (x, y) for maps: one drop), ``drops`` (maps: N x N), ``locked``
     (maps: the locked diagnostic), ``format``, ``unit`` (the files' lengths, x and z: "m", "mm",
     "um", "nm", overriding the units a file names), ``x_unit`` / ``z_unit`` (the lateral lengths or
-    the heights alone), ``threads``. Friction under load (profiles; docs/load.md): ``load`` (the
-    upper block's weight W in N, or a list: the first the headline, the friction-against-load curve
-    over all; one load: over W x 10^(-2..1)), ``modulus`` (Young's modulus E, Pa) and ``poisson``
+    the heights alone), ``threads``. Friction under load (profiles and maps; docs/load.md): ``load``
+    (the upper block's weight W in N, or a list: the first the headline, the friction-against-load
+    curve over all; one load: over W x 10^(-2..1) for profiles, W x 10^(-1..1) for maps), ``modulus`` (Young's modulus E, Pa) and ``poisson``
     (nu) of the lower block, and of the upper one unless ``upper_modulus`` (Pa, or ``"rigid"``) /
     ``upper_poisson``; the result then also has ``load``, ``load_curve``, ``load_curve_median``,
     ``load_curve_q05``, ``load_curve_q95`` and ``rigid_friction_angle``.

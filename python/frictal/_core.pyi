@@ -41,7 +41,7 @@ class Prediction:
         """sliding direction, from +x towards +y (rad)"""
     @property
     def drop_friction_angles(self) -> Any:
-        """maps: each drop's hold angle (block free), in drop order (rad)"""
+        """maps: each drop's hold angle (block free; under load: locked to d on the loaded lift), in drop order (rad)"""
     @property
     def drop_offsets(self) -> List[List[float[2]]]:
         ...
@@ -97,11 +97,14 @@ class Prediction:
     def load_approach(self) -> Any:
         """under load: the block's approach from first touch, mean over offsets (m)"""
     @property
+    def load_contact_fraction_max(self) -> Any:
+        """under load, maps: the largest fraction of the overlap's points in contact over the offsets (1)"""
+    @property
     def load_contact_slope_rms(self) -> Any:
-        """under load: the force-weighted rms of the contact slopes tan(theta) (1)"""
+        """under load: the force-weighted rms of the contact slopes tan(theta) (maps: of |grad| of the composite) (1)"""
     @property
     def load_contacts_mean(self) -> Any:
-        """under load: asperity contacts carrying force per offset, mean (1)"""
+        """under load: asperity contacts (profiles) or contact patches (maps) carrying force per offset, mean (1)"""
     @property
     def load_curve(self) -> Any:
         """under load: the loads of the friction-against-load curve, increasing (one load W given: W x 10^(-2..1) in half decades) (N)"""

@@ -108,6 +108,12 @@ class Solver {
     r_.assign(n, 0.0);
   }
   std::size_t active_points() const { return n_active_; }
+  /// The pressure a solve starts from (solve(force, true)): `start` where positive and finite.
+  void seed(const std::vector<double>& start) {
+    const double H = cap();
+    for (std::size_t k = 0; k < p_.size(); ++k)
+      p_[k] = active_[k] && std::isfinite(start[k]) && start[k] > 0 ? std::min(H, start[k]) : 0.0;
+  }
   double cap() const { return o_.hardness > 0 ? o_.hardness : INFINITY; }
 
   /// Scales the pressure so that it carries `sum` (the force over the cell): p <- min(lambda p, H)
@@ -271,7 +277,13 @@ class Solver {
         rsum += partial_[m][0], rt += partial_[m][1], tsum += partial_[m][2], num += partial_[m][3];
       const double rbar = nc ? rsum / double(nc) : 0.0;
       const double den = rt - rbar * tsum;
-      const double tau = (den > 0 && nc) ? num / den : 0.0;
+      double tau = (den > 0 && nc) ? num / den : 0.0;
+      // No step on the free contact (one point, or its gap already uniform) while points outside
+      // it interpenetrate: the step above would change nothing, and the iteration would stall
+      // there (a start whose contact lies elsewhere: a warm start from a neighbouring problem).
+      // Those points enter with the pressure that about closes their overlap over one spacing,
+      // p = E* |g| / dx.
+      if (!(tau > 0) && worst > 0) tau = o_.contact_modulus / g_.dx;
       chunks([&](unsigned m, std::size_t b, std::size_t e) {
         double entered = 0, total = 0, reset = 0;
         for (std::size_t k = b; k < e; ++k) {
@@ -494,7 +506,8 @@ unsigned thread_count(unsigned t) {
 }
 
 Result<std::vector<ContactResult>> solve_grid(const Grid& g, const std::vector<ContactLoad>& loads,
-                                              const ContactOptions& o) {
+                                              const ContactOptions& o,
+                                              const std::vector<std::vector<double>>* starts = nullptr) {
   if (!std::isfinite(o.contact_modulus) || !(o.contact_modulus > 0))
     return make_error(
         fmt::format("contact modulus E* {} Pa: expected a finite value > 0 (unit: Pa)", o.contact_modulus));
@@ -505,6 +518,14 @@ Result<std::vector<ContactResult>> solve_grid(const Grid& g, const std::vector<C
   if (o.max_iterations < 0)
     return make_error(fmt::format("contact max_iterations {}: expected >= 0 (0: the default)", o.max_iterations));
   if (loads.empty()) return make_error("contact: no load given");
+  if (starts && !starts->empty()) {
+    if (starts->size() != loads.size())
+      return make_error(fmt::format("contact: {} start pressures for {} loads", starts->size(), loads.size()));
+    for (const auto& st : *starts)
+      if (!st.empty() && st.size() != g.size())
+        return make_error(
+            fmt::format("contact: a start pressure of {} points for a surface of {}", st.size(), g.size()));
+  }
   const std::size_t min_points = g.is_map ? 2 : 4;
   if (g.nx < min_points || (g.is_map && g.ny < 2))
     return make_error(fmt::format("contact: the surface has {} x {} points; expected at least {} x {}", g.nx, g.ny,
@@ -536,7 +557,9 @@ Result<std::vector<ContactResult>> solve_grid(const Grid& g, const std::vector<C
   std::vector<ContactResult> out;
   out.reserve(loads.size());
   for (std::size_t k = 0; k < forces.size(); ++k) {
-    ContactResult r = solver.solve(forces[k], k > 0);
+    const bool seeded = starts && !starts->empty() && !(*starts)[k].empty();
+    if (seeded) solver.seed((*starts)[k]);
+    ContactResult r = solver.solve(forces[k], k > 0 || seeded);
     r.rms_slope = slope;
     if (slope > o.max_rms_slope)
       r.warnings.insert(
@@ -661,6 +684,15 @@ Result<std::vector<ContactResult>> solve_contact_curve(const Map& surface, const
     return make_error(fmt::format("contact: the map has {} heights for {} x {} points", surface.heights.size(),
                                   surface.nx, surface.ny));
   return solve_grid(map_grid(surface, options.periodic), loads, options);
+}
+
+Result<std::vector<ContactResult>> solve_contact_curve(const Map& surface, const std::vector<ContactLoad>& loads,
+                                                       const ContactOptions& options,
+                                                       const std::vector<std::vector<double>>& starts) {
+  if (surface.heights.size() != surface.nx * surface.ny)
+    return make_error(fmt::format("contact: the map has {} heights for {} x {} points", surface.heights.size(),
+                                  surface.nx, surface.ny));
+  return solve_grid(map_grid(surface, options.periodic), loads, options, &starts);
 }
 
 Result<std::vector<ContactResult>> solve_contact_curve(const Profile& surface, const std::vector<ContactLoad>& loads,

@@ -183,6 +183,9 @@ LiftCurve cut_curve(const LiftCurve& c, double a, double b) {
 // slope of small-slope elasticity, delta / R of Hertz's a << R (a = sqrt(R delta); 0.1: a/R ~ 0.3)
 // at more than 5 % of the offsets, and 10 % of the load on merged contacts (unitless).
 constexpr double kLoadMaxSlope = 0.3, kLoadMaxRatio = 0.1, kLoadMaxDeepShare = 0.05, kLoadMaxMerged = 0.1;
+// Maps: the share of the offsets at which more than kMapFullContact of the overlap touches
+// (MapLoadedDiagnostics::full_share) beyond which the load nears full contact (unitless).
+constexpr double kLoadMaxFullShare = 0.05, kMapFullContact = 0.5;
 
 // The assumptions that a load's diagnostics break, as text ("" where none).
 std::string load_breaks(const LoadedLiftDiagnostics& d) {
@@ -550,6 +553,189 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   return p;
 }
 
+// A map pair under load (PredictOptions::loads; docs/load.md, "Maps"): the drops `uv` (offsets
+// along and across d, the model's frame) grouped into lines along d, the loaded lift of each line
+// from the half-space solution at every offset (load.hpp's map_loaded_lift, the offsets at the
+// lower map's spacing), and each drop's hold angle on its line (the block locked to d, hold.hpp),
+// at every load of the curve. The rigid prediction `p` (free block) gives phi_0 and stays the bound.
+Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper, const ArealTiltOptions& t,
+                               const std::vector<std::array<double, 2>>& uv, const PredictOptions& o) {
+  auto em = o.rigid_upper ? contact_modulus(o.lower_material)
+                          : contact_modulus(o.lower_material, o.upper_material.value_or(o.lower_material));
+  if (!em) return em.error();
+  // One load: a decade either side (each load is a contact solve per offset, the cost of the map
+  // model); a list: those loads.
+  std::vector<double> curve;
+  if (o.loads.size() == 1) {
+    curve = {0.1 * o.loads[0], o.loads[0], 10 * o.loads[0]};
+  } else {
+    curve = o.loads;
+    std::sort(curve.begin(), curve.end());
+    curve.erase(std::unique(curve.begin(), curve.end()), curve.end());
+  }
+  const std::size_t head = std::size_t(std::find(curve.begin(), curve.end(), o.loads[0]) - curve.begin());
+  p.rigid_friction_angle = p.friction_angle.q50;
+  const double cosine = std::cos(std::min(p.rigid_friction_angle, 1.5));
+  MapLoadedLiftOptions lo;
+  lo.contact_modulus = *em;
+  lo.angle = t.angle;
+  lo.turn_over_upper = t.turn_over_upper;
+  lo.threads = o.threads;
+  if (!std::isfinite(o.map_load_step) || o.map_load_step < 0)
+    return make_error(
+        fmt::format("map load step {} m: expected a finite length >= 0 (0: the spacing)", o.map_load_step));
+  lo.step = o.map_load_step > 0 ? o.map_load_step : std::min(lower.dx, lower.dy);
+  for (double w : curve) lo.loads.push_back(w * cosine);
+  // Lines: the drops' distinct offsets across d; along each, the drops' range widened by room for
+  // the descent and the run-away (3 d), on the step's grid.
+  const double D = t.runaway_distance;
+  std::vector<double> across;
+  for (const auto& q : uv)
+    if (std::find(across.begin(), across.end(), q[1]) == across.end()) across.push_back(q[1]);
+  double umin = INFINITY, umax = -INFINITY;
+  for (const auto& q : uv) umin = std::min(umin, q[0]), umax = std::max(umax, q[0]);
+  const double room = 3 * D + 2 * lo.step;
+  const double a0 = std::floor((umin - room) / lo.step) * lo.step, a1 = std::ceil((umax + room) / lo.step) * lo.step;
+  auto loaded = map_loaded_lift(lower, upper, across, a0, a1, lo);
+  if (!loaded) return loaded.error();
+  // The rigid lift of each line: the rigid map model's own (areal_tilt_lift: the spheres of the
+  // upper face on the lower one's triangles, exact), on offsets kLiftPerStep times finer than the
+  // lower map's spacing (the contact solves' default step) (it has a kink wherever the touching sphere or triangle
+  // changes, and the hold angle reads its steepest stops); the elastic correction H_W - h of the solves, which varies
+  // with the contact, linear between them. So each curve tends to the rigid line's as W -> 0.
+  constexpr int kLiftPerStep = 10;
+  std::vector<LiftCurve> rigid_lines(across.size());
+  for (std::size_t li = 0; li < across.size(); ++li) {
+    const MapLoadedLine& line = loaded->lines[li];
+    const double v = across[li];
+    ArealLiftOptions ao;
+    ao.step = std::min(lower.dx, lower.dy) / kLiftPerStep;
+    ao.offset_min = line.rigid.offset.front();
+    ao.offset_max = line.rigid.offset.back();
+    // Rows -|v|, 0, |v| (or the row v = 0 alone): the line is the row at v.
+    ao.across_step = v != 0 ? std::abs(v) : 1;
+    ao.across_max = v != 0 ? std::abs(v) : 0.5;
+    ao.threads = o.threads;
+    auto al = areal_tilt_lift(lower, upper, t, ao);
+    if (!al) return al.error();
+    const std::size_t row = v > 0 ? 2 : 0;
+    LiftCurve& c = rigid_lines[li];
+    for (std::size_t i = 0; i < al->n_along; ++i) {
+      const double h = al->lift[row * al->n_along + i];
+      if (std::isfinite(h)) c.offset.push_back(al->along(i)), c.lift.push_back(h);
+    }
+    if (c.offset.size() < 2)
+      return make_error(
+          fmt::format("the line {:.6g} m across the direction: the rigid lift has fewer than 2 offsets "
+                      "where the blocks touch",
+                      v));
+  }
+  // The loaded curve of line li at load l on the rigid line's vertices.
+  auto loaded_curve = [&](std::size_t li, std::size_t l) {
+    const MapLoadedLine& line = loaded->lines[li];
+    const std::vector<double>& us = line.rigid.offset;
+    LiftCurve c = rigid_lines[li];
+    for (std::size_t k = 0; k < c.offset.size(); ++k) {
+      const double u = std::clamp(c.offset[k], us.front(), us.back());
+      const std::size_t j =
+          std::min<std::size_t>(std::size_t(std::upper_bound(us.begin(), us.end(), u) - us.begin()), us.size() - 1);
+      const std::size_t i = j - 1;
+      const double f = (u - us[i]) / (us[j] - us[i]);
+      const double ci = line.curves[l].lift[i] - line.rigid.lift[i], cj = line.curves[l].lift[j] - line.rigid.lift[j];
+      c.lift[k] += (1 - f) * ci + f * cj;
+    }
+    return c;
+  };
+  HoldOptions hk;
+  hk.runaway_distance = D;
+  hk.atomic_friction = o.atomic_friction;
+  // Each drop's hold angle on its line's curve at load l; a run-away that leaves the line less
+  // than d after its last stop is counted (the lift beyond could still have caught it).
+  std::size_t off_end = 0, held = 0;
+  auto drops_on = [&](std::size_t l, std::vector<double>& angles) -> Status {
+    angles.assign(uv.size(), 0);
+    std::vector<LiftCurve> curves(across.size());
+    for (std::size_t li = 0; li < across.size(); ++li) curves[li] = loaded_curve(li, l);
+    for (std::size_t k = 0; k < uv.size(); ++k) {
+      const std::size_t li = std::size_t(std::find(across.begin(), across.end(), uv[k][1]) - across.begin());
+      const LiftCurve& c = curves[li];
+      const double u = std::clamp(uv[k][0], c.offset.front(), c.offset.back());
+      auto a = hold_angle(c, u, hk);
+      if (!a) return a.error();
+      // The rigid model's largest tilt caps the loaded one too (held-to-max-tilt).
+      angles[k] = std::min(a->forward.hold_angle, t.max_tilt);
+      if (l == head && a->forward.hold_angle >= t.max_tilt) ++held;
+      if (l == head && a->forward.ran_off_end && c.offset.back() - a->forward.hold_offset < D) ++off_end;
+    }
+    return Ok{};
+  };
+  std::vector<double> angles;
+  std::string beyond;
+  for (std::size_t l = 0; l < curve.size(); ++l) {
+    if (auto st = drops_on(l, angles); !st) return st;
+    const HoldStatistics h = plain_stats(angles);
+    p.load_curve.push_back(curve[l]);
+    p.load_curve_q05.push_back(h.q05);
+    p.load_curve_q50.push_back(h.q50);
+    p.load_curve_q95.push_back(h.q95);
+    const MapLoadedDiagnostics& dg = loaded->diagnostics[l];
+    if (l != head && (dg.rms_contact_slope > kLoadMaxSlope || dg.full_share > kLoadMaxFullShare))
+      beyond += fmt::format("{}{:.4g} N", beyond.empty() ? "" : ", ", curve[l]);
+    if (l == head) {
+      p.friction_angle = h;
+      p.drop_angles = angles;
+      p.drop_steering.assign(angles.size(), 0.0);
+    }
+  }
+  p.load = curve[head];
+  p.normal_load = curve[head] * cosine;
+  p.contact_modulus = *em;
+  const MapLoadedDiagnostics& dg = loaded->diagnostics[head];
+  p.load_contacts = dg.mean_patches;
+  p.load_approach = dg.mean_approach;
+  p.load_contact_slope = dg.rms_contact_slope;
+  p.load_contact_fraction = dg.max_contact_fraction;
+  p.model = "map-halfspace-locked-hold";
+  p.friction_coefficient = p.friction_angle.q50 >= kPi / 2 ? INFINITY : std::tan(p.friction_angle.q50);
+  if (dg.rms_contact_slope > kLoadMaxSlope)
+    add_warning(p.warnings, {"load-steep-contacts",
+                             fmt::format("at {:.4g} N the force-weighted rms slope of the contact is {:.3g}: above "
+                                         "{:g}, the small-slope half-space solution is approximate",
+                                         p.load, dg.rms_contact_slope, kLoadMaxSlope)});
+  if (dg.full_share > kLoadMaxFullShare)
+    add_warning(p.warnings,
+                {"load-full-contact",
+                 fmt::format("at {:.4g} N more than {:g} % of the overlap is in contact at {:.3g} % of the offsets "
+                             "(largest contact fraction {:.3g}): the load flattens the roughness that makes the "
+                             "friction; the lift is then the half-space's, not the surfaces'",
+                             p.load, 100 * kMapFullContact, 100 * dg.full_share, dg.max_contact_fraction)});
+  if (dg.unconverged > 0)
+    add_warning(p.warnings,
+                {"contact-not-converged",
+                 fmt::format("at {:.4g} N the contact solution did not reach its tolerance at {} offsets: the loaded "
+                             "lift there is approximate",
+                             p.load, dg.unconverged)});
+  // The rigid prediction's own held-to-max-tilt warning is of the free block: the loaded one's replaces it.
+  std::erase_if(p.warnings, [](const Warning& w) { return w.code == "held-to-max-tilt"; });
+  if (held > 0)
+    add_warning(p.warnings,
+                {"held-to-max-tilt", fmt::format("{} of {} drops held the block up to {:g} deg (the model's largest "
+                                                 "tilt) under load: their hold angle is a lower bound",
+                                                 held, uv.size(), t.max_tilt * 180 / kPi)});
+  if (off_end > 0)
+    add_warning(p.warnings,
+                {"load-lift-ends", fmt::format("{} of {} drops ran off the end of their line of loaded offsets (the "
+                                               "maps' overlap): their hold angle is the last stop's",
+                                               off_end, uv.size())});
+  if (!beyond.empty())
+    add_warning(p.warnings, {"load-curve-beyond-model",
+                             fmt::format("the load curve's loads {} break the half-space model's assumptions (steep "
+                                         "contacts or near full contact; docs/load.md): read the curve there as an "
+                                         "extrapolation",
+                                         beyond)});
+  return Ok{};
+}
+
 Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurface* upper, const PredictOptions& o) {
   Prediction p;
   p.is_map = true;
@@ -721,6 +907,8 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   }
   const HoldStatistics seats = plain_stats(seat_slopes);
   finish(p, seats.max, seats.std, bound);
+  if (!o.loads.empty())
+    if (auto st = predict_maps_under_load(p, *lo, up, t, uv, o); !st) return st.error();
   return p;
 }
 
@@ -816,10 +1004,6 @@ Status check_request(const PredictSurface& lower, const PredictSurface* upper, c
         "block length: for profiles only (a map pair's block is the whole upper map; crop it to state another)");
   if (std::isinf(o.start_offset[0]) || !std::isfinite(o.start_offset[1]))
     return make_error("start offset: expected finite offsets (m)");
-  if (!o.loads.empty() && lower.is_map)
-    return make_error(
-        "load: friction under load (the Hertzian-asperity model) is for line profiles; a map pair is predicted "
-        "for rigid blocks only (leave out the load, or predict profiles extracted from the maps)");
   for (double w : o.loads)
     if (!(w > 0) || !std::isfinite(w)) return make_error(fmt::format("load {} N: expected a finite force > 0", w));
   if (!lower.is_map && !o.turn_over_upper)

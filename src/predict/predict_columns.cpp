@@ -159,7 +159,8 @@ const Columns<Prediction>& prediction_columns() {
           [](const P& p) { return p.has_locked ? p.locked_friction_angle.q05 : NAN; }),
       deg("locked_friction_angle_q95_deg", "maps: 95 % quantile, block locked to d",
           [](const P& p) { return p.has_locked ? p.locked_friction_angle.q95 : NAN; }),
-      list("drop_friction_angles_deg", "deg", "maps: each drop's hold angle (block free), in drop order",
+      list("drop_friction_angles_deg", "deg",
+           "maps: each drop's hold angle (block free; under load: locked to d on the loaded lift), in drop order",
            [](const P& p) { return p.drop_angles; }),
       num(
           "load_n", "N",
@@ -186,7 +187,8 @@ const Columns<Prediction>& prediction_columns() {
            [](const P& p) { return p.load_curve_q05; }),
       list("load_curve_q95_deg", "deg", "its 95 % quantile at each load of load_curve_n",
            [](const P& p) { return p.load_curve_q95; }),
-      num("load_contacts_mean", "1", "under load: asperity contacts carrying force per offset, mean",
+      num("load_contacts_mean", "1",
+          "under load: asperity contacts (profiles) or contact patches (maps) carrying force per offset, mean",
           [](const P& p) { return p.load_contacts; }),
       num(
           "load_approach_m", "m", "under load: the block's approach from first touch, mean over offsets",
@@ -197,8 +199,12 @@ const Columns<Prediction>& prediction_columns() {
       num("load_merged_share", "1",
           "under load: the share of the load on contacts that merge with a neighbour, mean over offsets",
           [](const P& p) { return p.load_merged_share; }),
-      num("load_contact_slope_rms", "1", "under load: the force-weighted rms of the contact slopes tan(theta)",
+      num("load_contact_slope_rms", "1",
+          "under load: the force-weighted rms of the contact slopes tan(theta) (maps: of |grad| of the composite)",
           [](const P& p) { return p.load_contact_slope; }),
+      num("load_contact_fraction_max", "1",
+          "under load, maps: the largest fraction of the overlap's points in contact over the offsets",
+          [](const P& p) { return p.load_contact_fraction; }),
   };
   return cols;
 }

@@ -84,8 +84,16 @@ const std::vector<WarningCode>& warning_codes() {
        "the contact area is the nominal area",
        false, ""},
       {"load-steep-contacts",
-       "under load: the force-weighted rms slope of the asperity contacts is above 0.3, beyond the small-slope "
-       "elasticity of the Hertzian contacts (docs/load.md)",
+       "under load: the force-weighted rms slope of the asperity contacts (maps: of the contact) is above 0.3, "
+       "beyond small-slope elasticity (Hertzian contacts; maps: the half-space solution) (docs/load.md)",
+       false, ""},
+      {"load-full-contact",
+       "under load, maps: at more than 5 % of the offsets more than half of the overlap is in contact: the load "
+       "flattens the roughness that makes the friction (docs/load.md)",
+       false, ""},
+      {"load-lift-ends",
+       "under load, maps: some drops ran off the end of their line of loaded offsets (the maps' overlap); their "
+       "hold angle is the last stop's",
        false, ""},
       {"load-deep-interference",
        "under load: at more than 5 % of the offsets a contact's interference exceeds a tenth of its radius: beyond "

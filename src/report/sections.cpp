@@ -725,7 +725,8 @@ std::string load_curve_figure(const Prediction& p) {
   QuantileBand b;
   b.x = p.load_curve;
   b.q05 = p.load_curve_q05, b.q50 = p.load_curve_q50, b.q95 = p.load_curve_q95;
-  b.title = "Friction under load (Hertzian asperities)";
+  b.title = p.is_map ? "Friction under load (elastic half-space, block locked to d)"
+                     : "Friction under load (Hertzian asperities)";
   b.x_label = "load W on the block (N)";
   b.median_label = "median over drops (the headline at W)";
   b.mark = p.load;
@@ -735,15 +736,16 @@ std::string load_curve_figure(const Prediction& p) {
   RefLine rigid;
   rigid.horizontal = true;
   rigid.value = deg(p.rigid_friction_angle);
-  rigid.label = "rigid median";
+  rigid.label = p.is_map ? "rigid median (free block)" : "rigid median";
   pl.lines.push_back(rigid);
   auto svg = plot_svg(pl);
   if (!svg) return {};
   return figure(*svg, fmt::format("The same drops on the loaded lift at other loads (key load_curve_* of the JSON; "
-                                  "docs/load.md): E* = {:.3g} Pa; at W = {:.3g} N {:.3g} asperity contacts per "
-                                  "offset, the block {:.3g} m below first touch; the rigid median {}.",
-                                  p.contact_modulus, p.load, p.load_contacts, p.load_approach,
-                                  fmt_deg(p.rigid_friction_angle))) +
+                                  "docs/load.md): E* = {:.3g} Pa; at W = {:.3g} N {:.3g} {} per offset, the block "
+                                  "{:.3g} m below first touch; the rigid median {}{}.",
+                                  p.contact_modulus, p.load, p.load_contacts,
+                                  p.is_map ? "contact patches" : "asperity contacts", p.load_approach,
+                                  fmt_deg(p.rigid_friction_angle), p.is_map ? " (the free rigid block)" : "")) +
          quantile_band_table(b, "load-curve", "load", [](double x) { return fmt::format("{:.3g} N", x); });
 }
 
@@ -779,7 +781,9 @@ std::string headline(const ReportInput& in, const ReportData& d) {
         p.is_map ? "(the steepest seat the drops rested in)" : "θ_max + θ_a", fmt_deg(p.upper_bound_friction_angle),
         fmt_mu(std::tan(std::min(p.upper_bound_friction_angle, 1.5707963))), fmt_deg(p.eq18_range[0]),
         fmt_deg(p.eq18_range[1]), p.model,
-        p.is_map ? "a rigid block free to move sideways, quasi-static"
+        p.is_map ? (std::isfinite(p.load) ? "the block locked to the direction, quasi-static hold angle on the "
+                                            "loaded lift of the elastic half-space"
+                                          : "a rigid block free to move sideways, quasi-static")
                  : (std::isfinite(p.load) ? "the quasi-static hold angle on the loaded lift of Hertzian asperities"
                                           : "the quasi-static hold angle on the exact lift"),
         p.direction * 180 / std::numbers::pi, p.atomic_friction, escape_html(p.conditioning),

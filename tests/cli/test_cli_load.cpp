@@ -5,6 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/cli_runner.hpp"
+#include "frictal/io.hpp"
+
+#include <cmath>
 
 using json = nlohmann::json;
 
@@ -69,6 +72,44 @@ TEST(CliLoad, ErrorsNameTheOption) {
   expect_usage_error(
       "predict " + f + " --load 2N --modulus 70GPa --poisson 0.3 --upper-modulus rigid --upper-poisson 0.2",
       "--upper-poisson: a rigid upper block has none");
-  expect_usage_error("predict " + data("maps/matrix-6.txt") + " --load 2N --modulus 70GPa --poisson 0.3",
-                     "for line profiles");
+}
+
+TEST(CliLoad, PredictsAMapPairUnderLoad) {
+  // Crossed waves, 24 x 24 nodes at 1 um, against themselves turned over; 2 x 2 drops.
+  frictal::Map m;
+  m.nx = m.ny = 24;
+  m.dx = m.dy = 1e-6;
+  for (std::size_t j = 0; j < m.ny; ++j)
+    for (std::size_t i = 0; i < m.nx; ++i)
+      m.heights.push_back(2e-7 * std::sin(0.6 * double(i)) * std::cos(0.45 * double(j)) + 1e-8 * double(i % 3));
+  const std::string f = temp_path("load-waves.x3p");
+  ASSERT_TRUE(frictal::write_x3p(f, m).ok());
+  const CliRun rigid = run_cli("predict " + f + " --drops 2 --json");
+  ASSERT_EQ(rigid.code, 0) << rigid.err;
+  const json r = json::parse(rigid.out);
+  const CliRun loaded = run_cli("predict " + f + " --drops 2 --load 1mN --modulus 70GPa --poisson 0.3 --json");
+  ASSERT_EQ(loaded.code, 0) << loaded.err;
+  const json j = json::parse(loaded.out);
+  EXPECT_EQ(j["model"], "map-halfspace-locked-hold");
+  EXPECT_DOUBLE_EQ(j["load_n"].get<double>(), 1e-3);
+  ASSERT_EQ(j["load_curve_n"].size(), 3u);  // W / 10, W, 10 W
+  EXPECT_DOUBLE_EQ(j["load_curve_n"][0].get<double>(), 1e-4);
+  EXPECT_DOUBLE_EQ(j["load_curve_median_deg"][1].get<double>(), j["friction_angle_deg"].get<double>());
+  EXPECT_DOUBLE_EQ(j["rigid_friction_angle_deg"].get<double>(), r["friction_angle_deg"].get<double>());
+  EXPECT_NEAR(j["contact_modulus_pa"].get<double>(), 70e9 / (2 * (1 - 0.3 * 0.3)), 1);
+  EXPECT_GT(j["load_approach_m"].get<double>(), 0);
+  EXPECT_GT(j["load_contact_fraction_max"].get<double>(), 0);
+  EXPECT_TRUE(j["load_merged_share"].is_null());
+  EXPECT_EQ(j["drop_friction_angles_deg"].size(), 4u);
+  const CliRun text = run_cli("predict " + f + " --drops 2 --load 1mN --modulus 70GPa --poisson 0.3");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_NE(text.out.find("friction angle against load"), std::string::npos) << text.out;
+  EXPECT_NE(text.out.find("contact patches per offset"), std::string::npos) << text.out;
+  // The report plots the map's curve.
+  const std::string page = temp_path("load-map-report.html");
+  const CliRun rep = run_cli("report " + f + " --drops 2 --load 1mN --modulus 70GPa --poisson 0.3 -o " + page);
+  ASSERT_EQ(rep.code, 0) << rep.err;
+  const std::string html = read_file(page);
+  EXPECT_NE(html.find("id=\"load-curve\""), std::string::npos);
+  EXPECT_NE(html.find("elastic half-space"), std::string::npos);
 }

@@ -272,14 +272,4 @@ TEST(LoadedPrediction, RefusesWhatTheModelDoesNotCover) {
   o.loads = {1e-3};
   o.lower_material = {0, 0.3};
   EXPECT_FALSE(predict(lower, nullptr, o));
-  PredictSurface map;
-  map.is_map = true;
-  map.name = "map";
-  map.map.nx = map.map.ny = 8;
-  map.map.dx = map.map.dy = 1e-6;
-  map.map.heights.assign(64, 0);
-  o.lower_material = {70e9, 0.3};
-  auto m = predict(map, nullptr, o);
-  ASSERT_FALSE(m);
-  EXPECT_NE(m.error().message.find("for line profiles"), std::string::npos) << m.error().message;
 }

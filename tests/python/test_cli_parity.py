@@ -183,6 +183,25 @@ def test_the_bound_warnings_are_the_librarys_words(tmp_path):
     assert bound(p["warnings"]) == bound(c["warnings"])
 
 
+def test_a_map_pair_under_load_equals_the_cli(tmp_path):
+    """Friction under load for maps (the half-space, docs/load.md "Maps"): crossed waves, 24 x 24
+    nodes, against themselves turned over, 2 x 2 drops."""
+    x = np.arange(24)
+    z = 2e-7 * np.sin(0.6 * x)[None, :] * np.cos(0.45 * x)[:, None] + 1e-8 * (x % 3)[None, :]
+    path = str(tmp_path / "waves.x3p")
+    frictal.write_x3p(path, z, dx=1e-6, dy=1e-6)
+    want = cli("predict", path, "--drops", "2", "--load", "1mN", "--modulus", "70GPa", "--poisson", "0.3")
+    got = quiet(frictal.predict, path, drops=2, load=1e-3, modulus=70e9, poisson=0.3).to_dict()
+    assert got["model"] == want["model"] == "map-halfspace-locked-hold"
+    for key, value in want.items():
+        if key in ("lower", "upper", "warnings") or key not in got:
+            continue
+        if isinstance(value, float) or isinstance(got[key], float):
+            assert same(got[key], value), (key, got[key], value)
+        else:
+            assert got[key] == value, key
+
+
 def test_the_cli_s_tilt_frames_read_back_in_python(tmp_path):
     """`frictal tilt --frames` written by the CLI, read by frictal.read_tilt_frames: the last frame's
     upper centroid has moved down the slope by the displacement the CLI's JSON reports (the block
