@@ -91,10 +91,11 @@ struct LoadWords {
 
 inline void add_load_options(CLI::App& app, LoadWords& w) {
   app.add_option("--load", w.loads,
-                 "Friction under load (profiles; docs/load.md): the upper block's weight W, a force with its unit "
-                 "(N, mN, uN, kN); a comma-separated list gives the friction-against-load curve, the first load the "
-                 "headline (one load: the curve over W x 10^(-2..1)). Needs --modulus and --poisson. Default: rigid "
-                 "blocks");
+                 "Friction under load (docs/load.md; profiles: Hertzian asperities, maps: the elastic half-space "
+                 "with the block locked to the direction): the upper block's weight W, a force with its unit (N, mN, "
+                 "uN, kN); a comma-separated list gives the friction-against-load curve, the first load the headline "
+                 "(one load: the curve over W x 10^(-2..1) for profiles, W x 10^(-1..1) for maps). Needs --modulus "
+                 "and --poisson. Default: rigid blocks");
   app.add_option("--modulus", w.modulus,
                  "With --load: Young's modulus E of LOWER (and of UPPER unless --upper-modulus): Pa, MPa, GPa");
   app.add_option("--poisson", w.poisson,
