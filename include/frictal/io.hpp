@@ -10,6 +10,7 @@
 
 #include "frictal/geometry.hpp"
 #include "frictal/map.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 
 namespace frictal {
@@ -175,5 +176,11 @@ Status write_x3p(const std::string& path, const Map& m, const X3pWriteOptions& o
 /// Writes a uniformly spaced profile as X3P (FeatureType PRF, SizeY = 1). Error if x is not
 /// uniform (every x within 1% of the spacing of x0 + k dx; written as x0 + k dx).
 Status write_x3p(const std::string& path, const Profile& p, const X3pWriteOptions& options = {});
+
+/// What a surface file holds as output columns (frictal/outputs.hpp; src/io/io_columns.cpp):
+/// `frictal info --json` (with the map's grid) and Python read_surface's dict (SI).
+const Columns<SurfaceData>& surface_data_columns();
+/// One channel of a file (table "info_channel"), in the file's own units.
+const Columns<ChannelInfo>& channel_info_columns();
 
 }  // namespace frictal

@@ -44,12 +44,7 @@ std::vector<double> vec(const py::array_t<double, py::array::c_style | py::array
   return std::vector<double>(a.data(), a.data() + a.size());
 }
 
-py::dict hist_dict(const Histogram& h) {
-  py::dict d;
-  d["edges"] = arr(h.edges);
-  d["density"] = arr(h.density);
-  return d;
-}
+py::dict hist_dict(const Histogram& h) { return py_detail::py_row(row_of(histogram_columns(), h)); }
 
 SurfaceSpec spec_of(const std::string& generator, const py::kwargs& kw, const std::string& function) {
   const GeneratorInfo* g = find_generator(generator);
@@ -181,10 +176,13 @@ PYBIND11_MODULE(_core, m) {
       [](const Profile& p, double tip_radius) {
         const ProfileStats s = profile_stats(p);
         py::dict d = py_detail::to_dict(profile_stats_columns(), s);
-        d["slope_pdf"] = hist_dict(slope_distribution(p));
         // Scan quantities (scan_stats.hpp): n dx length, sampling interval, bandwidth.
         py_detail::put_columns(d, profile_scan_stats_columns(), profile_scan_stats(p));
-        if (tip_radius > 0) d["short_reliability_cutoff_m"] = py_detail::ok(short_reliability_cutoff(p, tip_radius));
+        StatsExtras extras;
+        extras.tip_radius = tip_radius;
+        if (tip_radius > 0) extras.short_reliability_cutoff = py_detail::ok(short_reliability_cutoff(p, tip_radius));
+        extras.slope_distribution = slope_distribution(p);  // slope_pdf
+        py_detail::put_columns(d, stats_extras_columns(), extras);
         return d;
       },
       py::arg("profile"), py::kw_only(), py::arg("tip_radius") = 0.0,
