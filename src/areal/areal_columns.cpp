@@ -19,8 +19,8 @@ const Columns<AnisotropyRow>& anisotropy_row_columns() {
             "theta_forward_deg", "deg", "theta_max along the direction", [](const T& r) { return r.theta_forward; },
             "-"),
         column<T>(
-            "theta_backward_deg", "deg", "theta_max against the direction",
-            [](const T& r) { return r.theta_backward; }, "-"),
+            "theta_backward_deg", "deg", "theta_max against the direction", [](const T& r) { return r.theta_backward; },
+            "-"),
         column<T>(
             "sigma_deg", "deg", "sigma of Eq. 18", [](const T& r) { return r.sigma; }, "-"),
         column<T>(
@@ -28,11 +28,11 @@ const Columns<AnisotropyRow>& anisotropy_row_columns() {
             "rigid upper bound: theta_max + theta_a of the signature; with --hold the hold model's (the steepest "
             "seat the drops rested in, above every drop)",
             [](const T& r) { return r.upper_bound_friction_angle; }, "-"),
-        only_if(column<T>(
-                    "signature_bound_friction_angle_deg", "deg",
-                    "--hold: the signature's theta_max + theta_a, beside it",
-                    [](const T& r) { return *r.signature_bound_friction_angle; }, "-"),
-                [](const T& r) { return r.signature_bound_friction_angle.has_value(); }),
+        only_if(
+            column<T>(
+                "signature_bound_friction_angle_deg", "deg", "--hold: the signature's theta_max + theta_a, beside it",
+                [](const T& r) { return *r.signature_bound_friction_angle; }, "-"),
+            [](const T& r) { return r.signature_bound_friction_angle.has_value(); }),
         column<T>(
             "upper_bound_friction_coefficient", "1", "tan of the upper bound",
             [](const T& r) { return r.upper_bound_friction_coefficient; }, "-"),
@@ -47,19 +47,19 @@ const Columns<AnisotropyRow>& anisotropy_row_columns() {
     // The hold angle's statistics over drops, flattened: hold_angle_<statistic>_deg, and with the
     // block locked its quantiles, hold_angle_locked_<quantile>_deg.
     for (const Column<HoldStatistics>& s : hold_statistics_columns()) {
-      c.push_back(only_if(column<T>(
-                              "hold_angle_" + s.key, s.unit,
-                              "--hold: hold angle over drops (frictal predict --direction): " + s.help,
-                              [si = s.si](const T& r) { return si(*r.hold_angle); }, "-"),
-                          [](const T& r) { return r.hold_angle.has_value(); }));
+      c.push_back(only_if(
+          column<T>(
+              "hold_angle_" + s.key, s.unit, "--hold: hold angle over drops (frictal predict --direction): " + s.help,
+              [si = s.si](const T& r) { return si(*r.hold_angle); }, "-"),
+          [](const T& r) { return r.hold_angle.has_value(); }));
     }
     for (const Column<HoldStatistics>& s : hold_statistics_columns()) {
       if (!s.key.starts_with("q")) continue;
-      c.push_back(only_if(column<T>(
-                              "hold_angle_locked_" + s.key, s.unit,
-                              "--hold --locked: the block locked to the direction, " + s.help,
-                              [si = s.si](const T& r) { return si(*r.hold_angle_locked); }, "-"),
-                          [](const T& r) { return r.hold_angle_locked.has_value(); }));
+      c.push_back(only_if(
+          column<T>(
+              "hold_angle_locked_" + s.key, s.unit, "--hold --locked: the block locked to the direction, " + s.help,
+              [si = s.si](const T& r) { return si(*r.hold_angle_locked); }, "-"),
+          [](const T& r) { return r.hold_angle_locked.has_value(); }));
     }
     return c;
   }();
