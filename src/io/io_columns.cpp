@@ -71,4 +71,37 @@ const Columns<SurfaceData>& surface_data_columns() {
   return cols;
 }
 
+const Columns<FormatInfo>& format_info_columns() {
+  using T = FormatInfo;
+  static const Columns<T> cols = {
+      column<T>(
+          "name", "text", "the format's name (--format)", [](const T& f) { return f.name; }, "-"),
+      column<T>(
+          "description", "text", "what it is, with the usual extensions", [](const T& f) { return f.description; },
+          "-"),
+      column<T>(
+          "reader", "text", "native or gwyddion", [](const T& f) { return f.reader; }, "-"),
+      column<T>(
+          "can_write", "flag", "frictal writes it (native) / Gwyddion's module saves it",
+          [](const T& f) { return f.can_write; }, "-"),
+  };
+  return cols;
+}
+
+const Columns<FormatList>& format_list_columns() {
+  using T = FormatList;
+  static const Columns<T> cols = {
+      list_column<T>(
+          "formats", "format", "every readable format: the native readers, then Gwyddion's", format_info_columns(),
+          [](const T& l) { return std::optional(l.formats); }, "-"),
+      column<T>(
+          "gwyddion", "flag", "the Gwyddion backend is available", [](const T& l) { return l.gwyddion; }, "-"),
+      only_if(column<T>(
+                  "gwyddion_missing", "text", "why the Gwyddion backend is not available",
+                  [](const T& l) { return l.gwyddion_missing; }, "-"),
+              [](const T& l) { return !l.gwyddion; }),
+  };
+  return cols;
+}
+
 }  // namespace frictal

@@ -19,6 +19,7 @@
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 #include "frictal/tilt.hpp"
+#include "frictal/warnings.hpp"
 
 namespace frictal {
 
@@ -81,6 +82,23 @@ const Columns<RunRecord>& run_record_columns() {
   return cols;
 }
 
+const Columns<WarningCode>& warning_code_columns() {
+  using T = WarningCode;
+  static const Columns<T> cols = {
+      column<T>(
+          "code", "text", "the code", [](const T& c) { return c.code; }, "-"),
+      column<T>(
+          "meaning", "text", "what it means", [](const T& c) { return c.meaning; }, "-"),
+      column<T>(
+          "doubtful", "flag", "the input was probably read wrong: a prediction with the code is doubtful",
+          [](const T& c) { return c.doubtful; }, "-"),
+      column<T>(
+          "fix", "text", "the fix that exists: the options to add (Python keywords in parentheses)",
+          [](const T& c) { return c.fix; }, "-"),
+  };
+  return cols;
+}
+
 namespace {
 
 std::vector<OutputTable> make_tables() {
@@ -92,8 +110,7 @@ std::vector<OutputTable> make_tables() {
   t.back().columns.push_back(ci("warnings", "list:warning", "the warnings of the inputs and the result", "warnings"));
   t.push_back({"command", "what commands print beside their results: the inputs they were given and how they ran",
                infos(run_record_columns())});
-  t.back().columns.push_back(
-      ci("curve", "list:contact", "frictal contact with several loads: one contact object per load"));
+
   t.push_back({"warning", "one warning: its code (frictal warnings) and message", infos(warning_columns())});
   t.push_back(
       {"histogram", "a density: bin edges and density (units in the parent key's help)", infos(histogram_columns())});
@@ -104,6 +121,7 @@ std::vector<OutputTable> make_tables() {
                infos(contact_columns())});
   t.back().columns.push_back(py("pressure", "list", "fields=True: the pressure at every point (Pa; maps: (ny, nx))"));
   t.back().columns.push_back(py("gap", "list", "fields=True: the gap at every point (m; maps: (ny, nx))"));
+  t.push_back({"contact_curve", "frictal contact --json with several loads", infos(contact_curve_columns())});
   t.push_back({"contacts",
                "Python frictal.signature(..., keep_contacts=True)['contacts']: every contact",
                {py("offset", "m", "the offset of each contact"), py("x", "m", "contact abscissa in the lower's frame"),
@@ -155,11 +173,9 @@ std::vector<OutputTable> make_tables() {
                           {py("heights", "m", "the map's heights (ny, nx), NaN where not measured"),
                            py("dx", "m", "node spacing along x"), py("dy", "m", "node spacing along y")});
   t.push_back({"info_channel", "one channel of a file (frictal info --json)", infos(channel_info_columns())});
-  t.push_back({"warning_code",
-               "frictal warnings --json: every warning code",
-               {ci("code", "text", "the code"), ci("meaning", "text", "what it means"),
-                ci("doubtful", "flag", "the input was probably read wrong: a prediction with the code is doubtful"),
-                ci("fix", "text", "the fix that exists: the options to add (Python keywords in parentheses)")}});
+  t.push_back({"warning_code", "frictal warnings --json: every warning code", infos(warning_code_columns())});
+  t.push_back({"formats", "frictal formats --json: every readable format", infos(format_list_columns())});
+  t.push_back({"format", "one readable format (frictal formats --json)", infos(format_info_columns())});
   t.push_back(
       {"areal",
        "frictal areal --json: the areal signature of two blocks along a direction",

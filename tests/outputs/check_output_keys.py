@@ -206,8 +206,9 @@ check_cli(["anisotropy"], "anisotropy", map1, "--json", "--directions", "2", "--
 check_cli(["areal_tilt"], "areal-tilt", map1, map2, "--predict-only", "--json")
 check_cli(["tilt"], "tilt", "koch", "--iterations", "2", "--json", "--max-tilt", "30", "-q")
 check_cli(["warning_code"], "warnings", "--json")
+check_cli(["formats"], "formats", "--json")
 check_cli(["contact"], "contact", map1, "--load", "1MPa", "--modulus", "1GPa", "--poisson", "0.3", "--json")
-check_cli(["contact"], "contact", prof, prof, "--load", "1MPa,2MPa", "--modulus", "1GPa", "--poisson", "0.3",
+check_cli(["contact", "contact_curve"], "contact", prof, prof, "--load", "1MPa,2MPa", "--modulus", "1GPa", "--poisson", "0.3",
           "--json")
 # A study at the quick scale (seconds): its status and its findings as data; the rows' outputs are
 # checked against the outputs its kind declares (frictal study kinds --json).

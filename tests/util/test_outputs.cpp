@@ -30,7 +30,8 @@ struct Shape {
 
 const Columns<Point>& point_columns() {
   static const Columns<Point> cols = {
-      frictal::column<Point>("x_m", "m", "abscissa", [](const Point& p) { return p.x; }, "x"),
+      frictal::column<Point>(
+          "x_m", "m", "abscissa", [](const Point& p) { return p.x; }, "x"),
       frictal::column<Point>("angle_deg", "deg", "angle", [](const Point& p) { return p.angle; }),
   };
   return cols;
@@ -38,12 +39,13 @@ const Columns<Point>& point_columns() {
 
 const Columns<Shape>& shape_columns() {
   static const Columns<Shape> cols = {
-      frictal::only_if(frictal::column<Shape>("size_m", "m", "size", [](const Shape& s) { return *s.size; }, "size"),
+      frictal::only_if(frictal::column<Shape>(
+                           "size_m", "m", "size", [](const Shape& s) { return *s.size; }, "size"),
                        [](const Shape& s) { return s.size.has_value(); }),
       frictal::object_column<Shape>("centre", "point", "the centre", point_columns(),
                                     [](const Shape& s) { return s.centre; }),
-      frictal::list_column<Shape>("corners", "point", "the corners", point_columns(),
-                                  [](const Shape& s) { return s.corners; }, "-"),
+      frictal::list_column<Shape>(
+          "corners", "point", "the corners", point_columns(), [](const Shape& s) { return s.corners; }, "-"),
   };
   return cols;
 }
