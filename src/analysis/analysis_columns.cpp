@@ -169,10 +169,10 @@ const Columns<StatsExtras>& stats_extras_columns() {
                         "shortest scale the tip resolves (null: unreliable at every scale)", cutoff, "-"),
               tip),
       // Python's dicts: profile_stats names it with the unit suffix, map_stats without.
-      only_if(column<T>("", "m", "shortest scale the tip resolves (NaN: unreliable at every scale)", cutoff,
-                        "short_reliability_cutoff_m"),
+      only_if(column<T>("", "m", "profile_stats: shortest scale the tip resolves (NaN: unreliable at every scale)",
+                        cutoff, "short_reliability_cutoff_m"),
               [tip](const T& e) { return tip(e) && !e.is_map; }),
-      only_if(column<T>("", "m", "shortest scale the tip resolves (NaN: unreliable at every scale)", cutoff,
+      only_if(column<T>("", "m", "map_stats: shortest scale the tip resolves (NaN: unreliable at every scale)", cutoff,
                         "short_reliability_cutoff"),
               [tip](const T& e) { return tip(e) && e.is_map; }),
       only_if(column<T>(
