@@ -119,7 +119,12 @@ std::function<int()> setup(CLI::App& app) {
                           "the map",
                           a->directions, drops, u.valid_count(), work, hold_options.map_work_limit));
     }
-    nlohmann::json rows = nlohmann::json::array();
+    AnisotropyTable table;
+    table.atomic_friction = a->atomic_friction;
+    if (a->hold) {
+      table.hold_model = "map-continuous-free";
+      table.hold_drops = a->drops * a->drops;
+    }
     std::string text;  // the table, printed whole after the progress line
     if (!a->json)
       text += fmt::format(
@@ -168,25 +173,25 @@ std::function<int()> setup(CLI::App& app) {
             add_warning(warnings, {w.code, fmt::format("direction {:g} deg: {}", to_deg(angle), w.message)});
       }
       if (a->json) {
-        nlohmann::json row;
-        row["direction_deg"] = to_deg(angle);
-        row["theta_forward_deg"] = to_deg(fwd);
-        row["theta_backward_deg"] = to_deg(bwd);
-        row["sigma_deg"] = to_deg(sigma);
+        AnisotropyRow row;
+        row.direction = angle;
+        row.theta_forward = fwd;
+        row.theta_backward = bwd;
+        row.sigma = sigma;
         // theta_max + theta_a (Eq. 6) of the signature; with --hold the hold model's own bound (the
         // same model as the hold angles beside it: above every drop), the signature's kept apart.
-        row["upper_bound_friction_angle_deg"] = to_deg(hold ? hold->upper_bound_friction_angle : p.friction_angle);
-        row["upper_bound_friction_coefficient"] =
+        row.upper_bound_friction_angle = hold ? hold->upper_bound_friction_angle : p.friction_angle;
+        row.upper_bound_friction_coefficient =
             hold ? std::tan(hold->upper_bound_friction_angle) : p.friction_coefficient;
-        if (hold) row["signature_bound_friction_angle_deg"] = to_deg(p.friction_angle);
-        row["eq18_low_friction_coefficient"] = p.friction_coefficient_low;
-        if (!a->areal) row["lines"] = lines;
+        if (hold) row.signature_bound_friction_angle = p.friction_angle;
+        row.eq18_low_friction_coefficient = p.friction_coefficient_low;
+        if (!a->areal) row.lines = lines;
         if (hold) {
-          row["hold_runaway_distance_m"] = hold->runaway_distance;
-          hold_statistics_json(row, "hold_angle", hold->friction_angle);
-          if (a->locked) hold_statistics_json(row, "hold_angle_locked", hold->locked_friction_angle, true);
+          row.hold_runaway_distance = hold->runaway_distance;
+          row.hold_angle = hold->friction_angle;
+          if (a->locked) row.hold_angle_locked = hold->locked_friction_angle;
         }
-        rows.push_back(row);
+        table.directions.push_back(std::move(row));
       } else {
         const double bound = hold ? hold->upper_bound_friction_angle : p.friction_angle;
         text += fmt::format("  {:7.1f}  {:10.4f}  {:10.4f}  {:9.4f}  {:7.4f}  {:.5f}", to_deg(angle), to_deg(fwd),
@@ -202,17 +207,13 @@ std::function<int()> setup(CLI::App& app) {
     if (hold_options.progress) fmt::print(stderr, "\n");
     fmt::print("{}", text);
     if (a->json) {
-      nlohmann::json j;
-      j["file"] = a->file;
-      j["method"] = a->areal ? "areal" : "lines";
-      if (a->hold) {
-        j["hold_model"] = "map-continuous-free";
-        j["hold_drops"] = a->drops * a->drops;
-      }
-      j["atomic_friction"] = a->atomic_friction;
-      j["directions"] = rows;
-      j["conditioning"] = conditioning_text(records);
-      j["warnings"] = warnings_json(warnings);
+      RunRecord run;
+      run.file = a->file;
+      run.method = a->areal ? "areal" : "lines";
+      run.conditioning = conditioning_text(records);
+      run.warnings = warnings;
+      nlohmann::json j = object_of(anisotropy_columns(), table);
+      put_columns(j, run_record_columns(), run);
       print_json(j);
     } else {
       if (a->hold)

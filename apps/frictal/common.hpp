@@ -89,13 +89,35 @@ inline nlohmann::json json_value(const std::string& unit, const OutputValue& si)
   return l;
 }
 
+/// A nested object in JSON: each of its fields under its key, in its interface unit.
+inline nlohmann::json json_row(const OutputRow& row) {
+  nlohmann::json o = nlohmann::json::object();
+  for (const OutputField& f : row)
+    if (!f.info.key.empty()) o[f.info.key] = json_value(f.info.unit, f.si);
+  return o;
+}
+
 /// The generic JSON writer of an output table: every column of `cols` that the CLI prints (a
-/// non-empty key) and that has a value (nested objects are written by the caller under their
-/// declared keys) into `j`, in its interface unit.
+/// non-empty key) and that `value` has (a value, or nested objects: "object:" one, "list:" a
+/// list) into `j`, in its interface unit. Declared columns without either are written by the
+/// caller under their declared keys.
 template <class T>
 void put_columns(nlohmann::json& j, const Columns<T>& cols, const T& value) {
-  for (const Column<T>& c : cols)
-    if (!c.key.empty() && c.si) j[c.key] = json_value(c.unit, c.si(value));
+  for (const Column<T>& c : cols) {
+    if (c.key.empty() || !has_output(c, value)) continue;
+    if (c.si) {
+      j[c.key] = json_value(c.unit, c.si(value));
+      continue;
+    }
+    const std::vector<OutputRow> rows = c.rows(value);
+    if (c.unit.starts_with("object:")) {
+      j[c.key] = rows.empty() ? nlohmann::json(nullptr) : json_row(rows.front());
+    } else {
+      nlohmann::json l = nlohmann::json::array();
+      for (const OutputRow& r : rows) l.push_back(json_row(r));
+      j[c.key] = l;
+    }
+  }
 }
 /// An output table's columns as one JSON object.
 template <class T>
@@ -108,7 +130,7 @@ nlohmann::json object_of(const Columns<T>& cols, const T& value) {
 /// Warnings as results: the JSON array [{code, message}] of a command's output.
 inline nlohmann::json warnings_json(const std::vector<Warning>& w) {
   nlohmann::json a = nlohmann::json::array();
-  for (const Warning& x : w) a.push_back({{"code", x.code}, {"message", x.message}});
+  for (const Warning& x : w) a.push_back(json_row(row_of(warning_columns(), x)));
   return a;
 }
 /// Text output: each warning on standard error, with its code.

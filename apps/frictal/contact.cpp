@@ -200,19 +200,19 @@ std::function<int()> setup(CLI::App& app) {
       for (const Warning& w : r.warnings) add_warning(warnings, w);
     }
     if (a->json) {
+      RunRecord run;
+      run.lower = a->lower;
+      if (!a->upper.empty()) run.upper = a->upper;
+      run.kind = lower.is_map ? "map" : "profile";
+      run.conditioning = record;
+      run.wall_time = wall;
+      run.warnings = warnings;
       nlohmann::json j;
-      j["lower"] = a->lower;
-      if (!a->upper.empty()) j["upper"] = a->upper;
-      j["kind"] = lower.is_map ? "map" : "profile";
-      j["conditioning"] = record;
-      if (results.size() == 1) {
+      if (results.size() == 1)
         put_columns(j, contact_columns(), results.front());
-      } else {
-        j["curve"] = nlohmann::json::array();
-        for (const ContactResult& r : results) j["curve"].push_back(object_of(contact_columns(), r));
-      }
-      j["wall_time_s"] = wall;
-      j["warnings"] = warnings_json(warnings);
+      else
+        put_columns(j, contact_curve_columns(), ContactCurve{results});
+      put_columns(j, run_record_columns(), run);
       print_json(j);
     } else {
       const ContactResult& f = results.front();

@@ -46,12 +46,7 @@ std::function<int()> setup(CLI::App& app) {
       const KochParams kp = unwrap(koch_params(*spec));
       const double D = unwrap(koch_dimension(kp.alpha));
       if (a->json) {
-        nlohmann::json j;
-        j["alpha_deg"] = to_deg(kp.alpha);
-        j["method"] = "eq13";
-        j["dimension"] = D;
-        j["equation"] = "2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1";
-        print_json(j);
+        print_json(object_of(koch_dimension_columns(), KochDimension{kp.alpha, D}));
       } else {
         fmt::print("Koch dimension for alpha = {} deg (Eq. 13): D = {:.12f}\n", to_deg(kp.alpha), D);
       }
@@ -113,12 +108,13 @@ std::function<int()> setup(CLI::App& app) {
     for (const auto& w : s.warnings) add_warning(warnings, w);
     for (Warning& w : check_dimension_fit(f.dimension, f.r_squared, a->method)) add_warning(warnings, std::move(w));
     if (a->json) {
-      nlohmann::json j;
-      j["file"] = a->file;
-      j["method"] = a->method;
-      put_columns(j, fractal_fit_columns(), f);
-      j["conditioning"] = record.text();
-      j["warnings"] = warnings_json(warnings);
+      RunRecord in;
+      in.file = a->file;
+      in.method = a->method;
+      in.conditioning = record.text();
+      in.warnings = warnings;
+      nlohmann::json j = object_of(fractal_fit_columns(), f);
+      put_columns(j, run_record_columns(), in);
       print_json(j);
     } else {
       fmt::print("{}: D = {:.4f} ({} method, r^2 = {:.4f}, fit over {:.4g} .. {:.4g} m)\n", a->file, f.dimension,

@@ -18,15 +18,7 @@ std::function<int()> setup(CLI::App& app) {
     std::string why;
     const bool gwy = gwyddion_available("", &why);
     if (a->json) {
-      nlohmann::json j;
-      nlohmann::json list = nlohmann::json::array();
-      for (const auto& f : formats)
-        list.push_back(
-            {{"name", f.name}, {"description", f.description}, {"reader", f.reader}, {"can_write", f.can_write}});
-      j["formats"] = list;
-      j["gwyddion"] = gwy;
-      if (!gwy) j["gwyddion_missing"] = why;
-      print_json(j);
+      print_json(object_of(format_list_columns(), FormatList{formats, gwy, why}));
       return 0;
     }
     std::size_t native = 0;

@@ -1,6 +1,7 @@
 // frictal info FILE — what a surface file holds: its format, the reader that took it, every
 // channel (name, kind, points, physical size, units) and which one frictal reads.
 #include "common.hpp"
+#include "frictal/scan_stats.hpp"
 #include "surface_io.hpp"
 
 namespace frictal::cli {
@@ -20,39 +21,16 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     const SurfaceData s = load_surface(a->file, a->input);
     if (a->json) {
-      nlohmann::json j;
-      j["file"] = a->file;
-      j["format"] = format_name(s.format);
-      j["reader"] = s.reader;
-      j["kind"] = s.is_map ? "map" : "profile";
-      j["channel"] = s.channel;
-      nlohmann::json chans = nlohmann::json::array();
-      for (const auto& c : s.channels) {
-        nlohmann::json cj;
-        cj["name"] = c.name;
-        cj["kind"] = c.is_map ? "map" : "profile";
-        cj["nx"] = c.nx;
-        cj["ny"] = c.ny;
-        cj["size_x"] = c.size_x;
-        cj["size_y"] = c.size_y;
-        cj["xy_unit"] = c.xy_unit;
-        cj["z_unit"] = c.z_unit;
-        cj["readable"] = c.readable;
-        chans.push_back(cj);
-      }
-      j["channels"] = chans;
-      if (s.is_map) {
-        j["nx"] = s.map.nx;
-        j["ny"] = s.map.ny;
-        j["dx_m"] = s.map.dx;
-        j["dy_m"] = s.map.dy;
-        j["x0_m"] = s.map.x0;
-        j["y0_m"] = s.map.y0;
-        j["valid_points"] = s.map.valid_count();
-      } else {
-        j["points"] = s.curve.size();
-      }
-      j["warnings"] = nlohmann::json::array();  // the messages, as the text output gives them
+      RunRecord in;
+      in.file = a->file;
+      in.format = format_name(s.format);
+      in.kind = s.is_map ? "map" : "profile";
+      nlohmann::json j = object_of(surface_data_columns(), s);
+      if (s.is_map) put_columns(j, map_grid_columns(), s.map);
+      put_columns(j, run_record_columns(), in);
+      // The messages alone, as the text output gives them (no codes: not the warning objects of
+      // the other commands).
+      j["warnings"] = nlohmann::json::array();
       for (const Warning& w : s.warnings) j["warnings"].push_back(w.message);
       print_json(j);
       return 0;

@@ -290,19 +290,20 @@ std::function<int()> setup(CLI::App& app) {
       write_text_output(a->pdf_out, s, "--pdf");
     }
     if (a->json) {
-      nlohmann::json j;
-      j["lower"] = a->lower;
-      j["upper"] = a->upper.empty() ? a->lower : a->upper;
-      j["slopes"] = a->slopes;
-      put_columns(j, signature_columns(), r);
-      j["surface_slope_max_deg"] = to_deg(smax);
+      RunRecord run;
+      run.lower = a->lower;
+      run.upper = a->upper.empty() ? a->lower : a->upper;
+      run.slopes = a->slopes;
+      run.surface_slope_max = smax;
+      run.conditioning = conditioning_text(records);
+      run.warnings = warnings;
+      run.wall_time = wall;
+      run.hold_wall_time = hold_wall;  // the one pass: signature and hold analysis together
+      nlohmann::json j = object_of(signature_columns(), r);
       put_columns(j, friction_columns(), fwd);
       put_columns(j, friction_backward_columns(), bwd);
-      j["conditioning"] = conditioning_text(records);
-      j["warnings"] = warnings_json(warnings);
       if (hold) add_hold_json(j, *hold);
-      j["wall_time_s"] = wall;
-      j["hold_wall_time_s"] = hold_wall;  // the one pass: signature and hold analysis together
+      put_columns(j, run_record_columns(), run);
       print_json(j);
     } else {
       // With a CSV on standard output, the summary goes to standard error.

@@ -31,13 +31,6 @@ void write_columns(const std::string& path, const char* header, const std::vecto
   if (std::fclose(f) != 0 || !ok) throw UsageError(fmt::format("{}: write failed", path));
 }
 
-nlohmann::json histogram_json(const Histogram& h) {
-  nlohmann::json j;
-  j["edges"] = h.edges;
-  j["density"] = h.density;
-  return j;
-}
-
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
   app.add_option("file", a->file, "Profile or map file (any readable format; see 'frictal formats')")->required();
@@ -67,11 +60,23 @@ std::function<int()> setup(CLI::App& app) {
     // The reader's warnings (printed as it read) and the plausibility of what was read (warnings.hpp).
     std::vector<Warning> warnings;
     for (const auto& w : data.warnings) add_warning(warnings, w);
-    auto report_warnings = [&](nlohmann::json* j) {
-      if (j) (*j)["warnings"] = warnings_json(warnings);
+    auto report_warnings = [&] {
       for (const Warning& w : warnings)
         if (w.code != "reader") print_warnings({w});
     };
+    // What the JSON says beside the statistics: the file, how it was read and conditioned.
+    auto record = [&](const ConditioningRecord& r) {
+      RunRecord in;
+      in.file = a->file;
+      in.format = format_name(data.format);
+      in.kind = data.is_map ? "map" : "profile";
+      in.conditioning = r.text();
+      in.warnings = warnings;
+      return in;
+    };
+    StatsExtras extras;
+    extras.is_map = data.is_map;
+    extras.tip_radius = tip;
     if (data.is_map) {
       require(a->spline_out.empty(), "--spline: profiles only (this file is a map)");
       const ConditionedMap cm = unwrap(condition(data.map, cond, a->file));
@@ -80,20 +85,15 @@ std::function<int()> setup(CLI::App& app) {
       const MapStats s = map_stats(m);
       const MapScanStats sc = map_scan_stats(m);
       const double cutoff = tip > 0 ? unwrap(short_reliability_cutoff(m, tip)) : 0.0;
+      extras.short_reliability_cutoff = cutoff;  // NaN (unreliable at every scale) prints as null
       if (a->json) {
         nlohmann::json j;
-        j["file"] = a->file;
-        j["format"] = format_name(data.format);
-        j["kind"] = "map";
         put_columns(j, map_stats_columns(), s);
         put_columns(j, map_grid_columns(), m);
         put_columns(j, map_scan_stats_columns(), sc);
-        if (tip > 0) {
-          j["tip_radius_m"] = tip;
-          j["short_reliability_cutoff_m"] = cutoff;  // NaN (unreliable at every scale) prints as null
-        }
-        j["conditioning"] = cm.record.text();
-        report_warnings(&j);
+        put_columns(j, stats_extras_columns(), extras);
+        put_columns(j, run_record_columns(), record(cm.record));
+        report_warnings();
         print_json(j);
       } else {
         fmt::print(
@@ -108,7 +108,7 @@ std::function<int()> setup(CLI::App& app) {
             sc.Rdq_y, sc.rms_gradient_fd);
         if (tip > 0) fmt::print("  short reliability cutoff for a {:.6g} m tip: {:.6g} m\n", tip, cutoff);
         fmt::print("  conditioning: {}\n", cm.record.text());
-        report_warnings(nullptr);
+        report_warnings();
       }
       return 0;
     }
@@ -121,6 +121,7 @@ std::function<int()> setup(CLI::App& app) {
     const ProfileStats s = profile_stats(p);
     const ProfileScanStats sc = profile_scan_stats(p);
     const double cutoff = tip > 0 ? unwrap(short_reliability_cutoff(p, tip)) : 0.0;
+    extras.short_reliability_cutoff = cutoff;
     if (!a->psd_out.empty()) {
       const Spectrum sp = unwrap(power_spectrum(p));
       write_columns(a->psd_out, "q_rad_per_m,C_m3", sp.q, sp.psd);
@@ -135,30 +136,22 @@ std::function<int()> setup(CLI::App& app) {
       const bool ok = std::fwrite(buf.data(), 1, buf.size(), f) == buf.size();
       if (std::fclose(f) != 0 || !ok) throw UsageError(fmt::format("{}: write failed", a->spline_out));
     }
-    double corr_length = 0;
     if (!a->acf_out.empty()) {
       const Autocorrelation ac = unwrap(autocorrelation(p));
       write_columns(a->acf_out, "lag_m,acf", ac.lag, ac.acf);
-      corr_length = ac.correlation_length;
+      extras.correlation_length = ac.correlation_length;
     }
     if (a->json) {
+      if (a->bins > 0) {
+        extras.height_distribution = height_distribution(p, a->bins);
+        extras.slope_distribution = slope_distribution(p, a->bins);
+      }
       nlohmann::json j;
-      j["file"] = a->file;
-      j["format"] = format_name(data.format);
-      j["kind"] = "profile";
       put_columns(j, profile_stats_columns(), s);
       put_columns(j, profile_scan_stats_columns(), sc);
-      if (tip > 0) {
-        j["tip_radius_m"] = tip;
-        j["short_reliability_cutoff_m"] = cutoff;
-      }
-      if (!a->acf_out.empty()) j["correlation_length_m"] = corr_length;
-      if (a->bins > 0) {
-        j["height_distribution"] = histogram_json(height_distribution(p, a->bins));
-        j["slope_distribution_rad"] = histogram_json(slope_distribution(p, a->bins));
-      }
-      j["conditioning"] = cp.record.text();
-      report_warnings(&j);
+      put_columns(j, stats_extras_columns(), extras);
+      put_columns(j, run_record_columns(), record(cp.record));
+      report_warnings();
       print_json(j);
     } else {
       fmt::print(
@@ -169,7 +162,7 @@ std::function<int()> setup(CLI::App& app) {
                  sc.bandwidth_short, sc.bandwidth_long);
       if (tip > 0) fmt::print("  short reliability cutoff for a {:.6g} m tip: {:.6g} m\n", tip, cutoff);
       fmt::print("  conditioning: {}\n", cp.record.text());
-      report_warnings(nullptr);
+      report_warnings();
     }
     return 0;
   };

@@ -14,8 +14,7 @@ std::function<int()> setup(CLI::App& app) {
     require(!(*json && *markdown), "give one of --json and --markdown");
     if (*json) {
       nlohmann::json j = nlohmann::json::array();
-      for (const WarningCode& c : warning_codes())
-        j.push_back({{"code", c.code}, {"meaning", c.meaning}, {"doubtful", c.doubtful}, {"fix", c.fix}});
+      for (const WarningCode& c : warning_codes()) j.push_back(object_of(warning_code_columns(), c));
       print_json(j);
     } else if (*markdown) {
       fmt::print("| code | meaning | prediction | fix |\n|---|---|---|---|\n");

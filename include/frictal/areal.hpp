@@ -6,10 +6,13 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "frictal/hold.hpp"
 #include "frictal/map.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/signature.hpp"
 
 namespace frictal {
@@ -131,5 +134,32 @@ struct ArealLift {
 /// or ranges that are negative or not finite, more than 5e7 offsets, and blocks that never touch
 /// over the offsets (maps that do not overlap along d).
 Result<ArealLift> areal_lift(const Map& lower, const Map& upper, double angle, const ArealLiftOptions& o = {});
+
+/// One sliding direction of the polar table (frictal anisotropy): the rigid bound of the
+/// signature, and with the hold model (frictal predict --direction) the hold angle over drops.
+struct AnisotropyRow {
+  double direction = 0;                                  ///< from +x towards +y (unit: rad)
+  std::optional<std::size_t> lines;                      ///< map lines theta_max is over (line profiles only)
+  double theta_forward = 0;                              ///< theta_max along the direction (unit: rad)
+  double theta_backward = 0;                             ///< theta_max against it (unit: rad)
+  double sigma = 0;                                      ///< sigma of Eq. 18 (unit: rad)
+  double upper_bound_friction_angle = 0;                 ///< theta_max + theta_a, or the hold model's bound (unit: rad)
+  double upper_bound_friction_coefficient = 0;           ///< tan of it (unitless)
+  std::optional<double> signature_bound_friction_angle;  ///< hold model: the signature's bound beside it (unit: rad)
+  double eq18_low_friction_coefficient = 0;              ///< tan of Eq. 18's low end (unitless)
+  std::optional<double> hold_runaway_distance;           ///< hold model: run-away distance d (unit: m)
+  std::optional<HoldStatistics> hold_angle;              ///< hold model: over drops, the block free (unit: rad)
+  std::optional<HoldStatistics> hold_angle_locked;       ///< the block locked to the direction; quantiles (unit: rad)
+};
+/// The polar table over directions: frictal anisotropy --json, Python anisotropy().
+struct AnisotropyTable {
+  std::optional<std::string> hold_model;  ///< the hold angles' model (frictal predict's)
+  std::optional<double> hold_drops;       ///< drops per direction (unitless count)
+  double atomic_friction = 0;             ///< mu_a (unitless)
+  std::vector<AnisotropyRow> directions;
+};
+/// Their output tables (frictal/outputs.hpp; src/areal/areal_columns.cpp).
+const Columns<AnisotropyRow>& anisotropy_row_columns();
+const Columns<AnisotropyTable>& anisotropy_columns();
 
 }  // namespace frictal

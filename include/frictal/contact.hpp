@@ -171,5 +171,11 @@ Result<std::vector<ContactResult>> solve_contact_curve(const Map& surface, const
 /// The contact solution as output columns (frictal/outputs.hpp; src/contact/contact_columns.cpp): the
 /// keys of `frictal contact --json` and Python's frictal.contact() dicts.
 const Columns<ContactResult>& contact_columns();
+/// The contact at several loads (frictal contact --load A,B,...): one ContactResult per load.
+struct ContactCurve {
+  std::vector<ContactResult> loads;
+};
+/// Its output table (table "contact_curve"): the list "curve" of contact objects.
+const Columns<ContactCurve>& contact_curve_columns();
 
 }  // namespace frictal

@@ -61,6 +61,14 @@ Result<FractalFit> psd_dimension(const Profile& p, const PsdFitOptions& o = {});
 /// alpha in [0, pi/3] (unit: rad). Solved by bisection to machine precision.
 Result<double> koch_dimension(double alpha);
 
+/// The Koch dimension of Eq. 13 as a result: the angle and the dimension it gives.
+struct KochDimension {
+  double alpha = 0;      ///< the Koch angle (unit: rad)
+  double dimension = 0;  ///< D of Eq. 13 (unitless)
+};
+/// Its output table (src/analysis/analysis_columns.cpp): `frictal dimension koch --method eq13 --json`.
+const Columns<KochDimension>& koch_dimension_columns();
+
 /// A fit's output table (frictal/outputs.hpp; src/analysis/analysis_columns.cpp): `frictal dimension
 /// --json` and Python's divider_dimension/box_dimension/psd_dimension dicts.
 const Columns<FractalFit>& fractal_fit_columns();

@@ -10,6 +10,7 @@
 
 #include "frictal/geometry.hpp"
 #include "frictal/map.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 
 namespace frictal {
@@ -175,5 +176,21 @@ Status write_x3p(const std::string& path, const Map& m, const X3pWriteOptions& o
 /// Writes a uniformly spaced profile as X3P (FeatureType PRF, SizeY = 1). Error if x is not
 /// uniform (every x within 1% of the spacing of x0 + k dx; written as x0 + k dx).
 Status write_x3p(const std::string& path, const Profile& p, const X3pWriteOptions& options = {});
+
+/// A readable format's output columns (table "format") and the list of them with the Gwyddion
+/// backend's state (table "formats"): `frictal formats --json` (src/io/io_columns.cpp).
+struct FormatList {
+  std::vector<FormatInfo> formats;
+  bool gwyddion = false;         ///< the Gwyddion backend is available
+  std::string gwyddion_missing;  ///< why not (when it is not)
+};
+const Columns<FormatInfo>& format_info_columns();
+const Columns<FormatList>& format_list_columns();
+
+/// What a surface file holds as output columns (frictal/outputs.hpp; src/io/io_columns.cpp):
+/// `frictal info --json` (with the map's grid) and Python read_surface's dict (SI).
+const Columns<SurfaceData>& surface_data_columns();
+/// One channel of a file (table "info_channel"), in the file's own units.
+const Columns<ChannelInfo>& channel_info_columns();
 
 }  // namespace frictal

@@ -8,12 +8,14 @@
 #include <cmath>
 #include <functional>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <variant>
 #include <vector>
 
+#include "frictal/result.hpp"
 #include "frictal/units.hpp"
 
 namespace frictal {
@@ -37,13 +39,42 @@ struct ColumnInfo {
   std::string python;  ///< the key in Python's dicts, whose numbers are SI; "" = not in Python's dicts
 };
 
-/// One output quantity of result type T: its declaration and its value in SI.
+/// One column of a nested object: its declaration and its value in SI.
+struct OutputField {
+  ColumnInfo info;
+  OutputValue si;
+};
+/// A nested object: the columns of its table that have a value, in the table's order.
+using OutputRow = std::vector<OutputField>;
+
+/// One output quantity of result type T: its declaration and its value in SI, or for a nested
+/// column ("object:TABLE", "list:TABLE") the objects under it.
 template <class T>
 struct Column : ColumnInfo {
   std::function<OutputValue(const T&)> si;
+  /// Whether a value of T has this output (empty: always): the key is left out when not, e.g. a
+  /// cutoff that only a given tip radius has.
+  std::function<bool(const T&)> present;
+  /// A nested column's objects: one for "object:TABLE", any number for "list:TABLE".
+  std::function<std::vector<OutputRow>(const T&)> rows;
 };
 template <class T>
 using Columns = std::vector<Column<T>>;
+
+/// Whether column `c` is written for `value`: it has a value or objects, and `value` has it.
+template <class T>
+bool has_output(const Column<T>& c, const T& value) {
+  return (c.si || c.rows) && (!c.present || c.present(value));
+}
+
+/// `value` as a nested object: every column of `cols` that has a value for it.
+template <class R>
+OutputRow row_of(const Columns<R>& cols, const R& value) {
+  OutputRow row;
+  for (const Column<R>& c : cols)
+    if (c.si && (!c.present || c.present(value))) row.push_back({c, c.si(value)});
+  return row;
+}
 
 /// The Python key that a JSON key has by default: an angle's "_deg" suffix dropped (Python's
 /// dicts hold radians); every other key unchanged.
@@ -84,6 +115,81 @@ Column<T> column(std::string key, std::string unit, std::string help, F&& f, std
   c.si = [g = std::forward<F>(f)](const T& v) { return OutputValue(g(v)); };
   return c;
 }
+
+/// Column `c`, written only for values where `pred` holds.
+template <class T, class P>
+Column<T> only_if(Column<T> c, P&& pred) {
+  c.present = std::forward<P>(pred);
+  return c;
+}
+
+/// A nested object column of T: `key` (unit "object:TABLE") holds the object of R that `f`
+/// returns (a std::optional<R>: no value, no key), written with the columns `cols`.
+template <class T, class R, class F>
+Column<T> object_column(std::string key, const std::string& table, std::string help, const Columns<R>& cols, F&& f,
+                        std::string python = {}) {
+  Column<T> c;
+  c.key = std::move(key);
+  c.unit = "object:" + table;
+  c.help = std::move(help);
+  c.python = python == "-" ? std::string() : python.empty() ? c.key : std::move(python);
+  c.present = [f](const T& v) { return f(v).has_value(); };
+  c.rows = [f, &cols](const T& v) {
+    const std::optional<R> r = f(v);
+    return r ? std::vector<OutputRow>{row_of(cols, *r)} : std::vector<OutputRow>{};
+  };
+  return c;
+}
+
+/// A nested list column of T: `key` (unit "list:TABLE") holds one object of R per element of
+/// the std::optional<std::vector<R>> that `f` returns (no value, no key), written with `cols`.
+template <class T, class R, class F>
+Column<T> list_column(std::string key, const std::string& table, std::string help, const Columns<R>& cols, F&& f,
+                      std::string python = {}) {
+  Column<T> c;
+  c.key = std::move(key);
+  c.unit = "list:" + table;
+  c.help = std::move(help);
+  c.python = python == "-" ? std::string() : python.empty() ? c.key : std::move(python);
+  c.present = [f](const T& v) { return f(v).has_value(); };
+  c.rows = [f, &cols](const T& v) {
+    std::vector<OutputRow> out;
+    if (const auto l = f(v))
+      for (const R& r : *l) out.push_back(row_of(cols, r));
+    return out;
+  };
+  return c;
+}
+
+/// The columns of a warning (table "warning"): its code and message.
+inline const Columns<Warning>& warning_columns() {
+  static const Columns<Warning> cols = {
+      column<Warning>(
+          "code", "text", "the warning's code", [](const Warning& w) { return w.code; }, "code"),
+      column<Warning>(
+          "message", "text", "what was found, with numbers", [](const Warning& w) { return w.message; }, "message"),
+  };
+  return cols;
+}
+
+/// What a command reports beside its result: the inputs it was given and how it ran (table
+/// "command"); each field that has a value is written.
+struct RunRecord {
+  std::optional<std::string> lower;              ///< the lower surface (file or generator)
+  std::optional<std::string> upper;              ///< the upper surface, as measured
+  std::optional<std::string> file;               ///< the surface file read, or the generator's name
+  std::optional<std::string> format;             ///< the file's format as read
+  std::optional<std::string> kind;               ///< "profile" or "map"
+  std::optional<std::string> method;             ///< the method the numbers come from
+  std::optional<std::string> slopes;             ///< the signature's slope method: exact or spline
+  std::optional<double> surface_slope_max;       ///< steepest slope of either surface (unit: rad)
+  std::optional<std::string> conditioning;       ///< every conditioning step applied first, with its numbers
+  std::optional<std::vector<Warning>> warnings;  ///< implausible inputs or results
+  std::optional<double> wall_time;               ///< wall time of the computation (unit: s)
+  std::optional<double> hold_wall_time;          ///< of the signature and hold analysis together (unit: s)
+};
+/// The typed columns of RunRecord (src/predict/outputs.cpp).
+const Columns<RunRecord>& run_record_columns();
 
 /// A declared column of T without a value: a nested object or list that the front end writes
 /// under `key` (JSON; "" = none) or `python` (Python's dicts; "" = none); the generic writers skip it.

@@ -4,10 +4,13 @@
 // difference grid. Definitions and sources: docs/analysis.md ("Scan quantities").
 #pragma once
 
+#include <optional>
+
 #include "frictal/geometry.hpp"
 #include "frictal/map.hpp"
 #include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
+#include "frictal/stats.hpp"
 
 namespace frictal {
 
@@ -57,5 +60,18 @@ Result<double> short_reliability_cutoff(const Map& m, double tip_radius);
 /// The scan quantities as output columns (frictal/outputs.hpp; src/analysis/analysis_columns.cpp).
 const Columns<MapScanStats>& map_scan_stats_columns();
 const Columns<ProfileScanStats>& profile_scan_stats_columns();
+
+/// What the statistics of a surface add when asked (frictal stats --tip-radius, --acf,
+/// --histograms; Python profile_stats and map_stats): each output only when it was computed.
+struct StatsExtras {
+  bool is_map = false;                           ///< the statistics are of a map, not a profile
+  double tip_radius = 0;                         ///< the stylus tip radius given; 0: none (unit: m)
+  double short_reliability_cutoff = 0;           ///< for tip_radius (unit: m; NaN: unreliable at every scale)
+  std::optional<double> correlation_length;      ///< where the autocorrelation falls to 1/e (unit: m)
+  std::optional<Histogram> height_distribution;  ///< edges in m, density per m
+  std::optional<Histogram> slope_distribution;   ///< of the slope angles: edges in rad, density per rad
+};
+/// StatsExtras' output columns (src/analysis/analysis_columns.cpp).
+const Columns<StatsExtras>& stats_extras_columns();
 
 }  // namespace frictal

@@ -47,5 +47,7 @@ MeanStd weighted_mean_std(const std::vector<double>& samples, const std::vector<
 /// A profile's statistics as output columns (frictal/outputs.hpp; src/stats/stats_columns.cpp):
 /// `frictal stats --json` and Python's profile_stats().
 const Columns<ProfileStats>& profile_stats_columns();
+/// A histogram's columns (table "histogram"): its edges and density, in the samples' units.
+const Columns<Histogram>& histogram_columns();
 
 }  // namespace frictal

@@ -142,7 +142,7 @@ template <class T>
 void put_outputs(TaskOutput& out, const Columns<T>& cols, const T& value, std::initializer_list<ColumnOutput> keys) {
   for (const ColumnOutput& k : keys)
     for (const Column<T>& c : cols) {
-      if (!k.names(c) || !c.si) continue;
+      if (!k.names(c) || !c.si || (c.present && !c.present(value))) continue;
       const OutputValue v = to_interface(c.unit, c.si(value));
       if (const double* d = std::get_if<double>(&v)) out.scalars[k.key()] = *d;
       if (const bool* b = std::get_if<bool>(&v)) out.scalars[k.key()] = *b ? 1 : 0;

@@ -11,6 +11,7 @@
 
 #include "frictal/geometry.hpp"
 #include "frictal/map.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 
 namespace frictal {
@@ -29,6 +30,8 @@ struct WarningCode {
 
 /// Every warning code the library issues, in one table.
 const std::vector<WarningCode>& warning_codes();
+/// A code's output columns (table "warning_code", src/predict/outputs.cpp): `frictal warnings --json`.
+const Columns<WarningCode>& warning_code_columns();
 /// The entry of `code` in warning_codes(); nullptr for a code not in it.
 const WarningCode* find_warning_code(const std::string& code);
 

@@ -85,15 +85,11 @@ ProfilePair conditioned_profiles(const py::object& lower, const py::object& uppe
                                  double spike_threshold, double spacing, const std::string& format,
                                  const std::string& unit);
 
+inline py::dict py_row(const OutputRow& row);
 /// The warnings as Python's dicts hold them: [{code, message}].
 inline py::list warning_list(const std::vector<Warning>& ws) {
   py::list l;
-  for (const Warning& x : ws) {
-    py::dict e;
-    e["code"] = x.code;
-    e["message"] = x.message;
-    l.append(e);
-  }
+  for (const Warning& x : ws) l.append(py_row(row_of(warning_columns(), x)));
   return l;
 }
 
@@ -126,12 +122,34 @@ inline py::object py_value(const std::string& unit, const OutputValue& v) {
   return arr(std::get<std::vector<double>>(v));
 }
 
-/// The generic Python writer of an output table: every column with a Python key and a value
-/// (nested objects are added by the caller, under their declared keys) into `d`, in SI.
+/// A nested object as a Python dict: each of its fields under its Python key, in SI.
+inline py::dict py_row(const OutputRow& row) {
+  py::dict d;
+  for (const OutputField& f : row)
+    if (!f.info.python.empty()) d[py::str(f.info.python)] = py_value(f.info.unit, f.si);
+  return d;
+}
+
+/// The generic Python writer of an output table: every column with a Python key that `value`
+/// has (a value, or nested objects: "object:" a dict, "list:" a list of dicts) into `d`, in SI.
+/// Declared columns without either are added by the caller under their declared keys.
 template <class T>
 void put_columns(py::dict& d, const Columns<T>& cols, const T& value) {
-  for (const Column<T>& c : cols)
-    if (!c.python.empty() && c.si) d[py::str(c.python)] = py_value(c.unit, c.si(value));
+  for (const Column<T>& c : cols) {
+    if (c.python.empty() || !has_output(c, value)) continue;
+    if (c.si) {
+      d[py::str(c.python)] = py_value(c.unit, c.si(value));
+      continue;
+    }
+    const std::vector<OutputRow> rows = c.rows(value);
+    if (c.unit.starts_with("object:")) {
+      d[py::str(c.python)] = rows.empty() ? py::object(py::none()) : py::object(py_row(rows.front()));
+    } else {
+      py::list l;
+      for (const OutputRow& r : rows) l.append(py_row(r));
+      d[py::str(c.python)] = l;
+    }
+  }
 }
 template <class T>
 py::dict to_dict(const Columns<T>& cols, const T& value) {

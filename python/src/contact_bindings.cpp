@@ -95,11 +95,12 @@ void frictal_bind_contact(py::module_& m) {
         py::list out;
         for (const ContactResult& r : results) {
           py::dict d = py_detail::to_dict(contact_columns(), r);
-          d["kind"] = lo.is_map ? "map" : "profile";
-          d["conditioning"] = record;
-          std::vector<Warning> w = warnings;
-          for (const Warning& x : r.warnings) add_warning(w, x);
-          d["warnings"] = py_detail::warning_list(w);
+          RunRecord run;
+          run.kind = lo.is_map ? "map" : "profile";
+          run.conditioning = record;
+          run.warnings = warnings;
+          for (const Warning& x : r.warnings) add_warning(*run.warnings, x);
+          py_detail::put_columns(d, run_record_columns(), run);
           if (fields) {
             py::array_t<double> pa = py_detail::arr(r.pressure), ga = py_detail::arr(r.gap);
             if (r.is_map) {

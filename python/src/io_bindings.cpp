@@ -127,17 +127,14 @@ void frictal_bind_io(py::module_& m) {
         require_file(path);
         const ReadOptions o = read_options(format, unit, spacing, channel, x_unit, z_unit);
         SurfaceData s = ok(nogil([&] { return read_surface(path, o); }));
+        // The map's heights as a (ny, nx) array, then the columns of what the file holds.
         py::dict d = s.is_map ? map_dict(s.map) : py::dict();
-        d["kind"] = s.is_map ? "map" : "profile";
-        if (!s.is_map) {
-          d["x"] = arr(s.curve.x);
-          d["z"] = arr(s.curve.z);
-        }
-        d["format"] = format_name(s.format);
-        d["warnings"] = py_detail::warning_list(s.warnings);
-        d["reader"] = s.reader;  // "native", "native (gzip)" or "gwyddion:<module>"
-        d["x_unit_scale"] = s.x_unit_scale;
-        d["z_unit_scale"] = s.z_unit_scale;
+        RunRecord in;
+        in.kind = s.is_map ? "map" : "profile";
+        in.format = format_name(s.format);
+        in.warnings = s.warnings;
+        py_detail::put_columns(d, run_record_columns(), in);
+        py_detail::put_columns(d, surface_data_columns(), s);
         return d;
       },
       py::arg("path"), py::kw_only(), py::arg("format") = "auto", py::arg("unit") = "", py::arg("spacing") = 0.0,
@@ -189,7 +186,11 @@ void frictal_bind_io(py::module_& m) {
         py::dict d = py_detail::to_dict(map_stats_columns(), s);
         // Scan quantities (scan_stats.hpp): n dx sizes, bandwidth, per-profile Rq/Rdq, fd gradient.
         py_detail::put_columns(d, map_scan_stats_columns(), map_scan_stats(map));
-        if (tip_radius > 0) d["short_reliability_cutoff"] = ok(short_reliability_cutoff(map, tip_radius));
+        StatsExtras extras;
+        extras.is_map = true;
+        extras.tip_radius = tip_radius;
+        if (tip_radius > 0) extras.short_reliability_cutoff = ok(short_reliability_cutoff(map, tip_radius));
+        py_detail::put_columns(d, stats_extras_columns(), extras);
         return d;
       },
       py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("tip_radius") = 0.0,
@@ -302,25 +303,24 @@ void frictal_bind_io(py::module_& m) {
         o.threads = threads;
         const Map map = to_map(heights, dx, dy, 0, 0);
         auto t = ok(nogil([&] { return anisotropy(map, directions, o); }));
-        std::vector<double> dir, fwd, bwd, sig, phi;
-        std::vector<Warning> warnings;  // each direction's bound, as `frictal anisotropy` names it
+        AnisotropyTable table;
+        table.atomic_friction = atomic_friction;
+        RunRecord run;
+        run.warnings.emplace();  // each direction's bound, as `frictal anisotropy` names it
         for (const auto& r : t) {
           char where[64];
           std::snprintf(where, sizeof where, "direction %g deg", r.angle * 180 / std::numbers::pi);
-          for (Warning& w : check_friction_prediction(r.prediction, where)) add_warning(warnings, std::move(w));
-          dir.push_back(r.angle);
-          fwd.push_back(r.theta_forward);
-          bwd.push_back(r.theta_backward);
-          sig.push_back(r.sigma);
-          phi.push_back(r.prediction.friction_angle);
+          for (Warning& w : check_friction_prediction(r.prediction, where)) add_warning(*run.warnings, std::move(w));
+          AnisotropyRow row;
+          row.direction = r.angle;
+          row.theta_forward = r.theta_forward;
+          row.theta_backward = r.theta_backward;
+          row.sigma = r.sigma;
+          row.upper_bound_friction_angle = r.prediction.friction_angle;
+          table.directions.push_back(row);
         }
-        py::dict d;
-        d["direction"] = arr(dir);
-        d["theta_forward"] = arr(fwd);
-        d["theta_backward"] = arr(bwd);
-        d["sigma"] = arr(sig);
-        d["upper_bound_friction_angle"] = arr(phi);
-        d["warnings"] = py_detail::warning_list(warnings);
+        py::dict d = py_detail::to_dict(anisotropy_columns(), table);
+        py_detail::put_columns(d, run_record_columns(), run);
         return d;
       },
       py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("directions") = 36,

@@ -44,13 +44,6 @@ std::vector<double> vec(const py::array_t<double, py::array::c_style | py::array
   return std::vector<double>(a.data(), a.data() + a.size());
 }
 
-py::dict hist_dict(const Histogram& h) {
-  py::dict d;
-  d["edges"] = arr(h.edges);
-  d["density"] = arr(h.density);
-  return d;
-}
-
 SurfaceSpec spec_of(const std::string& generator, const py::kwargs& kw, const std::string& function) {
   const GeneratorInfo* g = find_generator(generator);
   if (!g) {
@@ -181,10 +174,13 @@ PYBIND11_MODULE(_core, m) {
       [](const Profile& p, double tip_radius) {
         const ProfileStats s = profile_stats(p);
         py::dict d = py_detail::to_dict(profile_stats_columns(), s);
-        d["slope_pdf"] = hist_dict(slope_distribution(p));
         // Scan quantities (scan_stats.hpp): n dx length, sampling interval, bandwidth.
         py_detail::put_columns(d, profile_scan_stats_columns(), profile_scan_stats(p));
-        if (tip_radius > 0) d["short_reliability_cutoff_m"] = py_detail::ok(short_reliability_cutoff(p, tip_radius));
+        StatsExtras extras;
+        extras.tip_radius = tip_radius;
+        if (tip_radius > 0) extras.short_reliability_cutoff = py_detail::ok(short_reliability_cutoff(p, tip_radius));
+        extras.slope_distribution = slope_distribution(p);  // slope_pdf
+        py_detail::put_columns(d, stats_extras_columns(), extras);
         return d;
       },
       py::arg("profile"), py::kw_only(), py::arg("tip_radius") = 0.0,
@@ -219,13 +215,14 @@ PYBIND11_MODULE(_core, m) {
         if (!pair.has_upper || rotate_upper) up = rotate180(std::move(up));
         SignatureResult r = unwrap(nogil([&] { return signature(std::move(pair.lower), std::move(up), o); }));
         py::dict d = py_detail::to_dict(signature_columns(), r);
-        d["contact_slope_pdf"] = hist_dict(r.contact_slope_pdf);
-        d["conditioning"] = pair.conditioning;
         // The rigid bounds' warnings in the CLI's words (no atomic friction here: the bound is theta_max).
         const FrictionPrediction fwd = unwrap(predict_friction(0, r.theta_max_forward, r.contact_slope_std));
         const FrictionPrediction bwd = unwrap(predict_friction(0, r.theta_max_backward, r.contact_slope_std));
         for (Warning& w : check_signature_bounds(fwd, bwd)) add_warning(pair.warnings, std::move(w));
-        d["warnings"] = py_detail::warning_list(pair.warnings);
+        RunRecord run;
+        run.conditioning = pair.conditioning;
+        run.warnings = pair.warnings;
+        py_detail::put_columns(d, run_record_columns(), run);
         if (keep_contacts) {
           std::vector<double> off, x, z, s;
           py::list types;

@@ -140,4 +140,53 @@ const Columns<FractalFit>& fractal_fit_columns() {
   return cols;
 }
 
+const Columns<KochDimension>& koch_dimension_columns() {
+  using T = KochDimension;
+  static const Columns<T> cols = {
+      column<T>(
+          "alpha_deg", "deg", "the Koch angle alpha", [](const T& k) { return k.alpha; }, "-"),
+      column<T>(
+          "method", "text", "the method the numbers come from", [](const T&) { return std::string("eq13"); }, "-"),
+      column<T>(
+          "dimension", "1", "the fractal dimension D", [](const T& k) { return k.dimension; }, "-"),
+      column<T>(
+          "equation", "text", "the equation solved (Eq. 13)",
+          [](const T&) { return std::string("2 (1/3)^D + 2 (1/(6 cos alpha))^D = 1"); }, "-"),
+  };
+  return cols;
+}
+
+const Columns<StatsExtras>& stats_extras_columns() {
+  using T = StatsExtras;
+  auto tip = [](const T& e) { return e.tip_radius > 0; };
+  auto cutoff = [](const T& e) { return e.short_reliability_cutoff; };
+  static const Columns<T> cols = {
+      only_if(column<T>(
+                  "tip_radius_m", "m", "the stylus tip radius given (--tip-radius)",
+                  [](const T& e) { return e.tip_radius; }, "-"),
+              tip),
+      only_if(column<T>("short_reliability_cutoff_m", "m",
+                        "shortest scale the tip resolves (null: unreliable at every scale)", cutoff, "-"),
+              tip),
+      // Python's dicts: profile_stats names it with the unit suffix, map_stats without.
+      only_if(column<T>("", "m", "profile_stats: shortest scale the tip resolves (NaN: unreliable at every scale)",
+                        cutoff, "short_reliability_cutoff_m"),
+              [tip](const T& e) { return tip(e) && !e.is_map; }),
+      only_if(column<T>("", "m", "map_stats: shortest scale the tip resolves (NaN: unreliable at every scale)", cutoff,
+                        "short_reliability_cutoff"),
+              [tip](const T& e) { return tip(e) && e.is_map; }),
+      only_if(column<T>(
+                  "correlation_length_m", "m", "where the autocorrelation falls to 1/e",
+                  [](const T& e) { return *e.correlation_length; }, "-"),
+              [](const T& e) { return e.correlation_length.has_value(); }),
+      object_column<T>(
+          "height_distribution", "histogram", "density of the heights (edges in m, density per m)", histogram_columns(),
+          [](const T& e) { return e.height_distribution; }, "-"),
+      object_column<T>(
+          "slope_distribution_rad", "histogram", "density of the slope angles (edges in rad, density per rad)",
+          histogram_columns(), [](const T& e) { return e.slope_distribution; }, "slope_pdf"),
+  };
+  return cols;
+}
+
 }  // namespace frictal

@@ -59,4 +59,14 @@ const Columns<ContactResult>& contact_columns() {
   return cols;
 }
 
+const Columns<ContactCurve>& contact_curve_columns() {
+  using T = ContactCurve;
+  static const Columns<T> cols = {
+      list_column<T>(
+          "curve", "contact", "frictal contact with several loads: one contact object per load", contact_columns(),
+          [](const T& c) { return std::optional(c.loads); }, "-"),
+  };
+  return cols;
+}
+
 }  // namespace frictal

@@ -7,16 +7,19 @@
 #include <string_view>
 
 #include "frictal/analysis.hpp"
+#include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
 #include "frictal/contact.hpp"
 #include "frictal/fractal.hpp"
 #include "frictal/hold.hpp"
+#include "frictal/io.hpp"
 #include "frictal/outputs.hpp"
 #include "frictal/predict.hpp"
 #include "frictal/scan_stats.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 #include "frictal/tilt.hpp"
+#include "frictal/warnings.hpp"
 
 namespace frictal {
 
@@ -41,6 +44,63 @@ ColumnInfo py(std::string python, std::string unit, std::string help) {
   return {"", std::move(unit), std::move(help), std::move(python)};
 }
 
+}  // namespace
+
+const Columns<RunRecord>& run_record_columns() {
+  using T = RunRecord;
+  // A text field written when it has a value.
+  auto text = [](std::string key, std::string help, std::optional<std::string> T::*field, std::string python) {
+    return only_if(column<T>(
+                       std::move(key), "text", std::move(help), [field](const T& r) { return *(r.*field); }, python),
+                   [field](const T& r) { return (r.*field).has_value(); });
+  };
+  // A number written when it has a value.
+  auto number = [](std::string key, std::string unit, std::string help, std::optional<double> T::*field) {
+    return only_if(
+        column<T>(
+            std::move(key), std::move(unit), std::move(help), [field](const T& r) { return *(r.*field); }, "-"),
+        [field](const T& r) { return (r.*field).has_value(); });
+  };
+  static const Columns<T> cols = {
+      text("lower", "the lower surface (file or generator)", &T::lower, "-"),
+      text("upper", "the upper surface, as measured (turned over to face the lower)", &T::upper, "-"),
+      text("file", "the surface file read", &T::file, "-"),
+      text("format", "the file's format as read", &T::format, "format"),
+      text("kind", "profile or map", &T::kind, "kind"),
+      text("method", "the method the numbers come from", &T::method, "-"),
+      text("slopes", "the slope method of the signature: exact or spline", &T::slopes, "-"),
+      number("surface_slope_max_deg", "deg", "steepest slope of either surface", &T::surface_slope_max),
+      text("conditioning", "every conditioning step applied first (crop, spikes, form), with its numbers",
+           &T::conditioning, "conditioning"),
+      list_column<T>("warnings", "warning",
+                     "warnings: implausible inputs or results (frictal warnings lists the codes)", warning_columns(),
+                     [](const T& r) { return r.warnings; }),
+      number("wall_time_s", "s", "wall time of the computation", &T::wall_time),
+      number("hold_wall_time_s", "s", "wall time of the signature and the hold analysis together (one pass)",
+             &T::hold_wall_time),
+  };
+  return cols;
+}
+
+const Columns<WarningCode>& warning_code_columns() {
+  using T = WarningCode;
+  static const Columns<T> cols = {
+      column<T>(
+          "code", "text", "the code", [](const T& c) { return c.code; }, "-"),
+      column<T>(
+          "meaning", "text", "what it means", [](const T& c) { return c.meaning; }, "-"),
+      column<T>(
+          "doubtful", "flag", "the input was probably read wrong: a prediction with the code is doubtful",
+          [](const T& c) { return c.doubtful; }, "-"),
+      column<T>(
+          "fix", "text", "the fix that exists: the options to add (Python keywords in parentheses)",
+          [](const T& c) { return c.fix; }, "-"),
+  };
+  return cols;
+}
+
+namespace {
+
 std::vector<OutputTable> make_tables() {
   std::vector<OutputTable> t;
   t.push_back({"prediction",
@@ -48,42 +108,12 @@ std::vector<OutputTable> make_tables() {
                "report's embedded JSON",
                infos(prediction_columns())});
   t.back().columns.push_back(ci("warnings", "list:warning", "the warnings of the inputs and the result", "warnings"));
+  t.push_back({"command", "what commands print beside their results: the inputs they were given and how they ran",
+               infos(run_record_columns())});
+
+  t.push_back({"warning", "one warning: its code (frictal warnings) and message", infos(warning_columns())});
   t.push_back(
-      {"command",
-       "what commands print beside their results: the inputs they were given and how they ran",
-       {
-           ci("lower", "text", "the lower surface (file or generator)"),
-           ci("upper", "text", "the upper surface, as measured (turned over to face the lower)"),
-           ci("file", "text", "the surface file read"),
-           ci("format", "text", "the file's format as read", "="),
-           ci("kind", "text", "profile or map", "="),
-           ci("slopes", "text", "the slope method of the signature: exact or spline"),
-           ci("method", "text", "the method the numbers come from"),
-           ci("conditioning", "text", "every conditioning step applied first (crop, spikes, form), with its numbers",
-              "="),
-           ci("warnings", "list:warning", "warnings: implausible inputs or results (frictal warnings lists the codes)",
-              "warnings"),
-           ci("wall_time_s", "s", "wall time of the computation"),
-           ci("curve", "list:contact", "frictal contact with several loads: one contact object per load"),
-           ci("hold_wall_time_s", "s", "wall time of the signature and the hold analysis together (one pass)"),
-           ci("surface_slope_max_deg", "deg", "steepest slope of either surface"),
-           ci("tip_radius_m", "m", "the stylus tip radius given (--tip-radius)"),
-           ci("short_reliability_cutoff_m", "m", "shortest scale the tip resolves (null: unreliable at every scale)",
-              "short_reliability_cutoff_m"),
-           ci("correlation_length_m", "m", "where the autocorrelation falls to 1/e"),
-           ci("height_distribution", "object:histogram", "density of the heights (edges in m, density per m)"),
-           ci("slope_distribution_rad", "object:histogram",
-              "density of the slope angles (edges in rad, density per rad)"),
-           py("slope_pdf", "object:histogram", "density of the slope angles (edges in rad, density per rad)"),
-       }});
-  t.push_back(
-      {"warning",
-       "one warning: its code (frictal warnings) and message",
-       {ci("code", "text", "the warning's code", "="), ci("message", "text", "what was found, with numbers", "=")}});
-  t.push_back(
-      {"histogram",
-       "a density: bin edges and density (units in the parent key's help)",
-       {ci("edges", "list", "bins + 1 edges", "="), ci("density", "list", "density per unit of the edges", "=")}});
+      {"histogram", "a density: bin edges and density (units in the parent key's help)", infos(histogram_columns())});
   t.push_back({"signature", "frictal signature --json; Python frictal.signature(...)", infos(signature_columns())});
   t.push_back({"contact",
                "frictal contact --json (one load: these keys; several: a list of them under 'curve'); Python "
@@ -91,6 +121,7 @@ std::vector<OutputTable> make_tables() {
                infos(contact_columns())});
   t.back().columns.push_back(py("pressure", "list", "fields=True: the pressure at every point (Pa; maps: (ny, nx))"));
   t.back().columns.push_back(py("gap", "list", "fields=True: the gap at every point (m; maps: (ny, nx))"));
+  t.push_back({"contact_curve", "frictal contact --json with several loads", infos(contact_curve_columns())});
   t.push_back({"contacts",
                "Python frictal.signature(..., keep_contacts=True)['contacts']: every contact",
                {py("offset", "m", "the offset of each contact"), py("x", "m", "contact abscissa in the lower's frame"),
@@ -135,34 +166,16 @@ std::vector<OutputTable> make_tables() {
                 py("velocity", "m/s", "relative velocity"), py("contacts", "count", "contacts")}});
   t.push_back({"dimension", "frictal dimension --json; Python divider_dimension, box_dimension, psd_dimension",
                infos(fractal_fit_columns())});
+  t.push_back({"koch_dimension", "frictal dimension koch --method eq13 --json", infos(koch_dimension_columns())});
+  t.push_back({"info", "frictal info --json: what a surface file holds; Python read_surface(...)",
+               infos(surface_data_columns())});
   t.back().columns.insert(t.back().columns.end(),
-                          {ci("alpha_deg", "deg", "dimension koch: the Koch angle alpha"),
-                           ci("equation", "text", "dimension koch: the equation solved (Eq. 13)")});
-  t.push_back(
-      {"info",
-       "frictal info --json: what a surface file holds",
-       {ci("reader", "text", "the reader that read it: native or gwyddion", "="),
-        ci("channel", "count", "the channel read (0-based)"),
-        ci("channels", "list:info_channel", "every channel of the file"), ci("x0_m", "m", "x of the first node", "x0"),
-        ci("y0_m", "m", "y of the first node", "y0"), ci("points", "count", "points of the profile"),
-        ci("valid_points", "count", "nodes with a measured height"), py("x", "m", "the profile's abscissae"),
-        py("z", "m", "the profile's heights"), py("heights", "m", "the map's heights (ny, nx), NaN where not measured"),
-        py("dx", "m", "node spacing along x"), py("dy", "m", "node spacing along y"),
-        py("x_unit_scale", "1",
-           "metres per unit of the file's lateral numbers as read (0: none in the file, the spacing given)"),
-        py("z_unit_scale", "1", "metres per unit of the file's heights as read")}});
-  t.push_back({"info_channel",
-               "one channel of a file (frictal info --json)",
-               {ci("name", "text", "the channel's name"), ci("kind", "text", "map or profile"),
-                ci("nx", "count", "nodes along x"), ci("ny", "count", "nodes along y"),
-                ci("size_x", "1", "extent along x, in xy_unit"), ci("size_y", "1", "extent along y, in xy_unit"),
-                ci("xy_unit", "text", "the file's lateral unit"), ci("z_unit", "text", "the file's height unit"),
-                ci("readable", "flag", "frictal reads this channel")}});
-  t.push_back({"warning_code",
-               "frictal warnings --json: every warning code",
-               {ci("code", "text", "the code"), ci("meaning", "text", "what it means"),
-                ci("doubtful", "flag", "the input was probably read wrong: a prediction with the code is doubtful"),
-                ci("fix", "text", "the fix that exists: the options to add (Python keywords in parentheses)")}});
+                          {py("heights", "m", "the map's heights (ny, nx), NaN where not measured"),
+                           py("dx", "m", "node spacing along x"), py("dy", "m", "node spacing along y")});
+  t.push_back({"info_channel", "one channel of a file (frictal info --json)", infos(channel_info_columns())});
+  t.push_back({"warning_code", "frictal warnings --json: every warning code", infos(warning_code_columns())});
+  t.push_back({"formats", "frictal formats --json: every readable format", infos(format_list_columns())});
+  t.push_back({"format", "one readable format (frictal formats --json)", infos(format_info_columns())});
   t.push_back(
       {"areal",
        "frictal areal --json: the areal signature of two blocks along a direction",
@@ -215,39 +228,9 @@ std::vector<OutputTable> make_tables() {
                              std::string("locked mode: the free block's hold angle over drops, ") + st));
     t.push_back(std::move(h));
   }
-  t.push_back(
-      {"anisotropy",
-       "frictal anisotropy --json; Python anisotropy(...) (arrays over directions)",
-       {ci("directions", "list:anisotropy_direction", "one row per sliding direction"),
-        ci("hold_model", "text", "--hold: the model of the hold angles (frictal predict's)"),
-        ci("hold_drops", "count", "--hold: drops per direction"), ci("atomic_friction", "1", "mu_a"),
-        py("direction", "rad", "each sliding direction"), py("theta_forward", "rad", "theta_max along each direction"),
-        py("theta_backward", "rad", "theta_max against each direction"),
-        py("sigma", "rad", "sigma of Eq. 18 for each direction"),
-        py("upper_bound_friction_angle", "rad", "rigid upper bound for each direction")}});
-  t.push_back(
-      {"anisotropy_direction",
-       "one direction of frictal anisotropy --json",
-       {ci("direction_deg", "deg", "sliding direction, from +x towards +y"),
-        ci("lines", "count", "map lines the direction's theta_max is over"),
-        ci("theta_forward_deg", "deg", "theta_max along the direction"),
-        ci("theta_backward_deg", "deg", "theta_max against the direction"), ci("sigma_deg", "deg", "sigma of Eq. 18"),
-        ci("upper_bound_friction_angle_deg", "deg",
-           "rigid upper bound: theta_max + theta_a of the signature; with --hold the hold model's (the steepest "
-           "seat the drops rested in, above every drop)"),
-        ci("signature_bound_friction_angle_deg", "deg", "--hold: the signature's theta_max + theta_a, beside it"),
-        ci("upper_bound_friction_coefficient", "1", "tan of the upper bound"),
-        ci("eq18_low_friction_coefficient", "1", "tan of the Eq. 18 low end"),
-        ci("hold_runaway_distance_m", "m", "--hold: run-away distance d")}});
-  {
-    OutputTable& d = t.back();
-    for (const char* st : {"mean", "std", "q05", "q50", "q95", "min", "max"})
-      d.columns.push_back(ci(std::string("hold_angle_") + st + "_deg", "deg",
-                             std::string("--hold: hold angle over drops (frictal predict --direction): ") + st));
-    for (const char* st : {"q05", "q50", "q95"})
-      d.columns.push_back(ci(std::string("hold_angle_locked_") + st + "_deg", "deg",
-                             std::string("--hold --locked: the block locked to the direction, ") + st));
-  }
+  t.push_back({"anisotropy", "frictal anisotropy --json; Python anisotropy(...) (arrays over directions)",
+               infos(anisotropy_columns())});
+  t.push_back({"anisotropy_direction", "one direction of frictal anisotropy --json", infos(anisotropy_row_columns())});
   t.push_back(
       {"areal_tilt",
        "frictal areal-tilt --json (the MuJoCo run and the predictions matched to it)",
@@ -336,9 +319,10 @@ std::vector<OutputTable> make_tables() {
                "Python autocorrelation(...)",
                {py("lag", "m", "lags"), py("acf", "1", "normalised autocorrelation at each lag"),
                 py("correlation_length", "m", "where it falls to 1/e")}});
-  t.push_back({"map_extra",
-               "what Python map_stats adds with tip_radius",
-               {py("short_reliability_cutoff", "m", "shortest scale the tip resolves (NaN: none)")}});
+  t.push_back({"stats_extras",
+               "what frictal stats --json adds with --tip-radius, --acf, --histograms; Python profile_stats and "
+               "map_stats with tip_radius (profile_stats: slope_pdf always)",
+               infos(stats_extras_columns())});
   // Studies (frictal study status|report --json; Python study_status, study_run, study_rows).
   t.push_back({"study_status",
                "frictal study status --json; Python study_status(store)",

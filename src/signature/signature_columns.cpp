@@ -64,8 +64,9 @@ const Columns<SignatureResult>& signature_columns() {
                 [](const S& r) { return r.contact_slope_mean; }),
       column<S>("contact_slope_std_deg", "deg", "sigma of Eq. 18: standard deviation of the contact slopes",
                 [](const S& r) { return r.contact_slope_std; }),
-      declared_column<S>("", "object:histogram", "density of the contact slopes (edges in rad, density per rad)",
-                         "contact_slope_pdf"),
+      object_column<S>(
+          "", "histogram", "density of the contact slopes (edges in rad, density per rad)", histogram_columns(),
+          [](const S& r) { return std::optional(r.contact_slope_pdf); }, "contact_slope_pdf"),
       column<S>(
           "", "deg", "contact slope samples the statistics are over", [](const S& r) { return r.slope_samples; },
           "slope_samples"),

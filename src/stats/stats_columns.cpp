@@ -23,4 +23,13 @@ const Columns<ProfileStats>& profile_stats_columns() {
   return cols;
 }
 
+const Columns<Histogram>& histogram_columns() {
+  using T = Histogram;
+  static const Columns<T> cols = {
+      column<T>("edges", "list", "bins + 1 edges", [](const T& h) { return h.edges; }),
+      column<T>("density", "list", "density per unit of the edges", [](const T& h) { return h.density; }),
+  };
+  return cols;
+}
+
 }  // namespace frictal

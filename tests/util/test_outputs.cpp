@@ -1,0 +1,122 @@
+// The output tables' optional and nested columns (frictal/outputs.hpp): a column written only
+// where its value has it, and objects of another table under one key, as the generic writers
+// see them (row_of, has_output, rows).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frictal/outputs.hpp"
+
+namespace {
+
+using frictal::Column;
+using frictal::Columns;
+using frictal::OutputRow;
+
+struct Point {
+  double x = 0;      // m
+  double angle = 0;  // rad
+};
+
+struct Shape {
+  std::optional<double> size;  // m
+  std::optional<Point> centre;
+  std::optional<std::vector<Point>> corners;
+};
+
+const Columns<Point>& point_columns() {
+  static const Columns<Point> cols = {
+      frictal::column<Point>(
+          "x_m", "m", "abscissa", [](const Point& p) { return p.x; }, "x"),
+      frictal::column<Point>("angle_deg", "deg", "angle", [](const Point& p) { return p.angle; }),
+  };
+  return cols;
+}
+
+const Columns<Shape>& shape_columns() {
+  static const Columns<Shape> cols = {
+      frictal::only_if(frictal::column<Shape>(
+                           "size_m", "m", "size", [](const Shape& s) { return *s.size; }, "size"),
+                       [](const Shape& s) { return s.size.has_value(); }),
+      frictal::object_column<Shape>("centre", "point", "the centre", point_columns(),
+                                    [](const Shape& s) { return s.centre; }),
+      frictal::list_column<Shape>(
+          "corners", "point", "the corners", point_columns(), [](const Shape& s) { return s.corners; }, "-"),
+  };
+  return cols;
+}
+
+TEST(Outputs, AbsentValuesHaveNoOutput) {
+  const Shape empty;
+  for (const Column<Shape>& c : shape_columns()) EXPECT_FALSE(frictal::has_output(c, empty)) << c.key;
+  Shape s;
+  s.size = 2.5;
+  EXPECT_TRUE(frictal::has_output(shape_columns()[0], s));
+  EXPECT_DOUBLE_EQ(std::get<double>(shape_columns()[0].si(s)), 2.5);
+  EXPECT_FALSE(frictal::has_output(shape_columns()[1], s));
+}
+
+TEST(Outputs, NestedColumnsDeclareTheirTableAndKeys) {
+  const Columns<Shape>& c = shape_columns();
+  EXPECT_EQ(c[1].unit, "object:point");
+  EXPECT_EQ(c[1].python, "centre");  // the JSON key by default
+  EXPECT_EQ(c[2].unit, "list:point");
+  EXPECT_EQ(c[2].python, "");  // "-": not in Python's dicts
+  EXPECT_FALSE(c[1].si);
+  EXPECT_TRUE(c[1].rows);
+}
+
+TEST(Outputs, NestedObjectsAreRowsOfTheirTable) {
+  Shape s;
+  s.centre = Point{1e-6, std::numbers::pi / 4};
+  s.corners = std::vector<Point>{{0, 0}, {2e-6, std::numbers::pi / 2}, {3e-6, -std::numbers::pi}};
+  const std::vector<OutputRow> centre = shape_columns()[1].rows(s);
+  ASSERT_EQ(centre.size(), 1u);
+  ASSERT_EQ(centre[0].size(), 2u);
+  EXPECT_EQ(centre[0][0].info.key, "x_m");
+  EXPECT_EQ(centre[0][0].info.python, "x");
+  EXPECT_DOUBLE_EQ(std::get<double>(centre[0][0].si), 1e-6);
+  // SI in the row; the interface unit's conversion is the writer's: 45 degrees.
+  EXPECT_EQ(centre[0][1].info.unit, "deg");
+  EXPECT_DOUBLE_EQ(std::get<double>(frictal::to_interface(centre[0][1].info.unit, centre[0][1].si)), 45.0);
+  const std::vector<OutputRow> corners = shape_columns()[2].rows(s);
+  ASSERT_EQ(corners.size(), 3u);
+  EXPECT_DOUBLE_EQ(std::get<double>(frictal::to_interface("deg", corners[1][1].si)), 90.0);
+  EXPECT_DOUBLE_EQ(std::get<double>(frictal::to_interface("deg", corners[2][1].si)), -180.0);
+  s.corners = std::vector<Point>{};  // present and empty: an empty list, not a missing key
+  EXPECT_TRUE(frictal::has_output(shape_columns()[2], s));
+  EXPECT_TRUE(shape_columns()[2].rows(s).empty());
+}
+
+TEST(Outputs, RowsLeaveOutAbsentColumns) {
+  Shape with, without;
+  with.size = 1;
+  // Only the plain columns with a value are row fields; nested columns are not.
+  EXPECT_EQ(frictal::row_of(shape_columns(), with).size(), 1u);
+  EXPECT_TRUE(frictal::row_of(shape_columns(), without).empty());
+}
+
+TEST(Outputs, WarningsAreRowsOfCodeAndMessage) {
+  const frictal::Warning w("scale", "heights 8 m");
+  const OutputRow r = frictal::row_of(frictal::warning_columns(), w);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].info.key, "code");
+  EXPECT_EQ(std::get<std::string>(r[0].si), "scale");
+  EXPECT_EQ(std::get<std::string>(r[1].si), "heights 8 m");
+}
+
+TEST(Outputs, RunRecordWritesTheFieldsGiven) {
+  frictal::RunRecord run;
+  run.file = "a.csv";
+  run.warnings = std::vector<frictal::Warning>{};
+  std::vector<std::string> written;
+  for (const Column<frictal::RunRecord>& c : frictal::run_record_columns())
+    if (frictal::has_output(c, run)) written.push_back(c.key);
+  EXPECT_EQ(written, (std::vector<std::string>{"file", "warnings"}));
+}
+
+}  // namespace
