@@ -14,7 +14,16 @@ struct CliRun {
   std::string out, err;
 };
 
-inline std::string temp_path(const std::string& name) { return ::testing::TempDir() + "frictal_" + name; }
+// A file of the current test: ctest runs the tests side by side as separate processes, and a
+// helper that writes a fixed name for several tests would rewrite a file another test is reading
+// (a reader that maps the file then sees it truncated).
+inline std::string temp_path(const std::string& name) {
+  const auto* t = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string tag = t ? std::string(t->test_suite_name()) + "." + t->name() + "_" : std::string();
+  for (char& c : tag)
+    if (c == '/') c = '_';  // parameterised tests' names
+  return ::testing::TempDir() + "frictal_" + tag + name;
+}
 
 inline void write_file(const std::string& path, const std::string& text) {
   std::ofstream f(path, std::ios::binary);
