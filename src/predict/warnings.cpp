@@ -237,7 +237,7 @@ void units_check(std::vector<Warning>& out, double rms_slope, bool spikes, const
         out, {"units-suspect",
               fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average){}: steeper than any instrument "
                           "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
-                          name, rms_slope, std::atan(rms_slope) * 180 / 3.141592653589793,
+                          name, rms_slope, units::to_deg(std::atan(rms_slope)),
                           spikes ? " away from the spikes" : "")});
 }
 
@@ -251,7 +251,7 @@ void lateral_check(std::vector<Warning>& out, double rms_slope, double spacing, 
                       fmt::format("{}: rms slope {:.3g} ({:.3g} deg on average) on points {:.3g} m apart: flatter and "
                                   "coarser than a roughness measurement; the lateral lengths were probably read in a "
                                   "unit too large (x in mm read as m?): give their unit (--x-unit)",
-                                  name, rms_slope, std::atan(rms_slope) * 180 / 3.141592653589793, spacing)});
+                                  name, rms_slope, units::to_deg(std::atan(rms_slope)), spacing)});
 }
 
 // rms slope of the edges of `p` that touch none of the points `spikes` (increasing indices).

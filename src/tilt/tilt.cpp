@@ -1174,11 +1174,10 @@ std::vector<Warning> tilt_scale_warnings(const TiltScales& sc, const TiltResult&
 Status write_tilt_series_csv(const std::string& path, const TiltSeries& s) {
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
   if (!f) return make_error(ErrorCode::Io, fmt::format("{}: cannot open for writing", path));
-  const double deg = 180.0 / 3.14159265358979323846;
   fmt::print(f.get(), "time_s,tilt_deg,fn_N,ft_N,force_angle_deg,displacement_m,velocity_m_s,contacts\n");
   for (std::size_t i = 0; i < s.time.size(); ++i)
-    fmt::print(f.get(), "{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{}\n", s.time[i], s.tilt[i] * deg,
-               s.normal_force[i], s.tangential_force[i], s.force_angle[i] * deg, s.displacement[i], s.velocity[i],
+    fmt::print(f.get(), "{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{}\n", s.time[i], units::to_deg(s.tilt[i]),
+               s.normal_force[i], s.tangential_force[i], units::to_deg(s.force_angle[i]), s.displacement[i], s.velocity[i],
                s.contacts[i]);
   if (std::ferror(f.get())) return make_error(ErrorCode::Io, fmt::format("{}: write failed", path));
   return Ok{};
