@@ -234,11 +234,11 @@ void units_check(std::vector<Warning>& out, double rms_slope, bool spikes, const
                  const PlausibilityLimits& L) {
   if (rms_slope > L.max_rms_slope)
     add_warning(
-        out, {"units-suspect",
-              fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average){}: steeper than any instrument "
-                          "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
-                          name, rms_slope, units::to_deg(std::atan(rms_slope)),
-                          spikes ? " away from the spikes" : "")});
+        out,
+        {"units-suspect",
+         fmt::format("{}: rms slope {:.3g} ({:.2f} deg on average){}: steeper than any instrument "
+                     "measures; the lateral and height units probably differ (give the heights' unit: --z-unit)",
+                     name, rms_slope, units::to_deg(std::atan(rms_slope)), spikes ? " away from the spikes" : "")});
 }
 
 // Lateral lengths read in a unit too large: slopes implausibly small on points spaced coarser

@@ -1177,8 +1177,8 @@ Status write_tilt_series_csv(const std::string& path, const TiltSeries& s) {
   fmt::print(f.get(), "time_s,tilt_deg,fn_N,ft_N,force_angle_deg,displacement_m,velocity_m_s,contacts\n");
   for (std::size_t i = 0; i < s.time.size(); ++i)
     fmt::print(f.get(), "{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{}\n", s.time[i], units::to_deg(s.tilt[i]),
-               s.normal_force[i], s.tangential_force[i], units::to_deg(s.force_angle[i]), s.displacement[i], s.velocity[i],
-               s.contacts[i]);
+               s.normal_force[i], s.tangential_force[i], units::to_deg(s.force_angle[i]), s.displacement[i],
+               s.velocity[i], s.contacts[i]);
   if (std::ferror(f.get())) return make_error(ErrorCode::Io, fmt::format("{}: write failed", path));
   return Ok{};
 }
