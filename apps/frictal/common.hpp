@@ -184,8 +184,8 @@ inline double parse_quantity(const std::string& text, const char* option,
 /// Moduli and pressures: Pa (or no unit), kPa, MPa, GPa.
 inline const std::vector<std::pair<std::string, double>> kPressureUnits = {
     {"", 1}, {"Pa", 1}, {"kPa", 1e3}, {"MPa", 1e6}, {"GPa", 1e9}};
-/// Forces: N, mN, uN, kN (the unit is required).
+/// Forces: N, mN, uN, nN, kN (the unit is required).
 inline const std::vector<std::pair<std::string, double>> kForceUnits = {
-    {"N", 1}, {"mN", 1e-3}, {"uN", 1e-6}, {"kN", 1e3}};
+    {"N", 1}, {"mN", 1e-3}, {"uN", 1e-6}, {"nN", 1e-9}, {"kN", 1e3}};
 
 }  // namespace frictal::cli

@@ -105,13 +105,13 @@ inline void add_load_options(CLI::App& app, LoadWords& w) {
   app.add_option("--upper-poisson", w.upper_poisson, "With --load: Poisson's ratio of UPPER (default: --poisson)");
 }
 
-/// --load's words: forces with their unit (N, mN, uN, kN), comma-separated lists allowed; the
+/// --load's words: forces with their unit (N, mN, uN, nN, kN), comma-separated lists allowed; the
 /// first is the headline.
 inline std::vector<double> parse_forces(const std::vector<std::string>& words) {
   std::vector<double> out;
   for (const std::string& item : list_items(words)) {
     const double v = parse_quantity(item, "--load", kForceUnits,
-                                    "a force with its unit: N, mN, uN, kN, e.g. 2N; the block's weight");
+                                    "a force with its unit: N, mN, uN, nN, kN, e.g. 2N; the block's weight");
     require(v > 0, fmt::format("--load '{}': expected a force > 0", item));
     out.push_back(v);
   }

@@ -48,9 +48,9 @@ void print_text(const Prediction& p, const Args& a) {
     std::string codes;
     for (const std::string& c : p.trust_codes) codes += (codes.empty() ? "" : ", ") + c;
     fmt::print(
-        "DOUBTFUL ({}): the input was probably read wrong; the number below is not these surfaces' friction "
-        "until it is fixed: add {}\n",
-        codes, p.trust_fix.empty() ? "the fix the warnings name" : p.trust_fix);
+        "DOUBTFUL ({}): the input was probably read wrong, or the model does not hold for it; the number below "
+        "is not these surfaces' friction until it is fixed: {}\n",
+        codes, p.trust_fix.empty() ? "see the warnings" : "add " + p.trust_fix);
   }
   fmt::print("frictal predict: {}, sliding at {:g} deg, mu_a = {:g}\n", pair, to_deg(p.direction), p.atomic_friction);
   if (p.single_drop) {

@@ -21,8 +21,9 @@ struct WarningCode {
   std::string code;
   std::string meaning;
   /// The input was probably read wrong (units, spikes left in, scans that do not match, an angle
-  /// at 90 deg): a prediction that carries the code is "doubtful" (Prediction::trust), its number
-  /// not the surfaces' friction until the fix is applied.
+  /// at 90 deg), or the model the number comes from does not hold for it (asperity contacts that
+  /// merge or interfere deeply under load): a prediction that carries the code is "doubtful"
+  /// (Prediction::trust), its number not the surfaces' friction until the fix is applied.
   bool doubtful = false;
   /// The fix that exists: the CLI options to add (Python's keywords in parentheses); empty: none.
   std::string fix;

@@ -122,9 +122,9 @@ def predict(lower, upper=None, **options):
     ``d_sweep_median``, ``d_sweep_q05``, ``d_sweep_q95`` the answer at d/4 .. 4d) and
     ``to_dict()`` with the keys and units of ``frictal predict --json``. Each of its warnings is also
     issued through ``warnings.warn`` with the category of its code (``FrictalWarning`` subclasses).
-    ``trust`` is "ok", or "doubtful" where a warning says the input was probably read wrong
-    (``trust_codes``); ``trust_fix`` then names the keywords (and CLI options) that fix it, e.g.
-    ``z_unit='um'``.
+    ``trust`` is "ok", or "doubtful" where a warning says the input was probably read wrong or the
+    load model does not hold for it (``trust_codes``); ``trust_fix`` then names the keywords (and
+    CLI options) that fix it, e.g. ``z_unit='um'``.
     """
     import warnings as _warnings
 

@@ -167,7 +167,7 @@ class Prediction:
     def to_json(self) -> str: ...
     @property
     def trust(self) -> Any:
-        """ok, or doubtful: a warning says the input was probably read wrong (units, spikes left in, scans that do not match, an angle at 90 deg); the number is then not the surfaces' friction until trust_fix is applied (text)"""
+        """ok, or doubtful: a warning says the input was probably read wrong (units, spikes left in, scans that do not match, an angle at 90 deg) or the load model does not hold (merged or deeply interfering asperities); the number is then not the surfaces' friction until trust_fix is applied (text)"""
     @property
     def trust_codes(self) -> Any:
         """the warning codes that made the prediction doubtful, comma-separated (text)"""

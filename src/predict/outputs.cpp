@@ -90,7 +90,8 @@ const Columns<WarningCode>& warning_code_columns() {
       column<T>(
           "meaning", "text", "what it means", [](const T& c) { return c.meaning; }, "-"),
       column<T>(
-          "doubtful", "flag", "the input was probably read wrong: a prediction with the code is doubtful",
+          "doubtful", "flag",
+          "the input was probably read wrong, or the model does not hold: a prediction with the code is doubtful",
           [](const T& c) { return c.doubtful; }, "-"),
       column<T>(
           "fix", "text", "the fix that exists: the options to add (Python keywords in parentheses)",

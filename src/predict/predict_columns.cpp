@@ -34,8 +34,9 @@ const Columns<Prediction>& prediction_columns() {
   static const Columns<Prediction> cols = {
       column<P>("trust", "text",
                 "ok, or doubtful: a warning says the input was probably read wrong (units, spikes left in, scans "
-                "that do not match, an angle at 90 deg); the number is then not the surfaces' friction until "
-                "trust_fix is applied",
+                "that do not match, an angle at 90 deg) or the load model does not hold (merged or deeply "
+                "interfering asperities); the number is then not the surfaces' friction until trust_fix is "
+                "applied",
                 [](const P& p) { return p.trust; }),
       column<P>("trust_codes", "text", "the warning codes that made the prediction doubtful, comma-separated",
                 [](const P& p) {

@@ -762,8 +762,9 @@ std::string headline(const ReportInput& in, const ReportData& d) {
       std::string codes;
       for (const std::string& c : p.trust_codes) codes += (codes.empty() ? "" : ", ") + c;
       page += fmt::format(
-          "<p class=\"verdict doubtful\" id=\"trust\"><b>DOUBTFUL</b> ({}): the input was probably read wrong; "
-          "the number below is not these surfaces' friction until it is fixed: add <code>{}</code>.</p>\n",
+          "<p class=\"verdict doubtful\" id=\"trust\"><b>DOUBTFUL</b> ({}): the input was probably read wrong, "
+          "or the model does not hold for it; the number below is not these surfaces' friction until it is "
+          "fixed: add <code>{}</code>.</p>\n",
           escape_html(codes), escape_html(p.trust_fix));
     }
     page += fmt::format(

@@ -113,3 +113,37 @@ TEST(CliLoad, PredictsAMapPairUnderLoad) {
   EXPECT_NE(html.find("id=\"load-curve\""), std::string::npos);
   EXPECT_NE(html.find("elastic half-space"), std::string::npos);
 }
+
+// Two smooth WM profiles (rms height 0.1 um over 1 mm, steepest slopes below 0.4 deg) on
+// aluminium. At 10 nN the asperities are separate Hertzian spheres and the loaded prediction stays
+// at the rigid one's scale (frictionless elastic contacts push along slopes no steeper than the
+// surfaces'); at 1 mN most of the load is on merged contacts, where the model reads several times
+// the rigid bound: the warning makes that number doubtful, and the text says so first.
+TEST(CliLoad, MergedContactsMakeThePredictionDoubtful) {
+  std::string f[2];
+  for (int s = 0; s < 2; ++s) {
+    f[s] = temp_path("smooth-wm" + std::to_string(s) + ".csv");
+    const CliRun g = run_cli(
+        "surface wm -D 1.5 --n-max 12 --longest-wavelength 1e-3 --length 1e-3 --rms-height 1e-7 --spacing 1e-7 "
+        "--seed " +
+        std::to_string(5 + s) + " -o " + f[s]);
+    ASSERT_EQ(g.code, 0) << g.err;
+  }
+  const std::string pair = "predict " + f[0] + " " + f[1] + " --modulus 70GPa --poisson 0.3 --load ";
+  const CliRun light = run_cli(pair + "10nN --json");
+  ASSERT_EQ(light.code, 0) << light.err;
+  const json l = json::parse(light.out);
+  EXPECT_EQ(l["trust"], "ok");
+  const double bound = l["upper_bound_friction_angle_deg"].get<double>();
+  ASSERT_LT(bound, 0.5);
+  EXPECT_LT(l["friction_angle_deg"].get<double>(), 2 * bound);
+  const CliRun heavy = run_cli(pair + "1mN --json");
+  ASSERT_EQ(heavy.code, 0) << heavy.err;
+  const json h = json::parse(heavy.out);
+  EXPECT_EQ(h["trust"], "doubtful");
+  EXPECT_NE(h["trust_codes"].get<std::string>().find("load-contacts-merge"), std::string::npos);
+  EXPECT_NE(h["trust_fix"].get<std::string>().find("--load"), std::string::npos);
+  const CliRun text = run_cli(pair + "1mN");
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_EQ(text.out.rfind("DOUBTFUL (load-contacts-merge", 0), 0u) << text.out;
+}
