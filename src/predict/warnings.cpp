@@ -98,13 +98,13 @@ const std::vector<WarningCode>& warning_codes() {
       {"load-deep-interference",
        "under load: at more than 5 % of the offsets a contact's interference exceeds a tenth of its radius: beyond "
        "Hertz's small contacts; the load is more than the asperity model represents (docs/load.md)",
-       true, "a smaller --load or stiffer materials (--modulus), or the rigid prediction (no --load)"},
+       true, "a smaller --load or a stiffer --modulus, or drop --load for the rigid prediction"},
       {"load-contacts-merge",
        "under load: more than 10 % of the load is on asperity contacts that merge with a neighbour (the block below "
        "the saddle between them, or their Hertz widths overlapping): beyond separate spheres, where the model's "
        "friction is not the surfaces' (on smooth profiles it reads tens of degrees above the rigid bound) "
        "(docs/load.md)",
-       true, "a smaller --load or stiffer materials (--modulus), or the rigid prediction (no --load)"},
+       true, "a smaller --load or a stiffer --modulus, or drop --load for the rigid prediction"},
       {"load-curve-beyond-model",
        "under load: loads of the friction-against-load curve (not the headline) break the asperity model's "
        "assumptions; the curve there is an extrapolation (docs/load.md)",
