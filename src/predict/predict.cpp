@@ -210,30 +210,49 @@ std::string load_breaks(const LoadedLiftDiagnostics& d) {
 // The prediction under load (PredictOptions::loads): the loaded lift of each load of the curve
 // on the rigid lift's vertices (load.hpp), each analysed as the rigid one (`analyse`: the headline
 // at d, and for the headline load the d sweep, on one lift, into p), the headline load's last.
-Status predict_under_load(Prediction& p, const Profile& lower, const Profile& upper, const LiftCurve& rigid,
-                          const PredictOptions& o, const std::function<Status(const LiftCurve&, bool)>& analyse) {
-  for (double w : o.loads)
-    if (!(w > 0) || !std::isfinite(w)) return make_error(fmt::format("load {} N: expected a finite force > 0", w));
+// What both models under load start from (the loads are checked at predict's entry): E*, the
+// curve's loads in increasing order (one load W: W times `factors`, W itself among them; a list:
+// those loads), the headline's index in it, and the normal force per unit weight.
+struct LoadCurveSetup {
+  double contact_modulus = 0;  ///< E* (unit: Pa)
+  std::vector<double> curve;   ///< the loads (unit: N)
+  std::size_t head = 0;        ///< index of the headline load o.loads[0]
+  double cosine = 1;           ///< cos(phi_0) (unitless)
+};
+Result<LoadCurveSetup> load_curve_setup(Prediction& p, const PredictOptions& o, const std::vector<double>& factors) {
+  LoadCurveSetup s;
   auto em = o.rigid_upper ? contact_modulus(o.lower_material)
                           : contact_modulus(o.lower_material, o.upper_material.value_or(o.lower_material));
   if (!em) return em.error();
-  std::vector<double> curve;
+  s.contact_modulus = *em;
   if (o.loads.size() == 1) {
-    for (int k = -4; k <= 2; ++k) curve.push_back(o.loads[0] * std::pow(10.0, 0.5 * k));
-    curve[4] = o.loads[0];
+    for (double f : factors) s.curve.push_back(f == 1 ? o.loads[0] : o.loads[0] * f);
   } else {
-    curve = o.loads;
-    std::sort(curve.begin(), curve.end());
-    curve.erase(std::unique(curve.begin(), curve.end()), curve.end());
+    s.curve = o.loads;
+    std::sort(s.curve.begin(), s.curve.end());
+    s.curve.erase(std::unique(s.curve.begin(), s.curve.end()), s.curve.end());
   }
-  const std::size_t head = std::size_t(std::find(curve.begin(), curve.end(), o.loads[0]) - curve.begin());
+  s.head = std::size_t(std::find(s.curve.begin(), s.curve.end(), o.loads[0]) - s.curve.begin());
   // The block of weight W presses with W cos(phi) at the tilt phi that moves it: evaluated at the
   // rigid median phi_0 (the loaded median differs from it by the elastic correction, whose cosine
   // changes the normal force by a second-order amount).
   p.rigid_friction_angle = p.friction_angle.q50;
-  const double cosine = std::cos(std::min(p.rigid_friction_angle, 1.5));
+  s.cosine = std::cos(std::min(p.rigid_friction_angle, 1.5));
+  return s;
+}
+
+Status predict_under_load(Prediction& p, const Profile& lower, const Profile& upper, const LiftCurve& rigid,
+                          const PredictOptions& o, const std::function<Status(const LiftCurve&, bool)>& analyse) {
+  // One load: W x 10^(-2..1) in half decades.
+  std::vector<double> factors;
+  for (int k = -4; k <= 2; ++k) factors.push_back(std::pow(10.0, 0.5 * k));
+  auto setup = load_curve_setup(p, o, factors);
+  if (!setup) return setup.error();
+  const std::vector<double>& curve = setup->curve;
+  const std::size_t head = setup->head;
+  const double cosine = setup->cosine;
   LoadedLiftOptions lo;
-  lo.contact_modulus = *em;
+  lo.contact_modulus = setup->contact_modulus;
   lo.threads = o.threads;
   for (double w : curve) lo.loads.push_back(w * cosine);
   auto loaded = loaded_lift(lower, upper, rigid, lo);
@@ -258,7 +277,7 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
   p.load_curve_q95.insert(p.load_curve_q95.begin() + std::ptrdiff_t(at), p.friction_angle.q95);
   p.load = curve[head];
   p.normal_load = curve[head] * cosine;
-  p.contact_modulus = *em;
+  p.contact_modulus = setup->contact_modulus;
   const LoadedLiftDiagnostics& dg = loaded->diagnostics[head];
   p.load_contacts = dg.mean_contacts;
   p.load_approach = dg.mean_approach;
@@ -560,24 +579,15 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
 // at every load of the curve. The rigid prediction `p` (free block) gives phi_0 and stays the bound.
 Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper, const ArealTiltOptions& t,
                                const std::vector<std::array<double, 2>>& uv, const PredictOptions& o) {
-  auto em = o.rigid_upper ? contact_modulus(o.lower_material)
-                          : contact_modulus(o.lower_material, o.upper_material.value_or(o.lower_material));
-  if (!em) return em.error();
   // One load: a decade either side (each load is a contact solve per offset, the cost of the map
   // model); a list: those loads.
-  std::vector<double> curve;
-  if (o.loads.size() == 1) {
-    curve = {0.1 * o.loads[0], o.loads[0], 10 * o.loads[0]};
-  } else {
-    curve = o.loads;
-    std::sort(curve.begin(), curve.end());
-    curve.erase(std::unique(curve.begin(), curve.end()), curve.end());
-  }
-  const std::size_t head = std::size_t(std::find(curve.begin(), curve.end(), o.loads[0]) - curve.begin());
-  p.rigid_friction_angle = p.friction_angle.q50;
-  const double cosine = std::cos(std::min(p.rigid_friction_angle, 1.5));
+  auto setup = load_curve_setup(p, o, {0.1, 1, 10});
+  if (!setup) return setup.error();
+  const std::vector<double>& curve = setup->curve;
+  const std::size_t head = setup->head;
+  const double cosine = setup->cosine;
   MapLoadedLiftOptions lo;
-  lo.contact_modulus = *em;
+  lo.contact_modulus = setup->contact_modulus;
   lo.angle = t.angle;
   lo.turn_over_upper = t.turn_over_upper;
   lo.threads = o.threads;
@@ -689,7 +699,7 @@ Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper
   }
   p.load = curve[head];
   p.normal_load = curve[head] * cosine;
-  p.contact_modulus = *em;
+  p.contact_modulus = setup->contact_modulus;
   const MapLoadedDiagnostics& dg = loaded->diagnostics[head];
   p.load_contacts = dg.mean_patches;
   p.load_approach = dg.mean_approach;
