@@ -89,11 +89,35 @@ inline nlohmann::json json_value(const std::string& unit, const OutputValue& si)
   return l;
 }
 
+/// A flat JSON list nested into `shape` (row-major; empty or one dimension: as it is).
+inline nlohmann::json json_shaped(nlohmann::json flat, const std::vector<std::size_t>& shape) {
+  if (shape.size() < 2 || !flat.is_array()) return flat;
+  const std::size_t inner = flat.size() / std::max<std::size_t>(shape.front(), 1);
+  const std::vector<std::size_t> rest(shape.begin() + 1, shape.end());
+  nlohmann::json out = nlohmann::json::array();
+  for (std::size_t i = 0; i < shape.front(); ++i) {
+    nlohmann::json part(flat.begin() + static_cast<std::ptrdiff_t>(i * inner),
+                        flat.begin() + static_cast<std::ptrdiff_t>((i + 1) * inner));
+    out.push_back(json_shaped(std::move(part), rest));
+  }
+  return out;
+}
+
 /// A nested object in JSON: each of its fields under its key, in its interface unit.
 inline nlohmann::json json_row(const OutputRow& row) {
   nlohmann::json o = nlohmann::json::object();
-  for (const OutputField& f : row)
-    if (!f.info.key.empty()) o[f.info.key] = json_value(f.info.unit, f.si);
+  for (const OutputField& f : row) {
+    if (f.info.key.empty()) continue;
+    if (!is_nested_unit(f.info.unit)) {
+      o[f.info.key] = json_shaped(json_value(f.info.unit, f.si), f.shape);
+    } else if (f.info.unit.starts_with("object:")) {
+      o[f.info.key] = f.rows.empty() ? nlohmann::json(nullptr) : json_row(f.rows.front());
+    } else {
+      nlohmann::json l = nlohmann::json::array();
+      for (const OutputRow& r : f.rows) l.push_back(json_row(r));
+      o[f.info.key] = l;
+    }
+  }
   return o;
 }
 
@@ -106,7 +130,7 @@ void put_columns(nlohmann::json& j, const Columns<T>& cols, const T& value) {
   for (const Column<T>& c : cols) {
     if (c.key.empty() || !has_output(c, value)) continue;
     if (c.si) {
-      j[c.key] = json_value(c.unit, c.si(value));
+      j[c.key] = json_shaped(json_value(c.unit, c.si(value)), c.shape ? c.shape(value) : std::vector<std::size_t>());
       continue;
     }
     const std::vector<OutputRow> rows = c.rows(value);

@@ -102,5 +102,9 @@ std::vector<Profile> map_lines(const Map& m, double angle, double spacing = 0, d
 /// `frictal stats --json` and Python's map_stats().
 const Columns<MapStats>& map_stats_columns();
 const Columns<Map>& map_grid_columns();
+/// A map as Python's read_map() returns it: its heights (ny x nx) and grid (table "map_data").
+const Columns<Map>& map_data_columns();
+/// An autocorrelation (Python autocorrelation(); table "autocorrelation").
+const Columns<Autocorrelation>& autocorrelation_columns();
 
 }  // namespace frictal

@@ -161,5 +161,7 @@ struct AnisotropyTable {
 /// Their output tables (frictal/outputs.hpp; src/areal/areal_columns.cpp).
 const Columns<AnisotropyRow>& anisotropy_row_columns();
 const Columns<AnisotropyTable>& anisotropy_columns();
+/// An areal signature (Python areal_signature(); table "areal_signature").
+const Columns<ArealSignature>& areal_signature_columns();
 
 }  // namespace frictal

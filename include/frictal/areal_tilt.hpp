@@ -268,4 +268,13 @@ struct DefaultRunaway {
 };
 DefaultRunaway default_map_runaway_distance(const Map& lower, double direction);
 
+/// One drop of the matched prediction as the front ends report it: the drop and, where it was
+/// computed, its spread.
+struct ArealTiltHoldReport {
+  const ArealTiltHold& hold;
+  const ArealTiltHoldSpread* spread = nullptr;  ///< none: not computed
+};
+/// Its output columns (frictal/outputs.hpp; src/tilt/tilt_columns.cpp): Python areal_tilt_hold().
+const Columns<ArealTiltHoldReport>& areal_tilt_hold_columns();
+
 }  // namespace frictal

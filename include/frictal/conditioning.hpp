@@ -20,6 +20,7 @@
 #include "frictal/analysis.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/map.hpp"
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 
 namespace frictal {
@@ -104,6 +105,10 @@ std::string conditioning_text(const std::vector<ConditioningRecord>& records);
 
 /// Canonical text of a Detrend ("none", "mean", "line", "plane" for maps, "poly:N").
 std::string detrend_name(const Detrend& d, bool is_map);
+
+/// What conditioning did as output columns (frictal/outputs.hpp; src/analysis/analysis_columns.cpp):
+/// Python condition()'s record (table "conditioning").
+const Columns<ConditioningRecord>& conditioning_record_columns();
 
 /// The form every front end removes from a measured surface unless told otherwise (the CLI's
 /// --detrend, Python's detrend=; docs/analysis.md, "Conditioning"): the least-squares line of a

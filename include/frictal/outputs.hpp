@@ -39,13 +39,20 @@ struct ColumnInfo {
   std::string python;  ///< the key in Python's dicts, whose numbers are SI; "" = not in Python's dicts
 };
 
-/// One column of a nested object: its declaration and its value in SI.
+/// One column of a nested object: its declaration and its value in SI, or for a nested column
+/// ("object:TABLE", "list:TABLE") the objects under it (`si` unused).
 struct OutputField {
   ColumnInfo info;
   OutputValue si;
+  std::vector<std::vector<OutputField>> rows;
+  std::vector<std::size_t> shape;  ///< a list's dimensions, row-major (empty: one)
+  bool fixed = false;              ///< a list of a fixed length (a point, a range): Python's tuple
 };
-/// A nested object: the columns of its table that have a value, in the table's order.
+/// A nested object: the columns of its table that have a value or objects, in the table's order.
 using OutputRow = std::vector<OutputField>;
+
+/// Whether a column's unit names nested objects ("object:TABLE" or "list:TABLE").
+inline bool is_nested_unit(std::string_view unit) { return unit.starts_with("object:") || unit.starts_with("list:"); }
 
 /// One output quantity of result type T: its declaration and its value in SI, or for a nested
 /// column ("object:TABLE", "list:TABLE") the objects under it.
@@ -57,6 +64,11 @@ struct Column : ColumnInfo {
   std::function<bool(const T&)> present;
   /// A nested column's objects: one for "object:TABLE", any number for "list:TABLE".
   std::function<std::vector<OutputRow>(const T&)> rows;
+  /// A list's dimensions, row-major (empty: one dimension), e.g. {ny, nx} for a map's values:
+  /// Python's arrays take this shape; JSON lists stay flat.
+  std::function<std::vector<std::size_t>(const T&)> shape;
+  /// A list of a fixed length, a point (x, y) or a range (min, max): Python's tuple, not an array.
+  bool fixed = false;
 };
 template <class T>
 using Columns = std::vector<Column<T>>;
@@ -67,12 +79,18 @@ bool has_output(const Column<T>& c, const T& value) {
   return (c.si || c.rows) && (!c.present || c.present(value));
 }
 
-/// `value` as a nested object: every column of `cols` that has a value for it.
+/// `value` as a nested object: every column of `cols` that has a value or objects for it (a
+/// nested column's objects nested in turn).
 template <class R>
 OutputRow row_of(const Columns<R>& cols, const R& value) {
   OutputRow row;
-  for (const Column<R>& c : cols)
-    if (c.si && (!c.present || c.present(value))) row.push_back({c, c.si(value)});
+  for (const Column<R>& c : cols) {
+    if (!has_output(c, value)) continue;
+    if (c.si)
+      row.push_back({c, c.si(value), {}, c.shape ? c.shape(value) : std::vector<std::size_t>(), c.fixed});
+    else
+      row.push_back({c, OutputValue(), c.rows(value), {}, false});
+  }
   return row;
 }
 
@@ -120,6 +138,20 @@ Column<T> column(std::string key, std::string unit, std::string help, F&& f, std
 template <class T, class P>
 Column<T> only_if(Column<T> c, P&& pred) {
   c.present = std::forward<P>(pred);
+  return c;
+}
+
+/// Column `c`, a list whose dimensions (row-major) `f` returns for a value.
+template <class T, class F>
+Column<T> with_shape(Column<T> c, F&& f) {
+  c.shape = std::forward<F>(f);
+  return c;
+}
+
+/// Column `c`, a list of a fixed length (a point, a range): a tuple in Python.
+template <class T>
+Column<T> fixed_length(Column<T> c) {
+  c.fixed = true;
   return c;
 }
 

@@ -312,6 +312,16 @@ double map_work_estimate(std::size_t upper_spheres, std::size_t drops);
 /// every key but "warnings", which is a list of {code, message}.
 const Columns<Prediction>& prediction_columns();
 
+/// A map prediction read as the hold angle of one lateral mode (`frictal areal --lateral`,
+/// Python areal_hold()): the prediction, the mode it reports and whether the upper was in place.
+struct ArealHoldReport {
+  const Prediction& prediction;
+  bool locked = false;    ///< the locked mode's hold angles (else the free block's)
+  bool in_place = false;  ///< the upper map is the upper face in place (not turned over)
+};
+/// Its output table "areal_hold" (src/predict/predict_columns.cpp).
+const Columns<ArealHoldReport>& areal_hold_columns();
+
 /// The value of a column in its interface unit (degrees for "deg"; NaN/inf stay as they are).
 OutputValue interface_value(const Column<Prediction>& c, const Prediction& p);
 

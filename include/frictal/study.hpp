@@ -18,6 +18,7 @@
 #include <initializer_list>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -697,5 +698,30 @@ Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir
 inline Result<std::vector<std::string>> export_csv(Store& store, const std::string& dir) {
   return export_csv(store, dir, default_registry());
 }
+
+/// A store's status as the front ends report it: the store's path and its status.
+struct StudyStatusReport {
+  const std::string& store;
+  const StoreStatus& status;
+};
+/// A run of a study as the front ends report it: its summary, the store's task counts after it
+/// and, for one study of several, which study and store.
+struct StudyRunReport {
+  const RunSummary& summary;
+  StoreCounts tasks;
+  std::optional<std::string> study = std::nullopt;  ///< the study's name (runs of several studies)
+  std::optional<std::string> store = std::nullopt;  ///< the store's path (runs of several studies)
+};
+
+/// The output tables of studies (frictal/outputs.hpp; src/study/study_columns.cpp): `frictal
+/// study status --json` and Python study_status() ("study_status", its "tasks" and "parts"), and
+/// Python study_run() and study_run_many() ("study_run").
+const Columns<StoreCounts>& study_tasks_columns();
+const Columns<StoreStatus::PartStatus>& study_part_columns();
+const Columns<StudyStatusReport>& study_status_columns();
+const Columns<StudyRunReport>& study_run_columns();
+/// These tables for the catalogue of output tables (frictal/outputs.hpp, output_tables(): the
+/// modules below study list theirs there; `frictal columns` lists both).
+const std::vector<OutputTable>& study_output_tables();
 
 }  // namespace frictal::study

@@ -533,6 +533,8 @@ Result<TiltFramesFile> read_tilt_frames(const std::string& path);
 struct TiltReport {
   const TiltResult& result;
   const TiltConfig& config;
+  /// How the defaults were scaled to the surfaces ("scaled_defaults"); none: not written.
+  const TiltScaling* scaling = nullptr;
 };
 /// Whether a run's friction angle is a friction angle of the surfaces (`friction_angle_valid`):
 /// "valid", or why not, with the option that would make it so (`validity`; every front end prints
@@ -549,5 +551,12 @@ const Columns<TiltScales>& tilt_scales_columns();
 const Columns<TiltEstimate>& tilt_estimate_columns();
 const Columns<dem::StepTimings>& tilt_stage_time_columns();
 const Columns<TiltScaling>& tilt_scaling_columns();
+/// One setting that scale_tilt_defaults changed: "scaled_defaults"' "settings" (JSON in the
+/// setting's text unit, Python in SI).
+const Columns<TiltScaledSetting>& tilt_scaled_setting_columns();
+/// The time series of a run (Python tilt()'s "series").
+const Columns<TiltSeries>& tilt_series_columns();
+/// A frames file read back (Python read_tilt_frames(); table "tilt_frames").
+const Columns<TiltFramesFile>& tilt_frames_columns();
 
 }  // namespace frictal

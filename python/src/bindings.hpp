@@ -111,22 +111,50 @@ inline std::string num(double v) {
 inline py::array_t<double> arr(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
 
 /// An output value as Python's dicts hold it (frictal/outputs.hpp): SI numbers, an int for a
-/// "count" column, a numpy array for a list.
-inline py::object py_value(const std::string& unit, const OutputValue& v) {
+/// "count" column, a numpy array for a list (of ints for a "count" column), of the column's
+/// `shape` where it has one.
+inline py::object py_value(const std::string& unit, const OutputValue& v, const std::vector<std::size_t>& shape = {},
+                           bool fixed = false) {
   if (auto* d = std::get_if<double>(&v)) {
     if (unit == "count") return std::isfinite(*d) ? py::object(py::int_(static_cast<long long>(*d))) : py::none();
     return py::float_(*d);
   }
   if (auto* t = std::get_if<std::string>(&v)) return py::str(*t);
   if (auto* b = std::get_if<bool>(&v)) return py::bool_(*b);
-  return arr(std::get<std::vector<double>>(v));
+  const std::vector<double>& l = std::get<std::vector<double>>(v);
+  if (fixed) {  // a point or a range: a tuple
+    py::tuple t(l.size());
+    for (std::size_t i = 0; i < l.size(); ++i)
+      t[i] = unit == "count" ? py::object(py::int_(static_cast<long long>(l[i]))) : py::object(py::float_(l[i]));
+    return t;
+  }
+  py::array a;
+  if (unit == "count") {
+    std::vector<long long> n(l.begin(), l.end());
+    a = py::array_t<long long>(static_cast<py::ssize_t>(n.size()), n.data());
+  } else {
+    a = arr(l);
+  }
+  if (shape.empty()) return a;
+  return a.reshape(std::vector<py::ssize_t>(shape.begin(), shape.end()));
+}
+
+/// A nested column's objects as Python holds them: "object:" one dict (None without one),
+/// "list:" a list of dicts.
+inline py::object py_rows(const std::string& unit, const std::vector<OutputRow>& rows) {
+  if (unit.starts_with("object:")) return rows.empty() ? py::object(py::none()) : py::object(py_row(rows.front()));
+  py::list l;
+  for (const OutputRow& r : rows) l.append(py_row(r));
+  return l;
 }
 
 /// A nested object as a Python dict: each of its fields under its Python key, in SI.
 inline py::dict py_row(const OutputRow& row) {
   py::dict d;
   for (const OutputField& f : row)
-    if (!f.info.python.empty()) d[py::str(f.info.python)] = py_value(f.info.unit, f.si);
+    if (!f.info.python.empty())
+      d[py::str(f.info.python)] =
+          is_nested_unit(f.info.unit) ? py_rows(f.info.unit, f.rows) : py_value(f.info.unit, f.si, f.shape, f.fixed);
   return d;
 }
 
@@ -137,18 +165,9 @@ template <class T>
 void put_columns(py::dict& d, const Columns<T>& cols, const T& value) {
   for (const Column<T>& c : cols) {
     if (c.python.empty() || !has_output(c, value)) continue;
-    if (c.si) {
-      d[py::str(c.python)] = py_value(c.unit, c.si(value));
-      continue;
-    }
-    const std::vector<OutputRow> rows = c.rows(value);
-    if (c.unit.starts_with("object:")) {
-      d[py::str(c.python)] = rows.empty() ? py::object(py::none()) : py::object(py_row(rows.front()));
-    } else {
-      py::list l;
-      for (const OutputRow& r : rows) l.append(py_row(r));
-      d[py::str(c.python)] = l;
-    }
+    d[py::str(c.python)] =
+        c.si ? py_value(c.unit, c.si(value), c.shape ? c.shape(value) : std::vector<std::size_t>(), c.fixed)
+             : py_rows(c.unit, c.rows(value));
   }
 }
 template <class T>

@@ -101,15 +101,6 @@ void frictal_bind_contact(py::module_& m) {
           run.warnings = warnings;
           for (const Warning& x : r.warnings) add_warning(*run.warnings, x);
           py_detail::put_columns(d, run_record_columns(), run);
-          if (fields) {
-            py::array_t<double> pa = py_detail::arr(r.pressure), ga = py_detail::arr(r.gap);
-            if (r.is_map) {
-              pa = pa.reshape({r.ny, r.nx});
-              ga = ga.reshape({r.ny, r.nx});
-            }
-            d["pressure"] = pa;
-            d["gap"] = ga;
-          }
           out.append(d);
         }
         if (results.size() == 1 && (py::isinstance<py::float_>(load) || py::isinstance<py::int_>(load) ||

@@ -110,34 +110,13 @@ void frictal_bind_dem(py::module_& m) {
         TiltConfig c = sc.config;
         c.threads = threads;
         TiltResult r = py_detail::ok(py_detail::nogil([&] { return run_tilt(lo, up, c); }));
-        py::dict d = py_detail::to_dict(tilt_columns(), TiltReport{r, c});
-        data_warnings.insert(data_warnings.end(), r.warnings.begin(), r.warnings.end());
-        d["warnings"] = py_detail::warning_list(data_warnings);
-        py::dict scaled = py_detail::to_dict(tilt_scaling_columns(), sc);
-        py::list changed;
-        for (const TiltScaledSetting& t : sc.settings) {
-          py::dict e;
-          e["name"] = t.name;
-          const Field* f = find_field(tilt_settings(), t.name);
-          e["unit"] = f ? f->unit : std::string();
-          e["from"] = t.from;
-          e["to"] = t.to;
-          changed.append(e);
-        }
-        scaled["settings"] = changed;
-        d["scaled_defaults"] = scaled;
-        if (measured) d["conditioning"] = conditioning;
-        d["scales"] = py_detail::to_dict(tilt_scales_columns(), r.scales);
-        py::dict s;
-        s["time"] = arr(r.series.time);
-        s["tilt"] = arr(r.series.tilt);
-        s["normal_force"] = arr(r.series.normal_force);
-        s["tangential_force"] = arr(r.series.tangential_force);
-        s["force_angle"] = arr(r.series.force_angle);
-        s["displacement"] = arr(r.series.displacement);
-        s["velocity"] = arr(r.series.velocity);
-        s["contacts"] = py::array_t<int>(r.series.contacts.size(), r.series.contacts.data());
-        d["series"] = s;
+        py::dict d = py_detail::to_dict(tilt_columns(), TiltReport{r, c, &sc});
+        // The files' warnings, then the run's, as the CLI lists them; the conditioning of a measured pair.
+        RunRecord run;
+        run.warnings = std::move(data_warnings);
+        run.warnings->insert(run.warnings->end(), r.warnings.begin(), r.warnings.end());
+        if (measured) run.conditioning = conditioning;
+        py_detail::put_columns(d, run_record_columns(), run);
         return d;
       },
       py::arg("lower"), py::arg("upper") = py::none(),
@@ -253,29 +232,7 @@ void frictal_bind_dem(py::module_& m) {
           }
           return out;
         }));
-        py::dict d;
-        d["hold_angle"] = r.hold.hold_angle;
-        d["seat_bound"] = r.hold.seat_bound;
-        d["runaway_increment"] = r.hold.runaway_increment;
-        d["ran_away"] = r.hold.ran_away;
-        d["rest_offset"] = py::make_tuple(r.hold.rest_offset[0], r.hold.rest_offset[1]);
-        d["steering"] = r.hold.steering;
-        d["evaluations"] = r.hold.evaluations;
-        std::vector<double> tilt, x, y;
-        for (const auto& st : r.hold.stops) {
-          tilt.push_back(st[0]);
-          x.push_back(st[1]);
-          y.push_back(st[2]);
-        }
-        d["stop_tilt"] = arr(tilt);
-        d["stop_x"] = arr(x);
-        d["stop_y"] = arr(y);
-        if (spread) {
-          d["hold_angle_range"] = py::make_tuple(r.spread.low, r.spread.high);
-          d["slips"] = r.spread.slips;
-          d["ambiguous_slips"] = r.spread.ambiguous;
-        }
-        return d;
+        return py_detail::to_dict(areal_tilt_hold_columns(), ArealTiltHoldReport{r.hold, spread ? &r.spread : nullptr});
       },
       py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("upper") = py::none(),
       py::arg("turn_over_upper") = true, py::arg("start_offset") = py::none(), py::arg("start_tilt") = 0.0,
@@ -300,31 +257,7 @@ void frictal_bind_dem(py::module_& m) {
       "read_tilt_frames",
       [](const std::string& path) {
         py_detail::require_file(path);
-        const TiltFramesFile f = py_detail::ok(read_tilt_frames(path));
-        const auto n = static_cast<py::ssize_t>(f.frames.size());
-        py::array_t<double> time(n), tilt(n), position({n, py::ssize_t{2}, py::ssize_t{2}}), angle({n, py::ssize_t{2}});
-        auto t = time.mutable_unchecked<1>();
-        auto a = tilt.mutable_unchecked<1>();
-        auto p = position.mutable_unchecked<3>();
-        auto q = angle.mutable_unchecked<2>();
-        for (py::ssize_t k = 0; k < n; ++k) {
-          const TiltFrame& fr = f.frames[static_cast<std::size_t>(k)];
-          t(k) = fr.time, a(k) = fr.tilt;
-          for (int b = 0; b < 2; ++b)
-            p(k, b, 0) = fr.position[b].x, p(k, b, 1) = fr.position[b].y, q(k, b) = fr.angle[b];
-        }
-        auto polygon = [](const std::vector<double>& x, const std::vector<double>& y) {
-          py::array_t<double> out({static_cast<py::ssize_t>(x.size()), py::ssize_t{2}});
-          auto o = out.mutable_unchecked<2>();
-          for (std::size_t i = 0; i < x.size(); ++i)
-            o(static_cast<py::ssize_t>(i), 0) = x[i], o(static_cast<py::ssize_t>(i), 1) = y[i];
-          return out;
-        };
-        py::dict d;
-        d["lower_polygon"] = polygon(f.lower_polygon_x, f.lower_polygon_y);
-        d["upper_polygon"] = polygon(f.upper_polygon_x, f.upper_polygon_y);
-        d["time"] = time, d["tilt"] = tilt, d["position"] = position, d["angle"] = angle;
-        return d;
+        return py_detail::to_dict(tilt_frames_columns(), py_detail::ok(read_tilt_frames(path)));
       },
       py::arg("path"),
       "read_tilt_frames(path) -> dict\n\nA frames file of the tilt test read back (`frictal tilt --frames FILE`; "

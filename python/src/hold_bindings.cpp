@@ -17,20 +17,6 @@ using namespace frictal;
 using frictal::py_detail::arr;
 using frictal::py_detail::nogil;
 
-namespace {
-
-py::dict distribution_dict(const HoldDistribution& h) {
-  py::dict d = py_detail::to_dict(hold_distribution_columns(), h);
-  d["hold_angle"] = py_detail::to_dict(hold_statistics_columns(), h.hold);
-  d["inertial_hold_angle"] = py_detail::to_dict(hold_statistics_columns(), h.inertial);
-  d["basins"] = py_detail::to_dict(hold_basins_columns(), h.basins);
-  return d;
-}
-
-py::dict angle_dict(const HoldAngle& a) { return py_detail::to_dict(hold_drop_columns(), a); }
-
-}  // namespace
-
 void frictal_bind_hold(py::module_& m) {
   m.def(
       "hold_angle",
@@ -57,14 +43,10 @@ void frictal_bind_hold(py::module_& m) {
         const double start = start_offset ? *start_offset : std::numeric_limits<double>::quiet_NaN();
         HoldAnalysis r = py_detail::ok(nogil([&] { return analyse_hold(pair.lower, up, o, h, start); }));
         py::dict d = py_detail::to_dict(hold_columns(), r);
-        d["conditioning"] = pair.conditioning;
-        d["warnings"] = py_detail::warning_list(pair.warnings);
-        d["forward"] = distribution_dict(r.distribution.forward);
-        d["backward"] = distribution_dict(r.distribution.backward);
-        if (r.has_start) {
-          d["start"] = angle_dict(r.start.forward);
-          d["start_backward"] = angle_dict(r.start.backward);
-        }
+        RunRecord run;
+        run.conditioning = pair.conditioning;
+        run.warnings = pair.warnings;
+        py_detail::put_columns(d, run_record_columns(), run);
         return d;
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("rotate_upper") = true,

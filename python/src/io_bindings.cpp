@@ -69,22 +69,6 @@ using frictal::py_detail::require_file;
 using frictal::py_detail::to_map;
 using frictal::py_detail::to_surface;
 
-py::array_t<double> heights2d(const Map& m) {
-  py::array_t<double> a({m.ny, m.nx});
-  std::copy(m.heights.begin(), m.heights.end(), a.mutable_data());
-  return a;
-}
-
-py::dict map_dict(const Map& m) {
-  py::dict d;
-  d["heights"] = heights2d(m);
-  d["dx"] = m.dx;
-  d["dy"] = m.dy;
-  d["x0"] = m.x0;
-  d["y0"] = m.y0;
-  return d;
-}
-
 ReadOptions read_options(const std::string& format, const std::string& unit, double spacing = 0,
                          const std::string& channel = "", const std::string& x_unit = "",
                          const std::string& z_unit = "") {
@@ -96,24 +80,7 @@ ReadOptions read_options(const std::string& format, const std::string& unit, dou
   return o;
 }
 
-py::dict record_dict(const ConditioningRecord& r) {
-  py::dict d;
-  d["text"] = r.text();
-  d["cropped"] = r.cropped;
-  if (r.cropped) {
-    d["window"] = r.window.has_y ? py::make_tuple(r.window.x_min, r.window.x_max, r.window.y_min, r.window.y_max)
-                                 : py::make_tuple(r.window.x_min, r.window.x_max);
-    d["points_before"] = py::make_tuple(r.nx_before, r.ny_before);
-    d["points_after"] = py::make_tuple(r.nx_after, r.ny_after);
-  }
-  d["spikes_checked"] = r.spikes_checked;
-  d["spike_threshold"] = r.spike_threshold;
-  d["spikes_removed"] = r.spikes_removed;
-  d["spikes_dropped"] = r.spikes_dropped;
-  d["spike_passes"] = r.spike_passes;
-  d["form"] = detrend_name(r.form, r.is_map);
-  return d;
-}
+py::dict record_dict(const ConditioningRecord& r) { return py_detail::to_dict(conditioning_record_columns(), r); }
 
 py::dict fit_dict(const FractalFit& f) { return py_detail::to_dict(fractal_fit_columns(), f); }
 
@@ -128,7 +95,8 @@ void frictal_bind_io(py::module_& m) {
         const ReadOptions o = read_options(format, unit, spacing, channel, x_unit, z_unit);
         SurfaceData s = ok(nogil([&] { return read_surface(path, o); }));
         // The map's heights as a (ny, nx) array, then the columns of what the file holds.
-        py::dict d = s.is_map ? map_dict(s.map) : py::dict();
+        py::dict d;
+        if (s.is_map) py_detail::put_columns(d, map_data_columns(), s.map);
         RunRecord in;
         in.kind = s.is_map ? "map" : "profile";
         in.format = format_name(s.format);
@@ -151,7 +119,7 @@ void frictal_bind_io(py::module_& m) {
       [](const std::string& path, const std::string& format) {
         const ReadOptions o = read_options(format, "");
         require_file(path);
-        return map_dict(ok(nogil([&] { return read_map(path, o); })));
+        return py_detail::to_dict(map_data_columns(), ok(nogil([&] { return read_map(path, o); })));
       },
       py::arg("path"), py::kw_only(), py::arg("format") = "auto",
       "Reads an areal map (runs without the GIL): dict heights (ny, nx) in m, dx, dy, x0, y0 in m");
@@ -226,7 +194,7 @@ void frictal_bind_io(py::module_& m) {
         }
         if (!detrend_text) c.form = default_form();
         ConditionedMap r = ok(nogil([&] { return condition(s.map, c, "map"); }));
-        return py::make_tuple(map_dict(r.map), record_dict(r.record));
+        return py::make_tuple(py_detail::to_dict(map_data_columns(), r.map), record_dict(r.record));
       },
       py::arg("surface"), py::kw_only(), py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
       py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("detrend") = py::none(),
@@ -253,11 +221,7 @@ void frictal_bind_io(py::module_& m) {
       "autocorrelation",
       [](const Profile& p, std::size_t max_lag) {
         Autocorrelation a = ok(nogil([&] { return autocorrelation(p, max_lag); }));
-        py::dict d;
-        d["lag"] = arr(a.lag);
-        d["acf"] = arr(a.acf);
-        d["correlation_length"] = a.correlation_length;
-        return d;
+        return py_detail::to_dict(autocorrelation_columns(), a);
       },
       py::arg("profile"), py::arg("max_lag") = 0,
       "Autocorrelation of a profile: lag (m), acf (unitless), correlation_length (m); max_lag: 0 = automatic");
@@ -341,17 +305,12 @@ void frictal_bind_io(py::module_& m) {
         o.prune = prune;
         o.threads = threads;
         ArealSignature r = ok(nogil([&] { return areal_signature(f, g, angle, o); }));
-        py::dict d;
-        d["offset"] = arr(r.offset);
-        d["lift"] = arr(r.lift);
-        d["theta"] = arr(r.theta);
-        d["theta_max_forward"] = r.theta_max_forward;
-        d["theta_max_backward"] = r.theta_max_backward;
-        d["contact_slope_std"] = r.contact_slope_std;
-        d["evaluated_nodes"] = r.evaluated_nodes;
+        py::dict d = py_detail::to_dict(areal_signature_columns(), r);
         // The bound's warnings as `frictal areal` gives them (theta_a = 0 here).
-        d["warnings"] = py_detail::warning_list(
-            check_friction_prediction(ok(predict_friction(0.0, r.theta_max_forward, r.contact_slope_std)), "areal"));
+        RunRecord run;
+        run.warnings =
+            check_friction_prediction(ok(predict_friction(0.0, r.theta_max_forward, r.contact_slope_std)), "areal");
+        py_detail::put_columns(d, run_record_columns(), run);
         return d;
       },
       py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,

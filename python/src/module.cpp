@@ -273,7 +273,9 @@ PYBIND11_MODULE(_core, m) {
         // The rigid upper bound and Eq. 18's low end, named as `frictal signature --json` names them:
         // friction_angle belongs to frictal.predict (what a tilt test reads).
         py::dict d = py_detail::to_dict(friction_columns(), f);
-        d["warnings"] = py_detail::warning_list(check_friction_prediction(f, "predict_friction"));
+        RunRecord run;
+        run.warnings = check_friction_prediction(f, "predict_friction");
+        py_detail::put_columns(d, run_record_columns(), run);
         return d;
       },
       py::arg("atomic_friction"), py::arg("theta_max"), py::arg("sigma") = 0.0,

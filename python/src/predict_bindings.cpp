@@ -250,7 +250,9 @@ void frictal_bind_predict(py::module_& m) {
             py::dict d;
             for (const Column<Prediction>& c : prediction_columns())
               d[py::str(c.key)] = json_safe(to_py(c.unit, interface_value(c, p)));
-            d["warnings"] = py_detail::warning_list(p.warnings);
+            RunRecord run;
+            run.warnings = p.warnings;
+            py_detail::put_columns(d, run_record_columns(), run);
             return d;
           },
           "The keys and interface units of `frictal predict --json`, and its values: None where the JSON has null "
@@ -368,46 +370,11 @@ void frictal_bind_predict(py::module_& m) {
           o.start_offset = {xy[0], xy[1]};
         }
         const Prediction p = ok(nogil([&] { return predict(lo, pair ? &up : nullptr, o); }));
-        const bool locked = o.map_locked;
-        const HoldStatistics& h = locked ? p.locked_friction_angle : p.friction_angle;
-        py::dict d;
-        d["model"] = locked ? std::string("map-continuous-locked") : p.model;
-        d["lateral"] = lateral;
-        d["direction"] = p.direction;
-        d["atomic_friction"] = p.atomic_friction;
-        d["runaway_distance"] = p.runaway_distance;
-        d["drops"] = p.drops;
-        d["drop_range"] = py::make_tuple(p.drop_range[0], p.drop_range[1], p.drop_range[2], p.drop_range[3]);
-        if (p.single_drop) {
-          d["start_offset"] = py::make_tuple(p.start_offset[0], p.start_offset[1]);
-          d["rest_offset"] = py::make_tuple(p.rest_offset[0], p.rest_offset[1]);
-          d["hold_angle"] = h.q50;
-          if (locked) d["hold_angle_free"] = p.friction_angle.q50;
-          d["steering"] = p.drop_steering.at(0);
-        } else {
-          d["hold_angle_mean"] = h.mean;
-          d["hold_angle_std"] = h.std;
-          d["hold_angle_q05"] = h.q05;
-          d["hold_angle_q50"] = h.q50;
-          d["hold_angle_q95"] = h.q95;
-          d["hold_angle_min"] = h.min;
-          d["hold_angle_max"] = h.max;
-          if (locked) {
-            d["hold_angle_free_q05"] = p.friction_angle.q05;
-            d["hold_angle_free_q50"] = p.friction_angle.q50;
-            d["hold_angle_free_q95"] = p.friction_angle.q95;
-          }
-          d["drop_hold_angles"] = arr(locked ? p.drop_angles_locked : p.drop_angles);
-          py::array_t<double> xy({p.drop_offsets.size(), std::size_t(2)});
-          for (std::size_t k = 0; k < p.drop_offsets.size(); ++k) {
-            xy.mutable_at(k, 0) = p.drop_offsets[k][0];
-            xy.mutable_at(k, 1) = p.drop_offsets[k][1];
-          }
-          d["drop_offsets"] = xy;
-        }
-        d["upper_bound_friction_angle"] = p.upper_bound_friction_angle;
-        d["conditioning"] = p.conditioning;
-        d["warnings"] = py_detail::warning_list(p.warnings);
+        py::dict d = py_detail::to_dict(areal_hold_columns(), ArealHoldReport{p, o.map_locked, !turn_over_upper});
+        RunRecord run;
+        run.conditioning = p.conditioning;
+        run.warnings = p.warnings;
+        py_detail::put_columns(d, run_record_columns(), run);
         return d;
       },
       py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,

@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "bindings.hpp"
 #include "frictal/study.hpp"
 
 namespace py = pybind11;
@@ -33,15 +34,6 @@ py::object value(const Value& v) {
     py::object operator()(bool b) const { return py::bool_(b); }
   };
   return std::visit(V{}, v);
-}
-
-py::dict counts(const StoreCounts& c) {
-  py::dict d;
-  d["total"] = c.total;
-  d["done"] = c.done;
-  d["failed"] = c.failed;
-  d["pending"] = c.pending;
-  return d;
 }
 
 std::unique_ptr<Store> open_existing(const std::string& path) { return ok(Store::open_existing(path)); }
@@ -75,17 +67,7 @@ void frictal_bind_study(py::module_& m) {
           py::gil_scoped_release release;
           sum = ok(run_threads(s, *store, reg, o));
         }
-        py::dict d;
-        d["ran"] = sum.ran;
-        d["failed"] = sum.failed;
-        d["retries"] = sum.retries;
-        d["reused"] = sum.reused;
-        d["cache_note"] = sum.cache_note;
-        d["skipped_unavailable"] = sum.skipped_unavailable;
-        d["threads"] = sum.threads;
-        d["wall_s"] = sum.wall_s;
-        d["tasks"] = counts(ok(store->counts()));
-        return d;
+        return py_detail::to_dict(study_run_columns(), StudyRunReport{sum, ok(store->counts())});
       },
       py::arg("study"), py::arg("store"), py::arg("threads") = 0, py::arg("quick") = false,
       py::arg("parts") = std::vector<std::string>{}, py::arg("skip_unavailable") = false, py::arg("cache") = "auto",
@@ -129,18 +111,8 @@ void frictal_bind_study(py::module_& m) {
         }
         py::list out;
         for (std::size_t i = 0; i < studies.size(); ++i) {
-          py::dict d;
-          d["study"] = studies[i].name;
-          d["store"] = paths[i];
-          d["ran"] = sums[i].ran;
-          d["failed"] = sums[i].failed;
-          d["reused"] = sums[i].reused;
-          d["cache_note"] = sums[i].cache_note;
-          d["skipped_unavailable"] = sums[i].skipped_unavailable;
-          d["threads"] = sums[i].threads;
-          d["wall_s"] = sums[i].wall_s;
-          d["tasks"] = counts(ok(stores[i]->counts()));
-          out.append(d);
+          out.append(py_detail::to_dict(study_run_columns(),
+                                        StudyRunReport{sums[i], ok(stores[i]->counts()), studies[i].name, paths[i]}));
         }
         return out;
       },
@@ -157,26 +129,7 @@ void frictal_bind_study(py::module_& m) {
       [](const std::string& path) {
         auto store = open_existing(path);
         const StoreStatus st = ok(store_status(*store, default_registry()));
-        py::dict d;
-        d["store"] = path;
-        d["study"] = st.study;
-        d["scale"] = st.scale;
-        d["study_hash"] = st.study_hash;
-        d["schema_version"] = st.schema_version;
-        d["tasks"] = counts(st.tasks);
-        py::list parts;
-        for (const auto& p : st.parts) {
-          py::dict q;
-          q["part"] = p.part;
-          q["kind"] = p.kind;
-          q["done"] = p.done;
-          q["failed"] = p.failed;
-          q["pending"] = p.pending;
-          q["available"] = p.available;
-          parts.append(q);
-        }
-        d["parts"] = parts;
-        return d;
+        return py_detail::to_dict(study_status_columns(), StudyStatusReport{path, st});
       },
       py::arg("store"),
       "How far a store is (as `frictal study status --json`).\n\n"

@@ -1,7 +1,10 @@
 // The output tables of a map's statistics and of the scan quantities of profiles and maps
 // (frictal/outputs.hpp): the keys of `frictal stats --json` and of Python's map_stats() and
 // profile_stats() dicts.
+#include <vector>
+
 #include "frictal/analysis.hpp"
+#include "frictal/conditioning.hpp"
 #include "frictal/fractal.hpp"
 #include "frictal/scan_stats.hpp"
 
@@ -53,6 +56,88 @@ const Columns<Map>& map_grid_columns() {
           "dx_m", "m", "node spacing along x", [](const T& m) { return m.dx; }, "dx"),
       column<T>(
           "dy_m", "m", "node spacing along y", [](const T& m) { return m.dy; }, "dy"),
+  };
+  return cols;
+}
+
+const Columns<Map>& map_data_columns() {
+  using T = Map;
+  static const Columns<T> cols = {
+      with_shape(column<T>(
+                     "", "m", "heights, rows along y (ny x nx)", [](const T& m) { return m.heights; }, "heights"),
+                 [](const T& m) {
+                   return std::vector<std::size_t>{m.ny, m.nx};
+                 }),
+      column<T>(
+          "", "m", "node spacing along x", [](const T& m) { return m.dx; }, "dx"),
+      column<T>(
+          "", "m", "node spacing along y", [](const T& m) { return m.dy; }, "dy"),
+      column<T>(
+          "", "m", "x of the first node", [](const T& m) { return m.x0; }, "x0"),
+      column<T>(
+          "", "m", "y of the first node", [](const T& m) { return m.y0; }, "y0"),
+  };
+  return cols;
+}
+
+const Columns<Autocorrelation>& autocorrelation_columns() {
+  using T = Autocorrelation;
+  static const Columns<T> cols = {
+      column<T>(
+          "", "m", "lags", [](const T& a) { return a.lag; }, "lag"),
+      column<T>(
+          "", "1", "normalised autocorrelation at each lag", [](const T& a) { return a.acf; }, "acf"),
+      column<T>(
+          "", "m", "where it falls to 1/e (0: never)", [](const T& a) { return a.correlation_length; },
+          "correlation_length"),
+  };
+  return cols;
+}
+
+const Columns<ConditioningRecord>& conditioning_record_columns() {
+  using T = ConditioningRecord;
+  auto cropped = [](Column<T> c) { return only_if(std::move(c), [](const T& r) { return r.cropped; }); };
+  static const Columns<T> cols = {
+      column<T>(
+          "", "text", "the steps as frictal prints them", [](const T& r) { return r.text(); }, "text"),
+      column<T>(
+          "", "flag", "a window was cut", [](const T& r) { return r.cropped; }, "cropped"),
+      cropped(fixed_length(column<T>(
+          "", "m", "the window (x0, x1[, y0, y1])",
+          [](const T& r) {
+            const CropWindow& w = r.window;
+            return w.has_y ? std::vector<double>{w.x_min, w.x_max, w.y_min, w.y_max}
+                           : std::vector<double>{w.x_min, w.x_max};
+          },
+          "window"))),
+      cropped(fixed_length(column<T>(
+          "", "count", "points before the crop (nx, ny; profiles: ny = 1)",
+          [](const T& r) {
+            return std::vector<double>{double(r.nx_before), double(r.ny_before)};
+          },
+          "points_before"))),
+      cropped(fixed_length(column<T>(
+          "", "count", "points after it (nx, ny)",
+          [](const T& r) {
+            return std::vector<double>{double(r.nx_after), double(r.ny_after)};
+          },
+          "points_after"))),
+      column<T>(
+          "", "flag", "spikes were looked for", [](const T& r) { return r.spikes_checked; }, "spikes_checked"),
+      column<T>(
+          "", "1", "k: spikes are more than k rms heights from the neighbours' median",
+          [](const T& r) { return r.spike_threshold; }, "spike_threshold"),
+      column<T>(
+          "", "count", "points replaced (profiles) or masked (maps)",
+          [](const T& r) { return double(r.spikes_removed); }, "spikes_removed"),
+      column<T>(
+          "", "count", "profiles: spikes at the ends, dropped", [](const T& r) { return double(r.spikes_dropped); },
+          "spikes_dropped"),
+      column<T>(
+          "", "count", "passes of the spike filter", [](const T& r) { return double(r.spike_passes); }, "spike_passes"),
+      column<T>(
+          "", "text", "the form removed: none, mean, line, plane, poly:N",
+          [](const T& r) { return detrend_name(r.form, r.is_map); }, "form"),
   };
   return cols;
 }

@@ -66,6 +66,29 @@ const Columns<AnisotropyRow>& anisotropy_row_columns() {
   return cols;
 }
 
+const Columns<ArealSignature>& areal_signature_columns() {
+  using T = ArealSignature;
+  static const Columns<T> cols = {
+      column<T>(
+          "", "m", "offsets along the direction", [](const T& r) { return r.offset; }, "offset"),
+      column<T>(
+          "", "m", "the lift at each offset", [](const T& r) { return r.lift; }, "lift"),
+      column<T>(
+          "", "deg", "the contact slope at each offset", [](const T& r) { return r.theta; }, "theta"),
+      column<T>(
+          "", "deg", "steepest contact slope along the direction", [](const T& r) { return r.theta_max_forward; },
+          "theta_max_forward"),
+      column<T>(
+          "", "deg", "steepest against it", [](const T& r) { return r.theta_max_backward; }, "theta_max_backward"),
+      column<T>(
+          "", "deg", "sigma of Eq. 18", [](const T& r) { return r.contact_slope_std; }, "contact_slope_std"),
+      column<T>(
+          "", "count", "lower-surface nodes evaluated", [](const T& r) { return double(r.evaluated_nodes); },
+          "evaluated_nodes"),
+  };
+  return cols;
+}
+
 const Columns<AnisotropyTable>& anisotropy_columns() {
   using T = AnisotropyTable;
   // Python's dicts: one array over directions per quantity (SI).

@@ -5,6 +5,13 @@
 namespace frictal {
 
 const Columns<ContactResult>& contact_columns() {
+  // A field over the grid, written where the result holds it (Python's fields=True), as the grid.
+  auto fields = [](Column<ContactResult> c) {
+    c = with_shape(std::move(c), [](const ContactResult& r) {
+      return r.is_map ? std::vector<std::size_t>{r.ny, r.nx} : std::vector<std::size_t>{};
+    });
+    return only_if(std::move(c), [](const ContactResult& r) { return !r.pressure.empty(); });
+  };
   using T = ContactResult;
   static const Columns<T> cols = {
       column<T>("load_n", "N", "maps: the total force (null for profiles)",
@@ -55,6 +62,12 @@ const Columns<ContactResult>& contact_columns() {
                 [](const T& r) { return r.residual; }),
       column<T>("contact_wall_time_s", "s", "wall time of the solve (and its stiffness)",
                 [](const T& r) { return r.wall_time; }),
+      fields(column<T>(
+          "", "Pa", "the contact pressure at each grid point (maps: ny x nx; Python with fields=True)",
+          [](const T& r) { return r.pressure; }, "pressure")),
+      fields(column<T>(
+          "", "m", "the gap at each grid point (maps: ny x nx; Python with fields=True)",
+          [](const T& r) { return r.gap; }, "gap")),
   };
   return cols;
 }

@@ -1,5 +1,6 @@
 // The output tables of the hold analysis (frictal/outputs.hpp): the keys of `frictal hold --json`
 // and of Python's hold_angle() dicts, each declared once with its unit.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,9 +62,15 @@ const Columns<HoldAngle>& hold_drop_columns() {
 const Columns<HoldDistribution>& hold_distribution_columns() {
   using T = HoldDistribution;
   static const Columns<T> cols = {
-      declared_column<T>("", "object:hold_statistics", "phi_qs, the quasi-static hold angle, over drops", "hold_angle"),
-      declared_column<T>("", "object:hold_statistics", "phi_in, the inertial bound, over drops", "inertial_hold_angle"),
-      declared_column<T>("", "object:hold_basins", "the basins the drops drain into", "basins"),
+      object_column<T, HoldStatistics>(
+          "", "hold_statistics", "phi_qs, the quasi-static hold angle, over drops", hold_statistics_columns(),
+          [](const T& d) { return std::optional<HoldStatistics>(d.hold); }, "hold_angle"),
+      object_column<T, HoldStatistics>(
+          "", "hold_statistics", "phi_in, the inertial bound, over drops", hold_statistics_columns(),
+          [](const T& d) { return std::optional<HoldStatistics>(d.inertial); }, "inertial_hold_angle"),
+      object_column<T, HoldBasins>(
+          "", "hold_basins", "the basins the drops drain into", hold_basins_columns(),
+          [](const T& d) { return std::optional<HoldBasins>(d.basins); }, "basins"),
       column<T>(
           "", "m", "[min, max] of the drops",
           [](const T& d) {
@@ -142,13 +149,19 @@ const Columns<HoldAnalysis>& hold_columns() {
             "", "m", "the lift h(s_k)", [](const H& h) { return h.curve.lift; }, "lift"),
         column<H>(
             "", "m", "the lift's period (0: not periodic)", [](const H& h) { return h.curve.period; }, "period"),
-        declared_column<H>("", "object:hold_distribution", "the distribution over drops, sliding towards +x",
-                           "forward"),
-        declared_column<H>("", "object:hold_distribution", "the distribution over drops, sliding towards -x",
-                           "backward"),
-        declared_column<H>("", "object:hold_drop", "the drop from the given start offset, forward (start_offset given)",
-                           "start"),
-        declared_column<H>("", "object:hold_drop", "the same drop, sliding backward", "start_backward"),
+        object_column<H, HoldDistribution>(
+            "", "hold_distribution", "the distribution over drops, sliding towards +x", hold_distribution_columns(),
+            [](const H& h) { return std::optional<HoldDistribution>(h.distribution.forward); }, "forward"),
+        object_column<H, HoldDistribution>(
+            "", "hold_distribution", "the distribution over drops, sliding towards -x", hold_distribution_columns(),
+            [](const H& h) { return std::optional<HoldDistribution>(h.distribution.backward); }, "backward"),
+        object_column<H, HoldAngle>(
+            "", "hold_drop", "the drop from the given start offset, forward (start_offset given)", hold_drop_columns(),
+            [](const H& h) { return h.has_start ? std::optional<HoldAngle>(h.start.forward) : std::nullopt; }, "start"),
+        object_column<H, HoldAngle>(
+            "", "hold_drop", "the same drop, sliding backward (start_offset given)", hold_drop_columns(),
+            [](const H& h) { return h.has_start ? std::optional<HoldAngle>(h.start.backward) : std::nullopt; },
+            "start_backward"),
     };
     const auto& st = hold_statistics_columns();
     flatten(

@@ -9,6 +9,7 @@
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
+#include "frictal/conditioning.hpp"
 #include "frictal/contact.hpp"
 #include "frictal/fractal.hpp"
 #include "frictal/hold.hpp"
@@ -150,21 +151,16 @@ std::vector<OutputTable> make_tables() {
   t.push_back({"map_scan_stats", "the scan quantities of a map: stats --json, Python map_stats",
                infos(map_scan_stats_columns())});
   t.push_back({"tilt", "frictal tilt --json; Python frictal.tilt(...)", infos(tilt_columns())});
-  t.back().columns.push_back(py("series", "object:tilt_series", "the time series of the run"));
   t.push_back({"tilt_scales", "tilt --json 'scales'", infos(tilt_scales_columns())});
   t.push_back({"tilt_estimate", "tilt --json 'estimate'", infos(tilt_estimate_columns())});
   t.push_back({"tilt_stage_times", "tilt --json 'stage_time_s' (s)", infos(tilt_stage_time_columns())});
   t.push_back({"tilt_scaling", "tilt --json 'scaled_defaults'", infos(tilt_scaling_columns())});
-  t.push_back({"tilt_scaled_setting",
-               "one setting scaled to the surfaces (text units: the setting's own)",
-               {ci("name", "text", "the setting (frictal settings tilt)"), ci("unit", "text", "its text unit"),
-                ci("from", "1", "the macro default, in that unit"), ci("to", "1", "the scaled value, in that unit")}});
-  t.push_back({"tilt_series",
-               "Python frictal.tilt(...)['series']: one sample per output interval",
-               {py("time", "s", "simulated time"), py("tilt", "rad", "tilt angle"),
-                py("normal_force", "1", "N (per unit depth)"), py("tangential_force", "1", "N (per unit depth)"),
-                py("force_angle", "rad", "atan(F_t / F_n)"), py("displacement", "m", "relative displacement"),
-                py("velocity", "m/s", "relative velocity"), py("contacts", "count", "contacts")}});
+  t.push_back({"tilt_scaled_setting", "one setting scaled to the surfaces (JSON: the setting's text unit; Python: SI)",
+               infos(tilt_scaled_setting_columns())});
+  t.push_back({"tilt_series", "Python frictal.tilt(...)['series']: one sample per output interval",
+               infos(tilt_series_columns())});
+  t.push_back(
+      {"tilt_frames", "Python frictal.read_tilt_frames(...): a frames file read back", infos(tilt_frames_columns())});
   t.push_back({"dimension", "frictal dimension --json; Python divider_dimension, box_dimension, psd_dimension",
                infos(fractal_fit_columns())});
   t.push_back({"koch_dimension", "frictal dimension koch --method eq13 --json", infos(koch_dimension_columns())});
@@ -195,40 +191,9 @@ std::vector<OutputTable> make_tables() {
         ci("eq18_low_friction_coefficient", "1", "tan of the Eq. 18 low end"),
         py("offset", "m", "offsets along the direction"), py("lift", "m", "the lift at each offset"),
         py("theta", "rad", "the contact slope at each offset")}});
-  {
-    // The hold mode of `frictal areal` (--lateral, --drops, --start-offset) and Python areal_hold:
-    // predict()'s continuous model of a map pair along one direction, named as hold angles.
-    OutputTable h{
-        "areal_hold",
-        "frictal areal --lateral|--drops|--start-offset --json; Python areal_hold(...) (SI, no unit suffix)",
-        {ci("direction_deg", "deg", "sliding direction, from +x towards +y", "direction"),
-         ci("lateral", "text", "free (the block may move sideways) or locked to the direction", "="),
-         ci("model", "text", "map-continuous-free or map-continuous-locked (frictal predict's model)", "="),
-         ci("in_place", "flag", "the upper map is the upper face in place (not turned over)", "="),
-         ci("atomic_friction", "1", "mu_a, included in every hold angle as atan(mu_a)", "="),
-         ci("runaway_distance_m", "m", "run-away distance d", "runaway_distance"),
-         ci("drops", "count", "drops the distribution is over", "="),
-         ci("drop_range_m", "m",
-            "[u_min, u_max, v_min, v_max] along/across the direction (the spheres r + D inside the lower map)",
-            "drop_range"),
-         ci("start_offset_m", "m", "one drop: where it was put down (x, y)", "start_offset"),
-         ci("rest_offset_m", "m", "one drop: where it rested (x, y)", "rest_offset"),
-         ci("hold_angle_deg", "deg", "one drop: its hold angle (the lateral mode's)", "hold_angle"),
-         ci("hold_angle_free_deg", "deg", "one drop, locked: the free block's hold angle"),
-         ci("steering_deg", "deg", "one drop: the direction the free block ran away in", "steering"),
-         ci("drop_hold_angles_deg", "deg", "each drop's hold angle, in drop order", "drop_hold_angles"),
-         ci("drop_offsets_m", "m", "each drop's (x, y)", "drop_offsets"),
-         ci("upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a (Eq. 6)",
-            "upper_bound_friction_angle")}};
-    for (const char* st : {"mean", "std", "q05", "q50", "q95", "min", "max"}) {
-      const std::string k = std::string("hold_angle_") + st;
-      h.columns.push_back(ci(k + "_deg", "deg", std::string("hold angle over drops: ") + st, k));
-    }
-    for (const char* st : {"q05", "q50", "q95"})
-      h.columns.push_back(ci(std::string("hold_angle_free_") + st + "_deg", "deg",
-                             std::string("locked mode: the free block's hold angle over drops, ") + st));
-    t.push_back(std::move(h));
-  }
+  t.push_back({"areal_hold",
+               "frictal areal --lateral|--drops|--start-offset --json; Python areal_hold(...) (SI, no unit suffix)",
+               infos(areal_hold_columns())});
   t.push_back({"anisotropy", "frictal anisotropy --json; Python anisotropy(...) (arrays over directions)",
                infos(anisotropy_columns())});
   t.push_back({"anisotropy_direction", "one direction of frictal anisotropy --json", infos(anisotropy_row_columns())});
@@ -281,72 +246,22 @@ std::vector<OutputTable> make_tables() {
         py("increment_y", "m", "y after each increment"),
         py("increment_rested", "flag", "each increment rested"),
         py("rest_offset", "m", "where the block rested (x, y)")}});
-  t.push_back(
-      {"areal_tilt_hold",
-       "Python areal_tilt_hold(...): the continuous model of one drop",
-       {py("hold_angle", "rad", "the hold angle (bisected to 1e-6 rad)"),
-        py("seat_bound", "rad", "the drop's rigid upper bound from the same model (>= hold_angle)"),
-        py("runaway_increment", "rad", "the increment at which the block ran away"),
-        py("ran_away", "flag", "it ran away"), py("rest_offset", "m", "where it rested (x, y)"),
-        py("steering", "rad", "how far it turned off the direction"), py("evaluations", "count", "lift evaluations"),
-        py("stop_tilt", "rad", "tilt of each stop"), py("stop_x", "m", "x of each stop"),
-        py("stop_y", "m", "y of each stop"),
-        py("hold_angle_range", "rad", "[least, largest] with one slip's end moved by a sphere radius"),
-        py("slips", "count", "slips"), py("ambiguous_slips", "count", "slips whose end a sphere radius changes")}});
-  t.push_back(
-      {"areal_signature",
-       "Python areal_signature(...)",
-       {py("offset", "m", "offsets along the direction"), py("lift", "m", "the lift at each offset"),
-        py("theta", "rad", "the contact slope at each offset"),
-        py("theta_max_forward", "rad", "steepest contact slope along the direction"),
-        py("theta_max_backward", "rad", "steepest against it"), py("contact_slope_std", "rad", "sigma of Eq. 18"),
-        py("evaluated_nodes", "count", "lower-surface nodes evaluated")}});
-  t.push_back({"conditioning",
-               "Python condition(...)[1]: what each conditioning step did",
-               {py("text", "text", "the steps as frictal prints them"), py("cropped", "flag", "a window was cut"),
-                py("window", "m", "the window (x0, x1[, y0, y1])"),
-                py("points_before", "count", "points before the crop (n, or nx, ny)"),
-                py("points_after", "count", "points after it"), py("spikes_checked", "flag", "spikes were looked for"),
-                py("spike_threshold", "1", "k: spikes are more than k rms heights from the neighbours' median"),
-                py("spikes_removed", "count", "points replaced (profiles) or masked (maps)"),
-                py("spikes_dropped", "count", "profiles: spikes at the ends, dropped"),
-                py("spike_passes", "count", "passes of the spike filter"),
-                py("form", "text", "the form removed: none, mean, line, plane, poly:N")}});
+  t.push_back({"areal_tilt_hold", "Python areal_tilt_hold(...): the continuous model of one drop",
+               infos(areal_tilt_hold_columns())});
+  t.push_back({"areal_signature", "Python areal_signature(...)", infos(areal_signature_columns())});
+  t.push_back({"conditioning", "Python condition(...)[1]: what each conditioning step did",
+               infos(conditioning_record_columns())});
   t.push_back({"build_info",
                "Python build_info()",
                {py("version", "text", "frictal's version"), py("git_commit", "text", "the commit built"),
                 py("build_type", "text", "CMake build type"), py("mujoco", "flag", "the 3D tilt test is available")}});
-  t.push_back({"autocorrelation",
-               "Python autocorrelation(...)",
-               {py("lag", "m", "lags"), py("acf", "1", "normalised autocorrelation at each lag"),
-                py("correlation_length", "m", "where it falls to 1/e")}});
+  t.push_back({"autocorrelation", "Python autocorrelation(...)", infos(autocorrelation_columns())});
+  t.push_back({"map_data", "Python read_map(...): the heights and the grid", infos(map_data_columns())});
   t.push_back({"stats_extras",
                "what frictal stats --json adds with --tip-radius, --acf, --histograms; Python profile_stats and "
                "map_stats with tip_radius (profile_stats: slope_pdf always)",
                infos(stats_extras_columns())});
-  // Studies (frictal study status|report --json; Python study_status, study_run, study_rows).
-  t.push_back({"study_status",
-               "frictal study status --json; Python study_status(store)",
-               {ci("store", "text", "the store", "="), ci("study", "text", "the study's name", "="),
-                ci("scale", "text", "full or quick", "="), ci("study_hash", "text", "hash of the study file", "="),
-                ci("schema_version", "count", "the store's schema version", "="),
-                ci("frictal_version", "text", "frictal's version"),
-                ci("claimed", "count", "tasks claimed by a running process"),
-                ci("tasks", "object:study_tasks", "task counts", "="),
-                ci("parts", "list:study_part", "one entry per part", "=")}});
-  t.push_back({"study_tasks",
-               "task counts of a store or a run",
-               {ci("total", "count", "tasks in the study", "="), ci("done", "count", "tasks done", "="),
-                ci("failed", "count", "tasks failed", "="), ci("pending", "count", "tasks not yet run", "=")}});
-  t.push_back({"study_part",
-               "one part of a study's status",
-               {ci("part", "text", "the part's name", "="), ci("kind", "text", "its task kind", "="),
-                ci("kind_version", "count", "the kind's version"), ci("done", "count", "tasks done", "="),
-                ci("failed", "count", "tasks failed", "="), ci("pending", "count", "tasks pending", "="),
-                ci("available", "flag", "this build can run the kind", "="),
-                ci("done_by_frictal_version", "map", "tasks done by each frictal version"),
-                ci("done_by_kind_version", "map", "tasks done by each kind version"),
-                ci("version_note", "text", "what a version change means for the stored results")}});
+  // Studies (frictal study report --json; Python study_rows); study status and runs: study_output_tables().
   t.push_back({"study_report",
                "frictal study report --json: the findings as data (docs/studies.md)",
                {ci("reports", "list:study_findings", "one report per store"),
@@ -382,15 +297,6 @@ std::vector<OutputTable> make_tables() {
                "one part's verdict on a claim",
                {ci("study", "text", "the study"), ci("part", "text", "the part"), ci("verdict", "text", "the verdict"),
                 ci("cause", "text", "the measured cause")}});
-  t.push_back(
-      {"study_run",
-       "Python study_run(...), study_run_many(...)",
-       {py("ran", "count", "tasks run"), py("failed", "count", "tasks failed"), py("retries", "count", "retries"),
-        py("reused", "count", "tasks taken from the result cache"), py("cache_note", "text", "what the cache did"),
-        py("skipped_unavailable", "text", "parts skipped: their kind is not in this build"),
-        py("threads", "count", "threads used"), py("wall_s", "s", "wall time"),
-        py("tasks", "count", "tasks in the study"), py("study", "text", "the study"),
-        py("store", "text", "the store")}});
   t.push_back({"study_row",
                "Python study_rows(store): one done task",
                {py("task_id", "count", "the task's id"), py("part", "text", "its part"), py("kind", "text", "its kind"),

@@ -250,4 +250,102 @@ std::string prediction_json(const Prediction& p, const std::string& extra, int i
   return s;
 }
 
+const Columns<ArealHoldReport>& areal_hold_columns() {
+  using T = ArealHoldReport;
+  auto chosen = [](const T& r) -> const HoldStatistics& {
+    return r.locked ? r.prediction.locked_friction_angle : r.prediction.friction_angle;
+  };
+  auto one = [](Column<T> c) { return only_if(std::move(c), [](const T& r) { return r.prediction.single_drop; }); };
+  auto over = [](Column<T> c, bool locked_only = false) {
+    return only_if(std::move(c),
+                   [locked_only](const T& r) { return !r.prediction.single_drop && (r.locked || !locked_only); });
+  };
+  auto pair = [](const std::array<double, 2>& a) { return std::vector<double>{a[0], a[1]}; };
+  static const Columns<T> cols = [&] {
+    Columns<T> c = {
+        column<T>(
+            "direction_deg", "deg", "sliding direction, from +x towards +y",
+            [](const T& r) { return r.prediction.direction; }, "direction"),
+        column<T>("lateral", "text", "free (the block may move sideways) or locked to the direction",
+                  [](const T& r) { return std::string(r.locked ? "locked" : "free"); }),
+        column<T>("model", "text", "map-continuous-free or map-continuous-locked (frictal predict's model)",
+                  [](const T& r) { return r.locked ? std::string("map-continuous-locked") : r.prediction.model; }),
+        column<T>("in_place", "flag", "the upper map is the upper face in place (not turned over)",
+                  [](const T& r) { return r.in_place; }),
+        column<T>("atomic_friction", "1", "mu_a, included in every hold angle as atan(mu_a)",
+                  [](const T& r) { return r.prediction.atomic_friction; }),
+        column<T>(
+            "runaway_distance_m", "m", "run-away distance d", [](const T& r) { return r.prediction.runaway_distance; },
+            "runaway_distance"),
+        column<T>("drops", "count", "drops the distribution is over",
+                  [](const T& r) { return double(r.prediction.drops); }),
+        fixed_length(column<T>(
+            "drop_range_m", "m",
+            "[u_min, u_max, v_min, v_max] along/across the direction (the spheres r + D inside the lower map)",
+            [](const T& r) {
+              const auto& d = r.prediction.drop_range;
+              return std::vector<double>(d.begin(), d.end());
+            },
+            "drop_range")),
+        one(fixed_length(column<T>(
+            "start_offset_m", "m", "one drop: where it was put down (x, y)",
+            [pair](const T& r) { return pair(r.prediction.start_offset); }, "start_offset"))),
+        one(fixed_length(column<T>(
+            "rest_offset_m", "m", "one drop: where it rested (x, y)",
+            [pair](const T& r) { return pair(r.prediction.rest_offset); }, "rest_offset"))),
+        one(column<T>(
+            "hold_angle_deg", "deg", "one drop: its hold angle (the lateral mode's)",
+            [chosen](const T& r) { return chosen(r).q50; }, "hold_angle")),
+        only_if(column<T>(
+                    "hold_angle_free_deg", "deg", "one drop, locked: the free block's hold angle",
+                    [](const T& r) { return r.prediction.friction_angle.q50; }, "hold_angle_free"),
+                [](const T& r) { return r.prediction.single_drop && r.locked; }),
+        one(column<T>(
+            "steering_deg", "deg", "one drop: the direction the free block ran away in",
+            [](const T& r) { return r.prediction.drop_steering.at(0); }, "steering")),
+    };
+    using S = double HoldStatistics::*;
+    const std::pair<const char*, S> stats[] = {{"mean", &HoldStatistics::mean}, {"std", &HoldStatistics::std},
+                                               {"q05", &HoldStatistics::q05},   {"q50", &HoldStatistics::q50},
+                                               {"q95", &HoldStatistics::q95},   {"min", &HoldStatistics::min},
+                                               {"max", &HoldStatistics::max}};
+    for (const auto& [name, field] : stats) {
+      const std::string k = std::string("hold_angle_") + name;
+      c.push_back(over(column<T>(
+          k + "_deg", "deg", std::string("hold angle over drops: ") + name,
+          [chosen, field](const T& r) { return chosen(r).*field; }, k)));
+    }
+    for (const auto& [name, field] : stats) {
+      const std::string st(name);
+      if (st != "q05" && st != "q50" && st != "q95") continue;
+      const std::string k = "hold_angle_free_" + st;
+      c.push_back(over(column<T>(
+                           k + "_deg", "deg", "locked mode: the free block's hold angle over drops, " + st,
+                           [field](const T& r) { return r.prediction.friction_angle.*field; }, k),
+                       true));
+    }
+    c.push_back(over(column<T>(
+        "drop_hold_angles_deg", "deg", "each drop's hold angle, in drop order",
+        [](const T& r) { return r.locked ? r.prediction.drop_angles_locked : r.prediction.drop_angles; },
+        "drop_hold_angles")));
+    c.push_back(over(with_shape(column<T>(
+                                    "drop_offsets_m", "m", "each drop's (x, y)",
+                                    [](const T& r) {
+                                      std::vector<double> v;
+                                      for (const auto& q : r.prediction.drop_offsets)
+                                        v.insert(v.end(), q.begin(), q.end());
+                                      return v;
+                                    },
+                                    "drop_offsets"),
+                                [](const T& r) {
+                                  return std::vector<std::size_t>{r.prediction.drop_offsets.size(), 2};
+                                })));
+    c.push_back(column<T>(
+        "upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a (Eq. 6)",
+        [](const T& r) { return r.prediction.upper_bound_friction_angle; }, "upper_bound_friction_angle"));
+    return c;
+  }();
+  return cols;
+}
+
 }  // namespace frictal

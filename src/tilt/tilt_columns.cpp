@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include <fmt/core.h>
 
 #include "frictal/areal_tilt.hpp"
+#include "frictal/settings.hpp"
 #include "frictal/tilt.hpp"
 
 namespace frictal {
@@ -111,12 +113,19 @@ const Columns<TiltReport>& tilt_columns() {
                 }),
       column<R>("rotation_before_slide_deg", "deg", "how far the upper block turned before it slid",
                 [](const R& t) { return t.result.rotation_before_slide; }),
-      declared_column<R>("scales", "object:tilt_scales", "the run's length and time scales"),
-      declared_column<R>("estimate", "object:tilt_estimate", "the cost estimate made before the run"),
-      declared_column<R>("stage_time_s", "object:tilt_stage_times", "wall time by stage of the time stepping"),
+      object_column<R, TiltScales>("scales", "tilt_scales", "the run's length and time scales", tilt_scales_columns(),
+                                   [](const R& t) { return std::optional<TiltScales>(t.result.scales); }),
+      object_column<R, TiltEstimate>("estimate", "tilt_estimate", "the cost estimate made before the run",
+                                     tilt_estimate_columns(),
+                                     [](const R& t) { return std::optional<TiltEstimate>(t.result.estimate); }),
+      object_column<R, dem::StepTimings>(
+          "stage_time_s", "tilt_stage_times", "wall time by stage of the time stepping", tilt_stage_time_columns(),
+          [](const R& t) { return std::optional<dem::StepTimings>(t.result.timings); }, "stage_time"),
       declared_column<R>("surface", "settings", "the generated surface's parameters (null for files)"),
-      declared_column<R>("scaled_defaults", "object:tilt_scaling",
-                         "how the defaults were scaled to the surfaces (null: not)"),
+      object_column<R, TiltScaling>(
+          "scaled_defaults", "tilt_scaling", "how the defaults were scaled to the surfaces (null: not)",
+          tilt_scaling_columns(),
+          [](const R& t) { return t.scaling ? std::optional<TiltScaling>(*t.scaling) : std::nullopt; }),
       declared_column<R>("settings", "settings", "every tilt setting the run used (frictal settings tilt)"),
       column<R>("initial_offset_m", "m", "the offset the upper block was put down at",
                 [](const R& t) { return t.result.initial_offset; }),
@@ -166,6 +175,9 @@ const Columns<TiltReport>& tilt_columns() {
       column<R>(
           "", "count", "steps above the explicit stability limit (as steps_beyond_stability_limit)",
           [](const R& t) { return double(t.result.steps_beyond_limit); }, "steps_beyond_limit"),
+      object_column<R, TiltSeries>(
+          "", "tilt_series", "the time series of the run (Python; the CLI writes it with --output)",
+          tilt_series_columns(), [](const R& t) { return std::optional<TiltSeries>(t.result.series); }, "series"),
   });
   return cols;
 }
@@ -185,6 +197,56 @@ const Columns<ArealTiltResult>& areal_tilt_run_columns() {
       column<T>("steps", "count", "MuJoCo steps", [](const T& r) { return double(r.steps); }),
       column<T>("unsettled_increments", "count", "increments that did not come to rest",
                 [](const T& r) { return double(r.unsettled); }),
+  };
+  return cols;
+}
+
+const Columns<ArealTiltHoldReport>& areal_tilt_hold_columns() {
+  using T = ArealTiltHoldReport;
+  auto stops = [](std::size_t k) {
+    return [k](const T& r) {
+      std::vector<double> v;
+      for (const auto& st : r.hold.stops) v.push_back(st[k]);
+      return v;
+    };
+  };
+  auto spread = [](Column<T> c) { return only_if(std::move(c), [](const T& r) { return r.spread != nullptr; }); };
+  static const Columns<T> cols = {
+      column<T>(
+          "", "deg", "the hold angle (bisected to 1e-6 rad)", [](const T& r) { return r.hold.hold_angle; },
+          "hold_angle"),
+      column<T>(
+          "", "deg", "the drop's rigid upper bound from the same model (>= hold_angle)",
+          [](const T& r) { return r.hold.seat_bound; }, "seat_bound"),
+      column<T>(
+          "", "deg", "the increment at which the block ran away", [](const T& r) { return r.hold.runaway_increment; },
+          "runaway_increment"),
+      column<T>(
+          "", "flag", "it ran away", [](const T& r) { return r.hold.ran_away; }, "ran_away"),
+      fixed_length(column<T>(
+          "", "m", "where it rested (x, y)",
+          [](const T& r) {
+            return std::vector<double>{r.hold.rest_offset[0], r.hold.rest_offset[1]};
+          },
+          "rest_offset")),
+      column<T>(
+          "", "deg", "how far it turned off the direction", [](const T& r) { return r.hold.steering; }, "steering"),
+      column<T>(
+          "", "count", "lift evaluations", [](const T& r) { return double(r.hold.evaluations); }, "evaluations"),
+      column<T>("", "deg", "tilt of each stop", stops(0), "stop_tilt"),
+      column<T>("", "m", "x of each stop", stops(1), "stop_x"),
+      column<T>("", "m", "y of each stop", stops(2), "stop_y"),
+      spread(fixed_length(column<T>(
+          "", "deg", "[least, largest] with one slip's end moved by a sphere radius (spread=True)",
+          [](const T& r) {
+            return std::vector<double>{r.spread->low, r.spread->high};
+          },
+          "hold_angle_range"))),
+      spread(column<T>(
+          "", "count", "slips (spread=True)", [](const T& r) { return double(r.spread->slips); }, "slips")),
+      spread(column<T>(
+          "", "count", "slips whose end a sphere radius changes (spread=True)",
+          [](const T& r) { return double(r.spread->ambiguous); }, "ambiguous_slips")),
   };
   return cols;
 }
@@ -256,8 +318,140 @@ const Columns<TiltScaling>& tilt_scaling_columns() {
                 "the protocol settings a measured surface takes by default and the caller did not give "
                 "(\"name = value, ...\"; empty for a generated surface)",
                 [](const T& s) { return s.measured_defaults; }),
-      declared_column<T>("settings", "list:tilt_scaled_setting",
-                         "the settings changed, each {name, unit, from, to} (CLI: text units; Python: SI)", "settings"),
+      list_column<T, TiltScaledSetting>(
+          "settings", "tilt_scaled_setting",
+          "the settings changed, each {name, unit, from, to} (CLI: text units; Python: SI)",
+          tilt_scaled_setting_columns(), [](const T& s) { return std::optional(s.settings); }, "settings"),
+  };
+  return cols;
+}
+
+const Columns<TiltScaledSetting>& tilt_scaled_setting_columns() {
+  using T = TiltScaledSetting;
+  // A setting's value in its text unit (JSON) or in SI (Python): the unit differs by setting, so
+  // each front end has its own column, under the same name.
+  auto field = [](const T& s) { return find_field(tilt_settings(), s.name); };
+  static const Columns<T> cols = {
+      column<T>(
+          "name", "text", "the setting (frictal settings tilt)", [](const T& s) { return s.name; }, "name"),
+      column<T>(
+          "unit", "text", "its text unit",
+          [field](const T& s) {
+            const Field* f = field(s);
+            return f ? text_unit(*f) : std::string();
+          },
+          "-"),
+      column<T>(
+          "", "text", "its SI unit",
+          [field](const T& s) {
+            const Field* f = field(s);
+            return f ? f->unit : std::string();
+          },
+          "unit"),
+      column<T>(
+          "from", "1", "the macro default, in the setting's text unit",
+          [field](const T& s) {
+            const Field* f = field(s);
+            return f ? to_text_unit(*f, s.from) : s.from;
+          },
+          "-"),
+      column<T>(
+          "", "1", "the macro default, in the setting's SI unit", [](const T& s) { return s.from; }, "from"),
+      column<T>(
+          "to", "1", "the scaled value, in the setting's text unit",
+          [field](const T& s) {
+            const Field* f = field(s);
+            return f ? to_text_unit(*f, s.to) : s.to;
+          },
+          "-"),
+      column<T>(
+          "", "1", "the scaled value, in the setting's SI unit", [](const T& s) { return s.to; }, "to"),
+  };
+  return cols;
+}
+
+const Columns<TiltFramesFile>& tilt_frames_columns() {
+  using T = TiltFramesFile;
+  // A polygon's vertices as an n x 2 array of (x, y).
+  auto polygon = [](std::string python, std::string help, std::vector<double> T::*x, std::vector<double> T::*y) {
+    return with_shape(column<T>(
+                          "", "m", std::move(help),
+                          [x, y](const T& f) {
+                            std::vector<double> v;
+                            for (std::size_t i = 0; i < (f.*x).size(); ++i) v.insert(v.end(), {(f.*x)[i], (f.*y)[i]});
+                            return v;
+                          },
+                          std::move(python)),
+                      [x](const T& f) {
+                        return std::vector<std::size_t>{(f.*x).size(), 2};
+                      });
+  };
+  auto frames = [](const T& f) { return f.frames.size(); };
+  static const Columns<T> cols = {
+      polygon("lower_polygon", "the lower core polygon relative to its centroid, initial orientation (n x 2)",
+              &T::lower_polygon_x, &T::lower_polygon_y),
+      polygon("upper_polygon", "the upper core polygon relative to its centroid, initial orientation (n x 2)",
+              &T::upper_polygon_x, &T::upper_polygon_y),
+      column<T>(
+          "", "s", "each frame's time",
+          [](const T& f) {
+            std::vector<double> v;
+            for (const TiltFrame& fr : f.frames) v.push_back(fr.time);
+            return v;
+          },
+          "time"),
+      column<T>(
+          "", "deg", "each frame's tilt",
+          [](const T& f) {
+            std::vector<double> v;
+            for (const TiltFrame& fr : f.frames) v.push_back(fr.tilt);
+            return v;
+          },
+          "tilt"),
+      with_shape(column<T>(
+                     "", "m", "each frame's centroids of the lower and upper block (frames x 2 x 2)",
+                     [](const T& f) {
+                       std::vector<double> v;
+                       for (const TiltFrame& fr : f.frames)
+                         for (int b = 0; b < 2; ++b) v.insert(v.end(), {fr.position[b].x, fr.position[b].y});
+                       return v;
+                     },
+                     "position"),
+                 [frames](const T& f) {
+                   return std::vector<std::size_t>{frames(f), 2, 2};
+                 }),
+      with_shape(column<T>(
+                     "", "deg", "each frame's rotation of the lower and upper block (frames x 2)",
+                     [](const T& f) {
+                       std::vector<double> v;
+                       for (const TiltFrame& fr : f.frames) v.insert(v.end(), {fr.angle[0], fr.angle[1]});
+                       return v;
+                     },
+                     "angle"),
+                 [frames](const T& f) {
+                   return std::vector<std::size_t>{frames(f), 2};
+                 }),
+  };
+  return cols;
+}
+
+const Columns<TiltSeries>& tilt_series_columns() {
+  using T = TiltSeries;
+  auto py = [](std::string python, std::string unit, std::string help, std::vector<double> T::*field) {
+    return column<T>(
+        "", std::move(unit), std::move(help), [field](const T& s) { return s.*field; }, std::move(python));
+  };
+  static const Columns<T> cols = {
+      py("time", "s", "simulated time", &T::time),
+      py("tilt", "deg", "tilt angle", &T::tilt),
+      py("normal_force", "1", "N (per unit depth)", &T::normal_force),
+      py("tangential_force", "1", "N (per unit depth)", &T::tangential_force),
+      py("force_angle", "deg", "atan(F_t / F_n)", &T::force_angle),
+      py("displacement", "m", "relative displacement", &T::displacement),
+      py("velocity", "m/s", "relative velocity", &T::velocity),
+      column<T>(
+          "", "count", "contacts", [](const T& s) { return std::vector<double>(s.contacts.begin(), s.contacts.end()); },
+          "contacts"),
   };
   return cols;
 }
