@@ -160,6 +160,30 @@ def test_tilt_of_a_measured_profile_equals_the_cli():
     scaled = {t["name"]: (t["from"], t["to"]) for t in got["scaled_defaults"]["settings"]}
     assert set(scaled) == {t["name"] for t in want["scaled_defaults"]["settings"]}
     assert same(scaled["normal_stiffness"][1], want["settings"]["normal_stiffness"])
+    # The nested objects the CLI prints come from the same tables: the cost estimate, key for key
+    # (its keys have no angle to convert), and the stages timed.
+    assert got["estimate"].keys() == want["estimate"].keys()
+    assert all(same(got["estimate"][k], v) for k, v in want["estimate"].items())
+    assert got["stage_time"].keys() == want["stage_time_s"].keys()
+
+
+def test_study_status_equals_the_cli(tmp_path):
+    """A store's status from Python and from `frictal study status --json`: the same keys and values
+    (Python leaves out the two per-version counts, objects keyed by version)."""
+    toml = tmp_path / "koch.toml"
+    toml.write_text('[study]\nname = "parity"\nseed = 1\n[[part]]\nname = "theory"\nkind = "koch-signature"\n'
+                    '[part.parameters]\niterations = [0, 1]\nalpha = 10.0\nlength = 0.01\n', encoding="utf-8")
+    store = str(tmp_path / "koch.sqlite")
+    assert frictal.study_run(str(toml), store, threads=1)["tasks"] == {"total": 2, "done": 2, "failed": 0, "pending": 0}
+    want = cli("study", "status", store)
+    got = frictal.study_status(store)
+    maps = {"done_by_kind_version", "done_by_frictal_version"}
+    assert got.keys() == want.keys()
+    for k in want:
+        if k != "parts":
+            assert got[k] == want[k], k
+    assert len(got["parts"]) == len(want["parts"]) == 1
+    assert got["parts"][0] == {k: v for k, v in want["parts"][0].items() if k not in maps}
 
 
 def test_the_bound_warnings_are_the_librarys_words(tmp_path):

@@ -95,9 +95,50 @@ TEST(Outputs, NestedObjectsAreRowsOfTheirTable) {
 TEST(Outputs, RowsLeaveOutAbsentColumns) {
   Shape with, without;
   with.size = 1;
-  // Only the plain columns with a value are row fields; nested columns are not.
+  // Only the columns with a value or objects are row fields.
   EXPECT_EQ(frictal::row_of(shape_columns(), with).size(), 1u);
   EXPECT_TRUE(frictal::row_of(shape_columns(), without).empty());
+}
+
+TEST(Outputs, NestedColumnsNestInRows) {
+  // A row of a table with nested columns holds their objects, so that tables nest to any depth.
+  Shape s;
+  s.centre = Point{1e-6, 0};
+  s.corners = std::vector<Point>{{0, 0}, {2e-6, 0}};
+  const OutputRow r = frictal::row_of(shape_columns(), s);
+  ASSERT_EQ(r.size(), 2u);  // centre and corners; no size
+  EXPECT_EQ(r[0].info.unit, "object:point");
+  ASSERT_EQ(r[0].rows.size(), 1u);
+  EXPECT_DOUBLE_EQ(std::get<double>(r[0].rows[0][0].si), 1e-6);
+  EXPECT_EQ(r[1].info.unit, "list:point");
+  ASSERT_EQ(r[1].rows.size(), 2u);
+  EXPECT_DOUBLE_EQ(std::get<double>(r[1].rows[1][0].si), 2e-6);
+}
+
+TEST(Outputs, ListsCarryTheirShapeAndFixedLength) {
+  struct Grid {
+    std::size_t nx = 3, ny = 2;
+    std::vector<double> values = {1, 2, 3, 4, 5, 6};
+  };
+  const Columns<Grid> cols = {
+      frictal::with_shape(frictal::column<Grid>(
+                              "", "m", "values", [](const Grid& g) { return g.values; }, "values"),
+                          [](const Grid& g) {
+                            return std::vector<std::size_t>{g.ny, g.nx};
+                          }),
+      frictal::fixed_length(frictal::column<Grid>(
+          "", "count", "points",
+          [](const Grid& g) {
+            return std::vector<double>{double(g.nx), double(g.ny)};
+          },
+          "points")),
+  };
+  const OutputRow r = frictal::row_of(cols, Grid{});
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].shape, (std::vector<std::size_t>{2, 3}));
+  EXPECT_FALSE(r[0].fixed);
+  EXPECT_TRUE(r[1].shape.empty());
+  EXPECT_TRUE(r[1].fixed);
 }
 
 TEST(Outputs, WarningsAreRowsOfCodeAndMessage) {
