@@ -388,8 +388,9 @@ void frictal_bind_predict(py::module_& m) {
       "angle in rad, atomic_friction mu_a unitless (atan(mu_a) is included in every hold angle); upper as measured "
       "(turned over) unless turn_over_upper=False; drops: N x N over predict's drop range; detrend: none, mean, "
       "plane, poly:N (None: plane, predict's default). start_offset (x, y) (from the centres aligned, or from the "
-      "upper's place when in place) or None for the distribution. Returns model, lateral, direction, atomic_friction, "
-      "runaway_distance, drops, drop_range (u0, u1, v0, v1), upper_bound_friction_angle, conditioning, warnings and, "
+      "upper's place when in place) or None for the distribution. Returns model, lateral, direction, in_place, "
+      "atomic_friction, runaway_distance, drops, drop_range (u0, u1, v0, v1), upper_bound_friction_angle, "
+      "conditioning, warnings and, "
       "over drops: hold_angle_mean/std/q05/q50/q95/min/max (rad), drop_hold_angles (rad), drop_offsets (drops x 2, m) "
       "(locked: also hold_angle_free_q05/q50/q95); from one drop: start_offset, rest_offset, hold_angle, steering "
       "(the free block's run-away direction from d, rad) (locked: also hold_angle_free)");
