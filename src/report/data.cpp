@@ -214,7 +214,7 @@ Status areal_hold_into(const ReportInput& in, ReportArealHold& out) {
   const Prediction& p = out.prediction;
   // The block dropped at s = 0 in the prediction's model with its settings (map_model_options).
   po.runaway_distance = p.runaway_distance;
-  ArealTiltOptions t = map_model_options(in.map, po);
+  MapHoldOptions t = map_model_options(in.map, po);
   t.start_offset = {0, 0};
   auto hold = areal_tilt_hold(in.map, *in.upper_map, t);
   if (!hold) return hold.error();
