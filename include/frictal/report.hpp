@@ -183,8 +183,9 @@ struct ReportInput {
   /// (frictal/scan_stats.hpp) is drawn on the resolution plot and marks the finer cutoffs of
   /// its table as not to be trusted. 0: none.
   double tip_radius = 0;
-  /// Run-away distance d of the hold-angle section (frictal/hold.hpp) (unit: m); 0: the default
-  /// (one period, else a tenth of the offset range).
+  /// Run-away distance d of the hold-angle section (frictal/hold.hpp) (unit: m); 0: the
+  /// prediction's (the stated test's), else (no prediction, or one the lines cannot take) the
+  /// hold analysis's default (one period, else a tenth of the offset range).
   double runaway_distance = 0;
   unsigned threads = 0;            ///< worker threads (0 = hardware); the page does not depend on it
   std::string generated_by;        ///< e.g. the version line; shown in the footer
@@ -276,9 +277,9 @@ struct ReportDirections {
   /// A map pair: one row per direction, the keys of `frictal anisotropy --json` (AnisotropyRow:
   /// angles in rad, run-away distance in m).
   std::vector<AnisotropyRow> pair_table;
-  /// A map pair: non-empty: the hold angles were not predicted, and why (the job's estimated CPU
-  /// time above the prediction's limit, or predict()'s error); the rows then hold the signature's
-  /// bound only.
+  /// A map pair: non-empty: the hold angles were not predicted, and why (the headline's
+  /// prediction is DOUBTFUL, the job's estimated CPU time is above the prediction's limit, or
+  /// predict()'s error); the rows then hold the signature's bound only.
   std::string hold_failure;
   /// A map pair: the directions' predictions' warnings, each message led by its direction.
   std::vector<Warning> warnings;

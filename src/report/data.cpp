@@ -315,7 +315,13 @@ ReportDirections pair_directions_of(const ReportInput& in) {
   // The whole job's estimated cost against the prediction's limit, as the command refuses it.
   const std::size_t drops = std::size_t(in.map_drops) * std::size_t(in.map_drops);
   const double work = map_work_estimate(in.upper_map->valid_count(), drops) * n;
-  if (po.map_work_limit > 0 && work > po.map_work_limit)
+  if (in.prediction && in.prediction->trust != "ok") {
+    // A pair read wrong: its hold angles along other directions would cost each the headline's
+    // time and say nothing until the input is fixed.
+    std::string codes;
+    for (const std::string& c : in.prediction->trust_codes) codes += (codes.empty() ? "" : ", ") + c;
+    out.hold_failure = fmt::format("the headline is DOUBTFUL ({}): fix the input first", codes);
+  } else if (po.map_work_limit > 0 && work > po.map_work_limit)
     out.hold_failure = fmt::format(
         "{} directions x {} drops on {} spheres would take about {:.0f} s of CPU, above the prediction's limit "
         "of {:.0f} s (fewer --directions or --drops, or a cropped or resampled map)",
@@ -458,10 +464,17 @@ Result<ReportData> report_data(const ReportInput& in) {
   so.bins = in.bins;
   // The signature and the hold analysis in one pass over the lift (signature_with_hold: the
   // signature is the one signature() returns), not one lift each.
+  // Its run-away distance: the one given, else the headline's (the stated test's d on the whole
+  // page), else the hold analysis's default where the headline's does not fit these lines.
   HoldOptions ho;
   ho.runaway_distance = in.runaway_distance;
   ho.atomic_friction = in.atomic_friction;
+  if (ho.runaway_distance <= 0 && in.prediction) ho.runaway_distance = in.prediction->runaway_distance;
   auto sig = signature_with_hold(s.lower, rotate180(s.upper), so, ho);
+  if (!sig && ho.runaway_distance != in.runaway_distance) {
+    ho.runaway_distance = in.runaway_distance;
+    sig = signature_with_hold(s.lower, rotate180(s.upper), so, ho);
+  }
   if (!sig) return sig.error();
   d.signature = std::move(sig->signature);
   const SignatureResult& r = d.signature;

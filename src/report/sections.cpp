@@ -928,8 +928,9 @@ std::string headline(const ReportInput& in, const ReportData& d) {
                       : fmt::format(", the median over drops; 90 % of tests between {} and {}",
                                     fmt_deg(p.friction_angle.q05), fmt_deg(p.friction_angle.q95)),
         p.is_map ? "(the steepest seat the drops rested in)" : "θ_max + θ_a", fmt_deg(p.upper_bound_friction_angle),
-        fmt_mu(std::tan(std::min(p.upper_bound_friction_angle, 1.5707963))), fmt_deg(p.eq18_range[0]),
-        fmt_deg(p.eq18_range[1]), p.model,
+        fmt_mu(p.upper_bound_friction_angle >= std::numbers::pi / 2 - 1e-9 ? std::numeric_limits<double>::infinity()
+                                                                           : std::tan(p.upper_bound_friction_angle)),
+        fmt_deg(p.eq18_range[0]), fmt_deg(p.eq18_range[1]), p.model,
         p.is_map ? (std::isfinite(p.load) ? "the block locked to the direction, quasi-static hold angle on the "
                                             "loaded lift of the elastic half-space"
                                           : "a rigid block free to move sideways, quasi-static")
