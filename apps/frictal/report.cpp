@@ -56,7 +56,7 @@ std::function<int()> setup(CLI::App& app) {
                  "Maps: sliding directions of the polar plot (default 36; a map pair: 12, each one prediction over "
                  "--drops x --drops drops, as frictal anisotropy --upper --areal --hold)");
   app.add_option("--lines", a->lines,
-                 "Maps: at most this many parallel lines per direction (as frictal anisotropy --lines)")
+                 "One map: at most this many parallel lines per direction (as frictal anisotropy --lines)")
       ->capture_default_str();
   app.add_option("--resolution-steps", a->resolution, "Cutoff wavelengths of the resolution study (0 = none)")
       ->capture_default_str();

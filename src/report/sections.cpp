@@ -610,8 +610,11 @@ Result<std::string> pair_directions_section(const ReportInput& in, const ReportD
   html += "</div>\n";
   html += fmt::format(
       "<p>The pair ({}) in {} sliding directions (0° = +x, 90° = +y), the upper map turned over about the axis "
-      "across each direction: the numbers of <code>{}</code>{}. μ_a = {:g}.{}</p>\n",
+      "across each direction: the numbers of <code>{}</code>{}. μ_a = {:g}.{}{}</p>\n",
       pair, in.directions, command, in.detrend.empty() ? "" : " with this page's conditioning", in.atomic_friction,
+      in.prediction && std::isfinite(in.prediction->load)
+          ? fmt::format(" Rigid blocks, no load: the headline is under a load of {:.3g} N.", in.prediction->load)
+          : std::string(),
       hold ? std::string()
            : fmt::format(" The hold angles were not predicted: {}; the rigid bound alone is shown.",
                          escape_html(dir.hold_failure)));
