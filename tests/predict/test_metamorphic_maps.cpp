@@ -58,7 +58,8 @@ frictal::Map waves(std::size_t nx, std::size_t ny, double a, unsigned seed) {
       for (int k = 0; k < 10; ++k) {
         const double u = std::fmod(0.7548776662466927 * (k + 1) * (seed + 2), 1.0);
         const double v = std::fmod(0.5698402909980532 * (k + 1) * (seed + 5), 1.0);
-        const double kx = 2 * std::numbers::pi * (0.6 + 2.5 * u) / 10.0, ky = 2 * std::numbers::pi * (0.6 + 2.5 * v) / 10.0;
+        const double kx = 2 * std::numbers::pi * (0.6 + 2.5 * u) / 10.0,
+                     ky = 2 * std::numbers::pi * (0.6 + 2.5 * v) / 10.0;
         z += std::sin(kx * double(i) + (k % 2 ? 1 : -1) * ky * double(j) + 6.283 * u * v) / (1 + 0.5 * k);
       }
       m.heights.push_back(0.25 * a * z);
@@ -94,8 +95,6 @@ frictal::Prediction run(const frictal::Map& lo, const frictal::Map& up, double d
   return p ? *p : frictal::Prediction{};
 }
 
-
-
 // The quantiles of b within a hundredth of a's 5-95 % spread, and at least `share` of the drops
 // within 1e-3 deg of a's.
 void expect_same_to_ties(const frictal::Prediction& a, const frictal::Prediction& b, double share,
@@ -108,8 +107,8 @@ void expect_same_to_ties(const frictal::Prediction& a, const frictal::Prediction
   std::size_t same = 0;
   for (std::size_t k = 0; k < a.drop_angles.size(); ++k)
     same += std::abs(a.drop_angles[k] - b.drop_angles[k]) <= 1e-3 * kDeg ? 1 : 0;
-  EXPECT_GE(double(same), share * double(a.drop_angles.size())) << what << ": " << same << " of "
-                                                                 << a.drop_angles.size() << " drops within 1e-3 deg";
+  EXPECT_GE(double(same), share * double(a.drop_angles.size()))
+      << what << ": " << same << " of " << a.drop_angles.size() << " drops within 1e-3 deg";
 }
 
 // Each median within the other's 5-95 % range over drops.
