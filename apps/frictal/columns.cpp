@@ -3,7 +3,6 @@
 #include "common.hpp"
 #include "frictal/outputs.hpp"
 #include "frictal/settings.hpp"
-#include "frictal/study.hpp"
 
 namespace frictal::cli {
 namespace {
@@ -11,14 +10,6 @@ namespace {
 std::string python_text(const ColumnInfo& c) {
   if (c.python.empty()) return "";
   return c.python + (c.unit == "deg" ? " (rad)" : "");
-}
-
-/// Every output table: the library's catalogue and the studies' (a module above it).
-std::vector<const OutputTable*> all_tables() {
-  std::vector<const OutputTable*> t;
-  for (const OutputTable& x : output_tables()) t.push_back(&x);
-  for (const OutputTable& x : study::study_output_tables()) t.push_back(&x);
-  return t;
 }
 
 std::function<int()> setup(CLI::App& app) {
@@ -32,14 +23,12 @@ std::function<int()> setup(CLI::App& app) {
     require(!(*json && *markdown), "give one of --json and --markdown");
     std::vector<const OutputTable*> tables;
     if (table->empty()) {
-      tables = all_tables();
+      for (const OutputTable& t : output_tables()) tables.push_back(&t);
     } else {
-      const OutputTable* t = nullptr;
-      for (const OutputTable* x : all_tables())
-        if (x->name == *table) t = x;
+      const OutputTable* t = find_output_table(*table);
       if (!t) {
         std::vector<std::string> names;
-        for (const OutputTable* x : all_tables()) names.push_back(x->name);
+        for (const OutputTable& x : output_tables()) names.push_back(x.name);
         std::string hint = nearest_word(*table, names);
         throw UsageError("columns: no output table '" + *table + "'" +
                          (hint.empty() ? "" : "; did you mean '" + hint + "'?") + " (frictal columns lists them)");

@@ -286,6 +286,8 @@ int run(TiltOptions& o) {
                    r->predicted_sphero_hold_angle / kDeg, r->predicted_inertial_hold_angle / kDeg);
       else if (!r->hold_error.empty())
         fmt::print(text, "hold angle: not computed ({})\n", r->hold_error);
+      if (const std::string note = tilt_spread_note(*r, cfg); !note.empty())
+        fmt::print(text, "this reading lies {}\n", note);
     }
     if (cfg.check_stiffness)
       fmt::print(text, "at 10 k_n: {}\n",

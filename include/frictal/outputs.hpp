@@ -220,7 +220,7 @@ struct RunRecord {
   std::optional<double> wall_time;               ///< wall time of the computation (unit: s)
   std::optional<double> hold_wall_time;          ///< of the signature and hold analysis together (unit: s)
 };
-/// The typed columns of RunRecord (src/predict/outputs.cpp).
+/// The typed columns of RunRecord (src/catalogue/outputs.cpp).
 const Columns<RunRecord>& run_record_columns();
 
 /// A declared column of T without a value: a nested object or list that the front end writes
@@ -264,7 +264,7 @@ std::vector<ColumnInfo> infos(const Columns<T>& cols) {
   return {cols.begin(), cols.end()};
 }
 
-/// Every output table of the library and its front ends (src/predict/outputs.cpp): the
+/// Every output table of the library and its front ends (src/catalogue/outputs.cpp): the
 /// vocabulary that `frictal columns`, the docs' outputs reference and the key test read.
 const std::vector<OutputTable>& output_tables();
 

@@ -29,13 +29,13 @@
 #include <vector>
 
 #include "frictal/analysis.hpp"
-#include "frictal/areal_tilt.hpp"
 #include "frictal/conditioning.hpp"
 #include "frictal/contact.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/hold.hpp"
 #include "frictal/io.hpp"
 #include "frictal/map.hpp"
+#include "frictal/map_hold.hpp"
 #include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 #include "frictal/warnings.hpp"
@@ -266,39 +266,10 @@ Result<Prediction> predict(PredictSurface&& lower, std::optional<PredictSurface>
 /// The map model's settings as predict() sets them for the lower map `lower` (conditioned) and
 /// `o`: the direction, turn-over and mu_a of `o`; its run-away distance, else the default
 /// (default_map_runaway_distance); its sphere radius, else the default (a fifth of the
-/// lower map's smaller spacing); areal_tilt's defaults for the rest. The front ends that show the
-/// map model for one drop (`frictal areal-tilt`, the report's two-map section) take the
-/// defaults from here, so that their hold angles are the prediction's.
-ArealTiltOptions map_model_options(const Map& lower, const PredictOptions& o);
-/// The same for a simulation's settings `sim` (areal_tilt's): `sim` with the map model's run-away
-/// distance and sphere radius (sim's where it sets them, > 0), so that the hold angle predicted
-/// beside a MuJoCo run (`frictal areal-tilt`, Python areal_tilt) is the prediction's model, in
-/// the simulation's protocol (tilt steps, height field, lateral mode, start offset).
-ArealTiltOptions map_model_options(const Map& lower, const ArealTiltOptions& sim);
-
-/// The 3D tilt test beside the prediction matched to it (`frictal areal-tilt`, Python areal_tilt):
-/// the MuJoCo run (areal_tilt), then predict()'s map model (map_model_options of the run's
-/// settings) from the rest offset the run reached, the block free and locked (a diagnostic), on
-/// one field of spheres (areal_tilt_hold_drops); the spread in the simulated lateral mode
-/// (areal_tilt_hold_spread); the rigid block put down in the run's last seat at its tilt.
-struct ArealTiltMatched {
-  bool simulated = false;   ///< the run was made (else only the predictions, dropped at o.start_offset)
-  bool run_locked = false;  ///< the run's lateral mode: locked to the direction
-  /// The run; without it, rest_offset = o.start_offset and sphere_radius the model's, the rest zero.
-  ArealTiltResult run;
-  double runaway_distance = 0;          ///< the model's run-away distance D (unit: m)
-  ArealTiltHold free, locked;           ///< the model from run.rest_offset, block free and locked
-  ArealTiltHoldSpread spread;           ///< in the simulated lateral mode: a slip's end moved by r
-  bool seated = false;                  ///< the run rested in a seat before its run-away
-  double seat_tilt = 0;                 ///< that seat's tilt (unit: rad)
-  std::array<double, 2> seat_offset{};  ///< its offset (x, y) (unit: m)
-  double seated_hold_angle = 0;         ///< the model put down there at that tilt, simulated lateral mode (unit: rad)
-  /// The model in the simulated lateral mode (free or locked above, in detail).
-  const ArealTiltHold& matched() const { return run_locked ? locked : free; }
-};
-/// `simulate` false: no run (needs no MuJoCo). Errors: areal_tilt's and areal_tilt_hold's.
-Result<ArealTiltMatched> areal_tilt_matched(const Map& lower, const Map& upper, const ArealTiltOptions& o,
-                                            bool simulate = true, const ArealTiltProgress& progress = {});
+/// lower map's smaller spacing: fill_map_model_defaults); MapHoldOptions' defaults for the rest.
+/// The front ends that show the map model for one drop (`frictal areal-tilt`, the report's
+/// two-map section) take the defaults from here, so that their hold angles are the prediction's.
+MapHoldOptions map_model_options(const Map& lower, const PredictOptions& o);
 
 /// The map prediction's estimated CPU time before it runs, the figure PredictOptions::map_work_limit
 /// is compared with: 2.5e-7 s per sphere of the upper map and drop (free and locked drops count

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -162,18 +163,29 @@ struct ReportInput {
   std::string upper_name;
   std::string detrend;  ///< conditioning already applied (ConditioningRecord text, or the form: "none", "line", ...)
   double atomic_friction = 0;  ///< mu_a of Eq. 6 (unitless)
-  int directions = 36;         ///< sliding directions of the polar plot (maps) (unitless)
-  /// Parallel lines per direction (maps), `frictal anisotropy --lines`'s default: the polar plot
-  /// is that command's table (unitless).
+  /// Sliding directions of the polar plot (maps) (unitless, 1..720). A map pair's polar plot
+  /// predicts the hold angle over map_drops x map_drops drops in each (`frictal report` takes 12
+  /// for a pair unless told).
+  int directions = 36;
+  /// Parallel lines per direction (one map), `frictal anisotropy --lines`'s default: the polar
+  /// plot is that command's table (unitless).
   std::size_t max_lines = DirectionalOptions{}.max_lines;
+  /// Map pairs: each direction's prediction of the polar plot drops the block on an N x N grid,
+  /// N = map_drops (`frictal anisotropy --hold --drops`; the headline's N, given as `prediction`)
+  /// (unitless, 2..64).
+  int map_drops = PredictOptions{}.map_drops;
+  /// Map pairs: called after each direction of the polar plot with (done, total) (unitless);
+  /// a front end's progress line. Empty: none.
+  std::function<void(std::size_t, std::size_t)> progress;
   int resolution_steps = 10;  ///< cutoff wavelengths of the resolution study (unitless, >= 2; 0: none)
   int bins = 90;              ///< bins of the slope PDFs (unitless)
   /// Radius of the stylus or AFM tip (unit: m); > 0: the short reliability cutoff for it
   /// (frictal/scan_stats.hpp) is drawn on the resolution plot and marks the finer cutoffs of
   /// its table as not to be trusted. 0: none.
   double tip_radius = 0;
-  /// Run-away distance d of the hold-angle section (frictal/hold.hpp) (unit: m); 0: the default
-  /// (one period, else a tenth of the offset range).
+  /// Run-away distance d of the hold-angle section (frictal/hold.hpp) (unit: m); 0: the
+  /// prediction's (the stated test's), else (no prediction, or one the lines cannot take) the
+  /// hold analysis's default (one period, else a tenth of the offset range).
   double runaway_distance = 0;
   unsigned threads = 0;            ///< worker threads (0 = hardware); the page does not depend on it
   std::string generated_by;        ///< e.g. the version line; shown in the footer
@@ -251,13 +263,30 @@ struct ReportArealHold {
   std::vector<double> edges, free_percent, locked_percent;
 };
 
-/// Maps: the friction over sliding directions (anisotropy()).
+/// Maps: the friction over sliding directions. One map: its line profiles, each against itself
+/// turned over (anisotropy(), `frictal anisotropy MAP`). A map pair: the pair's, the rows of
+/// `frictal anisotropy LOWER --upper UPPER --areal --hold` with the page's directions, drops,
+/// mu_a and run-away distance: the grid areal signature's theta_max and its bound (a diagnostic),
+/// and predict() along each direction on the page's maps (the block free to move sideways) with
+/// the hold model's bound.
 struct ReportDirections {
-  std::string failure;                          ///< non-empty: not computed, and why (the page says so)
-  std::vector<DirectionalFriction> table;       ///< one row per direction
-  std::size_t min_points = 0;                   ///< shortest line used (points, unitless)
-  double best_direction = 0, best_angle = 0;    ///< the direction with the highest phi, and phi (unit: rad)
-  double worst_direction = 0, worst_angle = 0;  ///< the direction with the lowest phi, and phi (unit: rad)
+  std::string failure;                     ///< non-empty: not computed, and why (the page says so)
+  std::vector<DirectionalFriction> table;  ///< one map: one row per direction
+  std::size_t min_points = 0;              ///< one map: shortest line used (points, unitless)
+  bool pair = false;                       ///< a map pair: `pair_table`, not `table`
+  /// A map pair: one row per direction, the keys of `frictal anisotropy --json` (AnisotropyRow:
+  /// angles in rad, run-away distance in m).
+  std::vector<AnisotropyRow> pair_table;
+  /// A map pair: non-empty: the hold angles were not predicted, and why (the headline's
+  /// prediction is DOUBTFUL, the job's estimated CPU time is above the prediction's limit, or
+  /// predict()'s error); the rows then hold the signature's bound only.
+  std::string hold_failure;
+  /// A map pair: the directions' predictions' warnings, each message led by its direction.
+  std::vector<Warning> warnings;
+  /// One map: the direction with the highest and the lowest bound theta_a + theta_max; a pair: with
+  /// the highest and lowest median hold angle (without hold angles: the signature's bound) (unit: rad).
+  double best_direction = 0, best_angle = 0;
+  double worst_direction = 0, worst_angle = 0;  ///< (unit: rad)
 };
 
 /// One cutoff of the resolution study: the signature of the low-pass filtered pair.

@@ -720,8 +720,5 @@ const Columns<StoreCounts>& study_tasks_columns();
 const Columns<StoreStatus::PartStatus>& study_part_columns();
 const Columns<StudyStatusReport>& study_status_columns();
 const Columns<StudyRunReport>& study_run_columns();
-/// These tables for the catalogue of output tables (frictal/outputs.hpp, output_tables(): the
-/// modules below study list theirs there; `frictal columns` lists both).
-const std::vector<OutputTable>& study_output_tables();
 
 }  // namespace frictal::study

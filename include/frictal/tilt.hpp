@@ -426,6 +426,15 @@ struct TiltResult {
   /// offset convention like rest_offset (unit: m); NaN when not computed.
   double predicted_hold_offset = std::numeric_limits<double>::quiet_NaN();
   std::string hold_error;  ///< why the hold angles are NaN ("" when computed)
+  /// The rigid model's quasi-static hold angle over drops for this test (these blocks, this
+  /// runaway_distance and mu_a, drops spread over the offsets of the signature's range, hold.hpp's
+  /// analyse_hold), in the sliding direction: its 5 %, 50 % and 95 % quantiles (unit: rad); NaN if
+  /// !predict or that analysis failed (spread_error). One drop's reading lies outside this range
+  /// where its rest is a basin that few drops reach (tilt_spread_note).
+  double predicted_spread_q05 = std::numeric_limits<double>::quiet_NaN();
+  double predicted_spread_q50 = std::numeric_limits<double>::quiet_NaN();
+  double predicted_spread_q95 = std::numeric_limits<double>::quiet_NaN();
+  std::string spread_error;  ///< why the spread is NaN ("" when computed)
   /// Quasi-static protocol: increments taken, and those whose relaxation ran out of relax_time.
   int increments = 0;
   int unrelaxed_increments = 0;
@@ -543,6 +552,12 @@ struct TiltReport {
 /// blocks) + t] with t = max(0.1 deg, one tilt increment) (docs/dem.md: the validated runs read
 /// inside it). Without the hold angles (hold_error) the bracket is not checked.
 std::string tilt_validity(const TiltResult& result, const TiltConfig& config);
+
+/// Where a run's friction angle lies against the rigid model's spread over drops for the same test
+/// (TiltResult::predicted_spread_*): inside the 5-95 % range (within the bracket's tolerance t of
+/// tilt_validity), or outside it and why, for a valid run the hold angle of the basin its block
+/// came to rest in. Empty without a slide or without the spread.
+std::string tilt_spread_note(const TiltResult& result, const TiltConfig& config);
 
 /// The tilt test's output tables (frictal/outputs.hpp; src/tilt/tilt_columns.cpp): `frictal tilt
 /// --json` and its nested objects "scales", "estimate", "stage_time_s", "scaled_defaults".

@@ -31,7 +31,7 @@ struct WarningCode {
 
 /// Every warning code the library issues, in one table.
 const std::vector<WarningCode>& warning_codes();
-/// A code's output columns (table "warning_code", src/predict/outputs.cpp): `frictal warnings --json`.
+/// A code's output columns (table "warning_code", src/predict/warning_columns.cpp): `frictal warnings --json`.
 const Columns<WarningCode>& warning_code_columns();
 /// The entry of `code` in warning_codes(); nullptr for a code not in it.
 const WarningCode* find_warning_code(const std::string& code);

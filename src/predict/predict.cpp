@@ -10,8 +10,8 @@
 #include <fmt/core.h>
 
 #include "frictal/areal.hpp"
-#include "frictal/areal_tilt.hpp"
 #include "frictal/load.hpp"
+#include "frictal/map_hold.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
 #include "util/parallel.hpp"
@@ -577,7 +577,7 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
 // from the half-space solution at every offset (load.hpp's map_loaded_lift, the offsets at the
 // lower map's spacing), and each drop's hold angle on its line (the block locked to d, hold.hpp),
 // at every load of the curve. The rigid prediction `p` (free block) gives phi_0 and stays the bound.
-Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper, const ArealTiltOptions& t,
+Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper, const MapHoldOptions& t,
                                const std::vector<std::array<double, 2>>& uv, const PredictOptions& o) {
   // One load: a decade either side (each load is a contact solve per offset, the cost of the map
   // model); a list: those loads.
@@ -784,14 +784,14 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
       add_warning(p.warnings, std::move(w));
   }
   // (A direction within 1e-12 rad of an axis is on it: the drops of the same experiment turned by
-  // quarter turns then lie at the same offsets to the bit; areal_tilt.hpp turns it likewise.)
+  // quarter turns then lie at the same offsets to the bit; map_hold.hpp's model turns it likewise.)
   auto snap = [](double v) {
     return std::abs(v) < 1e-12 ? 0.0 : std::abs(std::abs(v) - 1) < 1e-12 ? std::copysign(1.0, v) : v;
   };
   const double c = snap(std::cos(o.direction)), s = snap(std::sin(o.direction));
   const double along = std::abs(c) * lo->width() + std::abs(s) * lo->height();
   const double across = std::abs(s) * lo->width() + std::abs(c) * lo->height();
-  ArealTiltOptions t = map_model_options(*lo, o);
+  MapHoldOptions t = map_model_options(*lo, o);
   if (o.runaway_distance > 0) {
     p.test_lengths = "d: given; block: the whole upper map";
   } else {
@@ -924,30 +924,15 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
 
 }  // namespace
 
-namespace {
-// The map model's defaults where t leaves them unset (<= 0): the run-away distance
-// default_map_runaway_distance, the sphere radius a fifth of the lower map's smaller spacing (m).
-void fill_model_defaults(const Map& lower, ArealTiltOptions& t) {
-  if (!(t.runaway_distance > 0)) t.runaway_distance = default_map_runaway_distance(lower, t.angle).distance;
-  if (!(t.sphere_radius > 0)) t.sphere_radius = 0.2 * std::min(lower.dx, lower.dy);
-}
-}  // namespace
-
-ArealTiltOptions map_model_options(const Map& lower, const PredictOptions& o) {
-  ArealTiltOptions t;
+MapHoldOptions map_model_options(const Map& lower, const PredictOptions& o) {
+  MapHoldOptions t;
   t.angle = o.direction;
   t.turn_over_upper = o.turn_over_upper;
   t.atomic_friction = o.atomic_friction;
   t.runaway_distance = o.runaway_distance;
   t.sphere_radius = o.sphere_radius;
-  fill_model_defaults(lower, t);
+  fill_map_model_defaults(lower, t);
   return t;
-}
-
-ArealTiltOptions map_model_options(const Map& lower, const ArealTiltOptions& sim) {
-  ArealTiltOptions out = sim;
-  fill_model_defaults(lower, out);
-  return out;
 }
 
 double map_work_estimate(std::size_t upper_spheres, std::size_t drops) {

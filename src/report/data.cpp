@@ -40,6 +40,8 @@ Status check_input(const ReportInput& in) {
   if (in.is_map && in.upper) return make_error("report: an upper profile for a map: give the upper map as upper_map");
   if (in.is_map && (in.directions < 1 || in.directions > 720))
     return make_error(fmt::format("report: directions must be in 1..720, got {}", in.directions));
+  if (in.is_map && in.upper_map && (in.map_drops < 2 || in.map_drops > 64))
+    return make_error(fmt::format("report: map drops must be in 2..64 (an N x N grid), got {}", in.map_drops));
   if (in.bins < 2 || in.bins > 10000)
     return make_error(fmt::format("report: bins must be in 2..10000, got {}", in.bins));
   if (!(std::isfinite(in.tip_radius) && in.tip_radius >= 0))
@@ -214,7 +216,7 @@ Status areal_hold_into(const ReportInput& in, ReportArealHold& out) {
   const Prediction& p = out.prediction;
   // The block dropped at s = 0 in the prediction's model with its settings (map_model_options).
   po.runaway_distance = p.runaway_distance;
-  ArealTiltOptions t = map_model_options(in.map, po);
+  MapHoldOptions t = map_model_options(in.map, po);
   t.start_offset = {0, 0};
   auto hold = areal_tilt_hold(in.map, *in.upper_map, t);
   if (!hold) return hold.error();
@@ -288,6 +290,102 @@ ReportDirections directions_of(const ReportInput& in) {
   out.best_direction = best_dir;
   out.worst_angle = worst;
   out.worst_direction = worst_dir;
+  return out;
+}
+
+/// A map pair over sliding directions: per direction the grid areal signature of the pair and
+/// predict() along it, as `frictal anisotropy LOWER --upper UPPER --areal --hold` computes them
+/// (the same angles to the bit: 2 pi k / n for the signature, (360 k / n) deg for the prediction).
+ReportDirections pair_directions_of(const ReportInput& in) {
+  ReportDirections out;
+  out.pair = true;
+  const int n = in.directions;
+  PredictSurface lower, upper;
+  lower.is_map = upper.is_map = true;
+  lower.map = in.map;
+  lower.name = in.lower_name;
+  upper.map = *in.upper_map;
+  upper.name = in.upper_name;
+  PredictOptions po;
+  po.atomic_friction = in.atomic_friction;
+  po.runaway_distance = in.runaway_distance;
+  po.map_drops = in.map_drops;
+  po.threads = in.threads;
+  po.detrend = Detrend{DetrendKind::None, 0};  // the page's maps are conditioned already
+  // The whole job's estimated cost against the prediction's limit, as the command refuses it.
+  const std::size_t drops = std::size_t(in.map_drops) * std::size_t(in.map_drops);
+  const double work = map_work_estimate(in.upper_map->valid_count(), drops) * n;
+  if (in.prediction && in.prediction->trust != "ok") {
+    // A pair read wrong: its hold angles along other directions would cost each the headline's
+    // time and say nothing until the input is fixed.
+    std::string codes;
+    for (const std::string& c : in.prediction->trust_codes) codes += (codes.empty() ? "" : ", ") + c;
+    out.hold_failure = fmt::format("the headline is DOUBTFUL ({}): fix the input first", codes);
+  } else if (po.map_work_limit > 0 && work > po.map_work_limit)
+    out.hold_failure = fmt::format(
+        "{} directions x {} drops on {} spheres would take about {:.0f} s of CPU, above the prediction's limit "
+        "of {:.0f} s (fewer --directions or --drops, or a cropped or resampled map)",
+        n, drops, in.upper_map->valid_count(), work, po.map_work_limit);
+  for (int k = 0; k < n; ++k) {
+    const double angle = 2 * std::numbers::pi * k / n;
+    ArealSignatureOptions so;
+    so.threads = in.threads;
+    auto sig = areal_signature(in.map, *in.upper_map, angle, so);
+    if (!sig) {
+      out.failure = sig.error().message;
+      return out;
+    }
+    auto bound = predict_friction(in.atomic_friction, sig->theta_max_forward, sig->contact_slope_std);
+    if (!bound) {
+      out.failure = bound.error().message;
+      return out;
+    }
+    AnisotropyRow row;
+    row.direction = angle;
+    row.theta_forward = sig->theta_max_forward;
+    row.theta_backward = sig->theta_max_backward;
+    row.sigma = sig->contact_slope_std;
+    row.upper_bound_friction_angle = bound->friction_angle;
+    row.upper_bound_friction_coefficient = bound->friction_coefficient;
+    row.eq18_low_friction_coefficient = bound->friction_coefficient_low;
+    if (out.hold_failure.empty()) {
+      po.direction = (360.0 * k / n) * kDeg;  // as `frictal predict --direction DEG` converts
+      auto hold = predict(lower, &upper, po);
+      if (!hold) {
+        out.hold_failure = fmt::format("direction {:g}°: {}", deg(angle), hold.error().message);
+      } else {
+        // With the hold model its own bound (above every drop), the signature's beside it.
+        row.upper_bound_friction_angle = hold->upper_bound_friction_angle;
+        row.upper_bound_friction_coefficient = std::tan(hold->upper_bound_friction_angle);
+        row.signature_bound_friction_angle = bound->friction_angle;
+        row.hold_runaway_distance = hold->runaway_distance;
+        row.hold_angle = hold->friction_angle;
+        for (const Warning& w : hold->warnings)
+          if (w.code != "reader")
+            out.warnings.push_back({w.code, fmt::format("direction {:g}°: {}", deg(angle), w.message)});
+      }
+    }
+    out.pair_table.push_back(std::move(row));
+    if (in.progress) in.progress(std::size_t(k + 1), std::size_t(n));
+  }
+  if (!out.hold_failure.empty()) {  // one kind of row: the signature's bound only
+    out.warnings.clear();
+    for (AnisotropyRow& row : out.pair_table) {
+      if (row.signature_bound_friction_angle) row.upper_bound_friction_angle = *row.signature_bound_friction_angle;
+      row.upper_bound_friction_coefficient = std::tan(row.upper_bound_friction_angle);
+      row.signature_bound_friction_angle.reset();
+      row.hold_runaway_distance.reset();
+      row.hold_angle.reset();
+    }
+  }
+  double best = -1e9, worst = 1e9;
+  for (const AnisotropyRow& row : out.pair_table) {
+    const double v = row.hold_angle ? row.hold_angle->q50 : row.upper_bound_friction_angle;
+    if (v > best) best = v, out.best_direction = row.direction;
+    if (v < worst) worst = v, out.worst_direction = row.direction;
+  }
+  out.best_angle = best;
+  out.worst_angle = worst;
   return out;
 }
 
@@ -366,10 +464,17 @@ Result<ReportData> report_data(const ReportInput& in) {
   so.bins = in.bins;
   // The signature and the hold analysis in one pass over the lift (signature_with_hold: the
   // signature is the one signature() returns), not one lift each.
+  // Its run-away distance: the one given, else the headline's (the stated test's d on the whole
+  // page), else the hold analysis's default where the headline's does not fit these lines.
   HoldOptions ho;
   ho.runaway_distance = in.runaway_distance;
   ho.atomic_friction = in.atomic_friction;
+  if (ho.runaway_distance <= 0 && in.prediction) ho.runaway_distance = in.prediction->runaway_distance;
   auto sig = signature_with_hold(s.lower, rotate180(s.upper), so, ho);
+  if (!sig && ho.runaway_distance != in.runaway_distance) {
+    ho.runaway_distance = in.runaway_distance;
+    sig = signature_with_hold(s.lower, rotate180(s.upper), so, ho);
+  }
   if (!sig) return sig.error();
   d.signature = std::move(sig->signature);
   const SignatureResult& r = d.signature;
@@ -392,7 +497,7 @@ Result<ReportData> report_data(const ReportInput& in) {
     }
     d.areal_hold = std::move(a);
   }
-  if (in.is_map) d.directions = directions_of(in);
+  if (in.is_map) d.directions = in.upper_map ? pair_directions_of(in) : directions_of(in);
   if (in.resolution_steps >= 2) {
     auto res = resolution_of(in, s, so);
     if (!res) return res.error();

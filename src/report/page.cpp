@@ -10,14 +10,14 @@ namespace frictal::report {
 Result<std::string> report_page(const ReportInput& in, const ReportData& data) {
   struct Written {
     const detail::PageSection* section;
-    std::string html;
+    std::string title, html;
   };
   std::vector<Written> sections;
   for (const detail::PageSection& s : detail::page_sections()) {
     if (!s.shown(data)) continue;
     auto html = s.write(in, data);
     if (!html) return html.error();
-    sections.push_back({&s, std::move(*html)});
+    sections.push_back({&s, s.title(in, data), std::move(*html)});
   }
   const std::string title = detail::page_title(in, data);
   std::string page;
@@ -29,9 +29,11 @@ body { font-family: "DejaVu Sans", Arial, sans-serif; max-width: 1100px; margin:
 h1 { font-size: 1.5em; } h2 { font-size: 1.2em; border-bottom: 1px solid #ccc; padding-bottom: .2em; margin-top: 1.6em; }
 figure { margin: 1em 0; } figcaption { font-size: .9em; color: #444; max-width: 700px; }
 svg.plot { max-width: 100%; height: auto; }
+.pair { display: flex; flex-wrap: wrap; gap: 0 1.5em; align-items: flex-start; } .pair > * { flex: 1 1 460px; min-width: 0; }
 table { border-collapse: collapse; margin: .8em 0; font-size: .92em; } caption { text-align: left; font-weight: bold; padding: .3em 0; }
 th, td { border: 1px solid #ddd; padding: .25em .6em; text-align: left; } td.note { color: #666; font-size: .9em; }
 table.resolution td, table.friction td { font-variant-numeric: tabular-nums; }
+#directions-table td { white-space: nowrap; }
 tr.below-tip td { color: #999; }
 tr.unfiltered td { font-weight: bold; }
 .verdict { background: #f3f7ee; border-left: 4px solid #5a9a2a; padding: .5em .8em; }
@@ -47,10 +49,11 @@ nav a { margin-right: 1em; } footer { margin-top: 2em; font-size: .85em; color: 
   page += fmt::format("<h1>{}</h1>\n", escape_html(title));
   page += detail::headline(in, data);
   page += "<nav>";
-  for (const auto& s : sections) page += fmt::format("<a href=\"#{}\">{}</a>", s.section->id, s.section->title);
+  for (const auto& s : sections) page += fmt::format("<a href=\"#{}\">{}</a>", s.section->id, escape_html(s.title));
   page += "<a href=\"#assumptions\">What was assumed</a></nav>\n";
   for (const auto& s : sections)
-    page += fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n{}</section>\n", s.section->id, s.section->title, s.html);
+    page +=
+        fmt::format("<section id=\"{}\">\n<h2>{}</h2>\n{}</section>\n", s.section->id, escape_html(s.title), s.html);
   page += "<section id=\"assumptions\">\n<h2>What was assumed</h2>\n<ul class=\"assumptions\">\n";
   for (const auto& a : detail::assumptions(in, data)) page += fmt::format("<li>{}</li>\n", a);
   page += "</ul>\n</section>\n";

@@ -18,6 +18,12 @@ namespace {
 constexpr double kDeg = units::kRadPerDeg;
 constexpr double deg(double rad) { return units::to_deg(rad); }
 
+bool map_pair(const ReportInput& in) { return in.is_map && in.upper_map.has_value(); }
+/// What the line sections are of: a map's central line(s) or the whole scans.
+std::string lines_of(const ReportInput& in) {
+  return map_pair(in) ? "the maps' central lines" : in.is_map ? "the map's central line" : "the whole scans";
+}
+
 std::string fmt_len(double v, const LengthUnit& u, int digits = 4) {
   return fmt::format("{:.{}g} {}", v / u.scale, digits, u.name);
 }
@@ -106,16 +112,18 @@ std::string profile_stats_table(const ProfileStats& st, bool uniform, const std:
   return t + "</table>\n";
 }
 
-/// One map's figure and areal statistics; `line` is its central line at y = line_y, `name` names it.
+/// One map's figure and areal statistics; `line` is its central line at y = line_y, `name` names
+/// it, `role` ("lower", "upper" or empty) says which block's face it is; `width`: the figure's (px).
 Result<std::string> map_figure_and_stats(const Map& map, const MapStats& st, const Profile& line, double line_y,
-                                         const std::string& name) {
+                                         const std::string& name, const std::string& role, double width) {
   std::string html;
   MapImage mi;
-  mi.title = "Height map: " + name;
+  mi.width = width;
+  mi.title = role.empty() ? "Height map: " + name : fmt::format("Height map: {}, {}", role, name);
   mi.line_y = line.x.empty() ? std::nullopt : std::optional<double>(line_y);
   mi.line_x0 = map.x0 + line.x.front();  // the central line's abscissa starts at the map's x0
   mi.line_x1 = map.x0 + line.x.back();
-  mi.line_label = "line used for the signature";
+  mi.line_label = role.empty() ? "line used for the signature" : "central line (the line sections)";
   auto svg = map_svg(map, mi);
   if (!svg) return svg.error();
   const std::size_t f = std::max<std::size_t>(1, (std::max(map.nx, map.ny) + mi.max_pixels - 1) / mi.max_pixels);
@@ -129,7 +137,8 @@ Result<std::string> map_figure_and_stats(const Map& map, const MapStats& st, con
                                          : std::string(),
                                    100 * mi.low_quantile, 100 * mi.high_quantile));
   const LengthUnit zu = length_unit(st.Sq > 0 ? st.Sq : 1e-9);
-  html += "<table class=\"stats\"><caption>Areal statistics of " + escape_html(name) +
+  html += "<table class=\"stats\"><caption>Areal statistics of " +
+          (role.empty() ? escape_html(name) : fmt::format("the {} map, {}", role, escape_html(name))) +
           " (ISO 25178-2 style, about the mean)</caption>\n";
   html +=
       row("points (valid)", fmt::format("{} ({})", st.points, st.valid), st.valid < st.points ? "holes excluded" : "");
@@ -205,27 +214,44 @@ std::string tip_sentence(const ReportInput& in, const std::optional<double>& tip
 // --- the surface -----------------------------------------------------------------------------
 Result<std::string> surface_section(const ReportInput& in, const ReportData& d) {
   const ReportSurfaces& s = d.surfaces;
-  auto fig = in.is_map ? map_figure_and_stats(in.map, s.map_stats, s.lower, s.line_y, base(s.lower_name))
+  if (in.is_map && in.upper_map) {
+    // The pair's two maps side by side, each named by its block and file.
+    auto lo = map_figure_and_stats(in.map, s.map_stats, s.lower, s.line_y, base(s.lower_name), "lower", 540);
+    if (!lo) return lo.error();
+    auto up = map_figure_and_stats(*in.upper_map, s.upper_map_stats, s.upper, s.upper_line_y, base(s.upper_name),
+                                   "upper", 540);
+    if (!up) return up.error();
+    std::string html = fmt::format(
+        "<p>The lower block's face is <b>{}</b>, the upper block's <b>{}</b> as measured (material below; turned "
+        "over onto the lower one for every analysis of the pair).</p>\n",
+        escape_html(base(s.lower_name)), escape_html(base(s.upper_name)));
+    html += "<div class=\"pair\"><div>" + *lo + "</div><div>" + *up + "</div></div>\n";
+    html += "<div class=\"pair\"><div>" +
+            profile_stats_table(s.lower_stats, s.lower_uniform,
+                                "the central line along x of the lower map, " + base(s.lower_name)) +
+            "</div><div>" +
+            profile_stats_table(s.upper_stats, s.upper_uniform,
+                                "the central line along x of the upper map, " + base(s.upper_name)) +
+            "</div></div>\n";
+    return html;
+  }
+  auto fig = in.is_map ? map_figure_and_stats(in.map, s.map_stats, s.lower, s.line_y, base(s.lower_name), "", 900)
                        : profile_figure(s, lateral_unit(d));
   if (!fig) return fig.error();
   std::string html = std::move(*fig);
-  if (in.is_map && in.upper_map) {  // the pair's upper map, as the lower one
-    auto up = map_figure_and_stats(*in.upper_map, s.upper_map_stats, s.upper, s.upper_line_y, base(s.upper_name));
-    if (!up) return up.error();
-    html += *up;
-  }
-  html += profile_stats_table(
-      s.lower_stats, s.lower_uniform,
-      in.is_map ? "the central line along x of " + base(s.lower_name) + " (used below)" : base(s.lower_name));
   if (s.pair)
+    html += "<div class=\"pair\"><div>" +
+            profile_stats_table(s.lower_stats, s.lower_uniform, "lower, " + base(s.lower_name)) + "</div><div>" +
+            profile_stats_table(s.upper_stats, s.upper_uniform, "upper, " + base(s.upper_name)) + "</div></div>\n";
+  else
     html += profile_stats_table(
-        s.upper_stats, s.upper_uniform,
-        in.is_map ? "the central line along x of " + base(s.upper_name) + " (used below)" : base(s.upper_name));
+        s.lower_stats, s.lower_uniform,
+        in.is_map ? "the central line along x of " + base(s.lower_name) + " (used below)" : base(s.lower_name));
   return html;
 }
 
 // --- the signature ---------------------------------------------------------------------------
-Result<std::string> signature_section(const ReportInput&, const ReportData& d) {
+Result<std::string> signature_section(const ReportInput& in, const ReportData& d) {
   const SignatureResult& r = d.signature;
   const LengthUnit xu = lateral_unit(d);
   Plot p;
@@ -239,13 +265,14 @@ Result<std::string> signature_section(const ReportInput&, const ReportData& d) {
                      fmt::format("−θ_max backward = −{:.3f}°", deg(r.theta_max_backward)), "#2ca02c"});
   auto svg = plot_svg(p);
   if (!svg) return svg.error();
-  return figure(*svg,
-                fmt::format("{} offsets{}; θ is the slope of the steepest contact at each offset; between offsets the "
-                            "line joins the exact one-sided slopes of the lift h(x_ofs).",
-                            r.offset.size(),
-                            r.exact ? fmt::format(" (every one of the {} event offsets: exact)", r.events)
-                                    : " (the point grids do not align: offsets sampled at the finer point spacing, "
-                                      "each evaluated exactly)"));
+  return figure(
+      *svg,
+      fmt::format("A diagnostic of {}{}: {} offsets{}; θ is the slope of the steepest contact at each "
+                  "offset; between offsets the line joins the exact one-sided slopes of the lift h(x_ofs).",
+                  lines_of(in), d.surfaces.pair ? " (the lower against the upper turned over)" : "", r.offset.size(),
+                  r.exact ? fmt::format(" (every one of the {} event offsets: exact)", r.events)
+                          : " (the point grids do not align: offsets sampled at the finer point spacing, "
+                            "each evaluated exactly)"));
 }
 
 // --- slope distributions (Fig. 16 style) -------------------------------------------------------
@@ -257,18 +284,23 @@ Result<std::string> slopes_section(const ReportInput& in, const ReportData& d) {
   p.title = "Slope distributions (paper Fig. 16)";
   p.x_label = "slope angle (deg)";
   p.y_label = "probability density (1/deg)";
-  p.series.push_back(histogram_series(sl.lower, s.pair ? "surface slopes: lower" : "surface slopes", "#1f77b4"));
-  if (s.pair) p.series.push_back(histogram_series(sl.upper, "surface slopes: upper", "#9467bd", true));
-  p.series.push_back(histogram_series(sl.contact, "contact slopes θ(x_ofs)", "#d62728"));
+  p.series.push_back(histogram_series(
+      sl.lower, s.pair ? "surface slopes: lower, " + base(s.lower_name) : "surface slopes", "#1f77b4"));
+  if (s.pair)
+    p.series.push_back(histogram_series(sl.upper, "surface slopes: upper, " + base(s.upper_name), "#9467bd", true));
+  p.series.push_back(histogram_series(
+      sl.contact, s.pair ? "contact slopes θ(x_ofs) of the pair" : "contact slopes θ(x_ofs)", "#d62728"));
   auto svg = plot_svg(p);
   if (!svg) return svg.error();
   return figure(
       *svg,
       fmt::format(
-          "Surface slopes: every edge of the profile weighted by its length. Contact slopes: θ at each offset "
-          "weighted "
-          "by the offset length it stands for; mean {}, standard deviation σ = {} (Eq. 18). {} bins over ±{:.2f}°{}.",
-          fmt_deg(r.contact_slope_mean), fmt_deg(r.contact_slope_std), in.bins, deg(sl.limit),
+          "{}Surface slopes: every edge of {} weighted by its length. Contact slopes: θ at each offset "
+          "weighted by the offset length it stands for; mean {}, standard deviation σ = {} (Eq. 18). {} bins over "
+          "±{:.2f}°{}.",
+          in.is_map ? fmt::format("Of {}, along x. ", lines_of(in)) : std::string(),
+          s.pair ? "each profile" : "the profile", fmt_deg(r.contact_slope_mean), fmt_deg(r.contact_slope_std), in.bins,
+          deg(sl.limit),
           sl.outside_length > 0
               ? fmt::format("; {:.2f} % of the surface length is steeper (counted in the densities, beyond "
                             "the axis; steepest edge {})",
@@ -296,11 +328,11 @@ Result<std::string> friction_section(const ReportInput& in, const ReportData& d)
         fmt::format("{} … {}", fmt_mu(bwd.friction_coefficient_low), fmt_mu(bwd.friction_coefficient)));
   std::string html = t.done();
   html += fmt::format(
-      "<p class=\"bounds\">Rigid upper bound of the friction coefficient: μ ≤ {} sliding towards +x (Eq. 18's "
-      "range below it {} … {}) and μ ≤ {} towards −x, with μ_a = {:g}. A bound, not what a tilt test reads: that is "
-      "the headline.</p>\n",
-      fmt_mu(fwd.friction_coefficient), fmt_mu(fwd.friction_coefficient_low), fmt_mu(fwd.friction_coefficient),
-      fmt_mu(bwd.friction_coefficient), in.atomic_friction);
+      "<p class=\"bounds\">Rigid upper bound of the friction coefficient of {} (a diagnostic): μ ≤ {} sliding "
+      "towards +x (Eq. 18's range below it {} … {}) and μ ≤ {} towards −x, with μ_a = {:g}. A bound, not what a "
+      "tilt test reads: that is the headline.</p>\n",
+      lines_of(in), fmt_mu(fwd.friction_coefficient), fmt_mu(fwd.friction_coefficient_low),
+      fmt_mu(fwd.friction_coefficient), fmt_mu(bwd.friction_coefficient), in.atomic_friction);
   return html;
 }
 
@@ -357,11 +389,16 @@ Result<std::string> hold_section(const ReportInput& in, const ReportData& d) {
       {false, deg(fwd.friction_angle), fmt::format("θ_a + θ_max = {:.3f}°", deg(fwd.friction_angle)), "#d62728"});
   auto hsvg = plot_svg(hp);
   if (!hsvg) return hsvg.error();
-  std::string html =
-      in.is_map ? "<p class=\"diagnostic\">A diagnostic: the hold angle of the maps' central lines along x (line "
-                  "profiles, as `frictal signature` of those lines computes it), not the maps' prediction: that is "
-                  "the headline.</p>\n"
-                : std::string();
+  std::string html = in.is_map
+                         ? fmt::format(
+                               "<p class=\"diagnostic\">A diagnostic: the hold angle of {} along x (line "
+                               "profiles, as `frictal signature` of those lines computes it), not the {} prediction: "
+                               "that is the headline.</p>\n",
+                               lines_of(in), map_pair(in) ? "maps'" : "map's")
+                         : std::string(
+                               "<p class=\"diagnostic\">A diagnostic: the hold angle of the whole upper scan over "
+                               "offsets 0 to half its length (as `frictal signature` computes it), another block "
+                               "than the stated test's: what the stated test reads is the headline.</p>\n");
   html +=
       "<p>θ_max bounds the friction of a rigid pair; a tilt test reads something else. A block put down at one "
       "offset slides to the bottom of its basin of the lift h; tilted slowly, it stays where the slope of h ahead "
@@ -492,8 +529,122 @@ Result<std::string> areal_hold_section(const ReportInput&, const ReportData& d) 
 }
 
 // --- friction over sliding directions (maps) ---------------------------------------------------
+namespace {
+/// The command whose table the pair's polar plot is (the options that change its numbers).
+std::string pair_anisotropy_command(const ReportInput& in) {
+  std::string c = fmt::format("frictal anisotropy {} --upper {} --areal --hold --directions {} --drops {}",
+                              base(in.lower_name), base(in.upper_name), in.directions, in.map_drops);
+  if (in.atomic_friction != 0) c += fmt::format(" --atomic-friction {:g}", in.atomic_friction);
+  if (in.runaway_distance > 0) c += fmt::format(" --runaway-distance {:g}", in.runaway_distance);
+  return c;
+}
+
+/// A map pair: the hold angle over drops per direction (median and 5-95 %) and the rigid bounds.
+Result<std::string> pair_directions_section(const ReportInput& in, const ReportData& d) {
+  const ReportDirections& dir = *d.directions;
+  const std::string pair =
+      fmt::format("lower {} against upper {}", escape_html(base(in.lower_name)), escape_html(base(in.upper_name)));
+  if (!dir.failure.empty())
+    return fmt::format("<p>Not computed for the pair ({}): {}.</p>\n", pair, escape_html(dir.failure));
+  const bool hold = dir.hold_failure.empty();
+  const std::string command = escape_html(pair_anisotropy_command(in));
+  auto polar_series = [](const std::string& label, const std::string& color, bool dashed) {
+    Series s;
+    s.label = label;
+    s.color = color;
+    s.dashed = dashed;
+    return s;
+  };
+  Series q50 = polar_series("median over drops", "#d62728", false);
+  Series q05 = polar_series("5 % and 95 % of the drops", "#1f77b4", true);
+  Series q95 = polar_series("", "#1f77b4", true);
+  Series bound = polar_series(hold ? "hold model's bound (steepest seat)" : "θ_a + θ_max of the areal signature",
+                              "#d62728", false);
+  Series sig = polar_series("θ_a + θ_max of the areal signature (a diagnostic)", "#7f7f7f", true);
+  std::string rows;
+  for (const AnisotropyRow& row : dir.pair_table) {
+    const double a = row.direction;
+    bound.x.push_back(a), bound.y.push_back(std::max(0.0, deg(row.upper_bound_friction_angle)));
+    if (row.signature_bound_friction_angle)
+      sig.x.push_back(a), sig.y.push_back(std::max(0.0, deg(*row.signature_bound_friction_angle)));
+    std::string hold_cells;
+    if (row.hold_angle) {
+      q50.x.push_back(a), q50.y.push_back(deg(row.hold_angle->q50));
+      q05.x.push_back(a), q05.y.push_back(deg(row.hold_angle->q05));
+      q95.x.push_back(a), q95.y.push_back(deg(row.hold_angle->q95));
+      hold_cells = fmt::format("<td>{:.4f}°</td><td>{:.4f}° … {:.4f}°</td>", deg(row.hold_angle->q50),
+                               deg(row.hold_angle->q05), deg(row.hold_angle->q95));
+    }
+    rows += fmt::format("<tr><td>{:.1f}°</td>{}<td>{:.4f}°</td>{}<td>{:.4f}° / {:.4f}°</td><td>{:.4f}°</td></tr>\n",
+                        deg(a), hold_cells, deg(row.upper_bound_friction_angle),
+                        row.signature_bound_friction_angle
+                            ? fmt::format("<td>{:.4f}°</td>", deg(*row.signature_bound_friction_angle))
+                            : std::string(),
+                        deg(row.theta_forward), deg(row.theta_backward), deg(row.sigma));
+  }
+  std::string html = "<div class=\"pair\">";
+  if (hold) {
+    PolarPlot hp;
+    hp.title = "Hold angle over drops by direction";
+    hp.radius_label = "hold angle (deg)";
+    hp.series = {q50, q05, q95};
+    auto svg = polar_svg(hp);
+    if (!svg) return svg.error();
+    html += figure(*svg, fmt::format("A diagnostic of the pair's anisotropy: per direction the tilt test sliding "
+                                     "that way, the hold angle of {} drops ({} × {}), the block free to move "
+                                     "sideways (at 0° the headline's).",
+                                     in.map_drops * in.map_drops, in.map_drops, in.map_drops));
+  }
+  PolarPlot bp;
+  bp.title = "Rigid upper bounds by direction";
+  bp.radius_label = "friction angle (deg)";
+  bp.series = {bound};
+  if (hold) bp.series.push_back(sig);
+  auto bsvg = polar_svg(bp);
+  if (!bsvg) return bsvg.error();
+  html += figure(*bsvg, hold ? "Bounds, not what a tilt test reads: the hold model's rigid upper bound (the steepest "
+                               "seat its drops rested in) and θ_a + θ_max of the pair's grid areal signature (a "
+                               "diagnostic of the maps' nodes)."
+                             : "θ_a + θ_max of the pair's grid areal signature: a bound (and a diagnostic of the "
+                               "maps' nodes), not what a tilt test reads.");
+  html += "</div>\n";
+  html += fmt::format(
+      "<p>The pair ({}) in {} sliding directions (0° = +x, 90° = +y), the upper map turned over about the axis "
+      "across each direction: the numbers of <code>{}</code>{}. μ_a = {:g}.{}{}</p>\n",
+      pair, in.directions, command, in.detrend.empty() ? "" : " with this page's conditioning", in.atomic_friction,
+      in.prediction && std::isfinite(in.prediction->load)
+          ? fmt::format(" Rigid blocks, no load: the headline is under a load of {:.3g} N.", in.prediction->load)
+          : std::string(),
+      hold ? std::string()
+           : fmt::format(" The hold angles were not predicted: {}; the rigid bound alone is shown.",
+                         escape_html(dir.hold_failure)));
+  std::string head = "<tr><th>direction</th>";
+  if (hold) head += "<th>hold angle, median</th><th>5–95 % of the drops</th>";
+  head += hold ? "<th>rigid upper bound (hold model)</th><th>diagnostic: θ_a + θ_max of the areal signature</th>"
+               : "<th>rigid upper bound θ_a + θ_max, areal signature</th>";
+  head += "<th>θ_max forward / backward (areal signature)</th><th>σ</th></tr>\n";
+  html += "<table class=\"friction\" id=\"directions-table\">" + head + rows + "</table>\n";
+  const double best = dir.best_angle, worst = dir.worst_angle;
+  html += fmt::format(
+      "<p class=\"bounds\">{} sliding towards {:.0f}°: {} (μ = {}); lowest towards {:.0f}°: {} (μ = {}).</p>\n",
+      hold ? "A diagnostic of the pair's anisotropy: highest median hold angle" : "Highest rigid upper bound",
+      deg(dir.best_direction), fmt_deg(best), fmt_mu(std::tan(best)), deg(dir.worst_direction), fmt_deg(worst),
+      fmt_mu(std::tan(worst)));
+  if (!dir.warnings.empty()) {
+    html +=
+        fmt::format("<details class=\"warnings\"><summary>Warnings of the directions' predictions ({})</summary><ul>\n",
+                    dir.warnings.size());
+    for (const Warning& w : dir.warnings)
+      html += fmt::format("<li><code>{}</code>: {}</li>\n", escape_html(w.code), escape_html(w.message));
+    html += "</ul></details>\n";
+  }
+  return html;
+}
+}  // namespace
+
 Result<std::string> directions_section(const ReportInput& in, const ReportData& d) {
   const ReportDirections& dir = *d.directions;
+  if (dir.pair) return pair_directions_section(in, d);
   if (!dir.failure.empty()) return fmt::format("<p>Not computed for this map: {}.</p>\n", escape_html(dir.failure));
   Series phi, low;
   phi.label = "upper bound θ_a + θ_max (Eq. 6), mean over parallel lines";
@@ -557,7 +708,7 @@ Result<std::string> resolution_section(const ReportInput& in, const ReportData& 
   sg.dashed = true;
   std::string t =
       "<table class=\"resolution\"><tr><th>cutoff λ_c</th><th>θ_max forward</th><th>θ_max "
-      "backward</th><th>σ</th><th>μ forward (μ_a = " +
+      "backward</th><th>σ</th><th>upper bound of μ forward (μ_a = " +
       fmt::format("{:g}", in.atomic_friction) + ")</th></tr>\n";
   for (const ReportResolutionRow& row : res.rows) {
     const double c = row.cutoff;
@@ -780,8 +931,9 @@ std::string headline(const ReportInput& in, const ReportData& d) {
                       : fmt::format(", the median over drops; 90 % of tests between {} and {}",
                                     fmt_deg(p.friction_angle.q05), fmt_deg(p.friction_angle.q95)),
         p.is_map ? "(the steepest seat the drops rested in)" : "θ_max + θ_a", fmt_deg(p.upper_bound_friction_angle),
-        fmt_mu(std::tan(std::min(p.upper_bound_friction_angle, 1.5707963))), fmt_deg(p.eq18_range[0]),
-        fmt_deg(p.eq18_range[1]), p.model,
+        fmt_mu(p.upper_bound_friction_angle >= std::numbers::pi / 2 - 1e-9 ? std::numeric_limits<double>::infinity()
+                                                                           : std::tan(p.upper_bound_friction_angle)),
+        fmt_deg(p.eq18_range[0]), fmt_deg(p.eq18_range[1]), p.model,
         p.is_map ? (std::isfinite(p.load) ? "the block locked to the direction, quasi-static hold angle on the "
                                             "loaded lift of the elastic half-space"
                                           : "a rigid block free to move sideways, quasi-static")
@@ -834,9 +986,9 @@ std::vector<std::string> assumptions(const ReportInput& in, const ReportData& d)
   if (in.is_map && in.upper_map)
     out.push_back(fmt::format(
         "The lower block's face is {}; the upper block's face is {} as measured (material below), turned over "
-        "onto it about the axis across x: the headline's prediction and the areal section. The sections on the "
-        "central lines take the lower map's line against the upper map's line turned over (rotated 180°); the "
-        "polar plot is the lower map's anisotropy.",
+        "onto it about the axis across x: the headline's prediction and the areal section; about the axis across "
+        "each direction in the polar plot. The sections on the central lines take the lower map's line against "
+        "the upper map's line turned over (rotated 180°).",
         escape_html(s.lower_name), escape_html(in.upper_name)));
   else
     out.push_back(s.pair ? fmt::format("The lower block's face is {}; the upper block's face is {} as measured "
@@ -852,13 +1004,15 @@ std::vector<std::string> assumptions(const ReportInput& in, const ReportData& d)
   if (in.is_map)
     out.push_back(fmt::format(
         "The signature, slope distributions and resolution study use the central line along x of {} (y = {}), "
-        "the longest valid run: {} points over {}{}. The polar plot uses parallel lines of {} in every direction.",
+        "the longest valid run: {} points over {}{}. {}",
         in.upper_map ? "each map" : "the map", fmt_len(s.line_y, length_unit(in.map.height())), s.lower.size(),
         fmt_len(s.lower.length(), xu),
-        in.upper_map
-            ? fmt::format(" (the upper map's: {} points over {})", s.upper.size(), fmt_len(s.upper.length(), xu))
-            : std::string(),
-        in.upper_map ? "the lower map" : "the map"));
+        in.upper_map ? fmt::format(" (the upper map's at y = {}: {} points over {})",
+                                   fmt_len(s.upper_line_y, length_unit(in.upper_map->height())), s.upper.size(),
+                                   fmt_len(s.upper.length(), xu))
+                     : std::string(),
+        in.upper_map ? "The polar plot takes the two maps whole in every direction."
+                     : "The polar plot uses parallel lines of the map in every direction."));
   out.push_back(
       "Rigid blocks: the upper block only translates (no rotation, no deformation). Contact slopes follow the "
       "paper's exact polyline rules (edge–edge, vertex–edge, vertex–vertex).");
@@ -875,19 +1029,32 @@ std::vector<std::string> assumptions(const ReportInput& in, const ReportData& d)
 
 // --- the list ---------------------------------------------------------------------------------
 const std::vector<PageSection>& page_sections() {
+  using In = const ReportInput&;
+  using D = const ReportData&;
   static const std::vector<PageSection> sections = {
-      {"surface", "The surface", [](const ReportData&) { return true; }, surface_section},
-      {"signature", "Signature function", [](const ReportData&) { return true; }, signature_section},
-      {"slopes", "Slope distributions", [](const ReportData&) { return true; }, slopes_section},
-      {"friction", "Rigid upper bound (Eq. 6) and Eq. 18's range", [](const ReportData&) { return true; },
-       friction_section},
-      {"hold", "The hold angle over drops", [](const ReportData&) { return true; }, hold_section},
-      {"areal-hold", "Areal blocks that may move sideways",
-       [](const ReportData& d) { return d.areal_hold.has_value(); }, areal_hold_section},
-      {"directions", "Rigid upper bound over sliding directions",
-       [](const ReportData& d) { return d.directions.has_value(); }, directions_section},
-      {"resolution", "Dependence on resolution", [](const ReportData& d) { return d.resolution.has_value(); },
-       resolution_section},
+      {"surface",
+       [](In in, D d) -> std::string {
+         return map_pair(in) ? "The two maps: lower and upper" : d.surfaces.pair ? "The two surfaces" : "The surface";
+       },
+       [](D) { return true; }, surface_section},
+      {"signature", [](In in, D) { return "Signature function of " + lines_of(in) + " (a diagnostic)"; },
+       [](D) { return true; }, signature_section},
+      {"slopes", [](In, D) -> std::string { return "Slope distributions"; }, [](D) { return true; }, slopes_section},
+      {"friction",
+       [](In in, D) { return "Rigid upper bound (Eq. 6) and Eq. 18's range of " + lines_of(in) + " (a diagnostic)"; },
+       [](D) { return true; }, friction_section},
+      {"hold", [](In in, D) { return "The hold angle over drops of " + lines_of(in) + " (a diagnostic)"; },
+       [](D) { return true; }, hold_section},
+      {"areal-hold", [](In, D) -> std::string { return "Areal blocks that may move sideways: the headline's drops"; },
+       [](D d) { return d.areal_hold.has_value(); }, areal_hold_section},
+      {"directions",
+       [](In in, D) -> std::string {
+         return map_pair(in) ? "The pair over sliding directions (a diagnostic of its anisotropy)"
+                             : "Rigid upper bound over sliding directions";
+       },
+       [](D d) { return d.directions.has_value(); }, directions_section},
+      {"resolution", [](In in, D) { return "Dependence on resolution of " + lines_of(in) + " (a diagnostic)"; },
+       [](D d) { return d.resolution.has_value(); }, resolution_section},
   };
   return sections;
 }

@@ -15,8 +15,9 @@ namespace frictal::report::detail {
 using SectionWriter = Result<std::string> (*)(const ReportInput& input, const ReportData& data);
 
 struct PageSection {
-  const char* id;                         ///< the HTML id (the navigation's anchor)
-  const char* title;                      ///< its heading
+  const char* id;  ///< the HTML id (the navigation's anchor)
+  /// Its heading (and the navigation's entry) for the page's inputs and results.
+  std::string (*title)(const ReportInput& input, const ReportData& data);
   bool (*shown)(const ReportData& data);  ///< whether the page has it (its results were computed)
   SectionWriter write;
 };

@@ -91,14 +91,4 @@ const Columns<StudyRunReport>& study_run_columns() {
   return cols;
 }
 
-const std::vector<OutputTable>& study_output_tables() {
-  static const std::vector<OutputTable> t = {
-      {"study_status", "frictal study status --json; Python study_status(store)", infos(study_status_columns())},
-      {"study_tasks", "task counts of a store or a run", infos(study_tasks_columns())},
-      {"study_part", "one part of a study's status", infos(study_part_columns())},
-      {"study_run", "Python study_run(...), study_run_many(...)", infos(study_run_columns())},
-  };
-  return t;
-}
-
 }  // namespace frictal::study

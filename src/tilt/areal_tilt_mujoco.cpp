@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "areal_tilt_model.hpp"
 #include "frictal/areal_tilt.hpp"
+#include "maphold/map_hold_geometry.hpp"
 
 #ifdef FRICTAL_HAVE_MUJOCO
 #include <mujoco/mujoco.h>

@@ -373,6 +373,21 @@ void predict_hold_angles(const Faces& f, const TiltConfig& cfg, TiltResult& res)
   res.predicted_hold_angle = rigid->hold_angle;
   res.predicted_hold_offset = rigid->hold_offset;
   res.predicted_inertial_hold_angle = rigid->inertial_hold_angle;
+  // The rigid model over drops for this test: where a single run's drop lies in it.
+  {
+    SignatureOptions so;
+    so.keep_contacts = false;
+    so.threads = 1;
+    auto spread = analyse_hold(lower, upper_face, so, ho);
+    if (spread.ok()) {
+      const HoldStatistics& q = (cfg.reverse ? spread->distribution.backward : spread->distribution.forward).hold;
+      res.predicted_spread_q05 = q.q05;
+      res.predicted_spread_q50 = q.q50;
+      res.predicted_spread_q95 = q.q95;
+    } else {
+      res.spread_error = spread.error().message;
+    }
+  }
   auto sphero = hold(cfg.radius);
   if (!sphero.ok()) {
     res.hold_error = "spheropolygons: " + sphero.error().message;

@@ -53,6 +53,26 @@ std::string tilt_validity(const TiltResult& r, const TiltConfig& c) {
       tol / kDegree, own);
 }
 
+std::string tilt_spread_note(const TiltResult& r, const TiltConfig& c) {
+  constexpr double kDegree = 3.14159265358979323846 / 180;
+  if (!r.slid || !std::isfinite(r.predicted_spread_q05) || !std::isfinite(r.predicted_spread_q95)) return "";
+  const double tol = std::max(0.1 * kDegree, c.protocol == TiltProtocol::QuasiStatic ? c.tilt_increment : 0.0);
+  const std::string range =
+      fmt::format("the rigid model's 5-95 % range over drops for this test, [{:.3f}, {:.3f}] deg (median {:.3f})",
+                  r.predicted_spread_q05 / kDegree, r.predicted_spread_q95 / kDegree, r.predicted_spread_q50 / kDegree);
+  if (r.friction_angle >= r.predicted_spread_q05 - tol && r.friction_angle <= r.predicted_spread_q95 + tol)
+    return "inside " + range;
+  std::string why;
+  if (tilt_validity(r, c) == "valid" && std::isfinite(r.predicted_hold_angle))
+    why = fmt::format(
+        ": the block came to rest in a basin that fewer than 5 % of drops reach, whose own quasi-static hold angle is "
+        "{:.3f} deg (a single run reads its own drop; `frictal predict` gives the distribution)",
+        r.predicted_hold_angle / kDegree);
+  else
+    why = ": the run is not valid (see validity)";
+  return "outside " + range + why;
+}
+
 const Columns<TiltReport>& tilt_columns() {
   static const Columns<R> cols = python_without_units<R>({
       column<R>("slid", "flag", "a run-away was detected before max_tilt", [](const R& t) { return t.result.slid; }),
@@ -67,6 +87,20 @@ const Columns<TiltReport>& tilt_columns() {
                 "\"valid\", or why the angle is not a friction angle of the surfaces and the "
                 "option that would make it one",
                 [](const R& t) { return tilt_validity(t.result, t.config); }),
+      column<R>("predicted_spread_q05_deg", "deg",
+                "the rigid model's quasi-static hold angle over drops for this test (these blocks, this d and "
+                "mu_a): 5 % quantile (null: not computed, spread_error)",
+                [](const R& t) { return t.config.predict ? t.result.predicted_spread_q05 : kNaN; }),
+      column<R>("predicted_spread_median_deg", "deg", "the same distribution's median",
+                [](const R& t) { return t.config.predict ? t.result.predicted_spread_q50 : kNaN; }),
+      column<R>("predicted_spread_q95_deg", "deg", "the same distribution's 95 % quantile",
+                [](const R& t) { return t.config.predict ? t.result.predicted_spread_q95 : kNaN; }),
+      column<R>("spread_note", "text",
+                "where the friction angle lies against that range: inside, or outside and why (empty: no slide "
+                "or no spread)",
+                [](const R& t) { return tilt_spread_note(t.result, t.config); }),
+      column<R>("spread_error", "text", "why the spread was not computed (empty: computed)",
+                [](const R& t) { return t.result.spread_error; }),
       column<R>("predicted_friction_angle_deg", "deg", "rigid upper bound theta_max + atan(mu_a) (null: no prediction)",
                 [](const R& t) { return t.config.predict ? t.result.predicted_friction_angle : kNaN; }),
       column<R>("predicted_theta_max_deg", "deg", "the signature's theta_max along the sliding direction",

@@ -291,3 +291,29 @@ TEST(CliTiltScale, AMeasuredScanWithTheDefaultsReadsItsHoldAngle) {
   EXPECT_EQ(jc["protocol"], "constant-rate");
   EXPECT_EQ(jc["scaled_defaults"]["measured_defaults"], "hold_rotation = true");
 }
+
+TEST(CliTiltScale, TheReadingIsPlacedInTheModelsSpreadOverDrops) {
+  // A sawtooth of slope alpha (Koch K0): every drop rests in a V and holds up to alpha (the paper,
+  // Sec. III), so the rigid model's range over drops is alpha at every quantile, and the run reads
+  // inside it.
+  const CliRun k = run_cli("tilt koch --iterations 0 --alpha 20 --json --quiet", 120);
+  ASSERT_EQ(k.code, 0) << k.err;
+  const auto jk = nlohmann::json::parse(k.out);
+  for (const char* q : {"predicted_spread_q05_deg", "predicted_spread_median_deg", "predicted_spread_q95_deg"})
+    EXPECT_NEAR(jk[q].get<double>(), 20.0, 1e-6) << q;
+  EXPECT_EQ(jk["spread_note"].get<std::string>().rfind("inside ", 0), 0u) << jk["spread_note"];
+  // A measured piece: the note agrees with the numbers it names, and the text prints it.
+  const CliRun d = run_cli(kPiece, 120);
+  ASSERT_EQ(d.code, 0) << d.err;
+  const auto j = nlohmann::json::parse(d.out);
+  const double q05 = j["predicted_spread_q05_deg"].get<double>(), q95 = j["predicted_spread_q95_deg"].get<double>();
+  const double median = j["predicted_spread_median_deg"].get<double>(), phi = j["friction_angle_deg"].get<double>();
+  EXPECT_LE(q05, median);
+  EXPECT_LE(median, q95);
+  const double tol = std::max(0.1, setting(j, "tilt_increment"));
+  const bool inside = phi >= q05 - tol && phi <= q95 + tol;
+  EXPECT_EQ(j["spread_note"].get<std::string>().rfind(inside ? "inside " : "outside ", 0), 0u) << j["spread_note"];
+  const CliRun t = run_cli("tilt --lower " + kDektak + " --crop 0.5mm,0.55mm --quiet", 120);
+  ASSERT_EQ(t.code, 0) << t.err;
+  EXPECT_NE(t.out.find("this reading lies " + std::string(inside ? "inside" : "outside")), std::string::npos) << t.out;
+}

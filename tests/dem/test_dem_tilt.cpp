@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -713,4 +714,34 @@ TEST(DemTilt, EstimateAndProgressCallbacks) {
   auto refused = frictal::run_tilt(k0, k0, cfg);
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.error().message, "no");
+}
+
+TEST(DemTilt, TheSpreadNotePlacesAReadingInTheModelsRangeOverDrops) {
+  // A valid reading (inside the bracket from its own rest) outside the model's 5-95 % range over
+  // drops: the note says so and names its basin's hold angle; one inside says inside; no slide or
+  // no spread: no note.
+  constexpr double kDeg = 3.14159265358979323846 / 180;
+  frictal::TiltConfig c;
+  frictal::TiltResult r;
+  r.slid = true;
+  r.predicted_hold_angle = r.predicted_sphero_hold_angle = 10.005 * kDeg;
+  r.predicted_inertial_hold_angle = 5 * kDeg;
+  r.predicted_spread_q05 = 2 * kDeg;
+  r.predicted_spread_q50 = 3 * kDeg;
+  r.predicted_spread_q95 = 4 * kDeg;
+  r.friction_angle = 10 * kDeg;
+  ASSERT_EQ(frictal::tilt_validity(r, c), "valid");
+  const std::string out = frictal::tilt_spread_note(r, c);
+  EXPECT_EQ(out.rfind("outside the rigid model's 5-95 % range over drops for this test, [2.000, 4.000] deg", 0), 0u)
+      << out;
+  EXPECT_NE(out.find("basin"), std::string::npos) << out;
+  EXPECT_NE(out.find("10.005 deg"), std::string::npos) << out;
+  r.friction_angle = 4.05 * kDeg;  // within the bracket's 0.1 deg of q95
+  r.predicted_inertial_hold_angle = 4 * kDeg;
+  EXPECT_EQ(frictal::tilt_spread_note(r, c).rfind("inside ", 0), 0u) << frictal::tilt_spread_note(r, c);
+  r.slid = false;
+  EXPECT_EQ(frictal::tilt_spread_note(r, c), "");
+  r.slid = true;
+  r.predicted_spread_q05 = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(frictal::tilt_spread_note(r, c), "");
 }

@@ -255,7 +255,7 @@ TEST(MapPrediction, RemovingSpikesFromANearlyFlatMapCostsAtMostABoundedMultipleO
   ASSERT_TRUE(cleaned.ok()) << cleaned.error().message;
   ASSERT_EQ(cleaned->record.spikes_removed, std::size(spikes));
   auto work = [](const frictal::Map& map) {
-    const frictal::ArealTiltOptions t = frictal::map_model_options(map, frictal::PredictOptions{});
+    const frictal::MapHoldOptions t = frictal::map_model_options(map, frictal::PredictOptions{});
     std::vector<frictal::ArealTiltDrop> drops;
     for (const double u : {0.0, 8e-6, 16e-6})
       for (const double v : {-8e-6, 0.0, 8e-6}) drops.push_back({{u, v}, false});

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # CTest report.pages: builds the pages a person reads and checks them in headless Chromium
-# (tests/report/check_page.py): a measured X3P scan report, a profile-pair report, and an
+# (tests/report/check_page.py): a measured X3P scan report, a profile-pair report, a map-pair report, and an
 # index.html built from a quick subset of the reproduction (Fig. 3, 4, 9, 11, 12, 13, 16).
 # Screenshots are left in OUTDIR/*.png to look at.
 #   tests/report/test-pages.sh FRICTAL OUTDIR CHROMIUM
@@ -19,11 +19,15 @@ fail=0
 "$BIN" surface wm --dimension 1.5 --seed 1 -o "$OUT/wm-a.csv" 2>/dev/null
 "$BIN" surface wm --dimension 1.5 --seed 2 -o "$OUT/wm-b.csv" 2>/dev/null
 "$BIN" report "$OUT/wm-a.csv" "$OUT/wm-b.csv" --atomic-friction 0.3 --threads 2 -o "$OUT/pair-report.html" 2>/dev/null
+# two measured maps of one spacing (AFM scans, a 2 um window of each): both maps, the pair's polar plots
+"$BIN" report "$SRC/tests/data/instruments/mi-1.mi" "$SRC/tests/data/instruments/nid-1.nid" --crop 0,2um,0,2um \
+  --directions 6 --drops 3 --resolution-steps 4 --threads 2 -q -o "$OUT/map-pair-report.html" 2>/dev/null
 # (a 12.5 um stylus tip: its short reliability cutoff is drawn on the resolution plot)
 "$BIN" report "$SRC/tests/data/profiles/dektak-1.csv" --tip-radius 12.5um --threads 2 -o "$OUT/dektak-report.html" 2>/dev/null
 grep -q "reliable above" "$OUT/dektak-report.html" || { echo "test-pages: no tip cutoff line on dektak-report.html" >&2; fail=1; }
 $PY "$SRC/tests/report/check_page.py" "$CHROME" "$OUT/x3p-report.html" "$OUT/x3p-report.png" --min-figures 5 || fail=1
 $PY "$SRC/tests/report/check_page.py" "$CHROME" "$OUT/pair-report.html" "$OUT/pair-report.png" --min-figures 4 || fail=1
+$PY "$SRC/tests/report/check_page.py" "$CHROME" "$OUT/map-pair-report.html" "$OUT/map-pair-report.png" --min-figures 9 || fail=1
 $PY "$SRC/tests/report/check_page.py" "$CHROME" "$OUT/dektak-report.html" "$OUT/dektak-report.png" --min-figures 4 || fail=1
 
 # 2. index.html from a quick subset: Fig. 4 as scripts/reproduce makes it, one real study (Fig. 9)

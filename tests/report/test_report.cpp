@@ -360,8 +360,7 @@ TEST(Report, TwoMapsShowThePredictionsHoldAnglesOnTheLift) {
   in.lower_name = "lower.x3p";
   in.upper_name = "upper.x3p";
   in.detrend = "none";
-  in.directions = 4;
-  in.max_lines = 4;
+  in.directions = 2;  // +x and -x: along the grooves a block tilts to the model's largest tilt, slowly
   in.resolution_steps = 0;
   const double want = std::atan(A * std::sin(2 * std::numbers::pi / m) / a);
   auto d = rp::report_data(in);
@@ -386,6 +385,20 @@ TEST(Report, TwoMapsShowThePredictionsHoldAnglesOnTheLift) {
   auto p = frictal::predict(pl, &pu, po);
   ASSERT_TRUE(p) << p.error().message;
   EXPECT_EQ(h.prediction.drop_angles, p->drop_angles);
+  // The polar plot is the pair's: along +x its hold angles are the same prediction's, and its
+  // bound the hold model's.
+  ASSERT_TRUE(d->directions);
+  ASSERT_TRUE(d->directions->pair);
+  ASSERT_TRUE(d->directions->failure.empty()) << d->directions->failure;
+  ASSERT_TRUE(d->directions->hold_failure.empty()) << d->directions->hold_failure;
+  ASSERT_EQ(d->directions->pair_table.size(), 2u);
+  const frictal::AnisotropyRow& plus_x = d->directions->pair_table[0];
+  EXPECT_EQ(plus_x.direction, 0.0);
+  ASSERT_TRUE(plus_x.hold_angle);
+  EXPECT_EQ(plus_x.hold_angle->q50, p->friction_angle.q50);
+  EXPECT_EQ(plus_x.hold_angle->q95, p->friction_angle.q95);
+  EXPECT_EQ(plus_x.upper_bound_friction_angle, p->upper_bound_friction_angle);
+  EXPECT_TRUE(plus_x.signature_bound_friction_angle);
   // ... and a prediction given with the input (the CLI's headline) is the one the section shows.
   in.prediction = *p;
   in.prediction->friction_angle.q50 = 0.5;  // marked: the section must take it, not recompute

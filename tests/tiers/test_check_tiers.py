@@ -31,6 +31,12 @@ planted = [
      "module tilt includes analysis/filter_detail.hpp, a private header of analysis"),
     ("geometry", '#include "study/cache.hpp"', "module geometry includes study/cache.hpp (module study)"),
     ("io", '#include "nothere.hpp"', '"nothere.hpp" is no header of module io'),
+    # The models below predict, the experiments not below it: predict may not include the 3D tilt
+    # test, and the map model may not include the prediction.
+    ("predict", '#include "frictal/areal_tilt.hpp"',
+     "module predict includes frictal/areal_tilt.hpp (public header of tilt)"),
+    ("maphold", '#include "frictal/predict.hpp"',
+     "module maphold includes frictal/predict.hpp (public header of predict)"),
 ]
 with tempfile.TemporaryDirectory() as tmp:
     for module, include, expect in planted:

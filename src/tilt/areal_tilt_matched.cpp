@@ -1,8 +1,34 @@
 // The 3D tilt test beside the prediction matched to it: the one sequence that `frictal
-// areal-tilt` and Python areal_tilt show.
-#include "frictal/predict.hpp"
+// areal-tilt` and Python areal_tilt show (the experiment checking the map model, map_hold.hpp),
+// with the map model's settings for a run and the seat a run sat in before its run-away.
+#include <cmath>
+
+#include "frictal/areal_tilt.hpp"
+#include "frictal/map_hold.hpp"
 
 namespace frictal {
+
+ArealTiltOptions map_model_options(const Map& lower, const ArealTiltOptions& sim) {
+  ArealTiltOptions out = sim;
+  fill_map_model_defaults(lower, out);
+  return out;
+}
+
+std::optional<std::array<double, 3>> areal_tilt_last_seat(const ArealTiltResult& r) {
+  if (!r.ran_away || r.trace.empty()) return std::nullopt;
+  const double last = r.trace.back().tilt;
+  const ArealTiltIncrement* seat = nullptr;
+  for (auto it = r.trace.rbegin(); it != r.trace.rend() && !seat; ++it)
+    if (it->rested && it->tilt < last) seat = &*it;
+  if (!seat) return std::nullopt;
+  // The lowest tilt at which the block already rested there (coarse or fine increments; a block
+  // at rest sits still to a small fraction of r).
+  const double tol = 0.01 * r.sphere_radius;
+  double first = seat->tilt;
+  for (const ArealTiltIncrement& i : r.trace)
+    if (i.rested && i.tilt < first && std::hypot(i.x - seat->x, i.y - seat->y) <= tol) first = i.tilt;
+  return std::array<double, 3>{first, seat->x, seat->y};
+}
 
 Result<ArealTiltMatched> areal_tilt_matched(const Map& lower, const Map& upper, const ArealTiltOptions& o,
                                             bool simulate, const ArealTiltProgress& progress) {

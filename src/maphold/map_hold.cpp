@@ -1,6 +1,7 @@
-// The matched prediction of the MuJoCo tilt test (frictal/areal_tilt.hpp, areal_tilt_lift;
-// docs/mujoco.md): the lift of the upper face's spheres of radius r on the lower face's height
-// field triangulated as MuJoCo triangulates it. Needs no MuJoCo.
+// The map model (frictal/map_hold.hpp; docs/mujoco.md): the lift of the upper face's spheres of
+// radius r on the lower face's height field triangulated as MuJoCo triangulates it
+// (areal_tilt_lift), the quasi-static block on it (areal_tilt_hold, its drops and spread) and the
+// model's defaults. The matched prediction of the MuJoCo tilt test; needs no MuJoCo.
 #include <fmt/core.h>
 #include <algorithm>
 #include <array>
@@ -14,10 +15,10 @@
 #include <vector>
 
 #include "areal/areal_grid.hpp"
-#include "areal_tilt_model.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
-#include "frictal/areal_tilt.hpp"
+#include "frictal/map_hold.hpp"
+#include "map_hold_geometry.hpp"
 #include "util/parallel.hpp"
 
 namespace frictal {
@@ -883,7 +884,7 @@ double cone_max_slope(double gx, double gy, double dxv, double dyv, double phi) 
 
 }  // namespace
 
-Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOptions& t, const ArealLiftOptions& o) {
+Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const MapHoldOptions& t, const ArealLiftOptions& o) {
   if (auto s = validate(f, "lower map"); !s) return s.error();
   if (auto s = validate(g, "upper map"); !s) return s.error();
   if (f.nx < 2 || f.ny < 2) return make_error("areal_tilt_lift: the lower map needs 2 x 2 nodes");
@@ -954,26 +955,10 @@ Result<ArealLift> areal_tilt_lift(const Map& f, const Map& g, const ArealTiltOpt
 
 namespace frictal {
 
-std::optional<std::array<double, 3>> areal_tilt_last_seat(const ArealTiltResult& r) {
-  if (!r.ran_away || r.trace.empty()) return std::nullopt;
-  const double last = r.trace.back().tilt;
-  const ArealTiltIncrement* seat = nullptr;
-  for (auto it = r.trace.rbegin(); it != r.trace.rend() && !seat; ++it)
-    if (it->rested && it->tilt < last) seat = &*it;
-  if (!seat) return std::nullopt;
-  // The lowest tilt at which the block already rested there (coarse or fine increments; a block
-  // at rest sits still to a small fraction of r).
-  const double tol = 0.01 * r.sphere_radius;
-  double first = seat->tilt;
-  for (const ArealTiltIncrement& i : r.trace)
-    if (i.rested && i.tilt < first && std::hypot(i.x - seat->x, i.y - seat->y) <= tol) first = i.tilt;
-  return std::array<double, 3>{first, seat->x, seat->y};
-}
-
 namespace {
 
 /// The checks of areal_tilt_hold that do not depend on the start offset.
-Status check_hold_inputs(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution, double stationary,
+Status check_hold_inputs(const Map& f, const Map& g, const MapHoldOptions& t, double resolution, double stationary,
                          double start_tilt) {
   if (auto s = validate(f, "lower map"); !s) return s.error();
   if (auto s = validate(g, "upper map"); !s) return s.error();
@@ -1002,7 +987,7 @@ Status check_hold_inputs(const Map& f, const Map& g, const ArealTiltOptions& t, 
 }
 
 /// The protocol of areal_tilt_hold on a field already built (inputs checked), from t.start_offset.
-Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, const ArealTiltOptions& t, double r,
+Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, const MapHoldOptions& t, double r,
                                     double resolution, double stationary, double start_tilt) {
   if (!std::isfinite(t.start_offset[0]) || !std::isfinite(t.start_offset[1]))
     return make_error("areal_tilt_hold: the start offset must be finite (m)");
@@ -1385,7 +1370,7 @@ namespace {
 
 // The hold of one drop in the frame where the direction lies within 45 deg of +x
 // (detail::TurnedExperiment); inputs checked.
-Result<ArealTiltHold> hold_turned(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
+Result<ArealTiltHold> hold_turned(const Map& f, const Map& g, const MapHoldOptions& t, double resolution,
                                   double stationary, double start_tilt) {
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
   if (nodes.empty()) return make_error("areal_tilt_hold: the upper map has no valid node");
@@ -1396,7 +1381,7 @@ Result<ArealTiltHold> hold_turned(const Map& f, const Map& g, const ArealTiltOpt
 }
 
 // A hold's positions turned back to the caller's frame.
-void turn_back(ArealTiltHold& h, const detail::TurnedExperiment& e) {
+void turn_back(ArealTiltHold& h, const detail::TurnedExperiment<MapHoldOptions>& e) {
   h.rest_offset = e.back(h.rest_offset);
   for (auto& s : h.stops) {
     const auto p = e.back({s[1], s[2]});
@@ -1405,7 +1390,7 @@ void turn_back(ArealTiltHold& h, const detail::TurnedExperiment& e) {
   }
 }
 
-Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g, const ArealTiltOptions& t,
+Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g, const MapHoldOptions& t,
                                                      const std::vector<ArealTiltDrop>& drops, unsigned threads,
                                                      const std::function<void(std::size_t, std::size_t)>& progress) {
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
@@ -1424,7 +1409,7 @@ Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g,
   std::atomic<std::size_t> next{0};
   util::parallel_chunks(nthreads, nthreads, [&](unsigned, std::size_t, std::size_t) {
     for (std::size_t k = next++; k < drops.size(); k = next++) {
-      ArealTiltOptions tk = t;
+      MapHoldOptions tk = t;
       tk.start_offset = drops[k].start;
       tk.lock_lateral = drops[k].locked;
       auto h = hold_on_field(field, f, tk, r, kArealHoldResolution, 1e-7, 0);
@@ -1445,7 +1430,7 @@ Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g,
 
 }  // namespace
 
-Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTiltOptions& t, double resolution,
+Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const MapHoldOptions& t, double resolution,
                                       double stationary, double start_tilt) {
   if (auto s = check_hold_inputs(f, g, t, resolution, stationary, start_tilt); !s) return s.error();
   const detail::TurnedExperiment e(f, g, t);
@@ -1455,7 +1440,7 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const ArealTil
 }
 
 Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
-    const Map& f, const Map& g, const ArealTiltOptions& t, const std::vector<ArealTiltDrop>& drops, unsigned threads,
+    const Map& f, const Map& g, const MapHoldOptions& t, const std::vector<ArealTiltDrop>& drops, unsigned threads,
     const std::function<void(std::size_t, std::size_t)>& progress) {
   if (auto s = check_hold_inputs(f, g, t, kArealHoldResolution, 1e-7, 0); !s) return s.error();
   auto named = [&](Result<std::vector<ArealTiltHold>> r) -> Result<std::vector<ArealTiltHold>> {
@@ -1476,7 +1461,7 @@ Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
   return r;
 }
 
-Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& f, const Map& g, const ArealTiltOptions& t,
+Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& f, const Map& g, const MapHoldOptions& t,
                                                    const ArealTiltHold& hold, double perturbation, double resolution,
                                                    double stationary) {
   if (!std::isfinite(perturbation) || perturbation < 0)
@@ -1528,11 +1513,11 @@ Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& f, const Map& g, c
   for (const Slip& s : slips) {
     std::vector<std::array<double, 2>> seats;  // other seats found from this slip's end
     for (const auto& e : dirs) {
-      ArealTiltOptions c = t;
+      MapHoldOptions c = t;
       c.start_offset = {s.x + delta * e[0], s.y + delta * e[1]};
       if (!s.coarse) c.coarse_tilt_step = t.tilt_step;
       // The seat from the perturbed end: one descent at the slip's tilt (a hold with no increment).
-      ArealTiltOptions probe = c;
+      MapHoldOptions probe = c;
       probe.max_tilt = std::min(s.tilt + 0.5 * t.tilt_step, std::numbers::pi / 2 - 1e-9);
       auto seat = areal_tilt_hold(f, g, probe, resolution, stationary, s.tilt);
       if (!seat) continue;  // the perturbed end lies off the lower map
@@ -1603,6 +1588,11 @@ DefaultRunaway default_map_runaway_distance(const Map& lower, double direction) 
   t.rule = fmt::format("{:g} slope correlation lengths of the lower map along {} ({:.4g} m, the median over {} lines)",
                        kRunawayPerSlopeCorrelation, axis, l, xi.size());
   return t;
+}
+
+void fill_map_model_defaults(const Map& lower, MapHoldOptions& t) {
+  if (!(t.runaway_distance > 0)) t.runaway_distance = default_map_runaway_distance(lower, t.angle).distance;
+  if (!(t.sphere_radius > 0)) t.sphere_radius = 0.2 * std::min(lower.dx, lower.dy);
 }
 
 }  // namespace frictal

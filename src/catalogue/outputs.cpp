@@ -19,6 +19,7 @@
 #include "frictal/scan_stats.hpp"
 #include "frictal/signature.hpp"
 #include "frictal/stats.hpp"
+#include "frictal/study.hpp"
 #include "frictal/tilt.hpp"
 #include "frictal/warnings.hpp"
 
@@ -79,24 +80,6 @@ const Columns<RunRecord>& run_record_columns() {
       number("wall_time_s", "s", "wall time of the computation", &T::wall_time),
       number("hold_wall_time_s", "s", "wall time of the signature and the hold analysis together (one pass)",
              &T::hold_wall_time),
-  };
-  return cols;
-}
-
-const Columns<WarningCode>& warning_code_columns() {
-  using T = WarningCode;
-  static const Columns<T> cols = {
-      column<T>(
-          "code", "text", "the code", [](const T& c) { return c.code; }, "-"),
-      column<T>(
-          "meaning", "text", "what it means", [](const T& c) { return c.meaning; }, "-"),
-      column<T>(
-          "doubtful", "flag",
-          "the input was probably read wrong, or the model does not hold: a prediction with the code is doubtful",
-          [](const T& c) { return c.doubtful; }, "-"),
-      column<T>(
-          "fix", "text", "the fix that exists: the options to add (Python keywords in parentheses)",
-          [](const T& c) { return c.fix; }, "-"),
   };
   return cols;
 }
@@ -261,7 +244,12 @@ std::vector<OutputTable> make_tables() {
                "what frictal stats --json adds with --tip-radius, --acf, --histograms; Python profile_stats and "
                "map_stats with tip_radius (profile_stats: slope_pdf always)",
                infos(stats_extras_columns())});
-  // Studies (frictal study report --json; Python study_rows); study status and runs: study_output_tables().
+  // Studies (frictal study status|report --json; Python study_status, study_run, study_rows).
+  t.push_back({"study_status", "frictal study status --json; Python study_status(store)",
+               infos(study::study_status_columns())});
+  t.push_back({"study_tasks", "task counts of a store or a run", infos(study::study_tasks_columns())});
+  t.push_back({"study_part", "one part of a study's status", infos(study::study_part_columns())});
+  t.push_back({"study_run", "Python study_run(...), study_run_many(...)", infos(study::study_run_columns())});
   t.push_back({"study_report",
                "frictal study report --json: the findings as data (docs/studies.md)",
                {ci("reports", "list:study_findings", "one report per store"),

@@ -1,6 +1,7 @@
-// The geometry that the MuJoCo tilt test (areal_tilt_mujoco.cpp) simulates and that its matched
-// prediction (areal_tilt_lift.cpp) evaluates: one definition of the upper face's spheres and of
-// the lower face's height field, so that both see the same surfaces (docs/mujoco.md).
+// The geometry that the map model (map_hold.cpp) evaluates and that the MuJoCo tilt test
+// (src/tilt/areal_tilt_mujoco.cpp, which includes this shared header) simulates: one definition
+// of the upper face's spheres and of the lower face's height field, so that both see the same
+// surfaces (docs/mujoco.md).
 #pragma once
 
 #include <algorithm>
@@ -11,8 +12,8 @@
 #include <utility>
 #include <vector>
 
-#include "frictal/areal_tilt.hpp"
 #include "frictal/map.hpp"
+#include "frictal/map_hold.hpp"
 
 namespace frictal::detail {
 
@@ -57,12 +58,14 @@ inline std::array<double, 2> turned(std::array<double, 2> v, int q) {
 /// 18.10 deg against 16.91). In this frame a turn of the whole experiment by quarter turns, or a
 /// shift of it, changes nothing (node positions i dx from the same origin, to the bit): every
 /// front end and the MuJoCo test run here. Offsets are the same vectors in both frames but for
-/// the turn: results are turned back by `q`.
+/// the turn: results are turned back by `q`. Options: the model's (MapHoldOptions) or the
+/// simulation's (ArealTiltOptions, which are the model's and more); only the model's are turned.
+template <class Options>
 struct TurnedExperiment {
   int q = 0;  ///< quarter turns from this frame back to the caller's (unitless)
   Map f, g;
-  ArealTiltOptions t;
-  TurnedExperiment(const Map& lower, const Map& upper, const ArealTiltOptions& o)
+  Options t;
+  TurnedExperiment(const Map& lower, const Map& upper, const Options& o)
       : q(direction_quarters(o.angle)), f(turned(lower, -q)), g(turned(upper, -q)), t(o) {
     t.angle = o.angle - q * (0.5 * 3.14159265358979323846);
     if (std::abs(t.angle) < 1e-12) t.angle = 0;  // on the axis (the turn's rounding)
@@ -106,15 +109,15 @@ inline std::vector<TiltNode> tilt_nodes(const Map& f, const Map& g, double angle
 }
 
 /// The sphere radius used: the option, or a fifth of the lower map's smaller spacing (unit: m).
-inline double tilt_sphere_radius(const Map& f, const ArealTiltOptions& o) {
+inline double tilt_sphere_radius(const Map& f, const MapHoldOptions& o) {
   return o.sphere_radius > 0 ? o.sphere_radius : 0.2 * std::min(f.dx, f.dy);
 }
 
 /// The run-away distance used: the option, or a twentieth of the lower map's extent along d (unit: m).
-inline double tilt_runaway_distance(const Map& f, const ArealTiltOptions& o) {
+inline double tilt_runaway_distance(const Map& f, const MapHoldOptions& o) {
   // Called with D unset (the library's areal_tilt and areal_tilt_hold on their own): 5 % of the
   // lower map along d, the simulations' setting. The front ends and predict() set D first
-  // (map_model_options: default_map_runaway_distance, a length of the surface).
+  // (fill_map_model_defaults: default_map_runaway_distance, a length of the surface).
   return o.runaway_distance > 0
              ? o.runaway_distance
              : 0.05 * (std::abs(std::cos(o.angle)) * f.width() + std::abs(std::sin(o.angle)) * f.height());
