@@ -227,11 +227,13 @@ Result<std::string> surface_section(const ReportInput& in, const ReportData& d) 
         escape_html(base(s.lower_name)), escape_html(base(s.upper_name)));
     html += "<div class=\"pair\"><div>" + *lo + "</div><div>" + *up + "</div></div>\n";
     html += "<div class=\"pair\"><div>" +
-            profile_stats_table(s.lower_stats, s.lower_uniform,
-                                "the central line along x of the lower map, " + base(s.lower_name)) +
+            profile_stats_table(
+                s.lower_stats, s.lower_uniform,
+                "the central line along x of the lower map, " + base(s.lower_name) + " (the resolution study)") +
             "</div><div>" +
-            profile_stats_table(s.upper_stats, s.upper_uniform,
-                                "the central line along x of the upper map, " + base(s.upper_name)) +
+            profile_stats_table(
+                s.upper_stats, s.upper_uniform,
+                "the central line along x of the upper map, " + base(s.upper_name) + " (the resolution study)") +
             "</div></div>\n";
     return html;
   }

@@ -255,7 +255,7 @@ TEST(CliReport, TwoMapsSectionIsThePredictionOfFrictalPredict) {
   EXPECT_NE(page.find("Height map: upper, " + uname), std::string::npos);
   EXPECT_NE(page.find("Areal statistics of the upper map, " + uname), std::string::npos);
   EXPECT_NE(page.find("12 \u00d7 12 points"), std::string::npos);
-  // The line sections are the pair's: the upper map's central line is the upper face.
+  // The resolution study's lines are the pair's: the upper map's central line is the upper face.
   EXPECT_NE(page.find("the central line along x of the upper map, " + uname), std::string::npos);
   expect_no_unnamed_bound(page);
   expect_every_friction_number_named(page);
