@@ -1057,6 +1057,16 @@ std::string headline(const ReportInput& in, const ReportData& d) {
           fmt_deg(fwd.friction_angle), fmt_deg(bwd.friction_angle), fmt_deg(r.theta_max_forward),
           fmt_deg(r.theta_max_backward));
     }
+  } else if (d.areal && d.areal->failure.empty()) {
+    const ReportArealSignature& a = *d.areal;
+    page += fmt::format(
+        "<p class=\"verdict\">The grid areal signature's bound θ_max + θ_a (a diagnostic of the maps' nodes, "
+        "`frictal areal`): μ ≤ <b>{}</b> towards {:g}° (Eq. 18 range {} … {}) and μ ≤ <b>{}</b> towards {:g}°; "
+        "θ_max = {} / {}, μ_a = {:g}.</p>\n",
+        fmt_mu(a.forward.friction_coefficient), deg(a.direction), fmt_mu(a.forward.friction_coefficient_low),
+        fmt_mu(a.forward.friction_coefficient), fmt_mu(a.backward.friction_coefficient),
+        std::fmod(deg(a.direction) + 180, 360), fmt_deg(a.signature.theta_max_forward),
+        fmt_deg(a.signature.theta_max_backward), in.atomic_friction);
   } else {
     page += fmt::format(
         "<p class=\"verdict\">Rigid upper bound θ_max + θ_a: μ ≤ <b>{}</b> towards +x (Eq. 18 range {} … {}) "
