@@ -210,6 +210,12 @@ Status check_options(const Map& lower, const Map& upper, const MapLoadedLiftOpti
   if (!std::isfinite(o.angle)) return make_error("direction: expected a finite angle");
   if (!std::isfinite(o.step) || o.step < 0)
     return make_error(fmt::format("offset step {} m: expected a finite length >= 0 (0: the spacing)", o.step));
+  if (!std::isfinite(o.refine_slope) || o.refine_slope < 0)
+    return make_error(
+        fmt::format("refinement slope {}: expected a finite slope >= 0 (0: no refinement)", o.refine_slope));
+  if (!std::isfinite(o.min_step) || o.min_step < 0)
+    return make_error(
+        fmt::format("shortest offset step {} m: expected a finite length >= 0 (0: the spacing / 16)", o.min_step));
   if (lower.nx < 2 || lower.ny < 2 || upper.nx < 2 || upper.ny < 2)
     return make_error("the loaded map lift needs maps of at least 2 x 2 points");
   if (auto st = validate(lower, "lower map"); !st) return st;
@@ -247,6 +253,7 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
     return make_error(fmt::format("offsets along the direction [{}, {}] m: expected a finite range, min < max",
                                   along_min, along_max));
   const double step = o.step > 0 ? o.step : std::min(lower.dx, lower.dy);
+  const double min_step = o.min_step > 0 ? o.min_step : std::min(lower.dx, lower.dy) / 16;
   const std::size_t n = std::size_t(std::floor((along_max - along_min) / step + 1e-9)) + 1;
   if (n < 2 || n > 100000)
     return make_error(
@@ -276,7 +283,31 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
       line.slopes.assign(nl, {});
       states[li].assign(nl, {});
       std::vector<std::vector<double>> starts(nl);
-      bool begun = false;
+      // The line's solves in increasing u: the first pass's, with the midpoints refinement adds
+      // before each of them.
+      std::vector<std::vector<MapLoadedState>> solved;
+      // Halves [a, b] down to min_step: a solve at its middle, kept; where the elastic correction
+      // c = H_W - h there misses the line between a's and b's by more than refine_slope times half
+      // the interval at some load (the interpolation's slope off by about that), both halves again.
+      // The midpoints are appended in order (b by the caller).
+      auto refine = [&](auto& self, const std::vector<MapLoadedState>& a,
+                        const std::vector<MapLoadedState>& b) -> Status {
+        const double ua = a.front().along, ub = b.front().along, half = 0.5 * (ub - ua);
+        if (half < min_step * (1 - 1e-9)) return Ok{};
+        auto r = solve_offset(comp, ua + half, across[li], o, starts);
+        if (!r) return r.error();
+        if (r->empty()) return Ok{};  // (not inside the overlap's contiguous run)
+        const std::vector<MapLoadedState> mid = std::move(*r);
+        auto c = [](const MapLoadedState& s) { return s.loaded_lift - s.rigid_lift; };
+        bool miss = false;
+        for (std::size_t l = 0; l < nl; ++l)
+          miss = miss || std::abs(c(mid[l]) - 0.5 * (c(a[l]) + c(b[l]))) > o.refine_slope * half;
+        if (miss)
+          if (auto st = self(self, a, mid); !st) return st;
+        solved.push_back(mid);
+        if (miss) return self(self, mid, b);
+        return Ok{};
+      };
       for (std::size_t k = 0; k < n; ++k) {
         const double u = along_min + double(k) * step;
         auto r = solve_offset(comp, u, across[li], o, starts);
@@ -285,15 +316,25 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
           break;
         }
         if (r->empty()) {
-          if (begun) break;  // the overlap ends: the line's contiguous run is over
-          continue;          // not yet overlapping
+          if (!solved.empty()) break;  // the overlap ends: the line's contiguous run is over
+          continue;                    // not yet overlapping
         }
-        begun = true;
-        line.rigid.offset.push_back(u);
-        line.rigid.lift.push_back(r->front().rigid_lift);
+        std::vector<MapLoadedState> here = std::move(*r);
+        if (!solved.empty() && o.refine_slope > 0) {
+          const std::vector<MapLoadedState> prev = solved.back();
+          if (auto st = refine(refine, prev, here); !st) {
+            errors[li] = st.error().message;
+            break;
+          }
+        }
+        solved.push_back(std::move(here));
+      }
+      for (const std::vector<MapLoadedState>& at : solved) {
+        line.rigid.offset.push_back(at.front().along);
+        line.rigid.lift.push_back(at.front().rigid_lift);
         for (std::size_t l = 0; l < nl; ++l) {
-          const MapLoadedState& s = (*r)[l];
-          line.curves[l].offset.push_back(u);
+          const MapLoadedState& s = at[l];
+          line.curves[l].offset.push_back(s.along);
           line.curves[l].lift.push_back(s.loaded_lift);
           line.slopes[l].push_back(s.effective_slope);
           states[li][l].push_back(s);
