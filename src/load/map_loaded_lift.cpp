@@ -302,11 +302,13 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
         bool miss = false;
         for (std::size_t l = 0; l < nl; ++l)
           miss = miss || std::abs(c(mid[l]) - 0.5 * (c(a[l]) + c(b[l]))) > o.refine_slope * half;
-        if (miss)
-          if (auto st = self(self, a, mid); !st) return st;
+        if (!miss) {
+          solved.push_back(mid);
+          return Ok{};
+        }
+        if (auto st = self(self, a, mid); !st) return st;
         solved.push_back(mid);
-        if (miss) return self(self, mid, b);
-        return Ok{};
+        return self(self, mid, b);
       };
       for (std::size_t k = 0; k < n; ++k) {
         const double u = along_min + double(k) * step;
