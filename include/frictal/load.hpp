@@ -144,11 +144,13 @@ struct MapLoadedLiftOptions {
   /// Offset step along d of the first pass of solves (0: the lower map's smaller spacing) (unit: m).
   double step = 0;
   /// Refinement: each interval between two solves of the first pass gets a solve at its middle;
-  /// where the elastic correction c = H_W - h there misses the straight line between the ends by
-  /// more than refine_slope times half the interval (for any load: the interpolation's slope off by
-  /// about that), both halves are halved again, down to `min_step`. The solves gather where the
-  /// contact passes from one asperity to the next, and the loaded lift no longer depends on `step`.
-  /// 0: no refinement, the first pass alone (unitless; a slope: radians of hold angle).
+  /// both halves are halved again, down to `min_step`, where the rigid contact (the composite's
+  /// highest node) differs at the two ends (the load passes from one asperity to the next within
+  /// the interval, a narrow feature of the elastic correction c = H_W - h), or where c at the
+  /// middle misses the straight line between the ends by more than refine_slope times half the
+  /// interval (for any load: the interpolation's slope off by about that). The solves gather where
+  /// the contact changes, and the loaded lift no longer depends on `step`. 0: no refinement, the
+  /// first pass alone (unitless; a slope: radians of hold angle).
   double refine_slope = 1e-4;
   /// The shortest interval refinement makes (0: the lower map's smaller spacing / 16) (unit: m).
   double min_step = 0;
@@ -162,9 +164,11 @@ struct MapLoadedState {
   double along = 0, across = 0;  ///< the offset u along d and v across it (unit: m)
   double load = 0;               ///< W (unit: N)
   double rigid_lift = 0;         ///< h = max of the composite over the overlap (unit: m)
-  double approach = 0;           ///< delta: the block's sink from first touch (unit: m)
-  double energy = 0;             ///< U, the elastic energy (unit: J)
-  double loaded_lift = 0;        ///< H_W = h - delta + U / W (unit: m)
+  /// The node of the lower map where the composite is highest (j * nx + i): the rigid contact (unitless)
+  std::size_t highest_node = 0;
+  double approach = 0;     ///< delta: the block's sink from first touch (unit: m)
+  double energy = 0;       ///< U, the elastic energy (unit: J)
+  double loaded_lift = 0;  ///< H_W = h - delta + U / W (unit: m)
   /// sum F_i dc_i/du / W: the pressure-weighted contact slope along d, dH_W/du (unitless).
   double effective_slope = 0;
   /// sqrt of the pressure-weighted mean of |grad c|^2 over the contact: the slopes the small-slope

@@ -56,6 +56,7 @@ struct Window {
   std::size_t i0 = 0, j0 = 0;
   Map surface;
   double hmax = -std::numeric_limits<double>::infinity();
+  std::size_t top = 0;  // the highest node, on the lower grid (j * nx + i)
   std::size_t valid = 0;
 };
 
@@ -70,7 +71,8 @@ Window window_at(const Composite& comp, double sx, double sy) {
       c[j * f.nx + i] = v;
       if (std::isfinite(v)) {
         i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
-        w.hmax = std::max(w.hmax, v), ++w.valid;
+        if (v > w.hmax) w.hmax = v, w.top = j * f.nx + i;
+        ++w.valid;
       }
     }
   if (w.valid == 0 || i1 == i0 || j1 == j0) {
@@ -132,6 +134,7 @@ Result<std::vector<MapLoadedState>> solve_offset(const Composite& comp, double u
     MapLoadedState st;
     st.along = u, st.across = v, st.load = o.loads[l];
     st.rigid_lift = w.hmax;
+    st.highest_node = w.top;
     st.approach = r.approach;
     st.converged = r.converged;
     st.iterations = r.iterations;
@@ -286,10 +289,13 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
       // The line's solves in increasing u: the first pass's, with the midpoints refinement adds
       // before each of them.
       std::vector<std::vector<MapLoadedState>> solved;
-      // Halves [a, b] down to min_step: a solve at its middle, kept; where the elastic correction
-      // c = H_W - h there misses the line between a's and b's by more than refine_slope times half
-      // the interval at some load (the interpolation's slope off by about that), both halves again.
-      // The midpoints are appended in order (b by the caller).
+      // Halves [a, b] down to min_step: a solve at its middle, kept; both halves again where the
+      // rigid contact moved to another node of the lower map between a and b (the correction has
+      // a narrow feature there, where the load passes from one asperity to the next, that a solve
+      // at the middle can miss), or where the elastic correction c = H_W - h at the middle misses
+      // the line between a's and b's by more than refine_slope times half the interval at some
+      // load (the interpolation's slope off by about that). The midpoints are appended in order
+      // (b by the caller).
       auto refine = [&](auto& self, const std::vector<MapLoadedState>& a,
                         const std::vector<MapLoadedState>& b) -> Status {
         const double ua = a.front().along, ub = b.front().along, half = 0.5 * (ub - ua);
@@ -299,7 +305,7 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
         if (r->empty()) return Ok{};  // (not inside the overlap's contiguous run)
         const std::vector<MapLoadedState> mid = std::move(*r);
         auto c = [](const MapLoadedState& s) { return s.loaded_lift - s.rigid_lift; };
-        bool miss = false;
+        bool miss = a.front().highest_node != b.front().highest_node;
         for (std::size_t l = 0; l < nl; ++l)
           miss = miss || std::abs(c(mid[l]) - 0.5 * (c(a[l]) + c(b[l]))) > o.refine_slope * half;
         if (!miss) {
