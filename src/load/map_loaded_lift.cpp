@@ -268,6 +268,7 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
   out.lines.resize(across.size());
   // Per line and load: the states at its offsets (for the diagnostics).
   std::vector<std::vector<std::vector<MapLoadedState>>> states(across.size());
+  std::vector<std::vector<char>> first_pass(across.size());  // per line and offset: of the first pass
   std::vector<std::string> errors(across.size());
   std::mutex next_lock;
   std::size_t next = 0;
@@ -289,6 +290,7 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
       // The line's solves in increasing u: the first pass's, with the midpoints refinement adds
       // before each of them.
       std::vector<std::vector<MapLoadedState>> solved;
+      std::vector<char>& first = first_pass[li];
       // Halves [a, b] down to min_step: a solve at its middle, kept; both halves again where the
       // rigid contact moved to another node of the lower map between a and b (the correction has
       // a narrow feature there, where the load passes from one asperity to the next, that a solve
@@ -309,11 +311,11 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
         for (std::size_t l = 0; l < nl; ++l)
           miss = miss || std::abs(c(mid[l]) - 0.5 * (c(a[l]) + c(b[l]))) > o.refine_slope * half;
         if (!miss) {
-          solved.push_back(mid);
+          solved.push_back(mid), first.push_back(0);
           return Ok{};
         }
         if (auto st = self(self, a, mid); !st) return st;
-        solved.push_back(mid);
+        solved.push_back(mid), first.push_back(0);
         return self(self, mid, b);
       };
       for (std::size_t k = 0; k < n; ++k) {
@@ -335,7 +337,7 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
             break;
           }
         }
-        solved.push_back(std::move(here));
+        solved.push_back(std::move(here)), first.push_back(1);
       }
       for (const std::vector<MapLoadedState>& at : solved) {
         line.rigid.offset.push_back(at.front().along);
@@ -361,16 +363,22 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
   for (std::size_t l = 0; l < nl; ++l) {
     MapLoadedDiagnostics& d = out.diagnostics[l];
     d.load = o.loads[l];
+    // The means are over the first pass's offsets (evenly spaced; with the default step, on the
+    // lower map's grid), as without refinement: its solves gather where the contact changes, and
+    // off the grid the bilinear upper face's kinks inflate the contact slope. Every solve counts
+    // for the largest contact fraction and the unconverged ones.
     double patches = 0, approach = 0, g2 = 0, fw = 0, full = 0, count = 0;
-    for (const auto& line : states)
-      for (const MapLoadedState& s : line[l]) {
-        patches += double(s.patches), approach += s.approach, count += 1;
-        g2 += s.load * s.contact_slope_rms * s.contact_slope_rms, fw += s.load;
+    for (std::size_t li = 0; li < states.size(); ++li)
+      for (std::size_t k = 0; k < states[li][l].size(); ++k) {
+        const MapLoadedState& s = states[li][l][k];
         d.max_contact_fraction = std::max(d.max_contact_fraction, s.contact_fraction);
-        if (s.contact_fraction > kFullContact) full += 1;
         if (!s.converged) ++d.unconverged;
         ++out.solves;
         out.iterations += s.iterations;
+        if (!first_pass[li][k]) continue;
+        patches += double(s.patches), approach += s.approach, count += 1;
+        g2 += s.load * s.contact_slope_rms * s.contact_slope_rms, fw += s.load;
+        if (s.contact_fraction > kFullContact) full += 1;
       }
     d.mean_patches = count > 0 ? patches / count : 0;
     d.mean_approach = count > 0 ? approach / count : 0;
