@@ -141,8 +141,19 @@ struct MapLoadedLiftOptions {
   std::vector<double> loads;
   double angle = 0;             ///< sliding direction d, from +x towards +y (unit: rad)
   bool turn_over_upper = true;  ///< false: the upper map is the upper face in place (areal.hpp)
-  /// Offset step along d (0: the lower map's smaller spacing) (unit: m).
+  /// Offset step along d of the first pass of solves (0: the lower map's smaller spacing) (unit: m).
   double step = 0;
+  /// Refinement: each interval between two solves of the first pass gets a solve at its middle;
+  /// both halves are halved again, down to `min_step`, where the rigid contact (the composite's
+  /// highest node) differs at the two ends (the load passes from one asperity to the next within
+  /// the interval, a narrow feature of the elastic correction c = H_W - h), or where c at the
+  /// middle misses the straight line between the ends by more than refine_slope times half the
+  /// interval (for any load: the interpolation's slope off by about that). The solves gather where
+  /// the contact changes, and the loaded lift no longer depends on `step`. 0: no refinement, the
+  /// first pass alone (unitless; a slope: radians of hold angle).
+  double refine_slope = 1e-4;
+  /// The shortest interval refinement makes (0: the lower map's smaller spacing / 16) (unit: m).
+  double min_step = 0;
   /// The contact solver's tolerance (ContactOptions::tolerance) (unitless).
   double tolerance = 1e-8;
   unsigned threads = 0;  ///< worker threads over lines (0 = all cores); results do not depend on it
@@ -153,9 +164,11 @@ struct MapLoadedState {
   double along = 0, across = 0;  ///< the offset u along d and v across it (unit: m)
   double load = 0;               ///< W (unit: N)
   double rigid_lift = 0;         ///< h = max of the composite over the overlap (unit: m)
-  double approach = 0;           ///< delta: the block's sink from first touch (unit: m)
-  double energy = 0;             ///< U, the elastic energy (unit: J)
-  double loaded_lift = 0;        ///< H_W = h - delta + U / W (unit: m)
+  /// The node of the lower map where the composite is highest (j * nx + i): the rigid contact (unitless)
+  std::size_t highest_node = 0;
+  double approach = 0;     ///< delta: the block's sink from first touch (unit: m)
+  double energy = 0;       ///< U, the elastic energy (unit: J)
+  double loaded_lift = 0;  ///< H_W = h - delta + U / W (unit: m)
   /// sum F_i dc_i/du / W: the pressure-weighted contact slope along d, dH_W/du (unitless).
   double effective_slope = 0;
   /// sqrt of the pressure-weighted mean of |grad c|^2 over the contact: the slopes the small-slope
@@ -205,8 +218,10 @@ Result<MapLoadedState> map_loaded_state(const Map& lower, const Map& upper, doub
 
 /// The loaded lift of every load of `options` on lines along d: for each v of `across`, the
 /// offsets u = along_min + k step up to along_max (those where the maps overlap by at least 2 x 2
-/// nodes, a contiguous run; an error if none), one contact solve per offset and load, each started
-/// from the previous offset's pressure at that load (the lines run in parallel). rigid.lift is h,
+/// nodes, a contiguous run; an error if none), and between them the midpoints refinement adds
+/// (MapLoadedLiftOptions::refine_slope; offsets in increasing order, no longer evenly spaced), one
+/// contact solve per offset and load, each started from the previous solve's pressure at that load
+/// (the lines run in parallel). rigid.lift is h,
 /// curves[l].lift is h + (H_W - h) so that it equals h as W -> 0. Errors as map_loaded_state.
 Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const std::vector<double>& across,
                                       double along_min, double along_max, const MapLoadedLiftOptions& options);

@@ -103,8 +103,10 @@ struct PredictOptions {
   /// half decades. At the tilt phi a block of weight W presses with W cos(phi): each lift is
   /// evaluated at W cos(phi_0), phi_0 the rigid median (Prediction::normal_load).
   std::vector<double> loads;
-  /// Maps under load: the offset step of the contact solves along each line (0: the lower map's
-  /// smaller spacing; the elastic correction is linear between them) (unit: m).
+  /// Maps under load: the offset step of the first pass of contact solves along each line (0: the
+  /// lower map's smaller spacing); intervals where the elastic correction bends are then halved
+  /// down to a sixteenth of the spacing (MapLoadedLiftOptions::refine_slope), so the answer does
+  /// not depend on it beyond the cost (unit: m).
   double map_load_step = 0;
   /// The materials of the loaded model (Pa, unitless): the lower block's, and the upper block's
   /// (nullopt: the same as the lower's); rigid_upper: the upper block rigid.

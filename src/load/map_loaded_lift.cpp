@@ -56,6 +56,7 @@ struct Window {
   std::size_t i0 = 0, j0 = 0;
   Map surface;
   double hmax = -std::numeric_limits<double>::infinity();
+  std::size_t top = 0;  // the highest node, on the lower grid (j * nx + i)
   std::size_t valid = 0;
 };
 
@@ -70,7 +71,8 @@ Window window_at(const Composite& comp, double sx, double sy) {
       c[j * f.nx + i] = v;
       if (std::isfinite(v)) {
         i0 = std::min(i0, i), i1 = std::max(i1, i), j0 = std::min(j0, j), j1 = std::max(j1, j);
-        w.hmax = std::max(w.hmax, v), ++w.valid;
+        if (v > w.hmax) w.hmax = v, w.top = j * f.nx + i;
+        ++w.valid;
       }
     }
   if (w.valid == 0 || i1 == i0 || j1 == j0) {
@@ -132,6 +134,7 @@ Result<std::vector<MapLoadedState>> solve_offset(const Composite& comp, double u
     MapLoadedState st;
     st.along = u, st.across = v, st.load = o.loads[l];
     st.rigid_lift = w.hmax;
+    st.highest_node = w.top;
     st.approach = r.approach;
     st.converged = r.converged;
     st.iterations = r.iterations;
@@ -210,6 +213,12 @@ Status check_options(const Map& lower, const Map& upper, const MapLoadedLiftOpti
   if (!std::isfinite(o.angle)) return make_error("direction: expected a finite angle");
   if (!std::isfinite(o.step) || o.step < 0)
     return make_error(fmt::format("offset step {} m: expected a finite length >= 0 (0: the spacing)", o.step));
+  if (!std::isfinite(o.refine_slope) || o.refine_slope < 0)
+    return make_error(
+        fmt::format("refinement slope {}: expected a finite slope >= 0 (0: no refinement)", o.refine_slope));
+  if (!std::isfinite(o.min_step) || o.min_step < 0)
+    return make_error(
+        fmt::format("shortest offset step {} m: expected a finite length >= 0 (0: the spacing / 16)", o.min_step));
   if (lower.nx < 2 || lower.ny < 2 || upper.nx < 2 || upper.ny < 2)
     return make_error("the loaded map lift needs maps of at least 2 x 2 points");
   if (auto st = validate(lower, "lower map"); !st) return st;
@@ -247,6 +256,7 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
     return make_error(fmt::format("offsets along the direction [{}, {}] m: expected a finite range, min < max",
                                   along_min, along_max));
   const double step = o.step > 0 ? o.step : std::min(lower.dx, lower.dy);
+  const double min_step = o.min_step > 0 ? o.min_step : std::min(lower.dx, lower.dy) / 16;
   const std::size_t n = std::size_t(std::floor((along_max - along_min) / step + 1e-9)) + 1;
   if (n < 2 || n > 100000)
     return make_error(
@@ -258,6 +268,7 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
   out.lines.resize(across.size());
   // Per line and load: the states at its offsets (for the diagnostics).
   std::vector<std::vector<std::vector<MapLoadedState>>> states(across.size());
+  std::vector<std::vector<char>> first_pass(across.size());  // per line and offset: of the first pass
   std::vector<std::string> errors(across.size());
   std::mutex next_lock;
   std::size_t next = 0;
@@ -276,7 +287,37 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
       line.slopes.assign(nl, {});
       states[li].assign(nl, {});
       std::vector<std::vector<double>> starts(nl);
-      bool begun = false;
+      // The line's solves in increasing u: the first pass's, with the midpoints refinement adds
+      // before each of them.
+      std::vector<std::vector<MapLoadedState>> solved;
+      std::vector<char>& first = first_pass[li];
+      // Halves [a, b] down to min_step: a solve at its middle, kept; both halves again where the
+      // rigid contact moved to another node of the lower map between a and b (the correction has
+      // a narrow feature there, where the load passes from one asperity to the next, that a solve
+      // at the middle can miss), or where the elastic correction c = H_W - h at the middle misses
+      // the line between a's and b's by more than refine_slope times half the interval at some
+      // load (the interpolation's slope off by about that). The midpoints are appended in order
+      // (b by the caller).
+      auto refine = [&](auto& self, const std::vector<MapLoadedState>& a,
+                        const std::vector<MapLoadedState>& b) -> Status {
+        const double ua = a.front().along, ub = b.front().along, half = 0.5 * (ub - ua);
+        if (half < min_step * (1 - 1e-9)) return Ok{};
+        auto r = solve_offset(comp, ua + half, across[li], o, starts);
+        if (!r) return r.error();
+        if (r->empty()) return Ok{};  // (not inside the overlap's contiguous run)
+        const std::vector<MapLoadedState> mid = std::move(*r);
+        auto c = [](const MapLoadedState& s) { return s.loaded_lift - s.rigid_lift; };
+        bool miss = a.front().highest_node != b.front().highest_node;
+        for (std::size_t l = 0; l < nl; ++l)
+          miss = miss || std::abs(c(mid[l]) - 0.5 * (c(a[l]) + c(b[l]))) > o.refine_slope * half;
+        if (!miss) {
+          solved.push_back(mid), first.push_back(0);
+          return Ok{};
+        }
+        if (auto st = self(self, a, mid); !st) return st;
+        solved.push_back(mid), first.push_back(0);
+        return self(self, mid, b);
+      };
       for (std::size_t k = 0; k < n; ++k) {
         const double u = along_min + double(k) * step;
         auto r = solve_offset(comp, u, across[li], o, starts);
@@ -285,15 +326,25 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
           break;
         }
         if (r->empty()) {
-          if (begun) break;  // the overlap ends: the line's contiguous run is over
-          continue;          // not yet overlapping
+          if (!solved.empty()) break;  // the overlap ends: the line's contiguous run is over
+          continue;                    // not yet overlapping
         }
-        begun = true;
-        line.rigid.offset.push_back(u);
-        line.rigid.lift.push_back(r->front().rigid_lift);
+        std::vector<MapLoadedState> here = std::move(*r);
+        if (!solved.empty() && o.refine_slope > 0) {
+          const std::vector<MapLoadedState> prev = solved.back();
+          if (auto st = refine(refine, prev, here); !st) {
+            errors[li] = st.error().message;
+            break;
+          }
+        }
+        solved.push_back(std::move(here)), first.push_back(1);
+      }
+      for (const std::vector<MapLoadedState>& at : solved) {
+        line.rigid.offset.push_back(at.front().along);
+        line.rigid.lift.push_back(at.front().rigid_lift);
         for (std::size_t l = 0; l < nl; ++l) {
-          const MapLoadedState& s = (*r)[l];
-          line.curves[l].offset.push_back(u);
+          const MapLoadedState& s = at[l];
+          line.curves[l].offset.push_back(s.along);
           line.curves[l].lift.push_back(s.loaded_lift);
           line.slopes[l].push_back(s.effective_slope);
           states[li][l].push_back(s);
@@ -312,16 +363,22 @@ Result<MapLoadedLift> map_loaded_lift(const Map& lower, const Map& upper, const 
   for (std::size_t l = 0; l < nl; ++l) {
     MapLoadedDiagnostics& d = out.diagnostics[l];
     d.load = o.loads[l];
+    // The means are over the first pass's offsets (evenly spaced; with the default step, on the
+    // lower map's grid), as without refinement: its solves gather where the contact changes, and
+    // off the grid the bilinear upper face's kinks inflate the contact slope. Every solve counts
+    // for the largest contact fraction and the unconverged ones.
     double patches = 0, approach = 0, g2 = 0, fw = 0, full = 0, count = 0;
-    for (const auto& line : states)
-      for (const MapLoadedState& s : line[l]) {
-        patches += double(s.patches), approach += s.approach, count += 1;
-        g2 += s.load * s.contact_slope_rms * s.contact_slope_rms, fw += s.load;
+    for (std::size_t li = 0; li < states.size(); ++li)
+      for (std::size_t k = 0; k < states[li][l].size(); ++k) {
+        const MapLoadedState& s = states[li][l][k];
         d.max_contact_fraction = std::max(d.max_contact_fraction, s.contact_fraction);
-        if (s.contact_fraction > kFullContact) full += 1;
         if (!s.converged) ++d.unconverged;
         ++out.solves;
         out.iterations += s.iterations;
+        if (!first_pass[li][k]) continue;
+        patches += double(s.patches), approach += s.approach, count += 1;
+        g2 += s.load * s.contact_slope_rms * s.contact_slope_rms, fw += s.load;
+        if (s.contact_fraction > kFullContact) full += 1;
       }
     d.mean_patches = count > 0 ? patches / count : 0;
     d.mean_approach = count > 0 ? approach / count : 0;

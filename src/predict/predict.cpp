@@ -574,9 +574,9 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
 
 // A map pair under load (PredictOptions::loads; docs/load.md, "Maps"): the drops `uv` (offsets
 // along and across d, the model's frame) grouped into lines along d, the loaded lift of each line
-// from the half-space solution at every offset (load.hpp's map_loaded_lift, the offsets at the
-// lower map's spacing), and each drop's hold angle on its line (the block locked to d, hold.hpp),
-// at every load of the curve. The rigid prediction `p` (free block) gives phi_0 and stays the bound.
+// from the half-space solution at every offset (load.hpp's map_loaded_lift: a first pass at
+// map_load_step, refined where the elastic correction bends), and each drop's hold angle on its line (the block locked
+// to d, hold.hpp), at every load of the curve. The rigid prediction `p` (free block) gives phi_0 and stays the bound.
 Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper, const MapHoldOptions& t,
                                const std::vector<std::array<double, 2>>& uv, const PredictOptions& o) {
   // One load: a decade either side (each load is a contact solve per offset, the cost of the map
@@ -612,7 +612,8 @@ Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper
   // upper face on the lower one's triangles, exact), on offsets kLiftPerStep times finer than the
   // lower map's spacing (the contact solves' default step) (it has a kink wherever the touching sphere or triangle
   // changes, and the hold angle reads its steepest stops); the elastic correction H_W - h of the solves, which varies
-  // with the contact, linear between them. So each curve tends to the rigid line's as W -> 0.
+  // with the contact, linear between them (solved densely enough that it is, MapLoadedLiftOptions::refine_slope). So
+  // each curve tends to the rigid line's as W -> 0.
   constexpr int kLiftPerStep = 10;
   std::vector<LiftCurve> rigid_lines(across.size());
   for (std::size_t li = 0; li < across.size(); ++li) {
