@@ -821,8 +821,20 @@ void cone_slopes(double gx, double gy, double phi, int k, std::vector<std::array
   const double bx = -nz * ay, by = nz * ax, bz = nx * ay - ny * ax;
   const double c = std::cos(phi), sn = std::sin(phi);
   out.push_back({gx, gy});  // the normal force (the cone's axis)
+  // The rim's directions (cos, sin of 2 pi i / k), the same for every cone: computed once per k
+  // (a third of a friction hold's time went to these sines).
+  thread_local int rim_k = 0;
+  thread_local std::vector<std::array<double, 2>> rim;
+  if (rim_k != k) {
+    rim.resize(std::size_t(std::max(k, 0)));
+    for (int i = 0; i < k; ++i) {
+      const double th = 2 * std::numbers::pi * i / k;
+      rim[std::size_t(i)] = {std::cos(th), std::sin(th)};
+    }
+    rim_k = k;
+  }
   for (int i = 0; i < k; ++i) {
-    const double th = 2 * std::numbers::pi * i / k, ct = std::cos(th), st = std::sin(th);
+    const double ct = rim[std::size_t(i)][0], st = rim[std::size_t(i)][1];
     const double ux = c * nx + sn * (ct * ax + st * bx), uy = c * ny + sn * (ct * ay + st * by),
                  uz = c * nz + sn * st * bz;
     if (uz < 1e-9) continue;  // a force along or below the horizontal: no slope (the region is truncated)
