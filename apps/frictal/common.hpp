@@ -99,8 +99,8 @@ inline nlohmann::json json_row(const OutputRow& row) {
 
 /// The generic JSON writer of an output table: every column of `cols` that the CLI prints (a
 /// non-empty key) and that `value` has (a value, or nested objects: "object:" one, "list:" a
-/// list) into `j`, in its interface unit. Declared columns without either are written by the
-/// caller under their declared keys.
+/// list, "rows:" a list of lists of values) into `j`, in its interface unit. Declared columns without either are
+/// written by the caller under their declared keys.
 template <class T>
 void put_columns(nlohmann::json& j, const Columns<T>& cols, const T& value) {
   for (const Column<T>& c : cols) {
@@ -112,6 +112,14 @@ void put_columns(nlohmann::json& j, const Columns<T>& cols, const T& value) {
     const std::vector<OutputRow> rows = c.rows(value);
     if (c.unit.starts_with("object:")) {
       j[c.key] = rows.empty() ? nlohmann::json(nullptr) : json_row(rows.front());
+    } else if (c.unit.starts_with("rows:")) {
+      nlohmann::json l = nlohmann::json::array();
+      for (const OutputRow& r : rows) {
+        nlohmann::json values = nlohmann::json::array();
+        for (const OutputField& f : r) values.push_back(json_value(f.info.unit, f.si));
+        l.push_back(values);
+      }
+      j[c.key] = l;
     } else {
       nlohmann::json l = nlohmann::json::array();
       for (const OutputRow& r : rows) l.push_back(json_row(r));

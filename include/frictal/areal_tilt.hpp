@@ -135,6 +135,9 @@ struct ArealTiltResult {
 /// `frictal areal-tilt --json` that are the run's numbers (its table "areal_tilt") and the
 /// areal-tilt study kind's outputs of the same quantities.
 const Columns<ArealTiltResult>& areal_tilt_run_columns();
+/// One increment of the run as a row of numbers (table "areal_tilt_increment";
+/// src/tilt/areal_tilt_columns.cpp): tilt, x, y, rested, steps, unbalanced force, speed.
+const Columns<ArealTiltIncrement>& areal_tilt_increment_columns();
 
 /// Called after each tilt increment with the increment just recorded (for a progress line; it
 /// must not throw).

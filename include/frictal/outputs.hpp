@@ -29,7 +29,9 @@ using OutputValue = std::variant<double, std::string, bool, std::vector<double>>
 ///
 /// Interface units: "deg" (SI value in rad), "m", "s", "kg", "m/s", "1/s", "1" (unitless), "count"
 /// (an integer), "text", "flag", and for nested values "object:TABLE" (a JSON object whose keys
-/// are the columns of output table TABLE), "list:TABLE" (a list of such objects), "settings"
+/// are the columns of output table TABLE), "list:TABLE" (a list of such objects), "rows:TABLE" (a
+/// list of rows, each a list of the values of TABLE's columns in its order, e.g. [x, y] points or
+/// [tilt, x, y] stops, each value in its column's unit), "settings"
 /// (an object whose keys are fields of a settings table, `frictal settings`) and "map" (an object
 /// whose keys are data: versions, a study kind's outputs).
 struct ColumnInfo {
@@ -158,6 +160,18 @@ Column<T> list_column(std::string key, const std::string& table, std::string hel
       for (const R& r : *l) out.push_back(row_of(cols, r));
     return out;
   };
+  return c;
+}
+
+/// A nested list column of T written as rows: `key` (unit "rows:TABLE") holds one list per element
+/// of the std::optional<std::vector<R>> that `f` returns (no value, no key): the values of the
+/// columns `cols` in their order, each in its own unit (a compact form of a list of objects, for
+/// series of points and stops).
+template <class T, class R, class F>
+Column<T> rows_column(std::string key, const std::string& table, std::string help, const Columns<R>& cols, F&& f,
+                      std::string python = {}) {
+  Column<T> c = list_column<T, R>(std::move(key), table, std::move(help), cols, std::forward<F>(f), std::move(python));
+  c.unit = "rows:" + table;
   return c;
 }
 

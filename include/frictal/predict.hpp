@@ -300,6 +300,34 @@ struct ArealTiltMatched {
 Result<ArealTiltMatched> areal_tilt_matched(const Map& lower, const Map& upper, const ArealTiltOptions& o,
                                             bool simulate = true, const ArealTiltProgress& progress = {});
 
+/// What `frictal areal-tilt --json` reports: the run and the predictions matched to it, with the
+/// options that name the test and the wall time.
+struct ArealTiltReport {
+  ArealTiltMatched matched;
+  double direction = 0;         ///< the tilt direction d, from +x towards +y (unit: rad)
+  double tilt_step = 0;         ///< the tilt increment (unit: rad)
+  bool exact_contacts = false;  ///< MuJoCo's collision: exact (else native)
+  double seconds = 0;           ///< wall time of the run and the predictions (unit: s)
+};
+/// Its output table (src/predict/map_columns.cpp): the keys of `frictal areal-tilt --json`.
+const Columns<ArealTiltReport>& areal_tilt_report_columns();
+
+/// The prediction of a map pair along one direction as `frictal areal --lateral|--drops|
+/// --start-offset` reports it (Python areal_hold): the hold angle in the lateral mode predicted
+/// (prediction.has_locked: the block locked to the direction, the free one beside it), the drops
+/// and the rigid bound.
+struct ArealHoldReport {
+  Prediction prediction;
+  bool in_place = false;  ///< the upper map was the upper face in place (not turned over)
+};
+/// Its output table (src/predict/map_columns.cpp): the keys of `frictal areal --lateral --json`.
+const Columns<ArealHoldReport>& areal_hold_columns();
+
+/// A point (x, y) as a row of numbers (table "offset_xy"): x_m, y_m.
+const Columns<std::array<double, 2>>& offset_xy_columns();
+/// A stop of the block (table "tilt_stop"): [tilt (deg), x (m), y (m)] (ArealTiltHold::stops).
+const Columns<std::array<double, 3>>& tilt_stop_columns();
+
 /// The map prediction's estimated CPU time before it runs, the figure PredictOptions::map_work_limit
 /// is compared with: 2.5e-7 s per sphere of the upper map and drop (free and locked drops count
 /// each) (unit: s). For a front end that runs several predictions (e.g. over directions) to
