@@ -61,7 +61,9 @@ const Columns<ArealHoldReport>& areal_hold_columns() {
             [](const T& r) { return std::string(r.prediction.has_locked ? "locked" : "free"); }, "lateral"),
         column<T>(
             "model", "text", "map-continuous-free or map-continuous-locked (frictal predict's model)",
-            [](const T& r) { return r.prediction.has_locked ? std::string("map-continuous-locked") : r.prediction.model; },
+            [](const T& r) {
+              return r.prediction.has_locked ? std::string("map-continuous-locked") : r.prediction.model;
+            },
             "model"),
         column<T>(
             "in_place", "flag", "the upper map is the upper face in place (not turned over)",
@@ -78,7 +80,9 @@ const Columns<ArealHoldReport>& areal_hold_columns() {
         column<T>(
             "drop_range_m", "m",
             "[u_min, u_max, v_min, v_max] along/across the direction (the spheres r + D inside the lower map)",
-            [](const T& r) { return std::vector<double>(r.prediction.drop_range.begin(), r.prediction.drop_range.end()); },
+            [](const T& r) {
+              return std::vector<double>(r.prediction.drop_range.begin(), r.prediction.drop_range.end());
+            },
             "drop_range"),
         only_if(column<T>(
                     "start_offset_m", "m", "one drop: where it was put down (x, y)",
@@ -114,14 +118,16 @@ const Columns<ArealHoldReport>& areal_hold_columns() {
                           over_drops));
     for (const Column<HoldStatistics>& s : hold_statistics_columns())
       if (s.key.starts_with("q"))
-        c.push_back(only_if(column<T>(
-                                "hold_angle_free_" + s.key, s.unit, "locked mode: the free block's hold angle, " + s.help,
-                                [si = s.si](const T& r) { return si(r.prediction.friction_angle); }, "-"),
-                            [](const T& r) { return !r.prediction.single_drop && r.prediction.has_locked; }));
+        c.push_back(
+            only_if(column<T>(
+                        "hold_angle_free_" + s.key, s.unit, "locked mode: the free block's hold angle, " + s.help,
+                        [si = s.si](const T& r) { return si(r.prediction.friction_angle); }, "-"),
+                    [](const T& r) { return !r.prediction.single_drop && r.prediction.has_locked; }));
     c.push_back(only_if(column<T>(
                             "drop_hold_angles_deg", "deg", "each drop's hold angle (the lateral mode's), in drop order",
                             [](const T& r) {
-                              return r.prediction.has_locked ? r.prediction.drop_angles_locked : r.prediction.drop_angles;
+                              return r.prediction.has_locked ? r.prediction.drop_angles_locked
+                                                             : r.prediction.drop_angles;
                             },
                             "drop_hold_angles"),
                         over_drops));
@@ -167,8 +173,8 @@ const Columns<ArealTiltReport>& areal_tilt_report_columns() {
         run("friction_angle_deg", true),
         run("ran_away", true),
         column<T>(
-            "rest_offset_m", "m", "where the block rested (x, y)", [](const T& r) { return pair(r.matched.run.rest_offset); },
-            "-"),
+            "rest_offset_m", "m", "where the block rested (x, y)",
+            [](const T& r) { return pair(r.matched.run.rest_offset); }, "-"),
         column<T>(
             "predicted_hold_angle_deg", "deg",
             "the prediction's model (frictal predict's: the spheres and triangles MuJoCo sees, off the grid) from "
@@ -193,7 +199,10 @@ const Columns<ArealTiltReport>& areal_tilt_report_columns() {
         column<T>(
             "continuous_hold_angle_range_deg", "deg",
             "[least, largest] hold angle with one slip's end moved by a sphere radius",
-            [](const T& r) { return std::vector<double>{r.matched.spread.low, r.matched.spread.high}; }, "-"),
+            [](const T& r) {
+              return std::vector<double>{r.matched.spread.low, r.matched.spread.high};
+            },
+            "-"),
         column<T>(
             "continuous_slips", "count", "slips of the prediction in the simulated lateral mode",
             [](const T& r) { return double(r.matched.spread.slips); }, "-"),
@@ -201,17 +210,18 @@ const Columns<ArealTiltReport>& areal_tilt_report_columns() {
             "continuous_ambiguous_slips", "count", "slips whose end a sphere radius changes",
             [](const T& r) { return double(r.matched.spread.ambiguous); }, "-"),
         only_if(column<T>(
-                    "seat_tilt_deg", "deg", "the MuJoCo run's seat: its tilt", [](const T& r) { return r.matched.seat_tilt; },
-                    "seat_tilt"),
+                    "seat_tilt_deg", "deg", "the MuJoCo run's seat: its tilt",
+                    [](const T& r) { return r.matched.seat_tilt; }, "seat_tilt"),
                 seated),
         only_if(column<T>(
-                    "seat_offset_m", "m", "the seat's offset (x, y)", [](const T& r) { return pair(r.matched.seat_offset); },
-                    "seat_offset"),
+                    "seat_offset_m", "m", "the seat's offset (x, y)",
+                    [](const T& r) { return pair(r.matched.seat_offset); }, "seat_offset"),
                 seated),
-        only_if(column<T>(
-                    "continuous_seated_hold_angle_deg", "deg", "the prediction's model dropped at the seat, at its tilt",
-                    [](const T& r) { return r.matched.seated_hold_angle; }, "seated_hold_angle"),
-                seated),
+        only_if(
+            column<T>(
+                "continuous_seated_hold_angle_deg", "deg", "the prediction's model dropped at the seat, at its tilt",
+                [](const T& r) { return r.matched.seated_hold_angle; }, "seated_hold_angle"),
+            seated),
         rows_column<T>(
             "continuous_increments", "tilt_stop", "[tilt_deg, x_m, y_m] after each increment", tilt_stop_columns(),
             [](const T& r) { return std::optional(r.matched.matched().stops); }, "-"),
@@ -235,8 +245,8 @@ const Columns<ArealTiltReport>& areal_tilt_report_columns() {
         run("spheres", false),
         run("steps", false),
         column<T>(
-            "max_contacts", "count", "most contacts at once", [](const T& r) { return double(r.matched.run.max_contacts); },
-            "-"),
+            "max_contacts", "count", "most contacts at once",
+            [](const T& r) { return double(r.matched.run.max_contacts); }, "-"),
         run("unsettled_increments", false),
         column<T>(
             "seconds", "s", "wall time", [](const T& r) { return r.seconds; }, "-"),
