@@ -20,9 +20,9 @@
 
 namespace frictal {
 
-/// An output value: a number (SI inside: rad for angles, m for lengths), a text, a flag or a list
-/// of numbers. The writers convert numbers to the column's interface unit.
-using OutputValue = std::variant<double, std::string, bool, std::vector<double>>;
+/// An output value: a number (SI inside: rad for angles, m for lengths), a text, a flag, a list
+/// of numbers or a list of texts. The writers convert numbers to the column's interface unit.
+using OutputValue = std::variant<double, std::string, bool, std::vector<double>, std::vector<std::string>>;
 
 /// What a column declares, without its value: the JSON key (with its unit suffix), the interface
 /// unit the text front ends write it in, what it means, and the key of Python's dicts (SI values).
@@ -31,7 +31,8 @@ using OutputValue = std::variant<double, std::string, bool, std::vector<double>>
 /// (an integer), "text", "flag", and for nested values "object:TABLE" (a JSON object whose keys
 /// are the columns of output table TABLE), "list:TABLE" (a list of such objects), "rows:TABLE" (a
 /// list of rows, each a list of the values of TABLE's columns in its order, e.g. [x, y] points or
-/// [tilt, x, y] stops, each value in its column's unit), "settings"
+/// [tilt, x, y] stops, each value in its column's unit), "map:TABLE" (an object holding one
+/// object per row, under the row's first column, a text, with the row's other columns), "settings"
 /// (an object whose keys are fields of a settings table, `frictal settings`) and "map" (an object
 /// whose keys are data: versions, a study kind's outputs).
 struct ColumnInfo {
@@ -41,13 +42,18 @@ struct ColumnInfo {
   std::string python;  ///< the key in Python's dicts, whose numbers are SI; "" = not in Python's dicts
 };
 
-/// One column of a nested object: its declaration and its value in SI.
+struct OutputField;
+/// A nested object: the columns of its table that have a value, in the table's order.
+using OutputRow = std::vector<OutputField>;
+/// One column of a nested object: its declaration and its value in SI, or for a nested column
+/// (nested: "object:", "list:", "rows:", "map:" units) the objects under it. A nested field's
+/// Python key is empty: Python's dicts hold nested objects at the top level of a result only.
 struct OutputField {
   ColumnInfo info;
   OutputValue si;
+  bool nested = false;
+  std::vector<OutputRow> rows;
 };
-/// A nested object: the columns of its table that have a value, in the table's order.
-using OutputRow = std::vector<OutputField>;
 
 /// One output quantity of result type T: its declaration and its value in SI, or for a nested
 /// column ("object:TABLE", "list:TABLE") the objects under it.
@@ -69,12 +75,20 @@ bool has_output(const Column<T>& c, const T& value) {
   return (c.si || c.rows) && (!c.present || c.present(value));
 }
 
-/// `value` as a nested object: every column of `cols` that has a value for it.
+/// `value` as a nested object: every column of `cols` that has a value or nested objects for it.
 template <class R>
 OutputRow row_of(const Columns<R>& cols, const R& value) {
   OutputRow row;
-  for (const Column<R>& c : cols)
-    if (c.si && (!c.present || c.present(value))) row.push_back({c, c.si(value)});
+  for (const Column<R>& c : cols) {
+    if (c.present && !c.present(value)) continue;
+    if (c.si) {
+      row.push_back(OutputField{c, c.si(value), false, {}});
+    } else if (c.rows) {
+      OutputField f{c, OutputValue(), true, c.rows(value)};
+      f.info.python.clear();
+      row.push_back(std::move(f));
+    }
+  }
   return row;
 }
 
@@ -172,6 +186,17 @@ Column<T> rows_column(std::string key, const std::string& table, std::string hel
                       std::string python = {}) {
   Column<T> c = list_column<T, R>(std::move(key), table, std::move(help), cols, std::forward<F>(f), std::move(python));
   c.unit = "rows:" + table;
+  return c;
+}
+
+/// A nested map column of T: `key` (unit "map:TABLE") holds one object per element of the
+/// std::optional<std::vector<R>> that `f` returns (no value, no key), under the value of the first
+/// column of `cols` (a text: the element's name), with the other columns.
+template <class T, class R, class F>
+Column<T> map_column(std::string key, const std::string& table, std::string help, const Columns<R>& cols, F&& f,
+                     std::string python = {}) {
+  Column<T> c = list_column<T, R>(std::move(key), table, std::move(help), cols, std::forward<F>(f), std::move(python));
+  c.unit = "map:" + table;
   return c;
 }
 

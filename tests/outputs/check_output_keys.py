@@ -57,13 +57,13 @@ for t in tables.values():
 SUFFIX = [("_m_s", "m/s"), ("_per_s", "1/s"), ("_n_per_m", "N/m"), ("_deg", "deg"), ("_kg", "kg"), ("_m2", "m2"),
           ("_pa", "Pa"), ("_n", "N"), ("_m", "m"), ("_s", "s")]
 for key, units in json_units.items():
-    plain = [u for u in units if not u.startswith(("object:", "list:", "rows:")) and u != "settings"]
+    plain = [u for u in units if not u.startswith(("object:", "list:", "rows:", "map:")) and u != "settings"]
     if len(plain) > 1:
         fail(f"JSON key {key!r} declared with {len(units)} units: {units}")
     unit = plain[0] if plain else next(iter(units))
     for suffix, u in SUFFIX:
         if key.endswith(suffix):
-            if unit != u and not unit.startswith(("object:", "list:", "rows:")):
+            if unit != u and not unit.startswith(("object:", "list:", "rows:", "map:")):
                 fail(f"JSON key {key!r} ends in {suffix} but its unit is {unit!r} ({units[unit]})")
             break
     if unit == "deg" and not key.endswith("_deg"):

@@ -95,9 +95,50 @@ TEST(Outputs, NestedObjectsAreRowsOfTheirTable) {
 TEST(Outputs, RowsLeaveOutAbsentColumns) {
   Shape with, without;
   with.size = 1;
-  // Only the plain columns with a value are row fields; nested columns are not.
+  // Only the columns with a value (or nested objects) are row fields.
   EXPECT_EQ(frictal::row_of(shape_columns(), with).size(), 1u);
   EXPECT_TRUE(frictal::row_of(shape_columns(), without).empty());
+}
+
+// A shape nested in another object keeps its own nested objects: a field holding the rows of its
+// table (the CLI's writer writes them as JSON), with no Python key (Python's dicts nest one level).
+TEST(Outputs, NestedColumnsOfANestedObjectKeepTheirRows) {
+  Shape s;
+  s.size = 1;
+  s.corners = std::vector<Point>{{1e-6, 0}, {2e-6, 0}};
+  const OutputRow r = frictal::row_of(shape_columns(), s);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_FALSE(r[0].nested);
+  EXPECT_TRUE(r[1].nested);
+  EXPECT_EQ(r[1].info.key, "corners");
+  EXPECT_EQ(r[1].info.python, "");
+  ASSERT_EQ(r[1].rows.size(), 2u);
+  EXPECT_DOUBLE_EQ(std::get<double>(r[1].rows[1][0].si), 2e-6);
+}
+
+// Rows of numbers and maps of objects declare their table in the unit; their rows are the
+// table's rows, as a list column's.
+TEST(Outputs, RowsAndMapColumnsDeclareTheirTable) {
+  struct Named {
+    std::string name;
+    double x = 0;
+  };
+  static const Columns<Named> named = {
+      frictal::column<Named>(
+          "name", "text", "name", [](const Named& n) { return n.name; }, "-"),
+      frictal::column<Named>(
+          "x_m", "m", "abscissa", [](const Named& n) { return n.x; }, "-"),
+  };
+  const std::vector<Named> items = {{"a", 1}, {"b", 2}};
+  const auto f = [&](const Shape&) { return std::optional(items); };
+  const Column<Shape> rows = frictal::rows_column<Shape>("xs", "named", "rows", named, f, "-");
+  const Column<Shape> map = frictal::map_column<Shape>("by_name", "named", "map", named, f, "-");
+  EXPECT_EQ(rows.unit, "rows:named");
+  EXPECT_EQ(map.unit, "map:named");
+  const std::vector<OutputRow> r = map.rows(Shape{});
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(std::get<std::string>(r[1][0].si), "b");
+  EXPECT_DOUBLE_EQ(std::get<double>(r[1][1].si), 2.0);
 }
 
 TEST(Outputs, WarningsAreRowsOfCodeAndMessage) {
