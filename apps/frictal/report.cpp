@@ -25,8 +25,7 @@ struct Args {
   std::string lower, upper, out;
   double mu_a = 0;
   std::string detrend;
-  int directions = 0;  ///< 0: 36 for one map, 12 for a map pair (each direction a prediction over drops)
-  std::size_t lines = report::ReportInput{}.max_lines;  // anisotropy's default: the polar plot is its table
+  int directions = report::ReportInput{}.directions;  ///< maps: each direction a prediction over drops
   int resolution = 10;
   int bins = 90;
   int drops = PredictOptions{}.map_drops;
@@ -53,10 +52,8 @@ std::function<int()> setup(CLI::App& app) {
                  "plane for maps)");
   add_conditioning_options(app, a->cond);
   app.add_option("--directions", a->directions,
-                 "Maps: sliding directions of the polar plot (default 36; a map pair: 12, each one prediction over "
-                 "--drops x --drops drops, as frictal anisotropy --upper --areal --hold)");
-  app.add_option("--lines", a->lines,
-                 "One map: at most this many parallel lines per direction (as frictal anisotropy --lines)")
+                 "Maps: sliding directions of the polar plot, each one prediction over --drops x --drops drops "
+                 "(as frictal anisotropy --areal --hold)")
       ->capture_default_str();
   app.add_option("--resolution-steps", a->resolution, "Cutoff wavelengths of the resolution study (0 = none)")
       ->capture_default_str();
@@ -77,9 +74,7 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     require(std::isfinite(a->mu_a) && a->mu_a >= 0,
             fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
-    require(a->directions == 0 || (a->directions >= 1 && a->directions <= 720),
-            fmt::format("--directions {}: expected 1..720", a->directions));
-    require(a->lines >= 1 && a->lines <= 100000, "--lines must be in 1..100000");
+    require(a->directions >= 1 && a->directions <= 720, fmt::format("--directions {}: expected 1..720", a->directions));
     require(a->resolution == 0 || (a->resolution >= 2 && a->resolution <= 100),
             "--resolution-steps must be 0 or 2..100");
     require(a->bins >= 2 && a->bins <= 10000, "--bins must be in 2..10000");
@@ -125,15 +120,14 @@ std::function<int()> setup(CLI::App& app) {
     in.lower_name = a->lower;
     in.detrend = conditioning_text(records);
     in.atomic_friction = a->mu_a;
-    in.directions = a->directions > 0 ? a->directions : in.upper_map ? 12 : 36;
+    in.directions = a->directions;
     in.map_drops = a->drops;
-    if (in.upper_map && !a->quiet && isatty(fileno(stderr)))
+    if (in.is_map && !a->quiet && isatty(fileno(stderr)))
       in.progress = [](std::size_t done, std::size_t total) {
         fmt::print(stderr, "\rfrictal report: the polar plot's direction {} of {}{}", done, total,
                    done == total ? "\n" : "");
         std::fflush(stderr);
       };
-    in.max_lines = a->lines;
     in.resolution_steps = a->resolution;
     in.bins = a->bins;
     in.tip_radius = tip;

@@ -163,18 +163,14 @@ struct ReportInput {
   std::string upper_name;
   std::string detrend;  ///< conditioning already applied (ConditioningRecord text, or the form: "none", "line", ...)
   double atomic_friction = 0;  ///< mu_a of Eq. 6 (unitless)
-  /// Sliding directions of the polar plot (maps) (unitless, 1..720). A map pair's polar plot
-  /// predicts the hold angle over map_drops x map_drops drops in each (`frictal report` takes 12
-  /// for a pair unless told).
-  int directions = 36;
-  /// Parallel lines per direction (one map), `frictal anisotropy --lines`'s default: the polar
-  /// plot is that command's table (unitless).
-  std::size_t max_lines = DirectionalOptions{}.max_lines;
-  /// Map pairs: each direction's prediction of the polar plot drops the block on an N x N grid,
+  /// Sliding directions of the polar plot (maps) (unitless, 1..720): each one a prediction over
+  /// map_drops x map_drops drops (`frictal report` takes 12 unless told).
+  int directions = 12;
+  /// Maps: each direction's prediction of the polar plot drops the block on an N x N grid,
   /// N = map_drops (`frictal anisotropy --hold --drops`; the headline's N, given as `prediction`)
   /// (unitless, 2..64).
   int map_drops = PredictOptions{}.map_drops;
-  /// Map pairs: called after each direction of the polar plot with (done, total) (unitless);
+  /// Maps: called after each direction of the polar plot with (done, total) (unitless);
   /// a front end's progress line. Empty: none.
   std::function<void(std::size_t, std::size_t)> progress;
   int resolution_steps = 10;  ///< cutoff wavelengths of the resolution study (unitless, >= 2; 0: none)
@@ -263,28 +259,46 @@ struct ReportArealHold {
   std::vector<double> edges, free_percent, locked_percent;
 };
 
-/// Maps: the friction over sliding directions. One map: its line profiles, each against itself
-/// turned over (anisotropy(), `frictal anisotropy MAP`). A map pair: the pair's, the rows of
-/// `frictal anisotropy LOWER --upper UPPER --areal --hold` with the page's directions, drops,
-/// mu_a and run-away distance: the grid areal signature's theta_max and its bound (a diagnostic),
-/// and predict() along each direction on the page's maps (the block free to move sideways) with
-/// the hold model's bound.
+/// Maps: the pair's own analyses along the headline's sliding direction d: the grid areal signature
+/// of `frictal areal LOWER [UPPER] --angle DEG` (one map: against itself turned over) with its
+/// bounds, and the slopes along d of the maps' facets and of the pair's contacts.
+struct ReportArealSignature {
+  std::string failure;       ///< non-empty: not computed, and why (the page says so)
+  double direction = 0;      ///< d: the headline's sliding direction (0 without a headline) (unit: rad)
+  ArealSignature signature;  ///< areal_signature(map, upper map or map, d) with its default offsets
+  /// Eq. 6 and 18 of the grid's theta_max towards +d and -d (`frictal areal`'s bound: a diagnostic
+  /// of the map's nodes, not what a tilt test reads).
+  FrictionPrediction forward, backward;
+  /// 1.1 x the largest of theta_max both ways and the 99.5 % quantiles of |facet slope| (at most
+  /// pi/2) (unit: rad).
+  double limit = 0;
+  /// Slopes along d of the maps' facets (each grid cell with four valid corners, its bilinear
+  /// surface's gradient at the centre: the same weight each, the map as measured), `upper` for a
+  /// pair only, and the contact slopes theta(s) of the signature (each offset the same weight),
+  /// densities relative to all the weight (steeper ones counted, not binned) (unit: rad; 1/rad).
+  Histogram lower, upper, contact;
+  std::size_t facets = 0, facets_outside = 0;  ///< facets of both maps, and those steeper than +-limit (unitless)
+};
+
+/// Maps: the friction over sliding directions, the rows of `frictal anisotropy LOWER [--upper
+/// UPPER] --areal --hold` with the page's directions, drops, mu_a and run-away distance (one map:
+/// the map against itself turned over): the grid areal signature's theta_max and its bound (a
+/// diagnostic), and predict() along each direction on the page's maps (the block free to move
+/// sideways) with the hold model's bound.
 struct ReportDirections {
-  std::string failure;                     ///< non-empty: not computed, and why (the page says so)
-  std::vector<DirectionalFriction> table;  ///< one map: one row per direction
-  std::size_t min_points = 0;              ///< one map: shortest line used (points, unitless)
-  bool pair = false;                       ///< a map pair: `pair_table`, not `table`
-  /// A map pair: one row per direction, the keys of `frictal anisotropy --json` (AnisotropyRow:
-  /// angles in rad, run-away distance in m).
+  std::string failure;  ///< non-empty: not computed, and why (the page says so)
+  bool pair = false;    ///< two maps (ReportInput::upper_map), else one map against itself turned over
+  /// One row per direction, the keys of `frictal anisotropy --json` (AnisotropyRow: angles in rad,
+  /// run-away distance in m).
   std::vector<AnisotropyRow> pair_table;
-  /// A map pair: non-empty: the hold angles were not predicted, and why (the headline's
-  /// prediction is DOUBTFUL, the job's estimated CPU time is above the prediction's limit, or
-  /// predict()'s error); the rows then hold the signature's bound only.
+  /// Non-empty: the hold angles were not predicted, and why (the headline's prediction is
+  /// DOUBTFUL, the job's estimated CPU time is above the prediction's limit, or predict()'s
+  /// error); the rows then hold the signature's bound only.
   std::string hold_failure;
-  /// A map pair: the directions' predictions' warnings, each message led by its direction.
+  /// The directions' predictions' warnings, each message led by its direction.
   std::vector<Warning> warnings;
-  /// One map: the direction with the highest and the lowest bound theta_a + theta_max; a pair: with
-  /// the highest and lowest median hold angle (without hold angles: the signature's bound) (unit: rad).
+  /// The direction with the highest and the lowest median hold angle (without hold angles: the
+  /// signature's bound) (unit: rad).
   double best_direction = 0, best_angle = 0;
   double worst_direction = 0, worst_angle = 0;  ///< (unit: rad)
 };
@@ -317,6 +331,7 @@ struct ReportData {
   ReportSlopes slopes;
   ReportHold hold;
   std::optional<ReportArealHold> areal_hold;   ///< two maps only
+  std::optional<ReportArealSignature> areal;   ///< maps only
   std::optional<ReportDirections> directions;  ///< maps only
   std::optional<ReportResolution> resolution;  ///< resolution_steps >= 2 only
 };

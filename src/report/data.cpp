@@ -40,7 +40,7 @@ Status check_input(const ReportInput& in) {
   if (in.is_map && in.upper) return make_error("report: an upper profile for a map: give the upper map as upper_map");
   if (in.is_map && (in.directions < 1 || in.directions > 720))
     return make_error(fmt::format("report: directions must be in 1..720, got {}", in.directions));
-  if (in.is_map && in.upper_map && (in.map_drops < 2 || in.map_drops > 64))
+  if (in.is_map && (in.map_drops < 2 || in.map_drops > 64))
     return make_error(fmt::format("report: map drops must be in 2..64 (an N x N grid), got {}", in.map_drops));
   if (in.bins < 2 || in.bins > 10000)
     return make_error(fmt::format("report: bins must be in 2..10000, got {}", in.bins));
@@ -261,51 +261,92 @@ Status areal_hold_into(const ReportInput& in, ReportArealHold& out) {
   return Ok{};
 }
 
-ReportDirections directions_of(const ReportInput& in) {
-  ReportDirections out;
-  DirectionalOptions o;
-  o.max_lines = in.max_lines;
-  o.threads = in.threads;
-  o.atomic_friction = in.atomic_friction;
-  o.signature.keep_contacts = false;
-  // `frictal anisotropy`'s options (its lines of at least min_points points); only a map too small
-  // for them takes shorter lines (at least 4 points, the directional minimum), said in the caption.
-  auto table = anisotropy(in.map, in.directions, o);
-  if (!table) {
-    o.min_points = std::clamp<std::size_t>(std::min(in.map.nx, in.map.ny) / 2, 4, 32);
-    table = anisotropy(in.map, in.directions, o);
-  }
-  out.min_points = o.min_points;
-  if (!table) {
-    out.failure = table.error().message;
+/// Slopes along the direction (cos a, sin a) of a map's facets: each cell with four valid corners,
+/// the gradient of its bilinear surface at the centre (unit: rad).
+void facet_slopes(const Map& m, double angle, std::vector<double>& out) {
+  const double c = std::cos(angle), sn = std::sin(angle);
+  for (std::size_t j = 0; j + 1 < m.ny; ++j)
+    for (std::size_t i = 0; i + 1 < m.nx; ++i) {
+      const double z00 = m.at(i, j), z10 = m.at(i + 1, j), z01 = m.at(i, j + 1), z11 = m.at(i + 1, j + 1);
+      if (!(std::isfinite(z00) && std::isfinite(z10) && std::isfinite(z01) && std::isfinite(z11))) continue;
+      const double gx = (z10 - z00 + z11 - z01) / (2 * m.dx), gy = (z01 - z00 + z11 - z10) / (2 * m.dy);
+      out.push_back(std::atan(gx * c + gy * sn));
+    }
+}
+
+/// The maps' areal signature along the headline's direction, its grid bounds and the slopes.
+ReportArealSignature areal_signature_of(const ReportInput& in) {
+  ReportArealSignature out;
+  out.direction = in.prediction && in.prediction->is_map ? in.prediction->direction : 0.0;
+  const Map& upper_map = in.upper_map ? *in.upper_map : in.map;
+  ArealSignatureOptions so;
+  so.threads = in.threads;
+  auto sig = areal_signature(in.map, upper_map, out.direction, so);
+  if (!sig) {
+    out.failure = sig.error().message;
     return out;
   }
-  out.table = std::move(*table);
-  double best = -1, worst = 1e9, best_dir = 0, worst_dir = 0;
-  for (const auto& d : out.table) {
-    if (d.prediction.friction_angle > best) best = d.prediction.friction_angle, best_dir = d.angle;
-    if (d.prediction.friction_angle < worst) worst = d.prediction.friction_angle, worst_dir = d.angle;
+  out.signature = std::move(*sig);
+  const ArealSignature& r = out.signature;
+  auto fwd = predict_friction(in.atomic_friction, r.theta_max_forward, r.contact_slope_std);
+  auto bwd = predict_friction(in.atomic_friction, r.theta_max_backward, r.contact_slope_std);
+  if (!fwd || !bwd) {
+    out.failure = (!fwd ? fwd : bwd).error().message;
+    return out;
   }
-  out.best_angle = best;
-  out.best_direction = best_dir;
-  out.worst_angle = worst;
-  out.worst_direction = worst_dir;
+  out.forward = *fwd;
+  out.backward = *bwd;
+  std::vector<double> ls, us;
+  facet_slopes(in.map, out.direction, ls);
+  if (in.upper_map) facet_slopes(*in.upper_map, out.direction, us);
+  const std::vector<double> lw(ls.size(), 1.0), uw(us.size(), 1.0);
+  double lim = std::max({r.theta_max_forward, r.theta_max_backward, ls.empty() ? 0.0 : quantile_abs(ls, lw, 0.995),
+                         us.empty() ? 0.0 : quantile_abs(us, uw, 0.995)});
+  lim = std::min(std::numbers::pi / 2, lim * 1.1 + 1e-12);
+  out.limit = lim;
+  auto hist = [&](const std::vector<double>& samples, bool facets) {
+    Histogram h;
+    const int nb = in.bins;
+    for (int i = 0; i <= nb; ++i) h.edges.push_back(-lim + 2 * lim * i / nb);
+    h.density.assign(std::size_t(nb), 0.0);
+    double total = 0;
+    for (double v : samples) {
+      if (!std::isfinite(v)) continue;
+      total += 1;
+      if (facets) ++out.facets;
+      if (v < -lim || v > lim) {
+        if (facets) ++out.facets_outside;
+        continue;
+      }
+      h.density[std::size_t(std::min(nb - 1, int((v + lim) / (2 * lim) * nb)))] += 1;
+    }
+    const double width = 2 * lim / nb;
+    for (auto& d : h.density) d = total > 0 ? d / (total * width) : 0.0;
+    return h;
+  };
+  out.lower = hist(ls, true);
+  if (in.upper_map) out.upper = hist(us, true);
+  out.contact = hist(r.theta, false);
   return out;
 }
 
-/// A map pair over sliding directions: per direction the grid areal signature of the pair and
-/// predict() along it, as `frictal anisotropy LOWER --upper UPPER --areal --hold` computes them
+/// A map over sliding directions: per direction the grid areal signature of the pair and
+/// predict() along it, as `frictal anisotropy LOWER [--upper UPPER] --areal --hold` computes them
 /// (the same angles to the bit: 2 pi k / n for the signature, (360 k / n) deg for the prediction).
-ReportDirections pair_directions_of(const ReportInput& in) {
+/// One map is the pair of the map and itself turned over, as that command takes it without --upper.
+ReportDirections directions_of(const ReportInput& in) {
   ReportDirections out;
-  out.pair = true;
+  out.pair = in.upper_map.has_value();
   const int n = in.directions;
+  const Map& upper_map = in.upper_map ? *in.upper_map : in.map;
   PredictSurface lower, upper;
   lower.is_map = upper.is_map = true;
   lower.map = in.map;
   lower.name = in.lower_name;
-  upper.map = *in.upper_map;
-  upper.name = in.upper_name;
+  if (in.upper_map) {
+    upper.map = *in.upper_map;
+    upper.name = in.upper_name;
+  }
   PredictOptions po;
   po.atomic_friction = in.atomic_friction;
   po.runaway_distance = in.runaway_distance;
@@ -314,9 +355,9 @@ ReportDirections pair_directions_of(const ReportInput& in) {
   po.detrend = Detrend{DetrendKind::None, 0};  // the page's maps are conditioned already
   // The whole job's estimated cost against the prediction's limit, as the command refuses it.
   const std::size_t drops = std::size_t(in.map_drops) * std::size_t(in.map_drops);
-  const double work = map_work_estimate(in.upper_map->valid_count(), drops) * n;
+  const double work = map_work_estimate(upper_map.valid_count(), drops) * n;
   if (in.prediction && in.prediction->trust != "ok") {
-    // A pair read wrong: its hold angles along other directions would cost each the headline's
+    // A surface read wrong: its hold angles along other directions would cost each the headline's
     // time and say nothing until the input is fixed.
     std::string codes;
     for (const std::string& c : in.prediction->trust_codes) codes += (codes.empty() ? "" : ", ") + c;
@@ -325,12 +366,12 @@ ReportDirections pair_directions_of(const ReportInput& in) {
     out.hold_failure = fmt::format(
         "{} directions x {} drops on {} spheres would take about {:.0f} s of CPU, above the prediction's limit "
         "of {:.0f} s (fewer --directions or --drops, or a cropped or resampled map)",
-        n, drops, in.upper_map->valid_count(), work, po.map_work_limit);
+        n, drops, upper_map.valid_count(), work, po.map_work_limit);
   for (int k = 0; k < n; ++k) {
     const double angle = 2 * std::numbers::pi * k / n;
     ArealSignatureOptions so;
     so.threads = in.threads;
-    auto sig = areal_signature(in.map, *in.upper_map, angle, so);
+    auto sig = areal_signature(in.map, upper_map, angle, so);
     if (!sig) {
       out.failure = sig.error().message;
       return out;
@@ -350,7 +391,7 @@ ReportDirections pair_directions_of(const ReportInput& in) {
     row.eq18_low_friction_coefficient = bound->friction_coefficient_low;
     if (out.hold_failure.empty()) {
       po.direction = (360.0 * k / n) * kDeg;  // as `frictal predict --direction DEG` converts
-      auto hold = predict(lower, &upper, po);
+      auto hold = predict(lower, in.upper_map ? &upper : nullptr, po);
       if (!hold) {
         out.hold_failure = fmt::format("direction {:g}°: {}", deg(angle), hold.error().message);
       } else {
@@ -497,7 +538,8 @@ Result<ReportData> report_data(const ReportInput& in) {
     }
     d.areal_hold = std::move(a);
   }
-  if (in.is_map) d.directions = in.upper_map ? pair_directions_of(in) : directions_of(in);
+  if (in.is_map) d.areal = areal_signature_of(in);
+  if (in.is_map) d.directions = directions_of(in);
   if (in.resolution_steps >= 2) {
     auto res = resolution_of(in, s, so);
     if (!res) return res.error();

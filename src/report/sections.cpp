@@ -123,7 +123,7 @@ Result<std::string> map_figure_and_stats(const Map& map, const MapStats& st, con
   mi.line_y = line.x.empty() ? std::nullopt : std::optional<double>(line_y);
   mi.line_x0 = map.x0 + line.x.front();  // the central line's abscissa starts at the map's x0
   mi.line_x1 = map.x0 + line.x.back();
-  mi.line_label = role.empty() ? "line used for the signature" : "central line (the line sections)";
+  mi.line_label = "central line (the resolution study)";
   auto svg = map_svg(map, mi);
   if (!svg) return svg.error();
   const std::size_t f = std::max<std::size_t>(1, (std::max(map.nx, map.ny) + mi.max_pixels - 1) / mi.max_pixels);
@@ -227,11 +227,13 @@ Result<std::string> surface_section(const ReportInput& in, const ReportData& d) 
         escape_html(base(s.lower_name)), escape_html(base(s.upper_name)));
     html += "<div class=\"pair\"><div>" + *lo + "</div><div>" + *up + "</div></div>\n";
     html += "<div class=\"pair\"><div>" +
-            profile_stats_table(s.lower_stats, s.lower_uniform,
-                                "the central line along x of the lower map, " + base(s.lower_name)) +
+            profile_stats_table(
+                s.lower_stats, s.lower_uniform,
+                "the central line along x of the lower map, " + base(s.lower_name) + " (the resolution study)") +
             "</div><div>" +
-            profile_stats_table(s.upper_stats, s.upper_uniform,
-                                "the central line along x of the upper map, " + base(s.upper_name)) +
+            profile_stats_table(
+                s.upper_stats, s.upper_uniform,
+                "the central line along x of the upper map, " + base(s.upper_name) + " (the resolution study)") +
             "</div></div>\n";
     return html;
   }
@@ -244,9 +246,10 @@ Result<std::string> surface_section(const ReportInput& in, const ReportData& d) 
             profile_stats_table(s.lower_stats, s.lower_uniform, "lower, " + base(s.lower_name)) + "</div><div>" +
             profile_stats_table(s.upper_stats, s.upper_uniform, "upper, " + base(s.upper_name)) + "</div></div>\n";
   else
-    html += profile_stats_table(
-        s.lower_stats, s.lower_uniform,
-        in.is_map ? "the central line along x of " + base(s.lower_name) + " (used below)" : base(s.lower_name));
+    html +=
+        profile_stats_table(s.lower_stats, s.lower_uniform,
+                            in.is_map ? "the central line along x of " + base(s.lower_name) + " (the resolution study)"
+                                      : base(s.lower_name));
   return html;
 }
 
@@ -307,6 +310,121 @@ Result<std::string> slopes_section(const ReportInput& in, const ReportData& d) {
                             100 * sl.outside_length / sl.total_length,
                             fmt_deg(std::max(s.lower_stats.max_slope, s.upper_stats.max_slope)))
               : std::string()));
+}
+
+// --- maps: the areal signature along the headline's direction --------------------------------
+namespace {
+/// The command whose numbers the areal signature section shows.
+std::string areal_command(const ReportInput& in, const ReportArealSignature& a) {
+  std::string c = fmt::format("frictal areal {}{} --angle {:g}", base(in.lower_name),
+                              in.upper_map ? " " + base(in.upper_name) : std::string(), deg(a.direction));
+  if (in.atomic_friction != 0) c += fmt::format(" --atomic-friction {:g}", in.atomic_friction);
+  return c;
+}
+}  // namespace
+
+Result<std::string> areal_signature_section(const ReportInput& in, const ReportData& d) {
+  const ReportArealSignature& a = *d.areal;
+  if (!a.failure.empty()) return fmt::format("<p>Not computed for these maps: {}.</p>\n", escape_html(a.failure));
+  const ArealSignature& r = a.signature;
+  const double span = r.offset.empty() ? 0.0 : r.offset.back() - r.offset.front();
+  const LengthUnit xu = length_unit(span > 0 ? span : in.map.width());
+  double hmin = 0, hmax = 0;
+  for (std::size_t i = 0; i < r.lift.size(); ++i)
+    hmin = i ? std::min(hmin, r.lift[i]) : r.lift[i], hmax = i ? std::max(hmax, r.lift[i]) : r.lift[i];
+  const LengthUnit zu = length_unit(std::max(hmax - hmin, 1e-300));
+  Plot th;
+  th.title = fmt::format("Areal signature θ(s) along {:g}°", deg(a.direction));
+  th.x_label = fmt::format("offset s of the upper block ({})", xu.name);
+  th.y_label = "contact slope θ (deg)";
+  Series ts;
+  ts.color = "#1f77b4";
+  ts.line_width = 1.2;
+  for (std::size_t i = 0; i < r.offset.size(); ++i)
+    ts.x.push_back(r.offset[i] / xu.scale), ts.y.push_back(deg(r.theta[i]));
+  if (ts.x.size() == 1) ts.style = SeriesStyle::Points;
+  th.series.push_back(ts);
+  th.lines.push_back(
+      {true, deg(r.theta_max_forward), fmt::format("θ_max forward = {:.3f}°", deg(r.theta_max_forward)), "#d62728"});
+  th.lines.push_back({true, -deg(r.theta_max_backward),
+                      fmt::format("−θ_max backward = −{:.3f}°", deg(r.theta_max_backward)), "#2ca02c"});
+  auto tsvg = plot_svg(th);
+  if (!tsvg) return tsvg.error();
+  Plot lp;
+  lp.title = "Lift h(s) of the upper block";
+  lp.x_label = th.x_label;
+  lp.y_label = fmt::format("lift h ({})", zu.name);
+  Series ls;
+  ls.color = "#ff7f0e";
+  ls.line_width = 1.2;
+  for (std::size_t i = 0; i < r.offset.size(); ++i)
+    ls.x.push_back(r.offset[i] / xu.scale), ls.y.push_back((r.lift[i] - hmin) / zu.scale);
+  if (ls.x.size() == 1) ls.style = SeriesStyle::Points;
+  lp.series.push_back(ls);
+  auto lsvg = plot_svg(lp);
+  if (!lsvg) return lsvg.error();
+  const std::string pair =
+      in.upper_map ? fmt::format("lower {} against upper {} turned over", base(in.lower_name), base(in.upper_name))
+                   : fmt::format("{} against itself turned over", base(in.lower_name));
+  std::string html = "<div class=\"pair\">";
+  html += figure(*tsvg, fmt::format("A diagnostic of the maps' nodes: the slope of the steepest contact at each of "
+                                    "{} offsets s along {:g}° (0° = +x) of the grid areal signature of {}.",
+                                    r.offset.size(), deg(a.direction), escape_html(pair)));
+  html += figure(*lsvg, fmt::format("The lift h(s) of the upper block over the same offsets (its lowest value "
+                                    "subtracted), the highest contact of the nodes at each offset."));
+  html += "</div>\n";
+  TwoWayTable t;
+  t.html = fmt::format(
+      "<table class=\"friction\"><caption>The grid's bound (a diagnostic of the maps' nodes)</caption><tr><th></th>"
+      "<th>towards {:g}° (forward)</th><th>towards {:g}° (backward)</th></tr>\n",
+      deg(a.direction), std::fmod(deg(a.direction) + 180, 360));
+  t.two("θ_max (steepest contact of the grid)", fmt_deg(r.theta_max_forward), fmt_deg(r.theta_max_backward));
+  t.two("θ_max of the lift (its steepest step)", fmt_deg(r.theta_max_lift), "");
+  t.two("σ (std of the contact slopes)", fmt_deg(r.contact_slope_std), fmt_deg(r.contact_slope_std));
+  t.two("the grid's bound θ_a + θ_max (Eq. 6)", fmt_deg(a.forward.friction_angle), fmt_deg(a.backward.friction_angle));
+  t.two("the grid's bound of μ, tan(θ_a + θ_max)", fmt_mu(a.forward.friction_coefficient),
+        fmt_mu(a.backward.friction_coefficient));
+  t.two("Eq. 18 range of μ below the grid's bound",
+        fmt::format("{} … {}", fmt_mu(a.forward.friction_coefficient_low), fmt_mu(a.forward.friction_coefficient)),
+        fmt::format("{} … {}", fmt_mu(a.backward.friction_coefficient_low), fmt_mu(a.backward.friction_coefficient)));
+  html += t.done();
+  html += fmt::format(
+      "<p class=\"bounds\">The numbers of <code>{}</code>{} (μ_a = {:g}), along the headline's sliding direction. "
+      "The grid's θ_max is a diagnostic of the maps' nodes: the headline's model rounds the nodes by spheres and "
+      "its own rigid bound (the steepest seat its drops rested in) is in the headline; neither bound is what a "
+      "tilt test reads.</p>\n",
+      escape_html(areal_command(in, a)), in.detrend.empty() ? "" : " with this page's conditioning",
+      in.atomic_friction);
+  return html;
+}
+
+Result<std::string> areal_slopes_section(const ReportInput& in, const ReportData& d) {
+  const ReportArealSignature& a = *d.areal;
+  if (!a.failure.empty()) return fmt::format("<p>Not computed for these maps: {}.</p>\n", escape_html(a.failure));
+  Plot p;
+  p.title = fmt::format("Slope distributions along {:g}°", deg(a.direction));
+  p.x_label = "slope angle (deg)";
+  p.y_label = "probability density (1/deg)";
+  p.series.push_back(histogram_series(
+      a.lower, in.upper_map ? "facet slopes: lower, " + base(in.lower_name) : "facet slopes", "#1f77b4"));
+  if (in.upper_map)
+    p.series.push_back(histogram_series(a.upper, "facet slopes: upper, " + base(in.upper_name), "#9467bd", true));
+  p.series.push_back(
+      histogram_series(a.contact, in.upper_map ? "contact slopes θ(s) of the pair" : "contact slopes θ(s)", "#d62728"));
+  auto svg = plot_svg(p);
+  if (!svg) return svg.error();
+  return figure(
+      *svg, fmt::format("Facet slopes: the slope along {:g}° of each grid cell with four valid corners (its bilinear "
+                        "surface at the centre), {} cells, the map{} as measured. Contact slopes: θ(s) of the areal "
+                        "signature above at each of its {} offsets; mean {}, standard deviation σ = {}. {} bins over "
+                        "±{:.2f}°{}.",
+                        deg(a.direction), a.facets, in.upper_map ? "s" : "", a.signature.offset.size(),
+                        fmt_deg(a.signature.contact_slope_mean), fmt_deg(a.signature.contact_slope_std), in.bins,
+                        deg(a.limit),
+                        a.facets_outside > 0 ? fmt::format("; {:.2f} % of the facets are steeper (counted in the "
+                                                           "densities, beyond the axis)",
+                                                           100.0 * double(a.facets_outside) / double(a.facets))
+                                             : std::string()));
 }
 
 // --- friction ---------------------------------------------------------------------------------
@@ -530,24 +648,26 @@ Result<std::string> areal_hold_section(const ReportInput&, const ReportData& d) 
 
 // --- friction over sliding directions (maps) ---------------------------------------------------
 namespace {
-/// The command whose table the pair's polar plot is (the options that change its numbers).
-std::string pair_anisotropy_command(const ReportInput& in) {
-  std::string c = fmt::format("frictal anisotropy {} --upper {} --areal --hold --directions {} --drops {}",
-                              base(in.lower_name), base(in.upper_name), in.directions, in.map_drops);
+/// The command whose table the polar plot is (the options that change its numbers).
+std::string anisotropy_command(const ReportInput& in) {
+  std::string c =
+      fmt::format("frictal anisotropy {}{} --areal --hold --directions {} --drops {}", base(in.lower_name),
+                  in.upper_map ? " --upper " + base(in.upper_name) : std::string(), in.directions, in.map_drops);
   if (in.atomic_friction != 0) c += fmt::format(" --atomic-friction {:g}", in.atomic_friction);
   if (in.runaway_distance > 0) c += fmt::format(" --runaway-distance {:g}", in.runaway_distance);
   return c;
 }
 
-/// A map pair: the hold angle over drops per direction (median and 5-95 %) and the rigid bounds.
-Result<std::string> pair_directions_section(const ReportInput& in, const ReportData& d) {
+/// A map or a map pair: the hold angle over drops per direction (median and 5-95 %) and the rigid bounds.
+Result<std::string> map_directions_section(const ReportInput& in, const ReportData& d) {
   const ReportDirections& dir = *d.directions;
-  const std::string pair =
-      fmt::format("lower {} against upper {}", escape_html(base(in.lower_name)), escape_html(base(in.upper_name)));
+  const std::string pair = dir.pair ? fmt::format("lower {} against upper {}", escape_html(base(in.lower_name)),
+                                                  escape_html(base(in.upper_name)))
+                                    : fmt::format("{} against itself turned over", escape_html(base(in.lower_name)));
   if (!dir.failure.empty())
     return fmt::format("<p>Not computed for the pair ({}): {}.</p>\n", pair, escape_html(dir.failure));
   const bool hold = dir.hold_failure.empty();
-  const std::string command = escape_html(pair_anisotropy_command(in));
+  const std::string command = escape_html(anisotropy_command(in));
   auto polar_series = [](const std::string& label, const std::string& color, bool dashed) {
     Series s;
     s.label = label;
@@ -604,12 +724,12 @@ Result<std::string> pair_directions_section(const ReportInput& in, const ReportD
   if (!bsvg) return bsvg.error();
   html += figure(*bsvg, hold ? "Bounds, not what a tilt test reads: the hold model's rigid upper bound (the steepest "
                                "seat its drops rested in) and θ_a + θ_max of the pair's grid areal signature (a "
-                               "diagnostic of the maps' nodes)."
+                               "diagnostic of the grid's nodes)."
                              : "θ_a + θ_max of the pair's grid areal signature: a bound (and a diagnostic of the "
-                               "maps' nodes), not what a tilt test reads.");
+                               "grid's nodes), not what a tilt test reads.");
   html += "</div>\n";
   html += fmt::format(
-      "<p>The pair ({}) in {} sliding directions (0° = +x, 90° = +y), the upper map turned over about the axis "
+      "<p>The pair ({}) in {} sliding directions (0° = +x, 90° = +y), the upper block turned over about the axis "
       "across each direction: the numbers of <code>{}</code>{}. μ_a = {:g}.{}{}</p>\n",
       pair, in.directions, command, in.detrend.empty() ? "" : " with this page's conditioning", in.atomic_friction,
       in.prediction && std::isfinite(in.prediction->load)
@@ -643,45 +763,7 @@ Result<std::string> pair_directions_section(const ReportInput& in, const ReportD
 }  // namespace
 
 Result<std::string> directions_section(const ReportInput& in, const ReportData& d) {
-  const ReportDirections& dir = *d.directions;
-  if (dir.pair) return pair_directions_section(in, d);
-  if (!dir.failure.empty()) return fmt::format("<p>Not computed for this map: {}.</p>\n", escape_html(dir.failure));
-  Series phi, low;
-  phi.label = "upper bound θ_a + θ_max (Eq. 6), mean over parallel lines";
-  phi.color = "#d62728";
-  low.label = "bound − σ (Eq. 18 lower end)";
-  low.color = "#1f77b4";
-  low.dashed = true;
-  for (const auto& row : dir.table) {
-    phi.x.push_back(row.angle);
-    phi.y.push_back(deg(row.prediction.friction_angle));
-    low.x.push_back(row.angle);
-    low.y.push_back(std::max(0.0, deg(row.prediction.friction_angle_low)));
-  }
-  PolarPlot pp;
-  pp.title = "Rigid upper bound by direction";
-  pp.radius_label = "friction angle (deg)";
-  pp.series = {phi, low};
-  auto svg = polar_svg(pp);
-  if (!svg) return svg.error();
-  const double best = dir.best_angle, worst = dir.worst_angle;
-  std::string html = figure(
-      *svg,
-      fmt::format("{} directions (0° = +x, 90° = +y). For each, up to {} parallel lines of {} (of at "
-                  "least {} points), each against itself turned over; θ_max and σ are length-weighted means "
-                  "over the lines: the numbers of `frictal anisotropy {} --directions {}`{}. μ_a = {:g}. "
-                  "Rigid upper bounds, not what a tilt test reads (the headline).",
-                  in.directions, in.max_lines, escape_html(base(d.surfaces.lower_name)), dir.min_points,
-                  escape_html(base(d.surfaces.lower_name)), in.directions,
-                  in.upper_map ? " (the lower map alone: a diagnostic of its anisotropy)" : "", in.atomic_friction));
-  html += fmt::format(
-      "<p class=\"bounds\">Highest rigid upper bound sliding towards {:.0f}°: θ_a + θ_max = {} (μ ≤ {}); lowest "
-      "towards {:.0f}°: {} (μ ≤ {}). Anisotropy ratio of the bounds = {}.</p>\n",
-      deg(dir.best_direction), fmt_deg(best), fmt_mu(std::tan(best)), deg(dir.worst_direction), fmt_deg(worst),
-      fmt_mu(std::tan(worst)),
-      std::tan(worst) > 1e-6 ? fmt::format("{:.3f}", std::tan(best) / std::tan(worst))
-                             : std::string("unbounded (μ_min ≈ 0)"));
-  return html;
+  return map_directions_section(in, d);
 }
 
 // --- resolution -------------------------------------------------------------------------------
@@ -958,15 +1040,33 @@ std::string headline(const ReportInput& in, const ReportData& d) {
                                        0);
     for (std::size_t k = 0; (k = json.find("</", k)) != std::string::npos; k += 3) json.replace(k, 2, "<\\/");
     page += "<script type=\"application/json\" id=\"prediction\">" + json + "</script>\n";
+    if (d.areal && d.areal->failure.empty()) {
+      const ReportArealSignature& a = *d.areal;
+      page += fmt::format(
+          "<p class=\"bounds\">The grid areal signature below (a diagnostic of the maps' nodes, as `frictal areal` "
+          "computes it): its bound θ_max + θ_a = {} towards {:g}° and {} towards {:g}° (θ_max = {} / {}).</p>\n",
+          fmt_deg(a.forward.friction_angle), deg(a.direction), fmt_deg(a.backward.friction_angle),
+          std::fmod(deg(a.direction) + 180, 360), fmt_deg(a.signature.theta_max_forward),
+          fmt_deg(a.signature.theta_max_backward));
+    } else if (!in.is_map) {
+      page += fmt::format(
+          "<p class=\"bounds\">{}: rigid upper bound θ_max + θ_a = {} towards +x and {} towards −x (θ_max = {} / "
+          "{}).</p>\n",
+          "The signature function below (the whole upper scan over offsets 0 to half its length, as "
+          "`frictal signature` computes it; a diagnostic of another block than the stated test's)",
+          fmt_deg(fwd.friction_angle), fmt_deg(bwd.friction_angle), fmt_deg(r.theta_max_forward),
+          fmt_deg(r.theta_max_backward));
+    }
+  } else if (d.areal && d.areal->failure.empty()) {
+    const ReportArealSignature& a = *d.areal;
     page += fmt::format(
-        "<p class=\"bounds\">{}: rigid upper bound θ_max + θ_a = {} towards +x and {} towards −x (θ_max = {} / "
-        "{}).</p>\n",
-        in.is_map ? (in.upper_map ? "The maps' central lines (a diagnostic)"
-                                  : "The map's central line against itself (a diagnostic)")
-                  : "The signature function below (the whole upper scan over offsets 0 to half its length, as "
-                    "`frictal signature` computes it; a diagnostic of another block than the stated test's)",
-        fmt_deg(fwd.friction_angle), fmt_deg(bwd.friction_angle), fmt_deg(r.theta_max_forward),
-        fmt_deg(r.theta_max_backward));
+        "<p class=\"verdict\">The grid areal signature's bound θ_max + θ_a (a diagnostic of the maps' nodes, "
+        "`frictal areal`): μ ≤ <b>{}</b> towards {:g}° (Eq. 18 range {} … {}) and μ ≤ <b>{}</b> towards {:g}°; "
+        "θ_max = {} / {}, μ_a = {:g}.</p>\n",
+        fmt_mu(a.forward.friction_coefficient), deg(a.direction), fmt_mu(a.forward.friction_coefficient_low),
+        fmt_mu(a.forward.friction_coefficient), fmt_mu(a.backward.friction_coefficient),
+        std::fmod(deg(a.direction) + 180, 360), fmt_deg(a.signature.theta_max_forward),
+        fmt_deg(a.signature.theta_max_backward), in.atomic_friction);
   } else {
     page += fmt::format(
         "<p class=\"verdict\">Rigid upper bound θ_max + θ_a: μ ≤ <b>{}</b> towards +x (Eq. 18 range {} … {}) "
@@ -987,8 +1087,8 @@ std::vector<std::string> assumptions(const ReportInput& in, const ReportData& d)
     out.push_back(fmt::format(
         "The lower block's face is {}; the upper block's face is {} as measured (material below), turned over "
         "onto it about the axis across x: the headline's prediction and the areal section; about the axis across "
-        "each direction in the polar plot. The sections on the central lines take the lower map's line against "
-        "the upper map's line turned over (rotated 180°).",
+        "each direction in the areal signature and the polar plot. The resolution study takes the lower map's "
+        "central line against the upper map's turned over (rotated 180°).",
         escape_html(s.lower_name), escape_html(in.upper_name)));
   else
     out.push_back(s.pair ? fmt::format("The lower block's face is {}; the upper block's face is {} as measured "
@@ -1003,22 +1103,32 @@ std::vector<std::string> assumptions(const ReportInput& in, const ReportData& d)
                   escape_html(in.detrend.empty() ? std::string("none") : in.detrend)));
   if (in.is_map)
     out.push_back(fmt::format(
-        "The signature, slope distributions and resolution study use the central line along x of {} (y = {}), "
-        "the longest valid run: {} points over {}{}. {}",
+        "The resolution study uses the central line along x of {} (y = {}), the longest valid run: {} points "
+        "over {}{}. {}",
         in.upper_map ? "each map" : "the map", fmt_len(s.line_y, length_unit(in.map.height())), s.lower.size(),
         fmt_len(s.lower.length(), xu),
         in.upper_map ? fmt::format(" (the upper map's at y = {}: {} points over {})",
                                    fmt_len(s.upper_line_y, length_unit(in.upper_map->height())), s.upper.size(),
                                    fmt_len(s.upper.length(), xu))
                      : std::string(),
-        in.upper_map ? "The polar plot takes the two maps whole in every direction."
-                     : "The polar plot uses parallel lines of the map in every direction."));
-  out.push_back(
-      "Rigid blocks: the upper block only translates (no rotation, no deformation). Contact slopes follow the "
-      "paper's exact polyline rules (edge–edge, vertex–edge, vertex–vertex).");
-  out.push_back(fmt::format("Offsets x_ofs from {} to {} ({}).", fmt_len(r.offset.front(), xu),
-                            fmt_len(r.offset.back(), xu),
-                            s.lower.period ? "one period" : "up to half the shorter block"));
+        in.upper_map ? "The areal signature, the slope distributions and the polar plot take the two maps whole."
+                     : "The areal signature, the slope distributions and the polar plot take the map whole, against "
+                       "itself turned over."));
+  out.push_back(in.is_map ? "Rigid blocks: the upper block only translates (no rotation, no deformation)."
+                          : "Rigid blocks: the upper block only translates (no rotation, no deformation). Contact "
+                            "slopes follow the paper's exact polyline rules (edge–edge, vertex–edge, "
+                            "vertex–vertex).");
+  if (d.areal && d.areal->failure.empty() && !d.areal->signature.offset.empty()) {
+    const ArealSignature& a = d.areal->signature;
+    out.push_back(
+        fmt::format("Offsets s of the areal signature from {} to {} (half the lower map's extent along "
+                    "the direction, `frictal areal`'s default).",
+                    fmt_len(a.offset.front(), xu), fmt_len(a.offset.back(), xu)));
+  } else if (!in.is_map) {
+    out.push_back(fmt::format("Offsets x_ofs from {} to {} ({}).", fmt_len(r.offset.front(), xu),
+                              fmt_len(r.offset.back(), xu),
+                              s.lower.period ? "one period" : "up to half the shorter block"));
+  }
   out.push_back(fmt::format("Atomic friction μ_a = {:g} (Eq. 6).", in.atomic_friction));
   out.push_back(
       "Units: lengths as read from the file(s), converted to metres and shown in the unit printed on each axis; "
@@ -1038,19 +1148,28 @@ const std::vector<PageSection>& page_sections() {
        },
        [](D) { return true; }, surface_section},
       {"signature", [](In in, D) { return "Signature function of " + lines_of(in) + " (a diagnostic)"; },
-       [](D) { return true; }, signature_section},
-      {"slopes", [](In, D) -> std::string { return "Slope distributions"; }, [](D) { return true; }, slopes_section},
+       [](D d) { return !d.areal; }, signature_section},
+      {"areal-signature",
+       [](In in, D) -> std::string {
+         return map_pair(in) ? "The pair's areal signature along the headline's direction (a diagnostic)"
+                             : "The map's areal signature against itself along the headline's direction (a diagnostic)";
+       },
+       [](D d) { return d.areal.has_value(); }, areal_signature_section},
+      {"slopes", [](In, D) -> std::string { return "Slope distributions"; }, [](D d) { return !d.areal; },
+       slopes_section},
+      {"areal-slopes", [](In, D) -> std::string { return "Slope distributions of the facets and the contacts"; },
+       [](D d) { return d.areal.has_value(); }, areal_slopes_section},
       {"friction",
        [](In in, D) { return "Rigid upper bound (Eq. 6) and Eq. 18's range of " + lines_of(in) + " (a diagnostic)"; },
-       [](D) { return true; }, friction_section},
+       [](D d) { return !d.areal; }, friction_section},
       {"hold", [](In in, D) { return "The hold angle over drops of " + lines_of(in) + " (a diagnostic)"; },
-       [](D) { return true; }, hold_section},
+       [](D d) { return !d.areal; }, hold_section},
       {"areal-hold", [](In, D) -> std::string { return "Areal blocks that may move sideways: the headline's drops"; },
        [](D d) { return d.areal_hold.has_value(); }, areal_hold_section},
       {"directions",
        [](In in, D) -> std::string {
          return map_pair(in) ? "The pair over sliding directions (a diagnostic of its anisotropy)"
-                             : "Rigid upper bound over sliding directions";
+                             : "The map over sliding directions (a diagnostic of its anisotropy)";
        },
        [](D d) { return d.directions.has_value(); }, directions_section},
       {"resolution", [](In in, D) { return "Dependence on resolution of " + lines_of(in) + " (a diagnostic)"; },

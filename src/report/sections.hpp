@@ -28,6 +28,9 @@ const std::vector<PageSection>& page_sections();
 Result<std::string> surface_section(const ReportInput& input, const ReportData& data);
 Result<std::string> signature_section(const ReportInput& input, const ReportData& data);
 Result<std::string> slopes_section(const ReportInput& input, const ReportData& data);
+/// Maps: the areal signature along the headline's direction, its grid bounds; the facets' and contacts' slopes.
+Result<std::string> areal_signature_section(const ReportInput& input, const ReportData& data);
+Result<std::string> areal_slopes_section(const ReportInput& input, const ReportData& data);
 Result<std::string> friction_section(const ReportInput& input, const ReportData& data);
 Result<std::string> hold_section(const ReportInput& input, const ReportData& data);
 /// Needs data.areal_hold; a failure of its analysis or its figures is written as "Not computed".

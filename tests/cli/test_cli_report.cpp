@@ -174,16 +174,18 @@ TEST(CliReport, TheFrictionNumberScanFindsAnUnnamedNumber) {
 TEST(CliReport, MeasuredMapAndProfilePairPages) {
   const std::string map_html = temp_path("report_map.html");
   auto r = run_cli("report " + kData + "/x3p/sample-land.x3p -o " + map_html +
-                   " --atomic-friction 0.2 --directions 12 --lines 16 --resolution-steps 4 --threads 2");
+                   " --atomic-friction 0.2 --directions 4 --drops 3 --resolution-steps 4 --threads 2");
   ASSERT_EQ(r.code, 0) << r.err;
   const std::string page = read_file(map_html);
   EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_NE(page.find("sample-land.x3p"), std::string::npos);
   EXPECT_NE(page.find("<b>form: plane</b>"), std::string::npos);  // the default detrending for maps, stated
   EXPECT_NE(page.find("Reader warning: "), std::string::npos);    // the reader's warnings are on the page
-  EXPECT_NE(page.find("Rigid upper bound over sliding directions"), std::string::npos);
-  // The polar plot is `frictal anisotropy`'s table with its line count.
-  EXPECT_NE(page.find("the numbers of `frictal anisotropy sample-land.x3p --directions 12`"), std::string::npos);
+  EXPECT_NE(page.find("The map over sliding directions"), std::string::npos);
+  // The polar plot is `frictal anisotropy`'s table of the map against itself turned over.
+  EXPECT_NE(
+      page.find("frictal anisotropy sample-land.x3p --areal --hold --directions 4 --drops 3 --atomic-friction 0.2"),
+      std::string::npos);
   expect_no_unnamed_bound(page);
   expect_every_friction_number_named(page);
 
@@ -253,7 +255,7 @@ TEST(CliReport, TwoMapsSectionIsThePredictionOfFrictalPredict) {
   EXPECT_NE(page.find("Height map: upper, " + uname), std::string::npos);
   EXPECT_NE(page.find("Areal statistics of the upper map, " + uname), std::string::npos);
   EXPECT_NE(page.find("12 \u00d7 12 points"), std::string::npos);
-  // The line sections are the pair's: the upper map's central line is the upper face.
+  // The resolution study's lines are the pair's: the upper map's central line is the upper face.
   EXPECT_NE(page.find("the central line along x of the upper map, " + uname), std::string::npos);
   expect_no_unnamed_bound(page);
   expect_every_friction_number_named(page);
@@ -267,6 +269,109 @@ TEST(CliReport, TwoMapsSectionIsThePredictionOfFrictalPredict) {
   EXPECT_NE(section.find("hold angle over 9 drops"), std::string::npos);
   EXPECT_EQ(section.find("locked (1D rule)"), std::string::npos);
   EXPECT_EQ(section.find("hold angle from s = 0"), std::string::npos);
+}
+
+namespace {
+/// The page's polar-plot table (id directions-table) holds the rows of `frictal anisotropy --json`
+/// (the hold angle over drops per direction and the bounds), row by row to the digits it prints.
+void expect_directions_table_is(const std::string& page, const nlohmann::json& t) {
+  const auto tb = page.find("id=\"directions-table\"");
+  ASSERT_NE(tb, std::string::npos);
+  const std::string table = page.substr(tb, page.find("</table>", tb) - tb);
+  std::size_t at = table.find("</tr>");  // past the header
+  for (const auto& row : t["directions"]) {
+    const auto b = table.find("<tr>", at), e = table.find("</tr>", b);
+    ASSERT_NE(e, std::string::npos);
+    const std::string tr = table.substr(b, e - b);
+    at = e;
+    auto d = [&](const char* key) { return row[key].get<double>(); };
+    char want[200];
+    std::snprintf(want, sizeof want,
+                  "<tr><td>%.1f\u00b0</td><td>%.4f\u00b0</td><td>%.4f\u00b0 \u2026 %.4f\u00b0</td><td>%.4f\u00b0</td>"
+                  "<td>%.4f\u00b0</td><td>%.4f\u00b0 / %.4f\u00b0</td><td>%.4f\u00b0</td>",
+                  d("direction_deg"), d("hold_angle_q50_deg"), d("hold_angle_q05_deg"), d("hold_angle_q95_deg"),
+                  d("upper_bound_friction_angle_deg"), d("signature_bound_friction_angle_deg"), d("theta_forward_deg"),
+                  d("theta_backward_deg"), d("sigma_deg"));
+    EXPECT_EQ(tr, std::string(want));
+  }
+  EXPECT_EQ(table.find("<tr>", at), std::string::npos);  // no row more than the command's
+}
+}  // namespace
+
+TEST(CliReport, AMapsPolarPlotIsAnisotropyOfTheMapAgainstItself) {
+  // One rough map (oblique sines): the polar plot's rows are `frictal anisotropy MAP --areal --hold`'s,
+  // the map against itself turned over, with the page's directions and drops; along +x the median
+  // hold angle is the headline's (`frictal predict MAP`).
+  const double a = 1e-6, A = 2e-7, kPi = std::numbers::pi;
+  frictal::Map m;
+  m.nx = 12, m.ny = 10;  // small: a map against itself mates, and its drops tilt far
+  m.dx = m.dy = a;
+  for (std::size_t j = 0; j < m.ny; ++j)
+    for (std::size_t i = 0; i < m.nx; ++i)
+      m.heights.push_back(
+          A * (std::sin(2 * kPi * double(i) / 6 + 0.7 * double(j)) + 0.5 * std::sin(2 * kPi * double(j) / 5)));
+  const std::string file = temp_path("one-map.x3p");
+  ASSERT_TRUE(frictal::write_x3p(file, m).ok());
+  // (mu_a = 0: a map mated with itself takes the map model many times longer to tilt with mu_a > 0)
+  const std::string opts = " --detrend none --drops 3 --threads 2 -q";
+  const std::string page_file = temp_path("one-map.html");
+  auto r = run_cli("report " + file + " -o " + page_file + opts + " --directions 4 --resolution-steps 0");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string page = read_file(page_file);
+  auto an = run_cli("anisotropy " + file + " --areal --hold --directions 4" + opts + " --json");
+  ASSERT_EQ(an.code, 0) << an.err;
+  const nlohmann::json t = nlohmann::json::parse(an.out);
+  ASSERT_EQ(t["directions"].size(), 4u);
+  expect_directions_table_is(page, t);
+  auto pr = run_cli("predict " + file + opts + " --json");
+  ASSERT_EQ(pr.code, 0) << pr.err;
+  const nlohmann::json p = nlohmann::json::parse(pr.out);
+  char head[64], first[64];
+  std::snprintf(head, sizeof head, "%.4f", p["friction_angle_deg"].get<double>());
+  std::snprintf(first, sizeof first, "%.4f", t["directions"][0]["hold_angle_q50_deg"].get<double>());
+  EXPECT_EQ(std::string(head), std::string(first));
+  const std::string name = file.substr(file.rfind('/') + 1);
+  EXPECT_NE(page.find("frictal anisotropy " + name + " --areal --hold --directions 4 --drops 3"), std::string::npos);
+  EXPECT_NE(page.find("Hold angle over drops by direction"), std::string::npos);
+
+  // The areal signature section is `frictal areal`'s along the headline's direction (+x): its
+  // theta_max both ways, sigma, the grid's bound and its mu, to the digits the page prints.
+  auto ar = run_cli("areal " + file + " --detrend none --threads 2 --json");
+  ASSERT_EQ(ar.code, 0) << ar.err;
+  const nlohmann::json g = nlohmann::json::parse(ar.out);
+  const auto sec = page.find("<section id=\"areal-signature\">");
+  ASSERT_NE(sec, std::string::npos);
+  const std::string section = page.substr(sec, page.find("</section>", sec) - sec);
+  auto cells = [&](const char* name, const std::string& a, const std::string& b) {
+    return "<tr><th>" + std::string(name) + "</th><td>" + a + "</td><td>" + b + "</td></tr>";
+  };
+  auto degs = [](double v) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.3f\u00b0", v);
+    return std::string(t);
+  };
+  const double tf = g["theta_max_forward_deg"].get<double>(), tb = g["theta_max_backward_deg"].get<double>();
+  EXPECT_GT(tf, 0.5);  // a rough map: the rows below say something
+  EXPECT_NE(section.find(cells("\u03b8_max (steepest contact of the grid)", degs(tf), degs(tb))), std::string::npos)
+      << section;
+  const std::string sd = degs(g["contact_slope_std_deg"].get<double>());
+  EXPECT_NE(section.find(cells("\u03c3 (std of the contact slopes)", sd, sd)), std::string::npos);
+  // The grid's bound atan(mu_a) + theta_max (Eq. 6) with mu_a = 0, from `areal`'s theta_max both ways.
+  const double ta = 0;
+  EXPECT_NE(section.find(cells("the grid's bound \u03b8_a + \u03b8_max (Eq. 6)", degs(ta + tf), degs(ta + tb))),
+            std::string::npos);
+  EXPECT_NE(section.find(degs(g["upper_bound_friction_angle_deg"].get<double>())), std::string::npos);
+  char mu[32];
+  std::snprintf(mu, sizeof mu, "<td>%.4f</td>", g["upper_bound_friction_coefficient"].get<double>());
+  EXPECT_NE(section.find(mu), std::string::npos) << mu;
+  EXPECT_NE(section.find("frictal areal " + name + " --angle 0</code>"), std::string::npos);
+  // A map's page has no line signature, line slopes, line bound or line hold angle: only the
+  // resolution study (here none) is of the central line.
+  for (const char* id : {"id=\"signature\"", "id=\"slopes\"", "id=\"friction\"", "id=\"hold\""})
+    EXPECT_EQ(page.find(id), std::string::npos) << id;
+  EXPECT_NE(page.find("<section id=\"areal-slopes\">"), std::string::npos);
+  expect_no_unnamed_bound(page);
+  expect_every_friction_number_named(page);
 }
 
 TEST(CliReport, AMapPairsPageNamesBothMapsAndItsNumbersAreTheCommands) {
@@ -321,31 +426,12 @@ TEST(CliReport, AMapPairsPageNamesBothMapsAndItsNumbersAreTheCommands) {
   std::snprintf(phi, sizeof phi, "<b>\u03c6 = %.3f\u00b0</b>", p["friction_angle_deg"].get<double>());
   EXPECT_NE(page.find(phi), std::string::npos) << phi;
 
-  // The polar plot's table is `frictal anisotropy`'s on the pair (the hold angle over drops per
-  // direction and the bounds), row by row to the digits it prints.
+  // The polar plot's table is `frictal anisotropy`'s on the pair.
   auto an = run_cli("anisotropy " + lower + " --upper " + upper + " --areal --hold --directions 4" + opts + " --json");
   ASSERT_EQ(an.code, 0) << an.err;
   const nlohmann::json t = nlohmann::json::parse(an.out);
   ASSERT_EQ(t["directions"].size(), 4u);
-  const auto tb = page.find("id=\"directions-table\"");
-  ASSERT_NE(tb, std::string::npos);
-  const std::string table = page.substr(tb, page.find("</table>", tb) - tb);
-  std::size_t at = table.find("</tr>");  // past the header
-  for (const auto& row : t["directions"]) {
-    const auto b = table.find("<tr>", at), e = table.find("</tr>", b);
-    ASSERT_NE(e, std::string::npos);
-    const std::string tr = table.substr(b, e - b);
-    at = e;
-    auto d = [&](const char* key) { return row[key].get<double>(); };
-    char want[200];
-    std::snprintf(want, sizeof want,
-                  "<tr><td>%.1f\u00b0</td><td>%.4f\u00b0</td><td>%.4f\u00b0 \u2026 %.4f\u00b0</td><td>%.4f\u00b0</td>"
-                  "<td>%.4f\u00b0</td><td>%.4f\u00b0 / %.4f\u00b0</td><td>%.4f\u00b0</td>",
-                  d("direction_deg"), d("hold_angle_q50_deg"), d("hold_angle_q05_deg"), d("hold_angle_q95_deg"),
-                  d("upper_bound_friction_angle_deg"), d("signature_bound_friction_angle_deg"), d("theta_forward_deg"),
-                  d("theta_backward_deg"), d("sigma_deg"));
-    EXPECT_EQ(tr, std::string(want));
-  }
+  expect_directions_table_is(page, t);
   // Along +x the polar plot's median is the headline's.
   char head[64];
   std::snprintf(head, sizeof head, "%.4f", p["friction_angle_deg"].get<double>());
