@@ -83,35 +83,13 @@ int run_hold(const Args& a) {
   const HoldStatistics& chosen = locked_mode ? p.locked_friction_angle : p.friction_angle;
   const std::string model = locked_mode ? "map-continuous-locked" : p.model;
   if (a.json) {
-    nlohmann::json j;
-    j["lower"] = a.lower;
-    j["upper"] = a.upper.empty() ? a.lower : a.upper;
-    j["direction_deg"] = a.angle;
-    j["lateral"] = locked_mode ? "locked" : "free";
-    j["model"] = model;
-    j["in_place"] = a.in_place;
-    j["atomic_friction"] = p.atomic_friction;
-    j["runaway_distance_m"] = p.runaway_distance;
-    j["drops"] = p.drops;
-    j["drop_range_m"] = p.drop_range;
-    if (p.single_drop) {
-      j["start_offset_m"] = p.start_offset;
-      j["rest_offset_m"] = p.rest_offset;
-      j["hold_angle_deg"] = to_deg(chosen.q50);
-      if (locked_mode) j["hold_angle_free_deg"] = to_deg(p.friction_angle.q50);
-      j["steering_deg"] = to_deg(p.drop_steering.at(0));  // the free block's run-away
-    } else {
-      hold_statistics_json(j, "hold_angle", chosen);
-      if (locked_mode) hold_statistics_json(j, "hold_angle_free", p.friction_angle, true);
-      nlohmann::json angles = nlohmann::json::array(), offsets = nlohmann::json::array();
-      for (double v : locked_mode ? p.drop_angles_locked : p.drop_angles) angles.push_back(to_deg(v));
-      for (const auto& q : p.drop_offsets) offsets.push_back(q);
-      j["drop_hold_angles_deg"] = angles;
-      j["drop_offsets_m"] = offsets;
-    }
-    j["upper_bound_friction_angle_deg"] = to_deg(p.upper_bound_friction_angle);
-    j["conditioning"] = p.conditioning;
-    j["warnings"] = warnings_json(p.warnings);
+    RunRecord run;
+    run.lower = a.lower;
+    run.upper = a.upper.empty() ? a.lower : a.upper;
+    run.conditioning = p.conditioning;
+    run.warnings = p.warnings;
+    nlohmann::json j = object_of(areal_hold_columns(), ArealHoldReport{p, locked_mode, a.in_place});
+    put_columns(j, run_record_columns(), run);
     print_json(j);
     return 0;
   }
@@ -217,23 +195,14 @@ std::function<int()> setup(CLI::App& app) {
     }
     require(!(a->json && a->output == "-"), "--json and -o - would both write to standard output; choose one");
     if (a->json) {
-      nlohmann::json j;
-      j["lower"] = a->lower;
-      j["upper"] = a->upper.empty() ? a->lower : a->upper;
-      j["direction_deg"] = a->angle;
-      j["offsets"] = r.offset.size();
-      j["theta_max_forward_deg"] = to_deg(r.theta_max_forward);
-      j["theta_max_backward_deg"] = to_deg(r.theta_max_backward);
-      j["theta_max_lift_deg"] = to_deg(r.theta_max_lift);
-      j["contact_slope_mean_deg"] = to_deg(r.contact_slope_mean);
-      j["contact_slope_std_deg"] = to_deg(r.contact_slope_std);
-      // theta_max-based: the rigid upper bound (the prediction of a tilt test is `frictal predict`).
-      j["upper_bound_friction_angle_deg"] = to_deg(p.friction_angle);
-      j["upper_bound_friction_coefficient"] = p.friction_coefficient;
-      j["eq18_low_friction_coefficient"] = p.friction_coefficient_low;
-      j["evaluated_nodes"] = r.evaluated_nodes;
-      j["conditioning"] = a->conditioning;
-      j["warnings"] = warnings_json(warnings);
+      RunRecord run;
+      run.lower = a->lower;
+      run.upper = a->upper.empty() ? a->lower : a->upper;
+      run.conditioning = a->conditioning;
+      run.warnings = warnings;
+      nlohmann::json j = object_of(areal_signature_columns(), r);
+      put_columns(j, areal_bound_columns(), p);  // the grid's theta_max + theta_a, not a bound of a tilt test
+      put_columns(j, run_record_columns(), run);
       print_json(j);
     } else {
       fmt::print(

@@ -77,57 +77,18 @@ std::function<int()> setup(CLI::App& app) {
     if (progress) fmt::print(stderr, "\n");
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const ArealTiltResult& r = m.run;
-    const ArealTiltHold& cont = m.matched();
     const ArealTiltHoldSpread& spread = m.spread;
     for (const auto& w : r.warnings)
       if (!a->json) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
     if (a->json) {
-      nlohmann::json j;
-      j["warnings"] = nlohmann::json::array();
-      for (const auto& w : r.warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
-      j["lower"] = a->lower;
-      j["upper"] = a->upper.empty() ? a->lower : a->upper;
-      j["direction_deg"] = angle_deg;
-      j["runaway_distance_m"] = m.runaway_distance;
-      if (!a->predict_only) {
-        j["friction_angle_deg"] = to_deg(r.friction_angle);
-        j["ran_away"] = r.ran_away;
-      }
-      j["rest_offset_m"] = {r.rest_offset[0], r.rest_offset[1]};
-      j["predicted_hold_angle_deg"] = to_deg(m.free.hold_angle);
-      j["predicted_hold_angle_locked_deg"] = to_deg(m.locked.hold_angle);
-      j["predicted_steering_deg"] = to_deg(m.free.steering);
-      j["continuous_runaway_increment_deg"] = to_deg(cont.runaway_increment);
-      j["continuous_rest_offset_m"] = {cont.rest_offset[0], cont.rest_offset[1]};
-      j["continuous_evaluations"] = cont.evaluations;
-      j["continuous_hold_angle_range_deg"] = {to_deg(spread.low), to_deg(spread.high)};
-      j["continuous_slips"] = spread.slips;
-      j["continuous_ambiguous_slips"] = spread.ambiguous;
-      if (m.seated) {  // the rigid block from the simulated block's last seat, at its tilt
-        j["seat_tilt_deg"] = to_deg(m.seat_tilt);
-        j["seat_offset_m"] = {m.seat_offset[0], m.seat_offset[1]};
-        j["continuous_seated_hold_angle_deg"] = to_deg(m.seated_hold_angle);
-      }
-      nlohmann::json cs = nlohmann::json::array();
-      for (const auto& st : cont.stops) cs.push_back({to_deg(st[0]), st[1], st[2]});
-      j["continuous_increments"] = cs;  // [tilt_deg, x_m, y_m] after each increment
-      j["sphere_radius_m"] = r.sphere_radius;
-      j["collision"] = o.exact_contacts ? "exact" : "native";
-      j["lateral"] = o.lock_lateral ? "locked" : "free";
-      if (!a->predict_only) {
-        j["steering_deg"] = to_deg(r.steering);
-        nlohmann::json tr = nlohmann::json::array();
-        for (const ArealTiltIncrement& i : r.trace)
-          tr.push_back({to_deg(i.tilt), i.x, i.y, i.rested, i.steps, i.unbalanced_force, i.speed});
-        j["increment_trace"] = tr;  // [tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed]
-      }
-      j["tilt_step_deg"] = tilt_step_deg;
-      j["spheres"] = r.spheres;
-      j["steps"] = r.steps;
-      j["max_contacts"] = r.max_contacts;
-      j["unsettled_increments"] = r.unsettled;
-      j["seconds"] = secs;
-      j["conditioning"] = conditioning_done;
+      RunRecord run;
+      run.lower = a->lower;
+      run.upper = a->upper.empty() ? a->lower : a->upper;
+      run.conditioning = conditioning_done;
+      run.warnings = r.warnings;
+      nlohmann::json j =
+          object_of(areal_tilt_report_columns(), ArealTiltReport{m, o.angle, o.tilt_step, o.exact_contacts, secs});
+      put_columns(j, run_record_columns(), run);
       print_json(j);
     } else {
       if (a->predict_only)

@@ -1,5 +1,7 @@
 // frictal columns [TABLE] [--json|--markdown] — the output tables (frictal/outputs.hpp): every key
 // that a command's --json and Python's dicts print, with its unit and meaning, table by table.
+#include <optional>
+
 #include "common.hpp"
 #include "frictal/outputs.hpp"
 #include "frictal/settings.hpp"
@@ -10,6 +12,37 @@ namespace {
 std::string python_text(const ColumnInfo& c) {
   if (c.python.empty()) return "";
   return c.python + (c.unit == "deg" ? " (rad)" : "");
+}
+
+// The listing's own record types as output tables: `frictal columns --json` is written from them.
+const Columns<ColumnInfo>& column_info_columns() {
+  using T = ColumnInfo;
+  static const Columns<T> cols = {
+      column<T>(
+          "key", "text", "the CLI's JSON key (\"\": Python only)", [](const T& c) { return c.key; }, "-"),
+      column<T>(
+          "unit", "text", "the interface unit", [](const T& c) { return c.unit; }, "-"),
+      column<T>(
+          "help", "text", "what it means", [](const T& c) { return c.help; }, "-"),
+      column<T>(
+          "python", "text", "the key in Python's dicts (SI; \"\": not in Python's dicts)",
+          [](const T& c) { return c.python; }, "-"),
+  };
+  return cols;
+}
+
+const Columns<OutputTable>& output_table_columns() {
+  using T = OutputTable;
+  static const Columns<T> cols = {
+      column<T>(
+          "name", "text", "the table's name", [](const T& t) { return t.name; }, "-"),
+      column<T>(
+          "help", "text", "which outputs carry it", [](const T& t) { return t.help; }, "-"),
+      list_column<T>(
+          "columns", "column_info", "its columns", column_info_columns(),
+          [](const T& t) { return std::optional(t.columns); }, "-"),
+  };
+  return cols;
 }
 
 std::function<int()> setup(CLI::App& app) {
@@ -37,12 +70,7 @@ std::function<int()> setup(CLI::App& app) {
     }
     if (*json) {
       nlohmann::json j = nlohmann::json::array();
-      for (const OutputTable* t : tables) {
-        nlohmann::json cols = nlohmann::json::array();
-        for (const ColumnInfo& c : t->columns)
-          cols.push_back({{"key", c.key}, {"unit", c.unit}, {"help", c.help}, {"python", c.python}});
-        j.push_back({{"name", t->name}, {"help", t->help}, {"columns", cols}});
-      }
+      for (const OutputTable* t : tables) j.push_back(object_of(output_table_columns(), *t));
       print_json(j);
     } else if (*markdown) {
       for (const OutputTable* t : tables) {

@@ -4,6 +4,7 @@
 // site's CLI reference is generated from it (scripts/docs/gen_reference.py), so no option's text
 // is ever copied by hand.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,52 +28,152 @@ std::vector<KnownField> known_fields() {
   return out;
 }
 
-nlohmann::json option_json(const CLI::Option& o, const std::vector<KnownField>& fields) {
-  nlohmann::json names = nlohmann::json::array();
-  for (const std::string& s : o.get_snames()) names.push_back("-" + s);
-  for (const std::string& l : o.get_lnames()) names.push_back("--" + l);
-  nlohmann::json j = {{"name", o.get_name()},
-                      {"names", names},
-                      {"positional", o.get_positional()},
-                      {"flag", o.get_items_expected_max() == 0},
-                      {"required", o.get_required()},
-                      {"value", o.get_type_name()},
-                      {"default", o.get_default_str()},
-                      {"description", o.get_description()},
-                      {"group", o.get_group()},
-                      {"field", nullptr}};
-  if (o.get_positional()) j["names"] = nlohmann::json::array({o.get_name()});
-  for (const KnownField& k : fields) {
-    if (k.help_line != o.get_description()) continue;
-    const Field& f = *k.field;
-    j["field"] = {{"name", f.name},         {"unit", text_unit(f)}, {"si_unit", f.unit}, {"default", default_text(f)},
-                  {"range", range_text(f)}, {"help", f.help}};
-    break;
-  }
-  return j;
+/// One option as the listing gives it.
+struct OptionListing {
+  std::string name;
+  std::vector<std::string> names;  ///< every name it is given by ("-o", "--output"); a positional: its name
+  bool positional = false, flag = false, required = false;
+  std::string value, default_text, description, group;
+  const Field* field = nullptr;  ///< the settings field it comes from, if any
+};
+/// One command (or subcommand) as the listing gives it.
+struct CommandListing {
+  std::string name, path, description, help;
+  std::vector<OptionListing> options;
+  bool fallthrough = false, needs_subcommand = false;
+  std::vector<CommandListing> subcommands;
+};
+/// The whole CLI.
+struct ProgramListing {
+  std::string program, description;
+  std::vector<CommandListing> commands;
+};
+
+// The listing's own output tables: `frictal commands --json` is written from them.
+const Columns<Field>& option_field_columns() {
+  // The settings field's columns that an option lists (its option and type are the option's own).
+  static const Columns<Field> cols = [] {
+    Columns<Field> c;
+    for (const Column<Field>& f : settings_field_columns())
+      if (f.key != "option" && f.key != "type") c.push_back(f);
+    return c;
+  }();
+  return cols;
 }
 
-nlohmann::json command_json(CLI::App& app, const std::string& path, const std::vector<KnownField>& fields) {
-  nlohmann::json options = nlohmann::json::array();
+const Columns<OptionListing>& option_listing_columns() {
+  using T = OptionListing;
+  static const Columns<T> cols = {
+      column<T>(
+          "name", "text", "the option's name", [](const T& o) { return o.name; }, "-"),
+      column<T>(
+          "names", "text", "every name it is given by (a positional: its name)", [](const T& o) { return o.names; },
+          "-"),
+      column<T>(
+          "positional", "flag", "a positional argument", [](const T& o) { return o.positional; }, "-"),
+      column<T>(
+          "flag", "flag", "takes no value", [](const T& o) { return o.flag; }, "-"),
+      column<T>(
+          "required", "flag", "must be given", [](const T& o) { return o.required; }, "-"),
+      column<T>(
+          "value", "text", "the kind of value it takes (NUMBER, TEXT, ...)", [](const T& o) { return o.value; }, "-"),
+      column<T>(
+          "default", "text", "the default as the help shows it", [](const T& o) { return o.default_text; }, "-"),
+      column<T>(
+          "description", "text", "its help line", [](const T& o) { return o.description; }, "-"),
+      column<T>(
+          "group", "text", "its group in the help", [](const T& o) { return o.group; }, "-"),
+      only_if(object_column<T>(
+                  "field", "settings_field", "the settings field it comes from (null: none)", option_field_columns(),
+                  [](const T& o) { return o.field ? std::optional<Field>(*o.field) : std::nullopt; }, "-"),
+              [](const T&) { return true; }),
+  };
+  return cols;
+}
+
+const Columns<CommandListing>& command_listing_columns() {
+  using T = CommandListing;
+  static const Columns<T> cols = {
+      column<T>(
+          "name", "text", "the command's name", [](const T& c) { return c.name; }, "-"),
+      column<T>(
+          "path", "text", "how it is called (frictal ...)", [](const T& c) { return c.path; }, "-"),
+      column<T>(
+          "description", "text", "one line", [](const T& c) { return c.description; }, "-"),
+      list_column<T>(
+          "options", "command_option", "its options", option_listing_columns(),
+          [](const T& c) { return std::optional(c.options); }, "-"),
+      column<T>(
+          "fallthrough", "flag", "options of its parent are read after it", [](const T& c) { return c.fallthrough; },
+          "-"),
+      column<T>(
+          "needs_subcommand", "flag", "a subcommand must be given", [](const T& c) { return c.needs_subcommand; }, "-"),
+      column<T>(
+          "help", "text", "its help page", [](const T& c) { return c.help; }, "-"),
+      list_column<T>(
+          "subcommands", "command_listing", "its subcommands, each listed as a command", cols,
+          [](const T& c) { return std::optional(c.subcommands); }, "-"),
+  };
+  return cols;
+}
+
+const Columns<ProgramListing>& program_listing_columns() {
+  using T = ProgramListing;
+  static const Columns<T> cols = {
+      column<T>(
+          "program", "text", "the program's name", [](const T& p) { return p.program; }, "-"),
+      column<T>(
+          "description", "text", "what it does", [](const T& p) { return p.description; }, "-"),
+      list_column<T>(
+          "commands", "command_listing", "every command", command_listing_columns(),
+          [](const T& p) { return std::optional(p.commands); }, "-"),
+  };
+  return cols;
+}
+
+OptionListing option_listing(const CLI::Option& o, const std::vector<KnownField>& fields) {
+  OptionListing l;
+  l.name = o.get_name();
+  if (o.get_positional()) {
+    l.names = {o.get_name()};
+  } else {
+    for (const std::string& s : o.get_snames()) l.names.push_back("-" + s);
+    for (const std::string& n : o.get_lnames()) l.names.push_back("--" + n);
+  }
+  l.positional = o.get_positional();
+  l.flag = o.get_items_expected_max() == 0;
+  l.required = o.get_required();
+  l.value = o.get_type_name();
+  l.default_text = o.get_default_str();
+  l.description = o.get_description();
+  l.group = o.get_group();
+  for (const KnownField& k : fields)
+    if (k.help_line == o.get_description()) {
+      l.field = k.field;
+      break;
+    }
+  return l;
+}
+
+CommandListing command_listing(CLI::App& app, const std::string& path, const std::vector<KnownField>& fields) {
+  CommandListing c;
+  c.name = app.get_name();
+  c.path = path;
+  c.description = app.get_description();
   const CLI::Option* help = app.get_help_ptr();
   for (const CLI::Option* o : app.get_options()) {
     // Hidden options (retired names still read, group "") and -h/--help are not documented.
     if (o == help || o->get_group().empty()) continue;
-    options.push_back(option_json(*o, fields));
+    c.options.push_back(option_listing(*o, fields));
   }
-  nlohmann::json subs = nlohmann::json::array();
+  c.fallthrough = app.get_fallthrough();
+  c.needs_subcommand = app.get_require_subcommand_min() > 0;
+  c.help = app.help();
   for (CLI::App* s : app.get_subcommands([](CLI::App*) { return true; })) {
     if (s->get_group().empty()) continue;
-    subs.push_back(command_json(*s, path + " " + s->get_name(), fields));
+    c.subcommands.push_back(command_listing(*s, path + " " + s->get_name(), fields));
   }
-  return {{"name", app.get_name()},
-          {"path", path},
-          {"description", app.get_description()},
-          {"options", options},
-          {"fallthrough", app.get_fallthrough()},
-          {"needs_subcommand", app.get_require_subcommand_min() > 0},
-          {"help", app.help()},
-          {"subcommands", subs}};
+  return c;
 }
 
 std::function<int()> setup(CLI::App& app) {
@@ -83,10 +184,10 @@ std::function<int()> setup(CLI::App& app) {
     while (root->get_parent()) root = root->get_parent();
     const std::vector<KnownField> fields = known_fields();
     if (*json) {
-      nlohmann::json commands = nlohmann::json::array();
+      ProgramListing p{"frictal", root->get_description(), {}};
       for (CLI::App* s : root->get_subcommands([](CLI::App*) { return true; }))
-        commands.push_back(command_json(*s, "frictal " + s->get_name(), fields));
-      print_json({{"program", "frictal"}, {"description", root->get_description()}, {"commands", commands}});
+        p.commands.push_back(command_listing(*s, "frictal " + s->get_name(), fields));
+      print_json(object_of(program_listing_columns(), p));
     } else {
       for (CLI::App* s : root->get_subcommands([](CLI::App*) { return true; }))
         fmt::print("  {:<12} {}\n", s->get_name(), s->get_description());

@@ -84,6 +84,7 @@ inline nlohmann::json json_value(const std::string& unit, const OutputValue& si)
   }
   if (auto* t = std::get_if<std::string>(&v)) return *t;
   if (auto* b = std::get_if<bool>(&v)) return *b;
+  if (auto* texts = std::get_if<std::vector<std::string>>(&v)) return *texts;
   nlohmann::json l = nlohmann::json::array();
   for (double x : std::get<std::vector<double>>(v)) l.push_back(std::isfinite(x) ? nlohmann::json(x) : nullptr);
   return l;
@@ -103,28 +104,49 @@ inline nlohmann::json json_shaped(nlohmann::json flat, const std::vector<std::si
   return out;
 }
 
+inline nlohmann::json json_nested(const std::string& unit, const std::vector<OutputRow>& rows);
+
 /// A nested object in JSON: each of its fields under its key, in its interface unit.
 inline nlohmann::json json_row(const OutputRow& row) {
   nlohmann::json o = nlohmann::json::object();
-  for (const OutputField& f : row) {
-    if (f.info.key.empty()) continue;
-    if (!is_nested_unit(f.info.unit)) {
-      o[f.info.key] = json_shaped(json_value(f.info.unit, f.si), f.shape);
-    } else if (f.info.unit.starts_with("object:")) {
-      o[f.info.key] = f.rows.empty() ? nlohmann::json(nullptr) : json_row(f.rows.front());
+  for (const OutputField& f : row)
+    if (!f.info.key.empty())
+      o[f.info.key] = f.nested ? json_nested(f.info.unit, f.rows) : json_shaped(json_value(f.info.unit, f.si), f.shape);
+  return o;
+}
+
+/// A nested column's objects in JSON by its unit: "object:" the one object (null: none), "rows:"
+/// a list of lists of values, "map:" an object of objects under each row's first value, "list:"
+/// a list of objects.
+inline nlohmann::json json_nested(const std::string& unit, const std::vector<OutputRow>& rows) {
+  if (unit.starts_with("object:")) return rows.empty() ? nlohmann::json(nullptr) : json_row(rows.front());
+  if (unit.starts_with("map:")) {
+    nlohmann::json m = nlohmann::json::object();
+    for (const OutputRow& r : rows) {
+      if (r.empty()) continue;
+      const OutputRow rest(r.begin() + 1, r.end());
+      m[std::get<std::string>(r.front().si)] = json_row(rest);
+    }
+    return m;
+  }
+  nlohmann::json l = nlohmann::json::array();
+  for (const OutputRow& r : rows) {
+    if (unit.starts_with("rows:")) {
+      nlohmann::json values = nlohmann::json::array();
+      for (const OutputField& f : r) values.push_back(json_value(f.info.unit, f.si));
+      l.push_back(values);
     } else {
-      nlohmann::json l = nlohmann::json::array();
-      for (const OutputRow& r : f.rows) l.push_back(json_row(r));
-      o[f.info.key] = l;
+      l.push_back(json_row(r));
     }
   }
-  return o;
+  return l;
 }
 
 /// The generic JSON writer of an output table: every column of `cols` that the CLI prints (a
 /// non-empty key) and that `value` has (a value, or nested objects: "object:" one, "list:" a
-/// list) into `j`, in its interface unit. Declared columns without either are written by the
-/// caller under their declared keys.
+/// list, "rows:" a list of lists of values, "map:" an object of objects) into `j`, in its
+/// interface unit. Declared columns without either are written by the caller under their declared
+/// keys.
 template <class T>
 void put_columns(nlohmann::json& j, const Columns<T>& cols, const T& value) {
   for (const Column<T>& c : cols) {
@@ -133,14 +155,7 @@ void put_columns(nlohmann::json& j, const Columns<T>& cols, const T& value) {
       j[c.key] = json_shaped(json_value(c.unit, c.si(value)), c.shape ? c.shape(value) : std::vector<std::size_t>());
       continue;
     }
-    const std::vector<OutputRow> rows = c.rows(value);
-    if (c.unit.starts_with("object:")) {
-      j[c.key] = rows.empty() ? nlohmann::json(nullptr) : json_row(rows.front());
-    } else {
-      nlohmann::json l = nlohmann::json::array();
-      for (const OutputRow& r : rows) l.push_back(json_row(r));
-      j[c.key] = l;
-    }
+    j[c.key] = json_nested(c.unit, c.rows(value));
   }
 }
 /// An output table's columns as one JSON object.

@@ -28,10 +28,6 @@ std::function<int()> setup(CLI::App& app) {
       nlohmann::json j = object_of(surface_data_columns(), s);
       if (s.is_map) put_columns(j, map_grid_columns(), s.map);
       put_columns(j, run_record_columns(), in);
-      // The messages alone, as the text output gives them (no codes: not the warning objects of
-      // the other commands).
-      j["warnings"] = nlohmann::json::array();
-      for (const Warning& w : s.warnings) j["warnings"].push_back(w.message);
       print_json(j);
       return 0;
     }

@@ -60,20 +60,6 @@ inline std::function<void(std::size_t, std::size_t)> drop_progress(const std::st
   };
 }
 
-/// A distribution over drops as JSON keys `name`_mean_deg, _std_deg, _q05_deg, _q50_deg,
-/// _q95_deg, _min_deg, _max_deg (or only the quantiles with `quantiles_only`).
-inline void hold_statistics_json(nlohmann::json& j, const std::string& name, const HoldStatistics& h,
-                                 bool quantiles_only = false) {
-  j[name + "_q05_deg"] = to_deg(h.q05);
-  j[name + "_q50_deg"] = to_deg(h.q50);
-  j[name + "_q95_deg"] = to_deg(h.q95);
-  if (quantiles_only) return;
-  j[name + "_mean_deg"] = to_deg(h.mean);
-  j[name + "_std_deg"] = to_deg(h.std);
-  j[name + "_min_deg"] = to_deg(h.min);
-  j[name + "_max_deg"] = to_deg(h.max);
-}
-
 /// A map read as the prediction reads it (its reader's warnings kept for the result, already
 /// printed); `needs` says what the command wants of a line profile, e.g. "areal needs maps".
 inline PredictSurface read_map_surface(const std::string& path, const InputOptions& in, const char* needs) {

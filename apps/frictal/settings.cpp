@@ -7,19 +7,39 @@
 namespace frictal::cli {
 namespace {
 
-const char* type_name(FieldType t) {
-  switch (t) {
-    case FieldType::Real: return "number";
-    case FieldType::Integer: return "integer";
-    case FieldType::Boolean: return "boolean";
-    case FieldType::Choice: return "word";
-  }
-  return "";
+/// The listing of every settings table (`frictal settings --json`): the generators by name, the
+/// tilt test's and the 3D tilt test's tables; declared by the listing's own output tables.
+struct SettingsListing {};
+
+const Columns<GeneratorInfo>& generator_listing_columns() {
+  using T = GeneratorInfo;
+  static const Columns<T> cols = {
+      column<T>(
+          "name", "text", "the generator (the key of its entry)", [](const T& g) { return g.name; }, "-"),
+      column<T>(
+          "description", "text", "one line: the paper's section or equation", [](const T& g) { return g.description; },
+          "-"),
+      list_column<T>(
+          "fields", "settings_field", "its parameters", settings_field_columns(),
+          [](const T& g) { return std::optional(g.fields); }, "-"),
+  };
+  return cols;
 }
 
-nlohmann::json field_json(const Field& f) {
-  return {{"name", f.name},    {"option", cli_option_name(f)}, {"type", type_name(f.type)}, {"unit", text_unit(f)},
-          {"si_unit", f.unit}, {"default", default_text(f)},   {"range", range_text(f)},    {"help", f.help}};
+const Columns<SettingsListing>& settings_listing_columns() {
+  using T = SettingsListing;
+  static const Columns<T> cols = {
+      map_column<T>(
+          "generators", "settings_generator", "the surface generators by name", generator_listing_columns(),
+          [](const T&) { return std::optional(surface_generators()); }, "-"),
+      list_column<T>(
+          "tilt", "settings_field", "the tilt test's settings (frictal tilt, the tilt study kind)",
+          settings_field_columns(), [](const T&) { return std::optional(tilt_settings()); }, "-"),
+      list_column<T>(
+          "areal_tilt", "settings_field", "the 3D tilt test's settings (frictal areal-tilt)", settings_field_columns(),
+          [](const T&) { return std::optional(areal_tilt_settings()); }, "-"),
+  };
+  return cols;
 }
 
 std::string md_escape(std::string s) {
@@ -93,17 +113,7 @@ std::function<int()> setup(CLI::App& app) {
     if (*format == "markdown") {
       fmt::print("{}", markdown());
     } else if (*format == "json") {
-      nlohmann::json j;
-      for (const GeneratorInfo& g : surface_generators()) {
-        nlohmann::json fields = nlohmann::json::array();
-        for (const Field& f : g.fields) fields.push_back(field_json(f));
-        j["generators"][g.name] = {{"description", g.description}, {"fields", fields}};
-      }
-      j["tilt"] = nlohmann::json::array();
-      for (const Field& f : tilt_settings()) j["tilt"].push_back(field_json(f));
-      j["areal_tilt"] = nlohmann::json::array();
-      for (const Field& f : areal_tilt_settings()) j["areal_tilt"].push_back(field_json(f));
-      print_json(j);
+      print_json(object_of(settings_listing_columns(), SettingsListing{}));
     } else {
       auto print = [](const std::vector<Field>& fields) {
         for (const Field& f : fields) fmt::print("  {:<28} {}\n", cli_option_name(f), field_help(f));

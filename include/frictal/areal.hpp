@@ -76,6 +76,7 @@ struct ArealSignatureOptions {
   unsigned threads = 1;    ///< worker threads over offsets (0 = hardware); results do not depend on it
 };
 struct ArealSignature {
+  double direction = 0;             ///< the sliding direction d, from +x towards +y (unit: rad)
   std::vector<double> offset;       ///< s (unit: m)
   std::vector<double> lift;         ///< h(s), up to a constant (unit: m)
   std::vector<double> theta;        ///< contact slope at s (unit: rad)
@@ -160,8 +161,11 @@ struct AnisotropyTable {
 };
 /// Their output tables (frictal/outputs.hpp; src/areal/areal_columns.cpp).
 const Columns<AnisotropyRow>& anisotropy_row_columns();
-const Columns<AnisotropyTable>& anisotropy_columns();
-/// An areal signature (Python areal_signature(); table "areal_signature").
+/// The areal signature's output table "areal": the keys of `frictal areal --json` (with the grid's
+/// rigid bound, areal_bound_columns) and of Python's areal_signature() dict (SI).
 const Columns<ArealSignature>& areal_signature_columns();
+/// The grid's rigid bound of `frictal areal --json`: the columns of friction_columns() it prints.
+const Columns<FrictionPrediction>& areal_bound_columns();
+const Columns<AnisotropyTable>& anisotropy_columns();
 
 }  // namespace frictal

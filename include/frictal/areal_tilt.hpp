@@ -119,6 +119,9 @@ struct ArealTiltResult {
 /// `frictal areal-tilt --json` that are the run's numbers (its table "areal_tilt") and the
 /// areal-tilt study kind's outputs of the same quantities.
 const Columns<ArealTiltResult>& areal_tilt_run_columns();
+/// One increment of the run as a row of numbers (table "areal_tilt_increment";
+/// src/tilt/areal_tilt_columns.cpp): tilt, x, y, rested, steps, unbalanced force, speed.
+const Columns<ArealTiltIncrement>& areal_tilt_increment_columns();
 
 /// Called after each tilt increment with the increment just recorded (for a progress line; it
 /// must not throw).
@@ -165,6 +168,18 @@ struct ArealTiltMatched {
 /// `simulate` false: no run (needs no MuJoCo). Errors: areal_tilt's and areal_tilt_hold's.
 Result<ArealTiltMatched> areal_tilt_matched(const Map& lower, const Map& upper, const ArealTiltOptions& o,
                                             bool simulate = true, const ArealTiltProgress& progress = {});
+
+/// What `frictal areal-tilt --json` reports: the run and the predictions matched to it, with the
+/// options that name the test and the wall time.
+struct ArealTiltReport {
+  ArealTiltMatched matched;
+  double direction = 0;         ///< the tilt direction d, from +x towards +y (unit: rad)
+  double tilt_step = 0;         ///< the tilt increment (unit: rad)
+  bool exact_contacts = false;  ///< MuJoCo's collision: exact (else native)
+  double seconds = 0;           ///< wall time of the run and the predictions (unit: s)
+};
+/// Its output table (src/tilt/areal_tilt_columns.cpp): the keys of `frictal areal-tilt --json`.
+const Columns<ArealTiltReport>& areal_tilt_report_columns();
 
 /// One drop of the matched prediction as the front ends report it: the drop and, where it was
 /// computed, its spread.

@@ -171,4 +171,10 @@ DefaultRunaway default_map_runaway_distance(const Map& lower, double direction);
 /// smaller spacing (unit: m). `lower` is the (conditioned) lower map.
 void fill_map_model_defaults(const Map& lower, MapHoldOptions& t);
 
+/// The rows of numbers the map model's outputs nest (src/maphold/map_hold_columns.cpp).
+/// A point (x, y) as a row of numbers (table "offset_xy"): x_m, y_m.
+const Columns<std::array<double, 2>>& offset_xy_columns();
+/// A stop of the block (table "tilt_stop"): [tilt (deg), x (m), y (m)] (ArealTiltHold::stops).
+const Columns<std::array<double, 3>>& tilt_stop_columns();
+
 }  // namespace frictal

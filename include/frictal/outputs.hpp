@@ -20,16 +20,19 @@
 
 namespace frictal {
 
-/// An output value: a number (SI inside: rad for angles, m for lengths), a text, a flag or a list
-/// of numbers. The writers convert numbers to the column's interface unit.
-using OutputValue = std::variant<double, std::string, bool, std::vector<double>>;
+/// An output value: a number (SI inside: rad for angles, m for lengths), a text, a flag, a list
+/// of numbers or a list of texts. The writers convert numbers to the column's interface unit.
+using OutputValue = std::variant<double, std::string, bool, std::vector<double>, std::vector<std::string>>;
 
 /// What a column declares, without its value: the JSON key (with its unit suffix), the interface
 /// unit the text front ends write it in, what it means, and the key of Python's dicts (SI values).
 ///
 /// Interface units: "deg" (SI value in rad), "m", "s", "kg", "m/s", "1/s", "1" (unitless), "count"
 /// (an integer), "text", "flag", and for nested values "object:TABLE" (a JSON object whose keys
-/// are the columns of output table TABLE), "list:TABLE" (a list of such objects), "settings"
+/// are the columns of output table TABLE), "list:TABLE" (a list of such objects), "rows:TABLE" (a
+/// list of rows, each a list of the values of TABLE's columns in its order, e.g. [x, y] points or
+/// [tilt, x, y] stops, each value in its column's unit), "map:TABLE" (an object holding one
+/// object per row, under the row's first column, a text, with the row's other columns), "settings"
 /// (an object whose keys are fields of a settings table, `frictal settings`) and "map" (an object
 /// whose keys are data: versions, a study kind's outputs).
 struct ColumnInfo {
@@ -40,10 +43,11 @@ struct ColumnInfo {
 };
 
 /// One column of a nested object: its declaration and its value in SI, or for a nested column
-/// ("object:TABLE", "list:TABLE") the objects under it (`si` unused).
+/// (`nested`: "object:", "list:", "rows:", "map:" units) the objects under it (`si` unused).
 struct OutputField {
   ColumnInfo info;
   OutputValue si;
+  bool nested = false;
   std::vector<std::vector<OutputField>> rows;
   std::vector<std::size_t> shape;  ///< a list's dimensions, row-major (empty: one)
   bool fixed = false;              ///< a list of a fixed length (a point, a range): Python's tuple
@@ -51,8 +55,12 @@ struct OutputField {
 /// A nested object: the columns of its table that have a value or objects, in the table's order.
 using OutputRow = std::vector<OutputField>;
 
-/// Whether a column's unit names nested objects ("object:TABLE" or "list:TABLE").
-inline bool is_nested_unit(std::string_view unit) { return unit.starts_with("object:") || unit.starts_with("list:"); }
+/// Whether a column's unit names nested objects ("object:TABLE", "list:TABLE", "rows:TABLE" or
+/// "map:TABLE").
+inline bool is_nested_unit(std::string_view unit) {
+  return unit.starts_with("object:") || unit.starts_with("list:") || unit.starts_with("rows:") ||
+         unit.starts_with("map:");
+}
 
 /// One output quantity of result type T: its declaration and its value in SI, or for a nested
 /// column ("object:TABLE", "list:TABLE") the objects under it.
@@ -87,9 +95,10 @@ OutputRow row_of(const Columns<R>& cols, const R& value) {
   for (const Column<R>& c : cols) {
     if (!has_output(c, value)) continue;
     if (c.si)
-      row.push_back({c, c.si(value), {}, c.shape ? c.shape(value) : std::vector<std::size_t>(), c.fixed});
+      row.push_back({c, c.si(value), false, {}, c.shape ? c.shape(value) : std::vector<std::size_t>(), c.fixed});
     else
-      row.push_back({c, OutputValue(), c.rows(value), {}, false});
+      row.push_back(
+          {c, OutputValue(), true, c.rows(value), c.shape ? c.shape(value) : std::vector<std::size_t>(), false});
   }
   return row;
 }
@@ -190,6 +199,35 @@ Column<T> list_column(std::string key, const std::string& table, std::string hel
       for (const R& r : *l) out.push_back(row_of(cols, r));
     return out;
   };
+  return c;
+}
+
+/// A nested list column of T written as rows: `key` (unit "rows:TABLE") holds one list per element
+/// of the std::optional<std::vector<R>> that `f` returns (no value, no key): the values of the
+/// columns `cols` in their order, each in its own unit (a compact form of a list of objects, for
+/// series of points and stops). Python's dicts hold the rows of numbers as one array (rows,
+/// columns) in SI.
+template <class T, class R, class F>
+Column<T> rows_column(std::string key, const std::string& table, std::string help, const Columns<R>& cols, F&& f,
+                      std::string python = {}) {
+  Column<T> c = list_column<T, R>(std::move(key), table, std::move(help), cols, f, std::move(python));
+  c.unit = "rows:" + table;
+  // (rows, columns): the dimensions of Python's array of the rows.
+  c.shape = [f = std::forward<F>(f), &cols](const T& v) {
+    const auto l = f(v);
+    return std::vector<std::size_t>{l ? l->size() : 0, cols.size()};
+  };
+  return c;
+}
+
+/// A nested map column of T: `key` (unit "map:TABLE") holds one object per element of the
+/// std::optional<std::vector<R>> that `f` returns (no value, no key), under the value of the first
+/// column of `cols` (a text: the element's name), with the other columns.
+template <class T, class R, class F>
+Column<T> map_column(std::string key, const std::string& table, std::string help, const Columns<R>& cols, F&& f,
+                     std::string python = {}) {
+  Column<T> c = list_column<T, R>(std::move(key), table, std::move(help), cols, std::forward<F>(f), std::move(python));
+  c.unit = "map:" + table;
   return c;
 }
 

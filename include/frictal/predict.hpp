@@ -292,7 +292,8 @@ struct ArealHoldReport {
   bool locked = false;    ///< the locked mode's hold angles (else the free block's)
   bool in_place = false;  ///< the upper map is the upper face in place (not turned over)
 };
-/// Its output table "areal_hold" (src/predict/predict_columns.cpp).
+/// Its output table "areal_hold" (src/predict/predict_columns.cpp): the keys of `frictal areal
+/// --lateral|--drops|--start-offset --json` and of Python's areal_hold() dict.
 const Columns<ArealHoldReport>& areal_hold_columns();
 
 /// The value of a column in its interface unit (degrees for "deg"; NaN/inf stay as they are).

@@ -111,8 +111,8 @@ inline std::string num(double v) {
 inline py::array_t<double> arr(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
 
 /// An output value as Python's dicts hold it (frictal/outputs.hpp): SI numbers, an int for a
-/// "count" column, a numpy array for a list (of ints for a "count" column), of the column's
-/// `shape` where it has one.
+/// "count" column, a list of str for a list of texts, a numpy array for a list of numbers (of ints
+/// for a "count" column), of the column's `shape` where it has one.
 inline py::object py_value(const std::string& unit, const OutputValue& v, const std::vector<std::size_t>& shape = {},
                            bool fixed = false) {
   if (auto* d = std::get_if<double>(&v)) {
@@ -121,6 +121,11 @@ inline py::object py_value(const std::string& unit, const OutputValue& v, const 
   }
   if (auto* t = std::get_if<std::string>(&v)) return py::str(*t);
   if (auto* b = std::get_if<bool>(&v)) return py::bool_(*b);
+  if (auto* texts = std::get_if<std::vector<std::string>>(&v)) {
+    py::list names;
+    for (const std::string& t : *texts) names.append(py::str(t));
+    return names;
+  }
   const std::vector<double>& l = std::get<std::vector<double>>(v);
   if (fixed) {  // a point or a range: a tuple
     py::tuple t(l.size());
@@ -140,9 +145,37 @@ inline py::object py_value(const std::string& unit, const OutputValue& v, const 
 }
 
 /// A nested column's objects as Python holds them: "object:" one dict (None without one),
-/// "list:" a list of dicts.
-inline py::object py_rows(const std::string& unit, const std::vector<OutputRow>& rows) {
+/// "list:" a list of dicts, "map:" a dict of dicts under each row's first value (a text), "rows:"
+/// rows of numbers as one array of `shape` (rows, columns) in SI, other rows as a list of tuples.
+inline py::object py_rows(const std::string& unit, const std::vector<OutputRow>& rows,
+                          const std::vector<std::size_t>& shape = {}) {
   if (unit.starts_with("object:")) return rows.empty() ? py::object(py::none()) : py::object(py_row(rows.front()));
+  if (unit.starts_with("map:")) {
+    py::dict m;
+    for (const OutputRow& r : rows)
+      if (!r.empty()) m[py::str(std::get<std::string>(r.front().si))] = py_row(OutputRow(r.begin() + 1, r.end()));
+    return m;
+  }
+  if (unit.starts_with("rows:")) {
+    std::vector<double> flat;
+    bool numbers = true;
+    for (const OutputRow& r : rows)
+      for (const OutputField& f : r) {
+        const double* d = std::get_if<double>(&f.si);
+        numbers = numbers && d;
+        if (d) flat.push_back(*d);
+      }
+    const std::size_t width = shape.size() == 2 ? shape[1] : rows.empty() ? 0 : rows.front().size();
+    if (numbers && flat.size() == rows.size() * width)
+      return arr(flat).reshape({static_cast<py::ssize_t>(rows.size()), static_cast<py::ssize_t>(width)});
+    py::list l;
+    for (const OutputRow& r : rows) {
+      py::tuple values(r.size());
+      for (std::size_t i = 0; i < r.size(); ++i) values[i] = py_value(r[i].info.unit, r[i].si, r[i].shape, r[i].fixed);
+      l.append(values);
+    }
+    return l;
+  }
   py::list l;
   for (const OutputRow& r : rows) l.append(py_row(r));
   return l;
@@ -153,13 +186,14 @@ inline py::dict py_row(const OutputRow& row) {
   py::dict d;
   for (const OutputField& f : row)
     if (!f.info.python.empty())
-      d[py::str(f.info.python)] =
-          is_nested_unit(f.info.unit) ? py_rows(f.info.unit, f.rows) : py_value(f.info.unit, f.si, f.shape, f.fixed);
+      d[py::str(f.info.python)] = is_nested_unit(f.info.unit) ? py_rows(f.info.unit, f.rows, f.shape)
+                                                              : py_value(f.info.unit, f.si, f.shape, f.fixed);
   return d;
 }
 
 /// The generic Python writer of an output table: every column with a Python key that `value`
-/// has (a value, or nested objects: "object:" a dict, "list:" a list of dicts) into `d`, in SI.
+/// has (a value, or nested objects: "object:" a dict, "list:" a list of dicts, "rows:" a list of
+/// tuples, "map:" a dict of dicts) into `d`, in SI.
 /// Declared columns without either are added by the caller under their declared keys.
 template <class T>
 void put_columns(py::dict& d, const Columns<T>& cols, const T& value) {
@@ -167,7 +201,7 @@ void put_columns(py::dict& d, const Columns<T>& cols, const T& value) {
     if (c.python.empty() || !has_output(c, value)) continue;
     d[py::str(c.python)] =
         c.si ? py_value(c.unit, c.si(value), c.shape ? c.shape(value) : std::vector<std::size_t>(), c.fixed)
-             : py_rows(c.unit, c.rows(value));
+             : py_rows(c.unit, c.rows(value), c.shape ? c.shape(value) : std::vector<std::size_t>());
   }
 }
 template <class T>

@@ -326,6 +326,7 @@ Result<ArealSignature> areal_signature(const Map& f, const Map& g_in, double ang
   const double rdx = ev.rdx(), rdy = ev.rdy();
 
   ArealSignature out;
+  out.direction = angle;
   out.offset.resize(count);
   out.lift.resize(count);
   out.theta.resize(count);

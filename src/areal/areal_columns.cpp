@@ -1,8 +1,64 @@
-// The output tables of the polar table over sliding directions (frictal/outputs.hpp): the keys
-// of `frictal anisotropy --json` and of Python's anisotropy() dict.
+// The output tables of the areal module (frictal/outputs.hpp): the areal signature along one
+// direction (the keys of `frictal areal --json`) and the polar table over sliding directions (the
+// keys of `frictal anisotropy --json` and of Python's anisotropy() dict).
+#include <algorithm>
+#include <array>
+#include <string_view>
+
 #include "frictal/areal.hpp"
 
 namespace frictal {
+
+const Columns<ArealSignature>& areal_signature_columns() {
+  using T = ArealSignature;
+  static const Columns<T> cols = {
+      column<T>(
+          "direction_deg", "deg", "sliding direction, from +x towards +y", [](const T& r) { return r.direction; }, "-"),
+      column<T>(
+          "offsets", "count", "offsets along the direction", [](const T& r) { return double(r.offset.size()); }, "-"),
+      column<T>(
+          "evaluated_nodes", "count", "lower-surface nodes evaluated (after pruning)",
+          [](const T& r) { return double(r.evaluated_nodes); }, "evaluated_nodes"),
+      column<T>(
+          "theta_max_lift_deg", "deg", "steepest slope of the lift along the direction",
+          [](const T& r) { return r.theta_max_lift; }, "-"),
+      column<T>(
+          "theta_max_forward_deg", "deg", "steepest contact slope resisting sliding along the direction",
+          [](const T& r) { return r.theta_max_forward; }, "theta_max_forward"),
+      column<T>(
+          "theta_max_backward_deg", "deg", "steepest contact slope resisting sliding against it",
+          [](const T& r) { return r.theta_max_backward; }, "theta_max_backward"),
+      column<T>(
+          "contact_slope_mean_deg", "deg", "mean contact slope", [](const T& r) { return r.contact_slope_mean; }, "-"),
+      column<T>(
+          "contact_slope_std_deg", "deg", "sigma of Eq. 18", [](const T& r) { return r.contact_slope_std; },
+          "contact_slope_std"),
+      column<T>(
+          "", "m", "offsets along the direction", [](const T& r) { return r.offset; }, "offset"),
+      column<T>(
+          "", "m", "the lift at each offset", [](const T& r) { return r.lift; }, "lift"),
+      column<T>(
+          "", "rad", "the contact slope at each offset", [](const T& r) { return r.theta; }, "theta"),
+  };
+  return cols;
+}
+
+const Columns<FrictionPrediction>& areal_bound_columns() {
+  // The grid's theta_max + theta_a: a diagnostic of the map's nodes, not a bound of what a tilt
+  // test reads (that is `frictal predict`'s).
+  static const Columns<FrictionPrediction> cols = [] {
+    constexpr std::array<std::string_view, 3> keys = {
+        "upper_bound_friction_angle_deg", "upper_bound_friction_coefficient", "eq18_low_friction_coefficient"};
+    Columns<FrictionPrediction> c;
+    for (const Column<FrictionPrediction>& f : friction_columns())
+      if (std::find(keys.begin(), keys.end(), f.key) != keys.end()) {
+        c.push_back(f);
+        c.back().python.clear();
+      }
+    return c;
+  }();
+  return cols;
+}
 
 const Columns<AnisotropyRow>& anisotropy_row_columns() {
   using T = AnisotropyRow;
@@ -63,29 +119,6 @@ const Columns<AnisotropyRow>& anisotropy_row_columns() {
     }
     return c;
   }();
-  return cols;
-}
-
-const Columns<ArealSignature>& areal_signature_columns() {
-  using T = ArealSignature;
-  static const Columns<T> cols = {
-      column<T>(
-          "", "m", "offsets along the direction", [](const T& r) { return r.offset; }, "offset"),
-      column<T>(
-          "", "m", "the lift at each offset", [](const T& r) { return r.lift; }, "lift"),
-      column<T>(
-          "", "deg", "the contact slope at each offset", [](const T& r) { return r.theta; }, "theta"),
-      column<T>(
-          "", "deg", "steepest contact slope along the direction", [](const T& r) { return r.theta_max_forward; },
-          "theta_max_forward"),
-      column<T>(
-          "", "deg", "steepest against it", [](const T& r) { return r.theta_max_backward; }, "theta_max_backward"),
-      column<T>(
-          "", "deg", "sigma of Eq. 18", [](const T& r) { return r.contact_slope_std; }, "contact_slope_std"),
-      column<T>(
-          "", "count", "lower-surface nodes evaluated", [](const T& r) { return double(r.evaluated_nodes); },
-          "evaluated_nodes"),
-  };
   return cols;
 }
 

@@ -34,13 +34,6 @@ ColumnInfo ci(std::string key, std::string unit, std::string help, std::string p
   if (python == "-") python.clear();
   return {std::move(key), std::move(unit), std::move(help), std::move(python)};
 }
-/// The declaration of column `key` of typed columns `cols` (declared there, written here by hand).
-template <class T>
-ColumnInfo info_of(const Columns<T>& cols, std::string_view key) {
-  for (const Column<T>& c : cols)
-    if (c.key == key) return c;
-  return {std::string(key), "undeclared", "", ""};  // the key test names it
-}
 /// A Python-only column.
 ColumnInfo py(std::string python, std::string unit, std::string help) {
   return {"", std::move(unit), std::move(help), std::move(python)};
@@ -156,82 +149,41 @@ std::vector<OutputTable> make_tables() {
   t.push_back({"warning_code", "frictal warnings --json: every warning code", infos(warning_code_columns())});
   t.push_back({"formats", "frictal formats --json: every readable format", infos(format_list_columns())});
   t.push_back({"format", "one readable format (frictal formats --json)", infos(format_info_columns())});
-  t.push_back(
-      {"areal",
-       "frictal areal --json: the areal signature of two blocks along a direction",
-       {ci("direction_deg", "deg", "sliding direction, from +x towards +y", "direction"),
-        ci("offsets", "count", "offsets along the direction"),
-        ci("evaluated_nodes", "count", "lower-surface nodes evaluated (after pruning)", "="),
-        ci("theta_max_lift_deg", "deg", "steepest slope of the lift along the direction"),
-        ci("theta_max_forward_deg", "deg", "steepest contact slope resisting sliding along the direction",
-           "theta_max_forward"),
-        ci("theta_max_backward_deg", "deg", "steepest contact slope resisting sliding against it",
-           "theta_max_backward"),
-        ci("contact_slope_mean_deg", "deg", "mean contact slope"),
-        ci("contact_slope_std_deg", "deg", "sigma of Eq. 18", "contact_slope_std"), ci("atomic_friction", "1", "mu_a"),
-        ci("upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a (Eq. 6)"),
-        ci("upper_bound_friction_coefficient", "1", "tan of the upper bound"),
-        ci("eq18_low_friction_coefficient", "1", "tan of the Eq. 18 low end"),
-        py("offset", "m", "offsets along the direction"), py("lift", "m", "the lift at each offset"),
-        py("theta", "rad", "the contact slope at each offset")}});
+  t.push_back({"areal",
+               "frictal areal --json; Python areal_signature(...): the areal signature of two blocks along a direction",
+               infos(areal_signature_columns())});
+  {
+    std::vector<ColumnInfo> bound = infos(areal_bound_columns());
+    t.back().columns.insert(t.back().columns.end(), bound.begin(), bound.end());
+  }
   t.push_back({"areal_hold",
                "frictal areal --lateral|--drops|--start-offset --json; Python areal_hold(...) (SI, no unit suffix)",
                infos(areal_hold_columns())});
+  t.push_back({"offset_xy", "a point as a row of numbers [x_m, y_m] (areal --json's drop_offsets_m)",
+               infos(offset_xy_columns())});
   t.push_back({"anisotropy", "frictal anisotropy --json; Python anisotropy(...) (arrays over directions)",
                infos(anisotropy_columns())});
   t.push_back({"anisotropy_direction", "one direction of frictal anisotropy --json", infos(anisotropy_row_columns())});
-  t.push_back(
-      {"areal_tilt",
-       "frictal areal-tilt --json (the MuJoCo run and the predictions matched to it)",
-       {ci("direction_deg", "deg", "tilt direction, from +x towards +y"),
-        ci("runaway_distance_m", "m", "run-away distance d"),
-        info_of(areal_tilt_run_columns(), "friction_angle_deg"),
-        info_of(areal_tilt_run_columns(), "ran_away"),
-        ci("rest_offset_m", "m", "where the block rested (x, y)"),
-        ci("predicted_hold_angle_deg", "deg",
-           "the prediction's model (frictal predict's: the spheres and triangles MuJoCo sees, off the grid) from "
-           "the simulated rest, block free"),
-        ci("predicted_hold_angle_locked_deg", "deg", "the same, block locked to the direction (a diagnostic)"),
-        ci("predicted_steering_deg", "deg", "the same, block free: how far it turned off the direction"),
-        ci("continuous_runaway_increment_deg", "deg",
-           "the prediction in the simulated lateral mode: the tilt increment at which it ran away"),
-        ci("continuous_rest_offset_m", "m", "the prediction in the simulated lateral mode: where it rested (x, y)"),
-        ci("continuous_evaluations", "count", "lift evaluations of the prediction in the simulated lateral mode"),
-        ci("continuous_hold_angle_range_deg", "deg",
-           "[least, largest] hold angle with one slip's end moved by a sphere radius"),
-        ci("continuous_slips", "count", "slips of the prediction in the simulated lateral mode"),
-        ci("continuous_ambiguous_slips", "count", "slips whose end a sphere radius changes"),
-        ci("seat_tilt_deg", "deg", "the MuJoCo run's seat: its tilt", "seat_tilt"),
-        ci("seat_offset_m", "m", "the seat's offset (x, y)", "seat_offset"),
-        ci("continuous_seated_hold_angle_deg", "deg", "the prediction's model dropped at the seat, at its tilt",
-           "seated_hold_angle"),
-        ci("continuous_increments", "list", "[tilt_deg, x_m, y_m] after each increment"),
-        ci("sphere_radius_m", "m", "radius of the upper block's spheres", "sphere_radius"),
-        ci("collision", "text", "MuJoCo's collision: native or exact"),
-        ci("lateral", "text", "free or locked"),
-        info_of(areal_tilt_run_columns(), "steering_deg"),
-        ci("increment_trace", "list",
-           "[tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed] per increment"),
-        ci("tilt_step_deg", "deg", "the tilt increment"),
-        info_of(areal_tilt_run_columns(), "spheres"),
-        info_of(areal_tilt_run_columns(), "steps"),
-        ci("max_contacts", "count", "most contacts at once"),
-        info_of(areal_tilt_run_columns(), "unsettled_increments"),
-        ci("seconds", "s", "wall time"),
-        py("predicted_hold_angle", "rad", "areal_tilt: predict()'s map model from the simulated rest, block free"),
-        py("predicted_hold_angle_locked", "rad", "the same, block locked to the direction (a diagnostic)"),
-        py("predicted_steering", "rad", "the free block's steering"),
-        py("predicted_hold_angle_range", "rad",
-           "the range in the simulated lateral mode with one slip's end moved by a sphere radius"),
-        py("predicted_ambiguous_slips", "count", "its ambiguous slips"),
-        py("increment_tilt", "rad", "tilt of each increment"),
-        py("increment_x", "m", "x after each increment"),
-        py("increment_y", "m", "y after each increment"),
-        py("increment_rested", "flag", "each increment rested"),
-        py("rest_offset", "m", "where the block rested (x, y)")}});
+  t.push_back({"areal_tilt", "frictal areal-tilt --json (the MuJoCo run and the predictions matched to it)",
+               infos(areal_tilt_report_columns())});
+  t.back().columns.insert(
+      t.back().columns.end(),
+      {py("predicted_hold_angle", "rad", "areal_tilt: predict()'s map model from the simulated rest, block free"),
+       py("predicted_hold_angle_locked", "rad", "the same, block locked to the direction (a diagnostic)"),
+       py("predicted_steering", "rad", "the free block's steering"),
+       py("predicted_hold_angle_range", "rad",
+          "the range in the simulated lateral mode with one slip's end moved by a sphere radius"),
+       py("predicted_ambiguous_slips", "count", "its ambiguous slips"),
+       py("increment_tilt", "rad", "tilt of each increment"), py("increment_x", "m", "x after each increment"),
+       py("increment_y", "m", "y after each increment"), py("increment_rested", "flag", "each increment rested"),
+       py("rest_offset", "m", "where the block rested (x, y)")});
+  t.push_back({"tilt_stop", "a stop of the block as a row of numbers [tilt_deg, x_m, y_m] (areal-tilt --json)",
+               infos(tilt_stop_columns())});
+  t.push_back({"areal_tilt_increment",
+               "one increment of the 3D run as a row of numbers (areal-tilt --json's increment_trace)",
+               infos(areal_tilt_increment_columns())});
   t.push_back({"areal_tilt_hold", "Python areal_tilt_hold(...): the continuous model of one drop",
                infos(areal_tilt_hold_columns())});
-  t.push_back({"areal_signature", "Python areal_signature(...)", infos(areal_signature_columns())});
   t.push_back({"conditioning", "Python condition(...)[1]: what each conditioning step did",
                infos(conditioning_record_columns())});
   t.push_back({"build_info",

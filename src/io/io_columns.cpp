@@ -67,6 +67,14 @@ const Columns<SurfaceData>& surface_data_columns() {
       column<T>(
           "", "1", "metres per unit of the file's heights as read", [](const T& s) { return s.z_unit_scale; },
           "z_unit_scale"),
+      column<T>(
+          "warnings", "text", "what the reader said that did not stop it: the messages, as the text output gives them",
+          [](const T& s) {
+            std::vector<std::string> messages;
+            for (const Warning& w : s.warnings) messages.push_back(w.message);
+            return messages;
+          },
+          "-"),
   };
   return cols;
 }

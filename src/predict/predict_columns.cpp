@@ -1,6 +1,7 @@
 // The prediction's output table (frictal/predict.hpp): every quantity declared once, with its
 // interface unit; the JSON writer below and the Python binding read it.
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include <fmt/core.h>
@@ -302,7 +303,11 @@ const Columns<ArealHoldReport>& areal_hold_columns() {
                 [](const T& r) { return r.prediction.single_drop && r.locked; }),
         one(column<T>(
             "steering_deg", "deg", "one drop: the direction the free block ran away in",
-            [](const T& r) { return r.prediction.drop_steering.at(0); }, "steering")),
+            [](const T& r) {
+              return r.prediction.drop_steering.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                                        : r.prediction.drop_steering.front();
+            },
+            "steering")),
     };
     using S = double HoldStatistics::*;
     const std::pair<const char*, S> stats[] = {{"mean", &HoldStatistics::mean}, {"std", &HoldStatistics::std},
@@ -328,18 +333,9 @@ const Columns<ArealHoldReport>& areal_hold_columns() {
         "drop_hold_angles_deg", "deg", "each drop's hold angle, in drop order",
         [](const T& r) { return r.locked ? r.prediction.drop_angles_locked : r.prediction.drop_angles; },
         "drop_hold_angles")));
-    c.push_back(over(with_shape(column<T>(
-                                    "drop_offsets_m", "m", "each drop's (x, y)",
-                                    [](const T& r) {
-                                      std::vector<double> v;
-                                      for (const auto& q : r.prediction.drop_offsets)
-                                        v.insert(v.end(), q.begin(), q.end());
-                                      return v;
-                                    },
-                                    "drop_offsets"),
-                                [](const T& r) {
-                                  return std::vector<std::size_t>{r.prediction.drop_offsets.size(), 2};
-                                })));
+    c.push_back(over(rows_column<T>(
+        "drop_offsets_m", "offset_xy", "each drop's (x, y)", offset_xy_columns(),
+        [](const T& r) { return std::optional(r.prediction.drop_offsets); }, "drop_offsets")));
     c.push_back(column<T>(
         "upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a (Eq. 6)",
         [](const T& r) { return r.prediction.upper_bound_friction_angle; }, "upper_bound_friction_angle"));

@@ -57,13 +57,13 @@ for t in tables.values():
 SUFFIX = [("_m_s", "m/s"), ("_per_s", "1/s"), ("_n_per_m", "N/m"), ("_deg", "deg"), ("_kg", "kg"), ("_m2", "m2"),
           ("_pa", "Pa"), ("_n", "N"), ("_m", "m"), ("_s", "s")]
 for key, units in json_units.items():
-    plain = [u for u in units if not u.startswith(("object:", "list:")) and u != "settings"]
+    plain = [u for u in units if not u.startswith(("object:", "list:", "rows:", "map:")) and u != "settings"]
     if len(plain) > 1:
         fail(f"JSON key {key!r} declared with {len(units)} units: {units}")
     unit = plain[0] if plain else next(iter(units))
     for suffix, u in SUFFIX:
         if key.endswith(suffix):
-            if unit != u and not unit.startswith(("object:", "list:")):
+            if unit != u and not unit.startswith(("object:", "list:", "rows:", "map:")):
                 fail(f"JSON key {key!r} ends in {suffix} but its unit is {unit!r} ({units[unit]})")
             break
     if unit == "deg" and not key.endswith("_deg"):
@@ -133,6 +133,22 @@ def walk(where, obj, table_names, python):
                 for i, e in enumerate(v):
                     if isinstance(e, dict):
                         walk(f"{here}[{i}]", e, [unit[5:]], python)
+        elif unit.startswith("rows:"):
+            # A list of rows, each the values of the table's columns in its order, each in its unit.
+            # Python's dicts may hold them as a 2-D array (n rows of the table's columns).
+            row_columns = tables[unit[5:]]["columns"]
+            if isinstance(v, np.ndarray):
+                if v.ndim != 2 or (v.size and v.shape[1] != len(row_columns)):
+                    fail(f"{here}: expected an array of rows of {len(row_columns)} values ({unit})")
+            elif not isinstance(v, list):
+                fail(f"{here}: expected a list of rows ({unit})")
+            else:
+                for i, e in enumerate(v):
+                    if not isinstance(e, list) or len(e) != len(row_columns):
+                        fail(f"{here}[{i}]: expected a row of {len(row_columns)} values ({unit})")
+                        continue
+                    for c, x in zip(row_columns, e):
+                        check_value(f"{here}[{i}].{c['key']}", c["unit"], x)
         elif unit in ("settings", "map"):
             pass  # the keys of a settings table (frictal settings; the vocabulary test) or data
         else:
@@ -237,7 +253,7 @@ check_py("predict.to_dict", frictal.predict(prof).to_dict(), ["prediction"], pyt
 check_py("predict(maps).to_dict", frictal.predict(map1, map2, drops=2).to_dict(), ["prediction"], python=False)
 check_py("map_stats", frictal.map_stats(m1, dx=dx, dy=dx, tip_radius=2e-6), ["map_stats", "map_scan_stats", "stats_extras"])
 check_py("anisotropy", frictal.anisotropy(m1, dx=dx, dy=dx, directions=4), ["anisotropy"])
-check_py("areal_signature", frictal.areal_signature(m1, dx=dx, dy=dx, upper=m2), ["areal_signature"])
+check_py("areal_signature", frictal.areal_signature(m1, dx=dx, dy=dx, upper=m2), ["areal"])
 check_py("areal_hold", frictal.areal_hold(m1, dx=dx, dy=dx, upper=m2, drops=2), ["areal_hold"])
 check_py("areal_hold(start)", frictal.areal_hold(m1, dx=dx, dy=dx, upper=m2, start_offset=(1e-5, 0)), ["areal_hold"])
 check_py("areal_tilt_hold", frictal.areal_tilt_hold(m1, dx=dx, dy=dx, upper=m2), ["areal_tilt_hold"])

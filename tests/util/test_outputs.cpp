@@ -100,19 +100,52 @@ TEST(Outputs, RowsLeaveOutAbsentColumns) {
   EXPECT_TRUE(frictal::row_of(shape_columns(), without).empty());
 }
 
+// A row of a table with nested columns holds their objects, so that tables nest to any depth; a
+// nested field keeps its Python key (Python's writer nests dicts as the CLI's nests objects).
 TEST(Outputs, NestedColumnsNestInRows) {
-  // A row of a table with nested columns holds their objects, so that tables nest to any depth.
   Shape s;
+  s.size = 1;
   s.centre = Point{1e-6, 0};
   s.corners = std::vector<Point>{{0, 0}, {2e-6, 0}};
   const OutputRow r = frictal::row_of(shape_columns(), s);
-  ASSERT_EQ(r.size(), 2u);  // centre and corners; no size
-  EXPECT_EQ(r[0].info.unit, "object:point");
-  ASSERT_EQ(r[0].rows.size(), 1u);
-  EXPECT_DOUBLE_EQ(std::get<double>(r[0].rows[0][0].si), 1e-6);
-  EXPECT_EQ(r[1].info.unit, "list:point");
-  ASSERT_EQ(r[1].rows.size(), 2u);
-  EXPECT_DOUBLE_EQ(std::get<double>(r[1].rows[1][0].si), 2e-6);
+  ASSERT_EQ(r.size(), 3u);
+  EXPECT_FALSE(r[0].nested);
+  EXPECT_TRUE(r[1].nested);
+  EXPECT_EQ(r[1].info.unit, "object:point");
+  EXPECT_EQ(r[1].info.python, "centre");
+  ASSERT_EQ(r[1].rows.size(), 1u);
+  EXPECT_DOUBLE_EQ(std::get<double>(r[1].rows[0][0].si), 1e-6);
+  EXPECT_TRUE(r[2].nested);
+  EXPECT_EQ(r[2].info.unit, "list:point");
+  ASSERT_EQ(r[2].rows.size(), 2u);
+  EXPECT_DOUBLE_EQ(std::get<double>(r[2].rows[1][0].si), 2e-6);
+}
+
+// Rows of numbers and maps of objects declare their table in the unit; their rows are the
+// table's rows, as a list column's.
+TEST(Outputs, RowsAndMapColumnsDeclareTheirTable) {
+  struct Named {
+    std::string name;
+    double x = 0;
+  };
+  static const Columns<Named> named = {
+      frictal::column<Named>(
+          "name", "text", "name", [](const Named& n) { return n.name; }, "-"),
+      frictal::column<Named>(
+          "x_m", "m", "abscissa", [](const Named& n) { return n.x; }, "-"),
+  };
+  const std::vector<Named> items = {{"a", 1}, {"b", 2}};
+  const auto f = [&](const Shape&) { return std::optional(items); };
+  const Column<Shape> rows = frictal::rows_column<Shape>("xs", "named", "rows", named, f, "-");
+  const Column<Shape> map = frictal::map_column<Shape>("by_name", "named", "map", named, f, "-");
+  EXPECT_EQ(rows.unit, "rows:named");
+  EXPECT_EQ(map.unit, "map:named");
+  // Python's array of the rows: (rows, columns).
+  EXPECT_EQ(rows.shape(Shape{}), (std::vector<std::size_t>{2, 2}));
+  const std::vector<OutputRow> r = map.rows(Shape{});
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(std::get<std::string>(r[1][0].si), "b");
+  EXPECT_DOUBLE_EQ(std::get<double>(r[1][1].si), 2.0);
 }
 
 TEST(Outputs, ListsCarryTheirShapeAndFixedLength) {
