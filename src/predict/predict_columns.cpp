@@ -314,14 +314,18 @@ const Columns<ArealHoldReport>& areal_hold_columns() {
                                                {"q05", &HoldStatistics::q05},   {"q50", &HoldStatistics::q50},
                                                {"q95", &HoldStatistics::q95},   {"min", &HoldStatistics::min},
                                                {"max", &HoldStatistics::max}};
-    for (const auto& [name, field] : stats) {
+    // (Named copies, not structured bindings: clang 14 cannot capture those.)
+    for (const auto& entry : stats) {
+      const char* name = entry.first;
+      const S field = entry.second;
       const std::string k = std::string("hold_angle_") + name;
       c.push_back(over(column<T>(
           k + "_deg", "deg", std::string("hold angle over drops: ") + name,
           [chosen, field](const T& r) { return chosen(r).*field; }, k)));
     }
-    for (const auto& [name, field] : stats) {
-      const std::string st(name);
+    for (const auto& entry : stats) {
+      const S field = entry.second;
+      const std::string st(entry.first);
       if (st != "q05" && st != "q50" && st != "q95") continue;
       const std::string k = "hold_angle_free_" + st;
       c.push_back(over(column<T>(
