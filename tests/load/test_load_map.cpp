@@ -31,6 +31,15 @@ Map sampled(std::size_t nx, std::size_t ny, double a, F&& z) {
   return m;
 }
 
+// The window of n x n nodes at a map's first corner (a measured map cut to a test's size).
+CropWindow corner_window(const Map& m, std::size_t n) {
+  CropWindow w;
+  w.x_min = m.x0, w.x_max = m.x0 + double(n - 1) * m.dx;
+  w.has_y = true;
+  w.y_min = m.y0, w.y_max = m.y0 + double(n - 1) * m.dy;
+  return w;
+}
+
 MapLoadedLiftOptions options(double modulus) {
   MapLoadedLiftOptions o;
   o.contact_modulus = modulus;
@@ -124,12 +133,7 @@ TEST(MapLoadedLift, TheZeroLoadLimitIsTheRigidPrediction) {
     s.name = file;
     PredictOptions o;
     o.map_drops = 3;
-    CropWindow w;
-    const std::size_t n = 40;
-    w.x_min = s.map.x0, w.x_max = s.map.x0 + double(n - 1) * s.map.dx;
-    w.has_y = true;
-    w.y_min = s.map.y0, w.y_max = s.map.y0 + double(n - 1) * s.map.dy;
-    o.crop = w;
+    o.crop = corner_window(s.map, 40);
     o.loads = {1e-9};
     o.lower_material = {200e9, 0.3};
     o.map_locked = true;
@@ -212,12 +216,7 @@ TEST(MapLoadedLift, TheAnswerDoesNotDependOnTheSolvesStep) {
   s.name = "di-3";
   PredictOptions o;
   o.map_drops = 3;
-  CropWindow w;
-  const std::size_t n = 40;
-  w.x_min = s.map.x0, w.x_max = s.map.x0 + double(n - 1) * s.map.dx;
-  w.has_y = true;
-  w.y_min = s.map.y0, w.y_max = s.map.y0 + double(n - 1) * s.map.dy;
-  o.crop = w;
+  o.crop = corner_window(s.map, 40);
   o.loads = {0.1, 10};
   o.lower_material = {70e9, 0.3};
   const double a = std::min(s.map.dx, s.map.dy);
