@@ -30,13 +30,11 @@ OutputValue si_default(const Field& f) {
 const Columns<Field>& settings_field_columns() {
   using T = Field;
   static const Columns<T> cols = {
-      column<T>(
-          "name", "text", "the field's name: the study TOML key, the Python keyword, the JSON key",
-          [](const T& f) { return f.name; }),
-      column<T>(
-          "option", "text", "its CLI option", [](const T& f) { return cli_option_name(f); }),
-      column<T>(
-          "type", "text", "number, integer, boolean or word", [](const T& f) { return std::string(type_word(f.type)); }),
+      column<T>("name", "text", "the field's name: the study TOML key, the Python keyword, the JSON key",
+                [](const T& f) { return f.name; }),
+      column<T>("option", "text", "its CLI option", [](const T& f) { return cli_option_name(f); }),
+      column<T>("type", "text", "number, integer, boolean or word",
+                [](const T& f) { return std::string(type_word(f.type)); }),
       column<T>(
           "unit", "text", "the unit of the CLI, TOML files and JSON (angles in degrees)",
           [](const T& f) { return text_unit(f); }, "-"),
@@ -44,9 +42,10 @@ const Columns<Field>& settings_field_columns() {
           "si_unit", "text", "the unit of the library and Python (SI)", [](const T& f) { return f.unit; }, "unit"),
       column<T>(
           "default", "text", "the default, in the text unit", [](const T& f) { return default_text(f); }, "-"),
-      only_if(column<T>(
-                  "", "count", "the default of an integer field", [](const T& f) { return f.default_value; }, "default"),
-              [](const T& f) { return f.type == FieldType::Integer; }),
+      only_if(
+          column<T>(
+              "", "count", "the default of an integer field", [](const T& f) { return f.default_value; }, "default"),
+          [](const T& f) { return f.type == FieldType::Integer; }),
       only_if(column<T>(
                   "", "value", "the default in SI: a number (None: automatic, see help), a flag or a word",
                   [](const T& f) { return si_default(f); }, "default"),
@@ -59,8 +58,7 @@ const Columns<Field>& settings_field_columns() {
           "", "value", "the largest valid value, in SI (inf: none)", [](const T& f) { return f.max; }, "max"),
       column<T>(
           "", "text", "the words of a word field", [](const T& f) { return f.choices; }, "choices"),
-      column<T>(
-          "help", "text", "what it is", [](const T& f) { return f.help; }),
+      column<T>("help", "text", "what it is", [](const T& f) { return f.help; }),
   };
   return cols;
 }
