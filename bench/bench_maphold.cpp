@@ -64,7 +64,7 @@ void run(benchmark::State& st, const PredictSurface& m, const PredictOptions& o)
 
 /// Arg: mu_a in thousandths. 2 x 2 drops.
 void BM_MapPredictRandomFriction(benchmark::State& st) {
-  static const PredictSurface m = random_map(12, 10, 7);
+  static const PredictSurface m = random_map(12, 10, 2);
   PredictOptions o;
   o.atomic_friction = double(st.range(0)) / 1000;
   o.map_drops = 2;
