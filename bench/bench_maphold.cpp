@@ -81,7 +81,7 @@ void BM_MapPredictSine(benchmark::State& st) {
   o.threads = 1;
   run(st, m, o);
 }
-BENCHMARK(BM_MapPredictSine)->Arg(40)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MapPredictSine)->Arg(80)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 /// Arg: nodes on a side; 0.2 nm amplitude (nearly flat), one drop.
 void BM_MapPredictNearlyFlat(benchmark::State& st) {
@@ -91,7 +91,7 @@ void BM_MapPredictNearlyFlat(benchmark::State& st) {
   o.threads = 1;
   run(st, m, o);
 }
-BENCHMARK(BM_MapPredictNearlyFlat)->Arg(40)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_MapPredictNearlyFlat)->Arg(80)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
