@@ -26,27 +26,6 @@ T ok(Result<T> r) {
   return std::move(r).value();
 }
 
-/// A study table's Python dict: each column by the generic writer (bindings.hpp), a data map
-/// (unit "map", frictal/outputs.hpp) as a dict of its entries under their keys, each value as the
-/// generic writer holds a value of its entry's unit (an int for "count", a numpy array for a list).
-template <class T>
-py::dict study_dict(const Columns<T>& cols, const T& value) {
-  py::dict d;
-  for (const Column<T>& c : cols) {
-    if (c.python.empty() || !has_output(c, value)) continue;
-    if (c.unit != "map") {
-      py_detail::put_columns(d, Columns<T>{c}, value);
-      continue;
-    }
-    py::dict m;
-    for (const OutputRow& r : c.rows(value))
-      for (const OutputField& f : r)
-        m[py::str(f.info.python)] = py_detail::py_value(f.info.unit, f.si, f.shape, f.fixed);
-    d[py::str(c.python)] = m;
-  }
-  return d;
-}
-
 std::unique_ptr<Store> open_existing(const std::string& path) { return ok(Store::open_existing(path)); }
 
 }  // namespace
@@ -175,7 +154,7 @@ void frictal_bind_study(py::module_& m) {
       [](const std::string& path, const std::string& part, bool arrays) {
         py::list out;
         for (const TaskRow& r : ok(open_existing(path)->rows(part, arrays)))
-          out.append(study_dict(study_row_columns(), r));
+          out.append(py_detail::to_dict(study_row_columns(), r));
         return out;
       },
       py::arg("store"), py::arg("part") = "", py::arg("arrays") = true,

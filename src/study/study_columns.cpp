@@ -32,24 +32,20 @@ const Columns<StoreStatus::PartStatus>& study_part_columns() {
       column<T>("available", "flag", "this build can run the kind", [](const T& p) { return p.available; }),
       column<T>("kind_version", "count", "this build's version of the kind (0: unknown kind)",
                 [](const T& p) { return double(p.kind_version); }),
-      // Keyed by version (data, not names): Python's generic writer has no data maps nested in a
-      // list, so its status dict leaves them out.
-      data_map_column<T>(
-          "done_by_kind_version", "tasks done by each kind version (0: not recorded)",
-          [](const T& p) {
-            std::vector<MapEntry> e;
-            for (const auto& [v, n] : p.done_by_kind_version) e.push_back({std::to_string(v), "count", double(n)});
-            return e;
-          },
-          "-"),
-      data_map_column<T>(
-          "done_by_frictal_version", "tasks done by each frictal version (empty: not recorded)",
-          [](const T& p) {
-            std::vector<MapEntry> e;
-            for (const auto& [v, n] : p.done_by_frictal_version) e.push_back({v, "count", double(n)});
-            return e;
-          },
-          "-"),
+      // Keyed by version (data, not names).
+      data_map_column<T>("done_by_kind_version", "tasks done by each kind version (0: not recorded)",
+                         [](const T& p) {
+                           std::vector<MapEntry> e;
+                           for (const auto& [v, n] : p.done_by_kind_version)
+                             e.push_back({std::to_string(v), "count", double(n)});
+                           return e;
+                         }),
+      data_map_column<T>("done_by_frictal_version", "tasks done by each frictal version (empty: not recorded)",
+                         [](const T& p) {
+                           std::vector<MapEntry> e;
+                           for (const auto& [v, n] : p.done_by_frictal_version) e.push_back({v, "count", double(n)});
+                           return e;
+                         }),
       column<T>("version_note", "text", "what a version change means for the stored results",
                 [](const T& p) { return p.version_note; }),
   };

@@ -168,8 +168,8 @@ def test_tilt_of_a_measured_profile_equals_the_cli():
 
 
 def test_study_status_equals_the_cli(tmp_path):
-    """A store's status from Python and from `frictal study status --json`: the same keys and values
-    (Python leaves out the two per-version counts, objects keyed by version)."""
+    """A store's status from Python and from `frictal study status --json`: the same keys and values,
+    the per-version counts (objects keyed by version) included."""
     toml = tmp_path / "koch.toml"
     toml.write_text('[study]\nname = "parity"\nseed = 1\n[[part]]\nname = "theory"\nkind = "koch-signature"\n'
                     '[part.parameters]\niterations = [0, 1]\nalpha = 10.0\nlength = 0.01\n', encoding="utf-8")
@@ -177,13 +177,13 @@ def test_study_status_equals_the_cli(tmp_path):
     assert frictal.study_run(str(toml), store, threads=1)["tasks"] == {"total": 2, "done": 2, "failed": 0, "pending": 0}
     want = cli("study", "status", store)
     got = frictal.study_status(store)
-    maps = {"done_by_kind_version", "done_by_frictal_version"}
     assert got.keys() == want.keys()
     for k in want:
         if k != "parts":
             assert got[k] == want[k], k
     assert len(got["parts"]) == len(want["parts"]) == 1
-    assert got["parts"][0] == {k: v for k, v in want["parts"][0].items() if k not in maps}
+    assert got["parts"][0] == want["parts"][0]
+    assert got["parts"][0]["done_by_frictal_version"] == {frictal.__version__: 2}
 
 
 def test_the_bound_warnings_are_the_librarys_words(tmp_path):
