@@ -45,7 +45,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--directions", a->directions, "Sliding directions over 360 deg (default 36)");
   app.add_option("--lines", a->max_lines, "At most this many parallel lines per direction (default 128)");
   add_atomic_friction_option(app, a->atomic_friction);
-  app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from the map first (default plane)");
+  add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_flag("--areal", a->areal, "Use the areal signature of the two rigid blocks instead of line profiles");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores; default all)");

@@ -134,7 +134,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--step", a->step, "Offset step (m; default min(dx, dy))");
   app.add_option("--max-offset", a->offset_max, "Largest offset (m; default half the lower map along the direction)");
   add_atomic_friction_option(app, a->atomic_friction);
-  app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
+  add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_option("--contact-slope", a->contact_slope, "lower (Eq. 3, default) or mean (of both faces)");
   app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");

@@ -36,7 +36,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("lower", a->lower, "Lower block's map (X3P, Gwyddion text)")->required();
   app.add_option("upper", a->upper, "Upper block's map as measured (default: the lower map)");
   add_field_options(app, areal_tilt_settings(), a->words);
-  app.add_option("--detrend", a->detrend, "Remove none, mean, plane or poly:N from both maps first (default plane)");
+  add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_option("--start-offset", a->start_offset,
                  "X,Y: where the block is put down, in the lower map's frame (m; default 0,0)");

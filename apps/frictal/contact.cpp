@@ -129,9 +129,7 @@ std::function<int()> setup(CLI::App& app) {
                "The surface repeats with its length (a generated periodic surface); default: not periodic (padded)");
   app.add_flag("--in-place", a->in_place,
                "UPPER is the upper face already in place in LOWER's coordinates (not turned over)");
-  app.add_option(
-      "--detrend", a->detrend,
-      fmt::format("Form removed from each surface first: none, mean, line (plane), poly:N ({})", kDetrendDefaultHelp));
+  add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_option("--tolerance", a->tolerance,
                  "Convergence: gap residual over the rms height of the composite topography")

@@ -31,10 +31,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--min", a->scale_min, "Smallest ruler/box (m) or wavelength (m) of the fit (default: automatic)");
   app.add_option("--max", a->scale_max, "Largest ruler/box (m) or wavelength (m) of the fit (default: automatic)");
   app.add_option("--scales", a->scales, "Number of rulers (default 16) or boxes (12), or PSD bins per decade (10)");
-  app.add_option("--detrend", a->detrend,
-                 fmt::format("Remove none, mean, line or poly:N first ({}; a file holding a curve that folds over "
-                             "is measured as it is unless asked)",
-                             kDetrendDefaultHelp));
+  add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);

@@ -16,46 +16,6 @@ std::string field_help(const Field& f) {
 }
 
 namespace {
-
-const char* type_name(FieldType t) {
-  switch (t) {
-    case FieldType::Real: return "number";
-    case FieldType::Integer: return "integer";
-    case FieldType::Boolean: return "boolean";
-    case FieldType::Choice: return "word";
-  }
-  return "";
-}
-
-}  // namespace
-
-const Columns<Field>& settings_field_columns() {
-  using T = Field;
-  static const Columns<T> cols = {
-      column<T>(
-          "name", "text", "the field's name: the study TOML key, the Python keyword, the JSON key",
-          [](const T& f) { return f.name; }, "-"),
-      column<T>(
-          "option", "text", "its CLI option", [](const T& f) { return cli_option_name(f); }, "-"),
-      column<T>(
-          "type", "text", "number, integer, boolean or word", [](const T& f) { return std::string(type_name(f.type)); },
-          "-"),
-      column<T>(
-          "unit", "text", "the unit of the CLI, TOML files and JSON (angles in degrees)",
-          [](const T& f) { return text_unit(f); }, "-"),
-      column<T>(
-          "si_unit", "text", "the unit of the library and Python (SI)", [](const T& f) { return f.unit; }, "-"),
-      column<T>(
-          "default", "text", "the default, in the text unit", [](const T& f) { return default_text(f); }, "-"),
-      column<T>(
-          "range", "text", "the valid values", [](const T& f) { return range_text(f); }, "-"),
-      column<T>(
-          "help", "text", "what it is", [](const T& f) { return f.help; }, "-"),
-  };
-  return cols;
-}
-
-namespace {
 /// First names shown in the help and in errors: the name every command gives the quantity
 /// (`predict --direction`) where the settings table keeps its own (`angle`, the key of study
 /// files and the field's option, still accepted).

@@ -21,11 +21,6 @@ namespace frictal::cli {
 /// The help line of a field: help, unit, default and valid range (identical in every command).
 std::string field_help(const Field& f);
 
-/// A settings field as `frictal settings --json` and `frictal commands --json` list it (table
-/// "settings_field"): name, option, type, unit (the text unit), si_unit, default, range, help;
-/// all text.
-const Columns<Field>& settings_field_columns();
-
 /// The option name a field shows in the help, in errors and in docs/settings.md: its own
 /// (`cli_option_name`) but where every command calls the quantity otherwise (`angle`:
 /// `--direction`, as `predict`); the field's own name is then read as well.

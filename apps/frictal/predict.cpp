@@ -142,9 +142,7 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--direction", a->direction, "Sliding direction in deg from +x towards +y (profiles: 0 or 180)")
       ->capture_default_str();
   add_atomic_friction_option(app, a->mu_a);
-  app.add_option("--detrend", a->detrend,
-                 "Form removed from each surface first: none, mean, line (plane), poly:N (default: line for profiles, "
-                 "plane for maps)");
+  add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_option("--start-offset", a->start,
                  "One drop at this offset instead of the distribution: X for profiles, X,Y for maps (m)");

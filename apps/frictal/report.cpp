@@ -47,9 +47,7 @@ std::function<int()> setup(CLI::App& app) {
                  "and the hold angles of a block free to move sideways");
   app.add_option("-o,--output", a->out, "HTML file to write ('-' = standard output)")->required();
   add_atomic_friction_option(app, a->mu_a);
-  app.add_option("--detrend", a->detrend,
-                 "Remove none, mean, line (plane) or poly:N from each surface first (default: line for profiles, "
-                 "plane for maps)");
+  add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_option("--directions", a->directions,
                  "Maps: sliding directions of the polar plot, each one prediction over --drops x --drops drops "

@@ -93,10 +93,7 @@ std::function<int()> setup(CLI::App& app) {
                  "0: every event offset (exact; if there are too many, offsets sampled at the finer point spacing); "
                  "N: N equally spaced offsets")
       ->capture_default_str();
-  app.add_option("--detrend", a->detrend,
-                 fmt::format("Remove none, mean, line or poly:N from each measured surface first (form and tilt of the "
-                             "scan; {})",
-                             kDetrendDefaultHelp));
+  add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_flag("--keep-grid", a->keep_grid,
                "With --offsets N: evaluate that grid even where every event offset costs less (aligned grids)");

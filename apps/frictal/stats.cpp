@@ -35,10 +35,7 @@ std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
   app.add_option("file", a->file, "Profile or map file (any readable format; see 'frictal formats')")->required();
   app.add_flag("--json", a->json, "Print one JSON object");
-  app.add_option("--detrend", a->detrend,
-                 fmt::format("Remove none, mean, line (plane for maps) or poly:N before the statistics ({}; none: the "
-                             "heights as read)",
-                             kDetrendDefaultHelp));
+  add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_option("--psd", a->psd_out, "Write the power spectrum (q_rad_per_m,C_m3) of the profile to this CSV");
   app.add_option("--acf", a->acf_out, "Write the autocorrelation (lag_m,acf) of the profile to this CSV");

@@ -129,6 +129,15 @@ inline void add_conditioning_options(CLI::App& app, ConditioningOptions& o) {
 inline constexpr const char* kDetrendDefaultHelp =
     "default: line for profiles, plane for maps, mean for a periodic profile; none for a generated surface";
 
+/// --detrend, the same option with one help text in every command that reads measured surfaces.
+inline void add_detrend_option(CLI::App& app, std::string& detrend) {
+  app.add_option("--detrend", detrend,
+                 fmt::format("Form removed from each surface first (the form and tilt of the scan): none, mean, line "
+                             "(a plane for maps) or poly:N ({})",
+                             kDetrendDefaultHelp))
+      ->type_name("FORM");
+}
+
 /// The form to remove: --detrend's text `given`, or when it is empty the one default of every
 /// front end (default_form(): a line, a plane for maps, the mean of a periodic profile), none for a
 /// generated surface (exact). UsageError (exit 2) for text parse_detrend refuses.

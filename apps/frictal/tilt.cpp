@@ -299,10 +299,7 @@ std::function<int()> setup(CLI::App& app) {
                  "scaled to the surfaces' length and point spacing, and a measured pair is loaded quasi-statically "
                  "with the rotation held (--protocol quasi-static --hold-rotation; docs/dem.md sec. 5)");
   app.add_option("--upper", o->upper_file, "Upper surface file, as measured (default: the lower one)");
-  app.add_option("--detrend", o->detrend,
-                 fmt::format("Remove none, mean, line or poly:N from each surface file first, as signature and predict "
-                             "(form and tilt of the scan; {})",
-                             kDetrendDefaultHelp));
+  add_detrend_option(app, o->detrend);
   add_conditioning_options(app, o->cond);
   add_field_options(app, tilt_settings(), o->settings);
   app.add_option("-o,--output", o->output, "Write the time series CSV here (- for standard output)");

@@ -28,7 +28,8 @@ using OutputValue = std::variant<double, std::string, bool, std::vector<double>,
 /// unit the text front ends write it in, what it means, and the key of Python's dicts (SI values).
 ///
 /// Interface units: "deg" (SI value in rad), "m", "s", "kg", "m/s", "1/s", "1" (unitless), "count"
-/// (an integer), "text", "flag", and for nested values "object:TABLE" (a JSON object whose keys
+/// (an integer), "text", "flag", "value" (a settings field's value in its own SI unit and type:
+/// a number, a flag or a word; NaN = none), and for nested values "object:TABLE" (a JSON object whose keys
 /// are the columns of output table TABLE), "list:TABLE" (a list of such objects), "rows:TABLE" (a
 /// list of rows, each a list of the values of TABLE's columns in its order, e.g. [x, y] points or
 /// [tilt, x, y] stops, each value in its column's unit), "map:TABLE" (an object holding one
@@ -306,6 +307,17 @@ std::vector<ColumnInfo> infos(const Columns<T>& cols) {
 /// Every output table of the library and its front ends (src/catalogue/outputs.cpp): the
 /// vocabulary that `frictal columns`, the docs' outputs reference and the key test read.
 const std::vector<OutputTable>& output_tables();
+
+/// The build of the compiled library: its version, the commit and CMake build type it was built
+/// from, and whether the 3D tilt test (MuJoCo) is compiled in. Table "build_info".
+struct BuildInfo {
+  std::string version, git_commit, build_type;
+  bool mujoco = false;
+};
+/// This build's BuildInfo (src/catalogue/outputs.cpp).
+BuildInfo build_info();
+/// The output table of BuildInfo (Python build_info()).
+const Columns<BuildInfo>& build_info_columns();
 
 /// The table named `name`, or nullptr.
 const OutputTable* find_output_table(std::string_view name);

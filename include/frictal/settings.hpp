@@ -18,6 +18,7 @@
 #include <variant>
 #include <vector>
 
+#include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
 
 namespace frictal {
@@ -66,6 +67,14 @@ double from_text_unit(const Field& f, double text);
 std::string default_text(const Field& f);
 /// The valid range as text in text units ("(0, 60] deg", "0..10", "printed or common").
 std::string range_text(const Field& f);
+
+/// A settings field as every front end lists it (table "settings_field": `frictal settings --json`,
+/// `frictal commands --json`, Python's tilt_settings() and the generators' fields): name, CLI
+/// option, type (number, integer, boolean or word), the text unit and the SI unit, the default
+/// and the valid range in text units, the meaning; Python's dicts hold the unit, the default, min
+/// and max in SI (the default as the field's type: float, int, bool or str; None = automatic) and
+/// the choices.
+const Columns<Field>& settings_field_columns();
 
 /// Checks a value given in SI (type and range); integers are accepted for Real fields and
 /// whole reals for Integer fields, and the result is normalised to the field's type. Errors

@@ -156,6 +156,18 @@ struct FrictionPrediction {
 /// mu_a >= 0; theta_max and sigma in radians.
 Result<FrictionPrediction> predict_friction(double atomic_friction, double theta_max, double sigma);
 
+/// Every contact at every offset of a signature (SignatureOptions::keep_contacts), one element
+/// per contact: the offset (unit: m), where it is in the lower block's frame (x, z; unit: m), its
+/// slope (unit: rad) and type (contact_type_name). Table "contacts".
+struct ContactList {
+  std::vector<double> offset, x, z, slope;
+  std::vector<std::string> type;
+};
+/// The contacts that `r` kept, in offset order (empty without keep_contacts).
+ContactList contact_list(const SignatureResult& r);
+/// The output table of a ContactList (src/signature/signature_columns.cpp).
+const Columns<ContactList>& contact_list_columns();
+
 /// The signature's output table (frictal/outputs.hpp): `frictal signature --json` and Python's
 /// signature() dict (src/signature/signature_columns.cpp).
 const Columns<SignatureResult>& signature_columns();

@@ -117,6 +117,7 @@ inline py::object py_value(const std::string& unit, const OutputValue& v, const 
                            bool fixed = false) {
   if (auto* d = std::get_if<double>(&v)) {
     if (unit == "count") return std::isfinite(*d) ? py::object(py::int_(static_cast<long long>(*d))) : py::none();
+    if (unit == "value" && std::isnan(*d)) return py::none();  // a setting's "automatic"
     return py::float_(*d);
   }
   if (auto* t = std::get_if<std::string>(&v)) return py::str(*t);
@@ -246,30 +247,11 @@ inline ValueSet keyword_values(const std::vector<Field>& fields, const py::kwarg
   return out;
 }
 
-/// The fields of a table as a list of dicts (name, type, unit, default, min, max, choices, help),
-/// SI units as Python takes them.
+/// The fields of a table as a list of dicts, written from the table "settings_field" (name,
+/// option, type, unit, default, min, max, choices, help), SI units as Python takes them.
 inline py::list field_list(const std::vector<Field>& fields) {
   py::list l;
-  for (const Field& f : fields) {
-    py::dict d;
-    d["name"] = f.name;
-    static const char* types[] = {"real", "integer", "boolean", "choice"};
-    d["type"] = types[static_cast<int>(f.type)];
-    d["unit"] = f.unit;
-    if (f.type == FieldType::Boolean)
-      d["default"] = f.default_value != 0;
-    else if (f.type == FieldType::Choice)
-      d["default"] = f.choices.at(static_cast<std::size_t>(f.default_value));
-    else if (f.type == FieldType::Integer)
-      d["default"] = static_cast<std::int64_t>(f.default_value);
-    else
-      d["default"] = std::isnan(f.default_value) ? py::object(py::none()) : py::object(py::float_(f.default_value));
-    d["min"] = f.min;
-    d["max"] = f.max;
-    d["choices"] = f.choices;
-    d["help"] = f.help;
-    l.append(d);
-  }
+  for (const Field& f : fields) l.append(to_dict(settings_field_columns(), f));
   return l;
 }
 

@@ -70,15 +70,7 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "frictal: static friction between rigid rough surfaces (C++ core). SI units: m, rad.";
   m.attr("__version__") = frictal::version();
   m.def(
-      "build_info",
-      [] {
-        py::dict d;
-        d["version"] = frictal::version();
-        d["git_commit"] = frictal::git_commit();
-        d["build_type"] = frictal::build_type();
-        d["mujoco"] = frictal::mujoco_available();
-        return d;
-      },
+      "build_info", [] { return py_detail::to_dict(build_info_columns(), frictal::build_info()); },
       "Version, git commit and CMake build type of the compiled core.\n\n"
       "Returns a dict (unitless): version (from CMakeLists.txt), git_commit, build_type (str), mujoco (bool: the 3D "
       "tilt test "
@@ -146,7 +138,8 @@ PYBIND11_MODULE(_core, m) {
         for (const GeneratorInfo& g : surface_generators()) d[py::str(g.name)] = py_detail::field_list(g.fields);
         return d;
       },
-      "generators() -> dict\n\nEvery surface generator's parameter table: name -> list of fields (name, type, unit "
+      "generators() -> dict\n\nEvery surface generator's parameter table: name -> list of fields (name, option, type "
+      "(number, integer, boolean or word), unit "
       "(SI), default, min, max, choices, help). The same names are the CLI options (--kebab-case, degrees) and study "
       "TOML keys.");
 
@@ -223,25 +216,6 @@ PYBIND11_MODULE(_core, m) {
         run.conditioning = pair.conditioning;
         run.warnings = pair.warnings;
         py_detail::put_columns(d, run_record_columns(), run);
-        if (keep_contacts) {
-          std::vector<double> off, x, z, s;
-          py::list types;
-          for (std::size_t i = 0; i < r.offset.size(); ++i)
-            for (auto k = r.contact_begin[i]; k < r.contact_begin[i + 1]; ++k) {
-              off.push_back(r.offset[i]);
-              x.push_back(r.contacts[k].x);
-              z.push_back(r.contacts[k].z);
-              s.push_back(r.contacts[k].slope);
-              types.append(contact_type_name(r.contacts[k].type));
-            }
-          py::dict c;
-          c["offset"] = arr(off);
-          c["x"] = arr(x);
-          c["z"] = arr(z);
-          c["slope"] = arr(s);
-          c["type"] = types;
-          d["contacts"] = c;
-        }
         return d;
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("rotate_upper") = true,

@@ -21,6 +21,7 @@
 #include "frictal/stats.hpp"
 #include "frictal/study.hpp"
 #include "frictal/tilt.hpp"
+#include "frictal/version.hpp"
 #include "frictal/warnings.hpp"
 
 namespace frictal {
@@ -40,6 +41,19 @@ ColumnInfo py(std::string python, std::string unit, std::string help) {
 }
 
 }  // namespace
+
+BuildInfo build_info() { return {version(), git_commit(), build_type(), mujoco_available()}; }
+
+const Columns<BuildInfo>& build_info_columns() {
+  using T = BuildInfo;
+  static const Columns<T> cols = {
+      column<T>("version", "text", "frictal's version", [](const T& b) { return b.version; }),
+      column<T>("git_commit", "text", "the commit built", [](const T& b) { return b.git_commit; }),
+      column<T>("build_type", "text", "CMake build type", [](const T& b) { return b.build_type; }),
+      column<T>("mujoco", "flag", "the 3D tilt test is available", [](const T& b) { return b.mujoco; }),
+  };
+  return cols;
+}
 
 const Columns<RunRecord>& run_record_columns() {
   using T = RunRecord;
@@ -101,10 +115,9 @@ std::vector<OutputTable> make_tables() {
   t.back().columns.push_back(py("gap", "list", "fields=True: the gap at every point (m; maps: (ny, nx))"));
   t.push_back({"contact_curve", "frictal contact --json with several loads", infos(contact_curve_columns())});
   t.push_back({"contacts",
-               "Python frictal.signature(..., keep_contacts=True)['contacts']: every contact",
-               {py("offset", "m", "the offset of each contact"), py("x", "m", "contact abscissa in the lower's frame"),
-                py("z", "m", "contact height"), py("slope", "rad", "contact slope"),
-                py("type", "text", "vertex-edge, edge-vertex or vertex-vertex")}});
+               "Python frictal.signature(..., keep_contacts=True)['contacts']; the columns of frictal signature "
+               "--contacts: every contact",
+               infos(contact_list_columns())});
   t.push_back({"friction", "the rigid bound (Eq. 6) and Eq. 18's low end: signature --json, Python predict_friction",
                infos(friction_columns())});
   t.push_back({"friction_backward", "the rigid bound sliding towards -x: signature --json",
@@ -181,10 +194,7 @@ std::vector<OutputTable> make_tables() {
                infos(areal_tilt_hold_columns())});
   t.push_back({"conditioning", "Python condition(...)[1]: what each conditioning step did",
                infos(conditioning_record_columns())});
-  t.push_back({"build_info",
-               "Python build_info()",
-               {py("version", "text", "frictal's version"), py("git_commit", "text", "the commit built"),
-                py("build_type", "text", "CMake build type"), py("mujoco", "flag", "the 3D tilt test is available")}});
+  t.push_back({"build_info", "Python build_info(): the build of the compiled core", infos(build_info_columns())});
   t.push_back({"autocorrelation", "Python autocorrelation(...)", infos(autocorrelation_columns())});
   t.push_back({"map_data", "Python read_map(...): the heights and the grid", infos(map_data_columns())});
   t.push_back({"stats_extras",

@@ -15,6 +15,35 @@ using F = FrictionPrediction;
 
 }  // namespace
 
+ContactList contact_list(const SignatureResult& r) {
+  ContactList l;
+  for (std::size_t i = 0; i + 1 < r.contact_begin.size() && i < r.offset.size(); ++i)
+    for (auto k = r.contact_begin[i]; k < r.contact_begin[i + 1]; ++k) {
+      const Contact& c = r.contacts[k];
+      l.offset.push_back(r.offset[i]);
+      l.x.push_back(c.x);
+      l.z.push_back(c.z);
+      l.slope.push_back(c.slope);
+      l.type.emplace_back(contact_type_name(c.type));
+    }
+  return l;
+}
+
+const Columns<ContactList>& contact_list_columns() {
+  using T = ContactList;
+  static const Columns<T> cols = {
+      column<T>(
+          "offset_m", "m", "the offset of each contact", [](const T& l) { return l.offset; }, "offset"),
+      column<T>(
+          "x_m", "m", "contact abscissa in the lower block's frame", [](const T& l) { return l.x; }, "x"),
+      column<T>(
+          "z_m", "m", "contact height on the lower surface", [](const T& l) { return l.z; }, "z"),
+      column<T>("slope_deg", "deg", "contact slope by its type's rule", [](const T& l) { return l.slope; }),
+      column<T>("type", "text", "vertex-edge, edge-vertex or vertex-vertex", [](const T& l) { return l.type; }),
+  };
+  return cols;
+}
+
 const Columns<SignatureResult>& signature_columns() {
   static const Columns<S> cols = {
       column<S>(
@@ -75,7 +104,10 @@ const Columns<SignatureResult>& signature_columns() {
           "slope_weights"),
       column<S>(
           "", "count", "distinct event offsets in the range", [](const S& r) { return double(r.events); }, "events"),
-      declared_column<S>("", "object:contacts", "every contact at every offset (keep_contacts=True)", "contacts"),
+      only_if(object_column<S>(
+                  "", "contacts", "every contact at every offset (keep_contacts=True)", contact_list_columns(),
+                  [](const S& r) { return std::optional(contact_list(r)); }, "contacts"),
+              [](const S& r) { return !r.contact_begin.empty(); }),
   };
   return cols;
 }

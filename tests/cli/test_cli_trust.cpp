@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
@@ -228,4 +229,30 @@ TEST(CliTrust, EveryOptionAWarningNamesIsARealOption) {
     }
   }
   EXPECT_GE(named, 5u);
+}
+
+TEST(CliTrust, TheSharedInputsHaveOneHelpText) {
+  // An input that several commands take is one option: the same description wherever it appears
+  // (`frictal commands --json`), so that a user reads one meaning, one default, one unit.
+  auto c = run_cli("commands --json");
+  ASSERT_EQ(c.code, 0) << c.err;
+  std::map<std::string, std::map<std::string, std::vector<std::string>>> texts;  // option -> text -> commands
+  std::function<void(const json&, const std::string&)> walk = [&](const json& cmd, const std::string& path) {
+    const std::string here = path + " " + cmd["name"].get<std::string>();
+    for (const auto& o : cmd["options"]) texts[o["name"].get<std::string>()][o["description"]].push_back(here);
+    if (cmd.contains("subcommands"))
+      for (const auto& sub : cmd["subcommands"]) walk(sub, here);
+  };
+  const json listing = json::parse(c.out);
+  for (const auto& cmd : listing["commands"]) walk(cmd, "frictal");
+  for (const char* name : {"--detrend", "--crop", "--remove-spikes", "--spike-threshold", "--atomic-friction",
+                           "--runaway-distance", "--period", "--unit"}) {
+    ASSERT_TRUE(texts.count(name)) << name;
+    std::size_t commands = 0;
+    for (const auto& [text, where] : texts[name]) commands += where.size();
+    EXPECT_GE(commands, 2u) << name;
+    EXPECT_EQ(texts[name].size(), 1u) << name << " has " << texts[name].size() << " descriptions, e.g. in "
+                                      << texts[name].begin()->second.front() << " and "
+                                      << texts[name].rbegin()->second.front();
+  }
 }

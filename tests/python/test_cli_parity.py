@@ -251,6 +251,37 @@ def test_the_cli_s_tilt_frames_read_back_in_python(tmp_path):
         frictal.read_tilt_frames(str(bad))
 
 
+def test_settings_tables_are_the_clis():
+    """tilt_settings(), areal_tilt_settings() and generators() list the fields that `frictal settings
+    --json` lists, with the same name, option, type and help; Python's unit is the SI unit that
+    the CLI names si_unit, and its default the CLI's in SI (degrees in the CLI, radians here)."""
+    cli = json.loads(subprocess.run([CLI, "settings", "--json"], check=True, capture_output=True, text=True).stdout)
+    pairs = [(cli["tilt"], frictal.tilt_settings()), (cli["areal_tilt"], frictal.areal_tilt_settings())]
+    pairs += [(cli["generators"][name]["fields"], fields) for name, fields in frictal.generators().items()]
+    assert len(pairs) > 4
+    for c_fields, p_fields in pairs:
+        assert [f["name"] for f in c_fields] == [f["name"] for f in p_fields]
+        for c, p in zip(c_fields, p_fields):
+            for k in ("name", "option", "type", "help"):
+                assert c[k] == p[k], (c["name"], k)
+            assert c["si_unit"] == p["unit"], c["name"]
+            if c["type"] == "boolean":
+                assert c["default"] == ("true" if p["default"] else "false"), c["name"]
+            elif c["type"] == "word":
+                assert c["default"] == p["default"] and p["default"] in p["choices"], c["name"]
+            elif c["type"] == "integer":
+                assert isinstance(p["default"], int) and float(c["default"]) == p["default"], c["name"]
+            elif p["default"] is None:
+                assert not c["default"][:1].isdigit(), c["name"]  # automatic: a word, not a number
+            else:
+                try:
+                    text = float(c["default"])
+                except ValueError:  # a default the surface or the command sets, said in words
+                    continue
+                factor = 180 / math.pi if c["unit"] == "deg" else 1.0
+                assert text == pytest.approx(p["default"] * factor, rel=1e-5), c["name"]
+
+
 def test_areal_tilt_equals_the_cli(tmp_path):
     """The 3D tilt test (MuJoCo) in Python and in the CLI on the same maps (written to X3P for the
     CLI): every key `frictal areal-tilt --json` prints is in Python's dict without its unit suffix,

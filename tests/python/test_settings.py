@@ -79,9 +79,9 @@ def test_tilt_keywords_are_the_table_names():
     # Every keyword is read: a value outside the field's range is refused naming it.
     flat = frictal.Profile([0.0, 0.2], [0.0, 0.0])
     for f in table:
-        if f["type"] in ("real", "integer") and math.isfinite(f["min"]):
+        if f["type"] in ("number", "integer") and math.isfinite(f["min"]):
             bad = f["min"] - 1
-        elif f["type"] == "choice":
+        elif f["type"] == "word":
             bad = "bogus"
         else:
             continue
