@@ -117,10 +117,17 @@ inline nlohmann::json json_row(const OutputRow& row) {
 
 /// A nested column's objects in JSON by its unit: "object:" and "settings" the one object (null:
 /// none), "rows:" a list of lists of values, "map:" an object of objects under each row's first
-/// value, "list:" a list of objects.
+/// value, "map" a data map (the one row's fields under their keys, an empty key too), "list:" a
+/// list of objects.
 inline nlohmann::json json_nested(const std::string& unit, const std::vector<OutputRow>& rows) {
   if (unit.starts_with("object:") || unit == "settings")
     return rows.empty() ? nlohmann::json(nullptr) : json_row(rows.front());
+  if (unit == "map") {
+    nlohmann::json m = nlohmann::json::object();
+    if (!rows.empty())
+      for (const OutputField& f : rows.front()) m[f.info.key] = json_shaped(json_value(f.info.unit, f.si), f.shape);
+    return m;
+  }
   if (unit.starts_with("map:")) {
     nlohmann::json m = nlohmann::json::object();
     for (const OutputRow& r : rows) {
@@ -145,9 +152,9 @@ inline nlohmann::json json_nested(const std::string& unit, const std::vector<Out
 
 /// The generic JSON writer of an output table: every column of `cols` that the CLI prints (a
 /// non-empty key) and that `value` has (a value, or nested objects: "object:" one, "list:" a
-/// list, "rows:" a list of lists of values, "map:" an object of objects) into `j`, in its
-/// interface unit. Declared columns without either are written by the caller under their declared
-/// keys.
+/// list, "rows:" a list of lists of values, "map:" an object of objects, "map" a data map) into
+/// `j`, in its interface unit. Declared columns without either are written by the caller under
+/// their declared keys.
 template <class T>
 void put_columns(nlohmann::json& j, const Columns<T>& cols, const T& value) {
   for (const Column<T>& c : cols) {

@@ -361,32 +361,7 @@ int status(const std::string& path, bool json, bool failed) {
   auto store = unwrap(Store::open_existing(path));
   const StoreStatus st = unwrap(store_status(*store, default_registry()));
   if (json) {
-    nlohmann::json j;
-    j["store"] = path;
-    j["study"] = st.study;
-    j["scale"] = st.scale;
-    j["study_hash"] = st.study_hash;
-    j["schema_version"] = st.schema_version;
-    j["frictal_version"] = st.frictal_version;
-    j["claimed"] = st.claimed;
-    j["tasks"] = {
-        {"total", st.tasks.total}, {"done", st.tasks.done}, {"failed", st.tasks.failed}, {"pending", st.tasks.pending}};
-    for (const auto& p : st.parts) {
-      nlohmann::json kv = nlohmann::json::object(), fv = nlohmann::json::object();
-      for (const auto& [v, n] : p.done_by_kind_version) kv[std::to_string(v)] = n;
-      for (const auto& [v, n] : p.done_by_frictal_version) fv[v] = n;
-      j["parts"].push_back({{"part", p.part},
-                            {"kind", p.kind},
-                            {"done", p.done},
-                            {"failed", p.failed},
-                            {"pending", p.pending},
-                            {"available", p.available},
-                            {"kind_version", p.kind_version},
-                            {"done_by_kind_version", kv},
-                            {"done_by_frictal_version", fv},
-                            {"version_note", p.version_note}});
-    }
-    print_json(j);
+    print_json(object_of(study_status_columns(), StudyStatusReport{path, st}));
     return 0;
   }
   fmt::print("{}: study '{}' ({} scale), schema {}, definition {}, created by frictal {}\n", path, st.study, st.scale,
@@ -399,15 +374,9 @@ int status(const std::string& path, bool json, bool failed) {
                p.pending, p.unavailable_reason.empty() ? "" : "  (" + p.unavailable_reason + ")");
   if (st.claimed)
     fmt::print("  {} tasks claimed by a run now (or by one that died: the next run takes them over)\n", st.claimed);
-  for (const auto& p : st.parts) {
-    std::string by;
-    for (const auto& [v, n] : p.done_by_kind_version)
-      by += fmt::format("{}{} by {}", by.empty() ? "" : ", ", n,
-                        v ? fmt::format("v{}", v) : std::string("unrecorded version"));
-    for (const auto& [v, n] : p.done_by_frictal_version)
-      by += fmt::format("{}{} by frictal {}", by.empty() ? "" : ", ", n, v.empty() ? std::string("?") : v);
-    if (!by.empty()) fmt::print("  part {:<14} done tasks: {}\n", p.part, by);
-  }
+  for (const auto& p : st.parts)
+    if (const std::string by = done_versions_text(p); !by.empty())
+      fmt::print("  part {:<14} done tasks: {}\n", p.part, by);
   for (const auto& p : st.parts)
     if (!p.version_note.empty()) fmt::print(stderr, "frictal: warning: {}\n", p.version_note);
   if (failed) fmt::print("{}", unwrap(store->failures_csv()));

@@ -35,7 +35,7 @@ using OutputValue = std::variant<double, std::string, bool, std::vector<double>,
 /// [tilt, x, y] stops, each value in its column's unit), "map:TABLE" (an object holding one
 /// object per row, under the row's first column, a text, with the row's other columns), "settings"
 /// (an object whose keys are fields of a settings table, `frictal settings`) and "map" (an object
-/// whose keys are data: versions, a study kind's outputs).
+/// whose keys are data: versions, a study task's parameters and outputs; data_map_column).
 struct ColumnInfo {
   std::string key;     ///< the CLI's JSON key, e.g. "theta_max_forward_deg"; "" = Python only
   std::string unit;    ///< the interface unit (above)
@@ -56,11 +56,11 @@ struct OutputField {
 /// A nested object: the columns of its table that have a value or objects, in the table's order.
 using OutputRow = std::vector<OutputField>;
 
-/// Whether a column's unit names nested objects ("object:TABLE", "list:TABLE", "rows:TABLE" or
-/// "map:TABLE").
+/// Whether a column's unit names nested objects ("object:TABLE", "list:TABLE", "rows:TABLE",
+/// "map:TABLE" or a data map, "map").
 inline bool is_nested_unit(std::string_view unit) {
   return unit.starts_with("object:") || unit.starts_with("list:") || unit.starts_with("rows:") ||
-         unit.starts_with("map:");
+         unit.starts_with("map:") || unit == "map";
 }
 
 /// One output quantity of result type T: its declaration and its value in SI, or for a nested
@@ -230,6 +230,40 @@ Column<T> map_column(std::string key, const std::string& table, std::string help
                      std::string python = {}) {
   Column<T> c = list_column<T, R>(std::move(key), table, std::move(help), cols, std::forward<F>(f), std::move(python));
   c.unit = "map:" + table;
+  return c;
+}
+
+/// One entry of a data map: its key (data, not a declared name: a version, a parameter or an
+/// output of a study task, possibly empty), the unit its value is written in (frictal/outputs.hpp's
+/// interface units: "count" for an integer, "1" for a number written as it is) and its value.
+struct MapEntry {
+  std::string key;
+  std::string unit;
+  OutputValue value;
+};
+
+/// A data map column of T: `key` (unit "map") holds an object whose keys are data, the entries
+/// that `f` returns for a value (a std::vector<MapEntry>, in their order; none: an empty object),
+/// each value in its entry's unit. The writers hold the entries as one nested row whose fields are
+/// named by the entries' keys (an empty key included). Python key: `key` unless `python` is given
+/// ("-" = not in Python's dicts).
+template <class T, class F>
+Column<T> data_map_column(std::string key, std::string help, F&& f, std::string python = {}) {
+  Column<T> c;
+  c.key = std::move(key);
+  c.unit = "map";
+  c.help = std::move(help);
+  c.python = python == "-" ? std::string() : python.empty() ? c.key : std::move(python);
+  c.rows = [g = std::forward<F>(f)](const T& v) {
+    OutputRow row;
+    for (MapEntry& e : g(v)) {
+      OutputField field;
+      field.info = ColumnInfo{e.key, e.unit, {}, e.key};
+      field.si = std::move(e.value);
+      row.push_back(std::move(field));
+    }
+    return std::vector<OutputRow>{std::move(row)};
+  };
   return c;
 }
 

@@ -690,6 +690,10 @@ struct StoreStatus {
   std::vector<PartStatus> parts;
 };
 Result<StoreStatus> store_status(Store& store, const TaskRegistry& registry);
+/// Which versions computed a part's done tasks, as `frictal study status` prints it: per kind
+/// version "N by vK" (K = 0: "N by unrecorded version"), then per frictal version "N by frictal V"
+/// (V empty: "?"), joined by ", "; empty when no task is done.
+std::string done_versions_text(const StoreStatus::PartStatus& part);
 
 /// Writes the store as CSV files under `dir` (created if missing): tasks.csv, per part
 /// PART.csv (wide: parameters then scalars), PART-arrays.csv (long), PART-pooled-pdfs.csv (when
@@ -720,5 +724,8 @@ const Columns<StoreCounts>& study_tasks_columns();
 const Columns<StoreStatus::PartStatus>& study_part_columns();
 const Columns<StudyStatusReport>& study_status_columns();
 const Columns<StudyRunReport>& study_run_columns();
+/// Python's study_rows(): one done task ("study_row"): its id, part, kind, and its parameters,
+/// scalar and array outputs as data maps keyed by name.
+const Columns<TaskRow>& study_row_columns();
 
 }  // namespace frictal::study

@@ -26,14 +26,25 @@ T ok(Result<T> r) {
   return std::move(r).value();
 }
 
-py::object value(const Value& v) {
-  struct V {
-    py::object operator()(std::int64_t i) const { return py::int_(i); }
-    py::object operator()(double d) const { return py::float_(d); }
-    py::object operator()(const std::string& s) const { return py::str(s); }
-    py::object operator()(bool b) const { return py::bool_(b); }
-  };
-  return std::visit(V{}, v);
+/// A study table's Python dict: each column by the generic writer (bindings.hpp), a data map
+/// (unit "map", frictal/outputs.hpp) as a dict of its entries under their keys, each value as the
+/// generic writer holds a value of its entry's unit (an int for "count", a numpy array for a list).
+template <class T>
+py::dict study_dict(const Columns<T>& cols, const T& value) {
+  py::dict d;
+  for (const Column<T>& c : cols) {
+    if (c.python.empty() || !has_output(c, value)) continue;
+    if (c.unit != "map") {
+      py_detail::put_columns(d, Columns<T>{c}, value);
+      continue;
+    }
+    py::dict m;
+    for (const OutputRow& r : c.rows(value))
+      for (const OutputField& f : r)
+        m[py::str(f.info.python)] = py_detail::py_value(f.info.unit, f.si, f.shape, f.fixed);
+    d[py::str(c.python)] = m;
+  }
+  return d;
 }
 
 std::unique_ptr<Store> open_existing(const std::string& path) { return ok(Store::open_existing(path)); }
@@ -162,21 +173,9 @@ void frictal_bind_study(py::module_& m) {
   m.def(
       "study_rows",
       [](const std::string& path, const std::string& part, bool arrays) {
-        auto rows = ok(open_existing(path)->rows(part, arrays));
         py::list out;
-        for (const auto& r : rows) {
-          py::dict d, params, scalars, arrs;
-          d["task_id"] = r.id;
-          d["part"] = r.part;
-          d["kind"] = r.kind;
-          for (const auto& [k, v] : r.params) params[py::str(k)] = value(v);
-          for (const auto& [k, v] : r.output.scalars) scalars[py::str(k)] = v;
-          for (const auto& [k, v] : r.output.arrays) arrs[py::str(k)] = py::array_t<double>(v.size(), v.data());
-          d["params"] = params;
-          d["scalars"] = scalars;
-          d["arrays"] = arrs;
-          out.append(d);
-        }
+        for (const TaskRow& r : ok(open_existing(path)->rows(part, arrays)))
+          out.append(study_dict(study_row_columns(), r));
         return out;
       },
       py::arg("store"), py::arg("part") = "", py::arg("arrays") = true,

@@ -242,12 +242,7 @@ std::vector<OutputTable> make_tables() {
                "one part's verdict on a claim",
                {ci("study", "text", "the study"), ci("part", "text", "the part"), ci("verdict", "text", "the verdict"),
                 ci("cause", "text", "the measured cause")}});
-  t.push_back({"study_row",
-               "Python study_rows(store): one done task",
-               {py("task_id", "count", "the task's id"), py("part", "text", "its part"), py("kind", "text", "its kind"),
-                py("params", "map", "its parameters (the kind's settings)"),
-                py("scalars", "map", "its scalar outputs (frictal study kinds lists them with units)"),
-                py("arrays", "map", "its array outputs")}});
+  t.push_back({"study_row", "Python study_rows(store): one done task", infos(study::study_row_columns())});
   return t;
 }
 

@@ -1008,7 +1008,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   ArealTiltHold out;
   std::size_t work = 0;
   SphereField::Near near;
-  std::vector<SphereField::Piece> pieces, trial_pieces;
+  std::vector<SphereField::Piece> pieces, trial_pieces, wide_pieces;
   // The descent follows the local steepest direction: the pieces that decide it (and that the
   // turn check reads) are those a step of at most kLocal r could make the highest, however long the
   // step. (A window as long as the step, as before, let pieces beside the path turn the direction
@@ -1095,6 +1095,18 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   // The slopes (or cone samples) of the pieces of the last direction, untilted; at a rest, the
   // tan of the tilt up to which they hold the block where it stands (ray_hull_max; NaN: none).
   std::vector<std::array<double, 2>> raw;
+  // Recent directions with friction (see direction in descend): the distinct gradients of the
+  // pieces, the tilt (rad), minus the direction, the cones' slopes and the steepest slopes.
+  struct ConeHull {
+    std::vector<std::array<double, 2>> grads;
+    double beta = std::numeric_limits<double>::quiet_NaN();
+    std::array<double, 2> P{};
+    std::vector<std::array<double, 2>> raw;
+    double geo = 0, cone = 0;
+  };
+  std::array<ConeHull, 4> cone_cache;
+  std::size_t cone_next = 0;
+  std::vector<std::array<double, 2>> grads;
   double last_tstar = std::numeric_limits<double>::quiet_NaN();
   // Nonsmooth steepest descent of V at tilt beta from st; Far once it has gone D along d from
   // its stop (check_far).
@@ -1111,6 +1123,10 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     // |g_i - g_best|, with |g_i - g_best| capped by each piece's cap (SphereField::Window).
     double h = 0;
     bool have = false;  // h and `pieces` hold for st and delta (from the accepted trial step)
+    // With friction: whether the last iteration halved a stationary step, and the pieces the
+    // halvings left out (the stalled descent, see below).
+    std::vector<SphereField::Piece> gone;
+    bool stalled = false;
     // A direction from the local windows that no step down to delta_min follows may have left out
     // a piece steeper than the facets around it: the rest is taken only once the full window
     // (cap 2 for every piece) finds no step either.
@@ -1126,17 +1142,19 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
       q.clear();
       raw.clear();
       dir_geo = dir_cone = -std::numeric_limits<double>::infinity();
-      for (const SphereField::Piece& p : ps) {
-        if (h - p.value > d * std::min(std::hypot(p.gx - top->gx, p.gy - top->gy), p.cap) + 1e-12 * r) continue;
-        dir_geo = std::max(dir_geo, p.gx * dxv + p.gy * dyv);
-        dir_cone = std::max(dir_cone, cone_max_slope(p.gx, p.gy, dxv, dyv, phi_a));
-        // Frictionless: the slope of the contact's normal force. With mu_a: the slopes of every force
-        // in its Coulomb cone (docs/mujoco.md, "Atomic friction").
+      auto within = [&](const SphereField::Piece& p) {
+        return h - p.value <= d * std::min(std::hypot(p.gx - top->gx, p.gy - top->gy), p.cap) + 1e-12 * r;
+      };
+      // The slope of a contact's force: frictionless the normal force's; with mu_a every force in
+      // its Coulomb cone (docs/mujoco.md, "Atomic friction").
+      auto add = [&](double gx0, double gy0) {
+        dir_geo = std::max(dir_geo, gx0 * dxv + gy0 * dyv);
+        dir_cone = std::max(dir_cone, cone_max_slope(gx0, gy0, dxv, dyv, phi_a));
         slopes.clear();
         if (phi_a > 0)
-          cone_slopes(p.gx, p.gy, phi_a, kConeSamples, slopes);
+          cone_slopes(gx0, gy0, phi_a, kConeSamples, slopes);
         else
-          slopes.push_back({p.gx, p.gy});
+          slopes.push_back({gx0, gy0});
         for (const auto& sl : slopes) {
           if (t.lock_lateral) {
             const double a = sl[0] * dxv + sl[1] * dyv;
@@ -1152,9 +1170,36 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
           }
           q.push_back({gx, gy});
         }
+      };
+      if (!(phi_a > 0)) {
+        for (const SphereField::Piece& p : ps)
+          if (within(p)) add(p.gx, p.gy);
+        // (least_norm is cubic in the points: the hull for more than a few, the same point.)
+        return q.size() > 16 ? least_norm_hull(q) : least_norm(q);
       }
-      // (least_norm is cubic in the points: the hull for more than a few, the same point.)
-      return phi_a > 0 || q.size() > 16 ? least_norm_hull(q) : least_norm(q);
+      // With friction, the cones of the distinct gradients only: the pieces of a conforming pair
+      // share a few (every sphere on one facet: 15 pieces of 3 gradients on average, matrix-5),
+      // and a cone's samples depend on its gradient alone, so the hull is the same set's
+      // (least_norm_hull and ray_hull_max sort and drop repeats: the same point, bit for bit).
+      // A descent asks again for the same contacts at the same tilt while it halves its step or
+      // creeps along a facet: the last few answers are kept, by gradients and tilt.
+      grads.clear();
+      for (const SphereField::Piece& p : ps)
+        if (within(p)) grads.push_back({p.gx, p.gy});
+      std::sort(grads.begin(), grads.end());
+      grads.erase(std::unique(grads.begin(), grads.end()), grads.end());
+      for (const ConeHull& c : cone_cache)
+        if (c.beta == beta && c.grads == grads) {
+          raw = c.raw;
+          dir_geo = c.geo;
+          dir_cone = c.cone;
+          return c.P;
+        }
+      for (const auto& g : grads) add(g[0], g[1]);
+      ConeHull& c = cone_cache[cone_next];
+      cone_next = (cone_next + 1) % cone_cache.size();
+      c = {grads, beta, least_norm_hull(q), raw, dir_geo, dir_cone};
+      return c.P;
     };
     for (int it = 0; it < 200000; ++it) {
       if (!have) h = height(st.x, st.y, window(delta), &pieces, full);
@@ -1174,13 +1219,51 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
           return End::Rest;
         }
         delta = std::max(0.5 * delta, delta_min);
-        // The pieces of the smaller window are among these (no new evaluation).
-        std::erase_if(pieces,
-                      [&](const SphereField::Piece& p) { return p.value < h - (window(delta) * p.cap + 2e-12 * r); });
+        // The pieces of the smaller window are among these (no new evaluation); with friction
+        // those left out are kept for the step to the contact (below).
+        std::erase_if(pieces, [&](const SphereField::Piece& p) {
+          const bool out = p.value < h - (window(delta) * p.cap + 2e-12 * r);
+          if (out && phi_a > 0) gone.push_back(p);
+          return out;
+        });
+        stalled = phi_a > 0;
         have = true;
         continue;
       }
       const double wx = -P[0] / Pn, wy = -P[1] / Pn;
+      // With friction a descent can stall: the block is held in the window of delta (a piece
+      // whose cone holds it lies at a deficit the window reaches) and not in the half window that
+      // leaves that piece out, so it moves on by about delta, the piece's deficit changes by a
+      // small fraction of itself, and the next step is again no longer (a 12 x 10 random map:
+      // 5000 steps of 1e-8 to 1e-6 r per descent, against 35 steps without friction; 100 times
+      // the frictionless cost). After such a halving the step goes instead to where the first
+      // piece that is not a top becomes one along the direction w, from the pieces' linear models
+      // (h rises at the largest rate of the tops, piece i at g_i.w; exact on facets), over every
+      // piece a step that long could make the highest (one evaluation in that window), at most
+      // kLocal r: no piece the window leaves out can become a top within it. The step is then
+      // tried as any other (the decrease), and the halving goes on from it where it fails.
+      if (stalled) {
+        stalled = false;
+        double rate = -std::numeric_limits<double>::infinity();
+        for (const SphereField::Piece& p : pieces)
+          if (h - p.value <= 2e-12 * r) rate = std::max(rate, p.gx * wx + p.gy * wy);
+        auto reach = [&](const std::vector<SphereField::Piece>& ps) {
+          double t_min = std::numeric_limits<double>::infinity();
+          for (const SphereField::Piece& p : ps) {
+            const double den = p.gx * wx + p.gy * wy - rate, gap = h - p.value;
+            if (gap > 2e-12 * r && den > 0) t_min = std::min(t_min, gap / den);
+          }
+          return t_min;
+        };
+        double T = std::min({reach(gone), reach(pieces), kLocal * r});
+        gone.clear();
+        if (std::isfinite(rate) && T > delta) {
+          if (height(st.x, st.y, window(T), &wide_pieces, full) == h) {
+            T = std::min(T, reach(wide_pieces));
+            if (T > delta) delta = T;
+          }
+        }
+      }
       bool moved = false;
       const double delta_start = delta;
       while (delta >= delta_min) {

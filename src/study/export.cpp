@@ -90,6 +90,16 @@ Result<StoreStatus> store_status(Store& store, const TaskRegistry& registry) {
   return s;
 }
 
+std::string done_versions_text(const StoreStatus::PartStatus& part) {
+  std::string by;
+  for (const auto& [v, n] : part.done_by_kind_version)
+    by += fmt::format("{}{} by {}", by.empty() ? "" : ", ", n,
+                      v ? fmt::format("v{}", v) : std::string("unrecorded version"));
+  for (const auto& [v, n] : part.done_by_frictal_version)
+    by += fmt::format("{}{} by frictal {}", by.empty() ? "" : ", ", n, v.empty() ? std::string("?") : v);
+  return by;
+}
+
 std::string render_markdown(const Report& r) {
   std::string s = fmt::format("# {}\n\n", r.title);
   for (const auto& l : r.lines) s += l + "\n";

@@ -1,7 +1,10 @@
 // The output tables of studies (frictal/outputs.hpp): the keys of `frictal study status --json`
-// and of Python's study_status(), study_run() and study_run_many() dicts.
+// and of Python's study_status(), study_run(), study_run_many() and study_rows() dicts.
+#include <cstdint>
 #include <optional>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include "frictal/study.hpp"
 
@@ -29,8 +32,24 @@ const Columns<StoreStatus::PartStatus>& study_part_columns() {
       column<T>("available", "flag", "this build can run the kind", [](const T& p) { return p.available; }),
       column<T>("kind_version", "count", "this build's version of the kind (0: unknown kind)",
                 [](const T& p) { return double(p.kind_version); }),
-      declared_column<T>("done_by_kind_version", "map", "tasks done by each kind version"),
-      declared_column<T>("done_by_frictal_version", "map", "tasks done by each frictal version"),
+      // Keyed by version (data, not names): Python's generic writer has no data maps nested in a
+      // list, so its status dict leaves them out.
+      data_map_column<T>(
+          "done_by_kind_version", "tasks done by each kind version (0: not recorded)",
+          [](const T& p) {
+            std::vector<MapEntry> e;
+            for (const auto& [v, n] : p.done_by_kind_version) e.push_back({std::to_string(v), "count", double(n)});
+            return e;
+          },
+          "-"),
+      data_map_column<T>(
+          "done_by_frictal_version", "tasks done by each frictal version (empty: not recorded)",
+          [](const T& p) {
+            std::vector<MapEntry> e;
+            for (const auto& [v, n] : p.done_by_frictal_version) e.push_back({v, "count", double(n)});
+            return e;
+          },
+          "-"),
       column<T>("version_note", "text", "what a version change means for the stored results",
                 [](const T& p) { return p.version_note; }),
   };
@@ -87,6 +106,55 @@ const Columns<StudyRunReport>& study_run_columns() {
       object_column<T, StoreCounts>(
           "", "study_tasks", "the store's task counts after the run", study_tasks_columns(),
           [](const T& r) { return std::optional(r.tasks); }, "tasks"),
+  };
+  return cols;
+}
+
+const Columns<TaskRow>& study_row_columns() {
+  using T = TaskRow;
+  // A parameter's value as it was given: an integer, a number (the study's units, as its name
+  // says), a text or a flag.
+  auto param = [](const std::string& name, const Value& v) {
+    struct V {
+      const std::string& name;
+      MapEntry operator()(std::int64_t i) const { return {name, "count", double(i)}; }
+      MapEntry operator()(double d) const { return {name, "1", d}; }
+      MapEntry operator()(const std::string& t) const { return {name, "text", t}; }
+      MapEntry operator()(bool b) const { return {name, "flag", b}; }
+    };
+    return std::visit(V{name}, v);
+  };
+  static const Columns<T> cols = {
+      column<T>(
+          "", "count", "the task's id", [](const T& r) { return double(r.id); }, "task_id"),
+      column<T>(
+          "", "text", "its part", [](const T& r) { return r.part; }, "part"),
+      column<T>(
+          "", "text", "its kind", [](const T& r) { return r.kind; }, "kind"),
+      data_map_column<T>(
+          "", "its parameters (the kind's settings, in the study's units)",
+          [param](const T& r) {
+            std::vector<MapEntry> e;
+            for (const auto& [k, v] : r.params) e.push_back(param(k, v));
+            return e;
+          },
+          "params"),
+      data_map_column<T>(
+          "", "its scalar outputs (frictal study kinds lists them with units)",
+          [](const T& r) {
+            std::vector<MapEntry> e;
+            for (const auto& [k, v] : r.output.scalars) e.push_back({k, "1", v});
+            return e;
+          },
+          "scalars"),
+      data_map_column<T>(
+          "", "its array outputs (numpy arrays)",
+          [](const T& r) {
+            std::vector<MapEntry> e;
+            for (const auto& [k, v] : r.output.arrays) e.push_back({k, "1", v});
+            return e;
+          },
+          "arrays"),
   };
   return cols;
 }

@@ -11,6 +11,7 @@
 
 #include "frictal/areal.hpp"
 #include "frictal/areal_tilt.hpp"
+#include "frictal/map_hold.hpp"
 #include "frictal/study.hpp"
 
 namespace {
@@ -440,6 +441,41 @@ TEST(ArealTiltHold, AtomicFrictionEntersThroughTheCoulombCones) {
     EXPECT_LE(h->hold_angle, expected + 1.1e-4);
     EXPECT_NEAR(h->steering, psi, 0.01);
   }
+}
+
+TEST(ArealTiltHold, AConformingValleyWithFrictionHoldsAtItsSlopePlusAtanMuA) {
+  // A V-shaped valley across x, flanks of slope s, and in place in it a 9 x 9 window of the same
+  // valley: every sphere touches at once, on facets of two slopes. As the tilt grows the block
+  // climbs the far flank and is held while the load lies in the hull of the contacts' cones (about
+  // two normals), up to atan(s) + atan(mu_a) (by hand: Eq. 6's theta + theta_a); the cone's samples
+  // include the two in the vertical plane of d, so the sampling does not lower it. With friction
+  // the pieces of the 81 spheres share a few gradients (their cones are two cones); the answer is
+  // within the bisection's resolution (1e-6 rad) of the hand value, free and locked.
+  const std::size_t n = 24;
+  const double a = 1e-6, s = 0.3;
+  frictal::Map f;
+  f.nx = f.ny = n;
+  f.dx = f.dy = a;
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i) f.heights.push_back(s * a * std::abs(double(i) - 12));
+  frictal::Map g;
+  g.nx = g.ny = 9;
+  g.dx = g.dy = a;
+  g.x0 = g.y0 = 8 * a;
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) g.heights.push_back(f.at(i + 8, j + 8));
+  for (const double mu : {0.0, 0.02, 0.1})
+    for (const bool lock : {false, true}) {
+      frictal::MapHoldOptions t;
+      t.turn_over_upper = false;
+      t.atomic_friction = mu;
+      t.lock_lateral = lock;
+      auto h = frictal::areal_tilt_hold(f, g, t);
+      ASSERT_TRUE(h.ok()) << h.error().message;
+      ASSERT_TRUE(h->ran_away) << mu << " " << lock;
+      const double expected = std::atan(s) + std::atan(mu);
+      EXPECT_NEAR(h->hold_angle, expected, 2e-6) << "mu_a " << mu << " locked " << lock;
+    }
 }
 
 TEST(ArealTiltStudyKind, GroovesAlongTheDiagonal) {

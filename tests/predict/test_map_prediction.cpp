@@ -74,8 +74,7 @@ TEST(MapPrediction, TheUpperBoundLiesAboveEveryDropOnEveryMapOfTheTestData) {
       o.crop = w;
     }
     const frictal::PredictSurface s = map_surface(m, path.filename().string());
-    // With friction the descents creep along the cones' rims (slow on some maps: matrix-5 9 drops
-    // take 16 s): on two maps only.
+    // With friction on two maps only (the test's cost).
     const std::string name = path.filename().string();
     for (const double mu : {0.0, 0.2}) {
       if (mu > 0 && name != "x3p-2.x3p" && name != "metropro-1.dat") continue;

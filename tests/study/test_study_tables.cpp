@@ -130,3 +130,80 @@ TEST(StudyTables, ShippedStudiesUseOnlyTheKindsNames) {
           EXPECT_NE(std::find(names.begin(), names.end(), k), names.end()) << n << ": " << k;
     }
 }
+
+// The status of a part as its output table writes it: the counts by version are data maps keyed
+// by the version (a kind version 0 and an empty frictal version: results of a schema-1 store),
+// and the status text names the same versions.
+TEST(StudyTables, PartStatusWritesItsVersionCountsKeyedByVersion) {
+  StoreStatus::PartStatus p;
+  p.part = "b";
+  p.kind = "koch-signature";
+  p.done = 7;
+  p.done_by_kind_version = {{0, 3}, {2, 4}};
+  p.done_by_frictal_version = {{"", 3}, {"0.1.0", 4}};
+  const OutputRow row = row_of(study_part_columns(), p);
+  auto field = [&](const std::string& key) {
+    const auto it = std::find_if(row.begin(), row.end(), [&](const OutputField& f) { return f.info.key == key; });
+    EXPECT_NE(it, row.end()) << key;
+    return *it;
+  };
+  const OutputField kinds = field("done_by_kind_version");
+  EXPECT_EQ(kinds.info.unit, "map");
+  EXPECT_TRUE(kinds.info.python.empty());  // not in Python's status dict
+  ASSERT_EQ(kinds.rows.size(), 1u);
+  ASSERT_EQ(kinds.rows[0].size(), 2u);
+  EXPECT_EQ(kinds.rows[0][0].info.key, "0");
+  EXPECT_EQ(kinds.rows[0][0].info.unit, "count");
+  EXPECT_DOUBLE_EQ(std::get<double>(kinds.rows[0][0].si), 3.0);
+  EXPECT_EQ(kinds.rows[0][1].info.key, "2");
+  EXPECT_DOUBLE_EQ(std::get<double>(kinds.rows[0][1].si), 4.0);
+  const OutputField builds = field("done_by_frictal_version");
+  ASSERT_EQ(builds.rows.size(), 1u);
+  ASSERT_EQ(builds.rows[0].size(), 2u);
+  EXPECT_EQ(builds.rows[0][0].info.key, "");  // kept: an empty version is a key of its own
+  EXPECT_DOUBLE_EQ(std::get<double>(builds.rows[0][0].si), 3.0);
+  EXPECT_EQ(builds.rows[0][1].info.key, "0.1.0");
+
+  EXPECT_EQ(done_versions_text(p), "3 by unrecorded version, 4 by v2, 3 by frictal ?, 4 by frictal 0.1.0");
+  EXPECT_EQ(done_versions_text(StoreStatus::PartStatus{}), "");
+}
+
+// A done task as Python's study_rows() holds it: id, part and kind, then its parameters and
+// outputs as data maps, each value in the unit of its type (an integer parameter a count).
+TEST(StudyTables, TaskRowWritesParametersAndOutputsAsDataMaps) {
+  TaskRow r;
+  r.id = 5;
+  r.part = "theory";
+  r.kind = "koch-signature";
+  r.params = {{"alpha", 10.0}, {"iterations", std::int64_t(2)}, {"name", std::string("k")}, {"free", true}};
+  r.output.scalars = {{"friction_angle_deg", 20.0}};
+  r.output.arrays = {{"theta_deg", {1.0, 2.0}}};
+  const OutputRow row = row_of(study_row_columns(), r);
+  ASSERT_EQ(row.size(), 6u);
+  std::vector<std::string> python;
+  for (const OutputField& f : row) {
+    python.push_back(f.info.python);
+    EXPECT_TRUE(f.info.key.empty()) << f.info.python;  // Python only
+  }
+  EXPECT_EQ(python, (std::vector<std::string>{"task_id", "part", "kind", "params", "scalars", "arrays"}));
+  EXPECT_DOUBLE_EQ(std::get<double>(row[0].si), 5.0);
+  EXPECT_EQ(row[0].info.unit, "count");
+  const OutputRow& params = row[3].rows.at(0);
+  ASSERT_EQ(params.size(), 4u);  // by name
+  EXPECT_EQ(params[0].info.python, "alpha");
+  EXPECT_EQ(params[0].info.unit, "1");  // as given: no conversion of the study's degrees
+  EXPECT_DOUBLE_EQ(std::get<double>(params[0].si), 10.0);
+  EXPECT_EQ(params[1].info.python, "free");
+  EXPECT_EQ(std::get<bool>(params[1].si), true);
+  EXPECT_EQ(params[2].info.python, "iterations");
+  EXPECT_EQ(params[2].info.unit, "count");
+  EXPECT_DOUBLE_EQ(std::get<double>(params[2].si), 2.0);
+  EXPECT_EQ(std::get<std::string>(params[3].si), "k");
+  EXPECT_DOUBLE_EQ(std::get<double>(row[4].rows.at(0).at(0).si), 20.0);
+  EXPECT_EQ(std::get<std::vector<double>>(row[5].rows.at(0).at(0).si), (std::vector<double>{1.0, 2.0}));
+  // Without arrays read: an empty map, not a missing key.
+  r.output.arrays.clear();
+  const OutputRow bare = row_of(study_row_columns(), r);
+  ASSERT_EQ(bare.size(), 6u);
+  EXPECT_TRUE(bare[5].rows.at(0).empty());
+}

@@ -150,6 +150,39 @@ TEST(Outputs, RowsAndMapColumnsDeclareTheirTable) {
   EXPECT_DOUBLE_EQ(std::get<double>(r[1][1].si), 2.0);
 }
 
+// A data map is one nested row whose fields are named by the data (an empty key kept), each
+// value with its entry's unit; its Python key is its key unless given.
+TEST(Outputs, DataMapsAreOneRowKeyedByTheirData) {
+  const auto entries = [](const Shape& s) {
+    std::vector<frictal::MapEntry> e{{"", "count", 3.0}, {"2", "count", 4.0}};
+    if (s.size) e.push_back({"size", "1", *s.size});
+    return e;
+  };
+  const Column<Shape> by = frictal::data_map_column<Shape>("done_by", "counts", entries);
+  const Column<Shape> json_only = frictal::data_map_column<Shape>("done_by", "counts", entries, "-");
+  EXPECT_EQ(by.unit, "map");
+  EXPECT_TRUE(frictal::is_nested_unit(by.unit));
+  EXPECT_EQ(by.python, "done_by");
+  EXPECT_TRUE(json_only.python.empty());
+  Shape s;
+  EXPECT_TRUE(frictal::has_output(by, s));  // an empty map is written too
+  s.size = 0.5;
+  const OutputRow r = frictal::row_of(Columns<Shape>{by}, s);
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_TRUE(r[0].nested);
+  ASSERT_EQ(r[0].rows.size(), 1u);
+  const OutputRow& m = r[0].rows[0];
+  ASSERT_EQ(m.size(), 3u);
+  EXPECT_EQ(m[0].info.key, "");
+  EXPECT_EQ(m[0].info.python, "");
+  EXPECT_EQ(m[1].info.key, "2");
+  EXPECT_EQ(m[1].info.python, "2");
+  EXPECT_EQ(m[1].info.unit, "count");
+  EXPECT_DOUBLE_EQ(std::get<double>(m[1].si), 4.0);
+  EXPECT_EQ(m[2].info.unit, "1");
+  EXPECT_DOUBLE_EQ(std::get<double>(m[2].si), 0.5);
+}
+
 TEST(Outputs, ListsCarryTheirShapeAndFixedLength) {
   struct Grid {
     std::size_t nx = 3, ny = 2;
