@@ -115,11 +115,13 @@ inline nlohmann::json json_row(const OutputRow& row) {
   return o;
 }
 
-/// A nested column's objects in JSON by its unit: "object:" the one object (null: none), "rows:"
-/// a list of lists of values, "map:" an object of objects under each row's first value, "map" a
-/// data map (the one row's fields under their keys, an empty key too), "list:" a list of objects.
+/// A nested column's objects in JSON by its unit: "object:" and "settings" the one object (null:
+/// none), "rows:" a list of lists of values, "map:" an object of objects under each row's first
+/// value, "map" a data map (the one row's fields under their keys, an empty key too), "list:" a
+/// list of objects.
 inline nlohmann::json json_nested(const std::string& unit, const std::vector<OutputRow>& rows) {
-  if (unit.starts_with("object:")) return rows.empty() ? nlohmann::json(nullptr) : json_row(rows.front());
+  if (unit.starts_with("object:") || unit == "settings")
+    return rows.empty() ? nlohmann::json(nullptr) : json_row(rows.front());
   if (unit == "map") {
     nlohmann::json m = nlohmann::json::object();
     if (!rows.empty())

@@ -43,17 +43,6 @@ struct TiltOptions {
   int threads = 1;
 };
 
-/// Every value of a table in text units (degrees), keyed by the table's names.
-nlohmann::json text_json(const std::vector<Field>& fields, const ValueSet& si) {
-  nlohmann::json j = nlohmann::json::object();
-  for (const Field& f : fields) {
-    auto it = si.find(f.name);
-    if (it == si.end()) continue;
-    std::visit([&](const auto& v) { j[f.name] = v; }, text_from_si(f, it->second));
-  }
-  return j;
-}
-
 /// A line profile from a file; what the reader said that did not stop it joins the warnings (with
 /// the reader's code), each naming the file.
 Curve read_file(const std::string& path, std::vector<Warning>& warnings) {
@@ -75,27 +64,11 @@ std::string duration_text(double seconds) {
   return fmt::format("{:.3g} h", seconds / 3600);
 }
 
-/// The scaling of the defaults, values in text units.
-nlohmann::json scaling_json(const std::optional<TiltScaling>& sc) {
-  if (!sc) return nullptr;
-  nlohmann::json list = nlohmann::json::array();
-  for (const TiltScaledSetting& t : sc->settings) {
-    const Field* f = find_field(tilt_settings(), t.name);
-    list.push_back({{"name", t.name},
-                    {"unit", f ? text_unit(*f) : std::string()},
-                    {"from", f ? to_text_unit(*f, t.from) : t.from},
-                    {"to", f ? to_text_unit(*f, t.to) : t.to}});
-  }
-  nlohmann::json j = object_of(tilt_scaling_columns(), *sc);
-  j["settings"] = list;
-  return j;
-}
-
 int run(TiltOptions& o) {
   Curve lower, upper;
   std::optional<TiltScaling> scaling;  // the defaults scaled to the surfaces
   std::vector<Warning> data_warnings;  // file inputs: the readers' and the plausibility checks' warnings
-  nlohmann::json surface;
+  TiltSurface surface;                 // the surfaces as given: the files or the generator
   const std::optional<SurfaceSpec> spec = o.gen.spec();
   if (spec) {
     if (!o.lower_file.empty() || !o.upper_file.empty())
@@ -107,8 +80,9 @@ int run(TiltOptions& o) {
     // keeps them bit for bit; the surface's own period and run-away distance (its wavelength)
     // are already at its scale.
     scaling = unwrap(tilt_setup(lower, upper, si_values(tilt_settings(), o.settings), period, scale));
-    surface = text_json(find_generator(spec->generator)->fields, unwrap(surface_values(*spec)));
-    surface["generator"] = spec->generator;
+    surface.generator = spec->generator;
+    surface.parameters = &find_generator(spec->generator)->fields;
+    surface.values = unwrap(surface_values(*spec));
   } else {
     if (o.lower_file.empty())
       throw UsageError(
@@ -161,9 +135,9 @@ int run(TiltOptions& o) {
     // 5). The run-away distance becomes L/20, as `signature` takes it by default (a tenth of
     // half the block). Generated surfaces take the same rule (above).
     scaling = unwrap(tilt_setup(lower, upper, si_values(tilt_settings(), o.settings)));
-    surface = {{"lower", o.lower_file},
-               {"upper", o.upper_file.empty() ? o.lower_file : o.upper_file},
-               {"conditioning", conditioning_text(records)}};
+    surface.lower = o.lower_file;
+    surface.upper = o.upper_file.empty() ? o.lower_file : o.upper_file;
+    surface.conditioning = conditioning_text(records);
   }
   const ValueSet given = si_values(tilt_settings(), o.settings);
   TiltConfig cfg = scaling->config;
@@ -244,18 +218,8 @@ int run(TiltOptions& o) {
         o.frames, [&](const std::string& p) { return write_tilt_frames(p, *r); }, "--frames");
   const double us_per_step = r->steps ? 1e6 * r->wall_time / static_cast<double>(r->steps) : 0.0;
   if (o.json) {
-    nlohmann::json j;
-    const TiltReport run{*r, cfg};
-    put_columns(j, tilt_columns(), run);
-    j["scales"] = object_of(tilt_scales_columns(), r->scales);
-    j["warnings"] = nlohmann::json::array();
-    for (const Warning& w : warnings) j["warnings"].push_back({{"code", w.code}, {"message", w.message}});
-    j["surface"] = surface;
-    j["scaled_defaults"] = scaling_json(scaling);
-    j["estimate"] = object_of(tilt_estimate_columns(), r->estimate);
-    j["settings"] = text_json(tilt_settings(), tilt_values(cfg));
-    j["stage_time_s"] = object_of(tilt_stage_time_columns(), r->timings);
-    fmt::print("{}\n", j.dump());
+    const TiltReport run{*r, cfg, scaling ? &*scaling : nullptr, &surface, &warnings};
+    fmt::print("{}\n", object_of(tilt_columns(), run).dump());
   } else {
     // With a CSV on standard output, the summary goes to standard error.
     std::FILE* text = (o.output == "-" || o.frames == "-") ? stderr : stdout;
@@ -297,8 +261,7 @@ int run(TiltOptions& o) {
       fmt::print(text, "quasi-static: {} increments of {:.4g} deg, {} not relaxed within {:.3g} s; contact rule {}\n",
                  r->increments, cfg.tilt_increment / kDeg, r->unrelaxed_increments, cfg.relax_time,
                  r->contact_rule == dem::ContactRule::Closest ? "closest" : "pairs");
-    if (surface.contains("conditioning"))
-      fmt::print(text, "conditioning: {}\n", surface["conditioning"].get<std::string>());
+    if (surface.generator.empty()) fmt::print(text, "conditioning: {}\n", surface.conditioning);
     fmt::print(text, "rotation of the upper block against the lower one before the slide: {:.4g} deg{}\n",
                r->rotation_before_slide / kDeg, cfg.hold_rotation ? " (held)" : "");
     fmt::print(text,

@@ -169,8 +169,8 @@ struct ArealTiltMatched {
 Result<ArealTiltMatched> areal_tilt_matched(const Map& lower, const Map& upper, const ArealTiltOptions& o,
                                             bool simulate = true, const ArealTiltProgress& progress = {});
 
-/// What `frictal areal-tilt --json` reports: the run and the predictions matched to it, with the
-/// options that name the test and the wall time.
+/// What `frictal areal-tilt --json` and Python's areal_tilt() report: the run and the predictions
+/// matched to it, with the options that name the test and the wall time.
 struct ArealTiltReport {
   ArealTiltMatched matched;
   double direction = 0;         ///< the tilt direction d, from +x towards +y (unit: rad)
@@ -178,7 +178,8 @@ struct ArealTiltReport {
   bool exact_contacts = false;  ///< MuJoCo's collision: exact (else native)
   double seconds = 0;           ///< wall time of the run and the predictions (unit: s)
 };
-/// Its output table (src/tilt/areal_tilt_columns.cpp): the keys of `frictal areal-tilt --json`.
+/// Its output table (src/tilt/areal_tilt_columns.cpp): the keys of `frictal areal-tilt --json`, and
+/// of Python's areal_tilt() dict without their unit suffix (values in SI).
 const Columns<ArealTiltReport>& areal_tilt_report_columns();
 
 /// One drop of the matched prediction as the front ends report it: the drop and, where it was

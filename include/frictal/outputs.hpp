@@ -121,11 +121,12 @@ inline std::string strip_unit_suffix(const std::string& key) {
   return key;
 }
 
-/// Names every column of `cols` that has a JSON key in Python by that key without its unit.
+/// Names every column of `cols` that has a JSON key in Python by that key without its unit; a
+/// "settings" object (text units, the CLI's) stays out of Python's dicts.
 template <class T>
 Columns<T> python_without_units(Columns<T> cols) {
   for (Column<T>& c : cols)
-    if (!c.key.empty()) c.python = strip_unit_suffix(c.key);
+    if (!c.key.empty()) c.python = c.unit == "settings" ? std::string() : strip_unit_suffix(c.key);
   return cols;
 }
 

@@ -538,12 +538,29 @@ struct TiltFramesFile {
 /// (cannot open), InvalidInput naming the file, the line and what was expected there.
 Result<TiltFramesFile> read_tilt_frames(const std::string& path);
 
+/// The surfaces a tilt run was given, as the front ends state them ("surface"): measured files
+/// with what conditioning did to them, or a generator with its parameters.
+struct TiltSurface {
+  std::string lower;         ///< the lower surface's file (empty: generated)
+  std::string upper;         ///< the upper surface's file, as measured (the lower one when not given)
+  std::string conditioning;  ///< every conditioning step applied to the files, with its numbers
+  std::string generator;     ///< the generator's name (empty: files)
+  /// The generator's parameter table (frictal surface GENERATOR; null: files) and its values in SI.
+  const std::vector<Field>* parameters = nullptr;
+  ValueSet values;
+};
+
 /// A tilt run as the front ends report it: the result with the configuration that produced it.
 struct TiltReport {
   const TiltResult& result;
   const TiltConfig& config;
   /// How the defaults were scaled to the surfaces ("scaled_defaults"); none: not written.
   const TiltScaling* scaling = nullptr;
+  /// The surfaces as given ("surface"); none: not written.
+  const TiltSurface* surface = nullptr;
+  /// Every warning of the run's inputs and of the run, the inputs' first ("warnings"; the files'
+  /// reader and plausibility checks, then TiltResult::warnings); none: the run's alone.
+  const std::vector<Warning>* warnings = nullptr;
 };
 /// Whether a run's friction angle is a friction angle of the surfaces (`friction_angle_valid`):
 /// "valid", or why not, with the option that would make it so (`validity`; every front end prints
@@ -560,8 +577,12 @@ std::string tilt_validity(const TiltResult& result, const TiltConfig& config);
 std::string tilt_spread_note(const TiltResult& result, const TiltConfig& config);
 
 /// The tilt test's output tables (frictal/outputs.hpp; src/tilt/tilt_columns.cpp): `frictal tilt
-/// --json` and its nested objects "scales", "estimate", "stage_time_s", "scaled_defaults".
+/// --json` and its nested objects "scales", "estimate", "stage_time_s", "scaled_defaults",
+/// "surface" (tilt_surface_columns, with a generator's parameters) and "settings" (every tilt
+/// setting in its text unit).
 const Columns<TiltReport>& tilt_columns();
+/// The surfaces as given ("surface"): the files and their conditioning, or the generator's name.
+const Columns<TiltSurface>& tilt_surface_columns();
 const Columns<TiltScales>& tilt_scales_columns();
 const Columns<TiltEstimate>& tilt_estimate_columns();
 const Columns<dem::StepTimings>& tilt_stage_time_columns();

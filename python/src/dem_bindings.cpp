@@ -3,7 +3,7 @@
 // fold over (e.g. koch_curve(...)). SI units: m, rad, s, kg. The keywords of tilt() are the
 // library's tilt settings table (tilt_settings(), frictal/tilt.hpp): the same names as the
 // `frictal tilt` options and the 'tilt' study kind's TOML keys.
-#include <limits>
+#include <chrono>
 #include <optional>
 
 #include <pybind11/numpy.h>
@@ -19,8 +19,6 @@ namespace py = pybind11;
 using namespace frictal;
 
 namespace {
-
-using frictal::py_detail::arr;
 
 Curve to_curve(const py::object& o, const char* name) {
   if (py::isinstance<Profile>(o)) return as_curve(o.cast<Profile>());
@@ -110,11 +108,11 @@ void frictal_bind_dem(py::module_& m) {
         TiltConfig c = sc.config;
         c.threads = threads;
         TiltResult r = py_detail::ok(py_detail::nogil([&] { return run_tilt(lo, up, c); }));
-        py::dict d = py_detail::to_dict(tilt_columns(), TiltReport{r, c, &sc});
         // The files' warnings, then the run's, as the CLI lists them; the conditioning of a measured pair.
+        std::vector<Warning> warnings = std::move(data_warnings);
+        warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
+        py::dict d = py_detail::to_dict(tilt_columns(), TiltReport{r, c, &sc, nullptr, &warnings});
         RunRecord run;
-        run.warnings = std::move(data_warnings);
-        run.warnings->insert(run.warnings->end(), r.warnings.begin(), r.warnings.end());
         if (measured) run.conditioning = conditioning;
         py_detail::put_columns(d, run_record_columns(), run);
         return d;
@@ -157,39 +155,16 @@ void frictal_bind_dem(py::module_& m) {
       [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy,
          const py::object& upper, bool turn_over_upper, const py::object& start_offset, const py::kwargs& kw) {
         const auto [o, f, g] = areal_tilt_inputs(lower, dx, dy, upper, turn_over_upper, start_offset, kw, "areal_tilt");
-        // As `frictal areal-tilt`: the run and predict()'s map model from its rest (areal_tilt_matched).
+        // As `frictal areal-tilt`: the run and predict()'s map model from its rest (areal_tilt_matched),
+        // written from the same table as its JSON (the keys without their unit suffix, in SI).
+        const auto t0 = std::chrono::steady_clock::now();
         const ArealTiltMatched r = py_detail::ok(py_detail::nogil([&] { return areal_tilt_matched(f, g, o); }));
-        py::dict d;
-        d["friction_angle"] = r.run.friction_angle;
-        d["ran_away"] = r.run.ran_away;
-        d["rest_offset"] = py::make_tuple(r.run.rest_offset[0], r.run.rest_offset[1]);
-        d["steering"] = r.run.steering;
-        d["predicted_hold_angle"] = r.free.hold_angle;
-        d["predicted_hold_angle_locked"] = r.locked.hold_angle;
-        d["predicted_steering"] = r.free.steering;
-        d["predicted_hold_angle_range"] = py::make_tuple(r.spread.low, r.spread.high);
-        d["predicted_ambiguous_slips"] = r.spread.ambiguous;
-        d["seat_tilt"] = r.seated ? r.seat_tilt : std::numeric_limits<double>::quiet_NaN();
-        d["seat_offset"] =
-            r.seated ? py::object(py::make_tuple(r.seat_offset[0], r.seat_offset[1])) : py::object(py::none());
-        d["seated_hold_angle"] = r.seated ? r.seated_hold_angle : std::numeric_limits<double>::quiet_NaN();
-        d["sphere_radius"] = r.run.sphere_radius;
-        d["spheres"] = r.run.spheres;
-        d["steps"] = r.run.steps;
-        d["unsettled_increments"] = r.run.unsettled;
-        d["warnings"] = py_detail::warning_list(r.run.warnings);
-        std::vector<double> tilt, x, y;
-        std::vector<bool> rested;
-        for (const ArealTiltIncrement& i : r.run.trace) {
-          tilt.push_back(i.tilt);
-          x.push_back(i.x);
-          y.push_back(i.y);
-          rested.push_back(i.rested);
-        }
-        d["increment_tilt"] = arr(tilt);
-        d["increment_x"] = arr(x);
-        d["increment_y"] = arr(y);
-        d["increment_rested"] = rested;
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        py::dict d = py_detail::to_dict(areal_tilt_report_columns(),
+                                        ArealTiltReport{r, o.angle, o.tilt_step, o.exact_contacts, seconds});
+        RunRecord run;
+        run.warnings = r.run.warnings;
+        py_detail::put_columns(d, run_record_columns(), run);
         return d;
       },
       py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("upper") = py::none(),
@@ -198,15 +173,19 @@ void frictal_bind_dem(py::module_& m) {
        "The 3D tilt test on MuJoCo (as `frictal areal-tilt`; docs/mujoco.md; needs a build with MuJoCo, else "
        "ValueError naming what it needs; runs without the GIL): lower, upper: 2-D arrays of heights (m, rows along "
        "y), spacings dx, dy (m); upper as measured (turned over) unless turn_over_upper=False; start_offset (x, y) in "
-       "m. Returns friction_angle (rad), ran_away, rest_offset (m), steering (rad), predicted_hold_angle, "
-       "predicted_hold_angle_locked and predicted_steering (rad: predict()'s map model from the simulated rest, block "
-       "free, locked, and the free block's steering; the same numbers as `frictal areal-tilt --json`), "
-       "predicted_hold_angle_range (rad, rad: the least and largest hold angle in the simulated lateral mode when one "
-       "slip's end is moved by a sphere radius, areal_tilt_hold_spread) and predicted_ambiguous_slips, "
-       "seat_tilt (rad), seat_offset (m) and seated_hold_angle (rad: the model put down in the run's last seat at "
-       "its tilt; NaN, None without one), sphere_radius (m), spheres, steps, unsettled_increments, warnings (list of "
-       "dicts code, message) and the "
-       "increments (tilt rad, x, y m, rested). "
+       "m. Returns the keys of `frictal areal-tilt --json` without their unit suffix, values in SI (rad, m, s; "
+       "`frictal columns` table areal_tilt): friction_angle (rad), ran_away, rest_offset (x, y in m), steering "
+       "(rad), predicted_hold_angle, predicted_hold_angle_locked and predicted_steering (rad: predict()'s map model "
+       "from the simulated rest, block free, locked, and the free block's steering), the prediction in the "
+       "simulated lateral mode (continuous_runaway_increment rad, continuous_rest_offset m, continuous_evaluations, "
+       "continuous_hold_angle_range (rad, rad: the least and largest hold angle when one slip's end is moved by a "
+       "sphere radius, areal_tilt_hold_spread), continuous_slips, continuous_ambiguous_slips, and "
+       "continuous_increments, an array of rows (tilt rad, x m, y m)), seat_tilt (rad), seat_offset (m) and "
+       "continuous_seated_hold_angle (rad: the model put down in the run's last seat at its tilt; absent without "
+       "one), direction, tilt_step (rad), runaway_distance, sphere_radius (m), collision, lateral, spheres, steps, "
+       "max_contacts, unsettled_increments, increment_trace (one tuple per increment: tilt rad, x m, y m, rested, "
+       "steps, unbalanced force / weight, speed), seconds (wall time, s) and warnings (list of dicts code, "
+       "message). "
        "Settings (SI units; the `frictal areal-tilt` options and the 'areal-tilt' study kind's keys):\n" +
        py_detail::keyword_doc(areal_tilt_settings()))
           .c_str());

@@ -144,6 +144,10 @@ std::vector<OutputTable> make_tables() {
   t.push_back({"tilt_estimate", "tilt --json 'estimate'", infos(tilt_estimate_columns())});
   t.push_back({"tilt_stage_times", "tilt --json 'stage_time_s' (s)", infos(tilt_stage_time_columns())});
   t.push_back({"tilt_scaling", "tilt --json 'scaled_defaults'", infos(tilt_scaling_columns())});
+  t.push_back({"tilt_surface",
+               "tilt --json 'surface': the files or the generator (beside a generator's parameters, the keys of "
+               "frictal settings GENERATOR)",
+               infos(tilt_surface_columns())});
   t.push_back({"tilt_scaled_setting", "one setting scaled to the surfaces (JSON: the setting's text unit; Python: SI)",
                infos(tilt_scaled_setting_columns())});
   t.push_back({"tilt_series", "Python frictal.tilt(...)['series']: one sample per output interval",
@@ -177,19 +181,10 @@ std::vector<OutputTable> make_tables() {
   t.push_back({"anisotropy", "frictal anisotropy --json; Python anisotropy(...) (arrays over directions)",
                infos(anisotropy_columns())});
   t.push_back({"anisotropy_direction", "one direction of frictal anisotropy --json", infos(anisotropy_row_columns())});
-  t.push_back({"areal_tilt", "frictal areal-tilt --json (the MuJoCo run and the predictions matched to it)",
+  t.push_back({"areal_tilt",
+               "frictal areal-tilt --json (the MuJoCo run and the predictions matched to it); Python areal_tilt(...) "
+               "(SI, no unit suffix)",
                infos(areal_tilt_report_columns())});
-  t.back().columns.insert(
-      t.back().columns.end(),
-      {py("predicted_hold_angle", "rad", "areal_tilt: predict()'s map model from the simulated rest, block free"),
-       py("predicted_hold_angle_locked", "rad", "the same, block locked to the direction (a diagnostic)"),
-       py("predicted_steering", "rad", "the free block's steering"),
-       py("predicted_hold_angle_range", "rad",
-          "the range in the simulated lateral mode with one slip's end moved by a sphere radius"),
-       py("predicted_ambiguous_slips", "count", "its ambiguous slips"),
-       py("increment_tilt", "rad", "tilt of each increment"), py("increment_x", "m", "x after each increment"),
-       py("increment_y", "m", "y after each increment"), py("increment_rested", "flag", "each increment rested"),
-       py("rest_offset", "m", "where the block rested (x, y)")});
   t.push_back({"tilt_stop", "a stop of the block as a row of numbers [tilt_deg, x_m, y_m] (areal-tilt --json)",
                infos(tilt_stop_columns())});
   t.push_back({"areal_tilt_increment",

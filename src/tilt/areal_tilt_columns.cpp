@@ -1,6 +1,7 @@
 // The output tables of the 3D tilt run (frictal/outputs.hpp): the run with the predictions matched
-// to it (`frictal areal-tilt --json`), and one increment, the rows of its increment_trace, each
-// [tilt, x, y, rested, steps, unbalanced force, speed].
+// to it (`frictal areal-tilt --json`; Python areal_tilt's dict, the same keys without their unit
+// suffix, in SI), and one increment, the rows of its increment_trace, each [tilt, x, y, rested,
+// steps, unbalanced force, speed].
 #include <cmath>
 #include <limits>
 #include <string>
@@ -61,93 +62,73 @@ const Columns<ArealTiltReport>& areal_tilt_report_columns() {
   };
   static const Columns<T> cols = [&] {
     Columns<T> c = {
-        column<T>(
-            "direction_deg", "deg", "tilt direction, from +x towards +y", [](const T& r) { return r.direction; }, "-"),
-        column<T>(
-            "runaway_distance_m", "m", "run-away distance d", [](const T& r) { return r.matched.runaway_distance; },
-            "-"),
+        column<T>("direction_deg", "deg", "tilt direction, from +x towards +y", [](const T& r) { return r.direction; }),
+        column<T>("runaway_distance_m", "m", "run-away distance d",
+                  [](const T& r) { return r.matched.runaway_distance; }),
         run("friction_angle_deg", true),
         run("ran_away", true),
-        column<T>(
-            "rest_offset_m", "m", "where the block rested (x, y)",
-            [](const T& r) { return pair(r.matched.run.rest_offset); }, "-"),
+        fixed_length(column<T>("rest_offset_m", "m", "where the block rested (x, y)",
+                               [](const T& r) { return pair(r.matched.run.rest_offset); })),
         column<T>(
             "predicted_hold_angle_deg", "deg",
             "the prediction's model (frictal predict's: the spheres and triangles MuJoCo sees, off the grid) from "
             "the simulated rest, block free",
-            [](const T& r) { return r.matched.free.hold_angle; }, "-"),
-        column<T>(
-            "predicted_hold_angle_locked_deg", "deg", "the same, block locked to the direction (a diagnostic)",
-            [](const T& r) { return r.matched.locked.hold_angle; }, "-"),
-        column<T>(
-            "predicted_steering_deg", "deg", "the same, block free: how far it turned off the direction",
-            [](const T& r) { return r.matched.free.steering; }, "-"),
-        column<T>(
-            "continuous_runaway_increment_deg", "deg",
-            "the prediction in the simulated lateral mode: the tilt increment at which it ran away",
-            [](const T& r) { return r.matched.matched().runaway_increment; }, "-"),
-        column<T>(
-            "continuous_rest_offset_m", "m", "the prediction in the simulated lateral mode: where it rested (x, y)",
-            [](const T& r) { return pair(r.matched.matched().rest_offset); }, "-"),
-        column<T>(
-            "continuous_evaluations", "count", "lift evaluations of the prediction in the simulated lateral mode",
-            [](const T& r) { return double(r.matched.matched().evaluations); }, "-"),
-        column<T>(
-            "continuous_hold_angle_range_deg", "deg",
-            "[least, largest] hold angle with one slip's end moved by a sphere radius",
-            [](const T& r) {
-              return std::vector<double>{r.matched.spread.low, r.matched.spread.high};
-            },
-            "-"),
-        column<T>(
-            "continuous_slips", "count", "slips of the prediction in the simulated lateral mode",
-            [](const T& r) { return double(r.matched.spread.slips); }, "-"),
-        column<T>(
-            "continuous_ambiguous_slips", "count", "slips whose end a sphere radius changes",
-            [](const T& r) { return double(r.matched.spread.ambiguous); }, "-"),
-        only_if(column<T>(
-                    "seat_tilt_deg", "deg", "the MuJoCo run's seat: its tilt",
-                    [](const T& r) { return r.matched.seat_tilt; }, "seat_tilt"),
+            [](const T& r) { return r.matched.free.hold_angle; }),
+        column<T>("predicted_hold_angle_locked_deg", "deg", "the same, block locked to the direction (a diagnostic)",
+                  [](const T& r) { return r.matched.locked.hold_angle; }),
+        column<T>("predicted_steering_deg", "deg", "the same, block free: how far it turned off the direction",
+                  [](const T& r) { return r.matched.free.steering; }),
+        column<T>("continuous_runaway_increment_deg", "deg",
+                  "the prediction in the simulated lateral mode: the tilt increment at which it ran away",
+                  [](const T& r) { return r.matched.matched().runaway_increment; }),
+        fixed_length(column<T>("continuous_rest_offset_m", "m",
+                               "the prediction in the simulated lateral mode: where it rested (x, y)",
+                               [](const T& r) { return pair(r.matched.matched().rest_offset); })),
+        column<T>("continuous_evaluations", "count", "lift evaluations of the prediction in the simulated lateral mode",
+                  [](const T& r) { return double(r.matched.matched().evaluations); }),
+        fixed_length(column<T>("continuous_hold_angle_range_deg", "deg",
+                               "[least, largest] hold angle with one slip's end moved by a sphere radius",
+                               [](const T& r) {
+                                 return std::vector<double>{r.matched.spread.low, r.matched.spread.high};
+                               })),
+        column<T>("continuous_slips", "count", "slips of the prediction in the simulated lateral mode",
+                  [](const T& r) { return double(r.matched.spread.slips); }),
+        column<T>("continuous_ambiguous_slips", "count", "slips whose end a sphere radius changes",
+                  [](const T& r) { return double(r.matched.spread.ambiguous); }),
+        only_if(column<T>("seat_tilt_deg", "deg", "the MuJoCo run's seat: its tilt",
+                          [](const T& r) { return r.matched.seat_tilt; }),
                 seated),
-        only_if(column<T>(
-                    "seat_offset_m", "m", "the seat's offset (x, y)",
-                    [](const T& r) { return pair(r.matched.seat_offset); }, "seat_offset"),
+        only_if(fixed_length(column<T>("seat_offset_m", "m", "the seat's offset (x, y)",
+                                       [](const T& r) { return pair(r.matched.seat_offset); })),
                 seated),
-        only_if(
-            column<T>(
-                "continuous_seated_hold_angle_deg", "deg", "the prediction's model dropped at the seat, at its tilt",
-                [](const T& r) { return r.matched.seated_hold_angle; }, "seated_hold_angle"),
-            seated),
-        rows_column<T>(
-            "continuous_increments", "tilt_stop", "[tilt_deg, x_m, y_m] after each increment", tilt_stop_columns(),
-            [](const T& r) { return std::optional(r.matched.matched().stops); }, "-"),
-        column<T>(
-            "sphere_radius_m", "m", "radius of the upper block's spheres",
-            [](const T& r) { return r.matched.run.sphere_radius; }, "sphere_radius"),
-        column<T>(
-            "collision", "text", "MuJoCo's collision: native or exact",
-            [](const T& r) { return std::string(r.exact_contacts ? "exact" : "native"); }, "-"),
-        column<T>(
-            "lateral", "text", "free or locked",
-            [](const T& r) { return std::string(r.matched.run_locked ? "locked" : "free"); }, "-"),
+        only_if(column<T>("continuous_seated_hold_angle_deg", "deg",
+                          "the prediction's model dropped at the seat, at its tilt",
+                          [](const T& r) { return r.matched.seated_hold_angle; }),
+                seated),
+        rows_column<T>("continuous_increments", "tilt_stop", "[tilt_deg, x_m, y_m] after each increment",
+                       tilt_stop_columns(), [](const T& r) { return std::optional(r.matched.matched().stops); }),
+        column<T>("sphere_radius_m", "m", "radius of the upper block's spheres",
+                  [](const T& r) { return r.matched.run.sphere_radius; }),
+        column<T>("collision", "text", "MuJoCo's collision: native or exact",
+                  [](const T& r) { return std::string(r.exact_contacts ? "exact" : "native"); }),
+        column<T>("lateral", "text", "free or locked",
+                  [](const T& r) { return std::string(r.matched.run_locked ? "locked" : "free"); }),
         run("steering_deg", true),
-        only_if(rows_column<T>(
-                    "increment_trace", "areal_tilt_increment",
-                    "[tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed] per increment",
-                    areal_tilt_increment_columns(), [](const T& r) { return std::optional(r.matched.run.trace); }, "-"),
+        only_if(rows_column<T>("increment_trace", "areal_tilt_increment",
+                               "[tilt_deg, x_m, y_m, rested, steps, unbalanced force / weight, speed] per increment",
+                               areal_tilt_increment_columns(),
+                               [](const T& r) { return std::optional(r.matched.run.trace); }),
                 simulated),
-        column<T>(
-            "tilt_step_deg", "deg", "the tilt increment", [](const T& r) { return r.tilt_step; }, "-"),
+        column<T>("tilt_step_deg", "deg", "the tilt increment", [](const T& r) { return r.tilt_step; }),
         run("spheres", false),
         run("steps", false),
-        column<T>(
-            "max_contacts", "count", "most contacts at once",
-            [](const T& r) { return double(r.matched.run.max_contacts); }, "-"),
+        column<T>("max_contacts", "count", "most contacts at once",
+                  [](const T& r) { return double(r.matched.run.max_contacts); }),
         run("unsettled_increments", false),
-        column<T>(
-            "seconds", "s", "wall time", [](const T& r) { return r.seconds; }, "-"),
+        column<T>("seconds", "s", "wall time", [](const T& r) { return r.seconds; }),
     };
-    return c;
+    // Python's dicts (areal_tilt) take the same keys without their units, the values in SI.
+    return python_without_units<T>(std::move(c));
   }();
   return cols;
 }

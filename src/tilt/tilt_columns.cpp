@@ -5,6 +5,8 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <type_traits>
+#include <variant>
 
 #include <fmt/core.h>
 
@@ -26,7 +28,75 @@ double per_step(const TiltResult& r, std::uint64_t n) {
   return r.steps ? static_cast<double>(n) / static_cast<double>(r.steps) : 0.0;
 }
 
+/// The values of a settings table as the fields of one nested object, each in its text unit (an
+/// angle in degrees; JSON writes an integer as an integer, a flag as a flag): the keys are the
+/// table's names, so they are declared by the table (`frictal settings`), not by an output table.
+OutputRow settings_row(const std::vector<Field>& fields, const ValueSet& si) {
+  OutputRow row;
+  for (const Field& f : fields) {
+    const auto it = si.find(f.name);
+    if (it == si.end()) continue;
+    OutputField out;
+    out.info = {f.name, "", f.help, ""};
+    std::visit(
+        [&](const auto& v) {
+          using V = std::decay_t<decltype(v)>;
+          if constexpr (std::is_same_v<V, double>) {
+            // "deg" converts SI radians (to_interface, the one degree conversion: to_text_unit's).
+            out.info.unit = text_unit(f);
+            out.si = v;
+          } else if constexpr (std::is_same_v<V, std::int64_t>) {
+            out.info.unit = "count";
+            out.si = static_cast<double>(v);
+          } else if constexpr (std::is_same_v<V, bool>) {
+            out.info.unit = "flag";
+            out.si = v;
+          } else {
+            out.info.unit = "text";
+            out.si = v;
+          }
+        },
+        it->second);
+    row.push_back(std::move(out));
+  }
+  return row;
+}
+
+/// A column of T holding one object whose keys are the fields of a settings table (unit
+/// "settings"): the row that `f` returns (a std::optional<OutputRow>: none, no key). The CLI's
+/// JSON only: Python's keywords and dicts are SI by the tables themselves.
+template <class T, class F>
+Column<T> settings_object(std::string key, std::string help, F&& f) {
+  Column<T> c = declared_column<T>(std::move(key), "settings", std::move(help));
+  c.present = [f](const T& v) { return f(v).has_value(); };
+  c.rows = [f](const T& v) { return std::vector<OutputRow>{*f(v)}; };
+  return c;
+}
+
 }  // namespace
+
+const Columns<TiltSurface>& tilt_surface_columns() {
+  using T = TiltSurface;
+  auto files = [](const T& s) { return s.generator.empty(); };
+  static const Columns<T> cols = {
+      only_if(column<T>(
+                  "generator", "text", "the generator of both blocks (frictal surface)",
+                  [](const T& s) { return s.generator; }, "-"),
+              [](const T& s) { return !s.generator.empty(); }),
+      only_if(column<T>(
+                  "lower", "text", "the lower surface's file", [](const T& s) { return s.lower; }, "-"),
+              files),
+      only_if(column<T>(
+                  "upper", "text", "the upper surface's file, as measured (the lower one when not given)",
+                  [](const T& s) { return s.upper; }, "-"),
+              files),
+      only_if(column<T>(
+                  "conditioning", "text", "every conditioning step applied to the files, with its numbers",
+                  [](const T& s) { return s.conditioning; }, "-"),
+              files),
+  };
+  return cols;
+}
 
 std::string tilt_validity(const TiltResult& r, const TiltConfig& c) {
   constexpr double kDegree = 3.14159265358979323846 / 180;
@@ -155,12 +225,31 @@ const Columns<TiltReport>& tilt_columns() {
       object_column<R, dem::StepTimings>(
           "stage_time_s", "tilt_stage_times", "wall time by stage of the time stepping", tilt_stage_time_columns(),
           [](const R& t) { return std::optional<dem::StepTimings>(t.result.timings); }, "stage_time"),
-      declared_column<R>("surface", "settings", "the generated surface's parameters (null for files)"),
+      settings_object<R>(
+          "surface",
+          "the surfaces as given: the files (lower, upper) and their conditioning, or the generator's name "
+          "(generator) with its parameters in their text units (frictal surface GENERATOR)",
+          [](const R& t) -> std::optional<OutputRow> {
+            if (!t.surface) return std::nullopt;
+            OutputRow row = row_of(tilt_surface_columns(), *t.surface);
+            if (t.surface->parameters) {
+              OutputRow p = settings_row(*t.surface->parameters, t.surface->values);
+              row.insert(row.end(), p.begin(), p.end());
+            }
+            return row;
+          }),
       object_column<R, TiltScaling>(
           "scaled_defaults", "tilt_scaling", "how the defaults were scaled to the surfaces (null: not)",
           tilt_scaling_columns(),
           [](const R& t) { return t.scaling ? std::optional<TiltScaling>(*t.scaling) : std::nullopt; }),
-      declared_column<R>("settings", "settings", "every tilt setting the run used (frictal settings tilt)"),
+      settings_object<R>(
+          "settings", "every tilt setting the run used, in its text unit (frictal settings tilt)",
+          [](const R& t) { return std::optional(settings_row(tilt_settings(), tilt_values(t.config))); }),
+      list_column<R, Warning>(
+          "warnings", "warning",
+          "the inputs' warnings (the files' reader and plausibility checks), then the run's (frictal warnings)",
+          warning_columns(), [](const R& t) { return std::optional(t.warnings ? *t.warnings : t.result.warnings); },
+          "warnings"),
       column<R>("initial_offset_m", "m", "the offset the upper block was put down at",
                 [](const R& t) { return t.result.initial_offset; }),
       column<R>("slide_time_s", "s", "simulated time at the start of the run-away",

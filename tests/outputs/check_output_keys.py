@@ -144,7 +144,7 @@ def walk(where, obj, table_names, python):
                 fail(f"{here}: expected a list of rows ({unit})")
             else:
                 for i, e in enumerate(v):
-                    if not isinstance(e, list) or len(e) != len(row_columns):
+                    if not isinstance(e, (list, tuple)) or len(e) != len(row_columns):
                         fail(f"{here}[{i}]: expected a row of {len(row_columns)} values ({unit})")
                         continue
                     for c, x in zip(row_columns, e):
@@ -257,6 +257,9 @@ check_py("areal_signature", frictal.areal_signature(m1, dx=dx, dy=dx, upper=m2),
 check_py("areal_hold", frictal.areal_hold(m1, dx=dx, dy=dx, upper=m2, drops=2), ["areal_hold"])
 check_py("areal_hold(start)", frictal.areal_hold(m1, dx=dx, dy=dx, upper=m2, start_offset=(1e-5, 0)), ["areal_hold"])
 check_py("areal_tilt_hold", frictal.areal_tilt_hold(m1, dx=dx, dy=dx, upper=m2), ["areal_tilt_hold"])
+if frictal.build_info()["mujoco"]:
+    check_py("areal_tilt", frictal.areal_tilt(m1[:24, :24], dx=dx, dy=dx, upper=m2[:8, :8], runaway_distance=1e-6),
+             ["areal_tilt"])
 check_py("condition", frictal.condition(pr)[1], ["conditioning"])
 check_py("build_info", frictal.build_info(), ["build_info"])
 check_py("contact", frictal.contact(m1, spacing=dx, pressure=1e6, modulus=1e9, poisson=0.3, fields=True), ["contact"])

@@ -280,3 +280,56 @@ def test_settings_tables_are_the_clis():
                     continue
                 factor = 180 / math.pi if c["unit"] == "deg" else 1.0
                 assert text == pytest.approx(p["default"] * factor, rel=1e-5), c["name"]
+
+
+def test_areal_tilt_equals_the_cli(tmp_path):
+    """The 3D tilt test (MuJoCo) in Python and in the CLI on the same maps (written to X3P for the
+    CLI): every key `frictal areal-tilt --json` prints is in Python's dict without its unit suffix,
+    with the same value in SI (the degrees of the JSON, and of its rows' angle columns, converted
+    here from the unit that `frictal columns` declares)."""
+    if not frictal.build_info()["mujoco"]:
+        pytest.skip("built without MuJoCo")
+    a, m, n = 1e-6, 10, 30
+    amp = 0.3642 * a * m / (2 * math.pi)
+    h = np.tile(amp * np.sin(2 * math.pi * np.arange(n) / m), (n, 1))
+    lower, upper = str(tmp_path / "lower.x3p"), str(tmp_path / "upper.x3p")
+    frictal.write_x3p(lower, h, dx=a, dy=a)
+    frictal.write_x3p(upper, h[11:19, 11:19], dx=a, dy=a)
+    want = cli("areal-tilt", lower, upper, "--in-place", "--start-offset", "11e-6,11e-6", "--runaway-distance", "1e-6",
+               "--detrend", "none", "--quiet")
+    got = frictal.areal_tilt(h, dx=a, dy=a, upper=h[11:19, 11:19], turn_over_upper=False, start_offset=(11 * a, 11 * a),
+                             runaway_distance=1e-6)
+    tables = {t["name"]: t["columns"] for t in cli("columns")}
+    columns = {c["key"]: c for c in tables["areal_tilt"]}
+
+    def si(unit, v):
+        return math.radians(v) if unit == "deg" and v is not None else v
+
+    def equal(unit, cli_value, py_value):
+        if isinstance(cli_value, list):
+            return len(cli_value) == len(py_value) and all(equal(unit, c, p) for c, p in zip(cli_value, py_value))
+        if isinstance(cli_value, (bool, str)) or cli_value is None:
+            return cli_value == py_value or (cli_value is None and py_value != py_value)  # null: NaN
+        return same(float(py_value), si(unit, cli_value))
+
+    compared = 0
+    for key, value in want.items():
+        if key in ("lower", "upper", "conditioning", "seconds"):
+            continue  # the files the CLI read, and its wall time
+        if key == "warnings":
+            assert got["warnings"] == value
+            continue
+        c = columns[key]
+        assert c["python"] in got, key
+        if c["unit"].startswith("rows:"):
+            units = [r["unit"] for r in tables[c["unit"][5:]]]
+            rows = got[c["python"]]
+            assert len(rows) == len(value) > 0, key
+            for cli_row, py_row in zip(value, rows):
+                assert all(equal(u, x, y) for u, x, y in zip(units, cli_row, py_row)), (key, cli_row, py_row)
+        else:
+            assert equal(c["unit"], value, got[c["python"]]), (key, value, got[c["python"]])
+        compared += 1
+    assert compared >= 25
+    # Python's dict holds nothing beyond the CLI's keys but its own wall time.
+    assert set(got) - {columns[k]["python"] for k in want if k in columns} <= {"seconds", "warnings"}

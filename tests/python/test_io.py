@@ -287,11 +287,15 @@ def test_areal_tilt_grooves_across_on_mujoco():
     # Grooves across d: the locked block (a diagnostic, as `frictal areal-tilt`) holds to the same face.
     assert math.degrees(r["predicted_hold_angle_locked"]) == pytest.approx(expected, abs=0.01)
     # Every seat in a groove across d holds to the same face: the spread is that one angle.
-    lo, hi = r["predicted_hold_angle_range"]
+    lo, hi = r["continuous_hold_angle_range"]
     assert math.degrees(lo) == pytest.approx(expected, abs=0.01)
     assert math.degrees(hi) == pytest.approx(expected, abs=0.01)
     assert expected - 0.01 <= math.degrees(r["friction_angle"]) <= expected + 0.1 + 0.01
-    assert len(r["increment_tilt"]) == len(r["increment_rested"]) > 0
+    # One row per increment (tilt, x, y, rested, steps, force, speed): the last one, at the friction
+    # angle, did not come to rest (the block ran away).
+    trace = r["increment_trace"]
+    assert len(trace) > 0 and all(len(row) == 7 for row in trace)
+    assert trace[-1][0] == r["friction_angle"] and trace[-1][3] is False
     names = {f["name"] for f in frictal.areal_tilt_settings()}
     assert {"local_damping", "lateral", "collision", "mujoco_time_step"} <= names
     with pytest.raises(TypeError, match="did you mean 'local_damping'"):

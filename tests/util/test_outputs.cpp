@@ -1,6 +1,6 @@
 // The output tables' optional and nested columns (frictal/outputs.hpp): a column written only
 // where its value has it, and objects of another table under one key, as the generic writers
-// see them (row_of, has_output, rows).
+// see them (row_of, has_output, rows); the tilt report's objects of settings in text units.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "frictal/outputs.hpp"
+#include "frictal/surface_spec.hpp"
+#include "frictal/tilt.hpp"
 
 namespace {
 
@@ -224,6 +226,77 @@ TEST(Outputs, RunRecordWritesTheFieldsGiven) {
   for (const Column<frictal::RunRecord>& c : frictal::run_record_columns())
     if (frictal::has_output(c, run)) written.push_back(c.key);
   EXPECT_EQ(written, (std::vector<std::string>{"file", "warnings"}));
+}
+
+/// The field `key` of `row`, or nullptr.
+const frictal::OutputField* field(const OutputRow& row, const std::string& key) {
+  for (const frictal::OutputField& f : row)
+    if (f.info.key == key) return &f;
+  return nullptr;
+}
+
+TEST(Outputs, TiltSettingsAndSurfaceAreSettingsInTextUnits) {
+  // A Koch surface of alpha = 20 deg, n = 2 and a largest tilt of 30 deg, both given in SI: the
+  // "settings" and "surface" objects hold them in the text units of their tables (degrees, an
+  // integer) under the tables' names, beside the generator's name; the inputs' warnings given
+  // are the report's, before the run's.
+  constexpr double kDeg = std::numbers::pi / 180;
+  frictal::TiltResult result;
+  result.warnings.emplace_back("rotation", "turned");
+  frictal::TiltConfig config = frictal::default_tilt_config();
+  config.max_tilt = 30 * kDeg;
+  frictal::TiltSurface surface;
+  surface.generator = "koch";
+  surface.parameters = &frictal::find_generator("koch")->fields;
+  surface.values = {{"alpha", 20 * kDeg}, {"iterations", std::int64_t{2}}};
+  const std::vector<frictal::Warning> warnings = {{"reader", "a.csv: read as"}, result.warnings.front()};
+  const OutputRow row =
+      frictal::row_of(frictal::tilt_columns(), frictal::TiltReport{result, config, nullptr, &surface, &warnings});
+
+  const frictal::OutputField* settings = field(row, "settings");
+  ASSERT_TRUE(settings && settings->nested && settings->rows.size() == 1u);
+  const frictal::OutputField* max_tilt = field(settings->rows[0], "max_tilt");
+  ASSERT_TRUE(max_tilt);
+  EXPECT_EQ(max_tilt->info.unit, "deg");
+  EXPECT_NEAR(std::get<double>(frictal::to_interface(max_tilt->info.unit, max_tilt->si)), 30.0, 1e-12);
+  const frictal::OutputField* predict = field(settings->rows[0], "predict");
+  ASSERT_TRUE(predict);
+  EXPECT_EQ(predict->info.unit, "flag");
+  EXPECT_TRUE(std::get<bool>(predict->si));
+  EXPECT_EQ(settings->rows[0].size(), frictal::tilt_settings().size());
+
+  const frictal::OutputField* s = field(row, "surface");
+  ASSERT_TRUE(s && s->nested && s->rows.size() == 1u);
+  ASSERT_TRUE(field(s->rows[0], "generator"));
+  EXPECT_EQ(std::get<std::string>(field(s->rows[0], "generator")->si), "koch");
+  const frictal::OutputField* alpha = field(s->rows[0], "alpha");
+  ASSERT_TRUE(alpha);
+  EXPECT_NEAR(std::get<double>(frictal::to_interface(alpha->info.unit, alpha->si)), 20.0, 1e-12);
+  const frictal::OutputField* iterations = field(s->rows[0], "iterations");
+  ASSERT_TRUE(iterations);
+  EXPECT_EQ(iterations->info.unit, "count");
+  EXPECT_EQ(std::get<double>(iterations->si), 2.0);
+  EXPECT_FALSE(field(s->rows[0], "lower"));  // files only
+  // Only the parameters given, and the name: no key of the table beyond them.
+  EXPECT_EQ(s->rows[0].size(), 3u);
+
+  const frictal::OutputField* w = field(row, "warnings");
+  ASSERT_TRUE(w && w->rows.size() == 2u);
+  EXPECT_EQ(std::get<std::string>(w->rows[0][0].si), "reader");
+  EXPECT_EQ(std::get<std::string>(w->rows[1][0].si), "rotation");
+
+  // Without the inputs: no surface, the run's warnings alone; a file's surface names the files.
+  const OutputRow bare = frictal::row_of(frictal::tilt_columns(), frictal::TiltReport{result, config});
+  EXPECT_FALSE(field(bare, "surface"));
+  ASSERT_TRUE(field(bare, "warnings") && field(bare, "warnings")->rows.size() == 1u);
+  frictal::TiltSurface files;
+  files.lower = files.upper = "a.csv";
+  files.conditioning = "form: line";
+  const OutputRow measured =
+      frictal::row_of(frictal::tilt_columns(), frictal::TiltReport{result, config, nullptr, &files});
+  std::vector<std::string> keys;
+  for (const frictal::OutputField& f : field(measured, "surface")->rows[0]) keys.push_back(f.info.key);
+  EXPECT_EQ(keys, (std::vector<std::string>{"lower", "upper", "conditioning"}));
 }
 
 }  // namespace
