@@ -110,14 +110,17 @@ inline std::string num(double v) {
 
 inline py::array_t<double> arr(const std::vector<double>& v) { return py::array_t<double>(v.size(), v.data()); }
 
-/// An output value as Python's dicts hold it (frictal/outputs.hpp): SI numbers, an int for a
+/// An output value as Python's dicts hold it (frictal/outputs.hpp): SI numbers (None for NaN, the
+/// CLI's null), an int for a
 /// "count" column, a list of str for a list of texts, a numpy array for a list of numbers (of ints
 /// for a "count" column), of the column's `shape` where it has one.
 inline py::object py_value(const std::string& unit, const OutputValue& v, const std::vector<std::size_t>& shape = {},
                            bool fixed = false) {
   if (auto* d = std::get_if<double>(&v)) {
+    // Not a number: None, as the CLI's JSON writes null (the dicts stay JSON-safe; a setting's
+    // "automatic"); an infinite bound stays a float.
+    if (std::isnan(*d)) return py::none();
     if (unit == "count") return std::isfinite(*d) ? py::object(py::int_(static_cast<long long>(*d))) : py::none();
-    if (unit == "value" && std::isnan(*d)) return py::none();  // a setting's "automatic"
     return py::float_(*d);
   }
   if (auto* t = std::get_if<std::string>(&v)) return py::str(*t);
@@ -131,7 +134,9 @@ inline py::object py_value(const std::string& unit, const OutputValue& v, const 
   if (fixed) {  // a point or a range: a tuple
     py::tuple t(l.size());
     for (std::size_t i = 0; i < l.size(); ++i)
-      t[i] = unit == "count" ? py::object(py::int_(static_cast<long long>(l[i]))) : py::object(py::float_(l[i]));
+      t[i] = std::isnan(l[i])  ? py::object(py::none())
+             : unit == "count" ? py::object(py::int_(static_cast<long long>(l[i])))
+                               : py::object(py::float_(l[i]));
     return t;
   }
   py::array a;

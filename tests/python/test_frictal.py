@@ -127,9 +127,9 @@ def test_tilt_threads_change_nothing():
     k2 = frictal.koch_profile(iterations=2, alpha=np.radians(20), length=0.05)
     one = frictal.tilt(k2, max_tilt=np.radians(2))
     two = frictal.tilt(k2, max_tilt=np.radians(2), threads=2)
-    # No slide below 2 deg: friction_angle is NaN (as null in `frictal tilt --json`) in both.
+    # No slide below 2 deg: friction_angle is None (null in `frictal tilt --json`) in both.
     assert not one["slid"] and not two["slid"]
-    assert np.isnan(one["friction_angle"]) and np.isnan(two["friction_angle"]) and one["steps"] == two["steps"]
+    assert one["friction_angle"] is None and two["friction_angle"] is None and one["steps"] == two["steps"]
     for key in ("time", "normal_force", "tangential_force", "displacement", "velocity"):
         assert np.array_equal(one["series"][key], two["series"][key])
     assert "threads" not in [f["name"] for f in frictal.tilt_settings()]
