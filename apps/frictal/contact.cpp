@@ -82,13 +82,16 @@ Surface read(const std::string& path, const Args& a, const Conditioning& c, std:
   Surface out;
   out.is_map = s.is_map;
   if (s.is_map) {
+    const double read_rms = rms_height_as_read(s.map.heights);
     ConditionedMap m = unwrap(condition(s.map, c, path));
-    for (Warning& w : check_map(m.map, path)) add_warning(warnings, std::move(w));
+    for (Warning& w : check_map(m.map, path, {}, read_rms)) add_warning(warnings, std::move(w));
     out.map = std::move(m.map);
     out.record = m.record.text();
   } else {
-    ConditionedProfile p = unwrap(condition(surface_profile(std::move(s), path), c, path));
-    for (Warning& w : check_profile(p.profile, path)) add_warning(warnings, std::move(w));
+    Profile read = surface_profile(std::move(s), path);
+    const double read_rms = rms_height_as_read(read.z);
+    ConditionedProfile p = unwrap(condition(std::move(read), c, path));
+    for (Warning& w : check_profile(p.profile, path, {}, read_rms)) add_warning(warnings, std::move(w));
     std::vector<Warning> resampled;
     out.profile = unwrap(equally_spaced(p.profile, path, resampled));
     for (Warning& w : resampled) add_warning(warnings, std::move(w));

@@ -78,7 +78,8 @@ std::function<int()> setup(CLI::App& app) {
       require(a->spline_out.empty(), "--spline: profiles only (this file is a map)");
       const ConditionedMap cm = unwrap(condition(data.map, cond, a->file));
       const Map& m = cm.map;
-      for (Warning& w : check_map(m, a->file)) add_warning(warnings, std::move(w));
+      for (Warning& w : check_map(m, a->file, {}, rms_height_as_read(data.map.heights)))
+        add_warning(warnings, std::move(w));
       const MapStats s = map_stats(m);
       const MapScanStats sc = map_scan_stats(m);
       const double cutoff = tip > 0 ? unwrap(short_reliability_cutoff(m, tip)) : 0.0;
@@ -114,7 +115,7 @@ std::function<int()> setup(CLI::App& app) {
     if (a->detrend.empty() && read.period) own.form = default_form(true);
     const ConditionedProfile cp = unwrap(condition(read, own, a->file));
     const Profile& p = cp.profile;
-    for (Warning& w : check_profile(p, a->file)) add_warning(warnings, std::move(w));
+    for (Warning& w : check_profile(p, a->file, {}, rms_height_as_read(read.z))) add_warning(warnings, std::move(w));
     const ProfileStats s = profile_stats(p);
     const ProfileScanStats sc = profile_scan_stats(p);
     const double cutoff = tip > 0 ? unwrap(short_reliability_cutoff(p, tip)) : 0.0;

@@ -183,7 +183,8 @@ inline Map load_conditioned_map(const std::string& path, const InputOptions& o, 
   if (records) records->push_back(m.record);
   if (warnings) {
     for (const auto& w : s.warnings) add_warning(*warnings, w);
-    for (Warning& w : check_map(m.map, path)) add_warning(*warnings, std::move(w));
+    for (Warning& w : check_map(m.map, path, {}, rms_height_as_read(s.map.heights)))
+      add_warning(*warnings, std::move(w));
   }
   return std::move(m.map);
 }

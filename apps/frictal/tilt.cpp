@@ -97,8 +97,10 @@ int run(TiltOptions& o) {
     const Conditioning cond = conditioning(o.cond, form_to_remove(o.detrend, false, periodic));
     const bool asked = (!o.detrend.empty() && o.detrend != "none") || !o.cond.crop.empty() || o.cond.remove_spikes;
     std::vector<ConditioningRecord> records;
+    double read_rms[2] = {std::nan(""), std::nan("")};  // the heights as read (checks below)
     for (int i = 0; i < (o.upper_file.empty() ? 1 : 2); ++i) {
       Curve& c = i ? upper : lower;
+      read_rms[i] = rms_height_as_read(c.z);
       const std::string& name = i ? o.upper_file : o.lower_file;
       auto p = as_profile(c, name);
       if (!p.ok()) {
@@ -123,7 +125,7 @@ int run(TiltOptions& o) {
       const std::string& name = i ? o.upper_file : o.lower_file;
       auto p = as_profile(i ? upper : lower, name);
       if (!p.ok() || p->x.size() < 2) continue;  // a folded curve: not a profile to check
-      for (Warning& w : check_profile(*p, name)) add_warning(data_warnings, std::move(w));
+      for (Warning& w : check_profile(*p, name, {}, read_rms[i])) add_warning(data_warnings, std::move(w));
       len[i] = p->x.back() - p->x.front();
       dx[i] = len[i] / static_cast<double>(p->x.size() - 1);
     }

@@ -6,6 +6,7 @@
 // table of codes (docs/warnings.md is generated from it by `frictal warnings --markdown`).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -68,10 +69,17 @@ struct PlausibilityLimits {
 };
 
 /// Plausibility of one measured profile; `name` names it in the messages. Codes: units-suspect,
-/// lateral-suspect, heights-tiny, heights-exceed-length, spikes, kurtosis, fill-value.
-std::vector<Warning> check_profile(const Profile& p, const std::string& name, const PlausibilityLimits& limits = {});
+/// lateral-suspect, heights-tiny, form-only, heights-exceed-length, spikes, kurtosis, fill-value.
+/// `read_rms_height`: the rms height of the surface as read, before its form was removed (unit: m;
+/// NaN: not known): where `p` is flat but the heights as read vary, the surface is its form
+/// (form-only), not a surface of tiny heights (heights-tiny).
+std::vector<Warning> check_profile(const Profile& p, const std::string& name, const PlausibilityLimits& limits = {},
+                                   double read_rms_height = std::numeric_limits<double>::quiet_NaN());
 /// The same for an areal map (NaN points are not measured and are skipped).
-std::vector<Warning> check_map(const Map& m, const std::string& name, const PlausibilityLimits& limits = {});
+std::vector<Warning> check_map(const Map& m, const std::string& name, const PlausibilityLimits& limits = {},
+                               double read_rms_height = std::numeric_limits<double>::quiet_NaN());
+/// The rms height about the mean of the finite heights `z` (unit: m): a surface's read_rms_height.
+double rms_height_as_read(const std::vector<double>& z);
 /// Two scans of one pair: scale-mismatch when their lengths or point spacings differ by more than
 /// limits.max_scale_ratio. Lengths and spacings in m.
 std::vector<Warning> check_pair_scales(double lower_length, double lower_spacing, double upper_length,

@@ -59,12 +59,14 @@ void frictal_bind_contact(py::module_& m) {
           for (const Warning& w : s.reader_warnings) add_warning(warnings, w);
           if (s.is_map) {
             ConditionedMap cm = ok(condition(s.map, c, s.name));
-            for (Warning& w : check_map(cm.map, s.name)) add_warning(warnings, std::move(w));
+            for (Warning& w : check_map(cm.map, s.name, {}, rms_height_as_read(s.map.heights)))
+              add_warning(warnings, std::move(w));
             s.map = std::move(cm.map);
             record = cm.record.text();
           } else {
             ConditionedProfile cp = ok(condition(s.profile, c, s.name));
-            for (Warning& w : check_profile(cp.profile, s.name)) add_warning(warnings, std::move(w));
+            for (Warning& w : check_profile(cp.profile, s.name, {}, rms_height_as_read(s.profile.z)))
+              add_warning(warnings, std::move(w));
             std::vector<Warning> resampled;
             s.profile = ok(equally_spaced(cp.profile, s.name, resampled));
             for (Warning& w : resampled) add_warning(warnings, std::move(w));

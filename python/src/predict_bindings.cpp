@@ -139,9 +139,10 @@ frictal::py_detail::ProfilePair frictal::py_detail::conditioned_profiles(
     for (const Warning& w : s.reader_warnings) add_warning(out.warnings, w);
     Conditioning own = c;
     own.form = form_or_default(asked, s.profile.period.has_value());
+    const double read_rms = rms_height_as_read(s.profile.z);
     ConditionedProfile r = ok(nogil([&] { return condition(std::move(s.profile), own, s.name); }));
     records.push_back(r.record);
-    for (Warning& w : check_profile(r.profile, s.name)) add_warning(out.warnings, std::move(w));
+    for (Warning& w : check_profile(r.profile, s.name, {}, read_rms)) add_warning(out.warnings, std::move(w));
     return std::make_pair(std::move(r.profile), s.name);
   };
   auto [lo, lo_name] = side(lower, "lower");

@@ -334,6 +334,10 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   reader_warnings(p.warnings, lower);
   if (upper) reader_warnings(p.warnings, *upper);
   const Conditioning cond = conditioning_of(o, dt);
+  // The heights as read (the plausibility checks tell a surface that is its form from tiny heights).
+  const double lower_read_rms = rms_height_as_read(take_lower ? take_lower->z : lower.profile.z);
+  const double upper_read_rms =
+      upper ? rms_height_as_read(take_upper ? take_upper->z : upper->profile.z) : lower_read_rms;
   auto lc =
       take_lower ? condition(std::move(*take_lower), cond, lower.name) : condition(lower.profile, cond, lower.name);
   if (!lc) return lc.error();
@@ -350,9 +354,10 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     up_measured = *lo;
   }
   record_conditioning(p, std::move(records), false, dt);
-  for (Warning& w : check_profile(*lo, lower.name)) add_warning(p.warnings, std::move(w));
+  for (Warning& w : check_profile(*lo, lower.name, {}, lower_read_rms)) add_warning(p.warnings, std::move(w));
   if (upper) {
-    for (Warning& w : check_profile(up_measured, upper->name)) add_warning(p.warnings, std::move(w));
+    for (Warning& w : check_profile(up_measured, upper->name, {}, upper_read_rms))
+      add_warning(p.warnings, std::move(w));
     const double l1 = lo->x.back() - lo->x.front(), l2 = up_measured.x.back() - up_measured.x.front();
     for (Warning& w : check_pair_scales(l1, mean_spacing(*lo), l2, mean_spacing(up_measured), lower.name, upper->name))
       add_warning(p.warnings, std::move(w));
@@ -776,9 +781,11 @@ Result<Prediction> predict_maps(const PredictSurface& lower, const PredictSurfac
   record_conditioning(p, std::move(records), true, dt);
   if (lo->nx < 2 || lo->ny < 2 || up.nx < 2 || up.ny < 2)
     return make_error(fmt::format("{}: the map prediction needs at least 2 x 2 points", lower.name));
-  for (Warning& w : check_map(*lo, lower.name)) add_warning(p.warnings, std::move(w));
+  for (Warning& w : check_map(*lo, lower.name, {}, rms_height_as_read(lower.map.heights)))
+    add_warning(p.warnings, std::move(w));
   if (upper) {
-    for (Warning& w : check_map(up, upper->name)) add_warning(p.warnings, std::move(w));
+    for (Warning& w : check_map(up, upper->name, {}, rms_height_as_read(upper->map.heights)))
+      add_warning(p.warnings, std::move(w));
     for (Warning& w :
          check_pair_scales(std::max(lo->width(), lo->height()), std::min(lo->dx, lo->dy),
                            std::max(up.width(), up.height()), std::min(up.dx, up.dy), lower.name, upper->name))

@@ -30,6 +30,11 @@ const std::vector<WarningCode>& warning_codes() {
        true, "--x-unit UNIT (Python x_unit=)"},
       {"heights-tiny", "the rms height is below 1 pm: a scale factor is probably missing or applied twice", true,
        "--z-unit UNIT (Python z_unit=)"},
+      {"form-only",
+       "the heights are their removed form (a line or a plane) to within 1 pm while the heights as read vary: no "
+       "roughness is left, and two flat faces hold at atan(mu_a) alone; a measured scan is never an exact plane "
+       "(check the file), or keep the form if it is the surface (--detrend none)",
+       false, ""},
       {"heights-exceed-length", "the height range exceeds the scan length: units or scale are probably wrong", true,
        "--z-unit UNIT or --x-unit UNIT (Python z_unit=, x_unit=)"},
       {"spikes",
@@ -201,9 +206,16 @@ std::pair<double, std::size_t> repeated_runs(const std::vector<double>& z, std::
 
 void common_checks(std::vector<Warning>& out, const Moments& m, std::size_t spikes, double worst_spike,
                    std::pair<double, std::size_t> rep, std::size_t n, double length, const std::string& name,
-                   const PlausibilityLimits& L) {
+                   const PlausibilityLimits& L, double read_rms) {
   if (m.n == 0) return;
-  if (m.rms < L.min_rms_height)
+  // A surface that is its form: what the form removal left is nothing, but the heights as read
+  // vary (a scale factor is not what is missing).
+  if (m.rms < L.min_rms_height && read_rms >= L.min_rms_height)
+    add_warning(out, {"form-only", fmt::format("{}: rms height {:.3g} m after the form removal, {:.3g} m as read: the "
+                                               "surface is its form (a line or a plane), with no roughness left; two "
+                                               "flat faces hold at atan(mu_a) alone (keep the form: --detrend none)",
+                                               name, m.rms, read_rms)});
+  else if (m.rms < L.min_rms_height)
     add_warning(out, {"heights-tiny", fmt::format("{}: rms height {:.3g} m, below {:.3g} m (1 pm): a scale factor "
                                                   "is probably missing or applied twice",
                                                   name, m.rms, L.min_rms_height)});
@@ -271,7 +283,10 @@ double rms_slope_without(const Profile& p, const std::vector<std::size_t>& spike
 
 }  // namespace
 
-std::vector<Warning> check_profile(const Profile& p, const std::string& name, const PlausibilityLimits& L) {
+double rms_height_as_read(const std::vector<double>& z) { return moments(z).rms; }
+
+std::vector<Warning> check_profile(const Profile& p, const std::string& name, const PlausibilityLimits& L,
+                                   double read_rms_height) {
   std::vector<Warning> out;
   if (p.x.size() < 2) return out;
   const ProfileStats st = profile_stats_no_angles(p);  // rms slope and length only
@@ -287,11 +302,12 @@ std::vector<Warning> check_profile(const Profile& p, const std::string& name, co
   const Moments m = moments(p.z);
   const std::size_t spikes = sp.points.size();
   const double worst = sp.worst;
-  common_checks(out, m, spikes, worst, repeated_runs(p.z, p.z.size()), p.z.size(), st.length, name, L);
+  common_checks(out, m, spikes, worst, repeated_runs(p.z, p.z.size()), p.z.size(), st.length, name, L, read_rms_height);
   return out;
 }
 
-std::vector<Warning> check_map(const Map& mp, const std::string& name, const PlausibilityLimits& L) {
+std::vector<Warning> check_map(const Map& mp, const std::string& name, const PlausibilityLimits& L,
+                               double read_rms_height) {
   std::vector<Warning> out;
   if (mp.nx < 2 && mp.ny < 2) return out;
   const SpikeSearch sp = find_spikes(mp, L.spike_sq);
@@ -324,7 +340,8 @@ std::vector<Warning> check_map(const Map& mp, const std::string& name, const Pla
   const std::size_t spikes = sp.points.size();
   const double worst = sp.worst;
   const double length = std::max(mp.width(), mp.height());
-  common_checks(out, m, spikes, worst, repeated_runs(mp.heights, mp.nx), mp.valid_count(), length, name, L);
+  common_checks(out, m, spikes, worst, repeated_runs(mp.heights, mp.nx), mp.valid_count(), length, name, L,
+                read_rms_height);
   return out;
 }
 

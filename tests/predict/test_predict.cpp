@@ -286,6 +286,39 @@ TEST(Warnings, UnitsSpikesScaleAndFillValuesAreNamed) {
   }
 }
 
+TEST(Warnings, ASurfaceThatIsItsFormIsNotOneOfTinyHeights) {
+  // The heights 1..12 m of a 4 x 3 map lie on the plane z = 1 + i + 4 j exactly (a whitespace
+  // matrix file of that kind): the plane removed, nothing is left, but the heights as read vary by
+  // metres, so the fix is not a scale factor (heights-tiny) but a look at the file or the form kept.
+  frictal::Map plane;
+  plane.nx = 4, plane.ny = 3;
+  plane.dx = plane.dy = 2.5e-6;
+  for (int k = 0; k < 12; ++k) plane.heights.push_back(1.0 + k);
+  frictal::Map flat = plane;
+  for (double& z : flat.heights) z = 0;
+  const double as_read = frictal::rms_height_as_read(plane.heights);
+  EXPECT_NEAR(as_read, std::sqrt(143.0 / 12.0), 1e-12);  // 1..12: variance (n^2 - 1) / 12
+  auto w = frictal::check_map(flat, "plane.txt", {}, as_read);
+  EXPECT_TRUE(has_code(w, "form-only"));
+  EXPECT_FALSE(has_code(w, "heights-tiny"));
+  // Heights that are tiny as read stay heights-tiny; unknown heights as read (NaN) too.
+  EXPECT_TRUE(has_code(frictal::check_map(flat, "zeros.txt", {}, 0.0), "heights-tiny"));
+  EXPECT_TRUE(has_code(frictal::check_map(flat, "zeros.txt"), "heights-tiny"));
+  // A line profile likewise, and the prediction says so in its warnings (its default form: a line).
+  frictal::Profile line;
+  for (int i = 0; i < 50; ++i) line.x.push_back(1e-6 * i), line.z.push_back(2e-7 * i);
+  frictal::PredictSurface s;
+  s.profile = line;
+  s.name = "line.csv";
+  const auto p = frictal::predict(s, nullptr, frictal::PredictOptions{});
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  EXPECT_TRUE(has_code(p->warnings, "form-only"));
+  EXPECT_FALSE(has_code(p->warnings, "heights-tiny"));
+  bool listed = false;
+  for (const auto& c : frictal::warning_codes()) listed |= c.code == "form-only";
+  EXPECT_TRUE(listed);
+}
+
 TEST(Warnings, SpikesAloneDoNotMakeTheUnitsSuspect) {
   // A sawtooth of 2 points a wavelength rising at 20 deg (rms slope about 0.36) with three spikes
   // of 20 rms heights: the spikes' edges are steeper than any instrument measures (rms slope over
