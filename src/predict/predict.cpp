@@ -66,7 +66,21 @@ void finish(Prediction& p, double theta_max, double sigma, double bound = -1) {
   p.friction_coefficient = med >= kPi / 2 ? INFINITY : std::tan(med);
   // 89.5 deg: a slope of 115, steeper than any measured contact (a wall, an interlock or units).
   constexpr double kNear90 = 89.5 * kPi / 180;
-  if (p.friction_angle.q50 >= kNear90 || p.upper_bound_friction_angle >= kNear90)
+  // A bound at 90 deg that no drop comes near: a vertical contact of some seat (a block that slid
+  // sideways onto the lower map's rim, a wall no drop climbs), not a reading of the surfaces; the
+  // drops' hold angles stand (a held-to-max-tilt drop may lie anywhere up to the bound: not so).
+  bool held_to_max = false;
+  for (const Warning& w : p.warnings) held_to_max = held_to_max || w.code == "held-to-max-tilt";
+  const bool bound_alone = p.friction_angle.q50 < kNear90 && p.upper_bound_friction_angle >= kNear90 &&
+                           p.friction_angle.max < kNear90 && !held_to_max;
+  if (bound_alone)
+    add_warning(p.warnings, {"bound-at-90",
+                             fmt::format("the rigid upper bound is {:.4f} deg but no drop held above "
+                                         "{:.4f} deg: a seat a drop rested in has a vertical contact "
+                                         "(the block against the lower map's rim, or a wall it never "
+                                         "climbed); the bound is no estimate of these surfaces' friction",
+                                         p.upper_bound_friction_angle * 180 / kPi, p.friction_angle.max * 180 / kPi)});
+  else if (p.friction_angle.q50 >= kNear90 || p.upper_bound_friction_angle >= kNear90)
     add_warning(
         p.warnings,
         {"friction-angle-at-90",

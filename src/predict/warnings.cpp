@@ -64,6 +64,11 @@ const std::vector<WarningCode>& warning_codes() {
        "the friction angle reaches 90 deg: a vertical wall or an interlock holds the block; the number is a "
        "single feature of the data, not a friction",
        true, "--z-unit UNIT if the heights are in another unit (Python z_unit=); --remove-spikes for a spike"},
+      {"bound-at-90",
+       "the rigid upper bound reaches 90 deg while no drop held near it (none held to the model's largest tilt): a "
+       "seat a drop rested in has a vertical contact (the block against the lower map's rim after sliding sideways "
+       "off it, or a wall it never climbed); the bound is no estimate here, the hold angles over drops are the answer",
+       false, ""},
       {"scan-too-short",
        "the scans are too short for the stated test (profiles: the lower scan shorter than the block plus 8 run-away "
        "distances of sliding room, or the upper scan shorter than the block; maps: the lower map shorter than 16 "

@@ -711,3 +711,27 @@ TEST(Predict, TheWholeShortUpperScanOnALongLowerOneShortensTheDefaultDWithAWarni
   o.runaway_distance = 1.0;  // stated: longer than the overlap, refused, not shortened
   EXPECT_FALSE(frictal::predict(lo, &up, o).ok());
 }
+
+TEST(Warnings, ABoundAt90ThatNoDropNearsIsNoReasonToDoubtTheAnswer) {
+  // instruments/sdf-1.sdf, a 7 x 4 map whose steepest facet rises 1.95 deg: against itself, drops
+  // near its side slide sideways until the block hangs on the lower map's rim, a seat with a
+  // vertical contact, so the rigid upper bound (the steepest seat) is 90 deg, while every drop
+  // holds at most at the facets' slopes. That is bound-at-90 (the bound is no estimate), not
+  // friction-angle-at-90 with a units fix: the answer is not doubtful.
+  auto m = frictal::read_map(std::string(FRICTAL_TEST_DATA) + "/instruments/sdf-1.sdf");
+  ASSERT_TRUE(m.ok()) << m.error().message;
+  frictal::PredictSurface s;
+  s.is_map = true;
+  s.map = *m;
+  s.name = "sdf-1.sdf";
+  const auto p = frictal::predict(s, nullptr);
+  ASSERT_TRUE(p.ok()) << p.error().message;
+  EXPECT_LT(p->friction_angle.max, 2.0 * std::numbers::pi / 180);
+  EXPECT_GE(p->upper_bound_friction_angle, 89.5 * std::numbers::pi / 180);
+  EXPECT_TRUE(has_code(p->warnings, "bound-at-90"));
+  EXPECT_FALSE(has_code(p->warnings, "friction-angle-at-90"));
+  EXPECT_EQ(p->trust, "ok");
+  bool listed = false;
+  for (const auto& c : frictal::warning_codes()) listed |= c.code == "bound-at-90" && !c.doubtful;
+  EXPECT_TRUE(listed);
+}
