@@ -318,6 +318,28 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
                              "below the saddle between two asperities, or their Hertz widths overlapping): the "
                              "asperities are no longer separate spheres",
                              p.load, 100 * dg.merged_share)});
+  // No contact force resists more than the steepest slope under it plus the atomic friction angle
+  // (a contact's slope is the mean of the two surfaces' slopes there), so neither does the block:
+  // a loaded hold angle above that is the model's, not the surfaces' (the loaded lift's elastic
+  // term, its Hertzian stiffness changing with the offset, can rise faster than any contact).
+  auto steepest = [](const Profile& q) {
+    double m = 0;
+    for (std::size_t i = 0; i + 1 < q.x.size(); ++i)
+      m = std::max(m, std::abs((q.z[i + 1] - q.z[i]) / (q.x[i + 1] - q.x[i])));
+    return std::atan(m);
+  };
+  const double resisted = std::max(steepest(lower), steepest(upper)) + std::atan(o.atomic_friction);
+  // (The 95 % quantile: the range the answer states; single drops above it are left to it.)
+  if (p.friction_angle.q95 > resisted + 1e-9)
+    add_warning(
+        p.warnings,
+        {"load-above-slopes",
+         fmt::format("at {:.4g} N the loaded hold angles' 95 % quantile is {:.4g} deg (median {:.4g}, largest "
+                     "{:.4g} deg), above the steepest slope of either surface plus the atomic friction angle, "
+                     "{:.4g} deg, which no contact force exceeds: the loaded lift's elastic term, not the "
+                     "surfaces, sets them; the rigid prediction reads {:.4g} deg",
+                     p.load, p.friction_angle.q95 * 180 / kPi, p.friction_angle.q50 * 180 / kPi,
+                     p.friction_angle.max * 180 / kPi, resisted * 180 / kPi, p.rigid_friction_angle * 180 / kPi)});
   if (!beyond.empty())
     add_warning(p.warnings, {"load-curve-beyond-model",
                              fmt::format("the load curve's loads {} break the asperity model's assumptions (steep "

@@ -69,6 +69,12 @@ const std::vector<WarningCode>& warning_codes() {
        "seat a drop rested in has a vertical contact (the block against the lower map's rim after sliding sideways "
        "off it, or a wall it never climbed); the bound is no estimate here, the hold angles over drops are the answer",
        false, ""},
+      {"load-above-slopes",
+       "under load, the loaded hold angles' 95 % quantile lies above the steepest slope of either surface plus the "
+       "atomic friction angle, which no contact force exceeds: the loaded lift's elastic term (the Hertzian stiffness "
+       "changing with "
+       "the offset), not the surfaces, sets those hold angles",
+       true, "the rigid prediction: leave out --load (Python load=None)"},
       {"scan-too-short",
        "the scans are too short for the stated test (profiles: the lower scan shorter than the block plus 8 run-away "
        "distances of sliding room, or the upper scan shorter than the block; maps: the lower map shorter than 16 "
