@@ -37,9 +37,9 @@ def sphere_rows():
         r = frictal.contact(-(X ** 2 + Y ** 2) / (2 * R), spacing=dx, load=F, modulus=Es, poisson=0.0,
                             detrend="none")
         wall = time.perf_counter() - t
-        rows.append((per_radius, f"{n} x {n}", math.sqrt(r["contact_area_m2"] / math.pi) / a - 1,
-                     r["max_pressure_pa"] / p0 - 1, r["approach_m"] / (a * a / R) - 1,
-                     r["contact_stiffness_n_per_m"] / (2 * Es * a) - 1, r["iterations"], wall))
+        rows.append((per_radius, f"{n} x {n}", math.sqrt(r["contact_area"] / math.pi) / a - 1,
+                     r["max_pressure"] / p0 - 1, r["approach"] / (a * a / R) - 1,
+                     r["contact_stiffness"] / (2 * Es * a) - 1, r["iterations"], wall))
     return rows
 
 
@@ -55,7 +55,7 @@ def cylinder_rows():
         t = time.perf_counter()
         r = frictal.contact(-x ** 2 / (2 * R), spacing=dx, load=Fp, modulus=Es, poisson=0.0, detrend="none")
         wall = time.perf_counter() - t
-        rows.append((per_radius, f"{n}", r["contact_length_m"] / 2 / a - 1, r["max_pressure_pa"] / p0 - 1,
+        rows.append((per_radius, f"{n}", r["contact_length"] / 2 / a - 1, r["max_pressure"] / p0 - 1,
                      r["iterations"], wall))
     return rows
 

@@ -99,7 +99,7 @@ def main():
         hrms = float(np.sqrt(np.mean((h - h.mean()) ** 2)))
         for s, r, up in zip(scaled, curve, persson):
             rows.append((seed, nayak, s, r["contact_area_fraction"], r["contact_area_fraction"] / s, r["iterations"],
-                         r["mean_separation_m"] / hrms, up / hrms))
+                         r["mean_separation"] / hrms, up / hrms))
         rows.append((seed, nayak, None, None, None, wall, None, None))
     lines = [f"# Rough contact: relative area against load ({datetime.date.today()}, {platform.node()})", "",
              f"bench/contact_rough.py {n} {seeds}: periodic {n} x {n} self-affine maps, Hurst 0.8, roll-off L/4, "

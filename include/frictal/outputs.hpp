@@ -104,43 +104,37 @@ OutputRow row_of(const Columns<R>& cols, const R& value) {
   return row;
 }
 
-/// The Python key that a JSON key has by default: an angle's "_deg" suffix dropped (Python's
-/// dicts hold radians); every other key unchanged.
-inline std::string default_python_key(const std::string& key, const std::string& unit) {
-  if (unit == "deg" && key.size() > 4 && key.ends_with("_deg")) return key.substr(0, key.size() - 4);
-  return key;
-}
+/// The unit suffixes of JSON keys ("_deg" for deg, "_m" for m, ...), longest first where one
+/// ends another.
+inline constexpr std::string_view unit_suffixes[] = {"_m_s", "_per_s", "_n_per_m", "_deg", "_kg",
+                                                     "_m2",  "_pa",    "_n",       "_m",   "_s"};
 
-/// A key without its unit suffix ("_deg", "_m", "_s", "_kg", "_m_s", "_per_s"): the Python key of
-/// tables whose Python dicts name SI values without units (tilt, areal tilt).
-inline std::string strip_unit_suffix(const std::string& key) {
-  for (const char* u : {"_m_s", "_per_s", "_deg", "_kg", "_m", "_s"}) {
-    const std::string suffix(u);
+/// The Python key of JSON key `key`: the key without its unit suffix (Python's dicts hold SI
+/// values, so the unit is not named). The one rule of every table; a column names another Python
+/// key only where the stripped key would clash with another key of its table.
+inline std::string python_key(const std::string& key) {
+  for (std::string_view suffix : unit_suffixes)
     if (key.size() > suffix.size() && key.ends_with(suffix)) return key.substr(0, key.size() - suffix.size());
-  }
   return key;
 }
 
-/// Names every column of `cols` that has a JSON key in Python by that key without its unit; a
-/// "settings" object (text units, the CLI's) stays out of Python's dicts.
-template <class T>
-Columns<T> python_without_units(Columns<T> cols) {
-  for (Column<T>& c : cols)
-    if (!c.key.empty()) c.python = c.unit == "settings" ? std::string() : strip_unit_suffix(c.key);
-  return cols;
+/// The Python key of a column declared with JSON key `key` and argument `python`: "" = the rule
+/// (python_key), "-" = not in Python's dicts, anything else = that key (a Python-only column, whose
+/// JSON key is "", or an exception to the rule).
+inline std::string python_key(const std::string& key, const std::string& python) {
+  if (python == "-") return {};
+  return python.empty() ? python_key(key) : python;
 }
 
-/// A column of T: `key` in `unit`, its meaning, its SI value; Python key by default_python_key
-/// unless `python` is given ("-" = not in Python's dicts).
+/// A column of T: `key` in `unit`, its meaning, its SI value; Python key by python_key (`python`:
+/// "" = the rule, "-" = not in Python's dicts, else that key).
 template <class T, class F>
 Column<T> column(std::string key, std::string unit, std::string help, F&& f, std::string python = {}) {
   Column<T> c;
-  if (python.empty()) python = default_python_key(key, unit);
-  if (python == "-") python.clear();
+  c.python = python_key(key, python);
   c.key = std::move(key);
   c.unit = std::move(unit);
   c.help = std::move(help);
-  c.python = std::move(python);
   c.si = [g = std::forward<F>(f)](const T& v) { return OutputValue(g(v)); };
   return c;
 }
@@ -175,7 +169,7 @@ Column<T> object_column(std::string key, const std::string& table, std::string h
   c.key = std::move(key);
   c.unit = "object:" + table;
   c.help = std::move(help);
-  c.python = python == "-" ? std::string() : python.empty() ? c.key : std::move(python);
+  c.python = python_key(c.key, python);
   c.present = [f](const T& v) { return f(v).has_value(); };
   c.rows = [f, &cols](const T& v) {
     const std::optional<R> r = f(v);
@@ -193,7 +187,7 @@ Column<T> list_column(std::string key, const std::string& table, std::string hel
   c.key = std::move(key);
   c.unit = "list:" + table;
   c.help = std::move(help);
-  c.python = python == "-" ? std::string() : python.empty() ? c.key : std::move(python);
+  c.python = python_key(c.key, python);
   c.present = [f](const T& v) { return f(v).has_value(); };
   c.rows = [f, &cols](const T& v) {
     std::vector<OutputRow> out;
@@ -245,15 +239,15 @@ struct MapEntry {
 /// A data map column of T: `key` (unit "map") holds an object whose keys are data, the entries
 /// that `f` returns for a value (a std::vector<MapEntry>, in their order; none: an empty object),
 /// each value in its entry's unit. The writers hold the entries as one nested row whose fields are
-/// named by the entries' keys (an empty key included). Python key: `key` unless `python` is given
-/// ("-" = not in Python's dicts).
+/// named by the entries' keys (an empty key included). Python key: python_key (`python`: "" = the
+/// rule, "-" = not in Python's dicts, else that key).
 template <class T, class F>
 Column<T> data_map_column(std::string key, std::string help, F&& f, std::string python = {}) {
   Column<T> c;
   c.key = std::move(key);
   c.unit = "map";
   c.help = std::move(help);
-  c.python = python == "-" ? std::string() : python.empty() ? c.key : std::move(python);
+  c.python = python_key(c.key, python);
   c.rows = [g = std::forward<F>(f)](const T& v) {
     OutputRow row;
     for (MapEntry& e : g(v)) {
@@ -270,10 +264,8 @@ Column<T> data_map_column(std::string key, std::string help, F&& f, std::string 
 /// The columns of a warning (table "warning"): its code and message.
 inline const Columns<Warning>& warning_columns() {
   static const Columns<Warning> cols = {
-      column<Warning>(
-          "code", "text", "the warning's code", [](const Warning& w) { return w.code; }, "code"),
-      column<Warning>(
-          "message", "text", "what was found, with numbers", [](const Warning& w) { return w.message; }, "message"),
+      column<Warning>("code", "text", "the warning's code", [](const Warning& w) { return w.code; }),
+      column<Warning>("message", "text", "what was found, with numbers", [](const Warning& w) { return w.message; }),
   };
   return cols;
 }

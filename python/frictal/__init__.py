@@ -149,8 +149,8 @@ def contact(lower, upper=None, **options):
     previous solution). ``hardness`` (Pa) caps the pressure (perfect plasticity); ``periodic``
     takes the surface as repeating (else it is padded); ``fields=True`` adds the ``pressure`` and
     ``gap`` arrays. Returns a dict (a list of dicts for a list of loads) with the keys of
-    ``frictal contact --json`` in SI (m, Pa, N): ``contact_area_m2``, ``contact_area_fraction``,
-    ``max_pressure_pa``, ``mean_separation_m``, ``contact_stiffness_n_per_m``, ... Warnings
+    ``frictal contact --json`` without their unit suffix, in SI (m, Pa, N): ``contact_area``,
+    ``contact_area_fraction``, ``max_pressure``, ``mean_separation``, ``contact_stiffness``, ... Warnings
     (``small-slope``, ``contact-full``, ...) are in ``warnings`` and issued through
     ``warnings.warn``.
     """

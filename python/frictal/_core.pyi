@@ -357,7 +357,7 @@ def prediction_columns() -> list:
     """The prediction's output table: (key, interface unit, help) per quantity, as `frictal columns` prints it; interface units deg (the Prediction attributes are SI: rad), m, 1 (unitless)"""
 
 def profile_stats(profile: Profile, *, tip_radius: float = ...) -> dict:
-    """Statistics of a profile: points, length_m ((n-1) dx), mean/rms height (m), rms slope (unitless), max/mean slope (rad), the slope PDF (edges in rad, density per rad), and the scan quantities sampling_interval_m, physical_length_m (n dx), bandwidth_m (shortest, longest), nyquist_wavelength_m; tip_radius (m) > 0 adds short_reliability_cutoff_m"""
+    """Statistics of a profile: points, length ((n-1) dx, m), mean_height and rms_height (m), rms_slope (unitless), max_slope and mean_slope (rad), slope_distribution_rad (the slope PDF: edges in rad, density per rad), and the scan quantities sampling_interval, physical_length (n dx), bandwidth (shortest, longest), nyquist_wavelength (m); tip_radius (m) > 0 adds short_reliability_cutoff (m)"""
 
 def psd_dimension(profile: Profile, *, q_min: float = ..., q_max: float = ...) -> dict:
     """Fractal dimension of a profile (m) from its power-spectrum slope (runs without the GIL); q_min, q_max in rad/m (0: automatic). Returns dimension, slope, r_squared, fit_range (rad/m), scales, values"""

@@ -172,15 +172,15 @@ PYBIND11_MODULE(_core, m) {
         StatsExtras extras;
         extras.tip_radius = tip_radius;
         if (tip_radius > 0) extras.short_reliability_cutoff = py_detail::ok(short_reliability_cutoff(p, tip_radius));
-        extras.slope_distribution = slope_distribution(p);  // slope_pdf
+        extras.slope_distribution = slope_distribution(p);
         py_detail::put_columns(d, stats_extras_columns(), extras);
         return d;
       },
       py::arg("profile"), py::kw_only(), py::arg("tip_radius") = 0.0,
-      "Statistics of a profile: points, length_m ((n-1) dx), mean/rms height (m), rms slope (unitless), max/mean "
-      "slope (rad), the slope PDF (edges in rad, density per rad), and the scan quantities sampling_interval_m, "
-      "physical_length_m (n dx), bandwidth_m (shortest, longest), nyquist_wavelength_m; tip_radius (m) > 0 adds "
-      "short_reliability_cutoff_m");
+      "Statistics of a profile: points, length ((n-1) dx, m), mean_height and rms_height (m), rms_slope "
+      "(unitless), max_slope and mean_slope (rad), slope_distribution_rad (the slope PDF: edges in rad, density per "
+      "rad), and the scan quantities sampling_interval, physical_length (n dx), bandwidth (shortest, longest), "
+      "nyquist_wavelength (m); tip_radius (m) > 0 adds short_reliability_cutoff (m)");
 
   m.def(
       "signature",

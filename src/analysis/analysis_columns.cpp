@@ -14,35 +14,27 @@ const Columns<MapStats>& map_stats_columns() {
   using T = MapStats;
   static const Columns<T> cols = {
       column<T>("points", "count", "nodes of the grid, nx ny", [](const T& s) { return double(s.points); }),
-      column<T>(
-          "valid_points", "count", "nodes with a measured height", [](const T& s) { return double(s.valid); }, "valid"),
+      column<T>("valid_points", "count", "nodes with a measured height", [](const T& s) { return double(s.valid); }),
       column<T>(
           "length_m", "m", "extent along x, (nx - 1) dx (as for profiles)", [](const T& s) { return s.width; }, "-"),
       column<T>(
           "size_x_m", "m", "extent along x, (nx - 1) dx", [](const T& s) { return s.width; }, "-"),
       column<T>(
           "size_y_m", "m", "extent along y, (ny - 1) dy", [](const T& s) { return s.height; }, "-"),
-      column<T>(
-          "mean_height_m", "m", "mean height", [](const T& s) { return s.mean; }, "mean"),
-      column<T>(
-          "Sa_m", "m", "arithmetic mean height about the mean (ISO 25178-2)", [](const T& s) { return s.Sa; }, "Sa"),
-      column<T>(
-          "Sq_m", "m", "rms height about the mean", [](const T& s) { return s.Sq; }, "Sq"),
+      column<T>("mean_height_m", "m", "mean height", [](const T& s) { return s.mean; }),
+      column<T>("Sa_m", "m", "arithmetic mean height about the mean (ISO 25178-2)", [](const T& s) { return s.Sa; }),
+      column<T>("Sq_m", "m", "rms height about the mean", [](const T& s) { return s.Sq; }),
       column<T>(
           "rms_height_m", "m", "rms height (Sq; as for profiles)", [](const T& s) { return s.Sq; }, "-"),
-      column<T>(
-          "Sp_m", "m", "highest peak above the mean", [](const T& s) { return s.Sp; }, "Sp"),
-      column<T>(
-          "Sv_m", "m", "deepest valley below the mean", [](const T& s) { return s.Sv; }, "Sv"),
-      column<T>(
-          "Sz_m", "m", "Sp + Sv", [](const T& s) { return s.Sz; }, "Sz"),
+      column<T>("Sp_m", "m", "highest peak above the mean", [](const T& s) { return s.Sp; }),
+      column<T>("Sv_m", "m", "deepest valley below the mean", [](const T& s) { return s.Sv; }),
+      column<T>("Sz_m", "m", "Sp + Sv", [](const T& s) { return s.Sz; }),
       column<T>("Ssk", "1", "skewness", [](const T& s) { return s.Ssk; }),
       column<T>("Sku", "1", "kurtosis", [](const T& s) { return s.Sku; }),
       column<T>("Sdq", "1", "rms gradient", [](const T& s) { return s.Sdq; }),
       column<T>(
           "rms_slope", "1", "rms gradient (Sdq; the profiles' rms slope)", [](const T& s) { return s.Sdq; }, "-"),
-      column<T>(
-          "max_slope_deg", "deg", "steepest gradient angle", [](const T& s) { return s.max_slope; }, "max_slope"),
+      column<T>("max_slope_deg", "deg", "steepest gradient angle", [](const T& s) { return s.max_slope; }),
   };
   return cols;
 }
@@ -52,10 +44,8 @@ const Columns<Map>& map_grid_columns() {
   static const Columns<T> cols = {
       column<T>("nx", "count", "nodes along x", [](const T& m) { return double(m.nx); }),
       column<T>("ny", "count", "nodes along y", [](const T& m) { return double(m.ny); }),
-      column<T>(
-          "dx_m", "m", "node spacing along x", [](const T& m) { return m.dx; }, "dx"),
-      column<T>(
-          "dy_m", "m", "node spacing along y", [](const T& m) { return m.dy; }, "dy"),
+      column<T>("dx_m", "m", "node spacing along x", [](const T& m) { return m.dx; }),
+      column<T>("dy_m", "m", "node spacing along y", [](const T& m) { return m.dy; }),
   };
   return cols;
 }
@@ -145,11 +135,8 @@ const Columns<ConditioningRecord>& conditioning_record_columns() {
 const Columns<MapScanStats>& map_scan_stats_columns() {
   using T = MapScanStats;
   static const Columns<T> cols = {
-      column<T>(
-          "physical_size_x_m", "m", "nx dx (the pixel convention)", [](const T& s) { return s.physical_size_x; },
-          "physical_size_x"),
-      column<T>(
-          "physical_size_y_m", "m", "ny dy", [](const T& s) { return s.physical_size_y; }, "physical_size_y"),
+      column<T>("physical_size_x_m", "m", "nx dx (the pixel convention)", [](const T& s) { return s.physical_size_x; }),
+      column<T>("physical_size_y_m", "m", "ny dy", [](const T& s) { return s.physical_size_y; }),
       column<T>(
           "physical_length_m", "m", "nx dx (as for profiles)", [](const T& s) { return s.physical_size_x; }, "-"),
       column<T>(
@@ -167,12 +154,10 @@ const Columns<MapScanStats>& map_scan_stats_columns() {
       column<T>(
           "nyquist_wavelength_m", "m", "2 max(dx, dy): the shortest wavelength both axes resolve",
           [](const T& s) { return s.nyquist_wavelength; }, "-"),
-      column<T>(
-          "Rq_x_m", "m", "rms height of the rows (x), each about its own mean", [](const T& s) { return s.Rq_x; },
-          "Rq_x"),
+      column<T>("Rq_x_m", "m", "rms height of the rows (x), each about its own mean",
+                [](const T& s) { return s.Rq_x; }),
       column<T>("Rdq_x", "1", "rms slope of the rows (x)", [](const T& s) { return s.Rdq_x; }),
-      column<T>(
-          "Rq_y_m", "m", "rms height of the columns (y)", [](const T& s) { return s.Rq_y; }, "Rq_y"),
+      column<T>("Rq_y_m", "m", "rms height of the columns (y)", [](const T& s) { return s.Rq_y; }),
       column<T>("Rdq_y", "1", "rms slope of the columns (y)", [](const T& s) { return s.Rdq_y; }),
       column<T>("rms_gradient_fd", "1", "rms gradient from forward differences at common nodes",
                 [](const T& s) { return s.rms_gradient_fd; }),
@@ -198,7 +183,7 @@ const Columns<ProfileScanStats>& profile_scan_stats_columns() {
           [](const T& s) {
             return std::vector<double>{s.bandwidth_short, s.bandwidth_long};
           },
-          "bandwidth_m"),
+          "bandwidth"),
       column<T>("nyquist_wavelength_m", "m", "2 x the sampling interval",
                 [](const T& s) { return s.nyquist_wavelength; }),
   };
@@ -211,14 +196,11 @@ const Columns<FractalFit>& fractal_fit_columns() {
       column<T>("dimension", "1", "the fractal dimension D", [](const T& f) { return f.dimension; }),
       column<T>("slope", "1", "fitted log-log slope", [](const T& f) { return f.slope; }),
       column<T>("r_squared", "1", "coefficient of determination of the fit", [](const T& f) { return f.r_squared; }),
-      column<T>(
-          "fit_range_m", "m", "[smallest, largest] scale in the fit",
-          [](const T& f) {
-            return std::vector<double>{f.scale_min, f.scale_max};
-          },
-          "fit_range"),
-      column<T>(
-          "scales_m", "m", "every scale used: ruler, box or wavelength", [](const T& f) { return f.scales; }, "scales"),
+      column<T>("fit_range_m", "m", "[smallest, largest] scale in the fit",
+                [](const T& f) {
+                  return std::vector<double>{f.scale_min, f.scale_max};
+                }),
+      column<T>("scales_m", "m", "every scale used: ruler, box or wavelength", [](const T& f) { return f.scales; }),
       column<T>("values", "1", "L(eps) (m), N(eps) (unitless) or binned C(q) (m^3), by method",
                 [](const T& f) { return f.values; }),
   };
@@ -251,15 +233,8 @@ const Columns<StatsExtras>& stats_extras_columns() {
                   [](const T& e) { return e.tip_radius; }, "-"),
               tip),
       only_if(column<T>("short_reliability_cutoff_m", "m",
-                        "shortest scale the tip resolves (null: unreliable at every scale)", cutoff, "-"),
+                        "shortest scale the tip resolves (null, Python NaN: unreliable at every scale)", cutoff),
               tip),
-      // Python's dicts: profile_stats names it with the unit suffix, map_stats without.
-      only_if(column<T>("", "m", "profile_stats: shortest scale the tip resolves (NaN: unreliable at every scale)",
-                        cutoff, "short_reliability_cutoff_m"),
-              [tip](const T& e) { return tip(e) && !e.is_map; }),
-      only_if(column<T>("", "m", "map_stats: shortest scale the tip resolves (NaN: unreliable at every scale)", cutoff,
-                        "short_reliability_cutoff"),
-              [tip](const T& e) { return tip(e) && e.is_map; }),
       only_if(column<T>(
                   "correlation_length_m", "m", "where the autocorrelation falls to 1/e",
                   [](const T& e) { return *e.correlation_length; }, "-"),
@@ -267,9 +242,9 @@ const Columns<StatsExtras>& stats_extras_columns() {
       object_column<T>(
           "height_distribution", "histogram", "density of the heights (edges in m, density per m)", histogram_columns(),
           [](const T& e) { return e.height_distribution; }, "-"),
-      object_column<T>(
-          "slope_distribution_rad", "histogram", "density of the slope angles (edges in rad, density per rad)",
-          histogram_columns(), [](const T& e) { return e.slope_distribution; }, "slope_pdf"),
+      object_column<T>("slope_distribution_rad", "histogram",
+                       "density of the slope angles (edges in rad, density per rad)", histogram_columns(),
+                       [](const T& e) { return e.slope_distribution; }),
   };
   return cols;
 }

@@ -16,23 +16,18 @@ const Columns<ArealSignature>& areal_signature_columns() {
           "direction_deg", "deg", "sliding direction, from +x towards +y", [](const T& r) { return r.direction; }, "-"),
       column<T>(
           "offsets", "count", "offsets along the direction", [](const T& r) { return double(r.offset.size()); }, "-"),
-      column<T>(
-          "evaluated_nodes", "count", "lower-surface nodes evaluated (after pruning)",
-          [](const T& r) { return double(r.evaluated_nodes); }, "evaluated_nodes"),
+      column<T>("evaluated_nodes", "count", "lower-surface nodes evaluated (after pruning)",
+                [](const T& r) { return double(r.evaluated_nodes); }),
       column<T>(
           "theta_max_lift_deg", "deg", "steepest slope of the lift along the direction",
           [](const T& r) { return r.theta_max_lift; }, "-"),
-      column<T>(
-          "theta_max_forward_deg", "deg", "steepest contact slope resisting sliding along the direction",
-          [](const T& r) { return r.theta_max_forward; }, "theta_max_forward"),
-      column<T>(
-          "theta_max_backward_deg", "deg", "steepest contact slope resisting sliding against it",
-          [](const T& r) { return r.theta_max_backward; }, "theta_max_backward"),
+      column<T>("theta_max_forward_deg", "deg", "steepest contact slope resisting sliding along the direction",
+                [](const T& r) { return r.theta_max_forward; }),
+      column<T>("theta_max_backward_deg", "deg", "steepest contact slope resisting sliding against it",
+                [](const T& r) { return r.theta_max_backward; }),
       column<T>(
           "contact_slope_mean_deg", "deg", "mean contact slope", [](const T& r) { return r.contact_slope_mean; }, "-"),
-      column<T>(
-          "contact_slope_std_deg", "deg", "sigma of Eq. 18", [](const T& r) { return r.contact_slope_std; },
-          "contact_slope_std"),
+      column<T>("contact_slope_std_deg", "deg", "sigma of Eq. 18", [](const T& r) { return r.contact_slope_std; }),
       column<T>(
           "", "m", "offsets along the direction", [](const T& r) { return r.offset; }, "offset"),
       column<T>(

@@ -28,10 +28,10 @@ namespace frictal {
 
 namespace {
 
-/// A declared column (no value here: the front end writes it). python "" = JSON only, "=" = the
-/// same key in Python (SI), "-" none.
+/// A declared column (no value here: the front end writes it). python "" = JSON only, "=" = in Python
+/// by the rule (python_key: the key without its unit suffix, SI), "-" none.
 ColumnInfo ci(std::string key, std::string unit, std::string help, std::string python = "-") {
-  if (python == "=") python = default_python_key(key, unit);
+  if (python == "=") python = python_key(key);
   if (python == "-") python.clear();
   return {std::move(key), std::move(unit), std::move(help), std::move(python)};
 }
@@ -57,7 +57,7 @@ const Columns<BuildInfo>& build_info_columns() {
 
 const Columns<RunRecord>& run_record_columns() {
   using T = RunRecord;
-  // A text field written when it has a value.
+  // A text field written when it has a value; `python`: "" = in Python by the rule, "-" = not.
   auto text = [](std::string key, std::string help, std::optional<std::string> T::*field, std::string python) {
     return only_if(column<T>(
                        std::move(key), "text", std::move(help), [field](const T& r) { return *(r.*field); }, python),
@@ -74,13 +74,13 @@ const Columns<RunRecord>& run_record_columns() {
       text("lower", "the lower surface (file or generator)", &T::lower, "-"),
       text("upper", "the upper surface, as measured (turned over to face the lower)", &T::upper, "-"),
       text("file", "the surface file read", &T::file, "-"),
-      text("format", "the file's format as read", &T::format, "format"),
-      text("kind", "profile or map", &T::kind, "kind"),
+      text("format", "the file's format as read", &T::format, ""),
+      text("kind", "profile or map", &T::kind, ""),
       text("method", "the method the numbers come from", &T::method, "-"),
       text("slopes", "the slope method of the signature: exact or spline", &T::slopes, "-"),
       number("surface_slope_max_deg", "deg", "steepest slope of either surface", &T::surface_slope_max),
       text("conditioning", "every conditioning step applied first (crop, spikes, form), with its numbers",
-           &T::conditioning, "conditioning"),
+           &T::conditioning, ""),
       list_column<T>("warnings", "warning",
                      "warnings: implausible inputs or results (frictal warnings lists the codes)", warning_columns(),
                      [](const T& r) { return r.warnings; }),

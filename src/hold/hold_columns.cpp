@@ -32,29 +32,23 @@ const Columns<HoldStatistics>& hold_statistics_columns() {
 const Columns<HoldAngle>& hold_drop_columns() {
   using T = HoldAngle;
   static const Columns<T> cols = {
-      column<T>(
-          "rest_offset_m", "m", "where the block rests at zero tilt", [](const T& a) { return a.rest_offset; },
-          "rest_offset"),
+      column<T>("rest_offset_m", "m", "where the block rests at zero tilt", [](const T& a) { return a.rest_offset; }),
       column<T>("hold_angle_deg", "deg",
                 "phi_qs: the quasi-static hold angle, atan(mu_a) + the slope of the stop that held",
                 [](const T& a) { return a.hold_angle; }),
-      column<T>(
-          "hold_offset_m", "m", "the stop that held, where the run-away slip starts",
-          [](const T& a) { return a.hold_offset; }, "hold_offset"),
-      column<T>(
-          "runaway_end_m", "m", "end of the run-away slip (null: off the end of the range, or never caught)",
-          [](const T& a) { return a.runaway_end; }, "runaway_end"),
-      column<T>(
-          "hold_slips", "count", "short slips (< d) between the rest and the run-away",
-          [](const T& a) { return double(a.slips); }, "slips"),
+      column<T>("hold_offset_m", "m", "the stop that held, where the run-away slip starts",
+                [](const T& a) { return a.hold_offset; }),
+      column<T>("runaway_end_m", "m", "end of the run-away slip (null: off the end of the range, or never caught)",
+                [](const T& a) { return a.runaway_end; }),
+      column<T>("hold_slips", "count", "short slips (< d) between the rest and the run-away",
+                [](const T& a) { return double(a.slips); }),
       column<T>(
           "", "flag", "the run-away ran off the end of the range", [](const T& a) { return a.ran_off_end; },
           "ran_off_end"),
       column<T>("inertial_hold_angle_deg", "deg", "phi_in: atan(mu_a) + the steepest chord (the inertial bound)",
                 [](const T& a) { return a.inertial_hold_angle; }),
-      column<T>(
-          "inertial_offset_m", "m", "where the steepest chord ends", [](const T& a) { return a.inertial_offset; },
-          "inertial_offset"),
+      column<T>("inertial_offset_m", "m", "where the steepest chord ends",
+                [](const T& a) { return a.inertial_offset; }),
   };
   return cols;
 }
@@ -124,15 +118,11 @@ void flatten(Columns<H>& out, const Columns<T>& sub, G get, const std::string& p
 const Columns<HoldAnalysis>& hold_columns() {
   static const Columns<H> cols = [] {
     Columns<H> c = {
-        column<H>(
-            "runaway_distance_m", "m", "run-away distance d that a test reads",
-            [](const H& h) { return h.runaway_distance; }, "runaway_distance"),
-        column<H>(
-            "hold_events", "count", "offsets of the lift the hold analysis ran on",
-            [](const H& h) { return double(h.events); }, "events"),
-        column<H>(
-            "hold_exact", "flag", "that lift was exact (every event offset)", [](const H& h) { return h.exact; },
-            "exact"),
+        column<H>("runaway_distance_m", "m", "run-away distance d that a test reads",
+                  [](const H& h) { return h.runaway_distance; }),
+        column<H>("hold_events", "count", "offsets of the lift the hold analysis ran on",
+                  [](const H& h) { return double(h.events); }),
+        column<H>("hold_exact", "flag", "that lift was exact (every event offset)", [](const H& h) { return h.exact; }),
         column<H>(
             "drop_range_m", "m", "[min, max] of the drops the distribution is over",
             [](const H& h) {

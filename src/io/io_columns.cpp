@@ -34,20 +34,14 @@ const Columns<SurfaceData>& surface_data_columns() {
   auto map = [](const T& s) { return s.is_map; };
   auto profile = [](const T& s) { return !s.is_map; };
   static const Columns<T> cols = {
-      column<T>(
-          "reader", "text", "the reader that read it: native or gwyddion", [](const T& s) { return s.reader; },
-          "reader"),
+      column<T>("reader", "text", "the reader that read it: native or gwyddion", [](const T& s) { return s.reader; }),
       column<T>(
           "channel", "count", "the channel read (0-based)", [](const T& s) { return double(s.channel); }, "-"),
       list_column<T>(
           "channels", "info_channel", "every channel of the file", channel_info_columns(),
           [](const T& s) { return std::optional(s.channels); }, "-"),
-      only_if(column<T>(
-                  "x0_m", "m", "x of the first node", [](const T& s) { return s.map.x0; }, "x0"),
-              map),
-      only_if(column<T>(
-                  "y0_m", "m", "y of the first node", [](const T& s) { return s.map.y0; }, "y0"),
-              map),
+      only_if(column<T>("x0_m", "m", "x of the first node", [](const T& s) { return s.map.x0; }), map),
+      only_if(column<T>("y0_m", "m", "y of the first node", [](const T& s) { return s.map.y0; }), map),
       only_if(column<T>(
                   "points", "count", "points of the profile", [](const T& s) { return double(s.curve.size()); }, "-"),
               profile),

@@ -65,21 +65,18 @@ const Columns<Prediction>& prediction_columns() {
       column<P>("is_map", "flag", "the pair is two areal maps", [](const P& p) { return p.is_map; }),
       deg("direction_deg", "sliding direction, from +x towards +y", [](const P& p) { return p.direction; }),
       num("atomic_friction", "1", "mu_a at every contact", [](const P& p) { return p.atomic_friction; }),
-      num(
-          "runaway_distance_m", "m", "run-away distance d that a test reads",
-          [](const P& p) { return p.runaway_distance; }, "runaway_distance"),
-      num(
-          "block_length_m", "m",
+      num("runaway_distance_m", "m", "run-away distance d that a test reads",
+          [](const P& p) { return p.runaway_distance; }),
+      num("block_length_m", "m",
           "the test's block length L_b: the piece of the upper surface that slides (periodic pairs: the whole "
           "profile)",
-          [](const P& p) { return p.block_length; }, "block_length"),
+          [](const P& p) { return p.block_length; }),
       column<P>("test_lengths", "text", "how d and L_b were set: given, or the default's rule with its numbers",
                 [](const P& p) { return p.test_lengths; }),
-      list(
-          "d_sweep_m", "m",
-          "how the answer depends on d: the run-away distances d/4, d/2, d, 2d, 4d (those shorter than the blocks' "
-          "overlap) of the d_sweep median, q05 and q95 columns, from the same lift and drops (profiles; maps: empty)",
-          [](const P& p) { return p.d_sweep_distance; }, "d_sweep"),
+      list("d_sweep_m", "m",
+           "how the answer depends on d: the run-away distances d/4, d/2, d, 2d, 4d (those shorter than the blocks' "
+           "overlap) of the d_sweep median, q05 and q95 columns, from the same lift and drops (profiles; maps: empty)",
+           [](const P& p) { return p.d_sweep_distance; }),
       list("d_sweep_median_deg", "deg",
            "the hold angle's median over drops at each d of d_sweep_m (at d: the headline)",
            [](const P& p) { return p.d_sweep_q50; }),
@@ -91,16 +88,14 @@ const Columns<Prediction>& prediction_columns() {
                 [](const P& p) { return p.single_drop; }),
       num("drops", "count", "drops the distribution is over (profiles: the basins that drain them)",
           [](const P& p) { return double(p.drops); }),
-      list(
-          "drop_range_m", "m",
-          "drop range: profiles [min, max]; maps [u_min, u_max, v_min, v_max] along/across d (the block's spheres r + "
-          "D "
-          "inside the lower map)",
-          [](const P& p) {
-            return p.is_map ? std::vector<double>(p.drop_range.begin(), p.drop_range.end())
-                            : std::vector<double>{p.drop_range[0], p.drop_range[1]};
-          },
-          "drop_range"),
+      list("drop_range_m", "m",
+           "drop range: profiles [min, max]; maps [u_min, u_max, v_min, v_max] along/across d (the block's spheres r + "
+           "D "
+           "inside the lower map)",
+           [](const P& p) {
+             return p.is_map ? std::vector<double>(p.drop_range.begin(), p.drop_range.end())
+                             : std::vector<double>{p.drop_range[0], p.drop_range[1]};
+           }),
       deg("friction_angle_deg",
           "THE PREDICTION: median over drops of the hold angle a tilt test reads, atan(mu_a) "
           "included",
@@ -141,18 +136,14 @@ const Columns<Prediction>& prediction_columns() {
            [](const P& p) {
              return std::vector<double>{p.eq18_range[0], p.eq18_range[1]};
            }),
-      list(
-          "start_offset_m", "m", "single drop: where it was put down (x, y)",
-          [](const P& p) {
-            return p.single_drop ? std::vector<double>{p.start_offset[0], p.start_offset[1]} : std::vector<double>{};
-          },
-          "start_offset"),
-      list(
-          "rest_offset_m", "m", "single drop: where it rested at zero tilt (x, y)",
-          [](const P& p) {
-            return p.single_drop ? std::vector<double>{p.rest_offset[0], p.rest_offset[1]} : std::vector<double>{};
-          },
-          "rest_offset"),
+      list("start_offset_m", "m", "single drop: where it was put down (x, y)",
+           [](const P& p) {
+             return p.single_drop ? std::vector<double>{p.start_offset[0], p.start_offset[1]} : std::vector<double>{};
+           }),
+      list("rest_offset_m", "m", "single drop: where it rested at zero tilt (x, y)",
+           [](const P& p) {
+             return p.single_drop ? std::vector<double>{p.rest_offset[0], p.rest_offset[1]} : std::vector<double>{};
+           }),
       deg("locked_friction_angle_deg",
           "maps, a diagnostic: the median hold angle with the block locked to d (NaN "
           "for profiles)",
@@ -164,25 +155,21 @@ const Columns<Prediction>& prediction_columns() {
       list("drop_friction_angles_deg", "deg",
            "maps: each drop's hold angle (block free; under load: locked to d on the loaded lift), in drop order",
            [](const P& p) { return p.drop_angles; }),
-      num(
-          "load_n", "N",
+      num("load_n", "N",
           "friction under load (profiles; null: the rigid prediction): the load W on the upper block, its weight; "
           "the headline is the hold angle at this load",
-          [](const P& p) { return p.load; }, "load"),
-      num(
-          "normal_load_n", "N",
+          [](const P& p) { return p.load; }),
+      num("normal_load_n", "N",
           "under load: the normal force W cos(phi_0) the loaded lift was evaluated at (phi_0 the rigid median)",
-          [](const P& p) { return p.normal_load; }, "normal_load"),
-      num(
-          "contact_modulus_pa", "Pa", "under load: the contact modulus E* of the Hertzian contacts",
-          [](const P& p) { return p.contact_modulus; }, "contact_modulus"),
+          [](const P& p) { return p.normal_load; }),
+      num("contact_modulus_pa", "Pa", "under load: the contact modulus E* of the Hertzian contacts",
+          [](const P& p) { return p.contact_modulus; }),
       deg("rigid_friction_angle_deg", "under load: the rigid prediction's median beside the loaded one",
           [](const P& p) { return p.rigid_friction_angle; }),
-      list(
-          "load_curve_n", "N",
-          "under load: the loads of the friction-against-load curve, increasing (one load W given: W x 10^(-2..1) "
-          "in half decades)",
-          [](const P& p) { return p.load_curve; }, "load_curve"),
+      list("load_curve_n", "N",
+           "under load: the loads of the friction-against-load curve, increasing (one load W given: W x 10^(-2..1) "
+           "in half decades)",
+           [](const P& p) { return p.load_curve; }),
       list("load_curve_median_deg", "deg", "the hold angle's median over drops at each load of load_curve_n",
            [](const P& p) { return p.load_curve_q50; }),
       list("load_curve_q05_deg", "deg", "its 5 % quantile at each load of load_curve_n",
@@ -192,9 +179,8 @@ const Columns<Prediction>& prediction_columns() {
       num("load_contacts_mean", "1",
           "under load: asperity contacts (profiles) or contact patches (maps) carrying force per offset, mean",
           [](const P& p) { return p.load_contacts; }),
-      num(
-          "load_approach_m", "m", "under load: the block's approach from first touch, mean over offsets",
-          [](const P& p) { return p.load_approach; }, "load_approach"),
+      num("load_approach_m", "m", "under load: the block's approach from first touch, mean over offsets",
+          [](const P& p) { return p.load_approach; }),
       num("load_interference_ratio_max", "1",
           "under load: the largest interference over radius delta/R of a loaded contact (Hertz wants << 1)",
           [](const P& p) { return p.load_interference_ratio; }),
@@ -264,9 +250,8 @@ const Columns<ArealHoldReport>& areal_hold_columns() {
   auto pair = [](const std::array<double, 2>& a) { return std::vector<double>{a[0], a[1]}; };
   static const Columns<T> cols = [&] {
     Columns<T> c = {
-        column<T>(
-            "direction_deg", "deg", "sliding direction, from +x towards +y",
-            [](const T& r) { return r.prediction.direction; }, "direction"),
+        column<T>("direction_deg", "deg", "sliding direction, from +x towards +y",
+                  [](const T& r) { return r.prediction.direction; }),
         column<T>("lateral", "text", "free (the block may move sideways) or locked to the direction",
                   [](const T& r) { return std::string(r.locked ? "locked" : "free"); }),
         column<T>("model", "text", "map-continuous-free or map-continuous-locked (frictal predict's model)",
@@ -275,9 +260,8 @@ const Columns<ArealHoldReport>& areal_hold_columns() {
                   [](const T& r) { return r.in_place; }),
         column<T>("atomic_friction", "1", "mu_a, included in every hold angle as atan(mu_a)",
                   [](const T& r) { return r.prediction.atomic_friction; }),
-        column<T>(
-            "runaway_distance_m", "m", "run-away distance d", [](const T& r) { return r.prediction.runaway_distance; },
-            "runaway_distance"),
+        column<T>("runaway_distance_m", "m", "run-away distance d",
+                  [](const T& r) { return r.prediction.runaway_distance; }),
         column<T>("drops", "count", "drops the distribution is over",
                   [](const T& r) { return double(r.prediction.drops); }),
         fixed_length(column<T>(
@@ -286,28 +270,21 @@ const Columns<ArealHoldReport>& areal_hold_columns() {
             [](const T& r) {
               const auto& d = r.prediction.drop_range;
               return std::vector<double>(d.begin(), d.end());
-            },
-            "drop_range")),
-        one(fixed_length(column<T>(
-            "start_offset_m", "m", "one drop: where it was put down (x, y)",
-            [pair](const T& r) { return pair(r.prediction.start_offset); }, "start_offset"))),
-        one(fixed_length(column<T>(
-            "rest_offset_m", "m", "one drop: where it rested (x, y)",
-            [pair](const T& r) { return pair(r.prediction.rest_offset); }, "rest_offset"))),
-        one(column<T>(
-            "hold_angle_deg", "deg", "one drop: its hold angle (the lateral mode's)",
-            [chosen](const T& r) { return chosen(r).q50; }, "hold_angle")),
-        only_if(column<T>(
-                    "hold_angle_free_deg", "deg", "one drop, locked: the free block's hold angle",
-                    [](const T& r) { return r.prediction.friction_angle.q50; }, "hold_angle_free"),
+            })),
+        one(fixed_length(column<T>("start_offset_m", "m", "one drop: where it was put down (x, y)",
+                                   [pair](const T& r) { return pair(r.prediction.start_offset); }))),
+        one(fixed_length(column<T>("rest_offset_m", "m", "one drop: where it rested (x, y)",
+                                   [pair](const T& r) { return pair(r.prediction.rest_offset); }))),
+        one(column<T>("hold_angle_deg", "deg", "one drop: its hold angle (the lateral mode's)",
+                      [chosen](const T& r) { return chosen(r).q50; })),
+        only_if(column<T>("hold_angle_free_deg", "deg", "one drop, locked: the free block's hold angle",
+                          [](const T& r) { return r.prediction.friction_angle.q50; }),
                 [](const T& r) { return r.prediction.single_drop && r.locked; }),
-        one(column<T>(
-            "steering_deg", "deg", "one drop: the direction the free block ran away in",
-            [](const T& r) {
-              return r.prediction.drop_steering.empty() ? std::numeric_limits<double>::quiet_NaN()
-                                                        : r.prediction.drop_steering.front();
-            },
-            "steering")),
+        one(column<T>("steering_deg", "deg", "one drop: the direction the free block ran away in",
+                      [](const T& r) {
+                        return r.prediction.drop_steering.empty() ? std::numeric_limits<double>::quiet_NaN()
+                                                                  : r.prediction.drop_steering.front();
+                      })),
     };
     using S = double HoldStatistics::*;
     const std::pair<const char*, S> stats[] = {{"mean", &HoldStatistics::mean}, {"std", &HoldStatistics::std},
@@ -319,30 +296,25 @@ const Columns<ArealHoldReport>& areal_hold_columns() {
       const char* name = entry.first;
       const S field = entry.second;
       const std::string k = std::string("hold_angle_") + name;
-      c.push_back(over(column<T>(
-          k + "_deg", "deg", std::string("hold angle over drops: ") + name,
-          [chosen, field](const T& r) { return chosen(r).*field; }, k)));
+      c.push_back(over(column<T>(k + "_deg", "deg", std::string("hold angle over drops: ") + name,
+                                 [chosen, field](const T& r) { return chosen(r).*field; })));
     }
     for (const auto& entry : stats) {
       const S field = entry.second;
       const std::string st(entry.first);
       if (st != "q05" && st != "q50" && st != "q95") continue;
       const std::string k = "hold_angle_free_" + st;
-      c.push_back(over(column<T>(
-                           k + "_deg", "deg", "locked mode: the free block's hold angle over drops, " + st,
-                           [field](const T& r) { return r.prediction.friction_angle.*field; }, k),
+      c.push_back(over(column<T>(k + "_deg", "deg", "locked mode: the free block's hold angle over drops, " + st,
+                                 [field](const T& r) { return r.prediction.friction_angle.*field; }),
                        true));
     }
-    c.push_back(over(column<T>(
-        "drop_hold_angles_deg", "deg", "each drop's hold angle, in drop order",
-        [](const T& r) { return r.locked ? r.prediction.drop_angles_locked : r.prediction.drop_angles; },
-        "drop_hold_angles")));
-    c.push_back(over(rows_column<T>(
-        "drop_offsets_m", "offset_xy", "each drop's (x, y)", offset_xy_columns(),
-        [](const T& r) { return std::optional(r.prediction.drop_offsets); }, "drop_offsets")));
-    c.push_back(column<T>(
-        "upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a (Eq. 6)",
-        [](const T& r) { return r.prediction.upper_bound_friction_angle; }, "upper_bound_friction_angle"));
+    c.push_back(over(column<T>("drop_hold_angles_deg", "deg", "each drop's hold angle, in drop order", [](const T& r) {
+      return r.locked ? r.prediction.drop_angles_locked : r.prediction.drop_angles;
+    })));
+    c.push_back(over(rows_column<T>("drop_offsets_m", "offset_xy", "each drop's (x, y)", offset_xy_columns(),
+                                    [](const T& r) { return std::optional(r.prediction.drop_offsets); })));
+    c.push_back(column<T>("upper_bound_friction_angle_deg", "deg", "rigid upper bound theta_max + theta_a (Eq. 6)",
+                          [](const T& r) { return r.prediction.upper_bound_friction_angle; }));
     return c;
   }();
   return cols;

@@ -32,12 +32,9 @@ ContactList contact_list(const SignatureResult& r) {
 const Columns<ContactList>& contact_list_columns() {
   using T = ContactList;
   static const Columns<T> cols = {
-      column<T>(
-          "offset_m", "m", "the offset of each contact", [](const T& l) { return l.offset; }, "offset"),
-      column<T>(
-          "x_m", "m", "contact abscissa in the lower block's frame", [](const T& l) { return l.x; }, "x"),
-      column<T>(
-          "z_m", "m", "contact height on the lower surface", [](const T& l) { return l.z; }, "z"),
+      column<T>("offset_m", "m", "the offset of each contact", [](const T& l) { return l.offset; }),
+      column<T>("x_m", "m", "contact abscissa in the lower block's frame", [](const T& l) { return l.x; }),
+      column<T>("z_m", "m", "contact height on the lower surface", [](const T& l) { return l.z; }),
       column<T>("slope_deg", "deg", "contact slope by its type's rule", [](const T& l) { return l.slope; }),
       column<T>("type", "text", "vertex-edge, edge-vertex or vertex-vertex", [](const T& l) { return l.type; }),
   };
@@ -46,9 +43,8 @@ const Columns<ContactList>& contact_list_columns() {
 
 const Columns<SignatureResult>& signature_columns() {
   static const Columns<S> cols = {
-      column<S>(
-          "spheroradius_m", "m", "the spheroradius r of the blocks (0: rigid profiles)",
-          [](const S& r) { return r.spheroradius; }, "spheroradius"),
+      column<S>("spheroradius_m", "m", "the spheroradius r of the blocks (0: rigid profiles)",
+                [](const S& r) { return r.spheroradius; }),
       column<S>("exact", "flag", "every event offset was evaluated (the signature is exact)",
                 [](const S& r) { return r.exact; }),
       column<S>(
@@ -83,12 +79,10 @@ const Columns<SignatureResult>& signature_columns() {
                 [](const S& r) { return r.theta_max_forward; }),
       column<S>("theta_max_backward_deg", "deg", "steepest contact slope resisting sliding towards -x (max -theta)",
                 [](const S& r) { return r.theta_max_backward; }),
-      column<S>(
-          "offset_at_forward_m", "m", "offset where theta_max_forward is reached",
-          [](const S& r) { return r.offset_at_forward; }, "offset_at_forward"),
-      column<S>(
-          "offset_at_backward_m", "m", "offset where theta_max_backward is reached",
-          [](const S& r) { return r.offset_at_backward; }, "offset_at_backward"),
+      column<S>("offset_at_forward_m", "m", "offset where theta_max_forward is reached",
+                [](const S& r) { return r.offset_at_forward; }),
+      column<S>("offset_at_backward_m", "m", "offset where theta_max_backward is reached",
+                [](const S& r) { return r.offset_at_backward; }),
       column<S>("contact_slope_mean_deg", "deg", "mean contact slope, weighted by offset length",
                 [](const S& r) { return r.contact_slope_mean; }),
       column<S>("contact_slope_std_deg", "deg", "sigma of Eq. 18: standard deviation of the contact slopes",
@@ -116,9 +110,7 @@ const Columns<FrictionPrediction>& friction_columns() {
   static const Columns<F> cols = {
       column<F>("atomic_friction", "1", "mu_a, the atomic (flat-contact) friction coefficient",
                 [](const F& f) { return f.atomic_friction; }),
-      column<F>(
-          "atomic_friction_angle_deg", "deg", "theta_a = atan(mu_a)", [](const F& f) { return f.atomic_angle; },
-          "atomic_angle"),
+      column<F>("atomic_friction_angle_deg", "deg", "theta_a = atan(mu_a)", [](const F& f) { return f.atomic_angle; }),
       column<F>(
           "", "deg", "the theta_max the bound is of", [](const F& f) { return f.theta_max; }, "theta_max"),
       column<F>("upper_bound_friction_angle_deg", "deg",

@@ -13,12 +13,10 @@ const Columns<ProfileStats>& profile_stats_columns() {
       column<T>("rms_height_m", "m", "rms height about the mean (Rq), exact for the polyline",
                 [](const T& s) { return s.rms_height; }),
       column<T>("rms_slope", "1", "rms slope sqrt((1/L) int z'^2 dx) (Rdq)", [](const T& s) { return s.rms_slope; }),
-      column<T>(
-          "max_slope_deg", "deg", "steepest |atan z'| over the edges (90 at a jump)",
-          [](const T& s) { return s.max_slope; }, "max_slope_rad"),
-      column<T>(
-          "mean_slope_deg", "deg", "mean slope angle (1/L) int atan z' dx", [](const T& s) { return s.mean_slope; },
-          "mean_slope_rad"),
+      column<T>("max_slope_deg", "deg", "steepest |atan z'| over the edges (90 at a jump)",
+                [](const T& s) { return s.max_slope; }),
+      column<T>("mean_slope_deg", "deg", "mean slope angle (1/L) int atan z' dx",
+                [](const T& s) { return s.mean_slope; }),
   };
   return cols;
 }

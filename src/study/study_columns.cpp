@@ -98,7 +98,7 @@ const Columns<StudyRunReport>& study_run_columns() {
       column<T>(
           "", "count", "compute threads used", [](const T& r) { return double(r.summary.threads); }, "threads"),
       column<T>(
-          "", "s", "wall time of the run", [](const T& r) { return r.summary.wall_s; }, "wall_s"),
+          "", "s", "wall time of the run", [](const T& r) { return r.summary.wall_s; }, "wall_time"),
       object_column<T, StoreCounts>(
           "", "study_tasks", "the store's task counts after the run", study_tasks_columns(),
           [](const T& r) { return std::optional(r.tasks); }, "tasks"),

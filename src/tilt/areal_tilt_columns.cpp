@@ -127,8 +127,7 @@ const Columns<ArealTiltReport>& areal_tilt_report_columns() {
         run("unsettled_increments", false),
         column<T>("seconds", "s", "wall time", [](const T& r) { return r.seconds; }),
     };
-    // Python's dicts (areal_tilt) take the same keys without their units, the values in SI.
-    return python_without_units<T>(std::move(c));
+    return c;
   }();
   return cols;
 }

@@ -144,7 +144,7 @@ std::string tilt_spread_note(const TiltResult& r, const TiltConfig& c) {
 }
 
 const Columns<TiltReport>& tilt_columns() {
-  static const Columns<R> cols = python_without_units<R>({
+  static const Columns<R> cols = {
       column<R>("slid", "flag", "a run-away was detected before max_tilt", [](const R& t) { return t.result.slid; }),
       column<R>("friction_angle_deg", "deg",
                 "the friction angle this test read: the tilt at the start of the run-away (null: no slide)",
@@ -222,9 +222,9 @@ const Columns<TiltReport>& tilt_columns() {
       object_column<R, TiltEstimate>("estimate", "tilt_estimate", "the cost estimate made before the run",
                                      tilt_estimate_columns(),
                                      [](const R& t) { return std::optional<TiltEstimate>(t.result.estimate); }),
-      object_column<R, dem::StepTimings>(
-          "stage_time_s", "tilt_stage_times", "wall time by stage of the time stepping", tilt_stage_time_columns(),
-          [](const R& t) { return std::optional<dem::StepTimings>(t.result.timings); }, "stage_time"),
+      object_column<R, dem::StepTimings>("stage_time_s", "tilt_stage_times", "wall time by stage of the time stepping",
+                                         tilt_stage_time_columns(),
+                                         [](const R& t) { return std::optional<dem::StepTimings>(t.result.timings); }),
       settings_object<R>(
           "surface",
           "the surfaces as given: the files (lower, upper) and their conditioning, or the generator's name "
@@ -248,8 +248,7 @@ const Columns<TiltReport>& tilt_columns() {
       list_column<R, Warning>(
           "warnings", "warning",
           "the inputs' warnings (the files' reader and plausibility checks), then the run's (frictal warnings)",
-          warning_columns(), [](const R& t) { return std::optional(t.warnings ? *t.warnings : t.result.warnings); },
-          "warnings"),
+          warning_columns(), [](const R& t) { return std::optional(t.warnings ? *t.warnings : t.result.warnings); }),
       column<R>("initial_offset_m", "m", "the offset the upper block was put down at",
                 [](const R& t) { return t.result.initial_offset; }),
       column<R>("slide_time_s", "s", "simulated time at the start of the run-away",
@@ -301,21 +300,19 @@ const Columns<TiltReport>& tilt_columns() {
       object_column<R, TiltSeries>(
           "", "tilt_series", "the time series of the run (Python; the CLI writes it with --output)",
           tilt_series_columns(), [](const R& t) { return std::optional<TiltSeries>(t.result.series); }, "series"),
-  });
+  };
   return cols;
 }
 
 const Columns<ArealTiltResult>& areal_tilt_run_columns() {
   using T = ArealTiltResult;
   static const Columns<T> cols = {
-      column<T>(
-          "friction_angle_deg", "deg", "the friction angle this 3D test read (absent with --predict-only)",
-          [](const T& r) { return r.friction_angle; }, "-"),
+      column<T>("friction_angle_deg", "deg", "the friction angle this 3D test read (absent with --predict-only)",
+                [](const T& r) { return r.friction_angle; }),
       column<T>("ran_away", "flag", "the block ran away before the largest tilt",
                 [](const T& r) { return r.ran_away; }),
-      column<T>(
-          "steering_deg", "deg", "how far the simulated block turned off the direction",
-          [](const T& r) { return r.steering; }, "steering"),
+      column<T>("steering_deg", "deg", "how far the simulated block turned off the direction",
+                [](const T& r) { return r.steering; }),
       column<T>("spheres", "count", "spheres of the upper block", [](const T& r) { return double(r.spheres); }),
       column<T>("steps", "count", "MuJoCo steps", [](const T& r) { return double(r.steps); }),
       column<T>("unsettled_increments", "count", "increments that did not come to rest",
@@ -376,7 +373,7 @@ const Columns<ArealTiltHoldReport>& areal_tilt_hold_columns() {
 
 const Columns<TiltScales>& tilt_scales_columns() {
   using T = TiltScales;
-  static const Columns<T> cols = python_without_units<T>({
+  static const Columns<T> cols = {
       column<T>("resting_overlap_m", "m", "W / k_n: overlap of one contact carrying the upper block",
                 [](const T& s) { return s.resting_overlap; }),
       column<T>("spheroradius_m", "m", "the spheroradius r", [](const T& s) { return s.spheroradius; }),
@@ -392,7 +389,7 @@ const Columns<TiltScales>& tilt_scales_columns() {
                 [](const T& s) { return s.time_step; }),
       column<T>("contact_period_s", "s", "2 pi sqrt(m_upper / k_n): one contact's period",
                 [](const T& s) { return s.contact_period; }),
-  });
+  };
   return cols;
 }
 
@@ -444,7 +441,7 @@ const Columns<TiltScaling>& tilt_scaling_columns() {
       list_column<T, TiltScaledSetting>(
           "settings", "tilt_scaled_setting",
           "the settings changed, each {name, unit, from, to} (CLI: text units; Python: SI)",
-          tilt_scaled_setting_columns(), [](const T& s) { return std::optional(s.settings); }, "settings"),
+          tilt_scaled_setting_columns(), [](const T& s) { return std::optional(s.settings); }),
   };
   return cols;
 }
@@ -455,8 +452,7 @@ const Columns<TiltScaledSetting>& tilt_scaled_setting_columns() {
   // each front end has its own column, under the same name.
   auto field = [](const T& s) { return find_field(tilt_settings(), s.name); };
   static const Columns<T> cols = {
-      column<T>(
-          "name", "text", "the setting (frictal settings tilt)", [](const T& s) { return s.name; }, "name"),
+      column<T>("name", "text", "the setting (frictal settings tilt)", [](const T& s) { return s.name; }),
       column<T>(
           "unit", "text", "its text unit",
           [field](const T& s) {

@@ -72,6 +72,46 @@ for key, units in python_units.items():
     if key.endswith("_deg"):
         fail(f"Python key {key!r} ends in _deg: Python's dicts are SI ({units})")
 
+
+# One Python key rule: a column's Python key is its JSON key without the unit suffix (Python's
+# values are SI, so the key does not name a unit). A column only Python has (JSON key "") names
+# its own key, without a unit suffix either. Exceptions to the rule, justified (table, JSON key):
+# none at present; a new one goes here with the reason.
+RULE_EXCEPTIONS = set()
+
+
+def without_unit(key):
+    for suffix, _ in SUFFIX:
+        if len(key) > len(suffix) and key.endswith(suffix):
+            return key[:-len(suffix)]
+    return key
+
+
+# The rule itself, checked on keys written out here (not the library's function): a change to
+# either side fails.
+for key, want in [("theta_max_forward_deg", "theta_max_forward"), ("rms_height_m", "rms_height"),
+                  ("contact_area_m2", "contact_area"), ("max_pressure_pa", "max_pressure"),
+                  ("contact_stiffness_n_per_m", "contact_stiffness"), ("load_n", "load"),
+                  ("speed_m_s", "speed"), ("rate_per_s", "rate"), ("mass_kg", "mass"), ("time_step_s", "time_step"),
+                  ("valid_points", "valid_points"), ("m", "m"), ("_s", "_s")]:
+    if without_unit(key) != want:
+        fail(f"the Python key rule gives {without_unit(key)!r} for {key!r}, not {want!r}")
+for t in tables.values():
+    # Python-only columns may declare one key twice (a scalar or an array, by the input).
+    seen = {c["python"]: "(Python only)" for c in t["columns"] if c["python"] and not c["key"]}
+    for c in t["columns"]:
+        if not c["python"]:
+            continue
+        if c["key"] and c["python"] != without_unit(c["key"]) and (t["name"], c["key"]) not in RULE_EXCEPTIONS:
+            fail(f"table {t['name']}: Python key {c['python']!r} of JSON key {c['key']!r} is not the JSON key "
+                 f"without its unit suffix ({without_unit(c['key'])!r})")
+        if not c["key"] and without_unit(c["python"]) != c["python"]:
+            fail(f"table {t['name']}: Python-only key {c['python']!r} names a unit; Python's values are SI")
+        if c["key"]:
+            if c["python"] in seen:
+                fail(f"table {t['name']}: Python key {c['python']!r} of {c['key']!r} and {seen[c['python']]!r}")
+            seen[c["python"]] = c["key"]
+
 NUMBER_UNITS = {"deg", "rad", "m", "s", "kg", "m/s", "1/s", "1", "list", "m2", "Pa", "N", "N/m"}
 
 

@@ -55,7 +55,7 @@ def test_wm_rms_and_points():
     a, b = z[:-1] - mean, z[1:] - mean
     rms = math.sqrt(np.sum(dx * (a * a + a * b + b * b) / 3) / (x[-1] - x[0]))
     assert rms == pytest.approx(1e-9, rel=1e-9)
-    assert frictal.profile_stats(p)["rms_height_m"] == pytest.approx(rms, rel=1e-12)
+    assert frictal.profile_stats(p)["rms_height"] == pytest.approx(rms, rel=1e-12)
 
 
 def test_friction_eq6_eq18():

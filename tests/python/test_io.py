@@ -183,12 +183,12 @@ def test_profile_stats_scan_quantities_and_tip_cutoff():
     x = i * dx
     p = frictal.Profile(x, slope * dx * (16 - np.abs(i % 64 - 32)))
     s = frictal.profile_stats(p, tip_radius=R)
-    assert s["sampling_interval_m"] == pytest.approx(dx, rel=1e-12)
-    assert s["physical_length_m"] == pytest.approx(512 * dx, rel=1e-12)
-    assert s["bandwidth_m"] == pytest.approx((dx, 512 * dx), rel=1e-12)
-    assert s["nyquist_wavelength_m"] == pytest.approx(2 * dx, rel=1e-12)
-    assert s["short_reliability_cutoff_m"] == pytest.approx(8 * slope * R, rel=1e-9)
-    assert "short_reliability_cutoff_m" not in frictal.profile_stats(p)
+    assert s["sampling_interval"] == pytest.approx(dx, rel=1e-12)
+    assert s["physical_length"] == pytest.approx(512 * dx, rel=1e-12)
+    assert s["bandwidth"] == pytest.approx((dx, 512 * dx), rel=1e-12)
+    assert s["nyquist_wavelength"] == pytest.approx(2 * dx, rel=1e-12)
+    assert s["short_reliability_cutoff"] == pytest.approx(8 * slope * R, rel=1e-9)
+    assert "short_reliability_cutoff" not in frictal.profile_stats(p)
 
 
 def test_instrument_matrix_in_python_matches_surfacetopography():
@@ -263,7 +263,7 @@ def test_tip_cutoff_equals_surfacetopography_definition_on_a_random_profile():
     p = frictal.Profile(np.arange(n) * px, z)
     for radius in (1e-8, 1e-7, 1e-6, 1e-5):
         want = _surfacetopography_cutoff(z, px, radius)
-        got = frictal.profile_stats(p, tip_radius=radius)["short_reliability_cutoff_m"]
+        got = frictal.profile_stats(p, tip_radius=radius)["short_reliability_cutoff"]
         assert got == pytest.approx(want, rel=1e-9, abs=1e-20), radius
 
 

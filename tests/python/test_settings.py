@@ -52,7 +52,7 @@ def test_fourier_profile_has_its_rms_period_and_spectrum():
                                 short_cutoff_wavelength=1e-5, rms_height=1e-6, amplitudes="fixed", seed=4)
     assert len(p) == 513 and p.period == pytest.approx(1e-3)
     assert p.z[0] == p.z[-1]
-    assert frictal.profile_stats(p)["rms_height_m"] == pytest.approx(1e-6, rel=1e-12)
+    assert frictal.profile_stats(p)["rms_height"] == pytest.approx(1e-6, rel=1e-12)
     P = np.abs(np.fft.rfft(p.z[:-1])) ** 2
     assert P[40] / P[20] == pytest.approx(2.0 ** -2.2, rel=1e-9)
     assert P[5] == pytest.approx(P[9], rel=1e-9)  # flat below the rolloff (k = 10)

@@ -32,8 +32,7 @@ struct Shape {
 
 const Columns<Point>& point_columns() {
   static const Columns<Point> cols = {
-      frictal::column<Point>(
-          "x_m", "m", "abscissa", [](const Point& p) { return p.x; }, "x"),
+      frictal::column<Point>("x_m", "m", "abscissa", [](const Point& p) { return p.x; }),
       frictal::column<Point>("angle_deg", "deg", "angle", [](const Point& p) { return p.angle; }),
   };
   return cols;
@@ -41,8 +40,7 @@ const Columns<Point>& point_columns() {
 
 const Columns<Shape>& shape_columns() {
   static const Columns<Shape> cols = {
-      frictal::only_if(frictal::column<Shape>(
-                           "size_m", "m", "size", [](const Shape& s) { return *s.size; }, "size"),
+      frictal::only_if(frictal::column<Shape>("size_m", "m", "size", [](const Shape& s) { return *s.size; }),
                        [](const Shape& s) { return s.size.has_value(); }),
       frictal::object_column<Shape>("centre", "point", "the centre", point_columns(),
                                     [](const Shape& s) { return s.centre; }),
@@ -62,10 +60,32 @@ TEST(Outputs, AbsentValuesHaveNoOutput) {
   EXPECT_FALSE(frictal::has_output(shape_columns()[1], s));
 }
 
+// One Python key rule: the JSON key without its unit suffix (Python's values are SI); "-" keeps a
+// column out of Python's dicts, and a Python-only column (JSON key "") names its key.
+TEST(Outputs, PythonKeyIsTheJsonKeyWithoutItsUnitSuffix) {
+  EXPECT_EQ(frictal::python_key("theta_max_forward_deg"), "theta_max_forward");
+  EXPECT_EQ(frictal::python_key("rms_height_m"), "rms_height");
+  EXPECT_EQ(frictal::python_key("contact_area_m2"), "contact_area");
+  EXPECT_EQ(frictal::python_key("contact_stiffness_n_per_m"), "contact_stiffness");
+  EXPECT_EQ(frictal::python_key("max_pressure_pa"), "max_pressure");
+  EXPECT_EQ(frictal::python_key("load_n"), "load");
+  EXPECT_EQ(frictal::python_key("speed_m_s"), "speed");
+  EXPECT_EQ(frictal::python_key("rate_per_s"), "rate");
+  EXPECT_EQ(frictal::python_key("mass_kg"), "mass");
+  EXPECT_EQ(frictal::python_key("time_step_s"), "time_step");
+  EXPECT_EQ(frictal::python_key("valid_points"), "valid_points");
+  EXPECT_EQ(frictal::python_key("_m"), "_m");  // a suffix alone is a key, not a unit
+  EXPECT_EQ(shape_columns()[0].python, "size");
+  EXPECT_EQ(point_columns()[0].python, "x");
+  EXPECT_EQ(point_columns()[1].python, "angle");
+  EXPECT_EQ(frictal::python_key("x_m", "-"), "");
+  EXPECT_EQ(frictal::python_key("", "gap"), "gap");
+}
+
 TEST(Outputs, NestedColumnsDeclareTheirTableAndKeys) {
   const Columns<Shape>& c = shape_columns();
   EXPECT_EQ(c[1].unit, "object:point");
-  EXPECT_EQ(c[1].python, "centre");  // the JSON key by default
+  EXPECT_EQ(c[1].python, "centre");  // the JSON key (no unit suffix) by default
   EXPECT_EQ(c[2].unit, "list:point");
   EXPECT_EQ(c[2].python, "");  // "-": not in Python's dicts
   EXPECT_FALSE(c[1].si);
