@@ -65,6 +65,13 @@ LengthUnit lateral_unit(const ReportData& d) {
   return length_unit(std::max(d.surfaces.lower.length(), d.surfaces.upper.length()));
 }
 
+/// The reference lines of a signature plot: theta_max forward and minus theta_max backward
+/// (unit: rad in, degrees drawn).
+void add_theta_max_lines(Plot& p, double forward, double backward) {
+  p.lines.push_back({true, deg(forward), fmt::format("θ_max forward = {:.3f}°", deg(forward)), "#d62728"});
+  p.lines.push_back({true, -deg(backward), fmt::format("−θ_max backward = −{:.3f}°", deg(backward)), "#2ca02c"});
+}
+
 /// The signature's theta as a drawable line: piecewise between events, each interval from its two
 /// one-sided values (theta_right at its start, theta_left at its end).
 Series signature_series(const SignatureResult& r, const LengthUnit& u, const std::string& label,
@@ -262,10 +269,7 @@ Result<std::string> signature_section(const ReportInput& in, const ReportData& d
   p.x_label = fmt::format("offset x_ofs of the upper block ({})", xu.name);
   p.y_label = "contact slope θ (deg)";
   p.series.push_back(signature_series(r, xu, "", "#1f77b4"));
-  p.lines.push_back(
-      {true, deg(r.theta_max_forward), fmt::format("θ_max forward = {:.3f}°", deg(r.theta_max_forward)), "#d62728"});
-  p.lines.push_back({true, -deg(r.theta_max_backward),
-                     fmt::format("−θ_max backward = −{:.3f}°", deg(r.theta_max_backward)), "#2ca02c"});
+  add_theta_max_lines(p, r.theta_max_forward, r.theta_max_backward);
   auto svg = plot_svg(p);
   if (!svg) return svg.error();
   return figure(
@@ -344,10 +348,7 @@ Result<std::string> areal_signature_section(const ReportInput& in, const ReportD
     ts.x.push_back(r.offset[i] / xu.scale), ts.y.push_back(deg(r.theta[i]));
   if (ts.x.size() == 1) ts.style = SeriesStyle::Points;
   th.series.push_back(ts);
-  th.lines.push_back(
-      {true, deg(r.theta_max_forward), fmt::format("θ_max forward = {:.3f}°", deg(r.theta_max_forward)), "#d62728"});
-  th.lines.push_back({true, -deg(r.theta_max_backward),
-                      fmt::format("−θ_max backward = −{:.3f}°", deg(r.theta_max_backward)), "#2ca02c"});
+  add_theta_max_lines(th, r.theta_max_forward, r.theta_max_backward);
   auto tsvg = plot_svg(th);
   if (!tsvg) return tsvg.error();
   Plot lp;
