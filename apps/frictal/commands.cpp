@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "frictal/conditioning.hpp"
+#include "frictal/predict.hpp"
 #include "frictal/tilt.hpp"
 #include "options.hpp"
 
@@ -25,6 +27,9 @@ std::vector<KnownField> known_fields() {
   for (const GeneratorInfo& g : surface_generators())
     for (const Field& f : g.fields) out.push_back({&f, field_help(f)});
   for (const Field& f : tilt_settings()) out.push_back({&f, field_help(f)});
+  // After the tilt test's: a quantity both tables share (shared_field) lists the tilt test's field.
+  for (const Field& f : predict_settings()) out.push_back({&f, field_help(f)});
+  for (const Field& f : conditioning_settings()) out.push_back({&f, field_help(f)});
   return out;
 }
 

@@ -17,19 +17,14 @@ namespace {
 
 struct Args {
   std::string lower, upper, detrend, start;
-  double direction = 0;
-  double mu_a = 0;
-  int drops = PredictOptions{}.map_drops;
   unsigned threads = 0;
   bool json = false;
-  bool locked = false;
-  bool in_place = false;
   bool quiet = false;
   InputOptions input;
   ConditioningOptions cond;
-  FieldWords period_words;  ///< --runaway-distance, --period (the tilt table's fields)
-  std::string block;        ///< --block-length: a length with a unit
-  LoadWords load;           ///< friction under load: --load, --modulus, --poisson, --upper-*
+  FieldWords words;  ///< the prediction's settings (predict_settings()) as typed
+  LoadWords load;    ///< friction under load: --load, --modulus, --poisson, --upper-* (lists, units: by hand)
+  bool in_place() const { return words.words.count("in_place") && words.words.at("in_place") == "true"; }
 };
 
 PredictSurface read_input(const std::string& path, const InputOptions& o) {
@@ -42,8 +37,8 @@ std::string mu_text(double rad) { return rad >= std::numbers::pi / 2 ? "inf" : f
 void print_text(const Prediction& p, const Args& a) {
   for (const Warning& w : p.warnings) fmt::print(stderr, "frictal: warning [{}]: {}\n", w.code, w.message);
   const std::string pair = a.upper.empty()
-                               ? fmt::format("{} against itself {}", a.lower, a.in_place ? "in place" : "turned over")
-                               : fmt::format("{} on {}{}", a.upper, a.lower, a.in_place ? " in place" : "");
+                               ? fmt::format("{} against itself {}", a.lower, a.in_place() ? "in place" : "turned over")
+                               : fmt::format("{} on {}{}", a.upper, a.lower, a.in_place() ? " in place" : "");
   if (p.trust != "ok") {
     std::string codes;
     for (const std::string& c : p.trust_codes) codes += (codes.empty() ? "" : ", ") + c;
@@ -139,60 +134,24 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("upper", a->upper,
                  "Upper surface, as measured (material below): it is turned over to face LOWER. Default: LOWER "
                  "itself. Two profiles or two maps");
-  app.add_option("--direction", a->direction, "Sliding direction in deg from +x towards +y (profiles: 0 or 180)")
-      ->capture_default_str();
-  add_atomic_friction_option(app, a->mu_a);
+  // --direction, --atomic-friction, --runaway-distance, --block-length, --period, --drops, --locked,
+  // --in-place, --sphere-radius, --map-work-limit: the prediction's settings table.
+  add_field_options(app, predict_settings(), a->words);
   add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_option("--start-offset", a->start,
                  "One drop at this offset instead of the distribution: X for profiles, X,Y for maps (m)");
-  app.add_option("--drops", a->drops, "Maps: drops on an N x N grid over the drop range (2..64)")
-      ->capture_default_str();
-  app.add_flag("--locked", a->locked,
-               "Maps: also the block locked to the direction (a diagnostic beside the free one; doubles the cost)");
-  app.add_flag("--in-place", a->in_place,
-               "Maps: UPPER is the upper face already in place in LOWER's coordinates (not turned over); offsets "
-               "count from that place");
   app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
   add_input_options(app, a->input);
-  // The stated test's block: a length with a unit (predict.hpp's default, named in the help).
-  app.add_option(
-      "--block-length", a->block,
-      fmt::format("The test: length of the upper block, the middle piece of UPPER that slides over LOWER "
-                  "(drops wherever it lies wholly on LOWER), a length such as 0.2mm (no unit: m); whole: all of "
-                  "UPPER, dropped over the first half of LOWER (the blocks of `frictal tilt` on files). "
-                  "Default: {:g} run-away distances (periodic pairs: the whole profile)",
-                  kBlockPerRunaway));
-  // --runaway-distance (d of the stated test) and --period: the tilt table's fields (one
-  // description everywhere; lengths may name their unit).
-  std::vector<std::string> skip = all_but(tilt_settings(), "runaway_distance");
-  skip.erase(std::remove(skip.begin(), skip.end(), "period"), skip.end());
-  add_field_options(app, tilt_settings(), a->period_words, skip);
   add_load_options(app, a->load);
   app.add_flag("--json", a->json, "Print the prediction as one JSON object (the keys of `frictal columns`)");
   return [a]() {
-    require(std::isfinite(a->direction), fmt::format("--direction {}: expected a finite angle in deg", a->direction));
-    require(std::isfinite(a->mu_a) && a->mu_a >= 0,
-            fmt::format("--atomic-friction: expected a number >= 0, got {}", a->mu_a));
-    require(a->drops >= 2 && a->drops <= 64, fmt::format("--drops {}: expected 2..64", a->drops));
     PredictOptions o = conditioned_predict_options(a->cond, a->detrend);
-    o.direction = a->direction * kDeg;
-    o.atomic_friction = a->mu_a;
-    o.map_drops = a->drops;
-    o.map_locked = a->locked;
-    o.turn_over_upper = !a->in_place;
+    o = unwrap(make_predict_options(si_values(predict_settings(), a->words), std::move(o)));
     o.progress = drop_progress("predict", a->quiet);
     o.threads = a->threads;
-    if (const ValueSet rv = si_values(tilt_settings(), a->period_words); rv.count("runaway_distance"))
-      o.runaway_distance = as_real(rv.at("runaway_distance"));
-    if (a->block == "whole")
-      o.block_length = -1;
-    else if (!a->block.empty())
-      o.block_length = parse_length_option(a->block, "--block-length");
-    if (const ValueSet pv = si_values(tilt_settings(), a->period_words); pv.count("period"))
-      o.period = as_real(pv.at("period"));
     apply_load_options(a->load, o);
     PredictSurface lower = read_input(a->lower, a->input);
     std::optional<PredictSurface> upper;

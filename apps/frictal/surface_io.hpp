@@ -15,6 +15,7 @@
 #include "frictal/conditioning.hpp"
 #include "frictal/io.hpp"
 #include "frictal/units.hpp"
+#include "options.hpp"
 
 namespace frictal::cli {
 
@@ -102,40 +103,25 @@ inline SurfaceData load_surface(const std::string& path, const InputOptions& o) 
 }
 
 /// The conditioning options (frictal/conditioning.hpp), the same in every command that reads
-/// measured surfaces; the form is each command's --detrend.
+/// measured surfaces: the fields of conditioning_settings() (--crop, --remove-spikes,
+/// --spike-threshold; each command's --detrend separately, add_detrend_option), as typed.
 struct ConditioningOptions {
-  std::string crop;             ///< --crop X0,X1[,Y0,Y1]
-  bool remove_spikes = false;   ///< --remove-spikes
-  std::string spike_threshold;  ///< --spike-threshold K (empty: the default)
+  FieldWords words;
+  /// The option of that field was given (e.g. "crop").
+  bool given(const std::string& name) const { return words.words.count(name) > 0; }
+  /// --remove-spikes was given (and not --no-remove-spikes).
+  bool remove_spikes() const { return given("remove_spikes") && words.words.at("remove_spikes") == "true"; }
 };
 
 inline void add_conditioning_options(CLI::App& app, ConditioningOptions& o) {
-  app.add_option("--crop", o.crop,
-                 "Keep only the window X0,X1 (maps: X0,X1 or X0,X1,Y0,Y1) of each surface, in its file's coordinates: "
-                 "m, or a length with a unit such as 0.1mm,0.9mm (first step of the conditioning)")
-      ->type_name("X0,X1[,Y0,Y1]");
-  app.add_flag("--remove-spikes", o.remove_spikes,
-               "Remove the points more than --spike-threshold rms heights from the median of their neighbours "
-               "(profiles: replaced by linear interpolation, dropped at an end; maps: masked), after --crop and before "
-               "the form removal");
-  app.add_option("--spike-threshold", o.spike_threshold,
-                 fmt::format("k of --remove-spikes, in rms heights Sq of the form-removed surface (default {:g}: "
-                             "the spikes warning's rule)",
-                             kDefaultSpikeThreshold))
-      ->type_name("K");
+  add_field_options(app, conditioning_settings(), o.words, {"detrend"});
 }
 
-/// What --detrend's help says of the default, the same in every command.
-inline constexpr const char* kDetrendDefaultHelp =
-    "default: line for profiles, plane for maps, mean for a periodic profile; none for a generated surface";
-
-/// --detrend, the same option with one help text in every command that reads measured surfaces.
+/// --detrend, the field of conditioning_settings(), with one help text in every command that reads
+/// measured surfaces; the text is checked where each command reads it (form_to_remove, parse_detrend).
 inline void add_detrend_option(CLI::App& app, std::string& detrend) {
-  app.add_option("--detrend", detrend,
-                 fmt::format("Form removed from each surface first (the form and tilt of the scan): none, mean, line "
-                             "(a plane for maps) or poly:N ({})",
-                             kDetrendDefaultHelp))
-      ->type_name("FORM");
+  const Field& f = *find_field(conditioning_settings(), "detrend");
+  app.add_option(cli_option_name(f), detrend, field_help(f))->type_name("FORM");
 }
 
 /// The form to remove: --detrend's text `given`, or when it is empty the one default of every
@@ -147,25 +133,16 @@ inline Detrend form_to_remove(const std::string& given, bool generated, bool per
 }
 
 /// The conditioning the options ask for, with `form` removed last. UsageError (exit 2) naming the
-/// option for a bad window or threshold, or a threshold without --remove-spikes.
+/// option for a bad window or threshold (the table's check), or a threshold without --remove-spikes.
 inline Conditioning conditioning(const ConditioningOptions& o, const Detrend& form) {
-  Conditioning c;
+  const ValueSet v = si_values(conditioning_settings(), o.words);
+  if (o.given("spike_threshold"))
+    require(o.remove_spikes(), fmt::format("--spike-threshold {}: applies to --remove-spikes, which is not given",
+                                           o.words.words.at("spike_threshold")));
+  const ConditioningSettings settings = unwrap(make_conditioning_settings(v));
+  Conditioning c = settings.of_surface();
   c.form = form;
-  if (!o.crop.empty()) {
-    c.crop_source = fmt::format("--crop '{}'", o.crop);
-    c.crop = unwrap(parse_crop(o.crop, "--crop"));
-  }
-  c.remove_spikes = o.remove_spikes;
-  if (!o.spike_threshold.empty()) {
-    require(o.remove_spikes,
-            fmt::format("--spike-threshold {}: applies to --remove-spikes, which is not given", o.spike_threshold));
-    char* end = nullptr;
-    const double k = std::strtod(o.spike_threshold.c_str(), &end);
-    require(end && end != o.spike_threshold.c_str() && *end == '\0' && std::isfinite(k) && k > 0,
-            fmt::format("--spike-threshold '{}': expected a number > 0 (rms heights from the neighbours' median)",
-                        o.spike_threshold));
-    c.spike_threshold = k;
-  }
+  if (c.crop) c.crop_source = fmt::format("--crop '{}'", o.words.words.at("crop"));
   return c;
 }
 

@@ -95,7 +95,7 @@ int run(TiltOptions& o) {
     const ValueSet asked_settings = si_values(tilt_settings(), o.settings);
     const bool periodic = asked_settings.count("period") && as_real(asked_settings.at("period")) > 0;
     const Conditioning cond = conditioning(o.cond, form_to_remove(o.detrend, false, periodic));
-    const bool asked = (!o.detrend.empty() && o.detrend != "none") || !o.cond.crop.empty() || o.cond.remove_spikes;
+    const bool asked = (!o.detrend.empty() && o.detrend != "none") || o.cond.given("crop") || o.cond.remove_spikes();
     std::vector<ConditioningRecord> records;
     double read_rms[2] = {std::nan(""), std::nan("")};  // the heights as read (checks below)
     for (int i = 0; i < (o.upper_file.empty() ? 1 : 2); ++i) {

@@ -22,6 +22,7 @@
 #include "frictal/map.hpp"
 #include "frictal/outputs.hpp"
 #include "frictal/result.hpp"
+#include "frictal/settings.hpp"
 
 namespace frictal {
 
@@ -56,6 +57,28 @@ struct Conditioning {
   double spike_threshold = kDefaultSpikeThreshold;
   Detrend form;  ///< step 3: the form removed (None: none)
 };
+
+/// The conditioning as every front end takes it (the CLI's --crop, --remove-spikes,
+/// --spike-threshold, --detrend; Python's keywords of the same names; conditioning_settings()):
+/// the form is optional, chosen per surface by form_or_default() when not given.
+struct ConditioningSettings {
+  std::optional<CropWindow> crop;  ///< nullopt: the whole surface
+  std::string crop_source = "crop";
+  bool remove_spikes = false;
+  double spike_threshold = kDefaultSpikeThreshold;  ///< k (unitless, > 0)
+  std::optional<Detrend> detrend;                   ///< nullopt: form_or_default()
+  /// The conditioning of one surface: the form asked for, else default_form(periodic).
+  Conditioning of_surface(bool periodic = false) const;
+};
+
+/// The conditioning's settings table (settings.hpp): crop (a window "X0,X1" or "X0,X1,Y0,Y1", in
+/// m or with a length unit each), remove_spikes, spike_threshold, detrend ("none", "mean", "line",
+/// "plane", "poly:N"; automatic by default). The CLI's options and Python's keywords of every
+/// function that conditions a surface.
+const std::vector<Field>& conditioning_settings();
+/// The settings of those values (SI, by field name; absent: the default). Errors name the field
+/// and the expected values, and the nearest name for an unknown one.
+Result<ConditioningSettings> make_conditioning_settings(const ValueSet& si);
 
 /// What the conditioning did, step by step.
 struct ConditioningRecord {

@@ -11,10 +11,12 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -27,7 +29,7 @@ enum class FieldType {
   Real,     ///< a number
   Integer,  ///< a whole number
   Boolean,  ///< true/false (CLI: --name / --no-name)
-  Choice,   ///< one word of `choices`
+  Choice,   ///< one word of `choices` (or of their forms: Field::check_word)
 };
 
 /// One setting.
@@ -47,6 +49,14 @@ struct Field {
   /// The default at the text interfaces (CLI, TOML) when it comes from the surface rather than
   /// from `default_value` (e.g. "the surface's period"); "" when `default_value` applies.
   std::string text_default;
+  /// A Choice whose words follow a form rather than a fixed list (a crop window "X0,X1", a form
+  /// "poly:N"): checks a word, the error naming `prefix`; `choices` then name the forms (help and
+  /// range). Empty: a word must be one of `choices`.
+  std::function<Status(const std::string& word, const std::string& prefix)> check_word;
+  /// Real: words that stand for a value outside the range (block_length "whole" = -1): the word
+  /// is accepted (and stays a word in a ValueSet: word_value_of gives its value); the value
+  /// itself, given as a number, is not.
+  std::vector<std::pair<std::string, double>> words;
 };
 
 /// A value as given: in SI in a ValueSet, in text units (degrees) at the text interfaces.
@@ -87,6 +97,12 @@ Result<FieldValue> si_from_text(const Field& f, const FieldValue& text_value, co
 /// Parses a word typed at the CLI for the field (number, integer, true/false, choice) into a
 /// text-unit value; errors name `prefix`.
 Result<FieldValue> parse_text_word(const Field& f, const std::string& word, const std::string& prefix);
+/// The quantities that several settings tables share (the tilt test's, the 3D tilt test's, the
+/// prediction's): one name, unit, range and help wherever they are taken ("atomic_friction",
+/// "runaway_distance", "period"); each table fills the default from its own struct. nullptr for
+/// another name.
+const Field* shared_field(std::string_view name);
+
 /// SI value -> text-unit value (angles to degrees), for printing JSON.
 FieldValue text_from_si(const Field& f, const FieldValue& si);
 
@@ -99,5 +115,7 @@ std::string nearest_word(std::string_view word, const std::vector<std::string>& 
 
 /// A value as a double (Real/Integer/Boolean), for code that reads a ValueSet.
 double as_real(const FieldValue& v);
+/// The same for a value of `f`, one of its words (Field::words) read as its value.
+double word_value_of(const Field& f, const FieldValue& v);
 
 }  // namespace frictal

@@ -68,6 +68,7 @@ from ._core import (  # noqa: F401  studies: run a study file, read its store (s
 )
 
 from ._core import Prediction, prediction_columns, warning_codes  # noqa: F401  the prediction (predict_bindings.cpp)
+from ._core import conditioning_settings, predict_settings  # noqa: F401  their keywords' tables (predict_bindings.cpp)
 
 
 class FrictalWarning(UserWarning):
@@ -95,17 +96,22 @@ def predict(lower, upper=None, **options):
 
     ``lower`` and ``upper`` (default: ``lower`` itself, turned over) are file paths, ``Profile``
     objects, dicts from ``read_surface``/``read_map``, or numpy arrays of heights (1-D: a profile,
-    2-D: a map with rows along y) with ``spacing=`` in metres. Options (SI: radians, metres):
-    ``direction`` (profiles: 0 or pi), ``atomic_friction``; the stated test: ``runaway_distance`` d (m;
-    0: 12.5 slope correlation lengths of the lower scan, periodic profiles one period) and, for
-    profiles, ``block_length`` L_b (m; the middle piece of the upper surface that slides, dropped
-    wherever it lies wholly on the lower one; None/0: 20 d; ``"whole"``: the whole upper profile over
-    the first half of the lower one); where the scans cannot hold the test, a defaulted length gives
-    way (warning ``scan-too-short``) and stated lengths that do not fit raise ValueError;
-    ``detrend`` ("none", "mean", "line", "plane", "poly:N"; default line for profiles, plane for
-    maps), ``crop`` ((x0, x1) or (x0, x1, y0, y1) in m: keep that window of each surface first),
-    ``remove_spikes`` (replace, for maps mask, the points more than ``spike_threshold`` rms heights
-    from the median of their neighbours, after the crop and before the form; default 10),
+    2-D: a map with rows along y) with ``spacing=`` in metres. Options (SI: radians, metres): the
+    fields of ``predict_settings()`` and ``conditioning_settings()`` (name, unit, default, valid
+    range and meaning of each; ``frictal settings`` lists the same tables): ``direction`` (profiles:
+    0 or pi), ``atomic_friction``; the stated test: ``runaway_distance`` d (m; None: 12.5 slope
+    correlation lengths of the lower scan, periodic profiles one period) and, for profiles,
+    ``block_length`` L_b (m; the middle piece of the upper surface that slides, dropped wherever it
+    lies wholly on the lower one; None: 20 d; ``"whole"``: the whole upper profile over the first
+    half of the lower one); where the scans cannot hold the test, a defaulted length gives way
+    (warning ``scan-too-short``) and stated lengths that do not fit raise ValueError; ``period``;
+    for maps ``drops`` (N x N), ``locked`` (the locked diagnostic), ``in_place`` (the upper map in
+    place, not turned over), ``sphere_radius``, ``map_work_limit``; the conditioning ``detrend``
+    ("none", "mean", "line", "plane", "poly:N"; default line for profiles, plane for maps),
+    ``crop`` ("x0,x1[,y0,y1]" with units, or (x0, x1) / (x0, x1, y0, y1) in m: keep that window of
+    each surface first), ``remove_spikes`` (replace, for maps mask, the points more than
+    ``spike_threshold`` rms heights from the median of their neighbours, after the crop and before
+    the form; default 10). Besides the tables:
     ``start_offset`` (x, or (x, y) for maps: one drop), ``drops`` (maps: N x N), ``locked``
     (maps: the locked diagnostic), ``format``, ``unit`` (the files' lengths, x and z: "m", "mm",
     "um", "nm", overriding the units a file names), ``x_unit`` / ``z_unit`` (the lateral lengths or

@@ -284,6 +284,11 @@ def check_profile(profile: Profile, name: str = ...) -> List[Warning]:
 def condition(surface: Any, *, crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., detrend: Optional[str] = ...) -> tuple:
     """The conditioning of `frictal predict` and the CLI (crop, then spike removal, then form removal; surface: a Profile, a profile dict as read_surface returns it, or a map dict as read_map returns it; docs/analysis.md): crop (x0, x1) or (x0, x1, y0, y1) in m in the surface's coordinates; remove_spikes removes (profiles: linear interpolation between kept neighbours, dropped at the ends) or masks (maps: NaN) the points more than spike_threshold rms heights from the median of their neighbours; detrend none, mean, line, plane, poly:N (None: the default of every front end, a line for profiles, a plane for maps, the mean of a periodic profile). Returns (the conditioned Profile or map dict, a record dict: text, cropped, window (m), points_before/after (nx, ny), spikes_checked, spike_threshold, spikes_removed, spikes_dropped (profiles: at the ends), spike_passes, form)"""
 
+def conditioning_settings() -> list:
+    """conditioning_settings() -> list
+
+    The conditioning's settings table: crop, remove_spikes, spike_threshold, detrend, the keywords of predict() that condition a measured surface, as predict_settings() lists its own (name, type, unit (SI: m, or unitless), default (None: automatic), min, max, choices, help)"""
+
 def contact(lower: Any, upper: Any = ..., *, load: Any = ..., pressure: Any = ..., modulus: float, poisson: float, upper_modulus: Optional[float] = ..., upper_poisson: Optional[float] = ..., hardness: float = ..., periodic: bool = ..., in_place: bool = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., spacing: float = ..., format: str = ..., unit: str = ..., tolerance: float = ..., stiffness: bool = ..., fields: bool = ..., threads: int = ...) -> Any:
     """Elastic normal contact (as `frictal contact`; runs without the GIL; no warnings.warn: frictal.contact issues them). lower alone: an elastic body (modulus E in Pa, poisson nu) pressed against a rigid flat; with upper: two bodies (upper_modulus/upper_poisson, default the same; upper_modulus=inf: a rigid upper) whose composite topography (upper turned over unless in_place) meets a rigid flat. Surfaces: paths, Profiles, dicts from read_surface/read_map or arrays of heights with spacing (m). load: the force (N for maps, N/m per unit depth for profiles) or pressure: the nominal pressure (Pa), a number or a list (a load curve). hardness H (Pa, 0: none) caps the pressure; periodic: the surface repeats with its length (else padded); detrend/crop/remove_spikes as frictal.condition. Returns a dict (one number given) or a list of dicts with the keys of `frictal columns` table contact (SI), kind, conditioning, warnings and with fields=True pressure (Pa) and gap (m) (shape (ny, nx) for maps)"""
 
@@ -347,11 +352,30 @@ def map_stats(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: fl
 def power_spectrum(profile: Profile, max_k: int = ...) -> tuple:
     """Power spectrum of a profile (m, runs without the GIL): returns (q in rad/m, C in m^3) of the piecewise-linear profile, with 2 sum C / L = rms^2; max_k: 0 = automatic"""
 
-def predict(lower: Any, upper: Any = ..., *, direction: float = ..., atomic_friction: float = ..., runaway_distance: float = ..., block_length: Any = ..., detrend: Optional[str] = ..., crop: Any = ..., remove_spikes: bool = ..., spike_threshold: float = ..., start_offset: Optional[List[float]] = ..., drops: int = ..., locked: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., x_unit: str = ..., z_unit: str = ..., threads: int = ..., load: Any = ..., modulus: Optional[float] = ..., poisson: Optional[float] = ..., upper_modulus: Any = ..., upper_poisson: Optional[float] = ...) -> Prediction:
-    """The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)"""
+def predict(lower: Any, upper: Any = ..., **kwargs: Any) -> Prediction:
+    """The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them). Keywords: the fields of predict_settings() and conditioning_settings() (SI; crop also a sequence of metres), and spacing, format, unit, x_unit, z_unit, start_offset, threads, load, modulus, poisson, upper_modulus, upper_poisson:
+        direction [rad]: Sliding direction, from +x towards +y (profiles: along +x or -x only) (default 0; valid any finite number)
+        atomic_friction: Atomic (Coulomb) friction coefficient mu_a (default 0; valid >= 0)
+        runaway_distance [m]: Sliding for good: growth of the displacement since the last stick (default None (auto); valid > 0)
+        block_length [m]: The test: length of the upper block, the middle piece of the upper surface that slides over the lower one (drops wherever it lies wholly on it); whole: all of the upper profile, dropped over the first half of the lower one (the blocks of `frictal tilt` on files). Profiles only (default None (auto); valid > 0 or 'whole')
+        period [m]: Period of both surfaces (<= 0: not periodic; the offsets then span half the length) (default 0; valid any finite number)
+        drops: Maps: drops on an N x N grid over the drop range (default 5; valid 2..64)
+        locked: Maps: also the block locked to the direction (a diagnostic beside the free one; doubles the cost) (default False; valid true or false)
+        in_place: Maps: the upper surface is the upper face already in place in the lower one's coordinates (not turned over); offsets count from that place (default False; valid true or false)
+        sphere_radius [m]: Maps: radius r of the spheres at the upper face's nodes (default None (auto); valid > 0)
+        map_work_limit [s]: Maps: refuse a job whose estimated CPU time exceeds this (0: no limit) (default 3600; valid >= 0)
+        crop [m]: Keep only the window X0,X1 (maps: X0,X1 or X0,X1,Y0,Y1) of each surface, in its file's coordinates: m, or a length with a unit such as 0.1mm,0.9mm (first step of the conditioning) (default None (auto); valid X0,X1 or X0,X1,Y0,Y1)
+        remove_spikes: Remove the points more than spike_threshold rms heights from the median of their neighbours (profiles: replaced by linear interpolation, dropped at an end; maps: masked), after the crop and before the form removal (default False; valid true or false)
+        spike_threshold: k of remove_spikes, in rms heights Sq of the form-removed surface (the default is the spikes warning's rule) (default 10; valid > 0)
+        detrend: Form removed from each surface first (the form and tilt of the scan): none, mean, line (a plane for maps) or poly:N (N in 0..10) (default None (auto); valid none, mean, line, plane or poly:N)"""
 
 def predict_friction(atomic_friction: float, theta_max: float, sigma: float = ...) -> dict:
     """The rigid upper bound of Eq. 6 and the Eq. 18 range from atomic_friction mu_a (unitless), theta_max and sigma (rad): upper_bound_friction_angle (theta_max + atan mu_a, rad), upper_bound_friction_coefficient, eq18_low_friction_angle (rad; clamped at 0, eq18_low_clamped then true), eq18_low_friction_coefficient. What a tilt test reads is frictal.predict"""
+
+def predict_settings() -> list:
+    """predict_settings() -> list
+
+    The prediction's settings table: one dict per keyword of predict() (name, type, unit (SI), default (None: automatic, see help), min, max, choices, help); `frictal settings --json` lists the same fields (its key predict)"""
 
 def prediction_columns() -> list:
     """The prediction's output table: (key, interface unit, help) per quantity, as `frictal columns` prints it; interface units deg (the Prediction attributes are SI: rad), m, 1 (unitless)"""

@@ -240,6 +240,7 @@ inline ValueSet keyword_values(const std::vector<Field>& fields, const py::kwarg
     }
     const py::handle v = item.second;
     FieldValue value;
+    if (v.is_none() && f->type == FieldType::Choice && std::isnan(f->default_value)) continue;  // automatic
     if (v.is_none() && f->type == FieldType::Real && std::isnan(f->default_value))
       value = std::nan("");
     else if (py::isinstance<py::bool_>(v))
@@ -259,6 +260,16 @@ inline ValueSet keyword_values(const std::vector<Field>& fields, const py::kwarg
   return out;
 }
 
+/// The keywords of predict(): predict_settings() then conditioning_settings().
+inline const std::vector<Field>& predict_keywords() {
+  static const std::vector<Field> f = [] {
+    std::vector<Field> all = predict_settings();
+    for (const Field& c : conditioning_settings()) all.push_back(c);
+    return all;
+  }();
+  return f;
+}
+
 /// The fields of a table as a list of dicts, written from the table "settings_field" (name,
 /// option, type, unit, default, min, max, choices, help), SI units as Python takes them.
 inline py::list field_list(const std::vector<Field>& fields) {
@@ -272,7 +283,7 @@ inline std::string keyword_doc(const std::vector<Field>& fields) {
   std::string s;
   for (const Field& f : fields) {
     std::string def;
-    if (f.type == FieldType::Real && std::isnan(f.default_value))
+    if ((f.type == FieldType::Real || f.type == FieldType::Choice) && std::isnan(f.default_value))
       def = "None (auto)";
     else if (f.type == FieldType::Boolean)
       def = f.default_value != 0 ? "True" : "False";
@@ -294,6 +305,7 @@ inline std::string keyword_doc(const std::vector<Field>& fields) {
         range = (f.max_open ? "< " : "<= ") + n(f.max);
       else
         range = "any finite number";
+      for (const auto& [word, value] : f.words) range += " or '" + word + "'";
     } else {
       range = range_text(f);
     }

@@ -268,13 +268,28 @@ void frictal_bind_predict(py::module_& m) {
       });
   m.def(
       "predict",
-      [](const py::object& lower, const py::object& upper, double direction, double atomic_friction,
-         double runaway_distance, const py::object& block_length, std::optional<std::string> detrend_text,
-         const py::object& crop, bool remove_spikes, double spike_threshold, std::optional<std::vector<double>> start,
-         int drops, bool locked, double spacing, const std::string& format, const std::string& unit,
-         const std::string& x_unit, const std::string& z_unit, unsigned threads, const py::object& load,
-         std::optional<double> modulus, std::optional<double> poisson, const py::object& upper_modulus,
-         std::optional<double> upper_poisson) {
+      [](const py::object& lower, const py::object& upper, py::kwargs kw) {
+        // The keywords outside the tables: how the inputs are read, friction under load (lists
+        // of forces, "rigid"), the one drop (a point) and the threads (a run option); the rest are
+        // the fields of predict_settings() and conditioning_settings().
+        auto take = [&kw](const char* key) {
+          py::object v = py::none();
+          if (kw.contains(key)) {
+            v = kw[key];
+            PyDict_DelItemString(kw.ptr(), key);
+          }
+          return v;
+        };
+        const py::object spacing = take("spacing"), format = take("format"), unit = take("unit"),
+                         x_unit = take("x_unit"), z_unit = take("z_unit"), threads = take("threads"),
+                         load = take("load"), modulus_obj = take("modulus"), poisson_obj = take("poisson"),
+                         upper_modulus = take("upper_modulus"), upper_poisson_obj = take("upper_poisson"),
+                         start = take("start_offset"), crop = take("crop");
+        auto opt_double = [](const py::object& v) {
+          return v.is_none() ? std::optional<double>() : std::optional<double>(v.cast<double>());
+        };
+        const std::optional<double> modulus = opt_double(modulus_obj), poisson = opt_double(poisson_obj),
+                                    upper_poisson = opt_double(upper_poisson_obj);
         PredictOptions o;
         // Friction under load: load (N, or a list: the first the headline), the materials (Pa).
         if (!load.is_none()) {
@@ -300,46 +315,50 @@ void frictal_bind_predict(py::module_& m) {
           throw py::value_error(
               "modulus/poisson/upper_modulus/upper_poisson: the materials of friction under load; give load= (N)");
         }
+        // crop: the table's text "x0,x1[,y0,y1]" or, in Python also, a sequence of metres.
         o.crop = py_detail::crop_window(crop);
         o.crop_source = "crop=" + py::repr(crop).cast<std::string>();
-        o.remove_spikes = remove_spikes;
-        o.spike_threshold = spike_threshold;
-        o.direction = direction;
-        o.atomic_friction = atomic_friction;
-        o.runaway_distance = runaway_distance;
-        if (py::isinstance<py::str>(block_length)) {
-          if (block_length.cast<std::string>() != "whole")
-            throw py::value_error("block_length: expected a length in m, 0 (the default) or 'whole'");
-          o.block_length = -1;
-        } else if (!block_length.is_none()) {
-          o.block_length = block_length.cast<double>();
-          if (!(o.block_length >= 0))
-            throw py::value_error("block_length: expected a length in m >= 0 (0: the default) or 'whole'");
-        }
-        if (detrend_text) o.detrend = ok(parse_detrend(*detrend_text));
-        if (start) {
-          if (start->empty() || start->size() > 2)
+        if (!start.is_none()) {
+          std::vector<double> xy;
+          if (py::isinstance<py::float_>(start) || py::isinstance<py::int_>(start))
+            xy = {start.cast<double>()};
+          else
+            xy = start.cast<std::vector<double>>();
+          if (xy.empty() || xy.size() > 2)
             throw py::value_error("start_offset: expected x (profiles) or (x, y) (maps) in m");
-          o.start_offset = {(*start)[0], start->size() > 1 ? (*start)[1] : 0.0};
+          o.start_offset = {xy[0], xy.size() > 1 ? xy[1] : 0.0};
         }
-        o.map_drops = drops;
-        o.map_locked = locked;
-        o.threads = threads;
+        o = ok(make_predict_options(py_detail::keyword_values(py_detail::predict_keywords(), kw, "predict"), o));
+        o.threads = threads.is_none() ? 0u : threads.cast<unsigned>();
+        const double dx = spacing.is_none() ? 0.0 : spacing.cast<double>();
+        auto text = [](const py::object& v, const char* fallback) {
+          return v.is_none() ? std::string(fallback) : v.cast<std::string>();
+        };
         // The surfaces handed over (a profile's points moved, not copied).
-        PredictSurface lo = to_surface(lower, spacing, format, unit, "lower", x_unit, z_unit);
+        PredictSurface lo =
+            to_surface(lower, dx, text(format, "auto"), text(unit, ""), "lower", text(x_unit, ""), text(z_unit, ""));
         std::optional<PredictSurface> up;
-        if (!upper.is_none()) up = to_surface(upper, spacing, format, unit, "upper", x_unit, z_unit);
+        if (!upper.is_none())
+          up = to_surface(upper, dx, text(format, "auto"), text(unit, ""), "upper", text(x_unit, ""), text(z_unit, ""));
         return ok(nogil([&] { return predict(std::move(lo), std::move(up), o); }));
       },
-      py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("direction") = 0.0,
-      py::arg("atomic_friction") = 0.0, py::arg("runaway_distance") = 0.0, py::arg("block_length") = py::none(),
-      py::arg("detrend") = py::none(), py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
-      py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("start_offset") = py::none(),
-      py::arg("drops") = PredictOptions{}.map_drops, py::arg("locked") = PredictOptions{}.map_locked,
-      py::arg("spacing") = 0.0, py::arg("format") = "auto", py::arg("unit") = "", py::arg("x_unit") = "",
-      py::arg("z_unit") = "", py::arg("threads") = 0u, py::arg("load") = py::none(), py::arg("modulus") = py::none(),
-      py::arg("poisson") = py::none(), py::arg("upper_modulus") = py::none(), py::arg("upper_poisson") = py::none(),
-      "The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them)");
+      py::arg("lower"), py::arg("upper") = py::none(),
+      ("The prediction (the library's frictal::predict; no warnings.warn: frictal.predict issues them). Keywords: "
+       "the fields of predict_settings() and conditioning_settings() (SI; crop also a sequence of metres), and "
+       "spacing, format, unit, x_unit, z_unit, start_offset, threads, load, modulus, poisson, upper_modulus, "
+       "upper_poisson:\n" +
+       py_detail::keyword_doc(py_detail::predict_keywords()))
+          .c_str());
+  m.def(
+      "predict_settings", [] { return py_detail::field_list(predict_settings()); },
+      "predict_settings() -> list\n\nThe prediction's settings table: one dict per keyword of predict() (name, type, "
+      "unit (SI), default (None: automatic, see help), min, max, choices, help); `frictal settings --json` lists the "
+      "same fields (its key predict)");
+  m.def(
+      "conditioning_settings", [] { return py_detail::field_list(conditioning_settings()); },
+      "conditioning_settings() -> list\n\nThe conditioning's settings table: crop, remove_spikes, spike_threshold, "
+      "detrend, the keywords of predict() that condition a measured surface, as predict_settings() lists its own "
+      "(name, type, unit (SI: m, or unitless), default (None: automatic), min, max, choices, help)");
   m.def(
       "areal_hold",
       [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, double angle,

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <type_traits>
@@ -38,6 +39,12 @@ inline Field field(std::string name, std::string unit, double min, Lo lo, double
 template <class... A>
 Field F(A&&... a) {
   return field(std::forward<A>(a)...);
+}
+
+/// A quantity that several tables share (settings.hpp, shared_field), by its name.
+inline Field shared(const std::string& name) {
+  const Field* f = shared_field(name);
+  return f ? *f : field(name, "", 0, Lo::Closed, 0, name);  // not reached: every caller names a shared field
 }
 
 template <class T>
@@ -95,7 +102,9 @@ std::vector<Binding<T>> with_defaults(std::vector<Binding<T>> table, const T& de
     const FieldValue v = b.get(defaults);
     if (b.field.type == FieldType::Choice) {
       const auto& c = b.field.choices;
-      b.field.default_value = static_cast<double>(std::find(c.begin(), c.end(), std::get<std::string>(v)) - c.begin());
+      // A word that is no choice (an unset optional: "") is "automatic".
+      const auto i = std::find(c.begin(), c.end(), std::get<std::string>(v));
+      b.field.default_value = i == c.end() ? std::nan("") : static_cast<double>(i - c.begin());
     } else {
       b.field.default_value = as_real(v);
     }

@@ -45,6 +45,7 @@ std::string default_text(const Field& f) {
   switch (f.type) {
     case FieldType::Boolean: return f.default_value != 0 ? "true" : "false";
     case FieldType::Choice: {
+      if (std::isnan(f.default_value)) return "auto";
       const auto i = static_cast<std::size_t>(f.default_value);
       return i < f.choices.size() ? f.choices[i] : "";
     }
@@ -76,8 +77,15 @@ std::string range_in(const Field& f, bool text) {
       return "any whole number";
     }
     case FieldType::Real: {
+      std::string words;
+      for (const auto& [w, value] : f.words) words += " or " + w;
       const bool lo = std::isfinite(f.min), hi = std::isfinite(f.max);
       const std::string u = text ? text_unit(f) : f.unit;
+      if (!words.empty()) {
+        Field plain = f;
+        plain.words.clear();
+        return range_in(plain, text) + words;
+      }
       const std::string a = num(text ? to_text_unit(f, f.min) : f.min), b = num(text ? to_text_unit(f, f.max) : f.max);
       if (lo && hi)
         return with_unit(fmt::format("{}{}, {}{}", f.min_open ? "(" : "[", a, b, f.max_open ? ")" : "]"), u);
@@ -98,6 +106,23 @@ double as_real(const FieldValue& v) {
   if (const std::int64_t* i = std::get_if<std::int64_t>(&v)) return static_cast<double>(*i);
   if (const bool* b = std::get_if<bool>(&v)) return *b ? 1.0 : 0.0;
   return std::nan("");
+}
+
+namespace {
+
+/// The value of a Real field's word (block_length "whole"), if `word` is one.
+const double* word_value(const Field& f, const std::string& word) {
+  for (const auto& [w, value] : f.words)
+    if (w == word) return &value;
+  return nullptr;
+}
+
+}  // namespace
+
+double word_value_of(const Field& f, const FieldValue& v) {
+  if (const std::string* w = std::get_if<std::string>(&v))
+    if (const double* x = word_value(f, *w)) return *x;
+  return as_real(v);
 }
 
 namespace {
@@ -136,6 +161,10 @@ Result<FieldValue> check(const Field& f, const FieldValue& v, const std::string&
       return expected("true or false");
     case FieldType::Choice:
       if (const std::string* s = std::get_if<std::string>(&v)) {
+        if (f.check_word) {
+          if (Status st = f.check_word(*s, prefix); !st) return st.error();
+          return FieldValue{*s};
+        }
         if (std::find(f.choices.begin(), f.choices.end(), *s) != f.choices.end()) return FieldValue{*s};
         std::string hint;
         if (std::string n = nearest_word(*s, f.choices); !n.empty()) hint = fmt::format(" (did you mean '{}'?)", n);
@@ -161,6 +190,8 @@ Result<FieldValue> check(const Field& f, const FieldValue& v, const std::string&
         x = *d;
       else if (const std::int64_t* p = std::get_if<std::int64_t>(&v))
         x = static_cast<double>(*p);
+      else if (const std::string* w = std::get_if<std::string>(&v); w && word_value(f, *w))
+        return FieldValue{*w};  // the word (word_value_of gives its value, outside the range)
       else
         return expected((unbounded ? "a finite number" : "a number " + in) + range);
       if (std::isnan(x) && std::isnan(f.default_value)) return FieldValue{x};  // "automatic"
@@ -207,6 +238,7 @@ Result<FieldValue> parse_text_word(const Field& f, const std::string& word, cons
       return make_error(fmt::format("{}: expected a whole number in {}, got '{}'", prefix, range_text(f), word));
     }
     case FieldType::Real: {
+      if (word_value(f, word)) return FieldValue{word};  // kept as the word (word_value_of)
       double d = 0;
       const char* end = word.data() + word.size();
       auto [p, ec] = std::from_chars(word.data(), end, d);
@@ -219,7 +251,13 @@ Result<FieldValue> parse_text_word(const Field& f, const std::string& word, cons
         const auto scale = f.unit == "m" ? units::length_scale(unit) : units::pressure_scale(unit);
         if (scale && std::isfinite(d * *scale)) return FieldValue{d * *scale};
       }
-      return make_error(fmt::format("{}: expected a number in {}{}, got '{}'", prefix, range_text(f),
+      std::string range = range_text(f);
+      const bool interval = !range.empty() && (range[0] == '(' || range[0] == '[');
+      // Unbounded: "a finite number, in deg" rather than "a number any, in deg" (as check() says).
+      const bool unbounded = range.rfind("any", 0) == 0;
+      if (unbounded) range = range.substr(3);
+      return make_error(fmt::format("{}: expected {}{}{}{}, got '{}'", prefix,
+                                    unbounded ? "a finite number" : "a number ", interval ? "in " : "", range,
                                     f.unit == "m"    ? " (a unit may follow: m, mm, um, nm)"
                                     : f.unit == "Pa" ? " (a unit may follow: Pa, kPa, MPa, GPa)"
                                                      : "",

@@ -21,7 +21,9 @@ const char* type_word(FieldType t) {
 /// Integer field's default is the "count" column's.
 OutputValue si_default(const Field& f) {
   if (f.type == FieldType::Boolean) return OutputValue(f.default_value != 0);
-  if (f.type == FieldType::Choice) return OutputValue(f.choices.at(static_cast<std::size_t>(f.default_value)));
+  if (f.type == FieldType::Choice)
+    return std::isnan(f.default_value) ? OutputValue(f.default_value)
+                                       : OutputValue(f.choices.at(static_cast<std::size_t>(f.default_value)));
   return OutputValue(f.default_value);
 }
 

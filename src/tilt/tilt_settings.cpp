@@ -39,8 +39,7 @@ const std::vector<B>& table() {
           bind<TiltConfig>(F("tangential_damping", "1/s", 0, Lo::Closed, kInf,
                              "Tangential damping gamma_t (constant-rate protocol; off in quasi-static)"),
                            FRICTAL_MEMBER(contact.tangential_damping)),
-          bind<TiltConfig>(F("atomic_friction", "", 0, Lo::Closed, kInf, "Atomic (Coulomb) friction coefficient mu_a"),
-                           FRICTAL_MEMBER(contact.atomic_friction)),
+          bind<TiltConfig>(settings_detail::shared("atomic_friction"), FRICTAL_MEMBER(contact.atomic_friction)),
           bind_choice<TiltConfig>(
               F("contact_rule", "", 0, Lo::Closed, 0,
                 "Which touching vertex-edge pairs push: pairs (every one, the paper's), closest (one force per "
@@ -97,10 +96,7 @@ const std::vector<B>& table() {
                            FRICTAL_MEMBER(initial_offset)),
           bind<TiltConfig>(F("placement_gap", "m", 0, Lo::Closed, kInf, "Clearance between the blocks when placed"),
                            FRICTAL_MEMBER(placement_gap)),
-          bind<TiltConfig>(F("period", "m", -kInf, Lo::Closed, kInf,
-                             "Period of both surfaces (<= 0: not periodic; the offsets then span half the length)",
-                             false, "the surface's (generated), none (files)"),
-                           FRICTAL_MEMBER(period)),
+          bind<TiltConfig>(settings_detail::shared("period"), FRICTAL_MEMBER(period)),
           bind<TiltConfig>(
               F("predict", "", 0, Lo::Closed, 1, "Compute the signature prediction theta_max + atan(mu_a)"),
               FRICTAL_MEMBER(predict)),
@@ -132,13 +128,7 @@ const std::vector<B>& table() {
           bind<TiltConfig>(
               F("max_tilt", "rad", 0, Lo::Open, std::numbers::pi / 2, "Give up (no slide) beyond this tilt", true),
               FRICTAL_MEMBER(max_tilt)),
-          bind<TiltConfig>(
-              F("runaway_distance", "m", 0, Lo::Open, kInf,
-                "Sliding for good: growth of the displacement since the last stick", false,
-                "predict and areal-tilt: 12.5 slope correlation lengths of the lower surface along the direction "
-                "(periodic profiles: one period); tilt: the surface's wavelength (generated), files: a tenth of half "
-                "the block, L_b/20, as signature"),
-              FRICTAL_MEMBER(runaway_distance)),
+          bind<TiltConfig>(settings_detail::shared("runaway_distance"), FRICTAL_MEMBER(runaway_distance)),
           bind<TiltConfig>(
               F("stick_speed", "m/s", 0, Lo::Open, kInf, "Relative speed counted as stuck (constant-rate protocol)"),
               FRICTAL_MEMBER(stick_speed)),

@@ -268,8 +268,8 @@ TEST(CliConditioning, BadValuesExitTwoNamingTheOptionTheValueAndWhatWasExpected)
       {"--crop 2,1", "x0 < x1"},
       {"--crop 1mm,x", "'x' is not a length"},
       {"--crop 0,1mm,0,1mm", "a line profile"},
-      {"--remove-spikes --spike-threshold 0", "--spike-threshold '0': expected a number > 0"},
-      {"--remove-spikes --spike-threshold abc", "--spike-threshold 'abc'"},
+      {"--remove-spikes --spike-threshold 0", "--spike-threshold: expected a number > 0, got 0"},
+      {"--remove-spikes --spike-threshold abc", "--spike-threshold: expected a number > 0, got 'abc'"},
       {"--spike-threshold 6", "applies to --remove-spikes"},
   };
   for (const char* cmd : {"stats", "predict", "signature"})

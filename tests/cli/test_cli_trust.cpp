@@ -3,6 +3,7 @@
 // warning calls doubtful says so first and names the option that fixes it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -15,6 +16,8 @@
 #include <vector>
 
 #include "cli/cli_runner.hpp"
+#include "frictal/conditioning.hpp"
+#include "frictal/predict.hpp"
 
 using json = nlohmann::json;
 
@@ -254,5 +257,70 @@ TEST(CliTrust, TheSharedInputsHaveOneHelpText) {
     EXPECT_EQ(texts[name].size(), 1u) << name << " has " << texts[name].size() << " descriptions, e.g. in "
                                       << texts[name].begin()->second.front() << " and "
                                       << texts[name].rbegin()->second.front();
+  }
+}
+
+TEST(CliTrust, PredictsOptionsAreItsSettingsTablesPlusAStatedList) {
+  // `frictal predict` offers the fields of predict_settings() and conditioning_settings(), each
+  // option named after its field and described by the table (help, unit, default, range), and
+  // besides them only the options that are no setting of the prediction: the one drop (a point),
+  // friction under load (forces with their unit, lists, "rigid"), the reading of the files and
+  // the run options.
+  const std::set<std::string> cli_only = {"--start-offset",  "--quiet",        "--threads", "--json",     "--format",
+                                          "--unit",          "--x-unit",       "--z-unit",  "--x-column", "--z-column",
+                                          "--spacing",       "--channel",      "--load",    "--modulus",  "--poisson",
+                                          "--upper-modulus", "--upper-poisson"};
+  auto c = run_cli("commands --json");
+  ASSERT_EQ(c.code, 0) << c.err;
+  std::map<std::string, std::string> options;  // option -> description
+  const json listing = json::parse(c.out);
+  for (const auto& cmd : listing["commands"])
+    if (cmd["name"] == "predict")
+      for (const auto& o : cmd["options"])
+        if (!o["positional"].get<bool>()) options[o["name"].get<std::string>()] = o["description"];
+  ASSERT_FALSE(options.empty());
+  std::set<std::string> expected = cli_only;
+  std::vector<frictal::Field> fields = frictal::predict_settings();
+  for (const frictal::Field& f : frictal::conditioning_settings()) fields.push_back(f);
+  EXPECT_EQ(fields.size(), 14u);
+  for (const frictal::Field& f : fields) {
+    std::string option = "--" + f.name;
+    std::replace(option.begin(), option.end(), '_', '-');
+    // The table's line: help [unit] (default D; valid R), angles in degrees at the CLI.
+    const std::string unit = f.unit == "rad" ? "deg" : f.unit;
+    const std::string help = f.help + (unit.empty() ? "" : " [" + unit + "]") + " (default " +
+                             frictal::default_text(f) + "; valid " + frictal::range_text(f) + ")";
+    ASSERT_TRUE(options.count(option)) << option;
+    EXPECT_EQ(options[option], help) << option;
+    expected.insert(option);
+    if (f.type == frictal::FieldType::Boolean) {
+      expected.insert("--no-" + option.substr(2));
+      EXPECT_EQ(options["--no-" + option.substr(2)], "Opposite of " + option);
+    }
+  }
+  std::set<std::string> listed;
+  for (const auto& [name, text] : options) listed.insert(name);
+  EXPECT_EQ(listed, expected);
+}
+
+TEST(CliTrust, ABadPredictSettingNamesTheOptionAndItsRange) {
+  const std::string f = data("profiles/csv-2.csv");
+  struct Case {
+    std::string args, says;
+  };
+  const Case cases[] = {
+      {"--drops 1", "--drops: expected a whole number in 2..64, got 1"},
+      {"--drops 2.5", "--drops: expected a whole number in 2..64, got '2.5'"},
+      {"--block-length -1mm", "--block-length: expected a number > 0 m or whole, got -0.001"},
+      {"--block-length part", "--block-length: expected a number > 0 m or whole (a unit may follow"},
+      {"--direction east", "--direction: expected a finite number, in deg, got 'east'"},
+      {"--runaway-distance 0", "--runaway-distance: expected a number > 0 m, got 0"},
+      {"--atomic-friction -0.1", "--atomic-friction: expected a number >= 0, got -0.1"},
+      {"--map-work-limit -1", "--map-work-limit: expected a number >= 0 s, got -1"},
+  };
+  for (const Case& c : cases) {
+    const CliRun r = run_cli("predict " + f + " -q " + c.args);
+    EXPECT_EQ(r.code, 2) << c.args << ": " << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << ": " << r.err;
   }
 }

@@ -255,11 +255,13 @@ def test_the_cli_s_tilt_frames_read_back_in_python(tmp_path):
 
 
 def test_settings_tables_are_the_clis():
-    """tilt_settings(), areal_tilt_settings() and generators() list the fields that `frictal settings
+    """predict_settings(), conditioning_settings(), tilt_settings(), areal_tilt_settings() and
+    generators() list the fields that `frictal settings
     --json` lists, with the same name, option, type and help; Python's unit is the SI unit that
     the CLI names si_unit, and its default the CLI's in SI (degrees in the CLI, radians here)."""
     cli = json.loads(subprocess.run([CLI, "settings", "--json"], check=True, capture_output=True, text=True).stdout)
     pairs = [(cli["tilt"], frictal.tilt_settings()), (cli["areal_tilt"], frictal.areal_tilt_settings())]
+    pairs += [(cli["predict"], frictal.predict_settings()), (cli["conditioning"], frictal.conditioning_settings())]
     pairs += [(cli["generators"][name]["fields"], fields) for name, fields in frictal.generators().items()]
     assert len(pairs) > 4
     for c_fields, p_fields in pairs:
@@ -270,6 +272,8 @@ def test_settings_tables_are_the_clis():
             assert c["si_unit"] == p["unit"], c["name"]
             if c["type"] == "boolean":
                 assert c["default"] == ("true" if p["default"] else "false"), c["name"]
+            elif c["type"] == "word" and p["default"] is None:
+                assert c["default"] not in p["choices"], c["name"]  # automatic: said in words
             elif c["type"] == "word":
                 assert c["default"] == p["default"] and p["default"] in p["choices"], c["name"]
             elif c["type"] == "integer":

@@ -135,3 +135,61 @@ def test_two_signatures_in_two_threads_run_without_the_gil():
     lo, hi = max(a0, b0), min(a1, b1)
     mid = [t for t in ticks if lo + 0.25 * (hi - lo) < t < hi - 0.25 * (hi - lo)]
     assert len(mid) >= 2, (intervals, len(ticks))
+
+
+def test_predict_keywords_are_the_table_names():
+    """predict() takes the fields of predict_settings() and conditioning_settings() under their names,
+    each with its meaning in the docstring, and besides them only the stated keywords that are no
+    setting of the prediction (the reading of the inputs, the one drop, friction under load, threads)."""
+    table = frictal.predict_settings() + frictal.conditioning_settings()
+    names = [f["name"] for f in table]
+    assert names[:3] == ["direction", "atomic_friction", "runaway_distance"]
+    assert {"block_length", "drops", "locked", "in_place", "crop", "remove_spikes", "spike_threshold", "detrend"} <= set(names)
+    assert len(set(names)) == len(names)
+    by = {f["name"]: f for f in table}
+    assert by["direction"]["unit"] == "rad" and by["runaway_distance"]["unit"] == "m"
+    assert by["runaway_distance"]["default"] is None and by["detrend"]["default"] is None  # automatic
+    assert by["drops"]["default"] == 5 and by["spike_threshold"]["default"] == 10
+    assert by["detrend"]["choices"] == ["none", "mean", "line", "plane", "poly:N"]
+    doc = frictal._core.predict.__doc__
+    for n in names:
+        assert f"    {n}" in doc, n
+    extras = ["spacing", "format", "unit", "x_unit", "z_unit", "start_offset", "threads", "load", "modulus",
+              "poisson", "upper_modulus", "upper_poisson"]
+    for n in extras:
+        assert n in doc, n
+    # Every field is accepted at its default (None: automatic) and gives the prediction without it.
+    z = 1e-4 * np.sin(np.linspace(0, 40, 801))
+    base = quiet_predict(z, spacing=1e-5).to_dict()
+    for f in table:
+        assert quiet_predict(z, spacing=1e-5, **{f["name"]: f["default"]}).to_dict() == base, f["name"]
+    # Every keyword is read: a value outside the field's range is refused naming it and the range.
+    for f in table:
+        if f["type"] in ("number", "integer") and math.isfinite(f["min"]):
+            bad, says = f["min"] - 1, f["name"] + ": expected"
+        elif f["type"] == "word":
+            bad, says = "bogus", f["name"]
+        elif f["type"] == "number":
+            bad, says = float("nan"), f["name"] + ": expected a finite number"
+        else:
+            continue
+        with pytest.raises(ValueError, match=says):
+            quiet_predict(z, spacing=1e-5, **{f["name"]: bad})
+    with pytest.raises(ValueError, match=r"drops: expected a whole number in 2\.\.64, got 1"):
+        quiet_predict(z, spacing=1e-5, drops=1)
+    with pytest.raises(ValueError, match="block_length: expected a number > 0 m or whole, got -1"):
+        quiet_predict(z, spacing=1e-5, block_length=-1)
+    with pytest.raises(TypeError, match="did you mean 'runaway_distance'"):
+        quiet_predict(z, spacing=1e-5, runaway_distanse=1e-3)
+    # A stated value reaches the prediction (the block's length, in metres, or the whole profile).
+    assert quiet_predict(z, spacing=1e-5, detrend="none", block_length=2e-3).block_length == pytest.approx(2e-3)
+    whole = quiet_predict(z, spacing=1e-5, detrend="none", block_length="whole")
+    assert whole.block_length == pytest.approx(8e-3)
+
+
+def quiet_predict(*args, **kw):
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return frictal.predict(*args, **kw)
