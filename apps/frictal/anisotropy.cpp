@@ -32,6 +32,7 @@ struct Args {
   bool locked = false;
   bool quiet = false;
   int drops = PredictOptions{}.map_drops;
+  FieldWords predict_words;  ///< --drops, --locked (the prediction's table)
   double runaway_distance = 0;
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   unsigned threads = 0;
@@ -55,10 +56,8 @@ std::function<int()> setup(CLI::App& app) {
   app.add_flag("--hold", a->hold,
                "Also the hold angle over drops per direction: the continuous model of `frictal predict --direction`, "
                "the block free to move sideways (slower: --drops x --drops drops per direction)");
-  app.add_option("--drops", a->drops, "With --hold: drops on an N x N grid over the drop range (2..64)")
-      ->capture_default_str();
-  app.add_flag("--locked", a->locked,
-               "With --hold: also the block locked to the direction (a diagnostic; doubles the cost)");
+  // With --hold: --drops and --locked, the prediction's table.
+  add_predict_options(app, a->predict_words, {"drops", "locked"});
   app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error (--hold)");
   // --runaway-distance: the tilt table's field (one description everywhere), here the hold angle's run-away.
   add_field_options(app, tilt_settings(), a->runaway_words, all_but(tilt_settings(), "runaway_distance"));
@@ -83,6 +82,8 @@ std::function<int()> setup(CLI::App& app) {
     require(std::isfinite(a->runaway_distance) && a->runaway_distance >= 0,
             fmt::format("--runaway-distance {}: expected a finite number of metres > 0", a->runaway_distance));
     if (a->runaway_distance > 0 && !a->hold) throw UsageError("--runaway-distance needs --hold");
+    a->drops = static_cast<int>(predict_integer(a->predict_words, "drops"));
+    a->locked = predict_flag(a->predict_words, "locked");
     if (a->locked && !a->hold) throw UsageError("--locked needs --hold");
     require(a->drops >= 2 && a->drops <= 64, fmt::format("--drops {}: expected 2..64", a->drops));
     Map u = m;

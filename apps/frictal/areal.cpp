@@ -33,12 +33,12 @@ struct Args {
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   std::string start_offset;
   int drops = PredictOptions{}.map_drops;
+  FieldWords predict_words;  ///< --drops, --in-place (the prediction's table)
   bool quiet = false;
   unsigned threads = 0;
   InputOptions input;
   ConditioningOptions cond;
   std::string conditioning;  ///< what the conditioning did (set after reading the maps)
-  CLI::Option* drops_option = nullptr;
 };
 
 // The hold angle over drops (or from one drop) of the continuous model, through the library's
@@ -137,7 +137,6 @@ std::function<int()> setup(CLI::App& app) {
   add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_option("--contact-slope", a->contact_slope, "lower (Eq. 3, default) or mean (of both faces)");
-  app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
   app.add_option("-o,--output", a->output,
                  "Write offset_m,lift_m,theta_rad,contact_x_m,contact_y_m to this CSV (- for standard output)");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores)");
@@ -150,9 +149,8 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--start-offset", a->start_offset,
                  "Hold angle from one drop at offset X,Y (m; from the maps' centres aligned, or with --in-place "
                  "from the upper map's place) instead of the distribution over drops");
-  a->drops_option =
-      app.add_option("--drops", a->drops, "Hold angle over drops on an N x N grid over the drop range (2..64)")
-          ->capture_default_str();
+  // --drops (given: the hold angle over drops) and --in-place: the prediction's table.
+  add_predict_options(app, a->predict_words, {"drops", "in_place"});
   app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error (hold angle)");
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
@@ -163,7 +161,10 @@ std::function<int()> setup(CLI::App& app) {
     require(a->step >= 0 && a->offset_max >= 0, "--step and --max-offset must be >= 0 (metres)");
     require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,
             "--atomic-friction must be a finite number >= 0");
-    if (!a->lateral.empty() || a->runaway_distance != 0 || !a->start_offset.empty() || a->drops_option->count())
+    a->drops = static_cast<int>(predict_integer(a->predict_words, "drops"));
+    a->in_place = predict_flag(a->predict_words, "in_place");
+    if (!a->lateral.empty() || a->runaway_distance != 0 || !a->start_offset.empty() ||
+        a->predict_words.words.count("drops"))
       return run_hold(*a);
     const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
     std::vector<Warning> warnings;

@@ -12,6 +12,7 @@
 #include "frictal/areal_tilt.hpp"
 #include "frictal/predict.hpp"
 #include "frictal/tilt.hpp"
+#include "map_hold.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
 
@@ -21,7 +22,7 @@ namespace {
 struct Args {
   std::string lower, upper;
   std::string detrend = "plane";
-  bool in_place = false;
+  FieldWords predict_words;  ///< --in-place (the prediction's table)
   bool predict_only = false;
   std::string start_offset;
   FieldWords words;  ///< the model's and protocol's settings (areal_tilt_settings(); docs/settings.md)
@@ -42,7 +43,7 @@ std::function<int()> setup(CLI::App& app) {
                  "X,Y: where the block is put down, in the lower map's frame (m; default 0,0)");
   app.add_flag("--predict-only", a->predict_only,
                "Only the predictions, from the block dropped at offset 0 (no simulation; needs no MuJoCo)");
-  app.add_flag("--in-place", a->in_place, "UPPER is the upper face already in place (not turned over)");
+  add_predict_options(app, a->predict_words, {"in_place"});  // the prediction's --in-place
   app.add_flag("--json", a->json, "Print one JSON object");
   app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error (shown on a terminal only)");
   add_input_options(app, a->input);
@@ -60,7 +61,7 @@ std::function<int()> setup(CLI::App& app) {
     const Map g = a->upper.empty() ? f : load(a->upper);
     const std::string conditioning_done = conditioning_text(records);
     if (!a->start_offset.empty()) o.start_offset = parse_offset(a->start_offset, "--start-offset");
-    o.turn_over_upper = !a->in_place;
+    o.turn_over_upper = !predict_flag(a->predict_words, "in_place");
     const double angle_deg = to_deg(o.angle), tilt_step_deg = to_deg(o.tilt_step);
     const auto t0 = std::chrono::steady_clock::now();
     // A progress line (a terminal only): the simulation takes minutes on large maps.

@@ -5,7 +5,9 @@
 #pragma once
 
 #include <unistd.h>
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <memory>
@@ -21,6 +23,27 @@
 #include "surface_io.hpp"
 
 namespace frictal::cli {
+
+/// Fields of the prediction's settings table (predict_settings()) that a command running the
+/// prediction's model offers (`areal --drops`, `anisotropy --locked`, ...): the option, its help,
+/// unit, default and range are the table's, as in `frictal predict`.
+inline void add_predict_options(CLI::App& app, FieldWords& words, const std::vector<std::string>& names) {
+  std::vector<std::string> skip;
+  for (const Field& f : predict_settings())
+    if (std::find(names.begin(), names.end(), f.name) == names.end()) skip.push_back(f.name);
+  add_field_options(app, predict_settings(), words, skip);
+}
+
+/// The value typed for a field of predict_settings() (SI, checked), or the table's default.
+inline std::int64_t predict_integer(const FieldWords& words, const std::string& name) {
+  const ValueSet v = si_values(predict_settings(), words);
+  return v.count(name) ? std::get<std::int64_t>(v.at(name))
+                       : static_cast<std::int64_t>(find_field(predict_settings(), name)->default_value);
+}
+inline bool predict_flag(const FieldWords& words, const std::string& name) {
+  const ValueSet v = si_values(predict_settings(), words);
+  return v.count(name) ? std::get<bool>(v.at(name)) : find_field(predict_settings(), name)->default_value != 0;
+}
 
 /// The prediction's options with the conditioning the options ask for: crop and spikes from `c`,
 /// the form from `detrend` (empty: the prediction's default, a line for profiles, a plane for maps).

@@ -29,6 +29,7 @@ struct Args {
   int resolution = 10;
   int bins = 90;
   int drops = PredictOptions{}.map_drops;
+  FieldWords predict_words;  ///< --drops (the prediction's table)
   bool quiet = false;
   unsigned threads = 0;
   std::string tip_radius;
@@ -56,10 +57,9 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--resolution-steps", a->resolution, "Cutoff wavelengths of the resolution study (0 = none)")
       ->capture_default_str();
   app.add_option("--bins", a->bins, "Bins of the slope distributions")->capture_default_str();
-  app.add_option("--drops", a->drops,
-                 "Maps: the headline prediction's drops, an N x N grid (2..64; as predict), and those of each "
-                 "direction of a map pair's polar plot")
-      ->capture_default_str();
+  // --drops: the prediction's table (the headline's drops, and those of each direction of a map
+  // pair's polar plot).
+  add_predict_options(app, a->predict_words, {"drops"});
   app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error");
   app.add_option("--tip-radius", a->tip_radius,
                  "Tip radius, a length such as 20nm (no unit: metres): draw its short reliability cutoff on the "
@@ -119,6 +119,7 @@ std::function<int()> setup(CLI::App& app) {
     in.detrend = conditioning_text(records);
     in.atomic_friction = a->mu_a;
     in.directions = a->directions;
+    a->drops = static_cast<int>(predict_integer(a->predict_words, "drops"));
     in.map_drops = a->drops;
     if (in.is_map && !a->quiet && isatty(fileno(stderr)))
       in.progress = [](std::size_t done, std::size_t total) {

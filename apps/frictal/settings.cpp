@@ -120,8 +120,8 @@ std::string markdown() {
        "`frictal areal-tilt` options and the `areal-tilt` study kind's TOML keys (the kind sets `lateral` and\n"
        "`angle` itself: every pair runs free and locked along +x). MuJoCo's times are in scaled units: lengths\n"
        "divided by the lower map's larger extent, gravity 9.81 m/s² (docs/mujoco.md). Not in the table:\n"
-       "`--start-offset X,Y` (m), `--in-place`, `--predict-only`; the conditioning's options are its table's\n"
-       "(above).\n\n" +
+       "`--start-offset X,Y` (m), `--predict-only`; `--in-place` is the prediction's and the conditioning's options\n"
+       "are its table's (above).\n\n" +
        md_table(areal_tilt_settings());
   return s;
 }

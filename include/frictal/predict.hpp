@@ -121,7 +121,8 @@ struct PredictOptions {
 /// The prediction's settings table (settings.hpp): direction, atomic_friction, runaway_distance,
 /// block_length ("whole" or a length), period, drops (map_drops), locked (map_locked), in_place
 /// (not turn_over_upper), sphere_radius, map_work_limit; automatic lengths are NaN. The CLI options
-/// of `frictal predict` and the keywords of Python's predict(), beside conditioning_settings();
+/// of `frictal predict` (and those of them that `areal`, `anisotropy`, `report` and `areal-tilt`
+/// offer) and the keywords of Python's predict(), beside conditioning_settings();
 /// src/predict/predict_settings.cpp says which members stay outside and why.
 const std::vector<Field>& predict_settings();
 /// `base` with the values of predict_settings() and conditioning_settings() (SI, by field name;

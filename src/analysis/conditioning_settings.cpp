@@ -23,7 +23,8 @@ using B = Binding<ConditioningSettings>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 /// A word field whose words follow forms (Field::check_word): the crop window, the form.
-B word_field(Field f, std::vector<std::string> forms, std::function<Status(const std::string&, const std::string&)> check,
+B word_field(Field f, std::vector<std::string> forms,
+             std::function<Status(const std::string&, const std::string&)> check,
              std::function<FieldValue(const ConditioningSettings&)> get,
              std::function<void(ConditioningSettings&, const std::string&)> set) {
   f.type = FieldType::Choice;
@@ -61,18 +62,18 @@ const std::vector<B>& table() {
                 "Remove the points more than spike_threshold rms heights from the median of their neighbours "
                 "(profiles: replaced by linear interpolation, dropped at an end; maps: masked), after the crop and "
                 "before the form removal"),
-              [](ConditioningSettings& c) -> auto& { return c.remove_spikes; }),
-          bind<ConditioningSettings>(F("spike_threshold", "", 0, Lo::Open, kInf,
-                                       "k of remove_spikes, in rms heights Sq of the form-removed surface (the "
-                                       "default is the spikes warning's rule)"),
-                                     [](ConditioningSettings& c) -> auto& { return c.spike_threshold; }),
+              [](ConditioningSettings & c) -> auto& { return c.remove_spikes; }),
+          bind<ConditioningSettings>(
+              F("spike_threshold", "", 0, Lo::Open, kInf,
+                "k of remove_spikes, in rms heights Sq of the form-removed surface (the "
+                "default is the spikes warning's rule)"),
+              [](ConditioningSettings & c) -> auto& { return c.spike_threshold; }),
           // Step 3. Automatic by default: form_or_default() per surface.
           word_field(
               F("detrend", "", 0, Lo::Closed, 0,
                 "Form removed from each surface first (the form and tilt of the scan): none, mean, line (a plane "
                 "for maps) or poly:N (N in 0..10)",
-                false,
-                "line for profiles, plane for maps, mean for a periodic profile; none for a generated surface"),
+                false, "line for profiles, plane for maps, mean for a periodic profile; none for a generated surface"),
               {"none", "mean", "line", "plane", "poly:N"},
               [](const std::string& word, const std::string& prefix) -> Status {
                 if (word.empty() || !parse_detrend(word))

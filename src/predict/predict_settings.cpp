@@ -51,10 +51,12 @@ const std::vector<B>& table() {
   static const auto t = settings_detail::with_defaults<PredictOptions>(
       {
           // The test.
-          bind<PredictOptions>(F("direction", "rad", -kInf, Lo::Open, kInf,
-                                 "Sliding direction, from +x towards +y (profiles: along +x or -x only)", true),
-                               [](PredictOptions& o) -> auto& { return o.direction; }),
-          bind<PredictOptions>(shared("atomic_friction"), [](PredictOptions& o) -> auto& { return o.atomic_friction; }),
+          bind<PredictOptions>(
+              F("direction", "rad", -kInf, Lo::Open, kInf,
+                "Sliding direction, from +x towards +y (profiles: along +x or -x only)", true),
+              [](PredictOptions & o) -> auto& { return o.direction; }),
+          bind<PredictOptions>(
+              shared("atomic_friction"), [](PredictOptions & o) -> auto& { return o.atomic_friction; }),
           // The stated test's lengths (docs/theory.md, "The stated test").
           automatic_length(shared("runaway_distance"), &PredictOptions::runaway_distance),
           [] {
@@ -62,18 +64,21 @@ const std::vector<B>& table() {
                         "The test: length of the upper block, the middle piece of the upper surface that slides over "
                         "the lower one (drops wherever it lies wholly on it); whole: all of the upper profile, dropped "
                         "over the first half of the lower one (the blocks of `frictal tilt` on files). Profiles only",
-                        false, "20 run-away distances (periodic pairs: the whole profile)");
+                        false, "the stated test's, 20 run-away distances (periodic pairs: the whole profile)");
             f.words = {{"whole", -1.0}};
             return automatic_length(std::move(f), &PredictOptions::block_length);
           }(),
-          bind<PredictOptions>(shared("period"), [](PredictOptions& o) -> auto& { return o.period; }),
+          bind<PredictOptions>(
+              shared("period"), [](PredictOptions & o) -> auto& { return o.period; }),
           // Maps: the drops and the model.
-          bind<PredictOptions>(F("drops", "", 2, Lo::Closed, 64, "Maps: drops on an N x N grid over the drop range"),
-                               [](PredictOptions& o) -> auto& { return o.map_drops; }),
-          bind<PredictOptions>(F("locked", "", 0, Lo::Closed, 1,
-                                 "Maps: also the block locked to the direction (a diagnostic beside the free one; "
-                                 "doubles the cost)"),
-                               [](PredictOptions& o) -> auto& { return o.map_locked; }),
+          bind<PredictOptions>(
+              F("drops", "", 2, Lo::Closed, 64, "Maps: drops on an N x N grid over the drop range"),
+              [](PredictOptions & o) -> auto& { return o.map_drops; }),
+          bind<PredictOptions>(
+              F("locked", "", 0, Lo::Closed, 1,
+                "Maps: also the block locked to the direction (a diagnostic beside the free one; "
+                "doubles the cost)"),
+              [](PredictOptions & o) -> auto& { return o.map_locked; }),
           [] {
             // The option says what is special (the upper face given in place); the struct says
             // what is usual (turn_over_upper), so the two read inverted.
@@ -86,13 +91,14 @@ const std::vector<B>& table() {
             b.set = [](PredictOptions& o, const FieldValue& v) { o.turn_over_upper = !std::get<bool>(v); };
             return b;
           }(),
-          automatic_length(F("sphere_radius", "m", 0, Lo::Open, kInf,
-                             "Maps: radius r of the spheres at the upper face's nodes", false,
-                             "a fifth of the lower map's smaller spacing"),
-                           &PredictOptions::sphere_radius),
-          bind<PredictOptions>(F("map_work_limit", "s", 0, Lo::Closed, kInf,
-                                 "Maps: refuse a job whose estimated CPU time exceeds this (0: no limit)"),
-                               [](PredictOptions& o) -> auto& { return o.map_work_limit; }),
+          automatic_length(
+              F("sphere_radius", "m", 0, Lo::Open, kInf, "Maps: radius r of the spheres at the upper face's nodes",
+                false, "a fifth of the lower map's smaller spacing"),
+              &PredictOptions::sphere_radius),
+          bind<PredictOptions>(
+              F("map_work_limit", "s", 0, Lo::Closed, kInf,
+                "Maps: refuse a job whose estimated CPU time exceeds this (0: no limit)"),
+              [](PredictOptions & o) -> auto& { return o.map_work_limit; }),
       },
       PredictOptions{});
   return t;
@@ -107,8 +113,7 @@ const std::vector<Field>& predict_settings() {
 
 Result<PredictOptions> make_predict_options(const ValueSet& si, PredictOptions base) {
   ValueSet own, conditioning;
-  for (const auto& [name, value] : si)
-    (find_field(conditioning_settings(), name) ? conditioning : own)[name] = value;
+  for (const auto& [name, value] : si) (find_field(conditioning_settings(), name) ? conditioning : own)[name] = value;
   auto c = make_conditioning_settings(conditioning);
   if (!c) return with_prefix("predict: ", c.error());
   if (!conditioning.empty()) {
