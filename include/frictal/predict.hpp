@@ -113,9 +113,10 @@ struct PredictOptions {
   ElasticMaterial lower_material;
   std::optional<ElasticMaterial> upper_material;
   bool rigid_upper = false;
-  /// Maps: called after each finished drop with (done, total), from the worker threads (one
-  /// call at a time); the front ends draw a progress line with it. Empty: none.
-  std::function<void(std::size_t, std::size_t)> progress;
+  /// Maps: called as the drops go on (DropProgress: drops done, the tilt the drops under way have
+  /// reached), from the worker threads (one call at a time); the front ends draw a progress line
+  /// with it. Empty: none.
+  DropProgressFn progress;
 };
 
 /// The prediction of one pair, one direction.
