@@ -35,12 +35,13 @@ Result<StatedTestFit> stated_test(const Profile& lower, double upper_len, double
                                   double block_length) {
   if (lower.x.size() < 2) return make_error("the stated test: expected a lower profile of at least two points");
   if (!std::isfinite(runaway_distance) || runaway_distance < 0)
-    return make_error(fmt::format("run-away distance {:.6g} m: expected a length > 0 (0: the default)",
-                                  runaway_distance));
+    return make_error(
+        fmt::format("run-away distance {:.6g} m: expected a length > 0 (0: the default)", runaway_distance));
   if (!std::isfinite(block_length))
-    return make_error(fmt::format("block length {:.6g} m: expected a length > 0 (0: the default; < 0: the whole upper "
-                                  "profile)",
-                                  block_length));
+    return make_error(
+        fmt::format("block length {:.6g} m: expected a length > 0 (0: the default; < 0: the whole upper "
+                    "profile)",
+                    block_length));
   StatedTestFit f;
   const double lower_len = lower.x.back() - lower.x.front();
   const bool given_d = runaway_distance > 0, given_lb = block_length > 0;
