@@ -54,8 +54,8 @@ struct PredictOptions {
   /// Profiles: the block's length L_b, the piece of the upper surface (its middle) that slides
   /// over the lower one; drops over every offset at which it lies wholly over the lower scan
   /// (unit: m). 0: the default, kBlockPerRunaway d. < 0: the whole upper profile, dropped over
-  /// the first half of the lower one (partly overhanging its end: the blocks of `frictal tilt`
-  /// on files and of `frictal signature`'s hold analysis). A periodic pair (`period`) slides the
+  /// the first half of the lower one (partly overhanging its end: the blocks of `frictal tilt
+  /// --block-length whole` and of `frictal signature`'s hold analysis). A periodic pair (`period`) slides the
   /// whole upper profile, as the paper's blocks: 0 only. Maps: 0 only (the whole upper map).
   double block_length = 0;
   /// Form removal before the prediction; nullopt: a line for profiles (the mean for periodic
