@@ -41,7 +41,8 @@ def run(cli, args, timeout):
         return None, f"over {timeout:g} s", timeout
     wall = time.monotonic() - t0
     if r.returncode != 0:
-        return None, r.stderr.strip().splitlines()[-1] if r.stderr.strip() else f"exit {r.returncode}", wall
+        msg = r.stderr.strip().splitlines()[-1] if r.stderr.strip() else f"exit {r.returncode}"
+        return None, msg.split(" (")[0].split(": expected")[0].removeprefix("frictal: "), wall
     return json.loads(r.stdout), "", wall
 
 
@@ -89,7 +90,8 @@ def main():
     head = "| file | L_b (m) | d (m) | "
     if a.before:
         head += "before: tilt | before: tilt model q05 / median / q95 | "
-    head += "tilt | tilt model q05 / median / q95 | predict median | predict 5-95 % | inside | tilt warnings | wall (s) |"
+    head += "tilt | tilt model q05 / median / q95 | predict median | predict 5-95 % | inside | tilt warnings | wall (s)"
+    head += " before / after |" if a.before else " |"
     out += [head, "|" + "---|" * (head.count("|") - 1)]
     for r in rows:
         t, p = r["tilt"], r["predict"]
@@ -124,7 +126,8 @@ def main():
                                                else "no, NOT warned"))
         else:
             cells.append("-")
-        cells += [", ".join(codes(t)) if t else "-", f"{r['wall']:.2g}"]
+        cells += [", ".join(codes(t)) if t else "-",
+                  (f"{r['before_wall']:.2g} / " if a.before else "") + f"{r['wall']:.2g}"]
         out.append("| " + " | ".join(cells) + " |")
     text = "\n".join(out) + "\n"
     if a.out:

@@ -245,6 +245,16 @@ TEST(CliTiltScale, AnAngleOutsideTheRigidBracketIsNotValidAndSaysWhy) {
   const std::string why = j["validity"].get<std::string>();
   for (const char* option : {"--protocol quasi-static", "--hold-rotation", "--normal-stiffness"})
     EXPECT_NE(why.find(option), std::string::npos) << why;
+  // Below the model's 5-95 % over drops too (the reading 0 deg, the range's low end above it): the
+  // warning outside-spread says so and why.
+  ASSERT_GT(j["predicted_spread_q05_deg"].get<double>(), phi + 0.1);
+  bool outside = false;
+  for (const auto& w : j["warnings"])
+    if (w["code"] == "outside-spread") {
+      outside = true;
+      EXPECT_NE(w["message"].get<std::string>().find("not valid"), std::string::npos) << w["message"];
+    }
+  EXPECT_TRUE(outside) << j["warnings"].dump();
   // The text says so on the friction angle's line, and names the bound as a bound.
   const CliRun t = run_cli("tilt --lower " + kDektak + " --crop 0.5mm,0.55mm --quiet" + kPaper, 120);
   ASSERT_EQ(t.code, 0) << t.err;
