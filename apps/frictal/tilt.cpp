@@ -323,8 +323,9 @@ std::function<int()> setup(CLI::App& app) {
   auto o = std::make_shared<TiltOptions>();
   add_generator_subcommands(app, o->gen, true, " (both blocks)");
   app.add_option("--lower", o->lower_file,
-                 "Lower surface file (x_m,z_m), as measured; - reads standard input. The defaults not given are "
-                 "scaled to the surfaces' length and point spacing, and a measured pair is loaded quasi-statically "
+                 "Lower surface file (x_m,z_m), as measured; - reads standard input. A measured pair runs the test "
+                 "that `frictal predict` states (the middle piece of the upper scan as the block: --block-length), "
+                 "the defaults not given scaled to the block's length and point spacing, loaded quasi-statically "
                  "with the rotation held (--protocol quasi-static --hold-rotation; docs/dem.md sec. 5)");
   app.add_option("--upper", o->upper_file, "Upper surface file, as measured (default: the lower one)");
   // The stated test's block, as `frictal predict --block-length` takes it.
