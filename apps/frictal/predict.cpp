@@ -162,7 +162,7 @@ std::function<int()> setup(CLI::App& app) {
       "--block-length", a->block,
       fmt::format("The test: length of the upper block, the middle piece of UPPER that slides over LOWER "
                   "(drops wherever it lies wholly on LOWER), a length such as 0.2mm (no unit: m); whole: all of "
-                  "UPPER, dropped over the first half of LOWER (the blocks of `frictal tilt` on files). "
+                  "UPPER, dropped over the first half of LOWER (`frictal tilt --block-length whole`). "
                   "Default: {:g} run-away distances (periodic pairs: the whole profile)",
                   kBlockPerRunaway));
   // --runaway-distance (d of the stated test) and --period: the tilt table's fields (one

@@ -168,7 +168,7 @@ Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& lower, const Map& 
                                                    double resolution = kArealHoldResolution, double stationary = 1e-7);
 
 /// The default run-away distance D of the map model and of the simulation for sliding along
-/// `direction` (unit: rad) on the lower map `lower`: kRunawayPerSlopeCorrelation (analysis.hpp)
+/// `direction` (unit: rad) on the lower map `lower`: kRunawayPerSlopeCorrelation (hold.hpp)
 /// times the median slope correlation length of up to 32 evenly spaced lines of the map along the
 /// grid axis nearer to the direction (each line's longest run of valid points, at least 16; never
 /// less than the spacing), or that many spacings where no line has one. A length of the surface,

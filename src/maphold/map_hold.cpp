@@ -17,6 +17,7 @@
 #include "areal/areal_grid.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
+#include "frictal/hold.hpp"
 #include "frictal/map_hold.hpp"
 #include "map_hold_geometry.hpp"
 #include "util/parallel.hpp"

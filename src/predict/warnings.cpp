@@ -85,6 +85,11 @@ const std::vector<WarningCode>& warning_codes() {
        false, ""},
       {"few-drops", "the distribution rests on fewer than 3 basins (profiles) or drops: the spread is not resolved",
        false, ""},
+      {"outside-spread",
+       "tilt: the friction angle of one run lies outside the rigid model's 5-95 % range over drops for the same "
+       "test (frictal predict's, on measured profiles): the message says why (the block rested in a basin that "
+       "fewer than 5 % of drops reach, with its own hold angle; or the run is not valid)",
+       false, ""},
       {"held-to-max-tilt",
        "some drops held the block up to the model's largest tilt (45 deg): their hold angle is a lower bound", false,
        ""},
