@@ -16,6 +16,11 @@ namespace frictal {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// The refinement of the loaded lift's integral where the top contact passes to another asperity:
+// at most this many halvings of an interval between two of the rigid lift's vertices, none shorter
+// than the lower profile's mean spacing over kRefineFloorPerSpacing.
+constexpr int kRefineDepth = 4;
+constexpr std::size_t kRefineFloorPerSpacing = 64;
 
 // A surface's vertices with the first and second derivatives of the quadratic through each
 // vertex and its two neighbours (ends: the end edge's slope and the neighbour's curvature; a
@@ -173,7 +178,7 @@ class Pair {
   // The block's state at offset s for the contacts `c` (their touch heights, slopes, radii set)
   // under load W: the height z, and each contact's interference and force.
   struct Balance {
-    double height = 0, energy = 0, horizontal = 0;
+    double height = 0, energy = 0, horizontal = 0, vertical = 0;
   };
   Balance balance(std::vector<HertzContact>& c, double W) const {
     Balance r;
@@ -206,6 +211,7 @@ class Pair {
       k.force = vertical / cs;
       r.energy += 0.4 * vertical * v;
       r.horizontal += k.force * std::sin(k.slope);
+      r.vertical += vertical;
     }
     return r;
   }
@@ -306,8 +312,9 @@ class Pair {
       // S'(t) = A t^2 + B t + C on t in [0, h].
       const double A = (M1 - M0) / (2 * h), B = M0, C = -M0 * h / 2 + (y1 - y0) / h - (M1 - M0) * h / 6;
       auto emit = [&](double t, double curvature_d2) {
-        const double x = xs_[k] + t;
-        if (x < xl || x > xr || (!out.empty() && out.back().x == x)) return;
+        const double x = t >= h ? xs_[k + 1] : xs_[k] + t;
+        // A maximum at a knot is a root of both pieces beside it (each within rounding): once.
+        if (x < xl || x > xr || (!out.empty() && std::abs(out.back().x - x) <= 1e-9 * h)) return;
         const double d = value(t);
         if (d >= threshold) {
           out.push_back(contact_at(s, x, d, curvature_d2, saddle));
@@ -331,8 +338,9 @@ class Pair {
       }
       if (nr == 2 && roots[0] > roots[1]) std::swap(roots[0], roots[1]);
       for (int r = 0; r < nr; ++r) {
-        const double t = roots[r];
-        if (!(t > 0 && t <= h)) continue;
+        // A root at a knot may fall a rounding error outside both pieces beside it.
+        const double t = std::clamp(roots[r], 0.0, h);
+        if (!(roots[r] >= -1e-9 * h && roots[r] <= h * (1 + 1e-9))) continue;
         const double d2 = M0 + (M1 - M0) * t / h;  // S''(t)
         if (2 * A * t + B < 0) emit(t, d2);        // a maximum: S' falls through 0
       }
@@ -445,8 +453,9 @@ Result<LoadedState> loaded_state(const Profile& lower, const Profile& upper, dou
   if (c.empty()) return make_error(fmt::format("offset {:.6g} m: no contact found", offset));
   const Pair::Balance bal = pair.balance(c, load);
   st.height = bal.height;
-  st.loaded_lift = bal.height + bal.energy / load;
-  st.effective_slope = bal.horizontal / load;
+  st.energy = bal.energy;
+  st.energy_lift = bal.height + bal.energy / load;
+  st.effective_slope = bal.horizontal / bal.vertical;
   st.contacts = std::move(c);
   return st;
 }
@@ -465,57 +474,163 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
   }
   const std::size_t nl = o.loads.size();
   const double wmax = *std::max_element(o.loads.begin(), o.loads.end());
-  LoadedLift out;
-  out.loads = o.loads;
-  out.curves.assign(nl, LiftCurve{rigid.offset, std::vector<double>(n), 0});
-  out.slopes.assign(nl, std::vector<double>(n));
+  const double spacing = (lower.x.back() - lower.x.front()) / double(lower.x.size() - 1);
+  // The top contact at one offset: tau_0 just before and just after it (they differ where two
+  // asperities are the top at once, the rigid lift's kink on this offset: the one rising slower is
+  // the top before, the faster after), and its abscissa (to tell when it passes to another one).
+  struct Top {
+    double offset = 0, x = 0, before = 0, after = 0;
+  };
   // Per vertex and load: the diagnostics' terms (weighted by the vertex's share of the offsets).
   struct Terms {
     double contacts = 0, approach = 0, ratio = 0, deep = 0, merged = 0, slope2 = 0;
   };
-  std::vector<std::vector<Terms>> terms(nl, std::vector<Terms>(n));
-  std::vector<std::size_t> found(n, 0);
+  // The contacts at s (hint: a height a little above h(s)), the top contact, and per load the
+  // force-resolved slope tau_W into `slope` (nl values) and the diagnostics' terms (if asked).
+  auto evaluate = [&](double s, double hint, std::vector<HertzContact>& c, Top& top, double* slope,
+                      Terms* terms) -> bool {
+    const double h = collect(pair, s, hint, o.contact_modulus, wmax, c);
+    if (c.empty()) return false;
+    const HertzContact* t = &c.front();
+    for (const HertzContact& k : c)
+      if (k.touch_height > t->touch_height) t = &k;
+    top.offset = s;
+    top.x = t->x;
+    top.before = top.after = std::tan(t->slope);
+    for (const HertzContact& k : c)
+      if (k.touch_height >= t->touch_height - 1e-12 * pair.scale()) {
+        top.before = std::min(top.before, std::tan(k.slope));
+        top.after = std::max(top.after, std::tan(k.slope));
+      }
+    for (std::size_t l = 0; l < nl; ++l) {
+      const double W = o.loads[l];
+      const Pair::Balance bal = pair.balance(c, W);
+      slope[l] = bal.horizontal / bal.vertical;
+      if (!terms) continue;
+      Terms& m = terms[l];
+      m.approach = h - bal.height;
+      // A loaded contact merges with a neighbouring asperity (the next local maximum of d_s on
+      // either side, loaded or not) where the block is below the saddle between them or its
+      // Hertz half-width a = sqrt(R delta) reaches it: the patch is then not one sphere's.
+      double merged = 0;
+      for (std::size_t q = 0; q < c.size(); ++q) {
+        const HertzContact& k = c[q];
+        if (!(k.force > 0)) continue;
+        m.contacts += 1;
+        m.ratio = std::max(m.ratio, k.interference / k.radius);
+        m.slope2 += k.force * std::tan(k.slope) * std::tan(k.slope) / W;
+        const double a = std::sqrt(k.radius * k.interference);
+        const bool left = q > 0 && (k.saddle_left > bal.height || a >= k.x - c[q - 1].x);
+        const bool right = q + 1 < c.size() && (c[q + 1].saddle_left > bal.height || a >= c[q + 1].x - k.x);
+        if (left || right) merged += k.force * std::cos(k.slope);
+      }
+      m.deep = m.ratio > 0.1 ? 1 : 0;
+      m.merged = std::min(merged / std::max(W, 1e-300), 1.0);
+    }
+    return true;
+  };
+  // The top contact passed to another asperity between two offsets: it moved by more than the
+  // offset and half a spacing (a contact's abscissa follows the lower or the upper surface, moving
+  // by 0 or by the offset). Only there does the integrand jump: a contact that starts or stops
+  // carrying load does so with a force growing as v^(3/2), continuously.
+  auto passed = [&](const Top& a, const Top& b) {
+    return std::abs(b.x - a.x) > std::abs(b.offset - a.offset) + 0.5 * spacing;
+  };
   const unsigned T = util::thread_count(o.threads, n);
   std::vector<std::string> failures(T);
+  // Pass 1: the rigid lift's vertices.
+  std::vector<Top> top(n);
+  std::vector<double> slope(n * nl);
+  std::vector<Terms> terms(n * nl);
+  std::vector<std::size_t> found(n, 0);
   util::parallel_chunks(n, T, [&](unsigned chunk, std::size_t k0, std::size_t k1) {
     std::vector<HertzContact> c;
     for (std::size_t k = k0; k < k1; ++k) {
-      const double s = rigid.offset[k];
-      const double h = collect(pair, s, rigid.lift[k], o.contact_modulus, wmax, c);
-      if (c.empty()) {
-        failures[chunk] = fmt::format("offset {:.6g} m: no contact found", s);
+      if (!evaluate(rigid.offset[k], rigid.lift[k], c, top[k], &slope[k * nl], &terms[k * nl])) {
+        failures[chunk] = fmt::format("offset {:.6g} m: no contact found", rigid.offset[k]);
         return;
       }
       found[k] = c.size();
-      for (std::size_t l = 0; l < nl; ++l) {
-        const double W = o.loads[l];
-        const Pair::Balance bal = pair.balance(c, W);
-        out.curves[l].lift[k] = rigid.lift[k] + (bal.height - h) + bal.energy / W;
-        out.slopes[l][k] = bal.horizontal / W;
-        Terms& t = terms[l][k];
-        t.approach = h - bal.height;
-        // A loaded contact merges with a neighbouring asperity (the next local maximum of d_s on
-        // either side, loaded or not) where the block is below the saddle between them or its
-        // Hertz half-width a = sqrt(R delta) reaches it: the patch is then not one sphere's.
-        double merged = 0;
-        for (std::size_t q = 0; q < c.size(); ++q) {
-          const HertzContact& k = c[q];
-          if (!(k.force > 0)) continue;
-          t.contacts += 1;
-          t.ratio = std::max(t.ratio, k.interference / k.radius);
-          t.slope2 += k.force * std::tan(k.slope) * std::tan(k.slope) / W;
-          const double a = std::sqrt(k.radius * k.interference);
-          const bool left = q > 0 && (k.saddle_left > bal.height || a >= k.x - c[q - 1].x);
-          const bool right = q + 1 < c.size() && (c[q + 1].saddle_left > bal.height || a >= c[q + 1].x - k.x);
-          if (left || right) merged += k.force * std::cos(k.slope);
-        }
-        t.deep = t.ratio > 0.1 ? 1 : 0;
-        t.merged = std::min(merged / std::max(W, 1e-300), 1.0);
-      }
     }
   });
   for (const std::string& f : failures)
     if (!f.empty()) return make_error("the loaded lift: " + f);
+  // Pass 2: in each interval where the top contact passes to another asperity, samples at the
+  // midpoint, and in the half that still holds the passage again, down to kRefineDepth halvings
+  // or a kRefineFloorPerSpacing-th of the spacing: the integrand jumps there, and the trapezoids
+  // want the jump's place.
+  struct Inner {
+    Top top;
+    std::vector<double> slope;
+  };
+  const double floor_step = spacing / double(kRefineFloorPerSpacing);
+  std::vector<std::vector<std::pair<std::size_t, std::vector<Inner>>>> inner(T);
+  util::parallel_chunks(n - 1, T, [&](unsigned chunk, std::size_t k0, std::size_t k1) {
+    std::vector<HertzContact> c;
+    for (std::size_t k = k0; k < k1; ++k) {
+      if (!passed(top[k], top[k + 1])) continue;
+      const double s0 = rigid.offset[k], s1 = rigid.offset[k + 1], h0 = rigid.lift[k], h1 = rigid.lift[k + 1];
+      std::vector<Inner> out;
+      // Depth first, left to right: the samples come out in offset order. a and b are the pass's
+      // vertices or the callers' locals, never elements of `out`.
+      auto refine = [&](auto&& self, const Top& a, const Top& b, int depth) -> bool {
+        if (depth >= kRefineDepth || b.offset - a.offset < 2 * floor_step || !passed(a, b)) return true;
+        Inner m;
+        m.slope.resize(nl);
+        const double sm = 0.5 * (a.offset + b.offset);
+        if (!evaluate(sm, h0 + (h1 - h0) * (sm - s0) / (s1 - s0), c, m.top, m.slope.data(), nullptr)) {
+          failures[chunk] = fmt::format("offset {:.6g} m: no contact found", sm);
+          return false;
+        }
+        const Top mt = m.top;
+        if (!self(self, a, mt, depth + 1)) return false;
+        out.push_back(std::move(m));
+        return self(self, mt, b, depth + 1);
+      };
+      if (!refine(refine, top[k], top[k + 1], 0)) return;
+      if (!out.empty()) inner[chunk].emplace_back(k, std::move(out));
+    }
+  });
+  for (const std::string& f : failures)
+    if (!f.empty()) return make_error("the loaded lift: " + f);
+  // Pass 3: the trapezoid integral of tau_W - tau_0 from the first vertex, added to the rigid lift
+  // (linear between its vertices, as the hold analysis reads it).
+  std::size_t total = n;
+  for (const auto& ch : inner)
+    for (const auto& [k, v] : ch) total += v.size();
+  LoadedLift out;
+  out.loads = o.loads;
+  out.refined = total - n;
+  out.curves.assign(nl, LiftCurve{});
+  out.slopes.assign(nl, {});
+  for (std::size_t l = 0; l < nl; ++l) {
+    out.curves[l].offset.reserve(total), out.curves[l].lift.reserve(total), out.slopes[l].reserve(total);
+  }
+  std::vector<double> integral(nl, 0.0);
+  const Top* prev_top = nullptr;
+  const double* prev_slope = nullptr;
+  auto push = [&](const Top& q, const double* tau, double h) {
+    for (std::size_t l = 0; l < nl; ++l) {
+      if (prev_top)
+        integral[l] += 0.5 * ((prev_slope[l] - prev_top->after) + (tau[l] - q.before)) * (q.offset - prev_top->offset);
+      out.curves[l].offset.push_back(q.offset);
+      out.curves[l].lift.push_back(h + integral[l]);
+      out.slopes[l].push_back(tau[l]);
+    }
+    prev_top = &q, prev_slope = tau;
+  };
+  std::size_t chunk = 0, next = 0;  // the next interval with inner samples: inner[chunk][next]
+  for (std::size_t k = 0; k < n; ++k) {
+    push(top[k], &slope[k * nl], rigid.lift[k]);
+    while (chunk < inner.size() && next >= inner[chunk].size()) ++chunk, next = 0;
+    if (chunk < inner.size() && inner[chunk][next].first == k) {
+      const double s0 = rigid.offset[k], s1 = rigid.offset[k + 1];
+      for (const Inner& q : inner[chunk][next].second)
+        push(q.top, q.slope.data(),
+             rigid.lift[k] + (rigid.lift[k + 1] - rigid.lift[k]) * (q.top.offset - s0) / (s1 - s0));
+      ++next;
+    }
+  }
   for (std::size_t k = 0; k < n; ++k) out.candidates += found[k];
   const double span = rigid.offset.back() - rigid.offset.front();
   for (std::size_t l = 0; l < nl; ++l) {
@@ -524,7 +639,7 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
     double slope2 = 0;
     for (std::size_t k = 0; k < n; ++k) {
       const double w = 0.5 * (rigid.offset[std::min(k + 1, n - 1)] - rigid.offset[k == 0 ? 0 : k - 1]) / span;
-      const Terms& t = terms[l][k];
+      const Terms& t = terms[k * nl + l];
       d.mean_contacts += w * t.contacts;
       d.mean_approach += w * t.approach;
       d.max_interference_ratio = std::max(d.max_interference_ratio, t.ratio);
