@@ -16,11 +16,11 @@ namespace frictal {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-// The refinement of the loaded lift's integral where the top contact passes to another asperity:
-// at most this many halvings of an interval between two of the rigid lift's vertices, none shorter
-// than the lower profile's mean spacing over kRefineFloorPerSpacing.
-constexpr int kRefineDepth = 4;
-constexpr std::size_t kRefineFloorPerSpacing = 64;
+// The refinement of the loaded lift's integral (loaded_lift, pass 2): at most this many halvings
+// of a piece of the rigid lift, until the excess slope between two samples is straight to this
+// (unitless; 1e-4 in slope is 0.006 deg of hold angle).
+constexpr int kRefineDepth = 24;
+constexpr double kRefineSlope = 1e-3;
 
 // A surface's vertices with the first and second derivatives of the quadratic through each
 // vertex and its two neighbours (ends: the end edge's slope and the neighbour's curvature; a
@@ -474,38 +474,39 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
   }
   const std::size_t nl = o.loads.size();
   const double wmax = *std::max_element(o.loads.begin(), o.loads.end());
-  const double spacing = (lower.x.back() - lower.x.front()) / double(lower.x.size() - 1);
-  // The top contact at one offset: tau_0 just before and just after it (they differ where two
-  // asperities are the top at once, the rigid lift's kink on this offset: the one rising slower is
-  // the top before, the faster after), and its abscissa (to tell when it passes to another one).
-  struct Top {
-    double offset = 0, x = 0, before = 0, after = 0;
-  };
   // Per vertex and load: the diagnostics' terms (weighted by the vertex's share of the offsets).
   struct Terms {
     double contacts = 0, approach = 0, ratio = 0, deep = 0, merged = 0, slope2 = 0;
   };
-  // The contacts at s (hint: a height a little above h(s)), the top contact, and per load the
-  // force-resolved slope tau_W into `slope` (nl values) and the diagnostics' terms (if asked).
-  auto evaluate = [&](double s, double hint, std::vector<HertzContact>& c, Top& top, double* slope,
-                      Terms* terms) -> bool {
+  // The contacts at s (hint: a height a little above h(s)), the top contact, and per load (nl
+  // values each) the force-resolved slope tau_W into `slope` and the loaded lift's excess slope
+  // over the rigid lift's on the piece before s (slope hb) into `before`, on the piece after it
+  // (ha) into `after`, and the diagnostics' terms (if asked). The excess: the lift's slope is the
+  // force-weighted mean of the loaded contacts' slopes, with the slope of the contact that the
+  // rigid lift follows (the loaded one whose slope is nearest the piece's) read from the rigid
+  // lift, exact on the polylines: sum_(c != c*) w_c (tan theta_c - h'), w_c the contacts' shares
+  // of the vertical force. One loaded contact: no excess, the rigid slope.
+  auto evaluate = [&](double s, double hint, double hb, double ha, std::vector<HertzContact>& c, double* slope,
+                      double* before, double* after, Terms* terms) -> bool {
     const double h = collect(pair, s, hint, o.contact_modulus, wmax, c);
     if (c.empty()) return false;
-    const HertzContact* t = &c.front();
-    for (const HertzContact& k : c)
-      if (k.touch_height > t->touch_height) t = &k;
-    top.offset = s;
-    top.x = t->x;
-    top.before = top.after = std::tan(t->slope);
-    for (const HertzContact& k : c)
-      if (k.touch_height >= t->touch_height - 1e-12 * pair.scale()) {
-        top.before = std::min(top.before, std::tan(k.slope));
-        top.after = std::max(top.after, std::tan(k.slope));
-      }
+    auto excess = [&](double hp, double vertical) {
+      std::size_t follow = c.size();
+      for (std::size_t q = 0; q < c.size(); ++q)
+        if (c[q].force > 0 &&
+            (follow == c.size() || std::abs(std::tan(c[q].slope) - hp) < std::abs(std::tan(c[follow].slope) - hp)))
+          follow = q;
+      double e = 0;
+      for (std::size_t q = 0; q < c.size(); ++q)
+        if (q != follow && c[q].force > 0) e += c[q].force * (std::sin(c[q].slope) - std::cos(c[q].slope) * hp);
+      return e / vertical;
+    };
     for (std::size_t l = 0; l < nl; ++l) {
       const double W = o.loads[l];
       const Pair::Balance bal = pair.balance(c, W);
       slope[l] = bal.horizontal / bal.vertical;
+      before[l] = excess(hb, bal.vertical);
+      after[l] = hb == ha ? before[l] : excess(ha, bal.vertical);
       if (!terms) continue;
       Terms& m = terms[l];
       m.approach = h - bal.height;
@@ -529,24 +530,22 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
     }
     return true;
   };
-  // The top contact passed to another asperity between two offsets: it moved by more than the
-  // offset and half a spacing (a contact's abscissa follows the lower or the upper surface, moving
-  // by 0 or by the offset). Only there does the integrand jump: a contact that starts or stops
-  // carrying load does so with a force growing as v^(3/2), continuously.
-  auto passed = [&](const Top& a, const Top& b) {
-    return std::abs(b.x - a.x) > std::abs(b.offset - a.offset) + 0.5 * spacing;
-  };
   const unsigned T = util::thread_count(o.threads, n);
   std::vector<std::string> failures(T);
   // Pass 1: the rigid lift's vertices.
-  std::vector<Top> top(n);
-  std::vector<double> slope(n * nl);
+  std::vector<double> slope(n * nl), before(n * nl), after(n * nl);
+  // The rigid lift's slope on piece k, [s_k, s_(k+1)] (k < n - 1).
+  auto piece = [&](std::size_t k) {
+    return (rigid.lift[k + 1] - rigid.lift[k]) / (rigid.offset[k + 1] - rigid.offset[k]);
+  };
   std::vector<Terms> terms(n * nl);
   std::vector<std::size_t> found(n, 0);
   util::parallel_chunks(n, T, [&](unsigned chunk, std::size_t k0, std::size_t k1) {
     std::vector<HertzContact> c;
     for (std::size_t k = k0; k < k1; ++k) {
-      if (!evaluate(rigid.offset[k], rigid.lift[k], c, top[k], &slope[k * nl], &terms[k * nl])) {
+      const double hb = piece(k == 0 ? 0 : k - 1), ha = piece(k + 1 == n ? n - 2 : k);
+      if (!evaluate(rigid.offset[k], rigid.lift[k], hb, ha, c, &slope[k * nl], &before[k * nl], &after[k * nl],
+                    &terms[k * nl])) {
         failures[chunk] = fmt::format("offset {:.6g} m: no contact found", rigid.offset[k]);
         return;
       }
@@ -555,46 +554,57 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
   });
   for (const std::string& f : failures)
     if (!f.empty()) return make_error("the loaded lift: " + f);
-  // Pass 2: in each interval where the top contact passes to another asperity, samples at the
-  // midpoint, and in the half that still holds the passage again, down to kRefineDepth halvings
-  // or a kRefineFloorPerSpacing-th of the spacing: the integrand jumps there, and the trapezoids
-  // want the jump's place.
+  // Pass 2: the excess is nonzero only where several contacts carry the load, and it can fall
+  // from its value at a vertex to 0 within the approach of a kink of the rigid lift, far inside
+  // the piece: the trapezoids would spread it over half the piece. In each piece where a load's
+  // excess differs between the ends by more than kRefineSlope, a sample at the midpoint; where it
+  // misses the mean of the ends by more than that, both halves again, down to kRefineDepth
+  // halvings. The pieces' slopes are then the mean excess to about kRefineSlope.
   struct Inner {
-    Top top;
-    std::vector<double> slope;
+    double offset = 0;
+    std::vector<double> slope, excess;
   };
-  const double floor_step = spacing / double(kRefineFloorPerSpacing);
+  auto differ = [&](const double* ea, const double* eb) {
+    for (std::size_t l = 0; l < nl; ++l)
+      if (std::abs(ea[l] - eb[l]) > kRefineSlope) return true;
+    return false;
+  };
   std::vector<std::vector<std::pair<std::size_t, std::vector<Inner>>>> inner(T);
   util::parallel_chunks(n - 1, T, [&](unsigned chunk, std::size_t k0, std::size_t k1) {
     std::vector<HertzContact> c;
     for (std::size_t k = k0; k < k1; ++k) {
-      if (!passed(top[k], top[k + 1])) continue;
-      const double s0 = rigid.offset[k], s1 = rigid.offset[k + 1], h0 = rigid.lift[k], h1 = rigid.lift[k + 1];
+      if (!differ(&after[k * nl], &before[(k + 1) * nl])) continue;
+      const double s0 = rigid.offset[k], h0 = rigid.lift[k], hp = piece(k);
       std::vector<Inner> out;
-      // Depth first, left to right: the samples come out in offset order. a and b are the pass's
-      // vertices or the callers' locals, never elements of `out`.
-      auto refine = [&](auto&& self, const Top& a, const Top& b, int depth) -> bool {
-        if (depth >= kRefineDepth || b.offset - a.offset < 2 * floor_step || !passed(a, b)) return true;
+      // Depth first, left to right: the samples come out in offset order. The excesses ea, eb
+      // are the pass's vertices' or the callers' locals', never elements of `out`.
+      auto refine = [&](auto&& self, double a, const double* ea, double b, const double* eb, int depth) -> bool {
+        if (depth >= kRefineDepth || !differ(ea, eb)) return true;
         Inner m;
-        m.slope.resize(nl);
-        const double sm = 0.5 * (a.offset + b.offset);
-        if (!evaluate(sm, h0 + (h1 - h0) * (sm - s0) / (s1 - s0), c, m.top, m.slope.data(), nullptr)) {
-          failures[chunk] = fmt::format("offset {:.6g} m: no contact found", sm);
+        m.offset = 0.5 * (a + b);
+        m.slope.resize(nl), m.excess.resize(nl);
+        if (!evaluate(m.offset, h0 + hp * (m.offset - s0), hp, hp, c, m.slope.data(), m.excess.data(), m.excess.data(),
+                      nullptr)) {
+          failures[chunk] = fmt::format("offset {:.6g} m: no contact found", m.offset);
           return false;
         }
-        const Top mt = m.top;
-        if (!self(self, a, mt, depth + 1)) return false;
+        bool straight = true;
+        for (std::size_t l = 0; l < nl; ++l)
+          straight = straight && std::abs(m.excess[l] - 0.5 * (ea[l] + eb[l])) <= kRefineSlope;
+        const std::vector<double> em = m.excess;
+        if (!straight && !self(self, a, ea, m.offset, em.data(), depth + 1)) return false;
         out.push_back(std::move(m));
-        return self(self, mt, b, depth + 1);
+        return straight || self(self, out.back().offset, em.data(), b, eb, depth + 1);
       };
-      if (!refine(refine, top[k], top[k + 1], 0)) return;
+      if (!refine(refine, s0, &after[k * nl], rigid.offset[k + 1], &before[(k + 1) * nl], 0)) return;
       if (!out.empty()) inner[chunk].emplace_back(k, std::move(out));
     }
   });
   for (const std::string& f : failures)
     if (!f.empty()) return make_error("the loaded lift: " + f);
-  // Pass 3: the trapezoid integral of tau_W - tau_0 from the first vertex, added to the rigid lift
-  // (linear between its vertices, as the hold analysis reads it).
+  // Pass 3: the excess slopes integrated by trapezoids (on each piece its value at the piece's
+  // ends: `after` at its first vertex, `before` at its last) and added to the rigid lift (linear
+  // between its vertices, as the hold analysis reads it).
   std::size_t total = n;
   for (const auto& ch : inner)
     for (const auto& [k, v] : ch) total += v.size();
@@ -607,27 +617,28 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
     out.curves[l].offset.reserve(total), out.curves[l].lift.reserve(total), out.slopes[l].reserve(total);
   }
   std::vector<double> integral(nl, 0.0);
-  const Top* prev_top = nullptr;
-  const double* prev_slope = nullptr;
-  auto push = [&](const Top& q, const double* tau, double h) {
+  double prev_offset = 0;
+  const double* prev_excess = nullptr;
+  // `in`: the excess on the piece that ends here; `on`: on the piece that starts here.
+  auto push = [&](double offset, const double* tau, const double* in, const double* on, double h) {
     for (std::size_t l = 0; l < nl; ++l) {
-      if (prev_top)
-        integral[l] += 0.5 * ((prev_slope[l] - prev_top->after) + (tau[l] - q.before)) * (q.offset - prev_top->offset);
-      out.curves[l].offset.push_back(q.offset);
+      if (prev_excess) integral[l] += 0.5 * (prev_excess[l] + in[l]) * (offset - prev_offset);
+      out.curves[l].offset.push_back(offset);
       out.curves[l].lift.push_back(h + integral[l]);
       out.slopes[l].push_back(tau[l]);
     }
-    prev_top = &q, prev_slope = tau;
+    prev_offset = offset, prev_excess = on;
   };
   std::size_t chunk = 0, next = 0;  // the next interval with inner samples: inner[chunk][next]
   for (std::size_t k = 0; k < n; ++k) {
-    push(top[k], &slope[k * nl], rigid.lift[k]);
+    push(rigid.offset[k], &slope[k * nl], &before[k * nl], &after[k * nl], rigid.lift[k]);
+    if (k + 1 == n) break;
     while (chunk < inner.size() && next >= inner[chunk].size()) ++chunk, next = 0;
     if (chunk < inner.size() && inner[chunk][next].first == k) {
-      const double s0 = rigid.offset[k], s1 = rigid.offset[k + 1];
+      const double hp = piece(k);
       for (const Inner& q : inner[chunk][next].second)
-        push(q.top, q.slope.data(),
-             rigid.lift[k] + (rigid.lift[k + 1] - rigid.lift[k]) * (q.top.offset - s0) / (s1 - s0));
+        push(q.offset, q.slope.data(), q.excess.data(), q.excess.data(),
+             rigid.lift[k] + hp * (q.offset - rigid.offset[k]));
       ++next;
     }
   }
