@@ -20,12 +20,12 @@
 // sin beta) = 0 (the contact forces along their normals and the weight), i.e. tan beta = tau_W(s) =
 // sum F_c sin theta_c / sum F_c cos theta_c, the force-resolved contact slope; it is held where
 // tau_W just ahead is at least tan beta, as a rigid block is held by the slope of the rigid lift.
-// The loaded lift (the force lift) is therefore the lift whose slope is tau_W: the rigid lift plus
-// the integral of tau_W - tau_0 over the offsets, tau_0 = tan theta of the top contact (the one
-// contact that carries a vanishing load, whose slope is the rigid lift's),
-//   H_W(s) = h(s) + int_(s_0)^s (tau_W - tau_0) ds',
-// which tends to h(s) as W -> 0 and whose every slope is a force-weighted mean of contact slopes
-// (corrected by the rigid lift's own slope where the top contact's sampled slope differs from it).
+// The loaded lift (the force lift) is therefore the lift whose slope is tau_W, with the slope of
+// the contact that the rigid lift h follows on a piece (the loaded one nearest the piece's slope
+// h') read from h, exact on the polylines (the contacts' slopes are the sampled profiles'):
+//   H_W(s) = h(s) + int_(s_0)^s sum_(c != c*) w_c (tan theta_c - h') ds',
+// w_c the contacts' shares of the vertical force. It equals h where one contact carries the load,
+// tends to h as W -> 0, and its every slope is a weighted mean of h' and contact slopes.
 // The minimum potential energy per unit load, z + sum_c (8/15) E* sqrt(R_c) delta_c^(5/2) / W (the
 // energy lift, LoadedState::energy_lift), has the slope tau_W plus the work of the contacts'
 // changing stiffness k_c = (4/3) E* sqrt(R_c) cos^(5/2) theta_c as they move,
@@ -123,17 +123,19 @@ Result<LoadedState> loaded_state(const Profile& lower, const Profile& upper, dou
                                  const LoadedLiftOptions& options);
 
 /// The loaded lift of every load of `options` over `rigid` (the pair's rigid lift over offsets
-/// where the blocks overlap; not periodic): at the offsets s_j, the vertices of `rigid` and, in an
-/// interval between two where the contact set changes (a load's loaded contacts differ in number,
-/// or the top contact passes to another asperity), its midpoint, halved again where the change
-/// persists (4 halvings at most, none below a 64th of the lower profile's spacing),
-///   H_W(s_j) = h(s_j) + sum_(i < j) (s_(i+1) - s_i) (e_i + e_(i+1)) / 2,   e = tau_W - tau_0,
-/// h linear between the rigid vertices, tau_W the force-resolved contact slope and tau_0 the top
-/// contact's slope: the trapezoid integral of the force-resolved slope, taken relative to the rigid
-/// lift so that H_W equals `rigid` to the bit where one contact carries the load (W -> 0). The
-/// contacts are the maxima of d_s within the approach of the largest load (pruned by chunks of the
-/// upper profile whose bound, the lower's maximum over their span minus their minimum, cannot
-/// reach it). Errors as loaded_state, and a periodic or malformed curve.
+/// where the blocks overlap; not periodic): at the offsets s_j, the vertices of `rigid` and the
+/// refinement's midpoints,
+///   H_W(s_j) = h(s_j) + sum_(i < j) (s_(i+1) - s_i) (e_i + e_(i+1)) / 2,
+/// h linear between the rigid vertices and e the excess slope sum_(c != c*) w_c (tan theta_c - h')
+/// on the piece (at a vertex, e on the piece before it and on the piece after it, each with its
+/// h'), c* the loaded contact whose slope is nearest h' (the one the rigid lift follows): H_W
+/// equals `rigid` to the bit wherever one contact carries the load. Where a load's e differs
+/// between two samples of a piece by more than 1e-3, a midpoint; where the midpoint's e misses
+/// their mean by more than that, both halves again, up to 24 halvings (e falls to 0 within the
+/// approach of a kink of h). The contacts are the maxima of d_s within the approach of the largest
+/// load (pruned by chunks of the upper profile whose bound, the lower's maximum over their span
+/// minus their minimum, cannot reach it). Errors as loaded_state, and a periodic or malformed
+/// curve.
 Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const LiftCurve& rigid,
                                const LoadedLiftOptions& options);
 

@@ -1,6 +1,7 @@
 // The loaded lift of a profile pair (frictal/load.hpp): projected Hertzian asperity contacts at
 // the local maxima of the composite d_s(x) = f(x) - g(x - s), the block's height under the load
-// from the balance of their vertical forces, and the minimum potential energy per unit load.
+// from the balance of their vertical forces, and the lift whose slope is the force-resolved
+// contact slope, integrated over the rigid lift's pieces.
 #include "frictal/load.hpp"
 
 #include <algorithm>

@@ -320,10 +320,9 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
                              p.load, 100 * dg.merged_share)});
   // No contact force resists more than the steepest slope under it plus the atomic friction angle
   // (a contact's slope is the mean of the two surfaces' slopes there), so neither does the block.
-  // The loaded lift's slope is the rigid lift's plus the force-resolved slope's difference from the
-  // top contact's (load.hpp): a force-weighted mean of contact slopes wherever the top contact's
-  // sampled slope is the rigid lift's. A hold angle above the bound is then the sampling's, where
-  // the two differ (a contact at a polyline's vertex): kept as a check on the number.
+  // Every slope of the loaded lift is a weighted mean of the rigid lift's slope and contact slopes
+  // (load.hpp), so its hold angles stay below the bound by construction: the check guards that
+  // invariant on the number the user gets.
   auto steepest = [](const Profile& q) {
     double m = 0;
     for (std::size_t i = 0; i + 1 < q.x.size(); ++i)
@@ -338,8 +337,8 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
         {"load-above-slopes",
          fmt::format("at {:.4g} N the loaded hold angles' 95 % quantile is {:.4g} deg (median {:.4g}, largest "
                      "{:.4g} deg), above the steepest slope of either surface plus the atomic friction angle, "
-                     "{:.4g} deg, which no contact force exceeds: the contacts' sampled slopes, not the "
-                     "surfaces, set them; the rigid prediction reads {:.4g} deg",
+                     "{:.4g} deg, which no contact force exceeds: the loaded lift is wrong there (its "
+                     "slopes are means of the surfaces'); the rigid prediction reads {:.4g} deg",
                      p.load, p.friction_angle.q95 * 180 / kPi, p.friction_angle.q50 * 180 / kPi,
                      p.friction_angle.max * 180 / kPi, resisted * 180 / kPi, p.rigid_friction_angle * 180 / kPi)});
   if (!beyond.empty())
