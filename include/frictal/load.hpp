@@ -131,7 +131,7 @@ Result<LoadedState> loaded_state(const Profile& lower, const Profile& upper, dou
 /// h'), c* the loaded contact whose slope is nearest h' (the one the rigid lift follows): H_W
 /// equals `rigid` to the bit wherever one contact carries the load. Where a load's e differs
 /// between two samples of a piece by more than 1e-3, a midpoint; where the midpoint's e misses
-/// their mean by more than that, both halves again, up to 24 halvings (e falls to 0 within the
+/// their mean by more than that, both halves again, up to 12 halvings (e falls to 0 within the
 /// approach of a kink of h). The contacts are the maxima of d_s within the approach of the largest
 /// load (pruned by chunks of the upper profile whose bound, the lower's maximum over their span
 /// minus their minimum, cannot reach it). Errors as loaded_state, and a periodic or malformed

@@ -20,7 +20,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The refinement of the loaded lift's integral (loaded_lift, pass 2): at most this many halvings
 // of a piece of the rigid lift, until the excess slope between two samples is straight to this
 // (unitless; 1e-4 in slope is 0.006 deg of hold angle).
-constexpr int kRefineDepth = 24;
+constexpr int kRefineDepth = 12;
 constexpr double kRefineSlope = 1e-3;
 
 // A surface's vertices with the first and second derivatives of the quadratic through each
