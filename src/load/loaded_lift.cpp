@@ -479,7 +479,7 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
   struct Terms {
     double contacts = 0, approach = 0, ratio = 0, deep = 0, merged = 0, slope2 = 0;
   };
-  // The contacts at s (hint: a height a little above h(s)), the top contact, and per load (nl
+  // The contacts at s (hint: a height a little above h(s)), and per load (nl
   // values each) the force-resolved slope tau_W into `slope` and the loaded lift's excess slope
   // over the rigid lift's on the piece before s (slope hb) into `before`, on the piece after it
   // (ha) into `after`, and the diagnostics' terms (if asked). The excess: the lift's slope is the
