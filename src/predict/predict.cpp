@@ -247,9 +247,10 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
                              "asperities are no longer separate spheres",
                              p.load, 100 * dg.merged_share)});
   // No contact force resists more than the steepest slope under it plus the atomic friction angle
-  // (a contact's slope is the mean of the two surfaces' slopes there), so neither does the block:
-  // a loaded hold angle above that is the model's, not the surfaces' (the loaded lift's elastic
-  // term, its Hertzian stiffness changing with the offset, can rise faster than any contact).
+  // (a contact's slope is the mean of the two surfaces' slopes there), so neither does the block.
+  // Every slope of the loaded lift is a weighted mean of the rigid lift's slope and contact slopes
+  // (load.hpp), so its hold angles stay below the bound by construction: the check guards that
+  // invariant on the number the user gets.
   auto steepest = [](const Profile& q) {
     double m = 0;
     for (std::size_t i = 0; i + 1 < q.x.size(); ++i)
@@ -264,8 +265,8 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
         {"load-above-slopes",
          fmt::format("at {:.4g} N the loaded hold angles' 95 % quantile is {:.4g} deg (median {:.4g}, largest "
                      "{:.4g} deg), above the steepest slope of either surface plus the atomic friction angle, "
-                     "{:.4g} deg, which no contact force exceeds: the loaded lift's elastic term, not the "
-                     "surfaces, sets them; the rigid prediction reads {:.4g} deg",
+                     "{:.4g} deg, which no contact force exceeds: the loaded lift is wrong there (its "
+                     "slopes are means of the surfaces'); the rigid prediction reads {:.4g} deg",
                      p.load, p.friction_angle.q95 * 180 / kPi, p.friction_angle.q50 * 180 / kPi,
                      p.friction_angle.max * 180 / kPi, resisted * 180 / kPi, p.rigid_friction_angle * 180 / kPi)});
   if (!beyond.empty())
