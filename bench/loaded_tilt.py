@@ -4,7 +4,8 @@
 prediction of `frictal predict --load W --modulus E --poisson NU` where that option exists, else
 against the rigid prediction (said so in the table). Writes bench/results/loaded-tilt.md.
 
-  nice /usr/bin/python3 bench/loaded_tilt.py [BIN] [OUT] [--drops N] [--jobs J]
+  nice /usr/bin/python3 bench/loaded_tilt.py [BIN] [OUT] [--drops N] [--jobs J] [--loads W,W,..]
+      [--radius-factors F,F,..] [--no-convergence]
 
 Pairs: four Fourier-filtered profile pairs (bench/predict_vs_sim_pairs.py's filter; lower 200
 points, upper 50, spacing 1 mm / 199, rms slope 0.2; seeds 501-504 not used elsewhere, H 0.8 and
@@ -16,6 +17,10 @@ Material: E = 70 GPa, nu = 0.3, both blocks of it (E* = E / (2 (1 - nu^2)): `--e
 predict's default). The other settings are the scaled defaults.
 Convergence at the middle drop of the first pair at the middle load: the time-step safety factor,
 the tilt increment, the spheroradius and the damping ratio halved, the modulus doubled.
+--radius-factors: at the loads from 1e-4 N up (where the default spheroradius r is overlapped by a
+tenth of itself), the tilt runs are repeated with the spheroradius F r (the Hertz overlap / r falls
+as 1 / F at one load), one table row per factor. Predictions are not kept between calls (the
+simulations are: they depend on the engine only).
 BIN default build/release/apps/frictal/frictal; OUT default /tmp/frictal-loaded-tilt.
 """
 import argparse
@@ -79,8 +84,13 @@ CACHE = {}
 TIMEOUT = 60  # s per run: past the spheroradius a run can relax for minutes (reported as such)
 
 
-def run(cmd):
+def run(cmd, keep=True):
     # Runs are kept in OUT/runs by their command line: a second call of the script reuses them.
+    if not keep:
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        if r.returncode != 0:
+            return {"error": (r.stderr or r.stdout).strip().splitlines()[-1:]}
+        return json.loads(r.stdout)
     key = hashlib.sha1(" ".join(cmd).encode()).hexdigest()[:16]
     path = f"{CACHE['dir']}/{key}.json"
     if os.path.exists(path):
@@ -108,7 +118,12 @@ def main():
     ap.add_argument("out", nargs="?", default="/tmp/frictal-loaded-tilt")
     ap.add_argument("--drops", type=int, default=7)
     ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--loads", default=",".join(repr(w) for w in LOADS))
+    ap.add_argument("--radius-factors", default="1")
+    ap.add_argument("--no-convergence", action="store_true")
     args = ap.parse_args()
+    loads = [float(w) for w in args.loads.split(",")]
+    factors = [float(f) for f in args.radius_factors.split(",")]
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     bin_ = os.path.abspath(args.bin)
     os.makedirs(f"{args.out}/runs", exist_ok=True)
@@ -124,19 +139,19 @@ def main():
     # The prediction per pair (rigid; and per load where predict takes one), and the drops.
     jobs, preds = [], {}
     for name, files, cond in pairs:
-        p = run(predict_cmd(bin_, files, cond, []))
+        p = run(predict_cmd(bin_, files, cond, []), keep=False)
         if "error" in p:
             print(name, "predict failed:", p["error"], file=sys.stderr)
             continue
         preds[(name, None)] = p
-        for W in LOADS:
+        for W in loads:
             if has_load:
-                preds[(name, W)] = run(predict_cmd(bin_, files, cond, load_args(W)))
+                preds[(name, W)] = run(predict_cmd(bin_, files, cond, load_args(W)), keep=False)
         lo, hi = p["drop_range_m"][0], p["drop_range_m"][1]
         ra = p["runaway_distance_m"]
         for k in range(args.drops):
             x = lo + (hi - lo) * k / (args.drops - 1)
-            for W in LOADS:
+            for W in loads:
                 jobs.append((name, files, cond, k, x, ra, W))
 
     def tilt(name, files, cond, x, ra, W, extra=(), density=None):
@@ -152,7 +167,7 @@ def main():
         return run(cmd)
 
     # The areal density that makes the upper block weigh W: one run's mass at the default density.
-    density = {}
+    density, radius = {}, {}
     for name, files, cond in pairs:
         if (name, None) not in preds:
             continue
@@ -162,23 +177,29 @@ def main():
             print(name, "tilt failed:", j["error"], file=sys.stderr)
             continue
         rho0 = j["settings"]["density"]
-        for W in LOADS:
+        radius[name] = j["settings"]["spheroradius"]
+        for W in loads:
             density[(name, W)] = rho0 * W / (j["upper_mass_kg"] * j["settings"]["gravity"])
 
     results, drop_preds = {}, {}
     futs, pfuts = {}, {}
+    def factors_at(W):  # the default r below 1e-4 N (overlap < 0.1 r there), each factor from it on
+        return factors if W >= 1e-4 * (1 - 1e-9) else [1.0]
+
     for (name, files, cond, k, x, ra, W) in jobs:
         if (name, W) in density:
-            futs[(name, k, W)] = pool.submit(tilt, name, files, cond, x, ra, W, (), density[(name, W)])
+            for fr in factors_at(W):
+                extra = () if fr == 1 else ("--spheroradius", repr(fr * radius[name]))
+                futs[(name, k, W, fr)] = pool.submit(tilt, name, files, cond, x, ra, W, extra, density[(name, W)])
             # The prediction from the same drop (per load where predict takes one).
-            if has_load or W == LOADS[0]:
+            if has_load or W == loads[0]:
                 pfuts[(name, k, W if has_load else None)] = pool.submit(
                     run, predict_cmd(bin_, files, cond, ["--runaway-distance", repr(ra), f"--start-offset={x!r}",
-                                                         *load_args(W)]))
+                                                         *load_args(W)]), False)
     # The linear law (rigid limit, the scaled defaults) from the same drops: the ground truth at no load.
     lfuts = {}
     for (name, files, cond, k, x, ra, W) in jobs:
-        if W == LOADS[0] and (name, W) in density:
+        if W == loads[0] and (name, W) in density:
             lfuts[(name, k)] = pool.submit(tilt, name, files, cond, x, ra, W, ("--contact-law", "linear"))
     linear = {key: f.result() for key, f in lfuts.items()}
     for key, f in futs.items():
@@ -192,10 +213,10 @@ def main():
     k0 = args.drops // 2
     x0 = next(j[4] for j in jobs if j[0] == name0 and j[3] == k0)
     ra0 = next(j[5] for j in jobs if j[0] == name0)
-    conv_loads = [LOADS[2], LOADS[3]]
+    conv_loads = [] if args.no_convergence else [LOADS[2], LOADS[3]]
     conv = {}
     for W0 in conv_loads:
-        s = results[(name0, k0, W0)]["settings"]
+        s = results[(name0, k0, W0, 1.0)]["settings"]
         cases = [
             ("time step / 2 (cap and safety factor)", ("--time-step", repr(s["time_step"] / 2),
                                                       "--time-step-safety", repr(s["time_step_safety"] / 2))),
@@ -237,53 +258,72 @@ def main():
         "overlap / r the largest resting overlap over the spheroradius; predicted median: of the "
         "predictions from the same drops; `predict` q50 (q05-q95): the prediction over its own drops.")
     out("")
-    out("| pair | W (N) | contacts | mean overlap / R | max overlap / r | drops slid | simulated median | "
+    out("| pair | W (N) | r | contacts | mean overlap / R | max overlap / r | drops slid | simulated median | "
         "simulated q05-q95 | linear law (rigid limit) median | predicted median | `predict` q50 (q05-q95) | "
         "difference | rule | warnings |")
-    out("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    out("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     summary = []
     for name, files, cond in pairs:
-        for W in LOADS:
-            runs = [results.get((name, k, W)) for k in range(args.drops)]
-            runs = [r for r in runs if r is not None]
-            if not runs:
-                continue
-            ok = [r for r in runs if "error" not in r and r.get("slid")]
-            errs = [r for r in runs if "error" in r]
-            angles = [r["friction_angle_deg"] for r in ok]
-            p = preds.get((name, W) if has_load else (name, None))
-            if p is None or "error" in p:
-                p = preds[(name, None)]
-            pq50 = p.get("friction_angle_q50_deg", p["friction_angle_deg"])
-            p5, p95 = p["friction_angle_q05_deg"], p["friction_angle_q95_deg"]
-            dp = [drop_preds.get((name, k, W if has_load else None)) for k in range(args.drops)]
-            dp = [d["friction_angle_deg"] for d in dp if d and "error" not in d]
-            pm = statistics.median(dp) if dp else pq50
-            good = [r for r in runs if "error" not in r]
-            nc = statistics.median([r["settled_contacts"] for r in good]) if good else float("nan")
-            ir = [r["settled_interference_ratio"] for r in good if r.get("settled_interference_ratio") is not None]
-            ovr = [r["settled_overlap_m"] / r["settings"]["spheroradius"] for r in good]
-            codes = sorted({w["code"] for r in good for w in r["warnings"]})
-            if errs:
-                codes.append(f"{len(errs)} failed: {errs[0]['error'][0][:80] if errs[0]['error'] else ''}")
-            lin = [linear.get((name, k)) for k in range(args.drops)]
-            lin = [r["friction_angle_deg"] for r in lin if r and "error" not in r and r.get("slid")]
-            lmed = f"{statistics.median(lin):.3f}" if lin else "-"
-            if angles:
-                med = statistics.median(angles)
-                q = np.percentile(angles, [5, 95])
-                diff = med - pm
-                rule = "pass" if abs(diff) <= TOL or p5 <= med <= p95 else "FAIL"
-                summary.append((name, W, rule, diff))
-                out(f"| {name} | {W:.0e} | {nc:.0f} | {statistics.median(ir) if ir else float('nan'):.2e} | "
-                    f"{max(ovr):.3f} | {len(ok)} / {len(runs)} | {med:.3f} | {q[0]:.2f}-{q[1]:.2f} | {lmed} | {pm:.3f} | "
-                    f"{pq50:.2f} ({p5:.2f}-{p95:.2f}) | {diff:+.3f} | {rule} | {', '.join(codes) or '-'} |")
-            else:
-                out(f"| {name} | {W:.0e} | {nc:.0f} | - | - | 0 / {len(runs)} | - | - | {lmed} | {pm:.3f} | "
-                    f"{pq50:.2f} ({p5:.2f}-{p95:.2f}) | - | - | {', '.join(codes) or '-'} |")
+        for W in loads:
+            for fr in factors_at(W):
+                runs = [results.get((name, k, W, fr)) for k in range(args.drops)]
+                runs = [r for r in runs if r is not None]
+                if not runs:
+                    continue
+                ok = [r for r in runs if "error" not in r and r.get("slid")]
+                errs = [r for r in runs if "error" in r]
+                angles = [r["friction_angle_deg"] for r in ok]
+                p = preds.get((name, W) if has_load else (name, None))
+                if p is None or "error" in p:
+                    p = preds[(name, None)]
+                pq50 = p.get("friction_angle_q50_deg", p["friction_angle_deg"])
+                p5, p95 = p["friction_angle_q05_deg"], p["friction_angle_q95_deg"]
+                dp = [drop_preds.get((name, k, W if has_load else None)) for k in range(args.drops)]
+                dp = [d["friction_angle_deg"] for d in dp if d and "error" not in d]
+                pm = statistics.median(dp) if dp else pq50
+                good = [r for r in runs if "error" not in r]
+                nc = statistics.median([r["settled_contacts"] for r in good]) if good else float("nan")
+                ir = [r["settled_interference_ratio"] for r in good if r.get("settled_interference_ratio") is not None]
+                ovr = [r["settled_overlap_m"] / r["settings"]["spheroradius"] for r in good]
+                codes = sorted({w["code"] for r in good for w in r["warnings"]})
+                if errs:
+                    codes.append(f"{len(errs)} failed: {errs[0]['error'][0][:80] if errs[0]['error'] else ''}")
+                lin = [linear.get((name, k)) for k in range(args.drops)]
+                lin = [r["friction_angle_deg"] for r in lin if r and "error" not in r and r.get("slid")]
+                lmed = f"{statistics.median(lin):.3f}" if lin else "-"
+                rl = "r" if fr == 1 else f"{fr:g} r"
+                if angles:
+                    med = statistics.median(angles)
+                    q = np.percentile(angles, [5, 95])
+                    diff = med - pm
+                    rule = "pass" if abs(diff) <= TOL or p5 <= med <= p95 else "FAIL"
+                    summary.append((name, W, fr, rule, diff))
+                    out(f"| {name} | {W:.0e} | {rl} | {nc:.0f} | "
+                        f"{statistics.median(ir) if ir else float('nan'):.2e} | {max(ovr):.3f} | "
+                        f"{len(ok)} / {len(runs)} | {med:.3f} | {q[0]:.2f}-{q[1]:.2f} | {lmed} | {pm:.3f} | "
+                        f"{pq50:.2f} ({p5:.2f}-{p95:.2f}) | {diff:+.3f} | {rule} | {', '.join(codes) or '-'} |")
+                else:
+                    out(f"| {name} | {W:.0e} | {rl} | {nc:.0f} | - | - | 0 / {len(runs)} | - | - | {lmed} | "
+                        f"{pm:.3f} | {pq50:.2f} ({p5:.2f}-{p95:.2f}) | - | - | {', '.join(codes) or '-'} |")
+    out("")
+    out("Per drop (degrees): simulated / predicted from the same drop, drops 0..N-1.")
+    out("")
+    out("| pair | W (N) | r | drops: simulated / predicted |")
+    out("|---|---|---|---|")
+    for name, files, cond in pairs:
+        for W in loads:
+            for fr in factors_at(W):
+                cells = []
+                for k in range(args.drops):
+                    r = results.get((name, k, W, fr))
+                    d = drop_preds.get((name, k, W if has_load else None))
+                    a = f"{r['friction_angle_deg']:.2f}" if r and "error" not in r and r.get("slid") else "-"
+                    b = f"{d['friction_angle_deg']:.2f}" if d and "error" not in d else "-"
+                    cells.append(f"{a} / {b}")
+                out(f"| {name} | {W:.0e} | {'r' if fr == 1 else f'{fr:g} r'} | {'; '.join(cells)} |")
     out("")
     for W0, (s, cases) in conv.items():
-        base = results[(name0, k0, W0)]
+        base = results[(name0, k0, W0, 1.0)]
         out(f"Convergence: {name0}, drop {k0} (offset {x0 * 1e6:.2f} um), W = {W0:.0e} N (degrees):")
         out("")
         out("| run | friction angle | change | max overlap / r | steps | wall s | warnings |")

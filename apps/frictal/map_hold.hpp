@@ -59,26 +59,38 @@ inline PredictOptions conditioned_predict_options(const ConditioningOptions& c, 
 }
 
 /// A progress line on standard error, "frictal WHO: drop k of n" (`prefix` before "drop", e.g.
-/// "direction 3 of 36, "), redrawn in place; none with `quiet` or when standard error is not a
-/// terminal. `prefix` is read at each call.
-inline std::function<void(std::size_t, std::size_t)> drop_progress(const std::string& who, bool quiet,
-                                                                   const std::string* prefix = nullptr,
-                                                                   bool last_newline = true) {
+/// "direction 3 of 36, "), with the tilt the drops under way have reached and, once a drop is
+/// done, the time left; redrawn in place, at most five times a second between drops; none with
+/// `quiet` or when standard error is not a terminal. `prefix` is read at each call.
+inline DropProgressFn drop_progress(const std::string& who, bool quiet, const std::string* prefix = nullptr,
+                                    bool last_newline = true) {
   if (quiet || !isatty(fileno(stderr))) return {};
   // The time left: the drops so far at their mean time (drops differ in cost by several times, so
   // the estimate settles as they come in); from the first call of this progress line.
-  auto start = std::make_shared<std::optional<std::chrono::steady_clock::time_point>>();
-  return [who, prefix, last_newline, start](std::size_t done, std::size_t total) {
+  struct Line {
+    std::optional<std::chrono::steady_clock::time_point> start, drawn;
+    std::size_t done = 0;
+  };
+  auto line = std::make_shared<Line>();
+  return [who, prefix, last_newline, line](const DropProgress& p) {
     const auto now = std::chrono::steady_clock::now();
-    if (!*start || done <= 1) *start = now;  // (a new run of drops: another direction)
+    if (!line->start || (p.done == 0 && line->done > 0)) *line = Line{now, std::nullopt, 0};  // (a new run of drops)
+    const bool finished = p.done != line->done;
+    if (!finished && line->drawn && now - *line->drawn < std::chrono::milliseconds(200)) return;
+    line->drawn = now;
+    line->done = p.done;
+    std::string state;
+    if (p.running > 0 && !std::isnan(p.tilt))
+      state = p.running == 1 ? fmt::format(", the drop under way at {:.2f} deg", p.tilt / kDeg)
+                             : fmt::format(", {} under way at {:.2f} deg or more", p.running, p.tilt / kDeg);
     std::string left;
-    if (done > 1 && done < total) {
-      const double per = std::chrono::duration<double>(now - **start).count() / double(done - 1);
-      const double s = per * double(total - done);
+    if (p.done > 0 && p.done < p.total) {
+      const double per = std::chrono::duration<double>(now - *line->start).count() / double(p.done);
+      const double s = per * double(p.total - p.done);
       left = s < 90 ? fmt::format(", about {:.0f} s left", s) : fmt::format(", about {:.1f} min left", s / 60);
     }
-    fmt::print(stderr, "\rfrictal {}: {}drop {} of {}{}\033[K{}", who, prefix ? *prefix : std::string(), done, total,
-               left, done == total && last_newline ? "\n" : "");
+    fmt::print(stderr, "\rfrictal {}: {}drop {} of {}{}{}\033[K{}", who, prefix ? *prefix : std::string(),
+               std::min(p.done + 1, p.total), p.total, state, left, p.done == p.total && last_newline ? "\n" : "");
     std::fflush(stderr);
   };
 }

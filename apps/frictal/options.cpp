@@ -16,6 +16,12 @@ std::string field_help(const Field& f) {
 }
 
 namespace {
+/// The value's forms of a word field that follows forms (Field::check_word): "X0,X1|X0,X1,Y0,Y1".
+std::string choice_forms(const Field& f) {
+  std::string s;
+  for (const std::string& c : f.choices) s += (s.empty() ? "" : "|") + c;
+  return s.empty() ? "WORD" : s;
+}
 /// First names shown in the help and in errors: the name every command gives the quantity
 /// (`predict --direction`) where the settings table keeps its own (`angle`, the key of study
 /// files and the field's option, still accepted).
@@ -44,7 +50,8 @@ void add_field_options(CLI::App& app, const std::vector<Field>& fields, FieldWor
     } else {
       app.add_option_function<std::string>(
              flags, [&words, key](const std::string& w) { words.words[key] = w; }, field_help(f))
-          ->type_name(f.type == FieldType::Choice ? "WORD" : (f.type == FieldType::Integer ? "INT" : "NUMBER"));
+          ->type_name(f.type == FieldType::Choice ? (f.check_word ? choice_forms(f) : std::string("WORD"))
+                                                  : (f.type == FieldType::Integer ? "INT" : "NUMBER"));
     }
     // Retired option names still read on the command line (scripts written before the rename),
     // hidden from the help so that each quantity shows one name.

@@ -137,15 +137,11 @@ std::function<int()> setup(CLI::App& app) {
     // The headline: the prediction of this pair, as `frictal predict` computes it from the same
     // files and options (the same conditioning: the page's --crop, --remove-spikes, --detrend).
     {
+      static const std::string prediction_prefix = "the prediction's ";
       PredictOptions po;
       require(a->drops >= 2 && a->drops <= 64, fmt::format("--drops {}: expected 2..64", a->drops));
       po.map_drops = a->drops;
-      if (!a->quiet && isatty(fileno(stderr)))
-        po.progress = [](std::size_t done, std::size_t total) {
-          fmt::print(stderr, "\rfrictal report: the prediction's drop {} of {}{}", done, total,
-                     done == total ? "\n" : "");
-          std::fflush(stderr);
-        };
+      po.progress = drop_progress("report", a->quiet, &prediction_prefix);
       po.atomic_friction = a->mu_a;
       po.runaway_distance = in.runaway_distance;
       po.detrend = dt;

@@ -111,7 +111,10 @@ std::string markdown() {
        "`frictal tilt` options, the `tilt` study kind's TOML keys, the keywords of Python's `frictal.tilt`, and the\n"
        "keys of the `settings` object printed by `frictal tilt --json`. With a generated surface, `period` and\n"
        "`runaway_distance` default to its wavelength (WM: the longest wavelength; self-affine: a tenth of the\n"
-       "length; fourier: no period and the rolloff wavelength; measured files: no period and 0.01 m).\n"
+       "length; fourier: no period and the rolloff wavelength). Measured files (and Python's measured\n"
+       "Profiles) run the test that `frictal predict` states: no period, the block the middle piece of the\n"
+       "upper scan (`--block-length`, Python `block_length`: a length, or `whole`), `runaway_distance`\n"
+       "predict's d and `initial_offset` the middle of predict's drop range (docs/dem.md sec. 5).\n"
        "Python's `frictal.tilt` and the C++ `TiltConfig` take\n"
        "surfaces, not generators: there `period` defaults to 0.01 m and also sets `runaway_distance`, and\n"
        "`frame_interval` to 0.\n\n" +

@@ -18,6 +18,7 @@
 #include "frictal/io.hpp"
 #include "frictal/tilt.hpp"
 #include "frictal/warnings.hpp"
+#include "map_hold.hpp"
 #include "movie.hpp"
 #include "options.hpp"
 #include "surface_io.hpp"
@@ -36,6 +37,7 @@ struct TiltOptions {
   std::string detrend;       ///< --detrend (files; empty: form_to_remove's default)
   ConditioningOptions cond;  ///< --crop, --remove-spikes, --spike-threshold (files)
   std::string output, frames, vtk, movie;
+  FieldWords block;  ///< --block-length (files): the prediction's table's block_length
   bool json = false;
   bool quiet = false;
   bool force = false;
@@ -73,6 +75,11 @@ int run(TiltOptions& o) {
   if (spec) {
     if (!o.lower_file.empty() || !o.upper_file.empty())
       throw UsageError(fmt::format("tilt {}: a generated surface takes no --lower/--upper files", spec->generator));
+    if (o.block.words.count("block_length"))
+      throw UsageError(fmt::format(
+          "tilt {} --block-length {}: a generated surface slides its whole block (the paper's Table I blocks); "
+          "--block-length applies to --lower FILE",
+          spec->generator, o.block.words.at("block_length")));
     lower = upper = unwrap(generate_curve(*spec));
     const double period = unwrap(surface_period(*spec)), scale = unwrap(surface_scale(*spec));
     // The defaults scaled to the surface's length and point spacing as for files (below): a
@@ -132,14 +139,22 @@ int run(TiltOptions& o) {
     if (dx[0] > 0 && dx[1] > 0)
       for (Warning& w : check_pair_scales(len[0], dx[0], len[1], dx[1], o.lower_file, o.upper_file))
         add_warning(data_warnings, std::move(w));
-    // Measured files come at any scale: the macro defaults (Table I/II, made for a 0.2 m block)
-    // carried over to the files' length and point spacing (scale_tilt_defaults, docs/dem.md sec.
-    // 5). The run-away distance becomes L/20, as `signature` takes it by default (a tenth of
-    // half the block). Generated surfaces take the same rule (above).
-    scaling = unwrap(tilt_setup(lower, upper, si_values(tilt_settings(), o.settings)));
+    // Measured files state the test that `frictal predict` states (hold.hpp's stated test): the
+    // block the middle piece of the upper scan, L_b = 20 d long, d from the lower scan's slope
+    // correlation length, dropped at the middle of predict's drop range (--block-length,
+    // --runaway-distance, --initial-offset state others; --block-length whole: the whole upper
+    // scan over the first half of the lower one). The macro defaults (Table I/II, made for a 0.2 m
+    // block) are carried over to that block's length and point spacing (scale_tilt_defaults,
+    // docs/dem.md sec. 5). Generated surfaces keep the paper's blocks (above).
+    double block_length = 0;  // 0: the stated test's; "whole": -1
+    if (const ValueSet b = si_values(predict_settings(), o.block); b.count("block_length"))
+      block_length = word_value_of(*find_field(predict_settings(), "block_length"), b.at("block_length"));
+    scaling = unwrap(tilt_setup(lower, upper, si_values(tilt_settings(), o.settings), 0, 0, block_length));
+    for (const Warning& w : scaling->test.warnings) add_warning(data_warnings, w);
     surface.lower = o.lower_file;
     surface.upper = o.upper_file.empty() ? o.lower_file : o.upper_file;
     surface.conditioning = conditioning_text(records);
+    surface.test = &scaling->test;
   }
   const ValueSet given = si_values(tilt_settings(), o.settings);
   TiltConfig cfg = scaling->config;
@@ -196,7 +211,7 @@ int run(TiltOptions& o) {
     };
 
   if (!o.movie.empty()) check_movie_tool(o.movie);  // before the run, not after it
-  auto r = run_tilt(lower, upper, cfg);
+  auto r = run_tilt(lower, scaling->upper, cfg);
   if (printed) fmt::print(stderr, "\n");
   if (!r.ok()) fail(r.error());
   // The files' warnings, then the run's: one list (JSON "warnings"; standard error in text).
@@ -264,6 +279,16 @@ int run(TiltOptions& o) {
                  r->increments, cfg.tilt_increment / kDeg, r->unrelaxed_increments, cfg.relax_time,
                  r->contact_rule == dem::ContactRule::Closest ? "closest" : "pairs");
     if (surface.generator.empty()) fmt::print(text, "conditioning: {}\n", surface.conditioning);
+    if (const TiltStatedTest& t = scaling->test; t.block == "stated")
+      fmt::print(text,
+                 "the test (as frictal predict states it): a block of {:.4g} m (the middle of the upper scan), sliding "
+                 "for good after d = {:.4g} m ({}); dropped at {:.6g} m ({}) of the drop range [{:.6g}, {:.6g}] m\n",
+                 t.block_length, cfg.runaway_distance, t.rule, cfg.initial_offset, t.drop, t.drop_min, t.drop_max);
+    else if (t.block == "whole")
+      fmt::print(text,
+                 "the test (as frictal predict --block-length whole states it): the whole upper scan ({:.4g} m) over "
+                 "the first half of the lower one, sliding for good after d = {:.4g} m ({})\n",
+                 t.block_length, cfg.runaway_distance, t.rule);
     fmt::print(text, "rotation of the upper block against the lower one before the slide: {:.4g} deg{}\n",
                r->rotation_before_slide / kDeg, cfg.hold_rotation ? " (held)" : "");
     fmt::print(text,
@@ -297,10 +322,13 @@ std::function<int()> setup(CLI::App& app) {
   auto o = std::make_shared<TiltOptions>();
   add_generator_subcommands(app, o->gen, true, " (both blocks)");
   app.add_option("--lower", o->lower_file,
-                 "Lower surface file (x_m,z_m), as measured; - reads standard input. The defaults not given are "
-                 "scaled to the surfaces' length and point spacing, and a measured pair is loaded quasi-statically "
+                 "Lower surface file (x_m,z_m), as measured; - reads standard input. A measured pair runs the test "
+                 "that `frictal predict` states (the middle piece of the upper scan as the block: --block-length), "
+                 "the defaults not given scaled to the block's length and point spacing, loaded quasi-statically "
                  "with the rotation held (--protocol quasi-static --hold-rotation; docs/dem.md sec. 5)");
   app.add_option("--upper", o->upper_file, "Upper surface file, as measured (default: the lower one)");
+  // The stated test's block (files): the prediction's table's field, as `frictal predict` takes it.
+  add_predict_options(app, o->block, {"block_length"});
   add_detrend_option(app, o->detrend);
   add_conditioning_options(app, o->cond);
   add_field_options(app, tilt_settings(), o->settings);

@@ -62,10 +62,6 @@ Result<Autocorrelation> autocorrelation(const Profile& p, std::size_t max_lag = 
 /// self-affine scan is a fixed fraction of it). 0 for a flat profile or slopes correlated over
 /// half the scan.
 double slope_correlation_length(const Profile& p);
-/// The stated test's default run-away distance in slope correlation lengths (predict.hpp's
-/// default_test_lengths, areal_tilt.hpp's default_map_runaway_distance; docs/site/theory.md, "The
-/// stated test", says why) (unitless).
-inline constexpr double kRunawayPerSlopeCorrelation = 12.5;
 
 /// Height distribution: trapezoid-weighted histogram of heights (unit: 1/m over m).
 Histogram height_distribution(const Profile& p, int bins = 64);

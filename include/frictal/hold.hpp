@@ -39,6 +39,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "frictal/outputs.hpp"
@@ -224,6 +225,76 @@ Result<SignatureWithHold> signature_with_hold(const Profile& lower, const Profil
 Result<SignatureWithHold> signature_with_hold(Profile&& lower, Profile&& upper, const SignatureOptions& options,
                                               const HoldOptions& hold,
                                               double start = std::numeric_limits<double>::quiet_NaN());
+
+/// The stated test (docs/site/theory.md, "The stated test", says why these numbers; `frictal
+/// predict` and `frictal tilt` on measured profiles state it): the run-away distance d (when not
+/// given) is kRunawayPerSlopeCorrelation slope correlation lengths of the (conditioned) lower
+/// profile (analysis.hpp's slope_correlation_length; where it has none, that many sampling
+/// intervals; never less than one sampling interval), the block (when not given) the middle piece
+/// of the upper profile, kBlockPerRunaway d long, d given or not. A scan holds the test when the
+/// lower scan is at least L_b + kRoomPerRunaway d long and the upper one at least L_b; else the
+/// largest test of the same shape that fits is stated, with the warning scan-too-short. None of
+/// them is a fraction of the scan's length: a crop of a stationary surface has the same defaults
+/// within the estimate's scatter (unitless counts). The map model's default d is the same count of
+/// slope correlation lengths along the direction (map_hold.hpp's default_map_runaway_distance).
+inline constexpr double kRunawayPerSlopeCorrelation = 12.5;
+inline constexpr double kBlockPerRunaway = 20;
+inline constexpr double kRoomPerRunaway = 8;
+/// Drops keep this many d from each end of the offsets where the block lies wholly on the lower
+/// scan, so that a run-away has room before it slides off the scan (unitless).
+inline constexpr double kEndRoomPerRunaway = 2;
+struct StatedTest {
+  double runaway_distance = 0;  ///< d (unit: m)
+  double block_length = 0;      ///< L_b (unit: m)
+  std::string rule;             ///< how d was derived, with its numbers (text)
+};
+/// The default test for a profile pair whose (conditioned) lower profile is `lower`.
+StatedTest default_test_lengths(const Profile& lower);
+
+/// The stated test of a non-periodic profile pair, fitted to the scans (stated_test).
+struct StatedTestFit {
+  double runaway_distance = 0;  ///< d (unit: m)
+  /// L_b as stated (the piece stated_block cuts is L_b to the nearest samples); the whole block:
+  /// the upper profile's length (unit: m)
+  double block_length = 0;
+  /// The whole upper profile, dropped over the first half of the lower one (block_length < 0 asked
+  /// for it): the signature's own drop range, no piece cut.
+  bool whole = false;
+  /// How d and L_b were set: given, or the default's rule with its numbers (text; predict's
+  /// test_lengths).
+  std::string rule;
+  /// scan-too-short where a defaulted length gave way to the scans (warnings.hpp's code).
+  std::vector<Warning> warnings;
+};
+/// The test on a lower profile `lower` (conditioned) and an upper profile `upper_length` long
+/// (unit: m): `runaway_distance` d (> 0: given; 0: default_test_lengths) and `block_length` L_b
+/// (> 0: given; 0: kBlockPerRunaway d; < 0: the whole upper profile, dropped over the first half of
+/// the lower one) (unit: m). Where the scans are too short for it, a defaulted length gives way
+/// (the largest test of the same shape; a given d keeps its value and the block shrinks to at
+/// least 2 d; a given block keeps its length and d shrinks to at least a hundredth of the
+/// default), warned scan-too-short; stated lengths that leave no room are refused, the error
+/// naming the lengths needed and the options that change them.
+Result<StatedTestFit> stated_test(const Profile& lower, double upper_length, double runaway_distance,
+                                  double block_length);
+
+/// The block of the stated test: the middle piece [mid - L_b / 2, mid + L_b / 2] of `upper` (as
+/// measured), its ends on the profile's nearest samples (a tie outward), so that on a uniform
+/// grid the turned-over block stays on the lower scan's lattice; a piece of fewer than 8 samples
+/// keeps its stated ends, interpolated (unit of `block_length`: m).
+Profile stated_block(const Profile& upper, double block_length);
+
+/// The offsets and drops of the stated test in the signature's frame (0: the left ends aligned;
+/// unit: m): the offsets [0, L - L_b] at which a block `block_length` long lies wholly over a lower
+/// scan `lower_length` long, and the drops over them less kEndRoomPerRunaway d at each end.
+struct StatedDrops {
+  double offset_min = 0, offset_max = 0;  ///< (unit: m)
+  double drop_min = 0, drop_max = 0;      ///< (unit: m)
+};
+StatedDrops stated_drops(double lower_length, double block_length, double runaway_distance);
+
+/// `curve` cut to the offsets [a, b] (clipped to its range), its ends interpolated: the lift a
+/// stated block runs on (a slip that reaches an end has slid off the scan).
+LiftCurve cut_lift_curve(const LiftCurve& curve, double a, double b);
 
 /// The hold analysis' output tables (frictal/outputs.hpp; src/hold/hold_columns.cpp): the flat keys
 /// of `frictal signature --json` (hold_columns; hold_start_columns with --start-offset) and the

@@ -16,15 +16,23 @@
 // load W: with v_c = d_s(x_c) - z the vertical interference and delta_c = v_c cos theta_c the normal
 // one,
 //   F_c = (4/3) E* sqrt(R_c) delta_c^(3/2),     sum_c F_c cos theta_c = W.
-// The loaded lift is the minimum potential energy per unit load,
-//   H_W(s) = z + sum_c (8/15) E* sqrt(R_c) delta_c^(5/2) / W,
-// whose slope is, by the envelope theorem, the force-resolved contact slope plus the work of the
-// contacts' changing stiffness k_c = (4/3) E* sqrt(R_c) cos^(5/2) theta_c as they move,
-//   dH_W/ds = sum F_c sin theta_c / sum F_c cos theta_c + sum_c (2/5) v_c^(5/2) k_c'(s) / W,
-// and which tends to h(s) as W -> 0 (the elastic terms scale as W^(2/3)). With atomic friction
-// mu_a at each contact, tan phi = sum F (sin + mu_a cos) / sum F (cos - mu_a sin) is exactly
-// tan(atan(mu_a) + atan(tau)), tau the force-resolved slope, the rule the hold analysis applies to
-// the slope of H_W: the hold analysis of H_W is the loaded prediction. Maps: the elastic
+// Tilted by beta, the block is in equilibrium where sum_c F_c (sin theta_c cos beta - cos theta_c
+// sin beta) = 0 (the contact forces along their normals and the weight), i.e. tan beta = tau_W(s) =
+// sum F_c sin theta_c / sum F_c cos theta_c, the force-resolved contact slope; it is held where
+// tau_W just ahead is at least tan beta, as a rigid block is held by the slope of the rigid lift.
+// The loaded lift (the force lift) is therefore the lift whose slope is tau_W, with the slope of
+// the contact that the rigid lift h follows on a piece (the loaded one nearest the piece's slope
+// h') read from h, exact on the polylines (the contacts' slopes are the sampled profiles'):
+//   H_W(s) = h(s) + int_(s_0)^s sum_(c != c*) w_c (tan theta_c - h') ds',
+// w_c the contacts' shares of the vertical force. It equals h where one contact carries the load,
+// tends to h as W -> 0, and its every slope is a weighted mean of h' and contact slopes.
+// The minimum potential energy per unit load, z + sum_c (8/15) E* sqrt(R_c) delta_c^(5/2) / W (the
+// energy lift, LoadedState::energy_lift), has the slope tau_W plus the work of the contacts'
+// changing stiffness k_c = (4/3) E* sqrt(R_c) cos^(5/2) theta_c as they move,
+// sum_c (2/5) v_c^(5/2) k_c'(s) / W: no force of the contacts exerts that term (docs/load.md).
+// With atomic friction mu_a at each contact, tan phi = sum F (sin + mu_a cos) / sum F (cos - mu_a
+// sin) is exactly tan(atan(mu_a) + atan(tau_W)), the rule the hold analysis applies to the slope of
+// H_W: the hold analysis of H_W is the loaded prediction. Maps: the elastic
 // half-space's loaded lift on lines along the sliding direction ("Maps" below).
 //
 // SI units: lengths in m, forces in N, moduli in Pa, angles in rad.
@@ -65,12 +73,16 @@ struct LoadedLiftOptions {
 
 /// The block at one offset under one load.
 struct LoadedState {
-  double offset = 0;       ///< s (unit: m)
-  double load = 0;         ///< W (unit: N)
-  double rigid_lift = 0;   ///< the top contact's touch height: h(s) to the sampling's accuracy (unit: m)
-  double height = 0;       ///< z: the block's reference height under the load (unit: m)
-  double loaded_lift = 0;  ///< H_W(s) = z + elastic energy / W (unit: m)
-  /// sum F sin theta / sum F cos theta: the force-resolved contact slope, dH_W/ds (unitless).
+  double offset = 0;      ///< s (unit: m)
+  double load = 0;        ///< W (unit: N)
+  double rigid_lift = 0;  ///< the top contact's touch height: h(s) to the sampling's accuracy (unit: m)
+  double height = 0;      ///< z: the block's reference height under the load (unit: m)
+  double energy = 0;      ///< the contacts' elastic energy sum (2/5) F cos theta v (unit: J)
+  /// z + energy / W: the minimum potential energy per unit load (the energy lift, whose slope adds
+  /// the contacts' stiffness change to effective_slope; not the lift the prediction reads) (unit: m)
+  double energy_lift = 0;
+  /// sum F sin theta / sum F cos theta: the force-resolved contact slope, the slope of the loaded
+  /// lift H_W at this offset (unitless).
   double effective_slope = 0;
   std::vector<HertzContact> contacts;  ///< in x order; open ones (force 0) included
 };
@@ -94,11 +106,14 @@ struct LoadedLiftDiagnostics {
 };
 
 struct LoadedLift {
-  std::vector<double> loads;                       ///< as given (unit: N)
-  std::vector<LiftCurve> curves;                   ///< H_W per load, on the rigid lift's vertices
-  std::vector<std::vector<double>> slopes;         ///< effective_slope at each vertex, per load (unitless)
-  std::vector<LoadedLiftDiagnostics> diagnostics;  ///< per load
-  std::size_t candidates = 0;                      ///< asperity contacts examined, all offsets (unitless)
+  std::vector<double> loads;  ///< as given (unit: N)
+  /// H_W per load, on the rigid lift's vertices and the refinement's offsets between them (the
+  /// same offsets for every load).
+  std::vector<LiftCurve> curves;
+  std::vector<std::vector<double>> slopes;         ///< effective_slope at each offset, per load (unitless)
+  std::vector<LoadedLiftDiagnostics> diagnostics;  ///< per load, over the rigid lift's vertices
+  std::size_t candidates = 0;                      ///< asperity contacts at the rigid lift's vertices (unitless)
+  std::size_t refined = 0;                         ///< offsets the refinement added (unitless)
 };
 
 /// The block at offset `offset` under load `load` (N), `upper` turned over as signature() takes
@@ -107,14 +122,20 @@ struct LoadedLift {
 Result<LoadedState> loaded_state(const Profile& lower, const Profile& upper, double offset, double load,
                                  const LoadedLiftOptions& options);
 
-/// The loaded lift of every load of `options` on the vertices of `rigid` (the pair's rigid lift
-/// over offsets where the blocks overlap; not periodic): H_W(s_k) = rigid.lift[k] + (z - h(s_k)) +
-/// energy / W, h(s_k) the top contact's touch height, so that the loaded lift equals `rigid` to the
-/// bit as W -> 0 (the curve's vertices between events, where lift_curve() places its tangents'
-/// meeting point, keep its value). The contacts are the maxima of d_s within the approach of the
-/// largest load (pruned by chunks of the upper profile whose bound, the lower's maximum over their
-/// span minus their minimum, cannot reach it). Errors as loaded_state, and a periodic or
-/// malformed curve.
+/// The loaded lift of every load of `options` over `rigid` (the pair's rigid lift over offsets
+/// where the blocks overlap; not periodic): at the offsets s_j, the vertices of `rigid` and the
+/// refinement's midpoints,
+///   H_W(s_j) = h(s_j) + sum_(i < j) (s_(i+1) - s_i) (e_i + e_(i+1)) / 2,
+/// h linear between the rigid vertices and e the excess slope sum_(c != c*) w_c (tan theta_c - h')
+/// on the piece (at a vertex, e on the piece before it and on the piece after it, each with its
+/// h'), c* the loaded contact whose slope is nearest h' (the one the rigid lift follows): H_W
+/// equals `rigid` to the bit wherever one contact carries the load. Where a load's e differs
+/// between two samples of a piece by more than 1e-3, a midpoint; where the midpoint's e misses
+/// their mean by more than that, both halves again, up to 12 halvings (e falls to 0 within the
+/// approach of a kink of h). The contacts are the maxima of d_s within the approach of the largest
+/// load (pruned by chunks of the upper profile whose bound, the lower's maximum over their span
+/// minus their minimum, cannot reach it). Errors as loaded_state, and a periodic or malformed
+/// curve.
 Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const LiftCurve& rigid,
                                const LoadedLiftOptions& options);
 

@@ -121,15 +121,28 @@ struct ArealTiltDrop {
   std::array<double, 2> start = {0, 0};
   bool locked = false;
 };
+/// How far a run of drops (areal_tilt_hold_drops) has come, for a progress line.
+struct DropProgress {
+  std::size_t done = 0;     ///< drops finished (unitless)
+  std::size_t total = 0;    ///< drops in the run (unitless)
+  std::size_t running = 0;  ///< drops under way (unitless)
+  /// The least of the tilts at which the drops under way were last tried: each rises from zero to
+  /// its hold angle in increments, then brackets it (unit: rad; NaN: none under way). A drop that
+  /// stays at one tilt for long is one whose block is still settling there.
+  double tilt = std::numeric_limits<double>::quiet_NaN();
+};
+/// Called as a run of drops goes on (DropProgress), from the worker threads, one call at a time.
+using DropProgressFn = std::function<void(const DropProgress&)>;
+
 /// areal_tilt_hold (default resolution and stationary threshold, from zero tilt) from each drop,
 /// on one field of spheres and triangles shared by all of them (built once, read by `threads`
 /// workers, 0 = all cores): element k of the result is drop k's, identical to areal_tilt_hold
 /// from that drop. t.start_offset and t.lock_lateral are those of each drop. `progress` (if set)
-/// is called with (drops done, drops) after each, from the worker threads under a lock.
+/// is called after each drop and after each tilt increment or bracketing step of a drop under way.
 /// Errors: as areal_tilt_hold, the first failing drop named by its start offset.
-Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
-    const Map& lower, const Map& upper, const MapHoldOptions& t, const std::vector<ArealTiltDrop>& drops,
-    unsigned threads = 0, const std::function<void(std::size_t, std::size_t)>& progress = {});
+Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(const Map& lower, const Map& upper, const MapHoldOptions& t,
+                                                         const std::vector<ArealTiltDrop>& drops, unsigned threads = 0,
+                                                         const DropProgressFn& progress = {});
 
 /// How well conditioned the hold angle of areal_tilt_hold is. Where a slip ends can hinge on a basin
 /// boundary that passes within a sphere radius of the end; then how the block slides (damped
@@ -155,7 +168,7 @@ Result<ArealTiltHoldSpread> areal_tilt_hold_spread(const Map& lower, const Map& 
                                                    double resolution = kArealHoldResolution, double stationary = 1e-7);
 
 /// The default run-away distance D of the map model and of the simulation for sliding along
-/// `direction` (unit: rad) on the lower map `lower`: kRunawayPerSlopeCorrelation (analysis.hpp)
+/// `direction` (unit: rad) on the lower map `lower`: kRunawayPerSlopeCorrelation (hold.hpp)
 /// times the median slope correlation length of up to 32 evenly spaced lines of the map along the
 /// grid axis nearer to the direction (each line's longest run of valid points, at least 16; never
 /// less than the spacing), or that many spacings where no line has one. A length of the surface,

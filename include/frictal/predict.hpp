@@ -54,8 +54,8 @@ struct PredictOptions {
   /// Profiles: the block's length L_b, the piece of the upper surface (its middle) that slides
   /// over the lower one; drops over every offset at which it lies wholly over the lower scan
   /// (unit: m). 0: the default, kBlockPerRunaway d. < 0: the whole upper profile, dropped over
-  /// the first half of the lower one (partly overhanging its end: the blocks of `frictal tilt`
-  /// on files and of `frictal signature`'s hold analysis). A periodic pair (`period`) slides the
+  /// the first half of the lower one (partly overhanging its end: the blocks of `frictal tilt
+  /// --block-length whole` and of `frictal signature`'s hold analysis). A periodic pair (`period`) slides the
   /// whole upper profile, as the paper's blocks: 0 only. Maps: 0 only (the whole upper map).
   double block_length = 0;
   /// Form removal before the prediction; nullopt: a line for profiles (the mean for periodic
@@ -113,9 +113,10 @@ struct PredictOptions {
   ElasticMaterial lower_material;
   std::optional<ElasticMaterial> upper_material;
   bool rigid_upper = false;
-  /// Maps: called after each finished drop with (done, total), from the worker threads (one
-  /// call at a time); the front ends draw a progress line with it. Empty: none.
-  std::function<void(std::size_t, std::size_t)> progress;
+  /// Maps: called as the drops go on (DropProgress: drops done, the tilt the drops under way have
+  /// reached), from the worker threads (one call at a time); the front ends draw a progress line
+  /// with it. Empty: none.
+  DropProgressFn progress;
 };
 
 /// The prediction's settings table (settings.hpp): direction, atomic_friction, runaway_distance,
@@ -223,27 +224,8 @@ struct Prediction {
   std::string trust_fix;
 };
 
-/// The stated test's default lengths (docs/theory.md, "The stated test", says why these
-/// numbers): the run-away distance d (when not given) is kRunawayPerSlopeCorrelation slope correlation lengths of
-/// the (conditioned) lower profile (slope_correlation_length; where it has none, that many
-/// sampling intervals; never less than one sampling interval), the block (when not given)
-/// kBlockPerRunaway d long, d given or not. A scan holds the test when the lower
-/// scan is at least L_b + kRoomPerRunaway d long and the upper one at least L_b; else predict()
-/// answers the largest test of the same shape that fits, with the warning scan-too-short. None of
-/// them is a fraction of the scan's length: a crop of a stationary surface has the same defaults
-/// within the estimate's scatter (unitless counts).
-inline constexpr double kBlockPerRunaway = 20;
-inline constexpr double kRoomPerRunaway = 8;
-/// Drops keep this many d from each end of the offsets where the block lies wholly on the lower
-/// scan, so that a run-away has room before it slides off the scan (unitless).
-inline constexpr double kEndRoomPerRunaway = 2;
-struct StatedTest {
-  double runaway_distance = 0;  ///< d (unit: m)
-  double block_length = 0;      ///< L_b (unit: m)
-  std::string rule;             ///< how d was derived, with its numbers (text)
-};
-/// The default test for a profile pair whose (conditioned) lower profile is `lower`.
-StatedTest default_test_lengths(const Profile& lower);
+// The stated test of profiles (default_test_lengths, stated_test, kBlockPerRunaway, ...) is
+// hold.hpp's, below predict, so that the tilt test states the same test.
 
 /// A surface as the front ends hand it over: a profile or a map, with the name that messages use
 /// and the warnings its reader issued (with the reader's codes).

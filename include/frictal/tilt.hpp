@@ -201,6 +201,15 @@ struct TiltConfig {
   /// motion does not depend on the run-away distance; the run still stops at runaway_distance).
   /// Library only (not a settings-table option): the wm-tilt study kind sets it.
   std::vector<double> runaway_checkpoints;
+  /// The stated test's offsets and drops (hold.hpp's stated_drops; tilt_setup sets them on a
+  /// measured pair): the rigid model's spread over drops (TiltResult::predicted_spread_*) reads
+  /// the lift over the offsets [0, spread_offset_max] at which the block lies wholly over the lower
+  /// surface and drops over [spread_drop_min, spread_drop_max], as predict() does (unit: m).
+  /// spread_offset_max <= 0: the signature's range (one period, or half the shorter block) and its
+  /// own drops (the paper's blocks). Library only (not a settings-table option).
+  double spread_offset_max = 0;
+  double spread_drop_min = 0;
+  double spread_drop_max = 0;
   TiltFace face = TiltFace::Curve;
   /// Shift of the upper block along x before placement (unit: m). NaN: the offset of least lift
   /// h(s) over [0, period) from the signature (or 0 if `predict` is false).
@@ -277,6 +286,28 @@ inline constexpr double kTiltStepSecondsPerPair = 1e-8;  ///< (unit: s per pair)
 /// Length of the block the macro defaults were made for: the Table I block, L_b = 0.2 m (unit: m).
 inline constexpr double kTiltReferenceLength = 0.2;
 
+/// The test a tilt run of a measured profile pair states (tilt_setup), the one `frictal predict`
+/// states (hold.hpp's stated_test): the block, the run-away distance d, their rule, the drop range
+/// and the drop the run takes.
+struct TiltStatedTest {
+  /// "stated": the middle piece of the upper profile, block_length long, dropped where it lies
+  /// wholly over the lower one (predict's default); "whole": the whole upper profile over the
+  /// first half of the lower one (block length < 0); empty: no stated test (a generated surface,
+  /// which keeps the paper's blocks, or a folded curve).
+  std::string block;
+  double block_length = 0;      ///< L_b, to the nearest samples (unit: m)
+  double runaway_distance = 0;  ///< d (unit: m)
+  std::string rule;             ///< how d and L_b were set (predict's test_lengths)
+  /// predict's drop range in the signature's frame (0: the left ends aligned) (unit: m); NaN for the
+  /// whole block (the signature's own range).
+  double drop_min = std::numeric_limits<double>::quiet_NaN();
+  double drop_max = std::numeric_limits<double>::quiet_NaN();
+  /// Where the run drops the block: "the middle of the drop range", "given" (initial_offset) or,
+  /// for the whole block, "the offset of least lift".
+  std::string drop;
+  std::vector<Warning> warnings;  ///< scan-too-short (warnings.hpp's code, as predict issues it)
+};
+
 /// One setting changed by scale_tilt_defaults (SI values; the unit is the field's in tilt_settings()).
 struct TiltScaledSetting {
   std::string name;  ///< the settings-table name ("spheroradius", ...)
@@ -309,6 +340,11 @@ struct TiltScaling {
   /// and the caller did not give, as "name = value" joined by ", " (e.g. "protocol = quasi-static,
   /// hold_rotation = true"); empty for generated surfaces and from scale_tilt_defaults.
   std::string measured_defaults;
+  /// tilt_setup: the test stated on a measured pair (empty `block` otherwise).
+  TiltStatedTest test;
+  /// tilt_setup: the upper surface the run takes, as measured: the stated block (the middle piece
+  /// of the upper profile) or the upper surface as given. Pass it to run_tilt.
+  Curve upper;
 };
 /// Scales the settings of `base` (the macro defaults) to the surfaces as above; `base` values
 /// other than the defaults are scaled all the same (pass the defaults). Errors: a face with fewer
@@ -333,8 +369,18 @@ inline constexpr double kTiltMaxRadiusOverSpacing = 10;
 /// `config` is the run's; its `settings` list what was scaled and not given. Errors, each saying
 /// what is expected: a bad given value; a height range above the length (z and x in different
 /// units); a spheroradius beyond kTiltMaxRadiusOverSpacing point spacings.
+/// A measured pair (period and scale <= 0) of profiles states the test that `frictal predict` states
+/// (hold.hpp's stated_test: TiltScaling::test): the block the middle piece of the upper profile,
+/// `block_length` long (> 0: given; 0: kBlockPerRunaway d; < 0: the whole upper profile over the
+/// first half of the lower one) (unit: m), d the stated one unless runaway_distance is given, the
+/// defaults scaled to that block, the drop at the middle of predict's drop range unless
+/// initial_offset is given (in the signature's frame), and the model's spread over drops over the
+/// same drops (TiltConfig::spread_*). Scans too short for the default test give way to the
+/// largest that fits (TiltStatedTest::warnings: scan-too-short); stated lengths that do not fit
+/// are refused. Generated surfaces (period or scale > 0) keep the paper's blocks: block_length 0
+/// only. TiltScaling::upper is the upper surface the run takes.
 Result<TiltScaling> tilt_setup(const Curve& lower, const Curve& upper, const ValueSet& given, double period = 0,
-                               double scale = 0);
+                               double scale = 0, double block_length = 0);
 
 /// `base` with the given values (SI; names from tilt_settings(), else an error naming the
 /// nearest) checked and applied.
@@ -541,13 +587,15 @@ Result<TiltFramesFile> read_tilt_frames(const std::string& path);
 /// The surfaces a tilt run was given, as the front ends state them ("surface"): measured files
 /// with what conditioning did to them, or a generator with its parameters.
 struct TiltSurface {
-  std::string lower;         ///< the lower surface's file (empty: generated)
+  std::string lower;         ///< the lower surface's file (empty: generated, or not a file)
   std::string upper;         ///< the upper surface's file, as measured (the lower one when not given)
   std::string conditioning;  ///< every conditioning step applied to the files, with its numbers
   std::string generator;     ///< the generator's name (empty: files)
   /// The generator's parameter table (frictal surface GENERATOR; null: files) and its values in SI.
   const std::vector<Field>* parameters = nullptr;
   ValueSet values;
+  /// The test stated on a measured pair (TiltScaling::test); null or an empty block: none.
+  const TiltStatedTest* test = nullptr;
 };
 
 /// A tilt run as the front ends report it: the result with the configuration that produced it.

@@ -150,13 +150,16 @@ inline py::object py_value(const std::string& unit, const OutputValue& v, const 
   return a.reshape(std::vector<py::ssize_t>(shape.begin(), shape.end()));
 }
 
-/// A nested column's objects as Python holds them: "object:" one dict (None without one), "map" a
+/// A nested column's objects as Python holds them: "object:" and "settings" one dict (None without
+/// one), "map" a
 /// dict of a data map's entries,
 /// "list:" a list of dicts, "map:" a dict of dicts under each row's first value (a text), "rows:"
 /// rows of numbers as one array of `shape` (rows, columns) in SI, other rows as a list of tuples.
 inline py::object py_rows(const std::string& unit, const std::vector<OutputRow>& rows,
                           const std::vector<std::size_t>& shape = {}) {
-  if (unit.starts_with("object:")) return rows.empty() ? py::object(py::none()) : py::object(py_row(rows.front()));
+  // "settings": a settings table's values (tilt's settings and surface objects), one dict in SI.
+  if (unit.starts_with("object:") || unit == "settings")
+    return rows.empty() ? py::object(py::none()) : py::object(py_row(rows.front()));
   if (unit == "map") {  // a data map: its entries under their keys (data, an empty key included)
     py::dict m;
     for (const OutputRow& r : rows)

@@ -4,8 +4,10 @@
 // library's tilt settings table (tilt_settings(), frictal/tilt.hpp): the same names as the
 // `frictal tilt` options and the 'tilt' study kind's TOML keys.
 #include <chrono>
+#include <cmath>
 #include <optional>
 
+#include <fmt/core.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -65,12 +67,25 @@ void frictal_bind_dem(py::module_& m) {
         py::kwargs kw;
         int threads = 1;
         std::optional<std::string> detrend;  // the form removed from a measured Profile
+        double block_length = 0;             // the stated test's block (a measured Profile)
         for (const auto& item : all) {
           if (py::str(item.first).cast<std::string>() == "threads") {
             threads = item.second.cast<int>();
             if (threads < 0) throw py::value_error("tilt: threads: expected >= 0 (0 = all cores)");
           } else if (py::str(item.first).cast<std::string>() == "detrend") {
             if (!item.second.is_none()) detrend = item.second.cast<std::string>();
+          } else if (py::str(item.first).cast<std::string>() == "block_length") {
+            if (py::isinstance<py::str>(item.second)) {
+              if (item.second.cast<std::string>() != "whole")
+                throw py::value_error(fmt::format("tilt: block_length '{}': expected a length in m or 'whole'",
+                                                  item.second.cast<std::string>()));
+              block_length = -1;
+            } else if (!item.second.is_none()) {
+              block_length = item.second.cast<double>();
+              if (!(block_length > 0) || !std::isfinite(block_length))
+                throw py::value_error(
+                    fmt::format("tilt: block_length {}: expected a length > 0 in m, or 'whole'", block_length));
+            }
           } else {
             kw[item.first] = item.second;
           }
@@ -104,18 +119,19 @@ void frictal_bind_dem(py::module_& m) {
         } else if (detrend) {
           throw py::value_error("tilt: detrend applies to a measured Profile (one that does not repeat)");
         }
-        TiltScaling sc = py_detail::ok(tilt_setup(lo, up, given, period, period));
+        TiltScaling sc = py_detail::ok(tilt_setup(lo, up, given, period, period, block_length));
+        for (const Warning& w : sc.test.warnings) add_warning(data_warnings, w);
         TiltConfig c = sc.config;
         c.threads = threads;
-        TiltResult r = py_detail::ok(py_detail::nogil([&] { return run_tilt(lo, up, c); }));
-        // The files' warnings, then the run's, as the CLI lists them; the conditioning of a measured pair.
+        TiltResult r = py_detail::ok(py_detail::nogil([&] { return run_tilt(lo, sc.upper, c); }));
+        // The files' warnings, then the run's, as the CLI lists them; a measured pair's surface
+        // object as the CLI's: its conditioning and the stated test.
         std::vector<Warning> warnings = std::move(data_warnings);
         warnings.insert(warnings.end(), r.warnings.begin(), r.warnings.end());
-        py::dict d = py_detail::to_dict(tilt_columns(), TiltReport{r, c, &sc, nullptr, &warnings});
-        RunRecord run;
-        if (measured) run.conditioning = conditioning;
-        py_detail::put_columns(d, run_record_columns(), run);
-        return d;
+        TiltSurface surface;
+        surface.conditioning = conditioning;
+        surface.test = &sc.test;
+        return py_detail::to_dict(tilt_columns(), TiltReport{r, c, &sc, measured ? &surface : nullptr, &warnings});
       },
       py::arg("lower"), py::arg("upper") = py::none(),
       ("tilt(lower, upper=None, **settings) -> dict\n\nTilting-block test on the spheropolygon engine (paper Sec. "
@@ -125,7 +141,11 @@ void frictal_bind_dem(py::module_& m) {
        "a line), checked (warnings) and the defaults scaled to its length and point spacing (scaled_defaults: "
        "length, point_spacing, factors and the (name, from, to) of each setting changed, SI), and loaded as the CLI "
        "loads a measured pair: protocol quasi-static with hold_rotation, where not given (scaled_defaults' "
-       "measured_defaults names them; protocol=\"constant-rate\", hold_rotation=False: the paper's); a repeating "
+       "measured_defaults names them; protocol=\"constant-rate\", hold_rotation=False: the paper's), on the test "
+       "that predict() states: the block the middle piece of upper, block_length long (default 20 run-away "
+       "distances; a length in m, or \"whole\": all of upper over the first half of lower), d predict's (12.5 "
+       "slope correlation lengths of lower) unless runaway_distance is given, dropped at the middle of predict's "
+       "drop range unless initial_offset is given, and the model's spread over the same drops; a repeating "
        "Profile "
        "(a generator's) or an (x, z) curve is a generated surface of its period (period=, default 0.01 m for a "
        "curve), its defaults scaled as the CLI's generator subcommands scale them. Returns validity (\"valid\", or "
@@ -140,6 +160,9 @@ void frictal_bind_dem(py::module_& m) {
        "increments, unrelaxed_increments (protocol quasi-static), contact_rule (the rule used: pairs or closest), "
        "rotation_before_slide (rad), "
        "settled_speed (m/s, the upper block's speed when the tilt starts), "
+       "settings (every setting the run used, SI: `frictal tilt --json`'s settings), surface (measured: "
+       "conditioning and the stated test: block, block_length, runaway_distance, test_lengths, drop_range, drop; "
+       "`frictal tilt --json`'s surface in SI), "
        "warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, "
        "smallest_feature (lower, upper) in m, time_step, contact_period in s), estimate and stage_time (the cost "
        "estimated before the run and the wall time by stage, s: `frictal tilt --json`'s estimate and stage_time_s), "

@@ -167,9 +167,12 @@ Status validate(const Profile& p, const std::string& what) {
   if (auto st = check_arrays(p.x, p.z, what); !st) return st;
   int run = 1;
   for (std::size_t i = 1; i < p.x.size(); ++i) {
-    if (p.x[i] < p.x[i - 1])
-      return make_error(fmt::format("{}: x must be non-decreasing, but point {} (x = {}) comes after x = {}", what,
-                                    i + 1, p.x[i], p.x[i - 1]));
+    if (p.x[i] < p.x[i - 1]) {
+      const bool backwards = std::is_sorted(p.x.rbegin(), p.x.rend());
+      return make_error(fmt::format("{}: x must be non-decreasing, but point {} (x = {}) comes after x = {}{}", what,
+                                    i + 1, p.x[i], p.x[i - 1],
+                                    backwards ? "; x decreases throughout: give the points in reverse order" : ""));
+    }
     run = (p.x[i] == p.x[i - 1]) ? run + 1 : 1;
     if (run > 3)
       return make_error(fmt::format("{}: more than 3 points share x = {} (point {}); a vertical jump needs at most 3",

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <fmt/core.h>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -211,6 +212,24 @@ Result<SurfaceData> checked_spacing(Result<SurfaceData> r, const std::string& na
   return r;
 }
 
+/// A profile whose x decreases down the file (an instrument that exports from its far end) is the
+/// same profile: its rows are read in reverse order, with a note. Only a column that never
+/// increases is turned; one that goes back and forth stays as read (a folded curve, or an error
+/// later where a profile is needed).
+Result<SurfaceData> increasing_x(Result<SurfaceData> r, const std::string& name) {
+  if (!r || r->is_map || r->curve.x.size() < 2) return r;
+  std::vector<double>& x = r->curve.x;
+  if (!(x.back() < x.front())) return r;
+  for (std::size_t i = 1; i < x.size(); ++i)
+    if (x[i] > x[i - 1]) return r;
+  std::reverse(x.begin(), x.end());
+  std::reverse(r->curve.z.begin(), r->curve.z.end());
+  r->warnings.emplace_back("reader", fmt::format("{}: x decreases down the file ({:.6g} to {:.6g} m); the rows are "
+                                                 "read in reverse order, the same profile with x increasing",
+                                                 name, x.back(), x.front()));
+  return r;
+}
+
 /// The name of a unit scale (metres per unit) for messages: "m", "mm", "um", "nm", "pm", or "1e-05 m".
 std::string unit_word(double scale) {
   for (const auto& [s, w] : {std::pair{1.0, "m"}, {1e-3, "mm"}, {1e-6, "um"}, {1e-9, "nm"}, {1e-12, "pm"}})
@@ -258,7 +277,7 @@ Result<SurfaceData> with_units(Result<SurfaceData> r, const ReadOptions& o, cons
 Result<SurfaceData> read_surface_bytes(const std::string& bytes, const std::string& name, const ReadOptions& options) {
   auto r = read_native_bytes(bytes, name, options, 0);
   if (r) describe_native(*r);
-  return checked_spacing(with_units(std::move(r), options, name), name);
+  return increasing_x(checked_spacing(with_units(std::move(r), options, name), name), name);
 }
 
 static Status check_native_channel(const SurfaceData& s, const std::string& path, const ReadOptions& options) {
@@ -340,7 +359,7 @@ std::optional<SurfaceData> read_text_mapped(const std::string& path, const ReadO
 static Result<SurfaceData> read_surface_unchecked(const std::string& path, const ReadOptions& options);
 
 Result<SurfaceData> read_surface(const std::string& path, const ReadOptions& options) {
-  return checked_spacing(with_units(read_surface_unchecked(path, options), options, path), path);
+  return increasing_x(checked_spacing(with_units(read_surface_unchecked(path, options), options, path), path), path);
 }
 
 static Result<SurfaceData> read_surface_unchecked(const std::string& path, const ReadOptions& options) {

@@ -392,6 +392,9 @@ std::optional<PrintedGrid> printed_uniform_grid(const std::vector<double>& x, co
     g.min_step = std::min(g.min_step, x[k] - x[k - 1]);
     g.max_step = std::max(g.max_step, x[k] - x[k - 1]);
   }
+  // Rounding keeps the order: the printed column of a grid never steps against the grid's
+  // direction (x going back and forth is a folded curve, not a rounded grid).
+  if (g.dx > 0 ? g.min_step < 0 : g.max_step > 0) return std::nullopt;
   if (header_dx && *header_dx > 0) {
     const double hdx = g.dx < 0 ? -*header_dx : *header_dx;
     double l = 0;
@@ -922,6 +925,17 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   if (!xo) return xo.error();
   if (!zo) return zo.error();
   auto xu = find_unit(xc), zu = find_unit(zc);
+  // A length unit the header states by key when the columns name none: the axis' own ("# x unit:
+  // um", "# z unit: nm"), else one for the whole file ("# units: um"). A value that is no length
+  // unit ("Units: counts") is not one: the column stays without a unit (and the warning below).
+  auto header_unit = [&](std::initializer_list<const char*> keys) -> std::optional<double> {
+    for (const std::string* u : {hp.get(keys), hp.get({"unit", "units", "lengthunit", "lengthunits"})})
+      if (u)
+        if (auto s = unit_scale(*u)) return s;
+    return std::nullopt;
+  };
+  if (!xu && !*xo) xu = header_unit({"xunit", "xunits", "lateralunit", "lateralunits"});
+  if (!zu && !*zo) zu = header_unit({"zunit", "zunits", "heightunit", "heightunits", "valueunit", "valueunits"});
   const bool x_none = !xu && !*xo, z_none = !zu && !*zo;
   if ((x_none || z_none) && options.default_unit.empty())
     out.warnings.emplace_back(

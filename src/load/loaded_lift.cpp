@@ -1,6 +1,7 @@
 // The loaded lift of a profile pair (frictal/load.hpp): projected Hertzian asperity contacts at
 // the local maxima of the composite d_s(x) = f(x) - g(x - s), the block's height under the load
-// from the balance of their vertical forces, and the minimum potential energy per unit load.
+// from the balance of their vertical forces, and the lift whose slope is the force-resolved
+// contact slope, integrated over the rigid lift's pieces.
 #include "frictal/load.hpp"
 
 #include <algorithm>
@@ -16,6 +17,11 @@ namespace frictal {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// The refinement of the loaded lift's integral (loaded_lift, pass 2): at most this many halvings
+// of a piece of the rigid lift, until the excess slope between two samples is straight to this
+// (unitless; 1e-4 in slope is 0.006 deg of hold angle).
+constexpr int kRefineDepth = 12;
+constexpr double kRefineSlope = 1e-3;
 
 // A surface's vertices with the first and second derivatives of the quadratic through each
 // vertex and its two neighbours (ends: the end edge's slope and the neighbour's curvature; a
@@ -173,7 +179,7 @@ class Pair {
   // The block's state at offset s for the contacts `c` (their touch heights, slopes, radii set)
   // under load W: the height z, and each contact's interference and force.
   struct Balance {
-    double height = 0, energy = 0, horizontal = 0;
+    double height = 0, energy = 0, horizontal = 0, vertical = 0;
   };
   Balance balance(std::vector<HertzContact>& c, double W) const {
     Balance r;
@@ -206,6 +212,7 @@ class Pair {
       k.force = vertical / cs;
       r.energy += 0.4 * vertical * v;
       r.horizontal += k.force * std::sin(k.slope);
+      r.vertical += vertical;
     }
     return r;
   }
@@ -306,8 +313,9 @@ class Pair {
       // S'(t) = A t^2 + B t + C on t in [0, h].
       const double A = (M1 - M0) / (2 * h), B = M0, C = -M0 * h / 2 + (y1 - y0) / h - (M1 - M0) * h / 6;
       auto emit = [&](double t, double curvature_d2) {
-        const double x = xs_[k] + t;
-        if (x < xl || x > xr || (!out.empty() && out.back().x == x)) return;
+        const double x = t >= h ? xs_[k + 1] : xs_[k] + t;
+        // A maximum at a knot is a root of both pieces beside it (each within rounding): once.
+        if (x < xl || x > xr || (!out.empty() && std::abs(out.back().x - x) <= 1e-9 * h)) return;
         const double d = value(t);
         if (d >= threshold) {
           out.push_back(contact_at(s, x, d, curvature_d2, saddle));
@@ -331,8 +339,9 @@ class Pair {
       }
       if (nr == 2 && roots[0] > roots[1]) std::swap(roots[0], roots[1]);
       for (int r = 0; r < nr; ++r) {
-        const double t = roots[r];
-        if (!(t > 0 && t <= h)) continue;
+        // A root at a knot may fall a rounding error outside both pieces beside it.
+        const double t = std::clamp(roots[r], 0.0, h);
+        if (!(roots[r] >= -1e-9 * h && roots[r] <= h * (1 + 1e-9))) continue;
         const double d2 = M0 + (M1 - M0) * t / h;  // S''(t)
         if (2 * A * t + B < 0) emit(t, d2);        // a maximum: S' falls through 0
       }
@@ -445,8 +454,9 @@ Result<LoadedState> loaded_state(const Profile& lower, const Profile& upper, dou
   if (c.empty()) return make_error(fmt::format("offset {:.6g} m: no contact found", offset));
   const Pair::Balance bal = pair.balance(c, load);
   st.height = bal.height;
-  st.loaded_lift = bal.height + bal.energy / load;
-  st.effective_slope = bal.horizontal / load;
+  st.energy = bal.energy;
+  st.energy_lift = bal.height + bal.energy / load;
+  st.effective_slope = bal.horizontal / bal.vertical;
   st.contacts = std::move(c);
   return st;
 }
@@ -465,57 +475,174 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
   }
   const std::size_t nl = o.loads.size();
   const double wmax = *std::max_element(o.loads.begin(), o.loads.end());
-  LoadedLift out;
-  out.loads = o.loads;
-  out.curves.assign(nl, LiftCurve{rigid.offset, std::vector<double>(n), 0});
-  out.slopes.assign(nl, std::vector<double>(n));
   // Per vertex and load: the diagnostics' terms (weighted by the vertex's share of the offsets).
   struct Terms {
     double contacts = 0, approach = 0, ratio = 0, deep = 0, merged = 0, slope2 = 0;
   };
-  std::vector<std::vector<Terms>> terms(nl, std::vector<Terms>(n));
-  std::vector<std::size_t> found(n, 0);
+  // The contacts at s (hint: a height a little above h(s)), and per load (nl
+  // values each) the force-resolved slope tau_W into `slope` and the loaded lift's excess slope
+  // over the rigid lift's on the piece before s (slope hb) into `before`, on the piece after it
+  // (ha) into `after`, and the diagnostics' terms (if asked). The excess: the lift's slope is the
+  // force-weighted mean of the loaded contacts' slopes, with the slope of the contact that the
+  // rigid lift follows (the loaded one whose slope is nearest the piece's) read from the rigid
+  // lift, exact on the polylines: sum_(c != c*) w_c (tan theta_c - h'), w_c the contacts' shares
+  // of the vertical force. One loaded contact: no excess, the rigid slope.
+  auto evaluate = [&](double s, double hint, double hb, double ha, std::vector<HertzContact>& c, double* slope,
+                      double* before, double* after, Terms* terms) -> bool {
+    const double h = collect(pair, s, hint, o.contact_modulus, wmax, c);
+    if (c.empty()) return false;
+    auto excess = [&](double hp, double vertical) {
+      std::size_t follow = c.size();
+      for (std::size_t q = 0; q < c.size(); ++q)
+        if (c[q].force > 0 &&
+            (follow == c.size() || std::abs(std::tan(c[q].slope) - hp) < std::abs(std::tan(c[follow].slope) - hp)))
+          follow = q;
+      double e = 0;
+      for (std::size_t q = 0; q < c.size(); ++q)
+        if (q != follow && c[q].force > 0) e += c[q].force * (std::sin(c[q].slope) - std::cos(c[q].slope) * hp);
+      return e / vertical;
+    };
+    for (std::size_t l = 0; l < nl; ++l) {
+      const double W = o.loads[l];
+      const Pair::Balance bal = pair.balance(c, W);
+      slope[l] = bal.horizontal / bal.vertical;
+      before[l] = excess(hb, bal.vertical);
+      after[l] = hb == ha ? before[l] : excess(ha, bal.vertical);
+      if (!terms) continue;
+      Terms& m = terms[l];
+      m.approach = h - bal.height;
+      // A loaded contact merges with a neighbouring asperity (the next local maximum of d_s on
+      // either side, loaded or not) where the block is below the saddle between them or its
+      // Hertz half-width a = sqrt(R delta) reaches it: the patch is then not one sphere's.
+      double merged = 0;
+      for (std::size_t q = 0; q < c.size(); ++q) {
+        const HertzContact& k = c[q];
+        if (!(k.force > 0)) continue;
+        m.contacts += 1;
+        m.ratio = std::max(m.ratio, k.interference / k.radius);
+        m.slope2 += k.force * std::tan(k.slope) * std::tan(k.slope) / W;
+        const double a = std::sqrt(k.radius * k.interference);
+        const bool left = q > 0 && (k.saddle_left > bal.height || a >= k.x - c[q - 1].x);
+        const bool right = q + 1 < c.size() && (c[q + 1].saddle_left > bal.height || a >= c[q + 1].x - k.x);
+        if (left || right) merged += k.force * std::cos(k.slope);
+      }
+      m.deep = m.ratio > 0.1 ? 1 : 0;
+      m.merged = std::min(merged / std::max(W, 1e-300), 1.0);
+    }
+    return true;
+  };
   const unsigned T = util::thread_count(o.threads, n);
   std::vector<std::string> failures(T);
+  // Pass 1: the rigid lift's vertices.
+  std::vector<double> slope(n * nl), before(n * nl), after(n * nl);
+  // The rigid lift's slope on piece k, [s_k, s_(k+1)] (k < n - 1).
+  auto piece = [&](std::size_t k) {
+    return (rigid.lift[k + 1] - rigid.lift[k]) / (rigid.offset[k + 1] - rigid.offset[k]);
+  };
+  std::vector<Terms> terms(n * nl);
+  std::vector<std::size_t> found(n, 0);
   util::parallel_chunks(n, T, [&](unsigned chunk, std::size_t k0, std::size_t k1) {
     std::vector<HertzContact> c;
     for (std::size_t k = k0; k < k1; ++k) {
-      const double s = rigid.offset[k];
-      const double h = collect(pair, s, rigid.lift[k], o.contact_modulus, wmax, c);
-      if (c.empty()) {
-        failures[chunk] = fmt::format("offset {:.6g} m: no contact found", s);
+      const double hb = piece(k == 0 ? 0 : k - 1), ha = piece(k + 1 == n ? n - 2 : k);
+      if (!evaluate(rigid.offset[k], rigid.lift[k], hb, ha, c, &slope[k * nl], &before[k * nl], &after[k * nl],
+                    &terms[k * nl])) {
+        failures[chunk] = fmt::format("offset {:.6g} m: no contact found", rigid.offset[k]);
         return;
       }
       found[k] = c.size();
-      for (std::size_t l = 0; l < nl; ++l) {
-        const double W = o.loads[l];
-        const Pair::Balance bal = pair.balance(c, W);
-        out.curves[l].lift[k] = rigid.lift[k] + (bal.height - h) + bal.energy / W;
-        out.slopes[l][k] = bal.horizontal / W;
-        Terms& t = terms[l][k];
-        t.approach = h - bal.height;
-        // A loaded contact merges with a neighbouring asperity (the next local maximum of d_s on
-        // either side, loaded or not) where the block is below the saddle between them or its
-        // Hertz half-width a = sqrt(R delta) reaches it: the patch is then not one sphere's.
-        double merged = 0;
-        for (std::size_t q = 0; q < c.size(); ++q) {
-          const HertzContact& k = c[q];
-          if (!(k.force > 0)) continue;
-          t.contacts += 1;
-          t.ratio = std::max(t.ratio, k.interference / k.radius);
-          t.slope2 += k.force * std::tan(k.slope) * std::tan(k.slope) / W;
-          const double a = std::sqrt(k.radius * k.interference);
-          const bool left = q > 0 && (k.saddle_left > bal.height || a >= k.x - c[q - 1].x);
-          const bool right = q + 1 < c.size() && (c[q + 1].saddle_left > bal.height || a >= c[q + 1].x - k.x);
-          if (left || right) merged += k.force * std::cos(k.slope);
-        }
-        t.deep = t.ratio > 0.1 ? 1 : 0;
-        t.merged = std::min(merged / std::max(W, 1e-300), 1.0);
-      }
     }
   });
   for (const std::string& f : failures)
     if (!f.empty()) return make_error("the loaded lift: " + f);
+  // Pass 2: the excess is nonzero only where several contacts carry the load, and it can fall
+  // from its value at a vertex to 0 within the approach of a kink of the rigid lift, far inside
+  // the piece: the trapezoids would spread it over half the piece. In each piece where a load's
+  // excess differs between the ends by more than kRefineSlope, a sample at the midpoint; where it
+  // misses the mean of the ends by more than that, both halves again, down to kRefineDepth
+  // halvings. The pieces' slopes are then the mean excess to about kRefineSlope.
+  struct Inner {
+    double offset = 0;
+    std::vector<double> slope, excess;
+  };
+  auto differ = [&](const double* ea, const double* eb) {
+    for (std::size_t l = 0; l < nl; ++l)
+      if (std::abs(ea[l] - eb[l]) > kRefineSlope) return true;
+    return false;
+  };
+  std::vector<std::vector<std::pair<std::size_t, std::vector<Inner>>>> inner(T);
+  util::parallel_chunks(n - 1, T, [&](unsigned chunk, std::size_t k0, std::size_t k1) {
+    std::vector<HertzContact> c;
+    for (std::size_t k = k0; k < k1; ++k) {
+      if (!differ(&after[k * nl], &before[(k + 1) * nl])) continue;
+      const double s0 = rigid.offset[k], h0 = rigid.lift[k], hp = piece(k);
+      std::vector<Inner> out;
+      // Depth first, left to right: the samples come out in offset order. The excesses ea, eb
+      // are the pass's vertices' or the callers' locals', never elements of `out`.
+      auto refine = [&](auto&& self, double a, const double* ea, double b, const double* eb, int depth) -> bool {
+        if (depth >= kRefineDepth || !differ(ea, eb)) return true;
+        Inner m;
+        m.offset = 0.5 * (a + b);
+        m.slope.resize(nl), m.excess.resize(nl);
+        if (!evaluate(m.offset, h0 + hp * (m.offset - s0), hp, hp, c, m.slope.data(), m.excess.data(), m.excess.data(),
+                      nullptr)) {
+          failures[chunk] = fmt::format("offset {:.6g} m: no contact found", m.offset);
+          return false;
+        }
+        bool straight = true;
+        for (std::size_t l = 0; l < nl; ++l)
+          straight = straight && std::abs(m.excess[l] - 0.5 * (ea[l] + eb[l])) <= kRefineSlope;
+        const std::vector<double> em = m.excess;
+        if (!straight && !self(self, a, ea, m.offset, em.data(), depth + 1)) return false;
+        out.push_back(std::move(m));
+        return straight || self(self, out.back().offset, em.data(), b, eb, depth + 1);
+      };
+      if (!refine(refine, s0, &after[k * nl], rigid.offset[k + 1], &before[(k + 1) * nl], 0)) return;
+      if (!out.empty()) inner[chunk].emplace_back(k, std::move(out));
+    }
+  });
+  for (const std::string& f : failures)
+    if (!f.empty()) return make_error("the loaded lift: " + f);
+  // Pass 3: the excess slopes integrated by trapezoids (on each piece its value at the piece's
+  // ends: `after` at its first vertex, `before` at its last) and added to the rigid lift (linear
+  // between its vertices, as the hold analysis reads it).
+  std::size_t total = n;
+  for (const auto& ch : inner)
+    for (const auto& [k, v] : ch) total += v.size();
+  LoadedLift out;
+  out.loads = o.loads;
+  out.refined = total - n;
+  out.curves.assign(nl, LiftCurve{});
+  out.slopes.assign(nl, {});
+  for (std::size_t l = 0; l < nl; ++l) {
+    out.curves[l].offset.reserve(total), out.curves[l].lift.reserve(total), out.slopes[l].reserve(total);
+  }
+  std::vector<double> integral(nl, 0.0);
+  double prev_offset = 0;
+  const double* prev_excess = nullptr;
+  // `in`: the excess on the piece that ends here; `on`: on the piece that starts here.
+  auto push = [&](double offset, const double* tau, const double* in, const double* on, double h) {
+    for (std::size_t l = 0; l < nl; ++l) {
+      if (prev_excess) integral[l] += 0.5 * (prev_excess[l] + in[l]) * (offset - prev_offset);
+      out.curves[l].offset.push_back(offset);
+      out.curves[l].lift.push_back(h + integral[l]);
+      out.slopes[l].push_back(tau[l]);
+    }
+    prev_offset = offset, prev_excess = on;
+  };
+  std::size_t chunk = 0, next = 0;  // the next interval with inner samples: inner[chunk][next]
+  for (std::size_t k = 0; k < n; ++k) {
+    push(rigid.offset[k], &slope[k * nl], &before[k * nl], &after[k * nl], rigid.lift[k]);
+    if (k + 1 == n) break;
+    while (chunk < inner.size() && next >= inner[chunk].size()) ++chunk, next = 0;
+    if (chunk < inner.size() && inner[chunk][next].first == k) {
+      const double hp = piece(k);
+      for (const Inner& q : inner[chunk][next].second)
+        push(q.offset, q.slope.data(), q.excess.data(), q.excess.data(),
+             rigid.lift[k] + hp * (q.offset - rigid.offset[k]));
+      ++next;
+    }
+  }
   for (std::size_t k = 0; k < n; ++k) out.candidates += found[k];
   const double span = rigid.offset.back() - rigid.offset.front();
   for (std::size_t l = 0; l < nl; ++l) {
@@ -524,7 +651,7 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
     double slope2 = 0;
     for (std::size_t k = 0; k < n; ++k) {
       const double w = 0.5 * (rigid.offset[std::min(k + 1, n - 1)] - rigid.offset[k == 0 ? 0 : k - 1]) / span;
-      const Terms& t = terms[l][k];
+      const Terms& t = terms[k * nl + l];
       d.mean_contacts += w * t.contacts;
       d.mean_approach += w * t.approach;
       d.max_interference_ratio = std::max(d.max_interference_ratio, t.ratio);

@@ -17,6 +17,7 @@
 #include "areal/areal_grid.hpp"
 #include "frictal/analysis.hpp"
 #include "frictal/areal.hpp"
+#include "frictal/hold.hpp"
 #include "frictal/map_hold.hpp"
 #include "map_hold_geometry.hpp"
 #include "util/parallel.hpp"
@@ -1000,7 +1001,8 @@ Status check_hold_inputs(const Map& f, const Map& g, const MapHoldOptions& t, do
 
 /// The protocol of areal_tilt_hold on a field already built (inputs checked), from t.start_offset.
 Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, const MapHoldOptions& t, double r,
-                                    double resolution, double stationary, double start_tilt) {
+                                    double resolution, double stationary, double start_tilt,
+                                    const std::function<void(double)>& reached = {}) {
   if (!std::isfinite(t.start_offset[0]) || !std::isfinite(t.start_offset[1]))
     return make_error("areal_tilt_hold: the start offset must be finite (m)");
   const double dxv = std::cos(t.angle), dyv = std::sin(t.angle);
@@ -1372,6 +1374,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
       State trial = s;
       const End e = held(descend(beta, trial, true), beta);
       out.stops.push_back({beta, trial.x, trial.y});
+      if (reached) reached(beta);
       if (e == End::Far) return beta;
       trial.x_stop = trial.x;  // a stop (Rest) or a block that did not settle: either way the next
       trial.y_stop = trial.y;  // increment starts from here, as in areal_tilt
@@ -1415,7 +1418,9 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   // always held, hi always ran away, as in the bisection alone.
   auto probe = [&](double beta) {
     State trial = before;
-    if (held(descend(beta, trial, true), beta) == End::Far) {
+    const End e = held(descend(beta, trial, true), beta);
+    if (reached) reached(beta);
+    if (e == End::Far) {
       hi = beta;
       at_hi = trial;
       have_hi = true;
@@ -1440,7 +1445,9 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
   while (hi - lo > resolution) {
     const double mid = 0.5 * (lo + hi);
     State trial = before;
-    if (held(descend(mid, trial, true), mid) == End::Far) {
+    const End e = held(descend(mid, trial, true), mid);
+    if (reached) reached(mid);
+    if (e == End::Far) {
       hi = mid;
       at_hi = trial;
       have_hi = true;
@@ -1487,7 +1494,7 @@ void turn_back(ArealTiltHold& h, const detail::TurnedExperiment<MapHoldOptions>&
 
 Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g, const MapHoldOptions& t,
                                                      const std::vector<ArealTiltDrop>& drops, unsigned threads,
-                                                     const std::function<void(std::size_t, std::size_t)>& progress) {
+                                                     const DropProgressFn& progress) {
   const std::vector<detail::TiltNode> nodes = detail::tilt_nodes(f, g, t.angle, t.turn_over_upper);
   if (nodes.empty()) return make_error("areal_tilt_hold: the upper map has no valid node");
   const detail::Hfield hf = detail::tilt_hfield(f, std::size_t(t.hfield_refine));
@@ -1495,8 +1502,24 @@ Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g,
   const SphereField field(nodes, hf, r);  // shared (read-only) by every drop
   std::vector<ArealTiltHold> out(drops.size());
   std::vector<std::string> errors(drops.size());
+  // The progress: the drops finished, and each drop's tilt while it is under way (NaN: not).
   std::mutex m;
   std::size_t done = 0;
+  std::vector<double> reached(drops.size(), std::numeric_limits<double>::quiet_NaN());
+  auto report = [&](std::size_t k, double tilt, bool finished) {
+    std::lock_guard<std::mutex> lock(m);
+    reached[k] = finished ? std::numeric_limits<double>::quiet_NaN() : tilt;
+    if (finished) ++done;
+    DropProgress p;
+    p.done = done;
+    p.total = drops.size();
+    for (double b : reached)
+      if (!std::isnan(b)) {
+        ++p.running;
+        p.tilt = std::isnan(p.tilt) ? b : std::min(p.tilt, b);
+      }
+    progress(p);
+  };
   // Each thread takes the next drop not yet taken (drops differ in cost by several times: halves
   // of the grid left one thread idle for up to a tenth of the run); every drop is computed alone,
   // so the results do not depend on the order.
@@ -1507,15 +1530,14 @@ Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g,
       MapHoldOptions tk = t;
       tk.start_offset = drops[k].start;
       tk.lock_lateral = drops[k].locked;
-      auto h = hold_on_field(field, f, tk, r, kArealHoldResolution, 1e-7, 0);
+      if (progress) report(k, 0, false);
+      const std::function<void(double)> at = [&, k](double tilt) { report(k, tilt, false); };
+      auto h = hold_on_field(field, f, tk, r, kArealHoldResolution, 1e-7, 0, progress ? at : nullptr);
       if (h)
         out[k] = std::move(h).value();
       else
         errors[k] = "#" + std::to_string(k) + ": " + h.error().message;
-      if (progress) {
-        std::lock_guard<std::mutex> lock(m);
-        progress(++done, drops.size());
-      }
+      if (progress) report(k, 0, true);
     }
   });
   for (std::size_t k = 0; k < drops.size(); ++k)
@@ -1534,9 +1556,9 @@ Result<ArealTiltHold> areal_tilt_hold(const Map& f, const Map& g, const MapHoldO
   return h;
 }
 
-Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(
-    const Map& f, const Map& g, const MapHoldOptions& t, const std::vector<ArealTiltDrop>& drops, unsigned threads,
-    const std::function<void(std::size_t, std::size_t)>& progress) {
+Result<std::vector<ArealTiltHold>> areal_tilt_hold_drops(const Map& f, const Map& g, const MapHoldOptions& t,
+                                                         const std::vector<ArealTiltDrop>& drops, unsigned threads,
+                                                         const DropProgressFn& progress) {
   if (auto s = check_hold_inputs(f, g, t, kArealHoldResolution, 1e-7, 0); !s) return s.error();
   auto named = [&](Result<std::vector<ArealTiltHold>> r) -> Result<std::vector<ArealTiltHold>> {
     if (r) return r;

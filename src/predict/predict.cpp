@@ -121,78 +121,6 @@ double mean_spacing(const Profile& p) {
   return p.x.size() > 1 ? (p.x.back() - p.x.front()) / double(p.x.size() - 1) : 0;
 }
 
-// The piece [x0, x1] of a profile (within its range), its ends on the profile's nearest samples.
-Profile piece(const Profile& p, double x0, double x1) {
-  x0 = std::max(x0, p.x.front());
-  x1 = std::min(x1, p.x.back());
-  // Each end snapped to the nearest sample (a tie outward, so that a mirrored scan gives the
-  // mirrored piece): the block keeps the scan's own samples. Ends interpolated between samples
-  // would put the turned-over block off the lower scan's grid, and the signature's aligned-lattice
-  // search would give way to the general one (a 10^6-point pair: 4.7 s against 1.7 s). A piece
-  // of fewer than 8 samples (a block shorter than the scan's spacing allows, e.g. scans of very
-  // different scales) keeps its stated ends, interpolated.
-  auto nearest = [&](double x, bool tie_left) {
-    const auto it = std::lower_bound(p.x.begin(), p.x.end(), x);
-    if (it == p.x.begin()) return p.x.front();
-    if (it == p.x.end()) return p.x.back();
-    const double hi = *it, lo = *(it - 1);
-    if (x - lo < hi - x) return lo;
-    if (hi - x < x - lo) return hi;
-    return tie_left ? lo : hi;
-  };
-  const double spacing = (p.x.back() - p.x.front()) / double(p.x.size() - 1);
-  Profile out;
-  if (x1 - x0 >= 8 * spacing) {
-    const double s0 = nearest(x0, true), s1 = nearest(x1, false);
-    // A vertical jump at an end keeps its side inside the piece: the last sample at s0 (the right
-    // limit) and the first at s1 (the left limit).
-    for (std::size_t i = 0; i < p.x.size(); ++i) {
-      if (p.x[i] < s0 || p.x[i] > s1) continue;
-      if (p.x[i] == s0 && i + 1 < p.x.size() && p.x[i + 1] == s0) continue;
-      if (p.x[i] == s1 && !out.x.empty() && out.x.back() == s1) continue;
-      out.x.push_back(p.x[i]), out.z.push_back(p.z[i]);
-    }
-    if (out.size() >= 2 && out.x.back() > out.x.front()) return out;
-    out = Profile{};
-  }
-  auto at = [&](double x) {
-    const auto it = std::upper_bound(p.x.begin(), p.x.end(), x);
-    const std::size_t k = std::clamp<std::size_t>(std::size_t(it - p.x.begin()), 1, p.x.size() - 1);
-    const double w = p.x[k] - p.x[k - 1];
-    if (!(w > 0)) return p.z[k];
-    const double t = (x - p.x[k - 1]) / w;
-    return p.z[k - 1] + t * (p.z[k] - p.z[k - 1]);
-  };
-  const double tol = 1e-9 * (p.x.back() - p.x.front());
-  out.x.push_back(x0);
-  out.z.push_back(at(x0));
-  for (std::size_t i = 0; i < p.x.size(); ++i)
-    if (p.x[i] > x0 + tol && p.x[i] < x1 - tol) out.x.push_back(p.x[i]), out.z.push_back(p.z[i]);
-  out.x.push_back(x1);
-  out.z.push_back(at(x1));
-  return out;
-}
-
-// The lift over [a, b] (inside its range), its ends interpolated: the same piecewise-linear h.
-LiftCurve cut_curve(const LiftCurve& c, double a, double b) {
-  LiftCurve out;
-  auto at = [&](double s) {
-    const auto it = std::upper_bound(c.offset.begin(), c.offset.end(), s);
-    const std::size_t k = std::clamp<std::size_t>(std::size_t(it - c.offset.begin()), 1, c.offset.size() - 1);
-    const double t = (s - c.offset[k - 1]) / (c.offset[k] - c.offset[k - 1]);
-    return c.lift[k - 1] + t * (c.lift[k] - c.lift[k - 1]);
-  };
-  a = std::max(a, c.offset.front());
-  b = std::min(b, c.offset.back());
-  out.offset.push_back(a);
-  out.lift.push_back(at(a));
-  for (std::size_t i = 0; i < c.offset.size(); ++i)
-    if (c.offset[i] > a && c.offset[i] < b) out.offset.push_back(c.offset[i]), out.lift.push_back(c.lift[i]);
-  out.offset.push_back(b);
-  out.lift.push_back(at(b));
-  return out;
-}
-
 // The load model's limits (docs/load.md, "Where it stops holding"): the force-weighted rms contact
 // slope of small-slope elasticity, delta / R of Hertz's a << R (a = sqrt(R delta); 0.1: a/R ~ 0.3)
 // at more than 5 % of the offsets, and 10 % of the load on merged contacts (unitless).
@@ -319,9 +247,10 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
                              "asperities are no longer separate spheres",
                              p.load, 100 * dg.merged_share)});
   // No contact force resists more than the steepest slope under it plus the atomic friction angle
-  // (a contact's slope is the mean of the two surfaces' slopes there), so neither does the block:
-  // a loaded hold angle above that is the model's, not the surfaces' (the loaded lift's elastic
-  // term, its Hertzian stiffness changing with the offset, can rise faster than any contact).
+  // (a contact's slope is the mean of the two surfaces' slopes there), so neither does the block.
+  // Every slope of the loaded lift is a weighted mean of the rigid lift's slope and contact slopes
+  // (load.hpp), so its hold angles stay below the bound by construction: the check guards that
+  // invariant on the number the user gets.
   auto steepest = [](const Profile& q) {
     double m = 0;
     for (std::size_t i = 0; i + 1 < q.x.size(); ++i)
@@ -336,8 +265,8 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
         {"load-above-slopes",
          fmt::format("at {:.4g} N the loaded hold angles' 95 % quantile is {:.4g} deg (median {:.4g}, largest "
                      "{:.4g} deg), above the steepest slope of either surface plus the atomic friction angle, "
-                     "{:.4g} deg, which no contact force exceeds: the loaded lift's elastic term, not the "
-                     "surfaces, sets them; the rigid prediction reads {:.4g} deg",
+                     "{:.4g} deg, which no contact force exceeds: the loaded lift is wrong there (its "
+                     "slopes are means of the surfaces'); the rigid prediction reads {:.4g} deg",
                      p.load, p.friction_angle.q95 * 180 / kPi, p.friction_angle.q50 * 180 / kPi,
                      p.friction_angle.max * 180 / kPi, resisted * 180 / kPi, p.rigid_friction_angle * 180 / kPi)});
   if (!beyond.empty())
@@ -431,90 +360,24 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
     p.test_lengths = o.runaway_distance > 0 ? "d given; block: the whole upper profile (periodic)"
                                             : "d: one period; block: the whole upper profile (periodic)";
   } else {
-    const bool given_d = d > 0;
-    std::string d_rule = "given";
-    if (!given_d) {
-      const StatedTest def = default_test_lengths(*lo);
-      d = def.runaway_distance;
-      d_rule = def.rule;
-    }
-    if (lb < 0) {
-      // The whole upper profile over the first half of the lower one (the blocks of `frictal tilt`
-      // on files): the signature's own drop range, no piece cut.
-      p.test_lengths =
-          "d: " + d_rule + "; block: the whole upper profile, dropped over the first half of the lower one";
-      whole_block = true;
-      lb = upper_len;
-      // A defaulted d longer than the default's shape allows on these blocks (a short upper scan
-      // on a long lower one: d from the lower scan's slopes, the block the whole short scan) gives
-      // way to the largest of that shape, L_b / kBlockPerRunaway over the blocks' overlap, with
-      // the warning; a stated d never changes.
-      const double d_fit = std::min(lower_len, upper_len) / kBlockPerRunaway;
-      if (!given_d && d > d_fit) {
-        add_warning(p.warnings,
-                    {"scan-too-short",
-                     fmt::format("the default run-away distance d = {:.4g} m ({}) does not fit the whole upper profile "
-                                 "({:.4g} m on a lower one of {:.4g} m): the answer is for d = {:.4g} m, the "
-                                 "blocks' overlap over {:g} (a shorter test reads other angles; d_sweep shows how "
-                                 "much); measure longer scans or state d (--runaway-distance)",
-                                 d, d_rule, upper_len, lower_len, d_fit, kBlockPerRunaway)});
-        d = d_fit;
-        p.test_lengths += fmt::format("; d shortened to the blocks' overlap over {:g}", kBlockPerRunaway);
-      }
-    } else {
-      const bool given_lb = lb > 0;
-      if (!given_lb) lb = kBlockPerRunaway * d;
-      p.test_lengths =
-          fmt::format("d: {}; block: {}", d_rule, given_lb ? "given" : fmt::format("{:g} d", kBlockPerRunaway));
-    }
+    // The stated test (hold.hpp): its lengths, fitted to the scans (a defaulted length gives way,
+    // warned scan-too-short; stated lengths that leave no room are refused).
+    auto fit = stated_test(*lo, upper_len, o.runaway_distance, o.block_length);
+    if (!fit) return fit.error();
+    for (Warning& w : fit->warnings) add_warning(p.warnings, std::move(w));
+    d = fit->runaway_distance;
+    lb = fit->block_length;
+    whole_block = fit->whole;
+    p.test_lengths = fit->rule;
   }
   if (!lower_periodic && !whole_block) {
-    // The test fits where the block lies within the upper scan and the lower one leaves sliding
-    // room L - L_b of at least kRoomPerRunaway d (drops over all but kEndRoomPerRunaway d at each
-    // end). Where it does not, a length that was defaulted gives way (warned, with the test
-    // answered); a length the caller stated never changes: with no room left, a refusal.
-    const bool given_d = o.runaway_distance > 0, given_lb = o.block_length > 0;
-    const double need = lb + kRoomPerRunaway * d;
-    if (upper_len < lb || lower_len < need) {
-      const std::string stated = fmt::format(
-          "the test (a block of {:.4g} m{}, d = {:.4g} m{}) needs a lower scan of {:.4g} m (the block and {:g} d of "
-          "sliding room) and an upper scan of {:.4g} m; the scans are {:.4g} m and {:.4g} m",
-          lb, given_lb ? " as given" : "", d, given_d ? " as given" : "", need, kRoomPerRunaway, lb, lower_len,
-          upper_len);
-      const std::string fix =
-          "measure longer scans, state a shorter test (--block-length, --runaway-distance), or slide the whole "
-          "upper profile over the first half of the lower one (--block-length whole)";
-      double lb_new = lb, d_new = d;
-      if (!given_d && !given_lb) {  // the largest test of the default's shape
-        const double f = std::min(upper_len / lb, lower_len / need);
-        lb_new = f * lb, d_new = f * d;
-      } else if (given_d && !given_lb) {  // the block shortened, down to 2 d
-        lb_new = std::min({lb, upper_len, lower_len - kRoomPerRunaway * d});
-        if (!(lb_new >= 2 * d))
-          return make_error(fmt::format("{}: no block of at least 2 d fits with d = {:.4g} m; {}", stated, d, fix));
-      } else if (!given_d && given_lb) {  // d shortened, down to a hundredth of the default
-        d_new = std::min(d, (lower_len - lb) / kRoomPerRunaway);
-        if (!(lb <= upper_len) || !(d_new >= 0.01 * d))
-          return make_error(
-              fmt::format("{}: the block of {:.4g} m leaves no room on these scans; {}", stated, lb, fix));
-      } else {
-        return make_error(fmt::format("{}; {}", stated, fix));
-      }
-      add_warning(p.warnings,
-                  {"scan-too-short", fmt::format("{}: the answer is for the test they hold, a block of {:.4g} m and "
-                                                 "d = {:.4g} m (a shorter test reads other angles; d_sweep shows how "
-                                                 "much); {}",
-                                                 stated, lb_new, d_new, fix)});
-      lb = lb_new;
-      d = d_new;
-    }
-    // The block: the middle of the upper scan, L_b long to the nearest samples.
-    const double mid = 0.5 * (up_measured.x.front() + up_measured.x.back());
-    up_measured = piece(up_measured, mid - 0.5 * lb, mid + 0.5 * lb);
+    // The block: the middle of the upper scan, L_b long to the nearest samples; drops at every
+    // offset at which it lies wholly over the lower scan (0: left ends aligned).
+    up_measured = stated_block(up_measured, lb);
     lb = up_measured.x.back() - up_measured.x.front();
-    // Drops: every offset at which the block lies wholly over the lower scan (0: left ends aligned).
-    so.offset_min = 0;
-    so.offset_max = std::max(lower_len - lb, 1e-9 * lower_len);
+    const StatedDrops sd = stated_drops(lower_len, lb, d);
+    so.offset_min = sd.offset_min;
+    so.offset_max = sd.offset_max;
   }
   p.block_length = lb;
   Profile up = rotate180(std::move(up_measured));  // in place (memory: 10^7 points are 160 MB a copy)
@@ -544,11 +407,11 @@ Result<Prediction> predict_profiles(const PredictSurface& lower, const PredictSu
   hk.drop_min = h->distribution.forward.drop_min;
   hk.drop_max = h->distribution.forward.drop_max;
   if (!lower_periodic && !whole_block) {
-    stated_curve = cut_curve(h->curve, so.offset_min, so.offset_max);
+    stated_curve = cut_lift_curve(h->curve, so.offset_min, so.offset_max);
     curve = &stated_curve;
-    const double room = kEndRoomPerRunaway * d;
-    hk.drop_min = so.offset_min + room;
-    hk.drop_max = std::max(so.offset_max - room, hk.drop_min + 1e-9 * lower_len);
+    const StatedDrops sd = stated_drops(lower_len, lb, d);
+    hk.drop_min = sd.drop_min;
+    hk.drop_max = sd.drop_max;
   }
   // Every d of the sweep on that one lift, over the same drops (linear in its vertices each); the
   // headline at d.
@@ -981,26 +844,6 @@ MapHoldOptions map_model_options(const Map& lower, const PredictOptions& o) {
 
 double map_work_estimate(std::size_t upper_spheres, std::size_t drops) {
   return double(upper_spheres) * 2.5e-7 * double(drops);
-}
-
-StatedTest default_test_lengths(const Profile& lower) {
-  StatedTest t;
-  const double xi = slope_correlation_length(lower);
-  const double dx = lower.x.size() > 1 ? (lower.x.back() - lower.x.front()) / double(lower.x.size() - 1) : 0;
-  if (xi > 0) {
-    // The scan resolves no slope structure finer than its sampling interval (a rounded x column
-    // makes neighbouring slopes alternate, which the cells would read as a shorter length).
-    const double l = std::max(xi, dx);
-    t.runaway_distance = kRunawayPerSlopeCorrelation * l;
-    t.rule = fmt::format("{:g} slope correlation lengths of the lower scan ({:.4g} m{})", kRunawayPerSlopeCorrelation,
-                         l, xi < dx ? ", its sampling interval" : "");
-  } else {
-    t.runaway_distance = kRunawayPerSlopeCorrelation * dx;
-    t.rule = fmt::format("{:g} sampling intervals of the lower scan ({:.4g} m; its slopes have no correlation length)",
-                         kRunawayPerSlopeCorrelation, dx);
-  }
-  t.block_length = kBlockPerRunaway * t.runaway_distance;
-  return t;
 }
 
 Result<PredictSurface> predict_surface(SurfaceData data, const std::string& name) {

@@ -63,7 +63,7 @@ const std::vector<B>& table() {
             Field f = F("block_length", "m", 0, Lo::Open, kInf,
                         "The test: length of the upper block, the middle piece of the upper surface that slides over "
                         "the lower one (drops wherever it lies wholly on it); whole: all of the upper profile, dropped "
-                        "over the first half of the lower one (the blocks of `frictal tilt` on files). Profiles only",
+                        "over the first half of the lower one. Profiles only (predict; tilt on files)",
                         false, "the stated test's, 20 run-away distances (periodic pairs: the whole profile)");
             f.words = {{"whole", -1.0}};
             return automatic_length(std::move(f), &PredictOptions::block_length);

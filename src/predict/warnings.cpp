@@ -71,9 +71,8 @@ const std::vector<WarningCode>& warning_codes() {
        false, ""},
       {"load-above-slopes",
        "under load, the loaded hold angles' 95 % quantile lies above the steepest slope of either surface plus the "
-       "atomic friction angle, which no contact force exceeds: the loaded lift's elastic term (the Hertzian stiffness "
-       "changing with "
-       "the offset), not the surfaces, sets those hold angles",
+       "atomic friction angle, which no contact force exceeds: the loaded lift's slopes are weighted means of the "
+       "rigid lift's and the contacts' slopes, so such a number is an error of the computation, not of the surfaces",
        true, "the rigid prediction: leave out --load (Python load=None)"},
       {"scan-too-short",
        "the scans are too short for the stated test (profiles: the lower scan shorter than the block plus 8 run-away "
@@ -84,6 +83,11 @@ const std::vector<WarningCode>& warning_codes() {
        "--runaway-distance",
        false, ""},
       {"few-drops", "the distribution rests on fewer than 3 basins (profiles) or drops: the spread is not resolved",
+       false, ""},
+      {"outside-spread",
+       "tilt: the friction angle of one run lies outside the rigid model's 5-95 % range over drops for the same "
+       "test (frictal predict's, on measured profiles): the message says why (the block rested in a basin that "
+       "fewer than 5 % of drops reach, with its own hold angle; or the run is not valid)",
        false, ""},
       {"held-to-max-tilt",
        "some drops held the block up to the model's largest tilt (45 deg): their hold angle is a lower bound", false,

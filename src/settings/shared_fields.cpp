@@ -20,8 +20,8 @@ const std::vector<Field>& shared_fields() {
       F("runaway_distance", "m", 0, Lo::Open, kInf, "Sliding for good: growth of the displacement since the last stick",
         false,
         "predict and areal-tilt: 12.5 slope correlation lengths of the lower surface along the direction "
-        "(periodic profiles: one period); tilt: the surface's wavelength (generated), files: a tenth of half "
-        "the block, L_b/20, as signature"),
+        "(periodic profiles: one period); tilt: the surface's wavelength (generated), files: predict's, the "
+        "stated test's"),
       F("period", "m", -kInf, Lo::Closed, kInf,
         "Period of both surfaces (<= 0: not periodic; the offsets then span half the length)", false,
         "the surface's (generated), none (files)"),

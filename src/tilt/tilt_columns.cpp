@@ -37,7 +37,7 @@ OutputRow settings_row(const std::vector<Field>& fields, const ValueSet& si) {
     const auto it = si.find(f.name);
     if (it == si.end()) continue;
     OutputField out;
-    out.info = {f.name, "", f.help, ""};
+    out.info = {f.name, "", f.help, python_key(f.name)};
     std::visit(
         [&](const auto& v) {
           using V = std::decay_t<decltype(v)>;
@@ -63,11 +63,12 @@ OutputRow settings_row(const std::vector<Field>& fields, const ValueSet& si) {
 }
 
 /// A column of T holding one object whose keys are the fields of a settings table (unit
-/// "settings"): the row that `f` returns (a std::optional<OutputRow>: none, no key). The CLI's
-/// JSON only: Python's keywords and dicts are SI by the tables themselves.
+/// "settings"): the row that `f` returns (a std::optional<OutputRow>: none, no key). The CLI's JSON
+/// writes each value in its text unit, Python's dict in SI, under the same key (python_key).
 template <class T, class F>
 Column<T> settings_object(std::string key, std::string help, F&& f) {
-  Column<T> c = declared_column<T>(std::move(key), "settings", std::move(help));
+  std::string python = python_key(key);
+  Column<T> c = declared_column<T>(std::move(key), "settings", std::move(help), std::move(python));
   c.present = [f](const T& v) { return f(v).has_value(); };
   c.rows = [f](const T& v) { return std::vector<OutputRow>{*f(v)}; };
   return c;
@@ -78,6 +79,7 @@ Column<T> settings_object(std::string key, std::string help, F&& f) {
 const Columns<TiltSurface>& tilt_surface_columns() {
   using T = TiltSurface;
   auto files = [](const T& s) { return s.generator.empty(); };
+  auto stated = [](const T& s) { return s.test && !s.test->block.empty(); };
   static const Columns<T> cols = {
       only_if(column<T>(
                   "generator", "text", "the generator of both blocks (frictal surface)",
@@ -90,10 +92,38 @@ const Columns<TiltSurface>& tilt_surface_columns() {
                   "upper", "text", "the upper surface's file, as measured (the lower one when not given)",
                   [](const T& s) { return s.upper; }, "-"),
               files),
-      only_if(column<T>(
-                  "conditioning", "text", "every conditioning step applied to the files, with its numbers",
-                  [](const T& s) { return s.conditioning; }, "-"),
+      only_if(column<T>("conditioning", "text", "every conditioning step applied to the files, with its numbers",
+                        [](const T& s) { return s.conditioning; }),
               files),
+      only_if(column<T>("block", "text",
+                        "the test's block: stated (the middle piece of the upper profile, block_length_m long, "
+                        "dropped where it lies wholly over the lower one, as frictal predict states it) or whole (the "
+                        "whole upper profile over the first half of the lower one)",
+                        [](const T& s) { return s.test->block; }),
+              stated),
+      only_if(column<T>("block_length_m", "m", "the test's block length L_b (predict's block_length_m)",
+                        [](const T& s) { return s.test->block_length; }),
+              stated),
+      only_if(column<T>("runaway_distance_m", "m", "the test's run-away distance d (predict's runaway_distance_m)",
+                        [](const T& s) { return s.test->runaway_distance; }),
+              stated),
+      only_if(column<T>("test_lengths", "text",
+                        "how d and L_b were set: given, or the default's rule with its numbers (predict's "
+                        "test_lengths)",
+                        [](const T& s) { return s.test->rule; }),
+              stated),
+      only_if(fixed_length(column<T>("drop_range_m", "m",
+                                     "predict's drop range [min, max] in the signature's offsets (0: left ends "
+                                     "aligned); null for the whole block (the signature's own range)",
+                                     [](const T& s) {
+                                       return std::vector<double>{s.test->drop_min, s.test->drop_max};
+                                     })),
+              stated),
+      only_if(column<T>("drop", "text",
+                        "where the run drops the block (initial_offset): the middle of the drop range, given, or "
+                        "the offset of least lift (whole block)",
+                        [](const T& s) { return s.test->drop; }),
+              stated),
   };
   return cols;
 }

@@ -7,6 +7,7 @@
 
 #include <fmt/core.h>
 
+#include "frictal/hold.hpp"
 #include "frictal/tilt.hpp"
 #include "settings/binding.hpp"
 
@@ -91,9 +92,11 @@ const std::vector<B>& table() {
               FRICTAL_MEMBER(face),
               std::vector<std::pair<std::string, TiltFace>>{{"curve", TiltFace::Curve},
                                                             {"envelope", TiltFace::Envelope}}),
-          bind<TiltConfig>(F("initial_offset", "m", -kInf, Lo::Closed, kInf,
-                             "Shift of the upper block along x; auto: the offset of least lift from the signature"),
-                           FRICTAL_MEMBER(initial_offset)),
+          bind<TiltConfig>(
+              F("initial_offset", "m", -kInf, Lo::Closed, kInf,
+                "Shift of the upper block along x from the left ends aligned; auto: the offset of least lift from "
+                "the signature (files: the middle of the stated test's drop range)"),
+              FRICTAL_MEMBER(initial_offset)),
           bind<TiltConfig>(F("placement_gap", "m", 0, Lo::Closed, kInf, "Clearance between the blocks when placed"),
                            FRICTAL_MEMBER(placement_gap)),
           bind<TiltConfig>(settings_detail::shared("period"), FRICTAL_MEMBER(period)),
@@ -320,11 +323,83 @@ Result<TiltScaling> scale_tilt_defaults(const Curve& lower, const Curve& upper, 
   return sc;
 }
 
+namespace {
+
+// The stated test of a measured pair (hold.hpp's, as predict() states it): the block cut from the
+// upper profile, d, the drops. A folded curve (not a profile) states none: its whole block stays.
+Result<TiltStatedTest> measured_test(const Curve& lower, const Curve& upper, const ValueSet& given, double block_length,
+                                     Curve& block, StatedDrops& drops) {
+  TiltStatedTest t;
+  auto lp = as_profile(lower, "lower surface");
+  auto up = as_profile(upper, "upper surface");
+  if (!lp.ok() || !up.ok() || lp->x.size() < 2 || up->x.size() < 2) {
+    if (block_length != 0)
+      return make_error(fmt::format(
+          "tilt: block length {:.6g} m: a folded curve (not a profile) states no test; its whole block slides "
+          "(leave the block length unset)",
+          block_length));
+    return t;
+  }
+  const double d_given = given.count("runaway_distance") ? as_real(given.at("runaway_distance")) : 0.0;
+  const double upper_len = up->x.back() - up->x.front(), lower_len = lp->x.back() - lp->x.front();
+  auto fit = stated_test(*lp, upper_len, d_given, block_length);
+  if (!fit) return with_prefix("tilt: ", fit.error());
+  t.runaway_distance = fit->runaway_distance;
+  t.rule = fit->rule;
+  t.warnings = std::move(fit->warnings);
+  if (fit->whole) {
+    t.block = "whole";
+    t.block_length = upper_len;
+    t.drop = given.count("initial_offset") ? "given" : "the offset of least lift";
+    return t;
+  }
+  Profile piece = stated_block(*up, fit->block_length);
+  t.block = "stated";
+  t.block_length = piece.x.back() - piece.x.front();
+  drops = stated_drops(lower_len, t.block_length, t.runaway_distance);
+  t.drop_min = drops.drop_min;
+  t.drop_max = drops.drop_max;
+  t.drop = given.count("initial_offset") ? "given" : "the middle of the drop range";
+  block = as_curve(piece);
+  return t;
+}
+
+}  // namespace
+
 Result<TiltScaling> tilt_setup(const Curve& lower, const Curve& upper, const ValueSet& given, double period,
-                               double scale) {
+                               double scale, double block_length) {
+  const bool measured = !(period > 0) && !(scale > 0);
+  if (!std::isfinite(block_length))
+    return make_error(fmt::format("tilt: block length {} m: expected a length > 0 (or the whole block)", block_length));
+  if (!measured && block_length != 0)
+    return make_error(fmt::format(
+        "tilt: block length {:.6g} m: a generated surface slides its whole block (the paper's Table I blocks); leave "
+        "the block length unset, or give the surface as a measured profile",
+        block_length));
+  Curve block = upper;
+  TiltStatedTest test;
+  StatedDrops drops;
+  if (measured) {
+    auto t = measured_test(lower, upper, given, block_length, block, drops);
+    if (!t) return t.error();
+    test = std::move(*t);
+  }
   const TiltConfig own = tilt_config_for_surface(period, scale);
-  auto sc = scale_tilt_defaults(lower, upper, own);
+  auto sc = scale_tilt_defaults(lower, block, own);
   if (!sc) return sc.error();
+  if (!test.block.empty()) {
+    // The stated d is at the surfaces' own scale (slope correlation lengths), not scaled.
+    std::erase_if(sc->settings, [](const TiltScaledSetting& t) { return t.name == "runaway_distance"; });
+    sc->config.runaway_distance = test.runaway_distance;
+    if (test.block == "stated") {
+      sc->config.spread_offset_max = drops.offset_max;
+      sc->config.spread_drop_min = drops.drop_min;
+      sc->config.spread_drop_max = drops.drop_max;
+      sc->config.initial_offset = 0.5 * (drops.drop_min + drops.drop_max);
+    }
+  }
+  sc->test = std::move(test);
+  sc->upper = std::move(block);
   // A surface's own period and run-away distance (its wavelength) are already at its scale.
   if (period > 0) {
     std::erase_if(sc->settings, [](const TiltScaledSetting& t) { return t.name == "period"; });

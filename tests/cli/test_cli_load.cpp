@@ -117,8 +117,8 @@ TEST(CliLoad, PredictsAMapPairUnderLoad) {
 // Two smooth WM profiles (rms height 0.1 um over 1 mm, steepest slopes below 0.4 deg) on
 // aluminium. At 10 nN the asperities are separate Hertzian spheres and the loaded prediction stays
 // at the rigid one's scale (frictionless elastic contacts push along slopes no steeper than the
-// surfaces'); at 1 mN most of the load is on merged contacts, where the model reads several times
-// the rigid bound: the warning makes that number doubtful, and the text says so first.
+// surfaces'); at 1 mN about a sixth of the load is on merged contacts, which separate spheres do
+// not describe: the warning makes that number doubtful, and the text says so first.
 TEST(CliLoad, MergedContactsMakeThePredictionDoubtful) {
   std::string f[2];
   for (int s = 0; s < 2; ++s) {

@@ -47,17 +47,20 @@ bool scaled_list_has(const nlohmann::json& j, const std::string& name) {
 }  // namespace
 
 TEST(CliTiltScale, ShortMeasuredProfileRunsWithScaledDefaults) {
-  // 24 points over 29 um: s = L / 0.2 m; the point spacing (~1.2 um) is far above s r_0, so
-  // r = s r_0 (q = 1); the run-away distance L / 20; the tilt rate 0.05 / sqrt(s) rad/s. With q = 1
-  // the run is the macro test in other units: a few 1e5 steps, well under a second of CPU.
+  // 24 points over 29 um, the whole scan as the block: s = L / 0.2 m; the point spacing (~1.2 um)
+  // is far above s r_0, so r = s r_0 (q = 1); the tilt rate 0.05 / sqrt(s) rad/s. The stated d (12.5
+  // slope correlation lengths) exceeds what the whole block holds, so it gives way to the blocks'
+  // overlap over 20, L / 20 (scan-too-short). With q = 1 the run is the macro test in other units: a
+  // few 1e5 steps, well under a second of CPU.
   const std::vector<double> x = xy2_x();
   ASSERT_EQ(x.size(), 24u);
   const double length = *std::max_element(x.begin(), x.end()) - *std::min_element(x.begin(), x.end());
   const double s = length / 0.2;
-  const CliRun r = run_cli("tilt --lower " + kXy2 + " --json", 120);
+  const CliRun r = run_cli("tilt --lower " + kXy2 + " --block-length whole --json", 120);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   const auto& sd = j["scaled_defaults"];
+  EXPECT_EQ(j["surface"]["block"], "whole");
   EXPECT_NEAR(sd["length_m"].get<double>(), length, 1e-12 * length);
   EXPECT_NEAR(sd["length_factor"].get<double>(), s, 1e-12 * s);
   EXPECT_DOUBLE_EQ(sd["radius_factor"].get<double>(), 1.0);
@@ -67,9 +70,10 @@ TEST(CliTiltScale, ShortMeasuredProfileRunsWithScaledDefaults) {
   EXPECT_NEAR(setting(j, "runaway_distance"), length / 20, 1e-12 * length);
   EXPECT_NEAR(setting(j, "tilt_rate"), 0.05 / std::sqrt(s), 1e-9);
   EXPECT_NEAR(setting(j, "normal_stiffness"), 6e5 * s, 1e-9 * 6e5 * s);
-  for (const char* name : {"spheroradius", "placement_gap", "block_height", "runaway_distance"}) {
+  for (const char* name : {"spheroradius", "placement_gap", "block_height"}) {
     EXPECT_TRUE(scaled_list_has(j, name)) << name;
   }
+  EXPECT_FALSE(scaled_list_has(j, "runaway_distance"));  // the stated test's, not scaled
   for (const auto& t : sd["settings"]) {
     EXPECT_TRUE(t.contains("from") && t.contains("to") && t.contains("unit")) << t.dump();
   }
@@ -81,9 +85,13 @@ TEST(CliTiltScale, ShortMeasuredProfileRunsWithScaledDefaults) {
   EXPECT_EQ(r.err.find('\r'), std::string::npos) << "no progress line when standard error is not a terminal";
   // The file's count line says 23 rows and 24 follow (counted above): the reader's warning is
   // one of the run's (warnings.hpp code "reader").
-  bool reader = false;
-  for (const auto& w : j["warnings"]) reader = reader || w["code"] == "reader";
+  bool reader = false, short_scan = false;
+  for (const auto& w : j["warnings"]) {
+    reader = reader || w["code"] == "reader";
+    short_scan = short_scan || w["code"] == "scan-too-short";
+  }
   EXPECT_TRUE(reader) << j["warnings"].dump();
+  EXPECT_TRUE(short_scan) << j["warnings"].dump();
 }
 
 TEST(CliTiltScale, TheFilesPlausibilityChecksWarn) {
@@ -146,7 +154,8 @@ TEST(CliTiltScale, ReliefTallerThanTheLengthIsRefused) {
 TEST(CliTiltScale, ARotationWarningLeadsTheOutput) {
   // warn_rotation at 1e-9 deg: any turn of the upper block against the lower one warns (the
   // paper's protocol, the block free to turn: a measured file holds it by default).
-  const std::string args = "tilt --lower " + kXy2 + " --protocol constant-rate --no-hold-rotation --warn-rotation 1e-9";
+  const std::string args =
+      "tilt --lower " + kXy2 + " --block-length whole --protocol constant-rate --no-hold-rotation --warn-rotation 1e-9";
   const CliRun t = run_cli(args, 120);
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_EQ(t.out.rfind("warning [rotation]: ", 0), 0u) << t.out;
@@ -188,12 +197,14 @@ TEST(CliTiltScale, GeneratedSurfacesScaleAsFilesKeepingTheirWavelength) {
 }
 
 TEST(CliTiltScale, AMacroFileKeepsTheDefaults) {
-  // A 0.2 m file sampled every 1 cm: s = 1 and r_0 = 5e-5 m below the spacing: nothing changes.
+  // A 0.2 m file sampled every 1 cm, the whole scan as the block: s = 1 and r_0 = 5e-5 m below the
+  // spacing: nothing changes; d gives way to the whole block's L / 20 (the stated 12.5 slope
+  // correlation lengths do not fit it).
   const std::string f = temp_path("macro-file.csv");
   std::string text = "x_m,z_m\n";
   for (int i = 0; i <= 20; ++i) text += std::to_string(0.01 * i) + "," + (i % 2 ? "0.001" : "0") + "\n";
   write_file(f, text);
-  const CliRun r = run_cli("tilt --lower " + f + " --max-tilt 1 --json --quiet", 120);
+  const CliRun r = run_cli("tilt --lower " + f + " --block-length whole --max-tilt 1 --json --quiet", 120);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_TRUE(j["scaled_defaults"]["settings"].empty()) << j["scaled_defaults"].dump();
@@ -234,6 +245,16 @@ TEST(CliTiltScale, AnAngleOutsideTheRigidBracketIsNotValidAndSaysWhy) {
   const std::string why = j["validity"].get<std::string>();
   for (const char* option : {"--protocol quasi-static", "--hold-rotation", "--normal-stiffness"})
     EXPECT_NE(why.find(option), std::string::npos) << why;
+  // Below the model's 5-95 % over drops too (the reading 0 deg, the range's low end above it): the
+  // warning outside-spread says so and why.
+  ASSERT_GT(j["predicted_spread_q05_deg"].get<double>(), phi + 0.1);
+  bool outside = false;
+  for (const auto& w : j["warnings"])
+    if (w["code"] == "outside-spread") {
+      outside = true;
+      EXPECT_NE(w["message"].get<std::string>().find("not valid"), std::string::npos) << w["message"];
+    }
+  EXPECT_TRUE(outside) << j["warnings"].dump();
   // The text says so on the friction angle's line, and names the bound as a bound.
   const CliRun t = run_cli("tilt --lower " + kDektak + " --crop 0.5mm,0.55mm --quiet" + kPaper, 120);
   ASSERT_EQ(t.code, 0) << t.err;
@@ -316,4 +337,113 @@ TEST(CliTiltScale, TheReadingIsPlacedInTheModelsSpreadOverDrops) {
   const CliRun t = run_cli("tilt --lower " + kDektak + " --crop 0.5mm,0.55mm --quiet", 120);
   ASSERT_EQ(t.code, 0) << t.err;
   EXPECT_NE(t.out.find("this reading lies " + std::string(inside ? "inside" : "outside")), std::string::npos) << t.out;
+}
+
+namespace {
+// A 0.3 mm piece of the Dektak scan (1,920 points): long enough for the stated test (a block of 20 d
+// and 8 d of sliding room), a run in well under a second.
+const std::string kStated = kDektak + " --crop 0.5mm,0.8mm";
+
+bool has_warning(const nlohmann::json& j, const std::string& code) {
+  for (const auto& w : j["warnings"])
+    if (w["code"] == code) return true;
+  return false;
+}
+}  // namespace
+
+TEST(CliTiltScale, AMeasuredScanRunsTheTestPredictStates) {
+  // `frictal predict` (a second front end and computation: the hold analysis over its drops) states
+  // the test; tilt with its defaults runs that test: the same block, d, rule and drop range, the
+  // drop at the middle of that range, and the model's spread over the same drops.
+  const CliRun p = run_cli("predict " + kStated + " --json", 120);
+  ASSERT_EQ(p.code, 0) << p.err;
+  const auto jp = nlohmann::json::parse(p.out);
+  const CliRun t = run_cli("tilt --lower " + kStated + " --json --quiet", 120);
+  ASSERT_EQ(t.code, 0) << t.err;
+  const auto j = nlohmann::json::parse(t.out);
+  const auto& s = j["surface"];
+  EXPECT_EQ(s["block"], "stated");
+  const double lb = jp["block_length_m"].get<double>(), d = jp["runaway_distance_m"].get<double>();
+  EXPECT_DOUBLE_EQ(s["block_length_m"].get<double>(), lb);
+  EXPECT_DOUBLE_EQ(s["runaway_distance_m"].get<double>(), d);
+  EXPECT_DOUBLE_EQ(setting(j, "runaway_distance"), d);
+  EXPECT_EQ(s["test_lengths"], jp["test_lengths"]);
+  // The stated shape (hold.hpp): L_b = 20 d, drops 2 d in from each end of [0, L - L_b].
+  EXPECT_NEAR(lb, 20 * d, 2 * 1e-3 / 9599);  // to the nearest samples (spacing ~0.16 um)
+  const double lo = jp["drop_range_m"][0].get<double>(), hi = jp["drop_range_m"][1].get<double>();
+  EXPECT_DOUBLE_EQ(s["drop_range_m"][0].get<double>(), lo);
+  EXPECT_DOUBLE_EQ(s["drop_range_m"][1].get<double>(), hi);
+  EXPECT_NEAR(lo, 2 * d, 1e-12);
+  EXPECT_EQ(s["drop"], "the middle of the drop range");
+  EXPECT_NEAR(setting(j, "initial_offset"), 0.5 * (lo + hi), 1e-15);
+  // The model's range that tilt prints is predict's.
+  EXPECT_NEAR(j["predicted_spread_q05_deg"].get<double>(), jp["friction_angle_q05_deg"].get<double>(), 1e-9);
+  EXPECT_NEAR(j["predicted_spread_median_deg"].get<double>(), jp["friction_angle_deg"].get<double>(), 1e-9);
+  EXPECT_NEAR(j["predicted_spread_q95_deg"].get<double>(), jp["friction_angle_q95_deg"].get<double>(), 1e-9);
+  // The defaults are scaled to the block, the shorter face.
+  EXPECT_NEAR(j["scaled_defaults"]["length_m"].get<double>(), lb, 1e-15);
+  // The reading lies in predict's 5-95 % (within one increment), or a warning says why not.
+  const double phi = j["friction_angle_deg"].get<double>(), tol = std::max(0.1, setting(j, "tilt_increment"));
+  const bool inside = phi >= jp["friction_angle_q05_deg"].get<double>() - tol &&
+                      phi <= jp["friction_angle_q95_deg"].get<double>() + tol;
+  EXPECT_TRUE(inside || has_warning(j, "outside-spread")) << t.out;
+  EXPECT_EQ(has_warning(j, "outside-spread"), !inside) << t.out;
+  // The text states the test.
+  const CliRun x = run_cli("tilt --lower " + kStated + " --quiet", 120);
+  ASSERT_EQ(x.code, 0) << x.err;
+  EXPECT_NE(x.out.find("the test (as frictal predict states it): a block of"), std::string::npos) << x.out;
+}
+
+TEST(CliTiltScale, StatedLengthsAndTheWholeBlockAreTheTestsPredictStatesForThem) {
+  // A block and d given with units, as predict takes them: the same test in both commands.
+  const std::string opts = " --block-length 100um --runaway-distance 5um";
+  const CliRun p = run_cli("predict " + kStated + opts + " --json", 120);
+  ASSERT_EQ(p.code, 0) << p.err;
+  const auto jp = nlohmann::json::parse(p.out);
+  const CliRun t = run_cli("tilt --lower " + kStated + opts + " --json --quiet", 120);
+  ASSERT_EQ(t.code, 0) << t.err;
+  const auto j = nlohmann::json::parse(t.out);
+  EXPECT_NEAR(j["surface"]["block_length_m"].get<double>(), 100e-6, 0.2e-6);  // to the nearest samples
+  EXPECT_DOUBLE_EQ(j["surface"]["block_length_m"].get<double>(), jp["block_length_m"].get<double>());
+  EXPECT_DOUBLE_EQ(setting(j, "runaway_distance"), 5e-6);
+  EXPECT_EQ(j["surface"]["test_lengths"], "d: given; block: given");
+  EXPECT_NEAR(j["predicted_spread_median_deg"].get<double>(), jp["friction_angle_deg"].get<double>(), 1e-9);
+  // The whole block: predict's --block-length whole, dropped at the offset of least lift.
+  const CliRun w = run_cli("tilt --lower " + kStated + " --block-length whole --max-tilt 1 --json --quiet", 120);
+  ASSERT_EQ(w.code, 0) << w.err;
+  const auto jw = nlohmann::json::parse(w.out);
+  EXPECT_EQ(jw["surface"]["block"], "whole");
+  EXPECT_TRUE(jw["surface"]["drop_range_m"][0].is_null());
+  EXPECT_NEAR(jw["surface"]["block_length_m"].get<double>(), 3e-4, 1e-6);
+  // Lengths that the scan cannot hold are refused, naming them and the options that change them.
+  const CliRun r = run_cli("tilt --lower " + kStated + " --block-length 1mm --runaway-distance 5um", 60);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("as given"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--block-length whole"), std::string::npos) << r.err;
+  const CliRun bad = run_cli("tilt --lower " + kStated + " --block-length=-3um", 60);
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("--block-length"), std::string::npos) << bad.err;
+  // A generated surface keeps the paper's Table I blocks.
+  const CliRun g = run_cli("tilt koch --block-length 1mm", 60);
+  EXPECT_EQ(g.code, 2);
+  EXPECT_NE(g.err.find("whole block"), std::string::npos) << g.err;
+}
+
+TEST(CliTiltScale, AScanTooShortForTheStatedTestSaysSoAsPredictDoes) {
+  // xy-2.txt (29 um, 24 points): the stated test (L_b = 20 d with 8 d of room) does not fit; both
+  // commands answer the largest test of its shape with the warning scan-too-short.
+  const CliRun p = run_cli("predict " + kXy2 + " --json", 120);
+  ASSERT_EQ(p.code, 0) << p.err;
+  const auto jp = nlohmann::json::parse(p.out);
+  ASSERT_TRUE(has_warning(jp, "scan-too-short"));
+  const CliRun t = run_cli("tilt --lower " + kXy2 + " --json --quiet", 120);
+  ASSERT_EQ(t.code, 0) << t.err;
+  const auto j = nlohmann::json::parse(t.out);
+  EXPECT_TRUE(has_warning(j, "scan-too-short")) << j["warnings"].dump();
+  EXPECT_DOUBLE_EQ(j["surface"]["block_length_m"].get<double>(), jp["block_length_m"].get<double>());
+  EXPECT_DOUBLE_EQ(j["surface"]["runaway_distance_m"].get<double>(), jp["runaway_distance_m"].get<double>());
+  // The largest test of the default's shape on a 29 um scan: L_b + 8 d = 28 d = L (block to samples).
+  const std::vector<double> x = xy2_x();
+  const double length = x.back() - x.front();
+  EXPECT_NEAR(jp["runaway_distance_m"].get<double>(), length / 28, 1e-9 * length);
 }

@@ -339,3 +339,39 @@ TEST(DetectGzip, CompressedTextReadsAsItsContent) {
   o.max_bytes = 10;
   EXPECT_FALSE(frictal::read_surface_bytes(g, "big.csv.gz", o).ok());
 }
+
+TEST(DetectText, TwoColumnsTakeTheHeadersUnits) {
+  // Each axis its own unit by key; one unit for the whole file; a word that is no length unit is
+  // an error naming it (not metres).
+  auto a = frictal::read_surface_bytes("# x unit: um\n# z unit: nm\n0 1.5\n2 -3\n4 2\n", "a.txt");
+  ASSERT_TRUE(a.ok()) << a.error().message;
+  ASSERT_FALSE(a->is_map);
+  EXPECT_DOUBLE_EQ(a->curve.x[1], 2e-6);
+  EXPECT_DOUBLE_EQ(a->curve.z[1], -3e-9);
+  EXPECT_FALSE(has_warning(*a, "no length unit"));
+  auto b = frictal::read_surface_bytes("# Units: mm\n0 1.5\n2 -3\n4 2\n", "b.txt");
+  ASSERT_TRUE(b.ok()) << b.error().message;
+  EXPECT_DOUBLE_EQ(b->curve.x[2], 4e-3);
+  EXPECT_DOUBLE_EQ(b->curve.z[0], 1.5e-3);
+  auto c = frictal::read_surface_bytes("# Units: counts\n0 1.5\n2 -3\n4 2\n", "c.txt");
+  ASSERT_FALSE(c.ok());
+  EXPECT_NE(c.error().message.find("'counts' in the header is not a length unit"), std::string::npos)
+      << c.error().message;
+}
+
+TEST(DetectText, AProfileWithXDecreasingIsReadInReverseOrder) {
+  auto s = frictal::read_surface_bytes("x [um],z [nm]\n4,2\n2,-3\n0,1.5\n", "back.csv");
+  ASSERT_TRUE(s.ok()) << s.error().message;
+  const double ex[] = {0, 2e-6, 4e-6}, ez[] = {1.5e-9, -3e-9, 2e-9};
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_DOUBLE_EQ(s->curve.x[k], ex[k]);
+    EXPECT_DOUBLE_EQ(s->curve.z[k], ez[k]);
+  }
+  EXPECT_TRUE(has_warning(*s, "read in reverse order"));
+  // x that goes back and forth is neither a reversed profile nor a rounded grid: kept as read (a
+  // folded curve).
+  auto f = frictal::read_surface_bytes("x,z\n0,0\n2,1\n1,2\n3,0\n", "fold.csv");
+  ASSERT_TRUE(f.ok()) << f.error().message;
+  EXPECT_DOUBLE_EQ(f->curve.x[2], 1);
+  EXPECT_FALSE(has_warning(*f, "reverse order"));
+}

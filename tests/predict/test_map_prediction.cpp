@@ -269,3 +269,42 @@ TEST(MapPrediction, RemovingSpikesFromANearlyFlatMapCostsAtMostABoundedMultipleO
   EXPECT_GT(spiky, 0);
   EXPECT_LE(double(removed), 5.5 * double(spiky)) << "spiky " << spiky << ", spikes removed " << removed;
 }
+
+TEST(MapPrediction, ProgressFollowsTheDropsUnderWayAndTheDropsDone) {
+  // The progress of a run of drops: every drop once finished (done counts 1..n, in order, each
+  // once), and between, the tilt of the drops under way, which rises within a drop from zero
+  // through its increments (at most the largest tilt; never negative). Two threads: the calls
+  // come one at a time from either. The answers are those without progress.
+  const frictal::Map lo = anisotropic(30, 26, 1e-6, 1);
+  frictal::PredictOptions o;
+  o.map_drops = 3;
+  o.threads = 2;
+  const frictal::Prediction quiet = *frictal::predict(map_surface(lo, "lo"), nullptr, o);
+  std::vector<frictal::DropProgress> calls;
+  o.progress = [&](const frictal::DropProgress& p) { calls.push_back(p); };
+  auto p = frictal::predict(map_surface(lo, "lo"), nullptr, o);
+  ASSERT_TRUE(p) << p.error().message;
+  EXPECT_EQ(p->friction_angle.q50, quiet.friction_angle.q50);
+  EXPECT_EQ(p->friction_angle.q95, quiet.friction_angle.q95);
+  ASSERT_FALSE(calls.empty());
+  std::size_t done = 0, with_tilt = 0;
+  double highest = 0;
+  for (const frictal::DropProgress& c : calls) {
+    EXPECT_EQ(c.total, 9u);
+    EXPECT_TRUE(c.done == done || c.done == done + 1) << c.done << " after " << done;
+    done = c.done;
+    EXPECT_LE(c.running, 2u);
+    EXPECT_EQ(std::isnan(c.tilt), c.running == 0);
+    if (c.running > 0) {
+      EXPECT_GE(c.tilt, 0);
+      EXPECT_LE(c.tilt, kPi / 2);
+      highest = std::max(highest, c.tilt);
+      ++with_tilt;
+    }
+  }
+  EXPECT_EQ(done, 9u);
+  EXPECT_EQ(calls.back().running, 0u);
+  // More calls than drops: the increments of the drops under way are seen, up to the hold angles.
+  EXPECT_GT(with_tilt, 9u * 3);
+  EXPECT_GT(highest, 0.5 * p->friction_angle.q05);
+}

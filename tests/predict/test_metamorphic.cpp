@@ -21,7 +21,10 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "frictal/generators.hpp"
+#include "frictal/io.hpp"
 #include "frictal/predict.hpp"
 
 namespace {
@@ -165,4 +168,41 @@ TEST(Metamorphic, TheMirrorOfARoundedGridAgreesWithinTheSpread) {
       EXPECT_NEAR(p.upper_bound_friction_angle, q.upper_bound_friction_angle, tol);
     }
   }
+}
+
+// The same profile written to a file three ways: x increasing in metres (columns named with their
+// unit), its rows in reverse order (an instrument that exports from its far end), and in
+// micrometres with the unit stated once in the header ("# units: um") instead of per column.
+// Reading undoes each presentation, so the answers are the same to rounding.
+TEST(Metamorphic, AProfileWrittenBackwardsOrInHeaderUnitsIsTheSameProfile) {
+  const frictal::Profile a = rough(21, 1024);
+  std::string fwd = "x [m],z [m]\n", back = fwd, um = "# units: um\nx,z\n";
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    fwd += fmt::format("{:.17g},{:.17g}\n", a.x[i], a.z[i]);
+    const std::size_t j = a.size() - 1 - i;
+    back += fmt::format("{:.17g},{:.17g}\n", a.x[j], a.z[j]);
+    um += fmt::format("{:.17g},{:.17g}\n", a.x[i] * 1e6, a.z[i] * 1e6);
+  }
+  std::vector<frictal::Prediction> got;
+  for (const auto& [text, name] : {std::pair{fwd, "fwd.csv"}, {back, "back.csv"}, {um, "um.csv"}}) {
+    SCOPED_TRACE(name);
+    auto d = frictal::read_surface_bytes(text, name);
+    ASSERT_TRUE(d) << d.error().message;
+    auto s = frictal::predict_surface(std::move(d).value(), name);
+    ASSERT_TRUE(s) << s.error().message;
+    ASSERT_EQ(s->profile.size(), a.size());
+    for (std::size_t i = 0; i < a.size(); i += 97) {
+      EXPECT_NEAR(s->profile.x[i], a.x[i], 1e-12 * a.length());
+      EXPECT_NEAR(s->profile.z[i], a.z[i], 1e-15);
+    }
+    const bool said_reversed = std::any_of(s->reader_warnings.begin(), s->reader_warnings.end(), [](const auto& w) {
+      return w.message.find("read in reverse order") != std::string::npos;
+    });
+    EXPECT_EQ(said_reversed, std::string(name) == "back.csv");
+    auto p = frictal::predict(*s, nullptr, {});
+    ASSERT_TRUE(p) << p.error().message;
+    got.push_back(*p);
+  }
+  expect_same(got[0], got[1], 1e-9 * kDeg);
+  expect_same(got[0], got[2], 1e-9 * kDeg);
 }

@@ -149,7 +149,7 @@ def test_tilt_of_a_measured_profile_equals_the_cli():
     want = cli("tilt", "--lower", path, "--crop", "0.5mm,0.55mm", "--quiet")
     piece, _ = frictal.condition(frictal.read_profile(path), crop=(5e-4, 5.5e-4), detrend="none")
     got = quiet(frictal.tilt, piece)
-    assert got["conditioning"] == "form: line"
+    assert got["surface"]["conditioning"] == "form: line"
     # Both load a measured pair as the library's setup says: quasi-statically, the rotation held.
     assert got["protocol"] == want["protocol"] == "quasi-static"
     assert got["scaled_defaults"]["measured_defaults"] == want["scaled_defaults"]["measured_defaults"]
@@ -168,6 +168,86 @@ def test_tilt_of_a_measured_profile_equals_the_cli():
     assert set(got["estimate"]) == {py_key(k) for k in want["estimate"]}
     assert all(same(got["estimate"][py_key(k)], v) for k, v in want["estimate"].items())
     assert got["stage_time"].keys() == want["stage_time_s"].keys()
+
+
+def test_tilt_dict_is_the_cli_s_json_key_for_key(tmp_path):
+    """tilt() of a measured Profile and `frictal tilt --json` of its file: every key the CLI prints
+    is in Python's dict under its Python key (`frictal columns`), with the same value in SI (the
+    JSON's degrees converted here from the unit the table declares); the settings and surface
+    objects key for key (a setting's JSON value in its text unit, deg for an angle: tilt_settings()
+    names its SI unit). Both run the test that predict() states: the same block, d and drops."""
+    # A 0.3 mm piece of the Dektak scan, written out for the CLI (the same points, the conditioning
+    # of both front ends a line on it).
+    piece, _ = frictal.condition(frictal.read_profile(os.path.join(DATA, "dektak-1.csv")), crop=(5e-4, 8e-4),
+                                 detrend="none")
+    path = str(tmp_path / "piece.csv")
+    frictal.write_profile_csv(path, piece)
+    # The CLI writes the series (as Python returns it) so that its series_interval is Python's.
+    want = cli("tilt", "--lower", path, "--quiet", "-o", str(tmp_path / "series.csv"))
+    got = quiet(frictal.tilt, piece)
+    tables = {t["name"]: t["columns"] for t in cli("columns")}
+    setting_unit = {f["name"]: f["unit"] for f in frictal.tilt_settings()}
+    timings = {"wall_time_s", "setup_time_s", "us_per_step", "stage_time_s"}  # this run's wall clock
+
+    def si(unit, v):
+        return math.radians(v) if unit in ("deg", "rad") and isinstance(v, (int, float)) and v is not None else v
+
+    def equal(unit, cli_value, py_value):
+        if isinstance(cli_value, list):
+            return len(cli_value) == len(py_value) and all(equal(unit, c, p) for c, p in zip(cli_value, py_value))
+        if isinstance(cli_value, (bool, str)) or cli_value is None:
+            return cli_value == py_value or (cli_value is None and (py_value is None or py_value != py_value))
+        return same(float(py_value), si(unit, cli_value))
+
+    def compare(table, cli_obj, py_obj, where):
+        columns = {c["key"]: c for c in tables[table]}
+        n = 0
+        for key, value in cli_obj.items():
+            if key in timings or key in ("lower", "upper"):  # the wall clock; the files the CLI read
+                continue
+            if key == "warnings":  # the same codes and words; the CLI names the file, Python "lower"
+                assert [(w["code"], w["message"].replace(path, "lower")) for w in value] == [
+                    (w["code"], w["message"]) for w in py_obj["warnings"]]
+                n += 1
+                continue
+            c = columns[key]
+            assert c["python"] in py_obj, (where, key)
+            v = py_obj[c["python"]]
+            if c["unit"].startswith("object:"):
+                n += compare(c["unit"][7:], value, v, f"{where}.{key}")
+            elif c["unit"].startswith("list:"):
+                assert len(value) == len(v), (where, key)
+                for i, (a, b) in enumerate(zip(value, v)):
+                    if c["unit"] == "list:tilt_scaled_setting":  # from/to in the setting's unit
+                        assert a["name"] == b["name"]
+                        u = setting_unit[a["name"]]
+                        assert same(b["from"], si(u, a["from"])) and same(b["to"], si(u, a["to"])), (a, b)
+                    else:
+                        n += compare(c["unit"][5:], a, b, f"{where}.{key}[{i}]")
+            elif key == "settings":
+                assert set(value) == set(v), (set(value) ^ set(v))
+                for k, x in value.items():
+                    assert equal(setting_unit[k], x, v[k]), (k, x, v[k])
+                n += len(value)
+            elif key == "surface":
+                n += compare("tilt_surface", value, v, "surface")
+            else:
+                assert equal(c["unit"], value, v), (where, key, value, v)
+                n += 1
+        return n
+
+    assert compare("tilt", want, got, "tilt") >= 100
+    # Python's dict holds nothing beyond the CLI's keys but its own (series, steps_beyond_limit).
+    py_keys = {c["python"] for c in tables["tilt"] if c["key"] in want}
+    assert set(got) - py_keys <= {"series", "steps_beyond_limit"}, set(got) - py_keys
+    assert set(got["surface"]) == {c["python"] for c in tables["tilt_surface"] if c["key"] in want["surface"]} - {""}
+    # The test is predict()'s: its block, d and drop range.
+    p = quiet(frictal.predict, piece)
+    assert got["surface"]["block_length"] == pytest.approx(p.block_length, rel=1e-15)
+    assert got["surface"]["runaway_distance"] == pytest.approx(p.runaway_distance, rel=1e-15)
+    assert got["surface"]["drop_range"] == pytest.approx(tuple(p.drop_range), rel=1e-15)
+    assert got["surface"]["test_lengths"] == p.test_lengths
+    assert got["predicted_spread_median"] == pytest.approx(p.friction_angle, rel=1e-12)
 
 
 def test_study_status_equals_the_cli(tmp_path):
