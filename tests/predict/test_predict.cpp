@@ -735,3 +735,72 @@ TEST(Warnings, ABoundAt90ThatNoDropNearsIsNoReasonToDoubtTheAnswer) {
   for (const auto& c : frictal::warning_codes()) listed |= c.code == "bound-at-90" && !c.doubtful;
   EXPECT_TRUE(listed);
 }
+
+TEST(PredictSettings, EachFieldFillsItsMemberAndTheDefaultsAreTheStructs) {
+  using frictal::find_field;
+  using frictal::PredictOptions;
+  const PredictOptions d;
+  // The table's defaults are PredictOptions{}'s (0 lengths read as automatic: NaN).
+  const auto& t = frictal::predict_settings();
+  EXPECT_EQ(find_field(t, "drops")->default_value, d.map_drops);
+  EXPECT_EQ(find_field(t, "map_work_limit")->default_value, d.map_work_limit);
+  EXPECT_EQ(find_field(t, "in_place")->default_value, d.turn_over_upper ? 0 : 1);
+  for (const char* automatic : {"runaway_distance", "block_length", "sphere_radius"})
+    EXPECT_TRUE(std::isnan(find_field(t, automatic)->default_value)) << automatic;
+  EXPECT_EQ(find_field(frictal::conditioning_settings(), "spike_threshold")->default_value,
+            frictal::kDefaultSpikeThreshold);
+  // Each name reaches its member (values in SI), the conditioning's beside the prediction's.
+  const frictal::ValueSet v = {{"direction", 3.0},
+                               {"atomic_friction", 0.25},
+                               {"runaway_distance", 2e-4},
+                               {"block_length", std::string("whole")},
+                               {"period", 1e-3},
+                               {"drops", std::int64_t{7}},
+                               {"locked", true},
+                               {"in_place", true},
+                               {"sphere_radius", 1e-6},
+                               {"map_work_limit", 10.0},
+                               {"crop", std::string("1mm,2mm")},
+                               {"remove_spikes", true},
+                               {"spike_threshold", 6.0},
+                               {"detrend", std::string("poly:2")}};
+  auto o = frictal::make_predict_options(v);
+  ASSERT_TRUE(o) << o.error().message;
+  EXPECT_EQ(o->direction, 3.0);
+  EXPECT_EQ(o->atomic_friction, 0.25);
+  EXPECT_EQ(o->runaway_distance, 2e-4);
+  EXPECT_EQ(o->block_length, -1);  // predict.hpp: < 0 is the whole upper profile
+  EXPECT_EQ(o->period, 1e-3);
+  EXPECT_EQ(o->map_drops, 7);
+  EXPECT_TRUE(o->map_locked);
+  EXPECT_FALSE(o->turn_over_upper);
+  EXPECT_EQ(o->sphere_radius, 1e-6);
+  EXPECT_EQ(o->map_work_limit, 10.0);
+  ASSERT_TRUE(o->crop.has_value());
+  EXPECT_DOUBLE_EQ(o->crop->x_min, 1e-3);
+  EXPECT_DOUBLE_EQ(o->crop->x_max, 2e-3);
+  EXPECT_TRUE(o->remove_spikes);
+  EXPECT_EQ(o->spike_threshold, 6.0);
+  ASSERT_TRUE(o->detrend.has_value());
+  EXPECT_EQ(o->detrend->kind, frictal::DetrendKind::Polynomial);
+  EXPECT_EQ(o->detrend->degree, 2);
+  // Nothing given: the struct's defaults (a NaN automatic length is 0, "the default", in the struct).
+  auto none = frictal::make_predict_options({{"runaway_distance", std::nan("")}});
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->runaway_distance, 0);
+  EXPECT_EQ(none->map_drops, d.map_drops);
+  EXPECT_FALSE(none->detrend.has_value());
+  // Errors name the field and the valid values, or the nearest name.
+  auto bad = frictal::make_predict_options({{"drops", std::int64_t{1}}});
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("drops: expected a whole number in 2..64, got 1"), std::string::npos)
+      << bad.error().message;
+  auto typo = frictal::make_predict_options({{"runaway_distanse", 1e-3}});
+  ASSERT_FALSE(typo);
+  EXPECT_NE(typo.error().message.find("did you mean 'runaway_distance'"), std::string::npos) << typo.error().message;
+  auto form = frictal::make_predict_options({{"detrend", std::string("cubic")}});
+  ASSERT_FALSE(form);
+  EXPECT_NE(form.error().message.find("none, mean, line, plane or poly:N"), std::string::npos) << form.error().message;
+  auto whole = frictal::make_predict_options({{"block_length", -1.0}});  // the word's value is no length
+  EXPECT_FALSE(whole);
+}
