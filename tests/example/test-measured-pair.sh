@@ -2,7 +2,7 @@
 # example.measured_pair: runs the README's worked example (the block between
 # "<!-- example: measured-pair -->" and "<!-- end example -->") as a user would, from a copy of
 # the files it reads, then checks by a second path that the tilt's rigid prediction is the
-# signature's theta_max. Arguments: source dir, frictal executable, build tree's python dir.
+# signature's theta_max (both of the whole files: `tilt --block-length whole`). Arguments: source dir, frictal executable, build tree's python dir.
 set -euo pipefail
 src=$1 cli=$2 pydir=$3
 work=$(mktemp -d)
@@ -20,7 +20,7 @@ bash -euo pipefail example.sh > out.txt 2>&1 || { cat out.txt; echo "the README 
 cat out.txt
 grep -q "theta_max forward" out.txt
 frictal signature dektak-a.csv dektak-b.csv --json > sig.json
-frictal tilt --lower dektak-a.csv --upper dektak-b.csv --max-tilt 0.05 --json > tilt.json 2> /dev/null
+frictal tilt --lower dektak-a.csv --upper dektak-b.csv --block-length whole --max-tilt 0.05 --json > tilt.json 2> /dev/null
 python3 - <<'PY'
 import json
 sig = json.load(open("sig.json"))
@@ -32,9 +32,11 @@ assert 1.0 < a < 10.0, a  # slopes of a polished scan: a few degrees
 print(tilt["rest_offset_m"])
 PY
 # The tilt's hold-angle prediction from where its block rests, against `signature --start-offset`
-# at that rest (a second path through the CLI: the signature's own widened lift).
+# at that rest with the tilt's run-away distance (a second path through the CLI: the signature's
+# own widened lift).
 rest=$(python3 -c 'import json; print(json.load(open("tilt.json"))["rest_offset_m"])')
-frictal signature dektak-a.csv dektak-b.csv --start-offset "$rest" --runaway-distance 0.01 --json > hold.json
+d=$(python3 -c 'import json; print(json.load(open("tilt.json"))["surface"]["runaway_distance_m"])')
+frictal signature dektak-a.csv dektak-b.csv --start-offset "$rest" --runaway-distance "$d" --json > hold.json
 python3 - <<'PY'
 import json
 tilt = json.load(open("tilt.json"))
@@ -46,7 +48,7 @@ assert hold["inertial_hold_angle_deg"] <= a, hold  # the bracket [phi_in, phi_qs
 PY
 # The dynamic test from rest (the README's last command) lies inside its own bracket
 # [phi_in, phi_qs] from where it rests (0.1 deg slack), and is not flagged.
-frictal tilt --lower dektak-a.csv --upper dektak-b.csv --protocol constant-rate --settling relax --turn gravity --tilt-rate 0.0005 \
+frictal tilt --lower dektak-a.csv --upper dektak-b.csv --block-length whole --protocol constant-rate --settling relax --turn gravity --tilt-rate 0.0005 \
   --hold-rotation --spheroradius 2e-5 --normal-stiffness 6e7 --contact-rule closest --json > rest.json 2> /dev/null
 python3 - <<'PY'
 import json
