@@ -12,7 +12,10 @@ std::string field_help(const Field& f) {
   std::string s = f.help;
   const std::string u = text_unit(f);
   if (!u.empty()) s += " [" + u + "]";
-  return s + " (default " + default_text(f) + "; valid " + range_text(f) + ")";
+  // A number without bounds has no valid range worth a word (its unit is in the brackets).
+  const std::string range = range_text(f);
+  if (range.rfind("any", 0) == 0) return s + " (default " + default_text(f) + ")";
+  return s + " (default " + default_text(f) + "; valid " + range + ")";
 }
 
 namespace {

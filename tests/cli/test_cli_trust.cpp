@@ -286,10 +286,12 @@ TEST(CliTrust, PredictsOptionsAreItsSettingsTablesPlusAStatedList) {
   for (const frictal::Field& f : fields) {
     std::string option = "--" + f.name;
     std::replace(option.begin(), option.end(), '_', '-');
-    // The table's line: help [unit] (default D; valid R), angles in degrees at the CLI.
+    // The table's line: help [unit] (default D; valid R), angles in degrees at the CLI; a number
+    // without bounds states no range.
     const std::string unit = f.unit == "rad" ? "deg" : f.unit;
+    const std::string range = frictal::range_text(f);
     const std::string help = f.help + (unit.empty() ? "" : " [" + unit + "]") + " (default " +
-                             frictal::default_text(f) + "; valid " + frictal::range_text(f) + ")";
+                             frictal::default_text(f) + (range.rfind("any", 0) == 0 ? "" : "; valid " + range) + ")";
     ASSERT_TRUE(options.count(option)) << option;
     EXPECT_EQ(options[option], help) << option;
     expected.insert(option);
