@@ -401,9 +401,9 @@ void frictal_bind_predict(py::module_& m) {
           PyDict_DelItemString(kw.ptr(), "crop");
         }
         o = ok(make_predict_options(
-            py_detail::keyword_values(areal_hold_keywords(), kw, "areal_hold",
-                                      {"dx", "dy", "upper", "lateral", "start_offset", "threads"},
-                                      {{"angle", "direction"}, {"turn_over_upper", "in_place (its inverse)"}}),
+            py_detail::keyword_values(
+                areal_hold_keywords(), kw, "areal_hold", {"dx", "dy", "upper", "lateral", "start_offset", "threads"},
+                {std::make_pair("angle", "direction"), std::make_pair("turn_over_upper", "in_place (its inverse)")}),
             o));
         o.map_locked = lateral == "locked";
         o.threads = threads;
