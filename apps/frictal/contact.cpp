@@ -8,6 +8,7 @@
 #include "common.hpp"
 #include "frictal/conditioning.hpp"
 #include "frictal/contact.hpp"
+#include "map_hold.hpp"
 #include "surface_io.hpp"
 
 namespace frictal::cli {
@@ -17,7 +18,8 @@ struct Args {
   std::string lower, upper, detrend;
   std::vector<std::string> loads;
   std::string modulus, poisson, upper_modulus, upper_poisson, hardness;
-  bool periodic = false, in_place = false, json = false, no_stiffness = false;
+  bool periodic = false, json = false, no_stiffness = false;
+  FieldWords predict_words;  ///< --in-place (the prediction's table: one help text)
   double tolerance = ContactOptions{}.tolerance;
   unsigned threads = 1;
   InputOptions input;
@@ -130,8 +132,7 @@ std::function<int()> setup(CLI::App& app) {
                  "Hardness H: the pressure is capped at H (perfect plasticity), Pa, MPa, GPa (default: elastic)");
   app.add_flag("--periodic", a->periodic,
                "The surface repeats with its length (a generated periodic surface); default: not periodic (padded)");
-  app.add_flag("--in-place", a->in_place,
-               "UPPER is the upper face already in place in LOWER's coordinates (not turned over)");
+  add_predict_options(app, a->predict_words, {"in_place"});
   add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
   app.add_option("--tolerance", a->tolerance,
@@ -177,6 +178,7 @@ std::function<int()> setup(CLI::App& app) {
     o.stiffness = !a->no_stiffness;
     o.keep_fields = false;
     std::vector<Warning> warnings;
+    const bool in_place = predict_flag(a->predict_words, "in_place");
     const Conditioning cond = conditioning(a->cond, form_to_remove(a->detrend, false));
     Surface lower = read(a->lower, *a, cond, warnings);
     std::string record = lower.record;
@@ -186,11 +188,11 @@ std::function<int()> setup(CLI::App& app) {
               fmt::format("{} and {}: a profile and a map; give two profiles or two maps", a->lower, a->upper));
       record += "; " + upper.record;
       if (lower.is_map)
-        lower.map = unwrap(composite_topography(lower.map, upper.map, !a->in_place, a->lower, a->upper));
+        lower.map = unwrap(composite_topography(lower.map, upper.map, !in_place, a->lower, a->upper));
       else
-        lower.profile = unwrap(composite_topography(lower.profile, upper.profile, !a->in_place, a->lower, a->upper));
+        lower.profile = unwrap(composite_topography(lower.profile, upper.profile, !in_place, a->lower, a->upper));
     } else {
-      require(!a->in_place, "--in-place: applies to UPPER, which is not given");
+      require(!in_place, "--in-place: applies to UPPER, which is not given");
     }
     const std::vector<ContactLoad> loads = parse_loads(a->loads, lower.is_map);
     const std::vector<ContactResult> results = lower.is_map ? unwrap(solve_contact_curve(lower.map, loads, o))

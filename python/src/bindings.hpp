@@ -84,6 +84,9 @@ ProfilePair conditioned_profiles(const py::object& lower, const py::object& uppe
                                  const std::optional<std::string>& detrend, const py::object& crop, bool remove_spikes,
                                  double spike_threshold, double spacing, const std::string& format,
                                  const std::string& unit);
+/// The same, conditioned as `c` says (the keywords of conditioning_settings(): conditioning_keywords).
+ProfilePair conditioned_profiles(const py::object& lower, const py::object& upper, const ConditioningSettings& c,
+                                 double spacing, const std::string& format, const std::string& unit);
 
 inline py::dict py_row(const OutputRow& row);
 /// The warnings as Python's dicts hold them: [{code, message}].
@@ -227,15 +230,25 @@ py::dict to_dict(const Columns<T>& cols, const T& value) {
   return d;
 }
 
+/// Keywords a function no longer takes under their old name: (old name, the table's name).
+using Renamed = std::vector<std::pair<std::string, std::string>>;
+
 /// Python keyword arguments -> SI values of the table's fields. An unknown keyword is a
-/// TypeError naming the nearest field; a bad value a ValueError naming the field.
-inline ValueSet keyword_values(const std::vector<Field>& fields, const py::kwargs& kw, const std::string& function) {
+/// TypeError naming the nearest name among the fields and `also` (the function's keywords outside
+/// the table), an old name of `renamed` a TypeError naming the new one; a bad value a ValueError
+/// naming the field.
+inline ValueSet keyword_values(const std::vector<Field>& fields, const py::kwargs& kw, const std::string& function,
+                               const std::vector<std::string>& also = {}, const Renamed& renamed = {}) {
   ValueSet out;
   for (const auto& item : kw) {
     const std::string name = py::str(item.first);
     const Field* f = find_field(fields, name);
     if (!f) {
-      std::vector<std::string> names;
+      for (const auto& [old_name, new_name] : renamed)
+        if (name == old_name)
+          throw py::type_error(function + "() got an unexpected keyword argument '" + name + "'; it is now '" +
+                               new_name + "'");
+      std::vector<std::string> names = also;
       for (const Field& g : fields) names.push_back(g.name);
       std::string hint;
       if (std::string n = nearest_word(name, names); !n.empty()) hint = "; did you mean '" + n + "'?";
@@ -261,6 +274,22 @@ inline ValueSet keyword_values(const std::vector<Field>& fields, const py::kwarg
     out[name] = *checked;
   }
   return out;
+}
+
+/// The conditioning a function takes from its keywords: the fields of conditioning_settings()
+/// (crop also a sequence of metres), taken out of `kw`; any other keyword left in `kw` is a
+/// TypeError naming the nearest of the table's names and `also` (the function's own keywords).
+inline ConditioningSettings conditioning_keywords(py::kwargs& kw, const std::string& function,
+                                                  const std::vector<std::string>& also = {}) {
+  py::object crop = py::none();
+  if (kw.contains("crop")) {
+    crop = kw["crop"];
+    PyDict_DelItemString(kw.ptr(), "crop");
+  }
+  ConditioningSettings c = ok(make_conditioning_settings(keyword_values(conditioning_settings(), kw, function, also)));
+  c.crop = crop_window(crop);
+  c.crop_source = "crop=" + py::repr(crop).cast<std::string>();
+  return c;
 }
 
 /// The keywords of predict(): predict_settings() then conditioning_settings().

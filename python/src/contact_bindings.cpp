@@ -22,9 +22,16 @@ void frictal_bind_contact(py::module_& m) {
       "contact",
       [](const py::object& lower, const py::object& upper, const py::object& load, const py::object& pressure,
          double modulus, double poisson, std::optional<double> upper_modulus, std::optional<double> upper_poisson,
-         double hardness, bool periodic, bool in_place, std::optional<std::string> detrend_text, const py::object& crop,
-         bool remove_spikes, double spike_threshold, double spacing, const std::string& format, const std::string& unit,
-         double tolerance, bool stiffness, bool fields, unsigned threads) {
+         double hardness, bool periodic, bool in_place, double spacing, const std::string& format,
+         const std::string& unit, double tolerance, bool stiffness, bool fields, unsigned threads, py::kwargs kw) {
+        // The conditioning: the fields of conditioning_settings() (one form for both surfaces, a
+        // line or a plane unless detrend says otherwise).
+        const Conditioning c =
+            py_detail::conditioning_keywords(
+                kw, "contact",
+                {"load", "pressure", "modulus", "poisson", "upper_modulus", "upper_poisson", "hardness", "periodic",
+                 "in_place", "spacing", "format", "unit", "tolerance", "stiffness", "fields", "threads"})
+                .of_surface(false);
         const std::vector<double> forces = as_values(load), pressures = as_values(pressure);
         if (forces.empty() == pressures.empty())
           throw py::value_error(
@@ -47,12 +54,6 @@ void frictal_bind_contact(py::module_& m) {
         o.stiffness = stiffness;
         o.keep_fields = fields;
         o.threads = threads;
-        Conditioning c;
-        c.crop = py_detail::crop_window(crop);
-        c.crop_source = "crop=" + py::repr(crop).cast<std::string>();
-        c.remove_spikes = remove_spikes;
-        c.spike_threshold = spike_threshold;
-        c.form = detrend_text ? ok(parse_detrend(*detrend_text)) : default_form(false);
         std::vector<Warning> warnings;
         auto conditioned = [&](const py::object& obj, const char* what, std::string& record) {
           PredictSurface s = py_detail::to_surface(obj, spacing, format, unit, what);
@@ -113,19 +114,21 @@ void frictal_bind_contact(py::module_& m) {
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("load") = py::none(),
       py::arg("pressure") = py::none(), py::arg("modulus"), py::arg("poisson"), py::arg("upper_modulus") = py::none(),
       py::arg("upper_poisson") = py::none(), py::arg("hardness") = 0.0, py::arg("periodic") = false,
-      py::arg("in_place") = false, py::arg("detrend") = py::none(), py::arg("crop") = py::none(),
-      py::arg("remove_spikes") = false, py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("spacing") = 0.0,
-      py::arg("format") = "auto", py::arg("unit") = "", py::arg("tolerance") = ContactOptions{}.tolerance,
-      py::arg("stiffness") = true, py::arg("fields") = false, py::arg("threads") = 1u,
-      "Elastic normal contact (as `frictal contact`; runs without the GIL; no warnings.warn: frictal.contact issues "
-      "them). lower alone: an elastic body (modulus E in Pa, poisson nu) pressed against a rigid flat; with upper: "
-      "two bodies (upper_modulus/upper_poisson, default the same; upper_modulus=inf: a rigid upper) whose composite "
-      "topography "
-      "(upper turned over unless in_place) meets a rigid flat. Surfaces: paths, Profiles, dicts from read_surface/"
-      "read_map or arrays of heights with spacing (m). load: the force (N for maps, N/m per unit depth for profiles) "
-      "or pressure: the nominal pressure (Pa), a number or a list (a load curve). hardness H (Pa, 0: none) caps the "
-      "pressure; periodic: the surface repeats with its length (else padded); detrend/crop/remove_spikes as "
-      "frictal.condition. Returns a dict (one number given) or a list of dicts with the keys of `frictal columns` "
-      "table contact (SI), kind, conditioning, warnings and with fields=True pressure (Pa) and gap (m) (shape "
-      "(ny, nx) for maps)");
+      py::arg("in_place") = false, py::arg("spacing") = 0.0, py::arg("format") = "auto", py::arg("unit") = "",
+      py::arg("tolerance") = ContactOptions{}.tolerance, py::arg("stiffness") = true, py::arg("fields") = false,
+      py::arg("threads") = 1u,
+      ("Elastic normal contact (as `frictal contact`; runs without the GIL; no warnings.warn: frictal.contact issues "
+       "them). lower alone: an elastic body (modulus E in Pa, poisson nu) pressed against a rigid flat; with upper: "
+       "two bodies (upper_modulus/upper_poisson, default the same; upper_modulus=inf: a rigid upper) whose composite "
+       "topography "
+       "(upper turned over unless in_place) meets a rigid flat. Surfaces: paths, Profiles, dicts from read_surface/"
+       "read_map or arrays of heights with spacing (m). load: the force (N for maps, N/m per unit depth for profiles) "
+       "or pressure: the nominal pressure (Pa), a number or a list (a load curve). hardness H (Pa, 0: none) caps the "
+       "pressure; periodic: the surface repeats with its length (else padded); detrend/crop/remove_spikes as "
+       "frictal.condition. Returns a dict (one number given) or a list of dicts with the keys of `frictal columns` "
+       "table contact (SI), kind, conditioning, warnings and with fields=True pressure (Pa) and gap (m) (shape "
+       "(ny, nx) for maps). The conditioning's keywords are the fields of conditioning_settings() (SI; crop also a "
+       "sequence of metres):\n" +
+       py_detail::keyword_doc(conditioning_settings()))
+          .c_str());
 }

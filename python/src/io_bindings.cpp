@@ -172,15 +172,10 @@ void frictal_bind_io(py::module_& m) {
       "Removes none, mean, line or poly:N (trapezoid-weighted least squares) from a profile (m)");
   m.def(
       "condition",
-      [](const py::object& surface, const py::object& crop, bool remove_spikes, double spike_threshold,
-         const std::optional<std::string>& detrend_text) {
-        Conditioning c;
-        c.crop = crop_window(crop);
-        c.remove_spikes = remove_spikes;
-        c.spike_threshold = spike_threshold;
-        // None: the one default of every front end (default_form: a line, a plane for maps, the
-        // mean of a periodic profile).
-        if (detrend_text) c.form = ok(parse_detrend(*detrend_text));
+      [](const py::object& surface, py::kwargs kw) {
+        // detrend None: the one default of every front end (default_form: a line, a plane for
+        // maps, the mean of a periodic profile).
+        const ConditioningSettings settings = py_detail::conditioning_keywords(kw, "condition");
         // A Profile, or a dict as read_surface/read_map return it (condition(read_surface(path)) is
         // the CLI's conditioning of that file): predict's reading of such objects.
         if (!py::isinstance<Profile>(surface) && !py::isinstance<py::dict>(surface))
@@ -188,26 +183,28 @@ void frictal_bind_io(py::module_& m) {
               "surface: expected a Profile, a profile dict (x, z) or a map dict (heights, dx, dy[, x0, y0])");
         const PredictSurface s = to_surface(surface, 0, "auto", "", "surface");
         if (!s.is_map) {
-          if (!detrend_text) c.form = default_form(s.profile.period.has_value());
+          const Conditioning c = settings.of_surface(s.profile.period.has_value());
           ConditionedProfile r = ok(nogil([&] { return condition(s.profile, c, "profile"); }));
           return py::make_tuple(py::cast(std::move(r.profile)), record_dict(r.record));
         }
-        if (!detrend_text) c.form = default_form();
+        const Conditioning c = settings.of_surface();
         ConditionedMap r = ok(nogil([&] { return condition(s.map, c, "map"); }));
         return py::make_tuple(py_detail::to_dict(map_data_columns(), r.map), record_dict(r.record));
       },
-      py::arg("surface"), py::kw_only(), py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
-      py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("detrend") = py::none(),
-      "The conditioning of `frictal predict` and the CLI (crop, then spike removal, then form removal; "
-      "surface: a Profile, a profile dict as read_surface returns it, or a map dict as read_map returns it; "
-      "docs/analysis.md): crop (x0, x1) or (x0, x1, y0, y1) in m in the surface's coordinates; remove_spikes "
-      "removes (profiles: linear interpolation between kept neighbours, dropped at the ends) or masks (maps: NaN) the "
-      "points more than spike_threshold rms "
-      "heights from the median of their neighbours; detrend none, mean, line, plane, poly:N (None: the default of "
-      "every front end, a line for profiles, a "
-      "plane for maps, the mean of a periodic profile). Returns (the "
-      "conditioned Profile or map dict, a record dict: text, cropped, window (m), points_before/after (nx, ny), "
-      "spikes_checked, spike_threshold, spikes_removed, spikes_dropped (profiles: at the ends), spike_passes, form)");
+      py::arg("surface"),
+      ("The conditioning of `frictal predict` and the CLI (crop, then spike removal, then form removal; "
+       "surface: a Profile, a profile dict as read_surface returns it, or a map dict as read_map returns it; "
+       "docs/analysis.md): crop (x0, x1) or (x0, x1, y0, y1) in m in the surface's coordinates; remove_spikes "
+       "removes (profiles: linear interpolation between kept neighbours, dropped at the ends) or masks (maps: NaN) the "
+       "points more than spike_threshold rms "
+       "heights from the median of their neighbours; detrend none, mean, line, plane, poly:N (None: the default of "
+       "every front end, a line for profiles, a "
+       "plane for maps, the mean of a periodic profile). Returns (the "
+       "conditioned Profile or map dict, a record dict: text, cropped, window (m), points_before/after (nx, ny), "
+       "spikes_checked, spike_threshold, spikes_removed, spikes_dropped (profiles: at the ends), spike_passes, form). "
+       "Keywords: the fields of conditioning_settings() (SI; crop also a sequence of metres):\n" +
+       py_detail::keyword_doc(conditioning_settings()))
+          .c_str());
   m.def(
       "power_spectrum",
       [](const Profile& p, std::size_t max_k) {

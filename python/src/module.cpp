@@ -186,9 +186,8 @@ PYBIND11_MODULE(_core, m) {
       "signature",
       [](const py::object& lower, const py::object& upper, bool rotate_upper, const std::string& slopes,
          std::size_t offsets, std::optional<std::pair<double, double>> offset_range, unsigned threads,
-         bool keep_contacts, int bins, double spheroradius, const std::optional<std::string>& detrend,
-         const py::object& crop, bool remove_spikes, double spike_threshold, double spacing, const std::string& format,
-         const std::string& unit) {
+         bool keep_contacts, int bins, double spheroradius, double spacing, const std::string& format,
+         const std::string& unit, py::kwargs kw) {
         SignatureOptions o;
         o.spheroradius = spheroradius;
         if (slopes != "exact" && slopes != "spline")
@@ -202,8 +201,11 @@ PYBIND11_MODULE(_core, m) {
           o.offset_min = offset_range->first;
           o.offset_max = offset_range->second;
         }
-        py_detail::ProfilePair pair = py_detail::conditioned_profiles(lower, upper, detrend, crop, remove_spikes,
-                                                                      spike_threshold, spacing, format, unit);
+        const ConditioningSettings c =
+            py_detail::conditioning_keywords(kw, "signature",
+                                             {"rotate_upper", "slopes", "offsets", "offset_range", "threads",
+                                              "keep_contacts", "bins", "spheroradius", "spacing", "format", "unit"});
+        py_detail::ProfilePair pair = py_detail::conditioned_profiles(lower, upper, c, spacing, format, unit);
         Profile up = std::move(pair.upper);
         if (!pair.has_upper || rotate_upper) up = rotate180(std::move(up));
         SignatureResult r = unwrap(nogil([&] { return signature(std::move(pair.lower), std::move(up), o); }));
@@ -220,24 +222,25 @@ PYBIND11_MODULE(_core, m) {
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("rotate_upper") = true,
       py::arg("slopes") = "exact", py::arg("offsets") = 0, py::arg("offset_range") = py::none(), py::arg("threads") = 0,
-      py::arg("keep_contacts") = false, py::arg("bins") = 90, py::arg("spheroradius") = 0.0,
-      py::arg("detrend") = py::none(), py::arg("crop") = py::none(), py::arg("remove_spikes") = false,
-      py::arg("spike_threshold") = kDefaultSpikeThreshold, py::arg("spacing") = 0.0, py::arg("format") = "auto",
-      py::arg("unit") = "",
-      "Signature function theta(x_ofs) of two profiles (runs without the GIL), the numbers of `frictal signature "
-      "--json` on the same input. `lower`, `upper`: file paths, Profile objects, profile dicts (x, z) or 1-D numpy "
-      "arrays of heights with spacing= (m), each conditioned as frictal.predict and the CLI condition them: crop, "
-      "remove_spikes, spike_threshold, then the form `detrend` names (none, mean, line, poly:N; None: a line, the "
-      "mean of a periodic profile; detrend='none' keeps a generated surface exact); format and unit as read_surface. "
-      "`upper` is a surface as measured "
-      "(rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = "
-      "every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores; "
-      "spheroradius (m) > 0: the "
-      "DEM's rounded blocks (one core against the other dilated by a disk of radius 2r, exact slopes only), 0: "
-      "rigid profiles. Returns "
-      "offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), "
-      "offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events, spheroradius "
-      "(m), conditioning (text), warnings ([{code, message}]).");
+      py::arg("keep_contacts") = false, py::arg("bins") = 90, py::arg("spheroradius") = 0.0, py::arg("spacing") = 0.0,
+      py::arg("format") = "auto", py::arg("unit") = "",
+      ("Signature function theta(x_ofs) of two profiles (runs without the GIL), the numbers of `frictal signature "
+       "--json` on the same input. `lower`, `upper`: file paths, Profile objects, profile dicts (x, z) or 1-D numpy "
+       "arrays of heights with spacing= (m), each conditioned as frictal.predict and the CLI condition them: crop, "
+       "remove_spikes, spike_threshold, then the form `detrend` names (none, mean, line, poly:N; None: a line, the "
+       "mean of a periodic profile; detrend='none' keeps a generated surface exact); format and unit as read_surface. "
+       "`upper` is a surface as measured "
+       "(rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = "
+       "every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores; "
+       "spheroradius (m) > 0: the "
+       "DEM's rounded blocks (one core against the other dilated by a disk of radius 2r, exact slopes only), 0: "
+       "rigid profiles. Returns "
+       "offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), "
+       "offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events, spheroradius "
+       "(m), conditioning (text), warnings ([{code, message}]). The conditioning's keywords are the fields of "
+       "conditioning_settings() (SI; crop also a sequence of metres):\n" +
+       py_detail::keyword_doc(conditioning_settings()))
+          .c_str());
   m.def("lift_direct", &lift_direct, py::arg("lower"), py::arg("upper_rotated"), py::arg("offset"),
         "Lift h(s) (m) of the turned-over upper profile at offset s (m): plain O(N+M) evaluation (reference method)");
   m.def(

@@ -121,13 +121,20 @@ PredictSurface frictal::py_detail::to_surface(const py::handle& obj, double spac
 frictal::py_detail::ProfilePair frictal::py_detail::conditioned_profiles(
     const py::object& lower, const py::object& upper, const std::optional<std::string>& detrend, const py::object& crop,
     bool remove_spikes, double spike_threshold, double spacing, const std::string& format, const std::string& unit) {
-  Conditioning c;
+  ConditioningSettings c;
   c.crop = crop_window(crop);
   c.crop_source = "crop=" + py::repr(crop).cast<std::string>();
   c.remove_spikes = remove_spikes;
   c.spike_threshold = spike_threshold;
-  const std::optional<Detrend> asked =
-      detrend ? std::optional<Detrend>(ok(parse_detrend(*detrend))) : std::optional<Detrend>();
+  if (detrend) c.detrend = ok(parse_detrend(*detrend));
+  return conditioned_profiles(lower, upper, c, spacing, format, unit);
+}
+
+frictal::py_detail::ProfilePair frictal::py_detail::conditioned_profiles(const py::object& lower,
+                                                                         const py::object& upper,
+                                                                         const ConditioningSettings& settings,
+                                                                         double spacing, const std::string& format,
+                                                                         const std::string& unit) {
   ProfilePair out;
   std::vector<ConditioningRecord> records;
   auto side = [&](const py::object& obj, const char* what) {
@@ -137,8 +144,7 @@ frictal::py_detail::ProfilePair frictal::py_detail::conditioned_profiles(
                             ": an areal map; this function needs line profiles (areal_signature, "
                             "areal_hold or predict take maps)");
     for (const Warning& w : s.reader_warnings) add_warning(out.warnings, w);
-    Conditioning own = c;
-    own.form = form_or_default(asked, s.profile.period.has_value());
+    const Conditioning own = settings.of_surface(s.profile.period.has_value());
     const double read_rms = rms_height_as_read(s.profile.z);
     ConditionedProfile r = ok(nogil([&] { return condition(std::move(s.profile), own, s.name); }));
     records.push_back(r.record);
@@ -183,6 +189,18 @@ py::object json_safe(const py::object& v) {
     return out;
   }
   return v;
+}
+
+/// The keywords of areal_hold() from the tables: predict()'s, less those it states otherwise or
+/// that do not apply to maps (locked: lateral says it; block_length and period: profiles).
+const std::vector<Field>& areal_hold_keywords() {
+  static const std::vector<Field> f = [] {
+    std::vector<Field> out;
+    for (const Field& g : py_detail::predict_keywords())
+      if (g.name != "locked" && g.name != "block_length" && g.name != "period") out.push_back(g);
+    return out;
+  }();
+  return f;
 }
 
 }  // namespace
@@ -361,10 +379,8 @@ void frictal_bind_predict(py::module_& m) {
       "(name, type, unit (SI: m, or unitless), default (None: automatic), min, max, choices, help)");
   m.def(
       "areal_hold",
-      [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, double angle,
-         py::object upper, bool turn_over_upper, double runaway_distance, double atomic_friction,
-         const std::string& lateral, py::object start_offset, int drops, std::optional<std::string> detrend_text,
-         unsigned threads) {
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, py::object upper,
+         const std::string& lateral, py::object start_offset, unsigned threads, py::kwargs kw) {
         if (lateral != "free" && lateral != "locked")
           throw py::value_error("lateral '" + lateral + "': expected 'free' or 'locked'");
         PredictSurface lo, up;
@@ -377,41 +393,51 @@ void frictal_bind_predict(py::module_& m) {
           up.map = py_detail::to_map(upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(), dx,
                                      dy, 0, 0);
         PredictOptions o;
-        o.direction = angle;
-        o.turn_over_upper = turn_over_upper;
-        o.runaway_distance = runaway_distance;
-        o.atomic_friction = atomic_friction;
-        o.map_drops = drops;
+        // crop: the table's text or, in Python also, a sequence of metres (as predict() takes it).
+        if (kw.contains("crop")) {
+          const py::object crop = kw["crop"];
+          o.crop = py_detail::crop_window(crop);
+          o.crop_source = "crop=" + py::repr(crop).cast<std::string>();
+          PyDict_DelItemString(kw.ptr(), "crop");
+        }
+        o = ok(make_predict_options(
+            py_detail::keyword_values(
+                areal_hold_keywords(), kw, "areal_hold", {"dx", "dy", "upper", "lateral", "start_offset", "threads"},
+                {std::make_pair("angle", "direction"), std::make_pair("turn_over_upper", "in_place (its inverse)")}),
+            o));
         o.map_locked = lateral == "locked";
         o.threads = threads;
-        if (detrend_text) o.detrend = ok(parse_detrend(*detrend_text));
         if (!start_offset.is_none()) {
           const auto xy = start_offset.cast<std::array<double, 2>>();
           o.start_offset = {xy[0], xy[1]};
         }
         const Prediction p = ok(nogil([&] { return predict(lo, pair ? &up : nullptr, o); }));
-        py::dict d = py_detail::to_dict(areal_hold_columns(), ArealHoldReport{p, o.map_locked, !turn_over_upper});
+        py::dict d = py_detail::to_dict(areal_hold_columns(), ArealHoldReport{p, o.map_locked, !o.turn_over_upper});
         RunRecord run;
         run.conditioning = p.conditioning;
         run.warnings = p.warnings;
         py_detail::put_columns(d, run_record_columns(), run);
         return d;
       },
-      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,
-      py::arg("upper") = py::none(), py::arg("turn_over_upper") = true, py::arg("runaway_distance") = 0.0,
-      py::arg("atomic_friction") = 0.0, py::arg("lateral") = "free", py::arg("start_offset") = py::none(),
-      py::arg("drops") = PredictOptions{}.map_drops, py::arg("detrend") = py::none(), py::arg("threads") = 0u,
-      "Hold angle over drops of an areal block, from the continuous model of frictal.predict (the same library "
-      "path and numbers; runs without the GIL; as `frictal areal --lateral`): the block free to move sideways "
-      "(lateral='free', what a tilt test reads) or locked to the direction (lateral='locked', a diagnostic; the free "
-      "one is computed beside it). Heights, dx, dy, runaway_distance (0: predict's default) and start_offset in m, "
-      "angle in rad, atomic_friction mu_a unitless (atan(mu_a) is included in every hold angle); upper as measured "
-      "(turned over) unless turn_over_upper=False; drops: N x N over predict's drop range; detrend: none, mean, "
-      "plane, poly:N (None: plane, predict's default). start_offset (x, y) (from the centres aligned, or from the "
-      "upper's place when in place) or None for the distribution. Returns model, lateral, direction, in_place, "
-      "atomic_friction, runaway_distance, drops, drop_range (u0, u1, v0, v1), upper_bound_friction_angle, "
-      "conditioning, warnings and, "
-      "over drops: hold_angle_mean/std/q05/q50/q95/min/max (rad), drop_hold_angles (rad), drop_offsets (drops x 2, m) "
-      "(locked: also hold_angle_free_q05/q50/q95); from one drop: start_offset, rest_offset, hold_angle, steering "
-      "(the free block's run-away direction from d, rad) (locked: also hold_angle_free)");
+      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("upper") = py::none(),
+      py::arg("lateral") = "free", py::arg("start_offset") = py::none(), py::arg("threads") = 0u,
+      ("Hold angle over drops of an areal block, from the continuous model of frictal.predict (the same library "
+       "path and numbers; runs without the GIL; as `frictal areal --lateral`): the block free to move sideways "
+       "(lateral='free', what a tilt test reads) or locked to the direction (lateral='locked', a diagnostic; the free "
+       "one is computed beside it). Heights, dx, dy, runaway_distance (None: predict's default) and start_offset in m, "
+       "direction in rad, atomic_friction mu_a unitless (atan(mu_a) is included in every hold angle); upper as "
+       "measured "
+       "(turned over) unless in_place=True; drops: N x N over predict's drop range; detrend: none, mean, "
+       "plane, poly:N (None: plane, predict's default). start_offset (x, y) (from the centres aligned, or from the "
+       "upper's place when in place) or None for the distribution. Returns model, lateral, direction, in_place, "
+       "atomic_friction, runaway_distance, drops, drop_range (u0, u1, v0, v1), upper_bound_friction_angle, "
+       "conditioning, warnings and, "
+       "over drops: hold_angle_mean/std/q05/q50/q95/min/max (rad), drop_hold_angles (rad), drop_offsets (drops x 2, m) "
+       "(locked: also hold_angle_free_q05/q50/q95); from one drop: start_offset, rest_offset, hold_angle, steering "
+       "(the free block's run-away direction from d, rad) (locked: also hold_angle_free). Keywords besides dx, dy, "
+       "upper, "
+       "lateral, start_offset, threads: the fields of predict_settings() that apply to maps and "
+       "conditioning_settings() (SI; crop also a sequence of metres):\n" +
+       py_detail::keyword_doc(areal_hold_keywords()))
+          .c_str());
 }

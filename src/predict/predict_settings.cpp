@@ -84,8 +84,8 @@ const std::vector<B>& table() {
             // what is usual (turn_over_upper), so the two read inverted.
             B b;
             b.field = F("in_place", "", 0, Lo::Closed, 1,
-                        "Maps: the upper surface is the upper face already in place in the lower one's coordinates "
-                        "(not turned over); offsets count from that place");
+                        "The upper surface is the upper face already in place in the lower one's coordinates (not "
+                        "turned over); a drop's offsets count from that place. Maps only, except in contact");
             b.field.type = FieldType::Boolean;
             b.get = [](const PredictOptions& o) { return FieldValue{!o.turn_over_upper}; };
             b.set = [](PredictOptions& o, const FieldValue& v) { o.turn_over_upper = !std::get<bool>(v); };

@@ -86,7 +86,7 @@ def test_areal_hold_grooves_steer_when_free():
     h = amp * np.sin(2 * math.pi * (i[None, :] - i[:, None]) / m)
     # A 6 x 6 window of the grooves as the upper face in place (the whole map nested in itself would
     # put all its 10^4 spheres in contact at once: slow).
-    kw = dict(dx=a, dy=dy, upper=h[:6, :6], turn_over_upper=False, runaway_distance=1e-6, detrend="none")
+    kw = dict(dx=a, dy=dy, upper=h[:6, :6], in_place=True, runaway_distance=1e-6, detrend="none")
     locked_angle = math.atan(amp * math.sin(2 * math.pi / m) / a)
     r = frictal.areal_hold(h, start_offset=(40 * a, 40 * dy), **kw)  # the window moved to node (40, 40)
     assert r["model"] == "map-continuous-free"
@@ -116,14 +116,14 @@ def test_areal_hold_is_predict():
     rng = np.random.default_rng(3)
     h = np.cumsum(np.cumsum(rng.normal(size=(20, 24)), axis=0), axis=1) * 1e-9
     kw = dict(atomic_friction=0.05, drops=2)
-    r = frictal.areal_hold(h, dx=1e-6, dy=1e-6, angle=0.5, **kw)
+    r = frictal.areal_hold(h, dx=1e-6, dy=1e-6, direction=0.5, **kw)
     p = frictal.predict(h, spacing=1e-6, direction=0.5, **kw)
     for q in ("q05", "q95", "mean", "std", "min", "max"):
         assert r["hold_angle_" + q] == getattr(p, "friction_angle_" + q), q
     assert r["hold_angle_q50"] == p.friction_angle
     assert list(r["drop_hold_angles"]) == list(p.drop_friction_angles)
     assert r["upper_bound_friction_angle"] == p.upper_bound_friction_angle
-    locked = frictal.areal_hold(h, dx=1e-6, dy=1e-6, angle=0.5, lateral="locked", **kw)
+    locked = frictal.areal_hold(h, dx=1e-6, dy=1e-6, direction=0.5, lateral="locked", **kw)
     pl = frictal.predict(h, spacing=1e-6, direction=0.5, locked=True, **kw).to_dict()
     assert math.degrees(locked["hold_angle_q50"]) == pytest.approx(pl["locked_friction_angle_deg"], rel=1e-14)
     assert locked["hold_angle_free_q50"] == r["hold_angle_q50"]

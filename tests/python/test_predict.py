@@ -160,7 +160,7 @@ def test_condition_crops_removes_spikes_and_records_each_step():
         frictal.condition(frictal.Profile(x, spiky), crop=(5e-3, 6e-3))
     with pytest.raises(ValueError, match="crop"):
         frictal.condition(frictal.Profile(x, spiky), crop=(1e-4,))
-    with pytest.raises(ValueError, match="spike threshold"):
+    with pytest.raises(ValueError, match="spike_threshold: expected a number > 0, got 0"):
         frictal.condition(frictal.Profile(x, spiky), remove_spikes=True, spike_threshold=0)
 
 

@@ -193,3 +193,77 @@ def quiet_predict(*args, **kw):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return frictal.predict(*args, **kw)
+
+
+def test_conditioning_keywords_are_the_table_names():
+    """condition(), signature() and hold_angle() take the conditioning under the fields of
+    conditioning_settings(), each line of the table in their docstrings; a stated crop keeps the
+    points of the window (counted here with numpy), the defaults change nothing, a value outside a
+    field's range is refused naming it, and a misspelt keyword names the nearest one."""
+    table = frictal.conditioning_settings()
+    assert [f["name"] for f in table] == ["crop", "remove_spikes", "spike_threshold", "detrend"]
+    x = np.linspace(0, 4e-3, 401)
+    z = 1e-5 * np.sin(2 * math.pi * x / 7e-4) + 3e-6 * np.cos(2 * math.pi * x / 3e-4)
+    prof = {"x": x, "z": z}
+    for fn in (frictal.condition, frictal.signature, frictal.hold_angle, frictal._core.contact):
+        for f in table:
+            assert f"    {f['name']}" in fn.__doc__, (fn.__name__, f["name"])
+    # condition(): the window's points, in metres as a sequence or as the table's text.
+    inside = int(np.count_nonzero((x >= 1e-3 - 1e-12) & (x <= 3e-3 + 1e-12)))
+    seq, rec = frictal.condition(prof, crop=(1e-3, 3e-3), detrend="none")
+    txt, _ = frictal.condition(prof, crop="1e-3,3e-3", detrend="none")
+    assert len(seq.x) == inside == len(txt.x) and rec["cropped"]
+    np.testing.assert_array_equal(seq.z, z[(x >= 1e-3 - 1e-12) & (x <= 3e-3 + 1e-12)])
+    plain, _ = frictal.condition(prof)
+    defaults, _ = frictal.condition(prof, **{f["name"]: f["default"] for f in table})
+    np.testing.assert_array_equal(plain.z, defaults.z)
+    # signature() and hold_angle(): the same conditioning (a sequence or text crop), defaults change nothing.
+    for fn, key in ((frictal.signature, "theta_max_forward"), (frictal.hold_angle, "runaway_distance")):
+        a = fn(prof, **{f["name"]: f["default"] for f in table})
+        b = fn(prof)
+        assert a[key] == b[key] and a["conditioning"] == b["conditioning"], fn.__name__
+        c1, c2 = fn(prof, crop=(1e-3, 3e-3)), fn(prof, crop="1e-3,3e-3")
+        assert c1[key] == c2[key] and c1[key] != b[key], fn.__name__
+        with pytest.raises(ValueError, match="spike_threshold: expected"):
+            fn(prof, spike_threshold=-1)
+        with pytest.raises(ValueError, match="detrend"):
+            fn(prof, detrend="bogus")
+        with pytest.raises(TypeError, match=f"{fn.__name__}\\(\\) got an unexpected keyword argument 'detrnd'; "
+                           "did you mean 'detrend'"):
+            fn(prof, detrnd="none")
+    with pytest.raises(TypeError, match="did you mean 'offsets'"):
+        frictal.signature(prof, ofsets=10)
+    with pytest.raises(TypeError, match="did you mean 'remove_spikes'"):
+        frictal.condition(prof, remove_spike=True)
+    with pytest.raises(TypeError, match="did you mean 'spike_threshold'"):
+        frictal.contact(prof, load=1.0, modulus=1e9, poisson=0.3, spike_treshold=5)
+    with pytest.raises(ValueError, match="detrend"):
+        frictal.contact(prof, load=1.0, modulus=1e9, poisson=0.3, detrend="bogus")
+
+
+def test_areal_hold_keywords_are_the_table_names():
+    """areal_hold() takes predict()'s fields that apply to maps under their names (the old angle
+    and turn_over_upper name their new ones), and each reaches the prediction as predict()'s."""
+    names = {f["name"] for f in frictal.predict_settings() + frictal.conditioning_settings()}
+    doc = frictal.areal_hold.__doc__
+    taken = names - {"locked", "block_length", "period"}
+    for n in taken:
+        assert f"    {n}" in doc, n
+    rng = np.random.default_rng(5)
+    h = np.cumsum(np.cumsum(rng.normal(size=(16, 18)), axis=0), axis=1) * 1e-9
+    with pytest.raises(TypeError, match="'angle'; it is now 'direction'"):
+        frictal.areal_hold(h, dx=1e-6, dy=1e-6, angle=0.5)
+    with pytest.raises(TypeError, match="'turn_over_upper'; it is now 'in_place"):
+        frictal.areal_hold(h, dx=1e-6, dy=1e-6, turn_over_upper=False)
+    with pytest.raises(TypeError, match="did you mean 'lateral'"):
+        frictal.areal_hold(h, dx=1e-6, dy=1e-6, laterl="free")
+    with pytest.raises(TypeError, match="unexpected keyword argument 'locked'"):
+        frictal.areal_hold(h, dx=1e-6, dy=1e-6, locked=True)  # lateral= says it
+    kw = dict(direction=1.0, atomic_friction=0.1, drops=2, runaway_distance=1e-6, crop=(2e-6, 15e-6, 1e-6, 14e-6),
+              detrend="mean")
+    r = frictal.areal_hold(h, dx=1e-6, dy=1e-6, **kw)
+    p = quiet_predict(h, spacing=1e-6, **kw)
+    assert r["direction"] == 1.0 and r["atomic_friction"] == 0.1 and r["runaway_distance"] == 1e-6
+    assert r["drops"] == 4 and len(r["drop_hold_angles"]) == 4  # a 2 x 2 grid
+    assert list(r["drop_hold_angles"]) == list(p.drop_friction_angles)
+    assert r["conditioning"] == p.conditioning
