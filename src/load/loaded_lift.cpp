@@ -249,7 +249,8 @@ class Pair {
   // the natural cubic spline through d_s sampled at the lower vertices (and the overlap's ends),
   // kPad samples beyond the span on each side. A spline's maxima move with s continuously, with
   // their curvature (the polyline's own vertex maxima jump from sample to sample, and with them
-  // the radius, at every change of the rigid lift's contact).
+  // the radius, at every change of the rigid lift's contact). A region whose spline stays below
+  // the threshold (below()) has no contact: its solve is skipped.
   static constexpr std::size_t kPad = 8;
   void region(double s, double threshold, std::size_t j0, std::size_t j1, double a, double b,
               std::vector<HertzContact>& out) const {
@@ -279,25 +280,36 @@ class Pair {
       if (f_.x[i] > a && f_.x[i] < b) add(f_.x[i], f_.z[i], false);
     if (f_.x[i1] >= b) add(b, f_at(b), true);
     const std::size_t m = xs_.size();
-    if (m < 2) return;
+    if (m < 2 || below(threshold)) return;
     // The spline's second derivatives M by the tridiagonal solve, with parabolic run-out ends
     // (M_0 = M_1, M_(m-1) = M_(m-2)): a natural end (M = 0) would flatten the curvature of a
     // contact at an end of the overlap (the block's corner), and with it the radius.
+    // Local pointers and the previous row's terms in locals: the sweep's chain of divisions then
+    // runs without a reload through memory in each row.
     ms_.assign(m, 0.0);
+    const double* X = xs_.data();
+    const double* Y = ys_.data();
+    double* M = ms_.data();
     if (m >= 3) {
       cs_.assign(m, 0.0);
+      double* CS = cs_.data();
+      double before = (Y[1] - Y[0]) / (X[1] - X[0]);  // the chord's slope on the piece before k
+      double cprev = 0, mprev = 0;
       for (std::size_t k = 1; k + 1 < m; ++k) {
-        const double h0 = xs_[k] - xs_[k - 1], h1 = xs_[k + 1] - xs_[k];
-        const double rhs = 6 * ((ys_[k + 1] - ys_[k]) / h1 - (ys_[k] - ys_[k - 1]) / h0);
+        const double h0 = X[k] - X[k - 1], h1 = X[k + 1] - X[k];
+        const double after = (Y[k + 1] - Y[k]) / h1;
+        const double rhs = 6 * (after - before);
+        before = after;
         const bool first = k == 1, last = k + 2 == m;
         const double sub = first ? 0.0 : h0, super = last ? 0.0 : h1;
-        const double diag = 2 * (h0 + h1) + (first ? h0 : 0.0) + (last ? h1 : 0.0) - sub * (first ? 0.0 : cs_[k - 1]);
-        cs_[k] = super / diag;
-        ms_[k] = (rhs - sub * (first ? 0.0 : ms_[k - 1])) / diag;
+        const double diag = 2 * (h0 + h1) + (first ? h0 : 0.0) + (last ? h1 : 0.0) - sub * (first ? 0.0 : cprev);
+        CS[k] = cprev = super / diag;
+        M[k] = mprev = (rhs - sub * (first ? 0.0 : mprev)) / diag;
       }
-      for (std::size_t k = m - 2; k >= 2; --k) ms_[k - 1] -= cs_[k - 1] * ms_[k];
-      ms_[0] = ms_[1];
-      ms_[m - 1] = ms_[m - 2];
+      double next = M[m - 2];
+      for (std::size_t k = m - 2; k >= 2; --k) M[k - 1] = next = M[k - 1] - CS[k - 1] * next;
+      M[0] = M[1];
+      M[m - 1] = M[m - 2];
     }
     // Maxima of each piece inside [xl, xr] (an end of the overlap where the spline falls from it),
     // with the least sample between each and the previous as its saddle.
@@ -305,6 +317,13 @@ class Pair {
     for (std::size_t k = 0; k + 1 < m; ++k) {
       const double h = xs_[k + 1] - xs_[k], M0 = ms_[k], M1 = ms_[k + 1];
       const double y0 = ys_[k], y1 = ys_[k + 1];
+      // A piece that stays below the threshold emits nothing: the spline is the chord plus at most
+      // (t u / 3) (max(-M0, 0) + max(-M1, 0)) <= h^2 / 12 of that (below()); only its saddle counts.
+      const double high = std::max(y0, y1), rise = h * h * (std::max(-M0, 0.0) + std::max(-M1, 0.0)) / 12;
+      if (high + rise + 1e-9 * (std::abs(high) + rise) + 1e-12 * scale_ < threshold) {
+        saddle = std::min(saddle, y1);
+        continue;
+      }
       auto value = [&](double t) {
         const double u = h - t;
         return M0 * u * u * u / (6 * h) + M1 * t * t * t / (6 * h) + (y0 / h - M0 * h / 6) * u +
@@ -348,6 +367,28 @@ class Pair {
       saddle = std::min(saddle, y1);
       if (k + 2 == m && xs_[k + 1] >= b && (A * h * h + B * h + C >= 0 || y1 > y0)) emit(h, M1);
     }
+  }
+
+  // Whether the spline through the samples (xs_, ys_) stays below `threshold` everywhere, so that
+  // the region emits no contact and its solve can be skipped; false where that is not certain. On
+  // a piece of width h, with t and u = h - t the distances to its ends, the spline is the chord
+  // minus (t u / 6 h) (M0 (u + h) + M1 (t + h)), at most h^2 max|M| / 8 above the higher sample;
+  // each row of the system for M (parabolic run-out ends included) is diagonally dominant by at
+  // least h0 + h1, so max|M| <= max|rhs| / min(h0 + h1). The margin covers rounding, by far.
+  bool below(double threshold) const {
+    const std::size_t m = xs_.size();
+    double ymax = -kInf, rmax = 0, wmin = kInf, hmax = 0;
+    for (std::size_t k = 0; k < m; ++k) ymax = std::max(ymax, ys_[k]);
+    if (!(ymax < threshold)) return false;
+    for (std::size_t k = 0; k + 1 < m; ++k) hmax = std::max(hmax, xs_[k + 1] - xs_[k]);
+    for (std::size_t k = 1; k + 1 < m; ++k) {
+      const double h0 = xs_[k] - xs_[k - 1], h1 = xs_[k + 1] - xs_[k];
+      rmax = std::max(rmax, std::abs(6 * ((ys_[k + 1] - ys_[k]) / h1 - (ys_[k] - ys_[k - 1]) / h0)));
+      wmin = std::min(wmin, h0 + h1);
+    }
+    const double over = m >= 3 ? hmax * hmax * rmax / (8 * wmin) : 0.0;  // two samples: the chord
+    const double top = ymax + over;
+    return top + 1e-9 * (std::abs(top) + over) + 1e-12 * scale_ < threshold;
   }
 
   double f_at(double x) const { return lerp_at(f_.x, f_.z, edge_of(f_.x, x), x); }
