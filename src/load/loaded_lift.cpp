@@ -259,27 +259,31 @@ class Pair {
     const std::size_t n = f_.x.size();
     const std::size_t il = edge_of(f_.x, xl), ir = edge_of(f_.x, xr) + 1;
     const std::size_t i0 = il > kPad ? il - kPad : 0, i1 = std::min(ir + kPad, n - 1);
-    xs_.clear(), ys_.clear();
+    // At most i1 - i0 + 3 samples (the vertices and the two ends), written through local pointers.
+    xs_.resize(i1 - i0 + 3), ys_.resize(i1 - i0 + 3);
+    double* xw = xs_.data();
+    double* yw = ys_.data();
+    std::size_t m = 0;
     std::size_t j = edge_of(g_.x, f_.x[i0] - s);
     // A sample closer than a quarter of the lower's spacing to the previous one (an end of the
     // overlap next to a vertex) is left out, the end kept: a spline over a tiny interval swings.
     const double gap = 0.25 * (f_.x.back() - f_.x.front()) / double(n - 1);
     auto add = [&](double x, double fz, bool end) {
       const double y = fz - g_at(x - s, j);
-      if (!xs_.empty() && x - xs_.back() < gap) {
-        if (end && xs_.size() > 1)
-          xs_.back() = x, ys_.back() = y;
-        else if (end && x > xs_.back())
-          xs_.push_back(x), ys_.push_back(y);  // a tiny overlap: its two ends
+      if (m > 0 && x - xw[m - 1] < gap) {
+        if (end && m > 1)
+          xw[m - 1] = x, yw[m - 1] = y;
+        else if (end && x > xw[m - 1])
+          xw[m] = x, yw[m] = y, ++m;  // a tiny overlap: its two ends
         return;
       }
-      xs_.push_back(x), ys_.push_back(y);
+      xw[m] = x, yw[m] = y, ++m;
     };
     if (f_.x[i0] <= a) add(a, f_at(a), true);
     for (std::size_t i = i0; i <= i1; ++i)
       if (f_.x[i] > a && f_.x[i] < b) add(f_.x[i], f_.z[i], false);
     if (f_.x[i1] >= b) add(b, f_at(b), true);
-    const std::size_t m = xs_.size();
+    xs_.resize(m), ys_.resize(m);
     if (m < 2 || below(threshold)) return;
     // The spline's second derivatives M by the tridiagonal solve, with parabolic run-out ends
     // (M_0 = M_1, M_(m-1) = M_(m-2)): a natural end (M = 0) would flatten the curvature of a
@@ -315,8 +319,8 @@ class Pair {
     // with the least sample between each and the previous as its saddle.
     double saddle = -kInf;
     for (std::size_t k = 0; k + 1 < m; ++k) {
-      const double h = xs_[k + 1] - xs_[k], M0 = ms_[k], M1 = ms_[k + 1];
-      const double y0 = ys_[k], y1 = ys_[k + 1];
+      const double h = X[k + 1] - X[k], M0 = M[k], M1 = M[k + 1];
+      const double y0 = Y[k], y1 = Y[k + 1];
       // A piece that stays below the threshold emits nothing: the spline is the chord plus at most
       // (t u / 3) (max(-M0, 0) + max(-M1, 0)) <= h^2 / 12 of that (below()); only its saddle counts.
       const double high = std::max(y0, y1), rise = h * h * (std::max(-M0, 0.0) + std::max(-M1, 0.0)) / 12;
@@ -332,7 +336,7 @@ class Pair {
       // S'(t) = A t^2 + B t + C on t in [0, h].
       const double A = (M1 - M0) / (2 * h), B = M0, C = -M0 * h / 2 + (y1 - y0) / h - (M1 - M0) * h / 6;
       auto emit = [&](double t, double curvature_d2) {
-        const double x = t >= h ? xs_[k + 1] : xs_[k] + t;
+        const double x = t >= h ? X[k + 1] : X[k] + t;
         // A maximum at a knot is a root of both pieces beside it (each within rounding): once.
         if (x < xl || x > xr || (!out.empty() && std::abs(out.back().x - x) <= 1e-9 * h)) return;
         const double d = value(t);
@@ -343,7 +347,7 @@ class Pair {
       };
       // An end of the overlap is a contact (the block's corner, or the lower's end under it) where
       // the spline or the samples fall from it.
-      if (k == 0 && xs_[0] <= a && (C <= 0 || y0 > y1)) emit(0, M0);
+      if (k == 0 && X[0] <= a && (C <= 0 || y0 > y1)) emit(0, M0);
       double roots[2];
       int nr = 0;
       if (std::abs(A) * h < 1e-12 * (std::abs(B) + std::abs(C) / h)) {
@@ -365,7 +369,7 @@ class Pair {
         if (2 * A * t + B < 0) emit(t, d2);        // a maximum: S' falls through 0
       }
       saddle = std::min(saddle, y1);
-      if (k + 2 == m && xs_[k + 1] >= b && (A * h * h + B * h + C >= 0 || y1 > y0)) emit(h, M1);
+      if (k + 2 == m && X[k + 1] >= b && (A * h * h + B * h + C >= 0 || y1 > y0)) emit(h, M1);
     }
   }
 
