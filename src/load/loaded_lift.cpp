@@ -181,20 +181,35 @@ class Pair {
   struct Balance {
     double height = 0, energy = 0, horizontal = 0, vertical = 0;
   };
+  // Each contact's cos theta and stiffness k (stiffness()), for balance(): one evaluation per
+  // contact for every load of a curve, not one per Newton step.
+  struct Prepared {
+    std::vector<double> cosine, stiffness;
+  };
+  void prepare(const std::vector<HertzContact>& c, Prepared& p) const {
+    p.cosine.resize(c.size()), p.stiffness.resize(c.size());
+    for (std::size_t q = 0; q < c.size(); ++q) p.cosine[q] = std::cos(c[q].slope), p.stiffness[q] = stiffness(c[q]);
+  }
   Balance balance(std::vector<HertzContact>& c, double W) const {
+    Prepared p;
+    prepare(c, p);
+    return balance(c, W, p);
+  }
+  // `p`: prepare(c).
+  Balance balance(std::vector<HertzContact>& c, double W, const Prepared& p) const {
     Balance r;
     double top = -kInf, ktop = 0;
-    for (const HertzContact& k : c)
-      if (k.touch_height > top) top = k.touch_height, ktop = stiffness(k);
+    for (std::size_t q = 0; q < c.size(); ++q)
+      if (c[q].touch_height > top) top = c[q].touch_height, ktop = p.stiffness[q];
     // Newton on the vertical balance, convex and decreasing in z, from below (where the top
     // contact alone carries W): monotone, no overshoot.
     double z = top - std::pow(W / ktop, 2.0 / 3.0);
     for (int it = 0; it < 100; ++it) {
       double sum = 0, der = 0;
-      for (const HertzContact& k : c) {
-        const double v = k.touch_height - z;
+      for (std::size_t q = 0; q < c.size(); ++q) {
+        const double v = c[q].touch_height - z;
         if (v <= 0) continue;
-        const double kv = stiffness(k) * std::sqrt(v);
+        const double kv = p.stiffness[q] * std::sqrt(v);
         sum += kv * v, der += 1.5 * kv;
       }
       const double f = sum - W;
@@ -204,14 +219,15 @@ class Pair {
       if (dz <= 1e-15 * scale_) break;
     }
     r.height = z;
-    for (HertzContact& k : c) {
+    for (std::size_t q = 0; q < c.size(); ++q) {
+      HertzContact& k = c[q];
       const double v = std::max(k.touch_height - z, 0.0);
-      const double cs = std::cos(k.slope);
-      const double vertical = stiffness(k) * v * std::sqrt(v);  // F cos theta
+      const double cs = p.cosine[q];
+      const double vertical = p.stiffness[q] * v * std::sqrt(v);  // F cos theta
       k.interference = v * cs;
       k.force = vertical / cs;
       r.energy += 0.4 * vertical * v;
-      r.horizontal += k.force * std::sin(k.slope);
+      if (k.force != 0) r.horizontal += k.force * std::sin(k.slope);  // an unloaded one adds 0
       r.vertical += vertical;
     }
     return r;
@@ -534,6 +550,7 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
   // of the vertical force. One loaded contact: no excess, the rigid slope.
   auto evaluate = [&](double s, double hint, double hb, double ha, std::vector<HertzContact>& c, double* slope,
                       double* before, double* after, Terms* terms) -> bool {
+    thread_local Pair::Prepared prepared;
     const double h = collect(pair, s, hint, o.contact_modulus, wmax, c);
     if (c.empty()) return false;
     auto excess = [&](double hp, double vertical) {
@@ -547,9 +564,10 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
         if (q != follow && c[q].force > 0) e += c[q].force * (std::sin(c[q].slope) - std::cos(c[q].slope) * hp);
       return e / vertical;
     };
+    pair.prepare(c, prepared);
     for (std::size_t l = 0; l < nl; ++l) {
       const double W = o.loads[l];
-      const Pair::Balance bal = pair.balance(c, W);
+      const Pair::Balance bal = pair.balance(c, W, prepared);
       slope[l] = bal.horizontal / bal.vertical;
       before[l] = excess(hb, bal.vertical);
       after[l] = hb == ha ? before[l] : excess(ha, bal.vertical);
