@@ -117,8 +117,9 @@ class Pair {
   static constexpr std::size_t kFine = 64, kCoarse = 2048;
   static constexpr double kOvershoot = 0.02;  // of the pair's height range (unitless)
 
-  Pair(const Profile& lower, const Profile& upper, double modulus, double max_radius)
-      : f_(fitted(lower, 0)),
+  Pair(const Profile& lower, const Profile& upper, double modulus, double max_radius, bool prune = true)
+      : prune_(prune),
+        f_(fitted(lower, 0)),
         g_(fitted(upper, lower.x.front() - upper.x.front())),
         fmax_(f_.z),
         modulus_(modulus),
@@ -300,7 +301,7 @@ class Pair {
       if (f_.x[i] > a && f_.x[i] < b) add(f_.x[i], f_.z[i], false);
     if (f_.x[i1] >= b) add(b, f_at(b), true);
     xs_.resize(m), ys_.resize(m);
-    if (m < 2 || below(threshold)) return;
+    if (m < 2 || (prune_ && below(threshold))) return;
     // The spline's second derivatives M by the tridiagonal solve, with parabolic run-out ends
     // (M_0 = M_1, M_(m-1) = M_(m-2)): a natural end (M = 0) would flatten the curvature of a
     // contact at an end of the overlap (the block's corner), and with it the radius.
@@ -340,7 +341,7 @@ class Pair {
       // A piece that stays below the threshold emits nothing: the spline is the chord plus at most
       // (t u / 3) (max(-M0, 0) + max(-M1, 0)) <= h^2 / 12 of that (below()); only its saddle counts.
       const double high = std::max(y0, y1), rise = h * h * (std::max(-M0, 0.0) + std::max(-M1, 0.0)) / 12;
-      if (high + rise + 1e-9 * (std::abs(high) + rise) + 1e-12 * scale_ < threshold) {
+      if (prune_ && high + rise + 1e-9 * (std::abs(high) + rise) + 1e-12 * scale_ < threshold) {
         saddle = std::min(saddle, y1);
         continue;
       }
@@ -443,6 +444,7 @@ class Pair {
     return k;
   }
 
+  bool prune_ = true;  // LoadedLiftOptions::prune
   Fitted f_, g_;
   RangeMax fmax_;
   std::vector<double> fine_min_, coarse_min_;
@@ -529,7 +531,7 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
     return make_error("the loaded lift: periodic pairs are not supported (state a block on a non-periodic pair)");
   const std::size_t n = rigid.offset.size();
   if (n < 2 || rigid.lift.size() != n) return make_error("the loaded lift: a rigid lift of at least 2 vertices");
-  const Pair pair(lower, upper, o.contact_modulus, radius_cap(upper, o));
+  const Pair pair(lower, upper, o.contact_modulus, radius_cap(upper, o), o.prune);
   for (double s : {rigid.offset.front(), rigid.offset.back()}) {
     const auto [a, b] = pair.overlap(s);
     if (!(a < b)) return make_error(fmt::format("offset {:.6g} m of the rigid lift: the blocks do not overlap", s));
