@@ -182,14 +182,18 @@ class Pair {
   struct Balance {
     double height = 0, energy = 0, horizontal = 0, vertical = 0;
   };
-  // Each contact's cos theta and stiffness k (stiffness()), for balance(): one evaluation per
-  // contact for every load of a curve, not one per Newton step.
+  // Each contact's cos, sin and tan theta and stiffness k (stiffness()), for balance() and the
+  // excess slopes: one evaluation per contact for every load of a curve, not one per Newton step.
   struct Prepared {
-    std::vector<double> cosine, stiffness;
+    std::vector<double> cosine, sine, tangent, stiffness;
   };
   void prepare(const std::vector<HertzContact>& c, Prepared& p) const {
-    p.cosine.resize(c.size()), p.stiffness.resize(c.size());
-    for (std::size_t q = 0; q < c.size(); ++q) p.cosine[q] = std::cos(c[q].slope), p.stiffness[q] = stiffness(c[q]);
+    const std::size_t n = c.size();
+    p.cosine.resize(n), p.sine.resize(n), p.tangent.resize(n), p.stiffness.resize(n);
+    for (std::size_t q = 0; q < n; ++q) {
+      p.cosine[q] = std::cos(c[q].slope), p.sine[q] = std::sin(c[q].slope), p.tangent[q] = std::tan(c[q].slope);
+      p.stiffness[q] = stiffness(c[q]);
+    }
   }
   Balance balance(std::vector<HertzContact>& c, double W) const {
     Prepared p;
@@ -228,7 +232,7 @@ class Pair {
       k.interference = v * cs;
       k.force = vertical / cs;
       r.energy += 0.4 * vertical * v;
-      if (k.force != 0) r.horizontal += k.force * std::sin(k.slope);  // an unloaded one adds 0
+      r.horizontal += k.force * p.sine[q];
       r.vertical += vertical;
     }
     return r;
@@ -557,13 +561,12 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
     if (c.empty()) return false;
     auto excess = [&](double hp, double vertical) {
       std::size_t follow = c.size();
+      const std::vector<double>&tn = prepared.tangent, &sn = prepared.sine, &cs = prepared.cosine;
       for (std::size_t q = 0; q < c.size(); ++q)
-        if (c[q].force > 0 &&
-            (follow == c.size() || std::abs(std::tan(c[q].slope) - hp) < std::abs(std::tan(c[follow].slope) - hp)))
-          follow = q;
+        if (c[q].force > 0 && (follow == c.size() || std::abs(tn[q] - hp) < std::abs(tn[follow] - hp))) follow = q;
       double e = 0;
       for (std::size_t q = 0; q < c.size(); ++q)
-        if (q != follow && c[q].force > 0) e += c[q].force * (std::sin(c[q].slope) - std::cos(c[q].slope) * hp);
+        if (q != follow && c[q].force > 0) e += c[q].force * (sn[q] - cs[q] * hp);
       return e / vertical;
     };
     pair.prepare(c, prepared);
