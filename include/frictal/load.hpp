@@ -69,6 +69,10 @@ struct LoadedLiftOptions {
   /// radii are capped here; 0: 100 times the upper block's length (unit: m).
   double max_radius = 0;
   unsigned threads = 0;  ///< worker threads (0 = all cores); results do not depend on it
+  /// Skip the spline work where a bound shows the spline stays below the contacts' reach (a
+  /// region's solve, a piece's maxima): the same lift to rounding. false: every region solved in
+  /// full, to check the bound against (unitless switch).
+  bool prune = true;
 };
 
 /// The block at one offset under one load.

@@ -117,8 +117,9 @@ class Pair {
   static constexpr std::size_t kFine = 64, kCoarse = 2048;
   static constexpr double kOvershoot = 0.02;  // of the pair's height range (unitless)
 
-  Pair(const Profile& lower, const Profile& upper, double modulus, double max_radius)
-      : f_(fitted(lower, 0)),
+  Pair(const Profile& lower, const Profile& upper, double modulus, double max_radius, bool prune = true)
+      : prune_(prune),
+        f_(fitted(lower, 0)),
         g_(fitted(upper, lower.x.front() - upper.x.front())),
         fmax_(f_.z),
         modulus_(modulus),
@@ -181,20 +182,39 @@ class Pair {
   struct Balance {
     double height = 0, energy = 0, horizontal = 0, vertical = 0;
   };
+  // Each contact's cos, sin and tan theta and stiffness k (stiffness()), for balance() and the
+  // excess slopes: one evaluation per contact for every load of a curve, not one per Newton step.
+  struct Prepared {
+    std::vector<double> cosine, sine, tangent, stiffness;
+  };
+  void prepare(const std::vector<HertzContact>& c, Prepared& p) const {
+    const std::size_t n = c.size();
+    p.cosine.resize(n), p.sine.resize(n), p.tangent.resize(n), p.stiffness.resize(n);
+    for (std::size_t q = 0; q < n; ++q) {
+      p.cosine[q] = std::cos(c[q].slope), p.sine[q] = std::sin(c[q].slope), p.tangent[q] = std::tan(c[q].slope);
+      p.stiffness[q] = stiffness(c[q]);
+    }
+  }
   Balance balance(std::vector<HertzContact>& c, double W) const {
+    Prepared p;
+    prepare(c, p);
+    return balance(c, W, p);
+  }
+  // `p`: prepare(c).
+  Balance balance(std::vector<HertzContact>& c, double W, const Prepared& p) const {
     Balance r;
     double top = -kInf, ktop = 0;
-    for (const HertzContact& k : c)
-      if (k.touch_height > top) top = k.touch_height, ktop = stiffness(k);
+    for (std::size_t q = 0; q < c.size(); ++q)
+      if (c[q].touch_height > top) top = c[q].touch_height, ktop = p.stiffness[q];
     // Newton on the vertical balance, convex and decreasing in z, from below (where the top
     // contact alone carries W): monotone, no overshoot.
     double z = top - std::pow(W / ktop, 2.0 / 3.0);
     for (int it = 0; it < 100; ++it) {
       double sum = 0, der = 0;
-      for (const HertzContact& k : c) {
-        const double v = k.touch_height - z;
+      for (std::size_t q = 0; q < c.size(); ++q) {
+        const double v = c[q].touch_height - z;
         if (v <= 0) continue;
-        const double kv = stiffness(k) * std::sqrt(v);
+        const double kv = p.stiffness[q] * std::sqrt(v);
         sum += kv * v, der += 1.5 * kv;
       }
       const double f = sum - W;
@@ -204,14 +224,15 @@ class Pair {
       if (dz <= 1e-15 * scale_) break;
     }
     r.height = z;
-    for (HertzContact& k : c) {
+    for (std::size_t q = 0; q < c.size(); ++q) {
+      HertzContact& k = c[q];
       const double v = std::max(k.touch_height - z, 0.0);
-      const double cs = std::cos(k.slope);
-      const double vertical = stiffness(k) * v * std::sqrt(v);  // F cos theta
+      const double cs = p.cosine[q];
+      const double vertical = p.stiffness[q] * v * std::sqrt(v);  // F cos theta
       k.interference = v * cs;
       k.force = vertical / cs;
       r.energy += 0.4 * vertical * v;
-      r.horizontal += k.force * std::sin(k.slope);
+      r.horizontal += k.force * p.sine[q];
       r.vertical += vertical;
     }
     return r;
@@ -249,7 +270,8 @@ class Pair {
   // the natural cubic spline through d_s sampled at the lower vertices (and the overlap's ends),
   // kPad samples beyond the span on each side. A spline's maxima move with s continuously, with
   // their curvature (the polyline's own vertex maxima jump from sample to sample, and with them
-  // the radius, at every change of the rigid lift's contact).
+  // the radius, at every change of the rigid lift's contact). A region whose spline stays below
+  // the threshold (below()) has no contact: its solve is skipped.
   static constexpr std::size_t kPad = 8;
   void region(double s, double threshold, std::size_t j0, std::size_t j1, double a, double b,
               std::vector<HertzContact>& out) const {
@@ -258,53 +280,75 @@ class Pair {
     const std::size_t n = f_.x.size();
     const std::size_t il = edge_of(f_.x, xl), ir = edge_of(f_.x, xr) + 1;
     const std::size_t i0 = il > kPad ? il - kPad : 0, i1 = std::min(ir + kPad, n - 1);
-    xs_.clear(), ys_.clear();
+    // At most i1 - i0 + 3 samples (the vertices and the two ends), written through local pointers.
+    xs_.resize(i1 - i0 + 3), ys_.resize(i1 - i0 + 3);
+    double* xw = xs_.data();
+    double* yw = ys_.data();
+    std::size_t m = 0;
     std::size_t j = edge_of(g_.x, f_.x[i0] - s);
     // A sample closer than a quarter of the lower's spacing to the previous one (an end of the
     // overlap next to a vertex) is left out, the end kept: a spline over a tiny interval swings.
     const double gap = 0.25 * (f_.x.back() - f_.x.front()) / double(n - 1);
     auto add = [&](double x, double fz, bool end) {
       const double y = fz - g_at(x - s, j);
-      if (!xs_.empty() && x - xs_.back() < gap) {
-        if (end && xs_.size() > 1)
-          xs_.back() = x, ys_.back() = y;
-        else if (end && x > xs_.back())
-          xs_.push_back(x), ys_.push_back(y);  // a tiny overlap: its two ends
+      if (m > 0 && x - xw[m - 1] < gap) {
+        if (end && m > 1)
+          xw[m - 1] = x, yw[m - 1] = y;
+        else if (end && x > xw[m - 1])
+          xw[m] = x, yw[m] = y, ++m;  // a tiny overlap: its two ends
         return;
       }
-      xs_.push_back(x), ys_.push_back(y);
+      xw[m] = x, yw[m] = y, ++m;
     };
     if (f_.x[i0] <= a) add(a, f_at(a), true);
     for (std::size_t i = i0; i <= i1; ++i)
       if (f_.x[i] > a && f_.x[i] < b) add(f_.x[i], f_.z[i], false);
     if (f_.x[i1] >= b) add(b, f_at(b), true);
-    const std::size_t m = xs_.size();
-    if (m < 2) return;
+    xs_.resize(m), ys_.resize(m);
+    if (m < 2 || (prune_ && below(threshold))) return;
     // The spline's second derivatives M by the tridiagonal solve, with parabolic run-out ends
     // (M_0 = M_1, M_(m-1) = M_(m-2)): a natural end (M = 0) would flatten the curvature of a
     // contact at an end of the overlap (the block's corner), and with it the radius.
+    // Local pointers and the previous row's terms in locals: the sweep's chain of divisions then
+    // runs without a reload through memory in each row.
     ms_.assign(m, 0.0);
+    const double* X = xs_.data();
+    const double* Y = ys_.data();
+    double* M = ms_.data();
     if (m >= 3) {
       cs_.assign(m, 0.0);
+      double* CS = cs_.data();
+      double before = (Y[1] - Y[0]) / (X[1] - X[0]);  // the chord's slope on the piece before k
+      double cprev = 0, mprev = 0;
       for (std::size_t k = 1; k + 1 < m; ++k) {
-        const double h0 = xs_[k] - xs_[k - 1], h1 = xs_[k + 1] - xs_[k];
-        const double rhs = 6 * ((ys_[k + 1] - ys_[k]) / h1 - (ys_[k] - ys_[k - 1]) / h0);
+        const double h0 = X[k] - X[k - 1], h1 = X[k + 1] - X[k];
+        const double after = (Y[k + 1] - Y[k]) / h1;
+        const double rhs = 6 * (after - before);
+        before = after;
         const bool first = k == 1, last = k + 2 == m;
         const double sub = first ? 0.0 : h0, super = last ? 0.0 : h1;
-        const double diag = 2 * (h0 + h1) + (first ? h0 : 0.0) + (last ? h1 : 0.0) - sub * (first ? 0.0 : cs_[k - 1]);
-        cs_[k] = super / diag;
-        ms_[k] = (rhs - sub * (first ? 0.0 : ms_[k - 1])) / diag;
+        const double diag = 2 * (h0 + h1) + (first ? h0 : 0.0) + (last ? h1 : 0.0) - sub * (first ? 0.0 : cprev);
+        CS[k] = cprev = super / diag;
+        M[k] = mprev = (rhs - sub * (first ? 0.0 : mprev)) / diag;
       }
-      for (std::size_t k = m - 2; k >= 2; --k) ms_[k - 1] -= cs_[k - 1] * ms_[k];
-      ms_[0] = ms_[1];
-      ms_[m - 1] = ms_[m - 2];
+      double next = M[m - 2];
+      for (std::size_t k = m - 2; k >= 2; --k) M[k - 1] = next = M[k - 1] - CS[k - 1] * next;
+      M[0] = M[1];
+      M[m - 1] = M[m - 2];
     }
     // Maxima of each piece inside [xl, xr] (an end of the overlap where the spline falls from it),
     // with the least sample between each and the previous as its saddle.
     double saddle = -kInf;
     for (std::size_t k = 0; k + 1 < m; ++k) {
-      const double h = xs_[k + 1] - xs_[k], M0 = ms_[k], M1 = ms_[k + 1];
-      const double y0 = ys_[k], y1 = ys_[k + 1];
+      const double h = X[k + 1] - X[k], M0 = M[k], M1 = M[k + 1];
+      const double y0 = Y[k], y1 = Y[k + 1];
+      // A piece that stays below the threshold emits nothing: the spline is the chord plus at most
+      // (t u / 3) (max(-M0, 0) + max(-M1, 0)) <= h^2 / 12 of that (below()); only its saddle counts.
+      const double high = std::max(y0, y1), rise = h * h * (std::max(-M0, 0.0) + std::max(-M1, 0.0)) / 12;
+      if (prune_ && high + rise + 1e-9 * (std::abs(high) + rise) + 1e-12 * scale_ < threshold) {
+        saddle = std::min(saddle, y1);
+        continue;
+      }
       auto value = [&](double t) {
         const double u = h - t;
         return M0 * u * u * u / (6 * h) + M1 * t * t * t / (6 * h) + (y0 / h - M0 * h / 6) * u +
@@ -313,7 +357,7 @@ class Pair {
       // S'(t) = A t^2 + B t + C on t in [0, h].
       const double A = (M1 - M0) / (2 * h), B = M0, C = -M0 * h / 2 + (y1 - y0) / h - (M1 - M0) * h / 6;
       auto emit = [&](double t, double curvature_d2) {
-        const double x = t >= h ? xs_[k + 1] : xs_[k] + t;
+        const double x = t >= h ? X[k + 1] : X[k] + t;
         // A maximum at a knot is a root of both pieces beside it (each within rounding): once.
         if (x < xl || x > xr || (!out.empty() && std::abs(out.back().x - x) <= 1e-9 * h)) return;
         const double d = value(t);
@@ -324,7 +368,7 @@ class Pair {
       };
       // An end of the overlap is a contact (the block's corner, or the lower's end under it) where
       // the spline or the samples fall from it.
-      if (k == 0 && xs_[0] <= a && (C <= 0 || y0 > y1)) emit(0, M0);
+      if (k == 0 && X[0] <= a && (C <= 0 || y0 > y1)) emit(0, M0);
       double roots[2];
       int nr = 0;
       if (std::abs(A) * h < 1e-12 * (std::abs(B) + std::abs(C) / h)) {
@@ -346,8 +390,30 @@ class Pair {
         if (2 * A * t + B < 0) emit(t, d2);        // a maximum: S' falls through 0
       }
       saddle = std::min(saddle, y1);
-      if (k + 2 == m && xs_[k + 1] >= b && (A * h * h + B * h + C >= 0 || y1 > y0)) emit(h, M1);
+      if (k + 2 == m && X[k + 1] >= b && (A * h * h + B * h + C >= 0 || y1 > y0)) emit(h, M1);
     }
+  }
+
+  // Whether the spline through the samples (xs_, ys_) stays below `threshold` everywhere, so that
+  // the region emits no contact and its solve can be skipped; false where that is not certain. On
+  // a piece of width h, with t and u = h - t the distances to its ends, the spline is the chord
+  // minus (t u / 6 h) (M0 (u + h) + M1 (t + h)), at most h^2 max|M| / 8 above the higher sample;
+  // each row of the system for M (parabolic run-out ends included) is diagonally dominant by at
+  // least h0 + h1, so max|M| <= max|rhs| / min(h0 + h1). The margin covers rounding, by far.
+  bool below(double threshold) const {
+    const std::size_t m = xs_.size();
+    double ymax = -kInf, rmax = 0, wmin = kInf, hmax = 0;
+    for (std::size_t k = 0; k < m; ++k) ymax = std::max(ymax, ys_[k]);
+    if (!(ymax < threshold)) return false;
+    for (std::size_t k = 0; k + 1 < m; ++k) hmax = std::max(hmax, xs_[k + 1] - xs_[k]);
+    for (std::size_t k = 1; k + 1 < m; ++k) {
+      const double h0 = xs_[k] - xs_[k - 1], h1 = xs_[k + 1] - xs_[k];
+      rmax = std::max(rmax, std::abs(6 * ((ys_[k + 1] - ys_[k]) / h1 - (ys_[k] - ys_[k - 1]) / h0)));
+      wmin = std::min(wmin, h0 + h1);
+    }
+    const double over = m >= 3 ? hmax * hmax * rmax / (8 * wmin) : 0.0;  // two samples: the chord
+    const double top = ymax + over;
+    return top + 1e-9 * (std::abs(top) + over) + 1e-12 * scale_ < threshold;
   }
 
   double f_at(double x) const { return lerp_at(f_.x, f_.z, edge_of(f_.x, x), x); }
@@ -382,6 +448,7 @@ class Pair {
     return k;
   }
 
+  bool prune_ = true;  // LoadedLiftOptions::prune
   Fitted f_, g_;
   RangeMax fmax_;
   std::vector<double> fine_min_, coarse_min_;
@@ -468,7 +535,7 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
     return make_error("the loaded lift: periodic pairs are not supported (state a block on a non-periodic pair)");
   const std::size_t n = rigid.offset.size();
   if (n < 2 || rigid.lift.size() != n) return make_error("the loaded lift: a rigid lift of at least 2 vertices");
-  const Pair pair(lower, upper, o.contact_modulus, radius_cap(upper, o));
+  const Pair pair(lower, upper, o.contact_modulus, radius_cap(upper, o), o.prune);
   for (double s : {rigid.offset.front(), rigid.offset.back()}) {
     const auto [a, b] = pair.overlap(s);
     if (!(a < b)) return make_error(fmt::format("offset {:.6g} m of the rigid lift: the blocks do not overlap", s));
@@ -489,22 +556,23 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
   // of the vertical force. One loaded contact: no excess, the rigid slope.
   auto evaluate = [&](double s, double hint, double hb, double ha, std::vector<HertzContact>& c, double* slope,
                       double* before, double* after, Terms* terms) -> bool {
+    thread_local Pair::Prepared prepared;
     const double h = collect(pair, s, hint, o.contact_modulus, wmax, c);
     if (c.empty()) return false;
     auto excess = [&](double hp, double vertical) {
       std::size_t follow = c.size();
+      const std::vector<double>&tn = prepared.tangent, &sn = prepared.sine, &cs = prepared.cosine;
       for (std::size_t q = 0; q < c.size(); ++q)
-        if (c[q].force > 0 &&
-            (follow == c.size() || std::abs(std::tan(c[q].slope) - hp) < std::abs(std::tan(c[follow].slope) - hp)))
-          follow = q;
+        if (c[q].force > 0 && (follow == c.size() || std::abs(tn[q] - hp) < std::abs(tn[follow] - hp))) follow = q;
       double e = 0;
       for (std::size_t q = 0; q < c.size(); ++q)
-        if (q != follow && c[q].force > 0) e += c[q].force * (std::sin(c[q].slope) - std::cos(c[q].slope) * hp);
+        if (q != follow && c[q].force > 0) e += c[q].force * (sn[q] - cs[q] * hp);
       return e / vertical;
     };
+    pair.prepare(c, prepared);
     for (std::size_t l = 0; l < nl; ++l) {
       const double W = o.loads[l];
-      const Pair::Balance bal = pair.balance(c, W);
+      const Pair::Balance bal = pair.balance(c, W, prepared);
       slope[l] = bal.horizontal / bal.vertical;
       before[l] = excess(hb, bal.vertical);
       after[l] = hb == ha ? before[l] : excess(ha, bal.vertical);

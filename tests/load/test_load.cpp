@@ -15,6 +15,7 @@
 #include "frictal/io.hpp"
 #include "frictal/load.hpp"
 #include "frictal/predict.hpp"
+#include "frictal/signature.hpp"
 
 using namespace frictal;
 
@@ -295,6 +296,51 @@ void expect_zero_load_limit(const PredictSurface& lower, const PredictSurface* u
 }
 
 }  // namespace
+
+TEST(LoadedLift, TheBoundsSkipNothingThatCounts) {
+  // The loaded lift skips a region's spline solve, and a piece's maxima, where a bound shows the
+  // spline stays below the contacts' reach. On two generated Fourier profiles (4000 points,
+  // 0.4 mm, slopes up to tens of degrees), at loads that load several contacts (the excess slope
+  // nonzero, the refinement at work), the lift with the skips is the lift of every region solved
+  // in full, to 1e-12 of the lift's range, at every vertex, for every load.
+  FourierSelfAffineParams f;
+  f.points = 4000;
+  f.length = 4e-4;
+  f.rolloff_wavelength = 1e-4;
+  f.short_cutoff_wavelength = 4e-7;
+  f.rms_height = 1e-6;
+  f.seed = 3;
+  Profile a = fourier_self_affine_profile(f).value();
+  f.seed = 4;
+  Profile b = fourier_self_affine_profile(f).value();
+  a.period.reset(), b.period.reset();
+  auto sig = signature(a, b);
+  ASSERT_TRUE(sig) << sig.error().message;
+  auto whole = lift_curve(*sig);
+  ASSERT_TRUE(whole) << whole.error().message;
+  const LiftCurve rigid = cut_lift_curve(*whole, -1e-4, 1e-4);
+  ASSERT_GT(rigid.offset.size(), 100u);
+  LoadedLiftOptions o = options(38e9, 1e-4);
+  o.loads = {1e-6, 1e-4, 1e-3};
+  auto fast = loaded_lift(a, b, rigid, o);
+  o.prune = false;
+  auto full = loaded_lift(a, b, rigid, o);
+  ASSERT_TRUE(fast && full);
+  EXPECT_GT(full->refined, 0u);  // several loaded contacts somewhere: the excess is tested
+  ASSERT_EQ(fast->refined, full->refined);
+  for (std::size_t l = 0; l < o.loads.size(); ++l) {
+    const LiftCurve &p = fast->curves[l], &q = full->curves[l];
+    ASSERT_EQ(p.offset.size(), q.offset.size());
+    const auto [lo, hi] = std::minmax_element(q.lift.begin(), q.lift.end());
+    const double range = *hi - *lo;
+    ASSERT_GT(range, 0);
+    for (std::size_t k = 0; k < p.offset.size(); ++k) {
+      ASSERT_EQ(p.offset[k], q.offset[k]);
+      ASSERT_NEAR(p.lift[k], q.lift[k], 1e-12 * range) << "load " << o.loads[l] << " N, offset " << p.offset[k];
+      ASSERT_NEAR(fast->slopes[l][k], full->slopes[l][k], 1e-12) << "load " << o.loads[l] << " N";
+    }
+  }
+}
 
 TEST(LoadedPrediction, AVanishingLoadGivesTheRigidPrediction) {
   // Generated WM pairs (two seeds each, D = 1.3 and 1.7), 2^12-ish points, and a piece of the
