@@ -925,17 +925,17 @@ Result<SurfaceData> parse_delimited(std::string_view text, const std::string& na
   if (!xo) return xo.error();
   if (!zo) return zo.error();
   auto xu = find_unit(xc), zu = find_unit(zc);
-  // A length unit the header states by key when the columns name none: the axis' own ("# x unit:
-  // um", "# z unit: nm"), else one for the whole file ("# units: um"). A value that is no length
-  // unit ("Units: counts") is not one: the column stays without a unit (and the warning below).
-  auto header_unit = [&](std::initializer_list<const char*> keys) -> std::optional<double> {
-    for (const std::string* u : {hp.get(keys), hp.get({"unit", "units", "lengthunit", "lengthunits"})})
-      if (u)
-        if (auto s = unit_scale(*u)) return s;
-    return std::nullopt;
-  };
-  if (!xu && !*xo) xu = header_unit({"xunit", "xunits", "lateralunit", "lateralunits"});
-  if (!zu && !*zo) zu = header_unit({"zunit", "zunits", "heightunit", "heightunits", "valueunit", "valueunits"});
+  // A unit the header states by key when the columns name none: the heights' is the one read
+  // above (z_unit_header: "# z unit: nm", or "# units: um" for the whole file); x takes its own
+  // ("# x unit: um") or the whole file's, and a word that is no length unit is an error naming it.
+  if (!xu && !*xo)
+    if (const std::string* u = hp.get({"xunit", "xunits", "lateralunit", "lateralunits", "unit", "units"})) {
+      xu = unit_scale(*u);
+      if (!xu)
+        return make_error(
+            fmt::format("{}: x unit '{}' in the header is not a length unit (expected m, mm, um, nm)", name, *u));
+    }
+  if (!zu && !*zo) zu = z_unit_header;
   const bool x_none = !xu && !*xo, z_none = !zu && !*zo;
   if ((x_none || z_none) && options.default_unit.empty())
     out.warnings.emplace_back(
