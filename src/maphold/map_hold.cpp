@@ -1502,13 +1502,19 @@ Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g,
   const SphereField field(nodes, hf, r);  // shared (read-only) by every drop
   std::vector<ArealTiltHold> out(drops.size());
   std::vector<std::string> errors(drops.size());
-  // The progress: the drops finished, and each drop's tilt while it is under way (NaN: not).
+  // Each thread takes the next drop not yet taken (drops differ in cost by several times: halves
+  // of the grid left one thread idle for up to a tenth of the run); every drop is computed alone,
+  // so the results do not depend on the order.
+  const unsigned nthreads = util::thread_count(threads, drops.size());
+  std::atomic<std::size_t> next{0};
+  // The progress: the drops finished, and the tilt of the drop each thread has under way (NaN:
+  // none), one slot per thread, so that a report reads the threads, not every drop.
   std::mutex m;
   std::size_t done = 0;
-  std::vector<double> reached(drops.size(), std::numeric_limits<double>::quiet_NaN());
-  auto report = [&](std::size_t k, double tilt, bool finished) {
+  std::vector<double> reached(nthreads, std::numeric_limits<double>::quiet_NaN());
+  auto report = [&](unsigned worker, double tilt, bool finished) {
     std::lock_guard<std::mutex> lock(m);
-    reached[k] = finished ? std::numeric_limits<double>::quiet_NaN() : tilt;
+    reached[worker] = finished ? std::numeric_limits<double>::quiet_NaN() : tilt;
     if (finished) ++done;
     DropProgress p;
     p.done = done;
@@ -1520,24 +1526,19 @@ Result<std::vector<ArealTiltHold>> hold_drops_turned(const Map& f, const Map& g,
       }
     progress(p);
   };
-  // Each thread takes the next drop not yet taken (drops differ in cost by several times: halves
-  // of the grid left one thread idle for up to a tenth of the run); every drop is computed alone,
-  // so the results do not depend on the order.
-  const unsigned nthreads = util::thread_count(threads, drops.size());
-  std::atomic<std::size_t> next{0};
-  util::parallel_chunks(nthreads, nthreads, [&](unsigned, std::size_t, std::size_t) {
+  util::parallel_chunks(nthreads, nthreads, [&](unsigned worker, std::size_t, std::size_t) {
+    const std::function<void(double)> at = [&, worker](double tilt) { report(worker, tilt, false); };
     for (std::size_t k = next++; k < drops.size(); k = next++) {
       MapHoldOptions tk = t;
       tk.start_offset = drops[k].start;
       tk.lock_lateral = drops[k].locked;
-      if (progress) report(k, 0, false);
-      const std::function<void(double)> at = [&, k](double tilt) { report(k, tilt, false); };
+      if (progress) report(worker, 0, false);
       auto h = hold_on_field(field, f, tk, r, kArealHoldResolution, 1e-7, 0, progress ? at : nullptr);
       if (h)
         out[k] = std::move(h).value();
       else
         errors[k] = "#" + std::to_string(k) + ": " + h.error().message;
-      if (progress) report(k, 0, true);
+      if (progress) report(worker, 0, true);
     }
   });
   for (std::size_t k = 0; k < drops.size(); ++k)
