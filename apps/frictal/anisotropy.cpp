@@ -20,13 +20,9 @@ namespace {
 
 struct Args {
   std::string file;
-  int directions = 36;
-  std::size_t max_lines = 128;
-  double atomic_friction = 0;
+  FieldWords words;  ///< the polar table's settings (anisotropy_settings()) as typed
   std::string detrend = "plane";
-  bool areal = false;
   std::string upper;
-  std::string contact_slope = "lower";
   bool json = false;
   bool hold = false;
   bool locked = false;
@@ -43,14 +39,11 @@ struct Args {
 std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
   app.add_option("map", a->file, "Areal map (X3P, Gwyddion text)")->required();
-  app.add_option("--directions", a->directions, "Sliding directions over 360 deg (default 36)");
-  app.add_option("--lines", a->max_lines, "At most this many parallel lines per direction (default 128)");
-  add_atomic_friction_option(app, a->atomic_friction);
+  // --directions, --lines, --atomic-friction, --areal, --contact-slope: the polar table's settings.
+  add_field_options(app, anisotropy_settings(), a->words);
   add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
-  app.add_flag("--areal", a->areal, "Use the areal signature of the two rigid blocks instead of line profiles");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores; default all)");
-  app.add_option("--contact-slope", a->contact_slope, "With --areal: lower (Eq. 3, default) or mean (of both faces)");
   app.add_option("--upper", a->upper, "With --areal: the upper block's map (default: the same map turned over)");
   app.add_flag("--json", a->json, "Print one JSON object");
   app.add_flag("--hold", a->hold,
@@ -65,10 +58,12 @@ std::function<int()> setup(CLI::App& app) {
   return [a]() {
     if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
       a->runaway_distance = as_real(rv.at("runaway_distance"));
-    require(a->directions >= 1 && a->directions <= 3600, "--directions must be in 1..3600");
-    require(a->max_lines >= 1 && a->max_lines <= 100000, "--lines must be in 1..100000");
-    require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,
-            "--atomic-friction must be a finite number >= 0");
+    const AnisotropySettings settings = unwrap(make_anisotropy_settings(si_values(anisotropy_settings(), a->words)));
+    if (a->words.words.count("contact_slope") && !settings.areal)
+      throw UsageError("--contact-slope: the contact slope of the grid areal signature; it needs --areal");
+    const int directions = settings.directions;
+    const double atomic_friction = settings.lines.atomic_friction;
+    const bool areal = settings.areal;
     const SurfaceData s = load_surface(a->file, a->input);
     if (!s.is_map) throw UsageError(fmt::format("{}: a line profile; anisotropy needs an areal map", a->file));
     const Conditioning cond = conditioning(a->cond, unwrap(parse_detrend(a->detrend)));
@@ -78,7 +73,7 @@ std::function<int()> setup(CLI::App& app) {
     std::vector<Warning> warnings;
     for (const auto& w : s.warnings) add_warning(warnings, w);
     for (Warning& w : check_map(m, a->file)) add_warning(warnings, std::move(w));
-    if (!a->upper.empty() && !a->areal) throw UsageError("--upper needs --areal");
+    if (!a->upper.empty() && !areal) throw UsageError("--upper needs --areal");
     require(std::isfinite(a->runaway_distance) && a->runaway_distance >= 0,
             fmt::format("--runaway-distance {}: expected a finite number of metres > 0", a->runaway_distance));
     if (a->runaway_distance > 0 && !a->hold) throw UsageError("--runaway-distance needs --hold");
@@ -104,7 +99,7 @@ std::function<int()> setup(CLI::App& app) {
     std::string progress_prefix;
     if (a->hold) {
       lower = unwrap(predict_surface(s, a->file));
-      hold_options.atomic_friction = a->atomic_friction;
+      hold_options.atomic_friction = atomic_friction;
       hold_options.runaway_distance = a->runaway_distance;
       hold_options.map_drops = a->drops;
       hold_options.map_locked = a->locked;
@@ -113,15 +108,15 @@ std::function<int()> setup(CLI::App& app) {
       // The whole job's estimated cost against the prediction's limit (each direction's own
       // check would let 36 just-allowed directions through).
       const std::size_t drops = std::size_t(a->drops * a->drops) * (a->locked ? 2 : 1);
-      const double work = map_work_estimate(u.valid_count(), drops) * a->directions;
+      const double work = map_work_estimate(u.valid_count(), drops) * directions;
       require(hold_options.map_work_limit <= 0 || work <= hold_options.map_work_limit,
               fmt::format("--hold: {} directions x {} drops on {} spheres would take about {:.0f} s of CPU, above "
                           "the prediction's limit of {:.0f} s: fewer --directions or --drops, or crop or resample "
                           "the map",
-                          a->directions, drops, u.valid_count(), work, hold_options.map_work_limit));
+                          directions, drops, u.valid_count(), work, hold_options.map_work_limit));
     }
     AnisotropyTable table;
-    table.atomic_friction = a->atomic_friction;
+    table.atomic_friction = atomic_friction;
     if (a->hold) {
       table.hold_model = "map-continuous-free";
       table.hold_drops = a->drops * a->drops;
@@ -130,28 +125,24 @@ std::function<int()> setup(CLI::App& app) {
     if (!a->json)
       text += fmt::format(
           "{}: {} x {} map, {} directions ({})\n  dir_deg  theta+_deg  theta-_deg  sigma_deg  bound_deg  mu<={}\n",
-          a->file, m.nx, m.ny, a->directions, a->areal ? "areal signature" : "line profiles",
+          a->file, m.nx, m.ny, directions, areal ? "areal signature" : "line profiles",
           a->hold ? std::string("  hold_q50_deg  hold_q05 - q95_deg") + (a->locked ? "  locked_q50_deg" : "")
                   : std::string());
-    for (int k = 0; k < a->directions; ++k) {
-      const double angle = 2 * std::numbers::pi * k / a->directions;
+    for (int k = 0; k < directions; ++k) {
+      const double angle = 2 * std::numbers::pi * k / directions;
       double fwd, bwd, sigma;
       std::size_t lines = 0;
-      if (a->areal) {
+      if (areal) {
         ArealSignatureOptions o;
         o.threads = a->threads;
-        if (a->contact_slope == "mean")
-          o.contact_slope = ArealContactSlope::Mean;
-        else if (a->contact_slope != "lower")
-          throw UsageError(
-              fmt::format("--contact-slope '{}' not understood (expected lower or mean)", a->contact_slope));
+        o.contact_slope = settings.contact_slope;
         const ArealSignature r = unwrap(areal_signature(m, u, angle, o));
         fwd = r.theta_max_forward;
         bwd = r.theta_max_backward;
         sigma = r.contact_slope_std;
       } else {
         DirectionalOptions o;
-        o.max_lines = a->max_lines;
+        o.max_lines = settings.lines.max_lines;
         o.threads = a->threads;
         const DirectionalFriction r = unwrap(friction_along(m, angle, o));
         fwd = r.theta_forward;
@@ -159,15 +150,15 @@ std::function<int()> setup(CLI::App& app) {
         sigma = r.sigma;
         lines = r.lines;
       }
-      const FrictionPrediction p = unwrap(predict_friction(a->atomic_friction, fwd, sigma));
+      const FrictionPrediction p = unwrap(predict_friction(atomic_friction, fwd, sigma));
       add_bound_warnings(warnings, p, fmt::format("direction {:g} deg", to_deg(angle)));
       // The hold angle over drops of the same pair along this direction: predict() on the maps as
       // read, with the same conditioning (the numbers of `frictal predict --direction`).
       std::optional<Prediction> hold;
       if (a->hold) {
         PredictOptions o = hold_options;
-        o.direction = (360.0 * k / a->directions) * kDeg;  // as `frictal predict --direction DEG` converts
-        progress_prefix = fmt::format("direction {} of {}, ", k + 1, a->directions);
+        o.direction = (360.0 * k / directions) * kDeg;  // as `frictal predict --direction DEG` converts
+        progress_prefix = fmt::format("direction {} of {}, ", k + 1, directions);
         hold = unwrap(predict(lower, a->upper.empty() ? nullptr : &*upper, o));
         for (const Warning& w : hold->warnings)
           if (w.code != "reader")
@@ -186,7 +177,7 @@ std::function<int()> setup(CLI::App& app) {
             hold ? std::tan(hold->upper_bound_friction_angle) : p.friction_coefficient;
         if (hold) row.signature_bound_friction_angle = p.friction_angle;
         row.eq18_low_friction_coefficient = p.friction_coefficient_low;
-        if (!a->areal) row.lines = lines;
+        if (!areal) row.lines = lines;
         if (hold) {
           row.hold_runaway_distance = hold->runaway_distance;
           row.hold_angle = hold->friction_angle;
@@ -210,7 +201,7 @@ std::function<int()> setup(CLI::App& app) {
     if (a->json) {
       RunRecord run;
       run.file = a->file;
-      run.method = a->areal ? "areal" : "lines";
+      run.method = areal ? "areal" : "lines";
       run.conditioning = conditioning_text(records);
       run.warnings = warnings;
       nlohmann::json j = object_of(anisotropy_columns(), table);
@@ -222,13 +213,13 @@ std::function<int()> setup(CLI::App& app) {
             "  (theta+, theta-, sigma: the {}; bound_deg and mu<=: the hold model's rigid upper bound, the steepest "
             "seat the drops rested in, above every drop; the hold_* columns: {} drops per direction, model "
             "map-continuous-free{}, atomic friction mu_a = {:g} included: frictal predict --direction DEG)\n",
-            a->areal ? "grid areal signature (a diagnostic of the map's nodes)" : "line profiles' signatures",
-            a->drops * a->drops, a->locked ? " (locked: the block locked to the direction)" : "", a->atomic_friction);
+            areal ? "grid areal signature (a diagnostic of the map's nodes)" : "line profiles' signatures",
+            a->drops * a->drops, a->locked ? " (locked: the block locked to the direction)" : "", atomic_friction);
       else
         fmt::print(
             "  (theta_max-based rigid upper bounds of the {}; what a tilt test reads: frictal predict --direction "
             "DEG)\n",
-            a->areal ? "grid areal signature (a diagnostic of the map's nodes)" : "line profiles");
+            areal ? "grid areal signature (a diagnostic of the map's nodes)" : "line profiles");
       fmt::print("  conditioning: {}\n", conditioning_text(records));
       for (const Warning& w : warnings)
         if (w.code != "reader") print_warnings({w});

@@ -20,11 +20,10 @@ namespace {
 
 struct Args {
   std::string lower, upper, output;
-  double angle = 0;
-  double step = 0, offset_max = 0;
-  double atomic_friction = 0;
+  double angle = 0;                 ///< --direction as typed (deg)
+  FieldWords words;                 ///< the areal signature's settings (areal_signature_settings()) as typed
+  ArealSignatureSettings settings;  ///< the same, checked (SI)
   std::string detrend = "plane";
-  std::string contact_slope = "lower";
   bool in_place = false;
   bool json = false;
   // The hold angle over two dimensions of offset.
@@ -33,7 +32,7 @@ struct Args {
   FieldWords runaway_words;  ///< --runaway-distance (the tilt table's field)
   std::string start_offset;
   int drops = PredictOptions{}.map_drops;
-  FieldWords predict_words;  ///< --drops, --in-place (the prediction's table)
+  FieldWords predict_words;  ///< --drops (the prediction's table)
   bool quiet = false;
   unsigned threads = 0;
   InputOptions input;
@@ -54,21 +53,20 @@ int run_hold(const Args& a) {
   require(a.output.empty(), "-o is not available with the hold angle (--lateral, --runaway-distance, --start-offset)");
   // The grid lift's options have no counterpart in the continuous model: its drops are an N x N
   // grid over the drop range (--drops), its offsets continuous.
-  require(a.step == 0,
+  require(a.settings.options.step == 0,
           "--step: the hold angle (--lateral, --runaway-distance, --start-offset, --drops) is the "
           "continuous model's, off any grid of offsets; --step applies to the areal signature only");
-  require(a.offset_max == 0,
+  require(a.settings.options.offset_max == 0,
           "--max-offset: the hold angle's drops cover the drop range of `frictal predict` (docs/analysis.md); "
           "--max-offset applies to the areal signature only");
-  require(a.contact_slope == "lower",
-          fmt::format("--contact-slope {}: the hold angle's rigid upper bound uses the lower face's slope (Eq. 3); "
-                      "--contact-slope applies to the areal signature only",
-                      a.contact_slope));
+  require(a.settings.options.contact_slope == ArealContactSlope::Lower,
+          "--contact-slope mean: the hold angle's rigid upper bound uses the lower face's slope (Eq. 3); "
+          "--contact-slope applies to the areal signature only");
   require(a.drops >= 2 && a.drops <= 64, fmt::format("--drops {}: expected 2..64", a.drops));
   const bool locked_mode = a.lateral == "locked";
   PredictOptions o = conditioned_predict_options(a.cond, a.detrend);
-  o.direction = a.angle * kDeg;
-  o.atomic_friction = a.atomic_friction;
+  o.direction = a.settings.direction;
+  o.atomic_friction = a.settings.atomic_friction;
   o.runaway_distance = a.runaway_distance;
   o.map_drops = a.drops;
   o.map_locked = locked_mode;
@@ -129,14 +127,17 @@ std::function<int()> setup(CLI::App& app) {
   auto a = std::make_shared<Args>();
   app.add_option("lower", a->lower, "Lower block's map (X3P, Gwyddion text)")->required();
   app.add_option("upper", a->upper, "Upper block's map as measured (default: the lower map)");
-  app.add_option("--direction,--angle", a->angle,
-                 "Sliding direction (deg from +x towards +y; the name `predict` uses, --angle its older name)");
-  app.add_option("--step", a->step, "Offset step (m; default min(dx, dy))");
-  app.add_option("--max-offset", a->offset_max, "Largest offset (m; default half the lower map along the direction)");
-  add_atomic_friction_option(app, a->atomic_friction);
+  // --direction (also read as --angle, its older name), --atomic-friction, --step, --max-offset,
+  // --contact-slope, --in-place: the areal signature's settings table. --direction is read as it
+  // always was (CLI11's reading of the degrees: strtold, then double), so that its radians keep
+  // every bit (the table's from_chars differs in the last bit on about 1 in 10^4 17-digit angles).
+  {
+    const Field& f = *find_field(areal_signature_settings(), "direction");
+    app.add_option("--direction,--angle", a->angle, field_help(f))->type_name("NUMBER");
+  }
+  add_field_options(app, areal_signature_settings(), a->words, {"direction"});
   add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
-  app.add_option("--contact-slope", a->contact_slope, "lower (Eq. 3, default) or mean (of both faces)");
   app.add_option("-o,--output", a->output,
                  "Write offset_m,lift_m,theta_rad,contact_x_m,contact_y_m to this CSV (- for standard output)");
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores)");
@@ -149,20 +150,24 @@ std::function<int()> setup(CLI::App& app) {
   app.add_option("--start-offset", a->start_offset,
                  "Hold angle from one drop at offset X,Y (m; from the maps' centres aligned, or with --in-place "
                  "from the upper map's place) instead of the distribution over drops");
-  // --drops (given: the hold angle over drops) and --in-place: the prediction's table.
-  add_predict_options(app, a->predict_words, {"drops", "in_place"});
+  // --drops (given: the hold angle over drops): the prediction's table.
+  add_predict_options(app, a->predict_words, {"drops"});
   app.add_flag("-q,--quiet", a->quiet, "No progress line on standard error (hold angle)");
   app.add_flag("--json", a->json, "Print one JSON object");
   add_input_options(app, a->input);
   return [a]() {
     if (const ValueSet rv = si_values(tilt_settings(), a->runaway_words); rv.count("runaway_distance"))
       a->runaway_distance = as_real(rv.at("runaway_distance"));
-    require(std::isfinite(a->angle), fmt::format("--direction {}: expected a finite number of degrees", a->angle));
-    require(a->step >= 0 && a->offset_max >= 0, "--step and --max-offset must be >= 0 (metres)");
-    require(std::isfinite(a->atomic_friction) && a->atomic_friction >= 0,
-            "--atomic-friction must be a finite number >= 0");
+    {
+      // The degrees as typed, through the table's conversion and check (deg -> rad: the one
+      // from_text_unit, the same product as deg * kDeg).
+      const Field& f = *find_field(areal_signature_settings(), "direction");
+      ValueSet v = si_values(areal_signature_settings(), a->words);
+      v.insert_or_assign("direction", unwrap(si_from_text(f, FieldValue{a->angle}, shown_option_name(f))));
+      a->settings = unwrap(make_areal_signature_settings(v));
+    }
     a->drops = static_cast<int>(predict_integer(a->predict_words, "drops"));
-    a->in_place = predict_flag(a->predict_words, "in_place");
+    a->in_place = !a->settings.options.turn_over_upper;
     if (!a->lateral.empty() || a->runaway_distance != 0 || !a->start_offset.empty() ||
         a->predict_words.words.count("drops"))
       return run_hold(*a);
@@ -175,17 +180,11 @@ std::function<int()> setup(CLI::App& app) {
     const Map f = load(a->lower);
     const Map g = a->upper.empty() ? f : load(a->upper);
     a->conditioning = conditioning_text(records);
-    ArealSignatureOptions o;
-    o.step = a->step;
-    o.offset_max = a->offset_max;
+    ArealSignatureOptions o = a->settings.options;
     o.threads = a->threads;
-    o.turn_over_upper = !a->in_place;
-    if (a->contact_slope == "mean")
-      o.contact_slope = ArealContactSlope::Mean;
-    else if (a->contact_slope != "lower")
-      throw UsageError(fmt::format("--contact-slope '{}' not understood (expected lower or mean)", a->contact_slope));
-    const ArealSignature r = unwrap(areal_signature(f, g, a->angle * kDeg, o));
-    const FrictionPrediction p = unwrap(predict_friction(a->atomic_friction, r.theta_max_forward, r.contact_slope_std));
+    const ArealSignature r = unwrap(areal_signature(f, g, a->settings.direction, o));
+    const FrictionPrediction p =
+        unwrap(predict_friction(a->settings.atomic_friction, r.theta_max_forward, r.contact_slope_std));
     add_bound_warnings(warnings, p, "areal");
     if (!a->output.empty()) {
       std::string buf = "offset_m,lift_m,theta_rad,contact_x_m,contact_y_m\n";

@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "frictal/areal.hpp"
 #include "frictal/conditioning.hpp"
 #include "frictal/predict.hpp"
+#include "frictal/signature.hpp"
 #include "frictal/tilt.hpp"
 #include "options.hpp"
 
@@ -30,6 +32,9 @@ std::vector<KnownField> known_fields() {
   // After the tilt test's: a quantity both tables share (shared_field) lists the tilt test's field.
   for (const Field& f : predict_settings()) out.push_back({&f, field_help(f)});
   for (const Field& f : conditioning_settings()) out.push_back({&f, field_help(f)});
+  for (const Field& f : signature_settings()) out.push_back({&f, field_help(f)});
+  for (const Field& f : areal_signature_settings()) out.push_back({&f, field_help(f)});
+  for (const Field& f : anisotropy_settings()) out.push_back({&f, field_help(f)});
   return out;
 }
 

@@ -58,23 +58,17 @@ void print_hold_text(std::FILE* text, const HoldAnalysis& h, const FrictionPredi
 struct Args {
   std::string lower, upper, out, contacts_out, pdf_out;
   double mu_a = 0;
-  std::string slopes = "exact";
-  std::size_t offsets = 0;
-  std::vector<double> range;
   double period = 0;
   unsigned threads = 0;
-  int bins = 90;
-  double spheroradius = 0;
   bool json = false;
-  bool exact = false;
-  bool keep_grid = false;
   double start_offset = std::numeric_limits<double>::quiet_NaN();
   bool no_hold = false;
   std::string detrend;  ///< --detrend (empty: form_to_remove's default)
   GeneratorOptions gen;
   InputOptions input;        ///< --format, --unit, --spacing, ... of LOWER and UPPER
   ConditioningOptions cond;  ///< --crop, --remove-spikes, --spike-threshold (before --detrend)
-  FieldWords period_words;   ///< --period, the tilt table's field
+  FieldWords period_words;   ///< --period and --runaway-distance, the quantities shared with the tilt test
+  FieldWords words;          ///< the signature's settings (signature_settings()) as typed
 };
 
 std::function<int()> setup(CLI::App& app) {
@@ -86,29 +80,29 @@ std::function<int()> setup(CLI::App& app) {
   add_generator_subcommands(app, a->gen, true, " (its self-signature: the surface against itself turned over)");
   add_input_options(app, a->input);
   add_atomic_friction_option(app, a->mu_a);
-  app.add_option("--slopes", a->slopes, "exact: polyline contact rules; spline: cubic-spline slopes averaged")
-      ->check(CLI::IsMember({"exact", "spline"}))
-      ->capture_default_str();
-  app.add_option("--offsets", a->offsets,
-                 "0: every event offset (exact; if there are too many, offsets sampled at the finer point spacing); "
-                 "N: N equally spaced offsets")
-      ->capture_default_str();
+  // --slopes, --offsets, --keep-grid, --exact, --offset-range, --bins, --spheroradius: the
+  // signature's settings table; --offset-range takes its two lengths as two words (MIN MAX).
+  add_field_options(app, signature_settings(), a->words, {"offset_range"});
+  {
+    const Field& f = *find_field(signature_settings(), "offset_range");
+    app.add_option_function<std::vector<std::string>>(
+           cli_option_name(f),
+           [a](const std::vector<std::string>& w) {
+             a->words.words.insert_or_assign("offset_range", w.at(0) + " " + w.at(1));
+           },
+           field_help(f))
+        ->expected(2)
+        ->type_name("LENGTH");
+  }
   add_detrend_option(app, a->detrend);
   add_conditioning_options(app, a->cond);
-  app.add_flag("--keep-grid", a->keep_grid,
-               "With --offsets N: evaluate that grid even where every event offset costs less (aligned grids)");
-  app.add_flag("--exact", a->exact, "Refuse to sample offsets when the exact signature has too many events");
-  app.add_option("--offset-range", a->range, "MIN MAX offsets (m); default one period or half the block")->expected(2);
-  // --period and --spheroradius (the spheroradius: the signature of the DEM's rounded blocks, one core
-  // against the other dilated by a disk of radius 2r), the tilt table's fields.
-  // --runaway-distance too: the hold angle's run-away, the tilt test's setting (the same default).
+  // --period and --runaway-distance (the hold angle's run-away): the quantities shared with the tilt
+  // test and the prediction (shared_field), one description everywhere.
   std::vector<std::string> skip = all_but(tilt_settings(), "period");
-  for (const char* keep : {"spheroradius", "runaway_distance"})
-    skip.erase(std::remove(skip.begin(), skip.end(), keep), skip.end());
+  skip.erase(std::remove(skip.begin(), skip.end(), "runaway_distance"), skip.end());
   add_field_options(app, tilt_settings(), a->period_words, skip);
   app.add_option("--threads", a->threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
-  app.add_option("--bins", a->bins, "Bins of the contact-slope PDF")->capture_default_str();
   app.add_option("--start-offset", a->start_offset,
                  "Hold angle of a block put down at this offset (m, inside the offset range): where it rests, the "
                  "tilt that holds it (quasi-static) and its inertial bound; without it, the distribution over drops");
@@ -127,6 +121,11 @@ std::function<int()> setup(CLI::App& app) {
     const std::optional<SurfaceSpec> spec = a->gen.spec();
     const ValueSet pv = si_values(tilt_settings(), a->period_words);
     if (pv.count("period")) a->period = as_real(pv.at("period"));
+    const ValueSet sv = si_values(signature_settings(), a->words);
+    require(!sv.count("spheroradius") || as_real(sv.at("spheroradius")) == 0 || !sv.count("slopes") ||
+                std::get<std::string>(sv.at("slopes")) == "exact",
+            "--spheroradius: the rounded faces have their own exact slopes; use --slopes exact");
+    SignatureOptions o = unwrap(make_signature_options(sv));
     const Conditioning cond = conditioning(a->cond, form_to_remove(a->detrend, spec.has_value(), a->period > 0));
     const int to_stdout = (a->out == "-") + (a->contacts_out == "-") + (a->pdf_out == "-") + (a->json ? 1 : 0);
     require(to_stdout <= 1, "only one of -o -, --contacts -, --pdf - and --json can write to standard output");
@@ -184,7 +183,6 @@ std::function<int()> setup(CLI::App& app) {
                                           spacing(upper_measured), a->lower, a->upper))
         add_warning(warnings, std::move(w));
     }
-    if (pv.count("spheroradius")) a->spheroradius = as_real(pv.at("spheroradius"));
     const double runaway = pv.count("runaway_distance") ? as_real(pv.at("runaway_distance")) : 0.0;
     require(!a->no_hold || (std::isnan(a->start_offset) && runaway == 0),
             "--no-hold: --start-offset and --runaway-distance ask for the hold analysis");
@@ -198,22 +196,8 @@ std::function<int()> setup(CLI::App& app) {
       unwrap(validate(lower, a->lower));
       unwrap(validate(upper_measured, a->upper.empty() ? a->lower : a->upper));
     }
-    SignatureOptions o;
-    o.slopes = (a->slopes == "spline") ? SlopeMethod::Spline : SlopeMethod::Exact;
-    o.offsets = a->offsets;
-    o.require_exact = a->exact;
-    o.keep_grid = a->keep_grid;
     o.threads = a->threads;
-    o.bins = a->bins;
-    require(a->spheroradius == 0 || a->slopes == "exact",
-            "--spheroradius: the rounded faces have their own exact slopes; use --slopes exact");
-    o.spheroradius = a->spheroradius;
     o.keep_contacts = !a->contacts_out.empty();
-    if (!a->range.empty()) {
-      require(a->range[1] > a->range[0], "--offset-range: expected MIN < MAX (m)");
-      o.offset_min = a->range[0];
-      o.offset_max = a->range[1];
-    }
     // The profiles are handed over to the evaluator (no copies: 160 MB each at 10^7 points);
     // what the summary needs of them is taken first.
     const double smax = std::max(side_max_slope[0], a->upper.empty() ? side_max_slope[0] : side_max_slope[1]);
@@ -241,8 +225,8 @@ std::function<int()> setup(CLI::App& app) {
       fmt::print(stderr,
                  "frictal: note: --offsets {}: the two point grids align, and the exact signature's {} event offsets "
                  "cost less than {} offsets off the grid; computed every event instead (exact)\n",
-                 a->offsets, r.offset.size(), a->offsets);
-    if (a->offsets == 0 && !r.exact)
+                 o.offsets, r.offset.size(), o.offsets);
+    if (o.offsets == 0 && !r.exact)
       fmt::print(stderr,
                  "frictal: note: the two point grids do not align and the exact signature would need more "
                  "event offsets than the limit; sampled {} offsets at the finer point spacing instead, each "
@@ -290,7 +274,7 @@ std::function<int()> setup(CLI::App& app) {
       RunRecord run;
       run.lower = a->lower;
       run.upper = a->upper.empty() ? a->lower : a->upper;
-      run.slopes = a->slopes;
+      run.slopes = o.slopes == SlopeMethod::Spline ? "spline" : "exact";
       run.surface_slope_max = smax;
       run.conditioning = conditioning_text(records);
       run.warnings = warnings;

@@ -13,6 +13,7 @@
 #include "frictal/hold.hpp"
 #include "frictal/map.hpp"
 #include "frictal/outputs.hpp"
+#include "frictal/settings.hpp"
 #include "frictal/signature.hpp"
 
 namespace frictal {
@@ -92,6 +93,21 @@ struct ArealSignature {
 Result<ArealSignature> areal_signature(const Map& lower, const Map& upper, double angle,
                                        const ArealSignatureOptions& o = {});
 
+/// What the grid areal signature of two maps takes besides the maps (`frictal areal`, Python
+/// areal_signature()): the sliding direction, its options and mu_a of the grid's rigid bound
+/// theta_max + atan(mu_a) beside it. Settings table areal_signature_settings().
+struct ArealSignatureSettings {
+  double direction = 0;        ///< sliding direction d, from +x towards +y (unit: rad)
+  double atomic_friction = 0;  ///< mu_a (unitless)
+  ArealSignatureOptions options;
+};
+/// The areal signature's settings table (settings.hpp; src/areal/areal_settings.cpp): direction
+/// and in_place (the quantities the prediction shares, shared_field), atomic_friction, step and
+/// max_offset (automatic: NaN, the options' 0), contact_slope; defaults are the structs'.
+const std::vector<Field>& areal_signature_settings();
+/// `base` with the values `si` of areal_signature_settings() applied (SI, checked).
+Result<ArealSignatureSettings> make_areal_signature_settings(const ValueSet& si, ArealSignatureSettings base = {});
+
 /// The lift over two dimensions of offset: the upper block moved by s = u d + v e in the plane,
 /// d = (cos angle, sin angle) the sliding direction and e = (-sin angle, cos angle) across it,
 ///   h(u, v) = max over nodes p of `lower` [ f(p) + g(c_g + R (p - s - c_f)) ]
@@ -135,6 +151,23 @@ struct ArealLift {
 /// or ranges that are negative or not finite, more than 5e7 offsets, and blocks that never touch
 /// over the offsets (maps that do not overlap along d).
 Result<ArealLift> areal_lift(const Map& lower, const Map& upper, double angle, const ArealLiftOptions& o = {});
+
+/// What the polar table over directions takes besides the map (`frictal anisotropy`, Python
+/// anisotropy()): how many directions, and per direction either the map's line profiles
+/// (DirectionalOptions: lines, atomic_friction) or the grid areal signature (areal, contact_slope).
+/// Settings table anisotropy_settings().
+struct AnisotropySettings {
+  int directions = 36;  ///< sliding directions over [0, 2 pi), equally spaced (unitless)
+  bool areal = false;   ///< the grid areal signature of the map against itself, not its line profiles
+  ArealContactSlope contact_slope = ArealContactSlope::Lower;  ///< with areal
+  DirectionalOptions lines;                                    ///< max_lines, atomic_friction (line profiles)
+};
+/// The polar table's settings table (settings.hpp; src/areal/areal_settings.cpp): directions,
+/// lines (DirectionalOptions::max_lines), atomic_friction (shared_field; the bound of both
+/// methods), areal, contact_slope (areal_signature_settings()' field).
+const std::vector<Field>& anisotropy_settings();
+/// `base` with the values `si` of anisotropy_settings() applied (SI, checked).
+Result<AnisotropySettings> make_anisotropy_settings(const ValueSet& si, AnisotropySettings base = {});
 
 /// One sliding direction of the polar table (frictal anisotropy): the rigid bound of the
 /// signature, and with the hold model (frictal predict --direction) the hold angle over drops.

@@ -98,9 +98,9 @@ Result<FieldValue> si_from_text(const Field& f, const FieldValue& text_value, co
 /// text-unit value; errors name `prefix`.
 Result<FieldValue> parse_text_word(const Field& f, const std::string& word, const std::string& prefix);
 /// The quantities that several settings tables share (the tilt test's, the 3D tilt test's, the
-/// prediction's): one name, unit, range and help wherever they are taken ("atomic_friction",
-/// "runaway_distance", "period"); each table fills the default from its own struct. nullptr for
-/// another name.
+/// prediction's, the areal signature's): one name, unit, range and help wherever they are taken
+/// ("atomic_friction", "runaway_distance", "period", "spheroradius", "direction", "in_place"); each table fills
+/// the default from its own struct. nullptr for another name.
 const Field* shared_field(std::string_view name);
 
 /// SI value -> text-unit value (angles to degrees), for printing JSON.

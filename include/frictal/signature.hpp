@@ -16,6 +16,7 @@
 
 #include "frictal/geometry.hpp"
 #include "frictal/outputs.hpp"
+#include "frictal/settings.hpp"
 #include "frictal/stats.hpp"
 
 namespace frictal {
@@ -86,6 +87,16 @@ struct SignatureOptions {
   /// Spline slopes are not available with r > 0.
   double spheroradius = 0;
 };
+
+/// The signature's settings table (settings.hpp; src/signature/signature_settings.cpp): the
+/// SignatureOptions a user states (slopes, offsets, keep_grid, exact = require_exact, offset_range
+/// = [offset_min, offset_max] as the word "MIN MAX" of lengths, bins, spheroradius), each with its
+/// SI unit, range and help: the options of `frictal signature`, the keywords of Python's
+/// signature(), a table of `frictal settings`. Defaults are SignatureOptions' initialisers.
+const std::vector<Field>& signature_settings();
+/// `base` with the values `si` of signature_settings() applied (SI, checked against the table);
+/// errors name the field and its range. Also refused: spheroradius > 0 with spline slopes.
+Result<SignatureOptions> make_signature_options(const ValueSet& si, SignatureOptions base = {});
 
 struct SignatureResult {
   std::vector<double> offset;                ///< evaluated offsets s (unit: m)

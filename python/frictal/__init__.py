@@ -69,6 +69,8 @@ from ._core import (  # noqa: F401  studies: run a study file, read its store (s
 
 from ._core import Prediction, prediction_columns, warning_codes  # noqa: F401  the prediction (predict_bindings.cpp)
 from ._core import conditioning_settings, predict_settings  # noqa: F401  their keywords' tables (predict_bindings.cpp)
+from ._core import signature_settings  # noqa: F401  signature()'s keywords' table (module.cpp)
+from ._core import anisotropy_settings, areal_signature_settings  # noqa: F401  their keywords' tables (io_bindings.cpp)
 
 
 class FrictalWarning(UserWarning):

@@ -211,8 +211,18 @@ class Warning:
     def message(self) -> str:
         ...
 
-def anisotropy(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, directions: int = ..., max_lines: int = ..., atomic_friction: float = ..., threads: int = ...) -> dict:
-    """Predicted friction over sliding directions from the map's parallel lines (runs without the GIL); heights (m), dx, dy (m), atomic_friction mu_a (unitless). Returns direction, theta_forward/backward, sigma, upper_bound_friction_angle (theta_max + atan mu_a, rad)"""
+def anisotropy(heights: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, threads: int = ..., **kwargs: Any) -> dict:
+    """Predicted friction over sliding directions of a map (runs without the GIL): per direction the rigid bound theta_max + atan(mu_a) from the map's parallel line profiles, or with areal=True from the grid areal signature of the map against itself turned over; heights (m), dx, dy (m). Returns direction, theta_forward/backward, sigma, upper_bound_friction_angle (theta_max + atan mu_a, rad), atomic_friction, warnings. What a tilt test reads along a direction: predict(..., direction=...). The keywords are the fields of anisotropy_settings() (SI):
+        directions: Sliding directions, equally spaced over 360 deg (default 36; valid 1..3600)
+        lines: At most this many parallel line profiles per direction (default 128; valid 1..100000)
+        atomic_friction: Atomic (Coulomb) friction coefficient mu_a (default 0; valid >= 0)
+        areal: Use the grid areal signature of the two rigid blocks instead of line profiles (default False; valid true or false)
+        contact_slope: Contact slope of the grid areal signature: lower, the lower face's slope along the direction (Eq. 3); mean, the mean of both faces' (anisotropy: with areal) (default 'lower'; valid lower or mean)"""
+
+def anisotropy_settings() -> list:
+    """anisotropy_settings() -> list
+
+    The polar table's settings table: one dict per keyword of anisotropy() that the table holds (name, type, unit (SI), default, min, max, choices, help); `frictal settings --json` lists the same fields (its key anisotropy)"""
 
 def areal_hold(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, upper: Any = ..., lateral: str = ..., start_offset: Any = ..., threads: int = ..., **kwargs: Any) -> dict:
     """Hold angle over drops of an areal block, from the continuous model of frictal.predict (the same library path and numbers; runs without the GIL; as `frictal areal --lateral`): the block free to move sideways (lateral='free', what a tilt test reads) or locked to the direction (lateral='locked', a diagnostic; the free one is computed beside it). Heights, dx, dy, runaway_distance (None: predict's default) and start_offset in m, direction in rad, atomic_friction mu_a unitless (atan(mu_a) is included in every hold angle); upper as measured (turned over) unless in_place=True; drops: N x N over predict's drop range; detrend: none, mean, plane, poly:N (None: plane, predict's default). start_offset (x, y) (from the centres aligned, or from the upper's place when in place) or None for the distribution. Returns model, lateral, direction, in_place, atomic_friction, runaway_distance, drops, drop_range (u0, u1, v0, v1), upper_bound_friction_angle, conditioning, warnings and, over drops: hold_angle_mean/std/q05/q50/q95/min/max (rad), drop_hold_angles (rad), drop_offsets (drops x 2, m) (locked: also hold_angle_free_q05/q50/q95); from one drop: start_offset, rest_offset, hold_angle, steering (the free block's run-away direction from d, rad) (locked: also hold_angle_free). Keywords besides dx, dy, upper, lateral, start_offset, threads: the fields of predict_settings() that apply to maps and conditioning_settings() (SI; crop also a sequence of metres):
@@ -228,8 +238,19 @@ def areal_hold(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: flo
         spike_threshold: k of remove_spikes, in rms heights Sq of the form-removed surface (the default is the spikes warning's rule) (default 10; valid > 0)
         detrend: Form removed from each surface first (the form and tilt of the scan): none, mean, line (a plane for maps) or poly:N (N in 0..10) (default None (auto); valid none, mean, line, plane or poly:N)"""
 
-def areal_signature(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, angle: float = ..., upper: Any = ..., turn_over_upper: bool = ..., prune: bool = ..., threads: int = ...) -> dict:
-    """Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `angle` (rad; runs without the GIL); upper as measured (turned over) by default: the grid model (the maps' nodes, slopes by central differences), a diagnostic of the grid, not a bound of the tilt test's hold angle (that and its bound: predict). Returns offset, lift (m), theta (rad), theta_max_forward/backward (rad), contact_slope_std (rad), evaluated_nodes"""
+def areal_signature(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, upper: Any = ..., prune: bool = ..., threads: int = ..., **kwargs: Any) -> dict:
+    """Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `direction` (rad; runs without the GIL); upper as measured (turned over) by default, in_place=True: already in place in the lower map's coordinates: the grid model (the maps' nodes, slopes by central differences), a diagnostic of the grid, not a bound of the tilt test's hold angle (that and its bound: predict). prune=False evaluates every node (the direct method). Returns offset, lift (m), theta (rad), theta_max_forward/backward (rad), contact_slope_std (rad), evaluated_nodes, warnings (of the grid's bound theta_max + atan(atomic_friction)). The keywords are the fields of areal_signature_settings() (SI; the older angle and turn_over_upper are now direction and in_place):
+        direction [rad]: Sliding direction, from +x towards +y (profiles: along +x or -x only) (default 0; valid any finite number)
+        atomic_friction: Atomic (Coulomb) friction coefficient mu_a (default 0; valid >= 0)
+        step [m]: Offset step of the grid areal signature (default None (auto); valid > 0)
+        max_offset [m]: Largest offset of the grid areal signature (from 0) (default None (auto); valid > 0)
+        contact_slope: Contact slope of the grid areal signature: lower, the lower face's slope along the direction (Eq. 3); mean, the mean of both faces' (anisotropy: with areal) (default 'lower'; valid lower or mean)
+        in_place: The upper surface is the upper face already in place in the lower one's coordinates (not turned over); a drop's offsets count from that place. Maps only, except in contact (default False; valid true or false)"""
+
+def areal_signature_settings() -> list:
+    """areal_signature_settings() -> list
+
+    The areal signature's settings table: one dict per keyword of areal_signature() that the table holds (name, type, unit (SI), default (None: automatic, see help), min, max, choices, help); `frictal settings --json` lists the same fields (its key areal)"""
 
 def areal_tilt(lower: numpy.typing.NDArray[numpy.float64], *, dx: float, dy: float, upper: Any = ..., turn_over_upper: bool = ..., start_offset: Any = ..., **kwargs: Any) -> dict:
     """areal_tilt(lower, *, dx, dy, upper=None, turn_over_upper=True, start_offset=None, **settings) -> dict
@@ -445,12 +466,26 @@ def self_affine_profile(**kwargs: Any) -> Profile:
         rms_height [m]: RMS height about the mean; <= 0 keeps the raw heights (default 1e-06; valid any finite number)
         seed: Seed of the random phases or heights (default 1; valid 0..9.2e+18)"""
 
-def signature(lower: Any, upper: Any = ..., *, rotate_upper: bool = ..., slopes: str = ..., offsets: int = ..., offset_range: Optional[Tuple[float, float]] = ..., threads: int = ..., keep_contacts: bool = ..., bins: int = ..., spheroradius: float = ..., spacing: float = ..., format: str = ..., unit: str = ..., **kwargs: Any) -> dict:
-    """Signature function theta(x_ofs) of two profiles (runs without the GIL), the numbers of `frictal signature --json` on the same input. `lower`, `upper`: file paths, Profile objects, profile dicts (x, z) or 1-D numpy arrays of heights with spacing= (m), each conditioned as frictal.predict and the CLI condition them: crop, remove_spikes, spike_threshold, then the form `detrend` names (none, mean, line, poly:N; None: a line, the mean of a periodic profile; detrend='none' keeps a generated surface exact); format and unit as read_surface. `upper` is a surface as measured (rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores; spheroradius (m) > 0: the DEM's rounded blocks (one core against the other dilated by a disk of radius 2r, exact slopes only), 0: rigid profiles. Returns offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events, spheroradius (m), conditioning (text), warnings ([{code, message}]). The conditioning's keywords are the fields of conditioning_settings() (SI; crop also a sequence of metres):
+def signature(lower: Any, upper: Any = ..., *, rotate_upper: bool = ..., threads: int = ..., keep_contacts: bool = ..., spacing: float = ..., format: str = ..., unit: str = ..., **kwargs: Any) -> dict:
+    """Signature function theta(x_ofs) of two profiles (runs without the GIL), the numbers of `frictal signature --json` on the same input. `lower`, `upper`: file paths, Profile objects, profile dicts (x, z) or 1-D numpy arrays of heights with spacing= (m), each conditioned as frictal.predict and the CLI condition them: crop, remove_spikes, spike_threshold, then the form `detrend` names (none, mean, line, poly:N; None: a line, the mean of a periodic profile; detrend='none' keeps a generated surface exact); format and unit as read_surface. `upper` is a surface as measured (rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. threads: 0 = all cores; keep_contacts: keep every contact (the dict's contacts). Returns offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events, spheroradius (m), conditioning (text), warnings ([{code, message}]). The signature's keywords are the fields of signature_settings() (SI; offset_range also a pair (min, max) of metres):
+        slopes: Contact slopes: exact, the polyline's contact rules (Eq. 3); spline, the cubic-spline slopes of both surfaces at the contact, averaged (Sec. V B) (default 'exact'; valid exact or spline)
+        offsets: 0: every event offset (exact; if there are too many, offsets sampled at the finer point spacing); N: N equally spaced offsets (default 0; valid 0..100000000)
+        keep_grid: With offsets N: evaluate that grid even where every event offset costs less (aligned grids) (default False; valid true or false)
+        exact: Refuse to sample offsets when the exact signature has too many events (default False; valid true or false)
+        offset_range [m]: The offsets evaluated, from MIN to MAX, MIN < MAX (each length may name its unit: 0 0.5mm) (default None (auto); valid MIN MAX)
+        bins: Bins of the contact-slope PDF (default 90; valid 1..100000)
+        spheroradius [m]: Spheroradius r of both blocks (default None (auto); valid > 0)
+
+    The conditioning's keywords are the fields of conditioning_settings() (SI; crop also a sequence of metres):
         crop [m]: Keep only the window X0,X1 (maps: X0,X1 or X0,X1,Y0,Y1) of each surface, in its file's coordinates: m, or a length with a unit such as 0.1mm,0.9mm (first step of the conditioning) (default None (auto); valid X0,X1 or X0,X1,Y0,Y1)
         remove_spikes: Remove the points more than spike_threshold rms heights from the median of their neighbours (profiles: replaced by linear interpolation, dropped at an end; maps: masked), after the crop and before the form removal (default False; valid true or false)
         spike_threshold: k of remove_spikes, in rms heights Sq of the form-removed surface (the default is the spikes warning's rule) (default 10; valid > 0)
         detrend: Form removed from each surface first (the form and tilt of the scan): none, mean, line (a plane for maps) or poly:N (N in 0..10) (default None (auto); valid none, mean, line, plane or poly:N)"""
+
+def signature_settings() -> list:
+    """signature_settings() -> list
+
+    The signature's settings table: one dict per keyword of signature() that the table holds (name, type, unit (SI), default (None: automatic, see help), min, max, choices, help); `frictal settings --json` lists the same fields (its key signature)"""
 
 def sine_profile(**kwargs: Any) -> Profile:
     """sine_profile(**params) -> Profile

@@ -256,65 +256,105 @@ void frictal_bind_io(py::module_& m) {
       "rad/m (0: automatic). Returns dimension, slope, r_squared, fit_range (rad/m), scales, values");
   m.def(
       "anisotropy",
-      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy, int directions,
-         std::size_t max_lines, double atomic_friction, unsigned threads) {
-        DirectionalOptions o;
-        o.max_lines = max_lines;
-        o.atomic_friction = atomic_friction;
-        o.threads = threads;
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> heights, double dx, double dy, unsigned threads,
+         py::kwargs kw) {
+        const AnisotropySettings s = ok(make_anisotropy_settings(py_detail::keyword_values(
+            anisotropy_settings(), kw, "anisotropy", {"dx", "dy", "threads"}, {std::make_pair("max_lines", "lines")})));
+        if (kw.contains("contact_slope") && !s.areal)
+          throw py::value_error(
+              "anisotropy: contact_slope: the contact slope of the grid areal signature; it needs "
+              "areal=True");
         const Map map = to_map(heights, dx, dy, 0, 0);
-        auto t = ok(nogil([&] { return anisotropy(map, directions, o); }));
         AnisotropyTable table;
-        table.atomic_friction = atomic_friction;
+        table.atomic_friction = s.lines.atomic_friction;
         RunRecord run;
         run.warnings.emplace();  // each direction's bound, as `frictal anisotropy` names it
-        for (const auto& r : t) {
+        auto add_row = [&](double angle, double fwd, double bwd, double sigma, const FrictionPrediction& p) {
           char where[64];
-          std::snprintf(where, sizeof where, "direction %g deg", r.angle * 180 / std::numbers::pi);
-          for (Warning& w : check_friction_prediction(r.prediction, where)) add_warning(*run.warnings, std::move(w));
+          std::snprintf(where, sizeof where, "direction %g deg", angle * 180 / std::numbers::pi);
+          for (Warning& w : check_friction_prediction(p, where)) add_warning(*run.warnings, std::move(w));
           AnisotropyRow row;
-          row.direction = r.angle;
-          row.theta_forward = r.theta_forward;
-          row.theta_backward = r.theta_backward;
-          row.sigma = r.sigma;
-          row.upper_bound_friction_angle = r.prediction.friction_angle;
+          row.direction = angle;
+          row.theta_forward = fwd;
+          row.theta_backward = bwd;
+          row.sigma = sigma;
+          row.upper_bound_friction_angle = p.friction_angle;
           table.directions.push_back(row);
+        };
+        if (s.areal) {
+          // The grid areal signature of the map against itself turned over, per direction, as
+          // `frictal anisotropy --areal` runs it.
+          ArealSignatureOptions o;
+          o.threads = threads;
+          o.contact_slope = s.contact_slope;
+          for (int k = 0; k < s.directions; ++k) {
+            const double angle = 2 * std::numbers::pi * k / s.directions;
+            const ArealSignature r = ok(nogil([&] { return areal_signature(map, map, angle, o); }));
+            add_row(angle, r.theta_max_forward, r.theta_max_backward, r.contact_slope_std,
+                    ok(predict_friction(s.lines.atomic_friction, r.theta_max_forward, r.contact_slope_std)));
+          }
+        } else {
+          DirectionalOptions o = s.lines;
+          o.threads = threads;
+          auto t = ok(nogil([&] { return anisotropy(map, s.directions, o); }));
+          for (const auto& r : t) add_row(r.angle, r.theta_forward, r.theta_backward, r.sigma, r.prediction);
         }
         py::dict d = py_detail::to_dict(anisotropy_columns(), table);
         py_detail::put_columns(d, run_record_columns(), run);
         return d;
       },
-      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("directions") = 36,
-      py::arg("max_lines") = 128, py::arg("atomic_friction") = 0.0, py::arg("threads") = 0,
-      "Predicted friction over sliding directions from the map's parallel lines (runs without the GIL); heights "
-      "(m), dx, dy (m), atomic_friction mu_a (unitless). Returns direction, theta_forward/backward, sigma, "
-      "upper_bound_friction_angle (theta_max + atan mu_a, rad)");
+      py::arg("heights"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("threads") = 0,
+      ("Predicted friction over sliding directions of a map (runs without the GIL): per direction the rigid bound "
+       "theta_max + atan(mu_a) from the map's parallel line profiles, or with areal=True from the grid areal "
+       "signature of the map against itself turned over; heights (m), dx, dy (m). Returns direction, "
+       "theta_forward/backward, sigma, upper_bound_friction_angle (theta_max + atan mu_a, rad), atomic_friction, "
+       "warnings. What a tilt test reads along a direction: predict(..., direction=...). The keywords are the fields "
+       "of anisotropy_settings() (SI):\n" +
+       py_detail::keyword_doc(anisotropy_settings()))
+          .c_str());
+  m.def(
+      "anisotropy_settings", [] { return py_detail::field_list(anisotropy_settings()); },
+      "anisotropy_settings() -> list\n\nThe polar table's settings table: one dict per keyword of anisotropy() that "
+      "the table holds (name, type, unit (SI), default, min, max, choices, help); `frictal settings --json` lists the "
+      "same fields (its key anisotropy)");
+  m.def(
+      "areal_signature_settings", [] { return py_detail::field_list(areal_signature_settings()); },
+      "areal_signature_settings() -> list\n\nThe areal signature's settings table: one dict per keyword of "
+      "areal_signature() that the table holds (name, type, unit (SI), default (None: automatic, see help), min, max, "
+      "choices, help); `frictal settings --json` lists the same fields (its key areal)");
   m.def(
       "areal_signature",
-      [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, double angle,
-         py::object upper, bool turn_over_upper, bool prune, unsigned threads) {
+      [](py::array_t<double, py::array::c_style | py::array::forcecast> lower, double dx, double dy, py::object upper,
+         bool prune, unsigned threads, py::kwargs kw) {
+        const ArealSignatureSettings s = ok(make_areal_signature_settings(py_detail::keyword_values(
+            areal_signature_settings(), kw, "areal_signature", {"dx", "dy", "upper", "prune", "threads"},
+            {std::make_pair("angle", "direction"), std::make_pair("turn_over_upper", "in_place (its inverse)")})));
         Map f = to_map(lower, dx, dy, 0, 0);
         Map g = upper.is_none() ? f
                                 : to_map(upper.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>(),
                                          dx, dy, 0, 0);
-        ArealSignatureOptions o;
-        o.turn_over_upper = turn_over_upper;
+        ArealSignatureOptions o = s.options;
         o.prune = prune;
         o.threads = threads;
-        ArealSignature r = ok(nogil([&] { return areal_signature(f, g, angle, o); }));
+        ArealSignature r = ok(nogil([&] { return areal_signature(f, g, s.direction, o); }));
         py::dict d = py_detail::to_dict(areal_signature_columns(), r);
-        // The bound's warnings as `frictal areal` gives them (theta_a = 0 here).
+        // The bound's warnings as `frictal areal` gives them.
         RunRecord run;
-        run.warnings =
-            check_friction_prediction(ok(predict_friction(0.0, r.theta_max_forward, r.contact_slope_std)), "areal");
+        run.warnings = check_friction_prediction(
+            ok(predict_friction(s.atomic_friction, r.theta_max_forward, r.contact_slope_std)), "areal");
         py_detail::put_columns(d, run_record_columns(), run);
         return d;
       },
-      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("angle") = 0.0,
-      py::arg("upper") = py::none(), py::arg("turn_over_upper") = true, py::arg("prune") = true, py::arg("threads") = 1,
-      "Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `angle` (rad; runs without the "
-      "GIL); upper as measured (turned over) by default: the grid model (the maps' nodes, slopes by central "
-      "differences), a diagnostic of the grid, not a bound of the tilt test's hold angle (that and its bound: "
-      "predict). Returns offset, lift (m), theta (rad), theta_max_forward/backward (rad), contact_slope_std (rad), "
-      "evaluated_nodes");
+      py::arg("lower"), py::kw_only(), py::arg("dx"), py::arg("dy"), py::arg("upper") = py::none(),
+      py::arg("prune") = true, py::arg("threads") = 1,
+      ("Areal signature of two rigid blocks (heights in m, dx, dy in m) sliding along `direction` (rad; runs without "
+       "the GIL); upper as measured (turned over) by default, in_place=True: already in place in the lower map's "
+       "coordinates: the grid model (the maps' nodes, slopes by central differences), a diagnostic of the grid, not a "
+       "bound of the tilt test's hold angle (that and its bound: predict). prune=False evaluates every node (the "
+       "direct method). Returns offset, lift (m), theta (rad), theta_max_forward/backward (rad), contact_slope_std "
+       "(rad), evaluated_nodes, warnings (of the grid's bound theta_max + atan(atomic_friction)). The keywords are "
+       "the fields of areal_signature_settings() (SI; the older angle and turn_over_upper are now direction and "
+       "in_place):\n" +
+       py_detail::keyword_doc(areal_signature_settings()))
+          .c_str());
 }

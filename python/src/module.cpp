@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "bindings.hpp"
 #include "frictal/areal_tilt.hpp"
@@ -184,27 +185,38 @@ PYBIND11_MODULE(_core, m) {
 
   m.def(
       "signature",
-      [](const py::object& lower, const py::object& upper, bool rotate_upper, const std::string& slopes,
-         std::size_t offsets, std::optional<std::pair<double, double>> offset_range, unsigned threads,
-         bool keep_contacts, int bins, double spheroradius, double spacing, const std::string& format,
-         const std::string& unit, py::kwargs kw) {
-        SignatureOptions o;
-        o.spheroradius = spheroradius;
-        if (slopes != "exact" && slopes != "spline")
-          throw py::value_error("signature: slopes must be 'exact' or 'spline', got '" + slopes + "'");
-        o.slopes = slopes == "spline" ? SlopeMethod::Spline : SlopeMethod::Exact;
-        o.offsets = offsets;
+      [](const py::object& lower, const py::object& upper, bool rotate_upper, unsigned threads, bool keep_contacts,
+         double spacing, const std::string& format, const std::string& unit, py::kwargs kw) {
+        // The signature's keywords (signature_settings(); offset_range also a pair of metres), then
+        // the conditioning's from what is left.
+        py::kwargs own;
+        for (const Field& f : signature_settings())
+          if (kw.contains(f.name.c_str())) {
+            py::object v = kw[f.name.c_str()];
+            if (f.name == "offset_range" && !v.is_none() && !py::isinstance<py::str>(v)) {
+              // (min, max) in metres as the table's text, every bit kept (%.17g reads back exactly).
+              std::vector<double> r;
+              try {
+                r = v.cast<std::vector<double>>();
+              } catch (const py::cast_error&) {
+              }
+              if (r.size() != 2)
+                throw py::type_error("signature(): offset_range: expected (min, max) in m or the text 'MIN MAX'");
+              char text[64];
+              std::snprintf(text, sizeof text, "%.17g %.17g", r[0], r[1]);
+              v = py::str(text);
+            }
+            own[f.name.c_str()] = v;
+            PyDict_DelItemString(kw.ptr(), f.name.c_str());
+          }
+        const std::vector<std::string> also = {"rotate_upper", "threads", "keep_contacts", "spacing", "format", "unit"};
+        SignatureOptions o = py_detail::ok(
+            make_signature_options(py_detail::keyword_values(signature_settings(), own, "signature", also)));
         o.threads = threads;
         o.keep_contacts = keep_contacts;
-        o.bins = bins;
-        if (offset_range) {
-          o.offset_min = offset_range->first;
-          o.offset_max = offset_range->second;
-        }
-        const ConditioningSettings c =
-            py_detail::conditioning_keywords(kw, "signature",
-                                             {"rotate_upper", "slopes", "offsets", "offset_range", "threads",
-                                              "keep_contacts", "bins", "spheroradius", "spacing", "format", "unit"});
+        std::vector<std::string> names = also;
+        for (const Field& f : signature_settings()) names.push_back(f.name);
+        const ConditioningSettings c = py_detail::conditioning_keywords(kw, "signature", names);
         py_detail::ProfilePair pair = py_detail::conditioned_profiles(lower, upper, c, spacing, format, unit);
         Profile up = std::move(pair.upper);
         if (!pair.has_upper || rotate_upper) up = rotate180(std::move(up));
@@ -221,26 +233,30 @@ PYBIND11_MODULE(_core, m) {
         return d;
       },
       py::arg("lower"), py::arg("upper") = py::none(), py::kw_only(), py::arg("rotate_upper") = true,
-      py::arg("slopes") = "exact", py::arg("offsets") = 0, py::arg("offset_range") = py::none(), py::arg("threads") = 0,
-      py::arg("keep_contacts") = false, py::arg("bins") = 90, py::arg("spheroradius") = 0.0, py::arg("spacing") = 0.0,
-      py::arg("format") = "auto", py::arg("unit") = "",
+      py::arg("threads") = 0, py::arg("keep_contacts") = false, py::arg("spacing") = 0.0, py::arg("format") = "auto",
+      py::arg("unit") = "",
       ("Signature function theta(x_ofs) of two profiles (runs without the GIL), the numbers of `frictal signature "
        "--json` on the same input. `lower`, `upper`: file paths, Profile objects, profile dicts (x, z) or 1-D numpy "
        "arrays of heights with spacing= (m), each conditioned as frictal.predict and the CLI condition them: crop, "
        "remove_spikes, spike_threshold, then the form `detrend` names (none, mean, line, poly:N; None: a line, the "
        "mean of a periodic profile; detrend='none' keeps a generated surface exact); format and unit as read_surface. "
        "`upper` is a surface as measured "
-       "(rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. offsets: 0 = "
-       "every event offset, N = N equal offsets; offset_range: (min, max) in metres; threads: 0 = all cores; "
-       "spheroradius (m) > 0: the "
-       "DEM's rounded blocks (one core against the other dilated by a disk of radius 2r, exact slopes only), 0: "
-       "rigid profiles. Returns "
+       "(rotated by 180 degrees to face `lower`) unless rotate_upper=False; default: lower turned over. threads: 0 = "
+       "all cores; keep_contacts: keep every contact (the dict's contacts). Returns "
        "offset, lift (m), theta, theta_min, theta_left, theta_right (rad), theta_max_forward/backward (rad), "
        "offset_at_forward/backward (m), contact_slope_mean/std (rad), contact_slope_pdf, exact, events, spheroradius "
-       "(m), conditioning (text), warnings ([{code, message}]). The conditioning's keywords are the fields of "
-       "conditioning_settings() (SI; crop also a sequence of metres):\n" +
+       "(m), conditioning (text), warnings ([{code, message}]). The signature's keywords are the fields of "
+       "signature_settings() (SI; offset_range also a pair (min, max) of metres):\n" +
+       py_detail::keyword_doc(signature_settings()) +
+       "\nThe conditioning's keywords are the fields of conditioning_settings() (SI; crop also a sequence of "
+       "metres):\n" +
        py_detail::keyword_doc(conditioning_settings()))
           .c_str());
+  m.def(
+      "signature_settings", [] { return py_detail::field_list(signature_settings()); },
+      "signature_settings() -> list\n\nThe signature's settings table: one dict per keyword of signature() that the "
+      "table holds (name, type, unit (SI), default (None: automatic, see help), min, max, choices, help); `frictal "
+      "settings --json` lists the same fields (its key signature)");
   m.def("lift_direct", &lift_direct, py::arg("lower"), py::arg("upper_rotated"), py::arg("offset"),
         "Lift h(s) (m) of the turned-over upper profile at offset s (m): plain O(N+M) evaluation (reference method)");
   m.def(

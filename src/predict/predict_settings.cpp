@@ -52,9 +52,7 @@ const std::vector<B>& table() {
       {
           // The test.
           bind<PredictOptions>(
-              F("direction", "rad", -kInf, Lo::Open, kInf,
-                "Sliding direction, from +x towards +y (profiles: along +x or -x only)", true),
-              [](PredictOptions & o) -> auto& { return o.direction; }),
+              shared("direction"), [](PredictOptions & o) -> auto& { return o.direction; }),
           bind<PredictOptions>(
               shared("atomic_friction"), [](PredictOptions & o) -> auto& { return o.atomic_friction; }),
           // The stated test's lengths (docs/theory.md, "The stated test").
@@ -83,10 +81,7 @@ const std::vector<B>& table() {
             // The option says what is special (the upper face given in place); the struct says
             // what is usual (turn_over_upper), so the two read inverted.
             B b;
-            b.field = F("in_place", "", 0, Lo::Closed, 1,
-                        "The upper surface is the upper face already in place in the lower one's coordinates (not "
-                        "turned over); a drop's offsets count from that place. Maps only, except in contact");
-            b.field.type = FieldType::Boolean;
+            b.field = shared("in_place");
             b.get = [](const PredictOptions& o) { return FieldValue{!o.turn_over_upper}; };
             b.set = [](PredictOptions& o, const FieldValue& v) { o.turn_over_upper = !std::get<bool>(v); };
             return b;

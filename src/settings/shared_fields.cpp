@@ -1,6 +1,8 @@
 // The quantities that several settings tables share (settings.hpp, shared_field): declared once
 // here, so that `--atomic-friction`, `--runaway-distance` and `--period` read the same in the
-// tilt test, the 3D tilt test and the prediction (each table fills the default from its struct).
+// tilt test, the 3D tilt test and the prediction, `--spheroradius` the same in the tilt test and
+// the signature, and `--direction` and `--in-place` the same in
+// the prediction and the areal signature (each table fills the default from its struct).
 #include <limits>
 
 #include "frictal/settings.hpp"
@@ -25,6 +27,17 @@ const std::vector<Field>& shared_fields() {
       F("period", "m", -kInf, Lo::Closed, kInf,
         "Period of both surfaces (<= 0: not periodic; the offsets then span half the length)", false,
         "the surface's (generated), none (files)"),
+      F("spheroradius", "m", 0, Lo::Open, kInf, "Spheroradius r of both blocks", false,
+        "none: rigid profiles (signature); 5e-05 (tilt)"),
+      F("direction", "rad", -kInf, Lo::Open, kInf,
+        "Sliding direction, from +x towards +y (profiles: along +x or -x only)", true),
+      [] {
+        Field f = F("in_place", "", 0, Lo::Closed, 1,
+                    "The upper surface is the upper face already in place in the lower one's coordinates (not "
+                    "turned over); a drop's offsets count from that place. Maps only, except in contact");
+        f.type = FieldType::Boolean;
+        return f;
+      }(),
   };
   return fields;
 }

@@ -78,11 +78,9 @@ const std::vector<B>& table() {
           // Blocks (Table I, II).
           bind<TiltConfig>(F("block_height", "m", 0, Lo::Open, kInf, "Block height h below the surface minimum"),
                            FRICTAL_MEMBER(block_height)),
-          // `signature` takes this field too: absent there, the faces are rigid profiles (r = 0).
-          // The CLI also reads the retired `--radius` (hidden, options.cpp).
-          bind<TiltConfig>(F("spheroradius", "m", 0, Lo::Open, kInf, "Spheroradius r of both blocks", false,
-                             "5e-05 (tilt); none: rigid profiles (signature)"),
-                           FRICTAL_MEMBER(radius)),
+          // The signature's table takes this field too (shared_field): absent there, the faces are
+          // rigid profiles. The CLI also reads the retired `--radius` (hidden, options.cpp).
+          bind<TiltConfig>(settings_detail::shared("spheroradius"), FRICTAL_MEMBER(radius)),
           bind<TiltConfig>(F("density", "kg/m^2", 0, Lo::Open, kInf, "Areal density rho of both blocks"),
                            FRICTAL_MEMBER(density)),
           bind<TiltConfig>(F("gravity", "m/s^2", 0, Lo::Closed, kInf, "Gravitational acceleration g"),

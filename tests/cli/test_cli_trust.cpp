@@ -16,8 +16,12 @@
 #include <vector>
 
 #include "cli/cli_runner.hpp"
+#include "frictal/areal.hpp"
 #include "frictal/conditioning.hpp"
 #include "frictal/predict.hpp"
+#include "frictal/signature.hpp"
+#include "frictal/tilt.hpp"
+#include "frictal/units.hpp"
 
 using json = nlohmann::json;
 
@@ -250,7 +254,7 @@ TEST(CliTrust, TheSharedInputsHaveOneHelpText) {
   for (const auto& cmd : listing["commands"]) walk(cmd, "frictal");
   for (const char* name :
        {"--detrend", "--crop", "--remove-spikes", "--spike-threshold", "--atomic-friction", "--runaway-distance",
-        "--period", "--unit", "--drops", "--locked", "--block-length", "--in-place"}) {
+        "--period", "--unit", "--drops", "--locked", "--block-length", "--in-place", "--contact-slope"}) {
     ASSERT_TRUE(texts.count(name)) << name;
     std::size_t commands = 0;
     for (const auto& [text, where] : texts[name]) commands += where.size();
@@ -325,5 +329,157 @@ TEST(CliTrust, ABadPredictSettingNamesTheOptionAndItsRange) {
     const CliRun r = run_cli("predict " + f + " -q " + c.args);
     EXPECT_EQ(r.code, 2) << c.args << ": " << r.err;
     EXPECT_NE(r.err.find(c.says), std::string::npos) << c.args << ": " << r.err;
+  }
+}
+
+namespace {
+
+// The options of one command in `frictal commands --json` (option -> description), positionals left out.
+std::map<std::string, std::string> options_of(const std::string& command) {
+  auto c = run_cli("commands --json");
+  EXPECT_EQ(c.code, 0) << c.err;
+  std::map<std::string, std::string> options;
+  const json listing = json::parse(c.out);
+  for (const auto& cmd : listing["commands"])
+    if (cmd["name"] == command)
+      for (const auto& o : cmd["options"])
+        if (!o["positional"].get<bool>()) options[o["name"].get<std::string>()] = o["description"];
+  return options;
+}
+
+// A command's options are the fields of `fields` (each named after its field, described by the
+// table: help [unit] (default D; valid R), angles in degrees; a Boolean with its --no- form) and
+// `cli_only`, nothing else.
+void expect_options_are_fields(const std::string& command, const std::vector<frictal::Field>& fields,
+                               const std::set<std::string>& cli_only) {
+  std::map<std::string, std::string> options = options_of(command);
+  ASSERT_FALSE(options.empty()) << command;
+  std::set<std::string> expected = cli_only;
+  for (const frictal::Field& f : fields) {
+    std::string option = "--" + f.name;
+    std::replace(option.begin(), option.end(), '_', '-');
+    const std::string unit = f.unit == "rad" ? "deg" : f.unit;
+    const std::string range = frictal::range_text(f);
+    const std::string help = f.help + (unit.empty() ? "" : " [" + unit + "]") + " (default " +
+                             frictal::default_text(f) + (range.rfind("any", 0) == 0 ? "" : "; valid " + range) + ")";
+    ASSERT_TRUE(options.count(option)) << command << " " << option;
+    EXPECT_EQ(options[option], help) << command << " " << option;
+    expected.insert(option);
+    if (f.type == frictal::FieldType::Boolean) {
+      expected.insert("--no-" + option.substr(2));
+      EXPECT_EQ(options["--no-" + option.substr(2)], "Opposite of " + option) << command;
+    }
+  }
+  std::set<std::string> listed;
+  for (const auto& [name, text] : options) listed.insert(name);
+  EXPECT_EQ(listed, expected) << command;
+}
+
+// The fields `names` of a table.
+std::vector<frictal::Field> fields_named(const std::vector<frictal::Field>& table, const std::set<std::string>& names) {
+  std::vector<frictal::Field> out;
+  for (const frictal::Field& f : table)
+    if (names.count(f.name)) out.push_back(f);
+  EXPECT_EQ(out.size(), names.size());
+  return out;
+}
+
+const std::set<std::string> kReading = {"--format",   "--unit",     "--x-unit",  "--z-unit",
+                                        "--x-column", "--z-column", "--spacing", "--channel"};
+
+std::set<std::string> with_reading(std::set<std::string> s) {
+  s.insert(kReading.begin(), kReading.end());
+  return s;
+}
+
+void expect_refused(const std::string& args, const std::string& says) {
+  const CliRun r = run_cli(args);
+  EXPECT_EQ(r.code, 2) << args << ": " << r.err;
+  EXPECT_NE(r.err.find(says), std::string::npos) << args << ": " << r.err;
+}
+
+}  // namespace
+
+TEST(CliTrust, SignaturesOptionsAreItsSettingsTablePlusAStatedList) {
+  // `frictal signature` offers signature_settings() and conditioning_settings(); the hold analysis
+  // it runs on the same lift takes the quantities shared with the tilt test and the prediction
+  // (atomic friction, run-away distance, period: one field each); besides them only the one drop,
+  // the outputs, the reading of the files and the run options.
+  std::vector<frictal::Field> fields = frictal::signature_settings();
+  for (const frictal::Field& f : frictal::conditioning_settings()) fields.push_back(f);
+  for (const frictal::Field& f :
+       fields_named(frictal::tilt_settings(), {"atomic_friction", "runaway_distance", "period"}))
+    fields.push_back(f);
+  EXPECT_EQ(frictal::signature_settings().size(), 7u);
+  expect_options_are_fields(
+      "signature", fields,
+      with_reading({"--start-offset", "--no-hold", "--threads", "--json", "--output", "--contacts", "--pdf"}));
+}
+
+TEST(CliTrust, ArealAndAnisotropysOptionsAreTheirSettingsTablesPlusAStatedList) {
+  // `frictal areal`: areal_signature_settings(), the conditioning, and for the hold angle beside
+  // the signature the prediction's drops and the shared run-away distance, its mode (--lateral)
+  // and one drop (--start-offset); `frictal anisotropy`: anisotropy_settings(), the conditioning,
+  // and for the hold angle per direction the prediction's drops and locked, the run-away distance.
+  std::vector<frictal::Field> areal = frictal::areal_signature_settings();
+  std::vector<frictal::Field> aniso = frictal::anisotropy_settings();
+  for (const frictal::Field& f : frictal::conditioning_settings()) areal.push_back(f), aniso.push_back(f);
+  areal.push_back(*frictal::find_field(frictal::predict_settings(), "drops"));
+  areal.push_back(*frictal::shared_field("runaway_distance"));
+  for (const frictal::Field& f : fields_named(frictal::predict_settings(), {"drops", "locked"})) aniso.push_back(f);
+  aniso.push_back(*frictal::shared_field("runaway_distance"));
+  expect_options_are_fields(
+      "areal", areal, with_reading({"--lateral", "--start-offset", "--output", "--threads", "--quiet", "--json"}));
+  expect_options_are_fields("anisotropy", aniso, with_reading({"--upper", "--hold", "--threads", "--quiet", "--json"}));
+  // The quantities the prediction shares are its fields: one text in predict and areal.
+  const auto predict = options_of("predict"), areal_options = options_of("areal");
+  for (const char* o : {"--direction", "--in-place", "--atomic-friction"})
+    EXPECT_EQ(areal_options.at(o), predict.at(o)) << o;
+}
+
+TEST(CliTrust, ABadSignatureArealOrAnisotropySettingNamesTheOptionAndItsRange) {
+  const std::string f = data("profiles/csv-2.csv");
+  const std::string m = data("x3p/pyramid.x3p");
+  expect_refused("signature " + f + " --bins 0", "--bins: expected a whole number in 1..100000, got 0");
+  expect_refused("signature " + f + " --offsets -1", "--offsets: expected a whole number in 0..100000000, got -1");
+  expect_refused("signature " + f + " --slopes splin", "--slopes: expected exact or spline, got \"splin\"");
+  expect_refused("signature " + f + " --spheroradius -1um", "--spheroradius: expected a number > 0 m, got -1e-06");
+  expect_refused("signature " + f + " --offset-range 1 0", "--offset-range '1 0': expected MIN MAX");
+  expect_refused("signature " + f + " --offset-range 0 far", "--offset-range '0 far': 'far' is not a length");
+  expect_refused("signature " + f + " --spheroradius 1um --slopes spline", "use --slopes exact");
+  expect_refused("areal " + m + " --step 0", "--step: expected a number > 0 m, got 0");
+  expect_refused("areal " + m + " --max-offset -1", "--max-offset: expected a number > 0 m, got -1");
+  expect_refused("areal " + m + " --contact-slope max", "--contact-slope: expected lower or mean, got \"max\"");
+  expect_refused("areal " + m + " --atomic-friction -0.1", "--atomic-friction: expected a number >= 0, got -0.1");
+  expect_refused("areal " + m + " --direction inf", "--direction: expected a finite number, in deg, got inf");
+  expect_refused("areal " + m + " --lateral free --step 1e-6", "--step: the hold angle");
+  expect_refused("anisotropy " + m + " --directions 0", "--directions: expected a whole number in 1..3600, got 0");
+  expect_refused("anisotropy " + m + " --lines 0", "--lines: expected a whole number in 1..100000, got 0");
+  expect_refused("anisotropy " + m + " --contact-slope mean", "--contact-slope: the contact slope of the grid");
+  // Stated values reach the signature: N offsets from MIN to MAX (a length with its unit), that grid
+  // kept (--keep-grid) where the aligned grids' every event would cost less.
+  auto r = run_cli("signature " + f + " --offsets 5 --keep-grid --offset-range 0 0.1um --no-hold --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const json j = json::parse(r.out);
+  EXPECT_EQ(j["offsets"].get<double>(), 5) << j.dump();
+  EXPECT_FALSE(j["grid_replaced"].get<bool>()) << j.dump();
+  EXPECT_EQ(j["offset_range_m"][0].get<double>(), 0.0) << j.dump();
+  EXPECT_DOUBLE_EQ(j["offset_range_m"][1].get<double>(), 1e-7) << j.dump();
+}
+
+TEST(CliTrust, ArealsDirectionKeepsEveryBitOfTheDegreesItAlwaysRead) {
+  // `frictal areal --direction DEG` has always read DEG as CLI11 reads a number (strtold, then
+  // rounded to double) and sent DEG * pi/180 to the signature. The table's own reading (from_chars,
+  // rounded once) differs from it in the last bit for about 1 in 10^4 17-digit angles, such as
+  // these; the radians the signature gets (its direction_deg, converted back) are the old ones.
+  const std::string m = data("x3p/pyramid.x3p");
+  for (const char* deg : {"-409.214118662093", "-341.22738923", "423.8517967489", "706.276187934088"}) {
+    const double old_rad = static_cast<double>(std::strtold(deg, nullptr)) * frictal::units::kRadPerDeg;
+    const double once_rad = std::strtod(deg, nullptr) * frictal::units::kRadPerDeg;
+    EXPECT_NE(old_rad, once_rad) << deg << ": not a case where the two readings differ";
+    auto r = run_cli(std::string("areal ") + m + " --direction " + deg + " --json");
+    ASSERT_EQ(r.code, 0) << r.err;
+    const double shown = json::parse(r.out)["direction_deg"].get<double>();
+    EXPECT_EQ(shown, frictal::units::to_deg(old_rad)) << deg;
   }
 }

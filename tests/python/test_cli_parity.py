@@ -335,13 +335,15 @@ def test_the_cli_s_tilt_frames_read_back_in_python(tmp_path):
 
 
 def test_settings_tables_are_the_clis():
-    """predict_settings(), conditioning_settings(), tilt_settings(), areal_tilt_settings() and
-    generators() list the fields that `frictal settings
+    """predict_settings(), conditioning_settings(), signature_settings(), areal_signature_settings(),
+    anisotropy_settings(), tilt_settings(), areal_tilt_settings() and generators() list the fields that `frictal settings
     --json` lists, with the same name, option, type and help; Python's unit is the SI unit that
     the CLI names si_unit, and its default the CLI's in SI (degrees in the CLI, radians here)."""
     cli = json.loads(subprocess.run([CLI, "settings", "--json"], check=True, capture_output=True, text=True).stdout)
     pairs = [(cli["tilt"], frictal.tilt_settings()), (cli["areal_tilt"], frictal.areal_tilt_settings())]
     pairs += [(cli["predict"], frictal.predict_settings()), (cli["conditioning"], frictal.conditioning_settings())]
+    pairs += [(cli["signature"], frictal.signature_settings()), (cli["areal"], frictal.areal_signature_settings()),
+              (cli["anisotropy"], frictal.anisotropy_settings())]
     pairs += [(cli["generators"][name]["fields"], fields) for name, fields in frictal.generators().items()]
     assert len(pairs) > 4
     for c_fields, p_fields in pairs:

@@ -19,11 +19,14 @@ def test_koch_signature_is_n_alpha(n, mult):
 
 def test_signature_spheroradius_keyword():
     # K0 at 20 deg (lambda = 0.01 m) with r = 0.01 m: the rounded tips make the lift an arc whose
-    # steepest contact is asin(lambda / (4 r)) = asin(0.25) (closed form, test_sphero.cpp); r = 0
-    # is the rigid signature itself.
+    # steepest contact is asin(lambda / (4 r)) = asin(0.25) (closed form, test_sphero.cpp); none
+    # (None, the table's default) is the rigid signature itself, and r itself is > 0 (the tilt
+    # test's field: one range).
     k0 = frictal.koch_profile(iterations=0, alpha=np.radians(20))
     rigid = frictal.signature(k0)
-    assert frictal.signature(k0, spheroradius=0.0)["theta_max_forward"] == rigid["theta_max_forward"]
+    assert frictal.signature(k0, spheroradius=None)["theta_max_forward"] == rigid["theta_max_forward"]
+    with pytest.raises(ValueError, match="spheroradius: expected a number > 0 m, got 0"):
+        frictal.signature(k0, spheroradius=0.0)
     sig = frictal.signature(k0, spheroradius=0.01)
     assert sig["spheroradius"] == 0.01
     assert sig["theta_max_forward"] == pytest.approx(math.asin(0.25), abs=1e-9)

@@ -67,10 +67,10 @@ def test_koch_dimension_and_divider():
 def test_areal_signature_of_tilted_plane_and_anisotropy_of_ridges():
     x = np.arange(40) * 1e-6
     plane = np.tile(0.2 * x, (20, 1))
-    r = frictal.areal_signature(plane, dx=1e-6, dy=1e-6, angle=0.0)
+    r = frictal.areal_signature(plane, dx=1e-6, dy=1e-6, direction=0.0)
     assert r["theta_max_forward"] == pytest.approx(math.atan(0.2), abs=1e-12)
     ridges = np.tile(1e-7 * np.sin(x * 3e5) + 3e-8 * np.sin(x * 1.1e6), (60, 1))
-    t = frictal.anisotropy(ridges, dx=1e-6, dy=1e-6, directions=4, max_lines=8)
+    t = frictal.anisotropy(ridges, dx=1e-6, dy=1e-6, directions=4, lines=8)
     assert t["theta_forward"][1] == pytest.approx(0, abs=1e-12)  # along the ridges
     assert t["theta_forward"][0] > 0.01
 

@@ -116,7 +116,7 @@ def test_every_function_returns_and_issues_its_warnings():
     assert f["eq18_low_friction_angle"] == 0.0 and f["eq18_low_clamped"]
     heights = np.tile(z2[150:250], (20, 1))
     with pytest.warns(frictal.SpikesWarning):
-        m = frictal.anisotropy(heights, dx=x[1], dy=x[1], directions=2, max_lines=4)
+        m = frictal.anisotropy(heights, dx=x[1], dy=x[1], directions=2, lines=4)
     assert "upper_bound_friction_angle" in m and "friction_angle" not in m
 
 

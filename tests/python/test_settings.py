@@ -267,3 +267,106 @@ def test_areal_hold_keywords_are_the_table_names():
     assert r["drops"] == 4 and len(r["drop_hold_angles"]) == 4  # a 2 x 2 grid
     assert list(r["drop_hold_angles"]) == list(p.drop_friction_angles)
     assert r["conditioning"] == p.conditioning
+
+
+def _refused(fn, f, **kw):
+    """A value outside field f's range given to fn is refused, naming the field (ValueError)."""
+    if f["type"] in ("number", "integer") and math.isfinite(f["min"]):
+        bad, says = f["min"] - 1, f["name"] + ": expected"
+    elif f["type"] == "word":
+        bad, says = "bogus", f["name"]
+    elif f["type"] == "number":
+        bad, says = float("nan"), f["name"] + ": expected a finite number"
+    else:
+        return False
+    with pytest.raises(ValueError, match=says):
+        fn(**kw, **{f["name"]: bad})
+    return True
+
+
+def test_signature_keywords_are_the_table_names():
+    """signature() takes the fields of signature_settings() under their names (each line of the
+    table in its docstring); the defaults change nothing, every keyword is read (a value outside
+    its range is refused naming it), and a stated value reaches the signature: offset_range as a
+    pair of metres or as the table's text, offsets N as N equal offsets over it."""
+    table = frictal.signature_settings()
+    names = [f["name"] for f in table]
+    assert names == ["slopes", "offsets", "keep_grid", "exact", "offset_range", "bins", "spheroradius"]
+    by = {f["name"]: f for f in table}
+    assert by["offset_range"]["unit"] == "m" and by["offset_range"]["default"] is None  # automatic
+    assert by["bins"]["default"] == 90 and by["spheroradius"]["default"] is None and by["slopes"]["default"] == "exact"
+    assert by["spheroradius"] == {**{f["name"]: f for f in frictal.tilt_settings()}["spheroradius"], "default": None}
+    for n in names:
+        assert f"    {n}" in frictal.signature.__doc__, n
+    k = frictal.koch_profile(iterations=2, alpha=np.radians(20))
+    base = frictal.signature(k)
+    with_defaults = frictal.signature(k, **{f["name"]: f["default"] for f in table})
+    for key in ("theta_max_forward", "theta_max_backward", "offset"):
+        np.testing.assert_array_equal(with_defaults[key], base[key])
+    refused = [f["name"] for f in table if _refused(lambda **kw: frictal.signature(k, **kw), f)]
+    assert refused == ["slopes", "offsets", "offset_range", "bins", "spheroradius"]
+    with pytest.raises(ValueError, match=r"bins: expected a whole number in 1\.\.100000, got 0"):
+        frictal.signature(k, bins=0)
+    with pytest.raises(ValueError, match="offset_range '2 1': expected MIN MAX"):
+        frictal.signature(k, offset_range=(2.0, 1.0))
+    with pytest.raises(TypeError, match="offset_range: expected"):
+        frictal.signature(k, offset_range=(0.0, 1.0, 2.0))
+    with pytest.raises(TypeError, match="did you mean 'keep_grid'"):
+        frictal.signature(k, keep_gird=True)
+    # offsets=N over offset_range: N equal offsets from MIN to MAX (ends included), the same with the text.
+    length = k.x[-1] - k.x[0]
+    pair = frictal.signature(k, offsets=11, offset_range=(0.1 * length, 0.3 * length))
+    text = frictal.signature(k, offsets=11, offset_range=f"{0.1 * length!r},{0.3 * length!r}")
+    np.testing.assert_allclose(pair["offset"], np.linspace(0.1 * length, 0.3 * length, 11), rtol=0, atol=1e-15)
+    np.testing.assert_array_equal(pair["theta"], text["theta"])
+    # bins: the contact-slope PDF's bins.
+    assert len(frictal.signature(k, bins=7)["contact_slope_pdf"]["density"]) == 7
+
+
+def test_areal_signature_and_anisotropy_keywords_are_the_table_names():
+    """areal_signature() takes areal_signature_settings() and anisotropy() anisotropy_settings()
+    under their names (the old angle, turn_over_upper and max_lines name the new ones); the
+    direction and in_place are the prediction's fields; anisotropy(areal=True) is, per direction,
+    areal_signature() of the map against itself at that direction."""
+    a_names = [f["name"] for f in frictal.areal_signature_settings()]
+    assert a_names == ["direction", "atomic_friction", "step", "max_offset", "contact_slope", "in_place"]
+    p_by = {f["name"]: f for f in frictal.predict_settings()}
+    for f in frictal.areal_signature_settings():
+        if f["name"] in ("direction", "in_place", "atomic_friction"):
+            assert f["help"] == p_by[f["name"]]["help"], f["name"]
+    an_names = [f["name"] for f in frictal.anisotropy_settings()]
+    assert an_names == ["directions", "lines", "atomic_friction", "areal", "contact_slope"]
+    for fn, table in ((frictal.areal_signature, frictal.areal_signature_settings()),
+                      (frictal.anisotropy, frictal.anisotropy_settings())):
+        for f in table:
+            assert f"    {f['name']}" in fn.__doc__, (fn.__name__, f["name"])
+    rng = np.random.default_rng(3)
+    h = np.cumsum(np.cumsum(rng.normal(size=(40, 42)), axis=0), axis=1) * 1e-9
+    grid = dict(dx=1e-6, dy=1e-6)
+    with pytest.raises(TypeError, match="'angle'; it is now 'direction'"):
+        frictal.areal_signature(h, angle=0.5, **grid)
+    with pytest.raises(TypeError, match="'turn_over_upper'; it is now 'in_place"):
+        frictal.areal_signature(h, turn_over_upper=False, **grid)
+    with pytest.raises(TypeError, match="'max_lines'; it is now 'lines'"):
+        frictal.anisotropy(h, max_lines=8, **grid)
+    with pytest.raises(ValueError, match="contact_slope: .*needs areal=True"):
+        frictal.anisotropy(h, contact_slope="mean", **grid)
+    for fn, table in ((frictal.areal_signature, frictal.areal_signature_settings()),
+                      (frictal.anisotropy, frictal.anisotropy_settings())):
+        for f in table:
+            _refused(lambda **kw: fn(h, **grid, **kw), f)
+    with pytest.raises(ValueError, match=r"directions: expected a whole number in 1\.\.3600, got 0"):
+        frictal.anisotropy(h, directions=0, **grid)
+    with pytest.raises(ValueError, match="step: expected a number > 0 m, got 0"):
+        frictal.areal_signature(h, step=0.0, **grid)
+    # Stated values reach the signature: step and max_offset set the offsets 0, step, ... max_offset.
+    r = frictal.areal_signature(h, direction=0.0, step=2e-6, max_offset=8e-6, **grid)
+    np.testing.assert_allclose(r["offset"], [0, 2e-6, 4e-6, 6e-6, 8e-6], rtol=0, atol=1e-18)
+    # anisotropy(areal=True): per direction k the areal signature at 2 pi k / directions.
+    t = frictal.anisotropy(h, directions=4, areal=True, contact_slope="mean", atomic_friction=0.2, **grid)
+    for k in range(4):
+        s = frictal.areal_signature(h, direction=2 * math.pi * k / 4, contact_slope="mean", **grid)
+        assert t["theta_forward"][k] == s["theta_max_forward"] and t["sigma"][k] == s["contact_slope_std"]
+        assert t["upper_bound_friction_angle"][k] == pytest.approx(s["theta_max_forward"] + math.atan(0.2))
+    lines = frictal.anisotropy(h, directions=4, lines=4, **grid)
+    assert lines["direction"][1] == pytest.approx(math.pi / 2)
