@@ -68,8 +68,10 @@ using A = ArealSignatureSettings;
 const std::vector<Binding<A>>& areal_table() {
   static const auto t = settings_detail::with_defaults<A>(
       {
-          bind<A>(shared("direction"), [](A & s) -> auto& { return s.direction; }),
-          bind<A>(shared("atomic_friction"), [](A & s) -> auto& { return s.atomic_friction; }),
+          bind<A>(
+              shared("direction"), [](A & s) -> auto& { return s.direction; }),
+          bind<A>(
+              shared("atomic_friction"), [](A & s) -> auto& { return s.atomic_friction; }),
           automatic_length<A>(F("step", "m", 0, Lo::Open, kInf, "Offset step of the grid areal signature", false,
                                 "the lower map's smaller spacing min(dx, dy)"),
                               [](A& s) -> double& { return s.options.step; }),
@@ -97,14 +99,18 @@ using P = AnisotropySettings;
 const std::vector<Binding<P>>& anisotropy_table() {
   static const auto t = settings_detail::with_defaults<P>(
       {
-          bind<P>(F("directions", "", 1, Lo::Closed, 3600, "Sliding directions, equally spaced over 360 deg"),
-                  [](P & s) -> auto& { return s.directions; }),
-          bind<P>(F("lines", "", 1, Lo::Closed, 100000, "At most this many parallel line profiles per direction"),
-                  [](P & s) -> auto& { return s.lines.max_lines; }),
-          bind<P>(shared("atomic_friction"), [](P & s) -> auto& { return s.lines.atomic_friction; }),
-          bind<P>(F("areal", "", 0, Lo::Closed, 1,
-                    "Use the grid areal signature of the two rigid blocks instead of line profiles"),
-                  [](P & s) -> auto& { return s.areal; }),
+          bind<P>(
+              F("directions", "", 1, Lo::Closed, 3600, "Sliding directions, equally spaced over 360 deg"),
+              [](P & s) -> auto& { return s.directions; }),
+          bind<P>(
+              F("lines", "", 1, Lo::Closed, 100000, "At most this many parallel line profiles per direction"),
+              [](P & s) -> auto& { return s.lines.max_lines; }),
+          bind<P>(
+              shared("atomic_friction"), [](P & s) -> auto& { return s.lines.atomic_friction; }),
+          bind<P>(
+              F("areal", "", 0, Lo::Closed, 1,
+                "Use the grid areal signature of the two rigid blocks instead of line profiles"),
+              [](P & s) -> auto& { return s.areal; }),
           contact_slope<P>([](P & s) -> auto& { return s.contact_slope; }),
       },
       P{});

@@ -112,15 +112,18 @@ const std::vector<B>& table() {
             return b;
           }(),
           // The library refuses more (signature(): bins in 1..100000).
-          bind<SignatureOptions>(F("bins", "", 1, Lo::Closed, 100000, "Bins of the contact-slope PDF"),
-                                 [](SignatureOptions & o) -> auto& { return o.bins; }),
+          bind<SignatureOptions>(
+              F("bins", "", 1, Lo::Closed, 100000, "Bins of the contact-slope PDF"),
+              [](SignatureOptions & o) -> auto& { return o.bins; }),
           // The tilt test's quantity (shared_field): the DEM's rounded blocks, here the lift of one
           // core against the other dilated by a disk of radius 2r. Absent (automatic, NaN; the
           // struct's 0): rigid profiles, the paper's signature.
           [] {
             B b;
             b.field = shared("spheroradius");
-            b.get = [](const SignatureOptions& o) { return FieldValue{o.spheroradius == 0 ? std::nan("") : o.spheroradius}; };
+            b.get = [](const SignatureOptions& o) {
+              return FieldValue{o.spheroradius == 0 ? std::nan("") : o.spheroradius};
+            };
             b.set = [](SignatureOptions& o, const FieldValue& v) {
               const double r = std::get<double>(v);
               o.spheroradius = std::isnan(r) ? 0 : r;

@@ -252,9 +252,9 @@ TEST(CliTrust, TheSharedInputsHaveOneHelpText) {
   };
   const json listing = json::parse(c.out);
   for (const auto& cmd : listing["commands"]) walk(cmd, "frictal");
-  for (const char* name :
-       {"--detrend", "--crop", "--remove-spikes", "--spike-threshold", "--atomic-friction", "--runaway-distance",
-        "--period", "--unit", "--drops", "--locked", "--block-length", "--in-place", "--contact-slope"}) {
+  for (const char* name : {"--detrend", "--crop", "--remove-spikes", "--spike-threshold", "--atomic-friction",
+                           "--runaway-distance", "--period", "--unit", "--drops", "--locked", "--block-length",
+                           "--in-place", "--contact-slope", "--spheroradius"}) {
     ASSERT_TRUE(texts.count(name)) << name;
     std::size_t commands = 0;
     for (const auto& [text, where] : texts[name]) commands += where.size();
