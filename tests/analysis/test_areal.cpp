@@ -9,6 +9,7 @@
 #include "frictal/areal.hpp"
 #include "frictal/geometry.hpp"
 #include "frictal/io.hpp"
+#include "frictal/predict.hpp"
 #include "frictal/signature.hpp"
 
 namespace {
@@ -188,4 +189,57 @@ TEST(ArealSignature, UpperInPlaceAndContactSlopeRules) {
   auto direct = frictal::areal_signature(f, f, 1.0, o);
   ASSERT_TRUE(fast.ok() && direct.ok());
   EXPECT_EQ(fast->theta, direct->theta);
+}
+
+TEST(ArealSettings, EachFieldFillsItsMemberAndTheDefaultsAreTheStructs) {
+  using frictal::find_field;
+  const frictal::ArealSignatureSettings d;
+  const auto& t = frictal::areal_signature_settings();
+  EXPECT_EQ(find_field(t, "direction")->default_value, d.direction);
+  EXPECT_EQ(find_field(t, "in_place")->default_value, d.options.turn_over_upper ? 0 : 1);
+  EXPECT_TRUE(std::isnan(find_field(t, "step")->default_value));  // automatic: min(dx, dy)
+  EXPECT_TRUE(std::isnan(find_field(t, "max_offset")->default_value));
+  // The prediction's quantities are its fields (one help), the contact slope one field in both tables.
+  for (const char* shared : {"direction", "in_place", "atomic_friction"})
+    EXPECT_EQ(find_field(t, shared)->help, find_field(frictal::predict_settings(), shared)->help) << shared;
+  EXPECT_EQ(find_field(t, "contact_slope")->help, find_field(frictal::anisotropy_settings(), "contact_slope")->help);
+  auto a = frictal::make_areal_signature_settings({{"direction", 0.5},
+                                                   {"atomic_friction", 0.3},
+                                                   {"step", 2e-6},
+                                                   {"max_offset", 4e-5},
+                                                   {"contact_slope", std::string("mean")},
+                                                   {"in_place", true}});
+  ASSERT_TRUE(a) << a.error().message;
+  EXPECT_EQ(a->direction, 0.5);
+  EXPECT_EQ(a->atomic_friction, 0.3);
+  EXPECT_EQ(a->options.step, 2e-6);
+  EXPECT_EQ(a->options.offset_max, 4e-5);
+  EXPECT_EQ(a->options.contact_slope, frictal::ArealContactSlope::Mean);
+  EXPECT_FALSE(a->options.turn_over_upper);
+  auto automatic = frictal::make_areal_signature_settings({{"step", std::nan("")}});
+  ASSERT_TRUE(automatic);
+  EXPECT_EQ(automatic->options.step, 0);  // areal.hpp: 0 is min(dx, dy)
+  const frictal::AnisotropySettings pd;
+  const auto& p = frictal::anisotropy_settings();
+  EXPECT_EQ(find_field(p, "directions")->default_value, pd.directions);
+  EXPECT_EQ(find_field(p, "lines")->default_value, double(pd.lines.max_lines));
+  auto s = frictal::make_anisotropy_settings({{"directions", std::int64_t{12}},
+                                              {"lines", std::int64_t{9}},
+                                              {"atomic_friction", 0.1},
+                                              {"areal", true},
+                                              {"contact_slope", std::string("mean")}});
+  ASSERT_TRUE(s) << s.error().message;
+  EXPECT_EQ(s->directions, 12);
+  EXPECT_EQ(s->lines.max_lines, 9u);
+  EXPECT_EQ(s->lines.atomic_friction, 0.1);
+  EXPECT_TRUE(s->areal);
+  EXPECT_EQ(s->contact_slope, frictal::ArealContactSlope::Mean);
+  auto bad = frictal::make_anisotropy_settings({{"directions", std::int64_t{3601}}});
+  ASSERT_FALSE(bad);
+  EXPECT_NE(bad.error().message.find("directions: expected a whole number in 1..3600, got 3601"), std::string::npos)
+      << bad.error().message;
+  auto step = frictal::make_areal_signature_settings({{"step", 0.0}});
+  ASSERT_FALSE(step);
+  EXPECT_NE(step.error().message.find("step: expected a number > 0 m, got 0"), std::string::npos)
+      << step.error().message;
 }

@@ -689,3 +689,53 @@ TEST(SampleSpline, InterpolatesAndFollowsASmoothCurve) {
   frictal::Profile step{{0.0, 1.0, 1.0, 2.0}, {0.0, 0.0, 1.0, 1.0}, {}};
   EXPECT_FALSE(frictal::sample_spline(step, 3).ok());  // a vertical step: no spline
 }
+
+TEST(SignatureSettings, EachFieldFillsItsMemberAndTheDefaultsAreTheStructs) {
+  const SignatureOptions d;
+  const auto& t = signature_settings();
+  EXPECT_EQ(find_field(t, "offsets")->default_value, double(d.offsets));
+  EXPECT_EQ(find_field(t, "bins")->default_value, d.bins);
+  EXPECT_EQ(find_field(t, "slopes")->default_value, 0);  // exact, the first choice
+  // Automatic: the offset range (one period, or half the shorter block) and the spheroradius (rigid).
+  EXPECT_TRUE(std::isnan(find_field(t, "offset_range")->default_value));
+  EXPECT_TRUE(std::isnan(find_field(t, "spheroradius")->default_value));
+  // The spheroradius is the tilt test's quantity: one name, unit, range and help.
+  EXPECT_EQ(find_field(t, "spheroradius")->help, shared_field("spheroradius")->help);
+  const ValueSet v = {
+      {"slopes", std::string("spline")},          {"offsets", std::int64_t{40}}, {"keep_grid", true}, {"exact", true},
+      {"offset_range", std::string("1um,0.5mm")}, {"bins", std::int64_t{12}}};
+  auto o = make_signature_options(v);
+  ASSERT_TRUE(o) << o.error().message;
+  EXPECT_EQ(o->slopes, SlopeMethod::Spline);
+  EXPECT_EQ(o->offsets, 40u);
+  EXPECT_TRUE(o->keep_grid);
+  EXPECT_TRUE(o->require_exact);
+  EXPECT_DOUBLE_EQ(o->offset_min, 1e-6);
+  EXPECT_DOUBLE_EQ(o->offset_max, 5e-4);
+  EXPECT_EQ(o->bins, 12);
+  // The two words of the CLI (a space) read as the comma; a radius reaches its member; none: 0.
+  auto spaced = make_signature_options({{"offset_range", std::string("-2e-6 3e-6")}, {"spheroradius", 1e-5}});
+  ASSERT_TRUE(spaced) << spaced.error().message;
+  EXPECT_EQ(spaced->offset_min, -2e-6);
+  EXPECT_EQ(spaced->offset_max, 3e-6);
+  EXPECT_EQ(spaced->spheroradius, 1e-5);
+  auto none = make_signature_options({{"spheroradius", std::nan("")}});
+  ASSERT_TRUE(none);
+  EXPECT_EQ(none->spheroradius, 0);
+  EXPECT_EQ(none->offset_min, d.offset_min);
+  EXPECT_EQ(none->offset_max, d.offset_max);
+  // Errors name the field and what it takes.
+  for (const auto& [values, says] : std::vector<std::pair<ValueSet, std::string>>{
+           {{{"bins", std::int64_t{0}}}, "bins: expected a whole number in 1..100000, got 0"},
+           {{{"offsets", std::int64_t{200000000}}}, "offsets: expected a whole number in 0..100000000"},
+           {{{"offset_range", std::string("3,1")}}, "offset_range '3,1': expected MIN MAX"},
+           {{{"offset_range", std::string("0,1,2")}}, "offset_range '0,1,2': expected MIN MAX"},
+           {{{"offset_range", std::string("0 inf")}}, "offset_range '0 inf': 'inf' is not a length"},
+           {{{"spheroradius", 0.0}}, "spheroradius: expected a number > 0 m, got 0"},
+           {{{"slopes", std::string("spline")}, {"spheroradius", 1e-5}}, "use slopes exact"},
+           {{{"offset", std::int64_t{3}}}, "did you mean 'offsets'"}}) {
+    auto bad = make_signature_options(values);
+    ASSERT_FALSE(bad) << says;
+    EXPECT_NE(bad.error().message.find(says), std::string::npos) << bad.error().message;
+  }
+}
