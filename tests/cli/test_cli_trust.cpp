@@ -470,13 +470,16 @@ TEST(CliTrust, ABadSignatureArealOrAnisotropySettingNamesTheOptionAndItsRange) {
 TEST(CliTrust, ArealsDirectionKeepsEveryBitOfTheDegreesItAlwaysRead) {
   // `frictal areal --direction DEG` has always read DEG as CLI11 reads a number (strtold, then
   // rounded to double) and sent DEG * pi/180 to the signature. The table's own reading (from_chars,
-  // rounded once) differs from it in the last bit for about 1 in 10^4 17-digit angles, such as
-  // these; the radians the signature gets (its direction_deg, converted back) are the old ones.
+  // rounded once) differs from it in the last bit for about 1 in 10^4 random angles of 1 to 20
+  // digits, such as these; the radians the signature gets (its direction_deg, converted back) are
+  // the old ones.
   const std::string m = data("x3p/pyramid.x3p");
   for (const char* deg : {"-409.214118662093", "-341.22738923", "423.8517967489", "706.276187934088"}) {
     const double old_rad = static_cast<double>(std::strtold(deg, nullptr)) * frictal::units::kRadPerDeg;
     const double once_rad = std::strtod(deg, nullptr) * frictal::units::kRadPerDeg;
-    EXPECT_NE(old_rad, once_rad) << deg << ": not a case where the two readings differ";
+    // A case where the two readings differ, in the radians and in the degrees the JSON shows.
+    EXPECT_NE(old_rad, once_rad) << deg;
+    EXPECT_NE(frictal::units::to_deg(old_rad), frictal::units::to_deg(once_rad)) << deg;
     auto r = run_cli(std::string("areal ") + m + " --direction " + deg + " --json");
     ASSERT_EQ(r.code, 0) << r.err;
     const double shown = json::parse(r.out)["direction_deg"].get<double>();
