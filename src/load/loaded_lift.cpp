@@ -551,9 +551,14 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
   // over the rigid lift's on the piece before s (slope hb) into `before`, on the piece after it
   // (ha) into `after`, and the diagnostics' terms (if asked). The excess: the lift's slope is the
   // force-weighted mean of the loaded contacts' slopes, with the slope of the contact that the
-  // rigid lift follows (the loaded one whose slope is nearest the piece's) read from the rigid
-  // lift, exact on the polylines: sum_(c != c*) w_c (tan theta_c - h'), w_c the contacts' shares
-  // of the vertical force. One loaded contact: no excess, the rigid slope.
+  // rigid lift follows read from the rigid lift, exact on the polylines: sum_(c != c*) w_c
+  // (tan theta_c - h'), w_c the contacts' shares of the vertical force. One loaded contact: no
+  // excess, the rigid slope. c* is the deepest contact (the highest touch height; of equal ones,
+  // the slope nearest h'): the top of the splines' rigid lift, so the excess is the loaded model's
+  // own departure from its zero load. Where the splines' top is another asperity than the
+  // polylines' (a sub-sample difference of the two interpolations), reading the contact nearest
+  // h' instead took the splines' top for an extra contact while it carried the load alone, and
+  // the lift rose by its slope until the hand-over: a spurious stop.
   auto evaluate = [&](double s, double hint, double hb, double ha, std::vector<HertzContact>& c, double* slope,
                       double* before, double* after, Terms* terms) -> bool {
     thread_local Pair::Prepared prepared;
@@ -562,8 +567,12 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
     auto excess = [&](double hp, double vertical) {
       std::size_t follow = c.size();
       const std::vector<double>&tn = prepared.tangent, &sn = prepared.sine, &cs = prepared.cosine;
-      for (std::size_t q = 0; q < c.size(); ++q)
-        if (c[q].force > 0 && (follow == c.size() || std::abs(tn[q] - hp) < std::abs(tn[follow] - hp))) follow = q;
+      for (std::size_t q = 0; q < c.size(); ++q) {
+        if (!(c[q].force > 0)) continue;
+        if (follow == c.size() || c[q].touch_height > c[follow].touch_height ||
+            (c[q].touch_height == c[follow].touch_height && std::abs(tn[q] - hp) < std::abs(tn[follow] - hp)))
+          follow = q;
+      }
       double e = 0;
       for (std::size_t q = 0; q < c.size(); ++q)
         if (q != follow && c[q].force > 0) e += c[q].force * (sn[q] - cs[q] * hp);
