@@ -48,6 +48,8 @@ TEST(CliLoad, PredictsUnderLoadWithItsCurve) {
   EXPECT_DOUBLE_EQ(j["load_curve_n"][0].get<double>(), 1e-4);  // the curve in increasing load
   EXPECT_DOUBLE_EQ(j["load_curve_median_deg"][1].get<double>(), j["friction_angle_deg"].get<double>());
   EXPECT_DOUBLE_EQ(j["rigid_friction_angle_deg"].get<double>(), r["friction_angle_deg"].get<double>());
+  // The loaded lift of profiles tends to the rigid one: its zero-load limit is the rigid median.
+  EXPECT_DOUBLE_EQ(j["load_zero_limit_deg"].get<double>(), r["friction_angle_deg"].get<double>());
   // Two bodies of E = 3 GPa, nu = 0.35: E* = E / (2 (1 - nu^2)).
   EXPECT_NEAR(j["contact_modulus_pa"].get<double>(), 3e9 / (2 * (1 - 0.35 * 0.35)), 1);
   const CliRun text = run_cli("predict " + wm + " --load 1mN --modulus 3GPa --poisson 0.35 --upper-modulus rigid");
@@ -107,6 +109,18 @@ TEST(CliLoad, PredictsAMapPairUnderLoad) {
   EXPECT_GT(j["load_contact_fraction_max"].get<double>(), 0);
   EXPECT_TRUE(j["load_merged_share"].is_null());
   EXPECT_EQ(j["drop_friction_angles_deg"].size(), 4u);
+  // The loaded lift tends to the rigid lines' as W^(2/3) (approach and U/W): at 1e-15 N the curve is
+  // the zero-load limit, the locked block on the rigid lines; where that differs from the free
+  // block's median (the rigid prediction) by more than 0.1 deg, a warning says so.
+  const CliRun tiny = run_cli("predict " + f + " --drops 2 --load 1e-15N --modulus 70GPa --poisson 0.3 --json");
+  ASSERT_EQ(tiny.code, 0) << tiny.err;
+  const json t = json::parse(tiny.out);
+  const double zero = t["load_zero_limit_deg"].get<double>();
+  EXPECT_NEAR(t["friction_angle_deg"].get<double>(), zero, 1e-3);
+  EXPECT_DOUBLE_EQ(j["load_zero_limit_deg"].get<double>(), zero);  // a property of the lines, not of W
+  bool locked_warning = false;
+  for (const auto& w : t["warnings"]) locked_warning = locked_warning || w["code"] == "load-locked-block";
+  EXPECT_EQ(locked_warning, std::abs(zero - r["friction_angle_deg"].get<double>()) > 0.1);
   const CliRun text = run_cli("predict " + f + " --drops 2 --load 1mN --modulus 70GPa --poisson 0.3");
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_NE(text.out.find("friction angle against load"), std::string::npos) << text.out;
