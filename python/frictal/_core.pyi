@@ -124,6 +124,9 @@ class Prediction:
     def load_merged_share(self) -> Any:
         """under load: the share of the load on contacts that merge with a neighbour, mean over offsets (1)"""
     @property
+    def load_zero_limit(self) -> Any:
+        """under load: the loaded model's limit as the load goes to 0, the median over the same drops (profiles: the rigid median; maps: the block locked to d on the rigid lift, which the free block's median can differ from: warning load-locked-block) (rad)"""
+    @property
     def locked_friction_angle(self) -> Any:
         """maps, a diagnostic: the median hold angle with the block locked to d (NaN for profiles) (rad)"""
     @property
