@@ -89,10 +89,11 @@ void print_text(const Prediction& p, const Args& a) {
   if (std::isfinite(p.load) && p.is_map) {
     fmt::print(
         "  under load: W = {:.4g} N (normal force {:.4g} N at the rigid median {} deg), E* = {:.4g} Pa; the rigid "
-        "prediction (free block) reads {} deg\n  the half-space: {:.3g} contact patches per offset, approach {:.3g} m, "
-        "largest contact fraction {:.3g}, rms contact slope {:.3g}\n",
+        "prediction (free block) reads {} deg, the loaded model at zero load (block locked to d) {} deg\n  the "
+        "half-space: {:.3g} contact patches per offset, approach {:.3g} m, largest contact fraction {:.3g}, rms "
+        "contact slope {:.3g}\n",
         p.load, p.normal_load, deg_text(p.rigid_friction_angle), p.contact_modulus, deg_text(p.rigid_friction_angle),
-        p.load_contacts, p.load_approach, p.load_contact_fraction, p.load_contact_slope);
+        deg_text(p.load_zero_limit), p.load_contacts, p.load_approach, p.load_contact_fraction, p.load_contact_slope);
   } else if (std::isfinite(p.load)) {
     fmt::print(
         "  under load: W = {:.4g} N (normal force {:.4g} N at the rigid median {} deg), E* = {:.4g} Pa; the rigid "

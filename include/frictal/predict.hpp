@@ -197,6 +197,11 @@ struct Prediction {
   double normal_load = std::numeric_limits<double>::quiet_NaN();
   double contact_modulus = std::numeric_limits<double>::quiet_NaN();
   double rigid_friction_angle = std::numeric_limits<double>::quiet_NaN();
+  /// The loaded model's limit as W -> 0, the median over the same drops (unit: rad): profiles, the
+  /// rigid prediction's median (the loaded lift tends to the rigid one); maps, the block locked to
+  /// d on the rigid lift of the loaded model's lines, which can differ from the free rigid block's
+  /// median (warning load-locked-block).
+  double load_zero_limit = std::numeric_limits<double>::quiet_NaN();
   /// The friction angle against load: the loads in increasing order (unit: N) and the hold
   /// angle's median and 5-95 % over the same drops at d at each (unit: rad).
   std::vector<double> load_curve, load_curve_q05, load_curve_q50, load_curve_q95;

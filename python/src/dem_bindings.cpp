@@ -3,8 +3,10 @@
 // fold over (e.g. koch_curve(...)). SI units: m, rad, s, kg. The keywords of tilt() are the
 // library's tilt settings table (tilt_settings(), frictal/tilt.hpp): the same names as the
 // `frictal tilt` options and the 'tilt' study kind's TOML keys.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 
 #include <fmt/core.h>
@@ -35,6 +37,32 @@ Curve to_curve(const py::object& o, const char* name) {
     }
   }
   throw py::type_error(std::string(name) + ": expected a frictal.Profile or an (x, z) pair of 1-D arrays");
+}
+
+/// What a generated surface given from Python is, in place of the CLI's generator parameters:
+/// the period the run takes it to repeat with, its length and its point count (the generator
+/// itself is not known to a Profile or a curve).
+const std::vector<Field>& given_surface_fields() {
+  static const std::vector<Field> fields = [] {
+    Field period;
+    period.name = "period";
+    period.unit = "m";
+    period.min = 0;
+    period.min_open = true;
+    period.help = "the period the run takes the surface to repeat with";
+    Field length;
+    length.name = "length";
+    length.unit = "m";
+    length.min = 0;
+    length.help = "the lower surface's length (last x - first x)";
+    Field points;
+    points.name = "points";
+    points.type = FieldType::Integer;
+    points.min = 2;
+    points.help = "the lower surface's points";
+    return std::vector<Field>{period, length, points};
+  }();
+  return fields;
 }
 
 using MapArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -131,7 +159,17 @@ void frictal_bind_dem(py::module_& m) {
         TiltSurface surface;
         surface.conditioning = conditioning;
         surface.test = &sc.test;
-        return py_detail::to_dict(tilt_columns(), TiltReport{r, c, &sc, measured ? &surface : nullptr, &warnings});
+        if (!measured) {
+          // A generated surface: what was given (a repeating Profile or an (x, z) curve) and the
+          // period, length and points the run took.
+          surface.generator = lower_profile ? "a repeating Profile" : "an (x, z) curve";
+          surface.parameters = &given_surface_fields();
+          const auto [xmin, xmax] = std::minmax_element(lo.x.begin(), lo.x.end());
+          const std::vector<Field>& f = given_surface_fields();  // period, length, points
+          surface.values = {
+              {f[0].name, c.period}, {f[1].name, *xmax - *xmin}, {f[2].name, static_cast<std::int64_t>(lo.x.size())}};
+        }
+        return py_detail::to_dict(tilt_columns(), TiltReport{r, c, &sc, &surface, &warnings});
       },
       py::arg("lower"), py::arg("upper") = py::none(),
       ("tilt(lower, upper=None, **settings) -> dict\n\nTilting-block test on the spheropolygon engine (paper Sec. "
@@ -162,7 +200,8 @@ void frictal_bind_dem(py::module_& m) {
        "settled_speed (m/s, the upper block's speed when the tilt starts), "
        "settings (every setting the run used, SI: `frictal tilt --json`'s settings), surface (measured: "
        "conditioning and the stated test: block, block_length, runaway_distance, test_lengths, drop_range, drop; "
-       "`frictal tilt --json`'s surface in SI), "
+       "`frictal tilt --json`'s surface in SI; generated: generator (what was given: a repeating Profile or an "
+       "(x, z) curve), period, length (m) and points of the lower surface), "
        "warnings (list of dicts code, message), scales (resting_overlap, spheroradius, shortest_edge, "
        "smallest_feature (lower, upper) in m, time_step, contact_period in s), estimate and stage_time (the cost "
        "estimated before the run and the wall time by stage, s: `frictal tilt --json`'s estimate and stage_time_s), "

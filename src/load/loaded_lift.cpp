@@ -67,6 +67,28 @@ std::size_t edge_of(const std::vector<double>& xs, double x) {
   return std::clamp<std::size_t>(k, 1, xs.size() - 1) - 1;
 }
 
+// std::upper_bound over xs[lo, hi) for x, started where a mean spacing (1 / inv) puts x and
+// widened by doubling steps to a bracket, then searched: the same position as a search of the
+// whole range, in a few steps on evenly spaced vertices instead of log2 of their number.
+std::size_t upper_near(const std::vector<double>& xs, double x, std::size_t lo, std::size_t hi, double inv) {
+  if (lo >= hi) return lo;
+  const double t = (x - xs.front()) * inv;
+  const std::size_t g = !(t > double(lo)) ? lo : t >= double(hi - 1) ? hi - 1 : std::size_t(t);
+  std::size_t a = g, b = g;  // the position lies in [a, b]
+  if (xs[g] <= x) {
+    a = b = g + 1;
+    for (std::size_t step = 1; b < hi && xs[b] <= x; step *= 2) a = b + 1, b = std::min(hi, b + step);
+  } else {
+    for (std::size_t step = 1; a > lo && xs[a - 1] > x; step *= 2) b = a - 1, a = b > lo + step ? b - step : lo;
+  }
+  return std::size_t(std::upper_bound(xs.begin() + std::ptrdiff_t(a), xs.begin() + std::ptrdiff_t(b), x) - xs.begin());
+}
+
+// edge_of(xs, x) by upper_near over the whole of xs.
+std::size_t edge_near(const std::vector<double>& xs, double x, double inv) {
+  return std::clamp<std::size_t>(upper_near(xs, x, 0, xs.size(), inv), 1, xs.size() - 1) - 1;
+}
+
 double lerp_at(const std::vector<double>& xs, const std::vector<double>& v, std::size_t k, double x) {
   const double w = xs[k + 1] - xs[k];
   if (!(w > 0)) return v[k + 1];
@@ -126,6 +148,17 @@ class Pair {
         max_radius_(max_radius) {
     fine_min_ = chunk_min(kFine);
     coarse_min_ = chunk_min(kCoarse);
+    factor();
+    auto reciprocal_spacing = [](const std::vector<double>& x) {
+      const double r = double(x.size() - 1) / (x.back() - x.front());
+      return std::isfinite(r) ? r : 0.0;
+    };
+    finvdx_ = reciprocal_spacing(f_.x), ginvdx_ = reciprocal_spacing(g_.x);
+    ginvw_.assign(g_.x.size(), -1.0);
+    for (std::size_t j = 0; j + 1 < g_.x.size(); ++j) {
+      const double w = g_.x[j + 1] - g_.x[j];
+      if (w > 0 && std::isfinite(1 / w)) ginvw_[j] = 1 / w;
+    }
     double lo = kInf, hi = -kInf;
     for (double z : f_.z) lo = std::min(lo, z), hi = std::max(hi, z);
     for (double z : g_.z) lo = std::min(lo, -z), hi = std::max(hi, -z);
@@ -147,7 +180,7 @@ class Pair {
     // The upper vertices over [a, b], in chunks [j0, j0 + chunk] (neighbours share a vertex, so
     // that the chunks' spans cover every edge); a chunk is kept where the lower's maximum over
     // its span minus its own lowest height reaches the threshold.
-    const std::size_t jlo = edge_of(g_.x, a - s), jhi = std::min(edge_of(g_.x, b - s) + 1, m - 1);
+    const std::size_t jlo = edge_near(g_.x, a - s, ginvdx_), jhi = std::min(edge_near(g_.x, b - s, ginvdx_) + 1, m - 1);
     std::size_t region_j0 = 0, region_j1 = 0;
     bool open = false;
     auto flush = [&]() {
@@ -167,11 +200,13 @@ class Pair {
     const double reach = threshold - kOvershoot * scale_;
     for (std::size_t c0 = (jlo / kCoarse) * kCoarse; c0 < jhi; c0 += kCoarse) {
       const std::size_t c1 = std::min(c0 + kCoarse, m - 1);
-      if (bound(s, c0, c1, coarse_min_[c0 / kCoarse], a, b) < reach) continue;
+      const Span cs = clip(s, c0, c1, a, b, 0, f_.x.size());
+      if (bound(cs, coarse_min_[c0 / kCoarse]) < reach) continue;
+      // The fine chunks' spans lie in the coarse one's: their searches stay within its vertices.
       for (std::size_t f0 = c0; f0 < c1; f0 += kFine) {
         const std::size_t f1 = std::min(f0 + kFine, m - 1);
         if (f1 < jlo || f0 > jhi) continue;
-        if (bound(s, f0, f1, fine_min_[f0 / kFine], a, b) >= reach) keep(f0, f1);
+        if (bound(clip(s, f0, f1, a, b, cs.lo, cs.hi), fine_min_[f0 / kFine]) >= reach) keep(f0, f1);
       }
     }
     flush();
@@ -258,11 +293,29 @@ class Pair {
     return out;
   }
 
-  // An upper bound of d_s over the span of upper vertices [j0, j1] within [a, b].
-  double bound(double s, std::size_t j0, std::size_t j1, double gmin, double a, double b) const {
-    const double x0 = std::max(g_.x[j0] + s, a), x1 = std::min(g_.x[j1] + s, b);
-    if (x0 > x1) return -kInf;
-    const std::size_t i0 = edge_of(f_.x, x0), i1 = std::min(edge_of(f_.x, x1) + 1, f_.x.size() - 1);
+  // The span of upper vertices [j0, j1] within [a, b] at offset s, [x0, x1], and the positions
+  // [lo, hi] of the lower's first vertices beyond x0 and beyond x1 (std::upper_bound), searched
+  // within [lo0, hi0] (the positions of a span that holds this one; the whole lower: 0, n).
+  struct Span {
+    double x0 = 0, x1 = 0;
+    std::size_t lo = 0, hi = 0;
+  };
+  Span clip(double s, std::size_t j0, std::size_t j1, double a, double b, std::size_t lo0, std::size_t hi0) const {
+    Span r;
+    r.x0 = std::max(g_.x[j0] + s, a), r.x1 = std::min(g_.x[j1] + s, b);
+    if (r.x0 > r.x1) return r;
+    r.lo = upper_near(f_.x, r.x0, lo0, hi0, finvdx_);
+    r.hi = upper_near(f_.x, r.x1, r.lo, hi0, finvdx_);
+    return r;
+  }
+  // An upper bound of d_s over a span: the lower's maximum over the edges that hold it minus the
+  // upper's least height over its vertices, gmin.
+  double bound(const Span& sp, double gmin) const {
+    if (sp.x0 > sp.x1) return -kInf;
+    const std::size_t n = f_.x.size();
+    // edge_of(x) from the positions: clamp(position, 1, n - 1) - 1.
+    const std::size_t i0 = std::clamp<std::size_t>(sp.lo, 1, n - 1) - 1;
+    const std::size_t i1 = std::min(std::clamp<std::size_t>(sp.hi, 1, n - 1), n - 1);
     return fmax_.max(i0, i1) - gmin;
   }
 
@@ -273,82 +326,159 @@ class Pair {
   // the radius, at every change of the rigid lift's contact). A region whose spline stays below
   // the threshold (below()) has no contact: its solve is skipped.
   static constexpr std::size_t kPad = 8;
+  static constexpr std::size_t kEnd = std::numeric_limits<std::size_t>::max();
+  // Rows of a region eliminated with its own factors before the lower's are used: the factors
+  // forget the rows above by a factor h0 h1 / diag^2 <= 1/12 per row, so after kWarm rows the
+  // region's and the lower's agree to 1/12^20 (4e-22), below the rounding.
+  static constexpr std::size_t kWarm = 20;
+
+  // The forward elimination of the spline system along the lower's vertices, from its first
+  // interior vertex: row i (h0 = x_i - x_(i-1), h1 = x_(i+1) - x_i) has the diagonal
+  // 2 (h0 + h1) - h0 c_(i-1), c_i = h1 / diagonal; kept are c_i, 1 / diagonal and h0 / diagonal.
+  // A region whose samples are consecutive vertices eliminates the same rows; its own first rows
+  // differ, and that difference fades within kWarm rows. Three coincident vertices restart it.
+  void factor() {
+    const std::size_t n = f_.x.size();
+    fc_.assign(n, 0.0), finv_.assign(n, 0.0), fw_.assign(n, 0.0);
+    double c = 0;
+    for (std::size_t i = 1; i + 1 < n; ++i) {
+      const double h0 = f_.x[i] - f_.x[i - 1], h1 = f_.x[i + 1] - f_.x[i];
+      const double diag = 2 * (h0 + h1) + (i == 1 ? h0 : -h0 * c);
+      if (!(diag > 0)) {
+        c = 0;
+        continue;
+      }
+      fc_[i] = c = h1 / diag;
+      finv_[i] = 1 / diag;
+      fw_[i] = h0 / diag;
+    }
+  }
   void region(double s, double threshold, std::size_t j0, std::size_t j1, double a, double b,
               std::vector<HertzContact>& out) const {
     const double xl = std::max(g_.x[j0] + s, a), xr = std::min(g_.x[j1] + s, b);
     if (!(xl <= xr)) return;
     const std::size_t n = f_.x.size();
-    const std::size_t il = edge_of(f_.x, xl), ir = edge_of(f_.x, xr) + 1;
+    const std::size_t il = edge_near(f_.x, xl, finvdx_), ir = edge_near(f_.x, xr, finvdx_) + 1;
     const std::size_t i0 = il > kPad ? il - kPad : 0, i1 = std::min(ir + kPad, n - 1);
     // At most i1 - i0 + 3 samples (the vertices and the two ends), written through local pointers.
     xs_.resize(i1 - i0 + 3), ys_.resize(i1 - i0 + 3);
     double* xw = xs_.data();
     double* yw = ys_.data();
+    is_.resize(i1 - i0 + 3);
+    std::size_t* iw = is_.data();  // each sample's lower vertex, kEnd for an end of the overlap
     std::size_t m = 0;
-    std::size_t j = edge_of(g_.x, f_.x[i0] - s);
+    std::size_t j = edge_near(g_.x, f_.x[i0] - s, ginvdx_);
     // A sample closer than a quarter of the lower's spacing to the previous one (an end of the
     // overlap next to a vertex) is left out, the end kept: a spline over a tiny interval swings.
     const double gap = 0.25 * (f_.x.back() - f_.x.front()) / double(n - 1);
-    auto add = [&](double x, double fz, bool end) {
+    auto add = [&](double x, double fz, std::size_t vertex) {
+      const bool end = vertex == kEnd;
       const double y = fz - g_at(x - s, j);
       if (m > 0 && x - xw[m - 1] < gap) {
         if (end && m > 1)
-          xw[m - 1] = x, yw[m - 1] = y;
+          xw[m - 1] = x, yw[m - 1] = y, iw[m - 1] = kEnd;
         else if (end && x > xw[m - 1])
-          xw[m] = x, yw[m] = y, ++m;  // a tiny overlap: its two ends
+          xw[m] = x, yw[m] = y, iw[m] = kEnd, ++m;  // a tiny overlap: its two ends
         return;
       }
-      xw[m] = x, yw[m] = y, ++m;
+      xw[m] = x, yw[m] = y, iw[m] = vertex, ++m;
     };
-    if (f_.x[i0] <= a) add(a, f_at(a), true);
+    if (f_.x[i0] <= a) add(a, f_at(a), kEnd);
     for (std::size_t i = i0; i <= i1; ++i)
-      if (f_.x[i] > a && f_.x[i] < b) add(f_.x[i], f_.z[i], false);
-    if (f_.x[i1] >= b) add(b, f_at(b), true);
+      if (f_.x[i] > a && f_.x[i] < b) add(f_.x[i], f_.z[i], i);
+    if (f_.x[i1] >= b) add(b, f_at(b), kEnd);
     xs_.resize(m), ys_.resize(m);
-    if (m < 2 || (prune_ && below(threshold))) return;
+    if (m < 2) return;
+    // The chords' slopes, once for the bound and the solve.
+    ss_.resize(m - 1);
+    double* S = ss_.data();
+    for (std::size_t k = 0; k + 1 < m; ++k) S[k] = (yw[k + 1] - yw[k]) / (xw[k + 1] - xw[k]);
+    if (prune_ && below(threshold)) return;
     // The spline's second derivatives M by the tridiagonal solve, with parabolic run-out ends
     // (M_0 = M_1, M_(m-1) = M_(m-2)): a natural end (M = 0) would flatten the curvature of a
     // contact at an end of the overlap (the block's corner), and with it the radius.
-    // Local pointers and the previous row's terms in locals: the sweep's chain of divisions then
-    // runs without a reload through memory in each row.
+    // The factors of rows beyond the first kWarm of a run of consecutive lower vertices are the
+    // lower's own (factor()): the forward sweep there is a multiply and a subtraction per row, no
+    // division in its chain. The rows at the ends of the region, the first kWarm of the run and
+    // any row beside an end of the overlap are eliminated here.
     ms_.assign(m, 0.0);
     const double* X = xs_.data();
     const double* Y = ys_.data();
+    const std::size_t* I = is_.data();
     double* M = ms_.data();
     if (m >= 3) {
       cs_.assign(m, 0.0);
       double* CS = cs_.data();
-      double before = (Y[1] - Y[0]) / (X[1] - X[0]);  // the chord's slope on the piece before k
       double cprev = 0, mprev = 0;
-      for (std::size_t k = 1; k + 1 < m; ++k) {
+      auto row = [&](std::size_t k) {
         const double h0 = X[k] - X[k - 1], h1 = X[k + 1] - X[k];
-        const double after = (Y[k + 1] - Y[k]) / h1;
-        const double rhs = 6 * (after - before);
-        before = after;
+        const double rhs = 6 * (S[k] - S[k - 1]);
         const bool first = k == 1, last = k + 2 == m;
         const double sub = first ? 0.0 : h0, super = last ? 0.0 : h1;
         const double diag = 2 * (h0 + h1) + (first ? h0 : 0.0) + (last ? h1 : 0.0) - sub * (first ? 0.0 : cprev);
         CS[k] = cprev = super / diag;
         M[k] = mprev = (rhs - sub * (first ? 0.0 : mprev)) / diag;
+      };
+      // The run of vertex samples [p, q] (the ends of the overlap are samples 0 and m - 1 at most).
+      std::size_t p = I[0] == kEnd ? 1 : 0, q = I[m - 1] == kEnd ? m - 2 : m - 1;
+      const bool run = p < q && I[p] != kEnd && I[q] != kEnd && I[q] - I[p] == q - p;
+      const std::size_t g0 = run ? std::max<std::size_t>(p + kWarm, 1) : m, g1 = run ? std::min(q, m - 2) : m;
+      std::size_t k = 1;
+      for (; k < std::min(g0, m - 1); ++k) row(k);
+      if (g0 < g1) {
+        const double* gc = fc_.data();
+        const double* ginv = finv_.data();
+        const double* gw = fw_.data();
+        // Two rows a step: M_(k+1) = a_(k+1) - w_(k+1) a_k + w_(k+1) w_k M_(k-1), a = rhs / diagonal,
+        // w = h0 / diagonal, so that the chain carries one product and one sum per two rows.
+        for (; k + 1 < g1; k += 2) {
+          const std::size_t i = I[k];
+          const double a0 = 6 * (S[k] - S[k - 1]) * ginv[i], a1 = 6 * (S[k + 1] - S[k]) * ginv[i + 1];
+          const double w0 = gw[i], w1 = gw[i + 1];
+          CS[k] = gc[i], CS[k + 1] = cprev = gc[i + 1];
+          const double m1 = (a1 - w1 * a0) + (w1 * w0) * mprev;
+          M[k] = a0 - w0 * mprev;
+          M[k + 1] = mprev = m1;
+        }
+        for (; k < g1; ++k) {
+          const std::size_t i = I[k];
+          CS[k] = cprev = gc[i];
+          M[k] = mprev = 6 * (S[k] - S[k - 1]) * ginv[i] - gw[i] * mprev;
+        }
       }
+      for (; k + 1 < m; ++k) row(k);
+      // The back substitution M_k -= c_k M_(k+1), two rows a step likewise.
       double next = M[m - 2];
-      for (std::size_t k = m - 2; k >= 2; --k) M[k - 1] = next = M[k - 1] - CS[k - 1] * next;
+      std::size_t r = m - 2;  // M[r] is final
+      for (; r >= 3; r -= 2) {
+        const double c1 = CS[r - 1], c2 = CS[r - 2];
+        const double m1 = M[r - 1] - c1 * next;
+        next = (M[r - 2] - c2 * M[r - 1]) + (c2 * c1) * next;
+        M[r - 1] = m1, M[r - 2] = next;
+      }
+      if (r == 2) M[1] = M[1] - CS[1] * next;
       M[0] = M[1];
       M[m - 1] = M[m - 2];
     }
     // Maxima of each piece inside [xl, xr] (an end of the overlap where the spline falls from it),
     // with the least sample between each and the previous as its saddle.
+    // A piece that stays below the threshold emits nothing: the spline is the chord plus at most
+    // (t u / 3) (max(-M0, 0) + max(-M1, 0)) <= h^2 / 12 of that (below()); only its saddle counts.
+    // Such pieces are passed over first with the saddle in a local (the full step's lambdas hold
+    // it by reference, which keeps it in memory).
+    auto quiet = [&](std::size_t k) {
+      const double h = X[k + 1] - X[k], y0 = Y[k], y1 = Y[k + 1];
+      const double high = std::max(y0, y1), rise = h * h * (std::max(-M[k], 0.0) + std::max(-M[k + 1], 0.0)) / 12;
+      return prune_ && high + rise + 1e-9 * (std::abs(high) + rise) + 1e-12 * scale_ < threshold;
+    };
     double saddle = -kInf;
     for (std::size_t k = 0; k + 1 < m; ++k) {
+      double low = saddle;
+      while (k + 1 < m && quiet(k)) low = std::min(low, Y[k + 1]), ++k;
+      saddle = low;
+      if (k + 1 >= m) break;
       const double h = X[k + 1] - X[k], M0 = M[k], M1 = M[k + 1];
       const double y0 = Y[k], y1 = Y[k + 1];
-      // A piece that stays below the threshold emits nothing: the spline is the chord plus at most
-      // (t u / 3) (max(-M0, 0) + max(-M1, 0)) <= h^2 / 12 of that (below()); only its saddle counts.
-      const double high = std::max(y0, y1), rise = h * h * (std::max(-M0, 0.0) + std::max(-M1, 0.0)) / 12;
-      if (prune_ && high + rise + 1e-9 * (std::abs(high) + rise) + 1e-12 * scale_ < threshold) {
-        saddle = std::min(saddle, y1);
-        continue;
-      }
       auto value = [&](double t) {
         const double u = h - t;
         return M0 * u * u * u / (6 * h) + M1 * t * t * t / (6 * h) + (y0 / h - M0 * h / 6) * u +
@@ -408,7 +538,7 @@ class Pair {
     for (std::size_t k = 0; k + 1 < m; ++k) hmax = std::max(hmax, xs_[k + 1] - xs_[k]);
     for (std::size_t k = 1; k + 1 < m; ++k) {
       const double h0 = xs_[k] - xs_[k - 1], h1 = xs_[k + 1] - xs_[k];
-      rmax = std::max(rmax, std::abs(6 * ((ys_[k + 1] - ys_[k]) / h1 - (ys_[k] - ys_[k - 1]) / h0)));
+      rmax = std::max(rmax, std::abs(6 * (ss_[k] - ss_[k - 1])));
       wmin = std::min(wmin, h0 + h1);
     }
     const double over = m >= 3 ? hmax * hmax * rmax / (8 * wmin) : 0.0;  // two samples: the chord
@@ -418,9 +548,13 @@ class Pair {
 
   double f_at(double x) const { return lerp_at(f_.x, f_.z, edge_of(f_.x, x), x); }
   // g at u, walking its edge index j forward from the last call's.
+  // The upper's edges' reciprocal widths (-1 across a jump) stand in for a division per sample.
   double g_at(double u, std::size_t& j) const {
     j = std::min(edge_of_from(g_.x, u, j), g_.x.size() - 2);
-    return lerp_at(g_.x, g_.z, j, u);
+    const double r = ginvw_[j];
+    if (!(r > 0)) return g_.z[j + 1];
+    const double t = std::clamp((u - g_.x[j]) * r, 0.0, 1.0);
+    return g_.z[j] + t * (g_.z[j + 1] - g_.z[j]);
   }
 
   // The contact at x of touch height d, the composite's second derivative d2 there (the spline's).
@@ -453,10 +587,15 @@ class Pair {
   RangeMax fmax_;
   std::vector<double> fine_min_, coarse_min_;
   double modulus_ = 0, max_radius_ = 0, scale_ = 1;
-  static thread_local std::vector<double> xs_, ys_, ms_, cs_;
+  // The spline system's factors along the lower's vertices (factor()).
+  std::vector<double> fc_, finv_, fw_, ginvw_;
+  double finvdx_ = 0, ginvdx_ = 0;  // the reciprocal mean spacings of the lower and the upper (1/m)
+  static thread_local std::vector<double> xs_, ys_, ss_, ms_, cs_;
+  static thread_local std::vector<std::size_t> is_;
 };
 
-thread_local std::vector<double> Pair::xs_, Pair::ys_, Pair::ms_, Pair::cs_;
+thread_local std::vector<double> Pair::xs_, Pair::ys_, Pair::ss_, Pair::ms_, Pair::cs_;
+thread_local std::vector<std::size_t> Pair::is_;
 
 Status check_inputs(const Profile& lower, const Profile& upper, const LoadedLiftOptions& o) {
   if (!(o.contact_modulus > 0) || !std::isfinite(o.contact_modulus))
@@ -551,9 +690,14 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
   // over the rigid lift's on the piece before s (slope hb) into `before`, on the piece after it
   // (ha) into `after`, and the diagnostics' terms (if asked). The excess: the lift's slope is the
   // force-weighted mean of the loaded contacts' slopes, with the slope of the contact that the
-  // rigid lift follows (the loaded one whose slope is nearest the piece's) read from the rigid
-  // lift, exact on the polylines: sum_(c != c*) w_c (tan theta_c - h'), w_c the contacts' shares
-  // of the vertical force. One loaded contact: no excess, the rigid slope.
+  // rigid lift follows read from the rigid lift, exact on the polylines: sum_(c != c*) w_c
+  // (tan theta_c - h'), w_c the contacts' shares of the vertical force. One loaded contact: no
+  // excess, the rigid slope. c* is the deepest contact (the highest touch height; of equal ones,
+  // the slope nearest h'): the top of the splines' rigid lift, so the excess is the loaded model's
+  // own departure from its zero load. Where the splines' top is another asperity than the
+  // polylines' (a sub-sample difference of the two interpolations), reading the contact nearest
+  // h' instead took the splines' top for an extra contact while it carried the load alone, and
+  // the lift rose by its slope until the hand-over: a spurious stop.
   auto evaluate = [&](double s, double hint, double hb, double ha, std::vector<HertzContact>& c, double* slope,
                       double* before, double* after, Terms* terms) -> bool {
     thread_local Pair::Prepared prepared;
@@ -562,8 +706,12 @@ Result<LoadedLift> loaded_lift(const Profile& lower, const Profile& upper, const
     auto excess = [&](double hp, double vertical) {
       std::size_t follow = c.size();
       const std::vector<double>&tn = prepared.tangent, &sn = prepared.sine, &cs = prepared.cosine;
-      for (std::size_t q = 0; q < c.size(); ++q)
-        if (c[q].force > 0 && (follow == c.size() || std::abs(tn[q] - hp) < std::abs(tn[follow] - hp))) follow = q;
+      for (std::size_t q = 0; q < c.size(); ++q) {
+        if (!(c[q].force > 0)) continue;
+        if (follow == c.size() || c[q].touch_height > c[follow].touch_height ||
+            (c[q].touch_height == c[follow].touch_height && std::abs(tn[q] - hp) < std::abs(tn[follow] - hp)))
+          follow = q;
+      }
       double e = 0;
       for (std::size_t q = 0; q < c.size(); ++q)
         if (q != follow && c[q].force > 0) e += c[q].force * (sn[q] - cs[q] * hp);

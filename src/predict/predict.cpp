@@ -220,6 +220,7 @@ Status predict_under_load(Prediction& p, const Profile& lower, const Profile& up
   p.load = curve[head];
   p.normal_load = curve[head] * cosine;
   p.contact_modulus = setup->contact_modulus;
+  p.load_zero_limit = p.rigid_friction_angle;  // the loaded lift tends to the rigid one (load.hpp)
   const LoadedLiftDiagnostics& dg = loaded->diagnostics[head];
   p.load_contacts = dg.mean_contacts;
   p.load_approach = dg.mean_approach;
@@ -567,10 +568,12 @@ Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper
   // Each drop's hold angle on its line's curve at load l; a run-away that leaves the line less
   // than d after its last stop is counted (the lift beyond could still have caught it).
   std::size_t off_end = 0, held = 0;
+  // (l = curve.size(): the rigid lines themselves, the curve's limit at zero load.)
   auto drops_on = [&](std::size_t l, std::vector<double>& angles) -> Status {
     angles.assign(uv.size(), 0);
     std::vector<LiftCurve> curves(across.size());
-    for (std::size_t li = 0; li < across.size(); ++li) curves[li] = loaded_curve(li, l);
+    for (std::size_t li = 0; li < across.size(); ++li)
+      curves[li] = l < curve.size() ? loaded_curve(li, l) : rigid_lines[li];
     for (std::size_t k = 0; k < uv.size(); ++k) {
       const std::size_t li = std::size_t(std::find(across.begin(), across.end(), uv[k][1]) - across.begin());
       const LiftCurve& c = curves[li];
@@ -602,6 +605,19 @@ Status predict_maps_under_load(Prediction& p, const Map& lower, const Map& upper
       p.drop_steering.assign(angles.size(), 0.0);
     }
   }
+  // The zero-load limit: the block locked to d on the rigid lines. The free rigid block (the rigid
+  // prediction) steers round stops that the locked one must climb, so the two medians can differ
+  // (docs/load.md, Maps: "Zero load"): said where they do.
+  if (auto st = drops_on(curve.size(), angles); !st) return st;
+  p.load_zero_limit = plain_stats(angles).q50;
+  if (std::abs(p.load_zero_limit - p.rigid_friction_angle) > 0.1 * kPi / 180)
+    add_warning(p.warnings,
+                {"load-locked-block",
+                 fmt::format("the loaded model holds the block locked to the sliding direction: at zero load it "
+                             "reads {:.4g} deg (the locked rigid block, median over the drops) where the free rigid "
+                             "block, the rigid prediction, reads {:.4g} deg; read the change with load from {:.4g} deg",
+                             p.load_zero_limit * 180 / kPi, p.rigid_friction_angle * 180 / kPi,
+                             p.load_zero_limit * 180 / kPi)});
   p.load = curve[head];
   p.normal_load = curve[head] * cosine;
   p.contact_modulus = setup->contact_modulus;

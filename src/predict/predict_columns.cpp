@@ -166,6 +166,11 @@ const Columns<Prediction>& prediction_columns() {
           [](const P& p) { return p.contact_modulus; }),
       deg("rigid_friction_angle_deg", "under load: the rigid prediction's median beside the loaded one",
           [](const P& p) { return p.rigid_friction_angle; }),
+      deg("load_zero_limit_deg",
+          "under load: the loaded model's limit as the load goes to 0, the median over the same drops (profiles: "
+          "the rigid median; maps: the block locked to d on the rigid lift, which the free block's median can "
+          "differ from: warning load-locked-block)",
+          [](const P& p) { return p.load_zero_limit; }),
       list("load_curve_n", "N",
            "under load: the loads of the friction-against-load curve, increasing (one load W given: W x 10^(-2..1) "
            "in half decades)",

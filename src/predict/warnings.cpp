@@ -111,6 +111,11 @@ const std::vector<WarningCode>& warning_codes() {
        "under load, maps: at more than 5 % of the offsets more than half of the overlap is in contact: the load "
        "flattens the roughness that makes the friction (docs/load.md)",
        false, ""},
+      {"load-locked-block",
+       "under load, maps: the loaded model holds the block locked to the sliding direction; at zero load it reads "
+       "the locked rigid block's median (load_zero_limit_deg), more than 0.1 deg from the free rigid block's (the "
+       "rigid prediction): read the change with load from the zero-load limit (docs/load.md, Maps)",
+       false, ""},
       {"load-lift-ends",
        "under load, maps: some drops ran off the end of their line of loaded offsets (the maps' overlap); their "
        "hold angle is the last stop's",

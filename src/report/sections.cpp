@@ -972,6 +972,16 @@ std::string load_curve_figure(const Prediction& p) {
   rigid.value = deg(p.rigid_friction_angle);
   rigid.label = p.is_map ? "rigid median (free block)" : "rigid median";
   pl.lines.push_back(rigid);
+  // Maps: the curve's own limit at zero load (the block locked to d), where it is not the free
+  // block's median.
+  if (p.is_map && std::isfinite(p.load_zero_limit) &&
+      std::abs(p.load_zero_limit - p.rigid_friction_angle) > 0.1 * std::numbers::pi / 180) {
+    RefLine zero;
+    zero.horizontal = true;
+    zero.value = deg(p.load_zero_limit);
+    zero.label = "zero-load limit (block locked to d)";
+    pl.lines.push_back(zero);
+  }
   auto svg = plot_svg(pl);
   if (!svg) return {};
   return figure(*svg, fmt::format("The same drops on the loaded lift at other loads (key load_curve_* of the JSON; "
@@ -979,7 +989,11 @@ std::string load_curve_figure(const Prediction& p) {
                                   "{:.3g} m below first touch; the rigid median {}{}.",
                                   p.contact_modulus, p.load, p.load_contacts,
                                   p.is_map ? "contact patches" : "asperity contacts", p.load_approach,
-                                  fmt_deg(p.rigid_friction_angle), p.is_map ? " (the free rigid block)" : "")) +
+                                  fmt_deg(p.rigid_friction_angle),
+                                  p.is_map ? fmt::format(" (the free rigid block); the curve's limit at zero load, the "
+                                                         "block locked to d on the rigid lift, {}",
+                                                         fmt_deg(p.load_zero_limit))
+                                           : "")) +
          quantile_band_table(b, "load-curve", "load", [](double x) { return fmt::format("{:.3g} N", x); });
 }
 

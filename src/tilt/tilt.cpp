@@ -340,6 +340,11 @@ Result<double> predict_theta_max(Faces& f, const TiltConfig& cfg, unsigned threa
 // starts: the exact lift of the finite blocks from d behind the rest to the end of their overlap
 // in the sliding direction (hold_lift_range), rigid profiles
 // and the run's spheroradius, in the sliding direction. A failure leaves NaN and says why.
+// These model this run (the bracket of tilt_validity), so they read the lift as far as the
+// simulated blocks overlap: a run dropped inside the stated test's drop range can still be
+// carried past the offsets where the block lies wholly over the lower surface before it runs
+// away, and the simulation then feels the partial overlap. The spread over drops below is the
+// stated test's (the lift cut to those offsets), as predict() reads it.
 void predict_hold_angles(const Faces& f, const TiltConfig& cfg, TiltResult& res) {
   if (!cfg.predict || !f.has_env) return;
   const double s = res.rest_offset, d = cfg.runaway_distance;

@@ -81,9 +81,10 @@ const Columns<TiltSurface>& tilt_surface_columns() {
   auto files = [](const T& s) { return s.generator.empty(); };
   auto stated = [](const T& s) { return s.test && !s.test->block.empty(); };
   static const Columns<T> cols = {
-      only_if(column<T>(
-                  "generator", "text", "the generator of both blocks (frictal surface)",
-                  [](const T& s) { return s.generator; }, "-"),
+      only_if(column<T>("generator", "text",
+                        "the generator of both blocks (frictal surface; Python: what was given, a repeating Profile or "
+                        "an (x, z) curve, with its period, length and points)",
+                        [](const T& s) { return s.generator; }),
               [](const T& s) { return !s.generator.empty(); }),
       only_if(column<T>(
                   "lower", "text", "the lower surface's file", [](const T& s) { return s.lower; }, "-"),

@@ -1,5 +1,6 @@
 // `frictal predict --load`: friction under load from the CLI (the keys of the output table, the
 // rigid answer without --load) and its errors, each naming the option and what it expects.
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -8,6 +9,11 @@
 #include "frictal/io.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
 
 using json = nlohmann::json;
 
@@ -42,6 +48,8 @@ TEST(CliLoad, PredictsUnderLoadWithItsCurve) {
   EXPECT_DOUBLE_EQ(j["load_curve_n"][0].get<double>(), 1e-4);  // the curve in increasing load
   EXPECT_DOUBLE_EQ(j["load_curve_median_deg"][1].get<double>(), j["friction_angle_deg"].get<double>());
   EXPECT_DOUBLE_EQ(j["rigid_friction_angle_deg"].get<double>(), r["friction_angle_deg"].get<double>());
+  // The loaded lift of profiles tends to the rigid one: its zero-load limit is the rigid median.
+  EXPECT_DOUBLE_EQ(j["load_zero_limit_deg"].get<double>(), r["friction_angle_deg"].get<double>());
   // Two bodies of E = 3 GPa, nu = 0.35: E* = E / (2 (1 - nu^2)).
   EXPECT_NEAR(j["contact_modulus_pa"].get<double>(), 3e9 / (2 * (1 - 0.35 * 0.35)), 1);
   const CliRun text = run_cli("predict " + wm + " --load 1mN --modulus 3GPa --poisson 0.35 --upper-modulus rigid");
@@ -101,6 +109,18 @@ TEST(CliLoad, PredictsAMapPairUnderLoad) {
   EXPECT_GT(j["load_contact_fraction_max"].get<double>(), 0);
   EXPECT_TRUE(j["load_merged_share"].is_null());
   EXPECT_EQ(j["drop_friction_angles_deg"].size(), 4u);
+  // The loaded lift tends to the rigid lines' as W^(2/3) (approach and U/W): at 1e-15 N the curve is
+  // the zero-load limit, the locked block on the rigid lines; where that differs from the free
+  // block's median (the rigid prediction) by more than 0.1 deg, a warning says so.
+  const CliRun tiny = run_cli("predict " + f + " --drops 2 --load 1e-15N --modulus 70GPa --poisson 0.3 --json");
+  ASSERT_EQ(tiny.code, 0) << tiny.err;
+  const json t = json::parse(tiny.out);
+  const double zero = t["load_zero_limit_deg"].get<double>();
+  EXPECT_NEAR(t["friction_angle_deg"].get<double>(), zero, 1e-3);
+  EXPECT_DOUBLE_EQ(j["load_zero_limit_deg"].get<double>(), zero);  // a property of the lines, not of W
+  bool locked_warning = false;
+  for (const auto& w : t["warnings"]) locked_warning = locked_warning || w["code"] == "load-locked-block";
+  EXPECT_EQ(locked_warning, std::abs(zero - r["friction_angle_deg"].get<double>()) > 0.1);
   const CliRun text = run_cli("predict " + f + " --drops 2 --load 1mN --modulus 70GPa --poisson 0.3");
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_NE(text.out.find("friction angle against load"), std::string::npos) << text.out;
@@ -146,4 +166,65 @@ TEST(CliLoad, MergedContactsMakeThePredictionDoubtful) {
   const CliRun text = run_cli(pair + "1mN");
   ASSERT_EQ(text.code, 0) << text.err;
   EXPECT_EQ(text.out.rfind("DOUBTFUL (load-contacts-merge", 0), 0u) << text.out;
+}
+
+// A light load on a measured pair is the rigid test plus a small elastic sink: the loaded
+// prediction from one drop agrees with the spheropolygon tilt test with Hertzian contacts (the
+// simulation, a second method) at the same drop, load and material. Two windows of the Dektak
+// scan (as bench/loaded_tilt.py cuts them: 100-160 um below, 400-420 um above, its raw x column),
+// the drop 2 um, d = 1 um: the simulated block slides at 0.53-0.85 deg between 0.1 and 1 uN.
+// There the splines' highest asperity (the Hertz model's) is not the polylines' (the rigid
+// lift's) over part of the run-away; had the loaded lift taken it for an extra contact, its
+// slope would have raised a stop that the simulation does not have (3.83 deg at 1 uN).
+TEST(CliLoad, ALightLoadOnAMeasuredPairReadsWhatTheHertzianTiltTestReads) {
+  std::ifstream in(data("profiles/dektak-1.csv"), std::ios::binary);
+  ASSERT_TRUE(in.good());
+  std::vector<std::pair<double, double>> xz;  // um
+  bool scan = false;
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("Lateral um", 0) == 0) {
+      scan = true;
+      continue;
+    }
+    double x = 0, z = 0;
+    if (scan && std::sscanf(line.c_str(), "%lf,%lf", &x, &z) == 2) xz.emplace_back(x, z);
+  }
+  ASSERT_GT(xz.size(), 9000u);
+  auto window = [&](const std::string& name, double x0, double x1) {
+    std::string text = "x_m,z_m\n";
+    double first = -1;
+    for (const auto& [x, z] : xz) {
+      if (x < x0 || x > x1) continue;
+      if (first < 0) first = x;
+      text += fmt::format("{:.17g},{:.17g}\n", (x - first) * 1e-6, z * 1e-6);
+    }
+    const std::string path = temp_path(name);
+    write_file(path, text);
+    return path;
+  };
+  const std::string lower = window("dektak-window-lower.csv", 100, 160);
+  const std::string upper = window("dektak-window-upper.csv", 400, 420);
+  const std::string test = " --detrend line --initial-offset=2e-6 --runaway-distance 1e-6";
+  // The upper block's weight at the default density, to set the density that makes it weigh W.
+  const CliRun probe = run_cli("tilt --lower " + lower + " --upper " + upper + test + " --max-tilt 0.1 --json -q");
+  ASSERT_EQ(probe.code, 0) << probe.err;
+  const json pj = json::parse(probe.out);
+  const double weight = pj["upper_mass_kg"].get<double>() * pj["settings"]["gravity"].get<double>();
+  const double density = pj["settings"]["density"].get<double>();
+  for (const double W : {1e-7, 1e-6}) {
+    const CliRun sim = run_cli(fmt::format(
+        "tilt --lower {} --upper {}{} --hold-rotation --protocol quasi-static --contact-law hertz --block-modulus 7e10 "
+        "--block-poisson 0.3 --elastic-blocks 2 --density {:.17g} --json -q",
+        lower, upper, test, density * W / weight));
+    ASSERT_EQ(sim.code, 0) << sim.err;
+    const json s = json::parse(sim.out);
+    ASSERT_TRUE(s["slid"].get<bool>());
+    const CliRun pred = run_cli(fmt::format(
+        "predict {} {} --detrend line --start-offset=2e-6 --runaway-distance 1e-6 --load {:g}N --modulus 70GPa "
+        "--poisson 0.3 --json -q",
+        lower, upper, W));
+    ASSERT_EQ(pred.code, 0) << pred.err;
+    const json p = json::parse(pred.out);
+    EXPECT_NEAR(p["friction_angle_deg"].get<double>(), s["friction_angle_deg"].get<double>(), 0.3) << "W = " << W;
+  }
 }

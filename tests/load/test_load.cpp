@@ -99,6 +99,41 @@ TEST(LoadedLift, OneTiltedAsperityIsHertzAlongItsNormal) {
   }
 }
 
+TEST(LoadedLift, OneTiltedAsperityOnIrregularSamplesIsHertzAlongItsNormal) {
+  // The asperity above on a lower surface sampled at spacings between 0.6 and 1.4 times the mean,
+  // with one vertex doubled (a zero-width edge) just outside the overlap: the spline of the
+  // composite reproduces a parabola whatever the spacing (its constant second derivative solves
+  // the spline's system exactly), so the contact is Hertz's as on even samples. The spline solve's
+  // factors along the lower (Pair::factor) then run over uneven spacings and the zero-width edge.
+  const double rho = 1e-3, t = 0.2, x0 = 1e-3, E = 1e9, W = 1e-3;
+  auto f = [&](double x) { return t * x - (x - x0) * (x - x0) / (2 * rho); };
+  Profile lower;
+  for (std::size_t i = 0; i <= 200; ++i) {
+    const double jitter = i == 0 || i == 200 ? 0.0 : 0.4 * std::sin(2.3 * double(i)) * 0.5;
+    const double x = 1e-5 * (double(i) + jitter);
+    lower.x.push_back(x), lower.z.push_back(f(x));
+    if (i == 40) lower.x.push_back(x), lower.z.push_back(f(x));
+  }
+  const Profile upper = sampled(101, 1e-3, [&](double u) { return t * u; });
+  const double s = 0.5e-3;
+  LoadedLiftOptions o = options(E, W);
+  o.max_radius = 1;
+  auto st = loaded_state(lower, upper, s, W, o);
+  ASSERT_TRUE(st) << st.error().message;
+  const double theta = std::atan(t), c = std::cos(theta);
+  const double R = rho / (c * c * c), F = W / c;
+  const double delta = std::pow(3 * F / (4 * E * std::sqrt(R)), 2.0 / 3.0);
+  const HertzContact& k =
+      *std::max_element(st->contacts.begin(), st->contacts.end(),
+                        [](const HertzContact& a, const HertzContact& b) { return a.force < b.force; });
+  EXPECT_NEAR(k.x, x0, 1e-12);
+  EXPECT_NEAR(k.slope, theta, 1e-9);
+  EXPECT_NEAR(k.radius / R, 1, 1e-6);
+  EXPECT_NEAR(k.force / F, 1, 1e-9);
+  EXPECT_NEAR(k.interference / delta, 1, 1e-9);
+  EXPECT_NEAR(st->effective_slope, t, 1e-9);
+}
+
 namespace {
 
 // A pair whose composite at offset 0 is b(x) = max(c1 - (x - x1)^2 / (2 rho1), c2 - (x - x2)^2 /

@@ -138,6 +138,11 @@ def test_tilt_threads_change_nothing():
     assert "threads" not in [f["name"] for f in frictal.tilt_settings()]
     with pytest.raises(ValueError, match="threads"):
         frictal.tilt(k2, threads=-1)
+    # A generated surface states what was given: a repeating Profile, its period, length and points.
+    assert one["surface"] == {"generator": "a repeating Profile", "period": k2.period,
+                              "length": k2.x[-1] - k2.x[0], "points": len(k2.x)}
+    assert frictal.tilt(frictal.koch_curve(iterations=1), max_tilt=np.radians(1))["surface"]["generator"] == (
+        "an (x, z) curve")
 
 
 def test_tilt_reports_both_predictions_and_holds_rotation():
