@@ -100,6 +100,13 @@ class SphereField {
     double value, gx, gy;
     double cap;  ///< the cap of |g - g_top| its window was collected with (unitless; see Window)
     double s;    ///< the facet slopes' bound around its cell (unitless; see Window)
+    /// One order of the pieces, whatever the order of the visits: highest first, then by gradient.
+    static bool before(const Piece& a, const Piece& b) {
+      return a.value != b.value ? a.value > b.value
+             : a.gx != b.gx     ? a.gx < b.gx
+             : a.gy != b.gy     ? a.gy < b.gy
+                                : a.cap < b.cap;
+    }
   };
   /// The window of pieces a descent step of `delta` asks for: a piece within deficit
   /// delta * min(2, 2 (s + s_top)) + abs of the max, where s bounds the facet slopes around the
@@ -397,21 +404,17 @@ class SphereField {
   }
 
  private:
-  /// Drops the pieces below the window of the final max `best`, then puts the rest in one order
-  /// (highest first, then by gradient): the descent reads the first of the highest as the top
-  /// piece, and the order of the visits (which the lists' discs set) must not choose it.
+  /// Drops the pieces below the window of the final max `best`. The pieces stay in the order of
+  /// the visits (which the lists' discs set): the descent reads them through Piece::before where
+  /// the order could matter (the top piece, the few points of least_norm), so that it does not
+  /// choose. (A sort of every piece here took a tenth of a drop on a conformal pair, where every
+  /// sphere is a piece at the seat.)
   static void erase_outside(std::vector<Piece>* pieces, double best, double eps, const Window* win) {
     if (!pieces) return;
     if (win)
       std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - (win->delta * p.cap + win->abs); });
     else
       std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
-    std::sort(pieces->begin(), pieces->end(), [](const Piece& a, const Piece& b) {
-      return a.value != b.value ? a.value > b.value
-             : a.gx != b.gx     ? a.gx < b.gx
-             : a.gy != b.gy     ? a.gy < b.gy
-                                : a.cap < b.cap;
-    });
   }
   static constexpr std::size_t kTile = 8, kBlock = 8;
   static constexpr std::size_t kNearSorted = 64;  ///< entries of a Near list sorted at its rebuild
@@ -776,10 +779,48 @@ std::vector<std::array<double, 2>> convex_hull(const std::vector<std::array<doub
   return h;
 }
 
+/// Drops the points that lie inside the polygon of the extreme points along eight directions (x,
+/// y and the diagonals, both ways) by more than rounding (Akl and Toussaint's heuristic): none of
+/// them is a vertex of the hull, so the hull (and the sorted points its chain reads at its edges)
+/// is the same, in linear time before the sort. On a conformal pair every sphere is a piece at the
+/// seat and the sort of their slopes took a twentieth of a drop; most of them lie inside.
+void drop_interior(std::vector<std::array<double, 2>>& q) {
+  if (q.size() < 16) return;
+  constexpr std::array<std::array<double, 2>, 8> dirs = {
+      {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}}};  // counter-clockwise
+  std::array<std::size_t, 8> at{};
+  std::array<double, 8> best;
+  best.fill(-std::numeric_limits<double>::infinity());
+  double scale = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    scale = std::max({scale, std::abs(q[i][0]), std::abs(q[i][1])});
+    for (std::size_t k = 0; k < 8; ++k) {
+      const double v = dirs[k][0] * q[i][0] + dirs[k][1] * q[i][1];
+      if (v > best[k]) best[k] = v, at[k] = i;
+    }
+  }
+  std::vector<std::array<double, 2>> poly;  // the extreme points, counter-clockwise, without repeats
+  for (std::size_t k = 0; k < 8; ++k)
+    if (poly.empty() || (q[at[k]] != poly.back() && q[at[k]] != poly.front())) poly.push_back(q[at[k]]);
+  if (poly.size() < 3) return;
+  // Strictly inside every edge by far more than the rounding of the cross products (relative
+  // 1e-16 of scale^2): such a point is inside the hull whatever the rounding of the chain.
+  const double margin = 1e-9 * scale * scale;
+  std::erase_if(q, [&](const std::array<double, 2>& p) {
+    for (std::size_t e = 0; e < poly.size(); ++e) {
+      const auto& a = poly[e];
+      const auto& b = poly[(e + 1) % poly.size()];
+      if ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) <= margin) return false;
+    }
+    return true;
+  });
+}
+
 /// The least-norm point of the convex hull of many points (the friction cones' samples): the hull
 /// (Andrew's monotone chain), then the origin inside it (0) or the nearest point of its boundary.
 /// Same answer as least_norm, in O(n log n).
 std::array<double, 2> least_norm_hull(std::vector<std::array<double, 2>> q) {
+  drop_interior(q);
   std::sort(q.begin(), q.end());
   q.erase(std::unique(q.begin(), q.end()), q.end());
   if (q.size() < 3) return least_norm(q);
@@ -1137,10 +1178,13 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     // tilted slopes of the pieces a step of d could make the highest.
     // dir_geo, dir_cone: the steepest slope along d of those pieces, without and with their
     // friction cones (the seat's slopes where the block rests: Seat below).
+    constexpr std::size_t kFewPoints = 16;
+    std::vector<const SphereField::Piece*> inside;
     auto direction = [&](const std::vector<SphereField::Piece>& ps, double h, double d) {
+      // The top piece: the first of the highest in Piece::before's order.
       const SphereField::Piece* top = &ps[0];
       for (const SphereField::Piece& p : ps)
-        if (p.value > top->value) top = &p;
+        if (SphereField::Piece::before(p, *top)) top = &p;
       q.clear();
       raw.clear();
       dir_geo = dir_cone = -std::numeric_limits<double>::infinity();
@@ -1174,10 +1218,18 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
         }
       };
       if (!(phi_a > 0)) {
+        inside.clear();
         for (const SphereField::Piece& p : ps)
-          if (within(p)) add(p.gx, p.gy);
-        // (least_norm is cubic in the points: the hull for more than a few, the same point.)
-        return q.size() > 16 ? least_norm_hull(q) : least_norm(q);
+          if (within(p)) inside.push_back(&p);
+        // (least_norm is cubic in the points: the hull for more than a few, the same point.) Its
+        // answer depends on the order of its points in the last bits: the few in Piece::before's
+        // order; the hull sorts its points itself.
+        if (inside.size() <= kFewPoints)
+          std::sort(inside.begin(), inside.end(), [](const SphereField::Piece* a, const SphereField::Piece* b) {
+            return SphereField::Piece::before(*a, *b);
+          });
+        for (const SphereField::Piece* p : inside) add(p->gx, p->gy);
+        return q.size() > kFewPoints ? least_norm_hull(q) : least_norm(q);
       }
       // With friction, the cones of the distinct gradients only: the pieces of a conforming pair
       // share a few (every sphere on one facet: 15 pieces of 3 gradients on average, matrix-5),
