@@ -376,7 +376,12 @@ class SphereField {
       if (win && e.wide < best - eps_e) continue;
       if (!lazy) {
         ++near.work;
-        sphere(nodes_[e.k], sx, sy, best, bx, by, work, eps, pieces, win);
+        // (Without a window, a call with a literal null: the compiler's copy of sphere() for it
+        // drops the window's branches, a seventh of a rough pair's drop.)
+        if (win)
+          sphere(nodes_[e.k], sx, sy, best, bx, by, work, eps, pieces, win);
+        else
+          sphere(nodes_[e.k], sx, sy, best, bx, by, work, eps, pieces, nullptr);
         continue;
       }
       lazy_sphere(near, e.k, sx, sy, best, bx, by, work, eps, pieces, win, eps_e);
@@ -422,19 +427,31 @@ class SphereField {
       if (first == tiles_.size() || bound[t] > bound[first]) first = t;
     }
     if (first == tiles_.size()) return best;
-    auto visit = [&](std::size_t q) {
-      if (lazy)
-        lazy_sphere(*lazy, std::uint32_t(order_[q]), sx, sy, best, bx, by, work, eps, pieces, win, eps);
-      else
-        sphere(nodes_[order_[q]], sx, sy, best, bx, by, work, eps, pieces, win);
-    };
-    for (std::size_t q = tiles_[first].begin; q < tiles_[first].end; ++q) visit(q);
-    // (With `lazy`, lazy_sphere counts the spheres it reads.)
-    if (visits) *visits += long(tiles_.size() + (lazy ? 0 : tiles_[first].end - tiles_[first].begin));
+    if (lazy) return eval_lazy(sx, sy, bx, by, work, eps, pieces, win, visits, *lazy, bound, first);
+    for (std::size_t q = tiles_[first].begin; q < tiles_[first].end; ++q)
+      sphere(nodes_[order_[q]], sx, sy, best, bx, by, work, eps, pieces, win);
+    if (visits) *visits += long(tiles_.size() + tiles_[first].end - tiles_[first].begin);
     for (std::size_t t = 0; t < tiles_.size(); ++t) {
       if (t == first || bound[t] == kNoContact || bound[t] < best - eps) continue;
-      if (visits && !lazy) *visits += long(tiles_[t].end - tiles_[t].begin);
-      for (std::size_t q = tiles_[t].begin; q < tiles_[t].end; ++q) visit(q);
+      if (visits) *visits += long(tiles_[t].end - tiles_[t].begin);
+      for (std::size_t q = tiles_[t].begin; q < tiles_[t].end; ++q)
+        sphere(nodes_[order_[q]], sx, sy, best, bx, by, work, eps, pieces, win);
+    }
+    erase_outside(pieces, best, eps, win);
+    return best;
+  }
+  /// eval's visits of the tiles with Near::memo's bounds (lazy_sphere counts the spheres it reads).
+  double eval_lazy(double sx, double sy, double& bx, double& by, std::size_t& work, double eps,
+                   std::vector<Piece>* pieces, const Window* win, long* visits, Near& lazy,
+                   const std::vector<double>& bound, std::size_t first) const {
+    double best = kNoContact;
+    for (std::size_t q = tiles_[first].begin; q < tiles_[first].end; ++q)
+      lazy_sphere(lazy, std::uint32_t(order_[q]), sx, sy, best, bx, by, work, eps, pieces, win, eps);
+    if (visits) *visits += long(tiles_.size());
+    for (std::size_t t = 0; t < tiles_.size(); ++t) {
+      if (t == first || bound[t] == kNoContact || bound[t] < best - eps) continue;
+      for (std::size_t q = tiles_[t].begin; q < tiles_[t].end; ++q)
+        lazy_sphere(lazy, std::uint32_t(order_[q]), sx, sy, best, bx, by, work, eps, pieces, win, eps);
     }
     erase_outside(pieces, best, eps, win);
     return best;
@@ -452,13 +469,15 @@ class SphereField {
     double& m = near.memo[k];
     if (over && m != kNoContact) {
       const auto& p = near.at[near.memo_at[k]];
-      if (m + lip_ * std::hypot(sx - p[0], sy - p[1]) + kBoundSlack * r_ + 1e-12 * (std::abs(m) + std::abs(n.z)) <
+      // (sqrt rather than hypot, a third of the time of this test: the slack covers its rounding.)
+      const double wx = sx - p[0], wy = sy - p[1];
+      if (m + lip_ * std::sqrt(wx * wx + wy * wy) + kBoundSlack * r_ + 1e-12 * (std::abs(m) + std::abs(n.z)) <
           best - eps_e)
         return;
     }
     ++near.work;
     double own = kNoContact;
-    sphere(n, sx, sy, best, bx, by, work, eps, pieces, win, &own);
+    sphere<true>(n, sx, sy, best, bx, by, work, eps, pieces, win, &own);
     m = over ? own : kNoContact;
     near.memo_at[k] = std::uint32_t(near.at.size() - 1);
   }
@@ -696,6 +715,8 @@ class SphereField {
 
   /// With `own`: an upper bound of this sphere's own top (its block height where it touches; the
   /// top itself where every triangle that could reach was evaluated; kNoContact: it touches none).
+  /// (A template, so that the visits that do not read the bound do not compute it.)
+  template <bool kOwn = false>
   void sphere(const detail::TiltNode& n, double sx, double sy, double& best, double& bx, double& by, std::size_t& work,
               double eps, std::vector<Piece>* pieces, const Window* win = nullptr, double* own = nullptr) const {
     const double cx = n.x + sx, cy = n.y + sy;
@@ -711,7 +732,7 @@ class SphereField {
     // The block's height when this sphere (centre n.z + r above the block's origin) touches.
     const double base = -(n.z + r_);
     if (bound + r_ + base < best - (win ? win->eps(sm) : eps)) {
-      if (own) *own = bound + r_ + base;
+      if constexpr (kOwn) *own = bound + r_ + base;
       return;
     }
     double ub = kNoContact;  // the bound of `own`
@@ -722,7 +743,7 @@ class SphereField {
         const double cap = win ? win->cap(slope3_[j * cnx_ + i]) : 2.0;
         const double eps_c = win ? win->delta * cap + win->abs : eps;
         if (cell_top_[j * cnx_ + i] + r_ + base < best - eps_c) {  // no point of the cell reaches
-          ub = std::max(ub, cell_top_[j * cnx_ + i] + r_ + base);
+          if constexpr (kOwn) ub = std::max(ub, cell_top_[j * cnx_ + i] + r_ + base);
           continue;
         }
         const Vertex p00{hf_.x0 + double(i) * hf_.dx, hf_.y0 + double(j) * hf_.dy, hf_.at(i, j)};
@@ -748,7 +769,7 @@ class SphereField {
         for (int t = 0; t < 2; ++t)
           reach[t] = top_t[t] + std::sqrt(std::max(0.0, r2 - d2_t[t])) + kBoundSlack * r_ + base;
         if (std::max(reach[0], reach[1]) < best - eps_c) {
-          ub = std::max({ub, reach[0], reach[1]});
+          if constexpr (kOwn) ub = std::max({ub, reach[0], reach[1]});
           continue;
         }
         ++work;
@@ -758,7 +779,7 @@ class SphereField {
         // MuJoCo's two triangles of the cell, split along (i, j)-(i+1, j+1).
         for (int t = 0; t < 2; ++t) {
           if (reach[t] < best - eps_c) {
-            ub = std::max(ub, reach[t]);
+            if constexpr (kOwn) ub = std::max(ub, reach[t]);
             continue;
           }
           double px = 0, py = 0;
@@ -766,7 +787,7 @@ class SphereField {
                                     : triangle_top(p00, p11, p10, cx, cy, r_, px, py);
           if (top == kNoContact) continue;
           const double v = top + base;
-          ub = std::max(ub, v);
+          if constexpr (kOwn) ub = std::max(ub, v);
           // Ties (quantised heights) to the lowest touching point: h, the point and the pieces do
           // not depend on the order in which spheres are visited (lists, tiles).
           if (v > best || (v == best && (px < bx || (px == bx && py < by)))) best = v, bx = px, by = py;
@@ -777,7 +798,7 @@ class SphereField {
           }
         }
       }
-    if (own) *own = ub;
+    if constexpr (kOwn) *own = ub;
   }
 
   /// Relative slack of the distance bounds in sphere() against rounding (unitless).
@@ -897,8 +918,10 @@ void drop_interior(std::vector<std::array<double, 2>>& q) {
 /// The least-norm point of the convex hull of many points (the friction cones' samples): the hull
 /// (Andrew's monotone chain), then the origin inside it (0) or the nearest point of its boundary.
 /// Same answer as least_norm, in O(n log n).
-std::array<double, 2> least_norm_hull(std::vector<std::array<double, 2>> q) {
-  drop_interior(q);
+/// `interior`: drop the points inside first (drop_interior; the pieces' slopes of a conformal seat,
+/// not the cones' samples, which lie on their rims and cost the test without leaving it).
+std::array<double, 2> least_norm_hull(std::vector<std::array<double, 2>> q, bool interior = false) {
+  if (interior) drop_interior(q);
   std::sort(q.begin(), q.end());
   q.erase(std::unique(q.begin(), q.end()), q.end());
   if (q.size() < 3) return least_norm(q);
@@ -1307,7 +1330,7 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
             return SphereField::Piece::before(*a, *b);
           });
         for (const SphereField::Piece* p : inside) add(p->gx, p->gy);
-        return q.size() > kFewPoints ? least_norm_hull(q) : least_norm(q);
+        return q.size() > kFewPoints ? least_norm_hull(q, true) : least_norm(q);
       }
       // With friction, the cones of the distinct gradients only: the pieces of a conforming pair
       // share a few (every sphere on one facet: 15 pieces of 3 gradients on average, matrix-5),
