@@ -100,6 +100,13 @@ class SphereField {
     double value, gx, gy;
     double cap;  ///< the cap of |g - g_top| its window was collected with (unitless; see Window)
     double s;    ///< the facet slopes' bound around its cell (unitless; see Window)
+    /// One order of the pieces, whatever the order of the visits: highest first, then by gradient.
+    static bool before(const Piece& a, const Piece& b) {
+      return a.value != b.value ? a.value > b.value
+             : a.gx != b.gx     ? a.gx < b.gx
+             : a.gy != b.gy     ? a.gy < b.gy
+                                : a.cap < b.cap;
+    }
   };
   /// The window of pieces a descent step of `delta` asks for: a piece within deficit
   /// delta * min(2, 2 (s + s_top)) + abs of the max, where s bounds the facet slopes around the
@@ -143,6 +150,7 @@ class SphereField {
         slope3_[j * cnx_ + i] = m;
         slope_max_ = std::max(slope_max_, m);
       }
+    lip_ = slope_max_ * (1 + 1e-9);
     // How far h may fall across a Near disc (near_fall): the steepest facet bounds it, but on a
     // smooth measured map a few spikes set that max, and a list deep enough for them holds nearly
     // every sphere. Twice the 99th percentile of the facet slopes instead (at least a tenth of the
@@ -262,6 +270,11 @@ class SphereField {
   }
   /// The largest of the bounds (unitless).
   double slope_max() const { return slope_max_; }
+  /// The centre of sphere n at offset (sx, sy) lies over the lower map (its nodes' rectangle).
+  bool over_map(const detail::TiltNode& n, double sx, double sy) const {
+    const double cx = n.x + sx, cy = n.y + sy;
+    return cx >= hf_.x0 && cy >= hf_.y0 && cx <= hf_.x0 + double(cnx_) * hf_.dx && cy <= hf_.y0 + double(cny_) * hf_.dy;
+  }
   /// No outliers among the facet slopes: near_fall() is their max (unitless).
   bool uniform() const { return fall_ >= slope_max_; }
   /// Two flat faces: the lower height field one horizontal plane and every sphere at one height
@@ -304,6 +317,18 @@ class SphereField {
       std::vector<Entry> list;
     } outer;
     static bool before(const Entry& a, const Entry& b) { return a.wide > b.wide || (a.wide == b.wide && a.k < b.k); }
+    /// On smooth maps (local()): per sphere, an upper bound of its top where the lists last had it
+    /// evaluated (kNoContact: none, or its centre was not over the lower map), and that offset
+    /// (an index into `at`, the offsets of the evaluations). A sphere whose centre stays over the
+    /// lower map rises by at most the steepest facet's slope per unit of offset (lip_): its
+    /// contacts' normals are the face's (a facet's, or between those of the facets at an edge or
+    /// vertex), so the bound there is that top plus lip_ times the way, and a sphere below its
+    /// window by it is left out. Exact as the lists (a bound); on a conformal pair sliding, the
+    /// spheres tied within the fall of a disc are thousands and their tops change by a step's
+    /// rise, a few of them a step.
+    std::vector<double> memo;
+    std::vector<std::uint32_t> memo_at;
+    std::vector<std::array<double, 2>> at;
   };
   /// h(s) as eval, from the spheres of `near` (rebuilt around s when s lies outside its disc):
   /// visited in the order of their wide bounds until a bound falls below the best height less
@@ -329,6 +354,12 @@ class SphereField {
     double best = kNoContact;
     if (pieces) pieces->clear();
     bool complete = false;
+    // Smooth maps: each sphere's top where it was last evaluated bounds it here (lazy).
+    const bool lazy = local();
+    if (lazy) {
+      if (near.memo.empty()) near.memo.assign(nodes_.size(), kNoContact), near.memo_at.assign(nodes_.size(), 0);
+      near.at.push_back({sx, sy});
+    }
     for (std::size_t i = 0; i < near.list.size(); ++i) {
       if (i == near.sorted) {  // the next entries, twice as many as are sorted
         near.sorted = std::min(near.list.size(), 2 * i);
@@ -341,13 +372,23 @@ class SphereField {
         break;
       }
       // Below its own window (best only grows: it stays below).
-      if (win && e.wide < best - win->eps(e.s)) continue;
-      ++near.work;
-      sphere(nodes_[e.k], sx, sy, best, bx, by, work, eps, pieces, win);
+      const double eps_e = win ? win->eps(e.s) : eps;
+      if (win && e.wide < best - eps_e) continue;
+      if (!lazy) {
+        ++near.work;
+        // (Without a window, a call with a literal null: the compiler's copy of sphere() for it
+        // drops the window's branches, a seventh of a rough pair's drop.)
+        if (win)
+          sphere(nodes_[e.k], sx, sy, best, bx, by, work, eps, pieces, win);
+        else
+          sphere(nodes_[e.k], sx, sy, best, bx, by, work, eps, pieces, nullptr);
+        continue;
+      }
+      lazy_sphere(near, e.k, sx, sy, best, bx, by, work, eps, pieces, win, eps_e);
     }
     if (!complete && !(best != kNoContact && best - eps >= near.threshold)) {
       ++near.fallbacks;
-      best = eval(sx, sy, bx, by, work, eps, pieces, win, &near.work);
+      best = eval(sx, sy, bx, by, work, eps, pieces, win, &near.work, lazy ? &near : nullptr);
       near.last = best;
       if (best != kNoContact) rebuild(near, sx, sy, best - eps - 0.5 * near_fall() * near_radius(near));
       return best;
@@ -367,8 +408,11 @@ class SphereField {
 
   /// h(s) (kNoContact: no sphere over the field); (bx, by) the touching point; `work` counts
   /// cells evaluated.
+  /// With `lazy` (a Near whose offset of this evaluation is the last of its `at`): its bounds of
+  /// the spheres' tops (Near::memo) leave out those below eps (the deepest window), as in eval_near.
   double eval(double sx, double sy, double& bx, double& by, std::size_t& work, double eps = 0,
-              std::vector<Piece>* pieces = nullptr, const Window* win = nullptr, long* visits = nullptr) const {
+              std::vector<Piece>* pieces = nullptr, const Window* win = nullptr, long* visits = nullptr,
+              Near* lazy = nullptr) const {
     double best = kNoContact;
     if (pieces) pieces->clear();
     // Each tile's bound at this offset; the tile of the highest bound first (it sets a high best),
@@ -383,6 +427,7 @@ class SphereField {
       if (first == tiles_.size() || bound[t] > bound[first]) first = t;
     }
     if (first == tiles_.size()) return best;
+    if (lazy) return eval_lazy(sx, sy, bx, by, work, eps, pieces, win, visits, *lazy, bound, first);
     for (std::size_t q = tiles_[first].begin; q < tiles_[first].end; ++q)
       sphere(nodes_[order_[q]], sx, sy, best, bx, by, work, eps, pieces, win);
     if (visits) *visits += long(tiles_.size() + tiles_[first].end - tiles_[first].begin);
@@ -395,23 +440,58 @@ class SphereField {
     erase_outside(pieces, best, eps, win);
     return best;
   }
+  /// eval's visits of the tiles with Near::memo's bounds (lazy_sphere counts the spheres it reads).
+  double eval_lazy(double sx, double sy, double& bx, double& by, std::size_t& work, double eps,
+                   std::vector<Piece>* pieces, const Window* win, long* visits, Near& lazy,
+                   const std::vector<double>& bound, std::size_t first) const {
+    double best = kNoContact;
+    for (std::size_t q = tiles_[first].begin; q < tiles_[first].end; ++q)
+      lazy_sphere(lazy, std::uint32_t(order_[q]), sx, sy, best, bx, by, work, eps, pieces, win, eps);
+    if (visits) *visits += long(tiles_.size());
+    for (std::size_t t = 0; t < tiles_.size(); ++t) {
+      if (t == first || bound[t] == kNoContact || bound[t] < best - eps) continue;
+      for (std::size_t q = tiles_[t].begin; q < tiles_[t].end; ++q)
+        lazy_sphere(lazy, std::uint32_t(order_[q]), sx, sy, best, bx, by, work, eps, pieces, win, eps);
+    }
+    erase_outside(pieces, best, eps, win);
+    return best;
+  }
 
  private:
-  /// Drops the pieces below the window of the final max `best`, then puts the rest in one order
-  /// (highest first, then by gradient): the descent reads the first of the highest as the top
-  /// piece, and the order of the visits (which the lists' discs set) must not choose it.
+  /// sphere() for node k, unless its bound from Near::memo (its top where last evaluated, plus lip_
+  /// times the way from there) lies below best - eps_e, eps_e its deepest window (then none of its
+  /// pieces is within its window, nor is it the max: the same h, point and pieces). Counts a visit
+  /// in near.work where it reads the sphere's cells.
+  void lazy_sphere(Near& near, std::uint32_t k, double sx, double sy, double& best, double& bx, double& by,
+                   std::size_t& work, double eps, std::vector<Piece>* pieces, const Window* win, double eps_e) const {
+    const detail::TiltNode& n = nodes_[k];
+    const bool over = over_map(n, sx, sy);
+    double& m = near.memo[k];
+    if (over && m != kNoContact) {
+      const auto& p = near.at[near.memo_at[k]];
+      // (sqrt rather than hypot, a third of the time of this test: the slack covers its rounding.)
+      const double wx = sx - p[0], wy = sy - p[1];
+      if (m + lip_ * std::sqrt(wx * wx + wy * wy) + kBoundSlack * r_ + 1e-12 * (std::abs(m) + std::abs(n.z)) <
+          best - eps_e)
+        return;
+    }
+    ++near.work;
+    double own = kNoContact;
+    sphere<true>(n, sx, sy, best, bx, by, work, eps, pieces, win, &own);
+    m = over ? own : kNoContact;
+    near.memo_at[k] = std::uint32_t(near.at.size() - 1);
+  }
+  /// Drops the pieces below the window of the final max `best`. The pieces stay in the order of
+  /// the visits (which the lists' discs set): the descent reads them through Piece::before where
+  /// the order could matter (the top piece, the few points of least_norm), so that it does not
+  /// choose. (A sort of every piece here took a tenth of a drop on a conformal pair, where every
+  /// sphere is a piece at the seat.)
   static void erase_outside(std::vector<Piece>* pieces, double best, double eps, const Window* win) {
     if (!pieces) return;
     if (win)
       std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - (win->delta * p.cap + win->abs); });
     else
       std::erase_if(*pieces, [&](const Piece& p) { return p.value < best - eps; });
-    std::sort(pieces->begin(), pieces->end(), [](const Piece& a, const Piece& b) {
-      return a.value != b.value ? a.value > b.value
-             : a.gx != b.gx     ? a.gx < b.gx
-             : a.gy != b.gy     ? a.gy < b.gy
-                                : a.cap < b.cap;
-    });
   }
   static constexpr std::size_t kTile = 8, kBlock = 8;
   static constexpr std::size_t kNearSorted = 64;  ///< entries of a Near list sorted at its rebuild
@@ -633,8 +713,12 @@ class SphereField {
     return true;
   }
 
+  /// With `own`: an upper bound of this sphere's own top (its block height where it touches; the
+  /// top itself where every triangle that could reach was evaluated; kNoContact: it touches none).
+  /// (A template, so that the visits that do not read the bound do not compute it.)
+  template <bool kOwn = false>
   void sphere(const detail::TiltNode& n, double sx, double sy, double& best, double& bx, double& by, std::size_t& work,
-              double eps, std::vector<Piece>* pieces, const Window* win = nullptr) const {
+              double eps, std::vector<Piece>* pieces, const Window* win = nullptr, double* own = nullptr) const {
     const double cx = n.x + sx, cy = n.y + sy;
     // Cells whose rectangle meets the disc of radius r about (cx, cy).
     std::size_t i0, i1, j0, j1;
@@ -647,14 +731,21 @@ class SphereField {
       }
     // The block's height when this sphere (centre n.z + r above the block's origin) touches.
     const double base = -(n.z + r_);
-    if (bound + r_ + base < best - (win ? win->eps(sm) : eps)) return;
+    if (bound + r_ + base < best - (win ? win->eps(sm) : eps)) {
+      if constexpr (kOwn) *own = bound + r_ + base;
+      return;
+    }
+    double ub = kNoContact;  // the bound of `own`
     const double r2 = r_ * r_;
     for (std::size_t j = j0; j <= j1; ++j)
       for (std::size_t i = i0; i <= i1; ++i) {
         // The cell's own window (eps where none is asked for).
         const double cap = win ? win->cap(slope3_[j * cnx_ + i]) : 2.0;
         const double eps_c = win ? win->delta * cap + win->abs : eps;
-        if (cell_top_[j * cnx_ + i] + r_ + base < best - eps_c) continue;  // no point of the cell reaches
+        if (cell_top_[j * cnx_ + i] + r_ + base < best - eps_c) {  // no point of the cell reaches
+          if constexpr (kOwn) ub = std::max(ub, cell_top_[j * cnx_ + i] + r_ + base);
+          continue;
+        }
         const Vertex p00{hf_.x0 + double(i) * hf_.dx, hf_.y0 + double(j) * hf_.dy, hf_.at(i, j)};
         // A point of the cell at horizontal distance rho >= delta from the centre lifts the
         // sphere to at most its height + sqrt(r^2 - delta^2): the cell's bound at its distance
@@ -677,19 +768,26 @@ class SphereField {
         double reach[2];
         for (int t = 0; t < 2; ++t)
           reach[t] = top_t[t] + std::sqrt(std::max(0.0, r2 - d2_t[t])) + kBoundSlack * r_ + base;
-        if (std::max(reach[0], reach[1]) < best - eps_c) continue;
+        if (std::max(reach[0], reach[1]) < best - eps_c) {
+          if constexpr (kOwn) ub = std::max({ub, reach[0], reach[1]});
+          continue;
+        }
         ++work;
         const Vertex p10{p00.x + hf_.dx, p00.y, z10};
         const Vertex p01{p00.x, p00.y + hf_.dy, z01};
         const Vertex p11{p00.x + hf_.dx, p00.y + hf_.dy, z11};
         // MuJoCo's two triangles of the cell, split along (i, j)-(i+1, j+1).
         for (int t = 0; t < 2; ++t) {
-          if (reach[t] < best - eps_c) continue;
+          if (reach[t] < best - eps_c) {
+            if constexpr (kOwn) ub = std::max(ub, reach[t]);
+            continue;
+          }
           double px = 0, py = 0;
           const double top = t == 0 ? triangle_top(p01, p00, p11, cx, cy, r_, px, py)
                                     : triangle_top(p00, p11, p10, cx, cy, r_, px, py);
           if (top == kNoContact) continue;
           const double v = top + base;
+          if constexpr (kOwn) ub = std::max(ub, v);
           // Ties (quantised heights) to the lowest touching point: h, the point and the pieces do
           // not depend on the order in which spheres are visited (lists, tiles).
           if (v > best || (v == best && (px < bx || (px == bx && py < by)))) best = v, bx = px, by = py;
@@ -700,6 +798,7 @@ class SphereField {
           }
         }
       }
+    if constexpr (kOwn) *own = ub;
   }
 
   /// Relative slack of the distance bounds in sphere() against rounding (unitless).
@@ -716,8 +815,11 @@ class SphereField {
   std::vector<double> cell_slope_;  ///< per cell: the steeper of its two facets' slopes (unitless)
   std::vector<double> slope3_;      ///< per cell: the facet slopes' max over the 3 x 3 cells around it (unitless)
   double slope_max_ = 0;            ///< slope3_'s max (unitless)
-  bool flat_ = false;               ///< see flat()
-  double fall_ = 0.5;               ///< near_fall(): see the constructor (unitless)
+  /// The steepest facet's slope: a sphere's top over the lower map rises by at most this per unit
+  /// of offset (unitless; Near::memo).
+  double lip_ = 0;
+  bool flat_ = false;  ///< see flat()
+  double fall_ = 0.5;  ///< near_fall(): see the constructor (unitless)
   std::size_t bnx_ = 0, bny_ = 0;
   std::vector<double> block_top_;   ///< max of cell_top_ over kBlock x kBlock cells
   std::vector<std::size_t> order_;  ///< sphere indices grouped by tile
@@ -776,10 +878,50 @@ std::vector<std::array<double, 2>> convex_hull(const std::vector<std::array<doub
   return h;
 }
 
+/// Drops the points that lie inside the polygon of the extreme points along eight directions (x,
+/// y and the diagonals, both ways) by more than rounding (Akl and Toussaint's heuristic): none of
+/// them is a vertex of the hull, so the hull (and the sorted points its chain reads at its edges)
+/// is the same, in linear time before the sort. On a conformal pair every sphere is a piece at the
+/// seat and the sort of their slopes took a twentieth of a drop; most of them lie inside.
+void drop_interior(std::vector<std::array<double, 2>>& q) {
+  if (q.size() < 16) return;
+  constexpr std::array<std::array<double, 2>, 8> dirs = {
+      {{1, 0}, {1, 1}, {0, 1}, {-1, 1}, {-1, 0}, {-1, -1}, {0, -1}, {1, -1}}};  // counter-clockwise
+  std::array<std::size_t, 8> at{};
+  std::array<double, 8> best;
+  best.fill(-std::numeric_limits<double>::infinity());
+  double scale = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    scale = std::max({scale, std::abs(q[i][0]), std::abs(q[i][1])});
+    for (std::size_t k = 0; k < 8; ++k) {
+      const double v = dirs[k][0] * q[i][0] + dirs[k][1] * q[i][1];
+      if (v > best[k]) best[k] = v, at[k] = i;
+    }
+  }
+  std::vector<std::array<double, 2>> poly;  // the extreme points, counter-clockwise, without repeats
+  for (std::size_t k = 0; k < 8; ++k)
+    if (poly.empty() || (q[at[k]] != poly.back() && q[at[k]] != poly.front())) poly.push_back(q[at[k]]);
+  if (poly.size() < 3) return;
+  // Strictly inside every edge by far more than the rounding of the cross products (relative
+  // 1e-16 of scale^2): such a point is inside the hull whatever the rounding of the chain.
+  const double margin = 1e-9 * scale * scale;
+  std::erase_if(q, [&](const std::array<double, 2>& p) {
+    for (std::size_t e = 0; e < poly.size(); ++e) {
+      const auto& a = poly[e];
+      const auto& b = poly[(e + 1) % poly.size()];
+      if ((b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) <= margin) return false;
+    }
+    return true;
+  });
+}
+
 /// The least-norm point of the convex hull of many points (the friction cones' samples): the hull
 /// (Andrew's monotone chain), then the origin inside it (0) or the nearest point of its boundary.
 /// Same answer as least_norm, in O(n log n).
-std::array<double, 2> least_norm_hull(std::vector<std::array<double, 2>> q) {
+/// `interior`: drop the points inside first (drop_interior; the pieces' slopes of a conformal seat,
+/// not the cones' samples, which lie on their rims and cost the test without leaving it).
+std::array<double, 2> least_norm_hull(std::vector<std::array<double, 2>> q, bool interior = false) {
+  if (interior) drop_interior(q);
   std::sort(q.begin(), q.end());
   q.erase(std::unique(q.begin(), q.end()), q.end());
   if (q.size() < 3) return least_norm(q);
@@ -1137,10 +1279,13 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
     // tilted slopes of the pieces a step of d could make the highest.
     // dir_geo, dir_cone: the steepest slope along d of those pieces, without and with their
     // friction cones (the seat's slopes where the block rests: Seat below).
+    constexpr std::size_t kFewPoints = 16;
+    std::vector<const SphereField::Piece*> inside;
     auto direction = [&](const std::vector<SphereField::Piece>& ps, double h, double d) {
+      // The top piece: the first of the highest in Piece::before's order.
       const SphereField::Piece* top = &ps[0];
       for (const SphereField::Piece& p : ps)
-        if (p.value > top->value) top = &p;
+        if (SphereField::Piece::before(p, *top)) top = &p;
       q.clear();
       raw.clear();
       dir_geo = dir_cone = -std::numeric_limits<double>::infinity();
@@ -1174,10 +1319,18 @@ Result<ArealTiltHold> hold_on_field(const SphereField& field, const Map& f, cons
         }
       };
       if (!(phi_a > 0)) {
+        inside.clear();
         for (const SphereField::Piece& p : ps)
-          if (within(p)) add(p.gx, p.gy);
-        // (least_norm is cubic in the points: the hull for more than a few, the same point.)
-        return q.size() > 16 ? least_norm_hull(q) : least_norm(q);
+          if (within(p)) inside.push_back(&p);
+        // (least_norm is cubic in the points: the hull for more than a few, the same point.) Its
+        // answer depends on the order of its points in the last bits: the few in Piece::before's
+        // order; the hull sorts its points itself.
+        if (inside.size() <= kFewPoints)
+          std::sort(inside.begin(), inside.end(), [](const SphereField::Piece* a, const SphereField::Piece* b) {
+            return SphereField::Piece::before(*a, *b);
+          });
+        for (const SphereField::Piece* p : inside) add(p->gx, p->gy);
+        return q.size() > kFewPoints ? least_norm_hull(q, true) : least_norm(q);
       }
       // With friction, the cones of the distinct gradients only: the pieces of a conforming pair
       // share a few (every sphere on one facet: 15 pieces of 3 gradients on average, matrix-5),

@@ -478,6 +478,39 @@ TEST(ArealTiltHold, AConformingValleyWithFrictionHoldsAtItsSlopePlusAtanMuA) {
     }
 }
 
+TEST(ArealTiltHold, ANearlyFlatConformingPitHoldsAtItsFlankSlope) {
+  // A square pit of flanks of slope s = 0.004 (z = s (|x - xc| + |y - yc|), a nearly flat face) and
+  // in place in it a 12 x 12 window of the same pit: every sphere touches at once, on facets of four
+  // gradients (+-s, +-s) and the creases between them, and the spheres' tops tie to rounding, so
+  // the smooth map's bounds (each sphere's top where last evaluated) and the least-norm point of
+  // many pieces' slopes decide every step. Climbing out along +x raises h at s per unit (the far
+  // flank; a way across it raises h faster): held up to atan(s) by hand, free and locked, within the
+  // bisection's resolution.
+  const std::size_t n = 32;
+  const double a = 1e-6, s = 0.004;
+  frictal::Map f;
+  f.nx = f.ny = n;
+  f.dx = f.dy = a;
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t i = 0; i < n; ++i)
+      f.heights.push_back(s * a * (std::abs(double(i) - 16) + std::abs(double(j) - 16)));
+  frictal::Map g;
+  g.nx = g.ny = 12;
+  g.dx = g.dy = a;
+  g.x0 = g.y0 = 10 * a;
+  for (std::size_t j = 0; j < g.ny; ++j)
+    for (std::size_t i = 0; i < g.nx; ++i) g.heights.push_back(f.at(i + 10, j + 10));
+  for (const bool lock : {false, true}) {
+    frictal::MapHoldOptions t;
+    t.turn_over_upper = false;
+    t.lock_lateral = lock;
+    auto h = frictal::areal_tilt_hold(f, g, t);
+    ASSERT_TRUE(h.ok()) << h.error().message;
+    ASSERT_TRUE(h->ran_away) << lock;
+    EXPECT_NEAR(h->hold_angle, std::atan(s), 2e-6) << "locked " << lock;
+  }
+}
+
 TEST(ArealTiltStudyKind, GroovesAlongTheDiagonal) {
   // The study kind 'areal-tilt' on grooves at 30 deg along the cells' diagonal: free slides at
   // the first increment, locked holds at the steepest face, atan(A sin(2 pi / m) / a) with
