@@ -107,7 +107,7 @@ void add_generator_subcommands(CLI::App& app, GeneratorOptions& g, bool fallthro
 
 void add_atomic_friction_option(CLI::App& app, double& mu_a) {
   const Field* f = find_field(tilt_settings(), "atomic_friction");
-  app.add_option(cli_option_name(*f), mu_a, field_help(*f));
+  app.add_option(cli_option_name(*f), mu_a, field_help(*f))->type_name("NUMBER");  // as the tables' numbers
 }
 
 /// "X,Y" in metres.
