@@ -972,10 +972,11 @@ std::string load_curve_figure(const Prediction& p) {
   rigid.value = deg(p.rigid_friction_angle);
   rigid.label = p.is_map ? "rigid median (free block)" : "rigid median";
   pl.lines.push_back(rigid);
-  // Maps: the curve's own limit at zero load (the block locked to d), where it is not the free
-  // block's median.
+  // Maps: the curve's own limit at zero load (the block locked to d), where the prediction says
+  // it is not the free block's median (its warning load-locked-block).
   if (p.is_map && std::isfinite(p.load_zero_limit) &&
-      std::abs(p.load_zero_limit - p.rigid_friction_angle) > 0.1 * std::numbers::pi / 180) {
+      std::any_of(p.warnings.begin(), p.warnings.end(),
+                  [](const Warning& w) { return w.code == "load-locked-block"; })) {
     RefLine zero;
     zero.horizontal = true;
     zero.value = deg(p.load_zero_limit);

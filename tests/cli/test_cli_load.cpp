@@ -132,6 +132,8 @@ TEST(CliLoad, PredictsAMapPairUnderLoad) {
   const std::string html = read_file(page);
   EXPECT_NE(html.find("id=\"load-curve\""), std::string::npos);
   EXPECT_NE(html.find("elastic half-space"), std::string::npos);
+  // Its curve draws the zero-load limit where the warning says it is not the free block's median.
+  EXPECT_EQ(html.find("zero-load limit (block locked to d)") != std::string::npos, locked_warning);
 }
 
 // Two smooth WM profiles (rms height 0.1 um over 1 mm, steepest slopes below 0.4 deg) on
